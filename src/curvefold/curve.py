@@ -14,9 +14,12 @@ import numpy as np
 
 from .errors import InputError
 from .functions import FunctionLike, ScalarFunction, as_function, check_finite
-from .lie import GAUSS3_NODES, exp_twist, frenet_twists, magnus6, matrix_quaternion, prefix_compose, quaternion_matrix
+from .lie import GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
 
 __all__ = ["SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
+
+#: Samples per slice in the per-step work (keeps the working set in cache).
+CHUNK = 4096
 
 #: Largest sample count accepted: a curve of this many samples holds ~1 GB of arrays.
 MAX_SAMPLES = 10_000_000
@@ -42,10 +45,11 @@ def integrate_frenet(
     ----------
     grid : (n,) ndarray
         Increasing values of the integration parameter q (arc length when speed is 1).
-    kappa_nodes, tau_nodes : (n - 1, 3) ndarray
+    kappa_nodes, tau_nodes : (..., n - 1, 3) ndarray
         Curvature and torsion at the three Gauss nodes of every interval
-        (``grid[i] + GAUSS3_NODES * (grid[i+1] - grid[i])``).
-    speed_nodes : (n - 1, 3) ndarray or float
+        (``grid[i] + GAUSS3_NODES * (grid[i+1] - grid[i])``); leading axes are a batch of
+        curves integrated together.
+    speed_nodes : (..., n - 1, 3) ndarray or float
         ds/dq at the same nodes.
     origin : (3,) ndarray, optional
         Position at ``grid[0]``; default the origin.
@@ -54,18 +58,32 @@ def integrate_frenet(
 
     Returns
     -------
-    points : (n, 3) ndarray
-    frames : (n, 3, 3) ndarray
+    points : (..., n, 3) ndarray
+    frames : (..., n, 3, 3) ndarray
         Columns T, N, B at every grid value.
     """
-    omega, v = frenet_twists(kappa_nodes, tau_nodes, speed_nodes)
-    step_q, step_p = exp_twist(*magnus6(np.diff(grid), omega, v))
+    kappa_nodes, tau_nodes, speed_nodes = np.broadcast_arrays(
+        np.asarray(kappa_nodes, float), np.asarray(tau_nodes, float), np.asarray(speed_nodes, float)
+    )
+    h = np.diff(grid)
+    steps = np.empty((8,) + kappa_nodes.shape[:-1])  # (8, ..., n-1)
+    # Work in slices that stay in cache: each step is independent of the others.
+    for sl in _slices(len(h), CHUNK):
+        steps[..., sl] = exp_dual(magnus6(h[sl], kappa_nodes[..., sl, :], tau_nodes[..., sl, :], speed_nodes[..., sl, :]))
     # The start frame is the first factor of the prefix product.
     q0 = np.array([1.0, 0.0, 0.0, 0.0]) if frame is None else matrix_quaternion(frame)
     x0 = np.zeros(3) if origin is None else np.asarray(origin, float)
-    q, points = prefix_compose(np.concatenate([q0[None], step_q]), np.concatenate([x0[None], step_p]))
-    frames = quaternion_matrix(q)
+    start = np.broadcast_to(motion_to_dual(q0, x0)[(...,) + (None,) * (steps.ndim - 1)], steps.shape[:-1] + (1,))
+    motions = prefix_dual(np.concatenate([start, steps], axis=-1))
+    points = np.empty(motions.shape[1:] + (3,))
+    frames = np.empty(motions.shape[1:] + (3, 3))
+    for sl in _slices(motions.shape[-1], CHUNK):
+        frames[..., sl, :, :], points[..., sl, :] = dual_to_motion(motions[..., sl])
     return points, frames
+
+
+def _slices(n: int, size: int) -> list[slice]:
+    return [slice(i, min(i + size, n)) for i in range(0, n, size)]
 
 
 def gauss_nodes(grid: np.ndarray) -> np.ndarray:
@@ -148,10 +166,13 @@ class SpaceCurve:
         s = np.linspace(0.0, length, samples)
         nodes = gauss_nodes(s)
         k_nodes, t_nodes = kf(nodes), tf(nodes)
-        k_s = kf(s)
-        _check_curvature(np.concatenate([k_s, k_nodes.ravel()]), np.concatenate([s, nodes.ravel()]))
-        check_finite(t_nodes.ravel(), name="tau", s=nodes.ravel())
-        check_finite(tf(s), name="tau", s=s)
+        ends = np.array([0.0, length])
+        k_ends, t_ends = kf(ends), tf(ends)
+        ok = all(np.isfinite(v).all() for v in (k_nodes, t_nodes, k_ends, t_ends)) and (k_nodes > 0).all() and (k_ends > 0).all()
+        if not ok:  # find and report the first offending arc length
+            where = np.concatenate([ends, nodes.ravel()])
+            _check_curvature(np.concatenate([k_ends, k_nodes.ravel()]), where)
+            check_finite(np.concatenate([t_ends, t_nodes.ravel()]), name="tau", s=where)
         points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
         _readonly(s, points, frames)
         return cls(s, points, frames, kf, tf)

@@ -48,6 +48,12 @@ class ScalarFunction:
     def __call__(self, s: np.ndarray) -> np.ndarray:
         return self.value(s)
 
+    def scaled(self, factor: float) -> "ScalarFunction":
+        """``factor · self``."""
+        value, derivative = self.value, self.derivative
+        const = None if self.constant is None else factor * self.constant
+        return ScalarFunction(lambda s: factor * value(s), lambda s: factor * derivative(s), const)
+
     def map(self, f: Callable[[np.ndarray], np.ndarray], df: Callable[[np.ndarray], np.ndarray]) -> "ScalarFunction":
         """Compose with ``f``: the result is ``f(self(s))`` with derivative ``df(self) self'``."""
         inner, dinner = self.value, self.derivative

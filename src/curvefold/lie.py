@@ -1,15 +1,21 @@
 """Rigid motions for the Frenet–Serret integrator: the Lie group SE(3) and its algebra.
 
-A rigid motion is a pair ``(R, p)`` of a rotation (..., 3, 3) and a translation (..., 3)
-acting as ``x ↦ R x + p``. A twist is a pair ``(ω, v)`` of (..., 3) arrays, the body
-angular and linear velocity.
-
 The Frenet frame ``F = [T N B]`` (columns) and the position ``x`` of a curve obey
 ``(F, x)' = (F, x) · ξ`` with the body twist ``ξ = (σ (τ, 0, κ), σ (1, 0, 0))``, where σ is
-the speed ds/dq of the parameter q. :func:`magnus6` integrates one step of that equation
-with the sixth-order Magnus expansion on three Gauss–Legendre nodes (Blanes, Casas & Ros,
-2000), :func:`exp_twist` maps the result onto the group in closed form (rotation as a quaternion),
-and :func:`prefix_compose` chains the steps.
+the speed ds/dq of the parameter q. One integration step is:
+
+1. :func:`magnus6` — the sixth-order Magnus expansion of the step's twist from the twists
+   at three Gauss–Legendre nodes (Blanes, Casas & Ros, 2000); exact for constant twists;
+2. :func:`exp_dual` — the closed-form exponential, as a unit dual quaternion;
+3. :func:`prefix_dual` — the running product of the steps.
+
+Dual quaternions carry the motions through long products because rounding only changes
+their norm, which :func:`dual_to_motion` divides out. A product of rotation *matrices*
+instead builds up a non-orthogonal part: the diagonal of a near-identity matrix errs the
+same way at every equal step, so n equal steps lose orthonormality like n·ε.
+
+Arrays here are component-major — shape (C, ...) with C = 3, 4, 6 or 8 components first —
+so that every operation runs on contiguous arrays of samples.
 """
 
 from __future__ import annotations
@@ -19,88 +25,20 @@ import numpy as np
 __all__ = [
     "GAUSS3_NODES",
     "GAUSS3_WEIGHTS",
-    "frenet_twists",
     "magnus6",
-    "exp_twist",
-    "compose",
-    "prefix_compose",
+    "exp_dual",
+    "compose_dual",
+    "prefix_dual",
+    "dual_to_motion",
+    "motion_to_dual",
     "quaternion_matrix",
     "matrix_quaternion",
-    "quaternion_rotate",
     "cross",
 ]
 
 #: Gauss–Legendre nodes on [0, 1] (three points, order 6) and their weights.
 GAUSS3_NODES = np.array([0.5 - np.sqrt(15.0) / 10.0, 0.5, 0.5 + np.sqrt(15.0) / 10.0])
 GAUSS3_WEIGHTS = np.array([5.0, 8.0, 5.0]) / 18.0
-
-
-def frenet_twists(kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0) -> tuple[np.ndarray, np.ndarray]:
-    """Body twists of the Frenet–Serret equations.
-
-    Parameters
-    ----------
-    kappa, tau : (...,) ndarray
-        Curvature and torsion.
-    speed : (...,) ndarray or float
-        ds/dq for the integration parameter q (1 for arc length).
-
-    Returns
-    -------
-    omega, v : (..., 3) ndarray
-    """
-    kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
-    zero = np.zeros_like(kappa)
-    omega = np.stack([tau * speed, zero, kappa * speed], axis=-1)
-    v = np.stack([speed, zero, zero], axis=-1)
-    return omega, v
-
-
-def _cross3(a: tuple, b: tuple) -> tuple:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _bracket(x: tuple, y: tuple) -> tuple:
-    """Lie bracket for the form ``g' = g ξ`` (body twists): the negated se(3) commutator.
-
-    Twists are 6-tuples of component arrays (ω₀, ω₁, ω₂, v₀, v₁, v₂).
-    """
-    w = _cross3(y[:3], x[:3])
-    a, b = _cross3(y[:3], x[3:]), _cross3(x[:3], y[3:])
-    return w + (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _lin(*terms: tuple) -> tuple:
-    """Linear combination Σ c·x of 6-tuples, given as (c, x) pairs."""
-    return tuple(sum(c * x[i] for c, x in terms) for i in range(6))
-
-
-def magnus6(h: np.ndarray, omega: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One sixth-order Magnus step per interval.
-
-    Parameters
-    ----------
-    h : (M,) ndarray
-        Step lengths in the integration parameter.
-    omega, v : (M, 3, 3) ndarray
-        Twists at the three Gauss nodes of each step (axis 1 is the node, axis 2 the coordinate).
-
-    Returns
-    -------
-    omega, v : (M, 3) ndarray
-        The step's twist Ω with ``g(q + h) = g(q) exp(Ω)``; exact when the twist is constant.
-    """
-    h = np.asarray(h, float)
-    A = [tuple(h * omega[:, i, j] for j in range(3)) + tuple(h * v[:, i, j] for j in range(3)) for i in range(3)]
-    c = np.sqrt(15.0) / 3.0
-    a1 = A[1]
-    a2 = _lin((c, A[2]), (-c, A[0]))
-    a3 = _lin((10.0 / 3.0, A[2]), (-20.0 / 3.0, A[1]), (10.0 / 3.0, A[0]))
-    c1 = _bracket(a1, a2)
-    c2 = _lin((-1.0 / 60.0, _bracket(a1, _lin((2.0, a3), (1.0, c1)))))
-    last = _bracket(_lin((-20.0, a1), (-1.0, a3), (1.0, c1)), _lin((1.0, a2), (1.0, c2)))
-    out = _lin((1.0, a1), (1.0 / 12.0, a3), (1.0 / 240.0, last))
-    return np.stack(out[:3], axis=-1), np.stack(out[3:], axis=-1)
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -114,59 +52,222 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def exp_twist(omega: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exponential map se(3) → SE(3) in closed form, the rotation as a unit quaternion.
+def _cross3(a, b) -> tuple:
+    """Cross product of component-major vectors (3 arrays)."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
-    ``q = (cos θ/2, sin(θ/2)/θ · ω)`` and ``p = v + B ω×v + C ω×(ω×v)`` with θ = |ω|,
-    ``B = (1 − cos θ)/θ²``, ``C = (θ − sin θ)/θ³``; below θ = 0.1 the coefficients come from
-    their Taylor series (truncation < 1e-17).
 
-    Quaternions, not matrices, carry the rotations through long products: the rounding
-    error of a near-identity matrix sits in its diagonal and is the same at every equal
-    step, so a product of n equal steps loses orthonormality like n·ε; in a quaternion
-    that error only changes the norm, which :func:`quaternion_matrix` divides out.
+def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0) -> tuple:
+    """The sixth-order Magnus twist of every step of the Frenet–Serret equations.
+
+    With ``A_i = h σ_i (τ_i, 0, κ_i ; 1, 0, 0)`` at the Gauss nodes, ``α₁ = A₂``,
+    ``α₂ = (√15/3)(A₃ − A₁)``, ``α₃ = (10/3)(A₃ − 2A₂ + A₁)``, ``C₁ = [α₁, α₂]``,
+    ``C₂ = −[α₁, 2α₃ + C₁]/60``, the step twist is
+    ``Ω = α₁ + α₃/12 + [−20α₁ − α₃ + C₁, α₂ + C₂]/240``. The Frenet twists have zero
+    components, which the brackets below use: only the last bracket is a full one.
 
     Parameters
     ----------
-    omega, v : (..., 3) ndarray
+    h : (M,) ndarray
+        Step lengths in the integration parameter q.
+    kappa, tau : (..., M, 3) ndarray
+        Curvature and torsion at the three Gauss nodes of each step; leading axes are batches.
+    speed : (..., M, 3) ndarray or float
+        ds/dq at the nodes.
 
     Returns
     -------
-    q : (..., 4) ndarray
-        Scalar-first unit quaternion.
-    p : (..., 3) ndarray
+    tuple of 6 (..., M) ndarray
+        The step twist Ω = (ω, v) with ``g(q + h) = g(q) exp(Ω)``; exact when κ, τ, σ are
+        constant over the step.
     """
-    t2 = np.einsum("...i,...i->...", omega, omega)
+    kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
+    hs = np.asarray(h, float) * np.moveaxis(speed, -1, 0)  # (3, ..., M): h σ at each node
+    a = hs * np.moveaxis(tau, -1, 0)  # ω₀ at the nodes
+    c = hs * np.moveaxis(kappa, -1, 0)  # ω₂
+    d = hs  # v₀
+    k = np.sqrt(15.0) / 3.0
+    # α₁ = (a1, 0, c1; d1, 0, 0), α₂ = (A, 0, C; D, 0, 0), α₃ = (E, 0, G; H, 0, 0)
+    a1, c1, d1 = a[1], c[1], d[1]
+    A, C, D = k * (a[2] - a[0]), k * (c[2] - c[0]), k * (d[2] - d[0])
+    E, G, H = (10.0 / 3.0) * (a[2] - 2 * a[1] + a[0]), (10.0 / 3.0) * (c[2] - 2 * c[1] + c[0]), (10.0 / 3.0) * (d[2] - 2 * d[1] + d[0])
+    # C₁ = [α₁, α₂] = (0, p, 0; 0, q, 0)
+    p = C * a1 - A * c1
+    q = C * d1 - c1 * D
+    # C₂ = −[α₁, Y]/60 with Y = 2α₃ + C₁ = (2E, p, 2G; 2H, q, 0)
+    y1, y3, y4 = 2 * E, 2 * G, 2 * H
+    f = -1.0 / 60.0
+    C2 = (f * p * c1, f * (y3 * a1 - y1 * c1), -f * p * a1, f * c1 * q, f * (y3 * d1 - c1 * y4), f * (-p * d1 - a1 * q))
+    # last = [X, Z] with X = −20α₁ − α₃ + C₁ and Z = α₂ + C₂ (both full bracket arguments)
+    X = (-20 * a1 - E, p, -20 * c1 - G, -20 * d1 - H, q, 0.0)
+    Z = (A + C2[0], C2[1], C + C2[2], D + C2[3], C2[4], C2[5])
+    w = _cross3(Z[:3], X[:3])
+    u, v = _cross3(Z[:3], X[3:]), _cross3(X[:3], Z[3:])
+    g = 1.0 / 240.0
+    return (
+        a1 + E / 12 + g * w[0],
+        g * w[1],
+        c1 + G / 12 + g * w[2],
+        d1 + H / 12 + g * (u[0] - v[0]),
+        g * (u[1] - v[1]),
+        g * (u[2] - v[2]),
+    )
+
+
+def _qmul(a, b) -> tuple:
+    """Hamilton product of component-major quaternions (w, x, y, z)."""
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return (
+        aw * bw - ax * bx - ay * by - az * bz,
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+    )
+
+
+def exp_dual(twist: tuple) -> np.ndarray:
+    """Exponential map se(3) → SE(3) in closed form, as unit dual quaternions.
+
+    Rotation ``r = (cos θ/2, sin(θ/2)/θ · ω)``; translation ``p = v + B ω×v + C ω×(ω×v)``
+    with θ = |ω|, ``B = (1 − cos θ)/θ²``, ``C = (θ − sin θ)/θ³`` (Taylor series below
+    θ = 0.1, truncation < 1e-17); dual part ``d = ½ p r``.
+
+    Parameters
+    ----------
+    twist : tuple of 6 (...,) ndarray
+        (ω₀, ω₁, ω₂, v₀, v₁, v₂).
+
+    Returns
+    -------
+    (8, ...) ndarray
+    """
+    w, v = twist[:3], twist[3:]
+    t2 = w[0] ** 2 + w[1] ** 2 + w[2] ** 2
     t = np.sqrt(t2)
-    small = t < 0.1
-    ts = np.where(small, 1.0, t)
-    # sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³
-    a = np.where(small, 0.5 * (1 - t2 / 24 * (1 - t2 / 80 * (1 - t2 / 168 * (1 - t2 / 288)))), np.sin(ts / 2) / ts)
-    b = np.where(small, 0.5 * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56 * (1 - t2 / 90)))), (1 - np.cos(ts)) / ts**2)
-    c = np.where(small, (1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72 * (1 - t2 / 110)))) / 6, (ts - np.sin(ts)) / ts**3)
-    q = np.concatenate([np.cos(t / 2)[..., None], a[..., None] * omega], axis=-1)
-    wv = cross(omega, v)
-    p = v + b[..., None] * wv + c[..., None] * cross(omega, wv)
-    return q, p
+    # Taylor series of sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ and cos(θ/2)
+    a = 0.5 * (1 - t2 / 24 * (1 - t2 / 80 * (1 - t2 / 168 * (1 - t2 / 288))))
+    b = 0.5 * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56 * (1 - t2 / 90))))
+    c = (1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72 * (1 - t2 / 110)))) / 6
+    half_cos = 1 - t2 / 8 * (1 - t2 / 48 * (1 - t2 / 120 * (1 - t2 / 224 * (1 - t2 / 360))))
+    large = t >= 0.1
+    if large.any():  # closed forms where the series would not reach rounding
+        tl = t[large]
+        a[large], b[large] = np.sin(tl / 2) / tl, (1 - np.cos(tl)) / tl**2
+        c[large], half_cos[large] = (tl - np.sin(tl)) / tl**3, np.cos(tl / 2)
+    r = (half_cos, a * w[0], a * w[1], a * w[2])
+    wv = _cross3(w, v)
+    wwv = _cross3(w, wv)
+    p = tuple(v[i] + b * wv[i] + c * wwv[i] for i in range(3))
+    d = _qmul((np.zeros_like(t),) + p, r)
+    return np.stack(r + tuple(0.5 * x for x in d))
 
 
-def quaternion_multiply(q1: np.ndarray, q2: np.ndarray) -> np.ndarray:
-    """Hamilton product of scalar-first quaternions, shape (..., 4)."""
-    w1, v1 = q1[..., :1], q1[..., 1:]
-    w2, v2 = q2[..., :1], q2[..., 1:]
-    return np.concatenate([w1 * w2 - np.einsum("...i,...i->...", v1, v2)[..., None], w1 * v2 + w2 * v1 + cross(v1, v2)], axis=-1)
+#: Longest run of sequential products in :func:`prefix_dual`.
+BLOCK = 128
+
+# Left multiplication by a dual quaternion x is the 8×8 matrix x9[_DQ_INDEX] * _DQ_SIGN,
+# where x9 is x padded with a zero (index 8): [[L(r), 0], [L(d), L(r)]] with L(q) the
+# left-multiplication matrix of a quaternion.
+_L_INDEX = np.array([[0, 1, 2, 3], [1, 0, 3, 2], [2, 3, 0, 1], [3, 2, 1, 0]])
+_L_SIGN = np.array([[1, -1, -1, -1], [1, 1, -1, 1], [1, 1, 1, -1], [1, -1, 1, 1]], float)
+_DQ_INDEX = np.block([[_L_INDEX, np.full((4, 4), 8)], [_L_INDEX + 4, _L_INDEX]])
+_DQ_SIGN = np.block([[_L_SIGN, np.zeros((4, 4))], [_L_SIGN, _L_SIGN]])
 
 
-def quaternion_rotate(q: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Rotate vectors x (..., 3) by quaternions q (..., 4) of any non-zero norm."""
-    w, u = q[..., :1], q[..., 1:]
-    n2 = np.einsum("...i,...i->...", q, q)[..., None]
-    ux = cross(u, x)
-    return x + (2.0 / n2) * (w * ux + cross(u, ux))
+def compose_dual(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Product x ∘ y of dual quaternions (8, ...): motion y, then motion x.
+
+    ``(r₁, d₁)(r₂, d₂) = (r₁ r₂, r₁ d₂ + d₁ r₂)``. Small batches go through one 8×8
+    matrix product each (few NumPy calls); large ones through the component formulas
+    (few passes over memory).
+    """
+    if x[0].size <= 512:
+        xm = np.moveaxis(np.concatenate([x, np.zeros((1,) + x.shape[1:])]), 0, -1)
+        ym = np.moveaxis(np.broadcast_to(y, (8,) + np.broadcast_shapes(x.shape[1:], y.shape[1:])), 0, -1)
+        return np.moveaxis((xm[..., _DQ_INDEX] * _DQ_SIGN @ ym[..., None])[..., 0], -1, 0)
+    rr = _qmul(x[:4], y[:4])
+    a, b = _qmul(x[:4], y[4:]), _qmul(x[4:], y[:4])
+    return np.stack(rr + tuple(a[i] + b[i] for i in range(4)))
+
+
+def prefix_dual(x: np.ndarray) -> np.ndarray:
+    """Inclusive prefix products ``G_k = S_0 ∘ S_1 ∘ … ∘ S_k`` along the last axis.
+
+    The n steps are cut into blocks of b = min(√n, BLOCK) steps; products run sequentially
+    inside the blocks (vectorised across blocks and batches), the block totals are prefixed
+    the same way recursively, and each block is then moved by the product of the blocks
+    before it. Every result is a product of O(b log n) factors and the Python loop runs
+    O(b log n) times.
+
+    Parameters
+    ----------
+    x : (8, ..., n) ndarray
+        Dual quaternions.
+
+    Returns
+    -------
+    (8, ..., n) ndarray
+    """
+    n = x.shape[-1]
+    if n <= 16:
+        out = x.copy()
+        for k in range(1, n):
+            out[..., k] = compose_dual(out[..., k - 1], x[..., k])
+        return out
+    b = min(int(np.ceil(np.sqrt(n))), BLOCK)
+    nb = -(-n // b)
+    identity = np.zeros(x.shape[:-1] + (nb * b - n,))
+    identity[0] = 1.0
+    # Layout (8, ..., b, nb): step k of every block is one contiguous row.
+    xb = np.concatenate([x, identity], axis=-1).reshape(x.shape[:-1] + (nb, b)).swapaxes(-1, -2).copy()
+    for k in range(1, b):
+        xb[..., k, :] = compose_dual(xb[..., k - 1, :], xb[..., k, :])
+    # Block j > 0 is moved by the product of blocks 0 … j−1.
+    before = prefix_dual(xb[..., -1, :-1].copy())
+    rows = max(1, 4096 // nb)  # rows per slice, to stay in cache
+    for i in range(0, b, rows):
+        xb[..., i : i + rows, 1:] = compose_dual(before[..., None, :], xb[..., i : i + rows, 1:])
+    return xb.swapaxes(-1, -2).reshape(x.shape[:-1] + (nb * b,))[..., :n]
+
+
+def motion_to_dual(q: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """A rigid motion (unit quaternion (4,), translation (3,)) as a dual quaternion (8,)."""
+    d = _qmul((0.0, *p), tuple(q))
+    return np.array(tuple(q) + tuple(0.5 * c for c in d))
+
+
+def dual_to_motion(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Dual quaternions (8, ...) to rotation matrices (..., 3, 3) and translations (..., 3).
+
+    Any norm is accepted: ``R = R(r / |r|)`` and ``p = 2 d r* / |r|²``.
+    """
+    r, d = x[:4], x[4:]
+    n2 = r[0] ** 2 + r[1] ** 2 + r[2] ** 2 + r[3] ** 2
+    p = _qmul(d, (r[0], -r[1], -r[2], -r[3]))[1:]
+    points = np.stack([2.0 * c / n2 for c in p], axis=-1)
+    return quaternion_matrix(np.moveaxis(r, 0, -1)), points
+
+
+def quaternion_matrix(q: np.ndarray) -> np.ndarray:
+    """Rotation matrices (..., 3, 3) of scalar-first quaternions (..., 4) of any non-zero norm."""
+    w, x, y, z = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    s = 2.0 / (w * w + x * x + y * y + z * z)
+    out = np.empty(q.shape[:-1] + (3, 3))
+    out[..., 0, 0] = 1 - s * (y * y + z * z)
+    out[..., 0, 1] = s * (x * y - w * z)
+    out[..., 0, 2] = s * (x * z + w * y)
+    out[..., 1, 0] = s * (x * y + w * z)
+    out[..., 1, 1] = 1 - s * (x * x + z * z)
+    out[..., 1, 2] = s * (y * z - w * x)
+    out[..., 2, 0] = s * (x * z - w * y)
+    out[..., 2, 1] = s * (y * z + w * x)
+    out[..., 2, 2] = 1 - s * (x * x + y * y)
+    return out
 
 
 def matrix_quaternion(R: np.ndarray) -> np.ndarray:
-    """Scalar-first unit quaternion of one rotation matrix (3, 3) (Shepperd's method)."""
+    """Scalar-first unit quaternion (4,) of one rotation matrix (3, 3) (Shepperd's method)."""
     R = np.asarray(R, float)
     tr = np.trace(R)
     k = int(np.argmax([tr, R[0, 0], R[1, 1], R[2, 2]]))
@@ -180,60 +281,3 @@ def matrix_quaternion(R: np.ndarray) -> np.ndarray:
         q[0] = (R[m, j] - R[j, m]) / (4 * r)
         q[1 + i], q[1 + j], q[1 + m] = r, (R[j, i] + R[i, j]) / (4 * r), (R[m, i] + R[i, m]) / (4 * r)
     return np.array(q)
-
-
-def quaternion_matrix(q: np.ndarray) -> np.ndarray:
-    """Rotation matrices (..., 3, 3) of quaternions (..., 4) of any non-zero norm."""
-    n2 = np.einsum("...i,...i->...", q, q)
-    s = 2.0 / n2
-    w, x, y, z = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
-    rows = [
-        [1 - s * (y * y + z * z), s * (x * y - w * z), s * (x * z + w * y)],
-        [s * (x * y + w * z), 1 - s * (x * x + z * z), s * (y * z - w * x)],
-        [s * (x * z - w * y), s * (y * z + w * x), 1 - s * (x * x + y * y)],
-    ]
-    return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
-
-
-def compose(q1: np.ndarray, p1: np.ndarray, q2: np.ndarray, p2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(q1, p1) ∘ (q2, p2) = (q1 q2, q1 p2 q1⁻¹ + p1)``, broadcasting over leading axes."""
-    return quaternion_multiply(q1, q2), quaternion_rotate(q1, p2) + p1
-
-
-def prefix_compose(q: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Inclusive prefix products ``G_k = S_0 ∘ S_1 ∘ … ∘ S_k``.
-
-    The n steps are cut into about √n blocks of about √n steps; products run sequentially
-    inside the blocks (vectorised across blocks), the block totals are prefixed by the same
-    method recursively, and each block is then moved by the product of the blocks before it.
-    Every result is thus a product of O(√n) factors instead of O(n), and the Python loop
-    runs only O(√n) times.
-
-    Parameters
-    ----------
-    q : (n, 4) ndarray
-        Rotations as quaternions.
-    p : (n, 3) ndarray
-        Translations.
-
-    Returns
-    -------
-    q, p : (n, 4) and (n, 3) ndarray
-    """
-    n = len(q)
-    if n <= 16:
-        qs, ps = q.copy(), p.copy()
-        for k in range(1, n):
-            qs[k], ps[k] = compose(qs[k - 1], ps[k - 1], q[k], p[k])
-        return qs, ps
-    b = int(np.ceil(np.sqrt(n)))
-    nb = -(-n // b)
-    pad = nb * b - n
-    qb = np.concatenate([q, np.tile([1.0, 0.0, 0.0, 0.0], (pad, 1))]).reshape(nb, b, 4)
-    pb = np.concatenate([p, np.zeros((pad, 3))]).reshape(nb, b, 3)
-    for k in range(1, b):
-        qb[:, k], pb[:, k] = compose(qb[:, k - 1], pb[:, k - 1], qb[:, k], pb[:, k])
-    # Block k > 0 is moved by the product of blocks 0 … k−1.
-    before_q, before_p = prefix_compose(qb[:-1, -1].copy(), pb[:-1, -1].copy())
-    qb[1:], pb[1:] = compose(before_q[:, None], before_p[:, None], qb[1:], pb[1:])
-    return qb.reshape(-1, 4)[:n], pb.reshape(-1, 3)[:n]
