@@ -213,10 +213,20 @@ class Crease:
 
         leaves.terminal = True
         sol = solve_ivp(rhs, (0.0, L), [a0], method="DOP853", rtol=rtol, atol=rtol * 1e-2, dense_output=True, events=leaves)
-        if sol.status == 1:
-            s_end = float(sol.t_events[0][0])
-            raise InputError(f"fold angle 2α leaves (0°, 180°) at s = {s_end:.6g} (it reaches {np.degrees(2 * sol.y_events[0][0][0]):.6g}°); shorten the crease to length < {s_end:.6g} or change the ruling angles")
         dense = sol.sol
+        a_probe = dense(probe)[0] if sol.status == 0 else None
+        if a_probe is None or not ((a_probe > 0) & (a_probe < np.pi / 2)).all():
+            # the event, the solver's failure point, or the first probe outside (0, π/2)
+            if sol.status == 1:
+                s_end = float(sol.t_events[0][0])
+            elif sol.status == -1:
+                s_end = float(sol.t[-1])
+            else:
+                s_end = float(probe[np.argmax(~((a_probe > 0) & (a_probe < np.pi / 2)))])
+            raise InputError(
+                f"fold angle 2α leaves (0°, 180°) at s = {s_end:.6g} (α' = ½ κ_2D tan α (cot β_L − cot β_R) drives it there); "
+                f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle"
+            )
 
         def a_of(s):
             s = np.asarray(s, float)

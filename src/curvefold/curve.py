@@ -169,10 +169,10 @@ class SpaceCurve:
         ends = np.array([0.0, length])
         k_ends, t_ends = kf(ends), tf(ends)
         ok = all(np.isfinite(v).all() for v in (k_nodes, t_nodes, k_ends, t_ends)) and (k_nodes > 0).all() and (k_ends > 0).all()
-        if not ok:  # find and report the first offending arc length
-            where = np.concatenate([ends, nodes.ravel()])
-            _check_curvature(np.concatenate([k_ends, k_nodes.ravel()]), where)
-            check_finite(np.concatenate([t_ends, t_nodes.ravel()]), name="tau", s=where)
+        if not ok:  # find and report the first offending arc length, samples included
+            where = np.concatenate([s, nodes.ravel()])
+            _check_curvature(np.concatenate([kf(s), k_nodes.ravel()]), where)
+            check_finite(np.concatenate([tf(s), t_nodes.ravel()]), name="tau", s=where)
         points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
         _readonly(s, points, frames)
         return cls(s, points, frames, kf, tf)

@@ -39,7 +39,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path, PurePosixPath, PureWindowsPath
 from types import MappingProxyType
-from typing import Any, Callable, Literal
+from typing import Any, Literal
+from collections.abc import Callable
 
 import numpy as np
 
@@ -105,7 +106,7 @@ class Interval:
     hi_closed: bool
 
     @classmethod
-    def parse(cls, text: str) -> "Interval":
+    def parse(cls, text: str) -> Interval:
         """Read interval notation: ``"[0, 3)"``, ``"(0, inf)"``, ``"(-inf, inf)"``."""
         lo, hi = (float(x) for x in text[1:-1].split(","))
         return cls(lo, hi, text[0] == "[", text[-1] == "]")
@@ -386,7 +387,7 @@ class Design:
             out[section] = {k: v for k, v in values.items() if v is not None}
         return out
 
-    def overrides(self, **flags: Any) -> "Design":
+    def overrides(self, **flags: Any) -> Design:
         """A new design with the non-None ``flags`` replacing file values, validated anew.
 
         Flags are key names without their section (``a=0.4``, ``samples=1601``,
@@ -724,14 +725,16 @@ def _check_page(spec: KeySpec, value: Any, where: str) -> str | tuple[float, flo
     if isinstance(value, str) and value in spec.choices:
         return value
     if isinstance(value, (list, tuple)) and len(value) == 2:
-        sizes = tuple(_check_float(spec, v, f"{where} {name}") for v, name in zip(value, ("width", "height")))
-        return sizes  # type: ignore[return-value]
-    raise InputError(f"{where} must be one of {_choices(spec.choices)} or [width, height] in mm, got {_describe(value)}")
+        width, height = (_check_float(spec, v, f"{where} {name}") for v, name in zip(value, ("width", "height"), strict=True))
+        return width, height
+    names = _choices(spec.choices)
+    raise InputError(f"{where} must be one of {names} or [width, height] in mm, got {_describe(value)}")
 
 
 def _check_formats(spec: KeySpec, value: Any, where: str) -> tuple[str, ...]:
     if not isinstance(value, (list, tuple)):
-        raise InputError(f"{where} must be an array of format names ({', '.join(spec.choices)}), got {_describe(value)}")
+        names = ", ".join(spec.choices)
+        raise InputError(f"{where} must be an array of format names ({names}), got {_describe(value)}")
     for item in value:
         if not isinstance(item, str) or item not in spec.choices:
             raise InputError(f"{where}: unknown format {_describe(item)} (allowed: {', '.join(spec.choices)})")
@@ -802,7 +805,9 @@ def _check_samples(
         raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}")
 
 
-def _read_table(spec: KeySpec, table: Mapping[str, Any], key: str, where: str, ctx: _Context, length: float) -> TableColumn:
+def _read_table(
+    spec: KeySpec, table: Mapping[str, Any], key: str, where: str, ctx: _Context, length: float
+) -> TableColumn:
     for k in table:
         if k not in ("csv", "column"):
             raise InputError(f"{where}: unknown key {k!r} in CSV table (allowed: csv, column)")
@@ -832,7 +837,11 @@ def _read_table(spec: KeySpec, table: Mapping[str, Any], key: str, where: str, c
     grid = np.linspace(0.0, length, values.size)
     if "s" in header:
         _check_grid(columns[header.index("s")], grid, lines, label, length)
-    _check_samples(spec, values, grid, f"{label} column {column!r}", lambda i: f"at line {lines[i]} (s = {grid[i]:.6g})")
+
+    def at(i: int) -> str:
+        return f"at line {lines[i]} (s = {grid[i]:.6g})"
+
+    _check_samples(spec, values, grid, f"{label} column {column!r}", at)
     values.flags.writeable = False
     return TableColumn(raw, column, values)
 

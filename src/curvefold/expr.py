@@ -25,7 +25,7 @@ from __future__ import annotations
 import ast
 import keyword
 from dataclasses import dataclass, field
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
@@ -326,7 +326,8 @@ class _Compiler:
         if isinstance(node, ast.UnaryOp):
             op = _UNARY.get(type(node.op))
             if op is None:
-                raise self.refuse(node, f"operator '{_OPERATOR_TEXT[type(node.op)]}' is not allowed (allowed: + - * / **)")
+                symbol = _OPERATOR_TEXT[type(node.op)]
+                raise self.refuse(node, f"operator '{symbol}' is not allowed (allowed: + - * / **)")
             return _apply(op, [self.build(node.operand)])
         if isinstance(node, ast.BinOp):
             return self.binary(node)
@@ -371,7 +372,8 @@ class _Compiler:
         left = self.build(node.left)
         right = self.build(node.right)
         if isinstance(node.op, ast.Pow) and not callable(right) and not abs(right) <= MAX_EXPONENT:
-            raise self.refuse(node, f"constant exponent {float(right):g} is out of range (|exponent| ≤ {MAX_EXPONENT:g})")
+            limit = f"|exponent| ≤ {MAX_EXPONENT:g}"
+            raise self.refuse(node, f"constant exponent {float(right):g} is out of range ({limit})")
         return _apply(op, [left, right])
 
     def call(self, node: ast.Call):

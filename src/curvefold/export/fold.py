@@ -2,8 +2,9 @@
 
 Layout written by :func:`write_fold` (one shared vertex/edge/face topology):
 
-* key frame (frame 0): the crease pattern, 2D ``vertices_coords``, ``frame_classes``
-  ``["creasePattern"]``, ``edges_foldAngle`` at the design state;
+* key frame (frame 0): the crease pattern, 2D ``vertices_coords`` (every sheet seen from
+  the side its normals point to, so triangles are counter-clockwise as FOLD requires),
+  ``frame_classes`` ``["creasePattern"]``, ``edges_foldAngle`` at the design state;
 * ``file_frames[i]``: folded state i, ``frame_classes`` ``["foldedForm"]``,
   ``frame_parent: 0``, ``frame_inherit: true``, overriding only ``vertices_coords`` (3D)
   and ``edges_foldAngle``;
@@ -124,21 +125,49 @@ def _check_sheet(mesh: Mesh, assignment: np.ndarray, what: str) -> None:
         )
 
 
-def _check_flat_ccw(mesh: Mesh, what: str, flat_tol: float) -> None:
+def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: bool) -> np.ndarray:
+    """2D coordinates (V, 2) of a flat mesh with every sheet counter-clockwise.
+
+    A sheet (a set of faces connected through shared vertices) whose triangles are all
+    clockwise is mirrored, y → 2·c − y about its centre c, when ``mirror_clockwise``;
+    that is the same sheet seen from the side its normals point to.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     x = np.asarray(mesh.vertices_coords, float)
-    size = float(np.ptp(x, axis=0).max()) if len(x) else 0.0
-    zmax = float(np.abs(x[:, 2]).max()) if len(x) else 0.0
+    V = len(x)
+    size = float(np.ptp(x, axis=0).max()) if V else 0.0
+    zmax = float(np.abs(x[:, 2]).max()) if V else 0.0
     if zmax > flat_tol * max(size, 1e-300):
         raise InputError(f"{what} must be flat (z = 0): max |z| = {zmax:.3g}, allowed {flat_tol:g} x size {size:.3g}")
-    t = x[mesh.faces_vertices][..., :2]
+    xy = x[:, :2].copy()
+    f = np.asarray(mesh.faces_vertices)
+    if len(f) == 0:
+        return xy
+    t = xy[f]
     area2 = (t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1]) - (t[:, 1, 1] - t[:, 0, 1]) * (t[:, 2, 0] - t[:, 0, 0])
+    pairs = np.concatenate([f[:, [0, 1]], f[:, [1, 2]]])
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
+    _, vertex_sheet = connected_components(graph, directed=False)
+    face_sheet = vertex_sheet[f[:, 0]]
+    for sheet in np.unique(face_sheet):
+        faces = np.flatnonzero(face_sheet == sheet)
+        cw = area2[faces] < 0
+        if mirror_clockwise and cw.all():
+            verts = np.unique(f[faces])
+            centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
+            xy[verts, 1] = 2 * centre - xy[verts, 1]
+            area2[faces] = -area2[faces]
     bad = area2 <= 0
     if bad.any():
-        f = int(np.flatnonzero(bad)[0])
+        i = int(np.flatnonzero(bad)[0])
         raise InputError(
             f"{what}: FOLD needs counter-clockwise faces in the crease pattern, but {int(bad.sum())} of "
-            f"{len(area2)} faces are clockwise or degenerate (first: face {f}, signed area {area2[f] / 2:.3g})"
+            f"{len(area2)} faces are clockwise or degenerate (first: face {i}, signed area {area2[i] / 2:.3g})"
+            + ("; a sheet with both orientations cannot be fixed by mirroring" if mirror_clockwise else "")
         )
+    return xy
 
 
 def _number_lists(a: np.ndarray) -> list:
@@ -174,6 +203,7 @@ def write_fold(
     seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
     title: str = "",
     flat_tol: float = 1e-9,
+    mirror_clockwise: bool = True,
 ) -> Path:
     """Write a crease pattern and its folded states as one FOLD 1.1 file.
 
@@ -197,6 +227,11 @@ def write_fold(
         ``file_title`` (omitted when empty).
     flat_tol : float
         Allowed ``max |z|`` of the crease pattern relative to its size.
+    mirror_clockwise : bool
+        Mirror (y → −y about its centre) every sheet of the crease pattern whose
+        triangles are all clockwise, so that it is seen from the side its normals point
+        to, as FOLD requires; the folded frames and fold angles are unchanged. If False,
+        such a sheet is an error.
 
     Returns
     -------
@@ -205,13 +240,14 @@ def write_fold(
     Raises
     ------
     InputError
-        On a non-flat or clockwise crease pattern, topology that differs between frames,
+        On a non-flat crease pattern, a sheet with both clockwise and counter-clockwise
+        (or degenerate) triangles, topology that differs between frames,
         a crease edge without two faces, a non-boundary seam partner or bad metadata.
     """
     cp = crease_pattern
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
-    _check_flat_ccw(cp, "crease_pattern", flat_tol)
+    cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
     pairs = _check_seam_partners(seam_partners, assignment)
     meta = check_metadata(metadata)
     zero = np.isin(assignment, ("B", "F"))
@@ -248,7 +284,7 @@ def write_fold(
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
         "frame_unit": unit,
-        "vertices_coords": _number_lists(cp.vertices_coords[:, :2]),
+        "vertices_coords": _number_lists(cp_xy),
         "edges_vertices": cp.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
         "edges_foldAngle": np.where(zero, 0.0, np.asarray(cp.edges_foldAngle, float)).tolist(),
@@ -269,6 +305,7 @@ def write_sheet_fold(
     *,
     title: str = "",
     flat_tol: float = 1e-9,
+    mirror_clockwise: bool = True,
 ) -> Path:
     """Write one sheet as a single-frame FOLD file that Origami Simulator can load.
 
@@ -288,6 +325,8 @@ def write_sheet_fold(
         ``file_title`` (omitted when empty).
     flat_tol : float
         Allowed ``max |z|`` relative to the sheet's size to count as flat.
+    mirror_clockwise : bool
+        As in :func:`write_fold`, for a flat sheet.
 
     Returns
     -------
@@ -299,7 +338,7 @@ def write_sheet_fold(
     size = float(np.ptp(x, axis=0).max()) if len(x) else 0.0
     flat = len(x) == 0 or float(np.abs(x[:, 2]).max()) <= flat_tol * max(size, 1e-300)
     if flat:
-        _check_flat_ccw(sheet, "sheet", flat_tol)
+        x = _flat_ccw_coords(sheet, "sheet", flat_tol, mirror_clockwise)
     doc = {
         "file_spec": FILE_SPEC,
         "file_creator": "curvefold",
@@ -307,7 +346,7 @@ def write_sheet_fold(
         **({"file_title": title} if title else {}),
         "frame_classes": ["creasePattern" if flat else "foldedForm"],
         "frame_unit": unit,
-        "vertices_coords": _number_lists(x[:, :2] if flat else x),
+        "vertices_coords": _number_lists(x),
         "edges_vertices": sheet.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
         "edges_foldAngle": np.where(np.isin(assignment, ("B", "F")), 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),

@@ -197,7 +197,7 @@ class PatternSheet:
             i = bad[0]
             raise InputError(
                 f"sheet {self.label!r}: edges_seam must be >= 0 exactly on edges of kind 'seam'; "
-                f"{bad.size} edges disagree, e.g. edge {i} of kind {mesh.edges_kind[i]!r} has seam id {seam[i]}"
+                f"{bad.size} edges disagree, e.g. edge {i} of kind {str(mesh.edges_kind[i])!r} has seam id {seam[i]}"
             )
         xyz = mesh.vertices_coords
         if len(xyz) and not np.isfinite(xyz).all():
@@ -215,7 +215,7 @@ class PatternSheet:
         if odd.size:
             raise InputError(
                 f"sheet {self.label!r}: fold edges must be assigned 'M' or 'V'; edge {odd[0]} is "
-                f"{mesh.edges_assignment[odd[0]]!r} ({odd.size} such edges)"
+                f"{str(mesh.edges_assignment[odd[0]])!r} ({odd.size} such edges)"
             )
         if len(mesh.faces_vertices) == 0:
             raise InputError(f"sheet {self.label!r}: the mesh has no faces")
@@ -424,9 +424,10 @@ def _inside(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
     a, b = segments[None, :, 0], segments[None, :, 1]
     x, y = points[:, None, 0], points[:, None, 1]
     straddle = (a[..., 1] > y) != (b[..., 1] > y)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        xc = a[..., 0] + (y - a[..., 1]) * (b[..., 0] - a[..., 0]) / (b[..., 1] - a[..., 1])
-    return (np.count_nonzero(straddle & (x < xc), axis=1) % 2) == 1
+    # left of the crossing point, without dividing by the segment's height
+    side = (x - a[..., 0]) * (b[..., 1] - a[..., 1]) - (y - a[..., 1]) * (b[..., 0] - a[..., 0])
+    left = np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
+    return (np.count_nonzero(straddle & left, axis=1) % 2) == 1
 
 
 def _distance_to_segments(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
@@ -549,11 +550,11 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
     outline = np.isin(mesh.edges_kind, ("boundary", "seam"))
     bad = np.flatnonzero(outline & (nfaces != 1))
     if bad.size:
-        raise InputError(f"sheet {name!r}: edge {bad[0]} of kind {mesh.edges_kind[bad[0]]!r} must border exactly one triangle, borders {nfaces[bad[0]]}")
+        raise InputError(f"sheet {name!r}: edge {bad[0]} of kind {str(mesh.edges_kind[bad[0]])!r} must border exactly one triangle, borders {nfaces[bad[0]]}")
     bad = np.flatnonzero(~outline & (nfaces != 2))
     if bad.size:
         raise InputError(f"sheet {name!r}: edge {bad[0]} borders {nfaces[bad[0]]} triangle(s), so it lies on the outline, "
-                         f"but its kind is {mesh.edges_kind[bad[0]]!r} (must be 'boundary' or 'seam')")
+                         f"but its kind is {str(mesh.edges_kind[bad[0]])!r} (must be 'boundary' or 'seam')")
 
     # Outline loops, directed as their triangle traverses them (interior on the left).
     ids = np.flatnonzero(outline)
@@ -660,24 +661,28 @@ class _Obstacles:
         length = np.linalg.norm(d, axis=1)
         count = np.maximum(1, np.ceil(length / spacing).astype(int))
         seg = np.repeat(np.arange(len(segments)), count + 1)
-        t = np.concatenate([np.linspace(0, 1, c + 1) for c in count]) if len(count) else np.zeros(0)
+        first = np.concatenate([[0], np.cumsum(count + 1)[:-1]])  # index of each segment's first sample
+        t = (np.arange(len(seg)) - first[seg]) / count[seg]
         self.points = segments[seg, 0] + t[:, None] * d[seg]
         self.directions = d[seg] / np.maximum(length[seg], 1e-300)[:, None]
         self.spacing = spacing
         self.tree = cKDTree(self.points) if len(self.points) else None
 
-    def clearance(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Distance to the nearest obstacle (less half the spacing) and its direction."""
+    def clearance(self, points: np.ndarray, limit: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+        """Distance to the nearest obstacle (less half the spacing, inf beyond ``limit``) and its direction."""
         shape = points.shape[:-1]
         if self.tree is None:
             return np.full(shape, np.inf), np.tile([1.0, 0.0], shape + (1,))
-        dist, idx = self.tree.query(points.reshape(-1, 2))
-        return (dist - self.spacing / 2).reshape(shape), self.directions[idx].reshape(shape + (2,))
+        dist, idx = self.tree.query(points.reshape(-1, 2), distance_upper_bound=limit)
+        found = idx < len(self.points)
+        direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], [1.0, 0.0])
+        return (dist - self.spacing / 2).reshape(shape), direction.reshape(shape + (2,))
 
     def fits(self, boxes: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
-        """For boxes (C, K, 2): whether each keeps 0.25·size clear of every line, and its margin."""
-        dist, _ = self.clearance(boxes)
-        worst = dist.min(axis=1)
+        """For boxes (C, K, 2): whether each keeps 0.25·size clear of every line, and its margin
+        (counted up to one ``size``)."""
+        dist, _ = self.clearance(boxes, limit=size)
+        worst = np.minimum(dist.min(axis=1), size)
         return worst >= 0.25 * size, worst
 
 

@@ -1,0 +1,588 @@
+"""Crease-pattern fabrication output: layout, glue tabs, labels, SVG/DXF/PDF writers.
+
+Every written file is opened by a reader we did not write: ``xml.etree`` and
+``rsvg-convert`` for SVG, ``ezdxf`` (with its auditor) for DXF, ``pdfinfo``/``pdftoppm``
+for PDF. Geometry is checked with ``shapely``.
+"""
+
+from __future__ import annotations
+
+import doctest
+import re
+import math
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from itertools import combinations
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from curvefold.errors import InputError
+from curvefold.export import layout as layout_module
+from curvefold.export import pattern
+from curvefold.export.pattern import (
+    DEFAULT_LAYERS,
+    LAYERS,
+    PatternSheet,
+    layout_sheets,
+    seam_name,
+    write_dxf,
+    write_pdf,
+    write_svg,
+)
+from curvefold.mesh import Mesh
+
+from _sheets import annular_sheet, tube_sheets, vault_sheets
+
+shapely = pytest.importorskip("shapely")
+from shapely.geometry import LineString, Polygon  # noqa: E402
+from shapely.ops import unary_union  # noqa: E402
+
+NS = {
+    "svg": "http://www.w3.org/2000/svg",
+    "inkscape": "http://www.inkscape.org/namespaces/inkscape",
+}
+INK = "{http://www.inkscape.org/namespaces/inkscape}"
+
+
+def needs(tool: str):
+    return pytest.mark.skipif(shutil.which(tool) is None, reason=f"{tool} not installed")
+
+
+@pytest.fixture(scope="module")
+def tube():
+    return tube_sheets()
+
+
+@pytest.fixture(scope="module")
+def tube_layout(tube):
+    return layout_sheets(tube)
+
+
+@pytest.fixture(scope="module")
+def vault():
+    return vault_sheets(4)
+
+
+@pytest.fixture(scope="module")
+def vault_layout(vault):
+    # A5 forces several pages.
+    return layout_sheets(vault, page="A5")
+
+
+# --------------------------------------------------------------------------------------
+# helpers (shapely geometry of what the layout placed)
+
+
+def placed_triangles(sheet: PatternSheet, placed) -> np.ndarray:
+    """The sheet's triangles mapped to the page, shape (F, 3, 2)."""
+    xy = sheet.mesh.vertices_coords[:, :2] @ placed.transform[:, :2].T + placed.transform[:, 2]
+    return xy[sheet.mesh.faces_vertices]
+
+
+def sheet_polygon(sheet, placed):
+    return unary_union([Polygon(t) for t in placed_triangles(sheet, placed)])
+
+
+def tab_polygons(placed):
+    return [Polygon(p.points) for p in placed.on_layer("glue")]
+
+
+def footprint(sheet, placed):
+    return unary_union([sheet_polygon(sheet, placed), *tab_polygons(placed)])
+
+
+def drawn_lines(placed, layers=("cut", "seam", "mountain", "valley")):
+    out = []
+    for p in placed.polylines:
+        if p.layer in layers:
+            pts = np.concatenate([p.points, p.points[:1]]) if p.closed else p.points
+            out.append(LineString(pts))
+    return unary_union(out)
+
+
+# --------------------------------------------------------------------------------------
+# layout
+
+
+def test_sheets_do_not_overlap_and_stay_inside_the_margins(vault, vault_layout):
+    lay = vault_layout
+    W, H = lay.page_size
+    assert (W, H) == (148.0, 210.0)
+    assert len(lay.pages) > 1
+    assert sorted(s.index for s in lay.sheets()) == list(range(len(vault)))
+    for page in lay.pages:
+        shapes = [footprint(vault[s.index], s) for s in page.sheets]
+        for a, b in combinations(shapes, 2):
+            assert a.intersection(b).area == 0.0
+            assert a.distance(b) >= 4.0 - 1e-6  # the default gap
+        for s in page.sheets:
+            pts = np.concatenate([p.points for p in s.polylines] + [t.corners() for t in s.labels])
+            assert pts.min(axis=0) == pytest.approx(np.maximum(pts.min(axis=0), lay.margin))
+            assert np.all(pts.min(axis=0) >= lay.margin - 1e-9)
+            assert np.all(pts.max(axis=0) <= np.array([W, H]) - lay.margin + 1e-9)
+
+
+def test_packing_turns_sheets_to_small_rectangles():
+    # A thin strip at 30° would waste most of its axis-aligned box if not turned.
+    sheet = annular_sheet("strip", radii=(2000.0, 2010.0, 2020.0), span_deg=(30.0, 33.0), n=6, seams=(None, None))
+    lay = layout_sheets([sheet], glue_tabs=False)
+    placed = lay.sheets()[0]
+    lo, hi = placed.bounds()
+    poly = sheet_polygon(sheet, placed)
+    assert (hi - lo).prod() < 1.2 * poly.minimum_rotated_rectangle.area
+
+
+def test_each_sheet_has_one_closed_outline_around_sheet_and_tabs(tube, tube_layout):
+    for placed in tube_layout.sheets():
+        sheet = tube[placed.index]
+        cuts = placed.on_layer("cut")
+        assert len(cuts) == 1 and cuts[0].closed
+        outline = Polygon(cuts[0].points)
+        assert outline.is_valid
+        expected = footprint(sheet, placed)
+        assert outline.symmetric_difference(expected).area < 1e-6 * expected.area
+
+
+def test_tabs_lie_outside_their_sheet_along_the_seam(tube, tube_layout):
+    placed = next(s for s in tube_layout.sheets() if s.index == 0)
+    sheet = tube[0]
+    body = sheet_polygon(sheet, placed)
+    tabs = tab_polygons(placed)
+    assert len(tabs) >= 2
+    for tab in tabs:
+        assert tab.is_valid and tab.area > 1.0
+        assert tab.intersection(body).area < 1e-9 * tab.area
+        assert tab.distance(body) < 1e-9  # attached along the seam
+    for a, b in combinations(tabs, 2):
+        assert a.intersection(b).area < 1e-9
+    # the fold line of each tab is the whole seam, drawn once, on the seam layer
+    for p in placed.on_layer("seam"):
+        mask = sheet.edges_seam == p.seam
+        seam_length = sheet.mesh.edge_lengths()[mask].sum() * tube_layout.scale
+        assert LineString(p.points).length == pytest.approx(seam_length, rel=1e-9)
+    assert sorted(p.seam for p in placed.on_layer("seam")) == [0, 1]
+
+
+def test_tabs_go_on_one_side_of_each_seam_only(vault, vault_layout):
+    owners: dict[int, set[int]] = {}
+    for placed in vault_layout.sheets():
+        for p in placed.on_layer("glue") + placed.on_layer("seam"):
+            owners.setdefault(p.seam, set()).add(placed.index)
+    seam_ids = sorted({int(i) for s in vault for i in s.edges_seam if i >= 0})
+    assert sorted(owners) == seam_ids
+    for sid, who in owners.items():
+        having = [i for i, s in enumerate(vault) if sid in s.edges_seam]
+        assert who == {min(having)}
+
+
+def test_seam_labels_match_in_pairs_inside_their_sheets(vault, vault_layout):
+    seen: dict[str, list[int]] = {}
+    for placed in vault_layout.sheets():
+        sheet = vault[placed.index]
+        body = sheet_polygon(sheet, placed)
+        for t in placed.labels:
+            if t.kind != "seam":
+                continue
+            assert t.text == seam_name(t.seam)
+            seen.setdefault(t.text, []).append(placed.index)
+            box = Polygon(t.corners())
+            assert body.contains(box)
+            # beside its own seam: closer to it than to any other line of the sheet's outline
+            mask = sheet.edges_seam == t.seam
+            ev = sheet.mesh.edges_vertices[mask]
+            xy = sheet.mesh.vertices_coords[:, :2] @ placed.transform[:, :2].T + placed.transform[:, 2]
+            seam_line = unary_union([LineString(xy[e]) for e in ev])
+            assert seam_line.distance(box) < 1.5 * t.size
+    assert sorted(seen) == sorted(seam_name(i) for i in range(8))
+    for text, sheets in seen.items():
+        assert len(sheets) == 2 and sheets[0] != sheets[1], text
+
+
+def test_labels_keep_clear_of_lines(tube, tube_layout):
+    for placed in tube_layout.sheets():
+        lines = drawn_lines(placed)
+        body = sheet_polygon(tube[placed.index], placed)
+        kinds = sorted(t.kind for t in placed.labels)
+        assert kinds == ["seam", "seam", "sheet"]
+        for t in placed.labels:
+            box = Polygon(t.corners())
+            assert not box.intersects(lines), t
+            assert body.contains(box)
+            assert -90 < t.angle <= 90
+        sheet_label = next(t for t in placed.labels if t.kind == "sheet")
+        assert sheet_label.text == tube[placed.index].label and sheet_label.size == 4.0
+    assert tube_layout.notes == ()
+
+
+def test_creases_are_chained_and_diagonals_never_drawn(tube, tube_layout):
+    a = next(s for s in tube_layout.sheets() if s.index == 0)
+    b = next(s for s in tube_layout.sheets() if s.index == 1)
+    assert [len(p.points) for p in a.on_layer("mountain")] == [25]
+    assert [len(p.points) for p in b.on_layer("valley")] == [25]
+    assert a.on_layer("valley") == () and b.on_layer("mountain") == ()
+    assert len(a.on_layer("rulings")) == 23  # interior radial lines, each through the crease
+    sheet = tube[0]
+    xy = sheet.mesh.vertices_coords[:, :2] @ a.transform[:, :2].T + a.transform[:, 2]
+    diag = sheet.mesh.edges_vertices[sheet.mesh.edges_kind == "diagonal"]
+    drawn = drawn_lines(a, layers=LAYERS)
+    for e in diag:
+        assert drawn.distance(shapely.Point(xy[e].mean(axis=0))) > 0.1
+
+
+def test_a_sheet_seen_from_its_back_is_mirrored():
+    front = annular_sheet("front", fold="M")
+    back = annular_sheet("back", fold="M", clockwise=True)
+    lay = layout_sheets([front, back], glue_tabs=False)
+    for placed in lay.sheets():
+        sheet = (front, back)[placed.index]
+        det = np.linalg.det(placed.transform[:, :2])
+        assert det == pytest.approx(1.0 if placed.index == 0 else -1.0)
+        tri = placed_triangles(sheet, placed)
+        u, v = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+        area = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+        assert np.all(area > 0)  # seen from the side the normals point to
+        assert len(placed.on_layer("mountain")) == 1
+
+
+def test_without_tabs_seams_are_cut_edges():
+    a, b = tube_sheets()
+    lay = layout_sheets([a, b], glue_tabs=False)
+    for placed in lay.sheets():
+        assert placed.on_layer("glue") == () and placed.on_layer("seam") == ()
+        sheet = (a, b)[placed.index]
+        outline = Polygon(placed.on_layer("cut")[0].points)
+        body = sheet_polygon(sheet, placed)
+        assert outline.symmetric_difference(body).area < 1e-6 * body.area
+    assert sorted(t.text for t in lay.sheets()[0].labels if t.kind == "seam") == ["S0", "S1"]
+
+
+def test_scale_target_size_and_units(tube):
+    assert layout_sheets(tube, scale=0.5).scale == 0.5
+    assert layout_sheets(tube, units="in", scale=1 / 25.4).scale == pytest.approx(1.0)
+    lay = layout_sheets(tube, target_size=100.0)
+    # the longer side of the largest sheet's minimum-area rectangle is 100 mm
+    sides = []
+    for p in lay.sheets():
+        rect = np.asarray(sheet_polygon(tube[p.index], p).minimum_rotated_rectangle.exterior.coords)
+        sides.append(np.linalg.norm(np.diff(rect, axis=0), axis=1).max())
+    assert max(sides) == pytest.approx(100.0, rel=1e-6)
+    letter = layout_sheets(tube, page="letter")
+    assert letter.page_size == (215.9, 279.4)
+    assert layout_sheets(tube, page=(297, 210)).page_size == (297.0, 210.0)
+
+
+def test_a_sheet_too_big_for_the_page_is_refused_with_both_sizes(tube):
+    with pytest.raises(InputError, match=r"tube 1 · sheet A.*needs [\d.]+ × [\d.]+ mm.*210 × 297 mm"):
+        layout_sheets(tube, scale=10.0)
+    with pytest.raises(InputError, match=r"A5 page \(148 × 210 mm\)"):
+        layout_sheets(tube, page="A5", scale=3.0)
+
+
+def _with(sheet: PatternSheet, **changes) -> dict:
+    m = sheet.mesh
+    fields = dict(vertices_coords=m.vertices_coords, edges_vertices=m.edges_vertices,
+                  edges_assignment=m.edges_assignment, edges_foldAngle=m.edges_foldAngle,
+                  faces_vertices=m.faces_vertices, edges_kind=m.edges_kind, faces_group=m.faces_group)
+    fields.update(changes)
+    return fields
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(page="B7"), "page must be one of"),
+        (dict(page=(0, 100)), "positive"),
+        (dict(units="furlong"), "units must be one of"),
+        (dict(scale=1.0, target_size=100.0), "not both"),
+        (dict(scale=-1.0), "scale must be positive"),
+        (dict(tab_angle=95.0), "tab_angle must be in"),
+        (dict(margin=200.0), "leaves no room"),
+        (dict(tab_width=float("nan")), "tab_width must be positive"),
+    ],
+)
+def test_invalid_layout_arguments(tube, kwargs, match):
+    with pytest.raises(InputError, match=match):
+        layout_sheets(tube, **kwargs)
+
+
+def test_invalid_sheets():
+    a, b = tube_sheets()
+    c, _ = tube_sheets(2)
+    with pytest.raises(InputError, match=r"seam id 0 appears on sheets \[0, 1, 2\]"):
+        layout_sheets([a, b, c])
+    with pytest.raises(InputError, match="at least one"):
+        layout_sheets([])
+    with pytest.raises(InputError, match=r"sheets\[1\] must be a PatternSheet"):
+        layout_sheets([a, "b"])
+    xyz = np.array(a.mesh.vertices_coords)
+    xyz[3, 2] = 1.0
+    with pytest.raises(InputError, match="must lie in z = 0"):
+        PatternSheet("lifted", Mesh(**_with(a, vertices_coords=xyz)), a.edges_seam)
+    seam = np.array(a.edges_seam)
+    seam[np.flatnonzero(a.mesh.edges_kind == "ruling")[0]] = 4
+    with pytest.raises(InputError, match="exactly on edges of kind 'seam'.*'ruling' has seam id 4"):
+        PatternSheet("odd seam", a.mesh, seam)
+    assign = np.where(a.mesh.edges_kind == "fold", "F", a.mesh.edges_assignment)
+    with pytest.raises(InputError, match="fold edges must be assigned 'M' or 'V'"):
+        PatternSheet("flat fold", Mesh(**_with(a, edges_assignment=assign)), a.edges_seam)
+    with pytest.raises(InputError, match=r"edges_seam must have shape"):
+        PatternSheet("short", a.mesh, a.edges_seam[:-1])
+    kinds = np.where(a.mesh.edges_kind == "boundary", "ruling", a.mesh.edges_kind)
+    with pytest.raises(InputError, match="lies on the outline, but its kind is 'ruling'"):
+        layout_sheets([PatternSheet("open", Mesh(**_with(a, edges_kind=kinds)), a.edges_seam)])
+
+
+@settings(max_examples=8, deadline=None)
+@given(
+    inner=st.floats(8.0, 60.0),
+    width=st.floats(6.0, 30.0),
+    span=st.floats(20.0, 300.0),
+    n=st.integers(3, 40),
+    angle=st.floats(0.0, 360.0),
+)
+def test_tabs_never_overlap_their_sheet_on_random_sectors(inner, width, span, n, angle):
+    # Tight concave seams (small inner radius) make tabs narrow or drop out, never overlap.
+    a = annular_sheet("a", radii=(inner, inner + width / 2, inner + width), span_deg=(angle, angle + span), n=n)
+    lay = layout_sheets([a], page="A3")
+    placed = lay.sheets()[0]
+    body = sheet_polygon(a, placed)
+    tabs = tab_polygons(placed)
+    for tab in tabs:
+        assert tab.is_valid
+        assert tab.intersection(body).area < 1e-6 * max(tab.area, 1e-9)
+    for t1, t2 in combinations(tabs, 2):
+        assert t1.intersection(t2).area < 1e-6
+    outline = Polygon(placed.on_layer("cut")[0].points)
+    assert outline.is_valid
+    assert outline.symmetric_difference(footprint(a, placed)).area < 1e-6 * body.area
+
+
+def test_docstring_examples():
+    assert doctest.testmod(layout_module).failed == 0
+
+
+# --------------------------------------------------------------------------------------
+# SVG
+
+
+def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_layout):
+    (path,) = write_svg(tmp_path / "tube.svg", tube_layout)
+    assert path == tmp_path / "tube.svg"
+    root = ET.parse(path).getroot()
+    assert root.tag == "{http://www.w3.org/2000/svg}svg"
+    assert (root.get("width"), root.get("height"), root.get("viewBox")) == ("210mm", "297mm", "0 0 210 297")
+    assert "sodipodi:namedview" in path.read_text() and "xmlns:sodipodi" in path.read_text()
+    groups = root.findall("svg:g", NS)
+    assert [g.get(f"{INK}label") for g in groups] == list(DEFAULT_LAYERS)
+    assert all(g.get(f"{INK}groupmode") == "layer" for g in groups)
+    by_name = {g.get(f"{INK}label"): g for g in groups}
+    page = tube_layout.pages[0]
+    for name in ("cut", "mountain", "valley", "seam", "glue"):
+        assert len(list(by_name[name])) == len(page.on_layer(name)) > 0
+    assert len(list(by_name["cut"])) == 2  # one outline per sheet, not one element per edge
+    assert "stroke-dasharray" in by_name["mountain"].get("style")
+    assert "stroke-dasharray" in by_name["valley"].get("style")
+    assert "stroke-dasharray" not in by_name["cut"].get("style")
+    texts = [t.text for t in by_name["labels"].findall("svg:text", NS)]
+    assert sorted(texts) == sorted(["tube 1 · sheet A", "tube 1 · sheet B", "S0", "S0", "S1", "S1"])
+    # coordinates are page mm, y flipped: every point inside the margins
+    pts = np.array([[float(v) for v in pair.split(",")]
+                    for g in groups for el in g if el.get("points") for pair in el.get("points").split()])
+    assert pts.min() >= 10 - 1e-6 and pts[:, 0].max() <= 200 and pts[:, 1].max() <= 287
+
+
+def _png(path: Path) -> np.ndarray:
+    from matplotlib.image import imread
+
+    img = imread(path)
+    return img[..., :3] if img.dtype != np.uint8 else img[..., :3] / 255.0
+
+
+def _colour_counts(img: np.ndarray) -> dict[str, int]:
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    return {
+        "ink": int(np.count_nonzero(img.min(axis=-1) < 0.9)),
+        "black": int(np.count_nonzero(img.max(axis=-1) < 0.3)),
+        "red": int(np.count_nonzero((r > 0.7) & (g < 0.35) & (b < 0.35))),
+        "blue": int(np.count_nonzero((b > 0.7) & (r < 0.45) & (g < 0.55))),
+        "green": int(np.count_nonzero((g > r + 0.08) & (g > b + 0.08))),
+        "purple": int(np.count_nonzero((r > 0.35) & (b > 0.5) & (g < 0.35))),
+    }
+
+
+@needs("rsvg-convert")
+def test_svg_renders_at_true_size_with_every_layer_visible(tmp_path, tube_layout):
+    (path,) = write_svg(tmp_path / "tube.svg", tube_layout)
+    png = tmp_path / "tube.png"
+    subprocess.run(["rsvg-convert", "-d", "150", "-p", "150", "-b", "white", str(path), "-o", str(png)], check=True)
+    img = _png(png)
+    assert np.abs(np.array(img.shape[:2]) - np.array([297, 210]) / 25.4 * 150).max() <= 1
+    counts = _colour_counts(img)
+    assert counts["ink"] > 0.01 * img.shape[0] * img.shape[1]
+    for colour in ("black", "red", "blue", "green", "purple"):
+        assert counts[colour] > 200, (colour, counts)
+
+
+def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
+    n = len(vault_layout.pages)
+    paths = write_svg(tmp_path / "vault.svg", vault_layout)
+    assert [p.name for p in paths] == [f"vault-p{i + 1}.svg" for i in range(n)]
+    assert not (tmp_path / "vault.svg").exists()
+    for p, page in zip(paths, vault_layout.pages):
+        root = ET.parse(p).getroot()
+        assert root.get("width") == "148mm"
+        assert len(root.findall("svg:g/svg:text", NS)) == len(page.labels())
+    (one,) = write_svg(tmp_path / "second.svg", vault_layout, 1, layers=LAYERS)
+    root = ET.parse(one).getroot()
+    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == list(LAYERS)
+    with pytest.raises(InputError, match="page_index must be in"):
+        write_svg(tmp_path / "x.svg", vault_layout, n)
+    with pytest.raises(InputError, match="layers must be among"):
+        write_svg(tmp_path / "x.svg", vault_layout, layers=["cut", "engrave"])
+
+
+# --------------------------------------------------------------------------------------
+# DXF
+
+
+def test_dxf_reads_back_with_layers_linetypes_units_and_entities(tmp_path, vault_layout):
+    ezdxf = pytest.importorskip("ezdxf")
+    path = write_dxf(tmp_path / "vault.dxf", vault_layout)
+    doc = ezdxf.readfile(path)
+    auditor = doc.audit()
+    assert not auditor.has_errors, [str(e) for e in auditor.errors]
+    assert doc.header["$INSUNITS"] == 4
+    layers = {layer.dxf.name: layer for layer in doc.layers}
+    assert set(DEFAULT_LAYERS) <= set(layers) and "rulings" not in layers
+    assert layers["cut"].dxf.linetype.upper() == "CONTINUOUS"
+    assert layers["mountain"].dxf.linetype == "DASHDOT"
+    assert layers["valley"].dxf.linetype == "DASHED"
+    assert layers["seam"].dxf.linetype == "DOT"
+    assert (layers["cut"].color, layers["mountain"].color, layers["valley"].color) == (7, 1, 5)
+    assert doc.linetypes.get("DASHED").simplified_line_pattern() == pytest.approx((3.0, 1.5))  # mm
+    assert doc.linetypes.get("DASHDOT").simplified_line_pattern() == pytest.approx((4.0, 1.2, 0.7, 1.2))
+    msp = doc.modelspace()
+    sheets = vault_layout.sheets()
+
+    def count(layer):
+        return sum(len(s.on_layer(layer)) for s in sheets)
+
+    assert len(msp.query('LWPOLYLINE[layer=="cut"]')) == len(sheets)
+    assert all(e.closed for e in msp.query('LWPOLYLINE[layer=="cut"]'))
+    for layer in ("mountain", "valley", "seam"):
+        assert len(msp.query(f'LWPOLYLINE[layer=="{layer}"]')) == count(layer) > 0
+    assert len(msp.query('HATCH[layer=="glue"]')) == count("glue") > 0
+    texts = msp.query('TEXT[layer=="labels"]')
+    assert sorted(t.dxf.text for t in texts) == sorted(t.text for s in sheets for t in s.labels)
+    assert len(msp.query("LINE")) == 0  # polylines only
+    # pages side by side: every entity of page 2 is right of page 1
+    W = vault_layout.page_size[0]
+    xs = [min(x for x, *_ in e.get_points()) for e in msp.query("LWPOLYLINE")]
+    assert max(xs) > W + 20
+
+
+# --------------------------------------------------------------------------------------
+# PDF
+
+
+@needs("pdftoppm")
+def test_pdf_pages_size_and_content(tmp_path, vault_layout):
+    path = write_pdf(tmp_path / "vault.pdf", vault_layout, layers=LAYERS)
+    n = len(vault_layout.pages)
+    subprocess.run(["pdftoppm", "-r", "50", "-png", str(path), str(tmp_path / "page")], check=True)
+    pngs = sorted(tmp_path.glob("page-*.png"))
+    assert len(pngs) == n
+    for png in pngs:
+        img = _png(png)
+        assert abs(img.shape[1] - 148 / 25.4 * 50) <= 1 and abs(img.shape[0] - 210 / 25.4 * 50) <= 1
+        assert _colour_counts(img)["ink"] > 0.01 * img.shape[0] * img.shape[1]
+    info = subprocess.run(["pdfinfo", str(path)], check=True, capture_output=True, text=True).stdout
+    assert re.search(rf"^Pages:\s+{n}$", info, re.M)
+    assert "419.528 x 595.276 pts" in info  # A5 in points
+
+
+@needs("pdftoppm")
+def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layout):
+    path = write_pdf(tmp_path / "tube.pdf", tube_layout)
+    subprocess.run(["pdftoppm", "-r", "50", "-png", str(path), str(tmp_path / "low")], check=True)
+    (low,) = tmp_path.glob("low-*.png")
+    img = _png(low)
+    assert abs(img.shape[1] - 413) <= 1 and abs(img.shape[0] - 585) <= 1
+    counts = _colour_counts(img)
+    assert counts["ink"] > 1000 and counts["red"] > 10 and counts["blue"] > 10
+    dpi = 300
+    subprocess.run(["pdftoppm", "-r", str(dpi), "-png", str(path), str(tmp_path / "high")], check=True)
+    (high,) = tmp_path.glob("high-*.png")
+    img = _png(high)
+    mm = dpi / 25.4
+    band = img[-int(10 * mm):, : int(25 * mm)].max(axis=-1) < 0.3  # bottom-left of the bottom margin
+    row = band[np.argmax(band.sum(axis=1))]
+    runs = np.diff(np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]]))))[::2]
+    assert runs.max() / mm == pytest.approx(10.0, abs=0.15)
+
+
+# --------------------------------------------------------------------------------------
+# atomic writes
+
+
+def _leftovers(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir())
+
+
+def test_svg_write_failing_midway_leaves_nothing(tmp_path, tube_layout, monkeypatch):
+    def half_then_fail(self, data):
+        with open(self, "wb") as fh:
+            fh.write(data[: len(data) // 2])
+        raise OSError("disk full")
+
+    monkeypatch.setattr(Path, "write_bytes", half_then_fail)
+    with pytest.raises(OSError, match="disk full"):
+        write_svg(tmp_path / "tube.svg", tube_layout)
+    assert _leftovers(tmp_path) == []
+
+
+def test_dxf_write_failing_midway_leaves_nothing_and_keeps_the_old_file(tmp_path, tube_layout, monkeypatch):
+    ezdxf = pytest.importorskip("ezdxf")
+    old = tmp_path / "tube.dxf"
+    old.write_text("old")
+
+    def half_then_fail(self, filename, **kwargs):
+        Path(filename).write_text("0\nSECTION\n")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(ezdxf.document.Drawing, "saveas", half_then_fail)
+    with pytest.raises(OSError, match="disk full"):
+        write_dxf(old, tube_layout)
+    assert _leftovers(tmp_path) == ["tube.dxf"] and old.read_text() == "old"
+
+
+def test_pdf_write_failing_midway_leaves_nothing(tmp_path, vault_layout, monkeypatch):
+    from matplotlib.backends.backend_pdf import PdfPages
+
+    real = PdfPages.savefig
+    calls = []
+
+    def second_page_fails(self, *args, **kwargs):
+        calls.append(1)
+        if len(calls) == 2:
+            raise OSError("disk full")
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(PdfPages, "savefig", second_page_fails)
+    with pytest.raises(OSError, match="disk full"):
+        write_pdf(tmp_path / "vault.pdf", vault_layout)
+    assert len(calls) == 2
+    assert _leftovers(tmp_path) == []
+
+
+def test_writers_refuse_what_is_not_a_layout(tmp_path):
+    for writer in (write_svg, write_dxf, write_pdf):
+        with pytest.raises(InputError, match="layout must be a Layout"):
+            writer(tmp_path / "x.out", "not a layout")
+    assert _leftovers(tmp_path) == []
+    assert pattern.LAYER_STYLES.keys() == set(LAYERS)
