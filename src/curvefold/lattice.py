@@ -127,19 +127,19 @@ class Lattice:
         Raises
         ------
         RegressionError
-            If the unit cell [0, 1]² is not free of regression; the message gives the
-            largest allowed widths and where the limit is reached.
+            If a corner of the unit cell [0, 1]² is not free of regression; the message
+            gives the limit along that direction and where it is reached.
         """
         if crease.fold_angle is None:
             raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
         for name, w in (("width_left", width_left), ("width_right", width_right)):
             if not np.isfinite(w) or w <= 0:
                 raise InputError(f"{name} must be a finite number > 0, got {w!r}")
-        log_ratio = _log_width_ratio(crease)
+        log_ratio = log_width_ratio(crease)
         lattice = cls(crease, float(width_left) * np.exp(-log_ratio), float(width_right) * np.exp(log_ratio))
         for k in (lattice.width_left, lattice.width_right):
             k.flags.writeable = False
-        lattice.check((1, 1), name="widths")
+        lattice.check(np.array([[0, 1], [1, 0], [1, 1]]), name="widths")
         return lattice
 
     # -- intrinsic quantities (unchanged by rigid folding) ------------------------------
@@ -295,7 +295,7 @@ def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.n
     return out.reshape(x1.shape[:-2] + uv.shape[:-1] + x1.shape[-2:])
 
 
-def _log_width_ratio(crease: Crease) -> np.ndarray:
+def log_width_ratio(crease: Crease) -> np.ndarray:
     """``∫₀^s τ cot α ds`` at the samples, by 3-point Gauss–Legendre per interval, shape (n,)."""
     s = crease.s
     nodes = gauss_nodes(s)

@@ -46,6 +46,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 
@@ -72,7 +73,7 @@ __all__ = [
 LAYERS = ("glue", "rulings", "seam", "valley", "mountain", "cut", "labels")
 
 #: Page sizes in millimetres, portrait (width, height).
-PAGE_SIZES = {
+PAGE_SIZES = MappingProxyType({
     "A5": (148.0, 210.0),
     "A4": (210.0, 297.0),
     "A3": (297.0, 420.0),
@@ -82,10 +83,10 @@ PAGE_SIZES = {
     "LETTER": (215.9, 279.4),
     "LEGAL": (215.9, 355.6),
     "TABLOID": (279.4, 431.8),
-}
+})
 
 #: Millimetres per unit for the ``units`` of :func:`layout_sheets`.
-UNITS = {"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72.0}
+UNITS = MappingProxyType({"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72.0})
 
 #: Smallest label size (em height, mm) used before a label is placed regardless of lines.
 MIN_LABEL_SIZE = 1.5
@@ -428,16 +429,6 @@ def _inside(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
     side = (x - a[..., 0]) * (b[..., 1] - a[..., 1]) - (y - a[..., 1]) * (b[..., 0] - a[..., 0])
     left = np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
     return (np.count_nonzero(straddle & left, axis=1) % 2) == 1
-
-
-def _distance_to_segments(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
-    """Distance from each point to the nearest segment, shape (N,)."""
-    if len(segments) == 0:
-        return np.full(len(points), np.inf)
-    a, d = segments[None, :, 0], (segments[:, 1] - segments[:, 0])[None]
-    dd = np.maximum(np.einsum("...i,...i->...", d, d), 1e-300)
-    t = np.clip(np.einsum("...i,...i->...", points[:, None] - a, d) / dd, 0.0, 1.0)
-    return np.linalg.norm(points[:, None] - (a + t[..., None] * d), axis=-1).min(axis=1)
 
 
 def _min_area_rotation(points: np.ndarray) -> float:
@@ -919,7 +910,8 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
         if id(ch) not in tabbed:
             continue
         pieces = _tab_pieces(ch.points, tab_length, 2.5 * tab_width)
-        cut_parts, fold_run, dropped, narrowed = [], [], 0, 0
+        cut_parts, dropped, narrowed = [], 0, 0
+        runs: list[list[np.ndarray]] = [[]]  # consecutive tabbed pieces: one fold line each
         for piece in pieces:
             got = None
             for k, frac in enumerate(_TAB_WIDTH_STEPS):
@@ -930,17 +922,16 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
             if got is None:
                 dropped += 1
                 cut_parts.append(piece[:-1])
-                if fold_run:
-                    polylines.append(Polyline("seam", np.concatenate(fold_run + [fold_end]), seam=ch.seam))
-                fold_run = []
+                runs.append([])
                 continue
             accepted.append(got)
             polylines.append(Polyline("glue", got[0], closed=True, seam=ch.seam))
             cut_parts.append(got[1][:-1])
-            fold_run.append(piece[:-1])
-            fold_end = piece[-1:]
-        if fold_run:
-            polylines.append(Polyline("seam", np.concatenate(fold_run + [fold_end]), seam=ch.seam))
+            runs[-1].append(piece)
+        for run in runs:
+            if run:
+                line = np.concatenate([p[:-1] for p in run] + [run[-1][-1:]])
+                polylines.append(Polyline("seam", line, seam=ch.seam))
         replace[(ch.loop, ch.start)] = (ch.count, np.concatenate(cut_parts))
         if narrowed or dropped:
             notes.append(f"sheet {name!r}, seam {seam_name(ch.seam)}: {narrowed} glue tab piece(s) narrowed, "

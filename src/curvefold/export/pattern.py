@@ -20,17 +20,19 @@ fill, ``rulings`` thin grey, ``labels`` purple text. Writers draw every layer ex
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
 from ..errors import InputError
-from ..fileio import atomic_path, atomic_write
+from ..fileio import atomic_path
 from .layout import (
     LAYERS,
     PAGE_SIZES,
@@ -98,7 +100,7 @@ class LayerStyle:
 
 
 #: Style of every layer in :data:`LAYERS`.
-LAYER_STYLES = {
+LAYER_STYLES = MappingProxyType({
     "glue": LayerStyle("#c6ecc6", 3, fill=True),
     "rulings": LayerStyle("#a0a0a0", 8, width=0.5),
     "seam": LayerStyle("#16a016", 3, "DOT", (0.8, 0.8)),
@@ -106,7 +108,7 @@ LAYER_STYLES = {
     "mountain": LayerStyle("#e01010", 1, "DASHDOT", (4.0, 1.2, 0.7, 1.2)),
     "cut": LayerStyle("#000000", 7),
     "labels": LayerStyle("#7b2fa6", 6),
-}
+})
 
 #: Layers the writers draw by default.
 DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")
@@ -221,7 +223,8 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
     Returns
     -------
     tuple of Path
-        The files written, in page order.
+        The files written, in page order. Either every page is written or, on an error,
+        none is (and no temporary file is left).
     """
     _check_layout(layout)
     target = Path(path)
@@ -231,8 +234,12 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
         jobs = [(target, 0)]
     else:
         jobs = [(target.with_name(f"{target.stem}-p{i + 1}{target.suffix}"), i) for i in range(len(layout.pages))]
-    texts = [(p, svg_page(layout, i, layers=layers, line_width=line_width)) for p, i in jobs]
-    return tuple(atomic_write(p, text) for p, text in texts)
+    texts = [(p, svg_page(layout, i, layers=layers, line_width=line_width).encode("utf-8")) for p, i in jobs]
+    # All pages or none: every page goes to a temporary file, renamed only once all are written.
+    with contextlib.ExitStack() as stack:
+        for p, data in texts:
+            stack.enter_context(atomic_path(p)).write_bytes(data)
+    return tuple(p for p, _ in texts)
 
 
 # --------------------------------------------------------------------------------------

@@ -1,0 +1,171 @@
+"""The (u, v) lattice: shared frames, width and area laws, regression domain, rigid folding."""
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from curvefold import Crease, InputError, Lattice, RegressionError, SpaceCurve
+from curvefold import measure
+
+KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
+TAU = lambda s: 0.3 * np.cos(1.5 * s)  # noqa: E731
+
+
+def make_lattice(samples=801, fold_angle=60.0, widths=(0.2, 0.15)):
+    curve = SpaceCurve.from_curvature(KAPPA, TAU, 3.0, samples=samples)
+    return Lattice.from_crease(Crease.from_curve(curve, fold_angle=fold_angle), *widths)
+
+
+@pytest.fixture(scope="module")
+def lattice():
+    return make_lattice()
+
+
+def test_lattice_curves_share_curve_one_frame(lattice):
+    # 4th-order differences at h = 1/800: truncation ~1e-10
+    assert measure.frame_agreement(lattice, [[0, 1], [1, 1], [1, 0], [2, 1], [-1, 0.5]]) < 1e-9
+
+
+def test_width_and_area_laws(lattice):
+    assert measure.width_law_error(lattice) < 1e-12
+    assert measure.section_area_error(lattice) < 1e-12
+    assert_allclose(lattice.section_area(), 0.2 * 0.15 * np.sin(np.radians(60)), rtol=1e-13)
+
+
+def test_erratum_eq12_width_law_uses_tau_cot_alpha(lattice):
+    """Eq. (12) prints d ln w/dt = τ/cot α ds/dt; the built widths follow τ cot α instead."""
+    X = lattice.points(np.array([[0, 0], [0, 1]], float))
+    T = lattice.crease.curve.tangent
+    d = X[1] - X[0]
+    w_r = np.linalg.norm(d - np.einsum("ij,ij->i", d, T)[:, None] * T, axis=1)
+    s = lattice.s
+    a = np.radians(30)
+    tau = lattice.crease.curve.tau(s)
+    integral = np.concatenate([[0], np.cumsum(np.diff(s) * 0.5 * (tau[1:] + tau[:-1]))])  # trapezoid, ~1e-7
+    assert_allclose(w_r, 0.15 * np.exp(integral / np.tan(a)), rtol=1e-6)
+    assert np.abs(w_r / (0.15 * np.exp(integral * np.tan(a))) - 1).max() > 0.05
+    # and the width is intrinsic: the same at every fold angle
+    for f in (10.0, 120.0):
+        assert_allclose(lattice.refold(f).width_right, lattice.width_right, rtol=0)
+
+
+def test_erratum_section_area_is_wl_wr_sin_2alpha(lattice):
+    """The paper calls the section area w₁₂ w₄₁; that is only true at 2α = 90°."""
+    X = lattice.points(np.array([[0, 0], [0, 1], [1, 0]], float))
+    T = lattice.crease.curve.tangent
+    area = np.abs(np.einsum("ij,ij->i", np.cross(X[1] - X[0], X[2] - X[0]), T))
+    assert_allclose(area, lattice.width_left * lattice.width_right * np.sin(np.radians(60)), rtol=1e-12)
+    assert np.abs(area / (lattice.width_left * lattice.width_right) - 1).min() > 0.1
+
+
+def test_speed_of_lattice_curves_is_eq16_17(lattice):
+    """ds/dt of curve (u, v) is (1 − u w_L/w_lim_L − v w_R/w_lim_R) ds₁/dt (Eq. 16 read correctly)."""
+    uv = np.array([[0, 1], [1, 0], [1.5, 2.0]])
+    X = lattice.points(uv)
+    h = lattice.t[1]
+    for x, expect in zip(X, lattice.speed(uv)):
+        measured = np.linalg.norm(measure.derivative(x, h), axis=1)
+        assert_allclose(measured, expect[2:-2], rtol=1e-9)
+
+
+def test_eq19_holds_between_neighbouring_creases(lattice):
+    for a, b in (([0, 0], [0, 1]), ([0, 1], [1, 1]), ([1, 1], [1, 0])):
+        assert measure.eq19_residual(lattice, a, b) < 1e-8
+
+
+def test_tube_built_crease_by_crease_closes(lattice):
+    closure, agreement = measure.tube_closure(lattice)
+    assert closure < 1e-13  # model units; the tube is ~3 long
+    assert agreement < 1e-12
+
+
+def test_regression_domain_queries(lattice):
+    dom = lattice.domain
+    assert dom.contains([0, 0])
+    assert_allclose(dom.margin(np.zeros(2)), 1.0)
+    for direction in ([1, 1], [1, 0], [0, -1], [-1, 1]):
+        lam = float(dom.extent(direction))
+        if np.isfinite(lam):
+            d = np.asarray(direction, float)
+            assert dom.contains(0.999 * lam * d) and not dom.contains(1.001 * lam * d)
+            assert abs(float(dom.margin(lam * d))) < 1e-12
+    poly = dom.polygon(box=50.0)
+    assert poly.shape[1] == 2 and dom.contains(0.99 * poly).all()
+
+
+def test_regression_refused_with_limit():
+    lat = make_lattice()
+    lam = float(lat.domain.extent([1, 1]))
+    with pytest.raises(RegressionError, match=r"lattice curve \(u, v\) = \(\d+, \d+\) passes the curve of regression .* the limit is \(u, v\) = "):
+        lat.check([[np.ceil(lam) + 1, np.ceil(lam) + 1]])
+    with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \([01], [01]\) passes"):
+        make_lattice(widths=(0.2 * 3 * lam, 0.15 * 3 * lam))
+
+
+def test_flat_state_is_planar_and_isometric(lattice):
+    flat = lattice.refold(0.0)
+    uv = np.array([[0, 0], [0, 1], [1, 1], [1, 0]], float)
+    X0 = flat.points(uv)
+    normal = flat.crease.curve.binormal[0]
+    assert np.abs((X0 - X0[0, 0]) @ normal).max() < 1e-13  # one common plane
+    assert_allclose(flat.crease.curve.tau(flat.s), 0.0, atol=0)
+    assert_allclose(flat.crease.curve.kappa(flat.s), lattice.kappa_2d(flat.s), rtol=1e-15)
+
+
+def test_refold_keeps_intrinsic_quantities(lattice):
+    for f in (0.0, 30.0, 120.0, 179.0):
+        other = lattice.refold(f)
+        assert_allclose(other.beta, lattice.beta, rtol=0)
+        assert_allclose(other.crease.kappa_2d, lattice.crease.kappa_2d, rtol=1e-14)
+        assert_allclose(other.domain.a, lattice.domain.a, rtol=1e-13, atol=1e-15)
+        # τ = τ₀ tan α / tan α₀
+        assert_allclose(other.crease.curve.tau(lattice.s), TAU(lattice.s) * np.tan(np.radians(f / 2)) / np.tan(np.radians(30)), atol=1e-13)
+    with pytest.raises(InputError, match=r"fold_angle must be in \[0°, 180°\), got 180 \(2α = 180° would need infinite curvature"):
+        lattice.refold(180)
+
+
+def test_refold_anchors(lattice):
+    start = lattice.refold(120.0, anchor="start").crease.curve
+    mid = lattice.refold(120.0, anchor="middle").crease.curve
+    m = (len(lattice.s) - 1) // 2
+    c = lattice.crease.curve
+    assert_allclose(start.frames[0], c.frames[0], atol=1e-15)
+    assert_allclose(mid.frames[m], c.frames[m], atol=1e-14)
+    assert_allclose(mid.points[m], c.points[m], atol=1e-14)
+    # the two differ by one rigid motion
+    R = mid.frames[0] @ start.frames[0].T
+    assert_allclose(mid.points - mid.points[0], (start.points - start.points[0]) @ R.T, atol=1e-13)
+    with pytest.raises(InputError, match="anchor must be 'start' or 'middle'"):
+        lattice.refold(90, anchor="end")
+
+
+def test_batched_folding_matches_refold(lattice):
+    uv = np.array([[0, 0], [1, 1], [2, 0.5]])
+    angles = [0.0, 45.0, 170.0]
+    batch = lattice.fold_points(uv, angles, anchor="middle")
+    for k, f in enumerate(angles):
+        assert_allclose(batch[k], lattice.refold(f, anchor="middle").points(uv), atol=1e-15)
+
+
+def test_every_corner_of_the_unit_cell_is_checked():
+    """(1, 1) can be valid while (1, 0) is not: the domain is a polygon, not a box."""
+    # |β'| < κ_2D everywhere: the left side regresses (a > 0), the right side never (b < 0)
+    curve = SpaceCurve.from_curvature(1.0, lambda s: -0.3 * (s - 1.0), 2.0, samples=201)
+    crease = Crease.from_curve(curve, fold_angle=90.0)
+    unit = Lattice.from_crease(crease, 1e-3, 1e-3)
+    a, b = unit.domain.a, unit.domain.b
+    assert (a > 0).all() and (b < 0).all()
+    f_left = 1.2 / a.max()  # (1, 0) reaches 1.2× past its limit ...
+    f_right = 2 * ((f_left * a - 1).clip(0) / -b).max()  # ... while (1, 1) keeps margin
+    lat = Lattice(crease, unit.width_left * f_left, unit.width_right * f_right)
+    assert lat.domain.contains([1, 1]) and lat.domain.contains([0, 1]) and not lat.domain.contains([1, 0])
+    with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \(1, 0\)"):
+        Lattice.from_crease(crease, 1e-3 * f_left, 1e-3 * f_right)
+
+
+def test_lattice_needs_constant_fold_angle_and_positive_widths():
+    curve = SpaceCurve.from_curvature(KAPPA, TAU, 3.0, samples=101)
+    with pytest.raises(InputError, match="constant fold angle"):
+        Lattice.from_crease(Crease.from_curve(curve, fold_angle=lambda s: 60 + s), 0.1, 0.1)
+    with pytest.raises(InputError, match=r"width_left must be a finite number > 0, got -0.1"):
+        Lattice.from_crease(Crease.from_curve(curve), -0.1, 0.1)
