@@ -184,7 +184,9 @@ def solve_general_arch(
 
     Unknowns are the arc length s₁ and the free parameters; the equations are
     ``T(s₁) + T(0) = 0`` and ``(x(s₁) − x(0))·T(0) = 0``, solved by least squares
-    (Levenberg–Marquardt on the four residuals).
+    (Levenberg–Marquardt on the four residuals). They are three independent conditions
+    (T is a unit vector), so a family generically needs two free parameters besides s₁;
+    with fewer, a solution exists only where symmetry removes conditions, as for Eq. (20).
 
     Parameters
     ----------

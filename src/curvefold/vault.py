@@ -25,10 +25,12 @@ from .errors import InputError, RegressionError
 from .lattice import Lattice
 from .structure import Structure
 
-__all__ = ["VaultDesign", "Vault", "max_tubes", "MAX_TUBES_SEARCH"]
+__all__ = ["VaultDesign", "Vault", "max_tubes", "MAX_TUBES_SEARCH", "DEFAULT_TUBES_CAP"]
 
 #: Stacks are searched up to this many tubes; a longer valid stack reports this number.
 MAX_TUBES_SEARCH = 10_000
+#: Tubes built when none are asked for and the stack could be longer.
+DEFAULT_TUBES_CAP = 24
 
 
 @dataclass(frozen=True)
@@ -48,7 +50,8 @@ class VaultDesign:
     fold_angle : float
         Design fold angle 2α in degrees, at which the vault stands on the ground.
     tubes : int or None
-        Number of tubes along the diagonal; None takes the maximum before regression.
+        Number of tubes along the diagonal; None takes the maximum before regression,
+        at most :data:`DEFAULT_TUBES_CAP`.
     layers : int
         Parallel diagonals (a band of cells (j, j + k), k < layers).
     direction : {1, -1}
@@ -165,7 +168,7 @@ class Vault:
         except RegressionError as err:
             raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}") from None
         n_max = max_tubes(lattice, direction=design.direction)
-        tubes = design.tubes if design.tubes is not None else n_max
+        tubes = design.tubes if design.tubes is not None else min(n_max, DEFAULT_TUBES_CAP)
         if tubes > n_max:
             raise RegressionError(
                 f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = {design.p_xy:g}, "
