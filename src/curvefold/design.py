@@ -182,7 +182,7 @@ SCHEMA: Mapping[str, Mapping[str, KeySpec]] = MappingProxyType({
     "vault": MappingProxyType({
         "a": _key("float", 0.3, "[0, 3)", doc="torsion amplitude: tau = a kappa0 sin(2 pi s / s0)"),
         "p_xy": _key("float", 0.75, "(0, 100]", doc="width ratio w_R(0) / w_L(0)"),
-        "width": _key("float", 0.2, "(0, 10]", doc="w_L(0) kappa0, dimensionless"),
+        "width": _key("float", 0.08, "(0, 10]", doc="w_L(0) kappa0, dimensionless"),
         "tubes": _key("tubes", "max", "[1, 1000]", doc='number of tubes, or "max"'),
         "fold_angle": _key("float", 90.0, _ANGLE, "degrees", doc="design fold angle 2 alpha"),
         "radius": _key("float", 1.0, _POSITIVE, "model units", doc="1 / kappa0"),

@@ -1,0 +1,84 @@
+"""Shared helpers for the benchmark scripts: interleaved timing, verdicts, markdown tables.
+
+The machine these run on is shared and noisy, so no absolute time is trusted on its own:
+contenders are timed in the same run, interleaved (the order rotates every round), and
+each keeps the best of k rounds; the scripts report ratios next to the times.
+"""
+
+from __future__ import annotations
+
+import gc
+import time
+from dataclasses import dataclass
+from typing import Callable, Mapping, Sequence
+
+
+@dataclass(frozen=True)
+class SummaryRow:
+    """One line of the summary table that ``run_all.py`` prints."""
+
+    benchmark: str
+    measure: str
+    value: str
+    target: str
+    status: str
+
+
+def timed(fn: Callable[[], object]) -> tuple[float, object]:
+    """Wall time of one call of ``fn`` (garbage collector paused) and its result."""
+    was_enabled = gc.isenabled()
+    gc.collect()
+    gc.disable()
+    try:
+        t0 = time.perf_counter()
+        result = fn()
+        elapsed = time.perf_counter() - t0
+    finally:
+        if was_enabled:
+            gc.enable()
+    return elapsed, result
+
+
+def best_of_interleaved(contenders: Mapping[str, Callable[[], object]], repeats: int) -> tuple[dict[str, float], dict[str, object]]:
+    """Best wall time of each contender over ``repeats`` interleaved rounds.
+
+    Round r runs the contenders in an order rotated by r, so neither always runs first
+    (warm caches) or last. Returns the best times and the last result of each contender.
+    """
+    names = list(contenders)
+    best = {name: float("inf") for name in names}
+    results: dict[str, object] = {}
+    for r in range(repeats):
+        shift = r % len(names)
+        for name in names[shift:] + names[:shift]:
+            elapsed, results[name] = timed(contenders[name])
+            best[name] = min(best[name], elapsed)
+    return best, results
+
+
+def choose_repeats(seconds_per_round: float, budget: float, *, low: int = 3, high: int = 25) -> int:
+    """How many rounds fit in ``budget`` seconds, clamped to [low, high]."""
+    if seconds_per_round <= 0:
+        return high
+    return max(low, min(high, int(budget / seconds_per_round)))
+
+
+def verdict(ok: bool) -> str:
+    return "PASS" if ok else "MISS"
+
+
+def markdown_table(headers: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
+    """A GitHub markdown table; cells are converted with ``str``."""
+    cells = [[str(c) for c in headers]] + [[str(c) for c in row] for row in rows]
+    widths = [max(len(row[i]) for row in cells) for i in range(len(headers))]
+    line = lambda row: "| " + " | ".join(c.ljust(w) for c, w in zip(row, widths)) + " |"  # noqa: E731
+    return "\n".join([line(cells[0]), "|" + "|".join("-" * (w + 2) for w in widths) + "|"] + [line(r) for r in cells[1:]])
+
+
+def summary_table(rows: Sequence[SummaryRow]) -> str:
+    return markdown_table(["benchmark", "measure", "value", "target", "status"], [(r.benchmark, r.measure, r.value, r.target, r.status) for r in rows])
+
+
+def ms(seconds: float) -> str:
+    """A time in milliseconds with three significant figures."""
+    return f"{seconds * 1e3:.3g}"
