@@ -120,7 +120,7 @@ def test_examples_cover_every_kind_and_csv():
 def test_paper_vault_values():
     d = load_design(EXAMPLES / "paper-vault.toml")
     assert d.vault == VaultParams(
-        a=0.3, p_xy=0.75, width=0.2, tubes="max", fold_angle=90.0, radius=1.0, layers=1, direction="+"
+        a=0.3, p_xy=0.75, width=0.08, tubes="max", fold_angle=90.0, radius=1.0, layers=1, direction="+"
     )
     assert d.samples == 801
     assert (d.curve, d.tube, d.block, d.crease) == (None, None, None, None)
@@ -195,7 +195,7 @@ def test_default_design(kind):
 def test_default_values():
     v = default_design("vault").vault
     assert (v.a, v.p_xy, v.width, v.tubes, v.fold_angle, v.radius, v.layers, v.direction) == (
-        0.3, 0.75, 0.2, "max", 90.0, 1.0, 1, "+")
+        0.3, 0.75, 0.08, "max", 90.0, 1.0, 1, "+")
     c = default_design("crease").crease
     assert (c.kappa_2d, c.beta_left, c.beta_right, c.fold_angle, c.length, c.alpha) == (0.5, 90.0, 90.0, 60.0, 3.0, None)
     assert default_design("block").block.cells == ((0, 0), (0, 1), (1, 1))

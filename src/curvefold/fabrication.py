@@ -38,6 +38,7 @@ import numpy as np
 
 from .crease import half_angle
 from .errors import CurvefoldError, InputError
+from .lie import cross
 from .mesh import Mesh, edges_faces
 from .structure import State, Structure
 
@@ -211,7 +212,7 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
             f"the flat state is not planar: a vertex lies {residual:.3g} from the fitted plane "
             f"(allowed {tol:g} × size {size:.3g}); is the state at fold angle 0?"
         )
-    axes = np.stack([e1, np.cross(normal, e1), normal])
+    axes = np.stack([e1, cross(normal, e1), normal])
     for a in (origin, axes):
         a.flags.writeable = False
     return FlatPlane(origin, axes, residual)
@@ -402,7 +403,7 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
 def _corner_angle(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Interior angle at p of triangles (p, q, r), each (m, 3); shape (m,)."""
     u, v = q - p, r - p
-    return np.arctan2(np.linalg.norm(np.cross(u, v), axis=-1), np.einsum("ij,ij->i", u, v))
+    return np.arctan2(np.linalg.norm(cross(u, v), axis=-1), np.einsum("ij,ij->i", u, v))
 
 
 def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
