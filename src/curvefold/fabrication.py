@@ -90,15 +90,21 @@ def _design_angle(structure: Structure, fold_angle: float | None, degrees: bool)
     """The fold angle 2α in degrees: the given one (validated, > 0) or the lattice's own."""
     if fold_angle is None:
         return math.degrees(structure.lattice.crease.fold_angle)
-    return math.degrees(2.0 * half_angle(fold_angle, degrees=degrees))
+    half_angle(fold_angle, degrees=degrees)
+    return float(fold_angle) if degrees else math.degrees(fold_angle)
 
 
 def _angles(values, degrees: bool, name: str) -> np.ndarray:
     """A non-empty 1D array of fold angles in degrees, each in [0°, 180°)."""
-    arr = np.atleast_1d(np.asarray(values, float))
+    try:
+        arr = np.atleast_1d(np.asarray(values, float))
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a sequence of numbers, got {values!r}") from None
     if arr.ndim != 1 or arr.size == 0:
         raise InputError(f"{name} must be a non-empty sequence of fold angles, got shape {np.shape(values)}")
-    return np.array([math.degrees(2.0 * half_angle(a, degrees=degrees, name=name, allow_flat=True)) for a in arr])
+    for a in arr:
+        half_angle(a, degrees=degrees, name=name, allow_flat=True)
+    return arr if degrees else np.degrees(arr)
 
 
 def _check_formats(formats, allowed: tuple[str, ...]) -> tuple[str, ...]:

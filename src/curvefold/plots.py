@@ -75,8 +75,8 @@ class View:
         Elevation of the viewer above the xy plane in degrees.
     """
 
-    azim: float = -58.0
-    elev: float = 24.0
+    azim: float = -50.0
+    elev: float = 22.0
 
     @property
     def basis(self) -> np.ndarray:
@@ -137,10 +137,10 @@ def _shade(quads: np.ndarray, view: View) -> np.ndarray:
     normal = np.cross(quads[:, 2] - quads[:, 0], quads[:, 3] - quads[:, 1])
     length = np.linalg.norm(normal, axis=1, keepdims=True)
     normal = normal / np.where(length > 0, length, 1.0)
-    light = np.array([-0.35, 0.55, 0.76]) @ view.basis  # from the upper left, in front
+    light = np.array([-0.45, 0.6, 0.66]) @ view.basis  # from the upper left, in front
     light /= np.linalg.norm(light)
     lambert = np.abs(normal @ light)
-    rgb = STRIP_RGB[None] * (0.50 + 0.50 * lambert[:, None])
+    rgb = STRIP_RGB[None] * (0.38 + 0.66 * lambert[:, None])
     return np.concatenate([np.clip(rgb, 0, 1), np.ones((len(quads), 1))], axis=1)
 
 
@@ -176,12 +176,16 @@ def _draw_structure(
     rulings = np.linalg.norm(quads[:, 3] - quads[:, 0], axis=1)
     bias = 0.5 * float(np.median(rulings)) if len(rulings) else 0.0
     seg_rgba = np.array([_rgba(KIND_COLORS.get(k, "#444444")) for k in seg_kind]).reshape(-1, 4)
+    # outlines of the end sections (t = 0 and 1): each tube's parallelogram
+    ends = vertices[np.asarray(cell_curves)][:, :, [0, -1]]  # (K, 4, 2, 3)
+    rim = np.stack([ends, np.roll(ends, -1, axis=1)], axis=-2).reshape(-1, 2, 3)
+    e2, ed = view.project(rim)
 
-    polys = list(q2) + list(s2)
-    depth = np.concatenate([qd.mean(axis=1), sd.mean(axis=1) + bias])
-    faces = np.concatenate([face, np.zeros((len(s2), 4))])
-    edges = np.concatenate([face, seg_rgba])
-    widths = np.concatenate([np.full(len(q2), 0.3), np.full(len(s2), crease_width)])
+    polys = list(q2) + list(s2) + list(e2)
+    depth = np.concatenate([qd.mean(axis=1), sd.mean(axis=1) + bias, ed.mean(axis=1) + bias])
+    faces = np.concatenate([face, np.zeros((len(s2) + len(e2), 4))])
+    edges = np.concatenate([face, seg_rgba, np.tile(_rgba("#3a3a3a"), (len(e2), 1))])
+    widths = np.concatenate([np.full(len(q2), 0.3), np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)])
     order = np.argsort(depth, kind="stable")
     coll = PolyCollection(
         [polys[i] for i in order],
@@ -193,7 +197,7 @@ def _draw_structure(
         capstyle="round",
     )
     ax.add_collection(coll, autolim=False)
-    return np.concatenate([q2.reshape(-1, 2), s2.reshape(-1, 2)])
+    return q2.reshape(-1, 2)
 
 
 def _rgba(color: str) -> tuple[float, float, float, float]:
@@ -327,14 +331,13 @@ def plot_regression_domain(
         if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) == 0 or not np.issubdtype(arr.dtype, np.integer):
             raise InputError(f"cells must be a non-empty (K, 2) array of integers, got shape {arr.shape} and dtype {arr.dtype}")
         structure = Structure(lattice, arr.astype(np.int64))  # unchecked: cells past regression are shown, not refused
-    if box is None:
+    if box is None:  # the nearest part of the boundary, and every cell
         dirs = np.array([[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, -1], [1, -1], [-1, 1]], float)
-        ext = domain.extent(dirs) * np.abs(dirs).max(axis=1)
-        finite = ext[np.isfinite(ext)]
-        reach = [2.0, 1.15 * float(finite.max()) if finite.size else 2.0]
+        ext = domain.extent(dirs)
+        reach = [1.5, float(ext[np.isfinite(ext)].min()) if np.isfinite(ext).any() else 1.5]
         if structure is not None:
-            reach.append(1.15 * float(np.abs(structure.curves_uv).max()) + 0.5)
-        box = max(reach[0], min(max(reach[1:]), 1e4))
+            reach.append(float(np.abs(structure.curves_uv).max()))
+        box = 1.3 * min(max(reach), 1e4)
     if not np.isfinite(box) or box <= 0:
         raise InputError(f"box must be a finite number > 0, got {box!r}")
 
@@ -373,8 +376,8 @@ def plot_regression_domain(
         handles.append(Patch(facecolor="#ffffff", edgecolor="#555555", label=f"cells ({len(structure.cells)})"))
     handles += [h for h in ax.get_legend_handles_labels()[0]]
     handles.append(Line2D([], [], color="#2ca02c", lw=0.8, label="limiting lines (coloured by t)"))
-    ax.plot([0], [0], marker="o", ms=4, color="black", zorder=6)
-    ax.annotate("curve 1", (0, 0), xytext=(4, -10), textcoords="offset points", fontsize=7)
+    ax.plot([0], [0], marker="o", ms=9, mfc="none", mec="black", mew=1.0, zorder=6)
+    ax.annotate("curve 1", (0, 0), xytext=(6, -12), textcoords="offset points", fontsize=7)
     ax.axhline(0, color="#999999", lw=0.5, zorder=0)
     ax.axvline(0, color="#999999", lw=0.5, zorder=0)
     ax.set_xlim(-box, box)
@@ -427,9 +430,10 @@ def plot_width_proportion(lattice: "Lattice") -> "Figure":
         for x, name in ((t[0], "t = 0"), (t[m], "t = ½")):
             ax.axvline(x, color="#999999", lw=0.8, ls=":", zorder=0)
         ax.grid(True, lw=0.3, alpha=0.5)
-    for x, y, text in ((t[0], ratio[0], f"{ratio[0]:.3f} at t = 0"), (t[m], ratio[m], f"{ratio[m]:.3f} at t = ½")):
+    for x, y, text in ((t[0], ratio[0], f"{ratio[0]:.4g} at t = 0"), (t[m], ratio[m], f"{ratio[m]:.4g} at t = ½")):
         bottom.plot([x], [y], "o", color="black", ms=4)
-        bottom.annotate(text, (x, y), xytext=(5, 6), textcoords="offset points", fontsize=8)
+        bottom.annotate(text, (x, y), xytext=(7, -3), textcoords="offset points", fontsize=8, va="top" if y >= ratio.mean() else "bottom")
+    bottom.margins(y=0.18)
     bottom.legend(fontsize=8, loc="best")
     bottom.set_xlim(-0.02, 1.02)
     return fig
@@ -502,11 +506,11 @@ def plot_sections(
     uv = structure.curves_uv
     cells = structure.cell_curves
     kinds = np.asarray(structure.curve_kinds)
-    from matplotlib import colormaps
+    from matplotlib.colors import to_rgba
 
-    cmap = colormaps["plasma"]
-    colors = [cmap(0.1 + 0.75 * k / max(len(angles) - 1, 1)) for k in range(len(angles))]
     design = int(np.argmin(np.abs(np.asarray(angles) - own)))
+    palette = iter(["#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d"] * len(angles))
+    colors = [to_rgba("black") if k == design else to_rgba(next(palette)) for k in range(len(angles))]
 
     fig = _figure(figsize=(4.6 * len(t_arr) + 0.4, 4.8))
     axes = np.atleast_1d(fig.subplots(1, len(t_arr), squeeze=False)[0])
@@ -520,9 +524,10 @@ def plot_sections(
             ax.add_collection(
                 PolyCollection(
                     polys,
-                    facecolors=(*colors[k][:3], 0.10 if strong else 0.0),
+                    facecolors=(*colors[k][:3], 0.06 if strong else 0.0),
                     edgecolors=[colors[k]],
-                    linewidths=1.6 if strong else 0.9,
+                    linewidths=1.5 if strong else 1.0,
+                    linestyles="solid" if strong else (0, (4, 2)),
                     zorder=2 + strong,
                 )
             )
@@ -531,7 +536,7 @@ def plot_sections(
                     sel = kinds == kind
                     if sel.any():
                         ax.scatter(xy[sel, 0], xy[sel, 1], s=12, color=KIND_COLORS[kind], zorder=5)
-        ax.plot([0], [0], "o", color="black", ms=3, zorder=6)
+        ax.plot([0], [0], marker="o", ms=8, mfc="none", mec="black", mew=1.0, zorder=6)
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
         ax.grid(True, lw=0.3, alpha=0.5)
@@ -539,8 +544,9 @@ def plot_sections(
         ax.set_title(f"section at t = {lattice.t[i]:.3g}{where}", fontsize=10)
         ax.set_xlabel(f"along N(t) ({UNITS})")
     axes[0].set_ylabel(f"along B(t) ({UNITS})")
-    handles = [Line2D([], [], color=c, lw=1.6 if k == design else 0.9, label=f"2α = {f:g}°" + (" (design)" if k == design else "")) for k, (f, c) in enumerate(zip(angles, colors))]
+    handles = [Line2D([], [], color=c, lw=1.5 if k == design else 1.0, ls="-" if k == design else (0, (4, 2)), label=f"2α = {f:g}°" + (" (design)" if k == design else "")) for k, (f, c) in enumerate(zip(angles, colors))]
     handles += [Line2D([], [], ls="", marker="o", ms=4, color=KIND_COLORS[kd], label=kd) for kd in ("fold", "seam", "junction") if kd in set(kinds)]
+    handles.append(Line2D([], [], ls="", marker="o", ms=8, mfc="none", mec="black", label="curve 1"))
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
     fig.suptitle("Sections normal to the common tangent T(t): the pantograph", fontsize=11)
     return fig
@@ -623,7 +629,7 @@ def plot_vault(
         f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}, 2α = {angle_value:g}°",
         fontsize=10,
     )
-    _legend_creases(ax, kinds, loc="upper left")
+    _legend_creases(ax, kinds, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
     return fig
 
 
@@ -678,7 +684,7 @@ def plot_motion_strip(
         screens.append(np.concatenate([pts, ground]))
         design = abs(f - vault.design.fold_angle) < 1e-9
         ax.set_title(f"2α = {f:g}°" + (" (design)" if design else ""), fontsize=10)
-        ax.text(0.5, -0.02, f"ends off the ground: {lf.max():.3g}", transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
+        ax.text(0.5, -0.02, f"ends off the ground: {lf.max():.3f} {UNITS}", transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
     allpts = np.concatenate(screens)
     center = 0.5 * (allpts.min(axis=0) + allpts.max(axis=0))
     size = allpts.max(axis=0) - allpts.min(axis=0)

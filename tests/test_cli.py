@@ -1,0 +1,85 @@
+"""The command line: stable JSON keys, one-line errors, no partial output."""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from curvefold.cli import main
+
+
+def run(*argv: str, cwd=None) -> subprocess.CompletedProcess:
+    """The real entry point in a subprocess: exit codes and stderr as a user sees them."""
+    return subprocess.run([sys.executable, "-m", "curvefold", *argv], capture_output=True, text=True, cwd=cwd, timeout=300)
+
+
+def test_arch_json_keys():
+    r = run("arch", "--a", "0.3", "--p-xy", "0.75", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert abs(out["kappa0_s0"] - 3.16571746805) < 1e-10
+    assert abs(out["proportion_change"] - 1.3529721297) < 1e-9
+    assert abs(out["p_xz"] - 1.3729001878) < 1e-9
+
+
+def test_vault_json_without_out_writes_nothing(tmp_path):
+    r = run("vault", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise"):
+        assert key in out
+    assert out["tubes"] == out["max_tubes"] == 9
+    assert all(c["passed"] for c in out["certificate"])
+    assert os.listdir(tmp_path) == []
+
+
+def test_reproduce_prints_the_paper_table(capsys):
+    assert main(["reproduce", "--json"]) == 0
+    rows = {r["quantity"]: r for r in json.loads(capsys.readouterr().out)["rows"]}
+    assert rows["kappa0_s0"]["paper"] == 3.305
+    assert round(rows["kappa0_s0"]["computed"], 11) == 3.16571746805
+    assert round(rows["p_xz"]["from_paper_kappa0_s0"], 2) == 1.41
+
+
+@pytest.mark.parametrize(
+    "argv,message",
+    [
+        (["vault", "--fold-angle", "180"], r"fold_angle must be in \(0, 180\) degrees, got 180"),
+        (["vault", "--fold-angle", "nan"], r"fold_angle"),
+        (["vault", "--tubes", "50"], r"tubes must be ≤ 9 \(the maximum before regression"),
+        (["vault", "--width", "5"], r"width = 5 is past regression for the base tube"),
+        (["vault", "--a", "1.5"], r"no standing arch for a = 1.5"),
+        (["vault", "--tubes", "many"], r"--tubes: must be a whole number ≥ 1 or 'max', got 'many'"),
+        (["vault", "--samples", "100000000"], r"samples"),
+        (["arch", "--a", "-1"], r"a \(torsion amplitude\) must be a finite number ≥ 0, got -1"),
+        (["check", "missing.fold"], r"missing.fold"),
+        (["tube", "nonexistent.toml"], r"nonexistent.toml"),
+        (["frobnicate"], r"invalid choice: 'frobnicate'"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(tmp_path, argv, message):
+    r = run(*argv, cwd=tmp_path)
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("curvefold"), r.stderr
+    assert "Traceback" not in r.stderr
+    import re
+
+    assert re.search(message, lines[0]), lines[0]
+    assert r.stdout == ""
+    assert os.listdir(tmp_path) == []  # nothing written, not even a temporary folder
+
+
+def test_design_file_errors_name_their_location(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('kind = "vault"\n[vault]\nradios = 2.0\n')
+    r = run("vault", str(bad), "--json", cwd=tmp_path)
+    assert r.returncode == 2
+    assert "unknown key 'radios'" in r.stderr and "bad.toml" in r.stderr
+    evil = tmp_path / "evil.toml"
+    evil.write_text('kind = "tube"\n[curve]\nkappa = "__import__(\'os\').system(\'echo hacked\')"\n')
+    r = run("tube", str(evil), "--json", cwd=tmp_path)
+    assert r.returncode == 2 and r.stdout == ""  # refused, never run: nothing echoed
+    assert len(r.stderr.strip().splitlines()) == 1
