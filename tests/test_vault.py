@@ -188,3 +188,25 @@ def test_bands_and_direction():
     v = Vault.from_design(VaultDesign(tubes=3, layers=2, direction=-1, samples=201))
     assert sorted(v.structure.cells.tolist()) == [[-3, -3], [-3, -2], [-2, -2], [-2, -1], [-1, -1], [-1, 0]]
     assert v.ground_error() < 1e-13
+
+
+def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
+    """Past 90° the arch curls until distant parts meet; regression never comes (it is intrinsic)."""
+    from scipy.spatial import cKDTree
+
+    angle = paper_vault.first_contact(step=1.0)
+    assert angle is not None and 90.0 < angle < 180.0
+    lat = paper_vault.lattice
+    w_min = min(lat.width_left.min(), lat.width_right.min())
+
+    def closest_far_pair(fold_angle):
+        V = paper_vault.motion([fold_angle])[0]
+        n = V.shape[1]
+        pts = V.reshape(-1, 3)
+        d, j = cKDTree(pts).query(pts, k=60)
+        t = np.tile(np.arange(n), V.shape[0])
+        far = np.abs(t[j] - t[:, None]) / (n - 1) > 4 * max(lat.width_left.max(), lat.width_right.max()) / lat.crease.curve.length
+        return np.where(far, d, np.inf).min()
+
+    assert closest_far_pair(angle) < 0.5 * w_min <= closest_far_pair(angle - 1.0)
+    assert lat.refold(angle).domain.contains(paper_vault.structure.curves_uv).all()
