@@ -441,7 +441,8 @@ def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
         all_angles = tmp_path / f"all{samples}.fold"
         all_angles.write_text(json.dumps(doc))
         frames = _node("check_fold.mjs", str(all_angles))["rabbit_ear"]["frames"]
-        bound = max(np.ptp(m.vertices_coords, axis=0).max() * turning(m.vertices_coords[:samples][None]) ** 2 for _, m in model.folded)
+        # L·θ²/24 over the frame's size L, θ measured on its first curve
+        bound = max(np.ptp(m.vertices_coords, axis=0).max() * turning(m.vertices_coords[:samples]) ** 2 / 24 for _, m in model.folded)
         residual.append(max(f["max_distance"] for f in frames))
         assert residual[-1] < bound, (residual, bound)
     assert 3.6 < residual[0] / residual[1] < 4.4, residual
@@ -488,33 +489,55 @@ def test_default_scale_is_plain_and_fits(stack, block):
     assert fixed.scale == 30.0
 
 
-def test_write_pattern_for_a_stack(tmp_path, stack):
-    ezdxf = pytest.importorskip("ezdxf")
-    paths = write_pattern(tmp_path / "stack", stack, name="vault", rulings=True)
+@pytest.fixture(scope="module")
+def stack_pattern(tmp_path_factory, stack):
+    folder = tmp_path_factory.mktemp("pattern")
+    return folder, write_pattern(folder / "stack", stack, name="vault", rulings=True)
+
+
+def test_write_pattern_files(stack_pattern):
+    folder, paths = stack_pattern
     svgs = [p for p in paths if p.suffix == ".svg"]
-    assert [p.suffix for p in paths if p.suffix != ".svg"] == [".dxf", ".pdf"]
+    assert [p.name for p in svgs] == [f"stack-p{i + 1}.svg" for i in range(len(svgs))]
+    assert [p.name for p in paths[len(svgs):]] == ["stack.dxf", "stack.pdf"]
     assert all(p.exists() for p in paths)
-    doc = ezdxf.readfile(tmp_path / "stack.dxf")
+    assert all("layer-rulings" in p.read_text() for p in svgs)
+
+
+def test_pattern_dxf_passes_the_ezdxf_audit(stack_pattern):
+    ezdxf = pytest.importorskip("ezdxf")
+    folder, _ = stack_pattern
+    doc = ezdxf.readfile(folder / "stack.dxf")
     auditor = doc.audit()
     assert not auditor.has_errors, [str(e) for e in auditor.errors]
+    assert doc.header["$INSUNITS"] == 4
     msp = doc.modelspace()
     assert len(msp.query('LWPOLYLINE[layer=="cut"]')) == 4
     assert len(msp.query('LWPOLYLINE[layer=="mountain"]')) == 4 and len(msp.query('LWPOLYLINE[layer=="valley"]')) == 0
     assert len(msp.query('LWPOLYLINE[layer=="rulings"]')) > 0
     texts = sorted(t.dxf.text for t in msp.query('TEXT[layer=="labels"]'))
     assert [t for t in texts if t.startswith("vault")] == [f"vault · tube {k} · sheet {s}" for k in (1, 2) for s in "AB"]
-    assert sorted(t for t in texts if t.startswith("S")) == sorted(["S0", "S1", "S2", "S3"] * 2)
-    if shutil.which("rsvg-convert"):
-        for svg in svgs:
-            png = svg.with_suffix(".png")
-            subprocess.run(["rsvg-convert", "-d", "100", "-p", "100", "-b", "white", str(svg), "-o", str(png)], check=True)
-            img = _png(png)
-            red = (img[..., 0] > 0.7) & (img[..., 1] < 0.35) & (img[..., 2] < 0.35)
-            green = (img[..., 1] > img[..., 0] + 0.08) & (img[..., 1] > img[..., 2] + 0.08)
-            assert red.sum() > 50 and green.sum() > 200  # mountain folds and glue tabs drawn
-    if shutil.which("pdftoppm"):
-        subprocess.run(["pdftoppm", "-r", "30", "-png", str(tmp_path / "stack.pdf"), str(tmp_path / "page")], check=True)
-        assert len(list(tmp_path.glob("page-*.png"))) == len(svgs)
+    assert sorted(t for t in texts if t.startswith("S")) == sorted(["S0", "S1", "S2", "S3"] * 2)  # both partners named
+
+
+@needs("rsvg-convert")
+def test_pattern_svg_renders_with_folds_and_tabs(stack_pattern):
+    folder, paths = stack_pattern
+    for svg in (p for p in paths if p.suffix == ".svg"):
+        png = svg.with_suffix(".png")
+        subprocess.run(["rsvg-convert", "-d", "100", "-p", "100", "-b", "white", str(svg), "-o", str(png)], check=True)
+        img = _png(png)
+        assert abs(img.shape[1] - 210 / 25.4 * 100) <= 1  # A4 at true size
+        red = (img[..., 0] > 0.7) & (img[..., 1] < 0.35) & (img[..., 2] < 0.35)
+        green = (img[..., 1] > img[..., 0] + 0.08) & (img[..., 1] > img[..., 2] + 0.08)
+        assert red.sum() > 50 and green.sum() > 200  # mountain folds and glue tabs drawn
+
+
+@needs("pdftoppm")
+def test_pattern_pdf_has_one_page_per_layout_page(stack_pattern):
+    folder, paths = stack_pattern
+    subprocess.run(["pdftoppm", "-r", "30", "-png", str(folder / "stack.pdf"), str(folder / "page")], check=True)
+    assert len(list(folder.glob("page-*.png"))) == len([p for p in paths if p.suffix == ".svg"])
 
 
 def test_write_pattern_options(tmp_path, tube):

@@ -64,7 +64,7 @@ def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     if kind is not None:
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: ./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written)")
         g.add_argument("--force", action="store_true", help="replace an existing output folder")
-        g.add_argument("--formats", metavar="LIST", help="comma-separated subset of: svg,dxf,pdf,fold,glb,obj,stl,ply,3dm,gif,png (default: all)")
+        g.add_argument("--formats", metavar="LIST", help="comma-separated subset of: svg,dxf,pdf,fold,glb,obj,stl,ply,3dm,gif (default: all; the report and its pictures are always written)")
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
 
 

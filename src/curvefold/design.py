@@ -214,10 +214,10 @@ SCHEMA: Mapping[str, Mapping[str, KeySpec]] = MappingProxyType({
     }),
     "output": MappingProxyType({
         "units": _key("choice", "mm", choices=("mm", "cm", "m", "in", "unit"), doc="output length unit"),
-        "scale": _key("float", 100.0, _POSITIVE, "output units per model unit", doc="model units to output units"),
+        "scale": _key("float", None, _POSITIVE, "output units per model unit", doc="model units to output units (default: fit the largest sheet to the page)"),
         "page": _key("page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), doc="page name or [width, height]"),
         "glue_tabs": _key("bool", True, doc="draw glue tabs on the sheets"),
-        "formats": _key("formats", ["svg", "fold"], choices=FORMATS, doc="files to write"),
+        "formats": _key("formats", list(FORMATS), choices=FORMATS, doc="files to write (default: all)"),
     }),
 })
 
@@ -324,7 +324,7 @@ class OutputParams:
     """``[output]``: units, scale, page and file formats."""
 
     units: str
-    scale: float
+    scale: float | None
     page: str | tuple[float, float]
     glue_tabs: bool
     formats: tuple[str, ...]

@@ -33,6 +33,7 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -42,11 +43,16 @@ from .lie import cross
 from .mesh import Mesh, edges_faces
 from .structure import State, Structure
 
+if TYPE_CHECKING:  # the exporters are imported when used
+    from .export.fold import FoldFile
+    from .export.layout import Layout, PatternSheet
+
 __all__ = [
     "PATTERN_FORMATS",
     "MODEL_FORMATS",
     "SHEET_NAMES",
     "Bond",
+    "FlatPlane",
     "bonds",
     "flat_plane",
     "folding_motion",
@@ -67,10 +73,9 @@ MODEL_FORMATS = ("glb", "obj", "stl", "ply", "3dm")
 #: Names of a tube's two sheets, in order.
 SHEET_NAMES = ("A", "B")
 
-# Per sheet: strips (0-based corner c of strip c → c+1), fold corner, seam corners.
+# Strips of sheets A and B (strip c runs from corner index c to c + 1, 0-based).
 _SHEET_STRIPS = ((3, 0), (1, 2))
-_SHEET_FOLD = (0, 2)
-# Seam corner → offset of its seam id (tube k: 2k + offset).
+# Seam corner index (1: seam 2, 3: seam 4) → offset of its seam id (tube k: 2k + offset).
 _SEAM_OFFSET = {1: 0, 3: 1}
 #: Print scales are rounded down to one of these times a power of ten.
 _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
@@ -158,7 +163,7 @@ def sheet_vertices(structure: Structure) -> tuple[np.ndarray, ...]:
     return tuple(out)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FlatPlane:
     """The plane of the flat state with an in-plane frame.
 
@@ -203,12 +208,14 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     CurvefoldError
         If the state is not planar within ``tol`` (it is not the flat state).
     """
+    if not isinstance(state, State):
+        raise InputError(f"state must be a State (e.g. structure.state(0)), got {type(state).__name__}")
     x = state.vertices.reshape(-1, 3)
     centre = x.mean(axis=0)
     _, _, vt = np.linalg.svd(x - centre, full_matrices=False)
     frame = state.lattice.crease.curve.frames[0]  # columns T, N, B of curve 1 at t = 0
     normal = vt[2] if vt[2] @ frame[:, 2] >= 0 else -vt[2]
-    origin = state.lattice.crease.curve.points[0]
+    origin = np.array(state.lattice.crease.curve.points[0])
     e1 = frame[:, 0] - (frame[:, 0] @ normal) * normal
     e1 /= np.linalg.norm(e1)
     residual = float(np.abs((x - origin) @ normal).max())
@@ -232,76 +239,88 @@ def _oriented_edges(faces: np.ndarray, edges: np.ndarray) -> np.ndarray:
     return np.where((rev < fwd)[:, None], edges[:, ::-1], edges)
 
 
-def _sheet_topology(mesh: Mesh, structure: Structure) -> list[dict]:
-    """Faces, edges and kinds of every sheet in the tube mesh's vertex numbering."""
+@dataclass(frozen=True, eq=False)
+class _SheetTopology:
+    """One sheet in the tube mesh's numbering (private)."""
+
+    tube: int
+    which: int  # 0 = A, 1 = B
+    verts: np.ndarray  # (3n,) tube-mesh vertices, in sheet order
+    face_mask: np.ndarray  # (F,) bool over the tube mesh's faces
+    edges: np.ndarray  # (E_s, 2) tube-mesh vertices, oriented as the sheet's first face runs
+    edge_ids: np.ndarray  # (E_s,) indices into the tube mesh's edges
+    seam: np.ndarray  # (E_s,) seam id or -1
+
+    @property
+    def label(self) -> str:
+        return f"tube {self.tube + 1} · sheet {SHEET_NAMES[self.which]}"
+
+
+def _sheet_topology(mesh: Mesh, structure: Structure) -> list[_SheetTopology]:
+    """Faces, edges and seam ids of every sheet in the numbering of the tube mesh ``mesh``."""
     n = len(structure.lattice.s)
-    per_tube = 4 * n
-    edge_tube = mesh.edges_vertices[:, 0] // per_tube
+    edge_tube = mesh.edges_vertices[:, 0] // (4 * n)
     out = []
-    for k, verts in zip(np.repeat(np.arange(len(structure.cells)), 2), sheet_vertices(structure)):
-        which = len(out) % 2
-        groups = [4 * k + c for c in _SHEET_STRIPS[which]]
-        faces = mesh.faces_vertices[np.isin(mesh.faces_group, groups)]
+    for i, verts in enumerate(sheet_vertices(structure)):
+        k, which = divmod(i, 2)
+        mask = np.isin(mesh.faces_group, [4 * k + c for c in _SHEET_STRIPS[which]])
+        faces = mesh.faces_vertices[mask]
         candidates = np.flatnonzero(edge_tube == k)
-        ev = mesh.edges_vertices[candidates]
-        inside = np.isin(ev, verts).all(axis=1)
+        inside = np.isin(mesh.edges_vertices[candidates], verts).all(axis=1)
         ids = candidates[inside]
-        ev = _oriented_edges(faces, ev[inside])
-        ef = edges_faces(faces, ev)
-        if not (ef >= 0).any(axis=1).all():  # every edge is a side of a face of the sheet
+        ev = _oriented_edges(faces, mesh.edges_vertices[ids])
+        if not (edges_faces(faces, ev) >= 0).any(axis=1).all():  # pragma: no cover - a topology bug
             raise CurvefoldError(f"tube {k + 1} sheet {SHEET_NAMES[which]}: an edge borders none of the sheet's faces")
         seam = np.full(len(ids), -1, np.int64)
         corner = (ev[:, 0] // n) % 4
         for c, offset in _SEAM_OFFSET.items():
             seam[(mesh.edges_kind[ids] == "seam") & (corner == c)] = 2 * k + offset
-        out.append({"tube": int(k), "sheet": which, "verts": verts, "faces": faces, "edges": ev, "ids": ids, "seam": seam})
+        out.append(_SheetTopology(k, which, verts, mask, ev, ids, seam))
     return out
 
 
-def _develop(structure: Structure, fold_angle_deg: float, name: str) -> tuple[tuple, tuple, FlatPlane]:
-    """Sheets (PatternSheet), their vertex maps and the flat plane."""
+def _develop(structure: Structure, fold_angle_deg: float, name: str) -> tuple[tuple[PatternSheet, ...], tuple[np.ndarray, ...]]:
+    """The sheets (PatternSheet) and their vertex maps into the tube mesh."""
     from .export.layout import PatternSheet
 
     flat = structure.state(0.0)
     plane = flat_plane(flat)
     flat_mesh = flat.mesh()
     design = structure.state(fold_angle_deg).mesh()
-    x0 = flat_mesh.vertices_coords
     normals = flat_mesh.face_normals()
     out, maps = [], []
     for sh in _sheet_topology(flat_mesh, structure):
-        verts, faces, ev, ids = sh["verts"], sh["faces"], sh["edges"], sh["ids"]
-        label = f"tube {sh['tube'] + 1} · sheet {SHEET_NAMES[sh['sheet']]}"
-        label = f"{name} · {label}" if name else label
-        in_sheet = np.isin(flat_mesh.faces_group, [4 * sh["tube"] + c for c in _SHEET_STRIPS[sh["sheet"]]])
-        facing = normals[in_sheet] @ plane.axes[2]
-        xy = plane.coords(x0[verts], flip=bool(facing.mean() < 0))
-        lookup = np.full(int(verts.max()) + 1, -1, np.int64)
-        lookup[verts] = np.arange(len(verts))
-        f_local, e_local = lookup[faces], lookup[ev]
-        tri = xy[f_local]
-        area2 = (tri[:, 1, 0] - tri[:, 0, 0]) * (tri[:, 2, 1] - tri[:, 0, 1]) - (tri[:, 1, 1] - tri[:, 0, 1]) * (tri[:, 2, 0] - tri[:, 0, 0])
+        label = f"{name} · {sh.label}" if name else sh.label
+        facing = normals[sh.face_mask] @ plane.axes[2]  # ±1: the outside faces +n or −n
+        xy = plane.coords(flat_mesh.vertices_coords[sh.verts], flip=bool(facing.mean() < 0))
+        lookup = np.full(int(sh.verts.max()) + 1, -1, np.int64)
+        lookup[sh.verts] = np.arange(len(sh.verts))
+        faces = lookup[flat_mesh.faces_vertices[sh.face_mask]]
+        u, v = xy[faces[:, 1]] - xy[faces[:, 0]], xy[faces[:, 2]] - xy[faces[:, 0]]
+        area2 = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
         if not (area2 > 0).all():
-            bad = int(np.count_nonzero(area2 <= 0))
-            raise CurvefoldError(f"{label}: {bad} of {len(area2)} triangles of the flat state are not counter-clockwise seen from outside the tube")
-        kind = design.edges_kind[ids]
-        angle = np.where(kind == "fold", design.edges_foldAngle[ids], 0.0)
-        assignment = np.where(kind == "fold", np.where(angle > 0, "V", "M"), np.where(np.isin(kind, ("seam", "boundary")), "B", "F"))
+            raise CurvefoldError(f"{label}: {int(np.count_nonzero(area2 <= 0))} of {len(area2)} triangles of the flat "
+                                 "state are not counter-clockwise seen from outside the tube")
+        kind = design.edges_kind[sh.edge_ids]
+        angle = np.where(kind == "fold", design.edges_foldAngle[sh.edge_ids], 0.0)
+        assignment = np.where(kind == "fold", np.where(angle > 0, "V", "M"),
+                              np.where(np.isin(kind, ("seam", "boundary")), "B", "F"))
         mesh = Mesh(
             vertices_coords=np.column_stack([xy, np.zeros(len(xy))]),
-            edges_vertices=e_local,
+            edges_vertices=lookup[sh.edges],
             edges_assignment=assignment.astype("<U1"),
             edges_foldAngle=angle,
-            faces_vertices=f_local,
+            faces_vertices=faces,
             edges_kind=kind,
-            faces_group=flat_mesh.faces_group[in_sheet],
+            faces_group=flat_mesh.faces_group[sh.face_mask],
         )
-        out.append(PatternSheet(label, mesh, sh["seam"]))
-        maps.append(verts)
-    return tuple(out), tuple(maps), plane
+        out.append(PatternSheet(label, mesh, sh.seam))
+        maps.append(sh.verts)
+    return tuple(out), tuple(maps)
 
 
-def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bool = True, name: str = "") -> tuple:
+def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bool = True,
+           name: str = "") -> tuple[PatternSheet, ...]:
     """The developed sheets of a structure: its crease pattern, two sheets per tube.
 
     Coordinates come from the flat state ``structure.state(0)``, in model units, in the
@@ -452,11 +471,12 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
     if not (np.isfinite(a).all() and np.isfinite(b).all()):
         raise InputError("points_a and points_b must be finite")
     a0, a1, b0, b1 = a[:-1], a[1:], b[:-1], b[1:]
-    at_a = _corner_angle(a0, b1, b0)  # triangle (a_j, b_{j+1}, b_j) at a_j
-    at_a2 = _corner_angle(a0, a1, b1)  # triangle (a_j, a_{j+1}, b_{j+1}) at a_j
-    at_a1 = _corner_angle(a1, b1, a0)  # ... at a_{j+1}
-    ruling = 0.5 * np.pi + np.concatenate([[0.0], np.cumsum(np.pi - at_a - at_a2 - at_a1)])  # direction of a_j → b_j
-    along = ruling[:-1] - at_a - at_a2  # direction of a_j → a_{j+1}
+    first = _corner_angle(a0, b1, b0)  # triangle (a_j, b_{j+1}, b_j) at a_j
+    second = _corner_angle(a0, a1, b1)  # triangle (a_j, a_{j+1}, b_{j+1}) at a_j
+    second_next = _corner_angle(a1, b1, a0)  # the same triangle at a_{j+1}
+    # direction of the ruling a_j → b_j, and of the chord a_j → a_{j+1}
+    ruling = 0.5 * np.pi + np.concatenate([[0.0], np.cumsum(np.pi - first - second - second_next)])
+    along = ruling[:-1] - first - second
     step = np.linalg.norm(a1 - a0, axis=-1)[:, None] * np.stack([np.cos(along), np.sin(along)], axis=-1)
     a2 = np.concatenate([np.zeros((1, 2)), np.cumsum(step, axis=0)])
     b2 = a2 + np.linalg.norm(b - a, axis=-1)[:, None] * np.stack([np.cos(ruling), np.sin(ruling)], axis=-1)
@@ -528,7 +548,7 @@ def to_fold(
     unit: str = "unit",
     metadata: Mapping | None = None,
     anchor: str = "start",
-):
+) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
     The crease pattern is every sheet of :func:`sheets`, laid in a row along +x (bounding
@@ -570,12 +590,11 @@ def to_fold(
     if not isinstance(unit, str) or not unit:
         raise InputError(f"unit must be a non-empty str, got {unit!r}")
     meta = _metadata(structure, design, metadata)
-    parts, maps, _ = _develop(structure, design, "")
+    parts, maps = _develop(structure, design, "")
     xys = [p.mesh.vertices_coords[:, :2] for p in parts]
     size = max(float(np.ptp(xy, axis=0).max()) for xy in xys)
     offsets = _row_offsets(xys, 0.05 * size)
     v_off = np.concatenate([[0], np.cumsum([len(xy) for xy in xys])])
-    e_off = np.concatenate([[0], np.cumsum([len(p.mesh.edges_vertices) for p in parts])])
 
     def cat(name):
         return np.concatenate([getattr(p.mesh, name) for p in parts])
@@ -668,7 +687,7 @@ def layout_pattern(
     scale: float | None = None,
     glue_tabs: bool = True,
     name: str = "",
-):
+) -> Layout:
     """The sheets of a structure placed on pages with glue tabs, layers and labels.
 
     Parameters

@@ -96,7 +96,7 @@ def write_3dm(
     surface = rhino3dm.Mesh()
     surface.Vertices.UseDoublePrecisionVertices = True
     for p in x.tolist():
-        surface.Vertices.Add(*p)
+        surface.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
     for a, b, c in np.asarray(mesh.faces_vertices).tolist():
         surface.Faces.AddFace(a, b, c)
     surface.Normals.ComputeNormals()
