@@ -24,11 +24,16 @@ class SummaryRow:
     status: str
 
 
-def timed(fn: Callable[[], object]) -> tuple[float, object]:
-    """Wall time of one call of ``fn`` (garbage collector paused) and its result."""
+def timed(fn: Callable[[], object], *, pause_gc: bool = True) -> tuple[float, object]:
+    """Wall time of one call of ``fn`` and its result.
+
+    The garbage collector runs a full collection first and is paused during the call
+    unless ``pause_gc`` is False (for long runs whose own collections are part of the cost).
+    """
     was_enabled = gc.isenabled()
     gc.collect()
-    gc.disable()
+    if pause_gc:
+        gc.disable()
     try:
         t0 = time.perf_counter()
         result = fn()
@@ -39,7 +44,7 @@ def timed(fn: Callable[[], object]) -> tuple[float, object]:
     return elapsed, result
 
 
-def best_of_interleaved(contenders: Mapping[str, Callable[[], object]], repeats: int) -> tuple[dict[str, float], dict[str, object]]:
+def best_of_interleaved(contenders: Mapping[str, Callable[[], object]], repeats: int, *, pause_gc: bool = True) -> tuple[dict[str, float], dict[str, object]]:
     """Best wall time of each contender over ``repeats`` interleaved rounds.
 
     Round r runs the contenders in an order rotated by r, so neither always runs first
@@ -51,7 +56,7 @@ def best_of_interleaved(contenders: Mapping[str, Callable[[], object]], repeats:
     for r in range(repeats):
         shift = r % len(names)
         for name in names[shift:] + names[:shift]:
-            elapsed, results[name] = timed(contenders[name])
+            elapsed, results[name] = timed(contenders[name], pause_gc=pause_gc)
             best[name] = min(best[name], elapsed)
     return best, results
 

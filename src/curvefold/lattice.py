@@ -181,7 +181,7 @@ class Lattice:
     # -- geometry at this fold angle -------------------------------------------------------
     def points(self, uv: np.ndarray) -> np.ndarray:
         """Lattice curves x(t; u, v) (Eq. 11) for uv (..., 2); shape (..., n, 3)."""
-        rl, rr = self.crease.rulings()
+        rl, rr = ruling_vectors(self.crease.curve.frames, 0.5 * self.crease.fold_angle, self.beta, self.beta)
         ll, lr = self.ruling_lengths
         return lattice_points(self.crease.curve.points, ll[:, None] * rl, lr[:, None] * rr, uv)
 
@@ -279,7 +279,12 @@ class Lattice:
         curve = SpaceCurve(c.s, points, frames, k2.scaled(1.0 / ca), tau)
         alpha = ScalarFunction(lambda s: np.full(np.shape(s), a), lambda s: np.zeros(np.shape(s)), a)
         crease = Crease(curve, alpha, beta, self.crease.beta_right)
-        return Lattice(crease, self.width_left, self.width_right)
+        folded = Lattice(crease, self.width_left, self.width_right)
+        # Fold-invariant cached values carry over (cached_property keeps them in __dict__).
+        for name in ("beta", "ruling_lengths", "domain", "kappa_2d", "_intrinsic_nodes"):
+            if name in self.__dict__:
+                folded.__dict__[name] = self.__dict__[name]
+        return folded
 
 
 def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.ndarray) -> np.ndarray:
@@ -290,6 +295,10 @@ def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.n
     """
     uv = np.asarray(uv, float)
     coeff = np.concatenate([np.ones(uv.shape[:-1] + (1,)), uv], axis=-1).reshape(-1, 3)  # (K, 3)
+    if x1.ndim == 2:  # one curve 1: a single matrix product
+        basis = np.stack([x1, left, right])  # (3, n, 3)
+        out = (coeff @ basis.reshape(3, -1)).reshape((-1,) + x1.shape)
+        return out.reshape(uv.shape[:-1] + x1.shape)
     basis = np.stack([x1, left, right], axis=-1)  # (..., n, 3, 3)
     out = np.moveaxis(basis @ coeff.T, -1, -3)  # (..., K, n, 3)
     return out.reshape(x1.shape[:-2] + uv.shape[:-1] + x1.shape[-2:])

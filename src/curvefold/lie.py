@@ -26,7 +26,10 @@ __all__ = [
     "GAUSS3_NODES",
     "GAUSS3_WEIGHTS",
     "magnus6",
+    "magnus6_rotation",
     "exp_dual",
+    "exp_rotation",
+    "product_quaternions",
     "compose_dual",
     "prefix_dual",
     "dual_to_motion",
@@ -114,6 +117,29 @@ def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray
     )
 
 
+def magnus6_rotation(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0) -> tuple:
+    """The rotational part ω of :func:`magnus6` alone (3-tuple), for when only frames matter.
+
+    The so(3) part of the Magnus expansion involves only the angular velocities, so the
+    frame can be integrated without the position at a third of the cost.
+    """
+    kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
+    hs = np.asarray(h, float) * np.moveaxis(speed, -1, 0)
+    a = hs * np.moveaxis(tau, -1, 0)
+    c = hs * np.moveaxis(kappa, -1, 0)
+    k = np.sqrt(15.0) / 3.0
+    a1, c1 = a[1], c[1]
+    A, C = k * (a[2] - a[0]), k * (c[2] - c[0])
+    E, G = (10.0 / 3.0) * (a[2] - 2 * a[1] + a[0]), (10.0 / 3.0) * (c[2] - 2 * c[1] + c[0])
+    p = C * a1 - A * c1  # C₁ = (0, p, 0)
+    f = -1.0 / 60.0
+    Z = (A + f * p * c1, f * (2 * G * a1 - 2 * E * c1), C - f * p * a1)  # ω of α₂ + C₂
+    X = (-20 * a1 - E, p, -20 * c1 - G)  # ω of −20α₁ − α₃ + C₁
+    w = _cross3(Z, X)
+    g = 1.0 / 240.0
+    return (a1 + E / 12 + g * w[0], g * w[1], c1 + G / 12 + g * w[2])
+
+
 def _qmul(a, b) -> tuple:
     """Hamilton product of component-major quaternions (w, x, y, z)."""
     aw, ax, ay, az = a
@@ -124,6 +150,32 @@ def _qmul(a, b) -> tuple:
         aw * by - ax * bz + ay * bw + az * bx,
         aw * bz + ax * by - ay * bx + az * bw,
     )
+
+
+def _exp_coefficients(w: tuple) -> tuple[np.ndarray, ...]:
+    """cos(θ/2), sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ for θ = |ω| (Taylor series below 0.1)."""
+    t2 = w[0] ** 2 + w[1] ** 2 + w[2] ** 2
+    t = np.sqrt(t2)
+    half_cos = 1 - t2 / 8 * (1 - t2 / 48 * (1 - t2 / 120 * (1 - t2 / 224 * (1 - t2 / 360))))
+    a = 0.5 * (1 - t2 / 24 * (1 - t2 / 80 * (1 - t2 / 168 * (1 - t2 / 288))))
+    b = 0.5 * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56 * (1 - t2 / 90))))
+    c = (1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72 * (1 - t2 / 110)))) / 6
+    large = t >= 0.1
+    if large.any():  # closed forms where the series would not reach rounding
+        tl = t[large]
+        half_cos[large], a[large] = np.cos(tl / 2), np.sin(tl / 2) / tl
+        b[large], c[large] = (1 - np.cos(tl)) / tl**2, (tl - np.sin(tl)) / tl**3
+    return half_cos, a, b, c
+
+
+def exp_rotation(w: tuple) -> tuple:
+    """Exponential map so(3) → SO(3) as quaternions ``(cos θ/2, sin(θ/2)/θ · ω)``, a 4-tuple.
+
+    Any norm is fine for the callers (they normalise), so the closed form is used throughout.
+    """
+    t = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
+    a = 0.5 * np.sinc(t / (2 * np.pi))  # sin(θ/2)/θ without a division by zero
+    return (np.cos(t / 2), a * w[0], a * w[1], a * w[2])
 
 
 def exp_dual(twist: tuple) -> np.ndarray:
@@ -143,24 +195,37 @@ def exp_dual(twist: tuple) -> np.ndarray:
     (8, ...) ndarray
     """
     w, v = twist[:3], twist[3:]
-    t2 = w[0] ** 2 + w[1] ** 2 + w[2] ** 2
-    t = np.sqrt(t2)
-    # Taylor series of sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ and cos(θ/2)
-    a = 0.5 * (1 - t2 / 24 * (1 - t2 / 80 * (1 - t2 / 168 * (1 - t2 / 288))))
-    b = 0.5 * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56 * (1 - t2 / 90))))
-    c = (1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72 * (1 - t2 / 110)))) / 6
-    half_cos = 1 - t2 / 8 * (1 - t2 / 48 * (1 - t2 / 120 * (1 - t2 / 224 * (1 - t2 / 360))))
-    large = t >= 0.1
-    if large.any():  # closed forms where the series would not reach rounding
-        tl = t[large]
-        a[large], b[large] = np.sin(tl / 2) / tl, (1 - np.cos(tl)) / tl**2
-        c[large], half_cos[large] = (tl - np.sin(tl)) / tl**3, np.cos(tl / 2)
+    half_cos, a, b, c = _exp_coefficients(w)
     r = (half_cos, a * w[0], a * w[1], a * w[2])
     wv = _cross3(w, v)
     wwv = _cross3(w, wv)
     p = tuple(v[i] + b * wv[i] + c * wwv[i] for i in range(3))
-    d = _qmul((np.zeros_like(t),) + p, r)
+    d = _qmul((np.zeros_like(half_cos),) + p, r)
     return np.stack(r + tuple(0.5 * x for x in d))
+
+
+def product_quaternions(q: tuple) -> tuple:
+    """The ordered product q₀ q₁ … q_{n−1} along the last axis, by pairwise (tree) reduction.
+
+    Each quaternion becomes its 4×4 left-multiplication matrix (``L(a) L(b) = L(ab)``), so
+    every level of the tree is one batched matrix product.
+
+    Parameters
+    ----------
+    q : 4-tuple of (..., n) ndarray
+
+    Returns
+    -------
+    4-tuple of (...,) ndarray
+    """
+    stacked = np.stack(np.broadcast_arrays(*q))  # (4, ..., n)
+    M = np.moveaxis(stacked[_L_INDEX] * _L_SIGN.reshape((4, 4) + (1,) * (stacked.ndim - 1)), (0, 1), (-2, -1))
+    while M.shape[-3] > 1:
+        if M.shape[-3] % 2:
+            M = np.concatenate([M, np.broadcast_to(np.eye(4), M.shape[:-3] + (1, 4, 4))], axis=-3)
+        M = M[..., 0::2, :, :] @ M[..., 1::2, :, :]
+    first = M[..., 0, :, 0]
+    return tuple(first[..., i] for i in range(4))
 
 
 #: Longest run of sequential products in :func:`prefix_dual`.
@@ -183,9 +248,9 @@ def compose_dual(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     (few passes over memory).
     """
     if x[0].size <= 512:
-        xm = np.moveaxis(np.concatenate([x, np.zeros((1,) + x.shape[1:])]), 0, -1)
-        ym = np.moveaxis(np.broadcast_to(y, (8,) + np.broadcast_shapes(x.shape[1:], y.shape[1:])), 0, -1)
-        return np.moveaxis((xm[..., _DQ_INDEX] * _DQ_SIGN @ ym[..., None])[..., 0], -1, 0)
+        padded = np.concatenate([x, np.zeros((1,) + x.shape[1:])])
+        sign = _DQ_SIGN.reshape((8, 8) + (1,) * (x.ndim - 1))
+        return np.einsum("ij...,j...->i...", padded[_DQ_INDEX] * sign, y)
     rr = _qmul(x[:4], y[:4])
     a, b = _qmul(x[:4], y[4:]), _qmul(x[4:], y[:4])
     return np.stack(rr + tuple(a[i] + b[i] for i in range(4)))
@@ -194,11 +259,12 @@ def compose_dual(x: np.ndarray, y: np.ndarray) -> np.ndarray:
 def prefix_dual(x: np.ndarray) -> np.ndarray:
     """Inclusive prefix products ``G_k = S_0 ∘ S_1 ∘ … ∘ S_k`` along the last axis.
 
-    The n steps are cut into blocks of b = min(√n, BLOCK) steps; products run sequentially
-    inside the blocks (vectorised across blocks and batches), the block totals are prefixed
-    the same way recursively, and each block is then moved by the product of the blocks
-    before it. Every result is a product of O(b log n) factors and the Python loop runs
-    O(b log n) times.
+    The n steps are cut into blocks of b ≈ ∛n + 4 steps (at most BLOCK); products run
+    sequentially inside the blocks (vectorised across blocks and batches), the block totals
+    are prefixed the same way recursively, and each block is then moved by the product of
+    the blocks before it. Every result is a product of O(b log n) factors and the Python
+    loop runs O(b log n) times, which keeps small problems cheap and large ones in long
+    vectorised passes.
 
     Parameters
     ----------
@@ -215,7 +281,7 @@ def prefix_dual(x: np.ndarray) -> np.ndarray:
         for k in range(1, n):
             out[..., k] = compose_dual(out[..., k - 1], x[..., k])
         return out
-    b = min(int(np.ceil(np.sqrt(n))), BLOCK)
+    b = min(int(np.ceil(n ** (1 / 3))) + 4, BLOCK)
     nb = -(-n // b)
     identity = np.zeros(x.shape[:-1] + (nb * b - n,))
     identity[0] = 1.0

@@ -52,6 +52,7 @@ def jobs(built: Built, formats: set[str]) -> list[tuple[str, Job]]:
 
         if "fold" in formats:
             out.append(("FOLD file", lambda d: [fabrication.write_structure_fold(d / f"{name}.fold", structure, title=meta["title"], fold_angles=[design_angle], unit=unit, metadata=meta)]))
+            out.append(("sheet FOLD files", lambda d: _sheet_folds(structure, d / "sheets", unit)))
         pattern = [f for f in ("svg", "dxf", "pdf") if f in formats]
         if pattern:
             # the page is laid out in mm (cm, in as given); metres are drawn in mm
@@ -66,6 +67,19 @@ def jobs(built: Built, formats: set[str]) -> list[tuple[str, Job]]:
     if "png" in formats or "gif" in formats or "report" in formats:
         out.append(("pictures", lambda d: _pictures(built, d, gif="gif" in formats)))
     return out
+
+
+def _sheet_folds(structure, folder: Path, unit: str) -> list:
+    """One FOLD file per sheet, flat with its target fold angles (loadable by Origami Simulator)."""
+    from .export.fold import write_sheet_fold
+    from .fabrication import sheets
+
+    folder.mkdir()
+    files = []
+    for sheet in sheets(structure):
+        stem = sheet.label.replace(" · ", "-").replace(" ", "-")
+        files.append(write_sheet_fold(folder / f"{stem}.fold", sheet.mesh, unit, title=sheet.label))
+    return files
 
 
 def _pictures(built: Built, folder: Path, *, gif: bool) -> list:
