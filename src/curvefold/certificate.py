@@ -94,7 +94,7 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
         _check(
             "frame_agreement",
             measure.frame_agreement(lattice, [[0, 1], [1, 1], [1, 0], far]),
-            1e-6,
+            max(1e-6, 100 * kh**4),
             "rad",
             "angle between each lattice curve's tangent and curve 1's at equal t (shared frames); fourth-order differences",
         ),

@@ -22,7 +22,7 @@ import numpy as np
 from .build import Built
 from .certificate import certify
 from .errors import InputError
-from .fileio import atomic_write
+from .fileio import atomic_write, folder_mode
 
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "output_folder"]
 
@@ -36,13 +36,14 @@ def output_folder(target: Path, *, force: bool) -> Iterator[Path]:
     if target.exists() and not target.is_dir():
         raise InputError(f"output path {target} exists and is not a folder")
     parent = target.parent if str(target.parent) else Path(".")
-    if not parent.exists():
-        raise InputError(f"cannot write {target}: its parent folder {parent} does not exist")
+    if not parent.is_dir():
+        raise InputError(f"cannot write {target}: its parent folder {parent} does not exist or is not a folder")
     if not os.access(parent, os.W_OK):
         raise InputError(f"cannot write {target}: its parent folder {parent} is not writable")
     tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
     try:
         yield tmp
+        os.chmod(tmp, folder_mode())
         if target.exists():
             old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old.", dir=parent))
             os.replace(target, old / "x")

@@ -27,6 +27,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
+    from .crease import Crease
     from .lattice import Lattice
     from .structure import State, Structure
     from .vault import Vault
@@ -39,11 +40,14 @@ __all__ = [
     "plot_sections",
     "plot_motion_strip",
     "plot_vault",
+    "plot_structure",
+    "plot_crease",
+    "write_motion_gif",
     "save_figure",
 ]
 
 #: Line colours of the crease kinds (folds red, seams blue, as in the paper's figures).
-KIND_COLORS = {"fold": "#d62728", "seam": "#1f77b4", "junction": "#7b3294"}
+KIND_COLORS = {"fold": "#d62728", "seam": "#1f77b4", "junction": "#7b3294", "edge": "#4d4d4d"}
 #: Base colour of the strips before shading.
 STRIP_RGB = np.array([0.86, 0.86, 0.85])
 GROUND_COLOR = "#ece6da"
@@ -116,19 +120,31 @@ def sample_index(n: int, count: int) -> np.ndarray:
     return np.unique(picks)
 
 
-def strip_quads(vertices: np.ndarray, cell_curves: np.ndarray) -> np.ndarray:
-    """The ruled strips of every tube as quadrilaterals, shape (K·4·(n−1), 4, 3).
+def tube_strips(cell_curves: np.ndarray) -> np.ndarray:
+    """The strips of tubes as pairs of curve rows, corner c to corner c+1, shape (K·4, 2).
+
+    Examples
+    --------
+    >>> tube_strips(np.array([[0, 1, 3, 2]])).tolist()
+    [[0, 1], [1, 3], [3, 2], [2, 0]]
+    """
+    cells = np.asarray(cell_curves)
+    return np.stack([cells, np.roll(cells, -1, axis=1)], axis=-1).reshape(-1, 2)
+
+
+def strip_quads(vertices: np.ndarray, strips: np.ndarray) -> np.ndarray:
+    """Ruled strips between pairs of curves as quadrilaterals, shape (S·(n−1), 4, 3).
 
     Parameters
     ----------
     vertices : (M, n, 3) ndarray
-        Lattice curves.
-    cell_curves : (K, 4) ndarray of int
-        Rows of ``vertices`` at corners 1–4 of every tube.
+        Curves sampled at common parameters (lattice curves, or a crease and its edges).
+    strips : (S, 2) ndarray of int
+        Rows of ``vertices`` bounding every strip (see :func:`tube_strips`).
     """
-    corners = vertices[np.asarray(cell_curves)]  # (K, 4, n, 3)
-    nxt = np.roll(corners, -1, axis=1)
-    quads = np.stack([corners[:, :, :-1], corners[:, :, 1:], nxt[:, :, 1:], nxt[:, :, :-1]], axis=-2)
+    pairs = np.asarray(strips)
+    a, b = vertices[pairs[:, 0]], vertices[pairs[:, 1]]  # (S, n, 3)
+    quads = np.stack([a[:, :-1], a[:, 1:], b[:, 1:], b[:, :-1]], axis=-2)
     return quads.reshape(-1, 4, 3)
 
 
@@ -144,66 +160,124 @@ def _shade(quads: np.ndarray, view: View) -> np.ndarray:
     return np.concatenate([np.clip(rgb, 0, 1), np.ones((len(quads), 1))], axis=1)
 
 
-def _draw_structure(
-    ax: "Axes",
+@dataclass(frozen=True, eq=False)
+class Rendering:
+    """A structure drawn by the painter's algorithm: screen polygons sorted far to near.
+
+    Attributes
+    ----------
+    paths : list of (p, 2) ndarray
+        Screen polygons: strips (p = 4) and crease segments (p = 2, drawn as lines).
+    facecolors, edgecolors : (P, 4) ndarray
+        RGBA of every path (creases have a transparent face).
+    linewidths : (P,) ndarray
+    strips : (Q, 4, 2) ndarray
+        Screen corners of the strips, for fitting the view.
+    """
+
+    paths: list
+    facecolors: np.ndarray
+    edgecolors: np.ndarray
+    linewidths: np.ndarray
+    strips: np.ndarray
+
+    def collection(self, *, rasterized: bool = False, zorder: float = 2.0):
+        """A PolyCollection of the paths, in painter's order."""
+        from matplotlib.collections import PolyCollection
+
+        coll = PolyCollection(
+            self.paths,
+            closed=False,
+            facecolors=self.facecolors,
+            edgecolors=self.edgecolors,
+            linewidths=self.linewidths,
+            joinstyle="round",
+            capstyle="round",
+            zorder=zorder,
+        )
+        coll.set_rasterized(rasterized)
+        return coll
+
+
+def render_strips(
     vertices: np.ndarray,
-    cell_curves: np.ndarray,
+    strips: np.ndarray,
     kinds: Sequence[str],
     view: View,
     *,
     crease_width: float = 1.1,
-) -> np.ndarray:
-    """Draw shaded strips and coloured creases sorted by depth; return screen points (…, 2).
+    crease_color: str | None = None,
+    strip_edge: float = 0.3,
+) -> Rendering:
+    """Shaded strips, their curves and end rulings in one view, sorted by depth.
 
     Parameters
     ----------
     vertices : (M, k, 3) ndarray
-        Lattice curves, already subsampled along t.
-    cell_curves : (K, 4) ndarray of int
+        Curves, already subsampled along t.
+    strips : (S, 2) ndarray of int
+        Rows of ``vertices`` bounding every strip (see :func:`tube_strips`).
     kinds : sequence of str, length M
-        "fold", "seam" or "junction" for every curve.
+        Key of :data:`KIND_COLORS` for every curve ("fold", "seam", "junction", "edge").
+    view : View
+    crease_width : float, keyword-only
+        Line width of the curves (end rulings get half of it); 0 draws strips only.
+    crease_color : str, optional, keyword-only
+        One colour for every curve instead of :data:`KIND_COLORS`.
+    strip_edge : float, keyword-only
+        Width of the strips' outline in their own colour (hides hairline gaps).
     """
-    from matplotlib.collections import PolyCollection
+    from matplotlib.colors import to_rgba, to_rgba_array
 
-    quads = strip_quads(vertices, cell_curves)
+    pairs = np.asarray(strips)
+    quads = strip_quads(vertices, pairs)
     q2, qd = view.project(quads)
     face = _shade(quads, view)
-    # crease segments, drawn just in front of the strips that meet along them
-    used = np.unique(np.asarray(cell_curves))
-    seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
-    s2, sd = view.project(seg)
-    seg_kind = np.repeat(np.asarray(kinds)[used], vertices.shape[1] - 1)
-    rulings = np.linalg.norm(quads[:, 3] - quads[:, 0], axis=1)
-    bias = 0.5 * float(np.median(rulings)) if len(rulings) else 0.0
-    seg_rgba = np.array([_rgba(KIND_COLORS.get(k, "#444444")) for k in seg_kind]).reshape(-1, 4)
-    # outlines of the end sections (t = 0 and 1): each tube's parallelogram
-    ends = vertices[np.asarray(cell_curves)][:, :, [0, -1]]  # (K, 4, 2, 3)
-    rim = np.stack([ends, np.roll(ends, -1, axis=1)], axis=-2).reshape(-1, 2, 3)
-    e2, ed = view.project(rim)
-
-    polys = list(q2) + list(s2) + list(e2)
-    depth = np.concatenate([qd.mean(axis=1), sd.mean(axis=1) + bias, ed.mean(axis=1) + bias])
-    faces = np.concatenate([face, np.zeros((len(s2) + len(e2), 4))])
-    edges = np.concatenate([face, seg_rgba, np.tile(_rgba("#3a3a3a"), (len(e2), 1))])
-    widths = np.concatenate([np.full(len(q2), 0.3), np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)])
-    order = np.argsort(depth, kind="stable")
-    coll = PolyCollection(
-        [polys[i] for i in order],
-        closed=False,
-        facecolors=faces[order],
-        edgecolors=edges[order],
-        linewidths=widths[order],
-        joinstyle="round",
-        capstyle="round",
+    paths = [q2]
+    depth = [qd.mean(axis=1)]
+    faces, edges, widths = [face], [face], [np.full(len(q2), strip_edge)]
+    if crease_width > 0:
+        # Curves and end rulings are drawn right after the nearest strip that borders them,
+        # so whatever lies in front of that strip hides them too.
+        strip_depth = qd.mean(axis=1).reshape(len(pairs), -1)  # (S, k − 1)
+        eps = 1e-9 * (1.0 + float(np.abs(qd).max()))
+        used = np.unique(pairs)
+        seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
+        s2, sd = view.project(seg)
+        if crease_color is None:
+            per_curve = to_rgba_array([KIND_COLORS.get(k, KIND_COLORS["edge"]) for k in np.asarray(kinds)[used]])
+            seg_rgba = np.repeat(per_curve, vertices.shape[1] - 1, axis=0)
+        else:
+            seg_rgba = np.tile(to_rgba(crease_color), (len(s2), 1))
+        seg_depth = np.concatenate([strip_depth[(pairs == c).any(axis=1)].max(axis=0) for c in used]) + eps
+        rim = np.swapaxes(vertices[pairs][:, :, [0, -1]], 1, 2).reshape(-1, 2, 3)  # end rulings of every strip
+        e2, _ = view.project(rim)
+        paths += [s2, e2]
+        depth += [seg_depth, strip_depth[:, [0, -1]].reshape(-1) + eps]
+        faces += [np.zeros((len(s2) + len(e2), 4))]
+        edges += [seg_rgba, np.tile(to_rgba("#3a3a3a"), (len(e2), 1))]
+        widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
+    order = np.argsort(np.concatenate(depth), kind="stable")
+    flat = [p for group in paths for p in group]
+    return Rendering(
+        [flat[i] for i in order],
+        np.concatenate(faces)[order],
+        np.concatenate(edges)[order],
+        np.concatenate(widths)[order],
+        q2,
     )
-    ax.add_collection(coll, autolim=False)
-    return q2.reshape(-1, 2)
 
 
-def _rgba(color: str) -> tuple[float, float, float, float]:
-    from matplotlib.colors import to_rgba
+def render_structure(vertices: np.ndarray, cell_curves: np.ndarray, kinds: Sequence[str], view: View, **kwargs: Any) -> Rendering:
+    """:func:`render_strips` of the four strips of every tube (cell_curves (K, 4))."""
+    return render_strips(vertices, tube_strips(cell_curves), kinds, view, **kwargs)
 
-    return to_rgba(color)
+
+def _draw_structure(ax: "Axes", vertices: np.ndarray, cell_curves: np.ndarray, kinds: Sequence[str], view: View, **kwargs: Any) -> np.ndarray:
+    """Draw :func:`render_structure` into ``ax``; return the strips' screen points (P, 2)."""
+    r = render_structure(vertices, cell_curves, kinds, view, **kwargs)
+    ax.add_collection(r.collection(), autolim=False)
+    return r.strips.reshape(-1, 2)
 
 
 def _draw_ground(ax: "Axes", lo: np.ndarray, hi: np.ndarray, view: View, *, pad: float) -> np.ndarray:
@@ -218,22 +292,35 @@ def _draw_ground(ax: "Axes", lo: np.ndarray, hi: np.ndarray, view: View, *, pad:
     return r2
 
 
-def _fit(ax: "Axes", points: np.ndarray, *, margin: float = 0.04, center: np.ndarray | None = None, size: np.ndarray | None = None) -> None:
-    """Equal-aspect limits around screen points (P, 2), or a given centre and size (2,)."""
+def _fit(
+    ax: "Axes",
+    points: np.ndarray,
+    *,
+    margin: float = 0.04,
+    below: float = 0.0,
+    center: np.ndarray | None = None,
+    size: np.ndarray | None = None,
+) -> None:
+    """Equal-aspect limits around screen points (P, 2), or a given centre and size (2,).
+
+    ``below`` adds that fraction of the height under the drawing (room for a scale bar).
+    """
     lo, hi = points.min(axis=0), points.max(axis=0)
     c = 0.5 * (lo + hi) if center is None else center
     half = 0.5 * (hi - lo if size is None else size) * (1 + 2 * margin)
     half = np.maximum(half, 1e-9)
     ax.set_xlim(c[0] - half[0], c[0] + half[0])
-    ax.set_ylim(c[1] - half[1], c[1] + half[1])
+    ax.set_ylim(c[1] - half[1] * (1 + 2 * below), c[1] + half[1])
     ax.set_aspect("equal", adjustable="box")
     ax.set_axis_off()
 
 
-def _scale_bar(ax: "Axes", length: float, *, label: str) -> None:
-    """A horizontal scale bar of ``length`` model units in the lower right of a 2D view."""
+def _scale_bar(ax: "Axes", span: float) -> None:
+    """A horizontal scale bar of a round length (about a fifth of ``span``) in the lower right of a view."""
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
+    length = _nice_length(span)
+    label = f"{length:g} {UNITS}" if length != 1 else "1 model unit"
     ax.add_artist(AnchoredSizeBar(ax.transData, length, label, "lower right", pad=0.3, frameon=False, size_vertical=0, fontproperties={"size": 7}))
 
 
@@ -430,9 +517,10 @@ def plot_width_proportion(lattice: "Lattice") -> "Figure":
         for x, name in ((t[0], "t = 0"), (t[m], "t = ½")):
             ax.axvline(x, color="#999999", lw=0.8, ls=":", zorder=0)
         ax.grid(True, lw=0.3, alpha=0.5)
-    for x, y, text in ((t[0], ratio[0], f"{ratio[0]:.4g} at t = 0"), (t[m], ratio[m], f"{ratio[m]:.4g} at t = ½")):
+    for x, y, other, text in ((t[0], ratio[0], ratio[m], f"{ratio[0]:.4g} at t = 0"), (t[m], ratio[m], ratio[0], f"{ratio[m]:.4g} at t = ½")):
+        above = y >= other
         bottom.plot([x], [y], "o", color="black", ms=4)
-        bottom.annotate(text, (x, y), xytext=(7, -3), textcoords="offset points", fontsize=8, va="top" if y >= ratio.mean() else "bottom")
+        bottom.annotate(text, (x, y), xytext=(6, 7 if above else -7), textcoords="offset points", fontsize=8, va="bottom" if above else "top")
     bottom.margins(y=0.18)
     bottom.legend(fontsize=8, loc="best")
     bottom.set_xlim(-0.02, 1.02)
@@ -561,14 +649,34 @@ def _is_vault(obj: Any) -> bool:
 # -- 3D views of vaults ----------------------------------------------------------------------------
 
 
-def _vault_views(vault: "Vault", vertices: np.ndarray, segments: int, max_tubes: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
-    """Subsampled curves (M', k, 3), their cell table (K', 4) and kinds for drawing."""
-    cells = _thin_cells(vault.structure.cell_curves, max_tubes)
+def drawable(structure: "Structure", vertices: np.ndarray, *, segments: int, max_cells: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """Thin a structure's curves for drawing.
+
+    Parameters
+    ----------
+    structure : Structure
+    vertices : (..., M, n, 3) ndarray
+        Its curves (rows of ``structure.curves_uv``), at one or more fold angles.
+    segments : int, keyword-only
+        About this many segments along t are kept (ends and middle sample included).
+    max_cells : int, keyword-only
+        At most this many cells, evenly spread along the cell list.
+
+    Returns
+    -------
+    curves : (..., M', k, 3) ndarray
+        The curves of the kept cells, subsampled.
+    cells : (K', 4) ndarray of int
+        Rows of ``curves`` at corners 1–4 of the kept cells.
+    kinds : tuple of str
+        Kind of every kept curve.
+    """
+    cells = _thin_cells(structure.cell_curves, max_cells)
     used = np.unique(cells)
-    remap = np.full(len(vault.structure.curves_uv), -1)
+    remap = np.full(len(structure.curves_uv), -1)
     remap[used] = np.arange(len(used))
     idx = sample_index(vertices.shape[-2], segments + 1)
-    kinds = tuple(np.asarray(vault.structure.curve_kinds)[used])
+    kinds = tuple(str(k) for k in np.asarray(structure.curve_kinds)[used])
     return vertices[..., used, :, :][..., idx, :], remap[cells], kinds
 
 
@@ -610,7 +718,7 @@ def plot_vault(
     else:
         vertices = vault.motion(np.array([angle], float), anchor=anchor)[0]
         angle_value = float(angle)
-    V, cells, kinds = _vault_views(vault, vertices, segments, max_tubes)
+    V, cells, kinds = drawable(vault.structure, vertices, segments=segments, max_cells=max_tubes)
     if ax is None:
         fig = _figure(figsize=(7.0, 5.2))
         ax = fig.add_subplot()
@@ -621,8 +729,8 @@ def plot_vault(
     pad = 0.08 * float(np.max(hi - lo))
     ground = _draw_ground(ax, lo, hi, view, pad=pad)
     pts = _draw_structure(ax, V, cells, kinds, view)
-    _fit(ax, np.concatenate([pts, ground]))
-    _scale_bar(ax, _nice_length(float(np.max(hi - lo))), label=f"{_nice_length(float(np.max(hi - lo))):g} {UNITS}")
+    _fit(ax, np.concatenate([pts, ground]), below=0.06)
+    _scale_bar(ax, float(np.max(hi - lo)))
     d = vault.design
     shown = "" if len(cells) == len(vault.structure.cells) else f", {len(cells)} drawn"
     ax.set_title(
@@ -669,7 +777,7 @@ def plot_motion_strip(
         raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
     motion = vault.motion(angles_arr, anchor=anchor)  # (A, M, n, 3); validates the angles
     lift = vault.lift_off(angles_arr, anchor=anchor)
-    V, cells, kinds = _vault_views(vault, motion, segments, max_tubes)
+    V, cells, kinds = drawable(vault.structure, motion, segments=segments, max_cells=max_tubes)
     flat = V.reshape(-1, 3)
     lo, hi = flat.min(axis=0), flat.max(axis=0)
     lo[2] = hi[2] = 0.0
@@ -680,7 +788,7 @@ def plot_motion_strip(
     screens = []
     for ax, Va, f, lf in zip(axes, V, angles_arr, lift):
         ground = _draw_ground(ax, lo, hi, view, pad=pad)
-        pts = _draw_structure(ax, Va, cells, kinds, view, crease_width=0.8)
+        pts = _draw_structure(ax, Va, cells, kinds, view, crease_width=0.45)
         screens.append(np.concatenate([pts, ground]))
         design = abs(f - vault.design.fold_angle) < 1e-9
         ax.set_title(f"2α = {f:g}°" + (" (design)" if design else ""), fontsize=10)
@@ -690,11 +798,221 @@ def plot_motion_strip(
     size = allpts.max(axis=0) - allpts.min(axis=0)
     for ax in axes:
         _fit(ax, allpts, center=center, size=size)
-    bar = _nice_length(float(np.max(hi - lo)))
-    _scale_bar(axes[-1], bar, label=f"{bar:g} {UNITS}")
+    _scale_bar(axes[-1], float(np.max(hi - lo)))
     d = vault.design
     fig.suptitle(f"Rigid folding of the vault (a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)", fontsize=11)
     return fig
+
+
+def plot_structure(
+    structure: "Structure",
+    *,
+    fold_angle: float | None = None,
+    view: View = View(),
+    segments: int = 96,
+    max_cells: int = 400,
+) -> "Figure":
+    """One shaded 3D view of a tube or cellular block: folds red, seams blue, junctions purple.
+
+    Parameters
+    ----------
+    structure : Structure
+    fold_angle : float, optional, keyword-only
+        2α in degrees, in [0°, 180°); default the lattice's own angle.
+    view : View, keyword-only
+    segments : int, keyword-only
+        Segments drawn along each crease.
+    max_cells : int, keyword-only
+        Draw at most this many cells, evenly spread.
+
+    Returns
+    -------
+    Figure
+    """
+    state = structure.state(fold_angle)
+    V, cells, kinds = drawable(structure, state.vertices, segments=segments, max_cells=max_cells)
+    fig = _figure(figsize=(6.4, 5.2))
+    ax = fig.add_subplot()
+    pts = _draw_structure(ax, V, cells, kinds, view)
+    _fit(ax, pts, below=0.1)
+    span = float(np.ptp(V.reshape(-1, 3), axis=0).max())
+    _scale_bar(ax, span)
+    k = len(structure.cells)
+    what = "Tube" if k == 1 else f"Cellular block of {k} cells"
+    shown = "" if len(cells) == k else f" ({len(cells)} drawn)"
+    ax.set_title(f"{what}{shown}, 2α = {np.degrees(state.fold_angle):.4g}°", fontsize=10)
+    _legend_creases(ax, kinds, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
+    return fig
+
+
+def plot_crease(crease: "Crease", *, width: float | tuple[float, float] | None = None, view: View = View(), segments: int = 160) -> "Figure":
+    """A single curved fold: the crease with the developable surfaces on both sides, and its functions.
+
+    Left, a 3D view of the crease (red) and the two surfaces along the rulings ``+r_L``
+    and ``+r_R`` (Eqs. 5–6). Right, κ(s) and τ(s), then the fold angle 2α(s) and the ruling
+    angles β_L(s), β_R(s) in degrees.
+
+    Parameters
+    ----------
+    crease : Crease
+    width : float or (float, float), optional, keyword-only
+        Surface widths on the left and right (distance from the crease's tangent line to
+        the edge, model units); default 15 % of the crease's length, kept to 60 % of the
+        regression limit on each side.
+    view : View, keyword-only
+    segments : int, keyword-only
+        Segments drawn along the crease.
+
+    Returns
+    -------
+    Figure
+    """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    s = crease.s
+    L = crease.curve.length
+    if width is None:
+        limits = [float(np.min(w)) for w in crease.regression_limits()]
+        widths = tuple(min(0.15 * L, 0.6 * lim) for lim in limits)
+    else:
+        widths = tuple(float(w) for w in np.broadcast_to(np.asarray(width, float), (2,)))
+    sheets = crease.surface("L+R+", width=widths, rulings=2)  # (2 sides, 2, n, 3); raises past regression
+    idx = sample_index(len(s), segments + 1)
+    curves = np.stack([sheets[0, 0], sheets[0, 1], sheets[1, 1]])[:, idx]  # crease, left edge, right edge
+    kinds = ("fold", "edge", "edge")
+
+    fig = _figure(figsize=(10.0, 4.8))
+    mosaic = fig.subplot_mosaic([["view", "kt"], ["view", "angles"]], width_ratios=[1.35, 1.0])
+    ax = mosaic["view"]
+    r = render_strips(curves, np.array([[0, 1], [0, 2]]), kinds, view, crease_width=1.4)
+    ax.add_collection(r.collection(), autolim=False)
+    _fit(ax, r.strips.reshape(-1, 2), below=0.1)
+    span = float(np.ptp(curves.reshape(-1, 3), axis=0).max())
+    _scale_bar(ax, span)
+    ax.set_title(f"Curved fold: surfaces {widths[0]:.3g} | {widths[1]:.3g} {UNITS} wide", fontsize=10)
+    ax.legend(
+        handles=[
+            Line2D([], [], color=KIND_COLORS["fold"], lw=1.5, label="crease"),
+            Line2D([], [], color=KIND_COLORS["edge"], lw=1.5, label="surface edges"),
+            Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="developable surfaces"),
+        ],
+        fontsize=7,
+        frameon=False,
+        loc="upper center",
+        bbox_to_anchor=(0.5, 0.0),
+        ncol=3,
+    )
+    kt = mosaic["kt"]
+    kt.plot(s, crease.curve.kappa(s), color="#2ca02c", lw=1.5, label="κ(s)")
+    kt.plot(s, crease.curve.tau(s), color="#9467bd", lw=1.5, label="τ(s)")
+    kt.axhline(0, color="#999999", lw=0.5)
+    kt.set_ylabel(f"1 / {UNITS}")
+    kt.legend(fontsize=8)
+    kt.grid(True, lw=0.3, alpha=0.5)
+    kt.tick_params(labelbottom=False)
+    ang = mosaic["angles"]
+    ang.sharex(kt)
+    ang.plot(s, np.degrees(2 * crease.alpha(s)), color="black", lw=1.5, label="2α(s)")
+    ang.plot(s, np.degrees(crease.beta_left(s)), color="#ff7f0e", lw=1.2, label="β_L(s)")
+    ang.plot(s, np.degrees(crease.beta_right(s)), color="#17becf", lw=1.2, ls="--", label="β_R(s)")
+    ang.set_ylabel("angle (°)")
+    ang.set_xlabel(f"arc length s ({UNITS})")
+    ang.legend(fontsize=8)
+    ang.grid(True, lw=0.3, alpha=0.5)
+    return fig
+
+
+def write_motion_gif(
+    obj: "Vault | Structure",
+    path: str | os.PathLike,
+    *,
+    angles: Sequence[float] | None = None,
+    anchor: str = "base",
+    view: View = View(),
+    size: tuple[int, int] = (640, 480),
+    frame_seconds: float = 0.12,
+    segments: int = 48,
+    max_cells: int = 60,
+) -> Path:
+    """An animated GIF of the rigid folding motion, flat to the design angle and back, written atomically.
+
+    Parameters
+    ----------
+    obj : Vault or Structure
+    path : str or path-like
+        Target file (its folder must exist).
+    angles : sequence of float, optional, keyword-only
+        2α of the frames in degrees; default 16 steps from 0° to the design angle. The
+        animation plays them forward, then backward, and loops.
+    anchor : {"base", "apex"}, keyword-only
+        Which frame of curve 1 stays fixed: at its start (t = 0) or at its middle sample.
+    view : View, keyword-only
+    size : (int, int), keyword-only
+        Width and height in pixels.
+    frame_seconds : float, keyword-only
+        Duration of one frame.
+    segments, max_cells : int, keyword-only
+        Detail drawn: segments along each crease, and at most this many cells.
+
+    Returns
+    -------
+    Path
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.patches import Polygon
+    from PIL import Image
+
+    from .vault import Vault
+
+    structure, lattice, own = _structure_of(obj)
+    if anchor not in ("base", "apex"):
+        raise InputError(f"anchor must be 'base' or 'apex', got {anchor!r}")
+    w_px, h_px = (int(v) for v in size)
+    if not (64 <= w_px <= 4096 and 64 <= h_px <= 4096):
+        raise InputError(f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}")
+    if not np.isfinite(frame_seconds) or not 0.01 <= frame_seconds <= 10:
+        raise InputError(f"frame_seconds must be in [0.01, 10], got {frame_seconds!r}")
+    steps = np.linspace(0.0, own, 16) if angles is None else np.atleast_1d(np.asarray(angles, float))
+    if steps.ndim != 1 or steps.size == 0:
+        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
+    motion = lattice.fold_points(structure.curves_uv, steps, anchor="start" if anchor == "base" else "middle")
+    V, cells, kinds = drawable(structure, motion, segments=segments, max_cells=max_cells)
+    is_vault = isinstance(obj, Vault)
+    flat = V.reshape(-1, 3)
+    lo, hi = flat.min(axis=0), flat.max(axis=0)
+    lo[2] = hi[2] = 0.0
+    pad = 0.06 * float(np.max(hi - lo))
+
+    dpi = 100
+    fig = _figure(figsize=(w_px / dpi, h_px / dpi), dpi=dpi, layout=None)
+    canvas = FigureCanvasAgg(fig)
+    renderings = [render_strips(Vf, tube_strips(cells), kinds, view, crease_width=0.7) for Vf in V]
+    ground = None
+    if is_vault:
+        rect = np.array([[lo[0] - pad, lo[1] - pad, 0], [hi[0] + pad, lo[1] - pad, 0], [hi[0] + pad, hi[1] + pad, 0], [lo[0] - pad, hi[1] + pad, 0]])
+        ground = view.project(rect)[0]
+    allpts = np.concatenate([r.strips.reshape(-1, 2) for r in renderings] + ([ground] if ground is not None else []))
+    center = 0.5 * (allpts.min(axis=0) + allpts.max(axis=0))
+    extent = allpts.max(axis=0) - allpts.min(axis=0)
+    frames = []
+    for f, r in zip(steps, renderings):
+        fig.clear()
+        ax = fig.add_axes((0.02, 0.02, 0.96, 0.86))
+        if ground is not None:
+            ax.add_patch(Polygon(ground, closed=True, facecolor=GROUND_COLOR, edgecolor="#b9ae98", linewidth=0.6, zorder=0))
+        ax.add_collection(r.collection(), autolim=False)
+        _fit(ax, allpts, center=center, size=extent)
+        fig.text(0.5, 0.97, f"2α = {f:5.1f}°", ha="center", va="top", fontsize=12, family="monospace")
+        canvas.draw()
+        frames.append(Image.fromarray(np.asarray(canvas.buffer_rgba())[..., :3].copy()))
+    sequence = frames + frames[-2:0:-1]  # forward, then back without repeating the ends
+    palette = sequence[len(frames) - 1].quantize(colors=128)
+    images = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in sequence]
+    target = Path(path)
+    with atomic_path(target) as tmp:
+        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=int(round(1000 * frame_seconds)), loop=0)
+    return target
 
 
 # -- output ----------------------------------------------------------------------------------------
