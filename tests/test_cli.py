@@ -145,3 +145,30 @@ def test_unwritable_output_is_one_line(tmp_path):
     r = run("crease", "--samples", "101", "--out", str(blocker / "sub"))
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1
     assert "parent folder" in r.stderr
+
+
+@pytest.mark.parametrize(
+    "kind,text,message",
+    [
+        ("tube", 'kind = "tube"\n[curve]\nkappa = "cos(s)"\nlength = 4.0\n', r"kappa .*> 0.*at s = 1\.5"),
+        ("tube", 'kind = "tube"\n[curve]\nkappa = "1/(s - 1)"\nlength = 2.0\n', r"kappa"),
+        ("tube", 'kind = "tube"\n[curve\nkappa = 1\n', r"design\.toml.*line 2"),
+        ("tube", 'kind = "tube"\n[curve]\ntau = "9**9**9"\n', r"exponent"),
+        ("tube", 'kind = "tube"\n[curve]\ntau = "s.__class__"\n', r"attribute access is not allowed"),
+        ("tube", 'kind = "tube"\n[tube]\nwidth_left = 50.0\nwidth_right = 50.0\n', r"passes the curve of regression"),
+        ("vault", 'kind = "vault"\n[vault]\ntubes = 1000\n', r"tubes must be ≤ 9"),
+        ("vault", 'kind = "vault"\n[vault]\nfold_angle = 0\n', r"fold_angle must be in \(0, 180\) degrees, got 0"),
+        ("vault", 'kind = "vault"\nsamples = 100000000\n', r"samples must be an integer in \[3, 200000\] \(memory bound\), got 100000000"),
+    ],
+)
+def test_bad_design_files_are_one_line(tmp_path, kind, text, message):
+    import re
+
+    design = tmp_path / "design.toml"
+    design.write_text(text)
+    r = run(kind, str(design), "--out", str(tmp_path / "out"))
+    assert r.returncode == 2, r.stdout + r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.stderr
+    assert re.search(message, lines[0]), lines[0]
+    assert sorted(os.listdir(tmp_path)) == ["design.toml"]  # no output, no temporary folder

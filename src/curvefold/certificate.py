@@ -78,6 +78,22 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
             "fourth-order differences leave ~(κh)⁴",
         )
     ]
+    # Eq. (2): the crease's curvature measured from its built points, times cos α, is κ_2D.
+    x = crease.curve.points
+    d1 = measure.derivative(x, h)[2:-2]
+    d2 = measure.derivative(measure.derivative(x, h), h)
+    kappa = np.linalg.norm(np.cross(d1, d2), axis=1) / np.linalg.norm(d1, axis=1) ** 3
+    s_in = crease.s[4:-4]
+    k2 = crease.curve.kappa(s_in) * np.cos(crease.alpha(s_in))
+    checks.append(
+        _check(
+            "eq2_planar_curvature",
+            float(np.max(np.abs(kappa * np.cos(crease.alpha(s_in)) / k2 - 1))),
+            max(1e-6, 100 * kh**4),
+            "relative",
+            "κ of the built crease (differences of its points) times cos α against κ_2D of the crease pattern (Eq. 2)",
+        )
+    )
     if structure is None:
         return checks
     lattice = structure.lattice
