@@ -2,10 +2,6 @@
 
 from __future__ import annotations
 
-import json
-import os
-import shutil
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -16,8 +12,8 @@ from _meshes import oblique_motion, strip_motion
 from curvefold.errors import InputError
 from curvefold.export import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
 from curvefold.mesh import Mesh
+from _node import run_node
 
-NODE_DIR = Path(__file__).parent / "node"
 
 
 @pytest.fixture
@@ -32,15 +28,7 @@ def _only(tmp_path: Path, name: str) -> None:
 
 
 def _validate_gltf(path: Path) -> dict:
-    node = shutil.which("node")
-    if node is None or not (NODE_DIR / "node_modules").is_dir():
-        reason = "Node.js validators not installed (need `node` and `npm ci --prefix tests/node`)"
-        if os.environ.get("CURVEFOLD_REQUIRE_NODE"):
-            pytest.fail(reason)
-        pytest.skip(reason)
-    run = subprocess.run([node, str(NODE_DIR / "validate_gltf.mjs"), str(path)], capture_output=True, text=True, timeout=120, check=False)
-    assert run.returncode == 0, run.stderr
-    return json.loads(run.stdout)
+    return run_node("validate_gltf.mjs", str(path))
 
 
 # --- crease polylines ------------------------------------------------------------------------

@@ -3,10 +3,7 @@
 from __future__ import annotations
 
 import json
-import os
 import pathlib
-import shutil
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -17,8 +14,8 @@ from _meshes import measured_fold_angles, oblique_motion, strip_motion, two_shee
 from curvefold.errors import InputError
 from curvefold.export import fold_assignments, read_fold, write_fold, write_sheet_fold
 from curvefold.mesh import Mesh
+from _node import run_node
 
-NODE_DIR = Path(__file__).parent / "node"
 
 
 def _write_tube(path: Path, **kw) -> tuple:
@@ -35,16 +32,6 @@ def _write_tube(path: Path, **kw) -> tuple:
     return motion, json.loads(path.read_text())
 
 
-def _node_script(script: str, *args: str) -> dict:
-    node = shutil.which("node")
-    if node is None or not (NODE_DIR / "node_modules").is_dir():
-        reason = "Node.js validators not installed (need `node` and `npm ci --prefix tests/node`)"
-        if os.environ.get("CURVEFOLD_REQUIRE_NODE"):
-            pytest.fail(reason)
-        pytest.skip(reason)
-    run = subprocess.run([node, str(NODE_DIR / script), *args], capture_output=True, text=True, timeout=120, check=False)
-    assert run.returncode == 0, run.stderr
-    return json.loads(run.stdout)
 
 
 # --- structure of the written file ------------------------------------------------------
@@ -417,7 +404,7 @@ def test_node_fold_and_rabbit_ear(tmp_path, make):
     motion = make()
     path = tmp_path / "m.fold"
     write_fold(path, crease_pattern=motion.crease_pattern, folded=motion.folded, seam_partners=motion.seam_partners)
-    report = _node_script("check_fold.mjs", str(path))
+    report = run_node("check_fold.mjs", str(path))
     fold, ear = report["fold"], report["rabbit_ear"]
     assert fold["same_vertex_sets"], fold
     assert fold["same_orientation"], fold
@@ -434,7 +421,7 @@ def test_node_fold_and_rabbit_ear(tmp_path, make):
 def test_node_mirrored_crease_pattern_still_folds_to_the_frames(tmp_path):
     motion = oblique_motion()
     write_fold(tmp_path / "m.fold", crease_pattern=_mirrored(motion), folded=motion.folded)
-    report = _node_script("check_fold.mjs", str(tmp_path / "m.fold"))
+    report = run_node("check_fold.mjs", str(tmp_path / "m.fold"))
     assert report["rabbit_ear"]["faces_cw"] == 0
     assert max(f["max_distance"] for f in report["rabbit_ear"]["frames"]) < 1e-9
 
@@ -449,7 +436,7 @@ def test_node_rabbit_ear_detects_wrong_fold_sign(tmp_path):
     for frame in doc["file_frames"]:
         frame["edges_foldAngle"] = [-a for a in frame["edges_foldAngle"]]
     path.write_text(json.dumps(doc))
-    frames = _node_script("check_fold.mjs", str(path))["rabbit_ear"]["frames"]
+    frames = run_node("check_fold.mjs", str(path))["rabbit_ear"]["frames"]
     assert frames[0]["max_distance"] < 1e-9  # the flat state does not care
     assert min(f["max_distance"] for f in frames[1:]) > 0.1
 
@@ -458,6 +445,6 @@ def test_node_rabbit_ear_detects_wrong_fold_sign(tmp_path):
 def test_node_sheet_file(tmp_path):
     motion = oblique_motion()
     write_sheet_fold(tmp_path / "sheet.fold", motion.crease_pattern)
-    report = _node_script("check_fold.mjs", str(tmp_path / "sheet.fold"))
+    report = run_node("check_fold.mjs", str(tmp_path / "sheet.fold"))
     assert report["fold"]["same_orientation"]
     assert report["rabbit_ear"]["summary"] == "valid"

@@ -17,7 +17,6 @@ Both must fall four-fold when the samples double.
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -45,8 +44,8 @@ from curvefold.fabrication import (
     write_structure_fold,
 )
 from curvefold.mesh import fold_angles
+from _node import run_node
 
-NODE_DIR = Path(__file__).parent / "node"
 
 
 def lattice(samples=101, widths=(0.2, 0.15), fold_angle=90.0):
@@ -79,16 +78,6 @@ def structure(request):
     return request.getfixturevalue(request.param)
 
 
-def _node(script: str, *args: str) -> dict:
-    node = shutil.which("node")
-    if node is None or not (NODE_DIR / "node_modules").is_dir():
-        reason = "Node.js validators not installed (need `node` and `npm ci --prefix tests/node`)"
-        if os.environ.get("CURVEFOLD_REQUIRE_NODE"):
-            pytest.fail(reason)
-        pytest.skip(reason)
-    run = subprocess.run([node, str(NODE_DIR / script), *args], capture_output=True, text=True, timeout=120, check=False)
-    assert run.returncode == 0, run.stderr
-    return json.loads(run.stdout)
 
 
 def needs(tool: str):
@@ -425,7 +414,7 @@ def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
     for samples in (101, 201):
         st = helix_tube(samples)
         path = write_structure_fold(tmp_path / f"t{samples}.fold", st, fold_angles=[0.0, 60.0, 120.0])
-        report = _node("check_fold.mjs", str(path))
+        report = run_node("check_fold.mjs", str(path))
         fold, ear = report["fold"], report["rabbit_ear"]
         faces = 8 * (samples - 1)
         assert fold["same_vertex_sets"] and fold["same_orientation"], fold
@@ -440,7 +429,7 @@ def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
             frame["edges_foldAngle"] = fold_angles(m.vertices_coords, m.faces_vertices, m.edges_vertices).tolist()
         all_angles = tmp_path / f"all{samples}.fold"
         all_angles.write_text(json.dumps(doc))
-        frames = _node("check_fold.mjs", str(all_angles))["rabbit_ear"]["frames"]
+        frames = run_node("check_fold.mjs", str(all_angles))["rabbit_ear"]["frames"]
         # L·θ²/24 over the frame's size L, θ measured on its first curve
         bound = max(np.ptp(m.vertices_coords, axis=0).max() * turning(m.vertices_coords[:samples]) ** 2 / 24 for _, m in model.folded)
         residual.append(max(f["max_distance"] for f in frames))
@@ -457,7 +446,7 @@ def test_node_single_sheet_file_for_origami_simulator(tmp_path, tube):
     fold = np.array(doc["edges_curvefold:kind"]) == "fold"
     assert_array_equal(np.array(doc["edges_foldAngle"])[fold], sheet.mesh.edges_foldAngle[fold])  # target angles
     assert set(np.array(doc["edges_assignment"])[fold]) == {"M"}
-    report = _node("check_fold.mjs", str(path))
+    report = run_node("check_fold.mjs", str(path))
     assert report["fold"]["same_orientation"]
     assert report["rabbit_ear"]["summary"] == "valid" and report["rabbit_ear"]["faces_cw"] == 0
 
@@ -578,7 +567,7 @@ def test_write_3d_every_format(tmp_path, stack):
 @pytest.mark.node
 def test_glb_of_the_folding_motion_passes_the_khronos_validator(tmp_path, tube):
     (path,) = write_3d(tmp_path / "tube", tube, formats=("glb",), unit="m")
-    report = _node("validate_gltf.mjs", str(path))
+    report = run_node("validate_gltf.mjs", str(path))
     assert report["errors"] == 0 and report["warnings"] == 0, report["messages"]
     assert report["info"]["hasMorphTargets"] and report["info"]["animationCount"] == 1
     assert report["info"]["totalTriangleCount"] == 8 * (len(tube.lattice.s) - 1)
