@@ -172,3 +172,25 @@ def test_bad_design_files_are_one_line(tmp_path, kind, text, message):
     assert len(lines) == 1 and "Traceback" not in r.stderr
     assert re.search(message, lines[0]), lines[0]
     assert sorted(os.listdir(tmp_path)) == ["design.toml"]  # no output, no temporary folder
+
+
+def test_atlas_records_invalid_designs_and_goes_on(tmp_path):
+    out = tmp_path / "atlas"
+    r = run("atlas", "--p-xy", "0.75,1.0", "--a", "0.3,1.5", "--samples", "51", "--workers", "1", "--out", str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    records = json.loads(r.stdout)["records"]
+    assert len(records) == 4
+    bad = [rec for rec in records if not rec["valid"]]
+    assert len(bad) == 2 and all("no standing arch for a = 1.5" in rec["reason"] for rec in bad)
+    assert {"atlas.csv", "atlas.json", "atlas.png", "atlas.svg"} <= set(os.listdir(out))
+
+
+def test_output_flags_override_the_design(tmp_path):
+    r = run("tube", "--samples", "101", "--page", "A3", "--scale", "80", "--formats", "svg", "--out", str(tmp_path / "t"), "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["design"]["output"]["page"] == "A3" and out["design"]["output"]["scale"] == 80.0
+    svg = next(n for n in out["files"] if n.endswith(".svg") and "pattern" in n)
+    assert 'width="297mm"' in (tmp_path / "t" / svg).read_text()
+    r = run("tube", "--page", "B9", "--json")
+    assert r.returncode == 2 and "page" in r.stderr

@@ -65,6 +65,9 @@ def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: ./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written)")
         g.add_argument("--force", action="store_true", help="replace an existing output folder")
         g.add_argument("--formats", metavar="LIST", help="comma-separated subset of: svg,dxf,pdf,fold,glb,obj,stl,ply,3dm,gif (default: all; the report and its pictures are always written)")
+        g.add_argument("--page", metavar="NAME", help="page for the crease patterns: A4, A3, A2, A1, A0, Letter, … (default A4)")
+        g.add_argument("--scale", type=float, metavar="S", help="crease-pattern scale, output units per model unit (default: fit the largest sheet to the page)")
+        g.add_argument("--units", choices=("mm", "cm", "in"), help="units of the crease patterns (default mm)")
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
 
 
@@ -160,6 +163,9 @@ def _load_design(kind: str, args: argparse.Namespace):
         flags["fold_angle"] = args.fold_angle
     if getattr(args, "formats", None):
         flags["formats"] = [f.strip() for f in args.formats.split(",") if f.strip()]
+    for key in ("page", "scale", "units"):
+        if getattr(args, key, None) is not None:
+            flags[key] = getattr(args, key)
     return design.overrides(**flags) if any(v is not None for v in flags.values()) else design
 
 
