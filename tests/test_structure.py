@@ -111,3 +111,38 @@ def test_structure_refusals():
         Structure.from_cells(lat, [(0.5, 0)])
     with pytest.raises(InputError, match=r"count \(tubes\) must be an integer ≥ 1, got 0"):
         Structure.diagonal(lat, 0)
+
+
+def test_erratum_quadrants_follow_the_construction_order(tube):
+    """The paper names the quadrants inconsistently; the construction fixes them.
+
+    Curve 1 → 2 along +r_R, 2 → 3 along +r_L, 3 → 4 along −r_R, 4 → 1 along −r_L. Seen from
+    each crease, its two strips then lie in quadrants L+R+ (crease 1), L+R− (2), L−R− (3)
+    and L−R+ (4): folds where both signs agree, seams where they differ, with interior
+    angles π − 2α and 2α measured on the built tube.
+    """
+    from curvefold.crease import QUADRANTS
+    from curvefold.structure import CORNER_KINDS
+
+    corners = [(0, 0), (0, 1), (1, 1), (1, 0)]
+    lat = tube.lattice
+    X = {c: lat.points(np.array(c, float)) for c in corners}
+    rl, rr = lat.crease.rulings()
+    T = lat.crease.curve.tangent
+    j = len(lat.s) // 3
+    for k, c in enumerate(corners):
+        prev, nxt = corners[k - 1], corners[(k + 1) % 4]
+        signs = {}
+        for other in (prev, nxt):
+            d = X[other][j] - X[c][j]
+            for side, r in (("L", rl[j]), ("R", rr[j])):
+                if abs(abs(d @ r) / np.linalg.norm(d) - 1) < 1e-12:  # the strip runs along ±r
+                    signs[side] = "+" if d @ r > 0 else "-"
+        name = f"L{signs['L']}R{signs['R']}"
+        assert name == ("L+R+", "L+R-", "L-R-", "L-R+")[k]
+        assert QUADRANTS[name][2] == CORNER_KINDS[k]
+        a, b = (X[prev][j] - X[c][j]), (X[nxt][j] - X[c][j])
+        a, b = a - (a @ T[j]) * T[j], b - (b @ T[j]) * T[j]  # in the section plane
+        angle = np.arccos(a @ b / np.linalg.norm(a) / np.linalg.norm(b))
+        assert_allclose(angle, tube.dihedral_angles(60.0)[0, k], atol=1e-12)
+
