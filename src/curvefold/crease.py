@@ -23,7 +23,7 @@ from typing import Literal
 import numpy as np
 
 from .curve import SpaceCurve, check_samples
-from .errors import InputError
+from .errors import InputError, RegressionError
 from .functions import FunctionLike, ScalarFunction, as_function, check_finite
 
 __all__ = ["Crease", "QUADRANTS", "half_angle"]
@@ -312,8 +312,6 @@ class Crease:
         RegressionError
             If the width reaches a curve of regression.
         """
-        from .errors import RegressionError
-
         sign_l, sign_r, _ = _quadrant(quadrant)
         widths = np.broadcast_to(np.asarray(width, float), (2,))
         rl, rr = self.rulings()

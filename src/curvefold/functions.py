@@ -54,12 +54,6 @@ class ScalarFunction:
         const = None if self.constant is None else factor * self.constant
         return ScalarFunction(lambda s: factor * value(s), lambda s: factor * derivative(s), const)
 
-    def map(self, f: Callable[[np.ndarray], np.ndarray], df: Callable[[np.ndarray], np.ndarray]) -> "ScalarFunction":
-        """Compose with ``f``: the result is ``f(self(s))`` with derivative ``df(self) self'``."""
-        inner, dinner = self.value, self.derivative
-        const = None if self.constant is None else float(f(np.array([self.constant]))[0])
-        return ScalarFunction(lambda s: f(inner(s)), lambda s: df(inner(s)) * dinner(s), const)
-
 
 def _broadcast_call(f: Callable, s: np.ndarray) -> np.ndarray:
     """Call ``f`` on an array; fall back to element-wise calls for scalar-only callables."""

@@ -16,7 +16,7 @@ import numpy as np
 from .crease import Crease
 from .curve import integrate_frenet, gauss_nodes
 from .lattice import Lattice
-from .lie import cross
+from .lie import GAUSS3_NODES, GAUSS3_WEIGHTS, cross
 from .mesh import Mesh
 from .structure import State, Structure
 
@@ -155,7 +155,7 @@ def width_law_error(lattice: Lattice) -> float:
     fine = np.linspace(0.0, lattice.crease.curve.length, 4 * (len(lattice.s) - 1) + 1)
     nodes = gauss_nodes(fine)
     integrand = lattice.kappa_2d(nodes) / np.tan(lattice.crease.beta_left(nodes))
-    log_ratio = np.concatenate([[0.0], np.cumsum(np.diff(fine) * (integrand @ np.array([5, 8, 5]) / 18))])[::4]
+    log_ratio = np.concatenate([[0.0], np.cumsum(np.diff(fine) * (integrand @ GAUSS3_WEIGHTS))])[::4]
     expect_l, expect_r = wl[0] * np.exp(-log_ratio), wr[0] * np.exp(log_ratio)
     return float(max(np.abs(wl / expect_l - 1).max(), np.abs(wr / expect_r - 1).max()))
 
@@ -257,10 +257,8 @@ def _cumulative_nodes(t: np.ndarray, rate_nodes: np.ndarray) -> np.ndarray:
 
     Integrates the 3-point interpolating polynomial of each interval exactly up to each node.
     """
-    from .lie import GAUSS3_NODES
-
     h = np.diff(t)
-    whole = h * (rate_nodes @ np.array([5.0, 8.0, 5.0]) / 18.0)
+    whole = h * (rate_nodes @ GAUSS3_WEIGHTS)
     before = np.concatenate([[0.0], np.cumsum(whole)])[:-1]
     c = GAUSS3_NODES
     # Weights W[i, j] = ∫₀^{c_i} ℓ_j(x) dx for the Lagrange basis ℓ_j on the nodes c.

@@ -71,12 +71,13 @@ class VaultDesign:
     samples: int = 401
 
     def __post_init__(self) -> None:
-        for name, low, high in (("a", 0.0, None), ("p_xy", 0.0, 100.0), ("width", 0.0, 10.0), ("radius", 0.0, None)):
+        # (name, smallest allowed value, whether it may equal it, largest allowed value)
+        for name, low, closed, high in (("a", 0.0, True, np.inf), ("p_xy", 0.0, False, 100.0), ("width", 0.0, False, 10.0), ("radius", 0.0, False, np.inf)):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float, np.number)) or not np.isfinite(v):
                 raise InputError(f"{name} must be a finite number, got {v!r}")
-            if name != "a" and v <= low or name == "a" and v < low or (high is not None and v > high):
-                rng = f"[{low:g}, ∞)" if name == "a" else f"(0, {high:g}]" if high else "(0, ∞)"
+            if v < low or (v == low and not closed) or v > high:
+                rng = f"{'[' if closed else '('}{low:g}, {'∞)' if np.isinf(high) else f'{high:g}]'}"
                 raise InputError(f"{name} must be in {rng}, got {v!r}")
         half_angle(self.fold_angle)
         check_samples(self.samples)
@@ -155,12 +156,14 @@ class Vault:
             return a * k0 * np.sin(2 * np.pi * s / s0)
 
         curve = SpaceCurve.from_curvature(k0, tau, s0, samples=design.samples, frame=frame)
-        # Turn about z so the span (foot to foot) runs along +y.
+        # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
         chord = curve.points[-1] - curve.points[0]
         phi = np.arctan2(chord[0], chord[1])
         c, s = np.cos(phi), np.sin(phi)
         Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        curve = SpaceCurve.from_curvature(k0, tau, s0, samples=design.samples, frame=Rz @ frame)
+        points, frames = curve.points @ Rz.T, Rz @ curve.frames
+        points.flags.writeable = frames.flags.writeable = False
+        curve = SpaceCurve(curve.s, points, frames, curve.kappa, curve.tau)
         crease = Crease.from_curve(curve, fold_angle=design.fold_angle)
         w_left = design.width / k0
         try:
