@@ -408,6 +408,11 @@ def _crossings(a: np.ndarray, b: np.ndarray, eps: float) -> bool:
     """Whether any segment of ``a`` (S, 2, 2) properly crosses any of ``b`` (T, 2, 2)."""
     if len(a) == 0 or len(b) == 0:
         return False
+    # only segments of b whose bounding boxes meet the bounding box of a can cross it
+    lo, hi = a.reshape(-1, 2).min(axis=0) - abs(eps), a.reshape(-1, 2).max(axis=0) + abs(eps)
+    b = b[((b.max(axis=1) >= lo) & (b.min(axis=1) <= hi)).all(axis=1)]
+    if len(b) == 0:
+        return False
     p, r = a[:, None, 0], (a[:, 1] - a[:, 0])[:, None]
     q, s = b[None, :, 0], (b[:, 1] - b[:, 0])[None]
     d1 = _cross2(s, p - q)
