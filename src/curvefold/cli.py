@@ -197,7 +197,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     if out is not None:
         payload["files"] = write_outputs(built, out, force=args.force, show_progress=not args.json)
         payload["out"] = str(out)
-    lines = [f"{kind}: {payload['title'] or design.source}"]
+    lines = [payload["title"]]
     for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise"):
         if key in payload:
             lines.append(f"  {key:<18} {payload[key]:.10g}" if isinstance(payload[key], float) else f"  {key:<18} {payload[key]}")

@@ -59,7 +59,7 @@ def output_folder(target: Path, *, force: bool) -> Iterator[Path]:
 def structure_payload(built: Built) -> dict:
     """Design, derived quantities and certificate of a built design, JSON-ready."""
     design = built.design
-    payload: dict = {"kind": design.kind, "title": design.title, "design": design.to_dict()}
+    payload: dict = {"kind": design.kind, "title": design.title or _default_title(built), "design": design.to_dict()}
     if built.vault is not None:
         payload |= built.vault.summary()
         from .reproduce import paper_comparison
@@ -83,6 +83,19 @@ def structure_payload(built: Built) -> dict:
         }
     payload["certificate"] = [c.to_dict() for c in certify(built.crease, built.structure, built.vault)]
     return payload
+
+
+def _default_title(built: Built) -> str:
+    if built.vault is not None:
+        d = built.vault.design
+        return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"
+    if built.structure is not None:
+        return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {np.degrees(built.structure.lattice.crease.fold_angle):g}°"
+    return f"single curved fold, length {built.crease.curve.length:g}"
+
+
+#: Pictures in the report, in this order (others follow alphabetically).
+_PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "regression-domain.png", "width-proportion.png")
 
 
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
@@ -162,7 +175,8 @@ def report_html(payload: dict) -> str:
             for r in payload["paper_comparison"]
         ) + "</table>"
     files = payload.get("files", [])
-    pictures = "".join(f'<figure><img src="{e(f)}" alt="{e(f)}"><figcaption>{e(f)}</figcaption></figure>' for f in files if f.endswith((".png", ".gif")))
+    shown = sorted((f for f in files if f.endswith((".png", ".gif"))), key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
+    pictures = "".join(f'<figure><img src="{e(f)}" alt="{e(f)}"><figcaption>{e(f)}</figcaption></figure>' for f in shown)
     links = "".join(f'<li><a href="{e(f)}">{e(f)}</a></li>' for f in files)
     passed = sum(c["passed"] for c in payload["certificate"])
     title = e(payload.get("title") or payload.get("kind", "curvefold"))
