@@ -92,7 +92,7 @@ class ArchRoot:
     kappa0_s0 : float
         Dimensionless arch length κ₀ s₀ (π for a = 0).
     residual : float
-        |T(s₀/2)·T(0)| at the root.
+        |T(s₀/2)·T(0)| at the root (or the larger value at the ends of the final bracket).
     bracket : tuple of float
         The bracket the root was refined in.
     """
@@ -103,18 +103,25 @@ class ArchRoot:
     bracket: tuple[float, float]
 
 
-def solve_symmetric_arch(a: float, *, xtol: float = 1e-14, steps: int = HALF_STEPS) -> ArchRoot:
-    """Solve Eq. (20) for κ₀ s₀ on the root next to π, by a bracketed (Brent) search.
+def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STEPS) -> ArchRoot:
+    """Solve Eq. (20) for κ₀ s₀ on the root next to π, by a bracketed search.
 
-    The bracket comes from a scan of the condition on a grid around π (one batched
-    integration), taking the sign change nearest to π; Brent's method then refines it.
+    1. Scan the condition on 16 points over [π/2, 2π] (one batched integration with a
+       quarter of the steps: only signs are needed) and take the sign change nearest to π
+       as the bracket.
+    2. Interpolate the condition on the bracket at 16 Chebyshev points (one batched
+       integration; the condition is analytic, so the interpolant is exact to rounding)
+       and take the interpolant's root in the bracket.
+    3. Verify it: the condition must change sign across ``root ± xtol`` (one batched
+       integration), which brackets the root to ``xtol``. If it does not, Brent's method
+       refines the bracket instead.
 
     Parameters
     ----------
     a : float
         Torsion amplitude, finite and ≥ 0 (the family is symmetric in the sign of a).
     xtol : float, keyword-only
-        Absolute tolerance on κ₀ s₀.
+        Half-width of the final bracket on κ₀ s₀.
 
     Raises
     ------
@@ -133,8 +140,8 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-14, steps: int = HALF_STE
     if not np.isfinite(a) or a < 0:
         raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}")
     f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
-    grid = np.pi * np.linspace(0.5, 2.0, 31)
-    values = symmetric_arch_condition(grid, a, steps=steps)
+    grid = np.pi * np.linspace(0.5, 2.0, 16)
+    values = symmetric_arch_condition(grid, a, steps=max(steps // 4, 8))  # signs only: coarse steps (error ~1e-7)
     changes = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
     if changes.size == 0:
         # Near the end of the family the two roots merge: look for a dip below zero between grid points.
@@ -150,9 +157,36 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-14, steps: int = HALF_STE
         grid, changes = np.array([grid[k - 1], dip.x]), np.array([0])
     i = changes[np.argmin(np.abs(0.5 * (grid[changes] + grid[changes + 1]) - np.pi))]
     lo, hi = float(grid[i]), float(grid[i + 1])
-    f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
+    found = _chebyshev_root(a, lo, hi, xtol, steps)
+    if found is not None:
+        return ArchRoot(a, found[0], found[1], (lo, hi))
+    # Brent on a bracket checked at full accuracy (widened if the coarse scan misled)
+    while f(lo) * f(hi) > 0 and lo > grid[0] - 1e-12:
+        lo, hi = lo - (hi - lo), hi + (hi - lo)
     root = brentq(f, lo, hi, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200)
     return ArchRoot(a, float(root), abs(f(root)), (lo, hi))
+
+
+def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, points: int = 16) -> tuple[float, float] | None:
+    """The root in [lo, hi] of the Chebyshev interpolant of Eq. (20), if a sign change confirms it.
+
+    Returns the root and the larger |condition| at ``root ± xtol`` (a bound on the residual
+    at the root), or None.
+    """
+    from numpy.polynomial import chebyshev
+
+    k = np.arange(points)
+    theta = np.pi * (k + 0.5) / points
+    values = symmetric_arch_condition(0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(theta), a, steps=steps)
+    coefficients = (2.0 / points) * np.cos(np.outer(k, theta)) @ values  # discrete cosine transform
+    coefficients[0] /= 2
+    roots = chebyshev.chebroots(coefficients)
+    roots = roots[(np.abs(roots.imag) < 1e-9) & (np.abs(roots.real) <= 1)].real
+    if roots.size != 1:
+        return None
+    root = float(0.5 * (lo + hi) + 0.5 * (hi - lo) * roots[0])
+    ends = symmetric_arch_condition(np.array([root - xtol, root + xtol]), a, steps=steps)
+    return (root, float(np.abs(ends).max())) if ends[0] * ends[1] <= 0 else None
 
 
 def proportion_change(a: float, kappa0_s0: float, *, fold_angle: float = 90.0) -> float:
