@@ -194,3 +194,16 @@ def test_output_flags_override_the_design(tmp_path):
     assert 'width="297mm"' in (tmp_path / "t" / svg).read_text()
     r = run("tube", "--page", "B9", "--json")
     assert r.returncode == 2 and "page" in r.stderr
+
+
+def test_pattern_flags_tabs_and_rulings(tmp_path):
+    def pattern_svg(*flags):
+        out = tmp_path / ("p" + "".join(flags).replace("-", ""))
+        r = run("tube", "--samples", "81", "--formats", "svg", "--out", str(out), *flags)
+        assert r.returncode == 0, r.stderr
+        return "".join(p.read_text() for p in sorted(out.glob("tube-pattern*.svg")))
+
+    plain, bare, ruled = pattern_svg(), pattern_svg("--no-glue-tabs"), pattern_svg("--rulings")
+    assert 'inkscape:label="glue"' in plain
+    assert plain.count("<polygon") > bare.count("<polygon") or plain.count("<polyline") > bare.count("<polyline")
+    assert ruled.count("<polyline") > plain.count("<polyline")  # the ruling lines

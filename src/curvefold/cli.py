@@ -68,6 +68,8 @@ def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
         g.add_argument("--page", metavar="NAME", help="page for the crease patterns: A4, A3, A2, A1, A0, Letter, … (default A4)")
         g.add_argument("--scale", type=float, metavar="S", help="crease-pattern scale, output units per model unit (default: fit the largest sheet to the page)")
         g.add_argument("--units", choices=("mm", "cm", "in"), help="units of the crease patterns (default mm)")
+        g.add_argument("--no-glue-tabs", dest="glue_tabs", action="store_false", default=None, help="leave the glue tabs off the crease patterns")
+        g.add_argument("--rulings", action="store_true", default=None, help="draw the rulings on the crease patterns (for scoring or engraving)")
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
 
 
@@ -163,7 +165,7 @@ def _load_design(kind: str, args: argparse.Namespace):
         flags["fold_angle"] = args.fold_angle
     if getattr(args, "formats", None):
         flags["formats"] = [f.strip() for f in args.formats.split(",") if f.strip()]
-    for key in ("page", "scale", "units"):
+    for key in ("page", "scale", "units", "glue_tabs", "rulings"):
         if getattr(args, key, None) is not None:
             flags[key] = getattr(args, key)
     return design.overrides(**flags) if any(v is not None for v in flags.values()) else design

@@ -217,6 +217,7 @@ SCHEMA: Mapping[str, Mapping[str, KeySpec]] = MappingProxyType({
         "scale": _key("float", None, _POSITIVE, "output units per model unit", doc="model units to output units (default: fit the largest sheet to the page)"),
         "page": _key("page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), doc="page name or [width, height]"),
         "glue_tabs": _key("bool", True, doc="draw glue tabs on the sheets"),
+        "rulings": _key("bool", False, doc="draw the rulings on the crease patterns (for scoring or engraving)"),
         "formats": _key("formats", list(FORMATS), choices=FORMATS, doc="files to write (default: all)"),
     }),
 })
@@ -327,6 +328,7 @@ class OutputParams:
     scale: float | None
     page: str | tuple[float, float]
     glue_tabs: bool
+    rulings: bool
     formats: tuple[str, ...]
 
 

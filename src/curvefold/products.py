@@ -59,7 +59,7 @@ def jobs(built: Built, formats: set[str]) -> list[tuple[str, Job]]:
             units, scale = (o.units, o.scale) if o.units in ("mm", "cm", "in") else ("mm", None if o.scale is None else o.scale * (1000.0 if o.units == "m" else 1.0))
             out.append((
                 "crease patterns",
-                lambda d: list(fabrication.write_pattern(d / f"{name}-pattern", structure, formats=pattern, page=o.page, units=units, scale=scale, glue_tabs=o.glue_tabs, name=name)),
+                lambda d: list(fabrication.write_pattern(d / f"{name}-pattern", structure, formats=pattern, page=o.page, units=units, scale=scale, glue_tabs=o.glue_tabs, rulings=o.rulings, name=name)),
             ))
         models = [f for f in ("glb", "obj", "stl", "ply", "3dm") if f in formats]
         if models:
