@@ -143,3 +143,40 @@ def test_arrays_are_read_only():
     c = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
     with pytest.raises(ValueError):
         c.points[0, 0] = 1.0
+
+
+def test_dense_output_agrees_with_stepping_every_sample():
+    """Far denser than accuracy needs, samples are filled by quintic Hermite interpolation."""
+    from curvefold.curve import gauss_nodes, integrate_frenet
+    from curvefold.dense import dense_stride
+
+    L, n = 20.0, 100_001
+    c = SpaceCurve.from_curvature(KAPPA, TAU, L, samples=n)
+    stride = dense_stride(c.kappa, c.tau, L, n)
+    assert stride >= 8  # the dense path is the one under test
+    nodes = gauss_nodes(c.s)
+    points, frames = integrate_frenet(c.s, KAPPA(nodes), TAU(nodes))  # a Magnus step per sample
+    assert np.abs(c.points - points).max() < 1e-13 * L
+    assert np.abs(c.frames - frames).max() < 1e-13
+    assert np.abs(np.einsum("nji,njk->nik", c.frames[::101], c.frames[::101]) - np.eye(3)).max() < 1e-14
+
+
+def test_dense_output_error_falls_at_sixth_order():
+    """The Hermite fill's own error, measured with growing strides on the same coarse solution."""
+    from curvefold.curve import gauss_nodes, integrate_frenet, integrate_motions
+    from curvefold.dense import coarse_indices, hermite_fill
+    from curvefold.functions import as_function
+    from curvefold.lie import dual_to_motion
+
+    L, n = 6.0, 6401
+    s = np.linspace(0, L, n)
+    exact, _ = integrate_frenet(s, KAPPA(gauss_nodes(s)), TAU(gauss_nodes(s)))
+    kf, tf = as_function(KAPPA, name="kappa", length=L), as_function(TAU, name="tau", length=L)
+    errors = []
+    for stride in (160, 80, 40):
+        grid = s[coarse_indices(n, stride)]
+        motions = integrate_motions(grid, KAPPA(gauss_nodes(grid)), TAU(gauss_nodes(grid)))
+        points, _ = hermite_fill(s, stride, motions[:4], dual_to_motion(motions)[1], kf, tf)
+        errors.append(np.abs(points - exact).max())
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(orders > 5.5), (errors, orders)

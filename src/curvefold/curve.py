@@ -3,7 +3,9 @@
 The frame convention is the paper's: ``T' = κN``, ``N' = −κT + τB``, ``B' = −τN`` in arc
 length s. The frame and the position are integrated together on SE(3) with the
 sixth-order Magnus method (:mod:`curvefold.lie`), so a helix is exact to rounding and a
-varying κ, τ converges at order 6 in both the frame and the position.
+varying κ, τ converges at order 6 in both the frame and the position. Samples much denser
+than that accuracy needs are filled between coarser Magnus steps by sixth-order Hermite
+interpolation (:mod:`curvefold.dense`).
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import numpy as np
 
 from .errors import InputError
 from .functions import FunctionLike, ScalarFunction, as_function, check_finite
+from .dense import coarse_indices, dense_stride, hermite_fill
 from .lie import GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
 
 __all__ = ["SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
@@ -62,6 +65,24 @@ def integrate_frenet(
     frames : (..., n, 3, 3) ndarray
         Columns T, N, B at every grid value.
     """
+    motions = integrate_motions(grid, kappa_nodes, tau_nodes, speed_nodes=speed_nodes, origin=origin, frame=frame)
+    points = np.empty(motions.shape[1:] + (3,))
+    frames = np.empty(motions.shape[1:] + (3, 3))
+    for sl in _slices(motions.shape[-1], CHUNK):
+        frames[..., sl, :, :], points[..., sl, :] = dual_to_motion(motions[..., sl])
+    return points, frames
+
+
+def integrate_motions(
+    grid: np.ndarray,
+    kappa_nodes: np.ndarray,
+    tau_nodes: np.ndarray,
+    *,
+    speed_nodes: np.ndarray | float = 1.0,
+    origin: np.ndarray | None = None,
+    frame: np.ndarray | None = None,
+) -> np.ndarray:
+    """As :func:`integrate_frenet`, returning the rigid motions as dual quaternions (8, ..., n)."""
     kappa_nodes, tau_nodes, speed_nodes = np.broadcast_arrays(
         np.asarray(kappa_nodes, float), np.asarray(tau_nodes, float), np.asarray(speed_nodes, float)
     )
@@ -74,12 +95,7 @@ def integrate_frenet(
     q0 = np.array([1.0, 0.0, 0.0, 0.0]) if frame is None else matrix_quaternion(frame)
     x0 = np.zeros(3) if origin is None else np.asarray(origin, float)
     start = np.broadcast_to(motion_to_dual(q0, x0)[(...,) + (None,) * (steps.ndim - 1)], steps.shape[:-1] + (1,))
-    motions = prefix_dual(np.concatenate([start, steps], axis=-1))
-    points = np.empty(motions.shape[1:] + (3,))
-    frames = np.empty(motions.shape[1:] + (3, 3))
-    for sl in _slices(motions.shape[-1], CHUNK):
-        frames[..., sl, :, :], points[..., sl, :] = dual_to_motion(motions[..., sl])
-    return points, frames
+    return prefix_dual(np.concatenate([start, steps], axis=-1))
 
 
 def _slices(n: int, size: int) -> list[slice]:
@@ -136,7 +152,9 @@ class SpaceCurve:
         length : float
             Arc length L > 0.
         samples : int, keyword-only
-            Number of output samples n ≥ 2 (the integration step is L / (n - 1)).
+            Number of output samples n ≥ 2. The integration step is L / (n - 1), or a
+            multiple of it when that is still below 0.015 / max(|ω|, √|ω'|); the samples
+            in between then come from quintic Hermite interpolation (:mod:`curvefold.dense`).
         origin : (3,) array_like, optional
             x(0); default the origin.
         frame : (3, 3) array_like, optional
@@ -164,7 +182,9 @@ class SpaceCurve:
         kf = as_function(kappa, name="kappa", length=length)
         tf = as_function(tau, name="tau", length=length)
         s = np.linspace(0.0, length, samples)
-        nodes = gauss_nodes(s)
+        stride = dense_stride(kf, tf, length, samples)
+        grid = s if stride == 1 else s[coarse_indices(samples, stride)]
+        nodes = gauss_nodes(grid)
         k_nodes, t_nodes = kf(nodes), tf(nodes)
         ends = np.array([0.0, length])
         k_ends, t_ends = kf(ends), tf(ends)
@@ -173,7 +193,11 @@ class SpaceCurve:
             where = np.concatenate([s, nodes.ravel()])
             _check_curvature(np.concatenate([kf(s), k_nodes.ravel()]), where)
             check_finite(np.concatenate([tf(s), t_nodes.ravel()]), name="tau", s=where)
-        points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
+        if stride == 1:
+            points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
+        else:
+            motions = integrate_motions(grid, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
+            points, frames = hermite_fill(s, stride, motions[:4], dual_to_motion(motions)[1], kf, tf)
         _readonly(s, points, frames)
         return cls(s, points, frames, kf, tf)
 
