@@ -40,6 +40,10 @@ __all__ = [
 #: κ₀s₀ ≈ 4.4 merge and vanish (measured; an independent DOP853 integration agrees).
 A_MAX = 1.2707093728
 
+#: Where the root next to π lies for every a < A_MAX (π at a = 0, about 4.42 at A_MAX): one
+#: Chebyshev interpolant on this window finds it directly.
+WINDOW = (0.9 * np.pi, 1.5 * np.pi)
+
 #: Integration steps over half the arch: the root moves by < 1e-14 when they double (tested).
 HALF_STEPS = 64
 
@@ -106,15 +110,15 @@ class ArchRoot:
 def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STEPS) -> ArchRoot:
     """Solve Eq. (20) for κ₀ s₀ on the root next to π, by a bracketed search.
 
-    1. Scan the condition on 16 points over [π/2, 2π] (one batched integration with a
-       quarter of the steps: only signs are needed) and take the sign change nearest to π
-       as the bracket.
-    2. Interpolate the condition on the bracket at 16 Chebyshev points (one batched
-       integration; the condition is analytic, so the interpolant is exact to rounding)
-       and take the interpolant's root in the bracket.
-    3. Verify it: the condition must change sign across ``root ± xtol`` (one batched
-       integration), which brackets the root to ``xtol``. If it does not, Brent's method
-       refines the bracket instead.
+    1. Interpolate the condition at 16 Chebyshev points of :data:`WINDOW`, where the
+       root next to π lies for every a < A_MAX (one batched integration; the condition is
+       analytic in κ₀ s₀, so the interpolant is exact to rounding), and take the
+       interpolant's root nearest π.
+    2. Verify it: the condition must change sign across ``root ± xtol`` (one batched
+       integration), which brackets the root to ``xtol``.
+    3. Should that fail (near the end of the family, or for no root), scan 16 points over
+       [π/2, 2π] for the sign change nearest π, interpolate that bracket the same way,
+       and fall back on Brent's method.
 
     Parameters
     ----------
@@ -140,6 +144,9 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
     if not np.isfinite(a) or a < 0:
         raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}")
     f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
+    found = _chebyshev_root(a, *WINDOW, xtol, steps)
+    if found is not None:
+        return ArchRoot(a, found[0], found[1], WINDOW)
     grid = np.pi * np.linspace(0.5, 2.0, 16)
     values = symmetric_arch_condition(grid, a, steps=max(steps // 4, 8))  # signs only: coarse steps (error ~1e-7)
     changes = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
@@ -168,7 +175,8 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
 
 
 def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, points: int = 16) -> tuple[float, float] | None:
-    """The root in [lo, hi] of the Chebyshev interpolant of Eq. (20), if a sign change confirms it.
+    """The root nearest π in [lo, hi] of the Chebyshev interpolant of Eq. (20), if a sign
+    change across ``root ± xtol`` confirms it.
 
     Returns the root and the larger |condition| at ``root ± xtol`` (a bound on the residual
     at the root), or None.
@@ -180,11 +188,24 @@ def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, poi
     values = symmetric_arch_condition(0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(theta), a, steps=steps)
     coefficients = (2.0 / points) * np.cos(np.outer(k, theta)) @ values  # discrete cosine transform
     coefficients[0] /= 2
-    roots = chebyshev.chebroots(coefficients)
-    roots = roots[(np.abs(roots.imag) < 1e-9) & (np.abs(roots.real) <= 1)].real
-    if roots.size != 1:
+    # Sign changes between neighbouring nodes (ascending in x), the one nearest π refined by
+    # Newton's method on the interpolant (a cheap polynomial), kept inside its node interval.
+    y = np.cos(theta)[::-1]  # nodes in [-1, 1], ascending
+    v = values[::-1]
+    changes = np.flatnonzero(v[:-1] * v[1:] <= 0)
+    if changes.size == 0:
         return None
-    root = float(0.5 * (lo + hi) + 0.5 * (hi - lo) * roots[0])
+    to_x = lambda u: 0.5 * (lo + hi) + 0.5 * (hi - lo) * u  # noqa: E731
+    i = changes[np.argmin(np.abs(to_x(0.5 * (y[changes] + y[changes + 1])) - np.pi))]
+    lo_u, hi_u = y[i], y[i + 1]
+    derivative = chebyshev.chebder(coefficients)
+    u = lo_u - v[i] * (hi_u - lo_u) / (v[i + 1] - v[i])  # secant start
+    for _ in range(30):
+        step = chebyshev.chebval(u, coefficients) / chebyshev.chebval(u, derivative)
+        u = min(max(u - step, lo_u), hi_u)
+        if abs(step) < 1e-16:
+            break
+    root = float(to_x(u))
     ends = symmetric_arch_condition(np.array([root - xtol, root + xtol]), a, steps=steps)
     return (root, float(np.abs(ends).max())) if ends[0] * ends[1] <= 0 else None
 
