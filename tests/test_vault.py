@@ -210,3 +210,19 @@ def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
 
     assert closest_far_pair(angle) < 0.5 * w_min <= closest_far_pair(angle - 1.0)
     assert lat.refold(angle).domain.contains(paper_vault.structure.curves_uv).all()
+
+
+def test_arch_condition_matches_the_general_magnus_rotation():
+    """The arch's written-out Magnus terms equal the general so(3) Magnus step (κ = 1, τ = a sin)."""
+    from curvefold.curve import gauss_nodes
+    from curvefold.lie import exp_rotation, magnus6_rotation, product_quaternions
+
+    x, a, steps = np.linspace(2.5, 4.5, 7), 0.7, 64
+    q = np.linspace(0, 1, steps + 1)
+    nodes = gauss_nodes(q)
+    tau = a * np.sin(np.pi * nodes) * np.ones((len(x), 1, 1))
+    speed = 0.5 * x[:, None, None] * np.ones_like(nodes)
+    w, qx, y, z = product_quaternions(exp_rotation(magnus6_rotation(np.diff(q), 1.0, tau, speed)))
+    general = 1 - 2 * (y * y + z * z) / (w * w + qx * qx + y * y + z * z)
+    assert_allclose(symmetric_arch_condition(x, a, steps=steps), general, atol=1e-15)
+    assert_allclose(general, [ivp_condition(v, a) for v in x], atol=1e-12)

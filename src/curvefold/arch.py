@@ -23,7 +23,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from .curve import gauss_nodes, integrate_frenet
-from .lie import exp_rotation, magnus6_rotation, product_quaternions
+from .lie import exp_rotation, product_quaternions
 from .errors import ConvergenceError, InputError
 
 __all__ = [
@@ -66,23 +66,33 @@ def symmetric_arch_condition(kappa0_s0: float | np.ndarray, a: float, *, steps: 
         Same shape as ``kappa0_s0``. For a = 0 it is cos(κ₀ s₀ / 2).
     """
     x = np.atleast_1d(np.asarray(kappa0_s0, float))
-    h, sin_nodes = _half_arch_grid(steps)
-    tau = a * sin_nodes * np.ones((len(x), 1, 1))
-    speed = 0.5 * x[:, None, None] * np.ones_like(sin_nodes)
-    # Only the end frame is needed: the rotational part of the Magnus steps, multiplied pairwise.
-    rotation = exp_rotation(magnus6_rotation(h, 1.0, tau, speed))
-    w, qx, y, z = product_quaternions(rotation)
-    value = 1 - 2 * (y * y + z * z) / (w * w + qx * qx + y * y + z * z)  # T(s₀/2)·T(0), T(0) = e₁
+    h, s1, d1, d2 = _half_arch_grid(steps)
+    # The Magnus-6 rotation (lie.magnus6_rotation) with κ = 1 and τ = a sin(π q) written
+    # out: with hs = h s₀/2 every term is hs or hs² times a fixed array of the grid.
+    hs = (0.5 * h * x)[:, None]
+    k, f, g = np.sqrt(15.0) / 3.0, -1.0 / 60.0, 1.0 / 240.0
+    a1, A, E = hs * (a * s1), hs * (k * a * d1), hs * ((10.0 / 3.0) * a * d2)
+    p = -A * hs
+    Z = (A + f * p * hs, -2 * f * E * hs, -f * p * a1)
+    X = (-20 * a1 - E, p, -20 * hs)
+    w = (Z[1] * X[2] - Z[2] * X[1], Z[2] * X[0] - Z[0] * X[2], Z[0] * X[1] - Z[1] * X[0])
+    omega = (a1 + E / 12 + g * w[0], g * w[1], hs + g * w[2])
+    # Only the end frame is needed: multiply the steps pairwise.
+    w0, qx, y, z = product_quaternions(exp_rotation(omega))
+    value = 1 - 2 * (y * y + z * z) / (w0 * w0 + qx * qx + y * y + z * z)  # T(s₀/2)·T(0), T(0) = e₁
     return value.reshape(np.shape(kappa0_s0))
 
 
 @lru_cache(maxsize=8)
-def _half_arch_grid(steps: int) -> tuple[np.ndarray, np.ndarray]:
-    """Step lengths in q = 2s/s₀ over [0, 1] and sin(π q) at their Gauss nodes (read-only)."""
+def _half_arch_grid(steps: int) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    """Step h in q = 2s/s₀ and, per step, sin(π q) at the middle Gauss node and its first
+    and second differences across the three nodes (read-only)."""
     q = np.linspace(0.0, 1.0, steps + 1)
-    h, sin_nodes = np.diff(q), np.sin(np.pi * gauss_nodes(q))
-    h.flags.writeable = sin_nodes.flags.writeable = False
-    return h, sin_nodes
+    sin = np.sin(np.pi * gauss_nodes(q))
+    s1, d1, d2 = sin[:, 1], sin[:, 2] - sin[:, 0], sin[:, 2] - 2 * sin[:, 1] + sin[:, 0]
+    for arr in (s1, d1, d2):
+        arr.flags.writeable = False
+    return 1.0 / steps, s1, d1, d2
 
 
 @dataclass(frozen=True)
