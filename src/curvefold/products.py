@@ -16,7 +16,6 @@ MOTION_STEPS = 10
 
 Job = Callable[[Path], list]
 
-MODEL_UNITS = {"mm": "mm", "cm": "cm", "m": "m", "in": "in", "unit": "unit"}
 
 
 def _metadata(built: Built) -> dict:
