@@ -17,7 +17,6 @@ MOTION_STEPS = 10
 Job = Callable[[Path], list]
 
 
-
 def _metadata(built: Built) -> dict:
     design = built.design
     meta = {"kind": design.kind, "title": design.title or design.kind, "samples": design.samples}
