@@ -20,7 +20,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from curvefold.arch import solve_symmetric_arch
+from curvefold.vault.arch import solve_symmetric_arch
 
 from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
 

@@ -27,7 +27,7 @@ def run() -> list[SummaryRow]:
     if importlib.util.find_spec("curvefold.atlas") is None:
         print("atlas: skipped, curvefold.atlas does not exist yet")
         return [SummaryRow("atlas", "20 × 20 run_atlas", "not run: curvefold.atlas missing", f"< {TARGET:g} s", "—")]
-    from curvefold.atlas import run_atlas
+    from curvefold.vault.atlas import run_atlas
 
     def atlas(workers: int):
         return run_atlas(P_XY.tolist(), A_VALUES.tolist(), width=WIDTH, samples=SAMPLES, workers=workers)

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from curvefold.mesh import Mesh, fold_angles
+from curvefold.geometry.mesh import Mesh, fold_angles
 
 
 @dataclass(frozen=True)

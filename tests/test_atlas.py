@@ -9,9 +9,9 @@ import pytest
 from numpy.testing import assert_array_equal
 
 from curvefold import InputError
-from curvefold import atlas as atlas_module
-from curvefold.arch import A_MAX
-from curvefold.atlas import FIELDS, METRICS, Atlas, run_atlas
+from curvefold.vault import atlas as atlas_module
+from curvefold.vault.arch import A_MAX
+from curvefold.vault.atlas import FIELDS, METRICS, Atlas, run_atlas
 from curvefold.vault import Vault, VaultDesign
 
 pytest.importorskip("matplotlib")
@@ -191,9 +191,11 @@ def test_files_are_replaced_atomically(serial, tmp_path):
 def test_figure_renders(serial, tmp_path):
     from PIL import Image
 
-    from curvefold.plots import save_figure
+    from curvefold.figures.plots import save_figure
 
-    fig = serial.figure(cell_size=1.2)
+    from curvefold.figures.atlas import atlas_figure
+
+    fig = atlas_figure(serial, cell_size=1.2)
     texts = [t.get_text() for t in fig.axes[0].texts]
     assert any(t.startswith("no arch") for t in texts)
     assert any(t.startswith("regression") for t in texts)

@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from curvefold.cli import main
+from curvefold.app.cli import main
 
 
 def run(*argv: str, cwd=None) -> subprocess.CompletedProcess:

@@ -1,4 +1,4 @@
-"""Tests of curvefold.design: the examples, the schema, every class of error, fuzzing."""
+"""Tests of curvefold.app.design: the examples, the schema, every class of error, fuzzing."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose, assert_array_equal
 
-from curvefold.design import (
+from curvefold.app.design import (
     FORMATS,
     KINDS,
     PAGES,
@@ -33,9 +33,9 @@ from curvefold.design import (
     load_design,
     parse_design,
 )
-from curvefold.errors import InputError
-from curvefold.expr import Expression
-from curvefold.functions import as_function
+from curvefold.kernel.errors import InputError
+from curvefold.kernel.expr import Expression
+from curvefold.kernel.functions import as_function
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SRC = "design.toml"

@@ -9,9 +9,9 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from _meshes import oblique_motion, strip_motion
-from curvefold.errors import InputError
-from curvefold.export import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
-from curvefold.mesh import Mesh
+from curvefold.kernel.errors import InputError
+from curvefold.io import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
+from curvefold.geometry.mesh import Mesh
 from _node import run_node
 
 

@@ -11,9 +11,9 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from _meshes import measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
-from curvefold.errors import InputError
-from curvefold.export import fold_assignments, read_fold, write_fold, write_sheet_fold
-from curvefold.mesh import Mesh
+from curvefold.kernel.errors import InputError
+from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
+from curvefold.geometry.mesh import Mesh
 from _node import run_node
 
 

@@ -22,20 +22,20 @@ from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
-from curvefold.errors import InputError
-from curvefold.export import layout as layout_module
-from curvefold.export import pattern
-from curvefold.export.pattern import (
+from curvefold.kernel.errors import InputError
+from curvefold.geometry.sheets import PatternSheet
+from curvefold.io import layout as layout_module
+from curvefold.io import pattern
+from curvefold.io.pattern import (
     DEFAULT_LAYERS,
     LAYERS,
-    PatternSheet,
     layout_sheets,
     seam_name,
     write_dxf,
     write_pdf,
     write_svg,
 )
-from curvefold.mesh import Mesh
+from curvefold.geometry.mesh import Mesh
 
 from _sheets import annular_sheet, tube_sheets, vault_sheets
 

@@ -26,24 +26,27 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from curvefold import Crease, CurvefoldError, InputError, Lattice, SpaceCurve, Structure
-from curvefold.export import read_fold, write_sheet_fold
-from curvefold.export.pattern import PatternSheet
-from curvefold.fabrication import (
-    MODEL_FORMATS,
+from curvefold.geometry.sheets import (
     Bond,
+    PatternSheet,
     bonds,
     flat_plane,
     folding_motion,
-    layout_pattern,
     sheet_vertices,
     sheets,
-    to_fold,
     unroll_strip,
+)
+from curvefold.io import (
+    MODEL_FORMATS,
+    layout_pattern,
+    read_fold,
+    to_fold,
     write_3d,
     write_pattern,
+    write_sheet_fold,
     write_structure_fold,
 )
-from curvefold.mesh import fold_angles
+from curvefold.geometry.mesh import fold_angles
 from _node import run_node
 
 

@@ -18,7 +18,7 @@ from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
 
-from curvefold import plots  # noqa: E402
+from curvefold.figures import plots  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -267,7 +267,7 @@ def test_plots_leave_pyplot_alone():
     code = (
         "import sys\n"
         "from curvefold.vault import Vault, VaultDesign\n"
-        "from curvefold import plots\n"
+        "from curvefold.figures import plots\n"
         "v = Vault.from_design(VaultDesign(samples=41))\n"
         "plots.plot_vault(v); plots.plot_sections(v); plots.plot_regression_domain(v.lattice, v.structure.cells)\n"
         "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'\n"

@@ -6,7 +6,7 @@ from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, Lattice, RegressionError, SpaceCurve, Structure
 from curvefold import measure
-from curvefold.mesh import edges_faces
+from curvefold.geometry.mesh import edges_faces
 
 
 def make_lattice(samples=201, fold_angle=60.0, widths=(0.2, 0.15)):
@@ -121,8 +121,8 @@ def test_erratum_quadrants_follow_the_construction_order(tube):
     and L−R+ (4): folds where both signs agree, seams where they differ, with interior
     angles π − 2α and 2α measured on the built tube.
     """
-    from curvefold.crease import QUADRANTS
-    from curvefold.structure import CORNER_KINDS
+    from curvefold.geometry.crease import QUADRANTS
+    from curvefold.geometry.structure import CORNER_KINDS
 
     corners = [(0, 0), (0, 1), (1, 1), (1, 0)]
     lat = tube.lattice

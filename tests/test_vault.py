@@ -5,8 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import ConvergenceError, InputError, RegressionError
-from curvefold.arch import A_MAX, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
-from curvefold.measure import derivative
+from curvefold.vault.arch import A_MAX, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
+from curvefold.analysis.measure import derivative
 from curvefold.vault import Vault, VaultDesign, max_tubes
 
 PAPER_KAPPA0_S0 = 3.305  # printed in the paper for a = 0.3
@@ -214,8 +214,8 @@ def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
 
 def test_arch_condition_matches_the_general_magnus_rotation():
     """The arch's written-out Magnus terms equal the general so(3) Magnus step (κ = 1, τ = a sin)."""
-    from curvefold.curve import gauss_nodes
-    from curvefold.lie import exp_rotation, magnus6_rotation, product_quaternions
+    from curvefold.geometry.curve import gauss_nodes
+    from curvefold.kernel.lie import exp_rotation, magnus6_rotation, product_quaternions
 
     x, a, steps = np.linspace(2.5, 4.5, 7), 0.7, 64
     q = np.linspace(0, 1, steps + 1)

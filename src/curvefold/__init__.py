@@ -3,15 +3,16 @@
 Data flows one way: a :class:`SpaceCurve` (from curvature and torsion) → a :class:`Crease`
 (fold angle and rulings) → a :class:`Lattice` (widths and the (u, v) family of creases) →
 a :class:`Structure` (which cells) → a :class:`State` at a fold angle → meshes, files and
-pictures. :mod:`curvefold.measure` certifies each stage with numbers.
+pictures. :mod:`curvefold.analysis.measure` certifies each stage with numbers.
 """
 
-from .errors import ConvergenceError, CurvefoldError, InputError, RegressionError
-from .curve import SpaceCurve
-from .crease import Crease
-from .lattice import Lattice, RegressionDomain
-from .structure import State, Structure
-from .mesh import Mesh
+from .analysis import measure
+from .geometry.crease import Crease
+from .geometry.curve import SpaceCurve
+from .geometry.lattice import Lattice, RegressionDomain
+from .geometry.mesh import Mesh
+from .geometry.structure import State, Structure
+from .kernel.errors import ConvergenceError, CurvefoldError, InputError, RegressionError
 
 __version__ = "0.1.0"
 
@@ -27,4 +28,5 @@ __all__ = [
     "Structure",
     "State",
     "Mesh",
+    "measure",
 ]

@@ -1,6 +1,6 @@
 """``python -m curvefold``: the command line."""
 
-from .cli import run
+from .app.cli import run
 
 if __name__ == "__main__":
     run()

@@ -1,0 +1,1 @@
+"""Measurements, the geometric certificate and the check of FOLD files."""

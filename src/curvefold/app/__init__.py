@@ -1,0 +1,1 @@
+"""The application layer: design files, the command line and the output folder."""

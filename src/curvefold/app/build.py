@@ -1,0 +1,82 @@
+"""From a validated design (:mod:`curvefold.app.design`) to the objects it describes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..geometry.crease import Crease
+from ..geometry.curve import SpaceCurve
+from ..geometry.lattice import Lattice
+from ..geometry.structure import Structure
+from ..vault.assembly import Vault, VaultDesign
+from .design import Design
+
+__all__ = ["Built", "build", "vault_design"]
+
+
+@dataclass(frozen=True, eq=False)
+class Built:
+    """What a design builds: a vault, another structure, or a single crease.
+
+    Attributes
+    ----------
+    design : Design
+    vault : Vault or None
+        Set for kind "vault".
+    structure : Structure or None
+        Set for kinds "vault", "tube" and "block".
+    crease : Crease or None
+        Set for kind "crease" (a single curved fold); for the others, curve 1's crease.
+    """
+
+    design: Design
+    vault: Vault | None
+    structure: Structure | None
+    crease: Crease
+
+
+def vault_design(design: Design) -> VaultDesign:
+    """The :class:`VaultDesign` of a design of kind "vault"."""
+    v = design.vault
+    return VaultDesign(
+        a=v.a,
+        p_xy=v.p_xy,
+        width=v.width,
+        radius=v.radius,
+        fold_angle=v.fold_angle,
+        tubes=None if v.tubes == "max" else int(v.tubes),
+        layers=v.layers,
+        direction=1 if v.direction == "+" else -1,
+        samples=design.samples if design.samples % 2 else design.samples + 1,
+    )
+
+
+def build(design: Design) -> Built:
+    """Build the structure a design describes.
+
+    Raises
+    ------
+    CurvefoldError
+        Whatever the builders refuse (regression, no arch, bad curvature), with its message.
+    """
+    if design.kind == "vault":
+        vault = Vault.from_design(vault_design(design))
+        return Built(design, vault, vault.structure, vault.lattice.crease)
+    if design.kind == "crease":
+        c = design.crease
+        crease = Crease.from_pattern(
+            design.function("kappa_2d"),
+            design.function("beta_left"),
+            design.function("beta_right"),
+            c.length,
+            fold_angle=c.fold_angle,
+            samples=design.samples,
+        )
+        return Built(design, None, None, crease)
+    c = design.curve
+    curve = SpaceCurve.from_curvature(design.function("kappa"), design.function("tau"), c.length, samples=design.samples)
+    crease = Crease.from_curve(curve, fold_angle=c.fold_angle)
+    params = design.tube if design.kind == "tube" else design.block
+    lattice = Lattice.from_crease(crease, params.width_left, params.width_right)
+    structure = Structure.tube(lattice) if design.kind == "tube" else Structure.from_cells(lattice, params.cells)
+    return Built(design, None, structure, crease)

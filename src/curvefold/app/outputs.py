@@ -1,0 +1,227 @@
+"""The output folder of the command line: files, pictures and the report, written atomically.
+
+Everything is written into a temporary folder beside the target and renamed onto it at
+the end, so a failure leaves no partial folder; an existing folder is replaced only with
+``force``.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import shutil
+import tempfile
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis.certificate import certify
+from ..io.atomic import atomic_write, folder_mode
+from ..kernel.errors import InputError
+from .build import Built
+
+__all__ = ["structure_payload", "write_outputs", "write_atlas", "output_folder"]
+
+
+@contextmanager
+def output_folder(target: Path, *, force: bool) -> Iterator[Path]:
+    """Yield a fresh temporary folder that becomes ``target`` when the block succeeds."""
+    target = Path(target)
+    if target.exists() and not force:
+        raise InputError(f"output folder {target} exists; pass --force to replace it")
+    if target.exists() and not target.is_dir():
+        raise InputError(f"output path {target} exists and is not a folder")
+    parent = target.parent if str(target.parent) else Path(".")
+    if not parent.is_dir():
+        raise InputError(f"cannot write {target}: its parent folder {parent} does not exist or is not a folder")
+    if not os.access(parent, os.W_OK):
+        raise InputError(f"cannot write {target}: its parent folder {parent} is not writable")
+    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
+    try:
+        yield tmp
+        os.chmod(tmp, folder_mode())
+        if target.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old.", dir=parent))
+            os.replace(target, old / "x")
+            os.replace(tmp, target)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            os.replace(tmp, target)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def structure_payload(built: Built) -> dict:
+    """Design, derived quantities and certificate of a built design, JSON-ready."""
+    design = built.design
+    payload: dict = {"kind": design.kind, "title": design.title or _default_title(built), "design": design.to_dict()}
+    if built.vault is not None:
+        payload |= built.vault.summary()
+        from ..vault.paper import paper_comparison
+
+        payload["paper_comparison"] = paper_comparison()
+    elif built.structure is not None:
+        V = built.structure.state().vertices
+        payload |= {
+            "cells": built.structure.cells.tolist(),
+            "curves": built.structure.curves_uv.tolist(),
+            "curve_kinds": list(built.structure.curve_kinds),
+            "bounding_box": [V.reshape(-1, 3).min(axis=0).tolist(), V.reshape(-1, 3).max(axis=0).tolist()],
+            "regression_margin": float(built.structure.lattice.domain.margin(built.structure.curves_uv.astype(float)).min()),
+        }
+    else:
+        c = built.crease
+        payload |= {
+            "length": c.curve.length,
+            "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
+            "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
+        }
+    payload["certificate"] = [c.to_dict() for c in certify(built.crease, built.structure, built.vault)]
+    return payload
+
+
+def _default_title(built: Built) -> str:
+    if built.vault is not None:
+        d = built.vault.design
+        return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"
+    if built.structure is not None:
+        return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {np.degrees(built.structure.lattice.crease.fold_angle):g}°"
+    return f"single curved fold, length {built.crease.curve.length:g}"
+
+
+#: Pictures in the report, in this order (others follow alphabetically).
+_PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "regression-domain.png", "width-proportion.png")
+
+
+def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
+    """A progress bar on stderr (rich), or nothing."""
+    if not show:
+        return (lambda label: None), (lambda: None)
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn(), transient=True)
+    bar.start()
+    task = bar.add_task("writing", total=total)
+
+    def step(label: str) -> None:
+        bar.update(task, description=label, advance=1)
+
+    return step, bar.stop
+
+
+def write_outputs(built: Built, out: Path, *, force: bool = False, show_progress: bool = True) -> list[str]:
+    """Write every file of a built design into the folder ``out`` (see the module doc).
+
+    Returns
+    -------
+    list of str
+        File names written, relative to ``out``.
+    """
+    from . import products
+
+    formats = set(built.design.output.formats) | {"report"}
+    jobs = products.jobs(built, formats)
+    step, stop = _progress(show_progress, len(jobs))
+    written: list[str] = []
+    payload = structure_payload(built)
+    try:
+        with output_folder(out, force=force) as tmp:
+            for label, job in jobs:
+                step(label)
+                started = time.perf_counter()
+                files = job(tmp)
+                written += [str(Path(f).relative_to(tmp)) for f in files]
+                payload.setdefault("timings", {})[label] = round(time.perf_counter() - started, 3)
+            payload["files"] = sorted(written)
+            atomic_write(tmp / "report.json", json.dumps(payload, indent=2, default=_plain))
+            atomic_write(tmp / "report.html", report_html(payload))
+            written += ["report.json", "report.html"]
+    finally:
+        stop()
+    return sorted(written)
+
+
+def _plain(value):
+    if isinstance(value, (np.floating, np.integer)):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    return str(value)
+
+
+def report_html(payload: dict) -> str:
+    """A self-contained HTML report: parameters, derived quantities, certificate, pictures."""
+    e = html.escape
+    rows = "".join(
+        f"<tr class={'pass' if c['passed'] else 'fail'}><td>{e(c['name'])}</td><td>{c['value']:.3e}</td>"
+        f"<td>{'≥' if c['name'] == 'regression_margin' else '≤'} {c['tolerance']:.3e}</td><td>{e(c['unit'])}</td>"
+        f"<td>{'pass' if c['passed'] else 'FAIL'}</td><td>{e(c['meaning'])}</td></tr>"
+        for c in payload["certificate"]
+    )
+    skip = {"certificate", "files", "design", "paper_comparison", "timings", "bounding_box", "curves", "cells", "curve_kinds", "bounding_curves"}
+    derived = "".join(
+        f"<tr><td>{e(k)}</td><td>{e(f'{v:.10g}' if isinstance(v, float) else str(v))}</td></tr>" for k, v in payload.items() if k not in skip
+    )
+    design = e(json.dumps(payload.get("design", {}), indent=2, default=_plain))
+    paper = ""
+    if payload.get("paper_comparison"):
+        paper = "<h2>The paper's example</h2><table><tr><th>quantity</th><th>paper</th><th>computed</th><th>from the paper's κ0·s0</th><th>note</th></tr>" + "".join(
+            f"<tr><td>{e(r['quantity'])}</td><td>{r['paper']}</td><td>{r['computed']:.12g}</td><td>{r['from_paper_kappa0_s0']:.4g}</td><td>{e(r['note'])}</td></tr>"
+            for r in payload["paper_comparison"]
+        ) + "</table>"
+    files = payload.get("files", [])
+    shown = sorted((f for f in files if f.endswith((".png", ".gif"))), key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
+    pictures = "".join(f'<figure><img src="{e(f)}" alt="{e(f)}"><figcaption>{e(f)}</figcaption></figure>' for f in shown)
+    links = "".join(f'<li><a href="{e(f)}">{e(f)}</a></li>' for f in files)
+    passed = sum(c["passed"] for c in payload["certificate"])
+    title = e(payload.get("title") or payload.get("kind", "curvefold"))
+    return f"""<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>curvefold — {title}</title>
+<style>
+body{{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}}
+table{{border-collapse:collapse;margin:1em 0}}td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
+tr.pass td:nth-child(5){{color:#070}}tr.fail td{{background:#fee}}
+figure{{display:inline-block;margin:.5em;max-width:48%}}img{{max-width:100%;border:1px solid #ddd}}pre{{background:#f6f6f6;padding:1em}}
+</style></head><body>
+<h1>curvefold — {title}</h1>
+<p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass.</p>
+<h2>Pictures</h2>{pictures}
+<h2>Derived quantities</h2><table>{derived}</table>
+{paper}
+<h2>Certificate</h2><table><tr><th>check</th><th>measured</th><th>tolerance</th><th>unit</th><th></th><th>what and why</th></tr>{rows}</table>
+<h2>Design</h2><pre>{design}</pre>
+<h2>Files</h2><ul>{links}</ul>
+</body></html>
+"""
+
+
+def write_atlas(p_xy_values, a_values, *, out: Path, force: bool, width: float, samples: int, workers: int | None, show_progress: bool) -> dict:
+    """Run the design atlas and write its figure, CSV and JSON into ``out``."""
+    from ..figures.atlas import atlas_figure
+    from ..figures.plots import save_figure
+    from ..vault.atlas import run_atlas
+
+    progress = None
+    stop = lambda: None  # noqa: E731
+    if show_progress:
+        from rich.progress import Progress
+
+        bar = Progress(transient=True)
+        bar.start()
+        task = bar.add_task("atlas", total=len(p_xy_values) * len(a_values))
+        progress = lambda done, total: bar.update(task, completed=done)  # noqa: E731
+        stop = bar.stop
+    try:
+        atlas = run_atlas(list(p_xy_values), list(a_values), width=width, samples=samples, workers=workers, progress=progress)
+    finally:
+        stop()
+    with output_folder(out, force=force) as tmp:
+        atlas.to_csv(tmp / "atlas.csv")
+        atlas.to_json(tmp / "atlas.json")
+        files = [Path(p).name for p in save_figure(atlas_figure(atlas), tmp / "atlas")]
+    return {"records": atlas.records, "files": ["atlas.csv", "atlas.json", *files]}

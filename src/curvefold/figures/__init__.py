@@ -1,0 +1,1 @@
+"""Pictures: views of structures and vaults, plots and the HTML report."""

@@ -1,0 +1,348 @@
+"""A curved crease: a space curve with the two developable surfaces folded along it.
+
+Conventions (the paper's Eqs. 2, 5–8, with the torsion sign corrected, see DESIGN.md):
+
+- α is half the fold angle: each sheet leaves the osculating plane at angle α; 2α = 0 is
+  the flat sheet.
+- Rulings ``r_L = cos β_L T + sin β_L cos α N + sin β_L sin α B`` and
+  ``r_R = cos β_R T − sin β_R cos α N + sin β_R sin α B``; normals
+  ``p_L = −sin α N + cos α B``, ``p_R = sin α N + cos α B``; ``κ_2D = κ cos α``.
+- Developable ruling angles: ``cot β_L = (α' + τ)/(κ sin α)``, ``cot β_R = (τ − α')/(κ sin α)``
+  (the paper's Eqs. 4 and 9 print the torsion with the opposite sign).
+- Regression (Eqs. 14–15): ``w_lim_R = sin²β_R / (β_R' − κ_2D)``, ``w_lim_L = sin²β_L / (β_L' + κ_2D)``;
+  a side whose denominator is ≤ 0 has its curve of regression on the other side of the
+  crease, and its limit is +∞.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Literal
+
+import numpy as np
+
+from ..kernel.errors import InputError, RegressionError
+from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
+from .curve import SpaceCurve, check_samples
+
+__all__ = ["Crease", "QUADRANTS", "half_angle"]
+
+#: The four surfaces a crease and its rulings define, by the signs of the ruling
+#: directions used on the left and right side: (sign_L, sign_R, kind).
+QUADRANTS = {
+    "L+R+": (1, 1, "fold"),
+    "L-R+": (-1, 1, "seam"),
+    "L-R-": (-1, -1, "fold"),
+    "L+R-": (1, -1, "seam"),
+}
+
+
+def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_angle", allow_flat: bool = False) -> float:
+    """Validate a fold angle 2α and return α in radians.
+
+    Parameters
+    ----------
+    fold_angle : float
+        The full fold angle 2α, in degrees by default.
+    degrees : bool, keyword-only
+        Whether ``fold_angle`` is in degrees (default) or radians.
+    allow_flat : bool, keyword-only
+        Accept 2α = 0 (the flat, two-ply state); the range is then [0°, 180°).
+    """
+    value = float(fold_angle)
+    full = np.radians(value) if degrees else value
+    unit, top = ("°", 180.0) if degrees else (" rad", np.pi)
+    low = "[0" if allow_flat else "(0"
+    if not np.isfinite(full) or full < 0 or (full == 0 and not allow_flat) or full >= np.pi:
+        extra = " (2α = 180° would need infinite curvature κ = κ_2D / cos α)" if np.isfinite(full) and full >= np.pi else ""
+        raise InputError(f"{name} must be in {low}{unit}, {top:g}{unit}), got {fold_angle!r}{extra}")
+    return 0.5 * full
+
+
+@dataclass(frozen=True, eq=False)
+class Crease:
+    """A space curve with the ruling angles and fold angle of the surfaces on both sides.
+
+    Build it with :meth:`from_curve` (the curve is given, the rulings follow) or
+    :meth:`from_pattern` (the crease pattern is given, the curve follows).
+
+    Attributes
+    ----------
+    curve : SpaceCurve
+        The crease.
+    alpha, beta_left, beta_right : ScalarFunction
+        α(s), β_L(s), β_R(s) in radians, with their derivatives.
+    """
+
+    curve: SpaceCurve
+    alpha: ScalarFunction = field(repr=False)
+    beta_left: ScalarFunction = field(repr=False)
+    beta_right: ScalarFunction = field(repr=False)
+
+    # -- constructors -------------------------------------------------------------------
+    @classmethod
+    def from_curve(cls, curve: SpaceCurve, *, fold_angle: FunctionLike = 90.0, degrees: bool = True) -> Crease:
+        """Fold the two developable surfaces along a given space curve.
+
+        Parameters
+        ----------
+        curve : SpaceCurve
+        fold_angle : float, callable or array_like, keyword-only
+            2α, constant (default 90°) or a function of s (degrees by default).
+        degrees : bool, keyword-only
+
+        Examples
+        --------
+        A planar circle folded at 90° has rulings normal to the crease (β = 90°):
+
+        >>> c = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> cr = Crease.from_curve(c, fold_angle=90)
+        >>> [round(float(b), 12) for b in np.degrees(cr.beta_left(c.s[:2]))]
+        [90.0, 90.0]
+        """
+        L = curve.length
+        kappa, tau = curve.kappa, curve.tau
+        if callable(fold_angle) or np.ndim(fold_angle) > 0:
+            alpha = as_function(fold_angle, name="fold_angle", length=L).scaled(np.pi / 360.0 if degrees else 0.5)
+            a_s = alpha(curve.s)
+            check_finite(a_s, name="fold_angle", s=curve.s)
+            bad = np.flatnonzero((a_s <= 0) | (a_s >= np.pi / 2))
+            if bad.size:
+                i = bad[0]
+                raise InputError(f"fold_angle must be in (0°, 180°) along the whole crease; at s = {curve.s[i]:.6g} it is {np.degrees(2 * a_s[i]):.6g}°")
+
+            def beta(sign: float):
+                def value(s):
+                    return np.arctan2(kappa(s) * np.sin(alpha(s)), tau(s) + sign * alpha.derivative(s))
+
+                return as_function(value, name="beta", length=L)
+
+            return cls(curve, alpha, beta(1.0), beta(-1.0))
+
+        a = half_angle(fold_angle, degrees=degrees)
+        sa = np.sin(a)
+        alpha = ScalarFunction(lambda s: np.full(np.shape(s), a), lambda s: np.zeros(np.shape(s)), a)
+
+        def value(s):
+            return np.arctan2(kappa(s) * sa, tau(s))
+
+        def derivative(s):
+            k, t = kappa(s), tau(s)
+            return sa * (kappa.derivative(s) * t - k * tau.derivative(s)) / ((k * sa) ** 2 + t**2)
+
+        beta = ScalarFunction(value, derivative)
+        return cls(curve, alpha, beta, beta)
+
+    @classmethod
+    def from_pattern(
+        cls,
+        kappa_2d: FunctionLike,
+        beta_left: FunctionLike,
+        beta_right: FunctionLike,
+        length: float,
+        *,
+        fold_angle: float = 90.0,
+        samples: int = 1001,
+        degrees: bool = True,
+        origin: np.ndarray | None = None,
+        frame: np.ndarray | None = None,
+        rtol: float = 1e-12,
+    ) -> Crease:
+        """Fold a single curved crease from its crease pattern (the paper's Fig. 08).
+
+        Integrates the corrected Eqs. (3)–(4):
+        ``α' = ½ κ_2D tan α (cot β_L − cot β_R)``, ``τ = ½ κ_2D tan α (cot β_L + cot β_R)``,
+        ``κ = κ_2D / cos α``. One crease pattern with different ruling layouts folds into
+        different shapes: a single curved fold has excess freedom.
+
+        Parameters
+        ----------
+        kappa_2d : float, callable or array_like
+            Curvature of the crease in the flat pattern, > 0.
+        beta_left, beta_right : float, callable or array_like
+            Ruling angles of the pattern, in (0°, 180°) (degrees by default).
+        length : float
+            Arc length of the crease.
+        fold_angle : float, keyword-only
+            2α at s = 0.
+        samples : int, keyword-only
+        degrees : bool, keyword-only
+            Units of ``beta_left``, ``beta_right`` and ``fold_angle``.
+        origin, frame : optional
+            Start point and start frame of the folded crease.
+        rtol : float, keyword-only
+            Relative tolerance of the α(s) integration (DOP853).
+
+        Raises
+        ------
+        InputError
+            If κ_2D ≤ 0, a β leaves (0°, 180°), or α(s) leaves (0°, 90°) (the message
+            gives the arc length where it does).
+        """
+        from scipy.integrate import solve_ivp
+
+        samples = check_samples(samples)
+        a0 = half_angle(fold_angle, degrees=degrees)
+        L = float(length)
+        if not np.isfinite(L) or L <= 0:
+            raise InputError(f"length must be a finite number > 0, got {length!r}")
+        k2 = as_function(kappa_2d, name="kappa_2d", length=L)
+        unit = np.pi / 180.0 if degrees else 1.0
+        bl = as_function(beta_left, name="beta_left", length=L).scaled(unit)
+        br = as_function(beta_right, name="beta_right", length=L).scaled(unit)
+        probe = np.linspace(0.0, L, max(samples, 257))
+        k_probe = k2(probe)
+        check_finite(k_probe, name="kappa_2d", s=probe)
+        if (k_probe <= 0).any():
+            i = int(np.argmax(k_probe <= 0))
+            raise InputError(f"kappa_2d must be > 0 everywhere; at s = {probe[i]:.6g} it is {k_probe[i]:.6g}")
+        for name, b in (("beta_left", bl), ("beta_right", br)):
+            v = b(probe)
+            check_finite(v, name=name, s=probe)
+            bad = np.flatnonzero((v <= 0) | (v >= np.pi))
+            if bad.size:
+                i = bad[0]
+                raise InputError(f"{name} must be in (0°, 180°); at s = {probe[i]:.6g} it is {np.degrees(v[i]):.6g}°")
+
+        def rhs(s, y):
+            return 0.5 * k2(np.atleast_1d(s)) * np.tan(y) * (1 / np.tan(bl(np.atleast_1d(s))) - 1 / np.tan(br(np.atleast_1d(s))))
+
+        def leaves(s, y):
+            return np.sin(2 * y[0])  # zero at α = 0 and α = 90°
+
+        leaves.terminal = True
+        sol = solve_ivp(rhs, (0.0, L), [a0], method="DOP853", rtol=rtol, atol=rtol * 1e-2, dense_output=True, events=leaves)
+        dense = sol.sol
+        a_probe = dense(probe)[0] if sol.status == 0 else None
+        if a_probe is None or not ((a_probe > 0) & (a_probe < np.pi / 2)).all():
+            # the event, the solver's failure point, or the first probe outside (0, π/2)
+            if sol.status == 1:
+                s_end = float(sol.t_events[0][0])
+            elif sol.status == -1:
+                s_end = float(sol.t[-1])
+            else:
+                s_end = float(probe[np.argmax(~((a_probe > 0) & (a_probe < np.pi / 2)))])
+            raise InputError(
+                f"fold angle 2α leaves (0°, 180°) at s = {s_end:.6g} (α' = ½ κ_2D tan α (cot β_L − cot β_R) drives it there); "
+                f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle"
+            )
+
+        def a_of(s):
+            s = np.asarray(s, float)
+            return dense(s.ravel())[0].reshape(s.shape)
+
+        def da_of(s):
+            s = np.asarray(s, float)
+            return rhs(s.ravel(), a_of(s.ravel())).reshape(s.shape)
+
+        alpha = ScalarFunction(a_of, da_of)
+        cot = lambda b: 1 / np.tan(b)  # noqa: E731
+        curve = SpaceCurve.from_curvature(
+            lambda s: k2(s) / np.cos(a_of(s)),
+            lambda s: 0.5 * k2(s) * np.tan(a_of(s)) * (cot(bl(s)) + cot(br(s))),
+            L,
+            samples=samples,
+            origin=origin,
+            frame=frame,
+        )
+        return cls(curve, alpha, bl, br)
+
+    # -- sampled quantities ---------------------------------------------------------------
+    @property
+    def s(self) -> np.ndarray:
+        """Arc length of the samples, shape (n,)."""
+        return self.curve.s
+
+    @cached_property
+    def fold_angle(self) -> float | None:
+        """The constant fold angle 2α in radians, or None where α varies along the crease."""
+        return None if self.alpha.constant is None else 2.0 * self.alpha.constant
+
+    @cached_property
+    def kappa_2d(self) -> np.ndarray:
+        """Curvature of the crease in the flat pattern, κ cos α, shape (n,)."""
+        return self.curve.kappa(self.s) * np.cos(self.alpha(self.s))
+
+    def rulings(self) -> tuple[np.ndarray, np.ndarray]:
+        """Unit ruling directions r_L, r_R (Eqs. 5–6), each shape (n, 3)."""
+        a, bl, br = self.alpha(self.s), self.beta_left(self.s), self.beta_right(self.s)
+        return ruling_vectors(self.curve.frames, a, bl, br)
+
+    def normals(self) -> tuple[np.ndarray, np.ndarray]:
+        """Unit surface normals p_L, p_R at the crease (Eqs. 7–8), each shape (n, 3)."""
+        a = self.alpha(self.s)[:, None]
+        N, B = self.curve.normal, self.curve.binormal
+        return -np.sin(a) * N + np.cos(a) * B, np.sin(a) * N + np.cos(a) * B
+
+    def regression_rates(self) -> tuple[np.ndarray, np.ndarray]:
+        """1 / w_lim on the left and right (Eqs. 14–15), each shape (n,); ≤ 0 means no limit."""
+        s = self.s
+        k2 = self.kappa_2d
+        bl, br = self.beta_left(s), self.beta_right(s)
+        return (self.beta_left.derivative(s) + k2) / np.sin(bl) ** 2, (self.beta_right.derivative(s) - k2) / np.sin(br) ** 2
+
+    def regression_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """Width from the crease to the curve of regression, w_lim_L and w_lim_R, shape (n,).
+
+        +∞ where that side has no curve of regression.
+        """
+        with np.errstate(divide="ignore"):
+            return tuple(np.where(r > 0, 1.0 / np.where(r > 0, r, 1.0), np.inf) for r in self.regression_rates())
+
+    def ruling_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """Ruling length from the crease to the curve of regression, w_lim / sin β, shape (n,)."""
+        wl, wr = self.regression_limits()
+        return wl / np.sin(self.beta_left(self.s)), wr / np.sin(self.beta_right(self.s))
+
+    def dihedral_angle(self, quadrant: Literal["L+R+", "L-R+", "L-R-", "L+R-"] = "L+R+") -> np.ndarray:
+        """Interior angle between the two surfaces of a quadrant, shape (n,): π − 2α or 2α."""
+        kind = _quadrant(quadrant)[2]
+        a = self.alpha(self.s)
+        return np.pi - 2 * a if kind == "fold" else 2 * a
+
+    def surface(self, quadrant: str = "L+R+", *, width: float | tuple[float, float] = 0.1, rulings: int = 2) -> np.ndarray:
+        """Points of the creased surface of one quadrant, shape (2, rulings, n, 3).
+
+        Axis 0 is the side (left, right); along each ruling the points run from the crease
+        to the given width (distance between the crease's tangent line and the edge).
+
+        Raises
+        ------
+        RegressionError
+            If the width reaches a curve of regression.
+        """
+        sign_l, sign_r, _ = _quadrant(quadrant)
+        widths = np.broadcast_to(np.asarray(width, float), (2,))
+        rl, rr = self.rulings()
+        rate_l, rate_r = self.regression_rates()
+        out = []
+        for w, sign, r, rate, beta, side in ((widths[0], sign_l, rl, rate_l, self.beta_left, "left"), (widths[1], sign_r, rr, rate_r, self.beta_right, "right")):
+            margin = 1.0 - sign * w * rate
+            if (margin <= 0).any():
+                i = int(np.argmin(margin))
+                lim = 1.0 / abs(rate[i])
+                raise RegressionError(f"width on the {side} must stay below the regression limit {lim:.6g} (reached at s = {self.s[i]:.6g}), got {w:.6g}")
+            ell = sign * w / np.sin(beta(self.s))
+            lam = np.linspace(0.0, 1.0, rulings)
+            out.append(self.curve.points[None] + lam[:, None, None] * (ell[:, None] * r)[None])
+        return np.stack(out)
+
+
+def ruling_vectors(frames: np.ndarray, alpha: np.ndarray, beta_left: np.ndarray, beta_right: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rulings r_L, r_R (Eqs. 5–6) from frames (..., 3, 3) and angles (...,); each (..., 3)."""
+    a = np.asarray(alpha, float)[..., None]
+    bl = np.asarray(beta_left, float)[..., None]
+    br = np.asarray(beta_right, float)[..., None]
+    T, N, B = frames[..., 0], frames[..., 1], frames[..., 2]
+    ca, sa = np.cos(a), np.sin(a)
+    rl = np.cos(bl) * T + np.sin(bl) * (ca * N + sa * B)
+    rr = np.cos(br) * T + np.sin(br) * (-ca * N + sa * B)
+    return rl, rr
+
+
+def _quadrant(name: str) -> tuple[int, int, str]:
+    try:
+        return QUADRANTS[name]
+    except KeyError:
+        raise InputError(f"quadrant must be one of {', '.join(QUADRANTS)}, got {name!r}") from None

@@ -1,0 +1,297 @@
+"""Plain 3D mesh files (OBJ, binary STL, binary PLY) of one structure state.
+
+STL and PLY are written by ``trimesh`` (an optional dependency, imported when called);
+OBJ is written here because it also carries the crease lines as ``l`` polylines in named
+groups, which ``trimesh``'s OBJ writer does not do. All files are written atomically.
+
+Precision: STL and PLY store vertex coordinates as 32-bit floats (about 7 significant
+digits); OBJ stores them with 17 significant digits. None of the three formats has a
+unit; the OBJ header comment states it.
+
+The helpers :func:`crease_polylines` and :func:`check_metadata` are shared by the other
+exporters.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry.mesh import EDGE_KINDS, Mesh
+from ..kernel.errors import InputError
+from .atomic import atomic_write
+
+__all__ = [
+    "UNIT_METRES",
+    "check_metadata",
+    "crease_polylines",
+    "write_obj",
+    "write_ply",
+    "write_stl",
+]
+
+#: Metres per unit for the unit names FOLD defines, plus ``"ft"`` (``"unit"`` has no
+#: physical size and is taken as one metre where a size is needed).
+UNIT_METRES = {"unit": 1.0, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "ft": 0.3048, "pt": 0.0254 / 72}
+
+
+def check_metadata(metadata: Mapping | None) -> dict:
+    """Validate design parameters and return them as a plain JSON-ready dict.
+
+    Parameters
+    ----------
+    metadata : mapping of str to (int, float, str, bool) or None
+        Design parameters. NumPy scalars are converted to Python numbers.
+
+    Returns
+    -------
+    dict
+        A new dict; ``{}`` for ``None``.
+
+    Raises
+    ------
+    InputError
+        If a key is not a string, or a value is not a finite number, a string or a bool.
+
+    Examples
+    --------
+    >>> check_metadata({"length": np.float64(2.5), "name": "vault"})
+    {'length': 2.5, 'name': 'vault'}
+    >>> check_metadata(None)
+    {}
+    """
+    if metadata is None:
+        return {}
+    if not isinstance(metadata, Mapping):
+        raise InputError(f"metadata must be a mapping of str to number/str, got {type(metadata).__name__}")
+    out: dict = {}
+    for key, value in metadata.items():
+        if not isinstance(key, str):
+            raise InputError(f"metadata keys must be str, got {key!r}")
+        if isinstance(value, (str, bool, np.bool_)):
+            out[key] = value if isinstance(value, str) else bool(value)
+        elif isinstance(value, (int, np.integer)):
+            out[key] = int(value)
+        elif isinstance(value, (float, np.floating)):
+            if not math.isfinite(value):
+                raise InputError(f"metadata[{key!r}] must be finite, got {value}")
+            out[key] = float(value)
+        else:
+            raise InputError(f"metadata[{key!r}] must be a number or a str, got {type(value).__name__} {value!r}")
+    return out
+
+
+def _check_kinds(kinds: Sequence[str], name: str = "kinds") -> tuple[str, ...]:
+    kinds = (kinds,) if isinstance(kinds, str) else tuple(kinds)
+    bad = [k for k in kinds if k not in EDGE_KINDS]
+    if bad:
+        raise InputError(f"{name} must be among {EDGE_KINDS}, got {bad}")
+    return kinds
+
+
+def crease_polylines(
+    mesh: Mesh,
+    kinds: str | Sequence[str] = "fold",
+    *,
+    split_angle_deg: float | None = None,
+) -> list[np.ndarray]:
+    """Chain the edges of the given kinds into polylines.
+
+    Edges are joined at vertices where exactly two of the selected edges meet; every other
+    vertex (an end, a junction of three or more) starts a new polyline. A closed loop is
+    returned with its first vertex repeated at the end.
+
+    Parameters
+    ----------
+    mesh : Mesh
+    kinds : str or sequence of str
+        Edge kinds to chain (see :data:`curvefold.geometry.mesh.EDGE_KINDS`).
+    split_angle_deg : float, optional
+        Also split where the polyline turns by more than this angle (degrees) in the
+        mesh's state. Use a small value (e.g. 1e-3) for rulings, so that rulings of the two
+        strips meeting at a crease vertex are not joined. ``None`` never splits on angle.
+
+    Returns
+    -------
+    list of (n_i,) ndarray of int
+        Vertex indices of each polyline (n_i >= 2), in a deterministic order.
+
+    Examples
+    --------
+    >>> from curvefold.geometry.mesh import Mesh
+    >>> m = Mesh(vertices_coords=np.zeros((0, 3)), edges_vertices=np.zeros((0, 2), int),
+    ...          edges_assignment=np.zeros(0, str), edges_foldAngle=np.zeros(0),
+    ...          faces_vertices=np.zeros((0, 3), int), edges_kind=np.zeros(0, str),
+    ...          faces_group=np.zeros(0, int))
+    >>> crease_polylines(m)
+    []
+    """
+    kinds = _check_kinds(kinds)
+    chosen = np.flatnonzero(np.isin(mesh.edges_kind, kinds))
+    ev = mesh.edges_vertices
+    incident: dict[int, list[int]] = {}
+    for e in chosen:
+        a, b = int(ev[e, 0]), int(ev[e, 1])
+        incident.setdefault(a, []).append(int(e))
+        incident.setdefault(b, []).append(int(e))
+
+    cos_split = None if split_angle_deg is None else math.cos(math.radians(split_angle_deg))
+    x = mesh.vertices_coords
+
+    def other(e: int, v: int) -> int:
+        a, b = int(ev[e, 0]), int(ev[e, 1])
+        return b if v == a else a
+
+    def passes_through(v: int) -> bool:
+        edges = incident[v]
+        if len(edges) != 2:
+            return False
+        if cos_split is None:
+            return True
+        d0 = x[v] - x[other(edges[0], v)]
+        d1 = x[other(edges[1], v)] - x[v]
+        n = np.linalg.norm(d0) * np.linalg.norm(d1)
+        return bool(n > 0 and np.dot(d0, d1) >= cos_split * n)
+
+    used: set[int] = set()
+    out: list[np.ndarray] = []
+
+    def walk(start: int, first_edge: int) -> np.ndarray:
+        chain = [start]
+        v, e = start, first_edge
+        while True:
+            used.add(e)
+            v = other(e, v)
+            chain.append(v)
+            if v == start or not passes_through(v):
+                break
+            nxt = [f for f in incident[v] if f not in used]
+            if not nxt:
+                break
+            e = nxt[0]
+        return np.array(chain, dtype=np.int64)
+
+    for v in sorted(incident):
+        if not passes_through(v):
+            for e in incident[v]:
+                if e not in used:
+                    out.append(walk(v, e))
+    for e in chosen:  # what is left are closed loops through pass-through vertices only
+        if int(e) not in used:
+            out.append(walk(int(ev[e, 0]), int(e)))
+    return out
+
+
+def _fmt_rows(prefix: str, rows: np.ndarray, fmt: str) -> str:
+    if len(rows) == 0:
+        return ""
+    line = prefix + " " + " ".join([fmt] * rows.shape[1]) + "\n"
+    return "".join(line % tuple(r) for r in rows.tolist())
+
+
+def write_obj(
+    path: str | os.PathLike,
+    mesh: Mesh,
+    *,
+    crease_kinds: Sequence[str] = ("fold", "seam", "boundary"),
+    unit: str = "unit",
+    metadata: Mapping | None = None,
+    name: str = "curvefold",
+) -> Path:
+    """Write one state as a Wavefront OBJ with the crease lines as polylines.
+
+    The file holds the vertices (``v``, 17 significant digits), the triangles in group
+    ``surface`` (``f``, counter-clockwise as in the mesh) and, for each kind in
+    ``crease_kinds``, a group of that name with the chained crease lines (``l``). The unit
+    and the design parameters are written as ``#`` comments.
+
+    Parameters
+    ----------
+    path : path-like
+    mesh : Mesh
+        The state to write (V vertices, F triangles).
+    crease_kinds : sequence of str
+        Edge kinds written as line groups, in this order.
+    unit : str
+        Length unit of the coordinates (recorded in a comment only).
+    metadata : mapping, optional
+        Design parameters (recorded as comments).
+    name : str
+        Object name (``o`` statement).
+
+    Returns
+    -------
+    Path
+        The written path.
+    """
+    crease_kinds = _check_kinds(crease_kinds, "crease_kinds")
+    meta = check_metadata(metadata)
+    x = np.asarray(mesh.vertices_coords, float)
+    if not np.isfinite(x).all():
+        raise InputError("mesh.vertices_coords must be finite")
+    parts = ["# written by curvefold\n", f"# unit: {unit}\n"]
+    parts += [f"# {k}: {v}\n" for k, v in meta.items()]
+    parts.append(f"o {name}\n")
+    parts.append(_fmt_rows("v", x, "%.17g"))
+    parts.append("g surface\n")
+    parts.append(_fmt_rows("f", np.asarray(mesh.faces_vertices) + 1, "%d"))
+    for kind in crease_kinds:
+        lines = crease_polylines(mesh, kind)
+        if lines:
+            parts.append(f"g {kind}\n")
+            parts += ["l " + " ".join(str(i + 1) for i in line.tolist()) + "\n" for line in lines]
+    return atomic_write(path, "".join(parts))
+
+
+def _trimesh(mesh: Mesh):
+    """``(trimesh module, Trimesh of the state)``; trimesh is imported here, lazily."""
+    try:
+        import trimesh
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError("writing STL/PLY needs trimesh: pip install 'curvefold[export]'") from exc
+    x = np.asarray(mesh.vertices_coords, float)
+    if not np.isfinite(x).all():
+        raise InputError("mesh.vertices_coords must be finite")
+    return trimesh, trimesh.Trimesh(vertices=x, faces=np.asarray(mesh.faces_vertices), process=False, validate=False)
+
+
+def write_stl(path: str | os.PathLike, mesh: Mesh) -> Path:
+    """Write one state as a binary STL (triangles only, 32-bit floats, via ``trimesh``).
+
+    Parameters
+    ----------
+    path : path-like
+    mesh : Mesh
+        The state to write.
+
+    Returns
+    -------
+    Path
+    """
+    trimesh, tm = _trimesh(mesh)
+    return atomic_write(path, trimesh.exchange.stl.export_stl(tm))
+
+
+def write_ply(path: str | os.PathLike, mesh: Mesh) -> Path:
+    """Write one state as a binary little-endian PLY (via ``trimesh``).
+
+    Vertices are 32-bit floats; each face also carries its strip index as the face
+    property ``group`` (``mesh.faces_group``).
+
+    Parameters
+    ----------
+    path : path-like
+    mesh : Mesh
+        The state to write.
+
+    Returns
+    -------
+    Path
+    """
+    trimesh, tm = _trimesh(mesh)
+    tm.face_attributes["group"] = np.asarray(mesh.faces_group, dtype=np.int32)
+    return atomic_write(path, trimesh.exchange.ply.export_ply(tm, encoding="binary", include_attributes=True))

@@ -1,0 +1,88 @@
+"""3D model files of a structure: the folded state (OBJ, STL, PLY, 3DM) and its motion (GLB)."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry.sheets import _angles, _check_structure, _design_angle, folding_motion
+from ..geometry.structure import Structure
+from . import gltf, mesh3d, rhino
+from .fold import _metadata
+from .pattern import _check_formats, _target
+
+__all__ = ["MODEL_FORMATS", "write_3d"]
+
+#: 3D formats :func:`write_3d` writes.
+MODEL_FORMATS = ("glb", "obj", "stl", "ply", "3dm")
+
+# --------------------------------------------------------------------------------------
+# 3D
+
+
+def write_3d(
+    path_stem: str | os.PathLike,
+    structure: Structure,
+    fold_angles=None,
+    *,
+    fold_angle: float | None = None,
+    degrees: bool = True,
+    formats: Sequence[str] = MODEL_FORMATS,
+    unit: str = "unit",
+    metadata: Mapping | None = None,
+    anchor: str = "start",
+    seconds_per_state: float = 1.0,
+) -> tuple[Path, ...]:
+    """Write the folded structure as 3D files; the GLB holds the folding motion.
+
+    Parameters
+    ----------
+    path_stem : path-like
+        Files are ``<stem>.glb``, ``<stem>.obj``… one per format.
+    structure : Structure
+    fold_angles : (A,) array_like, optional
+        2α of the states of the GLB animation (morph targets), in [0°, 180°); default
+        seven steps from 0° (flat) to the design angle.
+    fold_angle : float, optional, keyword-only
+        The state written to OBJ, STL, PLY and 3dm; default the design angle.
+    degrees : bool, keyword-only
+    formats : sequence of {"glb", "obj", "stl", "ply", "3dm"}, keyword-only
+    unit : str, keyword-only
+        Model unit (``"unit"``, ``"m"``, ``"mm"``…); GLB converts it to metres.
+    metadata : mapping, optional, keyword-only
+        Extra design parameters, merged over the defaults of :func:`to_fold`.
+    anchor : {"start", "middle"}, keyword-only
+    seconds_per_state : float, keyword-only
+        GLB animation time between consecutive states.
+
+    Returns
+    -------
+    tuple of Path
+        The files written, in the order of ``formats``.
+    """
+    _check_structure(structure)
+    formats = _check_formats(formats, MODEL_FORMATS)
+    design = _design_angle(structure, None, degrees)
+    static = design if fold_angle is None else float(_angles([fold_angle], degrees, "fold_angle")[0])
+    motion = np.linspace(0.0, design, 7) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
+    meta = _metadata(structure, design, metadata)
+    mesh = structure.state(static, anchor=anchor).mesh()
+    out: list[Path] = []
+    for fmt in formats:
+        target = _target(path_stem, fmt)
+        if fmt == "glb":
+            coords = folding_motion(structure, motion, anchor=anchor)
+            out.append(gltf.write_glb(target, mesh, coords=coords, angles_deg=motion, unit=unit, metadata=meta,
+                                      seconds_per_state=seconds_per_state))
+        elif fmt == "obj":
+            out.append(mesh3d.write_obj(target, mesh, unit=unit, metadata={**meta, "fold_angle_deg": static}))
+        elif fmt == "stl":
+            out.append(mesh3d.write_stl(target, mesh))
+        elif fmt == "ply":
+            out.append(mesh3d.write_ply(target, mesh))
+        else:
+            out.append(rhino.write_3dm(target, mesh, unit=unit, metadata={**meta, "fold_angle_deg": static}))
+    return tuple(out)

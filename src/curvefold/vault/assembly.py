@@ -1,0 +1,335 @@
+"""Composite deployable vaults: tubed arches stacked along the lattice diagonal.
+
+The arch curve has constant curvature κ₀ and harmonic torsion τ = a κ₀ sin(2π s/s₀) at the
+design fold angle, with κ₀ s₀ from Eq. (20) (:mod:`curvefold.vault.arch`). Tubes are the cells
+[j, j+1]² of its lattice, so curve 3 of one tube is curve 1 of the next. At the design
+angle the vault stands on the ground plane z = 0 (z up): every end section lies on it.
+
+Coordinates: z is up, the span (from one foot of curve 1 to the other) runs along +y,
+and the tubes stack roughly along x. The paper's section feature lines then lie in the
+xy plane (at the feet) and in the zx plane (at the apex).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from functools import cached_property
+from typing import Literal
+
+import numpy as np
+
+from ..geometry.crease import Crease, half_angle
+from ..geometry.curve import SpaceCurve, check_samples
+from ..geometry.lattice import Lattice
+from ..geometry.structure import Structure
+from ..kernel.errors import InputError, RegressionError
+from .arch import ArchRoot, proportion_change, solve_symmetric_arch
+
+__all__ = ["VaultDesign", "Vault", "max_tubes", "MAX_TUBES_SEARCH", "DEFAULT_TUBES_CAP"]
+
+#: Stacks are searched up to this many tubes; a longer valid stack reports this number.
+MAX_TUBES_SEARCH = 10_000
+#: Tubes built when none are asked for and the stack could be longer.
+DEFAULT_TUBES_CAP = 24
+
+
+@dataclass(frozen=True)
+class VaultDesign:
+    """Design parameters of a vault.
+
+    Attributes
+    ----------
+    a : float
+        Torsion amplitude, τ = a κ₀ sin(2π s/s₀); 0 ≤ a < 1.2707.
+    p_xy : float
+        Section proportion at the feet, w_R(0) / w_L(0).
+    width : float
+        Width scale w_L(0)·κ₀ (dimensionless).
+    radius : float
+        1/κ₀ in model units.
+    fold_angle : float
+        Design fold angle 2α in degrees, at which the vault stands on the ground.
+    tubes : int or None
+        Number of tubes along the diagonal; None takes the maximum before regression,
+        at most :data:`DEFAULT_TUBES_CAP`.
+    layers : int
+        Parallel diagonals (a band of cells (j, j + k), k < layers).
+    direction : {1, -1}
+        Stack in +u +v or −u −v from the base tube.
+    samples : int
+        Samples along each crease (odd, so that the apex is a sample).
+    """
+
+    a: float = 0.3
+    p_xy: float = 0.75
+    width: float = 0.08
+    radius: float = 1.0
+    fold_angle: float = 90.0
+    tubes: int | None = None
+    layers: int = 1
+    direction: int = 1
+    samples: int = 401
+
+    def __post_init__(self) -> None:
+        # (name, smallest allowed value, whether it may equal it, largest allowed value)
+        for name, low, closed, high in (("a", 0.0, True, np.inf), ("p_xy", 0.0, False, 100.0), ("width", 0.0, False, 10.0), ("radius", 0.0, False, np.inf)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.number)) or not np.isfinite(v):
+                raise InputError(f"{name} must be a finite number, got {v!r}")
+            if v < low or (v == low and not closed) or v > high:
+                rng = f"{'[' if closed else '('}{low:g}, {'∞)' if np.isinf(high) else f'{high:g}]'}"
+                raise InputError(f"{name} must be in {rng}, got {v!r}")
+        half_angle(self.fold_angle)
+        check_samples(self.samples)
+        if self.samples % 2 == 0 or self.samples < 21:
+            raise InputError(f"samples must be odd and ≥ 21 (the apex is the middle sample), got {self.samples}")
+        if self.tubes is not None and (isinstance(self.tubes, bool) or not isinstance(self.tubes, (int, np.integer)) or self.tubes < 1):
+            raise InputError(f"tubes must be an integer ≥ 1 (or None for the maximum), got {self.tubes!r}")
+        if isinstance(self.layers, bool) or not isinstance(self.layers, (int, np.integer)) or not 1 <= self.layers <= 50:
+            raise InputError(f"layers must be an integer in [1, 50], got {self.layers!r}")
+        if self.direction not in (1, -1):
+            raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
+
+
+def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SEARCH) -> int:
+    """Largest n such that the tubes [j, j+1]², j = 0 … n−1 (stacked in ±(u, v)) are free of regression.
+
+    All four corner creases of every tube must be valid lattice curves (Eq. 18). The valid
+    set is convex, and every corner of the stack is a convex combination of corners of its
+    first and last tubes, so a stack is valid exactly when those two tubes are: validity
+    is monotone in n and a bisection finds the largest n. Returns 0 when even the base
+    tube regresses, and ``limit`` when the stack is valid that far.
+    """
+    unit = np.array([[0, 0], [0, 1], [1, 0], [1, 1]])
+
+    def tube_ok(j: int) -> bool:
+        return bool(lattice.domain.contains(direction * (j + unit) - (direction < 0)).all())
+
+    if not tube_ok(0):
+        return 0
+    if tube_ok(limit - 1):
+        return limit
+    lo, hi = 0, limit - 1  # tube lo is valid, tube hi is not
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if tube_ok(mid) else (lo, mid)
+    return hi
+
+
+@dataclass(frozen=True, eq=False)
+class Vault:
+    """A vault built from its design: arch, lattice, structure and placement.
+
+    Build it with :meth:`from_design`.
+    """
+
+    design: VaultDesign
+    arch: ArchRoot
+    lattice: Lattice
+    structure: Structure
+    max_tubes: int
+    _ground: dict = field(repr=False, default_factory=dict)
+
+    @classmethod
+    def from_design(cls, design: VaultDesign | None = None, **overrides) -> Vault:
+        """Solve the arch, place it on the ground and stack the tubes.
+
+        Raises
+        ------
+        ConvergenceError
+            If the arch family has no standing arch for ``a``.
+        RegressionError
+            If the base tube or the requested number of tubes passes regression; the
+            message names the maximum number of tubes.
+        """
+        from dataclasses import replace
+
+        design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
+        arch = solve_symmetric_arch(design.a)
+        k0 = 1.0 / design.radius
+        s0 = arch.kappa0_s0 / k0
+        # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
+        frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
+        a = design.a
+
+        def tau(s):
+            return a * k0 * np.sin(2 * np.pi * s / s0)
+
+        curve = SpaceCurve.from_curvature(k0, tau, s0, samples=design.samples, frame=frame)
+        # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
+        chord = curve.points[-1] - curve.points[0]
+        phi = np.arctan2(chord[0], chord[1])
+        c, s = np.cos(phi), np.sin(phi)
+        Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        points, frames = curve.points @ Rz.T, Rz @ curve.frames
+        points.flags.writeable = frames.flags.writeable = False
+        curve = SpaceCurve(curve.s, points, frames, curve.kappa, curve.tau)
+        crease = Crease.from_curve(curve, fold_angle=design.fold_angle)
+        w_left = design.width / k0
+        try:
+            lattice = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
+        except RegressionError as err:
+            raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}") from None
+        n_max = max_tubes(lattice, direction=design.direction)
+        tubes = design.tubes if design.tubes is not None else min(n_max, DEFAULT_TUBES_CAP)
+        if tubes > n_max:
+            raise RegressionError(
+                f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = {design.p_xy:g}, "
+                f"width = {design.width:g}), got {tubes}"
+            )
+        structure = Structure.diagonal(lattice, tubes, direction=design.direction, layers=design.layers)
+        return cls(replace(design, tubes=tubes), arch, lattice, structure, n_max)
+
+    # -- derived quantities -----------------------------------------------------------------
+    @property
+    def kappa0_s0(self) -> float:
+        """κ₀ s₀, the solution of Eq. (20)."""
+        return self.arch.kappa0_s0
+
+    @property
+    def proportion_change(self) -> float:
+        """w_R(s₀/2) / w_R(0), predicted in closed form: exp(a κ₀ s₀ cot α / π)."""
+        return proportion_change(self.design.a, self.kappa0_s0, fold_angle=self.design.fold_angle)
+
+    @property
+    def p_xz(self) -> float:
+        """Section proportion at the apex, w_R(s₀/2) / w_L(s₀/2) = p_xy × proportion change²."""
+        return self.design.p_xy * self.proportion_change**2
+
+    @cached_property
+    def vertices(self) -> np.ndarray:
+        """Every lattice curve of the vault at the design angle, shape (M, n, 3)."""
+        return self.structure.state().vertices
+
+    @property
+    def apex_index(self) -> int:
+        """Index of the middle sample (t = ½)."""
+        return (len(self.lattice.s) - 1) // 2
+
+    def measured_proportions(self) -> tuple[float, float]:
+        """(w_R/w_L at t = 0, w_R(½)/w_R(0)) measured between parallel tangent lines of the built creases."""
+        X = self.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
+        T = self.lattice.crease.curve.tangent
+        widths = []
+        for k in (1, 2):
+            d = X[k] - X[0]
+            widths.append(np.linalg.norm(d - np.einsum("ij,ij->i", d, T)[:, None] * T, axis=1))
+        wl, wr = widths
+        m = self.apex_index
+        return float(wr[0] / wl[0]), float(wr[m] / wr[0])
+
+    def section_slopes(self) -> tuple[float, float]:
+        """Slopes of the section feature lines, in degrees.
+
+        The feature line joins the corners (j, j) of the stacked tubes at one t. At the feet
+        (t = 0) it lies in the ground (xy) plane: its angle from the x axis toward y. At the
+        apex (t = ½) it lies in the zx plane: its angle from the x axis toward z. Lines have
+        no direction, so angles are in [−90°, 90°).
+        """
+        diag = np.array([[0, 0], [1, 1]], float) * self.design.direction
+        X = self.lattice.points(diag)
+        d0 = X[1, 0] - X[0, 0]
+        dm = X[1, self.apex_index] - X[0, self.apex_index]
+
+        def line_angle(dx: float, dy: float) -> float:  # a line's angle, in [−90°, 90°)
+            return float((np.degrees(np.arctan2(dy, dx)) + 90.0) % 180.0 - 90.0)
+
+        return line_angle(d0[0], d0[1]), line_angle(dm[0], dm[2])
+
+    def ground_error(self) -> float:
+        """Largest |z| of the end sections (t = 0 and t = 1) of every crease at the design angle."""
+        V = self.vertices
+        return float(np.abs(V[:, [0, -1], 2]).max())
+
+    def summary(self) -> dict:
+        """Design parameters and derived quantities as a JSON-ready dict (model units)."""
+        V = self.vertices
+        lo, hi = V.reshape(-1, 3).min(axis=0), V.reshape(-1, 3).max(axis=0)
+        xy_slope, zx_slope = self.section_slopes()
+        p_xy_measured, change_measured = self.measured_proportions()
+        chord = self.lattice.crease.curve.points[-1] - self.lattice.crease.curve.points[0]
+        margin = float(self.lattice.domain.margin(self.structure.curves_uv.astype(float)).min())
+        uv = self.structure.curves_uv
+        return {
+            "design": asdict(self.design),
+            "kappa0_s0": self.kappa0_s0,
+            "s0": self.kappa0_s0 * self.design.radius,
+            "proportion_change": self.proportion_change,
+            "proportion_change_measured": change_measured,
+            "p_xy_measured": p_xy_measured,
+            "p_xz": self.p_xz,
+            "tubes": int(self.design.tubes),
+            "max_tubes": int(self.max_tubes),
+            "span": float(np.linalg.norm(chord)),
+            "rise": float(hi[2]),
+            "footprint": [float(hi[0] - lo[0]), float(hi[1] - lo[1])],
+            "bounding_box": [lo.tolist(), hi.tolist()],
+            "slope_xy_deg": xy_slope,
+            "slope_zx_deg": zx_slope,
+            "regression_margin": margin,
+            "ground_error": self.ground_error(),
+            "bounding_curves": {
+                "first": uv[np.argmin(uv.sum(axis=1))].tolist(),
+                "last": uv[np.argmax(uv.sum(axis=1))].tolist(),
+                "left_side": uv[np.argmax(uv[:, 0] - uv[:, 1])].tolist(),
+                "right_side": uv[np.argmax(uv[:, 1] - uv[:, 0])].tolist(),
+            },
+        }
+
+    # -- folding motion -----------------------------------------------------------------------
+    def motion(self, fold_angles: np.ndarray, *, anchor: Literal["base", "apex"] = "base") -> np.ndarray:
+        """The vault at many fold angles, shape (A, M, n, 3).
+
+        Parameters
+        ----------
+        fold_angles : (A,) array_like
+            2α in degrees, in [0°, 180°).
+        anchor : {"base", "apex"}, keyword-only
+            Hold curve 1's frame at its first foot (the base) or at the apex (a motion
+            symmetric about the apex).
+        """
+        if anchor not in ("base", "apex"):
+            raise InputError(f"anchor must be 'base' or 'apex', got {anchor!r}")
+        return self.lattice.fold_points(self.structure.curves_uv, fold_angles, anchor="start" if anchor == "base" else "middle")
+
+    def lift_off(self, fold_angles: np.ndarray, *, anchor: Literal["base", "apex"] = "base") -> np.ndarray:
+        """How far the end sections leave the ground plane, shape (A, 2): [feet at t = 0, at t = 1].
+
+        The largest |z| over the end points of every crease; zero at the design angle.
+        """
+        V = self.motion(fold_angles, anchor=anchor)
+        return np.abs(V[:, :, [0, -1], 2]).max(axis=1)
+
+    def first_contact(self, *, step: float = 1.0, max_angle: float = 179.0, samples: int = 201) -> float | None:
+        """First fold angle past the design angle where distant parts of the vault touch.
+
+        Rigid folding never reaches regression (it is intrinsic), but past the design angle
+        the arch curls (κ = κ_2D / cos α grows) until parts far apart along t meet. Points of
+        all creases, resampled to ``samples`` along t, are tested with a k-d tree: a contact
+        is a pair closer than half the smallest width whose t differ by more than four
+        widths' worth of arc length (so neighbours along a strip do not count).
+
+        Returns
+        -------
+        float or None
+            2α in degrees of the first contact on a grid of ``step`` degrees, or None if
+            none occurs up to ``max_angle``.
+        """
+        from scipy.spatial import cKDTree
+
+        lat = self.lattice
+        idx = np.linspace(0, len(lat.s) - 1, samples).round().astype(int)
+        w_min = float(min(lat.width_left.min(), lat.width_right.min()))
+        dt_min = 4 * max(float(lat.width_left.max()), float(lat.width_right.max())) / lat.crease.curve.length
+        t = lat.t[idx]
+        angles = np.arange(self.design.fold_angle + step, max_angle + 1e-9, step)
+        for chunk in range(0, len(angles), 16):
+            V = self.motion(angles[chunk : chunk + 16])[:, :, idx]  # (A, M, samples, 3)
+            for k, frame in enumerate(V):
+                pts = frame.reshape(-1, 3)
+                pairs = cKDTree(pts).query_pairs(0.5 * w_min, output_type="ndarray")
+                if len(pairs):
+                    ti, tj = t[pairs[:, 0] % samples], t[pairs[:, 1] % samples]
+                    if np.any(np.abs(ti - tj) > dt_min):
+                        return float(angles[chunk + k])
+        return None
