@@ -9,10 +9,10 @@ import pytest
 from numpy.testing import assert_array_equal
 
 from curvefold import InputError
+from curvefold.vault import Vault, VaultDesign
 from curvefold.vault import atlas as atlas_module
 from curvefold.vault.arch import A_MAX
 from curvefold.vault.atlas import FIELDS, METRICS, Atlas, run_atlas
-from curvefold.vault import Vault, VaultDesign
 
 pytest.importorskip("matplotlib")
 
@@ -191,9 +191,8 @@ def test_files_are_replaced_atomically(serial, tmp_path):
 def test_figure_renders(serial, tmp_path):
     from PIL import Image
 
-    from curvefold.figures.plots import save_figure
-
     from curvefold.figures.atlas import atlas_figure
+    from curvefold.figures.plots import save_figure
 
     fig = atlas_figure(serial, cell_size=1.2)
     texts = [t.get_text() for t in fig.axes[0].texts]

@@ -5,8 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, RegressionError, SpaceCurve
-from curvefold.geometry.crease import QUADRANTS, ruling_vectors
 from curvefold.analysis.measure import derivative, developability_residual
+from curvefold.geometry.crease import QUADRANTS, ruling_vectors
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.4 * np.cos(1.5 * s)  # noqa: E731

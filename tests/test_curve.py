@@ -6,7 +6,7 @@ from numpy.testing import assert_allclose
 
 from curvefold import InputError, SpaceCurve
 from curvefold.geometry.curve import MAX_SAMPLES
-from curvefold.kernel.lie import exp_dual, magnus6, prefix_dual, dual_to_motion
+from curvefold.kernel.lie import dual_to_motion, exp_dual, magnus6, prefix_dual
 
 KAPPA = lambda s: 1.0 + 0.5 * np.sin(s)  # noqa: E731  manufactured smooth curvature
 TAU = lambda s: 0.3 * np.cos(2.0 * s)  # noqa: E731

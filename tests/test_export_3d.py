@@ -9,11 +9,10 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from _meshes import oblique_motion, strip_motion
-from curvefold.kernel.errors import InputError
-from curvefold.io import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
-from curvefold.geometry.mesh import Mesh
 from _node import run_node
-
+from curvefold.geometry.mesh import Mesh
+from curvefold.io import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
+from curvefold.kernel.errors import InputError
 
 
 @pytest.fixture

@@ -11,11 +11,10 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from _meshes import measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
-from curvefold.kernel.errors import InputError
-from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
-from curvefold.geometry.mesh import Mesh
 from _node import run_node
-
+from curvefold.geometry.mesh import Mesh
+from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
+from curvefold.kernel.errors import InputError
 
 
 def _write_tube(path: Path, **kw) -> tuple:

@@ -22,7 +22,8 @@ from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
-from curvefold.kernel.errors import InputError
+from _sheets import annular_sheet, tube_sheets, vault_sheets
+from curvefold.geometry.mesh import Mesh
 from curvefold.geometry.sheets import PatternSheet
 from curvefold.io import layout as layout_module
 from curvefold.io import pattern
@@ -35,10 +36,7 @@ from curvefold.io.pattern import (
     write_pdf,
     write_svg,
 )
-from curvefold.geometry.mesh import Mesh
-
-from _sheets import annular_sheet, tube_sheets, vault_sheets
-
+from curvefold.kernel.errors import InputError
 
 NS = {
     "svg": "http://www.w3.org/2000/svg",

@@ -25,7 +25,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
+from _node import run_node
 from curvefold import Crease, CurvefoldError, InputError, Lattice, SpaceCurve, Structure
+from curvefold.geometry.mesh import fold_angles
 from curvefold.geometry.sheets import (
     Bond,
     PatternSheet,
@@ -46,9 +48,6 @@ from curvefold.io import (
     write_sheet_fold,
     write_structure_fold,
 )
-from curvefold.geometry.mesh import fold_angles
-from _node import run_node
-
 
 
 def lattice(samples=101, widths=(0.2, 0.15), fold_angle=90.0):
@@ -172,7 +171,7 @@ def test_edge_kinds_and_mountain_valley(tube):
     n = len(tube.lattice.s)
     maps = sheet_vertices(tube)
     design = tube.state()
-    alpha2 = np.degrees(tube.lattice.crease.fold_angle)
+    alpha2 = tube.lattice.crease.fold_angle
     theta = turning(design.vertices)
     for s, (p, idx) in enumerate(zip(sheets(tube), maps)):
         m = p.mesh

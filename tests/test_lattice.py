@@ -4,8 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from curvefold import Crease, InputError, Lattice, RegressionError, SpaceCurve
-from curvefold import measure
+from curvefold import Crease, InputError, Lattice, RegressionError, SpaceCurve, measure
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.3 * np.cos(1.5 * s)  # noqa: E731

@@ -226,7 +226,7 @@ def test_motion_gif(vault, block, tmp_path):
         assert len(np.unique(np.asarray(im.convert("RGB")).reshape(-1, 3), axis=0)) > 10
     plots.write_motion_gif(block, tmp_path / "block.gif", angles=(20.0, 60.0), size=(120, 100))
     with pytest.raises(InputError, match="anchor"):
-        plots.write_motion_gif(vault, tmp_path / "x.gif", anchor="middle")
+        plots.write_motion_gif(vault, tmp_path / "x.gif", anchor="apex")
 
 
 # -- saving -----------------------------------------------------------------------------------------

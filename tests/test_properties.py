@@ -13,9 +13,8 @@ import numpy as np
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from curvefold import Crease, Lattice, SpaceCurve, Structure
+from curvefold import Crease, Lattice, SpaceCurve, Structure, measure
 from curvefold.geometry.lattice import log_width_ratio
-from curvefold import measure
 
 SAMPLES, LENGTH = 401, 2.0
 

@@ -12,7 +12,7 @@ from .geometry.curve import SpaceCurve
 from .geometry.lattice import Lattice, RegressionDomain
 from .geometry.mesh import Mesh
 from .geometry.structure import State, Structure
-from .kernel.errors import ConvergenceError, CurvefoldError, InputError, RegressionError
+from .kernel.errors import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError
 
 __version__ = "0.1.0"
 
@@ -21,6 +21,7 @@ __all__ = [
     "InputError",
     "RegressionError",
     "ConvergenceError",
+    "InternalError",
     "SpaceCurve",
     "Crease",
     "Lattice",

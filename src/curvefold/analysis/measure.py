@@ -214,7 +214,7 @@ def chained_tube(lattice: Lattice) -> np.ndarray:
     L = crease.curve.length
     t = lattice.t
     s_nodes = gauss_nodes(t) * L
-    a = 0.5 * crease.fold_angle
+    a = crease.alpha.constant
     k2 = lattice.kappa_2d(s_nodes)
     beta = crease.beta_left(s_nodes)
     dbeta = crease.beta_left.derivative(s_nodes)
@@ -272,9 +272,9 @@ def _cumulative_nodes(t: np.ndarray, rate_nodes: np.ndarray) -> np.ndarray:
 def fold_angle_error(mesh: Mesh, structure: Structure, fold_angle: float) -> float:
     """Largest |measured − expected| fold angle (degrees) on the fold and seam edges.
 
-    Expected: 2α on the folds (creases 1, 3) and 180° − 2α on the seams (2, 4), mountains
-    seen from outside the tubes.
+    Expected for a fold angle 2α (degrees): 2α on the folds (creases 1, 3) and 180° − 2α
+    on the seams (2, 4), mountains seen from outside the tubes.
     """
-    expect = np.where(mesh.edges_kind == "fold", -np.degrees(fold_angle), -(180.0 - np.degrees(fold_angle)))
+    expect = np.where(mesh.edges_kind == "fold", -fold_angle, -(180.0 - fold_angle))
     sel = np.isin(mesh.edges_kind, ("fold", "seam"))
     return float(np.abs(mesh.edges_foldAngle[sel] - expect[sel]).max())

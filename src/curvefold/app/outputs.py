@@ -90,7 +90,7 @@ def _default_title(built: Built) -> str:
         d = built.vault.design
         return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"
     if built.structure is not None:
-        return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {np.degrees(built.structure.lattice.crease.fold_angle):g}°"
+        return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {built.structure.lattice.crease.fold_angle:g}°"
     return f"single curved fold, length {built.crease.curve.length:g}"
 
 

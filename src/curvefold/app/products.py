@@ -40,7 +40,7 @@ def jobs(built: Built, formats: set[str]) -> list[tuple[str, Job]]:
     out: list[tuple[str, Job]] = []
     name = built.design.kind
     structure = built.structure
-    design_angle = None if structure is None else float(np.degrees(structure.lattice.crease.fold_angle))
+    design_angle = None if structure is None else structure.lattice.crease.fold_angle
     angles = None if design_angle is None else np.linspace(0.0, design_angle, MOTION_STEPS)
     meta = _metadata(built)
     unit = "unit"  # model units; fabrication scale applies to the crease patterns

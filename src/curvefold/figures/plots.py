@@ -496,9 +496,9 @@ def _structure_of(obj: Any) -> tuple[Structure, Lattice, float]:
     if isinstance(obj, Vault):
         return obj.structure, obj.lattice, float(obj.design.fold_angle)
     if isinstance(obj, State):
-        return obj.structure, obj.lattice, float(np.degrees(obj.fold_angle))
+        return obj.structure, obj.lattice, float(obj.fold_angle)
     if isinstance(obj, Structure):
-        return obj, obj.lattice, float(np.degrees(obj.lattice.crease.fold_angle))
+        return obj, obj.lattice, float(obj.lattice.crease.fold_angle)
     raise InputError(f"expected a Vault, Structure or State, got {type(obj).__name__}")
 
 
@@ -613,7 +613,7 @@ def plot_vault(
     angle: float | None = None,
     ax: Axes | None = None,
     view: View = View(),
-    anchor: str = "base",
+    anchor: str = "start",
     segments: int = 96,
     max_tubes: int = 200,
 ) -> Figure:
@@ -628,7 +628,7 @@ def plot_vault(
         Draw into this (2D) axes instead of a new figure; its figure is returned.
     view : View, keyword-only
         Orthographic view direction.
-    anchor : {"base", "apex"}, keyword-only
+    anchor : {"start", "middle"}, keyword-only
         Which frame stays fixed when ``angle`` differs from the design angle.
     segments : int, keyword-only
         Segments drawn along each crease (the crease is subsampled; ends and apex kept).
@@ -672,7 +672,7 @@ def plot_motion_strip(
     vault: Vault,
     angles: Sequence[float] = (0.0, 30.0, 60.0, 90.0),
     *,
-    anchor: str = "base",
+    anchor: str = "start",
     view: View = View(),
     segments: int = 64,
     max_tubes: int = 100,
@@ -687,7 +687,7 @@ def plot_motion_strip(
     vault : Vault
     angles : sequence of float
         2α in degrees, each in [0°, 180°).
-    anchor : {"base", "apex"}, keyword-only
+    anchor : {"start", "middle"}, keyword-only
         Hold curve 1's frame at its first foot or at the apex.
     view : View, keyword-only
     segments : int, keyword-only
@@ -767,7 +767,7 @@ def plot_structure(
     k = len(structure.cells)
     what = "Tube" if k == 1 else f"Cellular block of {k} cells"
     shown = "" if len(cells) == k else f" ({len(cells)} drawn)"
-    ax.set_title(f"{what}{shown}, 2α = {np.degrees(state.fold_angle):.4g}°", fontsize=10)
+    ax.set_title(f"{what}{shown}, 2α = {state.fold_angle:.4g}°", fontsize=10)
     _legend_creases(ax, kinds, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
     return fig
 
@@ -855,7 +855,7 @@ def write_motion_gif(
     path: str | os.PathLike,
     *,
     angles: Sequence[float] | None = None,
-    anchor: str = "base",
+    anchor: str = "start",
     view: View = View(),
     size: tuple[int, int] = (640, 480),
     frame_seconds: float = 0.12,
@@ -872,7 +872,7 @@ def write_motion_gif(
     angles : sequence of float, optional, keyword-only
         2α of the frames in degrees; default 16 steps from 0° to the design angle. The
         animation plays them forward, then backward, and loops.
-    anchor : {"base", "apex"}, keyword-only
+    anchor : {"start", "middle"}, keyword-only
         Which frame of curve 1 stays fixed: at its start (t = 0) or at its middle sample.
     view : View, keyword-only
     size : (int, int), keyword-only
@@ -893,8 +893,8 @@ def write_motion_gif(
     from ..vault.assembly import Vault
 
     structure, lattice, own = _structure_of(obj)
-    if anchor not in ("base", "apex"):
-        raise InputError(f"anchor must be 'base' or 'apex', got {anchor!r}")
+    if anchor not in ("start", "middle"):
+        raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
     w_px, h_px = (int(v) for v in size)
     if not (64 <= w_px <= 4096 and 64 <= h_px <= 4096):
         raise InputError(f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}")
@@ -903,7 +903,7 @@ def write_motion_gif(
     steps = np.linspace(0.0, own, 16) if angles is None else np.atleast_1d(np.asarray(angles, float))
     if steps.ndim != 1 or steps.size == 0:
         raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
-    motion = lattice.fold_points(structure.curves_uv, steps, anchor="start" if anchor == "base" else "middle")
+    motion = lattice.fold_points(structure.curves_uv, steps, anchor=anchor)
     V, cells, kinds = drawable(structure, motion, segments=segments, max_cells=max_cells)
     is_vault = isinstance(obj, Vault)
     flat = V.reshape(-1, 3)

@@ -256,8 +256,8 @@ class Crease:
 
     @cached_property
     def fold_angle(self) -> float | None:
-        """The constant fold angle 2α in radians, or None where α varies along the crease."""
-        return None if self.alpha.constant is None else 2.0 * self.alpha.constant
+        """The constant fold angle 2α in degrees, or None where α varies along the crease."""
+        return None if self.alpha.constant is None else float(np.degrees(2.0 * self.alpha.constant))
 
     @cached_property
     def kappa_2d(self) -> np.ndarray:

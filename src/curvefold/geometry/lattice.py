@@ -176,12 +176,12 @@ class Lattice:
 
     def section_area(self) -> np.ndarray:
         """Area of the section parallelogram, w_L w_R sin 2α, shape (n,) (constant in t)."""
-        return self.width_left * self.width_right * np.sin(self.crease.fold_angle)
+        return self.width_left * self.width_right * np.sin(2 * self.crease.alpha.constant)
 
     # -- geometry at this fold angle -------------------------------------------------------
     def points(self, uv: np.ndarray) -> np.ndarray:
         """Lattice curves x(t; u, v) (Eq. 11) for uv (..., 2); shape (..., n, 3)."""
-        rl, rr = ruling_vectors(self.crease.curve.frames, 0.5 * self.crease.fold_angle, self.beta, self.beta)
+        rl, rr = ruling_vectors(self.crease.curve.frames, self.crease.alpha.constant, self.beta, self.beta)
         ll, lr = self.ruling_lengths
         return lattice_points(self.crease.curve.points, ll[:, None] * rl, lr[:, None] * rr, uv)
 
@@ -206,7 +206,7 @@ class Lattice:
     @cached_property
     def kappa_2d(self) -> ScalarFunction:
         """κ_2D(s) of curve 1, fold-invariant."""
-        return self.crease.curve.kappa.scaled(np.cos(0.5 * self.crease.fold_angle))
+        return self.crease.curve.kappa.scaled(np.cos(self.crease.alpha.constant))
 
     @cached_property
     def _intrinsic_nodes(self) -> tuple[np.ndarray, np.ndarray]:

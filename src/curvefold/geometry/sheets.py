@@ -74,7 +74,7 @@ def _check_structure(structure: Structure) -> Structure:
 def _design_angle(structure: Structure, fold_angle: float | None, degrees: bool) -> float:
     """The fold angle 2α in degrees: the given one (validated, > 0) or the lattice's own."""
     if fold_angle is None:
-        return math.degrees(structure.lattice.crease.fold_angle)
+        return structure.lattice.crease.fold_angle
     half_angle(fold_angle, degrees=degrees)
     return float(fold_angle) if degrees else math.degrees(fold_angle)
 

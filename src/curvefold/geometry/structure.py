@@ -176,7 +176,7 @@ class State:
 
     @property
     def fold_angle(self) -> float:
-        """2α in radians."""
+        """2α in degrees."""
         return self.lattice.crease.fold_angle
 
     def mesh(self) -> Mesh:

@@ -277,22 +277,20 @@ class Vault:
         }
 
     # -- folding motion -----------------------------------------------------------------------
-    def motion(self, fold_angles: np.ndarray, *, anchor: Literal["base", "apex"] = "base") -> np.ndarray:
+    def motion(self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start") -> np.ndarray:
         """The vault at many fold angles, shape (A, M, n, 3).
 
         Parameters
         ----------
         fold_angles : (A,) array_like
             2α in degrees, in [0°, 180°).
-        anchor : {"base", "apex"}, keyword-only
-            Hold curve 1's frame at its first foot (the base) or at the apex (a motion
-            symmetric about the apex).
+        anchor : {"start", "middle"}, keyword-only
+            Hold curve 1's frame at its start (the first foot) or at its middle (the apex:
+            a motion symmetric about it).
         """
-        if anchor not in ("base", "apex"):
-            raise InputError(f"anchor must be 'base' or 'apex', got {anchor!r}")
-        return self.lattice.fold_points(self.structure.curves_uv, fold_angles, anchor="start" if anchor == "base" else "middle")
+        return self.lattice.fold_points(self.structure.curves_uv, fold_angles, anchor=anchor)
 
-    def lift_off(self, fold_angles: np.ndarray, *, anchor: Literal["base", "apex"] = "base") -> np.ndarray:
+    def lift_off(self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start") -> np.ndarray:
         """How far the end sections leave the ground plane, shape (A, 2): [feet at t = 0, at t = 1].
 
         The largest |z| over the end points of every crease; zero at the design angle.
