@@ -121,7 +121,7 @@ def test_erratum_quadrants_follow_the_construction_order(tube):
     angles π − 2α and 2α measured on the built tube.
     """
     from curvefold.geometry.crease import QUADRANTS
-    from curvefold.geometry.structure import CORNER_KINDS
+    from curvefold.geometry.topology import CORNER_KINDS
 
     corners = [(0, 0), (0, 1), (1, 1), (1, 0)]
     lat = tube.lattice

@@ -25,17 +25,14 @@ import numpy as np
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
 from .curve import SpaceCurve, check_samples
+from .topology import quadrant_kind, quadrant_name
 
 __all__ = ["Crease", "QUADRANTS", "half_angle"]
 
 #: The four surfaces a crease and its rulings define, by the signs of the ruling
-#: directions used on the left and right side: (sign_L, sign_R, kind).
-QUADRANTS = {
-    "L+R+": (1, 1, "fold"),
-    "L-R+": (-1, 1, "seam"),
-    "L-R-": (-1, -1, "fold"),
-    "L+R-": (1, -1, "seam"),
-}
+#: directions used on the left and right side: (sign_L, sign_R, kind), the kind by
+#: :func:`curvefold.geometry.topology.quadrant_kind`.
+QUADRANTS = {quadrant_name(sl, sr): (sl, sr, quadrant_kind(sl, sr)) for sl, sr in ((1, 1), (-1, 1), (-1, -1), (1, -1))}
 
 
 def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_angle", allow_flat: bool = False) -> float:

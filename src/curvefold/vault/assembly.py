@@ -22,6 +22,7 @@ from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, check_samples
 from ..geometry.lattice import Lattice
 from ..geometry.structure import Structure
+from ..geometry.topology import CORNERS
 from ..kernel.errors import InputError, RegressionError
 from .arch import ArchRoot, proportion_change, solve_symmetric_arch
 
@@ -100,10 +101,8 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     is monotone in n and a bisection finds the largest n. Returns 0 when even the base
     tube regresses, and ``limit`` when the stack is valid that far.
     """
-    unit = np.array([[0, 0], [0, 1], [1, 0], [1, 1]])
-
     def tube_ok(j: int) -> bool:
-        return bool(lattice.domain.contains(direction * (j + unit) - (direction < 0)).all())
+        return bool(lattice.domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
 
     if not tube_ok(0):
         return 0
