@@ -17,7 +17,7 @@ from ..geometry.crease import Crease
 from ..geometry.curve import gauss_nodes, integrate_frenet
 from ..geometry.lattice import Lattice
 from ..geometry.mesh import Mesh
-from ..geometry.structure import State, Structure
+from ..geometry.structure import State
 from ..kernel.lie import GAUSS3_NODES, GAUSS3_WEIGHTS, cross
 
 __all__ = [
@@ -267,7 +267,7 @@ def _cumulative_nodes(t: np.ndarray, rate_nodes: np.ndarray) -> np.ndarray:
     return before[:, None] + h[:, None] * (rate_nodes @ W.T)
 
 
-def fold_angle_error(mesh: Mesh, structure: Structure, fold_angle: float) -> float:
+def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
     """Largest |measured − expected| fold angle (degrees) on the fold and seam edges.
 
     Expected for a fold angle 2α (degrees): 2α on the folds (creases 1, 3) and 180° − 2α

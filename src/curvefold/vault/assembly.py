@@ -12,7 +12,7 @@ xy plane (at the feet) and in the zx plane (at the apex).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from functools import cached_property
 from typing import Literal
 
@@ -127,7 +127,6 @@ class Vault:
     lattice: Lattice
     structure: Structure
     max_tubes: int
-    _ground: dict = field(repr=False, default_factory=dict)
 
     @classmethod
     def from_design(cls, design: VaultDesign | None = None, **overrides) -> Vault:
