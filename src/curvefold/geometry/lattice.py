@@ -172,7 +172,7 @@ class Pattern(FrozenArrays):
         if crease.fold_angle is None:
             raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
         s = crease.s
-        log_ratio = readonly(log_width_ratio(crease))
+        log_ratio = log_width_ratio(crease)
         widths = []
         for name, w, sign in (("width_left", width_left, -1.0), ("width_right", width_right, 1.0)):
             arr = np.asarray(w, dtype=float)
@@ -182,13 +182,13 @@ class Pattern(FrozenArrays):
                 arr = float(arr) * np.exp(sign * log_ratio)
             elif arr.shape != s.shape or not (np.isfinite(arr) & (arr > 0)).all():
                 raise InputError(f"{name} must be a number or {len(s)} finite values > 0 (one per sample), got shape {arr.shape}")
-            widths.append(readonly(np.array(arr)))
+            widths.append(arr)
         wl, wr = widths
         rates = crease.regression_rates()
         for side, rate in zip(("left", "right"), rates):
             check_finite(rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s)
         beta = crease.beta_left
-        beta_samples = readonly(beta(s))
+        beta_samples = beta(s)
         sin_beta = np.sin(beta_samples)
         kappa_2d = crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
         nodes = gauss_nodes(s)
@@ -201,11 +201,11 @@ class Pattern(FrozenArrays):
             width_left=wl,
             width_right=wr,
             log_width_ratio=log_ratio,
-            ruling_lengths=(readonly(wl / sin_beta), readonly(wr / sin_beta)),
-            regression_rates=tuple(readonly(r) for r in rates),
+            ruling_lengths=(wl / sin_beta, wr / sin_beta),
+            regression_rates=rates,
             domain=RegressionDomain(s / crease.curve.length, wl * rates[0], wr * rates[1]),
-            kappa_2d_nodes=readonly(k2_nodes),
-            log_width_rate_nodes=readonly(k2_nodes / np.tan(beta(nodes))),
+            kappa_2d_nodes=k2_nodes,
+            log_width_rate_nodes=k2_nodes / np.tan(beta(nodes)),
         )
 
     @property

@@ -36,7 +36,7 @@ from typing import Literal
 
 import numpy as np
 
-from ..kernel.arrays import FrozenArrays, readonly
+from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError, InternalError
 from ..kernel.lie import cross
 from .crease import half_angle
@@ -131,7 +131,7 @@ class PatternSheet(FrozenArrays):
         if seam.size and not np.array_equal(seam, np.round(seam)):
             raise InputError(f"sheet {self.label!r}: edges_seam must hold integers, got {seam.dtype} values")
         seam = seam.astype(np.int64)
-        object.__setattr__(self, "edges_seam", readonly(seam))
+        object.__setattr__(self, "edges_seam", seam)
         if seam.size and seam.min() < -1:
             raise InputError(f"sheet {self.label!r}: edges_seam must be -1 or a seam id >= 0, got {seam.min()}")
         is_seam = mesh.edges_kind == "seam"
@@ -256,7 +256,7 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     size = float(np.ptp(x, axis=0).max())
     if not residual <= tol * max(size, 1e-300):
         raise InternalError(f"the flat state is not planar: a vertex lies {residual:.3g} from the fitted plane (allowed {tol:g} × size {size:.3g})")
-    return FlatPlane(readonly(origin), readonly(np.stack([e1, cross(normal, e1), normal])), residual)
+    return FlatPlane(origin, np.stack([e1, cross(normal, e1), normal]), residual)
 
 
 def _develop(structure: Structure, fold_angle_deg: float, name: str, topology: Topology) -> tuple[PatternSheet, ...]:

@@ -289,9 +289,8 @@ class Topology(FrozenArrays):
         edges_kind = np.concatenate([curve_kind, ruling_kind, np.full(len(diagonals), "diagonal")]).astype("<U8")
         seam = np.full(len(edges_kind), -1, np.int64)
         seam[: len(curve_edges)] = np.where(curve_kind == "seam", seam_id(np.repeat(strip // 4, n - 1), corner), -1)
-        faces_vertices = readonly(face_rows.reshape(-1, face_rows.shape[-1]))
-        edges_vertices = readonly(np.concatenate([curve_edges, rulings, diagonals]))
-        edges_kind, seam = readonly(edges_kind), readonly(seam)
+        faces_vertices = face_rows.reshape(-1, face_rows.shape[-1])
+        edges_vertices = np.concatenate([curve_edges, rulings, diagonals])
 
         # Edge ids by block: curve edges of strip g, rulings of strip g, diagonals of strip g.
         def block(start: int, size: int, g: int) -> np.ndarray:
@@ -313,10 +312,10 @@ class Topology(FrozenArrays):
                 sheets.append(_sheet(f"tube {k + 1} · sheet {name}", verts, np.sort(face_ids), np.sort(edge_ids),
                                      faces_vertices, edges_vertices, seam))
         return cls(
-            vertex_curve=readonly(np.repeat(cells.reshape(-1), n)),
-            vertex_sample=readonly(np.tile(i, 4 * K)),
+            vertex_curve=np.repeat(cells.reshape(-1), n),
+            vertex_sample=np.tile(i, 4 * K),
             faces_vertices=faces_vertices,
-            faces_group=readonly(np.repeat(strip, per_strip)),
+            faces_group=np.repeat(strip, per_strip),
             edges_vertices=edges_vertices,
             edges_kind=edges_kind,
             edges_seam=seam,
@@ -361,15 +360,7 @@ def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.nda
     big = np.iinfo(np.int64).max
     fwd, rev = np.where(ef[:, 0] >= 0, ef[:, 0], big), np.where(ef[:, 1] >= 0, ef[:, 1], big)
     oriented = np.where((rev < fwd)[:, None], local_edges[:, ::-1], local_edges)  # as the first face runs
-    return SheetTopology(
-        label=label,
-        vertices=readonly(verts),
-        faces=readonly(face_ids),
-        edges=readonly(edge_ids),
-        faces_vertices=readonly(local_faces),
-        edges_vertices=readonly(oriented),
-        edges_seam=readonly(seam[edge_ids]),
-    )
+    return SheetTopology(label, verts, face_ids, edge_ids, local_faces, oriented, seam[edge_ids])
 
 
 def sample_index(n: int, count: int) -> np.ndarray:

@@ -106,7 +106,7 @@ def _check_sheet(mesh: Mesh, assignment: np.ndarray, what: str) -> None:
     """Mesh indices in range, M/V/F edges with two faces, B edges with one."""
     V, E = len(mesh.vertices_coords), len(mesh.edges_vertices)
     faces = mesh.faces_vertices
-    for name, idx in (("edges_vertices", mesh.edges_vertices), ("faces_vertices", faces[faces >= 0] if faces.size else faces)):
+    for name, idx in (("edges_vertices", mesh.edges_vertices), ("faces_vertices", faces[faces >= 0])):
         if idx.size and (idx.min() < 0 or idx.max() >= V):
             raise InputError(f"{what}.{name} refers to vertices outside [0, {V}), got {int(idx.min())}..{int(idx.max())}")
     if not np.isfinite(mesh.vertices_coords).all():

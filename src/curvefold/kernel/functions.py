@@ -128,9 +128,8 @@ class Sampled(FrozenArrays, ScalarFunction):
 
         object.__setattr__(self, "samples", np.asarray(self.samples, dtype=float))
         super().__post_init__()
-        values = self.samples
-        grid = np.linspace(0.0, float(self.length), values.size)
-        spline = CubicSpline(grid, values, bc_type="not-a-knot" if values.size > 3 else "natural")
+        grid = np.linspace(0.0, float(self.length), self.samples.size)
+        spline = CubicSpline(grid, self.samples, bc_type="not-a-knot" if self.samples.size > 3 else "natural")
         object.__setattr__(self, "spline", spline)
         object.__setattr__(self, "slope", spline.derivative())
 
