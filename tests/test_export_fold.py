@@ -331,7 +331,7 @@ _DELETE = object()
         (_set("edges_vertices/2", [2, 2]), "joins a vertex to itself"),
         (_set("edges_vertices/2", [2, 3, 4]), r"edges_vertices\[2\] must have 2 entries"),
         (_set("faces_vertices/1", [0, 2, -1]), r"faces_vertices\[1\] = \[0, 2, -1\] refers to a vertex outside"),
-        (_set("faces_vertices/1", [0, 1, 2, 3]), "triangles only"),
+        (_set("faces_vertices/1", [0, 2]), r"faces_vertices\[1\] has 2 vertices; a face needs at least 3"),
         (_set("edges_assignment/4", "U"), r"edges_assignment\[4\] = 'U' is not one of"),
         (_set("vertices_coords/0", [0]), r"list of \[x, y\] or \[x, y, z\] lists"),
         (_set("vertices_coords/0", [0, None]), "finite numbers"),

@@ -1,10 +1,14 @@
 """The (u, v) lattice: shared frames, width and area laws, regression domain, rigid folding."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from curvefold import Crease, InputError, Lattice, RegressionError, SpaceCurve, measure
+from curvefold import Crease, InputError, Lattice, RegressionDomain, RegressionError, SpaceCurve, measure
+from curvefold.geometry.lattice import Pattern
+from curvefold.kernel.functions import ScalarFunction
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.3 * np.cos(1.5 * s)  # noqa: E731
@@ -156,7 +160,7 @@ def test_every_corner_of_the_unit_cell_is_checked():
     assert (a > 0).all() and (b < 0).all()
     f_left = 1.2 / a.max()  # (1, 0) reaches 1.2× past its limit ...
     f_right = 2 * ((f_left * a - 1).clip(0) / -b).max()  # ... while (1, 1) keeps margin
-    lat = Lattice(crease, unit.width_left * f_left, unit.width_right * f_right)
+    lat = Lattice(crease, Pattern.from_crease(crease, unit.width_left * f_left, unit.width_right * f_right))
     assert lat.domain.contains([1, 1]) and lat.domain.contains([0, 1]) and not lat.domain.contains([1, 0])
     with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \(1, 0\)"):
         Lattice.from_crease(crease, 1e-3 * f_left, 1e-3 * f_right)
@@ -168,3 +172,42 @@ def test_lattice_needs_constant_fold_angle_and_positive_widths():
         Lattice.from_crease(Crease.from_curve(curve, fold_angle=lambda s: 60 + s), 0.1, 0.1)
     with pytest.raises(InputError, match=r"width_left must be a finite number > 0, got -0.1"):
         Lattice.from_crease(Crease.from_curve(curve), -0.1, 0.1)
+
+
+def test_defect_2_a_regression_margin_never_passes_as_nan():
+    """κ = 1 + √s with widths 5: β' at s = 0 came out NaN (κ sampled at s < 0), NaN ≤ 0 is
+    False, and the design was accepted. Now β' is finite there and the design is refused."""
+    curve = SpaceCurve.from_curvature(lambda s: 1 + np.sqrt(s), 0.3, 2.0, samples=201)
+    crease = Crease.from_curve(curve, fold_angle=90.0)
+    assert np.isfinite(crease.regression_rates()).all()
+    with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \(1, 1\) passes the curve of regression"):
+        Lattice.from_crease(crease, 5.0, 5.0)
+
+
+class _NanSlope(ScalarFunction):
+    """A ruling angle whose derivative is damaged: NaN at s = 0."""
+
+    def __init__(self, beta):
+        self.beta = beta
+
+    def value(self, s):
+        return self.beta(s)
+
+    def derivative(self, s):
+        return np.where(s == 0, np.nan, self.beta.derivative(s))
+
+
+def test_nan_fails_every_validity_test(lattice):
+    crease = lattice.crease
+    damaged = Crease(crease.curve, crease.alpha, _NanSlope(crease.beta_left), _NanSlope(crease.beta_left))
+    with pytest.raises(InputError, match=r"regression rate 1/w_lim on the left .* must be finite; at s = 0 it is nan"):
+        Lattice.from_crease(damaged, 0.2, 0.15)
+    with pytest.raises(RegressionError, match="width on the left must stay below the regression limit nan"):
+        damaged.surface(width=0.01)
+    assert np.isnan(damaged.regression_limits()[0][0])  # not +∞ ("no limit")
+    a = np.array(lattice.domain.a)
+    a[5] = np.nan
+    broken = Lattice(crease, replace(lattice.pattern, domain=RegressionDomain(lattice.t, a, lattice.domain.b)))
+    assert not broken.domain.contains([0.5, 0.5])
+    with pytest.raises(RegressionError, match=r"cells: lattice curve \(u, v\) = \(0.5, 0.5\) passes"):
+        broken.check([[0.5, 0.5]])

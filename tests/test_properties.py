@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure, measure
-from curvefold.geometry.lattice import log_width_ratio
+from curvefold.geometry.lattice import Pattern, log_width_ratio
 
 SAMPLES, LENGTH = 401, 2.0
 
@@ -43,7 +43,7 @@ def lattice_builders(draw):
         # design whose width shrinks 10⁸× has widths below coordinate rounding somewhere).
         log_ratio = log_width_ratio(crease)
         assume(np.ptp(log_ratio) < np.log(100.0))
-        unit = Lattice(crease, np.exp(-log_ratio), np.exp(log_ratio))
+        unit = Lattice(crease, Pattern.from_crease(crease, np.exp(-log_ratio), np.exp(log_ratio)))
         # widths at a fraction of the largest valid unit cell along a random direction
         d = np.array([np.cos(theta), np.sin(theta)]) / max(np.cos(theta), np.sin(theta))
         reach = min(float(unit.domain.extent(d)), float(unit.domain.extent([1, 0])) / d[0], float(unit.domain.extent([0, 1])) / d[1])

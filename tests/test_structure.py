@@ -49,7 +49,7 @@ def test_fold_angles_and_assignments(tube, fold_angle):
     # The crease is a polyline: its edges' angles are within O((κh)²) of the smooth fold angle;
     # κ = κ_2D / cos α grows as the tube closes, so the bound is scaled by it.
     kh = state.lattice.crease.curve.kappa(tube.lattice.s).max() * tube.lattice.s[1]
-    assert measure.fold_angle_error(mesh, tube, fold_angle) < 0.01 + 10 * kh**2
+    assert measure.fold_angle_error(mesh, fold_angle) < 0.01 + 10 * kh**2
     creases = np.isin(mesh.edges_kind, ("fold", "seam"))
     assert set(mesh.edges_assignment[creases & (np.abs(mesh.edges_foldAngle) > 1e-9)]) <= {"M"}  # convex tube
     assert set(mesh.edges_assignment[mesh.edges_kind == "boundary"]) == {"B"}
@@ -121,7 +121,7 @@ def test_erratum_quadrants_follow_the_construction_order(tube):
     angles π − 2α and 2α measured on the built tube.
     """
     from curvefold.geometry.crease import QUADRANTS
-    from curvefold.geometry.structure import CORNER_KINDS
+    from curvefold.geometry.topology import CORNER_KINDS
 
     corners = [(0, 0), (0, 1), (1, 1), (1, 0)]
     lat = tube.lattice

@@ -151,7 +151,7 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
         _check("chain_vs_lattice", agreement / size, 1e-11, "relative", "curves built crease by crease agree with the lattice formula (Eq. 11)"),
         _check(
             "fold_angles",
-            measure.fold_angle_error(state.mesh(), structure, lattice.crease.fold_angle),
+            measure.fold_angle_error(state.mesh(), lattice.crease.fold_angle),
             0.05 + 10 * np.degrees(kh) * kh,
             "degrees",
             "mesh fold angles on the creases against 2α (folds) and 180° − 2α (seams); polyline creases deviate ~(κh)²",

@@ -23,9 +23,10 @@ class FoldCheck:
     max_isometry_error : float
         Largest |ℓ_folded / ℓ_pattern − 1| over all edges.
     max_face_planarity_error : float
-        Largest fold angle, in degrees, across the diagonals that split a ruling quad into
-        two triangles (0 for a planar quad); polygonal faces with more than three vertices
-        contribute their largest vertex distance from their best-fit plane over their size.
+        Largest fold angle, in degrees, across the diagonals that split a face into
+        triangles: the ``"diagonal"`` edges of a triangle mesh (across a ruling quad) and
+        the fan diagonals of every polygon face with more than three vertices
+        (:meth:`~curvefold.geometry.mesh.Mesh.triangulated`). 0 for planar faces.
     max_fold_angle_error : float
         Largest |measured − recorded| fold angle on the M and V edges, degrees.
     ok : bool
@@ -69,7 +70,8 @@ def check_fold(
         Largest accepted relative edge-length change (default 1e-4: polyline creases change
         length with curvature at second order in the sample spacing).
     planarity_tol : float, keyword-only
-        Largest accepted fold angle across ruling-quad diagonals, degrees.
+        Largest accepted fold angle across the diagonals of ruling quads and polygon
+        faces, degrees.
     fold_angle_tol : float, keyword-only
         Largest accepted fold-angle discrepancy on creases, degrees.
 
@@ -90,9 +92,11 @@ def check_fold(
     for _, folded in doc.folded:
         iso = max(iso, float(np.max(np.abs(folded.edge_lengths() / base - 1))))
         measured = fold_angles(folded.vertices_coords, folded.faces_vertices, folded.edges_vertices)
-        diag = folded.edges_kind == "diagonal"
+        triangles = folded.triangulated()
+        split = measured if triangles is folded else fold_angles(triangles.vertices_coords, triangles.faces_vertices, triangles.edges_vertices)
+        diag = triangles.edges_kind == "diagonal"
         if diag.any():
-            plan = max(plan, float(np.max(np.abs(measured[diag]))))
+            plan = max(plan, float(np.max(np.abs(split[diag]))))
         creases = np.isin(folded.edges_assignment, ("M", "V"))
         if creases.any():
             angle = max(angle, float(np.max(np.abs(measured[creases] - folded.edges_foldAngle[creases]))))

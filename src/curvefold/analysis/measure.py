@@ -17,7 +17,7 @@ from ..geometry.crease import Crease
 from ..geometry.curve import gauss_nodes, integrate_frenet
 from ..geometry.lattice import Lattice
 from ..geometry.mesh import Mesh
-from ..geometry.structure import State, Structure
+from ..geometry.structure import State
 from ..kernel.lie import GAUSS3_NODES, GAUSS3_WEIGHTS, cross
 
 __all__ = [
@@ -110,18 +110,16 @@ def isometry_error(folded: Mesh, flat: Mesh) -> IsometryError:
 def ruling_quad_planarity(state: State) -> float:
     """Largest non-planarity of the quads between consecutive rulings of every strip.
 
-    For the quad a_j, a_{j+1}, b_{j+1}, b_j the distance of b_{j+1} from the plane of
-    the other three, divided by the length of the quad's diagonal (dimensionless).
+    On the quad faces of the state's mesh (``state.mesh(faces="quads")``): for the quad
+    a_j, a_{j+1}, b_{j+1}, b_j the distance of b_{j+1} from the plane of the other three,
+    divided by the length of the quad's diagonal (dimensionless).
     """
-    worst = 0.0
-    V = state.vertices
-    for row in state.structure.cell_curves:
-        for c in range(4):
-            a, b = V[row[c]], V[row[(c + 1) % 4]]
-            n = cross(a[1:] - a[:-1], b[:-1] - a[:-1])
-            dist = np.abs(np.einsum("ij,ij->i", b[1:] - a[:-1], n)) / np.linalg.norm(n, axis=-1)
-            worst = max(worst, float((dist / np.linalg.norm(b[1:] - a[:-1], axis=-1)).max()))
-    return worst
+    mesh = state.mesh(faces="quads")
+    p = mesh.vertices_coords[mesh.faces_vertices]  # (F, 4, 3)
+    n = cross(p[:, 1] - p[:, 0], p[:, 3] - p[:, 0])
+    diagonal = p[:, 2] - p[:, 0]
+    dist = np.abs(np.einsum("ij,ij->i", diagonal, n)) / np.linalg.norm(n, axis=-1)
+    return float((dist / np.linalg.norm(diagonal, axis=-1)).max())
 
 
 def frame_agreement(lattice: Lattice, uv: np.ndarray) -> float:
@@ -269,7 +267,7 @@ def _cumulative_nodes(t: np.ndarray, rate_nodes: np.ndarray) -> np.ndarray:
     return before[:, None] + h[:, None] * (rate_nodes @ W.T)
 
 
-def fold_angle_error(mesh: Mesh, structure: Structure, fold_angle: float) -> float:
+def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
     """Largest |measured − expected| fold angle (degrees) on the fold and seam edges.
 
     Expected for a fold angle 2α (degrees): 2α on the folds (creases 1, 3) and 180° − 2α

@@ -22,20 +22,18 @@ from typing import Literal
 
 import numpy as np
 
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
-from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
+from ..kernel.functions import Constant, Differenced, FunctionLike, ScalarFunction, as_function, check_finite, difference_step
 from .curve import SpaceCurve, check_samples
+from .topology import quadrant_kind, quadrant_name
 
 __all__ = ["Crease", "QUADRANTS", "half_angle"]
 
 #: The four surfaces a crease and its rulings define, by the signs of the ruling
-#: directions used on the left and right side: (sign_L, sign_R, kind).
-QUADRANTS = {
-    "L+R+": (1, 1, "fold"),
-    "L-R+": (-1, 1, "seam"),
-    "L-R-": (-1, -1, "fold"),
-    "L+R-": (1, -1, "seam"),
-}
+#: directions used on the left and right side: (sign_L, sign_R, kind), the kind by
+#: :func:`curvefold.geometry.topology.quadrant_kind`.
+QUADRANTS = {quadrant_name(sl, sr): (sl, sr, quadrant_kind(sl, sr)) for sl, sr in ((1, 1), (-1, 1), (-1, -1), (1, -1))}
 
 
 def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_angle", allow_flat: bool = False) -> float:
@@ -61,7 +59,7 @@ def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_ang
 
 
 @dataclass(frozen=True, eq=False)
-class Crease:
+class Crease(FrozenArrays):
     """A space curve with the ruling angles and fold angle of the surfaces on both sides.
 
     Build it with :meth:`from_curve` (the curve is given, the rulings follow) or
@@ -107,32 +105,16 @@ class Crease:
             alpha = as_function(fold_angle, name="fold_angle", length=L).scaled(np.pi / 360.0 if degrees else 0.5)
             a_s = alpha(curve.s)
             check_finite(a_s, name="fold_angle", s=curve.s)
-            bad = np.flatnonzero((a_s <= 0) | (a_s >= np.pi / 2))
+            bad = np.flatnonzero(~((a_s > 0) & (a_s < np.pi / 2)))
             if bad.size:
                 i = bad[0]
                 raise InputError(f"fold_angle must be in (0°, 180°) along the whole crease; at s = {curve.s[i]:.6g} it is {np.degrees(2 * a_s[i]):.6g}°")
-
-            def beta(sign: float):
-                def value(s):
-                    return np.arctan2(kappa(s) * np.sin(alpha(s)), tau(s) + sign * alpha.derivative(s))
-
-                return as_function(value, name="beta", length=L)
-
-            return cls(curve, alpha, beta(1.0), beta(-1.0))
+            h = difference_step(L)
+            return cls(curve, alpha, _VaryingRulingAngle(kappa, tau, alpha, 1.0, L, h), _VaryingRulingAngle(kappa, tau, alpha, -1.0, L, h))
 
         a = half_angle(fold_angle, degrees=degrees)
-        sa = np.sin(a)
-        alpha = ScalarFunction(lambda s: np.full(np.shape(s), a), lambda s: np.zeros(np.shape(s)), a)
-
-        def value(s):
-            return np.arctan2(kappa(s) * sa, tau(s))
-
-        def derivative(s):
-            k, t = kappa(s), tau(s)
-            return sa * (kappa.derivative(s) * t - k * tau.derivative(s)) / ((k * sa) ** 2 + t**2)
-
-        beta = ScalarFunction(value, derivative)
-        return cls(curve, alpha, beta, beta)
+        beta = _RulingAngle(kappa, tau, float(np.sin(a)))
+        return cls(curve, Constant(a), beta, beta)
 
     @classmethod
     def from_pattern(
@@ -194,27 +176,26 @@ class Crease:
         probe = np.linspace(0.0, L, max(samples, 257))
         k_probe = k2(probe)
         check_finite(k_probe, name="kappa_2d", s=probe)
-        if (k_probe <= 0).any():
-            i = int(np.argmax(k_probe <= 0))
+        if not (k_probe > 0).all():
+            i = int(np.argmax(~(k_probe > 0)))
             raise InputError(f"kappa_2d must be > 0 everywhere; at s = {probe[i]:.6g} it is {k_probe[i]:.6g}")
         for name, b in (("beta_left", bl), ("beta_right", br)):
             v = b(probe)
             check_finite(v, name=name, s=probe)
-            bad = np.flatnonzero((v <= 0) | (v >= np.pi))
+            bad = np.flatnonzero(~((v > 0) & (v < np.pi)))
             if bad.size:
                 i = bad[0]
                 raise InputError(f"{name} must be in (0°, 180°); at s = {probe[i]:.6g} it is {np.degrees(v[i]):.6g}°")
 
         def rhs(s, y):
-            return 0.5 * k2(np.atleast_1d(s)) * np.tan(y) * (1 / np.tan(bl(np.atleast_1d(s))) - 1 / np.tan(br(np.atleast_1d(s))))
+            return _fold_angle_rate(k2, bl, br, np.atleast_1d(s), y)
 
         def leaves(s, y):
             return np.sin(2 * y[0])  # zero at α = 0 and α = 90°
 
         leaves.terminal = True
         sol = solve_ivp(rhs, (0.0, L), [a0], method="DOP853", rtol=rtol, atol=rtol * 1e-2, dense_output=True, events=leaves)
-        dense = sol.sol
-        a_probe = dense(probe)[0] if sol.status == 0 else None
+        a_probe = sol.sol(probe)[0] if sol.status == 0 else None
         if a_probe is None or not ((a_probe > 0) & (a_probe < np.pi / 2)).all():
             # the event, the solver's failure point, or the first probe outside (0, π/2)
             if sol.status == 1:
@@ -228,23 +209,9 @@ class Crease:
                 f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle"
             )
 
-        def a_of(s):
-            s = np.asarray(s, float)
-            return dense(s.ravel())[0].reshape(s.shape)
-
-        def da_of(s):
-            s = np.asarray(s, float)
-            return rhs(s.ravel(), a_of(s.ravel())).reshape(s.shape)
-
-        alpha = ScalarFunction(a_of, da_of)
-        cot = lambda b: 1 / np.tan(b)  # noqa: E731
+        alpha = _PatternFoldAngle(sol.sol, k2, bl, br)
         curve = SpaceCurve.from_curvature(
-            lambda s: k2(s) / np.cos(a_of(s)),
-            lambda s: 0.5 * k2(s) * np.tan(a_of(s)) * (cot(bl(s)) + cot(br(s))),
-            L,
-            samples=samples,
-            origin=origin,
-            frame=frame,
+            _PatternCurvature(k2, alpha), _PatternTorsion(k2, alpha, bl, br), L, samples=samples, origin=origin, frame=frame
         )
         return cls(curve, alpha, bl, br)
 
@@ -261,8 +228,8 @@ class Crease:
 
     @cached_property
     def kappa_2d(self) -> np.ndarray:
-        """Curvature of the crease in the flat pattern, κ cos α, shape (n,)."""
-        return self.curve.kappa(self.s) * np.cos(self.alpha(self.s))
+        """Curvature of the crease in the flat pattern, κ cos α, shape (n,), read-only."""
+        return readonly(self.curve.kappa(self.s) * np.cos(self.alpha(self.s)))
 
     def rulings(self) -> tuple[np.ndarray, np.ndarray]:
         """Unit ruling directions r_L, r_R (Eqs. 5–6), each shape (n, 3)."""
@@ -287,8 +254,7 @@ class Crease:
 
         +∞ where that side has no curve of regression.
         """
-        with np.errstate(divide="ignore"):
-            return tuple(np.where(r > 0, 1.0 / np.where(r > 0, r, 1.0), np.inf) for r in self.regression_rates())
+        return tuple(np.where(r <= 0, np.inf, 1.0 / np.where(r <= 0, 1.0, r)) for r in self.regression_rates())  # NaN stays NaN
 
     def ruling_limits(self) -> tuple[np.ndarray, np.ndarray]:
         """Ruling length from the crease to the curve of regression, w_lim / sin β, shape (n,)."""
@@ -319,8 +285,8 @@ class Crease:
         out = []
         for w, sign, r, rate, beta, side in ((widths[0], sign_l, rl, rate_l, self.beta_left, "left"), (widths[1], sign_r, rr, rate_r, self.beta_right, "right")):
             margin = 1.0 - sign * w * rate
-            if (margin <= 0).any():
-                i = int(np.argmin(margin))
+            if not (margin > 0).all():
+                i = int(np.argmin(np.where(margin > 0, np.inf, margin)))  # the worst (a NaN first)
                 lim = 1.0 / abs(rate[i])
                 raise RegressionError(f"width on the {side} must stay below the regression limit {lim:.6g} (reached at s = {self.s[i]:.6g}), got {w:.6g}")
             ell = sign * w / np.sin(beta(self.s))
@@ -346,3 +312,99 @@ def _quadrant(name: str) -> tuple[int, int, str]:
         return QUADRANTS[name]
     except KeyError:
         raise InputError(f"quadrant must be one of {', '.join(QUADRANTS)}, got {name!r}") from None
+
+
+def _fold_angle_rate(kappa_2d: ScalarFunction, beta_left: ScalarFunction, beta_right: ScalarFunction, s: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+    """α' = ½ κ_2D tan α (cot β_L − cot β_R) (the corrected Eq. 3), shape of ``s``."""
+    return 0.5 * kappa_2d(s) * np.tan(alpha) * (1 / np.tan(beta_left(s)) - 1 / np.tan(beta_right(s)))
+
+
+@dataclass(frozen=True)
+class _RulingAngle(ScalarFunction):
+    """β = atan2(κ sin α, τ) on both sides of a crease of constant α, with its exact derivative."""
+
+    kappa: ScalarFunction
+    tau: ScalarFunction
+    sin_alpha: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return np.arctan2(self.kappa(s) * self.sin_alpha, self.tau(s))
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        k, t, sa = self.kappa(s), self.tau(s), self.sin_alpha
+        return sa * (self.kappa.derivative(s) * t - k * self.tau.derivative(s)) / ((k * sa) ** 2 + t**2)
+
+
+@dataclass(frozen=True)
+class _VaryingRulingAngle(Differenced):
+    """β = atan2(κ sin α, τ + sign · α') for a varying α (sign +1 left, −1 right); β' by differences."""
+
+    kappa: ScalarFunction
+    tau: ScalarFunction
+    alpha: ScalarFunction
+    sign: float
+    length: float
+    step: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return np.arctan2(self.kappa(s) * np.sin(self.alpha(s)), self.tau(s) + self.sign * self.alpha.derivative(s))
+
+
+@dataclass(frozen=True, eq=False)
+class _PatternFoldAngle(ScalarFunction):
+    """α(s) of a crease folded from its pattern: the ODE's dense output, α' from the ODE itself.
+
+    Attributes
+    ----------
+    solution : scipy.integrate.OdeSolution
+        Dense output of α' = ½ κ_2D tan α (cot β_L − cot β_R) (picklable).
+    kappa_2d, beta_left, beta_right : ScalarFunction
+        The pattern, β in radians.
+    """
+
+    solution: object
+    kappa_2d: ScalarFunction
+    beta_left: ScalarFunction
+    beta_right: ScalarFunction
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.solution(s.ravel())[0].reshape(s.shape)
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        s = np.asarray(s, float)
+        return _fold_angle_rate(self.kappa_2d, self.beta_left, self.beta_right, s, self(s))
+
+
+@dataclass(frozen=True)
+class _PatternCurvature(ScalarFunction):
+    """κ = κ_2D / cos α of a crease folded from its pattern (Eq. 2), with its exact derivative."""
+
+    kappa_2d: ScalarFunction
+    alpha: ScalarFunction
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.kappa_2d(s) / np.cos(self.alpha(s))
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        a, ca = self.alpha(s), np.cos(self.alpha(s))
+        return self.kappa_2d.derivative(s) / ca + self.kappa_2d(s) * np.sin(a) * self.alpha.derivative(s) / ca**2
+
+
+@dataclass(frozen=True)
+class _PatternTorsion(ScalarFunction):
+    """τ = ½ κ_2D tan α (cot β_L + cot β_R) of a crease folded from its pattern (Eq. 4 corrected)."""
+
+    kappa_2d: ScalarFunction
+    alpha: ScalarFunction
+    beta_left: ScalarFunction
+    beta_right: ScalarFunction
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return 0.5 * self.kappa_2d(s) * np.tan(self.alpha(s)) * (1 / np.tan(self.beta_left(s)) + 1 / np.tan(self.beta_right(s)))
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        k, a, bl, br = self.kappa_2d(s), self.alpha(s), self.beta_left(s), self.beta_right(s)
+        cot_sum = 1 / np.tan(bl) + 1 / np.tan(br)
+        d_cot_sum = -self.beta_left.derivative(s) / np.sin(bl) ** 2 - self.beta_right.derivative(s) / np.sin(br) ** 2
+        d_tan = self.alpha.derivative(s) / np.cos(a) ** 2
+        return 0.5 * ((self.kappa_2d.derivative(s) * np.tan(a) + k * d_tan) * cot_sum + k * np.tan(a) * d_cot_sum)

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.dense import coarse_indices, dense_stride, hermite_fill
 from ..kernel.errors import InputError
 from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
@@ -26,11 +27,6 @@ CHUNK = 4096
 
 #: Largest sample count accepted: a curve of this many samples holds ~1 GB of arrays.
 MAX_SAMPLES = 10_000_000
-
-
-def _readonly(*arrays: np.ndarray) -> None:
-    for a in arrays:
-        a.flags.writeable = False
 
 
 def integrate_frenet(
@@ -108,7 +104,7 @@ def gauss_nodes(grid: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class SpaceCurve:
+class SpaceCurve(FrozenArrays):
     """A space curve sampled at uniform arc length with its Frenet frame.
 
     Build it with :meth:`from_curvature`. All arrays are read-only.
@@ -198,8 +194,7 @@ class SpaceCurve:
         else:
             motions = integrate_motions(grid, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
             points, frames = hermite_fill(s, stride, motions[:4], dual_to_motion(motions)[1], kf, tf)
-        _readonly(s, points, frames)
-        return cls(s, points, frames, kf, tf)
+        return cls(readonly(s), readonly(points), readonly(frames), kf, tf)
 
     @property
     def length(self) -> float:
@@ -261,7 +256,7 @@ def _check_frame(frame: np.ndarray | None, *, tol: float = 1e-9) -> np.ndarray |
 
 def _check_curvature(k: np.ndarray, s: np.ndarray) -> None:
     check_finite(k, name="kappa", s=s)
-    bad = np.flatnonzero(k <= 0)
+    bad = np.flatnonzero(~(k > 0))
     if bad.size:
         i = bad[np.argmin(s[bad])]
         raise InputError(f"kappa must be > 0 everywhere (the Frenet frame needs it); at s = {s[i]:.6g} it is {k[i]:.6g}")

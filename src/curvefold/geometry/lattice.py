@@ -13,29 +13,36 @@ each chained step differentiates the previous curve and loses digits.
 t ∈ [0, 1] is curve 1's normalised arc length, ``s₁ = t L``. The curve (u, v) has speed
 ``ds/dt = (1 − u a(t) − v b(t)) L`` with ``a = w_L / w_lim_L``, ``b = w_R / w_lim_R``
 (Eq. 17); it is valid where that factor is positive for all t (Eq. 18).
+
+What rigid folding does not change is one :class:`Pattern` value (κ_2D, β, the widths,
+ruling lengths, regression rates and domain, the invariants at the integration nodes);
+a :class:`Lattice` is a pattern with curve 1 folded at one angle, and every lattice
+refolded from it holds the same pattern object. (The pattern lives here, beside the
+lattice it describes; ``curvefold.io.pattern`` is the printed crease pattern.)
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
-from ..kernel.functions import ScalarFunction
+from ..kernel.functions import Constant, ScalarFunction, check_finite
 from ..kernel.lie import GAUSS3_WEIGHTS
 from .crease import Crease, half_angle, ruling_vectors
 from .curve import SpaceCurve, gauss_nodes, integrate_frenet
 
-__all__ = ["Lattice", "RegressionDomain"]
+__all__ = ["Lattice", "Pattern", "RegressionDomain", "lattice_points", "log_width_ratio"]
 
 
 @dataclass(frozen=True, eq=False)
-class RegressionDomain:
+class RegressionDomain(FrozenArrays):
     """The valid (u, v) set: ``1 − u a(t) − v b(t) > 0`` for every t (Eq. 18).
 
-    An intersection of half-planes, convex, containing the origin.
+    An intersection of half-planes, convex, containing the origin. The arrays are
+    read-only copies.
 
     Attributes
     ----------
@@ -48,6 +55,11 @@ class RegressionDomain:
     t: np.ndarray
     a: np.ndarray
     b: np.ndarray
+
+    def __post_init__(self) -> None:
+        for name in ("t", "a", "b"):
+            object.__setattr__(self, name, np.asarray(getattr(self, name), dtype=float))
+        super().__post_init__()
 
     def factor(self, uv: np.ndarray) -> np.ndarray:
         """``1 − u a(t) − v b(t)`` for points uv (..., 2); shape (..., n)."""
@@ -95,34 +107,148 @@ class RegressionDomain:
 
 
 @dataclass(frozen=True, eq=False)
-class Lattice:
-    """Curve 1 with constant fold angle and the widths of its lattice.
+class Pattern(FrozenArrays):
+    """Everything about a lattice that rigid folding does not change.
 
-    Build it with :meth:`from_crease`; fold it with :meth:`refold`.
+    Build it with :meth:`from_crease`. Arrays are read-only; their shape is (n,) over the
+    samples of curve 1 unless stated.
+
+    Attributes
+    ----------
+    s : (n,) ndarray
+        Arc length of curve 1 at the samples.
+    kappa_2d : ScalarFunction
+        Curvature of curve 1 in the flat pattern, κ cos α (Eq. 2).
+    beta : ScalarFunction
+        Ruling angle β(s), the same on both sides.
+    beta_samples : (n,) ndarray
+        β at the samples.
+    width_left, width_right : (n,) ndarray
+        w_L(t), w_R(t).
+    log_width_ratio : (n,) ndarray
+        ``∫₀^s τ cot α ds = ln(w_R(t) / w_R(0)) = −ln(w_L(t) / w_L(0))``.
+    ruling_lengths : tuple of two (n,) ndarray
+        ℓ_L = w_L / sin β and ℓ_R = w_R / sin β.
+    regression_rates : tuple of two (n,) ndarray
+        1 / w_lim on the left and right (Eqs. 14–15), finite; ≤ 0 means no limit.
+    domain : RegressionDomain
+        The valid (u, v) set (Eq. 18).
+    kappa_2d_nodes, log_width_rate_nodes : (n − 1, 3) ndarray
+        κ_2D and ``κ_2D cot β = τ cot α`` (d ln w_R / ds) at the Gauss nodes of every
+        interval of ``s``: what a refolded curve 1 is integrated from.
+    """
+
+    s: np.ndarray
+    kappa_2d: ScalarFunction
+    beta: ScalarFunction
+    beta_samples: np.ndarray
+    width_left: np.ndarray
+    width_right: np.ndarray
+    log_width_ratio: np.ndarray
+    ruling_lengths: tuple[np.ndarray, np.ndarray]
+    regression_rates: tuple[np.ndarray, np.ndarray]
+    domain: RegressionDomain
+    kappa_2d_nodes: np.ndarray
+    log_width_rate_nodes: np.ndarray
+
+    @classmethod
+    def from_crease(cls, crease: Crease, width_left: float | np.ndarray, width_right: float | np.ndarray) -> Pattern:
+        """The pattern of a crease with constant fold angle and the given widths.
+
+        Parameters
+        ----------
+        crease : Crease
+            Curve 1, constant fold angle (then β_L = β_R).
+        width_left, width_right : float or (n,) array_like
+            w_L(0), w_R(0) > 0, continued along t by the width law; or, as arrays, w_L(t)
+            and w_R(t) at every sample, taken as given.
+
+        Raises
+        ------
+        InputError
+            If the fold angle varies, a width is not finite and > 0, or the regression
+            rates are not finite (β' is not finite somewhere: the message names where).
+        """
+        if crease.fold_angle is None:
+            raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
+        s = crease.s
+        log_ratio = log_width_ratio(crease)
+        widths = []
+        for name, w, sign in (("width_left", width_left, -1.0), ("width_right", width_right, 1.0)):
+            arr = np.asarray(w, dtype=float)
+            if arr.ndim == 0:
+                if not (np.isfinite(arr) and arr > 0):
+                    raise InputError(f"{name} must be a finite number > 0, got {w!r}")
+                arr = float(arr) * np.exp(sign * log_ratio)
+            elif arr.shape != s.shape or not (np.isfinite(arr) & (arr > 0)).all():
+                raise InputError(f"{name} must be a number or {len(s)} finite values > 0 (one per sample), got shape {arr.shape}")
+            widths.append(arr)
+        wl, wr = widths
+        rates = crease.regression_rates()
+        for side, rate in zip(("left", "right"), rates):
+            check_finite(rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s)
+        beta = crease.beta_left
+        beta_samples = beta(s)
+        sin_beta = np.sin(beta_samples)
+        kappa_2d = crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
+        nodes = gauss_nodes(s)
+        k2_nodes = kappa_2d(nodes)
+        return cls(
+            s=s,
+            kappa_2d=kappa_2d,
+            beta=beta,
+            beta_samples=beta_samples,
+            width_left=wl,
+            width_right=wr,
+            log_width_ratio=log_ratio,
+            ruling_lengths=(wl / sin_beta, wr / sin_beta),
+            regression_rates=rates,
+            domain=RegressionDomain(s / crease.curve.length, wl * rates[0], wr * rates[1]),
+            kappa_2d_nodes=k2_nodes,
+            log_width_rate_nodes=k2_nodes / np.tan(beta(nodes)),
+        )
+
+    @property
+    def length(self) -> float:
+        """Arc length L of curve 1."""
+        return float(self.s[-1])
+
+    @property
+    def t(self) -> np.ndarray:
+        """Common curve parameter t = s / L, shape (n,)."""
+        return self.domain.t
+
+
+@dataclass(frozen=True, eq=False)
+class Lattice(FrozenArrays):
+    """Curve 1 folded at one constant fold angle, with its fold-invariant pattern.
+
+    Build it with :meth:`from_crease`; fold it with :meth:`refold` (the folded lattice
+    holds the same :class:`Pattern` object).
 
     Attributes
     ----------
     crease : Crease
-        Curve 1 (constant α, β_L = β_R = β).
-    width_left, width_right : (n,) ndarray
-        w_L(t) and w_R(t) at the samples.
+        Curve 1 at this fold angle (constant α, β_L = β_R = β).
+    pattern : Pattern
+        κ_2D, β, widths, regression domain: unchanged by rigid folding.
     """
 
     crease: Crease
-    width_left: np.ndarray
-    width_right: np.ndarray
+    pattern: Pattern
 
     @classmethod
-    def from_crease(cls, crease: Crease, width_left: float, width_right: float) -> Lattice:
+    def from_crease(cls, crease: Crease, width_left: float | np.ndarray, width_right: float | np.ndarray) -> Lattice:
         """Lattice of a crease with constant fold angle from the widths at t = 0.
 
         Parameters
         ----------
         crease : Crease
             Must have a constant fold angle (then β_L = β_R).
-        width_left, width_right : float
+        width_left, width_right : float or (n,) array_like
             w_L(0), w_R(0) > 0: the distances from curve 1's tangent line to those of the
-            curves (1, 0) and (0, 1).
+            curves (1, 0) and (0, 1). Arrays give w_L(t), w_R(t) at every sample instead
+            (see :meth:`Pattern.from_crease`).
 
         Raises
         ------
@@ -130,45 +256,50 @@ class Lattice:
             If a corner of the unit cell [0, 1]² is not free of regression; the message
             gives the limit along that direction and where it is reached.
         """
-        if crease.fold_angle is None:
-            raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
-        for name, w in (("width_left", width_left), ("width_right", width_right)):
-            if not np.isfinite(w) or w <= 0:
-                raise InputError(f"{name} must be a finite number > 0, got {w!r}")
-        log_ratio = log_width_ratio(crease)
-        lattice = cls(crease, float(width_left) * np.exp(-log_ratio), float(width_right) * np.exp(log_ratio))
-        for k in (lattice.width_left, lattice.width_right):
-            k.flags.writeable = False
+        lattice = cls(crease, Pattern.from_crease(crease, width_left, width_right))
         lattice.check(np.array([[0, 1], [1, 0], [1, 1]]), name="widths")
         return lattice
 
-    # -- intrinsic quantities (unchanged by rigid folding) ------------------------------
+    # -- intrinsic quantities (the pattern's) ------------------------------------------
     @property
     def s(self) -> np.ndarray:
         """Arc length of curve 1 at the samples, shape (n,)."""
-        return self.crease.s
+        return self.pattern.s
 
     @property
     def t(self) -> np.ndarray:
         """Common curve parameter t = s₁ / L, shape (n,)."""
-        return self.crease.s / self.crease.curve.length
+        return self.pattern.t
 
-    @cached_property
+    @property
+    def width_left(self) -> np.ndarray:
+        """w_L(t) at the samples, shape (n,)."""
+        return self.pattern.width_left
+
+    @property
+    def width_right(self) -> np.ndarray:
+        """w_R(t) at the samples, shape (n,)."""
+        return self.pattern.width_right
+
+    @property
     def beta(self) -> np.ndarray:
         """Ruling angle β(t) (the same on both sides), shape (n,)."""
-        return self.crease.beta_left(self.s)
+        return self.pattern.beta_samples
 
-    @cached_property
+    @property
     def ruling_lengths(self) -> tuple[np.ndarray, np.ndarray]:
         """ℓ_L = w_L / sin β and ℓ_R = w_R / sin β, each shape (n,)."""
-        sb = np.sin(self.beta)
-        return self.width_left / sb, self.width_right / sb
+        return self.pattern.ruling_lengths
 
-    @cached_property
+    @property
     def domain(self) -> RegressionDomain:
         """The regression domain in (u, v) (Eq. 18)."""
-        rl, rr = self.crease.regression_rates()
-        return RegressionDomain(self.t, self.width_left * rl, self.width_right * rr)
+        return self.pattern.domain
+
+    @property
+    def kappa_2d(self) -> ScalarFunction:
+        """κ_2D(s) of curve 1, fold-invariant."""
+        return self.pattern.kappa_2d
 
     def speed(self, uv: np.ndarray) -> np.ndarray:
         """ds/dt of lattice curves uv (..., 2), shape (..., n) (Eq. 17)."""
@@ -189,7 +320,7 @@ class Lattice:
         """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is valid."""
         uv = np.atleast_2d(np.asarray(uv, float)).reshape(-1, 2)
         margin = self.domain.margin(uv)
-        bad = np.flatnonzero(margin <= 0)
+        bad = np.flatnonzero(~(margin > 0))
         if bad.size:
             i = bad[np.argmin(margin[bad])]
             u, v = uv[i]
@@ -203,26 +334,14 @@ class Lattice:
             )
 
     # -- rigid folding ------------------------------------------------------------------------
-    @cached_property
-    def kappa_2d(self) -> ScalarFunction:
-        """κ_2D(s) of curve 1, fold-invariant."""
-        return self.crease.curve.kappa.scaled(np.cos(self.crease.alpha.constant))
-
-    @cached_property
-    def _intrinsic_nodes(self) -> tuple[np.ndarray, np.ndarray]:
-        """κ_2D and κ_2D cot β (= τ cot α) at the Gauss nodes of curve 1, both fold-invariant."""
-        nodes = gauss_nodes(self.s)
-        k2 = self.kappa_2d(nodes)
-        return k2, k2 / np.tan(self.crease.beta_left(nodes))
-
     def _folded_curve1(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray]:
         """Curve 1 at half fold angles α (A,): points (A, n, 3) and frames (A, n, 3, 3)."""
         if anchor not in ("start", "middle"):
             raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
-        k2_nodes, k2cot_nodes = self._intrinsic_nodes
+        p = self.pattern
         c = self.crease.curve
         ca, ta = np.cos(alphas)[:, None, None], np.tan(alphas)[:, None, None]
-        points, frames = integrate_frenet(c.s, k2_nodes / ca, k2cot_nodes * ta, origin=c.points[0], frame=c.frames[0])
+        points, frames = integrate_frenet(c.s, p.kappa_2d_nodes / ca, p.log_width_rate_nodes * ta, origin=c.points[0], frame=c.frames[0])
         if anchor == "middle":
             m = (len(c.s) - 1) // 2
             R = c.frames[m] @ np.swapaxes(frames[:, m], -1, -2)  # (A, 3, 3)
@@ -252,8 +371,8 @@ class Lattice:
     def refold(self, fold_angle: float, *, degrees: bool = True, anchor: str = "start") -> Lattice:
         """The same lattice rigidly folded to another fold angle 2α ∈ [0°, 180°).
 
-        Intrinsic quantities (κ_2D, β, widths, t-correspondence) stay; curve 1 is rebuilt
-        with ``κ = κ_2D / cos α`` and ``τ = κ_2D tan α cot β`` (= τ₀ tan α / tan α₀). 2α = 0
+        The pattern (κ_2D, β, widths, t-correspondence) is shared; curve 1 is rebuilt with
+        ``κ = κ_2D / cos α`` and ``τ = κ_2D tan α cot β`` (= τ₀ tan α / tan α₀). 2α = 0
         gives the flat, two-ply state: the crease pattern.
 
         Parameters
@@ -266,25 +385,25 @@ class Lattice:
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         points, frames = self._folded_curve1(np.array([a]), anchor)
-        points, frames = points[0], frames[0]
-        for arr in (points, frames):
-            arr.flags.writeable = False
-        c = self.crease.curve
-        ca, ta = np.cos(a), np.tan(a)
-        k2, beta = self.kappa_2d, self.crease.beta_left
-        tau = ScalarFunction(
-            lambda s: ta * k2(s) / np.tan(beta(s)),
-            lambda s: ta * (k2.derivative(s) / np.tan(beta(s)) - k2(s) * beta.derivative(s) / np.sin(beta(s)) ** 2),
-        )
-        curve = SpaceCurve(c.s, points, frames, k2.scaled(1.0 / ca), tau)
-        alpha = ScalarFunction(lambda s: np.full(np.shape(s), a), lambda s: np.zeros(np.shape(s)), a)
-        crease = Crease(curve, alpha, beta, self.crease.beta_right)
-        folded = Lattice(crease, self.width_left, self.width_right)
-        # Fold-invariant cached values carry over (cached_property keeps them in __dict__).
-        for name in ("beta", "ruling_lengths", "domain", "kappa_2d", "_intrinsic_nodes"):
-            if name in self.__dict__:
-                folded.__dict__[name] = self.__dict__[name]
-        return folded
+        p = self.pattern
+        curve = SpaceCurve(p.s, readonly(points[0]), readonly(frames[0]), p.kappa_2d.scaled(1.0 / np.cos(a)), _RefoldedTorsion(p.kappa_2d, p.beta, np.tan(a)))
+        return Lattice(Crease(curve, Constant(a), p.beta, p.beta), p)
+
+
+@dataclass(frozen=True)
+class _RefoldedTorsion(ScalarFunction):
+    """τ = tan α · κ_2D cot β of curve 1 refolded to α, with its exact derivative."""
+
+    kappa_2d: ScalarFunction
+    beta: ScalarFunction
+    tan_alpha: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.tan_alpha * self.kappa_2d(s) / np.tan(self.beta(s))
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        k2, beta = self.kappa_2d, self.beta
+        return self.tan_alpha * (k2.derivative(s) / np.tan(beta(s)) - k2(s) * beta.derivative(s) / np.sin(beta(s)) ** 2)
 
 
 def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.ndarray) -> np.ndarray:

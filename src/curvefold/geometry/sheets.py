@@ -21,23 +21,28 @@ Conventions
     1-based ("tube 1"), tube indices in the API 0-based.
 
 Sheet vertices are the tube mesh's vertices: :func:`sheet_vertices` maps every sheet
-vertex to its index in ``State.mesh()`` (vertex ``(4k + c)·n + j`` is sample j of corner
-c + 1 of tube k), so any state can be put on the sheets' topology; the FOLD file uses
-that to give its crease pattern and folded frames one topology.
+vertex to its index in ``State.mesh()``, so any state can be put on the sheets'
+topology; the FOLD file uses that to give its crease pattern and folded frames one
+topology. Which strips, corners, edges and seam ids make each sheet is
+:meth:`Structure.topology`'s (:mod:`curvefold.geometry.topology`); this module develops
+them into the plane.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 
-from ..kernel.errors import CurvefoldError, InputError
+from ..kernel.arrays import FrozenArrays
+from ..kernel.errors import InputError, InternalError
 from ..kernel.lie import cross
 from .crease import half_angle
-from .mesh import Mesh, edges_faces
+from .mesh import Mesh, vector_areas
 from .structure import State, Structure
+from .topology import SHEETS, Topology, corner_members, fold_assignment
 
 __all__ = [
     "SHEET_NAMES",
@@ -53,12 +58,7 @@ __all__ = [
 ]
 
 #: Names of a tube's two sheets, in order.
-SHEET_NAMES = ("A", "B")
-
-# Strips of sheets A and B (strip c runs from corner index c to c + 1, 0-based).
-_SHEET_STRIPS = ((3, 0), (1, 2))
-# Seam corner index (1: seam 2, 3: seam 4) → offset of its seam id (tube k: 2k + offset).
-_SEAM_OFFSET = {1: 0, 3: 1}
+SHEET_NAMES = tuple(name for name, _ in SHEETS)
 
 
 # --------------------------------------------------------------------------------------
@@ -97,7 +97,7 @@ def _angles(values, degrees: bool, name: str) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class PatternSheet:
+class PatternSheet(FrozenArrays):
     """One developed sheet to fabricate.
 
     Attributes
@@ -131,7 +131,7 @@ class PatternSheet:
         if seam.size and not np.array_equal(seam, np.round(seam)):
             raise InputError(f"sheet {self.label!r}: edges_seam must hold integers, got {seam.dtype} values")
         seam = seam.astype(np.int64)
-        object.__setattr__(self, "edges_seam", _readonly_ints(seam))
+        object.__setattr__(self, "edges_seam", seam)
         if seam.size and seam.min() < -1:
             raise InputError(f"sheet {self.label!r}: edges_seam must be -1 or a seam id >= 0, got {seam.min()}")
         is_seam = mesh.edges_kind == "seam"
@@ -162,13 +162,7 @@ class PatternSheet:
             )
         if len(mesh.faces_vertices) == 0:
             raise InputError(f"sheet {self.label!r}: the mesh has no faces")
-
-
-def _readonly_ints(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, dtype=np.int64)
-    a.flags.writeable = False
-    return a
-
+        super().__post_init__()
 
 
 def sheet_vertices(structure: Structure) -> tuple[np.ndarray, ...]:
@@ -195,18 +189,11 @@ def sheet_vertices(structure: Structure) -> tuple[np.ndarray, ...]:
     [[9, 10, 11, 0, 1, 2, 3, 4, 5], [3, 4, 5, 6, 7, 8, 9, 10, 11]]
     """
     _check_structure(structure)
-    n = len(structure.lattice.s)
-    j = np.arange(n)
-    out = []
-    for k in range(len(structure.cells)):
-        for strips in _SHEET_STRIPS:
-            corners = (strips[0], strips[1], (strips[1] + 1) % 4)
-            out.append(np.concatenate([(4 * k + c) * n + j for c in corners]))
-    return tuple(out)
+    return tuple(sheet.vertices for sheet in structure.topology().sheets)
 
 
 @dataclass(frozen=True, eq=False)
-class FlatPlane:
+class FlatPlane(FrozenArrays):
     """The plane of the flat state with an in-plane frame.
 
     Attributes
@@ -247,11 +234,16 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
 
     Raises
     ------
-    CurvefoldError
-        If the state is not planar within ``tol`` (it is not the flat state).
+    InputError
+        If the state is not at fold angle 0.
+    InternalError
+        If the flat state is not planar within ``tol`` (curvefold guarantees it).
     """
     if not isinstance(state, State):
         raise InputError(f"state must be a State (e.g. structure.state(0)), got {type(state).__name__}")
+    if state.fold_angle != 0:
+        raise InputError(f"state must be the flat state structure.state(0), got one at fold angle {state.fold_angle:g}° "
+                         "(taken as a flat state is not planar)")
     x = state.vertices.reshape(-1, 3)
     centre = x.mean(axis=0)
     _, _, vt = np.linalg.svd(x - centre, full_matrices=False)
@@ -262,105 +254,44 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     e1 /= np.linalg.norm(e1)
     residual = float(np.abs((x - origin) @ normal).max())
     size = float(np.ptp(x, axis=0).max())
-    if residual > tol * max(size, 1e-300):
-        raise CurvefoldError(
-            f"the flat state is not planar: a vertex lies {residual:.3g} from the fitted plane "
-            f"(allowed {tol:g} × size {size:.3g}); is the state at fold angle 0?"
-        )
-    axes = np.stack([e1, cross(normal, e1), normal])
-    for a in (origin, axes):
-        a.flags.writeable = False
-    return FlatPlane(origin, axes, residual)
+    if not residual <= tol * max(size, 1e-300):
+        raise InternalError(f"the flat state is not planar: a vertex lies {residual:.3g} from the fitted plane (allowed {tol:g} × size {size:.3g})")
+    return FlatPlane(origin, np.stack([e1, cross(normal, e1), normal]), residual)
 
 
-def _oriented_edges(faces: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """Edges (E, 2) turned to run as the first face (lowest index) that traverses them."""
-    ef = edges_faces(faces, edges)
-    big = np.iinfo(np.int64).max
-    fwd, rev = np.where(ef[:, 0] >= 0, ef[:, 0], big), np.where(ef[:, 1] >= 0, ef[:, 1], big)
-    return np.where((rev < fwd)[:, None], edges[:, ::-1], edges)
-
-
-@dataclass(frozen=True, eq=False)
-class _SheetTopology:
-    """One sheet in the tube mesh's numbering (private)."""
-
-    tube: int
-    which: int  # 0 = A, 1 = B
-    verts: np.ndarray  # (3n,) tube-mesh vertices, in sheet order
-    face_mask: np.ndarray  # (F,) bool over the tube mesh's faces
-    edges: np.ndarray  # (E_s, 2) tube-mesh vertices, oriented as the sheet's first face runs
-    edge_ids: np.ndarray  # (E_s,) indices into the tube mesh's edges
-    seam: np.ndarray  # (E_s,) seam id or -1
-
-    @property
-    def label(self) -> str:
-        return f"tube {self.tube + 1} · sheet {SHEET_NAMES[self.which]}"
-
-
-def _sheet_topology(mesh: Mesh, structure: Structure) -> list[_SheetTopology]:
-    """Faces, edges and seam ids of every sheet in the numbering of the tube mesh ``mesh``."""
-    n = len(structure.lattice.s)
-    edge_tube = mesh.edges_vertices[:, 0] // (4 * n)
-    out = []
-    for i, verts in enumerate(sheet_vertices(structure)):
-        k, which = divmod(i, 2)
-        mask = np.isin(mesh.faces_group, [4 * k + c for c in _SHEET_STRIPS[which]])
-        faces = mesh.faces_vertices[mask]
-        candidates = np.flatnonzero(edge_tube == k)
-        inside = np.isin(mesh.edges_vertices[candidates], verts).all(axis=1)
-        ids = candidates[inside]
-        ev = _oriented_edges(faces, mesh.edges_vertices[ids])
-        if not (edges_faces(faces, ev) >= 0).any(axis=1).all():  # pragma: no cover - a topology bug
-            raise CurvefoldError(f"tube {k + 1} sheet {SHEET_NAMES[which]}: an edge borders none of the sheet's faces")
-        seam = np.full(len(ids), -1, np.int64)
-        corner = (ev[:, 0] // n) % 4
-        for c, offset in _SEAM_OFFSET.items():
-            seam[(mesh.edges_kind[ids] == "seam") & (corner == c)] = 2 * k + offset
-        out.append(_SheetTopology(k, which, verts, mask, ev, ids, seam))
-    return out
-
-
-def _develop(structure: Structure, fold_angle_deg: float, name: str) -> tuple[tuple[PatternSheet, ...], tuple[np.ndarray, ...]]:
-    """The sheets (PatternSheet) and their vertex maps into the tube mesh."""
+def _develop(structure: Structure, fold_angle_deg: float, name: str, topology: Topology) -> tuple[PatternSheet, ...]:
+    """The sheets of a topology of the structure developed into the plane of the flat state."""
     flat = structure.state(0.0)
     plane = flat_plane(flat)
-    flat_mesh = flat.mesh()
-    design = structure.state(fold_angle_deg).mesh()
+    flat_mesh = topology.mesh(flat.vertices)
+    design = topology.mesh(structure.state(fold_angle_deg).vertices)
     normals = flat_mesh.face_normals()
-    out, maps = [], []
-    for sh in _sheet_topology(flat_mesh, structure):
-        label = f"{name} · {sh.label}" if name else sh.label
-        facing = normals[sh.face_mask] @ plane.axes[2]  # ±1: the outside faces +n or −n
-        xy = plane.coords(flat_mesh.vertices_coords[sh.verts], flip=bool(facing.mean() < 0))
-        lookup = np.full(int(sh.verts.max()) + 1, -1, np.int64)
-        lookup[sh.verts] = np.arange(len(sh.verts))
-        faces = lookup[flat_mesh.faces_vertices[sh.face_mask]]
-        u, v = xy[faces[:, 1]] - xy[faces[:, 0]], xy[faces[:, 2]] - xy[faces[:, 0]]
-        area2 = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    out = []
+    for sheet in topology.sheets:
+        label = f"{name} · {sheet.label}" if name else sheet.label
+        facing = normals[sheet.faces] @ plane.axes[2]  # ±1: the outside faces +n or −n
+        xy = plane.coords(flat_mesh.vertices_coords[sheet.vertices], flip=bool(facing.mean() < 0))
+        area2 = vector_areas(xy, sheet.faces_vertices)[:, 2]
         if not (area2 > 0).all():
-            raise CurvefoldError(f"{label}: {int(np.count_nonzero(area2 <= 0))} of {len(area2)} triangles of the flat "
-                                 "state are not counter-clockwise seen from outside the tube")
-        kind = design.edges_kind[sh.edge_ids]
-        angle = np.where(kind == "fold", design.edges_foldAngle[sh.edge_ids], 0.0)
-        assignment = np.where(kind == "fold", np.where(angle > 0, "V", "M"),
-                              np.where(np.isin(kind, ("seam", "boundary")), "B", "F"))
+            raise InternalError(f"{label}: {int(np.count_nonzero(~(area2 > 0)))} of {len(area2)} faces of the flat "
+                                "state are not counter-clockwise seen from outside the tube")
+        kind = design.edges_kind[sheet.edges]
+        angle = np.where(kind == "fold", design.edges_foldAngle[sheet.edges], 0.0)
         mesh = Mesh(
             vertices_coords=np.column_stack([xy, np.zeros(len(xy))]),
-            edges_vertices=lookup[sh.edges],
-            edges_assignment=assignment.astype("<U1"),
+            edges_vertices=sheet.edges_vertices,
+            edges_assignment=fold_assignment(kind, angle, seams_open=True),
             edges_foldAngle=angle,
-            faces_vertices=faces,
+            faces_vertices=sheet.faces_vertices,
             edges_kind=kind,
-            faces_group=flat_mesh.faces_group[sh.face_mask],
+            faces_group=topology.faces_group[sheet.faces],
         )
-        out.append(PatternSheet(label, mesh, sh.seam))
-        maps.append(sh.verts)
-    return tuple(out), tuple(maps)
+        out.append(PatternSheet(label, mesh, sheet.edges_seam))
+    return tuple(out)
 
 
 def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bool = True,
-           name: str = "") -> tuple[PatternSheet, ...]:
+           name: str = "", faces: Literal["triangles", "quads"] = "triangles") -> tuple[PatternSheet, ...]:
     """The developed sheets of a structure: its crease pattern, two sheets per tube.
 
     Coordinates come from the flat state ``structure.state(0)``, in model units, in the
@@ -378,6 +309,9 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     degrees : bool, keyword-only
     name : str, keyword-only
         Prefix of the labels (``"vault · tube 2 · sheet A"``).
+    faces : {"triangles", "quads"}, keyword-only
+        The faces of :meth:`Structure.topology` (quads are exactly planar in the flat
+        state).
 
     Returns
     -------
@@ -394,7 +328,7 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     ------
     InputError
         For a fold angle outside (0°, 180°).
-    CurvefoldError
+    InternalError
         If the flat state is not planar or a sheet is not one-sided in it (a bug).
 
     Examples
@@ -407,7 +341,7 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     _check_structure(structure)
     if not isinstance(name, str):
         raise InputError(f"name must be a str, got {type(name).__name__}")
-    return _develop(structure, _design_angle(structure, fold_angle, degrees), name)[0]
+    return _develop(structure, _design_angle(structure, fold_angle, degrees), name, structure.topology(faces))
 
 
 # --------------------------------------------------------------------------------------
@@ -453,12 +387,9 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
         Sorted by curve (u, v).
     """
     _check_structure(structure)
-    members: dict[int, list[tuple[int, int]]] = {}
-    for k, row in enumerate(structure.cell_curves.tolist()):
-        for c, m in enumerate(row):
-            members.setdefault(m, []).append((k, c + 1))
     uv = structure.curves_uv.tolist()
-    return tuple(Bond(tuple(uv[m]), tuple(v)) for m, v in sorted(members.items()) if len(v) > 1)
+    members = corner_members(structure.cell_curves, len(uv))
+    return tuple(Bond(tuple(uv[m]), tuple((k, c + 1) for k, c in on)) for m, on in enumerate(members) if len(on) > 1)
 
 
 # --------------------------------------------------------------------------------------
@@ -528,7 +459,7 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
 
 
 def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, anchor: str = "start") -> np.ndarray:
-    """Vertex positions of ``State.mesh()`` at many fold angles at once, shape (A, 4·K·n, 3).
+    """Vertex positions of ``State.mesh()`` at many fold angles at once, shape (A, V, 3).
 
     The vectorised form of ``[structure.state(f, anchor=anchor).mesh().vertices_coords for f
     in fold_angles]`` (one Frenet integration for all angles).
@@ -545,6 +476,6 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
     _check_structure(structure)
     angles = _angles(fold_angles, degrees, "fold_angles")
     points = structure.lattice.fold_points(structure.curves_uv, angles, anchor=anchor)  # (A, M, n, 3)
-    return points[:, structure.cell_curves].reshape(len(angles), -1, 3)
+    return structure.topology().coords(points)
 
 

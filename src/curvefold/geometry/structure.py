@@ -1,8 +1,8 @@
 """Tubes and cellular blocks: sets of lattice cells, their creases, meshes and folded states.
 
 A cell (i, j) is the tube spanned by the lattice curves at its corners, in construction
-order (the paper builds curve 1 → 2 along +r_R, 2 → 3 along +r_L, 3 → 4 along −r_R,
-4 → 1 along −r_L):
+order (:mod:`curvefold.geometry.topology` owns the corner order, the crease kinds, the
+strips, sheets and vertex numbering):
 
     corner 1 = (i, j)   fold      corner 2 = (i, j+1)   seam
     corner 3 = (i+1, j+1) fold    corner 4 = (i+1, j)   seam
@@ -16,27 +16,24 @@ strip of four ruled strips with its own copy of the shared curves, exactly as it
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import cached_property
 from typing import Literal
 
 import numpy as np
 
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from .crease import half_angle
 from .lattice import Lattice
 from .mesh import Mesh
+from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners
 
-__all__ = ["Structure", "State", "CORNERS", "CORNER_KINDS"]
-
-#: Offsets of a cell's corners 1–4 from its (i, j), in construction order.
-CORNERS = np.array([[0, 0], [0, 1], [1, 1], [1, 0]])
-#: Kind of crease at corners 1–4.
-CORNER_KINDS = ("fold", "seam", "fold", "seam")
+__all__ = ["Structure", "State"]
 
 
 @dataclass(frozen=True, eq=False)
-class Structure:
+class Structure(FrozenArrays):
     """A set of lattice cells on one lattice: a tube, a cellular block or a vault's stack.
 
     Attributes
@@ -75,9 +72,7 @@ class Structure:
             arr = arr.astype(np.int64)
         if len(np.unique(arr, axis=0)) != len(arr):
             raise InputError("cells must be distinct; a cell is listed twice")
-        arr = arr.astype(np.int64)
-        arr.flags.writeable = False
-        structure = cls(lattice, arr)
+        structure = cls(lattice, arr.astype(np.int64))
         lattice.check(structure.curves_uv, name="cells")
         return structure
 
@@ -111,36 +106,45 @@ class Structure:
 
     # -- topology --------------------------------------------------------------------------
     @cached_property
-    def curves_uv(self) -> np.ndarray:
-        """The distinct lattice curves at the cells' corners, shape (M, 2), sorted."""
-        corners = (self.cells[:, None, :] + CORNERS[None]).reshape(-1, 2)
-        return np.unique(corners, axis=0)
+    def _corners(self) -> tuple[np.ndarray, np.ndarray]:
+        return lattice_corners(self.cells)
 
-    @cached_property
+    @property
+    def curves_uv(self) -> np.ndarray:
+        """The distinct lattice curves at the cells' corners, shape (M, 2), sorted, read-only."""
+        return self._corners[0]
+
+    @property
     def cell_curves(self) -> np.ndarray:
-        """Index into :attr:`curves_uv` of corners 1–4 of every cell, shape (K, 4)."""
-        corners = self.cells[:, None, :] + CORNERS[None]
-        lookup = {tuple(uv): i for i, uv in enumerate(self.curves_uv.tolist())}
-        return np.array([[lookup[tuple(c)] for c in cell] for cell in corners.tolist()])
+        """Index into :attr:`curves_uv` of corners 1–4 of every cell, shape (K, 4), read-only."""
+        return self._corners[1]
 
     @cached_property
     def curve_kinds(self) -> tuple[str, ...]:
         """For each curve: "fold" or "seam" in every cell it bounds, else "junction"."""
-        kinds: list[set[str]] = [set() for _ in range(len(self.curves_uv))]
-        for row in self.cell_curves:
-            for c, kind in zip(row, CORNER_KINDS):
-                kinds[c].add(kind)
+        kinds = ({CORNER_KINDS[c] for _, c in members} for members in corner_members(self.cell_curves, len(self.curves_uv)))
         return tuple(k.pop() if len(k) == 1 else "junction" for k in kinds)
 
     def dihedral_angles(self, fold_angle: float, *, degrees: bool = True) -> np.ndarray:
         """Interior angle of every cell at corners 1–4, shape (K, 4): π − 2α, 2α, π − 2α, 2α."""
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
-        row = np.array([np.pi - 2 * a, 2 * a, np.pi - 2 * a, 2 * a])
+        row = np.where(np.array(CORNER_KINDS) == "fold", np.pi - 2 * a, 2 * a)
         return np.broadcast_to(row, (len(self.cells), 4)).copy()
 
+    def topology(self, faces: Literal["triangles", "quads"] = "triangles") -> Topology:
+        """The mesh of the tubes and their sheets (:meth:`Topology.tubes`).
+
+        Parameters
+        ----------
+        faces : {"triangles", "quads"}
+            Two triangles or one quad per ruling quad (planar only to O(h³), which the
+            triangles' diagonals carry). Both number the vertices alike.
+        """
+        return self._triangles if faces == "triangles" else Topology.tubes(self.cell_curves, len(self.lattice.s), faces=faces)
+
     @cached_property
-    def _mesh_topology(self) -> dict[str, np.ndarray]:
-        return _tube_mesh_topology(len(self.cells), len(self.lattice.s))
+    def _triangles(self) -> Topology:
+        return Topology.tubes(self.cell_curves, len(self.lattice.s))
 
     # -- states ------------------------------------------------------------------------------
     def state(self, fold_angle: float | None = None, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> State:
@@ -154,11 +158,11 @@ class Structure:
             Which frame of curve 1 stays fixed: at t = 0, or at the middle sample.
         """
         lattice = self.lattice if fold_angle is None else self.lattice.refold(fold_angle, degrees=degrees, anchor=anchor)
-        return State(self, lattice, lattice.points(self.curves_uv))
+        return State(self, lattice, readonly(lattice.points(self.curves_uv)))
 
 
 @dataclass(frozen=True, eq=False)
-class State:
+class State(FrozenArrays):
     """A structure at one fold angle.
 
     Attributes
@@ -167,7 +171,8 @@ class State:
     lattice : Lattice
         The lattice at this fold angle.
     vertices : (M, n, 3) ndarray
-        Every lattice curve of the structure (rows of ``structure.curves_uv``) at the samples.
+        Every lattice curve of the structure (rows of ``structure.curves_uv``) at the
+        samples, read-only.
     """
 
     structure: Structure
@@ -179,57 +184,12 @@ class State:
         """2α in degrees."""
         return self.lattice.crease.fold_angle
 
-    def mesh(self) -> Mesh:
-        """The triangle mesh of all tubes at this state (FOLD arrays, fold angles measured)."""
-        topo = self.structure._mesh_topology
-        coords = self.vertices[self.structure.cell_curves].reshape(-1, 3)  # (K·4·n, 3)
-        base = Mesh(
-            vertices_coords=coords,
-            edges_vertices=topo["edges_vertices"],
-            edges_assignment=np.full(len(topo["edges_vertices"]), "F"),
-            edges_foldAngle=np.zeros(len(topo["edges_vertices"])),
-            faces_vertices=topo["faces_vertices"],
-            edges_kind=topo["edges_kind"],
-            faces_group=topo["faces_group"],
-        )
-        mesh = base.with_coords(coords)
-        assignment = np.where(
-            np.isin(mesh.edges_kind, ("fold", "seam")),
-            np.where(mesh.edges_foldAngle > 0, "V", "M"),
-            np.where(mesh.edges_kind == "boundary", "B", "F"),
-        )
-        return replace(mesh, edges_assignment=assignment)
+    def mesh(self, *, faces: Literal["triangles", "quads"] = "triangles") -> Mesh:
+        """The mesh of all tubes at this state (FOLD arrays, fold angles measured).
 
-
-def _tube_mesh_topology(cells: int, n: int) -> dict[str, np.ndarray]:
-    """Faces and edges of ``cells`` closed tubes of 4 strips with n samples per curve.
-
-    Vertex ``(k·4 + c)·n + j`` is sample j of corner c of tube k. Strip c of a tube runs
-    from corner c to corner c+1 (mod 4); its faces are oriented consistently around the
-    tube with their normals pointing out of it (checked in the tests).
-    """
-    j = np.arange(n - 1)
-    faces, groups = [], []
-    e_curve, e_rule, e_diag = [], [], []
-    for k in range(cells):
-        for c in range(4):
-            a = (k * 4 + c) * n
-            b = (k * 4 + (c + 1) % 4) * n
-            faces.append(np.stack([a + j, b + j + 1, b + j], axis=1))
-            faces.append(np.stack([a + j, a + j + 1, b + j + 1], axis=1))
-            groups.append(np.full(2 * (n - 1), k * 4 + c))
-            e_curve.append(np.stack([a + j, a + j + 1], axis=1))
-            e_rule.append(np.stack([a + np.arange(n), b + np.arange(n)], axis=1))
-            e_diag.append(np.stack([a + j, b + j + 1], axis=1))
-    curve_edges = np.concatenate(e_curve)
-    rule_edges = np.concatenate(e_rule)
-    curve_kind = np.tile(np.repeat(np.array(CORNER_KINDS), n - 1), cells)
-    rule_kind = np.where(np.tile(np.isin(np.arange(n), (0, n - 1)), 4 * cells), "boundary", "ruling")
-    edges = np.concatenate([curve_edges, rule_edges, np.concatenate(e_diag)])
-    kinds = np.concatenate([curve_kind, rule_kind, np.full(len(curve_edges), "diagonal")])
-    return {
-        "faces_vertices": np.concatenate(faces),
-        "faces_group": np.concatenate(groups),
-        "edges_vertices": edges,
-        "edges_kind": kinds.astype("<U8"),
-    }
+        Parameters
+        ----------
+        faces : {"triangles", "quads"}, keyword-only
+            The faces of :meth:`Structure.topology`.
+        """
+        return self.structure.topology(faces).mesh(self.vertices)

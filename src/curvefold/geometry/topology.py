@@ -1,22 +1,366 @@
-"""Topology of tubes: corner order, strips and the thinned views of a structure.
+"""Topology: the one owner of corner order, strips, sheets, vertex numbering and M/V/B/F.
 
 A cell (i, j) of the lattice is a tube whose corners 1–4 are the lattice curves
-(i, j), (i, j+1), (i+1, j+1), (i+1, j) in construction order; strip c of a tube runs from
-corner c to corner c + 1 (mod 4).
+(i, j), (i, j+1), (i+1, j+1), (i+1, j) (:data:`CORNERS`), in the paper's construction
+order: curve 1 → 2 along +r_R, 2 → 3 along +r_L, 3 → 4 along −r_R, 4 → 1 along −r_L.
+Strip c of a tube runs from corner c to corner c + 1 (mod 4). From the corner order
+follow, and are derived here rather than restated:
+
+* the quadrant of every corner (the signs of r_L and r_R along its two strips,
+  :data:`CORNER_QUADRANTS`) and hence its kind (:data:`CORNER_KINDS`): a fold where both
+  signs agree (interior angle π − 2α), a seam where they differ (2α);
+* the sheets (:data:`SHEETS`): each tube is two sheets, strips 4→1, 1→2 around fold
+  crease 1 (sheet A) and strips 2→3, 3→4 around fold crease 3 (sheet B), welded along the
+  seams 2 and 4; seam 2 of tube k has id 2k, seam 4 has id 2k + 1.
+
+A :class:`Topology` is the mesh that a structure's lattice curves are put on: which
+lattice curve and sample every vertex is, the faces and edges with their kinds, the face
+groups, the seam ids and the sheets with their vertex maps. Writers, sheets and
+measurements read it; nobody recomputes it. :meth:`Topology.tubes` builds the tube mesh
+(4 ruled strips per tube, triangles or planar-to-O(h³) quads); another topology (e.g.
+rigid planar panels) is another constructor returning the same value.
+
+The single rule for FOLD assignments is :func:`fold_assignment`.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
-from ..kernel.errors import InputError
+from ..kernel.arrays import FrozenArrays, readonly
+from ..kernel.errors import InputError, InternalError
+from .mesh import CREASE_KINDS, Mesh, edges_faces, fold_angles
 
 if TYPE_CHECKING:  # pragma: no cover
     from .structure import Structure
 
-__all__ = ["sample_index", "tube_strips", "thin_cells", "drawable"]
+__all__ = [
+    "CORNERS",
+    "CORNER_QUADRANTS",
+    "CORNER_KINDS",
+    "STRIPS",
+    "SHEETS",
+    "quadrant_kind",
+    "quadrant_name",
+    "seam_id",
+    "fold_assignment",
+    "lattice_corners",
+    "corner_members",
+    "SheetTopology",
+    "Topology",
+    "sample_index",
+    "tube_strips",
+    "thin_cells",
+    "drawable",
+]
+
+#: Offsets of a cell's corners 1–4 from its (i, j), in construction order.
+CORNERS = readonly(np.array([[0, 0], [0, 1], [1, 1], [1, 0]]))
+#: Strip c runs from corner c to corner c + 1 (0-based corner indices).
+STRIPS = tuple((c, (c + 1) % 4) for c in range(4))
+
+
+def quadrant_kind(sign_left: int, sign_right: int) -> str:
+    """Kind of the crease between strips along ``sign_left · r_L`` and ``sign_right · r_R``.
+
+    ``"fold"`` when the signs agree (interior angle π − 2α), ``"seam"`` when they differ (2α).
+    """
+    return "fold" if sign_left == sign_right else "seam"
+
+
+def _corner_signs(c: int) -> tuple[int, int]:
+    """Signs of the steps in u (along r_L) and v (along r_R) from corner c to its neighbours."""
+    steps = CORNERS[[(c - 1) % 4, (c + 1) % 4]] - CORNERS[c]  # one step in u, one in v
+    return int(steps[:, 0].sum()), int(steps[:, 1].sum())
+
+
+def quadrant_name(sign_left: int, sign_right: int) -> str:
+    """``"L+R-"`` for rulings ``+r_L`` and ``−r_R``."""
+    return f"L{'+' if sign_left > 0 else '-'}R{'+' if sign_right > 0 else '-'}"
+
+
+#: Quadrant of the crease at corners 1–4 (see :data:`curvefold.geometry.crease.QUADRANTS`).
+CORNER_QUADRANTS = tuple(quadrant_name(*_corner_signs(c)) for c in range(4))
+#: Kind of crease at corners 1–4: ("fold", "seam", "fold", "seam").
+CORNER_KINDS = tuple(quadrant_kind(*_corner_signs(c)) for c in range(4))
+#: The two sheets of a tube: name and strips, the strips in order across the sheet.
+SHEETS = (("A", (3, 0)), ("B", (1, 2)))
+#: Seam corners in id order.
+_SEAMS = tuple(c for c in range(4) if CORNER_KINDS[c] == "seam")
+_SEAM_INDEX = np.array([_SEAMS.index(c) if c in _SEAMS else -1 for c in range(4)])
+
+
+def seam_id(tube: np.ndarray | int, corner: np.ndarray | int) -> np.ndarray:
+    """Id of the seam at 0-based corner 1 or 3 of a tube: 2·tube, 2·tube + 1 (arrays broadcast).
+
+    Examples
+    --------
+    >>> seam_id(np.array([0, 0, 4]), np.array([1, 3, 1])).tolist()
+    [0, 1, 8]
+    """
+    return len(_SEAMS) * np.asarray(tube) + _SEAM_INDEX[corner]
+
+
+def fold_assignment(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, *, seams_open: bool = False) -> np.ndarray:
+    """FOLD assignment of every edge from its kind and fold angle: the one rule.
+
+    ``B`` on boundaries, and on seams cut open (``seams_open``: a sheet, where each seam
+    edge borders one face); ``F`` on rulings and diagonals; on folds and closed seams
+    ``V`` where the fold angle is positive (FOLD sign: valley positive), ``M`` where it is
+    negative and ``F`` where it is 0 (an unfolded crease).
+
+    Parameters
+    ----------
+    edges_kind : (E,) array of str
+    edges_foldAngle : (E,) array of float
+        Degrees, valley positive.
+    seams_open : bool, keyword-only
+
+    Returns
+    -------
+    (E,) ndarray of str
+
+    Examples
+    --------
+    >>> kind = np.array(["fold", "fold", "seam", "boundary", "ruling"])
+    >>> fold_assignment(kind, np.array([30.0, -2.0, -150.0, 0.0, 0.0])).tolist()
+    ['V', 'M', 'M', 'B', 'F']
+    >>> fold_assignment(kind, np.array([30.0, -2.0, -150.0, 0.0, 0.0]), seams_open=True).tolist()
+    ['V', 'M', 'B', 'B', 'F']
+    """
+    kind = np.asarray(edges_kind)
+    angle = np.asarray(edges_foldAngle, float)
+    boundary = (kind == "boundary") | ((kind == "seam") & seams_open)
+    crease = np.where(angle > 0, "V", np.where(angle < 0, "M", "F"))
+    return np.where(boundary, "B", np.where(np.isin(kind, CREASE_KINDS), crease, "F")).astype("<U1")
+
+
+def lattice_corners(cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct lattice curves at the corners of cells, and each cell's corners among them.
+
+    Parameters
+    ----------
+    cells : (K, 2) ndarray of int
+
+    Returns
+    -------
+    curves_uv : (M, 2) ndarray of int
+        Sorted, read-only.
+    cell_curves : (K, 4) ndarray of int
+        Row of ``curves_uv`` at corners 1–4 of every cell, read-only.
+
+    Examples
+    --------
+    >>> uv, rows = lattice_corners(np.array([[0, 0], [1, 1]]))
+    >>> rows.tolist()
+    [[0, 1, 3, 2], [3, 4, 6, 5]]
+    """
+    corners = (np.asarray(cells)[:, None, :] + CORNERS[None]).reshape(-1, 2)
+    curves_uv, inverse = np.unique(corners, axis=0, return_inverse=True)
+    return readonly(curves_uv), readonly(inverse.reshape(-1, 4))
+
+
+def corner_members(cell_curves: np.ndarray, curves: int) -> tuple[tuple[tuple[int, int], ...], ...]:
+    """For each of ``curves`` lattice curves, the (tube, 0-based corner) pairs on it, in tube order.
+
+    Examples
+    --------
+    >>> corner_members(np.array([[0, 1, 3, 2], [3, 4, 6, 5]]), 7)[3]
+    ((0, 2), (1, 0))
+    """
+    members: list[list[tuple[int, int]]] = [[] for _ in range(curves)]
+    for k, row in enumerate(np.asarray(cell_curves).tolist()):
+        for c, m in enumerate(row):
+            members[m].append((k, c))
+    return tuple(tuple(m) for m in members)
+
+
+@dataclass(frozen=True, eq=False)
+class SheetTopology(FrozenArrays):
+    """One developed sheet in the numbering of its topology's mesh.
+
+    Attributes
+    ----------
+    label : str
+        ``"tube 2 · sheet A"`` (tubes numbered from 1).
+    vertices : (V_s,) ndarray of int
+        The mesh vertex of every sheet vertex, in sheet order.
+    faces : (F_s,) ndarray of int
+        The mesh faces of the sheet, ascending.
+    edges : (E_s,) ndarray of int
+        The mesh edges of the sheet, ascending.
+    faces_vertices : (F_s, k) ndarray of int
+        The faces in sheet numbering.
+    edges_vertices : (E_s, 2) ndarray of int
+        The edges in sheet numbering, each oriented as the sheet's first face (lowest
+        index) that traverses it.
+    edges_seam : (E_s,) ndarray of int
+        Seam id of every seam edge (shared with the partner edge on the other sheet of
+        the tube), -1 elsewhere.
+    """
+
+    label: str
+    vertices: np.ndarray
+    faces: np.ndarray
+    edges: np.ndarray
+    faces_vertices: np.ndarray
+    edges_vertices: np.ndarray
+    edges_seam: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class Topology(FrozenArrays):
+    """The mesh a structure's lattice curves are put on, with its sheets.
+
+    All arrays are read-only. Build it with :meth:`tubes`.
+
+    Attributes
+    ----------
+    vertex_curve, vertex_sample : (V,) ndarray of int
+        The lattice curve (row of the structure's ``curves_uv``) and the sample of every
+        vertex: vertex v is ``curves[vertex_curve[v], vertex_sample[v]]``.
+    faces_vertices : (F, k) ndarray of int
+        Polygons (-1 padded), counter-clockwise seen from outside the tubes.
+    faces_group : (F,) ndarray of int
+        Strip 4k + c of every face (strip c of tube k).
+    edges_vertices : (E, 2) ndarray of int
+    edges_kind : (E,) ndarray of str
+        One of :data:`curvefold.geometry.mesh.EDGE_KINDS`.
+    edges_seam : (E,) ndarray of int
+        Seam id of every seam edge, -1 elsewhere.
+    sheets : tuple of SheetTopology
+        Tube by tube, sheet A then B.
+    """
+
+    vertex_curve: np.ndarray
+    vertex_sample: np.ndarray
+    faces_vertices: np.ndarray
+    faces_group: np.ndarray
+    edges_vertices: np.ndarray
+    edges_kind: np.ndarray
+    edges_seam: np.ndarray
+    sheets: tuple[SheetTopology, ...]
+
+    @classmethod
+    def tubes(cls, cell_curves: np.ndarray, samples: int, *, faces: Literal["triangles", "quads"] = "triangles") -> Topology:
+        """Closed tubes of four ruled strips, one per cell, each with its own vertices.
+
+        Vertex ``(4k + c)·n + j`` is sample j of corner c (0-based) of tube k. Strip c of a
+        tube, between a = corner c and b = corner c + 1, has for j < n − 1 the quad
+        ``(a_j, a_{j+1}, b_{j+1}, b_j)`` or the two triangles ``(a_j, b_{j+1}, b_j)``,
+        ``(a_j, a_{j+1}, b_{j+1})`` (all first triangles of a strip, then all second ones);
+        normals point out of the tube. Edges: the curve edges of every strip's corner a
+        (kind of that corner), then the rulings ``(a_i, b_i)`` (``"boundary"`` at both
+        ends), then the diagonals ``(a_j, b_{j+1})`` (triangles only). A ruling quad is
+        planar to O(h³) only: the triangles' diagonals carry that bend.
+
+        Parameters
+        ----------
+        cell_curves : (K, 4) array_like of int
+            Lattice curve at corners 1–4 of every tube.
+        samples : int
+            Samples n ≥ 2 per curve.
+        faces : {"triangles", "quads"}, keyword-only
+        """
+        if faces not in ("triangles", "quads"):
+            raise InputError(f"faces must be 'triangles' or 'quads', got {faces!r}")
+        cells = np.asarray(cell_curves, dtype=np.int64).reshape(-1, 4)
+        K, n = len(cells), int(samples)
+        j, i = np.arange(n - 1), np.arange(n)
+        strip = np.arange(4 * K)  # 4k + c
+        a = (strip * n)[:, None]  # first vertex of corner c of tube k
+        b = ((strip - strip % 4 + (strip + 1) % 4) * n)[:, None]  # first vertex of corner c + 1
+        if faces == "triangles":
+            first = np.stack([a + j, b + j + 1, b + j], axis=-1)
+            second = np.stack([a + j, a + j + 1, b + j + 1], axis=-1)
+            face_rows = np.concatenate([first, second], axis=1)  # (4K, 2(n − 1), 3)
+        else:
+            face_rows = np.stack([a + j, a + j + 1, b + j + 1, b + j], axis=-1)  # (4K, n − 1, 4)
+        per_strip = face_rows.shape[1]
+        curve_edges = np.stack([a + j, a + j + 1], axis=-1).reshape(-1, 2)
+        rulings = np.stack([a + i, b + i], axis=-1).reshape(-1, 2)
+        diagonals = np.stack([a + j, b + j + 1], axis=-1).reshape(-1, 2) if faces == "triangles" else np.zeros((0, 2), np.int64)
+        corner = np.repeat(strip % 4, n - 1)  # corner of every curve edge
+        curve_kind = np.array(CORNER_KINDS)[corner]
+        ruling_kind = np.where(np.tile(np.isin(i, (0, n - 1)), 4 * K), "boundary", "ruling")
+        edges_kind = np.concatenate([curve_kind, ruling_kind, np.full(len(diagonals), "diagonal")]).astype("<U8")
+        seam = np.full(len(edges_kind), -1, np.int64)
+        seam[: len(curve_edges)] = np.where(curve_kind == "seam", seam_id(np.repeat(strip // 4, n - 1), corner), -1)
+        faces_vertices = face_rows.reshape(-1, face_rows.shape[-1])
+        edges_vertices = np.concatenate([curve_edges, rulings, diagonals])
+
+        # Edge ids by block: curve edges of strip g, rulings of strip g, diagonals of strip g.
+        def block(start: int, size: int, g: int) -> np.ndarray:
+            return start + g * size + np.arange(size)
+
+        C, R = len(curve_edges), len(rulings)
+        sheets = []
+        for k in range(K):
+            for name, strips in SHEETS:
+                corners = (strips[0],) + tuple(STRIPS[s][1] for s in strips)
+                g = [4 * k + s for s in strips]
+                edge_ids = np.concatenate(
+                    [block(0, n - 1, 4 * k + c) for c in corners]
+                    + [block(C, n, gg) for gg in g]
+                    + ([block(C + R, n - 1, gg) for gg in g] if faces == "triangles" else [])
+                )
+                face_ids = np.concatenate([block(0, per_strip, gg) for gg in g])
+                verts = np.concatenate([(4 * k + c) * n + i for c in corners])
+                sheets.append(_sheet(f"tube {k + 1} · sheet {name}", verts, np.sort(face_ids), np.sort(edge_ids),
+                                     faces_vertices, edges_vertices, seam))
+        return cls(
+            vertex_curve=np.repeat(cells.reshape(-1), n),
+            vertex_sample=np.tile(i, 4 * K),
+            faces_vertices=faces_vertices,
+            faces_group=np.repeat(strip, per_strip),
+            edges_vertices=edges_vertices,
+            edges_kind=edges_kind,
+            edges_seam=seam,
+            sheets=tuple(sheets),
+        )
+
+    def coords(self, curves: np.ndarray) -> np.ndarray:
+        """Vertex positions from lattice curves (..., M, n, 3); shape (..., V, 3)."""
+        return np.asarray(curves)[..., self.vertex_curve, self.vertex_sample, :]
+
+    def mesh(self, curves: np.ndarray) -> Mesh:
+        """The mesh at the positions of lattice curves (M, n, 3), fold angles measured.
+
+        Fold and seam edges carry their measured fold angle (FOLD sign), every other edge
+        0; assignments follow :func:`fold_assignment` (the seams are closed).
+        """
+        coords = self.coords(curves)
+        measured = fold_angles(coords, self.faces_vertices, self.edges_vertices)
+        angle = np.where(np.isin(self.edges_kind, CREASE_KINDS), measured, 0.0)
+        return Mesh(
+            vertices_coords=coords,
+            edges_vertices=self.edges_vertices,
+            edges_assignment=fold_assignment(self.edges_kind, angle),
+            edges_foldAngle=angle,
+            faces_vertices=self.faces_vertices,
+            edges_kind=self.edges_kind,
+            faces_group=self.faces_group,
+        )
+
+
+def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.ndarray, faces_vertices: np.ndarray,
+           edges_vertices: np.ndarray, seam: np.ndarray) -> SheetTopology:
+    """A sheet of the given mesh vertices, faces and edges, in its own numbering."""
+    lookup = np.full(int(verts.max()) + 1, -1, np.int64)
+    lookup[verts] = np.arange(len(verts))
+    rows = faces_vertices[face_ids]
+    local_faces = np.where(rows >= 0, lookup[rows], -1)
+    local_edges = lookup[edges_vertices[edge_ids]]
+    ef = edges_faces(local_faces, local_edges)
+    if not (ef >= 0).any(axis=1).all():
+        raise InternalError(f"{label}: an edge borders none of the sheet's faces")
+    big = np.iinfo(np.int64).max
+    fwd, rev = np.where(ef[:, 0] >= 0, ef[:, 0], big), np.where(ef[:, 1] >= 0, ef[:, 1], big)
+    oriented = np.where((rev < fwd)[:, None], local_edges[:, ::-1], local_edges)  # as the first face runs
+    return SheetTopology(label, verts, face_ids, edge_ids, local_faces, oriented, seam[edge_ids])
 
 
 def sample_index(n: int, count: int) -> np.ndarray:
@@ -52,7 +396,7 @@ def tube_strips(cell_curves: np.ndarray) -> np.ndarray:
     [[0, 1], [1, 3], [3, 2], [2, 0]]
     """
     cells = np.asarray(cell_curves)
-    return np.stack([cells, np.roll(cells, -1, axis=1)], axis=-1).reshape(-1, 2)
+    return cells[:, np.array(STRIPS)].reshape(-1, 2)
 
 
 def thin_cells(cell_curves: np.ndarray, limit: int) -> np.ndarray:

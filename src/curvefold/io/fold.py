@@ -3,7 +3,7 @@
 Layout written by :func:`write_fold` (one shared vertex/edge/face topology):
 
 * key frame (frame 0): the crease pattern, 2D ``vertices_coords`` (every sheet seen from
-  the side its normals point to, so triangles are counter-clockwise as FOLD requires),
+  the side its normals point to, so faces are counter-clockwise as FOLD requires),
   ``frame_classes`` ``["creasePattern"]``, ``edges_foldAngle`` at the design state;
 * ``file_frames[i]``: folded state i, ``frame_classes`` ``["foldedForm"]``,
   ``frame_parent: 0``, ``frame_inherit: true``, overriding only ``vertices_coords`` (3D)
@@ -30,13 +30,15 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 
-from ..geometry.mesh import EDGE_KINDS, Mesh
+from ..geometry.mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
 from ..geometry.sheets import _angles, _check_structure, _design_angle, _develop, bonds, folding_motion
 from ..geometry.structure import Structure
-from ..kernel.errors import CurvefoldError, InputError
+from ..geometry.topology import fold_assignment
+from ..kernel.errors import InputError, InternalError
 from .atomic import atomic_write
 from .mesh3d import check_metadata
 
@@ -52,11 +54,12 @@ _GROUP_KEYS = ("faces_curvefold:group", "curvefold:faces_group")
 
 
 def fold_assignments(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, edges_assignment: np.ndarray) -> np.ndarray:
-    """FOLD assignment of every edge from its kind.
+    """FOLD assignment of every edge of a cut-open crease pattern from its kind.
 
-    ``B`` for boundaries and seams, ``F`` for rulings and diagonals; a fold crease is
-    ``V`` where its angle is positive, ``M`` where negative and keeps its given ``M``/``V``
-    where the angle is 0 (``F`` if it has neither).
+    :func:`curvefold.geometry.topology.fold_assignment` with the seams open: ``B`` for
+    boundaries and seams, ``F`` for rulings and diagonals; a fold crease is ``V`` where its
+    angle is positive, ``M`` where negative, and where the angle is 0 it keeps its given
+    ``M``/``V`` (``F`` if it has neither).
 
     Parameters
     ----------
@@ -78,9 +81,8 @@ def fold_assignments(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, edges_
     kind = np.asarray(edges_kind)
     angle = np.asarray(edges_foldAngle, float)
     given = np.asarray(edges_assignment)
-    crease = np.where(angle > 0, "V", np.where(angle < 0, "M", np.where(np.isin(given, ("M", "V")), given, "F")))
-    out = np.where(np.isin(kind, ("boundary", "seam")), "B", np.where(kind == "fold", crease, "F"))
-    return out.astype("<U1")
+    keep = (kind == "fold") & (angle == 0) & np.isin(given, ("M", "V"))
+    return np.where(keep, given, fold_assignment(kind, angle, seams_open=True)).astype("<U1")
 
 
 def _edge_face_counts(mesh: Mesh, what: str) -> np.ndarray:
@@ -88,22 +90,23 @@ def _edge_face_counts(mesh: Mesh, what: str) -> np.ndarray:
     V = len(mesh.vertices_coords)
     ev = np.sort(mesh.edges_vertices.astype(np.int64), axis=1)
     keys = ev[:, 0] * V + ev[:, 1]
-    f = mesh.faces_vertices.astype(np.int64)
-    sides = np.sort(np.stack([f, np.roll(f, -1, axis=1)], axis=-1).reshape(-1, 2), axis=1)
+    sides, side_face = face_sides(mesh.faces_vertices)
+    sides = np.sort(sides, axis=1)
     side_keys = sides[:, 0] * V + sides[:, 1]
     order = np.argsort(keys)
     pos = np.clip(np.searchsorted(keys[order], side_keys), 0, max(len(keys) - 1, 0))
     found = keys[order][pos] == side_keys if len(keys) else np.zeros(len(side_keys), bool)
     if not found.all():
         i = int(np.flatnonzero(~found)[0])
-        raise InputError(f"{what}: face {i // 3} side {sides[i].tolist()} is not an edge in edges_vertices")
+        raise InputError(f"{what}: face {side_face[i]} side {sides[i].tolist()} is not an edge in edges_vertices")
     return np.bincount(order[pos], minlength=len(keys))
 
 
 def _check_sheet(mesh: Mesh, assignment: np.ndarray, what: str) -> None:
     """Mesh indices in range, M/V/F edges with two faces, B edges with one."""
     V, E = len(mesh.vertices_coords), len(mesh.edges_vertices)
-    for name, idx in (("edges_vertices", mesh.edges_vertices), ("faces_vertices", mesh.faces_vertices)):
+    faces = mesh.faces_vertices
+    for name, idx in (("edges_vertices", mesh.edges_vertices), ("faces_vertices", faces[faces >= 0])):
         if idx.size and (idx.min() < 0 or idx.max() >= V):
             raise InputError(f"{what}.{name} refers to vertices outside [0, {V}), got {int(idx.min())}..{int(idx.max())}")
     if not np.isfinite(mesh.vertices_coords).all():
@@ -147,9 +150,8 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     f = np.asarray(mesh.faces_vertices)
     if len(f) == 0:
         return xy
-    t = xy[f]
-    area2 = (t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1]) - (t[:, 1, 1] - t[:, 0, 1]) * (t[:, 2, 0] - t[:, 0, 0])
-    pairs = np.concatenate([f[:, [0, 1]], f[:, [1, 2]]])
+    area2 = vector_areas(xy, f)[:, 2]
+    pairs = face_sides(f)[0]
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
     _, vertex_sheet = connected_components(graph, directed=False)
     face_sheet = vertex_sheet[f[:, 0]]
@@ -157,7 +159,7 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
         faces = np.flatnonzero(face_sheet == sheet)
         cw = area2[faces] < 0
         if mirror_clockwise and cw.all():
-            verts = np.unique(f[faces])
+            verts = np.unique(f[faces][f[faces] >= 0])
             centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
             xy[verts, 1] = 2 * centre - xy[verts, 1]
             area2[faces] = -area2[faces]
@@ -174,6 +176,13 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
 
 def _number_lists(a: np.ndarray) -> list:
     return np.asarray(a, float).tolist()
+
+
+def _face_lists(faces: np.ndarray) -> list:
+    """Faces (F, k), -1 padded, as FOLD's lists of vertex ids, each as long as its polygon."""
+    if not (faces < 0).any():
+        return faces.tolist()
+    return [[v for v in row if v >= 0] for row in faces.tolist()]
 
 
 def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
@@ -290,7 +299,7 @@ def write_fold(
         "edges_vertices": cp.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
         "edges_foldAngle": np.where(zero, 0.0, np.asarray(cp.edges_foldAngle, float)).tolist(),
-        "faces_vertices": cp.faces_vertices.tolist(),
+        "faces_vertices": _face_lists(cp.faces_vertices),
         "edges_curvefold:kind": cp.edges_kind.tolist(),
         "faces_curvefold:group": np.asarray(cp.faces_group).tolist(),
         "curvefold:seam_partners": pairs.tolist(),
@@ -352,7 +361,7 @@ def write_sheet_fold(
         "edges_vertices": sheet.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
         "edges_foldAngle": np.where(np.isin(assignment, ("B", "F")), 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
-        "faces_vertices": sheet.faces_vertices.tolist(),
+        "faces_vertices": _face_lists(sheet.faces_vertices),
         "edges_curvefold:kind": sheet.edges_kind.tolist(),
     }
     return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
@@ -399,7 +408,12 @@ def _int_rows(value, n_cols: int | None, key: str, where: str) -> np.ndarray:
             raise _fail(where, f"{key}[{i}] must be a list of integers, got {row!r}")
         if n_cols is not None and len(row) != n_cols:
             raise _fail(where, f"{key}[{i}] must have {n_cols} entries, got {len(row)} ({row!r})")
-    return np.array(value, dtype=np.int64).reshape(len(value), n_cols or 0)
+    if n_cols is not None:
+        return np.array(value, dtype=np.int64).reshape(len(value), n_cols)
+    out = np.full((len(value), max([3] + [len(row) for row in value])), -1, np.int64)  # rows of any length, -1 padded
+    for i, row in enumerate(value):
+        out[i, : len(row)] = row
+    return out
 
 
 def _float_array(value, key: str, where: str) -> np.ndarray:
@@ -453,12 +467,13 @@ def _frame_mesh(frame: dict, where: str) -> Mesh:
     faces = frame["faces_vertices"]
     if isinstance(faces, list):
         for i, f in enumerate(faces):
-            if isinstance(f, list) and len(f) != 3:
-                raise _fail(where, f"faces_vertices[{i}] has {len(f)} vertices; curvefold reads triangles only")
-    fv = _int_rows(faces, 3, "faces_vertices", where)
-    bad = np.flatnonzero(((fv < 0) | (fv >= V)).any(axis=1))
+            if isinstance(f, list) and len(f) < 3:
+                raise _fail(where, f"faces_vertices[{i}] has {len(f)} vertices; a face needs at least 3")
+    fv = _int_rows(faces, None, "faces_vertices", where)  # polygons, -1 padded
+    real = np.arange(fv.shape[1]) < np.array([len(f) for f in faces], dtype=np.int64).reshape(-1, 1)
+    bad = np.flatnonzero((((fv < 0) | (fv >= V)) & real).any(axis=1))
     if bad.size:
-        raise _fail(where, f"faces_vertices[{bad[0]}] = {fv[bad[0]].tolist()} refers to a vertex outside [0, {V})")
+        raise _fail(where, f"faces_vertices[{bad[0]}] = {faces[bad[0]]} refers to a vertex outside [0, {V})")
 
     assignment = frame["edges_assignment"]
     if not isinstance(assignment, list) or len(assignment) != E:
@@ -533,8 +548,10 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     InputError
         If the file is not JSON, misses a required key (``vertices_coords``,
         ``edges_vertices``, ``edges_assignment``, ``faces_vertices``), has arrays of the
-        wrong length, indices out of range, an assignment other than M/V/B/F, non-triangle
-        faces or malformed curvefold keys. The message names the file, frame and key.
+        wrong length, indices out of range, an assignment other than M/V/B/F, a face of
+        fewer than 3 vertices or malformed curvefold keys. The message names the file,
+        frame and key. Faces may be polygons of any size (read -1 padded, see
+        :class:`curvefold.geometry.mesh.Mesh`).
     """
     where = str(path)
     try:
@@ -620,11 +637,12 @@ def to_fold(
     unit: str = "unit",
     metadata: Mapping | None = None,
     anchor: str = "start",
+    faces: Literal["triangles", "quads"] = "triangles",
 ) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
     The crease pattern is every sheet of :func:`sheets`, laid in a row along +x (bounding
-    boxes 5 % of the largest sheet apart, each sheet seen from outside, so triangles are
+    boxes 5 % of the largest sheet apart, each sheet seen from outside, so faces are
     counter-clockwise). Seams are cut open: each seam edge appears once per sheet as a
     boundary edge, and the two copies are paired in ``seam_partners`` (the edges run
     opposite ways, as their faces traverse them). The folded frames put the same vertices
@@ -647,6 +665,8 @@ def to_fold(
         numbering and the bonds as text).
     anchor : {"start", "middle"}, keyword-only
         Which frame of curve 1 stays fixed in the folded frames.
+    faces : {"triangles", "quads"}, keyword-only
+        Faces of the sheets (:func:`curvefold.geometry.sheets.sheets`).
 
     Returns
     -------
@@ -660,7 +680,8 @@ def to_fold(
     if not isinstance(unit, str) or not unit:
         raise InputError(f"unit must be a non-empty str, got {unit!r}")
     meta = _metadata(structure, design, metadata)
-    parts, maps = _develop(structure, design, "")
+    topology = structure.topology(faces)
+    parts = _develop(structure, design, "", topology)
     xys = [p.mesh.vertices_coords[:, :2] for p in parts]
     size = max(float(np.ptp(xy, axis=0).max()) for xy in xys)
     offsets = _row_offsets(xys, 0.05 * size)
@@ -674,21 +695,20 @@ def to_fold(
         edges_vertices=np.concatenate([p.mesh.edges_vertices + v_off[i] for i, p in enumerate(parts)]),
         edges_assignment=cat("edges_assignment"),
         edges_foldAngle=cat("edges_foldAngle"),
-        faces_vertices=np.concatenate([p.mesh.faces_vertices + v_off[i] for i, p in enumerate(parts)]),
+        faces_vertices=np.concatenate([np.where(p.mesh.faces_vertices >= 0, p.mesh.faces_vertices + v_off[i], -1) for i, p in enumerate(parts)]),
         edges_kind=cat("edges_kind"),
         faces_group=cat("faces_group"),
     )
-    # Seam partners: the same tube-mesh edge on the two sheets of a tube.
-    source = np.concatenate(maps)
-    seam = np.concatenate([p.edges_seam for p in parts])
-    ids = np.flatnonzero(seam >= 0)
-    key = np.sort(source[cp.edges_vertices[ids]], axis=1)
-    order = np.lexsort((key[:, 1], key[:, 0], seam[ids]))
-    pairs = ids[order].reshape(-1, 2)
-    if not (np.sort(source[cp.edges_vertices[pairs[:, 0]]], axis=1) == np.sort(source[cp.edges_vertices[pairs[:, 1]]], axis=1)).all():
-        raise CurvefoldError("seam edges do not pair up between the two sheets of a tube")  # pragma: no cover - a bug
+    # Seam partners: the two sheet edges that are one edge of the structure's mesh.
+    mesh_edge = np.concatenate([sheet.edges for sheet in topology.sheets])
+    ids = np.flatnonzero(np.concatenate([p.edges_seam for p in parts]) >= 0)
+    ordered = ids[np.argsort(mesh_edge[ids], kind="stable")]
+    pairs = ordered.reshape(-1, 2) if ordered.size % 2 == 0 else np.zeros((0, 2), np.int64)
+    if len(pairs) * 2 != ordered.size or not (mesh_edge[pairs[:, 0]] == mesh_edge[pairs[:, 1]]).all():
+        raise InternalError("seam edges do not pair up between the two sheets of a tube")
     pairs.flags.writeable = False
 
+    source = np.concatenate([sheet.vertices for sheet in topology.sheets])
     coords = folding_motion(structure, angles, anchor=anchor)[:, source]  # (A, V, 3)
     folded = tuple((f"fold angle {a:g}°", cp.with_coords(x)) for a, x in zip(angles, coords))
     return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs)
@@ -705,7 +725,7 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
         ``file_title``.
     **kwargs
         Passed to :func:`to_fold` (``fold_angles``, ``fold_angle``, ``degrees``, ``unit``,
-        ``metadata``, ``anchor``).
+        ``metadata``, ``anchor``, ``faces``).
 
     Returns
     -------

@@ -102,7 +102,7 @@ def write_glb(
     ----------
     path : path-like
     mesh : Mesh
-        Topology (V vertices, F triangles) and edge kinds.
+        Topology (V vertices, polygon faces, triangulated for glTF) and edge kinds.
     coords : (K, V, 3) array_like, optional
         The states of the motion, in model units. Default: the single state
         ``mesh.vertices_coords`` (no morph targets, no animation).
@@ -184,7 +184,7 @@ def write_glb(
 
     surface = g.Mesh(
         name="surface",
-        primitives=[primitive(np.arange(V), np.asarray(mesh.faces_vertices), _TRIANGLES, 0)],
+        primitives=[primitive(np.arange(V), mesh.triangulated().faces_vertices, _TRIANGLES, 0)],
         weights=[0.0] * (K - 1),
     )
     line_primitives = []

@@ -456,7 +456,7 @@ class _Local:
 
 
 def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
-    mesh = sheet.mesh
+    mesh = sheet.mesh.triangulated()  # polygons split; the added diagonals come after the sheet's own edges
     name = sheet.label
     xy = mesh.vertices_coords[:, :2] * scale
     faces = mesh.faces_vertices
@@ -904,7 +904,7 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
             notes.append(f"sheet {name!r}: seam name {lab.text} could not be kept clear of the lines")
         labels.append(lab)
         segments = np.concatenate([segments, _segments([(lab.corners(), True)])])
-    tri = loc.xy[sheet.mesh.faces_vertices]
+    tri = loc.xy[sheet.mesh.triangulated().faces_vertices]
     areas = 0.5 * np.abs(_cross2(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]))
     lab, ok = _sheet_label(name, tri.mean(axis=1), areas, _Obstacles(segments, spacing), label_size)
     if not ok:

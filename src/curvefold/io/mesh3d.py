@@ -204,8 +204,8 @@ def write_obj(
 ) -> Path:
     """Write one state as a Wavefront OBJ with the crease lines as polylines.
 
-    The file holds the vertices (``v``, 17 significant digits), the triangles in group
-    ``surface`` (``f``, counter-clockwise as in the mesh) and, for each kind in
+    The file holds the vertices (``v``, 17 significant digits), the faces in group
+    ``surface`` (``f``, polygons as in the mesh, counter-clockwise) and, for each kind in
     ``crease_kinds``, a group of that name with the chained crease lines (``l``). The unit
     and the design parameters are written as ``#`` comments.
 
@@ -213,7 +213,7 @@ def write_obj(
     ----------
     path : path-like
     mesh : Mesh
-        The state to write (V vertices, F triangles).
+        The state to write (V vertices, F polygon faces).
     crease_kinds : sequence of str
         Edge kinds written as line groups, in this order.
     unit : str
@@ -238,7 +238,11 @@ def write_obj(
     parts.append(f"o {name}\n")
     parts.append(_fmt_rows("v", x, "%.17g"))
     parts.append("g surface\n")
-    parts.append(_fmt_rows("f", np.asarray(mesh.faces_vertices) + 1, "%d"))
+    faces = mesh.faces_vertices
+    if (faces < 0).any():  # polygons of mixed sizes
+        parts.append("".join("f " + " ".join(str(v + 1) for v in row if v >= 0) + "\n" for row in faces.tolist()))
+    else:
+        parts.append(_fmt_rows("f", faces + 1, "%d"))
     for kind in crease_kinds:
         lines = crease_polylines(mesh, kind)
         if lines:
@@ -248,7 +252,7 @@ def write_obj(
 
 
 def _trimesh(mesh: Mesh):
-    """``(trimesh module, Trimesh of the state)``; trimesh is imported here, lazily."""
+    """``(trimesh module, Trimesh of the triangulated state, the triangulated Mesh)``; trimesh is imported here, lazily."""
     try:
         import trimesh
     except ImportError as exc:  # pragma: no cover - depends on the environment
@@ -256,11 +260,12 @@ def _trimesh(mesh: Mesh):
     x = np.asarray(mesh.vertices_coords, float)
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
-    return trimesh, trimesh.Trimesh(vertices=x, faces=np.asarray(mesh.faces_vertices), process=False, validate=False)
+    triangles = mesh.triangulated()
+    return trimesh, trimesh.Trimesh(vertices=x, faces=triangles.faces_vertices, process=False, validate=False), triangles
 
 
 def write_stl(path: str | os.PathLike, mesh: Mesh) -> Path:
-    """Write one state as a binary STL (triangles only, 32-bit floats, via ``trimesh``).
+    """Write one state as a binary STL (polygons triangulated, 32-bit floats, via ``trimesh``).
 
     Parameters
     ----------
@@ -272,15 +277,15 @@ def write_stl(path: str | os.PathLike, mesh: Mesh) -> Path:
     -------
     Path
     """
-    trimesh, tm = _trimesh(mesh)
+    trimesh, tm, _ = _trimesh(mesh)
     return atomic_write(path, trimesh.exchange.stl.export_stl(tm))
 
 
 def write_ply(path: str | os.PathLike, mesh: Mesh) -> Path:
     """Write one state as a binary little-endian PLY (via ``trimesh``).
 
-    Vertices are 32-bit floats; each face also carries its strip index as the face
-    property ``group`` (``mesh.faces_group``).
+    Vertices are 32-bit floats; polygons are triangulated and each triangle carries the
+    strip index of its face as the face property ``group`` (``mesh.faces_group``).
 
     Parameters
     ----------
@@ -292,6 +297,6 @@ def write_ply(path: str | os.PathLike, mesh: Mesh) -> Path:
     -------
     Path
     """
-    trimesh, tm = _trimesh(mesh)
-    tm.face_attributes["group"] = np.asarray(mesh.faces_group, dtype=np.int32)
+    trimesh, tm, triangles = _trimesh(mesh)
+    tm.face_attributes["group"] = np.asarray(triangles.faces_group, dtype=np.int32)
     return atomic_write(path, trimesh.exchange.ply.export_ply(tm, encoding="binary", include_attributes=True))

@@ -1,6 +1,6 @@
 """Rhino ``.3dm`` of one structure state, written with ``rhino3dm`` (imported when called).
 
-Layers: ``Surface`` (the triangle mesh, double-precision vertices), ``Fold``, ``Seam``,
+Layers: ``Surface`` (the mesh, triangulated, double-precision vertices), ``Fold``, ``Seam``,
 ``Boundary`` and ``Rulings`` (the crease edges of each kind chained into polylines; rulings
 are split wherever they turn, so each straight ruling is one polyline). Triangulating
 diagonals are not drawn. The design parameters are stored as document user text
@@ -97,7 +97,7 @@ def write_3dm(
     surface.Vertices.UseDoublePrecisionVertices = True
     for p in x.tolist():
         surface.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
-    for a, b, c in np.asarray(mesh.faces_vertices).tolist():
+    for a, b, c in mesh.triangulated().faces_vertices.tolist():
         surface.Faces.AddFace(a, b, c)
     surface.Normals.ComputeNormals()
     surface.Compact()

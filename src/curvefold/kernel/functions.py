@@ -5,55 +5,267 @@ Users give these as a number, a vectorised Python callable ``f(s)`` or samples o
 be evaluated anywhere in ``[0, L]`` together with its first derivative, which the
 ruling-angle rate ``β'`` (and hence the regression limits) needs.
 
-Derivatives: exact for constants; a sixth-order central difference for callables
-(truncation ~h⁶ f⁽⁷⁾ with h = 1e-3·max(L, 1), rounding ~1e-13·|f|/h); the derivative of
-the interpolating cubic spline for samples.
+Every :class:`ScalarFunction` is a small frozen dataclass holding data, never a closure,
+so curves, creases, lattices and everything built on them pickle (for process pools and
+distributed sweeps). A user's own callable pickles only if it does itself (a lambda or a
+closure does not).
+
+Derivatives: exact for constants; the derivative of the interpolating cubic spline for
+samples; for callables a sixth-order finite difference that samples the function only
+inside ``[0, L]``: the central stencil ``s ± h, ±2h, ±3h`` where it fits, otherwise the
+seven-point stencil of the same order shifted into the domain (truncation ~h⁶ f⁽⁷⁾ with
+h = min(1e-3·max(L, 1), L/8), rounding ~1e-13·|f|/h centrally and up to ~1e-12·|f|/h
+for the fully one-sided stencil at the ends).
 """
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Union
 
 import numpy as np
 
+from .arrays import FrozenArrays
 from .errors import InputError
 
-__all__ = ["ScalarFunction", "as_function", "check_finite"]
+__all__ = [
+    "ScalarFunction",
+    "Constant",
+    "Sampled",
+    "UserFunction",
+    "Scaled",
+    "Differenced",
+    "as_function",
+    "check_finite",
+    "difference_derivative",
+    "difference_step",
+]
 
 FunctionLike = Union[float, int, Callable[[np.ndarray], np.ndarray], np.ndarray, "ScalarFunction"]
 
-# Sixth-order central difference weights for f'(s): Σ c_k (f(s+kh) − f(s−kh)) / h.
-_FD6 = ((1, 45.0 / 60.0), (2, -9.0 / 60.0), (3, 1.0 / 60.0))
 
+class ScalarFunction(ABC):
+    """A real function of arc length on ``[0, L]`` with its derivative.
 
-@dataclass(frozen=True)
-class ScalarFunction:
-    """A real function of arc length with its derivative.
-
-    Parameters
-    ----------
-    value : callable
-        ``value(s)`` for an array ``s`` of shape (M,) returns shape (M,).
-    derivative : callable
-        ``derivative(s)`` returns d value / ds, shape (M,).
-    constant : float or None
-        The value when the function is constant (lets callers take exact shortcuts).
+    Call it on an array ``s`` of any shape for the values (same shape);
+    :meth:`derivative` gives d/ds. ``constant`` is the value when the function is
+    constant (callers then take exact shortcuts), else None.
     """
 
-    value: Callable[[np.ndarray], np.ndarray]
-    derivative: Callable[[np.ndarray], np.ndarray]
     constant: float | None = None
 
     def __call__(self, s: np.ndarray) -> np.ndarray:
-        return self.value(s)
+        return self.value(np.asarray(s, dtype=float))
+
+    @abstractmethod
+    def value(self, s: np.ndarray) -> np.ndarray:
+        """f(s) for a float array ``s``, same shape."""
+
+    @abstractmethod
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        """df/ds at ``s``, same shape."""
 
     def scaled(self, factor: float) -> ScalarFunction:
         """``factor · self``."""
-        value, derivative = self.value, self.derivative
-        const = None if self.constant is None else factor * self.constant
-        return ScalarFunction(lambda s: factor * value(s), lambda s: factor * derivative(s), const)
+        return Scaled(self, float(factor))
+
+
+@dataclass(frozen=True)
+class Constant(ScalarFunction):
+    """A constant c; derivative exactly 0."""
+
+    constant: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return np.full(np.shape(s), self.constant)
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        return np.zeros(np.shape(s))
+
+
+@dataclass(frozen=True)
+class Scaled(ScalarFunction):
+    """``factor · base``."""
+
+    base: ScalarFunction
+    factor: float
+
+    @property
+    def constant(self) -> float | None:  # type: ignore[override]
+        return None if self.base.constant is None else self.factor * self.base.constant
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.factor * self.base(s)
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        return self.factor * self.base.derivative(s)
+
+
+@dataclass(frozen=True, eq=False)
+class Sampled(FrozenArrays, ScalarFunction):
+    """The cubic spline through samples at ``linspace(0, length, m)``.
+
+    Not-a-knot end conditions for m > 3 samples, natural ones below.
+
+    Attributes
+    ----------
+    samples : (m,) ndarray
+        Values at the uniform grid, read-only.
+    length : float
+        The domain's arc length L.
+    """
+
+    samples: np.ndarray
+    length: float
+    spline: object = field(init=False, repr=False)
+    slope: object = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        from scipy.interpolate import CubicSpline
+
+        object.__setattr__(self, "samples", np.asarray(self.samples, dtype=float))
+        super().__post_init__()
+        grid = np.linspace(0.0, float(self.length), self.samples.size)
+        spline = CubicSpline(grid, self.samples, bc_type="not-a-knot" if self.samples.size > 3 else "natural")
+        object.__setattr__(self, "spline", spline)
+        object.__setattr__(self, "slope", spline.derivative())
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.spline(s)
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        return self.slope(np.asarray(s, dtype=float))
+
+
+class Differenced(ScalarFunction):
+    """A function whose derivative is a sixth-order difference inside ``[0, length]``.
+
+    Subclasses provide :meth:`value` and the attributes ``length`` (L) and ``step`` (h).
+    """
+
+    length: float
+    step: float
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        return difference_derivative(self, s, length=self.length, step=self.step)
+
+
+@dataclass(frozen=True)
+class UserFunction(Differenced):
+    """A user's vectorised callable of arc length, differentiated numerically.
+
+    It pickles only if ``function`` does (a module-level function does, a lambda or a
+    closure does not).
+
+    Attributes
+    ----------
+    function : callable
+        ``function(s)``; a callable that only takes scalars is called element by element.
+    length : float
+        The domain's arc length L: the function is never sampled outside ``[0, L]``.
+    step : float
+        Difference step h (:func:`difference_step`).
+    """
+
+    function: Callable[[np.ndarray], np.ndarray]
+    length: float
+    step: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return _broadcast_call(self.function, s)
+
+
+def difference_step(length: float) -> float:
+    """The difference step h = min(1e-3 · max(L, 1), L / 8) for a domain of length L.
+
+    At most L / 8, so that a seven-point stencil (6 h wide) fits in the domain with room
+    for rounding.
+    """
+    return min(1e-3 * max(float(length), 1.0), float(length) / 8.0)
+
+
+def _stencil_weights(offsets: range) -> np.ndarray:
+    """Weights w of f'(0) ≈ Σ w_k f(k h) / h on the integer nodes ``offsets`` (exact, then float)."""
+    nodes = list(offsets)
+    weights = []
+    for k, xk in enumerate(nodes):
+        total = Fraction(0)
+        for m, xm in enumerate(nodes):
+            if m == k:
+                continue
+            term = Fraction(1, xk - xm)
+            for j, xj in enumerate(nodes):
+                if j not in (k, m):
+                    term *= Fraction(-xj, xk - xj)
+            total += term
+        weights.append(float(total))
+    return np.array(weights)
+
+
+#: Sixth-order central difference weights for f'(s): Σ c_k (f(s+kh) − f(s−kh)) / h.
+_CENTRAL6 = ((1, 45.0 / 60.0), (2, -9.0 / 60.0), (3, 1.0 / 60.0))
+#: Seven-point stencils on the nodes shift − 3 … shift + 3 (rows: shift = −3 … 3).
+_SHIFTED6 = np.stack([_stencil_weights(range(shift - 3, shift + 4)) for shift in range(-3, 4)])
+#: Shifts tried in order: the central stencil first, then the least one-sided.
+_SHIFT_ORDER = (0, 1, -1, 2, -2, 3, -3)
+
+
+def difference_derivative(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, *, length: float, step: float) -> np.ndarray:
+    """Sixth-order finite-difference derivative of ``f`` that samples only ``[0, length]``.
+
+    At every point the central stencil ``s + k h`` (k = −3 … 3) is used if all its nodes
+    lie in ``[0, length]``; otherwise the same seven-point stencil shifted by the fewest
+    steps that bring it inside. Every stencil is exact for polynomials of degree 6.
+
+    Parameters
+    ----------
+    f : callable
+        Vectorised: f of an (M,) array returns (M,).
+    s : array_like
+        Points in ``[0, length]``, any shape.
+    length : float
+        L; needs ``length ≥ 6 step`` (points where no stencil fits get NaN).
+    step : float
+        h.
+
+    Returns
+    -------
+    ndarray
+        f'(s), the shape of ``s``.
+
+    Examples
+    --------
+    The square root is not defined left of 0, and is never asked for it:
+
+    >>> d = difference_derivative(np.sqrt, np.array([0.25, 1.0]), length=1.0, step=1e-2)
+    >>> bool(np.allclose(d, [1.0, 0.5], rtol=1e-8))
+    True
+    """
+    s = np.asarray(s, dtype=float)
+    flat = s.reshape(-1)
+    h = float(step)
+    offsets = np.arange(-6, 7)
+    nodes = flat[:, None] + offsets * h  # (M, 13): s + m h for m = −6 … 6
+    inside = (nodes >= 0.0) & (nodes <= length)
+    shift = np.full(flat.shape, 4)  # 4: no stencil fits (left as NaN)
+    for sigma in _SHIFT_ORDER[::-1]:  # the last assignment wins: the central stencil where it fits
+        fits = inside[:, sigma + 3 : sigma + 10].all(axis=1)
+        shift[fits] = sigma
+    out = np.full(flat.shape, np.nan)
+    central = shift == 0
+    if central.any():
+        x = flat[central]
+        out[central] = sum(c * (f(x + k * h) - f(x - k * h)) for k, c in _CENTRAL6) / h
+    edge = np.flatnonzero((shift != 0) & (shift != 4))
+    if edge.size:
+        sigma = shift[edge]
+        cols = (sigma + 3)[:, None] + np.arange(7)  # columns of nodes for m = σ − 3 … σ + 3
+        values = f(nodes[edge[:, None], cols].reshape(-1)).reshape(-1, 7)
+        out[edge] = np.einsum("ij,ij->i", _SHIFTED6[sigma + 3], values) / h
+    return out.reshape(s.shape)
 
 
 def _broadcast_call(f: Callable, s: np.ndarray) -> np.ndarray:
@@ -89,30 +301,16 @@ def as_function(f: FunctionLike, *, name: str, length: float) -> ScalarFunction:
     if isinstance(f, ScalarFunction):
         return f
     if callable(f):
-        h = 1e-3 * max(float(length), 1.0)
-
-        def value(s: np.ndarray) -> np.ndarray:
-            return _broadcast_call(f, np.asarray(s, dtype=float))
-
-        def derivative(s: np.ndarray) -> np.ndarray:
-            s = np.asarray(s, dtype=float)
-            return sum(c * (value(s + k * h) - value(s - k * h)) for k, c in _FD6) / h
-
-        return ScalarFunction(value, derivative)
+        return UserFunction(f, float(length), difference_step(length))
     arr = np.asarray(f, dtype=float)
     if arr.ndim == 0:
         c = float(arr)
         check_finite(np.array([c]), name=name, s=np.array([0.0]))
-        return ScalarFunction(lambda s: np.full(np.shape(s), c), lambda s: np.zeros(np.shape(s)), c)
+        return Constant(c)
     if arr.ndim != 1 or arr.size < 2:
         raise InputError(f"{name}: expected a number, a callable or a 1-D array of at least 2 samples, got shape {arr.shape}")
-    grid = np.linspace(0.0, float(length), arr.size)
-    check_finite(arr, name=name, s=grid)
-    from scipy.interpolate import CubicSpline
-
-    spline = CubicSpline(grid, arr, bc_type="not-a-knot" if arr.size > 3 else "natural")
-    dspline = spline.derivative()
-    return ScalarFunction(lambda s: spline(np.asarray(s, dtype=float)), lambda s: dspline(np.asarray(s, dtype=float)))
+    check_finite(arr, name=name, s=np.linspace(0.0, float(length), arr.size))
+    return Sampled(arr, float(length))
 
 
 def check_finite(values: np.ndarray, *, name: str, s: np.ndarray) -> None:

@@ -12,7 +12,7 @@ xy plane (at the feet) and in the zx plane (at the apex).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from functools import cached_property
 from typing import Literal
 
@@ -22,10 +22,13 @@ from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, check_samples
 from ..geometry.lattice import Lattice
 from ..geometry.structure import Structure
+from ..geometry.topology import CORNERS
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
+from ..kernel.functions import ScalarFunction
 from .arch import ArchRoot, proportion_change, solve_symmetric_arch
 
-__all__ = ["VaultDesign", "Vault", "max_tubes", "MAX_TUBES_SEARCH", "DEFAULT_TUBES_CAP"]
+__all__ = ["VaultDesign", "Vault", "HarmonicTorsion", "max_tubes", "MAX_TUBES_SEARCH", "DEFAULT_TUBES_CAP"]
 
 #: Stacks are searched up to this many tubes; a longer valid stack reports this number.
 MAX_TUBES_SEARCH = 10_000
@@ -91,6 +94,20 @@ class VaultDesign:
             raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
 
 
+@dataclass(frozen=True)
+class HarmonicTorsion(ScalarFunction):
+    """τ(s) = amplitude · sin(2π s / period), with its exact derivative."""
+
+    amplitude: float
+    period: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.amplitude * np.sin(2 * np.pi * s / self.period)
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        return self.amplitude * (2 * np.pi / self.period) * np.cos(2 * np.pi * s / self.period)
+
+
 def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SEARCH) -> int:
     """Largest n such that the tubes [j, j+1]², j = 0 … n−1 (stacked in ±(u, v)) are free of regression.
 
@@ -100,10 +117,8 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     is monotone in n and a bisection finds the largest n. Returns 0 when even the base
     tube regresses, and ``limit`` when the stack is valid that far.
     """
-    unit = np.array([[0, 0], [0, 1], [1, 0], [1, 1]])
-
     def tube_ok(j: int) -> bool:
-        return bool(lattice.domain.contains(direction * (j + unit) - (direction < 0)).all())
+        return bool(lattice.domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
 
     if not tube_ok(0):
         return 0
@@ -117,7 +132,7 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
 
 
 @dataclass(frozen=True, eq=False)
-class Vault:
+class Vault(FrozenArrays):
     """A vault built from its design: arch, lattice, structure and placement.
 
     Build it with :meth:`from_design`.
@@ -128,7 +143,6 @@ class Vault:
     lattice: Lattice
     structure: Structure
     max_tubes: int
-    _ground: dict = field(repr=False, default_factory=dict)
 
     @classmethod
     def from_design(cls, design: VaultDesign | None = None, **overrides) -> Vault:
@@ -151,19 +165,13 @@ class Vault:
         # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
         frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
         a = design.a
-
-        def tau(s):
-            return a * k0 * np.sin(2 * np.pi * s / s0)
-
-        curve = SpaceCurve.from_curvature(k0, tau, s0, samples=design.samples, frame=frame)
+        curve = SpaceCurve.from_curvature(k0, HarmonicTorsion(a * k0, s0), s0, samples=design.samples, frame=frame)
         # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
         chord = curve.points[-1] - curve.points[0]
         phi = np.arctan2(chord[0], chord[1])
         c, s = np.cos(phi), np.sin(phi)
         Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        points, frames = curve.points @ Rz.T, Rz @ curve.frames
-        points.flags.writeable = frames.flags.writeable = False
-        curve = SpaceCurve(curve.s, points, frames, curve.kappa, curve.tau)
+        curve = SpaceCurve(curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau)
         crease = Crease.from_curve(curve, fold_angle=design.fold_angle)
         w_left = design.width / k0
         try:
@@ -198,7 +206,7 @@ class Vault:
 
     @cached_property
     def vertices(self) -> np.ndarray:
-        """Every lattice curve of the vault at the design angle, shape (M, n, 3)."""
+        """Every lattice curve of the vault at the design angle, shape (M, n, 3), read-only."""
         return self.structure.state().vertices
 
     @property
