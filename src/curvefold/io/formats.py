@@ -150,7 +150,7 @@ def check_formats(formats: str | Iterable[str], family: str, *, name: str = "for
 
 
 def check_kind(formats: Iterable[str], kind: str, where: str) -> None:
-    """Refuse, with the reason, a format that is not written for ``kind``.
+    """Refuse an unknown format, or one that is not written for ``kind`` with the reason.
 
     Examples
     --------
@@ -160,7 +160,9 @@ def check_kind(formats: Iterable[str], kind: str, where: str) -> None:
     curvefold.kernel.errors.InputError: formats: "gif" is not written for a crease design: the GIF of the folding motion is written for vault, tube and block designs
     """
     for name in formats:
-        f = FORMATS[name]
+        f = FORMATS.get(name)
+        if f is None:
+            raise InputError(f"{where}: unknown format {name!r} (allowed: {', '.join(FORMATS)})")
         if kind not in f.kinds:
             kinds = ", ".join(f.kinds[:-1]) + f" and {f.kinds[-1]}" if len(f.kinds) > 1 else f.kinds[0]
             raise InputError(f'{where}: "{name}" is not written for a {kind} design: {FAMILIES[f.family]} written for {kinds} designs')
