@@ -124,6 +124,14 @@ def test_flag_errors_show_the_value_typed(tmp_path):
     assert os.listdir(tmp_path) == []
 
 
+def test_arch_checks_its_flags_with_the_vault_specs(tmp_path):
+    # arch took any p_xy > 0, where a vault takes (0, 100]
+    r = run("arch", "--p-xy", "150", cwd=tmp_path)
+    assert one_line(r) == "curvefold: error: --p-xy 150: p_xy must be in (0, 100], got 150"
+    r = run("arch", "--fold-angle", "180", cwd=tmp_path)
+    assert one_line(r) == "curvefold: error: --fold-angle 180: fold_angle must be in (0, 180) degrees, got 180"
+
+
 def test_file_keys_and_flags_are_named_as_typed(tmp_path):
     (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 5.0\n')
     r = run("vault", "design.toml", "--json", cwd=tmp_path)

@@ -37,6 +37,7 @@ __all__ = ["main"]
 PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"
+_VAULT = SCHEMA["vault"]
 
 
 # -- argument helpers -------------------------------------------------------------------------
@@ -104,6 +105,12 @@ def _from_text(spec: Spec, flag: str, text: str):
     return text
 
 
+def _flag_value(spec: Spec, text: str):
+    """A flag's text as a checked value; a function is checked later, on the design's sample grid."""
+    value = _from_text(spec, _flag(spec), text)
+    return value if spec.kind == "function" else spec.check(value, f"{_flag(spec)} {text}: {spec.name}", shown=text)
+
+
 def _flag_specs(kind: str) -> dict[str, Spec]:
     """The spec of every design flag of a kind, by argparse destination."""
     return {spec.name: spec for section in ("", *SECTIONS_OF_KIND[kind], "output") for spec in SCHEMA[section].values()
@@ -148,16 +155,12 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
         text = getattr(args, name)
         if text is None:
             continue
-        flag = _flag(spec)
         if spec.kind == "flag":
             values[name] = text
-            typed.append(flag if text else "--no-" + flag[2:])
-            continue
-        value = _from_text(spec, flag, text)
-        if spec.kind != "function":  # functions are checked on the sample grid, with the design
-            value = spec.check(value, f"{flag} {text}: {name}", shown=text)
-        values[name] = value
-        typed.append(f"{flag} {text}")
+            typed.append(_flag(spec) if text else "--no-" + _flag(spec)[2:])
+        else:
+            values[name] = _flag_value(spec, text)
+            typed.append(f"{_flag(spec)} {text}")
     return values, typed
 
 
@@ -193,15 +196,15 @@ def build_parser() -> argparse.ArgumentParser:
         _add_output(p, kind)
 
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
-    p.add_argument("--a", type=float, default=0.3, help="torsion amplitude (default 0.3)")
-    p.add_argument("--p-xy", type=float, help="section proportion at the feet, to report p_xz")
-    p.add_argument("--fold-angle", type=float, default=90.0, help="design fold angle 2α in degrees (default 90)")
+    p.add_argument("--a", type=float, default=0.3, help="torsion amplitude (the solver says where the arch family ends; default 0.3)")
+    p.add_argument("--p-xy", metavar="P_XY", help=f"{_VAULT['p_xy'].help}, {_VAULT['p_xy'].requirement}: reports p_xz")
+    p.add_argument("--fold-angle", metavar="FOLD_ANGLE", help=_VAULT["fold_angle"].describe())
     _add_output(p, None)
 
     p = sub.add_parser("atlas", help="a grid of vault designs (the paper's Fig. 10)", description="Build vaults over a grid of p_xy and a; write a figure of their forms with the section slopes and a CSV/JSON of their metrics. Invalid designs are recorded with their reason.")
     p.add_argument("--p-xy", type=_grid, default=np.linspace(0.5, 1.5, 5), help="values of p_xy: start:stop:count or a list (default 0.5:1.5:5)")
     p.add_argument("--a", type=_grid, default=np.linspace(0.0, 1.2, 5), help="values of a (default 0:1.2:5)")
-    p.add_argument("--width", type=float, default=0.08, help="width scale w_L(0)·κ0 (default 0.08)")
+    p.add_argument("--width", type=float, default=_VAULT["width"].default, help=_VAULT["width"].describe())
     p.add_argument("--samples", type=int, default=201, help="samples per crease (default 201)")
     p.add_argument("--workers", type=int, help="parallel processes (default: up to 2)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
@@ -278,20 +281,18 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
 
 
 def cmd_arch(args: argparse.Namespace) -> int:
-    from ..geometry.crease import half_angle
     from ..vault.arch import proportion_change, solve_symmetric_arch
 
-    half_angle(args.fold_angle)
+    fold_angle = _VAULT["fold_angle"].default if args.fold_angle is None else _flag_value(_VAULT["fold_angle"], args.fold_angle)
     root = solve_symmetric_arch(args.a)
-    change = proportion_change(args.a, root.kappa0_s0, fold_angle=args.fold_angle)
-    payload = {"a": args.a, "fold_angle": args.fold_angle, "kappa0_s0": root.kappa0_s0, "residual": root.residual, "proportion_change": change}
+    change = proportion_change(args.a, root.kappa0_s0, fold_angle=fold_angle)
+    payload = {"a": args.a, "fold_angle": fold_angle, "kappa0_s0": root.kappa0_s0, "residual": root.residual, "proportion_change": change}
     lines = [f"arch a = {args.a:g}: κ0·s0 = {root.kappa0_s0:.12f} (|T(s0/2)·T(0)| = {root.residual:.1e}), proportion change {change:.6f}"]
     if args.p_xy is not None:
-        if not np.isfinite(args.p_xy) or args.p_xy <= 0:
-            raise InputError(f"--p-xy must be a finite number > 0, got {args.p_xy}")
-        payload["p_xy"] = args.p_xy
-        payload["p_xz"] = args.p_xy * change**2
-        lines.append(f"p_xy = {args.p_xy:g} → p_xz = {payload['p_xz']:.6f}")
+        p_xy = _flag_value(_VAULT["p_xy"], args.p_xy)
+        payload["p_xy"] = p_xy
+        payload["p_xz"] = p_xy * change**2
+        lines.append(f"p_xy = {p_xy:g} → p_xz = {payload['p_xz']:.6f}")
     _emit(args, payload, lines)
     return 0
 

@@ -19,9 +19,10 @@ A design file names the kind of structure and its parameters::
 owners: ``[vault]`` from :data:`curvefold.vault.assembly.VAULT_SPECS`, ``[output]`` from
 :data:`curvefold.io.formats.OUTPUT_SPECS`, the rest declared here. The command-line flags
 are generated from it (:mod:`curvefold.app.cli`). The loader checks a file against it once
-and returns a frozen :class:`Design` with every default filled in. Unknown sections and keys, wrong types, values out of range and
-sections that belong to another kind are refused with an :class:`~curvefold.kernel.errors.InputError`
-that names the file, the section, the key, the requirement and the value received.
+and returns a frozen :class:`Design` with every default filled in. Unknown sections and
+keys, wrong types, values out of range and sections that belong to another kind are
+refused with an :class:`~curvefold.kernel.errors.InputError` that names the file, the
+section, the key, the requirement and the value received.
 
 Function-valued keys (``kappa``, ``tau``, ``kappa_2d``, ``beta_left``, ``beta_right``,
 ``alpha``) take a number, an expression in ``s`` (:func:`curvefold.kernel.expr.compile_expression`)
@@ -93,19 +94,20 @@ MAX_VERTICES = MAX_SAMPLES
 # The schema: the specs of every section, composed from their owners
 
 
+_ANGLE = "(0, 180)"
+
+
 def _fold_angle(default: float, help: str) -> Spec:
-    return Spec("fold_angle", "real", default, "(0, 180)", "degrees", help=help)
+    return Spec("fold_angle", "real", default, _ANGLE, "degrees", help=help)
 
 
-def _width(name: str, default: float, side: str) -> Spec:
-    return Spec(name, "real", default, "(0, inf)", "model units", help=f"width w_{side}(0) of the {name[6:]} side at s = 0")
+def _width(side: str, default: float) -> Spec:
+    return Spec(f"width_{side}", "real", default, "(0, inf)", "model units", help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0")
 
 
 def _section(*specs: Spec) -> Mapping[str, Spec]:
     return MappingProxyType({spec.name: spec for spec in specs})
 
-
-_ANGLE = "(0, 180)"
 
 #: Every section ("" is the top level) and the specs of its keys, in file order. The
 #: ``[vault]`` specs are :data:`curvefold.vault.assembly.VAULT_SPECS`, the ``[output]``
@@ -123,10 +125,10 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
         Spec("length", "real", 6.0, "(0, inf)", "model units", help="arc length of curve 1"),
         _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
     ),
-    "tube": _section(_width("width_left", 0.3, "L"), _width("width_right", 0.3, "R")),
+    "tube": _section(_width("left", 0.3), _width("right", 0.3)),
     "block": _section(
-        _width("width_left", 0.2, "L"),
-        _width("width_right", 0.2, "R"),
+        _width("left", 0.2),
+        _width("right", 0.2),
         Spec("cells", "cells", ((0, 0), (0, 1), (1, 1)), "[-1000, 1000]", help="lattice cells [i, j]"),
     ),
     "crease": _section(
