@@ -10,8 +10,8 @@ import pytest
 from curvefold.app.design import SCHEMA, parse_design
 from curvefold.io import gltf, pattern, rhino
 from curvefold.io.formats import FORMATS, check_formats, default_formats, formats_of, missing_dependencies
-from curvefold.io.layout import mm_per_unit, page_size
-from curvefold.io.tables import COLOURS, PAGES, UNITS, page_mm, rgba, rgba8
+from curvefold.io.layout import page_size
+from curvefold.io.tables import COLOURS, PAGES, UNITS, mm_per_unit, page_mm, rgba, rgba8
 from curvefold.kernel.errors import InputError
 from curvefold.kernel.validate import KINDS, REQUIRED, Interval, Spec, describe
 from curvefold.vault import VaultDesign

@@ -85,7 +85,7 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
 def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The crease patterns, laid out once for every pattern format."""
-    from ..io.layout import mm_per_unit
+    from ..io.tables import mm_per_unit
 
     o, kind = built.design.output, built.design.kind
     page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units

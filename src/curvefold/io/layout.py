@@ -52,7 +52,7 @@ import numpy as np
 from ..geometry.mesh import edges_faces
 from ..geometry.sheets import PatternSheet
 from ..kernel.errors import InputError
-from .tables import page_mm, unit_metres
+from .tables import mm_per_unit, page_mm
 
 __all__ = [
     "LAYERS",
@@ -62,7 +62,6 @@ __all__ = [
     "PlacedSheet",
     "Polyline",
     "layout_sheets",
-    "mm_per_unit",
     "page_size",
     "seam_name",
     "text_width",
@@ -115,17 +114,6 @@ def page_size(page: str | tuple[float, float], *, units: str = "mm") -> tuple[fl
     if not (math.isfinite(w) and math.isfinite(h) and w > 0 and h > 0):
         raise InputError(f"page width and height must be positive and finite, got {page!r}")
     return (round(w * f, 9), round(h * f, 9))
-
-
-def mm_per_unit(units: str) -> float:
-    """Millimetres per ``units`` (a name in :data:`~curvefold.io.tables.UNITS`).
-
-    Examples
-    --------
-    >>> mm_per_unit("in")
-    25.4
-    """
-    return round(unit_metres(units) * 1000.0, 12)
 
 
 def text_width(text: str, size: float) -> float:

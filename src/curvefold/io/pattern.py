@@ -15,8 +15,8 @@ pages, glue tabs, layers, labels; see :mod:`curvefold.io.layout`), then write it
 Layer styles (:data:`LAYER_STYLES`, colours from :data:`curvefold.io.tables.COLOURS`):
 ``cut`` black solid, ``mountain`` red dash-dot, ``valley`` blue dashed, ``seam`` (tab fold
 lines) green short dashes, ``glue`` light-green fill, ``rulings`` thin green, ``labels``
-purple text. Writers draw every layer except
-``rulings`` unless told otherwise (``layers=``). All files are written atomically.
+purple text. Writers draw every layer except ``rulings`` unless told otherwise
+(``layers=``). All files are written atomically.
 """
 
 from __future__ import annotations
@@ -45,11 +45,10 @@ from .layout import (
     PlacedSheet,
     Polyline,
     layout_sheets,
-    mm_per_unit,
     page_size,
     seam_name,
 )
-from .tables import COLOURS
+from .tables import COLOURS, mm_per_unit
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")

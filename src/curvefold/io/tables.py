@@ -22,7 +22,7 @@ from types import MappingProxyType
 
 from ..kernel.errors import InputError
 
-__all__ = ["PAGES", "UNITS", "COLOURS", "Unit", "page_mm", "unit_metres", "rgba", "rgba8"]
+__all__ = ["PAGES", "UNITS", "COLOURS", "Unit", "page_mm", "mm_per_unit", "rgba", "rgba8"]
 
 #: Paper sizes, portrait (width, height) in millimetres.
 PAGES: Mapping[str, tuple[float, float]] = MappingProxyType({
@@ -99,17 +99,17 @@ def page_mm(name: str) -> tuple[float, float]:
     raise InputError(f"page must be one of {', '.join(PAGES)} or (width, height), got {name!r}")
 
 
-def unit_metres(name: str, *, allowed: tuple[str, ...] = tuple(UNITS)) -> float:
-    """Metres per ``name``, one of ``allowed``.
+def mm_per_unit(name: str) -> float:
+    """Millimetres per length unit ``name``.
 
     Examples
     --------
-    >>> unit_metres("in"), unit_metres("unit")
-    (0.0254, 1.0)
+    >>> mm_per_unit("in"), mm_per_unit("pt") == 25.4 / 72
+    (25.4, True)
     """
-    if name not in allowed:
-        raise InputError(f"units must be one of {', '.join(allowed)}, got {name!r}")
-    return UNITS[name].metres
+    if name not in UNITS:
+        raise InputError(f"units must be one of {', '.join(UNITS)}, got {name!r}")
+    return UNITS[name].metres * 1000.0
 
 
 def rgba(kind: str) -> tuple[float, float, float, float]:

@@ -6,8 +6,8 @@ vault is built with :meth:`curvefold.vault.Vault.from_design` and its
 (no standing arch, regression, a parameter out of range: any
 :class:`~curvefold.kernel.errors.CurvefoldError` raised while building it) is recorded as
 invalid with the reason, and the sweep goes on. Any error past that point (measuring or
-drawing a built vault) is a bug and propagates. Each valid design also keeps a small :class:`Sketch` of its geometry so the
-atlas figure needs no vault rebuilt.
+drawing a built vault) is a bug and propagates. Each valid design also keeps a small
+:class:`Sketch` of its geometry so the atlas figure needs no vault rebuilt.
 
 Records are flat dicts with the keys of :data:`FIELDS`; the grid is stored row-major,
 rows = a, columns = p_xy, whatever order the designs finish in.
