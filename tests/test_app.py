@@ -151,8 +151,7 @@ def test_every_key_but_cells_is_a_flag_with_its_range_in_the_help(kind, capsys):
         for name, spec in SCHEMA[section].items():
             if name in ("kind", "cells"):
                 continue
-            flag = "--" + name.replace("_", "-")
-            assert (flag if not (spec.kind == "flag" and spec.default) else "--no-" + flag[2:]) in text
+            assert ("--no-" if spec.kind == "flag" and spec.default else "--") + name.replace("_", "-") in text
             if spec.kind in ("real", "integer") and spec.range is not None:
                 assert spec.requirement.replace(">=", "≥") in text, (name, spec.requirement)
 

@@ -74,10 +74,12 @@ _NO_FLAG = ("kind", "cells")
 
 
 def _flag(spec: Spec) -> str:
-    return "--" + spec.name.replace("_", "-")
+    """``--fold-angle`` for ``fold_angle``; ``--no-glue-tabs`` for a key true by default."""
+    dashed = spec.name.replace("_", "-")
+    return f"--no-{dashed}" if spec.kind == "flag" and spec.default else f"--{dashed}"
 
 
-def _from_text(spec: Spec, flag: str, text: str):
+def _from_text(spec: Spec, text: str):
     """A flag's text as the value a design file would hold (checked by the spec afterwards)."""
     try:
         if spec.kind == "real":
@@ -89,7 +91,7 @@ def _from_text(spec: Spec, flag: str, text: str):
     except ValueError:
         form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
                 "count": f"a whole number ≥ {spec.range.lo:g} or 'max'"}[spec.kind]
-        raise InputError(f"{flag}: must be {form}, got {text!r}") from None
+        raise InputError(f"{_flag(spec)}: must be {form}, got {text!r}") from None
     if spec.kind == "function":
         try:
             return float(text)
@@ -107,7 +109,7 @@ def _from_text(spec: Spec, flag: str, text: str):
 
 def _flag_value(spec: Spec, text: str):
     """A flag's text as a checked value; a function is checked later, on the design's sample grid."""
-    value = _from_text(spec, _flag(spec), text)
+    value = _from_text(spec, text)
     return value if spec.kind == "function" else spec.check(value, f"{_flag(spec)} {text}: {spec.name}", shown=text)
 
 
@@ -132,12 +134,11 @@ def _add_design_flags(p: argparse.ArgumentParser, kind: str) -> None:
     output = {spec.name for spec in SCHEMA["output"].values()}
     for name, spec in _flag_specs(kind).items():
         group = groups["output" if name in output else "design"]
-        text = (_formats_help(kind) if spec.kind == "formats" else spec.describe()).replace("%", "%%")
         if spec.kind == "flag":
-            flag = "--no-" + _flag(spec)[2:] if spec.default else _flag(spec)
             text = f"{'do not ' if spec.default else ''}{spec.help} (sets {name} = {str(not spec.default).lower()})"
-            group.add_argument(flag, dest=name, action="store_const", const=not spec.default, default=None, help=text)
+            group.add_argument(_flag(spec), dest=name, action="store_const", const=not spec.default, default=None, help=text)
         else:
+            text = (_formats_help(kind) if spec.kind == "formats" else spec.describe()).replace("%", "%%")
             metavar = {"formats": "LIST", "page": "PAGE", "count": "N|max", "choice": "{" + ",".join(spec.choices) + "}"}
             group.add_argument(_flag(spec), dest=name, metavar=metavar.get(spec.kind, name.upper()), help=text)
 
@@ -157,7 +158,7 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
             continue
         if spec.kind == "flag":
             values[name] = text
-            typed.append(_flag(spec) if text else "--no-" + _flag(spec)[2:])
+            typed.append(_flag(spec))
         else:
             values[name] = _flag_value(spec, text)
             typed.append(f"{_flag(spec)} {text}")
