@@ -1,22 +1,20 @@
-"""The command line: stable JSON keys, one-line errors, no partial output."""
+"""The command line: stable JSON keys, one-line errors, no partial output.
+
+The command line runs in this process (:func:`run`); a few smoke tests run the real
+entry points in a subprocess (:func:`run_subprocess`).
+"""
 
 import json
 import os
-import subprocess
-import sys
 
 import pytest
 
+from _cli import run, run_subprocess
 from curvefold.app.cli import main
 
 
-def run(*argv: str, cwd=None) -> subprocess.CompletedProcess:
-    """The real entry point in a subprocess: exit codes and stderr as a user sees them."""
-    return subprocess.run([sys.executable, "-m", "curvefold", *argv], capture_output=True, text=True, cwd=cwd, timeout=300)
-
-
 def test_arch_json_keys():
-    r = run("arch", "--a", "0.3", "--p-xy", "0.75", "--json")
+    r = run_subprocess("arch", "--a", "0.3", "--p-xy", "0.75", "--json")
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert abs(out["kappa0_s0"] - 3.16571746805) < 1e-10
@@ -75,12 +73,12 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, argv, message):
 def test_design_file_errors_name_their_location(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text('kind = "vault"\n[vault]\nradios = 2.0\n')
-    r = run("vault", str(bad), "--json", cwd=tmp_path)
+    r = run_subprocess("vault", str(bad), "--json", cwd=tmp_path)
     assert r.returncode == 2
     assert "unknown key 'radios'" in r.stderr and "bad.toml" in r.stderr
     evil = tmp_path / "evil.toml"
     evil.write_text('kind = "tube"\n[curve]\nkappa = "__import__(\'os\').system(\'echo hacked\')"\n')
-    r = run("tube", str(evil), "--json", cwd=tmp_path)
+    r = run_subprocess("tube", str(evil), "--json", cwd=tmp_path)
     assert r.returncode == 2 and r.stdout == ""  # refused, never run: nothing echoed
     assert len(r.stderr.strip().splitlines()) == 1
 

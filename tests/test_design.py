@@ -14,16 +14,13 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose, assert_array_equal
 
 from curvefold.app.design import (
-    FORMATS,
     KINDS,
-    PAGES,
     SCHEMA,
     SECTIONS_OF_KIND,
     BlockParams,
     CreaseParams,
     CurveParams,
     Design,
-    Interval,
     OutputParams,
     TableColumn,
     TubeParams,
@@ -33,9 +30,12 @@ from curvefold.app.design import (
     load_design,
     parse_design,
 )
+from curvefold.io.formats import FORMATS
+from curvefold.io.tables import PAGES
 from curvefold.kernel.errors import InputError
 from curvefold.kernel.expr import Expression
 from curvefold.kernel.functions import as_function
+from curvefold.kernel.validate import Interval
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SRC = "design.toml"
@@ -336,7 +336,7 @@ def test_overrides_keep_budget():
         ('kind = "vault"\n[output]\nglue_tabs = 1', r"\[output\] glue_tabs must be true or false, got 1"),
         ('kind = "vault"\n[output]\nformats = "svg"', r"\[output\] formats must be an array of format names"),
         ('kind = "vault"\n[output]\nformats = ["svg", "png"]', r"\[output\] formats: unknown format string 'png' \(allowed: svg, dxf"),
-        ('kind = "vault"\n[output]\npage = "A5"', r"page must be one of \"A4\", \"A3\", \"Letter\" or \[width, height\] in mm, got string 'A5'"),
+        ('kind = "vault"\n[output]\npage = "A9"', r"page must be one of \"A5\", \"A4\", \"A3\", \"A2\", \"A1\", \"A0\", \"Letter\", \"Legal\", \"Tabloid\" or \[width, height\] in mm, got string 'A9'"),
         ('kind = "vault"\n[output]\npage = [100.0]', r"page must be one of .*, got array \[100\.0\]"),
         ('kind = "vault"\n[output]\nunits = "ft"', r"units must be one of \"mm\", \"cm\", \"m\", \"in\", \"unit\""),
         ('kind = "vault"\ntitle = 3', r"design\.toml: title must be a string of at most 1000 characters, got 3"),
@@ -617,34 +617,41 @@ def test_fuzz_text(fuzz_dir, text):
 
 
 def _valid_value(spec):
-    if spec.type == "float" or (spec.type == "function" and spec.range.lo > -math.inf):
+    if spec.kind == "real" or (spec.kind == "function" and spec.range.lo > -math.inf):
         r = spec.range
         hi = min(r.hi, 1e6)
         return st.floats(min_value=r.lo, max_value=hi, exclude_min=not r.lo_closed, exclude_max=not r.hi_closed or hi < r.hi)
-    if spec.type == "function":
+    if spec.kind == "function":
         return st.one_of(st.floats(-1e6, 1e6), st.sampled_from(["0.2*cos(s)", "s - 1", "pi/4"]))
-    if spec.type == "int":
+    if spec.kind == "integer":
         return st.integers(int(spec.range.lo), min(int(spec.range.hi), 2000))
-    if spec.type == "tubes":
+    if spec.kind == "count":
         return st.one_of(st.just("max"), st.integers(1, 20))  # within the vertex budget
-    if spec.type == "choice":
+    if spec.kind == "choice":
         return st.sampled_from(spec.choices)
-    if spec.type == "text":
+    if spec.kind == "text":
         return st.text(max_size=30)
-    if spec.type == "bool":
+    if spec.kind == "flag":
         return st.booleans()
-    if spec.type == "page":
+    if spec.kind == "page":
         return st.one_of(st.sampled_from(spec.choices), st.lists(st.floats(1.0, 1000.0), min_size=2, max_size=2))
-    if spec.type == "formats":
-        return st.lists(st.sampled_from(FORMATS), max_size=4, unique=True)
-    if spec.type == "cells":
+    if spec.kind == "formats":
+        return st.lists(st.sampled_from(tuple(FORMATS)), max_size=4, unique=True)
+    if spec.kind == "cells":
         return st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3)).map(list), min_size=1, max_size=6, unique_by=tuple)
-    raise AssertionError(spec.type)
+    raise AssertionError(spec.kind)
+
+
+def _without_alpha_conflicts(section: dict) -> dict:
+    """A [crease] with alpha gives neither beta_right nor fold_angle (they follow from alpha)."""
+    return {k: v for k, v in section.items() if "alpha" not in section or k not in ("beta_right", "fold_angle")}
 
 
 def _valid_documents(kind):
     sections = {s: st.fixed_dictionaries({}, optional={k: _valid_value(spec) for k, spec in SCHEMA[s].items()})
                 for s in (*SECTIONS_OF_KIND[kind], "output")}
+    if kind == "crease":
+        sections["crease"] = sections["crease"].map(_without_alpha_conflicts)
     top = {k: _valid_value(spec) for k, spec in SCHEMA[""].items() if k != "kind"}
     return st.fixed_dictionaries({"kind": st.just(kind)}, optional={**top, **sections})
 
@@ -659,7 +666,7 @@ def test_valid_documents_load_and_round_trip(data):
         if isinstance(table, dict):
             for key, value in table.items():
                 got = design.to_dict()[section][key]
-                if isinstance(value, float) or (isinstance(value, list) and SCHEMA[section][key].type == "page"):
+                if isinstance(value, float) or (isinstance(value, list) and SCHEMA[section][key].kind == "page"):
                     assert np.allclose(got, value)
-                elif SCHEMA[section][key].type != "formats":
+                elif SCHEMA[section][key].kind != "formats":
                     assert got == value

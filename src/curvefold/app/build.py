@@ -8,7 +8,7 @@ from ..geometry.crease import Crease
 from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice
 from ..geometry.structure import Structure
-from ..vault.assembly import Vault, VaultDesign
+from ..vault.assembly import Vault, VaultDesign, vault_samples
 from .design import Design
 
 __all__ = ["Built", "build", "vault_design"]
@@ -36,7 +36,13 @@ class Built:
 
 
 def vault_design(design: Design) -> VaultDesign:
-    """The :class:`VaultDesign` of a design of kind "vault"."""
+    """The :class:`VaultDesign` of a design of kind "vault" (an even sample count is raised by one).
+
+    Raises
+    ------
+    InputError
+        Fewer samples than a vault needs; the message names the design's source.
+    """
     v = design.vault
     return VaultDesign(
         a=v.a,
@@ -47,7 +53,7 @@ def vault_design(design: Design) -> VaultDesign:
         tubes=None if v.tubes == "max" else int(v.tubes),
         layers=v.layers,
         direction=1 if v.direction == "+" else -1,
-        samples=design.samples if design.samples % 2 else design.samples + 1,
+        samples=vault_samples(design.samples, where=f"{design.source}: samples"),
     )
 
 
@@ -64,14 +70,11 @@ def build(design: Design) -> Built:
         return Built(design, vault, vault.structure, vault.lattice.crease)
     if design.kind == "crease":
         c = design.crease
-        crease = Crease.from_pattern(
-            design.function("kappa_2d"),
-            design.function("beta_left"),
-            design.function("beta_right"),
-            c.length,
-            fold_angle=c.fold_angle,
-            samples=design.samples,
-        )
+        k2, beta_left = design.function("kappa_2d"), design.function("beta_left")
+        if c.alpha is not None:
+            crease = Crease.from_alpha(k2, beta_left, design.function("alpha"), c.length, samples=design.samples)
+        else:
+            crease = Crease.from_pattern(k2, beta_left, design.function("beta_right"), c.length, fold_angle=c.fold_angle, samples=design.samples)
         return Built(design, None, None, crease)
     c = design.curve
     curve = SpaceCurve.from_curvature(design.function("kappa"), design.function("tau"), c.length, samples=design.samples)

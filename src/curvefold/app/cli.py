@@ -2,7 +2,16 @@
 
 Every subcommand prints a short human summary, or with ``--json`` one JSON object on
 stdout. User errors print one line on stderr (what is wrong, the allowed range, the value
-given) and exit with status 2; no traceback, no partial output files.
+given) and exit with status 2; no traceback, no partial output files. Internal errors
+(bugs) print one line asking for a report and exit with status 1 (``--debug`` shows the
+traceback).
+
+The flags of ``vault``, ``tube``, ``block`` and ``crease``, their help and their checks
+are generated from the design schema (:data:`curvefold.app.design.SCHEMA`): one flag per
+key, ``--fold-angle`` for ``fold_angle``, ``--no-glue-tabs`` for a key that is true by
+default. A flag's value is checked by the key's spec and named as typed
+(``--page A9: page must be one of …``); a design made of a file and flags is named by both
+(``design.toml --samples 10: …``).
 """
 
 from __future__ import annotations
@@ -10,29 +19,28 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import traceback
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
+from .. import __version__
+from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
+from ..kernel.validate import Spec
+from .design import SCHEMA, SECTIONS_OF_KIND, Design, design_from_dict, load_design
 
 __all__ = ["main"]
 
 PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
+_DEBUG_HELP = "on an internal error, print the traceback and the warnings"
+_VAULT = SCHEMA["vault"]
 
 
 # -- argument helpers -------------------------------------------------------------------------
-
-
-def _tubes(text: str) -> int | str:
-    if text == "max":
-        return "max"
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a whole number ≥ 1 or 'max', got {text!r}") from None
 
 
 def _grid(text: str) -> np.ndarray:
@@ -59,23 +67,111 @@ class _Parser(argparse.ArgumentParser):
         raise InputError(f"{self.prog}: {message}")
 
 
+# -- flags generated from the design schema --------------------------------------------------
+
+#: Schema keys with no flag (a list of cells is written in a design file).
+_NO_FLAG = ("kind", "cells")
+
+
+def _flag(spec: Spec) -> str:
+    """``--fold-angle`` for ``fold_angle``; ``--no-glue-tabs`` for a key true by default."""
+    dashed = spec.name.replace("_", "-")
+    return f"--no-{dashed}" if spec.kind == "flag" and spec.default else f"--{dashed}"
+
+
+def _from_text(spec: Spec, text: str):
+    """A flag's text as the value a design file would hold (checked by the spec afterwards)."""
+    try:
+        if spec.kind == "real":
+            return float(text)
+        if spec.kind == "integer":
+            return int(text)
+        if spec.kind == "count":
+            return text if text == "max" else int(text)
+    except ValueError:
+        form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
+                "count": f"a whole number ≥ {spec.range.lo:g} or 'max'"}[spec.kind]
+        raise InputError(f"{_flag(spec)}: must be {form}, got {text!r}") from None
+    if spec.kind == "function":
+        try:
+            return float(text)
+        except ValueError:
+            return text  # an expression in s
+    if spec.kind == "formats":
+        return [f.strip() for f in text.split(",") if f.strip()]
+    if spec.kind == "page" and "," in text:
+        try:
+            return [float(v) for v in text.split(",")]
+        except ValueError:
+            return text
+    return text
+
+
+def _flag_value(spec: Spec, text: str):
+    """A flag's text as a checked value; a function is checked later, on the design's sample grid."""
+    value = _from_text(spec, text)
+    return value if spec.kind == "function" else spec.check(value, f"{_flag(spec)} {text}: {spec.name}", shown=text)
+
+
+def _flag_specs(kind: str) -> dict[str, Spec]:
+    """The spec of every design flag of a kind, by argparse destination."""
+    return {spec.name: spec for section in ("", *SECTIONS_OF_KIND[kind], "output") for spec in SCHEMA[section].values()
+            if spec.name not in _NO_FLAG}
+
+
+def _formats_help(kind: str) -> str:
+    names = default_formats(kind)
+    if not names:
+        return f"no file formats are written for a {kind} design (the report and its pictures always are)"
+    listed = "; ".join(f"{n}: {FORMATS[n].holds}" for n in names)
+    return f"comma-separated formats to write besides the report and its pictures (default: all): {listed}"
+
+
+def _add_design_flags(p: argparse.ArgumentParser, kind: str) -> None:
+    """The design file argument and one flag per schema key of the kind, help from the spec."""
+    p.add_argument("design", nargs="?", type=Path, help="a TOML design file (see examples/); flags override its values")
+    groups = {"design": p.add_argument_group("design"), "output": p.add_argument_group("output")}
+    output = {spec.name for spec in SCHEMA["output"].values()}
+    for name, spec in _flag_specs(kind).items():
+        group = groups["output" if name in output else "design"]
+        if spec.kind == "flag":
+            text = f"{'do not ' if spec.default else ''}{spec.help} (sets {name} = {str(not spec.default).lower()})"
+            group.add_argument(_flag(spec), dest=name, action="store_const", const=not spec.default, default=None, help=text)
+        else:
+            text = (_formats_help(kind) if spec.kind == "formats" else spec.describe()).replace("%", "%%")
+            metavar = {"formats": "LIST", "page": "PAGE", "count": "N|max", "choice": "{" + ",".join(spec.choices) + "}"}
+            group.add_argument(_flag(spec), dest=name, metavar=metavar.get(spec.kind, name.upper()), help=text)
+
+
+def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    """The given design flags as checked values, and the words the user typed for them.
+
+    Raises
+    ------
+    InputError
+        A flag's value, named as typed: ``--page A9: page must be one of …, got A9``.
+    """
+    values, typed = {}, []
+    for name, spec in _flag_specs(kind).items():
+        text = getattr(args, name)
+        if text is None:
+            continue
+        if spec.kind == "flag":
+            values[name] = text
+            typed.append(_flag(spec))
+        else:
+            values[name] = _flag_value(spec, text)
+            typed.append(f"{_flag(spec)} {text}")
+    return values, typed
+
+
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: ./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written)")
         g.add_argument("--force", action="store_true", help="replace an existing output folder")
-        g.add_argument("--formats", metavar="LIST", help="comma-separated subset of: svg,dxf,pdf,fold,glb,obj,stl,ply,3dm,gif (default: all; the report and its pictures are always written)")
-        g.add_argument("--page", metavar="NAME", help="page for the crease patterns: A4, A3, A2, A1, A0, Letter, … (default A4)")
-        g.add_argument("--scale", type=float, metavar="S", help="crease-pattern scale, output units per model unit (default: fit the largest sheet to the page)")
-        g.add_argument("--units", choices=("mm", "cm", "in"), help="units of the crease patterns (default mm)")
-        g.add_argument("--no-glue-tabs", dest="glue_tabs", action="store_false", default=None, help="leave the glue tabs off the crease patterns")
-        g.add_argument("--rulings", action="store_true", default=None, help="draw the rulings on the crease patterns (for scoring or engraving)")
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
-
-
-def _design_arg(p: argparse.ArgumentParser) -> None:
-    p.add_argument("design", nargs="?", type=Path, help="a TOML design file (see examples/); flags override its values")
-    p.add_argument("--samples", type=int, help="samples along curve 1 (default 801)")
+    p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -85,43 +181,31 @@ def build_parser() -> argparse.ArgumentParser:
         "geometry, folding motion, crease patterns and a measured certificate.",
         epilog="Run 'curvefold vault' with no arguments to build the paper's example vault into ./curvefold-vault.",
     )
-    parser.add_argument("--version", action="version", version=f"%(prog)s {__import__('curvefold').__version__}")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    parser.add_argument("--debug", action="store_true", help=_DEBUG_HELP)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
-    p = sub.add_parser("vault", help="the composite deployable vault (the main job)", description="Build a vault of tubed arches stacked along the lattice diagonal, standing on z = 0 at the design fold angle, and write its files, pictures and report.")
-    _design_arg(p)
-    g = p.add_argument_group("design")
-    g.add_argument("--a", type=float, help="torsion amplitude a in τ = a κ0 sin(2π s/s0), 0 ≤ a < 1.2707 (default 0.3)")
-    g.add_argument("--p-xy", type=float, help="section proportion w_R(0)/w_L(0) at the feet (default 0.75)")
-    g.add_argument("--width", type=float, help="width scale w_L(0)·κ0, dimensionless (default 0.08)")
-    g.add_argument("--tubes", type=_tubes, help="number of tubes, or 'max' (default: max before regression, at most 24)")
-    g.add_argument("--fold-angle", type=float, help="design fold angle 2α in degrees, in (0, 180) (default 90)")
-    g.add_argument("--radius", type=float, help="1/κ0 in model units (default 1)")
-    g.add_argument("--layers", type=int, help="parallel diagonals of tubes (default 1)")
-    g.add_argument("--direction", choices=("+", "-"), help="stack in +u+v or −u−v (default +)")
-    _add_output(p, "vault")
-
-    for kind, text in (("tube", "a single tube around curve 1"), ("block", "a cellular block of lattice cells")):
-        p = sub.add_parser(kind, help=text, description=f"Build {text} from a design file (kind = \"{kind}\") or the defaults, and write its files and report.")
-        _design_arg(p)
-        p.add_argument("--fold-angle", type=float, help="fold angle 2α (degrees) at which κ, τ are given")
+    descriptions = {
+        "vault": ("the composite deployable vault (the main job)", "Build a vault of tubed arches stacked along the lattice diagonal, standing on z = 0 at the design fold angle, and write its files, pictures and report."),
+        "tube": ("a single tube around curve 1", 'Build a single tube around curve 1 from a design file (kind = "tube") or the defaults, and write its files and report.'),
+        "block": ("a cellular block of lattice cells", 'Build a cellular block of lattice cells from a design file (kind = "block") or the defaults, and write its files and report.'),
+        "crease": ("a single curved fold from its crease pattern", "Fold a single curved crease from its crease pattern (kappa_2d, ruling angles, start fold angle or alpha(s)): the paper's Fig. 08."),
+    }
+    for kind, (short, long) in descriptions.items():
+        p = sub.add_parser(kind, help=short, description=long)
+        _add_design_flags(p, kind)
         _add_output(p, kind)
 
-    p = sub.add_parser("crease", help="a single curved fold from its crease pattern", description="Fold a single curved crease from its crease pattern (κ_2D, ruling angles, start fold angle): the paper's Fig. 08.")
-    _design_arg(p)
-    p.add_argument("--fold-angle", type=float, help="fold angle 2α(0) in degrees")
-    _add_output(p, "crease")
-
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
-    p.add_argument("--a", type=float, default=0.3, help="torsion amplitude (default 0.3)")
-    p.add_argument("--p-xy", type=float, help="section proportion at the feet, to report p_xz")
-    p.add_argument("--fold-angle", type=float, default=90.0, help="design fold angle 2α in degrees (default 90)")
+    p.add_argument("--a", type=float, default=0.3, help="torsion amplitude (the solver says where the arch family ends; default 0.3)")
+    p.add_argument("--p-xy", metavar="P_XY", help=f"{_VAULT['p_xy'].help}, {_VAULT['p_xy'].requirement}: reports p_xz")
+    p.add_argument("--fold-angle", metavar="FOLD_ANGLE", help=_VAULT["fold_angle"].describe())
     _add_output(p, None)
 
     p = sub.add_parser("atlas", help="a grid of vault designs (the paper's Fig. 10)", description="Build vaults over a grid of p_xy and a; write a figure of their forms with the section slopes and a CSV/JSON of their metrics. Invalid designs are recorded with their reason.")
     p.add_argument("--p-xy", type=_grid, default=np.linspace(0.5, 1.5, 5), help="values of p_xy: start:stop:count or a list (default 0.5:1.5:5)")
     p.add_argument("--a", type=_grid, default=np.linspace(0.0, 1.2, 5), help="values of a (default 0:1.2:5)")
-    p.add_argument("--width", type=float, default=0.08, help="width scale w_L(0)·κ0 (default 0.08)")
+    p.add_argument("--width", type=float, default=_VAULT["width"].default, help=_VAULT["width"].describe())
     p.add_argument("--samples", type=int, default=201, help="samples per crease (default 201)")
     p.add_argument("--workers", type=int, help="parallel processes (default: up to 2)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
@@ -143,32 +227,16 @@ def build_parser() -> argparse.ArgumentParser:
 # -- commands ---------------------------------------------------------------------------------
 
 
-def _load_design(kind: str, args: argparse.Namespace):
-    from .design import default_design, load_design
-
-    design = load_design(args.design) if getattr(args, "design", None) else default_design(kind)
-    if design.kind != kind:
-        raise InputError(f"{args.design}: kind = {design.kind!r} but the command is {kind!r}; use 'curvefold {design.kind} {args.design}'")
-    flags = {"samples": args.samples}
-    if kind == "vault":
-        flags |= {
-            "a": args.a,
-            "p_xy": args.p_xy,
-            "width": args.width,
-            "tubes": args.tubes,
-            "fold_angle": args.fold_angle,
-            "radius": args.radius,
-            "layers": args.layers,
-            "direction": args.direction,
-        }
-    elif getattr(args, "fold_angle", None) is not None:
-        flags["fold_angle"] = args.fold_angle
-    if getattr(args, "formats", None):
-        flags["formats"] = [f.strip() for f in args.formats.split(",") if f.strip()]
-    for key in ("page", "scale", "units", "glue_tabs", "rulings"):
-        if getattr(args, key, None) is not None:
-            flags[key] = getattr(args, key)
-    return design.overrides(**flags) if any(v is not None for v in flags.values()) else design
+def _load_design(kind: str, args: argparse.Namespace) -> Design:
+    """The design file (or the kind's defaults) with the flags over it, named as the user typed it."""
+    if args.design is not None:
+        design = load_design(args.design)
+        if design.kind != kind:
+            raise InputError(f"{args.design}: kind = {design.kind!r} but the command is {kind!r}; use 'curvefold {design.kind} {args.design}'")
+    else:
+        design = design_from_dict({"kind": kind}, source=f"{PROG} {kind}")
+    flags, typed = _design_flags(kind, args)
+    return design.overrides(source=" ".join([design.source, *typed]), **flags) if flags else design
 
 
 def _emit(args: argparse.Namespace, payload: dict, lines: Sequence[str]) -> None:
@@ -193,11 +261,13 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     from .outputs import structure_payload, write_outputs
 
     design = _load_design(kind, args)
-    built = build(design)
-    payload = structure_payload(built)
     out = args.out if args.out is not None else (None if args.json else Path(DEFAULT_OUT[kind]))
     if out is not None:
-        payload["files"] = write_outputs(built, out, force=args.force, show_progress=not args.json)
+        check_kind(design.output.formats, kind, f"{design.source}: [output] formats")
+    built = build(design)
+    payload = structure_payload(built)
+    if out is not None:
+        payload["files"] = write_outputs(built, out, payload=payload, force=args.force, show_progress=not args.json)
         payload["out"] = str(out)
     lines = [payload["title"]]
     for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise"):
@@ -212,20 +282,18 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
 
 
 def cmd_arch(args: argparse.Namespace) -> int:
-    from ..geometry.crease import half_angle
     from ..vault.arch import proportion_change, solve_symmetric_arch
 
-    half_angle(args.fold_angle)
+    fold_angle = _VAULT["fold_angle"].default if args.fold_angle is None else _flag_value(_VAULT["fold_angle"], args.fold_angle)
     root = solve_symmetric_arch(args.a)
-    change = proportion_change(args.a, root.kappa0_s0, fold_angle=args.fold_angle)
-    payload = {"a": args.a, "fold_angle": args.fold_angle, "kappa0_s0": root.kappa0_s0, "residual": root.residual, "proportion_change": change}
+    change = proportion_change(args.a, root.kappa0_s0, fold_angle=fold_angle)
+    payload = {"a": args.a, "fold_angle": fold_angle, "kappa0_s0": root.kappa0_s0, "residual": root.residual, "proportion_change": change}
     lines = [f"arch a = {args.a:g}: κ0·s0 = {root.kappa0_s0:.12f} (|T(s0/2)·T(0)| = {root.residual:.1e}), proportion change {change:.6f}"]
     if args.p_xy is not None:
-        if not np.isfinite(args.p_xy) or args.p_xy <= 0:
-            raise InputError(f"--p-xy must be a finite number > 0, got {args.p_xy}")
-        payload["p_xy"] = args.p_xy
-        payload["p_xz"] = args.p_xy * change**2
-        lines.append(f"p_xy = {args.p_xy:g} → p_xz = {payload['p_xz']:.6f}")
+        p_xy = _flag_value(_VAULT["p_xy"], args.p_xy)
+        payload["p_xy"] = p_xy
+        payload["p_xz"] = p_xy * change**2
+        lines.append(f"p_xy = {p_xy:g} → p_xz = {payload['p_xz']:.6f}")
     _emit(args, payload, lines)
     return 0
 
@@ -267,25 +335,56 @@ def cmd_atlas(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status."""
+    """Run the command line; returns the exit status.
+
+    A :class:`~curvefold.kernel.errors.CurvefoldError` (a user error) prints one line and
+    returns 2, as do an unreadable or unwritable file and a missing optional package. Any
+    other exception is a bug: one line asking for a report, status 1; ``--debug`` adds the
+    traceback and the warnings, which are otherwise never printed.
+    """
     parser = build_parser()
-    try:
-        args = parser.parse_args(argv)
-        if args.command is None:
-            parser.print_help()
-            return 0
-        if args.command in ("vault", "tube", "block", "crease"):
-            return cmd_structure(args.command, args)
-        return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "atlas": cmd_atlas}[args.command](args)
-    except CurvefoldError as err:
-        print(f"{PROG}: error: {err}", file=sys.stderr)
-        return 2
-    except OSError as err:
-        print(f"{PROG}: error: {err.strerror or err}: {err.filename or ''}".rstrip(": "), file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print(f"{PROG}: interrupted", file=sys.stderr)
-        return 130
+    debug = "--debug" in (sys.argv[1:] if argv is None else argv)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            return _run(parser, argv)
+        except CurvefoldError as err:
+            _error(f"error: {err}")
+            return 2
+        except OSError as err:
+            _error(f"error: {err.strerror or err}: {err.filename or ''}".rstrip(": "))
+            return 2
+        except ImportError as err:
+            _error(f"error: {err}")
+            return 2
+        except KeyboardInterrupt:
+            _error("interrupted")
+            return 130
+        except Exception as err:
+            hint = "" if debug else " (rerun with --debug for the traceback)"
+            _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {__version__}; "
+                   f"please report it with the command you ran{hint}")
+            if debug:
+                traceback.print_exc()
+            return 1
+        finally:
+            if debug:
+                for w in caught:
+                    print(warnings.formatwarning(w.message, w.category, w.filename, w.lineno).rstrip(), file=sys.stderr)
+
+
+def _error(text: str) -> None:
+    print(f"{PROG}: " + " ".join(text.split("\n")), file=sys.stderr)
+
+
+def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 0
+    if args.command in DEFAULT_OUT:
+        return cmd_structure(args.command, args)
+    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "atlas": cmd_atlas}[args.command](args)
 
 
 def run() -> None:  # console-script entry point

@@ -14,28 +14,35 @@ A design file names the kind of structure and its parameters::
     units = "mm"
     formats = ["svg", "fold"]
 
-:data:`SCHEMA` lists every section and key with its type, unit, allowed range, default and
-meaning; the loader checks a file against it once and returns a frozen :class:`Design` with
-every default filled in. Unknown sections and keys, wrong types, values out of range and
-sections that belong to another kind are refused with an :class:`~curvefold.kernel.errors.InputError`
-that names the file, the section, the key, the requirement and the value received.
+:data:`SCHEMA` holds the :class:`~curvefold.kernel.validate.Spec` of every section and key
+(kind of value, unit, allowed range, default and meaning), composed from the parameters'
+owners: ``[vault]`` from :data:`curvefold.vault.assembly.VAULT_SPECS`, ``[output]`` from
+:data:`curvefold.io.formats.OUTPUT_SPECS`, the rest declared here. The command-line flags
+are generated from it (:mod:`curvefold.app.cli`). The loader checks a file against it once
+and returns a frozen :class:`Design` with every default filled in. Unknown sections and
+keys, wrong types, values out of range and sections that belong to another kind are
+refused with an :class:`~curvefold.kernel.errors.InputError` that names the file, the
+section, the key, the requirement and the value received.
 
 Function-valued keys (``kappa``, ``tau``, ``kappa_2d``, ``beta_left``, ``beta_right``,
 ``alpha``) take a number, an expression in ``s`` (:func:`curvefold.kernel.expr.compile_expression`)
 or a CSV column ``{csv = "file.csv", column = "kappa"}`` read from the design file's folder.
 Their values are checked on the sample grid too, so ``kappa = "sin(s)"`` fails at load time
 with the arc length where κ stops being positive.
+
+A ``[crease]`` gives either ``beta_right`` (α(s) then follows from Eq. (3), integrated from
+``fold_angle``) or ``alpha`` (β_R then follows from Eq. (3); ``fold_angle`` is 2α(0) and may
+be left out), never both.
 """
 
 from __future__ import annotations
 
 import csv
-import difflib
 import io
 import math
 import os
 import tomllib
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path, PurePosixPath, PureWindowsPath
 from types import MappingProxyType
@@ -44,9 +51,12 @@ from typing import Any, Literal
 import numpy as np
 
 from ..geometry.curve import MAX_SAMPLES
+from ..io.formats import OUTPUT_SPECS, default_formats
 from ..kernel.errors import InputError
 from ..kernel.expr import Expression, compile_expression
 from ..kernel.functions import ScalarFunction, as_function
+from ..kernel.validate import REQUIRED, Spec, describe, suggest
+from ..vault.assembly import VAULT_SPECS
 
 __all__ = [
     "Design",
@@ -57,13 +67,9 @@ __all__ = [
     "CreaseParams",
     "OutputParams",
     "TableColumn",
-    "KeySpec",
-    "Interval",
     "SCHEMA",
     "KINDS",
     "SECTIONS_OF_KIND",
-    "FORMATS",
-    "PAGES",
     "load_design",
     "parse_design",
     "design_from_dict",
@@ -75,11 +81,6 @@ KINDS = ("vault", "tube", "block", "crease")
 SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = MappingProxyType(
     {"vault": ("vault",), "tube": ("curve", "tube"), "block": ("curve", "block"), "crease": ("crease",)}
 )
-FORMATS = ("svg", "dxf", "pdf", "fold", "glb", "obj", "3dm", "stl", "ply", "gif")
-#: Named page sizes, (width, height) in millimetres.
-PAGES: Mapping[str, tuple[float, float]] = MappingProxyType(
-    {"A4": (210.0, 297.0), "A3": (297.0, 420.0), "Letter": (215.9, 279.4)}
-)
 
 #: Largest design file read, in bytes.
 MAX_DESIGN_BYTES = 1 << 20
@@ -88,137 +89,58 @@ MAX_CSV_BYTES = 64 << 20
 #: Bound on samples × crease lines (vertices of all lattice curves): about 1 GB with meshes.
 MAX_VERTICES = MAX_SAMPLES
 
-_REQUIRED = "<required>"
-
 
 # --------------------------------------------------------------------------------------------
-# The schema
+# The schema: the specs of every section, composed from their owners
 
 
-@dataclass(frozen=True)
-class Interval:
-    """A real interval with open or closed ends, written like ``"(0, 180)"`` or ``"[3, inf)"``."""
-
-    lo: float
-    hi: float
-    lo_closed: bool
-    hi_closed: bool
-
-    @classmethod
-    def parse(cls, text: str) -> Interval:
-        """Read interval notation: ``"[0, 3)"``, ``"(0, inf)"``, ``"(-inf, inf)"``."""
-        lo, hi = (float(x) for x in text[1:-1].split(","))
-        return cls(lo, hi, text[0] == "[", text[-1] == "]")
-
-    def __contains__(self, x: float) -> bool:
-        above = self.lo <= x if self.lo_closed else self.lo < x
-        below = x <= self.hi if self.hi_closed else x < self.hi
-        return above and below
-
-    def __str__(self) -> str:
-        if self.hi == math.inf and self.lo == -math.inf:
-            return "finite"
-        if self.hi == math.inf:
-            return f"{'>=' if self.lo_closed else '>'} {_fmt(self.lo)}"
-        left, right = "[" if self.lo_closed else "(", "]" if self.hi_closed else ")"
-        return f"in {left}{_fmt(self.lo)}, {_fmt(self.hi)}{right}"
-
-
-@dataclass(frozen=True)
-class KeySpec:
-    """One key of the schema.
-
-    Parameters
-    ----------
-    type : str
-        ``"float"``, ``"int"``, ``"tubes"`` (integer or ``"max"``), ``"choice"``, ``"text"``,
-        ``"bool"``, ``"function"`` (number, expression or CSV column), ``"page"``,
-        ``"formats"`` or ``"cells"``.
-    default : object
-        Value used when the key is absent; ``None`` means the key is optional with no value.
-        Required keys have no default.
-    range : Interval or None
-        Allowed values (for functions: allowed values of the function).
-    unit : str
-        Unit shown in messages and help.
-    choices : tuple of str
-        Allowed strings for ``"choice"``, ``"page"`` and ``"formats"``.
-    doc : str
-        One-line meaning, for help texts.
-    note : str
-        Why the range is what it is, shown in messages (e.g. ``"memory bound"``).
-    """
-
-    type: str
-    default: Any
-    range: Interval | None = None
-    unit: str = ""
-    choices: tuple[str, ...] = ()
-    doc: str = ""
-    note: str = ""
-
-    @property
-    def required(self) -> bool:
-        return isinstance(self.default, str) and self.default == _REQUIRED
-
-
-def _key(
-    type_: str, default: Any, range_: str | None = None, unit: str = "", *, choices=(), doc: str = "", note: str = ""
-) -> KeySpec:
-    return KeySpec(type_, default, None if range_ is None else Interval.parse(range_), unit, tuple(choices), doc, note)
-
-
-_POSITIVE = "(0, inf)"
 _ANGLE = "(0, 180)"
 
-#: Every section ("" is the top level) and its keys, in file order.
-SCHEMA: Mapping[str, Mapping[str, KeySpec]] = MappingProxyType({
-    "": MappingProxyType({
-        "kind": _key("choice", _REQUIRED, choices=KINDS, doc="what to build"),
-        "samples": _key("int", 801, "[3, 200000]", doc="samples along curve 1", note="memory bound"),
-        "title": _key("text", "", doc="free text for reports"),
-    }),
-    "vault": MappingProxyType({
-        "a": _key("float", 0.3, "[0, 3)", doc="torsion amplitude: tau = a kappa0 sin(2 pi s / s0)"),
-        "p_xy": _key("float", 0.75, "(0, 100]", doc="width ratio w_R(0) / w_L(0)"),
-        "width": _key("float", 0.08, "(0, 10]", doc="w_L(0) kappa0, dimensionless"),
-        "tubes": _key("tubes", "max", "[1, 1000]", doc='number of tubes, or "max"'),
-        "fold_angle": _key("float", 90.0, _ANGLE, "degrees", doc="design fold angle 2 alpha"),
-        "radius": _key("float", 1.0, _POSITIVE, "model units", doc="1 / kappa0"),
-        "layers": _key("int", 1, "[1, 50]", doc="number of stacked bands"),
-        "direction": _key("choice", "+", choices=("+", "-"), doc="stacking direction along the lattice diagonal"),
-    }),
-    "curve": MappingProxyType({
-        "kappa": _key("function", 1.0, _POSITIVE, "per model unit", doc="curvature of curve 1 as a function of s"),
-        "tau": _key("function", 0.2, "(-inf, inf)", "per model unit", doc="torsion of curve 1 as a function of s"),
-        "length": _key("float", 6.0, _POSITIVE, "model units", doc="arc length of curve 1"),
-        "fold_angle": _key("float", 90.0, _ANGLE, "degrees", doc="fold angle 2 alpha at which kappa, tau are given"),
-    }),
-    "tube": MappingProxyType({
-        "width_left": _key("float", 0.3, _POSITIVE, "model units", doc="w_L(0)"),
-        "width_right": _key("float", 0.3, _POSITIVE, "model units", doc="w_R(0)"),
-    }),
-    "block": MappingProxyType({
-        "width_left": _key("float", 0.2, _POSITIVE, "model units", doc="w_L(0)"),
-        "width_right": _key("float", 0.2, _POSITIVE, "model units", doc="w_R(0)"),
-        "cells": _key("cells", [[0, 0], [0, 1], [1, 1]], "[-1000, 1000]", doc="lattice cells [i, j]"),
-    }),
-    "crease": MappingProxyType({
-        "kappa_2d": _key("function", 0.5, "(-inf, inf)", "per model unit", doc="planar curvature of the crease"),
-        "beta_left": _key("function", 90.0, _ANGLE, "degrees", doc="ruling angle on the left"),
-        "beta_right": _key("function", 90.0, _ANGLE, "degrees", doc="ruling angle on the right"),
-        "fold_angle": _key("float", 60.0, _ANGLE, "degrees", doc="initial fold angle 2 alpha(0)"),
-        "length": _key("float", 3.0, _POSITIVE, "model units", doc="arc length of the crease"),
-        "alpha": _key("function", None, "(0, 90)", "degrees", doc="optional alpha(s), half the fold angle"),
-    }),
-    "output": MappingProxyType({
-        "units": _key("choice", "mm", choices=("mm", "cm", "m", "in", "unit"), doc="output length unit"),
-        "scale": _key("float", None, _POSITIVE, "output units per model unit", doc="model units to output units (default: fit the largest sheet to the page)"),
-        "page": _key("page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), doc="page name or [width, height]"),
-        "glue_tabs": _key("bool", True, doc="draw glue tabs on the sheets"),
-        "rulings": _key("bool", False, doc="draw the rulings on the crease patterns (for scoring or engraving)"),
-        "formats": _key("formats", list(FORMATS), choices=FORMATS, doc="files to write (default: all)"),
-    }),
+
+def _fold_angle(default: float, help: str) -> Spec:
+    return Spec("fold_angle", "real", default, _ANGLE, "degrees", help=help)
+
+
+def _width(side: str, default: float) -> Spec:
+    return Spec(f"width_{side}", "real", default, "(0, inf)", "model units", help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0")
+
+
+def _section(*specs: Spec) -> Mapping[str, Spec]:
+    return MappingProxyType({spec.name: spec for spec in specs})
+
+
+#: Every section ("" is the top level) and the specs of its keys, in file order. The
+#: ``[vault]`` specs are :data:`curvefold.vault.assembly.VAULT_SPECS`, the ``[output]``
+#: specs :data:`curvefold.io.formats.OUTPUT_SPECS`.
+SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
+    "": _section(
+        Spec("kind", "choice", REQUIRED, choices=KINDS, help="what to build"),
+        Spec("samples", "integer", 801, "[3, 200000]", help="samples along curve 1", why="memory bound"),
+        Spec("title", "text", "", help="free text for reports"),
+    ),
+    "vault": _section(*VAULT_SPECS),
+    "curve": _section(
+        Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s"),
+        Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s"),
+        Spec("length", "real", 6.0, "(0, inf)", "model units", help="arc length of curve 1"),
+        _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
+    ),
+    "tube": _section(_width("left", 0.3), _width("right", 0.3)),
+    "block": _section(
+        _width("left", 0.2),
+        _width("right", 0.2),
+        Spec("cells", "cells", ((0, 0), (0, 1), (1, 1)), "[-1000, 1000]", help="lattice cells [i, j]"),
+    ),
+    "crease": _section(
+        Spec("kappa_2d", "function", 0.5, "(0, inf)", "per model unit", help="curvature of the crease in the flat pattern"),
+        Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left"),
+        Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)"),
+        _fold_angle(60.0, "fold angle 2 alpha(0) at the start of the crease"),
+        Spec("length", "real", 3.0, "(0, inf)", "model units", help="arc length of the crease"),
+        Spec("alpha", "function", None, "(0, 90)", "degrees",
+             help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)"),
+    ),
+    "output": _section(*OUTPUT_SPECS),
 })
 
 _SECTIONS = tuple(name for name in SCHEMA if name)
@@ -309,11 +231,16 @@ class BlockParams:
 
 @dataclass(frozen=True)
 class CreaseParams:
-    """``[crease]``: a single curved fold from its crease pattern (angles in degrees)."""
+    """``[crease]``: a single curved fold from its crease pattern (angles in degrees).
+
+    Either ``beta_right`` is given and α(s) follows from Eq. (3) integrated from
+    ``fold_angle``, or ``alpha`` is given (``beta_right`` is then None and
+    ``fold_angle`` = 2α(0)) and β_R follows from Eq. (3).
+    """
 
     kappa_2d: FunctionValue
     beta_left: FunctionValue
-    beta_right: FunctionValue
+    beta_right: FunctionValue | None
     fold_angle: float
     length: float
     alpha: FunctionValue | None
@@ -388,13 +315,15 @@ class Design:
             out[section] = {k: v for k, v in values.items() if v is not None}
         return out
 
-    def overrides(self, **flags: Any) -> Design:
+    def overrides(self, *, source: str | None = None, **flags: Any) -> Design:
         """A new design with the non-None ``flags`` replacing file values, validated anew.
 
         Flags are key names without their section (``a=0.4``, ``samples=1601``,
         ``fold_angle=60.0``, ``formats=["svg"]``); within one kind every key name is unique.
         A section name with a mapping (``vault={"a": 0.4}``) sets several keys. Changing
         ``kind`` drops the old kind's sections and starts from the new kind's defaults.
+        ``source`` names the result in messages (default: this design's source
+        ``"(with overrides)"``).
 
         Raises
         ------
@@ -402,10 +331,10 @@ class Design:
             An unknown flag, or a value the schema refuses.
         """
         data = self.to_dict()
-        source = f"{self.source} (with overrides)"
+        source = source or f"{self.source} (with overrides)"
         kind = flags.pop("kind", None)
         if kind is not None and kind != self.kind:
-            kind = _check_choice(SCHEMA[""]["kind"], kind, f"{source}: kind")
+            kind = SCHEMA[""]["kind"].check(kind, f"{source}: kind")
             data = {"kind": kind, "samples": data["samples"], "title": data["title"], "output": data["output"]}
         kind = data["kind"]
         allowed = _flag_sections(kind)
@@ -422,7 +351,7 @@ class Design:
             else:
                 raise InputError(
                     f"{source}: unknown option {flag!r} for kind {kind!r} (allowed: {', '.join(allowed)})"
-                    + _suggest(key, allowed)
+                    + suggest(key, allowed)
                 )
         return design_from_dict(data, source=source, base_dir=self.base_dir)
 
@@ -431,7 +360,7 @@ class Design:
 
         Values are in the design file's units: angles stay in degrees.
         """
-        section = next((s for s in SECTIONS_OF_KIND[self.kind] if SCHEMA[s].get(key, _NOSPEC).type == "function"), None)
+        section = next((s for s in SECTIONS_OF_KIND[self.kind] if key in SCHEMA[s] and SCHEMA[s][key].kind == "function"), None)
         if section is None:
             raise InputError(f"{key!r} is not a function-valued key of kind {self.kind!r}")
         params = getattr(self, section)
@@ -443,9 +372,6 @@ class Design:
         elif isinstance(value, Expression) and value.constant is not None:
             value = value.constant  # exact derivative for constants
         return as_function(value, name=f"[{section}] {key}", length=params.length)
-
-
-_NOSPEC = KeySpec("none", None)
 
 
 def _flag_sections(kind: str) -> dict[str, str]:
@@ -566,17 +492,18 @@ def design_from_dict(
     Design
     """
     if not isinstance(data, Mapping):
-        raise InputError(f"{source}: a design must be a table, got {_describe(data)}")
+        raise InputError(f"{source}: a design must be a table, got {describe(data)}")
     folder = Path.cwd() if base_dir is None else Path(base_dir)
     top = SCHEMA[""]
     if "kind" not in data:
-        raise InputError(f"{source}: missing required key 'kind' (one of {_choices(KINDS)})")
-    kind = _check_choice(top["kind"], data["kind"], f"{source}: kind")
+        kinds = ", ".join(f'"{k}"' for k in KINDS)
+        raise InputError(f"{source}: missing required key 'kind' (one of {kinds})")
+    kind = top["kind"].check(data["kind"], f"{source}: kind")
     used = SECTIONS_OF_KIND[kind]
     for key, value in data.items():
         if key in _SECTIONS:
             if not isinstance(value, Mapping):
-                raise InputError(f"{source}: {key} must be a table ([{key}] section), got {_describe(value)}")
+                raise InputError(f"{source}: {key} must be a table ([{key}] section), got {describe(value)}")
             if key != "output" and key not in used:
                 users = " or ".join(repr(k) for k in KINDS if key in SECTIONS_OF_KIND[k])
                 raise InputError(
@@ -587,11 +514,16 @@ def design_from_dict(
             what = f"section [{key}]" if isinstance(value, Mapping) else f"key {key!r}"
             raise InputError(
                 f"{source}: unknown {what} (allowed keys: {', '.join(top)}; sections: {', '.join(_SECTIONS)})"
-                + _suggest(key, (*top, *_SECTIONS))
+                + suggest(key, (*top, *_SECTIONS))
             )
     head = _check_section("", data, _Context(source, folder, 0), skip=_SECTIONS)
     ctx = _Context(source, folder, head["samples"])
-    params = {s: _PARAM_TYPES[s](**_check_section(s, data.get(s, {}), ctx)) for s in (*used, "output")}
+    checked = {s: _check_section(s, data.get(s, {}), ctx) for s in (*used, "output")}
+    if checked["output"]["formats"] is None:
+        checked["output"]["formats"] = default_formats(kind)
+    if kind == "crease":
+        _check_alpha(checked["crease"], data.get("crease", {}), source)
+    params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}
     design = Design(
         kind=kind, samples=head["samples"], title=head["title"], source=source, base_dir=folder.resolve(), **params
     )
@@ -628,10 +560,9 @@ def _check_section(section: str, table: Mapping[str, Any], ctx: _Context, skip: 
     prefix = f"{ctx.source}: " if section == "" else f"{ctx.source}: [{section}] "
     for key in table:
         if key not in specs and key not in skip:
-            raise InputError(f"{prefix}unknown key {key!r} (allowed: {', '.join(specs)})" + _suggest(key, specs))
+            raise InputError(f"{prefix}unknown key {key!r} (allowed: {', '.join(specs)})" + suggest(key, specs))
     out: dict[str, Any] = {}
-    order = sorted(specs, key=lambda k: specs[k].type == "function")
-    for key in order:
+    for key in sorted(specs, key=lambda k: specs[k].kind == "function"):
         spec = specs[key]
         value = table.get(key)  # an explicit None (JSON null) means the default
         if value is None and spec.required:
@@ -640,11 +571,26 @@ def _check_section(section: str, table: Mapping[str, Any], ctx: _Context, skip: 
             value = spec.default
         if value is None:
             out[key] = None
-        elif spec.type == "function":
-            out[key] = _check_function(spec, value, section, key, ctx, out["length"])
+        elif spec.kind == "function":
+            out[key] = _check_function(spec, value, section, ctx, out["length"])
         else:
-            out[key] = _CHECKERS[spec.type](spec, value, f"{prefix}{key}")
+            out[key] = spec.check(value, f"{prefix}{key}")
     return {key: out[key] for key in specs}
+
+
+def _check_alpha(values: dict, table: Mapping[str, Any], source: str) -> None:
+    """With ``alpha`` given, β_R follows from Eq. (3): refuse ``beta_right`` and set ``fold_angle`` to 2α(0)."""
+    alpha = values["alpha"]
+    if alpha is None:
+        return
+    if table.get("beta_right") is not None:
+        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))")
+    twice = float(2 * np.asarray(alpha(np.zeros(1)) if callable(alpha) else alpha, float).flat[0])
+    if table.get("fold_angle") is not None and not math.isclose(values["fold_angle"], twice, rel_tol=1e-12):
+        raise InputError(
+            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {values['fold_angle']!r}"
+        )
+    values["beta_right"], values["fold_angle"] = None, twice
 
 
 def _check_budget(design: Design) -> None:
@@ -661,162 +607,31 @@ def _check_budget(design: Design) -> None:
         )
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
-
-
-def _to_float(value: Any, where: str) -> float:
-    try:
-        return float(value)
-    except OverflowError:
-        raise InputError(f"{where} is too large, got an integer of {int(value).bit_length()} bits") from None
-
-
-def _range_text(spec: KeySpec) -> str:
-    """E.g. ``in (0, 180) degrees`` or ``in [3, 200000] (memory bound)``."""
-    text = f"{spec.range} {spec.unit}" if spec.unit else str(spec.range)
-    return f"{text} ({spec.note})" if spec.note else text
-
-
-def _check_float(spec: KeySpec, value: Any, where: str) -> float:
-    if not _is_number(value):
-        unit = f" ({spec.unit})" if spec.unit else ""
-        raise InputError(f"{where} must be a number{unit}, got {_describe(value)}")
-    x = _to_float(value, where)
-    if not math.isfinite(x):
-        raise InputError(f"{where} must be a finite number, got {x}")
-    if x not in spec.range:
-        raise InputError(f"{where} must be {_range_text(spec)}, got {x!r}")
-    return x
-
-
-def _check_int(spec: KeySpec, value: Any, where: str) -> int:
-    if not _is_number(value) or not isinstance(value, (int, np.integer)) or value not in spec.range:
-        raise InputError(f"{where} must be an integer {_range_text(spec)}, got {_describe(value)}")
-    return int(value)
-
-
-def _check_tubes(spec: KeySpec, value: Any, where: str) -> int | str:
-    if isinstance(value, str) and value == "max":
-        return value
-    if not _is_number(value) or not isinstance(value, (int, np.integer)) or value not in spec.range:
-        raise InputError(f'{where} must be an integer {_range_text(spec)} or "max", got {_describe(value)}')
-    return int(value)
-
-
-def _check_choice(spec: KeySpec, value: Any, where: str) -> str:
-    if not isinstance(value, str) or value not in spec.choices:
-        raise InputError(f"{where} must be one of {_choices(spec.choices)}, got {_describe(value)}")
-    return value
-
-
-def _check_text(spec: KeySpec, value: Any, where: str) -> str:
-    if not isinstance(value, str) or len(value) > 1000:
-        raise InputError(f"{where} must be a string of at most 1000 characters, got {_describe(value)}")
-    return value
-
-
-def _check_bool(spec: KeySpec, value: Any, where: str) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise InputError(f"{where} must be true or false, got {_describe(value)}")
-    return bool(value)
-
-
-def _check_page(spec: KeySpec, value: Any, where: str) -> str | tuple[float, float]:
-    if isinstance(value, str) and value in spec.choices:
-        return value
-    if isinstance(value, (list, tuple)) and len(value) == 2:
-        width, height = (_check_float(spec, v, f"{where} {name}") for v, name in zip(value, ("width", "height"), strict=True))
-        return width, height
-    names = _choices(spec.choices)
-    raise InputError(f"{where} must be one of {names} or [width, height] in mm, got {_describe(value)}")
-
-
-def _check_formats(spec: KeySpec, value: Any, where: str) -> tuple[str, ...]:
-    if not isinstance(value, (list, tuple)):
-        names = ", ".join(spec.choices)
-        raise InputError(f"{where} must be an array of format names ({names}), got {_describe(value)}")
-    for item in value:
-        if not isinstance(item, str) or item not in spec.choices:
-            raise InputError(f"{where}: unknown format {_describe(item)} (allowed: {', '.join(spec.choices)})")
-    return tuple(dict.fromkeys(value))
-
-
-def _check_cells(spec: KeySpec, value: Any, where: str) -> tuple[tuple[int, int], ...]:
-    if not isinstance(value, (list, tuple)) or not 1 <= len(value) <= 10_000:
-        raise InputError(f"{where} must be an array of 1 to 10000 [i, j] pairs, got {_describe(value)}")
-    seen: dict[tuple[int, int], int] = {}
-    for n, cell in enumerate(value):
-        ok = isinstance(cell, (list, tuple)) and len(cell) == 2
-        ok = ok and all(_is_number(x) and isinstance(x, (int, np.integer)) and x in spec.range for x in cell)
-        if not ok:
-            raise InputError(f"{where}[{n}] must be a pair [i, j] of integers {spec.range}, got {_describe(cell)}")
-        pair = (int(cell[0]), int(cell[1]))
-        if pair in seen:
-            raise InputError(f"{where}[{n}] repeats cell {list(pair)} (first at index {seen[pair]})")
-        seen[pair] = n
-    return tuple(seen)
-
-
-_CHECKERS: Mapping[str, Callable[[KeySpec, Any, str], Any]] = MappingProxyType({
-    "float": _check_float,
-    "int": _check_int,
-    "tubes": _check_tubes,
-    "choice": _check_choice,
-    "text": _check_text,
-    "bool": _check_bool,
-    "page": _check_page,
-    "formats": _check_formats,
-    "cells": _check_cells,
-})
-
-
-def _check_function(spec: KeySpec, value: Any, section: str, key: str, ctx: _Context, length: float) -> FunctionValue:
-    where = f"{ctx.source}: [{section}] {key}"
-    if _is_number(value):
-        return _check_float(spec, value, where)
+def _check_function(spec: Spec, value: Any, section: str, ctx: _Context, length: float) -> FunctionValue:
+    name = f"[{section}] {spec.name}"
+    where = f"{ctx.source}: {name}"
     if isinstance(value, str):
         try:
-            expression = compile_expression(value, name=f"[{section}] {key}")
+            expression = compile_expression(value, name=name)
         except InputError as exc:
             raise InputError(f"{ctx.source}: {exc}") from None
         grid = np.linspace(0.0, length, ctx.samples)
-        _check_samples(spec, expression(grid), grid, where, lambda i: f"at s = {grid[i]:.6g}")
+        spec.check_samples(expression(grid), where, lambda i: f"at s = {grid[i]:.6g}")
         return expression
     if isinstance(value, Mapping):
-        return _read_table(spec, value, key, where, ctx, length)
-    raise InputError(
-        f"{where} must be a number, an expression in s or a table {{csv = ..., column = ...}}, got {_describe(value)}"
-    )
+        return _read_table(spec, value, where, ctx, length)
+    return spec.check(value, where)
 
 
-def _check_samples(
-    spec: KeySpec, values: np.ndarray, grid: np.ndarray, where: str, at: Callable[[int], str]
-) -> None:
-    """Raise naming the first sample that is not finite or not in the key's range."""
-    with np.errstate(invalid="ignore"):
-        inside = np.isfinite(values)
-        r = spec.range
-        inside &= (values >= r.lo) if r.lo_closed else (values > r.lo)
-        inside &= (values <= r.hi) if r.hi_closed else (values < r.hi)
-    bad = np.flatnonzero(~inside)
-    if bad.size:
-        i = int(bad[0])
-        need = "finite" if str(r) == "finite" else f"finite and {_range_text(spec)}"
-        raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}")
-
-
-def _read_table(
-    spec: KeySpec, table: Mapping[str, Any], key: str, where: str, ctx: _Context, length: float
-) -> TableColumn:
+def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: _Context, length: float) -> TableColumn:
     for k in table:
         if k not in ("csv", "column"):
             raise InputError(f"{where}: unknown key {k!r} in CSV table (allowed: csv, column)")
-    raw, column = table.get("csv"), table.get("column", key)
+    raw, column = table.get("csv"), table.get("column", spec.name)
     if not isinstance(raw, str) or not raw.strip():
-        raise InputError(f"{where}: csv must be a file name relative to the design file, got {_describe(raw)}")
+        raise InputError(f"{where}: csv must be a file name relative to the design file, got {describe(raw)}")
     if not isinstance(column, str):
-        raise InputError(f"{where}: column must be a column header, got {_describe(column)}")
+        raise InputError(f"{where}: column must be a column header, got {describe(column)}")
     file = _safe_path(raw, where, ctx.base_dir)
     label = f"{where} ({raw})"
     try:
@@ -842,7 +657,7 @@ def _read_table(
     def at(i: int) -> str:
         return f"at line {lines[i]} (s = {grid[i]:.6g})"
 
-    _check_samples(spec, values, grid, f"{label} column {column!r}", at)
+    spec.check_samples(values, f"{label} column {column!r}", at)
     values.flags.writeable = False
     return TableColumn(raw, column, values)
 
@@ -919,45 +734,3 @@ def _check_grid(s: np.ndarray, grid: np.ndarray, lines: list[int], label: str, l
             f"{label}: the s column must be uniformly spaced over [0, {length:g}]: at line {lines[i]} "
             f"s = {s[i]:.6g}, expected {grid[i]:.6g} ({grid.size} samples, spacing {h:.6g})"
         )
-
-
-# --------------------------------------------------------------------------------------------
-# Messages
-
-
-def _fmt(x: float) -> str:
-    if math.isinf(x):
-        return "inf" if x > 0 else "-inf"
-    return str(int(x)) if x == int(x) else repr(x)
-
-
-def _choices(choices: tuple[str, ...]) -> str:
-    return ", ".join(f'"{c}"' for c in choices)
-
-
-_TOML_TYPES = ((bool, "boolean"), (str, "string"), (int, "integer"), (float, "float"), (Mapping, "table"))
-
-
-def _describe(value: Any) -> str:
-    """TOML type name and a short repr, e.g. ``string '90'``."""
-    try:
-        text = repr(value)
-    except ValueError:  # an integer past Python's digit limit
-        text = "<too many digits>"
-    if len(text) > 60:
-        text = text[:57] + "..."
-    if _is_number(value) and not isinstance(value, bool):
-        return text
-    for kind, name in _TOML_TYPES:
-        if isinstance(value, kind):
-            return f"{name} {text}"
-    if isinstance(value, (list, tuple)):
-        return f"array {text}"
-    return f"{type(value).__name__} {text}"
-
-
-def _suggest(key: Any, options) -> str:
-    if not isinstance(key, str):
-        return ""
-    close = difflib.get_close_matches(key, list(options), n=1)
-    return f"; did you mean {close[0]!r}?" if close else ""

@@ -21,6 +21,7 @@ import numpy as np
 from ..analysis.certificate import certify
 from ..figures.report import plain, report_html
 from ..io.atomic import atomic_write, folder_mode
+from ..io.formats import missing_dependencies
 from ..kernel.errors import InputError
 from .build import Built
 
@@ -94,8 +95,6 @@ def _default_title(built: Built) -> str:
     return f"single curved fold, length {built.crease.curve.length:g}"
 
 
-
-
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
     """A progress bar on stderr (rich), or nothing."""
     if not show:
@@ -112,21 +111,39 @@ def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[
     return step, bar.stop
 
 
-def write_outputs(built: Built, out: Path, *, force: bool = False, show_progress: bool = True) -> list[str]:
+def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force: bool = False, show_progress: bool = True) -> list[str]:
     """Write every file of a built design into the folder ``out`` (see the module doc).
+
+    Parameters
+    ----------
+    built : Built
+    out : Path
+    payload : dict, optional, keyword-only
+        :func:`structure_payload` of ``built`` when the caller has it already (it holds
+        the certificate, the costliest part); computed here otherwise.
+    force, show_progress : bool, keyword-only
 
     Returns
     -------
     list of str
         File names written, relative to ``out``.
+
+    Raises
+    ------
+    InputError
+        A requested format that is not written for the design's kind or whose optional
+        package is missing, or an output folder that cannot be written; nothing is written.
     """
     from . import products
 
-    formats = set(built.design.output.formats) | {"report"}
+    formats = built.design.output.formats
     jobs = products.jobs(built, formats)
+    missing = missing_dependencies(formats)
+    if missing:
+        raise InputError("formats: " + "; ".join(missing))
+    report = dict(structure_payload(built) if payload is None else payload, timings={})
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
-    payload = structure_payload(built)
     try:
         with output_folder(out, force=force) as tmp:
             for label, job in jobs:
@@ -134,10 +151,10 @@ def write_outputs(built: Built, out: Path, *, force: bool = False, show_progress
                 started = time.perf_counter()
                 files = job(tmp)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
-                payload.setdefault("timings", {})[label] = round(time.perf_counter() - started, 3)
-            payload["files"] = sorted(written)
-            atomic_write(tmp / "report.json", json.dumps(payload, indent=2, default=plain))
-            atomic_write(tmp / "report.html", report_html(payload))
+                report["timings"][label] = round(time.perf_counter() - started, 3)
+            report["files"] = sorted(written)
+            atomic_write(tmp / "report.json", json.dumps(report, indent=2, default=plain))
+            atomic_write(tmp / "report.html", report_html(report))
             written += ["report.json", "report.html"]
     finally:
         stop()

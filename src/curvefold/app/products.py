@@ -1,18 +1,27 @@
-"""The files of an output folder, each a job ``folder -> list of paths`` (see :mod:`curvefold.app.outputs`)."""
+"""The files of an output folder, each a job ``folder -> list of paths`` (see :mod:`curvefold.app.outputs`).
+
+The requested formats are grouped by family (:data:`curvefold.io.formats.FAMILIES`), in
+registry order; each family is one job calling the writer the registry names. The
+pictures of the report are always written.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Collection
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
+from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
 
 __all__ = ["jobs", "MOTION_STEPS"]
 
-#: States of the folding motion in the GLB and GIF, from flat to the design angle.
+#: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
+#: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
+MODEL_UNIT = "unit"
 
 Job = Callable[[Path], list]
 
@@ -35,62 +44,84 @@ def _metadata(built: Built) -> dict:
     return meta
 
 
-def jobs(built: Built, formats: set[str]) -> list[tuple[str, Job]]:
-    """The jobs that write the requested formats for a built design, in order."""
-    out: list[tuple[str, Job]] = []
-    name = built.design.kind
-    structure = built.structure
-    design_angle = None if structure is None else structure.lattice.crease.fold_angle
-    angles = None if design_angle is None else np.linspace(0.0, design_angle, MOTION_STEPS)
-    meta = _metadata(built)
-    unit = "unit"  # model units; fabrication scale applies to the crease patterns
-    o = built.design.output
-    if structure is not None:
-        from ..io import fold as fold_io
-        from ..io import models as model_io
-        from ..io import pattern as pattern_io
+def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
+    """The jobs that write the requested formats of a built design, then its pictures.
 
-        if "fold" in formats:
-            out.append(("FOLD file", lambda d: [fold_io.write_structure_fold(d / f"{name}.fold", structure, title=meta["title"], fold_angles=[design_angle], unit=unit, metadata=meta)]))
-            out.append(("sheet FOLD files", lambda d: _sheet_folds(structure, d / "sheets", unit)))
-        pattern = [f for f in ("svg", "dxf", "pdf") if f in formats]
-        if pattern:
-            # the page is laid out in mm (cm, in as given); metres are drawn in mm
-            units, scale = (o.units, o.scale) if o.units in ("mm", "cm", "in") else ("mm", None if o.scale is None else o.scale * (1000.0 if o.units == "m" else 1.0))
-            out.append((
-                "crease patterns",
-                lambda d: list(pattern_io.write_pattern(d / f"{name}-pattern", structure, formats=pattern, page=o.page, units=units, scale=scale, glue_tabs=o.glue_tabs, rulings=o.rulings, name=name)),
-            ))
-        models = [f for f in ("glb", "obj", "stl", "ply", "3dm") if f in formats]
-        if models:
-            out.append(("3D models", lambda d: list(model_io.write_3d(d / name, structure, angles, formats=models, unit=unit, metadata=meta))))
-    if "png" in formats or "gif" in formats or "report" in formats:
-        out.append(("pictures", lambda d: _pictures(built, d, gif="gif" in formats)))
+    Raises
+    ------
+    InputError
+        A format that is not written for the design's kind, with the reason.
+    """
+    check_kind(formats, built.design.kind, "formats")
+    families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
+    out: list[tuple[str, Job]] = []
+    for family in families:
+        label, write = _FAMILY_JOBS[family]
+        names = tuple(name for name in formats_of(family) if name in formats)
+        out.append((label, partial(write, built, names)))
+    out.append(("pictures", partial(_pictures, built)))
     return out
 
 
-def _sheet_folds(structure, folder: Path, unit: str) -> list:
-    """One FOLD file per sheet, flat with its target fold angles (loadable by Origami Simulator)."""
+def _writer(names: tuple[str, ...]) -> Callable:
+    return FORMATS[names[0]].load_writer()
+
+
+def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """The structure's FOLD file, and one FOLD file per sheet, flat with its target fold
+    angles (loadable by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
-    folder.mkdir()
-    files = []
+    structure, meta = built.structure, _metadata(built)
+    files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"],
+                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta)]
+    (folder / "sheets").mkdir()
     for sheet in sheets(structure):
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
-        files.append(write_sheet_fold(folder / f"{stem}.fold", sheet.mesh, unit, title=sheet.label))
+        files.append(write_sheet_fold(folder / "sheets" / f"{stem}.fold", sheet.mesh, MODEL_UNIT, title=sheet.label))
     return files
 
 
-def _pictures(built: Built, folder: Path, *, gif: bool) -> list:
-    """Plots for the report (PNG + SVG) and the folding animation (GIF)."""
+def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """The crease patterns, laid out once for every pattern format."""
+    from ..io.tables import mm_per_unit
+
+    o, kind = built.design.output, built.design.kind
+    page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
+    return list(_writer(names)(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
+                               glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind))
+
+
+def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """The 3D files; the GLB holds the folding motion."""
+    structure = built.structure
+    angles = np.linspace(0.0, structure.lattice.crease.fold_angle, MOTION_STEPS)
+    return list(_writer(names)(folder / built.design.kind, structure, angles, formats=names, unit=MODEL_UNIT, metadata=_metadata(built)))
+
+
+def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """The GIF of the folding motion."""
+    return [_writer(names)(built.vault if built.vault is not None else built.structure, folder / "folding.gif")]
+
+
+#: Progress label and job of every family of formats.
+_FAMILY_JOBS = {
+    "fold": ("FOLD files", _fold),
+    "pattern": ("crease patterns", _pattern),
+    "model": ("3D models", _model),
+    "motion": ("folding GIF", _motion),
+}
+
+
+def _pictures(built: Built, folder: Path) -> list:
+    """Plots for the report (PNG + SVG)."""
     from ..figures import plots
 
     files: list = []
     structure = built.structure
     if structure is None:
-        files += plots.save_figure(plots.plot_crease(built.crease), folder / "crease")
-        return files
+        return plots.save_figure(plots.plot_crease(built.crease), folder / "crease")
     lattice = structure.lattice
     files += plots.save_figure(plots.plot_regression_domain(lattice, structure.cells), folder / "regression-domain")
     files += plots.save_figure(plots.plot_width_proportion(lattice), folder / "width-proportion")
@@ -98,8 +129,6 @@ def _pictures(built: Built, folder: Path, *, gif: bool) -> list:
         files += plots.save_figure(plots.plot_vault(built.vault), folder / "vault")
         files += plots.save_figure(plots.plot_sections(built.vault), folder / "sections")
         files += plots.save_figure(plots.plot_motion_strip(built.vault), folder / "folding-motion")
-        if gif:
-            files.append(plots.write_motion_gif(built.vault, folder / "folding.gif"))
     else:
         files += plots.save_figure(plots.plot_structure(structure), folder / built.design.kind)
     return files

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..geometry.topology import drawable, sample_index, tube_strips
 from ..io.atomic import atomic_path
+from ..io.tables import COLOURS
 from ..kernel.errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -48,8 +49,8 @@ __all__ = [
     "save_figure",
 ]
 
-#: Line colours of the crease kinds (folds red, seams blue, as in the paper's figures).
-KIND_COLORS = {"fold": "#d62728", "seam": "#1f77b4", "junction": "#7b3294", "edge": "#4d4d4d"}
+#: Line colours of the crease kinds (from :data:`curvefold.io.tables.COLOURS`: folds red, seams blue).
+KIND_COLORS = {kind: COLOURS[kind] for kind in ("fold", "seam", "junction", "edge")}
 #: Base colour of the strips before shading.
 STRIP_RGB = np.array([0.86, 0.86, 0.85])
 GROUND_COLOR = "#ece6da"

@@ -215,6 +215,89 @@ class Crease(FrozenArrays):
         )
         return cls(curve, alpha, bl, br)
 
+    @classmethod
+    def from_alpha(
+        cls,
+        kappa_2d: FunctionLike,
+        beta_left: FunctionLike,
+        alpha: FunctionLike,
+        length: float,
+        *,
+        samples: int = 1001,
+        degrees: bool = True,
+        origin: np.ndarray | None = None,
+        frame: np.ndarray | None = None,
+    ) -> Crease:
+        """Fold a single curved crease from its crease pattern with the fold angle prescribed along it.
+
+        With κ_2D, β_L and α(s) given, the corrected Eq. (3) gives the right ruling angle,
+        ``cot β_R = cot β_L − 2α' / (κ_2D tan α)``, always in (0°, 180°); Eq. (4) gives the
+        torsion ``τ = ½ κ_2D tan α (cot β_L + cot β_R) = κ_2D tan α cot β_L − α'`` and
+        Eq. (2) the curvature ``κ = κ_2D / cos α``.
+
+        Parameters
+        ----------
+        kappa_2d : float, callable or array_like
+            Curvature of the crease in the flat pattern, > 0.
+        beta_left : float, callable or array_like
+            Ruling angle on the left, in (0°, 180°) (degrees by default).
+        alpha : float, callable or array_like
+            α(s), half the fold angle, in (0°, 90°) (degrees by default).
+        length : float
+            Arc length of the crease.
+        samples, origin, frame : keyword-only
+            As in :meth:`from_pattern`.
+        degrees : bool, keyword-only
+            Units of ``beta_left`` and ``alpha``.
+
+        Raises
+        ------
+        InputError
+            If κ_2D ≤ 0, β_L leaves (0°, 180°) or α leaves (0°, 90°) (the message gives the
+            arc length where it does).
+
+        Examples
+        --------
+        A constant α gives β_R = β_L, as :meth:`from_pattern` with equal ruling angles:
+
+        >>> c = Crease.from_alpha(0.5, 80.0, 30.0, 2.0, samples=21)
+        >>> round(float(np.degrees(c.beta_right(c.s[:1])[0])), 12), round(c.fold_angle, 12)
+        (80.0, 60.0)
+        """
+        samples = check_samples(samples)
+        L = float(length)
+        if not np.isfinite(L) or L <= 0:
+            raise InputError(f"length must be a finite number > 0, got {length!r}")
+        unit = np.pi / 180.0 if degrees else 1.0
+        k2 = as_function(kappa_2d, name="kappa_2d", length=L)
+        bl = as_function(beta_left, name="beta_left", length=L).scaled(unit)
+        a = as_function(alpha, name="alpha", length=L).scaled(unit)
+        probe = np.linspace(0.0, L, max(samples, 257))
+        for name, f, top in (("kappa_2d", k2, np.inf), ("beta_left", bl, np.pi), ("alpha", a, np.pi / 2)):
+            v = f(probe)
+            check_finite(v, name=name, s=probe)
+            bad = np.flatnonzero((v <= 0) | (v >= top))
+            if bad.size:
+                i = bad[0]
+                need, shown = ("> 0 everywhere", f"{v[i]:.6g}") if top == np.inf else (f"in (0°, {np.degrees(top):g}°)", f"{np.degrees(v[i]):.6g}°")
+                raise InputError(f"{name} must be {need}; at s = {probe[i]:.6g} it is {shown}")
+
+        def cot_right(s):
+            return 1 / np.tan(bl(s)) - 2 * a.derivative(s) / (k2(s) * np.tan(a(s)))
+
+        br = as_function(lambda s: np.arctan2(1.0, cot_right(s)), name="beta_right", length=L)
+        if a.constant is not None:
+            br = ScalarFunction(br.value, bl.derivative, bl.constant)  # β_R = β_L exactly
+        curve = SpaceCurve.from_curvature(
+            lambda s: k2(s) / np.cos(a(s)),
+            lambda s: k2(s) * np.tan(a(s)) / np.tan(bl(s)) - a.derivative(s),
+            L,
+            samples=samples,
+            origin=origin,
+            frame=frame,
+        )
+        return cls(curve, a, bl, br)
+
     # -- sampled quantities ---------------------------------------------------------------
     @property
     def s(self) -> np.ndarray:

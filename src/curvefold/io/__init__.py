@@ -5,6 +5,10 @@ failure never leaves a partial file. Heavy libraries (``trimesh``, ``pygltflib``
 ``rhino3dm``, ``ezdxf``, ``matplotlib``) are optional and imported only by the writer that
 needs them.
 
+:mod:`curvefold.io.formats` is the registry of every file format (name, extension,
+contents, kinds of design, writer, optional package); :mod:`curvefold.io.tables` is the
+one table of pages, length units and line colours the writers share.
+
 The writers here take meshes and laid-out sheets; the structure-level entry points
 (:func:`write_structure_fold`, :func:`write_pattern`, :func:`write_3d`) live in
 :mod:`curvefold.geometry.sheets` and are re-exported for convenience.

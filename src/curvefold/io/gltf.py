@@ -29,19 +29,20 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
 from ..geometry.mesh import Mesh
 from ..kernel.errors import InputError
 from .atomic import atomic_write
-from .mesh3d import UNIT_METRES, check_metadata
+from .mesh3d import check_metadata
+from .tables import UNITS, rgba
 
 __all__ = ["CREASE_COLOURS", "write_glb"]
 
-#: RGBA colour of each crease kind drawn as lines.
-CREASE_COLOURS = {"fold": (1.0, 0.0, 0.0, 1.0), "seam": (0.0, 0.0, 1.0, 1.0), "boundary": (0.0, 0.0, 0.0, 1.0)}
-_SURFACE_COLOUR = (0.8, 0.8, 0.8, 1.0)
+#: RGBA colour of each crease kind drawn as lines (from :data:`curvefold.io.tables.COLOURS`).
+CREASE_COLOURS = MappingProxyType({kind: rgba(kind) for kind in ("fold", "seam", "boundary")})
 
 _FLOAT, _UINT32 = 5126, 5125
 _ARRAY_BUFFER, _ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -74,11 +75,11 @@ class _Packer:
         return len(self.accessors) - 1
 
 
-def _material(g, name: str, rgba: tuple, *, double_sided: bool):
+def _material(g, name: str, colour: tuple, *, double_sided: bool):
     return g.Material(
         name=name,
         doubleSided=double_sided,
-        pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=list(rgba), metallicFactor=0.0, roughnessFactor=1.0),
+        pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=list(colour), metallicFactor=0.0, roughnessFactor=1.0),
     )
 
 
@@ -111,7 +112,7 @@ def write_glb(
     unit : str
         Model unit of ``coords``.
     scale : float, optional
-        Metres per model unit. Default: from ``unit`` (see :data:`UNIT_METRES`).
+        Metres per model unit. Default: from ``unit`` (see :data:`curvefold.io.tables.UNITS`).
     metadata : mapping, optional
         Design parameters, recorded in the asset extras.
     seconds_per_state : float
@@ -153,9 +154,9 @@ def write_glb(
         if angles.shape != (K,):
             raise InputError(f"angles_deg must have shape ({K},) like coords, got {np.shape(angles_deg)}")
     if scale is None:
-        if unit not in UNIT_METRES:
-            raise InputError(f"unit {unit!r} has no known size in metres; give scale= (metres per unit) or use one of {sorted(UNIT_METRES)}")
-        scale = UNIT_METRES[unit]
+        if unit not in UNITS:
+            raise InputError(f"unit {unit!r} has no known size in metres; give scale= (metres per unit) or use one of {sorted(UNITS)}")
+        scale = UNITS[unit].metres
     if not (np.isfinite(scale) and scale > 0):
         raise InputError(f"scale must be a positive number of metres per unit, got {scale}")
     if not (np.isfinite(seconds_per_state) and seconds_per_state > 0):
@@ -174,7 +175,7 @@ def write_glb(
     deltas = (pos[1:] - pos[0]).astype(np.float32)  # (K-1, V, 3)
 
     pk = _Packer(g)
-    materials = [_material(g, "surface", _SURFACE_COLOUR, double_sided=True)]
+    materials = [_material(g, "surface", rgba("surface"), double_sided=True)]
 
     def primitive(vertex_ids: np.ndarray, indices: np.ndarray, mode: int, material: int):
         position = pk.add(base[vertex_ids], "VEC3", target=_ARRAY_BUFFER, min_max=True)

@@ -46,18 +46,16 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from types import MappingProxyType
 
 import numpy as np
 
 from ..geometry.mesh import edges_faces
 from ..geometry.sheets import PatternSheet
 from ..kernel.errors import InputError
+from .tables import mm_per_unit, page_mm
 
 __all__ = [
     "LAYERS",
-    "PAGE_SIZES",
-    "UNITS",
     "Label",
     "Layout",
     "Page",
@@ -71,22 +69,6 @@ __all__ = [
 
 #: Layer names, bottom to top.
 LAYERS = ("glue", "rulings", "seam", "valley", "mountain", "cut", "labels")
-
-#: Page sizes in millimetres, portrait (width, height).
-PAGE_SIZES = MappingProxyType({
-    "A5": (148.0, 210.0),
-    "A4": (210.0, 297.0),
-    "A3": (297.0, 420.0),
-    "A2": (420.0, 594.0),
-    "A1": (594.0, 841.0),
-    "A0": (841.0, 1189.0),
-    "LETTER": (215.9, 279.4),
-    "LEGAL": (215.9, 355.6),
-    "TABLOID": (279.4, 431.8),
-})
-
-#: Millimetres per unit for the ``units`` of :func:`layout_sheets`.
-UNITS = MappingProxyType({"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72.0})
 
 #: Smallest label size (em height, mm) used before a label is placed regardless of lines.
 MIN_LABEL_SIZE = 1.5
@@ -113,7 +95,7 @@ def seam_name(seam_id: int) -> str:
 
 
 def page_size(page: str | tuple[float, float], *, units: str = "mm") -> tuple[float, float]:
-    """Page (width, height) in mm from a name in :data:`PAGE_SIZES` or a pair in ``units``.
+    """Page (width, height) in mm from a name in :data:`~curvefold.io.tables.PAGES` or a pair in ``units``.
 
     Examples
     --------
@@ -122,20 +104,15 @@ def page_size(page: str | tuple[float, float], *, units: str = "mm") -> tuple[fl
     >>> page_size((8.5, 11), units="in")
     (215.9, 279.4)
     """
-    if units not in UNITS:
-        raise InputError(f"units must be one of {sorted(UNITS)}, got {units!r}")
+    f = mm_per_unit(units)
     if isinstance(page, str):
-        key = page.strip().upper()
-        if key not in PAGE_SIZES:
-            raise InputError(f"page must be one of {sorted(PAGE_SIZES)} or (width, height), got {page!r}")
-        return PAGE_SIZES[key]
+        return page_mm(page)
     try:
         w, h = (float(v) for v in page)
     except (TypeError, ValueError):
         raise InputError(f"page must be a name or a (width, height) pair, got {page!r}") from None
     if not (math.isfinite(w) and math.isfinite(h) and w > 0 and h > 0):
         raise InputError(f"page width and height must be positive and finite, got {page!r}")
-    f = UNITS[units]
     return (round(w * f, 9), round(h * f, 9))
 
 
@@ -720,10 +697,10 @@ def layout_sheets(
     ----------
     sheets : sequence of PatternSheet
     page : str or (2,) tuple of float
-        A name in :data:`PAGE_SIZES` (case-insensitive: ``"A4"``, ``"A3"``, ``"Letter"``…)
+        A name in :data:`~curvefold.io.tables.PAGES` (case-insensitive: ``"A4"``, ``"A3"``, ``"Letter"``…)
         or (width, height) in ``units``. Portrait names; pass a pair for landscape.
     units : str
-        Unit of every length argument: ``"mm"``, ``"cm"``, ``"in"`` or ``"pt"``.
+        Unit of every length argument, a name in :data:`~curvefold.io.tables.UNITS` (``"mm"``, ``"cm"``, ``"in"``…).
     scale : float, optional
         Page length (in ``units``) per model unit; default 1.
     target_size : float, optional
@@ -755,9 +732,7 @@ def layout_sheets(
         For an invalid argument or sheet, a seam id on more than two sheets, or a sheet
         that does not fit the page at this scale (the message gives both sizes).
     """
-    f = UNITS.get(units)
-    if f is None:
-        raise InputError(f"units must be one of {sorted(UNITS)}, got {units!r}")
+    f = mm_per_unit(units)
     sheets = tuple(sheets)
     if not sheets:
         raise InputError("sheets must hold at least one PatternSheet, got none")

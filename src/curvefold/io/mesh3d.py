@@ -26,18 +26,12 @@ from ..kernel.errors import InputError
 from .atomic import atomic_write
 
 __all__ = [
-    "UNIT_METRES",
     "check_metadata",
     "crease_polylines",
     "write_obj",
     "write_ply",
     "write_stl",
 ]
-
-#: Metres per unit for the unit names FOLD defines, plus ``"ft"`` (``"unit"`` has no
-#: physical size and is taken as one metre where a size is needed).
-UNIT_METRES = {"unit": 1.0, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "ft": 0.3048, "pt": 0.0254 / 72}
-
 
 def check_metadata(metadata: Mapping | None) -> dict:
     """Validate design parameters and return them as a plain JSON-ready dict.

@@ -12,12 +12,13 @@ from ..geometry.sheets import _angles, _check_structure, _design_angle, folding_
 from ..geometry.structure import Structure
 from . import gltf, mesh3d, rhino
 from .fold import _metadata
-from .pattern import _check_formats, _target
+from .formats import check_formats, formats_of
+from .pattern import _target
 
 __all__ = ["MODEL_FORMATS", "write_3d"]
 
 #: 3D formats :func:`write_3d` writes.
-MODEL_FORMATS = ("glb", "obj", "stl", "ply", "3dm")
+MODEL_FORMATS = formats_of("model")
 
 # --------------------------------------------------------------------------------------
 # 3D
@@ -64,7 +65,7 @@ def write_3d(
         The files written, in the order of ``formats``.
     """
     _check_structure(structure)
-    formats = _check_formats(formats, MODEL_FORMATS)
+    formats = check_formats(formats, "model")
     design = _design_angle(structure, None, degrees)
     static = design if fold_angle is None else float(_angles([fold_angle], degrees, "fold_angle")[0])
     motion = np.linspace(0.0, design, 7) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")

@@ -12,10 +12,11 @@ pages, glue tabs, layers, labels; see :mod:`curvefold.io.layout`), then write it
 * :func:`write_pdf` — one printable PDF page per layout page at 1:1, with a 10 mm scale
   bar in the bottom margin to check the print scale. Needs ``matplotlib``.
 
-Layer styles (:data:`LAYER_STYLES`): ``cut`` black solid, ``mountain`` red dash-dot,
-``valley`` blue dashed, ``seam`` (tab fold lines) green short dashes, ``glue`` light-green
-fill, ``rulings`` thin grey, ``labels`` purple text. Writers draw every layer except
-``rulings`` unless told otherwise (``layers=``). All files are written atomically.
+Layer styles (:data:`LAYER_STYLES`, colours from :data:`curvefold.io.tables.COLOURS`):
+``cut`` black solid, ``mountain`` red dash-dot, ``valley`` blue dashed, ``seam`` (tab fold
+lines) green short dashes, ``glue`` light-green fill, ``rulings`` thin green, ``labels``
+purple text. Writers draw every layer except ``rulings`` unless told otherwise
+(``layers=``). All files are written atomically.
 """
 
 from __future__ import annotations
@@ -35,10 +36,9 @@ from ..geometry.sheets import PatternSheet, _check_structure, sheets
 from ..geometry.structure import Structure
 from ..kernel.errors import InputError
 from .atomic import atomic_path
+from .formats import check_formats, formats_of
 from .layout import (
     LAYERS,
-    PAGE_SIZES,
-    UNITS,
     Label,
     Layout,
     Page,
@@ -48,19 +48,12 @@ from .layout import (
     page_size,
     seam_name,
 )
+from .tables import COLOURS, mm_per_unit
 
 #: Crease-pattern formats :func:`write_pattern` writes.
-PATTERN_FORMATS = ("svg", "dxf", "pdf")
+PATTERN_FORMATS = formats_of("pattern")
 #: Print scales are rounded down to one of these times a power of ten.
 _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
-
-
-def _check_formats(formats, allowed: tuple[str, ...]) -> tuple[str, ...]:
-    formats = (formats,) if isinstance(formats, str) else tuple(formats)
-    bad = [f for f in formats if f not in allowed]
-    if bad or not formats:
-        raise InputError(f"formats must be a non-empty selection of {allowed}, got {formats!r}")
-    return tuple(dict.fromkeys(formats))
 
 
 def _target(path_stem: str | os.PathLike, suffix: str) -> Path:
@@ -73,7 +66,6 @@ __all__ = [
     "LAYERS",
     "LAYER_STYLES",
     "LayerStyle",
-    "PAGE_SIZES",
     "Label",
     "Layout",
     "Page",
@@ -125,13 +117,13 @@ class LayerStyle:
 
 #: Style of every layer in :data:`LAYERS`.
 LAYER_STYLES = MappingProxyType({
-    "glue": LayerStyle("#c6ecc6", 3, fill=True),
-    "rulings": LayerStyle("#a0a0a0", 8, width=0.5),
-    "seam": LayerStyle("#16a016", 3, "DOT", (0.8, 0.8)),
-    "valley": LayerStyle("#1f4fe0", 5, "DASHED", (3.0, 1.5)),
-    "mountain": LayerStyle("#e01010", 1, "DASHDOT", (4.0, 1.2, 0.7, 1.2)),
-    "cut": LayerStyle("#000000", 7),
-    "labels": LayerStyle("#7b2fa6", 6),
+    "glue": LayerStyle(COLOURS["glue"], 3, fill=True),
+    "rulings": LayerStyle(COLOURS["ruling"], 3, width=0.5),
+    "seam": LayerStyle(COLOURS["tab"], 3, "DOT", (0.8, 0.8)),
+    "valley": LayerStyle(COLOURS["valley"], 5, "DASHED", (3.0, 1.5)),
+    "mountain": LayerStyle(COLOURS["fold"], 1, "DASHDOT", (4.0, 1.2, 0.7, 1.2)),
+    "cut": LayerStyle(COLOURS["boundary"], 7),
+    "labels": LayerStyle(COLOURS["label"], 6),
 })
 
 #: Layers the writers draw by default.
@@ -453,7 +445,7 @@ def _fit_scale(parts, page, units: str, margin_mm: float, tab_mm: float) -> floa
         _, _, vt = np.linalg.svd(xy, full_matrices=False)
         ext = np.sort(np.ptp(xy @ vt.T, axis=0))[::-1]
         best = min(best, float(np.min(room / np.maximum(ext, 1e-300))))
-    return _nice_floor(best / UNITS[units])
+    return _nice_floor(best / mm_per_unit(units))
 
 
 def layout_pattern(
@@ -535,14 +527,14 @@ def write_pattern(
     page, scale, units, glue_tabs, fold_angle, degrees, name : keyword-only
         As in :func:`layout_pattern`.
     rulings : bool, keyword-only
-        Also draw the rulings (thin grey, for scoring).
+        Also draw the rulings (thin green, for scoring).
 
     Returns
     -------
     tuple of Path
         The files written, in the order of ``formats``.
     """
-    formats = _check_formats(formats, PATTERN_FORMATS)
+    formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,
                             glue_tabs=glue_tabs, name=name)
     layers = LAYERS if rulings else DEFAULT_LAYERS

@@ -20,23 +20,19 @@ from ..geometry.mesh import Mesh
 from ..kernel.errors import InputError
 from .atomic import atomic_path
 from .mesh3d import check_metadata, crease_polylines
+from .tables import UNITS, rgba8
 
 __all__ = ["LAYERS", "write_3dm"]
 
-#: Layer name, edge kind (``None`` for the surface) and RGBA colour, in layer order.
+#: Layer name, edge kind (``None`` for the surface) and RGBA colour (from
+#: :data:`curvefold.io.tables.COLOURS`), in layer order.
 LAYERS = (
-    ("Surface", None, (200, 200, 200, 255)),
-    ("Fold", "fold", (255, 0, 0, 255)),
-    ("Seam", "seam", (0, 0, 255, 255)),
-    ("Boundary", "boundary", (0, 0, 0, 255)),
-    ("Rulings", "ruling", (0, 160, 0, 255)),
+    ("Surface", None, rgba8("surface")),
+    ("Fold", "fold", rgba8("fold")),
+    ("Seam", "seam", rgba8("seam")),
+    ("Boundary", "boundary", rgba8("boundary")),
+    ("Rulings", "ruling", rgba8("ruling")),
 )
-
-#: rhino3dm ``UnitSystem`` member for each unit name curvefold uses.
-_UNIT_SYSTEMS = {
-    "m": "Meters", "cm": "Centimeters", "mm": "Millimeters", "um": "Microns", "nm": "Nanometers",
-    "in": "Inches", "pt": "PrinterPoints", "ft": "Feet", "unit": "None",
-}
 #: Turn (degrees) above which a ruling polyline is split.
 _RULING_SPLIT_DEG = 1e-3
 
@@ -58,8 +54,7 @@ def write_3dm(
     mesh : Mesh
         The state to write.
     unit : str
-        Model unit: one of ``"m"``, ``"cm"``, ``"mm"``, ``"um"``, ``"nm"``, ``"in"``,
-        ``"pt"``, ``"ft"`` or ``"unit"`` (no unit system).
+        Model unit, a name in :data:`curvefold.io.tables.UNITS` (``"unit"``: no unit system).
     metadata : mapping, optional
         Design parameters, written as document user text ``curvefold:<key>``.
     name : str
@@ -75,15 +70,15 @@ def write_3dm(
         import rhino3dm
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError("writing 3dm needs rhino3dm: pip install 'curvefold[rhino]'") from exc
-    if unit not in _UNIT_SYSTEMS:
-        raise InputError(f"unit must be one of {sorted(_UNIT_SYSTEMS)} for a 3dm file, got {unit!r}")
+    if unit not in UNITS:
+        raise InputError(f"unit must be one of {sorted(UNITS)} for a 3dm file, got {unit!r}")
     meta = check_metadata(metadata)
     x = np.asarray(mesh.vertices_coords, float)
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
 
     model = rhino3dm.File3dm()
-    model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, _UNIT_SYSTEMS[unit])
+    model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNITS[unit].rhino)
     model.ApplicationName = "curvefold"
     layer_index = {layer: model.Layers.AddLayer(layer, colour) for layer, _, colour in LAYERS}
 

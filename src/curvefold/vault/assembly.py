@@ -26,24 +26,69 @@ from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.functions import ScalarFunction
+from ..kernel.validate import Spec
 from .arch import ArchRoot, proportion_change, solve_symmetric_arch
 
-__all__ = ["VaultDesign", "Vault", "HarmonicTorsion", "max_tubes", "MAX_TUBES_SEARCH", "DEFAULT_TUBES_CAP"]
+__all__ = [
+    "VaultDesign",
+    "Vault",
+    "HarmonicTorsion",
+    "VAULT_SPECS",
+    "MIN_SAMPLES",
+    "vault_samples",
+    "max_tubes",
+    "MAX_TUBES_SEARCH",
+    "DEFAULT_TUBES_CAP",
+]
 
 #: Stacks are searched up to this many tubes; a longer valid stack reports this number.
 MAX_TUBES_SEARCH = 10_000
 #: Tubes built when none are asked for and the stack could be longer.
 DEFAULT_TUBES_CAP = 24
+#: Fewest samples along a vault's creases (the apex is the middle sample).
+MIN_SAMPLES = 21
+
+#: The parameters of a vault, in design-file order. ``tubes`` is ``"max"`` or a count and
+#: ``direction`` ``"+"`` or ``"-"`` here; :class:`VaultDesign` holds None and ±1 for them.
+VAULT_SPECS: tuple[Spec, ...] = (
+    Spec("a", "real", 0.3, "[0, 3)", help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0); arches stand for a < 1.2707"),
+    Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet"),
+    Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless"),
+    Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})'),
+    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0"),
+    Spec("radius", "real", 1.0, "(0, inf)", "model units", help="1/kappa0"),
+    Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes"),
+    Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v"),
+)
+_SPEC = {spec.name: spec for spec in VAULT_SPECS}
+
+
+def vault_samples(samples: int, *, where: str = "samples") -> int:
+    """The sample count a vault is built with for a requested count: the next odd count.
+
+    Raises
+    ------
+    InputError
+        Below :data:`MIN_SAMPLES`; the message starts with ``where``.
+
+    Examples
+    --------
+    >>> vault_samples(800), vault_samples(801)
+    (801, 801)
+    """
+    if samples < MIN_SAMPLES:
+        raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}")
+    return samples | 1
 
 
 @dataclass(frozen=True)
 class VaultDesign:
-    """Design parameters of a vault.
+    """Design parameters of a vault, checked against :data:`VAULT_SPECS`.
 
     Attributes
     ----------
     a : float
-        Torsion amplitude, τ = a κ₀ sin(2π s/s₀); 0 ≤ a < 1.2707.
+        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in [0, 3); the arch stands for a < 1.2707.
     p_xy : float
         Section proportion at the feet, w_R(0) / w_L(0).
     width : float
@@ -60,7 +105,8 @@ class VaultDesign:
     direction : {1, -1}
         Stack in +u +v or −u −v from the base tube.
     samples : int
-        Samples along each crease (odd, so that the apex is a sample).
+        Samples along each crease (odd and ≥ :data:`MIN_SAMPLES`, so that the apex is a
+        sample; :func:`vault_samples` makes any count odd).
     """
 
     a: float = 0.3
@@ -74,22 +120,15 @@ class VaultDesign:
     samples: int = 401
 
     def __post_init__(self) -> None:
-        # (name, smallest allowed value, whether it may equal it, largest allowed value)
-        for name, low, closed, high in (("a", 0.0, True, np.inf), ("p_xy", 0.0, False, 100.0), ("width", 0.0, False, 10.0), ("radius", 0.0, False, np.inf)):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.number)) or not np.isfinite(v):
-                raise InputError(f"{name} must be a finite number, got {v!r}")
-            if v < low or (v == low and not closed) or v > high:
-                rng = f"{'[' if closed else '('}{low:g}, {'∞)' if np.isinf(high) else f'{high:g}]'}"
-                raise InputError(f"{name} must be in {rng}, got {v!r}")
-        half_angle(self.fold_angle)
+        for name in ("a", "p_xy", "width", "radius", "layers"):
+            _SPEC[name].check(getattr(self, name))
+        half_angle(self.fold_angle)  # the range of VAULT_SPECS' fold_angle, with the geometry's message
         check_samples(self.samples)
-        if self.samples % 2 == 0 or self.samples < 21:
-            raise InputError(f"samples must be odd and ≥ 21 (the apex is the middle sample), got {self.samples}")
-        if self.tubes is not None and (isinstance(self.tubes, bool) or not isinstance(self.tubes, (int, np.integer)) or self.tubes < 1):
-            raise InputError(f"tubes must be an integer ≥ 1 (or None for the maximum), got {self.tubes!r}")
-        if isinstance(self.layers, bool) or not isinstance(self.layers, (int, np.integer)) or not 1 <= self.layers <= 50:
-            raise InputError(f"layers must be an integer in [1, 50], got {self.layers!r}")
+        if self.samples % 2 == 0 or self.samples < MIN_SAMPLES:
+            raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}")
+        tubes = _SPEC["tubes"].range
+        if self.tubes is not None and (isinstance(self.tubes, bool) or not isinstance(self.tubes, (int, np.integer)) or self.tubes not in tubes):
+            raise InputError(f"tubes must be an integer ≥ 1 and ≤ {tubes.hi:g} (or None for the maximum), got {self.tubes!r}")
         if self.direction not in (1, -1):
             raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
 

@@ -4,9 +4,10 @@ For every pair of section proportion p_xy = w_R(0)/w_L(0) and torsion amplitude 
 vault is built with :meth:`curvefold.vault.Vault.from_design` and its
 :meth:`~curvefold.vault.Vault.summary` metrics are recorded. A design that cannot be built
 (no standing arch, regression, a parameter out of range: any
-:class:`~curvefold.kernel.errors.CurvefoldError`) is recorded as invalid with the reason, and the
-sweep goes on. Each valid design also keeps a small :class:`Sketch` of its geometry so the
-atlas figure needs no vault rebuilt.
+:class:`~curvefold.kernel.errors.CurvefoldError` raised while building it) is recorded as
+invalid with the reason, and the sweep goes on. Any error past that point (measuring or
+drawing a built vault) is a bug and propagates. Each valid design also keeps a small
+:class:`Sketch` of its geometry so the atlas figure needs no vault rebuilt.
 
 Records are flat dicts with the keys of :data:`FIELDS`; the grid is stored row-major,
 rows = a, columns = p_xy, whatever order the designs finish in.
@@ -131,15 +132,14 @@ def evaluate_design(
     record: dict[str, Any] = {"a": _number(a), "p_xy": _number(p_xy), "width": float(width), "fold_angle": float(fold_angle)}
     try:
         vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples))
-        summary = vault.summary()
-        sketch = Sketch.from_vault(vault)
-    except CurvefoldError as err:
+    except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
         record.update(dict.fromkeys(METRICS))
         return record, None
+    # A built vault that cannot be measured or drawn is a bug: it propagates.
     record.update(valid=True, error=None, reason=None)
-    record.update(metrics_of(summary))
-    return record, sketch
+    record.update(metrics_of(vault.summary()))
+    return record, Sketch.from_vault(vault)
 
 
 def metrics_of(summary: dict) -> dict:

@@ -1,0 +1,191 @@
+"""The registry of file formats, and the output parameters of a design.
+
+:data:`FORMATS` lists every file curvefold writes beside its report: the name a user
+types (``--formats svg,fold``, ``[output] formats = ["svg"]``), the extension, what the
+file holds, the kinds of design it is written for, the function that writes it and the
+optional package it needs. The command line (choices and help), the design schema and the
+output folder read it; nothing else lists format names.
+
+Formats of one family are written by one call (the crease patterns are laid out once for
+SVG, DXF and PDF; the 3D files share one folded state). Writers are named by their
+qualified name and imported only when a file is written, so reading the registry costs no
+optional import.
+
+:data:`OUTPUT_SPECS` are the ``[output]`` parameters of a design (see
+:class:`curvefold.kernel.validate.Spec`).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+
+from ..kernel.errors import InputError
+from ..kernel.validate import Spec
+from .tables import PAGES
+
+__all__ = [
+    "FileFormat",
+    "FORMATS",
+    "FAMILIES",
+    "STRUCTURE_KINDS",
+    "OUTPUT_SPECS",
+    "formats_of",
+    "default_formats",
+    "check_formats",
+    "check_kind",
+    "missing_dependencies",
+]
+
+#: Kinds of design that build a structure (the crease kind builds a single crease).
+STRUCTURE_KINDS = ("vault", "tube", "block")
+
+
+@dataclass(frozen=True)
+class FileFormat:
+    """One file format.
+
+    Attributes
+    ----------
+    name : str
+        What users type, e.g. ``"svg"``.
+    extension : str
+        File name suffix with its dot.
+    holds : str
+        What the file holds, for help texts.
+    family : str
+        Formats of one family are written together (a key of :data:`FAMILIES`).
+    kinds : tuple of str
+        Kinds of design the format is written for.
+    writer : str
+        Qualified name of the function that writes it, ``"module:function"``.
+    dependency : str or None
+        Module the writer imports that curvefold does not require, or None.
+    extra : str or None
+        The ``pip install 'curvefold[extra]'`` that brings ``dependency``.
+    """
+
+    name: str
+    extension: str
+    holds: str
+    family: str
+    kinds: tuple[str, ...]
+    writer: str
+    dependency: str | None = None
+    extra: str | None = None
+
+    def load_writer(self) -> Callable:
+        """Import and return the writing function."""
+        module, function = self.writer.split(":")
+        return getattr(importlib.import_module(module), function)
+
+
+_PATTERN = "curvefold.io.pattern:write_pattern"
+_MODEL = "curvefold.io.models:write_3d"
+
+#: Every format, in the order files are written and listed.
+FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind", "pattern", STRUCTURE_KINDS, _PATTERN),
+    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes", "pattern", STRUCTURE_KINDS, _PATTERN, "ezdxf", "export"),
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar", "pattern", STRUCTURE_KINDS, _PATTERN, "matplotlib", "export"),
+    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", STRUCTURE_KINDS,
+               "curvefold.io.fold:write_structure_fold"),
+    FileFormat("glb", ".glb", "glTF 3D model with the folding motion as an animation", "model", STRUCTURE_KINDS, _MODEL, "pygltflib", "export"),
+    FileFormat("obj", ".obj", "3D mesh of the folded state with the creases as polylines", "model", STRUCTURE_KINDS, _MODEL),
+    FileFormat("3dm", ".3dm", "Rhino model of the folded state with one layer per crease kind", "model", STRUCTURE_KINDS, _MODEL, "rhino3dm", "rhino"),
+    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", STRUCTURE_KINDS, _MODEL, "trimesh", "export"),
+    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", STRUCTURE_KINDS, _MODEL, "trimesh", "export"),
+    FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", STRUCTURE_KINDS,
+               "curvefold.figures.plots:write_motion_gif", "PIL", "plot"),
+)})
+
+#: What each family of formats writes, as the subject of a sentence in messages.
+FAMILIES: Mapping[str, str] = MappingProxyType({
+    "pattern": "the crease patterns are",
+    "fold": "the FOLD file is",
+    "model": "the 3D models are",
+    "motion": "the GIF of the folding motion is",
+})
+
+
+def formats_of(family: str) -> tuple[str, ...]:
+    """Names of the formats of one family, in registry order.
+
+    Examples
+    --------
+    >>> formats_of("pattern")
+    ('svg', 'dxf', 'pdf')
+    """
+    return tuple(name for name, f in FORMATS.items() if f.family == family)
+
+
+def default_formats(kind: str) -> tuple[str, ...]:
+    """Every format written for a kind of design: its default ``formats``.
+
+    Examples
+    --------
+    >>> default_formats("crease")
+    ()
+    """
+    return tuple(name for name, f in FORMATS.items() if kind in f.kinds)
+
+
+def check_formats(formats: str | Iterable[str], family: str, *, name: str = "formats") -> tuple[str, ...]:
+    """A non-empty selection of the formats of ``family``, duplicates dropped.
+
+    Raises
+    ------
+    InputError
+        An empty selection or a name outside the family.
+    """
+    allowed = formats_of(family)
+    formats = (formats,) if isinstance(formats, str) else tuple(formats)
+    bad = [f for f in formats if f not in allowed]
+    if bad or not formats:
+        raise InputError(f"{name} must be a non-empty selection of {allowed}, got {formats!r}")
+    return tuple(dict.fromkeys(formats))
+
+
+def check_kind(formats: Iterable[str], kind: str, where: str) -> None:
+    """Refuse an unknown format, or one that is not written for ``kind`` with the reason.
+
+    Examples
+    --------
+    >>> check_kind(["gif"], "crease", "formats")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: formats: "gif" is not written for a crease design: the GIF of the folding motion is written for vault, tube and block designs
+    """
+    for name in formats:
+        f = FORMATS.get(name)
+        if f is None:
+            raise InputError(f"{where}: unknown format {name!r} (allowed: {', '.join(FORMATS)})")
+        if kind not in f.kinds:
+            kinds = ", ".join(f.kinds[:-1]) + f" and {f.kinds[-1]}" if len(f.kinds) > 1 else f.kinds[0]
+            raise InputError(f'{where}: "{name}" is not written for a {kind} design: {FAMILIES[f.family]} written for {kinds} designs')
+
+
+def missing_dependencies(formats: Iterable[str]) -> list[str]:
+    """For each requested format whose optional package is not installed, one line saying how to get it."""
+    out = []
+    for name in formats:
+        f = FORMATS[name]
+        if f.dependency is not None and importlib.util.find_spec(f.dependency) is None:
+            out.append(f"{name} needs {f.dependency}: pip install 'curvefold[{f.extra}]'")
+    return out
+
+
+#: The ``[output]`` parameters of a design.
+OUTPUT_SPECS: tuple[Spec, ...] = (
+    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in", "unit"), help="unit of the crease-pattern lengths and scale"),
+    Spec("scale", "real", None, "(0, inf)", "output units per model unit",
+         help="crease-pattern scale (default: fit the largest sheet to the page)"),
+    Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
+    Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns"),
+    Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)"),
+    Spec("formats", "formats", None, choices=tuple(FORMATS),
+         help="files to write besides the report (default: every format the design's kind writes)"),
+)

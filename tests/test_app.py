@@ -1,0 +1,277 @@
+"""The application layer: flags generated from the schema, errors by kind, the output folder.
+
+Each test here pins a defect that the application once had; the comment above it says
+what used to happen.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings
+from importlib.metadata import entry_points
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from _cli import run, run_subprocess
+from curvefold import __version__
+from curvefold.analysis.measure import developability_residual
+from curvefold.app import cli, outputs, products
+from curvefold.app.build import build
+from curvefold.app.design import SCHEMA, SECTIONS_OF_KIND, default_design, parse_design
+from curvefold.geometry.crease import Crease
+from curvefold.io.formats import FAMILIES, FORMATS
+from curvefold.io.tables import PAGES
+from curvefold.kernel.errors import InputError, InternalError
+from curvefold.kernel.functions import as_function
+from curvefold.vault import atlas
+
+BETA_LEFT = "80 + 10*sin(pi*s/3)"
+ALPHA_DESIGN = f'kind = "crease"\nsamples = 401\n[crease]\nbeta_left = "{BETA_LEFT}"\nalpha = "40 + 5*s"\n'
+
+
+def one_line(r) -> str:
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
+    return lines[0]
+
+
+# --------------------------------------------------------------------------------------------
+# [crease] alpha: accepted and written back, but the build never read it.
+
+
+def test_crease_alpha_is_the_built_alpha_and_its_surfaces_are_developable():
+    crease = build(parse_design(ALPHA_DESIGN)).crease
+    s = crease.s
+    assert_allclose(np.degrees(crease.alpha(s)), 40 + 5 * s, rtol=0, atol=1e-12)  # α is taken as given
+    # r'·p by fourth-order differences falls as h⁴: 1.2e-10 at 401 samples (1.9e-9 at 201)
+    assert developability_residual(crease) < 1e-8
+    # Eq. (3) integrated from 2α(0) with the derived β_R gives α back (measured 3e-14 rad)
+    again = Crease.from_pattern(0.5, lambda t: 80 + 10 * np.sin(np.pi * t / 3), lambda t: np.degrees(crease.beta_right(t)),
+                                3.0, fold_angle=80.0, samples=401)
+    assert np.abs(again.alpha(s) - crease.alpha(s)).max() < 1e-10
+
+
+def test_developability_fails_for_the_opposite_sign_of_alpha_prime():
+    crease = build(parse_design(ALPHA_DESIGN)).crease
+    a = np.radians(5.0)  # α' in rad per model unit
+    wrong = as_function(lambda s: np.arctan2(1.0, 1 / np.tan(crease.beta_left(s)) + 2 * a / (0.5 * np.tan(crease.alpha(s)))),
+                        name="beta_right", length=3.0)
+    assert developability_residual(Crease(crease.curve, crease.alpha, crease.beta_left, wrong)) > 0.1  # measured 0.33
+
+
+def test_crease_alpha_from_the_command_line(tmp_path):
+    (tmp_path / "fold.toml").write_text(ALPHA_DESIGN)
+    r = run("crease", "fold.toml", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["fold_angle_start_deg"] == pytest.approx(80.0, abs=1e-9)
+    assert out["fold_angle_end_deg"] == pytest.approx(110.0, abs=1e-9)
+    assert out["design"]["crease"]["fold_angle"] == 80.0 and "beta_right" not in out["design"]["crease"]
+
+
+@pytest.mark.parametrize(
+    ("extra", "match"),
+    [
+        ("beta_right = 90\n", r"^design\.toml: \[crease\] give beta_right or alpha, not both"),
+        ("fold_angle = 60\n", r"^design\.toml: \[crease\] fold_angle must equal 2 alpha\(0\) = 80 degrees or be left out, got 60\.0$"),
+    ],
+)
+def test_crease_alpha_refuses_what_it_determines(extra, match):
+    with pytest.raises(InputError, match=match):
+        parse_design(ALPHA_DESIGN + extra, source="design.toml")
+    assert parse_design(ALPHA_DESIGN + "fold_angle = 80\n").crease.fold_angle == 80.0  # agreeing is fine
+
+
+# --------------------------------------------------------------------------------------------
+# One table, one validator: --page A2 was listed by --help and refused; --samples 10 was
+# refused with "got 11".
+
+
+@pytest.mark.parametrize("page", list(PAGES))
+def test_every_listed_page_is_accepted(page):
+    assert page in cli.build_parser()._subparsers._group_actions[0].choices["tube"].format_help()
+    assert default_design("tube").overrides(page=page.lower()).output.page == page
+
+
+def test_page_a2_prints_at_its_size(tmp_path):
+    r = run("tube", "--samples", "41", "--page", "A2", "--formats", "svg", "--out", "t", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    svg = next(n for n in json.loads(r.stdout)["files"] if n.endswith(".svg") and "pattern" in n)
+    assert 'width="420mm"' in (tmp_path / "t" / svg).read_text()
+
+
+def test_a_custom_page_is_in_millimetres_whatever_the_units(tmp_path):
+    # the page pair was read in the output units: 300 × 200 "cm"
+    r = run("tube", "--samples", "41", "--units", "cm", "--page", "300,200", "--formats", "svg", "--out", "t", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    svg = next(n for n in json.loads(r.stdout)["files"] if n.endswith(".svg") and "pattern" in n)
+    assert 'width="300mm"' in (tmp_path / "t" / svg).read_text()
+
+
+def test_flag_errors_show_the_value_typed(tmp_path):
+    r = run("vault", "--samples", "10", "--json", cwd=tmp_path)
+    assert r.returncode == 2
+    line = one_line(r)
+    assert line == "curvefold: error: curvefold vault --samples 10: samples must be ≥ 21 for a vault (the apex is the middle sample), got 10"
+    r = run("tube", "--page", "A9", "--json", cwd=tmp_path)
+    assert one_line(r).startswith('curvefold: error: --page A9: page must be one of "A5", "A4", "A3", "A2", "A1", "A0", "Letter"')
+    assert one_line(r).endswith(", got A9")
+    r = run("vault", "--layers", "2.5", "--json", cwd=tmp_path)
+    assert one_line(r) == "curvefold: error: --layers: must be a whole number, got '2.5'"
+    assert os.listdir(tmp_path) == []
+
+
+def test_arch_checks_its_flags_with_the_vault_specs(tmp_path):
+    # arch took any p_xy > 0, where a vault takes (0, 100]
+    r = run("arch", "--p-xy", "150", cwd=tmp_path)
+    assert one_line(r) == "curvefold: error: --p-xy 150: p_xy must be in (0, 100], got 150"
+    r = run("arch", "--fold-angle", "180", cwd=tmp_path)
+    assert one_line(r) == "curvefold: error: --fold-angle 180: fold_angle must be in (0, 180) degrees, got 180"
+
+
+def test_file_keys_and_flags_are_named_as_typed(tmp_path):
+    (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 5.0\n')
+    r = run("vault", "design.toml", "--json", cwd=tmp_path)
+    assert one_line(r) == "curvefold: error: design.toml: [vault] a must be in [0, 3), got 5.0"
+    (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 0.4\n')
+    r = run("vault", "design.toml", "--a", "0.5", "--samples", "200000", "--tubes", "20", "--json", cwd=tmp_path)
+    assert one_line(r).startswith("curvefold: error: design.toml --samples 200000 --a 0.5 --tubes 20: samples × crease lines")
+    assert "<defaults>" not in r.stderr and "with overrides" not in r.stderr
+
+
+@pytest.mark.parametrize("kind", ["vault", "tube", "block", "crease"])
+def test_every_key_but_cells_is_a_flag_with_its_range_in_the_help(kind, capsys):
+    with pytest.raises(SystemExit):
+        cli.main([kind, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for section in ("", *SECTIONS_OF_KIND[kind], "output"):
+        for name, spec in SCHEMA[section].items():
+            if name in ("kind", "cells"):
+                continue
+            assert ("--no-" if spec.kind == "flag" and spec.default else "--") + name.replace("_", "-") in text
+            if spec.kind in ("real", "integer") and spec.range is not None:
+                assert spec.requirement.replace(">=", "≥") in text, (name, spec.requirement)
+
+
+# --------------------------------------------------------------------------------------------
+# The certificate was computed twice per command-line run.
+
+
+def test_the_certificate_is_computed_once_per_run(tmp_path, monkeypatch):
+    calls = []
+    certify = outputs.certify
+    monkeypatch.setattr(outputs, "certify", lambda *a: calls.append(a) or certify(*a))
+    r = run("tube", "--samples", "41", "--formats", "fold", "--out", "t", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert len(calls) == 1
+    report = json.loads((tmp_path / "t" / "report.json").read_text())
+    assert report["certificate"] == json.loads(r.stdout)["certificate"]
+
+
+# --------------------------------------------------------------------------------------------
+# Bugs were printed as user mistakes (exit 2); the atlas recorded them as invalid designs.
+
+
+def _broken(*args, **kwargs):
+    warnings.warn("overflow encountered in a kernel", RuntimeWarning, stacklevel=1)
+    raise InternalError("lattice curves out of order")
+
+
+def test_an_internal_error_asks_for_a_report(tmp_path, monkeypatch):
+    monkeypatch.setattr(cli, "cmd_structure", _broken)
+    r = run("tube", "--json", cwd=tmp_path)
+    assert r.returncode == 1 and r.stdout == ""
+    line = one_line(r)  # no warning before it, no traceback
+    assert line.startswith("curvefold: internal error: InternalError: lattice curves out of order.")
+    assert f"curvefold {__version__}" in line and "report" in line and "--debug" in line
+
+
+def test_debug_shows_the_traceback_and_the_warnings(tmp_path, monkeypatch):
+    monkeypatch.setattr(cli, "cmd_structure", _broken)
+    r = run("--debug", "tube", "--json", cwd=tmp_path)
+    assert r.returncode == 1
+    assert r.stderr.startswith("curvefold: internal error: InternalError")
+    assert "Traceback" in r.stderr and "RuntimeWarning: overflow encountered" in r.stderr
+    assert run("tube", "--debug", "--json", cwd=tmp_path).stderr.count("Traceback") == 1  # after the command too
+
+
+def test_a_user_error_after_a_warning_is_one_line(tmp_path, monkeypatch):
+    def refuse(*args, **kwargs):
+        warnings.warn("invalid value encountered", RuntimeWarning, stacklevel=1)
+        raise InputError("width must be > 0, got 0")
+
+    monkeypatch.setattr(cli, "cmd_structure", refuse)
+    r = run("tube", "--json", cwd=tmp_path)
+    assert r.returncode == 2 and one_line(r) == "curvefold: error: width must be > 0, got 0"
+
+
+def test_the_atlas_lets_bugs_propagate(monkeypatch):
+    def broken(vault):
+        raise InputError("a bug while drawing, not an invalid design")
+
+    monkeypatch.setattr(atlas.Sketch, "from_vault", broken)
+    with pytest.raises(InputError, match="a bug while drawing"):
+        atlas.run_atlas([0.75], [0.3], samples=41, workers=1)
+    record = atlas.run_atlas([0.75], [1.5], samples=41, workers=1).records[0]  # a refused design is still a record
+    assert record["valid"] is False and record["error"] == "ConvergenceError"
+
+
+# --------------------------------------------------------------------------------------------
+# Formats: a "png" format was checked that does not exist; requested formats were skipped
+# silently (crease wrote no file whatever formats said, tube never wrote the GIF).
+
+
+def test_every_family_has_a_job_and_every_writer_loads():
+    assert set(products._FAMILY_JOBS) == set(FAMILIES)
+    for f in FORMATS.values():
+        assert callable(f.load_writer()) and f.extension == "." + f.name
+
+
+def test_unknown_formats_are_refused_not_skipped():
+    built = build(default_design("crease").overrides(samples=41))
+    with pytest.raises(InputError, match=r"^formats: unknown format 'png' \(allowed: svg, dxf"):
+        products.jobs(built, ["png"])
+    assert [label for label, _ in products.jobs(built, ())] == ["pictures"]
+
+
+@pytest.mark.parametrize("fmt", ["svg", "fold", "obj", "gif"])
+def test_a_crease_refuses_structure_formats_with_the_reason(tmp_path, fmt):
+    r = run("crease", "--samples", "41", "--formats", fmt, "--out", "c", cwd=tmp_path)
+    assert r.returncode == 2
+    assert one_line(r).startswith(f'curvefold: error: curvefold crease --samples 41 --formats {fmt}: [output] formats: "{fmt}" is not written for a crease design: ')
+    assert one_line(r).endswith("written for vault, tube and block designs")
+    assert os.listdir(tmp_path) == []
+
+
+def test_default_formats_are_the_ones_written():
+    assert default_design("crease").output.formats == ()
+    for kind in ("vault", "tube", "block"):
+        assert default_design(kind).output.formats == tuple(FORMATS)
+
+
+def test_a_tube_writes_its_folding_gif(tmp_path):
+    from PIL import Image
+
+    r = run("tube", "--samples", "41", "--formats", "gif", "--out", "t", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "folding.gif" in json.loads(r.stdout)["files"]
+    with Image.open(tmp_path / "t" / "folding.gif") as gif:
+        assert gif.n_frames > 2
+
+
+# --------------------------------------------------------------------------------------------
+# Entry points
+
+
+def test_console_script_is_the_cli():
+    (script,) = [e for e in entry_points(group="console_scripts") if e.name == "curvefold"]
+    assert script.load() is cli.run
+
+
+def test_python_m_curvefold_reports_a_user_error_in_one_line(tmp_path):
+    r = run_subprocess("vault", "--samples", "10", cwd=tmp_path)
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr.strip() == "curvefold: error: curvefold vault --samples 10: samples must be ≥ 21 for a vault (the apex is the middle sample), got 10"
