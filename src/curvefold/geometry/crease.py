@@ -174,18 +174,7 @@ class Crease(FrozenArrays):
         bl = as_function(beta_left, name="beta_left", length=L).scaled(unit)
         br = as_function(beta_right, name="beta_right", length=L).scaled(unit)
         probe = np.linspace(0.0, L, max(samples, 257))
-        k_probe = k2(probe)
-        check_finite(k_probe, name="kappa_2d", s=probe)
-        if not (k_probe > 0).all():
-            i = int(np.argmax(~(k_probe > 0)))
-            raise InputError(f"kappa_2d must be > 0 everywhere; at s = {probe[i]:.6g} it is {k_probe[i]:.6g}")
-        for name, b in (("beta_left", bl), ("beta_right", br)):
-            v = b(probe)
-            check_finite(v, name=name, s=probe)
-            bad = np.flatnonzero(~((v > 0) & (v < np.pi)))
-            if bad.size:
-                i = bad[0]
-                raise InputError(f"{name} must be in (0°, 180°); at s = {probe[i]:.6g} it is {np.degrees(v[i]):.6g}°")
+        _check_pattern(probe, ("kappa_2d", k2, np.inf), ("beta_left", bl, np.pi), ("beta_right", br, np.pi))
 
         def rhs(s, y):
             return _fold_angle_rate(k2, bl, br, np.atleast_1d(s), y)
@@ -272,30 +261,9 @@ class Crease(FrozenArrays):
         k2 = as_function(kappa_2d, name="kappa_2d", length=L)
         bl = as_function(beta_left, name="beta_left", length=L).scaled(unit)
         a = as_function(alpha, name="alpha", length=L).scaled(unit)
-        probe = np.linspace(0.0, L, max(samples, 257))
-        for name, f, top in (("kappa_2d", k2, np.inf), ("beta_left", bl, np.pi), ("alpha", a, np.pi / 2)):
-            v = f(probe)
-            check_finite(v, name=name, s=probe)
-            bad = np.flatnonzero((v <= 0) | (v >= top))
-            if bad.size:
-                i = bad[0]
-                need, shown = ("> 0 everywhere", f"{v[i]:.6g}") if top == np.inf else (f"in (0°, {np.degrees(top):g}°)", f"{np.degrees(v[i]):.6g}°")
-                raise InputError(f"{name} must be {need}; at s = {probe[i]:.6g} it is {shown}")
-
-        def cot_right(s):
-            return 1 / np.tan(bl(s)) - 2 * a.derivative(s) / (k2(s) * np.tan(a(s)))
-
-        br = as_function(lambda s: np.arctan2(1.0, cot_right(s)), name="beta_right", length=L)
-        if a.constant is not None:
-            br = ScalarFunction(br.value, bl.derivative, bl.constant)  # β_R = β_L exactly
-        curve = SpaceCurve.from_curvature(
-            lambda s: k2(s) / np.cos(a(s)),
-            lambda s: k2(s) * np.tan(a(s)) / np.tan(bl(s)) - a.derivative(s),
-            L,
-            samples=samples,
-            origin=origin,
-            frame=frame,
-        )
+        _check_pattern(np.linspace(0.0, L, max(samples, 257)), ("kappa_2d", k2, np.inf), ("beta_left", bl, np.pi), ("alpha", a, np.pi / 2))
+        br = bl if a.constant is not None else _PrescribedRulingAngle(k2, bl, a, L, difference_step(L))  # β_R = β_L for constant α
+        curve = SpaceCurve.from_curvature(_PatternCurvature(k2, a), _PatternTorsion(k2, a, bl, br), L, samples=samples, origin=origin, frame=frame)
         return cls(curve, a, bl, br)
 
     # -- sampled quantities ---------------------------------------------------------------
@@ -431,6 +399,34 @@ class _VaryingRulingAngle(Differenced):
 
     def value(self, s: np.ndarray) -> np.ndarray:
         return np.arctan2(self.kappa(s) * np.sin(self.alpha(s)), self.tau(s) + self.sign * self.alpha.derivative(s))
+
+
+def _check_pattern(probe: np.ndarray, *functions: tuple[str, ScalarFunction, float]) -> None:
+    """Raise :class:`InputError` at the first probe where a (name, f, top) leaves (0, top), or is not finite."""
+    for name, f, top in functions:
+        v = f(probe)
+        check_finite(v, name=name, s=probe)
+        bad = np.flatnonzero(~((v > 0) & (v < top)))
+        if bad.size:
+            i = bad[0]
+            need, shown = ("> 0 everywhere", f"{v[i]:.6g}") if top == np.inf else (f"in (0°, {np.degrees(top):g}°)", f"{np.degrees(v[i]):.6g}°")
+            raise InputError(f"{name} must be {need}; at s = {probe[i]:.6g} it is {shown}")
+
+
+@dataclass(frozen=True)
+class _PrescribedRulingAngle(Differenced):
+    """β_R of a crease with α(s) prescribed: cot β_R = cot β_L − 2α' / (κ_2D tan α) (corrected Eq. 3)."""
+
+    kappa_2d: ScalarFunction
+    beta_left: ScalarFunction
+    alpha: ScalarFunction
+    length: float
+    step: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        a = self.alpha(s)
+        cot = 1 / np.tan(self.beta_left(s)) - 2 * self.alpha.derivative(s) / (self.kappa_2d(s) * np.tan(a))
+        return np.arctan2(1.0, cot)
 
 
 @dataclass(frozen=True, eq=False)
