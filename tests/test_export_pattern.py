@@ -245,6 +245,21 @@ def test_a_sheet_seen_from_its_back_is_mirrored():
         assert len(placed.on_layer("mountain")) == 1
 
 
+def test_a_sheet_seen_from_its_back_keeps_its_glue_tabs_outside():
+    # Mirrored, the back's clockwise triangles turn counter-clockwise: its outline runs with
+    # the sheet on its left like the front's, so tabs and seam names land as on the front.
+    front, back = (layout_sheets([annular_sheet(name, clockwise=cw)], page="A3") for name, cw in (("front", False), ("back", True)))
+    assert back.notes == front.notes == ()
+    for lay, cw in ((front, False), (back, True)):
+        placed = lay.sheets()[0]
+        body = sheet_polygon(annular_sheet("x", clockwise=cw), placed)
+        tabs = tab_polygons(placed)
+        assert len(tabs) == 8
+        assert all(tab.intersection(body).area < 1e-9 * tab.area for tab in tabs)
+        assert all(body.contains(Point(t.position)) for t in placed.labels if t.kind == "seam")
+    assert sum(t.area for t in tab_polygons(back.sheets()[0])) == pytest.approx(sum(t.area for t in tab_polygons(front.sheets()[0])), rel=1e-9)
+
+
 def test_without_tabs_seams_are_cut_edges():
     a, b = tube_sheets()
     lay = layout_sheets([a, b], glue_tabs=False)

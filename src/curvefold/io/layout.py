@@ -496,8 +496,7 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
             f"sheet {name!r}: triangles must all turn the same way in the plane; "
             f"{int(np.count_nonzero(area2 < -tol))} of {len(faces)} are flipped"
         )
-    ccw = faces[:, ::-1] if mirror else faces
-    ef = edges_faces(ccw, mesh.edges_vertices)
+    ef = edges_faces(faces, mesh.edges_vertices)  # counter-clockwise in xy, mirrored or not
     nfaces = np.count_nonzero(ef >= 0, axis=1)
     outline = np.isin(mesh.edges_kind, ("boundary", "seam"))
     bad = np.flatnonzero(outline & (nfaces != 1))
