@@ -69,9 +69,9 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
         lo, hi = curves.reshape(-1, 3).min(axis=0), curves.reshape(-1, 3).max(axis=0)
         ground = ground_polygon(lo, hi, view, pad=0.04 * float(np.max(hi - lo)))
         scene = replace(render_structure(curves, sk.cells, sk.kinds, view, colors={}, crease_width=0.0, strip_edge=0.25), ground=ground)
-        lo2, hi2 = scene.box
-        c = 0.5 * (lo2 + hi2)
-        ext = np.maximum(hi2 - lo2, 1e-12)
+        low, high = scene.box
+        c = 0.5 * (low + high)
+        ext = np.maximum(high - low, 1e-12)
         scale = min(0.94 / ext[0], 0.70 / ext[1])
         offset = np.array([x0 + 0.5, y0 + 0.17 + 0.35]) - scale * c
         paths += [p * scale + offset for p in scene.paths]
