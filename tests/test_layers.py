@@ -72,7 +72,7 @@ def imports(root: Path, package: str) -> dict[str, dict[str, int]]:
                 while target and target not in names:
                     target = target.rpartition(".")[0]
                 if target and target != name:
-                    edges.setdefault(target, node.lineno)
+                    edges[target] = min(edges.get(target, node.lineno), node.lineno)
         graph[name] = edges
     return graph
 
