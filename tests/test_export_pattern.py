@@ -17,8 +17,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
+from numpy.testing import assert_allclose
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
@@ -244,6 +245,21 @@ def test_a_sheet_seen_from_its_back_is_mirrored():
         assert len(placed.on_layer("mountain")) == 1
 
 
+def test_a_sheet_seen_from_its_back_keeps_its_glue_tabs_outside():
+    # Mirrored, the back's clockwise triangles turn counter-clockwise: its outline runs with
+    # the sheet on its left like the front's, so tabs and seam names land as on the front.
+    front, back = (layout_sheets([annular_sheet(name, clockwise=cw)], page="A3") for name, cw in (("front", False), ("back", True)))
+    assert back.notes == front.notes == ()
+    for lay, cw in ((front, False), (back, True)):
+        placed = lay.sheets()[0]
+        body = sheet_polygon(annular_sheet("x", clockwise=cw), placed)
+        tabs = tab_polygons(placed)
+        assert len(tabs) == 8
+        assert all(tab.intersection(body).area < 1e-9 * tab.area for tab in tabs)
+        assert all(body.contains(Point(t.position)) for t in placed.labels if t.kind == "seam")
+    assert sum(t.area for t in tab_polygons(back.sheets()[0])) == pytest.approx(sum(t.area for t in tab_polygons(front.sheets()[0])), rel=1e-9)
+
+
 def test_without_tabs_seams_are_cut_edges():
     a, b = tube_sheets()
     lay = layout_sheets([a, b], glue_tabs=False)
@@ -358,6 +374,7 @@ def test_invalid_sheets():
     n=st.integers(3, 40),
     angle=st.floats(0.0, 360.0),
 )
+@example(inner=8.0, width=6.0, span=300.0, n=5, angle=0.0)  # tabs split where the seam turns 60° toward them
 def test_tabs_never_overlap_their_sheet_on_random_sectors(inner, width, span, n, angle):
     # Tight concave seams (small inner radius) make tabs narrow or drop out, never overlap.
     a = annular_sheet("a", radii=(inner, inner + width / 2, inner + width), span_deg=(angle, angle + span), n=n)
@@ -373,6 +390,59 @@ def test_tabs_never_overlap_their_sheet_on_random_sectors(inner, width, span, n,
     outline = Polygon(placed.on_layer("cut")[0].points)
     assert outline.is_valid
     assert outline.symmetric_difference(footprint(a, placed)).area < 1e-6 * body.area
+
+
+def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
+    # An inner seam of radius 8 in 60° steps, tabs on its right (toward the centre). Split at
+    # a vertex, where it turns 60° toward them, the neighbouring 60° tapers lie on one line:
+    # the second tab's cut runs back along the first's (the outline doubles back on itself).
+    th = np.radians(-60.0 * np.arange(5))
+    ring = np.stack([np.cos(th), np.sin(th)], axis=1)
+    seam = 8.0 * ring
+
+    def sheet(seam):  # the sheet's outline: radii 8 to 14
+        return layout_module._segments([(np.concatenate([seam, 14.0 * ring[::-1]]), True)])
+
+    outline = sheet(seam)
+    taper, tol = np.radians(60.0), 1e-9
+    first, second = (layout_module._tab(piece, 6.0, taper) for piece in (seam[:3], seam[2:]))
+    assert layout_module._tab_fits(first, outline, [], tol) and layout_module._tab_fits(second, outline, [], tol)
+    assert_allclose(first[1][-2:][::-1], second[1][:2], atol=1e-12)  # the same segment, both ways
+    assert not layout_module._tab_fits(second, outline, [first[0]], tol)
+    # split in the middle of a segment instead, the two tabs leave 60° between their tapers
+    pieces = layout_module._tab_pieces(seam, 1e3, 15.0)  # two pieces (at least 15 long, of 32)
+    assert len(pieces) == 2
+    middles = 0.5 * (seam[:-1] + seam[1:])
+    assert np.linalg.norm(middles - pieces[0][-1], axis=1).min() < 1e-12
+    a, b = (layout_module._tab(p, 6.0, taper) for p in pieces)
+    split = sheet(np.concatenate([pieces[0][:-1], pieces[1]]))
+    assert layout_module._tab_fits(a, split, [], tol) and layout_module._tab_fits(b, split, [a[0]], tol)
+    # damaged tabs: an outer corner moved onto the seam (at a vertex or between), two outer
+    # corners swapped (self-crossing), the whole tab moved into the sheet
+    polygon, cut = first
+    for point in (seam[3], 0.5 * (seam[3] + seam[4])):
+        grazing = cut.copy()
+        grazing[2] = point
+        assert not layout_module._tab_fits((polygon, grazing), outline, [], tol)
+    crossed = cut.copy()
+    crossed[[1, -2]] = crossed[[-2, 1]]
+    assert not layout_module._tab_fits((polygon, crossed), outline, [], tol)
+    across = cut.copy()
+    across[2] = 20.0 * ring[1]  # a corner beyond the sheet: the cut runs across it
+    assert not layout_module._tab_fits((polygon, across), outline, [], tol)
+    inward = (cut - seam[1]) * 0.1 + 11.0 * ring[1]
+    assert not layout_module._tab_fits((polygon, inward), outline, [], tol)
+    # ... or a tab that would cover a piece of the sheet or another tab whole (an island)
+    middle = polygon.mean(axis=0)
+    island = layout_module._segments([(middle + 0.2 * (polygon - middle), True)])
+    assert not layout_module._tab_fits(first, np.concatenate([outline, island]), [], tol)
+    assert not layout_module._tab_fits(first, outline, [middle + 0.2 * (polygon - middle)], tol)
+    # ... or a corner of the sheet that touches the cut from outside
+    m = 0.5 * (cut[1] + cut[2])
+    u, w = -m / np.linalg.norm(m), np.array([m[1], -m[0]]) / np.linalg.norm(m)
+    touching = layout_module._segments([(np.stack([m, m + 0.3 * u + 0.1 * w, m + 0.3 * u - 0.1 * w]), True)])
+    assert layout_module._tab_fits(first, np.concatenate([outline, touching + 1e-6 * u]), [], tol)
+    assert not layout_module._tab_fits(first, np.concatenate([outline, touching]), [], tol)
 
 
 def test_docstring_examples():

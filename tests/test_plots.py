@@ -203,6 +203,28 @@ def test_vault_view(vault, tmp_path):
     assert "45°" in axes[1].get_title()
 
 
+def test_figures_draw_the_polygons_of_their_scenes(vault, block):
+    from curvefold.figures.scene import state_scene, vault_scene
+
+    for fig, scene in (
+        (plots.plot_vault(vault, angle=60.0), vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0)),
+        (plots.plot_structure(block, fold_angle=30.0), state_scene(block.state(30.0), colors=plots.KIND_COLORS)),
+    ):
+        ax = fig.axes[0]
+        (coll,) = polys(ax)
+        drawn = [p.vertices for p in coll.get_paths()]
+        assert len(drawn) == len(scene.paths) > 1000
+        assert all(np.array_equal(a, b) for a, b in zip(drawn, scene.paths))  # the same polygons, in the same order
+        assert_allclose(coll.get_facecolors(), scene.fill)
+        assert_allclose(coll.get_edgecolors(), scene.stroke)
+        assert_allclose(coll.get_linewidths(), scene.widths)
+        ground = [p.get_xy()[:4] for p in ax.patches if isinstance(p, Polygon)]
+        assert_allclose(ground, [] if scene.ground is None else [scene.ground])
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        lo, hi = scene.box
+        assert x0 < lo[0] and hi[0] < x1 and y0 < lo[1] and hi[1] < y1  # all in view
+
+
 def test_structure_and_crease_views(block, tmp_path):
     fig = plots.plot_structure(block)
     assert "Cellular block of 5 cells" in fig.axes[0].get_title()

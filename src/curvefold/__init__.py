@@ -7,6 +7,8 @@ Data flows one way: a :class:`SpaceCurve` (from curvature and torsion) → a :cl
 pictures. :mod:`curvefold.analysis.measure` certifies each stage with numbers.
 """
 
+from importlib.metadata import version
+
 from .analysis import measure
 from .geometry.crease import Crease
 from .geometry.curve import SpaceCurve
@@ -15,7 +17,7 @@ from .geometry.mesh import Mesh
 from .geometry.structure import State, Structure
 from .kernel.errors import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError
 
-__version__ = "0.1.0"
+__version__ = version("curvefold")  # one source: the version in pyproject.toml
 
 __all__ = [
     "CurvefoldError",

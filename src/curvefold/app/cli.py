@@ -22,11 +22,11 @@ import sys
 import traceback
 import warnings
 from collections.abc import Sequence
+from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
 from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.validate import Spec
@@ -181,7 +181,7 @@ def build_parser() -> argparse.ArgumentParser:
         "geometry, folding motion, crease patterns and a measured certificate.",
         epilog="Run 'curvefold vault' with no arguments to build the paper's example vault into ./curvefold-vault.",
     )
-    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {version('curvefold')}")
     parser.add_argument("--debug", action="store_true", help=_DEBUG_HELP)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
@@ -362,7 +362,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 130
         except Exception as err:
             hint = "" if debug else " (rerun with --debug for the traceback)"
-            _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {__version__}; "
+            _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {version('curvefold')}; "
                    f"please report it with the command you ran{hint}")
             if debug:
                 traceback.print_exc()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import textwrap
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -10,7 +11,8 @@ import numpy as np
 from ..kernel.errors import InputError
 from ..vault.assembly import DEFAULT_TUBES_CAP
 from ..vault.atlas import Atlas
-from .plots import GROUND_COLOR, View, _figure, render_structure
+from .plots import _figure
+from .scene import GROUND_COLOR, View, ground_polygon, render_structure
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -32,7 +34,7 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     ----------
     cell_size : float, optional, keyword-only
         Size of one view in inches; default fits the grid in about 24 inches.
-    view : curvefold.figures.plots.View, optional, keyword-only
+    view : curvefold.figures.scene.View, optional, keyword-only
 
     Returns
     -------
@@ -65,19 +67,17 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
             continue
         curves = sk.curves.astype(float)
         lo, hi = curves.reshape(-1, 3).min(axis=0), curves.reshape(-1, 3).max(axis=0)
-        pad = 0.04 * float(np.max(hi - lo))
-        ground3 = np.array([[lo[0] - pad, lo[1] - pad, 0], [hi[0] + pad, lo[1] - pad, 0], [hi[0] + pad, hi[1] + pad, 0], [lo[0] - pad, hi[1] + pad, 0]])
-        ground, _ = view.project(ground3)
-        drawing = render_structure(curves, sk.cells, sk.kinds, view, crease_width=0.0, strip_edge=0.25)
-        pts = np.concatenate([drawing.strips.reshape(-1, 2), ground])
-        c = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
-        ext = np.maximum(pts.max(axis=0) - pts.min(axis=0), 1e-12)
+        ground = ground_polygon(lo, hi, view, pad=0.04 * float(np.max(hi - lo)))
+        scene = replace(render_structure(curves, sk.cells, sk.kinds, view, colors={}, crease_width=0.0, strip_edge=0.25), ground=ground)
+        low, high = scene.box
+        c = 0.5 * (low + high)
+        ext = np.maximum(high - low, 1e-12)
         scale = min(0.94 / ext[0], 0.70 / ext[1])
         offset = np.array([x0 + 0.5, y0 + 0.17 + 0.35]) - scale * c
-        paths += [p * scale + offset for p in drawing.paths]
-        faces.append(drawing.facecolors)
-        edges.append(drawing.edgecolors)
-        widths.append(drawing.linewidths)
+        paths += [p * scale + offset for p in scene.paths]
+        faces.append(scene.fill)
+        edges.append(scene.stroke)
+        widths.append(scene.widths)
         grounds.append(ground * scale + offset)
         for line, color in ((sk.feet, "#d62728"), (sk.apex, "#1f77b4")):
             xy, _ = view.project(_extend(line, 0.12))

@@ -5,26 +5,35 @@ Every function returns a :class:`matplotlib.figure.Figure` built directly, witho
 alike; :func:`save_figure` writes them atomically. matplotlib is imported only when a
 function is called (``pip install curvefold[plot]``).
 
-3D views are drawn by a small painter's renderer: a fixed orthographic view, the strips of
-every tube as quadrilaterals shaded by their normal, the creases as line segments (folds
-red, seams blue), all sorted far to near in one collection so that creases hide behind the
-strips in front of them. Lengths are in model units (the unit of the design's radius).
+3D views draw the scenes of :mod:`curvefold.figures.scene` (a fixed orthographic view,
+shaded strips and creases sorted far to near; folds red, seams blue) as one collection
+each. Lengths are in model units (the unit of the design's radius).
 """
 
 from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..geometry.topology import drawable, sample_index, tube_strips
+from ..geometry.topology import sample_index, thin_cells
 from ..io.atomic import atomic_path
 from ..io.tables import COLOURS
 from ..kernel.errors import InputError
+from .scene import (
+    GROUND_COLOR,
+    GROUND_EDGE,
+    STRIP_RGB,
+    Scene,
+    View,
+    motion_scenes,
+    render_strips,
+    state_scene,
+    vault_scene,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -49,11 +58,8 @@ __all__ = [
     "save_figure",
 ]
 
-#: Line colours of the crease kinds (from :data:`curvefold.io.tables.COLOURS`: folds red, seams blue).
+#: Line colours of the crease kinds (from :data:`curvefold.io.tables.COLOURS`).
 KIND_COLORS = {kind: COLOURS[kind] for kind in ("fold", "seam", "junction", "edge")}
-#: Base colour of the strips before shading.
-STRIP_RGB = np.array([0.86, 0.86, 0.85])
-GROUND_COLOR = "#ece6da"
 UNITS = "model units"
 
 
@@ -67,215 +73,42 @@ def _figure(**kwargs: Any) -> Figure:
     return Figure(**kwargs)
 
 
-# -- a fixed orthographic view ---------------------------------------------------------------
+# -- drawing scenes ----------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
-class View:
-    """An orthographic view direction, z up.
+def _collection(scene: Scene):
+    """A matplotlib PolyCollection of a scene's paths, in painter's order."""
+    from matplotlib.collections import PolyCollection
 
-    Attributes
-    ----------
-    azim : float
-        Azimuth of the viewer in degrees, from +x toward +y (matplotlib's convention).
-    elev : float
-        Elevation of the viewer above the xy plane in degrees.
-    """
-
-    azim: float = -50.0
-    elev: float = 22.0
-
-    @property
-    def basis(self) -> np.ndarray:
-        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal."""
-        az, el = np.radians(self.azim), np.radians(self.elev)
-        toward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
-        right = np.array([-np.sin(az), np.cos(az), 0.0])
-        return np.stack([right, np.cross(toward, right), toward])
-
-    def project(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Screen coordinates (..., 2) and depth (...,) of points (..., 3); larger depth is nearer."""
-        q = np.asarray(points, float) @ self.basis.T
-        return q[..., :2], q[..., 2]
-
-
-def strip_quads(vertices: np.ndarray, strips: np.ndarray) -> np.ndarray:
-    """Ruled strips between pairs of curves as quadrilaterals, shape (S·(n−1), 4, 3).
-
-    Parameters
-    ----------
-    vertices : (M, n, 3) ndarray
-        Curves sampled at common parameters (lattice curves, or a crease and its edges).
-    strips : (S, 2) ndarray of int
-        Rows of ``vertices`` bounding every strip (see :func:`tube_strips`).
-    """
-    pairs = np.asarray(strips)
-    a, b = vertices[pairs[:, 0]], vertices[pairs[:, 1]]  # (S, n, 3)
-    quads = np.stack([a[:, :-1], a[:, 1:], b[:, 1:], b[:, :-1]], axis=-2)
-    return quads.reshape(-1, 4, 3)
-
-
-def _shade(quads: np.ndarray, view: View) -> np.ndarray:
-    """RGBA colours (Q, 4) of strips shaded two-sidedly by their normals under a fixed light."""
-    normal = np.cross(quads[:, 2] - quads[:, 0], quads[:, 3] - quads[:, 1])
-    length = np.linalg.norm(normal, axis=1, keepdims=True)
-    normal = normal / np.where(length > 0, length, 1.0)
-    light = np.array([-0.45, 0.6, 0.66]) @ view.basis  # from the upper left, in front
-    light /= np.linalg.norm(light)
-    lambert = np.abs(normal @ light)
-    rgb = STRIP_RGB[None] * (0.38 + 0.66 * lambert[:, None])
-    return np.concatenate([np.clip(rgb, 0, 1), np.ones((len(quads), 1))], axis=1)
-
-
-@dataclass(frozen=True, eq=False)
-class Rendering:
-    """A structure drawn by the painter's algorithm: screen polygons sorted far to near.
-
-    Attributes
-    ----------
-    paths : list of (p, 2) ndarray
-        Screen polygons: strips (p = 4) and crease segments (p = 2, drawn as lines).
-    facecolors, edgecolors : (P, 4) ndarray
-        RGBA of every path (creases have a transparent face).
-    linewidths : (P,) ndarray
-    strips : (Q, 4, 2) ndarray
-        Screen corners of the strips, for fitting the view.
-    """
-
-    paths: list
-    facecolors: np.ndarray
-    edgecolors: np.ndarray
-    linewidths: np.ndarray
-    strips: np.ndarray
-
-    def collection(self, *, rasterized: bool = False, zorder: float = 2.0):
-        """A PolyCollection of the paths, in painter's order."""
-        from matplotlib.collections import PolyCollection
-
-        coll = PolyCollection(
-            self.paths,
-            closed=False,
-            facecolors=self.facecolors,
-            edgecolors=self.edgecolors,
-            linewidths=self.linewidths,
-            joinstyle="round",
-            capstyle="round",
-            zorder=zorder,
-        )
-        coll.set_rasterized(rasterized)
-        return coll
-
-
-def render_strips(
-    vertices: np.ndarray,
-    strips: np.ndarray,
-    kinds: Sequence[str],
-    view: View,
-    *,
-    crease_width: float = 1.1,
-    crease_color: str | None = None,
-    strip_edge: float = 0.3,
-) -> Rendering:
-    """Shaded strips, their curves and end rulings in one view, sorted by depth.
-
-    Parameters
-    ----------
-    vertices : (M, k, 3) ndarray
-        Curves, already subsampled along t.
-    strips : (S, 2) ndarray of int
-        Rows of ``vertices`` bounding every strip (see :func:`tube_strips`).
-    kinds : sequence of str, length M
-        Key of :data:`KIND_COLORS` for every curve ("fold", "seam", "junction", "edge").
-    view : View
-    crease_width : float, keyword-only
-        Line width of the curves (end rulings get half of it); 0 draws strips only.
-    crease_color : str, optional, keyword-only
-        One colour for every curve instead of :data:`KIND_COLORS`.
-    strip_edge : float, keyword-only
-        Width of the strips' outline in their own colour (hides hairline gaps).
-    """
-    from matplotlib.colors import to_rgba, to_rgba_array
-
-    pairs = np.asarray(strips)
-    quads = strip_quads(vertices, pairs)
-    q2, qd = view.project(quads)
-    face = _shade(quads, view)
-    paths = [q2]
-    depth = [qd.mean(axis=1)]
-    faces, edges, widths = [face], [face], [np.full(len(q2), strip_edge)]
-    if crease_width > 0:
-        # Curves and end rulings are drawn right after the nearest strip that borders them,
-        # so whatever lies in front of that strip hides them too.
-        strip_depth = qd.mean(axis=1).reshape(len(pairs), -1)  # (S, k − 1)
-        eps = 1e-9 * (1.0 + float(np.abs(qd).max()))
-        used = np.unique(pairs)
-        seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
-        s2, sd = view.project(seg)
-        if crease_color is None:
-            per_curve = to_rgba_array([KIND_COLORS.get(k, KIND_COLORS["edge"]) for k in np.asarray(kinds)[used]])
-            seg_rgba = np.repeat(per_curve, vertices.shape[1] - 1, axis=0)
-        else:
-            seg_rgba = np.tile(to_rgba(crease_color), (len(s2), 1))
-        seg_depth = np.concatenate([strip_depth[(pairs == c).any(axis=1)].max(axis=0) for c in used]) + eps
-        rim = np.swapaxes(vertices[pairs][:, :, [0, -1]], 1, 2).reshape(-1, 2, 3)  # end rulings of every strip
-        e2, _ = view.project(rim)
-        paths += [s2, e2]
-        depth += [seg_depth, strip_depth[:, [0, -1]].reshape(-1) + eps]
-        faces += [np.zeros((len(s2) + len(e2), 4))]
-        edges += [seg_rgba, np.tile(to_rgba("#3a3a3a"), (len(e2), 1))]
-        widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
-    order = np.argsort(np.concatenate(depth), kind="stable")
-    flat = [p for group in paths for p in group]
-    return Rendering(
-        [flat[i] for i in order],
-        np.concatenate(faces)[order],
-        np.concatenate(edges)[order],
-        np.concatenate(widths)[order],
-        q2,
+    return PolyCollection(
+        scene.paths,
+        closed=False,
+        facecolors=scene.fill,
+        edgecolors=scene.stroke,
+        linewidths=scene.widths,
+        joinstyle="round",
+        capstyle="round",
+        zorder=2.0,
     )
 
 
-def render_structure(vertices: np.ndarray, cell_curves: np.ndarray, kinds: Sequence[str], view: View, **kwargs: Any) -> Rendering:
-    """:func:`render_strips` of the four strips of every tube (cell_curves (K, 4))."""
-    return render_strips(vertices, tube_strips(cell_curves), kinds, view, **kwargs)
-
-
-def _draw_structure(ax: Axes, vertices: np.ndarray, cell_curves: np.ndarray, kinds: Sequence[str], view: View, **kwargs: Any) -> np.ndarray:
-    """Draw :func:`render_structure` into ``ax``; return the strips' screen points (P, 2)."""
-    r = render_structure(vertices, cell_curves, kinds, view, **kwargs)
-    ax.add_collection(r.collection(), autolim=False)
-    return r.strips.reshape(-1, 2)
-
-
-def _draw_ground(ax: Axes, lo: np.ndarray, hi: np.ndarray, view: View, *, pad: float) -> np.ndarray:
-    """Draw the ground plane z = 0 over the xy box [lo, hi] grown by ``pad``; return its corners (4, 2)."""
+def _draw(ax: Axes, scene: Scene) -> None:
+    """Draw a scene, its ground first, into ``ax``."""
     from matplotlib.patches import Polygon
 
-    x0, y0 = lo[:2] - pad
-    x1, y1 = hi[:2] + pad
-    rect = np.array([[x0, y0, 0.0], [x1, y0, 0.0], [x1, y1, 0.0], [x0, y1, 0.0]])
-    r2, _ = view.project(rect)
-    ax.add_patch(Polygon(r2, closed=True, facecolor=GROUND_COLOR, edgecolor="#b9ae98", linewidth=0.6, zorder=0))
-    return r2
+    if scene.ground is not None:
+        ax.add_patch(Polygon(scene.ground, closed=True, facecolor=GROUND_COLOR, edgecolor=GROUND_EDGE, linewidth=0.6, zorder=0))
+    ax.add_collection(_collection(scene), autolim=False)
 
 
-def _fit(
-    ax: Axes,
-    points: np.ndarray,
-    *,
-    margin: float = 0.04,
-    below: float = 0.0,
-    center: np.ndarray | None = None,
-    size: np.ndarray | None = None,
-) -> None:
-    """Equal-aspect limits around screen points (P, 2), or a given centre and size (2,).
+def _fit(ax: Axes, points: np.ndarray, *, margin: float = 0.04, below: float = 0.0) -> None:
+    """Equal-aspect limits around screen points (P, 2).
 
     ``below`` adds that fraction of the height under the drawing (room for a scale bar).
     """
     lo, hi = points.min(axis=0), points.max(axis=0)
-    c = 0.5 * (lo + hi) if center is None else center
-    half = 0.5 * (hi - lo if size is None else size) * (1 + 2 * margin)
-    half = np.maximum(half, 1e-9)
+    c = 0.5 * (lo + hi)
+    half = np.maximum(0.5 * (hi - lo) * (1 + 2 * margin), 1e-9)
     ax.set_xlim(c[0] - half[0], c[0] + half[0])
     ax.set_ylim(c[1] - half[1] * (1 + 2 * below), c[1] + half[1])
     ax.set_aspect("equal", adjustable="box")
@@ -640,32 +473,24 @@ def plot_vault(
     -------
     Figure
     """
-    if angle is None:
-        vertices = vault.vertices
-        angle_value = float(vault.design.fold_angle)
-    else:
-        vertices = vault.motion(np.array([angle], float), anchor=anchor)[0]
-        angle_value = float(angle)
-    V, cells, kinds = drawable(vault.structure, vertices, segments=segments, max_cells=max_tubes)
+    scene = vault_scene(vault, colors=KIND_COLORS, angle=angle, view=view, anchor=anchor, segments=segments, max_tubes=max_tubes)
     if ax is None:
         fig = _figure(figsize=(7.0, 5.2))
         ax = fig.add_subplot()
     else:
         fig = ax.figure
-    flat = V.reshape(-1, 3)
-    lo, hi = flat.min(axis=0), flat.max(axis=0)
-    pad = 0.08 * float(np.max(hi - lo))
-    ground = _draw_ground(ax, lo, hi, view, pad=pad)
-    pts = _draw_structure(ax, V, cells, kinds, view)
-    _fit(ax, np.concatenate([pts, ground]), below=0.06)
-    _scale_bar(ax, float(np.max(hi - lo)))
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.06)
+    _scale_bar(ax, scene.span)
     d = vault.design
-    shown = "" if len(cells) == len(vault.structure.cells) else f", {len(cells)} drawn"
+    drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
+    shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
+    angle_value = float(d.fold_angle if angle is None else angle)
     ax.set_title(
         f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}, 2α = {angle_value:g}°",
         fontsize=10,
     )
-    _legend_creases(ax, kinds, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
+    _legend_creases(ax, scene.roles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
     return fig
 
 
@@ -705,28 +530,18 @@ def plot_motion_strip(
         raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
     motion = vault.motion(angles_arr, anchor=anchor)  # (A, M, n, 3); validates the angles
     lift = vault.lift_off(angles_arr, anchor=anchor)
-    V, cells, kinds = drawable(vault.structure, motion, segments=segments, max_cells=max_tubes)
-    flat = V.reshape(-1, 3)
-    lo, hi = flat.min(axis=0), flat.max(axis=0)
-    lo[2] = hi[2] = 0.0
-    pad = 0.06 * float(np.max(hi - lo))
+    scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
     count = len(angles_arr)
     fig = _figure(figsize=(3.2 * count + 0.3, 3.6))
     axes = np.atleast_1d(fig.subplots(1, count, squeeze=False)[0])
-    screens = []
-    for ax, Va, f, lf in zip(axes, V, angles_arr, lift):
-        ground = _draw_ground(ax, lo, hi, view, pad=pad)
-        pts = _draw_structure(ax, Va, cells, kinds, view, crease_width=0.45)
-        screens.append(np.concatenate([pts, ground]))
+    for ax, scene, f, lf in zip(axes, scenes, angles_arr, lift):
+        _draw(ax, scene)
         design = abs(f - vault.design.fold_angle) < 1e-9
         ax.set_title(f"2α = {f:g}°" + (" (design)" if design else ""), fontsize=10)
         ax.text(0.5, -0.02, f"ends off the ground: {lf.max():.3f} {UNITS}", transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
-    allpts = np.concatenate(screens)
-    center = 0.5 * (allpts.min(axis=0) + allpts.max(axis=0))
-    size = allpts.max(axis=0) - allpts.min(axis=0)
     for ax in axes:
-        _fit(ax, allpts, center=center, size=size)
-    _scale_bar(axes[-1], float(np.max(hi - lo)))
+        _fit(ax, np.concatenate([scene.box for scene in scenes]))  # one scale for all
+    _scale_bar(axes[-1], scenes[0].span)
     d = vault.design
     fig.suptitle(f"Rigid folding of the vault (a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)", fontsize=11)
     return fig
@@ -758,18 +573,18 @@ def plot_structure(
     Figure
     """
     state = structure.state(fold_angle)
-    V, cells, kinds = drawable(structure, state.vertices, segments=segments, max_cells=max_cells)
+    scene = state_scene(state, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells)
     fig = _figure(figsize=(6.4, 5.2))
     ax = fig.add_subplot()
-    pts = _draw_structure(ax, V, cells, kinds, view)
-    _fit(ax, pts, below=0.1)
-    span = float(np.ptp(V.reshape(-1, 3), axis=0).max())
-    _scale_bar(ax, span)
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.1)
+    _scale_bar(ax, scene.span)
     k = len(structure.cells)
+    drawn = len(thin_cells(structure.cell_curves, max_cells))
     what = "Tube" if k == 1 else f"Cellular block of {k} cells"
-    shown = "" if len(cells) == k else f" ({len(cells)} drawn)"
+    shown = "" if drawn == k else f" ({drawn} drawn)"
     ax.set_title(f"{what}{shown}, 2α = {state.fold_angle:.4g}°", fontsize=10)
-    _legend_creases(ax, kinds, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
+    _legend_creases(ax, scene.roles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
     return fig
 
 
@@ -813,11 +628,10 @@ def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = N
     fig = _figure(figsize=(10.0, 4.8))
     mosaic = fig.subplot_mosaic([["view", "kt"], ["view", "angles"]], width_ratios=[1.35, 1.0])
     ax = mosaic["view"]
-    r = render_strips(curves, np.array([[0, 1], [0, 2]]), kinds, view, crease_width=1.4)
-    ax.add_collection(r.collection(), autolim=False)
-    _fit(ax, r.strips.reshape(-1, 2), below=0.1)
-    span = float(np.ptp(curves.reshape(-1, 3), axis=0).max())
-    _scale_bar(ax, span)
+    scene = render_strips(curves, np.array([[0, 1], [0, 2]]), kinds, view, colors=KIND_COLORS, crease_width=1.4)
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.1)
+    _scale_bar(ax, scene.span)
     ax.set_title(f"Curved fold: surfaces {widths[0]:.3g} | {widths[1]:.3g} {UNITS} wide", fontsize=10)
     ax.legend(
         handles=[
@@ -888,7 +702,6 @@ def write_motion_gif(
     Path
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.patches import Polygon
     from PIL import Image
 
     from ..vault.assembly import Vault
@@ -905,32 +718,17 @@ def write_motion_gif(
     if steps.ndim != 1 or steps.size == 0:
         raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
     motion = lattice.fold_points(structure.curves_uv, steps, anchor=anchor)
-    V, cells, kinds = drawable(structure, motion, segments=segments, max_cells=max_cells)
-    is_vault = isinstance(obj, Vault)
-    flat = V.reshape(-1, 3)
-    lo, hi = flat.min(axis=0), flat.max(axis=0)
-    lo[2] = hi[2] = 0.0
-    pad = 0.06 * float(np.max(hi - lo))
-
+    scenes = motion_scenes(structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells, crease_width=0.7, ground=isinstance(obj, Vault))
     dpi = 100
     fig = _figure(figsize=(w_px / dpi, h_px / dpi), dpi=dpi, layout=None)
     canvas = FigureCanvasAgg(fig)
-    renderings = [render_strips(Vf, tube_strips(cells), kinds, view, crease_width=0.7) for Vf in V]
-    ground = None
-    if is_vault:
-        rect = np.array([[lo[0] - pad, lo[1] - pad, 0], [hi[0] + pad, lo[1] - pad, 0], [hi[0] + pad, hi[1] + pad, 0], [lo[0] - pad, hi[1] + pad, 0]])
-        ground = view.project(rect)[0]
-    allpts = np.concatenate([r.strips.reshape(-1, 2) for r in renderings] + ([ground] if ground is not None else []))
-    center = 0.5 * (allpts.min(axis=0) + allpts.max(axis=0))
-    extent = allpts.max(axis=0) - allpts.min(axis=0)
+    joint = np.concatenate([scene.box for scene in scenes])  # one scale for all frames
     frames = []
-    for f, r in zip(steps, renderings):
+    for f, scene in zip(steps, scenes):
         fig.clear()
         ax = fig.add_axes((0.02, 0.02, 0.96, 0.86))
-        if ground is not None:
-            ax.add_patch(Polygon(ground, closed=True, facecolor=GROUND_COLOR, edgecolor="#b9ae98", linewidth=0.6, zorder=0))
-        ax.add_collection(r.collection(), autolim=False)
-        _fit(ax, allpts, center=center, size=extent)
+        _draw(ax, scene)
+        _fit(ax, joint)
         fig.text(0.5, 0.97, f"2α = {f:5.1f}°", ha="center", va="top", fontsize=12, family="monospace")
         canvas.draw()
         frames.append(Image.fromarray(np.asarray(canvas.buffer_rgba())[..., :3].copy()))

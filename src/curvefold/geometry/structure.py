@@ -27,9 +27,9 @@ from ..kernel.errors import InputError
 from .crease import half_angle
 from .lattice import Lattice
 from .mesh import Mesh
-from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners
+from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells
 
-__all__ = ["Structure", "State"]
+__all__ = ["Structure", "State", "drawable"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -193,3 +193,34 @@ class State(FrozenArrays):
             The faces of :meth:`Structure.topology`.
         """
         return self.structure.topology(faces).mesh(self.vertices)
+
+
+def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_cells: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """Thin a structure's curves for drawing.
+
+    Parameters
+    ----------
+    structure : Structure
+    vertices : (..., M, n, 3) ndarray
+        Its curves (rows of ``structure.curves_uv``), at one or more fold angles.
+    segments : int, keyword-only
+        About this many segments along t are kept (ends and middle sample included).
+    max_cells : int, keyword-only
+        At most this many cells, evenly spread along the cell list.
+
+    Returns
+    -------
+    curves : (..., M', k, 3) ndarray
+        The curves of the kept cells, subsampled.
+    cells : (K', 4) ndarray of int
+        Rows of ``curves`` at corners 1–4 of the kept cells.
+    kinds : tuple of str
+        Kind of every kept curve.
+    """
+    cells = thin_cells(structure.cell_curves, max_cells)
+    used = np.unique(cells)
+    remap = np.full(len(structure.curves_uv), -1)
+    remap[used] = np.arange(len(used))
+    idx = sample_index(vertices.shape[-2], segments + 1)
+    kinds = tuple(str(k) for k in np.asarray(structure.curve_kinds)[used])
+    return vertices[..., used, :, :][..., idx, :], remap[cells], kinds

@@ -26,16 +26,13 @@ The single rule for FOLD assignments is :func:`fold_assignment`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import Literal
 
 import numpy as np
 
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, InternalError
 from .mesh import CREASE_KINDS, Mesh, edges_faces, fold_angles
-
-if TYPE_CHECKING:  # pragma: no cover
-    from .structure import Structure
 
 __all__ = [
     "CORNERS",
@@ -54,7 +51,6 @@ __all__ = [
     "sample_index",
     "tube_strips",
     "thin_cells",
-    "drawable",
 ]
 
 #: Offsets of a cell's corners 1–4 from its (i, j), in construction order.
@@ -405,34 +401,3 @@ def thin_cells(cell_curves: np.ndarray, limit: int) -> np.ndarray:
     if k <= limit:
         return np.asarray(cell_curves)
     return np.asarray(cell_curves)[np.unique(np.linspace(0, k - 1, limit).round().astype(int))]
-
-
-def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_cells: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
-    """Thin a structure's curves for drawing.
-
-    Parameters
-    ----------
-    structure : Structure
-    vertices : (..., M, n, 3) ndarray
-        Its curves (rows of ``structure.curves_uv``), at one or more fold angles.
-    segments : int, keyword-only
-        About this many segments along t are kept (ends and middle sample included).
-    max_cells : int, keyword-only
-        At most this many cells, evenly spread along the cell list.
-
-    Returns
-    -------
-    curves : (..., M', k, 3) ndarray
-        The curves of the kept cells, subsampled.
-    cells : (K', 4) ndarray of int
-        Rows of ``curves`` at corners 1–4 of the kept cells.
-    kinds : tuple of str
-        Kind of every kept curve.
-    """
-    cells = thin_cells(structure.cell_curves, max_cells)
-    used = np.unique(cells)
-    remap = np.full(len(structure.curves_uv), -1)
-    remap[used] = np.arange(len(used))
-    idx = sample_index(vertices.shape[-2], segments + 1)
-    kinds = tuple(str(k) for k in np.asarray(structure.curve_kinds)[used])
-    return vertices[..., used, :, :][..., idx, :], remap[cells], kinds

@@ -35,10 +35,11 @@ Glue tabs
     For every seam id the tabs go on one side only, the sheet with the lowest index that
     has the seam, so that the partner sheet overlaps the tab when glued. A seam whose
     chains all lie on one sheet gets its tab on the first chain only. Tabs are cut into
-    pieces (at most ``tab_length`` long and turning at most 30° each) with tapered ends,
-    so they bend along curved seams. A piece that would overlap its own sheet or another
-    tab is narrowed (½, ¼ of ``tab_width``) and, failing that, left out; both are
-    reported in :attr:`Layout.notes`.
+    pieces (at most ``tab_length`` long and turning at most 30° each, split in the middle
+    of a seam segment) with tapered ends, so they bend along curved seams. Every piece is
+    checked as drawn: one whose outline would cross or touch itself, its sheet or another
+    tab is narrowed (½, ¼ of ``tab_width``) and, failing that, left out; both are reported
+    in :attr:`Layout.notes`.
 """
 
 from __future__ import annotations
@@ -313,23 +314,46 @@ def _cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def _crossings(a: np.ndarray, b: np.ndarray, eps: float) -> bool:
-    """Whether any segment of ``a`` (S, 2, 2) properly crosses any of ``b`` (T, 2, 2)."""
-    if len(a) == 0 or len(b) == 0:
-        return False
-    # only segments of b whose bounding boxes meet the bounding box of a can cross it
-    lo, hi = a.reshape(-1, 2).min(axis=0) - abs(eps), a.reshape(-1, 2).max(axis=0) + abs(eps)
-    b = b[((b.max(axis=1) >= lo) & (b.min(axis=1) <= hi)).all(axis=1)]
-    if len(b) == 0:
-        return False
-    p, r = a[:, None, 0], (a[:, 1] - a[:, 0])[:, None]
-    q, s = b[None, :, 0], (b[:, 1] - b[:, 0])[None]
-    d1 = _cross2(s, p - q)
-    d2 = _cross2(s, p + r - q)
-    d3 = _cross2(r, q - p)
-    d4 = _cross2(r, q + s - p)
-    return bool(np.any((((d1 > eps) & (d2 < -eps)) | ((d1 < -eps) & (d2 > eps)))
-                       & (((d3 > eps) & (d4 < -eps)) | ((d3 < -eps) & (d4 > eps)))))
+def _point_segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance from points p to segments a–b, all (..., 2) broadcast together; shape (...)."""
+    d = b - a
+    t = np.clip(np.sum((p - a) * d, axis=-1) / np.maximum(np.sum(d * d, axis=-1), 1e-300), 0.0, 1.0)
+    return np.linalg.norm(p - a - t[..., None] * d, axis=-1)
+
+
+def _distance(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
+    """Distance (N,) from each of points (N, 2) to the nearest of segments (S, 2, 2), inf without any."""
+    if len(segments) == 0:
+        return np.full(len(points), np.inf)
+    return _point_segment_distance(points[:, None], segments[None, :, 0], segments[None, :, 1]).min(axis=1)
+
+
+def _touching(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
+    """Pairs of segments a (S, 2, 2) and b (T, 2, 2) that meet other than at one shared end, (S, T) bool.
+
+    Segments meet when they cross or come within ``tol`` of each other. Two segments whose
+    ends coincide (within ``tol``) may meet there and nowhere else: each one's other end
+    must stay ``tol`` away from the other segment (else they run along each other, as in a
+    spike), and two segments sharing both ends coincide. So a set of segments in which no
+    two touch is a planar drawing: simple outlines, tabs that neither overlap nor graze.
+    """
+    A, B = a[:, None], b[None]  # (S, 1, 2, 2), (1, T, 2, 2)
+    shared = np.linalg.norm(A[:, :, :, None] - B[:, :, None, :], axis=-1) < tol  # (S, T, 2, 2): end i of a at end j of b
+    a_shared, b_shared = shared.any(axis=3), shared.any(axis=2)  # (S, T, 2)
+    da = _point_segment_distance(A, B[:, :, None, 0], B[:, :, None, 1])  # ends of a to b, (S, T, 2)
+    db = _point_segment_distance(B, A[:, :, None, 0], A[:, :, None, 1])  # ends of b to a
+    near = ((da < tol) & ~a_shared).any(axis=-1) | ((db < tol) & ~b_shared).any(axis=-1)
+    p, r = A[..., 0, :], A[..., 1, :] - A[..., 0, :]
+    q, s = B[..., 0, :], B[..., 1, :] - B[..., 0, :]
+    cross = ((_cross2(s, p - q) * _cross2(s, p + r - q) < 0) & (_cross2(r, q - p) * _cross2(r, q + s - p) < 0))
+    return near | (cross & ~a_shared.any(axis=-1)) | a_shared.all(axis=-1)
+
+
+def _near_box(segments: np.ndarray, box_of: np.ndarray, tol: float) -> np.ndarray:
+    """The segments (T, 2, 2) whose bounding boxes meet the bounding box of points ``box_of`` (..., 2)."""
+    pts = box_of.reshape(-1, 2)
+    lo, hi = pts.min(axis=0) - tol, pts.max(axis=0) + tol
+    return segments[((segments.max(axis=1) >= lo) & (segments.min(axis=1) <= hi)).all(axis=1)]
 
 
 def _inside(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
@@ -449,8 +473,7 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
             f"sheet {name!r}: triangles must all turn the same way in the plane; "
             f"{int(np.count_nonzero(area2 < -tol))} of {len(faces)} are flipped"
         )
-    ccw = faces[:, ::-1] if mirror else faces
-    ef = edges_faces(ccw, mesh.edges_vertices)
+    ef = edges_faces(faces, mesh.edges_vertices)  # counter-clockwise in xy, mirrored or not
     nfaces = np.count_nonzero(ef >= 0, axis=1)
     outline = np.isin(mesh.edges_kind, ("boundary", "seam"))
     bad = np.flatnonzero(outline & (nfaces != 1))
@@ -528,7 +551,13 @@ def _tab(base: np.ndarray, width: float, taper: float) -> tuple[np.ndarray, np.n
 
 
 def _tab_pieces(points: np.ndarray, tab_length: float, min_length: float) -> list[np.ndarray]:
-    """Split a seam chain (m + 1, 2) at its vertices into pieces for separate tabs."""
+    """Split a seam chain (m + 1, 2) into pieces for separate tabs, each cut in the middle of a segment.
+
+    Neighbouring tabs taper toward their common point. Where the seam is straight their
+    tapered ends share 180°, leaving 180° − 2 × tab angle between them; at a vertex where the
+    seam turns by φ toward the tabs they would share only 180° − φ, and touch or overlap
+    once φ ≥ 180° − 2 × tab angle (a seam of few segments around a tight concave curve).
+    """
     d = np.diff(points, axis=0)
     seg = np.linalg.norm(d, axis=1)
     s = np.concatenate([[0.0], np.cumsum(seg)])
@@ -537,12 +566,14 @@ def _tab_pieces(points: np.ndarray, tab_length: float, min_length: float) -> lis
     turn = np.concatenate([[0.0], turn, turn[-1:] if turn.size else [0.0]])  # per vertex
     count = max(1, math.ceil(s[-1] / tab_length - 1e-9), math.ceil(turn[-1] / _TAB_MAX_TURN - 1e-9))
     count = max(1, min(count, int(s[-1] // min_length), len(seg)))
-    # Split where arc length and turning (each normalised) reach equal shares.
+    # Split where arc length and turning (each normalised) reach equal shares: in the middle
+    # of the segment where each share is reached.
     progress = s / s[-1] + (turn / turn[-1] if turn[-1] > 0 else 0.0)
-    cuts = np.searchsorted(progress, progress[-1] * np.arange(1, count) / count)
-    cuts = np.unique(np.clip(cuts, 1, len(points) - 2)) if count > 1 else np.array([], int)
-    bounds = [0, *cuts.tolist(), len(points) - 1]
-    return [points[i:j + 1] for i, j in zip(bounds[:-1], bounds[1:]) if j > i]
+    at = np.searchsorted(progress, progress[-1] * np.arange(1, count) / count, side="right") - 1
+    at = np.unique(np.clip(at, 0, len(seg) - 1))
+    refined = np.insert(points, at + 1, 0.5 * (points[at] + points[at + 1]), axis=0)
+    bounds = [0, *(at + 1 + np.arange(len(at))).tolist(), len(refined) - 1]
+    return [refined[i:j + 1] for i, j in zip(bounds[:-1], bounds[1:])]
 
 
 def _label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
@@ -808,27 +839,42 @@ def layout_sheets(
     return Layout(tuple(Page((W, H), tuple(p)) for p in pages), (W, H), margin, scale_mm, tuple(notes))
 
 
+def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np.ndarray:
+    """Segments (S, 2, 2) of a sheet's outline loops, tabbed seams split where their tab pieces meet."""
+    segs = []
+    for li, (verts, _) in enumerate(loc.loops):
+        n = len(verts)
+        keep = np.ones(n, bool)
+        for ch in loc.chains:
+            if ch.loop == li and id(ch) in pieces_of:
+                keep[(ch.start + np.arange(ch.count)) % n] = False
+        p = loc.xy[verts]
+        segs.append(np.stack([p, np.roll(p, -1, axis=0)], axis=1)[keep])
+    segs += [_segments([(piece, False)]) for pieces in pieces_of.values() for piece in pieces]
+    return np.concatenate(segs)
+
+
 def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_size, notes):
     """Polylines and labels of one sheet in its local mm frame, and its footprint points."""
     name = sheet.label
-    loop_segments = _segments([(loc.xy[v], True) for v, _ in loc.loops])
-    extent = float(np.ptp(loc.xy, axis=0).max())
-    eps = 1e-12 * max(extent, 1.0) ** 2
-    accepted: list[tuple[np.ndarray, np.ndarray]] = []  # (polygon, cut) of tabs on this sheet
+    pieces_of = {id(ch): _tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
+    outline = _outline_segments(loc, pieces_of)
+    tol = 1e-9 * max(float(np.ptp(loc.xy, axis=0).max()), 1.0)  # coordinate rounding, mm
+    accepted: list[np.ndarray] = []  # polygons of the tabs on this sheet
     # per loop: position of first edge -> (count of edges, replacement points without the last)
     replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     polylines: list[Polyline] = []
     for ch in loc.chains:
-        if id(ch) not in tabbed:
+        if id(ch) not in pieces_of:
             continue
-        pieces = _tab_pieces(ch.points, tab_length, 2.5 * tab_width)
+        pieces = pieces_of[id(ch)]
         cut_parts, dropped, narrowed = [], 0, 0
         runs: list[list[np.ndarray]] = [[]]  # consecutive tabbed pieces: one fold line each
         for piece in pieces:
             got = None
             for k, frac in enumerate(_TAB_WIDTH_STEPS):
                 tab = _tab(piece, frac * tab_width, taper)
-                if tab is not None and _tab_fits(tab, loop_segments, accepted, eps):
+                if tab is not None and _tab_fits(tab, outline, accepted, tol):
                     got, narrowed = tab, narrowed + (k > 0)
                     break
             if got is None:
@@ -836,7 +882,7 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
                 cut_parts.append(piece[:-1])
                 runs.append([])
                 continue
-            accepted.append(got)
+            accepted.append(got[0])
             polylines.append(Polyline("glue", got[0], closed=True, seam=ch.seam))
             cut_parts.append(got[1][:-1])
             runs[-1].append(piece)
@@ -889,22 +935,24 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
     return polylines, np.concatenate([p.points for p in polylines]), labels, loc.mirror
 
 
-def _tab_fits(tab: tuple[np.ndarray, np.ndarray], loop_segments: np.ndarray,
-              accepted: list[tuple[np.ndarray, np.ndarray]], eps: float) -> bool:
-    """Whether a tab stays off its own sheet and off the tabs already accepted."""
+def _tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted: list[np.ndarray], tol: float) -> bool:
+    """Whether a tab may be drawn: its cut line is simple and keeps ``tol`` clear of the
+    sheet's outline (S, 2, 2) and of the tabs already accepted, but for its two ends on the
+    seam, and it neither lies inside them nor holds any of their corners."""
     polygon, cut = tab
     segs = _segments([(cut, False)])
-    outer = cut[1:-1]
-    if _crossings(segs, loop_segments, eps) or _inside(outer, loop_segments).any():
+    own = _touching(segs, segs, tol)
+    np.fill_diagonal(own, False)
+    if own.any():
         return False
-    if len(segs) > 2:  # the tab's own outline must be simple
-        for k in range(len(segs) - 2):
-            if _crossings(segs[k:k + 1], segs[k + 2:], eps):
-                return False
-    for poly, other_cut in accepted:
-        poly_segs = _segments([(poly, True)])
-        if (_crossings(segs, poly_segs, eps) or _inside(outer, poly_segs).any()
-                or _inside(other_cut[1:-1], _segments([(polygon, True)])).any()):
+    corners = cut[1:-1]
+    mine = _segments([(polygon, True)])
+    for other in (outline, *(_segments([(p, True)]) for p in accepted)):
+        near = _near_box(other, cut, tol)
+        if _touching(segs, near, tol).any() or (_distance(corners, near) < tol).any() or _inside(corners, other).any():
+            return False
+        theirs = other[:, 0][_distance(other[:, 0], mine) >= tol]  # their corners off this tab's outline
+        if _inside(theirs, mine).any():
             return False
     return True
 

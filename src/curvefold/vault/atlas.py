@@ -94,7 +94,7 @@ class Sketch:
     @classmethod
     def from_vault(cls, vault: Vault, *, samples: int = SKETCH_SAMPLES, tubes: int = SKETCH_TUBES) -> Sketch:
         """Subsample a vault's curves at its design angle (at most ``tubes`` tubes, ~``samples`` points)."""
-        from ..geometry.topology import drawable
+        from ..geometry.structure import drawable
 
         structure = vault.structure
         V = vault.vertices  # (M, n, 3)
