@@ -94,6 +94,8 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
         without ``p_xz``, the radius without ``span`` or ``rise``).
     span, rise : float, optional, keyword-only
         Model units. Both: their ratio sets a, the span the radius. One: it sets the radius.
+        Where several a give the ratio (at a fixed p_xz it need not be monotone in a), the
+        one nearest ``design.a`` is taken, so a design moves continuously with its targets.
     p_xz : float, optional, keyword-only
         Section proportion at the apex; sets p_xy for every a.
     rtol : float, keyword-only

@@ -38,8 +38,8 @@ from ...io.formats import FORMATS, check_kind, default_formats, missing_dependen
 from ...io.tables import COLOURS
 from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import MAX_TEXT, Spec, suggest
-from ...vault.targets import REPLACES, TARGET_SPECS, fit_targets
-from ..build import Built, build, vault_design
+from ...vault.targets import REPLACES, TARGET_SPECS
+from ..build import Built, build, fit_vault_targets
 from ..design import KINDS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict
 
 __all__ = [
@@ -245,20 +245,15 @@ def design_query(design: Design) -> list[tuple[str, str]]:
 
 def _fit(design: Design, targets: dict) -> Design:
     """The vault design with the targets' parameters solved (cached: a fit builds about 40 vaults)."""
-    key = (_key(design), tuple(sorted(targets.items())))
-    a, p_xy, radius = _fitted(*key)
-    return design.overrides(source=SOURCE, a=a, p_xy=p_xy, radius=radius)
+    return _design(_fitted(_key(design), tuple(sorted(targets.items()))))
 
 
 @lru_cache(maxsize=64)
-def _fitted(design_key: str, targets: tuple) -> tuple[float, float, float]:
-    design = _design(design_key)
-    fit = fit_targets(vault_design(design), **dict(targets))
+def _fitted(design_key: str, targets: tuple) -> str:
     try:
-        fitted = fit.require()
+        return _key(fit_vault_targets(_design(design_key), source=SOURCE, **dict(targets)))
     except InputError as err:
-        raise QueryError(str(err), "rise") from None
-    return fitted.a, fitted.p_xy, fitted.radius
+        raise QueryError(str(err), "rise" if "rise/span" in str(err) else _key_named(str(err), REPLACES)) from None
 
 
 def _check_size(design: Design) -> None:
