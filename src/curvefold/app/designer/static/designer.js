@@ -344,10 +344,9 @@ const view = {
     return a.length < 2 ? [0, 0] : [i, Math.min(1, Math.max(0, (angle - a[i]) / (a[i + 1] - a[i])))];
   },
 
-  sample(values) {  // a per-state list of numbers or pairs at the current angle: the larger of a pair
+  sample(values) {  // a per-state number at the current angle
     const [i, t] = this.bracket(this.angle);
-    const at = (k) => Math.max(...[].concat(values[Math.min(k, values.length - 1)]));
-    return at(i) * (1 - t) + at(i + 1) * t;
+    return values[i] * (1 - t) + values[Math.min(i + 1, values.length - 1)] * t;
   },
 
   setAngle(angle) {
