@@ -12,6 +12,7 @@ import zipfile
 
 import numpy as np
 import pytest
+
 from _cli import run
 from _designer import get, get_json, need
 

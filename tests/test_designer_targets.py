@@ -5,12 +5,11 @@ import math
 import numpy as np
 import pytest
 
+from _cli import run
 from curvefold.kernel.errors import InputError, InternalError
 from curvefold.vault import Vault, VaultDesign, proportion_change, solve_symmetric_arch
 from curvefold.vault import targets as targets_module
 from curvefold.vault.targets import fit_targets
-
-from _cli import run
 
 #: Brent's method stops at 1e-13 in a; rise/span moves by O(1) per unit of a and the radius is a
 #: quotient of two measured lengths, so the targets are met to ~1e-12: 1e-9 is the fit's own tolerance.

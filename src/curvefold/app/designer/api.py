@@ -301,7 +301,8 @@ def _built_of(design: Design, *, samples: int | None = None) -> Built:
 
 def caches() -> dict[str, object]:
     """The server's LRU caches by name (their ``cache_info()`` shows that memory stays bounded)."""
-    return {"built": _built, "preview": _preview, "payload": _payload, "fitted": _fitted, "files": _files}
+    return {"built": _built, "preview": _preview, "payload": _payload, "fitted": _fitted, "files": _files,
+            "domain": _domain, "pattern": _pattern}
 
 
 # -- the preview: numbers and the folding motion -----------------------------------------------------
@@ -429,13 +430,18 @@ def certificate(design: Design) -> list[dict]:
 
 def domain_svg(design: Design) -> str:
     """The regression domain of a tube, block or vault with its cells (Eq. 18), as SVG text."""
+    if design.kind == "crease":
+        raise QueryError("a single curved fold has no lattice: the regression domain is drawn for tubes, blocks and vaults")
+    return _domain(_key(design))
+
+
+@lru_cache(maxsize=8)
+def _domain(key: str) -> str:
     from ...figures.plots import plot_regression_domain
 
-    built = _built_of(design, samples=PREVIEW_SAMPLES)
-    if built.structure is None:
-        raise QueryError("a single curved fold has no lattice: the regression domain is drawn for tubes, blocks and vaults")
+    structure = _built_of(_design(key), samples=PREVIEW_SAMPLES).structure
     with HEAVY:
-        figure = plot_regression_domain(built.structure.lattice, built.structure.cells)
+        figure = plot_regression_domain(structure.lattice, structure.cells)
         out = io.StringIO()
         figure.savefig(out, format="svg")
     return out.getvalue()
@@ -443,11 +449,16 @@ def domain_svg(design: Design) -> str:
 
 def pattern_pages(design: Design) -> list[str]:
     """The crease-pattern pages as they will be cut (the SVG files a download gives), at :data:`PREVIEW_SAMPLES`."""
-    built = _built_of(design, samples=PREVIEW_SAMPLES)
     check_kind(["svg"], design.kind, "crease pattern")
+    return list(_pattern(_key(design)))
+
+
+@lru_cache(maxsize=8)
+def _pattern(key: str) -> tuple[str, ...]:
+    built = _built_of(_design(key), samples=PREVIEW_SAMPLES)
     with HEAVY, tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
         files = _write(built, ("svg",), Path(tmp))
-        return [Path(f).read_text(encoding="utf-8") for f in sorted(files, key=_page_number)]
+        return tuple(Path(f).read_text(encoding="utf-8") for f in sorted(files, key=_page_number))
 
 
 def _page_number(path) -> int:
