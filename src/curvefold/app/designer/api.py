@@ -67,7 +67,7 @@ PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
 #: Fold-angle step between the precomputed states of the 3D preview, degrees.
 MOTION_STEP = 5.0
 #: Grid of the first-contact search of the preview (degrees, samples along t).
-CONTACT_STEP, CONTACT_SAMPLES = 1.0, 61
+CONTACT_STEP, CONTACT_SAMPLES = 2.0, 61
 #: Largest design the server builds, in crease vertices (samples × lattice curves): about 0.5 GB at worst.
 MAX_VERTICES_SERVED = 400_000
 #: Longest query value read, in characters.

@@ -366,6 +366,8 @@ const view = {
   render() { if (this.renderer) this.renderer.render(this.scene, this.camera); },
 };
 
+state.view = view;
+
 // -- the fold slider: plays in the browser, no request ---------------------------------------------
 
 let playing = null;
