@@ -127,6 +127,7 @@ HOSTILE = [
     ("api/tube/preview?kappa=" + "(" * 500 + "1" + ")" * 500, "[curve] kappa", "kappa"),
     ("api/block/preview?cells=[[0,0],[0,0]]", "cells[1] repeats cell [0, 0]", "cells"),
     ("api/block/preview?cells={}", "cells must be an array", "cells"),
+    ("api/block/preview?cells=" + "[" * 1900, "cells must be an array", "cells"),
     ("api/crease/preview?alpha=45&beta_right=90", "give beta_right or alpha, not both", "beta_right"),
     ("api/nope", "unknown kind 'nope'", None),
     ("api/vault.exe", "unknown file 'exe'", None),

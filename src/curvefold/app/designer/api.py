@@ -38,6 +38,7 @@ from ...io.formats import FORMATS, check_kind, default_formats, missing_dependen
 from ...io.tables import COLOURS
 from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import MAX_TEXT, Spec, suggest
+from ...vault.assembly import DEFAULT_TUBES_CAP
 from ...vault.targets import REPLACES, TARGET_SPECS
 from ..build import Built, build, fit_vault_targets
 from ..design import KINDS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict
@@ -68,13 +69,14 @@ PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
 MOTION_STEP = 5.0
 #: Grid of the first-contact search of the preview (degrees, samples along t).
 CONTACT_STEP, CONTACT_SAMPLES = 2.0, 61
-#: Largest design the server builds, in crease vertices (samples × lattice curves): about 0.5 GB at worst.
+#: Largest design the server builds, in crease vertices (samples × lattice curves): one request must not
+#: take the memory the schema's bound allows a command-line run (25 times more).
 MAX_VERTICES_SERVED = 400_000
 #: Longest query value read, in characters.
 MAX_VALUE = 2 * MAX_TEXT
 #: How a request is named in the messages of the design checks (and taken off them again).
 SOURCE = "query"
-#: Keys a request never sets (the kind is in the path; a list of cells has no default to drag).
+#: Keys a request never sets (the kind is in the path).
 _FIXED = ("kind",)
 
 #: One heavy job (files, figures, certificate) at a time: they are CPU-bound and share one interpreter.
@@ -156,7 +158,7 @@ def _value(spec: Spec, text: str):
     if spec.kind == "cells":
         try:
             return json.loads(text)
-        except ValueError:
+        except (ValueError, RecursionError):
             return text
     if spec.kind == "page" and "," in text:
         try:
@@ -260,7 +262,7 @@ def _check_size(design: Design) -> None:
     """Refuse a design with more crease vertices than the server builds (before building it where the count is known)."""
     if design.kind == "vault":
         v = design.vault
-        lines = 4 * (24 if v.tubes == "max" else v.tubes) * v.layers  # a stack of "max" tubes holds at most 24
+        lines = 4 * (DEFAULT_TUBES_CAP if v.tubes == "max" else v.tubes) * v.layers
     elif design.kind == "block":
         lines = 4 * len(design.block.cells)
     else:
