@@ -95,7 +95,7 @@ def test_preview_holds_the_motion_the_vault_makes(url):
     positions = np.frombuffer(base64.b64decode(motion["positions"]), np.float32).reshape(motion["states"], motion["vertices"], 3)
     angles = np.array(motion["angles"])
     assert angles[0] == 0 and motion["design_angle"] in angles and np.all(np.diff(angles) > 0)
-    assert motion["end"] == "first contact" and angles[-1] > motion["design_angle"]
+    assert motion["end"] == "first contact" and angles[-1] == api.MAX_FOLD
     # the state at the design angle is the vault standing on the ground, to float32 rounding
     vault = Vault.from_design(VaultDesign(tubes=4, samples=api.PREVIEW_SAMPLES))
     curves, _, _ = drawable(vault.structure, vault.vertices, segments=api.PREVIEW_SEGMENTS, max_cells=api.PREVIEW_CELLS)
@@ -105,6 +105,14 @@ def test_preview_holds_the_motion_the_vault_makes(url):
     assert motion["lift_off"][k] <= 1e-13 * size and motion["lift_off"][0] > 0.1 * size
     triangles = np.frombuffer(base64.b64decode(motion["triangles"]), np.uint32)
     assert triangles.max() < motion["vertices"] and set(motion["lines"]) == {"fold", "seam", "rim"}
+
+
+def test_the_fold_slider_stops_at_the_first_contact(url):
+    status, answer = get_json(f"{url}api/vault/contact?{LIGHT}")
+    assert status == 200 and answer == {"first_contact": Vault.from_design(VaultDesign(tubes=4, samples=201)).first_contact()}
+    assert 100 < answer["first_contact"] < 179
+    status, answer = get_json(f"{url}api/tube/contact")
+    assert status == 422 and answer["error"] == "the first contact is searched for vaults, not for a tube"
 
 
 #: Requests a hostile or careless client might send: each gets one line and 422 (404 for a path), never 500.

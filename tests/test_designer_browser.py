@@ -52,6 +52,11 @@ def canvas(page) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(page.locator("#canvas").screenshot())).convert("RGB"), float)
 
 
+def slider_end(page) -> str:
+    """The first contact as the page holds it, written as the slider's max."""
+    return page.evaluate("String(window.curvefold.contact)")
+
+
 def numbers(page) -> dict:
     return page.evaluate("window.curvefold.preview.numbers")
 
@@ -76,6 +81,7 @@ def test_a_slider_changes_the_numbers_and_the_view(browser):
 def test_the_fold_slider_plays_without_a_request(browser):
     page = open_page(browser)
     page.locator("#pattern img").first.wait_for()  # the figures that follow a design change have come
+    assert page.input_value("#fold") == "90" and page.get_attribute("#fold", "max") == str(slider_end(page))
     requests = []
     page.on("request", lambda r: requests.append(r.url))
     designed = canvas(page)

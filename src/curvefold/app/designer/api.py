@@ -52,6 +52,7 @@ __all__ = [
     "request_design",
     "design_query",
     "preview",
+    "contact",
     "payload",
     "certificate",
     "domain_svg",
@@ -67,8 +68,8 @@ PREVIEW_SAMPLES = 97
 PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
 #: Fold-angle step between the precomputed states of the 3D preview, degrees.
 MOTION_STEP = 5.0
-#: Grid of the first-contact search of the preview (degrees, samples along t).
-CONTACT_STEP, CONTACT_SAMPLES = 2.0, 61
+#: Largest fold angle of the preview's states, degrees (where the first-contact search of a vault stops).
+MAX_FOLD = 179.0
 #: Largest design the server builds, in crease vertices (samples × lattice curves): one request must not
 #: take the memory the schema's bound allows a command-line run (25 times more).
 MAX_VERTICES_SERVED = 400_000
@@ -304,7 +305,7 @@ def _built_of(design: Design, *, samples: int | None = None) -> Built:
 def caches() -> dict[str, object]:
     """The server's LRU caches by name (their ``cache_info()`` shows that memory stays bounded)."""
     return {"built": _built, "preview": _preview, "payload": _payload, "fitted": _fitted, "files": _files,
-            "domain": _domain, "pattern": _pattern}
+            "domain": _domain, "pattern": _pattern, "contact": _contact}
 
 
 # -- the preview: numbers and the folding motion -----------------------------------------------------
@@ -333,8 +334,9 @@ def _mesh(curves: np.ndarray, strips: np.ndarray, kinds: tuple[str, ...]) -> dic
 
 
 def _motion(built: Built) -> dict:
-    """The folding motion from flat through the design angle to the first contact (a vault) or
-    halfway to 180° (a tube or block): precomputed states the browser morphs between."""
+    """The folding motion from flat through the design angle to 179° (a vault: :func:`contact`
+    then says where it stops) or halfway to 180° (a tube or block): precomputed states the
+    browser morphs between."""
     if built.structure is None:  # a single curved fold: its two surfaces, one state
         crease = built.crease
         limits = [float(np.min(w)) for w in crease.regression_limits()]
@@ -347,11 +349,7 @@ def _motion(built: Built) -> dict:
                 "lift_off": None, **_mesh(curves, np.array([[0, 1], [0, 2]]), ("fold", "edge", "edge"))}
     structure = built.structure
     design_angle = float(structure.lattice.crease.fold_angle)
-    if built.vault is not None:
-        contact = built.vault.first_contact(step=CONTACT_STEP, samples=CONTACT_SAMPLES)
-        end, reason = (contact, "first contact") if contact is not None else (179.0, "179°")
-    else:
-        end, reason = 0.5 * (design_angle + 180.0), "halfway to 180°"
+    end, reason = (MAX_FOLD, "first contact") if built.vault is not None else (0.5 * (design_angle + 180.0), "halfway to 180°")
     angles = np.unique(np.concatenate([
         np.linspace(0.0, design_angle, int(np.ceil(design_angle / MOTION_STEP)) + 1),
         np.linspace(design_angle, end, int(np.ceil((end - design_angle) / MOTION_STEP)) + 1),
@@ -407,6 +405,20 @@ def preview(design: Design) -> bytes:
     and ``lines`` per crease kind (uint32 pairs), at :data:`PREVIEW_SAMPLES`.
     """
     return _preview(_key(design))
+
+
+def contact(design: Design) -> float | None:
+    """The first fold angle past the design angle where parts of a vault touch (degrees, on a
+    1° grid; :meth:`Vault.first_contact <curvefold.vault.assembly.Vault.first_contact>`), or None
+    up to :data:`MAX_FOLD`: where the fold slider stops."""
+    if design.kind != "vault":
+        raise QueryError(f"the first contact is searched for vaults, not for a {design.kind}")
+    return _contact(_key(design))
+
+
+@lru_cache(maxsize=64)
+def _contact(key: str) -> float | None:
+    return _built_of(_design(key)).vault.first_contact(max_angle=MAX_FOLD)
 
 
 # -- the payload, certificate and figures -----------------------------------------------------------

@@ -11,6 +11,7 @@ holds design parameters as :mod:`curvefold.app.designer.api` reads them):
 ``/api/KIND.FORMAT``              a file: a format of the registry, ``zip`` (the whole
                                   output folder) or ``toml`` (the design file)
 ``/api/KIND/preview``             derived numbers and the folding motion for the 3D view
+``/api/vault/contact``            where the fold slider stops: the first contact
 ``/api/KIND/certificate``         the certificate's checks
 ``/api/KIND/domain.svg``          the regression domain with the cells
 ``/api/KIND/pattern``             the crease-pattern pages as they will be cut (SVG)
@@ -102,6 +103,10 @@ def create_app():
     @app.get("/api/{kind}/preview")
     def preview(kind: str, request: Request):
         return json_bytes(api.preview(design(kind, request)))
+
+    @app.get("/api/{kind}/contact")
+    def contact(kind: str, request: Request):
+        return {"first_contact": api.contact(design(kind, request))}
 
     @app.get("/api/{kind}/certificate")
     def certificate(kind: str, request: Request):

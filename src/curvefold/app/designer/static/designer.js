@@ -183,6 +183,7 @@ function show(body, query) {
     }
   }
   view.load(body.motion, body.colours);
+  state.contact = undefined;
   showNumbers();
   showDownloads(body.query);
   clearTimeout(detailsTimer);
@@ -196,7 +197,9 @@ function showNumbers() {
   const angle = view.angle;
   rows.push(`<tr><td>fold angle 2α</td><td>${angle.toFixed(1)}°</td></tr>`);
   if (m.lift_off) rows.push(`<tr><td>lift-off of the feet</td><td id="lift-off">${fmt(view.sample(m.lift_off))}</td></tr>`);
-  rows.push(`<tr><td>fold range ends (${m.end})</td><td>${m.angles[m.angles.length - 1].toFixed(1)}°</td></tr>`);
+  const end = m.end === "first contact" ? (state.contact === undefined ? "…" : state.contact === null ? "none up to 179°" : `${state.contact.toFixed(0)}°`)
+    : `${m.angles[m.angles.length - 1].toFixed(1)}°`;
+  rows.push(`<tr><td>fold range ends (${m.end})</td><td>${end}</td></tr>`);
   $("numbers").innerHTML = rows.join("");
 }
 
@@ -216,6 +219,16 @@ async function details(query) {
     const r = await fetch(`/api/${state.kind}/${path}?${query}`);
     return r.ok ? r : null;
   };
+  if (state.kind === "vault") {  // where the fold slider stops
+    const found = await get("contact");
+    if (found && current()) {
+      state.contact = (await found.json()).first_contact;
+      const last = state.preview.motion.angles.at(-1);
+      $("fold").max = state.contact ?? last;
+      if (view.angle > Number($("fold").max)) view.setAngle(Number($("fold").max));
+      showNumbers();
+    }
+  }
   const cert = await get("certificate");
   if (cert && current()) {
     const checks = await cert.json();
@@ -374,7 +387,7 @@ let playing = null;
 function play() {
   if (playing) { cancelAnimationFrame(playing); playing = null; $("play").textContent = "▶"; return; }
   $("play").textContent = "❚❚";
-  const a = view.motion.angles, end = a[a.length - 1], period = 6000, start = performance.now();
+  const end = Number($("fold").max), period = 6000, start = performance.now();
   const step = (now) => {
     const phase = ((now - start) % period) / period;
     view.setAngle(end * (phase < 0.5 ? 2 * phase : 2 - 2 * phase));
