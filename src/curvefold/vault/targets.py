@@ -27,7 +27,7 @@ import numpy as np
 from ..kernel.errors import ConvergenceError, InputError, InternalError, RegressionError
 from ..kernel.validate import Spec
 from .arch import A_MAX, proportion_change, solve_symmetric_arch
-from .assembly import _SPEC, Vault, VaultDesign
+from .assembly import VAULT_SPECS, Vault, VaultDesign
 
 __all__ = ["TARGET_SPECS", "TargetFit", "fit_targets", "SCAN_POINTS"]
 
@@ -43,6 +43,7 @@ REPLACES = {"span": "radius", "rise": "a", "p_xz": "p_xy"}
 SCAN_POINTS = 25
 #: Largest a scanned: the arch family ends at A_MAX.
 _A_TOP = A_MAX * (1 - 1e-6)
+_SPEC = {spec.name: spec for spec in VAULT_SPECS}
 
 
 @dataclass(frozen=True)

@@ -139,7 +139,6 @@ def schema() -> dict:
                      for section, specs in SCHEMA.items()},
         "targets": [_spec_json(spec, "vault") | {"replaces": REPLACES[spec.name]} for spec in TARGET_SPECS],
         "formats": [{"name": f.name, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)} for f in FORMATS.values()],
-        "preview_samples": PREVIEW_SAMPLES,
     }
 
 

@@ -132,6 +132,8 @@ def bind(host: str, port: int) -> socket.socket:
     InputError
         The address cannot be had (in use, not this machine's), in one line.
     """
+    if not 0 <= port <= 65535:
+        raise InputError(f"--port must be in [0, 65535], got {port}")
     try:
         info = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0]
         sock = socket.socket(info[0], socket.SOCK_STREAM)
@@ -183,5 +185,7 @@ def serve(host: str, port: int, *, query: list[tuple[str, str]] = (), open_brows
         threading.Timer(0.5, webbrowser.open, args=(url,)).start()
     try:
         server.run(sockets=[sock])
+    except KeyboardInterrupt:  # Ctrl+C is how a designer session ends
+        say("curvefold designer: stopped")
     finally:
         sock.close()

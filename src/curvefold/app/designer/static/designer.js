@@ -7,7 +7,7 @@ import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 const $ = (id) => document.getElementById(id);
 
 // State of this page (exposed for scripts and tests as window.curvefold).
-const state = { schema: null, kind: "vault", values: {}, mode: "parameters", preview: null, query: "", errors: 0 };
+const state = { schema: null, kind: "vault", values: {}, mode: "parameters", preview: null };
 window.curvefold = state;
 
 const LABELS = {
@@ -154,7 +154,6 @@ async function request() {
 }
 
 function refuse(body) {
-  state.errors += 1;
   clearErrors();
   const box = body.key && document.querySelector(`.field[data-key="${body.key}"]`);
   if (box) {
@@ -174,7 +173,6 @@ function clearErrors() {
 function show(body, query) {
   clearErrors();
   state.preview = body;
-  state.query = query;
   history.replaceState(null, "", `?${new URLSearchParams({ kind: state.kind })}${query ? "&" + query : ""}`);
   if (state.mode === "targets") {  // the solved parameters
     for (const name of ["a", "p_xy", "radius"]) {
@@ -184,6 +182,8 @@ function show(body, query) {
   }
   view.load(body.motion, body.colours);
   state.contact = undefined;
+  const tubes = document.querySelector('.field[data-key="tubes"] input[type=range]');
+  if (tubes && body.numbers.max_tubes) tubes.max = body.numbers.max_tubes;  // the counts free of regression
   showNumbers();
   showDownloads(body.query);
   clearTimeout(detailsTimer);
