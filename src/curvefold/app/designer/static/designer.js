@@ -335,14 +335,17 @@ const view = {
     fold.max = last;
     fold.disabled = motion.angles.length < 2;
     this.setAngle(atDesign ? motion.design_angle : Math.min(this.angle, last));
-    if (!this.fitted) this.fit(lo, hi, size);
+    if (!this.fitted) this.fit(lo, hi);
   },
 
-  fit(lo, hi, size) {
-    const centre = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 3);
-    const az = THREE.MathUtils.degToRad(-50), el = THREE.MathUtils.degToRad(22), d = 2.2 * size;
+  fit(lo, hi) {  // look at the box of every state from the azimuth and elevation of the figures, the whole box in view
+    const centre = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
+    const radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    const fov = THREE.MathUtils.degToRad(this.camera.fov) / 2;
+    const d = 1.05 * radius / Math.sin(Math.min(fov, Math.atan(Math.tan(fov) * this.camera.aspect)));
+    const az = THREE.MathUtils.degToRad(-50), el = THREE.MathUtils.degToRad(22);
     this.camera.position.set(centre.x + d * Math.cos(el) * Math.cos(az), centre.y + d * Math.cos(el) * Math.sin(az), centre.z + d * Math.sin(el));
-    this.camera.near = size / 1000; this.camera.far = size * 100;
+    this.camera.near = radius / 1000; this.camera.far = radius * 100;
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(centre);
     this.controls.update();
