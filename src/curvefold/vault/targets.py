@@ -14,7 +14,8 @@ Span and rise are those of :meth:`Vault.summary <curvefold.vault.assembly.Vault.
 the distance between the feet of curve 1 and the height of the highest crease sample,
 at the design's own samples (so the vault built from the result measures the targets).
 Targets no vault of the family reaches (regression bounds a for a given number of tubes)
-give the nearest design it can build and a sentence saying how far it is.
+give the nearest design found (the nearest of a scan over a, refined between its
+neighbours) and a sentence saying what the family reaches.
 """
 
 from __future__ import annotations
@@ -180,17 +181,24 @@ def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -
     if brackets:
         roots = [brentq(lambda a: value(a) - ratio, grid[i], grid[i + 1], xtol=1e-13, rtol=4 * np.finfo(float).eps) for i in brackets]
         return float(min(roots, key=lambda a: abs(a - design.a))), ""
-    # Out of reach: the nearest valid grid point, pushed to the edge of the valid set when its neighbour is past it.
+    # Out of reach: the nearest valid grid point, refined between its neighbours (to the edge of the
+    # valid set where a neighbour is past it, to the extremum of rise/span where both stand).
+    from scipy.optimize import minimize_scalar
+
     k = int(np.argmin(np.where(valid, np.abs(diff), np.inf)))
-    best = float(grid[k])
+    candidates = [float(grid[k])]
     for j in (k - 1, k + 1):
         if 0 <= j < len(grid) and not valid[j]:
             lo, hi = float(grid[k]), float(grid[j])
             for _ in range(40):  # bisect the edge of the valid set to 1e-12 in a
                 mid = 0.5 * (lo + hi)
                 lo, hi = (mid, hi) if np.isfinite(value(mid)) else (lo, mid)
-            if abs(value(lo) - ratio) < abs(value(best) - ratio):
-                best = lo
+            candidates.append(lo)
+    inner = [grid[j] for j in (k - 1, k + 1) if 0 <= j < len(grid) and valid[j]]
+    if len(inner) == 2:
+        found = minimize_scalar(lambda a: abs(value(a) - ratio), bounds=(inner[0], inner[1]), method="bounded", options={"xatol": 1e-10})
+        candidates.append(float(found.x))
+    best = min(candidates, key=lambda a: abs(value(a) - ratio))
     reach = np.append(values[valid], value(best))
     return best, (f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and {design.tubes} tubes: vaults of the family "
                   f"reach rise/span from {reach.min():.6g} to {reach.max():.6g}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a between about "
