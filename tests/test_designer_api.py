@@ -204,3 +204,5 @@ def test_a_taken_port_is_one_line():
         port = urllib.parse.urlsplit(base).port
         result = run("designer", "--no-browser", "--port", str(port))
     assert result.returncode == 2 and result.stderr.startswith(f"curvefold: error: cannot serve on 127.0.0.1:{port}: ")
+    result = run("designer", "--no-browser", "--port", "70000")
+    assert (result.returncode, result.stderr) == (2, "curvefold: error: --port must be in [0, 65535], got 70000\n")
