@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up a development environment from scratch: a virtual environment with curvefold and
-# all its extras, the Node.js readers the tests use, and the renderers for SVG and PDF checks.
+# all its extras, the Node.js readers the tests use, the designer's JavaScript, the renderers
+# for SVG and PDF checks and the browser that drives the designer's tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,13 +14,16 @@ fi
 
 if command -v npm >/dev/null 2>&1; then
     npm ci --prefix tests/node --no-audit --no-fund --loglevel=error
+    bash scripts/build-designer.sh
 fi
 
-# rsvg-convert (SVG → PNG) and pdftoppm (PDF → PNG) check what a person would see.
-if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1; then
+# rsvg-convert (SVG → PNG) and pdftoppm (PDF → PNG) check what a person would see; Debian's
+# chromium is the browser Playwright drives in the designer's tests (Playwright's own browser
+# download is not used).
+if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1 || ! command -v chromium >/dev/null 2>&1; then
     if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
-        apt-get update -qq >/dev/null && apt-get install -y -qq librsvg2-bin poppler-utils >/dev/null
+        apt-get update -qq >/dev/null && apt-get install -y -qq librsvg2-bin poppler-utils chromium >/dev/null
     else
-        echo "note: install librsvg2-bin and poppler-utils for the rendering checks" >&2
+        echo "note: install librsvg2-bin, poppler-utils and chromium for the rendering and browser checks" >&2
     fi
 fi

@@ -11,7 +11,7 @@ from ..geometry.structure import Structure
 from ..vault.assembly import Vault, VaultDesign, vault_samples
 from .design import Design
 
-__all__ = ["Built", "build", "vault_design"]
+__all__ = ["Built", "build", "vault_design", "fit_vault_targets"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,6 +55,22 @@ def vault_design(design: Design) -> VaultDesign:
         direction=1 if v.direction == "+" else -1,
         samples=vault_samples(design.samples, where=f"{design.source}: samples"),
     )
+
+
+def fit_vault_targets(design: Design, *, source: str | None = None, **targets: float) -> Design:
+    """A vault design with the parameters the targets replace solved for them (see :mod:`curvefold.vault.targets`).
+
+    ``targets`` are ``span``, ``rise`` and ``p_xz``; they set ``radius``, ``a`` and ``p_xy``.
+
+    Raises
+    ------
+    InputError
+        A target no vault of the family reaches: the message gives the nearest design.
+    """
+    from ..vault.targets import fit_targets
+
+    fitted = fit_targets(vault_design(design), **targets).require()
+    return design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius)
 
 
 def build(design: Design) -> Built:

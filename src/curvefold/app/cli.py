@@ -38,6 +38,8 @@ PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"
 _VAULT = SCHEMA["vault"]
+#: Port of ``curvefold designer`` unless told.
+DESIGNER_PORT = 8765
 
 
 # -- argument helpers -------------------------------------------------------------------------
@@ -165,6 +167,31 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
     return values, typed
 
 
+def _add_target_flags(p: argparse.ArgumentParser) -> None:
+    """--span, --rise and --p-xz: a vault from targets (help and checks from their specs)."""
+    from ..vault.targets import TARGET_SPECS
+
+    g = p.add_argument_group("targets", "design the vault from what it must measure; each target replaces a parameter "
+                             "(span the radius, rise with span a, p_xz p_xy); tubes must then be a number")
+    for spec in TARGET_SPECS:
+        g.add_argument(_flag(spec), dest=spec.name, metavar=spec.name.upper(), help=spec.describe().replace("%", "%%"))
+
+
+def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
+    """The vault design with the parameters the target flags replace solved for them."""
+    from ..vault.targets import REPLACES, TARGET_SPECS
+    from .build import fit_vault_targets
+
+    specs = {spec.name: spec for spec in TARGET_SPECS}
+    targets = {name: _flag_value(specs[name], getattr(args, name)) for name in REPLACES if getattr(args, name) is not None}
+    if not targets:
+        return design
+    for target, replaced in REPLACES.items():
+        if target in targets and getattr(args, replaced) is not None:
+            raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} or {_flag(_VAULT[replaced])}, not both")
+    return fit_vault_targets(design, source=design.source, **targets)
+
+
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
@@ -194,6 +221,8 @@ def build_parser() -> argparse.ArgumentParser:
     for kind, (short, long) in descriptions.items():
         p = sub.add_parser(kind, help=short, description=long)
         _add_design_flags(p, kind)
+        if kind == "vault":
+            _add_target_flags(p)
         _add_output(p, kind)
 
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
@@ -214,6 +243,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("reproduce", help="the paper's example, paper vs computed", description="Reproduce the paper's vault example (a = 0.3, p_xy = 0.75, 2α = 90°) and compare with the printed values.")
     _add_output(p, None)
+
+    p = sub.add_parser("designer", help="design live in the browser", description="Serve the designer, a local web page "
+                       "with a control for every design parameter, the 3D folding motion, the derived numbers, the certificate, "
+                       "the crease pattern and every file to download, and open it in the browser. Its JSON API (/api/vault?a=…) "
+                       "answers scripts too.")
+    p.add_argument("design", nargs="?", type=Path, help="a TOML design file to start from (default: the paper's vault)")
+    p.add_argument("--port", type=int, default=DESIGNER_PORT, help=f"port to serve on (default {DESIGNER_PORT}; 0 picks a free one)")
+    p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1: this machine only)")
+    p.add_argument("--no-browser", action="store_true", help="do not open a browser")
+    p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
 
     p = sub.add_parser("check", help="certify an exported FOLD file", description="Measure a FOLD file's folded frames against its crease pattern: isometry, face planarity and fold angles.")
     p.add_argument("file", type=Path, help="a .fold file with a crease pattern and folded frames")
@@ -261,6 +300,8 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     from .outputs import structure_payload, write_outputs
 
     design = _load_design(kind, args)
+    if kind == "vault":
+        design = _fit_targets(design, args)
     out = args.out if args.out is not None else (None if args.json else Path(DEFAULT_OUT[kind]))
     if out is not None:
         check_kind(design.output.formats, kind, f"{design.source}: [output] formats")
@@ -325,6 +366,28 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 0 if result.ok else 1
 
 
+def cmd_designer(args: argparse.Namespace) -> int:
+    import importlib.util
+
+    missing = [m for m in ("fastapi", "uvicorn") if importlib.util.find_spec(m) is None]
+    if missing:
+        raise InputError(f"the designer needs {' and '.join(missing)}: pip install 'curvefold[designer]'")
+    from .designer.api import design_query
+    from .designer.server import missing_bundle, serve
+
+    problem = missing_bundle()
+    if problem:
+        raise InputError(problem)
+    query = []
+    if args.design is not None:
+        design = load_design(args.design)
+        query = [("kind", design.kind), *design_query(design)]
+    if args.host not in ("127.0.0.1", "localhost", "::1"):
+        _error(f"warning: serving on {args.host}: anyone who can reach this machine there can use the designer and make it compute")
+    serve(args.host, args.port, query=query, open_browser=not args.no_browser)
+    return 0
+
+
 def cmd_atlas(args: argparse.Namespace) -> int:
     from .outputs import write_atlas
 
@@ -384,7 +447,7 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
         return 0
     if args.command in DEFAULT_OUT:
         return cmd_structure(args.command, args)
-    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "atlas": cmd_atlas}[args.command](args)
+    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "atlas": cmd_atlas, "designer": cmd_designer}[args.command](args)
 
 
 def run() -> None:  # console-script entry point

@@ -1,0 +1,205 @@
+"""A vault from what an architect asks of it: its span, its rise and its apex proportion.
+
+A vault of the harmonic-torsion family is scale-free: at radius 1/κ₀ = 1, its shape follows
+from a, p_xy, the width scale, the tubes, the layers and the fold angle, and the radius
+then scales every length. So, with the width, tubes, layers and fold angle held:
+
+* ``p_xz`` fixes p_xy for each a: p_xy = p_xz / (proportion change)², the change being
+  exp(a κ₀s₀ cot α / π) (:func:`curvefold.vault.arch.proportion_change`);
+* ``rise / span`` fixes a (one equation in one unknown, solved by a scan of a over the
+  family and Brent's method on the bracket found);
+* ``span`` (or, alone, ``rise``) then fixes the radius.
+
+Span and rise are those of :meth:`Vault.summary <curvefold.vault.assembly.Vault.summary>`:
+the distance between the feet of curve 1 and the height of the highest crease sample,
+at the design's own samples (so the vault built from the result measures the targets).
+Targets no vault of the family reaches (regression bounds a for a given number of tubes)
+give the nearest design found (the nearest of a scan over a, refined between its
+neighbours) and a sentence saying what the family reaches.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..kernel.errors import ConvergenceError, InputError, InternalError, RegressionError
+from ..kernel.validate import Spec
+from .arch import A_MAX, proportion_change, solve_symmetric_arch
+from .assembly import VAULT_SPECS, Vault, VaultDesign
+
+__all__ = ["TARGET_SPECS", "TargetFit", "fit_targets", "SCAN_POINTS"]
+
+#: The targets a vault can be designed from; each replaces a parameter of :data:`~curvefold.vault.assembly.VAULT_SPECS`.
+TARGET_SPECS: tuple[Spec, ...] = (
+    Spec("span", "real", None, "(0, inf)", "model units", help="distance between the feet of curve 1; sets the radius"),
+    Spec("rise", "real", None, "(0, inf)", "model units", help="height of the highest crease; with span it sets a, alone the radius"),
+    Spec("p_xz", "real", None, "(0, 100]", help="section proportion w_R/w_L at the apex; sets p_xy"),
+)
+#: Which parameter each target replaces (a user may give one or the other, not both).
+REPLACES = {"span": "radius", "rise": "a", "p_xz": "p_xy"}
+#: Points of a over [0, A_MAX) scanned for a bracket of rise/span.
+SCAN_POINTS = 25
+#: Largest a scanned: the arch family ends at A_MAX.
+_A_TOP = A_MAX * (1 - 1e-6)
+_SPEC = {spec.name: spec for spec in VAULT_SPECS}
+
+
+@dataclass(frozen=True)
+class TargetFit:
+    """A vault design fitted to targets.
+
+    Attributes
+    ----------
+    design : VaultDesign
+        The design that meets the targets, or the nearest one the family can build.
+    span, rise, p_xz : float
+        What that design measures (model units; p_xz dimensionless).
+    reached : bool
+        Whether every target given is met to ``rtol``.
+    message : str
+        Empty when reached; otherwise one line: which target is out of reach, what the
+        family reaches and the nearest design.
+    """
+
+    design: VaultDesign
+    span: float
+    rise: float
+    p_xz: float
+    reached: bool
+    message: str = ""
+
+    def require(self) -> VaultDesign:
+        """The design, or :class:`InputError` with :attr:`message` when a target is out of reach."""
+        if not self.reached:
+            raise InputError(self.message)
+        return self.design
+
+
+def _measure(design: VaultDesign) -> tuple[float, float, float]:
+    """(span, rise, p_xz) of a design; raises what :meth:`Vault.from_design` raises."""
+    summary = Vault.from_design(design).summary()
+    return summary["span"], summary["rise"], summary["p_xz"]
+
+
+def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float | None = None, p_xz: float | None = None,
+                rtol: float = 1e-9) -> TargetFit:
+    """Solve for the radius, a and p_xy that give a vault the targets asked of it.
+
+    Parameters
+    ----------
+    design : VaultDesign
+        Holds what stays fixed (width, tubes, layers, direction, fold angle, samples) and
+        the parameters no target replaces (a without ``rise`` and ``span`` together, p_xy
+        without ``p_xz``, the radius without ``span`` or ``rise``).
+    span, rise : float, optional, keyword-only
+        Model units. Both: their ratio sets a, the span the radius. One: it sets the radius.
+        Where several a give the ratio (at a fixed p_xz it need not be monotone in a), the
+        one nearest ``design.a`` is taken, so a design moves continuously with its targets.
+    p_xz : float, optional, keyword-only
+        Section proportion at the apex; sets p_xy for every a.
+    rtol : float, keyword-only
+        Relative tolerance of the fit: Brent's method stops at 1e-13 in a, and rise/span
+        moves by O(1) per unit of a, so 1e-9 holds with a wide margin.
+
+    Returns
+    -------
+    TargetFit
+
+    Raises
+    ------
+    InputError
+        A target outside its range, ``tubes = None`` (the maximum) with a ratio to meet
+        (the count jumps with a; give a number), or a design the family cannot build at
+        all (the message of the builder).
+
+    Examples
+    --------
+    >>> fit = fit_targets(VaultDesign(tubes=9), span=4.0, rise=2.5, p_xz=1.2)
+    >>> fit.reached, round(fit.span, 9), round(fit.rise, 9), round(fit.p_xz, 9)
+    (True, 4.0, 2.5, 1.2)
+    """
+    given = {name: value for name, value in (("span", span), ("rise", rise), ("p_xz", p_xz)) if value is not None}
+    for spec in TARGET_SPECS:
+        if spec.name in given:
+            given[spec.name] = spec.check(given[spec.name])
+    if not given:
+        span_, rise_, p_xz_ = _measure(design)
+        return TargetFit(design, span_, rise_, p_xz_, True)
+    if "span" in given and "rise" in given and design.tubes is None:
+        raise InputError('tubes must be a number to meet a rise and a span (with "max" the count jumps as a changes), got "max"')
+
+    def shape(a: float) -> VaultDesign:
+        """The design at radius 1 with this a, p_xy following p_xz when it is given."""
+        p_xy = design.p_xy
+        if "p_xz" in given:
+            change = proportion_change(a, solve_symmetric_arch(a).kappa0_s0, fold_angle=design.fold_angle)
+            p_xy = given["p_xz"] / change**2
+            _SPEC["p_xy"].check(p_xy, f"p_xy for p_xz = {given['p_xz']:g} at a = {a:g}")
+        return replace(design, a=float(a), p_xy=float(p_xy), radius=1.0)
+
+    a, note = design.a, ""
+    if "span" in given and "rise" in given:
+        a, note = _solve_ratio(shape, given["rise"] / given["span"], design, with_p_xz="p_xz" in given)
+    unit = shape(a)
+    span1, rise1, _ = _measure(unit)
+    radius = given["span"] / span1 if "span" in given else given["rise"] / rise1 if "rise" in given else design.radius
+    fitted = replace(unit, radius=_SPEC["radius"].check(radius, "radius for the span and rise"))
+    span_, rise_, p_xz_ = _measure(fitted)
+    if note:
+        message = (f"{note}; the nearest vault has a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}, radius = {fitted.radius:.6g}: "
+                   f"span {span_:.6g}, rise {rise_:.6g} (asked: span {given['span']:g}, rise {given['rise']:g})")
+        return TargetFit(fitted, span_, rise_, p_xz_, False, message)
+    got = {"span": span_, "rise": rise_, "p_xz": p_xz_}
+    if not all(math.isclose(got[k], v, rel_tol=rtol) for k, v in given.items()):
+        raise InternalError(f"the target fit measures {got}, asked {given}")
+    return TargetFit(fitted, span_, rise_, p_xz_, True)
+
+
+def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -> tuple[float, str]:
+    """a with rise/span = ratio (the root nearest ``design.a``), or the nearest a and why none is."""
+    from scipy.optimize import brentq
+
+    def value(a: float) -> float:
+        """rise/span at a, NaN where the family cannot build the vault (regression, no arch)."""
+        try:
+            s, r, _ = _measure(shape(a))
+        except (RegressionError, ConvergenceError, InputError):
+            return math.nan
+        return r / s
+
+    grid = np.linspace(0.0, _A_TOP, SCAN_POINTS)
+    values = np.array([value(a) for a in grid])
+    valid = np.isfinite(values)
+    if not valid.any():
+        raise InputError(f"no vault of the family with width = {design.width:g} and {design.tubes} tubes stands for any a "
+                         f"in [0, {A_MAX:.4f}): every one passes regression; use fewer tubes or a smaller width")
+    diff = values - ratio
+    brackets = [i for i in range(len(grid) - 1) if valid[i] and valid[i + 1] and diff[i] * diff[i + 1] <= 0]
+    if brackets:
+        roots = [brentq(lambda a: value(a) - ratio, grid[i], grid[i + 1], xtol=1e-13, rtol=4 * np.finfo(float).eps) for i in brackets]
+        return float(min(roots, key=lambda a: abs(a - design.a))), ""
+    # Out of reach: the nearest valid grid point, refined between its neighbours (to the edge of the
+    # valid set where a neighbour is past it, to the extremum of rise/span where both stand).
+    from scipy.optimize import minimize_scalar
+
+    k = int(np.argmin(np.where(valid, np.abs(diff), np.inf)))
+    candidates = [float(grid[k])]
+    for j in (k - 1, k + 1):
+        if 0 <= j < len(grid) and not valid[j]:
+            lo, hi = float(grid[k]), float(grid[j])
+            for _ in range(40):  # bisect the edge of the valid set to 1e-12 in a
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if np.isfinite(value(mid)) else (lo, mid)
+            candidates.append(lo)
+    inner = [grid[j] for j in (k - 1, k + 1) if 0 <= j < len(grid) and valid[j]]
+    if len(inner) == 2:
+        found = minimize_scalar(lambda a: abs(value(a) - ratio), bounds=(inner[0], inner[1]), method="bounded", options={"xatol": 1e-10})
+        candidates.append(float(found.x))
+    best = min(candidates, key=lambda a: abs(value(a) - ratio))
+    reach = np.append(values[valid], value(best))
+    return best, (f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and {design.tubes} tubes: vaults of the family "
+                  f"reach rise/span from {reach.min():.6g} to {reach.max():.6g}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a between about "
+                  f"{grid[valid].min():.3g} and {grid[valid].max():.3g})")

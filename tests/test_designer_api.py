@@ -1,0 +1,208 @@
+"""The designer's JSON API on a real server bound to 127.0.0.1: answers, files, refusals, load."""
+
+from __future__ import annotations
+
+import base64
+import io
+import json
+import threading
+import tomllib
+import urllib.parse
+import zipfile
+
+import numpy as np
+import pytest
+
+from _cli import run
+from _designer import get, get_json, need
+
+pytest.importorskip("fastapi")
+from curvefold.analysis.foldcheck import check_fold  # noqa: E402
+from curvefold.app.design import KINDS, default_design, parse_design  # noqa: E402
+from curvefold.app.designer import api, server  # noqa: E402
+from curvefold.geometry.structure import drawable  # noqa: E402
+from curvefold.vault import Vault, VaultDesign  # noqa: E402
+
+#: A light vault: the answers are the same functions at any sample count.
+LIGHT = "samples=201&tubes=4"
+
+
+@pytest.fixture(scope="module")
+def url():
+    with server.serving() as base:
+        yield base
+
+
+def test_vault_json_is_what_the_command_line_prints(url, tmp_path):
+    status, answer = get_json(f"{url}api/vault?{LIGHT}&a=0.35")
+    assert status == 200
+    printed = run("vault", "--samples", "201", "--tubes", "4", "--a", "0.35", "--json")
+    assert printed.returncode == 0
+    expected = json.loads(printed.stdout)
+    assert answer.keys() == expected.keys()
+    for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise", "certificate", "design"):
+        assert answer[key] == expected[key], key  # the same computation: equal to the last bit
+
+
+@pytest.mark.parametrize("kind", ["vault", "tube", "block"])
+def test_fold_files_pass_the_check(url, tmp_path, kind):
+    status, kind_header, body = get(f"{url}api/{kind}.fold?samples=101" + ("&tubes=3" if kind == "vault" else ""))
+    assert status == 200 and kind_header == "application/json"
+    path = tmp_path / f"{kind}.fold"
+    path.write_bytes(body)
+    assert check_fold(path).ok
+    assert run("check", str(path)).returncode == 0
+
+
+def test_every_kind_answers_and_files_come_from_the_registry(url):
+    for kind in KINDS:
+        status, answer = get_json(f"{url}api/{kind}?samples=101" + ("&tubes=2" if kind == "vault" else ""))
+        assert status == 200 and answer["kind"] == kind and all(c["passed"] for c in answer["certificate"])
+    status, media, body = get(f"{url}api/tube.svg?samples=51")  # two pages: zipped
+    assert status == 200 and media == "application/zip"
+    assert zipfile.ZipFile(io.BytesIO(body)).namelist() == ["tube-pattern-p1.svg", "tube-pattern-p2.svg"]
+    status, answer = get_json(f"{url}api/crease.glb")
+    assert status == 422 and answer["error"].startswith('download: "glb" is not written for a crease design')
+    status, schema = get_json(f"{url}api/schema")
+    assert [f["name"] for f in schema["formats"]] == list(api.FORMATS)
+    assert {s["name"] for s in schema["sections"]["vault"]} == {"a", "p_xy", "width", "tubes", "fold_angle", "radius", "layers", "direction"}
+
+
+def test_saved_toml_rebuilds_the_design(url, tmp_path):
+    status, _, body = get(f"{url}api/vault.toml?{LIGHT}&span=3&rise=1.7&p_xz=1.2")
+    assert status == 200
+    saved = tmp_path / "saved.toml"
+    saved.write_bytes(body)
+    shown = json.loads(get(f"{url}api/vault/preview?{LIGHT}&span=3&rise=1.7&p_xz=1.2")[2])
+    assert tomllib.loads(body.decode()) == shown["design"]
+    printed = json.loads(run("vault", str(saved), "--json").stdout)
+    assert {k: printed[k] for k in shown["numbers"] if k in printed} == {k: v for k, v in shown["numbers"].items() if k in printed}
+    np.testing.assert_allclose([printed["span"], printed["rise"], printed["p_xz"]], [3.0, 1.7, 1.2], rtol=1e-9)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_design_survives_its_query(kind):
+    design = default_design(kind)
+    assert api.request_design(kind, api.design_query(design)) == design
+    assert parse_design(api.design_toml(design)) == design
+
+
+def test_preview_holds_the_motion_the_vault_makes(url):
+    status, _, body = get(f"{url}api/vault/preview?{LIGHT}")
+    assert status == 200
+    preview = json.loads(body)
+    motion = preview["motion"]
+    positions = np.frombuffer(base64.b64decode(motion["positions"]), np.float32).reshape(motion["states"], motion["vertices"], 3)
+    angles = np.array(motion["angles"])
+    assert angles[0] == 0 and motion["design_angle"] in angles and np.all(np.diff(angles) > 0)
+    assert motion["end"] == "first contact" and angles[-1] == api.MAX_FOLD
+    # the state at the design angle is the vault standing on the ground, to float32 rounding
+    vault = Vault.from_design(VaultDesign(tubes=4, samples=api.PREVIEW_SAMPLES))
+    curves, _, _ = drawable(vault.structure, vault.vertices, segments=api.PREVIEW_SEGMENTS, max_cells=api.PREVIEW_CELLS)
+    k = int(np.flatnonzero(angles == motion["design_angle"])[0])
+    size = float(np.abs(curves).max())
+    assert np.abs(positions[k] - curves.reshape(-1, 3)).max() <= 4 * np.finfo(np.float32).eps * size
+    assert motion["lift_off"][k] <= 1e-13 * size and motion["lift_off"][0] > 0.1 * size
+    triangles = np.frombuffer(base64.b64decode(motion["triangles"]), np.uint32)
+    assert triangles.max() < motion["vertices"] and set(motion["lines"]) == {"fold", "seam", "rim"}
+
+
+def test_the_fold_slider_stops_at_the_first_contact(url):
+    status, answer = get_json(f"{url}api/vault/contact?{LIGHT}")
+    assert status == 200 and answer == {"first_contact": Vault.from_design(VaultDesign(tubes=4, samples=201)).first_contact()}
+    assert 100 < answer["first_contact"] < 179
+    status, answer = get_json(f"{url}api/tube/contact")
+    assert status == 422 and answer["error"] == "the first contact is searched for vaults, not for a tube"
+
+
+#: Requests a hostile or careless client might send: each gets one line and 422 (404 for a path), never 500.
+HOSTILE = [
+    ("api/vault/preview?a=5", "a must be in [0, 3), got 5.0", "a"),
+    ("api/vault/preview?a=nan", "a must be a finite number, got nan", "a"),
+    ("api/vault/preview?a=1e999", "a must be a finite number, got inf", "a"),
+    ("api/vault/preview?a=" + "9" * 5000, "a is longer than 2000 characters", "a"),
+    ("api/vault/preview?a=0.3&a=0.4", "a is given twice", "a"),
+    ("api/vault/preview?a=1.3", "no standing arch for a = 1.3", "a"),
+    ("api/vault/preview?width=0.5&tubes=3", "tubes must be ≤ 1", "tubes"),
+    ("api/vault/preview?width=9", "width = 9 is past regression for the base tube", "width"),
+    ("api/vault/preview?tubes=-1", 'tubes must be an integer in [1, 1000] or "max", got -1', "tubes"),
+    ("api/vault/preview?samples=200000", "samples × crease lines = 200000 × 96 exceeds", "samples"),
+    ("api/vault/preview?span=3&radius=2", "give span or radius, not both", "span"),
+    ("api/vault/preview?direction=%00", 'direction must be one of "+", "-"', "direction"),
+    ("api/vault/preview?evil=1", "unknown parameter 'evil' for a vault", None),
+    ("api/tube/preview?kappa=__import__('os')", "[curve] kappa: function '__import__' is not allowed", "kappa"),
+    ("api/tube/preview?kappa=sin(s)", "[curve] kappa must be finite and > 0 per model unit; at s = 0 it is 0", "kappa"),
+    ("api/tube/preview?kappa=" + "(" * 500 + "1" + ")" * 500, "[curve] kappa", "kappa"),
+    ("api/block/preview?cells=[[0,0],[0,0]]", "cells[1] repeats cell [0, 0]", "cells"),
+    ("api/block/preview?cells={}", "cells must be an array", "cells"),
+    ("api/block/preview?cells=" + "[" * 1900, "cells must be an array", "cells"),
+    ("api/crease/preview?alpha=45&beta_right=90", "give beta_right or alpha, not both", "beta_right"),
+    ("api/nope", "unknown kind 'nope'", None),
+    ("api/vault.exe", "unknown file 'exe'", None),
+    ("api/vault/domain.svg?page=A9", 'page must be one of', "page"),
+]
+
+
+@pytest.mark.parametrize("path, message, key", HOSTILE)
+def test_refusals_are_one_line(url, path, message, key):
+    status, answer = get_json(url + path)
+    assert status == 422, answer
+    assert answer["error"].startswith(message) or message in answer["error"], answer["error"]
+    assert "\n" not in answer["error"] and "Traceback" not in answer["error"]
+    assert answer["key"] == key
+
+
+def test_unknown_paths_are_404_and_bugs_are_one_line_500(url, monkeypatch):
+    assert get(url + "api/vault/nothing")[0] == 404
+    assert get(url + "../../etc/passwd")[0] == 404
+    assert get(url + "static/../server.py")[0] == 404
+    monkeypatch.setattr(api, "preview", lambda design: 1 / 0)
+    status, answer = get_json(url + "api/vault/preview")
+    assert status == 500 and answer["error"].startswith("internal error: ZeroDivisionError: division by zero. This is a bug")
+    assert "\n" not in answer["error"] and "Traceback" not in answer["error"]
+
+
+def test_concurrent_clients_see_their_own_designs_and_the_caches_stay_bounded(url):
+    """A small load: 4 clients × 10 requests with designs of their own; every answer is its own request's design."""
+    errors: list[str] = []
+
+    def client(c: int) -> None:
+        for r in range(10):
+            a = round(0.05 + 0.01 * c + 0.001 * r, 6)
+            status, _, body = get(f"{url}api/vault/preview?samples=101&tubes=3&a={a}")
+            if status != 200 or json.loads(body)["numbers"]["a"] != a:
+                errors.append(f"client {c} request {r}: {status}")
+
+    threads = [threading.Thread(target=client, args=(c,)) for c in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=120)
+    assert not errors and not any(t.is_alive() for t in threads)
+    for name, cache in api.caches().items():
+        info = cache.cache_info()
+        assert info.currsize <= info.maxsize, name
+
+
+def test_the_command_says_what_is_missing(monkeypatch, tmp_path):
+    monkeypatch.setattr(server, "VENDOR", tmp_path)
+    result = run("designer", "--no-browser")
+    assert result.returncode == 2
+    assert result.stderr == ("curvefold: error: the designer's JavaScript is not built (three.module.js is missing from the package): "
+                             "run 'bash scripts/build-designer.sh' (it needs npm) in a curvefold checkout\n")
+    design = tmp_path / "csv.toml"
+    (tmp_path / "k.csv").write_text("kappa\n1\n1.2\n", encoding="utf-8")
+    design.write_text('kind = "tube"\n[curve]\nkappa = {csv = "k.csv", column = "kappa"}\n', encoding="utf-8")
+    monkeypatch.undo()
+    need(server.missing_bundle() is None, "the designer's JavaScript is not built (bash scripts/build-designer.sh)")
+    result = run("designer", str(design), "--no-browser")
+    assert result.returncode == 2 and "[curve] kappa is a CSV column; the designer takes numbers and expressions in s" in result.stderr
+
+
+def test_a_taken_port_is_one_line():
+    with server.serving() as base:
+        port = urllib.parse.urlsplit(base).port
+        result = run("designer", "--no-browser", "--port", str(port))
+    assert result.returncode == 2 and result.stderr.startswith(f"curvefold: error: cannot serve on 127.0.0.1:{port}: ")
+    result = run("designer", "--no-browser", "--port", "70000")
+    assert (result.returncode, result.stderr) == (2, "curvefold: error: --port must be in [0, 65535], got 70000\n")
