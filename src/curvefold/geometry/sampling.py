@@ -1,0 +1,245 @@
+"""How finely the files sample a structure: as accurate as asked, without sliver triangles.
+
+The geometry is computed at every sample of curve 1 (the design's ``samples``: dense, so
+that the certificate's finite differences are accurate to ~(κh)⁴). Meshes written to files
+need far fewer. Near the curve of regression a lattice curve moves slowly in t, so at the
+dense samples its steps are tiny beside the rulings: triangles with corners of a fraction
+of a degree, which make simulators blow up and planar-graph tools mistake faces. Each
+tube's mesh therefore keeps its own evenly spread subset of the samples
+(:func:`choose_sampling`):
+
+* accurate: every computed sample of the tube's four creases lies within ``tolerance`` ×
+  the structure's size of the polyline through the kept samples, folded (at the design
+  angle) and flat (the crease pattern);
+* well shaped: every triangle corner of the tube's mesh, folded and flat, is at least
+  ``min_angle``.
+
+The fewest samples that are accurate are kept, unless their triangles are too thin: then
+the most samples whose triangles keep ``min_angle`` (the shape wins; the deviation is
+reported as measured). Counts are even, so that a vault's apex (its middle sample) is
+kept, and both ends always are.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernel.arrays import FrozenArrays
+from ..kernel.errors import InputError
+from ..kernel.lie import cross
+from .structure import Structure
+from .topology import Topology
+
+__all__ = ["Sampling", "choose_sampling", "corner_angles", "polyline_deviation", "DEFAULT_TOLERANCE", "DEFAULT_MIN_ANGLE"]
+
+#: Largest distance of the exact creases from the written polylines, relative to the structure's size.
+DEFAULT_TOLERANCE = 1e-4
+#: Smallest triangle corner, degrees.
+DEFAULT_MIN_ANGLE = 5.0
+
+
+@dataclass(frozen=True, eq=False)
+class Sampling(FrozenArrays):
+    """The samples each tube's mesh keeps, with what they were measured to give.
+
+    Attributes
+    ----------
+    keep : tuple of (m_k,) ndarray of int
+        Per tube, the kept sample indices (ascending; the first and last sample included).
+        Pass it to :meth:`Structure.topology` or to the writers.
+    samples : int
+        Samples the geometry was computed at.
+    tolerance : float
+        The accuracy asked, relative to ``size``.
+    min_angle_bound : float
+        The smallest triangle corner asked, degrees.
+    deviation : float
+        Largest distance of a computed crease sample from the written polylines, model units.
+    min_angle : float
+        Smallest triangle corner of the meshes, folded and flat, degrees.
+    size : float
+        Largest extent of the structure at the design angle, model units.
+    """
+
+    keep: tuple[np.ndarray, ...]
+    samples: int
+    tolerance: float
+    min_angle_bound: float
+    deviation: float
+    min_angle: float
+    size: float
+
+    @property
+    def vertices_per_crease(self) -> tuple[int, ...]:
+        """Vertices along each crease of every tube."""
+        return tuple(len(k) for k in self.keep)
+
+    def summary(self) -> dict:
+        """The resolution as a JSON-ready dict (for reports and file metadata)."""
+        counts = self.vertices_per_crease
+        return {
+            "samples_computed": int(self.samples),
+            "mesh_samples_per_crease": f"{min(counts)}–{max(counts)}" if min(counts) != max(counts) else str(counts[0]),
+            "mesh_deviation": float(self.deviation),
+            "mesh_deviation_relative": float(self.deviation / self.size),
+            "mesh_tolerance_relative": float(self.tolerance),
+            "mesh_smallest_angle_deg": float(self.min_angle),
+            "mesh_angle_bound_deg": float(self.min_angle_bound),
+        }
+
+
+def polyline_deviation(curves: np.ndarray, keep: np.ndarray) -> float:
+    """Largest distance of the samples of curves from the polylines through the kept samples.
+
+    Parameters
+    ----------
+    curves : (..., n, 3) ndarray
+    keep : (m,) ndarray of int
+        Ascending sample indices, the first 0 and the last n − 1.
+
+    Examples
+    --------
+    A quarter circle of radius 1 through 3 of its points deviates by 1 − cos(π/8):
+
+    >>> t = np.linspace(0, np.pi / 2, 9)
+    >>> arc = np.stack([np.cos(t), np.sin(t), 0 * t], axis=-1)
+    >>> round(polyline_deviation(arc, np.array([0, 4, 8])), 12) == round(1 - np.cos(np.pi / 8), 12)
+    True
+    """
+    x = np.asarray(curves, float)
+    n = x.shape[-2]
+    j = np.clip(np.searchsorted(keep, np.arange(n), side="right") - 1, 0, len(keep) - 2)
+    a, b = x[..., keep[j], :], x[..., keep[j + 1], :]
+    d = b - a
+    t = np.clip(np.sum((x - a) * d, axis=-1) / np.maximum(np.sum(d * d, axis=-1), 1e-300), 0.0, 1.0)
+    return float(np.linalg.norm(x - a - t[..., None] * d, axis=-1).max())
+
+
+def corner_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.ndarray:
+    """The smallest corner of every triangle, degrees, shape (..., F) for vertices (..., V, 3).
+
+    Examples
+    --------
+    >>> corner_angles(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float), np.array([[0, 1, 2]])).round(6).tolist()
+    [45.0]
+    """
+    p = np.asarray(vertices_coords, float)[..., np.asarray(faces_vertices), :]  # (..., F, 3, 3)
+    u = np.roll(p, -1, axis=-2) - p
+    v = np.roll(p, 1, axis=-2) - p
+    angle = np.arctan2(np.linalg.norm(cross(u, v), axis=-1), np.sum(u * v, axis=-1))
+    return np.degrees(angle.min(axis=-1))
+
+
+#: One step of a tube's mesh: its triangles on the four corners at two samples (0, 1).
+_STEP = Topology.tubes(np.arange(4)[None], 2)
+
+
+def _step_angles(curves: np.ndarray, i: int, ends: np.ndarray) -> np.ndarray:
+    """Smallest triangle corner of the tube steps from sample i to each of ``ends``, over the states, (J,)."""
+    lo, hi = np.minimum(i, ends), np.maximum(i, ends)
+    samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])  # (J, 8)
+    coords = curves[:, _STEP.vertex_curve[None, :], samples]  # (states, J, 8, 3)
+    return corner_angles(coords, _STEP.faces_vertices).min(axis=(0, 2))
+
+
+def _longest(ok, room: int) -> int:
+    """Largest k in [1, room] with ok(k), for ok true at 1 and monotone (True … False)."""
+    lo = 1
+    while lo < room and ok(min(2 * lo, room)):
+        lo = min(2 * lo, room)
+    hi = min(2 * lo, room) + 1  # ok(lo); not ok at hi (or past the end)
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return lo
+
+
+def _walk(curves: np.ndarray, start: int, stop: int, allowed: float, min_angle: float) -> list[int]:
+    """Kept samples from ``start`` to ``stop`` (either way), each step as long as it stays accurate.
+
+    A step too thin for ``min_angle`` is changed to the nearest step that is not: shorter
+    if one is, else longer (whose deviation is then over ``allowed``), else the best
+    shaped. The last one or two steps are chosen together, so that no short step is left
+    at the end.
+    """
+    d = 1 if stop >= start else -1
+
+    def deviation(a: int, b: int) -> float:  # of the samples between a and b from their chord
+        lo, hi = sorted((a, b))
+        x = curves[..., lo : hi + 1, :]
+        p, q = x[..., :1, :], x[..., -1:, :]
+        t = np.clip(np.sum((x - p) * (q - p), axis=-1, keepdims=True) / np.maximum(np.sum((q - p) ** 2, axis=-1, keepdims=True), 1e-300), 0, 1)
+        return float(np.sqrt(np.max(np.sum((x - p - t * (q - p)) ** 2, axis=-1))))
+
+    picks = [start]
+    while picks[-1] != stop:
+        i = picks[-1]
+        room = abs(stop - i)
+        k = _longest(lambda k: deviation(i, i + d * k) <= allowed, room)
+        lengths = np.arange(1, room + 1)
+        if _step_angles(curves, i, np.array([i + d * k]))[0] < min_angle:
+            angles = _step_angles(curves, i, i + d * lengths)
+            ok = angles >= min_angle
+            shorter, longer = np.flatnonzero(ok[:k]), np.flatnonzero(ok[k:]) + k
+            k = int(lengths[shorter[-1] if shorter.size else longer[0] if longer.size else np.argmax(angles)])
+        if room - k >= k:
+            picks.append(i + d * k)
+            continue
+        # At most two steps are left: one step, or two split at i + d·m, whichever is best.
+        ends = i + d * lengths
+        first, second = _step_angles(curves, i, ends), _step_angles(curves, stop, ends)
+        shape = np.minimum(first, np.where(lengths < room, second, np.inf))
+        fine = shape >= min_angle
+        accurate = np.array([deviation(i, e) <= allowed and deviation(e, stop) <= allowed for e in ends])
+        score = np.stack([fine & accurate, fine, (lengths == room) & fine & accurate, shape], axis=-1)
+        m = int(lengths[np.lexsort(score.T[::-1])[-1]])
+        picks += [i + d * m] + ([stop] if m < room else [])
+    return picks
+
+
+def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANCE, min_angle: float = DEFAULT_MIN_ANGLE,
+                    fold_angle: float | None = None) -> Sampling:
+    """The samples each tube's mesh keeps (see the module notes).
+
+    Parameters
+    ----------
+    structure : Structure
+    tolerance : float, keyword-only
+        Largest distance of the exact creases from the written polylines, relative to the
+        structure's largest extent, in (0, 1).
+    min_angle : float, keyword-only
+        Smallest triangle corner wanted, degrees, in [0, 30].
+    fold_angle : float, optional, keyword-only
+        The folded state measured besides the flat one; default the design angle.
+
+    Returns
+    -------
+    Sampling
+
+    Examples
+    --------
+    >>> from curvefold.vault import Vault
+    >>> s = choose_sampling(Vault.from_design(samples=401).structure)
+    >>> s.deviation <= 1e-4 * s.size, s.min_angle >= 5.0
+    (True, True)
+    """
+    if not (isinstance(tolerance, (int, float)) and 0 < tolerance < 1):
+        raise InputError(f"tolerance must be a number in (0, 1), got {tolerance!r}")
+    if not (isinstance(min_angle, (int, float)) and 0 <= min_angle <= 30):
+        raise InputError(f"min_angle must be in [0, 30] degrees, got {min_angle!r}")
+    n = len(structure.lattice.s)
+    states = np.stack([structure.state(fold_angle).vertices, structure.state(0.0).vertices])  # (2, M, n, 3)
+    size = float(np.ptp(states[0].reshape(-1, 3), axis=0).max())
+    allowed = tolerance * size
+    middle = (n - 1) // 2
+    keep = []
+    for rows in structure.cell_curves:
+        curves = states[:, rows]  # (2, 4, n, 3)
+        first, second = _walk(curves, 0, middle, allowed, min_angle), _walk(curves, n - 1, middle, allowed, min_angle)
+        keep.append(np.array(first + second[-2::-1], dtype=np.int64))
+    deviation = max(polyline_deviation(states[:, rows], picks) for rows, picks in zip(structure.cell_curves, keep))
+    smallest = min(float(_step_angles(states[:, rows], a, np.array([b]))[0])
+                   for rows, picks in zip(structure.cell_curves, keep) for a, b in zip(picks[:-1], picks[1:]))
+    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), deviation, smallest, size)
