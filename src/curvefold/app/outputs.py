@@ -141,7 +141,7 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
-    report = dict(structure_payload(built) if payload is None else payload, timings={})
+    report = dict(structure_payload(built) if payload is None else payload, timings={}) | products.resolution(built)
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:

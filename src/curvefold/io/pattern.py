@@ -458,6 +458,7 @@ def layout_pattern(
     scale: float | None = None,
     glue_tabs: bool = True,
     name: str = "",
+    keep: Sequence[np.ndarray] | None = None,
 ) -> Layout:
     """The sheets of a structure placed on pages with glue tabs, layers and labels.
 
@@ -479,13 +480,16 @@ def layout_pattern(
     glue_tabs : bool, keyword-only
     name : str, keyword-only
         Label prefix.
+    keep : sequence of (m_k,) array_like of int, optional, keyword-only
+        The samples each tube's sheets keep (:func:`curvefold.geometry.sampling.choose_sampling`);
+        default every sample.
 
     Returns
     -------
     curvefold.io.layout.Layout
     """
     _check_structure(structure)
-    parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name)
+    parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name, keep=keep)
     if scale is not None:
         return layout_sheets(parts, page=page, units=units, scale=scale, glue_tabs=glue_tabs)
     guess = _fit_scale(parts, page, units, 10.0, 6.0 if glue_tabs else 0.0)
@@ -514,6 +518,7 @@ def write_pattern(
     fold_angle: float | None = None,
     degrees: bool = True,
     name: str = "",
+    keep: Sequence[np.ndarray] | None = None,
 ) -> tuple[Path, ...]:
     """Write the crease pattern of a structure, laid out on pages, as SVG, DXF and/or PDF.
 
@@ -524,7 +529,7 @@ def write_pattern(
         and ``<stem>.pdf``.
     structure : Structure
     formats : sequence of {"svg", "dxf", "pdf"}, keyword-only
-    page, scale, units, glue_tabs, fold_angle, degrees, name : keyword-only
+    page, scale, units, glue_tabs, fold_angle, degrees, name, keep : keyword-only
         As in :func:`layout_pattern`.
     rulings : bool, keyword-only
         Also draw the rulings (thin green, for scoring).
@@ -536,7 +541,7 @@ def write_pattern(
     """
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,
-                            glue_tabs=glue_tabs, name=name)
+                            glue_tabs=glue_tabs, name=name, keep=keep)
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
     for fmt in formats:
