@@ -30,14 +30,17 @@ from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
 from ..kernel.lie import cross
 from .structure import Structure
+from .mesh import edges_faces
 from .topology import Topology
 
-__all__ = ["Sampling", "choose_sampling", "corner_angles", "polyline_deviation", "DEFAULT_TOLERANCE", "DEFAULT_MIN_ANGLE"]
+__all__ = ["Sampling", "choose_sampling", "corner_angles", "polyline_deviation", "DEFAULT_TOLERANCE", "DEFAULT_MIN_ANGLE", "DEFAULT_MAX_BEND"]
 
 #: Largest distance of the exact creases from the written polylines, relative to the structure's size.
 DEFAULT_TOLERANCE = 1e-4
 #: Smallest triangle corner, degrees.
 DEFAULT_MIN_ANGLE = 5.0
+#: Largest fold across the diagonal of a ruling quad, degrees (``curvefold check`` accepts 0.5°).
+DEFAULT_MAX_BEND = 0.5
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,11 +55,17 @@ class Sampling(FrozenArrays):
     samples : int
         Samples the geometry was computed at.
     tolerance : float
-        The accuracy asked, relative to ``size``.
+        The accuracy asked (relative, see :func:`choose_sampling`).
     min_angle_bound : float
         The smallest triangle corner asked, degrees.
+    max_bend : float
+        The largest fold across a ruling quad's diagonal asked, degrees.
     deviation : float
         Largest distance of a computed crease sample from the written polylines, model units.
+    stretch : float
+        Largest relative change of an edge's length between the folded and the flat mesh.
+    bend : float
+        Largest fold across a ruling quad's diagonal, degrees.
     min_angle : float
         Smallest triangle corner of the meshes, folded and flat, degrees.
     size : float
@@ -67,7 +76,10 @@ class Sampling(FrozenArrays):
     samples: int
     tolerance: float
     min_angle_bound: float
+    max_bend: float
     deviation: float
+    stretch: float
+    bend: float
     min_angle: float
     size: float
 
@@ -82,9 +94,12 @@ class Sampling(FrozenArrays):
         return {
             "samples_computed": int(self.samples),
             "mesh_samples_per_crease": f"{min(counts)}–{max(counts)}" if min(counts) != max(counts) else str(counts[0]),
+            "mesh_tolerance": float(self.tolerance),
             "mesh_deviation": float(self.deviation),
             "mesh_deviation_relative": float(self.deviation / self.size),
-            "mesh_tolerance_relative": float(self.tolerance),
+            "mesh_stretch": float(self.stretch),
+            "mesh_bend_deg": float(self.bend),
+            "mesh_bend_bound_deg": float(self.max_bend),
             "mesh_smallest_angle_deg": float(self.min_angle),
             "mesh_angle_bound_deg": float(self.min_angle_bound),
         }
@@ -134,14 +149,35 @@ def corner_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np
 
 #: One step of a tube's mesh: its triangles on the four corners at two samples (0, 1).
 _STEP = Topology.tubes(np.arange(4)[None], 2)
+#: The two triangles on each of its diagonals.
+_DIAGONAL_FACES = edges_faces(_STEP.faces_vertices, _STEP.edges_vertices[_STEP.edges_kind == "diagonal"])
 
 
-def _step_angles(curves: np.ndarray, i: int, ends: np.ndarray) -> np.ndarray:
-    """Smallest triangle corner of the tube steps from sample i to each of ``ends``, over the states, (J,)."""
+def _step_shape(curves: np.ndarray, i: int, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tube's step from sample i to each of ``ends`` (J,), measured over the states.
+
+    Returns its smallest triangle corner (degrees), the largest relative change of an edge
+    length between the two states, and the largest fold across a diagonal in a folded
+    state (degrees), each (J,).
+    """
     lo, hi = np.minimum(i, ends), np.maximum(i, ends)
     samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])  # (J, 8)
-    coords = curves[:, _STEP.vertex_curve[None, :], samples]  # (states, J, 8, 3)
-    return corner_angles(coords, _STEP.faces_vertices).min(axis=(0, 2))
+    x = curves[:, _STEP.vertex_curve[None, :], samples]  # (states, J, 8, 3)
+    angle = corner_angles(x, _STEP.faces_vertices).min(axis=(0, 2))
+    edges = x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :]
+    length = np.linalg.norm(edges, axis=-1)  # (states, J, E)
+    stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
+    normal = _triangle_areas(x, _STEP.faces_vertices)
+    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    cos = np.sum(normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1)
+    bend = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).max(axis=(0, 2))
+    return angle, stretch, bend
+
+
+def _triangle_areas(x: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Twice the vector areas of triangles ``faces`` (F, 3) on vertices (..., V, 3), shape (..., F, 3)."""
+    p = x[..., faces, :]
+    return cross(p[..., 1, :] - p[..., 0, :], p[..., 2, :] - p[..., 0, :])
 
 
 def _longest(ok, room: int) -> int:
@@ -156,61 +192,76 @@ def _longest(ok, room: int) -> int:
     return lo
 
 
-def _walk(curves: np.ndarray, start: int, stop: int, allowed: float, min_angle: float) -> list[int]:
+def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float, float], min_angle: float) -> list[int]:
     """Kept samples from ``start`` to ``stop`` (either way), each step as long as it stays accurate.
 
-    A step too thin for ``min_angle`` is changed to the nearest step that is not: shorter
-    if one is, else longer (whose deviation is then over ``allowed``), else the best
-    shaped. The last one or two steps are chosen together, so that no short step is left
-    at the end.
+    A step is accurate when the samples it skips lie within ``limits[0]`` of its chords,
+    no edge of its triangles changes length by more than ``limits[1]`` (relative) between
+    the states and no diagonal folds by more than ``limits[2]`` degrees. The longest
+    accurate step has the best-shaped triangles unless it is long beside the rulings: if
+    its triangles are thinner than ``min_angle``, the longest shorter step that is not is
+    taken instead, if any. The last one or two steps are chosen together, so that no short
+    step is left at the end.
     """
     d = 1 if stop >= start else -1
+    allowed, stretch_limit, bend_limit = limits
 
-    def deviation(a: int, b: int) -> float:  # of the samples between a and b from their chord
-        lo, hi = sorted((a, b))
-        x = curves[..., lo : hi + 1, :]
-        p, q = x[..., :1, :], x[..., -1:, :]
-        t = np.clip(np.sum((x - p) * (q - p), axis=-1, keepdims=True) / np.maximum(np.sum((q - p) ** 2, axis=-1, keepdims=True), 1e-300), 0, 1)
-        return float(np.sqrt(np.max(np.sum((x - p - t * (q - p)) ** 2, axis=-1))))
+    def accurate(a: int, b: np.ndarray) -> np.ndarray:
+        _, stretch, bend = _step_shape(curves, a, b)
+        near = np.array([_chord_deviation(curves, a, e) <= allowed for e in b.tolist()])
+        return near & (stretch <= stretch_limit) & (bend <= bend_limit)
 
     picks = [start]
     while picks[-1] != stop:
         i = picks[-1]
         room = abs(stop - i)
-        k = _longest(lambda k: deviation(i, i + d * k) <= allowed, room)
         lengths = np.arange(1, room + 1)
-        if _step_angles(curves, i, np.array([i + d * k]))[0] < min_angle:
-            angles = _step_angles(curves, i, i + d * lengths)
-            ok = angles >= min_angle
-            shorter, longer = np.flatnonzero(ok[:k]), np.flatnonzero(ok[k:]) + k
-            k = int(lengths[shorter[-1] if shorter.size else longer[0] if longer.size else np.argmax(angles)])
+        k = _longest(lambda k: bool(accurate(i, np.array([i + d * k]))[0]), room)
+        if _step_shape(curves, i, np.array([i + d * k]))[0][0] < min_angle:  # too long for the rulings?
+            shorter = np.flatnonzero(_step_shape(curves, i, i + d * lengths[:k])[0] >= min_angle)
+            k = int(lengths[shorter[-1]]) if shorter.size else k
         if room - k >= k:
             picks.append(i + d * k)
             continue
         # At most two steps are left: one step, or two split at i + d·m, whichever is best.
         ends = i + d * lengths
-        first, second = _step_angles(curves, i, ends), _step_angles(curves, stop, ends)
-        shape = np.minimum(first, np.where(lengths < room, second, np.inf))
-        fine = shape >= min_angle
-        accurate = np.array([deviation(i, e) <= allowed and deviation(e, stop) <= allowed for e in ends])
-        score = np.stack([fine & accurate, fine, (lengths == room) & fine & accurate, shape], axis=-1)
+        last = lengths == room
+        second, second_ok = np.full(room, np.inf), np.ones(room, bool)
+        second[:-1], second_ok[:-1] = _step_shape(curves, stop, ends[:-1])[0], accurate(stop, ends[:-1])
+        shape = np.minimum(_step_shape(curves, i, ends)[0], second)
+        both = accurate(i, ends) & second_ok
+        good = (shape >= min_angle) & both
+        score = np.stack([good, both, last & good, shape], axis=-1)
         m = int(lengths[np.lexsort(score.T[::-1])[-1]])
         picks += [i + d * m] + ([stop] if m < room else [])
     return picks
 
 
+def _chord_deviation(curves: np.ndarray, a: int, b: int) -> float:
+    """Largest distance of the samples between a and b of curves (..., n, 3) from their chord."""
+    lo, hi = sorted((a, b))
+    x = curves[..., lo : hi + 1, :]
+    p, q = x[..., :1, :], x[..., -1:, :]
+    t = np.clip(np.sum((x - p) * (q - p), axis=-1, keepdims=True) / np.maximum(np.sum((q - p) ** 2, axis=-1, keepdims=True), 1e-300), 0, 1)
+    return float(np.sqrt(np.max(np.sum((x - p - t * (q - p)) ** 2, axis=-1))))
+
+
 def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANCE, min_angle: float = DEFAULT_MIN_ANGLE,
-                    fold_angle: float | None = None) -> Sampling:
+                    max_bend: float = DEFAULT_MAX_BEND, fold_angle: float | None = None) -> Sampling:
     """The samples each tube's mesh keeps (see the module notes).
 
     Parameters
     ----------
     structure : Structure
     tolerance : float, keyword-only
-        Largest distance of the exact creases from the written polylines, relative to the
-        structure's largest extent, in (0, 1).
+        In (0, 1): the largest distance of the exact creases from the written polylines,
+        relative to the structure's largest extent, and the largest relative change of an
+        edge's length between the folded and the flat mesh.
     min_angle : float, keyword-only
         Smallest triangle corner wanted, degrees, in [0, 30].
+    max_bend : float, keyword-only
+        Largest fold across the diagonal of a ruling quad (whose triangles are then
+        coplanar to this angle), degrees, > 0.
     fold_angle : float, optional, keyword-only
         The folded state measured besides the flat one; default the design angle.
 
@@ -222,24 +273,29 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
     --------
     >>> from curvefold.vault import Vault
     >>> s = choose_sampling(Vault.from_design(samples=401).structure)
-    >>> s.deviation <= 1e-4 * s.size, s.min_angle >= 5.0
-    (True, True)
+    >>> s.deviation <= 1e-4 * s.size, s.stretch <= 1e-4, s.min_angle >= 5.0
+    (True, True, True)
     """
     if not (isinstance(tolerance, (int, float)) and 0 < tolerance < 1):
         raise InputError(f"tolerance must be a number in (0, 1), got {tolerance!r}")
     if not (isinstance(min_angle, (int, float)) and 0 <= min_angle <= 30):
         raise InputError(f"min_angle must be in [0, 30] degrees, got {min_angle!r}")
+    if not (isinstance(max_bend, (int, float)) and 0 < max_bend <= 90):
+        raise InputError(f"max_bend must be in (0, 90] degrees, got {max_bend!r}")
     n = len(structure.lattice.s)
-    states = np.stack([structure.state(fold_angle).vertices, structure.state(0.0).vertices])  # (2, M, n, 3)
+    states = np.stack([structure.state(fold_angle).vertices, structure.state(0.0).vertices])  # (2, M, n, 3): folded, flat
     size = float(np.ptp(states[0].reshape(-1, 3), axis=0).max())
-    allowed = tolerance * size
+    limits = (tolerance * size, float(tolerance), float(max_bend))
     middle = (n - 1) // 2
-    keep = []
+    keep, deviation, stretch, bend, smallest = [], 0.0, 0.0, 0.0, np.inf
     for rows in structure.cell_curves:
         curves = states[:, rows]  # (2, 4, n, 3)
-        first, second = _walk(curves, 0, middle, allowed, min_angle), _walk(curves, n - 1, middle, allowed, min_angle)
-        keep.append(np.array(first + second[-2::-1], dtype=np.int64))
-    deviation = max(polyline_deviation(states[:, rows], picks) for rows, picks in zip(structure.cell_curves, keep))
-    smallest = min(float(_step_angles(states[:, rows], a, np.array([b]))[0])
-                   for rows, picks in zip(structure.cell_curves, keep) for a, b in zip(picks[:-1], picks[1:]))
-    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), deviation, smallest, size)
+        first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
+        picks = np.array(first + second[-2::-1], dtype=np.int64)
+        keep.append(picks)
+        steps = [_step_shape(curves, a, np.array([b])) for a, b in zip(picks[:-1].tolist(), picks[1:].tolist())]
+        smallest = min(smallest, min(float(s[0][0]) for s in steps))
+        stretch = max(stretch, max(float(s[1][0]) for s in steps))
+        bend = max(bend, max(float(s[2][0]) for s in steps))
+        deviation = max(deviation, polyline_deviation(curves, picks))
+    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), float(max_bend), deviation, stretch, bend, smallest, size)
