@@ -37,8 +37,8 @@ from .scene import (
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
-    from PIL import Image
     from matplotlib.figure import Figure
+    from PIL import Image
 
     from ..geometry.crease import Crease
     from ..geometry.lattice import Lattice
