@@ -1,6 +1,6 @@
 """Run every benchmark and print one markdown summary table.
 
-Usage: ``python benchmarks/run_all.py [integrator folding arch atlas]`` (default: all).
+Usage: ``python benchmarks/run_all.py [integrator folding arch atlas main_job]`` (default: all).
 The table at the end can be pasted into the README's performance section.
 """
 
@@ -12,16 +12,16 @@ import platform
 import sys
 import time
 
-import numpy as np
-import scipy
-
 import bench_arch
 import bench_atlas
 import bench_folding
 import bench_integrator
+import bench_main_job
+import numpy as np
+import scipy
 from _bench import summary_table
 
-BENCHMARKS = {"integrator": bench_integrator, "folding": bench_folding, "arch": bench_arch, "atlas": bench_atlas}
+BENCHMARKS = {"integrator": bench_integrator, "folding": bench_folding, "arch": bench_arch, "atlas": bench_atlas, "main_job": bench_main_job}
 
 
 def main(argv: list[str] | None = None) -> None:

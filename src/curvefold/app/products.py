@@ -12,7 +12,11 @@ metadata and in the report (:func:`resolution`).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+import multiprocessing
+import os
+import time
+from collections.abc import Callable, Collection, Iterator
+from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 from pathlib import Path
 
@@ -21,7 +25,7 @@ import numpy as np
 from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
 
-__all__ = ["jobs", "resolution", "MOTION_STEPS"]
+__all__ = ["jobs", "run_jobs", "resolution", "MOTION_STEPS"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
@@ -73,6 +77,31 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         out.append((label, partial(write, built, names)))
     out.append(("pictures", partial(_pictures, built)))
     return out
+
+
+def _timed(job: Job, folder: Path) -> tuple[list, float]:
+    started = time.perf_counter()
+    files = job(folder)
+    return files, time.perf_counter() - started
+
+
+def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None) -> Iterator[tuple[str, list, float]]:
+    """Run the jobs into ``folder``, on up to ``workers`` processes (default: one per CPU, at most 2).
+
+    Yields (label, files written, seconds the job took) in job order as each finishes
+    in turn; a job's exception is raised here. The jobs write distinct files, so they
+    run side by side in forked processes where the platform has them, one after the
+    other otherwise.
+    """
+    workers = min(len(jobs), os.cpu_count() or 1, 2) if workers is None else workers
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        for label, job in jobs:
+            yield (label, *_timed(job, folder))
+        return
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        futures = [(label, pool.submit(_timed, job, folder)) for label, job in jobs]
+        for label, future in futures:
+            yield (label, *future.result())
 
 
 def _writer(names: tuple[str, ...]) -> Callable:

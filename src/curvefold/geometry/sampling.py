@@ -153,8 +153,8 @@ _STEP = Topology.tubes(np.arange(4)[None], 2)
 _DIAGONAL_FACES = edges_faces(_STEP.faces_vertices, _STEP.edges_vertices[_STEP.edges_kind == "diagonal"])
 
 
-def _step_shape(curves: np.ndarray, i: int, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The tube's step from sample i to each of ``ends`` (J,), measured over the states.
+def _step_shape(curves: np.ndarray, i: int | np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tube's steps from samples i to ``ends`` (J,) (broadcast together), measured over the states.
 
     Returns its smallest triangle corner (degrees), the largest relative change of an edge
     length between the two states, and the largest fold across a diagonal in a folded
@@ -180,16 +180,15 @@ def _triangle_areas(x: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return cross(p[..., 1, :] - p[..., 0, :], p[..., 2, :] - p[..., 0, :])
 
 
-def _longest(ok, room: int) -> int:
-    """Largest k in [1, room] with ok(k), for ok true at 1 and monotone (True … False)."""
-    lo = 1
-    while lo < room and ok(min(2 * lo, room)):
-        lo = min(2 * lo, room)
-    hi = min(2 * lo, room) + 1  # ok(lo); not ok at hi (or past the end)
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
-    return lo
+def _chord_deviations(curves: np.ndarray, i: int, d: int, count: int) -> np.ndarray:
+    """For k = 1 … count, the largest distance of the samples between i and i + d·k from their chord, (count,)."""
+    x = curves[..., i : i + d * count + d if i + d * count + d >= 0 else None : d, :]  # samples i, i + d, …, i + d·count
+    p, q = x[..., :1, None, :], x[..., 1:, None, :]  # chord starts, and ends k = 1 … count: (..., 1, 1, 3), (..., count, 1, 3)
+    m = x[..., None, :, :]  # (..., 1, count + 1, 3)
+    t = np.clip(np.sum((m - p) * (q - p), axis=-1) / np.maximum(np.sum((q - p) ** 2, axis=-1), 1e-300), 0.0, 1.0)
+    dist = np.linalg.norm(m - p - t[..., None] * (q - p), axis=-1)  # (..., count, count + 1)
+    dist = np.where(np.arange(count + 1) <= np.arange(1, count + 1)[:, None], dist, 0.0)  # samples within each step
+    return dist.reshape(-1, count, count + 1).max(axis=(0, 2))
 
 
 def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float, float], min_angle: float) -> list[int]:
@@ -206,19 +205,30 @@ def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float,
     d = 1 if stop >= start else -1
     allowed, stretch_limit, bend_limit = limits
 
-    def accurate(a: int, b: np.ndarray) -> np.ndarray:
-        _, stretch, bend = _step_shape(curves, a, b)
-        near = np.array([_chord_deviation(curves, a, e) <= allowed for e in b.tolist()], dtype=bool)
-        return near & (stretch <= stretch_limit) & (bend <= bend_limit)
+    def accurate(a: int, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Whether each step from a to ``ends`` (J,) is accurate, and its smallest triangle corner, each (J,)."""
+        if len(ends) == 0:
+            return np.zeros(0, bool), np.zeros(0)
+        angle, stretch, bend = _step_shape(curves, a, ends)
+        lengths = np.abs(ends - a)
+        near = _chord_deviations(curves, a, 1 if ends[0] > a else -1, int(lengths.max()))[lengths - 1] <= allowed
+        return near & (stretch <= stretch_limit) & (bend <= bend_limit), angle
 
-    picks = [start]
+    picks, window = [start], 8
     while picks[-1] != stop:
         i = picks[-1]
         room = abs(stop - i)
         lengths = np.arange(1, room + 1)
-        k = _longest(lambda k, i=i: bool(accurate(i, np.array([i + d * k]))[0]), room)
-        if _step_shape(curves, i, np.array([i + d * k]))[0][0] < min_angle:  # too long for the rulings?
-            shorter = np.flatnonzero(_step_shape(curves, i, i + d * lengths[:k])[0] >= min_angle)
+        while True:  # the accurate steps are those before the first one that is not
+            span = min(window, room)
+            ok, angle = accurate(i, i + d * lengths[:span])
+            if not ok.all() or span == room:
+                break
+            window *= 2
+        k = max(1, int(np.argmin(ok)) if not ok.all() else span)
+        window = max(8, 2 * k)
+        if angle[k - 1] < min_angle:  # too long for the rulings?
+            shorter = np.flatnonzero(angle[:k] >= min_angle)
             k = int(lengths[shorter[-1]]) if shorter.size else k
         if room - k >= k:
             picks.append(i + d * k)
@@ -227,23 +237,15 @@ def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float,
         ends = i + d * lengths
         last = lengths == room
         second, second_ok = np.full(room, np.inf), np.ones(room, bool)
-        second[:-1], second_ok[:-1] = _step_shape(curves, stop, ends[:-1])[0], accurate(stop, ends[:-1])
-        shape = np.minimum(_step_shape(curves, i, ends)[0], second)
-        both = accurate(i, ends) & second_ok
+        second_ok[:-1], second[:-1] = accurate(stop, ends[:-1])
+        first_ok, first = accurate(i, ends)
+        shape = np.minimum(first, second)
+        both = first_ok & second_ok
         good = (shape >= min_angle) & both
         score = np.stack([good, both, last & good, shape], axis=-1)
         m = int(lengths[np.lexsort(score.T[::-1])[-1]])
         picks += [i + d * m] + ([stop] if m < room else [])
     return picks
-
-
-def _chord_deviation(curves: np.ndarray, a: int, b: int) -> float:
-    """Largest distance of the samples between a and b of curves (..., n, 3) from their chord."""
-    lo, hi = sorted((a, b))
-    x = curves[..., lo : hi + 1, :]
-    p, q = x[..., :1, :], x[..., -1:, :]
-    t = np.clip(np.sum((x - p) * (q - p), axis=-1, keepdims=True) / np.maximum(np.sum((q - p) ** 2, axis=-1, keepdims=True), 1e-300), 0, 1)
-    return float(np.sqrt(np.max(np.sum((x - p - t * (q - p)) ** 2, axis=-1))))
 
 
 def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANCE, min_angle: float = DEFAULT_MIN_ANGLE,
@@ -293,9 +295,7 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
         first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
         picks = np.array(first + second[-2::-1], dtype=np.int64)
         keep.append(picks)
-        steps = [_step_shape(curves, a, np.array([b])) for a, b in zip(picks[:-1].tolist(), picks[1:].tolist())]
-        smallest = min(smallest, min(float(s[0][0]) for s in steps))
-        stretch = max(stretch, max(float(s[1][0]) for s in steps))
-        bend = max(bend, max(float(s[2][0]) for s in steps))
+        angles, stretches, bends = _step_shape(curves, picks[:-1], picks[1:])
+        smallest, stretch, bend = min(smallest, float(angles.min())), max(stretch, float(stretches.max())), max(bend, float(bends.max()))
         deviation = max(deviation, polyline_deviation(curves, picks))
     return Sampling(tuple(keep), n, float(tolerance), float(min_angle), float(max_bend), deviation, stretch, bend, smallest, size)
