@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib.util
 
 import numpy as np
+
 from _bench import SummaryRow, best_of_interleaved, markdown_table, summary_table, timed, verdict
 
 P_XY = np.linspace(0.5, 1.5, 20)

@@ -27,10 +27,11 @@ import math
 import warnings
 
 import numpy as np
-from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, timed, verdict
 from scipy.integrate import solve_ivp
 
 from curvefold import SpaceCurve
+
+from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, timed, verdict
 
 LENGTH = 20.0
 N_VALUES = (10**3, 10**4, 10**5, 10**6)
