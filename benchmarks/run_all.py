@@ -12,13 +12,14 @@ import platform
 import sys
 import time
 
+import numpy as np
+import scipy
+
 import bench_arch
 import bench_atlas
 import bench_folding
 import bench_integrator
 import bench_main_job
-import numpy as np
-import scipy
 from _bench import summary_table
 
 BENCHMARKS = {"integrator": bench_integrator, "folding": bench_folding, "arch": bench_arch, "atlas": bench_atlas, "main_job": bench_main_job}
