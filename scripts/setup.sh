@@ -23,3 +23,12 @@ if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null
         echo "note: install librsvg2-bin and poppler-utils for the rendering checks" >&2
     fi
 fi
+
+# Chromium runs three.js and the report in the browser tests (driven by the Playwright package).
+if ! command -v chromium >/dev/null 2>&1; then
+    if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
+        apt-get update -qq >/dev/null && apt-get install -y -qq chromium >/dev/null
+    else
+        echo "note: install chromium for the browser checks" >&2
+    fi
+fi
