@@ -533,8 +533,13 @@ def plot_motion_strip(
     lift = vault.lift_off(angles_arr, anchor=anchor)
     scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
     count = len(angles_arr)
-    fig = _figure(figsize=(3.2 * count + 0.3, 3.6))
-    axes = np.atleast_1d(fig.subplots(1, count, squeeze=False)[0])
+    columns = 2 if count == 4 else count  # four panels in a square: readable on a phone as on a desktop
+    rows = -(-count // columns)
+    fig = _figure(figsize=(3.4 * columns + 0.3, 3.2 * rows + 0.4))
+    grid = fig.subplots(rows, columns, squeeze=False).ravel()
+    for ax in grid[count:]:
+        ax.set_axis_off()
+    axes = grid[:count]
     for ax, scene, f, lf in zip(axes, scenes, angles_arr, lift):
         _draw(ax, scene)
         design = abs(f - vault.design.fold_angle) < 1e-9

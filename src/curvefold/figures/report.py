@@ -18,7 +18,7 @@ __all__ = ["plain", "report_html", "QUANTITIES", "describe_file", "natural_key"]
 #: Pictures in the report, in this order (others follow alphabetically).
 _PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "regression-domain.png", "width-proportion.png")
 #: Pictures shown across the whole width (small multiples).
-_WIDE = ("folding-motion.png", "sections.png")
+_WIDE = ("sections.png",)
 
 _UNIT = "model units"
 #: Name and unit of every derived quantity of a payload, in the order shown.
