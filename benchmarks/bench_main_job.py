@@ -15,6 +15,7 @@ Targets: the whole command under 5 s and the folder under 10 MB.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -86,6 +87,8 @@ def run() -> list[SummaryRow]:
             raise RuntimeError(done.stderr)
         size = _folder_bytes(Path(c) / "v") / 1e6
         timings = json.loads((Path(c) / "v" / "report.json").read_text())["timings"]
+    load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
+    print(f"load average of the machine during the run: {load} (on {os.cpu_count()} CPUs)")
     print(f"`curvefold vault` in a fresh process: {wall:.2f} s, folder {size:.1f} MB; its own timings: "
           + ", ".join(f"{k} {v:.2f} s" for k, v in timings.items()))
     return [

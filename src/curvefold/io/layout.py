@@ -959,7 +959,9 @@ def _tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted:
         return False
     corners = cut[1:-1]
     mine = _segments([(polygon, True)])
-    for other in (outline, *(_segments([(p, True)]) for p in accepted)):
+    lo, hi = polygon.min(axis=0) - tol, polygon.max(axis=0) + tol
+    near = [p for p in accepted if (p.max(axis=0) >= lo).all() and (p.min(axis=0) <= hi).all()]  # the others cannot touch it
+    for other in (outline, *(_segments([(p, True)]) for p in near)):
         near = _near_box(other, cut, tol)
         if _touching(segs, near, tol).any() or (_distance(corners, near) < tol).any() or _inside(corners, other).any():
             return False
