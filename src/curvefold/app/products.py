@@ -157,7 +157,7 @@ _FAMILY_JOBS = {
 
 
 def _pictures(built: Built, folder: Path) -> list:
-    """Plots for the report (PNG + SVG)."""
+    """Plots for the report (PNG)."""
     from ..figures import plots
 
     structure = built.structure

@@ -5,19 +5,21 @@ that the certificate's finite differences are accurate to ~(κh)⁴). Meshes wri
 need far fewer. Near the curve of regression a lattice curve moves slowly in t, so at the
 dense samples its steps are tiny beside the rulings: triangles with corners of a fraction
 of a degree, which make simulators blow up and planar-graph tools mistake faces. Each
-tube's mesh therefore keeps its own evenly spread subset of the samples
-(:func:`choose_sampling`):
+tube's mesh therefore keeps its own subset of the samples (:func:`choose_sampling`),
+walking from each end to the middle sample (a vault's apex, kept) in steps as long as
+they stay accurate, measured on the tube's four creases folded (at the design angle)
+and flat (the crease pattern):
 
-* accurate: every computed sample of the tube's four creases lies within ``tolerance`` ×
-  the structure's size of the polyline through the kept samples, folded (at the design
-  angle) and flat (the crease pattern);
-* well shaped: every triangle corner of the tube's mesh, folded and flat, is at least
-  ``min_angle``.
+* every computed sample lies within ``tolerance`` × the structure's size of the polyline
+  through the kept ones;
+* no edge of the mesh changes its length by more than ``tolerance`` (relative) between
+  the folded and the flat state, and no ruling quad folds across its diagonal by more
+  than ``max_bend`` (``curvefold check`` holds FOLD files to both);
+* the triangles keep corners of at least ``min_angle`` where a shorter step allows it.
 
-The fewest samples that are accurate are kept, unless their triangles are too thin: then
-the most samples whose triangles keep ``min_angle`` (the shape wins; the deviation is
-reported as measured). Counts are even, so that a vault's apex (its middle sample) is
-kept, and both ends always are.
+The longest accurate steps have the best-shaped triangles, except where a step is long
+beside the rulings; where the accurate steps are short beside them (right next to the
+curve of regression) accuracy wins, and the smallest corner is reported as measured.
 """
 
 from __future__ import annotations

@@ -23,10 +23,12 @@ import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
 from ..geometry.mesh import EDGE_KINDS, Mesh
+from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
 from .atomic import atomic_write
 
@@ -40,7 +42,7 @@ __all__ = [
 ]
 
 #: Rotation from the model's axes to a file's, for a file whose up axis is y or z.
-Y_UP = {"y": np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]]), "z": np.eye(3)}
+Y_UP = MappingProxyType({"y": readonly(np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])), "z": readonly(np.eye(3))})
 
 
 def check_metadata(metadata: Mapping | None) -> dict:

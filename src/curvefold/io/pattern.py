@@ -39,6 +39,7 @@ import numpy as np
 
 from ..geometry.sheets import PatternSheet, _check_structure, sheets
 from ..geometry.structure import Structure
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from .atomic import atomic_path
 from .formats import check_formats, formats_of
@@ -154,8 +155,8 @@ _FOOTER_TEXT = 2.5  # em height of the footer's text, mm
 _SAMPLE = 8.0  # length of a legend's sample line, mm
 
 
-@dataclass(frozen=True)
-class Footer:
+@dataclass(frozen=True, eq=False)
+class Footer(FrozenArrays):
     """The scale bar, scale note and legend of one page, in page mm inside its footer band.
 
     Attributes
@@ -211,7 +212,7 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
             samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
         texts.append(text(words, x + lead + 1.5, y))
         x += width + 4.0
-    return Footer(tuple(samples), bar, tuple(texts))
+    return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts))
 
 # Cap height of a font as a fraction of its em height (DXF TEXT heights are cap heights).
 _CAP_HEIGHT = 0.72
