@@ -18,8 +18,8 @@ if command -v npm >/dev/null 2>&1; then
 fi
 
 # rsvg-convert (SVG → PNG) and pdftoppm (PDF → PNG) check what a person would see; Debian's
-# chromium is the browser Playwright drives in the designer's tests (Playwright's own browser
-# download is not used).
+# chromium is the browser Playwright drives in the designer's, three.js and report tests
+# (Playwright's own browser download is not used).
 if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1 || ! command -v chromium >/dev/null 2>&1; then
     if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
         apt-get update -qq >/dev/null && apt-get install -y -qq librsvg2-bin poppler-utils chromium >/dev/null

@@ -64,15 +64,22 @@ def test_polylines_reject_unknown_kind(tube):
 # --- OBJ ----------------------------------------------------------------------------------------
 
 
-def test_obj_read_back_by_trimesh(tmp_path, tube):
+@pytest.mark.parametrize("up", ["y", "z"])
+def test_obj_read_back_by_trimesh(tmp_path, tube, up):
+    """Y-up by default, as OBJ readers expect: the model's +z is the file's +y (a rotation)."""
     trimesh = pytest.importorskip("trimesh")
     mesh = tube.state(2)
-    write_obj(tmp_path / "m.obj", mesh, unit="mm", metadata={"panels": 4})
+    write_obj(tmp_path / "m.obj", mesh, unit="mm", metadata={"panels": 4}, **({} if up == "y" else {"up": "z"}))
     _only(tmp_path, "m.obj")
     back = trimesh.load(tmp_path / "m.obj", force="mesh", process=False)
     assert back.vertices.shape == mesh.vertices_coords.shape
     assert back.faces.shape == mesh.faces_vertices.shape
-    assert_allclose(back.triangles, mesh.vertices_coords[mesh.faces_vertices], atol=1e-6, rtol=0)
+    x = mesh.vertices_coords
+    want = np.stack([x[:, 0], x[:, 2], -x[:, 1]], axis=1) if up == "y" else x
+    assert_allclose(back.triangles, want[mesh.faces_vertices], atol=1e-6, rtol=0)
+    assert ("# axes: +Y up" in (tmp_path / "m.obj").read_text()) is (up == "y")
+    with pytest.raises(InputError, match="up must be"):
+        write_obj(tmp_path / "n.obj", mesh, up="x")
 
 
 def test_obj_line_groups(tmp_path, tube):
@@ -187,22 +194,25 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     for prim in surface.primitives + creases.primitives:
         assert len(prim.targets) == K - 1
 
+    assert surface.extras["targetNames"] == creases.extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[:-1]]
+    assert extras["base_state"] == K - 1
+
     want = _to_gltf(tube.coords, 1e-3)
     prim = surface.primitives[0]
     base = _accessor(gltf, blob, prim.attributes.POSITION)
-    assert_allclose(base, want[0], atol=1e-6, rtol=0)
+    assert_allclose(base, want[-1], atol=1e-6, rtol=0)  # the last state (the design state) is the pose shown
     assert_allclose(gltf.accessors[prim.attributes.POSITION].min, base.min(axis=0), rtol=0, atol=0)
     assert_allclose(gltf.accessors[prim.attributes.POSITION].max, base.max(axis=0), rtol=0, atol=0)
     assert_array_equal(_accessor(gltf, blob, prim.indices).reshape(-1, 3), tube.crease_pattern.faces_vertices)
-    for k, target in enumerate(prim.targets, start=1):
+    for k, target in enumerate(prim.targets):
         assert_allclose(base + _accessor(gltf, blob, _target_position(target)), want[k], atol=1e-6, rtol=0)
 
     fold_prim = creases.primitives[0]
     fold_edges = tube.crease_pattern.edges_vertices[tube.crease_pattern.edges_kind == "fold"]
     line_xyz = _accessor(gltf, blob, fold_prim.attributes.POSITION)[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
-    assert_allclose(line_xyz, want[0][fold_edges], atol=1e-6, rtol=0)
-    delta = _accessor(gltf, blob, _target_position(fold_prim.targets[-1]))[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
-    assert_allclose(line_xyz + delta, want[-1][fold_edges], atol=1e-6, rtol=0)
+    assert_allclose(line_xyz, want[-1][fold_edges], atol=1e-6, rtol=0)
+    delta = _accessor(gltf, blob, _target_position(fold_prim.targets[0]))[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
+    assert_allclose(line_xyz + delta, want[0][fold_edges], atol=1e-6, rtol=0)
 
     (anim,) = gltf.animations
     assert sorted(c.target.node for c in anim.channels) == [0, 1]
@@ -211,8 +221,19 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     assert sampler.interpolation == "LINEAR"
     assert_allclose(_accessor(gltf, blob, sampler.input), 0.5 * np.arange(K))
     weights = _accessor(gltf, blob, sampler.output).reshape(K, K - 1)
-    assert_array_equal(weights[0], 0)
-    assert_array_equal(weights[1:], np.eye(K - 1))
+    assert_array_equal(weights[:-1], np.eye(K - 1))  # state k < K - 1 is target k
+    assert_array_equal(weights[-1], 0)  # the animation ends on the base pose
+
+
+def test_glb_base_state_can_be_any_state(tmp_path, tube):
+    pygltflib = pytest.importorskip("pygltflib")
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", base_state=0)
+    gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
+    blob = gltf.binary_blob()
+    assert_allclose(_accessor(gltf, blob, gltf.meshes[0].primitives[0].attributes.POSITION), _to_gltf(tube.coords, 1e-3)[0], atol=1e-6, rtol=0)
+    assert gltf.meshes[0].extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[1:]]
+    with pytest.raises(InputError, match="base_state"):
+        write_glb(tmp_path / "n.glb", tube.crease_pattern, coords=tube.coords, base_state=len(tube.coords))
 
 
 def test_glb_single_state_has_no_animation(tmp_path):
@@ -290,55 +311,90 @@ def test_glb_writer_is_atomic(tmp_path, monkeypatch, tube):
 # --- Rhino 3dm -------------------------------------------------------------------------------------
 
 
-def test_3dm_read_back_by_rhino3dm(tmp_path, tube):
+@pytest.fixture(scope="module")
+def real_tube():
+    """A tube of the geometry at 2α = 90°: its quad mesh and topology, keeping 7 of its 13 samples."""
+    from curvefold import Crease, Lattice, SpaceCurve, Structure
+
+    lattice = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)), 0.2, 0.15)
+    structure = Structure.tube(lattice)
+    keep = [np.arange(0, 13, 2)]
+    return structure.state().mesh(faces="quads", keep=keep), structure.topology("quads", keep=keep), structure
+
+
+def _by_layer(model) -> dict[str, list]:
+    out: dict[str, list] = {}
+    for obj in model.Objects:
+        out.setdefault(model.Layers[obj.Attributes.LayerIndex].Name, []).append((obj.Attributes.Name, obj.Geometry))
+    return out
+
+
+def _xyz(p) -> list[float]:
+    return [p.X, p.Y, p.Z]
+
+
+def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
+    """Sheets as quad meshes, strips as ruled NURBS surfaces, creases as NURBS curves through the samples."""
     rhino3dm = pytest.importorskip("rhino3dm")
-    mesh = tube.state(2)
-    write_3dm(tmp_path / "m.3dm", mesh, unit="mm", metadata={"length": 4.0, "name": "tube"})
+    mesh, topology, structure = real_tube
+    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", metadata={"length": 2.0, "name": "tube"})
     _only(tmp_path, "m.3dm")
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
-    assert [layer.Name for layer in model.Layers] == ["Surface", "Fold", "Seam", "Boundary", "Rulings"]
+    assert [layer.Name for layer in model.Layers] == ["Sheets", "Strips", "Fold", "Seam", "Boundary"]
     assert model.Settings.ModelUnitSystem == rhino3dm.UnitSystem.Millimeters
-    assert model.Strings["curvefold:length"] == "4.0"
-    assert model.Strings["curvefold:name"] == "tube"
-    assert model.Strings["curvefold:unit"] == "mm"
+    assert (model.Strings["curvefold:length"], model.Strings["curvefold:name"], model.Strings["curvefold:unit"]) == ("2.0", "tube", "mm")
 
-    by_layer: dict[str, list] = {}
-    for obj in model.Objects:
-        by_layer.setdefault(model.Layers[obj.Attributes.LayerIndex].Name, []).append(obj.Geometry)
-    assert {k: len(v) for k, v in by_layer.items()} == {"Surface": 1, "Fold": 3, "Seam": 2, "Boundary": 2, "Rulings": 4}
-    (surface,) = by_layer["Surface"]
-    assert isinstance(surface, rhino3dm.Mesh)
-    assert len(surface.Vertices) == len(mesh.vertices_coords)
-    assert surface.Faces.Count == len(mesh.faces_vertices)
-    vertices = np.array([[p.X, p.Y, p.Z] for p in surface.Vertices])
-    assert_allclose(vertices, mesh.vertices_coords, atol=1e-6, rtol=0)
-    faces = np.array([surface.Faces[i][:3] for i in range(surface.Faces.Count)])
-    assert_array_equal(faces, mesh.faces_vertices)
-    for curve in by_layer["Fold"] + by_layer["Rulings"]:
-        assert isinstance(curve, rhino3dm.PolylineCurve)
-    assert sorted(c.PointCount for c in by_layer["Fold"]) == [3, 3, 3]
-    ends = np.array([[c.PointAt(c.Domain.T0).X, c.PointAt(c.Domain.T0).Y, c.PointAt(c.Domain.T0).Z] for c in by_layer["Fold"]])
-    starts = mesh.vertices_coords[[p[0] for p in crease_polylines(mesh, "fold")]]
-    assert_allclose(ends, starts, atol=1e-9, rtol=0)
+    layers = _by_layer(model)
+    assert {k: len(v) for k, v in layers.items()} == {"Sheets": 2, "Strips": 4, "Fold": 2, "Seam": 2, "Boundary": 2}
+    x = mesh.vertices_coords
+    for (name, sheet), want in zip(layers["Sheets"], topology.sheets):
+        assert name == want.label and isinstance(sheet, rhino3dm.Mesh)
+        assert_allclose([_xyz(p) for p in sheet.Vertices], x[want.vertices], atol=1e-6, rtol=0)  # rhino3dm reads them back as floats
+        assert_array_equal([sheet.Faces[i] for i in range(sheet.Faces.Count)], want.faces_vertices)  # quads
+
+    # Every kept sample is on the crease curves, at its t; every ruling at a kept sample on its strip's surface.
+    t = topology.vertex_sample / 12
+    curves = structure.state().vertices[structure.cell_curves[0]]  # (4, 13, 3), corners 1-4
+    for kind, corners in (("Fold", (0, 2)), ("Seam", (1, 3))):
+        for (name, curve), c in zip(layers[kind], corners):
+            assert isinstance(curve, rhino3dm.NurbsCurve) and curve.Degree == 3 and name.startswith(kind.lower())
+            assert_allclose([_xyz(curve.PointAt(s)) for s in np.linspace(0, 1, 7)], curves[c, ::2], atol=1e-12, rtol=0)
+    for (name, surface), c in zip(layers["Strips"], range(4)):
+        assert isinstance(surface, rhino3dm.NurbsSurface) and name == f"tube 1 · strip {c + 1}"
+        for s_, p in zip(np.linspace(0, 1, 7), curves[:, ::2].swapaxes(0, 1)):
+            for v, corner in ((0.0, c), (0.5, None), (1.0, (c + 1) % 4)):
+                want = p[c] + v * (p[(c + 1) % 4] - p[c]) if corner is None else p[corner]
+                assert_allclose(_xyz(surface.PointAt(s_, v)), want, atol=1e-12, rtol=0)
+    assert all(curve.IsClosed for _, curve in layers["Boundary"])
+    assert t.max() == 1
 
 
-@pytest.mark.parametrize(("unit", "system"), [("unit", "None"), ("m", "Meters"), ("cm", "Centimeters"), ("in", "Inches")])
-def test_3dm_unit_system(tmp_path, tube, unit, system):
+def test_3dm_refuses_a_mesh_of_other_faces(tmp_path, real_tube):
+    pytest.importorskip("rhino3dm")
+    mesh, topology, structure = real_tube
+    with pytest.raises(InputError, match="ruling quads"):
+        write_3dm(tmp_path / "m.3dm", structure.state().mesh(keep=[np.arange(0, 13, 2)]), topology)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(("unit", "system"), [("unit", "Meters"), ("m", "Meters"), ("cm", "Centimeters"), ("in", "Inches")])
+def test_3dm_unit_system(tmp_path, real_tube, unit, system):
+    """Rhino needs a unit system: the model unit is taken as one metre, as in every file."""
     rhino3dm = pytest.importorskip("rhino3dm")
-    write_3dm(tmp_path / "m.3dm", tube.state(1), unit=unit)
+    write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit=unit)
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     assert model.Settings.ModelUnitSystem == getattr(rhino3dm.UnitSystem, system)
     assert model.Strings["curvefold:unit"] == unit
 
 
-def test_3dm_rejects_unknown_unit(tmp_path, tube):
+def test_3dm_rejects_unknown_unit(tmp_path, real_tube):
     pytest.importorskip("rhino3dm")
     with pytest.raises(InputError, match="unit must be one of"):
-        write_3dm(tmp_path / "m.3dm", tube.state(1), unit="furlong")
+        write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit="furlong")
     assert list(tmp_path.iterdir()) == []
 
 
-def test_3dm_writer_is_atomic(tmp_path, monkeypatch, tube):
+def test_3dm_writer_is_atomic(tmp_path, monkeypatch, real_tube):
     rhino3dm = pytest.importorskip("rhino3dm")
     real_write = rhino3dm.File3dm.Write
 
@@ -348,15 +404,15 @@ def test_3dm_writer_is_atomic(tmp_path, monkeypatch, tube):
 
     monkeypatch.setattr(rhino3dm.File3dm, "Write", write_then_fail)
     with pytest.raises(RuntimeError, match="interrupted"):
-        write_3dm(tmp_path / "m.3dm", tube.state(1))
+        write_3dm(tmp_path / "m.3dm", *real_tube[:2])
     assert list(tmp_path.iterdir()) == []
 
 
-def test_3dm_write_returning_false_is_an_error(tmp_path, monkeypatch, tube):
+def test_3dm_write_returning_false_is_an_error(tmp_path, monkeypatch, real_tube):
     rhino3dm = pytest.importorskip("rhino3dm")
     monkeypatch.setattr(rhino3dm.File3dm, "Write", lambda self, path, version=0: False)
     with pytest.raises(OSError, match="could not write"):
-        write_3dm(tmp_path / "m.3dm", tube.state(1))
+        write_3dm(tmp_path / "m.3dm", *real_tube[:2])
     assert list(tmp_path.iterdir()) == []
 
 

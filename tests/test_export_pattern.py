@@ -330,7 +330,7 @@ def test_tight_concave_seams_get_narrower_tabs_or_none_and_a_note(inner, note, f
         (dict(scale=1.0, target_size=100.0), "not both"),
         (dict(scale=-1.0), "scale must be positive"),
         (dict(tab_angle=95.0), "tab_angle must be in"),
-        (dict(margin=200.0), "leaves no room"),
+        (dict(margin=200.0), "leave no room"),
         (dict(tab_width=float("nan")), "tab_width must be positive"),
     ],
 )
@@ -461,9 +461,11 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
     assert (root.get("width"), root.get("height"), root.get("viewBox")) == ("210mm", "297mm", "0 0 210 297")
     assert "sodipodi:namedview" in path.read_text() and "xmlns:sodipodi" in path.read_text()
     groups = root.findall("svg:g", NS)
-    assert [g.get(f"{INK}label") for g in groups] == list(DEFAULT_LAYERS)
+    assert [g.get(f"{INK}label") for g in groups] == [*DEFAULT_LAYERS, "legend (not to cut)"]
     assert all(g.get(f"{INK}groupmode") == "layer" for g in groups)
     by_name = {g.get(f"{INK}label"): g for g in groups}
+    legend = by_name.pop("legend (not to cut)")
+    groups = groups[:-1]
     page = tube_layout.pages[0]
     for name in ("cut", "mountain", "valley", "seam", "glue"):
         assert len(list(by_name[name])) == len(page.on_layer(name)) > 0
@@ -477,6 +479,13 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
     pts = np.array([[float(v) for v in pair.split(",")]
                     for g in groups for el in g if el.get("points") for pair in el.get("points").split()])
     assert pts.min() >= 10 - 1e-6 and pts[:, 0].max() <= 200 and pts[:, 1].max() <= 287
+    assert pts[:, 1].max() <= 287 - tube_layout.footer  # the sheets keep clear of the footer band (SVG y runs down)
+    # the footer: a 10 mm scale bar with the print scale, and a legend of what this page draws
+    bar = np.array([[float(v) for v in pair.split(",")] for pair in legend[0].get("points").split()])
+    assert np.ptp(bar[:, 0]) == pytest.approx(10.0) and 297 - 10 - tube_layout.footer <= bar[:, 1].min() <= bar[:, 1].max() <= 287
+    words = [t.text for t in legend.iter(f"{{{NS['svg']}}}text")]
+    assert any("10 mm: print at 100 %" in w and "1 model unit = " in w and "page 1 of 1" in w for w in words)
+    assert {"cut", "mountain fold", "valley fold", "glue-tab fold", "glue", "S1", "glue the edges named alike"} <= set(words)
 
 
 def _png(path: Path) -> np.ndarray:
@@ -522,7 +531,7 @@ def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
         assert len(root.findall("svg:g/svg:text", NS)) == len(page.labels())
     (one,) = write_svg(tmp_path / "second.svg", vault_layout, 1, layers=LAYERS)
     root = ET.parse(one).getroot()
-    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == list(LAYERS)
+    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [*LAYERS, "legend (not to cut)"]
     with pytest.raises(InputError, match="page_index must be in"):
         write_svg(tmp_path / "x.svg", vault_layout, n)
     with pytest.raises(InputError, match="layers must be among"):
@@ -531,6 +540,26 @@ def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
 
 # --------------------------------------------------------------------------------------
 # DXF
+
+
+def test_dxf_pages_lie_framed_in_a_grid_within_the_extents(tmp_path, vault_layout):
+    ezdxf = pytest.importorskip("ezdxf")
+    from ezdxf import bbox
+
+    doc = ezdxf.readfile(write_dxf(tmp_path / "v.dxf", vault_layout))
+    msp = doc.modelspace()
+    n, (W, H) = len(vault_layout.pages), vault_layout.page_size
+    frames = [np.array(f.get_points("xy")) for f in msp.query('LWPOLYLINE[layer=="pages"]')]
+    corners = pattern.page_grid(n, (W, H), 20.0)
+    assert sorted(map(tuple, (f.min(axis=0) for f in frames))) == sorted(map(tuple, corners))
+    assert all(np.ptp(f, axis=0).tolist() == [W, H] for f in frames)
+    assert len(set(corners[:, 0])) == int(np.ceil(np.sqrt(n))) < n  # a grid, not one row
+    extents = bbox.extents(msp)  # of every entity, as a CAD program zooms to
+    assert doc.header["$EXTMIN"][:2] == pytest.approx(tuple(extents.extmin)[:2])
+    assert doc.header["$EXTMAX"][:2] == pytest.approx(tuple(extents.extmax)[:2])
+    assert doc.layers.get("pages").dxf.plot == 0 and doc.layers.get("legend").dxf.plot == 0
+    words = [t.dxf.text for t in msp.query('TEXT[layer=="legend"]')]
+    assert sum("10 mm: print at 100 %" in w for w in words) == n
 
 
 def test_dxf_reads_back_with_layers_linetypes_units_and_entities(tmp_path, vault_layout):
@@ -603,7 +632,10 @@ def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layou
     (high,) = tmp_path.glob("high-*.png")
     img = _png(high)
     mm = dpi / 25.4
-    band = img[-int(10 * mm):, : int(25 * mm)].max(axis=-1) < 0.3  # bottom-left of the bottom margin
+    ink = img.max(axis=-1) < 0.9
+    edge = int(9.5 * mm)  # printers leave the outer 3–6 mm blank: nothing is drawn within 9.5 mm of an edge
+    assert not ink[:edge].any() and not ink[-edge:].any() and not ink[:, :edge].any() and not ink[:, -edge:].any()
+    band = img[-int((10 + tube_layout.footer) * mm):-int(10 * mm), : int(25 * mm)].max(axis=-1) < 0.3  # the footer, left
     row = band[np.argmax(band.sum(axis=1))]
     runs = np.diff(np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]]))))[::2]
     assert runs.max() / mm == pytest.approx(10.0, abs=0.15)

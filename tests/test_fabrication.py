@@ -557,12 +557,13 @@ def test_write_3d_every_format(tmp_path, stack):
     model = rhino3dm.File3dm.Read(str(tmp_path / "stack.3dm"))
     assert model.Settings.ModelUnitSystem == rhino3dm.UnitSystem.Millimeters
     assert model.Strings["curvefold:tubes"] == "2"
-    surface = next(o.Geometry for o in model.Objects if isinstance(o.Geometry, rhino3dm.Mesh))
-    vertices = np.array([[p.X, p.Y, p.Z] for p in surface.Vertices])
-    # the design state (rhino.py's Vertices.Add stores 32-bit floats, so ~1e-7 of the size)
-    assert_allclose(vertices, mesh.vertices_coords, atol=1e-6, rtol=0)
+    sheets = [o.Geometry for o in model.Objects if isinstance(o.Geometry, rhino3dm.Mesh)]
+    assert len(sheets) == 4  # one mesh per sheet
+    vertices = np.concatenate([[[p.X, p.Y, p.Z] for p in sheet.Vertices] for sheet in sheets])
+    # the design state (read back as 32-bit floats, so ~1e-7 of the size)
+    assert_allclose(vertices, mesh.vertices_coords[np.concatenate([s.vertices for s in stack.topology().sheets])], atol=1e-6, rtol=0)
     obj = (tmp_path / "stack.obj").read_text()
-    assert obj.count("\nf ") == len(mesh.faces_vertices) and "# unit: mm" in obj
+    assert obj.count("\nf ") == len(mesh.faces_vertices) // 2 and "# unit: mm" in obj  # one quad per two triangles
     assert (tmp_path / "stack.stl").stat().st_size == 84 + 50 * len(mesh.faces_vertices)
 
 

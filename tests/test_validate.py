@@ -151,8 +151,8 @@ def test_pages_units_and_colours_are_one_table():
     assert mm_per_unit("in") == 25.4 and mm_per_unit("pt") == pytest.approx(25.4 / 72, rel=1e-15)
     assert set(SCHEMA["output"]["units"].choices) <= set(UNITS)
     assert gltf.CREASE_COLOURS["fold"] == rgba("fold") == (1.0, 0.0, 0.0, 1.0)
-    assert dict((kind, colour) for _, kind, colour in rhino.LAYERS) == {
-        None: rgba8("surface"), **{k: rgba8(k) for k in ("fold", "seam", "boundary", "ruling")}}
+    assert dict(rhino.LAYERS) == {"Sheets": rgba8("surface"), "Strips": rgba8("surface"),
+                                  **{k.title(): rgba8(k) for k in ("fold", "seam", "boundary")}}
     assert pattern.LAYER_STYLES["mountain"].color == COLOURS["fold"] and pattern.LAYER_STYLES["cut"].color == COLOURS["boundary"]
 
 

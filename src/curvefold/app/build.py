@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 from ..geometry.crease import Crease
 from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice
+from ..geometry.sampling import Sampling, choose_sampling
 from ..geometry.structure import Structure
 from ..vault.assembly import Vault, VaultDesign, vault_samples
 from .design import Design
@@ -33,6 +35,11 @@ class Built:
     vault: Vault | None
     structure: Structure | None
     crease: Crease
+
+    @cached_property
+    def sampling(self) -> Sampling | None:
+        """The samples the files' meshes keep (:func:`choose_sampling`), None for a single crease."""
+        return None if self.structure is None else choose_sampling(self.structure)
 
 
 def vault_design(design: Design) -> VaultDesign:

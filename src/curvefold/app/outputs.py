@@ -11,7 +11,6 @@ import json
 import os
 import shutil
 import tempfile
-import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -141,17 +140,15 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
-    report = dict(structure_payload(built) if payload is None else payload, timings={})
+    report = dict(structure_payload(built) if payload is None else payload, timings={}) | products.resolution(built)
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
         with output_folder(out, force=force) as tmp:
-            for label, job in jobs:
+            for label, files, seconds in products.run_jobs(jobs, tmp):
                 step(label)
-                started = time.perf_counter()
-                files = job(tmp)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
-                report["timings"][label] = round(time.perf_counter() - started, 3)
+                report["timings"][label] = round(seconds, 3)
             report["files"] = sorted(written)
             atomic_write(tmp / "report.json", json.dumps(report, indent=2, default=plain))
             atomic_write(tmp / "report.html", report_html(report))

@@ -2,12 +2,21 @@
 
 The requested formats are grouped by family (:data:`curvefold.io.formats.FAMILIES`), in
 registry order; each family is one job calling the writer the registry names. The
-pictures of the report are always written.
+pictures of the report are always written (PNG).
+
+Every mesh written (FOLD, 3D models, crease patterns) keeps the samples of
+:attr:`Built.sampling <curvefold.app.build.Built.sampling>`: as accurate as the default
+tolerance asks, without sliver triangles; the resolution is recorded in the files'
+metadata and in the report (:func:`resolution`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+import multiprocessing
+import os
+import time
+from collections.abc import Callable, Collection, Iterator
+from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 from pathlib import Path
 
@@ -16,7 +25,7 @@ import numpy as np
 from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
 
-__all__ = ["jobs", "MOTION_STEPS"]
+__all__ = ["jobs", "run_jobs", "resolution", "MOTION_STEPS"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
@@ -26,9 +35,16 @@ MODEL_UNIT = "unit"
 Job = Callable[[Path], list]
 
 
+def resolution(built: Built) -> dict:
+    """The mesh resolution of the files, for the report (empty for a single crease)."""
+    return {} if built.sampling is None else {"mesh": built.sampling.summary()}
+
+
 def _metadata(built: Built) -> dict:
     design = built.design
     meta = {"kind": design.kind, "title": design.title or design.kind, "samples": design.samples}
+    if built.sampling is not None:
+        meta |= built.sampling.summary()
     if built.vault is not None:
         v = built.vault
         meta |= {
@@ -63,6 +79,31 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
     return out
 
 
+def _timed(job: Job, folder: Path) -> tuple[list, float]:
+    started = time.perf_counter()
+    files = job(folder)
+    return files, time.perf_counter() - started
+
+
+def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None) -> Iterator[tuple[str, list, float]]:
+    """Run the jobs into ``folder``, on up to ``workers`` processes (default: one per CPU, at most 2).
+
+    Yields (label, files written, seconds the job took) in job order as each finishes
+    in turn; a job's exception is raised here. The jobs write distinct files, so they
+    run side by side in forked processes where the platform has them, one after the
+    other otherwise.
+    """
+    workers = min(len(jobs), os.cpu_count() or 1, 2) if workers is None else workers
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        for label, job in jobs:
+            yield (label, *_timed(job, folder))
+        return
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        futures = [(label, pool.submit(_timed, job, folder)) for label, job in jobs]
+        for label, future in futures:
+            yield (label, *future.result())
+
+
 def _writer(names: tuple[str, ...]) -> Callable:
     return FORMATS[names[0]].load_writer()
 
@@ -73,11 +114,11 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
-    structure, meta = built.structure, _metadata(built)
+    structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"],
-                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta)]
+                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta, keep=keep)]
     (folder / "sheets").mkdir()
-    for sheet in sheets(structure):
+    for sheet in sheets(structure, keep=keep):
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
         files.append(write_sheet_fold(folder / "sheets" / f"{stem}.fold", sheet.mesh, MODEL_UNIT, title=sheet.label))
     return files
@@ -90,14 +131,15 @@ def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
     o, kind = built.design.output, built.design.kind
     page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
     return list(_writer(names)(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
-                               glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind))
+                               glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
 
 
 def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The 3D files; the GLB holds the folding motion."""
     structure = built.structure
     angles = np.linspace(0.0, structure.lattice.crease.fold_angle, MOTION_STEPS)
-    return list(_writer(names)(folder / built.design.kind, structure, angles, formats=names, unit=MODEL_UNIT, metadata=_metadata(built)))
+    return list(_writer(names)(folder / built.design.kind, structure, angles, formats=names, unit=MODEL_UNIT, metadata=_metadata(built),
+                               keep=built.sampling.keep))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
@@ -115,20 +157,19 @@ _FAMILY_JOBS = {
 
 
 def _pictures(built: Built, folder: Path) -> list:
-    """Plots for the report (PNG + SVG)."""
+    """Plots for the report (PNG)."""
     from ..figures import plots
 
-    files: list = []
     structure = built.structure
     if structure is None:
-        return plots.save_figure(plots.plot_crease(built.crease), folder / "crease")
-    lattice = structure.lattice
-    files += plots.save_figure(plots.plot_regression_domain(lattice, structure.cells), folder / "regression-domain")
-    files += plots.save_figure(plots.plot_width_proportion(lattice), folder / "width-proportion")
-    if built.vault is not None:
-        files += plots.save_figure(plots.plot_vault(built.vault), folder / "vault")
-        files += plots.save_figure(plots.plot_sections(built.vault), folder / "sections")
-        files += plots.save_figure(plots.plot_motion_strip(built.vault), folder / "folding-motion")
+        figures = {"crease": plots.plot_crease(built.crease)}
     else:
-        files += plots.save_figure(plots.plot_structure(structure), folder / built.design.kind)
-    return files
+        lattice = structure.lattice
+        figures = {"regression-domain": plots.plot_regression_domain(lattice, structure.cells),
+                   "width-proportion": plots.plot_width_proportion(lattice)}
+        if built.vault is not None:
+            figures |= {"vault": plots.plot_vault(built.vault), "sections": plots.plot_sections(built.vault),
+                        "folding-motion": plots.plot_motion_strip(built.vault)}
+        else:
+            figures[built.design.kind] = plots.plot_structure(structure)
+    return [path for name, fig in figures.items() for path in plots.save_figure(fig, folder / name, formats=("png",))]

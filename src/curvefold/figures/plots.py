@@ -38,6 +38,7 @@ from .scene import (
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from PIL import Image
 
     from ..geometry.crease import Crease
     from ..geometry.lattice import Lattice
@@ -532,8 +533,13 @@ def plot_motion_strip(
     lift = vault.lift_off(angles_arr, anchor=anchor)
     scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
     count = len(angles_arr)
-    fig = _figure(figsize=(3.2 * count + 0.3, 3.6))
-    axes = np.atleast_1d(fig.subplots(1, count, squeeze=False)[0])
+    columns = 2 if count == 4 else count  # four panels in a square: readable on a phone as on a desktop
+    rows = -(-count // columns)
+    fig = _figure(figsize=(3.4 * columns + 0.3, 3.2 * rows + 0.4))
+    grid = fig.subplots(rows, columns, squeeze=False).ravel()
+    for ax in grid[count:]:
+        ax.set_axis_off()
+    axes = grid[:count]
     for ax, scene, f, lf in zip(axes, scenes, angles_arr, lift):
         _draw(ax, scene)
         design = abs(f - vault.design.fold_angle) < 1e-9
@@ -665,6 +671,44 @@ def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = N
     return fig
 
 
+def _raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, supersample: int = 2) -> Image.Image:
+    """A scene drawn with Pillow: the screen points ``box`` (P, 2) fit below a title line.
+
+    Drawn at ``supersample`` times the size and reduced, so edges are smoothed; line widths
+    in points are taken at 100 dots per inch, as in the figures.
+    """
+    from PIL import Image, ImageDraw, ImageFont
+
+    w, h = size[0] * supersample, size[1] * supersample
+    image = Image.new("RGB", (w, h), "white")
+    draw = ImageDraw.Draw(image)
+    top, pad = 0.12 * h, 0.02 * w
+    lo, hi = box.min(axis=0), box.max(axis=0)
+    scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - top - pad) / max(hi[1] - lo[1], 1e-12))
+    centre = np.array([w / 2, (h + top - pad) / 2])
+
+    def pixels(points: np.ndarray) -> np.ndarray:
+        return (points - 0.5 * (lo + hi)) * scale * np.array([1.0, -1.0]) + centre
+
+    if scene.ground is not None:
+        draw.polygon([tuple(p) for p in pixels(scene.ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE, width=supersample)
+    sizes = np.array([len(p) for p in scene.paths])
+    paths = np.split(pixels(np.concatenate(scene.paths)), np.cumsum(sizes)[:-1])
+    fills, strokes = (np.round(255 * np.asarray(c)[:, :3]).astype(int).tolist() for c in (scene.fill, scene.stroke))
+    lines = np.maximum(1, np.round(np.asarray(scene.widths) * 100 / 72 * supersample)).astype(int).tolist()
+    for path, fill, stroke, line in zip(paths, fills, strokes, lines):
+        xy = path.ravel().tolist()
+        if len(path) > 2:
+            draw.polygon(xy, fill=tuple(fill), outline=tuple(stroke), width=line)
+        else:
+            draw.line(xy, fill=tuple(stroke), width=line)
+    import matplotlib
+
+    font = ImageFont.truetype(str(Path(matplotlib.get_data_path()) / "fonts" / "ttf" / "DejaVuSans.ttf"), round(0.05 * h))
+    draw.text((w / 2, 0.02 * h), title, fill="black", font=font, anchor="ma")
+    return image.resize(size, Image.Resampling.BOX)
+
+
 def write_motion_gif(
     obj: Vault | Structure,
     path: str | os.PathLike,
@@ -701,7 +745,6 @@ def write_motion_gif(
     -------
     Path
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
     from ..vault.assembly import Vault
@@ -719,19 +762,8 @@ def write_motion_gif(
         raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
     motion = lattice.fold_points(structure.curves_uv, steps, anchor=anchor)
     scenes = motion_scenes(structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells, crease_width=0.7, ground=isinstance(obj, Vault))
-    dpi = 100
-    fig = _figure(figsize=(w_px / dpi, h_px / dpi), dpi=dpi, layout=None)
-    canvas = FigureCanvasAgg(fig)
     joint = np.concatenate([scene.box for scene in scenes])  # one scale for all frames
-    frames = []
-    for f, scene in zip(steps, scenes):
-        fig.clear()
-        ax = fig.add_axes((0.02, 0.02, 0.96, 0.86))
-        _draw(ax, scene)
-        _fit(ax, joint)
-        fig.text(0.5, 0.97, f"2α = {f:5.1f}°", ha="center", va="top", fontsize=12, family="monospace")
-        canvas.draw()
-        frames.append(Image.fromarray(np.asarray(canvas.buffer_rgba())[..., :3].copy()))
+    frames = [_raster(scene, joint, (w_px, h_px), f"2α = {f:5.1f}°") for f, scene in zip(steps, scenes)]
     sequence = frames + frames[-2:0:-1]  # forward, then back without repeating the ends
     palette = sequence[len(frames) - 1].quantize(colors=128)
     images = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in sequence]

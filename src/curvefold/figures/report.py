@@ -1,16 +1,71 @@
-"""The HTML report of an output folder: design, derived quantities, certificate and pictures."""
+"""The HTML report of an output folder: design, derived quantities, certificate and pictures.
+
+One self-contained page that reads on a phone (390 px) as on a desktop: pictures in a
+grid (wide figures across it), tables that scroll sideways rather than overflow, derived
+quantities by name with their units, and every file with what it holds.
+"""
 
 from __future__ import annotations
 
 import html
 import json
+import re
 
 import numpy as np
 
-__all__ = ["plain", "report_html"]
+__all__ = ["plain", "report_html", "QUANTITIES", "describe_file", "natural_key"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
 _PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "regression-domain.png", "width-proportion.png")
+#: Pictures shown across the whole width (small multiples).
+_WIDE = ("sections.png",)
+
+_UNIT = "model units"
+#: Name and unit of every derived quantity of a payload, in the order shown.
+QUANTITIES = {
+    "kappa0_s0": ("κ0·s0, the root of the arch condition (Eq. 20)", ""),
+    "s0": ("arc length s0 of the arch curve", _UNIT),
+    "proportion_change": ("proportion change w_R(s0/2) / w_R(0), predicted", ""),
+    "proportion_change_measured": ("proportion change, measured on the built creases", ""),
+    "p_xy_measured": ("section proportion at the feet w_R/w_L, measured", ""),
+    "p_xz": ("section proportion at the apex p_xz", ""),
+    "tubes": ("tubes", ""),
+    "max_tubes": ("most tubes before regression", ""),
+    "span": ("span, foot to foot", _UNIT),
+    "rise": ("rise above the ground", _UNIT),
+    "footprint": ("footprint, x × y", _UNIT),
+    "bounding_box": ("bounding box, min → max (x, y, z)", _UNIT),
+    "slope_xy_deg": ("section slope at the feet (xy plane)", "°"),
+    "slope_zx_deg": ("section slope at the apex (zx plane)", "°"),
+    "regression_margin": ("smallest speed factor over the creases (Eq. 17; > 0 is free of regression)", ""),
+    "ground_error": ("largest height of an end section above the ground", _UNIT),
+    "cells": ("cells (i, j)", ""),
+    "curves": ("lattice curves (u, v)", ""),
+    "length": ("crease length", _UNIT),
+    "fold_angle_start_deg": ("fold angle 2α at the start", "°"),
+    "fold_angle_end_deg": ("fold angle 2α at the end", "°"),
+}
+#: Name and unit of every entry of the mesh resolution (``payload["mesh"]``).
+MESH_QUANTITIES = {
+    "samples_computed": ("samples along each crease, computed", ""),
+    "mesh_samples_per_crease": ("samples along each crease, in the files' meshes", ""),
+    "mesh_tolerance": ("accuracy asked (relative)", ""),
+    "mesh_deviation": ("largest distance of the exact creases from the meshes' polylines", _UNIT),
+    "mesh_deviation_relative": ("the same, over the structure's size", ""),
+    "mesh_stretch": ("largest relative change of an edge length, folded against flat", ""),
+    "mesh_bend_deg": ("largest fold across a ruling quad's diagonal", "°"),
+    "mesh_bend_bound_deg": ("… allowed", "°"),
+    "mesh_smallest_angle_deg": ("smallest triangle corner", "°"),
+    "mesh_angle_bound_deg": ("… wanted", "°"),
+}
+#: What the files of an output folder hold, by name pattern (first match wins).
+_FILES = (
+    (r"^sheets/.*\.fold$", "one developed sheet, flat with its target fold angles (loads in Origami Simulator)"),
+    (r"^report\.json$", "everything on this page, for programs"),
+    (r"^report\.html$", "this page"),
+    (r"-pattern(-p\d+)?\.svg$", "crease pattern page, mm at 1:1, one layer per line kind, scale bar and legend"),
+    (r"\.png$", "picture in this report"),
+)
 
 
 def plain(value):
@@ -22,6 +77,54 @@ def plain(value):
     return str(value)
 
 
+def natural_key(name: str) -> tuple:
+    """Sort key that orders the numbers in a name by value: p2 before p10.
+
+    Examples
+    --------
+    >>> sorted(["p10.svg", "p2.svg", "p1.svg"], key=natural_key)
+    ['p1.svg', 'p2.svg', 'p10.svg']
+    """
+    return tuple((0, int(part), "") if part.isdigit() else (1, 0, part) for part in re.split(r"(\d+)", name) if part)
+
+
+def describe_file(name: str) -> str:
+    """What a file of an output folder holds, for the report's file list."""
+    from ..io.formats import FORMATS
+
+    for pattern, text in _FILES:
+        if re.search(pattern, name):
+            return text
+    suffix = name[name.rfind("."):]
+    return next((f.holds for f in FORMATS.values() if f.extension == suffix), "")
+
+
+def _number(value) -> str:
+    """A value as people read it: 6 significant digits, lists as (a, b, c)."""
+    if isinstance(value, bool) or isinstance(value, (int, np.integer)):
+        return str(value)
+    if isinstance(value, float):
+        return f"{value:.6g}" if value == 0 or 1e-3 <= abs(value) < 1e6 else f"{value:.3e}"
+    if isinstance(value, (list, tuple)):
+        if len(value) == 2 and all(isinstance(v, (list, tuple)) for v in value) and len(value[0]) == 3:
+            return f"{_number(value[0])} → {_number(value[1])}"
+        if len(value) > 12:
+            return ", ".join(_number(v) for v in value[:12]) + f", … ({len(value)} in all)"
+        return "(" + ", ".join(_number(v) for v in value) + ")"
+    return str(value)
+
+
+def _rows(values: dict, names: dict) -> str:
+    e = html.escape
+    out = []
+    for key, (label, unit) in names.items():
+        if key in values:
+            value = values[key]
+            shown = " × ".join(_number(v) for v in value) if key == "footprint" else _number(value)
+            out.append(f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td>{e(unit)}</td></tr>')
+    return "".join(out)
+
+
 def report_html(payload: dict) -> str:
     """A self-contained HTML report: parameters, derived quantities, certificate, pictures."""
     e = html.escape
@@ -31,10 +134,12 @@ def report_html(payload: dict) -> str:
         f"<td>{'pass' if c['passed'] else 'FAIL'}</td><td>{e(c['meaning'])}</td></tr>"
         for c in payload["certificate"]
     )
-    skip = {"certificate", "files", "design", "paper_comparison", "timings", "bounding_box", "curves", "cells", "curve_kinds", "bounding_curves"}
-    derived = "".join(
-        f"<tr><td>{e(k)}</td><td>{e(f'{v:.10g}' if isinstance(v, float) else str(v))}</td></tr>" for k, v in payload.items() if k not in skip
-    )
+    derived = _rows(payload, QUANTITIES)
+    mesh = ""
+    if payload.get("mesh"):
+        mesh = ("<h2>Meshes of the files</h2><p>The 3D, FOLD and crease-pattern files keep, tube by tube, the fewest samples "
+                "that stay within the accuracy asked; measured:</p>"
+                f"<table>{_rows(payload['mesh'], MESH_QUANTITIES)}</table>")
     design = e(json.dumps(payload.get("design", {}), indent=2, default=plain))
     paper = ""
     if payload.get("paper_comparison"):
@@ -42,27 +147,36 @@ def report_html(payload: dict) -> str:
             f"<tr><td>{e(r['quantity'])}</td><td>{r['paper']}</td><td>{r['computed']:.12g}</td><td>{r['from_paper_kappa0_s0']:.4g}</td><td>{e(r['note'])}</td></tr>"
             for r in payload["paper_comparison"]
         ) + "</table>"
-    files = payload.get("files", [])
+    files = sorted(payload.get("files", []), key=natural_key)
     shown = sorted((f for f in files if f.endswith((".png", ".gif"))), key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
-    pictures = "".join(f'<figure><img src="{e(f)}" alt="{e(f)}"><figcaption>{e(f)}</figcaption></figure>' for f in shown)
-    links = "".join(f'<li><a href="{e(f)}">{e(f)}</a></li>' for f in files)
+    pictures = "".join(
+        f'<figure{" class=wide" if f in _WIDE else ""}><a href="{e(f)}"><img src="{e(f)}" alt="{e(f)}"></a><figcaption>{e(f)}</figcaption></figure>'
+        for f in shown
+    )
+    links = "".join(f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>' for f in files)
     passed = sum(c["passed"] for c in payload["certificate"])
     title = e(payload.get("title") or payload.get("kind", "curvefold"))
     return f"""<!doctype html>
-<html lang="en"><head><meta charset="utf-8"><title>curvefold — {title}</title>
+<html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
+<title>curvefold — {title}</title>
 <style>
-body{{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}}
-table{{border-collapse:collapse;margin:1em 0}}td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
+body{{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;color:#222;line-height:1.4}}
+h1{{font-size:1.5em;overflow-wrap:anywhere}}
+table{{border-collapse:collapse;margin:1em 0;display:block;overflow-x:auto;max-width:100%}}
+td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}td.num{{white-space:nowrap;font-variant-numeric:tabular-nums}}
 tr.pass td:nth-child(5){{color:#070}}tr.fail td{{background:#fee}}
-figure{{display:inline-block;margin:.5em;max-width:48%}}img{{max-width:100%;border:1px solid #ddd}}pre{{background:#f6f6f6;padding:1em}}
+.pictures{{display:grid;grid-template-columns:repeat(auto-fill,minmax(min(100%,420px),1fr));gap:1em}}
+figure{{margin:0}}figure.wide{{grid-column:1/-1}}img{{width:100%;height:auto;border:1px solid #ddd}}figcaption{{font-size:.85em;color:#555}}
+pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}
 </style></head><body>
 <h1>curvefold — {title}</h1>
 <p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass.</p>
-<h2>Pictures</h2>{pictures}
+<h2>Pictures</h2><div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
+{mesh}
 {paper}
 <h2>Certificate</h2><table><tr><th>check</th><th>measured</th><th>tolerance</th><th>unit</th><th></th><th>what and why</th></tr>{rows}</table>
 <h2>Design</h2><pre>{design}</pre>
-<h2>Files</h2><ul>{links}</ul>
+<h2>Files</h2><table>{links}</table>
 </body></html>
 """

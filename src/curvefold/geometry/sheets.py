@@ -31,6 +31,7 @@ them into the plane.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -291,7 +292,8 @@ def _develop(structure: Structure, fold_angle_deg: float, name: str, topology: T
 
 
 def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bool = True,
-           name: str = "", faces: Literal["triangles", "quads"] = "triangles") -> tuple[PatternSheet, ...]:
+           name: str = "", faces: Literal["triangles", "quads"] = "triangles",
+           keep: Sequence[np.ndarray] | None = None) -> tuple[PatternSheet, ...]:
     """The developed sheets of a structure: its crease pattern, two sheets per tube.
 
     Coordinates come from the flat state ``structure.state(0)``, in model units, in the
@@ -312,6 +314,9 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     faces : {"triangles", "quads"}, keyword-only
         The faces of :meth:`Structure.topology` (quads are exactly planar in the flat
         state).
+    keep : sequence of (m_k,) array_like of int, optional, keyword-only
+        The samples each tube's mesh keeps (:func:`curvefold.geometry.sampling.choose_sampling`);
+        default every sample.
 
     Returns
     -------
@@ -341,7 +346,7 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     _check_structure(structure)
     if not isinstance(name, str):
         raise InputError(f"name must be a str, got {type(name).__name__}")
-    return _develop(structure, _design_angle(structure, fold_angle, degrees), name, structure.topology(faces))
+    return _develop(structure, _design_angle(structure, fold_angle, degrees), name, structure.topology(faces, keep=keep))
 
 
 # --------------------------------------------------------------------------------------
@@ -458,8 +463,9 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
 # folding motion
 
 
-def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, anchor: str = "start") -> np.ndarray:
-    """Vertex positions of ``State.mesh()`` at many fold angles at once, shape (A, V, 3).
+def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, anchor: str = "start",
+                   keep: Sequence[np.ndarray] | None = None) -> np.ndarray:
+    """Vertex positions of ``State.mesh(keep=keep)`` at many fold angles at once, shape (A, V, 3).
 
     The vectorised form of ``[structure.state(f, anchor=anchor).mesh().vertices_coords for f
     in fold_angles]`` (one Frenet integration for all angles).
@@ -472,10 +478,12 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
     degrees : bool, keyword-only
     anchor : {"start", "middle"}, keyword-only
         Which frame of curve 1 stays fixed (see :meth:`Structure.state`).
+    keep : sequence of (m_k,) array_like of int, optional, keyword-only
+        The samples each tube's mesh keeps (see :meth:`Structure.topology`).
     """
     _check_structure(structure)
     angles = _angles(fold_angles, degrees, "fold_angles")
     points = structure.lattice.fold_points(structure.curves_uv, angles, anchor=anchor)  # (A, M, n, 3)
-    return structure.topology().coords(points)
+    return structure.topology(keep=keep).coords(points)
 
 

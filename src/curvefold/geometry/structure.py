@@ -131,7 +131,7 @@ class Structure(FrozenArrays):
         row = np.where(np.array(CORNER_KINDS) == "fold", np.pi - 2 * a, 2 * a)
         return np.broadcast_to(row, (len(self.cells), 4)).copy()
 
-    def topology(self, faces: Literal["triangles", "quads"] = "triangles") -> Topology:
+    def topology(self, faces: Literal["triangles", "quads"] = "triangles", *, keep: Sequence[np.ndarray] | None = None) -> Topology:
         """The mesh of the tubes and their sheets (:meth:`Topology.tubes`).
 
         Parameters
@@ -139,8 +139,13 @@ class Structure(FrozenArrays):
         faces : {"triangles", "quads"}
             Two triangles or one quad per ruling quad (planar only to O(h³), which the
             triangles' diagonals carry). Both number the vertices alike.
+        keep : sequence of (m_k,) array_like of int, optional, keyword-only
+            The samples each tube's mesh keeps (e.g. ``Sampling.keep`` of
+            :func:`curvefold.geometry.sampling.choose_sampling`); default every sample.
         """
-        return self._triangles if faces == "triangles" else Topology.tubes(self.cell_curves, len(self.lattice.s), faces=faces)
+        if faces == "triangles" and keep is None:
+            return self._triangles
+        return Topology.tubes(self.cell_curves, len(self.lattice.s), faces=faces, keep=keep)
 
     @cached_property
     def _triangles(self) -> Topology:
@@ -184,15 +189,16 @@ class State(FrozenArrays):
         """2α in degrees."""
         return self.lattice.crease.fold_angle
 
-    def mesh(self, *, faces: Literal["triangles", "quads"] = "triangles") -> Mesh:
+    def mesh(self, *, faces: Literal["triangles", "quads"] = "triangles", keep: Sequence[np.ndarray] | None = None) -> Mesh:
         """The mesh of all tubes at this state (FOLD arrays, fold angles measured).
 
         Parameters
         ----------
         faces : {"triangles", "quads"}, keyword-only
-            The faces of :meth:`Structure.topology`.
+        keep : sequence of (m_k,) array_like of int, optional, keyword-only
+            The faces and samples of :meth:`Structure.topology`.
         """
-        return self.structure.topology(faces).mesh(self.vertices)
+        return self.structure.topology(faces, keep=keep).mesh(self.vertices)
 
 
 def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_cells: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:

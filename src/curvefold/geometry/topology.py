@@ -25,6 +25,7 @@ The single rule for FOLD assignments is :func:`fold_assignment`.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -241,7 +242,8 @@ class Topology(FrozenArrays):
     sheets: tuple[SheetTopology, ...]
 
     @classmethod
-    def tubes(cls, cell_curves: np.ndarray, samples: int, *, faces: Literal["triangles", "quads"] = "triangles") -> Topology:
+    def tubes(cls, cell_curves: np.ndarray, samples: int, *, faces: Literal["triangles", "quads"] = "triangles",
+              keep: Sequence[np.ndarray] | None = None) -> Topology:
         """Closed tubes of four ruled strips, one per cell, each with its own vertices.
 
         Vertex ``(4k + c)·n + j`` is sample j of corner c (0-based) of tube k. Strip c of a
@@ -260,10 +262,16 @@ class Topology(FrozenArrays):
         samples : int
             Samples n ≥ 2 per curve.
         faces : {"triangles", "quads"}, keyword-only
+        keep : sequence of (m_k,) array_like of int, optional, keyword-only
+            For every tube, the samples its mesh keeps (ascending, at least two, within
+            [0, n)): tube k then has m_k vertices per corner, vertex j being sample
+            ``keep[k][j]``, and vertices are numbered tube after tube. Default: every sample.
         """
         if faces not in ("triangles", "quads"):
             raise InputError(f"faces must be 'triangles' or 'quads', got {faces!r}")
         cells = np.asarray(cell_curves, dtype=np.int64).reshape(-1, 4)
+        if keep is not None:
+            return _kept_tubes(cls, cells, int(samples), faces, keep)
         K, n = len(cells), int(samples)
         j, i = np.arange(n - 1), np.arange(n)
         strip = np.arange(4 * K)  # 4k + c
@@ -340,6 +348,45 @@ class Topology(FrozenArrays):
             edges_kind=self.edges_kind,
             faces_group=self.faces_group,
         )
+
+
+def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str, keep: Sequence[np.ndarray]) -> Topology:
+    """:meth:`Topology.tubes` with its own samples per tube: the tubes one by one, renumbered."""
+    if len(keep) != len(cells):
+        raise InputError(f"keep must list the samples of each of the {len(cells)} tubes, got {len(keep)} lists")
+    parts = []
+    for k, picks in enumerate(keep):
+        picks = np.asarray(picks, dtype=np.int64)
+        if picks.ndim != 1 or len(picks) < 2 or picks[0] < 0 or picks[-1] >= samples or (np.diff(picks) <= 0).any():
+            raise InputError(f"keep[{k}] must be at least two ascending sample indices in [0, {samples}), got {picks.tolist()}")
+        one = cls.tubes(cells[k : k + 1], len(picks), faces=faces)
+        parts.append((one, picks))
+    V = np.cumsum([0] + [len(p.vertex_sample) for p, _ in parts])
+    F = np.cumsum([0] + [len(p.faces_vertices) for p, _ in parts])
+    E = np.cumsum([0] + [len(p.edges_vertices) for p, _ in parts])
+    seams = len(_SEAMS)  # seam ids per tube
+    sheets = []
+    for k, (one, _) in enumerate(parts):
+        for sheet in one.sheets:
+            sheets.append(SheetTopology(
+                label=sheet.label.replace("tube 1 ", f"tube {k + 1} ", 1),
+                vertices=sheet.vertices + V[k],
+                faces=sheet.faces + F[k],
+                edges=sheet.edges + E[k],
+                faces_vertices=sheet.faces_vertices,
+                edges_vertices=sheet.edges_vertices,
+                edges_seam=np.where(sheet.edges_seam >= 0, sheet.edges_seam + seams * k, -1),
+            ))
+    return cls(
+        vertex_curve=np.concatenate([one.vertex_curve for one, _ in parts]),
+        vertex_sample=np.concatenate([picks[one.vertex_sample] for one, picks in parts]),
+        faces_vertices=np.concatenate([one.faces_vertices + V[k] for k, (one, _) in enumerate(parts)]),
+        faces_group=np.concatenate([one.faces_group + 4 * k for k, (one, _) in enumerate(parts)]),
+        edges_vertices=np.concatenate([one.edges_vertices + V[k] for k, (one, _) in enumerate(parts)]),
+        edges_kind=np.concatenate([one.edges_kind for one, _ in parts]),
+        edges_seam=np.concatenate([np.where(one.edges_seam >= 0, one.edges_seam + seams * k, -1) for k, (one, _) in enumerate(parts)]),
+        sheets=tuple(sheets),
+    )
 
 
 def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.ndarray, faces_vertices: np.ndarray,

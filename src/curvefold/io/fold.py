@@ -638,6 +638,7 @@ def to_fold(
     metadata: Mapping | None = None,
     anchor: str = "start",
     faces: Literal["triangles", "quads"] = "triangles",
+    keep: Sequence[np.ndarray] | None = None,
 ) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
@@ -667,6 +668,9 @@ def to_fold(
         Which frame of curve 1 stays fixed in the folded frames.
     faces : {"triangles", "quads"}, keyword-only
         Faces of the sheets (:func:`curvefold.geometry.sheets.sheets`).
+    keep : sequence of (m_k,) array_like of int, optional, keyword-only
+        The samples each tube's mesh keeps (:func:`curvefold.geometry.sampling.choose_sampling`);
+        default every sample.
 
     Returns
     -------
@@ -680,7 +684,7 @@ def to_fold(
     if not isinstance(unit, str) or not unit:
         raise InputError(f"unit must be a non-empty str, got {unit!r}")
     meta = _metadata(structure, design, metadata)
-    topology = structure.topology(faces)
+    topology = structure.topology(faces, keep=keep)
     parts = _develop(structure, design, "", topology)
     xys = [p.mesh.vertices_coords[:, :2] for p in parts]
     size = max(float(np.ptp(xy, axis=0).max()) for xy in xys)
@@ -709,7 +713,7 @@ def to_fold(
     pairs.flags.writeable = False
 
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
-    coords = folding_motion(structure, angles, anchor=anchor)[:, source]  # (A, V, 3)
+    coords = folding_motion(structure, angles, anchor=anchor, keep=keep)[:, source]  # (A, V, 3)
     folded = tuple((f"fold angle {a:g}°", cp.with_coords(x)) for a, x in zip(angles, coords))
     return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs)
 
@@ -725,7 +729,7 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
         ``file_title``.
     **kwargs
         Passed to :func:`to_fold` (``fold_angles``, ``fold_angle``, ``degrees``, ``unit``,
-        ``metadata``, ``anchor``, ``faces``).
+        ``metadata``, ``anchor``, ``faces``, ``keep``).
 
     Returns
     -------

@@ -88,14 +88,14 @@ _MODEL = "curvefold.io.models:write_3d"
 
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind", "pattern", STRUCTURE_KINDS, _PATTERN),
-    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes", "pattern", STRUCTURE_KINDS, _PATTERN, "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar", "pattern", STRUCTURE_KINDS, _PATTERN, "matplotlib", "export"),
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", STRUCTURE_KINDS, _PATTERN),
+    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", STRUCTURE_KINDS, _PATTERN, "ezdxf", "export"),
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", STRUCTURE_KINDS, _PATTERN, "matplotlib", "export"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", STRUCTURE_KINDS,
                "curvefold.io.fold:write_structure_fold"),
-    FileFormat("glb", ".glb", "glTF 3D model with the folding motion as an animation", "model", STRUCTURE_KINDS, _MODEL, "pygltflib", "export"),
-    FileFormat("obj", ".obj", "3D mesh of the folded state with the creases as polylines", "model", STRUCTURE_KINDS, _MODEL),
-    FileFormat("3dm", ".3dm", "Rhino model of the folded state with one layer per crease kind", "model", STRUCTURE_KINDS, _MODEL, "rhino3dm", "rhino"),
+    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", STRUCTURE_KINDS, _MODEL, "pygltflib", "export"),
+    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", STRUCTURE_KINDS, _MODEL),
+    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", STRUCTURE_KINDS, _MODEL, "rhino3dm", "rhino"),
     FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", STRUCTURE_KINDS, _MODEL, "trimesh", "export"),
     FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", STRUCTURE_KINDS, _MODEL, "trimesh", "export"),
     FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", STRUCTURE_KINDS,

@@ -3,15 +3,18 @@
 The file holds two meshes that move together:
 
 * ``surface``: the triangles (double-sided grey material). Its base positions are the
-  first state; state k (k >= 1) is morph target k - 1, holding the position differences
-  to the first state.
+  base state (``base_state``, by default the last: the design state, which is what a
+  viewer shows without playing the animation); every other state is a morph target
+  holding the position differences to it, in state order, named by its fold angle in
+  the mesh's ``extras.targetNames`` (``"2α = 45°"``; three.js reads them into
+  ``morphTargetDictionary``).
 * ``creases``: one ``LINES`` primitive per crease kind present, with a material of the
   kind's colour (fold red, seam blue, boundary black) and the same morph targets.
 
 One animation drives the ``weights`` of both nodes: at time ``k * seconds_per_state``
-the weights select state k exactly (all zero for k = 0, the unit vector of target k - 1
-otherwise), so ``LINEAR`` interpolation blends linearly from each state to the next and
-``STEP`` jumps between them.
+the weights select state k exactly (all zero for the base state, the unit vector of the
+state's target otherwise), so ``LINEAR`` interpolation blends linearly from each state
+to the next and ``STEP`` jumps between them.
 
 Units and axes: glTF lengths are metres and +Y is up. Coordinates are multiplied by
 ``scale`` (metres per model unit; by default taken from ``unit``: ``"mm"`` → 0.001,
@@ -36,7 +39,7 @@ import numpy as np
 from ..geometry.mesh import Mesh
 from ..kernel.errors import InputError
 from .atomic import atomic_write
-from .mesh3d import check_metadata
+from .mesh3d import Y_UP, check_metadata
 from .tables import UNITS, rgba
 
 __all__ = ["CREASE_COLOURS", "write_glb"]
@@ -47,7 +50,7 @@ CREASE_COLOURS = MappingProxyType({kind: rgba(kind) for kind in ("fold", "seam",
 _FLOAT, _UINT32 = 5126, 5125
 _ARRAY_BUFFER, _ELEMENT_ARRAY_BUFFER = 34962, 34963
 _LINES, _TRIANGLES = 1, 4
-_AXES = {"z": np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]]), "y": np.eye(3)}
+_AXES = {"z": Y_UP["y"], "y": Y_UP["z"]}  # the model's up axis -> the rotation onto glTF's +Y up
 
 
 class _Packer:
@@ -92,6 +95,7 @@ def write_glb(
     unit: str = "unit",
     scale: float | None = None,
     metadata: Mapping | None = None,
+    base_state: int = -1,
     seconds_per_state: float = 1.0,
     interpolation: str = "LINEAR",
     up: str = "z",
@@ -115,6 +119,8 @@ def write_glb(
         Metres per model unit. Default: from ``unit`` (see :data:`curvefold.io.tables.UNITS`).
     metadata : mapping, optional
         Design parameters, recorded in the asset extras.
+    base_state : int
+        The state whose positions are the meshes' own (index into ``coords``; default the last).
     seconds_per_state : float
         Animation time from one state to the next (> 0).
     interpolation : {"LINEAR", "STEP"}
@@ -148,6 +154,9 @@ def write_glb(
     if not np.isfinite(states).all():
         raise InputError("coords must be finite")
     K = len(states)
+    if isinstance(base_state, bool) or not isinstance(base_state, (int, np.integer)) or not -K <= base_state < K:
+        raise InputError(f"base_state must be a state index in [{-K}, {K}), got {base_state!r}")
+    base_state = int(base_state) % K
     angles = None
     if angles_deg is not None:
         angles = np.asarray(angles_deg, float).reshape(-1)
@@ -171,8 +180,10 @@ def write_glb(
     meta = check_metadata(metadata)
 
     pos = (states * float(scale)) @ _AXES[up].T  # (K, V, 3) metres, glTF axes
-    base = pos[0].astype(np.float32)
-    deltas = (pos[1:] - pos[0]).astype(np.float32)  # (K-1, V, 3)
+    others = np.array([k for k in range(K) if k != base_state], dtype=np.int64)  # the states of targets 0 … K − 2
+    base = pos[base_state].astype(np.float32)
+    deltas = (pos[others] - pos[base_state]).astype(np.float32)  # (K-1, V, 3)
+    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others]
 
     pk = _Packer(g)
     materials = [_material(g, "surface", rgba("surface"), double_sided=True)]
@@ -187,6 +198,7 @@ def write_glb(
         name="surface",
         primitives=[primitive(np.arange(V), mesh.triangulated().faces_vertices, _TRIANGLES, 0)],
         weights=[0.0] * (K - 1),
+        extras={"targetNames": names},
     )
     line_primitives = []
     for kind in crease_kinds:
@@ -200,14 +212,14 @@ def write_glb(
     meshes = [surface]
     nodes = [g.Node(name="surface", mesh=0)]
     if line_primitives:
-        meshes.append(g.Mesh(name="creases", primitives=line_primitives, weights=[0.0] * (K - 1)))
+        meshes.append(g.Mesh(name="creases", primitives=line_primitives, weights=[0.0] * (K - 1), extras={"targetNames": names}))
         nodes.append(g.Node(name="creases", mesh=1))
 
     animations = []
     if K > 1:
         times = (np.arange(K) * float(seconds_per_state)).astype(np.float32)
         weights = np.zeros((K, K - 1), np.float32)
-        weights[np.arange(1, K), np.arange(K - 1)] = 1.0
+        weights[others, np.arange(K - 1)] = 1.0  # the base state has all weights 0
         t_acc = pk.add(times, "SCALAR", min_max=True)
         w_acc = pk.add(weights.reshape(-1), "SCALAR")
         animations.append(g.Animation(
@@ -222,6 +234,7 @@ def write_glb(
         "up_axis": up,
         "axis_mapping": "(x, y, z) -> (x, z, -y)" if up == "z" else "none",
         "states": K,
+        "base_state": base_state,
         "seconds_per_state": float(seconds_per_state),
         "metadata": meta,
     }

@@ -8,6 +8,11 @@ Precision: STL and PLY store vertex coordinates as 32-bit floats (about 7 signif
 digits); OBJ stores them with 17 significant digits. None of the three formats has a
 unit; the OBJ header comment states it.
 
+Axes: curvefold's models are z-up. OBJ readers (Blender, three.js, most viewers) take
++Y as up, so OBJ files are written Y-up by default, turned by ``(x, y, z) → (x, z, −y)``
+(a rotation: faces keep their orientation), and the header comment says so. STL and PLY,
+read mostly by slicers and CAD tools that take +Z as up, stay z-up.
+
 The helpers :func:`crease_polylines` and :func:`check_metadata` are shared by the other
 exporters.
 """
@@ -18,20 +23,27 @@ import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
 from ..geometry.mesh import EDGE_KINDS, Mesh
+from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
 from .atomic import atomic_write
 
 __all__ = [
+    "Y_UP",
     "check_metadata",
     "crease_polylines",
     "write_obj",
     "write_ply",
     "write_stl",
 ]
+
+#: Rotation from the model's axes to a file's, for a file whose up axis is y or z.
+Y_UP = MappingProxyType({"y": readonly(np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])), "z": readonly(np.eye(3))})
+
 
 def check_metadata(metadata: Mapping | None) -> dict:
     """Validate design parameters and return them as a plain JSON-ready dict.
@@ -195,6 +207,7 @@ def write_obj(
     unit: str = "unit",
     metadata: Mapping | None = None,
     name: str = "curvefold",
+    up: str = "y",
 ) -> Path:
     """Write one state as a Wavefront OBJ with the crease lines as polylines.
 
@@ -216,6 +229,9 @@ def write_obj(
         Design parameters (recorded as comments).
     name : str
         Object name (``o`` statement).
+    up : {"y", "z"}
+        The file's up axis: ``"y"`` turns the model's +z onto +y (see the module notes),
+        ``"z"`` writes the coordinates as they are.
 
     Returns
     -------
@@ -224,10 +240,13 @@ def write_obj(
     """
     crease_kinds = _check_kinds(crease_kinds, "crease_kinds")
     meta = check_metadata(metadata)
-    x = np.asarray(mesh.vertices_coords, float)
+    if up not in Y_UP:
+        raise InputError(f"up must be 'y' or 'z', got {up!r}")
+    x = np.asarray(mesh.vertices_coords, float) @ Y_UP[up].T
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
-    parts = ["# written by curvefold\n", f"# unit: {unit}\n"]
+    axes = "+Y up: (x, y, z) of the model written as (x, z, -y)" if up == "y" else "+Z up, as in the model"
+    parts = ["# written by curvefold\n", f"# unit: {unit}\n", f"# axes: {axes}\n"]
     parts += [f"# {k}: {v}\n" for k, v in meta.items()]
     parts.append(f"o {name}\n")
     parts.append(_fmt_rows("v", x, "%.17g"))

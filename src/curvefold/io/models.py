@@ -36,8 +36,13 @@ def write_3d(
     metadata: Mapping | None = None,
     anchor: str = "start",
     seconds_per_state: float = 1.0,
+    keep: Sequence[np.ndarray] | None = None,
 ) -> tuple[Path, ...]:
     """Write the folded structure as 3D files; the GLB holds the folding motion.
+
+    OBJ and 3dm hold one quad per ruling quad, GLB, STL and PLY two triangles (their
+    formats know triangles only). The GLB's base pose is the state of OBJ, STL, PLY and
+    3dm; the other states of the motion are its morph targets.
 
     Parameters
     ----------
@@ -58,6 +63,9 @@ def write_3d(
     anchor : {"start", "middle"}, keyword-only
     seconds_per_state : float, keyword-only
         GLB animation time between consecutive states.
+    keep : sequence of (m_k,) array_like of int, optional, keyword-only
+        The samples each tube's mesh keeps (:func:`curvefold.geometry.sampling.choose_sampling`);
+        default every sample.
 
     Returns
     -------
@@ -70,20 +78,22 @@ def write_3d(
     static = design if fold_angle is None else float(_angles([fold_angle], degrees, "fold_angle")[0])
     motion = np.linspace(0.0, design, 7) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
     meta = _metadata(structure, design, metadata)
-    mesh = structure.state(static, anchor=anchor).mesh()
+    state = structure.state(static, anchor=anchor)
+    mesh, quads = state.mesh(keep=keep), state.mesh(faces="quads", keep=keep)
+    static_meta = {**meta, "fold_angle_deg": static}
     out: list[Path] = []
     for fmt in formats:
         target = _target(path_stem, fmt)
         if fmt == "glb":
-            coords = folding_motion(structure, motion, anchor=anchor)
-            out.append(gltf.write_glb(target, mesh, coords=coords, angles_deg=motion, unit=unit, metadata=meta,
+            coords = folding_motion(structure, motion, anchor=anchor, keep=keep)
+            out.append(gltf.write_glb(target, mesh, coords=coords, angles_deg=motion, base_state=int(np.argmin(np.abs(motion - static))), unit=unit, metadata=meta,
                                       seconds_per_state=seconds_per_state))
         elif fmt == "obj":
-            out.append(mesh3d.write_obj(target, mesh, unit=unit, metadata={**meta, "fold_angle_deg": static}))
+            out.append(mesh3d.write_obj(target, quads, unit=unit, metadata=static_meta))
         elif fmt == "stl":
             out.append(mesh3d.write_stl(target, mesh))
         elif fmt == "ply":
             out.append(mesh3d.write_ply(target, mesh))
         else:
-            out.append(rhino.write_3dm(target, mesh, unit=unit, metadata={**meta, "fold_angle_deg": static}))
+            out.append(rhino.write_3dm(target, quads, structure.topology("quads", keep=keep), unit=unit, metadata=static_meta))
     return tuple(out)

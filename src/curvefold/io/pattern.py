@@ -4,13 +4,18 @@ Build a :class:`~curvefold.io.layout.Layout` with :func:`layout_sheets` (placeme
 pages, glue tabs, layers, labels; see :mod:`curvefold.io.layout`), then write it:
 
 * :func:`write_svg` — one SVG per page, ``width``/``height`` in mm and a viewBox in mm,
-  one Inkscape layer per fabrication layer. One page: written to ``path``. Several pages:
-  ``name-p1.svg``, ``name-p2.svg``… beside ``path`` (``path`` itself is not written),
-  unless ``page_index`` picks one page, which is then written to ``path``.
+  one Inkscape layer per fabrication layer and a ``legend`` layer (not to cut). One page:
+  written to ``path``. Several pages: ``name-p1.svg``, ``name-p2.svg``… beside ``path``
+  (``path`` itself is not written), unless ``page_index`` picks one page, which is then
+  written to ``path``.
 * :func:`write_dxf` — one DXF (R2010, ``$INSUNITS`` = 4, mm) with real layers, colours
-  and linetypes; pages side by side along +x, ``page_spacing`` apart. Needs ``ezdxf``.
-* :func:`write_pdf` — one printable PDF page per layout page at 1:1, with a 10 mm scale
-  bar in the bottom margin to check the print scale. Needs ``matplotlib``.
+  and linetypes; pages in a grid, each framed, with the drawing's extents set. Needs
+  ``ezdxf``.
+* :func:`write_pdf` — one printable PDF page per layout page at 1:1. Needs ``matplotlib``.
+
+Every page carries a footer (:func:`page_footer`) inside its margins: a 10 mm scale bar
+with the print scale, the page number, and a legend of the line styles and seam names
+on that page.
 
 Layer styles (:data:`LAYER_STYLES`, colours from :data:`curvefold.io.tables.COLOURS`):
 ``cut`` black solid, ``mountain`` red dash-dot, ``valley`` blue dashed, ``seam`` (tab fold
@@ -34,10 +39,12 @@ import numpy as np
 
 from ..geometry.sheets import PatternSheet, _check_structure, sheets
 from ..geometry.structure import Structure
+from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from .atomic import atomic_path
 from .formats import check_formats, formats_of
 from .layout import (
+    FOOTER,
     LAYERS,
     Label,
     Layout,
@@ -47,6 +54,7 @@ from .layout import (
     layout_sheets,
     page_size,
     seam_name,
+    text_width,
 )
 from .tables import COLOURS, mm_per_unit
 
@@ -67,6 +75,9 @@ __all__ = [
     "LAYER_STYLES",
     "LayerStyle",
     "Label",
+    "LEGEND",
+    "Footer",
+    "page_footer",
     "Layout",
     "Page",
     "PatternSheet",
@@ -79,6 +90,7 @@ __all__ = [
     "layout_pattern",
     "svg_page",
     "write_pattern",
+    "page_grid",
     "write_dxf",
     "write_pdf",
     "write_svg",
@@ -128,6 +140,79 @@ LAYER_STYLES = MappingProxyType({
 
 #: Layers the writers draw by default.
 DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")
+
+#: What each layer means, as the legend says it.
+LEGEND = MappingProxyType({
+    "cut": "cut",
+    "mountain": "mountain fold",
+    "valley": "valley fold",
+    "seam": "glue-tab fold",
+    "glue": "glue",
+    "rulings": "ruling (score)",
+    "labels": "glue the edges named alike",
+})
+_FOOTER_TEXT = 2.5  # em height of the footer's text, mm
+_SAMPLE = 8.0  # length of a legend's sample line, mm
+
+
+@dataclass(frozen=True, eq=False)
+class Footer(FrozenArrays):
+    """The scale bar, scale note and legend of one page, in page mm inside its footer band.
+
+    Attributes
+    ----------
+    samples : tuple of (str, (k, 2) ndarray)
+        A sample of every drawn layer but the labels: a line in the layer's style, or for
+        a filled layer a closed rectangle.
+    bar : (4, 2) ndarray
+        The 10 mm scale bar, a rectangle to fill black.
+    texts : tuple of (Label, str)
+        Text and its colour ``#rrggbb``.
+    """
+
+    samples: tuple[tuple[str, np.ndarray], ...]
+    bar: np.ndarray
+    texts: tuple[tuple[Label, str], ...]
+
+
+def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None = None) -> Footer:
+    """The footer of a page: a 10 mm scale bar with the print scale, and the legend of the ``layers`` it draws.
+
+    It lies in the band of :attr:`Layout.footer` above the bottom margin, so it prints
+    wherever the sheets do. Text starts where its box is estimated (:func:`text_width`).
+    """
+    page = layout.pages[page_index]
+    drawn = set(_check_layers(layers))
+    names = [name for name in LEGEND if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))]
+    W, _ = layout.page_size
+    m, size = layout.margin, _FOOTER_TEXT
+    top = m + max(layout.footer, 3 * size) - 0.5 * size  # centre line of the first row
+    grey = "#444444"
+
+    def text(words: str, x: float, y: float, colour: str = grey) -> tuple[Label, str]:
+        return Label(words, (x + 0.5 * text_width(words, size), y), 0.0, size, "legend"), colour
+
+    bar = np.array([[m, top - 0.6], [m + 10.0, top - 0.6], [m + 10.0, top + 0.6], [m, top + 0.6]])
+    note = (f"10 mm: print at 100 % · 1 model unit = {layout.scale:.4g} mm · "
+            f"page {page_index + 1} of {len(layout.pages)} · curvefold")
+    texts = [text(note, m + 12.0, top)]
+    samples = []
+    x, y = m, top - 1.8 * size
+    for name in names:
+        words = LEGEND[name]
+        lead = text_width(seam_name(1), size) if name == "labels" else _SAMPLE
+        width = lead + 1.5 + text_width(words, size)
+        if x > m and x + width > W - m:  # next row
+            x, y = m, y - 1.8 * size
+        if name == "labels":
+            texts.append(text(seam_name(1), x, y, LAYER_STYLES["labels"].color))
+        elif LAYER_STYLES[name].fill:
+            samples.append((name, np.array([[x, y - 1.0], [x + _SAMPLE, y - 1.0], [x + _SAMPLE, y + 1.0], [x, y + 1.0]])))
+        else:
+            samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
+        texts.append(text(words, x + lead + 1.5, y))
+        x += width + 4.0
+    return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts))
 
 # Cap height of a font as a fraction of its em height (DXF TEXT heights are cap heights).
 _CAP_HEIGHT = 0.72
@@ -196,27 +281,36 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
         '<sodipodi:namedview id="namedview" inkscape:document-units="mm" showgrid="false"/>',
     ]
     for name in names:
-        st = LAYER_STYLES[name]
         if name == "labels":
-            style = (f"fill:{st.color};stroke:none;font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;"
-                     "text-anchor:middle")
             body = [_svg_label(t, H) for t in page.labels()]
         else:
-            if st.fill:
-                style = f"fill:{st.color};stroke:none"
-            else:
-                style = (f"fill:none;stroke:{st.color};stroke-width:{lw * st.width:g};"
-                         "stroke-linecap:butt;stroke-linejoin:round")
-                if st.dashes:
-                    style += ";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes)
             body = [f'<{"polygon" if p.closed else "polyline"} points="{_svg_points(p.points, H)}"/>'
                     for p in page.on_layer(name)]
         out.append(f'<g inkscape:groupmode="layer" id="layer-{name}" inkscape:label={quoteattr(name)} '
-                   f'style={quoteattr(style)}>')
+                   f'style={quoteattr(_svg_style(name, lw))}>')
         out.extend(body)
         out.append("</g>")
+    footer = page_footer(layout, page_index, names)
+    out.append('<g inkscape:groupmode="layer" id="layer-legend" inkscape:label="legend (not to cut)">')
+    out.append(f'<polygon points="{_svg_points(footer.bar, H)}" style="fill:#000000;stroke:none"/>')
+    out += [f'<{"polygon" if LAYER_STYLES[name].fill else "polyline"} points="{_svg_points(points, H)}" '
+            f'style={quoteattr(_svg_style(name, lw))}/>' for name, points in footer.samples]
+    out += [f'<g style={quoteattr(_svg_style("labels", lw).replace(LAYER_STYLES["labels"].color, colour))}>{_svg_label(t, H)}</g>'
+            for t, colour in footer.texts]
+    out.append("</g>")
     out.append("</svg>\n")
     return "\n".join(out)
+
+
+def _svg_style(name: str, lw: float) -> str:
+    """The SVG style of a layer's lines (or text, for ``labels``)."""
+    st = LAYER_STYLES[name]
+    if name == "labels":
+        return f"fill:{st.color};stroke:none;font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;text-anchor:middle"
+    if st.fill:
+        return f"fill:{st.color};stroke:none"
+    style = f"fill:none;stroke:{st.color};stroke-width:{lw * st.width:g};stroke-linecap:butt;stroke-linejoin:round"
+    return style + (";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes) if st.dashes else "")
 
 
 def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = None, *,
@@ -266,6 +360,19 @@ def _rgb(color: str) -> tuple[int, int, int]:
     return int(color[1:3], 16), int(color[3:5], 16), int(color[5:7], 16)
 
 
+def page_grid(count: int, size: tuple[float, float], spacing: float) -> np.ndarray:
+    """Lower-left corners (count, 2) of pages laid in a grid of ⌈√count⌉ columns, row by row from the top.
+
+    Examples
+    --------
+    >>> page_grid(3, (210.0, 297.0), 20.0).tolist()
+    [[0.0, 0.0], [230.0, 0.0], [0.0, -317.0]]
+    """
+    columns = math.ceil(math.sqrt(count))
+    i = np.arange(count)
+    return np.stack([(i % columns) * (size[0] + spacing), -(i // columns) * (size[1] + spacing)], axis=1).astype(float)
+
+
 def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str] | None = None,
               page_spacing: float = 20.0) -> Path:
     """Write the layout as one DXF drawing in millimetres (needs ``ezdxf``).
@@ -274,7 +381,9 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     linetype (``CONTINUOUS`` cut, ``DASHDOT`` mountain, ``DASHED`` valley, ``DOT`` tab
     fold lines; patterns in mm) and lineweight. Lines are ``LWPOLYLINE`` entities, glue
     areas solid ``HATCH`` entities and labels ``TEXT`` (height = cap height, centred).
-    Page i is shifted by ``i × (page width + page_spacing)`` along +x.
+    Pages lie in a grid (:func:`page_grid`), each framed on layer ``pages``, with its
+    footer (scale bar and legend) on layer ``legend``; both layers do not plot. The
+    header's ``$EXTMIN``/``$EXTMAX`` and the initial view hold every page.
 
     Parameters
     ----------
@@ -304,26 +413,31 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     doc.header["$INSUNITS"] = 4
     doc.header["$MEASUREMENT"] = 1
     doc.header["$LTSCALE"] = 1.0
-    patterns = {}
     for name in names:
         st = LAYER_STYLES[name]
-        if st.dashes and st.linetype not in patterns:
-            dxf_pattern = [float(sum(st.dashes))] + [d if k % 2 == 0 else -d for k, d in enumerate(st.dashes)]
-            doc.linetypes.add(st.linetype, dxf_pattern, description=f"curvefold {name} " + " ".join(f"{d:g}" for d in st.dashes))
-            patterns[st.linetype] = dxf_pattern
+        if st.dashes and st.linetype not in doc.linetypes:
+            pattern = [float(sum(st.dashes))] + [d if k % 2 == 0 else -d for k, d in enumerate(st.dashes)]
+            doc.linetypes.add(st.linetype, pattern, description=f"curvefold {name} " + " ".join(f"{d:g}" for d in st.dashes))
         doc.layers.add(name, color=st.aci, true_color=colors.rgb2int(_rgb(st.color)),
                        linetype=st.linetype if st.dashes else "CONTINUOUS", lineweight=13 if st.width < 1 else 25)
+    for name in ("pages", "legend"):
+        doc.layers.add(name, color=8).dxf.plot = 0
     msp = doc.modelspace()
-    for i, page in enumerate(layout.pages):
-        shift = np.array([i * (page.size[0] + page_spacing), 0.0])
+
+    def text(words: str, position, size: float, angle: float, layer: str, **attributes) -> None:
+        entity = msp.add_text(words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer, **attributes})
+        entity.set_placement(tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER)
+
+    W, H = layout.page_size
+    corners = page_grid(len(layout.pages), (W, H), page_spacing)
+    for i, (page, shift) in enumerate(zip(layout.pages, corners)):
+        msp.add_lwpolyline([tuple(shift), (shift[0] + W, shift[1]), (shift[0] + W, shift[1] + H), (shift[0], shift[1] + H)],
+                           close=True, dxfattribs={"layer": "pages"})
         for name in names:
             st = LAYER_STYLES[name]
             if name == "labels":
                 for t in page.labels():
-                    x, y = np.asarray(t.position) + shift
-                    text = msp.add_text(t.text, height=_CAP_HEIGHT * t.size, rotation=t.angle,
-                                        dxfattribs={"layer": name})
-                    text.set_placement((float(x), float(y)), align=TextEntityAlignment.MIDDLE_CENTER)
+                    text(t.text, np.asarray(t.position) + shift, t.size, t.angle, name)
                 continue
             for p in page.on_layer(name):
                 pts = (p.points + shift).tolist()
@@ -332,6 +446,21 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
                     hatch.paths.add_polyline_path(pts, is_closed=True)
                 else:
                     msp.add_lwpolyline(pts, close=p.closed, dxfattribs={"layer": name})
+        footer = page_footer(layout, i, names)
+        msp.add_hatch(color=7, dxfattribs={"layer": "legend"}).paths.add_polyline_path((footer.bar + shift).tolist(), is_closed=True)
+        for name, points in footer.samples:
+            st = LAYER_STYLES[name]
+            style = {"layer": "legend", "true_color": colors.rgb2int(_rgb(st.color)), "linetype": st.linetype if st.dashes else "CONTINUOUS"}
+            if st.fill:
+                msp.add_hatch(dxfattribs=style).paths.add_polyline_path((points + shift).tolist(), is_closed=True)
+            else:
+                msp.add_lwpolyline((points + shift).tolist(), dxfattribs=style)
+        for t, colour in footer.texts:
+            text(t.text, np.asarray(t.position) + shift, t.size, 0.0, "legend", true_color=colors.rgb2int(_rgb(colour)))
+    lo, hi = corners.min(axis=0), corners.max(axis=0) + (W, H)
+    msp.dxf.extmin = (float(lo[0]), float(lo[1]), 0.0)  # ezdxf writes them to $EXTMIN, $EXTMAX
+    msp.dxf.extmax = (float(hi[0]), float(hi[1]), 0.0)
+    doc.set_modelspace_vport(height=float(hi[1] - lo[1]) * 1.05, center=tuple(float(v) for v in 0.5 * (lo + hi)))
     with atomic_path(path) as tmp:
         doc.saveas(tmp)
     return Path(path)
@@ -342,9 +471,9 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
 
 
 def _draw_page(fig, page: Page, layout: Layout, number: int, names: tuple[str, ...], lw: float,
-               scale_bar: bool) -> None:
+               footer: bool) -> None:
     from matplotlib.collections import LineCollection, PolyCollection
-    from matplotlib.patches import Rectangle
+    from matplotlib.patches import Polygon
 
     W, H = page.size
     ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
@@ -370,23 +499,29 @@ def _draw_page(fig, page: Page, layout: Layout, number: int, names: tuple[str, .
         ax.add_collection(LineCollection([_closed(p) for p in lines], colors=st.color,
                                          linewidths=lw * st.width * _PT_PER_MM, linestyles=style,
                                          capstyle="butt", joinstyle="round", zorder=z))
-    small = 2.5 * _PT_PER_MM
-    y = max(0.45 * layout.margin, 1.0)
-    if scale_bar:
-        ax.add_patch(Rectangle((layout.margin, y - 0.3), 10.0, 0.6, facecolor="black", edgecolor="none"))
-        ax.text(layout.margin + 12.0, y, "10 mm (print at 100 %)", fontsize=small, va="center", ha="left",
-                family="sans-serif")
-    ax.text(W - layout.margin, y, f"curvefold · page {number} of {len(layout.pages)} · "
-            f"1 model unit = {layout.scale:.4g} mm", fontsize=small, va="center", ha="right", family="sans-serif",
-            color="#555555")
+    if footer:
+        foot = page_footer(layout, number - 1, names)
+        ax.add_patch(Polygon(foot.bar, closed=True, facecolor="black", edgecolor="none"))
+        for name, points in foot.samples:
+            st = LAYER_STYLES[name]
+            if st.fill:
+                ax.add_patch(Polygon(points, closed=True, facecolor=st.color, edgecolor="none"))
+            else:
+                style = (0, tuple(d * _PT_PER_MM for d in st.dashes)) if st.dashes else "solid"
+                ax.add_collection(LineCollection([points], colors=st.color, linewidths=lw * st.width * _PT_PER_MM,
+                                                 linestyles=style, capstyle="butt"))
+        for t, colour in foot.texts:
+            ax.text(t.position[0], t.position[1], t.text, fontsize=t.size * _PT_PER_MM, ha="center", va="center",
+                    color=colour, family="sans-serif")
 
 
 def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str] | None = None,
               line_width: float = 0.25, scale_bar: bool = True) -> Path:
     """Write the layout as a printable multi-page PDF at 1:1 (needs ``matplotlib``).
 
-    Each page is the layout's page size in mm; a 10 mm scale bar and a footer sit in
-    the bottom margin so the print scale can be checked with a ruler.
+    Each page is the layout's page size in mm; its footer (:func:`page_footer`: a 10 mm
+    scale bar to check the print scale with a ruler, and the legend) sits inside the
+    margins, where printers print.
 
     Parameters
     ----------
@@ -397,7 +532,7 @@ def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     line_width : float
         Line width in mm.
     scale_bar : bool
-        Draw the 10 mm scale bar.
+        Draw the footer: the 10 mm scale bar and the legend.
 
     Returns
     -------
@@ -432,10 +567,10 @@ def _nice_floor(value: float) -> float:
     return max(m for m in _NICE if m <= mant * (1 + 1e-12)) * 10.0**exp
 
 
-def _fit_scale(parts, page, units: str, margin_mm: float, tab_mm: float) -> float:
+def _fit_scale(parts, page, units: str, margin_mm: float, footer_mm: float, tab_mm: float) -> float:
     """Page units per model unit that fit the largest sheet (principal axes) with its tabs."""
     W, H = page_size(page, units=units)
-    room = np.array(sorted((W, H), reverse=True)) - 2 * margin_mm - 2 * tab_mm
+    room = np.array(sorted((W - 2 * margin_mm, H - 2 * margin_mm - footer_mm), reverse=True)) - 2 * tab_mm
     if (room <= 0).any():
         raise InputError(f"page {page!r} leaves no room for a sheet inside the margins and glue tabs")
     best = math.inf
@@ -458,6 +593,7 @@ def layout_pattern(
     scale: float | None = None,
     glue_tabs: bool = True,
     name: str = "",
+    keep: Sequence[np.ndarray] | None = None,
 ) -> Layout:
     """The sheets of a structure placed on pages with glue tabs, layers and labels.
 
@@ -479,16 +615,19 @@ def layout_pattern(
     glue_tabs : bool, keyword-only
     name : str, keyword-only
         Label prefix.
+    keep : sequence of (m_k,) array_like of int, optional, keyword-only
+        The samples each tube's sheets keep (:func:`curvefold.geometry.sampling.choose_sampling`);
+        default every sample.
 
     Returns
     -------
     curvefold.io.layout.Layout
     """
     _check_structure(structure)
-    parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name)
+    parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name, keep=keep)
     if scale is not None:
         return layout_sheets(parts, page=page, units=units, scale=scale, glue_tabs=glue_tabs)
-    guess = _fit_scale(parts, page, units, 10.0, 6.0 if glue_tabs else 0.0)
+    guess = _fit_scale(parts, page, units, 10.0, FOOTER, 6.0 if glue_tabs else 0.0)
     # The layout turns each sheet to its minimum-area rectangle, which can be longer than the
     # principal-axes box; step down the series of plain scales until it fits.
     for attempt in range(4):
@@ -514,6 +653,7 @@ def write_pattern(
     fold_angle: float | None = None,
     degrees: bool = True,
     name: str = "",
+    keep: Sequence[np.ndarray] | None = None,
 ) -> tuple[Path, ...]:
     """Write the crease pattern of a structure, laid out on pages, as SVG, DXF and/or PDF.
 
@@ -524,7 +664,7 @@ def write_pattern(
         and ``<stem>.pdf``.
     structure : Structure
     formats : sequence of {"svg", "dxf", "pdf"}, keyword-only
-    page, scale, units, glue_tabs, fold_angle, degrees, name : keyword-only
+    page, scale, units, glue_tabs, fold_angle, degrees, name, keep : keyword-only
         As in :func:`layout_pattern`.
     rulings : bool, keyword-only
         Also draw the rulings (thin green, for scoring).
@@ -536,7 +676,7 @@ def write_pattern(
     """
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,
-                            glue_tabs=glue_tabs, name=name)
+                            glue_tabs=glue_tabs, name=name, keep=keep)
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
     for fmt in formats:

@@ -1,11 +1,20 @@
 """Rhino ``.3dm`` of one structure state, written with ``rhino3dm`` (imported when called).
 
-Layers: ``Surface`` (the mesh, triangulated, double-precision vertices), ``Fold``, ``Seam``,
-``Boundary`` and ``Rulings`` (the crease edges of each kind chained into polylines; rulings
-are split wherever they turn, so each straight ruling is one polyline). Triangulating
-diagonals are not drawn. The design parameters are stored as document user text
-(``File3dm.Strings``, key → str(value)), prefixed ``curvefold:``; the unit is the model unit
-system.
+What a Rhino user works with, each kind on its own layer:
+
+* ``Sheets``: one mesh object per developed sheet (``"tube 1 · sheet A"``), one quad per
+  ruling quad, double-precision vertices;
+* ``Strips``: each developable strip as a ruled NURBS surface between its two crease
+  curves (``"tube 1 · strip 1"``): the two curves share their parameter, so the lines of
+  equal parameter, the surface's isocurves across the strip, are the rulings at the kept
+  samples (and close to them between);
+* ``Fold``, ``Seam``: every crease of every tube as a cubic NURBS curve through its
+  samples (interpolating, parameter t in [0, 1] shared by all creases);
+* ``Boundary``: the end sections of every tube, closed polylines as degree-1 NURBS curves.
+
+The unit system is the model's (``"unit"``, the model unit, is written as metres, the
+convention of :data:`curvefold.io.tables.UNITS`). The design parameters are stored as
+document user text (``File3dm.Strings``, key → str(value)), prefixed ``curvefold:``.
 """
 
 from __future__ import annotations
@@ -17,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ..geometry.mesh import Mesh
+from ..geometry.topology import Topology
 from ..kernel.errors import InputError
 from .atomic import atomic_path
 from .mesh3d import check_metadata, crease_polylines
@@ -24,41 +34,52 @@ from .tables import UNITS, rgba8
 
 __all__ = ["LAYERS", "write_3dm"]
 
-#: Layer name, edge kind (``None`` for the surface) and RGBA colour (from
-#: :data:`curvefold.io.tables.COLOURS`), in layer order.
+#: Layer name and RGBA colour (from :data:`curvefold.io.tables.COLOURS`), in layer order.
 LAYERS = (
-    ("Surface", None, rgba8("surface")),
-    ("Fold", "fold", rgba8("fold")),
-    ("Seam", "seam", rgba8("seam")),
-    ("Boundary", "boundary", rgba8("boundary")),
-    ("Rulings", "ruling", rgba8("ruling")),
+    ("Sheets", rgba8("surface")),
+    ("Strips", rgba8("surface")),
+    ("Fold", rgba8("fold")),
+    ("Seam", rgba8("seam")),
+    ("Boundary", rgba8("boundary")),
 )
-#: Turn (degrees) above which a ruling polyline is split.
-_RULING_SPLIT_DEG = 1e-3
+
+
+def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray):
+    """The cubic (fewer points: lower degree) NURBS curve through ``points`` (m, 3) at parameters t (m,)."""
+    from scipy.interpolate import make_interp_spline
+
+    spline = make_interp_spline(t, points, k=min(3, len(t) - 1))
+    curve = rhino3dm.NurbsCurve(3, False, spline.k + 1, len(spline.c))
+    for i, knot in enumerate(spline.t[1:-1].tolist()):  # Rhino leaves out the end knots
+        curve.Knots[i] = knot
+    for i, p in enumerate(spline.c.tolist()):
+        curve.Points[i] = rhino3dm.Point4d(*p, 1.0)
+    return curve
 
 
 def write_3dm(
     path: str | os.PathLike,
     mesh: Mesh,
+    topology: Topology,
     *,
     unit: str = "unit",
     metadata: Mapping | None = None,
-    name: str = "curvefold",
     version: int = 0,
 ) -> Path:
-    """Write one state to a Rhino 3dm file.
+    """Write one state to a Rhino 3dm file (see the module notes).
 
     Parameters
     ----------
     path : path-like
     mesh : Mesh
-        The state to write.
+        The state to write, on the quads of ``topology`` (``state.mesh(faces="quads")``).
+    topology : Topology
+        The mesh's topology (:meth:`Structure.topology` with ``faces="quads"``): its
+        sheets, and the samples of its vertices.
     unit : str
-        Model unit, a name in :data:`curvefold.io.tables.UNITS` (``"unit"``: no unit system).
+        Model unit, a name in :data:`curvefold.io.tables.UNITS`.
     metadata : mapping, optional
         Design parameters, written as document user text ``curvefold:<key>``.
-    name : str
-        Name of the surface mesh object; polylines are named ``<kind> <i>``.
     version : int
         3dm archive version (0 = the newest rhino3dm writes).
 
@@ -72,15 +93,19 @@ def write_3dm(
         raise ImportError("writing 3dm needs rhino3dm: pip install 'curvefold[rhino]'") from exc
     if unit not in UNITS:
         raise InputError(f"unit must be one of {sorted(UNITS)} for a 3dm file, got {unit!r}")
+    faces = np.asarray(mesh.faces_vertices)
+    if faces.shape[1] != 4 or (faces < 0).any() or not np.array_equal(faces, topology.faces_vertices):
+        raise InputError("write_3dm needs a mesh of ruling quads on the given topology (state.mesh(faces='quads'))")
     meta = check_metadata(metadata)
     x = np.asarray(mesh.vertices_coords, float)
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
+    t = topology.vertex_sample / max(int(topology.vertex_sample.max()), 1)
 
     model = rhino3dm.File3dm()
     model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNITS[unit].rhino)
     model.ApplicationName = "curvefold"
-    layer_index = {layer: model.Layers.AddLayer(layer, colour) for layer, _, colour in LAYERS}
+    layer_index = {layer: model.Layers.AddLayer(layer, colour) for layer, colour in LAYERS}
 
     def attributes(layer: str, object_name: str):
         attr = rhino3dm.ObjectAttributes()
@@ -88,23 +113,34 @@ def write_3dm(
         attr.Name = object_name
         return attr
 
-    surface = rhino3dm.Mesh()
-    surface.Vertices.UseDoublePrecisionVertices = True
-    for p in x.tolist():
-        surface.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
-    for a, b, c in mesh.triangulated().faces_vertices.tolist():
-        surface.Faces.AddFace(a, b, c)
-    surface.Normals.ComputeNormals()
-    surface.Compact()
-    model.Objects.AddMesh(surface, attributes("Surface", name))
+    for sheet in topology.sheets:
+        part = rhino3dm.Mesh()
+        part.Vertices.UseDoublePrecisionVertices = True
+        for p in x[sheet.vertices].tolist():
+            part.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
+        for a, b, c, d in sheet.faces_vertices.tolist():
+            part.Faces.AddFace(a, b, c, d)
+        part.Normals.ComputeNormals()
+        part.Compact()
+        model.Objects.AddMesh(part, attributes("Sheets", sheet.label))
 
-    for layer, kind, _ in LAYERS:
-        if kind is None:
-            continue
-        split = _RULING_SPLIT_DEG if kind == "ruling" else None
-        for i, chain in enumerate(crease_polylines(mesh, kind, split_angle_deg=split)):
-            points = [rhino3dm.Point3d(*p) for p in x[chain].tolist()]
-            model.Objects.AddPolyline(points, attributes(layer, f"{kind} {i}"))
+    # Strips: quads (a_j, a_{j+1}, b_{j+1}, b_j) along each strip (Topology.tubes).
+    for g in np.unique(topology.faces_group).tolist():
+        rows = faces[topology.faces_group == g]
+        sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
+        a, b = (_nurbs_curve(rhino3dm, x[v], t[v]) for v in sides)
+        model.Objects.AddSurface(rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
+                                 attributes("Strips", f"tube {g // 4 + 1} · strip {g % 4 + 1}"))
+
+    for layer, kind in (("Fold", "fold"), ("Seam", "seam"), ("Boundary", "boundary")):
+        for i, chain in enumerate(crease_polylines(mesh, kind)):
+            if kind == "boundary":
+                points = [rhino3dm.Point3d(*p) for p in x[chain].tolist()]
+                curve = rhino3dm.PolylineCurve(points)
+            else:
+                chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
+                curve = _nurbs_curve(rhino3dm, x[chain], t[chain])
+            model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}"))
 
     for key, value in meta.items():
         model.Strings[f"curvefold:{key}"] = str(value)

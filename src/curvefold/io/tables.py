@@ -64,7 +64,7 @@ UNITS: Mapping[str, Unit] = MappingProxyType({
     "ft": Unit(0.3048, "Feet"),
     "um": Unit(1e-6, "Microns"),
     "nm": Unit(1e-9, "Nanometers"),
-    "unit": Unit(1.0, "None"),
+    "unit": Unit(1.0, "Meters"),
 })
 
 #: Colour of every kind of line: the edge kinds of a mesh (``fold``, ``seam``,

@@ -1,0 +1,108 @@
+"""The main job stage by stage: the paper's vault written to an output folder.
+
+``curvefold vault`` on the built-in design (a = 0.3, p_xy = 0.75, 9 tubes, 801 samples per
+crease) writes every format. Its stages are timed one by one in this process, as the
+command runs them: building the vault and its certificate, choosing the meshes' samples,
+then each job of the output folder and the report. The contender is what the files cost
+with a mesh on every computed sample (what curvefold wrote before it chose the samples):
+the same jobs, run right after, with every sample kept. One run of each, garbage
+collector on; the folder sizes are summed on disk. A last line times the whole command
+in a fresh process, imports included.
+
+Targets: the whole command under 5 s and the folder under 10 MB.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+from _bench import SummaryRow, markdown_table, summary_table, timed, verdict
+
+TARGET_SECONDS = 5.0
+TARGET_MB = 10.0
+
+
+def _folder_bytes(folder: Path) -> int:
+    return sum(p.stat().st_size for p in folder.rglob("*") if p.is_file())
+
+
+def _run_stages(built, folder: Path) -> dict[str, float]:
+    """Seconds of every job of the output folder, and of the report (as write_outputs runs them)."""
+    from curvefold.app import products
+    from curvefold.figures.report import report_html
+
+    out: dict[str, float] = {}
+    for label, job in products.jobs(built, built.design.output.formats):
+        out[label], _ = timed(lambda job=job: job(folder), pause_gc=False)
+    out["report"], _ = timed(lambda: (folder / "report.html").write_text(report_html({"certificate": [], "files": []})), pause_gc=False)
+    return out
+
+
+def run() -> list[SummaryRow]:
+    from curvefold.app.build import build
+    from curvefold.app.design import default_design
+    from curvefold.app.outputs import structure_payload
+    from curvefold.geometry.sampling import Sampling
+
+    design = default_design("vault")
+    t_build, built = timed(lambda: build(design), pause_gc=False)
+    t_cert, _ = timed(lambda: structure_payload(built), pause_gc=False)
+    t_sampling, sampling = timed(lambda: built.sampling, pause_gc=False)
+    n = sampling.samples
+    every = Sampling(tuple(np.arange(n) for _ in sampling.keep), n, sampling.tolerance, sampling.min_angle_bound, sampling.max_bend,
+                     0.0, 0.0, 0.0, 0.0, sampling.size)
+    full = type(built)(built.design, built.vault, built.structure, built.crease)
+    full.__dict__["sampling"] = every  # the same design, its meshes on every sample
+    with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+        chosen_dir, full_dir = Path(a), Path(b)
+        chosen, everything = _run_stages(built, chosen_dir), _run_stages(full, full_dir)
+        sizes = (_folder_bytes(chosen_dir) / 1e6, _folder_bytes(full_dir) / 1e6)
+    common = {"build the vault": t_build, "certificate": t_cert}
+    rows = [(stage, f"{t:.2f}", f"{t:.2f}", "1.00") for stage, t in common.items()]
+    rows.append(("choose the meshes' samples", f"{t_sampling:.2f}", "—", "—"))
+    rows += [(stage, f"{chosen[stage]:.2f}", f"{everything[stage]:.2f}", f"{everything[stage] / chosen[stage]:.1f}") for stage in chosen]
+    in_process = sum(common.values()) + t_sampling + sum(chosen.values())
+    in_process_full = sum(common.values()) + sum(everything.values())
+    rows.append(("all stages", f"{in_process:.2f}", f"{in_process_full:.2f}", f"{in_process_full / in_process:.1f}"))
+    rows.append(("folder size [MB]", f"{sizes[0]:.1f}", f"{sizes[1]:.1f}", f"{sizes[1] / sizes[0]:.1f}"))
+    counts = sampling.vertices_per_crease
+    print(f"main job: the paper's vault, {len(counts)} tubes, {n} samples computed per crease; the files keep "
+          f"{min(counts)}–{max(counts)} (deviation {sampling.deviation / sampling.size:.2g} of the size, "
+          f"edge stretch {sampling.stretch:.2g}, smallest triangle corner {sampling.min_angle:.2f}°)")
+    print(markdown_table(["stage", "chosen samples [s]", "every sample [s]", "ratio"], rows))
+
+    with tempfile.TemporaryDirectory() as c:
+        command = [str(Path(sys.executable).with_name("curvefold")), "vault", "--out", str(Path(c) / "v"), "--json"]
+        t0 = time.perf_counter()
+        done = subprocess.run(command, capture_output=True, text=True, check=False)
+        wall = time.perf_counter() - t0
+        if done.returncode != 0:
+            raise RuntimeError(done.stderr)
+        size = _folder_bytes(Path(c) / "v") / 1e6
+        timings = json.loads((Path(c) / "v" / "report.json").read_text())["timings"]
+    load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
+    print(f"load average of the machine during the run: {load} (on {os.cpu_count()} CPUs)")
+    print(f"`curvefold vault` in a fresh process: {wall:.2f} s, folder {size:.1f} MB; its own timings: "
+          + ", ".join(f"{k} {v:.2f} s" for k, v in timings.items()))
+    return [
+        SummaryRow("main job", "`curvefold vault`, paper's vault, every format (fresh process)", f"{wall:.1f} s", f"< {TARGET_SECONDS:g} s",
+                   verdict(wall < TARGET_SECONDS)),
+        SummaryRow("main job", "its folder", f"{size:.1f} MB ({sizes[1] / sizes[0]:.0f}× smaller than on every sample)", f"< {TARGET_MB:g} MB",
+                   verdict(size < TARGET_MB)),
+        SummaryRow("main job", "all stages in one process, chosen vs every sample", f"{in_process:.1f} s vs {in_process_full:.1f} s", "—", "—"),
+    ]
+
+
+def main() -> None:
+    print("\n" + summary_table(run()))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,31 @@
+"""The report's own text: quantities by name with units, the mesh resolution, files described."""
+
+from __future__ import annotations
+
+import re
+
+from curvefold.app.build import build
+from curvefold.app.design import default_design
+from curvefold.app.outputs import structure_payload
+from curvefold.app.products import resolution
+from curvefold.figures.report import QUANTITIES, describe_file, report_html
+
+
+def _section(page: str, title: str) -> str:
+    return page.split(f"<h2>{title}</h2>", 1)[1].split("<h2>", 1)[0]
+
+
+def test_derived_quantities_read_as_names_and_units_not_python():
+    built = build(default_design("vault").overrides(samples=201))
+    payload = structure_payload(built) | resolution(built) | {"files": ["vault-pattern-p10.svg", "vault-pattern-p2.svg", "vault.obj"]}
+    page = report_html(payload)
+    derived = _section(page, "Derived quantities")
+    assert "κ0·s0, the root of the arch condition (Eq. 20)" in derived and "model units" in derived
+    assert not re.search(r">[a-z0-9]+_[a-z0-9_]+<", derived)  # no snake_case key shown as a name
+    assert "[" not in derived and not re.search(r"\d{11,}", derived)  # no Python list, no 16-digit number
+    assert "×" in derived and "→" in derived  # the footprint and the bounding box, read as such
+    assert [key for key in QUANTITIES if key in payload] and "samples along each crease, in the files" in _section(page, "Meshes of the files")
+    files = _section(page, "Files")
+    assert files.index("vault-pattern-p2.svg") < files.index("vault-pattern-p10.svg")
+    assert describe_file("vault.obj") in files and "Y up" in describe_file("vault.obj")
+    assert describe_file("sheets/tube-1-sheet-A.fold").endswith("(loads in Origami Simulator)")
