@@ -22,16 +22,43 @@ def plain(value):
     return str(value)
 
 
+def _number(x: float | None, prefix: str = "") -> str:
+    return "—" if x is None else f"{prefix}{x:.3g}" if prefix else f"{x:.2e}"
+
+
+def _certificate_row(c: dict) -> str:
+    e = html.escape
+    kind = "pass" if c["passed"] else "fail" if c["status"] == "fail" else "unresolved"
+    needed = f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
+    return (f"<tr class={kind}><td>{e(c['name'])}</td><td class=status>{e(c['status'])}{needed}</td>"
+            f"<td class=num>{_number(c['value'])}</td><td class=num>{_number(c['tolerance'])}</td>"
+            f"<td class=num>{_number(c['margin'], '×')}</td><td>{e(c['unit'])}</td><td>{e(c['where'])}</td>"
+            f"<td>{e(c['measures'])}<br><small>{e(c['model'])}</small></td></tr>")
+
+
+def _certificate_table(payload: dict) -> str:
+    """The certificate: per check its status, value, tolerance, margin, where, what it measures and its error model."""
+    e = html.escape
+    rows = "".join(_certificate_row(c) for c in payload["certificate"])
+    head = ("<tr><th>check</th><th>status</th><th>measured</th><th>tolerance</th><th>margin</th><th>unit</th>"
+            "<th>worst frame and place</th><th>what is measured; error model</th></tr>")
+    frames = payload.get("certificate_frames") or {}
+    angles = frames.get("fold_angles") or []
+    motion = ""
+    if angles:
+        listed = ", ".join(f"{a:g}°" for a in angles)
+        motion = f"<p>Certified as built and in the frames 2α = {e(listed)}."
+        if frames.get("holds_up_to") is not None:
+            motion += f" Every check passes up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples (past it the error of the folded state, growing as κ = κ_2D / cos α, outgrows a cap)."
+        motion += "</p>"
+    return f"{motion}<table class=certificate>{head}{rows}</table>"
+
+
 def report_html(payload: dict) -> str:
     """A self-contained HTML report: parameters, derived quantities, certificate, pictures."""
     e = html.escape
-    rows = "".join(
-        f"<tr class={'pass' if c['passed'] else 'fail'}><td>{e(c['name'])}</td><td>{c['value']:.3e}</td>"
-        f"<td>{'≥' if c['name'] == 'regression_margin' else '≤'} {c['tolerance']:.3e}</td><td>{e(c['unit'])}</td>"
-        f"<td>{'pass' if c['passed'] else 'FAIL'}</td><td>{e(c['meaning'])}</td></tr>"
-        for c in payload["certificate"]
-    )
-    skip = {"certificate", "files", "design", "paper_comparison", "timings", "bounding_box", "curves", "cells", "curve_kinds", "bounding_curves"}
+    certificate = _certificate_table(payload)
+    skip = {"certificate", "certificate_frames", "files", "design", "paper_comparison", "timings", "bounding_box", "curves", "cells", "curve_kinds", "bounding_curves"}
     derived = "".join(
         f"<tr><td>{e(k)}</td><td>{e(f'{v:.10g}' if isinstance(v, float) else str(v))}</td></tr>" for k, v in payload.items() if k not in skip
     )
@@ -53,7 +80,9 @@ def report_html(payload: dict) -> str:
 <style>
 body{{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}}
 table{{border-collapse:collapse;margin:1em 0}}td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
-tr.pass td:nth-child(5){{color:#070}}tr.fail td{{background:#fee}}
+.num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status{{white-space:nowrap}}
+tr.pass td.status{{color:#070}}tr.fail td{{background:#fee}}tr.unresolved td{{background:#fff6dd}}
+table.certificate small{{color:#555}}
 figure{{display:inline-block;margin:.5em;max-width:48%}}img{{max-width:100%;border:1px solid #ddd}}pre{{background:#f6f6f6;padding:1em}}
 </style></head><body>
 <h1>curvefold — {title}</h1>
@@ -61,7 +90,7 @@ figure{{display:inline-block;margin:.5em;max-width:48%}}img{{max-width:100%;bord
 <h2>Pictures</h2>{pictures}
 <h2>Derived quantities</h2><table>{derived}</table>
 {paper}
-<h2>Certificate</h2><table><tr><th>check</th><th>measured</th><th>tolerance</th><th>unit</th><th></th><th>what and why</th></tr>{rows}</table>
+<h2>Certificate</h2>{certificate}
 <h2>Design</h2><pre>{design}</pre>
 <h2>Files</h2><ul>{links}</ul>
 </body></html>
