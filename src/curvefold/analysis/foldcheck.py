@@ -75,7 +75,8 @@ class FileCheck:
     name : str
     status : {"pass", "fail", "not run"}
     value : float or None
-        The worst measured value (NaN if a measurement broke), None when not run.
+        The worst measured value (NaN if a measurement broke); None when not run, and for
+        ``topology``, which lists its problems in ``where``.
     tolerance : float or None
     unit : str
     where : str
@@ -194,7 +195,7 @@ def check_fold(path: str | os.PathLike | FoldFile, *, reference: FoldFile | None
                                                       and np.array_equal(m.faces_vertices, doc.crease_pattern.faces_vertices))]
     if differ:
         reason = f"{differ[0]} has other edges or faces than the crease pattern"
-        return FoldCheck(len(doc.folded), (FileCheck("topology", "fail", 1.0, 0.0, "problems", reason),) +
+        return FoldCheck(len(doc.folded), (FileCheck("topology", "fail", where=reason),) +
                          tuple(FileCheck(name, "not run", reason="the frames do not share one topology")
                                for name in ("welds", "assignments", "fold_angles", "isometry", "face_planarity")), tol)
     checks = [
@@ -261,25 +262,24 @@ def _topology(frames: list[tuple[str, Mesh]], size: float) -> FileCheck:
     forward, backward, strays = _edge_use(cp)
     total = forward + backward
     boundary = cp.edges_assignment == "B"
-    problems = [
+    filled = np.where(cp.faces_vertices >= 0, cp.faces_vertices, -1 - np.arange(cp.faces_vertices.size).reshape(cp.faces_vertices.shape))
+    problems = {key_label: [
         (strays, "faces with a side that is no edge"),
         (np.flatnonzero(total == 0), "edges on no face"),
-        (np.flatnonzero(boundary & (total != 1)), "B edges not on exactly one face"),
-        (np.flatnonzero(~boundary & (total != 2)), "edges (M/V/F) not on exactly two faces"),
+        (np.flatnonzero(boundary & (total > 1)), "B edges on more than one face"),
+        (np.flatnonzero(~boundary & (total == 1)), "M/V/F edges on one face"),
+        (np.flatnonzero(~boundary & (total > 2)), "M/V/F edges on more than two faces"),
         (np.flatnonzero(~boundary & (total == 2) & (forward != 1)), "edges whose two faces run them the same way (faces not consistently oriented)"),
-    ]
-    filled = np.where(cp.faces_vertices >= 0, cp.faces_vertices, -np.arange(1, cp.faces_vertices.size + 1).reshape(cp.faces_vertices.shape))
-    repeated = np.flatnonzero([len(set(row)) < len(row) for row in filled.tolist()])
-    problems.append((repeated, "faces with a repeated vertex"))
-    found = [f"{key_label}: {_ids(what)(np.unique(ids))}" for ids, what in problems if len(ids)]
+        (np.flatnonzero([len(set(row)) < len(row) for row in filled.tolist()]), "faces with a repeated vertex"),
+    ]}
+    tiny = 1e-12 * size
     for label, mesh in frames:
-        lengths = mesh.edge_lengths()
         area = np.linalg.norm(vector_areas(mesh.vertices_coords, mesh.faces_vertices), axis=-1)
-        tiny = 1e-12 * size
-        for ids, what in ((np.flatnonzero(~(lengths > tiny)), "edges of zero length"), (np.flatnonzero(~(area > tiny**2)), "faces of zero area")):
-            if len(ids):
-                found.append(f"{label}: {_ids(what)(ids)}")
-    return FileCheck("topology", "fail" if found else "pass", float(len(found)), 0.0, "problems", "; ".join(found[:3]))
+        problems.setdefault(label, []).extend([(np.flatnonzero(~(mesh.edge_lengths() > tiny)), "edges of zero length"),
+                                               (np.flatnonzero(~(area > tiny**2)), "faces of zero area")])
+    found = [f"{label}: " + "; ".join(_ids(what)(np.unique(ids)) for ids, what in listed if len(ids))
+             for label, listed in problems.items() if any(len(ids) for ids, _ in listed)]
+    return FileCheck("topology", "fail" if found else "pass", where=" | ".join(found[:3]))
 
 
 def _welds(doc: FoldFile, frames: list[tuple[str, Mesh]], size: float, tolerance: float) -> FileCheck:
@@ -353,10 +353,12 @@ def _planarity(doc: FoldFile, frames: list[tuple[str, Mesh]], tolerance: float) 
     results = []
     for label, mesh in frames:
         triangles = mesh.triangulated()
-        diagonal = np.flatnonzero(triangles.edges_kind == "diagonal") if kinds_known or polygons else np.zeros(0, int)
+        diagonal = np.flatnonzero(triangles.edges_kind == "diagonal")
+        if not kinds_known:  # the reader calls every F edge a diagonal; only the fan's are
+            diagonal = diagonal[diagonal >= len(mesh.edges_vertices)]
         bend = np.abs(dihedral_angles(triangles.vertices_coords, triangles.faces_vertices, triangles.edges_vertices[diagonal]))
         results.append((label, _at_edges(bend, diagonal, len(triangles.edges_vertices))))
-    return _judge("face_planarity", "°", tolerance, results, _ids("diagonal edges (numbered after the file's edges)"))
+    return _judge("face_planarity", "°", tolerance, results, _ids("fan diagonals (numbered after the file's edges)" if polygons else "diagonal edges"))
 
 
 def _rebuild(frames: list[tuple[str, Mesh]], reference: FoldFile, size: float, tolerance: float) -> FileCheck:

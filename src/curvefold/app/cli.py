@@ -339,9 +339,12 @@ def cmd_check(args: argparse.Namespace) -> int:
     for c in result.checks:
         if c.status == "not run":
             lines.append(f"  {c.name:<15} not run: {c.reason}")
+        elif c.value is None:
+            lines.append(f"  {c.name:<15} {c.status:<5} {c.where}".rstrip())
         else:
             measured = "NaN" if not np.isfinite(c.value) else f"{c.value:.3g}"
-            lines.append(f"  {c.name:<15} {c.status:<5} {measured} (tolerance {c.tolerance:g} {c.unit})" + (f" at {c.where}" if c.where else ""))
+            lines.append(f"  {c.name:<15} {c.status:<5} {measured} {'≤' if c.status == 'pass' else '>'} {c.tolerance:g} {c.unit}"
+                         + (f" at {c.where}" if c.where else ""))
     _emit(args, result.to_dict(), lines)
     return 0 if result.ok else 1
 
