@@ -97,6 +97,19 @@ def test_tube_torn_open_by_rotating_sheet_b(tmp_path, written):
     assert failing(damaged(tmp_path, doc, turn)) == {"welds"}
 
 
+def test_two_tubes_pulled_apart_break_their_bonds(tmp_path):
+    """Tubes glued where they touch: moving the second tube whole keeps every seam closed and
+    breaks only the bonds."""
+    design = default_design("vault").overrides(samples=41, tubes=2)
+    path = write_structure_fold(tmp_path / "vault.fold", build(design).structure, fold_angles=[90.0], design=design.to_dict())
+    doc = json.loads(path.read_text())
+    assert len(doc["curvefold:bonds"]) == 40 and not failing(str(path))
+    second = np.unique(np.concatenate([f for f, g in zip(doc["faces_vertices"], doc["faces_curvefold:group"]) if g >= 4]))
+    result = verdict(damaged(tmp_path, doc, lambda d: edit_frame(d, 0, lambda x: x.__setitem__(second, x[second] + [0.0, 0.0, 0.1]))))
+    assert {n for n, c in result.items() if c.status == "fail"} == {"welds"}
+    assert result["welds"].where.startswith("frame 1 ('fold angle 90°'): edges bonds ")
+
+
 def _folds(doc) -> np.ndarray:
     return np.flatnonzero(np.array(doc["edges_curvefold:kind"]) == "fold")
 

@@ -30,10 +30,10 @@ def _certificate_row(c: dict) -> str:
     e = html.escape
     kind = "pass" if c["passed"] else "fail" if c["status"] == "fail" else "unresolved"
     needed = f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
-    return (f"<tr class={kind}><td>{e(c['name'])}</td><td class=status>{e(c['status'])}{needed}</td>"
+    return (f"<tr class='{kind} head'><td><b>{e(c['name'])}</b></td><td class=status>{e(c['status'])}{needed}</td>"
             f"<td class=num>{_number(c['value'])}</td><td class=num>{_number(c['tolerance'])}</td>"
-            f"<td class=num>{_number(c['margin'], '×')}</td><td>{e(c['unit'])}</td><td>{e(c['where'])}</td>"
-            f"<td>{e(c['measures'])}<br><small>{e(c['model'])}</small></td></tr>")
+            f"<td class=num>{_number(c['margin'], '×')}</td><td>{e(c['unit'])}</td><td>{e(c['where'])}</td></tr>"
+            f"<tr class='{kind} about'><td colspan=7>{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>")
 
 
 def _certificate_table(payload: dict) -> str:
@@ -41,7 +41,7 @@ def _certificate_table(payload: dict) -> str:
     e = html.escape
     rows = "".join(_certificate_row(c) for c in payload["certificate"])
     head = ("<tr><th>check</th><th>status</th><th>measured</th><th>tolerance</th><th>margin</th><th>unit</th>"
-            "<th>worst frame and place</th><th>what is measured; error model</th></tr>")
+            "<th>worst frame and place</th></tr>")
     frames = payload.get("certificate_frames") or {}
     angles = frames.get("fold_angles") or []
     motion = ""
@@ -49,7 +49,10 @@ def _certificate_table(payload: dict) -> str:
         listed = ", ".join(f"{a:g}°" for a in angles)
         motion = f"<p>Certified as built and in the frames 2α = {e(listed)}."
         if frames.get("holds_up_to") is not None:
-            motion += f" Every check passes up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples (past it the error of the folded state, growing as κ = κ_2D / cos α, outgrows a cap)."
+            motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples (past it the error "
+                       "of the folded state, growing as κ = κ_2D / cos α, outgrows a cap).")
+        else:
+            motion += f" At {frames['samples']} samples not every check passes in every frame (see below)."
         motion += "</p>"
     return f"{motion}<table class=certificate>{head}{rows}</table>"
 
@@ -82,7 +85,8 @@ body{{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:
 table{{border-collapse:collapse;margin:1em 0}}td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
 .num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status{{white-space:nowrap}}
 tr.pass td.status{{color:#070}}tr.fail td{{background:#fee}}tr.unresolved td{{background:#fff6dd}}
-table.certificate small{{color:#555}}
+table.certificate{{width:100%}}table.certificate small{{color:#555}}table.certificate td:nth-child(7){{min-width:14em}}
+table.certificate tr.head td{{border-bottom:none}}table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}
 figure{{display:inline-block;margin:.5em;max-width:48%}}img{{max-width:100%;border:1px solid #ddd}}pre{{background:#f6f6f6;padding:1em}}
 </style></head><body>
 <h1>curvefold — {title}</h1>
