@@ -66,6 +66,31 @@ def test_the_written_file_passes_every_check(written):
     assert result.max_fold_angle_error == 0.0  # the file records the dihedral angles it has
 
 
+def test_every_frame_records_the_dihedral_angle_of_every_edge(written):
+    """Rulings and diagonals bend too (about κh each): their angles are recorded, B edges get 0."""
+    _, doc = written
+    kind, assignment = np.array(doc["edges_curvefold:kind"]), np.array(doc["edges_assignment"])
+    bends = np.abs(np.array(doc["file_frames"][2]["edges_foldAngle"]))[np.isin(kind, ("ruling", "diagonal"))]
+    assert 1.0 < bends.max() < 10.0 and (np.abs(np.array(doc["file_frames"][0]["edges_foldAngle"])) < 1e-9).all()
+    assert (np.array(doc["edges_foldAngle"])[assignment == "B"] == 0).all()
+    assert doc["curvefold:design"]["fold_angles"] == ANGLES and doc["curvefold:design"]["design"]["samples"] == 61
+
+
+def test_write_fold_refuses_bad_bonds_and_designs(tmp_path):
+    from curvefold.kernel.errors import InputError
+
+    design = default_design("tube").overrides(samples=21)
+    structure = build(design).structure
+    with pytest.raises(InputError, match="design must be JSON data"):
+        write_structure_fold(tmp_path / "x.fold", structure, design={"when": object()})
+    from curvefold.io.fold import to_fold, write_fold
+
+    model = to_fold(structure)
+    with pytest.raises(InputError, match=r"bonds must be edge indices in \[0, "):
+        write_fold(tmp_path / "x.fold", crease_pattern=model.crease_pattern, folded=model.folded, bonds=[[0, 10**9]])
+    assert not (tmp_path / "x.fold").exists()
+
+
 # --------------------------------------------------------------------------------------------
 # damages, each caught by a named check
 

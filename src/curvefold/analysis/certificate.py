@@ -300,7 +300,7 @@ class CheckSpec:
     @property
     def model(self) -> str:
         """The error model in words."""
-        return (f"truncation ~h^{self.order}: tolerance = |r(2h) − r(h)|/2 + rounding (Richardson error "
+        return (f"error ∝ h^{self.order}: tolerance = |r(2h) − r(h)|/2 + rounding (Richardson error "
                 f"|r(2h) − r(h)|/{2**self.order - 1} × safety {(2**self.order - 1) / 2:g}); cap {self.cap:g} {self.unit}")
 
 
@@ -378,10 +378,6 @@ class Certificate:
     @property
     def passed(self) -> bool:
         return all(c.passed for c in self.checks)
-
-    def to_dict(self) -> dict:
-        return {"checks": [c.to_dict() for c in self.checks], "fold_angles": list(self.fold_angles),
-                "holds_up_to": self.holds_up_to, "samples": self.samples, "passed": self.passed}
 
 
 # --------------------------------------------------------------------------------------

@@ -1,12 +1,14 @@
-"""Measurements: residuals of the geometry, taken from built points, never from the formulas.
+"""Measurements: the geometry's residuals, taken from built points, never from the formulas.
 
-Every function here reads built geometry (sampled curves, ruling vectors, mesh
-coordinates) and returns a residual array that the construction makes zero in the
-continuum, so a wrong formula shows at order one while a correct design leaves only the
-truncation error of the measurement. Derivatives along a curve are fourth-order central
-differences on its uniform samples (truncation ~h⁴); such a residual is defined at the
-samples 2 … n − 3 and comes out with n − 4 entries along the curve axis. Angles are in
-radians. :mod:`curvefold.analysis.certificate` turns these residuals into checks.
+The functions read built geometry (sampled curves, ruling vectors, mesh coordinates) and
+return arrays: derivatives and the frame, curvature and angles they give, and residuals
+that the construction makes zero in the continuum, so that a wrong formula shows at
+order one while a correct design leaves only the truncation error of the measurement.
+Derivatives along a curve are fourth-order central differences on its uniform samples
+(truncation ~h⁴), defined at the samples 2 … n − 3: n − 4 entries along the curve axis.
+Angles are in radians unless stated. :mod:`curvefold.analysis.certificate` turns the
+residuals into checks; the last functions here reduce them to one number for a crease, a
+lattice or a mesh.
 """
 
 from __future__ import annotations

@@ -280,7 +280,8 @@ def write_fold(
     InputError
         On a non-flat crease pattern, a sheet with both clockwise and counter-clockwise
         (or degenerate) triangles, topology that differs between frames,
-        a crease edge without two faces, a non-boundary seam partner or bad metadata.
+        a crease edge without two faces, a non-boundary seam partner, bad metadata or a
+        design that is not JSON data.
     """
     cp = crease_pattern
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
@@ -289,6 +290,11 @@ def write_fold(
     pairs = _check_seam_partners(seam_partners, assignment)
     glued = _check_bonds(bonds, len(assignment))
     meta = check_metadata(metadata)
+    if design is not None:
+        try:
+            json.dumps(dict(design), allow_nan=False)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"design must be JSON data (numbers, strings, lists, objects): {exc}") from None
     zero = assignment == "B"  # one face: no dihedral angle
 
     frames = []
@@ -733,14 +739,13 @@ def to_fold(
         reads back.
     """
     _check_structure(structure)
-    design_record = design
-    design = _design_angle(structure, fold_angle, degrees)
-    angles = np.array([design]) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
+    design_angle = _design_angle(structure, fold_angle, degrees)
+    angles = np.array([design_angle]) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
     if not isinstance(unit, str) or not unit:
         raise InputError(f"unit must be a non-empty str, got {unit!r}")
-    meta = _metadata(structure, design, metadata)
+    meta = _metadata(structure, design_angle, metadata)
     topology = structure.topology(faces)
-    parts = _develop(structure, design, "", topology)
+    parts = _develop(structure, design_angle, "", topology)
     xys = [p.mesh.vertices_coords[:, :2] for p in parts]
     size = max(float(np.ptp(xy, axis=0).max()) for xy in xys)
     offsets = _row_offsets(xys, 0.05 * size)
@@ -770,13 +775,13 @@ def to_fold(
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
     glued = _bond_pairs(cp.edges_vertices, source, topology, mesh_edge)
     # Every frame carries the dihedral angle it has at every edge; the key frame the design state's.
-    coords = folding_motion(structure, np.concatenate([[design], angles]), anchor=anchor)[:, source]  # (1 + A, V, 3)
+    coords = folding_motion(structure, np.concatenate([[design_angle], angles]), anchor=anchor)[:, source]  # (1 + A, V, 3)
     sides = edges_faces(cp.faces_vertices, cp.edges_vertices)
     measured = [dihedral_angles(x, cp.faces_vertices, cp.edges_vertices, faces_of_edges=sides) for x in coords]
     cp = replace(cp, edges_foldAngle=measured[0])
     folded = tuple((f"fold angle {a:g}°", replace(cp, vertices_coords=x, edges_foldAngle=m))
                    for a, x, m in zip(angles, coords[1:], measured[1:]))
-    record = None if design_record is None else {"design": dict(design_record), "fold_angles": angles.tolist(), "anchor": anchor, "faces": faces}
+    record = None if design is None else {"design": dict(design), "fold_angles": angles.tolist(), "anchor": anchor, "faces": faces}
     return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs, bonds=glued, design=record)
 
 
