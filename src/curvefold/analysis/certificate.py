@@ -300,7 +300,8 @@ class CheckSpec:
     @property
     def model(self) -> str:
         """The error model in words."""
-        return (f"error ∝ h^{self.order}: tolerance = |r(2h) − r(h)|/2 + rounding (Richardson error "
+        power = str(self.order).translate(str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹"))
+        return (f"error ∝ h{power}: tolerance = |r(2h) − r(h)|/2 + rounding (Richardson error "
                 f"|r(2h) − r(h)|/{2**self.order - 1} × safety {(2**self.order - 1) / 2:g}); cap {self.cap:g} {self.unit}")
 
 

@@ -285,7 +285,7 @@ def _topology(frames: list[tuple[str, Mesh]], size: float) -> FileCheck:
 def _welds(doc: FoldFile, frames: list[tuple[str, Mesh]], size: float, tolerance: float) -> FileCheck:
     if not {"curvefold:seam_partners", "curvefold:bonds"} & doc.keys:
         return FileCheck("welds", "not run", unit="relative", reason="the file does not say which edges are glued "
-                         "(curvefold:seam_partners, curvefold:bonds): a plain FOLD file has no seams")
+                         "(no curvefold:seam_partners or curvefold:bonds; another tool may have dropped them)")
     pairs = np.concatenate([doc.seam_partners, doc.bonds])
     seams = len(doc.seam_partners)
     results = []
