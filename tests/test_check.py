@@ -272,6 +272,20 @@ def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):
     assert planarity.status == "fail" and planarity.value > 2 and planarity.where.startswith("frame 3 ('fold angle 90°'): fan diagonals")
 
 
+def test_a_frame_with_its_own_faces_is_not_compared_edge_by_edge(tmp_path, written):
+    path, doc = written
+
+    def own_faces(d):
+        for key in [k for k in d if "curvefold:" in k]:
+            del d[key]
+        d["file_frames"][1]["faces_vertices"] = d["faces_vertices"][::-1]
+
+    result = check_fold(damaged(tmp_path, doc, own_faces))
+    checks = {c.name: c for c in result.checks}
+    assert not result.ok and checks["topology"].where == "frame 2 ('fold angle 45°') has other edges or faces than the crease pattern"
+    assert {c.status for name, c in checks.items() if name != "topology"} == {"not run"}
+
+
 # --------------------------------------------------------------------------------------------
 # the command
 
