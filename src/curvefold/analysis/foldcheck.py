@@ -54,7 +54,7 @@ _CAP = {spec.name: spec.cap for spec in CHECKS}
 #: The tolerances of :func:`check_fold` (the flags of ``curvefold check``).
 CHECK_SPECS: tuple[Spec, ...] = (
     Spec("isometry_tol", "real", _CAP["isometry"], "[0, inf)",
-         help="largest relative change of an edge's length from the crease pattern (default: the certificate's cap)"),
+         help="largest relative change of an edge's length from the crease pattern (as the certificate's isometry cap)"),
     Spec("planarity_tol", "real", 0.5, "[0, 180]", "degrees", help="largest fold angle across the diagonals of a polygon face or ruling quad"),
     Spec("fold_angle_tol", "real", 0.01, "[0, 180]", "degrees",
          help="largest difference between a frame's recorded and measured dihedral angle, and the slack of the M/V signs"),
