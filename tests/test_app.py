@@ -163,7 +163,7 @@ def test_every_key_but_cells_is_a_flag_with_its_range_in_the_help(kind, capsys):
 def test_the_certificate_is_computed_once_per_run(tmp_path, monkeypatch):
     calls = []
     certify = outputs.certify
-    monkeypatch.setattr(outputs, "certify", lambda *a: calls.append(a) or certify(*a))
+    monkeypatch.setattr(outputs, "certify", lambda *a, **k: calls.append(a) or certify(*a, **k))
     r = run("tube", "--samples", "41", "--formats", "fold", "--out", "t", "--json", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert len(calls) == 1

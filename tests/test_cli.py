@@ -101,7 +101,7 @@ def test_tube_output_folder_is_complete(tube_folder):
     report = json.loads((folder / "report.json").read_text())
     assert all(c["passed"] for c in report["certificate"])
     assert set(report["files"]) >= {"tube.fold", "tube.obj"}
-    assert (folder / "report.html").read_text().count("<tr class=pass>") == len(report["certificate"])
+    assert (folder / "report.html").read_text().count("<tr class='pass head'>") == len(report["certificate"])
     assert oct((folder / "tube.fold").stat().st_mode & 0o777) != oct(0o600)  # ordinary file modes
 
 

@@ -31,7 +31,6 @@ def test_lattice_curves_share_curve_one_frame(lattice):
 
 def test_width_and_area_laws(lattice):
     assert measure.width_law_error(lattice) < 1e-12
-    assert measure.section_area_error(lattice) < 1e-12
     assert_allclose(lattice.section_area(), 0.2 * 0.15 * np.sin(np.radians(60)), rtol=1e-13)
 
 
@@ -76,10 +75,29 @@ def test_eq19_holds_between_neighbouring_creases(lattice):
         assert measure.eq19_residual(lattice, a, b) < 1e-8
 
 
-def test_tube_built_crease_by_crease_closes(lattice):
-    closure, agreement = measure.tube_closure(lattice)
-    assert closure < 1e-13  # model units; the tube is ~3 long
-    assert agreement < 1e-12
+#: The paper's construction around a tube: (crease, previous, next, side, ±r, sign of the ruling toward the previous crease).
+TUBE_STEPS = ((0, 3, 1, "R", 1.0, 1.0), (1, 0, 2, "L", 1.0, -1.0), (2, 1, 3, "R", -1.0, -1.0), (3, 2, 0, "L", -1.0, 1.0))
+
+
+def test_tube_built_crease_by_crease_closes():
+    """Each crease rebuilt from the one before by the construction step, from that crease's own
+    measured frame, κ and β (Eqs. 5–6, 12–13 corrected), lands on the lattice curve, and the
+    fourth step lands on curve 1: fourth-order differences, 16× smaller as h halves (measured
+    3.7e-8, 2.3e-9, 1.6e-10 of the strip width at 201, 401, 801 samples)."""
+    worst = []
+    for samples in (401, 801):
+        lattice = make_lattice(samples=samples)
+        x = lattice.points(np.array([[0, 0], [0, 1], [1, 1], [1, 0]], float))
+        T = lattice.crease.curve.frames[2:-2, :, 0]
+        errors = []
+        for c, prev, nxt, side, sign, back in TUBE_STEPS:
+            rebuilt = measure.rebuilt_strip(x[c], back * (x[prev] - x[c]), x[nxt], lattice.s[1], alpha=np.radians(30), side=side, sign=sign)
+            errors.append(np.max(measure.norm(rebuilt - x[nxt, 2:-2]) / measure.tangent_line_distance(x[c, 2:-2], x[nxt, 2:-2], T)))
+        worst.append(max(errors))
+    assert worst[1] < 1e-9 and worst[0] / worst[1] > 12, worst
+    # the same step taken for another fold angle (2α = 120° for 60°) misses by O(1): the measurement can fail
+    wrong = measure.rebuilt_strip(x[0], x[3] - x[0], x[1], lattice.s[1], alpha=np.radians(60), side="R", sign=1.0)
+    assert np.max(measure.norm(wrong - x[1, 2:-2])) > 0.01
 
 
 def test_regression_domain_queries(lattice):

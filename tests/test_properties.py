@@ -1,6 +1,6 @@
 """Property-based checks: random smooth κ > 0, τ, fold angles and widths inside the domain.
 
-Laws that hold exactly (widths, areas, closure) are checked to rounding. Quantities
+Laws that hold exactly (the widths) are checked to rounding. Quantities
 measured by finite differences (developability, frame agreement, Eq. 19) vanish only up
 to truncation, whose size depends on the drawn curve; for those each example is built at
 two resolutions and the residual must fall at least 4× when h halves (fourth order gives
@@ -140,10 +140,6 @@ def test_random_lattices_satisfy_the_geometry(design):
     # exact laws, measured from coordinates of size |x|: rounding ~ε|x|/w relative to a width w
     rounding_w = 1e-14 * (np.abs(lattice.crease.curve.points).max() + LENGTH) / min(lattice.width_left.min(), lattice.width_right.min())
     assert measure.width_law_error(lattice) < 1e-12 + rounding_w
-    assert measure.section_area_error(lattice) < 1e-12 + rounding_w
-    closure, agreement = measure.tube_closure(lattice)
-    size = np.abs(lattice.crease.curve.points).max() + LENGTH
-    assert closure < 1e-13 * size and agreement < 1e-12 * size
 
 
 @SETTINGS

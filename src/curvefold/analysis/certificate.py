@@ -1,180 +1,765 @@
-"""The geometric certificate of a built structure: every invariant measured against a tolerance.
+"""The geometric certificate: a registry of checks, each measured on the built geometry.
 
-Tolerances are stated with the reason for their size. Finite-difference measurements
-(developability, frame agreement, Eq. 19) converge at fourth order in the sample spacing h;
-chord lengths of the polyline creases change with curvature at second order; the width,
-area and closure laws and the ground plane hold to rounding.
+Every check measures a residual that the construction makes zero in the continuum, from
+the built points (:mod:`curvefold.analysis.measure`), never from the formula that built
+them: a wrong formula leaves a residual of order one, a correct design only the
+discretisation error.
+
+Error model, the same for every check
+    A design sampled at step h leaves a residual r(h) ≈ C h^p (p the order of the check's
+    measurement, or of the builder's integration) plus rounding. The design is built again
+    at half the samples (step 2h, from the same functions) and measured the same way:
+    r(2h) ≈ 2^p C h^p. The error at h is estimated by Richardson,
+    e = |r(2h) − r(h)| / (2^p − 1); with the safety factor (2^p − 1) / 2,
+
+        tolerance = |r(2h) − r(h)| / 2 + rounding floor.
+
+    A residual that is discretisation error falls 2^p-fold from 2h to h and passes with a
+    margin of (2^p − 1)/2; one that falls less than three-fold (an error of the geometry,
+    which does not shrink with h) fails, at any sampling. The rounding floor is
+    :data:`ROUNDING` units in the last place of the largest coordinate, amplified as the
+    measurement amplifies it (1/h per derivative, over the length it is compared with).
+
+Resolution
+    Each check has a cap on its tolerance, relative to its quantity's own scale: a
+    tolerance above the cap means the sampling is too coarse for the check to say anything.
+    The check then reports "insufficient resolution" (never a pass) with the sample count
+    at which the tolerance, falling as h^p, would be a quarter of the cap; a residual
+    larger than even that tolerance still fails.
+
+The motion
+    A structure is certified in every frame asked for (the exported ones) and at 0° and its
+    design angle; the certificate also states the largest fold angle up to which every
+    check still passes at this sampling (the error of a folded state grows as
+    κ = κ_2D / cos α does).
+
+Adding a check is one entry in :data:`CHECKS`: a :class:`CheckSpec` with a measurement
+``frame -> Residual`` and its order and cap; a test must damage a design so that it fails.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from ..geometry.crease import Crease
-from ..geometry.structure import Structure
+from ..geometry.curve import SpaceCurve
+from ..geometry.lattice import Lattice, Pattern
+from ..geometry.mesh import edges_faces
+from ..geometry.mesh import fold_angles as mesh_fold_angles
+from ..geometry.structure import State, Structure
+from ..geometry.topology import CORNER_KINDS, CORNERS, STRIPS, Topology
+from ..kernel.errors import InputError
 from ..vault.assembly import Vault
 from . import measure
 
-__all__ = ["Check", "certify"]
+__all__ = ["Check", "CheckSpec", "Certificate", "Frame", "Residual", "Shared", "CHECKS", "ROUNDING", "certify"]
+
+#: Units in the last place of the largest coordinate that a built sample may carry as rounding:
+#: twice the largest noise measured in built rulings (16 ulps, tests/test_properties.py).
+ROUNDING = 32.0
+_EPS = float(np.finfo(float).eps)
+#: Fewest samples of the half-sampled design: the measurements' 5-point stencils need room.
+_MIN_COARSE = 9
+#: Statuses, best first.
+STATUSES = ("pass", "insufficient resolution", "fail")
+
+
+# --------------------------------------------------------------------------------------
+# the subjects measured: a crease, or a structure in one folded state
+
+
+@dataclass(frozen=True, eq=False)
+class Shared:
+    """What every frame of one structure shares: its meshes' topology and its flat state.
+
+    Attributes
+    ----------
+    structure : Structure
+    """
+
+    structure: Structure
+
+    @cached_property
+    def flat(self) -> State:
+        """The flat state: the crease pattern."""
+        return self.structure.state(0.0)
+
+    @cached_property
+    def topology(self) -> Topology:
+        return self.structure.topology()
+
+    @cached_property
+    def quads(self) -> np.ndarray:
+        """The ruling quads (F, 4), in the vertex numbering of :attr:`topology`."""
+        return self.structure.topology("quads").faces_vertices
+
+    @cached_property
+    def flat_coords(self) -> np.ndarray:
+        return self.topology.coords(self.flat.vertices)
+
+    @cached_property
+    def flat_lengths(self) -> np.ndarray:
+        """Edge lengths of the crease pattern, (E,)."""
+        return measure.edge_lengths(self.flat_coords, self.topology.edges_vertices)
+
+    @property
+    def shortest_edge(self) -> float:
+        return float(self.flat_lengths.min())
+
+    @cached_property
+    def creases(self) -> tuple[np.ndarray, np.ndarray]:
+        """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
+        top = self.topology
+        ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam")))
+        return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """What the measurements read: a single crease, or a structure folded to one angle.
+
+    Attributes
+    ----------
+    crease : Crease
+        Curve 1 in this state.
+    shared : Shared or None
+        The structure and what its frames share.
+    state : State or None
+        The structure at this fold angle.
+    vault : Vault or None
+        The vault whose parameters (a, κ₀ s₀, p_xy) the vault checks compare with.
+    """
+
+    crease: Crease
+    shared: Shared | None = None
+    state: State | None = None
+    vault: Vault | None = None
+
+    @property
+    def structure(self) -> Structure:
+        return self.shared.structure
+
+    @property
+    def samples(self) -> int:
+        return len(self.crease.s)
+
+    @property
+    def step(self) -> float:
+        """Arc-length step h of curve 1."""
+        return float(self.crease.s[1] - self.crease.s[0])
+
+    @property
+    def alpha(self) -> float:
+        return float(self.crease.alpha.constant)
+
+    @property
+    def inner_t(self) -> np.ndarray:
+        """t of the samples 2 … n − 3 where differences are measured, (n − 4,)."""
+        return self.crease.s[2:-2] / self.crease.curve.length
+
+    @cached_property
+    def ulp(self) -> float:
+        """:data:`ROUNDING` units in the last place of the largest coordinate."""
+        x = self.crease.curve.points if self.state is None else self.state.vertices
+        return ROUNDING * _EPS * float(np.abs(x).max() + self.crease.curve.length)
+
+    @cached_property
+    def rulings(self) -> np.ndarray:
+        """Ruling vectors ℓ_L r_L, ℓ_R r_R at curve 1 from its built neighbours (1, 0), (0, 1), (2, n, 3)."""
+        if self.state is None:
+            return np.stack(self.crease.rulings())
+        x = self.state.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
+        return x[1:] - x[0]
+
+    @cached_property
+    def tubes(self) -> np.ndarray:
+        """Built curves at corners 1–4 of every tube, (K, 4, n, 3)."""
+        return self.state.vertices[self.structure.cell_curves]
+
+    @cached_property
+    def coords(self) -> np.ndarray:
+        """The mesh vertices of this state, (V, 3)."""
+        return self.shared.topology.coords(self.state.vertices)
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """Curve 1's unit tangent T₁ (its built frame), (n, 3)."""
+        return self.crease.curve.frames[:, :, 0]
+
+    @cached_property
+    def half_angles(self) -> np.ndarray:
+        """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
+        X, h = self.tubes, self.step
+        return np.stack([measure.crease_half_angle(X[:, c], X[:, (c - 1) % 4], X[:, (c + 1) % 4], h, kind=CORNER_KINDS[c])
+                         for c in range(4)], axis=1)
+
+    @cached_property
+    def measured_alpha(self) -> np.ndarray:
+        """α at curve 1 from its built rulings, (n − 4,)."""
+        x = self.crease.curve.points
+        return measure.crease_half_angle(x, x + self.rulings[0], x + self.rulings[1], self.step, kind="fold")
+
+    @cached_property
+    def strip_widths(self) -> np.ndarray:
+        """Distance between the tangent lines of the two creases of every strip, (K, 4, n)."""
+        X, T = self.tubes, self.tangent
+        return np.stack([measure.tangent_line_distance(X[:, a], X[:, b], T) for a, b in STRIPS], axis=1)
+
+
+# --------------------------------------------------------------------------------------
+# residuals and checks
 
 
 @dataclass(frozen=True)
-class Check:
-    """One measured invariant.
+class Residual:
+    """A measured residual field, as the checks see it.
+
+    Attributes
+    ----------
+    values : ndarray
+        |residual| in the check's unit (NaN where the measurement broke). With ``t`` its
+        last axis runs along the creases; without, every entry is an element (an edge, a
+        face, a named quantity).
+    floor : float
+        Its rounding floor.
+    name : callable
+        Index (into the leading axes when ``t`` is given) -> what it is, for people
+        (``"curve (1, 1)"``).
+    t : (m,) ndarray or None
+        Curve parameter t ∈ [0, 1] of the last axis.
+    """
+
+    values: np.ndarray
+    floor: float
+    name: Callable[[tuple[int, ...]], str]
+    t: np.ndarray | None = None
+
+    @property
+    def worst(self) -> tuple[float, int]:
+        """The largest value and its flat index; NaN wins (a broken measurement is the worst)."""
+        v = np.asarray(self.values, float).ravel()
+        if v.size == 0:
+            return 0.0, -1
+        bad = np.flatnonzero(~np.isfinite(v))
+        return (math.nan, int(bad[0])) if bad.size else (float(v.max()), int(np.argmax(v)))
+
+    def locate(self, index: int) -> str:
+        """Where the entry at a flat index is."""
+        at = np.unravel_index(index, np.shape(self.values))
+        if self.t is None:
+            return self.name(tuple(int(i) for i in at))
+        head = self.name(tuple(int(i) for i in at[:-1]))
+        return f"{head}, t = {self.t[at[-1]]:.3g}" if head else f"t = {self.t[at[-1]]:.3g}"
+
+    def change(self, coarse: Residual) -> float:
+        """|r(2h) − r(h)|: pointwise at the t both sample (where they have t), else of the largest values."""
+        if self.t is None or coarse.t is None:
+            return abs(coarse.worst[0] - self.worst[0])
+        k = np.clip(np.searchsorted(self.t, coarse.t), 0, len(self.t) - 1)
+        same = np.abs(self.t[k] - coarse.t) < 0.25 * (self.t[1] - self.t[0])
+        diff = np.abs(np.asarray(coarse.values)[..., same] - np.asarray(self.values)[..., k[same]])
+        return float(np.max(diff)) if diff.size else math.inf
+
+
+@dataclass(frozen=True)
+class CheckSpec:
+    """One entry of the certificate's registry.
 
     Attributes
     ----------
     name : str
-        Short identifier (stable, used as a JSON key).
-    value : float
-        The measured number.
-    tolerance : float
-        The largest accepted value (for ``regression_margin``: the smallest).
+        Stable identifier (a JSON key).
+    scope : {"crease", "frame", "vault"}
+        ``"crease"``: curve 1 of a single fold and of every frame of a structure;
+        ``"frame"``: every frame of a structure; ``"vault"``: a vault at its design angle.
+    measures : str
+        What is measured, from which built geometry, against what.
     unit : str
-    passed : bool
-    meaning : str
-        What was measured and why the tolerance is what it is.
+        Unit of the values (after normalising by the quantity's scale).
+    order : int
+        p: the residual of a correct design falls as h^p.
+    cap : float
+        Largest meaningful tolerance, in ``unit``.
+    measure : callable
+        ``Frame -> Residual``; None when the check does not apply to that frame.
+    """
+
+    name: str
+    scope: str
+    measures: str
+    unit: str
+    order: int
+    cap: float
+    measure: Callable[[Frame], Residual | None] = field(repr=False)
+
+    @property
+    def model(self) -> str:
+        """The error model in words."""
+        power = str(self.order).translate(str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹"))
+        return (f"error ∝ h{power}: tolerance = |r(2h) − r(h)|/2 + rounding (Richardson error "
+                f"|r(2h) − r(h)|/{2**self.order - 1} × safety {(2**self.order - 1) / 2:g}); cap {self.cap:g} {self.unit}")
+
+
+@dataclass(frozen=True)
+class Check:
+    """The outcome of one check over every frame it applies to.
+
+    Attributes
+    ----------
+    name, unit, measures, model : str
+        From the :class:`CheckSpec`.
+    value : float
+        The largest residual, in the frame with the smallest margin (NaN if it broke).
+    tolerance : float
+        Its tolerance there.
+    status : {"pass", "insufficient resolution", "fail"}
+    where : str
+        Frame and place of that value.
+    frames : int
+        Frames measured.
+    samples_needed : int or None
+        For "insufficient resolution": the sample count that would do.
     """
 
     name: str
     value: float
     tolerance: float
+    status: str
     unit: str
-    passed: bool
-    meaning: str
+    measures: str
+    model: str
+    where: str = ""
+    frames: int = 1
+    samples_needed: int | None = None
+
+    @property
+    def passed(self) -> bool:
+        return self.status == "pass"
+
+    @property
+    def margin(self) -> float | None:
+        """tolerance / value: how many times the residual fits in its tolerance (None if it is 0 or NaN)."""
+        return self.tolerance / self.value if self.value > 0 and math.isfinite(self.value) else None
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        """JSON-ready (NaN as None)."""
+        def finite(x):
+            return x if x is None or math.isfinite(x) else None
+
+        return {"name": self.name, "value": finite(self.value), "tolerance": finite(self.tolerance), "margin": finite(self.margin),
+                "status": self.status, "passed": self.passed, "unit": self.unit, "where": self.where, "frames": self.frames,
+                "samples_needed": self.samples_needed, "measures": self.measures, "model": self.model}
 
 
-def _check(name: str, value: float, tolerance: float, unit: str, meaning: str, *, at_least: bool = False) -> Check:
-    passed = bool(value >= tolerance) if at_least else bool(value <= tolerance)
-    return Check(name, float(value), float(tolerance), unit, passed, meaning)
+@dataclass(frozen=True)
+class Certificate:
+    """Every check of a design, the frames certified and the fold-angle range where all hold.
+
+    Attributes
+    ----------
+    checks : tuple of Check
+    fold_angles : tuple of float
+        2α of the certified frames, degrees (empty for a single curved fold).
+    holds_up_to : float or None
+        The largest fold angle 2α (degrees, to 1.5°) up to which every check passes at
+        this sampling, when it passes at every certified frame; None otherwise.
+    samples : int
+    """
+
+    checks: tuple[Check, ...]
+    fold_angles: tuple[float, ...] = ()
+    holds_up_to: float | None = None
+    samples: int = 0
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.checks)
 
 
-def certify(crease: Crease, structure: Structure | None = None, vault: Vault | None = None) -> list[Check]:
-    """Measure every invariant that applies and compare it with its tolerance.
+# --------------------------------------------------------------------------------------
+# the measurements
+
+
+def _curve(uv: np.ndarray) -> Callable[[tuple[int, ...]], str]:
+    return lambda i: f"curve {tuple(uv[i[0]].tolist())}"
+
+
+def _strip(i: tuple[int, ...]) -> str:
+    return f"tube {i[0] + 1}, strip {i[1] + 1}→{i[1] % 4 + 2}"
+
+
+def _developability(frame: Frame) -> Residual:
+    x, h = frame.crease.curve.points, frame.step
+    rates = np.hypot(frame.crease.curve.kappa(frame.crease.s), frame.crease.curve.tau(frame.crease.s)).max()
+    values = measure.ruling_twist(x, frame.rulings, h) / rates
+    length = float(measure.norm(frame.rulings).min())
+    return Residual(values, 1.5 * frame.ulp / (length * h * rates), lambda i: ("left", "right")[i[0]] + " rulings", frame.inner_t)
+
+
+def _planar_curvature(frame: Frame) -> Residual:
+    x, h = frame.crease.curve.points, frame.step
+    if frame.shared is None:
+        k2 = frame.crease.kappa_2d[2:-2]  # the crease pattern of a single fold is its input
+    else:
+        k2 = measure.curvature(frame.shared.flat.lattice.crease.curve.points, h)
+    scale = float(np.abs(k2).max())
+    values = np.abs(measure.curvature(x, h) * np.cos(frame.measured_alpha) - k2) / scale
+    return Residual(values, 12 * frame.ulp / (h**2 * scale), lambda i: "", frame.inner_t)
+
+
+def _frame_agreement(frame: Frame) -> Residual:
+    uv = frame.structure.curves_uv
+    values = measure.tangent_deviation(frame.state.vertices, frame.tangent, frame.step)
+    f_min = float(frame.state.lattice.domain.factor(uv.astype(float)).min())
+    return Residual(values, 1.5 * frame.ulp / (frame.step * f_min), _curve(uv), frame.inner_t)
+
+
+def _eq19(frame: Frame) -> Residual | None:
+    """κ_2D tan α cosec β ds of neighbouring creases, each factor measured at its own crease."""
+    if frame.alpha == 0:
+        return None  # both sides vanish in the flat state
+    X, h = frame.tubes, frame.step
+    alpha = frame.half_angles  # (K, 4, m)
+    kappa = measure.curvature(X, h)  # (K, 4, m)
+    speed = measure.norm(measure.derivative(X, h))
+    ratios = []
+    for a, b in STRIPS:
+        ruling = X[:, b, 2:-2] - X[:, a, 2:-2]
+        sides = []
+        for c in (a, b):
+            sin_beta = np.sin(measure.angle_between(ruling, measure.derivative(X[:, c], h)))
+            sides.append(kappa[:, c] * np.sin(alpha[:, c]) * speed[:, c] / sin_beta)
+        ratios.append(sides[0] / sides[1] - 1)
+    values = np.abs(np.stack(ratios, axis=1))  # (K, 4 strips, m)
+    length = float(measure.norm(X[:, 1] - X[:, 0]).min())
+    floor = frame.ulp * (24 / (h**2 * float((kappa * speed**2).min())) + 6 / (h * length * math.sin(frame.alpha)))
+    return Residual(values, floor, _strip, frame.inner_t)
+
+
+def _isometry(frame: Frame) -> Residual:
+    top = frame.shared.topology
+    with np.errstate(invalid="ignore", divide="ignore"):
+        values = np.abs(measure.edge_lengths(frame.coords, top.edges_vertices) / frame.shared.flat_lengths - 1)
+    return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"edge {i[0]} ({top.edges_kind[i[0]]})")
+
+
+def _quad_planarity(frame: Frame) -> Residual:
+    values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
+    return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"quad {i[0]} (strip {i[0] // (frame.samples - 1) + 1})")
+
+
+def _fold_angles(frame: Frame) -> Residual:
+    top = frame.shared.topology
+    creases, faces = frame.shared.creases
+    measured = mesh_fold_angles(frame.coords, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
+    design = 2 * math.degrees(frame.alpha)
+    expect = np.where(top.edges_kind[creases] == "fold", -design, -(180.0 - design))
+    values = np.abs((measured - expect + 180.0) % 360.0 - 180.0)
+    return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
+                    lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
+
+
+#: The ruling family of every strip of a tube: "L" where it steps in u, "R" where in v.
+_STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b in STRIPS])
+
+
+def _width_law(frame: Frame) -> Residual:
+    pattern = frame.state.lattice.pattern
+    law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
+    left = (_STRIP_SIDES == "L")[None, :, None]
+    start = np.where(left, pattern.width_left[0], pattern.width_right[0])
+    values = np.abs(np.log(frame.strip_widths / start) - np.where(left, -law, law))
+    return Residual(values, 2 * frame.ulp / float(frame.strip_widths.min()), _strip, frame.crease.s / frame.crease.curve.length)
+
+
+def _section_area(frame: Frame) -> Residual:
+    widths = frame.strip_widths
+    w_l, w_r = widths[:, 3, 2:-2], widths[:, 0, 2:-2]  # strips 4→1 (left) and 1→2 (right) around crease 1
+    pattern = frame.state.lattice.pattern
+    scale = pattern.width_left[0] * pattern.width_right[0]
+    values = np.abs(w_l * w_r * np.sin(2 * frame.half_angles[:, 0]) - scale * math.sin(2 * frame.alpha)) / scale
+    length = float(measure.norm(frame.tubes[:, 1] - frame.tubes[:, 0]).min())
+    return Residual(values, frame.ulp * (4 / float(widths.min()) + 3 / (frame.step * length)), lambda i: f"tube {i[0] + 1}", frame.inner_t)
+
+
+def _regression(frame: Frame) -> Residual:
+    uv = frame.structure.curves_uv
+    predicted = frame.state.lattice.domain.factor(uv.astype(float))
+    margin = float(predicted.min())
+    measured = measure.speed_factors(frame.state.vertices, frame.tangent, frame.step)
+    values = np.abs(measured - predicted[:, 2:-2]) / margin
+    return Residual(values, 1.5 * frame.ulp / (frame.step * margin), _curve(uv), frame.inner_t)
+
+
+def _tube_closure(frame: Frame) -> Residual:
+    X, h, a = frame.tubes, frame.step, frame.alpha
+    values = []
+    for c, (_, nxt) in enumerate(STRIPS):
+        prev = (c - 1) % 4
+        du, dv = CORNERS[nxt] - CORNERS[c]
+        back = CORNERS[prev] - CORNERS[c]  # toward the previous crease: the other family, ±1 step
+        side, sign = ("L", du) if du else ("R", dv)
+        ruling = (X[:, prev] - X[:, c]) * (back[0] + back[1])  # oriented as r in Eqs. 5–6
+        rebuilt = measure.rebuilt_strip(X[:, c], ruling, X[:, nxt], h, alpha=a, side=side, sign=float(sign))
+        values.append(measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, c, 2:-2])
+    kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())
+    floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))
+    return Residual(np.stack(values, axis=1), floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)
+
+
+def _ground_plane(frame: Frame) -> Residual:
+    vertices = frame.state.vertices
+    size = float(np.abs(vertices).max())
+    uv = frame.structure.curves_uv
+    return Residual(np.abs(vertices[:, [0, -1], 2]) / size, _accumulated(frame) / size,
+                    lambda i: f"curve {tuple(uv[i[0]].tolist())}, t = {i[1]}")
+
+
+def _arch_condition(frame: Frame) -> Residual:
+    """Eq. (20), the ends facing opposite ways, and the chord normal to T(0), on the built curve 1."""
+    curve = frame.crease.curve
+    T = curve.frames[:, :, 0]
+    m = (len(curve.s) - 1) // 2
+    values = np.array([abs(T[0] @ T[m]), measure.norm(T[0] + T[-1]), abs((curve.points[-1] - curve.points[0]) @ T[0]) / curve.length])
+    labels = ("T(s0/2)·T(0) (Eq. 20)", "|T(0) + T(s1)|", "(x(s1) − x(0))·T(0) / s1")
+    return Residual(values, _accumulated(frame) / curve.length, lambda i: labels[i[0]])
+
+
+def _proportion_change(frame: Frame) -> Residual:
+    vault = frame.vault
+    widths = frame.strip_widths
+    w_r, w_l = widths[0, 0], widths[0, 3]  # strips 1→2 and 4→1 of the base tube
+    m = (frame.samples - 1) // 2
+    values = np.abs(np.array([w_r[m] / w_r[0] / vault.proportion_change, w_r[m] / w_l[m] / vault.p_xz]) - 1)
+    labels = ("w_R(s0/2)/w_R(0) against exp(a κ0 s0 cot α / π)", "p_xz = w_R/w_L at s0/2 against p_xy × change²")
+    return Residual(values, _accumulated(frame) / float(widths.min()), lambda i: labels[i[0]])
+
+
+def _accumulated(frame: Frame) -> float:
+    """Rounding accumulated over n integration steps: ROUNDING ulps × √n, in model units."""
+    return frame.ulp * math.sqrt(frame.samples)
+
+
+#: The registry: every check of the certificate, in report order.
+CHECKS: tuple[CheckSpec, ...] = (
+    CheckSpec("developability", "crease",
+              "|r'·p| along both families of rulings of curve 1: r the unit ruling from the built neighbour creases "
+              "(or the built ruling vectors of a single fold), p the normal of the plane of r and the measured tangent; "
+              "the tangent plane must not turn along a ruling. Relative to the largest frame rate √(κ² + τ²)",
+              "relative", 4, 1e-3, _developability),
+    CheckSpec("eq2_planar_curvature", "crease",
+              "Eq. (2): κ of the built curve 1 (differences of its points) times cos α measured from its built rulings, "
+              "against κ_2D measured on the crease pattern (curve 1 of the flat state; a single fold's input pattern). "
+              "Relative to the largest κ_2D",
+              "relative", 4, 1e-3, _planar_curvature),
+    CheckSpec("frame_agreement", "frame",
+              "angle between every crease's measured tangent (differences of its points) and curve 1's T at equal t: "
+              "the shared frame; a crease past its curve of regression runs backwards (π)",
+              "rad", 4, 1e-3, _frame_agreement),
+    CheckSpec("eq19", "frame",
+              "the paper's Eq. (19) across every strip: κ_2D tan α cosec β ds/dt at its two creases, each factor "
+              "measured at its own crease (κ and ds/dt from differences, α from the two strips' rulings, β between the "
+              "crease's tangent and the strip's ruling); not defined in the flat state",
+              "relative", 4, 1e-3, _eq19),
+    CheckSpec("isometry", "frame",
+              "|ℓ/ℓ₀ − 1| of every mesh edge against the crease pattern (the flat state): a triangle mesh is "
+              "isometric exactly when every edge keeps its length; polyline chords shorten as (κ² − κ_2D²) h²/24",
+              "relative", 2, 1e-3, _isometry),
+    CheckSpec("ruling_quad_planarity", "frame",
+              "distance of each ruling quad's fourth corner from the plane of the other three, over its diagonal: "
+              "consecutive rulings of a developable are coplanar",
+              "relative", 3, 1e-3, _quad_planarity),
+    CheckSpec("fold_angles", "frame",
+              "dihedral angle of the mesh at every crease edge against 2α (folds, mountain) and 180° − 2α (seams)",
+              "°", 2, 0.1, _fold_angles),
+    CheckSpec("width_law", "frame",
+              "|ln(w/w(0)) ∓ ∫ κ_2D cot β ds| for every strip: w the distance between the tangent lines of its built "
+              "creases (Eqs. 12–13 corrected); the integral by Gauss–Legendre on a grid 4× finer than the samples",
+              "relative", 6, 1e-4, _width_law),
+    CheckSpec("section_area", "frame",
+              "w_L w_R sin 2α of every tube's section, widths measured between tangent lines and α from the built "
+              "rulings, against w_L(0) w_R(0) sin 2α of the frame (constant in t). Relative to w_L(0) w_R(0)",
+              "relative", 4, 1e-3, _section_area),
+    CheckSpec("regression", "frame",
+              "x'·T₁ of every crease (differences of its points along curve 1's arc length) against the Eq. (17) "
+              "speed factor 1 − u w_L/w_lim_L − v w_R/w_lim_R of the regression domain (Eqs. 14–18) the design was "
+              "accepted with; relative to the smallest factor, so a pass also says every crease runs forward",
+              "relative", 4, 1e-3, _regression),
+    CheckSpec("tube_closure", "frame",
+              "each strip of every tube rebuilt from its first crease's own measured invariants (frame, κ, β, the "
+              "width law from the measured width at t ≈ 0: the paper's construction step) lands on its second "
+              "crease; the step from crease 4 closes the tube onto crease 1. Relative to the strip's width",
+              "relative", 4, 1e-3, _tube_closure),
+    CheckSpec("ground_plane", "vault",
+              "|z| of both end sections of every crease at the design angle, relative to the vault's size",
+              "relative", 6, 1e-6, _ground_plane),
+    CheckSpec("arch_condition", "vault",
+              "on the built curve 1: T(s0/2)·T(0) (Eq. 20), |T(0) + T(s1)| (the ends face opposite ways) and "
+              "(x(s1) − x(0))·T(0)/s1 (the chord lies in the ground)",
+              "", 6, 1e-6, _arch_condition),
+    CheckSpec("proportion_change", "vault",
+              "w_R(s0/2)/w_R(0) and p_xz = w_R/w_L at s0/2, measured between the tangent lines of the base tube's "
+              "built creases, against exp(a κ0 s0 cot α/π) and p_xy × change²",
+              "relative", 6, 1e-6, _proportion_change),
+)
+
+
+# --------------------------------------------------------------------------------------
+# certification
+
+
+def _rebuilt(crease: Crease, structure: Structure | None, samples: int) -> tuple[Crease, Structure | None]:
+    """The same design built again at another sample count, from the same functions."""
+    c = crease.curve
+    curve = SpaceCurve.from_curvature(c.kappa, c.tau, c.length, samples=samples, origin=c.points[0], frame=c.frames[0])
+    coarse = Crease(curve, crease.alpha, crease.beta_left, crease.beta_right)
+    if structure is None:
+        return coarse, None
+    lattice = structure.lattice
+    pattern = Pattern.from_crease(coarse, float(lattice.width_left[0]), float(lattice.width_right[0]))
+    return coarse, Structure(Lattice(coarse, pattern), structure.cells)
+
+
+@dataclass(frozen=True)
+class _Outcome:
+    status: str
+    value: float
+    tolerance: float
+    where: str
+    samples_needed: int | None
+
+    @property
+    def ratio(self) -> float:
+        return self.value / self.tolerance if math.isfinite(self.value) and self.tolerance > 0 else math.inf
+
+
+def _judge(spec: CheckSpec, fine: Residual, coarse: Residual, samples: int, label: str) -> _Outcome:
+    value, index = fine.worst
+    where = label + (fine.locate(index) if index >= 0 else "")
+    tolerance = fine.change(coarse) / 2 + fine.floor
+    if not (math.isfinite(value) and math.isfinite(tolerance)):
+        return _Outcome("fail", math.nan, tolerance, where + " (not a number)", None)
+    if value > tolerance or tolerance <= spec.cap:  # more than the discretisation explains, or certified
+        return _Outcome("pass" if value <= tolerance else "fail", value, tolerance, where, None)
+    if fine.floor >= spec.cap / 4:  # rounding alone fills the cap: more samples cannot help
+        return _Outcome("insufficient resolution", value, tolerance, where + " (rounding)", None)
+    needed = 1 + math.ceil((samples - 1) * (4 * (tolerance - fine.floor) / spec.cap) ** (1 / spec.order))
+    return _Outcome("insufficient resolution", value, tolerance, where, max(needed, samples + 1))
+
+
+def _worst(outcomes: list[_Outcome]) -> _Outcome:
+    rank = max(STATUSES.index(o.status) for o in outcomes)
+    pick = [o for o in outcomes if STATUSES.index(o.status) == rank]
+    worst = max(pick, key=lambda o: o.ratio)
+    needed = [o.samples_needed for o in pick if o.samples_needed is not None]
+    return _Outcome(worst.status, worst.value, worst.tolerance, worst.where, max(needed) if needed else None)
+
+
+def _frame(shared: Shared, vault: Vault | None, fold_angle: float | None) -> Frame:
+    """The structure at a fold angle (refolded from its pattern), or as built (None)."""
+    state = shared.structure.state(fold_angle)
+    return Frame(state.lattice.crease, shared, state, vault)
+
+
+def _measure(specs: Sequence[CheckSpec], fine: Frame, coarse: Frame, label: str) -> dict[str, _Outcome]:
+    out = {}
+    for spec in specs:
+        residual = spec.measure(fine)
+        if residual is not None:
+            out[spec.name] = _judge(spec, residual, spec.measure(coarse), fine.samples, label)
+    return out
+
+
+def certify(crease: Crease, structure: Structure | None = None, vault: Vault | None = None, *,
+            fold_angles: Sequence[float] | None = None, degrees: bool = True) -> Certificate:
+    """Measure every check that applies, in every frame, against its tolerance.
 
     Parameters
     ----------
     crease : Crease
-        Curve 1 (or the single curved fold).
+        The single curved fold, or curve 1 of the structure.
     structure : Structure, optional
-        The tube, block or vault stack built on the crease's lattice.
+        A tube, block or vault stack. It is certified as built (at its design angle) and
+        refolded from its pattern to 0° (the crease pattern), to its design angle and to
+        every angle of ``fold_angles``; then the largest fold angle where every check still
+        passes is found.
     vault : Vault, optional
-        Adds the vault's ground-plane and proportion checks.
+        Adds the ground-plane, arch and proportion checks at the design angle.
+    fold_angles : sequence of float, optional, keyword-only
+        Further frames to certify, 2α in [0°, 180°) (e.g. the exported motion).
+    degrees : bool, keyword-only
+
+    Returns
+    -------
+    Certificate
+
+    Raises
+    ------
+    InputError
+        A fold angle outside [0°, 180°), or fold angles for a single curved fold.
     """
-    h = float(crease.s[1] - crease.s[0])
-    kh = float(np.max(crease.curve.kappa(crease.s)) * h)
-    checks = [
-        _check(
-            "developability",
-            measure.developability_residual(crease),
-            max(1e-6, 100 * kh**4),
-            "rad per unit length",
-            "|r'·p| on both sides of curve 1: the tangent plane must not turn along a ruling; "
-            "fourth-order differences leave ~(κh)⁴",
-        )
-    ]
-    # Eq. (2): the crease's curvature measured from its built points, times cos α, is κ_2D.
-    x = crease.curve.points
-    d1 = measure.derivative(x, h)[2:-2]
-    d2 = measure.derivative(measure.derivative(x, h), h)
-    kappa = np.linalg.norm(np.cross(d1, d2), axis=1) / np.linalg.norm(d1, axis=1) ** 3
-    s_in = crease.s[4:-4]
-    k2 = crease.curve.kappa(s_in) * np.cos(crease.alpha(s_in))
-    checks.append(
-        _check(
-            "eq2_planar_curvature",
-            float(np.max(np.abs(kappa * np.cos(crease.alpha(s_in)) / k2 - 1))),
-            max(1e-6, 100 * kh**4),
-            "relative",
-            "κ of the built crease (differences of its points) times cos α against κ_2D of the crease pattern (Eq. 2)",
-        )
-    )
+    from ..geometry.sheets import _angles
+
+    if structure is not None:
+        crease = structure.lattice.crease
+    elif fold_angles is not None:
+        raise InputError("fold_angles: a single curved fold is certified in the one state it is built in")
+    n = len(crease.s)
+    coarse_samples = (n - 1) // 2 + 1
+    if coarse_samples < _MIN_COARSE:
+        return _too_coarse(structure, vault, n)
+    coarse_crease, coarse_structure = _rebuilt(crease, structure, coarse_samples)
     if structure is None:
-        return checks
-    lattice = structure.lattice
-    state = structure.state()
-    flat = structure.state(0.0)
-    size = float(np.abs(state.vertices).max() + crease.curve.length)
-    far = structure.curves_uv[np.argmax(np.abs(structure.curves_uv).sum(axis=1))]
-    iso = measure.isometry_error(state.mesh(), flat.mesh())
-    kappa_max = float(np.max(lattice.crease.curve.kappa(lattice.s)))
-    chord = (1.5 * kappa_max * h) ** 2 / 24
-    aspect = max(float(np.max(length)) for length in lattice.ruling_lengths) / h
-    closure, agreement = measure.tube_closure(lattice)
-    checks += [
-        _check(
-            "frame_agreement",
-            measure.frame_agreement(lattice, [[0, 1], [1, 1], [1, 0], far]),
-            max(1e-6, 100 * kh**4),
-            "rad",
-            "angle between each lattice curve's tangent and curve 1's at equal t (shared frames); fourth-order differences",
-        ),
-        _check(
-            "isometry_edges",
-            iso.max_relative_edge_error,
-            chord,
-            "relative",
-            "edge lengths of every strip at the design angle against the flat crease pattern; a polyline "
-            "chord of an arc of curvature κ is shorter by (κh)²/24, which bounds the change",
-        ),
-        _check(
-            "isometry_angles",
-            iso.max_angle_error,
-            chord * aspect,
-            "rad",
-            "triangle corner angles against the flat crease pattern: first order in the edge error, "
-            "amplified at most by the triangles' aspect ratio (longest ruling / step)",
-        ),
-        _check(
-            "ruling_quad_planarity",
-            measure.ruling_quad_planarity(state),
-            max(1e-6, 10 * kh**3),
-            "relative",
-            "distance of each ruling quad's fourth corner from the plane of the other three, over its diagonal; "
-            "consecutive rulings of a developable are coplanar to third order",
-        ),
-        _check("width_law", measure.width_law_error(lattice), 1e-10, "relative", "widths between parallel tangent lines against exp(∓∫ τ cot α ds)"),
-        _check("section_area", measure.section_area_error(lattice), 1e-10, "relative", "area of the section parallelogram along t (constant, w_L w_R sin 2α)"),
-        _check(
-            "eq19",
-            max(measure.eq19_residual(lattice, [0, 0], [0, 1]), measure.eq19_residual(lattice, [0, 1], [1, 1])),
-            max(1e-6, 100 * kh**4),
-            "relative",
-            "the paper's Eq. (19) between neighbouring creases, with κ and ds measured from the built curves",
-        ),
-        _check("tube_closure", closure / size, 1e-12, "relative", "a tube built crease by crease from each crease's own invariants closes onto curve 1"),
-        _check("chain_vs_lattice", agreement / size, 1e-11, "relative", "curves built crease by crease agree with the lattice formula (Eq. 11)"),
-        _check(
-            "fold_angles",
-            measure.fold_angle_error(state.mesh(), lattice.crease.fold_angle),
-            0.05 + 10 * np.degrees(kh) * kh,
-            "degrees",
-            "mesh fold angles on the creases against 2α (folds) and 180° − 2α (seams); polyline creases deviate ~(κh)²",
-        ),
-        _check(
-            "regression_margin",
-            float(lattice.domain.margin(structure.curves_uv.astype(float)).min()),
-            0.0,
-            "",
-            "smallest speed factor 1 − u w_L/w_lim_L − v w_R/w_lim_R over every crease (Eq. 17); must stay positive",
-            at_least=True,
-        ),
-    ]
-    if vault is not None:
-        p_xy, change = vault.measured_proportions()
-        checks += [
-            _check("ground_plane", vault.ground_error() / size, 1e-13, "relative", "largest |z| of every end section at the design angle"),
-            _check(
-                "proportion_change",
-                abs(change / vault.proportion_change - 1),
-                1e-10,
-                "relative",
-                "w_R(s0/2)/w_R(0) measured between tangent lines against exp(a κ0 s0 cot α / π)",
-            ),
-        ]
-    return checks
+        specs = [s for s in CHECKS if s.scope == "crease"]
+        outcomes = _measure(specs, Frame(crease), Frame(coarse_crease), "")
+        return Certificate(tuple(_check(spec, [outcomes[spec.name]], 1) for spec in specs), samples=n)
+
+    design = float(crease.fold_angle)
+    extra = [] if fold_angles is None else _angles(fold_angles, degrees, "fold_angles").tolist()
+    angles = sorted({0.0, design, *map(float, extra)})
+    specs = [s for s in CHECKS if s.scope in ("crease", "frame") or (s.scope == "vault" and vault is not None)]
+    fine, coarse = Shared(structure), Shared(coarse_structure)
+
+    def run(angle: float | None, scopes: tuple[str, ...]) -> dict[str, _Outcome]:
+        label = f"2α = {design:g}° as built: " if angle is None else f"2α = {angle:g}°: "
+        chosen = [s for s in specs if s.scope in scopes]
+        return _measure(chosen, _frame(fine, vault, angle), _frame(coarse, vault, angle), label)
+
+    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
+    for angle in (None, *angles):
+        for name, outcome in run(angle, ("crease", "frame", "vault") if angle is None else ("crease", "frame")).items():
+            outcomes[name].append(outcome)
+    checks = tuple(_check(spec, outcomes[spec.name], len(outcomes[spec.name])) for spec in specs)
+    motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope != "vault")
+    return Certificate(checks, tuple(angles), _holds_up_to(run, max(angles)) if motion_passes else None, n)
+
+
+def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float) -> float:
+    """Largest 2α ≥ ``start`` (to 1.5°) where every crease and frame check passes, by bisection."""
+    lo, hi = start, 180.0
+    while hi - lo > 1.5:
+        mid = 0.5 * (lo + hi)
+        ok = all(o.status == "pass" for o in run(mid, ("crease", "frame")).values())
+        lo, hi = (mid, hi) if ok else (lo, mid)
+    return round(lo, 1)
+
+
+def _check(spec: CheckSpec, outcomes: list[_Outcome], frames: int) -> Check:
+    worst = _worst(outcomes)
+    return Check(spec.name, worst.value, worst.tolerance, worst.status, spec.unit, spec.measures, spec.model,
+                 worst.where, frames, worst.samples_needed)
+
+
+def _too_coarse(structure: Structure | None, vault: Vault | None, samples: int) -> Certificate:
+    """Every check "insufficient resolution": the half-sampled design would not hold a stencil."""
+    scopes = ("crease",) if structure is None else ("crease", "frame") + (("vault",) if vault is not None else ())
+    needed = 2 * (_MIN_COARSE - 1) + 1
+    checks = tuple(Check(s.name, math.nan, math.nan, "insufficient resolution", s.unit, s.measures, s.model,
+                         f"{samples} samples; the check compares them with half as many", 0, needed)
+                   for s in CHECKS if s.scope in scopes)
+    return Certificate(checks, samples=samples)

@@ -23,6 +23,7 @@ from ..io.atomic import atomic_write, folder_mode
 from ..io.formats import missing_dependencies
 from ..kernel.errors import InputError
 from .build import Built
+from .products import exported_fold_angles
 
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "output_folder"]
 
@@ -81,7 +82,11 @@ def structure_payload(built: Built) -> dict:
             "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
             "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
         }
-    payload["certificate"] = [c.to_dict() for c in certify(built.crease, built.structure, built.vault)]
+    angles = None if built.structure is None else exported_fold_angles(built)
+    certificate = certify(built.crease, built.structure, built.vault, fold_angles=angles)
+    payload["certificate"] = [c.to_dict() for c in certificate.checks]
+    payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
+                                     "samples": certificate.samples}
     return payload
 
 

@@ -25,7 +25,7 @@ import numpy as np
 from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
 
-__all__ = ["jobs", "run_jobs", "resolution", "MOTION_STEPS"]
+__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "MOTION_STEPS"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
@@ -58,6 +58,11 @@ def _metadata(built: Built) -> dict:
             "p_xz": v.p_xz,
         }
     return meta
+
+
+def exported_fold_angles(built: Built) -> np.ndarray:
+    """2α of the frames the files hold (degrees): the folding motion, flat to the design angle."""
+    return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
 
 
 def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
@@ -116,7 +121,8 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"],
-                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta, keep=keep)]
+                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta, keep=keep,
+                            design=built.design.to_dict())]
     (folder / "sheets").mkdir()
     for sheet in sheets(structure, keep=keep):
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
@@ -136,10 +142,8 @@ def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
 def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The 3D files; the GLB holds the folding motion."""
-    structure = built.structure
-    angles = np.linspace(0.0, structure.lattice.crease.fold_angle, MOTION_STEPS)
-    return list(_writer(names)(folder / built.design.kind, structure, angles, formats=names, unit=MODEL_UNIT, metadata=_metadata(built),
-                               keep=built.sampling.keep))
+    return list(_writer(names)(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
+                               metadata=_metadata(built), keep=built.sampling.keep))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:

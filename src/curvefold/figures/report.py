@@ -125,15 +125,46 @@ def _rows(values: dict, names: dict) -> str:
     return "".join(out)
 
 
+def _sci(x: float | None, prefix: str = "") -> str:
+    """A certificate figure: 3 digits, or "—" when there is none."""
+    return "—" if x is None else f"{prefix}{x:.3g}" if prefix else f"{x:.2e}"
+
+
+def _certificate_row(c: dict) -> str:
+    e = html.escape
+    kind = "pass" if c["passed"] else "fail" if c["status"] == "fail" else "unresolved"
+    needed = f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
+    return (f"<tr class='{kind} head'><td><b>{e(c['name'])}</b></td><td class=status>{e(c['status'])}{needed}</td>"
+            f"<td class=num>{_sci(c['value'])}</td><td class=num>{_sci(c['tolerance'])}</td>"
+            f"<td class=num>{_sci(c['margin'], '×')}</td><td>{e(c['unit'])}</td><td>{e(c['where'])}</td></tr>"
+            f"<tr class='{kind} about'><td colspan=7>{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>")
+
+
+def _certificate_table(payload: dict) -> str:
+    """The certificate: per check its status, value, tolerance, margin, where, what it measures and its error model."""
+    e = html.escape
+    rows = "".join(_certificate_row(c) for c in payload["certificate"])
+    head = ("<tr><th>check</th><th>status</th><th>measured</th><th>tolerance</th><th>margin</th><th>unit</th>"
+            "<th>worst frame and place</th></tr>")
+    frames = payload.get("certificate_frames") or {}
+    angles = frames.get("fold_angles") or []
+    motion = ""
+    if angles:
+        listed = ", ".join(f"{a:g}°" for a in angles)
+        motion = f"<p>Certified as built and in the frames 2α = {e(listed)}."
+        if frames.get("holds_up_to") is not None:
+            motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples (past it the error "
+                       "of the folded state, growing as κ = κ_2D / cos α, outgrows a cap).")
+        else:
+            motion += f" At {frames['samples']} samples not every check passes in every frame (see below)."
+        motion += "</p>"
+    return f"{motion}<table class=certificate>{head}{rows}</table>"
+
+
 def report_html(payload: dict) -> str:
     """A self-contained HTML report: parameters, derived quantities, certificate, pictures."""
     e = html.escape
-    rows = "".join(
-        f"<tr class={'pass' if c['passed'] else 'fail'}><td>{e(c['name'])}</td><td>{c['value']:.3e}</td>"
-        f"<td>{'≥' if c['name'] == 'regression_margin' else '≤'} {c['tolerance']:.3e}</td><td>{e(c['unit'])}</td>"
-        f"<td>{'pass' if c['passed'] else 'FAIL'}</td><td>{e(c['meaning'])}</td></tr>"
-        for c in payload["certificate"]
-    )
+    certificate = _certificate_table(payload)
     derived = _rows(payload, QUANTITIES)
     mesh = ""
     if payload.get("mesh"):
@@ -163,8 +194,11 @@ def report_html(payload: dict) -> str:
 body{{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;color:#222;line-height:1.4}}
 h1{{font-size:1.5em;overflow-wrap:anywhere}}
 table{{border-collapse:collapse;margin:1em 0;display:block;overflow-x:auto;max-width:100%}}
-td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}td.num{{white-space:nowrap;font-variant-numeric:tabular-nums}}
-tr.pass td:nth-child(5){{color:#070}}tr.fail td{{background:#fee}}
+td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
+.num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status{{white-space:nowrap}}
+tr.pass td.status{{color:#070}}tr.fail td{{background:#fee}}tr.unresolved td{{background:#fff6dd}}
+table.certificate small{{color:#555}}table.certificate td:nth-child(7){{min-width:14em}}
+table.certificate tr.head td{{border-bottom:none}}table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}
 .pictures{{display:grid;grid-template-columns:repeat(auto-fill,minmax(min(100%,420px),1fr));gap:1em}}
 figure{{margin:0}}figure.wide{{grid-column:1/-1}}img{{width:100%;height:auto;border:1px solid #ddd}}figcaption{{font-size:.85em;color:#555}}
 pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}
@@ -175,7 +209,7 @@ pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}
 <h2>Derived quantities</h2><table>{derived}</table>
 {mesh}
 {paper}
-<h2>Certificate</h2><table><tr><th>check</th><th>measured</th><th>tolerance</th><th>unit</th><th></th><th>what and why</th></tr>{rows}</table>
+<h2>Certificate</h2>{certificate}
 <h2>Design</h2><pre>{design}</pre>
 <h2>Files</h2><table>{links}</table>
 </body></html>

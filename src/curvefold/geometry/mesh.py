@@ -220,12 +220,13 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
     return out
 
 
-def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.ndarray:
+def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_vertices: np.ndarray, *,
+                faces_of_edges: np.ndarray | None = None) -> np.ndarray:
     """Signed fold angle of every edge in degrees, FOLD sign (valley positive).
 
     The angle between the normals of the two faces on the edge (Newell normals for
     polygons), positive when the faces turn toward the side their normals point to.
-    Edges with fewer than two faces get 0.
+    Edges with fewer than two faces get 0; a degenerate face (no normal) gives NaN.
 
     Parameters
     ----------
@@ -233,19 +234,23 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     faces_vertices : (F, k) ndarray of int
         Polygons, -1 padded.
     edges_vertices : (E, 2) ndarray of int
+    faces_of_edges : (E, 2) ndarray of int, optional, keyword-only
+        :func:`edges_faces` of these faces and edges, when it is known already (many
+        frames of one topology).
 
     Returns
     -------
     (E,) ndarray
     """
-    ef = edges_faces(faces_vertices, edges_vertices)
+    ef = edges_faces(faces_vertices, edges_vertices) if faces_of_edges is None else faces_of_edges
     x = np.asarray(vertices_coords, float)
-    n = vector_areas(x, faces_vertices)
-    n /= np.linalg.norm(n, axis=-1, keepdims=True)
     ok = (ef >= 0).all(axis=1)
-    n1, n2 = n[ef[ok, 0]], n[ef[ok, 1]]
-    e = x[edges_vertices[ok, 1]] - x[edges_vertices[ok, 0]]
-    e /= np.linalg.norm(e, axis=-1, keepdims=True)
     out = np.zeros(len(edges_vertices))
-    out[ok] = np.degrees(np.arctan2(-np.einsum("ij,ij->i", cross(n1, n2), e), np.einsum("ij,ij->i", n1, n2)))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n = vector_areas(x, faces_vertices)
+        n /= np.linalg.norm(n, axis=-1, keepdims=True)
+        n1, n2 = n[ef[ok, 0]], n[ef[ok, 1]]
+        e = x[edges_vertices[ok, 1]] - x[edges_vertices[ok, 0]]
+        e /= np.linalg.norm(e, axis=-1, keepdims=True)
+        out[ok] = np.degrees(np.arctan2(-np.einsum("ij,ij->i", cross(n1, n2), e), np.einsum("ij,ij->i", n1, n2)))
     return out

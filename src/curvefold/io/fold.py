@@ -10,11 +10,17 @@ Layout written by :func:`write_fold` (one shared vertex/edge/face topology):
   and ``edges_foldAngle``;
 * ``edges_assignment``: ``M``/``V`` on fold creases, ``B`` on boundaries and seams, ``F``
   on rulings and triangulating diagonals; ``edges_foldAngle`` in degrees, valley
-  positive, 0 on ``B``/``F`` edges;
+  positive, the dihedral angle measured in that frame on every edge with two faces
+  (the sheets of a curved fold bend a little across rulings and diagonals too, so a
+  folder that follows the angles lands on the frame), 0 on ``B`` edges;
 * custom keys (namespaced per the FOLD spec): ``edges_curvefold:kind`` (the edge kind,
   named like a per-edge property so that FOLD tools that renumber edges keep it in step),
   ``faces_curvefold:group``, ``curvefold:seam_partners`` (pairs of edge indices glued
-  together) and ``curvefold:metadata`` (design parameters).
+  together: the two sides of a seam), ``curvefold:bonds`` (pairs of edge indices of
+  different tubes glued together where the tubes touch), ``curvefold:metadata`` (design
+  parameters) and, when the design is known, ``curvefold:design`` (the design, as a
+  design file holds it, with the fold angles, anchor and faces of the frames: enough to
+  build the file again, ``curvefold check --rebuild``).
 
 :func:`write_sheet_fold` writes one sheet in the form Origami Simulator loads: it needs
 ``vertices_coords``, ``edges_vertices``, ``edges_assignment`` and ``faces_vertices``, takes
@@ -28,16 +34,17 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
 
-from ..geometry.mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
+from ..geometry.mesh import EDGE_KINDS, Mesh, edges_faces, face_sides, vector_areas
+from ..geometry.mesh import fold_angles as dihedral_angles
 from ..geometry.sheets import _angles, _check_structure, _design_angle, _develop, bonds, folding_motion
 from ..geometry.structure import Structure
-from ..geometry.topology import fold_assignment
+from ..geometry.topology import Topology, fold_assignment
 from ..kernel.errors import InputError, InternalError
 from .atomic import atomic_write
 from .mesh3d import check_metadata
@@ -204,6 +211,18 @@ def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
     return pairs
 
 
+def _check_bonds(bonds, edges: int) -> np.ndarray:
+    if bonds is None:
+        return np.zeros((0, 2), np.int64)
+    try:
+        pairs = np.asarray(bonds, dtype=np.int64).reshape(-1, 2)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"bonds must be (Q, 2) edge indices, got {bonds!r}") from exc
+    if pairs.size and (pairs.min() < 0 or pairs.max() >= edges):
+        raise InputError(f"bonds must be edge indices in [0, {edges}), got {int(pairs.min())}..{int(pairs.max())}")
+    return pairs
+
+
 def write_fold(
     path: str | os.PathLike,
     *,
@@ -212,6 +231,8 @@ def write_fold(
     metadata: Mapping | None = None,
     unit: str = "unit",
     seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
+    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
+    design: Mapping | None = None,
     title: str = "",
     flat_tol: float = 1e-9,
     mirror_clockwise: bool = True,
@@ -233,7 +254,13 @@ def write_fold(
     unit : str
         Length unit (``frame_unit``), e.g. ``"m"``, ``"mm"``, ``"unit"``.
     seam_partners : (P, 2) array_like of int, optional
-        Pairs of edge indices glued together in the folded structure.
+        Pairs of boundary edge indices glued together in the folded structure.
+    bonds : (Q, 2) array_like of int, optional
+        Pairs of edge indices of different sheets that coincide in the folded structure
+        (tubes glued where they touch).
+    design : mapping, optional
+        The design and how the frames were made (:func:`to_fold`), stored as
+        ``curvefold:design``; JSON data.
     title : str
         ``file_title`` (omitted when empty).
     flat_tol : float
@@ -253,15 +280,22 @@ def write_fold(
     InputError
         On a non-flat crease pattern, a sheet with both clockwise and counter-clockwise
         (or degenerate) triangles, topology that differs between frames,
-        a crease edge without two faces, a non-boundary seam partner or bad metadata.
+        a crease edge without two faces, a non-boundary seam partner, bad metadata or a
+        design that is not JSON data.
     """
     cp = crease_pattern
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
     cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
     pairs = _check_seam_partners(seam_partners, assignment)
+    glued = _check_bonds(bonds, len(assignment))
     meta = check_metadata(metadata)
-    zero = np.isin(assignment, ("B", "F"))
+    if design is not None:
+        try:
+            json.dumps(dict(design), allow_nan=False)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"design must be JSON data (numbers, strings, lists, objects): {exc}") from None
+    zero = assignment == "B"  # one face: no dihedral angle
 
     frames = []
     for i, item in enumerate(folded):
@@ -303,7 +337,9 @@ def write_fold(
         "edges_curvefold:kind": cp.edges_kind.tolist(),
         "faces_curvefold:group": np.asarray(cp.faces_group).tolist(),
         "curvefold:seam_partners": pairs.tolist(),
+        "curvefold:bonds": glued.tolist(),
         "curvefold:metadata": meta,
+        **({"curvefold:design": dict(design)} if design is not None else {}),
         "file_frames": frames,
     }
     return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
@@ -387,6 +423,13 @@ class FoldFile:
         ``frame_unit`` of the key frame (``"unit"`` if absent).
     seam_partners : (P, 2) ndarray of int
         ``curvefold:seam_partners`` (empty if absent).
+    bonds : (Q, 2) ndarray of int
+        ``curvefold:bonds`` (empty if absent).
+    design : dict or None
+        ``curvefold:design``: the design and the frames' fold angles, anchor and faces.
+    keys : frozenset of str
+        The ``curvefold:`` keys the file holds (a file saved by another tool may have
+        dropped them).
     """
 
     crease_pattern: Mesh
@@ -394,6 +437,9 @@ class FoldFile:
     metadata: dict = field(default_factory=dict)
     unit: str = "unit"
     seam_partners: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), np.int64))
+    bonds: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), np.int64))
+    design: dict | None = None
+    keys: frozenset = frozenset()
 
 
 def _fail(where: str, msg: str) -> InputError:
@@ -588,12 +634,23 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
         raise InputError(f"{where}: frame_unit must be a string, got {unit!r}")
 
     E = len(crease_pattern.edges_vertices)
-    pairs = _int_rows(doc.get("curvefold:seam_partners", []), 2, "curvefold:seam_partners", where)
-    bad = np.flatnonzero(((pairs < 0) | (pairs >= E)).any(axis=1))
+    pairs, bonds = (_edge_pairs(doc, key, E, where) for key in ("curvefold:seam_partners", "curvefold:bonds"))
+    design = doc.get("curvefold:design")
+    if design is not None and not isinstance(design, dict):
+        raise InputError(f"{where}: curvefold:design must be an object, got {type(design).__name__}")
+    keys = frozenset(k for k in doc if k.startswith(("curvefold:", "edges_curvefold:", "faces_curvefold:")))
+    return FoldFile(crease_pattern=crease_pattern, folded=tuple(folded), metadata=metadata, unit=unit, seam_partners=pairs,
+                    bonds=bonds, design=design, keys=keys)
+
+
+def _edge_pairs(doc: dict, key: str, edges: int, where: str) -> np.ndarray:
+    """A ``curvefold:`` list of edge-index pairs, checked, read-only, (P, 2)."""
+    pairs = _int_rows(doc.get(key, []), 2, key, where)
+    bad = np.flatnonzero(((pairs < 0) | (pairs >= edges)).any(axis=1))
     if bad.size:
-        raise InputError(f"{where}: curvefold:seam_partners[{bad[0]}] = {pairs[bad[0]].tolist()} refers to an edge outside [0, {E})")
+        raise InputError(f"{where}: {key}[{bad[0]}] = {pairs[bad[0]].tolist()} refers to an edge outside [0, {edges})")
     pairs.flags.writeable = False
-    return FoldFile(crease_pattern=crease_pattern, folded=tuple(folded), metadata=metadata, unit=unit, seam_partners=pairs)
+    return pairs
 
 
 # ---------------------------------------------------------------------------------------
@@ -639,6 +696,7 @@ def to_fold(
     anchor: str = "start",
     faces: Literal["triangles", "quads"] = "triangles",
     keep: Sequence[np.ndarray] | None = None,
+    design: Mapping | None = None,
 ) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
@@ -647,7 +705,9 @@ def to_fold(
     counter-clockwise). Seams are cut open: each seam edge appears once per sheet as a
     boundary edge, and the two copies are paired in ``seam_partners`` (the edges run
     opposite ways, as their faces traverse them). The folded frames put the same vertices
-    at their 3D positions, so partner vertices coincide there.
+    at their 3D positions, so partner vertices coincide there, as do the crease edges of
+    tubes glued where they touch (``bonds``). Every frame records the dihedral angle it
+    has at every edge with two faces (the key frame those of the design state).
 
     Parameters
     ----------
@@ -671,6 +731,10 @@ def to_fold(
     keep : sequence of (m_k,) array_like of int, optional, keyword-only
         The samples each tube's mesh keeps (:func:`curvefold.geometry.sampling.choose_sampling`);
         default every sample.
+    design : mapping, optional, keyword-only
+        The design the structure was built from, as a design file holds it
+        (:meth:`curvefold.app.design.Design.to_dict`); recorded with the frames' fold
+        angles, anchor and faces, so that the file can be built again and compared.
 
     Returns
     -------
@@ -679,13 +743,13 @@ def to_fold(
         reads back.
     """
     _check_structure(structure)
-    design = _design_angle(structure, fold_angle, degrees)
-    angles = np.array([design]) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
+    design_angle = _design_angle(structure, fold_angle, degrees)
+    angles = np.array([design_angle]) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
     if not isinstance(unit, str) or not unit:
         raise InputError(f"unit must be a non-empty str, got {unit!r}")
-    meta = _metadata(structure, design, metadata)
+    meta = _metadata(structure, design_angle, metadata)
     topology = structure.topology(faces, keep=keep)
-    parts = _develop(structure, design, "", topology)
+    parts = _develop(structure, design_angle, "", topology)
     xys = [p.mesh.vertices_coords[:, :2] for p in parts]
     size = max(float(np.ptp(xy, axis=0).max()) for xy in xys)
     offsets = _row_offsets(xys, 0.05 * size)
@@ -713,9 +777,38 @@ def to_fold(
     pairs.flags.writeable = False
 
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
-    coords = folding_motion(structure, angles, anchor=anchor, keep=keep)[:, source]  # (A, V, 3)
-    folded = tuple((f"fold angle {a:g}°", cp.with_coords(x)) for a, x in zip(angles, coords))
-    return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs)
+    glued = _bond_pairs(cp.edges_vertices, source, topology, mesh_edge)
+    # Every frame carries the dihedral angle it has at every edge; the key frame the design state's.
+    coords = folding_motion(structure, np.concatenate([[design_angle], angles]), anchor=anchor, keep=keep)[:, source]  # (1 + A, V, 3)
+    sides = edges_faces(cp.faces_vertices, cp.edges_vertices)
+    measured = [dihedral_angles(x, cp.faces_vertices, cp.edges_vertices, faces_of_edges=sides) for x in coords]
+    cp = replace(cp, edges_foldAngle=measured[0])
+    folded = tuple((f"fold angle {a:g}°", replace(cp, vertices_coords=x, edges_foldAngle=m))
+                   for a, x, m in zip(angles, coords[1:], measured[1:]))
+    record = None if design is None else {"design": dict(design), "fold_angles": angles.tolist(), "anchor": anchor, "faces": faces,
+                                          "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
+    return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs, bonds=glued, design=record)
+
+
+def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topology, mesh_edge: np.ndarray) -> np.ndarray:
+    """Pairs of file edges between the same two samples of one lattice curve, in different tubes' meshes.
+
+    Every tube carries its own copy of its curves; where tubes share a lattice curve those
+    copies are glued. Each crease edge is keyed by its lattice curve and first sample;
+    within a key, one file edge per mesh edge (a seam's two sheet edges are one mesh edge:
+    that pair is a seam partner), chained pairwise.
+    """
+    a, b = source[edges_vertices[:, 0]], source[edges_vertices[:, 1]]
+    ids = np.flatnonzero(topology.vertex_curve[a] == topology.vertex_curve[b])  # rulings and diagonals join two curves
+    key = topology.vertex_curve[a[ids]] * (topology.vertex_sample.max() + 1) + np.minimum(topology.vertex_sample[a[ids]], topology.vertex_sample[b[ids]])
+    order = np.lexsort((mesh_edge[ids], key))
+    ids, key = ids[order], key[order]
+    first = np.r_[True, (key[1:] != key[:-1]) | (mesh_edge[ids[1:]] != mesh_edge[ids[:-1]])]
+    ids, key = ids[first], key[first]
+    same = key[1:] == key[:-1]
+    pairs = np.stack([ids[:-1][same], ids[1:][same]], axis=1)
+    pairs.flags.writeable = False
+    return pairs
 
 
 def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:
@@ -729,7 +822,7 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
         ``file_title``.
     **kwargs
         Passed to :func:`to_fold` (``fold_angles``, ``fold_angle``, ``degrees``, ``unit``,
-        ``metadata``, ``anchor``, ``faces``, ``keep``).
+        ``metadata``, ``anchor``, ``faces``, ``keep``, ``design``).
 
     Returns
     -------
@@ -737,4 +830,4 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
     """
     model = to_fold(structure, **kwargs)
     return write_fold(path, crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata,
-                      unit=model.unit, seam_partners=model.seam_partners, title=title)
+                      unit=model.unit, seam_partners=model.seam_partners, bonds=model.bonds, design=model.design, title=title)

@@ -1,0 +1,324 @@
+"""``curvefold check``: a FOLD file is checked in every frame, and real damage is caught by name.
+
+Every damage edits a written file the way a tool or a hand might (JSON in, JSON out); the
+test says which check must fail, and that the frame and the element ids are named.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from _cli import run
+from curvefold.analysis.foldcheck import CHECK_SPECS, check_fold
+from curvefold.app.build import build
+from curvefold.app.design import default_design
+from curvefold.io.fold import write_structure_fold
+
+ANGLES = [0.0, 45.0, 90.0]
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    """A tube FOLD file with the flat, 45° and 90° frames and the design it was built from."""
+    design = default_design("tube").overrides(samples=61)
+    path = tmp_path_factory.mktemp("check") / "tube.fold"
+    write_structure_fold(path, build(design).structure, fold_angles=ANGLES, design=design.to_dict())
+    return path, json.loads(path.read_text())
+
+
+def damaged(tmp_path, doc: dict, edit) -> str:
+    doc = json.loads(json.dumps(doc))
+    edit(doc)
+    path = tmp_path / "damaged.fold"
+    path.write_text(json.dumps(doc))
+    return str(path)
+
+
+def verdict(path, **kw) -> dict[str, object]:
+    return {c.name: c for c in check_fold(path, **kw).checks}
+
+
+def failing(path, **kw) -> set[str]:
+    return {name for name, c in verdict(path, **kw).items() if c.status == "fail"}
+
+
+def sheet_b(doc: dict) -> np.ndarray:
+    """The vertices of the tube's sheet B (strips 2 and 3: face groups 1 and 2)."""
+    faces = [f for f, g in zip(doc["faces_vertices"], doc["faces_curvefold:group"]) if g % 4 in (1, 2)]
+    return np.unique(np.concatenate(faces))
+
+
+def edit_frame(doc: dict, frame: int, change) -> None:
+    x = np.array(doc["file_frames"][frame]["vertices_coords"])
+    change(x)
+    doc["file_frames"][frame]["vertices_coords"] = x.tolist()
+
+
+def test_the_written_file_passes_every_check(written):
+    path, _ = written
+    result = check_fold(path)
+    assert result.ok and result.frames == 3
+    assert [c.name for c in result.checks] == ["topology", "welds", "assignments", "fold_angles", "isometry", "face_planarity"]
+    assert all(c.status == "pass" for c in result.checks)
+    assert result.max_fold_angle_error == 0.0  # the file records the dihedral angles it has
+
+
+def test_every_frame_records_the_dihedral_angle_of_every_edge(written):
+    """Rulings and diagonals bend too (about κh each): their angles are recorded, B edges get 0."""
+    _, doc = written
+    kind, assignment = np.array(doc["edges_curvefold:kind"]), np.array(doc["edges_assignment"])
+    bends = np.abs(np.array(doc["file_frames"][2]["edges_foldAngle"]))[np.isin(kind, ("ruling", "diagonal"))]
+    assert 1.0 < bends.max() < 10.0 and (np.abs(np.array(doc["file_frames"][0]["edges_foldAngle"])) < 1e-9).all()
+    assert (np.array(doc["edges_foldAngle"])[assignment == "B"] == 0).all()
+    assert doc["curvefold:design"]["fold_angles"] == ANGLES and doc["curvefold:design"]["design"]["samples"] == 61
+
+
+def test_write_fold_refuses_bad_bonds_and_designs(tmp_path):
+    from curvefold.kernel.errors import InputError
+
+    design = default_design("tube").overrides(samples=21)
+    structure = build(design).structure
+    with pytest.raises(InputError, match="design must be JSON data"):
+        write_structure_fold(tmp_path / "x.fold", structure, design={"when": object()})
+    from curvefold.io.fold import to_fold, write_fold
+
+    model = to_fold(structure)
+    with pytest.raises(InputError, match=r"bonds must be edge indices in \[0, "):
+        write_fold(tmp_path / "x.fold", crease_pattern=model.crease_pattern, folded=model.folded, bonds=[[0, 10**9]])
+    assert not (tmp_path / "x.fold").exists()
+
+
+# --------------------------------------------------------------------------------------------
+# damages, each caught by a named check
+
+
+def test_tube_torn_open_by_translating_sheet_b(tmp_path, written):
+    path, doc = written
+
+    def tear(doc):
+        edit_frame(doc, 2, lambda x: x.__setitem__(sheet_b(doc), x[sheet_b(doc)] + [0.5, 0.0, 0.0]))
+
+    result = verdict(damaged(tmp_path, doc, tear))
+    assert {n for n, c in result.items() if c.status == "fail"} == {"welds"}  # a rigid motion of a sheet keeps its shape
+    assert result["welds"].where.startswith("frame 3 ('fold angle 90°'): edges seam partners")
+
+
+def test_tube_torn_open_by_rotating_sheet_b(tmp_path, written):
+    path, doc = written
+
+    def turn(doc):
+        c, s = np.cos(np.radians(40)), np.sin(np.radians(40))
+
+        def rotate(x):
+            b = sheet_b(doc)
+            centre = x[b].mean(axis=0)
+            x[b] = (x[b] - centre) @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]).T + centre
+
+        edit_frame(doc, 1, rotate)
+
+    assert failing(damaged(tmp_path, doc, turn)) == {"welds"}
+
+
+def test_two_tubes_pulled_apart_break_their_bonds(tmp_path):
+    """Tubes glued where they touch: moving the second tube whole keeps every seam closed and
+    breaks only the bonds."""
+    design = default_design("vault").overrides(samples=41, tubes=2)
+    path = write_structure_fold(tmp_path / "vault.fold", build(design).structure, fold_angles=[90.0], design=design.to_dict())
+    doc = json.loads(path.read_text())
+    assert len(doc["curvefold:bonds"]) == 40 and not failing(str(path))
+    second = np.unique(np.concatenate([f for f, g in zip(doc["faces_vertices"], doc["faces_curvefold:group"]) if g >= 4]))
+    result = verdict(damaged(tmp_path, doc, lambda d: edit_frame(d, 0, lambda x: x.__setitem__(second, x[second] + [0.0, 0.0, 0.1]))))
+    assert {n for n, c in result.items() if c.status == "fail"} == {"welds"}
+    assert result["welds"].where.startswith("frame 1 ('fold angle 90°'): edges bonds ")
+
+
+def _folds(doc) -> np.ndarray:
+    return np.flatnonzero(np.array(doc["edges_curvefold:kind"]) == "fold")
+
+
+def test_one_mountain_flipped_to_valley(tmp_path, written):
+    path, doc = written
+    edge = int(_folds(doc)[7])
+    result = verdict(damaged(tmp_path, doc, lambda d: d["edges_assignment"].__setitem__(edge, "V")))
+    assert result["assignments"].status == "fail"
+    assert f"edges {edge}" in result["assignments"].where and "frame 2 ('fold angle 45°')" in result["assignments"].where
+
+
+@pytest.mark.parametrize("to", ["V", "F"])
+def test_every_mountain_reassigned(tmp_path, written, to):
+    path, doc = written
+
+    def reassign(d):
+        for e in _folds(d):
+            d["edges_assignment"][e] = to
+
+    assert "assignments" in failing(damaged(tmp_path, doc, reassign))
+
+
+def test_a_face_deleted_next_to_a_seam(tmp_path, written):
+    path, doc = written
+    seam = int(np.flatnonzero(np.array(doc["edges_curvefold:kind"]) == "seam")[5])
+    a, b = doc["edges_vertices"][seam]
+    face = next(i for i, f in enumerate(doc["faces_vertices"]) if a in f and b in f)
+
+    def delete(d):
+        del d["faces_vertices"][face], d["faces_curvefold:group"][face]
+
+    result = verdict(damaged(tmp_path, doc, delete))
+    assert result["topology"].status == "fail"
+    assert result["topology"].where.startswith(f"key frame (crease pattern): edges on no face {seam}; M/V/F edges on one face ")
+
+
+def test_the_90_degree_frame_replaced_by_the_crease_pattern(tmp_path, written):
+    path, doc = written
+
+    def flatten(d):
+        d["file_frames"][2]["vertices_coords"] = [[x, y, 0.0] for x, y in d["vertices_coords"]]
+
+    result = verdict(damaged(tmp_path, doc, flatten))
+    assert {"fold_angles", "welds"} <= {n for n, c in result.items() if c.status == "fail"}
+    assert result["fold_angles"].where.startswith("frame 3 ('fold angle 90°')")
+    assert result["isometry"].status == "pass"  # the crease pattern is isometric to itself
+
+
+def test_coordinates_edited_slightly_are_caught_by_rebuild(tmp_path, written):
+    path, doc = written
+    inner = int(doc["edges_vertices"][int(_folds(doc)[20])][0])  # on a fold crease: not glued to anything
+
+    def nudge(d):
+        edit_frame(d, 2, lambda x: x.__setitem__((inner, 2), x[inner, 2] + 1e-7))
+
+    edited = damaged(tmp_path, doc, nudge)
+    assert not failing(edited)  # below every other check's tolerance
+    r = run("check", edited, "--rebuild", "--json")
+    out = json.loads(r.stdout)
+    assert r.returncode == 1 and not out["ok"]
+    (rebuild,) = [c for c in out["checks"] if c["name"] == "rebuild"]
+    assert rebuild["status"] == "fail" and rebuild["where"] == f"frame 3 ('fold angle 90°'): vertices {inner}"
+    assert 1e-9 < rebuild["value"] < 1e-6
+    r = run("check", str(path), "--rebuild", "--json")
+    assert r.returncode == 0 and json.loads(r.stdout)["ok"]
+
+
+def test_a_face_turned_over(tmp_path, written):
+    path, doc = written
+    result = verdict(damaged(tmp_path, doc, lambda d: d["faces_vertices"][12].reverse()))
+    assert result["topology"].status == "fail" and "not consistently oriented" in result["topology"].where
+
+
+def test_a_vertex_collapsed_onto_its_neighbour_is_a_nan_that_fails(tmp_path, written):
+    """A zero-length edge gives faces without a normal: NaN dihedral angles must fail, not vanish in a maximum."""
+    path, doc = written
+    a, b = doc["edges_vertices"][int(_folds(doc)[3])]
+    result = verdict(damaged(tmp_path, doc, lambda d: edit_frame(d, 2, lambda x: x.__setitem__(a, x[b]))))
+    assert result["topology"].status == "fail" and "edges of zero length" in result["topology"].where
+    assert result["fold_angles"].status == "fail" and np.isnan(result["fold_angles"].value)
+
+
+def test_a_vertex_moved_off_the_sheet(tmp_path, written):
+    path, doc = written
+    result = verdict(damaged(tmp_path, doc, lambda d: edit_frame(d, 1, lambda x: x.__setitem__((40, 2), x[40, 2] + 0.05))))
+    assert {"isometry", "fold_angles"} <= {n for n, c in result.items() if c.status == "fail"}
+    assert "frame 2 ('fold angle 45°'): edges" in result["isometry"].where
+
+
+def test_recorded_angles_of_another_frame(tmp_path, written):
+    path, doc = written
+    result = verdict(damaged(tmp_path, doc, lambda d: d["file_frames"][1].update(edges_foldAngle=d["file_frames"][2]["edges_foldAngle"])))
+    assert {n for n, c in result.items() if c.status == "fail"} == {"fold_angles"}
+
+
+def test_plain_fold_without_curvefold_keys_passes_what_can_run(tmp_path, written):
+    """As another tool saves it: the custom keys dropped. Ruling bends are not taken for
+    non-planar faces; what needs the custom keys says so."""
+    path, doc = written
+
+    def strip(d):
+        for key in [k for k in d if "curvefold:" in k]:
+            del d[key]
+
+    result = check_fold(damaged(tmp_path, doc, strip))
+    assert result.ok
+    checks = {c.name: c for c in result.checks}
+    assert {n for n, c in checks.items() if c.status == "not run"} == {"welds", "face_planarity"}
+    assert "curvefold:seam_partners" in checks["welds"].reason and "edges_curvefold:kind" in checks["face_planarity"].reason
+    assert result.to_dict()["not_run"] == ["welds", "face_planarity"]
+
+
+def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):
+    """Without the edge kinds every F edge reads as a diagonal; face planarity must look only at
+    the fan diagonals that split each quad, and still catch a bent quad."""
+    design = default_design("tube").overrides(samples=61)
+    path = write_structure_fold(tmp_path / "quads.fold", build(design).structure, fold_angles=ANGLES, faces="quads")
+    doc = json.loads(path.read_text())
+    for key in [k for k in doc if "curvefold:" in k]:
+        del doc[key]
+    planarity = verdict(damaged(tmp_path, doc, lambda d: None))["face_planarity"]
+    assert planarity.status == "pass" and 0 < planarity.value < 0.05  # quads bend by O(h³); rulings by ~κh ≈ 5°
+    face = doc["faces_vertices"][50]
+
+    def bend(d):
+        def lift(x):
+            p = x[face]
+            normal = np.cross(p[1] - p[0], p[3] - p[0])
+            x[face[2]] += 0.05 * np.linalg.norm(p[2] - p[0]) * normal / np.linalg.norm(normal)
+
+        edit_frame(d, 2, lift)
+
+    planarity = verdict(damaged(tmp_path, doc, bend))["face_planarity"]
+    assert planarity.status == "fail" and planarity.value > 2 and planarity.where.startswith("frame 3 ('fold angle 90°'): fan diagonals")
+
+
+def test_a_frame_with_its_own_faces_is_not_compared_edge_by_edge(tmp_path, written):
+    path, doc = written
+
+    def own_faces(d):
+        for key in [k for k in d if "curvefold:" in k]:
+            del d[key]
+        d["file_frames"][1]["faces_vertices"] = d["faces_vertices"][::-1]
+
+    result = check_fold(damaged(tmp_path, doc, own_faces))
+    checks = {c.name: c for c in result.checks}
+    assert not result.ok and checks["topology"].where == "frame 2 ('fold angle 45°') has other edges or faces than the crease pattern"
+    assert {c.status for name, c in checks.items() if name != "topology"} == {"not run"}
+
+
+# --------------------------------------------------------------------------------------------
+# the command
+
+
+def test_check_json_keeps_its_stable_keys(written):
+    path, _ = written
+    r = run("check", str(path), "--json")
+    out = json.loads(r.stdout)
+    assert r.returncode == 0
+    assert {"max_isometry_error", "max_face_planarity_error", "ok"} <= set(out) and out["ok"] is True
+    assert out["tolerances"] == {spec.name: spec.default for spec in CHECK_SPECS}
+
+
+def test_check_names_the_failure_in_its_summary(tmp_path, written):
+    path, doc = written
+    edge = int(_folds(doc)[7])
+    r = run("check", damaged(tmp_path, doc, lambda d: d["edges_assignment"].__setitem__(edge, "V")))
+    assert r.returncode == 1
+    assert "FAILED" in r.stdout and "assignments     fail" in r.stdout and f"edges {edge}" in r.stdout
+
+
+@pytest.mark.parametrize("flag,value,message", [
+    ("--isometry-tol", "nan", "isometry_tol must be a finite number, got nan"),
+    ("--fold-angle-tol", "-1", "fold_angle_tol must be in [0, 180] degrees, got -1"),
+    ("--weld-tol", "x", "--weld-tol: must be a number, got 'x'"),
+])
+def test_check_refuses_bad_tolerances(written, flag, value, message):
+    path, _ = written
+    r = run("check", str(path), flag, value)
+    assert r.returncode == 2 and r.stdout == "" and message in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_rebuild_needs_a_recorded_design(tmp_path, written):
+    path, doc = written
+    r = run("check", damaged(tmp_path, doc, lambda d: d.pop("curvefold:design")), "--rebuild")
+    assert r.returncode == 2 and "--rebuild needs the design the file was built from (curvefold:design)" in r.stderr
