@@ -794,13 +794,17 @@ def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topolo
     """Pairs of file edges between the same two samples of one lattice curve, in different tubes' meshes.
 
     Every tube carries its own copy of its curves; where tubes share a lattice curve those
-    copies are glued. Each crease edge is keyed by its lattice curve and first sample;
-    within a key, one file edge per mesh edge (a seam's two sheet edges are one mesh edge:
-    that pair is a seam partner), chained pairwise.
+    copies are glued. Each crease edge is keyed by its lattice curve and both its samples
+    (tubes whose meshes keep different samples share only the edges between samples both
+    keep); within a key, one file edge per mesh edge (a seam's two sheet edges are one mesh
+    edge: that pair is a seam partner), chained pairwise.
     """
     a, b = source[edges_vertices[:, 0]], source[edges_vertices[:, 1]]
     ids = np.flatnonzero(topology.vertex_curve[a] == topology.vertex_curve[b])  # rulings and diagonals join two curves
-    key = topology.vertex_curve[a[ids]] * (topology.vertex_sample.max() + 1) + np.minimum(topology.vertex_sample[a[ids]], topology.vertex_sample[b[ids]])
+    n = int(topology.vertex_sample.max()) + 1
+    lo = np.minimum(topology.vertex_sample[a[ids]], topology.vertex_sample[b[ids]])
+    hi = np.maximum(topology.vertex_sample[a[ids]], topology.vertex_sample[b[ids]])
+    key = (topology.vertex_curve[a[ids]].astype(np.int64) * n + lo) * n + hi
     order = np.lexsort((mesh_edge[ids], key))
     ids, key = ids[order], key[order]
     first = np.r_[True, (key[1:] != key[:-1]) | (mesh_edge[ids[1:]] != mesh_edge[ids[:-1]])]
