@@ -280,13 +280,14 @@ def test_boundary_validation():
         run_atlas([0.75], [0.3], progress=3, workers=1)
 
 
-def test_bugs_are_not_swallowed(monkeypatch):
+@pytest.mark.parametrize("where", ["serial", "scheduler"])
+def test_bugs_are_not_swallowed(where, cluster, monkeypatch):
     def broken(*args, **kwargs):
         raise RuntimeError("a bug, not an invalid design")
 
-    monkeypatch.setattr(atlas_module, "evaluate_design", broken)
+    monkeypatch.setattr(atlas_module, "evaluate_design", broken)  # the cluster's workers run in this process
     with pytest.raises(RuntimeError, match="a bug"):
-        run_atlas([0.75], [0.3], workers=1)
+        run_atlas([0.75], [0.3], **({"workers": 1} if where == "serial" else {"scheduler": cluster.scheduler_address}))
 
 
 def test_boundary_validation_of_where_the_sweep_runs(cluster):
