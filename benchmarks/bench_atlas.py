@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import os
 import subprocess
 import sys
 import time
@@ -93,7 +94,7 @@ def run() -> list[SummaryRow]:
 
     serial, pool, local, running = (times[k] for k in (SERIAL, POOL, LOCAL, RUNNING))
     same = all(r == records[SERIAL] for r in records.values())
-    print(f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; one run each")
+    print(f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; one run each (load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")
     rows = [(name, f"{t:.2f}", f"{grid.size / t:.0f}", f"{serial / t:.2f}") for name, t in times.items()]
     print(markdown_table(["run", "time [s]", "designs/s", "speed-up vs serial"], rows))
     print(f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records identical in every run: {same}")
@@ -126,7 +127,7 @@ def memory() -> None:
             done = subprocess.run([sys.executable, "-c", script, str(side), f"{folder}/atlas-{side}"], capture_output=True, text=True, check=True)
             seconds, peak, valid = done.stdout.split()
             rows.append((f"{side} × {side}", f"{side * side}", valid, f"{float(seconds):.0f}", f"{float(peak):.0f}"))
-            print(f"{side} × {side}: {float(seconds):.0f} s, peak {float(peak):.0f} MiB", flush=True)
+            print(f"{side} × {side}: {float(seconds):.0f} s, peak {float(peak):.0f} MiB (load average {os.getloadavg()[0]:.1f})", flush=True)
     print(markdown_table(["grid", "designs", "valid", "time [s]", "peak RSS of the client [MiB]"], rows))
 
 

@@ -151,6 +151,9 @@ def test_cluster_records_are_identical_to_serial(which, serial, request):
     other = request.getfixturevalue(which)[0]
     assert other.records == serial.records  # floats compared exactly
     assert [r["valid"] for r in other.records].count(True) == 5
+    damaged = [dict(r) for r in other.records]
+    damaged[0]["span"] = math.nextafter(damaged[0]["span"], math.inf)
+    assert damaged != list(serial.records)  # one ulp apart is a difference
     for a, b in zip(serial.sketches, other.sketches):
         assert (a is None) == (b is None)
         if a is not None:
