@@ -484,15 +484,15 @@ def test_a_signal_stops_the_sweep_and_its_workers(signum, tmp_path):
         deadline = time.monotonic() + 120
         while True:
             assert proc.poll() is None and time.monotonic() < deadline, "the sweep ended or never started"
+            time.sleep(0.05)
             try:
                 children = psutil.Process(proc.pid).children(recursive=True)
                 workers = [p for p in children if "spawn_main" in " ".join(p.cmdline())]
-            except psutil.NoSuchProcess:
+                records = sum(p.read_text().count("\n") - 1 for p in tmp_path.glob(".out.*/.atlas.csv.*"))  # lines after the header
+            except (psutil.NoSuchProcess, FileNotFoundError):  # a process or file that went while looking
                 continue
-            partial = [p for p in tmp_path.glob(".out.*/.atlas.csv.*") if p.read_text().count("\n") > 1]  # a record after the header
-            if len(workers) == 2 and partial:
+            if len(workers) == 2 and records > 0:
                 break
-            time.sleep(0.05)
         proc.send_signal(signum)
         _, err = proc.communicate(timeout=60)
         assert (proc.returncode, err) == (130, "curvefold: interrupted\n")
