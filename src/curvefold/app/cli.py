@@ -210,7 +210,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--a", type=_grid, default=np.linspace(0.0, 1.2, 5), help="values of a (default 0:1.2:5)")
     p.add_argument("--width", type=float, default=_VAULT["width"].default, help=_VAULT["width"].describe())
     p.add_argument("--samples", type=int, default=201, help="samples per crease (default 201)")
-    p.add_argument("--workers", type=int, help="processes of a local Dask cluster, at most the CPUs here; 1 runs in this process (default: up to 2 for grids of 1000 designs or more when Dask is installed, else 1)")
+    p.add_argument("--workers", type=int, help="processes of a local Dask cluster, at most the CPUs here; 1 runs in this process (default: up to 2 for grids of 2000 designs or more when Dask is installed, else 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
     p.add_argument("--force", action="store_true", help="replace an existing output folder")

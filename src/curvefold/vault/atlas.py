@@ -70,10 +70,11 @@ _INTEGER = {"row", "col", "tubes", "max_tubes"}
 SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
 
-#: With ``workers=None``, grids of at least this many designs run on a local cluster: starting
-#: one, loading curvefold in its workers and closing it takes about 2 s on 2 CPUs, which 2
-#: workers win back after some 700 designs (about 6 ms each at 201 samples).
-LOCAL_CLUSTER_FROM = 1000
+#: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
+#: one, loading curvefold in its workers and closing it took 1.2–2.6 s on 2 CPUs, and 2
+#: workers saved about 1 ms of the 3 ms a design takes at 201 samples (benchmarks/bench_atlas.py):
+#: the cluster pays from some 1000–2500 designs.
+LOCAL_CLUSTER_FROM = 2000
 #: Designs per task sent to a cluster at most (~0.1–0.2 s of work: a round trip costs ~1 ms).
 CHUNK = 32
 #: Tasks queued or running per worker thread; results wait, in grid order, for at most
