@@ -1,9 +1,10 @@
 """Tables of flat records (dicts with the same keys) written as CSV or JSON while they come.
 
 Each writer is a context manager that yields ``write(record)``: a record goes to disk when
-it is written (CSV files are line-buffered), so a table of any length takes no memory to write. The file appears at its
-path, complete, when the block ends without an error (it is written beside it and renamed,
-see :mod:`curvefold.io.atomic`); on an error nothing is left.
+it is written (CSV files are line-buffered), so a table of any length takes no memory to
+write. The file appears at its path, complete, when the block ends without an error (it
+is written beside it and renamed, see :mod:`curvefold.io.atomic`); on an error nothing
+is left.
 
 Values are None, booleans, integers, floats or strings. Floats are written with ``repr``
 in CSV and JSON alike, so they read back exactly.
