@@ -176,7 +176,9 @@ def test_atlas_records_invalid_designs_and_goes_on(tmp_path):
     out = tmp_path / "atlas"
     r = run("atlas", "--p-xy", "0.75,1.0", "--a", "0.3,1.5", "--samples", "51", "--workers", "1", "--out", str(out), "--json")
     assert r.returncode == 0, r.stderr
-    records = json.loads(r.stdout)["records"]
+    summary = json.loads(r.stdout)
+    assert (summary["designs"], summary["valid"], summary["invalid"]) == (4, 2, {"ConvergenceError": 2})
+    records = json.loads((out / "atlas.json").read_text())["records"]
     assert len(records) == 4
     bad = [rec for rec in records if not rec["valid"]]
     assert len(bad) == 2 and all("no standing arch for a = 1.5" in rec["reason"] for rec in bad)

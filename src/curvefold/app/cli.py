@@ -18,10 +18,13 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import sys
+import threading
 import traceback
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from importlib.metadata import version
 from pathlib import Path
 
@@ -237,10 +240,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--a", type=_grid, default=np.linspace(0.0, 1.2, 5), help="values of a (default 0:1.2:5)")
     p.add_argument("--width", type=float, default=_VAULT["width"].default, help=_VAULT["width"].describe())
     p.add_argument("--samples", type=int, default=201, help="samples per crease (default 201)")
-    p.add_argument("--workers", type=int, help="parallel processes (default: up to 2)")
+    p.add_argument("--workers", type=int, help="processes of a local Dask cluster, at most the CPUs here; 1 runs in this process (default: up to 2 for grids of 2000 designs or more when Dask is installed, else 1)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
     p.add_argument("--force", action="store_true", help="replace an existing output folder")
-    p.add_argument("--json", action="store_true", help="print the records as JSON")
+    p.add_argument("--json", action="store_true", help="print a summary as JSON (the records are in atlas.json)")
 
     p = sub.add_parser("reproduce", help="the paper's example, paper vs computed", description="Reproduce the paper's vault example (a = 0.3, p_xy = 0.75, 2α = 90°) and compare with the printed values.")
     _add_output(p, None)
@@ -433,12 +437,33 @@ def _rebuilt_fold(doc, path: Path):
 
 
 def cmd_atlas(args: argparse.Namespace) -> int:
+    from ..vault.atlas import workers_spec
     from .outputs import write_atlas
 
-    payload = write_atlas(args.p_xy, args.a, out=args.out, force=args.force, width=args.width, samples=args.samples, workers=args.workers, show_progress=not args.json)
-    valid = sum(r["valid"] for r in payload["records"])
-    _emit(args, payload, [f"atlas: {valid}/{len(payload['records'])} designs valid; wrote {len(payload['files'])} files to {args.out}/"])
+    workers = None if args.workers is None else workers_spec().check(args.workers, "--workers")
+    with _terminate_as_interrupt():  # the sweep's clean-up runs: the cluster closes, no partial folder stays
+        payload = write_atlas(args.p_xy, args.a, out=args.out, force=args.force, width=args.width, samples=args.samples,
+                              workers=workers, scheduler=args.scheduler, show_progress=not args.json)
+    payload["out"] = str(args.out)
+    _emit(args, payload, [f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote {len(payload['files'])} files to {args.out}/"])
     return 0
+
+
+@contextmanager
+def _terminate_as_interrupt() -> Iterator[None]:
+    """Within the block, SIGTERM raises KeyboardInterrupt (in the main thread), as Ctrl-C does."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

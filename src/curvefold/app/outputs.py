@@ -11,8 +11,9 @@ import json
 import os
 import shutil
 import tempfile
+from collections import Counter
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import closing, contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -163,28 +164,74 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
     return sorted(written)
 
 
-def write_atlas(p_xy_values, a_values, *, out: Path, force: bool, width: float, samples: int, workers: int | None, show_progress: bool) -> dict:
-    """Run the design atlas and write its figure, CSV and JSON into ``out``."""
-    from ..figures.atlas import atlas_figure
+def write_atlas(
+    p_xy_values,
+    a_values,
+    *,
+    out: Path,
+    force: bool,
+    width: float,
+    samples: int,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    show_progress: bool,
+) -> dict:
+    """Run the design atlas and write it into the folder ``out``.
+
+    ``atlas.csv`` and ``atlas.json`` hold every design's record, written as the designs
+    finish (in grid order), so memory stays flat whatever the grid's size; the figure
+    (``atlas.png``, ``atlas.svg``) shows every k-th row and column of a grid larger than
+    :data:`~curvefold.figures.atlas.MAX_VIEWS` per axis. ``workers`` and ``scheduler`` are
+    those of :func:`curvefold.vault.atlas.sweep`.
+
+    Returns
+    -------
+    dict
+        ``shape`` (rows, columns), ``designs``, ``valid``, ``invalid`` (count per error
+        class) and ``files`` (names written).
+    """
+    from ..figures.atlas import atlas_figure, view_step
     from ..figures.plots import save_figure
-    from ..vault.atlas import run_atlas
+    from ..io.records import csv_records, json_records
+    from ..vault.atlas import FIELDS, Atlas, AtlasGrid, sweep, thin
 
-    progress = None
-    stop = lambda: None  # noqa: E731
-    if show_progress:
-        from rich.progress import Progress
-
-        bar = Progress(transient=True)
-        bar.start()
-        task = bar.add_task("atlas", total=len(p_xy_values) * len(a_values))
-        progress = lambda done, total: bar.update(task, completed=done)  # noqa: E731
-        stop = bar.stop
-    try:
-        atlas = run_atlas(list(p_xy_values), list(a_values), width=width, samples=samples, workers=workers, progress=progress)
-    finally:
-        stop()
+    grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples)
+    step = view_step(grid.shape)
+    header = {"format": "curvefold-atlas", "version": 1, "units": "model units (radius 1), angles in degrees", **grid.to_dict(), "fields": list(FIELDS)}
+    errors: Counter[str | None] = Counter()
     with output_folder(out, force=force) as tmp:
-        atlas.to_csv(tmp / "atlas.csv")
-        atlas.to_json(tmp / "atlas.json")
-        files = [Path(p).name for p in save_figure(atlas_figure(atlas), tmp / "atlas")]
-    return {"records": atlas.records, "files": ["atlas.csv", "atlas.json", *files]}
+        with (
+            _progress_bar(show_progress, "atlas", grid.size) as progress,
+            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress)) as results,
+            csv_records(tmp / "atlas.csv", FIELDS) as csv_row,
+            json_records(tmp / "atlas.json", header, FIELDS) as json_row,
+        ):
+
+            def written():
+                for record, sketch in results:
+                    csv_row(record)
+                    json_row(record)
+                    errors[record["error"]] += 1
+                    yield record, sketch
+
+            shown = Atlas.from_results(grid.every(step), thin(written(), step))
+        rows, cols = grid.shape
+        note = None if step == 1 else f"one in {step} values of a and of p_xy shown; all {rows} × {cols} designs are in atlas.csv and atlas.json"
+        files = [Path(p).name for p in save_figure(atlas_figure(shown, note=note), tmp / "atlas")]
+    valid = errors.pop(None, 0)
+    return {"shape": [rows, cols], "designs": grid.size, "valid": valid, "invalid": dict(errors), "files": ["atlas.csv", "atlas.json", *files]}
+
+
+@contextmanager
+def _progress_bar(show: bool, label: str, total: int) -> Iterator[Callable[[int, int], None] | None]:
+    """``progress(done, total)`` drawing a bar on stderr (when it is a terminal) while the block runs, or None."""
+    from rich.console import Console
+    from rich.progress import Progress
+
+    console = Console(stderr=True)
+    if not (show and console.is_terminal):
+        yield None
+        return
+    with Progress(console=console, transient=True) as bar:
+        task = bar.add_task(label, total=total)
+        yield lambda done, total: bar.update(task, completed=done)

@@ -1,7 +1,13 @@
-"""The atlas figure: small views of every vault of a design grid (the paper's Fig. 10)."""
+"""The atlas figure: small views of every vault of a design grid (the paper's Fig. 10).
+
+The figure draws at most :data:`MAX_VIEWS` views along each axis, so its size and the
+memory it takes stay bounded; a larger grid is drawn every k-th row and column
+(:func:`view_step`, :meth:`curvefold.vault.atlas.Atlas.every`) with a note saying so.
+"""
 
 from __future__ import annotations
 
+import math
 import textwrap
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
@@ -17,10 +23,22 @@ from .scene import GROUND_COLOR, View, ground_polygon, render_structure
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["atlas_figure"]
+__all__ = ["atlas_figure", "view_step", "MAX_VIEWS"]
+
+#: Most views along each axis of the figure (24 × 24 views of about an inch each).
+MAX_VIEWS = 24
 
 
-def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = None) -> Figure:
+def view_step(shape: tuple[int, int]) -> int:
+    """The smallest k such that every k-th row and column of a grid of ``shape`` fit in the figure.
+
+    >>> view_step((5, 5)), view_step((24, 3)), view_step((200, 200))
+    (1, 1, 9)
+    """
+    return max(1, math.ceil(max(shape) / MAX_VIEWS))
+
+
+def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = None, note: str | None = None) -> Figure:
     """Small views of every vault: rows = a, columns = p_xy (the paper's Fig. 10).
 
     Each valid design is drawn at its design angle on the ground (strips shaded grey,
@@ -35,6 +53,8 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     cell_size : float, optional, keyword-only
         Size of one view in inches; default fits the grid in about 24 inches.
     view : curvefold.figures.scene.View, optional, keyword-only
+    note : str, optional, keyword-only
+        A last line for the title (say which designs of a larger grid are shown).
 
     Returns
     -------
@@ -44,6 +64,8 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
 
     view = View() if view is None else view
     rows, cols = atlas.shape
+    if max(rows, cols) > MAX_VIEWS:
+        raise InputError(f"atlas_figure draws at most {MAX_VIEWS} × {MAX_VIEWS} views, got a {rows} × {cols} atlas; draw atlas.every({view_step(atlas.shape)})")
     size = float(np.clip(24.0 / max(rows, cols), 0.9, 2.2)) if cell_size is None else cell_size
     if not isinstance(size, (int, float)) or not np.isfinite(size) or size <= 0:
         raise InputError(f"cell_size must be a finite number > 0, got {cell_size!r}")
@@ -96,18 +118,19 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
         ax.axvline(j, color="#e4e4e4", lw=0.5, zorder=0)
     for i in range(1, rows):
         ax.axhline(i, color="#e4e4e4", lw=0.5, zorder=0)
-    for i, a in enumerate(atlas.a_values):
+    for i, a in enumerate(atlas.grid.a_values):
         ax.text(-0.06, rows - 1 - i + 0.5, f"a = {a:.3g}", ha="right", va="center", rotation=90, fontsize=font)
-    for j, p in enumerate(atlas.p_xy_values):
+    for j, p in enumerate(atlas.grid.p_xy_values):
         ax.text(j + 0.5, rows + 0.04, f"$p_{{xy}}$ = {p:.3g}", ha="center", va="bottom", fontsize=font)
-    tubes = f"up to {DEFAULT_TUBES_CAP} tubes, fewer where regression limits the stack" if atlas.tubes is None else f"{atlas.tubes} tubes"
+    tubes = f"up to {DEFAULT_TUBES_CAP} tubes, fewer where regression limits the stack" if atlas.grid.tubes is None else f"{atlas.grid.tubes} tubes"
     title_size = max(font * 1.1, 7.0)
     chars = max(40, int(fig_w * 72 / (0.55 * title_size)))
     title = "\n".join(
         textwrap.fill(line, chars)
         for line in (
-            f"Vault design atlas: width w_L(0)·κ₀ = {atlas.width:g}, 2α = {atlas.fold_angle:g}°, {tubes} (number at the top left of each view)",
+            f"Vault design atlas: width w_L(0)·κ₀ = {atlas.grid.width:g}, 2α = {atlas.grid.fold_angle:g}°, {tubes} (number at the top left of each view)",
             "slope of the section feature line at the feet (xy plane) in red, at the apex (zx plane) in blue",
+            *([note] if note else []),
         )
     )
     fig.text(0.5, 1 - 0.08 / fig_h, title, ha="center", va="top", fontsize=title_size)

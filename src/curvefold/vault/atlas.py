@@ -9,32 +9,39 @@ invalid with the reason, and the sweep goes on. Any error past that point (measu
 drawing a built vault) is a bug and propagates. Each valid design also keeps a small
 :class:`Sketch` of its geometry so the atlas figure needs no vault rebuilt.
 
-Records are flat dicts with the keys of :data:`FIELDS`; the grid is stored row-major,
-rows = a, columns = p_xy, whatever order the designs finish in.
+Records are flat dicts with the keys of :data:`FIELDS`; the grid is row-major, rows = a,
+columns = p_xy. :func:`sweep` streams them: it yields every design's record and sketch in
+grid order while later designs are still running, holding a few chunks of results at
+most, so a grid of any size runs in flat memory (the command line writes each record to
+disk as it comes). Designs run in this process, on a local Dask cluster of worker
+processes, or on an existing Dask cluster; every way gives the same records, bit for bit
+(each design is computed by the same code from the same numbers). Dask is optional
+(``pip install 'curvefold[dask]'``) and imported only when a cluster is used.
 """
 
 from __future__ import annotations
 
-import csv
-import io
-import json
+import importlib.util
+import logging
 import math
 import os
-from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, field
-from pathlib import Path
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import closing, contextmanager
+from dataclasses import dataclass, field, replace
+from importlib.metadata import version
+from itertools import islice
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..io.atomic import atomic_write
 from ..kernel.errors import CurvefoldError, InputError
+from ..kernel.validate import Spec
 
 if TYPE_CHECKING:  # pragma: no cover
     from .assembly import Vault
 
-__all__ = ["Atlas", "Sketch", "run_atlas", "evaluate_design", "FIELDS", "METRICS"]
+__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS"]
 
 #: Metrics taken from :meth:`Vault.summary` (footprint split into x and y), model units and degrees.
 METRICS = (
@@ -58,12 +65,21 @@ METRICS = (
 FIELDS = ("row", "col", "a", "p_xy", "width", "fold_angle", "valid", "error", "reason") + METRICS
 _INTEGER = {"row", "col", "tubes", "max_tubes"}
 
-#: Parallel runs send each worker about this many chunks of designs (progress granularity).
-CHUNKS_PER_WORKER = 16
 #: Samples along t and tubes kept in a sketch (the apex and both feet are always samples);
 #: SKETCH_TUBES matches the vault's default cap, so default stacks are drawn whole.
 SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
+
+#: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
+#: one, loading curvefold in its workers and closing it took 1.2–2.6 s on 2 CPUs, and 2
+#: workers saved about 1 ms of the 3 ms a design takes at 201 samples (benchmarks/bench_atlas.py):
+#: the cluster pays from some 1000–2500 designs.
+LOCAL_CLUSTER_FROM = 2000
+#: Designs per task sent to a cluster at most (~0.1–0.2 s of work: a round trip costs ~1 ms).
+CHUNK = 32
+#: Tasks queued or running per worker thread; results wait, in grid order, for at most
+#: this many tasks per thread (the sweep's memory bound).
+IN_FLIGHT = 4
 
 
 @dataclass(frozen=True, eq=False)
@@ -157,23 +173,14 @@ def _number(x: Any) -> Any:
         return x
 
 
-def _task(args: tuple) -> tuple[int, dict, Sketch | None]:
-    """(index, record, sketch) of one grid point."""
-    index, a, p, kwargs = args
-    record, sketch = evaluate_design(a, p, **kwargs)
-    return index, record, sketch
+# -- the grid and the atlas -------------------------------------------------------------------
 
 
-def _chunk(tasks: list) -> list[tuple[int, dict, Sketch | None]]:
-    """Worker entry point: several grid points in one round trip (per-task overhead ~ a design)."""
-    return [_task(t) for t in tasks]
+@dataclass(frozen=True)
+class AtlasGrid:
+    """The designs of an atlas: two axes of values and the parameters every design shares.
 
-
-@dataclass(frozen=True, eq=False)
-class Atlas:
-    """A grid of vault designs over (p_xy, a) with their metrics.
-
-    Build it with :func:`run_atlas`.
+    Build it with :meth:`of`, which checks the values.
 
     Attributes
     ----------
@@ -187,10 +194,6 @@ class Atlas:
         Tubes per vault (None: each design's maximum before regression).
     samples : int
         Samples along each crease.
-    records : tuple of dict
-        One record per grid point, row-major (``records[row * len(p_xy_values) + col]``).
-    sketches : tuple of Sketch or None
-        Geometry for drawing, parallel to ``records`` (None for an invalid design).
     """
 
     p_xy_values: tuple[float, ...]
@@ -199,69 +202,57 @@ class Atlas:
     fold_angle: float
     tubes: int | None
     samples: int
-    records: tuple[dict, ...]
-    sketches: tuple[Sketch | None, ...] = field(repr=False)
+
+    @classmethod
+    def of(
+        cls,
+        p_xy_values: Sequence[float],
+        a_values: Sequence[float],
+        *,
+        width: float = 0.08,
+        fold_angle: float = 90.0,
+        tubes: int | None = None,
+        samples: int = 201,
+    ) -> AtlasGrid:
+        """The grid of ``p_xy_values`` (columns) × ``a_values`` (rows); the shared parameters fail once, here.
+
+        Each grid value is checked later, per design: a value out of range is an invalid record.
+        """
+        from .assembly import VaultDesign
+
+        VaultDesign(width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)
+        return cls(_axis(p_xy_values, "p_xy_values"), _axis(a_values, "a_values"), float(width), float(fold_angle), tubes, int(samples))
 
     @property
     def shape(self) -> tuple[int, int]:
         """(rows, columns) = (len(a_values), len(p_xy_values))."""
         return len(self.a_values), len(self.p_xy_values)
 
-    def record(self, row: int, col: int) -> dict:
-        """The record of a_values[row], p_xy_values[col]."""
-        rows, cols = self.shape
-        if not (0 <= row < rows and 0 <= col < cols):
-            raise InputError(f"(row, col) must be in [0, {rows}) × [0, {cols}), got ({row}, {col})")
-        return self.records[row * cols + col]
+    @property
+    def size(self) -> int:
+        """Number of designs."""
+        return len(self.a_values) * len(self.p_xy_values)
 
-    def grid(self, key: str) -> np.ndarray:
-        """One numeric field over the grid, shape (rows, cols); NaN for invalid designs."""
-        if key not in FIELDS or key in ("error", "reason"):
-            raise InputError(f"key must be a numeric field of the atlas ({', '.join(k for k in FIELDS if k not in ('error', 'reason'))}), got {key!r}")
-        values = [np.nan if r[key] is None else float(r[key]) for r in self.records]
-        return np.array(values, float).reshape(self.shape)
+    def points(self) -> Iterator[tuple[int, int, float, float]]:
+        """(row, col, a, p_xy) of every design, in grid order (row-major)."""
+        return ((i, j, a, p) for i, a in enumerate(self.a_values) for j, p in enumerate(self.p_xy_values))
 
-    # -- files ------------------------------------------------------------------------------
-    def to_csv(self, path: str | os.PathLike) -> Path:
-        """Write the records as CSV (one row per design, columns :data:`FIELDS`), atomically.
+    def every(self, step: int) -> AtlasGrid:
+        """The grid of every ``step``-th row and column (0, step, 2·step, …)."""
+        _check_step(step)
+        return replace(self, p_xy_values=self.p_xy_values[::step], a_values=self.a_values[::step])
 
-        Floats are written with ``repr`` (they read back exactly); missing metrics of an
-        invalid design are empty cells; ``valid`` is ``True``/``False``.
-        """
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow(FIELDS)
-        for r in self.records:
-            writer.writerow(["" if r[k] is None else repr(r[k]) if isinstance(r[k], float) else r[k] for k in FIELDS])
-        return atomic_write(path, buf.getvalue())
+    @property
+    def shared(self) -> dict:
+        """The keyword arguments every design shares (of :func:`evaluate_design`)."""
+        return {"width": self.width, "fold_angle": self.fold_angle, "tubes": self.tubes, "samples": self.samples}
 
-    def to_json(self, path: str | os.PathLike) -> Path:
-        """Write the grid parameters and the records as JSON, atomically (missing metrics are null)."""
-        doc = {
-            "format": "curvefold-atlas",
-            "version": 1,
-            "units": "model units (radius 1), angles in degrees",
-            "p_xy_values": list(self.p_xy_values),
-            "a_values": list(self.a_values),
-            "width": self.width,
-            "fold_angle": self.fold_angle,
-            "tubes": self.tubes,
-            "samples": self.samples,
-            "fields": list(FIELDS),
-            "records": [{k: _json_value(r[k]) for k in FIELDS} for r in self.records],
-        }
-        return atomic_write(path, json.dumps(doc, indent=1, ensure_ascii=False, allow_nan=False) + "\n")
+    def to_dict(self) -> dict:
+        """The grid's values and parameters, JSON-ready."""
+        return {"p_xy_values": list(self.p_xy_values), "a_values": list(self.a_values), **self.shared}
 
 
-def _json_value(v: Any) -> Any:
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    if isinstance(v, (np.floating, np.integer)):  # pragma: no cover - records hold plain numbers
-        return v.item()
-    return v
-
-
-def _check_values(values: Sequence[float], name: str) -> tuple[float, ...]:
+def _axis(values: Sequence[float], name: str) -> tuple[float, ...]:
     """A grid axis as a tuple of floats; each value is checked later, per design."""
     try:
         arr = np.asarray(values, dtype=float) if not isinstance(values, (str, bytes)) else np.array([])
@@ -270,6 +261,277 @@ def _check_values(values: Sequence[float], name: str) -> tuple[float, ...]:
     if arr.ndim != 1 or arr.size == 0:
         raise InputError(f"{name} must be a non-empty 1-D sequence of numbers, got {values!r}")
     return tuple(float(x) for x in arr)
+
+
+def _check_step(step: int) -> None:
+    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
+        raise InputError(f"step must be an integer ≥ 1, got {step!r}")
+
+
+@dataclass(frozen=True, eq=False)
+class Atlas:
+    """A grid of vault designs with their metrics.
+
+    Build it with :func:`run_atlas`, or with :meth:`from_results` from :func:`sweep`.
+
+    Attributes
+    ----------
+    grid : AtlasGrid
+        The designs: the two axes and the shared parameters.
+    records : tuple of dict
+        One record per design, row-major (``records[row * len(grid.p_xy_values) + col]``).
+    sketches : tuple of Sketch or None
+        Geometry for drawing, parallel to ``records`` (None for an invalid design).
+    """
+
+    grid: AtlasGrid
+    records: tuple[dict, ...]
+    sketches: tuple[Sketch | None, ...] = field(repr=False)
+
+    @classmethod
+    def from_results(cls, grid: AtlasGrid, results: Iterable[tuple[dict, Sketch | None]]) -> Atlas:
+        """The atlas of ``grid`` from its (record, sketch) pairs in grid order.
+
+        ``row`` and ``col`` of the records are set to their place in ``grid`` (a thinned
+        grid numbers its rows and columns afresh).
+        """
+        pairs = list(results)
+        if len(pairs) != grid.size:
+            raise InputError(f"results must hold one (record, sketch) pair per design of the {grid.shape[0]} × {grid.shape[1]} grid, got {len(pairs)}")
+        cols = len(grid.p_xy_values)
+        records = tuple({k: r[k] for k in FIELDS} | {"row": n // cols, "col": n % cols} for n, (r, _) in enumerate(pairs))
+        return cls(grid, records, tuple(s for _, s in pairs))
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, columns) of the grid."""
+        return self.grid.shape
+
+    def record(self, row: int, col: int) -> dict:
+        """The record of grid.a_values[row], grid.p_xy_values[col]."""
+        rows, cols = self.shape
+        if not (0 <= row < rows and 0 <= col < cols):
+            raise InputError(f"(row, col) must be in [0, {rows}) × [0, {cols}), got ({row}, {col})")
+        return self.records[row * cols + col]
+
+    def values(self, key: str) -> np.ndarray:
+        """One numeric field over the grid, shape (rows, cols); NaN for invalid designs."""
+        if key not in FIELDS or key in ("error", "reason"):
+            raise InputError(f"key must be a numeric field of the atlas ({', '.join(k for k in FIELDS if k not in ('error', 'reason'))}), got {key!r}")
+        values = [np.nan if r[key] is None else float(r[key]) for r in self.records]
+        return np.array(values, float).reshape(self.shape)
+
+    def every(self, step: int) -> Atlas:
+        """The atlas of every ``step``-th row and column (0, step, 2·step, …), rows and columns renumbered."""
+        return Atlas.from_results(self.grid.every(step), thin(zip(self.records, self.sketches), step))
+
+
+def thin(results: Iterable[tuple[dict, Sketch | None]], step: int) -> Iterator[tuple[dict, Sketch | None]]:
+    """The (record, sketch) pairs on every ``step``-th row and column, as they come."""
+    _check_step(step)
+    return ((r, s) for r, s in results if r["row"] % step == 0 and r["col"] % step == 0)
+
+
+# -- running a sweep --------------------------------------------------------------------------
+
+
+def _cpus() -> int:
+    """CPUs this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+def workers_spec() -> Spec:
+    """The ``workers`` parameter: processes of the local cluster, at most one per CPU here."""
+    cpus = _cpus()
+    return Spec("workers", "integer", None, f"[1, {cpus}]", help="processes of the local cluster (1: this process)",
+                why=f"the {cpus} CPU{'s' * (cpus != 1)} this process may use")
+
+
+def sweep(
+    grid: AtlasGrid,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: Callable[[int, int], Any] | None = None,
+) -> Iterator[tuple[dict, Sketch | None]]:
+    """The record and sketch of every design of ``grid``, in grid order, as the designs finish.
+
+    Parameters
+    ----------
+    grid : AtlasGrid
+    workers : int, optional, keyword-only
+        Processes of a local Dask cluster, 1 to the CPUs here; 1 runs in this process.
+        Default: ``min(2, CPUs)`` for grids of at least :data:`LOCAL_CLUSTER_FROM` designs
+        when Dask is installed, this process otherwise. Worker processes are spawned: call
+        this under ``if __name__ == "__main__":`` in a script.
+    scheduler : str, optional, keyword-only
+        Address of a running Dask scheduler (``"tcp://host:8786"``): its workers run the
+        designs. They need the same version of curvefold as this process (checked). Not
+        with ``workers``.
+    progress : callable, optional, keyword-only
+        ``progress(done, total)``, called with 0 first and after every design.
+
+    Yields
+    ------
+    record : dict
+        Keys :data:`FIELDS`.
+    sketch : Sketch or None
+        None for an invalid design.
+
+    Notes
+    -----
+    Designs go to the cluster in chunks of up to :data:`CHUNK`, at most :data:`IN_FLIGHT`
+    chunks per worker thread at a time; a finished chunk waits until the ones before it
+    are handed out, so memory stays bounded whatever the grid's size. A cluster started
+    here is closed when the iterator ends, is closed, or raises (close it with
+    :func:`contextlib.closing` when stopping early). Connection errors and a version
+    mismatch raise :class:`InputError` at the first ``next()``.
+    """
+    if not isinstance(grid, AtlasGrid):
+        raise InputError(f"grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got {type(grid).__name__}")
+    if progress is not None and not callable(progress):
+        raise InputError(f"progress must be a callable progress(done, total) or None, got {progress!r}")
+    return _sweep(grid, *_cluster_plan(grid.size, workers, scheduler), progress)
+
+
+def _cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple[int, str | None]:
+    """(local processes, scheduler address): (1, None) runs in this process."""
+    if scheduler is not None:
+        if workers is not None:
+            raise InputError(f"workers sizes a local cluster; the cluster at scheduler {scheduler!r} has its own workers, got workers = {workers!r}")
+        if not isinstance(scheduler, str) or not scheduler.strip():
+            raise InputError(f"scheduler must be the address of a Dask scheduler such as 'tcp://host:8786', got {scheduler!r}")
+        _require_dask(f"scheduler {scheduler!r}")
+        return 0, scheduler.strip()
+    if workers is None:
+        workers = min(2, _cpus()) if size >= LOCAL_CLUSTER_FROM and importlib.util.find_spec("distributed") else 1
+    workers = min(workers_spec().check(workers), size)
+    if workers > 1:
+        _require_dask(f"workers = {workers}")
+    return workers, None
+
+
+def _require_dask(what: str) -> None:
+    if importlib.util.find_spec("distributed") is None:
+        raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
+
+
+def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None) -> Iterator[tuple[dict, Sketch | None]]:
+    design = grid.shared
+    total, done = grid.size, 0
+    if progress is not None:
+        progress(0, total)
+    with _client(workers, scheduler) as client:
+        if client is None:
+            chunks: Iterator[list] = (_evaluate_chunk([point], design) for point in grid.points())
+        else:
+            threads = max(1, sum(client.nthreads().values()))
+            size = max(1, min(CHUNK, math.ceil(total / (IN_FLIGHT * threads))))
+            submit = lambda points: client.submit(_evaluate_chunk, points, design, pure=False)  # noqa: E731
+            chunks = _in_order(submit, _batched(grid.points(), size), IN_FLIGHT * threads)
+        with closing(chunks):  # closed before the client, when the sweep stops early
+            for results in chunks:
+                for result in results:
+                    done += 1
+                    if progress is not None:
+                        progress(done, total)
+                    yield result
+
+
+def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict) -> list[tuple[dict, Sketch | None]]:
+    """The task a worker runs: (record, sketch) of several grid points, in order."""
+    out = []
+    for row, col, a, p in points:
+        record, sketch = evaluate_design(a, p, **design)
+        out.append(({"row": row, "col": col} | record, sketch))
+    return out
+
+
+def _batched(items: Iterable, size: int) -> Iterator[list]:
+    items = iter(items)
+    while batch := list(islice(items, size)):
+        yield batch
+
+
+def _in_order(submit: Callable[[Any], Any], tasks: Iterable, window: int) -> Iterator[Any]:
+    """The results of ``submit(task)`` (a future) for every task, in order, ``window`` futures at a time.
+
+    The oldest future is waited for while the others run; when it is done the next task is
+    submitted, so no more than ``window`` results (and the one handed out) are ever held.
+    """
+    tasks = iter(tasks)
+    pending = deque(submit(t) for t in islice(tasks, window))
+    while pending:
+        result = pending[0].result()
+        pending.popleft()  # the last reference: a cluster frees the result (and forgets the futures left when closed)
+        pending.extend(submit(t) for t in islice(tasks, 1))
+        yield result
+
+
+@contextmanager
+def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
+    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this process."""
+    if scheduler is not None:
+        with _scheduler_client(scheduler) as client:
+            yield client
+    elif workers > 1:
+        import distributed
+
+        with (
+            distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
+            distributed.Client(cluster, set_as_default=False) as client,
+        ):
+            yield client
+    else:
+        yield None
+
+
+def _scheduler_client(scheduler: str) -> Any:
+    """A client of the running cluster at ``scheduler``, checked (see :func:`_check_workers`)."""
+    import distributed
+
+    try:  # first the address alone: a client made from a malformed one hangs when it is freed
+        scheme = distributed.comm.parse_address(distributed.comm.resolve_address(scheduler))[0]
+    except ValueError as err:
+        raise InputError(f"scheduler must be a Dask scheduler address such as 'tcp://host:8786', got {scheduler!r} ({err})") from None
+    except OSError as err:
+        raise InputError(f"scheduler {scheduler!r}: cannot resolve the host ({err})") from None
+    if scheme == "inproc":
+        raise InputError(f"scheduler must be a network address such as 'tcp://host:8786' (inproc:// names a scheduler inside one process), got {scheduler!r}")
+    try:
+        client = distributed.Client(scheduler, set_as_default=False)
+    except OSError as err:  # refused or timed out
+        raise InputError(f"scheduler {scheduler!r}: cannot connect to a Dask scheduler there ({err})") from None
+    try:
+        _check_workers(client, scheduler)
+    except BaseException:
+        client.close()
+        raise
+    return client
+
+
+def _check_workers(client: Any, scheduler: str) -> None:
+    """Raise unless the cluster has a worker and every worker runs this version of curvefold."""
+    from dask.config import get
+    from dask.utils import parse_timedelta
+
+    timeout = parse_timedelta(get("distributed.comm.timeouts.connect"))
+    try:
+        client.wait_for_workers(1, timeout=timeout)
+    except TimeoutError:
+        raise InputError(f"scheduler {scheduler!r} has no worker (waited {timeout:g} s)") from None
+    ours = version("curvefold")
+    found = client.run(_curvefold_version, on_error="return")
+    wrong = {w: v for w, v in sorted(found.items()) if v != ours}
+    if wrong:
+        worker, theirs = next(iter(wrong.items()))
+        have = f"curvefold {theirs}" if isinstance(theirs, str) else "no curvefold"
+        raise InputError(f"scheduler {scheduler!r}: every worker needs curvefold {ours}, as here; {len(wrong)} of {len(found)} differ, e.g. {worker} has {have}")
+
+
+def _curvefold_version() -> str:
+    """The version of curvefold installed where this runs (on a worker)."""
+    return version("curvefold")
 
 
 def run_atlas(
@@ -281,9 +543,12 @@ def run_atlas(
     tubes: int | None = None,
     samples: int = 201,
     workers: int | None = None,
+    scheduler: str | None = None,
     progress: Callable[[int, int], Any] | None = None,
 ) -> Atlas:
-    """Build the vault of every (p_xy, a) of a grid and record its metrics.
+    """Build the vault of every (p_xy, a) of a grid and record its metrics, in memory.
+
+    For grids too large to hold, iterate :func:`sweep` instead (the command line does).
 
     Parameters
     ----------
@@ -293,14 +558,9 @@ def run_atlas(
         Torsion amplitudes: the rows. a ≥ :data:`curvefold.vault.arch.A_MAX` has no standing arch
         and is recorded as invalid.
     width, fold_angle, tubes, samples : keyword-only
-        Shared :class:`~curvefold.vault.VaultDesign` parameters (validated once, here).
-    workers : int, optional, keyword-only
-        Processes; default ``min(2, os.cpu_count())``. 1 runs in this process. Designs
-        run in parallel only when there are at least two of them. Where processes are
-        spawned rather than forked (Windows, macOS), call this under
-        ``if __name__ == "__main__":``.
-    progress : callable, optional, keyword-only
-        ``progress(done, total)``, called with 0 first and after every finished design.
+        Shared :class:`~curvefold.vault.VaultDesign` parameters (checked once, by :meth:`AtlasGrid.of`).
+    workers, scheduler, progress : keyword-only
+        Where the designs run and a progress callback, as for :func:`sweep`.
 
     Returns
     -------
@@ -315,48 +575,5 @@ def run_atlas(
     >>> atlas.records[0]["valid"], atlas.records[0]["error"]
     (False, 'ConvergenceError')
     """
-    from .assembly import VaultDesign
-
-    ps = _check_values(p_xy_values, "p_xy_values")
-    as_ = _check_values(a_values, "a_values")
-    VaultDesign(width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)  # shared parameters: fail once, here
-    if workers is None:
-        workers = min(2, os.cpu_count() or 1)
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise InputError(f"workers must be an integer ≥ 1 (or None for min(2, CPUs)), got {workers!r}")
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable progress(done, total) or None, got {progress!r}")
-
-    kwargs = {"width": float(width), "fold_angle": float(fold_angle), "tubes": tubes, "samples": int(samples)}
-    tasks = [(i * len(ps) + j, a, p, kwargs) for i, a in enumerate(as_) for j, p in enumerate(ps)]
-    total = len(tasks)
-    records: list[dict | None] = [None] * total
-    sketches: list[Sketch | None] = [None] * total
-    if progress is not None:
-        progress(0, total)
-
-    def store(index: int, record: dict, sketch: Sketch | None, done: int) -> None:
-        row, col = divmod(index, len(ps))
-        records[index] = {"row": row, "col": col, **record}
-        sketches[index] = sketch
-        if progress is not None:
-            progress(done, total)
-
-    processes = min(int(workers), total)
-    if processes <= 1:
-        for done, task in enumerate(tasks, 1):
-            store(*_task(task), done)
-    else:
-        # Interleaved chunks: balanced (cost varies along the grid) and few round trips.
-        count = min(total, processes * CHUNKS_PER_WORKER)
-        pool = ProcessPoolExecutor(max_workers=processes)
-        try:
-            futures = [pool.submit(_chunk, tasks[k::count]) for k in range(count)]
-            done = 0
-            for future in as_completed(futures):
-                for result in future.result():
-                    done += 1
-                    store(*result, done)
-        finally:  # on an error (a bug, an interrupt) drop the chunks not started yet
-            pool.shutdown(wait=True, cancel_futures=True)
-    return Atlas(ps, as_, float(width), float(fold_angle), tubes, int(samples), tuple({k: r[k] for k in FIELDS} for r in records), tuple(sketches))  # type: ignore[index]
+    grid = AtlasGrid.of(p_xy_values, a_values, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)
+    return Atlas.from_results(grid, sweep(grid, workers=workers, scheduler=scheduler, progress=progress))
