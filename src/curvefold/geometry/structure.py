@@ -132,19 +132,21 @@ class Structure(FrozenArrays):
         return np.broadcast_to(row, (len(self.cells), 4)).copy()
 
     def topology(self, faces: Literal["triangles", "quads"] = "triangles") -> Topology:
-        """The mesh of the tubes and their sheets (:meth:`Topology.tubes`).
+        """The mesh of the tubes and their sheets, as the lattice puts it on its curves.
 
         Parameters
         ----------
         faces : {"triangles", "quads"}
-            Two triangles or one quad per ruling quad (planar only to O(h³), which the
-            triangles' diagonals carry). Both number the vertices alike.
+            On a smooth lattice (:meth:`Topology.tubes`), two triangles or one quad per
+            ruling quad (planar only to O(h³), which the triangles' diagonals carry); both
+            number the vertices alike. On a panel lattice every quad is a planar panel
+            (:meth:`Topology.panels`), whatever ``faces`` asks.
         """
-        return self._triangles if faces == "triangles" else Topology.tubes(self.cell_curves, len(self.lattice.s), faces=faces)
+        return self._triangles if faces == "triangles" else self.lattice.topology(self.cell_curves, faces)
 
     @cached_property
     def _triangles(self) -> Topology:
-        return Topology.tubes(self.cell_curves, len(self.lattice.s))
+        return self.lattice.topology(self.cell_curves, "triangles")
 
     # -- states ------------------------------------------------------------------------------
     def state(self, fold_angle: float | None = None, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> State:
