@@ -13,9 +13,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..geometry.crease import Crease
+from ..geometry.panels import PanelLattice
 from ..geometry.structure import Structure
 from ..vault.assembly import Vault
 from . import measure
+from .panels import panel_checks
 
 __all__ = ["Check", "certify"]
 
@@ -96,6 +98,8 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     )
     if structure is None:
         return checks
+    if isinstance(structure.lattice, PanelLattice):  # rigid panels: their own checks (analysis.panels)
+        return checks + [Check(**row) for row in panel_checks(structure, vault)]
     lattice = structure.lattice
     state = structure.state()
     flat = structure.state(0.0)
