@@ -221,6 +221,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--planarity-tol", type=float, default=0.5, help="largest fold angle across quad diagonals, degrees (default 0.5)")
     p.add_argument("--fold-angle-tol", type=float, default=0.5, help="largest fold-angle error on creases, degrees (default 0.5)")
     _add_output(p, None)
+
+    p = sub.add_parser("mechanism", help="degrees of freedom of a panel structure's FOLD file",
+                       description="Build the constraint Jacobian of every folded frame of a FOLD file (edge lengths, both diagonals "
+                       "and the planarity of every quad, vertices welded where the frames agree: seams and bonds) and report its "
+                       "singular values and internal degrees of freedom (nullity - 6) with the gap between null and nonzero ones. "
+                       "Write the file with 'curvefold tube|block|vault --panels N'.")
+    p.add_argument("file", type=Path, help="a .fold file with a crease pattern and folded frames")
+    p.add_argument("--rtol", type=float, default=1e-9, help="rank tolerance relative to the largest singular value (default 1e-9)")
+    _add_output(p, None)
     return parser
 
 
@@ -325,6 +334,20 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 0 if result.ok else 1
 
 
+def cmd_mechanism(args: argparse.Namespace) -> int:
+    from ..analysis.mechanism import analyse_fold
+
+    frames = analyse_fold(args.file, rtol=args.rtol)
+    payload = {"file": args.file, "frames": [m.to_dict() for m in frames]}
+    lines = [f"{args.file}: {len(frames)} folded frame{'s' * (len(frames) != 1)}, {frames[0].unknowns} unknowns, {frames[0].constraints} constraints"]
+    for m in frames:
+        gap = "null values exactly 0" if m.gap == float("inf") else f"gap {m.gap:.2e}"
+        state = "" if m.consistent else f"; INCONSISTENT: the frame breaks its constraints by {m.residual:.2e} (relative)"
+        lines.append(f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, residual {m.residual:.1e}{state}")
+    _emit(args, payload, lines)
+    return 0 if all(m.consistent for m in frames) else 1
+
+
 def cmd_atlas(args: argparse.Namespace) -> int:
     from .outputs import write_atlas
 
@@ -384,7 +407,7 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
         return 0
     if args.command in DEFAULT_OUT:
         return cmd_structure(args.command, args)
-    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "atlas": cmd_atlas}[args.command](args)
+    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism, "atlas": cmd_atlas}[args.command](args)
 
 
 def run() -> None:  # console-script entry point

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..analysis.panels import certified_mechanism
+from ..geometry.panels import PanelLattice
 from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
 
@@ -68,14 +70,18 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file, and one FOLD file per sheet, flat with its target fold
-    angles (loadable by Origami Simulator)."""
+    """The structure's FOLD file (folded at the design angle; a panel structure also flat and
+    half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
+    by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
     structure, meta = built.structure, _metadata(built)
+    design = structure.lattice.crease.fold_angle
+    # panels: the flat and half-folded states too, for `curvefold mechanism`
+    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) else [design]
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"],
-                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta)]
+                            fold_angles=angles, unit=MODEL_UNIT, metadata=meta)]
     (folder / "sheets").mkdir()
     for sheet in sheets(structure):
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
@@ -123,6 +129,10 @@ def _pictures(built: Built, folder: Path) -> list:
     if structure is None:
         return plots.save_figure(plots.plot_crease(built.crease), folder / "crease")
     lattice = structure.lattice
+    if isinstance(lattice, PanelLattice):
+        _, mechanisms = certified_mechanism(structure)  # the certificate's, cached
+        if mechanisms is not None:
+            files += plots.save_figure(plots.plot_singular_values(mechanisms), folder / "singular-values")
     files += plots.save_figure(plots.plot_regression_domain(lattice, structure.cells), folder / "regression-domain")
     files += plots.save_figure(plots.plot_width_proportion(lattice), folder / "width-proportion")
     if built.vault is not None:

@@ -39,6 +39,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
+    from ..analysis.mechanism import Mechanism
     from ..geometry.crease import Crease
     from ..geometry.lattice import Lattice
     from ..geometry.structure import State, Structure
@@ -55,6 +56,7 @@ __all__ = [
     "plot_structure",
     "plot_crease",
     "write_motion_gif",
+    "plot_singular_values",
     "save_figure",
 ]
 
@@ -739,6 +741,47 @@ def write_motion_gif(
     with atomic_path(target) as tmp:
         images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=int(round(1000 * frame_seconds)), loop=0)
     return target
+
+
+# -- mechanism -------------------------------------------------------------------------------------
+
+
+def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singular values of the constraint Jacobian") -> Figure:
+    """The singular values of panel structures' constraint Jacobians, smallest first, one line per state.
+
+    Each state's values are divided by its largest and drawn against their rank from the
+    smallest (log–log), with its rank tolerance: those on or below it are the first-order
+    motions (6 of them rigid), and the gap above them shows how clear the count is.
+
+    Parameters
+    ----------
+    mechanisms : sequence of Mechanism
+        From :func:`curvefold.analysis.mechanism.analyse` or ``analyse_fold``.
+    title : str, keyword-only
+
+    Returns
+    -------
+    Figure
+    """
+    if len(mechanisms) == 0:
+        raise InputError("mechanisms must hold at least one analysed state")
+    fig = _figure(figsize=(6.4, 4.6))
+    ax = fig.add_subplot()
+    palette = ["#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02"]
+    tiny = np.finfo(float).tiny
+    for k, m in enumerate(mechanisms):
+        s = m.singular_values[::-1] / m.singular_values[0]
+        gap = "exact zeros" if np.isinf(m.gap) else f"gap {m.gap:.1e}"
+        ax.loglog(np.arange(1, len(s) + 1), np.maximum(s, tiny), ".-", ms=3, lw=0.8, color=palette[k % len(palette)],
+                  label=f"{m.label}: {m.dof} internal DOF ({m.nullity} null), {gap}")
+        ax.axhline(m.tolerance / m.singular_values[0], color="#999999", lw=0.8, ls="--", zorder=0)
+    ax.text(1.05, mechanisms[0].tolerance / mechanisms[0].singular_values[0], "rank tolerance", fontsize=8, color="#666666", va="bottom")
+    ax.set_xlabel("rank from the smallest")
+    ax.set_ylabel("σ / σ_max")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="major", lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="lower right")
+    return fig
 
 
 # -- output ----------------------------------------------------------------------------------------
