@@ -8,13 +8,18 @@ tolerance below is 64 ε · size / ℓ_min (the measured errors stay under 8 ε 
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 from scipy.optimize import least_squares
 
+from _cli import run
 from _node import run_node
 from curvefold import Crease, Lattice, SpaceCurve, Structure
+from curvefold.app.build import build, vault_design
+from curvefold.app.design import parse_design
 from curvefold.geometry.mesh import fold_angles
 from curvefold.geometry.panels import PanelLattice, PanelPattern, fold_line_angle
 from curvefold.geometry.sheets import sheets
@@ -352,3 +357,34 @@ def test_3d_files_hold_the_planar_panels(tmp_path, tube):
     height = np.abs(np.einsum("ij,ij->i", p[:, 3] - p[:, 0], n)) / np.linalg.norm(n, axis=1)
     assert height.max() < 1e-6 * np.ptp(vertices, axis=0).max()
     assert len(files) == 3
+
+
+# -- design files and the command line --------------------------------------------------------------------
+
+
+def test_panels_in_design_files_flags_and_the_api():
+    tube = build(parse_design('kind = "tube"\n[curve]\npanels = 8', source="tube.toml"))
+    assert isinstance(tube.structure.lattice, PanelLattice) and tube.structure.lattice.pattern.panels == 8
+    assert isinstance(tube.crease, Crease)  # the smooth crease the panels sample, for the crease checks
+    assert vault_design(parse_design('kind = "vault"\n[vault]\npanels = 7')).panels == 8  # the apex is a vertex
+    with pytest.raises(InputError, match=r"^tube\.toml: \[curve\] panels must be an integer in \[0, 100000\] \(memory bound\), got -1$"):
+        parse_design('kind = "tube"\n[curve]\npanels = -1', source="tube.toml")
+    with pytest.raises(InputError, match=r"^panels must be 0 \(smooth\) or even for a vault \(the apex is a vertex\), got 7$"):
+        VaultDesign(panels=7)
+    single = run("crease", "--panels", "4")
+    assert single.returncode == 2 and "unrecognized arguments: --panels" in single.stderr
+    coarse = run("tube", "--panels", "1", "--json")
+    assert coarse.returncode == 2 and coarse.stderr.count("\n") == 1 and "too few panels" in coarse.stderr
+
+
+def test_panel_tube_output_folder_certifies_and_plots_its_mechanism(tmp_path):
+    out = tmp_path / "out"
+    result = run("tube", "--panels", "8", "--formats", "fold", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    report = json.loads((out / "report.json").read_text())
+    checks = {c["name"]: c for c in report["certificate"]}
+    assert {"panel_isometry", "panel_planarity", "mechanism_dof", "mechanism_clearance"} <= set(checks)
+    assert all(c["passed"] for c in checks.values()), checks
+    assert "singular-values.png" in report["files"] and "mechanism_dof" in (out / "report.html").read_text()
+    frames = run("mechanism", str(out / "tube.fold"), "--json")
+    assert frames.returncode == 0 and [f["dof"] for f in json.loads(frames.stdout)["frames"]] == [9, 1, 1]

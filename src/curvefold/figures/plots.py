@@ -136,13 +136,16 @@ def _nice_length(span: float) -> float:
     return float(10 ** (k + 1))  # pragma: no cover
 
 
-def _legend_creases(ax: Axes, kinds: Sequence[str], **kwargs: Any) -> None:
+def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwargs: Any) -> None:
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
+    from ..geometry.panels import PanelLattice
+
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
     handles = [Line2D([], [], color=KIND_COLORS[k], lw=1.5, label=names[k]) for k in ("fold", "seam", "junction") if k in set(kinds)]
-    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="developable strips"))
+    panels = isinstance(lattice, PanelLattice)
+    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="rigid planar panels" if panels else "developable strips"))
     ax.legend(handles=handles, fontsize=7, frameon=False, **kwargs)
 
 
@@ -488,11 +491,12 @@ def plot_vault(
     drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
     shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
     angle_value = float(d.fold_angle if angle is None else angle)
+    panels = f", {d.panels} panels per crease" if d.panels else ""
     ax.set_title(
-        f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}, 2α = {angle_value:g}°",
+        f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°",
         fontsize=10,
     )
-    _legend_creases(ax, scene.roles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
+    _legend_creases(ax, scene.roles, vault.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
     return fig
 
 
@@ -586,7 +590,7 @@ def plot_structure(
     what = "Tube" if k == 1 else f"Cellular block of {k} cells"
     shown = "" if drawn == k else f" ({drawn} drawn)"
     ax.set_title(f"{what}{shown}, 2α = {state.fold_angle:.4g}°", fontsize=10)
-    _legend_creases(ax, scene.roles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
+    _legend_creases(ax, scene.roles, structure.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
     return fig
 
 

@@ -129,6 +129,21 @@ def _mirror(v: np.ndarray, axis: np.ndarray) -> np.ndarray:
     return 2.0 * (v @ axis) * axis - v
 
 
+def _angle(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Signed angle from 2D vectors a to b (...), in (−π, π]."""
+    return np.arctan2(_cross2(a, b), np.einsum("...i,...i->...", a, b))
+
+
+def _turning(T: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Turn φ_k at every vertex from the unit edges T (N, 2) and vertex tangents t (N + 1, 2).
+
+    Inside, from edge k − 1 to edge k; at the ends twice the angle between the tangent and
+    the end edge (the turn to the virtual edge mirrored across the tangent), so that an end
+    edge leaving the tangent by more than 90° shows as a turn of more than 180°.
+    """
+    return np.concatenate([2 * _angle(t[:1], T[:1]), _angle(T[:-1], T[1:]), 2 * _angle(T[-1:], t[-1:])])
+
+
 def check_panels(panels: int, *, name: str = "panels") -> int:
     """A panel count for a panel lattice: an integer in [1, MAX_PANELS]."""
     n = PANELS.check(panels, name)
@@ -203,8 +218,7 @@ class PanelPattern(FrozenArrays):
             raise InputError(f"panel crease: vertices {int(np.argmin(h))} and {int(np.argmin(h)) + 1} coincide")
         T = chords / h[:, None]
         t = np.concatenate([_unit(np.asarray(start_tangent, float))[None], _unit(T[:-1] + T[1:]), _unit(np.asarray(end_tangent, float))[None]])
-        chords_all = np.concatenate([_mirror(T[0], t[0])[None], T, _mirror(T[-1], t[-1])[None]])
-        turning = np.arctan2(_cross2(chords_all[:-1], chords_all[1:]), np.einsum("ij,ij->i", chords_all[:-1], chords_all[1:]))
+        turning = _turning(T, t)
         bad = np.flatnonzero(~((np.abs(turning) / 2 < beta) & (beta < np.pi - np.abs(turning) / 2)))
         if bad.size:
             k = int(bad[0])
@@ -244,6 +258,11 @@ class PanelPattern(FrozenArrays):
         m = -(-FLAT_STEPS // n)
         flat = SpaceCurve.from_curvature(pattern.kappa_2d, 0.0, pattern.length, samples=m * n + 1)
         s = flat.s[::m]
+        turn = np.diff(np.unwrap(np.arctan2(flat.tangent[:, 1], flat.tangent[:, 0]))[::m])
+        if not (np.abs(turn) < 0.5 * np.pi).all():
+            k = int(np.argmax(np.abs(turn)))
+            raise InputError(f"too few panels: the crease turns by {np.degrees(turn[k]):.4g}° over panel {k} (s = {s[k]:.6g} to "
+                             f"{s[k + 1]:.6g}); use more panels (below 90° each)")
         ends = flat.tangent[[0, -1], :2]
         return cls.from_polyline(s, flat.points[::m, :2], pattern.beta(s), start_tangent=ends[0], end_tangent=ends[1],
                                  left_length=float(pattern.ruling_lengths[0][0]), right_length=float(pattern.ruling_lengths[1][0]))
@@ -274,8 +293,7 @@ class PanelPattern(FrozenArrays):
     @cached_property
     def turning(self) -> np.ndarray:
         """φ_k, the turn of the crease at every vertex (virtual edges at the ends), shape (N + 1,)."""
-        c = self.chords
-        return readonly(np.arctan2(_cross2(c[:-1], c[1:]), np.einsum("ij,ij->i", c[:-1], c[1:])))
+        return readonly(_turning(self.chords[1:-1], self.tangents))
 
     @cached_property
     def domain(self) -> RegressionDomain:
