@@ -12,7 +12,8 @@ Its rows are the fields of :class:`curvefold.analysis.certificate.Check`, which 
 certificate turns into checks. The panel states are built by rigid motions of the flat
 panels, so a panel's sides change only by the rounding of its vertex coordinates: about
 ε · size relative to the structure's size, ε · size / ℓ relative to a side of length ℓ.
-The tolerance is that model with a factor of 64 (measured errors stay below 8 ε · size / ℓ).
+The tolerance is that model with a factor of 64 (measured: below 3 ε · size / ℓ_min over tubes of
+4 to 640 panels, a block and vaults, from flat to nearly closed).
 """
 
 from __future__ import annotations

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..analysis.mechanism import RTOL
 from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.validate import Spec
@@ -228,7 +229,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "singular values and internal degrees of freedom (nullity - 6) with the gap between null and nonzero ones. "
                        "Write the file with 'curvefold tube|block|vault --panels N'.")
     p.add_argument("file", type=Path, help="a .fold file with a crease pattern and folded frames")
-    p.add_argument("--rtol", type=float, default=1e-9, help="rank tolerance relative to the largest singular value (default 1e-9)")
+    p.add_argument("--rtol", type=float, default=RTOL, help=f"rank tolerance relative to the largest singular value (default {RTOL:g})")
     _add_output(p, None)
     return parser
 
@@ -341,7 +342,7 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
     payload = {"file": args.file, "frames": [m.to_dict() for m in frames]}
     lines = [f"{args.file}: {len(frames)} folded frame{'s' * (len(frames) != 1)}, {frames[0].unknowns} unknowns, {frames[0].constraints} constraints"]
     for m in frames:
-        gap = "null values exactly 0" if m.gap == float("inf") else f"gap {m.gap:.2e}"
+        gap = f"gap {m.gap:.2e}".replace("inf", "∞")
         state = "" if m.consistent else f"; INCONSISTENT: the frame breaks its constraints by {m.residual:.2e} (relative)"
         lines.append(f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, residual {m.residual:.1e}{state}")
     _emit(args, payload, lines)

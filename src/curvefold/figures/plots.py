@@ -775,7 +775,7 @@ def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singu
     tiny = np.finfo(float).tiny
     for k, m in enumerate(mechanisms):
         s = m.singular_values[::-1] / m.singular_values[0]
-        gap = "exact zeros" if np.isinf(m.gap) else f"gap {m.gap:.1e}"
+        gap = f"gap {m.gap:.1e}".replace("inf", "∞")
         ax.loglog(np.arange(1, len(s) + 1), np.maximum(s, tiny), ".-", ms=3, lw=0.8, color=palette[k % len(palette)],
                   label=f"{m.label}: {m.dof} internal DOF ({m.nullity} null), {gap}")
         ax.axhline(m.tolerance / m.singular_values[0], color="#999999", lw=0.8, ls="--", zorder=0)

@@ -190,7 +190,7 @@ class PanelPattern(FrozenArrays):
         s : (N + 1,) array_like
             Increasing parameter of the vertices (arc length of the crease they sample).
         points : (N + 1, 2) array_like
-            The crease, N ≥ 1, turning left (toward +n) at every inner vertex.
+            The crease, N ≥ 1 (the left fold lines go to the left of it, toward +n).
         beta : (N + 1,) array_like
             Fold-line angles in (0, π), radians.
         start_tangent, end_tangent : (2,) array_like, keyword-only

@@ -267,7 +267,11 @@ class Vault(FrozenArrays):
 
     @property
     def proportion_change(self) -> float:
-        """w_R(s₀/2) / w_R(0), predicted in closed form: exp(a κ₀ s₀ cot α / π)."""
+        """w_R(s₀/2) / w_R(0), predicted in closed form: exp(a κ₀ s₀ cot α / π).
+
+        The smooth structure's (at this κ₀ s₀); a panel vault's, measured, differs from it
+        at second order in 1/N.
+        """
         return proportion_change(self.design.a, self.kappa0_s0, fold_angle=self.design.fold_angle)
 
     @property
