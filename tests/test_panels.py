@@ -286,6 +286,15 @@ def test_panel_vault_stands_on_the_ground_and_converges_to_the_smooth_vault():
     assert ((orders(roots) > 1.95) & (orders(roots) < 2.05)).all(), (roots, orders(roots))
 
 
+def test_panel_vault_motion_keeps_its_feet_or_its_symmetry(vault):
+    angles = [0.0, 45.0, 90.0, 120.0]
+    held = vault.lift_off(angles, anchor="start")
+    assert held[:, 0].max() < 1e-15 and held[2, 1] < 1e-14 and (np.delete(held[:, 1], 2) > 0.5).all()
+    apex = vault.lift_off(angles, anchor="middle")  # the apex vertex's frame held: a motion symmetric about it
+    assert_allclose(apex[:, 0], apex[:, 1], atol=1e-14)
+    assert apex[2].max() < 1e-14 and (np.delete(apex[:, 0], 2) > 0.1).all()
+
+
 def test_the_smooth_arch_root_does_not_stand_a_panel_vault():
     """The discrete Eq. (20) matters: the same panels on the smooth κ0 s0 lift a foot."""
     vault = Vault.from_design(VaultDesign(panels=12, tubes=1))

@@ -342,6 +342,7 @@ class Vault(FrozenArrays):
             "p_xy_measured": p_xy_measured,
             "p_xz": self.p_xz,
             "tubes": int(self.design.tubes),
+            "panels": int(self.design.panels),
             "max_tubes": int(self.max_tubes),
             "span": float(np.linalg.norm(chord)),
             "rise": float(hi[2]),
