@@ -23,8 +23,9 @@ sits between them in log scale. The gap (smallest singular value above the toler
 the largest below) and the clearance (how near the tolerance the nearest one lies) show
 how clear the count is. Internal degrees of freedom are nullity − 6.
 
-The flat state is special: every panel can tilt out of the plane to first order without
-changing a length, so its nullity is larger (reported, not hidden). A state whose
+The flat state is special: out of its plane lengths change only at second order, so every
+lift of the flat sheets that keeps each panel planar is a first-order motion, and its
+nullity is larger (N + 1 extra for a tube of N panels, measured; reported, not hidden). A state whose
 residual is not at rounding level (:attr:`Mechanism.consistent`) does not satisfy its own
 constraints; its count says little and is reported as such.
 """

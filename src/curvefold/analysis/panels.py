@@ -67,11 +67,15 @@ def panel_rigidity(structure: Structure, fold_angles: np.ndarray) -> tuple[float
     return float(relative[:, :bars].max()), float(relative[:, bars:].max()), tolerance
 
 
+def _unknowns(structure: Structure, cells: int | None = None) -> int:
+    """Unknowns of the mechanism analysis of a structure's first ``cells`` cells (all by default)."""
+    return 3 * len(structure.lattice.s) * len(lattice_corners(structure.cells[:cells])[0])
+
+
 def _prefix(structure: Structure, budget: int) -> Structure:
     """The structure of its longest prefix of cells within ``budget`` unknowns (one cell at least)."""
-    n = len(structure.lattice.s)
     k = len(structure.cells)
-    while k > 1 and 3 * n * len(lattice_corners(structure.cells[:k])[0]) > budget:
+    while k > 1 and _unknowns(structure, k) > budget:
         k -= 1
     return structure if k == len(structure.cells) else Structure.from_cells(structure.lattice, structure.cells[:k])
 
@@ -86,9 +90,7 @@ def certified_mechanism(structure: Structure) -> tuple[Structure, tuple[Mechanis
     certificate and the report's plot share it.
     """
     part = _prefix(structure, CERTIFY_UNKNOWNS)
-    if 3 * len(part.lattice.s) * len(part.curves_uv) > MAX_UNKNOWNS:
-        return part, None
-    return part, analyse(part)
+    return part, None if _unknowns(part) > MAX_UNKNOWNS else analyse(part)
 
 
 def panel_checks(structure: Structure, vault: Vault | None = None) -> list[dict]:
@@ -130,8 +132,7 @@ def panel_checks(structure: Structure, vault: Vault | None = None) -> list[dict]
                          "holds to its root's residual (≤ 6 ε measured), which lifts the far feet by that times the span"))
     part, mechanisms = certified_mechanism(structure)
     if mechanisms is None:
-        unknowns = 3 * len(part.lattice.s) * len(part.curves_uv)
-        return rows + [_row("mechanism_unknowns", unknowns, MAX_UNKNOWNS, "",
+        return rows + [_row("mechanism_unknowns", _unknowns(part), MAX_UNKNOWNS, "",
                             "the degrees of freedom are measured by a dense SVD of the constraint Jacobian, bounded in size; "
                             "one tube here is larger: not measured (use fewer panels)")]
     flat, generic = mechanisms[0], mechanisms[1:]
@@ -142,7 +143,7 @@ def panel_checks(structure: Structure, vault: Vault | None = None) -> list[dict]
         dict(name="mechanism_dof", value=float(dof.dof), tolerance=1.0, unit="", passed=all(m.dof == 1 and m.consistent for m in generic),
              meaning=f"internal degrees of freedom (nullity − 6 of the constraint Jacobian: edges, panel diagonals, panel "
                      f"planarity, welded seams and bonds) at {', '.join(m.label for m in generic)}; must be exactly 1{scope}. "
-                     f"The flat state has {flat.dof} first-order ones (every fold line can tilt out of the plane)"),
+                     f"The flat state has {flat.dof}: lifts of the flat sheets that keep every panel planar, first-order only"),
         _row("mechanism_clearance", clearance, 1e-3, "",
              "nearest singular value to the rank tolerance (1e-9 σ_max) at those states, as a ratio ≤ 1 either way: "
              "the count holds for any tolerance a thousand times larger or smaller"),
