@@ -158,6 +158,8 @@ def test_the_size_of_the_dense_svd_is_bounded(smooth):
     for angle in (0.0, 45.0, 90.0):  # equal to rounding (the prefix products of the rigid motions group otherwise)
         head, whole = part.part.state(angle).vertices, big.state(angle).vertices
         assert np.abs(head - whole[:, : n + 1]).max() <= 16 * EPS * np.abs(whole).max()
+    with pytest.raises(InputError, match=r"^panels must be in \[1, 300\] for the head of this pattern, got 0$"):
+        big.lattice.head(0)
 
 
 def test_the_certificate_analyses_the_first_tubes_that_fit():
