@@ -12,7 +12,13 @@ wall-clock deadline: a busy machine must not fail a test.
 
 import os
 
-from hypothesis import settings
+# One BLAS thread, set before NumPy loads its BLAS (nothing imports NumPy before this file):
+# the same rounding on every run, and no oversubscription of small dense factorisations
+# (the mechanism tests' SVDs run ten times slower with two threads on a busy two-core machine).
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_name, "1")
+
+from hypothesis import settings  # noqa: E402
 
 settings.register_profile("deterministic", derandomize=True, database=None, deadline=None)
 settings.register_profile("explore", deadline=None)

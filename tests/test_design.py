@@ -310,7 +310,7 @@ def test_overrides_keep_budget():
     [
         # unknown keys and sections
         ('kind = "vault"\n[vault]\nradios = 1.0',
-         r"^design\.toml: \[vault\] unknown key 'radios' \(allowed: a, p_xy, width, tubes, fold_angle, radius, layers, direction\); did you mean 'radius'\?$"),
+         r"^design\.toml: \[vault\] unknown key 'radios' \(allowed: a, p_xy, width, tubes, fold_angle, radius, layers, direction, panels\); did you mean 'radius'\?$"),
         ('kind = "vault"\n[vaults]\na = 1', r"^design\.toml: unknown section \[vaults\] .*did you mean 'vault'\?$"),
         ('kind = "vault"\nsampels = 3', r"design\.toml: unknown key 'sampels' \(allowed keys: kind, samples, title; sections: vault, curve"),
         ('kind = "vault"\n[output]\nformat = ["svg"]', r"\[output\] unknown key 'format' .*did you mean 'formats'\?"),

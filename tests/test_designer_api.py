@@ -65,7 +65,27 @@ def test_every_kind_answers_and_files_come_from_the_registry(url):
     assert status == 422 and answer["error"].startswith('download: "glb" is not written for a crease design')
     status, schema = get_json(f"{url}api/schema")
     assert [f["name"] for f in schema["formats"]] == list(api.FORMATS)
-    assert {s["name"] for s in schema["sections"]["vault"]} == {"a", "p_xy", "width", "tubes", "fold_angle", "radius", "layers", "direction"}
+    assert {s["name"] for s in schema["sections"]["vault"]} == {"a", "p_xy", "width", "tubes", "fold_angle", "radius", "layers", "direction",
+                                                                "panels"}
+
+
+def test_the_panels_control_builds_rigid_panels(url, tmp_path):
+    """The schema gives vaults, tubes and blocks a panels control; a request with panels=16 builds, certifies and
+    writes rigid panels."""
+    _, schema = get_json(f"{url}api/schema")
+    assert [sec for sec, specs in schema["sections"].items() if "panels" in {s["name"] for s in specs}] == ["vault", "curve"]
+    query = "samples=101&tubes=3&panels=16"
+    status, answer = get_json(f"{url}api/vault?{query}")
+    assert status == 200 and answer["design"]["panels"] == answer["panels"] == 16
+    checks = {c["name"]: c["passed"] for c in answer["certificate"]}
+    assert {"panel_isometry", "panel_planarity", "panel_ground_plane", "mechanism_dof", "mechanism_clearance"} <= set(checks)
+    assert all(checks.values()) and [m["dof"] for m in answer["mechanism"]["states"][1:]] == [1, 1]
+    status, _, body = get(f"{url}api/vault/preview?{query}")
+    motion = json.loads(body)["motion"]
+    assert status == 200 and motion["vertices"] == 17 * (3 * 3 + 1)  # every vertex of the 10 lattice polylines
+    status, _, body = get(f"{url}api/vault.fold?{query}")
+    (tmp_path / "vault.fold").write_bytes(body)
+    assert status == 200 and check_fold(tmp_path / "vault.fold").ok
 
 
 def test_saved_toml_rebuilds_the_design(url, tmp_path):

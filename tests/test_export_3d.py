@@ -391,6 +391,8 @@ def test_3dm_rejects_unknown_unit(tmp_path, real_tube):
     pytest.importorskip("rhino3dm")
     with pytest.raises(InputError, match="unit must be one of"):
         write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit="furlong")
+    with pytest.raises(InputError, match=r"^degree must be 1 or 3, got 2$"):
+        write_3dm(tmp_path / "m.3dm", *real_tube[:2], degree=2)
     assert list(tmp_path.iterdir()) == []
 
 

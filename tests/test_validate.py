@@ -136,7 +136,7 @@ def test_vault_design_and_design_files_refuse_with_the_same_words(name):
 def test_vault_specs_are_the_vault_section():
     assert tuple(SCHEMA["vault"].values()) == VAULT_SPECS
     assert {s.name: s.default for s in VAULT_SPECS} | {"tubes": None, "direction": 1} == {
-        k: getattr(VaultDesign(), k) for k in ("a", "p_xy", "width", "tubes", "fold_angle", "radius", "layers", "direction")}
+        k: getattr(VaultDesign(), k) for k in ("a", "p_xy", "width", "tubes", "fold_angle", "radius", "layers", "direction", "panels")}
 
 
 # --------------------------------------------------------------------------------------------

@@ -33,6 +33,26 @@ The motion
     check still passes at this sampling (the error of a folded state grows as
     κ = κ_2D / cos α does).
 
+Rigid panels
+    A structure of rigid planar panels (:mod:`curvefold.geometry.panels`) is exact by
+    construction: every folded state is the flat panels moved rigidly, so its residuals
+    are rounding, whatever the number of panels. Its checks have order 0: the tolerance is
+    the rounding floor alone (:attr:`CheckSpec.rounding` states it), with no half-sampled
+    design. They are ``panel_isometry`` (sides and both diagonals of every panel),
+    ``panel_planarity``, ``panel_ground_plane`` (a vault standing by the discrete Eq. 20),
+    and the mechanism (:func:`curvefold.analysis.mechanism.certified_mechanism`):
+    ``mechanism_dof`` (one internal degree of freedom at half and full design angle) and
+    ``mechanism_clearance`` (how clearly the singular values count it). The smooth crease
+    the panels sample is certified by the crease checks. The smooth frame and vault checks
+    do not apply: ``frame_agreement``, ``eq19``, ``width_law``, ``section_area``,
+    ``regression``, ``tube_closure``, ``arch_condition`` and ``proportion_change`` take
+    derivatives along the creases or compare with the smooth closed forms, which a
+    polyline meets only to O(1/N²) (measured in ``tests/test_panels.py``); ``isometry``,
+    ``ruling_quad_planarity`` and ``ground_plane`` have exact panel counterparts above;
+    ``fold_angles`` compares every fold edge with 2α, and a panel's fold lines fold by
+    their own angle (``tan(ρ/2) = sin(φ/2) / sin β · tan α``), which isometry and
+    planarity hold to (a wrong ρ breaks the panels).
+
 Adding a check is one entry in :data:`CHECKS`: a :class:`CheckSpec` with a measurement
 ``frame -> Residual`` and its order and cap; a test must damage a design so that it fails.
 """
@@ -51,11 +71,13 @@ from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice, Pattern
 from ..geometry.mesh import edges_faces
 from ..geometry.mesh import fold_angles as mesh_fold_angles
+from ..geometry.panels import PanelLattice
 from ..geometry.structure import State, Structure
 from ..geometry.topology import CORNER_KINDS, CORNERS, STRIPS, Topology
 from ..kernel.errors import InputError
 from ..vault.assembly import Vault
 from . import measure
+from .mechanism import CertifiedMechanism, certified_mechanism
 
 __all__ = ["Check", "CheckSpec", "Certificate", "Frame", "Residual", "Shared", "CHECKS", "ROUNDING", "certify"]
 
@@ -65,6 +87,8 @@ ROUNDING = 32.0
 _EPS = float(np.finfo(float).eps)
 #: Fewest samples of the half-sampled design: the measurements' 5-point stencils need room.
 _MIN_COARSE = 9
+#: Largest :attr:`Mechanism.clearance <curvefold.analysis.mechanism.Mechanism.clearance>` of a clear count.
+CLEARANCE = 1e-3
 #: Statuses, best first.
 STATUSES = ("pass", "insufficient resolution", "fail")
 
@@ -112,6 +136,17 @@ class Shared:
         return float(self.flat_lengths.min())
 
     @cached_property
+    def bars(self) -> np.ndarray:
+        """Every edge, then both diagonals of every quad, (E + 2F, 2): what keeps a rigid panel's shape."""
+        q = self.quads
+        return np.concatenate([self.topology.edges_vertices, q[:, [0, 2]], q[:, [1, 3]]])
+
+    @cached_property
+    def bar_lengths(self) -> np.ndarray:
+        """Lengths of :attr:`bars` in the crease pattern, (E + 2F,)."""
+        return measure.edge_lengths(self.flat_coords, self.bars)
+
+    @cached_property
     def creases(self) -> tuple[np.ndarray, np.ndarray]:
         """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
         top = self.topology
@@ -146,7 +181,7 @@ class Frame:
 
     @property
     def samples(self) -> int:
-        return len(self.crease.s)
+        return len(self.crease.curve.s)
 
     @property
     def step(self) -> float:
@@ -274,19 +309,25 @@ class CheckSpec:
     ----------
     name : str
         Stable identifier (a JSON key).
-    scope : {"crease", "frame", "vault"}
-        ``"crease"``: curve 1 of a single fold and of every frame of a structure;
-        ``"frame"``: every frame of a structure; ``"vault"``: a vault at its design angle.
+    scope : {"crease", "frame", "vault", "panels", "panel_vault", "mechanism"}
+        ``"crease"``: curve 1 of a single fold and of every frame of a smooth structure
+        (the smooth crease a panel structure samples); ``"frame"``: every frame of a smooth
+        structure; ``"vault"``: a smooth vault at its design angle; ``"panels"``: every
+        frame of a structure of rigid panels; ``"panel_vault"``: a panel vault at its
+        design angle; ``"mechanism"``: a panel structure's mechanism, once.
     measures : str
         What is measured, from which built geometry, against what.
     unit : str
         Unit of the values (after normalising by the quantity's scale).
     order : int
-        p: the residual of a correct design falls as h^p.
+        p: the residual of a correct design falls as h^p; 0 for an exact construction,
+        whose residual is rounding: the tolerance is then the residual's floor alone.
     cap : float
-        Largest meaningful tolerance, in ``unit``.
+        Largest meaningful tolerance, in ``unit`` (infinite for order 0).
     measure : callable
         ``Frame -> Residual``; None when the check does not apply to that frame.
+    rounding : str
+        For order 0, the floor in words: the rounding model the tolerance is.
     """
 
     name: str
@@ -296,10 +337,13 @@ class CheckSpec:
     order: int
     cap: float
     measure: Callable[[Frame], Residual | None] = field(repr=False)
+    rounding: str = ""
 
     @property
     def model(self) -> str:
         """The error model in words."""
+        if self.order == 0:
+            return f"exact construction, the residual is rounding: tolerance = {self.rounding}"
         power = str(self.order).translate(str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹"))
         return (f"error ∝ h{power}: tolerance = |r(2h) − r(h)|/2 + rounding (Richardson error "
                 f"|r(2h) − r(h)|/{2**self.order - 1} × safety {(2**self.order - 1) / 2:g}); cap {self.cap:g} {self.unit}")
@@ -369,12 +413,16 @@ class Certificate:
         The largest fold angle 2α (degrees, to 1.5°) up to which every check passes at
         this sampling, when it passes at every certified frame; None otherwise.
     samples : int
+        Samples along curve 1 (vertices along each crease of a panel structure).
+    mechanism : CertifiedMechanism or None
+        A panel structure's mechanism: degrees of freedom and singular values.
     """
 
     checks: tuple[Check, ...]
     fold_angles: tuple[float, ...] = ()
     holds_up_to: float | None = None
     samples: int = 0
+    mechanism: CertifiedMechanism | None = None
 
     @property
     def passed(self) -> bool:
@@ -540,6 +588,51 @@ def _proportion_change(frame: Frame) -> Residual:
     return Residual(values, _accumulated(frame) / float(widths.min()), lambda i: labels[i[0]])
 
 
+def _panel_isometry(frame: Frame) -> Residual:
+    shared = frame.shared
+    values = np.abs(measure.edge_lengths(frame.coords, shared.bars) / shared.bar_lengths - 1)
+    edges, kinds = len(shared.topology.edges_vertices), shared.topology.edges_kind
+
+    def name(i: tuple[int, ...]) -> str:
+        e = i[0]
+        return f"edge {e} ({kinds[e]})" if e < edges else f"panel {(e - edges) % len(shared.quads)}, a diagonal"
+
+    return Residual(values, 4 * frame.ulp / float(shared.bar_lengths.min()), name)
+
+
+def _panel_ground_plane(frame: Frame) -> Residual:
+    """|z| of every foot over the vault's size; the floor adds the tilt the arch root's residual leaves."""
+    vertices = frame.state.vertices
+    size = float(np.abs(vertices).max())
+    uv = frame.structure.curves_uv
+    return Residual(np.abs(vertices[:, [0, -1], 2]) / size, frame.ulp / size + 3 * frame.vault.arch.residual,
+                    lambda i: f"curve {tuple(uv[i[0]].tolist())}, " + ("first", "last")[i[1]] + " vertex")
+
+
+def _generic_states(frame: Frame) -> tuple[CertifiedMechanism, tuple]:
+    """The certified mechanism and its states away from the flat one (half and full design angle)."""
+    analysis = certified_mechanism(frame.structure)
+    return analysis, analysis.states[1:]
+
+
+def _scope_note(analysis: CertifiedMechanism) -> str:
+    return f" ({analysis.scope}: the dense SVD is bounded)" if analysis.scope else ""
+
+
+def _mechanism_dof(frame: Frame) -> Residual:
+    analysis, states = _generic_states(frame)
+    flat = analysis.states[0]
+    return Residual(np.array([abs(m.dof - 1) for m in states], float), 0.0,
+                    lambda i: f"{states[i[0]].label}: {states[i[0]].dof} internal DOF (nullity {states[i[0]].nullity}){_scope_note(analysis)}; "
+                              f"flat: {flat.dof}, first-order lifts of the flat sheets")
+
+
+def _mechanism_clearance(frame: Frame) -> Residual:
+    analysis, states = _generic_states(frame)
+    return Residual(np.array([m.clearance for m in states]), CLEARANCE,
+                    lambda i: f"{states[i[0]].label}: gap {states[i[0]].gap:.2g} between null and stiff singular values{_scope_note(analysis)}")
+
+
 def _accumulated(frame: Frame) -> float:
     """Rounding accumulated over n integration steps: ROUNDING ulps × √n, in model units."""
     return frame.ulp * math.sqrt(frame.samples)
@@ -606,6 +699,35 @@ CHECKS: tuple[CheckSpec, ...] = (
               "w_R(s0/2)/w_R(0) and p_xz = w_R/w_L at s0/2, measured between the tangent lines of the base tube's "
               "built creases, against exp(a κ0 s0 cot α/π) and p_xy × change²",
               "relative", 6, 1e-6, _proportion_change),
+    CheckSpec("panel_isometry", "panels",
+              "|ℓ/ℓ₀ − 1| of the four sides and both diagonals of every panel against the crease pattern (the flat "
+              "state): each panel keeps its shape",
+              "relative", 0, math.inf, _panel_isometry,
+              rounding="4 × 32 ulps of the largest coordinate over the shortest side or diagonal (a length carries the "
+                       "rounding of its two ends)"),
+    CheckSpec("panel_planarity", "panels",
+              "distance of each panel's fourth corner from the plane of the other three, over its diagonal: every panel "
+              "stays planar",
+              "relative", 0, math.inf, _quad_planarity,
+              rounding="4 × 32 ulps of the largest coordinate over the shortest edge"),
+    CheckSpec("panel_ground_plane", "panel_vault",
+              "|z| of the first and last vertex of every polyline at the design angle, relative to the vault's size: "
+              "both end sections stand on the ground (the discrete Eq. 20, (x_N − x_0)·n₀ = 0)",
+              "relative", 0, math.inf, _panel_ground_plane,
+              rounding="32 ulps of the largest coordinate over the size, plus 3 × the arch root's residual (the sine of "
+                       "the chord's angle to the first end section, which tilts the far one by twice that)"),
+    CheckSpec("mechanism_dof", "mechanism",
+              "|DOF − 1| at half and full design angle: DOF = nullity − 6 of the Jacobian of every edge length, both panel "
+              "diagonals and every panel's planarity, welded seams and bonds (curvefold.analysis.mechanism), counted "
+              "below the rank tolerance 1e-9 σ_max. The flat state has more, first-order only (reported)",
+              "DOF", 0, math.inf, _mechanism_dof,
+              rounding="0: a count; the null singular values of a state built to rounding lie near 1e-15 σ_max"),
+    CheckSpec("mechanism_clearance", "mechanism",
+              "how near the rank tolerance (1e-9 σ_max) the nearest singular value lies, max min(σ/tol, tol/σ), at half "
+              "and full design angle",
+              "", 0, math.inf, _mechanism_clearance,
+              rounding="1e-3: the count holds for any tolerance a thousand times larger or smaller; rounding puts the "
+                       "null singular values near 1e-15 σ_max, a million times below it"),
 )
 
 
@@ -641,10 +763,10 @@ class _Outcome:
 def _judge(spec: CheckSpec, fine: Residual, coarse: Residual, samples: int, label: str) -> _Outcome:
     value, index = fine.worst
     where = label + (fine.locate(index) if index >= 0 else "")
-    tolerance = fine.change(coarse) / 2 + fine.floor
+    tolerance = fine.floor if spec.order == 0 else fine.change(coarse) / 2 + fine.floor
     if not (math.isfinite(value) and math.isfinite(tolerance)):
         return _Outcome("fail", math.nan, tolerance, where + " (not a number)", None)
-    if value > tolerance or tolerance <= spec.cap:  # more than the discretisation explains, or certified
+    if spec.order == 0 or value > tolerance or tolerance <= spec.cap:  # exact, more than the discretisation explains, or certified
         return _Outcome("pass" if value <= tolerance else "fail", value, tolerance, where, None)
     if fine.floor >= spec.cap / 4:  # rounding alone fills the cap: more samples cannot help
         return _Outcome("insufficient resolution", value, tolerance, where + " (rounding)", None)
@@ -666,12 +788,13 @@ def _frame(shared: Shared, vault: Vault | None, fold_angle: float | None) -> Fra
     return Frame(state.lattice.crease, shared, state, vault)
 
 
-def _measure(specs: Sequence[CheckSpec], fine: Frame, coarse: Frame, label: str) -> dict[str, _Outcome]:
+def _measure(specs: Sequence[CheckSpec], fine: Frame, coarse: Frame | None, label: str) -> dict[str, _Outcome]:
+    """Each spec's outcome on a frame (``coarse``, the half-sampled one, is read by orders > 0 only)."""
     out = {}
     for spec in specs:
         residual = spec.measure(fine)
         if residual is not None:
-            out[spec.name] = _judge(spec, residual, spec.measure(coarse), fine.samples, label)
+            out[spec.name] = _judge(spec, residual, spec.measure(coarse) if spec.order else None, fine.samples, label)
     return out
 
 
@@ -682,12 +805,13 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     Parameters
     ----------
     crease : Crease
-        The single curved fold, or curve 1 of the structure.
+        The single curved fold, or curve 1 of the structure (not read: the structure's own).
     structure : Structure, optional
         A tube, block or vault stack. It is certified as built (at its design angle) and
         refolded from its pattern to 0° (the crease pattern), to its design angle and to
         every angle of ``fold_angles``; then the largest fold angle where every check still
-        passes is found.
+        passes is found. A structure of rigid panels gets the panel checks and its
+        mechanism, and the smooth crease it samples the crease checks (see the module notes).
     vault : Vault, optional
         Adds the ground-plane, arch and proportion checks at the design angle.
     fold_angles : sequence of float, optional, keyword-only
@@ -705,6 +829,9 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     """
     from ..geometry.sheets import _angles
 
+    if structure is not None and isinstance(structure.lattice, PanelLattice):
+        extra = [] if fold_angles is None else _angles(fold_angles, degrees, "fold_angles").tolist()
+        return _certify_panels(structure, vault, extra)
     if structure is not None:
         crease = structure.lattice.crease
     elif fold_angles is not None:
@@ -736,15 +863,42 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
             outcomes[name].append(outcome)
     checks = tuple(_check(spec, outcomes[spec.name], len(outcomes[spec.name])) for spec in specs)
     motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope != "vault")
-    return Certificate(checks, tuple(angles), _holds_up_to(run, max(angles)) if motion_passes else None, n)
+    return Certificate(checks, tuple(angles), _holds_up_to(run, max(angles), ("crease", "frame")) if motion_passes else None, n)
 
 
-def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float) -> float:
-    """Largest 2α ≥ ``start`` (to 1.5°) where every crease and frame check passes, by bisection."""
+def _certify_panels(structure: Structure, vault: Vault | None, extra: list[float]) -> Certificate:
+    """:func:`certify` of a structure of rigid panels: its exact checks in every frame, its mechanism
+    once, and the crease checks of the smooth crease it samples."""
+    source = structure.lattice.source
+    crease_checks = () if source is None else certify(source.crease).checks
+    design = float(structure.lattice.crease.fold_angle)
+    angles = sorted({0.0, design, *map(float, extra)})
+    specs = [s for s in CHECKS if s.scope in ("panels", "mechanism") or (s.scope == "panel_vault" and vault is not None)]
+    shared = Shared(structure)
+
+    def run(angle: float | None, scopes: tuple[str, ...]) -> dict[str, _Outcome]:
+        label = f"2α = {design:g}° as built: " if angle is None else f"2α = {angle:g}°: "
+        return _measure([s for s in specs if s.scope in scopes], _frame(shared, vault, angle), None, label)
+
+    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
+    for angle in (None, *angles):
+        for name, outcome in run(angle, ("panels", "panel_vault") if angle is None else ("panels",)).items():
+            outcomes[name].append(outcome)
+    mechanism = [s for s in specs if s.scope == "mechanism"]
+    for name, outcome in _measure(mechanism, _frame(shared, vault, None), None, "").items():  # its states name themselves
+        outcomes[name].append(outcome)
+    checks = tuple(_check(spec, outcomes[spec.name], len(outcomes[spec.name])) for spec in specs)
+    motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope == "panels")
+    return Certificate(crease_checks + checks, tuple(angles), _holds_up_to(run, max(angles), ("panels",)) if motion_passes else None,
+                       len(structure.lattice.s), certified_mechanism(structure))
+
+
+def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float, scopes: tuple[str, ...]) -> float:
+    """Largest 2α ≥ ``start`` (to 1.5°) where every check of ``scopes`` passes, by bisection."""
     lo, hi = start, 180.0
     while hi - lo > 1.5:
         mid = 0.5 * (lo + hi)
-        ok = all(o.status == "pass" for o in run(mid, ("crease", "frame")).values())
+        ok = all(o.status == "pass" for o in run(mid, scopes).values())
         lo, hi = (mid, hi) if ok else (lo, mid)
     return round(lo, 1)
 

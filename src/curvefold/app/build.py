@@ -8,9 +8,10 @@ from functools import cached_property
 from ..geometry.crease import Crease
 from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice
+from ..geometry.panels import PanelLattice
 from ..geometry.sampling import Sampling, choose_sampling
 from ..geometry.structure import Structure
-from ..vault.assembly import Vault, VaultDesign, vault_samples
+from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
 from .design import Design
 
 __all__ = ["Built", "build", "vault_design", "fit_vault_targets"]
@@ -26,9 +27,11 @@ class Built:
     vault : Vault or None
         Set for kind "vault".
     structure : Structure or None
-        Set for kinds "vault", "tube" and "block".
+        Set for kinds "vault", "tube" and "block" (on a
+        :class:`~curvefold.geometry.panels.PanelLattice` for a design with panels).
     crease : Crease or None
-        Set for kind "crease" (a single curved fold); for the others, curve 1's crease.
+        Set for kind "crease" (a single curved fold); for the others, curve 1's smooth
+        crease (the one the panels sample, for a design with panels).
     """
 
     design: Design
@@ -43,7 +46,8 @@ class Built:
 
 
 def vault_design(design: Design) -> VaultDesign:
-    """The :class:`VaultDesign` of a design of kind "vault" (an even sample count is raised by one).
+    """The :class:`VaultDesign` of a design of kind "vault" (an even sample count and an odd panel
+    count are raised by one).
 
     Raises
     ------
@@ -61,6 +65,7 @@ def vault_design(design: Design) -> VaultDesign:
         layers=v.layers,
         direction=1 if v.direction == "+" else -1,
         samples=vault_samples(design.samples, where=f"{design.source}: samples"),
+        panels=vault_panels(v.panels),
     )
 
 
@@ -90,7 +95,8 @@ def build(design: Design) -> Built:
     """
     if design.kind == "vault":
         vault = Vault.from_design(vault_design(design))
-        return Built(design, vault, vault.structure, vault.lattice.crease)
+        smooth = vault.lattice.source if isinstance(vault.lattice, PanelLattice) else vault.lattice
+        return Built(design, vault, vault.structure, smooth.crease)
     if design.kind == "crease":
         c = design.crease
         k2, beta_left = design.function("kappa_2d"), design.function("beta_left")
@@ -104,5 +110,7 @@ def build(design: Design) -> Built:
     crease = Crease.from_curve(curve, fold_angle=c.fold_angle)
     params = design.tube if design.kind == "tube" else design.block
     lattice = Lattice.from_crease(crease, params.width_left, params.width_right)
+    if c.panels:
+        lattice = PanelLattice.from_lattice(lattice, c.panels)
     structure = Structure.tube(lattice) if design.kind == "tube" else Structure.from_cells(lattice, params.cells)
     return Built(design, None, structure, crease)

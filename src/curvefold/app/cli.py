@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.foldcheck import CHECK_SPECS
+from ..analysis.mechanism import RTOL
 from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.validate import Spec
@@ -267,6 +268,15 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument(_flag(spec), dest=spec.name, metavar=spec.name.upper(), help=spec.describe().replace("%", "%%"))
     p.add_argument("--rebuild", action="store_true", help="build the design the file records (curvefold:design) again and compare every coordinate")
     _add_output(p, None)
+
+    p = sub.add_parser("mechanism", help="degrees of freedom of a panel structure's FOLD file",
+                       description="Build the constraint Jacobian of every folded frame of a FOLD file (edge lengths, both diagonals "
+                       "and the planarity of every quad, vertices welded where the frames agree: seams and bonds) and report its "
+                       "singular values and internal degrees of freedom (nullity - 6) with the gap between null and nonzero ones. "
+                       "Write the file with 'curvefold tube|block|vault --panels N'.")
+    p.add_argument("file", type=Path, help="a .fold file with a crease pattern and folded frames")
+    p.add_argument("--rtol", type=float, default=RTOL, help=f"rank tolerance relative to the largest singular value (default {RTOL:g})")
+    _add_output(p, None)
     return parser
 
 
@@ -334,7 +344,8 @@ def _certificate_lines(payload: dict) -> list[str]:
     lines = [f"  certificate        {sum(c['passed'] for c in cert)}/{len(cert)} checks pass"]
     frames = payload.get("certificate_frames", {})
     if frames.get("holds_up_to") is not None:
-        lines[0] += f" in every frame, and up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples"
+        at = " (rigid panels)" if "mechanism" in payload else f" at {frames['samples']} samples"
+        lines[0] += f" in every frame, and up to 2α = {frames['holds_up_to']:g}°{at}"
     lines += [f"    {c['name']}: {c['status']} at {c['where']}" + (f"; use ≥ {c['samples_needed']} samples" if c["samples_needed"] else "")
               for c in cert if not c["passed"]]
     return lines
@@ -436,6 +447,20 @@ def _rebuilt_fold(doc, path: Path):
                    faces=record.get("faces", "triangles"), keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])
 
 
+def cmd_mechanism(args: argparse.Namespace) -> int:
+    from ..analysis.mechanism import analyse_fold
+
+    frames = analyse_fold(args.file, rtol=args.rtol)
+    payload = {"file": args.file, "frames": [m.to_dict() for m in frames]}
+    lines = [f"{args.file}: {len(frames)} folded frame{'s' * (len(frames) != 1)}, {frames[0].unknowns} unknowns, {frames[0].constraints} constraints"]
+    for m in frames:
+        gap = f"gap {m.gap:.2e}".replace("inf", "∞")
+        state = "" if m.consistent else f"; INCONSISTENT: the frame breaks its constraints by {m.residual:.2e} (relative)"
+        lines.append(f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, residual {m.residual:.1e}{state}")
+    _emit(args, payload, lines)
+    return 0 if all(m.consistent for m in frames) else 1
+
+
 def cmd_atlas(args: argparse.Namespace) -> int:
     from ..vault.atlas import workers_spec
     from .outputs import write_atlas
@@ -516,7 +541,8 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
         return 0
     if args.command in DEFAULT_OUT:
         return cmd_structure(args.command, args)
-    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "atlas": cmd_atlas, "designer": cmd_designer}[args.command](args)
+    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism, "atlas": cmd_atlas,
+            "designer": cmd_designer}[args.command](args)
 
 
 def run() -> None:  # console-script entry point

@@ -51,6 +51,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..geometry.curve import MAX_SAMPLES
+from ..geometry.panels import PANELS
 from ..io.formats import OUTPUT_SPECS, default_formats
 from ..kernel.errors import InputError
 from ..kernel.expr import Expression, compile_expression
@@ -124,6 +125,7 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
         Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s"),
         Spec("length", "real", 6.0, "(0, inf)", "model units", help="arc length of curve 1"),
         _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
+        PANELS,
     ),
     "tube": _section(_width("left", 0.3), _width("right", 0.3)),
     "block": _section(
@@ -200,16 +202,19 @@ class VaultParams:
     radius: float
     layers: int
     direction: Literal["+", "-"]
+    panels: int = 0
 
 
 @dataclass(frozen=True)
 class CurveParams:
-    """``[curve]``: curve 1 of a tube or block, with κ and τ given at ``fold_angle``."""
+    """``[curve]``: curve 1 of a tube or block, with κ and τ given at ``fold_angle``, and the
+    number of rigid planar panels along it (0: the smooth structure)."""
 
     kappa: FunctionValue
     tau: FunctionValue
     length: float
     fold_angle: float
+    panels: int = 0
 
 
 @dataclass(frozen=True)

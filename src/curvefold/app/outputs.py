@@ -88,6 +88,8 @@ def structure_payload(built: Built) -> dict:
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
     payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
                                      "samples": certificate.samples}
+    if certificate.mechanism is not None:  # rigid panels
+        payload["mechanism"] = certificate.mechanism.to_dict()
     return payload
 
 

@@ -22,6 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..analysis.mechanism import certified_mechanism
+from ..geometry.panels import PanelLattice
 from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
 
@@ -114,15 +116,18 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file, and one FOLD file per sheet, flat with its target fold
-    angles (loadable by Origami Simulator)."""
+    """The structure's FOLD file (folded at the design angle; a panel structure also flat and
+    half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
+    by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
-    files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"],
-                            fold_angles=[structure.lattice.crease.fold_angle], unit=MODEL_UNIT, metadata=meta, keep=keep,
-                            design=built.design.to_dict())]
+    design = structure.lattice.crease.fold_angle
+    # panels: the flat and half-folded states too, for `curvefold mechanism`
+    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) else [design]
+    files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
+                            unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
     for sheet in sheets(structure, keep=keep):
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
@@ -176,4 +181,6 @@ def _pictures(built: Built, folder: Path) -> list:
                         "folding-motion": plots.plot_motion_strip(built.vault)}
         else:
             figures[built.design.kind] = plots.plot_structure(structure)
+        if isinstance(lattice, PanelLattice):
+            figures["singular-values"] = plots.plot_singular_values(certified_mechanism(structure).states)
     return [path for name, fig in figures.items() for path in plots.save_figure(fig, folder / name, formats=("png",))]

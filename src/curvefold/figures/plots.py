@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
     from PIL import Image
 
+    from ..analysis.mechanism import Mechanism
     from ..geometry.crease import Crease
     from ..geometry.lattice import Lattice
     from ..geometry.structure import State, Structure
@@ -56,6 +57,7 @@ __all__ = [
     "plot_structure",
     "plot_crease",
     "write_motion_gif",
+    "plot_singular_values",
     "save_figure",
 ]
 
@@ -135,13 +137,16 @@ def _nice_length(span: float) -> float:
     return float(10 ** (k + 1))  # pragma: no cover
 
 
-def _legend_creases(ax: Axes, kinds: Sequence[str], **kwargs: Any) -> None:
+def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwargs: Any) -> None:
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
+    from ..geometry.panels import PanelLattice
+
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
     handles = [Line2D([], [], color=KIND_COLORS[k], lw=1.5, label=names[k]) for k in ("fold", "seam", "junction") if k in set(kinds)]
-    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="developable strips"))
+    panels = isinstance(lattice, PanelLattice)
+    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="rigid planar panels" if panels else "developable strips"))
     ax.legend(handles=handles, fontsize=7, frameon=False, **kwargs)
 
 
@@ -487,11 +492,12 @@ def plot_vault(
     drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
     shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
     angle_value = float(d.fold_angle if angle is None else angle)
+    panels = f", {d.panels} panels per crease" if d.panels else ""
     ax.set_title(
-        f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}, 2α = {angle_value:g}°",
+        f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°",
         fontsize=10,
     )
-    _legend_creases(ax, scene.roles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
+    _legend_creases(ax, scene.roles, vault.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
     return fig
 
 
@@ -590,7 +596,7 @@ def plot_structure(
     what = "Tube" if k == 1 else f"Cellular block of {k} cells"
     shown = "" if drawn == k else f" ({drawn} drawn)"
     ax.set_title(f"{what}{shown}, 2α = {state.fold_angle:.4g}°", fontsize=10)
-    _legend_creases(ax, scene.roles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
+    _legend_creases(ax, scene.roles, structure.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
     return fig
 
 
@@ -771,6 +777,47 @@ def write_motion_gif(
     with atomic_path(target) as tmp:
         images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=int(round(1000 * frame_seconds)), loop=0)
     return target
+
+
+# -- mechanism -------------------------------------------------------------------------------------
+
+
+def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singular values of the constraint Jacobian") -> Figure:
+    """The singular values of panel structures' constraint Jacobians, smallest first, one line per state.
+
+    Each state's values are divided by its largest and drawn against their rank from the
+    smallest (log–log), with its rank tolerance: those on or below it are the first-order
+    motions (6 of them rigid), and the gap above them shows how clear the count is.
+
+    Parameters
+    ----------
+    mechanisms : sequence of Mechanism
+        From :func:`curvefold.analysis.mechanism.analyse` or ``analyse_fold``.
+    title : str, keyword-only
+
+    Returns
+    -------
+    Figure
+    """
+    if len(mechanisms) == 0:
+        raise InputError("mechanisms must hold at least one analysed state")
+    fig = _figure(figsize=(6.4, 4.6))
+    ax = fig.add_subplot()
+    palette = ["#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02"]
+    tiny = np.finfo(float).tiny
+    for k, m in enumerate(mechanisms):
+        s = m.singular_values[::-1] / m.singular_values[0]
+        gap = f"gap {m.gap:.1e}".replace("inf", "∞")
+        ax.loglog(np.arange(1, len(s) + 1), np.maximum(s, tiny), ".-", ms=3, lw=0.8, color=palette[k % len(palette)],
+                  label=f"{m.label}: {m.dof} internal DOF ({m.nullity} null), {gap}")
+        ax.axhline(m.tolerance / m.singular_values[0], color="#999999", lw=0.8, ls="--", zorder=0)
+    ax.text(1.05, mechanisms[0].tolerance / mechanisms[0].singular_values[0], "rank tolerance", fontsize=8, color="#666666", va="bottom")
+    ax.set_xlabel("rank from the smallest")
+    ax.set_ylabel("σ / σ_max")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="major", lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="lower right")
+    return fig
 
 
 # -- output ----------------------------------------------------------------------------------------

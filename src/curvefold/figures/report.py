@@ -16,7 +16,8 @@ import numpy as np
 __all__ = ["plain", "report_html", "QUANTITIES", "describe_file", "natural_key"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
-_PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "regression-domain.png", "width-proportion.png")
+_PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "singular-values.png", "regression-domain.png",
+                  "width-proportion.png")
 #: Pictures shown across the whole width (small multiples).
 _WIDE = ("sections.png",)
 
@@ -152,13 +153,37 @@ def _certificate_table(payload: dict) -> str:
     if angles:
         listed = ", ".join(f"{a:g}°" for a in angles)
         motion = f"<p>Certified as built and in the frames 2α = {e(listed)}."
-        if frames.get("holds_up_to") is not None:
+        panels = bool(payload.get("mechanism"))
+        if frames.get("holds_up_to") is not None and panels:
+            motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° (rigid panels: their residuals are rounding "
+                       "at any angle; the search ends within 1.5° of 180°).")
+        elif frames.get("holds_up_to") is not None:
             motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples (past it the error "
                        "of the folded state, growing as κ = κ_2D / cos α, outgrows a cap).")
         else:
-            motion += f" At {frames['samples']} samples not every check passes in every frame (see below)."
-        motion += "</p>"
+            motion += " Not every check passes in every frame (see below)." if panels else \
+                f" At {frames['samples']} samples not every check passes in every frame (see below)."
+        motion += " The crease checks measure the smooth crease the panels sample.</p>" if panels else "</p>"
     return f"{motion}<table class=certificate>{head}{rows}</table>"
+
+
+def _mechanism_table(mechanism: dict) -> str:
+    """A panel structure's degrees of freedom at each analysed state, with its smallest singular values."""
+    e = html.escape
+    scope = f" of {e(mechanism['scope'])} (the dense SVD is bounded)" if mechanism["scope"] else ""
+    head = ("<tr><th>state</th><th>internal DOF</th><th>nullity</th><th>smallest singular values / σ_max</th><th>gap</th>"
+            "<th>clearance</th><th>residual</th></tr>")
+    rows = ""
+    for m in mechanism["states"]:
+        smallest = ", ".join(f"{v / m['sigma_max']:.1e}" for v in m["smallest_singular_values"][:9])
+        rows += (f"<tr><td>{e(m['label'])}</td><td class=num>{m['dof']}</td><td class=num>{m['nullity']}</td><td>{smallest}, …</td>"
+                 f"<td class=num>{'∞' if m['gap'] is None else _sci(m['gap'])}</td><td class=num>{_sci(m['clearance'])}</td>"
+                 f"<td class=num>{_sci(m['residual'])}</td></tr>")
+    return ("<h2>Mechanism</h2><p>Degrees of freedom of the rigid panels" + scope + ": the first-order motions are the null "
+            "space of the Jacobian of every edge length, both diagonals and the planarity of every panel, seams and bonds "
+            "welded; six of them move the whole rigidly. A singular value counts as null at or below 1e-9 σ_max. The flat "
+            "state's extra ones lift the flat sheets at first order only.</p>"
+            f"<table>{head}{rows}</table>")
 
 
 def report_html(payload: dict) -> str:
@@ -171,6 +196,7 @@ def report_html(payload: dict) -> str:
         mesh = ("<h2>Meshes of the files</h2><p>The 3D, FOLD and crease-pattern files keep, tube by tube, the fewest samples "
                 "that stay within the accuracy asked; measured:</p>"
                 f"<table>{_rows(payload['mesh'], MESH_QUANTITIES)}</table>")
+    mechanism = _mechanism_table(payload["mechanism"]) if payload.get("mechanism") else ""
     design = e(json.dumps(payload.get("design", {}), indent=2, default=plain))
     paper = ""
     if payload.get("paper_comparison"):
@@ -210,6 +236,7 @@ pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}
 {mesh}
 {paper}
 <h2>Certificate</h2>{certificate}
+{mechanism}
 <h2>Design</h2><pre>{design}</pre>
 <h2>Files</h2><table>{links}</table>
 </body></html>

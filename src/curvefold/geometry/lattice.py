@@ -23,7 +23,9 @@ lattice it describes; ``curvefold.io.pattern`` is the printed crease pattern.)
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 
@@ -33,8 +35,9 @@ from ..kernel.functions import Constant, ScalarFunction, check_finite
 from ..kernel.lie import GAUSS3_WEIGHTS
 from .crease import Crease, half_angle, ruling_vectors
 from .curve import SpaceCurve, gauss_nodes, integrate_frenet
+from .topology import Topology
 
-__all__ = ["Lattice", "Pattern", "RegressionDomain", "lattice_points", "log_width_ratio"]
+__all__ = ["Lattice", "Pattern", "RegressionDomain", "check_curves", "lattice_points", "log_width_ratio"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -318,20 +321,12 @@ class Lattice(FrozenArrays):
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
         """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is valid."""
-        uv = np.atleast_2d(np.asarray(uv, float)).reshape(-1, 2)
-        margin = self.domain.margin(uv)
-        bad = np.flatnonzero(~(margin > 0))
-        if bad.size:
-            i = bad[np.argmin(margin[bad])]
-            u, v = uv[i]
-            direction = uv[i] / np.abs(uv[i]).max()
-            lam = float(self.domain.extent(direction))
-            t = float(self.domain.where_limited(uv[i]))
-            raise RegressionError(
-                f"{name}: lattice curve (u, v) = ({u:g}, {v:g}) passes the curve of regression "
-                f"(Eq. 17 speed factor {margin[i]:.3g} ≤ 0, worst at t = {t:.4g}, s = {t * self.crease.curve.length:.4g}); "
-                f"along this direction the limit is (u, v) = ({lam * direction[0]:.4g}, {lam * direction[1]:.4g})"
-            )
+        check_curves(self.domain, self.crease.curve.length, uv, name=name)
+
+    def topology(self, cell_curves: np.ndarray, faces: Literal["triangles", "quads"] = "triangles", *,
+                 keep: Sequence[np.ndarray] | None = None) -> Topology:
+        """The mesh of tubes on these cells' lattice curves, keeping the samples ``keep`` (:meth:`Topology.tubes`)."""
+        return Topology.tubes(cell_curves, len(self.s), faces=faces, keep=keep)
 
     # -- rigid folding ------------------------------------------------------------------------
     def _folded_curve1(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray]:
@@ -404,6 +399,28 @@ class _RefoldedTorsion(ScalarFunction):
     def derivative(self, s: np.ndarray) -> np.ndarray:
         k2, beta = self.kappa_2d, self.beta
         return self.tan_alpha * (k2.derivative(s) / np.tan(beta(s)) - k2(s) * beta.derivative(s) / np.sin(beta(s)) ** 2)
+
+
+def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, name: str = "cells") -> None:
+    """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is inside ``domain``.
+
+    The message names the curve, its worst speed factor and where (t and s = t · length),
+    and the limit along its direction.
+    """
+    uv = np.atleast_2d(np.asarray(uv, float)).reshape(-1, 2)
+    margin = domain.margin(uv)
+    bad = np.flatnonzero(~(margin > 0))
+    if bad.size:
+        i = bad[np.argmin(margin[bad])]
+        u, v = uv[i]
+        direction = uv[i] / np.abs(uv[i]).max()
+        lam = float(domain.extent(direction))
+        t = float(domain.where_limited(uv[i]))
+        raise RegressionError(
+            f"{name}: lattice curve (u, v) = ({u:g}, {v:g}) passes the curve of regression "
+            f"(Eq. 17 speed factor {margin[i]:.3g} ≤ 0, worst at t = {t:.4g}, s = {t * length:.4g}); "
+            f"along this direction the limit is (u, v) = ({lam * direction[0]:.4g}, {lam * direction[1]:.4g})"
+        )
 
 
 def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.ndarray) -> np.ndarray:

@@ -20,6 +20,11 @@ and flat (the crease pattern):
 The longest accurate steps have the best-shaped triangles, except where a step is long
 beside the rulings; where the accurate steps are short beside them (right next to the
 curve of regression) accuracy wins, and the smallest corner is reported as measured.
+
+A structure of rigid panels (:mod:`curvefold.geometry.panels`) keeps every vertex: its
+polylines are the creases themselves, a few per panel, and two panels joined into one quad
+would not be planar (:meth:`PanelLattice.topology <curvefold.geometry.panels.PanelLattice.topology>`
+refuses it). Its resolution is measured and reported the same way.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
 from ..kernel.lie import cross
 from .mesh import edges_faces
+from .panels import PanelLattice
 from .structure import Structure
 from .topology import Topology
 
@@ -291,11 +297,15 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
     size = float(np.ptp(states[0].reshape(-1, 3), axis=0).max())
     limits = (tolerance * size, float(tolerance), float(max_bend))
     middle = (n - 1) // 2
+    panels = isinstance(structure.lattice, PanelLattice)
     keep, deviation, stretch, bend, smallest = [], 0.0, 0.0, 0.0, np.inf
     for rows in structure.cell_curves:
         curves = states[:, rows]  # (2, 4, n, 3)
-        first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
-        picks = np.array(first + second[-2::-1], dtype=np.int64)
+        if panels:  # every panel vertex
+            picks = np.arange(n)
+        else:
+            first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
+            picks = np.array(first + second[-2::-1], dtype=np.int64)
         keep.append(picks)
         angles, stretches, bends = _step_shape(curves, picks[:-1], picks[1:])
         smallest, stretch, bend = min(smallest, float(angles.min())), max(stretch, float(stretches.max())), max(bend, float(bends.max()))

@@ -18,7 +18,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -29,6 +29,9 @@ from .lattice import Lattice
 from .mesh import Mesh
 from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells
 
+if TYPE_CHECKING:  # pragma: no cover
+    from .panels import PanelLattice
+
 __all__ = ["Structure", "State", "drawable"]
 
 
@@ -38,16 +41,18 @@ class Structure(FrozenArrays):
 
     Attributes
     ----------
-    lattice : Lattice
+    lattice : Lattice or PanelLattice
+        Smooth lattice curves, or the polylines of rigid planar panels
+        (:class:`~curvefold.geometry.panels.PanelLattice`).
     cells : (K, 2) ndarray of int
         Cell (i, j) spans [i, i+1] × [j, j+1] in (u, v).
     """
 
-    lattice: Lattice
+    lattice: Lattice | PanelLattice
     cells: np.ndarray
 
     @classmethod
-    def from_cells(cls, lattice: Lattice, cells: Sequence[Sequence[int]]) -> Structure:
+    def from_cells(cls, lattice: Lattice | PanelLattice, cells: Sequence[Sequence[int]]) -> Structure:
         """A structure of the given cells, refused if any crease passes regression.
 
         Parameters
@@ -77,12 +82,12 @@ class Structure(FrozenArrays):
         return structure
 
     @classmethod
-    def tube(cls, lattice: Lattice) -> Structure:
+    def tube(cls, lattice: Lattice | PanelLattice) -> Structure:
         """The tube of cell [0, 1]²."""
         return cls.from_cells(lattice, [(0, 0)])
 
     @classmethod
-    def diagonal(cls, lattice: Lattice, count: int, *, direction: int = 1, layers: int = 1) -> Structure:
+    def diagonal(cls, lattice: Lattice | PanelLattice, count: int, *, direction: int = 1, layers: int = 1) -> Structure:
         """Tubes stacked along the lattice diagonal, curve 3 of one being curve 1 of the next.
 
         Parameters
@@ -132,24 +137,27 @@ class Structure(FrozenArrays):
         return np.broadcast_to(row, (len(self.cells), 4)).copy()
 
     def topology(self, faces: Literal["triangles", "quads"] = "triangles", *, keep: Sequence[np.ndarray] | None = None) -> Topology:
-        """The mesh of the tubes and their sheets (:meth:`Topology.tubes`).
+        """The mesh of the tubes and their sheets, as the lattice puts it on its curves.
 
         Parameters
         ----------
         faces : {"triangles", "quads"}
-            Two triangles or one quad per ruling quad (planar only to O(h³), which the
-            triangles' diagonals carry). Both number the vertices alike.
+            On a smooth lattice (:meth:`Topology.tubes`), two triangles or one quad per
+            ruling quad (planar only to O(h³), which the triangles' diagonals carry); both
+            number the vertices alike. On a panel lattice every quad is a planar panel
+            (:meth:`Topology.panels`), whatever ``faces`` asks.
         keep : sequence of (m_k,) array_like of int, optional, keyword-only
             The samples each tube's mesh keeps (e.g. ``Sampling.keep`` of
             :func:`curvefold.geometry.sampling.choose_sampling`); default every sample.
+            A panel mesh keeps every vertex: it refuses to be thinned.
         """
         if faces == "triangles" and keep is None:
             return self._triangles
-        return Topology.tubes(self.cell_curves, len(self.lattice.s), faces=faces, keep=keep)
+        return self.lattice.topology(self.cell_curves, faces, keep=keep)
 
     @cached_property
     def _triangles(self) -> Topology:
-        return Topology.tubes(self.cell_curves, len(self.lattice.s))
+        return self.lattice.topology(self.cell_curves, "triangles")
 
     # -- states ------------------------------------------------------------------------------
     def state(self, fold_angle: float | None = None, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> State:
@@ -173,7 +181,7 @@ class State(FrozenArrays):
     Attributes
     ----------
     structure : Structure
-    lattice : Lattice
+    lattice : Lattice or PanelLattice
         The lattice at this fold angle.
     vertices : (M, n, 3) ndarray
         Every lattice curve of the structure (rows of ``structure.curves_uv``) at the
@@ -181,7 +189,7 @@ class State(FrozenArrays):
     """
 
     structure: Structure
-    lattice: Lattice
+    lattice: Lattice | PanelLattice
     vertices: np.ndarray
 
     @property

@@ -17,8 +17,8 @@ A :class:`Topology` is the mesh that a structure's lattice curves are put on: wh
 lattice curve and sample every vertex is, the faces and edges with their kinds, the face
 groups, the seam ids and the sheets with their vertex maps. Writers, sheets and
 measurements read it; nobody recomputes it. :meth:`Topology.tubes` builds the tube mesh
-(4 ruled strips per tube, triangles or planar-to-O(h³) quads); another topology (e.g.
-rigid planar panels) is another constructor returning the same value.
+(4 ruled strips per tube, triangles or planar-to-O(h³) quads); :meth:`Topology.panels`
+the mesh of rigid planar panels (:mod:`curvefold.geometry.panels`), the same value.
 
 The single rule for FOLD assignments is :func:`fold_assignment`.
 """
@@ -26,7 +26,7 @@ The single rule for FOLD assignments is :func:`fold_assignment`.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
@@ -212,7 +212,7 @@ class SheetTopology(FrozenArrays):
 class Topology(FrozenArrays):
     """The mesh a structure's lattice curves are put on, with its sheets.
 
-    All arrays are read-only. Build it with :meth:`tubes`.
+    All arrays are read-only. Build it with :meth:`tubes` or :meth:`panels`.
 
     Attributes
     ----------
@@ -325,6 +325,33 @@ class Topology(FrozenArrays):
             edges_seam=seam,
             sheets=tuple(sheets),
         )
+
+    @classmethod
+    def panels(cls, cell_curves: np.ndarray, samples: int) -> Topology:
+        """Closed tubes of rigid planar panels: :meth:`tubes` with quads, the rulings fold lines.
+
+        The numbering, faces, sheets and seams are those of ``tubes(..., faces="quads")``;
+        each quad is one exactly planar panel (no diagonals), and the segments between
+        consecutive panels of a strip, rulings of the smooth strips, are fold lines here:
+        kind ``"fold"``, with measured fold angles and M/V assignments (the end ones stay
+        ``"boundary"``).
+
+        Parameters
+        ----------
+        cell_curves : (K, 4) array_like of int
+            Lattice polyline at corners 1–4 of every tube.
+        samples : int
+            Vertices N + 1 ≥ 2 per polyline.
+
+        Examples
+        --------
+        >>> quads = Topology.tubes([[0, 1, 3, 2]], 3, faces="quads")
+        >>> panels = Topology.panels([[0, 1, 3, 2]], 3)
+        >>> sorted(set(quads.edges_kind[panels.edges_kind != quads.edges_kind].tolist()))
+        ['ruling']
+        """
+        quads = cls.tubes(cell_curves, samples, faces="quads")
+        return replace(quads, edges_kind=np.where(quads.edges_kind == "ruling", "fold", quads.edges_kind))
 
     def coords(self, curves: np.ndarray) -> np.ndarray:
         """Vertex positions from lattice curves (..., M, n, 3); shape (..., V, 3)."""

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..geometry.panels import PanelLattice
 from ..geometry.sheets import _angles, _check_structure, _design_angle, folding_motion
 from ..geometry.structure import Structure
 from . import gltf, mesh3d, rhino
@@ -40,7 +41,7 @@ def write_3d(
 ) -> tuple[Path, ...]:
     """Write the folded structure as 3D files; the GLB holds the folding motion.
 
-    OBJ and 3dm hold one quad per ruling quad, GLB, STL and PLY two triangles (their
+    OBJ and 3dm hold one quad per ruling quad (per panel), GLB, STL and PLY two triangles (their
     formats know triangles only). The GLB's base pose is the state of OBJ, STL, PLY and
     3dm; the other states of the motion are its morph targets.
 
@@ -95,5 +96,6 @@ def write_3d(
         elif fmt == "ply":
             out.append(mesh3d.write_ply(target, mesh))
         else:
-            out.append(rhino.write_3dm(target, quads, structure.topology("quads", keep=keep), unit=unit, metadata=static_meta))
+            out.append(rhino.write_3dm(target, quads, structure.topology("quads", keep=keep), unit=unit, metadata=static_meta,
+                                       degree=1 if isinstance(structure.lattice, PanelLattice) else 3))
     return tuple(out)

@@ -3,13 +3,15 @@
 What a Rhino user works with, each kind on its own layer:
 
 * ``Sheets``: one mesh object per developed sheet (``"tube 1 · sheet A"``), one quad per
-  ruling quad, double-precision vertices;
+  ruling quad (per panel, for rigid panels), double-precision vertices;
 * ``Strips``: each developable strip as a ruled NURBS surface between its two crease
   curves (``"tube 1 · strip 1"``): the two curves share their parameter, so the lines of
   equal parameter, the surface's isocurves across the strip, are the rulings at the kept
   samples (and close to them between);
 * ``Fold``, ``Seam``: every crease of every tube as a cubic NURBS curve through its
   samples (interpolating, parameter t in [0, 1] shared by all creases);
+  with ``degree=1`` (rigid panels) the creases are their polylines, and each strip,
+  ruled between two of them, is its planar panels exactly;
 * ``Boundary``: the end sections of every tube, closed polylines as degree-1 NURBS curves.
 
 The unit system is the model's (``"unit"``, the model unit, is written as metres, the
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -44,11 +47,11 @@ LAYERS = (
 )
 
 
-def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray):
-    """The cubic (fewer points: lower degree) NURBS curve through ``points`` (m, 3) at parameters t (m,)."""
+def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
+    """The NURBS curve of ``degree`` (fewer points: lower) through ``points`` (m, 3) at parameters t (m,)."""
     from scipy.interpolate import make_interp_spline
 
-    spline = make_interp_spline(t, points, k=min(3, len(t) - 1))
+    spline = make_interp_spline(t, points, k=min(degree, len(t) - 1))
     curve = rhino3dm.NurbsCurve(3, False, spline.k + 1, len(spline.c))
     for i, knot in enumerate(spline.t[1:-1].tolist()):  # Rhino leaves out the end knots
         curve.Knots[i] = knot
@@ -65,6 +68,7 @@ def write_3dm(
     unit: str = "unit",
     metadata: Mapping | None = None,
     version: int = 0,
+    degree: int = 3,
 ) -> Path:
     """Write one state to a Rhino 3dm file (see the module notes).
 
@@ -82,6 +86,9 @@ def write_3dm(
         Design parameters, written as document user text ``curvefold:<key>``.
     version : int
         3dm archive version (0 = the newest rhino3dm writes).
+    degree : {3, 1}
+        Of the crease curves: cubic through the samples of smooth creases, 1 for the
+        polylines of rigid panels.
 
     Returns
     -------
@@ -96,6 +103,8 @@ def write_3dm(
     faces = np.asarray(mesh.faces_vertices)
     if faces.shape[1] != 4 or (faces < 0).any() or not np.array_equal(faces, topology.faces_vertices):
         raise InputError("write_3dm needs a mesh of ruling quads on the given topology (state.mesh(faces='quads'))")
+    if degree not in (1, 3):
+        raise InputError(f"degree must be 1 or 3, got {degree!r}")
     meta = check_metadata(metadata)
     x = np.asarray(mesh.vertices_coords, float)
     if not np.isfinite(x).all():
@@ -128,18 +137,21 @@ def write_3dm(
     for g in np.unique(topology.faces_group).tolist():
         rows = faces[topology.faces_group == g]
         sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
-        a, b = (_nurbs_curve(rhino3dm, x[v], t[v]) for v in sides)
+        a, b = (_nurbs_curve(rhino3dm, x[v], t[v], degree) for v in sides)
         model.Objects.AddSurface(rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
                                  attributes("Strips", f"tube {g // 4 + 1} · strip {g % 4 + 1}"))
 
+    # creases run along one lattice curve (a panel's fold lines, kind "fold" too, run across)
+    ends = topology.vertex_curve[mesh.edges_vertices]
+    along = replace(mesh, edges_kind=np.where((ends[:, 0] == ends[:, 1]) | (mesh.edges_kind == "boundary"), mesh.edges_kind, "ruling"))
     for layer, kind in (("Fold", "fold"), ("Seam", "seam"), ("Boundary", "boundary")):
-        for i, chain in enumerate(crease_polylines(mesh, kind)):
+        for i, chain in enumerate(crease_polylines(along, kind)):
             if kind == "boundary":
                 points = [rhino3dm.Point3d(*p) for p in x[chain].tolist()]
                 curve = rhino3dm.PolylineCurve(points)
             else:
                 chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
-                curve = _nurbs_curve(rhino3dm, x[chain], t[chain])
+                curve = _nurbs_curve(rhino3dm, x[chain], t[chain], degree)
             model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}"))
 
     for key, value in meta.items():

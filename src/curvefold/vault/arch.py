@@ -12,6 +12,19 @@ and end on one plane it leaves upward). With reflection symmetry ``κ(s) = κ(s�
 
 The paper's family is ``κ = κ₀``, ``τ = a κ₀ sin(2π s / s₀)`` with s₁ = s₀; all lengths
 scale with 1/κ₀, so it is solved for the dimensionless κ₀ s₀.
+
+A vault of rigid panels (:mod:`curvefold.geometry.panels`) stands when every polyline's end
+vertex lies on the ground. Those at vertex 0 are ``x_0 + u L_0 + v R_0``: all in the plane P₀
+through x_0 spanned by L_0 and R_0, and likewise P_N. The pattern sampled from a
+reflection-symmetric design is mirror-symmetric, hence so is every folded state (the mirror
+is the plane bisecting x_0 x_N and takes vertex k to N − k), and P_N is P₀'s mirror image:
+the two coincide exactly when P₀ is perpendicular to the mirror,
+
+    (x_N − x_0)·n₀ = 0,   n₀ ∝ L_0 × R_0               (the discrete Eq. 20)
+
+at the design angle, solved for κ₀ s₀ by :func:`solve_panel_arch`. The end fold lines leave
+the vertices at β(0) = 90° from the smooth crease's tangent, so the panel arch approaches
+the smooth one at second order in 1/N.
 """
 
 from __future__ import annotations
@@ -22,9 +35,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..geometry.curve import gauss_nodes, integrate_frenet
+from ..geometry.crease import Crease, half_angle
+from ..geometry.curve import SpaceCurve, gauss_nodes, integrate_frenet
+from ..geometry.lattice import Pattern
+from ..geometry.panels import PanelPattern, check_panels
 from ..kernel.errors import ConvergenceError, InputError
-from ..kernel.lie import exp_rotation, product_quaternions
+from ..kernel.functions import ScalarFunction
+from ..kernel.lie import cross, exp_rotation, product_quaternions
 
 __all__ = [
     "A_MAX",
@@ -34,6 +51,9 @@ __all__ = [
     "proportion_change",
     "GeneralArch",
     "solve_general_arch",
+    "HarmonicTorsion",
+    "panel_arch_condition",
+    "solve_panel_arch",
 ]
 
 #: Largest torsion amplitude with a standing arch: there the two roots of Eq. (20) near
@@ -218,6 +238,84 @@ def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, poi
     root = float(to_x(u))
     ends = symmetric_arch_condition(np.array([root - xtol, root + xtol]), a, steps=steps)
     return (root, float(np.abs(ends).max())) if ends[0] * ends[1] <= 0 else None
+
+
+@dataclass(frozen=True)
+class HarmonicTorsion(ScalarFunction):
+    """τ(s) = amplitude · sin(2π s / period), with its exact derivative."""
+
+    amplitude: float
+    period: float
+
+    def value(self, s: np.ndarray) -> np.ndarray:
+        return self.amplitude * np.sin(2 * np.pi * s / self.period)
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        return self.amplitude * (2 * np.pi / self.period) * np.cos(2 * np.pi * s / self.period)
+
+
+def panel_arch_condition(kappa0_s0: float, a: float, panels: int, *, fold_angle: float = 90.0) -> float:
+    """``(x_N − x_0)·n₀ / |x_N − x_0|`` of the panel arch of κ = 1, τ = a sin(2π s / s₀), s₀ = κ₀ s₀.
+
+    The crease pattern of the smooth arch at the design angle 2α (degrees), sampled with
+    ``panels`` panels (:meth:`~curvefold.geometry.panels.PanelPattern.from_pattern`) and
+    folded to 2α; n₀ is the unit normal of its end section at vertex 0. Zero when both end
+    sections lie in one plane (see the module notes).
+    """
+    x = float(kappa0_s0)
+    curve = SpaceCurve.from_curvature(1.0, HarmonicTorsion(a, x), x, samples=3)
+    pattern = Pattern.from_crease(Crease.from_curve(curve, fold_angle=fold_angle), 1.0, 1.0)
+    points, left, right, _ = PanelPattern.from_pattern(pattern, panels).fold(np.array([half_angle(fold_angle)]))
+    normal = cross(left[0, 0], right[0, 0])
+    chord = points[0, -1] - points[0, 0]
+    return float(normal @ chord / (np.linalg.norm(normal) * np.linalg.norm(chord)))
+
+
+def solve_panel_arch(a: float, panels: int, *, fold_angle: float = 90.0, xtol: float = 1e-14) -> ArchRoot:
+    """Solve the discrete Eq. (20) of a panel arch for κ₀ s₀, next to the smooth root.
+
+    The smooth root (:func:`solve_symmetric_arch`) starts a search for a sign change of
+    :func:`panel_arch_condition` (the two roots differ by O(1/N²)); Brent's method refines it.
+
+    Parameters
+    ----------
+    a : float
+        Torsion amplitude (as in :func:`solve_symmetric_arch`).
+    panels : int
+        Panels along each crease.
+    fold_angle : float, keyword-only
+        Design angle 2α in degrees, at which the arch stands.
+    xtol : float, keyword-only
+        Width of the final bracket on κ₀ s₀, relative.
+
+    Raises
+    ------
+    ConvergenceError
+        If the family has no standing arch for ``a``, or the panel arch none near it.
+
+    Examples
+    --------
+    >>> root = solve_panel_arch(0.3, 24)
+    >>> abs(root.kappa0_s0 / solve_symmetric_arch(0.3).kappa0_s0 - 1) < 1e-3
+    True
+    """
+    from scipy.optimize import brentq
+
+    n = check_panels(panels)
+    half_angle(fold_angle)
+    x0 = solve_symmetric_arch(a).kappa0_s0
+    f = lambda x: panel_arch_condition(x, a, n, fold_angle=fold_angle)  # noqa: E731
+    f0 = f(x0)
+    for step in x0 * 1e-3 * 4.0 ** np.arange(6):  # up to 1 % of κ₀s₀ … 100 %
+        for other in (x0 - step, x0 + step):
+            if other > 0 and f(other) * f0 <= 0:
+                lo, hi = sorted((x0, other))
+                root = brentq(f, lo, hi, xtol=xtol * x0, rtol=4 * np.finfo(float).eps, maxiter=200)
+                return ArchRoot(float(a), float(root), abs(f(root)), (lo, hi))
+    raise ConvergenceError(
+        f"no standing arch of {n} panels for a = {a:g} near the smooth one (κ0·s0 = {x0:.6g}): "
+        "the discrete Eq. (20) has no root there; use more panels"
+    )
 
 
 def proportion_change(a: float, kappa0_s0: float, *, fold_angle: float = 90.0) -> float:

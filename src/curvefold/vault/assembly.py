@@ -21,21 +21,24 @@ import numpy as np
 from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, check_samples
 from ..geometry.lattice import Lattice
+from ..geometry.panels import PANELS, PanelLattice
 from ..geometry.structure import Structure
 from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
-from ..kernel.functions import ScalarFunction
+from ..kernel.lie import cross
 from ..kernel.validate import Spec
-from .arch import ArchRoot, proportion_change, solve_symmetric_arch
+from .arch import ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
 
 __all__ = [
     "VaultDesign",
     "Vault",
+    "standing",
     "HarmonicTorsion",
     "VAULT_SPECS",
     "MIN_SAMPLES",
     "vault_samples",
+    "vault_panels",
     "max_tubes",
     "MAX_TUBES_SEARCH",
     "DEFAULT_TUBES_CAP",
@@ -59,6 +62,7 @@ VAULT_SPECS: tuple[Spec, ...] = (
     Spec("radius", "real", 1.0, "(0, inf)", "model units", help="1/kappa0"),
     Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes"),
     Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v"),
+    PANELS,
 )
 _SPEC = {spec.name: spec for spec in VAULT_SPECS}
 
@@ -79,6 +83,17 @@ def vault_samples(samples: int, *, where: str = "samples") -> int:
     if samples < MIN_SAMPLES:
         raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}")
     return samples | 1
+
+
+def vault_panels(panels: int) -> int:
+    """The panel count a vault is built with for a requested count: the next even count.
+
+    Examples
+    --------
+    >>> vault_panels(0), vault_panels(23), vault_panels(24)
+    (0, 24, 24)
+    """
+    return panels + panels % 2
 
 
 @dataclass(frozen=True)
@@ -107,6 +122,9 @@ class VaultDesign:
     samples : int
         Samples along each crease (odd and ≥ :data:`MIN_SAMPLES`, so that the apex is a
         sample; :func:`vault_samples` makes any count odd).
+    panels : int
+        0 for the smooth vault, or the number N of rigid planar panels along each crease
+        (even, so that the apex is a vertex; :func:`vault_panels` makes any count even).
     """
 
     a: float = 0.3
@@ -118,6 +136,7 @@ class VaultDesign:
     layers: int = 1
     direction: int = 1
     samples: int = 401
+    panels: int = 0
 
     def __post_init__(self) -> None:
         for name in ("a", "p_xy", "width", "radius", "layers"):
@@ -131,20 +150,25 @@ class VaultDesign:
             raise InputError(f"tubes must be an integer ≥ 1 and ≤ {tubes.hi:g} (or None for the maximum), got {self.tubes!r}")
         if self.direction not in (1, -1):
             raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
+        if PANELS.check(self.panels) % 2:
+            raise InputError(f"panels must be 0 (smooth) or even for a vault (the apex is a vertex), got {self.panels}")
 
 
-@dataclass(frozen=True)
-class HarmonicTorsion(ScalarFunction):
-    """τ(s) = amplitude · sin(2π s / period), with its exact derivative."""
+def standing(lattice: PanelLattice) -> PanelLattice:
+    """A panel arch moved onto the ground: its first end section on z = 0, the span along +y.
 
-    amplitude: float
-    period: float
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        return self.amplitude * np.sin(2 * np.pi * s / self.period)
-
-    def derivative(self, s: np.ndarray) -> np.ndarray:
-        return self.amplitude * (2 * np.pi / self.period) * np.cos(2 * np.pi * s / self.period)
+    x_0 goes to the origin, the normal of the end section at vertex 0 (``L_0 × R_0``, turned
+    toward the first crease edge, which rises) to +z and the span ``x_N − x_0`` to +y; with
+    the discrete Eq. (20) solved the other end section lies on z = 0 too.
+    """
+    points = lattice.crease.curve.points
+    up = cross(lattice.left[0], lattice.right[0])
+    up *= np.sign(up @ (points[1] - points[0])) / np.linalg.norm(up)
+    span = points[-1] - points[0]
+    ahead = span - (span @ up) * up
+    ahead /= np.linalg.norm(ahead)
+    rotation = np.stack([cross(ahead, up), ahead, up])
+    return lattice.moved(rotation, -rotation @ points[0])
 
 
 def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SEARCH) -> int:
@@ -187,6 +211,12 @@ class Vault(FrozenArrays):
     def from_design(cls, design: VaultDesign | None = None, **overrides) -> Vault:
         """Solve the arch, place it on the ground and stack the tubes.
 
+        With ``design.panels`` = N > 0 the vault is made of rigid planar panels: the smooth
+        arch's crease pattern sampled with N panels along each crease
+        (:class:`~curvefold.geometry.panels.PanelLattice`), κ₀ s₀ solving the discrete
+        Eq. (20) (:func:`~curvefold.vault.arch.solve_panel_arch`) and the design state
+        placed by :func:`standing`.
+
         Raises
         ------
         ConvergenceError
@@ -198,7 +228,7 @@ class Vault(FrozenArrays):
         from dataclasses import replace
 
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
-        arch = solve_symmetric_arch(design.a)
+        arch = solve_panel_arch(design.a, design.panels, fold_angle=design.fold_angle) if design.panels else solve_symmetric_arch(design.a)
         k0 = 1.0 / design.radius
         s0 = arch.kappa0_s0 / k0
         # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
@@ -215,6 +245,8 @@ class Vault(FrozenArrays):
         w_left = design.width / k0
         try:
             lattice = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
+            if design.panels:
+                lattice = standing(PanelLattice.from_lattice(lattice, design.panels))
         except RegressionError as err:
             raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}") from None
         n_max = max_tubes(lattice, direction=design.direction)
@@ -235,7 +267,11 @@ class Vault(FrozenArrays):
 
     @property
     def proportion_change(self) -> float:
-        """w_R(s₀/2) / w_R(0), predicted in closed form: exp(a κ₀ s₀ cot α / π)."""
+        """w_R(s₀/2) / w_R(0), predicted in closed form: exp(a κ₀ s₀ cot α / π).
+
+        The smooth structure's (at this κ₀ s₀); a panel vault's, measured, differs from it
+        at second order in 1/N.
+        """
         return proportion_change(self.design.a, self.kappa0_s0, fold_angle=self.design.fold_angle)
 
     @property
@@ -306,6 +342,7 @@ class Vault(FrozenArrays):
             "p_xy_measured": p_xy_measured,
             "p_xz": self.p_xz,
             "tubes": int(self.design.tubes),
+            "panels": int(self.design.panels),
             "max_tubes": int(self.max_tubes),
             "span": float(np.linalg.norm(chord)),
             "rise": float(hi[2]),
