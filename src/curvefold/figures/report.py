@@ -7,6 +7,8 @@ import json
 
 import numpy as np
 
+from ..kernel.text import one_line
+
 __all__ = ["plain", "report_html"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
@@ -47,7 +49,7 @@ def report_html(payload: dict) -> str:
     pictures = "".join(f'<figure><img src="{e(f)}" alt="{e(f)}"><figcaption>{e(f)}</figcaption></figure>' for f in shown)
     links = "".join(f'<li><a href="{e(f)}">{e(f)}</a></li>' for f in files)
     passed = sum(c["passed"] for c in payload["certificate"])
-    title = e(payload.get("title") or payload.get("kind", "curvefold"))
+    title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>curvefold — {title}</title>
 <style>
