@@ -1,60 +1,40 @@
-"""The output folder of the command line: files, pictures and the report, written atomically.
+"""The output folder of the command line: files, pictures and the report.
 
-Everything is written into a temporary folder beside the target and renamed onto it at
-the end, so a failure leaves no partial folder; an existing folder is replaced only with
-``force``.
+The folder is checked before any work and written through
+:func:`curvefold.app.folder.output_folder`: into a temporary folder beside the target,
+renamed onto it at the end, never replacing what was not checked (see
+:mod:`curvefold.app.folder`).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import shutil
-import tempfile
 import time
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from ..analysis.certificate import certify
 from ..figures.report import plain, report_html
-from ..io.atomic import atomic_write, folder_mode
+from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
 from ..kernel.errors import InputError
 from .build import Built
+from .folder import OutputTarget, output_folder
 
-__all__ = ["structure_payload", "write_outputs", "write_atlas", "output_folder"]
+__all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json"]
 
 
-@contextmanager
-def output_folder(target: Path, *, force: bool) -> Iterator[Path]:
-    """Yield a fresh temporary folder that becomes ``target`` when the block succeeds."""
-    target = Path(target)
-    if target.exists() and not force:
-        raise InputError(f"output folder {target} exists; pass --force to replace it")
-    if target.exists() and not target.is_dir():
-        raise InputError(f"output path {target} exists and is not a folder")
-    parent = target.parent if str(target.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"cannot write {target}: its parent folder {parent} does not exist or is not a folder")
-    if not os.access(parent, os.W_OK):
-        raise InputError(f"cannot write {target}: its parent folder {parent} is not writable")
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
-    try:
-        yield tmp
-        os.chmod(tmp, folder_mode())
-        if target.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old.", dir=parent))
-            os.replace(target, old / "x")
-            os.replace(tmp, target)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            os.replace(tmp, target)
-    finally:
-        if tmp.exists():
-            shutil.rmtree(tmp, ignore_errors=True)
+def strict_json(value, **kwargs) -> str:
+    """JSON text of ``value`` (NumPy values as plain numbers), refusing NaN and infinities.
+
+    Raises
+    ------
+    ValueError
+        A non-finite number anywhere in ``value``; strict JSON has none.
+    """
+    return json.dumps(value, allow_nan=False, default=plain, **kwargs)
 
 
 def structure_payload(built: Built) -> dict:
@@ -111,17 +91,18 @@ def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[
     return step, bar.stop
 
 
-def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force: bool = False, show_progress: bool = True) -> list[str]:
+def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = None, show_progress: bool = True) -> list[str]:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
     Parameters
     ----------
     built : Built
-    out : Path
+    out : OutputTarget
+        The folder, checked by :func:`curvefold.app.folder.check_output` before the work.
     payload : dict, optional, keyword-only
         :func:`structure_payload` of ``built`` when the caller has it already (it holds
         the certificate, the costliest part); computed here otherwise.
-    force, show_progress : bool, keyword-only
+    show_progress : bool, keyword-only
 
     Returns
     -------
@@ -145,7 +126,7 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out, force=force) as tmp:
+        with output_folder(out) as tmp:
             for label, job in jobs:
                 step(label)
                 started = time.perf_counter()
@@ -153,7 +134,7 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
                 written += [str(Path(f).relative_to(tmp)) for f in files]
                 report["timings"][label] = round(time.perf_counter() - started, 3)
             report["files"] = sorted(written)
-            atomic_write(tmp / "report.json", json.dumps(report, indent=2, default=plain))
+            atomic_write(tmp / "report.json", strict_json(report, indent=2))
             atomic_write(tmp / "report.html", report_html(report))
             written += ["report.json", "report.html"]
     finally:
@@ -161,8 +142,9 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
     return sorted(written)
 
 
-def write_atlas(p_xy_values, a_values, *, out: Path, force: bool, width: float, samples: int, workers: int | None, show_progress: bool) -> dict:
-    """Run the design atlas and write its figure, CSV and JSON into ``out``."""
+def write_atlas(p_xy_values, a_values, *, out: OutputTarget, width: float, samples: int, workers: int | None, show_progress: bool) -> dict:
+    """Run the design atlas and write its figure, CSV and JSON into ``out`` (checked by
+    :func:`curvefold.app.folder.check_output`)."""
     from ..figures.atlas import atlas_figure
     from ..figures.plots import save_figure
     from ..vault.atlas import run_atlas
@@ -181,7 +163,7 @@ def write_atlas(p_xy_values, a_values, *, out: Path, force: bool, width: float, 
         atlas = run_atlas(list(p_xy_values), list(a_values), width=width, samples=samples, workers=workers, progress=progress)
     finally:
         stop()
-    with output_folder(out, force=force) as tmp:
+    with output_folder(out) as tmp:
         atlas.to_csv(tmp / "atlas.csv")
         atlas.to_json(tmp / "atlas.json")
         files = [Path(p).name for p in save_figure(atlas_figure(atlas), tmp / "atlas")]
