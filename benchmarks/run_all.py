@@ -1,6 +1,6 @@
 """Run every benchmark and print one markdown summary table.
 
-Usage: ``python benchmarks/run_all.py [integrator folding arch atlas]`` (default: all).
+Usage: ``python benchmarks/run_all.py [integrator folding arch atlas budget]`` (default: all).
 The table at the end can be pasted into the README's performance section.
 """
 
@@ -17,11 +17,12 @@ import scipy
 
 import bench_arch
 import bench_atlas
+import bench_budget
 import bench_folding
 import bench_integrator
 from _bench import summary_table
 
-BENCHMARKS = {"integrator": bench_integrator, "folding": bench_folding, "arch": bench_arch, "atlas": bench_atlas}
+BENCHMARKS = {"integrator": bench_integrator, "folding": bench_folding, "arch": bench_arch, "atlas": bench_atlas, "budget": bench_budget}
 
 
 def main(argv: list[str] | None = None) -> None:

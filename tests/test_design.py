@@ -349,7 +349,7 @@ def test_overrides_change_kind():
         ('kind = "vault"\n[vault]\na = -0.1', r"a must be in \[0, 3\), got -0\.1"),
         ('kind = "vault"\n[vault]\np_xy = 100.5', r"p_xy must be in \(0, 100\], got 100\.5"),
         ('kind = "vault"\n[vault]\nwidth = 0', r"width must be in \(0, 10\], got 0\.0"),
-        ('kind = "vault"\n[vault]\nradius = -1', r"\[vault\] radius must be > 0 model units, got -1\.0"),
+        ('kind = "vault"\n[vault]\nradius = -1', r"\[vault\] radius must be in \[0\.001, 1000000\] model units \(numerical range\), got -1\.0"),
         ('kind = "vault"\n[vault]\nradius = inf', r"\[vault\] radius must be a finite number, got inf"),
         ('kind = "vault"\n[vault]\nradius = nan', r"radius must be a finite number, got nan"),
         ('kind = "vault"\n[vault]\ntubes = 0', r"tubes must be an integer in \[1, 1000\] or \"max\", got 0"),
@@ -360,7 +360,7 @@ def test_overrides_change_kind():
         ('kind = "vault"\n[output]\npage = [0, 297]', r"\[output\] page width must be in \(0, 10000\] mm, got 0\.0"),
         ('kind = "vault"\n[output]\npage = [210, 1e5]', r"page height must be in \(0, 10000\] mm, got 100000\.0"),
         ('kind = "tube"\n[curve]\nkappa = 0', r"\[curve\] kappa must be > 0 per model unit, got 0\.0"),
-        ('kind = "tube"\n[curve]\nlength = 0', r"\[curve\] length must be > 0 model units, got 0\.0"),
+        ('kind = "tube"\n[curve]\nlength = 0', r"\[curve\] length must be in \[0\.001, 1000000\] model units \(numerical range\), got 0\.0"),
         ('kind = "crease"\n[crease]\nbeta_right = 180', r"\[crease\] beta_right must be in \(0, 180\) degrees, got 180\.0"),
         ('kind = "vault"\n[vault]\na = 1' + "0" * 400, r"\[vault\] a is too large, got an integer of \d+ bits"),
         # expressions

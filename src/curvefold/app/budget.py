@@ -38,20 +38,25 @@ ENVIRONMENT = "CURVEFOLD_MEMORY_BUDGET"
 _MB = 1 << 20
 #: The interpreter with NumPy, SciPy and curvefold loaded (bytes).
 BASE = 80 * _MB
-#: (fixed bytes, bytes per strip sample) of each part of a job: the geometry and the
-#: certificate, each family of formats, and the report's pictures.
-COSTS: dict[str, tuple[float, float]] = {
-    "geometry": (10 * _MB, 600.0),
-    "pattern": (60 * _MB, 6000.0),
-    "fold": (10 * _MB, 2500.0),
-    "model": (40 * _MB, 3500.0),
-    "motion": (40 * _MB, 2800.0),
-    "pictures": (60 * _MB, 2500.0),
+#: (fixed bytes, bytes per strip sample, bytes per squared sample) of each part of a job:
+#: the geometry with the certificate, each family of formats, the report's pictures.
+#: Measured on tubes (2001 to 32001 samples), vaults (401 and 1601 samples, 36 strips), a
+#: block and a crease, each part in a process of its own, and rounded up. The crease
+#: patterns grow with the square of the samples: each glue tab is checked against the
+#: sheet's outline segment by segment (25 bytes × samples², 1.6 GB at 8001 samples).
+COSTS: dict[str, tuple[float, float, float]] = {
+    "geometry": (46 * _MB, 1420.0, 0.0),
+    "pattern": (100 * _MB, 500.0, 25.0),
+    "fold": (35 * _MB, 4200.0, 0.0),
+    "model": (75 * _MB, 5400.0, 0.0),
+    "motion": (100 * _MB, 400.0, 0.0),
+    "pictures": (75 * _MB, 300.0, 0.0),
 }
-#: Bytes of one design of the atlas per sample, in a worker process, and the atlas's figure
-#: and records per design.
-ATLAS_PER_SAMPLE = 600.0 * 4 * DEFAULT_TUBES_CAP
-ATLAS_PER_DESIGN = 2 * _MB
+#: Bytes of the atlas: its figure, each design's records and panel (0.46 MB measured on
+#: 10 × 10 to 30 × 30 grids), and per worker process an interpreter and the geometry of a
+#: vault of up to :data:`DEFAULT_TUBES_CAP` tubes per sample.
+ATLAS_FIGURE, ATLAS_PER_DESIGN = 130 * _MB, 0.5 * _MB
+ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = BASE, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
 
 
 def memory_budget() -> int:
@@ -113,14 +118,19 @@ def _parts(design: Design, files: bool) -> list[str]:
     return [*dict.fromkeys(FORMATS[name].family for name in design.output.formats), "pictures"]
 
 
+def _cost(part: str, samples: int, n: int) -> float:
+    fixed, linear, square = COSTS[part]
+    return fixed + linear * n + square * float(samples) ** 2
+
+
 def estimate(design: Design, *, files: bool) -> Estimate:
     """The peak memory of building ``design`` (and, with ``files``, writing its formats
-    and pictures), from the design alone."""
+    and pictures), from the design alone: the interpreter, the geometry and the costliest
+    file job (they run one after the other)."""
     n = design.samples * _strips(design)
-    costs = {part: COSTS[part][0] + COSTS[part][1] * n for part in _parts(design, files)}
-    largest = max(costs, key=costs.get, default="geometry")
-    geometry = COSTS["geometry"][0] + COSTS["geometry"][1] * n
-    return Estimate(BASE + geometry + costs.get(largest, 0.0), n, largest)
+    jobs = {part: _cost(part, design.samples, n) for part in _parts(design, files)}
+    largest = max(jobs, key=jobs.get, default="geometry")
+    return Estimate(BASE + _cost("geometry", design.samples, n) + jobs.get(largest, 0.0), n, largest)
 
 
 def require_budget(design: Design, *, files: bool) -> Estimate:
@@ -133,24 +143,37 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
     found = estimate(design, files=files)
     if found.total <= budget:
         return found
-    fixed = BASE + COSTS["geometry"][0] + (COSTS[found.largest][0] if found.largest != "geometry" else 0)
-    per_strip_sample = COSTS["geometry"][1] + (COSTS[found.largest][1] if found.largest != "geometry" else 0)
-    fits = int((budget - fixed) / per_strip_sample / _strips(design))
-    what = {"vault": "[vault] tubes or layers (tubes = \"max\" counts as 24)", "block": "[block] cells"}.get(design.kind)
-    lower = [f"samples (at most {fits} fit)" if fits >= 3 else "samples", *([what] if what else [])]
+    strips = _strips(design)
+    fits = _samples_that_fit(design, files, budget)
+    what = {"vault": '[vault] tubes or layers (tubes = "max" counts as 24)', "block": "[block] cells"}.get(design.kind)
+    lower = [f"samples (at most {fits} fit)" if fits else "samples", *([what] if what else [])]
     if found.largest != "geometry":
         lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
     raise InputError(
-        f"{design.source}: this job needs about {_size(found.total)} of memory ({design.samples} samples × "
-        f"{_strips(design)} strips), more than the budget of {_size(budget)} ({ENVIRONMENT}); lower " + ", ".join(lower)
+        f"{design.source}: this job needs about {_size(found.total)} of memory ({design.samples} samples × {strips} strips), "
+        f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower " + ", ".join(lower)
     )
+
+
+def _samples_that_fit(design: Design, files: bool, budget: int) -> int | None:
+    """The largest sample count whose job fits the budget (the estimate grows with it), or None."""
+    from dataclasses import replace
+
+    fits = lambda m: estimate(replace(design, samples=m), files=files).total <= budget  # noqa: E731
+    if not fits(9):
+        return None
+    lo, hi = 9, design.samples  # fits(lo), not fits(hi)
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
+    return lo
 
 
 def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> float:
     """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget."""
     budget = memory_budget()
     processes = workers or min(2, os.cpu_count() or 1)
-    total = BASE * (1 + processes) + processes * ATLAS_PER_SAMPLE * samples + ATLAS_PER_DESIGN * designs
+    total = BASE + ATLAS_FIGURE + ATLAS_PER_DESIGN * designs + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
     if total > budget:
         raise InputError(
             f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} samples, {processes} processes), "

@@ -226,7 +226,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
     p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {_VAULT['a'].requirement}: {grid} (default 0:1.2:5)")
     p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
-    p.add_argument("--samples", metavar="N", help=f"samples per crease, ≥ 21 and {SCHEMA['']['samples'].requirement} (default 201)")
+    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
     p.add_argument("--workers", metavar="N", help=f"parallel processes, {_WORKERS.requirement} (default: up to 2)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
     p.add_argument("--force", action="store_true", help="replace an existing output folder")
@@ -298,7 +298,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     target = None
     if out is not None:
         check_kind(design.output.formats, kind, f"{design.source}: [output] formats")
-        target = check_output(out, force=args.force, inputs=[] if args.design is None else [args.design])
+        target = check_output(out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
     require_budget(design, files=out is not None)
     built = build(design)
     payload = structure_payload(built)
@@ -442,7 +442,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 2
         except (Interrupted, KeyboardInterrupt) as err:
             signum = err.signum if isinstance(err, Interrupted) else signal.SIGINT
-            _error(f"interrupted by {signal.Signals(signum).name}; nothing was left behind")
+            _error(f"interrupted by {signal.Signals(signum).name}")
             return 128 + int(signum)
         except Exception as err:
             hint = "" if debug else " (rerun with --debug for the traceback)"

@@ -56,7 +56,7 @@ from ..kernel.errors import InputError
 from ..kernel.expr import Expression, compile_expression
 from ..kernel.functions import ScalarFunction, as_function
 from ..kernel.validate import REQUIRED, Spec, describe, suggest
-from ..vault.assembly import VAULT_SPECS
+from ..vault.assembly import LENGTHS, LENGTHS_WHY, VAULT_SPECS
 
 __all__ = [
     "Design",
@@ -126,7 +126,7 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
     "curve": _section(
         Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s"),
         Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s"),
-        Spec("length", "real", 6.0, "(0, inf)", "model units", help="arc length of curve 1"),
+        Spec("length", "real", 6.0, LENGTHS, "model units", help="arc length of curve 1", why=LENGTHS_WHY),
         _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
     ),
     "tube": _section(_width("left", 0.3), _width("right", 0.3)),
@@ -140,7 +140,7 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
         Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left"),
         Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)"),
         _fold_angle(60.0, "fold angle 2 alpha(0) at the start of the crease"),
-        Spec("length", "real", 3.0, "(0, inf)", "model units", help="arc length of the crease"),
+        Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY),
         Spec("alpha", "function", None, "(0, 90)", "degrees",
              help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)"),
     ),
@@ -358,6 +358,11 @@ class Design:
                     + suggest(key, allowed)
                 )
         return design_from_dict(data, source=source, base_dir=self.base_dir)
+
+    def tables(self) -> tuple[Path, ...]:
+        """The CSV files the design reads, each once."""
+        columns = (getattr(params, f.name) for s in SECTIONS_OF_KIND[self.kind] for params in [getattr(self, s)] for f in fields(params))
+        return tuple(dict.fromkeys(self.base_dir / c.path for c in columns if isinstance(c, TableColumn)))
 
     def function(self, key: str) -> ScalarFunction:
         """A function-valued key (e.g. ``"kappa"``) as a :class:`ScalarFunction` of arc length.

@@ -16,10 +16,10 @@ What the command line promises about the folder it writes:
   the start. If the target appeared or changed meanwhile it is left as it is, the finished
   output is kept beside it as ``<name>.new`` (or ``<name>.new-2``…) and an
   :class:`~curvefold.kernel.errors.InputError` says where.
-- **Nothing left behind.** On an error or a signal the temporary folder is removed, and
-  the last step runs with SIGINT, SIGTERM and SIGHUP held back; temporary folders of this
-  naming whose process is gone (killed with SIGKILL, a power cut) are removed by the next
-  run that writes beside them.
+- **Nothing left behind.** On an error or a signal the temporary folder is removed; the
+  last step and the cleanup run with SIGINT, SIGTERM and SIGHUP held back. Temporary
+  folders of this naming whose process is gone (killed with SIGKILL, a power cut) are
+  removed by the next run that writes beside them.
 """
 
 from __future__ import annotations
@@ -136,7 +136,8 @@ def output_folder(target: OutputTarget) -> Iterator[Path]:
         with _signals_held():
             _install(tmp, target)
     finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+        with _signals_held():  # a second signal must not stop the cleanup
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 def _install(tmp: Path, target: OutputTarget) -> None:

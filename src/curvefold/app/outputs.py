@@ -76,12 +76,12 @@ def _default_title(built: Built) -> str:
 
 
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
-    """A progress bar on stderr (rich), or nothing."""
-    if not show:
-        return (lambda label: None), (lambda: None)
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    """A progress bar on stderr (rich) when it is a terminal, or nothing."""
+    from rich.progress import BarColumn, TextColumn, TimeElapsedColumn
 
-    bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn(), transient=True)
+    bar = _bar(show, TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn())
+    if bar is None:
+        return (lambda label: None), (lambda: None)
     bar.start()
     task = bar.add_task("writing", total=total)
 
@@ -89,6 +89,18 @@ def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[
         bar.update(task, description=label, advance=1)
 
     return step, bar.stop
+
+
+def _bar(show: bool, *columns):
+    """A transient rich progress bar on stderr if ``show`` and stderr is a terminal, else
+    None: stdout is for the result, and a log of stderr gets nothing but errors."""
+    if not show:
+        return None
+    from rich.console import Console
+    from rich.progress import Progress
+
+    console = Console(stderr=True)
+    return Progress(*columns, transient=True, console=console) if console.is_terminal else None
 
 
 def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = None, show_progress: bool = True) -> list[str]:
@@ -151,10 +163,8 @@ def write_atlas(p_xy_values, a_values, *, out: OutputTarget, width: float, sampl
 
     progress = None
     stop = lambda: None  # noqa: E731
-    if show_progress:
-        from rich.progress import Progress
-
-        bar = Progress(transient=True)
+    bar = _bar(show_progress)
+    if bar is not None:
         bar.start()
         task = bar.add_task("atlas", total=len(p_xy_values) * len(a_values))
         progress = lambda done, total: bar.update(task, completed=done)  # noqa: E731
