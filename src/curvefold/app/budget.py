@@ -10,11 +10,12 @@ The budget is :data:`DEFAULT_BUDGET` (2 GiB) unless the environment variable
 
 The estimate (:func:`estimate`) counts the size of the job as *strip samples*: samples
 along the creases times the strips of the structure (four per cell; a single crease has
-two surfaces). Each part of the job costs a fixed amount plus an amount per strip sample,
-measured on curvefold's own runs (``benchmarks/bench_budget.py`` compares the estimate with
-the measured peak and prints the ratio). The parts run one after the other, so the peak is
-the interpreter, plus the geometry (the structure, its state and the certificate), plus
-the largest of the file jobs.
+two surfaces). Each part of the job costs a fixed amount, an amount per strip sample and,
+for the crease patterns, an amount per squared sample (:data:`COSTS`), measured on
+curvefold's own runs (``benchmarks/bench_budget.py`` compares the estimate with the
+measured peak and prints the ratio). The parts run one after the other, so the peak is the
+interpreter, plus the geometry (the structure, its state and the certificate), plus the
+largest of the file jobs.
 """
 
 from __future__ import annotations
@@ -23,12 +24,12 @@ import os
 import re
 from dataclasses import dataclass
 
-from ..io.formats import FORMATS
+from ..io.formats import FAMILIES, FORMATS
 from ..kernel.errors import InputError
 from ..vault.assembly import DEFAULT_TUBES_CAP
 from .design import Design
 
-__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "estimate", "require_budget", "require_atlas_budget"]
+__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget"]
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
 DEFAULT_BUDGET = 2 << 30
@@ -60,26 +61,29 @@ ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = BASE, COSTS["geometry"][1] * 4 * DEFAULT_TU
 
 
 def memory_budget() -> int:
-    """The budget in bytes: ``CURVEFOLD_MEMORY_BUDGET`` if set, else :data:`DEFAULT_BUDGET`.
+    """The budget in bytes: ``CURVEFOLD_MEMORY_BUDGET`` if set (see :func:`parse_size`),
+    else :data:`DEFAULT_BUDGET`.
 
     Raises
     ------
     InputError
         The variable is not a size.
+    """
+    text = os.environ.get(ENVIRONMENT)
+    return DEFAULT_BUDGET if text is None else parse_size(text, ENVIRONMENT)
+
+
+def parse_size(text: str, name: str) -> int:
+    """A memory size in bytes: a positive number with an optional K, M, G or T (powers of 1024).
 
     Examples
     --------
-    >>> os.environ[ENVIRONMENT] = "1.5G"
-    >>> memory_budget() == 3 << 29
-    True
-    >>> del os.environ[ENVIRONMENT]
+    >>> parse_size("1.5G", "budget") == 3 << 29, parse_size("512 MiB", "budget"), parse_size("4096", "budget")
+    (True, 536870912, 4096)
     """
-    text = os.environ.get(ENVIRONMENT)
-    if text is None:
-        return DEFAULT_BUDGET
     match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)i?B?\s*", text, re.IGNORECASE)
     if match is None or float(match.group(1)) <= 0:
-        raise InputError(f"{ENVIRONMENT} must be a memory size such as 2G, 512M or a number of bytes, got {text!r}")
+        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, got {text!r}")
     return int(float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B"))
 
 
@@ -145,7 +149,7 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
         return found
     strips = _strips(design)
     fits = _samples_that_fit(design, files, budget)
-    what = {"vault": '[vault] tubes or layers (tubes = "max" counts as 24)', "block": "[block] cells"}.get(design.kind)
+    what = {"vault": f'[vault] tubes or layers (tubes = "max" counts as {DEFAULT_TUBES_CAP})', "block": "[block] cells"}.get(design.kind)
     lower = [f"samples (at most {fits} fit)" if fits else "samples", *([what] if what else [])]
     if found.largest != "geometry":
         lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
@@ -182,8 +186,8 @@ def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> 
     return total
 
 
-_FAMILY_NAMES = {"pattern": "the crease patterns", "fold": "the FOLD files", "model": "the 3D models",
-                 "motion": "the folding GIF", "pictures": "the pictures"}
+#: What each part writes, as the subject of a sentence ("the crease patterns").
+_FAMILY_NAMES = {**{family: text.rsplit(" ", 1)[0] for family, text in FAMILIES.items()}, "pictures": "the pictures"}
 
 
 def _size(n: float) -> str:

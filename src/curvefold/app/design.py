@@ -361,8 +361,9 @@ class Design:
 
     def tables(self) -> tuple[Path, ...]:
         """The CSV files the design reads, each once."""
-        columns = (getattr(params, f.name) for s in SECTIONS_OF_KIND[self.kind] for params in [getattr(self, s)] for f in fields(params))
-        return tuple(dict.fromkeys(self.base_dir / c.path for c in columns if isinstance(c, TableColumn)))
+        sections = [getattr(self, section) for section in SECTIONS_OF_KIND[self.kind]]
+        values = [getattr(params, f.name) for params in sections for f in fields(params)]
+        return tuple(dict.fromkeys(self.base_dir / v.path for v in values if isinstance(v, TableColumn)))
 
     def function(self, key: str) -> ScalarFunction:
         """A function-valued key (e.g. ``"kappa"``) as a :class:`ScalarFunction` of arc length.
@@ -430,7 +431,7 @@ def load_design(path: str | os.PathLike) -> Design:
     file = Path(path)
     raw = read_bytes(file, limit=MAX_DESIGN_BYTES, what="design file", name=source)
     try:
-        text = raw.decode("utf-8-sig")  # a byte-order mark, which some editors write, is not TOML
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(f"{source}: design file is not UTF-8 text (bad byte at offset {exc.start})") from None
     return parse_design(text, source=source, base_dir=file.parent)
@@ -467,7 +468,7 @@ def parse_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     if len(text) > MAX_DESIGN_BYTES:
         raise InputError(f"{source}: design text is longer than {MAX_DESIGN_BYTES} characters")
     try:
-        data = tomllib.loads(text.removeprefix("\ufeff"))
+        data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark, which some editors write, is not TOML
     except (RecursionError, MemoryError):
         raise InputError(f"{source}: invalid TOML: nested too deeply") from None
     except ValueError as exc:  # TOMLDecodeError, and integers past Python's digit limit
