@@ -588,6 +588,16 @@ def test_a_non_finite_result_is_an_error_not_json(tmp_path, monkeypatch):
     assert "the result holds a number that is not finite: result.proportion_change = inf" in r.stderr
 
 
+def test_a_non_finite_result_is_never_written(tmp_path, monkeypatch):
+    from curvefold.app import outputs
+
+    payload = outputs.structure_payload
+    monkeypatch.setattr(outputs, "structure_payload", lambda built: payload(built) | {"span": float("nan")})
+    r = run("crease", "--samples", "41", "--out", "c", cwd=tmp_path)  # report.json held NaN
+    assert r.returncode == 1 and "the result holds a number that is not finite: result.span = nan" in r.stderr
+    assert listing(tmp_path) == []
+
+
 def test_the_smallest_fold_angle_named_works(tmp_path):
     r = run("arch", "--a", "1.2", "--fold-angle", "0.482", "--p-xy", "100", "--json", cwd=tmp_path)
     assert r.returncode == 0, r.stderr

@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.formats import FORMATS, check_kind, default_formats
-from ..kernel.errors import CurvefoldError, InputError, InternalError
+from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.text import for_terminal
 from ..kernel.validate import Spec
 from ..vault.assembly import vault_samples
@@ -260,31 +260,13 @@ def _load_design(kind: str, args: argparse.Namespace) -> Design:
 
 
 def _emit(args: argparse.Namespace, payload: dict, lines: Sequence[str]) -> None:
-    """Print the result: strict JSON with ``--json``, else the lines (control characters escaped).
-
-    Raises
-    ------
-    InternalError
-        A non-finite number in the result, named by its key: never printed as a result.
-    """
+    """Print the result: strict JSON with ``--json``, else the lines (control characters
+    escaped). A non-finite number in the result is an error either way
+    (:func:`curvefold.app.outputs.strict_json`)."""
     from .outputs import strict_json
 
-    try:
-        text = strict_json(payload, indent=2)
-    except ValueError:
-        raise InternalError(f"the result holds a number that is not finite: {_non_finite(payload)}") from None
+    text = strict_json(payload, indent=2)
     print(text if args.json else "\n".join(map(for_terminal, lines)))
-
-
-def _non_finite(value, key: str = "result") -> str | None:
-    """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
-    if isinstance(value, dict):
-        return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return next((found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None)
-    if isinstance(value, (float, np.floating)) and not np.isfinite(value):
-        return f"{key} = {value}"
-    return None
 
 
 def cmd_structure(kind: str, args: argparse.Namespace) -> int:

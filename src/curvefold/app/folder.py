@@ -153,7 +153,8 @@ def _install(tmp: Path, target: OutputTarget) -> None:
     try:
         rename_noreplace(path, aside)
     except FileNotFoundError:  # removed meanwhile: nothing to replace
-        return _install(tmp, OutputTarget(path, None))
+        _install(tmp, OutputTarget(path, None))
+        return
     if _identity(aside) != target.replaces:
         rename_noreplace(aside, path)  # not the folder that was checked: put it back
         _conflict(tmp, path, "changed while curvefold was running")

@@ -19,7 +19,7 @@ from ..analysis.certificate import certify
 from ..figures.report import plain, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
-from ..kernel.errors import InputError
+from ..kernel.errors import InputError, InternalError
 from .build import Built
 from .folder import OutputTarget, output_folder
 
@@ -31,10 +31,25 @@ def strict_json(value, **kwargs) -> str:
 
     Raises
     ------
-    ValueError
-        A non-finite number anywhere in ``value``; strict JSON has none.
+    InternalError
+        A non-finite number in ``value``, named by its key (``result.p_xz = inf``): strict
+        JSON has none, and a result that is not finite is never given as one.
     """
-    return json.dumps(value, allow_nan=False, default=plain, **kwargs)
+    try:
+        return json.dumps(value, allow_nan=False, default=plain, **kwargs)
+    except ValueError:
+        raise InternalError(f"the result holds a number that is not finite: {_non_finite(value)}") from None
+
+
+def _non_finite(value, key: str = "result") -> str | None:
+    """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
+    if isinstance(value, dict):
+        return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return next((found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None)
+    if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+        return f"{key} = {value}"
+    return None
 
 
 def structure_payload(built: Built) -> dict:
