@@ -47,6 +47,7 @@ __all__ = ["main", "Interrupted"]
 PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"
+_FORCE_HELP = "replace the output folder if curvefold wrote it (or it is empty)"
 _VAULT = SCHEMA["vault"]
 
 
@@ -188,7 +189,7 @@ def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: ./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written)")
-        g.add_argument("--force", action="store_true", help="replace an existing output folder")
+        g.add_argument("--force", action="store_true", help=_FORCE_HELP)
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
 
@@ -229,7 +230,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
     p.add_argument("--workers", metavar="N", help=f"parallel processes, {_WORKERS.requirement} (default: up to 2)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
-    p.add_argument("--force", action="store_true", help="replace an existing output folder")
+    p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.add_argument("--json", action="store_true", help="print the records as JSON")
 
     p = sub.add_parser("reproduce", help="the paper's example, paper vs computed", description="Reproduce the paper's vault example (a = 0.3, p_xy = 0.75, 2α = 90°) and compare with the printed values.")
