@@ -1,6 +1,6 @@
 """Run every benchmark and print one markdown summary table.
 
-Usage: ``python benchmarks/run_all.py [integrator folding arch atlas designer main_job]`` (default: all).
+Usage: ``python benchmarks/run_all.py [integrator folding arch atlas budget designer main_job]`` (default: all).
 The table at the end can be pasted into the README's performance section.
 """
 
@@ -17,13 +17,22 @@ import scipy
 
 import bench_arch
 import bench_atlas
+import bench_budget
 import bench_designer
 import bench_folding
 import bench_integrator
 import bench_main_job
 from _bench import summary_table
 
-BENCHMARKS = {"integrator": bench_integrator, "folding": bench_folding, "arch": bench_arch, "atlas": bench_atlas, "designer": bench_designer, "main_job": bench_main_job}
+BENCHMARKS = {
+    "integrator": bench_integrator,
+    "folding": bench_folding,
+    "arch": bench_arch,
+    "atlas": bench_atlas,
+    "budget": bench_budget,
+    "designer": bench_designer,
+    "main_job": bench_main_job,
+}
 
 
 def main(argv: list[str] | None = None) -> None:

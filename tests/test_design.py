@@ -295,12 +295,6 @@ def test_overrides_change_kind():
         d.overrides(kind="dome")
 
 
-def test_overrides_keep_budget():
-    d = default_design("vault")
-    with pytest.raises(InputError, match=r"samples × crease lines = 200000 × 4000 = 800000000 exceeds 10000000 \(memory bound"):
-        d.overrides(samples=200_000, tubes=1000)
-
-
 # --------------------------------------------------------------------------------------------
 # Errors
 
@@ -327,7 +321,7 @@ def test_overrides_keep_budget():
         # wrong types
         ('kind = "vault"\n[vault]\nfold_angle = "90"', r"design\.toml: \[vault\] fold_angle must be a number \(degrees\), got string '90'"),
         ('kind = "vault"\n[vault]\na = true', r"\[vault\] a must be a number, got boolean True"),
-        ('kind = "vault"\nsamples = 801.0', r"design\.toml: samples must be an integer in \[3, 200000\] \(memory bound\), got 801\.0"),
+        ('kind = "vault"\nsamples = 801.0', r"design\.toml: samples must be an integer in \[9, 200000\] \(.*\), got 801\.0"),
         ('kind = "vault"\nsamples = "801"', r"samples must be an integer .*, got string '801'"),
         ('kind = "vault"\n[vault]\ntubes = "many"', r"\[vault\] tubes must be an integer in \[1, 1000\] or \"max\", got string 'many'"),
         ('kind = "vault"\n[vault]\ntubes = 2.0', r"tubes must be an integer in \[1, 1000\] or \"max\", got 2\.0"),
@@ -355,23 +349,20 @@ def test_overrides_keep_budget():
         ('kind = "vault"\n[vault]\na = -0.1', r"a must be in \[0, 3\), got -0\.1"),
         ('kind = "vault"\n[vault]\np_xy = 100.5', r"p_xy must be in \(0, 100\], got 100\.5"),
         ('kind = "vault"\n[vault]\nwidth = 0', r"width must be in \(0, 10\], got 0\.0"),
-        ('kind = "vault"\n[vault]\nradius = -1', r"\[vault\] radius must be > 0 model units, got -1\.0"),
+        ('kind = "vault"\n[vault]\nradius = -1', r"\[vault\] radius must be in \[0\.001, 1000000\] model units \(numerical range\), got -1\.0"),
         ('kind = "vault"\n[vault]\nradius = inf', r"\[vault\] radius must be a finite number, got inf"),
         ('kind = "vault"\n[vault]\nradius = nan', r"radius must be a finite number, got nan"),
         ('kind = "vault"\n[vault]\ntubes = 0', r"tubes must be an integer in \[1, 1000\] or \"max\", got 0"),
         ('kind = "vault"\n[vault]\nlayers = 51', r"layers must be an integer in \[1, 50\], got 51"),
-        ('kind = "vault"\nsamples = 2', r"samples must be an integer in \[3, 200000\] \(memory bound\), got 2"),
+        ('kind = "vault"\nsamples = 8', r"samples must be an integer in \[9, 200000\] \(the certificate's differences need 9; memory is budgeted besides\), got 8"),
         ('kind = "vault"\nsamples = 200001', r"samples must be .*, got 200001"),
         ('kind = "vault"\n[output]\nscale = 0.0', r"\[output\] scale must be > 0 output units per model unit, got 0\.0"),
         ('kind = "vault"\n[output]\npage = [0, 297]', r"\[output\] page width must be in \(0, 10000\] mm, got 0\.0"),
         ('kind = "vault"\n[output]\npage = [210, 1e5]', r"page height must be in \(0, 10000\] mm, got 100000\.0"),
         ('kind = "tube"\n[curve]\nkappa = 0', r"\[curve\] kappa must be > 0 per model unit, got 0\.0"),
-        ('kind = "tube"\n[curve]\nlength = 0', r"\[curve\] length must be > 0 model units, got 0\.0"),
+        ('kind = "tube"\n[curve]\nlength = 0', r"\[curve\] length must be in \[0\.001, 1000000\] model units \(numerical range\), got 0\.0"),
         ('kind = "crease"\n[crease]\nbeta_right = 180', r"\[crease\] beta_right must be in \(0, 180\) degrees, got 180\.0"),
         ('kind = "vault"\n[vault]\na = 1' + "0" * 400, r"\[vault\] a is too large, got an integer of \d+ bits"),
-        ('kind = "vault"\nsamples = 200000\n[vault]\ntubes = 20', r"design\.toml: samples × crease lines = 200000 × 80 = 16000000 exceeds 10000000 \(memory bound, about 1 GB\); lower samples or \[vault\] tubes or layers"),
-        ('kind = "block"\nsamples = 200000\n[block]\ncells = [[0,0],[0,1],[1,1],[2,2],[3,3],[4,4],[5,5],[6,6],[7,7],[8,8],[9,9],[10,10],[11,11]]',
-         r"lower samples or \[block\] cells"),
         # expressions
         ('kind = "tube"\n[curve]\nkappa = "1 + x"', r"^design\.toml: \[curve\] kappa: unknown name 'x' \(allowed: s, pi, e\)$"),
         ('kind = "tube"\n[curve]\ntau = "s.__class__"', r"design\.toml: \[curve\] tau: attribute access is not allowed"),
@@ -528,9 +519,9 @@ def test_parse_design_reads_csv_from_base_dir(tmp_path):
 
 
 def test_load_design_file_errors(tmp_path):
-    with pytest.raises(InputError, match=r"missing\.toml: design file not found"):
+    with pytest.raises(InputError, match=r"missing\.toml: cannot read design file: No such file or directory"):
         load_design(tmp_path / "missing.toml")
-    with pytest.raises(InputError, match=r"design file not found \(or not a regular file\)"):
+    with pytest.raises(InputError, match=r"cannot read design file: it is a folder, not a regular file"):
         load_design(tmp_path)
     bad = tmp_path / "bad.toml"
     bad.write_bytes(b'kind = "vault"\ntitle = "\xff"\n')
@@ -538,7 +529,7 @@ def test_load_design_file_errors(tmp_path):
         load_design(bad)
     big = tmp_path / "big.toml"
     big.write_text("#" * (2 << 20))
-    with pytest.raises(InputError, match=r"big\.toml: design file is larger than 1048576 bytes"):
+    with pytest.raises(InputError, match=r"big\.toml: design file is 2097152 bytes, more than the limit of 1048576 bytes"):
         load_design(big)
 
 
@@ -629,8 +620,8 @@ def _valid_value(spec):
         return st.one_of(st.just("max"), st.integers(1, 20))  # within the vertex budget
     if spec.kind == "choice":
         return st.sampled_from(spec.choices)
-    if spec.kind == "text":
-        return st.text(max_size=30)
+    if spec.kind == "text":  # one line, no control characters (those are refused, tests/test_attacks.py)
+        return st.text(st.characters(exclude_categories=("Cc", "Cs", "Zl", "Zp"), exclude_characters="\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"), max_size=30)
     if spec.kind == "flag":
         return st.booleans()
     if spec.kind == "page":

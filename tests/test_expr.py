@@ -275,7 +275,7 @@ def _refused_quickly(text: str, match: str) -> None:
         ("(" * 300 + "s" + ")" * 300, r"too many nested parentheses"),
         ("-" * (MAX_LENGTH - 1) + "s", r"nested too deeply"),
         ("sin(" * 60 + "s" + ")" * 60, r"nested too deeply \(more than 50 levels\)"),
-        ("1+" * 499 + "1", r"nested too deeply"),
+        ("1+" * 499 + "1", rf"more than {MAX_NODES} terms"),  # a flat sum is one level deep, but 999 terms
         # 20 products of 20 factors: 799 terms at depth ~40.
         ("+".join(["*".join(["s"] * 20)] * 20), rf"more than {MAX_NODES} terms"),
         ("s+" * 5000 + "s", rf"expression is 10001 characters long, the limit is {MAX_LENGTH}"),
@@ -290,6 +290,15 @@ def test_limits_are_inclusive():
     assert_array_equal(compile_expression("s**-100")(np.array([1.0])), [1.0])
     assert_array_equal(compile_expression("-" * (MAX_DEPTH - 1) + "s")(S), -S)  # depth exactly 50
     assert compile_expression("1" + " " * (MAX_LENGTH - 1)).constant == 1.0
+
+
+def test_a_chain_of_operations_is_one_level_deep():
+    s = np.linspace(0.5, 2.5, 9)
+    flat = "+".join(["s"] * 51) + "-s*2/s"  # 53 operations along the left operands
+    assert_allclose(compile_expression(flat)(s), 51 * s - 2, rtol=1e-15)
+    assert_array_equal(compile_expression("2+s*3-1/s**2")(s), 2 + s * 3 - 1 / s**2)  # left to right, as Python
+    with pytest.raises(InputError, match="nested too deeply"):
+        compile_expression("s+(" * 51 + "s" + ")" * 51)  # a chain on the right operands nests
 
 
 def test_variable_exponent_is_allowed():

@@ -60,11 +60,26 @@ def test_erratum_paper_kappa0_s0_does_not_solve_eq20():
 
 def test_arch_family_ends_at_a_max():
     assert solve_symmetric_arch(A_MAX - 1e-4).kappa0_s0 > np.pi
+    # the refusal past A_MAX hides no root: the condition stays positive over (π/2, 2π)
+    x = np.linspace(0.5 * np.pi, 2 * np.pi, 4001)
+    assert symmetric_arch_condition(x, A_MAX + 1e-4).min() > 0 > symmetric_arch_condition(x, A_MAX - 1e-4).min()
     for a in (A_MAX + 1e-4, 1.5, 3.0):
         with pytest.raises(ConvergenceError, match=rf"no standing arch for a = {a:g}: .* only for a < 1\.2707"):
             solve_symmetric_arch(a)
     with pytest.raises(InputError, match=r"a \(torsion amplitude\) must be a finite number ≥ 0, got nan"):
         solve_symmetric_arch(float("nan"))
+
+
+def test_a_root_that_fails_its_residual_is_never_returned(monkeypatch):
+    import scipy.optimize
+
+    from curvefold.vault import arch
+
+    monkeypatch.setattr(arch, "_chebyshev_root", lambda *args: None)  # take the Brent fallback
+    assert abs(solve_symmetric_arch(0.3).kappa0_s0 - 3.16571746805) < 1e-10
+    monkeypatch.setattr(scipy.optimize, "brentq", lambda f, lo, hi, **kw: 3.16571746805 + 1e-6)  # off by 1e-6: |f| ≈ slope 0.486 × 1e-6
+    with pytest.raises(ConvergenceError, match=r"for a = 0\.3 was not solved: at κ0·s0 = 3\.16571846805, \|T\(s0/2\)·T\(0\)\| = 4\.86e-07 exceeds 1e-12"):
+        solve_symmetric_arch(0.3)
 
 
 def test_erratum_end_condition_sign(paper_vault):

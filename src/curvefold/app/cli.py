@@ -1,10 +1,14 @@
 """The ``curvefold`` command line.
 
-Every subcommand prints a short human summary, or with ``--json`` one JSON object on
-stdout. User errors print one line on stderr (what is wrong, the allowed range, the value
-given) and exit with status 2; no traceback, no partial output files. Internal errors
-(bugs) print one line asking for a report and exit with status 1 (``--debug`` shows the
-traceback).
+Every subcommand prints a short human summary, or with ``--json`` one strict JSON object
+on stdout (no NaN or infinity: a non-finite result is an error). Exit statuses: 0 done;
+1 a certificate check failed, or a bug (one line asking for a report with the version,
+the traceback only with ``--debug``); 2 a user error (one line on stderr: what is wrong,
+the allowed range, the value given), including a job over the memory budget
+(:mod:`curvefold.app.budget`); 128 + n when stopped by signal n (SIGINT, SIGTERM, SIGHUP),
+after removing what the run had started to write. Warnings are shown only with
+``--debug``; text a user typed is printed with its control characters escaped. The output
+folder is checked before any work and replaced only as :mod:`curvefold.app.folder` says.
 
 The flags of ``vault``, ``tube``, ``block`` and ``crease``, their help and their checks
 are generated from the design schema (:data:`curvefold.app.design.SCHEMA`): one flag per
@@ -17,14 +21,14 @@ default. A flag's value is checked by the key's spec and named as typed
 from __future__ import annotations
 
 import argparse
-import json
+import contextlib
+import re
 import signal
 import sys
 import threading
 import traceback
 import warnings
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from importlib.metadata import version
 from pathlib import Path
 
@@ -34,14 +38,18 @@ from ..analysis.foldcheck import CHECK_SPECS
 from ..analysis.mechanism import RTOL
 from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
+from ..kernel.text import for_terminal
 from ..kernel.validate import Spec
+from ..vault.assembly import vault_samples
+from ..vault.atlas import workers_spec
 from .design import SCHEMA, SECTIONS_OF_KIND, Design, design_from_dict, load_design
 
-__all__ = ["main"]
+__all__ = ["main", "Interrupted"]
 
 PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"
+_FORCE_HELP = "replace the output folder if curvefold wrote it (or it is empty)"
 _VAULT = SCHEMA["vault"]
 #: Port of ``curvefold designer`` unless told.
 DESIGNER_PORT = 8765
@@ -50,25 +58,33 @@ DESIGNER_PORT = 8765
 # -- argument helpers -------------------------------------------------------------------------
 
 
-def _grid(text: str) -> np.ndarray:
-    """``start:stop:count`` or a comma-separated list of numbers."""
-    try:
-        if ":" in text:
-            start, stop, count = text.split(":")
-            n = int(count)
-            if not 1 <= n <= 200:
-                raise argparse.ArgumentTypeError(f"count must be in [1, 200], got {n}")
-            return np.linspace(float(start), float(stop), n)
-        values = np.array([float(v) for v in text.split(",")])
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected start:stop:count or a comma-separated list, got {text!r}") from None
-    if values.size == 0 or values.size > 200 or not np.isfinite(values).all():
-        raise argparse.ArgumentTypeError(f"expected 1 to 200 finite numbers, got {text!r}")
-    return values
+#: Values along one axis of the atlas grid.
+_GRID_COUNT = Spec("count", "integer", 5, "[1, 200]")
+#: Parallel processes of the atlas.
+
+
+def _grid(flag: str, text: str, spec: Spec) -> np.ndarray:
+    """``start:stop:count`` or a comma-separated list of numbers, each checked by ``spec``."""
+    where = f"{flag} {text}: {spec.name}"
+    parts = text.split(":")
+    if len(parts) == 3:
+        count = _GRID_COUNT.check(_from_text(_GRID_COUNT, parts[2], flag), f"{flag} {text}: count")
+        start, stop = (spec.check(_from_text(spec, part, flag), where, shown=part) for part in parts[:2])
+        return np.linspace(start, stop, count)
+    if len(parts) != 1:
+        raise InputError(f"{flag}: expected start:stop:count or a comma-separated list of numbers, got {text!r}")
+    values = text.split(",")
+    _GRID_COUNT.check(len(values), f"{flag} {text}: count")
+    return np.array([spec.check(_from_text(spec, part, flag), where, shown=part) for part in values])
 
 
 class _Parser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line with exit status 2."""
+    """An argument parser whose usage errors are one line with exit status 2, and which
+    reads ``--a -1e-3`` as a value (any number, not only ``-1`` or ``-.5``)."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise InputError(f"{self.prog}: {message}")
@@ -86,7 +102,7 @@ def _flag(spec: Spec) -> str:
     return f"--no-{dashed}" if spec.kind == "flag" and spec.default else f"--{dashed}"
 
 
-def _from_text(spec: Spec, text: str):
+def _from_text(spec: Spec, text: str, flag: str | None = None):
     """A flag's text as the value a design file would hold (checked by the spec afterwards)."""
     try:
         if spec.kind == "real":
@@ -98,7 +114,7 @@ def _from_text(spec: Spec, text: str):
     except ValueError:
         form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
                 "count": f"a whole number ≥ {spec.range.lo:g} or 'max'"}[spec.kind]
-        raise InputError(f"{_flag(spec)}: must be {form}, got {text!r}") from None
+        raise InputError(f"{flag or _flag(spec)}: must be {form}, got {text!r}") from None
     if spec.kind == "function":
         try:
             return float(text)
@@ -201,7 +217,7 @@ def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: ./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written)")
-        g.add_argument("--force", action="store_true", help="replace an existing output folder")
+        g.add_argument("--force", action="store_true", help=_FORCE_HELP)
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
 
@@ -231,20 +247,21 @@ def build_parser() -> argparse.ArgumentParser:
         _add_output(p, kind)
 
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
-    p.add_argument("--a", type=float, default=0.3, help="torsion amplitude (the solver says where the arch family ends; default 0.3)")
+    p.add_argument("--a", metavar="A", help=f"{_VAULT['a'].describe()}")
     p.add_argument("--p-xy", metavar="P_XY", help=f"{_VAULT['p_xy'].help}, {_VAULT['p_xy'].requirement}: reports p_xz")
     p.add_argument("--fold-angle", metavar="FOLD_ANGLE", help=_VAULT["fold_angle"].describe())
     _add_output(p, None)
 
     p = sub.add_parser("atlas", help="a grid of vault designs (the paper's Fig. 10)", description="Build vaults over a grid of p_xy and a; write a figure of their forms with the section slopes and a CSV/JSON of their metrics. Invalid designs are recorded with their reason.")
-    p.add_argument("--p-xy", type=_grid, default=np.linspace(0.5, 1.5, 5), help="values of p_xy: start:stop:count or a list (default 0.5:1.5:5)")
-    p.add_argument("--a", type=_grid, default=np.linspace(0.0, 1.2, 5), help="values of a (default 0:1.2:5)")
-    p.add_argument("--width", type=float, default=_VAULT["width"].default, help=_VAULT["width"].describe())
-    p.add_argument("--samples", type=int, default=201, help="samples per crease (default 201)")
-    p.add_argument("--workers", type=int, help="processes of a local Dask cluster, at most the CPUs here; 1 runs in this process (default: up to 2 for grids of 2000 designs or more when Dask is installed, else 1)")
+    grid = f"start:stop:count or a comma-separated list, count {_GRID_COUNT.range}"
+    p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
+    p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {_VAULT['a'].requirement}: {grid} (default 0:1.2:5)")
+    p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
+    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
+    p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of 2000 designs or more when Dask is installed, else 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
-    p.add_argument("--force", action="store_true", help="replace an existing output folder")
+    p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.add_argument("--json", action="store_true", help="print a summary as JSON (the records are in atlas.json)")
 
     p = sub.add_parser("reproduce", help="the paper's example, paper vs computed", description="Reproduce the paper's vault example (a = 0.3, p_xy = 0.75, 2α = 90°) and compare with the printed values.")
@@ -296,36 +313,34 @@ def _load_design(kind: str, args: argparse.Namespace) -> Design:
 
 
 def _emit(args: argparse.Namespace, payload: dict, lines: Sequence[str]) -> None:
-    if args.json:
-        print(json.dumps(payload, indent=2, default=_json_default))
-    else:
-        print("\n".join(lines))
+    """Print the result: strict JSON with ``--json``, else the lines (control characters
+    escaped). A non-finite number in the result is an error either way
+    (:func:`curvefold.app.outputs.strict_json`)."""
+    from .outputs import strict_json
 
-
-def _json_default(value):
-    if isinstance(value, (np.floating, np.integer)):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, Path):
-        return str(value)
-    raise TypeError(f"not JSON serialisable: {type(value).__name__}")
+    text = strict_json(payload, indent=2)
+    print(text if args.json else "\n".join(map(for_terminal, lines)))
 
 
 def cmd_structure(kind: str, args: argparse.Namespace) -> int:
+    from .budget import require_budget
     from .build import build
+    from .folder import check_output
     from .outputs import structure_payload, write_outputs
 
     design = _load_design(kind, args)
     if kind == "vault":
         design = _fit_targets(design, args)
     out = args.out if args.out is not None else (None if args.json else Path(DEFAULT_OUT[kind]))
+    target = None
     if out is not None:
         check_kind(design.output.formats, kind, f"{design.source}: [output] formats")
+        target = check_output(out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
+    require_budget(design, files=out is not None)
     built = build(design)
     payload = structure_payload(built)
-    if out is not None:
-        payload["files"] = write_outputs(built, out, payload=payload, force=args.force, show_progress=not args.json)
+    if target is not None:
+        payload["files"] = write_outputs(built, target, payload=payload, show_progress=not args.json)
         payload["out"] = str(out)
     lines = [payload["title"]]
     for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise"):
@@ -354,11 +369,12 @@ def _certificate_lines(payload: dict) -> list[str]:
 def cmd_arch(args: argparse.Namespace) -> int:
     from ..vault.arch import proportion_change, solve_symmetric_arch
 
+    a = _VAULT["a"].default if args.a is None else _flag_value(_VAULT["a"], args.a)
     fold_angle = _VAULT["fold_angle"].default if args.fold_angle is None else _flag_value(_VAULT["fold_angle"], args.fold_angle)
-    root = solve_symmetric_arch(args.a)
-    change = proportion_change(args.a, root.kappa0_s0, fold_angle=fold_angle)
-    payload = {"a": args.a, "fold_angle": fold_angle, "kappa0_s0": root.kappa0_s0, "residual": root.residual, "proportion_change": change}
-    lines = [f"arch a = {args.a:g}: κ0·s0 = {root.kappa0_s0:.12f} (|T(s0/2)·T(0)| = {root.residual:.1e}), proportion change {change:.6f}"]
+    root = solve_symmetric_arch(a)
+    change = proportion_change(a, root.kappa0_s0, fold_angle=fold_angle)
+    payload = {"a": a, "fold_angle": fold_angle, "kappa0_s0": root.kappa0_s0, "residual": root.residual, "proportion_change": change}
+    lines = [f"arch a = {a:g}: κ0·s0 = {root.kappa0_s0:.12f} (|T(s0/2)·T(0)| = {root.residual:.1e}), proportion change {change:.6f}"]
     if args.p_xy is not None:
         p_xy = _flag_value(_VAULT["p_xy"], args.p_xy)
         payload["p_xy"] = p_xy
@@ -462,61 +478,88 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
 
 
 def cmd_atlas(args: argparse.Namespace) -> int:
-    from ..vault.atlas import workers_spec
+    from .budget import require_atlas_budget
+    from .folder import check_output
     from .outputs import write_atlas
 
-    workers = None if args.workers is None else workers_spec().check(args.workers, "--workers")
-    with _terminate_as_interrupt():  # the sweep's clean-up runs: the cluster closes, no partial folder stays
-        payload = write_atlas(args.p_xy, args.a, out=args.out, force=args.force, width=args.width, samples=args.samples,
-                              workers=workers, scheduler=args.scheduler, show_progress=not args.json)
+    p_xy, a = _grid("--p-xy", args.p_xy, _VAULT["p_xy"]), _grid("--a", args.a, _VAULT["a"])
+    width = _VAULT["width"].default if args.width is None else _flag_value(_VAULT["width"], args.width)
+    samples = 201 if args.samples is None else vault_samples(_flag_value(SCHEMA[""]["samples"], args.samples), where=f"--samples {args.samples}: samples")
+    workers = None if args.workers is None else workers_spec().check(_from_text(workers_spec(), args.workers, "--workers"), f"--workers {args.workers}: workers")
+    target = check_output(args.out, force=args.force)
+    require_atlas_budget(len(p_xy) * len(a), samples=samples, workers=workers)
+    payload = write_atlas(p_xy, a, out=target, width=width, samples=samples, workers=workers, scheduler=args.scheduler,
+                          show_progress=not args.json)
     payload["out"] = str(args.out)
     _emit(args, payload, [f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote {len(payload['files'])} files to {args.out}/"])
     return 0
 
 
-@contextmanager
-def _terminate_as_interrupt() -> Iterator[None]:
-    """Within the block, SIGTERM raises KeyboardInterrupt (in the main thread), as Ctrl-C does."""
+class Interrupted(BaseException):
+    """A signal that ends the run (SIGINT, SIGTERM, SIGHUP): raised in the main thread, so
+    every ``finally`` runs and the temporary output folder is removed."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
+
+
+@contextlib.contextmanager
+def _signals_interrupt():
+    """The first of SIGINT, SIGTERM or SIGHUP raises :class:`Interrupted`; later ones are
+    ignored while the run unwinds. Previous handlers are restored afterwards."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    fired: list[int] = []
 
-    def interrupt(signum, frame):
-        raise KeyboardInterrupt
+    def handler(signum, frame):
+        if not fired:
+            fired.append(signum)
+            raise Interrupted(signum)
 
-    previous = signal.signal(signal.SIGTERM, interrupt)
+    previous = {signum: signal.signal(signum, handler) for signum in _SIGNALS}
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for signum, old in previous.items():
+            signal.signal(signum, old)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status.
+    """Run the command line; returns the exit status (see the module doc).
 
-    A :class:`~curvefold.kernel.errors.CurvefoldError` (a user error) prints one line and
-    returns 2, as do an unreadable or unwritable file and a missing optional package. Any
-    other exception is a bug: one line asking for a report, status 1; ``--debug`` adds the
-    traceback and the warnings, which are otherwise never printed.
+    A :class:`~curvefold.kernel.errors.CurvefoldError` (a user error), an unreadable or
+    unwritable file, a missing optional package or running out of memory prints one line
+    and returns 2. A signal returns 128 + its number. Any other exception is a bug: one
+    line asking for a report, status 1; ``--debug`` adds the traceback and the warnings,
+    which are otherwise never printed.
     """
-    parser = build_parser()
     debug = "--debug" in (sys.argv[1:] if argv is None else argv)
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, _signals_interrupt():
         warnings.simplefilter("always")
         try:
-            return _run(parser, argv)
+            return _run(build_parser(), argv)
         except CurvefoldError as err:
             _error(f"error: {err}")
             return 2
         except OSError as err:
-            _error(f"error: {err.strerror or err}: {err.filename or ''}".rstrip(": "))
+            _error(f"error: {err.filename}: {err.strerror}" if err.filename and err.strerror else f"error: {err}")
             return 2
         except ImportError as err:
             _error(f"error: {err}")
             return 2
-        except KeyboardInterrupt:
-            _error("interrupted")
-            return 130
+        except MemoryError:
+            _error("error: out of memory; lower samples, the number of tubes or cells, or the formats written "
+                   "(see CURVEFOLD_MEMORY_BUDGET in the README)")
+            return 2
+        except (Interrupted, KeyboardInterrupt) as err:
+            signum = err.signum if isinstance(err, Interrupted) else signal.SIGINT
+            _error(f"interrupted by {signal.Signals(signum).name}")
+            return 128 + int(signum)
         except Exception as err:
             hint = "" if debug else " (rerun with --debug for the traceback)"
             _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {version('curvefold')}; "
@@ -531,7 +574,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _error(text: str) -> None:
-    print(f"{PROG}: " + " ".join(text.split("\n")), file=sys.stderr)
+    """One line on stderr, whatever the text holds."""
+    print(f"{PROG}: " + for_terminal(text), file=sys.stderr)
 
 
 def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:

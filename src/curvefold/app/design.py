@@ -50,14 +50,14 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ..geometry.curve import MAX_SAMPLES
 from ..geometry.panels import PANELS
 from ..io.formats import OUTPUT_SPECS, default_formats
+from ..io.reading import read_bytes
 from ..kernel.errors import InputError
 from ..kernel.expr import Expression, compile_expression
 from ..kernel.functions import ScalarFunction, as_function
 from ..kernel.validate import REQUIRED, Spec, describe, suggest
-from ..vault.assembly import VAULT_SPECS
+from ..vault.assembly import LENGTHS, LENGTHS_WHY, VAULT_SPECS
 
 __all__ = [
     "Design",
@@ -87,8 +87,11 @@ SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = MappingProxyType(
 MAX_DESIGN_BYTES = 1 << 20
 #: Largest CSV file read, in bytes.
 MAX_CSV_BYTES = 64 << 20
-#: Bound on samples × crease lines (vertices of all lattice curves): about 1 GB with meshes.
-MAX_VERTICES = MAX_SAMPLES
+#: Longest CSV line read, in characters (with the row and column bounds, a CSV costs at most
+#: a few times its size to read).
+MAX_CSV_LINE = 10_000
+#: Most data rows of a CSV file.
+MAX_CSV_ROWS = 200_000
 
 
 # --------------------------------------------------------------------------------------------
@@ -116,14 +119,15 @@ def _section(*specs: Spec) -> Mapping[str, Spec]:
 SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
     "": _section(
         Spec("kind", "choice", REQUIRED, choices=KINDS, help="what to build"),
-        Spec("samples", "integer", 801, "[3, 200000]", help="samples along curve 1", why="memory bound"),
+        Spec("samples", "integer", 801, "[9, 200000]", help="samples along curve 1",
+             why="the certificate's differences need 9; memory is budgeted besides"),
         Spec("title", "text", "", help="free text for reports"),
     ),
     "vault": _section(*VAULT_SPECS),
     "curve": _section(
         Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s"),
         Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s"),
-        Spec("length", "real", 6.0, "(0, inf)", "model units", help="arc length of curve 1"),
+        Spec("length", "real", 6.0, LENGTHS, "model units", help="arc length of curve 1", why=LENGTHS_WHY),
         _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
         PANELS,
     ),
@@ -138,7 +142,7 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
         Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left"),
         Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)"),
         _fold_angle(60.0, "fold angle 2 alpha(0) at the start of the crease"),
-        Spec("length", "real", 3.0, "(0, inf)", "model units", help="arc length of the crease"),
+        Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY),
         Spec("alpha", "function", None, "(0, 90)", "degrees",
              help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)"),
     ),
@@ -360,6 +364,12 @@ class Design:
                 )
         return design_from_dict(data, source=source, base_dir=self.base_dir)
 
+    def tables(self) -> tuple[Path, ...]:
+        """The CSV files the design reads, each once."""
+        sections = [getattr(self, section) for section in SECTIONS_OF_KIND[self.kind]]
+        values = [getattr(params, f.name) for params in sections for f in fields(params)]
+        return tuple(dict.fromkeys(self.base_dir / v.path for v in values if isinstance(v, TableColumn)))
+
     def function(self, key: str) -> ScalarFunction:
         """A function-valued key (e.g. ``"kappa"``) as a :class:`ScalarFunction` of arc length.
 
@@ -409,8 +419,8 @@ def load_design(path: str | os.PathLike) -> Design:
     Parameters
     ----------
     path : str or path-like
-        The design file (UTF-8, at most :data:`MAX_DESIGN_BYTES`). CSV tables it refers to
-        are read from its folder.
+        The design file: a regular file of UTF-8 text (a byte-order mark is skipped), at
+        most :data:`MAX_DESIGN_BYTES`. CSV tables it refers to are read from its folder.
 
     Returns
     -------
@@ -424,14 +434,7 @@ def load_design(path: str | os.PathLike) -> Design:
     """
     source = os.fspath(path)
     file = Path(path)
-    try:
-        if not file.is_file():
-            raise InputError(f"{source}: design file not found (or not a regular file)")
-        if file.stat().st_size > MAX_DESIGN_BYTES:
-            raise InputError(f"{source}: design file is larger than {MAX_DESIGN_BYTES} bytes")
-        raw = file.read_bytes()
-    except OSError as exc:
-        raise InputError(f"{source}: cannot read design file: {exc.strerror or exc}") from None
+    raw = read_bytes(file, limit=MAX_DESIGN_BYTES, what="design file", name=source)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -470,7 +473,7 @@ def parse_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     if len(text) > MAX_DESIGN_BYTES:
         raise InputError(f"{source}: design text is longer than {MAX_DESIGN_BYTES} characters")
     try:
-        data = tomllib.loads(text)
+        data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark, which some editors write, is not TOML
     except (RecursionError, MemoryError):
         raise InputError(f"{source}: invalid TOML: nested too deeply") from None
     except ValueError as exc:  # TOMLDecodeError, and integers past Python's digit limit
@@ -529,11 +532,9 @@ def design_from_dict(
     if kind == "crease":
         _check_alpha(checked["crease"], data.get("crease", {}), source)
     params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}
-    design = Design(
+    return Design(
         kind=kind, samples=head["samples"], title=head["title"], source=source, base_dir=folder.resolve(), **params
     )
-    _check_budget(design)
-    return design
 
 
 def default_design(kind: str) -> Design:
@@ -598,20 +599,6 @@ def _check_alpha(values: dict, table: Mapping[str, Any], source: str) -> None:
     values["beta_right"], values["fold_angle"] = None, twice
 
 
-def _check_budget(design: Design) -> None:
-    if design.kind == "vault" and design.vault.tubes != "max":
-        lines, what = 4 * design.vault.tubes * design.vault.layers, "[vault] tubes or layers"
-    elif design.kind == "block":
-        lines, what = 4 * len(design.block.cells), "[block] cells"
-    else:
-        return
-    if design.samples * lines > MAX_VERTICES:
-        raise InputError(
-            f"{design.source}: samples × crease lines = {design.samples} × {lines} = {design.samples * lines} "
-            f"exceeds {MAX_VERTICES} (memory bound, about 1 GB); lower samples or {what}"
-        )
-
-
 def _check_function(spec: Spec, value: Any, section: str, ctx: _Context, length: float) -> FunctionValue:
     name = f"[{section}] {spec.name}"
     where = f"{ctx.source}: {name}"
@@ -639,25 +626,17 @@ def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: _Context,
         raise InputError(f"{where}: column must be a column header, got {describe(column)}")
     file = _safe_path(raw, where, ctx.base_dir)
     label = f"{where} ({raw})"
+    data = read_bytes(file, limit=MAX_CSV_BYTES, what="CSV file", name=label)
     try:
-        if file.stat().st_size > MAX_CSV_BYTES:
-            raise InputError(f"{label}: CSV file is larger than {MAX_CSV_BYTES} bytes")
-        text = file.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise InputError(f"{label}: cannot read CSV file: {exc.strerror or exc}") from None
+        text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise InputError(f"{label}: CSV file is not UTF-8 text (bad byte at offset {exc.start})") from None
-    header, lines, columns = _parse_csv(text, label)
-    if column not in header:
-        raise InputError(f"{label}: no column {column!r} (columns: {', '.join(map(repr, header))})")
-    values = columns[header.index(column)]
+    lines, values, s = _parse_csv(text, label, column)
     if values.size < 2:
         raise InputError(f"{label}: column {column!r} needs at least 2 samples, got {values.size}")
-    if values.size > MAX_SAMPLES:
-        raise InputError(f"{label}: column {column!r} has more than {MAX_SAMPLES} samples")
     grid = np.linspace(0.0, length, values.size)
-    if "s" in header:
-        _check_grid(columns[header.index("s")], grid, lines, label, length)
+    if s is not None:
+        _check_grid(s, grid, lines, label, length)
 
     def at(i: int) -> str:
         return f"at line {lines[i]} (s = {grid[i]:.6g})"
@@ -683,36 +662,63 @@ def _safe_path(raw: str, where: str, base_dir: Path) -> Path:
     return file
 
 
-def _parse_csv(text: str, label: str) -> tuple[list[str], list[int], list[np.ndarray]]:
-    """Header, line number of every data row, and one float array per column.
+def _parse_csv(text: str, label: str, column: str) -> tuple[list[int], np.ndarray, np.ndarray | None]:
+    """Line number of every data row, the samples of ``column`` and those of the ``s``
+    column (None without one).
 
-    Blank lines and lines starting with ``#`` are skipped.
+    Blank lines and lines starting with ``#`` are skipped. Every field must be a number;
+    only the two columns are kept. Bounded: lines of at most :data:`MAX_CSV_LINE`
+    characters, at most :data:`MAX_CSV_ROWS` data rows, distinct headers.
     """
+    def bounded(lines):
+        for number, line in enumerate(lines, 1):
+            if len(line) > MAX_CSV_LINE:
+                raise InputError(f"{label}: line {number} is longer than {MAX_CSV_LINE} characters")
+            yield line
+
     header: list[str] | None = None
+    wanted: list[int] = []
     rows: list[list[float]] = []
     lines: list[int] = []
-    reader = csv.reader(io.StringIO(text), strict=True)
+    reader = csv.reader(bounded(io.StringIO(text)), strict=True)
     try:
         for row in reader:
             if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
                 continue
             if header is None:
                 header = [h.strip() for h in row]
+                wanted = _columns(header, column, label)
                 continue
             if len(row) != len(header):
                 raise InputError(f"{label}: line {reader.line_num} has {len(row)} fields, the header has {len(header)}")
+            if len(rows) == MAX_CSV_ROWS:
+                raise InputError(f"{label}: more than {MAX_CSV_ROWS} data rows (at line {reader.line_num})")
             try:
-                rows.append([float(x) for x in row])
+                numbers = [float(x) for x in row]
             except ValueError:
                 bad = next(x for x in row if not _is_float(x))
                 raise InputError(f"{label}: line {reader.line_num}: {bad.strip()!r} is not a number") from None
+            rows.append([numbers[j] for j in wanted])
             lines.append(reader.line_num)
     except csv.Error as exc:
         raise InputError(f"{label}: malformed CSV at line {reader.line_num}: {exc}") from None
     if header is None:
         raise InputError(f"{label}: CSV file is empty (expected a header row and samples)")
-    data = np.array(rows, dtype=float).reshape(len(rows), len(header))
-    return header, lines, [np.ascontiguousarray(data[:, j]) for j in range(len(header))]
+    data = np.array(rows, dtype=float).reshape(len(rows), len(wanted))
+    values = np.ascontiguousarray(data[:, 0])
+    return lines, values, (np.ascontiguousarray(data[:, 1]) if len(wanted) == 2 else None)
+
+
+def _columns(header: list[str], column: str, label: str) -> list[int]:
+    """Indices of ``column`` and of ``s`` (if present) in a header with distinct names."""
+    seen: dict[str, int] = {}
+    for j, name in enumerate(header):
+        if name in seen:
+            raise InputError(f"{label}: column {name!r} appears twice in the header (fields {seen[name] + 1} and {j + 1})")
+        seen[name] = j
+    if column not in seen:
+        raise InputError(f"{label}: no column {column!r} (columns: {', '.join(map(repr, header))})")
+    return [seen[column]] + ([seen["s"]] if "s" in seen and column != "s" else [])
 
 
 def _is_float(text: str) -> bool:

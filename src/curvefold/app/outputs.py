@@ -1,16 +1,14 @@
-"""The output folder of the command line: files, pictures and the report, written atomically.
+"""The output folder of the command line: files, pictures and the report.
 
-Everything is written into a temporary folder beside the target and renamed onto it at
-the end, so a failure leaves no partial folder; an existing folder is replaced only with
-``force``.
+The folder is checked before any work and written through
+:func:`curvefold.app.folder.output_folder`: into a temporary folder beside the target,
+renamed onto it at the end, never replacing what was not checked (see
+:mod:`curvefold.app.folder`).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import shutil
-import tempfile
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import closing, contextmanager
@@ -20,42 +18,40 @@ import numpy as np
 
 from ..analysis.certificate import certify
 from ..figures.report import plain, report_html
-from ..io.atomic import atomic_write, folder_mode
+from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
-from ..kernel.errors import InputError
+from ..kernel.errors import InputError, InternalError
 from .build import Built
+from .folder import OutputTarget, output_folder
 from .products import exported_fold_angles
 
-__all__ = ["structure_payload", "write_outputs", "write_atlas", "output_folder"]
+__all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json"]
 
 
-@contextmanager
-def output_folder(target: Path, *, force: bool) -> Iterator[Path]:
-    """Yield a fresh temporary folder that becomes ``target`` when the block succeeds."""
-    target = Path(target)
-    if target.exists() and not force:
-        raise InputError(f"output folder {target} exists; pass --force to replace it")
-    if target.exists() and not target.is_dir():
-        raise InputError(f"output path {target} exists and is not a folder")
-    parent = target.parent if str(target.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"cannot write {target}: its parent folder {parent} does not exist or is not a folder")
-    if not os.access(parent, os.W_OK):
-        raise InputError(f"cannot write {target}: its parent folder {parent} is not writable")
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
+def strict_json(value, **kwargs) -> str:
+    """JSON text of ``value`` (NumPy values as plain numbers), refusing NaN and infinities.
+
+    Raises
+    ------
+    InternalError
+        A non-finite number in ``value``, named by its key (``result.p_xz = inf``): strict
+        JSON has none, and a result that is not finite is never given as one.
+    """
     try:
-        yield tmp
-        os.chmod(tmp, folder_mode())
-        if target.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old.", dir=parent))
-            os.replace(target, old / "x")
-            os.replace(tmp, target)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            os.replace(tmp, target)
-    finally:
-        if tmp.exists():
-            shutil.rmtree(tmp, ignore_errors=True)
+        return json.dumps(value, allow_nan=False, default=plain, **kwargs)
+    except ValueError:
+        raise InternalError(f"the result holds a number that is not finite: {_non_finite(value)}") from None
+
+
+def _non_finite(value, key: str = "result") -> str | None:
+    """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
+    if isinstance(value, dict):
+        return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return next((found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None)
+    if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+        return f"{key} = {value}"
+    return None
 
 
 def structure_payload(built: Built) -> dict:
@@ -103,12 +99,12 @@ def _default_title(built: Built) -> str:
 
 
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
-    """A progress bar on stderr (rich), or nothing."""
-    if not show:
-        return (lambda label: None), (lambda: None)
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    """A progress bar on stderr (rich) when it is a terminal, or nothing."""
+    from rich.progress import BarColumn, TextColumn, TimeElapsedColumn
 
-    bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn(), transient=True)
+    bar = _bar(show, TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn())
+    if bar is None:
+        return (lambda label: None), (lambda: None)
     bar.start()
     task = bar.add_task("writing", total=total)
 
@@ -118,17 +114,30 @@ def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[
     return step, bar.stop
 
 
-def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force: bool = False, show_progress: bool = True) -> list[str]:
+def _bar(show: bool, *columns):
+    """A transient rich progress bar on stderr if ``show`` and stderr is a terminal, else
+    None: stdout is for the result, and a log of stderr gets nothing but errors."""
+    if not show:
+        return None
+    from rich.console import Console
+    from rich.progress import Progress
+
+    console = Console(stderr=True)
+    return Progress(*columns, transient=True, console=console) if console.is_terminal else None
+
+
+def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = None, show_progress: bool = True) -> list[str]:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
     Parameters
     ----------
     built : Built
-    out : Path
+    out : OutputTarget
+        The folder, checked by :func:`curvefold.app.folder.check_output` before the work.
     payload : dict, optional, keyword-only
         :func:`structure_payload` of ``built`` when the caller has it already (it holds
         the certificate, the costliest part); computed here otherwise.
-    force, show_progress : bool, keyword-only
+    show_progress : bool, keyword-only
 
     Returns
     -------
@@ -152,13 +161,13 @@ def write_outputs(built: Built, out: Path, *, payload: dict | None = None, force
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out, force=force) as tmp:
+        with output_folder(out) as tmp:
             for label, files, seconds in products.run_jobs(jobs, tmp):
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
                 report["timings"][label] = round(seconds, 3)
             report["files"] = sorted(written)
-            atomic_write(tmp / "report.json", json.dumps(report, indent=2, default=plain))
+            atomic_write(tmp / "report.json", strict_json(report, indent=2))
             atomic_write(tmp / "report.html", report_html(report))
             written += ["report.json", "report.html"]
     finally:
@@ -170,15 +179,15 @@ def write_atlas(
     p_xy_values,
     a_values,
     *,
-    out: Path,
-    force: bool,
+    out: OutputTarget,
     width: float,
     samples: int,
     workers: int | None = None,
     scheduler: str | None = None,
     show_progress: bool,
 ) -> dict:
-    """Run the design atlas and write it into the folder ``out``.
+    """Run the design atlas and write it into the folder ``out`` (checked by
+    :func:`curvefold.app.folder.check_output`).
 
     ``atlas.csv`` and ``atlas.json`` hold every design's record, written as the designs
     finish (in grid order), so memory stays flat whatever the grid's size; the figure
@@ -201,7 +210,7 @@ def write_atlas(
     step = view_step(grid.shape)
     header = {"format": "curvefold-atlas", "version": 1, "units": "model units (radius 1), angles in degrees", **grid.to_dict(), "fields": list(FIELDS)}
     errors: Counter[str | None] = Counter()
-    with output_folder(out, force=force) as tmp:
+    with output_folder(out) as tmp:
         with (
             _progress_bar(show_progress, "atlas", grid.size) as progress,
             closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress)) as results,
@@ -227,13 +236,10 @@ def write_atlas(
 @contextmanager
 def _progress_bar(show: bool, label: str, total: int) -> Iterator[Callable[[int, int], None] | None]:
     """``progress(done, total)`` drawing a bar on stderr (when it is a terminal) while the block runs, or None."""
-    from rich.console import Console
-    from rich.progress import Progress
-
-    console = Console(stderr=True)
-    if not (show and console.is_terminal):
+    bar = _bar(show)
+    if bar is None:
         yield None
         return
-    with Progress(console=console, transient=True) as bar:
+    with bar:
         task = bar.add_task(label, total=total)
         yield lambda done, total: bar.update(task, completed=done)

@@ -13,6 +13,8 @@ import re
 
 import numpy as np
 
+from ..kernel.text import one_line
+
 __all__ = ["plain", "report_html", "QUANTITIES", "describe_file", "natural_key"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
@@ -212,7 +214,7 @@ def report_html(payload: dict) -> str:
     )
     links = "".join(f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>' for f in files)
     passed = sum(c["passed"] for c in payload["certificate"])
-    title = e(payload.get("title") or payload.get("kind", "curvefold"))
+    title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
 <title>curvefold — {title}</title>

@@ -182,7 +182,15 @@ class Pattern(FrozenArrays):
             if arr.ndim == 0:
                 if not (np.isfinite(arr) and arr > 0):
                     raise InputError(f"{name} must be a finite number > 0, got {w!r}")
-                arr = float(arr) * np.exp(sign * log_ratio)
+                with np.errstate(over="ignore", under="ignore"):
+                    arr = float(arr) * np.exp(sign * log_ratio)
+                bad = np.flatnonzero(~(np.isfinite(arr) & (arr > 0)))
+                if bad.size:
+                    i = int(bad[0])
+                    raise InputError(
+                        f"{name} w(t) = w(0)·exp({'-' if sign < 0 else '+'}∫ τ cot α ds) leaves the range of float64 at s = {s[i]:.6g} "
+                        f"(∫ τ cot α ds = {log_ratio[i]:.6g} there); lower tau or the length"
+                    )
             elif arr.shape != s.shape or not (np.isfinite(arr) & (arr > 0)).all():
                 raise InputError(f"{name} must be a number or {len(s)} finite values > 0 (one per sample), got shape {arr.shape}")
             widths.append(arr)

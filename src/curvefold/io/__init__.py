@@ -7,7 +7,8 @@ needs them.
 
 :mod:`curvefold.io.formats` is the registry of every file format (name, extension,
 contents, kinds of design, writer, optional package); :mod:`curvefold.io.tables` is the
-one table of pages, length units and line colours the writers share.
+one table of pages, length units and line colours the writers share. Files a user names
+are read through :mod:`curvefold.io.reading` (regular files only, within a size limit).
 
 The writers here take meshes and laid-out sheets; the structure-level entry points
 (:func:`write_structure_fold`, :func:`write_pattern`, :func:`write_3d`) live in

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -46,14 +47,24 @@ from ..geometry.sheets import _angles, _check_structure, _design_angle, _develop
 from ..geometry.structure import Structure
 from ..geometry.topology import Topology, fold_assignment
 from ..kernel.errors import InputError, InternalError
+from ..kernel.text import one_line
 from .atomic import atomic_write
 from .mesh3d import check_metadata
+from .reading import read_bytes
 
 __all__ = ["FoldFile", "fold_assignments", "read_fold", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"]
 
 FILE_SPEC = 1.1
 #: Assignments curvefold writes and reads.
 ASSIGNMENTS = ("M", "V", "B", "F")
+#: Largest FOLD file read, in bytes: parsing holds about 10 bytes per byte of JSON (measured
+#: on curvefold's own files), so about 1.3 GB at the limit.
+MAX_FOLD_BYTES = 128 << 20
+#: Most frames read from ``file_frames``.
+MAX_FRAMES = 1000
+#: Most vertices, edges and faces over all frames (an inheriting frame counts what it inherits):
+#: about 50 bytes each once read, 400 MB at the limit.
+MAX_FOLD_ITEMS = 8_000_000
 #: Edge kind assumed for files without ``edges_curvefold:kind``.
 _KIND_OF_ASSIGNMENT = {"M": "fold", "V": "fold", "B": "boundary", "F": "diagonal"}
 _KIND_KEYS = ("edges_curvefold:kind", "curvefold:edges_kind")
@@ -262,7 +273,7 @@ def write_fold(
         The design and how the frames were made (:func:`to_fold`), stored as
         ``curvefold:design``; JSON data.
     title : str
-        ``file_title`` (omitted when empty).
+        ``file_title`` (omitted when empty), on one line without control characters.
     flat_tol : float
         Allowed ``max |z|`` of the crease pattern relative to its size.
     mirror_clockwise : bool
@@ -313,7 +324,7 @@ def write_fold(
         if not (np.isfinite(angle) & (np.abs(angle) <= 180)).all():
             raise InputError(f"folded[{i}] ({frame_title!r}): edges_foldAngle must be finite degrees in [-180, 180]")
         frames.append({
-            "frame_title": str(frame_title),
+            "frame_title": one_line(frame_title),
             "frame_classes": ["foldedForm"],
             "frame_parent": 0,
             "frame_inherit": True,
@@ -325,7 +336,7 @@ def write_fold(
         "file_spec": FILE_SPEC,
         "file_creator": "curvefold",
         "file_classes": ["singleModel"],
-        **({"file_title": title} if title else {}),
+        **({"file_title": one_line(title)} if title else {}),
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
         "frame_unit": unit,
@@ -369,7 +380,7 @@ def write_sheet_fold(
     unit : str
         ``frame_unit``.
     title : str
-        ``file_title`` (omitted when empty).
+        ``file_title`` (omitted when empty), on one line without control characters.
     flat_tol : float
         Allowed ``max |z|`` relative to the sheet's size to count as flat.
     mirror_clockwise : bool
@@ -390,7 +401,7 @@ def write_sheet_fold(
         "file_spec": FILE_SPEC,
         "file_creator": "curvefold",
         "file_classes": ["singleModel"],
-        **({"file_title": title} if title else {}),
+        **({"file_title": one_line(title)} if title else {}),
         "frame_classes": ["creasePattern" if flat else "foldedForm"],
         "frame_unit": unit,
         "vertices_coords": _number_lists(x),
@@ -454,39 +465,60 @@ def _int_rows(value, n_cols: int | None, key: str, where: str) -> np.ndarray:
             raise _fail(where, f"{key}[{i}] must be a list of integers, got {row!r}")
         if n_cols is not None and len(row) != n_cols:
             raise _fail(where, f"{key}[{i}] must have {n_cols} entries, got {len(row)} ({row!r})")
-    if n_cols is not None:
-        return np.array(value, dtype=np.int64).reshape(len(value), n_cols)
-    out = np.full((len(value), max([3] + [len(row) for row in value])), -1, np.int64)  # rows of any length, -1 padded
-    for i, row in enumerate(value):
-        out[i, : len(row)] = row
+    try:
+        if n_cols is not None:
+            return np.array(value, dtype=np.int64).reshape(len(value), n_cols)
+        out = np.full((len(value), max([3] + [len(row) for row in value])), -1, np.int64)  # rows of any length, -1 padded
+        for i, row in enumerate(value):
+            out[i, : len(row)] = row
+    except OverflowError:
+        raise _fail(where, f"{key} holds an integer too large for an index") from None
     return out
 
 
 def _float_array(value, key: str, where: str) -> np.ndarray:
     try:
         a = np.array(value, dtype=float)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise _fail(where, f"{key} must hold numbers only") from exc
     if not np.isfinite(a).all():
         raise _fail(where, f"{key} must hold finite numbers")
     return a
 
 
-def _resolve_frame(doc: dict, frames: list, fid: int, where: str, seen: tuple = ()) -> dict:
-    """Properties of frame ``fid`` (0 = key frame) with inheritance resolved."""
-    if fid == 0:
-        return {k: v for k, v in doc.items() if not k.startswith("file_")}
-    frame = frames[fid - 1]
-    if not isinstance(frame, dict):
-        raise _fail(where, f"file_frames[{fid - 1}] must be an object")
-    if not frame.get("frame_inherit", False):
-        return dict(frame)
-    parent = frame.get("frame_parent", 0)
-    if isinstance(parent, bool) or not isinstance(parent, int) or not 0 <= parent <= len(frames) or parent in seen + (fid,):
-        raise _fail(where, f"file_frames[{fid - 1}].frame_parent must be another frame id in [0, {len(frames)}] without cycles, got {parent!r}")
-    merged = _resolve_frame(doc, frames, parent, where, seen + (fid,))
-    merged.update(frame)
-    return merged
+def _resolve_frames(doc: dict, frames: list, where: str) -> list[dict]:
+    """Properties of every frame (0 = key frame, then ``file_frames``) with
+    ``frame_inherit``/``frame_parent`` resolved, without recursion: a chain of thousands of
+    frames costs one pass, and each frame is merged once."""
+    n = len(frames)
+    resolved: dict[int, dict] = {0: {k: v for k, v in doc.items() if not k.startswith("file_")}}
+    for fid in range(1, n + 1):
+        chain: list[int] = []
+        f: int | None = fid
+        while f is not None and f not in resolved:
+            if f in chain:
+                raise _fail(where, f"file_frames[{chain[-1] - 1}].frame_parent = {f} closes a cycle of inheriting frames")
+            chain.append(f)
+            frame = frames[f - 1]
+            if not isinstance(frame, dict):
+                raise _fail(where, f"file_frames[{f - 1}] must be an object")
+            if not frame.get("frame_inherit", False):
+                f = None
+                break
+            parent = frame.get("frame_parent", 0)
+            if isinstance(parent, bool) or not isinstance(parent, int) or not 0 <= parent <= n or parent == f:
+                raise _fail(where, f"file_frames[{f - 1}].frame_parent must be another frame id in [0, {n}] without cycles, got {parent!r}")
+            f = parent
+        merged = {} if f is None else resolved[f]
+        for g in reversed(chain):
+            merged = {**merged, **frames[g - 1]}
+            resolved[g] = merged
+    return [resolved[fid] for fid in range(n + 1)]
+
+
+def _size(frame: dict) -> int:
+    """Vertices, edges and faces a frame declares (before any is read)."""
+    return sum(len(v) if isinstance(v := frame.get(key), list) else 0 for key in ("vertices_coords", "edges_vertices", "faces_vertices"))
 
 
 def _frame_mesh(frame: dict, where: str) -> Mesh:
@@ -503,6 +535,8 @@ def _frame_mesh(frame: dict, where: str) -> Mesh:
 
     ev = _int_rows(frame["edges_vertices"], 2, "edges_vertices", where)
     E = len(ev)
+    if E == 0:
+        raise _fail(where, "edges_vertices is empty: a crease pattern needs edges")
     bad = np.flatnonzero(((ev < 0) | (ev >= V)).any(axis=1))
     if bad.size:
         raise _fail(where, f"edges_vertices[{bad[0]}] = {ev[bad[0]].tolist()} refers to a vertex outside [0, {V})")
@@ -516,6 +550,8 @@ def _frame_mesh(frame: dict, where: str) -> Mesh:
             if isinstance(f, list) and len(f) < 3:
                 raise _fail(where, f"faces_vertices[{i}] has {len(f)} vertices; a face needs at least 3")
     fv = _int_rows(faces, None, "faces_vertices", where)  # polygons, -1 padded
+    if len(fv) == 0:
+        raise _fail(where, "faces_vertices is empty: a crease pattern needs faces")
     real = np.arange(fv.shape[1]) < np.array([len(f) for f in faces], dtype=np.int64).reshape(-1, 1)
     bad = np.flatnonzero((((fv < 0) | (fv >= V)) & real).any(axis=1))
     if bad.size:
@@ -581,6 +617,10 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     boundary, ``F`` diagonal), face group 0, no metadata and no seam partners. Missing
     ``edges_foldAngle`` means ±180 on ``V``/``M`` and 0 elsewhere.
 
+    Reading is bounded: a regular file of at most :data:`MAX_FOLD_BYTES`, at most
+    :data:`MAX_FRAMES` frames and :data:`MAX_FOLD_ITEMS` vertices, edges and faces in
+    all; inheritance is resolved without recursion.
+
     Parameters
     ----------
     path : path-like
@@ -592,7 +632,9 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     Raises
     ------
     InputError
-        If the file is not JSON, misses a required key (``vertices_coords``,
+        If the file is not a regular file within the limits, is not JSON (or nested too
+        deeply), has no edges or faces, a folded frame of another topology than the key
+        frame's, misses a required key (``vertices_coords``,
         ``edges_vertices``, ``edges_assignment``, ``faces_vertices``), has arrays of the
         wrong length, indices out of range, an assignment other than M/V/B/F, a face of
         fewer than 3 vertices or malformed curvefold keys. The message names the file,
@@ -600,27 +642,45 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
         :class:`curvefold.geometry.mesh.Mesh`).
     """
     where = str(path)
+    raw = read_bytes(path, limit=MAX_FOLD_BYTES, what="FOLD file")
+    if not raw.strip():
+        raise InputError(f"{where}: FOLD file is empty")
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{where}: cannot read FOLD file: {exc}") from exc
-    try:
-        doc = json.loads(text)
+        doc = json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{where}: not a FOLD file: not UTF-8 text (bad byte at offset {exc.start})") from None
+    except RecursionError:
+        raise InputError(f"{where}: not valid JSON: nested too deeply") from None
     except json.JSONDecodeError as exc:
-        raise InputError(f"{where}: not valid JSON: {exc}") from exc
+        raise InputError(f"{where}: not valid JSON: {exc}") from None
+    except ValueError:  # an integer past Python's digit limit
+        raise InputError(f"{where}: not a FOLD file: it holds an integer of more than {sys.get_int_max_str_digits()} digits") from None
     if not isinstance(doc, dict):
         raise InputError(f"{where}: a FOLD file must hold a JSON object, got {type(doc).__name__}")
     frames = doc.get("file_frames", [])
     if not isinstance(frames, list):
         raise InputError(f"{where}: file_frames must be a list")
+    if len(frames) > MAX_FRAMES:
+        raise InputError(f"{where}: {len(frames)} frames in file_frames, more than curvefold reads ({MAX_FRAMES})")
+    resolved = _resolve_frames(doc, frames, where)
+    items = sum(map(_size, resolved))
+    if items > MAX_FOLD_ITEMS:
+        raise InputError(f"{where}: its frames hold {items} vertices, edges and faces in all (inherited ones counted in every frame), "
+                         f"more than curvefold reads ({MAX_FOLD_ITEMS})")
 
-    crease_pattern = _frame_mesh(_resolve_frame(doc, frames, 0, where), f"{where} (key frame)")
+    crease_pattern = _frame_mesh(resolved[0], f"{where} (key frame)")
     folded = []
     for fid in range(1, len(frames) + 1):
-        frame = _resolve_frame(doc, frames, fid, where)
+        frame_where = f"{where} (file_frames[{fid - 1}])"
+        mesh = _frame_mesh(resolved[fid], frame_where)
+        for name in ("vertices_coords", "edges_vertices", "faces_vertices"):
+            if getattr(mesh, name).shape[0] != getattr(crease_pattern, name).shape[0] or (
+                name != "vertices_coords" and not np.array_equal(getattr(mesh, name), getattr(crease_pattern, name))
+            ):
+                raise _fail(frame_where, f"{name} differs from the key frame's: curvefold reads folded frames of the crease pattern's topology")
         own_title = frames[fid - 1].get("frame_title")  # a title is not inherited
         title = str(own_title) if own_title else f"frame {fid}"
-        folded.append((title, _frame_mesh(frame, f"{where} (file_frames[{fid - 1}])")))
+        folded.append((title, mesh))
 
     metadata = doc.get("curvefold:metadata", {})
     if not isinstance(metadata, dict):

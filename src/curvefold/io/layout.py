@@ -809,6 +809,16 @@ def layout_sheets(
             raise InputError("target_size needs sheets of non-zero size; every sheet is a point")
         scale_mm = target / longest
 
+    for sh in sheets:  # a sheet too large for the page is refused before any tab or label is placed
+        xy = sh.mesh.vertices_coords[:, :2] * scale_mm
+        w, h = (np.ptp(xy @ _rotation(_min_area_rotation(xy)).T, axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
+        if max(w, h) > max(avail) or min(w, h) > min(avail):
+            raise InputError(
+                f"sheet {sh.label!r} needs {max(w, h):.4g} × {min(w, h):.4g} mm before glue tabs at scale {scale_mm:g} mm per unit, "
+                f"but the {page_name} page ({W:g} × {H:g} mm) has {avail[0]:g} × {avail[1]:g} mm inside its margins; "
+                f"lower the scale or choose a larger page"
+            )
+
     notes: list[str] = []
     locals_ = [_local_sheet(i, sh, scale_mm) for i, sh in enumerate(sheets)]
 

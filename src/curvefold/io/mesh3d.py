@@ -19,6 +19,7 @@ exporters.
 
 from __future__ import annotations
 
+import json
 import math
 import os
 from collections.abc import Mapping, Sequence
@@ -30,6 +31,7 @@ import numpy as np
 from ..geometry.mesh import EDGE_KINDS, Mesh
 from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
+from ..kernel.text import one_line
 from .atomic import atomic_write
 
 __all__ = [
@@ -56,7 +58,8 @@ def check_metadata(metadata: Mapping | None) -> dict:
     Returns
     -------
     dict
-        A new dict; ``{}`` for ``None``.
+        A new dict; ``{}`` for ``None``. Keys and strings are on one line, without control
+        characters (:func:`curvefold.kernel.text.one_line`), whatever format they go to.
 
     Raises
     ------
@@ -67,6 +70,8 @@ def check_metadata(metadata: Mapping | None) -> dict:
     --------
     >>> check_metadata({"length": np.float64(2.5), "name": "vault"})
     {'length': 2.5, 'name': 'vault'}
+    >>> check_metadata({"title": "vault\\nv 999 999 999"})
+    {'title': 'vault v 999 999 999'}
     >>> check_metadata(None)
     {}
     """
@@ -78,8 +83,9 @@ def check_metadata(metadata: Mapping | None) -> dict:
     for key, value in metadata.items():
         if not isinstance(key, str):
             raise InputError(f"metadata keys must be str, got {key!r}")
+        key = one_line(key)
         if isinstance(value, (str, bool, np.bool_)):
-            out[key] = value if isinstance(value, str) else bool(value)
+            out[key] = one_line(value) if isinstance(value, str) else bool(value)
         elif isinstance(value, (int, np.integer)):
             out[key] = int(value)
         elif isinstance(value, (float, np.floating)):
@@ -214,7 +220,8 @@ def write_obj(
     The file holds the vertices (``v``, 17 significant digits), the faces in group
     ``surface`` (``f``, polygons as in the mesh, counter-clockwise) and, for each kind in
     ``crease_kinds``, a group of that name with the chained crease lines (``l``). The unit
-    and the design parameters are written as ``#`` comments.
+    and the design parameters are written as ``#`` comments, strings quoted as JSON strings
+    on one line (a title can neither start a statement nor continue a line).
 
     Parameters
     ----------
@@ -246,9 +253,9 @@ def write_obj(
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
     axes = "+Y up: (x, y, z) of the model written as (x, z, -y)" if up == "y" else "+Z up, as in the model"
-    parts = ["# written by curvefold\n", f"# unit: {unit}\n", f"# axes: {axes}\n"]
-    parts += [f"# {k}: {v}\n" for k, v in meta.items()]
-    parts.append(f"o {name}\n")
+    parts = ["# written by curvefold\n", f"# unit: {_line_end(unit)}\n", f"# axes: {axes}\n"]
+    parts += [f"# {k}: {_comment(v)}\n" for k, v in meta.items()]
+    parts.append(f"o {_line_end(name)}\n")
     parts.append(_fmt_rows("v", x, "%.17g"))
     parts.append("g surface\n")
     faces = mesh.faces_vertices
@@ -262,6 +269,17 @@ def write_obj(
             parts.append(f"g {kind}\n")
             parts += ["l " + " ".join(str(i + 1) for i in line.tolist()) + "\n" for line in lines]
     return atomic_write(path, "".join(parts))
+
+
+def _comment(value) -> str:
+    """A metadata value for an OBJ comment: a string quoted as JSON on one line, never
+    ending in a backslash (which continues a line for some readers)."""
+    return json.dumps(one_line(value), ensure_ascii=False) if isinstance(value, str) else str(value)
+
+
+def _line_end(text: str) -> str:
+    """Text that ends an OBJ line: one line, without a trailing backslash."""
+    return one_line(text).rstrip("\\")
 
 
 def _trimesh(mesh: Mesh):

@@ -41,6 +41,7 @@ from ..geometry.sheets import PatternSheet, _check_structure, sheets
 from ..geometry.structure import Structure
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
+from ..kernel.text import one_line
 from .atomic import atomic_path
 from .formats import check_formats, formats_of
 from .layout import (
@@ -258,7 +259,7 @@ def _svg_label(t: Label, height: float) -> str:
     x = t.position[0] + 0.35 * t.size * math.sin(a)
     y = height - (t.position[1] - 0.35 * t.size * math.cos(a))
     rot = f' transform="rotate({-t.angle:.2f} {x:.3f} {y:.3f})"' if abs(t.angle) > 1e-9 else ""
-    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{escape(t.text)}</text>'
+    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{escape(one_line(t.text))}</text>'
 
 
 def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | None = None,
@@ -437,7 +438,7 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
             st = LAYER_STYLES[name]
             if name == "labels":
                 for t in page.labels():
-                    text(t.text, np.asarray(t.position) + shift, t.size, t.angle, name)
+                    text(one_line(t.text), np.asarray(t.position) + shift, t.size, t.angle, name)
                 continue
             for p in page.on_layer(name):
                 pts = (p.points + shift).tolist()
@@ -484,9 +485,9 @@ def _draw_page(fig, page: Page, layout: Layout, number: int, names: tuple[str, .
         st = LAYER_STYLES[name]
         if name == "labels":
             for t in page.labels():
-                ax.text(t.position[0], t.position[1], t.text, fontsize=t.size * _PT_PER_MM, rotation=t.angle,
+                ax.text(t.position[0], t.position[1], one_line(t.text), fontsize=t.size * _PT_PER_MM, rotation=t.angle,
                         rotation_mode="anchor", ha="center", va="center", color=st.color,
-                        family="sans-serif", zorder=z)
+                        family="sans-serif", zorder=z, parse_math=False)
             continue
         lines = page.on_layer(name)
         if not lines:

@@ -13,7 +13,8 @@ comprehensions, ...) is refused with an :class:`~curvefold.kernel.errors.InputEr
 parameter and shows the offending piece of text.
 
 Resource limits keep hostile text harmless: at most :data:`MAX_LENGTH` characters,
-:data:`MAX_NODES` terms and a nesting depth of :data:`MAX_DEPTH`; sub-expressions free of the
+:data:`MAX_NODES` terms and a nesting depth of :data:`MAX_DEPTH` (a chain of binary
+operations such as a sum of many terms counts as one level); sub-expressions free of the
 variable are folded at compile time in float64, and a constant exponent larger than
 :data:`MAX_EXPONENT` in magnitude is refused (``9**9**9`` fails at once). Evaluation runs
 under ``np.errstate(all="ignore")``: an overflow or a square root of a negative number gives
@@ -299,7 +300,9 @@ def _check_size(tree: ast.Expression, text: str, name: str) -> None:
                     f"{name}: expression is nested too deeply (more than {MAX_DEPTH} levels) in {_excerpt(text)!r}"
                 )
         step = 1 if isinstance(node, ast.expr) else 0
-        stack.extend((child, depth + step) for child in ast.iter_child_nodes(node))
+        for child in ast.iter_child_nodes(node):
+            chained = isinstance(node, ast.BinOp) and child is node.left and isinstance(child, ast.BinOp)
+            stack.append((child, depth if chained else depth + step))  # a chain a + b - c … is one level
 
 
 @dataclass(frozen=True)
@@ -364,17 +367,30 @@ class _Compiler:
         raise InputError(f"{self.name}: unknown name {node.id!r} (allowed: {allowed}){hint}")
 
     def binary(self, node: ast.BinOp):
-        op = _BINARY.get(type(node.op))
-        if op is None:
-            symbol = _OPERATOR_TEXT[type(node.op)]
-            hint = "; use ** for powers" if symbol == "^" else ""
-            raise self.refuse(node, f"operator '{symbol}' is not allowed (allowed: + - * / **){hint}")
-        left = self.build(node.left)
-        right = self.build(node.right)
-        if isinstance(node.op, ast.Pow) and not callable(right) and not abs(right) <= MAX_EXPONENT:
-            limit = f"|exponent| ≤ {MAX_EXPONENT:g}"
-            raise self.refuse(node, f"constant exponent {float(right):g} is out of range ({limit})")
-        return _apply(op, [left, right])
+        """A chain of binary operations along their left operands (``a + b - c * d …``, a
+        sum of many terms) is built in one loop and evaluated in one: it nests no deeper
+        than a single operation, when compiled or evaluated."""
+        spine = []
+        while isinstance(node, ast.BinOp):
+            spine.append(node)
+            node = node.left
+        value = self.build(node)
+        steps: list[tuple[Callable, object]] = []
+        for step in reversed(spine):
+            op = _BINARY.get(type(step.op))
+            if op is None:
+                symbol = _OPERATOR_TEXT[type(step.op)]
+                hint = "; use ** for powers" if symbol == "^" else ""
+                raise self.refuse(step, f"operator '{symbol}' is not allowed (allowed: + - * / **){hint}")
+            right = self.build(step.right)
+            if isinstance(step.op, ast.Pow) and not callable(right) and not abs(right) <= MAX_EXPONENT:
+                limit = f"|exponent| ≤ {MAX_EXPONENT:g}"
+                raise self.refuse(step, f"constant exponent {float(right):g} is out of range ({limit})")
+            if steps or callable(value) or callable(right):
+                steps.append((op, right))
+            else:
+                value = np.float64(op(value, right))  # a constant start of the chain is folded now
+        return _chain(value, steps) if steps else value
 
     def call(self, node: ast.Call):
         func = node.func
@@ -398,6 +414,18 @@ class _Compiler:
 
 def _identity(s: np.ndarray) -> np.ndarray:
     return s
+
+
+def _chain(first, steps: list[tuple[Callable, object]]) -> Callable[[np.ndarray], np.ndarray]:
+    """``(((first op₁ part₁) op₂ part₂) …)``, left to right in one loop; constants or functions."""
+
+    def evaluate(s: np.ndarray) -> np.ndarray:
+        value = first(s) if callable(first) else first
+        for op, part in steps:
+            value = op(value, part(s) if callable(part) else part)
+        return value
+
+    return evaluate
 
 
 def _apply(fn: Callable[..., np.ndarray], args: list):

@@ -18,7 +18,8 @@ Kinds of value (:data:`KINDS`):
 ``integer``    an integer in ``range``;
 ``count``      an integer in ``range`` or the word ``"max"``;
 ``choice``     one of ``choices``;
-``text``       a string of at most :data:`MAX_TEXT` characters;
+``text``       one line of at most :data:`MAX_TEXT` characters, without control characters
+               (:data:`curvefold.kernel.text.CONTROL`);
 ``flag``       true or false;
 ``page``       one of ``choices`` (case-insensitive) or a [width, height] pair in ``range``;
 ``formats``    a list of names from ``choices``, duplicates dropped;
@@ -40,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError
+from .text import control_characters
 
 __all__ = ["Interval", "Spec", "REQUIRED", "KINDS", "MAX_TEXT", "describe", "suggest"]
 
@@ -280,6 +282,9 @@ def _choice(spec: Spec, value: Any, where: str, shown: str | None) -> str:
 def _text(spec: Spec, value: Any, where: str, shown: str | None) -> str:
     if not isinstance(value, str) or len(value) > MAX_TEXT:
         raise InputError(f"{where} must be a string of at most {MAX_TEXT} characters, got {shown or describe(value)}")
+    bad = control_characters(value)
+    if bad:
+        raise InputError(f"{where} must be one line of printable text; character {bad[0] + 1} is the control character U+{ord(value[bad[0]]):04X}")
     return value
 
 

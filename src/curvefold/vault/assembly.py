@@ -51,6 +51,10 @@ DEFAULT_TUBES_CAP = 24
 #: Fewest samples along a vault's creases (the apex is the middle sample).
 MIN_SAMPLES = 21
 
+#: Lengths a design may give (the vault's radius, a curve's length), in model units, and
+#: why: far outside it coordinates, widths and their squares leave the float64 range.
+LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
+
 #: The parameters of a vault, in design-file order. ``tubes`` is ``"max"`` or a count and
 #: ``direction`` ``"+"`` or ``"-"`` here; :class:`VaultDesign` holds None and ±1 for them.
 VAULT_SPECS: tuple[Spec, ...] = (
@@ -59,7 +63,7 @@ VAULT_SPECS: tuple[Spec, ...] = (
     Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless"),
     Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})'),
     Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0"),
-    Spec("radius", "real", 1.0, "(0, inf)", "model units", help="1/kappa0"),
+    Spec("radius", "real", 1.0, LENGTHS, "model units", help="1/kappa0", why=LENGTHS_WHY),
     Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes"),
     Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v"),
     PANELS,

@@ -1,0 +1,82 @@
+"""The memory budget: the estimate of each job against the peak it reaches.
+
+Each design runs through the command line in a process of its own (``python -m
+curvefold``, with a budget large enough to let it run); its peak resident memory comes
+from ``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` after it exits, and is compared
+with :func:`curvefold.app.budget.estimate` of the same design. The estimate must never be
+below the peak (ratio ≥ 1); how far above it is the price of estimating from the design
+alone (``tubes = "max"`` counts as 24 tubes, the crease patterns' cost is fitted on tubes).
+
+Target: estimate / peak ≥ 1 for every design.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+from _bench import SummaryRow, markdown_table, verdict
+
+#: (label, command-line arguments, design given to the estimate)
+DESIGNS = (
+    ("crease, 20001 samples, pictures", ["crease", "--samples", "20001"], {"kind": "crease", "samples": 20001}),
+    ("tube, 20001 samples, --json", ["tube", "--samples", "20001", "--json"], {"kind": "tube", "samples": 20001}),
+    ("tube, 2001 samples, SVG", ["tube", "--samples", "2001", "--formats", "svg"], {"kind": "tube", "samples": 2001, "output": {"formats": ["svg"]}}),
+    ("tube, 8001 samples, FOLD and 3D", ["tube", "--samples", "8001", "--formats", "fold,glb,obj,stl,ply,3dm"],
+     {"kind": "tube", "samples": 8001, "output": {"formats": ["fold", "glb", "obj", "stl", "ply", "3dm"]}}),
+    ("block, 2001 samples, all formats", ["block", "--samples", "2001"], {"kind": "block", "samples": 2001}),
+    ("vault, 801 samples, all formats", ["vault"], {"kind": "vault"}),
+    ("vault, 801 samples, 9 tubes, all formats", ["vault", "--tubes", "9"], {"kind": "vault", "vault": {"tubes": 9}}),
+    ("vault, 3001 samples, 9 tubes, FOLD", ["vault", "--samples", "3001", "--tubes", "9", "--formats", "fold"],
+     {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}, "output": {"formats": ["fold"]}}),
+)
+
+
+def peak_of(argv: list[str]) -> tuple[float, float]:
+    """Peak resident bytes and seconds of ``curvefold *argv`` in a fresh process."""
+    with tempfile.TemporaryDirectory() as folder:
+        out = [] if "--json" in argv else ["--out", os.path.join(folder, "out")]
+        env = dict(os.environ, CURVEFOLD_MEMORY_BUDGET="1000G")
+        t0 = time.perf_counter()
+        # one process per design, so ru_maxrss of the children is this design's peak
+        code = subprocess.run([sys.executable, "-c", _CHILD, *argv, *out], env=env, capture_output=True, text=True)
+        elapsed = time.perf_counter() - t0
+    if code.returncode not in (0, 1):
+        raise RuntimeError(f"curvefold {' '.join(argv)} failed: {code.stderr}")
+    return float(code.stdout.strip()), elapsed
+
+
+# Runs curvefold in a child of its own and prints that child's peak, in bytes.
+_CHILD = """
+import resource, subprocess, sys
+subprocess.run([sys.executable, "-m", "curvefold", *sys.argv[1:]], capture_output=True)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * (1 if sys.platform == "darwin" else 1024))
+"""
+
+
+def run() -> list[SummaryRow]:
+    from curvefold.app.budget import estimate
+    from curvefold.app.design import design_from_dict
+
+    rows, ratios = [], []
+    for label, argv, data in DESIGNS:
+        peak, seconds = peak_of(argv)
+        guess = estimate(design_from_dict(data), files="--json" not in argv)
+        ratios.append(guess.total / peak)
+        rows.append((label, f"{peak / 2**20:.0f}", f"{guess.total / 2**20:.0f}", f"{guess.total / peak:.2f}", guess.largest, f"{seconds:.0f}",
+                     verdict(guess.total >= peak)))
+        print(f"{label}: peak {peak / 2**20:.0f} MiB, estimate {guess.total / 2**20:.0f} MiB", flush=True)
+    print(markdown_table(["design", "peak [MiB]", "estimate [MiB]", "estimate / peak", "costliest part", "time [s]", "estimate ≥ peak"], rows))
+    low, high = min(ratios), max(ratios)
+    return [SummaryRow("budget", f"estimate / measured peak over {len(DESIGNS)} designs", f"{low:.2f} to {high:.2f}", "≥ 1", verdict(low >= 1))]
+
+
+def main() -> None:
+    run()
+
+
+if __name__ == "__main__":
+    main()

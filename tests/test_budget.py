@@ -1,0 +1,73 @@
+"""The memory budget: the estimate of a job against the peak it reaches, and the budget itself.
+
+``benchmarks/bench_budget.py`` measures larger designs and prints the ratios; here a few
+small ones keep the estimate honest on every run.
+"""
+
+import subprocess
+import sys
+
+import pytest
+
+from curvefold.app import budget
+from curvefold.app.budget import estimate, memory_budget
+from curvefold.app.design import design_from_dict
+from curvefold.kernel.errors import InputError
+
+_CHILD = """
+import resource, subprocess, sys
+subprocess.run([sys.executable, "-m", "curvefold", *sys.argv[1:]], capture_output=True, check=True)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
+"""
+
+
+def peak_bytes(argv, cwd) -> float:
+    """Peak resident memory of ``curvefold *argv``, run in a process of its own (Linux: kB)."""
+    out = subprocess.run([sys.executable, "-c", _CHILD, *argv], capture_output=True, text=True, cwd=cwd, timeout=300, check=True)
+    return float(out.stdout) * 1024
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(sys.platform != "linux", reason="ru_maxrss is in kB on Linux only")
+@pytest.mark.parametrize(
+    ("argv", "data"),
+    [
+        (["crease", "--samples", "2001", "--out", "c"], {"kind": "crease", "samples": 2001}),
+        (["tube", "--samples", "8001", "--json"], {"kind": "tube", "samples": 8001}),
+        (["vault", "--samples", "201", "--tubes", "9", "--formats", "fold,obj", "--out", "v"],
+         {"kind": "vault", "samples": 201, "vault": {"tubes": 9}, "output": {"formats": ["fold", "obj"]}}),
+    ],
+)
+def test_the_estimate_is_never_below_the_peak(tmp_path, monkeypatch, argv, data):
+    peak = peak_bytes(argv, tmp_path)
+    guess = estimate(design_from_dict(data), files="--out" in argv).total
+    assert peak <= guess <= 4 * peak, (peak / 2**20, guess / 2**20)  # holds, and not so loose it refuses what fits
+    monkeypatch.setattr(budget, "COSTS", {part: (0.0, 0.0, 0.0) for part in budget.COSTS})
+    assert estimate(design_from_dict(data), files="--out" in argv).total < peak  # without its costs it cannot hold
+
+
+@pytest.mark.parametrize(("text", "size"), [("2G", 2 << 30), ("512M", 512 << 20), ("1.5GiB", 3 << 29), ("4096", 4096), (" 8 kb ", 8192)])
+def test_the_budget_is_read_from_the_environment(monkeypatch, text, size):
+    monkeypatch.setenv(budget.ENVIRONMENT, text)
+    assert memory_budget() == size
+
+
+@pytest.mark.parametrize("text", ["", "lots", "-1G", "0", "2X", "1e9"])
+def test_a_budget_that_is_not_a_size_is_refused(monkeypatch, text):
+    monkeypatch.setenv(budget.ENVIRONMENT, text)
+    with pytest.raises(InputError, match=rf"CURVEFOLD_MEMORY_BUDGET must be a memory size such as 2G, 512M or a number of bytes, got '{text}'"):
+        memory_budget()
+
+
+def test_the_default_budget(monkeypatch):
+    monkeypatch.delenv(budget.ENVIRONMENT, raising=False)
+    assert memory_budget() == budget.DEFAULT_BUDGET == 2 << 30
+
+
+def test_the_estimate_grows_with_what_the_design_asks_for():
+    def total(**data):
+        return estimate(design_from_dict({"kind": "vault", **data}), files=True).total
+
+    assert total(samples=1601) > total(samples=801) > total(samples=801, output={"formats": ["fold"]})
+    assert total(vault={"tubes": 9, "layers": 2}) > total(vault={"tubes": 9})
+    assert estimate(design_from_dict({"kind": "vault"}), files=False).largest == "geometry"
