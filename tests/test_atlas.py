@@ -183,18 +183,21 @@ def test_values_of_a_field(serial):
 @pytest.fixture(scope="module")
 def written(tmp_path_factory) -> tuple[dict, Path]:
     """The output folder of the 3 × 3 atlas (serial) and write_atlas's summary."""
+    from curvefold.app.folder import check_output
     from curvefold.app.outputs import write_atlas
 
     out = tmp_path_factory.mktemp("atlas") / "out"
-    summary = write_atlas(P_XY, A_VALUES, out=out, force=False, workers=1, show_progress=False, **KW)
+    summary = write_atlas(P_XY, A_VALUES, out=check_output(out, force=False), workers=1, show_progress=False, **KW)
     return summary, out
 
 
 def test_written_summary_and_files(written):
+    from curvefold.app.folder import MARKER
+
     summary, out = written
     assert summary == {"shape": [3, 3], "designs": 9, "valid": 5, "invalid": {"ConvergenceError": 3, "RegressionError": 1},
                        "files": ["atlas.csv", "atlas.json", "atlas.png", "atlas.svg"]}
-    assert sorted(os.listdir(out)) == summary["files"]  # no temporary file left
+    assert sorted(set(os.listdir(out)) - {MARKER}) == summary["files"]  # no temporary file left
 
 
 def test_csv_round_trip(serial, written):
@@ -429,6 +432,7 @@ def test_every_kth_row_and_column(serial):
 
 
 def test_a_wide_grid_writes_every_record_and_draws_every_kth(tmp_path, monkeypatch):
+    from curvefold.app.folder import check_output
     from curvefold.app.outputs import write_atlas
     from curvefold.figures import atlas as figure_module
 
@@ -441,7 +445,7 @@ def test_a_wide_grid_writes_every_record_and_draws_every_kth(tmp_path, monkeypat
 
     monkeypatch.setattr(figure_module, "atlas_figure", spy)
     p_xy = np.linspace(0.5, 1.5, figure_module.MAX_VIEWS + 1).tolist()  # one column too many: every 2nd is drawn
-    summary = write_atlas(p_xy, [0.3], out=tmp_path / "out", force=False, width=0.08, samples=41, workers=1, show_progress=False)
+    summary = write_atlas(p_xy, [0.3], out=check_output(tmp_path / "out", force=False), width=0.08, samples=41, workers=1, show_progress=False)
     assert summary["designs"] == 25 and summary["valid"] == 25
     records = json.loads((tmp_path / "out" / "atlas.json").read_text())["records"]
     assert [r["col"] for r in records] == list(range(25))
@@ -469,7 +473,8 @@ def test_command_line_bounds_the_workers(tmp_path):
     for value in (0, cpus + 1, 50 * cpus):
         r = run("atlas", "--workers", str(value), "--out", str(tmp_path / "out"))
         assert r.returncode == 2
-        assert r.stderr.strip() == f"curvefold: error: --workers must be an integer in [1, {cpus}] (the {cpus} CPU{'s' * (cpus != 1)} this process may use), got {value}"
+        assert r.stderr.strip() == (f"curvefold: error: --workers {value}: workers must be an integer in [1, {cpus}] "
+                                    f"(the {cpus} CPU{'s' * (cpus != 1)} this process may use), got {value}")
     assert os.listdir(tmp_path) == []
 
 
@@ -495,7 +500,7 @@ def test_a_signal_stops_the_sweep_and_its_workers(signum, tmp_path):
                 break
         proc.send_signal(signum)
         _, err = proc.communicate(timeout=60)
-        assert (proc.returncode, err) == (130, "curvefold: interrupted\n")
+        assert (proc.returncode, err) == (128 + signum, f"curvefold: interrupted by {signal.Signals(signum).name}\n")
         _, alive = psutil.wait_procs(children, timeout=30)
         assert alive == [], f"processes left running: {alive}"
         assert os.listdir(tmp_path) == []  # neither the output folder nor its temporary one

@@ -80,7 +80,7 @@ def listing(path: Path) -> list[str]:
         (["atlas", "--p-xy", "1,2,x"], r"--p-xy: must be a number, got 'x'"),
         (["atlas", "--p-xy", "0:1"], r"--p-xy: expected start:stop:count or a comma-separated list"),
         (["atlas", "--workers", str(os.cpu_count() + 1)],  # 50 workers took 3 GB
-         rf"--workers {os.cpu_count() + 1}: workers must be an integer in \[1, {os.cpu_count()}\] \(processors of this machine\)"),
+         rf"--workers {os.cpu_count() + 1}: workers must be an integer in \[1, {os.cpu_count()}\] \(the {os.cpu_count()} CPUs? this process may use\)"),
         (["atlas", "--workers", "0"], r"workers must be an integer in \[1, \d+\]"),
         (["atlas", "--samples", "10"], r"--samples 10: samples must be ≥ 21 for a vault"),
         (["atlas", "--width", "-1"], r"--width -1: width must be in \(0, 10\]"),
@@ -171,11 +171,18 @@ def _chained(n: int) -> dict:
     return _fold(edges_foldAngle=[0] * 5, file_frames=[{"frame_inherit": True, "frame_parent": i} for i in range(n)])
 
 
+def test_a_folded_frame_of_another_topology_is_a_failed_check_and_no_mechanism(tmp_path):
+    """FOLD lets a frame have its own edges; check reports it, mechanism refuses it, neither prints a traceback."""
+    (tmp_path / "f.fold").write_text(json.dumps(_fold(file_frames=[{"frame_inherit": True, "edges_vertices": [[0, 1], [1, 2], [2, 3], [3, 0], [1, 3]]}])))
+    r = run("check", "f.fold", cwd=tmp_path)
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    assert re.search(r"topology +fail .*frame 1 .* has other edges or faces than the crease pattern", r.stdout)
+    refused(run("mechanism", "f.fold", cwd=tmp_path), r"^curvefold: error: f\.fold: frame 'frame 1' has other vertices, edges or faces than the crease pattern")
+
+
 @pytest.mark.parametrize(
     ("content", "match"),
     [
-        (_fold(file_frames=[{"frame_inherit": True, "edges_vertices": [[0, 1], [1, 2], [2, 3], [3, 0], [1, 3]]}]),
-         r"\(file_frames\[0\]\): edges_vertices differs from the key frame's"),
         (_fold(edges_vertices=[], edges_assignment=[], edges_foldAngle=[], file_frames=[{"frame_inherit": True}]),
          r"\(key frame\): edges_vertices is empty: a crease pattern needs edges"),
         (_fold(faces_vertices=[]), r"faces_vertices is empty"),
@@ -328,6 +335,27 @@ def test_a_signal_leaves_nothing_behind(tmp_path, signum):
     assert listing(tmp_path) == []  # the 15-30 MB hidden folders piled up
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT])
+def test_a_signal_while_the_files_are_written_stops_every_job_process(tmp_path, signum):
+    """The files are written by two job processes: a signal to the command stops them too."""
+    import psutil
+
+    process = subprocess.Popen([sys.executable, "-m", "curvefold", "tube", "--samples", "801", "--out", "t"], cwd=tmp_path,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    jobs: list = []
+    while len(jobs) < 2:
+        assert process.poll() is None and time.monotonic() < deadline, "the command ended before its job processes started"
+        jobs = psutil.Process(process.pid).children()
+        time.sleep(0.02)
+    process.send_signal(signum)
+    out, err = process.communicate(timeout=120)
+    assert (process.returncode, err) == (128 + signum, f"curvefold: interrupted by {signal.Signals(signum).name}\n")
+    _, alive = psutil.wait_procs(jobs, timeout=30)
+    assert alive == [] and listing(tmp_path) == []
+
+
 def test_stale_temporary_folders_of_gone_processes_are_removed(tmp_path):
     gone = subprocess.Popen([sys.executable, "-c", "pass"])
     gone.wait()
@@ -446,10 +474,16 @@ def test_a_block_of_ten_thousand_cells_is_refused_before_starting(tmp_path, monk
     refused(run("block", "d.toml", cwd=tmp_path), r"needs about .* \(801 samples × 40000 strips\).* \[block\] cells")
 
 
-def test_a_huge_atlas_is_refused_before_starting(tmp_path, monkeypatch):
+def test_the_largest_atlas_fits_the_budget_and_a_smaller_budget_refuses_it_before_starting(tmp_path, monkeypatch):
+    """Records stream to disk, so the 200 × 200 atlas (a MemoryError once) fits the default
+    budget; its estimate is still checked, and refused before any work when over it."""
+    from curvefold.app.budget import memory_budget, require_atlas_budget
+
     monkeypatch.delenv("CURVEFOLD_MEMORY_BUDGET", raising=False)
+    assert require_atlas_budget(40_000, samples=201, workers=2) < memory_budget()
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "300M")
     refused(run("atlas", "--p-xy", "0.5:1.5:200", "--a", "0:1.2:200", cwd=tmp_path),
-            r"this atlas needs about \d+\.\d GiB of memory \(40000 designs, 201 samples, \d processes\)")
+            r"this atlas needs about \d+ MiB of memory \(40000 designs, 201 samples, \d processes\)")
     assert listing(tmp_path) == []
 
 
@@ -530,7 +564,9 @@ def test_glb_3dm_and_fold_hold_the_title_on_one_line(tmp_path, small_tube):
     title = pygltflib.GLTF2().load(str(glb)).asset.extras["curvefold"]["metadata"]["title"]
     _clean(title)
     assert title.startswith("vault v 999 999 999 mtllib") and title.endswith("$\\frac{ %%c \\")  # the text stays
-    model = rhino3dm.File3dm.Read(str(write_3dm(tmp_path / "t.3dm", state, metadata={"title": HOSTILE})))
+    topology = small_tube.topology("quads")
+    quads = topology.mesh(small_tube.state().vertices)
+    model = rhino3dm.File3dm.Read(str(write_3dm(tmp_path / "t.3dm", quads, topology, metadata={"title": HOSTILE})))
     _clean(model.Strings["curvefold:title"])
     fold = write_structure_fold(tmp_path / "t.fold", small_tube, title=HOSTILE, metadata={"title": HOSTILE})
     doc = json.loads(fold.read_text())

@@ -408,14 +408,20 @@ def analyse_fold(path, *, rtol: float = RTOL) -> tuple[Mechanism, ...]:
     Raises
     ------
     InputError
-        For a file curvefold cannot read, one without folded frames, or beyond
-        :data:`MAX_UNKNOWNS`.
+        For a file curvefold cannot read, one without folded frames, a folded frame of
+        another topology than the crease pattern's, or beyond :data:`MAX_UNKNOWNS`.
     """
     from ..io.fold import read_fold
 
     doc = read_fold(path)
     if not doc.folded:
         raise InputError(f"{os.fspath(path)}: no folded frame to analyse (the file holds only a crease pattern)")
+    cp = doc.crease_pattern
+    for title, mesh in doc.folded:
+        if not (mesh.vertices_coords.shape == cp.vertices_coords.shape and np.array_equal(mesh.edges_vertices, cp.edges_vertices)
+                and np.array_equal(mesh.faces_vertices, cp.faces_vertices)):
+            raise InputError(f"{os.fspath(path)}: frame {title!r} has other vertices, edges or faces than the crease pattern; "
+                             "the mechanism is analysed on frames of the crease pattern's topology")
     framework, first = Framework.from_fold(doc.crease_pattern, [mesh for _, mesh in doc.folded])
     _check_size(framework)
     return tuple(mechanism(framework, mesh.vertices_coords[first], rtol=rtol, label=title) for title, mesh in doc.folded)

@@ -53,9 +53,10 @@ COSTS: dict[str, tuple[float, float, float]] = {
     "motion": (100 * _MB, 400.0, 0.0),
     "pictures": (75 * _MB, 300.0, 0.0),
 }
-#: Bytes of the atlas: its figure, each design's records and panel (0.46 MB measured on
-#: 10 × 10 to 30 × 30 grids), and per worker process an interpreter and the geometry of a
-#: vault of up to :data:`DEFAULT_TUBES_CAP` tubes per sample.
+#: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
+#: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
+#: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter and
+#: the geometry of a vault of up to :data:`DEFAULT_TUBES_CAP` tubes per sample.
 ATLAS_FIGURE, ATLAS_PER_DESIGN = 130 * _MB, 0.5 * _MB
 ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = BASE, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
 
@@ -177,7 +178,10 @@ def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> 
     """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget."""
     budget = memory_budget()
     processes = workers or min(2, os.cpu_count() or 1)
-    total = BASE + ATLAS_FIGURE + ATLAS_PER_DESIGN * designs + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
+    from ..figures.atlas import MAX_VIEWS
+
+    held = min(designs, MAX_VIEWS**2)
+    total = BASE + ATLAS_FIGURE + ATLAS_PER_DESIGN * held + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
     if total > budget:
         raise InputError(
             f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} samples, {processes} processes), "

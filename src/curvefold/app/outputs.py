@@ -161,8 +161,8 @@ def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = Non
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out) as tmp:
-            for label, files, seconds in products.run_jobs(jobs, tmp):
+        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp)) as done:  # closed at once on any exception
+            for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
                 report["timings"][label] = round(seconds, 3)

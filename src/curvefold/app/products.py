@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 import time
 from collections.abc import Callable, Collection, Iterator
-from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 from pathlib import Path
 
@@ -105,10 +105,31 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
         for label, job in jobs:
             yield (label, *_timed(job, folder))
         return
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
-        futures = [(label, pool.submit(_timed, job, folder)) for label, job in jobs]
-        for label, future in futures:
-            yield (label, *future.result())
+    # The ending signals wait while the workers are forked (a signal then would reach a
+    # fork hook, or a child with the parent's handlers); leaving the block terminates the
+    # workers, so an interrupted run waits for no job.
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, _ENDING)
+    try:
+        pool = multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals, initargs=(held,))
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
+    with pool:
+        results = [(label, pool.apply_async(_timed, (job, folder))) for label, job in jobs]
+        for label, result in results:
+            yield (label, *result.get())
+
+
+#: Signals that end a run (the command line turns them into a clean stop).
+_ENDING = {getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)}
+
+
+def _worker_signals(mask: set) -> None:
+    """A job process leaves signals to its parent: it ignores SIGINT (the terminal sends it to
+    the whole group) and dies on SIGTERM and SIGHUP, whatever handlers it inherited; then it
+    takes the parent's signal mask back."""
+    for signum in _ENDING:
+        signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
 
 def _writer(names: tuple[str, ...]) -> Callable:

@@ -612,7 +612,8 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     """Read and validate a FOLD file (as written by :func:`write_fold` or another tool).
 
     The key frame becomes the crease pattern; every entry of ``file_frames`` becomes a
-    folded state, with ``frame_inherit``/``frame_parent`` resolved. Files without the
+    folded state, with ``frame_inherit``/``frame_parent`` resolved (a frame may have its
+    own topology, as FOLD allows; :func:`curvefold.analysis.foldcheck.check_fold` reports it). Files without the
     ``curvefold:`` keys get edge kinds from the assignments (``M``/``V`` fold, ``B``
     boundary, ``F`` diagonal), face group 0, no metadata and no seam partners. Missing
     ``edges_foldAngle`` means ±180 on ``V``/``M`` and 0 elsewhere.
@@ -633,8 +634,7 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     ------
     InputError
         If the file is not a regular file within the limits, is not JSON (or nested too
-        deeply), has no edges or faces, a folded frame of another topology than the key
-        frame's, misses a required key (``vertices_coords``,
+        deeply), has no edges or faces, misses a required key (``vertices_coords``,
         ``edges_vertices``, ``edges_assignment``, ``faces_vertices``), has arrays of the
         wrong length, indices out of range, an assignment other than M/V/B/F, a face of
         fewer than 3 vertices or malformed curvefold keys. The message names the file,
@@ -673,11 +673,6 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     for fid in range(1, len(frames) + 1):
         frame_where = f"{where} (file_frames[{fid - 1}])"
         mesh = _frame_mesh(resolved[fid], frame_where)
-        for name in ("vertices_coords", "edges_vertices", "faces_vertices"):
-            if getattr(mesh, name).shape[0] != getattr(crease_pattern, name).shape[0] or (
-                name != "vertices_coords" and not np.array_equal(getattr(mesh, name), getattr(crease_pattern, name))
-            ):
-                raise _fail(frame_where, f"{name} differs from the key frame's: curvefold reads folded frames of the crease pattern's topology")
         own_title = frames[fid - 1].get("frame_title")  # a title is not inherited
         title = str(own_title) if own_title else f"frame {fid}"
         folded.append((title, mesh))
