@@ -90,6 +90,14 @@ def test_crease_alpha_refuses_what_it_determines(extra, match):
 # refused with "got 11".
 
 
+def test_page_units_are_printed_lengths_not_the_model_unit(tmp_path):
+    """A crease pattern is printed: "unit" (the model unit, one metre by convention) would
+    scale a page 1000-fold; it is refused, the printed units stay."""
+    r = run("tube", "--units", "unit", "--out", "t", cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr.startswith("curvefold: error: --units unit: units must be one of") and "got unit" in r.stderr
+    assert not (tmp_path / "t").exists()
+
+
 @pytest.mark.parametrize("page", list(PAGES))
 def test_every_listed_page_is_accepted(page):
     assert page in cli.build_parser()._subparsers._group_actions[0].choices["tube"].format_help()

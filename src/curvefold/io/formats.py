@@ -180,7 +180,7 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
 
 #: The ``[output]`` parameters of a design.
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in", "unit"), help="unit of the crease-pattern lengths and scale"),
+    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale (printed lengths, so not the model unit)"),
     Spec("scale", "real", None, "(0, inf)", "output units per model unit",
          help="crease-pattern scale (default: fit the largest sheet to the page)"),
     Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
