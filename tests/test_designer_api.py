@@ -74,6 +74,8 @@ def test_the_panels_control_builds_rigid_panels(url, tmp_path):
     writes rigid panels."""
     _, schema = get_json(f"{url}api/schema")
     assert [sec for sec, specs in schema["sections"].items() if "panels" in {s["name"] for s in specs}] == ["vault", "curve"]
+    panels = next(s for s in schema["sections"]["curve"] if s["name"] == "panels")
+    assert panels["typical"] == {"lo": 0, "hi": 64, "lo_closed": True, "hi_closed": True}  # the slider's span, not 1 to 5
     query = "samples=101&tubes=3&panels=16"
     status, answer = get_json(f"{url}api/vault?{query}")
     assert status == 200 and answer["design"]["panels"] == answer["panels"] == 16

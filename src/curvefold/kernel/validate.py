@@ -136,6 +136,9 @@ class Spec:
         Why the range is what it is (``"memory bound"``), shown in messages and help.
     choices : tuple of str
         Allowed names for ``choice``, ``page`` and ``formats``.
+    typical : Interval or str or None
+        Where most designs lie, within ``range``: the span of a slider (the designer's
+        controls); None lets the control take it from the range and the default.
 
     Examples
     --------
@@ -156,12 +159,14 @@ class Spec:
     help: str = ""
     why: str = ""
     choices: tuple[str, ...] = ()
+    typical: Interval | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
-        if isinstance(self.range, str):
-            object.__setattr__(self, "range", Interval.parse(self.range))
+        for name in ("range", "typical"):
+            if isinstance(getattr(self, name), str):
+                object.__setattr__(self, name, Interval.parse(getattr(self, name)))
         object.__setattr__(self, "choices", tuple(self.choices))
 
     @property

@@ -107,13 +107,16 @@ def parameters(kind: str) -> dict[str, Spec]:
 
 
 def _spec_json(spec: Spec, section: str) -> dict:
-    r = spec.range
     return {
         "name": spec.name, "section": section, "kind": spec.kind, "unit": spec.unit, "help": spec.help,
         "describe": spec.describe(), "choices": list(spec.choices), "required": spec.required,
         "default": None if spec.required else _plain(spec.default),
-        "range": None if r is None else {"lo": _finite(r.lo), "hi": _finite(r.hi), "lo_closed": r.lo_closed, "hi_closed": r.hi_closed},
+        "range": _interval_json(spec.range), "typical": _interval_json(spec.typical),
     }
+
+
+def _interval_json(r) -> dict | None:
+    return None if r is None else {"lo": _finite(r.lo), "hi": _finite(r.hi), "lo_closed": r.lo_closed, "hi_closed": r.hi_closed}
 
 
 def _finite(x: float) -> float | None:

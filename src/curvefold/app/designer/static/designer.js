@@ -21,8 +21,10 @@ const fmt = (v) => (typeof v === "number" ? (Number.isInteger(v) ? String(v) : v
 // -- controls ------------------------------------------------------------------------------------
 
 function sliderRange(spec) {
-  // The spec's range when it is within ten times the default, else a fifth to five times the default.
+  // The spec's typical span if it names one; else its range when within ten times the
+  // default, else a fifth to five times the default.
   const r = spec.range, d = Math.abs(Number(spec.default)) || 1;
+  if (spec.typical) return [spec.typical.lo, spec.typical.hi];
   if (!r) return null;
   if (r.lo !== null && r.hi !== null && r.hi - r.lo <= 10 * d) return [r.lo, r.hi];
   const lo = Math.max(r.lo ?? -Infinity, d / 5), hi = Math.min(r.hi ?? Infinity, 5 * d);
