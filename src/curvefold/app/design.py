@@ -53,6 +53,7 @@ import numpy as np
 from ..geometry.panels import PANELS
 from ..io.formats import OUTPUT_SPECS, default_formats
 from ..io.reading import read_bytes
+from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
 from ..kernel.expr import Expression, compile_expression
 from ..kernel.functions import ScalarFunction, as_function
@@ -642,8 +643,7 @@ def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: _Context,
         return f"at line {lines[i]} (s = {grid[i]:.6g})"
 
     spec.check_samples(values, f"{label} column {column!r}", at)
-    values.flags.writeable = False
-    return TableColumn(raw, column, values)
+    return TableColumn(raw, column, readonly(values))
 
 
 def _safe_path(raw: str, where: str, base_dir: Path) -> Path:

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..geometry.structure import drawable
 from ..geometry.topology import tube_strips
+from ..kernel.arrays import frozen, readonly
 from ..kernel.errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -48,14 +49,8 @@ __all__ = [
 ]
 
 
-def _readonly(a: np.ndarray) -> np.ndarray:
-    a = np.array(a)
-    a.flags.writeable = False
-    return a
-
-
 #: Base colour of the strips before shading, RGB in [0, 1].
-STRIP_RGB = _readonly([0.86, 0.86, 0.85])
+STRIP_RGB = readonly(np.array([0.86, 0.86, 0.85]))
 #: Fill and outline of the ground plane z = 0.
 GROUND_COLOR, GROUND_EDGE = "#ece6da", "#b9ae98"
 #: Colour of the end rulings of the strips.
@@ -180,11 +175,11 @@ class Scene:
     ground: np.ndarray | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "paths", tuple(_readonly(np.asarray(p, float)) for p in self.paths))
+        object.__setattr__(self, "paths", tuple(frozen(np.asarray(p, float)) for p in self.paths))
         for name in ("roles", "fill", "stroke", "widths"):
-            object.__setattr__(self, name, _readonly(getattr(self, name)))
+            object.__setattr__(self, name, frozen(getattr(self, name)))
         if self.ground is not None:
-            object.__setattr__(self, "ground", _readonly(np.asarray(self.ground, float)))
+            object.__setattr__(self, "ground", frozen(np.asarray(self.ground, float)))
 
     @property
     def strips(self) -> np.ndarray:

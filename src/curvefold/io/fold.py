@@ -46,6 +46,7 @@ from ..geometry.mesh import fold_angles as dihedral_angles
 from ..geometry.sheets import _angles, _check_structure, _design_angle, _develop, bonds, folding_motion
 from ..geometry.structure import Structure
 from ..geometry.topology import Topology, fold_assignment
+from ..kernel.arrays import readonly
 from ..kernel.errors import InputError, InternalError
 from ..kernel.text import one_line
 from .atomic import atomic_write
@@ -704,8 +705,7 @@ def _edge_pairs(doc: dict, key: str, edges: int, where: str) -> np.ndarray:
     bad = np.flatnonzero(((pairs < 0) | (pairs >= edges)).any(axis=1))
     if bad.size:
         raise InputError(f"{where}: {key}[{bad[0]}] = {pairs[bad[0]].tolist()} refers to an edge outside [0, {edges})")
-    pairs.flags.writeable = False
-    return pairs
+    return readonly(pairs)
 
 
 # ---------------------------------------------------------------------------------------
@@ -829,7 +829,6 @@ def to_fold(
     pairs = ordered.reshape(-1, 2) if ordered.size % 2 == 0 else np.zeros((0, 2), np.int64)
     if len(pairs) * 2 != ordered.size or not (mesh_edge[pairs[:, 0]] == mesh_edge[pairs[:, 1]]).all():
         raise InternalError("seam edges do not pair up between the two sheets of a tube")
-    pairs.flags.writeable = False
 
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
     glued = _bond_pairs(cp.edges_vertices, source, topology, mesh_edge)
@@ -842,7 +841,7 @@ def to_fold(
                    for a, x, m in zip(angles, coords[1:], measured[1:]))
     record = None if design is None else {"design": dict(design), "fold_angles": angles.tolist(), "anchor": anchor, "faces": faces,
                                           "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
-    return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs, bonds=glued, design=record)
+    return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=readonly(pairs), bonds=glued, design=record)
 
 
 def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topology, mesh_edge: np.ndarray) -> np.ndarray:
@@ -865,9 +864,7 @@ def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topolo
     first = np.r_[True, (key[1:] != key[:-1]) | (mesh_edge[ids[1:]] != mesh_edge[ids[:-1]])]
     ids, key = ids[first], key[first]
     same = key[1:] == key[:-1]
-    pairs = np.stack([ids[:-1][same], ids[1:][same]], axis=1)
-    pairs.flags.writeable = False
-    return pairs
+    return readonly(np.stack([ids[:-1][same], ids[1:][same]], axis=1))
 
 
 def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:
