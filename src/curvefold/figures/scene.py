@@ -23,6 +23,7 @@ import numpy as np
 
 from ..geometry.structure import drawable
 from ..geometry.topology import tube_strips
+from ..io.tables import rgb8
 from ..kernel.arrays import frozen, readonly
 from ..kernel.errors import InputError
 
@@ -65,14 +66,7 @@ def rgba(color: str) -> np.ndarray:
     >>> rgba("#ff8000").tolist()
     [1.0, 0.5019607843137255, 0.0, 1.0]
     """
-    text = str(color)
-    try:
-        if len(text) != 7 or text[0] != "#":
-            raise ValueError
-        rgb = [int(text[k : k + 2], 16) / 255 for k in (1, 3, 5)]
-    except ValueError:
-        raise InputError(f"a colour must be written '#rrggbb', got {color!r}") from None
-    return np.array([*rgb, 1.0])
+    return np.array([*(c / 255 for c in rgb8(color)), 1.0])
 
 
 def _hex(color: np.ndarray) -> str:
