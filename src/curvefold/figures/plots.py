@@ -753,11 +753,11 @@ def write_motion_gif(
     """
     from PIL import Image
 
+    from ..geometry.lattice import check_anchor
     from ..vault.assembly import Vault
 
     structure, lattice, own = _structure_of(obj)
-    if anchor not in ("start", "middle"):
-        raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
+    check_anchor(anchor)
     w_px, h_px = (int(v) for v in size)
     if not (64 <= w_px <= 4096 and 64 <= h_px <= 4096):
         raise InputError(f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}")

@@ -65,7 +65,7 @@ from ..kernel.lie import cross, dual_to_motion, exp_dual, prefix_dual
 from ..kernel.validate import Spec
 from .crease import half_angle
 from .curve import SpaceCurve
-from .lattice import Lattice, Pattern, RegressionDomain, check_curves, lattice_points
+from .lattice import Lattice, Pattern, RegressionDomain, check_anchor, check_curves, lattice_points
 from .topology import Topology
 
 __all__ = [
@@ -553,8 +553,7 @@ class PanelLattice(FrozenArrays):
     # -- rigid folding ----------------------------------------------------------------------------
     def _anchored(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Placements (A, 3, 3), (A, 3) of the states at α (A,) keeping this state's frame at the anchor vertex, and those states."""
-        if anchor not in ("start", "middle"):
-            raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
+        check_anchor(anchor)
         k = 0 if anchor == "start" else self.pattern.panels // 2
         states = self.pattern.fold(alphas)
         here_points, _, _, here_frames = self._state
