@@ -171,7 +171,7 @@ class SpaceCurve(FrozenArrays):
         >>> bool(np.allclose(c.points[-1], c.points[0], atol=1e-13))
         True
         """
-        length = _check_length(length)
+        length = check_length(length)
         samples = check_samples(samples)
         origin_arr = _check_vector(origin, "origin")
         frame_arr = _check_frame(frame)
@@ -217,7 +217,8 @@ class SpaceCurve(FrozenArrays):
         return self.frames[:, :, 2]
 
 
-def _check_length(length: float) -> float:
+def check_length(length: float) -> float:
+    """Validate an arc length: a finite number > 0."""
     L = float(length)
     if not np.isfinite(L) or L <= 0:
         raise InputError(f"length must be a finite number > 0, got {length!r}")
