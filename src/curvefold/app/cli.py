@@ -43,6 +43,7 @@ from ..kernel.validate import Spec
 from ..vault.assembly import vault_samples
 from ..vault.atlas import workers_spec
 from .design import SCHEMA, SECTIONS_OF_KIND, Design, design_from_dict, load_design
+from .folder import ENDING_SIGNALS
 
 __all__ = ["main", "Interrupted"]
 
@@ -504,9 +505,6 @@ class Interrupted(BaseException):
         self.signum = signum
 
 
-_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
-
-
 @contextlib.contextmanager
 def _signals_interrupt():
     """The first of SIGINT, SIGTERM or SIGHUP raises :class:`Interrupted`; later ones are
@@ -521,7 +519,7 @@ def _signals_interrupt():
             fired.append(signum)
             raise Interrupted(signum)
 
-    previous = {signum: signal.signal(signum, handler) for signum in _SIGNALS}
+    previous = {signum: signal.signal(signum, handler) for signum in ENDING_SIGNALS}
     try:
         yield
     finally:
