@@ -505,9 +505,7 @@ def _fold_angles(frame: Frame) -> Residual:
     top = frame.shared.topology
     creases, faces = frame.shared.creases
     measured = mesh_fold_angles(frame.coords, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
-    design = 2 * math.degrees(frame.alpha)
-    expect = np.where(top.edges_kind[creases] == "fold", -design, -(180.0 - design))
-    values = np.abs((measured - expect + 180.0) % 360.0 - 180.0)
+    values = measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * math.degrees(frame.alpha))
     return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 
