@@ -76,6 +76,7 @@ __all__ = [
     "parse_design",
     "design_from_dict",
     "default_design",
+    "kind_specs",
 ]
 
 KINDS = ("vault", "tube", "block", "crease")
@@ -398,6 +399,12 @@ def _flag_sections(kind: str) -> dict[str, str]:
             if key != "kind":
                 out[key] = section
     return out
+
+
+def kind_specs(kind: str) -> dict[str, Spec]:
+    """The spec of every key a design of ``kind`` accepts besides ``kind``, by key name (unique
+    within a kind): the top level, the kind's sections and ``[output]``."""
+    return {key: SCHEMA[section][key] for key, section in _flag_sections(kind).items()}
 
 
 def _plain(value: Any) -> Any:
