@@ -64,7 +64,7 @@ from ..kernel.errors import InputError
 from ..kernel.lie import cross, dual_to_motion, exp_dual, prefix_dual
 from ..kernel.validate import Spec
 from .crease import half_angle
-from .curve import SpaceCurve
+from .curve import FramedCurve, SpaceCurve
 from .lattice import Lattice, Pattern, RegressionDomain, check_anchor, check_curves, lattice_points
 from .topology import Topology
 
@@ -361,7 +361,7 @@ class PanelPattern(FrozenArrays):
 
 
 @dataclass(frozen=True, eq=False)
-class PanelCurve(FrozenArrays):
+class PanelCurve(FramedCurve, FrozenArrays):
     """Curve 1 of a panel lattice at one fold angle: a polyline with a frame at every vertex.
 
     Attributes
@@ -377,26 +377,6 @@ class PanelCurve(FrozenArrays):
     s: np.ndarray
     points: np.ndarray
     frames: np.ndarray
-
-    @property
-    def length(self) -> float:
-        """Parameter length s_N − s_0 (the smooth crease's arc length when sampled from one)."""
-        return float(self.s[-1] - self.s[0])
-
-    @property
-    def tangent(self) -> np.ndarray:
-        """Vertex tangents t̃_k, shape (N + 1, 3)."""
-        return self.frames[:, :, 0]
-
-    @property
-    def normal(self) -> np.ndarray:
-        """ñ_k, shape (N + 1, 3)."""
-        return self.frames[:, :, 1]
-
-    @property
-    def binormal(self) -> np.ndarray:
-        """b̃_k, shape (N + 1, 3)."""
-        return self.frames[:, :, 2]
 
 
 @dataclass(frozen=True)
