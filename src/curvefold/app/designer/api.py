@@ -376,7 +376,7 @@ def _numbers(built: Built) -> dict:
         V = s.state().vertices.reshape(-1, 3)
         size = V.max(axis=0) - V.min(axis=0)
         return {"cells": len(s.cells), "lattice_curves": len(s.curves_uv), "size_x": size[0], "size_y": size[1], "size_z": size[2],
-                "regression_margin": float(s.lattice.domain.margin(s.curves_uv.astype(float)).min())}
+                "regression_margin": s.regression_margin}
     c = built.crease
     return {"length": c.curve.length, "fold_angle_start": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
             "fold_angle_end": float(np.degrees(2 * c.alpha(c.s[-1:])[0]))}
