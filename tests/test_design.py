@@ -332,7 +332,7 @@ def test_overrides_change_kind():
         ('kind = "vault"\n[output]\nformats = ["svg", "png"]', r"\[output\] formats: unknown format string 'png' \(allowed: svg, dxf"),
         ('kind = "vault"\n[output]\npage = "A9"', r"page must be one of \"A5\", \"A4\", \"A3\", \"A2\", \"A1\", \"A0\", \"Letter\", \"Legal\", \"Tabloid\" or \[width, height\] in mm, got string 'A9'"),
         ('kind = "vault"\n[output]\npage = [100.0]', r"page must be one of .*, got array \[100\.0\]"),
-        ('kind = "vault"\n[output]\nunits = "ft"', r"units must be one of \"mm\", \"cm\", \"m\", \"in\", \"unit\""),
+        ('kind = "vault"\n[output]\nunits = "ft"', r"units must be one of \"mm\", \"cm\", \"m\", \"in\", got string 'ft'"),
         ('kind = "vault"\ntitle = 3', r"design\.toml: title must be a string of at most 1000 characters, got 3"),
         ('kind = "vault"\ntitle = 1979-05-27', r"title must be a string .*, got date "),
         ('kind = "block"\n[block]\ncells = [[0]]', r"\[block\] cells\[0\] must be a pair \[i, j\] of integers in \[-1000, 1000\], got array \[0\]"),

@@ -505,9 +505,7 @@ def _fold_angles(frame: Frame) -> Residual:
     top = frame.shared.topology
     creases, faces = frame.shared.creases
     measured = mesh_fold_angles(frame.coords, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
-    design = 2 * math.degrees(frame.alpha)
-    expect = np.where(top.edges_kind[creases] == "fold", -design, -(180.0 - design))
-    values = np.abs((measured - expect + 180.0) % 360.0 - 180.0)
+    values = measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * math.degrees(frame.alpha))
     return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 
@@ -827,11 +825,8 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     InputError
         A fold angle outside [0°, 180°), or fold angles for a single curved fold.
     """
-    from ..geometry.sheets import _angles
-
     if structure is not None and isinstance(structure.lattice, PanelLattice):
-        extra = [] if fold_angles is None else _angles(fold_angles, degrees, "fold_angles").tolist()
-        return _certify_panels(structure, vault, extra)
+        return _certify_panels(structure, vault, _certified_angles(structure, fold_angles, degrees))
     if structure is not None:
         crease = structure.lattice.crease
     elif fold_angles is not None:
@@ -844,53 +839,65 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     if structure is None:
         specs = [s for s in CHECKS if s.scope == "crease"]
         outcomes = _measure(specs, Frame(crease), Frame(coarse_crease), "")
-        return Certificate(tuple(_check(spec, [outcomes[spec.name]], 1) for spec in specs), samples=n)
+        return Certificate(tuple(_check(spec, [outcomes[spec.name]]) for spec in specs), samples=n)
 
-    design = float(crease.fold_angle)
-    extra = [] if fold_angles is None else _angles(fold_angles, degrees, "fold_angles").tolist()
-    angles = sorted({0.0, design, *map(float, extra)})
+    angles = _certified_angles(structure, fold_angles, degrees)
     specs = [s for s in CHECKS if s.scope in ("crease", "frame") or (s.scope == "vault" and vault is not None)]
-    fine, coarse = Shared(structure), Shared(coarse_structure)
-
-    def run(angle: float | None, scopes: tuple[str, ...]) -> dict[str, _Outcome]:
-        label = f"2α = {design:g}° as built: " if angle is None else f"2α = {angle:g}°: "
-        chosen = [s for s in specs if s.scope in scopes]
-        return _measure(chosen, _frame(fine, vault, angle), _frame(coarse, vault, angle), label)
-
-    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
-    for angle in (None, *angles):
-        for name, outcome in run(angle, ("crease", "frame", "vault") if angle is None else ("crease", "frame")).items():
-            outcomes[name].append(outcome)
-    checks = tuple(_check(spec, outcomes[spec.name], len(outcomes[spec.name])) for spec in specs)
+    run = _runner(specs, vault, Shared(structure), Shared(coarse_structure))
+    outcomes = _over_frames(specs, run, angles, ("crease", "frame", "vault"), ("crease", "frame"))
+    checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
     motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope != "vault")
     return Certificate(checks, tuple(angles), _holds_up_to(run, max(angles), ("crease", "frame")) if motion_passes else None, n)
 
 
-def _certify_panels(structure: Structure, vault: Vault | None, extra: list[float]) -> Certificate:
+def _certify_panels(structure: Structure, vault: Vault | None, angles: list[float]) -> Certificate:
     """:func:`certify` of a structure of rigid panels: its exact checks in every frame, its mechanism
     once, and the crease checks of the smooth crease it samples."""
     source = structure.lattice.source
     crease_checks = () if source is None else certify(source.crease).checks
-    design = float(structure.lattice.crease.fold_angle)
-    angles = sorted({0.0, design, *map(float, extra)})
     specs = [s for s in CHECKS if s.scope in ("panels", "mechanism") or (s.scope == "panel_vault" and vault is not None)]
     shared = Shared(structure)
-
-    def run(angle: float | None, scopes: tuple[str, ...]) -> dict[str, _Outcome]:
-        label = f"2α = {design:g}° as built: " if angle is None else f"2α = {angle:g}°: "
-        return _measure([s for s in specs if s.scope in scopes], _frame(shared, vault, angle), None, label)
-
-    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
-    for angle in (None, *angles):
-        for name, outcome in run(angle, ("panels", "panel_vault") if angle is None else ("panels",)).items():
-            outcomes[name].append(outcome)
+    run = _runner(specs, vault, shared, None)
+    outcomes = _over_frames(specs, run, angles, ("panels", "panel_vault"), ("panels",))
     mechanism = [s for s in specs if s.scope == "mechanism"]
     for name, outcome in _measure(mechanism, _frame(shared, vault, None), None, "").items():  # its states name themselves
         outcomes[name].append(outcome)
-    checks = tuple(_check(spec, outcomes[spec.name], len(outcomes[spec.name])) for spec in specs)
+    checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
     motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope == "panels")
     return Certificate(crease_checks + checks, tuple(angles), _holds_up_to(run, max(angles), ("panels",)) if motion_passes else None,
                        len(structure.lattice.s), certified_mechanism(structure))
+
+
+def _certified_angles(structure: Structure, fold_angles: Sequence[float] | None, degrees: bool) -> list[float]:
+    """2α of the certified frames, degrees, ascending: 0°, the design angle and ``fold_angles`` (validated)."""
+    from ..geometry.sheets import _angles
+
+    extra = [] if fold_angles is None else _angles(fold_angles, degrees, "fold_angles").tolist()
+    return sorted({0.0, float(structure.lattice.crease.fold_angle), *map(float, extra)})
+
+
+def _runner(specs: Sequence[CheckSpec], vault: Vault | None, fine: Shared,
+            coarse: Shared | None) -> Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]]:
+    """``run(angle, scopes)``: the outcomes of the ``specs`` of ``scopes`` on the structure refolded
+    to ``angle`` (None: as built), against the half-sampled one (``coarse``; None for order-0 checks)."""
+    design = float(fine.structure.lattice.crease.fold_angle)
+
+    def run(angle: float | None, scopes: tuple[str, ...]) -> dict[str, _Outcome]:
+        label = f"2α = {design:g}° as built: " if angle is None else f"2α = {angle:g}°: "
+        chosen = [s for s in specs if s.scope in scopes]
+        return _measure(chosen, _frame(fine, vault, angle), None if coarse is None else _frame(coarse, vault, angle), label)
+
+    return run
+
+
+def _over_frames(specs: Sequence[CheckSpec], run: Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]],
+                 angles: Sequence[float], built: tuple[str, ...], folded: tuple[str, ...]) -> dict[str, list[_Outcome]]:
+    """Every spec's outcomes: on the structure as built (the scopes ``built``), then refolded to each angle (``folded``)."""
+    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
+    for angle in (None, *angles):
+        for name, outcome in run(angle, built if angle is None else folded).items():
+            outcomes[name].append(outcome)
+    return outcomes
 
 
 def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float, scopes: tuple[str, ...]) -> float:
@@ -903,10 +910,10 @@ def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], s
     return round(lo, 1)
 
 
-def _check(spec: CheckSpec, outcomes: list[_Outcome], frames: int) -> Check:
+def _check(spec: CheckSpec, outcomes: list[_Outcome]) -> Check:
     worst = _worst(outcomes)
     return Check(spec.name, worst.value, worst.tolerance, worst.status, spec.unit, spec.measures, spec.model,
-                 worst.where, frames, worst.samples_needed)
+                 worst.where, len(outcomes), worst.samples_needed)
 
 
 def _too_coarse(structure: Structure | None, vault: Vault | None, samples: int) -> Certificate:

@@ -42,6 +42,7 @@ __all__ = [
     "edge_lengths",
     "quad_nonplanarity",
     "width_integral",
+    "fold_angle_deviation",
     "developability_residual",
     "frame_agreement",
     "eq19_residual",
@@ -300,6 +301,16 @@ def width_integral(kappa_2d: ScalarFunction, beta: ScalarFunction, s: np.ndarray
     return np.concatenate([[0.0], np.cumsum(np.diff(fine) * (rate @ GAUSS3_WEIGHTS))])[::4]
 
 
+def fold_angle_deviation(measured: np.ndarray, kinds: np.ndarray, fold_angle: float) -> np.ndarray:
+    """|measured − expected| fold angle (degrees, wrapped to [0°, 180°]) of fold and seam edges, same shape.
+
+    Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
+    on the seams (2, 4), mountains seen from outside the tubes.
+    """
+    expect = np.where(np.asarray(kinds) == "fold", -fold_angle, -(180.0 - fold_angle))
+    return np.abs((measured - expect + 180.0) % 360.0 - 180.0)
+
+
 # --------------------------------------------------------------------------------------
 # one number per measurement, for a crease, a lattice or a mesh
 
@@ -337,14 +348,9 @@ def width_law_error(lattice: Lattice) -> float:
 
 
 def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
-    """Largest |measured − expected| fold angle (degrees) on the fold and seam edges of a tube mesh.
-
-    Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
-    on the seams (2, 4), mountains seen from outside the tubes.
-    """
-    expect = np.where(mesh.edges_kind == "fold", -fold_angle, -(180.0 - fold_angle))
+    """Largest :func:`fold_angle_deviation` on the fold and seam edges of a tube mesh (degrees)."""
     sel = np.isin(mesh.edges_kind, ("fold", "seam"))
-    return float(np.max(np.abs((mesh.edges_foldAngle[sel] - expect[sel] + 180.0) % 360.0 - 180.0)))
+    return float(np.max(fold_angle_deviation(mesh.edges_foldAngle[sel], mesh.edges_kind[sel], fold_angle)))
 
 
 def ruling_quad_planarity(state: State) -> float:

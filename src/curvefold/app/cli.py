@@ -42,7 +42,8 @@ from ..kernel.text import for_terminal
 from ..kernel.validate import Spec
 from ..vault.assembly import vault_samples
 from ..vault.atlas import workers_spec
-from .design import SCHEMA, SECTIONS_OF_KIND, Design, design_from_dict, load_design
+from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
+from .folder import ENDING_SIGNALS
 
 __all__ = ["main", "Interrupted"]
 
@@ -60,7 +61,6 @@ DESIGNER_PORT = 8765
 
 #: Values along one axis of the atlas grid.
 _GRID_COUNT = Spec("count", "integer", 5, "[1, 200]")
-#: Parallel processes of the atlas.
 
 
 def _grid(flag: str, text: str, spec: Spec) -> np.ndarray:
@@ -93,7 +93,7 @@ class _Parser(argparse.ArgumentParser):
 # -- flags generated from the design schema --------------------------------------------------
 
 #: Schema keys with no flag (a list of cells is written in a design file).
-_NO_FLAG = ("kind", "cells")
+_NO_FLAG = ("cells",)
 
 
 def _flag(spec: Spec) -> str:
@@ -138,8 +138,7 @@ def _flag_value(spec: Spec, text: str):
 
 def _flag_specs(kind: str) -> dict[str, Spec]:
     """The spec of every design flag of a kind, by argparse destination."""
-    return {spec.name: spec for section in ("", *SECTIONS_OF_KIND[kind], "output") for spec in SCHEMA[section].values()
-            if spec.name not in _NO_FLAG}
+    return {name: spec for name, spec in kind_specs(kind).items() if name not in _NO_FLAG}
 
 
 def _formats_help(kind: str) -> str:
@@ -504,9 +503,6 @@ class Interrupted(BaseException):
         self.signum = signum
 
 
-_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
-
-
 @contextlib.contextmanager
 def _signals_interrupt():
     """The first of SIGINT, SIGTERM or SIGHUP raises :class:`Interrupted`; later ones are
@@ -521,7 +517,7 @@ def _signals_interrupt():
             fired.append(signum)
             raise Interrupted(signum)
 
-    previous = {signum: signal.signal(signum, handler) for signum in _SIGNALS}
+    previous = {signum: signal.signal(signum, handler) for signum in ENDING_SIGNALS}
     try:
         yield
     finally:

@@ -53,6 +53,7 @@ import numpy as np
 from ..geometry.panels import PANELS
 from ..io.formats import OUTPUT_SPECS, default_formats
 from ..io.reading import read_bytes
+from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
 from ..kernel.expr import Expression, compile_expression
 from ..kernel.functions import ScalarFunction, as_function
@@ -75,6 +76,7 @@ __all__ = [
     "parse_design",
     "design_from_dict",
     "default_design",
+    "kind_specs",
 ]
 
 KINDS = ("vault", "tube", "block", "crease")
@@ -399,6 +401,12 @@ def _flag_sections(kind: str) -> dict[str, str]:
     return out
 
 
+def kind_specs(kind: str) -> dict[str, Spec]:
+    """The spec of every key a design of ``kind`` accepts besides ``kind``, by key name (unique
+    within a kind): the top level, the kind's sections and ``[output]``."""
+    return {key: SCHEMA[section][key] for key, section in _flag_sections(kind).items()}
+
+
 def _plain(value: Any) -> Any:
     if isinstance(value, Expression):
         return value.text
@@ -642,8 +650,7 @@ def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: _Context,
         return f"at line {lines[i]} (s = {grid[i]:.6g})"
 
     spec.check_samples(values, f"{label} column {column!r}", at)
-    values.flags.writeable = False
-    return TableColumn(raw, column, values)
+    return TableColumn(raw, column, readonly(values))
 
 
 def _safe_path(raw: str, where: str, base_dir: Path) -> Path:

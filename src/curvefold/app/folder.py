@@ -43,13 +43,14 @@ from ..io.atomic import folder_mode
 from ..io.reading import read_bytes
 from ..kernel.errors import InputError
 
-__all__ = ["MARKER", "OutputTarget", "check_output", "output_folder", "rename_noreplace"]
+__all__ = ["MARKER", "ENDING_SIGNALS", "OutputTarget", "check_output", "output_folder", "rename_noreplace"]
 
 #: The file every output folder holds: curvefold's version and a random id.
 MARKER = ".curvefold-output"
 #: Temporary folders (and folders moved aside) of a run, with its process id.
 _TEMPORARY = re.compile(r"\..+\.curvefold-(\d+)-\w+(\.old)?")
-_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
+#: The signals that end a run (the command line turns them into a clean stop).
+ENDING_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
 
 
 @dataclass(frozen=True)
@@ -221,7 +222,7 @@ def _alive(pid: int) -> bool:
 def _signals_held() -> Iterator[None]:
     """SIGINT, SIGTERM and SIGHUP are delivered after the block, not inside it."""
     try:
-        previous = signal.pthread_sigmask(signal.SIG_BLOCK, _SIGNALS)
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
     except (AttributeError, ValueError, OSError):  # no signal masks here (Windows)
         yield
         return

@@ -70,7 +70,7 @@ def structure_payload(built: Built) -> dict:
             "curves": built.structure.curves_uv.tolist(),
             "curve_kinds": list(built.structure.curve_kinds),
             "bounding_box": [V.reshape(-1, 3).min(axis=0).tolist(), V.reshape(-1, 3).max(axis=0).tolist()],
-            "regression_margin": float(built.structure.lattice.domain.margin(built.structure.curves_uv.astype(float)).min()),
+            "regression_margin": built.structure.regression_margin,
         }
     else:
         c = built.crease

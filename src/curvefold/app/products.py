@@ -26,6 +26,7 @@ from ..analysis.mechanism import certified_mechanism
 from ..geometry.panels import PanelLattice
 from ..io.formats import FORMATS, check_kind, formats_of
 from .build import Built
+from .folder import ENDING_SIGNALS
 
 __all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "MOTION_STEPS"]
 
@@ -108,7 +109,7 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
     # The ending signals wait while the workers are forked (a signal then would reach a
     # fork hook, or a child with the parent's handlers); leaving the block terminates the
     # workers, so an interrupted run waits for no job.
-    held = signal.pthread_sigmask(signal.SIG_BLOCK, _ENDING)
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
     try:
         pool = multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals, initargs=(held,))
     finally:
@@ -119,15 +120,11 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
             yield (label, *result.get())
 
 
-#: Signals that end a run (the command line turns them into a clean stop).
-_ENDING = {getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)}
-
-
 def _worker_signals(mask: set) -> None:
     """A job process leaves signals to its parent: it ignores SIGINT (the terminal sends it to
     the whole group) and dies on SIGTERM and SIGHUP, whatever handlers it inherited; then it
     takes the parent's signal mask back."""
-    for signum in _ENDING:
+    for signum in ENDING_SIGNALS:
         signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 

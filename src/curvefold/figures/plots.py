@@ -381,6 +381,8 @@ def plot_sections(
     from matplotlib.collections import PolyCollection
     from matplotlib.lines import Line2D
 
+    from ..vault.assembly import Vault
+
     structure, lattice, own = _structure_of(obj)
     t_arr = np.atleast_1d(np.asarray(t_values, float))
     if t_arr.ndim != 1 or t_arr.size == 0 or not np.all(np.isfinite(t_arr)) or np.any((t_arr < 0) | (t_arr > 1)):
@@ -426,7 +428,7 @@ def plot_sections(
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
         ax.grid(True, lw=0.3, alpha=0.5)
-        where = {0: " (feet)", (n - 1) // 2: " (apex)"}.get(i, "") if _is_vault(obj) else ""
+        where = {0: " (feet)", (n - 1) // 2: " (apex)"}.get(i, "") if isinstance(obj, Vault) else ""
         ax.set_title(f"section at t = {lattice.t[i]:.3g}{where}", fontsize=10)
         ax.set_xlabel(f"along N(t) ({UNITS})")
     axes[0].set_ylabel(f"along B(t) ({UNITS})")
@@ -436,12 +438,6 @@ def plot_sections(
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
     fig.suptitle("Sections normal to the common tangent T(t): the pantograph", fontsize=11)
     return fig
-
-
-def _is_vault(obj: Any) -> bool:
-    from ..vault.assembly import Vault
-
-    return isinstance(obj, Vault)
 
 
 # -- 3D views of vaults ----------------------------------------------------------------------------
@@ -753,11 +749,11 @@ def write_motion_gif(
     """
     from PIL import Image
 
+    from ..geometry.lattice import check_anchor
     from ..vault.assembly import Vault
 
     structure, lattice, own = _structure_of(obj)
-    if anchor not in ("start", "middle"):
-        raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
+    check_anchor(anchor)
     w_px, h_px = (int(v) for v in size)
     if not (64 <= w_px <= 4096 and 64 <= h_px <= 4096):
         raise InputError(f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}")

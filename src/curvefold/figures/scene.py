@@ -23,6 +23,8 @@ import numpy as np
 
 from ..geometry.structure import drawable
 from ..geometry.topology import tube_strips
+from ..io.tables import rgb8
+from ..kernel.arrays import frozen, readonly
 from ..kernel.errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -48,14 +50,8 @@ __all__ = [
 ]
 
 
-def _readonly(a: np.ndarray) -> np.ndarray:
-    a = np.array(a)
-    a.flags.writeable = False
-    return a
-
-
 #: Base colour of the strips before shading, RGB in [0, 1].
-STRIP_RGB = _readonly([0.86, 0.86, 0.85])
+STRIP_RGB = readonly(np.array([0.86, 0.86, 0.85]))
 #: Fill and outline of the ground plane z = 0.
 GROUND_COLOR, GROUND_EDGE = "#ece6da", "#b9ae98"
 #: Colour of the end rulings of the strips.
@@ -70,14 +66,7 @@ def rgba(color: str) -> np.ndarray:
     >>> rgba("#ff8000").tolist()
     [1.0, 0.5019607843137255, 0.0, 1.0]
     """
-    text = str(color)
-    try:
-        if len(text) != 7 or text[0] != "#":
-            raise ValueError
-        rgb = [int(text[k : k + 2], 16) / 255 for k in (1, 3, 5)]
-    except ValueError:
-        raise InputError(f"a colour must be written '#rrggbb', got {color!r}") from None
-    return np.array([*rgb, 1.0])
+    return np.array([*(c / 255 for c in rgb8(color)), 1.0])
 
 
 def _hex(color: np.ndarray) -> str:
@@ -180,11 +169,11 @@ class Scene:
     ground: np.ndarray | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "paths", tuple(_readonly(np.asarray(p, float)) for p in self.paths))
+        object.__setattr__(self, "paths", tuple(frozen(np.asarray(p, float)) for p in self.paths))
         for name in ("roles", "fill", "stroke", "widths"):
-            object.__setattr__(self, name, _readonly(getattr(self, name)))
+            object.__setattr__(self, name, frozen(getattr(self, name)))
         if self.ground is not None:
-            object.__setattr__(self, "ground", _readonly(np.asarray(self.ground, float)))
+            object.__setattr__(self, "ground", frozen(np.asarray(self.ground, float)))
 
     @property
     def strips(self) -> np.ndarray:

@@ -25,7 +25,7 @@ import numpy as np
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.functions import Constant, Differenced, FunctionLike, ScalarFunction, as_function, check_finite, difference_step
-from .curve import SpaceCurve, check_samples
+from .curve import SpaceCurve, check_length, check_samples
 from .topology import quadrant_kind, quadrant_name
 
 __all__ = ["Crease", "QUADRANTS", "half_angle"]
@@ -166,9 +166,7 @@ class Crease(FrozenArrays):
 
         samples = check_samples(samples)
         a0 = half_angle(fold_angle, degrees=degrees)
-        L = float(length)
-        if not np.isfinite(L) or L <= 0:
-            raise InputError(f"length must be a finite number > 0, got {length!r}")
+        L = check_length(length)
         k2 = as_function(kappa_2d, name="kappa_2d", length=L)
         unit = np.pi / 180.0 if degrees else 1.0
         bl = as_function(beta_left, name="beta_left", length=L).scaled(unit)
@@ -254,9 +252,7 @@ class Crease(FrozenArrays):
         (80.0, 60.0)
         """
         samples = check_samples(samples)
-        L = float(length)
-        if not np.isfinite(L) or L <= 0:
-            raise InputError(f"length must be a finite number > 0, got {length!r}")
+        L = check_length(length)
         unit = np.pi / 180.0 if degrees else 1.0
         k2 = as_function(kappa_2d, name="kappa_2d", length=L)
         bl = as_function(beta_left, name="beta_left", length=L).scaled(unit)

@@ -20,7 +20,7 @@ from ..kernel.errors import InputError
 from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
 from ..kernel.lie import GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
 
-__all__ = ["SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
+__all__ = ["FramedCurve", "SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
 
 #: Samples per slice in the per-step work (keeps the working set in cache).
 CHUNK = 4096
@@ -103,8 +103,36 @@ def gauss_nodes(grid: np.ndarray) -> np.ndarray:
     return grid[:-1, None] + GAUSS3_NODES[None, :] * np.diff(grid)[:, None]
 
 
+class FramedCurve:
+    """A curve with a frame at every sample: its length and the columns of its frames.
+
+    For classes holding ``s`` (n,), the curve parameter of the samples, and ``frames``
+    (n, 3, 3), rotations whose columns are the tangent, normal and binormal.
+    """
+
+    @property
+    def length(self) -> float:
+        """Parameter length s[-1] − s[0]: the arc length L."""
+        return float(self.s[-1] - self.s[0])
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """Unit tangents, shape (n, 3)."""
+        return self.frames[:, :, 0]
+
+    @property
+    def normal(self) -> np.ndarray:
+        """Unit normals, shape (n, 3)."""
+        return self.frames[:, :, 1]
+
+    @property
+    def binormal(self) -> np.ndarray:
+        """Unit binormals, shape (n, 3)."""
+        return self.frames[:, :, 2]
+
+
 @dataclass(frozen=True, eq=False)
-class SpaceCurve(FrozenArrays):
+class SpaceCurve(FramedCurve, FrozenArrays):
     """A space curve sampled at uniform arc length with its Frenet frame.
 
     Build it with :meth:`from_curvature`. All arrays are read-only.
@@ -171,7 +199,7 @@ class SpaceCurve(FrozenArrays):
         >>> bool(np.allclose(c.points[-1], c.points[0], atol=1e-13))
         True
         """
-        length = _check_length(length)
+        length = check_length(length)
         samples = check_samples(samples)
         origin_arr = _check_vector(origin, "origin")
         frame_arr = _check_frame(frame)
@@ -196,28 +224,9 @@ class SpaceCurve(FrozenArrays):
             points, frames = hermite_fill(s, stride, motions[:4], dual_to_motion(motions)[1], kf, tf)
         return cls(readonly(s), readonly(points), readonly(frames), kf, tf)
 
-    @property
-    def length(self) -> float:
-        """Arc length L."""
-        return float(self.s[-1])
 
-    @property
-    def tangent(self) -> np.ndarray:
-        """T(s), shape (n, 3)."""
-        return self.frames[:, :, 0]
-
-    @property
-    def normal(self) -> np.ndarray:
-        """N(s), shape (n, 3)."""
-        return self.frames[:, :, 1]
-
-    @property
-    def binormal(self) -> np.ndarray:
-        """B(s), shape (n, 3)."""
-        return self.frames[:, :, 2]
-
-
-def _check_length(length: float) -> float:
+def check_length(length: float) -> float:
+    """Validate an arc length: a finite number > 0."""
     L = float(length)
     if not np.isfinite(L) or L <= 0:
         raise InputError(f"length must be a finite number > 0, got {length!r}")

@@ -37,7 +37,7 @@ from .crease import Crease, half_angle, ruling_vectors
 from .curve import SpaceCurve, gauss_nodes, integrate_frenet
 from .topology import Topology
 
-__all__ = ["Lattice", "Pattern", "RegressionDomain", "check_curves", "lattice_points", "log_width_ratio"]
+__all__ = ["Lattice", "Pattern", "RegressionDomain", "check_anchor", "check_curves", "lattice_points", "log_width_ratio"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -339,8 +339,7 @@ class Lattice(FrozenArrays):
     # -- rigid folding ------------------------------------------------------------------------
     def _folded_curve1(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray]:
         """Curve 1 at half fold angles α (A,): points (A, n, 3) and frames (A, n, 3, 3)."""
-        if anchor not in ("start", "middle"):
-            raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
+        check_anchor(anchor)
         p = self.pattern
         c = self.crease.curve
         ca, ta = np.cos(alphas)[:, None, None], np.tan(alphas)[:, None, None]
@@ -407,6 +406,12 @@ class _RefoldedTorsion(ScalarFunction):
     def derivative(self, s: np.ndarray) -> np.ndarray:
         k2, beta = self.kappa_2d, self.beta
         return self.tan_alpha * (k2.derivative(s) / np.tan(beta(s)) - k2(s) * beta.derivative(s) / np.sin(beta(s)) ** 2)
+
+
+def check_anchor(anchor: str) -> None:
+    """Refuse an ``anchor`` of a refolded lattice other than ``"start"`` and ``"middle"``."""
+    if anchor not in ("start", "middle"):
+        raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
 
 
 def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, name: str = "cells") -> None:

@@ -133,7 +133,7 @@ class Mesh(FrozenArrays):
 
 
 def vector_areas(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.ndarray:
-    """Twice the vector area of every face (Newell's method), shape (F, 3).
+    """Twice the vector area of every face (Newell's method), shape (..., F, 3).
 
     ``Σ (p_i − p_0) × (p_{i+1} − p_0)`` over the fan of each polygon: its direction is the
     face normal (counter-clockwise faces), its length twice the area of a planar face;
@@ -142,7 +142,8 @@ def vector_areas(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.
 
     Parameters
     ----------
-    vertices_coords : (V, 3) or (V, 2) ndarray
+    vertices_coords : (..., V, 3) or (..., V, 2) ndarray
+        One or more states of the vertices.
     faces_vertices : (F, k) ndarray of int
         Polygons, -1 padded.
 
@@ -153,14 +154,14 @@ def vector_areas(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.
     """
     x = np.asarray(vertices_coords, float)
     if x.shape[-1] == 2:
-        x = np.concatenate([x, np.zeros((len(x), 1))], axis=1)
+        x = np.concatenate([x, np.zeros(x.shape[:-1] + (1,))], axis=-1)
     faces = np.asarray(faces_vertices)
     filled = np.where(faces >= 0, faces, faces[:, :1])  # padding repeats the first vertex: no area
-    p = x[filled]
-    d = p[:, 1:] - p[:, :1]
+    p = x[..., filled, :]
+    d = p[..., 1:, :] - p[..., :1, :]
     if faces.shape[1] == 3:
-        return cross(d[:, 0], d[:, 1])
-    return cross(d[:, :-1], d[:, 1:]).sum(axis=1)
+        return cross(d[..., 0, :], d[..., 1, :])
+    return cross(d[..., :-1, :], d[..., 1:, :]).sum(axis=-2)
 
 
 def face_sides(faces_vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -64,8 +64,8 @@ from ..kernel.errors import InputError
 from ..kernel.lie import cross, dual_to_motion, exp_dual, prefix_dual
 from ..kernel.validate import Spec
 from .crease import half_angle
-from .curve import SpaceCurve
-from .lattice import Lattice, Pattern, RegressionDomain, check_curves, lattice_points
+from .curve import FramedCurve, SpaceCurve
+from .lattice import Lattice, Pattern, RegressionDomain, check_anchor, check_curves, lattice_points
 from .topology import Topology
 
 __all__ = [
@@ -361,7 +361,7 @@ class PanelPattern(FrozenArrays):
 
 
 @dataclass(frozen=True, eq=False)
-class PanelCurve(FrozenArrays):
+class PanelCurve(FramedCurve, FrozenArrays):
     """Curve 1 of a panel lattice at one fold angle: a polyline with a frame at every vertex.
 
     Attributes
@@ -377,26 +377,6 @@ class PanelCurve(FrozenArrays):
     s: np.ndarray
     points: np.ndarray
     frames: np.ndarray
-
-    @property
-    def length(self) -> float:
-        """Parameter length s_N − s_0 (the smooth crease's arc length when sampled from one)."""
-        return float(self.s[-1] - self.s[0])
-
-    @property
-    def tangent(self) -> np.ndarray:
-        """Vertex tangents t̃_k, shape (N + 1, 3)."""
-        return self.frames[:, :, 0]
-
-    @property
-    def normal(self) -> np.ndarray:
-        """ñ_k, shape (N + 1, 3)."""
-        return self.frames[:, :, 1]
-
-    @property
-    def binormal(self) -> np.ndarray:
-        """b̃_k, shape (N + 1, 3)."""
-        return self.frames[:, :, 2]
 
 
 @dataclass(frozen=True)
@@ -553,8 +533,7 @@ class PanelLattice(FrozenArrays):
     # -- rigid folding ----------------------------------------------------------------------------
     def _anchored(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Placements (A, 3, 3), (A, 3) of the states at α (A,) keeping this state's frame at the anchor vertex, and those states."""
-        if anchor not in ("start", "middle"):
-            raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
+        check_anchor(anchor)
         k = 0 if anchor == "start" else self.pattern.panels // 2
         states = self.pattern.fold(alphas)
         here_points, _, _, here_frames = self._state

@@ -36,7 +36,7 @@ import numpy as np
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
 from ..kernel.lie import cross
-from .mesh import edges_faces
+from .mesh import edges_faces, vector_areas
 from .panels import PanelLattice
 from .structure import Structure
 from .topology import Topology
@@ -175,17 +175,11 @@ def _step_shape(curves: np.ndarray, i: int | np.ndarray, ends: np.ndarray) -> tu
     edges = x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :]
     length = np.linalg.norm(edges, axis=-1)  # (states, J, E)
     stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
-    normal = _triangle_areas(x, _STEP.faces_vertices)
+    normal = vector_areas(x, _STEP.faces_vertices)
     normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
     cos = np.sum(normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1)
     bend = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).max(axis=(0, 2))
     return angle, stretch, bend
-
-
-def _triangle_areas(x: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Twice the vector areas of triangles ``faces`` (F, 3) on vertices (..., V, 3), shape (..., F, 3)."""
-    p = x[..., faces, :]
-    return cross(p[..., 1, :] - p[..., 0, :], p[..., 2, :] - p[..., 0, :])
 
 
 def _chord_deviations(curves: np.ndarray, i: int, d: int, count: int) -> np.ndarray:

@@ -124,6 +124,11 @@ class Structure(FrozenArrays):
         """Index into :attr:`curves_uv` of corners 1–4 of every cell, shape (K, 4), read-only."""
         return self._corners[1]
 
+    @property
+    def regression_margin(self) -> float:
+        """The smallest Eq. (17) speed factor of its lattice curves: > 0 when they are free of regression."""
+        return float(self.lattice.domain.margin(self.curves_uv.astype(float)).min())
+
     @cached_property
     def curve_kinds(self) -> tuple[str, ...]:
         """For each curve: "fold" or "seam" in every cell it bounds, else "junction"."""

@@ -46,6 +46,7 @@ from ..geometry.mesh import fold_angles as dihedral_angles
 from ..geometry.sheets import _angles, _check_structure, _design_angle, _develop, bonds, folding_motion
 from ..geometry.structure import Structure
 from ..geometry.topology import Topology, fold_assignment
+from ..kernel.arrays import readonly
 from ..kernel.errors import InputError, InternalError
 from ..kernel.text import one_line
 from .atomic import atomic_write
@@ -203,16 +204,21 @@ def _face_lists(faces: np.ndarray) -> list:
     return [[v for v in row if v >= 0] for row in faces.tolist()]
 
 
-def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
-    if seam_partners is None:
+def _check_pairs(value, edges: int, name: str, rows: str) -> np.ndarray:
+    """Pairs of edge indices in [0, edges), shape (``rows``, 2); none for None."""
+    if value is None:
         return np.zeros((0, 2), np.int64)
     try:
-        pairs = np.asarray(seam_partners, dtype=np.int64).reshape(-1, 2)
+        pairs = np.asarray(value, dtype=np.int64).reshape(-1, 2)
     except (TypeError, ValueError) as exc:
-        raise InputError(f"seam_partners must be (P, 2) edge indices, got {seam_partners!r}") from exc
-    E = len(assignment)
-    if pairs.size and (pairs.min() < 0 or pairs.max() >= E):
-        raise InputError(f"seam_partners must be edge indices in [0, {E}), got {int(pairs.min())}..{int(pairs.max())}")
+        raise InputError(f"{name} must be ({rows}, 2) edge indices, got {value!r}") from exc
+    if pairs.size and (pairs.min() < 0 or pairs.max() >= edges):
+        raise InputError(f"{name} must be edge indices in [0, {edges}), got {int(pairs.min())}..{int(pairs.max())}")
+    return pairs
+
+
+def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
+    pairs = _check_pairs(seam_partners, len(assignment), "seam_partners", "P")
     if (pairs[:, 0] == pairs[:, 1]).any():
         raise InputError("seam_partners pairs an edge with itself")
     not_b = pairs.size and (assignment[pairs] != "B").any()
@@ -222,16 +228,11 @@ def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
     return pairs
 
 
-def _check_bonds(bonds, edges: int) -> np.ndarray:
-    if bonds is None:
-        return np.zeros((0, 2), np.int64)
-    try:
-        pairs = np.asarray(bonds, dtype=np.int64).reshape(-1, 2)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"bonds must be (Q, 2) edge indices, got {bonds!r}") from exc
-    if pairs.size and (pairs.min() < 0 or pairs.max() >= edges):
-        raise InputError(f"bonds must be edge indices in [0, {edges}), got {int(pairs.min())}..{int(pairs.max())}")
-    return pairs
+def _write_document(path: str | os.PathLike, title: str, frame: dict) -> Path:
+    """Write a FOLD document: curvefold's file keys, the title if any, then ``frame``'s keys."""
+    doc = {"file_spec": FILE_SPEC, "file_creator": "curvefold", "file_classes": ["singleModel"],
+           **({"file_title": one_line(title)} if title else {}), **frame}
+    return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
 
 
 def write_fold(
@@ -299,7 +300,7 @@ def write_fold(
     _check_sheet(cp, assignment, "crease_pattern")
     cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
     pairs = _check_seam_partners(seam_partners, assignment)
-    glued = _check_bonds(bonds, len(assignment))
+    glued = _check_pairs(bonds, len(assignment), "bonds", "Q")
     meta = check_metadata(metadata)
     if design is not None:
         try:
@@ -332,11 +333,7 @@ def write_fold(
             "edges_foldAngle": np.where(zero, 0.0, angle).tolist(),
         })
 
-    doc = {
-        "file_spec": FILE_SPEC,
-        "file_creator": "curvefold",
-        "file_classes": ["singleModel"],
-        **({"file_title": one_line(title)} if title else {}),
+    return _write_document(path, title, {
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
         "frame_unit": unit,
@@ -352,8 +349,7 @@ def write_fold(
         "curvefold:metadata": meta,
         **({"curvefold:design": dict(design)} if design is not None else {}),
         "file_frames": frames,
-    }
-    return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
+    })
 
 
 def write_sheet_fold(
@@ -397,11 +393,7 @@ def write_sheet_fold(
     flat = len(x) == 0 or float(np.abs(x[:, 2]).max()) <= flat_tol * max(size, 1e-300)
     if flat:
         x = _flat_ccw_coords(sheet, "sheet", flat_tol, mirror_clockwise)
-    doc = {
-        "file_spec": FILE_SPEC,
-        "file_creator": "curvefold",
-        "file_classes": ["singleModel"],
-        **({"file_title": one_line(title)} if title else {}),
+    return _write_document(path, title, {
         "frame_classes": ["creasePattern" if flat else "foldedForm"],
         "frame_unit": unit,
         "vertices_coords": _number_lists(x),
@@ -410,8 +402,7 @@ def write_sheet_fold(
         "edges_foldAngle": np.where(np.isin(assignment, ("B", "F")), 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
         "faces_vertices": _face_lists(sheet.faces_vertices),
         "edges_curvefold:kind": sheet.edges_kind.tolist(),
-    }
-    return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
+    })
 
 
 # ---------------------------------------------------------------------------------------
@@ -704,8 +695,7 @@ def _edge_pairs(doc: dict, key: str, edges: int, where: str) -> np.ndarray:
     bad = np.flatnonzero(((pairs < 0) | (pairs >= edges)).any(axis=1))
     if bad.size:
         raise InputError(f"{where}: {key}[{bad[0]}] = {pairs[bad[0]].tolist()} refers to an edge outside [0, {edges})")
-    pairs.flags.writeable = False
-    return pairs
+    return readonly(pairs)
 
 
 # ---------------------------------------------------------------------------------------
@@ -829,7 +819,6 @@ def to_fold(
     pairs = ordered.reshape(-1, 2) if ordered.size % 2 == 0 else np.zeros((0, 2), np.int64)
     if len(pairs) * 2 != ordered.size or not (mesh_edge[pairs[:, 0]] == mesh_edge[pairs[:, 1]]).all():
         raise InternalError("seam edges do not pair up between the two sheets of a tube")
-    pairs.flags.writeable = False
 
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
     glued = _bond_pairs(cp.edges_vertices, source, topology, mesh_edge)
@@ -842,7 +831,7 @@ def to_fold(
                    for a, x, m in zip(angles, coords[1:], measured[1:]))
     record = None if design is None else {"design": dict(design), "fold_angles": angles.tolist(), "anchor": anchor, "faces": faces,
                                           "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
-    return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=pairs, bonds=glued, design=record)
+    return FoldFile(crease_pattern=cp, folded=folded, metadata=meta, unit=unit, seam_partners=readonly(pairs), bonds=glued, design=record)
 
 
 def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topology, mesh_edge: np.ndarray) -> np.ndarray:
@@ -865,9 +854,7 @@ def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topolo
     first = np.r_[True, (key[1:] != key[:-1]) | (mesh_edge[ids[1:]] != mesh_edge[ids[:-1]])]
     ids, key = ids[first], key[first]
     same = key[1:] == key[:-1]
-    pairs = np.stack([ids[:-1][same], ids[1:][same]], axis=1)
-    pairs.flags.writeable = False
-    return pairs
+    return readonly(np.stack([ids[:-1][same], ids[1:][same]], axis=1))
 
 
 def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:

@@ -52,6 +52,7 @@ import numpy as np
 
 from ..geometry.mesh import edges_faces
 from ..geometry.sheets import PatternSheet
+from ..kernel.arrays import frozen
 from ..kernel.errors import InputError
 from .tables import mm_per_unit, page_mm
 
@@ -79,12 +80,6 @@ FOOTER = 14.0
 
 _TAB_MAX_TURN = math.radians(30.0)
 _TAB_WIDTH_STEPS = (1.0, 0.5, 0.25)
-
-
-def _readonly(a: np.ndarray, dtype=float) -> np.ndarray:
-    a = np.array(a, dtype=dtype)
-    a.flags.writeable = False
-    return a
 
 
 def seam_name(seam_id: int) -> str:
@@ -156,7 +151,7 @@ class Polyline:
     seam: int = -1
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "points", _readonly(self.points))
+        object.__setattr__(self, "points", frozen(np.asarray(self.points, float)))
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray) -> Polyline:
         """The polyline mapped by ``x -> matrix @ x + offset``."""
@@ -224,7 +219,7 @@ class PlacedSheet:
     labels: tuple[Label, ...]
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "transform", _readonly(self.transform))
+        object.__setattr__(self, "transform", frozen(np.asarray(self.transform, float)))
 
     def on_layer(self, layer: str) -> tuple[Polyline, ...]:
         """The polylines of one layer."""

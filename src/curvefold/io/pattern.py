@@ -57,7 +57,7 @@ from .layout import (
     seam_name,
     text_width,
 )
-from .tables import COLOURS, mm_per_unit
+from .tables import COLOURS, mm_per_unit, rgb8
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")
@@ -357,10 +357,6 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
 # DXF
 
 
-def _rgb(color: str) -> tuple[int, int, int]:
-    return int(color[1:3], 16), int(color[3:5], 16), int(color[5:7], 16)
-
-
 def page_grid(count: int, size: tuple[float, float], spacing: float) -> np.ndarray:
     """Lower-left corners (count, 2) of pages laid in a grid of ⌈√count⌉ columns, row by row from the top.
 
@@ -419,7 +415,7 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
         if st.dashes and st.linetype not in doc.linetypes:
             pattern = [float(sum(st.dashes))] + [d if k % 2 == 0 else -d for k, d in enumerate(st.dashes)]
             doc.linetypes.add(st.linetype, pattern, description=f"curvefold {name} " + " ".join(f"{d:g}" for d in st.dashes))
-        doc.layers.add(name, color=st.aci, true_color=colors.rgb2int(_rgb(st.color)),
+        doc.layers.add(name, color=st.aci, true_color=colors.rgb2int(rgb8(st.color)),
                        linetype=st.linetype if st.dashes else "CONTINUOUS", lineweight=13 if st.width < 1 else 25)
     for name in ("pages", "legend"):
         doc.layers.add(name, color=8).dxf.plot = 0
@@ -451,13 +447,13 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
         msp.add_hatch(color=7, dxfattribs={"layer": "legend"}).paths.add_polyline_path((footer.bar + shift).tolist(), is_closed=True)
         for name, points in footer.samples:
             st = LAYER_STYLES[name]
-            style = {"layer": "legend", "true_color": colors.rgb2int(_rgb(st.color)), "linetype": st.linetype if st.dashes else "CONTINUOUS"}
+            style = {"layer": "legend", "true_color": colors.rgb2int(rgb8(st.color)), "linetype": st.linetype if st.dashes else "CONTINUOUS"}
             if st.fill:
                 msp.add_hatch(dxfattribs=style).paths.add_polyline_path((points + shift).tolist(), is_closed=True)
             else:
                 msp.add_lwpolyline((points + shift).tolist(), dxfattribs=style)
         for t, colour in footer.texts:
-            text(t.text, np.asarray(t.position) + shift, t.size, 0.0, "legend", true_color=colors.rgb2int(_rgb(colour)))
+            text(t.text, np.asarray(t.position) + shift, t.size, 0.0, "legend", true_color=colors.rgb2int(rgb8(colour)))
     lo, hi = corners.min(axis=0), corners.max(axis=0) + (W, H)
     msp.dxf.extmin = (float(lo[0]), float(lo[1]), 0.0)  # ezdxf writes them to $EXTMIN, $EXTMAX
     msp.dxf.extmax = (float(hi[0]), float(hi[1]), 0.0)

@@ -22,7 +22,7 @@ from types import MappingProxyType
 
 from ..kernel.errors import InputError
 
-__all__ = ["PAGES", "UNITS", "COLOURS", "Unit", "page_mm", "mm_per_unit", "rgba", "rgba8"]
+__all__ = ["PAGES", "UNITS", "COLOURS", "Unit", "page_mm", "mm_per_unit", "rgb8", "rgba", "rgba8"]
 
 #: Paper sizes, portrait (width, height) in millimetres.
 PAGES: Mapping[str, tuple[float, float]] = MappingProxyType({
@@ -112,13 +112,28 @@ def mm_per_unit(name: str) -> float:
     return UNITS[name].metres * 1000.0
 
 
+def rgb8(code: str) -> tuple[int, int, int]:
+    """The channels, 0–255, of a colour written ``"#rrggbb"``.
+
+    Examples
+    --------
+    >>> rgb8("#ff8000")
+    (255, 128, 0)
+    """
+    text = str(code)
+    try:
+        if len(text) != 7 or text[0] != "#":
+            raise ValueError
+        return tuple(int(text[k : k + 2], 16) for k in (1, 3, 5))  # type: ignore[return-value]
+    except ValueError:
+        raise InputError(f"a colour must be written '#rrggbb', got {code!r}") from None
+
+
 def rgba(kind: str) -> tuple[float, float, float, float]:
     """The colour of ``kind`` as RGBA in [0, 1] (opaque)."""
-    code = COLOURS[kind]
-    return (*(int(code[i : i + 2], 16) / 255.0 for i in (1, 3, 5)), 1.0)  # type: ignore[return-value]
+    return (*(c / 255.0 for c in rgb8(COLOURS[kind])), 1.0)  # type: ignore[return-value]
 
 
 def rgba8(kind: str) -> tuple[int, int, int, int]:
     """The colour of ``kind`` as RGBA in 0–255 (opaque)."""
-    code = COLOURS[kind]
-    return (*(int(code[i : i + 2], 16) for i in (1, 3, 5)), 255)  # type: ignore[return-value]
+    return (*rgb8(COLOURS[kind]), 255)

@@ -272,14 +272,9 @@ def _broadcast_call(f: Callable, s: np.ndarray) -> np.ndarray:
     """Call ``f`` on an array; fall back to element-wise calls for scalar-only callables."""
     try:
         out = np.asarray(f(s), dtype=float)
+        return out if out.shape == s.shape else np.broadcast_to(out, s.shape).astype(float)
     except (TypeError, ValueError):
-        out = np.array([float(f(float(x))) for x in s.ravel()]).reshape(s.shape)
-    if out.shape != s.shape:
-        try:
-            out = np.broadcast_to(out, s.shape).astype(float)
-        except ValueError:
-            out = np.array([float(f(float(x))) for x in s.ravel()]).reshape(s.shape)
-    return out
+        return np.array([float(f(float(x))) for x in s.ravel()]).reshape(s.shape)
 
 
 def as_function(f: FunctionLike, *, name: str, length: float) -> ScalarFunction:

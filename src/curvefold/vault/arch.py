@@ -39,6 +39,7 @@ from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, gauss_nodes, integrate_frenet
 from ..geometry.lattice import Pattern
 from ..geometry.panels import PanelPattern, check_panels
+from ..kernel.arrays import readonly
 from ..kernel.errors import ConvergenceError, InputError
 from ..kernel.functions import ScalarFunction
 from ..kernel.lie import cross, exp_rotation, product_quaternions
@@ -115,9 +116,7 @@ def _half_arch_grid(steps: int) -> tuple[float, np.ndarray, np.ndarray, np.ndarr
     q = np.linspace(0.0, 1.0, steps + 1)
     sin = np.sin(np.pi * gauss_nodes(q))
     s1, d1, d2 = sin[:, 1], sin[:, 2] - sin[:, 0], sin[:, 2] - 2 * sin[:, 1] + sin[:, 0]
-    for arr in (s1, d1, d2):
-        arr.flags.writeable = False
-    return 1.0 / steps, s1, d1, d2
+    return 1.0 / steps, readonly(s1), readonly(d1), readonly(d2)
 
 
 @dataclass(frozen=True)

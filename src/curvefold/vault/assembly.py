@@ -335,7 +335,6 @@ class Vault(FrozenArrays):
         xy_slope, zx_slope = self.section_slopes()
         p_xy_measured, change_measured = self.measured_proportions()
         chord = self.lattice.crease.curve.points[-1] - self.lattice.crease.curve.points[0]
-        margin = float(self.lattice.domain.margin(self.structure.curves_uv.astype(float)).min())
         uv = self.structure.curves_uv
         return {
             "design": asdict(self.design),
@@ -354,7 +353,7 @@ class Vault(FrozenArrays):
             "bounding_box": [lo.tolist(), hi.tolist()],
             "slope_xy_deg": xy_slope,
             "slope_zx_deg": zx_slope,
-            "regression_margin": margin,
+            "regression_margin": self.structure.regression_margin,
             "ground_error": self.ground_error(),
             "bounding_curves": {
                 "first": uv[np.argmin(uv.sum(axis=1))].tolist(),

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.validate import Spec
 
@@ -83,7 +84,7 @@ IN_FLIGHT = 4
 
 
 @dataclass(frozen=True, eq=False)
-class Sketch:
+class Sketch(FrozenArrays):
     """Light-weight geometry of a vault at its design angle, for drawing.
 
     Attributes
@@ -119,10 +120,7 @@ class Sketch:
         diag = np.flatnonzero(uv[:, 0] == uv[:, 1])
         ends = diag[[np.argmin(uv[diag, 0]), np.argmax(uv[diag, 0])]]
         m = vault.apex_index
-        out = cls(curves.astype(np.float32), cells.astype(np.int32), kinds, V[ends, 0].copy(), V[ends, m].copy())
-        for arr in (out.curves, out.cells, out.feet, out.apex):
-            arr.flags.writeable = False
-        return out
+        return cls(curves.astype(np.float32), cells.astype(np.int32), kinds, V[ends, 0], V[ends, m])
 
 
 def evaluate_design(

@@ -41,7 +41,7 @@ from ...kernel.validate import MAX_TEXT, Spec, suggest
 from ...vault.assembly import DEFAULT_TUBES_CAP
 from ...vault.targets import REPLACES, TARGET_SPECS
 from ..build import Built, build, fit_vault_targets
-from ..design import KINDS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict
+from ..design import KINDS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
 
 __all__ = [
     "QueryError",
@@ -99,8 +99,7 @@ def parameters(kind: str) -> dict[str, Spec]:
     """Every query parameter of a kind: the schema keys of its sections and ``[output]``, and a vault's targets."""
     if kind not in KINDS:
         raise QueryError(f"unknown kind {kind!r} (allowed: {', '.join(KINDS)})")
-    specs = {spec.name: spec for section in ("", *SECTIONS_OF_KIND[kind], "output") for spec in SCHEMA[section].values()
-             if spec.name not in _FIXED}
+    specs = kind_specs(kind)
     if kind == "vault":
         specs |= {spec.name: spec for spec in TARGET_SPECS}
     return specs
@@ -377,7 +376,7 @@ def _numbers(built: Built) -> dict:
         V = s.state().vertices.reshape(-1, 3)
         size = V.max(axis=0) - V.min(axis=0)
         return {"cells": len(s.cells), "lattice_curves": len(s.curves_uv), "size_x": size[0], "size_y": size[1], "size_z": size[2],
-                "regression_margin": float(s.lattice.domain.margin(s.curves_uv.astype(float)).min())}
+                "regression_margin": s.regression_margin}
     c = built.crease
     return {"length": c.curve.length, "fold_angle_start": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
             "fold_angle_end": float(np.degrees(2 * c.alpha(c.s[-1:])[0]))}
