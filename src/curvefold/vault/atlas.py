@@ -468,20 +468,33 @@ def _in_order(submit: Callable[[Any], Any], tasks: Iterable, window: int) -> Ite
 
 @contextmanager
 def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
-    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this process."""
-    if scheduler is not None:
-        with _scheduler_client(scheduler) as client:
-            yield client
-    elif workers > 1:
-        import distributed
+    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this process.
 
-        with (
-            distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
-            distributed.Client(cluster, set_as_default=False) as client,
-        ):
-            yield client
-    else:
+    Dask's own logging is silenced meanwhile (its scheduler runs in this process for a local
+    cluster): what goes wrong reaches the caller as an exception, and stderr keeps to one
+    line (an interrupted sweep otherwise logs the keys it could not gather).
+    """
+    if scheduler is None and workers <= 1:
         yield None
+        return
+    import distributed
+
+    dask_log = logging.getLogger("distributed")
+    level = dask_log.level
+    dask_log.setLevel(logging.CRITICAL)
+    try:
+        if scheduler is not None:
+            with _scheduler_client(scheduler) as client:
+                yield client
+        else:
+            with (
+                distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                         silence_logs=logging.CRITICAL) as cluster,
+                distributed.Client(cluster, set_as_default=False) as client,
+            ):
+                yield client
+    finally:
+        dask_log.setLevel(level)
 
 
 def _scheduler_client(scheduler: str) -> Any:
