@@ -51,6 +51,7 @@ from ..kernel.text import one_line
 from .atomic import atomic_write
 from .mesh3d import check_metadata
 from .reading import read_bytes
+from .tables import CREATOR
 
 __all__ = ["FoldFile", "fold_assignments", "read_fold", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"]
 
@@ -334,7 +335,7 @@ def write_fold(
 
     doc = {
         "file_spec": FILE_SPEC,
-        "file_creator": "curvefold",
+        "file_creator": CREATOR,
         "file_classes": ["singleModel"],
         **({"file_title": one_line(title)} if title else {}),
         "frame_title": "crease pattern",
@@ -399,7 +400,7 @@ def write_sheet_fold(
         x = _flat_ccw_coords(sheet, "sheet", flat_tol, mirror_clockwise)
     doc = {
         "file_spec": FILE_SPEC,
-        "file_creator": "curvefold",
+        "file_creator": CREATOR,
         "file_classes": ["singleModel"],
         **({"file_title": one_line(title)} if title else {}),
         "frame_classes": ["creasePattern" if flat else "foldedForm"],

@@ -57,7 +57,7 @@ from .layout import (
     seam_name,
     text_width,
 )
-from .tables import COLOURS, mm_per_unit
+from .tables import COLOURS, CREATOR, mm_per_unit
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")
@@ -549,7 +549,7 @@ def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     rc = {"lines.scale_dashes": False, "path.simplify": False, "pdf.fonttype": 42,
           "font.sans-serif": ["DejaVu Sans", "Arial", "Helvetica"]}
     with matplotlib.rc_context(rc), atomic_path(path) as tmp:
-        with PdfPages(tmp, metadata={"Creator": "curvefold", "Title": "crease pattern", "CreationDate": None}) as pdf:
+        with PdfPages(tmp, metadata={"Creator": CREATOR, "Title": "crease pattern", "CreationDate": None}) as pdf:
             for number, page in enumerate(layout.pages, start=1):
                 fig = Figure(figsize=(page.size[0] / 25.4, page.size[1] / 25.4))
                 _draw_page(fig, page, layout, number, names, lw, scale_bar)
