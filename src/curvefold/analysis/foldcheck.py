@@ -109,12 +109,12 @@ class FoldCheck:
         Number of folded frames checked.
     checks : tuple of FileCheck
     max_isometry_error : float
-        Largest |ℓ_folded / ℓ_pattern − 1| over all edges and frames.
+        Largest ``|ℓ_folded / ℓ_pattern − 1|`` over all edges and frames.
     max_face_planarity_error : float
         Largest fold angle, degrees, across face and ruling-quad diagonals (0 when that
         check did not run).
     max_fold_angle_error : float
-        Largest |recorded − measured| dihedral angle, degrees.
+        Largest ``|recorded − measured|`` dihedral angle, degrees.
     ok : bool
         Every check that ran passed.
     tolerances : dict

@@ -337,7 +337,7 @@ def width_law_error(lattice: Lattice) -> float:
 
 
 def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
-    """Largest |measured − expected| fold angle (degrees) on the fold and seam edges of a tube mesh.
+    """Largest ``|measured − expected|`` fold angle (degrees) on the fold and seam edges of a tube mesh.
 
     Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
     on the seams (2, 4), mountains seen from outside the tubes.
@@ -360,7 +360,7 @@ class IsometryError:
     Attributes
     ----------
     max_edge_error : float
-        Largest |length − flat length| over all edges, model units.
+        Largest ``|length − flat length|`` over all edges, model units.
     max_relative_edge_error : float
         The same divided by the flat length.
     """

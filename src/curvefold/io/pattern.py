@@ -128,7 +128,7 @@ class LayerStyle:
     fill: bool = False
 
 
-#: Style of every layer in :data:`LAYERS`.
+#: Style of every layer in :data:`curvefold.io.layout.LAYERS`.
 LAYER_STYLES = MappingProxyType({
     "glue": LayerStyle(COLOURS["glue"], 3, fill=True),
     "rulings": LayerStyle(COLOURS["ruling"], 3, width=0.5),
