@@ -5,11 +5,13 @@ npm into ``_vendor/`` by scripts/docs.sh), every cross-reference resolved (nitpi
 gallery's examples and the tutorial notebook executed.
 """
 
+import sys
 from importlib.metadata import version as _version
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
+sys.path.insert(0, str(DOCS / "_ext"))  # curvefold_docs: short names and the gallery's figures
 
 project = "curvefold"
 author = "curvefold developers"
@@ -22,6 +24,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
+    "curvefold_docs",
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "myst_nb",
@@ -53,6 +56,8 @@ autosummary_ignore_module_all = True
 autodoc_default_options = {"members": True, "show-inheritance": True, "ignore-module-all": True}
 autodoc_typehints = "none"
 autodoc_member_order = "bysource"
+# Source links for what each module defines (a lock object must not send viewcode to _thread).
+viewcode_follow_imported_members = False
 
 # MathJax from the site itself (npm's mathjax, copied by scripts/docs.sh).
 html_static_path = ["_static", "_vendor"]
@@ -77,7 +82,7 @@ sphinx_gallery_conf = {
     "matplotlib_animations": False,
     "within_subsection_order": "FileNameSortKey",
     "show_memory": False,
-    "image_scrapers": ("matplotlib",),
+    "image_scrapers": ("curvefold_docs.curvefold_figures",),
     "reset_modules": ("matplotlib",),
 }
 
@@ -92,31 +97,3 @@ html_theme_options = {
 html_show_sourcelink = False
 html_copy_source = False
 
-
-def _resolve_short_names(app, env, node, contnode):
-    """Resolve a docstring's name the way its module's code reads it, else leave it unresolved (a warning).
-
-    Docstrings name what their module imports without the package path (``:class:`InputError```),
-    a re-export by its package (``curvefold.vault.VaultDesign``), and a dataclass field as an
-    attribute of its class (``:attr:`Layout.notes```, documented in the class's Attributes).
-    Each is tried in turn by suffix; a name matching more than one object still warns.
-    """
-    if node.get("refdomain") != "py" or node.hasattr("refspecific"):
-        return None
-    py = env.get_domain("py")
-    target, kind = node["reftarget"], node["reftype"]
-    parts = target.split(".")
-    candidates = [(kind, ".".join(parts[i:])) for i in range(len(parts) - 1)]
-    owner = parts[:-1] or [node.get("py:class")]
-    if kind == "attr" and owner[-1]:
-        candidates.append(("class", ".".join(owner)))
-    candidates.append((kind, parts[-1]))
-    for role, name in candidates:
-        if py.find_obj(env, node.get("py:module"), node.get("py:class"), name, role, 1):
-            node["refspecific"] = True
-            return py.resolve_xref(env, node["refdoc"], app.builder, role, name, node, contnode)
-    return None
-
-
-def setup(app):
-    app.connect("missing-reference", _resolve_short_names)
