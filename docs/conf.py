@@ -91,9 +91,11 @@ html_title = f"curvefold {release}"
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
-    "header_links_before_dropdown": 8,
+    "header_links_before_dropdown": 5,
     "secondary_sidebar_items": ["page-toc"],
 }
+# Pages without sub-pages need no section navigation: the text gets the width.
+html_sidebars = {page: [] for page in ("index", "install", "tutorial", "rhino", "errata", "changelog", "citing")}
 html_show_sourcelink = False
 html_copy_source = False
 
