@@ -47,8 +47,8 @@ def _get(url, timeout):
         try:
             refusal = json.loads(body)
         except ValueError:
-            raise DesignError("HTTP {} from {}".format(err.code, url)) from None
-        raise DesignError(refusal.get("error", "HTTP {}".format(err.code)), refusal.get("key")) from None
+            raise DesignError(f"HTTP {err.code} from {url}") from None
+        raise DesignError(refusal.get("error", f"HTTP {err.code}"), refusal.get("key")) from None
 
 
 def fetch(kind=KIND, parameters=None, formats=FORMATS, server=SERVER, folder=None, timeout=300):
@@ -84,14 +84,14 @@ def fetch(kind=KIND, parameters=None, formats=FORMATS, server=SERVER, folder=Non
         The designer is not running at ``server``.
     """
     query = urllib.parse.urlencode(parameters or {})
-    base = "{}/api/{}".format(server.rstrip("/"), kind)
-    summary = json.loads(_get("{}?{}".format(base, query), timeout))
+    base = f"{server.rstrip('/')}/api/{kind}"
+    summary = json.loads(_get(f"{base}?{query}", timeout))
     folder = folder or tempfile.mkdtemp(prefix="curvefold-")
     paths = []
     for name in formats:
-        path = os.path.join(folder, "{}.{}".format(kind, name))
+        path = os.path.join(folder, f"{kind}.{name}")
         with open(path, "wb") as out:
-            out.write(_get("{}.{}?{}".format(base, name, query), timeout))
+            out.write(_get(f"{base}.{name}?{query}", timeout))
         paths.append(path)
     return summary, paths
 
@@ -113,6 +113,23 @@ def _parse(arguments):
     return kind, dict(item.split("=", 1) for item in arguments[1:])
 
 
+def main(kind, parameters, inside_rhino):
+    """Build, download and (inside Rhino) import; None when done, else the one-line reason why not."""
+    try:
+        summary, paths = fetch(kind, parameters, server=SERVER)
+    except DesignError as err:
+        return f"curvefold refused the design: {err}"
+    except OSError as err:
+        return f"no curvefold designer at {SERVER} ({err}): start it with 'curvefold designer --no-browser'"
+    checks = summary.get("certificate", [])
+    failed = [c["name"] for c in checks if c.get("passed") is False]
+    print(f"{kind}: {len(checks)} certificate checks, " + ("failed: " + ", ".join(failed) if failed else "all passed"))
+    if inside_rhino:
+        import_into_rhino(paths)
+    print("\n".join(paths))
+    return None
+
+
 if __name__ == "__main__":
     try:
         import Rhino  # noqa: F401
@@ -120,15 +137,8 @@ if __name__ == "__main__":
     except ImportError:
         inside_rhino = False
     kind, parameters = (KIND, PARAMETERS) if inside_rhino else _parse(sys.argv[1:])
-    try:
-        summary, paths = fetch(kind, parameters)
-    except DesignError as err:
-        sys.exit("curvefold refused the design: {}".format(err))
-    except OSError as err:
-        sys.exit("no curvefold designer at {} ({}): start it with 'curvefold designer --no-browser'".format(SERVER, err))
-    checks = summary.get("certificate", [])
-    failed = [c["name"] for c in checks if c.get("passed") is False]
-    print("{}: {} certificate checks, {}".format(kind, len(checks), "failed: " + ", ".join(failed) if failed else "all passed"))
-    if inside_rhino:
-        import_into_rhino(paths)
-    print("\n".join(paths))
+    problem = main(kind, parameters, inside_rhino)
+    if problem and inside_rhino:
+        print(problem)  # the script editor shows it; exiting would only add a traceback
+    elif problem:
+        sys.exit(problem)

@@ -10,7 +10,6 @@ columns of a CSV file (``examples/tube-kappa-tau.csv``) by the design file
 # %%
 from pathlib import Path
 
-
 from curvefold.app.build import build
 from curvefold.app.design import load_design
 from curvefold.figures.plots import plot_sections, plot_structure
