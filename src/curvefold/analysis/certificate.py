@@ -115,6 +115,7 @@ class Shared:
 
     @cached_property
     def topology(self) -> Topology:
+        """The structure's topology (corners, strips, vertex numbering)."""
         return self.structure.topology()
 
     @cached_property
@@ -124,6 +125,7 @@ class Shared:
 
     @cached_property
     def flat_coords(self) -> np.ndarray:
+        """Vertex coordinates of the crease pattern (the flat state), (V, 3) model units."""
         return self.topology.coords(self.flat.vertices)
 
     @cached_property
@@ -133,6 +135,7 @@ class Shared:
 
     @property
     def shortest_edge(self) -> float:
+        """Length of the crease pattern's shortest edge, model units."""
         return float(self.flat_lengths.min())
 
     @cached_property
@@ -177,10 +180,12 @@ class Frame:
 
     @property
     def structure(self) -> Structure:
+        """The structure certified (shared by every frame)."""
         return self.shared.structure
 
     @property
     def samples(self) -> int:
+        """Samples along curve 1 at this sampling."""
         return len(self.crease.curve.s)
 
     @property
@@ -190,6 +195,7 @@ class Frame:
 
     @property
     def alpha(self) -> float:
+        """The frame's half fold angle α, radians."""
         return float(self.crease.alpha.constant)
 
     @property
@@ -383,6 +389,7 @@ class Check:
 
     @property
     def passed(self) -> bool:
+        """Whether the check passed (not a failure, nor insufficient resolution)."""
         return self.status == "pass"
 
     @property
@@ -426,6 +433,7 @@ class Certificate:
 
     @property
     def passed(self) -> bool:
+        """Whether every check passed."""
         return all(c.passed for c in self.checks)
 
 

@@ -94,6 +94,7 @@ class FileCheck:
     reason: str = ""
 
     def to_dict(self) -> dict:
+        """The check as strict JSON (a non-finite value is null)."""
         value = None if self.value is None or not math.isfinite(self.value) else self.value
         return {"name": self.name, "status": self.status, "value": value, "tolerance": self.tolerance, "unit": self.unit,
                 "where": self.where, "reason": self.reason}
@@ -145,6 +146,8 @@ class FoldCheck:
         return all(c.status != "fail" for c in self.checks)
 
     def to_dict(self) -> dict:
+        """The result as strict JSON (non-finite numbers are null), as ``curvefold check --json`` prints it."""
+
         def finite(x):
             return x if math.isfinite(x) else None
 
