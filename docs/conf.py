@@ -60,7 +60,7 @@ autodoc_member_order = "bysource"
 viewcode_follow_imported_members = False
 
 # MathJax from the site itself (npm's mathjax, copied by scripts/docs.sh).
-html_static_path = ["_static", "_vendor"]
+html_static_path = ["_vendor"]
 mathjax_path = "mathjax/tex-chtml.js"
 
 # MyST: $…$ and $$…$$ maths, ::: fences; the notebook runs at every build.
