@@ -30,12 +30,12 @@ extensions = [
     "myst_nb",
 ]
 
-exclude_patterns = ["_build", "_vendor", "node_modules", "jupyter_execute", "**/README.md", "auto_examples/*.ipynb",
-                    "auto_examples/*.py", "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
+# The gallery also writes each example as a notebook and a script: only its pages are sources.
+exclude_patterns = ["_build", "_vendor", "node_modules", "jupyter_execute", "auto_examples/*.ipynb", "auto_examples/*.py",
+                    "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
 templates_path = ["_templates"]
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
-suppress_warnings = []
 
 # Every reference must resolve; names outside curvefold are not linked (no intersphinx: the
 # build needs no network). Built-in and third-party names are listed here once.
@@ -46,7 +46,7 @@ nitpick_ignore_regex = [
     (r"py:class", r"(str|int|float|bool|bytes|dict|list|tuple|set|frozenset|object|callable|None|Any|Path|Figure|Axes|Image|ndarray|Mapping|Sequence|Iterable|Iterator|Callable|Collection|PathLike|Literal|MappingProxyType|ArrayLike|Enum|IntEnum|ValueError|RuntimeError|Exception|NamedTuple|TextIO|BinaryIO|Self)"),
 ]
 
-# numpydoc: parameter types link to curvefold's own classes; shapes, units and words stay text.
+# numpydoc: parameter types are text (shapes and units read as written); classes are linked from the prose.
 numpydoc_show_class_members = False
 numpydoc_xref_param_type = False
 numpydoc_class_members_toctree = False
