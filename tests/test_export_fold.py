@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
+import curvefold
 from _meshes import measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
 from _node import run_node
 from curvefold.geometry.mesh import Mesh
@@ -40,7 +41,7 @@ def test_file_layout(tmp_path):
     motion, doc = _write_tube(tmp_path / "tube.fold", title="tube")
     cp = motion.crease_pattern
     assert doc["file_spec"] == 1.1
-    assert doc["file_creator"] == "curvefold"
+    assert doc["file_creator"] == f"curvefold {curvefold.__version__}"
     assert doc["file_classes"] == ["singleModel"]
     assert doc["file_title"] == "tube"
     assert doc["frame_classes"] == ["creasePattern"]

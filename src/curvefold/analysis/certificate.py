@@ -10,9 +10,9 @@ Error model, the same for every check
     measurement, or of the builder's integration) plus rounding. The design is built again
     at half the samples (step 2h, from the same functions) and measured the same way:
     r(2h) ≈ 2^p C h^p. The error at h is estimated by Richardson,
-    e = |r(2h) − r(h)| / (2^p − 1); with the safety factor (2^p − 1) / 2,
+    e = ``|r(2h) − r(h)| / (2^p − 1)``; with the safety factor (2^p − 1) / 2,
 
-        tolerance = |r(2h) − r(h)| / 2 + rounding floor.
+        tolerance = ``|r(2h) − r(h)| / 2`` + rounding floor.
 
     A residual that is discretisation error falls 2^p-fold from 2h to h and passes with a
     margin of (2^p − 1)/2; one that falls less than three-fold (an error of the geometry,
@@ -115,15 +115,17 @@ class Shared:
 
     @cached_property
     def topology(self) -> Topology:
+        """The structure's topology (corners, strips, vertex numbering)."""
         return self.structure.topology()
 
     @cached_property
     def quads(self) -> np.ndarray:
-        """The ruling quads (F, 4), in the vertex numbering of :attr:`topology`."""
+        """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`."""
         return self.structure.topology("quads").faces_vertices
 
     @cached_property
     def flat_coords(self) -> np.ndarray:
+        """Vertex coordinates of the crease pattern (the flat state), (V, 3) model units."""
         return self.topology.coords(self.flat.vertices)
 
     @cached_property
@@ -133,6 +135,7 @@ class Shared:
 
     @property
     def shortest_edge(self) -> float:
+        """Length of the crease pattern's shortest edge, model units."""
         return float(self.flat_lengths.min())
 
     @cached_property
@@ -177,10 +180,12 @@ class Frame:
 
     @property
     def structure(self) -> Structure:
+        """The structure certified (shared by every frame)."""
         return self.shared.structure
 
     @property
     def samples(self) -> int:
+        """Samples along curve 1 at this sampling."""
         return len(self.crease.curve.s)
 
     @property
@@ -190,6 +195,7 @@ class Frame:
 
     @property
     def alpha(self) -> float:
+        """The frame's half fold angle α, radians."""
         return float(self.crease.alpha.constant)
 
     @property
@@ -257,7 +263,7 @@ class Residual:
     Attributes
     ----------
     values : ndarray
-        |residual| in the check's unit (NaN where the measurement broke). With ``t`` its
+        ``|residual|`` in the check's unit (NaN where the measurement broke). With ``t`` its
         last axis runs along the creases; without, every entry is an element (an edge, a
         face, a named quantity).
     floor : float
@@ -292,7 +298,7 @@ class Residual:
         return f"{head}, t = {self.t[at[-1]]:.3g}" if head else f"t = {self.t[at[-1]]:.3g}"
 
     def change(self, coarse: Residual) -> float:
-        """|r(2h) − r(h)|: pointwise at the t both sample (where they have t), else of the largest values."""
+        """``|r(2h) − r(h)|``: pointwise at the t both sample (where they have t), else of the largest values."""
         if self.t is None or coarse.t is None:
             return abs(coarse.worst[0] - self.worst[0])
         k = np.clip(np.searchsorted(self.t, coarse.t), 0, len(self.t) - 1)
@@ -383,6 +389,7 @@ class Check:
 
     @property
     def passed(self) -> bool:
+        """Whether the check passed (not a failure, nor insufficient resolution)."""
         return self.status == "pass"
 
     @property
@@ -426,6 +433,7 @@ class Certificate:
 
     @property
     def passed(self) -> bool:
+        """Whether every check passed."""
         return all(c.passed for c in self.checks)
 
 
@@ -599,7 +607,7 @@ def _panel_isometry(frame: Frame) -> Residual:
 
 
 def _panel_ground_plane(frame: Frame) -> Residual:
-    """|z| of every foot over the vault's size; the floor adds the tilt the arch root's residual leaves."""
+    """``|z|`` of every foot over the vault's size; the floor adds the tilt the arch root's residual leaves."""
     vertices = frame.state.vertices
     size = float(np.abs(vertices).max())
     uv = frame.structure.curves_uv

@@ -94,6 +94,7 @@ class FileCheck:
     reason: str = ""
 
     def to_dict(self) -> dict:
+        """The check as strict JSON (a non-finite value is null)."""
         value = None if self.value is None or not math.isfinite(self.value) else self.value
         return {"name": self.name, "status": self.status, "value": value, "tolerance": self.tolerance, "unit": self.unit,
                 "where": self.where, "reason": self.reason}
@@ -109,12 +110,12 @@ class FoldCheck:
         Number of folded frames checked.
     checks : tuple of FileCheck
     max_isometry_error : float
-        Largest |ℓ_folded / ℓ_pattern − 1| over all edges and frames.
+        Largest ``|ℓ_folded / ℓ_pattern − 1|`` over all edges and frames.
     max_face_planarity_error : float
         Largest fold angle, degrees, across face and ruling-quad diagonals (0 when that
         check did not run).
     max_fold_angle_error : float
-        Largest |recorded − measured| dihedral angle, degrees.
+        Largest ``|recorded − measured|`` dihedral angle, degrees.
     ok : bool
         Every check that ran passed.
     tolerances : dict
@@ -145,6 +146,8 @@ class FoldCheck:
         return all(c.status != "fail" for c in self.checks)
 
     def to_dict(self) -> dict:
+        """The result as strict JSON (non-finite numbers are null), as ``curvefold check --json`` prints it."""
+
         def finite(x):
             return x if math.isfinite(x) else None
 

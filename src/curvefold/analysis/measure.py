@@ -348,7 +348,11 @@ def width_law_error(lattice: Lattice) -> float:
 
 
 def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
-    """Largest :func:`fold_angle_deviation` on the fold and seam edges of a tube mesh (degrees)."""
+    """Largest :func:`fold_angle_deviation` (degrees) on the fold and seam edges of a tube mesh.
+
+    Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
+    on the seams (2, 4), mountains seen from outside the tubes.
+    """
     sel = np.isin(mesh.edges_kind, ("fold", "seam"))
     return float(np.max(fold_angle_deviation(mesh.edges_foldAngle[sel], mesh.edges_kind[sel], fold_angle)))
 
@@ -366,7 +370,7 @@ class IsometryError:
     Attributes
     ----------
     max_edge_error : float
-        Largest |length − flat length| over all edges, model units.
+        Largest ``|length − flat length|`` over all edges, model units.
     max_relative_edge_error : float
         The same divided by the flat length.
     """

@@ -222,6 +222,7 @@ def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The command line's parser: every command, its flags generated from the design schema."""
     parser = _Parser(
         prog=PROG,
         description="Rigid-foldable, flat-foldable curved-crease tubes and deployable vaults from a space curve: "
@@ -585,5 +586,6 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
             "designer": cmd_designer}[args.command](args)
 
 
-def run() -> None:  # console-script entry point
+def run() -> None:
+    """The ``curvefold`` console script: :func:`main` on the command line's arguments, its status as the exit status."""
     sys.exit(main())

@@ -177,7 +177,7 @@ class SpaceCurve(FramedCurve, FrozenArrays):
             Arc length L > 0.
         samples : int, keyword-only
             Number of output samples n ≥ 2. The integration step is L / (n - 1), or a
-            multiple of it when that is still below 0.015 / max(|ω|, √|ω'|); the samples
+            multiple of it when that is still below ``0.015 / max(|ω|, √|ω'|)``; the samples
             in between then come from quintic Hermite interpolation (:mod:`curvefold.kernel.dense`).
         origin : (3,) array_like, optional
             x(0); default the origin.

@@ -197,7 +197,7 @@ class PanelPattern(FrozenArrays):
         start_tangent, end_tangent : (2,) array_like, keyword-only
             Tangents t_0, t_N of the end vertices (the inner ones are the bisectors).
         left_length, right_length : float, keyword-only
-            |L_0|, |R_0| > 0; the others follow from the trapezoids' heights.
+            ``|L_0|, |R_0| > 0``; the others follow from the trapezoids' heights.
 
         Raises
         ------

@@ -52,6 +52,7 @@ from ..kernel.text import one_line
 from .atomic import atomic_write
 from .mesh3d import check_metadata
 from .reading import read_bytes
+from .tables import CREATOR
 
 __all__ = ["FoldFile", "fold_assignments", "read_fold", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"]
 
@@ -230,7 +231,7 @@ def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
 
 def _write_document(path: str | os.PathLike, title: str, frame: dict) -> Path:
     """Write a FOLD document: curvefold's file keys, the title if any, then ``frame``'s keys."""
-    doc = {"file_spec": FILE_SPEC, "file_creator": "curvefold", "file_classes": ["singleModel"],
+    doc = {"file_spec": FILE_SPEC, "file_creator": CREATOR, "file_classes": ["singleModel"],
            **({"file_title": one_line(title)} if title else {}), **frame}
     return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
 

@@ -40,7 +40,7 @@ from ..geometry.mesh import Mesh
 from ..kernel.errors import InputError
 from .atomic import atomic_write
 from .mesh3d import Y_UP, check_metadata
-from .tables import UNITS, rgba
+from .tables import CREATOR, UNITS, rgba
 
 __all__ = ["CREASE_COLOURS", "write_glb"]
 
@@ -241,7 +241,7 @@ def write_glb(
     if angles is not None:
         extras["angles_deg"] = angles.tolist()
     gltf = g.GLTF2(
-        asset=g.Asset(version="2.0", generator="curvefold", extras={"curvefold": extras}),
+        asset=g.Asset(version="2.0", generator=CREATOR, extras={"curvefold": extras}),
         scene=0,
         scenes=[g.Scene(nodes=list(range(len(nodes))))],
         nodes=nodes,

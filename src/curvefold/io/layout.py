@@ -18,15 +18,17 @@ Which side is up
     Sheets are otherwise only rotated and translated, never scaled unevenly.
 
 Layers, drawn bottom to top (:data:`LAYERS`)
-    ``glue``      glue tab areas, filled polygons (a guide: no line to cut);
-    ``rulings``   straight rulings, for scoring or engraving (writers skip it by default);
-    ``seam``      the fold line of each glue tab, i.e. the seam on the tab side;
-    ``valley``    fold creases assigned ``V``;
-    ``mountain``  fold creases assigned ``M``;
-    ``cut``       everything to cut through: each sheet's closed outline (boundary and
-                  seam edges) going around the outer sides of its glue tabs;
-    ``labels``    the sheet label and, inside the sheet beside the middle of every seam
-                  chain, the seam's name (:func:`seam_name`), the same on both partners.
+    ====================  ================================================================
+    ``glue``              glue tab areas, filled polygons (a guide: no line to cut);
+    ``rulings``           straight rulings, for scoring or engraving (writers skip it by default);
+    ``seam``              the fold line of each glue tab, i.e. the seam on the tab side;
+    ``valley``            fold creases assigned ``V``;
+    ``mountain``          fold creases assigned ``M``;
+    ``cut``               everything to cut through: each sheet's closed outline (boundary and
+                          seam edges) going around the outer sides of its glue tabs;
+    ``labels``            the sheet label and, inside the sheet beside the middle of every seam
+                          chain, the seam's name (:func:`seam_name`), the same on both partners.
+    ====================  ================================================================
 
 No line appears in two layers, so a laser never cuts or scores a line twice. Triangulating
 diagonals are never drawn.

@@ -57,7 +57,7 @@ from .layout import (
     seam_name,
     text_width,
 )
-from .tables import COLOURS, mm_per_unit, rgb8
+from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")
@@ -128,7 +128,7 @@ class LayerStyle:
     fill: bool = False
 
 
-#: Style of every layer in :data:`LAYERS`.
+#: Style of every layer in :data:`curvefold.io.layout.LAYERS`.
 LAYER_STYLES = MappingProxyType({
     "glue": LayerStyle(COLOURS["glue"], 3, fill=True),
     "rulings": LayerStyle(COLOURS["ruling"], 3, width=0.5),
@@ -545,7 +545,7 @@ def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     rc = {"lines.scale_dashes": False, "path.simplify": False, "pdf.fonttype": 42,
           "font.sans-serif": ["DejaVu Sans", "Arial", "Helvetica"]}
     with matplotlib.rc_context(rc), atomic_path(path) as tmp:
-        with PdfPages(tmp, metadata={"Creator": "curvefold", "Title": "crease pattern", "CreationDate": None}) as pdf:
+        with PdfPages(tmp, metadata={"Creator": CREATOR, "Title": "crease pattern", "CreationDate": None}) as pdf:
             for number, page in enumerate(layout.pages, start=1):
                 fig = Figure(figsize=(page.size[0] / 25.4, page.size[1] / 25.4))
                 _draw_page(fig, page, layout, number, names, lw, scale_bar)

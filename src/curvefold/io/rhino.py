@@ -33,7 +33,7 @@ from ..geometry.topology import Topology
 from ..kernel.errors import InputError
 from .atomic import atomic_path
 from .mesh3d import check_metadata, crease_polylines
-from .tables import UNITS, rgba8
+from .tables import CREATOR, UNITS, rgba8
 
 __all__ = ["LAYERS", "write_3dm"]
 
@@ -113,7 +113,7 @@ def write_3dm(
 
     model = rhino3dm.File3dm()
     model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNITS[unit].rhino)
-    model.ApplicationName = "curvefold"
+    model.ApplicationName = CREATOR
     layer_index = {layer: model.Layers.AddLayer(layer, colour) for layer, colour in LAYERS}
 
     def attributes(layer: str, object_name: str):

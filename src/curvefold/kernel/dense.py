@@ -9,7 +9,7 @@ two derivatives at both ends of each coarse step — all known in closed form:
 
 (the quaternion's body angular velocity). The interpolation error is bounded by
 ``max|f⁽⁶⁾| H⁶ / (720 · 64)`` on a step of length H; the stride is chosen so that
-``H · r ≤`` :data:`STEP_RATE` with r the largest of |ω| and √|ω'| on the curve, which puts
+``H · r ≤`` :data:`STEP_RATE` with r the largest of ``|ω|`` and ``√|ω'|`` on the curve, which puts
 it below rounding. The frames stay orthonormal: every interpolated quaternion is
 normalised by :func:`curvefold.kernel.lie.quaternion_matrix`.
 """
@@ -32,7 +32,7 @@ MIN_STRIDE = 4
 def dense_stride(kappa: ScalarFunction, tau: ScalarFunction, length: float, samples: int, *, probes: int = 4001) -> int:
     """How many samples one coarse Magnus step may span (1: integrate every sample).
 
-    The rate scale r = max(|ω|, √|ω'|) with |ω| = √(κ² + τ²) is read on ``probes``
+    The rate scale ``r = max(|ω|, √|ω'|)`` with ``|ω| = √(κ² + τ²)`` is read on ``probes``
     points along the curve. Where κ or τ is not finite, or κ ≤ 0, on those points the
     answer is 1, so that the full integration validates every node and names the place.
     """

@@ -14,7 +14,7 @@ Derivatives: exact for constants; the derivative of the interpolating cubic spli
 samples; for callables a sixth-order finite difference that samples the function only
 inside ``[0, L]``: the central stencil ``s ± h, ±2h, ±3h`` where it fits, otherwise the
 seven-point stencil of the same order shifted into the domain (truncation ~h⁶ f⁽⁷⁾ with
-h = min(1e-3·max(L, 1), L/8), rounding ~1e-13·|f|/h centrally and up to ~1e-12·|f|/h
+h = min(1e-3·max(L, 1), L/8), rounding ``~1e-13·|f|/h`` centrally and up to ``~1e-12·|f|/h``
 for the fully one-sided stencil at the ends).
 """
 
@@ -143,7 +143,7 @@ class Sampled(FrozenArrays, ScalarFunction):
 class Differenced(ScalarFunction):
     """A function whose derivative is a sixth-order difference inside ``[0, length]``.
 
-    Subclasses provide :meth:`value` and the attributes ``length`` (L) and ``step`` (h).
+    Subclasses provide :meth:`ScalarFunction.value` and the attributes ``length`` (L) and ``step`` (h).
     """
 
     length: float

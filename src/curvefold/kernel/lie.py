@@ -153,7 +153,7 @@ def _qmul(a, b) -> tuple:
 
 
 def _exp_coefficients(w: tuple) -> tuple[np.ndarray, ...]:
-    """cos(θ/2), sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ for θ = |ω| (Taylor series below 0.1)."""
+    """cos(θ/2), sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ for ``θ = |ω|`` (Taylor series below 0.1)."""
     t2 = w[0] ** 2 + w[1] ** 2 + w[2] ** 2
     t = np.sqrt(t2)
     half_cos = 1 - t2 / 8 * (1 - t2 / 48 * (1 - t2 / 120 * (1 - t2 / 224 * (1 - t2 / 360))))
@@ -182,7 +182,7 @@ def exp_dual(twist: tuple) -> np.ndarray:
     """Exponential map se(3) → SE(3) in closed form, as unit dual quaternions.
 
     Rotation ``r = (cos θ/2, sin(θ/2)/θ · ω)``; translation ``p = v + B ω×v + C ω×(ω×v)``
-    with θ = |ω|, ``B = (1 − cos θ)/θ²``, ``C = (θ − sin θ)/θ³`` (Taylor series below
+    with ``θ = |ω|``, ``B = (1 − cos θ)/θ²``, ``C = (θ − sin θ)/θ³`` (Taylor series below
     θ = 0.1, truncation < 1e-17); dual part ``d = ½ p r``.
 
     Parameters

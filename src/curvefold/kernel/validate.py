@@ -14,19 +14,29 @@ e.g. ``design.toml: [vault] fold_angle must be in (0, 180) degrees, got 180.0``.
 
 Kinds of value (:data:`KINDS`):
 
-``real``       a finite real number in ``range``, in ``unit``;
-``integer``    an integer in ``range``;
-``count``      an integer in ``range`` or the word ``"max"``;
-``choice``     one of ``choices``;
-``text``       one line of at most :data:`MAX_TEXT` characters, without control characters
-               (:data:`curvefold.kernel.text.CONTROL`);
-``flag``       true or false;
-``page``       one of ``choices`` (case-insensitive) or a [width, height] pair in ``range``;
-``formats``    a list of names from ``choices``, duplicates dropped;
-``cells``      a list of distinct [i, j] integer pairs in ``range``;
-``function``   a real function of arc length whose values lie in ``range``: a number here;
-               its owner parses expressions and tables and checks their samples with
-               :meth:`Spec.check_samples`.
+``real``
+    a finite real number in ``range``, in ``unit``;
+``integer``
+    an integer in ``range``;
+``count``
+    an integer in ``range`` or the word ``"max"``;
+``choice``
+    one of ``choices``;
+``text``
+    one line of at most :data:`MAX_TEXT` characters, without control characters
+    (:data:`curvefold.kernel.text.CONTROL`);
+``flag``
+    true or false;
+``page``
+    one of ``choices`` (case-insensitive) or a [width, height] pair in ``range``;
+``formats``
+    a list of names from ``choices``, duplicates dropped;
+``cells``
+    a list of distinct [i, j] integer pairs in ``range``;
+``function``
+    a real function of arc length whose values lie in ``range``: a number here;
+    its owner parses expressions and tables and checks their samples with
+    :meth:`Spec.check_samples`.
 """
 
 from __future__ import annotations

@@ -68,7 +68,7 @@ WINDOW = (0.9 * np.pi, 1.5 * np.pi)
 #: Integration steps over half the arch: the root moves by < 1e-14 when they double (tested).
 HALF_STEPS = 64
 
-#: Largest |T(s₀/2)·T(0)| accepted at a returned root: the condition's rounding over the
+#: Largest ``|T(s₀/2)·T(0)|`` accepted at a returned root: the condition's rounding over the
 #: steps (~1e-14) plus its slope (≤ 1) times the bracket half-width (1e-13), with a margin.
 #: Over a ∈ [0, A_MAX) the roots found have at most 3e-15 (measured on 400 values).
 RESIDUAL_TOL = 1e-12
@@ -130,7 +130,7 @@ class ArchRoot:
     kappa0_s0 : float
         Dimensionless arch length κ₀ s₀ (π for a = 0).
     residual : float
-        |T(s₀/2)·T(0)| at the root, at most :data:`RESIDUAL_TOL`.
+        ``|T(s₀/2)·T(0)|`` at the root, at most :data:`RESIDUAL_TOL`.
     bracket : tuple of float
         The bracket the root was refined in.
     """
@@ -154,7 +154,7 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
        [π/2, 2π] for the sign change nearest π, interpolate that bracket the same way,
        and fall back on Brent's method.
 
-    Every root returned is verified: |T(s₀/2)·T(0)| at it is at most :data:`RESIDUAL_TOL`.
+    Every root returned is verified: ``|T(s₀/2)·T(0)|`` at it is at most :data:`RESIDUAL_TOL`.
 
     Parameters
     ----------

@@ -324,7 +324,7 @@ class Vault(FrozenArrays):
         return line_angle(d0[0], d0[1]), line_angle(dm[0], dm[2])
 
     def ground_error(self) -> float:
-        """Largest |z| of the end sections (t = 0 and t = 1) of every crease at the design angle."""
+        """Largest ``|z|`` of the end sections (t = 0 and t = 1) of every crease at the design angle."""
         V = self.vertices
         return float(np.abs(V[:, [0, -1], 2]).max())
 
@@ -380,7 +380,7 @@ class Vault(FrozenArrays):
     def lift_off(self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start") -> np.ndarray:
         """How far the end sections leave the ground plane, shape (A, 2): [feet at t = 0, at t = 1].
 
-        The largest |z| over the end points of every crease; zero at the design angle.
+        The largest ``|z|`` over the end points of every crease; zero at the design angle.
         """
         V = self.motion(fold_angles, anchor=anchor)
         return np.abs(V[:, :, [0, -1], 2]).max(axis=1)

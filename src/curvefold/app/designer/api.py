@@ -400,7 +400,7 @@ def preview(design: Design) -> bytes:
     design's samples: a vault's κ0·s0, proportion change, p_xz, span, rise, tubes, max
     tubes, a, p_xy, radius), ``colours`` of the crease kinds and ``motion``: the fold
     angles of the precomputed states (degrees, flat first), the design angle, why the
-    range ends, the lift-off of a vault per state (the largest |z| of its end sections,
+    range ends, the lift-off of a vault per state (the largest ``|z|`` of its end sections,
     model units; zero at the design angle), and the mesh:
     ``positions`` (states × vertices × 3 float32, base64), ``triangles`` (uint32 triples)
     and ``lines`` per crease kind (uint32 pairs), at :data:`PREVIEW_SAMPLES`.

@@ -153,6 +153,7 @@ def _server(sock: socket.socket):
 
 
 def url_of(sock: socket.socket, query: list[tuple[str, str]] = ()) -> str:
+    """The page's address on a bound socket, with the design ``query``."""
     host, port = sock.getsockname()[:2]
     shown = f"[{host}]" if ":" in host else host
     return f"http://{shown}:{port}/" + (f"?{urlencode(query)}" if query else "")
