@@ -302,7 +302,7 @@ def width_integral(kappa_2d: ScalarFunction, beta: ScalarFunction, s: np.ndarray
 
 
 def fold_angle_deviation(measured: np.ndarray, kinds: np.ndarray, fold_angle: float) -> np.ndarray:
-    """|measured − expected| fold angle (degrees, wrapped to [0°, 180°]) of fold and seam edges, same shape.
+    """``|measured − expected|`` fold angle (degrees, wrapped to [0°, 180°]) of fold and seam edges, same shape.
 
     Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
     on the seams (2, 4), mountains seen from outside the tubes.
@@ -348,11 +348,7 @@ def width_law_error(lattice: Lattice) -> float:
 
 
 def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
-    """Largest :func:`fold_angle_deviation` (degrees) on the fold and seam edges of a tube mesh.
-
-    Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
-    on the seams (2, 4), mountains seen from outside the tubes.
-    """
+    """Largest :func:`fold_angle_deviation` on the fold and seam edges of a tube mesh (degrees)."""
     sel = np.isin(mesh.edges_kind, ("fold", "seam"))
     return float(np.max(fold_angle_deviation(mesh.edges_foldAngle[sel], mesh.edges_kind[sel], fold_angle)))
 
