@@ -356,6 +356,40 @@ def test_a_signal_while_the_files_are_written_stops_every_job_process(tmp_path, 
     assert alive == [] and listing(tmp_path) == []
 
 
+class _SignalInFinalizer:
+    """Sends SIGTERM to this process when collected: the handler's exception is raised in a
+    finalizer, where Python ignores it (as when a signal lands in a library's ``__del__``)."""
+
+    def __del__(self):
+        signal.raise_signal(signal.SIGTERM)
+
+
+def test_a_signal_raised_where_python_ignores_exceptions_still_stops_the_run(tmp_path, monkeypatch):
+    """The atlas once finished a sweep and exited 0 after printing "Exception ignored ... 15"."""
+    build = curvefold.app.build.build
+
+    def build_then_signal(*args, **kwargs):
+        _SignalInFinalizer()  # collected at once
+        return build(*args, **kwargs)
+
+    monkeypatch.setattr(curvefold.app.build, "build", build_then_signal)
+    r = run("crease", "--samples", "41", "--out", "c", cwd=tmp_path)
+    assert (r.returncode, r.stderr, r.stdout) == (128 + signal.SIGTERM, "curvefold: interrupted by SIGTERM\n", "")
+    assert listing(tmp_path) == []  # nothing installed after the signal
+
+
+def test_a_signal_ignored_in_a_finalizer_stops_a_command_without_output_folder(monkeypatch):
+    from curvefold.app import cli
+
+    def arch_then_signal(args):
+        _SignalInFinalizer()
+        return 0
+
+    monkeypatch.setattr(cli, "cmd_arch", arch_then_signal)
+    r = run("arch")
+    assert (r.returncode, r.stderr) == (128 + signal.SIGTERM, "curvefold: interrupted by SIGTERM\n")
+
+
 def test_stale_temporary_folders_of_gone_processes_are_removed(tmp_path):
     gone = subprocess.Popen([sys.executable, "-c", "pass"])
     gone.wait()

@@ -21,11 +21,9 @@ default. A flag's value is checked by the key's spec and named as typed
 from __future__ import annotations
 
 import argparse
-import contextlib
 import re
 import signal
 import sys
-import threading
 import traceback
 import warnings
 from collections.abc import Sequence
@@ -43,9 +41,9 @@ from ..kernel.validate import Spec
 from ..vault.assembly import vault_samples
 from ..vault.atlas import workers_spec
 from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
-from .folder import ENDING_SIGNALS
+from .folder import Interrupted, raise_if_interrupted, signals_interrupt
 
-__all__ = ["main", "Interrupted"]
+__all__ = ["main"]
 
 PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
@@ -495,37 +493,6 @@ def cmd_atlas(args: argparse.Namespace) -> int:
     return 0
 
 
-class Interrupted(BaseException):
-    """A signal that ends the run (SIGINT, SIGTERM, SIGHUP): raised in the main thread, so
-    every ``finally`` runs and the temporary output folder is removed."""
-
-    def __init__(self, signum: int) -> None:
-        super().__init__(signum)
-        self.signum = signum
-
-
-@contextlib.contextmanager
-def _signals_interrupt():
-    """The first of SIGINT, SIGTERM or SIGHUP raises :class:`Interrupted`; later ones are
-    ignored while the run unwinds. Previous handlers are restored afterwards."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    fired: list[int] = []
-
-    def handler(signum, frame):
-        if not fired:
-            fired.append(signum)
-            raise Interrupted(signum)
-
-    previous = {signum: signal.signal(signum, handler) for signum in ENDING_SIGNALS}
-    try:
-        yield
-    finally:
-        for signum, old in previous.items():
-            signal.signal(signum, old)
-
-
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (see the module doc).
 
@@ -536,10 +503,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     which are otherwise never printed.
     """
     debug = "--debug" in (sys.argv[1:] if argv is None else argv)
-    with warnings.catch_warnings(record=True) as caught, _signals_interrupt():
+    with warnings.catch_warnings(record=True) as caught, signals_interrupt():
         warnings.simplefilter("always")
         try:
-            return _run(build_parser(), argv)
+            status = _run(build_parser(), argv)
+            raise_if_interrupted()  # a signal whose exception Python ignored (raised in a finalizer)
+            return status
         except CurvefoldError as err:
             _error(f"error: {err}")
             return 2

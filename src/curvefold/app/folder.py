@@ -33,7 +33,9 @@ import re
 import secrets
 import shutil
 import signal
+import sys
 import tempfile
+import threading
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from importlib.metadata import version
@@ -43,7 +45,10 @@ from ..io.atomic import folder_mode
 from ..io.reading import read_bytes
 from ..kernel.errors import InputError
 
-__all__ = ["MARKER", "ENDING_SIGNALS", "OutputTarget", "check_output", "output_folder", "rename_noreplace"]
+__all__ = [
+    "MARKER", "ENDING_SIGNALS", "Interrupted", "OutputTarget", "check_output", "output_folder", "raise_if_interrupted",
+    "rename_noreplace", "signals_interrupt",
+]
 
 #: The file every output folder holds: curvefold's version and a random id.
 MARKER = ".curvefold-output"
@@ -51,6 +56,61 @@ MARKER = ".curvefold-output"
 _TEMPORARY = re.compile(r"\..+\.curvefold-(\d+)-\w+(\.old)?")
 #: The signals that end a run (the command line turns them into a clean stop).
 ENDING_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
+
+
+#: The ending signal this process received while :func:`signals_interrupt` was active, if any.
+_received: list[int] = []
+
+
+class Interrupted(BaseException):
+    """A signal that ends the run (SIGINT, SIGTERM, SIGHUP): raised in the main thread, so
+    every ``finally`` runs and the temporary output folder is removed."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+@contextlib.contextmanager
+def signals_interrupt() -> Iterator[None]:
+    """The first of SIGINT, SIGTERM or SIGHUP raises :class:`Interrupted`; later ones are
+    ignored while the run unwinds. Previous handlers are restored afterwards.
+
+    Python ignores an exception raised while it runs a finalizer or a callback, so the
+    signal is also remembered: :func:`raise_if_interrupted` raises it again, and
+    :func:`output_folder` does before it installs a folder. Such an ignored
+    :class:`Interrupted` is not printed (other ignored exceptions are, as before).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    _received.clear()
+
+    def handler(signum, frame):
+        if not _received:
+            _received.append(signum)
+            raise Interrupted(signum)
+
+    previous_hook = sys.unraisablehook
+
+    def unraisable(report):
+        if not isinstance(report.exc_value, Interrupted):
+            previous_hook(report)
+
+    previous = {signum: signal.signal(signum, handler) for signum in ENDING_SIGNALS}
+    sys.unraisablehook = unraisable
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous_hook
+        for signum, old in previous.items():
+            signal.signal(signum, old)
+
+
+def raise_if_interrupted() -> None:
+    """Raise :class:`Interrupted` if :func:`signals_interrupt` received a signal."""
+    if _received:
+        raise Interrupted(_received[0])
 
 
 @dataclass(frozen=True)
@@ -135,6 +195,7 @@ def output_folder(target: OutputTarget) -> Iterator[Path]:
         yield tmp
         os.chmod(tmp, folder_mode())
         with _signals_held():
+            raise_if_interrupted()
             _install(tmp, target)
     finally:
         with _signals_held():  # a second signal must not stop the cleanup

@@ -22,7 +22,7 @@ from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
 from ..kernel.errors import InputError, InternalError
 from .build import Built
-from .folder import OutputTarget, output_folder
+from .folder import OutputTarget, output_folder, raise_if_interrupted
 from .products import exported_fold_angles
 
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json"]
@@ -220,6 +220,7 @@ def write_atlas(
 
             def written():
                 for record, sketch in results:
+                    raise_if_interrupted()
                     csv_row(record)
                     json_row(record)
                     errors[record["error"]] += 1
