@@ -336,10 +336,10 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
         target = check_output(out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
     require_budget(design, files=out is not None)
     built = build(design)
-    payload = structure_payload(built)
-    if target is not None:
-        payload["files"] = write_outputs(built, target, payload=payload, show_progress=not args.json)
-        payload["out"] = str(out)
+    if target is None:
+        payload = structure_payload(built)
+    else:
+        payload = write_outputs(built, target, show_progress=not args.json) | {"out": str(out)}
     lines = [payload["title"]]
     for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise"):
         if key in payload:

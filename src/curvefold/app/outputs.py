@@ -126,23 +126,23 @@ def _bar(show: bool, *columns):
     return Progress(*columns, transient=True, console=console) if console.is_terminal else None
 
 
-def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = None, show_progress: bool = True) -> list[str]:
+def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
+
+    The files are written by job processes while this process computes the certificate.
 
     Parameters
     ----------
     built : Built
     out : OutputTarget
         The folder, checked by :func:`curvefold.app.folder.check_output` before the work.
-    payload : dict, optional, keyword-only
-        :func:`structure_payload` of ``built`` when the caller has it already (it holds
-        the certificate, the costliest part); computed here otherwise.
     show_progress : bool, keyword-only
 
     Returns
     -------
-    list of str
-        File names written, relative to ``out``.
+    dict
+        :func:`structure_payload` of ``built`` with ``"files"``: the names written,
+        relative to ``out``, sorted.
 
     Raises
     ------
@@ -157,11 +157,13 @@ def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = Non
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
-    report = dict(structure_payload(built) if payload is None else payload, timings={}) | products.resolution(built)
+    resolution = products.resolution(built)
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
         with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp)) as done:  # closed at once on any exception
+            payload = structure_payload(built)
+            report = dict(payload, timings={}) | resolution
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
@@ -172,7 +174,7 @@ def write_outputs(built: Built, out: OutputTarget, *, payload: dict | None = Non
             written += ["report.json", "report.html"]
     finally:
         stop()
-    return sorted(written)
+    return payload | {"files": sorted(written)}
 
 
 def write_atlas(

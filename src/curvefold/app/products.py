@@ -16,7 +16,7 @@ import multiprocessing
 import os
 import signal
 import time
-from collections.abc import Callable, Collection, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator
 from functools import partial
 from pathlib import Path
 
@@ -69,7 +69,7 @@ def exported_fold_angles(built: Built) -> np.ndarray:
 
 
 def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
-    """The jobs that write the requested formats of a built design, then its pictures.
+    """The jobs that write the requested formats of a built design and its pictures, longest first.
 
     Raises
     ------
@@ -84,7 +84,7 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         names = tuple(name for name in formats_of(family) if name in formats)
         out.append((label, partial(write, built, names)))
     out.append(("pictures", partial(_pictures, built)))
-    return out
+    return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
 
 def _timed(job: Job, folder: Path) -> tuple[list, float]:
@@ -93,31 +93,46 @@ def _timed(job: Job, folder: Path) -> tuple[list, float]:
     return files, time.perf_counter() - started
 
 
-def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None) -> Iterator[tuple[str, list, float]]:
-    """Run the jobs into ``folder``, on up to ``workers`` processes (default: one per CPU, at most 2).
+def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None) -> Iterable[tuple[str, list, float]]:
+    """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most 2).
 
-    Yields (label, files written, seconds the job took) in job order as each finishes
-    in turn; a job's exception is raised here. The jobs write distinct files, so they
-    run side by side in forked processes where the platform has them, one after the
-    other otherwise.
+    The jobs write distinct files, so they run side by side in forked processes where the
+    platform has them, started before this returns: the caller can work meanwhile. Where
+    there is no fork they run one after the other as the result is iterated.
+
+    Returns
+    -------
+    iterable of (str, list, float)
+        (label, files written, seconds the job took) in job order as each finishes in
+        turn; a job's exception is raised there. Its ``close()`` stops the jobs still
+        running (an interrupted run waits for none): use it in :func:`contextlib.closing`.
     """
     workers = min(len(jobs), os.cpu_count() or 1, 2) if workers is None else workers
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
-        for label, job in jobs:
-            yield (label, *_timed(job, folder))
-        return
+        return ((label, *_timed(job, folder)) for label, job in jobs)
     # The ending signals wait while the workers are forked (a signal then would reach a
-    # fork hook, or a child with the parent's handlers); leaving the block terminates the
-    # workers, so an interrupted run waits for no job.
+    # fork hook, or a child with the parent's handlers).
     held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
     try:
         pool = multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals, initargs=(held,))
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, held)
-    with pool:
-        results = [(label, pool.apply_async(_timed, (job, folder))) for label, job in jobs]
-        for label, result in results:
+    return _Running(pool, [(label, pool.apply_async(_timed, (job, folder))) for label, job in jobs])
+
+
+class _Running:
+    """Jobs running on a process pool: iterate for their results in job order; ``close()`` terminates the pool."""
+
+    def __init__(self, pool, results: list) -> None:
+        self._pool, self._results = pool, results
+
+    def __iter__(self) -> Iterator[tuple[str, list, float]]:
+        for label, result in self._results:
             yield (label, *result.get())
+
+    def close(self) -> None:
+        self._pool.terminate()
+        self._pool.join()
 
 
 def _worker_signals(mask: set) -> None:
@@ -181,6 +196,9 @@ _FAMILY_JOBS = {
     "model": ("3D models", _model),
     "motion": ("folding GIF", _motion),
 }
+#: Jobs by the time they take on the paper's vault (1.75, 1.4, 0.66, 0.43 and 0.18 s), longest
+#: first: started in this order, two processes finish about together.
+_LONGEST_FIRST = ("crease patterns", "pictures", "folding GIF", "3D models", "FOLD files")
 
 
 def _pictures(built: Built, folder: Path) -> list:
