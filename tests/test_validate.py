@@ -164,3 +164,17 @@ def test_registry_families_and_kinds():
     with pytest.raises(InputError, match=r"formats must be a non-empty selection of \('svg', 'dxf', 'pdf'\), got \('obj',\)"):
         check_formats(["obj"], "pattern")
     assert missing_dependencies(["svg", "obj", "fold"]) == []
+
+
+def test_text_reads_as_a_design_files_value_or_stays_text_for_the_spec_to_refuse():
+    from curvefold.kernel.validate import from_text
+
+    real, count = Spec("width", "real", 1.0, "(0, inf)"), Spec("tubes", "count", 9, "[1, 99]")
+    assert [from_text(real, t) for t in ("3", "0.5", "wide")] == [3, 0.5, "wide"]
+    assert from_text(count, "max") == "max"
+    with pytest.raises(InputError, match=r"^width must be a number, got 'wide'$"):
+        real.check(from_text(real, "wide"), "width", shown="'wide'")
+    assert from_text(Spec("formats", "formats", ()), "svg, ,pdf") == ["svg", "pdf"]
+    assert from_text(Spec("page", "page", "A4", choices=("A4",)), "300,200") == [300.0, 200.0]
+    assert from_text(Spec("cells", "cells", ((0, 0),)), "[[0, 1]]") == [[0, 1]]
+    assert from_text(Spec("glue_tabs", "flag", True), "False") is False

@@ -37,7 +37,7 @@ from ..analysis.mechanism import RTOL
 from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.text import for_terminal
-from ..kernel.validate import Spec
+from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
 from ..vault.atlas import workers_spec
 from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
@@ -101,31 +101,15 @@ def _flag(spec: Spec) -> str:
 
 
 def _from_text(spec: Spec, text: str, flag: str | None = None):
-    """A flag's text as the value a design file would hold (checked by the spec afterwards)."""
-    try:
-        if spec.kind == "real":
-            return float(text)
-        if spec.kind == "integer":
-            return int(text)
-        if spec.kind == "count":
-            return text if text == "max" else int(text)
-    except ValueError:
+    """A flag's text as the value a design file would hold (checked by the spec afterwards);
+    a number that does not read as one is refused here, naming the flag."""
+    value = from_text(spec, text)
+    number = {"real": (int, float), "integer": int, "count": int}.get(spec.kind)
+    if number is not None and not isinstance(value, number) and value != ("max" if spec.kind == "count" else None):
         form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
                 "count": f"a whole number ≥ {spec.range.lo:g} or 'max'"}[spec.kind]
-        raise InputError(f"{flag or _flag(spec)}: must be {form}, got {text!r}") from None
-    if spec.kind == "function":
-        try:
-            return float(text)
-        except ValueError:
-            return text  # an expression in s
-    if spec.kind == "formats":
-        return [f.strip() for f in text.split(",") if f.strip()]
-    if spec.kind == "page" and "," in text:
-        try:
-            return [float(v) for v in text.split(",")]
-        except ValueError:
-            return text
-    return text
+        raise InputError(f"{flag or _flag(spec)}: must be {form}, got {text!r}")
+    return value
 
 
 def _flag_value(spec: Spec, text: str):

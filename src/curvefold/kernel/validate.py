@@ -42,6 +42,7 @@ Kinds of value (:data:`KINDS`):
 from __future__ import annotations
 
 import difflib
+import json
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -53,7 +54,7 @@ import numpy as np
 from .errors import InputError
 from .text import control_characters
 
-__all__ = ["Interval", "Spec", "REQUIRED", "KINDS", "MAX_TEXT", "describe", "suggest"]
+__all__ = ["Interval", "Spec", "REQUIRED", "KINDS", "MAX_TEXT", "describe", "from_text", "suggest"]
 
 #: Longest string a ``text`` value may hold.
 MAX_TEXT = 1000
@@ -243,6 +244,38 @@ def _plain_default(value: Any) -> str:
 
 # --------------------------------------------------------------------------------------------
 # The validators, one per kind: (spec, value, where, shown) -> value
+
+
+def from_text(spec: Spec, text: str) -> Any:
+    """Typed text (a command-line flag, a query parameter) as the value a design file would hold.
+
+    Numbers read as integers, else as floats; ``formats`` split at commas; a page
+    ``WIDTH,HEIGHT`` reads as two numbers; ``cells`` as JSON; a flag as true or false. Text
+    that is no value of its kind is returned as it is, for :meth:`Spec.check` to refuse by
+    name ("max", an expression in s, a word).
+    """
+    if spec.kind in ("real", "integer", "count", "function"):
+        for convert in (int, float):
+            try:
+                return convert(text)
+            except ValueError:
+                continue
+        return text
+    if spec.kind == "flag":
+        return {"true": True, "false": False}.get(text.lower(), text)
+    if spec.kind == "formats":
+        return [f.strip() for f in text.split(",") if f.strip()]
+    if spec.kind == "cells":
+        try:
+            return json.loads(text)
+        except (ValueError, RecursionError):
+            return text
+    if spec.kind == "page" and "," in text:
+        try:
+            return [float(v) for v in text.split(",")]
+        except ValueError:
+            return text
+    return text
 
 
 def _is_number(value: Any) -> bool:

@@ -37,7 +37,7 @@ from ...geometry.topology import tube_strips
 from ...io.formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...io.tables import COLOURS
 from ...kernel.errors import CurvefoldError, InputError
-from ...kernel.validate import MAX_TEXT, Spec, suggest
+from ...kernel.validate import MAX_TEXT, Spec, from_text, suggest
 from ...vault.assembly import DEFAULT_TUBES_CAP
 from ...vault.targets import REPLACES, TARGET_SPECS
 from ..build import Built, build, fit_vault_targets
@@ -144,32 +144,6 @@ def schema() -> dict:
     }
 
 
-def _value(spec: Spec, text: str):
-    """A query value as the value a design file would hold (the spec checks it afterwards)."""
-    if spec.kind in ("real", "integer", "count", "function"):
-        for convert in (int, float):
-            try:
-                return convert(text)
-            except ValueError:
-                continue
-        return text  # "max", an expression in s, or a word the spec refuses by name
-    if spec.kind == "flag":
-        return {"true": True, "false": False}.get(text.lower(), text)
-    if spec.kind == "formats":
-        return [f.strip() for f in text.split(",") if f.strip()]
-    if spec.kind == "cells":
-        try:
-            return json.loads(text)
-        except (ValueError, RecursionError):
-            return text
-    if spec.kind == "page" and "," in text:
-        try:
-            return [float(v) for v in text.split(",")]
-        except ValueError:
-            return text
-    return text
-
-
 def _key_named(message: str, keys) -> str | None:
     """The key a message is about: of ``keys``, the one it names first."""
     found = [(m.start(), key) for key in keys if (m := re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", message))]
@@ -201,7 +175,7 @@ def request_design(kind: str, query: Mapping[str, str] | list[tuple[str, str]]) 
             raise QueryError(f"{name} is given twice", name)
         if len(text) > MAX_VALUE:
             raise QueryError(f"{name} is longer than {MAX_VALUE} characters", name)
-        values[name] = _value(specs[name], text)
+        values[name] = from_text(specs[name], text)
     targets = {k: values.pop(k) for k in REPLACES if k in values}
     for target, replaced in REPLACES.items():
         if target in targets and replaced in values:
