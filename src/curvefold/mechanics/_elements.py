@@ -41,6 +41,9 @@ __all__ = [
     "dihedral_hessian_action",
     "plane_stress",
     "triangle_strain",
+    "quad_frame",
+    "quad_membrane",
+    "membrane_geometric",
     "triangle_areas",
 ]
 
@@ -167,6 +170,124 @@ def triangle_strain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     rows = np.stack([nx * nx, ny * ny, nx * ny], axis=-1)  # edge strain n ε n as a row on Voigt ε
     G = np.linalg.inv(rows) / lengths[:, None, :]  # ε = rows⁻¹ (δ / ℓ)
     return G, np.stack([ex, ey], axis=1)
+
+
+def quad_frame(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The plane of quads (Q, 4, 3): x̂ along the mean first side, the normal along the cross product of the diagonals.
+
+    Returns
+    -------
+    frame : (Q, 2, 3) ndarray
+        x̂, ŷ of every quad.
+    local : (Q, 4, 2) ndarray
+        The corners in that frame, about their mean.
+    """
+    x = np.asarray(x, float)
+    ex = (x[:, 1] - x[:, 0]) + (x[:, 2] - x[:, 3])
+    ex /= np.linalg.norm(ex, axis=1, keepdims=True)
+    n = _cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])
+    ey = _cross(n / np.linalg.norm(n, axis=1, keepdims=True), ex)
+    c = x - x.mean(axis=1, keepdims=True)
+    return np.stack([ex, ey], axis=1), np.stack([_dot(c, ex[:, None]), _dot(c, ey[:, None])], axis=-1)
+
+
+#: Corners of the bilinear quad in (ξ, η).
+_XI, _ETA = np.array([-1.0, 1.0, 1.0, -1.0]), np.array([-1.0, -1.0, 1.0, 1.0])
+#: The 2 × 2 Gauss points.
+_GAUSS = [(s, r) for s in (-3**-0.5, 3**-0.5) for r in (-3**-0.5, 3**-0.5)]
+
+
+def _jacobian(local: np.ndarray, s: float, r: float) -> tuple[np.ndarray, np.ndarray]:
+    """The Jacobian (Q, 2, 2) of bilinear quads at (ξ, η) = (s, r), J[a, b] = ∂x_b/∂ξ_a, and the shape derivatives (2, 4)."""
+    dN = 0.25 * np.stack([_XI * (1 + _ETA * r), _ETA * (1 + _XI * s)])
+    return np.einsum("an,qnb->qab", dN, local), dN
+
+
+def _strain_rows(dNx: np.ndarray) -> np.ndarray:
+    """Voigt strain rows (Q, 3, 8) on the corners' (u, v) from shape gradients (Q, 2, 4)."""
+    B = np.zeros((len(dNx), 3, 8))
+    B[:, 0, 0::2], B[:, 1, 1::2] = dNx[:, 0], dNx[:, 1]
+    B[:, 2, 0::2], B[:, 2, 1::2] = dNx[:, 1], dNx[:, 0]
+    return B
+
+
+def quad_membrane(x: np.ndarray, youngs_modulus: float, poisson: float, thickness: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """In-plane stiffness of quads (Q, 4, 3) with two incompatible modes per direction (Wilson and Taylor's QM6).
+
+    Bilinear displacements plus the modes ``1 − ξ²`` and ``1 − η²`` in each direction,
+    their derivatives taken with the Jacobian at the centre (Taylor's correction, which
+    passes the patch test on any convex quad), 2 × 2 Gauss points, the modes condensed out.
+    A rectangle so modelled bends in its plane exactly; two constant-strain triangles lock.
+    The quad is taken in its own plane (:func:`quad_frame`; a smooth ruling quad is planar
+    to O(h³)).
+
+    Returns
+    -------
+    K : (Q, 8, 8) ndarray
+        On the in-plane displacements (u, v) of corners 0 … 3 in the quad's frame, N/m.
+    strain : (Q, 3, 8) ndarray
+        Voigt strain at the centre from the same displacements (the modes' vanish there), 1/m.
+    frame : (Q, 2, 3) ndarray
+        x̂, ŷ of every quad.
+    """
+    frame, local = quad_frame(x)
+    D = plane_stress(youngs_modulus, poisson)
+    J0 = _jacobian(local, 0.0, 0.0)[0]
+    J0inv, det0 = np.linalg.inv(J0), np.linalg.det(J0)
+    Q = len(local)
+    Kuu, Kua, Kaa = np.zeros((Q, 8, 8)), np.zeros((Q, 8, 4)), np.zeros((Q, 4, 4))
+    for s, r in _GAUSS:
+        J, dN = _jacobian(local, s, r)
+        det = np.linalg.det(J)
+        B = _strain_rows(np.linalg.inv(J) @ dN)
+        dP = np.einsum("qab,pb->qpa", J0inv, np.array([[-2 * s, 0.0], [0.0, -2 * r]])) * (det0 / det)[:, None, None]
+        Gm = np.zeros((Q, 3, 4))  # modes: u·P1, u·P2, v·P1, v·P2
+        Gm[:, 0, :2], Gm[:, 1, 2:] = dP[:, :, 0], dP[:, :, 1]
+        Gm[:, 2, :2], Gm[:, 2, 2:] = dP[:, :, 1], dP[:, :, 0]
+        w = (thickness * det)[:, None, None]
+        Bt, DB, DG = np.swapaxes(B, 1, 2) * w, D @ B, D @ Gm
+        Kuu += Bt @ DB
+        Kua += Bt @ DG
+        Kaa += (np.swapaxes(Gm, 1, 2) * w) @ DG
+    K = Kuu - Kua @ np.linalg.solve(Kaa, np.swapaxes(Kua, 1, 2))
+    B0 = _strain_rows(np.einsum("qab,bn->qan", J0inv, 0.25 * np.stack([_XI, _ETA])))
+    return 0.5 * (K + np.swapaxes(K, 1, 2)), B0, frame
+
+
+def membrane_geometric(x: np.ndarray, stress: np.ndarray, thickness: float) -> np.ndarray:
+    """Geometric stiffness ``t ∫ ∇N_a · σ · ∇N_b dA`` of membranes under a uniform stress, shape (T, k, k), N/m.
+
+    The same for each displacement component: the element's geometric stiffness is this
+    times the 3 × 3 identity.
+
+    Parameters
+    ----------
+    x : (T, k, 3) ndarray
+        Triangles (k = 3, linear shape functions, in the frame of :func:`triangle_strain`)
+        or quads (k = 4, bilinear, 2 × 2 Gauss points, in the frame of :func:`quad_frame`).
+    stress : (T, 3) ndarray
+        (σ_xx, σ_yy, τ_xy) in the same frames, Pa.
+    """
+    x = np.asarray(x, float)
+    T, k = x.shape[:2]
+    sigma = np.zeros((T, 2, 2))
+    sigma[:, 0, 0], sigma[:, 1, 1] = stress[:, 0], stress[:, 1]
+    sigma[:, 0, 1] = sigma[:, 1, 0] = stress[:, 2]
+    if k == 3:
+        frame = triangle_strain(x)[1]
+        local = np.einsum("tnk,tak->tna", x - x[:, :1], frame)
+        area2 = local[:, 1, 0] * local[:, 2, 1] - local[:, 2, 0] * local[:, 1, 1]
+        y, z = local[..., 1], local[..., 0]
+        grad = np.stack([np.roll(y, -1, 1) - np.roll(y, -2, 1), np.roll(z, -2, 1) - np.roll(z, -1, 1)], axis=1) / area2[:, None, None]
+        scalar = 0.5 * thickness * np.abs(area2)[:, None, None] * (np.swapaxes(grad, 1, 2) @ sigma @ grad)
+    else:
+        _, local = quad_frame(x)
+        scalar = np.zeros((T, 4, 4))
+        for s, r in _GAUSS:
+            J, dN = _jacobian(local, s, r)
+            grad = np.linalg.inv(J) @ dN
+            scalar += thickness * np.linalg.det(J)[:, None, None] * (np.swapaxes(grad, 1, 2) @ sigma @ grad)
+    return scalar
 
 
 def plane_stress(youngs_modulus: float, poisson: float) -> np.ndarray:

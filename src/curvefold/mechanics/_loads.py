@@ -99,7 +99,8 @@ class Loads:
         if self.snow:
             if not len(model.membranes):
                 raise InputError("snow needs a sheet (membrane triangles) to fall on")
-            f[:, 2] -= np.bincount(model.membranes.ravel(), np.repeat(self.snow * snow_areas(model) / 3, 3), minlength=len(f))
+            triangles, _ = model.triangles()
+            f[:, 2] -= np.bincount(triangles.ravel(), np.repeat(self.snow * snow_areas(model) / 3, 3), minlength=len(f))
         if self.point:
             node = apex(model) if self.point_at is None else int(np.argmin(np.linalg.norm(model.nodes - self.point_at, axis=1)))
             f[node, 2] -= self.point
@@ -112,12 +113,12 @@ def apex(model: BarHingeModel) -> int:
 
 
 def snow_areas(model: BarHingeModel) -> np.ndarray:
-    """Projected area of every membrane triangle seen from above, m², shape (T,): 0 where hidden.
+    """Projected area of every triangle of the sheet (:meth:`BarHingeModel.triangles`) seen from above, m², shape (n,): 0 where hidden.
 
     A triangle is seen when no other triangle passes above its centroid (higher by more
     than 1e-9 of the model's size); its horizontal projected area then carries the snow.
     """
-    x = model.nodes[model.membranes]  # (T, 3, 3)
+    x = model.nodes[model.triangles()[0]]  # (n, 3, 3)
     xy = x[..., :2]
     area = 0.5 * np.abs((xy[:, 1, 0] - xy[:, 0, 0]) * (xy[:, 2, 1] - xy[:, 0, 1]) - (xy[:, 2, 0] - xy[:, 0, 0]) * (xy[:, 1, 1] - xy[:, 0, 1]))
     centroid = x.mean(axis=1)

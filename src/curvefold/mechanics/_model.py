@@ -1,4 +1,4 @@
-"""The bar-and-hinge model: nodes, bars, membrane triangles and hinges, and its sparse matrices.
+"""The bar-and-hinge model: nodes, bars, membranes and hinges, and its sparse matrices.
 
 A model is a value (:class:`BarHingeModel`); its matrices are pure functions of it. The
 unknowns are the displacements u (3P,) of its P nodes, node by node (x, y, z). The
@@ -7,13 +7,16 @@ J (H, 3P) the changes of the hinges' dihedral angles Δθ = J u. The elastic ene
 
     U = ½ δᵀ S δ + ½ Δθᵀ diag(k) Δθ,    so    K = Cᵀ S C + Jᵀ diag(k) J,
 
-with S the bars' stiffness: each membrane triangle's 3 × 3 block (:mod:`._elements`) on
-its three bars, plus the axial stiffness EA/L of bars of their own on the diagonal. The
-reference state carries no stress: a linear analysis about the state as it is built.
+with S the bars' stiffness: each membrane's block (:mod:`._elements`) on its bars (a
+triangle's exact constant-strain stiffness on its three sides; a quad's incompatible-mode
+stiffness on its four sides and its diagonal, which for a planar quad determine its
+in-plane deformation exactly), plus the axial stiffness EA/L of bars of their own on the
+diagonal. The reference state carries no stress: a linear analysis about the state as it
+is built.
 
 Build a model from any sheet of triangles and quads with :meth:`BarHingeModel.from_mesh`
 (FOLD arrays with curvefold's edge kinds), or from its parts with the constructor (a
-single bar, a single hinge). A quad is two membrane triangles split along its diagonal.
+single bar, a single hinge). A quad keeps one bar along its diagonal from its first corner.
 The hinge stiffness of every kind of edge, with ``D = E t³ / 12(1 − ν²)`` and ℓ the edge's
 length:
 
@@ -45,7 +48,8 @@ import scipy.sparse as sp
 from ..geometry.mesh import Mesh
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
-from ._elements import bar_rows, dihedral_gradient, dihedral_hessian, plane_stress, triangle_areas, triangle_strain
+from ._elements import (bar_rows, dihedral_gradient, dihedral_hessian, membrane_geometric, plane_stress, quad_membrane, triangle_areas,
+                        triangle_strain)
 from ._materials import Material, check_thickness
 
 __all__ = ["BarHingeModel", "HINGE_KINDS", "CREASES"]
@@ -75,14 +79,17 @@ class BarHingeModel(FrozenArrays):
         Rotational stiffness, N·m/rad.
     masses : (P,) ndarray
         Lumped nodal mass, kg.
-    membranes : (T, 3) ndarray of int
-        Membrane triangles (may be empty).
-    membrane_bars : (T, 3) ndarray of int
-        The bar of edge m (corner m to corner m + 1) of every triangle.
-    membrane_strain : (T, 3, 3) ndarray
-        Voigt strain in the triangle's frame from its bars' elongations, 1/m.
+    membranes : (T, 4) ndarray of int
+        Membrane faces: quads, or triangles padded with -1 (may be empty).
+    membrane_bars : (T, 5) ndarray of int
+        The bars of every face: its sides from corner m to m + 1, then a quad's diagonal
+        from corner 0 to 2; -1 pads a triangle's.
+    membrane_stiffness : (T, 5, 5) ndarray
+        Every face's stiffness on its bars' elongations, N/m (zero where padded).
+    membrane_strain : (T, 3, 5) ndarray
+        Voigt strain at the face's centre, in its own frame, from its bars' elongations, 1/m.
     membrane_area : (T,) ndarray
-        Triangle areas, m².
+        Face areas, m².
     elasticity : (3, 3) ndarray
         Plane-stress matrix D of the membranes, Pa.
     thickness : float
@@ -93,7 +100,7 @@ class BarHingeModel(FrozenArrays):
     hinge_length : (H,) ndarray
         Length of every hinge's edge, m.
     hinge_faces : (H, 2) ndarray of int
-        The membrane triangles of faces A and B of every hinge (-1 for a hinge given as it is).
+        The membranes of faces A and B of every hinge (-1 for a hinge given as it is).
     """
 
     nodes: np.ndarray
@@ -104,6 +111,7 @@ class BarHingeModel(FrozenArrays):
     masses: np.ndarray
     membranes: np.ndarray = None  # type: ignore[assignment]
     membrane_bars: np.ndarray = None  # type: ignore[assignment]
+    membrane_stiffness: np.ndarray = None  # type: ignore[assignment]
     membrane_strain: np.ndarray = None  # type: ignore[assignment]
     membrane_area: np.ndarray = None  # type: ignore[assignment]
     elasticity: np.ndarray = None  # type: ignore[assignment]
@@ -117,8 +125,9 @@ class BarHingeModel(FrozenArrays):
         if nodes.ndim != 2 or nodes.shape[1] != 3 or not np.isfinite(nodes).all():
             raise InputError(f"nodes must be finite positions (P, 3), got shape {nodes.shape}")
         defaults = {
-            "membranes": np.zeros((0, 3), np.int64), "membrane_bars": np.zeros((0, 3), np.int64),
-            "membrane_strain": np.zeros((0, 3, 3)), "membrane_area": np.zeros(0), "elasticity": np.zeros((3, 3)),
+            "membranes": np.zeros((0, 4), np.int64), "membrane_bars": np.zeros((0, 5), np.int64),
+            "membrane_stiffness": np.zeros((0, 5, 5)), "membrane_strain": np.zeros((0, 3, 5)), "membrane_area": np.zeros(0),
+            "elasticity": np.zeros((3, 3)),
         }
         for name, value in defaults.items():
             if getattr(self, name) is None:
@@ -139,6 +148,7 @@ class BarHingeModel(FrozenArrays):
                 raise InputError(f"{name} must have shape {shape}, got {np.shape(getattr(self, name))}")
         for name in ("bars", "hinges", "membranes"):
             index = np.asarray(getattr(self, name))
+            index = index[index >= 0] if name == "membranes" else index
             if index.size and (index.min() < 0 or index.max() >= P):
                 raise InputError(f"{name} must index the {P} nodes, got indices in [{index.min()}, {index.max()}]")
         for name in ("bar_stiffness", "hinge_stiffness", "masses"):
@@ -156,8 +166,9 @@ class BarHingeModel(FrozenArrays):
                   weld: np.ndarray | None = None) -> BarHingeModel:
         """The model of a sheet mesh of triangles and quads: membranes, and hinges on its edges by kind.
 
-        A quad is split along its diagonal from its first corner into two membrane
-        triangles, with a ``"diagonal"`` hinge between them (its twist). An edge between two
+        A face is a membrane on its bars (a quad's four sides and its diagonal from its
+        first corner), and a quad has a ``"diagonal"`` hinge across that diagonal (its
+        twist). Masses are lumped equally at a face's corners. An edge between two
         quads carries two hinges of half its stiffness, one at each end of the edge, whose
         wings are the quads' corners next to that end: the kink between the quads is
         measured where it is, so a kink that varies along the edge (the quads twisting)
@@ -189,8 +200,9 @@ class BarHingeModel(FrozenArrays):
         x = np.asarray(mesh.vertices_coords, float)
         faces = np.asarray(mesh.faces_vertices, np.int64)
         sizes = (faces >= 0).sum(axis=1)
-        if faces.shape[1] > 4 and (sizes > 4).any():
+        if (sizes > 4).any():
             raise InputError(f"the model takes faces of three or four vertices; face {int(np.argmax(sizes > 4))} has {sizes.max()}")
+        faces = np.concatenate([faces, np.full((len(faces), 4 - faces.shape[1]), -1, np.int64)], axis=1)[:, :4]
         V = len(x)
         weld = np.arange(V) if weld is None else np.asarray(weld, np.int64)
         if weld.shape != (V,) or weld.min(initial=0) < 0:
@@ -204,19 +216,15 @@ class BarHingeModel(FrozenArrays):
             v = int(np.argmax(apart))
             raise InputError(f"weld joins vertices that are {apart[v]:.3g} m apart (vertex {v}); welded vertices must coincide")
 
-        # membranes: triangles, and quads split along the diagonal from their first corner
-        quads = faces[sizes == 4][:, :4] if faces.shape[1] >= 4 else np.zeros((0, 4), np.int64)
-        triangles = np.concatenate([faces[sizes == 3][:, :3], quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
-        areas = triangle_areas(x[triangles])
-        if not (areas > 1e-14 * size**2).all():
-            raise InputError(f"a triangle of the mesh is degenerate (area {areas.min():.3g} m²)")
-        T3, Q = int((sizes == 3).sum()), len(quads)
-        face_tri = np.full((len(faces), 2), -1)  # the membrane triangles of every face
-        face_tri[sizes == 3, 0] = np.arange(T3)
-        face_tri[sizes == 4] = np.stack([T3 + np.arange(Q), T3 + Q + np.arange(Q)], axis=1)
-        face_area = np.zeros(len(faces))
-        face_area[sizes == 3] = areas[:T3]
-        face_area[sizes == 4] = areas[T3:T3 + Q] + areas[T3 + Q:]
+        # membranes: the faces; a quad's bars are its sides and its diagonal from corner 0
+        quads = sizes == 4
+        split = np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]])  # triangles of the faces (for areas)
+        tri_area = triangle_areas(x[split])
+        if not (tri_area > 1e-14 * size**2).all():
+            raise InputError(f"a face of the mesh is degenerate (a triangle of area {tri_area.min():.3g} m²)")
+        face_area = tri_area[: len(faces)].copy()
+        face_area[quads] += tri_area[len(faces):]
+        S, strain = _membranes(x, faces, sizes, face_area, material, t)
 
         # sides of the faces: side m of a face runs from its corner m to m + 1
         m = np.arange(faces.shape[1])
@@ -228,8 +236,7 @@ class BarHingeModel(FrozenArrays):
         side_face = np.broadcast_to(np.arange(len(faces))[:, None], faces.shape)[keep]
         p, q = corner[keep], nxt[keep]
         near_p, near_q = prev[keep], np.where(sizes[side_face] == 3, prev[keep], after[keep])  # corners next to p and to q
-        side_tri = np.where(sizes[side_face] == 3, face_tri[side_face, 0],
-                            face_tri[side_face, np.where(m[None] < 2, 0, 1).repeat(len(faces), 0)[keep]])
+        side_tri = side_face
         key = np.sort(np.stack([p, q], axis=1), axis=1)
         order = np.lexsort((key[:, 1], key[:, 0]))
         sk = key[order]
@@ -261,26 +268,34 @@ class BarHingeModel(FrozenArrays):
         share = np.where(quad_pair, 0.5, 1.0)
         edge_faces = np.stack([side_tri[first], side_tri[second]], axis=1)
         # the quads' diagonal hinges: twist
-        d = np.linalg.norm(x[quads[:, 2]] - x[quads[:, 0]], axis=1)
-        quad_area = face_area[sizes == 4]
-        corners = np.concatenate([ends, quads[:, [0, 2, 1, 3]]])
-        bars, inverse = np.unique(np.sort(weld[_sides(triangles)], axis=1), axis=0, return_inverse=True)
+        quad_faces = np.flatnonzero(quads)
+        corners4 = faces[quads][:, :4]
+        d = np.linalg.norm(x[corners4[:, 2]] - x[corners4[:, 0]], axis=1)
+        Q = len(quad_faces)
+        corners = np.concatenate([ends, corners4[:, [0, 2, 1, 3]]])
+        pairs = _face_bars(faces, sizes)  # (F, 5, 2), -1 padded
+        valid = pairs[..., 0] >= 0
+        bars, inverse = np.unique(np.sort(weld[pairs[valid]], axis=1), axis=0, return_inverse=True)
+        membrane_bars = np.full(valid.shape, -1)
+        membrane_bars[valid] = inverse.ravel()
+        share_mass = np.where(faces >= 0, (material.density * t * face_area / sizes)[:, None], 0.0)
         return cls(
             nodes=nodes,
             bars=bars,
             bar_stiffness=np.zeros(len(bars)),
             hinges=weld[corners],
-            hinge_stiffness=np.concatenate([k_edge * share, (k_edge * share)[quad_pair], 2 * D * (1 - nu) * quad_area / d**2]),
-            masses=np.bincount(weld[triangles].ravel(), np.repeat(material.density * t * areas / 3, 3), minlength=P),
-            membranes=weld[triangles],
-            membrane_bars=inverse.reshape(-1, 3),
-            membrane_strain=triangle_strain(x[triangles])[0],
-            membrane_area=areas,
+            hinge_stiffness=np.concatenate([k_edge * share, (k_edge * share)[quad_pair], 2 * D * (1 - nu) * face_area[quads] / d**2]),
+            masses=np.bincount(weld[np.where(faces >= 0, faces, 0)].ravel(), share_mass.ravel(), minlength=P),
+            membranes=np.where(faces >= 0, weld[np.where(faces >= 0, faces, 0)], -1),
+            membrane_bars=membrane_bars,
+            membrane_stiffness=S,
+            membrane_strain=strain,
+            membrane_area=face_area,
             elasticity=plane_stress(material.youngs_modulus, material.poisson),
             thickness=t,
             hinge_kind=np.concatenate([kinds, kinds[quad_pair], np.full(Q, "diagonal")]).astype("<U8"),
             hinge_length=np.concatenate([length * share, (length * share)[quad_pair], d]),
-            hinge_faces=np.concatenate([edge_faces, edge_faces[quad_pair], np.stack([T3 + np.arange(Q), T3 + Q + np.arange(Q)], 1)]),
+            hinge_faces=np.concatenate([edge_faces, edge_faces[quad_pair], np.stack([quad_faces, quad_faces], 1)]),
         )
 
     # -- sizes ---------------------------------------------------------------------------------
@@ -295,12 +310,6 @@ class BarHingeModel(FrozenArrays):
         return float(np.ptp(self.nodes, axis=0).max()) if len(self.nodes) else 0.0
 
     # -- matrices ------------------------------------------------------------------------------
-    @cached_property
-    def membrane_stiffness(self) -> np.ndarray:
-        """t A Gᵀ D G of every membrane triangle, on its bars' elongations, shape (T, 3, 3), N/m."""
-        G = self.membrane_strain
-        return readonly(self.thickness * self.membrane_area[:, None, None] * np.einsum("tki,kl,tlj->tij", G, self.elasticity, G))
-
     @cached_property
     def _bar_rows(self) -> np.ndarray:
         return readonly(bar_rows(self.nodes[self.bars]))
@@ -321,10 +330,18 @@ class BarHingeModel(FrozenArrays):
         """S, the bars' stiffness on their elongations (membrane blocks and EA/L), shape (B, B), N/m."""
         B = len(self.bars)
         mb = self.membrane_bars
-        rows = np.concatenate([np.repeat(mb, 3, axis=1).ravel(), np.arange(B)])
-        cols = np.concatenate([np.tile(mb, (1, 3)).ravel(), np.arange(B)])
-        vals = np.concatenate([self.membrane_stiffness.reshape(-1), self.bar_stiffness])
-        return sp.csr_matrix((vals, (rows, cols)), shape=(B, B))
+        k = mb.shape[1] if mb.ndim == 2 else 0
+        rows, cols = np.repeat(mb, k, axis=1).ravel(), np.tile(mb, (1, k)).ravel()
+        vals = self.membrane_stiffness.reshape(-1)
+        ok = (rows >= 0) & (cols >= 0)
+        return sp.csr_matrix((np.concatenate([vals[ok], self.bar_stiffness]), (np.concatenate([rows[ok], np.arange(B)]),
+                              np.concatenate([cols[ok], np.arange(B)]))), shape=(B, B))
+
+    def triangles(self) -> tuple[np.ndarray, np.ndarray]:
+        """The membranes as triangles (a quad split along its bar diagonal): nodes (n, 3) and the membrane of each (n,)."""
+        faces = self.membranes
+        quads = np.flatnonzero(faces[:, 3] >= 0) if len(faces) else np.zeros(0, np.int64)
+        return (np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]]), np.concatenate([np.arange(len(faces)), quads]))
 
     @cached_property
     def stiffness(self) -> sp.csr_matrix:
@@ -344,27 +361,90 @@ class BarHingeModel(FrozenArrays):
         """Axial force of every bar for displacements u (3P,), N (tension positive), shape (B,)."""
         return self.bar_stiffness_matrix() @ (self.compatibility() @ u)
 
-    def geometric_stiffness(self, bar_forces: np.ndarray, hinge_moments: np.ndarray) -> sp.csr_matrix:
-        """K_G: the second-order stiffness of bar forces (B,) N and hinge moments (H,) N·m, shape (3P, 3P).
+    def membrane_stress(self, u: np.ndarray) -> np.ndarray:
+        """(σ_xx, σ_yy, τ_xy) at every membrane's centre, in its own frame, for displacements u (3P,), Pa, shape (T, 3)."""
+        delta = self.compatibility() @ np.asarray(u, float).ravel()
+        mb = self.membrane_bars
+        return np.einsum("tij,tj->ti", self.membrane_strain, np.where(mb >= 0, delta[mb], 0.0)) @ self.elasticity.T
 
-        ``Σ N ∂²ℓ/∂x² + Σ M ∂²θ/∂x²``: a bar's ``(N/ℓ)(I − ê êᵀ)`` on its relative
-        displacement, a hinge's moment times the Hessian of its angle.
+    def geometric_stiffness(self, u: np.ndarray, *, hinges: bool = True) -> sp.csr_matrix:
+        """K_G of the internal forces of displacements u (3P,), shape (3P, 3P), N/m.
+
+        The membranes' ``t ∫ ∇N · σ · ∇N dA`` of their centre stress
+        (:func:`~curvefold.mechanics._elements.membrane_geometric`); a bar of its own's
+        ``(N/ℓ)(I − ê êᵀ)`` (its force N times the Hessian of its length); with ``hinges``,
+        every hinge's moment times the Hessian of its angle.
         """
-        x = self.nodes[self.bars]
-        d = x[:, 1] - x[:, 0]
-        ell = np.linalg.norm(d, axis=1)
-        e = d / ell[:, None]
-        block = (np.asarray(bar_forces) / ell)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
-        bar_k = np.einsum("ab,nij->naibj", np.array([[1.0, -1.0], [-1.0, 1.0]]), block).reshape(-1, 6, 6)
-        moving = np.flatnonzero(np.asarray(hinge_moments) != 0)
-        hinge_k = np.asarray(hinge_moments)[moving, None, None] * dihedral_hessian(self.nodes[self.hinges[moving]])
-        KG = _assemble(bar_k, self.bars, self.dofs) + _assemble(hinge_k, self.hinges[moving], self.dofs)
+        u = np.asarray(u, float).ravel()
+        P = len(self.nodes)
+        stress = self.membrane_stress(u)
+        quads = self.membranes[:, 3] >= 0
+        rows, cols, vals = [], [], []
+        for keep, k in ((~quads, 3), (quads, 4)):  # the same scalar matrix for x, y and z
+            if keep.any():
+                corners = self.membranes[keep][:, :k]
+                vals.append(membrane_geometric(self.nodes[corners], stress[keep], self.thickness).ravel())
+                rows.append(np.repeat(corners, k, axis=1).ravel())
+                cols.append(np.tile(corners, (1, k)).ravel())
+        scalar = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(P, P)) if vals \
+            else sp.csr_matrix((P, P))
+        KG = sp.kron(scalar, sp.identity(3), format="csr")
+        plain = np.flatnonzero(self.bar_stiffness)
+        if plain.size:
+            x = self.nodes[self.bars[plain]]
+            d = x[:, 1] - x[:, 0]
+            ell = np.linalg.norm(d, axis=1)
+            e = d / ell[:, None]
+            forces = self.bar_stiffness[plain] * (self.compatibility()[plain] @ u)
+            block = (forces / ell)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
+            KG = KG + _assemble(np.einsum("ab,nij->naibj", np.array([[1.0, -1.0], [-1.0, 1.0]]), block).reshape(-1, 6, 6),
+                                self.bars[plain], self.dofs)
+        if hinges:
+            moments = self.hinge_stiffness * (self.hinge_matrix() @ u)
+            moving = np.flatnonzero(moments)
+            KG = KG + _assemble(moments[moving, None, None] * dihedral_hessian(self.nodes[self.hinges[moving]]), self.hinges[moving], self.dofs)
         return (0.5 * (KG + KG.T)).tocsr()
 
 
-def _sides(triangles: np.ndarray) -> np.ndarray:
-    """The sides of triangles (T, 3), side m from corner m to m + 1, shape (3T, 2)."""
-    return np.stack([triangles, np.roll(triangles, -1, axis=1)], axis=-1).reshape(-1, 2)
+def _face_bars(faces: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """The bars of faces (F, k) as vertex pairs, shape (F, 5, 2): sides from corner m to m + 1, then a quad's diagonal 0–2; -1 pads."""
+    F = len(faces)
+    out = np.full((F, 5, 2), -1, np.int64)
+    tri, quad = sizes == 3, sizes == 4
+    out[tri, :3] = np.stack([faces[tri][:, :3], np.roll(faces[tri][:, :3], -1, axis=1)], axis=-1)
+    if quad.any():
+        q = faces[quad][:, :4]
+        out[quad, :4] = np.stack([q, np.roll(q, -1, axis=1)], axis=-1)
+        out[quad, 4] = q[:, [0, 2]]
+    return out
+
+
+def _membranes(x: np.ndarray, faces: np.ndarray, sizes: np.ndarray, area: np.ndarray, material: Material,
+               t: float) -> tuple[np.ndarray, np.ndarray]:
+    """Every face's stiffness (F, 5, 5) and centre strain (F, 3, 5) on its bars (:func:`_face_bars`)."""
+    F = len(faces)
+    S, strain = np.zeros((F, 5, 5)), np.zeros((F, 3, 5))
+    D = plane_stress(material.youngs_modulus, material.poisson)
+    tri, quad = sizes == 3, sizes == 4
+    if tri.any():
+        G, _ = triangle_strain(x[faces[tri][:, :3]])
+        strain[tri, :, :3] = G
+        S[tri, :3, :3] = t * area[tri][:, None, None] * (np.swapaxes(G, 1, 2) @ D @ G)
+    if quad.any():
+        corners = x[faces[quad][:, :4]]
+        K8, B0, frame = quad_membrane(corners, material.youngs_modulus, material.poisson, t)
+        local = np.einsum("qnk,qak->qna", corners - corners.mean(axis=1, keepdims=True), frame)  # (Q, 4, 2)
+        ends = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
+        e = local[:, ends[:, 1]] - local[:, ends[:, 0]]
+        e /= np.linalg.norm(e, axis=-1, keepdims=True)
+        C = np.zeros((len(corners), 5, 4, 2))
+        C[:, np.arange(5), ends[:, 0]] -= e
+        C[:, np.arange(5), ends[:, 1]] += e
+        C = C.reshape(-1, 5, 8)
+        Cinv = np.swapaxes(C, 1, 2) @ np.linalg.inv(C @ np.swapaxes(C, 1, 2))  # (Q, 8, 5): Cᵀ(CCᵀ)⁻¹, C of full rank
+        S[quad] = np.swapaxes(Cinv, 1, 2) @ K8 @ Cinv
+        strain[quad] = B0 @ Cinv
+    return 0.5 * (S + np.swapaxes(S, 1, 2)), strain
 
 
 def _kinds_of(edges: np.ndarray, mesh: Mesh) -> np.ndarray:

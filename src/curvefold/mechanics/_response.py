@@ -13,14 +13,15 @@ bending stress of its hinges: an upper bound of the von Mises stress at either f
 Creases count too: a crease's moment bends the sheet along it.
 
 Buckling: the load factor λ at which ``K + λ K_G`` becomes singular on the free DOFs,
-``K_G`` the geometric stiffness of the static bar forces and hinge moments; the smallest
+``K_G`` the geometric stiffness of the static internal forces (the membranes' stresses,
+the bars' forces, the hinges' moments: :meth:`BarHingeModel.geometric_stiffness`); the smallest
 positive one (ARPACK on ``−K_G φ = (1/λ) K φ`` with the static factorisation). A load
 that only stiffens the structure has no positive λ: the factor is infinite. The hinge
 moments' part of K_G is small beside the bar forces' in a sheet that carries its load as a
 shell (it moves the paper's vault's factor by 3e-4, measured) and costs most of the
 assembly (a 12 × 12 Hessian per hinge): it enters through the Rayleigh quotient of the
-bars-only mode, one directional second derivative per hinge, exact to second order in
-it; the whole K_G is solved when that correction passes :data:`RAYLEIGH_RTOL`.
+mode found without it, one directional second derivative per hinge, exact to second order
+in it; the whole K_G is solved when that correction passes :data:`RAYLEIGH_RTOL`.
 """
 
 from __future__ import annotations
@@ -63,7 +64,7 @@ class StaticResult(FrozenArrays):
     hinge_moments : (H,) ndarray
         Moment of every hinge, N·m.
     membrane_stress : (T, 3) ndarray
-        (σ_xx, σ_yy, τ_xy) of every membrane triangle in its own frame, Pa.
+        (σ_xx, σ_yy, τ_xy) at the centre of every membrane, in its own frame, Pa.
     von_mises : (T,) ndarray
         Von Mises stress of the membrane stress, Pa.
     bending_stress : (H,) ndarray
@@ -162,7 +163,8 @@ def _result(model: BarHingeModel, f: np.ndarray, fixed: np.ndarray, u: np.ndarra
     delta = model.compatibility() @ u
     forces = model.bar_stiffness_matrix() @ delta
     moments = model.hinge_stiffness * (model.hinge_matrix() @ u)
-    strain = np.einsum("tij,tj->ti", model.membrane_strain, delta[model.membrane_bars]) if len(model.membranes) else np.zeros((0, 3))
+    mb = model.membrane_bars
+    strain = np.einsum("tij,tj->ti", model.membrane_strain, np.where(mb >= 0, delta[mb], 0.0))
     stress = strain @ model.elasticity.T
     sx, sy, txy = stress.T
     von_mises = np.sqrt(np.maximum(sx * sx - sx * sy + sy * sy + 3 * txy * txy, 0.0))
@@ -190,22 +192,22 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
     if n < 3:
         raise InputError(f"buckling needs at least 3 free DOFs, this model has {n}")
     K = factor.matrix
-    bars = model.geometric_stiffness(result.bar_forces, np.zeros(len(model.hinges)))[free][:, free]
-    mu, phi = _largest(bars, factor)
+    u = result.displacements.ravel()
+    mu, phi = _largest(model.geometric_stiffness(u, hinges=False)[free][:, free], factor)
     if mu is None:
         return Buckling(np.inf, np.zeros_like(model.nodes))
     moving = np.flatnonzero(result.hinge_moments)
-    if moving.size:  # the hinges' part of K_G by the Rayleigh quotient of the bars' mode
-        u = np.zeros(model.dofs)
-        u[free] = phi
+    if moving.size:  # the hinges' part of K_G by the Rayleigh quotient of the mode without it
+        v = np.zeros(model.dofs)
+        v[free] = phi
         corners = model.hinges[moving]
-        action = dihedral_hessian_action(model.nodes[corners], u.reshape(-1, 3)[corners])
-        q = float(np.einsum("h,hij,hij->", result.hinge_moments[moving], action, u.reshape(-1, 3)[corners]))
+        action = dihedral_hessian_action(model.nodes[corners], v.reshape(-1, 3)[corners])
+        q = float(np.einsum("h,hij,hij->", result.hinge_moments[moving], action, v.reshape(-1, 3)[corners]))
         corrected = mu - q / float(phi @ (K @ phi))
         if abs(corrected - mu) <= RAYLEIGH_RTOL * abs(mu):
             mu = corrected
         else:
-            mu, phi = _largest(model.geometric_stiffness(result.bar_forces, result.hinge_moments)[free][:, free], factor)
+            mu, phi = _largest(model.geometric_stiffness(u)[free][:, free], factor)
             if mu is None:
                 return Buckling(np.inf, np.zeros_like(model.nodes))
     shape = np.zeros(model.dofs)
@@ -216,28 +218,33 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
 def _largest(KG, factor: Factorized) -> tuple[float | None, np.ndarray]:
     """The largest μ of −K_G φ = μ K φ and its φ, or None when no μ is positive (ARPACK, regular mode).
 
-    The eigenvalue of largest magnitude first: if positive it is the largest. Otherwise
+    The eigenvalue of largest magnitude first (to 1e-6, then the Rayleigh quotient of its
+    vector): if positive it is the largest. Otherwise
     the largest is sought on the pencil shifted by a thousandth of that magnitude (ARPACK's
     tolerance is relative to the eigenvalue, which would never be met at the zeros that
-    every DOF without geometric stiffness puts at μ = 0), to 1e-4 of the shifted value:
+    every DOF without geometric stiffness puts at μ = 0), to 1e-5 of the shifted value,
+    its eigenvalue the Rayleigh quotient of its vector (in error by the square of that):
     none is positive if it stays below a millionth of that magnitude (a load factor a
-    million times that of the load's tension); else it is refined without the shift.
+    million times that of the load's tension), or if ARPACK stays in the cluster of zeros.
     """
     if KG.nnz == 0 or not np.abs(KG.data).max(initial=0.0) > 0:
         return None, np.zeros(KG.shape[0])
     n = KG.shape[0]
     v0 = np.random.default_rng(0).standard_normal(n)
     K, Kinv = factor.matrix, factor.operator()
-    options = {"k": 1, "M": K, "Minv": Kinv, "ncv": min(n - 1, 20), "tol": 1e-10, "v0": v0}
+    options = {"k": 1, "M": K, "Minv": Kinv, "ncv": min(n - 1, 20), "tol": 1e-6, "v0": v0}
     mu, vec = spl.eigsh(-KG, which="LM", **options)
-    if mu[0] > 0:
-        return float(mu[0]), vec[:, 0]
+    if mu[0] > 0:  # its Rayleigh quotient, in error by the square of ARPACK's 1e-6 (measured: 3e-8 of it)
+        phi = vec[:, 0]
+        return float(phi @ (-KG @ phi)) / float(phi @ (K @ phi)), phi
     shift = 1e-3 * abs(float(mu[0]))
-    mu, vec = spl.eigsh(-KG + shift * K, which="LA", **{**options, "tol": 1e-4})
-    if float(mu[0]) - shift <= 1e-3 * shift:
-        return None, vec[:, 0]
-    mu, vec = spl.eigsh(-KG, which="LA", **{**options, "v0": vec[:, 0]})  # well clear of zero: to full accuracy
-    return float(mu[0]), vec[:, 0]
+    try:
+        mu, vec = spl.eigsh(-KG + shift * K, which="LA", maxiter=300, **{**options, "tol": 1e-5})
+    except spl.ArpackNoConvergence:  # stuck in the cluster at the shift: nothing above it
+        return None, np.zeros(n)
+    phi = vec[:, 0]
+    top = float(phi @ (-KG @ phi)) / float(phi @ (K @ phi))  # its Rayleigh quotient: the error is the residual's square
+    return (top, phi) if top > 1e-6 * 1e3 * shift else (None, phi)
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
