@@ -27,7 +27,7 @@ from ._materials import CREASE_STIFFNESS, MATERIAL_SPECS, MATERIALS, THICKNESS, 
 from ._model import BarHingeModel
 from ._modes import Modes, correlation, free_modes
 from ._response import Buckling, StaticResult, buckling, static_response
-from ._softmodes import SoftModes, soft_modes
+from ._softmodes import SoftModes, conjecture_counts, soft_modes
 from ._structures import StructureModel
 
 __all__ = [
@@ -53,4 +53,5 @@ __all__ = [
     "buckling",
     "SoftModes",
     "soft_modes",
+    "conjecture_counts",
 ]
