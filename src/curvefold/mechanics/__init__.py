@@ -21,14 +21,26 @@ sheet, a Miura-ori cell or a single bar), :class:`Loads` and :class:`Supports`,
 materials are :data:`MATERIALS` with their sources, or :meth:`Material.from_values`.
 """
 
+from . import _loads, _materials
 from ._analysis import LoadResult, analyse_load
-from ._loads import G, Loads, Supports
-from ._materials import CREASE_STIFFNESS, MATERIAL_SPECS, MATERIALS, THICKNESS, Material, material
+from ._loads import Loads, Supports
+from ._materials import Material, material
 from ._model import BarHingeModel
 from ._modes import Modes, correlation, free_modes
 from ._response import Buckling, StaticResult, buckling, static_response
 from ._softmodes import SoftModes, conjecture_counts, soft_modes
 from ._structures import StructureModel
+
+#: Standard gravity, m/s².
+G = _loads.G
+#: Named sheet materials (:class:`Material`), each with its source.
+MATERIALS = _materials.MATERIALS
+#: The checks of a user's material: Young's modulus, Poisson's ratio, density, strength.
+MATERIAL_SPECS = _materials.MATERIAL_SPECS
+#: The check of a sheet's thickness (m).
+THICKNESS = _materials.THICKNESS
+#: The check of a crease stiffness per length (N·m/rad/m).
+CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
 
 __all__ = [
     "analyse_load",
@@ -55,3 +67,8 @@ __all__ = [
     "soft_modes",
     "conjecture_counts",
 ]
+
+# The public names are documented, and pickled, as this package's: their modules are private.
+for _name in __all__:
+    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "._"):
+        globals()[_name].__module__ = __name__

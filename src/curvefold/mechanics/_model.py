@@ -371,7 +371,7 @@ class BarHingeModel(FrozenArrays):
         """K_G of the internal forces of displacements u (3P,), shape (3P, 3P), N/m.
 
         The membranes' ``t ∫ ∇N · σ · ∇N dA`` of their centre stress
-        (:func:`~curvefold.mechanics._elements.membrane_geometric`); a bar of its own's
+        (2 × 2 Gauss points on a quad); a bar of its own's
         ``(N/ℓ)(I − ê êᵀ)`` (its force N times the Hessian of its length); with ``hinges``,
         every hinge's moment times the Hessian of its angle.
         """

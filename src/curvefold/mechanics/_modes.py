@@ -117,7 +117,7 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
 
 
 def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> float:
-    """|cos| of the angle between a mode shape and a motion (P, 3), in the mass metric, rigid parts removed.
+    """The absolute cosine of the angle between a mode shape and a motion (P, 3), in the mass metric, rigid parts removed.
 
     1 when the mode is the motion (up to a rigid motion and scale).
     """

@@ -106,7 +106,7 @@ class StaticResult(FrozenArrays):
 
     @property
     def max_displacement(self) -> float:
-        """The largest nodal displacement |u|, m."""
+        """The largest nodal displacement (its length), m."""
         return float(np.linalg.norm(self.displacements, axis=1).max(initial=0.0))
 
     @property

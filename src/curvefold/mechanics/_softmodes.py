@@ -131,6 +131,7 @@ def soft_modes(model: BarHingeModel, *, held_hinges: Sequence[str] = (), planar:
     A square of four bars has one shear mode and one out-of-plane fold; a diagonal holds
     the shear (its hinge is free), and with the diagonal's hinge held nothing moves:
 
+    >>> import numpy as np
     >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
     ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))
     >>> soft_modes(square).count, soft_modes(square, held_hinges=("hinge",)).count

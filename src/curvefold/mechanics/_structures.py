@@ -139,7 +139,7 @@ class StructureModel(FrozenArrays):
     def fold_velocity(self) -> np.ndarray:
         """d x / d(2α) of every node along the rigid folding motion, m/rad, shape (P, 3).
 
-        The kinematics' own motion (``fold_points`` at 2α ± :data:`FOLD_STEP`, central
+        The kinematics' own motion (``fold_points`` at 2α ± 0.001°, central
         difference), up to a rigid motion.
         """
         lattice = self.state.lattice
