@@ -15,7 +15,8 @@ import numpy as np
 
 from ..geometry.structure import State, Structure
 from ..kernel.errors import InputError
-from ._loads import Loads, Supports
+from ..vault.assembly import Vault
+from ._loads import G, Loads, Supports
 from ._materials import THICKNESS, Material
 from ._materials import material as named
 from ._modes import Modes, correlation, free_modes
@@ -61,8 +62,6 @@ class LoadResult:
     @property
     def total_weight(self) -> float:
         """The structure's weight, Σ m g, N."""
-        from ._loads import G
-
         return float(G * self.structure.model.masses.sum())
 
     @property
@@ -113,7 +112,8 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     ----------
     structure : Structure, State, Vault or StructureModel
         What to analyse; a vault is taken at its design angle (where it stands on z = 0).
-        Its model units are metres.
+        Its model units are metres. A StructureModel brings its own material, thickness
+        and creases: ``material``, ``thickness`` and ``crease_stiffness`` are then unused.
     material : Material or str
         A material or a name of :data:`~curvefold.mechanics.MATERIALS`.
     thickness : float
@@ -164,8 +164,6 @@ def _structure_model(structure, mat: Material, thickness: float, fold_angle: flo
                      crease_stiffness: float | None) -> StructureModel:
     if isinstance(structure, StructureModel):
         return structure
-    from ..vault.assembly import Vault
-
     if isinstance(structure, Vault):
         structure = structure.structure
     if isinstance(structure, Structure):

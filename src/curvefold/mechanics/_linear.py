@@ -35,9 +35,12 @@ MECHANISM_RTOL = 1e-7
 #: Widest band factorised as a band (its memory is 8 (band + 1) bytes per DOF, its work
 #: about band² per DOF); wider matrices (large cellular blocks) go to SuperLU.
 MAX_BAND = 600
-#: Names of the rigid motions, in the order of :func:`rigid_motions`.
-RIGID_NAMES = ("translation along x", "translation along y", "translation along z",
-               "rotation about x", "rotation about y", "rotation about z")
+
+
+def _rigid_basis(nodes: np.ndarray) -> np.ndarray:
+    """Translations along x, y, z, then rotations about x, y, z through the centroid, of nodes (P, 3), shape (3P, 6)."""
+    c = nodes - nodes.mean(axis=0)
+    return np.stack([np.tile(e, len(c)) for e in np.eye(3)] + [np.cross(e, c).ravel() for e in np.eye(3)], axis=1)
 
 
 def rigid_motions(nodes: np.ndarray, masses: np.ndarray | None = None) -> np.ndarray:
@@ -47,14 +50,7 @@ def rigid_motions(nodes: np.ndarray, masses: np.ndarray | None = None) -> np.nda
     ``masses`` (P,) they are made M-orthonormal (Gram–Schmidt in that order), else
     orthonormal.
     """
-    x = np.asarray(nodes, float)
-    c = x - x.mean(axis=0)
-    basis = np.zeros((len(x), 3, 6))
-    for i in range(3):
-        basis[:, i, i] = 1.0
-        axis = np.eye(3)[i]
-        basis[:, :, 3 + i] = np.cross(axis, c)
-    R = basis.reshape(-1, 6)
+    R = _rigid_basis(np.asarray(nodes, float))
     w = np.ones(R.shape[0]) if masses is None else np.repeat(np.asarray(masses, float), 3)
     L = np.linalg.cholesky(R.T @ (w[:, None] * R))
     return np.linalg.solve(L, R.T).T  # R L⁻ᵀ: orthonormal in the w metric, same span in order
@@ -82,8 +78,7 @@ def describe_motion(model: BarHingeModel, u: np.ndarray, motions: Mapping[str, n
     """
     x = model.nodes
     c = x.mean(axis=0)
-    size = max(model.size, 1e-300)
-    R = np.stack([np.tile(e, len(x)) for e in np.eye(3)] + [np.cross(e, x - c).ravel() for e in np.eye(3)], axis=1)
+    R = _rigid_basis(x)
     known = {name: np.asarray(v, float).ravel() for name, v in (motions or {}).items()}
     basis = np.concatenate([R] + [v[:, None] for v in known.values()], axis=1)
     coef, *_ = np.linalg.lstsq(basis, u, rcond=None)
@@ -94,7 +89,7 @@ def describe_motion(model: BarHingeModel, u: np.ndarray, motions: Mapping[str, n
     parts = [name for (name, v), a in zip(known.items(), coef[6:]) if np.linalg.norm(a * v) > 0.05 * scale]
     v, w = coef[:3], coef[3:6]
     if np.linalg.norm(R @ coef[:6]) > 0.05 * scale:
-        if np.linalg.norm(w) * size < 1e-3 * np.linalg.norm(v):
+        if np.linalg.norm(w) * model.size < 1e-3 * np.linalg.norm(v):
             parts.append(f"a rigid motion (translation along {_point(v / np.linalg.norm(v))})")
         else:
             axis = w / np.linalg.norm(w)

@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from types import MappingProxyType
 
-from ..kernel.errors import InputError
 from ..kernel.validate import Spec
 
 __all__ = ["Material", "MATERIALS", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
@@ -36,7 +35,7 @@ CREASE_LENGTH_SCALE = 1000.0
 
 
 def check_thickness(thickness: float, where: str = "thickness") -> float:
-    """The thickness in metres, or :class:`InputError` (:data:`THICKNESS`)."""
+    """The thickness in metres, or :class:`~curvefold.kernel.errors.InputError` (:data:`THICKNESS`)."""
     return THICKNESS.check(thickness, where)
 
 

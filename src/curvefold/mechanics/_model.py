@@ -39,7 +39,7 @@ that makes a finely sampled strip softer and softer (measured in the tests).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -95,12 +95,13 @@ class BarHingeModel(FrozenArrays):
     thickness : float
         Sheet thickness t of the membranes, m (0 without membranes).
     hinge_kind : (H,) ndarray of str
-        ``"fold"``, ``"seam"``, ``"ruling"``, ``"diagonal"`` (or ``"hinge"`` for a hinge given
-        as it is).
+        ``"fold"``, ``"seam"``, ``"ruling"``, ``"diagonal"`` (default ``"hinge"``, for hinges
+        given as they are).
     hinge_length : (H,) ndarray
-        Length of every hinge's edge, m.
+        The length of edge every hinge stands for, m: half the edge for the two hinges at
+        the ends of an edge between quads (default: the edge).
     hinge_faces : (H, 2) ndarray of int
-        The membranes of faces A and B of every hinge (-1 for a hinge given as it is).
+        The membranes of faces A and B of every hinge (default -1: none).
     """
 
     nodes: np.ndarray
@@ -109,29 +110,21 @@ class BarHingeModel(FrozenArrays):
     hinges: np.ndarray
     hinge_stiffness: np.ndarray
     masses: np.ndarray
-    membranes: np.ndarray = None  # type: ignore[assignment]
-    membrane_bars: np.ndarray = None  # type: ignore[assignment]
-    membrane_stiffness: np.ndarray = None  # type: ignore[assignment]
-    membrane_strain: np.ndarray = None  # type: ignore[assignment]
-    membrane_area: np.ndarray = None  # type: ignore[assignment]
-    elasticity: np.ndarray = None  # type: ignore[assignment]
+    membranes: np.ndarray = field(default_factory=lambda: np.zeros((0, 4), np.int64))
+    membrane_bars: np.ndarray = field(default_factory=lambda: np.zeros((0, 5), np.int64))
+    membrane_stiffness: np.ndarray = field(default_factory=lambda: np.zeros((0, 5, 5)))
+    membrane_strain: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 5)))
+    membrane_area: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    elasticity: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     thickness: float = 0.0
-    hinge_kind: np.ndarray = None  # type: ignore[assignment]
-    hinge_length: np.ndarray = None  # type: ignore[assignment]
-    hinge_faces: np.ndarray = None  # type: ignore[assignment]
+    hinge_kind: np.ndarray | None = None
+    hinge_length: np.ndarray | None = None
+    hinge_faces: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         nodes = np.asarray(self.nodes, float)
         if nodes.ndim != 2 or nodes.shape[1] != 3 or not np.isfinite(nodes).all():
             raise InputError(f"nodes must be finite positions (P, 3), got shape {nodes.shape}")
-        defaults = {
-            "membranes": np.zeros((0, 4), np.int64), "membrane_bars": np.zeros((0, 5), np.int64),
-            "membrane_stiffness": np.zeros((0, 5, 5)), "membrane_strain": np.zeros((0, 3, 5)), "membrane_area": np.zeros(0),
-            "elasticity": np.zeros((3, 3)),
-        }
-        for name, value in defaults.items():
-            if getattr(self, name) is None:
-                object.__setattr__(self, name, value)
         H = len(np.asarray(self.hinges).reshape(-1, 4))
         if self.hinge_kind is None:
             object.__setattr__(self, "hinge_kind", np.full(H, "hinge"))

@@ -163,9 +163,7 @@ def _result(model: BarHingeModel, f: np.ndarray, fixed: np.ndarray, u: np.ndarra
     delta = model.compatibility() @ u
     forces = model.bar_stiffness_matrix() @ delta
     moments = model.hinge_stiffness * (model.hinge_matrix() @ u)
-    mb = model.membrane_bars
-    strain = np.einsum("tij,tj->ti", model.membrane_strain, np.where(mb >= 0, delta[mb], 0.0))
-    stress = strain @ model.elasticity.T
+    stress = model.membrane_stress(u)
     sx, sy, txy = stress.T
     von_mises = np.sqrt(np.maximum(sx * sx - sx * sy + sy * sy + 3 * txy * txy, 0.0))
     t = model.thickness

@@ -21,7 +21,7 @@ from functools import cached_property
 import numpy as np
 
 from ..geometry.mesh import Mesh
-from ..geometry.structure import State, Structure
+from ..geometry.structure import State
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ._materials import CREASE_STIFFNESS, Material, check_thickness
