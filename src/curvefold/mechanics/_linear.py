@@ -22,10 +22,10 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from ..kernel.errors import InputError
+from ..kernel.errors import ConvergenceError, InputError
 from ._model import BarHingeModel
 
-__all__ = ["Factorized", "rigid_motions", "PIVOT_RTOL", "MECHANISM_RTOL", "MAX_BAND", "describe_motion", "kinematic_residual"]
+__all__ = ["Factorized", "eigsh", "rigid_motions", "PIVOT_RTOL", "MECHANISM_RTOL", "MAX_BAND", "describe_motion", "kinematic_residual"]
 
 #: A pivot below this fraction of the largest diagonal entry makes the factorisation suspect.
 PIVOT_RTOL = 1e-10
@@ -35,6 +35,24 @@ MECHANISM_RTOL = 1e-7
 #: Widest band factorised as a band (its memory is 8 (band + 1) bytes per DOF, its work
 #: about band² per DOF); wider matrices (large cellular blocks) go to SuperLU.
 MAX_BAND = 600
+
+
+def eigsh(A, *, what: str, **options) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`scipy.sparse.linalg.eigsh` from a fixed start vector, its failure to converge one line.
+
+    ``what`` names the eigenproblem for the message; the start vector is seeded, so that a
+    run gives the same result every time.
+
+    Raises
+    ------
+    ConvergenceError
+        If ARPACK does not converge.
+    """
+    options.setdefault("v0", np.random.default_rng(0).standard_normal(A.shape[0]))
+    try:
+        return spl.eigsh(A, **options)
+    except spl.ArpackNoConvergence as error:
+        raise ConvergenceError(f"the eigenvalue solver did not converge for {what} ({error}); a report of the design helps") from None
 
 
 def _rigid_basis(nodes: np.ndarray) -> np.ndarray:

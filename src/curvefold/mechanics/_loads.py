@@ -13,7 +13,7 @@ Loads (:class:`Loads`), summed into nodal forces (P, 3), N:
 
 Supports (:class:`Supports`): the feet, the end sections on the ground z = 0 (or given
 nodes), ``"pinned"`` (every translation held) or ``"roller"`` (the vertical held on every
-foot; three horizontal restraints, at two feet chosen by a pivoted QR to hold the
+foot; three horizontal restraints, chosen among the feet by a pivoted QR to hold the
 horizontal rigid motions, keep the structure in place and, being statically
 determinate, carry no vertical load's reaction).
 """

@@ -27,7 +27,7 @@ import scipy.sparse.linalg as spl
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
-from ._linear import Factorized, rigid_motions
+from ._linear import Factorized, eigsh, rigid_motions
 from ._model import BarHingeModel
 
 __all__ = ["Modes", "free_modes", "correlation"]
@@ -103,9 +103,8 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
         return u - R @ (R.T @ (w * u))
 
     operator = spl.LinearOperator((n, n), matvec=project, dtype=float)
-    values, vectors = spl.eigsh(K, k=count, M=model.mass, sigma=0.0, OPinv=operator, which="LM",
-                                ncv=min(n - 7, max(2 * count + 8, 24)), tol=tol,
-                                v0=np.random.default_rng(0).standard_normal(n))
+    values, vectors = eigsh(K, what="the free modes", k=count, M=model.mass, sigma=0.0, OPinv=operator, which="LM",
+                            ncv=min(n - 7, max(2 * count + 8, 24)), tol=tol)
     order = np.argsort(values)
     values, vectors = values[order], vectors[:, order]
     C, S = model.compatibility(), model.bar_stiffness_matrix()
