@@ -25,7 +25,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from ..kernel.errors import ConvergenceError, InputError
 from ._model import BarHingeModel
 
-__all__ = ["Factorized", "eigsh", "rigid_motions", "PIVOT_RTOL", "MECHANISM_RTOL", "MAX_BAND", "describe_motion", "kinematic_residual"]
+__all__ = ["Factorized", "eigsh", "unit", "rigid_motions", "PIVOT_RTOL", "MECHANISM_RTOL", "MAX_BAND", "describe_motion", "kinematic_residual"]
 
 #: A pivot below this fraction of the largest diagonal entry makes the factorisation suspect.
 PIVOT_RTOL = 1e-10
@@ -53,6 +53,18 @@ def eigsh(A, *, what: str, **options) -> tuple[np.ndarray, np.ndarray]:
         return spl.eigsh(A, **options)
     except spl.ArpackNoConvergence as error:
         raise ConvergenceError(f"the eigenvalue solver did not converge for {what} ({error}); a report of the design helps") from None
+
+
+def unit(v: np.ndarray) -> np.ndarray:
+    """v scaled to largest |component| 1, that component positive (zero stays zero).
+
+    Examples
+    --------
+    >>> unit(np.array([0.5, -2.0])).tolist(), unit(np.zeros(2)).tolist()
+    ([-0.25, 1.0], [0.0, 0.0])
+    """
+    i = int(np.argmax(np.abs(v)))
+    return v / v[i] if v[i] != 0 else v
 
 
 def _rigid_basis(nodes: np.ndarray) -> np.ndarray:

@@ -27,7 +27,7 @@ import scipy.sparse.linalg as spl
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
-from ._linear import Factorized, eigsh, rigid_motions
+from ._linear import Factorized, eigsh, rigid_motions, unit
 from ._model import BarHingeModel
 
 __all__ = ["Modes", "free_modes", "correlation"]
@@ -111,7 +111,7 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
     delta = C @ vectors
     stretch = np.einsum("bk,bk->k", delta, S @ delta)
     total = np.einsum("ik,ik->k", vectors, K @ vectors)
-    shapes = np.stack([_unit(v) for v in vectors.T]).reshape(count, -1, 3)
+    shapes = np.stack([unit(v) for v in vectors.T]).reshape(count, -1, 3)
     return Modes(values, shapes, np.clip(stretch / total, 0.0, 1.0))
 
 
@@ -126,8 +126,3 @@ def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> 
     a, b = a - R @ (R.T @ (w * a)), b - R @ (R.T @ (w * b))
     return float(abs(a @ (w * b)) / np.sqrt((a @ (w * a)) * (b @ (w * b))))
 
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    """v scaled to largest |component| 1, its largest component positive."""
-    i = int(np.argmax(np.abs(v)))
-    return v / v[i]

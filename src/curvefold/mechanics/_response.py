@@ -35,7 +35,7 @@ import scipy.sparse.linalg as spl
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ._elements import dihedral_hessian_action
-from ._linear import Factorized, eigsh
+from ._linear import Factorized, eigsh, unit
 from ._model import BarHingeModel
 
 __all__ = ["StaticResult", "Buckling", "static_response", "buckling", "RAYLEIGH_RTOL"]
@@ -210,15 +210,15 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
                 return Buckling(np.inf, np.zeros_like(model.nodes))
     shape = np.zeros(model.dofs)
     shape[free] = phi
-    return Buckling(float(1.0 / mu), _unit(shape).reshape(-1, 3))
+    return Buckling(float(1.0 / mu), unit(shape).reshape(-1, 3))
 
 
 def _largest(KG, factor: Factorized) -> tuple[float | None, np.ndarray]:
     """The largest μ of −K_G φ = μ K φ and its φ, or None when no μ is positive (ARPACK, regular mode).
 
     The eigenvalue of largest magnitude first (to 1e-6, then the Rayleigh quotient of its
-    vector): if positive it is the largest. Otherwise
-    the largest is sought on the pencil shifted by a thousandth of that magnitude (ARPACK's
+    vector): if positive it is the largest. Otherwise the largest is sought on the pencil
+    shifted by a thousandth of that magnitude (ARPACK's
     tolerance is relative to the eigenvalue, which would never be met at the zeros that
     every DOF without geometric stiffness puts at μ = 0), to 1e-5 of the shifted value,
     its eigenvalue the Rayleigh quotient of its vector (in error by the square of that):
@@ -242,10 +242,5 @@ def _largest(KG, factor: Factorized) -> tuple[float | None, np.ndarray]:
         return None, np.zeros(n)
     phi = vec[:, 0]
     top = float(phi @ (-KG @ phi)) / float(phi @ (K @ phi))  # its Rayleigh quotient: the error is the residual's square
-    return (top, phi) if top > 1e-6 * 1e3 * shift else (None, phi)
+    return (top, phi) if top > 1e-3 * shift else (None, phi)  # a millionth of the largest magnitude
 
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    """v scaled to largest |component| 1, its largest component positive."""
-    i = int(np.argmax(np.abs(v)))
-    return v / v[i] if v[i] != 0 else v
