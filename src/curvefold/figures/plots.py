@@ -23,6 +23,7 @@ from ..geometry.topology import sample_index, thin_cells
 from ..io.atomic import atomic_path
 from ..io.tables import COLOURS
 from ..kernel.errors import InputError
+from ..kernel.validate import check_integer
 from .scene import (
     GROUND_COLOR,
     GROUND_EDGE,
@@ -844,8 +845,7 @@ def save_figure(fig: Figure, path_stem: str | os.PathLike, formats: Sequence[str
     bad = [f for f in formats if f not in supported]
     if bad or not formats:
         raise InputError(f"formats must be a non-empty list of {', '.join(sorted(supported))}; got {list(formats)!r}")
-    if isinstance(dpi, bool) or not isinstance(dpi, (int, np.integer)) or not 10 <= dpi <= 2400:
-        raise InputError(f"dpi must be an integer in [10, 2400], got {dpi!r}")
+    dpi = check_integer(dpi, "dpi", "[10, 2400]")
     stem = os.fspath(path_stem)
     written = []
     for fmt in formats:

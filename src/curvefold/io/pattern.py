@@ -42,6 +42,7 @@ from ..geometry.structure import Structure
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ..kernel.text import one_line
+from ..kernel.validate import check_integer
 from .atomic import atomic_path
 from .formats import check_formats, formats_of
 from .layout import (
@@ -266,8 +267,7 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
              line_width: float = 0.25) -> str:
     """One page of ``layout`` as SVG text (see :func:`write_svg`)."""
     _check_layout(layout)
-    if not (isinstance(page_index, (int, np.integer)) and 0 <= page_index < len(layout.pages)):
-        raise InputError(f"page_index must be in [0, {len(layout.pages) - 1}], got {page_index!r}")
+    page_index = check_integer(page_index, "page_index", f"[0, {len(layout.pages) - 1}]")
     names = _check_layers(layers)
     lw = _check_width(line_width)
     page = layout.pages[page_index]

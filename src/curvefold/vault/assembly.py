@@ -27,7 +27,7 @@ from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.lie import cross
-from ..kernel.validate import Spec
+from ..kernel.validate import Spec, check_integer
 from .arch import ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
 
 __all__ = [
@@ -149,9 +149,8 @@ class VaultDesign:
         check_samples(self.samples)
         if self.samples % 2 == 0 or self.samples < MIN_SAMPLES:
             raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}")
-        tubes = _SPEC["tubes"].range
-        if self.tubes is not None and (isinstance(self.tubes, bool) or not isinstance(self.tubes, (int, np.integer)) or self.tubes not in tubes):
-            raise InputError(f"tubes must be an integer ≥ 1 and ≤ {tubes.hi:g} (or None for the maximum), got {self.tubes!r}")
+        if self.tubes is not None:
+            check_integer(self.tubes, "tubes", _SPEC["tubes"].range, why="or None for the maximum")
         if self.direction not in (1, -1):
             raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
         if PANELS.check(self.panels) % 2:

@@ -37,7 +37,7 @@ import numpy as np
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import CurvefoldError, InputError
-from ..kernel.validate import Spec
+from ..kernel.validate import Spec, check_integer
 
 if TYPE_CHECKING:  # pragma: no cover
     from .assembly import Vault
@@ -262,8 +262,7 @@ def _axis(values: Sequence[float], name: str) -> tuple[float, ...]:
 
 
 def _check_step(step: int) -> None:
-    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise InputError(f"step must be an integer ≥ 1, got {step!r}")
+    check_integer(step, "step", "[1, inf)")
 
 
 @dataclass(frozen=True, eq=False)
