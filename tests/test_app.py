@@ -143,7 +143,7 @@ def test_arch_checks_its_flags_with_the_vault_specs(tmp_path):
 def test_file_keys_and_flags_are_named_as_typed(tmp_path):
     (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 5.0\n')
     r = run("vault", "design.toml", "--json", cwd=tmp_path)
-    assert one_line(r) == "curvefold: error: design.toml: [vault] a must be in [0, 3), got 5.0"
+    assert one_line(r) == "curvefold: error: design.toml: [vault] a must be in [0, 1.2707093728) (no arch stands beyond it: Eq. (20) has no root next to π there), got 5.0"
     (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 0.4\n')
     r = run("vault", "design.toml", "--a", "0.5", "--samples", "200000", "--tubes", "20", "--json", cwd=tmp_path)
     assert one_line(r).startswith("curvefold: error: design.toml --samples 200000 --a 0.5 --tubes 20: this job needs about")

@@ -192,11 +192,35 @@ def test_vault_refusals():
         (dict(fold_angle=180.0), r"fold_angle must be in \(0°, 180°\), got 180.0"),
         (dict(p_xy=-1.0), r"p_xy must be in \(0, 100\], got -1.0"),
         (dict(samples=400), r"samples must be odd and ≥ 21"),
-        (dict(tubes=0), r"tubes must be an integer ≥ 1"),
+        (dict(tubes=0), r"tubes must be an integer in \[1, 1000\] \(or None for the maximum\), got 0$"),
+        (dict(tubes=True), r"tubes must be an integer .*, got boolean True$"),
         (dict(width=float("inf")), r"width must be a finite number, got inf"),
     ):
         with pytest.raises(InputError, match=match):
             VaultDesign(**kwargs)
+
+
+def test_the_ranges_of_a_come_from_where_the_arch_family_ends():
+    """A design's a stops at A_MAX, with the reason; a VaultDesign and the atlas's rows reach twice as
+    far, and building past A_MAX says why no arch stands."""
+    from curvefold.app.design import SCHEMA, parse_design
+    from curvefold.vault.arch import A_FAMILY, A_MAX, A_STANDING
+    from curvefold.vault.assembly import FAMILY_A
+
+    spec = SCHEMA["vault"]["a"]
+    assert spec.range == A_STANDING and (A_STANDING.lo, A_STANDING.hi, A_STANDING.hi_closed) == (0.0, A_MAX, False)
+    assert FAMILY_A.range == A_FAMILY and A_FAMILY.hi == 2 * A_MAX and A_FAMILY.hi_closed
+    assert spec.typical.hi < A_MAX < spec.typical.hi + 0.01  # the designer's slider stops just short of it
+    below = A_MAX * (1 - 1e-12)
+    assert parse_design(f'kind = "vault"\n[vault]\na = {below!r}').vault.a == below
+    with pytest.raises(InputError, match=r"^t\.toml: \[vault\] a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: .*\), got 1\.2707093728$") as err:
+        parse_design(f'kind = "vault"\n[vault]\na = {A_MAX!r}', source="t.toml")
+    assert err.value.parameter == "a"
+    assert VaultDesign(a=2 * A_MAX).a == 2 * A_MAX
+    with pytest.raises(InputError, match=r"a must be in \[0, 2\.5414187456\]"):
+        VaultDesign(a=2 * A_MAX * (1 + 1e-12))
+    with pytest.raises(ConvergenceError, match=r"no standing arch for a = 1\.2707"):
+        Vault.from_design(VaultDesign(a=A_MAX))
 
 
 def test_bands_and_direction():

@@ -43,9 +43,12 @@ from ..kernel.arrays import readonly
 from ..kernel.errors import ConvergenceError, InputError
 from ..kernel.functions import ScalarFunction
 from ..kernel.lie import cross, exp_rotation, product_quaternions
+from ..kernel.validate import Interval
 
 __all__ = [
     "A_MAX",
+    "A_STANDING",
+    "A_FAMILY",
     "ArchRoot",
     "solve_symmetric_arch",
     "symmetric_arch_condition",
@@ -60,6 +63,13 @@ __all__ = [
 #: Largest torsion amplitude with a standing arch: there the two roots of Eq. (20) near
 #: κ₀s₀ ≈ 4.4 merge and vanish (measured; an independent DOP853 integration agrees).
 A_MAX = 1.2707093728
+#: The torsion amplitudes of a standing arch, [0, A_MAX): the range of a design's ``a``.
+A_STANDING = Interval(0.0, A_MAX, True, False)
+#: The torsion amplitudes of the family a :class:`~curvefold.vault.VaultDesign` and the design
+#: atlas's grids may hold, [0, 2 A_MAX]: past A_MAX no arch stands (building one raises
+#: :class:`~curvefold.kernel.errors.ConvergenceError` saying so, the atlas records it), and a
+#: grid reaching twice as far shows where standing ends.
+A_FAMILY = Interval(0.0, 2 * A_MAX, True, True)
 
 #: Where the root next to π lies for every a < A_MAX (π at a = 0, about 4.42 at A_MAX): one
 #: Chebyshev interpolant on this window finds it directly.

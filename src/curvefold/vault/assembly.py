@@ -12,7 +12,8 @@ xy plane (at the feet) and in the zx plane (at the apex).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+import math
+from dataclasses import asdict, dataclass, replace
 from functools import cached_property
 from typing import Literal
 
@@ -27,8 +28,8 @@ from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.lie import cross
-from ..kernel.validate import Spec, check_integer
-from .arch import ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
+from ..kernel.validate import Interval, Spec, check_integer
+from .arch import A_FAMILY, A_MAX, A_STANDING, ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
 
 __all__ = [
     "VaultDesign",
@@ -36,6 +37,7 @@ __all__ = [
     "standing",
     "HarmonicTorsion",
     "VAULT_SPECS",
+    "FAMILY_A",
     "MIN_SAMPLES",
     "vault_samples",
     "vault_panels",
@@ -58,7 +60,9 @@ LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
 #: The parameters of a vault, in design-file order. ``tubes`` is ``"max"`` or a count and
 #: ``direction`` ``"+"`` or ``"-"`` here; :class:`VaultDesign` holds None and ±1 for them.
 VAULT_SPECS: tuple[Spec, ...] = (
-    Spec("a", "real", 0.3, "[0, 3)", help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0); arches stand for a < 1.2707"),
+    Spec("a", "real", 0.3, A_STANDING, help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0)",
+         why="no arch stands beyond it: Eq. (20) has no root next to π there",
+         typical=Interval(0.0, math.floor(100 * A_MAX) / 100, True, True)),
     Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet"),
     Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless"),
     Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})'),
@@ -69,6 +73,9 @@ VAULT_SPECS: tuple[Spec, ...] = (
     PANELS,
 )
 _SPEC = {spec.name: spec for spec in VAULT_SPECS}
+#: ``a`` as a :class:`VaultDesign` and the rows of the design atlas take it: any amplitude of the
+#: family, standing or not (see :data:`~curvefold.vault.arch.A_FAMILY`).
+FAMILY_A = replace(_SPEC["a"], range=A_FAMILY, why=f"up to twice {A_MAX:.4f}, where arches stop standing", typical=None)
 
 
 def vault_samples(samples: int, *, where: str = "samples") -> int:
@@ -107,7 +114,10 @@ class VaultDesign:
     Attributes
     ----------
     a : float
-        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in [0, 3); the arch stands for a < 1.2707.
+        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in :data:`~curvefold.vault.arch.A_FAMILY`
+        = [0, 2 A_MAX]; the arch stands for a < :data:`~curvefold.vault.arch.A_MAX` ≈ 1.2707
+        (:meth:`Vault.from_design` refuses the others, saying why; a design file's ``a`` must
+        be below it).
     p_xy : float
         Section proportion at the feet, w_R(0) / w_L(0).
     width : float
@@ -143,7 +153,8 @@ class VaultDesign:
     panels: int = 0
 
     def __post_init__(self) -> None:
-        for name in ("a", "p_xy", "width", "radius", "layers"):
+        FAMILY_A.check(self.a)
+        for name in ("p_xy", "width", "radius", "layers"):
             _SPEC[name].check(getattr(self, name))
         half_angle(self.fold_angle)  # the range of VAULT_SPECS' fold_angle, with the geometry's message
         check_samples(self.samples)
@@ -228,8 +239,6 @@ class Vault(FrozenArrays):
             If the base tube or the requested number of tubes passes regression; the
             message names the maximum number of tubes.
         """
-        from dataclasses import replace
-
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
         arch = solve_panel_arch(design.a, design.panels, fold_angle=design.fold_angle) if design.panels else solve_symmetric_arch(design.a)
         k0 = 1.0 / design.radius
