@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import io
 import json
+import re
 import threading
 import tomllib
 import urllib.parse
@@ -228,3 +229,13 @@ def test_a_taken_port_is_one_line():
     assert result.returncode == 2 and result.stderr.startswith(f"curvefold: error: cannot serve on 127.0.0.1:{port}: ")
     result = run("designer", "--no-browser", "--port", "70000")
     assert (result.returncode, result.stderr) == (2, "curvefold: error: --port must be in [0, 65535], got 70000\n")
+
+
+def test_pattern_pages_come_in_page_order_from_the_writer():
+    """The crease pattern's pages as the writer returns them, page 1 first (no file names read back)."""
+    cells = json.dumps([[0, 0], [0, 1], [1, 1], [1, 2], [2, 2], [2, 3]])
+    design = api.request_design("block", [("samples", "51"), ("page", "A5"), ("scale", "27"), ("cells", cells)])
+    pages = api.pattern_pages(design)
+    count = len(pages)
+    assert count >= 10  # p10 would sort before p2 by name
+    assert [re.search(r"page (\d+) of (\d+)</title>", page).groups() for page in pages] == [(str(i), str(count)) for i in range(1, count + 1)]

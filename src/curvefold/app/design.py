@@ -580,7 +580,7 @@ def _check_section(section: str, table: Mapping[str, Any], ctx: _Context, skip: 
         spec = specs[key]
         value = table.get(key)  # an explicit None (JSON null) means the default
         if value is None and spec.required:
-            raise InputError(f"{prefix}missing required key {key!r}")
+            raise InputError(f"{prefix}missing required key {key!r}", parameter=key)
         if value is None:
             value = spec.default
         if value is None:
@@ -598,28 +598,35 @@ def _check_alpha(values: dict, table: Mapping[str, Any], source: str) -> None:
     if alpha is None:
         return
     if table.get("beta_right") is not None:
-        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))")
+        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))",
+                         parameter="beta_right")
     twice = float(2 * np.asarray(alpha(np.zeros(1)) if callable(alpha) else alpha, float).flat[0])
     if table.get("fold_angle") is not None and not math.isclose(values["fold_angle"], twice, rel_tol=1e-12):
         raise InputError(
-            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {values['fold_angle']!r}"
+            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {values['fold_angle']!r}",
+            parameter="fold_angle",
         )
     values["beta_right"], values["fold_angle"] = None, twice
 
 
 def _check_function(spec: Spec, value: Any, section: str, ctx: _Context, length: float) -> FunctionValue:
+    """A function-valued key as an expression, a CSV column or a number, checked on the sample
+    grid; every refusal is about ``spec.name``."""
     name = f"[{section}] {spec.name}"
     where = f"{ctx.source}: {name}"
     if isinstance(value, str):
         try:
             expression = compile_expression(value, name=name)
         except InputError as exc:
-            raise InputError(f"{ctx.source}: {exc}") from None
+            raise InputError(f"{ctx.source}: {exc}", parameter=spec.name) from None
         grid = np.linspace(0.0, length, ctx.samples)
         spec.check_samples(expression(grid), where, lambda i: f"at s = {grid[i]:.6g}")
         return expression
     if isinstance(value, Mapping):
-        return _read_table(spec, value, where, ctx, length)
+        try:
+            return _read_table(spec, value, where, ctx, length)
+        except InputError as exc:
+            raise InputError(str(exc), parameter=spec.name) from None
     return spec.check(value, where)
 
 

@@ -669,7 +669,8 @@ def write_pattern(
     Returns
     -------
     tuple of Path
-        The files written, in the order of ``formats``.
+        The files written, in the order of ``formats``; the pages of a format in page
+        order (``<stem>-p1.svg``, ``<stem>-p2.svg``…).
     """
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,

@@ -191,11 +191,12 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
 
     a = float(a)
     if not np.isfinite(a) or a < 0:
-        raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}")
+        raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}", parameter="a")
     if a >= A_MAX:
         raise ConvergenceError(
             f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < {A_MAX:.4f} "
-            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)"
+            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)",
+            parameter="a",
         )
     f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
     found = _chebyshev_root(a, *WINDOW, xtol, steps)
@@ -213,7 +214,8 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
         if dip.fun > 0:
             raise ConvergenceError(
                 f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has no root with κ0·s0 in (π/2, 2π); "
-                f"the root next to π exists only for a < {A_MAX:.4f}"
+                f"the root next to π exists only for a < {A_MAX:.4f}",
+                parameter="a",
             )
         grid, changes = np.array([grid[k - 1], dip.x]), np.array([0])
     i = changes[np.argmin(np.abs(0.5 * (grid[changes] + grid[changes + 1]) - np.pi))]
@@ -348,7 +350,8 @@ def solve_panel_arch(a: float, panels: int, *, fold_angle: float = 90.0, xtol: f
                 return ArchRoot(float(a), float(root), abs(f(root)), (lo, hi))
     raise ConvergenceError(
         f"no standing arch of {n} panels for a = {a:g} near the smooth one (κ0·s0 = {x0:.6g}): "
-        "the discrete Eq. (20) has no root there; use more panels"
+        "the discrete Eq. (20) has no root there; use more panels",
+        parameter="panels",
     )
 
 

@@ -92,7 +92,7 @@ def vault_samples(samples: int, *, where: str = "samples") -> int:
     (801, 801)
     """
     if samples < MIN_SAMPLES:
-        raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}")
+        raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}", parameter="samples")
     return samples | 1
 
 
@@ -159,13 +159,13 @@ class VaultDesign:
         half_angle(self.fold_angle)  # the range of VAULT_SPECS' fold_angle, with the geometry's message
         check_samples(self.samples)
         if self.samples % 2 == 0 or self.samples < MIN_SAMPLES:
-            raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}")
+            raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}", parameter="samples")
         if self.tubes is not None:
             check_integer(self.tubes, "tubes", _SPEC["tubes"].range, why="or None for the maximum")
         if self.direction not in (1, -1):
-            raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
+            raise InputError(f"direction must be +1 or -1, got {self.direction!r}", parameter="direction")
         if PANELS.check(self.panels) % 2:
-            raise InputError(f"panels must be 0 (smooth) or even for a vault (the apex is a vertex), got {self.panels}")
+            raise InputError(f"panels must be 0 (smooth) or even for a vault (the apex is a vertex), got {self.panels}", parameter="panels")
 
 
 def standing(lattice: PanelLattice) -> PanelLattice:
@@ -260,13 +260,13 @@ class Vault(FrozenArrays):
             if design.panels:
                 lattice = standing(PanelLattice.from_lattice(lattice, design.panels))
         except RegressionError as err:
-            raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}") from None
+            raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}", parameter="width") from None
         n_max = max_tubes(lattice, direction=design.direction)
         tubes = design.tubes if design.tubes is not None else min(n_max, DEFAULT_TUBES_CAP)
         if tubes > n_max:
             raise RegressionError(
                 f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = {design.p_xy:g}, "
-                f"width = {design.width:g}), got {tubes}"
+                f"width = {design.width:g}), got {tubes}", parameter="tubes",
             )
         structure = Structure.diagonal(lattice, tubes, direction=design.direction, layers=design.layers)
         return cls(replace(design, tubes=tubes), arch, lattice, structure, n_max)
