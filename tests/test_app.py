@@ -236,6 +236,34 @@ def test_every_family_has_a_job_and_every_writer_loads():
     assert set(products._FAMILY_JOBS) == set(FAMILIES)
     for f in FORMATS.values():
         assert callable(f.load_writer()) and f.extension == "." + f.name
+        assert f.media_type.count("/") == 1  # served by the designer as the registry says
+
+
+@pytest.mark.parametrize("family", ["pattern", "model"])
+def test_a_familys_writer_calls_the_writer_the_registry_names_for_each_format(tmp_path, monkeypatch, family):
+    """write_pattern and write_3d prepare once and hand each format to its registry writer, in the order asked:
+    no branch on format names of their own."""
+    from curvefold.io.formats import FileFormat, formats_of
+    from curvefold.io.layout import Layout
+    from curvefold.io.models import FoldedModel, write_3d
+    from curvefold.io.pattern import write_pattern
+
+    calls = []
+
+    def recorder(self):
+        def write(path, prepared, **options):
+            calls.append((self.name, path.name, type(prepared).__name__))
+            return path
+        return write
+
+    monkeypatch.setattr(FileFormat, "load_writer", recorder)
+    structure = build(default_design("tube").overrides(samples=41)).structure
+    asked = tuple(reversed(formats_of(family)))
+    writer = write_pattern if family == "pattern" else write_3d
+    written = writer(tmp_path / "t", structure, formats=asked)
+    prepared = (Layout if family == "pattern" else FoldedModel).__name__
+    assert calls == [(name, f"t{FORMATS[name].extension}", prepared) for name in asked]
+    assert [p.name for p in written] == [name for _, name, _ in calls]
 
 
 def test_unknown_formats_are_refused_not_skipped():

@@ -532,8 +532,10 @@ def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
     (one,) = write_svg(tmp_path / "second.svg", vault_layout, 1, layers=LAYERS)
     root = ET.parse(one).getroot()
     assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [*LAYERS, "legend (not to cut)"]
-    with pytest.raises(InputError, match="page_index must be in"):
+    with pytest.raises(InputError, match=rf"page_index must be an integer in \[0, {n - 1}\], got {n}$"):
         write_svg(tmp_path / "x.svg", vault_layout, n)
+    with pytest.raises(InputError, match=r"page_index must be an integer .*, got boolean True$"):  # was taken as page 1
+        write_svg(tmp_path / "x.svg", vault_layout, True)
     with pytest.raises(InputError, match="layers must be among"):
         write_svg(tmp_path / "x.svg", vault_layout, layers=["cut", "engrave"])
 

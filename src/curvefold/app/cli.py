@@ -331,6 +331,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     lines += _certificate_lines(payload)
     if out is not None:
         lines.append(f"  wrote {len(payload['files'])} files to {out}/ (open {out}/report.html)")
+        lines += [f"  {note}" for note in payload.get("notes", [])]
     _emit(args, payload, lines)
     return 1 if any(c["status"] == "fail" for c in payload["certificate"]) else 0
 

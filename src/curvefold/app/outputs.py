@@ -142,7 +142,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     -------
     dict
         :func:`structure_payload` of ``built`` with ``"files"``: the names written,
-        relative to ``out``, sorted.
+        relative to ``out``, sorted; and ``"notes"``, lines saying what was left out and
+        why (the pictures, without matplotlib), when anything was.
 
     Raises
     ------
@@ -158,12 +159,14 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     if missing:
         raise InputError("formats: " + "; ".join(missing))
     resolution = products.resolution(built)
+    left_out = products.pictures_left_out(built)
+    notes = {} if left_out is None else {"notes": [left_out]}
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
         with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp)) as done:  # closed at once on any exception
             payload = structure_payload(built)
-            report = dict(payload, timings={}) | resolution
+            report = dict(payload, timings={}) | resolution | notes
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
@@ -174,7 +177,7 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
             written += ["report.json", "report.html"]
     finally:
         stop()
-    return payload | {"files": sorted(written)}
+    return payload | {"files": sorted(written)} | notes
 
 
 def write_atlas(

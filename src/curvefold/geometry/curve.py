@@ -17,9 +17,9 @@ import numpy as np
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.dense import coarse_indices, dense_stride, hermite_fill
 from ..kernel.errors import InputError
-from ..kernel.validate import check_integer
 from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
 from ..kernel.lie import GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
+from ..kernel.validate import check_integer
 
 __all__ = ["FramedCurve", "SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
 

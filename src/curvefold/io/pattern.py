@@ -44,7 +44,7 @@ from ..kernel.errors import InputError
 from ..kernel.text import one_line
 from ..kernel.validate import check_integer
 from .atomic import atomic_path
-from .formats import check_formats, formats_of
+from .formats import FORMATS, check_formats, file_path, formats_of
 from .layout import (
     FOOTER,
     LAYERS,
@@ -64,11 +64,6 @@ from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
 PATTERN_FORMATS = formats_of("pattern")
 #: Print scales are rounded down to one of these times a power of ten.
 _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
-
-
-def _target(path_stem: str | os.PathLike, suffix: str) -> Path:
-    stem = Path(path_stem)
-    return stem.with_name(f"{stem.name}.{suffix}")
 
 
 __all__ = [
@@ -677,12 +672,7 @@ def write_pattern(
                             glue_tabs=glue_tabs, name=name, keep=keep)
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
-    for fmt in formats:
-        target = _target(path_stem, fmt)
-        if fmt == "svg":
-            out.extend(write_svg(target, layout, layers=layers))
-        elif fmt == "dxf":
-            out.append(write_dxf(target, layout, layers=layers))
-        else:
-            out.append(write_pdf(target, layout, layers=layers))
+    for name in formats:  # each format's writer, from the registry
+        written = FORMATS[name].load_writer()(file_path(path_stem, name), layout, layers=layers)
+        out.extend(written if isinstance(written, tuple) else (written,))
     return tuple(out)

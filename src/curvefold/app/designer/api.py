@@ -450,10 +450,8 @@ def _write(built: Built, formats: tuple[str, ...], folder: Path) -> list[Path]:
     return files
 
 
-#: Media types of the files served.
-MEDIA = {".fold": "application/json", ".glb": "model/gltf-binary", ".obj": "model/obj", ".3dm": "application/octet-stream",
-         ".stl": "model/stl", ".ply": "application/octet-stream", ".svg": "image/svg+xml", ".dxf": "image/vnd.dxf",
-         ".pdf": "application/pdf", ".gif": "image/gif", ".zip": "application/zip", ".toml": "application/toml"}
+#: Media types of the two downloads that are no format of the registry (which gives the others').
+ZIP, TOML = "application/zip", "application/toml"
 
 
 def _zip(files: list[tuple[str, Path]]) -> bytes:
@@ -465,7 +463,8 @@ def _zip(files: list[tuple[str, Path]]) -> bytes:
 
 
 @lru_cache(maxsize=4)
-def _files(key: str, what: str) -> tuple[str, bytes]:
+def _files(key: str, what: str) -> tuple[str, str, bytes]:
+    """(file name, media type, content) of a download: the format's main file, its pages zipped, or the folder zipped."""
     design = _design(key)
     built = _built_of(design)
     with tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
@@ -476,15 +475,16 @@ def _files(key: str, what: str) -> tuple[str, bytes]:
             out = root / f"curvefold-{design.kind}"
             write_outputs(built, out, show_progress=False)
             files = sorted(p for p in out.rglob("*") if p.is_file())
-            return f"curvefold-{design.kind}.zip", _zip([(str(p.relative_to(root)), p) for p in files])
+            return f"curvefold-{design.kind}.zip", ZIP, _zip([(str(p.relative_to(root)), p) for p in files])
         files = _write(built, (what,), root)
-        main = root / f"{design.kind}{FORMATS[what].extension}"
+        f = FORMATS[what]
+        main = root / f"{design.kind}{f.extension}"
         if main in files:
-            return main.name, main.read_bytes()
-        same = [f for f in files if f.suffix == FORMATS[what].extension]
+            return main.name, f.media_type, main.read_bytes()
+        same = [p for p in files if p.suffix == f.extension]
         if len(same) == 1:
-            return same[0].name, same[0].read_bytes()
-        return f"{design.kind}-{what}.zip", _zip([(f.name, f) for f in same])
+            return same[0].name, f.media_type, same[0].read_bytes()
+        return f"{design.kind}-{what}.zip", ZIP, _zip([(p.name, p) for p in same])
 
 
 def download(design: Design, what: str) -> tuple[str, str, bytes]:
@@ -499,14 +499,13 @@ def download(design: Design, what: str) -> tuple[str, str, bytes]:
         A format the registry does not know, or one not written for the design's kind.
     """
     if what == "toml":
-        return f"{design.kind}.toml", MEDIA[".toml"], design_toml(design).encode()
+        return f"{design.kind}.toml", TOML, design_toml(design).encode()
     if what != "zip":
         if what not in FORMATS:
             raise InputError(f"unknown file {what!r} (allowed: {', '.join([*default_formats(design.kind), 'zip', 'toml'])})")
         check_kind([what], design.kind, "download")
     with HEAVY:
-        name, content = _files(_key(design), what)
-    return name, MEDIA[Path(name).suffix], content
+        return _files(_key(design), what)
 
 
 def design_toml(design: Design) -> str:
