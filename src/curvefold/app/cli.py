@@ -474,7 +474,8 @@ def cmd_atlas(args: argparse.Namespace) -> int:
     payload = write_atlas(p_xy, a, out=target, width=width, samples=samples, workers=workers, scheduler=args.scheduler,
                           show_progress=not args.json)
     payload["out"] = str(args.out)
-    _emit(args, payload, [f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote {len(payload['files'])} files to {args.out}/"])
+    _emit(args, payload, [f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote {len(payload['files'])} files to {args.out}/",
+                          *(f"  {note}" for note in payload.get("notes", []))])
     return 0
 
 

@@ -19,7 +19,7 @@ import multiprocessing
 import os
 import signal
 import time
-from collections.abc import Callable, Collection, Iterable, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from functools import partial
 from pathlib import Path
 
@@ -31,7 +31,7 @@ from ..io.formats import FORMATS, check_kind, file_path, formats_of
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
@@ -89,7 +89,7 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         label, write = _FAMILY_JOBS[family]
         names = tuple(name for name in formats_of(family) if name in formats)
         out.append((label, partial(write, built, names)))
-    if pictures_left_out(built) is None:
+    if can_draw():
         out.append(("pictures", partial(_pictures, built)))
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
@@ -241,10 +241,25 @@ def _pictures(built: Built, folder: Path) -> list:
     return [path for name, draw in _figures(built).items() for path in save_figure(draw(), folder / name, formats=("png",))]
 
 
-def pictures_left_out(built: Built) -> str | None:
-    """One line naming the report's pictures that are not drawn because :data:`PICTURES_NEED` is not
-    installed, and the extra that brings it; None when it is installed."""
-    if importlib.util.find_spec(PICTURES_NEED) is not None:
+def picture_files(built: Built) -> list[str]:
+    """The file names of the report's pictures of a built design."""
+    return [f"{name}.png" for name in _figures(built)]
+
+
+def can_draw() -> bool:
+    """Whether :data:`PICTURES_NEED` is installed, so pictures can be drawn."""
+    return importlib.util.find_spec(PICTURES_NEED) is not None
+
+
+def pictures_left_out(files: Sequence[str]) -> str | None:
+    """One line naming pictures that are not drawn because :data:`PICTURES_NEED` is not installed,
+    and the extra that brings it; None when it is installed.
+
+    Examples
+    --------
+    >>> pictures_left_out(["atlas.png"]) in (None, "pictures left out: atlas.png (they need matplotlib: pip install 'curvefold[plot]')")
+    True
+    """
+    if can_draw():
         return None
-    names = ", ".join(f"{name}.png" for name in _figures(built))
-    return f"pictures left out: {names} (they need {PICTURES_NEED}: pip install 'curvefold[{PICTURES_EXTRA}]')"
+    return f"pictures left out: {', '.join(files)} (they need {PICTURES_NEED}: pip install 'curvefold[{PICTURES_EXTRA}]')"
