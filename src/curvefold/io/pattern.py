@@ -45,19 +45,8 @@ from ..kernel.text import one_line
 from ..kernel.validate import check_integer
 from .atomic import atomic_path
 from .formats import FORMATS, check_formats, file_path, formats_of
-from .layout import (
-    FOOTER,
-    LAYERS,
-    Label,
-    Layout,
-    Page,
-    PlacedSheet,
-    Polyline,
-    layout_sheets,
-    page_size,
-    seam_name,
-    text_width,
-)
+from .labels import Label, seam_name, text_width
+from .layout import FOOTER, LAYERS, Layout, Page, PlacedSheet, Polyline, layout_sheets, page_size
 from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
 
 #: Crease-pattern formats :func:`write_pattern` writes.
