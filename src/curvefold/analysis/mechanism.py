@@ -411,7 +411,7 @@ def analyse_fold(path, *, rtol: float = RTOL) -> tuple[Mechanism, ...]:
         For a file curvefold cannot read, one without folded frames, a folded frame of
         another topology than the crease pattern's, or beyond :data:`MAX_UNKNOWNS`.
     """
-    from ..io.fold import read_fold
+    from ..io.fold_reading import read_fold
 
     doc = read_fold(path)
     if not doc.folded:
