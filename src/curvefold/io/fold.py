@@ -418,25 +418,16 @@ def to_fold(
     Parameters
     ----------
     structure : Structure
-    fold_angles : (A,) array_like, optional, keyword-only
-        2α of the folded frames, in [0°, 180°); default the design angle only.
-    fold_angle : float, optional, keyword-only
-        The design angle whose fold angles the crease pattern carries; default the
-        lattice's own.
-    degrees : bool, keyword-only
+    fold_angles, fold_angle, degrees, anchor, faces, keep : keyword-only
+        As in :func:`~curvefold.geometry.fold_arrays.fold_arrays`: the frames' fold angles
+        (default the design angle only), the design angle the crease pattern carries, which
+        frame of curve 1 stays fixed, the sheets' faces and the samples each tube keeps.
     unit : str, keyword-only
         Model unit (``frame_unit``).
     metadata : mapping, optional, keyword-only
         Extra design parameters; merged over the ones recorded by default (tubes, cells,
         samples, curve length, widths at t = 0, the design, crease and seam angles, the seam
         numbering and the bonds as text).
-    anchor : {"start", "middle"}, keyword-only
-        Which frame of curve 1 stays fixed in the folded frames.
-    faces : {"triangles", "quads"}, keyword-only
-        Faces of the sheets (:func:`curvefold.geometry.sheets.sheets`).
-    keep : sequence of (m_k,) array_like of int, optional, keyword-only
-        The samples each tube's mesh keeps (:func:`curvefold.geometry.sampling.choose_sampling`);
-        default every sample.
     design : mapping, optional, keyword-only
         The design the structure was built from, as a design file holds it
         (:meth:`curvefold.app.design.Design.to_dict`); recorded with the frames' fold
