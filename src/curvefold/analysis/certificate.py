@@ -76,7 +76,7 @@ from .checks import CHECKS, CheckSpec, Residual
 from .frames import Frame, Shared
 from .mechanism import CertifiedMechanism, certified_mechanism
 
-__all__ = ["Check", "Certificate", "STATUSES", "certify"]
+__all__ = ["Check", "Certificate", "certify"]
 
 #: Fewest samples of the half-sampled design: the measurements' 5-point stencils need room.
 _MIN_COARSE = 9

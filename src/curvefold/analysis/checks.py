@@ -24,7 +24,7 @@ from . import measure
 from .frames import Frame
 from .mechanism import CertifiedMechanism, certified_mechanism
 
-__all__ = ["CHECKS", "CLEARANCE", "CheckSpec", "Residual"]
+__all__ = ["CHECKS", "CheckSpec", "Residual"]
 
 #: Largest :attr:`Mechanism.clearance <curvefold.analysis.mechanism.Mechanism.clearance>` of a clear count.
 CLEARANCE = 1e-3

@@ -115,7 +115,16 @@ class Frame:
 
     @classmethod
     def at(cls, shared: Shared, fold_angle: float | None, vault: Vault | None = None) -> Frame:
-        """The structure refolded from its pattern to 2α = ``fold_angle`` (degrees), or as built (None)."""
+        """The structure refolded from its pattern to 2α = ``fold_angle`` (degrees), or as built (None).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+        >>> shared = Shared(tube)
+        >>> Frame.at(shared, 0.0).alpha, Frame.at(shared, None).crease.fold_angle   # flat, and as built
+        (0.0, 90.0)
+        """
         state = shared.structure.state(fold_angle)
         return cls(state.lattice.crease, shared, state, vault)
 
