@@ -117,8 +117,9 @@ class StructureLattice(Protocol):
         tolerance is rounding and counts its mechanism
         (:func:`curvefold.analysis.mechanism.certified_mechanism`, which cuts a tube too
         large for it with ``head(panels)``), and its files hold the states the mechanism is
-        counted at (flat, half and full design angle). A smooth structure is certified
-        against its own sampling error instead.
+        counted at (flat, half and full design angle). A structure that is not rigid is
+        certified against its own sampling error instead, by checks that also read the
+        smooth lattice's ``pattern`` and :class:`~curvefold.geometry.crease.Crease`.
         """
 
     @property
