@@ -4,8 +4,8 @@ A :class:`~curvefold.geometry.structure.Structure` is a thin object over a latti
 which cells, and forwards the geometry to the lattice (its curves at one fold angle, their
 rigid folding, the mesh it puts on them). Every kind of lattice satisfies
 :class:`StructureLattice`, and answers there what the consumers of a structure need to know
-about its kind: files, figures, the certificate and mechanics ask the lattice, never its
-type. Two kinds exist:
+about its kind: files, figures, the certificate and the mechanism analysis ask the lattice,
+never its type. Two kinds exist:
 
 * :class:`~curvefold.geometry.lattice.Lattice`: smooth lattice curves at dense samples (Eq. 11);
 * :class:`~curvefold.geometry.panels.PanelLattice`: the polylines of rigid planar panels.
