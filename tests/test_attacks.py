@@ -238,7 +238,7 @@ def test_a_kernel_file_is_not_read_past_its_size(tmp_path):
 
 def test_files_past_the_size_limits_are_refused_unread(tmp_path):
     from curvefold.app.design import MAX_CSV_BYTES
-    from curvefold.io.fold import MAX_FOLD_BYTES
+    from curvefold.io.fold_reading import MAX_FOLD_BYTES
 
     with open(tmp_path / "big.fold", "wb") as f:  # sparse: no disk used
         f.truncate(MAX_FOLD_BYTES + 1)

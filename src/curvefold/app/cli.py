@@ -380,7 +380,7 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
 
 def cmd_check(args: argparse.Namespace) -> int:
     from ..analysis.foldcheck import check_fold
-    from ..io.fold import read_fold
+    from ..io.fold_reading import read_fold
 
     tolerances = {spec.name: _flag_value(spec, text) for spec in CHECK_SPECS if (text := getattr(args, spec.name)) is not None}
     doc = read_fold(args.file)

@@ -24,7 +24,6 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.mechanism import certified_mechanism
-from ..geometry.panels import PanelLattice
 from ..io.formats import FORMATS, check_kind, formats_of
 from ..kernel.errors import InternalError
 from .build import Built
@@ -205,7 +204,7 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file (folded at the design angle; a panel structure also flat and
+    """The structure's FOLD file (folded at the design angle; a rigid structure also flat and
     half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
     by Origami Simulator)."""
     from ..geometry.sheets import sheets
@@ -213,8 +212,8 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     design = structure.lattice.crease.fold_angle
-    # panels: the flat and half-folded states too, for `curvefold mechanism`
-    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) else [design]
+    # rigid panels: the flat and half-folded states too, for `curvefold mechanism`
+    angles = [0.0, 0.5 * design, design] if structure.lattice.rigid else [design]
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -273,6 +272,6 @@ def _pictures(built: Built, folder: Path) -> list:
                         "folding-motion": plots.plot_motion_strip(built.vault)}
         else:
             figures[built.design.kind] = plots.plot_structure(structure)
-        if isinstance(lattice, PanelLattice):
+        if lattice.rigid:
             figures["singular-values"] = plots.plot_singular_values(certified_mechanism(structure).states)
     return [path for name, fig in figures.items() for path in plots.save_figure(fig, folder / name, formats=("png",))]

@@ -19,8 +19,10 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import os
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 
 from ..kernel.errors import InputError
@@ -76,6 +78,17 @@ class FileFormat:
     writer: str
     dependency: str | None = None
     extra: str | None = None
+
+    def path(self, stem: str | os.PathLike) -> Path:
+        """The file of this format for a path stem: ``<stem><extension>``.
+
+        Examples
+        --------
+        >>> FORMATS["svg"].path("out/vault-pattern").as_posix()
+        'out/vault-pattern.svg'
+        """
+        stem = Path(stem)
+        return stem.with_name(stem.name + self.extension)
 
     def load_writer(self) -> Callable:
         """Import and return the writing function."""

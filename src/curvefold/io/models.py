@@ -8,13 +8,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..geometry.panels import PanelLattice
-from ..geometry.sheets import _angles, _check_structure, _design_angle, folding_motion
-from ..geometry.structure import Structure
+from ..geometry.crease import check_fold_angle, check_fold_angles
+from ..geometry.fold_arrays import structure_metadata
+from ..geometry.sheets import folding_motion
+from ..geometry.structure import Structure, check_structure
 from . import gltf, mesh3d, rhino
-from .fold import _metadata
-from .formats import check_formats, formats_of
-from .pattern import _target
+from .formats import FORMATS, check_formats, formats_of
 
 __all__ = ["MODEL_FORMATS", "write_3d"]
 
@@ -73,18 +72,18 @@ def write_3d(
     tuple of Path
         The files written, in the order of ``formats``.
     """
-    _check_structure(structure)
+    check_structure(structure)
     formats = check_formats(formats, "model")
-    design = _design_angle(structure, None, degrees)
-    static = design if fold_angle is None else float(_angles([fold_angle], degrees, "fold_angle")[0])
-    motion = np.linspace(0.0, design, 7) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
-    meta = _metadata(structure, design, metadata)
+    design = structure.lattice.crease.fold_angle
+    static = design if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
+    motion = np.linspace(0.0, design, 7) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
+    meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
     state = structure.state(static, anchor=anchor)
     mesh, quads = state.mesh(keep=keep), state.mesh(faces="quads", keep=keep)
     static_meta = {**meta, "fold_angle_deg": static}
     out: list[Path] = []
     for fmt in formats:
-        target = _target(path_stem, fmt)
+        target = FORMATS[fmt].path(path_stem)
         if fmt == "glb":
             coords = folding_motion(structure, motion, anchor=anchor, keep=keep)
             out.append(gltf.write_glb(target, mesh, coords=coords, angles_deg=motion, base_state=int(np.argmin(np.abs(motion - static))), unit=unit, metadata=meta,
@@ -97,5 +96,5 @@ def write_3d(
             out.append(mesh3d.write_ply(target, mesh))
         else:
             out.append(rhino.write_3dm(target, quads, structure.topology("quads", keep=keep), unit=unit, metadata=static_meta,
-                                       degree=1 if isinstance(structure.lattice, PanelLattice) else 3))
+                                       degree=structure.lattice.crease_degree))
     return tuple(out)

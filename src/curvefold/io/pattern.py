@@ -37,13 +37,13 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from ..geometry.sheets import PatternSheet, _check_structure, sheets
-from ..geometry.structure import Structure
+from ..geometry.sheets import PatternSheet, sheets
+from ..geometry.structure import Structure, check_structure
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ..kernel.text import one_line
 from .atomic import atomic_path
-from .formats import check_formats, formats_of
+from .formats import FORMATS, check_formats, formats_of
 from .layout import (
     FOOTER,
     LAYERS,
@@ -63,11 +63,6 @@ from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
 PATTERN_FORMATS = formats_of("pattern")
 #: Print scales are rounded down to one of these times a power of ten.
 _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
-
-
-def _target(path_stem: str | os.PathLike, suffix: str) -> Path:
-    stem = Path(path_stem)
-    return stem.with_name(f"{stem.name}.{suffix}")
 
 
 __all__ = [
@@ -620,7 +615,7 @@ def layout_pattern(
     -------
     curvefold.io.layout.Layout
     """
-    _check_structure(structure)
+    check_structure(structure)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name, keep=keep)
     if scale is not None:
         return layout_sheets(parts, page=page, units=units, scale=scale, glue_tabs=glue_tabs)
@@ -677,7 +672,7 @@ def write_pattern(
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
     for fmt in formats:
-        target = _target(path_stem, fmt)
+        target = FORMATS[fmt].path(path_stem)
         if fmt == "svg":
             out.extend(write_svg(target, layout, layers=layers))
         elif fmt == "dxf":
