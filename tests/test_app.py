@@ -275,6 +275,61 @@ def test_unknown_formats_are_refused_not_skipped():
     assert [label for label, _ in products.jobs(built, ())] == ["pictures"]
 
 
+# --------------------------------------------------------------------------------------------
+# Job processes: the files were written by a multiprocessing pool, whose terminate() hung
+# about once in 40 signals (its task thread blocked sending a job into a pipe no stopped
+# worker read), so an interrupted run never exited.
+
+
+def _write(name: str, folder):
+    (folder / name).write_text(name)
+    return [folder / name]
+
+
+def _fail(folder):
+    raise InputError("this job refuses")
+
+
+def _die(folder):
+    os._exit(3)
+
+
+def _sleep(folder):
+    import time
+
+    time.sleep(60)
+    return []
+
+
+def test_jobs_run_in_processes_and_come_back_in_job_order(tmp_path):
+    from functools import partial
+
+    jobs = [(f"job {k}", partial(_write, f"f{k}")) for k in range(5)]
+    done = list(products.run_jobs(jobs, tmp_path, workers=2))
+    assert [label for label, _, _ in done] == [label for label, _ in jobs]
+    assert [files for _, files, _ in done] == [[tmp_path / f"f{k}"] for k in range(5)]
+    assert sorted(os.listdir(tmp_path)) == [f"f{k}" for k in range(5)]
+
+
+def test_a_job_that_fails_or_dies_is_an_error_in_the_caller(tmp_path):
+    with pytest.raises(InputError, match="this job refuses"):
+        list(products.run_jobs([("a", _fail), ("b", _fail)], tmp_path, workers=2))
+    with pytest.raises(InternalError, match="the job writing the b ended with exit code 3"):
+        list(products.run_jobs([("a", lambda folder: []), ("b", _die)], tmp_path, workers=2))
+
+
+def test_closing_the_jobs_kills_the_processes_still_running(tmp_path):
+    import psutil
+
+    before = set(psutil.Process().children())
+    running = products.run_jobs([("a", _sleep), ("b", _sleep), ("c", _sleep)], tmp_path, workers=2)
+    children = set(psutil.Process().children()) - before
+    assert len(children) == 2  # two at a time, the third waits
+    running.close()
+    _, alive = psutil.wait_procs(children, timeout=10)
+    assert alive == [] and set(psutil.Process().children()) <= before
+
+
 @pytest.mark.parametrize("fmt", ["svg", "fold", "obj", "gif"])
 def test_a_crease_refuses_structure_formats_with_the_reason(tmp_path, fmt):
     r = run("crease", "--samples", "41", "--formats", fmt, "--out", "c", cwd=tmp_path)

@@ -51,7 +51,7 @@ def test_reproduce_prints_the_paper_table(capsys):
         (["vault", "--a", "1.5"], r"--a 1.5: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 1.5$"),
         (["vault", "--tubes", "many"], r"--tubes: must be a whole number ≥ 1 or 'max', got 'many'"),
         (["vault", "--samples", "100000000"], r"samples"),
-        (["arch", "--a", "-1"], r"--a -1: a must be in \[0, 2\.5414187456\] \(up to twice 1\.2707, where arches stop standing\), got -1"),
+        (["arch", "--a", "-1"], r"--a -1: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got -1"),
         (["check", "missing.fold"], r"missing.fold"),
         (["tube", "nonexistent.toml"], r"nonexistent.toml"),
         (["frobnicate"], r"invalid choice: 'frobnicate'"),

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import importlib.util
 import multiprocessing
+import multiprocessing.connection
 import os
 import signal
 import time
@@ -26,8 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.mechanism import certified_mechanism
-from ..geometry.panels import PanelLattice
-from ..io.formats import FORMATS, check_kind, file_path, formats_of
+from ..io.formats import FORMATS, check_kind, formats_of
+from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
@@ -103,9 +104,11 @@ def _timed(job: Job, folder: Path) -> tuple[list, float]:
 def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None) -> Iterable[tuple[str, list, float]]:
     """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most 2).
 
-    The jobs write distinct files, so they run side by side in forked processes where the
-    platform has them, started before this returns: the caller can work meanwhile. Where
-    there is no fork they run one after the other as the result is iterated.
+    The jobs write distinct files, so they run side by side where the platform can fork:
+    each in a process of its own, forked when a place is free, in job order, the first
+    ones before this returns (the caller can work meanwhile). A forked process inherits
+    its job, so nothing but its result crosses a pipe. Where there is no fork they run
+    one after the other as the result is iterated.
 
     Returns
     -------
@@ -117,38 +120,90 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
     workers = min(len(jobs), os.cpu_count() or 1, 2) if workers is None else workers
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
         return ((label, *_timed(job, folder)) for label, job in jobs)
-    # The ending signals wait while the workers are forked (a signal then would reach a
-    # fork hook, or a child with the parent's handlers).
-    held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
-    try:
-        pool = multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals, initargs=(held,))
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, held)
-    return _Running(pool, [(label, pool.apply_async(_timed, (job, folder))) for label, job in jobs])
+    return _Running(jobs, folder, workers)
 
 
 class _Running:
-    """Jobs running on a process pool: iterate for their results in job order; ``close()`` terminates the pool."""
+    """Jobs in forked processes, at most ``workers`` at once: iterate for their results in job
+    order; ``close()`` kills the processes still running.
 
-    def __init__(self, pool, results: list) -> None:
-        self._pool, self._results = pool, results
+    A process per job rather than a :class:`multiprocessing.pool.Pool`: a pool's
+    ``terminate()`` can wait forever on its task thread, blocked sending a job into a pipe
+    that the stopped workers no longer read (seen about once in 40 signals). Here no
+    thread sends anything and every process can be killed.
+    """
+
+    def __init__(self, jobs: list[tuple[str, Job]], folder: Path, workers: int) -> None:
+        self._context = multiprocessing.get_context("fork")
+        self._folder, self._workers = folder, workers
+        self._waiting = list(enumerate(jobs))
+        self._running: dict = {}  # reader -> (index, process)
+        self._results: dict[int, tuple] = {}
+        self._labels = [label for label, _ in jobs]
+        self._fill()
+
+    def _fill(self) -> None:
+        while self._waiting and len(self._running) < self._workers:
+            index, (_, job) = self._waiting.pop(0)
+            reader, writer = self._context.Pipe(duplex=False)
+            # The ending signals wait while the process is forked (a signal then would reach
+            # a child with the parent's handlers); the child sets its own, then takes them.
+            held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
+            try:
+                process = self._context.Process(target=_job_process, args=(job, self._folder, writer, held), daemon=True)
+                process.start()
+                self._running[reader] = (index, process)  # known to close() before a signal can come
+            finally:
+                signal.pthread_sigmask(signal.SIG_SETMASK, held)
+                writer.close()
+
+    def _collect(self) -> None:
+        """Wait for a running job to end and keep its outcome."""
+        for reader in multiprocessing.connection.wait(list(self._running)):
+            index, process = self._running.pop(reader)
+            try:
+                outcome = reader.recv()
+            except EOFError:  # it died without a word
+                process.join()
+                outcome = ("error", InternalError(f"the job writing the {self._labels[index]} ended with exit code {process.exitcode}"))
+            reader.close()
+            process.join()
+            self._results[index] = outcome
+        self._fill()
 
     def __iter__(self) -> Iterator[tuple[str, list, float]]:
-        for label, result in self._results:
-            yield (label, *result.get())
+        for index, label in enumerate(self._labels):
+            while index not in self._results:
+                self._collect()
+            status, value = self._results.pop(index)
+            if status == "error":
+                raise value
+            yield (label, *value)
 
     def close(self) -> None:
-        self._pool.terminate()
-        self._pool.join()
+        running, self._running, self._waiting = self._running, {}, []
+        for reader, (_, process) in running.items():
+            process.kill()
+            process.join()
+            reader.close()
 
 
-def _worker_signals(mask: set) -> None:
-    """A job process leaves signals to its parent: it ignores SIGINT (the terminal sends it to
-    the whole group) and dies on SIGTERM and SIGHUP, whatever handlers it inherited; then it
-    takes the parent's signal mask back."""
+def _job_process(job: Job, folder: Path, conn, mask: set) -> None:
+    """A job process: it leaves signals to its parent (it ignores SIGINT, which the terminal
+    sends to the whole group, and dies on SIGTERM and SIGHUP, whatever handlers it inherited),
+    takes the parent's signal mask back, runs the job and sends its outcome."""
     for signum in ENDING_SIGNALS:
         signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    try:
+        outcome = ("done", _timed(job, folder))
+    except Exception as err:  # raised again in the parent
+        outcome = ("error", err)
+    try:
+        conn.send(outcome)
+    except Exception as err:  # an exception that does not pickle
+        conn.send(("error", InternalError(f"{type(outcome[1]).__name__}: {outcome[1]} (not picklable: {err})")))
+    conn.close()
 
 
 def _writer(names: tuple[str, ...]) -> Callable:
@@ -156,7 +211,7 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file (folded at the design angle; a panel structure also flat and
+    """The structure's FOLD file (folded at the design angle; a rigid structure also flat and
     half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
     by Origami Simulator)."""
     from ..geometry.sheets import sheets
@@ -164,8 +219,8 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     design = structure.lattice.crease.fold_angle
-    # panels: the flat and half-folded states too, for `curvefold mechanism`
-    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) else [design]
+    # rigid panels: the flat and half-folded states too, for `curvefold mechanism`
+    angles = [0.0, 0.5 * design, design] if structure.lattice.rigid else [design]
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -199,7 +254,7 @@ def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
     from ..figures.motion import motion_frames
 
     frames = motion_frames(built.vault if built.vault is not None else built.structure)
-    return [_writer(names)(file_path(folder / "folding", names[0]), frames, bounce=True)]
+    return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
 #: Progress label and job of every family of formats.
@@ -229,7 +284,7 @@ def _figures(built: Built) -> dict[str, Callable]:
                     "folding-motion": partial(views.plot_motion_strip, built.vault)}
     else:
         figures[built.design.kind] = partial(views.plot_structure, structure)
-    if isinstance(lattice, PanelLattice):
+    if lattice.rigid:
         figures["singular-values"] = lambda: plots.plot_singular_values(certified_mechanism(structure).states)
     return figures
 

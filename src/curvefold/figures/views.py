@@ -94,12 +94,10 @@ def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwarg
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    from ..geometry.panels import PanelLattice
-
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
     handles = [Line2D([], [], color=KIND_COLORS[k], lw=1.5, label=names[k]) for k in ("fold", "seam", "junction") if k in set(kinds)]
-    panels = isinstance(lattice, PanelLattice)
-    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="rigid planar panels" if panels else "developable strips"))
+    rigid = lattice is not None and lattice.rigid
+    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="rigid planar panels" if rigid else "developable strips"))
     ax.legend(handles=handles, fontsize=7, frameon=False, **kwargs)
 
 

@@ -382,7 +382,7 @@ class PanelCurve(FramedCurve, FrozenArrays):
 
 @dataclass(frozen=True)
 class PanelCrease:
-    """Crease 1 of a panel lattice: its polyline and fold angle.
+    """Crease 1 of a panel lattice: its polyline and fold angle (a :class:`~curvefold.geometry.kinds.FoldedCrease`).
 
     Attributes
     ----------
@@ -399,9 +399,9 @@ class PanelCrease:
 class PanelLattice(FrozenArrays):
     """A panel pattern folded at one angle and placed in space: the discrete :class:`Lattice`.
 
-    Build it with :meth:`from_lattice`; fold it with :meth:`refold`. It answers what a
-    :class:`~curvefold.geometry.structure.Structure` asks of a lattice, so tubes, blocks and
-    vaults are built on it with the same constructors, and their meshes are panels
+    Build it with :meth:`from_lattice`; fold it with :meth:`refold`. It is a
+    :class:`~curvefold.geometry.kinds.StructureLattice`, so tubes, blocks and vaults are
+    built on it with the same constructors, and their meshes are panels
     (:meth:`Topology.panels`).
 
     Attributes
@@ -530,6 +530,27 @@ class PanelLattice(FrozenArrays):
             raise InputError(f"keep: a panel mesh keeps every vertex of its polylines ({n} per tube, {tubes} tubes); two "
                              "panels joined into one quad are not planar")
         return Topology.panels(cell_curves, n)
+
+    # -- what the consumers of a structure ask about its kind (curvefold.geometry.kinds) ---------
+    @property
+    def rigid(self) -> bool:
+        """True: rigid planar panels, every state exact; the certificate counts their mechanism."""
+        return True
+
+    @property
+    def thinnable(self) -> bool:
+        """False: every vertex is a panel corner, which a mesh keeps."""
+        return False
+
+    @property
+    def crease_degree(self) -> int:
+        """1: the polylines are the creases."""
+        return 1
+
+    @property
+    def smooth(self) -> Lattice | None:
+        """The smooth lattice the panels sample (:attr:`source`), if any."""
+        return self.source
 
     # -- rigid folding ----------------------------------------------------------------------------
     def _anchored(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -41,7 +41,6 @@ __all__ = [
     "STRUCTURE_KINDS",
     "OUTPUT_SPECS",
     "formats_of",
-    "file_path",
     "default_formats",
     "check_formats",
     "check_kind",
@@ -88,6 +87,17 @@ class FileFormat:
     media_type: str
     dependency: str | None = None
     extra: str | None = None
+
+    def path(self, stem: str | os.PathLike) -> Path:
+        """The file of this format for a path stem: ``<stem><extension>``.
+
+        Examples
+        --------
+        >>> FORMATS["svg"].path("out/vault-pattern").as_posix()
+        'out/vault-pattern.svg'
+        """
+        stem = Path(stem)
+        return stem.with_name(stem.name + self.extension)
 
     def load_writer(self) -> Callable:
         """Import and return the writing function."""
@@ -139,18 +149,6 @@ def formats_of(family: str) -> tuple[str, ...]:
     ('svg', 'dxf', 'pdf')
     """
     return tuple(name for name, f in FORMATS.items() if f.family == family)
-
-
-def file_path(path_stem: str | os.PathLike, name: str) -> Path:
-    """The file of format ``name`` for ``path_stem``: the stem with the format's extension added.
-
-    Examples
-    --------
-    >>> file_path("out/vault", "glb").as_posix()
-    'out/vault.glb'
-    """
-    stem = Path(path_stem)
-    return stem.with_name(stem.name + FORMATS[name].extension)
 
 
 def default_formats(kind: str) -> tuple[str, ...]:

@@ -14,14 +14,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..geometry.crease import check_fold_angle, check_fold_angles
+from ..geometry.fold_arrays import structure_metadata
 from ..geometry.mesh import Mesh
-from ..geometry.panels import PanelLattice
-from ..geometry.sheets import _angles, _check_structure, _design_angle, folding_motion
-from ..geometry.structure import Structure
+from ..geometry.sheets import folding_motion
+from ..geometry.structure import Structure, check_structure
 from ..kernel.arrays import readonly
 from . import gltf, mesh3d, rhino
-from .fold import _metadata
-from .formats import FORMATS, check_formats, file_path, formats_of
+from .formats import FORMATS, check_formats, formats_of
 
 __all__ = ["MODEL_FORMATS", "FoldedModel", "write_3d", "model_glb", "model_obj", "model_stl", "model_ply", "model_3dm"]
 
@@ -80,16 +80,16 @@ def write_3d(
     tuple of Path
         The files written, in the order of ``formats``.
     """
-    _check_structure(structure)
+    check_structure(structure)
     formats = check_formats(formats, "model")
-    design = _design_angle(structure, None, degrees)
-    static = design if fold_angle is None else float(_angles([fold_angle], degrees, "fold_angle")[0])
-    motion = np.linspace(0.0, design, 7) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
-    meta = _metadata(structure, design, metadata)
+    design = structure.lattice.crease.fold_angle
+    static = design if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
+    motion = np.linspace(0.0, design, 7) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
+    meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
     state = structure.state(static, anchor=anchor)
     model = FoldedModel(structure, state.mesh(keep=keep), state.mesh(faces="quads", keep=keep), static, readonly(motion), unit,
                         meta, anchor, seconds_per_state, keep)
-    return tuple(FORMATS[name].load_writer()(file_path(path_stem, name), model) for name in formats)  # each format's writer
+    return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
 
 
 @dataclass(frozen=True, eq=False)
@@ -160,7 +160,7 @@ def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:
 
 
 def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (degree 1 for panels)."""
+    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree)."""
     structure = model.structure
     return rhino.write_3dm(path, model.quads, structure.topology("quads", keep=model.keep), unit=model.unit,
-                           metadata=model.static_metadata, degree=1 if isinstance(structure.lattice, PanelLattice) else 3)
+                           metadata=model.static_metadata, degree=structure.lattice.crease_degree)

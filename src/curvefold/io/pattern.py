@@ -37,14 +37,14 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from ..geometry.sheets import PatternSheet, _check_structure, sheets
-from ..geometry.structure import Structure
+from ..geometry.sheets import PatternSheet, sheets
+from ..geometry.structure import Structure, check_structure
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ..kernel.text import one_line
 from ..kernel.validate import check_integer
 from .atomic import atomic_path
-from .formats import FORMATS, check_formats, file_path, formats_of
+from .formats import FORMATS, check_formats, formats_of
 from .labels import Label, seam_name, text_width
 from .layout import FOOTER, LAYERS, Layout, Page, PlacedSheet, Polyline, layout_sheets, page_size
 from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
@@ -604,7 +604,7 @@ def layout_pattern(
     -------
     curvefold.io.layout.Layout
     """
-    _check_structure(structure)
+    check_structure(structure)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name, keep=keep)
     if scale is not None:
         return layout_sheets(parts, page=page, units=units, scale=scale, glue_tabs=glue_tabs)
@@ -662,6 +662,7 @@ def write_pattern(
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
     for name in formats:  # each format's writer, from the registry
-        written = FORMATS[name].load_writer()(file_path(path_stem, name), layout, layers=layers)
+        f = FORMATS[name]
+        written = f.load_writer()(f.path(path_stem), layout, layers=layers)
         out.extend(written if isinstance(written, tuple) else (written,))
     return tuple(out)

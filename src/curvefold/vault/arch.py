@@ -49,6 +49,7 @@ __all__ = [
     "A_MAX",
     "A_STANDING",
     "A_FAMILY",
+    "check_standing",
     "ArchRoot",
     "solve_symmetric_arch",
     "symmetric_arch_condition",
@@ -65,10 +66,9 @@ __all__ = [
 A_MAX = 1.2707093728
 #: The torsion amplitudes of a standing arch, [0, A_MAX): the range of a design's ``a``.
 A_STANDING = Interval(0.0, A_MAX, True, False)
-#: The torsion amplitudes of the family a :class:`~curvefold.vault.VaultDesign` and the design
-#: atlas's grids may hold, [0, 2 A_MAX]: past A_MAX no arch stands (building one raises
-#: :class:`~curvefold.kernel.errors.ConvergenceError` saying so, the atlas records it), and a
-#: grid reaching twice as far shows where standing ends.
+#: The torsion amplitudes the rows of a design atlas's grid may hold, [0, 2 A_MAX]: past A_MAX no
+#: arch stands (a design refuses it, saying why, and the atlas records it as an invalid design),
+#: and a grid reaching twice as far shows where standing ends.
 A_FAMILY = Interval(0.0, 2 * A_MAX, True, True)
 
 #: Where the root next to π lies for every a < A_MAX (π at a = 0, about 4.42 at A_MAX): one
@@ -151,6 +151,32 @@ class ArchRoot:
     bracket: tuple[float, float]
 
 
+def check_standing(a: float) -> float:
+    """``a`` when the arch family stands for it (a < :data:`A_MAX`), else the error saying why not.
+
+    Raises
+    ------
+    ConvergenceError
+        For a ≥ :data:`A_MAX`, where Eq. (20) has no root next to π.
+
+    Examples
+    --------
+    >>> check_standing(0.3)
+    0.3
+    >>> check_standing(1.5)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.ConvergenceError: no standing arch for a = 1.5: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < 1.2707 (there the two roots near κ0·s0 ≈ 4.4 merge and vanish)
+    """
+    if a >= A_MAX:
+        raise ConvergenceError(
+            f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < {A_MAX:.4f} "
+            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)",
+            parameter="a",
+        )
+    return a
+
+
 def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STEPS) -> ArchRoot:
     """Solve Eq. (20) for κ₀ s₀ on the root next to π, by a bracketed search.
 
@@ -192,12 +218,7 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
     a = float(a)
     if not np.isfinite(a) or a < 0:
         raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}", parameter="a")
-    if a >= A_MAX:
-        raise ConvergenceError(
-            f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < {A_MAX:.4f} "
-            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)",
-            parameter="a",
-        )
+    check_standing(a)
     f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
     found = _chebyshev_root(a, *WINDOW, xtol, steps)
     if found is not None:

@@ -29,7 +29,7 @@ from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.lie import cross
 from ..kernel.validate import Interval, Spec, check_integer
-from .arch import A_FAMILY, A_MAX, A_STANDING, ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
+from .arch import A_MAX, A_STANDING, ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
 
 __all__ = [
     "VaultDesign",
@@ -37,7 +37,6 @@ __all__ = [
     "standing",
     "HarmonicTorsion",
     "VAULT_SPECS",
-    "FAMILY_A",
     "MIN_SAMPLES",
     "vault_samples",
     "vault_panels",
@@ -62,7 +61,7 @@ LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
 VAULT_SPECS: tuple[Spec, ...] = (
     Spec("a", "real", 0.3, A_STANDING, help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0)",
          why="no arch stands beyond it: Eq. (20) has no root next to π there",
-         typical=Interval(0.0, math.floor(100 * A_MAX) / 100, True, True)),
+         typical=Interval(0.0, math.floor(10 * A_MAX) / 10, True, True)),  # a slider of round steps
     Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet"),
     Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless"),
     Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})'),
@@ -73,9 +72,6 @@ VAULT_SPECS: tuple[Spec, ...] = (
     PANELS,
 )
 _SPEC = {spec.name: spec for spec in VAULT_SPECS}
-#: ``a`` as a :class:`VaultDesign` and the rows of the design atlas take it: any amplitude of the
-#: family, standing or not (see :data:`~curvefold.vault.arch.A_FAMILY`).
-FAMILY_A = replace(_SPEC["a"], range=A_FAMILY, why=f"up to twice {A_MAX:.4f}, where arches stop standing", typical=None)
 
 
 def vault_samples(samples: int, *, where: str = "samples") -> int:
@@ -114,10 +110,8 @@ class VaultDesign:
     Attributes
     ----------
     a : float
-        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in :data:`~curvefold.vault.arch.A_FAMILY`
-        = [0, 2 A_MAX]; the arch stands for a < :data:`~curvefold.vault.arch.A_MAX` ≈ 1.2707
-        (:meth:`Vault.from_design` refuses the others, saying why; a design file's ``a`` must
-        be below it).
+        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in [0, :data:`~curvefold.vault.arch.A_MAX`):
+        the arch family stands only there (≈ 1.2707).
     p_xy : float
         Section proportion at the feet, w_R(0) / w_L(0).
     width : float
@@ -153,8 +147,7 @@ class VaultDesign:
     panels: int = 0
 
     def __post_init__(self) -> None:
-        FAMILY_A.check(self.a)
-        for name in ("p_xy", "width", "radius", "layers"):
+        for name in ("a", "p_xy", "width", "radius", "layers"):
             _SPEC[name].check(getattr(self, name))
         half_angle(self.fold_angle)  # the range of VAULT_SPECS' fold_angle, with the geometry's message
         check_samples(self.samples)

@@ -38,11 +38,16 @@ import numpy as np
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.validate import Spec, check_integer
+from .arch import A_FAMILY, A_MAX, check_standing
 
 if TYPE_CHECKING:  # pragma: no cover
     from .assembly import Vault
 
-__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS"]
+__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS", "GRID_A"]
+
+#: ``a`` of the grid's rows: the amplitudes of :data:`~curvefold.vault.arch.A_FAMILY`, so a grid
+#: can reach past where the arches stop standing and show it (those designs are invalid records).
+GRID_A = Spec("a", "real", 0.3, A_FAMILY, help="torsion amplitude a of a row of the grid", why=f"up to twice {A_MAX:.4f}, where arches stop standing")
 
 #: Metrics taken from :meth:`Vault.summary` (footprint split into x and y), model units and degrees.
 METRICS = (
@@ -145,6 +150,7 @@ def evaluate_design(
 
     record: dict[str, Any] = {"a": _number(a), "p_xy": _number(p_xy), "width": float(width), "fold_angle": float(fold_angle)}
     try:
+        check_standing(GRID_A.check(a))  # past A_MAX the record says that no arch stands, not that a is out of range
         vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples))
     except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
