@@ -206,12 +206,12 @@ def test_the_ranges_of_a_come_from_where_the_arch_family_ends():
     """A design's a stops at A_MAX, with the reason, in design files and the Python API alike; the atlas's
     rows reach twice as far, and record past A_MAX that no arch stands, in the solver's words."""
     from curvefold.app.design import SCHEMA, parse_design
-    from curvefold.vault.arch import A_FAMILY, A_MAX, A_STANDING, check_standing
+    from curvefold.vault.arch import A_MAX, A_STANDING, check_standing
     from curvefold.vault.atlas import GRID_A, evaluate_design
 
     spec = SCHEMA["vault"]["a"]
     assert spec.range == A_STANDING and (A_STANDING.lo, A_STANDING.hi, A_STANDING.hi_closed) == (0.0, A_MAX, False)
-    assert GRID_A.range == A_FAMILY and A_FAMILY.hi == 2 * A_MAX and A_FAMILY.hi_closed
+    assert (GRID_A.range.lo, GRID_A.range.hi, GRID_A.range.hi_closed) == (0.0, 2 * A_MAX, True)
     assert spec.typical.hi < A_MAX < spec.typical.hi + 0.1  # the designer's slider stops short of it, at 1.2
     below = A_MAX * (1 - 1e-12)
     assert parse_design(f'kind = "vault"\n[vault]\na = {below!r}').vault.a == below == VaultDesign(a=below).a == check_standing(below)

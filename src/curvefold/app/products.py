@@ -32,7 +32,8 @@ from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS",
+           "PICTURES_NEED", "PICTURES_EXTRA"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10

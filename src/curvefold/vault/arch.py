@@ -48,7 +48,6 @@ from ..kernel.validate import Interval
 __all__ = [
     "A_MAX",
     "A_STANDING",
-    "A_FAMILY",
     "check_standing",
     "ArchRoot",
     "solve_symmetric_arch",
@@ -66,10 +65,6 @@ __all__ = [
 A_MAX = 1.2707093728
 #: The torsion amplitudes of a standing arch, [0, A_MAX): the range of a design's ``a``.
 A_STANDING = Interval(0.0, A_MAX, True, False)
-#: The torsion amplitudes the rows of a design atlas's grid may hold, [0, 2 A_MAX]: past A_MAX no
-#: arch stands (a design refuses it, saying why, and the atlas records it as an invalid design),
-#: and a grid reaching twice as far shows where standing ends.
-A_FAMILY = Interval(0.0, 2 * A_MAX, True, True)
 
 #: Where the root next to π lies for every a < A_MAX (π at a = 0, about 4.42 at A_MAX): one
 #: Chebyshev interpolant on this window finds it directly.

@@ -37,17 +37,18 @@ import numpy as np
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import CurvefoldError, InputError
-from ..kernel.validate import Spec, check_integer
-from .arch import A_FAMILY, A_MAX, check_standing
+from ..kernel.validate import Interval, Spec, check_integer
+from .arch import A_MAX, check_standing
 
 if TYPE_CHECKING:  # pragma: no cover
     from .assembly import Vault
 
 __all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS", "GRID_A"]
 
-#: ``a`` of the grid's rows: the amplitudes of :data:`~curvefold.vault.arch.A_FAMILY`, so a grid
-#: can reach past where the arches stop standing and show it (those designs are invalid records).
-GRID_A = Spec("a", "real", 0.3, A_FAMILY, help="torsion amplitude a of a row of the grid", why=f"up to twice {A_MAX:.4f}, where arches stop standing")
+#: ``a`` of the grid's rows, in [0, 2 A_MAX] (:data:`~curvefold.vault.arch.A_MAX`): a grid reaches past
+#: where the arches stop standing to show it, recording those designs as having no standing arch.
+GRID_A = Spec("a", "real", 0.3, Interval(0.0, 2 * A_MAX, True, True), help="torsion amplitude a of a row of the grid",
+              why=f"up to twice {A_MAX:.4f}, where arches stop standing")
 
 #: Metrics taken from :meth:`Vault.summary` (footprint split into x and y), model units and degrees.
 METRICS = (

@@ -211,8 +211,8 @@ def _fit(design: Design, targets: dict) -> Design:
 def _fitted(design_key: str, targets: tuple) -> str:
     try:
         return _key(fit_vault_targets(_design(design_key), source=SOURCE, **dict(targets)))
-    except InputError as err:  # about a parameter a target replaces: about that target
-        raise InputError(str(err), parameter=_TARGET_OF.get(err.parameter, err.parameter)) from None
+    except CurvefoldError as err:  # about a parameter a target replaces: about that target
+        raise _without_source(err, _TARGET_OF.get(err.parameter, err.parameter)) from None
 
 
 def _check_size(design: Design) -> None:
@@ -255,9 +255,10 @@ def _built_of(design: Design, *, samples: int | None = None) -> Built:
         raise _without_source(err) from None
 
 
-def _without_source(err: CurvefoldError) -> CurvefoldError:
-    """The error of a design check or a builder, its message without the request's name."""
-    return type(err)(str(err).removeprefix(f"{SOURCE}: "), parameter=err.parameter)
+def _without_source(err: CurvefoldError, parameter: str | None = None) -> CurvefoldError:
+    """The error of a design check or a builder, its message without the request's name, about
+    ``parameter`` (default the error's own)."""
+    return type(err)(str(err).removeprefix(f"{SOURCE}: "), parameter=parameter or err.parameter)
 
 
 def caches() -> dict[str, object]:
