@@ -131,7 +131,7 @@ def test_a_third_kind_is_built_sampled_and_written(tmp_path, panels, boards):
 
 def test_a_third_kind_is_drawn_and_certified(boards, panels):
     pytest.importorskip("matplotlib")
-    from curvefold.figures.plots import plot_structure
+    from curvefold.figures.views import plot_structure
 
     figure = plot_structure(boards)
     assert "rigid planar panels" in [t.get_text() for t in figure.axes[0].get_legend().get_texts()]

@@ -52,11 +52,7 @@ BELOW_KINDS = {"kernel", "geometry"}
 MAX_LINES = 700
 #: Modules over :data:`MAX_LINES` today, each with why. Remove an entry when the module is
 #: split (the test fails until then, so the split is seen).
-LONG: dict[str, str] = {
-    "curvefold.io.layout": "placement, glue tabs, labels and pages in one module; to be split by concern",
-    "curvefold.figures.plots": "every matplotlib figure and the GIF writer in one module; to be split by concern",
-    "curvefold.app.design": "the schema, the design values and the CSV reader in one module; to be split by concern",
-}
+LONG: dict[str, str] = {}
 
 
 def modules(root: Path, package: str) -> dict[str, Path]:

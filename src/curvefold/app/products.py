@@ -1,8 +1,10 @@
 """The files of an output folder, each a job ``folder -> list of paths`` (see :mod:`curvefold.app.outputs`).
 
 The requested formats are grouped by family (:data:`curvefold.io.formats.FAMILIES`), in
-registry order; each family is one job calling the writer the registry names. The
-pictures of the report are always written (PNG).
+registry order; each family is one job: the crease patterns and the 3D models by their
+family's writer (which calls the registry's writer of each format), the FOLD file and the
+GIF by the registry's writer. The pictures of the report are written (PNG) when matplotlib
+is installed.
 
 Every mesh written (FOLD, 3D models, crease patterns) keeps the samples of
 :attr:`Built.sampling <curvefold.app.build.Built.sampling>`: as accurate as the default
@@ -12,12 +14,13 @@ metadata and in the report (:func:`resolution`).
 
 from __future__ import annotations
 
+import importlib.util
 import multiprocessing
 import multiprocessing.connection
 import os
 import signal
 import time
-from collections.abc import Callable, Collection, Iterable, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from functools import partial
 from pathlib import Path
 
@@ -29,12 +32,15 @@ from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "MOTION_STEPS"]
+__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS",
+           "PICTURES_NEED", "PICTURES_EXTRA"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
+#: The package the report's pictures are drawn with, and the extra that brings it.
+PICTURES_NEED, PICTURES_EXTRA = "matplotlib", "plot"
 
 Job = Callable[[Path], list]
 
@@ -70,7 +76,8 @@ def exported_fold_angles(built: Built) -> np.ndarray:
 
 
 def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
-    """The jobs that write the requested formats of a built design and its pictures, longest first.
+    """The jobs that write the requested formats of a built design and its pictures (when
+    :data:`PICTURES_NEED` is installed: see :func:`pictures_left_out`), longest first.
 
     Raises
     ------
@@ -84,7 +91,8 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         label, write = _FAMILY_JOBS[family]
         names = tuple(name for name in formats_of(family) if name in formats)
         out.append((label, partial(write, built, names)))
-    out.append(("pictures", partial(_pictures, built)))
+    if can_draw():
+        out.append(("pictures", partial(_pictures, built)))
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
 
@@ -225,23 +233,29 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
 def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The crease patterns, laid out once for every pattern format."""
+    from ..io.pattern import write_pattern
     from ..io.tables import mm_per_unit
 
     o, kind = built.design.output, built.design.kind
     page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
-    return list(_writer(names)(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
-                               glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
+    return list(write_pattern(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
+                              glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
 
 
 def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The 3D files; the GLB holds the folding motion."""
-    return list(_writer(names)(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
-                               metadata=_metadata(built), keep=built.sampling.keep))
+    from ..io.models import write_3d
+
+    return list(write_3d(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
+                         metadata=_metadata(built), keep=built.sampling.keep))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The GIF of the folding motion."""
-    return [_writer(names)(built.vault if built.vault is not None else built.structure, folder / "folding.gif")]
+    """The GIF of the folding motion, flat to the design angle and back."""
+    from ..figures.motion import motion_frames
+
+    frames = motion_frames(built.vault if built.vault is not None else built.structure)
+    return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
 #: Progress label and job of every family of formats.
@@ -256,22 +270,52 @@ _FAMILY_JOBS = {
 _LONGEST_FIRST = ("crease patterns", "pictures", "folding GIF", "3D models", "FOLD files")
 
 
-def _pictures(built: Built, folder: Path) -> list:
-    """Plots for the report (PNG)."""
-    from ..figures import plots
+def _figures(built: Built) -> dict[str, Callable]:
+    """The report's pictures by name, each a function that draws it (nothing is drawn here)."""
+    from ..figures import plots, views
 
     structure = built.structure
     if structure is None:
-        figures = {"crease": plots.plot_crease(built.crease)}
+        return {"crease": partial(views.plot_crease, built.crease)}
+    lattice = structure.lattice
+    figures = {"regression-domain": partial(plots.plot_regression_domain, lattice, structure.cells),
+               "width-proportion": partial(plots.plot_width_proportion, lattice)}
+    if built.vault is not None:
+        figures |= {"vault": partial(views.plot_vault, built.vault), "sections": partial(plots.plot_sections, built.vault),
+                    "folding-motion": partial(views.plot_motion_strip, built.vault)}
     else:
-        lattice = structure.lattice
-        figures = {"regression-domain": plots.plot_regression_domain(lattice, structure.cells),
-                   "width-proportion": plots.plot_width_proportion(lattice)}
-        if built.vault is not None:
-            figures |= {"vault": plots.plot_vault(built.vault), "sections": plots.plot_sections(built.vault),
-                        "folding-motion": plots.plot_motion_strip(built.vault)}
-        else:
-            figures[built.design.kind] = plots.plot_structure(structure)
-        if lattice.rigid:
-            figures["singular-values"] = plots.plot_singular_values(certified_mechanism(structure).states)
-    return [path for name, fig in figures.items() for path in plots.save_figure(fig, folder / name, formats=("png",))]
+        figures[built.design.kind] = partial(views.plot_structure, structure)
+    if lattice.rigid:
+        figures["singular-values"] = lambda: plots.plot_singular_values(certified_mechanism(structure).states)
+    return figures
+
+
+def _pictures(built: Built, folder: Path) -> list:
+    """Plots for the report (PNG)."""
+    from ..figures.plots import save_figure
+
+    return [path for name, draw in _figures(built).items() for path in save_figure(draw(), folder / name, formats=("png",))]
+
+
+def picture_files(built: Built) -> list[str]:
+    """The file names of the report's pictures of a built design."""
+    return [f"{name}.png" for name in _figures(built)]
+
+
+def can_draw() -> bool:
+    """Whether :data:`PICTURES_NEED` is installed, so pictures can be drawn."""
+    return importlib.util.find_spec(PICTURES_NEED) is not None
+
+
+def pictures_left_out(files: Sequence[str]) -> str | None:
+    """One line naming pictures that are not drawn because :data:`PICTURES_NEED` is not installed,
+    and the extra that brings it; None when it is installed.
+
+    Examples
+    --------
+    >>> pictures_left_out(["atlas.png"]) in (None, "pictures left out: atlas.png (they need matplotlib: pip install 'curvefold[plot]')")
+    True
+    """
+    if can_draw():
+        return None
+    return f"pictures left out: {', '.join(files)} (they need {PICTURES_NEED}: pip install 'curvefold[{PICTURES_EXTRA}]')"

@@ -247,7 +247,8 @@ class Crease(FrozenArrays):
                 s_end = float(probe[np.argmax(~((a_probe > 0) & (a_probe < np.pi / 2)))])
             raise InputError(
                 f"fold angle 2α leaves (0°, 180°) at s = {s_end:.6g} (α' = ½ κ_2D tan α (cot β_L − cot β_R) drives it there); "
-                f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle"
+                f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle",
+                parameter="length",
             )
 
         alpha = _PatternFoldAngle(sol.sol, k2, bl, br)

@@ -225,7 +225,8 @@ class PanelPattern(FrozenArrays):
             k = int(bad[0])
             raise InputError(
                 f"too few panels: at vertex {k} (s = {s[k]:.6g}) the crease turns by {np.degrees(turning[k]):.4g}° and its fold "
-                f"lines leave at {np.degrees(beta[k]):.4g}°; they would cross the crease (need |turn|/2 < beta < 180° − |turn|/2)"
+                f"lines leave at {np.degrees(beta[k]):.4g}°; they would cross the crease (need |turn|/2 < beta < 180° − |turn|/2)",
+                parameter="panels",
             )
         normal = _turn(t, np.full(len(t), 0.5 * np.pi))
         lhat = np.cos(beta)[:, None] * t + np.sin(beta)[:, None] * normal
@@ -263,7 +264,7 @@ class PanelPattern(FrozenArrays):
         if not (np.abs(turn) < 0.5 * np.pi).all():
             k = int(np.argmax(np.abs(turn)))
             raise InputError(f"too few panels: the crease turns by {np.degrees(turn[k]):.4g}° over panel {k} (s = {s[k]:.6g} to "
-                             f"{s[k + 1]:.6g}); use more panels (below 90° each)")
+                             f"{s[k + 1]:.6g}); use more panels (below 90° each)", parameter="panels")
         ends = flat.tangent[[0, -1], :2]
         return cls.from_polyline(s, flat.points[::m, :2], pattern.beta(s), start_tangent=ends[0], end_tangent=ends[1],
                                  left_length=float(pattern.ruling_lengths[0][0]), right_length=float(pattern.ruling_lengths[1][0]))

@@ -24,6 +24,7 @@ import numpy as np
 
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
+from ..kernel.validate import check_integer
 from .crease import half_angle
 from .mesh import Mesh
 from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells
@@ -103,12 +104,10 @@ class Structure(FrozenArrays):
         layers : int, keyword-only
             Number of parallel diagonals (a band): layer k holds cells (j, j + k).
         """
-        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
-            raise InputError(f"count (tubes) must be an integer ≥ 1, got {count!r}")
+        count = check_integer(count, "count (tubes)", "[1, inf)")
         if direction not in (1, -1):
             raise InputError(f"direction must be +1 or -1, got {direction!r}")
-        if isinstance(layers, bool) or not isinstance(layers, (int, np.integer)) or layers < 1:
-            raise InputError(f"layers must be an integer ≥ 1, got {layers!r}")
+        layers = check_integer(layers, "layers", "[1, inf)")
         j = np.arange(count) if direction == 1 else -np.arange(1, count + 1)
         cells = [(int(a), int(a) + k) for k in range(layers) for a in j]
         return cls.from_cells(lattice, cells)

@@ -18,6 +18,7 @@ import numpy as np
 from ..geometry.mesh import EDGE_KINDS, Mesh
 from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
+from ..kernel.validate import is_integer
 from .mesh3d import check_metadata
 from .reading import read_bytes
 
@@ -82,7 +83,7 @@ def _int_rows(value, n_cols: int | None, key: str, where: str) -> np.ndarray:
     if not isinstance(value, list):
         raise _fail(where, f"{key} must be a list, got {type(value).__name__}")
     for i, row in enumerate(value):
-        if not isinstance(row, list) or any(isinstance(v, bool) or not isinstance(v, int) for v in row):
+        if not isinstance(row, list) or not all(is_integer(v) for v in row):
             raise _fail(where, f"{key}[{i}] must be a list of integers, got {row!r}")
         if n_cols is not None and len(row) != n_cols:
             raise _fail(where, f"{key}[{i}] must have {n_cols} entries, got {len(row)} ({row!r})")
@@ -127,7 +128,7 @@ def _resolve_frames(doc: dict, frames: list, where: str) -> list[dict]:
                 f = None
                 break
             parent = frame.get("frame_parent", 0)
-            if isinstance(parent, bool) or not isinstance(parent, int) or not 0 <= parent <= n or parent == f:
+            if not is_integer(parent) or not 0 <= parent <= n or parent == f:
                 raise _fail(where, f"file_frames[{f - 1}].frame_parent must be another frame id in [0, {n}] without cycles, got {parent!r}")
             f = parent
         merged = {} if f is None else resolved[f]
@@ -214,7 +215,7 @@ def _frame_mesh(frame: dict, where: str) -> Mesh:
         group = np.zeros(len(fv), np.int64)
     else:
         group = frame[group_key]
-        if not isinstance(group, list) or len(group) != len(fv) or any(isinstance(g, bool) or not isinstance(g, int) for g in group):
+        if not isinstance(group, list) or len(group) != len(fv) or not all(is_integer(g) for g in group):
             raise _fail(where, f"{group_key} must be a list of {len(fv)} integers (one per face)")
         group = np.array(group, dtype=np.int64).reshape(len(fv))
 
