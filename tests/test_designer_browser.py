@@ -68,9 +68,9 @@ def test_a_slider_changes_the_numbers_and_the_view(browser):
     assert len(np.unique(before.reshape(-1, 3), axis=0)) > 100 and before.std() > 10
     slider = page.locator('.field[data-key="a"] input[type=range]')
     slider.focus()
-    for _ in range(30):  # 30 steps of 3/400 to the right: a = 0.3 → 0.525
+    for _ in range(30):  # 30 steps of 1.2/400 to the right (the typical span of a): a = 0.3 → 0.39
         page.keyboard.press("ArrowRight")
-    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.525) < 1e-9")
+    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.39) < 1e-9")
     page.wait_for_timeout(300)
     after = canvas(page)
     assert page.inner_text("#numbers") != shown

@@ -213,6 +213,7 @@ def report_html(payload: dict) -> str:
         for f in shown
     )
     links = "".join(f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>' for f in files)
+    notes = "".join(f"<p>{e(one_line(note))}</p>" for note in payload.get("notes", []))
     passed = sum(c["passed"] for c in payload["certificate"])
     title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
@@ -233,7 +234,7 @@ pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}
 </style></head><body>
 <h1>curvefold — {title}</h1>
 <p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass.</p>
-<h2>Pictures</h2><div class="pictures">{pictures}</div>
+<h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
 {mesh}
 {paper}

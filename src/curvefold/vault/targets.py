@@ -74,7 +74,7 @@ class TargetFit:
     def require(self) -> VaultDesign:
         """The design, or :class:`InputError` with :attr:`message` when a target is out of reach."""
         if not self.reached:
-            raise InputError(self.message)
+            raise InputError(self.message, parameter="rise")  # only rise/span can be out of reach
         return self.design
 
 
@@ -129,7 +129,8 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
         span_, rise_, p_xz_ = _measure(design)
         return TargetFit(design, span_, rise_, p_xz_, True)
     if "span" in given and "rise" in given and design.tubes is None:
-        raise InputError('tubes must be a number to meet a rise and a span (with "max" the count jumps as a changes), got "max"')
+        raise InputError('tubes must be a number to meet a rise and a span (with "max" the count jumps as a changes), got "max"',
+                         parameter="tubes")
 
     def shape(a: float) -> VaultDesign:
         """The design at radius 1 with this a, p_xy following p_xz when it is given."""

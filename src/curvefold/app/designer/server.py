@@ -76,7 +76,7 @@ def create_app():
 
     @app.exception_handler(CurvefoldError)
     async def refused(request: Request, err: CurvefoldError):
-        return JSONResponse({"error": " ".join(str(err).split()), "key": getattr(err, "key", None)}, status_code=422)
+        return JSONResponse({"error": " ".join(str(err).split()), "key": err.parameter}, status_code=422)
 
     def design(kind: str, request: Request):
         return api.request_design(kind, list(request.query_params.multi_items()))
