@@ -41,6 +41,8 @@ MATERIAL_SPECS = _materials.MATERIAL_SPECS
 THICKNESS = _materials.THICKNESS
 #: The check of a crease stiffness per length (N·m/rad/m).
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
+#: The checks of the loads: snow (Pa on the projected area), point load (N).
+LOAD_SPECS = _loads.LOAD_SPECS
 
 __all__ = [
     "analyse_load",
@@ -50,6 +52,7 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
+    "LOAD_SPECS",
     "material",
     "BarHingeModel",
     "StructureModel",
