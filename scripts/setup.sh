@@ -14,11 +14,13 @@ fi
 
 # rsvg-convert (SVG → PNG) and pdftoppm (PDF → PNG) check what a person would see; Debian's
 # chromium is the browser Playwright drives in the designer's, three.js and report tests
-# (Playwright's own browser download is not used).
-if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1 || ! command -v chromium >/dev/null 2>&1; then
+# (Playwright's own browser download is not used); OpenSees, the mechanics tests' independent
+# finite-element engine, links the system's libblas.so.3.
+if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1 || ! command -v chromium >/dev/null 2>&1 \
+    || ! { ldconfig -p 2>/dev/null | grep -q 'libblas\.so\.3'; }; then
     if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
-        apt-get update -qq >/dev/null && apt-get install -y -qq librsvg2-bin poppler-utils chromium >/dev/null
+        apt-get update -qq >/dev/null && apt-get install -y -qq librsvg2-bin poppler-utils chromium libblas3 >/dev/null
     else
-        echo "note: install librsvg2-bin, poppler-utils and chromium for the rendering and browser checks" >&2
+        echo "note: install librsvg2-bin, poppler-utils, chromium and libblas3 for the rendering, browser and finite-element checks" >&2
     fi
 fi

@@ -35,9 +35,10 @@ ALLOWED = {
     "geometry": {"kernel"},
     "vault": {"kernel", "geometry"},
     "io": {"kernel", "geometry"},
-    "analysis": {"kernel", "geometry", "vault", "io"},
-    "figures": {"kernel", "geometry", "vault", "io", "analysis"},
-    "app": {"kernel", "geometry", "vault", "io", "analysis", "figures"},
+    "mechanics": {"kernel", "geometry", "vault"},
+    "analysis": {"kernel", "geometry", "vault", "io", "mechanics"},
+    "figures": {"kernel", "geometry", "vault", "io", "analysis", "mechanics"},
+    "app": {"kernel", "geometry", "vault", "io", "analysis", "figures", "mechanics"},
 }
 #: Modules that may import any layer.
 EXEMPT = {"__init__", "__main__"}

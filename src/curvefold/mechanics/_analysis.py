@@ -1,0 +1,175 @@
+"""Will it stand: one call from a structure (or a vault) to its response, modes, buckling and soft modes.
+
+:func:`analyse_load` builds the structure's model at a fold angle (default: its own, a
+vault's design angle, at which it stands on the ground), applies the loads with the
+supports, and returns a :class:`LoadResult` holding everything a report or a
+``--json`` output needs (:meth:`LoadResult.to_dict`, whose keys are stable).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry.structure import State, Structure
+from ..kernel.errors import InputError
+from ..vault.assembly import Vault
+from ._loads import G, Loads, Supports
+from ._materials import THICKNESS, Material
+from ._materials import material as named
+from ._modes import Modes, correlation, free_modes
+from ._response import Buckling, StaticResult, buckling, static_response
+from ._softmodes import SoftModes, soft_modes
+from ._structures import StructureModel
+
+__all__ = ["LoadResult", "analyse_load", "FOLDING"]
+
+#: The name of the rigid folding motion in messages.
+FOLDING = "the folding motion"
+
+
+@dataclass(frozen=True, eq=False)
+class LoadResult:
+    """A structure under load: its model and every result. SI units.
+
+    Attributes
+    ----------
+    structure : StructureModel
+    loads : Loads
+    supports : Supports
+    static : StaticResult
+    modes : Modes
+        The lowest free modes (rigid motions removed).
+    fold_correlation : float
+        Correlation of the first mode with the kinematics' rigid folding velocity (mass
+        metric, rigid motions removed), in [0, 1].
+    buckling : Buckling
+    soft : SoftModes
+        The inextensional motions of the free structure.
+    """
+
+    structure: StructureModel
+    loads: Loads
+    supports: Supports
+    static: StaticResult
+    modes: Modes
+    fold_correlation: float
+    buckling: Buckling
+    soft: SoftModes
+
+    @property
+    def total_weight(self) -> float:
+        """The structure's weight, Σ m g, N."""
+        return float(G * self.structure.model.masses.sum())
+
+    @property
+    def utilisation(self) -> float:
+        """Largest surface stress over the material's strength."""
+        return self.static.max_stress / self.structure.material.strength
+
+    def to_dict(self) -> dict:
+        """JSON-ready results; the keys below are stable.
+
+        ``total_weight`` (N), ``reactions`` (sum of the support reactions [x, y, z], N, z
+        up), ``max_displacement`` (m), ``max_stress`` (Pa), ``utilisation``,
+        ``fold_mode_gap``, ``soft_modes``, ``buckling_factor`` (None when the load cannot
+        buckle the structure), ``modes`` (the lowest eigenvalues ω², rad²/s²), and more:
+        ``frequencies`` (Hz), ``fold_mode_correlation``, ``applied_load`` (N),
+        ``equilibrium_error``, ``material``, ``thickness`` (m), ``crease_stiffness``
+        (N·m/rad/m), ``supports``, ``nodes``.
+        """
+        s, m = self.structure, self.structure.model
+        return {
+            "total_weight": self.total_weight,
+            "reactions": self.static.total_reaction.tolist(),
+            "max_displacement": self.static.max_displacement,
+            "max_stress": self.static.max_stress,
+            "utilisation": self.utilisation,
+            "fold_mode_gap": self.modes.fold_mode_gap,
+            "soft_modes": self.soft.count,
+            "buckling_factor": None if math.isinf(self.buckling.factor) else self.buckling.factor,
+            "modes": self.modes.eigenvalues.tolist(),
+            "frequencies": self.modes.frequencies.tolist(),
+            "fold_mode_correlation": self.fold_correlation,
+            "applied_load": self.static.total_load.tolist(),
+            "equilibrium_error": self.static.equilibrium_error,
+            "material": s.material.name,
+            "thickness": m.thickness,
+            "crease_stiffness": s.crease_stiffness,
+            "supports": self.supports.kind,
+            "nodes": len(m.nodes),
+        }
+
+
+def analyse_load(structure, material: Material | str = "polypropylene", thickness: float = THICKNESS.default,
+                 loads: Loads | None = None, supports: Supports | None = None, *, fold_angle: float | None = None,
+                 crease_stiffness: float | None = None, modes: int = 6) -> LoadResult:
+    """A structure under load, with its modes, buckling factor and soft modes.
+
+    Parameters
+    ----------
+    structure : Structure, State, Vault or StructureModel
+        What to analyse; a vault is taken at its design angle (where it stands on z = 0).
+        Its model units are metres. A StructureModel brings its own material, thickness
+        and creases: ``material``, ``thickness`` and ``crease_stiffness`` are then unused.
+    material : Material or str
+        A material or a name of :data:`~curvefold.mechanics.MATERIALS`.
+    thickness : float
+        Sheet thickness, m.
+    loads : Loads, optional
+        Default: self-weight.
+    supports : Supports, optional
+        Default: the feet pinned.
+    fold_angle : float, optional, keyword-only
+        2α in degrees (default the structure's own).
+    crease_stiffness : float, optional, keyword-only
+        k_c, N·m/rad/m (default the material's).
+    modes : int, keyword-only
+        How many lowest free modes (≥ 2, for the fold-mode gap).
+
+    Raises
+    ------
+    InputError
+        One line: a value out of range, a structure without feet, or a structure that is
+        still a mechanism under its supports (which motion is free).
+    """
+    mat = named(material) if isinstance(material, str) else material
+    if not isinstance(mat, Material):
+        raise InputError(f"material must be a Material or a name, got {type(mat).__name__}")
+    if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 2:
+        raise InputError(f"modes must be an integer ≥ 2 (the fold-mode gap needs two), got {modes!r}")
+    sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness)
+    loads = Loads() if loads is None else loads
+    supports = Supports() if supports is None else supports
+    model = sm.model
+    folding = sm.fold_velocity()
+    motions = {FOLDING: folding.ravel()}
+    result, factor = static_response(model, loads.forces(model), supports.fixed(sm), motions=motions)
+    free = free_modes(model, modes, motions=motions)
+    return LoadResult(
+        structure=sm,
+        loads=loads,
+        supports=supports,
+        static=result,
+        modes=free,
+        fold_correlation=correlation(model, free.shapes[0], folding),
+        buckling=buckling(model, result, factor),
+        soft=soft_modes(model),
+    )
+
+
+def _structure_model(structure, mat: Material, thickness: float, fold_angle: float | None,
+                     crease_stiffness: float | None) -> StructureModel:
+    if isinstance(structure, StructureModel):
+        return structure
+    if isinstance(structure, Vault):
+        structure = structure.structure
+    if isinstance(structure, Structure):
+        state = structure.state(fold_angle)
+    elif isinstance(structure, State):
+        state = structure if fold_angle is None else structure.structure.state(fold_angle)
+    else:
+        raise InputError(f"analyse_load takes a Structure, State, Vault or StructureModel, got {type(structure).__name__}")
+    return StructureModel.from_state(state, mat, thickness, crease_stiffness=crease_stiffness)

@@ -1,0 +1,128 @@
+"""The lowest vibration modes of the free (unsupported) model, its six rigid motions removed.
+
+``K φ = λ M φ`` with the lumped mass matrix M: λ = ω² (rad²/s²) does not depend on how
+finely the structure is sampled, as an eigenvalue of K alone would (its Rayleigh quotient
+over ``φᵀ φ`` falls as nodes are added). K of a free structure is singular on the rigid
+motions R. Holding six DOFs chosen so that they fix every rigid motion (a pivoted QR of
+R's rows: a statically determinate support) gives a factorisable K_c whose solve, padded
+with zeros, is a generalised inverse G of K; then with the projector ``P = I − R Rᵀ M``
+(R M-orthonormal) the operator ``P G Pᵀ`` is ``(K − 0·M)⁻¹`` on the elastic modes and
+zero on the rigid ones, so shift-invert ARPACK at σ = 0 returns the lowest elastic modes
+and never a rigid one.
+
+The first mode of a foldable structure is its folding motion; the ratio of the second
+eigenvalue to the first is the **fold-mode gap**: how much stiffer every other motion is.
+Each mode also reports the share of its energy in stretching (the bars), which tells a
+soft mode (bending and creases) from a stiff one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as la
+import scipy.sparse.linalg as spl
+
+from ..kernel.arrays import FrozenArrays
+from ..kernel.errors import InputError
+from ._linear import Factorized, eigsh, rigid_motions, unit
+from ._model import BarHingeModel
+
+__all__ = ["Modes", "free_modes", "correlation"]
+
+
+@dataclass(frozen=True, eq=False)
+class Modes(FrozenArrays):
+    """The lowest elastic modes of a free model.
+
+    Attributes
+    ----------
+    eigenvalues : (k,) ndarray
+        λ = ω², ascending, rad²/s².
+    shapes : (k, P, 3) ndarray
+        The mode shapes, each with largest nodal displacement 1 and orthogonal to the
+        rigid motions in the mass metric.
+    stretching : (k,) ndarray
+        Share of each mode's strain energy in the bars (stretching and shear), in [0, 1].
+    """
+
+    eigenvalues: np.ndarray
+    shapes: np.ndarray
+    stretching: np.ndarray
+
+    @property
+    def frequencies(self) -> np.ndarray:
+        """Natural frequencies ω / 2π, Hz, shape (k,)."""
+        return np.sqrt(np.maximum(self.eigenvalues, 0.0)) / (2 * np.pi)
+
+    @property
+    def fold_mode_gap(self) -> float:
+        """λ₂ / λ₁: how much stiffer the next mode is than the first (the folding motion)."""
+        return float(self.eigenvalues[1] / self.eigenvalues[0]) if len(self.eigenvalues) > 1 else float("nan")
+
+
+def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np.ndarray] | None = None,
+               tol: float = 1e-8) -> Modes:
+    """The ``count`` lowest elastic modes of the free model (module notes).
+
+    Parameters
+    ----------
+    model : BarHingeModel
+        Every node must have mass.
+    count : int
+        How many modes, ≥ 1 (fewer than the elastic DOFs).
+    motions : mapping of str to (3P,) ndarray, optional, keyword-only
+        Known motions, to name a free one if the model is a mechanism.
+    tol : float, keyword-only
+        ARPACK's relative accuracy of the eigenvalues.
+
+    Raises
+    ------
+    InputError
+        For a node without mass, a count out of range, or a model that has a motion of
+        zero stiffness besides the rigid ones (the message names it).
+    """
+    n = model.dofs
+    if not (model.masses > 0).all():
+        raise InputError(f"the modes need every node to have mass; node {int(np.argmin(model.masses))} has none")
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n - 8:
+        raise InputError(f"count must be an integer in [1, {n - 8}] for this model ({n} DOFs), got {count!r}")
+    w = np.repeat(model.masses, 3)
+    R = rigid_motions(model.nodes, model.masses)  # M-orthonormal, (3P, 6)
+    held = la.qr(R.T, mode="r", pivoting=True)[1][:6]
+    rest = np.setdiff1d(np.arange(n), held)
+    K = model.stiffness
+    G = Factorized.checked(K[rest][:, rest], model, rest, where="once its rigid motions are held", motions=motions)
+
+    def project(b: np.ndarray) -> np.ndarray:  # P G Pᵀ b
+        b = b - w * (R @ (R.T @ b))
+        u = np.zeros(n)
+        u[rest] = G.solve(b[rest])
+        return u - R @ (R.T @ (w * u))
+
+    operator = spl.LinearOperator((n, n), matvec=project, dtype=float)
+    values, vectors = eigsh(K, what="the free modes", k=count, M=model.mass, sigma=0.0, OPinv=operator, which="LM",
+                            ncv=min(n - 7, max(2 * count + 8, 24)), tol=tol)
+    order = np.argsort(values)
+    values, vectors = values[order], vectors[:, order]
+    C, S = model.compatibility(), model.bar_stiffness_matrix()
+    delta = C @ vectors
+    stretch = np.einsum("bk,bk->k", delta, S @ delta)
+    total = np.einsum("ik,ik->k", vectors, K @ vectors)
+    shapes = np.stack([unit(v) for v in vectors.T]).reshape(count, -1, 3)
+    return Modes(values, shapes, np.clip(stretch / total, 0.0, 1.0))
+
+
+def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> float:
+    """The absolute cosine of the angle between a mode shape and a motion (P, 3), in the mass metric, rigid parts removed.
+
+    1 when the mode is the motion (up to a rigid motion and scale).
+    """
+    w = np.repeat(model.masses, 3)
+    R = rigid_motions(model.nodes, model.masses)
+    a, b = (np.asarray(v, float).ravel() for v in (shape, motion))
+    a, b = a - R @ (R.T @ (w * a)), b - R @ (R.T @ (w * b))
+    return float(abs(a @ (w * b)) / np.sqrt((a @ (w * a)) * (b @ (w * b))))
+

@@ -1,0 +1,174 @@
+"""The bar-and-hinge model of a curvefold structure at a fold angle: the adapter from a State.
+
+A structure's state holds every distinct lattice curve at every sample
+(``State.vertices``, (M, n, 3)); its mesh (``State.mesh``) gives each tube its own copy of
+its curves. The model's nodes are the distinct (curve, sample) points, so the two sheets
+of a tube, welded along their seams, and neighbouring tubes, sharing a crease, share
+their nodes (as :mod:`curvefold.analysis.mechanism` welds them); every tube keeps its own
+crease hinges on them. Nodes are numbered sample by sample (node = sample · M + curve for
+the points in use), which keeps the stiffness matrix in a band two samples wide.
+
+A single curved fold (the paper's Fig. 08: crease 1 between its two strips) is one sheet
+of a tube: ``sheets=(0,)`` keeps sheet A of tube 1, strips 4-1 and 1-2.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..geometry.mesh import Mesh
+from ..geometry.structure import State
+from ..kernel.arrays import FrozenArrays, readonly
+from ..kernel.errors import InputError
+from ._materials import CREASE_STIFFNESS, Material, check_thickness
+from ._model import BarHingeModel
+
+__all__ = ["StructureModel", "FOLD_STEP"]
+
+#: Step of the central difference of the folding motion, degrees (its error ~1e-9 relative).
+FOLD_STEP = 1e-3
+
+
+@dataclass(frozen=True, eq=False)
+class StructureModel(FrozenArrays):
+    """A curvefold structure's bar-and-hinge model at one fold angle. Build it with :meth:`from_state`.
+
+    Attributes
+    ----------
+    model : BarHingeModel
+        In metres: the structure's model units are taken as metres (a vault's size is set
+        by its radius 1/κ₀).
+    state : State
+    node_curve, node_sample : (P,) ndarray of int
+        The lattice curve (row of ``structure.curves_uv``) and sample of every node.
+    crease_stiffness : float
+        k_c used for the creases, N·m/rad/m.
+    material : Material
+    """
+
+    model: BarHingeModel
+    state: State
+    node_curve: np.ndarray
+    node_sample: np.ndarray
+    crease_stiffness: float
+    material: Material
+
+    @classmethod
+    def from_state(cls, state: State, material: Material, thickness: float, *, crease_stiffness: float | None = None,
+                   sheets: Sequence[int] | None = None) -> StructureModel:
+        """The model of a structure's state (module notes).
+
+        Parameters
+        ----------
+        state : State
+        material : Material
+        thickness : float
+            t, m.
+        crease_stiffness : float, optional, keyword-only
+            k_c, N·m/rad/m; default the material's (:meth:`Material.crease_stiffness`).
+        sheets : sequence of int, optional, keyword-only
+            Only these sheets of the structure's topology (0 = tube 1 sheet A); default all.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+        >>> from curvefold.mechanics import MATERIALS
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1)
+        >>> tube = StructureModel.from_state(Structure.tube(lat).state(), MATERIALS["aluminium"], 1e-3)
+        >>> len(tube.model.nodes), len(StructureModel.from_state(Structure.tube(lat).state(), MATERIALS["aluminium"], 1e-3,
+        ...                                                    sheets=(0,)).model.nodes)
+        (36, 27)
+        """
+        t = check_thickness(thickness)
+        k_c = material.crease_stiffness(t) if crease_stiffness is None else CREASE_STIFFNESS.check(crease_stiffness)
+        structure = state.structure
+        topology = structure.topology("quads")  # one quad per ruling quad or panel
+        mesh = topology.mesh(state.vertices)
+        if sheets is not None:
+            mesh, kept = _sheets(mesh, topology, sheets)
+        else:
+            kept = np.arange(len(topology.vertex_curve))
+        M = len(structure.curves_uv)
+        key = topology.vertex_sample[kept] * M + topology.vertex_curve[kept]  # sample by sample
+        points, weld = np.unique(key, return_inverse=True)
+        model = BarHingeModel.from_mesh(mesh, material, t, crease_stiffness=k_c, weld=weld)
+        return cls(model, state, points % M, points // M, float(k_c), material)
+
+    # -- where the nodes are ---------------------------------------------------------------------
+    @cached_property
+    def feet(self) -> np.ndarray:
+        """Nodes of the end sections (first and last samples) on the ground z = 0 (to 1e-9 of the size), ascending."""
+        n = self.state.vertices.shape[1]
+        ends = np.isin(self.node_sample, (0, n - 1))
+        ground = np.abs(self.model.nodes[:, 2]) <= 1e-9 * max(self.model.size, 1e-300)
+        return readonly(np.flatnonzero(ends & ground))
+
+    @cached_property
+    def ends(self) -> np.ndarray:
+        """Nodes of the end sections (first and last samples), wherever they are, ascending."""
+        n = self.state.vertices.shape[1]
+        return readonly(np.flatnonzero(np.isin(self.node_sample, (0, n - 1))))
+
+    def end_sections(self) -> np.ndarray:
+        """The end sections of every tube as node quadruples, corners 1–4, shape (2K, 4): t = 0 then t = 1 of each tube.
+
+        Raises
+        ------
+        InputError
+            For a model of single sheets (a sheet's end is two rulings, not a section).
+        """
+        index = {(c, s): p for p, (c, s) in enumerate(zip(self.node_curve.tolist(), self.node_sample.tolist()))}
+        n = self.state.vertices.shape[1]
+        try:
+            return np.array([[index[(int(c), s)] for c in cell] for cell in self.state.structure.cell_curves for s in (0, n - 1)])
+        except KeyError:
+            raise InputError("end sections need whole tubes; this model holds single sheets") from None
+
+    def field(self, values: np.ndarray) -> np.ndarray:
+        """Nodal values (P, ...) laid out as the state's curves, shape (M, n, ...); NaN where no node is."""
+        values = np.asarray(values, float)
+        M, n = self.state.vertices.shape[:2]
+        out = np.full((M, n) + values.shape[1:], np.nan)
+        out[self.node_curve, self.node_sample] = values
+        return out
+
+    def fold_velocity(self) -> np.ndarray:
+        """d x / d(2α) of every node along the rigid folding motion, m/rad, shape (P, 3).
+
+        The kinematics' own motion (``fold_points`` at 2α ± 0.001°, central
+        difference), up to a rigid motion.
+        """
+        lattice = self.state.lattice
+        angle = float(lattice.crease.fold_angle)
+        h = min(FOLD_STEP, 0.5 * angle, 0.5 * (180.0 - angle)) if angle > 0 else FOLD_STEP
+        lo, hi = max(angle - h, 0.0), angle + h
+        X = lattice.fold_points(self.state.structure.curves_uv, [lo, hi])
+        velocity = (X[1] - X[0]) / np.radians(hi - lo)
+        return readonly(velocity[self.node_curve, self.node_sample])
+
+
+def _sheets(mesh: Mesh, topology, sheets: Sequence[int]) -> tuple[Mesh, np.ndarray]:
+    """The mesh of some sheets of a topology, renumbered, and the topology vertices it keeps."""
+    count = len(topology.sheets)
+    picks = list(sheets)
+    if not picks or any(isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 0 <= s < count for s in picks):
+        raise InputError(f"sheets must be indices in [0, {count}) of the structure's sheets, got {list(sheets)!r}")
+    faces = np.unique(np.concatenate([topology.sheets[s].faces for s in picks]))
+    edges = np.unique(np.concatenate([topology.sheets[s].edges for s in picks]))
+    used = np.unique(mesh.faces_vertices[faces])
+    remap = np.full(len(mesh.vertices_coords), -1)
+    remap[used] = np.arange(len(used))
+    sub = Mesh(
+        vertices_coords=mesh.vertices_coords[used],
+        edges_vertices=remap[mesh.edges_vertices[edges]],
+        edges_assignment=mesh.edges_assignment[edges],
+        edges_foldAngle=mesh.edges_foldAngle[edges],
+        faces_vertices=remap[mesh.faces_vertices[faces]],
+        edges_kind=mesh.edges_kind[edges],
+        faces_group=mesh.faces_group[faces],
+    )
+    return sub, used

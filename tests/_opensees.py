@@ -1,0 +1,185 @@
+"""An independent finite-element model of a panel structure in OpenSees: shells for the panels, springs for the creases.
+
+Every panel (a planar quad of the structure's mesh) is meshed by m × m ShellMITC4
+elements (ElasticMembranePlateSection: E, ν, t, ρ) on its own nodes. Where two panels
+share an edge of the mesh (a crease, a seam, a fold line) the coincident nodes of the two
+panels share their translations (equalDOF) and are joined by a zeroLength element whose
+rotation about the edge is a spring of the crease stiffness times the node's share of
+the edge, and whose other two rotations are stiff (the sheet is continuous across the
+crease: it only turns about it). Panels of two tubes bonded along a crease share the
+translations of their nodes only, as in the bar-and-hinge model. Nothing here is taken
+from curvefold.mechanics but the geometry (the state's mesh) and the material.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from curvefold.mechanics import StructureModel
+
+#: Rotational stiffness of the zeroLength springs about the axes across a crease, per D:
+#: stiff enough that the results move by 1e-5 between 1e4 and 1e5 (measured on the panel tube; 6e-5 from 1e3).
+RIGID = 1e4
+#: The shell element.
+SHELL = "ASDShellQ4"
+
+
+def opensees_model(sm: StructureModel, refine: int):
+    """Build the OpenSees model of a panel structure's state; return the node tags at the model's nodes and the total mass.
+
+    Returns
+    -------
+    at_node : (P,) ndarray of int
+        An OpenSees node (the master of its coincident group) at every node of ``sm.model``.
+    loads : dict of int to float
+        Nodal weight (N) of every OpenSees node, lumped from its elements (a quarter each).
+    """
+    import openseespy.opensees as ops
+
+    state = sm.state
+    topology = state.structure.topology("quads")
+    mesh = topology.mesh(state.vertices)
+    x = mesh.vertices_coords
+    faces = mesh.faces_vertices
+    mat = sm.material
+    t = sm.model.thickness
+    D = mat.bending_stiffness(t)
+    m = int(refine)
+    k = m + 1
+
+    ops.wipe()
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    ops.section("ElasticMembranePlateSection", 1, mat.youngs_modulus, mat.poisson, t, mat.density)
+    ops.uniaxialMaterial("Elastic", 1, RIGID * D)
+    s = np.linspace(0.0, 1.0, k)
+    coords = {}
+    for f, (a, b, c, d) in enumerate(faces):
+        for i, u in enumerate(s):
+            for j, v in enumerate(s):
+                p = (1 - u) * (1 - v) * x[a] + u * (1 - v) * x[b] + u * v * x[c] + (1 - u) * v * x[d]
+                tag = 1 + f * k * k + i * k + j
+                ops.node(tag, *p.tolist())
+                coords[tag] = p
+    element = 1
+    weight = {}
+    g = 9.80665
+    for f in range(len(faces)):
+        for i in range(m):
+            for j in range(m):
+                n = [1 + f * k * k + (i + di) * k + (j + dj) for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1))]
+                ops.element(SHELL, element, *n, 1)
+                element += 1
+                p = np.array([coords[q] for q in n])
+                area = 0.5 * (np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])) + np.linalg.norm(np.cross(p[2] - p[0], p[3] - p[0])))
+                for q in n:
+                    weight[q] = weight.get(q, 0.0) + mat.density * t * area * g / 4
+    # coincident nodes share their translations
+    tags = np.array(sorted(coords))
+    pos = np.array([coords[q] for q in tags])
+    size = float(np.ptp(pos, axis=0).max())
+    key = np.round(pos / (1e-7 * size)).astype(np.int64)
+    _, first, group = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    masters = tags[first][group.ravel()]
+    for q, master in zip(tags, masters):
+        if q != master:
+            ops.equalDOF(int(master), int(q), 1, 2, 3)
+    # crease springs between the panels on either side of every hinged edge
+    sides = {}
+    for f, quad in enumerate(faces):
+        for c in range(4):
+            a, b = int(quad[c]), int(quad[(c + 1) % 4])
+            sides.setdefault((min(a, b), max(a, b)), []).append((f, c))
+    kind_of = {tuple(sorted(e)): kind for e, kind in zip(mesh.edges_vertices.tolist(), mesh.edges_kind.tolist())}
+    material = 2
+    for edge, where in sides.items():
+        if len(where) != 2 or kind_of.get(edge) not in ("fold", "seam"):
+            continue
+        a, b = x[edge[0]], x[edge[1]]
+        length = float(np.linalg.norm(b - a))
+        axis = (b - a) / length
+        (f1, c1), (f2, c2) = where
+        normal = np.cross(x[faces[f1][1]] - x[faces[f1][0]], x[faces[f1][3]] - x[faces[f1][0]])
+        across = np.cross(normal, axis)
+        across /= np.linalg.norm(across)
+        nodes1, nodes2 = _side_nodes(f1, c1, k), _side_nodes(f2, c2, k)
+        for q1 in nodes1:
+            q2 = min(nodes2, key=lambda q: np.linalg.norm(coords[q] - coords[q1]))
+            along = (coords[q1] - a) @ axis / length
+            share = length / m * (0.5 if min(along, 1 - along) < 0.25 / m else 1.0)
+            ops.uniaxialMaterial("Elastic", material, sm.crease_stiffness * share)
+            ops.element("zeroLength", element, int(q1), int(q2), "-mat", material, 1, 1, "-dir", 4, 5, 6,
+                        "-orient", *axis.tolist(), *across.tolist())
+            element += 1
+            material += 1
+    nearest = _nearest(pos, sm.model.nodes)
+    return masters[nearest], {int(q): w for q, w in weight.items()}
+
+
+def _side_nodes(face: int, corner: int, k: int) -> list[int]:
+    """The tags of a face's grid nodes along its side from corner ``corner`` to the next."""
+    ij = {0: [(i, 0) for i in range(k)], 1: [(k - 1, j) for j in range(k)], 2: [(i, k - 1) for i in range(k - 1, -1, -1)],
+          3: [(0, j) for j in range(k - 1, -1, -1)]}[corner]
+    return [1 + face * k * k + i * k + j for i, j in ij]
+
+
+def _nearest(points: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    from scipy.spatial import cKDTree
+
+    return cKDTree(points).query(targets)[1]
+
+
+def static_deflection(sm: StructureModel, refine: int) -> np.ndarray:
+    """Displacements (P, 3) of the model's nodes under self-weight, the feet pinned, m.
+
+    The feet are the end sections on the ground: every shell node on z = 0 is pinned, the
+    edges between the model's feet with them (in the bar-and-hinge model those edges are
+    bars between pinned nodes).
+    """
+    import openseespy.opensees as ops
+
+    at_node, weight = opensees_model(sm, refine)
+    size = sm.model.size
+    for q in ops.getNodeTags():
+        if abs(ops.nodeCoord(q, 3)) <= 1e-9 * size:
+            ops.fix(q, 1, 1, 1, 0, 0, 0)
+    ops.timeSeries("Linear", 1)
+    ops.pattern("Plain", 1, 1)
+    for q, w in weight.items():
+        ops.load(q, 0.0, 0.0, -w, 0.0, 0.0, 0.0)
+    ops.system("UmfPack")
+    ops.numberer("RCM")
+    ops.constraints("Transformation")
+    ops.integrator("LoadControl", 1.0)
+    ops.algorithm("Linear")
+    ops.analysis("Static")
+    if ops.analyze(1) != 0:
+        raise RuntimeError("OpenSees static analysis failed")
+    u = np.array([ops.nodeDisp(int(q))[:3] for q in at_node])
+    ops.wipe()
+    return u
+
+
+def free_eigenvalues(sm: StructureModel, refine: int, count: int, ground: np.ndarray, spring: float) -> np.ndarray:
+    """The lowest ``count`` elastic ω² (rad²/s²) of the free structure.
+
+    The six rigid motions are held by soft springs of stiffness ``spring`` (N/m) at the
+    DOFs ``ground`` ((6, 2): node of the model, axis), so that OpenSees's ARPACK can
+    factorise; they appear as six eigenvalues far below the elastic ones and are dropped.
+    """
+    import openseespy.opensees as ops
+
+    at_node, _ = opensees_model(sm, refine)
+    tag = 10_000_000
+    ops.uniaxialMaterial("Elastic", 9_999_999, spring)
+    for node, axis in ground:
+        q = int(at_node[node])
+        ops.node(tag, *ops.nodeCoord(q))
+        ops.fix(tag, 1, 1, 1, 1, 1, 1)
+        ops.element("zeroLength", tag, tag, q, "-mat", 9_999_999, "-dir", int(axis) + 1)
+        tag += 1
+    ops.constraints("Transformation")
+    ops.numberer("RCM")
+    ops.system("UmfPack")
+    values = np.sort(np.array(ops.eigen("-genBandArpack", count + 6)))
+    ops.wipe()
+    return values[6:]
