@@ -505,9 +505,9 @@ def test_pattern_dxf_passes_the_ezdxf_audit(stack_pattern):
     assert doc.header["$INSUNITS"] == 4
     msp = doc.modelspace()
     assert len(msp.query('LWPOLYLINE[layer=="cut"]')) == 4
-    assert len(msp.query('LWPOLYLINE[layer=="mountain"]')) == 4 and len(msp.query('LWPOLYLINE[layer=="valley"]')) == 0
-    assert len(msp.query('LWPOLYLINE[layer=="rulings"]')) > 0
-    texts = sorted(t.dxf.text for t in msp.query('TEXT[layer=="labels"]'))
+    assert len(msp.query('LWPOLYLINE[layer=="score - mountain"]')) == 4 and len(msp.query('LWPOLYLINE[layer=="score - valley"]')) == 0
+    assert len(msp.query('LWPOLYLINE[layer=="engrave - rulings"]')) > 0
+    texts = sorted(t.dxf.text for t in msp.query('TEXT[layer=="engrave - labels"]'))
     assert [t for t in texts if t.startswith("vault")] == [f"vault · tube {k} · sheet {s}" for k in (1, 2) for s in "AB"]
     assert sorted(t for t in texts if t.startswith("S")) == sorted(["S0", "S1", "S2", "S3"] * 2)  # both partners named
 

@@ -238,8 +238,10 @@ def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
     o, kind = built.design.output, built.design.kind
     page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
+    perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
     return list(write_pattern(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
-                              glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
+                              glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep, cutter=o.cutter,
+                              perforation=perforation, kerf=o.kerf))
 
 
 def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:

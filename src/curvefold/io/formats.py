@@ -32,6 +32,7 @@ from types import MappingProxyType
 
 from ..kernel.errors import InputError
 from ..kernel.validate import Spec
+from .cutters import CUTTERS, DEFAULT_CUTTER
 from .tables import PAGES
 
 __all__ = [
@@ -109,12 +110,12 @@ _S = STRUCTURE_KINDS
 
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", _S,
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per operation, a scale bar and legend", "pattern", _S,
                "curvefold.io.pattern:write_svg", "image/svg+xml"),
     FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _S,
                "curvefold.io.pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", _S,
-               "curvefold.io.pattern:write_pdf", "application/pdf", "matplotlib", "export"),
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _S,
+               "curvefold.io.pattern:write_pdf", "application/pdf"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
                "curvefold.io.fold:write_structure_fold", "application/json"),
     FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", _S,
@@ -215,6 +216,12 @@ OUTPUT_SPECS: tuple[Spec, ...] = (
     Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
     Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns"),
     Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)"),
+    Spec("cutter", "choice", DEFAULT_CUTTER, choices=tuple(CUTTERS),
+         help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)"),
+    Spec("perforation", "real", None, "(0, 100]", "mm",
+         help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)"),
+    Spec("perforation_gap", "real", 1.0, "(0, 100]", "mm", help="gap between the dashes of perforated creases"),
+    Spec("kerf", "real", 0.0, "[0, 5]", "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)"),
 )

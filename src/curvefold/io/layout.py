@@ -205,6 +205,12 @@ class Layout:
     notes : tuple of str
         What the layout had to compromise on (narrowed or dropped glue tabs, labels that
         could not be kept clear of lines, seams whose partners differ in length).
+    cutter : str
+        The colour convention the writers draw it in (a key of :data:`curvefold.io.cutters.CUTTERS`).
+    perforation : (float, float) or None
+        (dash, gap) in mm when the creases are drawn as cut dashes (:mod:`curvefold.io.cutting`).
+    kerf : float
+        The kerf (mm) the cut outlines were moved out for, by half of it; 0 for none.
     """
 
     pages: tuple[Page, ...]
@@ -213,6 +219,9 @@ class Layout:
     scale: float
     notes: tuple[str, ...] = field(default=())
     footer: float = 0.0
+    cutter: str = "print"
+    perforation: tuple[float, float] | None = None
+    kerf: float = 0.0
 
     def sheets(self) -> tuple[PlacedSheet, ...]:
         """All placed sheets, page by page."""
