@@ -608,17 +608,17 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
     # Labels: seam names first (each then becomes an obstacle), then the sheet label.
     obstacle_lines = [(p.points, p.closed) for p in polylines if p.layer in ("cut", "seam", "mountain", "valley")]
     segments = polyline_segments(obstacle_lines)
-    spacing = 0.1 * MIN_LABEL_SIZE
+    obstacles = Obstacles(segments, 0.1 * MIN_LABEL_SIZE)
     labels: list[Label] = []
     for ch in loc.chains:
-        lab, ok = seam_label(ch.points, ch.seam, Obstacles(segments, spacing), 0.8 * label_size)
+        lab, ok = seam_label(ch.points, ch.seam, obstacles, 0.8 * label_size)
         if not ok:
             notes.append(f"sheet {name!r}: seam name {lab.text} could not be kept clear of the lines")
         labels.append(lab)
-        segments = np.concatenate([segments, polyline_segments([(lab.corners(), True)])])
+        obstacles = obstacles.plus(polyline_segments([(lab.corners(), True)]))
     tri = loc.xy[sheet.mesh.triangulated().faces_vertices]
     areas = 0.5 * np.abs(cross2(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]))
-    lab, ok = sheet_label(name, tri.mean(axis=1), areas, Obstacles(segments, spacing), label_size)
+    lab, ok = sheet_label(name, tri.mean(axis=1), areas, obstacles, label_size)
     if not ok:
         notes.append(f"sheet {name!r}: its label could not be kept clear of the lines")
     if name:

@@ -116,8 +116,12 @@ def segments_near_box(segments: np.ndarray, box_of: np.ndarray, tol: float) -> n
     return segments[((segments.max(axis=1) >= lo) & (segments.min(axis=1) <= hi)).all(axis=1)]
 
 
-def inside_loops(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
-    """Even-odd point-in-region test against closed loops given as segments, shape (N,)."""
+def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | None = None) -> np.ndarray:
+    """Even-odd point-in-region test against closed loops given as segments, shape (N,).
+
+    With ``groups`` (S,) of int, the segments form several regions, each tested on its own:
+    a point is inside when it lies inside any of them.
+    """
     if len(points) == 0 or len(segments) == 0:
         return np.zeros(len(points), bool)
     a, b = segments[None, :, 0], segments[None, :, 1]
@@ -126,7 +130,11 @@ def inside_loops(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
     # left of the crossing point, without dividing by the segment's height
     side = (x - a[..., 0]) * (b[..., 1] - a[..., 1]) - (y - a[..., 1]) * (b[..., 0] - a[..., 0])
     left = np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
-    return (np.count_nonzero(straddle & left, axis=1) % 2) == 1
+    crossing = straddle & left
+    if groups is None:
+        return (np.count_nonzero(crossing, axis=1) % 2) == 1
+    counts = np.stack([np.count_nonzero(crossing[:, groups == g], axis=1) for g in np.unique(groups)], axis=1)
+    return ((counts % 2) == 1).any(axis=1)
 
 
 def min_area_rotation(points: np.ndarray) -> float:
