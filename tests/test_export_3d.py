@@ -118,6 +118,24 @@ def test_stl_read_back_by_trimesh(tmp_path, tube):
     assert_allclose(back.triangles, mesh.vertices_coords[mesh.faces_vertices], atol=1e-6, rtol=0)
 
 
+def test_stl_in_millimetres_says_its_unit_in_its_header(tmp_path, tube):
+    """Slicers read STL lengths as millimetres: a model in metres (the model unit's convention) is written ×1000."""
+    trimesh = pytest.importorskip("trimesh")
+    mesh = tube.state(1)
+    write_stl(tmp_path / "mm.stl", mesh, to_unit="mm")
+    write_stl(tmp_path / "model.stl", mesh)
+    header = (tmp_path / "mm.stl").read_bytes()[:80]
+    assert header.rstrip().decode("ascii").endswith(", unit mm, z up") and header.startswith(b"curvefold ")  # never "solid": binary
+    assert b"unit model units (1 model unit = 1 m)" in (tmp_path / "model.stl").read_bytes()[:80]
+    back, model = trimesh.load(tmp_path / "mm.stl"), trimesh.load(tmp_path / "model.stl")
+    assert_allclose(back.triangles, 1000.0 * model.triangles, rtol=1e-6)
+    assert_allclose(back.triangles, 1000.0 * mesh.vertices_coords[mesh.faces_vertices], rtol=1e-6, atol=1e-4)
+    write_stl(tmp_path / "in.stl", mesh, unit="mm", to_unit="in")
+    assert_allclose(trimesh.load(tmp_path / "in.stl").triangles, mesh.vertices_coords[mesh.faces_vertices] / 25.4, rtol=1e-6, atol=1e-7)
+    with pytest.raises(InputError, match="to_unit must be one of"):
+        write_stl(tmp_path / "x.stl", mesh, to_unit="furlong")
+
+
 def test_ply_read_back_by_trimesh(tmp_path, tube):
     trimesh = pytest.importorskip("trimesh")
     mesh = tube.state(2)
@@ -174,6 +192,10 @@ def _to_gltf(coords: np.ndarray, scale: float) -> np.ndarray:
     return np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)
 
 
+def _accessor_of(target, name: str) -> int:
+    return target[name] if isinstance(target, dict) else getattr(target, name)
+
+
 def test_glb_read_back_by_pygltflib(tmp_path, tube):
     pygltflib = pytest.importorskip("pygltflib")
     K = len(tube.angles_deg)
@@ -186,28 +208,38 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     assert extras["scale_to_metres"] == 1e-3 and extras["unit"] == "mm" and extras["up_axis"] == "z"
     assert extras["angles_deg"] == tube.angles_deg.tolist() and extras["metadata"] == {"panels": 4}
 
-    surface, creases = gltf.meshes
-    assert [p.mode for p in surface.primitives] == [4]
-    assert [p.mode for p in creases.primitives] == [1, 1, 1]
-    colours = [gltf.materials[p.material].pbrMetallicRoughness.baseColorFactor for p in creases.primitives]
+    (surface,) = gltf.meshes  # one part without parts=
+    assert [n.name for n in gltf.nodes] == ["surface"] and surface.name == "surface"
+    assert [p.mode for p in surface.primitives] == [4, 1, 1, 1]
+    colours = [gltf.materials[p.material].pbrMetallicRoughness.baseColorFactor for p in surface.primitives[1:]]
     assert colours == [[1, 0, 0, 1], [0, 0, 1, 1], [0, 0, 0, 1]]  # fold red, seam blue, boundary black
-    for prim in surface.primitives + creases.primitives:
-        assert len(prim.targets) == K - 1
-
-    assert surface.extras["targetNames"] == creases.extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[:-1]]
+    assert all(len(prim.targets) == K - 1 for prim in surface.primitives)
+    assert surface.extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[:-1]]
     assert extras["base_state"] == K - 1
 
     want = _to_gltf(tube.coords, 1e-3)
+    faces = tube.crease_pattern.faces_vertices
     prim = surface.primitives[0]
     base = _accessor(gltf, blob, prim.attributes.POSITION)
-    assert_allclose(base, want[-1], atol=1e-6, rtol=0)  # the last state (the design state) is the pose shown
+    triangles = _accessor(gltf, blob, prim.indices).reshape(-1, 3)
+    assert_allclose(base[triangles], want[-1][faces], atol=1e-6, rtol=0)  # the last state (the design state) is the pose shown
     assert_allclose(gltf.accessors[prim.attributes.POSITION].min, base.min(axis=0), rtol=0, atol=0)
     assert_allclose(gltf.accessors[prim.attributes.POSITION].max, base.max(axis=0), rtol=0, atol=0)
-    assert_array_equal(_accessor(gltf, blob, prim.indices).reshape(-1, 3), tube.crease_pattern.faces_vertices)
     for k, target in enumerate(prim.targets):
-        assert_allclose(base + _accessor(gltf, blob, _target_position(target)), want[k], atol=1e-6, rtol=0)
+        assert_allclose((base + _accessor(gltf, blob, _target_position(target)))[triangles], want[k][faces], atol=1e-6, rtol=0)
+    # normals: unit, on the side the triangles face, and split along the folds (a vertex of two strips has two)
+    normal = _accessor(gltf, blob, prim.attributes.NORMAL)
+    assert_allclose(np.linalg.norm(normal, axis=1), 1.0, atol=1e-6)
+    a, b, c = (base[triangles[:, k]] for k in range(3))
+    facing = np.cross(b - a, c - a)
+    facing /= np.linalg.norm(facing, axis=1, keepdims=True)
+    assert (np.einsum("tkj,tj->tk", normal[triangles], facing) > 0.99).all()  # flat panels: the vertex normal is the face normal
+    assert len(base) > len(tube.crease_pattern.vertices_coords)  # fold vertices copied per strip
+    moved_normal = normal + _accessor(gltf, blob, _accessor_of(prim.targets[0], "NORMAL"))
+    flat_facing = np.cross(*(want[0][faces[:, k]] - want[0][faces[:, 0]] for k in (1, 2)))
+    assert (np.einsum("tkj,tj->tk", moved_normal[triangles], flat_facing / np.linalg.norm(flat_facing, axis=1, keepdims=True)) > 0.99).all()
 
-    fold_prim = creases.primitives[0]
+    fold_prim = surface.primitives[1]
     fold_edges = tube.crease_pattern.edges_vertices[tube.crease_pattern.edges_kind == "fold"]
     line_xyz = _accessor(gltf, blob, fold_prim.attributes.POSITION)[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
     assert_allclose(line_xyz, want[-1][fold_edges], atol=1e-6, rtol=0)
@@ -215,14 +247,48 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     assert_allclose(line_xyz + delta, want[0][fold_edges], atol=1e-6, rtol=0)
 
     (anim,) = gltf.animations
-    assert sorted(c.target.node for c in anim.channels) == [0, 1]
-    assert all(c.target.path == "weights" for c in anim.channels)
+    assert [c.target.node for c in anim.channels] == [0] and all(c.target.path == "weights" for c in anim.channels)
     (sampler,) = anim.samplers
     assert sampler.interpolation == "LINEAR"
-    assert_allclose(_accessor(gltf, blob, sampler.input), 0.5 * np.arange(K))
-    weights = _accessor(gltf, blob, sampler.output).reshape(K, K - 1)
-    assert_array_equal(weights[:-1], np.eye(K - 1))  # state k < K - 1 is target k
-    assert_array_equal(weights[-1], 0)  # the animation ends on the base pose
+    assert_allclose(_accessor(gltf, blob, sampler.input), 0.5 * np.arange(2 * K - 1))
+    weights = _accessor(gltf, blob, sampler.output).reshape(2 * K - 1, K - 1)
+    # it starts (and ends) on the design state, unfolds to the flat state (target 0) and folds back
+    assert_array_equal(weights[0], 0) and assert_array_equal(weights[-1], 0)
+    assert_array_equal(weights[1:K], np.eye(K - 1)[::-1])
+    assert_array_equal(weights[K - 1:-1], np.eye(K - 1))
+
+
+def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_path, tube):
+    pygltflib = pytest.importorskip("pygltflib")
+    mesh = tube.crease_pattern
+    F, E = len(mesh.faces_vertices), len(mesh.edges_vertices)
+    half = F // 2
+    parts = [("tube 1 · sheet A", np.arange(half), np.arange(E)), ("tube 1 · sheet B", np.arange(half, F), [])]
+    mode = np.zeros_like(mesh.vertices_coords)
+    mode[:, 2] = 1.0  # one model unit up
+    write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", parts=parts,
+              morph_targets={"mode 1": mode})
+    gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
+    blob = gltf.binary_blob()
+    assert [n.name for n in gltf.nodes] == [m.name for m in gltf.meshes] == ["tube 1 · sheet A", "tube 1 · sheet B"]
+    assert [n.mesh for n in gltf.nodes] == [0, 1] and gltf.scenes[0].nodes == [0, 1]
+    K = len(tube.angles_deg)
+    names = [f"2α = {a:g}°" for a in tube.angles_deg[:-1]] + ["mode 1"]
+    for m in gltf.meshes:
+        assert m.extras["targetNames"] == names and all(len(p.targets) == K for p in m.primitives)
+    assert [len(m.primitives) for m in gltf.meshes] == [4, 1]  # lines only on the part given the edges
+    tri = _accessor(gltf, blob, gltf.meshes[1].primitives[0].indices).reshape(-1, 3)
+    assert len(tri) == F - half
+    up = _accessor(gltf, blob, _target_position(gltf.meshes[1].primitives[0].targets[-1]))
+    assert_allclose(up, np.tile([0.0, 1e-3, 0.0], (len(up), 1)), atol=1e-9)  # model +z is glTF +y, in metres
+    (anim,) = gltf.animations
+    assert sorted(c.target.node for c in anim.channels) == [0, 1]
+    weights = _accessor(gltf, blob, anim.samplers[0].output).reshape(-1, K)
+    assert_array_equal(weights[:, -1], 0)  # the further target is not animated
+    with pytest.raises(InputError, match=r"morph_targets\['bad'\] must be finite displacements of shape"):
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, morph_targets={"bad": mode[:2]})
+    with pytest.raises(InputError, match=r"parts\[0\] must be a name and indices"):
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, parts=[("x", [F], [])])
 
 
 def test_glb_base_state_can_be_any_state(tmp_path, tube):
@@ -230,7 +296,10 @@ def test_glb_base_state_can_be_any_state(tmp_path, tube):
     write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", base_state=0)
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
-    assert_allclose(_accessor(gltf, blob, gltf.meshes[0].primitives[0].attributes.POSITION), _to_gltf(tube.coords, 1e-3)[0], atol=1e-6, rtol=0)
+    prim = gltf.meshes[0].primitives[0]
+    triangles = _accessor(gltf, blob, prim.indices).reshape(-1, 3)
+    base = _accessor(gltf, blob, prim.attributes.POSITION)
+    assert_allclose(base[triangles], _to_gltf(tube.coords, 1e-3)[0][tube.crease_pattern.faces_vertices], atol=1e-6, rtol=0)
     assert gltf.meshes[0].extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[1:]]
     with pytest.raises(InputError, match="base_state"):
         write_glb(tmp_path / "n.glb", tube.crease_pattern, coords=tube.coords, base_state=len(tube.coords))
@@ -243,9 +312,11 @@ def test_glb_single_state_has_no_animation(tmp_path):
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     assert gltf.animations == []
     assert all(p.targets in (None, []) for m in gltf.meshes for p in m.primitives)
-    pos = _accessor(gltf, gltf.binary_blob(), gltf.meshes[0].primitives[0].attributes.POSITION)
-    assert_allclose(pos, motion.coords[2], atol=1e-6, rtol=0)
-    assert [p.mode for p in gltf.meshes[1].primitives] == [1, 1]  # fold and boundary, no seam
+    prim = gltf.meshes[0].primitives[0]
+    blob = gltf.binary_blob()
+    pos = _accessor(gltf, blob, prim.attributes.POSITION)[_accessor(gltf, blob, prim.indices).reshape(-1, 3)]
+    assert_allclose(pos, motion.coords[2][motion.state(2).triangulated().faces_vertices], atol=1e-6, rtol=0)
+    assert [p.mode for p in gltf.meshes[0].primitives] == [4, 1, 1]  # fold and boundary, no seam
 
 
 @pytest.mark.node

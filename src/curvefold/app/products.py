@@ -249,7 +249,7 @@ def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     from ..io.models import write_3d
 
     return list(write_3d(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
-                         metadata=_metadata(built), keep=built.sampling.keep))
+                         metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:

@@ -118,13 +118,13 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
                "curvefold.io.pattern:write_pdf", "application/pdf"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
                "curvefold.io.fold:write_structure_fold", "application/json"),
-    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", _S,
+    FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _S,
                "curvefold.io.models:model_glb", "model/gltf-binary", "pygltflib", "export"),
     FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _S,
                "curvefold.io.models:model_obj", "model/obj"),
     FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _S,
                "curvefold.io.models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
-    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", _S,
+    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _S,
                "curvefold.io.models:model_stl", "model/stl", "trimesh", "export"),
     FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _S,
                "curvefold.io.models:model_ply", "application/octet-stream", "trimesh", "export"),
@@ -210,7 +210,7 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
 
 #: The ``[output]`` parameters of a design.
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale (printed lengths, so not the model unit)"),
+    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)"),
     Spec("scale", "real", None, "(0, inf)", "output units per model unit",
          help="crease-pattern scale (default: fit the largest sheet to the page)"),
     Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
