@@ -440,6 +440,70 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
     assert t.max() == 1
 
 
+def test_3dm_groups_user_text_and_named_views(tmp_path, real_tube):
+    """A group per tube and per sheet with the right members; every object says its tube, sheet,
+    kind and fold angle; three named views that frame the model."""
+    rhino3dm = pytest.importorskip("rhino3dm")
+    mesh, topology, structure = real_tube
+    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", fold_angle=90.0)
+    model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
+    groups = {g.Name: g.Index for g in model.Groups}
+    assert set(groups) == {"tube 1", "tube 1 · sheet A", "tube 1 · sheet B"}
+    members = {name: sorted(o.Attributes.Name for o in model.Groups.GroupMembers(i)) for name, i in groups.items()}
+    assert members["tube 1"] == sorted(o.Attributes.Name for o in model.Objects)  # every object is in its tube
+    assert members["tube 1 · sheet A"] == sorted(["tube 1 · sheet A", "tube 1 · strip 1", "tube 1 · strip 4", "fold 1"])
+    assert members["tube 1 · sheet B"] == sorted(["tube 1 · sheet B", "tube 1 · strip 2", "tube 1 · strip 3", "fold 2"])
+    text = {o.Attributes.Name: dict(o.Attributes.GetUserStrings()) for o in model.Objects}
+    assert text["tube 1 · sheet B"] == {"curvefold:tube": "1", "curvefold:kind": "sheet", "curvefold:sheet": "B", "curvefold:fold_angle_deg": "90"}
+    assert text["seam 1"]["curvefold:kind"] == "seam" and "curvefold:sheet" not in text["seam 1"]  # a seam belongs to both sheets
+    # a crease's fold angle is measured on its edges: 2α at folds, 180° − 2α at seams (the certificate's relation)
+    assert float(text["fold 1"]["curvefold:fold_angle_deg"]) == pytest.approx(90.0, abs=1.0)  # 7 samples along the crease
+    assert float(text["seam 1"]["curvefold:fold_angle_deg"]) == pytest.approx(90.0, abs=1.0)
+    views = {model.NamedViews[i].Name: model.NamedViews[i].Viewport for i in range(len(model.NamedViews))}
+    assert list(views) == ["perspective", "plan", "section"]
+    assert views["perspective"].IsPerspectiveProjection and views["plan"].IsParallelProjection and views["section"].IsParallelProjection
+    assert _xyz(views["plan"].CameraDirection) == pytest.approx([0, 0, -1])
+    assert _xyz(views["section"].CameraDirection)[2] == 0 and _xyz(views["perspective"].CameraDirection)[2] < 0  # level, and from above
+    centre = 0.5 * (mesh.vertices_coords.min(axis=0) + mesh.vertices_coords.max(axis=0))
+    for vp in views.values():  # each looks at the model's centre
+        to_centre = centre - _xyz(vp.CameraLocation)
+        direction = _xyz(vp.CameraDirection)
+        assert np.linalg.norm(np.cross(to_centre, direction)) < 1e-9 * np.linalg.norm(to_centre)
+
+
+def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
+    """The cut outlines of the 3dm's ``crease pattern`` layer, read back in the document's metres, are
+    the layout's in millimetres: the same lengths, and each sheet's outline in its own place."""
+    rhino3dm = pytest.importorskip("rhino3dm")
+    from shapely.geometry import Polygon
+
+    from curvefold.io import write_3d
+    from curvefold.io.cutters import layer_name
+    from curvefold.io.pattern import layout_pattern
+    from curvefold.io.rhino import PATTERN_LAYER
+    from curvefold.vault import Vault
+
+    structure = Vault.from_design(samples=101, tubes=2).structure
+    layout = layout_pattern(structure, name="vault", cutter="laser")
+    (path,) = write_3d(tmp_path / "v", structure, formats=("3dm",), pattern=layout)
+    model = rhino3dm.File3dm.Read(str(path))
+    paths = {layer.Index: layer.FullPath for layer in model.Layers}
+    assert {f"{PATTERN_LAYER}::{layer_name(k)}" for k in ("cut", "mountain", "seam", "glue", "labels")} <= set(paths.values())
+    colour = next(layer.Color for layer in model.Layers if layer.FullPath == f"{PATTERN_LAYER}::cut")
+    assert tuple(colour)[:3] == (255, 0, 0)  # the laser convention's cut colour
+    cut = [o.Geometry for o in model.Objects if paths[o.Attributes.LayerIndex] == f"{PATTERN_LAYER}::cut"]
+    ours = [p.points for s in layout.sheets() for p in s.on_layer("cut")]
+    assert len(cut) == len(ours) == 4
+    theirs = [Polygon([_xyz(c.Point(i))[:2] for i in range(c.PointCount)]) for c in cut]
+    assert all(c.IsClosed for c in cut)
+    lengths = sorted(1000.0 * p.exterior.length for p in theirs)  # metres in the document, millimetres on the page
+    assert lengths == pytest.approx(sorted(Polygon(p).exterior.length for p in ours), rel=1e-9)
+    assert sorted(1e6 * p.area for p in theirs) == pytest.approx(sorted(Polygon(p).area for p in ours), rel=1e-9)
+    model_box = np.array([_xyz(v) for o in model.Objects if isinstance(o.Geometry, rhino3dm.Mesh) for v in o.Geometry.Vertices])
+    first = np.array([_xyz(c.Point(0)) for c in cut])
+    assert (first[:, 0] > model_box[:, 0].max()).all() and (first[:, 2] == 0).all()  # beside the model, on the ground
+
+
 def test_3dm_refuses_a_mesh_of_other_faces(tmp_path, real_tube):
     pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube

@@ -93,6 +93,8 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         out.append((label, partial(write, built, names)))
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
+    if "pattern" in families or "3dm" in formats:
+        built.layout  # laid out once, here, for every job that draws it (forked jobs share it)
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
 
@@ -232,16 +234,10 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
 
 def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The crease patterns, laid out once for every pattern format."""
-    from ..io.pattern import write_pattern
-    from ..io.tables import mm_per_unit
+    """The crease patterns, from the one layout of the design (:attr:`Built.layout`)."""
+    from ..io.pattern import write_layout
 
-    o, kind = built.design.output, built.design.kind
-    page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
-    perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
-    return list(write_pattern(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
-                              glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep, cutter=o.cutter,
-                              perforation=perforation, kerf=o.kerf))
+    return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
 def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
@@ -249,7 +245,8 @@ def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     from ..io.models import write_3d
 
     return list(write_3d(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
-                         metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units))
+                         metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units,
+                         pattern=built.layout if "3dm" in names else None))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:

@@ -21,6 +21,7 @@ from ..geometry.sheets import folding_motion
 from ..geometry.structure import Structure, check_structure
 from ..kernel.arrays import readonly
 from . import gltf, mesh3d, rhino
+from .layout import Layout
 from .formats import FORMATS, check_formats, formats_of
 
 __all__ = ["MODEL_FORMATS", "FoldedModel", "write_3d", "model_glb", "model_obj", "model_stl", "model_ply", "model_3dm"]
@@ -47,6 +48,7 @@ def write_3d(
     keep: Sequence[np.ndarray] | None = None,
     print_unit: str | None = None,
     morph_targets: Mapping[str, np.ndarray] | None = None,
+    pattern: Layout | None = None,
 ) -> tuple[Path, ...]:
     """Write the folded structure as 3D files; the GLB holds the folding motion.
 
@@ -83,6 +85,9 @@ def write_3d(
         Further named morph targets of the GLB (a deformed shape, mode shapes): displacements,
         in model units, of the vertices of ``structure.state(fold_angle).mesh(keep=keep)``
         from that state (see :func:`curvefold.io.gltf.write_glb`).
+    pattern : Layout, optional, keyword-only
+        The crease pattern the 3dm lays beside the model on its ``crease pattern`` layer
+        (:func:`curvefold.io.pattern.layout_pattern`).
 
     Returns
     -------
@@ -97,7 +102,7 @@ def write_3d(
     meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
     state = structure.state(static, anchor=anchor)
     model = FoldedModel(structure, state.mesh(keep=keep), state.mesh(faces="quads", keep=keep), static, readonly(motion), unit,
-                        meta, anchor, seconds_per_state, keep, print_unit, dict(morph_targets or {}))
+                        meta, anchor, seconds_per_state, keep, print_unit, dict(morph_targets or {}), pattern)
     return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
 
 
@@ -130,6 +135,8 @@ class FoldedModel:
         Length unit of the STL; None for the model unit.
     morph_targets : dict of str to (V, 3) ndarray
         Further named morph targets of the GLB, displacements from :attr:`mesh`.
+    pattern : Layout or None
+        The crease pattern of the 3dm's ``crease pattern`` layer.
     """
 
     structure: Structure
@@ -144,6 +151,7 @@ class FoldedModel:
     keep: Sequence[np.ndarray] | None
     print_unit: str | None = None
     morph_targets: Mapping[str, np.ndarray] = field(default_factory=dict)
+    pattern: Layout | None = None
 
     @property
     def static_metadata(self) -> dict:
@@ -181,7 +189,9 @@ def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:
 
 
 def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree)."""
+    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree),
+    grouped by tube and sheet, and the model's crease pattern laid beside it when it has one."""
     structure = model.structure
     return rhino.write_3dm(path, model.quads, structure.topology("quads", keep=model.keep), unit=model.unit,
-                           metadata=model.static_metadata, degree=structure.lattice.crease_degree)
+                           metadata=model.static_metadata, degree=structure.lattice.crease_degree, fold_angle=model.fold_angle,
+                           pattern=model.pattern)

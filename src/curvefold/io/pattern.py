@@ -79,6 +79,7 @@ __all__ = [
     "layout_pattern",
     "svg_page",
     "write_pattern",
+    "write_layout",
     "page_grid",
     "write_dxf",
     "write_pdf",
@@ -414,6 +415,15 @@ def write_pattern(
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,
                             glue_tabs=glue_tabs, name=name, keep=keep, cutter=cutter, perforation=perforation, kerf=kerf)
+    return write_layout(path_stem, layout, formats=formats, rulings=rulings)
+
+
+def write_layout(path_stem: str | os.PathLike, layout: Layout, *, formats: Sequence[str] = PATTERN_FORMATS,
+                 rulings: bool = False) -> tuple[Path, ...]:
+    """Write a crease pattern already laid out (:func:`layout_pattern`) in each of ``formats``, with the
+    writer the registry names for it; arguments and result as in :func:`write_pattern`."""
+    check_layout(layout)
+    formats = check_formats(formats, "pattern")
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
     for name in formats:  # each format's writer, from the registry
