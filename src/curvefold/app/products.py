@@ -93,7 +93,7 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         out.append((label, partial(write, built, names)))
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
-    if "pattern" in families or "3dm" in formats:
+    if families.keys() & {"pattern", "guide"} or "3dm" in formats:
         built.layout  # laid out once, here, for every job that draws it (forked jobs share it)
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
@@ -240,6 +240,12 @@ def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
+def _guide(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """The assembly guide, on the pages of the design's crease pattern (:attr:`Built.layout`)."""
+    f = FORMATS[names[0]]
+    return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
+
+
 def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The 3D files; the GLB holds the folding motion."""
     from ..io.models import write_3d
@@ -261,12 +267,13 @@ def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
 _FAMILY_JOBS = {
     "fold": ("FOLD files", _fold),
     "pattern": ("crease patterns", _pattern),
+    "guide": ("assembly guide", _guide),
     "model": ("3D models", _model),
     "motion": ("folding GIF", _motion),
 }
-#: Jobs by the time they take on the paper's vault (1.75, 1.4, 0.66, 0.43 and 0.18 s), longest
-#: first: started in this order, two processes finish about together.
-_LONGEST_FIRST = ("crease patterns", "pictures", "folding GIF", "3D models", "FOLD files")
+#: Jobs by the time they take on the paper's vault, longest first: started in this order, two
+#: processes finish about together.
+_LONGEST_FIRST = ("pictures", "folding GIF", "3D models", "crease patterns", "assembly guide", "FOLD files")
 
 
 def _figures(built: Built) -> dict[str, Callable]:

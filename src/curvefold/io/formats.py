@@ -77,6 +77,8 @@ class FileFormat:
         Module writing the file needs that curvefold does not require, or None.
     extra : str or None
         The ``pip install 'curvefold[extra]'`` that brings ``dependency``.
+    stem : str or None
+        A file name of its own (``"assembly"``: ``assembly.pdf``), instead of the stem its family is given.
     """
 
     name: str
@@ -88,17 +90,18 @@ class FileFormat:
     media_type: str
     dependency: str | None = None
     extra: str | None = None
+    stem: str | None = None
 
     def path(self, stem: str | os.PathLike) -> Path:
-        """The file of this format for a path stem: ``<stem><extension>``.
+        """The file of this format for a path stem: ``<stem><extension>``, or its own name beside it.
 
         Examples
         --------
-        >>> FORMATS["svg"].path("out/vault-pattern").as_posix()
-        'out/vault-pattern.svg'
+        >>> FORMATS["svg"].path("out/vault-pattern").as_posix(), FORMATS["assembly"].path("out/vault").as_posix()
+        ('out/vault-pattern.svg', 'out/assembly.pdf')
         """
         stem = Path(stem)
-        return stem.with_name(stem.name + self.extension)
+        return stem.with_name((self.stem or stem.name) + self.extension)
 
     def load_writer(self) -> Callable:
         """Import and return the writing function."""
@@ -116,6 +119,9 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
                "curvefold.io.pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
     FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _S,
                "curvefold.io.pattern:write_pdf", "application/pdf"),
+    FileFormat("assembly", ".pdf", "the assembly guide: the sheets to cut, which seam glues to which, the order of folding and "
+               "gluing tube by tube with a picture of each step, on the pattern's pages", "guide", _S,
+               "curvefold.figures.assembly:write_assembly", "application/pdf", stem="assembly"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
                "curvefold.io.fold:write_structure_fold", "application/json"),
     FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _S,
@@ -135,6 +141,7 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
 #: What each family of formats writes, as the subject of a sentence in messages.
 FAMILIES: Mapping[str, str] = MappingProxyType({
     "pattern": "the crease patterns are",
+    "guide": "the assembly guide is",
     "fold": "the FOLD file is",
     "model": "the 3D models are",
     "motion": "the GIF of the folding motion is",

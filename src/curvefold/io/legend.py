@@ -92,15 +92,18 @@ class Footer(FrozenArrays):
     colour: str
 
 
-def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None = None) -> Footer:
+def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None = None, *, page_text: str | None = None) -> Footer:
     """The footer of a page: a 10 mm scale bar with the print scale, and the legend of the ``layers`` it draws.
 
     It lies in the band of :attr:`Layout.footer` above the bottom margin, so it prints
     wherever the sheets do. Text starts where its box is estimated (:func:`text_width`).
+    ``page_text`` replaces the page number of a crease-pattern page (``"page 2 of 10"``),
+    for other pages drawn at the layout's size (the assembly guide).
     """
     page = layout.pages[page_index]
     drawn = set(check_layers(layers))
     names = [name for name in LEGEND if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))]
+    page_text = f"page {page_index + 1} of {len(layout.pages)}" if page_text is None else page_text
     W, _ = layout.page_size
     m, size = layout.margin, _FOOTER_TEXT
     top = m + max(layout.footer, 3 * size) - 0.5 * size  # centre line of the first row
@@ -109,8 +112,7 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
         return Label(words, (x + 0.5 * text_width(words, size), y), 0.0, size, "legend")
 
     bar = np.array([[m, top - 0.6], [m + 10.0, top - 0.6], [m + 10.0, top + 0.6], [m, top + 0.6]])
-    note = (f"10 mm: print at 100 % · 1 model unit = {layout.scale:.4g} mm · "
-            f"page {page_index + 1} of {len(layout.pages)} · curvefold")
+    note = f"10 mm: print at 100 % · 1 model unit = {layout.scale:.4g} mm · {page_text} · curvefold"
     texts = [text(note, m + 12.0, top)]
     samples = []
     x, y = m, top - 1.8 * size

@@ -125,6 +125,17 @@ class PdfPage:
         self._parts += [_path(np.asarray(p, float), True) for p in polygons]
         self._parts.append("f Q\n")
 
+    def paint(self, paths: Sequence[np.ndarray], fills: Sequence[str | None], strokes: Sequence[str], widths: Sequence[float], *,
+              layer: str | None = None) -> None:
+        """Paths (each (n, 2), mm) one after the other, each with its own fill (None: an open
+        line, stroked only), stroke colour and width in mm, in the order given (a painter's order)."""
+        self._on(layer)
+        self._parts.append("q 0 J\n")
+        for path, fill, stroke, width in zip(paths, fills, strokes, widths):
+            paint = f"{_colour(stroke)} RG {_num(width)} w " + (f"{_colour(fill)} rg " if fill is not None else "")
+            self._parts.append(paint + _path(np.asarray(path, float), fill is not None) + ("B\n" if fill is not None else "S\n"))
+        self._parts.append("Q\n")
+
     def text(self, text: str, x: float, y: float, size: float, colour: str, *, angle: float = 0.0, anchor: str = "center",
              layer: str | None = None) -> None:
         """One line of Helvetica of em height ``size`` mm, its baseline through (x, y) turned by ``angle`` degrees.
