@@ -118,13 +118,43 @@ def test_dxf_polylines_generate_their_linetype_across_vertices_and_the_header_ho
     polylines = msp.query("LWPOLYLINE")
     assert len(polylines) > 10 and all(p.dxf.flags & LWPOLYLINE_PLINEGEN for p in polylines)
     assert doc.header["$PLINEGEN"] == 1
-    # a mountain crease's segments are shorter than its 4 mm dash: only generation across vertices shows the dashes
-    mountain = msp.query(f'LWPOLYLINE[layer=="{layer_name("mountain")}"]')[0]
-    xy = np.array(mountain.get_points("xy"))
-    assert np.linalg.norm(np.diff(xy, axis=0), axis=1).max() < 4.0
     extents = bbox.extents(msp)
     assert doc.header["$EXTMIN"][:2] == (0.0, 0.0) and doc.header["$EXTMAX"][:2] == tube_layout.page_size
     assert tuple(extents.extmin)[:2] == pytest.approx((0.0, 0.0)) and tuple(extents.extmax)[:2] == pytest.approx(tube_layout.page_size)
+
+
+def test_dashed_creases_are_long_arcs_through_their_points(tmp_path):
+    """LibreCAD restarts a dash pattern at every vertex whatever the flag: a crease of 2 mm chords
+    drew solid there. Written as arcs (bulges), each dash pattern has room; ezdxf's own flattening
+    of the arcs passes within the tolerance of every point of the crease."""
+    ezdxf = pytest.importorskip("ezdxf")
+    from ezdxf import path
+
+    from _sheets import vault_sheets
+    from curvefold.io.dxf import ARC_TOLERANCE
+    from curvefold.io.planar import distance_to_segments, polyline_segments
+
+    layout = layout_sheets(vault_sheets(3), page="A4")
+    doc = ezdxf.readfile(write_dxf(tmp_path / "v.dxf", layout))
+    msp = doc.modelspace()
+    for key in ("mountain", "valley", "seam"):
+        ours = [p.points for page in layout.pages for p in page.on_layer(key)]
+        if not ours:
+            continue
+        theirs = msp.query(f'LWPOLYLINE[layer=="{layer_name(key)}"]')
+        assert len(theirs) == len(ours)
+        pattern = sum(doc.linetypes.get(doc.layers.get(layer_name(key)).dxf.linetype).simplified_line_pattern())
+        for points, entity in zip(sorted(ours, key=lambda p: tuple(p[0])), sorted(theirs, key=lambda e: tuple(e.get_points("xy")[0]))):
+            assert len(entity) < len(points)  # fewer vertices than the chords
+            flat = np.array([(v.x, v.y) for v in path.make_path(entity).flattening(1e-5)])  # ezdxf reads the bulges as arcs
+            gap = distance_to_segments(points, polyline_segments([(flat, False)]))
+            assert gap.max() <= ARC_TOLERANCE + 1e-5
+            vertices = np.array([v[:2] for v in entity.vertices()])
+            along = np.linalg.norm(np.diff(flat, axis=0), axis=1).sum()
+            assert along / (len(vertices) - 1) > pattern  # arcs longer than a dash pattern, on average
+    # the check can fail: the crease written as its chords lies within the tolerance but has no room for a pattern
+    chords = np.linalg.norm(np.diff(layout.pages[0].on_layer("mountain")[0].points, axis=0), axis=1)
+    assert chords.mean() < 4.0
 
 
 # --------------------------------------------------------------------------------------

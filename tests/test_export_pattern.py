@@ -585,12 +585,12 @@ def test_dxf_reads_back_with_layers_linetypes_units_and_entities(tmp_path, vault
     assert {layer_name(k) for k in DEFAULT_LAYERS} <= set(by_name) and "engrave - rulings" not in by_name
     layers = {k: by_name[layer_name(k)] for k in DEFAULT_LAYERS}
     assert layers["cut"].dxf.linetype.upper() == "CONTINUOUS"
-    assert layers["mountain"].dxf.linetype == "DASHDOT"
-    assert layers["valley"].dxf.linetype == "DASHED"
-    assert layers["seam"].dxf.linetype == "DOT"
+    assert layers["mountain"].dxf.linetype == "DASHDOTTINY"  # LibreCAD's small built-in patterns by name, ours inside
+    assert layers["valley"].dxf.linetype == "DASHEDTINY"
+    assert layers["seam"].dxf.linetype == "DOTTINY"
     assert (layers["cut"].color, layers["mountain"].color, layers["valley"].color) == (7, 1, 5)
-    assert doc.linetypes.get("DASHED").simplified_line_pattern() == pytest.approx((3.0, 1.5))  # mm
-    assert doc.linetypes.get("DASHDOT").simplified_line_pattern() == pytest.approx((4.0, 1.2, 0.7, 1.2))
+    assert doc.linetypes.get("DASHEDTINY").simplified_line_pattern() == pytest.approx((3.0, 1.5))  # mm
+    assert doc.linetypes.get("DASHDOTTINY").simplified_line_pattern() == pytest.approx((4.0, 1.2, 0.7, 1.2))
     msp = doc.modelspace()
     sheets = vault_layout.sheets()
 

@@ -96,13 +96,15 @@ class LayerStyle:
 
 
 #: The look of every layer (and of the legend's text), colour aside. Perforated creases are
-#: solid: their dashes are geometry.
+#: solid: their dashes are geometry. The DXF linetypes carry these patterns under the names of
+#: LibreCAD's small built-in ones, which LibreCAD draws in their place (it reads no pattern
+#: from a file), so that they come out dashed there at about the same size.
 STYLES: Mapping[str, LayerStyle] = MappingProxyType({
     "glue": LayerStyle(fill=True),
     "rulings": LayerStyle(width=0.5),
-    "seam": LayerStyle("DOT", (0.8, 0.8)),
-    "valley": LayerStyle("DASHED", (3.0, 1.5)),
-    "mountain": LayerStyle("DASHDOT", (4.0, 1.2, 0.7, 1.2)),
+    "seam": LayerStyle("DOTTINY", (0.8, 0.8)),
+    "valley": LayerStyle("DASHEDTINY", (3.0, 1.5)),
+    "mountain": LayerStyle("DASHDOTTINY", (4.0, 1.2, 0.7, 1.2)),
     "cut": LayerStyle(),
     "labels": LayerStyle(),
     "legend": LayerStyle(),

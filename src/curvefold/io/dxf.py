@@ -5,8 +5,12 @@ Every layer of the layout is a DXF layer named by its operation
 (true colour, and the nearest AutoCAD colour index for readers that ignore true colour),
 its linetype (patterns in mm) and lineweight. Lines are ``LWPOLYLINE`` entities with the
 linetype-generation flag set, so a dash pattern runs on across their vertices (CAD programs
-otherwise restart it at every vertex, and segments shorter than a dash then draw solid);
-glue areas are solid ``HATCH`` entities; labels ``TEXT`` (height = cap height, centred).
+otherwise restart it at every vertex, and segments shorter than a dash then draw solid).
+Readers that restart it all the same (LibreCAD 2.2 does, flag or not) still show the dashes:
+a dashed crease is written as circular arcs (bulges) through its points, each as long as the
+crease's curvature allows within :data:`ARC_TOLERANCE` (:func:`~curvefold.io.planar.fit_arcs`),
+rather than as its chords of a couple of millimetres. Glue areas are solid ``HATCH``
+entities; labels ``TEXT`` (height = cap height, centred).
 Pages lie in a grid (:func:`page_grid`), each framed on layer ``pages``, with its footer on
 the legend layer; neither layer plots. ``$EXTMIN``/``$EXTMAX`` hold every page, set in the
 header of every file, and the initial view shows them all.
@@ -27,6 +31,7 @@ from .atomic import atomic_path
 from .cutters import LEGEND_LAYER, aci
 from .layout import Layout
 from .legend import check_layers, check_layout, layer_look, page_footer
+from .planar import fit_arcs
 from .tables import rgb8
 
 __all__ = ["page_grid", "write_dxf"]
@@ -35,6 +40,8 @@ __all__ = ["page_grid", "write_dxf"]
 _CAP_HEIGHT = 0.72
 #: Layer of the page frames.
 PAGES_LAYER = "pages"
+#: Largest distance (mm) of a dashed crease's points from the arcs it is written as.
+ARC_TOLERANCE = 0.005
 
 
 def page_grid(count: int, size: tuple[float, float], spacing: float) -> np.ndarray:
@@ -100,7 +107,12 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
         entity = msp.add_text(words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer})
         entity.set_placement(tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER)
 
-    def line(points: np.ndarray, layer: str, closed: bool = False) -> None:
+    def line(points: np.ndarray, layer: str, closed: bool = False, arcs: bool = False) -> None:
+        if arcs and not closed and len(points) > 2:
+            keep, bulge = fit_arcs(points, ARC_TOLERANCE)
+            rows = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(points[keep].tolist(), bulge.tolist())]
+            msp.add_lwpolyline(rows, format="xyseb", dxfattribs={"layer": layer, "flags": LWPOLYLINE_PLINEGEN})
+            return
         msp.add_lwpolyline(points.tolist(), close=closed, dxfattribs={"layer": layer, "flags": LWPOLYLINE_PLINEGEN})
 
     W, H = layout.page_size
@@ -118,7 +130,7 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
                 if st.fill and p.closed:
                     msp.add_hatch(color=256, dxfattribs={"layer": layer}).paths.add_polyline_path((p.points + shift).tolist(), is_closed=True)
                 else:
-                    line(p.points + shift, layer, p.closed)
+                    line(p.points + shift, layer, p.closed, arcs=bool(st.dashes))
         footer = page_footer(layout, i, names)
         msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path((footer.bar + shift).tolist(), is_closed=True)
         for key, points in footer.samples:
