@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
+from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
 from curvefold.geometry.mesh import Mesh
@@ -173,25 +174,6 @@ def test_mesh_writers_reject_non_finite(tmp_path, tube):
 # --- GLB ---------------------------------------------------------------------------------------------
 
 
-def _accessor(gltf, blob: bytes, index: int) -> np.ndarray:
-    acc = gltf.accessors[index]
-    view = gltf.bufferViews[acc.bufferView]
-    dtype = {5126: np.float32, 5125: np.uint32}[acc.componentType]
-    width = {"SCALAR": 1, "VEC3": 3}[acc.type]
-    start = (view.byteOffset or 0) + (acc.byteOffset or 0)
-    data = np.frombuffer(blob, dtype=dtype, count=acc.count * width, offset=start)
-    return data.reshape(acc.count, width) if width > 1 else data
-
-
-def _target_position(target) -> int:
-    return target["POSITION"] if isinstance(target, dict) else target.POSITION  # pygltflib reads targets as dicts
-
-
-def _to_gltf(coords: np.ndarray, scale: float) -> np.ndarray:
-    x = np.asarray(coords) * scale
-    return np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)
-
-
 def _accessor_of(target, name: str) -> int:
     return target[name] if isinstance(target, dict) else getattr(target, name)
 
@@ -217,41 +199,41 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     assert surface.extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[:-1]]
     assert extras["base_state"] == K - 1
 
-    want = _to_gltf(tube.coords, 1e-3)
+    want = to_gltf(tube.coords, 1e-3)
     faces = tube.crease_pattern.faces_vertices
     prim = surface.primitives[0]
-    base = _accessor(gltf, blob, prim.attributes.POSITION)
-    triangles = _accessor(gltf, blob, prim.indices).reshape(-1, 3)
+    base = accessor(gltf, blob, prim.attributes.POSITION)
+    triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
     assert_allclose(base[triangles], want[-1][faces], atol=1e-6, rtol=0)  # the last state (the design state) is the pose shown
     assert_allclose(gltf.accessors[prim.attributes.POSITION].min, base.min(axis=0), rtol=0, atol=0)
     assert_allclose(gltf.accessors[prim.attributes.POSITION].max, base.max(axis=0), rtol=0, atol=0)
     for k, target in enumerate(prim.targets):
-        assert_allclose((base + _accessor(gltf, blob, _target_position(target)))[triangles], want[k][faces], atol=1e-6, rtol=0)
+        assert_allclose((base + accessor(gltf, blob, target_position(target)))[triangles], want[k][faces], atol=1e-6, rtol=0)
     # normals: unit, on the side the triangles face, and split along the folds (a vertex of two strips has two)
-    normal = _accessor(gltf, blob, prim.attributes.NORMAL)
+    normal = accessor(gltf, blob, prim.attributes.NORMAL)
     assert_allclose(np.linalg.norm(normal, axis=1), 1.0, atol=1e-6)
     a, b, c = (base[triangles[:, k]] for k in range(3))
     facing = np.cross(b - a, c - a)
     facing /= np.linalg.norm(facing, axis=1, keepdims=True)
     assert (np.einsum("tkj,tj->tk", normal[triangles], facing) > 0.99).all()  # flat panels: the vertex normal is the face normal
     assert len(base) > len(tube.crease_pattern.vertices_coords)  # fold vertices copied per strip
-    moved_normal = normal + _accessor(gltf, blob, _accessor_of(prim.targets[0], "NORMAL"))
+    moved_normal = normal + accessor(gltf, blob, _accessor_of(prim.targets[0], "NORMAL"))
     flat_facing = np.cross(*(want[0][faces[:, k]] - want[0][faces[:, 0]] for k in (1, 2)))
     assert (np.einsum("tkj,tj->tk", moved_normal[triangles], flat_facing / np.linalg.norm(flat_facing, axis=1, keepdims=True)) > 0.99).all()
 
     fold_prim = surface.primitives[1]
     fold_edges = tube.crease_pattern.edges_vertices[tube.crease_pattern.edges_kind == "fold"]
-    line_xyz = _accessor(gltf, blob, fold_prim.attributes.POSITION)[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
+    line_xyz = accessor(gltf, blob, fold_prim.attributes.POSITION)[accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
     assert_allclose(line_xyz, want[-1][fold_edges], atol=1e-6, rtol=0)
-    delta = _accessor(gltf, blob, _target_position(fold_prim.targets[0]))[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
+    delta = accessor(gltf, blob, target_position(fold_prim.targets[0]))[accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
     assert_allclose(line_xyz + delta, want[0][fold_edges], atol=1e-6, rtol=0)
 
     (anim,) = gltf.animations
     assert [c.target.node for c in anim.channels] == [0] and all(c.target.path == "weights" for c in anim.channels)
     (sampler,) = anim.samplers
     assert sampler.interpolation == "LINEAR"
-    assert_allclose(_accessor(gltf, blob, sampler.input), 0.5 * np.arange(2 * K - 1))
-    weights = _accessor(gltf, blob, sampler.output).reshape(2 * K - 1, K - 1)
+    assert_allclose(accessor(gltf, blob, sampler.input), 0.5 * np.arange(2 * K - 1))
+    weights = accessor(gltf, blob, sampler.output).reshape(2 * K - 1, K - 1)
     # it starts (and ends) on the design state, unfolds to the flat state (target 0) and folds back
     assert_array_equal(weights[0], 0) and assert_array_equal(weights[-1], 0)
     assert_array_equal(weights[1:K], np.eye(K - 1)[::-1])
@@ -277,13 +259,13 @@ def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_pa
     for m in gltf.meshes:
         assert m.extras["targetNames"] == names and all(len(p.targets) == K for p in m.primitives)
     assert [len(m.primitives) for m in gltf.meshes] == [4, 1]  # lines only on the part given the edges
-    tri = _accessor(gltf, blob, gltf.meshes[1].primitives[0].indices).reshape(-1, 3)
+    tri = accessor(gltf, blob, gltf.meshes[1].primitives[0].indices).reshape(-1, 3)
     assert len(tri) == F - half
-    up = _accessor(gltf, blob, _target_position(gltf.meshes[1].primitives[0].targets[-1]))
+    up = accessor(gltf, blob, target_position(gltf.meshes[1].primitives[0].targets[-1]))
     assert_allclose(up, np.tile([0.0, 1e-3, 0.0], (len(up), 1)), atol=1e-9)  # model +z is glTF +y, in metres
     (anim,) = gltf.animations
     assert sorted(c.target.node for c in anim.channels) == [0, 1]
-    weights = _accessor(gltf, blob, anim.samplers[0].output).reshape(-1, K)
+    weights = accessor(gltf, blob, anim.samplers[0].output).reshape(-1, K)
     assert_array_equal(weights[:, -1], 0)  # the further target is not animated
     with pytest.raises(InputError, match=r"morph_targets\['bad'\] must be finite displacements of shape"):
         write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, morph_targets={"bad": mode[:2]})
@@ -297,9 +279,9 @@ def test_glb_base_state_can_be_any_state(tmp_path, tube):
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
     prim = gltf.meshes[0].primitives[0]
-    triangles = _accessor(gltf, blob, prim.indices).reshape(-1, 3)
-    base = _accessor(gltf, blob, prim.attributes.POSITION)
-    assert_allclose(base[triangles], _to_gltf(tube.coords, 1e-3)[0][tube.crease_pattern.faces_vertices], atol=1e-6, rtol=0)
+    triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
+    base = accessor(gltf, blob, prim.attributes.POSITION)
+    assert_allclose(base[triangles], to_gltf(tube.coords, 1e-3)[0][tube.crease_pattern.faces_vertices], atol=1e-6, rtol=0)
     assert gltf.meshes[0].extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[1:]]
     with pytest.raises(InputError, match="base_state"):
         write_glb(tmp_path / "n.glb", tube.crease_pattern, coords=tube.coords, base_state=len(tube.coords))
@@ -314,7 +296,7 @@ def test_glb_single_state_has_no_animation(tmp_path):
     assert all(p.targets in (None, []) for m in gltf.meshes for p in m.primitives)
     prim = gltf.meshes[0].primitives[0]
     blob = gltf.binary_blob()
-    pos = _accessor(gltf, blob, prim.attributes.POSITION)[_accessor(gltf, blob, prim.indices).reshape(-1, 3)]
+    pos = accessor(gltf, blob, prim.attributes.POSITION)[accessor(gltf, blob, prim.indices).reshape(-1, 3)]
     assert_allclose(pos, motion.coords[2][motion.state(2).triangulated().faces_vertices], atol=1e-6, rtol=0)
     assert [p.mode for p in gltf.meshes[0].primitives] == [4, 1, 1]  # fold and boundary, no seam
 

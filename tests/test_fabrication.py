@@ -575,24 +575,24 @@ def test_glb_first_keyframe_is_the_design_state_of_every_sheet(tmp_path, stack):
     """What an importer that applies the first keyframe shows (Blender): each sheet's node, at the
     weights of the animation's first keyframe, is the design state; a later keyframe is the flat state."""
     pygltflib = pytest.importorskip("pygltflib")
-    from test_export_3d import _accessor, _target_position
+    from _gltf import accessor, target_position
 
     angles = [0.0, 30.0, 60.0, 90.0]
     (path,) = write_3d(tmp_path / "stack", stack, angles, formats=("glb",))
     gltf = pygltflib.GLTF2.load(str(path))
     blob = gltf.binary_blob()
     (anim,) = gltf.animations
-    times = _accessor(gltf, blob, anim.samplers[0].input)
-    weights = _accessor(gltf, blob, anim.samplers[0].output).reshape(len(times), -1)
+    times = accessor(gltf, blob, anim.samplers[0].input)
+    weights = accessor(gltf, blob, anim.samplers[0].output).reshape(len(times), -1)
     to_gltf = lambda x: np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)  # noqa: E731
     faces = stack.state().mesh().faces_vertices
     for key, angle in ((0, 90.0), (3, 0.0)):  # the first keyframe, and the flat state three steps on
         want = to_gltf(stack.state(angle).mesh().vertices_coords)
         for sheet, node in zip(stack.topology().sheets, gltf.nodes):
             prim = gltf.meshes[node.mesh].primitives[0]
-            pose = _accessor(gltf, blob, prim.attributes.POSITION) + sum(
-                w * _accessor(gltf, blob, _target_position(t)) for w, t in zip(weights[key], prim.targets))
-            triangles = _accessor(gltf, blob, prim.indices).reshape(-1, 3)
+            pose = accessor(gltf, blob, prim.attributes.POSITION) + sum(
+                w * accessor(gltf, blob, target_position(t)) for w, t in zip(weights[key], prim.targets))
+            triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
             assert_allclose(pose[triangles], want[faces[sheet.faces]], atol=1e-6, rtol=0)
     assert times[0] == 0.0 and not weights[0].any()
 

@@ -271,9 +271,10 @@ _FAMILY_JOBS = {
     "model": ("3D models", _model),
     "motion": ("folding GIF", _motion),
 }
-#: Jobs by the time they take on the paper's vault, longest first: started in this order, two
-#: processes finish about together.
-_LONGEST_FIRST = ("pictures", "folding GIF", "3D models", "crease patterns", "assembly guide", "FOLD files")
+#: Jobs by the time they take on the paper's vault (1.71, 0.75, 0.70, 0.35, 0.34 and 0.25 CPU-s,
+#: the crease pattern laid out before), longest first: started in this order, two processes
+#: finish about together.
+_LONGEST_FIRST = ("pictures", "3D models", "folding GIF", "assembly guide", "crease patterns", "FOLD files")
 
 
 def _figures(built: Built) -> dict[str, Callable]:

@@ -30,7 +30,8 @@ from ..geometry.topology import tube_strips
 from ..io.cutters import LEGEND_LAYER
 from ..io.labels import seam_name
 from ..io.layout import Layout
-from ..io.legend import check_layout, page_footer
+from ..io.legend import check_layout
+from ..io.pattern import draw_footer
 from ..io.pdf import PdfDocument, PdfPage, text_advance
 from ..io.tables import COLOURS
 from .scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, _hex, ground_polygon, render_strips
@@ -175,10 +176,7 @@ class _Pages:
 
     def footers(self) -> None:
         for n, page in enumerate(self.pages, start=1):
-            foot = page_footer(self.layout, 0, (), page_text=f"assembly guide, page {n} of {len(self.pages)}")
-            page.fill([foot.bar], foot.colour, layer=LEGEND_LAYER)
-            for t in foot.texts:
-                page.text(t.text, t.position[0], t.position[1] - 0.35 * t.size, t.size, foot.colour, layer=LEGEND_LAYER)
+            draw_footer(page, self.layout, 0, (), 0.25, page_text=f"assembly guide, page {n} of {len(self.pages)}")
 
 
 def _facing_the_last(V: np.ndarray, cells: np.ndarray) -> View:

@@ -6,18 +6,18 @@ alone. The crease-pattern writers (SVG, DXF, PDF) therefore put every kind of li
 layer named by its operation and the fold it makes (:func:`layer_name`), and draw it in the
 colour the chosen convention (a :class:`Cutter` of :data:`CUTTERS`) gives that layer:
 
-========================  =================================  ==================================
-layout layer              file layer                         operation
-========================  =================================  ==================================
-``cut``                   ``cut``                            cut through: each sheet's outline
-``mountain``, ``valley``  ``score - mountain``, ``… valley``  score and fold (perforated: cut dashes,
-                                                             ``perforate - mountain``, ``… valley``)
-``seam``                  ``score - seam``                   score: the fold line of each glue tab
-``rulings``               ``engrave - rulings``              engrave (optional guide lines)
-``labels``                ``engrave - labels``               engrave: sheet names and seam names
-``glue``                  ``reference - glue (not cut)``     nothing: where the glue goes
-(footer)                  ``reference - legend (not cut)``   nothing: scale bar, scale, legend
-========================  =================================  ==================================
+========================  ========================================  =====================================
+layout layer              file layer                                operation
+========================  ========================================  =====================================
+``cut``                   ``cut``                                   cut through: each sheet's outline
+``mountain``, ``valley``  ``score - mountain``, ``- valley``        score and fold
+(perforated)              ``perforate - mountain``, ``- valley``    cut dashes (:mod:`curvefold.io.cutting`)
+``seam``                  ``score - seam``                          score: the fold line of each glue tab
+``rulings``               ``engrave - rulings``                     engrave (optional guide lines)
+``labels``                ``engrave - labels``                      engrave: sheet names and seam names
+``glue``                  ``reference - glue (not cut)``            nothing: where the glue goes
+(footer)                  ``reference - legend (not cut)``          nothing: scale bar, scale, legend
+========================  ========================================  =====================================
 
 Nothing that is not to be cut is drawn in the cut colour: the scale bar, the legend's
 sample lines and its text are in the convention's reference colour, with each sample in
@@ -154,8 +154,8 @@ CUTTERS: Mapping[str, Cutter] = MappingProxyType({c.name: c for c in (
     Cutter("print", "printing on paper, folding and cutting by hand: folds red and blue, as in the 3D files",
            _palette(COLOURS["boundary"], COLOURS["fold"], COLOURS["valley"], COLOURS["tab"], COLOURS["ruling"], COLOURS["label"],
                     COLOURS["glue"], "#808080")),
-    Cutter("laser", "laser software that gives each colour its own layer and operation (LightBurn, xTool, Glowforge; "
-           "Epilog's and Universal's colour mapping): one of the six basic colours, or black, per layer",
+    Cutter("laser", "laser software that gives each colour its own layer and operation (LightBurn; Epilog's colour mapping): "
+           "one of the six basic colours, or black, per layer",
            _palette("#ff0000", "#0000ff", "#00ff00", "#00ffff", "#ff00ff", "#000000", "#ffff00", "#ffff00"),
            "LightBurn documentation, 'Colors and Layers': each colour is a layer, each layer one operation, run in "
            "layer order; Epilog Laser, Zing manual, section 'Color Mapping': use the six basic colours red, green, blue, "

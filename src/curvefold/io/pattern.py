@@ -84,6 +84,7 @@ __all__ = [
     "write_dxf",
     "write_pdf",
     "write_svg",
+    "draw_footer",
 ]
 
 
@@ -208,9 +209,9 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
 # PDF
 
 
-def draw_footer(canvas, layout: Layout, page_index: int, names: Sequence[str], lw: float) -> None:
+def draw_footer(canvas, layout: Layout, page_index: int, names: Sequence[str], lw: float, *, page_text: str | None = None) -> None:
     """Draw a page's footer (:func:`page_footer`) on a :class:`~curvefold.io.pdf.PdfPage`, on the legend layer."""
-    foot = page_footer(layout, page_index, names)
+    foot = page_footer(layout, page_index, names, page_text=page_text)
     canvas.fill([foot.bar], foot.colour, layer=LEGEND_LAYER)
     for key, points in foot.samples:
         st = layer_look(layout, key)[2]

@@ -95,7 +95,6 @@ class PdfPage:
         self._doc = document
         self._parts: list[str | bytes] = [f"{_num(_PT_PER_MM)} 0 0 {_num(_PT_PER_MM)} 0 0 cm\n1 J 1 j\n"]
         self._layer: str | None = None
-        self.used: set[str] = set()
 
     def _on(self, layer: str | None) -> None:
         """Start drawing on ``layer`` (ending the one before)."""
@@ -105,7 +104,6 @@ class PdfPage:
             self._parts.append("EMC\n")
         if layer is not None:
             self._parts.append(f"/OC /{self._doc.layer_tag(layer)} BDC\n")
-            self.used.add(layer)
         self._layer = layer
 
     def stroke(self, polylines: Sequence[np.ndarray], colour: str, width: float, *, dashes: Sequence[float] = (),
