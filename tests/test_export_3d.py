@@ -486,6 +486,21 @@ def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
     assert (first[:, 0] > model_box[:, 0].max()).all() and (first[:, 2] == 0).all()  # beside the model, on the ground
 
 
+def test_glb_parts_of_a_polygon_mesh_hold_their_polygons_triangles(tmp_path, real_tube):
+    """Parts name the mesh's own faces; on a quad mesh each part gets both triangles of each of its quads."""
+    pygltflib = pytest.importorskip("pygltflib")
+    mesh, topology, _ = real_tube
+    write_glb(tmp_path / "q.glb", mesh, unit="m", parts=[(s.label, s.faces, s.edges) for s in topology.sheets])
+    gltf = pygltflib.GLTF2.load(str(tmp_path / "q.glb"))
+    blob = gltf.binary_blob()
+    for sheet, m in zip(topology.sheets, gltf.meshes):
+        prim = m.primitives[0]
+        corners = accessor(gltf, blob, prim.attributes.POSITION)[accessor(gltf, blob, prim.indices).reshape(-1, 3)]
+        quads = mesh.vertices_coords[mesh.faces_vertices[sheet.faces]]  # (q, 4, 3), fans (0, 1, 2) and (0, 2, 3)
+        want = np.stack([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]], axis=1).reshape(-1, 3, 3)
+        assert_allclose(corners, to_gltf(want, 1.0), atol=1e-6, rtol=0)
+
+
 def test_3dm_refuses_a_mesh_of_other_faces(tmp_path, real_tube):
     pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube

@@ -167,7 +167,7 @@ def write_glb(
     crease_kinds : sequence of str
         Kinds drawn as coloured lines (keys of :data:`CREASE_COLOURS`).
     parts : sequence of (str, (F_p,) array_like of int, (E_p,) array_like of int), optional
-        The nodes: a name, the faces (of the triangulated mesh) and the edges of each (a structure's sheets:
+        The nodes: a name, the faces and the edges of the mesh on each (a structure's sheets:
         :attr:`SheetTopology.faces <curvefold.geometry.topology.SheetTopology>` and ``edges``).
         Default: one node ``"surface"`` with every face and edge.
     morph_targets : mapping of str to (V, 3) array_like, optional
@@ -220,9 +220,10 @@ def write_glb(
     if bad:
         raise InputError(f"crease_kinds must be among {tuple(CREASE_COLOURS)}, got {bad}")
     meta = check_metadata(metadata)
-    triangulated = mesh.triangulated()
+    triangulated = mesh.triangulated()  # polygons split in place, in face order
     faces, groups = triangulated.faces_vertices, np.asarray(triangulated.faces_group)
-    parts = _check_parts(parts, len(faces), len(mesh.edges_vertices))
+    polygon_of = np.repeat(np.arange(len(mesh.faces_vertices)), mesh.face_sizes() - 2)  # the mesh face of every triangle
+    parts = _check_parts(parts, len(mesh.faces_vertices), len(mesh.edges_vertices))
     extra = _check_morphs(morph_targets, V)
 
     rotation = _AXES[up]
@@ -242,7 +243,8 @@ def write_glb(
 
     meshes, nodes = [], []
     for name, part_faces, part_edges in parts:
-        copies, triangles = _split_by_strip(faces[part_faces], groups[part_faces])
+        mine = np.flatnonzero(np.isin(polygon_of, part_faces))  # the part's triangles
+        copies, triangles = _split_by_strip(faces[mine], groups[mine])
         base = pos[base_state][copies]
         normal = _vertex_normals(base, triangles)
         moved = poses[:, copies]
