@@ -85,6 +85,23 @@ def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operat
     assert all(e.dxf.color == 256 and not e.dxf.hasattr("true_color") for e in doc.modelspace().query(f'*[layer=="{LEGEND_LAYER}"]'))
 
 
+def test_the_footer_stays_in_its_band_whatever_its_rows():
+    """Longer legend entries (with their colours) wrap into more rows; on a narrow page the rows
+    close up rather than run into the margin, where printers do not print."""
+    from _sheets import vault_sheets
+    from curvefold.io.legend import page_footer
+    from curvefold.io.pattern import LAYERS
+
+    for page in ("A5", "A4", (120.0, 200.0)):
+        layout = layout_sheets(vault_sheets(4), page=page)
+        for i in range(len(layout.pages)):
+            foot = page_footer(layout, i, LAYERS)
+            boxes = [t.corners() for t in foot.texts] + [points for _, points in foot.samples] + [foot.bar]
+            lo = min(float(b[:, 1].min()) for b in boxes)
+            hi = max(float(b[:, 1].max()) for b in boxes)
+            assert layout.margin - 1e-9 <= lo and hi <= layout.margin + layout.footer + 1e-9, (page, i, lo, hi)
+
+
 def test_the_pdf_draws_nothing_off_the_sheets_in_an_operations_colour(tmp_path, tube_layout):
     pdfplumber = pytest.importorskip("pdfplumber")
     layout = replace(tube_layout, cutter="laser")

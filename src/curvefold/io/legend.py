@@ -113,22 +113,25 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
 
     bar = np.array([[m, top - 0.6], [m + 10.0, top - 0.6], [m + 10.0, top + 0.6], [m, top + 0.6]])
     note = f"10 mm: print at 100 % · 1 model unit = {layout.scale:.4g} mm · {page_text} · curvefold"
+    entries, x, row = [], m, 1  # (name, x, row) of every legend entry, wrapped into rows
+    for name in names:
+        lead = text_width(seam_name(1), size) if name == "labels" else _SAMPLE
+        width = lead + 1.5 + text_width(f"{LEGEND[name]} {layer_look(layout, name)[1]}", size)
+        if x > m and x + width > W - m:  # next row
+            x, row = m, row + 1
+        entries.append((name, x, lead, row))
+        x += width + 4.0
+    step = min(1.8 * size, (top - m - 0.5 * size) / max(row, 1))  # rows closer together rather than into the margin
     texts = [text(note, m + 12.0, top)]
     samples = []
-    x, y = m, top - 1.8 * size
-    for name in names:
+    for name, x, lead, row in entries:
         _, colour, st = layer_look(layout, name)
-        words = f"{LEGEND[name]} {colour}"
-        lead = text_width(seam_name(1), size) if name == "labels" else _SAMPLE
-        width = lead + 1.5 + text_width(words, size)
-        if x > m and x + width > W - m:  # next row
-            x, y = m, y - 1.8 * size
+        y = top - row * step
         if name == "labels":
             texts.append(text(seam_name(1), x, y))
         elif st.fill:
             samples.append((name, np.array([[x, y - 1.0], [x + _SAMPLE, y - 1.0], [x + _SAMPLE, y + 1.0], [x, y + 1.0]])))
         else:
             samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
-        texts.append(text(words, x + lead + 1.5, y))
-        x += width + 4.0
+        texts.append(text(f"{LEGEND[name]} {colour}", x + lead + 1.5, y))
     return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts), layer_look(layout, "legend")[1])
