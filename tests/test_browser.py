@@ -21,14 +21,14 @@ _THREE_PAGE = """<!doctype html><html><head><meta charset="utf-8">
 import * as THREE from "three";
 import { GLTFLoader } from "three/addons/loaders/GLTFLoader.js";
 new GLTFLoader().load("/vault.glb", (gltf) => {
-  const surface = gltf.scene.getObjectByName("surface");
+  const sheets = gltf.scene.children.map((node) => node.children.find((c) => c.isMesh && !c.isLineSegments) ?? node);
   const mixer = new THREE.AnimationMixer(gltf.scene);
   const clip = gltf.animations[0];
   const action = mixer.clipAction(clip);
   action.setLoop(THREE.LoopOnce);
   action.clampWhenFinished = true;
   action.play();
-  const posed = (time) => {  // the surface's vertices as the animation poses them at a time
+  const posed = (surface, time) => {  // a sheet's triangle corners as the animation poses them at a time
     mixer.setTime(time);
     const base = surface.geometry.attributes.position.array;
     const out = Float64Array.from(base);
@@ -36,23 +36,28 @@ new GLTFLoader().load("/vault.glb", (gltf) => {
       const delta = surface.geometry.morphAttributes.position[k].array;
       for (let i = 0; i < out.length; i += 1) out[i] += w * delta[i];
     });
-    return Array.from(out);
+    const corners = [];
+    for (const i of surface.geometry.index.array) corners.push(out[3 * i], out[3 * i + 1], out[3 * i + 2]);
+    return corners;
   };
   window.result = {
-    names: Object.entries(surface.morphTargetDictionary).sort((a, b) => a[1] - b[1]).map((e) => e[0]),
-    base: Array.from(surface.geometry.attributes.position.array),
+    nodes: gltf.scene.children.map((n) => n.name),
+    names: Object.entries(sheets[0].morphTargetDictionary).sort((a, b) => a[1] - b[1]).map((e) => e[0]),
+    normals: sheets.every((m) => m.geometry.attributes.normal !== undefined),
     clips: gltf.animations.map((a) => [a.name, a.duration]),
-    start: posed(0),
-    end: posed(clip.duration),
+    start: sheets.map((m) => posed(m, 0)),
+    middle: sheets.map((m) => posed(m, clip.duration / 2)),
+    end: sheets.map((m) => posed(m, clip.duration)),
   };
 }, undefined, (error) => { window.result = { error: String(error) }; });
 </script></body></html>
 """
 
 
-def test_three_js_opens_the_glb_at_the_design_state_with_named_targets(tmp_path):
-    """GLTFLoader shows the vault standing (the design state) before any animation plays; the morph
-    targets are named by fold angle; the animation runs from the flat state back to the design state."""
+def test_three_js_opens_the_glb_at_the_design_state_with_a_node_per_sheet(tmp_path):
+    """GLTFLoader gives a named node per sheet with normals; the morph targets are named by fold angle;
+    the animation starts at the design state (what Blender opens, as it applies the first keyframe),
+    unfolds to the flat state half-way and folds back."""
     vault = Vault.from_design(samples=201)
     structure = vault.structure
     keep = choose_sampling(structure).keep
@@ -64,15 +69,20 @@ def test_three_js_opens_the_glb_at_the_design_state_with_named_targets(tmp_path)
         page.wait_for_function("window.result !== undefined", timeout=60_000)
         result = page.evaluate("window.result")
     assert "error" not in result, result
-    to_gltf = lambda x: np.stack([x[:, 0], x[:, 2], -x[:, 1]], axis=1)  # noqa: E731 (z up → y up)
+    to_gltf = lambda x: np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)  # noqa: E731 (z up → y up)
+    topology = structure.topology(keep=keep)
+    faces = structure.state().mesh(keep=keep).faces_vertices
     design = to_gltf(structure.state().mesh(keep=keep).vertices_coords)
     flat = to_gltf(structure.state(0.0).mesh(keep=keep).vertices_coords)
-    assert result["names"] == ["2α = 0°", "2α = 30°", "2α = 60°"]
-    assert result["clips"] == [["fold", 3.0]]
-    # 32-bit floats of coordinates up to ~2: within 1e-6
-    assert_allclose(np.reshape(result["base"], (-1, 3)), design, atol=1e-6, rtol=0)
-    assert_allclose(np.reshape(result["start"], (-1, 3)), flat, atol=1e-6, rtol=0)
-    assert_allclose(np.reshape(result["end"], (-1, 3)), design, atol=1e-6, rtol=0)
+    # three.js turns spaces in node names into underscores (PropertyBinding.sanitizeNodeName)
+    assert result["nodes"] == [s.label.replace(" ", "_") for s in topology.sheets] and len(result["nodes"]) == 2 * vault.design.tubes
+    assert result["names"] == ["2α = 0°", "2α = 30°", "2α = 60°"] and result["normals"]
+    assert result["clips"] == [["fold", 6.0]]
+    for k, sheet in enumerate(topology.sheets):  # 32-bit floats of coordinates up to ~2: within 1e-6
+        corners = lambda x: x[faces[sheet.faces]].reshape(-1, 3)  # noqa: E731
+        assert_allclose(np.reshape(result["start"][k], (-1, 3)), corners(design), atol=1e-6, rtol=0)
+        assert_allclose(np.reshape(result["middle"][k], (-1, 3)), corners(flat), atol=1e-6, rtol=0)
+        assert_allclose(np.reshape(result["end"][k], (-1, 3)), corners(design), atol=1e-6, rtol=0)
     assert np.abs(design - flat).max() > 0.5  # the two poses differ: the checks above can fail
 
 

@@ -204,6 +204,6 @@ def test_pattern_flags_tabs_and_rulings(tmp_path):
         return "".join(p.read_text() for p in sorted(out.glob("tube-pattern*.svg")))
 
     plain, bare, ruled = pattern_svg(), pattern_svg("--no-glue-tabs"), pattern_svg("--rulings")
-    assert 'inkscape:label="glue"' in plain
+    assert 'inkscape:label="reference - glue (not cut)"' in plain
     assert plain.count("<polygon") > bare.count("<polygon") or plain.count("<polyline") > bare.count("<polyline")
     assert ruled.count("<polyline") > plain.count("<polyline")  # the ruling lines

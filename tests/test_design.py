@@ -124,7 +124,8 @@ def test_paper_vault_values():
     )
     assert d.samples == 801
     assert (d.curve, d.tube, d.block, d.crease) == (None, None, None, None)
-    assert d.output == OutputParams(units="mm", scale=None, page="A4", glue_tabs=True, rulings=False, formats=("svg", "pdf", "fold", "glb"))
+    assert d.output == OutputParams(units="mm", scale=None, page="A4", glue_tabs=True, rulings=False, cutter="print", perforation=None,
+                                    perforation_gap=1.0, kerf=0.0, formats=("svg", "pdf", "fold", "glb"))
 
 
 def test_tube_example_expressions():

@@ -219,9 +219,10 @@ def test_rhino_script_downloads_a_design_that_rhino_reads(designer_url, rhino_sc
     assert [Path(p).name for p in paths] == ["vault.3dm", "vault.fold"]
     model = rhino3dm.File3dm.Read(paths[0])
     assert model.ApplicationName == f"curvefold {importlib.metadata.version('curvefold')}"
-    from curvefold.io.rhino import LAYERS
+    from curvefold.io.rhino import LAYERS, PATTERN_LAYER
 
-    assert len(model.Objects) > 0 and [layer.Name for layer in model.Layers] == [name for name, _ in LAYERS]
+    names = [layer.Name for layer in model.Layers]
+    assert len(model.Objects) > 0 and names[: len(LAYERS)] == [name for name, _ in LAYERS] and PATTERN_LAYER in names
     assert check_fold(paths[1]).ok
 
 

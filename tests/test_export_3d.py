@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
+from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
 from curvefold.geometry.mesh import Mesh
@@ -118,6 +119,24 @@ def test_stl_read_back_by_trimesh(tmp_path, tube):
     assert_allclose(back.triangles, mesh.vertices_coords[mesh.faces_vertices], atol=1e-6, rtol=0)
 
 
+def test_stl_in_millimetres_says_its_unit_in_its_header(tmp_path, tube):
+    """Slicers read STL lengths as millimetres: a model in metres (the model unit's convention) is written ×1000."""
+    trimesh = pytest.importorskip("trimesh")
+    mesh = tube.state(1)
+    write_stl(tmp_path / "mm.stl", mesh, to_unit="mm")
+    write_stl(tmp_path / "model.stl", mesh)
+    header = (tmp_path / "mm.stl").read_bytes()[:80]
+    assert header.rstrip().decode("ascii").endswith(", unit mm, z up") and header.startswith(b"curvefold ")  # never "solid": binary
+    assert b"unit model units (1 model unit = 1 m)" in (tmp_path / "model.stl").read_bytes()[:80]
+    back, model = trimesh.load(tmp_path / "mm.stl"), trimesh.load(tmp_path / "model.stl")
+    assert_allclose(back.triangles, 1000.0 * model.triangles, rtol=1e-6)
+    assert_allclose(back.triangles, 1000.0 * mesh.vertices_coords[mesh.faces_vertices], rtol=1e-6, atol=1e-4)
+    write_stl(tmp_path / "in.stl", mesh, unit="mm", to_unit="in")
+    assert_allclose(trimesh.load(tmp_path / "in.stl").triangles, mesh.vertices_coords[mesh.faces_vertices] / 25.4, rtol=1e-6, atol=1e-7)
+    with pytest.raises(InputError, match="to_unit must be one of"):
+        write_stl(tmp_path / "x.stl", mesh, to_unit="furlong")
+
+
 def test_ply_read_back_by_trimesh(tmp_path, tube):
     trimesh = pytest.importorskip("trimesh")
     mesh = tube.state(2)
@@ -155,23 +174,8 @@ def test_mesh_writers_reject_non_finite(tmp_path, tube):
 # --- GLB ---------------------------------------------------------------------------------------------
 
 
-def _accessor(gltf, blob: bytes, index: int) -> np.ndarray:
-    acc = gltf.accessors[index]
-    view = gltf.bufferViews[acc.bufferView]
-    dtype = {5126: np.float32, 5125: np.uint32}[acc.componentType]
-    width = {"SCALAR": 1, "VEC3": 3}[acc.type]
-    start = (view.byteOffset or 0) + (acc.byteOffset or 0)
-    data = np.frombuffer(blob, dtype=dtype, count=acc.count * width, offset=start)
-    return data.reshape(acc.count, width) if width > 1 else data
-
-
-def _target_position(target) -> int:
-    return target["POSITION"] if isinstance(target, dict) else target.POSITION  # pygltflib reads targets as dicts
-
-
-def _to_gltf(coords: np.ndarray, scale: float) -> np.ndarray:
-    x = np.asarray(coords) * scale
-    return np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)
+def _accessor_of(target, name: str) -> int:
+    return target[name] if isinstance(target, dict) else getattr(target, name)
 
 
 def test_glb_read_back_by_pygltflib(tmp_path, tube):
@@ -186,43 +190,87 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     assert extras["scale_to_metres"] == 1e-3 and extras["unit"] == "mm" and extras["up_axis"] == "z"
     assert extras["angles_deg"] == tube.angles_deg.tolist() and extras["metadata"] == {"panels": 4}
 
-    surface, creases = gltf.meshes
-    assert [p.mode for p in surface.primitives] == [4]
-    assert [p.mode for p in creases.primitives] == [1, 1, 1]
-    colours = [gltf.materials[p.material].pbrMetallicRoughness.baseColorFactor for p in creases.primitives]
+    (surface,) = gltf.meshes  # one part without parts=
+    assert [n.name for n in gltf.nodes] == ["surface"] and surface.name == "surface"
+    assert [p.mode for p in surface.primitives] == [4, 1, 1, 1]
+    colours = [gltf.materials[p.material].pbrMetallicRoughness.baseColorFactor for p in surface.primitives[1:]]
     assert colours == [[1, 0, 0, 1], [0, 0, 1, 1], [0, 0, 0, 1]]  # fold red, seam blue, boundary black
-    for prim in surface.primitives + creases.primitives:
-        assert len(prim.targets) == K - 1
-
-    assert surface.extras["targetNames"] == creases.extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[:-1]]
+    assert all(len(prim.targets) == K - 1 for prim in surface.primitives)
+    assert surface.extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[:-1]]
     assert extras["base_state"] == K - 1
 
-    want = _to_gltf(tube.coords, 1e-3)
+    want = to_gltf(tube.coords, 1e-3)
+    faces = tube.crease_pattern.faces_vertices
     prim = surface.primitives[0]
-    base = _accessor(gltf, blob, prim.attributes.POSITION)
-    assert_allclose(base, want[-1], atol=1e-6, rtol=0)  # the last state (the design state) is the pose shown
+    base = accessor(gltf, blob, prim.attributes.POSITION)
+    triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
+    assert_allclose(base[triangles], want[-1][faces], atol=1e-6, rtol=0)  # the last state (the design state) is the pose shown
     assert_allclose(gltf.accessors[prim.attributes.POSITION].min, base.min(axis=0), rtol=0, atol=0)
     assert_allclose(gltf.accessors[prim.attributes.POSITION].max, base.max(axis=0), rtol=0, atol=0)
-    assert_array_equal(_accessor(gltf, blob, prim.indices).reshape(-1, 3), tube.crease_pattern.faces_vertices)
     for k, target in enumerate(prim.targets):
-        assert_allclose(base + _accessor(gltf, blob, _target_position(target)), want[k], atol=1e-6, rtol=0)
+        assert_allclose((base + accessor(gltf, blob, target_position(target)))[triangles], want[k][faces], atol=1e-6, rtol=0)
+    # normals: unit, on the side the triangles face, and split along the folds (a vertex of two strips has two)
+    normal = accessor(gltf, blob, prim.attributes.NORMAL)
+    assert_allclose(np.linalg.norm(normal, axis=1), 1.0, atol=1e-6)
+    a, b, c = (base[triangles[:, k]] for k in range(3))
+    facing = np.cross(b - a, c - a)
+    facing /= np.linalg.norm(facing, axis=1, keepdims=True)
+    assert (np.einsum("tkj,tj->tk", normal[triangles], facing) > 0.99).all()  # flat panels: the vertex normal is the face normal
+    assert len(base) > len(tube.crease_pattern.vertices_coords)  # fold vertices copied per strip
+    moved_normal = normal + accessor(gltf, blob, _accessor_of(prim.targets[0], "NORMAL"))
+    flat_facing = np.cross(*(want[0][faces[:, k]] - want[0][faces[:, 0]] for k in (1, 2)))
+    assert (np.einsum("tkj,tj->tk", moved_normal[triangles], flat_facing / np.linalg.norm(flat_facing, axis=1, keepdims=True)) > 0.99).all()
 
-    fold_prim = creases.primitives[0]
+    fold_prim = surface.primitives[1]
     fold_edges = tube.crease_pattern.edges_vertices[tube.crease_pattern.edges_kind == "fold"]
-    line_xyz = _accessor(gltf, blob, fold_prim.attributes.POSITION)[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
+    line_xyz = accessor(gltf, blob, fold_prim.attributes.POSITION)[accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
     assert_allclose(line_xyz, want[-1][fold_edges], atol=1e-6, rtol=0)
-    delta = _accessor(gltf, blob, _target_position(fold_prim.targets[0]))[_accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
+    delta = accessor(gltf, blob, target_position(fold_prim.targets[0]))[accessor(gltf, blob, fold_prim.indices).reshape(-1, 2)]
     assert_allclose(line_xyz + delta, want[0][fold_edges], atol=1e-6, rtol=0)
 
     (anim,) = gltf.animations
-    assert sorted(c.target.node for c in anim.channels) == [0, 1]
-    assert all(c.target.path == "weights" for c in anim.channels)
+    assert [c.target.node for c in anim.channels] == [0] and all(c.target.path == "weights" for c in anim.channels)
     (sampler,) = anim.samplers
     assert sampler.interpolation == "LINEAR"
-    assert_allclose(_accessor(gltf, blob, sampler.input), 0.5 * np.arange(K))
-    weights = _accessor(gltf, blob, sampler.output).reshape(K, K - 1)
-    assert_array_equal(weights[:-1], np.eye(K - 1))  # state k < K - 1 is target k
-    assert_array_equal(weights[-1], 0)  # the animation ends on the base pose
+    assert_allclose(accessor(gltf, blob, sampler.input), 0.5 * np.arange(2 * K - 1))
+    weights = accessor(gltf, blob, sampler.output).reshape(2 * K - 1, K - 1)
+    # it starts (and ends) on the design state, unfolds to the flat state (target 0) and folds back
+    assert_array_equal(weights[0], 0) and assert_array_equal(weights[-1], 0)
+    assert_array_equal(weights[1:K], np.eye(K - 1)[::-1])
+    assert_array_equal(weights[K - 1:-1], np.eye(K - 1))
+
+
+def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_path, tube):
+    pygltflib = pytest.importorskip("pygltflib")
+    mesh = tube.crease_pattern
+    F, E = len(mesh.faces_vertices), len(mesh.edges_vertices)
+    half = F // 2
+    parts = [("tube 1 · sheet A", np.arange(half), np.arange(E)), ("tube 1 · sheet B", np.arange(half, F), [])]
+    mode = np.zeros_like(mesh.vertices_coords)
+    mode[:, 2] = 1.0  # one model unit up
+    write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", parts=parts,
+              morph_targets={"mode 1": mode})
+    gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
+    blob = gltf.binary_blob()
+    assert [n.name for n in gltf.nodes] == [m.name for m in gltf.meshes] == ["tube 1 · sheet A", "tube 1 · sheet B"]
+    assert [n.mesh for n in gltf.nodes] == [0, 1] and gltf.scenes[0].nodes == [0, 1]
+    K = len(tube.angles_deg)
+    names = [f"2α = {a:g}°" for a in tube.angles_deg[:-1]] + ["mode 1"]
+    for m in gltf.meshes:
+        assert m.extras["targetNames"] == names and all(len(p.targets) == K for p in m.primitives)
+    assert [len(m.primitives) for m in gltf.meshes] == [4, 1]  # lines only on the part given the edges
+    tri = accessor(gltf, blob, gltf.meshes[1].primitives[0].indices).reshape(-1, 3)
+    assert len(tri) == F - half
+    up = accessor(gltf, blob, target_position(gltf.meshes[1].primitives[0].targets[-1]))
+    assert_allclose(up, np.tile([0.0, 1e-3, 0.0], (len(up), 1)), atol=1e-9)  # model +z is glTF +y, in metres
+    (anim,) = gltf.animations
+    assert sorted(c.target.node for c in anim.channels) == [0, 1]
+    weights = accessor(gltf, blob, anim.samplers[0].output).reshape(-1, K)
+    assert_array_equal(weights[:, -1], 0)  # the further target is not animated
+    with pytest.raises(InputError, match=r"morph_targets\['bad'\] must be finite displacements of shape"):
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, morph_targets={"bad": mode[:2]})
+    with pytest.raises(InputError, match=r"parts\[0\] must be a name and indices"):
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, parts=[("x", [F], [])])
 
 
 def test_glb_base_state_can_be_any_state(tmp_path, tube):
@@ -230,7 +278,10 @@ def test_glb_base_state_can_be_any_state(tmp_path, tube):
     write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", base_state=0)
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
-    assert_allclose(_accessor(gltf, blob, gltf.meshes[0].primitives[0].attributes.POSITION), _to_gltf(tube.coords, 1e-3)[0], atol=1e-6, rtol=0)
+    prim = gltf.meshes[0].primitives[0]
+    triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
+    base = accessor(gltf, blob, prim.attributes.POSITION)
+    assert_allclose(base[triangles], to_gltf(tube.coords, 1e-3)[0][tube.crease_pattern.faces_vertices], atol=1e-6, rtol=0)
     assert gltf.meshes[0].extras["targetNames"] == [f"2α = {a:g}°" for a in tube.angles_deg[1:]]
     with pytest.raises(InputError, match="base_state"):
         write_glb(tmp_path / "n.glb", tube.crease_pattern, coords=tube.coords, base_state=len(tube.coords))
@@ -243,9 +294,11 @@ def test_glb_single_state_has_no_animation(tmp_path):
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     assert gltf.animations == []
     assert all(p.targets in (None, []) for m in gltf.meshes for p in m.primitives)
-    pos = _accessor(gltf, gltf.binary_blob(), gltf.meshes[0].primitives[0].attributes.POSITION)
-    assert_allclose(pos, motion.coords[2], atol=1e-6, rtol=0)
-    assert [p.mode for p in gltf.meshes[1].primitives] == [1, 1]  # fold and boundary, no seam
+    prim = gltf.meshes[0].primitives[0]
+    blob = gltf.binary_blob()
+    pos = accessor(gltf, blob, prim.attributes.POSITION)[accessor(gltf, blob, prim.indices).reshape(-1, 3)]
+    assert_allclose(pos, motion.coords[2][motion.state(2).triangulated().faces_vertices], atol=1e-6, rtol=0)
+    assert [p.mode for p in gltf.meshes[0].primitives] == [4, 1, 1]  # fold and boundary, no seam
 
 
 @pytest.mark.node
@@ -367,6 +420,85 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
                 assert_allclose(_xyz(surface.PointAt(s_, v)), want, atol=1e-12, rtol=0)
     assert all(curve.IsClosed for _, curve in layers["Boundary"])
     assert t.max() == 1
+
+
+def test_3dm_groups_user_text_and_named_views(tmp_path, real_tube):
+    """A group per tube and per sheet with the right members; every object says its tube, sheet,
+    kind and fold angle; three named views that frame the model."""
+    rhino3dm = pytest.importorskip("rhino3dm")
+    mesh, topology, structure = real_tube
+    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", fold_angle=90.0)
+    model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
+    groups = {g.Name: g.Index for g in model.Groups}
+    assert set(groups) == {"tube 1", "tube 1 · sheet A", "tube 1 · sheet B"}
+    members = {name: sorted(o.Attributes.Name for o in model.Groups.GroupMembers(i)) for name, i in groups.items()}
+    assert members["tube 1"] == sorted(o.Attributes.Name for o in model.Objects)  # every object is in its tube
+    assert members["tube 1 · sheet A"] == sorted(["tube 1 · sheet A", "tube 1 · strip 1", "tube 1 · strip 4", "fold 1"])
+    assert members["tube 1 · sheet B"] == sorted(["tube 1 · sheet B", "tube 1 · strip 2", "tube 1 · strip 3", "fold 2"])
+    text = {o.Attributes.Name: dict(o.Attributes.GetUserStrings()) for o in model.Objects}
+    assert text["tube 1 · sheet B"] == {"curvefold:tube": "1", "curvefold:kind": "sheet", "curvefold:sheet": "B", "curvefold:fold_angle_deg": "90"}
+    assert text["seam 1"]["curvefold:kind"] == "seam" and "curvefold:sheet" not in text["seam 1"]  # a seam belongs to both sheets
+    # a crease's fold angle is measured on its edges: 2α at folds, 180° − 2α at seams (the certificate's relation)
+    assert float(text["fold 1"]["curvefold:fold_angle_deg"]) == pytest.approx(90.0, abs=1.0)  # 7 samples along the crease
+    assert float(text["seam 1"]["curvefold:fold_angle_deg"]) == pytest.approx(90.0, abs=1.0)
+    views = {model.NamedViews[i].Name: model.NamedViews[i].Viewport for i in range(len(model.NamedViews))}
+    assert list(views) == ["perspective", "plan", "section"]
+    assert views["perspective"].IsPerspectiveProjection and views["plan"].IsParallelProjection and views["section"].IsParallelProjection
+    assert _xyz(views["plan"].CameraDirection) == pytest.approx([0, 0, -1])
+    assert _xyz(views["section"].CameraDirection)[2] == 0 and _xyz(views["perspective"].CameraDirection)[2] < 0  # level, and from above
+    centre = 0.5 * (mesh.vertices_coords.min(axis=0) + mesh.vertices_coords.max(axis=0))
+    for vp in views.values():  # each looks at the model's centre
+        to_centre = centre - _xyz(vp.CameraLocation)
+        direction = _xyz(vp.CameraDirection)
+        assert np.linalg.norm(np.cross(to_centre, direction)) < 1e-9 * np.linalg.norm(to_centre)
+
+
+def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
+    """The cut outlines of the 3dm's ``crease pattern`` layer, read back in the document's metres, are
+    the layout's in millimetres: the same lengths, and each sheet's outline in its own place."""
+    rhino3dm = pytest.importorskip("rhino3dm")
+    from shapely.geometry import Polygon
+
+    from curvefold.io import write_3d
+    from curvefold.io.cutters import layer_name
+    from curvefold.io.pattern import layout_pattern
+    from curvefold.io.rhino import PATTERN_LAYER
+    from curvefold.vault import Vault
+
+    structure = Vault.from_design(samples=101, tubes=2).structure
+    layout = layout_pattern(structure, name="vault", cutter="laser")
+    (path,) = write_3d(tmp_path / "v", structure, formats=("3dm",), pattern=layout)
+    model = rhino3dm.File3dm.Read(str(path))
+    paths = {layer.Index: layer.FullPath for layer in model.Layers}
+    assert {f"{PATTERN_LAYER}::{layer_name(k)}" for k in ("cut", "mountain", "seam", "glue", "labels")} <= set(paths.values())
+    colour = next(layer.Color for layer in model.Layers if layer.FullPath == f"{PATTERN_LAYER}::cut")
+    assert tuple(colour)[:3] == (255, 0, 0)  # the laser convention's cut colour
+    cut = [o.Geometry for o in model.Objects if paths[o.Attributes.LayerIndex] == f"{PATTERN_LAYER}::cut"]
+    ours = [p.points for s in layout.sheets() for p in s.on_layer("cut")]
+    assert len(cut) == len(ours) == 4
+    theirs = [Polygon([_xyz(c.Point(i))[:2] for i in range(c.PointCount)]) for c in cut]
+    assert all(c.IsClosed for c in cut)
+    lengths = sorted(1000.0 * p.exterior.length for p in theirs)  # metres in the document, millimetres on the page
+    assert lengths == pytest.approx(sorted(Polygon(p).exterior.length for p in ours), rel=1e-9)
+    assert sorted(1e6 * p.area for p in theirs) == pytest.approx(sorted(Polygon(p).area for p in ours), rel=1e-9)
+    model_box = np.array([_xyz(v) for o in model.Objects if isinstance(o.Geometry, rhino3dm.Mesh) for v in o.Geometry.Vertices])
+    first = np.array([_xyz(c.Point(0)) for c in cut])
+    assert (first[:, 0] > model_box[:, 0].max()).all() and (first[:, 2] == 0).all()  # beside the model, on the ground
+
+
+def test_glb_parts_of_a_polygon_mesh_hold_their_polygons_triangles(tmp_path, real_tube):
+    """Parts name the mesh's own faces; on a quad mesh each part gets both triangles of each of its quads."""
+    pygltflib = pytest.importorskip("pygltflib")
+    mesh, topology, _ = real_tube
+    write_glb(tmp_path / "q.glb", mesh, unit="m", parts=[(s.label, s.faces, s.edges) for s in topology.sheets])
+    gltf = pygltflib.GLTF2.load(str(tmp_path / "q.glb"))
+    blob = gltf.binary_blob()
+    for sheet, m in zip(topology.sheets, gltf.meshes):
+        prim = m.primitives[0]
+        corners = accessor(gltf, blob, prim.attributes.POSITION)[accessor(gltf, blob, prim.indices).reshape(-1, 3)]
+        quads = mesh.vertices_coords[mesh.faces_vertices[sheet.faces]]  # (q, 4, 3), fans (0, 1, 2) and (0, 2, 3)
+        want = np.stack([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]], axis=1).reshape(-1, 3, 3)
+        assert_allclose(corners, to_gltf(want, 1.0), atol=1e-6, rtol=0)
 
 
 def test_3dm_refuses_a_mesh_of_other_faces(tmp_path, real_tube):

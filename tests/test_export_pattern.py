@@ -26,11 +26,13 @@ from shapely.ops import unary_union
 from _sheets import annular_sheet, tube_sheets, vault_sheets
 from curvefold.geometry.mesh import Mesh
 from curvefold.geometry.sheets import PatternSheet
-from curvefold.io import labels, pattern, planar
+from curvefold.io import cutters, cutting, labels, legend, pattern, pdf, planar
 from curvefold.io import layout as layout_module
+from curvefold.io.cutters import CUTTERS, LEGEND_LAYER, layer_name
 from curvefold.io.pattern import (
     DEFAULT_LAYERS,
     LAYERS,
+    LEGEND,
     layout_sheets,
     seam_name,
     write_dxf,
@@ -448,7 +450,7 @@ def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
 
 
 def test_docstring_examples():
-    for module in (layout_module, labels, planar):
+    for module in (layout_module, labels, planar, cutters, cutting, pdf):
         assert doctest.testmod(module).failed == 0
 
 
@@ -464,10 +466,11 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
     assert (root.get("width"), root.get("height"), root.get("viewBox")) == ("210mm", "297mm", "0 0 210 297")
     assert "sodipodi:namedview" in path.read_text() and "xmlns:sodipodi" in path.read_text()
     groups = root.findall("svg:g", NS)
-    assert [g.get(f"{INK}label") for g in groups] == [*DEFAULT_LAYERS, "legend (not to cut)"]
+    assert [g.get(f"{INK}label") for g in groups] == [layer_name(k) for k in DEFAULT_LAYERS] + [LEGEND_LAYER]
+    assert [g.get(f"{INK}label") for g in groups][:4] == ["reference - glue (not cut)", "score - seam", "score - valley", "score - mountain"]
     assert all(g.get(f"{INK}groupmode") == "layer" for g in groups)
-    by_name = {g.get(f"{INK}label"): g for g in groups}
-    legend = by_name.pop("legend (not to cut)")
+    by_name = {k: g for k, g in zip([*DEFAULT_LAYERS, "legend"], groups)}
+    legend = by_name.pop("legend")
     groups = groups[:-1]
     page = tube_layout.pages[0]
     for name in ("cut", "mountain", "valley", "seam", "glue"):
@@ -488,7 +491,11 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
     assert np.ptp(bar[:, 0]) == pytest.approx(10.0) and 297 - 10 - tube_layout.footer <= bar[:, 1].min() <= bar[:, 1].max() <= 287
     words = [t.text for t in legend.iter(f"{{{NS['svg']}}}text")]
     assert any("10 mm: print at 100 %" in w and "1 model unit = " in w and "page 1 of 1" in w for w in words)
-    assert {"cut", "mountain fold", "valley fold", "glue-tab fold", "glue", "S1", "glue the edges named alike"} <= set(words)
+    colours = CUTTERS["print"].colours
+    assert {f"{LEGEND[k]} {colours[k]}" for k in ("cut", "mountain", "valley", "seam", "glue", "labels")} | {"S1"} <= set(words)
+    # nothing in the legend is drawn in an operation's colour: the scale bar, the samples and the text are grey
+    painted = {m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", f"{el.get('style', '')}")}
+    assert painted == {colours["legend"]} and colours["legend"] not in {colours[k] for k in DEFAULT_LAYERS}
 
 
 def _png(path: Path) -> np.ndarray:
@@ -531,10 +538,10 @@ def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
     for p, page in zip(paths, vault_layout.pages):
         root = ET.parse(p).getroot()
         assert root.get("width") == "148mm"
-        assert len(root.findall("svg:g/svg:text", NS)) == len(page.labels())
+        assert len(root.findall("svg:g[@id='layer-labels']/svg:text", NS)) == len(page.labels())
     (one,) = write_svg(tmp_path / "second.svg", vault_layout, 1, layers=LAYERS)
     root = ET.parse(one).getroot()
-    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [*LAYERS, "legend (not to cut)"]
+    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [layer_name(k) for k in LAYERS] + [LEGEND_LAYER]
     with pytest.raises(InputError, match=rf"page_index must be an integer in \[0, {n - 1}\], got {n}$"):
         write_svg(tmp_path / "x.svg", vault_layout, n)
     with pytest.raises(InputError, match=r"page_index must be an integer .*, got boolean True$"):  # was taken as page 1
@@ -562,8 +569,8 @@ def test_dxf_pages_lie_framed_in_a_grid_within_the_extents(tmp_path, vault_layou
     extents = bbox.extents(msp)  # of every entity, as a CAD program zooms to
     assert doc.header["$EXTMIN"][:2] == pytest.approx(tuple(extents.extmin)[:2])
     assert doc.header["$EXTMAX"][:2] == pytest.approx(tuple(extents.extmax)[:2])
-    assert doc.layers.get("pages").dxf.plot == 0 and doc.layers.get("legend").dxf.plot == 0
-    words = [t.dxf.text for t in msp.query('TEXT[layer=="legend"]')]
+    assert doc.layers.get("pages").dxf.plot == 0 and doc.layers.get(LEGEND_LAYER).dxf.plot == 0
+    words = [t.dxf.text for t in msp.query(f'TEXT[layer=="{LEGEND_LAYER}"]')]
     assert sum("10 mm: print at 100 %" in w for w in words) == n
 
 
@@ -574,15 +581,16 @@ def test_dxf_reads_back_with_layers_linetypes_units_and_entities(tmp_path, vault
     auditor = doc.audit()
     assert not auditor.has_errors, [str(e) for e in auditor.errors]
     assert doc.header["$INSUNITS"] == 4
-    layers = {layer.dxf.name: layer for layer in doc.layers}
-    assert set(DEFAULT_LAYERS) <= set(layers) and "rulings" not in layers
+    by_name = {layer.dxf.name: layer for layer in doc.layers}
+    assert {layer_name(k) for k in DEFAULT_LAYERS} <= set(by_name) and "engrave - rulings" not in by_name
+    layers = {k: by_name[layer_name(k)] for k in DEFAULT_LAYERS}
     assert layers["cut"].dxf.linetype.upper() == "CONTINUOUS"
-    assert layers["mountain"].dxf.linetype == "DASHDOT"
-    assert layers["valley"].dxf.linetype == "DASHED"
-    assert layers["seam"].dxf.linetype == "DOT"
+    assert layers["mountain"].dxf.linetype == "DASHDOTTINY"  # LibreCAD's small built-in patterns by name, ours inside
+    assert layers["valley"].dxf.linetype == "DASHEDTINY"
+    assert layers["seam"].dxf.linetype == "DOTTINY"
     assert (layers["cut"].color, layers["mountain"].color, layers["valley"].color) == (7, 1, 5)
-    assert doc.linetypes.get("DASHED").simplified_line_pattern() == pytest.approx((3.0, 1.5))  # mm
-    assert doc.linetypes.get("DASHDOT").simplified_line_pattern() == pytest.approx((4.0, 1.2, 0.7, 1.2))
+    assert doc.linetypes.get("DASHEDTINY").simplified_line_pattern() == pytest.approx((3.0, 1.5))  # mm
+    assert doc.linetypes.get("DASHDOTTINY").simplified_line_pattern() == pytest.approx((4.0, 1.2, 0.7, 1.2))
     msp = doc.modelspace()
     sheets = vault_layout.sheets()
 
@@ -592,9 +600,9 @@ def test_dxf_reads_back_with_layers_linetypes_units_and_entities(tmp_path, vault
     assert len(msp.query('LWPOLYLINE[layer=="cut"]')) == len(sheets)
     assert all(e.closed for e in msp.query('LWPOLYLINE[layer=="cut"]'))
     for layer in ("mountain", "valley", "seam"):
-        assert len(msp.query(f'LWPOLYLINE[layer=="{layer}"]')) == count(layer) > 0
-    assert len(msp.query('HATCH[layer=="glue"]')) == count("glue") > 0
-    texts = msp.query('TEXT[layer=="labels"]')
+        assert len(msp.query(f'LWPOLYLINE[layer=="{layer_name(layer)}"]')) == count(layer) > 0
+    assert len(msp.query(f'HATCH[layer=="{layer_name("glue")}"]')) == count("glue") > 0
+    texts = msp.query(f'TEXT[layer=="{layer_name("labels")}"]')
     assert sorted(t.dxf.text for t in texts) == sorted(t.text for s in sheets for t in s.labels)
     assert len(msp.query("LINE")) == 0  # polylines only
     # pages side by side: every entity of page 2 is right of page 1
@@ -640,10 +648,49 @@ def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layou
     ink = img.max(axis=-1) < 0.9
     edge = int(9.5 * mm)  # printers leave the outer 3–6 mm blank: nothing is drawn within 9.5 mm of an edge
     assert not ink[:edge].any() and not ink[-edge:].any() and not ink[:, :edge].any() and not ink[:, -edge:].any()
-    band = img[-int((10 + tube_layout.footer) * mm):-int(10 * mm), : int(25 * mm)].max(axis=-1) < 0.3  # the footer, left
-    row = band[np.argmax(band.sum(axis=1))]
+    band = img[-int((10 + tube_layout.footer) * mm):-int(10 * mm), : int(25 * mm)]
+    grey = (np.abs(band - 0.5).max(axis=-1) < 0.06)  # the footer's reference grey, #808080
+    row = grey[np.argmax(grey.sum(axis=1))]
     runs = np.diff(np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]]))))[::2]
     assert runs.max() / mm == pytest.approx(10.0, abs=0.15)
+
+
+def test_pdf_scale_bar_is_10_mm_and_every_operation_has_its_layer(tmp_path, tube_layout):
+    """pdfplumber (pdfminer) reads the drawing back: the scale bar is a 10.00 mm rectangle in the
+    reference colour, the labels are text, and the document lists one optional-content layer per operation."""
+    pdfplumber = pytest.importorskip("pdfplumber")
+    path = write_pdf(tmp_path / "tube.pdf", tube_layout)
+    mm = 72 / 25.4
+    with pdfplumber.open(path) as doc:
+        (page,) = doc.pages
+        assert (page.width, page.height) == pytest.approx((210 * mm, 297 * mm))
+        bars = [c for c in page.curves + page.rects if c.get("fill") and abs(c["width"] - 10 * mm) < 0.5 and abs(c["height"] - 1.2 * mm) < 0.1]
+        assert len(bars) == 1 and bars[0]["width"] / mm == pytest.approx(10.0, abs=1e-3)
+        assert tuple(bars[0]["non_stroking_color"]) == pytest.approx((128 / 255,) * 3, abs=1e-3)
+        words = page.extract_text()
+        assert "tube 1 · sheet A" in words and "S0" in words and "10 mm: print at 100 %" in words
+        catalog = doc.doc.catalog
+        groups = [g.resolve()["Name"].decode() for g in catalog["OCProperties"]["OCGs"]]
+    assert groups == [layer_name(k) for k in DEFAULT_LAYERS] + [LEGEND_LAYER]
+
+
+def test_pdf_text_is_centred_with_the_fonts_own_widths(tmp_path, tube_layout):
+    """The footer's scale note, set left to right at 0°: pdfminer's glyph boxes (from the font's
+    own metrics) span exactly the box the footer laid out for it."""
+    pdfplumber = pytest.importorskip("pdfplumber")
+    path = write_pdf(tmp_path / "tube.pdf", tube_layout)
+    mm = 72 / 25.4
+    note = legend.page_footer(tube_layout, 0).texts[0]
+    with pdfplumber.open(path) as doc:
+        chars = doc.pages[0].chars
+    text = "".join(c["text"] for c in chars)
+    start = text.index("10 mm: print")
+    run = chars[start:start + len(note.text)]
+    assert "".join(c["text"] for c in run) == note.text
+    left, right = run[0]["x0"] / mm, run[-1]["x1"] / mm
+    assert 0.5 * (left + right) == pytest.approx(note.position[0], abs=5e-3)
+    assert right - left == pytest.approx(pdf.text_advance(note.text, note.size), abs=5e-3)  # positions written to 0.1 µm, sizes to 4 decimals
+    assert right - left <= labels.text_width(note.text, note.size)  # within the box the layout kept clear
 
 
 # --------------------------------------------------------------------------------------
@@ -690,21 +737,15 @@ def test_dxf_write_failing_midway_leaves_nothing_and_keeps_the_old_file(tmp_path
 
 
 def test_pdf_write_failing_midway_leaves_nothing(tmp_path, vault_layout, monkeypatch):
-    from matplotlib.backends.backend_pdf import PdfPages
+    real = Path.write_bytes
 
-    real = PdfPages.savefig
-    calls = []
+    def half_then_fail(self, data):
+        real(self, data[: len(data) // 2])
+        raise OSError("disk full")
 
-    def second_page_fails(self, *args, **kwargs):
-        calls.append(1)
-        if len(calls) == 2:
-            raise OSError("disk full")
-        return real(self, *args, **kwargs)
-
-    monkeypatch.setattr(PdfPages, "savefig", second_page_fails)
+    monkeypatch.setattr(Path, "write_bytes", half_then_fail)
     with pytest.raises(OSError, match="disk full"):
         write_pdf(tmp_path / "vault.pdf", vault_layout)
-    assert len(calls) == 2
     assert _leftovers(tmp_path) == []
 
 
@@ -713,4 +754,4 @@ def test_writers_refuse_what_is_not_a_layout(tmp_path):
         with pytest.raises(InputError, match="layout must be a Layout"):
             writer(tmp_path / "x.out", "not a layout")
     assert _leftovers(tmp_path) == []
-    assert pattern.LAYER_STYLES.keys() == set(LAYERS)
+    assert cutters.STYLES.keys() == {*LAYERS, "legend"} and all(c.colours.keys() == {*LAYERS, "legend"} for c in CUTTERS.values())

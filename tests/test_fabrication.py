@@ -505,9 +505,9 @@ def test_pattern_dxf_passes_the_ezdxf_audit(stack_pattern):
     assert doc.header["$INSUNITS"] == 4
     msp = doc.modelspace()
     assert len(msp.query('LWPOLYLINE[layer=="cut"]')) == 4
-    assert len(msp.query('LWPOLYLINE[layer=="mountain"]')) == 4 and len(msp.query('LWPOLYLINE[layer=="valley"]')) == 0
-    assert len(msp.query('LWPOLYLINE[layer=="rulings"]')) > 0
-    texts = sorted(t.dxf.text for t in msp.query('TEXT[layer=="labels"]'))
+    assert len(msp.query('LWPOLYLINE[layer=="score - mountain"]')) == 4 and len(msp.query('LWPOLYLINE[layer=="score - valley"]')) == 0
+    assert len(msp.query('LWPOLYLINE[layer=="engrave - rulings"]')) > 0
+    texts = sorted(t.dxf.text for t in msp.query('TEXT[layer=="engrave - labels"]'))
     assert [t for t in texts if t.startswith("vault")] == [f"vault · tube {k} · sheet {s}" for k in (1, 2) for s in "AB"]
     assert sorted(t for t in texts if t.startswith("S")) == sorted(["S0", "S1", "S2", "S3"] * 2)  # both partners named
 
@@ -548,11 +548,14 @@ def test_write_pattern_options(tmp_path, tube):
 def test_write_3d_every_format(tmp_path, stack):
     pygltflib = pytest.importorskip("pygltflib")
     rhino3dm = pytest.importorskip("rhino3dm")
-    paths = write_3d(tmp_path / "stack", stack, [0.0, 30.0, 60.0, 90.0], unit="mm", metadata={"name": "stack"})
+    paths = write_3d(tmp_path / "stack", stack, [0.0, 30.0, 60.0, 90.0], unit="mm", metadata={"name": "stack"}, print_unit="cm")
     assert [p.suffix for p in paths] == [f".{f}" for f in MODEL_FORMATS]
     mesh = stack.state().mesh()
     gltf = pygltflib.GLTF2.load(str(tmp_path / "stack.glb"))
-    assert len(gltf.meshes[0].primitives[0].targets) == 3
+    labels = [s.label for s in stack.topology().sheets]
+    assert [n.name for n in gltf.nodes] == [m.name for m in gltf.meshes] == labels == [f"tube {k} · sheet {x}" for k in (1, 2) for x in "AB"]
+    assert all(len(m.primitives[0].targets) == 3 and m.primitives[0].attributes.NORMAL is not None for m in gltf.meshes)
+    assert (tmp_path / "stack.stl").read_bytes()[:80].rstrip().endswith(b", unit cm, z up")
     assert gltf.asset.extras["curvefold"]["angles_deg"] == [0.0, 30.0, 60.0, 90.0]
     assert gltf.asset.extras["curvefold"]["metadata"]["name"] == "stack"
     model = rhino3dm.File3dm.Read(str(tmp_path / "stack.3dm"))
@@ -566,6 +569,32 @@ def test_write_3d_every_format(tmp_path, stack):
     obj = (tmp_path / "stack.obj").read_text()
     assert obj.count("\nf ") == len(mesh.faces_vertices) // 2 and "# unit: mm" in obj  # one quad per two triangles
     assert (tmp_path / "stack.stl").stat().st_size == 84 + 50 * len(mesh.faces_vertices)
+
+
+def test_glb_first_keyframe_is_the_design_state_of_every_sheet(tmp_path, stack):
+    """What an importer that applies the first keyframe shows (Blender): each sheet's node, at the
+    weights of the animation's first keyframe, is the design state; a later keyframe is the flat state."""
+    pygltflib = pytest.importorskip("pygltflib")
+    from _gltf import accessor, target_position
+
+    angles = [0.0, 30.0, 60.0, 90.0]
+    (path,) = write_3d(tmp_path / "stack", stack, angles, formats=("glb",))
+    gltf = pygltflib.GLTF2.load(str(path))
+    blob = gltf.binary_blob()
+    (anim,) = gltf.animations
+    times = accessor(gltf, blob, anim.samplers[0].input)
+    weights = accessor(gltf, blob, anim.samplers[0].output).reshape(len(times), -1)
+    to_gltf = lambda x: np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)  # noqa: E731
+    faces = stack.state().mesh().faces_vertices
+    for key, angle in ((0, 90.0), (3, 0.0)):  # the first keyframe, and the flat state three steps on
+        want = to_gltf(stack.state(angle).mesh().vertices_coords)
+        for sheet, node in zip(stack.topology().sheets, gltf.nodes):
+            prim = gltf.meshes[node.mesh].primitives[0]
+            pose = accessor(gltf, blob, prim.attributes.POSITION) + sum(
+                w * accessor(gltf, blob, target_position(t)) for w, t in zip(weights[key], prim.targets))
+            triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
+            assert_allclose(pose[triangles], want[faces[sheet.faces]], atol=1e-6, rtol=0)
+    assert times[0] == 0.0 and not weights[0].any()
 
 
 @pytest.mark.node

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from curvefold.app.design import SCHEMA, parse_design
-from curvefold.io import gltf, pattern, rhino
+from curvefold.io import cutters, gltf, pattern, rhino
 from curvefold.io.formats import FORMATS, check_formats, default_formats, formats_of, missing_dependencies
 from curvefold.io.layout import page_size
 from curvefold.io.tables import COLOURS, PAGES, UNITS, mm_per_unit, page_mm, rgba, rgba8
@@ -153,7 +153,8 @@ def test_pages_units_and_colours_are_one_table():
     assert gltf.CREASE_COLOURS["fold"] == rgba("fold") == (1.0, 0.0, 0.0, 1.0)
     assert dict(rhino.LAYERS) == {"Sheets": rgba8("surface"), "Strips": rgba8("surface"),
                                   **{k.title(): rgba8(k) for k in ("fold", "seam", "boundary")}}
-    assert pattern.LAYER_STYLES["mountain"].color == COLOURS["fold"] and pattern.LAYER_STYLES["cut"].color == COLOURS["boundary"]
+    assert cutters.CUTTERS["print"].colours["mountain"] == COLOURS["fold"] and cutters.CUTTERS["print"].colours["cut"] == COLOURS["boundary"]
+    assert SCHEMA["output"]["cutter"].choices == tuple(cutters.CUTTERS)
 
 
 def test_registry_families_and_kinds():

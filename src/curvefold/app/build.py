@@ -11,6 +11,7 @@ from ..geometry.lattice import Lattice
 from ..geometry.panels import PanelLattice
 from ..geometry.sampling import Sampling, choose_sampling
 from ..geometry.structure import Structure
+from ..io.layout import Layout
 from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
 from .design import Design
 
@@ -43,6 +44,23 @@ class Built:
     def sampling(self) -> Sampling | None:
         """The samples the files' meshes keep (:func:`choose_sampling`), None for a single crease."""
         return None if self.structure is None else choose_sampling(self.structure)
+
+    @cached_property
+    def layout(self) -> Layout | None:
+        """The crease pattern laid out on the output's pages, at its scale, in its cutter's convention,
+        perforated and kerf-compensated as asked (:func:`~curvefold.io.pattern.layout_pattern`), on the
+        files' samples; None for a single crease. The crease-pattern files, the 3dm and the assembly
+        guide are drawn from it."""
+        if self.structure is None:
+            return None
+        from ..io.pattern import layout_pattern
+        from ..io.tables import mm_per_unit
+
+        o = self.design.output
+        page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
+        perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
+        return layout_pattern(self.structure, page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, name=self.design.kind,
+                              keep=self.sampling.keep, cutter=o.cutter, perforation=perforation, kerf=o.kerf)
 
 
 def vault_design(design: Design) -> VaultDesign:

@@ -251,13 +251,17 @@ class CreaseParams:
 
 @dataclass(frozen=True)
 class OutputParams:
-    """``[output]``: units, scale, page and file formats."""
+    """``[output]``: units, scale, page, how the crease patterns are cut, and file formats."""
 
     units: str
     scale: float | None
     page: str | tuple[float, float]
     glue_tabs: bool
     rulings: bool
+    cutter: str
+    perforation: float | None
+    perforation_gap: float
+    kerf: float
     formats: tuple[str, ...]
 
 

@@ -127,15 +127,16 @@ def strip_quads(vertices: np.ndarray, strips: np.ndarray) -> np.ndarray:
     return quads.reshape(-1, 4, 3)
 
 
-def shade(quads: np.ndarray, view: View) -> np.ndarray:
-    """RGBA colours (Q, 4) of quads (Q, 4, 3) shaded two-sidedly by their normals under a fixed light."""
+def shade(quads: np.ndarray, view: View, base: np.ndarray | None = None) -> np.ndarray:
+    """RGBA colours (Q, 4) of quads (Q, 4, 3) shaded two-sidedly by their normals under a fixed light,
+    from their base colours ``base`` (Q, 3) in [0, 1] (default :data:`STRIP_RGB`)."""
     normal = np.cross(quads[:, 2] - quads[:, 0], quads[:, 3] - quads[:, 1])
     length = np.linalg.norm(normal, axis=1, keepdims=True)
     normal = normal / np.where(length > 0, length, 1.0)
     light = np.array([-0.45, 0.6, 0.66]) @ view.basis  # from the upper left, in front
     light /= np.linalg.norm(light)
     lambert = np.abs(normal @ light)
-    rgb = STRIP_RGB[None] * (0.38 + 0.66 * lambert[:, None])
+    rgb = (STRIP_RGB[None] if base is None else np.asarray(base, float)) * (0.38 + 0.66 * lambert[:, None])
     return np.concatenate([np.clip(rgb, 0, 1), np.ones((len(quads), 1))], axis=1)
 
 
@@ -247,6 +248,7 @@ def render_strips(
     colors: Mapping[str, str],
     crease_width: float = 1.1,
     strip_edge: float = 0.3,
+    strip_rgb: np.ndarray | None = None,
 ) -> Scene:
     """Shaded strips, their curves and end rulings in one view, sorted by depth.
 
@@ -265,6 +267,9 @@ def render_strips(
         Line width of the curves in points (end rulings get half of it); 0 draws strips only.
     strip_edge : float, keyword-only
         Width of the strips' outline in their own colour (hides hairline gaps), points.
+    strip_rgb : (S, 3) array_like, optional, keyword-only
+        Base colour of every strip before shading, RGB in [0, 1] (to pick some out); default
+        :data:`STRIP_RGB` for all.
 
     Returns
     -------
@@ -274,7 +279,8 @@ def render_strips(
     pairs = np.asarray(strips)
     quads = strip_quads(vertices, pairs)
     q2, qd = view.project(quads)
-    face = shade(quads, view)
+    base = None if strip_rgb is None else np.repeat(np.asarray(strip_rgb, float).reshape(len(pairs), 3), vertices.shape[1] - 1, axis=0)
+    face = shade(quads, view, base)
     strip_depth = qd.mean(axis=1)
     paths = [q2]
     depth = [strip_depth]

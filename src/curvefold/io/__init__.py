@@ -2,8 +2,8 @@
 
 Every writer goes through :mod:`curvefold.io.atomic` (temporary file, then rename), so a
 failure never leaves a partial file. Heavy libraries (``trimesh``, ``pygltflib``,
-``rhino3dm``, ``ezdxf``, ``matplotlib``) are optional and imported only by the writer that
-needs them.
+``rhino3dm``, ``ezdxf``) are optional and imported only by the writer that needs them; the
+PDF pages are written by :mod:`curvefold.io.pdf`, which needs none.
 
 :mod:`curvefold.io.formats` is the registry of every file format (name, extension,
 contents, kinds of design, writer, optional package); :mod:`curvefold.io.tables` is the
@@ -23,10 +23,12 @@ from .gltf import write_glb
 from .layout import Layout, layout_sheets, page_size
 from .mesh3d import check_metadata, crease_polylines, write_obj, write_ply, write_stl
 from .models import MODEL_FORMATS, write_3d
-from .pattern import PATTERN_FORMATS, layout_pattern, write_dxf, write_pattern, write_pdf, write_svg
+from .cutters import CUTTERS
+from .pattern import PATTERN_FORMATS, layout_pattern, write_dxf, write_layout, write_pattern, write_pdf, write_svg
 from .rhino import write_3dm
 
 __all__ = [
+    "CUTTERS",
     "FoldFile",
     "Layout",
     "MODEL_FORMATS",
@@ -44,6 +46,7 @@ __all__ = [
     "write_dxf",
     "write_fold",
     "write_glb",
+    "write_layout",
     "write_obj",
     "write_pattern",
     "write_pdf",

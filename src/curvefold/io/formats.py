@@ -32,6 +32,7 @@ from types import MappingProxyType
 
 from ..kernel.errors import InputError
 from ..kernel.validate import Spec
+from .cutters import CUTTERS, DEFAULT_CUTTER
 from .tables import PAGES
 
 __all__ = [
@@ -76,6 +77,8 @@ class FileFormat:
         Module writing the file needs that curvefold does not require, or None.
     extra : str or None
         The ``pip install 'curvefold[extra]'`` that brings ``dependency``.
+    stem : str or None
+        A file name of its own (``"assembly"``: ``assembly.pdf``), instead of the stem its family is given.
     """
 
     name: str
@@ -87,17 +90,18 @@ class FileFormat:
     media_type: str
     dependency: str | None = None
     extra: str | None = None
+    stem: str | None = None
 
     def path(self, stem: str | os.PathLike) -> Path:
-        """The file of this format for a path stem: ``<stem><extension>``.
+        """The file of this format for a path stem: ``<stem><extension>``, or its own name beside it.
 
         Examples
         --------
-        >>> FORMATS["svg"].path("out/vault-pattern").as_posix()
-        'out/vault-pattern.svg'
+        >>> FORMATS["svg"].path("out/vault-pattern").as_posix(), FORMATS["assembly"].path("out/vault").as_posix()
+        ('out/vault-pattern.svg', 'out/assembly.pdf')
         """
         stem = Path(stem)
-        return stem.with_name(stem.name + self.extension)
+        return stem.with_name((self.stem or stem.name) + self.extension)
 
     def load_writer(self) -> Callable:
         """Import and return the writing function."""
@@ -109,21 +113,24 @@ _S = STRUCTURE_KINDS
 
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", _S,
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per operation, a scale bar and legend", "pattern", _S,
                "curvefold.io.pattern:write_svg", "image/svg+xml"),
     FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _S,
                "curvefold.io.pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", _S,
-               "curvefold.io.pattern:write_pdf", "application/pdf", "matplotlib", "export"),
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _S,
+               "curvefold.io.pattern:write_pdf", "application/pdf"),
+    FileFormat("assembly", ".pdf", "the assembly guide: the sheets to cut, which seam glues to which, the order of folding and "
+               "gluing tube by tube with a picture of each step, on the pattern's pages", "guide", _S,
+               "curvefold.figures.assembly:write_assembly", "application/pdf", stem="assembly"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
                "curvefold.io.fold:write_structure_fold", "application/json"),
-    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", _S,
+    FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _S,
                "curvefold.io.models:model_glb", "model/gltf-binary", "pygltflib", "export"),
     FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _S,
                "curvefold.io.models:model_obj", "model/obj"),
     FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _S,
                "curvefold.io.models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
-    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", _S,
+    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _S,
                "curvefold.io.models:model_stl", "model/stl", "trimesh", "export"),
     FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _S,
                "curvefold.io.models:model_ply", "application/octet-stream", "trimesh", "export"),
@@ -134,6 +141,7 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
 #: What each family of formats writes, as the subject of a sentence in messages.
 FAMILIES: Mapping[str, str] = MappingProxyType({
     "pattern": "the crease patterns are",
+    "guide": "the assembly guide is",
     "fold": "the FOLD file is",
     "model": "the 3D models are",
     "motion": "the GIF of the folding motion is",
@@ -209,12 +217,18 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
 
 #: The ``[output]`` parameters of a design.
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale (printed lengths, so not the model unit)"),
+    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)"),
     Spec("scale", "real", None, "(0, inf)", "output units per model unit",
          help="crease-pattern scale (default: fit the largest sheet to the page)"),
     Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
     Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns"),
     Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)"),
+    Spec("cutter", "choice", DEFAULT_CUTTER, choices=tuple(CUTTERS),
+         help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)"),
+    Spec("perforation", "real", None, "(0, 100]", "mm",
+         help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)"),
+    Spec("perforation_gap", "real", 1.0, "(0, 100]", "mm", help="gap between the dashes of perforated creases"),
+    Spec("kerf", "real", 0.0, "[0, 5]", "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)"),
 )

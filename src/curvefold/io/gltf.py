@@ -1,20 +1,28 @@
 """Binary glTF 2.0 (GLB) of a folding motion, as morph targets with an animation.
 
-The file holds two meshes that move together:
+The file holds one node and one mesh per part, named by it (the sheets of a structure:
+``"tube 1 · sheet A"``; a mesh given without parts is one part, ``"surface"``). Each mesh has
 
-* ``surface``: the triangles (double-sided grey material). Its base positions are the
-  base state (``base_state``, by default the last: the design state, which is what a
-  viewer shows without playing the animation); every other state is a morph target
-  holding the position differences to it, in state order, named by its fold angle in
-  the mesh's ``extras.targetNames`` (``"2α = 45°"``; three.js reads them into
-  ``morphTargetDictionary``).
-* ``creases``: one ``LINES`` primitive per crease kind present, with a material of the
-  kind's colour (fold red, seam blue, boundary black) and the same morph targets.
+* one triangle primitive (double-sided grey material) with positions and normals; its
+  vertices are split along the creases between its strips, so a folded crease shows as
+  a sharp edge and a curved strip shades smoothly;
+* one ``LINES`` primitive per crease kind on the part (fold red, seam blue, boundary
+  black, from :data:`curvefold.io.tables.COLOURS`).
 
-One animation drives the ``weights`` of both nodes: at time ``k * seconds_per_state``
-the weights select state k exactly (all zero for the base state, the unit vector of the
-state's target otherwise), so ``LINEAR`` interpolation blends linearly from each state
-to the next and ``STEP`` jumps between them.
+The base positions are the base state (``base_state``, by default the last: the design
+state, which is what a viewer shows without playing the animation); every other state is
+a morph target holding the position (and normal) differences to it, in state order, named
+by its fold angle in the mesh's ``extras.targetNames`` (``"2α = 45°"``; three.js reads
+them into ``morphTargetDictionary``). Further named morph targets (``morph_targets``: a
+deformed shape, the modes of a mechanical analysis, as displacements from the base state)
+follow the states, with weight 0 and outside the animation.
+
+One animation drives the ``weights`` of every node: it starts at the base state, unfolds
+to the first state (flat), folds to the last and returns to the base state, each step
+``seconds_per_state`` long. Its first keyframe is the base state, which importers that
+apply the first keyframe (Blender) therefore open. At keyframe times the weights select
+one state exactly, so ``LINEAR`` interpolation blends linearly between neighbouring states
+and ``STEP`` jumps between them.
 
 Units and axes: glTF lengths are metres and +Y is up. Coordinates are multiplied by
 ``scale`` (metres per model unit; by default taken from ``unit``: ``"mm"`` → 0.001,
@@ -22,7 +30,7 @@ Units and axes: glTF lengths are metres and +Y is up. Coordinates are multiplied
 so that the model's +Z points up in glTF viewers. Both are recorded in
 ``asset.extras["curvefold"]`` together with the fold angles of the states and the
 design parameters. Positions are 32-bit floats; accessor ``min``/``max`` are those of
-the stored 32-bit values. Normals are not written (viewers shade flat).
+the stored 32-bit values.
 
 Written with ``pygltflib`` (an optional dependency, imported when called).
 """
@@ -87,6 +95,32 @@ def _material(g, name: str, colour: tuple, *, double_sided: bool):
     )
 
 
+def _keyframes(count: int, base: int) -> np.ndarray:
+    """The states of the animation's keyframes: from ``base`` down to 0, up to the last and back to ``base``.
+
+    Examples
+    --------
+    >>> _keyframes(4, 3).tolist(), _keyframes(3, 0).tolist(), _keyframes(1, 0).tolist()
+    ([3, 2, 1, 0, 1, 2, 3], [0, 1, 2, 1, 0], [0])
+    """
+    return np.array([*range(base, -1, -1), *range(1, count), *range(count - 2, base - 1, -1)], dtype=np.int64)
+
+
+def _vertex_normals(pos: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Unit normals (n, 3) of vertices (n, 3): the area-weighted mean of their triangles' normals."""
+    a, b, c = (pos[triangles[:, k]] for k in range(3))
+    face = np.cross(b - a, c - a)  # twice the area times the normal
+    out = np.stack([sum(np.bincount(triangles[:, k], face[:, j], minlength=len(pos)) for k in range(3)) for j in range(3)], axis=1)
+    return out / np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-300)
+
+
+def _split_by_strip(faces: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A part's triangles (F, 3) with their vertices copied per strip: (mesh vertex of every copy, triangles in copies)."""
+    key = groups[:, None] * (int(faces.max(initial=0)) + 1) + faces  # (strip, vertex) pairs
+    pairs, local = np.unique(key.reshape(-1), return_inverse=True)
+    return pairs % (int(faces.max(initial=0)) + 1), local.reshape(-1, 3)
+
+
 def write_glb(
     path: str | os.PathLike,
     mesh: Mesh,
@@ -101,8 +135,10 @@ def write_glb(
     interpolation: str = "LINEAR",
     up: str = "z",
     crease_kinds: Sequence[str] = ("fold", "seam", "boundary"),
+    parts: Sequence[tuple[str, np.ndarray, np.ndarray]] | None = None,
+    morph_targets: Mapping[str, np.ndarray] | None = None,
 ) -> Path:
-    """Write a folding motion as an animated GLB.
+    """Write a folding motion as an animated GLB (see the module notes).
 
     Parameters
     ----------
@@ -130,6 +166,13 @@ def write_glb(
         Which model axis points up; ``"z"`` is rotated onto glTF's +Y.
     crease_kinds : sequence of str
         Kinds drawn as coloured lines (keys of :data:`CREASE_COLOURS`).
+    parts : sequence of (str, (F_p,) array_like of int, (E_p,) array_like of int), optional
+        The nodes: a name, the faces and the edges of the mesh on each (a structure's sheets:
+        :attr:`SheetTopology.faces <curvefold.geometry.topology.SheetTopology>` and ``edges``).
+        Default: one node ``"surface"`` with every face and edge.
+    morph_targets : mapping of str to (V, 3) array_like, optional
+        Further morph targets by name: displacements of the vertices from the base state,
+        in model units (a deformed shape less the base state, a mode shape).
 
     Returns
     -------
@@ -177,48 +220,64 @@ def write_glb(
     if bad:
         raise InputError(f"crease_kinds must be among {tuple(CREASE_COLOURS)}, got {bad}")
     meta = check_metadata(metadata)
+    triangulated = mesh.triangulated()  # polygons split in place, in face order
+    faces, groups = triangulated.faces_vertices, np.asarray(triangulated.faces_group)
+    polygon_of = np.repeat(np.arange(len(mesh.faces_vertices)), mesh.face_sizes() - 2)  # the mesh face of every triangle
+    parts = _check_parts(parts, len(mesh.faces_vertices), len(mesh.edges_vertices))
+    extra = _check_morphs(morph_targets, V)
 
-    pos = (states * float(scale)) @ _AXES[up].T  # (K, V, 3) metres, glTF axes
+    rotation = _AXES[up]
+    pos = (states * float(scale)) @ rotation.T  # (K, V, 3) metres, glTF axes
     others = np.array([k for k in range(K) if k != base_state], dtype=np.int64)  # the states of targets 0 … K − 2
-    base = pos[base_state].astype(np.float32)
-    deltas = (pos[others] - pos[base_state]).astype(np.float32)  # (K-1, V, 3)
-    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others]
+    poses = np.concatenate([pos[others], pos[base_state] + (np.stack(list(extra.values())) * float(scale)) @ rotation.T]) if extra else pos[others]
+    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(extra)
+    T = len(poses)  # morph targets
 
     pk = _Packer(g)
     materials = [_material(g, "surface", rgba("surface"), double_sided=True)]
+    kind_material: dict[str, int] = {}
+    edges_kind = np.asarray(mesh.edges_kind)
 
-    def primitive(vertex_ids: np.ndarray, indices: np.ndarray, mode: int, material: int):
-        position = pk.add(base[vertex_ids], "VEC3", target=_ARRAY_BUFFER, min_max=True)
-        targets = [g.Attributes(POSITION=pk.add(d[vertex_ids], "VEC3", target=_ARRAY_BUFFER, min_max=True)) for d in deltas]
-        idx = pk.add(indices.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER)
-        return g.Primitive(attributes=g.Attributes(POSITION=position), indices=idx, mode=mode, material=material, targets=targets)
+    def vec3(data: np.ndarray) -> int:
+        return pk.add(data.astype(np.float32), "VEC3", target=_ARRAY_BUFFER, min_max=True)
 
-    surface = g.Mesh(
-        name="surface",
-        primitives=[primitive(np.arange(V), mesh.triangulated().faces_vertices, _TRIANGLES, 0)],
-        weights=[0.0] * (K - 1),
-        extras={"targetNames": names},
-    )
-    line_primitives = []
-    for kind in crease_kinds:
-        edges = np.asarray(mesh.edges_vertices)[np.asarray(mesh.edges_kind) == kind]
-        if len(edges) == 0:
-            continue
-        used, local = np.unique(edges, return_inverse=True)
-        materials.append(_material(g, kind, CREASE_COLOURS[kind], double_sided=False))
-        line_primitives.append(primitive(used, local.reshape(-1, 2), _LINES, len(materials) - 1))
-
-    meshes = [surface]
-    nodes = [g.Node(name="surface", mesh=0)]
-    if line_primitives:
-        meshes.append(g.Mesh(name="creases", primitives=line_primitives, weights=[0.0] * (K - 1), extras={"targetNames": names}))
-        nodes.append(g.Node(name="creases", mesh=1))
+    meshes, nodes = [], []
+    for name, part_faces, part_edges in parts:
+        mine = np.flatnonzero(np.isin(polygon_of, part_faces))  # the part's triangles
+        copies, triangles = _split_by_strip(faces[mine], groups[mine])
+        base = pos[base_state][copies]
+        normal = _vertex_normals(base, triangles)
+        moved = poses[:, copies]
+        moved_normals = np.stack([_vertex_normals(m, triangles) for m in moved]) if T else moved
+        targets = [g.Attributes(POSITION=vec3(m - base), NORMAL=vec3(n - normal)) for m, n in zip(moved, moved_normals)]
+        primitives = [g.Primitive(attributes=g.Attributes(POSITION=vec3(base), NORMAL=vec3(normal)),
+                                  indices=pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
+                                  mode=_TRIANGLES, material=0, targets=targets)]
+        for kind in crease_kinds:
+            edges = np.asarray(mesh.edges_vertices)[part_edges[edges_kind[part_edges] == kind]]
+            if len(edges) == 0:
+                continue
+            if kind not in kind_material:
+                materials.append(_material(g, kind, CREASE_COLOURS[kind], double_sided=False))
+                kind_material[kind] = len(materials) - 1
+            used, local = np.unique(edges, return_inverse=True)
+            primitives.append(g.Primitive(
+                attributes=g.Attributes(POSITION=vec3(pos[base_state][used])),
+                indices=pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
+                mode=_LINES, material=kind_material[kind],
+                targets=[g.Attributes(POSITION=vec3(m[used] - pos[base_state][used])) for m in poses]))
+        meshes.append(g.Mesh(name=name, primitives=primitives, weights=[0.0] * T, extras={"targetNames": names}))
+        nodes.append(g.Node(name=name, mesh=len(meshes) - 1))
 
     animations = []
     if K > 1:
-        times = (np.arange(K) * float(seconds_per_state)).astype(np.float32)
-        weights = np.zeros((K, K - 1), np.float32)
-        weights[others, np.arange(K - 1)] = 1.0  # the base state has all weights 0
+        order = _keyframes(K, base_state)
+        times = (np.arange(len(order)) * float(seconds_per_state)).astype(np.float32)
+        target_of = np.full(K, -1)
+        target_of[others] = np.arange(K - 1)  # the base state has all weights 0
+        weights = np.zeros((len(order), T), np.float32)
+        shown = target_of[order] >= 0
+        weights[np.flatnonzero(shown), target_of[order][shown]] = 1.0
         t_acc = pk.add(times, "SCALAR", min_max=True)
         w_acc = pk.add(weights.reshape(-1), "SCALAR")
         animations.append(g.Animation(
@@ -234,6 +293,7 @@ def write_glb(
         "axis_mapping": "(x, y, z) -> (x, z, -y)" if up == "z" else "none",
         "states": K,
         "base_state": base_state,
+        "morph_targets": names,
         "seconds_per_state": float(seconds_per_state),
         "metadata": meta,
     }
@@ -253,3 +313,31 @@ def write_glb(
     )
     gltf.set_binary_blob(bytes(pk.blob))
     return atomic_write(path, b"".join(gltf.save_to_bytes()))
+
+
+def _check_parts(parts, faces: int, edges: int) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    if parts is None:
+        return [("surface", np.arange(faces), np.arange(edges))]
+    out = []
+    for i, part in enumerate(parts):
+        try:
+            name, f, e = part
+            f, e = np.asarray(f, np.int64).reshape(-1), np.asarray(e, np.int64).reshape(-1)
+        except (TypeError, ValueError):
+            raise InputError(f"parts[{i}] must be (name, face indices, edge indices), got {part!r}") from None
+        if not isinstance(name, str) or len(f) == 0 or f.min() < 0 or f.max() >= faces or (len(e) and (e.min() < 0 or e.max() >= edges)):
+            raise InputError(f"parts[{i}] must be a name and indices of the mesh's {faces} faces (at least one) and {edges} edges")
+        out.append((name, f, e))
+    if not out:
+        raise InputError("parts must hold at least one part")
+    return out
+
+
+def _check_morphs(morph_targets, vertices: int) -> dict[str, np.ndarray]:
+    out: dict[str, np.ndarray] = {}
+    for name, delta in (morph_targets or {}).items():
+        d = np.asarray(delta, float)
+        if not isinstance(name, str) or d.shape != (vertices, 3) or not np.isfinite(d).all():
+            raise InputError(f"morph_targets[{name!r}] must be finite displacements of shape ({vertices}, 3), got shape {d.shape}")
+        out[name] = d
+    return out

@@ -205,6 +205,12 @@ class Layout:
     notes : tuple of str
         What the layout had to compromise on (narrowed or dropped glue tabs, labels that
         could not be kept clear of lines, seams whose partners differ in length).
+    cutter : str
+        The colour convention the writers draw it in (a key of :data:`curvefold.io.cutters.CUTTERS`).
+    perforation : (float, float) or None
+        (dash, gap) in mm when the creases are drawn as cut dashes (:mod:`curvefold.io.cutting`).
+    kerf : float
+        The kerf (mm) the cut outlines were moved out for, by half of it; 0 for none.
     """
 
     pages: tuple[Page, ...]
@@ -213,6 +219,9 @@ class Layout:
     scale: float
     notes: tuple[str, ...] = field(default=())
     footer: float = 0.0
+    cutter: str = "print"
+    perforation: tuple[float, float] | None = None
+    kerf: float = 0.0
 
     def sheets(self) -> tuple[PlacedSheet, ...]:
         """All placed sheets, page by page."""
@@ -599,17 +608,17 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
     # Labels: seam names first (each then becomes an obstacle), then the sheet label.
     obstacle_lines = [(p.points, p.closed) for p in polylines if p.layer in ("cut", "seam", "mountain", "valley")]
     segments = polyline_segments(obstacle_lines)
-    spacing = 0.1 * MIN_LABEL_SIZE
+    obstacles = Obstacles(segments, 0.1 * MIN_LABEL_SIZE)
     labels: list[Label] = []
     for ch in loc.chains:
-        lab, ok = seam_label(ch.points, ch.seam, Obstacles(segments, spacing), 0.8 * label_size)
+        lab, ok = seam_label(ch.points, ch.seam, obstacles, 0.8 * label_size)
         if not ok:
             notes.append(f"sheet {name!r}: seam name {lab.text} could not be kept clear of the lines")
         labels.append(lab)
-        segments = np.concatenate([segments, polyline_segments([(lab.corners(), True)])])
+        obstacles = obstacles.plus(polyline_segments([(lab.corners(), True)]))
     tri = loc.xy[sheet.mesh.triangulated().faces_vertices]
     areas = 0.5 * np.abs(cross2(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]))
-    lab, ok = sheet_label(name, tri.mean(axis=1), areas, Obstacles(segments, spacing), label_size)
+    lab, ok = sheet_label(name, tri.mean(axis=1), areas, obstacles, label_size)
     if not ok:
         notes.append(f"sheet {name!r}: its label could not be kept clear of the lines")
     if name:

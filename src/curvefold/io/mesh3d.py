@@ -6,7 +6,8 @@ groups, which ``trimesh``'s OBJ writer does not do. All files are written atomic
 
 Precision: STL and PLY store vertex coordinates as 32-bit floats (about 7 significant
 digits); OBJ stores them with 17 significant digits. None of the three formats has a
-unit; the OBJ header comment states it.
+unit field: the OBJ header comment states it, and the STL can be written in a length unit
+of its own (millimetres, which slicers assume) with the unit in its 80-byte header text.
 
 Axes: curvefold's models are z-up. OBJ readers (Blender, three.js, most viewers) take
 +Y as up, so OBJ files are written Y-up by default, turned by ``(x, y, z) → (x, z, −y)``
@@ -23,6 +24,7 @@ import json
 import math
 import os
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from pathlib import Path
 from types import MappingProxyType
 
@@ -295,7 +297,7 @@ def _trimesh(mesh: Mesh):
     return trimesh, trimesh.Trimesh(vertices=x, faces=triangles.faces_vertices, process=False, validate=False), triangles
 
 
-def write_stl(path: str | os.PathLike, mesh: Mesh) -> Path:
+def write_stl(path: str | os.PathLike, mesh: Mesh, *, unit: str = "unit", to_unit: str | None = None) -> Path:
     """Write one state as a binary STL (polygons triangulated, 32-bit floats, via ``trimesh``).
 
     Parameters
@@ -303,13 +305,35 @@ def write_stl(path: str | os.PathLike, mesh: Mesh) -> Path:
     path : path-like
     mesh : Mesh
         The state to write.
+    unit : str
+        Length unit of the mesh's coordinates, a name in :data:`curvefold.io.tables.UNITS`
+        (``"unit"``, the model unit, counts as one metre).
+    to_unit : str, optional
+        Length unit of the file (``"mm"`` for slicers, which read millimetres); default
+        ``unit``. The 80-byte header says it: ``curvefold 0.1.0, unit mm, z up``.
 
     Returns
     -------
     Path
+
+    Examples
+    --------
+    >>> from curvefold.io.tables import UNITS
+    >>> UNITS["unit"].metres / UNITS["mm"].metres   # a model unit in the file when to_unit="mm"
+    1000.0
     """
-    trimesh, tm, _ = _trimesh(mesh)
-    return atomic_write(path, trimesh.exchange.stl.export_stl(tm))
+    from .tables import CREATOR, UNITS
+
+    to_unit = unit if to_unit is None else to_unit
+    for name, value in (("unit", unit), ("to_unit", to_unit)):
+        if value not in UNITS:
+            raise InputError(f"{name} must be one of {', '.join(UNITS)}, got {value!r}", parameter="units")
+    factor = UNITS[unit].metres / UNITS[to_unit].metres
+    scaled = mesh if factor == 1.0 else replace(mesh, vertices_coords=np.asarray(mesh.vertices_coords) * factor)
+    trimesh, tm, _ = _trimesh(scaled)
+    words = "model units (1 model unit = 1 m)" if to_unit == "unit" else to_unit
+    header = one_line(f"{CREATOR}, unit {words}, z up").encode("ascii", "replace")[:80].ljust(80, b" ")
+    return atomic_write(path, header + trimesh.exchange.stl.export_stl(tm)[80:])
 
 
 def write_ply(path: str | os.PathLike, mesh: Mesh) -> Path:

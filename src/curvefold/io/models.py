@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +21,7 @@ from ..geometry.sheets import folding_motion
 from ..geometry.structure import Structure, check_structure
 from ..kernel.arrays import readonly
 from . import gltf, mesh3d, rhino
+from .layout import Layout
 from .formats import FORMATS, check_formats, formats_of
 
 __all__ = ["MODEL_FORMATS", "FoldedModel", "write_3d", "model_glb", "model_obj", "model_stl", "model_ply", "model_3dm"]
@@ -45,6 +46,9 @@ def write_3d(
     anchor: str = "start",
     seconds_per_state: float = 1.0,
     keep: Sequence[np.ndarray] | None = None,
+    print_unit: str | None = None,
+    morph_targets: Mapping[str, np.ndarray] | None = None,
+    pattern: Layout | None = None,
 ) -> tuple[Path, ...]:
     """Write the folded structure as 3D files; the GLB holds the folding motion.
 
@@ -74,6 +78,16 @@ def write_3d(
     keep : sequence of (m_k,) array_like of int, optional, keyword-only
         The samples each tube's mesh keeps (:func:`curvefold.geometry.sampling.choose_sampling`);
         default every sample.
+    print_unit : str, optional, keyword-only
+        Length unit of the STL, which slicers read as millimetres (``"mm"``); default the
+        model unit. The model unit counts as one metre (:data:`curvefold.io.tables.UNITS`).
+    morph_targets : mapping of str to (V, 3) array_like, optional, keyword-only
+        Further named morph targets of the GLB (a deformed shape, mode shapes): displacements,
+        in model units, of the vertices of ``structure.state(fold_angle).mesh(keep=keep)``
+        from that state (see :func:`curvefold.io.gltf.write_glb`).
+    pattern : Layout, optional, keyword-only
+        The crease pattern the 3dm lays beside the model on its ``crease pattern`` layer
+        (:func:`curvefold.io.pattern.layout_pattern`).
 
     Returns
     -------
@@ -88,7 +102,7 @@ def write_3d(
     meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
     state = structure.state(static, anchor=anchor)
     model = FoldedModel(structure, state.mesh(keep=keep), state.mesh(faces="quads", keep=keep), static, readonly(motion), unit,
-                        meta, anchor, seconds_per_state, keep)
+                        meta, anchor, seconds_per_state, keep, print_unit, dict(morph_targets or {}), pattern)
     return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
 
 
@@ -117,6 +131,12 @@ class FoldedModel:
         GLB animation time between consecutive states.
     keep : sequence of (m_k,) ndarray of int, or None
         The samples each tube's mesh keeps.
+    print_unit : str or None
+        Length unit of the STL; None for the model unit.
+    morph_targets : dict of str to (V, 3) ndarray
+        Further named morph targets of the GLB, displacements from :attr:`mesh`.
+    pattern : Layout or None
+        The crease pattern of the 3dm's ``crease pattern`` layer.
     """
 
     structure: Structure
@@ -129,6 +149,9 @@ class FoldedModel:
     anchor: str
     seconds_per_state: float
     keep: Sequence[np.ndarray] | None
+    print_unit: str | None = None
+    morph_targets: Mapping[str, np.ndarray] = field(default_factory=dict)
+    pattern: Layout | None = None
 
     @property
     def static_metadata(self) -> dict:
@@ -137,11 +160,17 @@ class FoldedModel:
 
 
 def model_glb(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The GLB of a model: its state as the base pose, the folding motion as morph targets and an animation."""
+    """The GLB of a model: a node per sheet, its state as the base pose, the folding motion as morph
+    targets and an animation that starts at that state; the model's further morph targets after them."""
     coords = folding_motion(model.structure, model.motion, anchor=model.anchor, keep=model.keep)
     base = int(np.argmin(np.abs(model.motion - model.fold_angle)))
+    sheets = model.structure.topology(keep=model.keep).sheets
+    # the base pose is the motion's state nearest the model's: the further targets move from it
+    shift = coords[base] - model.mesh.vertices_coords
+    morphs = {name: np.asarray(d, float) - shift for name, d in model.morph_targets.items()}
     return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base, unit=model.unit,
-                          metadata=model.metadata, seconds_per_state=model.seconds_per_state)
+                          metadata=model.metadata, seconds_per_state=model.seconds_per_state,
+                          parts=[(s.label, s.faces, s.edges) for s in sheets], morph_targets=morphs)
 
 
 def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:
@@ -150,8 +179,8 @@ def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:
 
 
 def model_stl(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The STL of a model (triangles)."""
-    return mesh3d.write_stl(path, model.mesh)
+    """The STL of a model (triangles), in its print unit."""
+    return mesh3d.write_stl(path, model.mesh, unit=model.unit, to_unit=model.print_unit)
 
 
 def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:
@@ -160,7 +189,9 @@ def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:
 
 
 def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree)."""
+    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree),
+    grouped by tube and sheet, and the model's crease pattern laid beside it when it has one."""
     structure = model.structure
     return rhino.write_3dm(path, model.quads, structure.topology("quads", keep=model.keep), unit=model.unit,
-                           metadata=model.static_metadata, degree=structure.lattice.crease_degree)
+                           metadata=model.static_metadata, degree=structure.lattice.crease_degree, fold_angle=model.fold_angle,
+                           pattern=model.pattern)

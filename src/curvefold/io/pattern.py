@@ -1,27 +1,28 @@
 """Crease patterns for fabrication: SVG, DXF and PDF at true scale in millimetres.
 
-Build a :class:`~curvefold.io.layout.Layout` with :func:`layout_sheets` (placement on
-pages, glue tabs, layers, labels; see :mod:`curvefold.io.layout`), then write it:
+Build a :class:`~curvefold.io.layout.Layout` with :func:`layout_pattern` (placement on
+pages, glue tabs, layers, labels, and for cutting machines perforated creases and kerf
+compensation; see :mod:`curvefold.io.layout` and :mod:`curvefold.io.cutting`), then write it:
 
 * :func:`write_svg` — one SVG per page, ``width``/``height`` in mm and a viewBox in mm,
-  one Inkscape layer per fabrication layer and a ``legend`` layer (not to cut). One page:
-  written to ``path``. Several pages: ``name-p1.svg``, ``name-p2.svg``… beside ``path``
-  (``path`` itself is not written), unless ``page_index`` picks one page, which is then
-  written to ``path``.
+  one Inkscape layer per operation and a legend layer (not to cut). One page: written to
+  ``path``. Several pages: ``name-p1.svg``, ``name-p2.svg``… beside ``path`` (``path``
+  itself is not written), unless ``page_index`` picks one page, which is then written to
+  ``path``.
 * :func:`write_dxf` — one DXF (R2010, ``$INSUNITS`` = 4, mm) with real layers, colours
-  and linetypes; pages in a grid, each framed, with the drawing's extents set. Needs
-  ``ezdxf``.
-* :func:`write_pdf` — one printable PDF page per layout page at 1:1. Needs ``matplotlib``.
+  and linetypes; pages in a grid, each framed (:mod:`curvefold.io.dxf`). Needs ``ezdxf``.
+* :func:`write_pdf` — one printable PDF page per layout page at 1:1, each operation on
+  its own PDF layer (optional content), the page's lines drawn from the layout's arrays
+  by :mod:`curvefold.io.pdf`.
 
-Every page carries a footer (:func:`page_footer`) inside its margins: a 10 mm scale bar
-with the print scale, the page number, and a legend of the line styles and seam names
-on that page.
-
-Layer styles (:data:`LAYER_STYLES`, colours from :data:`curvefold.io.tables.COLOURS`):
-``cut`` black solid, ``mountain`` red dash-dot, ``valley`` blue dashed, ``seam`` (tab fold
-lines) green short dashes, ``glue`` light-green fill, ``rulings`` thin green, ``labels``
-purple text. Writers draw every layer except ``rulings`` unless told otherwise
-(``layers=``). All files are written atomically.
+Layers are named by operation and drawn in the colours of the layout's cutter convention
+(:mod:`curvefold.io.cutters`; ``cutter="print"`` by default: cut black, mountain red
+dash-dot, valley blue dashed, glue-tab folds green dotted, glue light green, rulings thin
+green, labels purple). Every page carries a footer (:func:`~curvefold.io.legend.page_footer`)
+inside its margins, in the convention's reference colour: a 10 mm scale bar with the print
+scale, the page number, and a legend of the layers and seam names on that page. Writers
+draw every layer except ``rulings`` unless told otherwise (``layers=``). All files are
+written atomically.
 """
 
 from __future__ import annotations
@@ -30,24 +31,28 @@ import contextlib
 import math
 import os
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass
+from dataclasses import replace
 from pathlib import Path
-from types import MappingProxyType
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
 from ..geometry.sheets import PatternSheet, sheets
 from ..geometry.structure import Structure, check_structure
-from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ..kernel.text import one_line
 from ..kernel.validate import check_integer
 from .atomic import atomic_path
+from .cutters import DEFAULT_CUTTER, LEGEND_LAYER
+from .cutters import cutter as _cutter
+from .cutting import prepare_layout
+from .dxf import page_grid, write_dxf
 from .formats import FORMATS, check_formats, formats_of
-from .labels import Label, seam_name, text_width
+from .labels import Label, seam_name
 from .layout import FOOTER, LAYERS, Layout, Page, PlacedSheet, Polyline, layout_sheets, page_size
-from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
+from .legend import DEFAULT_LAYERS, LEGEND, Footer, check_layers, check_layout, layer_look, page_footer
+from .pdf import PdfDocument
+from .tables import mm_per_unit
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")
@@ -58,8 +63,6 @@ _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
 __all__ = [
     "DEFAULT_LAYERS",
     "LAYERS",
-    "LAYER_STYLES",
-    "LayerStyle",
     "Label",
     "LEGEND",
     "Footer",
@@ -76,158 +79,19 @@ __all__ = [
     "layout_pattern",
     "svg_page",
     "write_pattern",
+    "write_layout",
     "page_grid",
     "write_dxf",
     "write_pdf",
     "write_svg",
+    "draw_footer",
 ]
-
-_PT_PER_MM = 72.0 / 25.4
-
-
-@dataclass(frozen=True)
-class LayerStyle:
-    """How one layer is drawn.
-
-    Attributes
-    ----------
-    color : str
-        ``#rrggbb`` for SVG, PDF and the DXF true colour.
-    aci : int
-        AutoCAD colour index, for DXF readers that ignore true colour.
-    linetype : str
-        DXF linetype name.
-    dashes : tuple of float
-        Dash pattern in mm (on, off, on, off…); empty for a solid line.
-    width : float
-        Line width as a multiple of the writer's ``line_width``.
-    fill : bool
-        Closed polylines are filled areas, not lines.
-    """
-
-    color: str
-    aci: int
-    linetype: str = "CONTINUOUS"
-    dashes: tuple[float, ...] = ()
-    width: float = 1.0
-    fill: bool = False
-
-
-#: Style of every layer in :data:`curvefold.io.layout.LAYERS`.
-LAYER_STYLES = MappingProxyType({
-    "glue": LayerStyle(COLOURS["glue"], 3, fill=True),
-    "rulings": LayerStyle(COLOURS["ruling"], 3, width=0.5),
-    "seam": LayerStyle(COLOURS["tab"], 3, "DOT", (0.8, 0.8)),
-    "valley": LayerStyle(COLOURS["valley"], 5, "DASHED", (3.0, 1.5)),
-    "mountain": LayerStyle(COLOURS["fold"], 1, "DASHDOT", (4.0, 1.2, 0.7, 1.2)),
-    "cut": LayerStyle(COLOURS["boundary"], 7),
-    "labels": LayerStyle(COLOURS["label"], 6),
-})
-
-#: Layers the writers draw by default.
-DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")
-
-#: What each layer means, as the legend says it.
-LEGEND = MappingProxyType({
-    "cut": "cut",
-    "mountain": "mountain fold",
-    "valley": "valley fold",
-    "seam": "glue-tab fold",
-    "glue": "glue",
-    "rulings": "ruling (score)",
-    "labels": "glue the edges named alike",
-})
-_FOOTER_TEXT = 2.5  # em height of the footer's text, mm
-_SAMPLE = 8.0  # length of a legend's sample line, mm
-
-
-@dataclass(frozen=True, eq=False)
-class Footer(FrozenArrays):
-    """The scale bar, scale note and legend of one page, in page mm inside its footer band.
-
-    Attributes
-    ----------
-    samples : tuple of (str, (k, 2) ndarray)
-        A sample of every drawn layer but the labels: a line in the layer's style, or for
-        a filled layer a closed rectangle.
-    bar : (4, 2) ndarray
-        The 10 mm scale bar, a rectangle to fill black.
-    texts : tuple of (Label, str)
-        Text and its colour ``#rrggbb``.
-    """
-
-    samples: tuple[tuple[str, np.ndarray], ...]
-    bar: np.ndarray
-    texts: tuple[tuple[Label, str], ...]
-
-
-def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None = None) -> Footer:
-    """The footer of a page: a 10 mm scale bar with the print scale, and the legend of the ``layers`` it draws.
-
-    It lies in the band of :attr:`Layout.footer` above the bottom margin, so it prints
-    wherever the sheets do. Text starts where its box is estimated (:func:`text_width`).
-    """
-    page = layout.pages[page_index]
-    drawn = set(_check_layers(layers))
-    names = [name for name in LEGEND if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))]
-    W, _ = layout.page_size
-    m, size = layout.margin, _FOOTER_TEXT
-    top = m + max(layout.footer, 3 * size) - 0.5 * size  # centre line of the first row
-    grey = "#444444"
-
-    def text(words: str, x: float, y: float, colour: str = grey) -> tuple[Label, str]:
-        return Label(words, (x + 0.5 * text_width(words, size), y), 0.0, size, "legend"), colour
-
-    bar = np.array([[m, top - 0.6], [m + 10.0, top - 0.6], [m + 10.0, top + 0.6], [m, top + 0.6]])
-    note = (f"10 mm: print at 100 % · 1 model unit = {layout.scale:.4g} mm · "
-            f"page {page_index + 1} of {len(layout.pages)} · curvefold")
-    texts = [text(note, m + 12.0, top)]
-    samples = []
-    x, y = m, top - 1.8 * size
-    for name in names:
-        words = LEGEND[name]
-        lead = text_width(seam_name(1), size) if name == "labels" else _SAMPLE
-        width = lead + 1.5 + text_width(words, size)
-        if x > m and x + width > W - m:  # next row
-            x, y = m, y - 1.8 * size
-        if name == "labels":
-            texts.append(text(seam_name(1), x, y, LAYER_STYLES["labels"].color))
-        elif LAYER_STYLES[name].fill:
-            samples.append((name, np.array([[x, y - 1.0], [x + _SAMPLE, y - 1.0], [x + _SAMPLE, y + 1.0], [x, y + 1.0]])))
-        else:
-            samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
-        texts.append(text(words, x + lead + 1.5, y))
-        x += width + 4.0
-    return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts))
-
-# Cap height of a font as a fraction of its em height (DXF TEXT heights are cap heights).
-_CAP_HEIGHT = 0.72
-
-
-def _check_layout(layout: Layout) -> None:
-    if not isinstance(layout, Layout):
-        raise InputError(f"layout must be a Layout (from layout_sheets), got {type(layout).__name__}")
-
-
-def _check_layers(layers: Collection[str] | None) -> tuple[str, ...]:
-    if layers is None:
-        return DEFAULT_LAYERS
-    if isinstance(layers, str):
-        layers = (layers,)
-    unknown = sorted(set(layers) - set(LAYERS))
-    if unknown:
-        raise InputError(f"layers must be among {list(LAYERS)}, got unknown {unknown}")
-    return tuple(name for name in LAYERS if name in set(layers))
 
 
 def _check_width(line_width: float) -> float:
     if not (isinstance(line_width, (int, float)) and math.isfinite(line_width) and line_width > 0):
         raise InputError(f"line_width must be a positive number of mm, got {line_width!r}")
     return float(line_width)
-
-
-def _closed(p: Polyline) -> np.ndarray:
-    return np.concatenate([p.points, p.points[:1]]) if p.closed else p.points
 
 
 # --------------------------------------------------------------------------------------
@@ -247,12 +111,27 @@ def _svg_label(t: Label, height: float) -> str:
     return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{escape(one_line(t.text))}</text>'
 
 
+_FONT = "font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;text-anchor:middle"
+
+
+def _svg_style(layout: Layout, key: str, lw: float, colour: str | None = None) -> str:
+    """The SVG style of a layer's lines (or text, for ``labels``), in ``colour`` or the layer's own."""
+    _, own, st = layer_look(layout, key)
+    colour = colour or own
+    if key in ("labels", "legend"):
+        return f"fill:{colour};stroke:none;{_FONT}"
+    if st.fill:
+        return f"fill:{colour};stroke:none"
+    style = f"fill:none;stroke:{colour};stroke-width:{lw * st.width:g};stroke-linecap:butt;stroke-linejoin:round"
+    return style + (";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes) if st.dashes else "")
+
+
 def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | None = None,
              line_width: float = 0.25) -> str:
     """One page of ``layout`` as SVG text (see :func:`write_svg`)."""
-    _check_layout(layout)
+    check_layout(layout)
     page_index = check_integer(page_index, "page_index", f"[0, {len(layout.pages) - 1}]")
-    names = _check_layers(layers)
+    names = check_layers(layers)
     lw = _check_width(line_width)
     page = layout.pages[page_index]
     W, H = page.size
@@ -265,37 +144,26 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
         f"<title>curvefold crease pattern, page {page_index + 1} of {len(layout.pages)}</title>",
         '<sodipodi:namedview id="namedview" inkscape:document-units="mm" showgrid="false"/>',
     ]
-    for name in names:
-        if name == "labels":
+    for key in names:
+        if key == "labels":
             body = [_svg_label(t, H) for t in page.labels()]
         else:
             body = [f'<{"polygon" if p.closed else "polyline"} points="{_svg_points(p.points, H)}"/>'
-                    for p in page.on_layer(name)]
-        out.append(f'<g inkscape:groupmode="layer" id="layer-{name}" inkscape:label={quoteattr(name)} '
-                   f'style={quoteattr(_svg_style(name, lw))}>')
+                    for p in page.on_layer(key)]
+        out.append(f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={quoteattr(layer_look(layout, key)[0])} '
+                   f'style={quoteattr(_svg_style(layout, key, lw))}>')
         out.extend(body)
         out.append("</g>")
     footer = page_footer(layout, page_index, names)
-    out.append('<g inkscape:groupmode="layer" id="layer-legend" inkscape:label="legend (not to cut)">')
-    out.append(f'<polygon points="{_svg_points(footer.bar, H)}" style="fill:#000000;stroke:none"/>')
-    out += [f'<{"polygon" if LAYER_STYLES[name].fill else "polyline"} points="{_svg_points(points, H)}" '
-            f'style={quoteattr(_svg_style(name, lw))}/>' for name, points in footer.samples]
-    out += [f'<g style={quoteattr(_svg_style("labels", lw).replace(LAYER_STYLES["labels"].color, colour))}>{_svg_label(t, H)}</g>'
-            for t, colour in footer.texts]
+    out.append(f'<g inkscape:groupmode="layer" id="layer-legend" inkscape:label={quoteattr(LEGEND_LAYER)} '
+               f'style={quoteattr(_svg_style(layout, "legend", lw))}>')
+    out.append(f'<polygon points="{_svg_points(footer.bar, H)}" style="fill:{footer.colour};stroke:none"/>')
+    out += [f'<{"polygon" if layer_look(layout, key)[2].fill else "polyline"} points="{_svg_points(points, H)}" '
+            f'style={quoteattr(_svg_style(layout, key, lw, footer.colour))}/>' for key, points in footer.samples]
+    out += [_svg_label(t, H) for t in footer.texts]
     out.append("</g>")
     out.append("</svg>\n")
     return "\n".join(out)
-
-
-def _svg_style(name: str, lw: float) -> str:
-    """The SVG style of a layer's lines (or text, for ``labels``)."""
-    st = LAYER_STYLES[name]
-    if name == "labels":
-        return f"fill:{st.color};stroke:none;font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;text-anchor:middle"
-    if st.fill:
-        return f"fill:{st.color};stroke:none"
-    style = f"fill:none;stroke:{st.color};stroke-width:{lw * st.width:g};stroke-linecap:butt;stroke-linejoin:round"
-    return style + (";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes) if st.dashes else "")
 
 
 def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = None, *,
@@ -321,7 +189,7 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
         The files written, in page order. Either every page is written or, on an error,
         none is (and no temporary file is left).
     """
-    _check_layout(layout)
+    check_layout(layout)
     target = Path(path)
     if page_index is not None:
         jobs = [(target, page_index)]
@@ -338,167 +206,46 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
 
 
 # --------------------------------------------------------------------------------------
-# DXF
-
-
-def page_grid(count: int, size: tuple[float, float], spacing: float) -> np.ndarray:
-    """Lower-left corners (count, 2) of pages laid in a grid of ⌈√count⌉ columns, row by row from the top.
-
-    Examples
-    --------
-    >>> page_grid(3, (210.0, 297.0), 20.0).tolist()
-    [[0.0, 0.0], [230.0, 0.0], [0.0, -317.0]]
-    """
-    columns = math.ceil(math.sqrt(count))
-    i = np.arange(count)
-    return np.stack([(i % columns) * (size[0] + spacing), -(i // columns) * (size[1] + spacing)], axis=1).astype(float)
-
-
-def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str] | None = None,
-              page_spacing: float = 20.0) -> Path:
-    """Write the layout as one DXF drawing in millimetres (needs ``ezdxf``).
-
-    Every fabrication layer is a DXF layer with its colour (AutoCAD index and true colour),
-    linetype (``CONTINUOUS`` cut, ``DASHDOT`` mountain, ``DASHED`` valley, ``DOT`` tab
-    fold lines; patterns in mm) and lineweight. Lines are ``LWPOLYLINE`` entities, glue
-    areas solid ``HATCH`` entities and labels ``TEXT`` (height = cap height, centred).
-    Pages lie in a grid (:func:`page_grid`), each framed on layer ``pages``, with its
-    footer (scale bar and legend) on layer ``legend``; both layers do not plot. The
-    header's ``$EXTMIN``/``$EXTMAX`` and the initial view hold every page.
-
-    Parameters
-    ----------
-    path : path-like
-    layout : Layout
-    layers : collection of str, optional
-        Layers to write; default :data:`DEFAULT_LAYERS` (all but ``rulings``).
-    page_spacing : float
-        Gap between pages, mm.
-
-    Returns
-    -------
-    Path
-    """
-    _check_layout(layout)
-    names = _check_layers(layers)
-    if not (isinstance(page_spacing, (int, float)) and math.isfinite(page_spacing) and page_spacing >= 0):
-        raise InputError(f"page_spacing must be a non-negative number of mm, got {page_spacing!r}")
-    try:
-        import ezdxf
-        from ezdxf import colors
-        from ezdxf.enums import TextEntityAlignment
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise ImportError("write_dxf needs ezdxf: pip install 'ezdxf>=1.1,<2'") from exc
-
-    doc = ezdxf.new("R2010", units=4)
-    doc.header["$INSUNITS"] = 4
-    doc.header["$MEASUREMENT"] = 1
-    doc.header["$LTSCALE"] = 1.0
-    for name in names:
-        st = LAYER_STYLES[name]
-        if st.dashes and st.linetype not in doc.linetypes:
-            pattern = [float(sum(st.dashes))] + [d if k % 2 == 0 else -d for k, d in enumerate(st.dashes)]
-            doc.linetypes.add(st.linetype, pattern, description=f"curvefold {name} " + " ".join(f"{d:g}" for d in st.dashes))
-        doc.layers.add(name, color=st.aci, true_color=colors.rgb2int(rgb8(st.color)),
-                       linetype=st.linetype if st.dashes else "CONTINUOUS", lineweight=13 if st.width < 1 else 25)
-    for name in ("pages", "legend"):
-        doc.layers.add(name, color=8).dxf.plot = 0
-    msp = doc.modelspace()
-
-    def text(words: str, position, size: float, angle: float, layer: str, **attributes) -> None:
-        entity = msp.add_text(words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer, **attributes})
-        entity.set_placement(tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER)
-
-    W, H = layout.page_size
-    corners = page_grid(len(layout.pages), (W, H), page_spacing)
-    for i, (page, shift) in enumerate(zip(layout.pages, corners)):
-        msp.add_lwpolyline([tuple(shift), (shift[0] + W, shift[1]), (shift[0] + W, shift[1] + H), (shift[0], shift[1] + H)],
-                           close=True, dxfattribs={"layer": "pages"})
-        for name in names:
-            st = LAYER_STYLES[name]
-            if name == "labels":
-                for t in page.labels():
-                    text(one_line(t.text), np.asarray(t.position) + shift, t.size, t.angle, name)
-                continue
-            for p in page.on_layer(name):
-                pts = (p.points + shift).tolist()
-                if st.fill and p.closed:
-                    hatch = msp.add_hatch(color=256, dxfattribs={"layer": name})
-                    hatch.paths.add_polyline_path(pts, is_closed=True)
-                else:
-                    msp.add_lwpolyline(pts, close=p.closed, dxfattribs={"layer": name})
-        footer = page_footer(layout, i, names)
-        msp.add_hatch(color=7, dxfattribs={"layer": "legend"}).paths.add_polyline_path((footer.bar + shift).tolist(), is_closed=True)
-        for name, points in footer.samples:
-            st = LAYER_STYLES[name]
-            style = {"layer": "legend", "true_color": colors.rgb2int(rgb8(st.color)), "linetype": st.linetype if st.dashes else "CONTINUOUS"}
-            if st.fill:
-                msp.add_hatch(dxfattribs=style).paths.add_polyline_path((points + shift).tolist(), is_closed=True)
-            else:
-                msp.add_lwpolyline((points + shift).tolist(), dxfattribs=style)
-        for t, colour in footer.texts:
-            text(t.text, np.asarray(t.position) + shift, t.size, 0.0, "legend", true_color=colors.rgb2int(rgb8(colour)))
-    lo, hi = corners.min(axis=0), corners.max(axis=0) + (W, H)
-    msp.dxf.extmin = (float(lo[0]), float(lo[1]), 0.0)  # ezdxf writes them to $EXTMIN, $EXTMAX
-    msp.dxf.extmax = (float(hi[0]), float(hi[1]), 0.0)
-    doc.set_modelspace_vport(height=float(hi[1] - lo[1]) * 1.05, center=tuple(float(v) for v in 0.5 * (lo + hi)))
-    with atomic_path(path) as tmp:
-        doc.saveas(tmp)
-    return Path(path)
-
-
-# --------------------------------------------------------------------------------------
 # PDF
 
 
-def _draw_page(fig, page: Page, layout: Layout, number: int, names: tuple[str, ...], lw: float,
-               footer: bool) -> None:
-    from matplotlib.collections import LineCollection, PolyCollection
-    from matplotlib.patches import Polygon
+def draw_footer(canvas, layout: Layout, page_index: int, names: Sequence[str], lw: float, *, page_text: str | None = None) -> None:
+    """Draw a page's footer (:func:`page_footer`) on a :class:`~curvefold.io.pdf.PdfPage`, on the legend layer."""
+    foot = page_footer(layout, page_index, names, page_text=page_text)
+    canvas.fill([foot.bar], foot.colour, layer=LEGEND_LAYER)
+    for key, points in foot.samples:
+        st = layer_look(layout, key)[2]
+        if st.fill:
+            canvas.fill([points], foot.colour, layer=LEGEND_LAYER)
+        else:
+            canvas.stroke([points], foot.colour, lw * st.width, dashes=st.dashes, layer=LEGEND_LAYER)
+    for t in foot.texts:
+        canvas.text(t.text, t.position[0], t.position[1] - 0.35 * t.size, t.size, foot.colour, layer=LEGEND_LAYER)
 
-    W, H = page.size
-    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
-    ax.set_xlim(0, W)
-    ax.set_ylim(0, H)
-    ax.set_axis_off()
-    for z, name in enumerate(names):
-        st = LAYER_STYLES[name]
-        if name == "labels":
+
+def _draw_page(canvas, page: Page, layout: Layout, index: int, names: tuple[str, ...], lw: float, footer: bool) -> None:
+    for key in names:
+        layer, colour, st = layer_look(layout, key)
+        if key == "labels":
             for t in page.labels():
-                ax.text(t.position[0], t.position[1], one_line(t.text), fontsize=t.size * _PT_PER_MM, rotation=t.angle,
-                        rotation_mode="anchor", ha="center", va="center", color=st.color,
-                        family="sans-serif", zorder=z, parse_math=False)
+                a = math.radians(t.angle)  # baseline 0.35 em below the centre, as in the SVG
+                canvas.text(t.text, t.position[0] + 0.35 * t.size * math.sin(a), t.position[1] - 0.35 * t.size * math.cos(a),
+                            t.size, colour, angle=t.angle, layer=layer)
             continue
-        lines = page.on_layer(name)
+        lines = page.on_layer(key)
         if not lines:
             continue
         if st.fill:
-            ax.add_collection(PolyCollection([p.points for p in lines], facecolors=st.color, edgecolors="none",
-                                             zorder=z))
-            continue
-        style = (0, tuple(d * _PT_PER_MM for d in st.dashes)) if st.dashes else "solid"
-        ax.add_collection(LineCollection([_closed(p) for p in lines], colors=st.color,
-                                         linewidths=lw * st.width * _PT_PER_MM, linestyles=style,
-                                         capstyle="butt", joinstyle="round", zorder=z))
+            canvas.fill([p.points for p in lines], colour, layer=layer)
+        else:
+            canvas.stroke([p.points for p in lines], colour, lw * st.width, dashes=st.dashes, closed=[p.closed for p in lines], layer=layer)
     if footer:
-        foot = page_footer(layout, number - 1, names)
-        ax.add_patch(Polygon(foot.bar, closed=True, facecolor="black", edgecolor="none"))
-        for name, points in foot.samples:
-            st = LAYER_STYLES[name]
-            if st.fill:
-                ax.add_patch(Polygon(points, closed=True, facecolor=st.color, edgecolor="none"))
-            else:
-                style = (0, tuple(d * _PT_PER_MM for d in st.dashes)) if st.dashes else "solid"
-                ax.add_collection(LineCollection([points], colors=st.color, linewidths=lw * st.width * _PT_PER_MM,
-                                                 linestyles=style, capstyle="butt"))
-        for t, colour in foot.texts:
-            ax.text(t.position[0], t.position[1], t.text, fontsize=t.size * _PT_PER_MM, ha="center", va="center",
-                    color=colour, family="sans-serif")
+        draw_footer(canvas, layout, index, names, lw)
 
 
 def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str] | None = None,
               line_width: float = 0.25, scale_bar: bool = True) -> Path:
-    """Write the layout as a printable multi-page PDF at 1:1 (needs ``matplotlib``).
+    """Write the layout as a printable multi-page PDF at 1:1, one PDF layer per operation.
 
     Each page is the layout's page size in mm; its footer (:func:`page_footer`: a 10 mm
     scale bar to check the print scale with a ruler, and the legend) sits inside the
@@ -519,22 +266,13 @@ def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     -------
     Path
     """
-    _check_layout(layout)
-    names = _check_layers(layers)
+    check_layout(layout)
+    names = check_layers(layers)
     lw = _check_width(line_width)
-    import matplotlib
-    from matplotlib.backends.backend_pdf import PdfPages
-    from matplotlib.figure import Figure
-
-    rc = {"lines.scale_dashes": False, "path.simplify": False, "pdf.fonttype": 42,
-          "font.sans-serif": ["DejaVu Sans", "Arial", "Helvetica"]}
-    with matplotlib.rc_context(rc), atomic_path(path) as tmp:
-        with PdfPages(tmp, metadata={"Creator": CREATOR, "Title": "crease pattern", "CreationDate": None}) as pdf:
-            for number, page in enumerate(layout.pages, start=1):
-                fig = Figure(figsize=(page.size[0] / 25.4, page.size[1] / 25.4))
-                _draw_page(fig, page, layout, number, names, lw, scale_bar)
-                pdf.savefig(fig)
-    return Path(path)
+    doc = PdfDocument(title="crease pattern", layers=[layer_look(layout, key)[0] for key in names] + [LEGEND_LAYER] * scale_bar)
+    for index, page in enumerate(layout.pages):
+        _draw_page(doc.page(*page.size), page, layout, index, names, lw, scale_bar)
+    return doc.save(path)
 
 
 # --------------------------------------------------------------------------------------
@@ -575,8 +313,11 @@ def layout_pattern(
     glue_tabs: bool = True,
     name: str = "",
     keep: Sequence[np.ndarray] | None = None,
+    cutter: str = DEFAULT_CUTTER,
+    perforation: tuple[float, float] | None = None,
+    kerf: float = 0.0,
 ) -> Layout:
-    """The sheets of a structure placed on pages with glue tabs, layers and labels.
+    """The sheets of a structure placed on pages with glue tabs, layers and labels, ready to cut.
 
     Parameters
     ----------
@@ -599,13 +340,26 @@ def layout_pattern(
     keep : sequence of (m_k,) array_like of int, optional, keyword-only
         The samples each tube's sheets keep (:func:`curvefold.geometry.sampling.choose_sampling`);
         default every sample.
+    cutter : str, keyword-only
+        The colour convention of the files, a key of :data:`curvefold.io.cutters.CUTTERS`.
+    perforation : (float, float), optional, keyword-only
+        (dash, gap) in mm: draw every crease as cut dashes (:func:`curvefold.io.cutting.perforation_dashes`).
+    kerf : float, keyword-only
+        Width in mm a cutter removes: the cut outlines move out by half of it.
 
     Returns
     -------
     curvefold.io.layout.Layout
     """
     check_structure(structure)
+    _cutter(cutter)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name, keep=keep)
+    fitted = _fit(parts, page, units, scale, glue_tabs)
+    return prepare_layout(replace(fitted, cutter=cutter), perforation=perforation, kerf=kerf)
+
+
+def _fit(parts, page, units, scale, glue_tabs) -> Layout:
+    """The layout of ``parts`` at ``scale``, or at the largest plain scale that fits."""
     if scale is not None:
         return layout_sheets(parts, page=page, units=units, scale=scale, glue_tabs=glue_tabs)
     guess = _fit_scale(parts, page, units, 10.0, FOOTER, 6.0 if glue_tabs else 0.0)
@@ -635,6 +389,9 @@ def write_pattern(
     degrees: bool = True,
     name: str = "",
     keep: Sequence[np.ndarray] | None = None,
+    cutter: str = DEFAULT_CUTTER,
+    perforation: tuple[float, float] | None = None,
+    kerf: float = 0.0,
 ) -> tuple[Path, ...]:
     """Write the crease pattern of a structure, laid out on pages, as SVG, DXF and/or PDF.
 
@@ -645,7 +402,7 @@ def write_pattern(
         and ``<stem>.pdf``.
     structure : Structure
     formats : sequence of {"svg", "dxf", "pdf"}, keyword-only
-    page, scale, units, glue_tabs, fold_angle, degrees, name, keep : keyword-only
+    page, scale, units, glue_tabs, fold_angle, degrees, name, keep, cutter, perforation, kerf : keyword-only
         As in :func:`layout_pattern`.
     rulings : bool, keyword-only
         Also draw the rulings (thin green, for scoring).
@@ -658,7 +415,16 @@ def write_pattern(
     """
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,
-                            glue_tabs=glue_tabs, name=name, keep=keep)
+                            glue_tabs=glue_tabs, name=name, keep=keep, cutter=cutter, perforation=perforation, kerf=kerf)
+    return write_layout(path_stem, layout, formats=formats, rulings=rulings)
+
+
+def write_layout(path_stem: str | os.PathLike, layout: Layout, *, formats: Sequence[str] = PATTERN_FORMATS,
+                 rulings: bool = False) -> tuple[Path, ...]:
+    """Write a crease pattern already laid out (:func:`layout_pattern`) in each of ``formats``, with the
+    writer the registry names for it; arguments and result as in :func:`write_pattern`."""
+    check_layout(layout)
+    formats = check_formats(formats, "pattern")
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
     for name in formats:  # each format's writer, from the registry

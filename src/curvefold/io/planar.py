@@ -35,6 +35,7 @@ __all__ = [
     "segments_near_box",
     "inside_loops",
     "min_area_rotation",
+    "fit_arcs",
 ]
 
 
@@ -116,8 +117,12 @@ def segments_near_box(segments: np.ndarray, box_of: np.ndarray, tol: float) -> n
     return segments[((segments.max(axis=1) >= lo) & (segments.min(axis=1) <= hi)).all(axis=1)]
 
 
-def inside_loops(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
-    """Even-odd point-in-region test against closed loops given as segments, shape (N,)."""
+def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | None = None) -> np.ndarray:
+    """Even-odd point-in-region test against closed loops given as segments, shape (N,).
+
+    With ``groups`` (S,) of int, the segments form several regions, each tested on its own:
+    a point is inside when it lies inside any of them.
+    """
     if len(points) == 0 or len(segments) == 0:
         return np.zeros(len(points), bool)
     a, b = segments[None, :, 0], segments[None, :, 1]
@@ -126,7 +131,11 @@ def inside_loops(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
     # left of the crossing point, without dividing by the segment's height
     side = (x - a[..., 0]) * (b[..., 1] - a[..., 1]) - (y - a[..., 1]) * (b[..., 0] - a[..., 0])
     left = np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
-    return (np.count_nonzero(straddle & left, axis=1) % 2) == 1
+    crossing = straddle & left
+    if groups is None:
+        return (np.count_nonzero(crossing, axis=1) % 2) == 1
+    counts = np.stack([np.count_nonzero(crossing[:, groups == g], axis=1) for g in np.unique(groups)], axis=1)
+    return ((counts % 2) == 1).any(axis=1)
 
 
 def min_area_rotation(points: np.ndarray) -> float:
@@ -150,3 +159,70 @@ def min_area_rotation(points: np.ndarray) -> float:
     near = np.flatnonzero(area <= area.min() * (1 + 1e-6))
     off = np.abs((ang[near] + math.pi / 4) % (math.pi / 2) - math.pi / 4)
     return float(-ang[near[np.argmin(off)]])
+
+
+def _arc_error(points: np.ndarray) -> tuple[float, float]:
+    """(bulge, largest distance of ``points`` (k ≥ 2, 2) from it) of the circular arc from the first
+    point to the last through the middle one: the bulge is tan(θ/4) of its turn θ, positive
+    counter-clockwise (DXF's convention); 0 for a straight segment."""
+    (ax, ay), (mx, my), (bx, by) = points[0], points[len(points) // 2], points[-1]
+    cx, cy = bx - ax, by - ay
+    length = math.hypot(cx, cy)
+    side = cx * (my - ay) - cy * (mx - ax)  # < 0: the arc bulges to the right of the chord, turning counter-clockwise
+    if len(points) < 3 or abs(side) <= 1e-12 * max(length, 1e-300) ** 2:
+        return 0.0, float((np.abs(cx * (points[:, 1] - ay) - cy * (points[:, 0] - ax)) / max(length, 1e-300)).max(initial=0.0))
+    ux, uy, vx, vy = mx - ax, my - ay, mx - bx, my - by
+    uu, vv, k = ux * ux + uy * uy, vx * vx + vy * vy, 2.0 * (ux * vy - uy * vx)
+    ox, oy = mx - (uu * vy - vv * uy) / k, my - (vv * ux - uu * vx) / k  # the circle through the three
+    r = math.hypot(ax - ox, ay - oy)
+    half = math.asin(min(1.0, 0.5 * length / r))
+    minor = side * (cx * (oy - ay) - cy * (ox - ax)) < 0  # the middle point and the centre on opposite sides of the chord
+    theta = 2.0 * half if minor else 2.0 * math.pi - 2.0 * half
+    error = float(np.abs(np.hypot(points[:, 0] - ox, points[:, 1] - oy) - r).max())
+    return math.tan(theta / 4.0) * (1.0 if side < 0 else -1.0), error
+
+
+def fit_arcs(points: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """An open polyline (n, 2) as fewer, longer circular arcs through some of its points.
+
+    Greedily from the first point, each arc runs to the farthest point such that the arc
+    through its ends and its middle point passes within ``tol`` of every point between
+    (and turns by less than a half circle). Each search starts from the length of the arc
+    before (curvature changes slowly along a crease), doubling while it fits and halving
+    back. Returns the indices (m,) of the points kept and the bulge (m,) of the arc that
+    leaves each (DXF's ``tan(θ/4)``; the last is 0).
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, np.pi / 2, 9)
+    >>> keep, bulge = fit_arcs(np.stack([np.cos(t), np.sin(t)], axis=1), 1e-9)
+    >>> keep.tolist(), np.round(bulge, 6).tolist()  # a quarter circle is one arc
+    ([0, 8], [0.414214, 0.0])
+    >>> fit_arcs(np.array([[0.0, 0.0], [1.0, 0.0]]), 1e-9)[0].tolist()
+    [0, 1]
+    """
+    points = np.asarray(points, float)
+    n = len(points)
+    keep, bulges, i, run = [0], [], 0, 2
+
+    def fits(j: int) -> float | None:
+        b, err = _arc_error(points[i:j + 1])
+        return b if err <= tol and abs(b) < 1.0 else None
+
+    while i < n - 1:
+        lo, bulge = i + 1, 0.0  # one chord always fits
+        hi = min(i + run, n - 1)
+        while hi > lo and (b := fits(hi)) is not None:  # grow while it fits
+            lo, bulge = hi, b
+            if hi == n - 1:
+                break
+            hi = min(lo + 2 * (lo - i), n - 1)
+        if hi > lo and lo < n - 1:  # the largest run that fits lies in [lo, hi)
+            while hi - lo > 1:
+                mid = (lo + hi) // 2
+                b = fits(mid)
+                lo, bulge, hi = (mid, b, hi) if b is not None else (lo, bulge, mid)
+        keep.append(lo)
+        bulges.append(bulge)
+        run, i = max(lo - i, 2), lo
+    return np.array(keep), np.array(bulges + [0.0])

@@ -77,7 +77,11 @@ def tab_pieces(points: np.ndarray, tab_length: float, min_length: float) -> list
 def tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted: list[np.ndarray], tol: float) -> bool:
     """Whether a tab may be drawn: its cut line is simple and keeps ``tol`` clear of the
     sheet's outline (S, 2, 2) and of the tabs already accepted, but for its two ends on the
-    seam, and it neither lies inside them nor holds any of their corners."""
+    seam, and it neither lies inside them nor holds any of their corners.
+
+    The sheet's outline and the accepted tabs near this one are tested together, in one
+    array of segments: each test is one vectorised pass, whatever the number of tabs.
+    """
     polygon, cut = tab
     segs = polyline_segments([(cut, False)])
     own = segments_touch(segs, segs, tol)
@@ -88,11 +92,13 @@ def tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted: 
     mine = polyline_segments([(polygon, True)])
     lo, hi = polygon.min(axis=0) - tol, polygon.max(axis=0) + tol
     near = [p for p in accepted if (p.max(axis=0) >= lo).all() and (p.min(axis=0) <= hi).all()]  # the others cannot touch it
-    for other in (outline, *(polyline_segments([(p, True)]) for p in near)):
-        near = segments_near_box(other, cut, tol)
-        if segments_touch(segs, near, tol).any() or (distance_to_segments(corners, near) < tol).any() or inside_loops(corners, other).any():
-            return False
-        theirs = other[:, 0][distance_to_segments(other[:, 0], mine) >= tol]  # their corners off this tab's outline
-        if inside_loops(theirs, mine).any():
-            return False
-    return True
+    loops = [outline, *(polyline_segments([(p, True)]) for p in near)]  # the sheet (its loops, even-odd) and each tab
+    group = np.repeat(np.arange(len(loops)), [len(loop) for loop in loops])
+    others = np.concatenate(loops)
+    close = segments_near_box(others, cut, tol)
+    if segments_touch(segs, close, tol).any() or (distance_to_segments(corners, close) < tol).any():
+        return False
+    if inside_loops(corners, others, group).any():
+        return False
+    theirs = others[:, 0][distance_to_segments(others[:, 0], mine) >= tol]  # their corners off this tab's outline
+    return not inside_loops(theirs, mine).any()
