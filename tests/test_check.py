@@ -61,7 +61,7 @@ def test_the_written_file_passes_every_check(written):
     path, _ = written
     result = check_fold(path)
     assert result.ok and result.frames == 3
-    assert [c.name for c in result.checks] == ["topology", "welds", "assignments", "fold_angles", "isometry", "face_planarity"]
+    assert [c.name for c in result.checks] == ["topology", "welds", "edge_kinds", "assignments", "fold_angles", "isometry", "face_planarity"]
     assert all(c.status == "pass" for c in result.checks)
     assert result.max_fold_angle_error == 0.0  # the file records the dihedral angles it has
 
@@ -143,8 +143,8 @@ def test_one_mountain_flipped_to_valley(tmp_path, written):
     path, doc = written
     edge = int(_folds(doc)[7])
     result = verdict(damaged(tmp_path, doc, lambda d: d["edges_assignment"].__setitem__(edge, "V")))
-    assert result["assignments"].status == "fail"
-    assert f"edges {edge}" in result["assignments"].where and "frame 2 ('fold angle 45°')" in result["assignments"].where
+    assert result["assignments"].status == "fail"  # the crease pattern records it as a mountain, and it folds as one
+    assert result["assignments"].where == f"key frame (crease pattern): edges {edge}"
 
 
 @pytest.mark.parametrize("to", ["V", "F"])
@@ -215,7 +215,8 @@ def test_a_vertex_collapsed_onto_its_neighbour_is_a_nan_that_fails(tmp_path, wri
     a, b = doc["edges_vertices"][int(_folds(doc)[3])]
     result = verdict(damaged(tmp_path, doc, lambda d: edit_frame(d, 2, lambda x: x.__setitem__(a, x[b]))))
     assert result["topology"].status == "fail" and "edges of zero length" in result["topology"].where
-    assert result["fold_angles"].status == "fail" and np.isnan(result["fold_angles"].value)
+    fold_angles = result["fold_angles"]  # the faces on the collapsed edge have no normal: named, and the others still measured
+    assert fold_angles.status == "fail" and np.isfinite(fold_angles.value) and "not measurable (no length or no normal): edges" in fold_angles.where
 
 
 def test_a_vertex_moved_off_the_sheet(tmp_path, written):
@@ -243,9 +244,9 @@ def test_plain_fold_without_curvefold_keys_passes_what_can_run(tmp_path, written
     result = check_fold(damaged(tmp_path, doc, strip))
     assert result.ok
     checks = {c.name: c for c in result.checks}
-    assert {n for n, c in checks.items() if c.status == "not run"} == {"welds", "face_planarity"}
+    assert {n for n, c in checks.items() if c.status == "not run"} == {"welds", "edge_kinds", "face_planarity"}
     assert "curvefold:seam_partners" in checks["welds"].reason and "edges_curvefold:kind" in checks["face_planarity"].reason
-    assert result.to_dict()["not_run"] == ["welds", "face_planarity"]
+    assert result.to_dict()["not_run"] == ["welds", "edge_kinds", "face_planarity"]
 
 
 def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):

@@ -29,7 +29,8 @@ from ..kernel.errors import InputError
 from ..vault.assembly import DEFAULT_TUBES_CAP
 from .design import Design
 
-__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget"]
+__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget",
+           "require_rebuild_budget"]
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
 DEFAULT_BUDGET = 2 << 30
@@ -186,6 +187,24 @@ def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> 
         raise InputError(
             f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} samples, {processes} processes), "
             f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower the grid's counts, --samples or --workers"
+        )
+    return total
+
+
+#: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check --rebuild``):
+#: its coordinates and fold angles as arrays, as JSON data and read back.
+REBUILD_PER_FRAME = 600.0
+
+
+def require_rebuild_budget(design: Design, frames: int) -> float:
+    """The estimate of building ``design`` again with ``frames`` FOLD frames, or :class:`InputError` over budget."""
+    budget = memory_budget()
+    found = estimate(design, files=False)
+    total = found.total + REBUILD_PER_FRAME * frames * found.strip_samples
+    if total > budget:
+        raise InputError(
+            f"{design.source}: rebuilding this design needs about {_size(total)} of memory ({design.samples} samples × "
+            f"{_strips(design)} strips, {frames} frames), more than the budget of {_size(budget)} ({ENVIRONMENT})"
         )
     return total
 
