@@ -7,6 +7,7 @@ test says which check must fail, and that the frame and the element ids are name
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -323,3 +324,118 @@ def test_rebuild_needs_a_recorded_design(tmp_path, written):
     path, doc = written
     r = run("check", damaged(tmp_path, doc, lambda d: d.pop("curvefold:design")), "--rebuild")
     assert r.returncode == 2 and "--rebuild needs the design the file was built from (curvefold:design)" in r.stderr
+
+
+# --------------------------------------------------------------------------------------------
+# the damage catalogue: edits that passed before, each failing a named check or refused
+
+
+def _ruling_folding_as_mountain(doc) -> int:
+    """A ruling whose small bend is a mountain in every frame and in the crease pattern."""
+    kind = np.array(doc["edges_curvefold:kind"])
+    angles = np.array([doc["edges_foldAngle"]] + [f["edges_foldAngle"] for f in doc["file_frames"][1:]])
+    return int(np.flatnonzero((kind == "ruling") & (angles < -0.05).all(axis=0))[0])
+
+
+def _relabel_ruling(d):
+    d["edges_assignment"][_ruling_folding_as_mountain(d)] = "M"
+
+
+def _negate_key_angles(d):
+    d["edges_foldAngle"] = [-a for a in d["edges_foldAngle"]]
+
+
+def _key_frame_folded(d):
+    d["frame_classes"] = ["foldedForm"]
+
+
+def _distort(d):
+    """Every folded frame stretched 1.5×, and one vertex of the crease pattern collapsed onto its neighbour."""
+    for f in d["file_frames"]:
+        f["vertices_coords"] = (1.5 * np.array(f["vertices_coords"])).tolist()
+    a, b = d["edges_vertices"][int(_folds(d)[3])]
+    d["vertices_coords"][a] = d["vertices_coords"][b]
+
+
+def _one_vertex_more(d):
+    d["file_frames"][2]["vertices_coords"].append([0.0, 0.0, 0.0])
+
+
+def _group_changed(d):
+    d["faces_curvefold:group"][0] += 1
+
+
+def _ruling_angle_changed(d):
+    e = _ruling_folding_as_mountain(d)
+    d["file_frames"][2]["edges_foldAngle"][e] *= 1.0001  # 1e-4 of a small bend: below the recorded-angle tolerance
+
+
+#: name -> (edit of the document, the checks that must fail, with --rebuild or not).
+FILE_DAMAGES = {
+    "a near-flat ruling relabelled M": (_relabel_ruling, {"edge_kinds"}, False),
+    "a near-flat ruling relabelled M, rebuilt": (_relabel_ruling, {"edge_kinds", "rebuild"}, True),
+    "the crease pattern's fold angles negated": (_negate_key_angles, {"assignments"}, False),
+    "the crease pattern relabelled a folded form": (_key_frame_folded, {"fold_angles"}, False),
+    "the crease pattern relabelled a folded form, rebuilt": (_key_frame_folded, {"fold_angles", "rebuild"}, True),
+    "a frame with one vertex more": (_one_vertex_more, {"topology"}, False),
+    "distorted 1.5x with a degenerate edge": (_distort, {"isometry", "topology"}, False),
+    "a face moved to another strip, rebuilt": (_group_changed, {"rebuild"}, True),
+    "a ruling's recorded angle changed by 1e-4 of itself, rebuilt": (_ruling_angle_changed, {"rebuild"}, True),
+}
+
+
+@pytest.mark.parametrize("name", list(FILE_DAMAGES))
+def test_damage_catalogue_each_fails_a_named_check(tmp_path, written, name):
+    _, doc = written
+    edit, expect, rebuild = FILE_DAMAGES[name]
+    path = damaged(tmp_path, doc, edit)
+    r = run("check", path, "--json", *(["--rebuild"] if rebuild else []))
+    out = json.loads(r.stdout)
+    failed = {c["name"] for c in out["checks"] if c["status"] == "fail"}
+    assert r.returncode == 1 and expect <= failed, (failed, r.stderr)
+
+
+def test_the_headline_numbers_are_measured_over_what_can_be_measured(tmp_path, written):
+    """One degenerate edge made max_isometry_error null for a file distorted by 1.5×."""
+    _, doc = written
+    out = json.loads(run("check", damaged(tmp_path, doc, _distort), "--json").stdout)
+    assert np.isfinite(out["max_isometry_error"]) and out["max_isometry_error"] >= 0.5
+    (isometry,) = [c for c in out["checks"] if c["name"] == "isometry"]
+    assert "not measurable (no length or no normal): edges" in isometry["where"]
+
+
+def test_kinds_and_rebuilt_arrays_name_what_differs(tmp_path, written):
+    _, doc = written
+    e = _ruling_folding_as_mountain(doc)
+    out = json.loads(run("check", damaged(tmp_path, doc, _relabel_ruling), "--json", "--rebuild").stdout)
+    by_name = {c["name"]: c for c in out["checks"]}
+    assert by_name["edge_kinds"]["where"].startswith(f"key frame (crease pattern): edges {e} (ruling) assigned M")
+    assert f"key frame (crease pattern): edges_assignment at rows {e}" in by_name["rebuild"]["where"]
+    out = json.loads(run("check", damaged(tmp_path, doc, _key_frame_folded), "--json", "--rebuild").stdout)
+    by_name = {c["name"]: c for c in out["checks"]}
+    assert "frame_classes [['foldedForm'], ['foldedForm'], ['foldedForm'], ['foldedForm']]" in by_name["rebuild"]["where"]
+    assert by_name["isometry"]["status"] == "not run"  # the file no longer says which frame is its crease pattern
+
+
+@pytest.mark.parametrize(("edit", "message"), [
+    (lambda text: text.replace('"vertices_coords":[[', '"vertices_coords":[["0.5",', 1), r"vertices_coords\[0\] must hold numbers only, got \['0.5'"),
+    (lambda text: text.replace('"frame_unit":', '"frame_unit":"mm","frame_unit":', 1), r"the key 'frame_unit' appears twice in one object"),
+    (lambda text: text.replace('"vertices_coords":[[', '"vertices_coords":[[1e308,', 1), r"vertices_coords\[0\] = \[1e\+308, .* must lie within ±1e\+100"),
+    (lambda text: text.replace('"vertices_coords":[[', '"vertices_coords":[[NaN,', 1), r"not a FOLD file: NaN is not a JSON number"),
+    (lambda text: _scaled(text, 1e-310), r"the model is .* across; curvefold reads models at least 1e-100 across"),
+])
+def test_malformed_numbers_and_keys_are_refused_in_one_line(tmp_path, written, edit, message):
+    path, _ = written
+    bad = tmp_path / "bad.fold"
+    bad.write_text(edit(path.read_text()))
+    for command in ("check", "mechanism"):
+        r = run(command, str(bad))
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "internal error" not in r.stderr, r.stderr
+        assert re.search(message, r.stderr), r.stderr
+
+
+def _scaled(text: str, factor: float) -> str:
+    doc = json.loads(text)
+    for frame in [doc, *doc["file_frames"]]:
+        frame["vertices_coords"] = (factor * np.array(frame["vertices_coords"])).tolist()
+    return json.dumps(doc)

@@ -285,8 +285,8 @@ def _ids(what: str) -> Callable[[np.ndarray], str]:
 def _judge(name: str, unit: str, tolerance: float, results: list[tuple[str, np.ndarray]], describe: Callable[[np.ndarray], str]) -> FileCheck:
     """A check from per-frame values (one per element, ids = positions).
 
-    An element beyond the tolerance fails, and so does one that cannot be measured (NaN),
-    named apart; the value is the worst over the measurable elements, so one degenerate
+    An element beyond the tolerance fails, and so does one that cannot be measured (NaN, or
+    infinite against a reference of no length), named apart; the value is the worst over the measurable elements, so one degenerate
     element does not hide how far the others are off. The first failing frame is named.
     """
     worst, at, failing = -math.inf, "", ""
@@ -294,14 +294,14 @@ def _judge(name: str, unit: str, tolerance: float, results: list[tuple[str, np.n
         values = np.asarray(values, float)
         if not values.size:
             continue
-        nan = np.isnan(values)
-        over = np.flatnonzero(values > tolerance)
+        nan = ~np.isfinite(values)  # NaN, or infinite over a reference of no length
+        over = np.flatnonzero((values > tolerance) & ~nan)
         if (over.size or nan.any()) and not failing:
             parts = ([describe(over)] if over.size else []) + ([f"not measurable (no length or no normal): {describe(np.flatnonzero(nan))}"]
                                                               if nan.any() else [])
             failing = f"{label}: " + "; ".join(parts)
         if (~nan).any():
-            i = int(np.nanargmax(values))
+            i = int(np.nanargmax(np.where(nan, np.nan, values)))
             if values[i] > worst:
                 worst, at = float(values[i]), f"{label}: {describe(np.array([i]))}"
     if worst == -math.inf:
@@ -487,19 +487,20 @@ def _rebuild(doc: FoldFile, reference: FoldFile, labels: list[str], size: float,
                          f"the rebuilt design has {len(theirs)} frames of {len(theirs[0][1].vertices_coords)} vertices; "
                          f"the file {len(mine)} of {len(mine[0][1].vertices_coords)}")
     differ = []
-    for name in ("edges_vertices", "faces_vertices", "edges_assignment", "edges_kind", "faces_group"):
-        for (title, m), (_, r) in zip(mine, theirs):
-            a, b = getattr(m, name), getattr(r, name)
-            if a.shape != b.shape:
-                differ.append(f"{title}: {name} has {len(a)} entries, the rebuilt {len(b)}")
-            elif not np.array_equal(a, b):
-                rows = np.flatnonzero((a != b).reshape(len(a), -1).any(axis=1))
-                differ.append(f"{title}: {name} at {_ids('rows')(rows)}")
+    (label, first), (_, rebuilt) = mine[0], theirs[0]
+    for name in ("edges_vertices", "faces_vertices", "edges_assignment", "edges_kind", "faces_group"):  # shared by every frame
+        a, b = getattr(first, name), getattr(rebuilt, name)
+        if a.shape != b.shape:
+            differ.append(f"{label}: {name} has {len(a)} entries, the rebuilt {len(b)}")
+        elif not np.array_equal(a, b):
+            differ.append(f"{label}: {name} at {_ids('rows')(np.flatnonzero((a != b).reshape(len(a), -1).any(axis=1)))}")
+    # fold angles as the coordinates' tolerance allows: an angle moves by about the coordinates' error over the shortest edge
+    angle_tol = math.degrees(tol["rebuild_tol"] * size / float(first.edge_lengths().min()))
     for (title, m), (_, r) in zip(mine, theirs):
         if m.edges_foldAngle.shape == r.edges_foldAngle.shape:
-            off = np.flatnonzero(~(np.abs(m.edges_foldAngle - r.edges_foldAngle) <= tol["fold_angle_tol"]))
+            off = np.flatnonzero(~(np.abs(m.edges_foldAngle - r.edges_foldAngle) <= angle_tol))
             if off.size:
-                differ.append(f"{title}: edges_foldAngle at {_ids('edges')(off)}")
+                differ.append(f"{title}: edges_foldAngle at {_ids('edges')(off)} (more than {angle_tol:.1g}°)")
     if titles != [t for t, _ in reference.folded]:
         differ.append(f"frame titles {titles} (rebuilt {[t for t, _ in reference.folded]})")
     if doc.classes != reference.classes:

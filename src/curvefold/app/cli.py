@@ -389,8 +389,19 @@ def cmd_check(args: argparse.Namespace) -> int:
 
     tolerances = {spec.name: _flag_value(spec, text) for spec in CHECK_SPECS if (text := getattr(args, spec.name)) is not None}
     doc = read_fold(args.file)
-    reference = _rebuilt_fold(doc, args.file, frames=len(doc.folded)) if args.rebuild else None
+    frames = len(doc.classes) - 1  # file_frames, which the record's fold angles describe
+    recorded = doc.design.get("fold_angles") if isinstance(doc.design, dict) else None
+    mismatch = args.rebuild and isinstance(recorded, list) and len(recorded) != frames
+    reference = _rebuilt_fold(doc, args.file) if args.rebuild and not mismatch else None
     result = check_fold(doc, reference=reference, **tolerances)
+    if mismatch:  # not built: it cannot be the file's record
+        from dataclasses import replace
+
+        from ..analysis.foldcheck import FileCheck
+
+        failed = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded)} fold angles, the file holds {frames} "
+                                                    "frames after the key frame: the record is not the file's (not rebuilt)")
+        result = replace(result, checks=result.checks + (failed,))
     ran = [c for c in result.checks if c.status != "not run"]
     failed = [c for c in ran if c.status == "fail"]
     lines = [f"{args.file}: {'OK' if result.ok else 'FAILED'} ({result.frames} folded frame{'s' * (result.frames != 1)}; "
@@ -431,12 +442,10 @@ def cmd_designer(args: argparse.Namespace) -> int:
     return 0
 
 
-def _rebuilt_fold(doc, path: Path, *, frames: int):
+def _rebuilt_fold(doc, path: Path):
     """The FOLD file of the design a file records (``curvefold:design``), built again and read as the file is.
 
-    The design is estimated within the memory budget before it is built, and its frames are
-    those of the file: a record of more fold angles than the file has frames is refused
-    before any work.
+    The design and its frames are estimated within the memory budget before it is built.
     """
     from ..io.fold import model_document, to_fold
     from ..io.fold_reading import parse_fold
@@ -449,11 +458,8 @@ def _rebuilt_fold(doc, path: Path, *, frames: int):
         raise InputError(f"{path}: --rebuild needs the design the file was built from (curvefold:design), and this file does not record one")
     if not isinstance(record.get("design"), dict) or not isinstance(record.get("fold_angles"), list):
         raise InputError(f"{where} must hold 'design' (an object) and 'fold_angles' (a list), got keys {sorted(record)}")
-    if len(record["fold_angles"]) != frames:
-        raise InputError(f"{where}: fold_angles records {len(record['fold_angles'])} frames, the file holds {frames}; "
-                         "it cannot be the file's record")
     design = design_from_dict(record["design"], source=where, base_dir=path.parent)
-    require_rebuild_budget(design, frames)
+    require_rebuild_budget(design, len(record["fold_angles"]))
     built = build(design)
     if built.structure is None:
         raise InputError(f"{where}: a {design.kind} design has no FOLD file to rebuild")
