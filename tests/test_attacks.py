@@ -84,11 +84,29 @@ def listing(path: Path) -> list[str]:
         (["atlas", "--workers", "0"], r"workers must be an integer in \[1, \d+\]"),
         (["atlas", "--samples", "10"], r"--samples 10: samples must be ≥ 21 for a vault"),
         (["atlas", "--width", "-1"], r"--width -1: width must be in \(0, 10\]"),
+        # internal errors before: ZeroDivisionError in the certificate (zero-length panel sides), OverflowError, NaN
+        (["tube", "--panels", "64", "--fold-angle", "5", "--width-left", "0.02", "--width-right", "0.02", "--json"],
+         r"width_left w\(t\) = 2\.32e-14 at s = 6 is below 1e-09 of the structure's size"),
+        (["tube", "--width-left", "1e-300", "--width-right", "1e-300", "--json"], r"width_left w\(t\) = .* is below 1e-09 of the structure's size"),
+        (["tube", "--tau", "tan(s)", "--samples", "101", "--length", "6", "--json"], r"(is below 1e-09 of the structure's size|passes the curve of regression)"),
+        (["arch", "--a", "0", "--fold-angle", "5e-324"], r"fold_angle 2α = 5e-324° is 0 in radians \(below the smallest positive float\)"),
+        (["tube", "--fold-angle", "5e-324", "--json"], r"fold_angle must be in \(0°, 180°\), got 5e-324 \(0 in radians"),
+        (["tube", "--scale", "5e-324", "--formats", "svg", "--out", "t"],  # a crease pattern collapsed to one point, exit 0
+         r"\[output\] scale: 4\.94066e-324 mm per model unit draws the 6-unit crease 2\.96e-323 mm long, shorter than the 10 mm scale bar"),
+        (["vault", "--scale", "0.001", "--units", "m", "--json"], r"scale: 0\.001 m per model unit draws the 3\.14159-unit crease 3\.14 mm long"),
     ],
 )
 def test_flags(tmp_path, argv, match):
     refused(run(*argv, cwd=tmp_path), match)
     assert listing(tmp_path) == []  # refused before any work: nothing written
+
+
+def test_a_memory_budget_of_too_many_digits_is_a_user_error(tmp_path, monkeypatch):
+    """400 digits overflowed to infinity: OverflowError, reported as a bug."""
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "9" * 400)
+    refused(run("tube", "--json", cwd=tmp_path), r"CURVEFOLD_MEMORY_BUDGET must be a memory size .* at most 1 PiB, got '9{20}'… \(400 characters\)$")
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "2048P")
+    refused(run("tube", "--json", cwd=tmp_path), r"CURVEFOLD_MEMORY_BUDGET must be a memory size")
 
 
 def test_a_page_too_small_for_the_scale_is_refused_before_tabs(tmp_path):

@@ -20,6 +20,7 @@ largest of the file jobs.
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from dataclasses import dataclass
@@ -34,6 +35,8 @@ __all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
 DEFAULT_BUDGET = 2 << 30
+#: The largest budget: 1 PiB, far above any machine, far below where a byte count stops being exact.
+MAX_BUDGET = 1 << 50
 #: The environment variable that sets the budget.
 ENVIRONMENT = "CURVEFOLD_MEMORY_BUDGET"
 
@@ -84,9 +87,11 @@ def parse_size(text: str, name: str) -> int:
     (True, 536870912, 4096)
     """
     match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)i?B?\s*", text, re.IGNORECASE)
-    if match is None or float(match.group(1)) <= 0:
-        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, got {text!r}")
-    return int(float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B"))
+    size = float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B") if match else math.nan
+    if not 0 < size <= MAX_BUDGET:
+        shown = repr(text) if len(text) <= 40 else f"{text[:20]!r}… ({len(text)} characters)"
+        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, at most {_size(MAX_BUDGET)}, got {shown}")
+    return int(size)
 
 
 @dataclass(frozen=True)
@@ -214,4 +219,4 @@ _FAMILY_NAMES = {**{family: text.rsplit(" ", 1)[0] for family, text in FAMILIES.
 
 
 def _size(n: float) -> str:
-    return f"{n / (1 << 30):.1f} GiB" if n >= 1 << 30 else f"{n / _MB:.0f} MiB"
+    return f"{n / (1 << 50):.0f} PiB" if n >= 1 << 50 else f"{n / (1 << 30):.1f} GiB" if n >= 1 << 30 else f"{n / _MB:.0f} MiB"

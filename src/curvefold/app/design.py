@@ -50,7 +50,7 @@ import numpy as np
 
 from ..geometry.panels import PANELS
 from ..io.columns import read_column, table_path
-from ..io.formats import OUTPUT_SPECS, default_formats
+from ..io.formats import OUTPUT_SPECS, check_scale, default_formats
 from ..io.reading import read_bytes
 from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
@@ -531,10 +531,19 @@ def design_from_dict(
         checked["output"]["formats"] = default_formats(kind)
     if kind == "crease":
         _check_alpha(checked["crease"], data.get("crease", {}), source)
+    out = checked["output"]
+    check_scale(out["scale"], out["units"], _crease_length(kind, checked), f"{source}: [output] scale")
     params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}
     return Design(
         kind=kind, samples=head["samples"], title=head["title"], source=source, base_dir=folder.resolve(), **params
     )
+
+
+def _crease_length(kind: str, checked: dict) -> float:
+    """The length of a design's crease 1 in model units (a vault's at least π × radius: its κ0·s0 is above π)."""
+    if kind == "vault":
+        return math.pi * checked["vault"]["radius"]
+    return checked["crease" if kind == "crease" else "curve"]["length"]
 
 
 def default_design(kind: str) -> Design:

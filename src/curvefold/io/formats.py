@@ -32,7 +32,7 @@ from types import MappingProxyType
 
 from ..kernel.errors import InputError
 from ..kernel.validate import Spec
-from .tables import PAGES
+from .tables import PAGES, mm_per_unit
 
 __all__ = [
     "FileFormat",
@@ -44,7 +44,9 @@ __all__ = [
     "default_formats",
     "check_formats",
     "check_kind",
+    "check_scale",
     "missing_dependencies",
+    "MIN_DRAWN_MM",
 ]
 
 #: Kinds of design that build a structure (the crease kind builds a single crease).
@@ -218,3 +220,35 @@ OUTPUT_SPECS: tuple[Spec, ...] = (
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)"),
 )
+
+
+#: Shortest a crease may be drawn, in mm: the 10 mm scale bar every page carries. Shorter, its
+#: pattern is at most 40 widths of its 0.25 mm lines long, which merge into a blot.
+MIN_DRAWN_MM = 10.0
+
+
+def check_scale(scale: float | None, units: str, length: float, where: str) -> float | None:
+    """The print scale of a design whose crease is ``length`` model units long, or the error saying it draws too small.
+
+    The scale's spec bounds it by > 0; what a page and a line width can show bounds it
+    further: the crease must be drawn at least :data:`MIN_DRAWN_MM` long (a scale too large
+    for the page is refused when the sheets are laid out, naming the sheet and the page).
+
+    Examples
+    --------
+    >>> check_scale(50.0, "mm", 6.0, "scale")
+    50.0
+    >>> check_scale(0.001, "mm", 6.0, "scale")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: scale: 0.001 mm per model unit draws the 6-unit crease 0.006 mm long, shorter than the 10 mm scale bar: use a scale of at least 1.67 mm per unit (or leave it out to fit the page)
+    """
+    if scale is None:
+        return None
+    drawn = scale * length * mm_per_unit(units)
+    if not drawn >= MIN_DRAWN_MM:
+        least = MIN_DRAWN_MM / (length * mm_per_unit(units))
+        raise InputError(f"{where}: {scale:g} {units} per model unit draws the {length:g}-unit crease {drawn:.3g} mm long, shorter "
+                         f"than the {MIN_DRAWN_MM:g} mm scale bar: use a scale of at least {least:.3g} {units} per unit (or leave it "
+                         "out to fit the page)", parameter="scale")
+    return scale

@@ -381,9 +381,12 @@ def proportion_change(a: float, kappa0_s0: float, *, fold_angle: float = 90.0) -
     ------
     InputError
         When the change, squared for p_xz, overflows float64 (a fold angle so small that
-        cot α is huge).
+        cot α is huge), or the fold angle is 0 in radians.
     """
     alpha = np.radians(fold_angle) / 2
+    if not alpha > 0:
+        raise InputError(f"fold_angle 2α = {fold_angle!r}° is 0 in radians (below the smallest positive float): no fold angle",
+                         parameter="fold_angle")
     exponent = a * kappa0_s0 / np.tan(alpha) / np.pi
     if exponent > _LOG_MAX:
         smallest = 2 * np.degrees(np.arctan(a * kappa0_s0 / (np.pi * _LOG_MAX)))
