@@ -348,6 +348,8 @@ def _certificate_lines(payload: dict) -> list[str]:
     if frames.get("holds_up_to") is not None:
         at = " (rigid panels)" if "mechanism" in payload else f" at {frames['samples']} samples"
         lines[0] += f" in every frame, and up to 2α = {frames['holds_up_to']:g}°{at}"
+    if frames.get("first_contact") is not None:
+        lines.append(f"  motion             flat to 2α = {frames['first_contact']:g}°, where it first touches itself (first contact)")
     lines += [f"    {c['name']}: {c['status']} at {c['where']}" + (f"; use ≥ {c['samples_needed']} samples" if c["samples_needed"] else "")
               for c in cert if not c["passed"]]
     return lines

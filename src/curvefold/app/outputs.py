@@ -83,7 +83,7 @@ def structure_payload(built: Built) -> dict:
     certificate = certify(built.crease, built.structure, built.vault, fold_angles=angles)
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
     payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
-                                     "samples": certificate.samples}
+                                     "first_contact": certificate.first_contact, "samples": certificate.samples}
     if certificate.mechanism is not None:  # rigid panels
         payload["mechanism"] = certificate.mechanism.to_dict()
     return payload

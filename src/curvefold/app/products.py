@@ -32,11 +32,11 @@ from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS",
-           "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out",
+           "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
 
-#: States of the folding motion in the GLB, from flat to the design angle.
-MOTION_STEPS = 10
+#: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
+MOTION_STEPS = 7
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
 #: The package the report's pictures are drawn with, and the extra that brings it.
@@ -70,9 +70,23 @@ def _metadata(built: Built) -> dict:
     return meta
 
 
-def exported_fold_angles(built: Built) -> np.ndarray:
-    """2α of the frames the files hold (degrees): the folding motion, flat to the design angle."""
+def design_motion(built: Built) -> np.ndarray:
+    """2α of the states of the folding motion from flat to the design angle (degrees): the GLB's and the GIF's."""
     return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
+
+
+def exported_fold_angles(built: Built) -> np.ndarray:
+    """2α of the frames the FOLD file holds and the certificate certifies (degrees): the folding motion from
+    flat to the design angle, and on by the same step while nothing touches, when the structure meets
+    itself before 180° (:func:`curvefold.geometry.contact.first_contact`: where its motion ends)."""
+    from ..geometry.contact import first_contact
+
+    motion = design_motion(built)
+    contact = first_contact(built.structure)
+    if contact is None:
+        return motion
+    step = motion[1] - motion[0]
+    return np.concatenate([motion, np.arange(motion[-1] + step, contact - 1e-9, step)])
 
 
 def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
@@ -85,6 +99,8 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         A format that is not written for the design's kind, with the reason.
     """
     check_kind(formats, built.design.kind, "formats")
+    if built.structure is not None:
+        exported_fold_angles(built)  # the first contact found once, before the jobs fork
     families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
     out: list[tuple[str, Job]] = []
     for family in families:
@@ -212,16 +228,13 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file (folded at the design angle; a rigid structure also flat and
-    half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
-    by Origami Simulator)."""
+    """The structure's FOLD file (its folding motion, :func:`exported_fold_angles`), and one FOLD
+    file per sheet, flat with its target fold angles (loadable by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
-    design = structure.lattice.crease.fold_angle
-    # rigid panels: the flat and half-folded states too, for `curvefold mechanism`
-    angles = [0.0, 0.5 * design, design] if structure.lattice.rigid else [design]
+    angles = exported_fold_angles(built).tolist()
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -246,7 +259,7 @@ def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The 3D files; the GLB holds the folding motion."""
     from ..io.models import write_3d
 
-    return list(write_3d(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
+    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), formats=names, unit=MODEL_UNIT,
                          metadata=_metadata(built), keep=built.sampling.keep))
 
 
