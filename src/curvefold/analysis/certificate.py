@@ -77,7 +77,7 @@ from .checks import CHECKS, CheckSpec, Residual
 from .frames import Frame, Shared
 from .mechanism import CertifiedMechanism, certified_mechanism
 
-__all__ = ["Check", "Certificate", "certify"]
+__all__ = ["Check", "Certificate", "certify", "certify_single_fold"]
 
 #: Fewest samples of the half-sampled design: the measurements' 5-point stencils need room.
 _MIN_COARSE = 9
@@ -287,6 +287,33 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     outcomes = _over_frames(specs, run, angles, ("crease", "frame", "vault", "motion"), ("crease", "frame"), structure.lattice.crease.fold_angle)
     checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
     return _with_range(checks, specs, structure, angles, run, ("crease", "frame"), n)
+
+
+def certify_single_fold(states: Sequence[tuple[float, Crease]]) -> Certificate:
+    """The crease checks of a single curved fold in every state of its motion, judged as :func:`certify` judges them.
+
+    Parameters
+    ----------
+    states : sequence of (float, Crease)
+        The start angle 2α(0) (degrees) and the crease of every state: the fold as built and
+        its crease pattern refolded (:meth:`curvefold.geometry.single_fold.SingleFold.at`).
+
+    Returns
+    -------
+    Certificate
+        With ``fold_angles`` the states' start angles.
+    """
+    specs = [s for s in CHECKS if s.scope == "crease"]
+    n = len(states[0][1].s)
+    coarse_samples = (n - 1) // 2 + 1
+    if coarse_samples < _MIN_COARSE:
+        return _too_coarse(None, None, n)
+    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
+    for angle, crease in states:
+        coarse, _ = _rebuilt(crease, None, coarse_samples)
+        for name, outcome in _measure(specs, Frame(crease), Frame(coarse), f"2α(0) = {angle:g}°: ").items():
+            outcomes[name].append(outcome)
+    return Certificate(tuple(_check(spec, outcomes[spec.name]) for spec in specs), tuple(a for a, _ in states), samples=n)
 
 
 def _certify_rigid(structure: Structure, vault: Vault | None, angles: list[float]) -> Certificate:

@@ -463,8 +463,11 @@ def _rebuilt_fold(doc, path: Path):
     design = design_from_dict(record["design"], source=where, base_dir=path.parent)
     require_rebuild_budget(design, len(record["fold_angles"]))
     built = build(design)
-    if built.structure is None:
-        raise InputError(f"{where}: a {design.kind} design has no FOLD file to rebuild")
+    if built.structure is None:  # a single curved fold
+        from ..io.single_fold import single_fold_model
+        from .products import single_fold
+
+        return parse_fold(model_document(single_fold_model(single_fold(built), record["fold_angles"])), f"{where} (rebuilt)")
     keep = record.get("keep")
     model = to_fold(built.structure, fold_angles=record["fold_angles"], anchor=record.get("anchor", "start"),
                     faces=record.get("faces", "triangles"), keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])

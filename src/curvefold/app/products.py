@@ -32,8 +32,8 @@ from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out",
-           "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "single_fold", "picture_files", "can_draw",
+           "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
 
 #: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
 MOTION_STEPS = 7
@@ -71,8 +71,18 @@ def _metadata(built: Built) -> dict:
 
 
 def design_motion(built: Built) -> np.ndarray:
-    """2α of the states of the folding motion from flat to the design angle (degrees): the GLB's and the GIF's."""
-    return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
+    """2α of the states of the folding motion from flat to the design angle (degrees): the GLB's (a single
+    fold's start angle 2α(0))."""
+    design = single_fold(built).fold_angle if built.structure is None else built.structure.lattice.crease.fold_angle
+    return np.linspace(0.0, design, MOTION_STEPS)
+
+
+def single_fold(built: Built):
+    """The single curved fold of a built design of kind "crease", with the strips' widths of its files."""
+    from ..geometry.single_fold import SingleFold
+
+    c = built.design.crease
+    return SingleFold.of(built.crease, built.design.function("kappa_2d"), (c.width_left, c.width_right), fold_angle=c.fold_angle)
 
 
 def exported_fold_angles(built: Built) -> np.ndarray:
@@ -82,7 +92,7 @@ def exported_fold_angles(built: Built) -> np.ndarray:
     from ..geometry.contact import first_contact
 
     motion = design_motion(built)
-    contact = first_contact(built.structure)
+    contact = None if built.structure is None else first_contact(built.structure)
     if contact is None:
         return motion
     step = motion[1] - motion[0]
@@ -99,12 +109,12 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         A format that is not written for the design's kind, with the reason.
     """
     check_kind(formats, built.design.kind, "formats")
-    if built.structure is not None:
-        exported_fold_angles(built)  # the first contact found once, before the jobs fork
+    exported_fold_angles(built)  # the first contact found once, before the jobs fork
     families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
+    family_jobs = _FAMILY_JOBS if built.structure is not None else _SINGLE_FOLD_JOBS
     out: list[tuple[str, Job]] = []
     for family in families:
-        label, write = _FAMILY_JOBS[family]
+        label, write = family_jobs[family]
         names = tuple(name for name in formats_of(family) if name in formats)
         out.append((label, partial(write, built, names)))
     if can_draw():
@@ -271,6 +281,49 @@ def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
+def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's FOLD file (its motion, flat to the design angle) and its sheet's (loadable by Origami Simulator)."""
+    from ..io.fold import write_model, write_sheet_fold
+    from ..io.single_fold import single_fold_model
+
+    fold, meta = single_fold(built), _metadata(built)
+    model = single_fold_model(fold, exported_fold_angles(built), unit=MODEL_UNIT, metadata=meta, design=built.design.to_dict())
+    (folder / "sheets").mkdir()
+    return [write_model(FORMATS[names[0]].path(folder / built.design.kind), model, title=meta["title"]),
+            write_sheet_fold(folder / "sheets" / "single-fold.fold", fold.pattern_sheet().mesh, MODEL_UNIT, title="single fold")]
+
+
+def _single_fold_pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's crease pattern, laid out once for every pattern format's writer."""
+    from ..io.pattern import DEFAULT_LAYERS, LAYERS
+    from ..io.single_fold import layout_single_fold
+    from ..io.tables import mm_per_unit
+
+    o, kind = built.design.output, built.design.kind
+    page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
+    layout = layout_single_fold(single_fold(built), page=page, units=o.units, scale=o.scale, name=kind)
+    files = []
+    for name in names:
+        written = FORMATS[name].load_writer()(FORMATS[name].path(folder / f"{kind}-pattern"), layout,
+                                              layers=LAYERS if o.rulings else DEFAULT_LAYERS)
+        files.extend(written if isinstance(written, tuple) else (written,))
+    return files
+
+
+def _single_fold_model(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's 3D files; the GLB holds the folding motion."""
+    from ..io.single_fold import write_single_fold_3d
+
+    return list(write_single_fold_3d(folder / built.design.kind, single_fold(built), design_motion(built), formats=names,
+                                     unit=MODEL_UNIT, metadata=_metadata(built)))
+
+
+#: Progress label and job of every family of formats a single curved fold writes.
+_SINGLE_FOLD_JOBS = {
+    "fold": ("FOLD files", _single_fold_fold),
+    "pattern": ("crease patterns", _single_fold_pattern),
+    "model": ("3D models", _single_fold_model),
+}
 #: Progress label and job of every family of formats.
 _FAMILY_JOBS = {
     "fold": ("FOLD files", _fold),
@@ -289,7 +342,8 @@ def _figures(built: Built) -> dict[str, Callable]:
 
     structure = built.structure
     if structure is None:
-        return {"crease": partial(views.plot_crease, built.crease)}
+        fold = single_fold(built)
+        return {"crease": partial(views.plot_crease, built.crease, width=(fold.width_left, fold.width_right))}
     lattice = structure.lattice
     figures = {"regression-domain": partial(plots.plot_regression_domain, lattice, structure.cells),
                "width-proportion": partial(plots.plot_width_proportion, lattice)}

@@ -24,7 +24,9 @@ Layout written by :func:`write_fold` (one shared vertex/edge/face topology):
 
 :func:`write_sheet_fold` writes one sheet in the form Origami Simulator loads: it needs
 ``vertices_coords``, ``edges_vertices``, ``edges_assignment`` and ``faces_vertices``, takes
-``edges_foldAngle`` in degrees as the target angles, maps 2D coordinates ``(x, y)`` to its
+``edges_foldAngle`` in degrees as the target angles (the sheet's own, on its ``F`` rulings
+and diagonals too, so that it folds onto the design and not onto a sheet flat between its
+creases), maps 2D coordinates ``(x, y)`` to its
 ``(x, 0, y)`` and starts from the given 3D coordinates otherwise; every ``M``/``V``/``F``
 edge must have a face on each side.
 
@@ -54,7 +56,8 @@ from .fold_reading import FoldFile
 from .mesh3d import check_metadata
 from .tables import CREATOR
 
-__all__ = ["fold_assignments", "fold_document", "model_document", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"]
+__all__ = ["fold_assignments", "fold_document", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
+           "write_structure_fold"]
 
 FILE_SPEC = 1.1
 
@@ -403,7 +406,7 @@ def write_sheet_fold(
         "vertices_coords": _number_lists(x),
         "edges_vertices": sheet.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
-        "edges_foldAngle": np.where(np.isin(assignment, ("B", "F")), 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
+        "edges_foldAngle": np.where(assignment == "B", 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
         "faces_vertices": _face_lists(sheet.faces_vertices),
         "edges_curvefold:kind": sheet.edges_kind.tolist(),
     }))
@@ -492,7 +495,12 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
     -------
     Path
     """
-    return _write_document(path, model_document(to_fold(structure, **kwargs), title=title))
+    return write_model(path, to_fold(structure, **kwargs), title=title)
+
+
+def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
+    """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io.single_fold.single_fold_model`) atomically."""
+    return _write_document(path, model_document(model, title=title))
 
 
 def model_document(model: FoldFile, *, title: str = "") -> dict:

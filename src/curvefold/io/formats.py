@@ -108,26 +108,27 @@ class FileFormat:
 
 
 _S = STRUCTURE_KINDS
+_ALL = (*STRUCTURE_KINDS, "crease")  # a single curved fold writes its crease pattern, FOLD file and 3D models too
 
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", _S,
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", _ALL,
                "curvefold.io.pattern:write_svg", "image/svg+xml"),
-    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _S,
+    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _ALL,
                "curvefold.io.pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", _S,
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", _ALL,
                "curvefold.io.pattern:write_pdf", "application/pdf", "matplotlib", "export"),
-    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
+    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the frames of the folding motion, and one FOLD file per sheet", "fold", _ALL,
                "curvefold.io.fold:write_structure_fold", "application/json"),
-    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", _S,
+    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", _ALL,
                "curvefold.io.models:model_glb", "model/gltf-binary", "pygltflib", "export"),
-    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _S,
+    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _ALL,
                "curvefold.io.models:model_obj", "model/obj"),
-    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _S,
+    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,
                "curvefold.io.models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
-    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", _S,
+    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", _ALL,
                "curvefold.io.models:model_stl", "model/stl", "trimesh", "export"),
-    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _S,
+    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _ALL,
                "curvefold.io.models:model_ply", "application/octet-stream", "trimesh", "export"),
     FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", _S,
                "curvefold.io.gif:write_gif", "image/gif", "matplotlib", "plot"),  # frames drawn with matplotlib's font and Pillow
@@ -159,7 +160,7 @@ def default_formats(kind: str) -> tuple[str, ...]:
     Examples
     --------
     >>> default_formats("crease")
-    ()
+    ('svg', 'dxf', 'pdf', 'fold', 'glb', 'obj', '3dm', 'stl', 'ply')
     """
     return tuple(name for name, f in FORMATS.items() if kind in f.kinds)
 
