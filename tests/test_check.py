@@ -439,3 +439,25 @@ def _scaled(text: str, factor: float) -> str:
     for frame in [doc, *doc["file_frames"]]:
         frame["vertices_coords"] = (factor * np.array(frame["vertices_coords"])).tolist()
     return json.dumps(doc)
+
+
+def test_rebuild_is_estimated_before_it_is_built(tmp_path, written, monkeypatch):
+    """A 66 KB file recording a vault of 200,000 samples grew to 4.6 GB when rebuilt; 100,000 recorded fold
+    angles took 81 s. The rebuild is estimated like any design, and a record of other frames is not built."""
+    _, doc = written
+
+    def huge(d):
+        d["curvefold:design"]["design"] = {"kind": "vault", "samples": 200000}
+
+    r = run("check", damaged(tmp_path, doc, huge), "--rebuild")
+    assert r.returncode == 2 and "rebuilding this design needs about" in r.stderr and "more than the budget of 2.0 GiB" in r.stderr
+
+    def many(d):
+        d["curvefold:design"]["fold_angles"] = [90.0] * 100_000
+
+    r = run("check", damaged(tmp_path, doc, many), "--rebuild", "--json")
+    (rebuild,) = [c for c in json.loads(r.stdout)["checks"] if c["name"] == "rebuild"]
+    assert r.returncode == 1 and "records 100000 fold angles, the file holds 3 frames" in rebuild["where"]
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "100M")  # the tube itself, with its three frames, needs more
+    r = run("check", damaged(tmp_path, doc, lambda d: None), "--rebuild")
+    assert r.returncode == 2 and "more than the budget of 100 MiB" in r.stderr

@@ -405,7 +405,7 @@ def _assignments(frames: list[_Frame], slack: float, flat: float) -> FileCheck:
             else:
                 bent = np.select([a == "M", a == "V", unfolded], [np.fmax(measured - slack, 0.0), np.fmax(-measured - slack, 0.0),
                                                                    np.fmax(np.abs(measured) - flat, 0.0)], 0.0)
-            wrong = np.fmax(wrong, np.where(np.isnan(measured) & ~np.isin(a, ("B", "U")), np.nan, bent))
+            wrong = np.maximum(wrong, np.where(np.isnan(measured) & ~np.isin(a, ("B", "U")), np.nan, bent))  # NaN stays
         results.append((f.label, wrong))
     return _judge("assignments", "°", 0.0, results, _ids("edges"))
 

@@ -28,8 +28,9 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, t: np.ndarray, *, radius: floa
     Examples
     --------
     >>> x = np.array([[[0.0, 0, 0], [1, 0, 0]], [[0, 0, 0.01], [1, 0, 0.01]], [[0, 0, 0], [5, 0, 0]]])  # 3 curves × 2 samples
+    >>> # curves (0, 0) and (0, 1) are one step apart: touching is theirs; (2, 2) is two steps from both
     >>> far_pairs(x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), np.array([0.0, 1.0]), radius=0.1, dt_min=0.5).tolist()
-    [[0, 4]]
+    [[0, 4], [2, 4]]
     """
     from scipy.spatial import cKDTree
 

@@ -41,8 +41,8 @@ def default_widths(crease: Crease) -> tuple[float, float]:
 
     Examples
     --------
-    >>> default_widths(Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41))
-    (0.45, 0.45)
+    >>> [round(w, 12) for w in default_widths(Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41))]
+    [0.45, 0.45]
     """
     length = crease.curve.length
     limits = [float(np.min(w)) for w in crease.regression_limits()]

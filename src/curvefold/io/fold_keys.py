@@ -41,8 +41,8 @@ def ignored_keys(frames: Sequence[dict], labels: Sequence[str]) -> list[str]:
 
     Examples
     --------
-    >>> ignored_keys([{"faceOrders": [], "cpedit:page": {}, "vertices_coords": []}], ["f.fold"])
-    ['f.fold: not read: faceOrders (layer order (checking it needs the overlaps of faces, which curvefold does not compute)); cpedit:page (another tool\\'s key)']
+    >>> print(*ignored_keys([{"faceOrders": [], "cpedit:page": {}, "vertices_coords": []}], ["f.fold"]))
+    f.fold: not read: faceOrders (layer order (checking it needs the overlaps of faces, which curvefold does not compute)); cpedit:page (another tool's key)
     """
     reason_of = {key: reason for reason, keys in _NOT_READ.items() for key in keys}
     found: dict[str, list[str]] = {}

@@ -23,20 +23,34 @@ from .fold_reading import FoldFile
 from .formats import FORMATS, check_formats
 from .layout import FOOTER, Layout, layout_sheets, page_size
 from .mesh3d import check_metadata
+from .tables import mm_per_unit
 
 __all__ = ["single_fold_model", "write_single_fold_3d", "layout_single_fold"]
 
-#: The 3D formats of a single fold, each written from the fold's meshes.
-_MODELS = {
-    "glb": lambda path, fold, motion, unit, meta: gltf.write_glb(
-        path, fold.mesh(fold.fold_angle), coords=np.stack([fold.topology().coords(fold.curves(a)) for a in motion]),
-        angles_deg=motion, base_state=int(np.argmin(np.abs(motion - fold.fold_angle))), unit=unit, metadata=meta),
-    "obj": lambda path, fold, motion, unit, meta: mesh3d.write_obj(path, fold.mesh(fold.fold_angle, "quads"), unit=unit, metadata=meta),
-    "stl": lambda path, fold, motion, unit, meta: mesh3d.write_stl(path, fold.mesh(fold.fold_angle)),
-    "ply": lambda path, fold, motion, unit, meta: mesh3d.write_ply(path, fold.mesh(fold.fold_angle)),
-    "3dm": lambda path, fold, motion, unit, meta: rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"),
-                                                                 unit=unit, metadata=meta, degree=3),
-}
+def _glb(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+    coords = np.stack([fold.topology().coords(fold.curves(a)) for a in motion])
+    return gltf.write_glb(path, fold.mesh(fold.fold_angle), coords=coords, angles_deg=motion, unit=unit, metadata=meta,
+                          base_state=int(np.argmin(np.abs(motion - fold.fold_angle))))
+
+
+def _obj(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+    return mesh3d.write_obj(path, fold.mesh(fold.fold_angle, "quads"), unit=unit, metadata=meta)
+
+
+def _stl(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+    return mesh3d.write_stl(path, fold.mesh(fold.fold_angle))
+
+
+def _ply(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+    return mesh3d.write_ply(path, fold.mesh(fold.fold_angle))
+
+
+def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"), unit=unit, metadata=meta, degree=3)
+
+
+#: How a single fold writes each 3D format of the registry: its meshes to the format's serialiser.
+_MODELS = {"glb": _glb, "obj": _obj, "stl": _stl, "ply": _ply, "3dm": _3dm}
 
 
 def single_fold_model(fold: SingleFold, fold_angles, *, unit: str = "unit", metadata: Mapping | None = None,
@@ -79,16 +93,10 @@ def layout_single_fold(fold: SingleFold, *, page="A4", units: str = "mm", scale:
     if scale is not None:
         return layout_sheets([sheet], page=page, units=units, scale=scale, glue_tabs=False)
     width, height = page_size(page, units=units)
-    target = max(width, height) - 20.0 / _mm(units)  # the margins' 10 mm either side
+    target = max(width, height) - 20.0 / mm_per_unit(units)  # the margins' 10 mm either side
     for _ in range(40):  # the pattern turned to its narrowest rectangle may be too wide: shrink until it fits
         try:
             return layout_sheets([sheet], page=page, units=units, target_size=target, glue_tabs=False)
         except InputError:
             target *= 0.9
     raise InputError(f"page {page!r} leaves no room for the single fold's pattern inside its margins and footer ({FOOTER:g} mm)")
-
-
-def _mm(units: str) -> float:
-    from .tables import mm_per_unit
-
-    return mm_per_unit(units)
