@@ -498,9 +498,19 @@ def parse_fold(doc, where: str = "FOLD document", *, notes: Sequence[str] = ()) 
     notes += ignored_keys(resolved, labels)
     crease_pattern, folded = split_cuts(crease_pattern, folded, where, notes)
     return FoldFile(crease_pattern=crease_pattern, folded=folded, metadata=metadata, unit=unit, seam_partners=pairs,
-                    bonds=bonds, design=design, keys=keys, notes=tuple(notes), flat_folded=tuple(flat[i] for i in chosen),
+                    bonds=bonds, design=design, keys=keys, notes=_collapsed(notes), flat_folded=tuple(flat[i] for i in chosen),
                     unrecorded=tuple(meshes[i][1] for i in chosen), classes=tuple(classes), frame_ids=tuple(chosen),
                     crease_frame=cp_index)
+
+
+def _collapsed(notes: list[str]) -> tuple[str, ...]:
+    """The notes, each said once: the same words about several frames (inherited keys) name the first and count the others."""
+    said: dict[str, list[str]] = {}
+    for note in notes:
+        where, _, words = note.partition("): ") if "): " in note else ("", "", note)
+        said.setdefault(words, []).append(where + ")" if where else "")
+    return tuple(f"{places[0]}: {words}" + (f" (and in {len(places) - 1} more frames)" if len(places) > 1 else "") if places[0] else words
+                 for words, places in said.items())
 
 
 def _unfolded(resolved: list[dict], chosen: list[int], meshes, labels: list[str], notes: list[str]) -> Mesh | None:
