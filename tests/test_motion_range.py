@@ -80,3 +80,17 @@ def test_every_documented_a_stands_on_its_arch(a):
 def test_the_command_line_builds_a_vault_near_the_end_of_the_family():
     r = run("vault", "--a", "1.26", "--json")
     assert r.returncode == 0 and all(c["passed"] for c in json.loads(r.stdout)["certificate"]), r.stdout[-500:]
+
+
+def test_a_crease_pinching_near_regression_is_no_contact():
+    """The outer crease of the 10th tube of a vault of 16 panels bunches its vertices (edges of 5e-4 at its apex, 0.09
+    elsewhere): counted by t, its own vertices two apart looked like a contact at the design angle."""
+    from curvefold.vault import VaultDesign
+
+    vault = Vault.from_design(VaultDesign(panels=16))
+    assert len(vault.structure.cells) == 10 and vault.first_contact() == 121.0
+    outer = vault.structure.state().vertices[(vault.structure.curves_uv == [10, 10]).all(axis=1)][0]
+    edges = np.linalg.norm(np.diff(outer, axis=0), axis=1)
+    assert edges.min() < 1e-3 < 0.05 < edges.max()
+    cert = certify(vault.lattice.crease, vault.structure, vault)
+    assert {c.name: c.status for c in cert.checks}["contact"] == "pass" and cert.first_contact == 121.0

@@ -327,8 +327,8 @@ def _contact(frame: Frame) -> Residual:
     """How far the closest two far-apart parts are inside half the smallest width of each other: 0 when none are."""
     state, uv = frame.state, frame.structure.curves_uv
     lattice = state.lattice
-    radius, dt_min = contact_scales(lattice)
-    distance, where = closest_far(state.vertices, uv, lattice.t, radius=radius, dt_min=dt_min)
+    radius, reach = contact_scales(lattice)
+    distance, where = closest_far(state.vertices, uv, radius=radius, reach=reach)
     if where is None:  # none, or a point that is not a number (NaN fails)
         return Residual(np.full(1, 0.0 if distance == np.inf else np.nan), 0.0,
                         lambda i: f"no far-apart parts within {radius:.3g} (half the smallest width)")
@@ -431,9 +431,9 @@ CHECKS: tuple[CheckSpec, ...] = (
               rounding="1e-3: the count holds for any tolerance a thousand times larger or smaller; rounding puts the "
                        "null singular values near 1e-15 σ_max, a million times below it"),
     CheckSpec("contact", "motion",
-              "parts of the structure far apart (curves two lattice steps apart, or points whose t differ by more than four "
-              "widths' worth of arc length) closer than half the smallest strip width, at the design angle and in every "
-              "certified frame past it: how far inside that half width they are, relative to it",
+              "parts of the structure far apart (curves two lattice steps apart, or points more than four of the largest "
+              "strip widths apart along both their curves) closer than half the smallest strip width, at the design angle and "
+              "in every certified frame past it: how far inside that half width they are, relative to it",
               "relative", 0, math.inf, _contact,
               rounding="0: any contact fails (the curves resampled to 201 points along t, each pair's distance measured)"),
 )

@@ -17,42 +17,52 @@ from .structure import Structure
 __all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
 
 
-def far_pairs(points: np.ndarray, uv: np.ndarray, t: np.ndarray, *, radius: float, dt_min: float) -> np.ndarray:
+def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: float, reach: float) -> np.ndarray:
     """Pairs of points closer than ``radius`` that are parts far apart, shape (P, 2) (flat indices).
 
     Points (M curves × m samples, flattened) are far apart when their curves are two lattice
-    steps apart or more (``max(|Δu|, |Δv|) ≥ 2``: two tubes moved into each other) or their t
-    differ by more than ``dt_min`` (an arch closing on itself); neighbours along a strip and the
-    curves of one cell, which touch by construction, never are.
+    steps apart or more (``max(|Δu|, |Δv|) ≥ 2``: two tubes moved into each other), or when
+    along each of their two curves the arc length between their samples exceeds ``reach`` (an
+    arch closing on itself): the structure joins them otherwise by a path along one of the
+    curves and across at most one strip. Neighbours along a strip, the curves of one cell
+    and a curve that pinches (its samples bunch up near a curve of regression) touch by
+    construction, and never count.
+
+    Parameters
+    ----------
+    points : (M·m, 3) ndarray
+    uv : (M, 2) ndarray
+        The lattice curve of every row of ``points``' curves.
+    arc : (M, m) ndarray
+        Arc length along every curve at its samples.
 
     Examples
     --------
     >>> x = np.array([[[0.0, 0, 0], [1, 0, 0]], [[0, 0, 0.01], [1, 0, 0.01]], [[0, 0, 0], [5, 0, 0]]])  # 3 curves × 2 samples
     >>> # curves (0, 0) and (0, 1) are one step apart: touching is theirs; (2, 2) is two steps from both
-    >>> far_pairs(x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), np.array([0.0, 1.0]), radius=0.1, dt_min=0.5).tolist()
+    >>> arc = np.array([[0.0, 1.0], [0.0, 1.0], [0.0, 5.0]])
+    >>> far_pairs(x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), arc, radius=0.1, reach=2.0).tolist()
     [[0, 4], [2, 4]]
     """
     from scipy.spatial import cKDTree
 
-    m = len(t)
+    m = arc.shape[1]
     pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
     if not len(pairs):
         return pairs.reshape(0, 2)
-    ci, cj = pairs[:, 0] // m, pairs[:, 1] // m
+    (ci, si), (cj, sj) = np.divmod(pairs[:, 0], m), np.divmod(pairs[:, 1], m)
     steps = np.abs(uv[ci] - uv[cj]).max(axis=1)
-    far = (steps >= 2) | (np.abs(t[pairs[:, 0] % m] - t[pairs[:, 1] % m]) > dt_min)
-    return pairs[far]
+    along = np.minimum(np.abs(arc[ci, si] - arc[ci, sj]), np.abs(arc[cj, si] - arc[cj, sj]))
+    return pairs[(steps >= 2) | (along > reach)]
 
 
 def contact_scales(lattice) -> tuple[float, float]:
-    """(radius, dt_min) of :func:`far_pairs` for a lattice: half its smallest strip width, and four
-    widths' worth of its curve's arc length in t."""
+    """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four times its largest."""
     w_min = float(min(lattice.width_left.min(), lattice.width_right.min()))
-    dt_min = 4 * max(float(lattice.width_left.max()), float(lattice.width_right.max())) / float(lattice.crease.curve.length)
-    return 0.5 * w_min, dt_min
+    return 0.5 * w_min, 4 * max(float(lattice.width_left.max()), float(lattice.width_right.max()))
 
 
-def closest_far(vertices: np.ndarray, uv: np.ndarray, t: np.ndarray, *, radius: float, dt_min: float,
+def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: float,
                 samples: int = 201) -> tuple[float, tuple[int, int, int, int] | None]:
     """The distance of the closest two far-apart parts (:func:`far_pairs`) within ``radius``, and where.
 
@@ -61,8 +71,6 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, t: np.ndarray, *, radius: 
     vertices : (M, n, 3) ndarray
         The structure's curves at one fold angle.
     uv : (M, 2) ndarray
-    t : (n,) ndarray
-        Curve parameter of the samples.
     samples : int
         Samples along t the curves are resampled to.
 
@@ -76,7 +84,9 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, t: np.ndarray, *, radius: 
     points = vertices[:, idx].reshape(-1, 3)
     if not np.isfinite(points).all():
         return float("nan"), None
-    pairs = far_pairs(points, uv, t[idx], radius=radius, dt_min=dt_min)
+    curves = vertices[:, idx]
+    arc = np.concatenate([np.zeros((len(curves), 1)), np.cumsum(np.linalg.norm(np.diff(curves, axis=1), axis=-1), axis=1)], axis=1)
+    pairs = far_pairs(points, uv, arc, radius=radius, reach=reach)
     if not len(pairs):
         return float("inf"), None
     d = np.linalg.norm(points[pairs[:, 0]] - points[pairs[:, 1]], axis=1)
@@ -92,8 +102,8 @@ def first_contact(structure: Structure, *, start: float | None = None, step: flo
 
     The structure is refolded on a grid of ``step`` degrees up to ``max_angle``; points of
     all its curves, resampled to ``samples`` along t, touch when closer than half the
-    smallest strip width (:func:`far_pairs`, with parts more than four widths' worth of arc
-    length apart in t: :func:`contact_scales`).
+    smallest strip width (:func:`far_pairs`, with parts more than four of the largest widths
+    of arc length apart: :func:`contact_scales`).
 
     Returns
     -------
@@ -110,11 +120,11 @@ def first_contact(structure: Structure, *, start: float | None = None, step: flo
     """
     lat = structure.lattice
     start = float(lat.crease.fold_angle) if start is None else float(start)
-    radius, dt_min = contact_scales(lat)
+    radius, reach = contact_scales(lat)
     uv = structure.curves_uv
     angles = np.arange(start, max_angle + 1e-9, step)
     for chunk in range(0, len(angles), 16):
         for k, frame in enumerate(lat.fold_points(uv, angles[chunk : chunk + 16])):  # (M, n, 3) each
-            if closest_far(frame, uv, lat.t, radius=radius, dt_min=dt_min, samples=samples)[1] is not None:
+            if closest_far(frame, uv, radius=radius, reach=reach, samples=samples)[1] is not None:
                 return float(angles[chunk + k])
     return None
