@@ -84,11 +84,29 @@ def listing(path: Path) -> list[str]:
         (["atlas", "--workers", "0"], r"workers must be an integer in \[1, \d+\]"),
         (["atlas", "--samples", "10"], r"--samples 10: samples must be ≥ 21 for a vault"),
         (["atlas", "--width", "-1"], r"--width -1: width must be in \(0, 10\]"),
+        # internal errors before: ZeroDivisionError in the certificate (zero-length panel sides), OverflowError, NaN
+        (["tube", "--panels", "64", "--fold-angle", "5", "--width-left", "0.02", "--width-right", "0.02", "--json"],
+         r"width_left w\(t\) = 2\.32e-14 at s = 6 is below 1e-09 of the structure's size"),
+        (["tube", "--width-left", "1e-300", "--width-right", "1e-300", "--json"], r"width_left w\(t\) = .* is below 1e-09 of the structure's size"),
+        (["tube", "--tau", "tan(s)", "--samples", "101", "--length", "6", "--json"], r"(is below 1e-09 of the structure's size|passes the curve of regression)"),
+        (["arch", "--a", "0", "--fold-angle", "5e-324"], r"fold_angle 2α = 5e-324° is 0 in radians \(below the smallest positive float\)"),
+        (["tube", "--fold-angle", "5e-324", "--json"], r"fold_angle must be in \(0°, 180°\), got 5e-324 \(0 in radians"),
+        (["tube", "--scale", "5e-324", "--formats", "svg", "--out", "t"],  # a crease pattern collapsed to one point, exit 0
+         r"\[output\] scale: 4\.94066e-324 mm per model unit draws the 6-unit crease 2\.96e-323 mm long, shorter than the 10 mm scale bar"),
+        (["vault", "--scale", "0.001", "--units", "m", "--json"], r"scale: 0\.001 m per model unit draws the 3\.14159-unit crease 3\.14 mm long"),
     ],
 )
 def test_flags(tmp_path, argv, match):
     refused(run(*argv, cwd=tmp_path), match)
     assert listing(tmp_path) == []  # refused before any work: nothing written
+
+
+def test_a_memory_budget_of_too_many_digits_is_a_user_error(tmp_path, monkeypatch):
+    """400 digits overflowed to infinity: OverflowError, reported as a bug."""
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "9" * 400)
+    refused(run("tube", "--json", cwd=tmp_path), r"CURVEFOLD_MEMORY_BUDGET must be a memory size .* at most 1 PiB, got '9{20}'… \(400 characters\)$")
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "2048P")
+    refused(run("tube", "--json", cwd=tmp_path), r"CURVEFOLD_MEMORY_BUDGET must be a memory size")
 
 
 def test_a_page_too_small_for_the_scale_is_refused_before_tabs(tmp_path):
@@ -188,7 +206,7 @@ def test_a_folded_frame_of_another_topology_is_a_failed_check_and_no_mechanism(t
         (_fold(faces_vertices=[]), r"faces_vertices is empty"),
         ("[" * 100_000 + "]" * 100_000, r"not valid JSON: nested too deeply$"),
         ('{"vertices_coords": [[%s, 0]]}' % ("9" * 5000), r"it holds an integer of more than 4300 digits$"),
-        (_fold(vertices_coords=[[int("9" * 4000), 0], [1, 0], [1, 1], [0, 1]]), r"vertices_coords\[0\] must hold numbers only"),
+        (_fold(vertices_coords=[[int("9" * 4000), 0], [1, 0], [1, 1], [0, 1]]), r"vertices_coords\[0\] must hold numbers within ±1e\+100, got an integer of 4000 digits"),
         (_fold(edges_vertices=[[0, 10**30], [1, 2], [2, 3], [3, 0], [0, 2]]), r"edges_vertices holds an integer too large for an index"),
         (_chained(3000), r"3000 frames in file_frames, more than curvefold reads \(1000\)$"),
         (_fold(file_frames=[{"frame_inherit": True, "frame_parent": 2}, {"frame_inherit": True, "frame_parent": 1}]),
@@ -531,7 +549,7 @@ def test_the_budget_is_set_by_the_environment(tmp_path, monkeypatch):
     monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "50M")
     refused(run("crease", "--json", cwd=tmp_path), r"needs about \d+ MiB of memory .* more than the budget of 50 MiB")
     monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "lots")
-    refused(run("crease", "--json", cwd=tmp_path), r"CURVEFOLD_MEMORY_BUDGET must be a memory size such as 2G, 512M or a number of bytes, got 'lots'")
+    refused(run("crease", "--json", cwd=tmp_path), r"CURVEFOLD_MEMORY_BUDGET must be a memory size such as 2G, 512M or a number of bytes, at most 1 PiB, got 'lots'")
 
 
 def test_out_of_memory_is_one_line(tmp_path, monkeypatch):
@@ -542,13 +560,25 @@ def test_out_of_memory_is_one_line(tmp_path, monkeypatch):
     refused(run("crease", "--json", cwd=tmp_path), r"^curvefold: error: out of memory; lower samples")
 
 
-def test_warnings_never_come_before_the_line(tmp_path):
-    # widths of e^±200 along the tube: NumPy warns in the measurements (up to 94 lines were printed)
+def test_warnings_never_come_before_the_line(tmp_path, monkeypatch, capsys):
+    # widths of e^±200 along the tube: NumPy warned in the measurements (up to 94 lines were printed); such widths
+    # are now refused before any measurement, in one line
     (tmp_path / "d.toml").write_text('kind = "tube"\nsamples = 101\n[curve]\nlength = 1000.0\n')
     quiet = run_subprocess("tube", "d.toml", "--json", cwd=tmp_path)
-    assert "Warning" not in quiet.stderr and len(quiet.stderr.splitlines()) <= 1, quiet.stderr
-    loud = run_subprocess("tube", "d.toml", "--json", "--debug", cwd=tmp_path)
-    assert "RuntimeWarning" in loud.stderr  # there were warnings to hide
+    assert "Warning" not in quiet.stderr and len(quiet.stderr.splitlines()) == 1, quiet.stderr
+    # a warning on the way to an error is kept back, and printed after the line with --debug
+    from curvefold.app import cli
+    from curvefold.kernel.errors import InputError
+
+    def noisy(kind, args):
+        np.exp(np.array([1000.0]))  # overflow: a RuntimeWarning
+        raise InputError("refused")
+
+    monkeypatch.setattr(cli, "cmd_structure", noisy)
+    assert cli.main(["tube", "--json"]) == 2 and capsys.readouterr().err == "curvefold: error: refused\n"
+    assert cli.main(["tube", "--json", "--debug"]) == 2
+    loud = capsys.readouterr().err
+    assert loud.startswith("curvefold: error: refused\n") and "RuntimeWarning: overflow encountered in exp" in loud
 
 
 # ---------------------------------------------------------------------------------------------

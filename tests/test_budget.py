@@ -55,7 +55,7 @@ def test_the_budget_is_read_from_the_environment(monkeypatch, text, size):
 @pytest.mark.parametrize("text", ["", "lots", "-1G", "0", "2X", "1e9"])
 def test_a_budget_that_is_not_a_size_is_refused(monkeypatch, text):
     monkeypatch.setenv(budget.ENVIRONMENT, text)
-    with pytest.raises(InputError, match=rf"CURVEFOLD_MEMORY_BUDGET must be a memory size such as 2G, 512M or a number of bytes, got '{text}'"):
+    with pytest.raises(InputError, match=rf"CURVEFOLD_MEMORY_BUDGET must be a memory size such as 2G, 512M or a number of bytes, at most 1 PiB, got '{text}'"):
         memory_budget()
 
 

@@ -7,6 +7,7 @@ test says which check must fail, and that the frame and the element ids are name
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -61,7 +62,7 @@ def test_the_written_file_passes_every_check(written):
     path, _ = written
     result = check_fold(path)
     assert result.ok and result.frames == 3
-    assert [c.name for c in result.checks] == ["topology", "welds", "assignments", "fold_angles", "isometry", "face_planarity"]
+    assert [c.name for c in result.checks] == ["topology", "welds", "edge_kinds", "assignments", "fold_angles", "isometry", "face_planarity"]
     assert all(c.status == "pass" for c in result.checks)
     assert result.max_fold_angle_error == 0.0  # the file records the dihedral angles it has
 
@@ -143,8 +144,8 @@ def test_one_mountain_flipped_to_valley(tmp_path, written):
     path, doc = written
     edge = int(_folds(doc)[7])
     result = verdict(damaged(tmp_path, doc, lambda d: d["edges_assignment"].__setitem__(edge, "V")))
-    assert result["assignments"].status == "fail"
-    assert f"edges {edge}" in result["assignments"].where and "frame 2 ('fold angle 45°')" in result["assignments"].where
+    assert result["assignments"].status == "fail"  # the crease pattern records it as a mountain, and it folds as one
+    assert result["assignments"].where == f"key frame (crease pattern): edges {edge}"
 
 
 @pytest.mark.parametrize("to", ["V", "F"])
@@ -215,7 +216,8 @@ def test_a_vertex_collapsed_onto_its_neighbour_is_a_nan_that_fails(tmp_path, wri
     a, b = doc["edges_vertices"][int(_folds(doc)[3])]
     result = verdict(damaged(tmp_path, doc, lambda d: edit_frame(d, 2, lambda x: x.__setitem__(a, x[b]))))
     assert result["topology"].status == "fail" and "edges of zero length" in result["topology"].where
-    assert result["fold_angles"].status == "fail" and np.isnan(result["fold_angles"].value)
+    fold_angles = result["fold_angles"]  # the faces on the collapsed edge have no normal: named, and the others still measured
+    assert fold_angles.status == "fail" and np.isfinite(fold_angles.value) and "not measurable (no length or no normal): edges" in fold_angles.where
 
 
 def test_a_vertex_moved_off_the_sheet(tmp_path, written):
@@ -243,9 +245,9 @@ def test_plain_fold_without_curvefold_keys_passes_what_can_run(tmp_path, written
     result = check_fold(damaged(tmp_path, doc, strip))
     assert result.ok
     checks = {c.name: c for c in result.checks}
-    assert {n for n, c in checks.items() if c.status == "not run"} == {"welds", "face_planarity"}
+    assert {n for n, c in checks.items() if c.status == "not run"} == {"welds", "edge_kinds", "face_planarity"}
     assert "curvefold:seam_partners" in checks["welds"].reason and "edges_curvefold:kind" in checks["face_planarity"].reason
-    assert result.to_dict()["not_run"] == ["welds", "face_planarity"]
+    assert result.to_dict()["not_run"] == ["welds", "edge_kinds", "face_planarity"]
 
 
 def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):
@@ -322,3 +324,140 @@ def test_rebuild_needs_a_recorded_design(tmp_path, written):
     path, doc = written
     r = run("check", damaged(tmp_path, doc, lambda d: d.pop("curvefold:design")), "--rebuild")
     assert r.returncode == 2 and "--rebuild needs the design the file was built from (curvefold:design)" in r.stderr
+
+
+# --------------------------------------------------------------------------------------------
+# the damage catalogue: edits that passed before, each failing a named check or refused
+
+
+def _ruling_folding_as_mountain(doc) -> int:
+    """A ruling whose small bend is a mountain in every frame and in the crease pattern."""
+    kind = np.array(doc["edges_curvefold:kind"])
+    angles = np.array([doc["edges_foldAngle"]] + [f["edges_foldAngle"] for f in doc["file_frames"][1:]])
+    return int(np.flatnonzero((kind == "ruling") & (angles < -0.05).all(axis=0))[0])
+
+
+def _relabel_ruling(d):
+    d["edges_assignment"][_ruling_folding_as_mountain(d)] = "M"
+
+
+def _negate_key_angles(d):
+    d["edges_foldAngle"] = [-a for a in d["edges_foldAngle"]]
+
+
+def _key_frame_folded(d):
+    d["frame_classes"] = ["foldedForm"]
+
+
+def _distort(d):
+    """Every folded frame stretched 1.5×, and one vertex of the crease pattern collapsed onto its neighbour."""
+    for f in d["file_frames"]:
+        f["vertices_coords"] = (1.5 * np.array(f["vertices_coords"])).tolist()
+    a, b = d["edges_vertices"][int(_folds(d)[3])]
+    d["vertices_coords"][a] = d["vertices_coords"][b]
+
+
+def _one_vertex_more(d):
+    d["file_frames"][2]["vertices_coords"].append([0.0, 0.0, 0.0])
+
+
+def _group_changed(d):
+    d["faces_curvefold:group"][0] += 1
+
+
+def _ruling_angle_changed(d):
+    e = _ruling_folding_as_mountain(d)
+    d["file_frames"][2]["edges_foldAngle"][e] *= 1.0001  # 1e-4 of a small bend: below the recorded-angle tolerance
+
+
+#: name -> (edit of the document, the checks that must fail, with --rebuild or not).
+FILE_DAMAGES = {
+    "a near-flat ruling relabelled M": (_relabel_ruling, {"edge_kinds"}, False),
+    "a near-flat ruling relabelled M, rebuilt": (_relabel_ruling, {"edge_kinds", "rebuild"}, True),
+    "the crease pattern's fold angles negated": (_negate_key_angles, {"assignments"}, False),
+    "the crease pattern relabelled a folded form": (_key_frame_folded, {"fold_angles"}, False),
+    "the crease pattern relabelled a folded form, rebuilt": (_key_frame_folded, {"fold_angles", "rebuild"}, True),
+    "a frame with one vertex more": (_one_vertex_more, {"topology"}, False),
+    "distorted 1.5x with a degenerate edge": (_distort, {"isometry", "topology"}, False),
+    "a face moved to another strip, rebuilt": (_group_changed, {"rebuild"}, True),
+    "a ruling's recorded angle changed by 1e-4 of itself, rebuilt": (_ruling_angle_changed, {"rebuild"}, True),
+}
+
+
+@pytest.mark.parametrize("name", list(FILE_DAMAGES))
+def test_damage_catalogue_each_fails_a_named_check(tmp_path, written, name):
+    _, doc = written
+    edit, expect, rebuild = FILE_DAMAGES[name]
+    path = damaged(tmp_path, doc, edit)
+    r = run("check", path, "--json", *(["--rebuild"] if rebuild else []))
+    out = json.loads(r.stdout)
+    failed = {c["name"] for c in out["checks"] if c["status"] == "fail"}
+    assert r.returncode == 1 and expect <= failed, (failed, r.stderr)
+
+
+def test_the_headline_numbers_are_measured_over_what_can_be_measured(tmp_path, written):
+    """One degenerate edge made max_isometry_error null for a file distorted by 1.5×."""
+    _, doc = written
+    out = json.loads(run("check", damaged(tmp_path, doc, _distort), "--json").stdout)
+    assert np.isfinite(out["max_isometry_error"]) and out["max_isometry_error"] >= 0.5
+    (isometry,) = [c for c in out["checks"] if c["name"] == "isometry"]
+    assert "not measurable (no length or no normal): edges" in isometry["where"]
+
+
+def test_kinds_and_rebuilt_arrays_name_what_differs(tmp_path, written):
+    _, doc = written
+    e = _ruling_folding_as_mountain(doc)
+    out = json.loads(run("check", damaged(tmp_path, doc, _relabel_ruling), "--json", "--rebuild").stdout)
+    by_name = {c["name"]: c for c in out["checks"]}
+    assert by_name["edge_kinds"]["where"].startswith(f"key frame (crease pattern): edges {e} (ruling) assigned M")
+    assert f"key frame (crease pattern): edges_assignment at rows {e}" in by_name["rebuild"]["where"]
+    out = json.loads(run("check", damaged(tmp_path, doc, _key_frame_folded), "--json", "--rebuild").stdout)
+    by_name = {c["name"]: c for c in out["checks"]}
+    assert "frame_classes [['foldedForm'], ['foldedForm'], ['foldedForm'], ['foldedForm']]" in by_name["rebuild"]["where"]
+    assert by_name["isometry"]["status"] == "not run"  # the file no longer says which frame is its crease pattern
+
+
+@pytest.mark.parametrize(("edit", "message"), [
+    (lambda text: text.replace('"vertices_coords":[[', '"vertices_coords":[["0.5",', 1), r"vertices_coords\[0\] must hold numbers only, got \['0.5'"),
+    (lambda text: text.replace('"frame_unit":', '"frame_unit":"mm","frame_unit":', 1), r"the key 'frame_unit' appears twice in one object"),
+    (lambda text: text.replace('"vertices_coords":[[', '"vertices_coords":[[1e308,', 1), r"vertices_coords\[0\] = \[1e\+308, .* must lie within ±1e\+100"),
+    (lambda text: text.replace('"vertices_coords":[[', '"vertices_coords":[[NaN,', 1), r"not a FOLD file: NaN is not a JSON number"),
+    (lambda text: _scaled(text, 1e-310), r"the model is .* across; curvefold reads models at least 1e-100 across"),
+])
+def test_malformed_numbers_and_keys_are_refused_in_one_line(tmp_path, written, edit, message):
+    path, _ = written
+    bad = tmp_path / "bad.fold"
+    bad.write_text(edit(path.read_text()))
+    for command in ("check", "mechanism"):
+        r = run(command, str(bad))
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "internal error" not in r.stderr, r.stderr
+        assert re.search(message, r.stderr), r.stderr
+
+
+def _scaled(text: str, factor: float) -> str:
+    doc = json.loads(text)
+    for frame in [doc, *doc["file_frames"]]:
+        frame["vertices_coords"] = (factor * np.array(frame["vertices_coords"])).tolist()
+    return json.dumps(doc)
+
+
+def test_rebuild_is_estimated_before_it_is_built(tmp_path, written, monkeypatch):
+    """A 66 KB file recording a vault of 200,000 samples grew to 4.6 GB when rebuilt; 100,000 recorded fold
+    angles took 81 s. The rebuild is estimated like any design, and a record of other frames is not built."""
+    _, doc = written
+
+    def huge(d):
+        d["curvefold:design"]["design"] = {"kind": "vault", "samples": 200000}
+
+    r = run("check", damaged(tmp_path, doc, huge), "--rebuild")
+    assert r.returncode == 2 and "rebuilding this design needs about" in r.stderr and "more than the budget of 2.0 GiB" in r.stderr
+
+    def many(d):
+        d["curvefold:design"]["fold_angles"] = [90.0] * 100_000
+
+    r = run("check", damaged(tmp_path, doc, many), "--rebuild", "--json")
+    (rebuild,) = [c for c in json.loads(r.stdout)["checks"] if c["name"] == "rebuild"]
+    assert r.returncode == 1 and "records 100000 fold angles, the file holds 3 frames" in rebuild["where"]
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "100M")  # the tube itself, with its three frames, needs more
+    r = run("check", damaged(tmp_path, doc, lambda d: None), "--rebuild")
+    assert r.returncode == 2 and "more than the budget of 100 MiB" in r.stderr

@@ -639,13 +639,29 @@ def _without_alpha_conflicts(section: dict) -> dict:
     return {k: v for k, v in section.items() if "alpha" not in section or k not in ("beta_right", "fold_angle")}
 
 
+def _drawable(data: dict) -> dict:
+    """A document whose print scale draws its crease at least the scale bar long (io.formats.check_scale)."""
+    from curvefold.io.formats import MIN_DRAWN_MM
+    from curvefold.io.tables import mm_per_unit
+
+    out = data.get("output", {})
+    if out.get("scale") is None:
+        return data
+    kind = data["kind"]
+    section = {"vault": "vault", "crease": "crease"}.get(kind, "curve")
+    length = (math.pi * data.get("vault", {}).get("radius", 1.0) if kind == "vault"
+              else data.get(section, {}).get("length", SCHEMA[section]["length"].default))
+    least = MIN_DRAWN_MM / (length * mm_per_unit(out.get("units", "mm")))
+    return {**data, "output": {**out, "scale": max(out["scale"], 1.01 * least)}}
+
+
 def _valid_documents(kind):
     sections = {s: st.fixed_dictionaries({}, optional={k: _valid_value(spec) for k, spec in SCHEMA[s].items()})
                 for s in (*SECTIONS_OF_KIND[kind], "output")}
     if kind == "crease":
         sections["crease"] = sections["crease"].map(_without_alpha_conflicts)
     top = {k: _valid_value(spec) for k, spec in SCHEMA[""].items() if k != "kind"}
-    return st.fixed_dictionaries({"kind": st.just(kind)}, optional={**top, **sections})
+    return st.fixed_dictionaries({"kind": st.just(kind)}, optional={**top, **sections}).map(_drawable)
 
 
 @settings(max_examples=100, deadline=None)

@@ -62,8 +62,10 @@ def test_every_kind_answers_and_files_come_from_the_registry(url):
     status, media, body = get(f"{url}api/tube.svg?samples=51")  # two pages: zipped
     assert status == 200 and media == "application/zip"
     assert zipfile.ZipFile(io.BytesIO(body)).namelist() == ["tube-pattern-p1.svg", "tube-pattern-p2.svg"]
-    status, answer = get_json(f"{url}api/crease.glb")
-    assert status == 422 and answer["error"].startswith('download: "glb" is not written for a crease design')
+    status, media, body = get(f"{url}api/crease.glb?samples=101")  # a single fold's files come from the registry too
+    assert status == 200 and media == "model/gltf-binary" and body[:4] == b"glTF"
+    status, answer = get_json(f"{url}api/crease.gif")
+    assert status == 422 and answer["error"].startswith('download: "gif" is not written for a crease design')
     status, schema = get_json(f"{url}api/schema")
     assert [f["name"] for f in schema["formats"]] == list(api.FORMATS)
     assert {s["name"] for s in schema["sections"]["vault"]} == {"a", "p_xy", "width", "tubes", "fold_angle", "radius", "layers", "direction",

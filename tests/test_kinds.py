@@ -19,7 +19,7 @@ from numpy.testing import assert_array_equal
 from curvefold import Crease, Lattice, SpaceCurve, Structure
 from curvefold.analysis.certificate import certify
 from curvefold.analysis.foldcheck import check_fold
-from curvefold.analysis.mechanism import analyse_fold
+from curvefold.analysis.fold_mechanism import analyse_fold
 from curvefold.geometry.curve import FramedCurve
 from curvefold.geometry.kinds import FoldedCrease, StructureLattice
 from curvefold.geometry.panels import PanelLattice

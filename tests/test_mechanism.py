@@ -15,13 +15,13 @@ from scipy.optimize import least_squares
 
 from _cli import run
 from curvefold import Crease, Lattice, SpaceCurve, Structure
+from curvefold.analysis.fold_mechanism import analyse_fold
 from curvefold.analysis.mechanism import (
     CERTIFY_UNKNOWNS,
     MAX_UNKNOWNS,
     RESIDUAL_TOL,
     Framework,
     analyse,
-    analyse_fold,
     certified_mechanism,
     follow,
     mechanism,

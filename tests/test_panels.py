@@ -240,9 +240,10 @@ def test_too_few_panels_and_regression_are_refused(smooth):
         PanelLattice.from_lattice(smooth, 0)
     with pytest.raises(InputError, match=r"^panels must be an integer in \[0, 100000\] \(memory bound\), got 1000000$"):
         PanelLattice.from_lattice(smooth, 10**6)
-    # rulings 15° off the crease, which turns by 85° per panel: the fold lines would cross it
-    tight = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(3.0, 1.0, 2.0, samples=65), fold_angle=10), 0.005, 0.005)
-    with pytest.raises(InputError, match=r"^too few panels: at vertex 0 \(s = 0\) the crease turns by 85.\d+° and its fold lines leave at 14.\d+°"):
+    # rulings 41° off the crease, which turns by 86° per panel: the fold lines would cross it (τ = 1 at 10° left widths
+    # below what coordinates resolve)
+    tight = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(3.0, 0.3, 2.0, samples=65), fold_angle=10), 0.005, 0.005)
+    with pytest.raises(InputError, match=r"^too few panels: at vertex 0 \(s = 0\) the crease turns by 85.\d+° and its fold lines leave at 41.\d+°"):
         PanelLattice.from_lattice(tight, 4)
     assert PanelLattice.from_lattice(tight, 16).pattern.panels == 16
     panel = PanelLattice.from_lattice(smooth, 12)
@@ -396,12 +397,13 @@ def test_panels_in_design_files_flags_and_the_api():
 
 
 def test_panel_vault_output_folder_passes_check_and_mechanism(tmp_path):
-    """The folder's FOLD file (flat, half and design frames) passes `curvefold check` (welds of seams and bonds, and
-    the rebuild from its recorded design) and `curvefold mechanism`; the report shows the certificate's mechanism."""
+    """The folder's FOLD file (its motion from flat to the first contact) passes `curvefold check` (welds of seams and
+    bonds, and the rebuild from its recorded design) and `curvefold mechanism`; the report shows the certificate's mechanism."""
     out = tmp_path / "out"
     result = run("vault", "--panels", "8", "--tubes", "3", "--formats", "fold", "--out", str(out))
     assert result.returncode == 0, result.stderr
-    assert "checks pass in every frame, and up to 2α = 178.6° (rigid panels)" in result.stdout
+    assert "checks pass in every frame, and up to 2α = 135° (rigid panels)" in result.stdout
+    assert "motion             flat to 2α = 136°, where it first touches itself (first contact)" in result.stdout
     report = json.loads((out / "report.json").read_text())
     checks = {c["name"]: c for c in report["certificate"]}
     assert {"panel_isometry", "panel_planarity", "panel_ground_plane", "mechanism_dof", "mechanism_clearance"} <= set(checks)
@@ -413,10 +415,12 @@ def test_panel_vault_output_folder_passes_check_and_mechanism(tmp_path):
     checked = run("check", str(out / "vault.fold"), "--rebuild", "--json")
     assert checked.returncode == 0, checked.stdout
     result = json.loads(checked.stdout)
-    assert result["frames"] == 3 and result["not_run"] == [] and all(c["status"] == "pass" for c in result["checks"])
+    angles = report["certificate_frames"]["fold_angles"]
+    assert angles == [0, 15, 30, 45, 60, 75, 90, 105, 120, 135]  # flat, half and full design angle among them
+    assert result["frames"] == len(angles) and result["not_run"] == [] and all(c["status"] == "pass" for c in result["checks"])
     assert json.loads((out / "vault.fold").read_text())["curvefold:bonds"]  # the tubes are glued, and the welds hold them
     frames = run("mechanism", str(out / "vault.fold"), "--json")
-    assert frames.returncode == 0 and [f["dof"] for f in json.loads(frames.stdout)["frames"]] == [15, 1, 1]
+    assert frames.returncode == 0 and [f["dof"] for f in json.loads(frames.stdout)["frames"]] == [15] + [1] * (len(angles) - 1)
 
 
 def test_files_keep_every_panel_vertex(vault):

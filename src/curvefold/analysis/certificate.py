@@ -46,7 +46,7 @@ Rigid panels
     ``mechanism_clearance`` (how clearly the singular values count it). The smooth crease
     the panels sample (:attr:`~curvefold.geometry.kinds.StructureLattice.smooth`) is
     certified by the crease checks. The smooth frame and vault checks
-    do not apply: ``frame_agreement``, ``eq19``, ``width_law``, ``section_area``,
+    do not apply: ``frame_agreement``, ``eq19``, ``width_law``,
     ``regression``, ``tube_closure``, ``arch_condition`` and ``proportion_change`` take
     derivatives along the creases or compare with the smooth closed forms, which a
     polyline meets only to O(1/N²) (measured in ``tests/test_panels.py``); ``isometry``,
@@ -64,8 +64,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+from ..geometry.contact import first_contact
 from ..geometry.crease import Crease, check_fold_angles
 from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice, Pattern
@@ -76,10 +77,12 @@ from .checks import CHECKS, CheckSpec, Residual
 from .frames import Frame, Shared
 from .mechanism import CertifiedMechanism, certified_mechanism
 
-__all__ = ["Check", "Certificate", "certify"]
+__all__ = ["Check", "Certificate", "certify", "certify_single_fold"]
 
 #: Fewest samples of the half-sampled design: the measurements' 5-point stencils need room.
 _MIN_COARSE = 9
+#: The grid of :func:`~curvefold.geometry.contact.first_contact`, degrees: the motion holds to one step before it.
+CONTACT_STEP = 1.0
 #: Statuses, best first.
 STATUSES = ("pass", "insufficient resolution", "fail")
 
@@ -147,11 +150,16 @@ class Certificate:
         2α of the certified frames, degrees (empty for a single curved fold).
     holds_up_to : float or None
         The largest fold angle 2α (degrees, to 1.5°) up to which every check passes at
-        this sampling, when it passes at every certified frame; None otherwise.
+        this sampling, and at most one degree before the first contact, when every check
+        passes at every certified frame; None otherwise.
     samples : int
         Samples along curve 1 (vertices along each crease of a panel structure).
     mechanism : CertifiedMechanism or None
         A panel structure's mechanism: degrees of freedom and singular values.
+    first_contact : float or None
+        The first fold angle from the design angle on (degrees, on a 1° grid) where parts of
+        the structure far apart touch (:func:`curvefold.geometry.contact.first_contact`), or
+        None if none do up to 179°: the motion ends there, and so does :attr:`holds_up_to`.
     """
 
     checks: tuple[Check, ...]
@@ -159,6 +167,7 @@ class Certificate:
     holds_up_to: float | None = None
     samples: int = 0
     mechanism: CertifiedMechanism | None = None
+    first_contact: float | None = None
 
     @property
     def passed(self) -> bool:
@@ -273,12 +282,38 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
         return Certificate(tuple(_check(spec, [outcomes[spec.name]]) for spec in specs), samples=n)
 
     angles = _certified_angles(structure, fold_angles, degrees)
-    specs = [s for s in CHECKS if s.scope in ("crease", "frame") or (s.scope == "vault" and vault is not None)]
+    specs = [s for s in CHECKS if s.scope in ("crease", "frame", "motion") or (s.scope == "vault" and vault is not None)]
     run = _runner(specs, vault, Shared(structure), Shared(coarse_structure))
-    outcomes = _over_frames(specs, run, angles, ("crease", "frame", "vault"), ("crease", "frame"))
+    outcomes = _over_frames(specs, run, angles, ("crease", "frame", "vault", "motion"), ("crease", "frame"), structure.lattice.crease.fold_angle)
     checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
-    motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope != "vault")
-    return Certificate(checks, tuple(angles), _holds_up_to(run, max(angles), ("crease", "frame")) if motion_passes else None, n)
+    return _with_range(checks, specs, structure, angles, run, ("crease", "frame"), n)
+
+
+def certify_single_fold(states: Sequence[tuple[float, Crease]]) -> Certificate:
+    """The crease checks of a single curved fold in every state of its motion, judged as :func:`certify` judges them.
+
+    Parameters
+    ----------
+    states : sequence of (float, Crease)
+        The start angle 2α(0) (degrees) and the crease of every state: the fold as built and
+        its crease pattern refolded (:meth:`curvefold.geometry.single_fold.SingleFold.at`).
+
+    Returns
+    -------
+    Certificate
+        With ``fold_angles`` the states' start angles.
+    """
+    specs = [s for s in CHECKS if s.scope == "crease"]
+    n = len(states[0][1].s)
+    coarse_samples = (n - 1) // 2 + 1
+    if coarse_samples < _MIN_COARSE:
+        return _too_coarse(None, None, n)
+    outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
+    for angle, crease in states:
+        coarse, _ = _rebuilt(crease, None, coarse_samples)
+        for name, outcome in _measure(specs, Frame(crease), Frame(coarse), f"2α(0) = {angle:g}°: ").items():
+            outcomes[name].append(outcome)
+    return Certificate(tuple(_check(spec, outcomes[spec.name]) for spec in specs), tuple(a for a, _ in states), samples=n)
 
 
 def _certify_rigid(structure: Structure, vault: Vault | None, angles: list[float]) -> Certificate:
@@ -286,17 +321,29 @@ def _certify_rigid(structure: Structure, vault: Vault | None, angles: list[float
     once, and the crease checks of the smooth crease it samples."""
     smooth = structure.lattice.smooth
     crease_checks = () if smooth is None else certify(smooth.crease).checks
-    specs = [s for s in CHECKS if s.scope in ("panels", "mechanism") or (s.scope == "panel_vault" and vault is not None)]
+    specs = [s for s in CHECKS if s.scope in ("panels", "mechanism", "motion") or (s.scope == "panel_vault" and vault is not None)]
     shared = Shared(structure)
     run = _runner(specs, vault, shared, None)
-    outcomes = _over_frames(specs, run, angles, ("panels", "panel_vault"), ("panels",))
+    outcomes = _over_frames(specs, run, angles, ("panels", "panel_vault", "motion"), ("panels",), structure.lattice.crease.fold_angle)
     mechanism = [s for s in specs if s.scope == "mechanism"]
     for name, outcome in _measure(mechanism, Frame.at(shared, None, vault), None, "").items():  # its states name themselves
         outcomes[name].append(outcome)
     checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
-    motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope == "panels")
-    return Certificate(crease_checks + checks, tuple(angles), _holds_up_to(run, max(angles), ("panels",)) if motion_passes else None,
-                       len(structure.lattice.s), certified_mechanism(structure))
+    cert = _with_range(checks, specs, structure, angles, run, ("panels",), len(structure.lattice.s))
+    return replace(cert, checks=crease_checks + cert.checks, mechanism=certified_mechanism(structure))
+
+
+def _with_range(checks: tuple[Check, ...], specs: Sequence[CheckSpec], structure: Structure, angles: list[float],
+                run: Callable, scopes: tuple[str, ...], samples: int) -> Certificate:
+    """The certificate of a structure with the range of its motion: where its checks hold, up to the last degree before
+    its first contact (the bisection cannot look for a contact: past one, parts that went through each other can be far
+    apart again)."""
+    motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope in scopes + ("motion",))
+    holds = _holds_up_to(run, max(angles), scopes) if motion_passes else None
+    contact = first_contact(structure)
+    if holds is not None and contact is not None:
+        holds = min(holds, contact - CONTACT_STEP)
+    return Certificate(checks, tuple(angles), holds, samples, first_contact=contact)
 
 
 def _certified_angles(structure: Structure, fold_angles: Sequence[float] | None, degrees: bool) -> list[float]:
@@ -320,11 +367,13 @@ def _runner(specs: Sequence[CheckSpec], vault: Vault | None, fine: Shared,
 
 
 def _over_frames(specs: Sequence[CheckSpec], run: Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]],
-                 angles: Sequence[float], built: tuple[str, ...], folded: tuple[str, ...]) -> dict[str, list[_Outcome]]:
-    """Every spec's outcomes: on the structure as built (the scopes ``built``), then refolded to each angle (``folded``)."""
+                 angles: Sequence[float], built: tuple[str, ...], folded: tuple[str, ...], design: float) -> dict[str, list[_Outcome]]:
+    """Every spec's outcomes: on the structure as built (the scopes ``built``), then refolded to each angle
+    (``folded``, and ``"motion"`` from the ``design`` angle on)."""
     outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
     for angle in (None, *angles):
-        for name, outcome in run(angle, built if angle is None else folded).items():
+        scopes = built if angle is None else folded + (("motion",) if angle >= design else ())
+        for name, outcome in run(angle, scopes).items():
             outcomes[name].append(outcome)
     return outcomes
 

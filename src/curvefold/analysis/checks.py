@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..geometry.contact import closest_far, contact_scales
 from ..geometry.mesh import fold_angles as mesh_fold_angles
 from ..geometry.topology import CORNERS, STRIPS
 from . import measure
@@ -89,12 +90,13 @@ class CheckSpec:
     ----------
     name : str
         Stable identifier (a JSON key).
-    scope : {"crease", "frame", "vault", "panels", "panel_vault", "mechanism"}
+    scope : {"crease", "frame", "vault", "panels", "panel_vault", "mechanism", "motion"}
         ``"crease"``: curve 1 of a single fold and of every frame of a smooth structure
         (the smooth crease a panel structure samples); ``"frame"``: every frame of a smooth
         structure; ``"vault"``: a smooth vault at its design angle; ``"panels"``: every
         frame of a structure of rigid panels; ``"panel_vault"``: a panel vault at its
-        design angle; ``"mechanism"``: a panel structure's mechanism, once.
+        design angle; ``"mechanism"``: a panel structure's mechanism, once; ``"motion"``: every
+        structure, as built and in every frame from its design angle on.
     measures : str
         What is measured, from which built geometry, against what.
     unit : str
@@ -223,16 +225,6 @@ def _width_law(frame: Frame) -> Residual:
     return Residual(values, 2 * frame.ulp / float(frame.strip_widths.min()), _strip, frame.crease.s / frame.crease.curve.length)
 
 
-def _section_area(frame: Frame) -> Residual:
-    widths = frame.strip_widths
-    w_l, w_r = widths[:, 3, 2:-2], widths[:, 0, 2:-2]  # strips 4→1 (left) and 1→2 (right) around crease 1
-    pattern = frame.state.lattice.pattern
-    scale = pattern.width_left[0] * pattern.width_right[0]
-    values = np.abs(w_l * w_r * np.sin(2 * frame.half_angles[:, 0]) - scale * math.sin(2 * frame.alpha)) / scale
-    length = float(measure.norm(frame.tubes[:, 1] - frame.tubes[:, 0]).min())
-    return Residual(values, frame.ulp * (4 / float(widths.min()) + 3 / (frame.step * length)), lambda i: f"tube {i[0] + 1}", frame.inner_t)
-
-
 def _regression(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
     predicted = frame.state.lattice.domain.factor(uv.astype(float))
@@ -331,6 +323,22 @@ def _mechanism_clearance(frame: Frame) -> Residual:
                     lambda i: f"{states[i[0]].label}: gap {states[i[0]].gap:.2g} between null and stiff singular values{_scope_note(analysis)}")
 
 
+def _contact(frame: Frame) -> Residual:
+    """How far the closest two far-apart parts are inside half the smallest width of each other: 0 when none are."""
+    state, uv = frame.state, frame.structure.curves_uv
+    lattice = state.lattice
+    radius, reach = contact_scales(lattice)
+    distance, where = closest_far(state.vertices, uv, radius=radius, reach=reach)
+    if where is None:  # none, or a point that is not a number (NaN fails)
+        return Residual(np.full(1, 0.0 if distance == np.inf else np.nan), 0.0,
+                        lambda i: f"no far-apart parts within {radius:.3g} (half the smallest width)")
+    a, i, b, j = where
+    t = lattice.t
+    return Residual(np.array([1 - distance / radius]), 0.0,
+                    lambda _: f"curves {tuple(uv[a].tolist())} at t = {t[i]:.3g} and {tuple(uv[b].tolist())} at t = {t[j]:.3g} "
+                              f"are {distance:.3g} apart (half the smallest width: {radius:.3g})")
+
+
 def _accumulated(frame: Frame) -> float:
     """Rounding accumulated over n integration steps: ROUNDING ulps × √n, in model units."""
     return frame.ulp * math.sqrt(frame.samples)
@@ -372,10 +380,6 @@ CHECKS: tuple[CheckSpec, ...] = (
               "|ln(w/w(0)) ∓ ∫ κ_2D cot β ds| for every strip: w the distance between the tangent lines of its built "
               "creases (Eqs. 12–13 corrected); the integral by Gauss–Legendre on a grid 4× finer than the samples",
               "relative", 6, 1e-4, _width_law),
-    CheckSpec("section_area", "frame",
-              "w_L w_R sin 2α of every tube's section, widths measured between tangent lines and α from the built "
-              "rulings, against w_L(0) w_R(0) sin 2α of the frame (constant in t). Relative to w_L(0) w_R(0)",
-              "relative", 4, 1e-3, _section_area),
     CheckSpec("regression", "frame",
               "x'·T₁ of every crease (differences of its points along curve 1's arc length) against the Eq. (17) "
               "speed factor 1 − u w_L/w_lim_L − v w_R/w_lim_R of the regression domain (Eqs. 14–18) the design was "
@@ -426,4 +430,10 @@ CHECKS: tuple[CheckSpec, ...] = (
               "", 0, math.inf, _mechanism_clearance,
               rounding="1e-3: the count holds for any tolerance a thousand times larger or smaller; rounding puts the "
                        "null singular values near 1e-15 σ_max, a million times below it"),
+    CheckSpec("contact", "motion",
+              "parts of the structure far apart (curves two lattice steps apart, or points more than four of the largest "
+              "strip widths apart along both their curves) closer than half the smallest strip width, at the design angle and "
+              "in every certified frame past it: how far inside that half width they are, relative to it",
+              "relative", 0, math.inf, _contact,
+              rounding="0: any contact fails (the curves resampled to 201 points along t, each pair's distance measured)"),
 )

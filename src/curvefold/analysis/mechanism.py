@@ -44,7 +44,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..geometry.mesh import Mesh
+from ..geometry.mesh import Mesh, edges_faces
 from ..geometry.structure import Structure
 from ..geometry.topology import lattice_corners
 from ..kernel.arrays import FrozenArrays, readonly
@@ -52,7 +52,7 @@ from ..kernel.errors import InputError
 from ..kernel.lie import cross
 
 __all__ = ["MAX_UNKNOWNS", "CERTIFY_UNKNOWNS", "RTOL", "RESIDUAL_TOL", "Framework", "Mechanism", "CertifiedMechanism", "mechanism",
-           "analyse", "analyse_fold", "certified_mechanism", "follow"]
+           "analyse", "certified_mechanism", "follow"]
 
 #: Largest number of unknowns (3 per distinct vertex) of a dense SVD: about a minute on one
 #: core at the bound (49 s measured for a tube of 240 panels, 2892 unknowns); the Jacobian
@@ -98,7 +98,8 @@ class Framework(FrozenArrays):
     sides: np.ndarray
 
     @classmethod
-    def from_mesh(cls, reference: np.ndarray, edges_vertices: np.ndarray, faces_vertices: np.ndarray, weld: np.ndarray) -> Framework:
+    def from_mesh(cls, reference: np.ndarray, edges_vertices: np.ndarray, faces_vertices: np.ndarray, weld: np.ndarray, *,
+                  joins: np.ndarray | None = None) -> Framework:
         """The framework of a polygon mesh whose vertex v is the point ``weld[v]``.
 
         Parameters
@@ -112,6 +113,9 @@ class Framework(FrozenArrays):
             vertex pairs that are not edges and m − 3 coplanar quadruples.
         weld : (V,) ndarray of int
             The point of every mesh vertex, 0 … P − 1 (welded vertices share one).
+        joins : (J,) ndarray of int, optional, keyword-only
+            Edges whose two faces are one panel (FOLD's join edges): a vertex of each face off
+            the edge keeps its distance, and the four stay coplanar.
         """
         x = np.asarray(reference, float)
         weld = np.asarray(weld, np.int64)
@@ -126,6 +130,12 @@ class Framework(FrozenArrays):
         welded = np.sort(weld[pairs], axis=1)
         bars, first = np.unique(welded, axis=0, return_index=True)  # one bar per welded pair (edges come first)
         lengths = np.linalg.norm(x[pairs[first, 0]] - x[pairs[first, 1]], axis=1)
+        if joins is not None and len(joins):
+            quads.append(_join_quads(faces, np.asarray(edges_vertices)[joins]))
+            pairs = np.concatenate([pairs, quads[-1][:, [1, 3]]])
+            welded = np.sort(weld[pairs], axis=1)
+            bars, first = np.unique(welded, axis=0, return_index=True)
+            lengths = np.linalg.norm(x[pairs[first, 0]] - x[pairs[first, 1]], axis=1)
         q = np.concatenate(quads) if quads else np.zeros((0, 4), np.int64)
         a, b, c, d = (x[q[:, i]] for i in range(4))
         diagonals = np.linalg.norm(c - a, axis=1) * np.linalg.norm(d - b, axis=1)
@@ -151,11 +161,13 @@ class Framework(FrozenArrays):
         return cls.from_mesh(flat, topology.edges_vertices, topology.faces_vertices, weld), points
 
     @classmethod
-    def from_fold(cls, crease_pattern: Mesh, folded: Sequence[Mesh], *, tol: float = 1e-9) -> tuple[Framework, np.ndarray]:
+    def from_fold(cls, crease_pattern: Mesh, folded: Sequence[Mesh], *, tol: float = 1e-9,
+                  joins: np.ndarray | None = None, glued: np.ndarray | None = None) -> tuple[Framework, np.ndarray]:
         """The framework of a FOLD file's crease pattern, welded where its folded frames agree.
 
         Vertices that coincide (within ``tol`` times the frame's size) in every folded frame
-        are one point: the seams the file pairs, and the bonds between tubes it does not.
+        are one point: the seams and the bonds between tubes. With ``glued`` (the vertices
+        of the edges the file says are glued), only those are welded.
 
         Returns
         -------
@@ -175,10 +187,13 @@ class Framework(FrozenArrays):
             found = {tuple(p) for p in cKDTree(x).query_pairs(tol * max(size, 1e-300), output_type="ndarray").tolist()}
             common = found if common is None else common & found
         pairs = np.array(sorted(common or ()), np.int64).reshape(-1, 2)
+        if glued is not None:
+            pairs = pairs[np.isin(pairs, glued).all(axis=1)]
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
         _, weld = connected_components(graph, directed=False)
         first = np.unique(weld, return_index=True)[1]
-        return cls.from_mesh(crease_pattern.vertices_coords, crease_pattern.edges_vertices, crease_pattern.faces_vertices, weld), first
+        return cls.from_mesh(crease_pattern.vertices_coords, crease_pattern.edges_vertices, crease_pattern.faces_vertices, weld,
+                             joins=joins), first
 
     @property
     def unknowns(self) -> int:
@@ -189,6 +204,11 @@ class Framework(FrozenArrays):
     def constraints(self) -> int:
         """Rows of the Jacobian: bars and coplanar quadruples."""
         return len(self.bars) + len(self.quads)
+
+    @property
+    def shortest(self) -> float:
+        """The shortest bar, model units."""
+        return float(self.lengths.min()) if len(self.lengths) else 0.0
 
     @property
     def scales(self) -> np.ndarray:
@@ -250,6 +270,12 @@ class Mechanism(FrozenArrays):
         (:attr:`Framework.scales`).
     unknowns, constraints : int
         Columns and rows of the Jacobian.
+    residual_tol : float
+        The largest :attr:`residual` of a consistent state (:data:`RESIDUAL_TOL`, or what
+        the coordinates' precision allows).
+    note : str
+        What to know to read the count (a flat-folded frame, no crease pattern, a tolerance
+        raised to the file's precision); empty when nothing.
     """
 
     label: str
@@ -261,6 +287,8 @@ class Mechanism(FrozenArrays):
     residual: float
     unknowns: int
     constraints: int
+    residual_tol: float = RESIDUAL_TOL
+    note: str = ""
 
     @property
     def clearance(self) -> float:
@@ -275,8 +303,8 @@ class Mechanism(FrozenArrays):
 
     @property
     def consistent(self) -> bool:
-        """Whether the state satisfies its constraints to rounding (:data:`RESIDUAL_TOL`)."""
-        return self.residual <= RESIDUAL_TOL
+        """Whether the state satisfies its constraints to rounding (:attr:`residual_tol`)."""
+        return self.residual <= self.residual_tol
 
     def to_dict(self, smallest: int = 12) -> dict:
         """JSON-ready summary: the counts, σ_max and the ``smallest`` singular values (ascending)."""
@@ -293,7 +321,20 @@ class Mechanism(FrozenArrays):
             "consistent": self.consistent,
             "unknowns": self.unknowns,
             "constraints": self.constraints,
+            "note": self.note,
         }
+
+
+def _join_quads(faces: np.ndarray, joins: np.ndarray) -> np.ndarray:
+    """(p, r, q, t) for every join edge (p, q) with its faces' vertices r and t off it: coplanar, r–t a bar."""
+    sides = edges_faces(faces, joins)
+    two = (sides >= 0).all(axis=1)
+    out = []
+    for (p, q), (f, g) in zip(joins[two].tolist(), sides[two].tolist()):
+        r = next(v for v in faces[f] if v >= 0 and v not in (p, q))
+        t = next(v for v in faces[g] if v >= 0 and v not in (p, q))
+        out.append((p, r, q, t))
+    return np.array(out, np.int64).reshape(-1, 4)
 
 
 def _check_size(framework: Framework) -> None:
@@ -305,26 +346,31 @@ def _check_size(framework: Framework) -> None:
         )
 
 
-def mechanism(framework: Framework, x: np.ndarray, *, rtol: float = RTOL, label: str = "") -> Mechanism:
+def mechanism(framework: Framework, x: np.ndarray, *, rtol: float = RTOL, label: str = "",
+              residual_tol: float = RESIDUAL_TOL) -> Mechanism:
     """Singular values and degrees of freedom of a framework at positions x (V, 3).
 
     Raises
     ------
     InputError
-        Beyond :data:`MAX_UNKNOWNS`, or for a tolerance outside (0, 1).
+        Beyond :data:`MAX_UNKNOWNS`, for a tolerance outside (0, 1), or a state whose
+        Jacobian is not finite (a degenerate panel).
     """
     _check_size(framework)
     if not 0 < rtol < 1:
         raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
     x = np.asarray(x, float).reshape(-1, 3)
-    J = framework.jacobian(x)
+    with np.errstate(all="ignore"):
+        J = framework.jacobian(x)
+    if not np.isfinite(J).all():
+        raise InputError(f"{label or 'the state'}: the constraint Jacobian is not finite (a panel of no size)")
     sigma = np.linalg.svd(J, compute_uv=False)
     tol = rtol * float(sigma[0])
     null = int(np.count_nonzero(sigma <= tol)) + max(0, J.shape[1] - J.shape[0])
     above, below = sigma[sigma > tol], sigma[sigma <= tol]
     gap = math.inf if not below.size or below[0] == 0 else float(above[-1] / below[0]) if above.size else 1.0
     residual = float(np.abs(framework.residual(x) / framework.scales).max())
-    return Mechanism(label, readonly(sigma), tol, null, null - 6, gap, residual, J.shape[1], J.shape[0])
+    return Mechanism(label, readonly(sigma), tol, null, null - 6, gap, residual, J.shape[1], J.shape[0], residual_tol)
 
 
 @lru_cache(maxsize=4)
@@ -398,33 +444,6 @@ def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) ->
         part = Structure.from_cells(lattice.head(n), structure.cells[:1])
         scope = f"the first {n} of the {len(lattice.s) - 1} panels of tube 1"
     return CertifiedMechanism(part, scope, analyse(part))
-
-
-def analyse_fold(path, *, rtol: float = RTOL) -> tuple[Mechanism, ...]:
-    """The mechanism of every folded frame of a FOLD file, against its crease pattern.
-
-    Vertices that coincide in every folded frame are welded (:meth:`Framework.from_fold`).
-
-    Raises
-    ------
-    InputError
-        For a file curvefold cannot read, one without folded frames, a folded frame of
-        another topology than the crease pattern's, or beyond :data:`MAX_UNKNOWNS`.
-    """
-    from ..io.fold_reading import read_fold
-
-    doc = read_fold(path)
-    if not doc.folded:
-        raise InputError(f"{os.fspath(path)}: no folded frame to analyse (the file holds only a crease pattern)")
-    cp = doc.crease_pattern
-    for title, mesh in doc.folded:
-        if not (mesh.vertices_coords.shape == cp.vertices_coords.shape and np.array_equal(mesh.edges_vertices, cp.edges_vertices)
-                and np.array_equal(mesh.faces_vertices, cp.faces_vertices)):
-            raise InputError(f"{os.fspath(path)}: frame {title!r} has other vertices, edges or faces than the crease pattern; "
-                             "the mechanism is analysed on frames of the crease pattern's topology")
-    framework, first = Framework.from_fold(doc.crease_pattern, [mesh for _, mesh in doc.folded])
-    _check_size(framework)
-    return tuple(mechanism(framework, mesh.vertices_coords[first], rtol=rtol, label=title) for title, mesh in doc.folded)
 
 
 def _rigid_motions(x: np.ndarray) -> np.ndarray:

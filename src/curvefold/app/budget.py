@@ -20,6 +20,7 @@ largest of the file jobs.
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from dataclasses import dataclass
@@ -29,10 +30,13 @@ from ..kernel.errors import InputError
 from ..vault.assembly import DEFAULT_TUBES_CAP
 from .design import Design
 
-__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget"]
+__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget",
+           "require_rebuild_budget"]
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
 DEFAULT_BUDGET = 2 << 30
+#: The largest budget: 1 PiB, far above any machine, far below where a byte count stops being exact.
+MAX_BUDGET = 1 << 50
 #: The environment variable that sets the budget.
 ENVIRONMENT = "CURVEFOLD_MEMORY_BUDGET"
 
@@ -84,9 +88,11 @@ def parse_size(text: str, name: str) -> int:
     (True, 536870912, 4096)
     """
     match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)i?B?\s*", text, re.IGNORECASE)
-    if match is None or float(match.group(1)) <= 0:
-        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, got {text!r}")
-    return int(float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B"))
+    size = float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B") if match else math.nan
+    if not 0 < size <= MAX_BUDGET:
+        shown = repr(text) if len(text) <= 40 else f"{text[:20]!r}… ({len(text)} characters)"
+        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, at most {_size(MAX_BUDGET)}, got {shown}")
+    return int(size)
 
 
 @dataclass(frozen=True)
@@ -191,9 +197,29 @@ def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> 
     return total
 
 
+#: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check --rebuild``):
+#: its coordinates and fold angles as arrays, as JSON data and read back. Measured: the peak of
+#: ``check --rebuild`` over that of ``check`` grew by 225–250 bytes per strip sample and frame (tubes of
+#: 201 and 801 samples, 10 to 100 frames), rounded up.
+REBUILD_PER_FRAME = 300.0
+
+
+def require_rebuild_budget(design: Design, frames: int) -> float:
+    """The estimate of building ``design`` again with ``frames`` FOLD frames, or :class:`InputError` over budget."""
+    budget = memory_budget()
+    found = estimate(design, files=False)
+    total = found.total + REBUILD_PER_FRAME * frames * found.strip_samples
+    if total > budget:
+        raise InputError(
+            f"{design.source}: rebuilding this design needs about {_size(total)} of memory ({design.samples} samples × "
+            f"{_strips(design)} strips, {frames} frames), more than the budget of {_size(budget)} ({ENVIRONMENT})"
+        )
+    return total
+
+
 #: What each part writes, as the subject of a sentence ("the crease patterns").
 _FAMILY_NAMES = {**{family: text.rsplit(" ", 1)[0] for family, text in FAMILIES.items()}, "pictures": "the pictures"}
 
 
 def _size(n: float) -> str:
-    return f"{n / (1 << 30):.1f} GiB" if n >= 1 << 30 else f"{n / _MB:.0f} MiB"
+    return f"{n / (1 << 50):.0f} PiB" if n >= 1 << 50 else f"{n / (1 << 30):.1f} GiB" if n >= 1 << 30 else f"{n / _MB:.0f} MiB"

@@ -10,6 +10,7 @@ from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice
 from ..geometry.panels import PanelLattice
 from ..geometry.sampling import Sampling, choose_sampling
+from ..geometry.single_fold import SingleFold
 from ..geometry.structure import Structure
 from ..io.layout import Layout
 from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
@@ -46,19 +47,31 @@ class Built:
         return None if self.structure is None else choose_sampling(self.structure)
 
     @cached_property
-    def layout(self) -> Layout | None:
+    def single_fold(self) -> SingleFold | None:
+        """The single curved fold of a design of kind "crease", with the strips' widths its files draw;
+        None for a structure."""
+        if self.structure is not None:
+            return None
+        c = self.design.crease
+        return SingleFold.of(self.crease, self.design.function("kappa_2d"), (c.width_left, c.width_right), fold_angle=c.fold_angle)
+
+    @cached_property
+    def layout(self) -> Layout:
         """The crease pattern laid out on the output's pages, at its scale, in its cutter's convention,
         perforated and kerf-compensated as asked (:func:`~curvefold.io.pattern.layout_pattern`), on the
-        files' samples; None for a single crease. The crease-pattern files, the 3dm and the assembly
-        guide are drawn from it."""
-        if self.structure is None:
-            return None
+        files' samples; a single fold's pattern at its scale or as large as the page takes it. The
+        crease-pattern files, the 3dm and the assembly guide are drawn from it."""
         from ..io.pattern import layout_pattern
         from ..io.tables import mm_per_unit
 
         o = self.design.output
         page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
+        if self.structure is None:
+            from ..io.single_fold import layout_single_fold
+
+            return layout_single_fold(self.single_fold, page=page, units=o.units, scale=o.scale, name=self.design.kind,
+                                      cutter=o.cutter, perforation=perforation, kerf=o.kerf)
         return layout_pattern(self.structure, page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, name=self.design.kind,
                               keep=self.sampling.keep, cutter=o.cutter, perforation=perforation, kerf=o.kerf)
 

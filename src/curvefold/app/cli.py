@@ -259,21 +259,25 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-browser", action="store_true", help="do not open a browser")
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
 
-    p = sub.add_parser("check", help="check an exported FOLD file", description="Check a FOLD file in every frame: topology, welds "
-                       "(seams and bonds), M/V/F assignments against the measured dihedral angles, the recorded fold angles, "
-                       "isometry to the crease pattern and face planarity; with --rebuild, every coordinate against the design it records.")
-    p.add_argument("file", type=Path, help="a .fold file with a crease pattern and folded frames")
+    p = sub.add_parser("check", help="check a FOLD file", description="Check a FOLD file (curvefold's or another tool's) in every "
+                       "frame: topology, welds (seams and bonds), edge kinds against assignments, M/V/F assignments against the recorded "
+                       "and measured dihedral angles, the recorded fold angles, isometry to the crease pattern and face planarity; what "
+                       "the file does not hold (a crease pattern, curvefold's keys) is not run, with the reason. With --rebuild, every "
+                       "array against the design it records.")
+    p.add_argument("file", type=Path, help="a .fold file: a crease pattern, folded frames or both")
     for spec in CHECK_SPECS:
         p.add_argument(_flag(spec), dest=spec.name, metavar=spec.name.upper(), help=spec.describe().replace("%", "%%"))
-    p.add_argument("--rebuild", action="store_true", help="build the design the file records (curvefold:design) again and compare every coordinate")
+    p.add_argument("--rebuild", action="store_true", help="build the design the file records (curvefold:design) again, within the "
+                   "memory budget, and compare every array of every frame")
     _add_output(p, None)
 
-    p = sub.add_parser("mechanism", help="degrees of freedom of a panel structure's FOLD file",
-                       description="Build the constraint Jacobian of every folded frame of a FOLD file (edge lengths, both diagonals "
-                       "and the planarity of every quad, vertices welded where the frames agree: seams and bonds) and report its "
-                       "singular values and internal degrees of freedom (nullity - 6) with the gap between null and nonzero ones. "
-                       "Write the file with 'curvefold tube|block|vault --panels N'.")
-    p.add_argument("file", type=Path, help="a .fold file with a crease pattern and folded frames")
+    p = sub.add_parser("mechanism", help="degrees of freedom of a FOLD file of rigid panels",
+                       description="Build the constraint Jacobian of every folded frame of a FOLD file (edge lengths, the diagonals "
+                       "and the planarity of every polygon, join edges flat, vertices welded where the frames agree: seams and bonds) "
+                       "and report its singular values and internal degrees of freedom (nullity - 6) with the gap between null and "
+                       "nonzero ones. The lengths are the crease pattern's, or the folded form's own when the file holds none. Write "
+                       "such a file with 'curvefold tube|block|vault --panels N'.")
+    p.add_argument("file", type=Path, help="a .fold file with folded frames (and a crease pattern, or not)")
     p.add_argument("--rtol", type=float, default=RTOL, help=f"rank tolerance relative to the largest singular value (default {RTOL:g})")
     _add_output(p, None)
     return parser
@@ -344,6 +348,8 @@ def _certificate_lines(payload: dict) -> list[str]:
     if frames.get("holds_up_to") is not None:
         at = " (rigid panels)" if "mechanism" in payload else f" at {frames['samples']} samples"
         lines[0] += f" in every frame, and up to 2α = {frames['holds_up_to']:g}°{at}"
+    if frames.get("first_contact") is not None:
+        lines.append(f"  motion             flat to 2α = {frames['first_contact']:g}°, where it first touches itself (first contact)")
     lines += [f"    {c['name']}: {c['status']} at {c['where']}" + (f"; use ≥ {c['samples_needed']} samples" if c["samples_needed"] else "")
               for c in cert if not c["passed"]]
     return lines
@@ -385,12 +391,24 @@ def cmd_check(args: argparse.Namespace) -> int:
 
     tolerances = {spec.name: _flag_value(spec, text) for spec in CHECK_SPECS if (text := getattr(args, spec.name)) is not None}
     doc = read_fold(args.file)
-    reference = _rebuilt_fold(doc, args.file) if args.rebuild else None
+    frames = len(doc.classes) - 1  # file_frames, which the record's fold angles describe
+    recorded = doc.design.get("fold_angles") if isinstance(doc.design, dict) else None
+    mismatch = args.rebuild and isinstance(recorded, list) and len(recorded) != frames
+    reference = _rebuilt_fold(doc, args.file) if args.rebuild and not mismatch else None
     result = check_fold(doc, reference=reference, **tolerances)
+    if mismatch:  # not built: it cannot be the file's record
+        from dataclasses import replace
+
+        from ..analysis.foldcheck import FileCheck
+
+        failed = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded)} fold angles, the file holds {frames} "
+                                                    "frames after the key frame: the record is not the file's (not rebuilt)")
+        result = replace(result, checks=result.checks + (failed,))
     ran = [c for c in result.checks if c.status != "not run"]
     failed = [c for c in ran if c.status == "fail"]
     lines = [f"{args.file}: {'OK' if result.ok else 'FAILED'} ({result.frames} folded frame{'s' * (result.frames != 1)}; "
              f"{len(ran) - len(failed)}/{len(ran)} checks pass" + (f", {len(result.checks) - len(ran)} not run)" if len(ran) < len(result.checks) else ")")]
+    lines += [f"  note: {note}" for note in result.notes]
     for c in result.checks:
         if c.status == "not run":
             lines.append(f"  {c.name:<15} not run: {c.reason}")
@@ -427,8 +445,13 @@ def cmd_designer(args: argparse.Namespace) -> int:
 
 
 def _rebuilt_fold(doc, path: Path):
-    """The FOLD model of the design a file records (``curvefold:design``), built again."""
-    from ..io.fold import to_fold
+    """The FOLD file of the design a file records (``curvefold:design``), built again and read as the file is.
+
+    The design and its frames are estimated within the memory budget before it is built.
+    """
+    from ..io.fold import model_document, to_fold
+    from ..io.fold_reading import parse_fold
+    from .budget import require_rebuild_budget
     from .build import build
 
     record = doc.design
@@ -438,24 +461,32 @@ def _rebuilt_fold(doc, path: Path):
     if not isinstance(record.get("design"), dict) or not isinstance(record.get("fold_angles"), list):
         raise InputError(f"{where} must hold 'design' (an object) and 'fold_angles' (a list), got keys {sorted(record)}")
     design = design_from_dict(record["design"], source=where, base_dir=path.parent)
+    require_rebuild_budget(design, len(record["fold_angles"]))
     built = build(design)
-    if built.structure is None:
-        raise InputError(f"{where}: a {design.kind} design has no FOLD file to rebuild")
+    if built.structure is None:  # a single curved fold
+        from ..io.single_fold import single_fold_model
+
+        return parse_fold(model_document(single_fold_model(built.single_fold, record["fold_angles"])), f"{where} (rebuilt)")
     keep = record.get("keep")
-    return to_fold(built.structure, fold_angles=record["fold_angles"], anchor=record.get("anchor", "start"),
-                   faces=record.get("faces", "triangles"), keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])
+    model = to_fold(built.structure, fold_angles=record["fold_angles"], anchor=record.get("anchor", "start"),
+                    faces=record.get("faces", "triangles"), keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])
+    return parse_fold(model_document(model), f"{where} (rebuilt)")
 
 
 def cmd_mechanism(args: argparse.Namespace) -> int:
-    from ..analysis.mechanism import analyse_fold
+    from ..analysis.fold_mechanism import analyse_fold
+    from ..io.fold_reading import read_fold
 
-    frames = analyse_fold(args.file, rtol=args.rtol)
-    payload = {"file": args.file, "frames": [m.to_dict() for m in frames]}
+    doc = read_fold(args.file)
+    frames = analyse_fold(doc, rtol=args.rtol, name=str(args.file))
+    payload = {"file": args.file, "frames": [m.to_dict() for m in frames], "notes": list(doc.notes)}
     lines = [f"{args.file}: {len(frames)} folded frame{'s' * (len(frames) != 1)}, {frames[0].unknowns} unknowns, {frames[0].constraints} constraints"]
+    lines += [f"  note: {note}" for note in doc.notes]
     for m in frames:
         gap = f"gap {m.gap:.2e}".replace("inf", "∞")
         state = "" if m.consistent else f"; INCONSISTENT: the frame breaks its constraints by {m.residual:.2e} (relative)"
-        lines.append(f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, residual {m.residual:.1e}{state}")
+        lines.append(f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, residual {m.residual:.1e}{state}"
+                     + (f" ({m.note})" if m.note else ""))
     _emit(args, payload, lines)
     return 0 if all(m.consistent for m in frames) else 1
 

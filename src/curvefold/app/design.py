@@ -50,7 +50,7 @@ import numpy as np
 
 from ..geometry.panels import PANELS
 from ..io.columns import read_column, table_path
-from ..io.formats import OUTPUT_SPECS, default_formats
+from ..io.formats import OUTPUT_SPECS, check_scale, default_formats
 from ..io.reading import read_bytes
 from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
@@ -139,6 +139,9 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
         Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY),
         Spec("alpha", "function", None, "(0, 90)", "degrees",
              help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)"),
+        *(Spec(f"width_{side}", "real", None, "(0, inf)", "model units",
+               help=f"width of the {side} strip from the crease's tangent lines, in the files (default: 15% of the length, "
+                    "within 60% of the regression limit)") for side in ("left", "right")),
     ),
     "output": _section(*OUTPUT_SPECS),
 })
@@ -238,7 +241,8 @@ class CreaseParams:
 
     Either ``beta_right`` is given and α(s) follows from Eq. (3) integrated from
     ``fold_angle``, or ``alpha`` is given (``beta_right`` is then None and
-    ``fold_angle`` = 2α(0)) and β_R follows from Eq. (3).
+    ``fold_angle`` = 2α(0)) and β_R follows from Eq. (3). The strips' widths are those of
+    its files (None: as :func:`curvefold.geometry.single_fold.default_widths` chooses).
     """
 
     kappa_2d: FunctionValue
@@ -247,6 +251,8 @@ class CreaseParams:
     fold_angle: float
     length: float
     alpha: FunctionValue | None
+    width_left: float | None = None
+    width_right: float | None = None
 
 
 @dataclass(frozen=True)
@@ -345,6 +351,7 @@ class Design:
             data = {"kind": kind, "samples": data["samples"], "title": data["title"], "output": data["output"]}
         kind = data["kind"]
         allowed = _flag_sections(kind)
+        _alternatives(data, flags)
         for flag, value in flags.items():
             if value is None:
                 continue
@@ -385,6 +392,22 @@ class Design:
         elif isinstance(value, Expression) and value.constant is not None:
             value = value.constant  # exact derivative for constants
         return as_function(value, name=f"[{section}] {key}", length=params.length)
+
+
+def _alternatives(data: dict, flags: Mapping[str, Any]) -> None:
+    """A [crease]'s ``alpha`` and ``beta_right`` are alternatives: the one the flags set drops the other from the
+    design's data (with ``alpha``, its ``fold_angle`` too, which then follows from it), unless the flags set both."""
+    crease = data.get("crease")
+    if crease is None:
+        return
+    given = {k.replace("-", "_") for k, v in flags.items() if v is not None}
+    given |= set(flags["crease"]) if isinstance(flags.get("crease"), Mapping) else set()
+    if "alpha" in given:
+        for key in ("beta_right", "fold_angle"):
+            if key not in given:
+                crease.pop(key, None)
+    elif "beta_right" in given:
+        crease.pop("alpha", None)
 
 
 def _flag_sections(kind: str) -> dict[str, str]:
@@ -535,10 +558,19 @@ def design_from_dict(
         checked["output"]["formats"] = default_formats(kind)
     if kind == "crease":
         _check_alpha(checked["crease"], data.get("crease", {}), source)
+    out = checked["output"]
+    check_scale(out["scale"], out["units"], _crease_length(kind, checked), f"{source}: [output] scale")
     params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}
     return Design(
         kind=kind, samples=head["samples"], title=head["title"], source=source, base_dir=folder.resolve(), **params
     )
+
+
+def _crease_length(kind: str, checked: dict) -> float:
+    """The length of a design's crease 1 in model units (a vault's at least π × radius: its κ0·s0 is above π)."""
+    if kind == "vault":
+        return math.pi * checked["vault"]["radius"]
+    return checked["crease" if kind == "crease" else "curve"]["length"]
 
 
 def default_design(kind: str) -> Design:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.certificate import certify
+from ..analysis.certificate import certify, certify_single_fold
 from ..figures.report import plain, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
@@ -79,11 +79,14 @@ def structure_payload(built: Built) -> dict:
             "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
             "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
         }
-    angles = None if built.structure is None else exported_fold_angles(built)
-    certificate = certify(built.crease, built.structure, built.vault, fold_angles=angles)
+    if built.structure is None:  # a single fold, in every state of its motion but the flat one
+        fold = built.single_fold
+        certificate = certify_single_fold([(a, fold.at(a)) for a in exported_fold_angles(built) if a > 0])
+    else:
+        certificate = certify(built.crease, built.structure, built.vault, fold_angles=exported_fold_angles(built))
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
     payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
-                                     "samples": certificate.samples}
+                                     "first_contact": certificate.first_contact, "samples": certificate.samples}
     if certificate.mechanism is not None:  # rigid panels
         payload["mechanism"] = certificate.mechanism.to_dict()
     return payload

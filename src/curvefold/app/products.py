@@ -32,11 +32,11 @@ from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS",
-           "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw",
+           "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
 
-#: States of the folding motion in the GLB, from flat to the design angle.
-MOTION_STEPS = 10
+#: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
+MOTION_STEPS = 7
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
 #: The package the report's pictures are drawn with, and the extra that brings it.
@@ -70,9 +70,25 @@ def _metadata(built: Built) -> dict:
     return meta
 
 
+def design_motion(built: Built) -> np.ndarray:
+    """2α of the states of the folding motion from flat to the design angle (degrees): the GLB's (a single
+    fold's start angle 2α(0))."""
+    design = built.single_fold.fold_angle if built.structure is None else built.structure.lattice.crease.fold_angle
+    return np.linspace(0.0, design, MOTION_STEPS)
+
+
 def exported_fold_angles(built: Built) -> np.ndarray:
-    """2α of the frames the files hold (degrees): the folding motion, flat to the design angle."""
-    return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
+    """2α of the frames the FOLD file holds and the certificate certifies (degrees): the folding motion from
+    flat to the design angle, and on by the same step while nothing touches, when the structure meets
+    itself before 180° (:func:`curvefold.geometry.contact.first_contact`: where its motion ends)."""
+    from ..geometry.contact import first_contact
+
+    motion = design_motion(built)
+    contact = None if built.structure is None else first_contact(built.structure)
+    if contact is None:
+        return motion
+    step = motion[1] - motion[0]
+    return np.concatenate([motion, np.arange(motion[-1] + step, contact - 1e-9, step)])
 
 
 def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
@@ -85,10 +101,12 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
         A format that is not written for the design's kind, with the reason.
     """
     check_kind(formats, built.design.kind, "formats")
+    exported_fold_angles(built)  # the first contact found once, before the jobs fork
     families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
+    family_jobs = _FAMILY_JOBS if built.structure is not None else _SINGLE_FOLD_JOBS
     out: list[tuple[str, Job]] = []
     for family in families:
-        label, write = _FAMILY_JOBS[family]
+        label, write = family_jobs[family]
         names = tuple(name for name in formats_of(family) if name in formats)
         out.append((label, partial(write, built, names)))
     if can_draw():
@@ -214,16 +232,13 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file (folded at the design angle; a rigid structure also flat and
-    half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
-    by Origami Simulator)."""
+    """The structure's FOLD file (its folding motion, :func:`exported_fold_angles`), and one FOLD
+    file per sheet, flat with its target fold angles (loadable by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
-    design = structure.lattice.crease.fold_angle
-    # rigid panels: the flat and half-folded states too, for `curvefold mechanism`
-    angles = [0.0, 0.5 * design, design] if structure.lattice.rigid else [design]
+    angles = exported_fold_angles(built).tolist()
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -250,7 +265,7 @@ def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The 3D files; the GLB holds the folding motion."""
     from ..io.models import write_3d
 
-    return list(write_3d(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
+    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), formats=names, unit=MODEL_UNIT,
                          metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units,
                          pattern=built.layout if "3dm" in names else None))
 
@@ -263,6 +278,39 @@ def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
+def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's FOLD file (its motion, flat to the design angle) and its sheet's (loadable by Origami Simulator)."""
+    from ..io.fold import write_model, write_sheet_fold
+    from ..io.single_fold import single_fold_model
+
+    fold, meta = built.single_fold, _metadata(built)
+    model = single_fold_model(fold, exported_fold_angles(built), unit=MODEL_UNIT, metadata=meta, design=built.design.to_dict())
+    (folder / "sheets").mkdir()
+    return [write_model(FORMATS[names[0]].path(folder / built.design.kind), model, title=meta["title"]),
+            write_sheet_fold(folder / "sheets" / "single-fold.fold", fold.pattern_sheet().mesh, MODEL_UNIT, title="single fold")]
+
+
+def _single_fold_pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's crease pattern, from its one layout (:attr:`Built.layout`)."""
+    from ..io.pattern import write_layout
+
+    return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
+
+
+def _single_fold_model(built: Built, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's 3D files; the GLB holds the folding motion."""
+    from ..io.single_fold import write_single_fold_3d
+
+    return list(write_single_fold_3d(folder / built.design.kind, built.single_fold, design_motion(built), formats=names,
+                                     unit=MODEL_UNIT, metadata=_metadata(built)))
+
+
+#: Progress label and job of every family of formats a single curved fold writes.
+_SINGLE_FOLD_JOBS = {
+    "fold": ("FOLD files", _single_fold_fold),
+    "pattern": ("crease patterns", _single_fold_pattern),
+    "model": ("3D models", _single_fold_model),
+}
 #: Progress label and job of every family of formats.
 _FAMILY_JOBS = {
     "fold": ("FOLD files", _fold),
@@ -283,7 +331,8 @@ def _figures(built: Built) -> dict[str, Callable]:
 
     structure = built.structure
     if structure is None:
-        return {"crease": partial(views.plot_crease, built.crease)}
+        fold = built.single_fold
+        return {"crease": partial(views.plot_crease, built.crease, width=(fold.width_left, fold.width_right))}
     lattice = structure.lattice
     figures = {"regression-domain": partial(plots.plot_regression_domain, lattice, structure.cells),
                "width-proportion": partial(plots.plot_width_proportion, lattice)}

@@ -364,7 +364,7 @@ def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singu
     Parameters
     ----------
     mechanisms : sequence of Mechanism
-        From :func:`curvefold.analysis.mechanism.analyse` or ``analyse_fold``.
+        From :func:`curvefold.analysis.mechanism.analyse` or :func:`curvefold.analysis.fold_mechanism.analyse_fold`.
     title : str, keyword-only
 
     Returns

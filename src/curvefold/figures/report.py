@@ -152,9 +152,12 @@ def _certificate_table(payload: dict) -> str:
     frames = payload.get("certificate_frames") or {}
     angles = frames.get("fold_angles") or []
     motion = ""
+    contact = frames.get("first_contact")
+    ends = "" if contact is None else (f"The folding motion runs from flat to 2α = {contact:g}°, where the structure first touches "
+                                       "itself (the first contact): its files hold the frames before it. ")
     if angles:
         listed = ", ".join(f"{a:g}°" for a in angles)
-        motion = f"<p>Certified as built and in the frames 2α = {e(listed)}."
+        motion = f"<p>{ends}Certified as built and in the frames 2α = {e(listed)}."
         panels = bool(payload.get("mechanism"))
         if frames.get("holds_up_to") is not None and panels:
             motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° (rigid panels: their residuals are rounding "

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..geometry.single_fold import default_widths
 from ..geometry.topology import sample_index, thin_cells
 from ..kernel.errors import InputError
 from .plots import KIND_COLORS, UNITS, new_figure
@@ -283,10 +284,8 @@ def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = N
     from matplotlib.patches import Patch
 
     s = crease.s
-    L = crease.curve.length
     if width is None:
-        limits = [float(np.min(w)) for w in crease.regression_limits()]
-        widths = tuple(min(0.15 * L, 0.6 * lim) for lim in limits)
+        widths = default_widths(crease)
     else:
         widths = tuple(float(w) for w in np.broadcast_to(np.asarray(width, float), (2,)))
     sheets = crease.surface("L+R+", width=widths, rulings=2)  # (2 sides, 2, n, 3); raises past regression

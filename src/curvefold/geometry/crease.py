@@ -56,7 +56,8 @@ def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_ang
     unit, top = ("°", 180.0) if degrees else (" rad", np.pi)
     low = "[0" if allow_flat else "(0"
     if not np.isfinite(full) or full < 0 or (full == 0 and not allow_flat) or full >= np.pi:
-        extra = " (2α = 180° would need infinite curvature κ = κ_2D / cos α)" if np.isfinite(full) and full >= np.pi else ""
+        extra = " (2α = 180° would need infinite curvature κ = κ_2D / cos α)" if np.isfinite(full) and full >= np.pi else \
+            " (0 in radians: below the smallest positive float)" if full == 0 and value != 0 else ""
         raise InputError(f"{name} must be in {low}{unit}, {top:g}{unit}), got {fold_angle!r}{extra}")
     return 0.5 * full
 

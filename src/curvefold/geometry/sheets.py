@@ -41,6 +41,7 @@ from ..kernel.errors import InputError, InternalError
 from ..kernel.lie import cross
 from .crease import check_fold_angle, check_fold_angles
 from .mesh import Mesh, vector_areas
+from .mesh import fold_angles as dihedral_angles
 from .structure import State, Structure, check_structure
 from .topology import SHEETS, Topology, corner_members, fold_assignment
 
@@ -79,6 +80,9 @@ class PatternSheet(FrozenArrays):
         ``edges_kind`` says what each edge is: ``"fold"`` creases (assignment ``M`` or
         ``V``), ``"seam"`` edges on the outline glued to a partner sheet, ``"boundary"``
         edges on the rest of the outline, ``"ruling"`` and ``"diagonal"`` interior lines.
+        ``edges_foldAngle`` is the dihedral angle of the target state on every inner edge
+        (a sampled curved sheet bends across its rulings and diagonals too, by about κh),
+        0 on the outline.
     edges_seam : (E,) ndarray of int
         -1, or the seam id of a seam edge; the partner edges on the other sheet carry the
         same id.
@@ -270,6 +274,7 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
     plane = flat_plane(flat)
     flat_mesh = topology.mesh(flat.vertices)
     design = topology.mesh(structure.state(fold_angle).vertices)
+    bends = dihedral_angles(design.vertices_coords, topology.faces_vertices, topology.edges_vertices)  # rulings and diagonals bend too
     normals = flat_mesh.face_normals()
     out = []
     for sheet in topology.sheets:
@@ -281,7 +286,7 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
             raise InternalError(f"{label}: {int(np.count_nonzero(~(area2 > 0)))} of {len(area2)} faces of the flat "
                                 "state are not counter-clockwise seen from outside the tube")
         kind = design.edges_kind[sheet.edges]
-        angle = np.where(kind == "fold", design.edges_foldAngle[sheet.edges], 0.0)
+        angle = np.where(kind == "seam", 0.0, bends[sheet.edges])  # a seam is cut open: one face
         mesh = Mesh(
             vertices_coords=np.column_stack([xy, np.zeros(len(xy))]),
             edges_vertices=sheet.edges_vertices,

@@ -24,7 +24,9 @@ Layout written by :func:`write_fold` (one shared vertex/edge/face topology):
 
 :func:`write_sheet_fold` writes one sheet in the form Origami Simulator loads: it needs
 ``vertices_coords``, ``edges_vertices``, ``edges_assignment`` and ``faces_vertices``, takes
-``edges_foldAngle`` in degrees as the target angles, maps 2D coordinates ``(x, y)`` to its
+``edges_foldAngle`` in degrees as the target angles (the sheet's own, on its ``F`` rulings
+and diagonals too, so that it folds onto the design and not onto a sheet flat between its
+creases), maps 2D coordinates ``(x, y)`` to its
 ``(x, 0, y)`` and starts from the given 3D coordinates otherwise; every ``M``/``V``/``F``
 edge must have a face on each side.
 
@@ -54,7 +56,8 @@ from .fold_reading import FoldFile
 from .mesh3d import check_metadata
 from .tables import CREATOR
 
-__all__ = ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"]
+__all__ = ["fold_assignments", "fold_document", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
+           "write_structure_fold"]
 
 FILE_SPEC = 1.1
 
@@ -215,15 +218,33 @@ def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
     return pairs
 
 
-def _write_document(path: str | os.PathLike, title: str, frame: dict) -> Path:
-    """Write a FOLD document: curvefold's file keys, the title if any, then ``frame``'s keys."""
-    doc = {"file_spec": FILE_SPEC, "file_creator": CREATOR, "file_classes": ["singleModel"],
-           **({"file_title": one_line(title)} if title else {}), **frame}
+def _document(title: str, frame: dict) -> dict:
+    """A FOLD document: curvefold's file keys, the title if any, then ``frame``'s keys."""
+    return {"file_spec": FILE_SPEC, "file_creator": CREATOR, "file_classes": ["singleModel"],
+            **({"file_title": one_line(title)} if title else {}), **frame}
+
+
+def _write_document(path: str | os.PathLike, doc: dict) -> Path:
     return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
 
 
-def write_fold(
-    path: str | os.PathLike,
+def write_fold(path: str | os.PathLike, **arrays) -> Path:
+    """Write a crease pattern and its folded states as one FOLD 1.1 file: :func:`fold_document`, atomically.
+
+    Parameters
+    ----------
+    path : path-like
+    **arrays
+        The keyword arguments of :func:`fold_document`.
+
+    Returns
+    -------
+    Path
+    """
+    return _write_document(path, fold_document(**arrays))
+
+
+def fold_document(
     *,
     crease_pattern: Mesh,
     folded: Sequence[tuple[str, Mesh]],
@@ -235,12 +256,11 @@ def write_fold(
     title: str = "",
     flat_tol: float = 1e-9,
     mirror_clockwise: bool = True,
-) -> Path:
-    """Write a crease pattern and its folded states as one FOLD 1.1 file.
+) -> dict:
+    """A crease pattern and its folded states as one FOLD 1.1 document (JSON data, as :func:`write_fold` writes it).
 
     Parameters
     ----------
-    path : path-like
     crease_pattern : Mesh
         The flat crease pattern (z = 0, counter-clockwise faces) with the fold angles of
         the design state. Seams are cut open: each seam is two boundary edges, one per
@@ -272,7 +292,7 @@ def write_fold(
 
     Returns
     -------
-    Path
+    dict
 
     Raises
     ------
@@ -320,7 +340,7 @@ def write_fold(
             "edges_foldAngle": np.where(zero, 0.0, angle).tolist(),
         })
 
-    return _write_document(path, title, {
+    return _document(title, {
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
         "frame_unit": unit,
@@ -380,16 +400,16 @@ def write_sheet_fold(
     flat = len(x) == 0 or float(np.abs(x[:, 2]).max()) <= flat_tol * max(size, 1e-300)
     if flat:
         x = _flat_ccw_coords(sheet, "sheet", flat_tol, mirror_clockwise)
-    return _write_document(path, title, {
+    return _write_document(path, _document(title, {
         "frame_classes": ["creasePattern" if flat else "foldedForm"],
         "frame_unit": unit,
         "vertices_coords": _number_lists(x),
         "edges_vertices": sheet.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
-        "edges_foldAngle": np.where(np.isin(assignment, ("B", "F")), 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
+        "edges_foldAngle": np.where(assignment == "B", 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
         "faces_vertices": _face_lists(sheet.faces_vertices),
         "edges_curvefold:kind": sheet.edges_kind.tolist(),
-    })
+    }))
 
 
 # ---------------------------------------------------------------------------------------
@@ -475,6 +495,19 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
     -------
     Path
     """
-    model = to_fold(structure, **kwargs)
-    return write_fold(path, crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata,
-                      unit=model.unit, seam_partners=model.seam_partners, bonds=model.bonds, design=model.design, title=title)
+    return write_model(path, to_fold(structure, **kwargs), title=title)
+
+
+def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
+    """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io.single_fold.single_fold_model`) atomically."""
+    return _write_document(path, model_document(model, title=title))
+
+
+def model_document(model: FoldFile, *, title: str = "") -> dict:
+    """The FOLD document of a model (:func:`to_fold`), as :func:`write_structure_fold` writes it.
+
+    :func:`curvefold.io.fold_reading.parse_fold` reads it back as :func:`read_fold` reads the
+    file (``curvefold check --rebuild`` compares a file with the document of its design).
+    """
+    return fold_document(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
+                         seam_partners=model.seam_partners, bonds=model.bonds, design=model.design, title=title)

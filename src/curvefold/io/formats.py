@@ -33,7 +33,7 @@ from types import MappingProxyType
 from ..kernel.errors import InputError
 from ..kernel.validate import Spec
 from .cutters import CUTTERS, DEFAULT_CUTTER
-from .tables import PAGES
+from .tables import PAGES, mm_per_unit
 
 __all__ = [
     "FileFormat",
@@ -45,7 +45,9 @@ __all__ = [
     "default_formats",
     "check_formats",
     "check_kind",
+    "check_scale",
     "missing_dependencies",
+    "MIN_DRAWN_MM",
 ]
 
 #: Kinds of design that build a structure (the crease kind builds a single crease).
@@ -110,29 +112,30 @@ class FileFormat:
 
 
 _S = STRUCTURE_KINDS
+_ALL = (*STRUCTURE_KINDS, "crease")  # a single curved fold writes its crease pattern, FOLD file and 3D models too
 
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per operation, a scale bar and legend", "pattern", _S,
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per operation, a scale bar and legend", "pattern", _ALL,
                "curvefold.io.pattern:write_svg", "image/svg+xml"),
-    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _S,
+    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _ALL,
                "curvefold.io.pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _S,
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _ALL,
                "curvefold.io.pattern:write_pdf", "application/pdf"),
     FileFormat("assembly", ".pdf", "the assembly guide: the sheets to cut, which seam glues to which, the order of folding and "
                "gluing tube by tube with a picture of each step, on the pattern's pages", "guide", _S,
                "curvefold.figures.assembly:write_assembly", "application/pdf", stem="assembly"),
-    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
+    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the frames of the folding motion, and one FOLD file per sheet", "fold", _ALL,
                "curvefold.io.fold:write_structure_fold", "application/json"),
-    FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _S,
+    FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _ALL,
                "curvefold.io.models:model_glb", "model/gltf-binary", "pygltflib", "export"),
-    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _S,
+    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _ALL,
                "curvefold.io.models:model_obj", "model/obj"),
-    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _S,
+    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,
                "curvefold.io.models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
-    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _S,
+    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _ALL,
                "curvefold.io.models:model_stl", "model/stl", "trimesh", "export"),
-    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _S,
+    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _ALL,
                "curvefold.io.models:model_ply", "application/octet-stream", "trimesh", "export"),
     FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", _S,
                "curvefold.io.gif:write_gif", "image/gif", "matplotlib", "plot"),  # frames drawn with matplotlib's font and Pillow
@@ -165,7 +168,7 @@ def default_formats(kind: str) -> tuple[str, ...]:
     Examples
     --------
     >>> default_formats("crease")
-    ()
+    ('svg', 'dxf', 'pdf', 'fold', 'glb', 'obj', '3dm', 'stl', 'ply')
     """
     return tuple(name for name, f in FORMATS.items() if kind in f.kinds)
 
@@ -232,3 +235,35 @@ OUTPUT_SPECS: tuple[Spec, ...] = (
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)"),
 )
+
+
+#: Shortest a crease may be drawn, in mm: the 10 mm scale bar every page carries. Shorter, its
+#: pattern is at most 40 widths of its 0.25 mm lines long, which merge into a blot.
+MIN_DRAWN_MM = 10.0
+
+
+def check_scale(scale: float | None, units: str, length: float, where: str) -> float | None:
+    """The print scale of a design whose crease is ``length`` model units long, or the error saying it draws too small.
+
+    The scale's spec bounds it by > 0; what a page and a line width can show bounds it
+    further: the crease must be drawn at least :data:`MIN_DRAWN_MM` long (a scale too large
+    for the page is refused when the sheets are laid out, naming the sheet and the page).
+
+    Examples
+    --------
+    >>> check_scale(50.0, "mm", 6.0, "scale")
+    50.0
+    >>> check_scale(0.001, "mm", 6.0, "scale")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: scale: 0.001 mm per model unit draws the 6-unit crease 0.006 mm long, shorter than the 10 mm scale bar: use a scale of at least 1.67 mm per unit (or leave it out to fit the page)
+    """
+    if scale is None:
+        return None
+    drawn = scale * length * mm_per_unit(units)
+    if not drawn >= MIN_DRAWN_MM:
+        least = MIN_DRAWN_MM / (length * mm_per_unit(units))
+        raise InputError(f"{where}: {scale:g} {units} per model unit draws the {length:g}-unit crease {drawn:.3g} mm long, shorter "
+                         f"than the {MIN_DRAWN_MM:g} mm scale bar: use a scale of at least {least:.3g} {units} per unit (or leave it "
+                         "out to fit the page)", parameter="scale")
+    return scale

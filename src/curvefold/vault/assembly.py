@@ -387,13 +387,8 @@ class Vault(FrozenArrays):
         return np.abs(V[:, :, [0, -1], 2]).max(axis=1)
 
     def first_contact(self, *, step: float = 1.0, max_angle: float = 179.0, samples: int = 201) -> float | None:
-        """First fold angle past the design angle where distant parts of the vault touch.
-
-        Rigid folding never reaches regression (it is intrinsic), but past the design angle
-        the arch curls (κ = κ_2D / cos α grows) until parts far apart along t meet. Points of
-        all creases, resampled to ``samples`` along t, are tested with a k-d tree: a contact
-        is a pair closer than half the smallest width whose t differ by more than four
-        widths' worth of arc length (so neighbours along a strip do not count).
+        """First fold angle from the design angle on where distant parts of the vault touch
+        (:func:`curvefold.geometry.contact.first_contact`): the end of its motion.
 
         Returns
         -------
@@ -401,21 +396,6 @@ class Vault(FrozenArrays):
             2α in degrees of the first contact on a grid of ``step`` degrees, or None if
             none occurs up to ``max_angle``.
         """
-        from scipy.spatial import cKDTree
+        from ..geometry.contact import first_contact
 
-        lat = self.lattice
-        idx = np.linspace(0, len(lat.s) - 1, samples).round().astype(int)
-        w_min = float(min(lat.width_left.min(), lat.width_right.min()))
-        dt_min = 4 * max(float(lat.width_left.max()), float(lat.width_right.max())) / lat.crease.curve.length
-        t = lat.t[idx]
-        angles = np.arange(self.design.fold_angle + step, max_angle + 1e-9, step)
-        for chunk in range(0, len(angles), 16):
-            V = self.motion(angles[chunk : chunk + 16])[:, :, idx]  # (A, M, samples, 3)
-            for k, frame in enumerate(V):
-                pts = frame.reshape(-1, 3)
-                pairs = cKDTree(pts).query_pairs(0.5 * w_min, output_type="ndarray")
-                if len(pairs):
-                    ti, tj = t[pairs[:, 0] % samples], t[pairs[:, 1] % samples]
-                    if np.any(np.abs(ti - tj) > dt_min):
-                        return float(angles[chunk + k])
-        return None
+        return first_contact(self.structure, step=step, max_angle=max_angle, samples=samples)
