@@ -11,6 +11,7 @@ from ..geometry.lattice import Lattice
 from ..geometry.panels import PanelLattice
 from ..geometry.sampling import Sampling, choose_sampling
 from ..geometry.structure import Structure
+from ..kernel.errors import InputError
 from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
 from .design import Design
 
@@ -69,20 +70,41 @@ def vault_design(design: Design) -> VaultDesign:
     )
 
 
-def fit_vault_targets(design: Design, *, source: str | None = None, **targets: float) -> Design:
-    """A vault design with the parameters the targets replace solved for them (see :mod:`curvefold.vault.targets`).
+def fit_vault_targets(design: Design, *, source: str | None = None, **targets: float) -> tuple[Design, str]:
+    """A vault design with the parameters the targets replace solved for them (see :mod:`curvefold.vault.targets`),
+    never one that fails its own certificate.
 
-    ``targets`` are ``span``, ``rise`` and ``p_xz``; they set ``radius``, ``a`` and ``p_xy``.
+    ``targets`` are ``span``, ``rise`` and ``p_xz``; they set ``radius``, ``a`` and ``p_xy``
+    (and, with ``tubes = "max"``, the number of tubes).
+
+    Returns
+    -------
+    design : Design
+    note : str
+        What the fit chose for the user (the number of tubes), or empty.
 
     Raises
     ------
     InputError
-        A target no vault of the family reaches: the message gives the nearest design.
+        A target no vault of the family reaches (the message gives the nearest design),
+        or one met only by a design whose certificate fails (the message names the check).
     """
+    from ..analysis.certificate import certify
     from ..vault.targets import fit_targets
+    from .products import exported_fold_angles
 
-    fitted = fit_targets(vault_design(design), **targets).require()
-    return design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius)
+    fit = fit_targets(vault_design(design), **targets)
+    fitted = fit.require()
+    chosen = {} if fitted.tubes is None else {"tubes": fitted.tubes}
+    found = design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius, **chosen)
+    built = build(found)
+    failed = [c for c in certify(built.crease, built.structure, built.vault, fold_angles=exported_fold_angles(built)).checks if not c.passed]
+    if failed:
+        c = failed[0]
+        need = f"; use ≥ {c.samples_needed} samples" if c.samples_needed else ""
+        raise InputError(f"the vault that meets these targets (a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}) fails its "
+                         f"certificate: {c.name} {c.status} at {c.where}{need}")
+    return found, fit.note
 
 
 def build(design: Design) -> Built:

@@ -191,7 +191,7 @@ def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
     for target, replaced in REPLACES.items():
         if target in targets and getattr(args, replaced) is not None:
             raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} or {_flag(_VAULT[replaced])}, not both")
-    return fit_vault_targets(design, source=design.source, **targets)
+    return fit_vault_targets(design, source=design.source, **targets)[0]
 
 
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:

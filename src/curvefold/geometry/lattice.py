@@ -37,7 +37,11 @@ from .crease import Crease, half_angle, ruling_vectors
 from .curve import SpaceCurve, gauss_nodes, integrate_frenet
 from .topology import Topology
 
-__all__ = ["Lattice", "Pattern", "RegressionDomain", "check_anchor", "check_curves", "lattice_points", "log_width_ratio"]
+__all__ = ["Lattice", "Pattern", "RegressionDomain", "WIDTH_RESOLUTION", "check_anchor", "check_curves", "lattice_points", "log_width_ratio"]
+
+#: Narrowest width w(t) of a strip, as a fraction of the structure's size (the curve's length or its widest
+#: strip): coordinates of that size resolve it by 10⁷ ulps; a narrower strip's edges round to nothing.
+WIDTH_RESOLUTION = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -195,6 +199,7 @@ class Pattern(FrozenArrays):
                 raise InputError(f"{name} must be a number or {len(s)} finite values > 0 (one per sample), got shape {arr.shape}")
             widths.append(arr)
         wl, wr = widths
+        _check_resolved(wl, wr, crease)
         rates = crease.regression_rates()
         for side, rate in zip(("left", "right"), rates):
             check_finite(rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s)
@@ -451,6 +456,18 @@ def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.n
     basis = np.stack([x1, left, right], axis=-1)  # (..., n, 3, 3)
     out = np.moveaxis(basis @ coeff.T, -1, -3)  # (..., K, n, 3)
     return out.reshape(x1.shape[:-2] + uv.shape[:-1] + x1.shape[-2:])
+
+
+def _check_resolved(width_left: np.ndarray, width_right: np.ndarray, crease: Crease) -> None:
+    """Refuse widths that coordinates of the structure's size cannot resolve (:data:`WIDTH_RESOLUTION`)."""
+    size = max(crease.curve.length, float(width_left.max()), float(width_right.max()))
+    for name, w in (("width_left", width_left), ("width_right", width_right)):
+        i = int(np.argmin(w))
+        if w[i] < WIDTH_RESOLUTION * size:
+            raise InputError(
+                f"{name} w(t) = {w[i]:.3g} at s = {crease.s[i]:.6g} is below {WIDTH_RESOLUTION:g} of the structure's size {size:.3g}: "
+                "its coordinates cannot resolve so narrow a strip; widen it, or lower tau or the length"
+            )
 
 
 def log_width_ratio(crease: Crease) -> np.ndarray:
