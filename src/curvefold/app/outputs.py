@@ -126,7 +126,8 @@ def _bar(show: bool, *columns):
     return Progress(*columns, transient=True, console=console) if console.is_terminal else None
 
 
-def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True) -> dict:
+def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True, fold_angle: float | None = None,
+                  workers: int | None = None) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
     The files are written by job processes while this process computes the certificate.
@@ -137,6 +138,10 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     out : OutputTarget
         The folder, checked by :func:`curvefold.app.folder.check_output` before the work.
     show_progress : bool, keyword-only
+    fold_angle : float, optional, keyword-only
+        2α of the folded state the FOLD and 3D files hold (degrees); default the design angle.
+    workers : int, optional, keyword-only
+        Processes for the files (:func:`curvefold.app.products.run_jobs`; 1: this process).
 
     Returns
     -------
@@ -153,7 +158,7 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     from . import products
 
     formats = built.design.output.formats
-    jobs = products.jobs(built, formats)
+    jobs = products.jobs(built, formats, fold_angle=fold_angle)
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
@@ -161,7 +166,7 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp)) as done:  # closed at once on any exception
+        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers)) as done:  # closed at once on any exception
             payload = structure_payload(built)
             report = dict(payload, timings={}) | resolution
             for label, files, seconds in done:

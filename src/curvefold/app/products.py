@@ -68,8 +68,11 @@ def exported_fold_angles(built: Built) -> np.ndarray:
     return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
 
 
-def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
+def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = None) -> list[tuple[str, Job]]:
     """The jobs that write the requested formats of a built design and its pictures, longest first.
+
+    ``fold_angle`` is 2α of the folded state the FOLD and 3D files hold (degrees; default
+    the design angle); crease patterns, pictures and the GIF do not depend on it.
 
     Raises
     ------
@@ -82,7 +85,8 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
     for family in families:
         label, write = _FAMILY_JOBS[family]
         names = tuple(name for name in formats_of(family) if name in formats)
-        out.append((label, partial(write, built, names)))
+        angle = {"fold_angle": fold_angle} if family in _FOLDED else {}
+        out.append((label, partial(write, built, names, **angle)))
     out.append(("pictures", partial(_pictures, built)))
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
@@ -148,17 +152,17 @@ def _writer(names: tuple[str, ...]) -> Callable:
     return FORMATS[names[0]].load_writer()
 
 
-def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file (folded at the design angle; a panel structure also flat and
-    half folded), and one FOLD file per sheet, flat with its target fold angles (loadable
-    by Origami Simulator)."""
+def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+    """The structure's FOLD file (folded at ``fold_angle``, default the design angle; a panel
+    structure also flat and half folded), and one FOLD file per sheet, flat with its target
+    fold angles (loadable by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
-    design = structure.lattice.crease.fold_angle
+    design = structure.lattice.crease.fold_angle if fold_angle is None else fold_angle
     # panels: the flat and half-folded states too, for `curvefold mechanism`
-    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) else [design]
+    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) and design > 0 else [design]
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -178,10 +182,10 @@ def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
                                glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
 
 
-def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The 3D files; the GLB holds the folding motion."""
+def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+    """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion."""
     return list(_writer(names)(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
-                               metadata=_metadata(built), keep=built.sampling.keep))
+                               metadata=_metadata(built), keep=built.sampling.keep, fold_angle=fold_angle))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
@@ -196,6 +200,8 @@ _FAMILY_JOBS = {
     "model": ("3D models", _model),
     "motion": ("folding GIF", _motion),
 }
+#: Families whose files hold a folded state (the others are flat or show the whole motion).
+_FOLDED = ("fold", "model")
 #: Jobs by the time they take on the paper's vault (1.75, 1.4, 0.66, 0.43 and 0.18 s), longest
 #: first: started in this order, two processes finish about together.
 _LONGEST_FIRST = ("crease patterns", "pictures", "folding GIF", "3D models", "FOLD files")

@@ -4,7 +4,8 @@ A :class:`Pool` holds a fixed number of worker processes, each running one job a
 :meth:`Pool.run` sends a job (a module-level function and its arguments, pickled) to an
 idle worker and waits for its answer; a job that overruns its time limit, outgrows its
 memory limit, is cancelled by its caller or is running when the pool closes kills its
-worker (SIGKILL), which is replaced by a fresh one. So a stopped job stops at once,
+worker and the processes the job started (SIGKILL to the worker's process group), and the
+worker is replaced by a fresh one. So a stopped job stops at once,
 whatever it computes, and holds no memory afterwards; a worker that a job leaves larger
 than ``recycle_above`` bytes is replaced too, so idle workers stay small.
 
@@ -109,13 +110,17 @@ class _Worker:
         return self.conn.recv()
 
     def kill(self, reason: str) -> None:
-        """Kill the process now (safe in a signal handler: a flag and ``kill``)."""
+        """Kill the process and any it started, now (safe in a signal handler: a flag and ``killpg``)."""
         self.stop = self.stop or reason
-        if self.process.pid is not None:
+        pid = self.process.pid
+        if pid is not None:
             try:
-                os.kill(self.process.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+                os.killpg(pid, signal.SIGKILL)  # its own process group: the processes a job forked too
+            except (ProcessLookupError, PermissionError, AttributeError):
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
 
     def reap(self) -> None:
         self.process.join(timeout=5)
@@ -157,6 +162,11 @@ class Pool:
     @property
     def size(self) -> int:
         return len(self._all)
+
+    @property
+    def busy(self) -> int:
+        """Workers running a job now."""
+        return self.size - (self._idle.qsize() if self._idle is not None else self.size)
 
     def pids(self) -> list[int]:
         """Process ids of the current workers."""
@@ -310,6 +320,8 @@ def _serve(conn, scratch: str, niceness: int) -> None:
     """A worker's loop: run each job received and send back ``("ok", result)``, ``("refused", message, key)``
     or ``("bug", message, None)``, until the pipe closes."""
     _die_with_parent()
+    if hasattr(os, "setpgrp"):
+        os.setpgrp()  # a group of its own, which a kill ends whole
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for name in ("SIGTERM", "SIGHUP"):
         if hasattr(signal, name):

@@ -180,12 +180,13 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
 
 #: The ``[output]`` parameters of a design.
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale (printed lengths, so not the model unit)"),
+    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale (printed lengths, so not the model unit)",
+         label="units of the printed patterns"),
     Spec("scale", "real", None, "(0, inf)", "output units per model unit",
-         help="crease-pattern scale (default: fit the largest sheet to the page)"),
-    Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
-    Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns"),
-    Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)"),
+         help="crease-pattern scale (default: fit the largest sheet to the page)", label="print scale"),
+    Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns", label="page size"),
+    Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
+    Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)", label="rulings drawn"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
-         help="files to write besides the report (default: every format the design's kind writes)"),
+         help="files to write besides the report (default: every format the design's kind writes)", label="file formats"),
 )

@@ -58,14 +58,17 @@ LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
 #: The parameters of a vault, in design-file order. ``tubes`` is ``"max"`` or a count and
 #: ``direction`` ``"+"`` or ``"-"`` here; :class:`VaultDesign` holds None and ±1 for them.
 VAULT_SPECS: tuple[Spec, ...] = (
-    Spec("a", "real", 0.3, "[0, 3)", help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0); arches stand for a < 1.2707"),
-    Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet"),
-    Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless"),
-    Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})'),
-    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0"),
-    Spec("radius", "real", 1.0, LENGTHS, "model units", help="1/kappa0", why=LENGTHS_WHY),
-    Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes"),
-    Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v"),
+    Spec("a", "real", 0.3, "[0, 3)", help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0); arches stand for a < 1.2707",
+         label="torsion amplitude"),
+    Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet", label="section proportion at the feet"),
+    Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless", label="tube width at the feet, in radii"),
+    Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})',
+         label="tubes"),
+    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0",
+         label="design fold angle"),
+    Spec("radius", "real", 1.0, LENGTHS, "model units", help="1/kappa0", why=LENGTHS_WHY, label="radius of the arch curve"),
+    Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes", label="layers of tubes"),
+    Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v", label="stacking direction"),
     PANELS,
 )
 _SPEC = {spec.name: spec for spec in VAULT_SPECS}

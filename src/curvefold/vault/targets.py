@@ -34,9 +34,11 @@ __all__ = ["TARGET_SPECS", "TargetFit", "fit_targets", "SCAN_POINTS"]
 
 #: The targets a vault can be designed from; each replaces a parameter of :data:`~curvefold.vault.assembly.VAULT_SPECS`.
 TARGET_SPECS: tuple[Spec, ...] = (
-    Spec("span", "real", None, "(0, inf)", "model units", help="distance between the feet of curve 1; sets the radius"),
-    Spec("rise", "real", None, "(0, inf)", "model units", help="height of the highest crease; with span it sets a, alone the radius"),
-    Spec("p_xz", "real", None, "(0, 100]", help="section proportion w_R/w_L at the apex; sets p_xy"),
+    Spec("span", "real", None, "(0, inf)", "model units", help="distance between the feet of curve 1; sets the radius",
+         label="span, foot to foot"),
+    Spec("rise", "real", None, "(0, inf)", "model units", help="height of the highest crease; with span it sets a, alone the radius",
+         label="rise"),
+    Spec("p_xz", "real", None, "(0, 100]", help="section proportion w_R/w_L at the apex; sets p_xy", label="section proportion at the apex"),
 )
 #: Which parameter each target replaces (a user may give one or the other, not both).
 REPLACES = {"span": "radius", "rise": "a", "p_xz": "p_xy"}
