@@ -419,7 +419,7 @@ def _files(key: str, what: str, state: float | None) -> tuple[str, bytes]:
 
             out = root / f"curvefold-{design.kind}"
             write_outputs(found, check_output(out, force=False), show_progress=False, fold_angle=state, workers=1)  # the pool is the parallelism
-            files = sorted(p for p in out.rglob("*") if p.is_file())
+            files = sorted(p for p in out.rglob("*") if p.is_file() and not p.name.startswith("."))  # not the folder's marker
             return f"curvefold-{design.kind}.zip", _zip([(str(p.relative_to(root)), p) for p in files])
         files = _write(found, (what,), root, state)
         main = root / f"{design.kind}{FORMATS[what].extension}"
