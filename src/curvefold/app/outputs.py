@@ -17,11 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.certificate import certify
-from ..figures.report import plain, report_html
+from ..figures.report import UNITS_SHOWN, plain, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
 from ..kernel.errors import InputError, InternalError
 from .build import Built
+from .design import Design
 from .folder import OutputTarget, output_folder, raise_if_interrupted
 from .products import exported_fold_angles
 
@@ -87,6 +88,19 @@ def structure_payload(built: Built) -> dict:
     if certificate.mechanism is not None:  # rigid panels
         payload["mechanism"] = certificate.mechanism.to_dict()
     return payload
+
+
+def parameter_rows(design: Design) -> list[dict]:
+    """Every parameter of a design for the report: ``name``, ``label`` (in words, from the schema), ``value`` and ``unit``."""
+    from .design import SCHEMA
+
+    rows = []
+    for section, values in design.to_dict().items():
+        for name, value in (values.items() if isinstance(values, dict) else [(section, values)]):
+            spec = SCHEMA["" if not isinstance(values, dict) else section][name]
+            unit = "× radius" if (section, name) == ("vault", "width") else UNITS_SHOWN.get(spec.unit, spec.unit)
+            rows.append({"name": name, "label": spec.label or name, "value": value, "unit": unit})
+    return rows
 
 
 def _default_title(built: Built) -> str:
@@ -168,7 +182,7 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     try:
         with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers)) as done:  # closed at once on any exception
             payload = structure_payload(built)
-            report = dict(payload, timings={}) | resolution
+            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | resolution
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]

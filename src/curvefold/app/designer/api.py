@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...figures.report import CHECK_TITLES
+from ...figures.report import CHECK_TITLES, UNITS_SHOWN
 from ...io.formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import MAX_TEXT, Spec, from_text, suggest
@@ -124,8 +124,9 @@ def schema() -> dict:
     Keys: ``kinds`` (kind → its sections), ``sections`` (section → list of specs with name,
     label, kind, unit, help, choices, default and range; ``""`` is the top level), ``targets``
     (the vault's target specs and the parameter each replaces), ``formats`` (the
-    registry: name, extension, what the file holds, the kinds it is written for) and
-    ``state`` (the spec of the files' fold angle).
+    registry: name, extension, what the file holds, the kinds it is written for),
+    ``state`` (the spec of the files' fold angle) and ``units`` (how the page names the
+    schema's units, :data:`curvefold.figures.report.UNITS_SHOWN`).
     """
     return {
         "kinds": {kind: list(SECTIONS_OF_KIND[kind]) for kind in KINDS},
@@ -134,6 +135,7 @@ def schema() -> dict:
         "targets": [_spec_json(spec, "vault") | {"replaces": REPLACES[spec.name]} for spec in TARGET_SPECS],
         "formats": [{"name": f.name, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)} for f in FORMATS.values()],
         "state": _spec_json(STATE, ""),
+        "units": UNITS_SHOWN,
     }
 
 

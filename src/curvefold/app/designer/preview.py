@@ -18,7 +18,7 @@ from urllib.parse import urlencode
 
 import numpy as np
 
-from ...figures.report import QUANTITIES
+from ...figures.report import QUANTITIES, UNITS_SHOWN
 from ...geometry.structure import drawable
 from ...geometry.topology import tube_strips
 from ...io.tables import COLOURS
@@ -26,7 +26,7 @@ from ..build import Built
 from ..design import Design
 from .api import COARSE_SAMPLES, PREVIEW_SAMPLES, QueryError, _design, _key, built, design_query, resolve
 
-__all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_STEP", "MAX_FOLD", "UNITS_SHOWN", "preview", "contact", "pattern_sketch", "caches"]
+__all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
 
 #: Segments drawn along each crease in the 3D preview, and cells drawn at most.
 PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
@@ -34,8 +34,6 @@ PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
 MOTION_STEP = 5.0
 #: Largest fold angle of the preview's states, degrees (where the first-contact search of a vault stops).
 MAX_FOLD = 179.0
-#: How the page names the schema's units: the model unit is the metre of the 3D files.
-UNITS_SHOWN = {"model units": "m", "per model unit": "1/m", "output units per model unit": "print units per m", "degrees": "°"}
 
 
 def _b64(array: np.ndarray, dtype) -> str:
@@ -139,7 +137,7 @@ def _preview(key: str, targets: tuple) -> bytes:
     numbers = _numbers(built(design))
     return json.dumps({
         "kind": design.kind, "design": design.to_dict(), "query": urlencode(design_query(design)), "note": note,
-        "numbers": numbers, "labels": _labels(numbers), "units": UNITS_SHOWN,
+        "numbers": numbers, "labels": _labels(numbers),
         "colours": {kind: COLOURS.get(kind, "#3a3a3a") for kind in ("fold", "seam", "junction", "edge", "rim")},
         "dimensions": _dimensions(built(design)),
         "motion": _motion(built(design, samples=PREVIEW_SAMPLES)),
@@ -152,8 +150,7 @@ def preview(design: Design, targets: tuple = ()) -> bytes:
     ``design`` (as resolved, targets solved) and its ``query`` (URL-encoded), ``note`` (what
     a fit chose, or ""), ``numbers`` (derived quantities at the design's samples: a vault's
     span, rise, κ0·s0, proportion change, p_xz, tubes, max tubes, a, p_xy, radius and the
-    tube width at the feet), ``labels`` (each number's words and unit), ``units`` (how the
-    page names the schema's units), ``colours`` of the crease kinds, ``dimensions`` (a
+    tube width at the feet), ``labels`` (each number's words and unit), ``colours`` of the crease kinds, ``dimensions`` (a
     vault's span and rise lines: ``from``, ``to``, ``value``) and ``motion``: the fold
     angles of the precomputed states (degrees, flat first), the design angle, why the
     range ends, the lift-off of a vault per state (the largest ``|z|`` of its end sections,
