@@ -234,3 +234,7 @@ def test_a_taken_port_is_one_line():
     assert result.returncode == 2 and result.stderr.startswith(f"curvefold: error: cannot serve on 127.0.0.1:{port}: ")
     result = run("designer", "--no-browser", "--port", "70000")
     assert (result.returncode, result.stderr) == (2, "curvefold: error: --port must be in [0, 65535], got 70000\n")
+    for flag, value, message in (("--time-limit", "0", "time_limit must be in (0, 3600] seconds, got 0"),
+                                 ("--workers", "0", "workers must be an integer in [1, 16], got 0")):
+        result = run("designer", "--no-browser", flag, value)
+        assert (result.returncode, result.stderr) == (2, f"curvefold: error: {flag} {value}: {message}\n")

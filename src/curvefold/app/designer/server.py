@@ -278,7 +278,8 @@ class Designer:
     def status(self) -> dict:
         """The workers (process ids, jobs by outcome), the memory held and measured, the limits."""
         server = os.getpid()
-        processes = _descendants(server)
+        workers = [pid for pool in self.pools.values() for pid in pool.pids()]
+        processes = sorted({*workers, *(_parent(pid) for pid in workers)} - {server, 0})  # the workers and their fork server
         return {
             "version": version("curvefold"),
             "workers": {lane: {"size": pool.size, "busy": pool.busy, "pids": pool.pids(), "jobs": dict(pool.counts)}
@@ -326,21 +327,12 @@ class Designer:
         return app
 
 
-def _descendants(pid: int) -> list[int]:
-    """Every process below ``pid`` (Linux ``/proc``; empty elsewhere)."""
-    parents: dict[int, list[int]] = {}
-    for entry in Path("/proc").glob("[0-9]*"):
-        try:
-            stat = (entry / "stat").read_text()
-        except OSError:
-            continue
-        parents.setdefault(int(stat.rsplit(")", 1)[1].split()[1]), []).append(int(entry.name))
-    found, todo = [], [pid]
-    while todo:
-        children = parents.get(todo.pop(), [])
-        found += children
-        todo += children
-    return found
+def _parent(pid: int) -> int:
+    """The parent of a process (Linux ``/proc``; 0 if unknown)."""
+    try:
+        return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
+    except (OSError, ValueError, IndexError):
+        return 0
 
 
 def _pss(pid: int) -> int:

@@ -95,6 +95,7 @@ function field(spec, extraClass = "") {
       input.value = e.target.checked ? "max" : String(state.preview?.numbers?.[spec.name] ?? 1);
       changed(spec, input.value);
       endGesture();
+      showCounts();
     });
     row.append(max);
   }
