@@ -323,23 +323,28 @@ def payload(design: Design) -> bytes:
 
 
 def certificate(design: Design, *, coarse: bool = False) -> dict:
-    """The certificate of a design at its samples, or at :data:`COARSE_SAMPLES` with ``coarse``.
+    """The certificate of a design at its samples in every frame of its files, or, with ``coarse``,
+    at :data:`COARSE_SAMPLES` as built, flat and at the design angle only (a quarter of the work).
 
     Returns
     -------
     dict
-        ``samples``, ``coarse``, ``holds_up_to`` (degrees or None) and ``checks``: one dict
-        per check (name, title in words, value, tolerance, status, passed, …).
+        ``samples``, ``coarse``, ``fold_angles`` (the frames certified, degrees),
+        ``holds_up_to`` (degrees or None) and ``checks``: one dict per check (name, title in
+        words, value, tolerance, status, passed, …).
     """
     if coarse and design.samples > COARSE_SAMPLES:
-        from ..outputs import structure_payload
+        from ...analysis.certificate import certify
 
-        found = structure_payload(built(design, samples=COARSE_SAMPLES))
+        found = built(design, samples=COARSE_SAMPLES)
+        cert = certify(found.crease, found.structure, found.vault)
+        checks, frames = [c.to_dict() for c in cert.checks], {"samples": cert.samples, "holds_up_to": cert.holds_up_to,
+                                                                 "fold_angles": list(cert.fold_angles)}
     else:
         coarse, found = False, json.loads(payload(design))
-    checks = [c | {"title": CHECK_TITLES.get(c["name"], c["name"])} for c in found["certificate"]]
-    frames = found.get("certificate_frames") or {}
-    return {"samples": frames.get("samples") or design.samples, "coarse": coarse, "holds_up_to": frames.get("holds_up_to"), "checks": checks}
+        checks, frames = found["certificate"], found.get("certificate_frames") or {}
+    return {"samples": frames.get("samples") or design.samples, "coarse": coarse, "fold_angles": frames.get("fold_angles", []),
+            "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": CHECK_TITLES.get(c["name"], c["name"])} for c in checks]}
 
 
 def domain_svg(design: Design) -> str:

@@ -237,21 +237,23 @@ function show(body, started) {
   }
   $("note").textContent = body.note;
   $("note").hidden = !body.note;
-  view.load(body, previous);
-  const timing = { view: performance.now() - started };
-  state.timings.push(timing);
+  const timing = {};
   state.contact = undefined;
+  for (const id of ["certificate-status", "certificate", "pattern", "domain"]) $(id).classList.add("stale");
+  follow(body, started, timing);  // asked first: the server works while the page draws
+  view.load(body, previous);
+  timing.view = performance.now() - started;
+  state.timings.push(timing);
   showCounts();
   showMarks();
   showNumbers();
   showDownloads();
-  for (const id of ["certificate-status", "certificate", "pattern", "domain"]) $(id).classList.add("stale");
-  follow(body, started, timing);
 }
 
-// What follows a change: the first contact, the coarse certificate and pattern (within a second), the
-// regression domain, then the full certificate and pattern. A newer change aborts what is left of these
-// requests, and the server stops their work.
+// What follows a change: first the coarse certificate and pattern (within a second) and the first contact,
+// which the quick lane answers in this order; then the regression domain and the full certificate and pattern,
+// which the heavy lane computes side by side. A newer change aborts what is left of these requests, and the
+// server stops their work.
 async function follow(body, started, timing) {
   details?.abort();
   const controller = details = new AbortController();
@@ -263,44 +265,32 @@ async function follow(body, started, timing) {
       return json ? await r.json() : await r.text();
     } catch { return null; }
   };
-  if (body.kind === "vault") {  // where the fold slider stops
-    const found = await get("contact");
-    if (!current()) return;
-    if (found && !found.error) {
-      state.contact = found.first_contact;
-      const last = body.motion.angles.at(-1);
-      $("fold").max = state.contact ?? last;
-      if (view.angle > Number($("fold").max)) view.setAngle(Number($("fold").max));
-      showMarks();
-      showNumbers();
-    }
-  }
-  const coarse = await get("certificate?coarse=true");
-  if (!current()) return;
-  showCertificate(coarse);
-  timing.certificate = performance.now() - started;
-  if (body.kind !== "crease") {
-    const sketch = await get("pattern?coarse=true");
-    if (!current()) return;
-    showPattern(sketch);
-    timing.pattern = performance.now() - started;
-    const domain = await get("domain.svg", false);
-    if (!current()) return;
-    if (domain !== null && typeof domain === "string") images($("domain"), [domain]);
-  } else {
+  const when = (promise, then) => promise.then((found) => { if (current()) then(found); });
+  const sheets = body.kind !== "crease";
+  if (!sheets) {
     $("pattern").replaceChildren(); $("domain").replaceChildren();
     $("pattern-status").textContent = "(for tubes, blocks and vaults)";
   }
-  const full = coarse?.coarse ? await get("certificate") : coarse;
+  const first = [
+    when(get("certificate?coarse=true"), (found) => { showCertificate(found); timing.certificate = performance.now() - started; }),
+    sheets && when(get("pattern?coarse=true"), (found) => { showPattern(found); timing.pattern = performance.now() - started; }),
+    body.kind === "vault" && when(get("contact"), (found) => {  // where the fold slider stops
+      if (!found || found.error) return;
+      state.contact = found.first_contact;
+      $("fold").max = state.contact ?? body.motion.angles.at(-1);
+      if (view.angle > Number($("fold").max)) view.setAngle(Number($("fold").max));
+      showMarks();
+      showNumbers();
+    }),
+  ];
+  await Promise.all(first);
   if (!current()) return;
-  showCertificate(full);
-  timing.full_certificate = performance.now() - started;
-  if (body.kind !== "crease") {
-    const pattern = await get("pattern");
-    if (!current()) return;
-    showPattern(pattern);
-    timing.full_pattern = performance.now() - started;
-  }
+  await Promise.all([
+    sheets && when(get("domain.svg", false), (found) => { if (typeof found === "string") images($("domain"), [found]); }),
+    when(get("certificate"), (found) => { showCertificate(found); timing.full_certificate = performance.now() - started; }),
+    sheets && when(get("pattern"), (found) => { showPattern(found); timing.full_pattern = performance.now() - started; }),
+  ]);
+  if (current()) timing.settled = performance.now() - started;
 }
 
 function showCertificate(found) {
@@ -311,7 +301,7 @@ function showCertificate(found) {
   } else {
     const checks = found.checks, passed = checks.filter((c) => c.passed).length;
     const unresolved = checks.filter((c) => c.status === "insufficient resolution").length;
-    const where = found.coarse ? ` <span class="coarse">(coarse: ${found.samples} samples; the full certificate follows)</span>` : ` at ${found.samples} samples`;
+    const where = found.coarse ? ` <span class="coarse">(coarse: ${found.samples} samples, flat and at the design angle; the full certificate follows)</span>` : ` at ${found.samples} samples, in ${found.fold_angles.length} frames`;
     status.innerHTML = `<span class="${passed === checks.length ? "ok" : found.coarse && passed + unresolved === checks.length ? "coarse" : "bad"}">${passed}/${checks.length} checks pass</span>${where}`;
     $("certificate").innerHTML = checks.map((c) => {
       const kind = c.passed ? "" : c.status === "fail" ? "fail" : "unresolved";
