@@ -162,7 +162,7 @@ class Request:
 
     @property
     def key(self) -> str:
-        """The design's content (:func:`_key`): what a worker rebuilds it from."""
+        """The design's content as canonical JSON: what a worker rebuilds it from."""
         return _key(self.design)
 
 

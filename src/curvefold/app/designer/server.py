@@ -72,8 +72,9 @@ STATIC = Path(__file__).with_name("static")
 VENDOR = STATIC / "vendor"
 #: Files the page imports from :data:`VENDOR`.
 VENDOR_FILES = ("three.module.js", "three.core.js", "addons/controls/OrbitControls.js")
-#: Seconds a heavy request may take unless ``--time-limit`` says otherwise; a quick one takes at most :data:`QUICK_TIME_LIMIT`.
+#: Seconds a heavy request may take unless ``--time-limit`` says otherwise.
 TIME_LIMIT = SERVER_SPECS[1].default
+#: Seconds a quick request may take.
 QUICK_TIME_LIMIT = 30.0
 #: Resident bytes a worker may hold beyond its job's estimate (its own interpreter and caches); a worker
 #: holding more than this after a job is replaced by a fresh one.
