@@ -4,11 +4,12 @@
 
 Each run checks what its extra promises, from the installed package (run it outside the
 source tree, so that ``import curvefold`` finds the wheel's copy): ``core`` builds a tube
-and its FOLD file and checks them without matplotlib or any other extra installed; ``export`` writes the 3D models and crease
-patterns; ``rhino`` writes a 3DM file and reads it back; ``designer`` serves the page with its
-bundled three.js and answers the JSON API; ``dask`` runs a sweep on a local cluster of two
-workers; ``dev`` runs all of these. Prints one line per check and exits non-zero on the first
-failure.
+and its FOLD file and checks them without matplotlib or any other extra installed, and
+writes an output folder, its pictures left out with one line saying so; ``export`` writes
+the 3D models and crease patterns; ``rhino`` writes a 3DM file and reads it back;
+``designer`` serves the page with its bundled three.js and answers the JSON API; ``dask``
+runs a sweep on a local cluster of two workers; ``dev`` runs all of these. Prints one line
+per check and exits non-zero on the first failure.
 """
 
 import importlib.metadata
@@ -72,6 +73,15 @@ def core() -> None:
 def core_alone() -> None:
     core()
     check(importlib.util.find_spec("matplotlib") is None, "the core runs without matplotlib")
+    with tempfile.TemporaryDirectory() as tmp:
+        summary = run("tube", "--formats", "fold", "--out", f"{tmp}/tube")
+        folder = Path(f"{tmp}/tube")
+        names = {p.name for p in folder.iterdir()}
+        check({"tube.fold", "sheets", "report.json", "report.html"} <= names and not any(n.endswith(".png") for n in names),
+              f"without matplotlib, curvefold tube --out writes the folder but the pictures: {sorted(names)}")
+        said = [line.strip() for line in summary.splitlines() if "pictures left out" in line]
+        check(len(said) == 1 and "pip install 'curvefold[plot]'" in said[0], f"and one line says which pictures and which extra: {said}")
+        check(json.loads(run("check", str(folder / "tube.fold"), "--json"))["ok"], "curvefold check passes its FOLD file")
 
 
 def export() -> None:

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import json
 import os
+import subprocess
+import sys
 import warnings
 from importlib.metadata import entry_points
 
@@ -143,7 +145,7 @@ def test_arch_checks_its_flags_with_the_vault_specs(tmp_path):
 def test_file_keys_and_flags_are_named_as_typed(tmp_path):
     (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 5.0\n')
     r = run("vault", "design.toml", "--json", cwd=tmp_path)
-    assert one_line(r) == "curvefold: error: design.toml: [vault] a must be in [0, 3), got 5.0"
+    assert one_line(r) == "curvefold: error: design.toml: [vault] a must be in [0, 1.2707093728) (no arch stands beyond it: Eq. (20) has no root next to π there), got 5.0"
     (tmp_path / "design.toml").write_text('kind = "vault"\n[vault]\na = 0.4\n')
     r = run("vault", "design.toml", "--a", "0.5", "--samples", "200000", "--tubes", "20", "--json", cwd=tmp_path)
     assert one_line(r).startswith("curvefold: error: design.toml --samples 200000 --a 0.5 --tubes 20: this job needs about")
@@ -236,6 +238,34 @@ def test_every_family_has_a_job_and_every_writer_loads():
     assert set(products._FAMILY_JOBS) == set(FAMILIES)
     for f in FORMATS.values():
         assert callable(f.load_writer()) and f.extension == "." + f.name
+        assert f.media_type.count("/") == 1  # served by the designer as the registry says
+
+
+@pytest.mark.parametrize("family", ["pattern", "model"])
+def test_a_familys_writer_calls_the_writer_the_registry_names_for_each_format(tmp_path, monkeypatch, family):
+    """write_pattern and write_3d prepare once and hand each format to its registry writer, in the order asked:
+    no branch on format names of their own."""
+    from curvefold.io.formats import FileFormat, formats_of
+    from curvefold.io.layout import Layout
+    from curvefold.io.models import FoldedModel, write_3d
+    from curvefold.io.pattern import write_pattern
+
+    calls = []
+
+    def recorder(self):
+        def write(path, prepared, **options):
+            calls.append((self.name, path.name, type(prepared).__name__))
+            return path
+        return write
+
+    monkeypatch.setattr(FileFormat, "load_writer", recorder)
+    structure = build(default_design("tube").overrides(samples=41)).structure
+    asked = tuple(reversed(formats_of(family)))
+    writer = write_pattern if family == "pattern" else write_3d
+    written = writer(tmp_path / "t", structure, formats=asked)
+    prepared = (Layout if family == "pattern" else FoldedModel).__name__
+    assert calls == [(name, f"t{FORMATS[name].extension}", prepared) for name in asked]
+    assert [p.name for p in written] == [name for _, name, _ in calls]
 
 
 def test_unknown_formats_are_refused_not_skipped():
@@ -243,6 +273,61 @@ def test_unknown_formats_are_refused_not_skipped():
     with pytest.raises(InputError, match=r"^formats: unknown format 'png' \(allowed: svg, dxf"):
         products.jobs(built, ["png"])
     assert [label for label, _ in products.jobs(built, ())] == ["pictures"]
+
+
+# --------------------------------------------------------------------------------------------
+# Job processes: the files were written by a multiprocessing pool, whose terminate() hung
+# about once in 40 signals (its task thread blocked sending a job into a pipe no stopped
+# worker read), so an interrupted run never exited.
+
+
+def _write(name: str, folder):
+    (folder / name).write_text(name)
+    return [folder / name]
+
+
+def _fail(folder):
+    raise InputError("this job refuses")
+
+
+def _die(folder):
+    os._exit(3)
+
+
+def _sleep(folder):
+    import time
+
+    time.sleep(60)
+    return []
+
+
+def test_jobs_run_in_processes_and_come_back_in_job_order(tmp_path):
+    from functools import partial
+
+    jobs = [(f"job {k}", partial(_write, f"f{k}")) for k in range(5)]
+    done = list(products.run_jobs(jobs, tmp_path, workers=2))
+    assert [label for label, _, _ in done] == [label for label, _ in jobs]
+    assert [files for _, files, _ in done] == [[tmp_path / f"f{k}"] for k in range(5)]
+    assert sorted(os.listdir(tmp_path)) == [f"f{k}" for k in range(5)]
+
+
+def test_a_job_that_fails_or_dies_is_an_error_in_the_caller(tmp_path):
+    with pytest.raises(InputError, match="this job refuses"):
+        list(products.run_jobs([("a", _fail), ("b", _fail)], tmp_path, workers=2))
+    with pytest.raises(InternalError, match="the job writing the b ended with exit code 3"):
+        list(products.run_jobs([("a", lambda folder: []), ("b", _die)], tmp_path, workers=2))
+
+
+def test_closing_the_jobs_kills_the_processes_still_running(tmp_path):
+    import psutil
+
+    before = set(psutil.Process().children())
+    running = products.run_jobs([("a", _sleep), ("b", _sleep), ("c", _sleep)], tmp_path, workers=2)
+    children = set(psutil.Process().children()) - before
+    assert len(children) == 2  # two at a time, the third waits
+    running.close()
+    _, alive = psutil.wait_procs(children, timeout=10)
+    assert alive == [] and set(psutil.Process().children()) <= before
 
 
 @pytest.mark.parametrize("fmt", ["svg", "fold", "obj", "gif"])
@@ -283,3 +368,51 @@ def test_python_m_curvefold_reports_a_user_error_in_one_line(tmp_path):
     r = run_subprocess("vault", "--samples", "10", cwd=tmp_path)
     assert r.returncode == 2 and r.stdout == ""
     assert r.stderr.strip() == "curvefold: error: curvefold vault --samples 10: samples must be ≥ 21 for a vault (the apex is the middle sample), got 10"
+
+
+# --------------------------------------------------------------------------------------------
+# An install without the plot extra: the command line in a fresh interpreter where matplotlib
+# cannot be imported (None in sys.modules makes every import of it fail, and find_spec say so)
+
+
+_WITHOUT_MATPLOTLIB = "import sys; sys.modules['matplotlib'] = None; from curvefold.app.cli import run; run()"
+
+
+def _without_matplotlib(*argv: str, cwd) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-c", _WITHOUT_MATPLOTLIB, *argv], capture_output=True, text=True, cwd=cwd, timeout=300)
+
+
+def test_without_matplotlib_the_folder_is_written_and_one_line_says_which_pictures_are_left_out(tmp_path):
+    r = _without_matplotlib("tube", "--samples", "41", "--formats", "fold", "--out", "t", cwd=tmp_path)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    note = "pictures left out: regression-domain.png, width-proportion.png, tube.png (they need matplotlib: pip install 'curvefold[plot]')"
+    assert [line.strip() for line in r.stdout.splitlines() if "left out" in line] == [note]
+    folder = tmp_path / "t"
+    files = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
+    assert {"tube.fold", "report.json", "report.html", "sheets/tube-1-sheet-A.fold"} <= set(files), files
+    assert not [f for f in files if f.endswith(".png")]
+    report = json.loads((folder / "report.json").read_text())
+    assert report["notes"] == [note] and not [c for c in report["certificate"] if c["status"] == "fail"]
+    assert f"<p>{note}</p>".replace("'", "&#x27;") in (folder / "report.html").read_text()
+    r = _without_matplotlib("vault", "--samples", "41", "--tubes", "2", "--formats", "obj", "--json", "--out", "v", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["notes"] == ["pictures left out: regression-domain.png, width-proportion.png, vault.png, sections.png, "
+                                             "folding-motion.png (they need matplotlib: pip install 'curvefold[plot]')"]
+    r = _without_matplotlib("atlas", "--p-xy", "0.75", "--a", "0.3,1.5", "--samples", "41", "--workers", "1", "--out", "a", cwd=tmp_path)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    assert r.stdout.splitlines()[1:] == ["  pictures left out: atlas.png, atlas.svg (they need matplotlib: pip install 'curvefold[plot]')"]
+    assert sorted(os.listdir(tmp_path / "a")) == [".curvefold-output", "atlas.csv", "atlas.json"]
+
+
+def test_without_matplotlib_a_format_that_needs_it_is_refused_before_any_work_naming_the_extra(tmp_path):
+    r = _without_matplotlib("tube", "--samples", "41", "--formats", "fold,gif", "--out", "t", cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr.strip() == "curvefold: error: formats: gif needs matplotlib: pip install 'curvefold[plot]'"
+    assert os.listdir(tmp_path) == []
+
+
+def test_with_matplotlib_the_pictures_are_drawn_and_nothing_is_left_out(tmp_path):
+    pytest.importorskip("matplotlib")
+    r = run("tube", "--samples", "41", "--formats", "fold", "--out", "t", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    payload = json.loads(r.stdout)
+    assert "notes" not in payload and {"regression-domain.png", "width-proportion.png", "tube.png"} <= set(payload["files"])

@@ -62,18 +62,18 @@ def listing(path: Path) -> list[str]:
         (["tube", "--samples", "8"], r"samples must be an integer in \[9, 200000\] \(the certificate's differences need 9"),
         (["block", "--samples", "5"], r"samples must be an integer in \[9, 200000\]"),
         (["crease", "--samples", "8"], r"samples must be an integer in \[9, 200000\]"),
-        (["arch", "--a", "5000"], r"--a 5000: a must be in \[0, 3\), got 5000$"),
-        (["arch", "--a", "1e154"], r"--a 1e154: a must be in \[0, 3\), got 1e154$"),
-        (["arch", "--a", "1e10", "--json"], r"a must be in \[0, 3\), got 1e10$"),  # was exit 0 with an invented root
-        (["arch", "--a", "1e5", "--json"], r"a must be in \[0, 3\), got 1e5$"),
-        (["arch", "--a", "-1e-3"], r"--a -1e-3: a must be in \[0, 3\), got -1e-3$"),  # was "expected one argument"
-        (["arch", "--a", "2"], r"no standing arch for a = 2: .* only for a < 1\.2707"),
+        (["arch", "--a", "5000"], r"--a 5000: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 5000$"),
+        (["arch", "--a", "1e154"], r"--a 1e154: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 1e154$"),
+        (["arch", "--a", "1e10", "--json"], r"a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 1e10$"),  # was exit 0 with an invented root
+        (["arch", "--a", "1e5", "--json"], r"a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 1e5$"),
+        (["arch", "--a", "-1e-3"], r"--a -1e-3: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got -1e-3$"),  # was "expected one argument"
+        (["arch", "--a", "2"], r"--a 2: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 2$"),
         (["arch", "--a", "1.2", "--fold-angle", "0.1"], r"proportion change .* overflows for a = 1\.2 at fold angle 2α = 0\.1°: the fold angle must be at least 0\.481°$"),
         (["arch", "--a", "nan"], r"a must be a finite number, got nan"),
         (["vault", "--radius", "1e308"], r"--radius 1e308: radius must be in \[0\.001, 1000000\] model units"),  # blamed "length"
         (["vault", "--radius", "1e-308"], r"--radius 1e-308: radius must be in \[0\.001, 1000000\]"),  # blamed "count (tubes)"
         (["vault", "--tubes", "0"], r"--tubes 0: tubes must be an integer in \[1, 1000\]"),
-        (["atlas", "--a", "5000"], r"--a 5000: a must be in \[0, 3\), got 5000"),
+        (["atlas", "--a", "5000"], r"--a 5000: a must be in \[0, 2\.5414187456\] \(up to twice 1\.2707, where arches stop standing\), got 5000"),
         (["atlas", "--a", "nan:1:3"], r"--a nan:1:3: a must be a finite number, got nan"),
         (["atlas", "--a", "0:inf:3"], r"--a 0:inf:3: a must be a finite number, got inf"),
         (["atlas", "--a", "0:1:201"], r"--a 0:1:201: count must be an integer in \[1, 200\], got 201"),
@@ -237,8 +237,8 @@ def test_a_kernel_file_is_not_read_past_its_size(tmp_path):
 
 
 def test_files_past_the_size_limits_are_refused_unread(tmp_path):
-    from curvefold.app.design import MAX_CSV_BYTES
-    from curvefold.io.fold import MAX_FOLD_BYTES
+    from curvefold.io.columns import MAX_CSV_BYTES
+    from curvefold.io.fold_reading import MAX_FOLD_BYTES
 
     with open(tmp_path / "big.fold", "wb") as f:  # sparse: no disk used
         f.truncate(MAX_FOLD_BYTES + 1)
@@ -686,4 +686,4 @@ def test_the_console_script_keeps_the_promise(tmp_path):
     if not script.exists():
         pytest.skip("the console script is not installed next to this interpreter")
     r = subprocess.run([str(script), "arch", "--a", "1e10", "--json"], capture_output=True, text=True, timeout=60)
-    refused(r, r"^curvefold: error: --a 1e10: a must be in \[0, 3\), got 1e10$")
+    refused(r, r"^curvefold: error: --a 1e10: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 1e10$")

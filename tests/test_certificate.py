@@ -2,7 +2,7 @@
 
 Each damage is a plausible bug in a builder, patched in for one test: the design is built
 with it (at both resolutions the error model compares), then certified. Every check of
-:data:`curvefold.analysis.certificate.CHECKS` appears in :data:`DAMAGES` at least once.
+:data:`curvefold.analysis.checks.CHECKS` appears in :data:`DAMAGES` at least once.
 """
 
 from __future__ import annotations
@@ -17,8 +17,9 @@ import curvefold.geometry.lattice as lattice_module
 import curvefold.geometry.panels as panels_module
 import curvefold.vault.assembly as assembly
 from curvefold import Crease, InputError, Lattice, SpaceCurve, Structure
-from curvefold.analysis import certificate
-from curvefold.analysis.certificate import CHECKS, certify
+from curvefold.analysis.certificate import certify
+from curvefold.analysis.checks import CHECKS
+from curvefold.analysis.frames import Frame, Shared
 from curvefold.figures.report import report_html
 from curvefold.geometry.curve import gauss_nodes
 from curvefold.geometry.panels import PanelLattice, PanelPattern
@@ -87,11 +88,11 @@ def test_residuals_fall_at_the_order_of_their_model():
     """The error model's premise, measured: from 81 to 161 samples every residual of a correct
     tube falls by 2^p (p the check's order) — unless it is at its rounding floor."""
     orders = {spec.name: spec.order for spec in CHECKS}
-    coarse, fine = (certificate.Shared(tube(n)) for n in (81, 161))
+    coarse, fine = (Shared(tube(n)) for n in (81, 161))
     for spec in CHECKS:
         if spec.scope not in ("crease", "frame"):
             continue
-        a, b = (spec.measure(certificate._frame(shared, None, 60.0)) for shared in (coarse, fine))
+        a, b = (spec.measure(Frame.at(shared, 60.0)) for shared in (coarse, fine))
         if b.worst[0] < 10 * b.floor:
             continue  # at rounding: the rounding floor is what it is compared with
         order = np.log2(a.worst[0] / b.worst[0])

@@ -6,7 +6,7 @@ from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, RegressionError, SpaceCurve
 from curvefold.analysis.measure import derivative, developability_residual
-from curvefold.geometry.crease import QUADRANTS, ruling_vectors
+from curvefold.geometry.crease import QUADRANTS, check_fold_angle, check_fold_angles, half_angle, ruling_vectors
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.4 * np.cos(1.5 * s)  # noqa: E731
@@ -102,6 +102,22 @@ def test_pattern_bad_input(kwargs, match):
     args = dict(kappa_2d=1.0, beta_left=90.0, beta_right=90.0, length=1.0) | kwargs
     with pytest.raises(InputError, match=match):
         Crease.from_pattern(args.pop("kappa_2d"), args.pop("beta_left"), args.pop("beta_right"), args.pop("length"), **args)
+
+
+@pytest.mark.parametrize("value", ["ninety", None, [90.0, 45.0]])
+def test_a_fold_angle_that_is_not_a_number_is_refused(value):
+    with pytest.raises(InputError, match=r"^fold_angle must be a number, got "):
+        half_angle(value)
+    with pytest.raises(InputError, match=r"^fold_angle must be a number, got "):
+        check_fold_angle(value)
+
+
+def test_fold_angles_are_checked_and_given_in_degrees():
+    assert check_fold_angles(np.radians([0.0, 60.0]), degrees=False).tolist() == pytest.approx([0.0, 60.0], abs=1e-12)
+    assert check_fold_angle(60.0) == 60.0 and check_fold_angle(0.0, allow_flat=True) == 0.0
+    for values, match in (([], "non-empty"), ([[1.0, 2.0]], "non-empty"), (["x"], "a sequence of numbers"), ([0.0, 180.0], r"\[0°, 180°\)")):
+        with pytest.raises(InputError, match=rf"^motion must .*{match}"):
+            check_fold_angles(values, name="motion")
 
 
 def test_fold_angle_function_out_of_range_names_location(curve):

@@ -345,8 +345,8 @@ def test_overrides_change_kind():
         # out of range
         ('kind = "vault"\n[vault]\nfold_angle = 180.0', r"^design\.toml: \[vault\] fold_angle must be in \(0, 180\) degrees, got 180\.0$"),
         ('kind = "vault"\n[vault]\nfold_angle = 0', r"fold_angle must be in \(0, 180\) degrees, got 0\.0"),
-        ('kind = "vault"\n[vault]\na = 3.0', r"\[vault\] a must be in \[0, 3\), got 3\.0"),
-        ('kind = "vault"\n[vault]\na = -0.1', r"a must be in \[0, 3\), got -0\.1"),
+        ('kind = "vault"\n[vault]\na = 3.0', r"\[vault\] a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 3\.0"),
+        ('kind = "vault"\n[vault]\na = -0.1', r"a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got -0\.1"),
         ('kind = "vault"\n[vault]\np_xy = 100.5', r"p_xy must be in \(0, 100\], got 100\.5"),
         ('kind = "vault"\n[vault]\nwidth = 0', r"width must be in \(0, 10\], got 0\.0"),
         ('kind = "vault"\n[vault]\nradius = -1', r"\[vault\] radius must be in \[0\.001, 1000000\] model units \(numerical range\), got -1\.0"),

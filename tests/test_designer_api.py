@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import io
 import json
+import re
 import threading
 import tomllib
 import urllib.parse
@@ -138,12 +139,12 @@ def test_the_fold_slider_stops_at_the_first_contact(url):
 
 #: Requests a hostile or careless client might send: each gets one line and 422 (404 for a path), never 500.
 HOSTILE = [
-    ("api/vault/preview?a=5", "a must be in [0, 3), got 5.0", "a"),
+    ("api/vault/preview?a=5", "a must be in [0, 1.2707093728) (no arch stands beyond it: Eq. (20) has no root next to π there), got 5.0", "a"),
     ("api/vault/preview?a=nan", "a must be a finite number, got nan", "a"),
     ("api/vault/preview?a=1e999", "a must be a finite number, got inf", "a"),
     ("api/vault/preview?a=" + "9" * 5000, "a is longer than 2000 characters", "a"),
     ("api/vault/preview?a=0.3&a=0.4", "a is given twice", "a"),
-    ("api/vault/preview?a=1.3", "no standing arch for a = 1.3", "a"),
+    ("api/vault/preview?a=1.3", "a must be in [0, 1.2707093728) (no arch stands beyond it", "a"),
     ("api/vault/preview?width=0.5&tubes=3", "tubes must be ≤ 1", "tubes"),
     ("api/vault/preview?width=9", "width = 9 is past regression for the base tube", "width"),
     ("api/vault/preview?tubes=-1", 'tubes must be an integer in [1, 1000] or "max", got -1', "tubes"),
@@ -238,3 +239,13 @@ def test_a_taken_port_is_one_line():
                                  ("--workers", "0", "workers must be an integer in [1, 16], got 0")):
         result = run("designer", "--no-browser", flag, value)
         assert (result.returncode, result.stderr) == (2, f"curvefold: error: {flag} {value}: {message}\n")
+
+
+def test_pattern_pages_come_in_page_order_from_the_writer():
+    """The crease pattern's pages as the writer returns them, page 1 first (no file names read back)."""
+    cells = json.dumps([[0, 0], [0, 1], [1, 1], [1, 2], [2, 2], [2, 3]])
+    design = api.request_design("block", [("samples", "51"), ("page", "A5"), ("scale", "27"), ("cells", cells)])
+    pages = api.pattern_pages(design)
+    count = len(pages)
+    assert count >= 10  # p10 would sort before p2 by name
+    assert [re.search(r"page (\d+) of (\d+)</title>", page).groups() for page in pages] == [(str(i), str(count)) for i in range(1, count + 1)]

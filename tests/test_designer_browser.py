@@ -22,7 +22,7 @@ from _designer import CHROMIUM, CHROMIUM_ARGS, need
 pytest.importorskip("fastapi")
 from curvefold.analysis.foldcheck import check_fold  # noqa: E402
 from curvefold.app.designer import server  # noqa: E402
-from curvefold.io.fold import read_fold  # noqa: E402
+from curvefold.io.fold_reading import read_fold  # noqa: E402
 
 #: A light vault, so that downloads at full resolution stay quick.
 LIGHT = "?kind=vault&samples=201&tubes=4"
@@ -84,8 +84,8 @@ def test_a_slider_changes_the_numbers_and_the_view(browser):
     before, shown = canvas(page), page.inner_text("#numbers")
     # not blank: the vault, the ground and the background make many colours
     assert len(np.unique(before.reshape(-1, 3), axis=0)) > 100 and before.std() > 10
-    press(page, "ArrowRight", 30)  # 30 steps of 3/400: a = 0.3 → 0.525
-    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.525) < 1e-9")
+    press(page, "ArrowRight", 30)  # 30 steps of 1.2/400 (the typical span of a): a = 0.3 → 0.39
+    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.39) < 1e-9")
     page.wait_for_timeout(300)
     after = canvas(page)
     assert page.inner_text("#numbers") != shown
@@ -194,18 +194,18 @@ def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp
 def test_undo_and_redo_walk_the_browser_history(browser):
     page = open_page(browser)
     press(page, "ArrowRight", 1)  # a key step of a slider: one step of the history (a drag makes one too)
-    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.3075) < 1e-9")
+    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.303) < 1e-9")
     page.fill('.field[data-key="p_xy"] input.value', "1.1")  # typing: one step when the value is committed
     page.dispatch_event('.field[data-key="p_xy"] input.value', "change")
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 1.1")
     page.click("#undo")
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 0.75")
-    assert abs(numbers(page)["a"] - 0.3075) < 1e-9 and page.input_value('.field[data-key="p_xy"] input.value') == "0.75"
+    assert abs(numbers(page)["a"] - 0.303) < 1e-9 and page.input_value('.field[data-key="p_xy"] input.value') == "0.75"
     page.evaluate("history.back()")  # the browser's own Back
     page.wait_for_function("window.curvefold.preview.numbers.a === 0.3")
     page.click("#redo")
-    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.3075) < 1e-9")
-    assert "a=0.3075" in page.url and page.errors == []
+    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.303) < 1e-9")
+    assert "a=0.303" in page.url and page.errors == []
 
 
 def projected_inside(page) -> bool:

@@ -97,9 +97,10 @@ def test_link_check_finds_every_kind_of_broken_link(tmp_path):
 # -- the distribution ---------------------------------------------------------------------------------
 
 
-def test_a_build_without_the_designers_javascript_fails_and_says_how_to_make_it(tmp_path):
+def test_a_build_without_the_designers_javascript_or_npm_fails_and_says_how_to_make_it(tmp_path, monkeypatch):
     setup = _load(ROOT / "setup.py", "curvefold_setup")
-    with pytest.raises(SystemExit, match=r"three\.module\.js.*scripts/build-designer\.sh"):
+    monkeypatch.setattr(setup.shutil, "which", lambda name: None)  # no npm on PATH
+    with pytest.raises(SystemExit, match=r"three\.module\.js\) and is made with npm, which is not on PATH.*scripts/build-designer\.sh"):
         setup.require_bundle(tmp_path)
     for name in setup.VENDOR_FILES[:-1]:  # all but the licence: still refused
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
@@ -112,6 +113,53 @@ def test_a_build_without_the_designers_javascript_fails_and_says_how_to_make_it(
     assert set(server.VENDOR_FILES) <= set(setup.VENDOR_FILES)  # the build checks every file the page imports
     need(server.missing_bundle() is None, "the designer's JavaScript is not built (scripts/build-designer.sh)")
     setup.require_bundle()  # the package as built here passes
+
+
+def _fake_npm(folder: Path) -> Path:
+    """An ``npm`` that records its arguments and, for ``ci --prefix DIR``, puts marked copies of three's files under DIR."""
+    script = folder / "npm"
+    script.write_text("#!/bin/sh\n"
+                      'echo "$@" > "$(dirname "$0")/npm-args"\n'
+                      'three="$3/node_modules/three"\n'
+                      'mkdir -p "$three/build" "$three/examples/jsm/controls"\n'
+                      'for f in build/three.module.js build/three.core.js examples/jsm/controls/OrbitControls.js LICENSE; do echo "npm: $f" > "$three/$f"; done\n')
+    script.chmod(0o755)
+    return script
+
+
+def test_a_build_without_the_designers_javascript_makes_it_with_npm(tmp_path, monkeypatch):
+    """Where npm is, the build runs npm ci in frontend/ (the pinned versions) and copies each file where the page imports it."""
+    setup = _load(ROOT / "setup.py", "curvefold_setup")
+    root, vendor = tmp_path / "clone", tmp_path / "clone" / "vendor"
+    (root / "frontend").mkdir(parents=True)
+    shutil.copy(ROOT / "frontend" / "package-lock.json", root / "frontend")
+    npm = _fake_npm(tmp_path)
+    monkeypatch.setattr(setup.shutil, "which", lambda name: str(npm) if name == "npm" else None)
+    setup.require_bundle(vendor, root=root)
+    assert (tmp_path / "npm-args").read_text().split()[:3] == ["ci", "--prefix", str(root / "frontend")]
+    assert {name: (vendor / name).read_text().strip() for name in setup.VENDOR_FILES} == {
+        name: f"npm: {setup.FROM_NPM[name]}" for name in setup.VENDOR_FILES}
+    (tmp_path / "npm-args").unlink()
+    setup.require_bundle(vendor, root=root)  # complete: npm is not run again
+    assert not (tmp_path / "npm-args").exists()
+    shutil.rmtree(root / "frontend")  # an sdist has no frontend/ (it carries the files): without them it is refused
+    (vendor / "LICENSE").unlink()
+    with pytest.raises(SystemExit, match=r"LICENSE"):
+        setup.require_bundle(vendor, root=root)
+
+
+@pytest.mark.slow
+def test_npm_builds_the_same_javascript_the_package_carries(tmp_path):
+    """The real npm ci from the lock file gives, byte for byte, the files the designer serves."""
+    setup = _load(ROOT / "setup.py", "curvefold_setup")
+    need(shutil.which("npm") is not None, "npm is not installed")
+    need(not setup.missing(), "the designer's JavaScript is not built (scripts/build-designer.sh)")
+    (tmp_path / "frontend").mkdir()
+    for name in ("package.json", "package-lock.json"):
+        shutil.copy(ROOT / "frontend" / name, tmp_path / "frontend")
+    setup.require_bundle(tmp_path / "vendor", root=tmp_path)
+    for name in setup.VENDOR_FILES:
+        assert (tmp_path / "vendor" / name).read_bytes() == (setup.VENDOR / name).read_bytes(), name
 
 
 def test_the_version_has_one_source():
@@ -178,7 +226,7 @@ def test_rhino_script_downloads_a_design_that_rhino_reads(designer_url, rhino_sc
 
 
 def test_rhino_script_reports_a_refused_parameter_and_a_missing_designer(designer_url, rhino_script, tmp_path):
-    with pytest.raises(rhino_script.DesignError, match=r"^a must be in \[0, 3\), got 5") as refused:
+    with pytest.raises(rhino_script.DesignError, match=r"^a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 5") as refused:
         rhino_script.fetch("vault", {"a": 5}, server=designer_url, folder=str(tmp_path))
     assert refused.value.key == "a"
     with socket.socket() as s:  # a port nothing listens on

@@ -26,8 +26,8 @@ from shapely.ops import unary_union
 from _sheets import annular_sheet, tube_sheets, vault_sheets
 from curvefold.geometry.mesh import Mesh
 from curvefold.geometry.sheets import PatternSheet
+from curvefold.io import labels, pattern, planar
 from curvefold.io import layout as layout_module
-from curvefold.io import pattern
 from curvefold.io.pattern import (
     DEFAULT_LAYERS,
     LAYERS,
@@ -37,6 +37,8 @@ from curvefold.io.pattern import (
     write_pdf,
     write_svg,
 )
+from curvefold.io.planar import polyline_segments
+from curvefold.io.tabs import tab_fits, tab_outline, tab_pieces
 from curvefold.kernel.errors import InputError
 
 NS = {
@@ -401,52 +403,53 @@ def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
     seam = 8.0 * ring
 
     def sheet(seam):  # the sheet's outline: radii 8 to 14
-        return layout_module._segments([(np.concatenate([seam, 14.0 * ring[::-1]]), True)])
+        return polyline_segments([(np.concatenate([seam, 14.0 * ring[::-1]]), True)])
 
     outline = sheet(seam)
     taper, tol = np.radians(60.0), 1e-9
-    first, second = (layout_module._tab(piece, 6.0, taper) for piece in (seam[:3], seam[2:]))
-    assert layout_module._tab_fits(first, outline, [], tol) and layout_module._tab_fits(second, outline, [], tol)
+    first, second = (tab_outline(piece, 6.0, taper) for piece in (seam[:3], seam[2:]))
+    assert tab_fits(first, outline, [], tol) and tab_fits(second, outline, [], tol)
     assert_allclose(first[1][-2:][::-1], second[1][:2], atol=1e-12)  # the same segment, both ways
-    assert not layout_module._tab_fits(second, outline, [first[0]], tol)
+    assert not tab_fits(second, outline, [first[0]], tol)
     # split in the middle of a segment instead, the two tabs leave 60° between their tapers
-    pieces = layout_module._tab_pieces(seam, 1e3, 15.0)  # two pieces (at least 15 long, of 32)
+    pieces = tab_pieces(seam, 1e3, 15.0)  # two pieces (at least 15 long, of 32)
     assert len(pieces) == 2
     middles = 0.5 * (seam[:-1] + seam[1:])
     assert np.linalg.norm(middles - pieces[0][-1], axis=1).min() < 1e-12
-    a, b = (layout_module._tab(p, 6.0, taper) for p in pieces)
+    a, b = (tab_outline(p, 6.0, taper) for p in pieces)
     split = sheet(np.concatenate([pieces[0][:-1], pieces[1]]))
-    assert layout_module._tab_fits(a, split, [], tol) and layout_module._tab_fits(b, split, [a[0]], tol)
+    assert tab_fits(a, split, [], tol) and tab_fits(b, split, [a[0]], tol)
     # damaged tabs: an outer corner moved onto the seam (at a vertex or between), two outer
     # corners swapped (self-crossing), the whole tab moved into the sheet
     polygon, cut = first
     for point in (seam[3], 0.5 * (seam[3] + seam[4])):
         grazing = cut.copy()
         grazing[2] = point
-        assert not layout_module._tab_fits((polygon, grazing), outline, [], tol)
+        assert not tab_fits((polygon, grazing), outline, [], tol)
     crossed = cut.copy()
     crossed[[1, -2]] = crossed[[-2, 1]]
-    assert not layout_module._tab_fits((polygon, crossed), outline, [], tol)
+    assert not tab_fits((polygon, crossed), outline, [], tol)
     across = cut.copy()
     across[2] = 20.0 * ring[1]  # a corner beyond the sheet: the cut runs across it
-    assert not layout_module._tab_fits((polygon, across), outline, [], tol)
+    assert not tab_fits((polygon, across), outline, [], tol)
     inward = (cut - seam[1]) * 0.1 + 11.0 * ring[1]
-    assert not layout_module._tab_fits((polygon, inward), outline, [], tol)
+    assert not tab_fits((polygon, inward), outline, [], tol)
     # ... or a tab that would cover a piece of the sheet or another tab whole (an island)
     middle = polygon.mean(axis=0)
-    island = layout_module._segments([(middle + 0.2 * (polygon - middle), True)])
-    assert not layout_module._tab_fits(first, np.concatenate([outline, island]), [], tol)
-    assert not layout_module._tab_fits(first, outline, [middle + 0.2 * (polygon - middle)], tol)
+    island = polyline_segments([(middle + 0.2 * (polygon - middle), True)])
+    assert not tab_fits(first, np.concatenate([outline, island]), [], tol)
+    assert not tab_fits(first, outline, [middle + 0.2 * (polygon - middle)], tol)
     # ... or a corner of the sheet that touches the cut from outside
     m = 0.5 * (cut[1] + cut[2])
     u, w = -m / np.linalg.norm(m), np.array([m[1], -m[0]]) / np.linalg.norm(m)
-    touching = layout_module._segments([(np.stack([m, m + 0.3 * u + 0.1 * w, m + 0.3 * u - 0.1 * w]), True)])
-    assert layout_module._tab_fits(first, np.concatenate([outline, touching + 1e-6 * u]), [], tol)
-    assert not layout_module._tab_fits(first, np.concatenate([outline, touching]), [], tol)
+    touching = polyline_segments([(np.stack([m, m + 0.3 * u + 0.1 * w, m + 0.3 * u - 0.1 * w]), True)])
+    assert tab_fits(first, np.concatenate([outline, touching + 1e-6 * u]), [], tol)
+    assert not tab_fits(first, np.concatenate([outline, touching]), [], tol)
 
 
 def test_docstring_examples():
-    assert doctest.testmod(layout_module).failed == 0
+    for module in (layout_module, labels, planar):
+        assert doctest.testmod(module).failed == 0
 
 
 # --------------------------------------------------------------------------------------
@@ -532,8 +535,10 @@ def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
     (one,) = write_svg(tmp_path / "second.svg", vault_layout, 1, layers=LAYERS)
     root = ET.parse(one).getroot()
     assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [*LAYERS, "legend (not to cut)"]
-    with pytest.raises(InputError, match="page_index must be in"):
+    with pytest.raises(InputError, match=rf"page_index must be an integer in \[0, {n - 1}\], got {n}$"):
         write_svg(tmp_path / "x.svg", vault_layout, n)
+    with pytest.raises(InputError, match=r"page_index must be an integer .*, got boolean True$"):  # was taken as page 1
+        write_svg(tmp_path / "x.svg", vault_layout, True)
     with pytest.raises(InputError, match="layers must be among"):
         write_svg(tmp_path / "x.svg", vault_layout, layers=["cut", "engrave"])
 

@@ -1,4 +1,4 @@
-"""The import layers: no cycle between modules and no import up the layers.
+"""The layers and their seams: no cycle, no import up the layers, no reaching into geometry.
 
 Every module of ``src/curvefold`` is read with :mod:`ast` (imports inside functions and
 ``TYPE_CHECKING`` blocks included, since they are dependencies all the same) and every
@@ -9,6 +9,17 @@ import of a curvefold module becomes an edge of a graph. The layers, from the gr
 A layer imports only the layers below it (and itself); vault and io, side by side, never
 import each other. The top-level ``curvefold/__init__.py`` and ``__main__.py`` gather the
 public names and may import anything; nothing imports them.
+
+The seams between geometry and the layers above it:
+
+* no module outside geometry tests which kind of structure it holds: no ``isinstance``,
+  ``issubclass`` or ``type(x) is`` of a kind, a geometry class that has every member of a
+  protocol geometry declares (``StructureLattice``: ``Lattice``, ``PanelLattice``;
+  ``FoldedCrease``: ``Crease``, ``PanelCrease``). They ask the structure instead.
+* no module above geometry imports a private name of a geometry module (``_name``), nor
+  reads one off an imported geometry module.
+
+And no module is over :data:`MAX_LINES` lines.
 """
 
 from __future__ import annotations
@@ -34,6 +45,14 @@ EXEMPT = {"__init__", "__main__"}
 #: Violations in today's code, each with why it is still there. Remove an entry when its
 #: import is fixed (the test fails until then, so the fix is seen).
 KNOWN: dict[tuple[str, str], str] = {}
+#: The layer whose classes are the kinds of structure, and the layers below it.
+KINDS_LAYER = "geometry"
+BELOW_KINDS = {"kernel", "geometry"}
+#: Longest module, in lines (one concern each: about 600 lines).
+MAX_LINES = 700
+#: Modules over :data:`MAX_LINES` today, each with why. Remove an entry when the module is
+#: split (the test fails until then, so the split is seen).
+LONG: dict[str, str] = {}
 
 
 def modules(root: Path, package: str) -> dict[str, Path]:
@@ -148,6 +167,111 @@ def _cycle_within(graph: dict[str, dict[str, int]], component: set[str]) -> list
     raise AssertionError(f"no cycle through {start}")  # pragma: no cover - a component has one
 
 
+def _members(node: ast.ClassDef) -> set[str]:
+    """Names a class body defines: fields, attributes, methods and properties."""
+    out = set()
+    for item in node.body:
+        if isinstance(item, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            out.add(item.name)
+        elif isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name):
+            out.add(item.target.id)
+        elif isinstance(item, ast.Assign):
+            out |= {t.id for t in item.targets if isinstance(t, ast.Name)}
+    return out
+
+
+def _trees(root: Path, package: str) -> dict[str, ast.Module]:
+    return {name: ast.parse(path.read_text(encoding="utf-8"), str(path)) for name, path in modules(root, package).items()}
+
+
+def kinds(root: Path, package: str) -> dict[str, str]:
+    """The kinds of :data:`KINDS_LAYER`: class name -> the protocol of that layer whose every member it has."""
+    trees = {name: tree for name, tree in _trees(root, package).items() if layer_of(name) == KINDS_LAYER}
+    classes = [node for tree in trees.values() for node in ast.walk(tree) if isinstance(node, ast.ClassDef)]
+
+    def is_protocol(node: ast.ClassDef) -> bool:
+        return any((b.id if isinstance(b, ast.Name) else getattr(b, "attr", "")) == "Protocol" for b in node.bases)
+
+    protocols = {node.name: _members(node) - {"__init__"} for node in classes if is_protocol(node)}
+    return {node.name: proto for node in classes if not is_protocol(node)
+            for proto, members in protocols.items() if members and members <= _members(node)}
+
+
+def _named(node: ast.expr) -> list[str]:
+    """The class names an isinstance target names: ``A``, ``m.A``, ``(A, B)``, ``A | B``."""
+    if isinstance(node, ast.Name):
+        return [node.id]
+    if isinstance(node, ast.Attribute):
+        return [node.attr]
+    if isinstance(node, (ast.Tuple, ast.List)):
+        return [n for e in node.elts for n in _named(e)]
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitOr):
+        return _named(node.left) + _named(node.right)
+    return []
+
+
+def kind_tests(root: Path, package: str) -> list[tuple[str, str, str]]:
+    """Tests of a structure's kind outside the kinds' layer: (module, kind, why)."""
+    found = kinds(root, package)
+    out = []
+    for name, tree in _trees(root, package).items():
+        if layer_of(name) in BELOW_KINDS:
+            continue
+        for node in ast.walk(tree):
+            tested = []
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("isinstance", "issubclass") and len(node.args) == 2:
+                tested = [(node.func.id, n) for n in _named(node.args[1])]
+            elif (isinstance(node, ast.Compare) and isinstance(node.left, ast.Call) and isinstance(node.left.func, ast.Name)
+                  and node.left.func.id == "type"):
+                tested = [("type() is", n) for c in node.comparators for n in _named(c)]
+            out += [(name, kind, f"line {node.lineno}: {how} {kind}, a kind of {found[kind]}") for how, kind in tested if kind in found]
+    return out
+
+
+def private_imports(root: Path, package: str) -> list[tuple[str, str, str]]:
+    """Private names of the kinds' layer used above it: (module, name, why).
+
+    ``from a.geometry.m import _x``, ``from a.geometry import _m``, and ``m._x`` where ``m``
+    was imported as a geometry module.
+    """
+    names = modules(root, package)
+    out = []
+    for name, tree in _trees(root, package).items():
+        if layer_of(name) in BELOW_KINDS | {None}:
+            continue
+        is_package = names[name].name == "__init__.py"
+        bound: dict[str, str] = {}  # local name -> geometry module
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                here = name.split(".") if is_package else name.split(".")[:-1]
+                base = (".".join(here[: len(here) - node.level + 1] + ([node.module] if node.module else [])) if node.level
+                        else node.module or "")
+                if layer_of(base) != KINDS_LAYER:
+                    continue
+                for alias in node.names:
+                    full = f"{base}.{alias.name}"
+                    if full in names:
+                        bound[alias.asname or alias.name] = full
+                    if alias.name.startswith("_"):
+                        out.append((name, full, f"line {node.lineno}: imports the private name {alias.name} of {base}"))
+            elif isinstance(node, ast.Import):
+                for alias in node.names:
+                    if alias.asname and alias.name in names and layer_of(alias.name) == KINDS_LAYER:
+                        bound[alias.asname] = alias.name
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__")
+                    and isinstance(node.value, ast.Name) and node.value.id in bound):
+                module = bound[node.value.id]
+                out.append((name, f"{module}.{node.attr}", f"line {node.lineno}: reads the private name {node.attr} of {module}"))
+    return out
+
+
+def long_modules(root: Path, package: str, limit: int = MAX_LINES) -> dict[str, int]:
+    """Modules over ``limit`` lines: name -> lines."""
+    counts = {name: len(path.read_text(encoding="utf-8").splitlines()) for name, path in modules(root, package).items()}
+    return {name: n for name, n in counts.items() if n > limit}
+
+
 def test_curvefold_keeps_its_layers():
     graph = imports(SRC, "curvefold")
     assert {"curvefold.kernel.errors", "curvefold.figures.plots", "curvefold.app.cli"} <= set(graph)
@@ -158,6 +282,25 @@ def test_curvefold_keeps_its_layers():
     assert not unexpected, "imports up or across the layers:\n" + "\n".join(unexpected)
     fixed = sorted(set(KNOWN) - set(found))
     assert not fixed, f"fixed, remove from KNOWN: {fixed}"
+
+
+def test_no_module_outside_geometry_tests_the_kind_of_a_structure():
+    assert kinds(SRC, "curvefold") == {"Lattice": "StructureLattice", "PanelLattice": "StructureLattice",
+                                       "Crease": "FoldedCrease", "PanelCrease": "FoldedCrease"}
+    assert kind_tests(SRC, "curvefold") == []
+
+
+def test_no_module_above_geometry_uses_a_private_geometry_name():
+    assert private_imports(SRC, "curvefold") == []
+
+
+def test_no_module_is_too_long():
+    found = long_modules(SRC, "curvefold")
+    assert sum(len(p.read_text(encoding="utf-8").splitlines()) for p in modules(SRC, "curvefold").values()) > 10_000  # it read them
+    unexpected = {name: n for name, n in found.items() if name not in LONG}
+    assert not unexpected, f"modules over {MAX_LINES} lines: {unexpected}"
+    split = sorted(set(LONG) - set(found))
+    assert not split, f"split, remove from LONG: {split}"
 
 
 def _package(root: Path, files: dict[str, str]) -> None:
@@ -200,3 +343,61 @@ def test_imports_up_or_across_the_layers_are_reported(tmp_path):
         ("pkg.vault.v", "pkg.io.w"): "line 1: vault may import geometry, kernel, not io",
         ("pkg.io.w", "pkg.app"): "line 1: io may import geometry, kernel, not app",
     }
+
+
+KINDS = BASE | {
+    "pkg/geometry/kinds.py": (
+        "from typing import Protocol\n"
+        "class Shape(Protocol):\n"
+        "    @property\n    def size(self) -> float: ...\n"
+        "    def fold(self, angle): ...\n"
+    ),
+    "pkg/geometry/shapes.py": (
+        "from dataclasses import dataclass\n"
+        "@dataclass\nclass Smooth:\n    size: float\n    def fold(self, angle): ...\n"
+        "class Panels:\n    size = 1.0\n    def fold(self, angle): ...\n    def head(self, n): ...\n"
+        "class Sheet:\n    size = 2.0\n"  # not every member: not a kind
+        "def _helper(): ...\n"
+        "def check(x):\n    return isinstance(x, Smooth)\n"  # geometry may ask
+    ),
+}
+
+
+def test_kinds_are_the_classes_with_every_member_of_a_protocol(tmp_path):
+    _package(tmp_path, KINDS)
+    assert kinds(tmp_path, "pkg") == {"Smooth": "Shape", "Panels": "Shape"}
+
+
+def test_a_kind_test_outside_geometry_is_reported(tmp_path):
+    _package(tmp_path, KINDS | {
+        "pkg/io/w.py": ("from ..geometry.shapes import Panels, Sheet, Smooth\nfrom ..geometry import shapes\n"
+                        "def write(x):\n"
+                        "    if isinstance(x.lattice, (Sheet, shapes.Panels)):\n        return 1\n"
+                        "    return isinstance(x, Sheet) or issubclass(type(x), Smooth | int) or type(x) is Panels\n"),
+        "pkg/app/a.py": "def run(x):\n    return x.size\n",  # asks the object: fine
+    })
+    assert sorted(kind_tests(tmp_path, "pkg")) == [
+        ("pkg.io.w", "Panels", "line 4: isinstance Panels, a kind of Shape"),
+        ("pkg.io.w", "Panels", "line 6: type() is Panels, a kind of Shape"),
+        ("pkg.io.w", "Smooth", "line 6: issubclass Smooth, a kind of Shape"),
+    ]
+
+
+def test_a_private_geometry_name_above_geometry_is_reported(tmp_path):
+    _package(tmp_path, KINDS | {
+        "pkg/io/w.py": "from ..geometry.shapes import Smooth, _helper\n",
+        "pkg/analysis/c.py": "def f():\n    from pkg.geometry import shapes as s\n    return s._helper() + s.check(1)\n",
+        "pkg/app/a.py": "import pkg.geometry.shapes as g\nfrom ..geometry import kinds\nx = g._helper, kinds.Shape, g.__name__\n",
+        "pkg/vault/v.py": "class A:\n    _x = 1\nprint(A._x)\n",  # its own private names: fine
+        "pkg/geometry/g.py": "from .shapes import _helper\n",  # within geometry: fine
+    })
+    assert sorted(private_imports(tmp_path, "pkg")) == [
+        ("pkg.analysis.c", "pkg.geometry.shapes._helper", "line 3: reads the private name _helper of pkg.geometry.shapes"),
+        ("pkg.app.a", "pkg.geometry.shapes._helper", "line 3: reads the private name _helper of pkg.geometry.shapes"),
+        ("pkg.io.w", "pkg.geometry.shapes._helper", "line 1: imports the private name _helper of pkg.geometry.shapes"),
+    ]
+
+
+def test_a_long_module_is_reported(tmp_path):
+    _package(tmp_path, BASE | {"pkg/io/long.py": "x = 1\n" * 701, "pkg/io/short.py": "x = 1\n" * 700})
+    assert long_modules(tmp_path, "pkg") == {"pkg.io.long": 701}

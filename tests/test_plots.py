@@ -18,7 +18,8 @@ from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
 
-from curvefold.figures import plots  # noqa: E402
+from curvefold.figures import motion, plots, views  # noqa: E402
+from curvefold.io.gif import write_gif  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -164,7 +165,7 @@ def test_sections_of_structures_and_states(block):
 
 def test_motion_strip(vault, tmp_path):
     angles = (0.0, 30.0, 60.0, 90.0)
-    fig = plots.plot_motion_strip(vault, angles)
+    fig = views.plot_motion_strip(vault, angles)
     assert len(fig.axes) == len(angles)
     titles = [ax.get_title() for ax in fig.axes]
     assert titles == ["2α = 0°", "2α = 30°", "2α = 60°", "2α = 90° (design)"]
@@ -181,7 +182,7 @@ def test_motion_strip(vault, tmp_path):
 
 
 def test_vault_view(vault, tmp_path):
-    fig = plots.plot_vault(vault)
+    fig = views.plot_vault(vault)
     ax = fig.axes[0]
     assert "a = 0.3" in ax.get_title() and "9 tubes" in ax.get_title() and "90°" in ax.get_title()
     labels = legend_texts(ax)
@@ -199,7 +200,7 @@ def test_vault_view(vault, tmp_path):
     # drawing into given axes returns their figure
     host = Figure()
     axes = host.subplots(1, 2)
-    assert plots.plot_vault(vault, angle=45.0, ax=axes[1]) is host
+    assert views.plot_vault(vault, angle=45.0, ax=axes[1]) is host
     assert "45°" in axes[1].get_title()
 
 
@@ -207,8 +208,8 @@ def test_figures_draw_the_polygons_of_their_scenes(vault, block):
     from curvefold.figures.scene import state_scene, vault_scene
 
     for fig, scene in (
-        (plots.plot_vault(vault, angle=60.0), vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0)),
-        (plots.plot_structure(block, fold_angle=30.0), state_scene(block.state(30.0), colors=plots.KIND_COLORS)),
+        (views.plot_vault(vault, angle=60.0), vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0)),
+        (views.plot_structure(block, fold_angle=30.0), state_scene(block.state(30.0), colors=plots.KIND_COLORS)),
     ):
         ax = fig.axes[0]
         (coll,) = polys(ax)
@@ -226,29 +227,50 @@ def test_figures_draw_the_polygons_of_their_scenes(vault, block):
 
 
 def test_structure_and_crease_views(block, tmp_path):
-    fig = plots.plot_structure(block)
+    fig = views.plot_structure(block)
     assert "Cellular block of 5 cells" in fig.axes[0].get_title()
     assert any("junction" in t for t in legend_texts(fig.axes[0]))
     check_saved(fig, tmp_path, "block")
-    fig = plots.plot_structure(Structure.tube(block.lattice), fold_angle=30.0)
+    fig = views.plot_structure(Structure.tube(block.lattice), fold_angle=30.0)
     assert fig.axes[0].get_title().startswith("Tube") and "30°" in fig.axes[0].get_title()
-    fig = plots.plot_crease(block.lattice.crease)
+    fig = views.plot_crease(block.lattice.crease)
     assert len(fig.axes) == 3
     assert any("κ(s)" in t for t in legend_texts(fig)) and "angle" in fig.axes[2].get_ylabel()
     check_saved(fig, tmp_path, "crease")
 
 
 def test_motion_gif(vault, block, tmp_path):
-    path = plots.write_motion_gif(vault, tmp_path / "fold.gif", angles=np.linspace(0, 90, 5), size=(200, 150))
+    path = motion.write_motion_gif(vault, tmp_path / "fold.gif", angles=np.linspace(0, 90, 5), size=(200, 150))
     assert sorted(p.name for p in tmp_path.iterdir()) == ["fold.gif"]
     with Image.open(path) as im:
         assert im.format == "GIF" and im.size == (200, 150)
         assert im.n_frames == 5 + 3  # forward, then back without repeating the ends
         im.seek(4)
         assert len(np.unique(np.asarray(im.convert("RGB")).reshape(-1, 3), axis=0)) > 10
-    plots.write_motion_gif(block, tmp_path / "block.gif", angles=(20.0, 60.0), size=(120, 100))
+    motion.write_motion_gif(block, tmp_path / "block.gif", angles=(20.0, 60.0), size=(120, 100))
     with pytest.raises(InputError, match="anchor"):
-        plots.write_motion_gif(vault, tmp_path / "x.gif", anchor="apex")
+        motion.write_motion_gif(vault, tmp_path / "x.gif", anchor="apex")
+
+
+def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
+    """motion_frames draws RGB frames at one scale; write_gif only encodes what it is given, with one palette."""
+    frames = motion.motion_frames(vault, angles=(0.0, 45.0, 90.0), size=(160, 120))
+    assert [(f.mode, f.size) for f in frames] == [("RGB", (160, 120))] * 3
+    assert not np.array_equal(np.asarray(frames[0]), np.asarray(frames[2]))  # flat and folded differ
+    path = write_gif(tmp_path / "plain.gif", frames, frame_seconds=0.5)
+    with Image.open(path) as im:
+        assert im.n_frames == 3 and im.info["duration"] == 500 and im.info["loop"] == 0
+        im.seek(2)
+        # one palette of COLOURS from the last frame: that frame comes back close (quantised, not dithered)
+        back = np.asarray(im.convert("RGB"), float)
+    assert np.abs(back - np.asarray(frames[2], float)).mean() < 4.0
+    with pytest.raises(InputError, match=r"frame_seconds must be in \[0\.01, 10\] seconds, got 0\.0"):
+        write_gif(tmp_path / "x.gif", frames, frame_seconds=0.0)
+    with pytest.raises(InputError, match="frames must all have one size"):
+        write_gif(tmp_path / "x.gif", [frames[0], frames[1].resize((80, 60))])
+    with pytest.raises(InputError, match="at least one image"):
+        write_gif(tmp_path / "x.gif", [])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["plain.gif"]
 
 
 # -- saving -----------------------------------------------------------------------------------------
@@ -289,9 +311,9 @@ def test_plots_leave_pyplot_alone():
     code = (
         "import sys\n"
         "from curvefold.vault import Vault, VaultDesign\n"
-        "from curvefold.figures import plots\n"
+        "from curvefold.figures import plots, views\n"
         "v = Vault.from_design(VaultDesign(samples=41))\n"
-        "plots.plot_vault(v); plots.plot_sections(v); plots.plot_regression_domain(v.lattice, v.structure.cells)\n"
+        "views.plot_vault(v); plots.plot_sections(v); plots.plot_regression_domain(v.lattice, v.structure.cells)\n"
         "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'\n"
     )
     subprocess.run([sys.executable, "-W", "error", "-c", code], check=True, timeout=120)

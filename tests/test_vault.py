@@ -196,16 +196,43 @@ def test_vault_refusals():
     with pytest.raises(RegressionError, match=r"width = 5 is past regression for the base tube"):
         Vault.from_design(VaultDesign(width=5.0))
     with pytest.raises(ConvergenceError, match="no standing arch for a = 1.5"):
-        Vault.from_design(VaultDesign(a=1.5))
+        solve_symmetric_arch(1.5)
+    with pytest.raises(InputError, match=r"^a must be in \[0, 1\.2707093728\) \(no arch stands beyond it"):
+        VaultDesign(a=1.5)
     for kwargs, match in (
         (dict(fold_angle=180.0), r"fold_angle must be in \(0°, 180°\), got 180.0"),
         (dict(p_xy=-1.0), r"p_xy must be in \(0, 100\], got -1.0"),
         (dict(samples=400), r"samples must be odd and ≥ 21"),
-        (dict(tubes=0), r"tubes must be an integer ≥ 1"),
+        (dict(tubes=0), r"tubes must be an integer in \[1, 1000\] \(or None for the maximum\), got 0$"),
+        (dict(tubes=True), r"tubes must be an integer .*, got boolean True$"),
         (dict(width=float("inf")), r"width must be a finite number, got inf"),
     ):
         with pytest.raises(InputError, match=match):
             VaultDesign(**kwargs)
+
+
+def test_the_ranges_of_a_come_from_where_the_arch_family_ends():
+    """A design's a stops at A_MAX, with the reason, in design files and the Python API alike; the atlas's
+    rows reach twice as far, and record past A_MAX that no arch stands, in the solver's words."""
+    from curvefold.app.design import SCHEMA, parse_design
+    from curvefold.vault.arch import A_MAX, A_STANDING, check_standing
+    from curvefold.vault.atlas import GRID_A, evaluate_design
+
+    spec = SCHEMA["vault"]["a"]
+    assert spec.range == A_STANDING and (A_STANDING.lo, A_STANDING.hi, A_STANDING.hi_closed) == (0.0, A_MAX, False)
+    assert (GRID_A.range.lo, GRID_A.range.hi, GRID_A.range.hi_closed) == (0.0, 2 * A_MAX, True)
+    assert spec.typical.hi < A_MAX < spec.typical.hi + 0.1  # the designer's slider stops short of it, at 1.2
+    below = A_MAX * (1 - 1e-12)
+    assert parse_design(f'kind = "vault"\n[vault]\na = {below!r}').vault.a == below == VaultDesign(a=below).a == check_standing(below)
+    with pytest.raises(InputError, match=r"^t\.toml: \[vault\] a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: .*\), got 1\.2707093728$") as err:
+        parse_design(f'kind = "vault"\n[vault]\na = {A_MAX!r}', source="t.toml")
+    assert err.value.parameter == "a"
+    with pytest.raises(InputError, match=r"^a must be in \[0, 1\.2707093728\)"):
+        VaultDesign(a=A_MAX)
+    record, sketch = evaluate_design(A_MAX, 0.75, samples=41)
+    assert (record["error"], sketch) == ("ConvergenceError", None) and record["reason"].startswith("no standing arch for a = 1.2707")
+    record, _ = evaluate_design(2 * A_MAX * (1 + 1e-12), 0.75, samples=41)
+    assert record["error"] == "InputError" and record["reason"].startswith("a must be in [0, 2.5414187456] (up to twice 1.2707")
 
 
 def test_bands_and_direction():

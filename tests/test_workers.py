@@ -39,8 +39,8 @@ def gone(pids, timeout: float = 5.0) -> bool:
 def test_a_job_answers_and_errors_come_back_by_kind(pool):
     assert run(pool, eval, "6 * 7", timeout=30) == 42
     with pytest.raises(JobError) as refused:
-        run(pool, exec, "from curvefold.kernel.errors import InputError\ne = InputError('a must be < 3, got 5')\ne.key = 'a'\nraise e", timeout=30)
-    assert (str(refused.value), refused.value.refused, refused.value.key) == ("a must be < 3, got 5", True, "a")
+        run(pool, exec, "from curvefold.kernel.errors import InputError\nraise InputError('a must be < 3, got 5', parameter='a')", timeout=30)
+    assert (str(refused.value), refused.value.refused, refused.value.parameter) == ("a must be < 3, got 5", True, "a")
     with pytest.raises(JobError) as bug:
         run(pool, eval, "1 / 0", timeout=30)
     assert (str(bug.value), bug.value.refused) == ("ZeroDivisionError: division by zero", False)

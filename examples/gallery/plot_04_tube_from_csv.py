@@ -12,7 +12,8 @@ from pathlib import Path
 
 from curvefold.app.build import build
 from curvefold.app.design import load_design
-from curvefold.figures.plots import plot_sections, plot_structure
+from curvefold.figures.plots import plot_sections
+from curvefold.figures.views import plot_structure
 
 examples = Path("..")  # the repository's examples/ folder: this script runs in examples/gallery/
 print((examples / "tube-csv.toml").read_text())

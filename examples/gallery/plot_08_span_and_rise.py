@@ -9,7 +9,7 @@ and p_xz fix a and p_xy, and the span then fixes the radius
 """
 
 # %%
-from curvefold.figures.plots import plot_vault
+from curvefold.figures.views import plot_vault
 from curvefold.vault import Vault, VaultDesign
 from curvefold.vault.targets import fit_targets
 

@@ -42,10 +42,10 @@ import numpy as np
 
 from ..geometry.mesh import Mesh, edges_faces, face_sides, vector_areas
 from ..geometry.mesh import fold_angles as dihedral_angles
-from ..io.fold import FoldFile, read_fold
+from ..io.fold_reading import FoldFile, read_fold
 from ..kernel.errors import InputError
 from ..kernel.validate import Spec
-from .certificate import CHECKS
+from .checks import CHECKS
 
 __all__ = ["CHECK_SPECS", "FileCheck", "FoldCheck", "check_fold"]
 

@@ -396,7 +396,7 @@ def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) ->
     if _unknowns(part, 1) > budget:
         n = max(1, budget // 12 - 1)  # 4 lattice polylines of n + 1 vertices, 3 unknowns each
         part = Structure.from_cells(lattice.head(n), structure.cells[:1])
-        scope = f"the first {n} of the {lattice.pattern.panels} panels of tube 1"
+        scope = f"the first {n} of the {len(lattice.s) - 1} panels of tube 1"
     return CertifiedMechanism(part, scope, analyse(part))
 
 
@@ -411,7 +411,7 @@ def analyse_fold(path, *, rtol: float = RTOL) -> tuple[Mechanism, ...]:
         For a file curvefold cannot read, one without folded frames, a folded frame of
         another topology than the crease pattern's, or beyond :data:`MAX_UNKNOWNS`.
     """
-    from ..io.fold import read_fold
+    from ..io.fold_reading import read_fold
 
     doc = read_fold(path)
     if not doc.folded:

@@ -117,8 +117,7 @@ def build(design: Design) -> Built:
     """
     if design.kind == "vault":
         vault = Vault.from_design(vault_design(design))
-        smooth = vault.lattice.source if isinstance(vault.lattice, PanelLattice) else vault.lattice
-        return Built(design, vault, vault.structure, smooth.crease)
+        return Built(design, vault, vault.structure, vault.lattice.smooth.crease)
     if design.kind == "crease":
         c = design.crease
         k2, beta_left = design.function("kappa_2d"), design.function("beta_left")

@@ -39,7 +39,7 @@ from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.text import for_terminal
 from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
-from ..vault.atlas import workers_spec
+from ..vault.atlas import GRID_A, workers_spec
 from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
 from .folder import Interrupted, raise_if_interrupted, signals_interrupt
 
@@ -229,7 +229,7 @@ def build_parser() -> argparse.ArgumentParser:
         _add_output(p, kind)
 
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
-    p.add_argument("--a", metavar="A", help=f"{_VAULT['a'].describe()}")
+    p.add_argument("--a", metavar="A", help=_VAULT["a"].describe().replace("%", "%%"))
     p.add_argument("--p-xy", metavar="P_XY", help=f"{_VAULT['p_xy'].help}, {_VAULT['p_xy'].requirement}: reports p_xz")
     p.add_argument("--fold-angle", metavar="FOLD_ANGLE", help=_VAULT["fold_angle"].describe())
     _add_output(p, None)
@@ -237,7 +237,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("atlas", help="a grid of vault designs (the paper's Fig. 10)", description="Build vaults over a grid of p_xy and a; write a figure of their forms with the section slopes and a CSV/JSON of their metrics. Invalid designs are recorded with their reason.")
     grid = f"start:stop:count or a comma-separated list, count {_GRID_COUNT.range}"
     p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
-    p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {_VAULT['a'].requirement}: {grid} (default 0:1.2:5)")
+    p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
     p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
     p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
     p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of 2000 designs or more when Dask is installed, else 1)")
@@ -333,6 +333,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     lines += _certificate_lines(payload)
     if out is not None:
         lines.append(f"  wrote {len(payload['files'])} files to {out}/ (open {out}/report.html)")
+        lines += [f"  {note}" for note in payload.get("notes", [])]
     _emit(args, payload, lines)
     return 1 if any(c["status"] == "fail" for c in payload["certificate"]) else 0
 
@@ -382,7 +383,7 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
 
 def cmd_check(args: argparse.Namespace) -> int:
     from ..analysis.foldcheck import check_fold
-    from ..io.fold import read_fold
+    from ..io.fold_reading import read_fold
 
     tolerances = {spec.name: _flag_value(spec, text) for spec in CHECK_SPECS if (text := getattr(args, spec.name)) is not None}
     doc = read_fold(args.file)
@@ -474,7 +475,7 @@ def cmd_atlas(args: argparse.Namespace) -> int:
     from .folder import check_output
     from .outputs import write_atlas
 
-    p_xy, a = _grid("--p-xy", args.p_xy, _VAULT["p_xy"]), _grid("--a", args.a, _VAULT["a"])
+    p_xy, a = _grid("--p-xy", args.p_xy, _VAULT["p_xy"]), _grid("--a", args.a, GRID_A)
     width = _VAULT["width"].default if args.width is None else _flag_value(_VAULT["width"], args.width)
     samples = 201 if args.samples is None else vault_samples(_flag_value(SCHEMA[""]["samples"], args.samples), where=f"--samples {args.samples}: samples")
     workers = None if args.workers is None else workers_spec().check(_from_text(workers_spec(), args.workers, "--workers"), f"--workers {args.workers}: workers")
@@ -483,7 +484,8 @@ def cmd_atlas(args: argparse.Namespace) -> int:
     payload = write_atlas(p_xy, a, out=target, width=width, samples=samples, workers=workers, scheduler=args.scheduler,
                           show_progress=not args.json)
     payload["out"] = str(args.out)
-    _emit(args, payload, [f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote {len(payload['files'])} files to {args.out}/"])
+    _emit(args, payload, [f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote {len(payload['files'])} files to {args.out}/",
+                          *(f"  {note}" for note in payload.get("notes", []))])
     return 0
 
 

@@ -37,20 +37,19 @@ be left out), never both.
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import os
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from pathlib import Path, PurePosixPath, PureWindowsPath
+from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Literal
 
 import numpy as np
 
 from ..geometry.panels import PANELS
+from ..io.columns import read_column, table_path
 from ..io.formats import OUTPUT_SPECS, default_formats
 from ..io.reading import read_bytes
 from ..kernel.arrays import readonly
@@ -87,13 +86,6 @@ SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = MappingProxyType(
 
 #: Largest design file read, in bytes.
 MAX_DESIGN_BYTES = 1 << 20
-#: Largest CSV file read, in bytes.
-MAX_CSV_BYTES = 64 << 20
-#: Longest CSV line read, in characters (with the row and column bounds, a CSV costs at most
-#: a few times its size to read).
-MAX_CSV_LINE = 10_000
-#: Most data rows of a CSV file.
-MAX_CSV_ROWS = 200_000
 
 
 # --------------------------------------------------------------------------------------------
@@ -581,7 +573,7 @@ def _check_section(section: str, table: Mapping[str, Any], ctx: _Context, skip: 
         spec = specs[key]
         value = table.get(key)  # an explicit None (JSON null) means the default
         if value is None and spec.required:
-            raise InputError(f"{prefix}missing required key {key!r}")
+            raise InputError(f"{prefix}missing required key {key!r}", parameter=key)
         if value is None:
             value = spec.default
         if value is None:
@@ -599,28 +591,35 @@ def _check_alpha(values: dict, table: Mapping[str, Any], source: str) -> None:
     if alpha is None:
         return
     if table.get("beta_right") is not None:
-        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))")
+        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))",
+                         parameter="beta_right")
     twice = float(2 * np.asarray(alpha(np.zeros(1)) if callable(alpha) else alpha, float).flat[0])
     if table.get("fold_angle") is not None and not math.isclose(values["fold_angle"], twice, rel_tol=1e-12):
         raise InputError(
-            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {values['fold_angle']!r}"
+            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {values['fold_angle']!r}",
+            parameter="fold_angle",
         )
     values["beta_right"], values["fold_angle"] = None, twice
 
 
 def _check_function(spec: Spec, value: Any, section: str, ctx: _Context, length: float) -> FunctionValue:
+    """A function-valued key as an expression, a CSV column or a number, checked on the sample
+    grid; every refusal is about ``spec.name``."""
     name = f"[{section}] {spec.name}"
     where = f"{ctx.source}: {name}"
     if isinstance(value, str):
         try:
             expression = compile_expression(value, name=name)
         except InputError as exc:
-            raise InputError(f"{ctx.source}: {exc}") from None
+            raise InputError(f"{ctx.source}: {exc}", parameter=spec.name) from None
         grid = np.linspace(0.0, length, ctx.samples)
         spec.check_samples(expression(grid), where, lambda i: f"at s = {grid[i]:.6g}")
         return expression
     if isinstance(value, Mapping):
-        return _read_table(spec, value, where, ctx, length)
+        try:
+            return _read_table(spec, value, where, ctx, length)
+        except InputError as exc:
+            raise InputError(str(exc), parameter=spec.name) from None
     return spec.check(value, where)
 
 
@@ -633,123 +632,13 @@ def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: _Context,
         raise InputError(f"{where}: csv must be a file name relative to the design file, got {describe(raw)}")
     if not isinstance(column, str):
         raise InputError(f"{where}: column must be a column header, got {describe(column)}")
-    file = _safe_path(raw, where, ctx.base_dir)
+    file = table_path(raw, where, ctx.base_dir)
     label = f"{where} ({raw})"
-    data = read_bytes(file, limit=MAX_CSV_BYTES, what="CSV file", name=label)
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{label}: CSV file is not UTF-8 text (bad byte at offset {exc.start})") from None
-    lines, values, s = _parse_csv(text, label, column)
-    if values.size < 2:
-        raise InputError(f"{label}: column {column!r} needs at least 2 samples, got {values.size}")
+    values, lines = read_column(file, column, length=length, label=label)
     grid = np.linspace(0.0, length, values.size)
-    if s is not None:
-        _check_grid(s, grid, lines, label, length)
 
     def at(i: int) -> str:
         return f"at line {lines[i]} (s = {grid[i]:.6g})"
 
     spec.check_samples(values, f"{label} column {column!r}", at)
     return TableColumn(raw, column, readonly(values))
-
-
-def _safe_path(raw: str, where: str, base_dir: Path) -> Path:
-    """Resolve a CSV path inside ``base_dir``; refuse absolute paths and escapes."""
-    posix = PurePosixPath(raw.replace("\\", "/"))
-    if posix.is_absolute() or PureWindowsPath(raw).anchor or ".." in posix.parts:
-        raise InputError(
-            f"{where}: csv path must be relative to the design file's folder and stay inside it, got {raw!r}"
-        )
-    base = base_dir.resolve()
-    file = (base / posix).resolve()
-    if not file.is_relative_to(base):
-        raise InputError(f"{where}: csv path {raw!r} leads outside the design file's folder")
-    if not file.is_file():
-        raise InputError(f"{where}: csv file {raw!r} not found next to the design file")
-    return file
-
-
-def _parse_csv(text: str, label: str, column: str) -> tuple[list[int], np.ndarray, np.ndarray | None]:
-    """Line number of every data row, the samples of ``column`` and those of the ``s``
-    column (None without one).
-
-    Blank lines and lines starting with ``#`` are skipped. Every field must be a number;
-    only the two columns are kept. Bounded: lines of at most :data:`MAX_CSV_LINE`
-    characters, at most :data:`MAX_CSV_ROWS` data rows, distinct headers.
-    """
-    def bounded(lines):
-        for number, line in enumerate(lines, 1):
-            if len(line) > MAX_CSV_LINE:
-                raise InputError(f"{label}: line {number} is longer than {MAX_CSV_LINE} characters")
-            yield line
-
-    header: list[str] | None = None
-    wanted: list[int] = []
-    rows: list[list[float]] = []
-    lines: list[int] = []
-    reader = csv.reader(bounded(io.StringIO(text)), strict=True)
-    try:
-        for row in reader:
-            if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
-                continue
-            if header is None:
-                header = [h.strip() for h in row]
-                wanted = _columns(header, column, label)
-                continue
-            if len(row) != len(header):
-                raise InputError(f"{label}: line {reader.line_num} has {len(row)} fields, the header has {len(header)}")
-            if len(rows) == MAX_CSV_ROWS:
-                raise InputError(f"{label}: more than {MAX_CSV_ROWS} data rows (at line {reader.line_num})")
-            try:
-                numbers = [float(x) for x in row]
-            except ValueError:
-                bad = next(x for x in row if not _is_float(x))
-                raise InputError(f"{label}: line {reader.line_num}: {bad.strip()!r} is not a number") from None
-            rows.append([numbers[j] for j in wanted])
-            lines.append(reader.line_num)
-    except csv.Error as exc:
-        raise InputError(f"{label}: malformed CSV at line {reader.line_num}: {exc}") from None
-    if header is None:
-        raise InputError(f"{label}: CSV file is empty (expected a header row and samples)")
-    data = np.array(rows, dtype=float).reshape(len(rows), len(wanted))
-    values = np.ascontiguousarray(data[:, 0])
-    return lines, values, (np.ascontiguousarray(data[:, 1]) if len(wanted) == 2 else None)
-
-
-def _columns(header: list[str], column: str, label: str) -> list[int]:
-    """Indices of ``column`` and of ``s`` (if present) in a header with distinct names."""
-    seen: dict[str, int] = {}
-    for j, name in enumerate(header):
-        if name in seen:
-            raise InputError(f"{label}: column {name!r} appears twice in the header (fields {seen[name] + 1} and {j + 1})")
-        seen[name] = j
-    if column not in seen:
-        raise InputError(f"{label}: no column {column!r} (columns: {', '.join(map(repr, header))})")
-    return [seen[column]] + ([seen["s"]] if "s" in seen and column != "s" else [])
-
-
-def _is_float(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
-
-
-def _check_grid(s: np.ndarray, grid: np.ndarray, lines: list[int], label: str, length: float) -> None:
-    """The ``s`` column must be the uniform grid over [0, length] (to print rounding)."""
-    h = length / (grid.size - 1)
-    tol = max(1e-3 * h, 1e-6 * length)
-    with np.errstate(invalid="ignore"):
-        off = np.flatnonzero(~(np.abs(s - grid) <= tol))
-    if off.size and (off[0] == 0 or off[-1] == grid.size - 1):
-        raise InputError(
-            f"{label}: the s column must run from 0 to length {length:g}, got {s[0]:.6g} to {s[-1]:.6g}"
-        )
-    if off.size:
-        i = int(off[0])
-        raise InputError(
-            f"{label}: the s column must be uniformly spaced over [0, {length:g}]: at line {lines[i]} "
-            f"s = {s[i]:.6g}, expected {grid[i]:.6g} ({grid.size} samples, spacing {h:.6g})"
-        )

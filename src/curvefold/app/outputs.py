@@ -161,7 +161,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     -------
     dict
         :func:`structure_payload` of ``built`` with ``"files"``: the names written,
-        relative to ``out``, sorted.
+        relative to ``out``, sorted; and ``"notes"``, lines saying what was left out and
+        why (the pictures, without matplotlib), when anything was.
 
     Raises
     ------
@@ -177,12 +178,14 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     if missing:
         raise InputError("formats: " + "; ".join(missing))
     resolution = products.resolution(built)
+    left_out = products.pictures_left_out(products.picture_files(built))
+    notes = {} if left_out is None else {"notes": [left_out]}
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
         with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers)) as done:  # closed at once on any exception
             payload = structure_payload(built)
-            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | resolution
+            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | resolution | notes
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
@@ -193,7 +196,7 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
             written += ["report.json", "report.html"]
     finally:
         stop()
-    return payload | {"files": sorted(written)}
+    return payload | {"files": sorted(written)} | notes
 
 
 def write_atlas(
@@ -220,12 +223,14 @@ def write_atlas(
     -------
     dict
         ``shape`` (rows, columns), ``designs``, ``valid``, ``invalid`` (count per error
-        class) and ``files`` (names written).
+        class) and ``files`` (names written); without matplotlib the figure is left out
+        and ``notes`` says so.
     """
     from ..figures.atlas import atlas_figure, view_step
     from ..figures.plots import save_figure
     from ..io.records import csv_records, json_records
     from ..vault.atlas import FIELDS, Atlas, AtlasGrid, sweep, thin
+    from .products import can_draw, pictures_left_out
 
     grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples)
     step = view_step(grid.shape)
@@ -250,9 +255,11 @@ def write_atlas(
             shown = Atlas.from_results(grid.every(step), thin(written(), step))
         rows, cols = grid.shape
         note = None if step == 1 else f"one in {step} values of a and of p_xy shown; all {rows} × {cols} designs are in atlas.csv and atlas.json"
-        files = [Path(p).name for p in save_figure(atlas_figure(shown, note=note), tmp / "atlas")]
+        files = [Path(p).name for p in save_figure(atlas_figure(shown, note=note), tmp / "atlas")] if can_draw() else []
     valid = errors.pop(None, 0)
-    return {"shape": [rows, cols], "designs": grid.size, "valid": valid, "invalid": dict(errors), "files": ["atlas.csv", "atlas.json", *files]}
+    left_out = pictures_left_out(["atlas.png", "atlas.svg"])
+    return ({"shape": [rows, cols], "designs": grid.size, "valid": valid, "invalid": dict(errors), "files": ["atlas.csv", "atlas.json", *files]}
+            | ({} if left_out is None else {"notes": [left_out]}))
 
 
 @contextmanager

@@ -1,8 +1,10 @@
 """The files of an output folder, each a job ``folder -> list of paths`` (see :mod:`curvefold.app.outputs`).
 
 The requested formats are grouped by family (:data:`curvefold.io.formats.FAMILIES`), in
-registry order; each family is one job calling the writer the registry names. The
-pictures of the report are always written (PNG).
+registry order; each family is one job: the crease patterns and the 3D models by their
+family's writer (which calls the registry's writer of each format), the FOLD file and the
+GIF by the registry's writer. The pictures of the report are written (PNG) when matplotlib
+is installed.
 
 Every mesh written (FOLD, 3D models, crease patterns) keeps the samples of
 :attr:`Built.sampling <curvefold.app.build.Built.sampling>`: as accurate as the default
@@ -12,28 +14,33 @@ metadata and in the report (:func:`resolution`).
 
 from __future__ import annotations
 
+import importlib.util
 import multiprocessing
+import multiprocessing.connection
 import os
 import signal
 import time
-from collections.abc import Callable, Collection, Iterable, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from ..analysis.mechanism import certified_mechanism
-from ..geometry.panels import PanelLattice
 from ..io.formats import FORMATS, check_kind, formats_of
+from ..kernel.errors import InternalError
 from .build import Built
 from .folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "MOTION_STEPS"]
+__all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS",
+           "PICTURES_NEED", "PICTURES_EXTRA"]
 
 #: States of the folding motion in the GLB, from flat to the design angle.
 MOTION_STEPS = 10
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
+#: The package the report's pictures are drawn with, and the extra that brings it.
+PICTURES_NEED, PICTURES_EXTRA = "matplotlib", "plot"
 
 Job = Callable[[Path], list]
 
@@ -69,7 +76,8 @@ def exported_fold_angles(built: Built) -> np.ndarray:
 
 
 def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = None) -> list[tuple[str, Job]]:
-    """The jobs that write the requested formats of a built design and its pictures, longest first.
+    """The jobs that write the requested formats of a built design and its pictures (when
+    :data:`PICTURES_NEED` is installed: see :func:`pictures_left_out`), longest first.
 
     ``fold_angle`` is 2α of the folded state the FOLD and 3D files hold (degrees; default
     the design angle); crease patterns, pictures and the GIF do not depend on it.
@@ -87,7 +95,8 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
         names = tuple(name for name in formats_of(family) if name in formats)
         angle = {"fold_angle": fold_angle} if family in _FOLDED else {}
         out.append((label, partial(write, built, names, **angle)))
-    out.append(("pictures", partial(_pictures, built)))
+    if can_draw():
+        out.append(("pictures", partial(_pictures, built)))
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
 
@@ -100,9 +109,11 @@ def _timed(job: Job, folder: Path) -> tuple[list, float]:
 def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None) -> Iterable[tuple[str, list, float]]:
     """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most 2).
 
-    The jobs write distinct files, so they run side by side in forked processes where the
-    platform has them, started before this returns: the caller can work meanwhile. Where
-    there is no fork they run one after the other as the result is iterated.
+    The jobs write distinct files, so they run side by side where the platform can fork:
+    each in a process of its own, forked when a place is free, in job order, the first
+    ones before this returns (the caller can work meanwhile). A forked process inherits
+    its job, so nothing but its result crosses a pipe. Where there is no fork they run
+    one after the other as the result is iterated.
 
     Returns
     -------
@@ -114,38 +125,90 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
     workers = min(len(jobs), os.cpu_count() or 1, 2) if workers is None else workers
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
         return ((label, *_timed(job, folder)) for label, job in jobs)
-    # The ending signals wait while the workers are forked (a signal then would reach a
-    # fork hook, or a child with the parent's handlers).
-    held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
-    try:
-        pool = multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals, initargs=(held,))
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, held)
-    return _Running(pool, [(label, pool.apply_async(_timed, (job, folder))) for label, job in jobs])
+    return _Running(jobs, folder, workers)
 
 
 class _Running:
-    """Jobs running on a process pool: iterate for their results in job order; ``close()`` terminates the pool."""
+    """Jobs in forked processes, at most ``workers`` at once: iterate for their results in job
+    order; ``close()`` kills the processes still running.
 
-    def __init__(self, pool, results: list) -> None:
-        self._pool, self._results = pool, results
+    A process per job rather than a :class:`multiprocessing.pool.Pool`: a pool's
+    ``terminate()`` can wait forever on its task thread, blocked sending a job into a pipe
+    that the stopped workers no longer read (seen about once in 40 signals). Here no
+    thread sends anything and every process can be killed.
+    """
+
+    def __init__(self, jobs: list[tuple[str, Job]], folder: Path, workers: int) -> None:
+        self._context = multiprocessing.get_context("fork")
+        self._folder, self._workers = folder, workers
+        self._waiting = list(enumerate(jobs))
+        self._running: dict = {}  # reader -> (index, process)
+        self._results: dict[int, tuple] = {}
+        self._labels = [label for label, _ in jobs]
+        self._fill()
+
+    def _fill(self) -> None:
+        while self._waiting and len(self._running) < self._workers:
+            index, (_, job) = self._waiting.pop(0)
+            reader, writer = self._context.Pipe(duplex=False)
+            # The ending signals wait while the process is forked (a signal then would reach
+            # a child with the parent's handlers); the child sets its own, then takes them.
+            held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
+            try:
+                process = self._context.Process(target=_job_process, args=(job, self._folder, writer, held), daemon=True)
+                process.start()
+                self._running[reader] = (index, process)  # known to close() before a signal can come
+            finally:
+                signal.pthread_sigmask(signal.SIG_SETMASK, held)
+                writer.close()
+
+    def _collect(self) -> None:
+        """Wait for a running job to end and keep its outcome."""
+        for reader in multiprocessing.connection.wait(list(self._running)):
+            index, process = self._running.pop(reader)
+            try:
+                outcome = reader.recv()
+            except EOFError:  # it died without a word
+                process.join()
+                outcome = ("error", InternalError(f"the job writing the {self._labels[index]} ended with exit code {process.exitcode}"))
+            reader.close()
+            process.join()
+            self._results[index] = outcome
+        self._fill()
 
     def __iter__(self) -> Iterator[tuple[str, list, float]]:
-        for label, result in self._results:
-            yield (label, *result.get())
+        for index, label in enumerate(self._labels):
+            while index not in self._results:
+                self._collect()
+            status, value = self._results.pop(index)
+            if status == "error":
+                raise value
+            yield (label, *value)
 
     def close(self) -> None:
-        self._pool.terminate()
-        self._pool.join()
+        running, self._running, self._waiting = self._running, {}, []
+        for reader, (_, process) in running.items():
+            process.kill()
+            process.join()
+            reader.close()
 
 
-def _worker_signals(mask: set) -> None:
-    """A job process leaves signals to its parent: it ignores SIGINT (the terminal sends it to
-    the whole group) and dies on SIGTERM and SIGHUP, whatever handlers it inherited; then it
-    takes the parent's signal mask back."""
+def _job_process(job: Job, folder: Path, conn, mask: set) -> None:
+    """A job process: it leaves signals to its parent (it ignores SIGINT, which the terminal
+    sends to the whole group, and dies on SIGTERM and SIGHUP, whatever handlers it inherited),
+    takes the parent's signal mask back, runs the job and sends its outcome."""
     for signum in ENDING_SIGNALS:
         signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    try:
+        outcome = ("done", _timed(job, folder))
+    except Exception as err:  # raised again in the parent
+        outcome = ("error", err)
+    try:
+        conn.send(outcome)
+    except Exception as err:  # an exception that does not pickle
+        conn.send(("error", InternalError(f"{type(outcome[1]).__name__}: {outcome[1]} (not picklable: {err})")))
+    conn.close()
 
 
 def _writer(names: tuple[str, ...]) -> Callable:
@@ -153,7 +216,7 @@ def _writer(names: tuple[str, ...]) -> Callable:
 
 
 def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
-    """The structure's FOLD file (folded at ``fold_angle``, default the design angle; a panel
+    """The structure's FOLD file (folded at ``fold_angle``, default the design angle; a rigid
     structure also flat and half folded), and one FOLD file per sheet, flat with its target
     fold angles (loadable by Origami Simulator)."""
     from ..geometry.sheets import sheets
@@ -161,8 +224,8 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float 
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     design = structure.lattice.crease.fold_angle if fold_angle is None else fold_angle
-    # panels: the flat and half-folded states too, for `curvefold mechanism`
-    angles = [0.0, 0.5 * design, design] if isinstance(structure.lattice, PanelLattice) and design > 0 else [design]
+    # rigid panels: the flat and half-folded states too, for `curvefold mechanism`
+    angles = [0.0, 0.5 * design, design] if structure.lattice.rigid and design > 0 else [design]
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -174,23 +237,29 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float 
 
 def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The crease patterns, laid out once for every pattern format."""
+    from ..io.pattern import write_pattern
     from ..io.tables import mm_per_unit
 
     o, kind = built.design.output, built.design.kind
     page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
-    return list(_writer(names)(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
-                               glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
+    return list(write_pattern(folder / f"{kind}-pattern", built.structure, formats=names, page=page, units=o.units, scale=o.scale,
+                              glue_tabs=o.glue_tabs, rulings=o.rulings, name=kind, keep=built.sampling.keep))
 
 
 def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
     """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion."""
-    return list(_writer(names)(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
-                               metadata=_metadata(built), keep=built.sampling.keep, fold_angle=fold_angle))
+    from ..io.models import write_3d
+
+    return list(write_3d(folder / built.design.kind, built.structure, exported_fold_angles(built), formats=names, unit=MODEL_UNIT,
+                         metadata=_metadata(built), keep=built.sampling.keep, fold_angle=fold_angle))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The GIF of the folding motion."""
-    return [_writer(names)(built.vault if built.vault is not None else built.structure, folder / "folding.gif")]
+    """The GIF of the folding motion, flat to the design angle and back."""
+    from ..figures.motion import motion_frames
+
+    frames = motion_frames(built.vault if built.vault is not None else built.structure)
+    return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
 #: Progress label and job of every family of formats.
@@ -207,22 +276,52 @@ _FOLDED = ("fold", "model")
 _LONGEST_FIRST = ("crease patterns", "pictures", "folding GIF", "3D models", "FOLD files")
 
 
-def _pictures(built: Built, folder: Path) -> list:
-    """Plots for the report (PNG)."""
-    from ..figures import plots
+def _figures(built: Built) -> dict[str, Callable]:
+    """The report's pictures by name, each a function that draws it (nothing is drawn here)."""
+    from ..figures import plots, views
 
     structure = built.structure
     if structure is None:
-        figures = {"crease": plots.plot_crease(built.crease)}
+        return {"crease": partial(views.plot_crease, built.crease)}
+    lattice = structure.lattice
+    figures = {"regression-domain": partial(plots.plot_regression_domain, lattice, structure.cells),
+               "width-proportion": partial(plots.plot_width_proportion, lattice)}
+    if built.vault is not None:
+        figures |= {"vault": partial(views.plot_vault, built.vault), "sections": partial(plots.plot_sections, built.vault),
+                    "folding-motion": partial(views.plot_motion_strip, built.vault)}
     else:
-        lattice = structure.lattice
-        figures = {"regression-domain": plots.plot_regression_domain(lattice, structure.cells),
-                   "width-proportion": plots.plot_width_proportion(lattice)}
-        if built.vault is not None:
-            figures |= {"vault": plots.plot_vault(built.vault), "sections": plots.plot_sections(built.vault),
-                        "folding-motion": plots.plot_motion_strip(built.vault)}
-        else:
-            figures[built.design.kind] = plots.plot_structure(structure)
-        if isinstance(lattice, PanelLattice):
-            figures["singular-values"] = plots.plot_singular_values(certified_mechanism(structure).states)
-    return [path for name, fig in figures.items() for path in plots.save_figure(fig, folder / name, formats=("png",))]
+        figures[built.design.kind] = partial(views.plot_structure, structure)
+    if lattice.rigid:
+        figures["singular-values"] = lambda: plots.plot_singular_values(certified_mechanism(structure).states)
+    return figures
+
+
+def _pictures(built: Built, folder: Path) -> list:
+    """Plots for the report (PNG)."""
+    from ..figures.plots import save_figure
+
+    return [path for name, draw in _figures(built).items() for path in save_figure(draw(), folder / name, formats=("png",))]
+
+
+def picture_files(built: Built) -> list[str]:
+    """The file names of the report's pictures of a built design."""
+    return [f"{name}.png" for name in _figures(built)]
+
+
+def can_draw() -> bool:
+    """Whether :data:`PICTURES_NEED` is installed, so pictures can be drawn."""
+    return importlib.util.find_spec(PICTURES_NEED) is not None
+
+
+def pictures_left_out(files: Sequence[str]) -> str | None:
+    """One line naming pictures that are not drawn because :data:`PICTURES_NEED` is not installed,
+    and the extra that brings it; None when it is installed.
+
+    Examples
+    --------
+    >>> pictures_left_out(["atlas.png"]) in (None, "pictures left out: atlas.png (they need matplotlib: pip install 'curvefold[plot]')")
+    True
+    """
+    if can_draw():
+        return None
+    return f"pictures left out: {', '.join(files)} (they need {PICTURES_NEED}: pip install 'curvefold[{PICTURES_EXTRA}]')"

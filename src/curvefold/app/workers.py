@@ -47,11 +47,11 @@ WATCH_PERIOD = 0.05
 class JobError(Exception):
     """A job raised an exception: its one-line message, whether it was a refusal (a
     :class:`~curvefold.kernel.errors.CurvefoldError`) or a bug, and the parameter a
-    refusal is about (its ``key`` attribute, if any)."""
+    refusal is about (its :attr:`~curvefold.kernel.errors.CurvefoldError.parameter`)."""
 
-    def __init__(self, message: str, *, refused: bool, key: str | None = None) -> None:
+    def __init__(self, message: str, *, refused: bool, parameter: str | None = None) -> None:
         super().__init__(message)
-        self.refused, self.key = refused, key
+        self.refused, self.parameter = refused, parameter
 
 
 class Stopped(Exception):
@@ -262,7 +262,7 @@ class Pool:
             self.counts["done"] += 1
             return rest[0]
         self.counts["refused" if kind == "refused" else "bug"] += 1
-        raise JobError(rest[0], refused=kind == "refused", key=rest[1])
+        raise JobError(rest[0], refused=kind == "refused", parameter=rest[1])
 
     async def _give_back(self, worker: _Worker) -> None:
         """Put the worker back, or a fresh one in its place if it was killed or grew too large."""
@@ -317,7 +317,7 @@ def _die_with_parent() -> None:
 
 
 def _serve(conn, scratch: str, niceness: int) -> None:
-    """A worker's loop: run each job received and send back ``("ok", result)``, ``("refused", message, key)``
+    """A worker's loop: run each job received and send back ``("ok", result)``, ``("refused", message, parameter)``
     or ``("bug", message, None)``, until the pipe closes."""
     _die_with_parent()
     if hasattr(os, "setpgrp"):
@@ -340,7 +340,7 @@ def _serve(conn, scratch: str, niceness: int) -> None:
         try:
             answer = ("ok", fn(*args))
         except CurvefoldError as err:
-            answer = ("refused", " ".join(str(err).split()), getattr(err, "key", None))
+            answer = ("refused", " ".join(str(err).split()), err.parameter)
         except MemoryError:
             answer = ("refused", "out of memory; lower samples, the number of tubes, cells or panels, or the formats", None)
         except Exception as err:  # a bug: one line for the caller

@@ -17,7 +17,7 @@ import numpy as np
 from ..kernel.errors import InputError
 from ..vault.assembly import DEFAULT_TUBES_CAP
 from ..vault.atlas import Atlas
-from .plots import _figure
+from .plots import new_figure
 from .scene import GROUND_COLOR, View, ground_polygon, render_structure
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -72,7 +72,7 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     font = float(np.clip(5.0 * size, 4.5, 9.0))
     margin_l, margin_r, margin_b, margin_t = 0.45 + 0.02 * font, 0.15, 0.12, 0.25 + 0.04 * font * 2
     fig_w, fig_h = size * cols + margin_l + margin_r, size * rows + margin_b + margin_t
-    fig = _figure(figsize=(fig_w, fig_h), layout=None)
+    fig = new_figure(figsize=(fig_w, fig_h), layout=None)
     ax = fig.add_axes((margin_l / fig_w, margin_b / fig_h, size * cols / fig_w, size * rows / fig_h))
     ax.set_xlim(0, cols)
     ax.set_ylim(0, rows)

@@ -268,6 +268,7 @@ def report_html(payload: dict) -> str:
         for f in shown
     )
     links = "".join(f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>' for f in files)
+    notes = "".join(f"<p>{e(one_line(note))}</p>" for note in payload.get("notes", []))
     passed = sum(c["passed"] for c in payload["certificate"])
     title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
@@ -302,7 +303,7 @@ td{{overflow-wrap:anywhere}}
 <p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass. Lengths are in metres (the model unit, as
 in the 3D files); crease patterns are in millimetres at their print scale. On a phone, slide a picture sideways or tap it for
 its full size.</p>
-<h2>Pictures</h2><div class="pictures">{pictures}</div>
+<h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
 {mesh}
 {paper}

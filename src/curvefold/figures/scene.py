@@ -26,6 +26,7 @@ from ..geometry.topology import tube_strips
 from ..io.tables import rgb8
 from ..kernel.arrays import frozen, readonly
 from ..kernel.errors import InputError
+from ..kernel.validate import check_integer
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry.structure import State, Structure
@@ -202,8 +203,7 @@ class Scene:
         margin : float, keyword-only
             Free border, as a fraction of the box's larger side, in [0, 1].
         """
-        if isinstance(pixels, bool) or not isinstance(pixels, (int, np.integer)) or not 16 <= pixels <= 16384:
-            raise InputError(f"pixels must be an integer in [16, 16384], got {pixels!r}")
+        pixels = check_integer(pixels, "pixels", "[16, 16384]")
         if not np.isfinite(margin) or not 0 <= margin <= 1:
             raise InputError(f"margin must be in [0, 1], got {margin!r}")
         lo, hi = self.box

@@ -28,7 +28,7 @@ from ..kernel.functions import Constant, Differenced, FunctionLike, ScalarFuncti
 from .curve import SpaceCurve, check_length, check_samples
 from .topology import quadrant_kind, quadrant_name
 
-__all__ = ["Crease", "QUADRANTS", "half_angle"]
+__all__ = ["Crease", "QUADRANTS", "check_fold_angle", "check_fold_angles", "half_angle"]
 
 #: The four surfaces a crease and its rulings define, by the signs of the ruling
 #: directions used on the left and right side: (sign_L, sign_R, kind), the kind by
@@ -48,7 +48,10 @@ def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_ang
     allow_flat : bool, keyword-only
         Accept 2α = 0 (the flat, two-ply state); the range is then [0°, 180°).
     """
-    value = float(fold_angle)
+    try:
+        value = float(fold_angle)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {fold_angle!r}") from None
     full = np.radians(value) if degrees else value
     unit, top = ("°", 180.0) if degrees else (" rad", np.pi)
     low = "[0" if allow_flat else "(0"
@@ -56,6 +59,57 @@ def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_ang
         extra = " (2α = 180° would need infinite curvature κ = κ_2D / cos α)" if np.isfinite(full) and full >= np.pi else ""
         raise InputError(f"{name} must be in {low}{unit}, {top:g}{unit}), got {fold_angle!r}{extra}")
     return 0.5 * full
+
+
+def check_fold_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_angle", allow_flat: bool = False) -> float:
+    """Validate a fold angle 2α (as :func:`half_angle` does) and return it in degrees.
+
+    Examples
+    --------
+    >>> check_fold_angle(np.pi / 2, degrees=False)
+    90.0
+    >>> check_fold_angle(0.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: fold_angle must be in (0°, 180°), got 0.0
+    """
+    half_angle(fold_angle, degrees=degrees, name=name, allow_flat=allow_flat)
+    return float(fold_angle) if degrees else float(np.degrees(fold_angle))
+
+
+def check_fold_angles(fold_angles, *, degrees: bool = True, name: str = "fold_angles") -> np.ndarray:
+    """Validate a non-empty sequence of fold angles 2α, each in [0°, 180°), and return them in degrees.
+
+    Parameters
+    ----------
+    fold_angles : (A,) array_like
+        Degrees, or radians if ``degrees`` is False.
+    degrees : bool, keyword-only
+    name : str, keyword-only
+        The parameter named in the messages.
+
+    Returns
+    -------
+    (A,) ndarray
+
+    Examples
+    --------
+    >>> check_fold_angles([0, 45, 90]).tolist()
+    [0.0, 45.0, 90.0]
+    >>> check_fold_angles([])
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: fold_angles must be a non-empty sequence of fold angles, got shape (0,)
+    """
+    try:
+        arr = np.atleast_1d(np.asarray(fold_angles, float))
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a sequence of numbers, got {fold_angles!r}") from None
+    if arr.ndim != 1 or arr.size == 0:
+        raise InputError(f"{name} must be a non-empty sequence of fold angles, got shape {np.shape(fold_angles)}")
+    for a in arr:
+        half_angle(a, degrees=degrees, name=name, allow_flat=True)
+    return arr if degrees else np.degrees(arr)
 
 
 @dataclass(frozen=True, eq=False)
@@ -193,7 +247,8 @@ class Crease(FrozenArrays):
                 s_end = float(probe[np.argmax(~((a_probe > 0) & (a_probe < np.pi / 2)))])
             raise InputError(
                 f"fold angle 2α leaves (0°, 180°) at s = {s_end:.6g} (α' = ½ κ_2D tan α (cot β_L − cot β_R) drives it there); "
-                f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle"
+                f"shorten the crease to length < {s_end:.6g} or change the ruling angles or the start fold angle",
+                parameter="length",
             )
 
         alpha = _PatternFoldAngle(sol.sol, k2, bl, br)

@@ -19,6 +19,7 @@ from ..kernel.dense import coarse_indices, dense_stride, hermite_fill
 from ..kernel.errors import InputError
 from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
 from ..kernel.lie import GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
+from ..kernel.validate import check_integer
 
 __all__ = ["FramedCurve", "SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
 
@@ -235,11 +236,7 @@ def check_length(length: float) -> float:
 
 def check_samples(samples: int, *, name: str = "samples") -> int:
     """Validate a sample count: an integer in [2, MAX_SAMPLES]."""
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)):
-        raise InputError(f"{name} must be an integer in [2, {MAX_SAMPLES}], got {samples!r}")
-    if not 2 <= samples <= MAX_SAMPLES:
-        raise InputError(f"{name} must be in [2, {MAX_SAMPLES}] (memory bound, about 1 GB), got {samples}")
-    return int(samples)
+    return check_integer(samples, name, f"[2, {MAX_SAMPLES}]", why="memory bound, about 1 GB")
 
 
 def _check_vector(x: np.ndarray | None, name: str) -> np.ndarray | None:

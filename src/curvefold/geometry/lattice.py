@@ -240,7 +240,8 @@ class Lattice(FrozenArrays):
     """Curve 1 folded at one constant fold angle, with its fold-invariant pattern.
 
     Build it with :meth:`from_crease`; fold it with :meth:`refold` (the folded lattice
-    holds the same :class:`Pattern` object).
+    holds the same :class:`Pattern` object). It is the smooth kind of
+    :class:`~curvefold.geometry.kinds.StructureLattice`.
 
     Attributes
     ----------
@@ -324,6 +325,27 @@ class Lattice(FrozenArrays):
     def section_area(self) -> np.ndarray:
         """Area of the section parallelogram, w_L w_R sin 2α, shape (n,) (constant in t)."""
         return self.width_left * self.width_right * np.sin(2 * self.crease.alpha.constant)
+
+    # -- what the consumers of a structure ask about its kind (curvefold.geometry.kinds) ---------
+    @property
+    def rigid(self) -> bool:
+        """False: its strips bend; it is certified against its own sampling error."""
+        return False
+
+    @property
+    def thinnable(self) -> bool:
+        """True: its samples are dense samples of smooth curves, which a mesh may thin."""
+        return True
+
+    @property
+    def crease_degree(self) -> int:
+        """3: its creases are modelled by cubics through the samples."""
+        return 3
+
+    @property
+    def smooth(self) -> Lattice:
+        """The smooth lattice it is: itself."""
+        return self
 
     # -- geometry at this fold angle -------------------------------------------------------
     def points(self, uv: np.ndarray) -> np.ndarray:

@@ -225,7 +225,8 @@ class PanelPattern(FrozenArrays):
             k = int(bad[0])
             raise InputError(
                 f"too few panels: at vertex {k} (s = {s[k]:.6g}) the crease turns by {np.degrees(turning[k]):.4g}° and its fold "
-                f"lines leave at {np.degrees(beta[k]):.4g}°; they would cross the crease (need |turn|/2 < beta < 180° − |turn|/2)"
+                f"lines leave at {np.degrees(beta[k]):.4g}°; they would cross the crease (need |turn|/2 < beta < 180° − |turn|/2)",
+                parameter="panels",
             )
         normal = _turn(t, np.full(len(t), 0.5 * np.pi))
         lhat = np.cos(beta)[:, None] * t + np.sin(beta)[:, None] * normal
@@ -263,7 +264,7 @@ class PanelPattern(FrozenArrays):
         if not (np.abs(turn) < 0.5 * np.pi).all():
             k = int(np.argmax(np.abs(turn)))
             raise InputError(f"too few panels: the crease turns by {np.degrees(turn[k]):.4g}° over panel {k} (s = {s[k]:.6g} to "
-                             f"{s[k + 1]:.6g}); use more panels (below 90° each)")
+                             f"{s[k + 1]:.6g}); use more panels (below 90° each)", parameter="panels")
         ends = flat.tangent[[0, -1], :2]
         return cls.from_polyline(s, flat.points[::m, :2], pattern.beta(s), start_tangent=ends[0], end_tangent=ends[1],
                                  left_length=float(pattern.ruling_lengths[0][0]), right_length=float(pattern.ruling_lengths[1][0]))
@@ -381,7 +382,7 @@ class PanelCurve(FramedCurve, FrozenArrays):
 
 @dataclass(frozen=True)
 class PanelCrease:
-    """Crease 1 of a panel lattice: its polyline and fold angle.
+    """Crease 1 of a panel lattice: its polyline and fold angle (a :class:`~curvefold.geometry.kinds.FoldedCrease`).
 
     Attributes
     ----------
@@ -398,9 +399,9 @@ class PanelCrease:
 class PanelLattice(FrozenArrays):
     """A panel pattern folded at one angle and placed in space: the discrete :class:`Lattice`.
 
-    Build it with :meth:`from_lattice`; fold it with :meth:`refold`. It answers what a
-    :class:`~curvefold.geometry.structure.Structure` asks of a lattice, so tubes, blocks and
-    vaults are built on it with the same constructors, and their meshes are panels
+    Build it with :meth:`from_lattice`; fold it with :meth:`refold`. It is a
+    :class:`~curvefold.geometry.kinds.StructureLattice`, so tubes, blocks and vaults are
+    built on it with the same constructors, and their meshes are panels
     (:meth:`Topology.panels`).
 
     Attributes
@@ -529,6 +530,27 @@ class PanelLattice(FrozenArrays):
             raise InputError(f"keep: a panel mesh keeps every vertex of its polylines ({n} per tube, {tubes} tubes); two "
                              "panels joined into one quad are not planar")
         return Topology.panels(cell_curves, n)
+
+    # -- what the consumers of a structure ask about its kind (curvefold.geometry.kinds) ---------
+    @property
+    def rigid(self) -> bool:
+        """True: rigid planar panels, every state exact; the certificate counts their mechanism."""
+        return True
+
+    @property
+    def thinnable(self) -> bool:
+        """False: every vertex is a panel corner, which a mesh keeps."""
+        return False
+
+    @property
+    def crease_degree(self) -> int:
+        """1: the polylines are the creases."""
+        return 1
+
+    @property
+    def smooth(self) -> Lattice | None:
+        """The smooth lattice the panels sample (:attr:`source`), if any."""
+        return self.source
 
     # -- rigid folding ----------------------------------------------------------------------------
     def _anchored(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -21,9 +21,10 @@ The longest accurate steps have the best-shaped triangles, except where a step i
 beside the rulings; where the accurate steps are short beside them (right next to the
 curve of regression) accuracy wins, and the smallest corner is reported as measured.
 
-A structure of rigid panels (:mod:`curvefold.geometry.panels`) keeps every vertex: its
-polylines are the creases themselves, a few per panel, and two panels joined into one quad
-would not be planar (:meth:`PanelLattice.topology <curvefold.geometry.panels.PanelLattice.topology>`
+A structure whose lattice is not :attr:`~curvefold.geometry.kinds.StructureLattice.thinnable`
+keeps every vertex: the polylines of rigid panels (:mod:`curvefold.geometry.panels`) are
+the creases themselves, a few per panel, and two panels joined into one quad would not be
+planar (:meth:`PanelLattice.topology <curvefold.geometry.panels.PanelLattice.topology>`
 refuses it). Its resolution is measured and reported the same way.
 """
 
@@ -37,7 +38,6 @@ from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
 from ..kernel.lie import cross
 from .mesh import edges_faces, vector_areas
-from .panels import PanelLattice
 from .structure import Structure
 from .topology import Topology
 
@@ -291,15 +291,15 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
     size = float(np.ptp(states[0].reshape(-1, 3), axis=0).max())
     limits = (tolerance * size, float(tolerance), float(max_bend))
     middle = (n - 1) // 2
-    panels = isinstance(structure.lattice, PanelLattice)
+    thinnable = structure.lattice.thinnable
     keep, deviation, stretch, bend, smallest = [], 0.0, 0.0, 0.0, np.inf
     for rows in structure.cell_curves:
         curves = states[:, rows]  # (2, 4, n, 3)
-        if panels:  # every panel vertex
-            picks = np.arange(n)
-        else:
+        if thinnable:
             first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
             picks = np.array(first + second[-2::-1], dtype=np.int64)
+        else:  # every vertex
+            picks = np.arange(n)
         keep.append(picks)
         angles, stretches, bends = _step_shape(curves, picks[:-1], picks[1:])
         smallest, stretch, bend = min(smallest, float(angles.min())), max(stretch, float(stretches.max())), max(bend, float(bends.max()))

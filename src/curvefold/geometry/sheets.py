@@ -30,7 +30,6 @@ them into the plane.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -40,9 +39,9 @@ import numpy as np
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError, InternalError
 from ..kernel.lie import cross
-from .crease import half_angle
+from .crease import check_fold_angle, check_fold_angles
 from .mesh import Mesh, vector_areas
-from .structure import State, Structure
+from .structure import State, Structure, check_structure
 from .topology import SHEETS, Topology, corner_members, fold_assignment
 
 __all__ = [
@@ -51,6 +50,7 @@ __all__ = [
     "FlatPlane",
     "PatternSheet",
     "bonds",
+    "develop",
     "flat_plane",
     "folding_motion",
     "sheet_vertices",
@@ -60,37 +60,6 @@ __all__ = [
 
 #: Names of a tube's two sheets, in order.
 SHEET_NAMES = tuple(name for name, _ in SHEETS)
-
-
-# --------------------------------------------------------------------------------------
-# validation
-
-
-def _check_structure(structure: Structure) -> Structure:
-    if not isinstance(structure, Structure):
-        raise InputError(f"structure must be a Structure, got {type(structure).__name__}")
-    return structure
-
-
-def _design_angle(structure: Structure, fold_angle: float | None, degrees: bool) -> float:
-    """The fold angle 2α in degrees: the given one (validated, > 0) or the lattice's own."""
-    if fold_angle is None:
-        return structure.lattice.crease.fold_angle
-    half_angle(fold_angle, degrees=degrees)
-    return float(fold_angle) if degrees else math.degrees(fold_angle)
-
-
-def _angles(values, degrees: bool, name: str) -> np.ndarray:
-    """A non-empty 1D array of fold angles in degrees, each in [0°, 180°)."""
-    try:
-        arr = np.atleast_1d(np.asarray(values, float))
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a sequence of numbers, got {values!r}") from None
-    if arr.ndim != 1 or arr.size == 0:
-        raise InputError(f"{name} must be a non-empty sequence of fold angles, got shape {np.shape(values)}")
-    for a in arr:
-        half_angle(a, degrees=degrees, name=name, allow_flat=True)
-    return arr if degrees else np.degrees(arr)
 
 
 # --------------------------------------------------------------------------------------
@@ -189,7 +158,7 @@ def sheet_vertices(structure: Structure) -> tuple[np.ndarray, ...]:
     >>> [v.tolist() for v in sheet_vertices(Structure.tube(lat))]
     [[9, 10, 11, 0, 1, 2, 3, 4, 5], [3, 4, 5, 6, 7, 8, 9, 10, 11]]
     """
-    _check_structure(structure)
+    check_structure(structure)
     return tuple(sheet.vertices for sheet in structure.topology().sheets)
 
 
@@ -260,12 +229,47 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     return FlatPlane(origin, np.stack([e1, cross(normal, e1), normal]), residual)
 
 
-def _develop(structure: Structure, fold_angle_deg: float, name: str, topology: Topology) -> tuple[PatternSheet, ...]:
-    """The sheets of a topology of the structure developed into the plane of the flat state."""
+def develop(structure: Structure, topology: Topology, fold_angle: float, *, name: str = "") -> tuple[PatternSheet, ...]:
+    """The sheets of one of the structure's topologies, developed into the plane of the flat state.
+
+    :func:`sheets` with the topology given, for callers that read its sheet maps too
+    (:func:`curvefold.geometry.fold_arrays.fold_arrays` pairs the seams by them).
+
+    Parameters
+    ----------
+    structure : Structure
+    topology : Topology
+        ``structure.topology(faces, keep=keep)``.
+    fold_angle : float
+        The target 2α whose fold angles the sheets carry, degrees, in (0°, 180°).
+    name : str, keyword-only
+        Prefix of the labels.
+
+    Returns
+    -------
+    tuple of PatternSheet
+        One per sheet of ``topology``, as :func:`sheets` returns them.
+
+    Raises
+    ------
+    InputError
+        For a fold angle outside (0°, 180°) or a name that is not a str.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+    >>> [len(s.mesh.faces_vertices) for s in develop(tube, tube.topology("quads"), 90.0)]
+    [16, 16]
+    """
+    check_structure(structure)
+    fold_angle = check_fold_angle(fold_angle)
+    if not isinstance(name, str):
+        raise InputError(f"name must be a str, got {type(name).__name__}")
     flat = structure.state(0.0)
     plane = flat_plane(flat)
     flat_mesh = topology.mesh(flat.vertices)
-    design = topology.mesh(structure.state(fold_angle_deg).vertices)
+    design = topology.mesh(structure.state(fold_angle).vertices)
     normals = flat_mesh.face_normals()
     out = []
     for sheet in topology.sheets:
@@ -343,10 +347,9 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     >>> [s.label for s in sheets(Structure.tube(lat))]
     ['tube 1 · sheet A', 'tube 1 · sheet B']
     """
-    _check_structure(structure)
-    if not isinstance(name, str):
-        raise InputError(f"name must be a str, got {type(name).__name__}")
-    return _develop(structure, _design_angle(structure, fold_angle, degrees), name, structure.topology(faces, keep=keep))
+    check_structure(structure)
+    target = structure.lattice.crease.fold_angle if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees)
+    return develop(structure, structure.topology(faces, keep=keep), target, name=name)
 
 
 # --------------------------------------------------------------------------------------
@@ -391,7 +394,7 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
     tuple of Bond
         Sorted by curve (u, v).
     """
-    _check_structure(structure)
+    check_structure(structure)
     uv = structure.curves_uv.tolist()
     members = corner_members(structure.cell_curves, len(uv))
     return tuple(Bond(tuple(uv[m]), tuple((k, c + 1) for k, c in on)) for m, on in enumerate(members) if len(on) > 1)
@@ -481,8 +484,8 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
     keep : sequence of (m_k,) array_like of int, optional, keyword-only
         The samples each tube's mesh keeps (see :meth:`Structure.topology`).
     """
-    _check_structure(structure)
-    angles = _angles(fold_angles, degrees, "fold_angles")
+    check_structure(structure)
+    angles = check_fold_angles(fold_angles, degrees=degrees)
     points = structure.lattice.fold_points(structure.curves_uv, angles, anchor=anchor)  # (A, M, n, 3)
     return structure.topology(keep=keep).coords(points)
 

@@ -24,40 +24,45 @@ import numpy as np
 
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
+from ..kernel.validate import check_integer
 from .crease import half_angle
-from .lattice import Lattice
 from .mesh import Mesh
 from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .panels import PanelLattice
+    from .kinds import StructureLattice
 
-__all__ = ["Structure", "State", "drawable"]
+__all__ = ["Structure", "State", "check_structure", "drawable"]
 
 
 @dataclass(frozen=True, eq=False)
 class Structure(FrozenArrays):
     """A set of lattice cells on one lattice: a tube, a cellular block or a vault's stack.
 
+    The structure says which cells; its lattice, of any kind
+    (:class:`~curvefold.geometry.kinds.StructureLattice`: smooth lattice curves, or the
+    polylines of rigid planar panels), does the geometry and answers what consumers ask
+    about the kind.
+
     Attributes
     ----------
-    lattice : Lattice or PanelLattice
-        Smooth lattice curves, or the polylines of rigid planar panels
-        (:class:`~curvefold.geometry.panels.PanelLattice`).
+    lattice : StructureLattice
+        A :class:`~curvefold.geometry.lattice.Lattice`, a
+        :class:`~curvefold.geometry.panels.PanelLattice`, or another kind.
     cells : (K, 2) ndarray of int
         Cell (i, j) spans [i, i+1] × [j, j+1] in (u, v).
     """
 
-    lattice: Lattice | PanelLattice
+    lattice: StructureLattice
     cells: np.ndarray
 
     @classmethod
-    def from_cells(cls, lattice: Lattice | PanelLattice, cells: Sequence[Sequence[int]]) -> Structure:
+    def from_cells(cls, lattice: StructureLattice, cells: Sequence[Sequence[int]]) -> Structure:
         """A structure of the given cells, refused if any crease passes regression.
 
         Parameters
         ----------
-        lattice : Lattice
+        lattice : StructureLattice
         cells : sequence of (i, j) integer pairs
             Distinct cells; at least one.
 
@@ -82,12 +87,12 @@ class Structure(FrozenArrays):
         return structure
 
     @classmethod
-    def tube(cls, lattice: Lattice | PanelLattice) -> Structure:
+    def tube(cls, lattice: StructureLattice) -> Structure:
         """The tube of cell [0, 1]²."""
         return cls.from_cells(lattice, [(0, 0)])
 
     @classmethod
-    def diagonal(cls, lattice: Lattice | PanelLattice, count: int, *, direction: int = 1, layers: int = 1) -> Structure:
+    def diagonal(cls, lattice: StructureLattice, count: int, *, direction: int = 1, layers: int = 1) -> Structure:
         """Tubes stacked along the lattice diagonal, curve 3 of one being curve 1 of the next.
 
         Parameters
@@ -99,12 +104,10 @@ class Structure(FrozenArrays):
         layers : int, keyword-only
             Number of parallel diagonals (a band): layer k holds cells (j, j + k).
         """
-        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
-            raise InputError(f"count (tubes) must be an integer ≥ 1, got {count!r}")
+        count = check_integer(count, "count (tubes)", "[1, inf)")
         if direction not in (1, -1):
             raise InputError(f"direction must be +1 or -1, got {direction!r}")
-        if isinstance(layers, bool) or not isinstance(layers, (int, np.integer)) or layers < 1:
-            raise InputError(f"layers must be an integer ≥ 1, got {layers!r}")
+        layers = check_integer(layers, "layers", "[1, inf)")
         j = np.arange(count) if direction == 1 else -np.arange(1, count + 1)
         cells = [(int(a), int(a) + k) for k in range(layers) for a in j]
         return cls.from_cells(lattice, cells)
@@ -154,7 +157,8 @@ class Structure(FrozenArrays):
         keep : sequence of (m_k,) array_like of int, optional, keyword-only
             The samples each tube's mesh keeps (e.g. ``Sampling.keep`` of
             :func:`curvefold.geometry.sampling.choose_sampling`); default every sample.
-            A panel mesh keeps every vertex: it refuses to be thinned.
+            A lattice that is not ``thinnable`` (panels) keeps every vertex: it refuses to
+            be thinned.
         """
         if faces == "triangles" and keep is None:
             return self._triangles
@@ -186,7 +190,7 @@ class State(FrozenArrays):
     Attributes
     ----------
     structure : Structure
-    lattice : Lattice or PanelLattice
+    lattice : StructureLattice
         The lattice at this fold angle.
     vertices : (M, n, 3) ndarray
         Every lattice curve of the structure (rows of ``structure.curves_uv``) at the
@@ -194,7 +198,7 @@ class State(FrozenArrays):
     """
 
     structure: Structure
-    lattice: Lattice | PanelLattice
+    lattice: StructureLattice
     vertices: np.ndarray
 
     @property
@@ -212,6 +216,21 @@ class State(FrozenArrays):
             The faces and samples of :meth:`Structure.topology`.
         """
         return self.structure.topology(faces, keep=keep).mesh(self.vertices)
+
+
+def check_structure(structure: Structure, *, name: str = "structure") -> Structure:
+    """The structure given, refused unless it is a :class:`Structure`.
+
+    Examples
+    --------
+    >>> check_structure("a tube")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: structure must be a Structure, got str
+    """
+    if not isinstance(structure, Structure):
+        raise InputError(f"{name} must be a Structure, got {type(structure).__name__}")
+    return structure
 
 
 def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_cells: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:

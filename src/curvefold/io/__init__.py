@@ -10,12 +10,15 @@ contents, kinds of design, writer, optional package); :mod:`curvefold.io.tables`
 one table of pages, length units and line colours the writers share. Files a user names
 are read through :mod:`curvefold.io.reading` (regular files only, within a size limit).
 
-The writers here take meshes and laid-out sheets; the structure-level entry points
-(:func:`write_structure_fold`, :func:`write_pattern`, :func:`write_3d`) live in
-:mod:`curvefold.geometry.sheets` and are re-exported for convenience.
+The writers take meshes and laid-out sheets; the structure-level entry points
+(:func:`write_structure_fold`, :func:`write_pattern`, :func:`write_3d`) take a structure and
+the conversions geometry makes of it (:mod:`curvefold.geometry.fold_arrays`,
+:mod:`curvefold.geometry.sheets`), and only serialise them. FOLD files are read back by
+:mod:`curvefold.io.fold_reading`.
 """
 
-from .fold import FoldFile, fold_assignments, read_fold, to_fold, write_fold, write_sheet_fold, write_structure_fold
+from .fold import fold_assignments, to_fold, write_fold, write_sheet_fold, write_structure_fold
+from .fold_reading import FoldFile, read_fold
 from .gltf import write_glb
 from .layout import Layout, layout_sheets, page_size
 from .mesh3d import check_metadata, crease_polylines, write_obj, write_ply, write_stl

@@ -1,15 +1,20 @@
 """The registry of file formats, and the output parameters of a design.
 
 :data:`FORMATS` lists every file curvefold writes beside its report: the name a user
-types (``--formats svg,fold``, ``[output] formats = ["svg"]``), the extension, what the
-file holds, the kinds of design it is written for, the function that writes it and the
-optional package it needs. The command line (choices and help), the design schema and the
-output folder read it; nothing else lists format names.
+types (``--formats svg,fold``, ``[output] formats = ["svg"]``), the extension, its media
+type, what the file holds, the kinds of design it is written for, the function that writes
+it and the optional package it needs. The command line (choices and help), the design
+schema, the output folder and the designer's downloads read it; nothing else lists format
+names, extensions or media types.
 
-Formats of one family are written by one call (the crease patterns are laid out once for
-SVG, DXF and PDF; the 3D files share one folded state). Writers are named by their
-qualified name and imported only when a file is written, so reading the registry costs no
-optional import.
+Formats of one family are written from one prepared value: the crease patterns are laid
+out once (a :class:`~curvefold.io.layout.Layout`) for SVG, DXF and PDF; the 3D files share
+one folded state (a :class:`~curvefold.io.models.FoldedModel`); the GIF is written from
+frames drawn by :mod:`curvefold.figures.motion`. Each format's writer takes the target
+path and that value; the family's writer (:func:`~curvefold.io.pattern.write_pattern`,
+:func:`~curvefold.io.models.write_3d`) prepares it once and calls the writer the registry
+names for each format asked. Writers are named by their qualified name and imported only
+when a file is written, so reading the registry costs no optional import.
 
 :data:`OUTPUT_SPECS` are the ``[output]`` parameters of a design (see
 :class:`curvefold.kernel.validate.Spec`).
@@ -19,8 +24,10 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import os
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 
 from ..kernel.errors import InputError
@@ -61,9 +68,12 @@ class FileFormat:
     kinds : tuple of str
         Kinds of design the format is written for.
     writer : str
-        Qualified name of the function that writes it, ``"module:function"``.
+        Qualified name of the function that writes it, ``"module:function"``, called with
+        the target path and the family's prepared value (see the module notes).
+    media_type : str
+        The file's media type (MIME type), as the designer serves it.
     dependency : str or None
-        Module the writer imports that curvefold does not require, or None.
+        Module writing the file needs that curvefold does not require, or None.
     extra : str or None
         The ``pip install 'curvefold[extra]'`` that brings ``dependency``.
     """
@@ -74,8 +84,20 @@ class FileFormat:
     family: str
     kinds: tuple[str, ...]
     writer: str
+    media_type: str
     dependency: str | None = None
     extra: str | None = None
+
+    def path(self, stem: str | os.PathLike) -> Path:
+        """The file of this format for a path stem: ``<stem><extension>``.
+
+        Examples
+        --------
+        >>> FORMATS["svg"].path("out/vault-pattern").as_posix()
+        'out/vault-pattern.svg'
+        """
+        stem = Path(stem)
+        return stem.with_name(stem.name + self.extension)
 
     def load_writer(self) -> Callable:
         """Import and return the writing function."""
@@ -83,23 +105,30 @@ class FileFormat:
         return getattr(importlib.import_module(module), function)
 
 
-_PATTERN = "curvefold.io.pattern:write_pattern"
-_MODEL = "curvefold.io.models:write_3d"
+_S = STRUCTURE_KINDS
 
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", STRUCTURE_KINDS, _PATTERN),
-    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", STRUCTURE_KINDS, _PATTERN, "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", STRUCTURE_KINDS, _PATTERN, "matplotlib", "export"),
-    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", STRUCTURE_KINDS,
-               "curvefold.io.fold:write_structure_fold"),
-    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", STRUCTURE_KINDS, _MODEL, "pygltflib", "export"),
-    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", STRUCTURE_KINDS, _MODEL),
-    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", STRUCTURE_KINDS, _MODEL, "rhino3dm", "rhino"),
-    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", STRUCTURE_KINDS, _MODEL, "trimesh", "export"),
-    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", STRUCTURE_KINDS, _MODEL, "trimesh", "export"),
-    FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", STRUCTURE_KINDS,
-               "curvefold.figures.plots:write_motion_gif", "PIL", "plot"),
+    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per line kind, a scale bar and legend", "pattern", _S,
+               "curvefold.io.pattern:write_svg", "image/svg+xml"),
+    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _S,
+               "curvefold.io.pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
+    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a scale bar and legend", "pattern", _S,
+               "curvefold.io.pattern:write_pdf", "application/pdf", "matplotlib", "export"),
+    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the folded state, and one FOLD file per sheet", "fold", _S,
+               "curvefold.io.fold:write_structure_fold", "application/json"),
+    FileFormat("glb", ".glb", "glTF 3D model at the design state, the folding motion as named morph targets and an animation", "model", _S,
+               "curvefold.io.models:model_glb", "model/gltf-binary", "pygltflib", "export"),
+    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _S,
+               "curvefold.io.models:model_obj", "model/obj"),
+    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _S,
+               "curvefold.io.models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
+    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles)", "model", _S,
+               "curvefold.io.models:model_stl", "model/stl", "trimesh", "export"),
+    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _S,
+               "curvefold.io.models:model_ply", "application/octet-stream", "trimesh", "export"),
+    FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", _S,
+               "curvefold.io.gif:write_gif", "image/gif", "matplotlib", "plot"),  # frames drawn with matplotlib's font and Pillow
 )})
 
 #: What each family of formats writes, as the subject of a sentence in messages.

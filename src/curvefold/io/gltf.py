@@ -38,6 +38,7 @@ import numpy as np
 
 from ..geometry.mesh import Mesh
 from ..kernel.errors import InputError
+from ..kernel.validate import check_integer
 from .atomic import atomic_write
 from .mesh3d import Y_UP, check_metadata
 from .tables import CREATOR, UNITS, rgba
@@ -154,9 +155,7 @@ def write_glb(
     if not np.isfinite(states).all():
         raise InputError("coords must be finite")
     K = len(states)
-    if isinstance(base_state, bool) or not isinstance(base_state, (int, np.integer)) or not -K <= base_state < K:
-        raise InputError(f"base_state must be a state index in [{-K}, {K}), got {base_state!r}")
-    base_state = int(base_state) % K
+    base_state = check_integer(base_state, "base_state", f"[{-K}, {K})", why="a state index") % K
     angles = None
     if angles_deg is not None:
         angles = np.asarray(angles_deg, float).reshape(-1)

@@ -1,22 +1,29 @@
-"""3D model files of a structure: the folded state (OBJ, STL, PLY, 3DM) and its motion (GLB)."""
+"""3D model files of a structure: the folded state (OBJ, STL, PLY, 3DM) and its motion (GLB).
+
+:func:`write_3d` prepares a :class:`FoldedModel` once and writes each format asked with the
+writer the registry (:data:`curvefold.io.formats.FORMATS`) names for it: :func:`model_glb`,
+:func:`model_obj`, :func:`model_stl`, :func:`model_ply` or :func:`model_3dm`.
+"""
 
 from __future__ import annotations
 
 import os
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..geometry.panels import PanelLattice
-from ..geometry.sheets import _angles, _check_structure, _design_angle, folding_motion
-from ..geometry.structure import Structure
+from ..geometry.crease import check_fold_angle, check_fold_angles
+from ..geometry.fold_arrays import structure_metadata
+from ..geometry.mesh import Mesh
+from ..geometry.sheets import folding_motion
+from ..geometry.structure import Structure, check_structure
+from ..kernel.arrays import readonly
 from . import gltf, mesh3d, rhino
-from .fold import _metadata
-from .formats import check_formats, formats_of
-from .pattern import _target
+from .formats import FORMATS, check_formats, formats_of
 
-__all__ = ["MODEL_FORMATS", "write_3d"]
+__all__ = ["MODEL_FORMATS", "FoldedModel", "write_3d", "model_glb", "model_obj", "model_stl", "model_ply", "model_3dm"]
 
 #: 3D formats :func:`write_3d` writes.
 MODEL_FORMATS = formats_of("model")
@@ -73,29 +80,87 @@ def write_3d(
     tuple of Path
         The files written, in the order of ``formats``.
     """
-    _check_structure(structure)
+    check_structure(structure)
     formats = check_formats(formats, "model")
-    design = _design_angle(structure, None, degrees)
-    static = design if fold_angle is None else float(_angles([fold_angle], degrees, "fold_angle")[0])
-    motion = np.linspace(0.0, design, 7) if fold_angles is None else _angles(fold_angles, degrees, "fold_angles")
-    meta = _metadata(structure, design, metadata)
+    design = structure.lattice.crease.fold_angle
+    static = design if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
+    motion = np.linspace(0.0, design, 7) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
+    meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
     state = structure.state(static, anchor=anchor)
-    mesh, quads = state.mesh(keep=keep), state.mesh(faces="quads", keep=keep)
-    static_meta = {**meta, "fold_angle_deg": static}
-    out: list[Path] = []
-    for fmt in formats:
-        target = _target(path_stem, fmt)
-        if fmt == "glb":
-            coords = folding_motion(structure, motion, anchor=anchor, keep=keep)
-            out.append(gltf.write_glb(target, mesh, coords=coords, angles_deg=motion, base_state=int(np.argmin(np.abs(motion - static))), unit=unit, metadata=meta,
-                                      seconds_per_state=seconds_per_state))
-        elif fmt == "obj":
-            out.append(mesh3d.write_obj(target, quads, unit=unit, metadata=static_meta))
-        elif fmt == "stl":
-            out.append(mesh3d.write_stl(target, mesh))
-        elif fmt == "ply":
-            out.append(mesh3d.write_ply(target, mesh))
-        else:
-            out.append(rhino.write_3dm(target, quads, structure.topology("quads", keep=keep), unit=unit, metadata=static_meta,
-                                       degree=1 if isinstance(structure.lattice, PanelLattice) else 3))
-    return tuple(out)
+    model = FoldedModel(structure, state.mesh(keep=keep), state.mesh(faces="quads", keep=keep), static, readonly(motion), unit,
+                        meta, anchor, seconds_per_state, keep)
+    return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
+
+
+@dataclass(frozen=True, eq=False)
+class FoldedModel:
+    """A structure prepared once for all its 3D files (see :func:`write_3d`).
+
+    Attributes
+    ----------
+    structure : Structure
+    mesh : Mesh
+        The state written to OBJ, STL, PLY and 3dm, two triangles per ruling quad (per panel).
+    quads : Mesh
+        The same state, one quad per ruling quad (per panel).
+    fold_angle : float
+        2α of that state, degrees.
+    motion : (A,) ndarray
+        2α of the states of the GLB animation, degrees.
+    unit : str
+        Model unit.
+    metadata : dict
+        Design parameters of the files.
+    anchor : str
+        Which frame of curve 1 stays fixed along the motion.
+    seconds_per_state : float
+        GLB animation time between consecutive states.
+    keep : sequence of (m_k,) ndarray of int, or None
+        The samples each tube's mesh keeps.
+    """
+
+    structure: Structure
+    mesh: Mesh
+    quads: Mesh
+    fold_angle: float
+    motion: np.ndarray
+    unit: str
+    metadata: dict
+    anchor: str
+    seconds_per_state: float
+    keep: Sequence[np.ndarray] | None
+
+    @property
+    def static_metadata(self) -> dict:
+        """:attr:`metadata` with the fold angle of the state the static files hold."""
+        return {**self.metadata, "fold_angle_deg": self.fold_angle}
+
+
+def model_glb(path: str | os.PathLike, model: FoldedModel) -> Path:
+    """The GLB of a model: its state as the base pose, the folding motion as morph targets and an animation."""
+    coords = folding_motion(model.structure, model.motion, anchor=model.anchor, keep=model.keep)
+    base = int(np.argmin(np.abs(model.motion - model.fold_angle)))
+    return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base, unit=model.unit,
+                          metadata=model.metadata, seconds_per_state=model.seconds_per_state)
+
+
+def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:
+    """The OBJ of a model: one quad per ruling quad, with the creases as polylines."""
+    return mesh3d.write_obj(path, model.quads, unit=model.unit, metadata=model.static_metadata)
+
+
+def model_stl(path: str | os.PathLike, model: FoldedModel) -> Path:
+    """The STL of a model (triangles)."""
+    return mesh3d.write_stl(path, model.mesh)
+
+
+def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:
+    """The PLY of a model (triangles, each with its strip)."""
+    return mesh3d.write_ply(path, model.mesh)
+
+
+def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
+    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree)."""
+    structure = model.structure
+    return rhino.write_3dm(path, model.quads, structure.topology("quads", keep=model.keep), unit=model.unit,
+                           metadata=model.static_metadata, degree=structure.lattice.crease_degree)

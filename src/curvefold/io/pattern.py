@@ -37,37 +37,22 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from ..geometry.sheets import PatternSheet, _check_structure, sheets
-from ..geometry.structure import Structure
+from ..geometry.sheets import PatternSheet, sheets
+from ..geometry.structure import Structure, check_structure
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ..kernel.text import one_line
+from ..kernel.validate import check_integer
 from .atomic import atomic_path
-from .formats import check_formats, formats_of
-from .layout import (
-    FOOTER,
-    LAYERS,
-    Label,
-    Layout,
-    Page,
-    PlacedSheet,
-    Polyline,
-    layout_sheets,
-    page_size,
-    seam_name,
-    text_width,
-)
+from .formats import FORMATS, check_formats, formats_of
+from .labels import Label, seam_name, text_width
+from .layout import FOOTER, LAYERS, Layout, Page, PlacedSheet, Polyline, layout_sheets, page_size
 from .tables import COLOURS, CREATOR, mm_per_unit, rgb8
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")
 #: Print scales are rounded down to one of these times a power of ten.
 _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
-
-
-def _target(path_stem: str | os.PathLike, suffix: str) -> Path:
-    stem = Path(path_stem)
-    return stem.with_name(f"{stem.name}.{suffix}")
 
 
 __all__ = [
@@ -266,8 +251,7 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
              line_width: float = 0.25) -> str:
     """One page of ``layout`` as SVG text (see :func:`write_svg`)."""
     _check_layout(layout)
-    if not (isinstance(page_index, (int, np.integer)) and 0 <= page_index < len(layout.pages)):
-        raise InputError(f"page_index must be in [0, {len(layout.pages) - 1}], got {page_index!r}")
+    page_index = check_integer(page_index, "page_index", f"[0, {len(layout.pages) - 1}]")
     names = _check_layers(layers)
     lw = _check_width(line_width)
     page = layout.pages[page_index]
@@ -620,7 +604,7 @@ def layout_pattern(
     -------
     curvefold.io.layout.Layout
     """
-    _check_structure(structure)
+    check_structure(structure)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=name, keep=keep)
     if scale is not None:
         return layout_sheets(parts, page=page, units=units, scale=scale, glue_tabs=glue_tabs)
@@ -669,19 +653,16 @@ def write_pattern(
     Returns
     -------
     tuple of Path
-        The files written, in the order of ``formats``.
+        The files written, in the order of ``formats``; the pages of a format in page
+        order (``<stem>-p1.svg``, ``<stem>-p2.svg``…).
     """
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, fold_angle=fold_angle, degrees=degrees, page=page, units=units, scale=scale,
                             glue_tabs=glue_tabs, name=name, keep=keep)
     layers = LAYERS if rulings else DEFAULT_LAYERS
     out: list[Path] = []
-    for fmt in formats:
-        target = _target(path_stem, fmt)
-        if fmt == "svg":
-            out.extend(write_svg(target, layout, layers=layers))
-        elif fmt == "dxf":
-            out.append(write_dxf(target, layout, layers=layers))
-        else:
-            out.append(write_pdf(target, layout, layers=layers))
+    for name in formats:  # each format's writer, from the registry
+        f = FORMATS[name]
+        written = f.load_writer()(f.path(path_stem), layout, layers=layers)
+        out.extend(written if isinstance(written, tuple) else (written,))
     return tuple(out)

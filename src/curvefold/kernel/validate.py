@@ -54,7 +54,7 @@ import numpy as np
 from .errors import InputError
 from .text import control_characters
 
-__all__ = ["Interval", "Spec", "REQUIRED", "KINDS", "MAX_TEXT", "describe", "from_text", "suggest"]
+__all__ = ["Interval", "Spec", "REQUIRED", "KINDS", "MAX_TEXT", "check_integer", "describe", "from_text", "is_integer", "suggest"]
 
 #: Longest string a ``text`` value may hold.
 MAX_TEXT = 1000
@@ -191,8 +191,9 @@ class Spec:
 
     @property
     def requirement(self) -> str:
-        """The range with its unit and reason, e.g. ``in [3, 200000] (memory bound)``."""
-        text = f"{self.range} {self.unit}" if self.unit else str(self.range)
+        """The range with its unit and reason, e.g. ``in [3, 200000] (memory bound)`` or ``≥ 1``."""
+        text = str(self.range).replace(">=", "≥")
+        text = f"{text} {self.unit}" if self.unit else text
         return f"{text} ({self.why})" if self.why else text
 
     def check(self, value: Any, where: str | None = None, *, shown: str | None = None) -> Any:
@@ -208,25 +209,35 @@ class Spec:
         shown : str, optional
             The value as the user typed it, for the message; default a short description
             of ``value`` with its type.
+
+        Raises
+        ------
+        InputError
+            The value is refused; its :attr:`~curvefold.kernel.errors.CurvefoldError.parameter`
+            is :attr:`name`.
         """
-        return _VALIDATORS[self.kind](self, value, where or self.name, shown)
+        try:
+            return _VALIDATORS[self.kind](self, value, where or self.name, shown)
+        except InputError as err:
+            raise InputError(str(err), parameter=self.name) from None
 
     def check_samples(self, values: np.ndarray, where: str, at: Callable[[int], str]) -> None:
         """Raise naming the first of ``values`` (M,) that is not finite or not in range.
 
-        ``at(i)`` says where sample i lies, e.g. ``"at s = 1.5"``.
+        ``at(i)`` says where sample i lies, e.g. ``"at s = 1.5"``. The error's parameter
+        is :attr:`name`.
         """
         bad = np.flatnonzero(~self.range.mask(values))
         if bad.size:
             i = int(bad[0])
             need = "finite" if self.range.unbounded else f"finite and {self.requirement}"
-            raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}")
+            raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}", parameter=self.name)
 
     def describe(self) -> str:
         """One line for help texts: meaning, allowed values, unit and default."""
         parts = [self.help] if self.help else []
         if self.kind in ("real", "integer", "count", "function") and self.range is not None and not self.range.unbounded:
-            parts.append(self.requirement.replace(">=", "≥"))
+            parts.append(self.requirement)
         elif self.kind in ("choice", "formats"):
             parts.append("one of " + ", ".join(self.choices) if self.kind == "choice" else "any of " + ",".join(self.choices))
         elif self.kind == "page":
@@ -286,8 +297,47 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
 
 
-def _is_integer(value: Any) -> bool:
+def is_integer(value: Any) -> bool:
+    """Whether ``value`` is an integer: a Python or NumPy integer, not a boolean nor an integral float.
+
+    Examples
+    --------
+    >>> is_integer(3), is_integer(np.int64(3)), is_integer(True), is_integer(3.0)
+    (True, True, False, False)
+    """
     return _is_number(value) and isinstance(value, (int, np.integer))
+
+
+def check_integer(value: Any, name: str, range: Interval | str, *, why: str = "") -> int:
+    """``value`` as an ``int``, or :class:`InputError` naming ``name``, the range, the reason and the value.
+
+    The one check of an integer argument of the Python API (a design's integers are
+    checked by their :class:`Spec`, which says the same words).
+
+    Parameters
+    ----------
+    value : object
+    name : str
+        The argument's name, starting the message and set as the error's parameter.
+    range : Interval or str
+        Allowed values, e.g. ``"[1, inf)"``.
+    why : str, keyword-only
+        Why the range is what it is, shown in the message.
+
+    Examples
+    --------
+    >>> check_integer(np.int64(4), "count", "[1, inf)")
+    4
+    >>> check_integer(0, "count", "[1, inf)")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: count must be an integer ≥ 1, got 0
+    >>> check_integer(True, "dpi", "[10, 2400]", why="printable")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: dpi must be an integer in [10, 2400] (printable), got boolean True
+    """
+    return Spec(name, "integer", range=range, why=why).check(value)
 
 
 def _real(spec: Spec, value: Any, where: str, shown: str | None) -> float:
@@ -312,7 +362,7 @@ def _function(spec: Spec, value: Any, where: str, shown: str | None) -> float:
 
 
 def _integer(spec: Spec, value: Any, where: str, shown: str | None) -> int:
-    if not _is_integer(value) or value not in spec.range:
+    if not is_integer(value) or value not in spec.range:
         raise InputError(f"{where} must be an integer {spec.requirement}, got {shown or describe(value)}")
     return int(value)
 
@@ -320,7 +370,7 @@ def _integer(spec: Spec, value: Any, where: str, shown: str | None) -> int:
 def _count(spec: Spec, value: Any, where: str, shown: str | None) -> int | str:
     if isinstance(value, str) and value == "max":
         return value
-    if not _is_integer(value) or value not in spec.range:
+    if not is_integer(value) or value not in spec.range:
         raise InputError(f'{where} must be an integer {spec.requirement} or "max", got {shown or describe(value)}')
     return int(value)
 
@@ -372,7 +422,7 @@ def _cells(spec: Spec, value: Any, where: str, shown: str | None) -> tuple[tuple
         raise InputError(f"{where} must be an array of 1 to {MAX_CELLS} [i, j] pairs, got {shown or describe(value)}")
     seen: dict[tuple[int, int], int] = {}
     for n, cell in enumerate(value):
-        if not (isinstance(cell, (list, tuple)) and len(cell) == 2 and all(_is_integer(x) and x in spec.range for x in cell)):
+        if not (isinstance(cell, (list, tuple)) and len(cell) == 2 and all(is_integer(x) and x in spec.range for x in cell)):
             raise InputError(f"{where}[{n}] must be a pair [i, j] of integers {spec.range}, got {describe(cell)}")
         pair = (int(cell[0]), int(cell[1]))
         if pair in seen:

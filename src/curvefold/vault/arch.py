@@ -43,9 +43,12 @@ from ..kernel.arrays import readonly
 from ..kernel.errors import ConvergenceError, InputError
 from ..kernel.functions import ScalarFunction
 from ..kernel.lie import cross, exp_rotation, product_quaternions
+from ..kernel.validate import Interval
 
 __all__ = [
     "A_MAX",
+    "A_STANDING",
+    "check_standing",
     "ArchRoot",
     "solve_symmetric_arch",
     "symmetric_arch_condition",
@@ -60,6 +63,8 @@ __all__ = [
 #: Largest torsion amplitude with a standing arch: there the two roots of Eq. (20) near
 #: κ₀s₀ ≈ 4.4 merge and vanish (measured; an independent DOP853 integration agrees).
 A_MAX = 1.2707093728
+#: The torsion amplitudes of a standing arch, [0, A_MAX): the range of a design's ``a``.
+A_STANDING = Interval(0.0, A_MAX, True, False)
 
 #: Where the root next to π lies for every a < A_MAX (π at a = 0, about 4.42 at A_MAX): one
 #: Chebyshev interpolant on this window finds it directly.
@@ -142,6 +147,32 @@ class ArchRoot:
     bracket: tuple[float, float]
 
 
+def check_standing(a: float) -> float:
+    """``a`` when the arch family stands for it (a < :data:`A_MAX`), else the error saying why not.
+
+    Raises
+    ------
+    ConvergenceError
+        For a ≥ :data:`A_MAX`, where Eq. (20) has no root next to π.
+
+    Examples
+    --------
+    >>> check_standing(0.3)
+    0.3
+    >>> check_standing(1.5)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.ConvergenceError: no standing arch for a = 1.5: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < 1.2707 (there the two roots near κ0·s0 ≈ 4.4 merge and vanish)
+    """
+    if a >= A_MAX:
+        raise ConvergenceError(
+            f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < {A_MAX:.4f} "
+            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)",
+            parameter="a",
+        )
+    return a
+
+
 def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STEPS) -> ArchRoot:
     """Solve Eq. (20) for κ₀ s₀ on the root next to π, by a bracketed search.
 
@@ -182,12 +213,8 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
 
     a = float(a)
     if not np.isfinite(a) or a < 0:
-        raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}")
-    if a >= A_MAX:
-        raise ConvergenceError(
-            f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < {A_MAX:.4f} "
-            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)"
-        )
+        raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}", parameter="a")
+    check_standing(a)
     f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
     found = _chebyshev_root(a, *WINDOW, xtol, steps)
     if found is not None:
@@ -204,7 +231,8 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
         if dip.fun > 0:
             raise ConvergenceError(
                 f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has no root with κ0·s0 in (π/2, 2π); "
-                f"the root next to π exists only for a < {A_MAX:.4f}"
+                f"the root next to π exists only for a < {A_MAX:.4f}",
+                parameter="a",
             )
         grid, changes = np.array([grid[k - 1], dip.x]), np.array([0])
     i = changes[np.argmin(np.abs(0.5 * (grid[changes] + grid[changes + 1]) - np.pi))]
@@ -339,7 +367,8 @@ def solve_panel_arch(a: float, panels: int, *, fold_angle: float = 90.0, xtol: f
                 return ArchRoot(float(a), float(root), abs(f(root)), (lo, hi))
     raise ConvergenceError(
         f"no standing arch of {n} panels for a = {a:g} near the smooth one (κ0·s0 = {x0:.6g}): "
-        "the discrete Eq. (20) has no root there; use more panels"
+        "the discrete Eq. (20) has no root there; use more panels",
+        parameter="panels",
     )
 
 

@@ -12,7 +12,8 @@ xy plane (at the feet) and in the zx plane (at the apex).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+import math
+from dataclasses import asdict, dataclass, replace
 from functools import cached_property
 from typing import Literal
 
@@ -27,8 +28,8 @@ from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError, RegressionError
 from ..kernel.lie import cross
-from ..kernel.validate import Spec
-from .arch import ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
+from ..kernel.validate import Interval, Spec, check_integer
+from .arch import A_MAX, A_STANDING, ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
 
 __all__ = [
     "VaultDesign",
@@ -58,8 +59,9 @@ LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
 #: The parameters of a vault, in design-file order. ``tubes`` is ``"max"`` or a count and
 #: ``direction`` ``"+"`` or ``"-"`` here; :class:`VaultDesign` holds None and ±1 for them.
 VAULT_SPECS: tuple[Spec, ...] = (
-    Spec("a", "real", 0.3, "[0, 3)", help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0); arches stand for a < 1.2707",
-         label="torsion amplitude"),
+    Spec("a", "real", 0.3, A_STANDING, help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0)",
+         why="no arch stands beyond it: Eq. (20) has no root next to π there",
+         typical=Interval(0.0, math.floor(10 * A_MAX) / 10, True, True), label="torsion amplitude"),  # a slider of round steps
     Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet", label="section proportion at the feet"),
     Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless", label="tube width at the feet, in radii"),
     Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})',
@@ -88,7 +90,7 @@ def vault_samples(samples: int, *, where: str = "samples") -> int:
     (801, 801)
     """
     if samples < MIN_SAMPLES:
-        raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}")
+        raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}", parameter="samples")
     return samples | 1
 
 
@@ -110,7 +112,8 @@ class VaultDesign:
     Attributes
     ----------
     a : float
-        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in [0, 3); the arch stands for a < 1.2707.
+        Torsion amplitude, τ = a κ₀ sin(2π s/s₀), in [0, :data:`~curvefold.vault.arch.A_MAX`):
+        the arch family stands only there (≈ 1.2707).
     p_xy : float
         Section proportion at the feet, w_R(0) / w_L(0).
     width : float
@@ -151,14 +154,13 @@ class VaultDesign:
         half_angle(self.fold_angle)  # the range of VAULT_SPECS' fold_angle, with the geometry's message
         check_samples(self.samples)
         if self.samples % 2 == 0 or self.samples < MIN_SAMPLES:
-            raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}")
-        tubes = _SPEC["tubes"].range
-        if self.tubes is not None and (isinstance(self.tubes, bool) or not isinstance(self.tubes, (int, np.integer)) or self.tubes not in tubes):
-            raise InputError(f"tubes must be an integer ≥ 1 and ≤ {tubes.hi:g} (or None for the maximum), got {self.tubes!r}")
+            raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}", parameter="samples")
+        if self.tubes is not None:
+            check_integer(self.tubes, "tubes", _SPEC["tubes"].range, why="or None for the maximum")
         if self.direction not in (1, -1):
-            raise InputError(f"direction must be +1 or -1, got {self.direction!r}")
+            raise InputError(f"direction must be +1 or -1, got {self.direction!r}", parameter="direction")
         if PANELS.check(self.panels) % 2:
-            raise InputError(f"panels must be 0 (smooth) or even for a vault (the apex is a vertex), got {self.panels}")
+            raise InputError(f"panels must be 0 (smooth) or even for a vault (the apex is a vertex), got {self.panels}", parameter="panels")
 
 
 def standing(lattice: PanelLattice) -> PanelLattice:
@@ -232,8 +234,6 @@ class Vault(FrozenArrays):
             If the base tube or the requested number of tubes passes regression; the
             message names the maximum number of tubes.
         """
-        from dataclasses import replace
-
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
         arch = solve_panel_arch(design.a, design.panels, fold_angle=design.fold_angle) if design.panels else solve_symmetric_arch(design.a)
         k0 = 1.0 / design.radius
@@ -255,13 +255,13 @@ class Vault(FrozenArrays):
             if design.panels:
                 lattice = standing(PanelLattice.from_lattice(lattice, design.panels))
         except RegressionError as err:
-            raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}") from None
+            raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}", parameter="width") from None
         n_max = max_tubes(lattice, direction=design.direction)
         tubes = design.tubes if design.tubes is not None else min(n_max, DEFAULT_TUBES_CAP)
         if tubes > n_max:
             raise RegressionError(
                 f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = {design.p_xy:g}, "
-                f"width = {design.width:g}), got {tubes}"
+                f"width = {design.width:g}), got {tubes}", parameter="tubes",
             )
         structure = Structure.diagonal(lattice, tubes, direction=design.direction, layers=design.layers)
         return cls(replace(design, tubes=tubes), arch, lattice, structure, n_max)

@@ -37,12 +37,18 @@ import numpy as np
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import CurvefoldError, InputError
-from ..kernel.validate import Spec
+from ..kernel.validate import Interval, Spec, check_integer
+from .arch import A_MAX, check_standing
 
 if TYPE_CHECKING:  # pragma: no cover
     from .assembly import Vault
 
-__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS"]
+__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS", "GRID_A"]
+
+#: ``a`` of the grid's rows, in [0, 2 A_MAX] (:data:`~curvefold.vault.arch.A_MAX`): a grid reaches past
+#: where the arches stop standing to show it, recording those designs as having no standing arch.
+GRID_A = Spec("a", "real", 0.3, Interval(0.0, 2 * A_MAX, True, True), help="torsion amplitude a of a row of the grid",
+              why=f"up to twice {A_MAX:.4f}, where arches stop standing")
 
 #: Metrics taken from :meth:`Vault.summary` (footprint split into x and y), model units and degrees.
 METRICS = (
@@ -145,6 +151,7 @@ def evaluate_design(
 
     record: dict[str, Any] = {"a": _number(a), "p_xy": _number(p_xy), "width": float(width), "fold_angle": float(fold_angle)}
     try:
+        check_standing(GRID_A.check(a))  # past A_MAX the record says that no arch stands, not that a is out of range
         vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples))
     except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
@@ -262,8 +269,7 @@ def _axis(values: Sequence[float], name: str) -> tuple[float, ...]:
 
 
 def _check_step(step: int) -> None:
-    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise InputError(f"step must be an integer ≥ 1, got {step!r}")
+    check_integer(step, "step", "[1, inf)")
 
 
 @dataclass(frozen=True, eq=False)

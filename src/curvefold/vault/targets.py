@@ -80,7 +80,7 @@ class TargetFit:
     def require(self) -> VaultDesign:
         """The design, or :class:`InputError` with :attr:`message` when a target is out of reach."""
         if not self.reached:
-            raise InputError(self.message)
+            raise InputError(self.message, parameter="rise")  # only rise/span can be out of reach
         return self.design
 
 

@@ -8,7 +8,8 @@ replace ``radius``, ``a`` and ``p_xy``. A value is read as its key's kind of val
 (a number, a word, an expression in s, ``cells`` as JSON ``[[0, 0], [0, 1]]``,
 ``formats`` comma-separated) and checked by the key's :class:`~curvefold.kernel.validate.Spec`,
 so the command line, design files and the server refuse the same values with the same
-words. A refusal is a :class:`QueryError` naming the parameter it is about, if any.
+words. A refusal is an :class:`~curvefold.kernel.errors.InputError` whose
+:attr:`~curvefold.kernel.errors.CurvefoldError.parameter` names the parameter it is about, if any.
 
 :func:`read_request` only reads and checks (quick, in the server); everything that builds
 runs in worker processes (:mod:`curvefold.app.designer.jobs`). No design is kept per
@@ -20,7 +21,6 @@ from __future__ import annotations
 
 import io
 import json
-import re
 import tempfile
 import zipfile
 from collections.abc import Mapping
@@ -39,7 +39,6 @@ from ..build import Built, build, fit_vault_targets
 from ..design import KINDS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
 
 __all__ = [
-    "QueryError",
     "Request",
     "PREVIEW_SAMPLES",
     "COARSE_SAMPLES",
@@ -70,17 +69,11 @@ MAX_VALUE = 2 * MAX_TEXT
 SOURCE = "query"
 #: Keys a request never sets (the kind is in the path).
 _FIXED = ("kind",)
+#: The target that sets each parameter a target replaces.
+_TARGET_OF = {replaced: target for target, replaced in REPLACES.items()}
 #: The fold angle of the state a downloaded file holds (a query parameter of the files only).
 STATE = Spec("state", "real", None, "[0, 180)", "degrees", help="fold angle 2 alpha of the state the files hold; default the design angle",
              label="fold angle of the files")
-
-
-class QueryError(InputError):
-    """A refused request, with the parameter it is about (None when it is about the whole design)."""
-
-    def __init__(self, message: str, key: str | None = None):
-        super().__init__(message)
-        self.key = key
 
 
 # -- parameters -----------------------------------------------------------------------------------
@@ -89,7 +82,7 @@ class QueryError(InputError):
 def parameters(kind: str) -> dict[str, Spec]:
     """Every query parameter of a kind: the schema keys of its sections and ``[output]``, and a vault's targets."""
     if kind not in KINDS:
-        raise QueryError(f"unknown kind {kind!r} (allowed: {', '.join(KINDS)})")
+        raise InputError(f"unknown kind {kind!r} (allowed: {', '.join(KINDS)})")
     specs = kind_specs(kind)
     if kind == "vault":
         specs |= {spec.name: spec for spec in TARGET_SPECS}
@@ -139,12 +132,6 @@ def schema() -> dict:
     }
 
 
-def _key_named(message: str, keys) -> str | None:
-    """The key a message is about: of ``keys``, the one it names first."""
-    found = [(m.start(), key) for key in keys if (m := re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", message))]
-    return min(found)[1] if found else None
-
-
 @dataclass(frozen=True)
 class Request:
     """A request read and checked: the design it gives (targets not yet solved) and its targets.
@@ -185,7 +172,7 @@ def read_request(kind: str, query: Mapping[str, str] | list[tuple[str, str]], *,
 
     Raises
     ------
-    QueryError
+    InputError
         An unknown parameter or a value the schema refuses; one line.
     """
     specs = parameters(kind) | {spec.name: spec for spec in extra}
@@ -193,29 +180,25 @@ def read_request(kind: str, query: Mapping[str, str] | list[tuple[str, str]], *,
     values: dict = {}
     for name, text in items:
         if name not in specs:
-            raise QueryError(f"unknown parameter {name!r} for a {kind} (allowed: {', '.join(specs)})" + suggest(name, specs))
+            raise InputError(f"unknown parameter {name!r} for a {kind} (allowed: {', '.join(specs)})" + suggest(name, specs))
         if name in values:
-            raise QueryError(f"{name} is given twice", name)
+            raise InputError(f"{name} is given twice", parameter=name)
         if len(text) > MAX_VALUE:
-            raise QueryError(f"{name} is longer than {MAX_VALUE} characters", name)
+            raise InputError(f"{name} is longer than {MAX_VALUE} characters", parameter=name)
         values[name] = from_text(specs[name], text)
     targets = {k: values.pop(k) for k in REPLACES if k in values}
     extras = {spec.name: values.pop(spec.name) for spec in extra if spec.name in values}
     for target, replaced in REPLACES.items():
         if target in targets and replaced in values:
-            raise QueryError(f"give {target} or {replaced}, not both ({target} sets {replaced})", target)
+            raise InputError(f"give {target} or {replaced}, not both ({target} sets {replaced})", parameter=target)
     for group in (values, targets, extras):
         for name, value in group.items():
             if specs[name].kind != "function":  # expressions are checked with the design, on its samples
-                try:
-                    group[name] = specs[name].check(value, name)
-                except InputError as err:
-                    raise QueryError(str(err), name) from None
+                group[name] = specs[name].check(value, name)
     try:
         design = default_design(kind).overrides(source=SOURCE, **values)
     except CurvefoldError as err:
-        message = str(err).removeprefix(f"{SOURCE}: ")
-        raise QueryError(message, _key_named(message, values)) from None
+        raise _without_source(err) from None
     return Request(design, tuple(sorted(targets.items()))), extras
 
 
@@ -232,8 +215,8 @@ def resolve(key: str, targets: tuple[tuple[str, float], ...] = ()) -> tuple[Desi
 def _fitted(design_key: str, targets: tuple) -> tuple[str, str]:
     try:
         design, note = fit_vault_targets(_design(design_key), source=SOURCE, **dict(targets))
-    except InputError as err:
-        raise QueryError(str(err), "rise" if "rise/span" in str(err) else _key_named(str(err), REPLACES)) from None
+    except CurvefoldError as err:  # about a parameter a target replaces: about that target
+        raise _without_source(err, _TARGET_OF.get(err.parameter, err.parameter)) from None
     return _key(design), note
 
 
@@ -248,7 +231,7 @@ def design_query(design: Design) -> list[tuple[str, str]]:
 
     Raises
     ------
-    QueryError
+    InputError
         A function given as a CSV column: the designer takes numbers and expressions in s.
     """
     pairs = []
@@ -257,7 +240,7 @@ def design_query(design: Design) -> list[tuple[str, str]]:
             if name in _FIXED:
                 continue
             if isinstance(value, dict):
-                raise QueryError(f"[{section}] {name} is a CSV column; the designer takes numbers and expressions in s", name)
+                raise InputError(f"[{section}] {name} is a CSV column; the designer takes numbers and expressions in s", parameter=name)
             if isinstance(value, list):
                 text = json.dumps(value) if name == "cells" else ",".join(map(str, value))
             else:
@@ -292,11 +275,14 @@ def built(design: Design, *, samples: int | None = None) -> Built:
             _built(_key(design))
             design = design.overrides(source=SOURCE, samples=samples)
         return _built(_key(design))
-    except QueryError:
-        raise
     except CurvefoldError as err:
-        message = str(err).removeprefix(f"{SOURCE}: ")
-        raise QueryError(message, _key_named(message, parameters(design.kind))) from None
+        raise _without_source(err) from None
+
+
+def _without_source(err: CurvefoldError, parameter: str | None = None) -> CurvefoldError:
+    """The error of a design check or a builder, its message without the request's name, about
+    ``parameter`` (default the error's own)."""
+    return type(err)(str(err).removeprefix(f"{SOURCE}: "), parameter=parameter or err.parameter)
 
 
 def caches() -> dict[str, object]:
@@ -350,7 +336,7 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
 def domain_svg(design: Design) -> str:
     """The regression domain of a tube, block or vault with its cells (Eq. 18), as SVG text."""
     if design.kind == "crease":
-        raise QueryError("a single curved fold has no lattice: the regression domain is drawn for tubes, blocks and vaults")
+        raise InputError("a single curved fold has no lattice: the regression domain is drawn for tubes, blocks and vaults")
     return _domain(_key(design))
 
 
@@ -366,7 +352,7 @@ def _domain(key: str) -> str:
 
 
 def pattern_pages(design: Design) -> list[str]:
-    """The crease-pattern pages as they will be cut (the SVG files a download gives), at the design's samples."""
+    """The crease-pattern pages as they will be cut (the SVG files a download gives), in page order, at the design's samples."""
     check_kind(["svg"], design.kind, "crease pattern")
     return list(_pattern(_key(design)))
 
@@ -374,25 +360,20 @@ def pattern_pages(design: Design) -> list[str]:
 @lru_cache(maxsize=4)
 def _pattern(key: str) -> tuple[str, ...]:
     with tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
-        files = _write(built(_design(key)), ("svg",), Path(tmp))
-        return tuple(Path(f).read_text(encoding="utf-8") for f in sorted(files, key=_page_number))
-
-
-def _page_number(path) -> int:
-    found = re.search(r"-p(\d+)\.svg$", str(path))
-    return int(found.group(1)) if found else 0
+        return tuple(f.read_text(encoding="utf-8") for f in _write(built(_design(key)), ("svg",), Path(tmp)))  # in page order
 
 
 # -- files --------------------------------------------------------------------------------------------
 
 
 def _write(built: Built, formats: tuple[str, ...], folder: Path, state: float | None = None) -> list[Path]:
-    """The files of ``formats`` written by the output folder's jobs (without the report's pictures)."""
+    """The files of ``formats`` written by the output folder's jobs (without the report's pictures), in
+    the order they are written: a format's pages in page order."""
     from .. import products
 
     missing = missing_dependencies(formats)
     if missing:
-        raise QueryError("; ".join(missing))
+        raise InputError("; ".join(missing))
     files: list[Path] = []
     for label, job in products.jobs(built, formats, fold_angle=state):
         if label != "pictures":
@@ -400,10 +381,8 @@ def _write(built: Built, formats: tuple[str, ...], folder: Path, state: float | 
     return files
 
 
-#: Media types of the files served.
-MEDIA = {".fold": "application/json", ".glb": "model/gltf-binary", ".obj": "model/obj", ".3dm": "application/octet-stream",
-         ".stl": "model/stl", ".ply": "application/octet-stream", ".svg": "image/svg+xml", ".dxf": "image/vnd.dxf",
-         ".pdf": "application/pdf", ".gif": "image/gif", ".zip": "application/zip", ".toml": "application/toml"}
+#: Media types of the two downloads that are no format of the registry (which gives the others').
+ZIP, TOML = "application/zip", "application/toml"
 
 
 def _zip(files: list[tuple[str, Path]]) -> bytes:
@@ -415,7 +394,8 @@ def _zip(files: list[tuple[str, Path]]) -> bytes:
 
 
 @lru_cache(maxsize=2)
-def _files(key: str, what: str, state: float | None) -> tuple[str, bytes]:
+def _files(key: str, what: str, state: float | None) -> tuple[str, str, bytes]:
+    """(file name, media type, content) of a download: the format's main file, its pages zipped, or the folder zipped."""
     design = _design(key)
     found = built(design)
     with tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
@@ -427,15 +407,16 @@ def _files(key: str, what: str, state: float | None) -> tuple[str, bytes]:
             out = root / f"curvefold-{design.kind}"
             write_outputs(found, check_output(out, force=False), show_progress=False, fold_angle=state, workers=1)  # the pool is the parallelism
             files = sorted(p for p in out.rglob("*") if p.is_file() and not p.name.startswith("."))  # not the folder's marker
-            return f"curvefold-{design.kind}.zip", _zip([(str(p.relative_to(root)), p) for p in files])
+            return f"curvefold-{design.kind}.zip", ZIP, _zip([(str(p.relative_to(root)), p) for p in files])
         files = _write(found, (what,), root, state)
-        main = root / f"{design.kind}{FORMATS[what].extension}"
+        f = FORMATS[what]
+        main = root / f"{design.kind}{f.extension}"
         if main in files:
-            return main.name, main.read_bytes()
-        same = [f for f in files if f.suffix == FORMATS[what].extension]
+            return main.name, f.media_type, main.read_bytes()
+        same = [p for p in files if p.suffix == f.extension]
         if len(same) == 1:
-            return same[0].name, same[0].read_bytes()
-        return f"{design.kind}-{what}.zip", _zip([(f.name, f) for f in sorted(same, key=_page_number)])
+            return same[0].name, f.media_type, same[0].read_bytes()
+        return f"{design.kind}-{what}.zip", ZIP, _zip([(p.name, p) for p in same])
 
 
 def check_download(design: Design, what: str) -> None:
@@ -443,7 +424,7 @@ def check_download(design: Design, what: str) -> None:
     if what in ("zip", "toml"):
         return
     if what not in FORMATS:
-        raise QueryError(f"unknown file {what!r} (allowed: {', '.join([*default_formats(design.kind), 'zip', 'toml'])})")
+        raise InputError(f"unknown file {what!r} (allowed: {', '.join([*default_formats(design.kind), 'zip', 'toml'])})")
     check_kind([what], design.kind, "download")
 
 
@@ -457,14 +438,13 @@ def download(design: Design, what: str, *, state: float | None = None) -> tuple[
 
     Raises
     ------
-    QueryError
+    InputError
         A format the registry does not know, or one not written for the design's kind.
     """
     check_download(design, what)
     if what == "toml":
-        return f"{design.kind}.toml", MEDIA[".toml"], design_toml(design).encode()
-    name, content = _files(_key(design), what, state)
-    return name, MEDIA[Path(name).suffix], content
+        return f"{design.kind}.toml", TOML, design_toml(design).encode()
+    return _files(_key(design), what, state)
 
 
 def design_toml(design: Design) -> str:

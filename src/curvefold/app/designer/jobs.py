@@ -21,7 +21,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 
-from ...kernel.errors import CurvefoldError
+from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import Spec
 from ..budget import Estimate, require_budget
 from . import api, preview
@@ -62,7 +62,7 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
 
     Raises
     ------
-    QueryError
+    InputError
         A parameter refused, a file the kind has no writer for, or a job over the memory
         budget (the message gives the estimate and what to lower).
     """
@@ -79,7 +79,7 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
     try:
         estimate = require_budget(files or design, files=files is not None)
     except CurvefoldError as err:
-        raise api.QueryError(str(err).removeprefix(f"{api.SOURCE}: "), "samples") from None
+        raise InputError(str(err).removeprefix(f"{api.SOURCE}: "), parameter="samples") from None
     small = estimate.strip_samples <= QUICK_STRIP_SAMPLES and not request.targets
     quick = small and route in _QUICK and (coarse or route not in ("certificate", "pattern"))
     option = what if route == "file" else "coarse" if coarse else None

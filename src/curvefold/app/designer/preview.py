@@ -24,7 +24,8 @@ from ...geometry.topology import tube_strips
 from ...io.tables import COLOURS
 from ..build import Built
 from ..design import Design
-from .api import COARSE_SAMPLES, PREVIEW_SAMPLES, QueryError, _design, _key, built, design_query, resolve
+from ...kernel.errors import InputError
+from .api import COARSE_SAMPLES, PREVIEW_SAMPLES, _design, _key, built, design_query, resolve
 
 __all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
 
@@ -166,7 +167,7 @@ def contact(design: Design) -> float | None:
     1° grid; :meth:`Vault.first_contact <curvefold.vault.assembly.Vault.first_contact>`), or None
     up to :data:`MAX_FOLD`: where the fold slider stops."""
     if design.kind != "vault":
-        raise QueryError(f"the first contact is searched for vaults, not for a {design.kind}")
+        raise InputError(f"the first contact is searched for vaults, not for a {design.kind}")
     return _contact(_key(design))
 
 
@@ -186,7 +187,7 @@ def pattern_sketch(design: Design) -> str:
     (outlines, seams and folds; no glue tabs, labels or page layout): the crease pattern
     shown while the pages as they will be cut are laid out."""
     if design.kind == "crease":
-        raise QueryError("a single curved fold has no sheets to lay out: crease patterns are drawn for tubes, blocks and vaults")
+        raise InputError("a single curved fold has no sheets to lay out: crease patterns are drawn for tubes, blocks and vaults")
     return _sketch(_key(design))
 
 

@@ -235,7 +235,7 @@ class Designer:
         try:
             plan = await run_in_threadpool(jobs.plan, route, kind, list(request.query_params.multi_items()), what=what)
         except CurvefoldError as err:
-            return refused(str(err).removeprefix(f"{api.SOURCE}: "), getattr(err, "key", None))
+            return refused(str(err).removeprefix(f"{api.SOURCE}: "), err.parameter)
         except Exception as err:  # a bug: one line, to the client and the terminal
             log.error("%s: %s", request.url.path, _bug(f"{type(err).__name__}: {err}"))
             return refused(_bug(f"{type(err).__name__}: {err}"), status=500)
@@ -246,7 +246,7 @@ class Designer:
             except JobError as err:
                 if not err.refused:
                     log.error("%s: %s", request.url.path, _bug(str(err)))
-                return refused(str(err).removeprefix(f"{api.SOURCE}: "), err.key) if err.refused else refused(_bug(str(err)), status=500)
+                return refused(str(err).removeprefix(f"{api.SOURCE}: "), err.parameter) if err.refused else refused(_bug(str(err)), status=500)
             except Stopped as err:
                 if err.reason in ("time", "memory"):
                     lower = "lower samples, the number of tubes, cells or panels, or use the command line"
