@@ -542,13 +542,25 @@ def test_out_of_memory_is_one_line(tmp_path, monkeypatch):
     refused(run("crease", "--json", cwd=tmp_path), r"^curvefold: error: out of memory; lower samples")
 
 
-def test_warnings_never_come_before_the_line(tmp_path):
-    # widths of e^±200 along the tube: NumPy warns in the measurements (up to 94 lines were printed)
+def test_warnings_never_come_before_the_line(tmp_path, monkeypatch, capsys):
+    # widths of e^±200 along the tube: NumPy warned in the measurements (up to 94 lines were printed); such widths
+    # are now refused before any measurement, in one line
     (tmp_path / "d.toml").write_text('kind = "tube"\nsamples = 101\n[curve]\nlength = 1000.0\n')
     quiet = run_subprocess("tube", "d.toml", "--json", cwd=tmp_path)
-    assert "Warning" not in quiet.stderr and len(quiet.stderr.splitlines()) <= 1, quiet.stderr
-    loud = run_subprocess("tube", "d.toml", "--json", "--debug", cwd=tmp_path)
-    assert "RuntimeWarning" in loud.stderr  # there were warnings to hide
+    assert "Warning" not in quiet.stderr and len(quiet.stderr.splitlines()) == 1, quiet.stderr
+    # a warning on the way to an error is kept back, and printed after the line with --debug
+    from curvefold.app import cli
+    from curvefold.kernel.errors import InputError
+
+    def noisy(kind, args):
+        np.exp(np.array([1000.0]))  # overflow: a RuntimeWarning
+        raise InputError("refused")
+
+    monkeypatch.setattr(cli, "cmd_structure", noisy)
+    assert cli.main(["tube", "--json"]) == 2 and capsys.readouterr().err == "curvefold: error: refused\n"
+    assert cli.main(["tube", "--json", "--debug"]) == 2
+    loud = capsys.readouterr().err
+    assert loud.startswith("curvefold: error: refused\n") and "RuntimeWarning: overflow encountered in exp" in loud
 
 
 # ---------------------------------------------------------------------------------------------

@@ -25,9 +25,10 @@ What it promises:
 
 - **Every request within the budget.** Each request is estimated as the command line
   estimates a run (:mod:`curvefold.app.budget`) and refused above the budget, with the
-  estimate and what to lower; the jobs running at once hold at most the budget between
-  them (a job waits for memory another frees), and a worker that grows past its job's
-  estimate by :data:`WORKER_ALLOWANCE` is stopped.
+  estimate and what to lower; the heavy jobs running at once hold at most the budget
+  between them (a job waits for memory another frees; quick jobs are small and run one at
+  a time), and a worker that grows past its job's estimate by :data:`WORKER_ALLOWANCE` is
+  stopped.
 - **One request never blocks the others.** Everything that builds runs in worker processes
   (:mod:`curvefold.app.workers`): a quick lane answers previews and the first coarse
   answers; a heavy lane, of lower CPU priority, the rest. A job past its time limit, or
@@ -269,10 +270,16 @@ class Designer:
                 pass
 
         memory = plan.estimate.total
+
+        def run():
+            return self.pools[plan.lane].run(jobs.run, *plan.args, timeout=self.time_limit if heavy else QUICK_TIME_LIMIT,
+                                             memory_limit=memory + WORKER_ALLOWANCE, cancelled=gone if heavy else None)
+
+        if not heavy:  # small (at most QUICK_STRIP_SAMPLES), one at a time: never kept waiting for memory
+            return await run()
         await self.reservations.hold(memory, self.time_limit)
         try:
-            return await self.pools[plan.lane].run(jobs.run, *plan.args, timeout=self.time_limit if heavy else QUICK_TIME_LIMIT,
-                                                   memory_limit=memory + WORKER_ALLOWANCE, cancelled=gone if heavy else None)
+            return await run()
         finally:
             await self.reservations.release(memory)
 
