@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 
+import numpy as np
+
 from ..geometry.crease import Crease
 from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice
@@ -15,7 +17,10 @@ from ..kernel.errors import InputError
 from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
 from .design import Design
 
-__all__ = ["Built", "build", "vault_design", "fit_vault_targets"]
+__all__ = ["Built", "build", "vault_design", "fit_vault_targets", "exported_fold_angles", "MOTION_STEPS"]
+
+#: States of the folding motion in the files (the GLB's morph targets, the certified frames), flat to the design angle.
+MOTION_STEPS = 10
 
 
 @dataclass(frozen=True, eq=False)
@@ -91,7 +96,6 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
     """
     from ..analysis.certificate import certify
     from ..vault.targets import fit_targets
-    from .products import exported_fold_angles
 
     fit = fit_targets(vault_design(design), **targets)
     fitted = fit.require()
@@ -105,6 +109,11 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
         raise InputError(f"the vault that meets these targets (a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}) fails its "
                          f"certificate: {c.name} {c.status} at {c.where}{need}")
     return found, fit.note
+
+
+def exported_fold_angles(built: Built) -> np.ndarray:
+    """2α of the frames the files hold (degrees): the folding motion, flat to the design angle."""
+    return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
 
 
 def build(design: Design) -> Built:

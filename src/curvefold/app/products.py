@@ -24,19 +24,15 @@ from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from functools import partial
 from pathlib import Path
 
-import numpy as np
-
 from ..analysis.mechanism import certified_mechanism
 from ..io.formats import FORMATS, check_kind, formats_of
 from ..kernel.errors import InternalError
-from .build import Built
+from .build import MOTION_STEPS, Built, exported_fold_angles
 from .folder import ENDING_SIGNALS
 
 __all__ = ["jobs", "run_jobs", "resolution", "exported_fold_angles", "picture_files", "can_draw", "pictures_left_out", "MOTION_STEPS",
            "PICTURES_NEED", "PICTURES_EXTRA"]
 
-#: States of the folding motion in the GLB, from flat to the design angle.
-MOTION_STEPS = 10
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
 #: The package the report's pictures are drawn with, and the extra that brings it.
@@ -68,11 +64,6 @@ def _metadata(built: Built) -> dict:
             "p_xz": v.p_xz,
         }
     return meta
-
-
-def exported_fold_angles(built: Built) -> np.ndarray:
-    """2α of the frames the files hold (degrees): the folding motion, flat to the design angle."""
-    return np.linspace(0.0, built.structure.lattice.crease.fold_angle, MOTION_STEPS)
 
 
 def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = None) -> list[tuple[str, Job]]:

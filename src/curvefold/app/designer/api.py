@@ -286,11 +286,9 @@ def _without_source(err: CurvefoldError, parameter: str | None = None) -> Curvef
 
 
 def caches() -> dict[str, object]:
-    """The worker's LRU caches by name (their ``cache_info()`` shows that memory stays bounded)."""
-    from . import preview
-
-    return {"built": _built, "fitted": _fitted, "payload": _payload, "files": _files, "domain": _domain, "pattern": _pattern,
-            **preview.caches()}
+    """This module's LRU caches by name (their ``cache_info()`` shows that memory stays bounded; see also
+    :func:`curvefold.app.designer.preview.caches`)."""
+    return {"built": _built, "fitted": _fitted, "payload": _payload, "files": _files, "domain": _domain, "pattern": _pattern}
 
 
 # -- the payload, certificate and figures -----------------------------------------------------------
