@@ -110,13 +110,13 @@ def test_a_heavy_request_neither_blocks_a_quick_one_nor_outlives_its_client(url)
 
 
 def test_a_request_past_the_time_limit_is_stopped_and_says_so():
-    with server.serving(time_limit=1.0) as url:
+    with server.serving(time_limit=2.0) as url:
         status_, answer = get_json(url + HEAVY)
         assert status_ == 422 and answer == {
-            "error": "this request took longer than the time limit of 1 s; lower samples, the number of tubes, cells or panels, or use the command line",
+            "error": "this request took longer than the time limit of 2 s; lower samples, the number of tubes, cells or panels, or use the command line",
             "key": "samples"}
         assert status(url)["workers"]["heavy"]["jobs"]["time"] == 1
-        assert get(url + "api/vault?samples=101&tubes=2")[0] == 200  # a fresh worker took its place
+        assert get(url + "api/vault.toml?samples=101&tubes=2")[0] == 200  # a fresh worker took its place
 
 
 def test_a_worker_past_its_memory_limit_is_stopped(monkeypatch):

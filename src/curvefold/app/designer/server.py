@@ -28,7 +28,7 @@ What it promises:
   estimate and what to lower; the heavy jobs running at once hold at most the budget
   between them (a job waits for memory another frees; quick jobs are small and run one at
   a time), and a worker that grows past its job's estimate by :data:`WORKER_ALLOWANCE` is
-  stopped.
+  stopped; one that a job leaves larger than :data:`RECYCLE_ABOVE` is replaced.
 - **One request never blocks the others.** Everything that builds runs in worker processes
   (:mod:`curvefold.app.workers`): a quick lane answers previews and the first coarse
   answers; a heavy lane, of lower CPU priority, the rest. A job past its time limit, or
@@ -77,9 +77,10 @@ VENDOR_FILES = ("three.module.js", "three.core.js", "addons/controls/OrbitContro
 TIME_LIMIT = SERVER_SPECS[1].default
 #: Seconds a quick request may take.
 QUICK_TIME_LIMIT = 30.0
-#: Resident bytes a worker may hold beyond its job's estimate (its own interpreter and caches); a worker
-#: holding more than this after a job is replaced by a fresh one.
+#: Resident bytes a worker may hold beyond its job's estimate (its own interpreter and caches).
 WORKER_ALLOWANCE = 384 << 20
+#: A worker holding more than this after a job is replaced by a fresh one (its caches go with it).
+RECYCLE_ABOVE = 256 << 20
 #: Answers kept by the server (bytes), and the largest one kept.
 ANSWER_CACHE, LARGEST_ANSWER = 64 << 20, 8 << 20
 #: Modules the workers start with (imported once, in the fork server).
@@ -206,9 +207,8 @@ class Designer:
         self.budget = memory_budget()
         self.reservations = Reservations(self.budget)
         self.answers = _Answers()
-        self.pools = {"quick": Pool(1, name="quick", scratch=self.scratch, preload=PRELOAD, recycle_above=WORKER_ALLOWANCE),
-                      "heavy": Pool(workers, name="heavy", scratch=self.scratch, preload=PRELOAD, niceness=10,
-                                    recycle_above=WORKER_ALLOWANCE)}
+        self.pools = {"quick": Pool(1, name="quick", scratch=self.scratch, preload=PRELOAD, recycle_above=RECYCLE_ABOVE),
+                      "heavy": Pool(workers, name="heavy", scratch=self.scratch, preload=PRELOAD, niceness=10, recycle_above=RECYCLE_ABOVE)}
         self.hosts, self.any_address = allowed_hosts(host, sock.getsockname()[1])
         self.app = Guard(self._fastapi(), self.hosts, self.any_address)
 
@@ -293,7 +293,8 @@ class Designer:
             "workers": {lane: {"size": pool.size, "busy": pool.busy, "pids": pool.pids(), "jobs": dict(pool.counts)}
                         for lane, pool in self.pools.items()},
             "limits": {"time_limit": self.time_limit, "quick_time_limit": QUICK_TIME_LIMIT, "budget": self.budget,
-                       "worker_allowance": WORKER_ALLOWANCE, "answer_cache": ANSWER_CACHE, "hosts": sorted(self.hosts)},
+                       "worker_allowance": WORKER_ALLOWANCE, "recycle_above": RECYCLE_ABOVE, "answer_cache": ANSWER_CACHE,
+                       "hosts": sorted(self.hosts)},
             "memory": {"reserved": self.reservations.held, "answers": self.answers.size, "processes": 1 + len(processes),
                        "resident": resident_bytes(server) + sum(resident_bytes(p) for p in processes),
                        "proportional": _pss(server) + sum(_pss(p) for p in processes)},
