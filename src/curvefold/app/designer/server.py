@@ -80,7 +80,7 @@ QUICK_TIME_LIMIT = 30.0
 #: Resident bytes a worker may hold beyond its job's estimate (its own interpreter and caches).
 WORKER_ALLOWANCE = 384 << 20
 #: A worker holding more than this after a job is replaced by a fresh one (its caches go with it).
-RECYCLE_ABOVE = 256 << 20
+RECYCLE_ABOVE = 160 << 20
 #: Answers kept by the server (bytes), and the largest one kept.
 ANSWER_CACHE, LARGEST_ANSWER = 64 << 20, 8 << 20
 #: Modules the workers start with (imported once, in the fork server).
