@@ -32,6 +32,9 @@ DESIGNS = (
     ("vault, 801 samples, 9 tubes, all formats", ["vault", "--tubes", "9"], {"kind": "vault", "vault": {"tubes": 9}}),
     ("vault, 3001 samples, 9 tubes, FOLD", ["vault", "--samples", "3001", "--tubes", "9", "--formats", "fold"],
      {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}, "output": {"formats": ["fold"]}}),
+    ("tube, 100000 panels, --json", ["tube", "--panels", "100000", "--json"], {"kind": "tube", "curve": {"panels": 100000}}),
+    ("vault, 20000 panels, 9 tubes, --json", ["vault", "--panels", "20000", "--tubes", "9", "--json"],
+     {"kind": "vault", "vault": {"panels": 20000, "tubes": 9}}),
 )
 
 

@@ -104,9 +104,19 @@ def test_the_report_reads_at_phone_and_desktop_widths(vault_folder, width):
             body: document.body.clientWidth,
             images: [...document.images].map((i) => [i.getAttribute('src'), i.naturalWidth, i.getBoundingClientRect().width]),
             files: [...document.querySelectorAll('h2 + table a')].map((a) => a.textContent),
+            tables: [...document.querySelectorAll('table')].map((t) => t.scrollWidth - t.clientWidth),
             viewport: document.querySelector('meta[name=viewport]')?.content,
         })""")
-    assert layout["overflow"] <= 0  # nothing wider than the screen: wide tables scroll inside themselves
+    assert layout["overflow"] <= 0  # nothing wider than the screen
+    if width == 390:  # a phone: every table reads without sliding sideways (one card per row), every figure's text readable
+        assert max(layout["tables"]) <= 1, layout["tables"]
+        from PIL import Image
+
+        for src, _, shown_width in layout["images"]:
+            if src.endswith(".png"):  # 7 pt text at 150 dpi is 14.6 px in the picture: at least 9 px on the screen
+                with Image.open(vault_folder / src) as picture:
+                    pixels = picture.width
+                assert 14.6 * shown_width / pixels >= 9, (src, pixels, shown_width)
     assert layout["viewport"] == "width=device-width, initial-scale=1"
     assert all(natural > 0 for _, natural, _ in layout["images"])  # every picture loads
     shown = {src: (natural, w) for src, natural, w in layout["images"]}

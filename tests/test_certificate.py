@@ -388,6 +388,6 @@ def test_report_table_has_status_margin_and_model():
                "certificate_frames": {"fold_angles": list(cert.fold_angles), "holds_up_to": cert.holds_up_to, "samples": cert.samples}}
     html = report_html(payload)
     assert "<th>status</th>" in html and "<th>margin</th>" in html and "<th>tolerance</th>" in html
-    assert html.count("<td class=num>") == 3 * len(cert.checks)  # measured, tolerance, margin: never wrapped
+    assert html.count(" class=num>") == 3 * len(cert.checks)  # measured, tolerance, margin: never wrapped
     assert "insufficient resolution" in html and "use ≥" in html
     assert "Richardson" in html and "2α = 0°, 45°, 90°" in html

@@ -20,7 +20,7 @@ from _designer import get, get_json, need
 pytest.importorskip("fastapi")
 from curvefold.analysis.foldcheck import check_fold  # noqa: E402
 from curvefold.app.design import KINDS, default_design, parse_design  # noqa: E402
-from curvefold.app.designer import api, server  # noqa: E402
+from curvefold.app.designer import api, jobs, preview, server  # noqa: E402
 from curvefold.geometry.structure import drawable  # noqa: E402
 from curvefold.vault import Vault, VaultDesign  # noqa: E402
 
@@ -115,15 +115,14 @@ def test_a_design_survives_its_query(kind):
 def test_preview_holds_the_motion_the_vault_makes(url):
     status, _, body = get(f"{url}api/vault/preview?{LIGHT}")
     assert status == 200
-    preview = json.loads(body)
-    motion = preview["motion"]
+    motion = json.loads(body)["motion"]
     positions = np.frombuffer(base64.b64decode(motion["positions"]), np.float32).reshape(motion["states"], motion["vertices"], 3)
     angles = np.array(motion["angles"])
     assert angles[0] == 0 and motion["design_angle"] in angles and np.all(np.diff(angles) > 0)
-    assert motion["end"] == "first contact" and angles[-1] == api.MAX_FOLD
+    assert motion["end"] == "first contact" and angles[-1] == preview.MAX_FOLD
     # the state at the design angle is the vault standing on the ground, to float32 rounding
     vault = Vault.from_design(VaultDesign(tubes=4, samples=api.PREVIEW_SAMPLES))
-    curves, _, _ = drawable(vault.structure, vault.vertices, segments=api.PREVIEW_SEGMENTS, max_cells=api.PREVIEW_CELLS)
+    curves, _, _ = drawable(vault.structure, vault.vertices, segments=preview.PREVIEW_SEGMENTS, max_cells=preview.PREVIEW_CELLS)
     k = int(np.flatnonzero(angles == motion["design_angle"])[0])
     size = float(np.abs(curves).max())
     assert np.abs(positions[k] - curves.reshape(-1, 3)).max() <= 4 * np.finfo(np.float32).eps * size
@@ -151,7 +150,8 @@ HOSTILE = [
     ("api/vault/preview?width=0.5&tubes=3", "tubes must be ≤ 1", "tubes"),
     ("api/vault/preview?width=9", "width = 9 is past regression for the base tube", "width"),
     ("api/vault/preview?tubes=-1", 'tubes must be an integer in [1, 1000] or "max", got -1', "tubes"),
-    ("api/vault/preview?samples=200000", "samples × crease lines = 200000 × 96 exceeds", "samples"),
+    ("api/vault/preview?samples=200000", "this job needs about 25.5 GiB of memory (200000 samples × 96 strips), more than the budget of 2.0 GiB "
+                                         "(CURVEFOLD_MEMORY_BUDGET); lower samples (at most 14", "samples"),
     ("api/vault/preview?span=3&radius=2", "give span or radius, not both", "span"),
     ("api/vault/preview?direction=%00", 'direction must be one of "+", "-"', "direction"),
     ("api/vault/preview?evil=1", "unknown parameter 'evil' for a vault", None),
@@ -181,9 +181,16 @@ def test_unknown_paths_are_404_and_bugs_are_one_line_500(url, monkeypatch):
     assert get(url + "api/vault/nothing")[0] == 404
     assert get(url + "../../etc/passwd")[0] == 404
     assert get(url + "static/../server.py")[0] == 404
-    monkeypatch.setattr(api, "preview", lambda design: 1 / 0)
+    # a bug in the server, and one in a worker (a job the worker cannot read): one line each, never a traceback
+    real = jobs.plan
+    monkeypatch.setattr(jobs, "plan", lambda *args, **kwargs: 1 / 0)
     status, answer = get_json(url + "api/vault/preview")
     assert status == 500 and answer["error"].startswith("internal error: ZeroDivisionError: division by zero. This is a bug")
+    monkeypatch.setattr(jobs, "plan", lambda *args, **kwargs: jobs.Plan("quick", ("preview", "{not a design", (), None, None),
+                                                                        real("preview", "vault", []).estimate))
+    status, answer = get_json(url + "api/vault/preview?a=0.3001")
+    assert status == 500 and answer["error"].startswith("internal error: JSONDecodeError: Expecting property name enclosed in double quotes")
+    assert answer["error"].endswith("This is a bug in curvefold 0.1.0; please report it with the request")
     assert "\n" not in answer["error"] and "Traceback" not in answer["error"]
 
 
@@ -204,9 +211,8 @@ def test_concurrent_clients_see_their_own_designs_and_the_caches_stay_bounded(ur
     for t in threads:
         t.join(timeout=120)
     assert not errors and not any(t.is_alive() for t in threads)
-    for name, cache in api.caches().items():
-        info = cache.cache_info()
-        assert info.currsize <= info.maxsize, name
+    memory = url.designer.status()["memory"]
+    assert 0 < memory["answers"] <= server.ANSWER_CACHE and memory["reserved"] == 0  # every reservation given back
 
 
 def test_the_command_says_what_is_missing(monkeypatch, tmp_path):
@@ -231,6 +237,10 @@ def test_a_taken_port_is_one_line():
     assert result.returncode == 2 and result.stderr.startswith(f"curvefold: error: cannot serve on 127.0.0.1:{port}: ")
     result = run("designer", "--no-browser", "--port", "70000")
     assert (result.returncode, result.stderr) == (2, "curvefold: error: --port must be in [0, 65535], got 70000\n")
+    for flag, value, message in (("--time-limit", "0", "time_limit must be in (0, 3600] seconds, got 0"),
+                                 ("--workers", "0", "workers must be an integer in [1, 16], got 0")):
+        result = run("designer", "--no-browser", flag, value)
+        assert (result.returncode, result.stderr) == (2, f"curvefold: error: {flag} {value}: {message}\n")
 
 
 def test_pattern_pages_come_in_page_order_from_the_writer():

@@ -1,11 +1,14 @@
 """A vault from its span, rise and apex proportion (curvefold.vault.targets), in the API and on the command line."""
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from _cli import run
+from curvefold.app import build as build_module
+from curvefold.app.design import default_design
 from curvefold.kernel.errors import InputError, InternalError
 from curvefold.vault import Vault, VaultDesign, proportion_change, solve_symmetric_arch
 from curvefold.vault import targets as targets_module
@@ -77,7 +80,6 @@ def test_a_fit_that_misses_its_targets_is_reported_as_a_bug(monkeypatch):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"span": 3.0, "rise": 2.0}, 'tubes must be a number to meet a rise and a span'),
     ({"span": -1.0}, r"span must be > 0 model units, got -1.0"),
     ({"p_xz": 500.0}, r"p_xz must be in \(0, 100\], got 500.0"),
 ])
@@ -101,3 +103,61 @@ def test_command_line_targets():
         result = run("vault", *argv, "--samples", str(SAMPLES), "--json")
         assert result.returncode == 2 and result.stdout == ""
         assert result.stderr.startswith(f"curvefold: {message}") and result.stderr.count("\n") == 1, result.stderr
+
+
+def _stated_ranges(message: str) -> list[tuple[float, float]]:
+    """The rise/span ranges a refusal says the family reaches."""
+    reach = message.split("reach rise/span ", 1)[1].split(" (they stand", 1)[0]
+    return [(float(lo), float(hi)) for lo, hi in re.findall(r"from ([\d.e+-]+) to ([\d.e+-]+)", reach)]
+
+
+def test_a_refusal_agrees_with_the_range_it_states():
+    """Span 4 at p_xz 1.5 with 9 tubes: the family stands on two runs of a (regression cuts out the middle). A ratio
+    inside a range the refusal states is met; one outside every stated range is refused."""
+    base = VaultDesign(tubes=9, samples=SAMPLES)
+    refused = fit_targets(base, span=4.0, rise=2.5, p_xz=1.5)
+    ranges = _stated_ranges(refused.message)
+    assert not refused.reached and len(ranges) == 2 and "for a in [0, 0.3" in refused.message
+    assert not any(lo <= 2.5 / 4.0 <= hi for lo, hi in ranges)
+    for lo, hi in ranges:  # every stated range is reached at its ends and inside
+        for ratio in (lo, 0.5 * (lo + hi), hi):
+            fit = fit_targets(base, span=4.0, rise=4.0 * ratio, p_xz=1.5)
+            assert fit.reached, (ratio, fit.message)
+            np.testing.assert_allclose([fit.span, fit.rise, fit.p_xz], [4.0, 4.0 * ratio, 1.5], rtol=RTOL)
+
+
+def test_tubes_max_with_span_and_rise_chooses_a_count_and_says_which():
+    base = VaultDesign(samples=SAMPLES)  # tubes = None: the most before regression
+    fit = fit_targets(base, span=4.0, rise=2.5, p_xz=1.5)  # out of reach with 9 tubes (above)
+    assert fit.reached and fit.design.tubes == 6
+    assert fit.note.startswith('tubes = "max": 6 tubes, the most that reach these targets (at most 9')
+    np.testing.assert_allclose([fit.span, fit.rise, fit.p_xz], [4.0, 2.5, 1.5], rtol=RTOL)
+    with pytest.raises(InputError, match='with tubes = "max" no count from 9 down to 1 reaches these targets; rise/span = 0.966667'):
+        fit_targets(base, span=3.0, rise=2.9).require()
+
+
+def test_a_fitted_design_passes_its_own_certificate():
+    """Span 6, rise 3.6, p_xz 1.3 and 9 tubes need a = 1.253, near the end of the family, where the arch root is
+    solved to 1e-14; the design the fit returns passes every check at its samples."""
+    design, note = build_module.fit_vault_targets(default_design("vault").overrides(tubes=9), span=6.0, rise=3.6, p_xz=1.3)
+    assert note == "" and design.vault.a == pytest.approx(1.253, abs=1e-3)
+    result = run("vault", "--span", "6", "--rise", "3.6", "--p-xz", "1.3", "--tubes", "9", "--json")
+    assert result.returncode == 0, result.stderr  # exit 1 would be a failed check
+
+
+def test_a_fit_failing_its_certificate_is_refused(monkeypatch):
+    from curvefold.analysis import certificate
+
+    real = certificate.certify
+
+    def damaged(*args, **kwargs):  # the arch condition of every design fails
+        found = real(*args, **kwargs)
+        from dataclasses import replace
+
+        checks = tuple(replace(c, status="fail") if c.name == "arch_condition" else c for c in found.checks)
+        return replace(found, checks=checks)
+
+    monkeypatch.setattr(certificate, "certify", damaged)
+    with pytest.raises(InputError, match=r"the vault that meets these targets \(a = [\d.]+, p_xy = [\d.]+\) fails its certificate: "
+                                         r"arch_condition fail at "):
+        build_module.fit_vault_targets(default_design("vault").overrides(tubes=4, samples=SAMPLES), span=3.0, rise=1.7)

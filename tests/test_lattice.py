@@ -229,3 +229,19 @@ def test_nan_fails_every_validity_test(lattice):
     assert not broken.domain.contains([0.5, 0.5])
     with pytest.raises(RegressionError, match=r"cells: lattice curve \(u, v\) = \(0.5, 0.5\) passes"):
         broken.check([[0.5, 0.5]])
+
+
+@pytest.mark.parametrize(("widths", "tau", "length", "message"), [
+    ((1e-300, 0.15), TAU, 3.0, r"width_left w\(t\) = 8.19e-301 at s = 1.05 is below 1e-09 of the structure's size 3: "),
+    ((1e-8, 0.15), TAU, 3.0, None),  # 3e-9 of the size: resolved
+    ((0.2, 0.2), lambda s: np.tan(s), 6.0, r"width_left w\(t\) = 2.27e-09 at s = 4.74 is below 1e-09 of the structure's size 1.76e\+07: "),
+])
+def test_a_strip_narrower_than_rounding_is_refused(widths, tau, length, message):
+    """Coordinates of size L resolve a strip of width 1e-9 L by 10⁷ ulps; a narrower one has edges that round to nothing
+    (zero-length edges broke the certificate). τ = tan s spreads the widths over 16 decades along t."""
+    crease = Crease.from_curve(SpaceCurve.from_curvature(KAPPA, tau, length, samples=101), fold_angle=90.0)
+    if message is None:
+        assert Pattern.from_crease(crease, *widths).width_left.min() > 0
+        return
+    with pytest.raises(InputError, match=message):
+        Pattern.from_crease(crease, *widths)

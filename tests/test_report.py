@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import html
 import re
 
 from curvefold.app.build import build
 from curvefold.app.design import default_design
-from curvefold.app.outputs import structure_payload
+from curvefold.app.outputs import parameter_rows, structure_payload
 from curvefold.app.products import resolution
-from curvefold.figures.report import QUANTITIES, describe_file, report_html
+from curvefold.figures.report import CHECK_TITLES, QUANTITIES, describe_file, report_html
 
 
 def _section(page: str, title: str) -> str:
@@ -18,9 +19,15 @@ def _section(page: str, title: str) -> str:
 def test_derived_quantities_read_as_names_and_units_not_python():
     built = build(default_design("vault").overrides(samples=201))
     payload = structure_payload(built) | resolution(built) | {"files": ["vault-pattern-p10.svg", "vault-pattern-p2.svg", "vault.obj"]}
-    page = report_html(payload)
+    page = report_html(payload | {"parameters": parameter_rows(built.design)})
     derived = _section(page, "Derived quantities")
-    assert "κ0·s0, the root of the arch condition (Eq. 20)" in derived and "model units" in derived
+    assert "κ0·s0, the root of the arch condition (Eq. 20)" in derived and "<td>m</td>" in derived  # lengths in metres
+    for title in ("Certificate", "The paper's example", "Design"):  # names only as symbols beside their words
+        shown = re.sub(r"<code>.*?</code>|<pre>.*?</pre>", "", _section(page, title), flags=re.S)
+        assert not re.search(r">(eq\d+|[a-z0-9]+_[a-z0-9_]+)<", shown), title
+    smooth = [words for words in CHECK_TITLES.values() if not re.search("panel|degree of freedom|rank", words)]
+    assert all(html.escape(words) in page for words in smooth)
+    assert "torsion amplitude" in _section(page, "Design") and "× radius" in _section(page, "Design")
     assert not re.search(r">[a-z0-9]+_[a-z0-9_]+<", derived)  # no snake_case key shown as a name
     assert "[" not in derived and not re.search(r"\d{11,}", derived)  # no Python list, no 16-digit number
     assert "×" in derived and "→" in derived  # the footprint and the bounding box, read as such

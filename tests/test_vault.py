@@ -7,7 +7,7 @@ from numpy.testing import assert_allclose
 from curvefold import ConvergenceError, InputError, RegressionError
 from curvefold.analysis.measure import derivative
 from curvefold.vault import Vault, VaultDesign, max_tubes
-from curvefold.vault.arch import A_MAX, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
+from curvefold.vault.arch import A_MAX, HALF_STEPS, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
 
 PAPER_KAPPA0_S0 = 3.305  # printed in the paper for a = 0.3
 
@@ -45,6 +45,15 @@ def test_paper_example_against_an_independent_integrator():
     assert ours.residual < 1e-12  # |T·T| at the ends of the final bracket, ~|f'| × 1e-13
     # converged in the step count: halving the steps changes the root below 1e-13
     assert abs(solve_symmetric_arch(0.3, steps=200).kappa0_s0 - ours.kappa0_s0) < 1e-13
+
+
+@pytest.mark.parametrize("a", [0.3, 1.15, 1.25, 1.27, 1.2707])
+def test_the_arch_root_is_converged_in_its_steps_across_the_family(a):
+    """Near the end of the family the torsion term grows: the root meets Eq. (20) integrated with 8× the steps to
+    1e-14 at every a (64 steps left 2e-13 to 7e-13 from a = 1.15 on, which a vault's built curve 1 shows as a failed
+    arch_condition). The root itself moves more as the slope of the condition vanishes at A_MAX."""
+    ours = solve_symmetric_arch(a).kappa0_s0
+    assert abs(float(symmetric_arch_condition(ours, a, steps=8 * HALF_STEPS))) < 1e-14
 
 
 def test_erratum_paper_kappa0_s0_does_not_solve_eq20():

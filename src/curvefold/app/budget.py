@@ -10,7 +10,8 @@ The budget is :data:`DEFAULT_BUDGET` (2 GiB) unless the environment variable
 
 The estimate (:func:`estimate`) counts the size of the job as *strip samples*: samples
 along the creases times the strips of the structure (four per cell; a single crease has
-two surfaces). Each part of the job costs a fixed amount, an amount per strip sample and,
+two surfaces). A structure of N rigid panels holds its smooth crease's samples and the
+N + 1 vertices of every polyline besides, so each vertex counts as a sample. Each part of the job costs a fixed amount, an amount per strip sample and,
 for the crease patterns, an amount per squared sample (:data:`COSTS`), measured on
 curvefold's own runs (``benchmarks/bench_budget.py`` compares the estimate with the
 measured peak and prints the ratio). The parts run one after the other, so the peak is the
@@ -124,6 +125,13 @@ def _strips(design: Design) -> int:
     return 4 if design.kind == "tube" else 2
 
 
+def _samples(design: Design) -> int:
+    """Points along each crease: the samples, and the N + 1 vertices of a structure of N panels."""
+    params = design.vault if design.kind == "vault" else design.curve
+    panels = getattr(params, "panels", 0) or 0
+    return design.samples + (panels + 1 if panels else 0)
+
+
 def _parts(design: Design, files: bool) -> list[str]:
     if not files:
         return []
@@ -139,10 +147,11 @@ def estimate(design: Design, *, files: bool) -> Estimate:
     """The peak memory of building ``design`` (and, with ``files``, writing its formats
     and pictures), from the design alone: the interpreter, the geometry and the costliest
     file job (they run one after the other)."""
-    n = design.samples * _strips(design)
-    jobs = {part: _cost(part, design.samples, n) for part in _parts(design, files)}
+    samples = _samples(design)
+    n = samples * _strips(design)
+    jobs = {part: _cost(part, samples, n) for part in _parts(design, files)}
     largest = max(jobs, key=jobs.get, default="geometry")
-    return Estimate(BASE + _cost("geometry", design.samples, n) + jobs.get(largest, 0.0), n, largest)
+    return Estimate(BASE + _cost("geometry", samples, n) + jobs.get(largest, 0.0), n, largest)
 
 
 def require_budget(design: Design, *, files: bool) -> Estimate:
@@ -159,12 +168,19 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
     fits = _samples_that_fit(design, files, budget)
     what = {"vault": f'[vault] tubes or layers (tubes = "max" counts as {DEFAULT_TUBES_CAP})', "block": "[block] cells"}.get(design.kind)
     lower = [f"samples (at most {fits} fit)" if fits else "samples", *([what] if what else [])]
+    if _samples(design) > design.samples:
+        lower.insert(1, "panels")
     if found.largest != "geometry":
         lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
     raise InputError(
-        f"{design.source}: this job needs about {_size(found.total)} of memory ({design.samples} samples × {strips} strips), "
+        f"{design.source}: this job needs about {_size(found.total)} of memory ({_points(design)} × {strips} strips), "
         f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower " + ", ".join(lower)
     )
+
+
+def _points(design: Design) -> str:
+    extra = _samples(design) - design.samples
+    return f"{design.samples} samples" + (f" + {extra} panel vertices" if extra else "")
 
 
 def _samples_that_fit(design: Design, files: bool, budget: int) -> int | None:

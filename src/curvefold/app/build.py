@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 
+import numpy as np
+
 from ..geometry.crease import Crease
 from ..geometry.curve import SpaceCurve
 from ..geometry.lattice import Lattice
@@ -13,10 +15,14 @@ from ..geometry.sampling import Sampling, choose_sampling
 from ..geometry.single_fold import SingleFold
 from ..geometry.structure import Structure
 from ..io.layout import Layout
+from ..kernel.errors import InputError
 from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
 from .design import Design
 
-__all__ = ["Built", "build", "vault_design", "fit_vault_targets"]
+__all__ = ["Built", "build", "vault_design", "fit_vault_targets", "design_motion", "exported_fold_angles", "MOTION_STEPS"]
+
+#: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
+MOTION_STEPS = 7
 
 
 @dataclass(frozen=True, eq=False)
@@ -100,20 +106,62 @@ def vault_design(design: Design) -> VaultDesign:
     )
 
 
-def fit_vault_targets(design: Design, *, source: str | None = None, **targets: float) -> Design:
-    """A vault design with the parameters the targets replace solved for them (see :mod:`curvefold.vault.targets`).
+def fit_vault_targets(design: Design, *, source: str | None = None, **targets: float) -> tuple[Design, str]:
+    """A vault design with the parameters the targets replace solved for them (see :mod:`curvefold.vault.targets`),
+    never one that fails its own certificate.
 
-    ``targets`` are ``span``, ``rise`` and ``p_xz``; they set ``radius``, ``a`` and ``p_xy``.
+    ``targets`` are ``span``, ``rise`` and ``p_xz``; they set ``radius``, ``a`` and ``p_xy``
+    (and, with ``tubes = "max"``, the number of tubes).
+
+    Returns
+    -------
+    design : Design
+    note : str
+        What the fit chose for the user (the number of tubes), or empty.
 
     Raises
     ------
     InputError
-        A target no vault of the family reaches: the message gives the nearest design.
+        A target no vault of the family reaches (the message gives the nearest design),
+        or one met only by a design whose certificate fails (the message names the check).
     """
+    from ..analysis.certificate import certify
     from ..vault.targets import fit_targets
 
-    fitted = fit_targets(vault_design(design), **targets).require()
-    return design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius)
+    fit = fit_targets(vault_design(design), **targets)
+    fitted = fit.require()
+    chosen = {} if fitted.tubes is None else {"tubes": fitted.tubes}
+    found = design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius, **chosen)
+    built = build(found)
+    failed = [c for c in certify(built.crease, built.structure, built.vault, fold_angles=exported_fold_angles(built)).checks if not c.passed]
+    if failed:
+        c = failed[0]
+        need = f"; use ≥ {c.samples_needed} samples" if c.samples_needed else ""
+        raise InputError(f"the vault that meets these targets (a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}) fails its "
+                         f"certificate: {c.name} {c.status} at {c.where}{need}")
+    return found, fit.note
+
+
+def design_motion(built: Built, fold_angle: float | None = None) -> np.ndarray:
+    """2α of the states of the folding motion from flat to the design angle, or to ``fold_angle``
+    (degrees): the GLB's (a single fold's start angle 2α(0))."""
+    if fold_angle is None:
+        fold_angle = built.single_fold.fold_angle if built.structure is None else built.structure.lattice.crease.fold_angle
+    return np.linspace(0.0, fold_angle, MOTION_STEPS)
+
+
+def exported_fold_angles(built: Built) -> np.ndarray:
+    """2α of the frames the FOLD file holds and the certificate certifies (degrees): the folding motion from
+    flat to the design angle, and on by the same step while nothing touches, when the structure meets
+    itself before 180° (:func:`curvefold.geometry.contact.first_contact`: where its motion ends)."""
+    from ..geometry.contact import first_contact
+
+    motion = design_motion(built)
+    contact = None if built.structure is None else first_contact(built.structure)
+    if contact is None:
+        return motion
+    step = motion[1] - motion[0]
+    return np.concatenate([motion, np.arange(motion[-1] + step, contact - 1e-9, step)])
 
 
 def build(design: Design) -> Built:

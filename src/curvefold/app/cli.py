@@ -41,6 +41,7 @@ from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
 from ..vault.atlas import GRID_A, workers_spec
 from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
+from .designer import SERVER_SPECS
 from .folder import Interrupted, raise_if_interrupted, signals_interrupt
 
 __all__ = ["main"]
@@ -191,7 +192,7 @@ def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
     for target, replaced in REPLACES.items():
         if target in targets and getattr(args, replaced) is not None:
             raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} or {_flag(_VAULT[replaced])}, not both")
-    return fit_vault_targets(design, source=design.source, **targets)
+    return fit_vault_targets(design, source=design.source, **targets)[0]
 
 
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
@@ -257,6 +258,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--port", type=int, default=DESIGNER_PORT, help=f"port to serve on (default {DESIGNER_PORT}; 0 picks a free one)")
     p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1: this machine only)")
     p.add_argument("--no-browser", action="store_true", help="do not open a browser")
+    for spec in SERVER_SPECS:
+        p.add_argument(_flag(spec), metavar="N" if spec.kind == "integer" else "SECONDS", help=spec.describe())
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
 
     p = sub.add_parser("check", help="check a FOLD file", description="Check a FOLD file (curvefold's or another tool's) in every "
@@ -438,9 +441,10 @@ def cmd_designer(args: argparse.Namespace) -> int:
     if args.design is not None:
         design = load_design(args.design)
         query = [("kind", design.kind), *design_query(design)]
+    options = {spec.name: _flag_value(spec, text) for spec in SERVER_SPECS if (text := getattr(args, spec.name)) is not None}
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         _error(f"warning: serving on {args.host}: anyone who can reach this machine there can use the designer and make it compute")
-    serve(args.host, args.port, query=query, open_browser=not args.no_browser)
+    serve(args.host, args.port, query=query, open_browser=not args.no_browser, **options)
     return 0
 
 

@@ -96,11 +96,12 @@ _ANGLE = "(0, 180)"
 
 
 def _fold_angle(default: float, help: str) -> Spec:
-    return Spec("fold_angle", "real", default, _ANGLE, "degrees", help=help)
+    return Spec("fold_angle", "real", default, _ANGLE, "degrees", help=help, label="fold angle")
 
 
 def _width(side: str, default: float) -> Spec:
-    return Spec(f"width_{side}", "real", default, "(0, inf)", "model units", help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0")
+    return Spec(f"width_{side}", "real", default, "(0, inf)", "model units", help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0",
+                label=f"width on the {side}")
 
 
 def _section(*specs: Spec) -> Mapping[str, Spec]:
@@ -112,16 +113,16 @@ def _section(*specs: Spec) -> Mapping[str, Spec]:
 #: specs :data:`curvefold.io.formats.OUTPUT_SPECS`.
 SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
     "": _section(
-        Spec("kind", "choice", REQUIRED, choices=KINDS, help="what to build"),
+        Spec("kind", "choice", REQUIRED, choices=KINDS, help="what to build", label="structure"),
         Spec("samples", "integer", 801, "[9, 200000]", help="samples along curve 1",
-             why="the certificate's differences need 9; memory is budgeted besides"),
-        Spec("title", "text", "", help="free text for reports"),
+             why="the certificate's differences need 9; memory is budgeted besides", label="samples along each crease"),
+        Spec("title", "text", "", help="free text for reports", label="title"),
     ),
     "vault": _section(*VAULT_SPECS),
     "curve": _section(
-        Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s"),
-        Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s"),
-        Spec("length", "real", 6.0, LENGTHS, "model units", help="arc length of curve 1", why=LENGTHS_WHY),
+        Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s", label="curvature"),
+        Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s", label="torsion"),
+        Spec("length", "real", 6.0, LENGTHS, "model units", help="arc length of curve 1", why=LENGTHS_WHY, label="length of curve 1"),
         _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
         PANELS,
     ),
@@ -129,19 +130,19 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
     "block": _section(
         _width("left", 0.2),
         _width("right", 0.2),
-        Spec("cells", "cells", ((0, 0), (0, 1), (1, 1)), "[-1000, 1000]", help="lattice cells [i, j]"),
+        Spec("cells", "cells", ((0, 0), (0, 1), (1, 1)), "[-1000, 1000]", help="lattice cells [i, j]", label="cells"),
     ),
     "crease": _section(
-        Spec("kappa_2d", "function", 0.5, "(0, inf)", "per model unit", help="curvature of the crease in the flat pattern"),
-        Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left"),
-        Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)"),
+        Spec("kappa_2d", "function", 0.5, "(0, inf)", "per model unit", help="curvature of the crease in the flat pattern", label="curvature in the flat pattern"),
+        Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left", label="ruling angle on the left"),
+        Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)", label="ruling angle on the right"),
         _fold_angle(60.0, "fold angle 2 alpha(0) at the start of the crease"),
-        Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY),
+        Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY, label="crease length"),
         Spec("alpha", "function", None, "(0, 90)", "degrees",
-             help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)"),
+             help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)", label="half fold angle"),
         *(Spec(f"width_{side}", "real", None, "(0, inf)", "model units",
                help=f"width of the {side} strip from the crease's tangent lines, in the files (default: 15% of the length, "
-                    "within 60% of the regression limit)") for side in ("left", "right")),
+                    "within 60% of the regression limit)", label=f"{side} strip width") for side in ("left", "right")),
     ),
     "output": _section(*OUTPUT_SPECS),
 })

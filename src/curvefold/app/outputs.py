@@ -17,11 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.certificate import certify, certify_single_fold
-from ..figures.report import plain, report_html
+from ..figures.report import UNITS_SHOWN, plain, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
 from ..kernel.errors import InputError, InternalError
 from .build import Built
+from .design import Design
 from .folder import OutputTarget, output_folder, raise_if_interrupted
 from .products import exported_fold_angles
 
@@ -92,6 +93,19 @@ def structure_payload(built: Built) -> dict:
     return payload
 
 
+def parameter_rows(design: Design) -> list[dict]:
+    """Every parameter of a design for the report: ``name``, ``label`` (in words, from the schema), ``value`` and ``unit``."""
+    from .design import SCHEMA
+
+    rows = []
+    for section, values in design.to_dict().items():
+        for name, value in (values.items() if isinstance(values, dict) else [(section, values)]):
+            spec = SCHEMA["" if not isinstance(values, dict) else section][name]
+            unit = "× radius" if (section, name) == ("vault", "width") else UNITS_SHOWN.get(spec.unit, spec.unit)
+            rows.append({"name": name, "label": spec.label or name, "value": value, "unit": unit})
+    return rows
+
+
 def _default_title(built: Built) -> str:
     if built.vault is not None:
         d = built.vault.design
@@ -129,7 +143,8 @@ def _bar(show: bool, *columns):
     return Progress(*columns, transient=True, console=console) if console.is_terminal else None
 
 
-def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True) -> dict:
+def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True, fold_angle: float | None = None,
+                  workers: int | None = None) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
     The files are written by job processes while this process computes the certificate.
@@ -140,6 +155,10 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     out : OutputTarget
         The folder, checked by :func:`curvefold.app.folder.check_output` before the work.
     show_progress : bool, keyword-only
+    fold_angle : float, optional, keyword-only
+        2α of the folded state the FOLD and 3D files hold (degrees); default the design angle.
+    workers : int, optional, keyword-only
+        Processes for the files (:func:`curvefold.app.products.run_jobs`; 1: this process).
 
     Returns
     -------
@@ -157,7 +176,7 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     from . import products
 
     formats = built.design.output.formats
-    jobs = products.jobs(built, formats)
+    jobs = products.jobs(built, formats, fold_angle=fold_angle)
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
@@ -167,9 +186,9 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp)) as done:  # closed at once on any exception
+        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers)) as done:  # closed at once on any exception
             payload = structure_payload(built)
-            report = dict(payload, timings={}) | resolution | notes
+            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | resolution | notes
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]

@@ -24,19 +24,15 @@ from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from functools import partial
 from pathlib import Path
 
-import numpy as np
-
 from ..analysis.mechanism import certified_mechanism
 from ..io.formats import FORMATS, check_kind, formats_of
 from ..kernel.errors import InternalError
-from .build import Built
+from .build import MOTION_STEPS, Built, design_motion, exported_fold_angles
 from .folder import ENDING_SIGNALS
 
 __all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw",
            "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
 
-#: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
-MOTION_STEPS = 7
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
 #: The package the report's pictures are drawn with, and the extra that brings it.
@@ -70,30 +66,12 @@ def _metadata(built: Built) -> dict:
     return meta
 
 
-def design_motion(built: Built) -> np.ndarray:
-    """2α of the states of the folding motion from flat to the design angle (degrees): the GLB's (a single
-    fold's start angle 2α(0))."""
-    design = built.single_fold.fold_angle if built.structure is None else built.structure.lattice.crease.fold_angle
-    return np.linspace(0.0, design, MOTION_STEPS)
-
-
-def exported_fold_angles(built: Built) -> np.ndarray:
-    """2α of the frames the FOLD file holds and the certificate certifies (degrees): the folding motion from
-    flat to the design angle, and on by the same step while nothing touches, when the structure meets
-    itself before 180° (:func:`curvefold.geometry.contact.first_contact`: where its motion ends)."""
-    from ..geometry.contact import first_contact
-
-    motion = design_motion(built)
-    contact = None if built.structure is None else first_contact(built.structure)
-    if contact is None:
-        return motion
-    step = motion[1] - motion[0]
-    return np.concatenate([motion, np.arange(motion[-1] + step, contact - 1e-9, step)])
-
-
-def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
+def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = None) -> list[tuple[str, Job]]:
     """The jobs that write the requested formats of a built design and its pictures (when
     :data:`PICTURES_NEED` is installed: see :func:`pictures_left_out`), longest first.
+
+    ``fold_angle`` is 2α of the folded state the FOLD and 3D files hold (degrees; default
+    the design angle); crease patterns, pictures and the GIF do not depend on it.
 
     Raises
     ------
@@ -108,7 +86,8 @@ def jobs(built: Built, formats: Collection[str]) -> list[tuple[str, Job]]:
     for family in families:
         label, write = family_jobs[family]
         names = tuple(name for name in formats_of(family) if name in formats)
-        out.append((label, partial(write, built, names)))
+        angle = {"fold_angle": fold_angle} if family in _FOLDED else {}
+        out.append((label, partial(write, built, names, **angle)))
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
     if families.keys() & {"pattern", "guide"} or "3dm" in formats:
@@ -231,14 +210,15 @@ def _writer(names: tuple[str, ...]) -> Callable:
     return FORMATS[names[0]].load_writer()
 
 
-def _fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The structure's FOLD file (its folding motion, :func:`exported_fold_angles`), and one FOLD
-    file per sheet, flat with its target fold angles (loadable by Origami Simulator)."""
+def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+    """The structure's FOLD file: its folding motion (:func:`exported_fold_angles`), or flat to
+    ``fold_angle`` when one is given; and one FOLD file per sheet, flat with its target fold angles
+    (loadable by Origami Simulator)."""
     from ..geometry.sheets import sheets
     from ..io.fold import write_sheet_fold
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
-    angles = exported_fold_angles(built).tolist()
+    angles = (exported_fold_angles(built) if fold_angle is None else design_motion(built, fold_angle)).tolist()
     files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
                             unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
     (folder / "sheets").mkdir()
@@ -261,13 +241,13 @@ def _guide(built: Built, names: tuple[str, ...], folder: Path) -> list:
     return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
 
 
-def _model(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The 3D files; the GLB holds the folding motion."""
+def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+    """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion."""
     from ..io.models import write_3d
 
     return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), formats=names, unit=MODEL_UNIT,
                          metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units,
-                         pattern=built.layout if "3dm" in names else None))
+                         pattern=built.layout if "3dm" in names else None, fold_angle=fold_angle))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
@@ -278,13 +258,14 @@ def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
-def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """A single fold's FOLD file (its motion, flat to the design angle) and its sheet's (loadable by Origami Simulator)."""
+def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+    """A single fold's FOLD file (its motion, flat to the design angle or to ``fold_angle``) and its
+    sheet's (loadable by Origami Simulator)."""
     from ..io.fold import write_model, write_sheet_fold
     from ..io.single_fold import single_fold_model
 
     fold, meta = built.single_fold, _metadata(built)
-    model = single_fold_model(fold, exported_fold_angles(built), unit=MODEL_UNIT, metadata=meta, design=built.design.to_dict())
+    model = single_fold_model(fold, design_motion(built, fold_angle), unit=MODEL_UNIT, metadata=meta, design=built.design.to_dict())
     (folder / "sheets").mkdir()
     return [write_model(FORMATS[names[0]].path(folder / built.design.kind), model, title=meta["title"]),
             write_sheet_fold(folder / "sheets" / "single-fold.fold", fold.pattern_sheet().mesh, MODEL_UNIT, title="single fold")]
@@ -297,11 +278,11 @@ def _single_fold_pattern(built: Built, names: tuple[str, ...], folder: Path) -> 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
-def _single_fold_model(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """A single fold's 3D files; the GLB holds the folding motion."""
+def _single_fold_model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+    """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the folding motion."""
     from ..io.single_fold import write_single_fold_3d
 
-    return list(write_single_fold_3d(folder / built.design.kind, built.single_fold, design_motion(built), formats=names,
+    return list(write_single_fold_3d(folder / built.design.kind, built.single_fold, design_motion(built, fold_angle), formats=names,
                                      unit=MODEL_UNIT, metadata=_metadata(built)))
 
 
@@ -319,6 +300,8 @@ _FAMILY_JOBS = {
     "model": ("3D models", _model),
     "motion": ("folding GIF", _motion),
 }
+#: Families whose files hold a folded state (the others are flat or show the whole motion).
+_FOLDED = ("fold", "model")
 #: Jobs by the time they take on the paper's vault (1.71, 0.75, 0.70, 0.35, 0.34 and 0.25 CPU-s,
 #: the crease pattern laid out before), longest first: started in this order, two processes
 #: finish about together.

@@ -1,8 +1,10 @@
 """The HTML report of an output folder: design, derived quantities, certificate and pictures.
 
 One self-contained page that reads on a phone (390 px) as on a desktop: pictures in a
-grid (wide figures across it), tables that scroll sideways rather than overflow, derived
-quantities by name with their units, and every file with what it holds.
+grid (wide figures across it; on a phone each at :data:`PHONE_DENSITY` picture pixels per
+screen pixel in a frame of its own, so that its text stays readable, and full size on a tap), tables that
+become one card per row on a phone rather than scroll sideways, every quantity and check
+in words with its symbol and unit, and every file with what it holds.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import numpy as np
 
 from ..kernel.text import one_line
 
-__all__ = ["plain", "report_html", "QUANTITIES", "describe_file", "natural_key"]
+__all__ = ["plain", "report_html", "QUANTITIES", "CHECK_TITLES", "UNITS_SHOWN", "describe_file", "natural_key"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
 _PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "singular-values.png", "regression-domain.png",
@@ -23,7 +25,12 @@ _PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.pn
 #: Pictures shown across the whole width (small multiples).
 _WIDE = ("sections.png",)
 
-_UNIT = "model units"
+#: Lengths: the model unit is the metre of the 3D files (:data:`curvefold.io.tables.UNITS`).
+_UNIT = "m"
+#: How the report and the designer name the schema's units.
+UNITS_SHOWN = {"model units": _UNIT, "per model unit": f"1/{_UNIT}", "output units per model unit": f"print units per {_UNIT}", "degrees": "°"}
+#: Picture pixels per CSS pixel on a phone: the figures' 7 pt text (14.6 px at 150 dpi) shows at 9.7 px.
+PHONE_DENSITY = 1.5
 #: Name and unit of every derived quantity of a payload, in the order shown.
 QUANTITIES = {
     "kappa0_s0": ("κ0·s0, the root of the arch condition (Eq. 20)", ""),
@@ -47,6 +54,28 @@ QUANTITIES = {
     "length": ("crease length", _UNIT),
     "fold_angle_start_deg": ("fold angle 2α at the start", "°"),
     "fold_angle_end_deg": ("fold angle 2α at the end", "°"),
+}
+#: Every check of the certificate in plain words (the report and the designer show these beside the names).
+CHECK_TITLES = {
+    "developability": "the sheets stay developable (the tangent plane keeps along each ruling)",
+    "eq2_planar_curvature": "Eq. (2): the crease's curvature times cos α is its flat curvature",
+    "frame_agreement": "every crease shares curve 1's frame",
+    "eq19": "Eq. (19): the two creases of every strip agree",
+    "isometry": "folding stretches no edge (isometric to the crease pattern)",
+    "ruling_quad_planarity": "the quads between rulings stay planar",
+    "fold_angles": "the creases fold by 2α, the seams by 180° − 2α",
+    "width_law": "the widths follow the width law (Eqs. 12–13, corrected)",
+    "section_area": "every tube's section keeps its area",
+    "regression": "every crease stays clear of its curve of regression (Eq. 17)",
+    "tube_closure": "each tube closes onto its first crease",
+    "ground_plane": "the feet stand on the ground",
+    "arch_condition": "the arch condition (Eq. 20): the ends face opposite ways",
+    "proportion_change": "the section proportion changes as predicted from feet to apex",
+    "panel_isometry": "every panel keeps its sides and diagonals",
+    "panel_planarity": "every panel stays planar",
+    "panel_ground_plane": "the panel vault's feet stand on the ground",
+    "mechanism_dof": "the panels fold with exactly one degree of freedom",
+    "mechanism_clearance": "that count is clear of the rank tolerance",
 }
 #: Name and unit of every entry of the mesh resolution (``payload["mesh"]``).
 MESH_QUANTITIES = {
@@ -128,19 +157,42 @@ def _rows(values: dict, names: dict) -> str:
     return "".join(out)
 
 
+def _cells(labels: tuple[str, ...], cells: list[str], attrs: tuple[str, ...] = ()) -> str:
+    """A row whose cells carry their column's label (a phone shows each row as a card: label, value)."""
+    attrs = attrs or ("",) * len(cells)
+    return "".join(f'<td data-label="{html.escape(label)}"{a}>{cell}</td>' for label, cell, a in zip(labels, cells, attrs))
+
+
+def _parameters_table(payload: dict) -> str:
+    """The design's parameters in words with their symbols and units, or its raw form when the payload has no words."""
+    e = html.escape
+    raw = e(json.dumps(payload.get("design", {}), indent=2, default=plain))
+    rows = payload.get("parameters")
+    if not rows:
+        return f"<pre>{raw}</pre>"
+    columns, attrs = ("parameter", "symbol", "value", "unit"), ("", "", " class=num", "")
+    body = "".join("<tr>" + _cells(columns, [e(r["label"]), f"<code>{e(r['name'])}</code>", e(_number(r["value"])), e(r["unit"])], attrs) + "</tr>"
+                   for r in rows)
+    return (f"<table class=cards><tr><th>parameter</th><th>symbol</th><th>value</th><th>unit</th></tr>{body}</table>"
+            f"<details><summary>as a design file holds it</summary><pre>{raw}</pre></details>")
+
+
 def _sci(x: float | None, prefix: str = "") -> str:
     """A certificate figure: 3 digits, or "—" when there is none."""
     return "—" if x is None else f"{prefix}{x:.3g}" if prefix else f"{x:.2e}"
+
+
+_CERTIFICATE_COLUMNS = ("check", "status", "measured", "tolerance", "margin", "unit", "worst frame and place")
 
 
 def _certificate_row(c: dict) -> str:
     e = html.escape
     kind = "pass" if c["passed"] else "fail" if c["status"] == "fail" else "unresolved"
     needed = f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
-    return (f"<tr class='{kind} head'><td><b>{e(c['name'])}</b></td><td class=status>{e(c['status'])}{needed}</td>"
-            f"<td class=num>{_sci(c['value'])}</td><td class=num>{_sci(c['tolerance'])}</td>"
-            f"<td class=num>{_sci(c['margin'], '×')}</td><td>{e(c['unit'])}</td><td>{e(c['where'])}</td></tr>"
-            f"<tr class='{kind} about'><td colspan=7>{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>")
+    title = f"<b>{e(CHECK_TITLES.get(c['name'], c['name']))}</b><br><code>{e(c['name'])}</code>"
+    cells = [title, f"{e(c['status'])}{needed}", _sci(c["value"]), _sci(c["tolerance"]), _sci(c["margin"], "×"), e(c["unit"]), e(c["where"])]
+    return (f"<tr class='{kind} head'>{_cells(_CERTIFICATE_COLUMNS, cells, ('', ' class=status', ' class=num', ' class=num', ' class=num', '', ''))}</tr>"
+            f"<tr class='{kind} about'><td colspan=7 data-label='what it measures'>{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>")
 
 
 def _certificate_table(payload: dict) -> str:
@@ -169,7 +221,7 @@ def _certificate_table(payload: dict) -> str:
             motion += " Not every check passes in every frame (see below)." if panels else \
                 f" At {frames['samples']} samples not every check passes in every frame (see below)."
         motion += " The crease checks measure the smooth crease the panels sample.</p>" if panels else "</p>"
-    return f"{motion}<table class=certificate>{head}{rows}</table>"
+    return f"{motion}<table class='certificate cards'>{head}{rows}</table>"
 
 
 def _mechanism_table(mechanism: dict) -> str:
@@ -179,16 +231,17 @@ def _mechanism_table(mechanism: dict) -> str:
     head = ("<tr><th>state</th><th>internal DOF</th><th>nullity</th><th>smallest singular values / σ_max</th><th>gap</th>"
             "<th>clearance</th><th>residual</th></tr>")
     rows = ""
+    columns = ("state", "internal DOF", "nullity", "smallest singular values / σ_max", "gap", "clearance", "residual")
     for m in mechanism["states"]:
         smallest = ", ".join(f"{v / m['sigma_max']:.1e}" for v in m["smallest_singular_values"][:9])
-        rows += (f"<tr><td>{e(m['label'])}</td><td class=num>{m['dof']}</td><td class=num>{m['nullity']}</td><td>{smallest}, …</td>"
-                 f"<td class=num>{'∞' if m['gap'] is None else _sci(m['gap'])}</td><td class=num>{_sci(m['clearance'])}</td>"
-                 f"<td class=num>{_sci(m['residual'])}</td></tr>")
+        cells = [e(m["label"]), str(m["dof"]), str(m["nullity"]), f"{smallest}, …", "∞" if m["gap"] is None else _sci(m["gap"]),
+                 _sci(m["clearance"]), _sci(m["residual"])]
+        rows += f"<tr>{_cells(columns, cells, ('', ' class=num', ' class=num', '', ' class=num', ' class=num', ' class=num'))}</tr>"
     return ("<h2>Mechanism</h2><p>Degrees of freedom of the rigid panels" + scope + ": the first-order motions are the null "
             "space of the Jacobian of every edge length, both diagonals and the planarity of every panel, seams and bonds "
             "welded; six of them move the whole rigidly. A singular value counts as null at or below 1e-9 σ_max. The flat "
             "state's extra ones lift the flat sheets at first order only.</p>"
-            f"<table>{head}{rows}</table>")
+            f"<table class=cards>{head}{rows}</table>")
 
 
 def report_html(payload: dict) -> str:
@@ -202,17 +255,19 @@ def report_html(payload: dict) -> str:
                 "that stay within the accuracy asked; measured:</p>"
                 f"<table>{_rows(payload['mesh'], MESH_QUANTITIES)}</table>")
     mechanism = _mechanism_table(payload["mechanism"]) if payload.get("mechanism") else ""
-    design = e(json.dumps(payload.get("design", {}), indent=2, default=plain))
+    design = _parameters_table(payload)
     paper = ""
     if payload.get("paper_comparison"):
-        paper = "<h2>The paper's example</h2><table><tr><th>quantity</th><th>paper</th><th>computed</th><th>from the paper's κ0·s0</th><th>note</th></tr>" + "".join(
-            f"<tr><td>{e(r['quantity'])}</td><td>{r['paper']}</td><td>{r['computed']:.12g}</td><td>{r['from_paper_kappa0_s0']:.4g}</td><td>{e(r['note'])}</td></tr>"
-            for r in payload["paper_comparison"]
-        ) + "</table>"
+        columns = ("quantity", "paper", "computed", "from the paper's κ0·s0", "note")
+        rows = [[e(QUANTITIES.get(r["quantity"], (r["quantity"],))[0]), str(r["paper"]), f"{r['computed']:.12g}",
+                 f"{r['from_paper_kappa0_s0']:.4g}", e(r["note"])] for r in payload["paper_comparison"]]
+        paper = ("<h2>The paper's example</h2><table class=cards><tr>" + "".join(f"<th>{e(c)}</th>" for c in columns) + "</tr>"
+                 + "".join(f"<tr>{_cells(columns, cells)}</tr>" for cells in rows) + "</table>")
     files = sorted(payload.get("files", []), key=natural_key)
     shown = sorted((f for f in files if f.endswith((".png", ".gif"))), key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
     pictures = "".join(
-        f'<figure{" class=wide" if f in _WIDE else ""}><a href="{e(f)}"><img src="{e(f)}" alt="{e(f)}"></a><figcaption>{e(f)}</figcaption></figure>'
+        f'<figure{" class=wide" if f in _WIDE else ""}><a href="{e(f)}"><img src="{e(f)}" srcset="{e(f)} {PHONE_DENSITY:g}x" alt="{e(f)}"></a>'
+        f'<figcaption>{e(f)}</figcaption></figure>'
         for f in shown
     )
     links = "".join(f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>' for f in files)
@@ -233,17 +288,31 @@ table.certificate small{{color:#555}}table.certificate td:nth-child(7){{min-widt
 table.certificate tr.head td{{border-bottom:none}}table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}
 .pictures{{display:grid;grid-template-columns:repeat(auto-fill,minmax(min(100%,420px),1fr));gap:1em}}
 figure{{margin:0}}figure.wide{{grid-column:1/-1}}img{{width:100%;height:auto;border:1px solid #ddd}}figcaption{{font-size:.85em;color:#555}}
-pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}
+pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}code{{font-size:.9em;color:#555}}
+td{{overflow-wrap:anywhere}}
+@media (max-width:600px){{
+ body{{margin:.8em auto;padding:0 .6em}}
+ table{{display:table;width:100%}}td.num{{white-space:normal}}
+ table.cards,table.cards tbody,table.cards tr,table.cards td{{display:block;width:100%;box-sizing:border-box}}
+ table.cards{{overflow:visible}}table.cards tr:first-child:has(th){{display:none}}
+ table.cards tr{{border:1px solid #ccc;margin:0 0 .6em;padding:.2em 0}}table.cards tr.about{{margin-top:-.6em;border-top:none}}
+ table.cards td{{border:none;padding:.15em .6em;text-align:left;white-space:normal}}
+ table.cards td[data-label]::before{{content:attr(data-label) ": ";color:#666;font-size:.85em}}
+ table.certificate tr.about td::before{{content:none}}table.certificate td:nth-child(7){{min-width:0}}
+ .pictures{{display:block}}figure{{overflow-x:auto;margin:0 0 1em}}figure img{{width:auto;max-width:none}}
+}}
 </style></head><body>
 <h1>curvefold — {title}</h1>
-<p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass.</p>
+<p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass. Lengths are in metres (the model unit, as
+in the 3D files); crease patterns are in millimetres at their print scale. On a phone, slide a picture sideways or tap it for
+its full size.</p>
 <h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
 {mesh}
 {paper}
 <h2>Certificate</h2>{certificate}
 {mechanism}
-<h2>Design</h2><pre>{design}</pre>
+<h2>Design</h2>{design}
 <h2>Files</h2><table>{links}</table>
 </body></html>
 """

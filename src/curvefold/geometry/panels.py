@@ -84,7 +84,7 @@ MAX_PANELS = 100_000
 PANELS = Spec(
     "panels", "integer", 0, f"[0, {MAX_PANELS}]",
     help="rigid planar panels along each crease (polyline creases, exactly planar panels); 0 builds the smooth curved creases",
-    why="memory bound", typical="[0, 64]",
+    why="memory bound", typical="[0, 64]", label="rigid panels per crease",
 )
 #: Integration steps of the flat crease sampled by :meth:`PanelPattern.from_pattern` (at least).
 FLAT_STEPS = 2048

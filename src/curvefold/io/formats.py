@@ -220,20 +220,24 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
 
 #: The ``[output]`` parameters of a design.
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"), help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)"),
+    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"),
+         help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)",
+         label="units of the printed files"),
     Spec("scale", "real", None, "(0, inf)", "output units per model unit",
-         help="crease-pattern scale (default: fit the largest sheet to the page)"),
-    Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns"),
-    Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns"),
-    Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)"),
+         help="crease-pattern scale (default: fit the largest sheet to the page)", label="print scale"),
+    Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns", label="page size"),
+    Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
+    Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)", label="rulings drawn"),
     Spec("cutter", "choice", DEFAULT_CUTTER, choices=tuple(CUTTERS),
-         help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)"),
+         help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)",
+         label="cutter convention"),
     Spec("perforation", "real", None, "(0, 100]", "mm",
-         help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)"),
-    Spec("perforation_gap", "real", 1.0, "(0, 100]", "mm", help="gap between the dashes of perforated creases"),
-    Spec("kerf", "real", 0.0, "[0, 5]", "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size"),
+         help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)", label="perforation dash"),
+    Spec("perforation_gap", "real", 1.0, "(0, 100]", "mm", help="gap between the dashes of perforated creases", label="perforation gap"),
+    Spec("kerf", "real", 0.0, "[0, 5]", "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size",
+         label="kerf"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
-         help="files to write besides the report (default: every format the design's kind writes)"),
+         help="files to write besides the report (default: every format the design's kind writes)", label="file formats"),
 )
 
 

@@ -150,6 +150,9 @@ class Spec:
     typical : Interval or str or None
         Where most designs lie, within ``range``: the span of a slider (the designer's
         controls); None lets the control take it from the range and the default.
+    label : str
+        The quantity in plain words, as a reader meets it beside its symbol (``"design
+        fold angle"`` for ``fold_angle``); empty: the name says it.
 
     Examples
     --------
@@ -171,6 +174,7 @@ class Spec:
     why: str = ""
     choices: tuple[str, ...] = ()
     typical: Interval | None = None
+    label: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:

@@ -61,14 +61,16 @@ LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
 VAULT_SPECS: tuple[Spec, ...] = (
     Spec("a", "real", 0.3, A_STANDING, help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0)",
          why="no arch stands beyond it: Eq. (20) has no root next to π there",
-         typical=Interval(0.0, math.floor(10 * A_MAX) / 10, True, True)),  # a slider of round steps
-    Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet"),
-    Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless"),
-    Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})'),
-    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0"),
-    Spec("radius", "real", 1.0, LENGTHS, "model units", help="1/kappa0", why=LENGTHS_WHY),
-    Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes"),
-    Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v"),
+         typical=Interval(0.0, math.floor(10 * A_MAX) / 10, True, True), label="torsion amplitude"),  # a slider of round steps
+    Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet", label="section proportion at the feet"),
+    Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless", label="tube width at the feet, in radii"),
+    Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})',
+         label="tubes"),
+    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0",
+         label="design fold angle"),
+    Spec("radius", "real", 1.0, LENGTHS, "model units", help="1/kappa0", why=LENGTHS_WHY, label="radius of the arch curve"),
+    Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes", label="layers of tubes"),
+    Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v", label="stacking direction"),
     PANELS,
 )
 _SPEC = {spec.name: spec for spec in VAULT_SPECS}

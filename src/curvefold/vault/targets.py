@@ -34,9 +34,11 @@ __all__ = ["TARGET_SPECS", "TargetFit", "fit_targets", "SCAN_POINTS"]
 
 #: The targets a vault can be designed from; each replaces a parameter of :data:`~curvefold.vault.assembly.VAULT_SPECS`.
 TARGET_SPECS: tuple[Spec, ...] = (
-    Spec("span", "real", None, "(0, inf)", "model units", help="distance between the feet of curve 1; sets the radius"),
-    Spec("rise", "real", None, "(0, inf)", "model units", help="height of the highest crease; with span it sets a, alone the radius"),
-    Spec("p_xz", "real", None, "(0, 100]", help="section proportion w_R/w_L at the apex; sets p_xy"),
+    Spec("span", "real", None, "(0, inf)", "model units", help="distance between the feet of curve 1; sets the radius",
+         label="span, foot to foot"),
+    Spec("rise", "real", None, "(0, inf)", "model units", help="height of the highest crease; with span it sets a, alone the radius",
+         label="rise"),
+    Spec("p_xz", "real", None, "(0, 100]", help="section proportion w_R/w_L at the apex; sets p_xy", label="section proportion at the apex"),
 )
 #: Which parameter each target replaces (a user may give one or the other, not both).
 REPLACES = {"span": "radius", "rise": "a", "p_xz": "p_xy"}
@@ -62,6 +64,9 @@ class TargetFit:
     message : str
         Empty when reached; otherwise one line: which target is out of reach, what the
         family reaches and the nearest design.
+    note : str
+        What the fit chose for the user, if anything: the number of tubes when the design
+        asks for the most (``tubes = None``) and both span and rise are given.
     """
 
     design: VaultDesign
@@ -70,6 +75,7 @@ class TargetFit:
     p_xz: float
     reached: bool
     message: str = ""
+    note: str = ""
 
     def require(self) -> VaultDesign:
         """The design, or :class:`InputError` with :attr:`message` when a target is out of reach."""
@@ -111,9 +117,14 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
     Raises
     ------
     InputError
-        A target outside its range, ``tubes = None`` (the maximum) with a ratio to meet
-        (the count jumps with a; give a number), or a design the family cannot build at
-        all (the message of the builder).
+        A target outside its range, or a design the family cannot build at all (the
+        message of the builder).
+
+    Notes
+    -----
+    With ``tubes = None`` (the most before regression) and both span and rise, the count
+    jumps as a changes, so a count is chosen: the most the design has as given, or fewer
+    until one reaches the targets; :attr:`TargetFit.note` says which.
 
     Examples
     --------
@@ -129,8 +140,7 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
         span_, rise_, p_xz_ = _measure(design)
         return TargetFit(design, span_, rise_, p_xz_, True)
     if "span" in given and "rise" in given and design.tubes is None:
-        raise InputError('tubes must be a number to meet a rise and a span (with "max" the count jumps as a changes), got "max"',
-                         parameter="tubes")
+        return _fit_tube_count(design, given, rtol)
 
     def shape(a: float) -> VaultDesign:
         """The design at radius 1 with this a, p_xy following p_xz when it is given."""
@@ -159,8 +169,25 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
     return TargetFit(fitted, span_, rise_, p_xz_, True)
 
 
+def _fit_tube_count(design: VaultDesign, given: dict, rtol: float) -> TargetFit:
+    """The fit with the most tubes that reaches the targets, counting down from the most the design has as given."""
+    most = Vault.from_design(design).design.tubes
+    for tubes in range(most, 0, -1):
+        fit = fit_targets(replace(design, tubes=tubes), rtol=rtol, **given)
+        if fit.reached:
+            return replace(fit, note=f'tubes = "max": {tubes} tubes, the most that reach these targets (at most {most}, the most before '
+                                     f"regression at a = {design.a:g}, p_xy = {design.p_xy:g})")
+    return replace(fit, message=f'with tubes = "max" no count from {most} down to 1 reaches these targets; {fit.message}')
+
+
 def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -> tuple[float, str]:
-    """a with rise/span = ratio (the root nearest ``design.a``), or the nearest a and why none is."""
+    """a with rise/span = ratio (the root nearest ``design.a``), or the nearest a and why none is.
+
+    The family stands free of regression on runs of a (intervals: regression bounds a for
+    a number of tubes). Each run's ends are found by bisection and its extrema refined, and a
+    root is searched between consecutive points of a run: a ratio inside the range a run
+    states is always met (rise/span is continuous on it), so a refusal agrees with its words.
+    """
     from scipy.optimize import brentq
 
     def value(a: float) -> float:
@@ -173,34 +200,79 @@ def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -
 
     grid = np.linspace(0.0, _A_TOP, SCAN_POINTS)
     values = np.array([value(a) for a in grid])
-    valid = np.isfinite(values)
-    if not valid.any():
-        raise InputError(f"no vault of the family with width = {design.width:g} and {design.tubes} tubes stands for any a "
+    runs = _runs(grid, values, value)
+    if not runs:
+        raise InputError(f"no vault of the family with width = {design.width:g} and {_tubes(design.tubes)} stands for any a "
                          f"in [0, {A_MAX:.4f}): every one passes regression; use fewer tubes or a smaller width")
-    diff = values - ratio
-    brackets = [i for i in range(len(grid) - 1) if valid[i] and valid[i + 1] and diff[i] * diff[i + 1] <= 0]
-    if brackets:
-        roots = [brentq(lambda a: value(a) - ratio, grid[i], grid[i + 1], xtol=1e-13, rtol=4 * np.finfo(float).eps) for i in brackets]
+    roots = []
+    for a_run, v_run in runs:
+        for i in np.flatnonzero((v_run[:-1] - ratio) * (v_run[1:] - ratio) <= 0):
+            roots.append(brentq(lambda a: value(a) - ratio, a_run[i], a_run[i + 1], xtol=1e-13, rtol=4 * np.finfo(float).eps))
+    if roots:
         return float(min(roots, key=lambda a: abs(a - design.a))), ""
-    # Out of reach: the nearest valid grid point, refined between its neighbours (to the edge of the
-    # valid set where a neighbour is past it, to the extremum of rise/span where both stand).
+    # Out of reach: the nearest point of every run (ends and extrema included).
+    points = np.concatenate([a_run for a_run, _ in runs])
+    best = float(points[np.argmin(np.abs(np.concatenate([v_run for _, v_run in runs]) - ratio))])
+    reach = " and ".join(f"from {_rounded(v_run.min(), up=True)} to {_rounded(v_run.max(), up=False)}" for _, v_run in runs)
+    stands = " and ".join(f"[{a_run[0]:.3g}, {a_run[-1]:.3g}]" for a_run, _ in runs)
+    return best, (f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and {_tubes(design.tubes)}: vaults of the family "
+                  f"reach rise/span {reach}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a in {stands})")
+
+
+def _rounded(x: float, *, up: bool) -> str:
+    """x to 6 significant digits, rounded into the range it bounds (up for a lower end), so every value the
+    message states is reached."""
+    step = 10.0 ** (math.floor(math.log10(abs(x))) - 5) if x else 1e-6
+    text = f"{(math.ceil(x / step) if up else math.floor(x / step)) * step:.6g}"
+    return text if (float(text) >= x) == up or float(text) == x else f"{float(text) + (step if up else -step):.6g}"
+
+
+def _tubes(n: int) -> str:
+    return f"{n} tube" + "s" * (n != 1)
+
+
+#: Bisection steps for the end of a run of valid a (2⁻²⁴ of a grid step, about 3e-9 in a).
+_EDGE_STEPS = 24
+
+
+def _runs(grid: np.ndarray, values: np.ndarray, value) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The runs of valid a: (a, rise/span) at the grid points of each, its ends bisected against the
+    invalid neighbours and its interior extrema refined, sorted by a."""
     from scipy.optimize import minimize_scalar
 
-    k = int(np.argmin(np.where(valid, np.abs(diff), np.inf)))
-    candidates = [float(grid[k])]
-    for j in (k - 1, k + 1):
-        if 0 <= j < len(grid) and not valid[j]:
-            lo, hi = float(grid[k]), float(grid[j])
-            for _ in range(40):  # bisect the edge of the valid set to 1e-12 in a
-                mid = 0.5 * (lo + hi)
-                lo, hi = (mid, hi) if np.isfinite(value(mid)) else (lo, mid)
-            candidates.append(lo)
-    inner = [grid[j] for j in (k - 1, k + 1) if 0 <= j < len(grid) and valid[j]]
-    if len(inner) == 2:
-        found = minimize_scalar(lambda a: abs(value(a) - ratio), bounds=(inner[0], inner[1]), method="bounded", options={"xatol": 1e-10})
-        candidates.append(float(found.x))
-    best = min(candidates, key=lambda a: abs(value(a) - ratio))
-    reach = np.append(values[valid], value(best))
-    return best, (f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and {design.tubes} tubes: vaults of the family "
-                  f"reach rise/span from {reach.min():.6g} to {reach.max():.6g}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a between about "
-                  f"{grid[valid].min():.3g} and {grid[valid].max():.3g})")
+    valid = np.isfinite(values)
+    runs = []
+    k = 0
+    while k < len(grid):
+        if not valid[k]:
+            k += 1
+            continue
+        j = k
+        while j + 1 < len(grid) and valid[j + 1]:
+            j += 1
+        points = {float(grid[i]): float(values[i]) for i in range(k, j + 1)}
+        for inside, outside in ((k, k - 1), (j, j + 1)):
+            if 0 <= outside < len(grid):  # bisect to the end of the valid set
+                lo, hi, last = float(grid[inside]), float(grid[outside]), float(values[inside])
+                for _ in range(_EDGE_STEPS):
+                    mid = 0.5 * (lo + hi)
+                    found = value(mid)
+                    lo, hi, last = (mid, hi, found) if np.isfinite(found) else (lo, mid, last)
+                points[lo] = last
+        a_run = np.array(sorted(points))
+        v_run = np.array([points[a] for a in a_run])
+        for i in range(1, len(a_run) - 1):  # a local extremum of the run: refine it between its neighbours
+            if (v_run[i] - v_run[i - 1]) * (v_run[i + 1] - v_run[i]) < 0:
+                sign = 1.0 if v_run[i] < v_run[i - 1] else -1.0
+
+                def signed(a: float, sign: float = sign) -> float:
+                    found = value(a)
+                    return sign * found if np.isfinite(found) else math.inf
+
+                found = minimize_scalar(signed, bounds=(a_run[i - 1], a_run[i + 1]), method="bounded", options={"xatol": 1e-10})
+                if np.isfinite(found.fun):
+                    points[float(found.x)] = sign * float(found.fun)
+        a_run = np.array(sorted(points))
+        runs.append((a_run, np.array([points[a] for a in a_run])))
+        k = j + 1
+    return runs
