@@ -160,7 +160,7 @@ def test_pages_units_and_colours_are_one_table():
 def test_registry_families_and_kinds():
     assert formats_of("pattern") == pattern.PATTERN_FORMATS == ("svg", "dxf", "pdf")
     assert set(formats_of("model")) == {"glb", "obj", "stl", "ply", "3dm"}
-    assert default_formats("tube") == tuple(FORMATS) and default_formats("crease") == tuple(name for name in FORMATS if name != "gif")
+    assert default_formats("tube") == tuple(FORMATS) and default_formats("crease") == tuple(name for name in FORMATS if name not in ("gif", "assembly"))
     assert SCHEMA["output"]["formats"].choices == tuple(FORMATS)
     with pytest.raises(InputError, match=r"formats must be a non-empty selection of \('svg', 'dxf', 'pdf'\), got \('obj',\)"):
         check_formats(["obj"], "pattern")
