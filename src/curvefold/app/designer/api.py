@@ -30,7 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...figures.report import CHECK_TITLES, UNITS_SHOWN
+from ...analysis.checks import TITLES
+from ...figures.report import UNITS_SHOWN
 from ...io.formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import MAX_TEXT, Spec, from_text, suggest
@@ -328,7 +329,7 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
         coarse, found = False, json.loads(payload(design))
         checks, frames = found["certificate"], found.get("certificate_frames") or {}
     return {"samples": frames.get("samples") or design.samples, "coarse": coarse, "fold_angles": frames.get("fold_angles", []),
-            "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": CHECK_TITLES.get(c["name"], c["name"])} for c in checks]}
+            "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": TITLES.get(c["name"], c["name"])} for c in checks]}
 
 
 def domain_svg(design: Design) -> str:
