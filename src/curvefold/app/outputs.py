@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.certificate import certify
+from ..analysis.mechanism import certified_mechanism
 from ..figures.report import plain, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
@@ -161,6 +162,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     resolution = products.resolution(built)
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
+    if built.structure is not None and built.structure.lattice.rigid:
+        certified_mechanism(built.structure)  # cached before the jobs fork: the certificate and the pictures share it
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
