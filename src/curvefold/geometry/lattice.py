@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Literal
 
 import numpy as np
@@ -175,7 +176,7 @@ class Pattern(FrozenArrays):
         if crease.fold_angle is None:
             raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
         s = crease.s
-        log_ratio = log_width_ratio(crease)
+        log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes = _crease_rates(crease)
         widths = []
         for name, w, sign in (("width_left", width_left, -1.0), ("width_right", width_right, 1.0)):
             arr = np.asarray(w, dtype=float)
@@ -195,19 +196,13 @@ class Pattern(FrozenArrays):
                 raise InputError(f"{name} must be a number or {len(s)} finite values > 0 (one per sample), got shape {arr.shape}")
             widths.append(arr)
         wl, wr = widths
-        rates = crease.regression_rates()
         for side, rate in zip(("left", "right"), rates):
             check_finite(rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s)
-        beta = crease.beta_left
-        beta_samples = beta(s)
         sin_beta = np.sin(beta_samples)
-        kappa_2d = crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
-        nodes = gauss_nodes(s)
-        k2_nodes = kappa_2d(nodes)
         return cls(
             s=s,
-            kappa_2d=kappa_2d,
-            beta=beta,
+            kappa_2d=_kappa_2d(crease),
+            beta=crease.beta_left,
             beta_samples=beta_samples,
             width_left=wl,
             width_right=wr,
@@ -216,7 +211,7 @@ class Pattern(FrozenArrays):
             regression_rates=rates,
             domain=RegressionDomain(s / crease.curve.length, wl * rates[0], wr * rates[1]),
             kappa_2d_nodes=k2_nodes,
-            log_width_rate_nodes=k2_nodes / np.tan(beta(nodes)),
+            log_width_rate_nodes=width_rate_nodes,
         )
 
     @property
@@ -228,6 +223,28 @@ class Pattern(FrozenArrays):
     def t(self) -> np.ndarray:
         """Common curve parameter t = s / L, shape (n,)."""
         return self.domain.t
+
+
+def _kappa_2d(crease: Crease) -> ScalarFunction:
+    """κ_2D = κ cos α of a crease of constant fold angle."""
+    return crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
+
+
+@lru_cache(maxsize=1)
+def _crease_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+    """What a pattern reads from its crease alone, whatever its widths: the log width ratio,
+    the regression rates, β at the samples, κ_2D and κ_2D cot β at the Gauss nodes.
+
+    The last crease's are kept (they are read-only), so patterns of one crease and many
+    widths (a sweep over p_xy) compute them once.
+    """
+    s = crease.s
+    nodes = gauss_nodes(s)
+    k2_nodes = _kappa_2d(crease)(nodes)
+    rates = tuple(readonly(r) for r in crease.regression_rates())
+    values = (log_width_ratio(crease), crease.beta_left(s), k2_nodes, k2_nodes / np.tan(crease.beta_left(nodes)))
+    log_ratio, beta_samples, k2_nodes, width_rate_nodes = (readonly(v) for v in values)
+    return log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes
 
 
 @dataclass(frozen=True, eq=False)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Literal
 
 import numpy as np
@@ -201,6 +201,29 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     return hi
 
 
+@lru_cache(maxsize=1)
+def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples: int) -> tuple[ArchRoot, Crease]:
+    """The arch of a vault and its crease, standing with the span along +y.
+
+    What every vault of the same a, panels, radius, fold angle and samples shares, whatever
+    its widths and tubes. The last one is kept (the values are immutable), so a sweep over
+    p_xy or the width solves and integrates it once per row.
+    """
+    arch = solve_panel_arch(a, panels, fold_angle=fold_angle) if panels else solve_symmetric_arch(a)
+    k0 = 1.0 / radius
+    s0 = arch.kappa0_s0 / k0
+    # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
+    frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
+    curve = SpaceCurve.from_curvature(k0, HarmonicTorsion(a * k0, s0), s0, samples=samples, frame=frame)
+    # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
+    chord = curve.points[-1] - curve.points[0]
+    phi = np.arctan2(chord[0], chord[1])
+    c, s = np.cos(phi), np.sin(phi)
+    Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    curve = SpaceCurve(curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau)
+    return arch, Crease.from_curve(curve, fold_angle=fold_angle)
+
+
 @dataclass(frozen=True, eq=False)
 class Vault(FrozenArrays):
     """A vault built from its design: arch, lattice, structure and placement.
@@ -233,20 +256,8 @@ class Vault(FrozenArrays):
             message names the maximum number of tubes.
         """
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
-        arch = solve_panel_arch(design.a, design.panels, fold_angle=design.fold_angle) if design.panels else solve_symmetric_arch(design.a)
-        k0 = 1.0 / design.radius
-        s0 = arch.kappa0_s0 / k0
-        # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
-        frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
-        a = design.a
-        curve = SpaceCurve.from_curvature(k0, HarmonicTorsion(a * k0, s0), s0, samples=design.samples, frame=frame)
-        # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
-        chord = curve.points[-1] - curve.points[0]
-        phi = np.arctan2(chord[0], chord[1])
-        c, s = np.cos(phi), np.sin(phi)
-        Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        curve = SpaceCurve(curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau)
-        crease = Crease.from_curve(curve, fold_angle=design.fold_angle)
+        arch, crease = arch_crease(design.a, design.panels, design.radius, design.fold_angle, design.samples)
+        k0, a = 1.0 / design.radius, design.a
         w_left = design.width / k0
         try:
             lattice = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
@@ -332,7 +343,8 @@ class Vault(FrozenArrays):
     def summary(self) -> dict:
         """Design parameters and derived quantities as a JSON-ready dict (model units)."""
         V = self.vertices
-        lo, hi = V.reshape(-1, 3).min(axis=0), V.reshape(-1, 3).max(axis=0)
+        # per coordinate: NumPy reduces a (..., 3) array over its leading axes some 20× slower
+        lo, hi = (np.array([f(V[..., i]) for i in range(3)]) for f in (np.min, np.max))
         xy_slope, zx_slope = self.section_slopes()
         p_xy_measured, change_measured = self.measured_proportions()
         chord = self.lattice.crease.curve.points[-1] - self.lattice.crease.curve.points[0]
