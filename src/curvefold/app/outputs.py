@@ -223,7 +223,7 @@ def write_atlas(
     with output_folder(out) as tmp:
         with (
             _progress_bar(show_progress, "atlas", grid.size) as progress,
-            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress)) as results,
+            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress, sketch_step=step)) as results,
             csv_records(tmp / "atlas.csv", FIELDS) as csv_row,
             json_records(tmp / "atlas.json", header, FIELDS) as json_row,
         ):

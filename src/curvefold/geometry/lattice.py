@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Literal
 
 import numpy as np
@@ -362,9 +362,14 @@ class Lattice(FrozenArrays):
     # -- geometry at this fold angle -------------------------------------------------------
     def points(self, uv: np.ndarray) -> np.ndarray:
         """Lattice curves x(t; u, v) (Eq. 11) for uv (..., 2); shape (..., n, 3)."""
+        return lattice_points(self.crease.curve.points, *self._rulings, uv)
+
+    @cached_property
+    def _rulings(self) -> tuple[np.ndarray, np.ndarray]:
+        """ℓ_L r_L and ℓ_R r_R at this fold angle, each (n, 3), read-only."""
         rl, rr = ruling_vectors(self.crease.curve.frames, self.crease.alpha.constant, self.beta, self.beta)
         ll, lr = self.ruling_lengths
-        return lattice_points(self.crease.curve.points, ll[:, None] * rl, lr[:, None] * rr, uv)
+        return readonly(ll[:, None] * rl), readonly(lr[:, None] * rr)
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
         """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is valid."""

@@ -184,14 +184,27 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     All four corner creases of every tube must be valid lattice curves (Eq. 18). The valid
     set is convex, and every corner of the stack is a convex combination of corners of its
     first and last tubes, so a stack is valid exactly when those two tubes are: validity
-    is monotone in n and a bisection finds the largest n. Returns 0 when even the base
-    tube regresses, and ``limit`` when the stack is valid that far.
+    is monotone in n. A corner's speed factor falls linearly with j, ``f(j) = f(0) − j s``,
+    which places the first tube past regression; it is then checked exactly (that tube
+    invalid, the one before valid), and a bisection decides where rounding leaves it in
+    doubt. Returns 0 when even the base tube regresses, and ``limit`` when the stack is
+    valid that far.
     """
+    domain = lattice.domain
+
     def tube_ok(j: int) -> bool:
-        return bool(lattice.domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
+        return bool(domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
 
     if not tube_ok(0):
         return 0
+    slope = direction * (domain.a + domain.b)  # s: the fall of every corner's factor per tube
+    falling = slope > 0
+    if not falling.any():
+        return limit
+    first = domain.factor(direction * CORNERS - (direction < 0))[:, falling] / slope[falling]  # f(0) / s
+    guess = min(int(np.ceil(first.min())), limit)
+    if 0 < guess < limit and tube_ok(guess - 1) and not tube_ok(guess):
+        return guess
     if tube_ok(limit - 1):
         return limit
     lo, hi = 0, limit - 1  # tube lo is valid, tube hi is not

@@ -82,11 +82,15 @@ SKETCH_TUBES = 24
 #: workers saved about 1 ms of the 3 ms a design takes at 201 samples (benchmarks/bench_atlas.py):
 #: the cluster pays from some 1000–2500 designs.
 LOCAL_CLUSTER_FROM = 2000
-#: Designs per task sent to a cluster at most (~0.1–0.2 s of work: a round trip costs ~1 ms).
-CHUNK = 32
+#: Designs per task sent to a cluster at most (~0.25 s of work at 1.2 ms a design): a task's
+#: round trip through the scheduler costs milliseconds of the client's CPU, which the
+#: workers share on a small machine, so tasks are as large as the balance allows.
+CHUNK = 200
+#: Tasks per worker thread a grid is cut into at least, for the balance between workers.
+TASKS_PER_THREAD = 8
 #: Tasks queued or running per worker thread; results wait, in grid order, for at most
 #: this many tasks per thread (the sweep's memory bound).
-IN_FLIGHT = 4
+IN_FLIGHT = 3
 
 
 @dataclass(frozen=True, eq=False)
@@ -137,15 +141,18 @@ def evaluate_design(
     fold_angle: float = 90.0,
     tubes: int | None = None,
     samples: int = 201,
+    sketch: bool = True,
 ) -> tuple[dict, Sketch | None]:
     """Build one vault and return its flat record and sketch; an invalid design is a record too.
+
+    ``sketch=False`` leaves the sketch out (the record is the same).
 
     Returns
     -------
     record : dict
         Keys of :data:`FIELDS` except ``row`` and ``col``.
     sketch : Sketch or None
-        None for an invalid design.
+        None for an invalid design, or when not asked for.
     """
     from .assembly import Vault, VaultDesign
 
@@ -160,7 +167,7 @@ def evaluate_design(
     # A built vault that cannot be measured or drawn is a bug: it propagates.
     record.update(valid=True, error=None, reason=None)
     record.update(metrics_of(vault.summary()))
-    return record, Sketch.from_vault(vault)
+    return record, Sketch.from_vault(vault) if sketch else None
 
 
 def metrics_of(summary: dict) -> dict:
@@ -357,6 +364,7 @@ def sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     progress: Callable[[int, int], Any] | None = None,
+    sketch_step: int = 1,
 ) -> Iterator[tuple[dict, Sketch | None]]:
     """The record and sketch of every design of ``grid``, in grid order, as the designs finish.
 
@@ -374,6 +382,9 @@ def sweep(
         with ``workers``.
     progress : callable, optional, keyword-only
         ``progress(done, total)``, called with 0 first and after every design.
+    sketch_step : int, keyword-only
+        Sketch the designs of every k-th row and column only (those a figure of
+        :meth:`Atlas.every` ``(k)`` draws); the others' sketch is None. Default 1: every design.
 
     Yields
     ------
@@ -384,8 +395,9 @@ def sweep(
 
     Notes
     -----
-    Designs go to the cluster in chunks of up to :data:`CHUNK`, at most :data:`IN_FLIGHT`
-    chunks per worker thread at a time; a finished chunk waits until the ones before it
+    Designs go to the cluster in chunks of up to :data:`CHUNK` (at least
+    :data:`TASKS_PER_THREAD` chunks per worker thread), at most :data:`IN_FLIGHT` chunks per
+    worker thread at a time; a finished chunk waits until the ones before it
     are handed out, so memory stays bounded whatever the grid's size. A cluster started
     here is closed when the iterator ends, is closed, or raises (close it with
     :func:`contextlib.closing` when stopping early). Connection errors and a version
@@ -395,7 +407,8 @@ def sweep(
         raise InputError(f"grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got {type(grid).__name__}")
     if progress is not None and not callable(progress):
         raise InputError(f"progress must be a callable progress(done, total) or None, got {progress!r}")
-    return _sweep(grid, *_cluster_plan(grid.size, workers, scheduler), progress)
+    _check_step(sketch_step)
+    return _sweep(grid, *_cluster_plan(grid.size, workers, scheduler), progress, sketch_step)
 
 
 def _cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple[int, str | None]:
@@ -420,18 +433,19 @@ def _require_dask(what: str) -> None:
         raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
 
 
-def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None) -> Iterator[tuple[dict, Sketch | None]]:
+def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None,
+           step: int) -> Iterator[tuple[dict, Sketch | None]]:
     design = grid.shared
     total, done = grid.size, 0
     if progress is not None:
         progress(0, total)
     with _client(workers, scheduler) as client:
         if client is None:
-            chunks: Iterator[list] = (_evaluate_chunk([point], design) for point in grid.points())
+            chunks: Iterator[list] = (_evaluate_chunk([point], design, step) for point in grid.points())
         else:
             threads = max(1, sum(client.nthreads().values()))
-            size = max(1, min(CHUNK, math.ceil(total / (IN_FLIGHT * threads))))
-            submit = lambda points: client.submit(_evaluate_chunk, points, design, pure=False)  # noqa: E731
+            size = max(1, min(CHUNK, math.ceil(total / (TASKS_PER_THREAD * threads))))
+            submit = lambda points: client.submit(_evaluate_chunk, points, design, step, pure=False)  # noqa: E731
             chunks = _in_order(submit, _batched(grid.points(), size), IN_FLIGHT * threads)
         with closing(chunks):  # closed before the client, when the sweep stops early
             for results in chunks:
@@ -442,11 +456,11 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
                     yield result
 
 
-def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict) -> list[tuple[dict, Sketch | None]]:
-    """The task a worker runs: (record, sketch) of several grid points, in order."""
+def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict, step: int = 1) -> list[tuple[dict, Sketch | None]]:
+    """The task a worker runs: (record, sketch) of several grid points, in order (sketches on every ``step``-th row and column)."""
     out = []
     for row, col, a, p in points:
-        record, sketch = evaluate_design(a, p, **design)
+        record, sketch = evaluate_design(a, p, **design, sketch=row % step == 0 and col % step == 0)
         out.append(({"row": row, "col": col} | record, sketch))
     return out
 
