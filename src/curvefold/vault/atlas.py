@@ -78,10 +78,10 @@ SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
 
 #: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
-#: one, loading curvefold in its workers and closing it took 1.2–2.6 s on 2 CPUs, and 2
-#: workers saved about 1 ms of the 3 ms a design takes at 201 samples (benchmarks/bench_atlas.py):
-#: the cluster pays from some 1000–2500 designs.
-LOCAL_CLUSTER_FROM = 2000
+#: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
+#: workers save at most half of the 0.7 ms a design takes at 201 samples
+#: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
+LOCAL_CLUSTER_FROM = 5000
 #: Designs per task sent to a cluster at most (~0.25 s of work at 1.2 ms a design): a task's
 #: round trip through the scheduler costs milliseconds of the client's CPU, which the
 #: workers share on a small machine, so tasks are as large as the balance allows.
