@@ -497,6 +497,7 @@ def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
     if scheduler is None and workers <= 1:
         yield None
         return
+    import dask
     import distributed
 
     dask_log = logging.getLogger("distributed")
@@ -508,6 +509,7 @@ def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
                 yield client
         else:
             with (
+                dask.config.set({"distributed.worker.profile.enabled": False}),  # the dashboard's stack samples: nobody looks
                 distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                                          silence_logs=logging.CRITICAL) as cluster,
                 distributed.Client(cluster, set_as_default=False) as client,
