@@ -535,10 +535,13 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
     if args.command is None:
         parser.print_help()
         return 0
-    if args.command in DEFAULT_OUT:
-        return cmd_structure(args.command, args)
-    return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism, "atlas": cmd_atlas,
-            "designer": cmd_designer}[args.command](args)
+    from ..kernel.threads import one_blas_thread
+
+    with one_blas_thread():  # a command's matrices are small: more BLAS threads only wait (kernel.threads)
+        if args.command in DEFAULT_OUT:
+            return cmd_structure(args.command, args)
+        return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism, "atlas": cmd_atlas,
+                "designer": cmd_designer}[args.command](args)
 
 
 def run() -> None:
