@@ -1,6 +1,6 @@
 """Run every benchmark and print one markdown summary table.
 
-Usage: ``python benchmarks/run_all.py [integrator folding arch atlas budget designer main_job]`` (default: all).
+Usage: ``python benchmarks/run_all.py [integrator folding arch atlas budget designer main_job threads]`` (default: all).
 The table at the end can be pasted into the README's performance section.
 """
 
@@ -22,6 +22,7 @@ import bench_designer
 import bench_folding
 import bench_integrator
 import bench_main_job
+import bench_threads
 from _bench import summary_table
 
 BENCHMARKS = {
@@ -32,6 +33,7 @@ BENCHMARKS = {
     "budget": bench_budget,
     "designer": bench_designer,
     "main_job": bench_main_job,
+    "threads": bench_threads,
 }
 
 

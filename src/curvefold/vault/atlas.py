@@ -82,7 +82,7 @@ SKETCH_TUBES = 24
 #: workers save at most half of the 0.7 ms a design takes at 201 samples
 #: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
 LOCAL_CLUSTER_FROM = 5000
-#: Designs per task sent to a cluster at most (~0.25 s of work at 1.2 ms a design): a task's
+#: Designs per task sent to a cluster at most (~0.15 s of work at 0.7 ms a design): a task's
 #: round trip through the scheduler costs milliseconds of the client's CPU, which the
 #: workers share on a small machine, so tasks are as large as the balance allows.
 CHUNK = 200
