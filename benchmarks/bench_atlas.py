@@ -4,6 +4,7 @@ Throughput: a 40 × 40 grid (p_xy in [0.5, 1.5] × a in [0, 1.2], 1600 designs, 
 201 samples per crease) run once each way, from the call to the last record:
 
 - serial: ``workers=1``, in this process (what the other ways are measured against);
+  every way sketches the designs ``curvefold atlas`` draws, every k-th row and column;
 - process pool: the sweep as the atlas ran it before Dask (a ``ProcessPoolExecutor`` of 2
   processes, interleaved chunks, every result held until the end);
 - Dask, local cluster: ``workers=2``, starting and closing the cluster included;
@@ -68,9 +69,11 @@ def _process_pool(grid) -> list[dict]:
 
 
 def _records(grid, **where) -> list[dict]:
+    """The records of a sweep, sketching the designs ``curvefold atlas`` draws (every k-th row and column)."""
+    from curvefold.figures.atlas import view_step
     from curvefold.vault.atlas import sweep
 
-    return [record for record, _ in sweep(grid, **where)]
+    return [record for record, _ in sweep(grid, sketch_step=view_step(grid.shape), **where)]
 
 
 SERIAL = "serial (workers=1)"

@@ -25,7 +25,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+import weakref
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -230,14 +231,23 @@ def _kappa_2d(crease: Crease) -> ScalarFunction:
     return crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
 
 
-@lru_cache(maxsize=1)
+#: What a pattern reads from a crease, kept while the crease lives (creases are immutable).
+_RATES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def _crease_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
     """What a pattern reads from its crease alone, whatever its widths: the log width ratio,
     the regression rates, β at the samples, κ_2D and κ_2D cot β at the Gauss nodes.
 
-    The last crease's are kept (they are read-only), so patterns of one crease and many
-    widths (a sweep over p_xy) compute them once.
+    Kept with the crease (read-only), so patterns of one crease and many widths (a sweep
+    over p_xy) compute them once.
     """
+    if crease not in _RATES:
+        _RATES[crease] = _compute_rates(crease)
+    return _RATES[crease]
+
+
+def _compute_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
     s = crease.s
     nodes = gauss_nodes(s)
     k2_nodes = _kappa_2d(crease)(nodes)

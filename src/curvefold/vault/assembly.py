@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from functools import cached_property, lru_cache
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -214,13 +214,12 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     return hi
 
 
-@lru_cache(maxsize=1)
 def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples: int) -> tuple[ArchRoot, Crease]:
     """The arch of a vault and its crease, standing with the span along +y.
 
     What every vault of the same a, panels, radius, fold angle and samples shares, whatever
-    its widths and tubes. The last one is kept (the values are immutable), so a sweep over
-    p_xy or the width solves and integrates it once per row.
+    its widths and tubes: a sweep over p_xy or the width builds it once per row and hands
+    it to :meth:`Vault.from_design`.
     """
     arch = solve_panel_arch(a, panels, fold_angle=fold_angle) if panels else solve_symmetric_arch(a)
     k0 = 1.0 / radius
@@ -251,8 +250,11 @@ class Vault(FrozenArrays):
     max_tubes: int
 
     @classmethod
-    def from_design(cls, design: VaultDesign | None = None, **overrides) -> Vault:
+    def from_design(cls, design: VaultDesign | None = None, *, arch: tuple[ArchRoot, Crease] | None = None, **overrides) -> Vault:
         """Solve the arch, place it on the ground and stack the tubes.
+
+        ``arch``: the design's :func:`arch_crease`, when the caller has it already (a sweep
+        along p_xy); by default it is built here.
 
         With ``design.panels`` = N > 0 the vault is made of rigid planar panels: the smooth
         arch's crease pattern sampled with N panels along each crease
@@ -269,7 +271,7 @@ class Vault(FrozenArrays):
             message names the maximum number of tubes.
         """
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
-        arch, crease = arch_crease(design.a, design.panels, design.radius, design.fold_angle, design.samples)
+        arch, crease = arch_crease(design.a, design.panels, design.radius, design.fold_angle, design.samples) if arch is None else arch
         k0, a = 1.0 / design.radius, design.a
         w_left = design.width / k0
         try:

@@ -142,10 +142,12 @@ def evaluate_design(
     tubes: int | None = None,
     samples: int = 201,
     sketch: bool = True,
+    arch: tuple | None = None,
 ) -> tuple[dict, Sketch | None]:
     """Build one vault and return its flat record and sketch; an invalid design is a record too.
 
-    ``sketch=False`` leaves the sketch out (the record is the same).
+    ``sketch=False`` leaves the sketch out (the record is the same); ``arch`` is the
+    design's :func:`~curvefold.vault.assembly.arch_crease` when the caller has it.
 
     Returns
     -------
@@ -159,7 +161,7 @@ def evaluate_design(
     record: dict[str, Any] = {"a": _number(a), "p_xy": _number(p_xy), "width": float(width), "fold_angle": float(fold_angle)}
     try:
         check_standing(GRID_A.check(a))  # past A_MAX the record says that no arch stands, not that a is out of range
-        vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples))
+        vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples), arch=arch)
     except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
         record.update(dict.fromkeys(METRICS))
@@ -441,7 +443,8 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
         progress(0, total)
     with _client(workers, scheduler) as client:
         if client is None:
-            chunks: Iterator[list] = (_evaluate_chunk([point], design, step) for point in grid.points())
+            arches: dict = {}  # one row's arch, shared by the designs handed out one by one
+            chunks: Iterator[list] = (_evaluate_chunk([point], design, step, arches) for point in grid.points())
         else:
             threads = max(1, sum(client.nthreads().values()))
             size = max(1, min(CHUNK, math.ceil(total / (TASKS_PER_THREAD * threads))))
@@ -456,13 +459,29 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
                     yield result
 
 
-def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict, step: int = 1) -> list[tuple[dict, Sketch | None]]:
-    """The task a worker runs: (record, sketch) of several grid points, in order (sketches on every ``step``-th row and column)."""
-    out = []
+def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict, step: int = 1,
+                    arches: dict | None = None) -> list[tuple[dict, Sketch | None]]:
+    """The task a worker runs: (record, sketch) of several grid points, in order (sketches on every
+    ``step``-th row and column). ``arches`` keeps the last row's arch across calls."""
+    out, arches = [], {} if arches is None else arches
     for row, col, a, p in points:
-        record, sketch = evaluate_design(a, p, **design, sketch=row % step == 0 and col % step == 0)
+        if row not in arches:  # the row's arch, once: its designs differ in p_xy alone
+            arches.clear()
+            arches[row] = _row_arch(a, design)
+        record, sketch = evaluate_design(a, p, **design, sketch=row % step == 0 and col % step == 0, arch=arches[row])
         out.append(({"row": row, "col": col} | record, sketch))
     return out
+
+
+def _row_arch(a: float, design: dict) -> tuple | None:
+    """The arch and crease of the designs of one ``a`` (None where there is none: each design records why)."""
+    from .assembly import VaultDesign, arch_crease
+
+    shape = VaultDesign()  # the grid's vaults take its panels and radius
+    try:
+        return arch_crease(check_standing(GRID_A.check(a)), shape.panels, shape.radius, design["fold_angle"], design["samples"])
+    except CurvefoldError:
+        return None
 
 
 def _batched(items: Iterable, size: int) -> Iterator[list]:
