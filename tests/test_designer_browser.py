@@ -173,7 +173,8 @@ def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp
     assert "2α = 60.0°" in page.inner_text("#downloads-state")
     links = page.locator("#downloads a")
     names = [links.nth(i).inner_text() for i in range(links.count())]
-    assert names[-2:] == ["folder (zip)", "design (TOML)"] and len(names) == 12  # ten formats, the folder, the design
+    assert names[-2:] == ["folder (zip)", "design (TOML)"] and len(names) == 13  # eleven formats, the folder, the design
+    assert "assembly (PDF)" in names
     got = {}
     for name in names:
         with page.expect_download(timeout=120_000) as download:

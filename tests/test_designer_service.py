@@ -79,11 +79,11 @@ def raw_get(url: str, path: str, headers: dict) -> tuple[int, dict]:
 
 
 @pytest.mark.parametrize("path, message", [
-    # accepted before: 20 minutes at up to 1.4 GB; the command line refuses 20,001 samples with SVG
-    ("api/tube.svg?samples=100000", r"this job needs about 233.8 GiB of memory \(100000 samples × 4 strips\), more than the budget of "
-                                    r"2.0 GiB \(CURVEFOLD_MEMORY_BUDGET\); lower samples \(at most 8589 fit\), the formats written"),
+    # accepted before: 20 minutes at up to 1.4 GB; the command line refuses 200,000 samples with SVG
+    ("api/tube.svg?samples=200000", r"this job needs about 2.2 GiB of memory \(200000 samples × 4 strips\), more than the budget of "
+                                    r"2.0 GiB \(CURVEFOLD_MEMORY_BUDGET\); lower samples \(at most \d+ fit\), the formats written"),
     ("api/vault/preview?panels=100000&tubes=9&samples=201", r"\(201 samples \+ 100001 panel vertices × 36 strips\).*lower samples, panels"),
-    ("api/vault/pattern?samples=30001&tubes=2", r"this job needs about [\d.]+ GiB .*\(the crease patterns cost most\)"),
+    ("api/vault/pattern?samples=100001&tubes=2", r"this job needs about [\d.]+ GiB of memory \(100001 samples × 8 strips\)"),
 ])
 def test_every_request_is_estimated_before_any_work(url, path, message):
     before = status(url)["workers"]

@@ -127,7 +127,8 @@ def schema() -> dict:
         "sections": {section: [_spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED]
                      for section, specs in SCHEMA.items()},
         "targets": [_spec_json(spec, "vault") | {"replaces": REPLACES[spec.name]} for spec in TARGET_SPECS],
-        "formats": [{"name": f.name, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)} for f in FORMATS.values()],
+        "formats": [{"name": f.name, "title": f.title, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)}
+                    for f in FORMATS.values()],
         "state": _spec_json(STATE, ""),
         "units": UNITS_SHOWN,
     }
