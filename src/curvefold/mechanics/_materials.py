@@ -14,7 +14,7 @@ from types import MappingProxyType
 
 from ..kernel.validate import Spec
 
-__all__ = ["Material", "MATERIALS", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
+__all__ = ["Material", "MATERIALS", "MATERIAL", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
 
 #: The checks of a user's material (design-file keys and keyword arguments alike).
 MATERIAL_SPECS: tuple[Spec, ...] = (
@@ -54,9 +54,9 @@ class Material:
         ν, in (−1, 0.5).
     density : float
         ρ, kg/m³.
-    strength : float
+    strength : float or None
         The stress the utilisation is measured against (yield for metals and polymers,
-        tensile strength for board), Pa.
+        tensile strength for board), Pa; None when not known (no utilisation then).
     source : str
         Where the numbers come from.
     """
@@ -65,18 +65,20 @@ class Material:
     youngs_modulus: float
     poisson: float
     density: float
-    strength: float
+    strength: float | None
     source: str = "given by the user"
 
     @classmethod
-    def from_values(cls, youngs_modulus: float, poisson: float, density: float, strength: float, *, name: str = "user",
-                    where: str = "") -> Material:
+    def from_values(cls, youngs_modulus: float, poisson: float, density: float, strength: float | None = None, *,
+                    name: str = "user", where: str = "") -> Material:
         """A user's material, every value checked against :data:`MATERIAL_SPECS`.
 
         Parameters
         ----------
-        youngs_modulus, poisson, density, strength : float
-            E (Pa), ν, ρ (kg/m³) and strength (Pa).
+        youngs_modulus, poisson, density : float
+            E (Pa), ν and ρ (kg/m³).
+        strength : float, optional
+            Pa; without it the stresses are not measured against a strength.
         name : str, keyword-only
         where : str, keyword-only
             Prefix of the parameters' names in messages (``"design.toml: [material] "``).
@@ -96,7 +98,7 @@ class Material:
         curvefold.kernel.errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is stable only there), got 0.5
         """
         values = {"youngs_modulus": youngs_modulus, "poisson": poisson, "density": density, "strength": strength}
-        checked = {k: _SPEC[k].check(v, f"{where}{k}") for k, v in values.items()}
+        checked = {k: None if v is None and k == "strength" else _SPEC[k].check(v, f"{where}{k}") for k, v in values.items()}
         return cls(name, **checked)
 
     def bending_stiffness(self, thickness: float) -> float:
@@ -159,4 +161,9 @@ def material(name: str) -> Material:
     ...
     curvefold.kernel.errors.InputError: material must be one of "polypropylene", "paperboard", "aluminium", got string 'steel'
     """
-    return MATERIALS[Spec("material", "choice", choices=tuple(MATERIALS)).check(name)]
+    return MATERIALS[MATERIAL.check(name)]
+
+
+#: The name of a material of :data:`MATERIALS` (design files and flags; no default: the user's own values, or the caller's choice).
+MATERIAL = Spec("material", "choice", None, choices=tuple(MATERIALS), help="a named sheet material (E, ν, density and strength from "
+                "its source)", label="sheet material")
