@@ -2,7 +2,9 @@
 
 The machine these run on is shared and noisy, so no absolute time is trusted on its own:
 contenders are timed in the same run, interleaved (the order rotates every round), and
-each keeps the best of k rounds; the scripts report ratios next to the times.
+each keeps the best of k rounds; the scripts report ratios next to the times. Wall time
+by default; ``clock=CPU`` counts the CPU seconds of this process (all its threads), which
+move less than wall time when other programs share the machine.
 """
 
 from __future__ import annotations
@@ -11,6 +13,9 @@ import gc
 import time
 from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence
+
+#: The clocks a timing can read: wall time, and the CPU time of this process.
+WALL, CPU = time.perf_counter, time.process_time
 
 
 @dataclass(frozen=True)
@@ -24,8 +29,8 @@ class SummaryRow:
     status: str
 
 
-def timed(fn: Callable[[], object], *, pause_gc: bool = True) -> tuple[float, object]:
-    """Wall time of one call of ``fn`` and its result.
+def timed(fn: Callable[[], object], *, pause_gc: bool = True, clock: Callable[[], float] = WALL) -> tuple[float, object]:
+    """Time of one call of ``fn`` on ``clock`` and its result.
 
     The garbage collector runs a full collection first and is paused during the call
     unless ``pause_gc`` is False (for long runs whose own collections are part of the cost).
@@ -35,17 +40,19 @@ def timed(fn: Callable[[], object], *, pause_gc: bool = True) -> tuple[float, ob
     if pause_gc:
         gc.disable()
     try:
-        t0 = time.perf_counter()
+        t0 = clock()
         result = fn()
-        elapsed = time.perf_counter() - t0
+        elapsed = clock() - t0
     finally:
         if was_enabled:
             gc.enable()
     return elapsed, result
 
 
-def best_of_interleaved(contenders: Mapping[str, Callable[[], object]], repeats: int, *, pause_gc: bool = True) -> tuple[dict[str, float], dict[str, object]]:
-    """Best wall time of each contender over ``repeats`` interleaved rounds.
+def best_of_interleaved(
+    contenders: Mapping[str, Callable[[], object]], repeats: int, *, pause_gc: bool = True, clock: Callable[[], float] = WALL
+) -> tuple[dict[str, float], dict[str, object]]:
+    """Best time (on ``clock``) of each contender over ``repeats`` interleaved rounds.
 
     Round r runs the contenders in an order rotated by r, so neither always runs first
     (warm caches) or last. Returns the best times and the last result of each contender.
@@ -56,7 +63,7 @@ def best_of_interleaved(contenders: Mapping[str, Callable[[], object]], repeats:
     for r in range(repeats):
         shift = r % len(names)
         for name in names[shift:] + names[:shift]:
-            elapsed, results[name] = timed(contenders[name], pause_gc=pause_gc)
+            elapsed, results[name] = timed(contenders[name], pause_gc=pause_gc, clock=clock)
             best[name] = min(best[name], elapsed)
     return best, results
 

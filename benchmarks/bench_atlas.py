@@ -1,22 +1,28 @@
-"""The design atlas: throughput of a sweep, and the memory of a large one.
+"""The design atlas: throughput and scaling of a sweep, and the CPU and memory of a large one.
 
 Throughput: a 40 × 40 grid (p_xy in [0.5, 1.5] × a in [0, 1.2], 1600 designs, width 0.08,
 201 samples per crease) run once each way, from the call to the last record:
 
-- serial: ``workers=1``, in this process;
+- serial: ``workers=1``, in this process (what the other ways are measured against);
+  every way sketches the designs ``curvefold atlas`` draws, every k-th row and column;
 - process pool: the sweep as the atlas ran it before Dask (a ``ProcessPoolExecutor`` of 2
-  processes, interleaved chunks, every result held until the end), what a user would write;
+  processes, interleaved chunks, every result held until the end);
 - Dask, local cluster: ``workers=2``, starting and closing the cluster included;
-- Dask, running cluster: ``scheduler=`` the address of a 2-process LocalCluster started
-  beforehand (what a sweep on one's own cluster costs once it is up).
+- Dask, running cluster of 1, 2 and 4 workers: ``scheduler=`` the address of a LocalCluster
+  started beforehand (standing in for a real cluster), every worker warmed by one design
+  (its imports), then the sweep. Wall time, and the CPU seconds of the workers and of this
+  process (which hosts the scheduler).
 
 Every way must return the same records (compared exactly); the speed-ups are printed as
 measured, with the machine's load average (the runs are whole programs, timed once each).
+Target: two workers of a running cluster in at most 0.6× the serial time.
 
-Memory (``python benchmarks/bench_atlas.py --memory``, several minutes): the peak resident
-memory of the process that runs the sweep alone, and ``curvefold atlas`` (records streamed
-to disk, figure thinned to every k-th row and column), for a 20 × 20 and a 200 × 200 grid
-on 2 workers.
+Memory and CPU (``python benchmarks/bench_atlas.py --memory``, several minutes):
+``curvefold atlas`` (records streamed to disk, figure of every k-th row and column) for a
+20 × 20 and a 200 × 200 grid, each in a fresh process with its default workers (a local
+cluster of 2 from 2000 designs): its CPU seconds, its workers' included, and the peak
+resident memory of the process and of its largest worker. Target: ≤ 60 CPU-s for 200 × 200,
+and the same memory for both.
 """
 
 from __future__ import annotations
@@ -37,7 +43,10 @@ SIDE = 40
 WIDTH = 0.08
 SAMPLES = 201
 WORKERS = 2
+SCALING = (1, 2, 4)
+TARGET_TWO = 0.6  # two running workers / serial, wall time
 MEMORY_SIDES = (20, 200)
+TARGET_CPU = 60.0  # CPU seconds of the 200 × 200 atlas
 
 
 def _grid():
@@ -60,24 +69,35 @@ def _process_pool(grid) -> list[dict]:
 
 
 def _records(grid, **where) -> list[dict]:
+    """The records of a sweep, sketching the designs ``curvefold atlas`` draws (every k-th row and column)."""
+    from curvefold.figures.atlas import view_step
     from curvefold.vault.atlas import sweep
 
-    return [record for record, _ in sweep(grid, **where)]
+    return [record for record, _ in sweep(grid, sketch_step=view_step(grid.shape), **where)]
 
 
 SERIAL = "serial (workers=1)"
 POOL = f"process pool, {WORKERS} processes"
 LOCAL = f"Dask, local cluster (workers={WORKERS}, start included)"
-RUNNING = f"Dask, running cluster ({WORKERS} workers, scheduler=)"
+
+
+def _running(workers: int) -> str:
+    return f"Dask, running cluster of {workers} worker{'s' * (workers != 1)} (scheduler=)"
+
+
+def _warm() -> None:
+    """A worker's first design, which imports what the designs use."""
+    from curvefold.vault.atlas import evaluate_design
+
+    evaluate_design(0.3, 0.75, width=WIDTH, samples=SAMPLES)
 
 
 def run() -> list[SummaryRow]:
     import distributed
 
-    from curvefold.vault.atlas import AtlasGrid
-
     grid = _grid()
     times: dict[str, float] = {}
+    cpu: dict[str, str] = {}
     records: dict[str, list[dict]] = {}
 
     def once(name: str, fn) -> None:
@@ -85,69 +105,84 @@ def run() -> list[SummaryRow]:
         records[name] = fn()
         times[name] = time.perf_counter() - t0
 
+    c0 = time.process_time()
     once(SERIAL, lambda: _records(grid, workers=1))
+    cpu[SERIAL] = f"{time.process_time() - c0:.2f}"
     once(POOL, lambda: _process_pool(grid))
     once(LOCAL, lambda: _records(grid, workers=WORKERS))
-    with distributed.LocalCluster(n_workers=WORKERS, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster:
-        _records(AtlasGrid.of([0.75], [0.3]), scheduler=cluster.scheduler_address)  # the workers load curvefold
-        once(RUNNING, lambda: _records(grid, scheduler=cluster.scheduler_address))
+    for workers in SCALING:
+        with (
+            distributed.LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
+            distributed.Client(cluster) as client,
+        ):
+            client.run(_warm)
+            before, c0 = sum(client.run(time.process_time).values()), time.process_time()
+            once(_running(workers), lambda: _records(grid, scheduler=cluster.scheduler_address))
+            worker_cpu = sum(client.run(time.process_time).values()) - before
+            cpu[_running(workers)] = f"{worker_cpu:.2f} + {time.process_time() - c0:.2f}"
 
-    serial, pool, local, running = (times[k] for k in (SERIAL, POOL, LOCAL, RUNNING))
+    serial = times[SERIAL]
+    two = times[_running(2)]
     same = all(r == records[SERIAL] for r in records.values())
     print(f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; one run each (load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")
-    rows = [(name, f"{t:.2f}", f"{grid.size / t:.0f}", f"{serial / t:.2f}") for name, t in times.items()]
-    print(markdown_table(["run", "time [s]", "designs/s", "speed-up vs serial"], rows))
+    rows = [(name, f"{t:.2f}", cpu.get(name, "—"), f"{grid.size / t:.0f}", f"{t / serial:.2f}") for name, t in times.items()]
+    print(markdown_table(["run", "wall [s]", "CPU [s] (workers + this process)", "designs/s", "time / serial"], rows))
     print(f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records identical in every run: {same}")
+    ok = two <= TARGET_TWO * serial
+    scaling = ", ".join(f"{w}: {times[_running(w)] / serial:.2f}" for w in SCALING)
     return [
-        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, running Dask cluster of {WORKERS} workers (serial {serial:.1f} s, process pool {pool:.1f} s)",
-                   f"{running:.1f} s ({serial / running:.2f}× serial, {pool / running:.2f}× the process pool)", "records identical to serial", verdict(same)),
-        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, local Dask cluster (start included)", f"{local:.1f} s ({serial / local:.2f}× serial)", "—", "—"),
+        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, running Dask cluster of 2 workers vs serial ({serial:.1f} s)",
+                   f"{two:.1f} s ({two / serial:.2f}× the serial time; load {os.getloadavg()[0]:.1f})", f"≤ {TARGET_TWO:g}×", verdict(ok)),
+        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, running cluster of 1, 2, 4 workers: time / serial", scaling, "records identical", verdict(same)),
+        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, local Dask cluster (start included); process pool",
+                   f"{times[LOCAL]:.1f} s ({times[LOCAL] / serial:.2f}×); {times[POOL]:.1f} s ({times[POOL] / serial:.2f}×)", "—", "—"),
     ]
 
 
 _PEAK = """
 import resource, sys, time
-import numpy as np
-from curvefold.app.outputs import write_atlas
-from curvefold.vault.atlas import AtlasGrid, sweep
-side, what, out = int(sys.argv[1]), sys.argv[2], sys.argv[3]
-p_xy, a = np.linspace(0.5, 1.5, side), np.linspace(0.0, 1.2, side)
+from curvefold.app.cli import main
+side, out = sys.argv[1], sys.argv[2]
 t0 = time.perf_counter()
-if what == "sweep":
-    valid = sum(record["valid"] for record, _ in sweep(AtlasGrid.of(p_xy, a, width={width}, samples={samples}), workers={workers}))
-else:
-    valid = write_atlas(p_xy, a, out=out, force=True, width={width}, samples={samples}, workers={workers}, show_progress=False)["valid"]
-print(time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, valid)
+status = main(["atlas", "--p-xy", f"0.5:1.5:{{side}}", "--a", f"0:1.2:{{side}}", "--width", "{width}", "--samples", "{samples}", "--out", out, "--json"])
+assert status == 0, status
+wall = time.perf_counter() - t0
+me, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+cpu = me.ru_utime + me.ru_stime + children.ru_utime + children.ru_stime
+print("RESULT", wall, cpu, me.ru_maxrss / 1024, children.ru_maxrss / 1024, file=sys.stderr)
 """
 
 
-def memory() -> None:
-    """Peak resident memory of the process running the atlas (its workers not counted), per grid size.
-
-    Two programs: the sweep alone (records handed out and dropped) and ``curvefold atlas``
-    (records written to disk, the figure drawn).
-    """
+def memory() -> list[SummaryRow]:
+    """CPU seconds and peak resident memory of ``curvefold atlas``, per grid size, each in a fresh process."""
     import tempfile
 
-    script = _PEAK.format(width=WIDTH, samples=SAMPLES, workers=WORKERS)
-    rows = []
+    script = _PEAK.format(width=WIDTH, samples=SAMPLES)
+    rows, results = [], {}
     with tempfile.TemporaryDirectory() as folder:
-        for what in ("sweep", "curvefold atlas"):
-            for side in MEMORY_SIDES:
-                done = subprocess.run([sys.executable, "-c", script, str(side), what, f"{folder}/atlas-{side}"], capture_output=True, text=True, check=True)
-                seconds, peak, valid = done.stdout.split()
-                rows.append((what, f"{side} × {side}", f"{side * side}", valid, f"{float(seconds):.0f}", f"{float(peak):.0f}", f"{os.getloadavg()[0]:.1f}"))
-                print(" ".join(rows[-1]), flush=True)
-    print(markdown_table(["program", "grid", "designs", "valid", "time [s]", "peak RSS of the client [MiB]", "load average"], rows))
+        for side in MEMORY_SIDES:
+            done = subprocess.run([sys.executable, "-c", script, str(side), f"{folder}/atlas-{side}"], capture_output=True, text=True, check=True)
+            wall, cpu, peak, worker = (float(x) for x in done.stderr.split("RESULT")[-1].split())
+            results[side] = (cpu, peak, worker)
+            workers = "2" if side * side >= 2000 else "—"
+            rows.append((f"{side} × {side}", f"{side * side}", workers, f"{wall:.0f}", f"{cpu:.1f}", f"{peak:.0f}", f"{worker:.0f}" if worker else "—",
+                         f"{os.getloadavg()[0]:.1f}"))
+            print(" | ".join(rows[-1]), flush=True)
+    print(markdown_table(["grid", "designs", "workers", "wall [s]", "CPU [s], workers included", "peak RSS [MiB]", "largest worker [MiB]", "load average"], rows))
+    small, large = results[MEMORY_SIDES[0]], results[MEMORY_SIDES[-1]]
+    flat = large[1] <= 1.1 * small[1]
+    return [
+        SummaryRow("atlas", f"curvefold atlas {MEMORY_SIDES[-1]} × {MEMORY_SIDES[-1]}: CPU seconds, its workers included", f"{large[0]:.1f} s",
+                   f"≤ {TARGET_CPU:g} s", verdict(large[0] <= TARGET_CPU)),
+        SummaryRow("atlas", f"curvefold atlas: peak memory {MEMORY_SIDES[0]} × {MEMORY_SIDES[0]} vs {MEMORY_SIDES[-1]} × {MEMORY_SIDES[-1]} (largest worker)",
+                   f"{small[1]:.0f} MiB vs {large[1]:.0f} MiB ({large[2]:.0f} MiB)", "within 10%", verdict(flat)),
+    ]
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--memory", action="store_true", help=f"measure the client's peak memory for {' and '.join(f'{s} × {s}' for s in MEMORY_SIDES)} grids instead")
-    if parser.parse_args().memory:
-        memory()
-    else:
-        print("\n" + summary_table(run()))
+    print("\n" + summary_table(memory() if parser.parse_args().memory else run()))
 
 
 if __name__ == "__main__":

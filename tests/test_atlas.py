@@ -510,3 +510,14 @@ def test_a_signal_stops_the_sweep_and_its_workers(signum, tmp_path):
         for child in children:
             if child.is_running():
                 child.kill()
+
+
+def test_a_sweep_sketches_only_the_designs_of_every_kth_row_and_column_with_the_same_records():
+    grid = AtlasGrid.of([0.6, 0.8, 1.0], [0.1, 0.3, 0.5], samples=41)
+    every = list(sweep(grid, workers=1))
+    some = list(sweep(grid, workers=1, sketch_step=2))
+    assert [r for r, _ in some] == [r for r, _ in every]
+    assert [(r["row"], r["col"]) for r, s in some if s is not None] == [(0, 0), (0, 2), (2, 0), (2, 2)]
+    assert all(s is not None for _, s in every)
+    with pytest.raises(InputError, match="step"):
+        sweep(grid, workers=1, sketch_step=0)

@@ -510,7 +510,7 @@ def test_two_runs_to_one_folder_lose_no_result(tmp_path):
         (["vault", "--samples", "199999"], r"this job needs about \d+\.\d GiB of memory \(199999 samples × 96 strips\), more than the budget of "
                                            r"2\.0 GiB \(CURVEFOLD_MEMORY_BUDGET\); lower samples \(at most \d+ fit\), \[vault\] tubes or layers"),
         (["vault", "--samples", "199999", "--tubes", "max", "--json"], r"this job needs about .* \(199999 samples × 96 strips\)"),
-        (["tube", "--samples", "20001", "--formats", "svg"], r"needs about .* lower samples \(at most \d+ fit\), the formats written \(the crease patterns cost most\)$"),
+        (["tube", "--samples", "200000", "--formats", "svg"], r"needs about .* lower samples \(at most \d+ fit\), the formats written \(the crease patterns cost most\)$"),
     ],
 )
 def test_jobs_over_the_memory_budget_are_refused_before_starting(tmp_path, monkeypatch, argv, match):

@@ -164,9 +164,8 @@ def test_dense_output_agrees_with_stepping_every_sample():
 def test_dense_output_error_falls_at_sixth_order():
     """The Hermite fill's own error, measured with growing strides on the same coarse solution."""
     from curvefold.geometry.curve import gauss_nodes, integrate_frenet, integrate_motions
-    from curvefold.kernel.dense import coarse_indices, hermite_fill
+    from curvefold.kernel.dense import coarse_indices, frenet_rates, hermite_fill
     from curvefold.kernel.functions import as_function
-    from curvefold.kernel.lie import dual_to_motion
 
     L, n = 6.0, 6401
     s = np.linspace(0, L, n)
@@ -176,7 +175,25 @@ def test_dense_output_error_falls_at_sixth_order():
     for stride in (160, 80, 40):
         grid = s[coarse_indices(n, stride)]
         motions = integrate_motions(grid, KAPPA(gauss_nodes(grid)), TAU(gauss_nodes(grid)))
-        points, _ = hermite_fill(s, stride, motions[:4], dual_to_motion(motions)[1], kf, tf)
+        points, _ = hermite_fill(s, stride, motions, frenet_rates(kf, tf, grid))
         errors.append(np.abs(points - exact).max())
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all(orders > 5.5), (errors, orders)
+
+
+def test_a_derivative_that_fails_between_the_samples_means_a_step_per_sample():
+    """The Hermite fill reads κ' and τ'; where they are not finite, every sample is integrated instead."""
+    from curvefold.geometry.curve import gauss_nodes, integrate_frenet
+    from curvefold.kernel.dense import coarse_indices, dense_stride
+    from curvefold.kernel.functions import as_function, difference_step
+
+    L, n = 20.0, 20_000
+    s = np.linspace(0, L, n)
+    stride = lambda k: dense_stride(as_function(k, name="kappa", length=L), as_function(TAU, name="tau", length=L), L, n)  # noqa: E731
+    bad = s[coarse_indices(n, stride(KAPPA))][50] + 2 * difference_step(L)  # a node of the difference there
+    kappa = lambda x: np.where(x == bad, np.nan, KAPPA(x))  # noqa: E731
+    nodes = gauss_nodes(s)
+    assert np.isfinite(kappa(s)).all() and np.isfinite(kappa(nodes)).all() and stride(kappa) > 1  # only the derivative fails
+    c = SpaceCurve.from_curvature(kappa, TAU, L, samples=n)
+    points, frames = integrate_frenet(s, KAPPA(nodes), TAU(nodes))
+    assert np.array_equal(c.points, points) and np.array_equal(c.frames, frames)

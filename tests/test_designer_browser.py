@@ -173,7 +173,8 @@ def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp
     assert "2α = 60.0°" in page.inner_text("#downloads-state")
     links = page.locator("#downloads a")
     names = [links.nth(i).inner_text() for i in range(links.count())]
-    assert names[-2:] == ["folder (zip)", "design (TOML)"] and len(names) == 12  # ten formats, the folder, the design
+    assert names[-2:] == ["folder (zip)", "design (TOML)"] and len(names) == 13  # eleven formats, the folder, the design
+    assert "assembly (PDF)" in names
     got = {}
     for name in names:
         with page.expect_download(timeout=120_000) as download:
@@ -183,7 +184,7 @@ def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp
         download.value.save_as(path)
         assert path.stat().st_size > 0, name
         got[name] = path
-    assert check_fold(got["FOLD"]).ok and read_fold(got["FOLD"]).design["fold_angles"] == [60.0]  # the slider's angle
+    assert check_fold(got["FOLD"]).ok and read_fold(got["FOLD"]).design["fold_angles"][-1] == 60.0  # the motion to the slider's angle
     folder = zipfile.ZipFile(got["folder (zip)"]).namelist()
     assert "curvefold-vault/report.html" in folder and "curvefold-vault/vault.glb" in folder
     rebuilt = json.loads(run("vault", str(got["design (TOML)"]), "--json").stdout)

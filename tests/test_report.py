@@ -9,7 +9,8 @@ from curvefold.app.build import build
 from curvefold.app.design import default_design
 from curvefold.app.outputs import parameter_rows, structure_payload
 from curvefold.app.products import resolution
-from curvefold.figures.report import CHECK_TITLES, QUANTITIES, describe_file, report_html
+from curvefold.analysis.checks import TITLES
+from curvefold.figures.report import QUANTITIES, describe_file, report_html
 
 
 def _section(page: str, title: str) -> str:
@@ -25,7 +26,7 @@ def test_derived_quantities_read_as_names_and_units_not_python():
     for title in ("Certificate", "The paper's example", "Design"):  # names only as symbols beside their words
         shown = re.sub(r"<code>.*?</code>|<pre>.*?</pre>", "", _section(page, title), flags=re.S)
         assert not re.search(r">(eq\d+|[a-z0-9]+_[a-z0-9_]+)<", shown), title
-    smooth = [words for words in CHECK_TITLES.values() if not re.search("panel|degree of freedom|rank", words)]
+    smooth = [words for words in TITLES.values() if not re.search("panel|degree of freedom|rank", words)]
     assert all(html.escape(words) in page for words in smooth)
     assert "torsion amplitude" in _section(page, "Design") and "× radius" in _section(page, "Design")
     assert not re.search(r">[a-z0-9]+_[a-z0-9_]+<", derived)  # no snake_case key shown as a name

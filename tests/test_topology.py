@@ -303,3 +303,15 @@ def test_sheet_topology_flags_an_edge_without_faces():
     edges = np.array([[0, 1], [1, 2], [2, 0], [2, 3]])  # the last edge borders no face
     with pytest.raises(InternalError, match="an edge borders none of the sheet's faces"):
         _sheet("s", np.arange(4), np.array([0]), np.arange(4), faces, edges, np.full(4, -1))
+
+
+def test_unique_pairs_is_numpys_unique_of_rows():
+    """One key per pair, and NumPy's own way where the keys would pass int64."""
+    from curvefold.geometry.topology import unique_pairs
+
+    rng = np.random.default_rng(7)
+    for scale in (1, 10**9, 10**17):
+        pairs = rng.integers(-50, 50, size=(80, 2)) * scale
+        found, inverse = unique_pairs(pairs)
+        expected, expected_inverse = np.unique(pairs, axis=0, return_inverse=True)
+        assert np.array_equal(found, expected) and np.array_equal(inverse, expected_inverse.reshape(-1))

@@ -13,8 +13,9 @@ Adding a check is one entry in :data:`CHECKS`; a test must damage a design so th
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 
@@ -25,7 +26,7 @@ from . import measure
 from .frames import Frame
 from .mechanism import CertifiedMechanism, certified_mechanism
 
-__all__ = ["CHECKS", "CheckSpec", "Residual"]
+__all__ = ["CHECKS", "TITLES", "CheckSpec", "Residual"]
 
 #: Largest :attr:`Mechanism.clearance <curvefold.analysis.mechanism.Mechanism.clearance>` of a clear count.
 CLEARANCE = 1e-3
@@ -90,6 +91,8 @@ class CheckSpec:
     ----------
     name : str
         Stable identifier (a JSON key).
+    title : str
+        What a pass says, in plain words (the report's and the designer's name for it).
     scope : {"crease", "frame", "vault", "panels", "panel_vault", "mechanism", "motion"}
         ``"crease"``: curve 1 of a single fold and of every frame of a smooth structure
         (the smooth crease a panel structure samples); ``"frame"``: every frame of a smooth
@@ -113,6 +116,7 @@ class CheckSpec:
     """
 
     name: str
+    title: str
     scope: str
     measures: str
     unit: str
@@ -346,94 +350,116 @@ def _accumulated(frame: Frame) -> float:
 
 #: The registry: every check of the certificate, in report order.
 CHECKS: tuple[CheckSpec, ...] = (
-    CheckSpec("developability", "crease",
+    CheckSpec("developability", "the sheets stay developable (the tangent plane keeps along each ruling)",
+              "crease",
               "|r'·p| along both families of rulings of curve 1: r the unit ruling from the built neighbour creases "
               "(or the built ruling vectors of a single fold), p the normal of the plane of r and the measured tangent; "
               "the tangent plane must not turn along a ruling. Relative to the largest frame rate √(κ² + τ²)",
               "relative", 4, 1e-3, _developability),
-    CheckSpec("eq2_planar_curvature", "crease",
+    CheckSpec("eq2_planar_curvature", "Eq. (2): the crease's curvature times cos α is its flat curvature",
+              "crease",
               "Eq. (2): κ of the built curve 1 (differences of its points) times cos α measured from its built rulings, "
               "against κ_2D measured on the crease pattern (curve 1 of the flat state; a single fold's input pattern). "
               "Relative to the largest κ_2D",
               "relative", 4, 1e-3, _planar_curvature),
-    CheckSpec("frame_agreement", "frame",
+    CheckSpec("frame_agreement", "every crease shares curve 1's frame",
+              "frame",
               "angle between every crease's measured tangent (differences of its points) and curve 1's T at equal t: "
               "the shared frame; a crease past its curve of regression runs backwards (π)",
               "rad", 4, 1e-3, _frame_agreement),
-    CheckSpec("eq19", "frame",
+    CheckSpec("eq19", "Eq. (19): the two creases of every strip agree",
+              "frame",
               "the paper's Eq. (19) across every strip: κ_2D tan α cosec β ds/dt at its two creases, each factor "
               "measured at its own crease (κ and ds/dt from differences, α from the two strips' rulings, β between the "
               "crease's tangent and the strip's ruling); not defined in the flat state",
               "relative", 4, 1e-3, _eq19),
-    CheckSpec("isometry", "frame",
+    CheckSpec("isometry", "folding stretches no edge (isometric to the crease pattern)",
+              "frame",
               "|ℓ/ℓ₀ − 1| of every mesh edge against the crease pattern (the flat state): a triangle mesh is "
               "isometric exactly when every edge keeps its length; polyline chords shorten as (κ² − κ_2D²) h²/24",
               "relative", 2, 1e-3, _isometry),
-    CheckSpec("ruling_quad_planarity", "frame",
+    CheckSpec("ruling_quad_planarity", "the quads between rulings stay planar",
+              "frame",
               "distance of each ruling quad's fourth corner from the plane of the other three, over its diagonal: "
               "consecutive rulings of a developable are coplanar",
               "relative", 3, 1e-3, _quad_planarity),
-    CheckSpec("fold_angles", "frame",
+    CheckSpec("fold_angles", "the creases fold by 2α, the seams by 180° − 2α",
+              "frame",
               "dihedral angle of the mesh at every crease edge against 2α (folds, mountain) and 180° − 2α (seams)",
               "°", 2, 0.1, _fold_angles),
-    CheckSpec("width_law", "frame",
+    CheckSpec("width_law", "the widths follow the width law (Eqs. 12–13, corrected)",
+              "frame",
               "|ln(w/w(0)) ∓ ∫ κ_2D cot β ds| for every strip: w the distance between the tangent lines of its built "
               "creases (Eqs. 12–13 corrected); the integral by Gauss–Legendre on a grid 4× finer than the samples",
               "relative", 6, 1e-4, _width_law),
-    CheckSpec("regression", "frame",
+    CheckSpec("regression", "every crease stays clear of its curve of regression (Eq. 17)",
+              "frame",
               "x'·T₁ of every crease (differences of its points along curve 1's arc length) against the Eq. (17) "
               "speed factor 1 − u w_L/w_lim_L − v w_R/w_lim_R of the regression domain (Eqs. 14–18) the design was "
               "accepted with; relative to the smallest factor, so a pass also says every crease runs forward",
               "relative", 4, 1e-3, _regression),
-    CheckSpec("tube_closure", "frame",
+    CheckSpec("tube_closure", "each tube closes onto its first crease",
+              "frame",
               "each strip of every tube rebuilt from its first crease's own measured invariants (frame, κ, β, the "
               "width law from the measured width at t ≈ 0: the paper's construction step) lands on its second "
               "crease; the step from crease 4 closes the tube onto crease 1. Relative to the strip's width",
               "relative", 4, 1e-3, _tube_closure),
-    CheckSpec("ground_plane", "vault",
+    CheckSpec("ground_plane", "the feet stand on the ground",
+              "vault",
               "|z| of both end sections of every crease at the design angle, relative to the vault's size",
               "relative", 6, 1e-6, _ground_plane),
-    CheckSpec("arch_condition", "vault",
+    CheckSpec("arch_condition", "the arch condition (Eq. 20): the ends face opposite ways",
+              "vault",
               "on the built curve 1: T(s0/2)·T(0) (Eq. 20), |T(0) + T(s1)| (the ends face opposite ways) and "
               "(x(s1) − x(0))·T(0)/s1 (the chord lies in the ground)",
               "", 6, 1e-6, _arch_condition),
-    CheckSpec("proportion_change", "vault",
+    CheckSpec("proportion_change", "the section proportion changes as predicted from feet to apex",
+              "vault",
               "w_R(s0/2)/w_R(0) and p_xz = w_R/w_L at s0/2, measured between the tangent lines of the base tube's "
               "built creases, against exp(a κ0 s0 cot α/π) and p_xy × change²",
               "relative", 6, 1e-6, _proportion_change),
-    CheckSpec("panel_isometry", "panels",
+    CheckSpec("panel_isometry", "every panel keeps its sides and diagonals",
+              "panels",
               "|ℓ/ℓ₀ − 1| of the four sides and both diagonals of every panel against the crease pattern (the flat "
               "state): each panel keeps its shape",
               "relative", 0, math.inf, _panel_isometry,
               rounding="4 × 32 ulps of the largest coordinate over the shortest side or diagonal (a length carries the "
                        "rounding of its two ends)"),
-    CheckSpec("panel_planarity", "panels",
+    CheckSpec("panel_planarity", "every panel stays planar",
+              "panels",
               "distance of each panel's fourth corner from the plane of the other three, over its diagonal: every panel "
               "stays planar",
               "relative", 0, math.inf, _quad_planarity,
               rounding="4 × 32 ulps of the largest coordinate over the shortest edge"),
-    CheckSpec("panel_ground_plane", "panel_vault",
+    CheckSpec("panel_ground_plane", "the panel vault's feet stand on the ground",
+              "panel_vault",
               "|z| of the first and last vertex of every polyline at the design angle, relative to the vault's size: "
               "both end sections stand on the ground (the discrete Eq. 20, (x_N − x_0)·n₀ = 0)",
               "relative", 0, math.inf, _panel_ground_plane,
               rounding="32 ulps of the largest coordinate over the size, plus 3 × the arch root's residual (the sine of "
                        "the chord's angle to the first end section, which tilts the far one by twice that)"),
-    CheckSpec("mechanism_dof", "mechanism",
+    CheckSpec("mechanism_dof", "the panels fold with exactly one degree of freedom",
+              "mechanism",
               "|DOF − 1| at half and full design angle: DOF = nullity − 6 of the Jacobian of every edge length, both panel "
               "diagonals and every panel's planarity, welded seams and bonds (curvefold.analysis.mechanism), counted "
               "below the rank tolerance 1e-9 σ_max. The flat state has more, first-order only (reported)",
               "DOF", 0, math.inf, _mechanism_dof,
               rounding="0: a count; the null singular values of a state built to rounding lie near 1e-15 σ_max"),
-    CheckSpec("mechanism_clearance", "mechanism",
+    CheckSpec("mechanism_clearance", "that count is clear of the rank tolerance",
+              "mechanism",
               "how near the rank tolerance (1e-9 σ_max) the nearest singular value lies, max min(σ/tol, tol/σ), at half "
               "and full design angle",
               "", 0, math.inf, _mechanism_clearance,
               rounding="1e-3: the count holds for any tolerance a thousand times larger or smaller; rounding puts the "
                        "null singular values near 1e-15 σ_max, a million times below it"),
-    CheckSpec("contact", "motion",
+    CheckSpec("contact", "the motion ends before its parts touch (the first contact)",
+              "motion",
               "parts of the structure far apart (curves two lattice steps apart, or points more than four of the largest "
               "strip widths apart along both their curves) closer than half the smallest strip width, at the design angle and "
               "in every certified frame past it: how far inside that half width they are, relative to it",
               "relative", 0, math.inf, _contact,
               rounding="0: any contact fails (the curves resampled to 201 points along t, each pair's distance measured)"),
 )
+
+#: What each check says when it passes, in plain words, by name.
+TITLES: Mapping[str, str] = MappingProxyType({spec.name: spec.title for spec in CHECKS})

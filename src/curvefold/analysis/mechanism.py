@@ -50,6 +50,7 @@ from ..geometry.topology import lattice_corners
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ..kernel.lie import cross
+from ..kernel.threads import on_one_blas_thread
 
 __all__ = ["MAX_UNKNOWNS", "CERTIFY_UNKNOWNS", "RTOL", "RESIDUAL_TOL", "Framework", "Mechanism", "CertifiedMechanism", "mechanism",
            "analyse", "certified_mechanism", "follow"]
@@ -346,6 +347,7 @@ def _check_size(framework: Framework) -> None:
         )
 
 
+@on_one_blas_thread  # small dense SVDs: threads only wait (curvefold.kernel.threads)
 def mechanism(framework: Framework, x: np.ndarray, *, rtol: float = RTOL, label: str = "",
               residual_tol: float = RESIDUAL_TOL) -> Mechanism:
     """Singular values and degrees of freedom of a framework at positions x (V, 3).
@@ -454,6 +456,7 @@ def _rigid_motions(x: np.ndarray) -> np.ndarray:
     return q.T
 
 
+@on_one_blas_thread
 def follow(framework: Framework, start: np.ndarray, *, steps: int, step: float, toward: np.ndarray | None = None,
            tol: float = 1e-13, rtol: float = RTOL) -> np.ndarray:
     """Follow a one-dimensional motion from a state by predictor–corrector continuation.

@@ -50,12 +50,14 @@ BASE = 80 * _MB
 #: (fixed bytes, bytes per strip sample, bytes per squared sample) of each part of a job:
 #: the geometry with the certificate, each family of formats, the report's pictures.
 #: Measured on tubes (2001 to 32001 samples), vaults (401 and 1601 samples, 36 strips), a
-#: block and a crease, each part in a process of its own, and rounded up. The crease
-#: patterns grow with the square of the samples: each glue tab is checked against the
-#: sheet's outline segment by segment (25 bytes × samples², 1.6 GB at 8001 samples).
+#: block and a crease, each part in a process of its own, and rounded up. Nothing grows
+#: with the square of the samples any more (the crease patterns did, 1.6 GB at 8001
+#: samples, until their glue tabs were checked against nearby segments only and a
+#: sheet's bounding box found by rotating calipers); the third number stays for a part
+#: that would.
 COSTS: dict[str, tuple[float, float, float]] = {
-    "geometry": (46 * _MB, 1420.0, 0.0),
-    "pattern": (100 * _MB, 500.0, 25.0),
+    "geometry": (46 * _MB, 2200.0, 0.0),
+    "pattern": (100 * _MB, 500.0, 0.0),
     "guide": (40 * _MB, 300.0, 0.0),  # measured 3 MB above the built design for the paper's vault at 801 and 3201 samples
     "fold": (35 * _MB, 4200.0, 0.0),
     "model": (75 * _MB, 5400.0, 0.0),

@@ -39,7 +39,7 @@ from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.text import for_terminal
 from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
-from ..vault.atlas import GRID_A, workers_spec
+from ..vault.atlas import GRID_A, LOCAL_CLUSTER_FROM, workers_spec
 from .design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
 from .designer import SERVER_SPECS
 from .folder import Interrupted, raise_if_interrupted, signals_interrupt
@@ -258,7 +258,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
     p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
     p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
-    p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of 2000 designs or more when Dask is installed, else 1)")
+    p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of {LOCAL_CLUSTER_FROM} designs or more when Dask is installed, else 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
     p.add_argument("--force", action="store_true", help=_FORCE_HELP)
@@ -622,10 +622,13 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
     if args.command is None:
         parser.print_help()
         return 0
-    if args.command in DEFAULT_OUT:
-        return cmd_structure(args.command, args)
-    return {"load": cmd_load, "arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism, "atlas": cmd_atlas,
-            "designer": cmd_designer}[args.command](args)
+    from ..kernel.threads import one_blas_thread
+
+    with one_blas_thread():  # a command's matrices are small: more BLAS threads only wait (kernel.threads)
+        if args.command in DEFAULT_OUT:
+            return cmd_structure(args.command, args)
+        return {"load": cmd_load, "arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism,
+                "atlas": cmd_atlas, "designer": cmd_designer}[args.command](args)
 
 
 def run() -> None:

@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.certificate import certify, certify_single_fold
+from ..analysis.mechanism import certified_mechanism
 from ..figures.report import UNITS_SHOWN, plain, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
@@ -186,6 +187,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     resolution = products.resolution(built)
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
+    if built.structure is not None and built.structure.lattice.rigid:
+        certified_mechanism(built.structure)  # cached before the jobs fork: the certificate and the pictures share it
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
@@ -245,7 +248,7 @@ def write_atlas(
     with output_folder(out) as tmp:
         with (
             _progress_bar(show_progress, "atlas", grid.size) as progress,
-            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress)) as results,
+            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress, sketch_step=step)) as results,
             csv_records(tmp / "atlas.csv", FIELDS) as csv_row,
             json_records(tmp / "atlas.json", header, FIELDS) as json_row,
         ):

@@ -15,9 +15,10 @@ import re
 
 import numpy as np
 
+from ..analysis.checks import TITLES
 from ..kernel.text import one_line
 
-__all__ = ["plain", "report_html", "QUANTITIES", "MECHANICS_QUANTITIES", "CHECK_TITLES", "UNITS_SHOWN", "describe_file", "natural_key"]
+__all__ = ["plain", "report_html", "QUANTITIES", "MECHANICS_QUANTITIES", "UNITS_SHOWN", "describe_file", "natural_key"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
 _PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "singular-values.png", "regression-domain.png",
@@ -56,28 +57,6 @@ QUANTITIES = {
     "length": ("crease length", _UNIT),
     "fold_angle_start_deg": ("fold angle 2α at the start", "°"),
     "fold_angle_end_deg": ("fold angle 2α at the end", "°"),
-}
-#: Every check of the certificate in plain words (the report and the designer show these beside the names).
-CHECK_TITLES = {
-    "developability": "the sheets stay developable (the tangent plane keeps along each ruling)",
-    "eq2_planar_curvature": "Eq. (2): the crease's curvature times cos α is its flat curvature",
-    "frame_agreement": "every crease shares curve 1's frame",
-    "eq19": "Eq. (19): the two creases of every strip agree",
-    "isometry": "folding stretches no edge (isometric to the crease pattern)",
-    "ruling_quad_planarity": "the quads between rulings stay planar",
-    "fold_angles": "the creases fold by 2α, the seams by 180° − 2α",
-    "width_law": "the widths follow the width law (Eqs. 12–13, corrected)",
-    "section_area": "every tube's section keeps its area",
-    "regression": "every crease stays clear of its curve of regression (Eq. 17)",
-    "tube_closure": "each tube closes onto its first crease",
-    "ground_plane": "the feet stand on the ground",
-    "arch_condition": "the arch condition (Eq. 20): the ends face opposite ways",
-    "proportion_change": "the section proportion changes as predicted from feet to apex",
-    "panel_isometry": "every panel keeps its sides and diagonals",
-    "panel_planarity": "every panel stays planar",
-    "panel_ground_plane": "the panel vault's feet stand on the ground",
-    "mechanism_dof": "the panels fold with exactly one degree of freedom",
-    "mechanism_clearance": "that count is clear of the rank tolerance",
 }
 #: Name and unit of every entry of the mesh resolution (``payload["mesh"]``).
 MESH_QUANTITIES = {
@@ -191,7 +170,7 @@ def _certificate_row(c: dict) -> str:
     e = html.escape
     kind = "pass" if c["passed"] else "fail" if c["status"] == "fail" else "unresolved"
     needed = f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
-    title = f"<b>{e(CHECK_TITLES.get(c['name'], c['name']))}</b><br><code>{e(c['name'])}</code>"
+    title = f"<b>{e(TITLES.get(c['name'], c['name']))}</b><br><code>{e(c['name'])}</code>"
     cells = [title, f"{e(c['status'])}{needed}", _sci(c["value"]), _sci(c["tolerance"]), _sci(c["margin"], "×"), e(c["unit"]), e(c["where"])]
     return (f"<tr class='{kind} head'>{_cells(_CERTIFICATE_COLUMNS, cells, ('', ' class=status', ' class=num', ' class=num', ' class=num', '', ''))}</tr>"
             f"<tr class='{kind} about'><td colspan=7 data-label='what it measures'>{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>")

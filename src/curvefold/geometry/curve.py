@@ -15,16 +15,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernel.arrays import FrozenArrays, readonly
-from ..kernel.dense import coarse_indices, dense_stride, hermite_fill
+from ..kernel.dense import coarse_indices, dense_stride, frenet_rates, hermite_fill
 from ..kernel.errors import InputError
 from ..kernel.functions import FunctionLike, ScalarFunction, as_function, check_finite
-from ..kernel.lie import GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
+from ..kernel.lie import CHUNK, GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
 from ..kernel.validate import check_integer
 
 __all__ = ["FramedCurve", "SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
-
-#: Samples per slice in the per-step work (keeps the working set in cache).
-CHUNK = 4096
 
 #: Largest sample count accepted: a curve of this many samples holds ~1 GB of arrays.
 MAX_SAMPLES = 10_000_000
@@ -207,8 +204,7 @@ class SpaceCurve(FramedCurve, FrozenArrays):
         kf = as_function(kappa, name="kappa", length=length)
         tf = as_function(tau, name="tau", length=length)
         s = np.linspace(0.0, length, samples)
-        stride = dense_stride(kf, tf, length, samples)
-        grid = s if stride == 1 else s[coarse_indices(samples, stride)]
+        stride, grid, rates = _coarse_grid(kf, tf, s)
         nodes = gauss_nodes(grid)
         k_nodes, t_nodes = kf(nodes), tf(nodes)
         ends = np.array([0.0, length])
@@ -222,8 +218,24 @@ class SpaceCurve(FramedCurve, FrozenArrays):
             points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
         else:
             motions = integrate_motions(grid, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
-            points, frames = hermite_fill(s, stride, motions[:4], dual_to_motion(motions)[1], kf, tf)
+            points, frames = hermite_fill(s, stride, motions, rates)
         return cls(readonly(s), readonly(points), readonly(frames), kf, tf)
+
+
+def _coarse_grid(kappa: ScalarFunction, tau: ScalarFunction, s: np.ndarray) -> tuple[int, np.ndarray, np.ndarray | None]:
+    """The stride of the Magnus steps over the samples s, their grid and the rates the Hermite fill reads there.
+
+    Where a derivative is not finite although the values are, every sample is a step (the
+    integration needs no derivative).
+    """
+    stride = dense_stride(kappa, tau, float(s[-1]), len(s))
+    if stride > 1:
+        grid = s[coarse_indices(len(s), stride)]
+        with np.errstate(all="ignore"):
+            rates = frenet_rates(kappa, tau, grid)
+        if np.isfinite(rates).all():
+            return stride, grid, rates
+    return 1, s, None
 
 
 def check_length(length: float) -> float:

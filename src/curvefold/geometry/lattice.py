@@ -25,6 +25,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+import weakref
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -179,7 +181,7 @@ class Pattern(FrozenArrays):
         if crease.fold_angle is None:
             raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
         s = crease.s
-        log_ratio = log_width_ratio(crease)
+        log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes = _crease_rates(crease)
         widths = []
         for name, w, sign in (("width_left", width_left, -1.0), ("width_right", width_right, 1.0)):
             arr = np.asarray(w, dtype=float)
@@ -200,19 +202,13 @@ class Pattern(FrozenArrays):
             widths.append(arr)
         wl, wr = widths
         _check_resolved(wl, wr, crease)
-        rates = crease.regression_rates()
         for side, rate in zip(("left", "right"), rates):
             check_finite(rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s)
-        beta = crease.beta_left
-        beta_samples = beta(s)
         sin_beta = np.sin(beta_samples)
-        kappa_2d = crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
-        nodes = gauss_nodes(s)
-        k2_nodes = kappa_2d(nodes)
         return cls(
             s=s,
-            kappa_2d=kappa_2d,
-            beta=beta,
+            kappa_2d=_kappa_2d(crease),
+            beta=crease.beta_left,
             beta_samples=beta_samples,
             width_left=wl,
             width_right=wr,
@@ -221,7 +217,7 @@ class Pattern(FrozenArrays):
             regression_rates=rates,
             domain=RegressionDomain(s / crease.curve.length, wl * rates[0], wr * rates[1]),
             kappa_2d_nodes=k2_nodes,
-            log_width_rate_nodes=k2_nodes / np.tan(beta(nodes)),
+            log_width_rate_nodes=width_rate_nodes,
         )
 
     @property
@@ -233,6 +229,37 @@ class Pattern(FrozenArrays):
     def t(self) -> np.ndarray:
         """Common curve parameter t = s / L, shape (n,)."""
         return self.domain.t
+
+
+def _kappa_2d(crease: Crease) -> ScalarFunction:
+    """κ_2D = κ cos α of a crease of constant fold angle."""
+    return crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
+
+
+#: What a pattern reads from a crease, kept while the crease lives (creases are immutable).
+_RATES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _crease_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+    """What a pattern reads from its crease alone, whatever its widths: the log width ratio,
+    the regression rates, β at the samples, κ_2D and κ_2D cot β at the Gauss nodes.
+
+    Kept with the crease (read-only), so patterns of one crease and many widths (a sweep
+    over p_xy) compute them once.
+    """
+    if crease not in _RATES:
+        _RATES[crease] = _compute_rates(crease)
+    return _RATES[crease]
+
+
+def _compute_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+    s = crease.s
+    nodes = gauss_nodes(s)
+    k2_nodes = _kappa_2d(crease)(nodes)
+    rates = tuple(readonly(r) for r in crease.regression_rates())
+    values = (log_width_ratio(crease), crease.beta_left(s), k2_nodes, k2_nodes / np.tan(crease.beta_left(nodes)))
+    log_ratio, beta_samples, k2_nodes, width_rate_nodes = (readonly(v) for v in values)
+    return log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes
 
 
 @dataclass(frozen=True, eq=False)
@@ -350,9 +377,14 @@ class Lattice(FrozenArrays):
     # -- geometry at this fold angle -------------------------------------------------------
     def points(self, uv: np.ndarray) -> np.ndarray:
         """Lattice curves x(t; u, v) (Eq. 11) for uv (..., 2); shape (..., n, 3)."""
+        return lattice_points(self.crease.curve.points, *self._rulings, uv)
+
+    @cached_property
+    def _rulings(self) -> tuple[np.ndarray, np.ndarray]:
+        """ℓ_L r_L and ℓ_R r_R at this fold angle, each (n, 3), read-only."""
         rl, rr = ruling_vectors(self.crease.curve.frames, self.crease.alpha.constant, self.beta, self.beta)
         ll, lr = self.ruling_lengths
-        return lattice_points(self.crease.curve.points, ll[:, None] * rl, lr[:, None] * rr, uv)
+        return readonly(ll[:, None] * rl), readonly(lr[:, None] * rr)
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
         """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is valid."""

@@ -27,7 +27,7 @@ from ..kernel.errors import InputError
 from ..kernel.validate import check_integer
 from .crease import half_angle
 from .mesh import Mesh
-from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells
+from .topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells, unique_pairs
 
 if TYPE_CHECKING:  # pragma: no cover
     from .kinds import StructureLattice
@@ -80,7 +80,7 @@ class Structure(FrozenArrays):
             if not np.all(np.isfinite(arr)) or not np.all(arr == np.round(arr)):
                 raise InputError(f"cells must hold integers, got {cells!r}")
             arr = arr.astype(np.int64)
-        if len(np.unique(arr, axis=0)) != len(arr):
+        if len(unique_pairs(arr)[0]) != len(arr):
             raise InputError("cells must be distinct; a cell is listed twice")
         structure = cls(lattice, arr.astype(np.int64))
         lattice.check(structure.curves_uv, name="cells")

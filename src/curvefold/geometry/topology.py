@@ -36,6 +36,7 @@ from ..kernel.errors import InputError, InternalError
 from .mesh import CREASE_KINDS, Mesh, edges_faces, fold_angles
 
 __all__ = [
+    "unique_pairs",
     "CORNERS",
     "CORNER_QUADRANTS",
     "CORNER_KINDS",
@@ -156,8 +157,27 @@ def lattice_corners(cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     [[0, 1, 3, 2], [3, 4, 6, 5]]
     """
     corners = (np.asarray(cells)[:, None, :] + CORNERS[None]).reshape(-1, 2)
-    curves_uv, inverse = np.unique(corners, axis=0, return_inverse=True)
+    curves_uv, inverse = unique_pairs(corners)
     return readonly(curves_uv), readonly(inverse.reshape(-1, 4))
+
+
+def unique_pairs(pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``np.unique(pairs, axis=0, return_inverse=True)`` for integer pairs (N, 2), by one key per pair (many times faster).
+
+    >>> uv, inverse = unique_pairs(np.array([[1, 0], [0, 5], [1, 0]]))
+    >>> uv.tolist(), inverse.tolist()
+    ([[0, 5], [1, 0]], [1, 0, 1])
+    """
+    pairs = np.asarray(pairs, np.int64).reshape(-1, 2)
+    if not len(pairs):
+        return pairs.copy(), np.zeros(0, np.int64)
+    low = pairs.min(axis=0)
+    span = int(pairs[:, 1].max()) - int(low[1]) + 1  # Python integers: no overflow
+    if (int(pairs[:, 0].max()) - int(low[0]) + 1) * span >= 2**62:  # keys past int64: the slow way
+        found, inverse = np.unique(pairs, axis=0, return_inverse=True)
+        return found, inverse.reshape(-1)
+    keys, inverse = np.unique((pairs[:, 0] - low[0]) * span + (pairs[:, 1] - low[1]), return_inverse=True)
+    return np.stack([keys // span + low[0], keys % span + low[1]], axis=1), inverse.reshape(-1)
 
 
 def corner_members(cell_curves: np.ndarray, curves: int) -> tuple[tuple[tuple[int, int], ...], ...]:

@@ -105,6 +105,17 @@ class FileFormat:
         stem = Path(stem)
         return stem.with_name((self.stem or stem.name) + self.extension)
 
+    @property
+    def title(self) -> str:
+        """The format as a download is named: its name in capitals, or its own file name and type.
+
+        Examples
+        --------
+        >>> FORMATS["svg"].title, FORMATS["assembly"].title
+        ('SVG', 'assembly (PDF)')
+        """
+        return self.name.upper() if self.stem is None else f"{self.stem} ({self.extension[1:].upper()})"
+
     def load_writer(self) -> Callable:
         """Import and return the writing function."""
         module, function = self.writer.split(":")

@@ -141,24 +141,49 @@ def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | 
 def min_area_rotation(points: np.ndarray) -> float:
     """Rotation (radians) that turns ``points`` (N, 2) to their minimum-area bounding box.
 
-    Among rotations within 1e-6 of the minimum area, the one closest to a multiple of 90°
-    is kept, so a sheet already aligned stays as it is.
+    The box has a side along an edge of the convex hull; for each edge the points that
+    bound the box are the hull's supports in the four directions along and across it,
+    found by bisection in the hull's sorted edge angles (rotating calipers: O(H log H) time
+    and O(H) memory for H hull vertices, where trying every edge against every vertex took
+    H² of both: 9 GB for a single fold of 20001 samples). Among rotations within 1e-6 of
+    the minimum area, the one closest to a multiple of 90° is kept, so a sheet already
+    aligned stays as it is.
+
+    Examples
+    --------
+    A rectangle tilted by 30° turns back by 30° (or by 30° − 90°, the same box):
+
+    >>> c, s = np.cos(np.pi / 6), np.sin(np.pi / 6)
+    >>> box = np.array([[0, 0], [2, 0], [2, 1], [0, 1]]) @ np.array([[c, s], [-s, c]])
+    >>> round(float(np.degrees(min_area_rotation(box))), 9) in (-30.0, 60.0)
+    True
+    >>> min_area_rotation(np.zeros((3, 2)))  # no area: no hull, no turn
+    0.0
     """
     from scipy.spatial import ConvexHull, QhullError
 
     try:
-        hull = points[ConvexHull(points).vertices]
+        hull = points[ConvexHull(points).vertices]  # counter-clockwise
     except (QhullError, ValueError):
         return 0.0
     e = np.roll(hull, -1, axis=0) - hull
-    ang = np.arctan2(e[:, 1], e[:, 0])
-    c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
-    u = hull[None, :, 0] * c + hull[None, :, 1] * s
-    v = -hull[None, :, 0] * s + hull[None, :, 1] * c
-    area = np.ptp(u, axis=1) * np.ptp(v, axis=1)
+    raw = np.arctan2(e[:, 1], e[:, 0])
+    ang = raw[0] + (raw - raw[0]) % (2 * math.pi)  # increasing around the hull, in [raw[0], raw[0] + 2π)
+
+    def support(directions: np.ndarray) -> np.ndarray:
+        """The hull vertex farthest along each direction (angles): the one whose outward
+        normals (edge angle − 90°) of its two edges bracket it."""
+        turn = (directions + 0.5 * math.pi - ang[0]) % (2 * math.pi) + ang[0]
+        return hull[np.searchsorted(ang, turn) % len(hull)]
+
+    u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    v = np.stack([-u[:, 1], u[:, 0]], axis=1)
+    width = np.einsum("ij,ij->i", support(ang) - support(ang + math.pi), u)
+    height = np.einsum("ij,ij->i", support(ang + 0.5 * math.pi) - support(ang - 0.5 * math.pi), v)
+    area = width * height
     near = np.flatnonzero(area <= area.min() * (1 + 1e-6))
-    off = np.abs((ang[near] + math.pi / 4) % (math.pi / 2) - math.pi / 4)
-    return float(-ang[near[np.argmin(off)]])
+    off = np.abs((raw[near] + math.pi / 4) % (math.pi / 2) - math.pi / 4)
+    return float(-raw[near[np.argmin(off)]])
 
 
 def _arc_error(points: np.ndarray) -> tuple[float, float]:

@@ -19,9 +19,9 @@ from __future__ import annotations
 import numpy as np
 
 from .functions import ScalarFunction
-from .lie import _qmul, quaternion_matrix
+from .lie import CHUNK, dual_to_motion, quaternion_matrix
 
-__all__ = ["dense_stride", "hermite_fill", "STEP_RATE", "MIN_STRIDE"]
+__all__ = ["dense_stride", "frenet_rates", "hermite_fill", "coarse_indices", "STEP_RATE", "MIN_STRIDE"]
 
 #: Largest coarse step, as a multiple of the curve's rate scale 1/r.
 STEP_RATE = 0.015
@@ -33,17 +33,19 @@ def dense_stride(kappa: ScalarFunction, tau: ScalarFunction, length: float, samp
     """How many samples one coarse Magnus step may span (1: integrate every sample).
 
     The rate scale ``r = max(|ω|, √|ω'|)`` with ``|ω| = √(κ² + τ²)`` is read on ``probes``
-    points along the curve. Where κ or τ is not finite, or κ ≤ 0, on those points the
-    answer is 1, so that the full integration validates every node and names the place.
+    points along the curve, ω' by differences of those values (:func:`numpy.gradient`). Where κ or τ
+    is not finite, or κ ≤ 0, on those points the answer is 1, so that the full integration
+    validates every node and names the place.
     """
     h = length / (samples - 1)
     s = np.linspace(0.0, length, min(samples, probes))
     with np.errstate(all="ignore"):
         k, t = kappa(s), tau(s)
-        dk, dt = kappa.derivative(s), tau.derivative(s)
-    if not (np.isfinite([k, t, dk, dt]).all() and (k > 0).all()):
+    if not (np.isfinite([k, t]).all() and (k > 0).all()):
         return 1  # let the sample-by-sample integration find and report the bad input
-    rate = max(float(np.max(np.hypot(k, t))), float(np.sqrt(np.max(np.hypot(dk, dt)))), 1e-12)
+    rate = max(float(np.max(np.hypot(k, t))), 1e-12)
+    if STEP_RATE / (rate * h) >= MIN_STRIDE:  # |ω| alone leaves room for a stride: ω' too
+        rate = max(rate, float(np.sqrt(np.max(np.hypot(np.gradient(k, s), np.gradient(t, s))))))
     m = int(STEP_RATE / (rate * h))
     return m if m >= MIN_STRIDE else 1
 
@@ -65,14 +67,12 @@ def _basis(t: np.ndarray) -> np.ndarray:
     )
 
 
-def hermite_fill(
-    s: np.ndarray,
-    stride: int,
-    coarse_q: np.ndarray,
-    coarse_x: np.ndarray,
-    kappa: ScalarFunction,
-    tau: ScalarFunction,
-) -> tuple[np.ndarray, np.ndarray]:
+def frenet_rates(kappa: ScalarFunction, tau: ScalarFunction, s: np.ndarray) -> np.ndarray:
+    """κ, τ, κ' and τ' at arc lengths s (M,): the (4, M) data :func:`hermite_fill` reads."""
+    return np.stack([kappa(s), tau(s), kappa.derivative(s), tau.derivative(s)])
+
+
+def hermite_fill(s: np.ndarray, stride: int, motions: np.ndarray, rates: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Fill every sample from the coarse solution at ``s[::stride]`` (and ``s[-1]``).
 
     Parameters
@@ -81,11 +81,10 @@ def hermite_fill(
         Arc length of all samples (uniform).
     stride : int
         Samples per coarse step.
-    coarse_q : (4, M) ndarray
-        Frame quaternions at the coarse samples.
-    coarse_x : (M, 3) ndarray
-        Positions at the coarse samples.
-    kappa, tau : ScalarFunction
+    motions : (8, M) ndarray
+        The frames and positions at the coarse samples, as dual quaternions.
+    rates : (4, M) ndarray
+        κ, τ, κ', τ' at the coarse samples (:func:`frenet_rates`).
 
     Returns
     -------
@@ -95,30 +94,45 @@ def hermite_fill(
     n = len(s)
     idx = coarse_indices(n, stride)
     S = s[idx]
-    q = coarse_q / np.sqrt(np.sum(coarse_q**2, axis=0))
-    k, t, dk, dt = kappa(S), tau(S), kappa.derivative(S), tau.derivative(S)
-    zero = np.zeros_like(k)
-    w, dw = (zero, t, zero, k), (zero, dt, zero, dk)
-    q1 = tuple(0.5 * c for c in _qmul(tuple(q), w))
-    q2 = tuple(0.5 * (a + b) for a, b in zip(_qmul(q1, w), _qmul(tuple(q), dw)))
-    R = quaternion_matrix(q.T)
-    # values and derivatives at the coarse samples: (M, C) with C = 4 quaternion + 3 position
-    f0 = np.concatenate([q.T, coarse_x], axis=1)
-    f1 = np.concatenate([np.stack(q1, axis=1), R[:, :, 0]], axis=1)
-    f2 = np.concatenate([np.stack(q2, axis=1), k[:, None] * R[:, :, 1]], axis=1)
-    H = np.diff(S)[:, None]
-    coef = np.stack([f0[:-1], H * f1[:-1], H**2 * f2[:-1], H**2 * f2[1:], H * f1[1:], f0[1:]], axis=1)  # (M-1, 6, C)
-    out = np.empty((n, 7))
+    R, x = dual_to_motion(motions)
+    q = motions[:4] / np.sqrt(np.einsum("im,im->m", motions[:4], motions[:4]))
+    k, t, dk, dt = rates
+    q1 = _times_twist(q, t, k) / 2  # q' = ½ q ω with ω = (0, τ, 0, κ)
+    q2 = (_times_twist(q1, t, k) + _times_twist(q, dt, dk)) / 2
+    # Hermite data of every coarse step: quaternions (4, M - 1, 6), positions (M - 1, 6, 3)
+    H = np.diff(S)
+    quaternions = np.moveaxis(_step_data(q.T, q1.T, q2.T, H), -1, 0)
+    positions = _step_data(x, R[:, :, 0], k[:, None] * R[:, :, 1], H)
+    points, frames = np.empty((n, 3)), np.empty((n, 3, 3))
     full = (n - 1) // stride  # coarse steps that span exactly ``stride`` samples
-    if full:
-        basis = _basis(np.arange(stride) / stride)  # (stride, 6), the same for every full step
-        out[: full * stride] = (basis @ coef[:full]).reshape(-1, 7)
-    tail = np.arange(full * stride, n)
-    j = np.minimum(tail // stride, len(coef) - 1)
-    local = (s[tail] - S[j]) / H[j, 0]
-    out[tail] = np.einsum("ib,ibc->ic", _basis(local), coef[j])
-    out[idx] = f0  # the coarse samples themselves, exactly
-    return out[:, 4:], quaternion_matrix(out[:, :4])
+    basis = _basis(np.arange(stride) / stride)  # (stride, 6), the same for every full step
+    per = max(1, CHUNK // stride)  # full steps per slice, to stay in cache
+    for a in range(0, full, per):
+        b = min(a + per, full)
+        rows = slice(a * stride, b * stride)
+        np.matmul(basis, positions[a:b], out=points[rows].reshape(b - a, stride, 3))
+        quaternion_matrix((quaternions[:, a:b] @ basis.T).reshape(4, -1), out=frames[rows])
+    if full < len(H):  # the samples inside the last, shorter step
+        rows = slice(full * stride, n - 1)
+        local = _basis((s[rows] - S[-2]) / H[-1])  # (r, 6)
+        points[rows] = local @ positions[-1]
+        quaternion_matrix(quaternions[:, -1] @ local.T, out=frames[rows])
+    points[-1], frames[-1] = x[-1], R[-1]  # the last coarse sample, which no full step starts
+    return points, frames
+
+
+def _step_data(f0: np.ndarray, f1: np.ndarray, f2: np.ndarray, H: np.ndarray) -> np.ndarray:
+    """Hermite data (p0, H v0, H² a0, H² a1, H v1, p1) of every step, shape (M - 1, 6, C), from
+    the values and first two derivatives (M, C) at the coarse samples and the step lengths H (M - 1,)."""
+    H = H[:, None]
+    H2 = H * H
+    return np.stack([f0[:-1], H * f1[:-1], H2 * f2[:-1], H2 * f2[1:], H * f1[1:], f0[1:]], axis=1)
+
+
+def _times_twist(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The Hamilton products q (0, a, 0, b) of quaternions q (4, M) by pure ones in the x–z plane, (4, M)."""
+    w, x, y, z = q
+    return np.stack([-(x * a + z * b), w * a + y * b, z * a - x * b, w * b - y * a])
 
 
 def coarse_indices(n: int, stride: int) -> np.ndarray:

@@ -247,25 +247,34 @@ def difference_derivative(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, 
     s = np.asarray(s, dtype=float)
     flat = s.reshape(-1)
     h = float(step)
-    offsets = np.arange(-6, 7)
-    nodes = flat[:, None] + offsets * h  # (M, 13): s + m h for m = −6 … 6
-    inside = (nodes >= 0.0) & (nodes <= length)
-    shift = np.full(flat.shape, 4)  # 4: no stencil fits (left as NaN)
-    for sigma in _SHIFT_ORDER[::-1]:  # the last assignment wins: the central stencil where it fits
-        fits = inside[:, sigma + 3 : sigma + 10].all(axis=1)
-        shift[fits] = sigma
-    out = np.full(flat.shape, np.nan)
-    central = shift == 0
+    # The central stencil where it fits (its nodes grow with m, so its ends tell), the others placed one by one.
+    central = (flat + -3 * h >= 0.0) & (flat + 3 * h <= length)
+    if central.all():
+        return _central(f, flat, h).reshape(s.shape)
+    out = np.empty(flat.shape)
     if central.any():
-        x = flat[central]
-        out[central] = sum(c * (f(x + k * h) - f(x - k * h)) for k, c in _CENTRAL6) / h
-    edge = np.flatnonzero((shift != 0) & (shift != 4))
-    if edge.size:
-        sigma = shift[edge]
-        cols = (sigma + 3)[:, None] + np.arange(7)  # columns of nodes for m = σ − 3 … σ + 3
-        values = f(nodes[edge[:, None], cols].reshape(-1)).reshape(-1, 7)
-        out[edge] = np.einsum("ij,ij->i", _SHIFTED6[sigma + 3], values) / h
+        out[central] = _central(f, flat[central], h)
+    out[~central] = _shifted(f, flat[~central], length=length, h=h)
     return out.reshape(s.shape)
+
+
+def _central(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, h: float) -> np.ndarray:
+    """The central sixth-order difference of ``f`` at x (M,)."""
+    return sum(c * (f(x + k * h) - f(x - k * h)) for k, c in _CENTRAL6) / h
+
+
+def _shifted(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, *, length: float, h: float) -> np.ndarray:
+    """The difference at points x (M,) where the central stencil does not fit: the least shifted one that does, else NaN."""
+    first = x[:, None] + (np.arange(-3, 4) - 3) * h  # (M, 7): first node of the stencil shifted by σ = −3 … 3
+    last = x[:, None] + (np.arange(-3, 4) + 3) * h
+    fits = ((first >= 0.0) & (last <= length))[:, np.array(_SHIFT_ORDER) + 3]  # columns by preference
+    sigma = np.array(_SHIFT_ORDER)[np.argmax(fits, axis=1)]
+    out = np.full(x.shape, np.nan)
+    edge = np.flatnonzero(fits.any(axis=1))
+    if edge.size:
+        nodes = x[edge, None] + (sigma[edge, None] + np.arange(-3, 4)) * h  # (E, 7)
+        out[edge] = np.einsum("ij,ij->i", _SHIFTED6[sigma[edge] + 3], f(nodes.reshape(-1)).reshape(-1, 7)) / h
+    return out
 
 
 def _broadcast_call(f: Callable, s: np.ndarray) -> np.ndarray:

@@ -35,6 +35,7 @@ __all__ = [
     "dual_to_motion",
     "motion_to_dual",
     "quaternion_matrix",
+    "CHUNK",
     "matrix_quaternion",
     "cross",
 ]
@@ -309,27 +310,71 @@ def dual_to_motion(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     Any norm is accepted: ``R = R(r / |r|)`` and ``p = 2 d r* / |r|²``.
     """
     r, d = x[:4], x[4:]
-    n2 = r[0] ** 2 + r[1] ** 2 + r[2] ** 2 + r[3] ** 2
+    scale = 2.0 / (r[0] ** 2 + r[1] ** 2 + r[2] ** 2 + r[3] ** 2)
     p = _qmul(d, (r[0], -r[1], -r[2], -r[3]))[1:]
-    points = np.stack([2.0 * c / n2 for c in p], axis=-1)
-    return quaternion_matrix(np.moveaxis(r, 0, -1)), points
+    points = np.empty(scale.shape + (3,))
+    for i in range(3):
+        np.multiply(p[i], scale, out=points[..., i])
+    return quaternion_matrix(r), points
 
 
-def quaternion_matrix(q: np.ndarray) -> np.ndarray:
-    """Rotation matrices (..., 3, 3) of scalar-first quaternions (..., 4) of any non-zero norm."""
-    w, x, y, z = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
-    s = 2.0 / (w * w + x * x + y * y + z * z)
-    out = np.empty(q.shape[:-1] + (3, 3))
-    out[..., 0, 0] = 1 - s * (y * y + z * z)
-    out[..., 0, 1] = s * (x * y - w * z)
-    out[..., 0, 2] = s * (x * z + w * y)
-    out[..., 1, 0] = s * (x * y + w * z)
-    out[..., 1, 1] = 1 - s * (x * x + z * z)
-    out[..., 1, 2] = s * (y * z - w * x)
-    out[..., 2, 0] = s * (x * z - w * y)
-    out[..., 2, 1] = s * (y * z + w * x)
-    out[..., 2, 2] = 1 - s * (x * x + y * y)
+#: Samples per slice of the work on long arrays of samples (keeps the working set in cache).
+CHUNK = 4096
+
+
+def quaternion_matrix(q: np.ndarray, *, out: np.ndarray | None = None) -> np.ndarray:
+    """Rotation matrices of scalar-first quaternions of any non-zero norm.
+
+    Parameters
+    ----------
+    q : (4, ...) ndarray
+        Quaternions, component-major.
+    out : (..., 3, 3) ndarray, optional
+        Where to write the matrices (a view into a larger array is fine).
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+        ``out`` when given.
+
+    Examples
+    --------
+    A half turn about z, from a quaternion of norm 2:
+
+    >>> quaternion_matrix(np.array([0.0, 0.0, 0.0, 2.0])) + 0.0
+    array([[-1.,  0.,  0.],
+           [ 0., -1.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    q = np.asarray(q, float)
+    if out is None:
+        out = np.empty(q.shape[1:] + (3, 3))
+    if not out.flags.c_contiguous:  # a view: written whole
+        _rotations(q, out)
+        return out
+    flat_q, flat_out = q.reshape(4, -1), out.reshape(-1, 3, 3)
+    for i in range(0, flat_q.shape[1], CHUNK):  # slices that stay in cache
+        _rotations(flat_q[:, i : i + CHUNK], flat_out[i : i + CHUNK])
     return out
+
+
+def _rotations(q: np.ndarray, out: np.ndarray) -> None:
+    """Write R(q) of quaternions q (4, ...) into out (..., 3, 3): ``R = I + s (w v̂ + v̂²)`` with v = (x, y, z), s = 2/|q|²."""
+    w, x, y, z = q
+    s = 2.0 / (w * w + x * x + y * y + z * z)
+    sx, sy, sz = s * x, s * y, s * z
+    xx, yy, zz = sx * x, sy * y, sz * z
+    np.subtract(1.0, yy + zz, out=out[..., 0, 0])
+    np.subtract(1.0, xx + zz, out=out[..., 1, 1])
+    np.subtract(1.0, xx + yy, out=out[..., 2, 2])
+    xy, xz, yz = sx * y, sx * z, sy * z
+    wx, wy, wz = sx * w, sy * w, sz * w
+    np.subtract(xy, wz, out=out[..., 0, 1])
+    np.add(xy, wz, out=out[..., 1, 0])
+    np.add(xz, wy, out=out[..., 0, 2])
+    np.subtract(xz, wy, out=out[..., 2, 0])
+    np.subtract(yz, wx, out=out[..., 1, 2])
+    np.add(yz, wx, out=out[..., 2, 1])
 
 
 def matrix_quaternion(R: np.ndarray) -> np.ndarray:

@@ -186,14 +186,27 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     All four corner creases of every tube must be valid lattice curves (Eq. 18). The valid
     set is convex, and every corner of the stack is a convex combination of corners of its
     first and last tubes, so a stack is valid exactly when those two tubes are: validity
-    is monotone in n and a bisection finds the largest n. Returns 0 when even the base
-    tube regresses, and ``limit`` when the stack is valid that far.
+    is monotone in n. A corner's speed factor falls linearly with j, ``f(j) = f(0) − j s``,
+    which places the first tube past regression; it is then checked exactly (that tube
+    invalid, the one before valid), and a bisection decides where rounding leaves it in
+    doubt. Returns 0 when even the base tube regresses, and ``limit`` when the stack is
+    valid that far.
     """
+    domain = lattice.domain
+
     def tube_ok(j: int) -> bool:
-        return bool(lattice.domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
+        return bool(domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
 
     if not tube_ok(0):
         return 0
+    slope = direction * (domain.a + domain.b)  # s: the fall of every corner's factor per tube
+    falling = slope > 0
+    if not falling.any():
+        return limit
+    first = domain.factor(direction * CORNERS - (direction < 0))[:, falling] / slope[falling]  # f(0) / s
+    guess = min(int(np.ceil(first.min())), limit)
+    if 0 < guess < limit and tube_ok(guess - 1) and not tube_ok(guess):
+        return guess
     if tube_ok(limit - 1):
         return limit
     lo, hi = 0, limit - 1  # tube lo is valid, tube hi is not
@@ -201,6 +214,28 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
         mid = (lo + hi) // 2
         lo, hi = (mid, hi) if tube_ok(mid) else (lo, mid)
     return hi
+
+
+def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples: int) -> tuple[ArchRoot, Crease]:
+    """The arch of a vault and its crease, standing with the span along +y.
+
+    What every vault of the same a, panels, radius, fold angle and samples shares, whatever
+    its widths and tubes: a sweep over p_xy or the width builds it once per row and hands
+    it to :meth:`Vault.from_design`.
+    """
+    arch = solve_panel_arch(a, panels, fold_angle=fold_angle) if panels else solve_symmetric_arch(a)
+    k0 = 1.0 / radius
+    s0 = arch.kappa0_s0 / k0
+    # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
+    frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
+    curve = SpaceCurve.from_curvature(k0, HarmonicTorsion(a * k0, s0), s0, samples=samples, frame=frame)
+    # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
+    chord = curve.points[-1] - curve.points[0]
+    phi = np.arctan2(chord[0], chord[1])
+    c, s = np.cos(phi), np.sin(phi)
+    Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    curve = SpaceCurve(curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau)
+    return arch, Crease.from_curve(curve, fold_angle=fold_angle)
 
 
 @dataclass(frozen=True, eq=False)
@@ -217,8 +252,11 @@ class Vault(FrozenArrays):
     max_tubes: int
 
     @classmethod
-    def from_design(cls, design: VaultDesign | None = None, **overrides) -> Vault:
+    def from_design(cls, design: VaultDesign | None = None, *, arch: tuple[ArchRoot, Crease] | None = None, **overrides) -> Vault:
         """Solve the arch, place it on the ground and stack the tubes.
+
+        ``arch``: the design's :func:`arch_crease`, when the caller has it already (a sweep
+        along p_xy); by default it is built here.
 
         With ``design.panels`` = N > 0 the vault is made of rigid planar panels: the smooth
         arch's crease pattern sampled with N panels along each crease
@@ -235,20 +273,8 @@ class Vault(FrozenArrays):
             message names the maximum number of tubes.
         """
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
-        arch = solve_panel_arch(design.a, design.panels, fold_angle=design.fold_angle) if design.panels else solve_symmetric_arch(design.a)
-        k0 = 1.0 / design.radius
-        s0 = arch.kappa0_s0 / k0
-        # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
-        frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
-        a = design.a
-        curve = SpaceCurve.from_curvature(k0, HarmonicTorsion(a * k0, s0), s0, samples=design.samples, frame=frame)
-        # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
-        chord = curve.points[-1] - curve.points[0]
-        phi = np.arctan2(chord[0], chord[1])
-        c, s = np.cos(phi), np.sin(phi)
-        Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        curve = SpaceCurve(curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau)
-        crease = Crease.from_curve(curve, fold_angle=design.fold_angle)
+        arch, crease = arch_crease(design.a, design.panels, design.radius, design.fold_angle, design.samples) if arch is None else arch
+        k0, a = 1.0 / design.radius, design.a
         w_left = design.width / k0
         try:
             lattice = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
@@ -334,7 +360,8 @@ class Vault(FrozenArrays):
     def summary(self) -> dict:
         """Design parameters and derived quantities as a JSON-ready dict (model units)."""
         V = self.vertices
-        lo, hi = V.reshape(-1, 3).min(axis=0), V.reshape(-1, 3).max(axis=0)
+        # per coordinate: NumPy reduces a (..., 3) array over its leading axes some 20× slower
+        lo, hi = (np.array([f(V[..., i]) for i in range(3)]) for f in (np.min, np.max))
         xy_slope, zx_slope = self.section_slopes()
         p_xy_measured, change_measured = self.measured_proportions()
         chord = self.lattice.crease.curve.points[-1] - self.lattice.crease.curve.points[0]

@@ -78,15 +78,19 @@ SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
 
 #: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
-#: one, loading curvefold in its workers and closing it took 1.2–2.6 s on 2 CPUs, and 2
-#: workers saved about 1 ms of the 3 ms a design takes at 201 samples (benchmarks/bench_atlas.py):
-#: the cluster pays from some 1000–2500 designs.
-LOCAL_CLUSTER_FROM = 2000
-#: Designs per task sent to a cluster at most (~0.1–0.2 s of work: a round trip costs ~1 ms).
-CHUNK = 32
+#: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
+#: workers save at most half of the 0.7 ms a design takes at 201 samples
+#: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
+LOCAL_CLUSTER_FROM = 5000
+#: Designs per task sent to a cluster at most (~0.15 s of work at 0.7 ms a design): a task's
+#: round trip through the scheduler costs milliseconds of the client's CPU, which the
+#: workers share on a small machine, so tasks are as large as the balance allows.
+CHUNK = 200
+#: Tasks per worker thread a grid is cut into at least, for the balance between workers.
+TASKS_PER_THREAD = 8
 #: Tasks queued or running per worker thread; results wait, in grid order, for at most
 #: this many tasks per thread (the sweep's memory bound).
-IN_FLIGHT = 4
+IN_FLIGHT = 3
 
 
 @dataclass(frozen=True, eq=False)
@@ -137,22 +141,27 @@ def evaluate_design(
     fold_angle: float = 90.0,
     tubes: int | None = None,
     samples: int = 201,
+    sketch: bool = True,
+    arch: tuple | None = None,
 ) -> tuple[dict, Sketch | None]:
     """Build one vault and return its flat record and sketch; an invalid design is a record too.
+
+    ``sketch=False`` leaves the sketch out (the record is the same); ``arch`` is the
+    design's :func:`~curvefold.vault.assembly.arch_crease` when the caller has it.
 
     Returns
     -------
     record : dict
         Keys of :data:`FIELDS` except ``row`` and ``col``.
     sketch : Sketch or None
-        None for an invalid design.
+        None for an invalid design, or when not asked for.
     """
     from .assembly import Vault, VaultDesign
 
     record: dict[str, Any] = {"a": _number(a), "p_xy": _number(p_xy), "width": float(width), "fold_angle": float(fold_angle)}
     try:
         check_standing(GRID_A.check(a))  # past A_MAX the record says that no arch stands, not that a is out of range
-        vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples))
+        vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples), arch=arch)
     except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
         record.update(dict.fromkeys(METRICS))
@@ -160,7 +169,7 @@ def evaluate_design(
     # A built vault that cannot be measured or drawn is a bug: it propagates.
     record.update(valid=True, error=None, reason=None)
     record.update(metrics_of(vault.summary()))
-    return record, Sketch.from_vault(vault)
+    return record, Sketch.from_vault(vault) if sketch else None
 
 
 def metrics_of(summary: dict) -> dict:
@@ -357,6 +366,7 @@ def sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     progress: Callable[[int, int], Any] | None = None,
+    sketch_step: int = 1,
 ) -> Iterator[tuple[dict, Sketch | None]]:
     """The record and sketch of every design of ``grid``, in grid order, as the designs finish.
 
@@ -374,6 +384,9 @@ def sweep(
         with ``workers``.
     progress : callable, optional, keyword-only
         ``progress(done, total)``, called with 0 first and after every design.
+    sketch_step : int, keyword-only
+        Sketch the designs of every k-th row and column only (those a figure of
+        :meth:`Atlas.every` ``(k)`` draws); the others' sketch is None. Default 1: every design.
 
     Yields
     ------
@@ -384,8 +397,9 @@ def sweep(
 
     Notes
     -----
-    Designs go to the cluster in chunks of up to :data:`CHUNK`, at most :data:`IN_FLIGHT`
-    chunks per worker thread at a time; a finished chunk waits until the ones before it
+    Designs go to the cluster in chunks of up to :data:`CHUNK` (at least
+    :data:`TASKS_PER_THREAD` chunks per worker thread), at most :data:`IN_FLIGHT` chunks per
+    worker thread at a time; a finished chunk waits until the ones before it
     are handed out, so memory stays bounded whatever the grid's size. A cluster started
     here is closed when the iterator ends, is closed, or raises (close it with
     :func:`contextlib.closing` when stopping early). Connection errors and a version
@@ -395,7 +409,8 @@ def sweep(
         raise InputError(f"grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got {type(grid).__name__}")
     if progress is not None and not callable(progress):
         raise InputError(f"progress must be a callable progress(done, total) or None, got {progress!r}")
-    return _sweep(grid, *_cluster_plan(grid.size, workers, scheduler), progress)
+    _check_step(sketch_step)
+    return _sweep(grid, *_cluster_plan(grid.size, workers, scheduler), progress, sketch_step)
 
 
 def _cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple[int, str | None]:
@@ -420,18 +435,20 @@ def _require_dask(what: str) -> None:
         raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
 
 
-def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None) -> Iterator[tuple[dict, Sketch | None]]:
+def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None,
+           step: int) -> Iterator[tuple[dict, Sketch | None]]:
     design = grid.shared
     total, done = grid.size, 0
     if progress is not None:
         progress(0, total)
     with _client(workers, scheduler) as client:
         if client is None:
-            chunks: Iterator[list] = (_evaluate_chunk([point], design) for point in grid.points())
+            arches: dict = {}  # one row's arch, shared by the designs handed out one by one
+            chunks: Iterator[list] = (_evaluate_chunk([point], design, step, arches) for point in grid.points())
         else:
             threads = max(1, sum(client.nthreads().values()))
-            size = max(1, min(CHUNK, math.ceil(total / (IN_FLIGHT * threads))))
-            submit = lambda points: client.submit(_evaluate_chunk, points, design, pure=False)  # noqa: E731
+            size = max(1, min(CHUNK, math.ceil(total / (TASKS_PER_THREAD * threads))))
+            submit = lambda points: client.submit(_evaluate_chunk, points, design, step, pure=False)  # noqa: E731
             chunks = _in_order(submit, _batched(grid.points(), size), IN_FLIGHT * threads)
         with closing(chunks):  # closed before the client, when the sweep stops early
             for results in chunks:
@@ -442,13 +459,29 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
                     yield result
 
 
-def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict) -> list[tuple[dict, Sketch | None]]:
-    """The task a worker runs: (record, sketch) of several grid points, in order."""
-    out = []
+def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict, step: int = 1,
+                    arches: dict | None = None) -> list[tuple[dict, Sketch | None]]:
+    """The task a worker runs: (record, sketch) of several grid points, in order (sketches on every
+    ``step``-th row and column). ``arches`` keeps the last row's arch across calls."""
+    out, arches = [], {} if arches is None else arches
     for row, col, a, p in points:
-        record, sketch = evaluate_design(a, p, **design)
+        if row not in arches:  # the row's arch, once: its designs differ in p_xy alone
+            arches.clear()
+            arches[row] = _row_arch(a, design)
+        record, sketch = evaluate_design(a, p, **design, sketch=row % step == 0 and col % step == 0, arch=arches[row])
         out.append(({"row": row, "col": col} | record, sketch))
     return out
+
+
+def _row_arch(a: float, design: dict) -> tuple | None:
+    """The arch and crease of the designs of one ``a`` (None where there is none: each design records why)."""
+    from .assembly import VaultDesign, arch_crease
+
+    shape = VaultDesign()  # the grid's vaults take its panels and radius
+    try:
+        return arch_crease(check_standing(GRID_A.check(a)), shape.panels, shape.radius, design["fold_angle"], design["samples"])
+    except CurvefoldError:
+        return None
 
 
 def _batched(items: Iterable, size: int) -> Iterator[list]:
@@ -483,6 +516,7 @@ def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
     if scheduler is None and workers <= 1:
         yield None
         return
+    import dask
     import distributed
 
     dask_log = logging.getLogger("distributed")
@@ -494,6 +528,7 @@ def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
                 yield client
         else:
             with (
+                dask.config.set({"distributed.worker.profile.enabled": False}),  # the dashboard's stack samples: nobody looks
                 distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                                          silence_logs=logging.CRITICAL) as cluster,
                 distributed.Client(cluster, set_as_default=False) as client,

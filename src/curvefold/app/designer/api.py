@@ -30,7 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...figures.report import CHECK_TITLES, MECHANICS_QUANTITIES, UNITS_SHOWN
+from ...analysis.checks import TITLES
+from ...figures.report import MECHANICS_QUANTITIES, UNITS_SHOWN
 from ...io.formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import MAX_TEXT, Spec, from_text, suggest
@@ -128,7 +129,8 @@ def schema() -> dict:
         "sections": {section: [_spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED]
                      for section, specs in SCHEMA.items()},
         "targets": [_spec_json(spec, "vault") | {"replaces": REPLACES[spec.name]} for spec in TARGET_SPECS],
-        "formats": [{"name": f.name, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)} for f in FORMATS.values()],
+        "formats": [{"name": f.name, "title": f.title, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)}
+                    for f in FORMATS.values()],
         "state": _spec_json(STATE, ""),
         "units": UNITS_SHOWN,
     }
@@ -331,7 +333,7 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
         coarse, found = False, json.loads(payload(design))
         checks, frames = found["certificate"], found.get("certificate_frames") or {}
     return {"samples": frames.get("samples") or design.samples, "coarse": coarse, "fold_angles": frames.get("fold_angles", []),
-            "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": CHECK_TITLES.get(c["name"], c["name"])} for c in checks]}
+            "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": TITLES.get(c["name"], c["name"])} for c in checks]}
 
 
 def mechanics(design: Design) -> dict:

@@ -405,7 +405,7 @@ function showDownloads() {
   const atDesign = Math.abs(view.angle - p.motion.design_angle) < 0.05 || p.kind === "crease";
   const q = atDesign ? p.query : `${p.query}&state=${view.angle.toFixed(1)}`;
   for (const f of state.schema.formats) {
-    if (f.kinds.includes(kind)) links.push(`<a href="/api/${kind}.${f.name}?${q}" download title="${escape(f.holds)}">${f.name.toUpperCase()}</a>`);
+    if (f.kinds.includes(kind)) links.push(`<a href="/api/${kind}.${f.name}?${q}" download title="${escape(f.holds)}">${escape(f.title)}</a>`);
   }
   links.push(`<a href="/api/${kind}.zip?${q}" download title="the whole output folder, report included">folder (zip)</a>`);
   links.push(`<a href="/api/${kind}.toml?${p.query}" download title="the design file: curvefold ${kind} FILE rebuilds it">design (TOML)</a>`);
