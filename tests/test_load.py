@@ -82,6 +82,33 @@ def test_the_material_and_loads_come_from_flags_and_design_files_alike(tmp_path)
     assert_allclose(named["applied_load"][2], library.static.total_load[2] - 10.0, rtol=1e-12)
 
 
+def test_the_size_strength_and_creases_come_from_flags_as_the_library_takes_them():
+    """--radius sizes the vault in metres (its sheet's area, so its weight, as the square), --strength and
+    --crease-stiffness reach the library unchanged."""
+    base = loaded(*SMALL)
+    d = loaded(*SMALL, "--radius", "2", "--youngs-modulus", "1.5e9", "--poisson", "0.4", "--density", "900", "--strength", "2e7",
+               "--crease-stiffness", "0.5")
+    own = Material.from_values(1.5e9, 0.4, 900.0, 2e7)
+    library = analyse_load(Vault.from_design(a=0.3, p_xy=0.75, tubes=3, samples=201, radius=2.0), own, 1e-3,
+                           crease_stiffness=0.5).to_dict()
+    for key in STABLE - {"reactions"}:
+        assert_allclose(d[key], library[key], rtol=1e-9, err_msg=key)
+    assert d["crease_stiffness"] == 0.5 and d["utilisation"] == pytest.approx(d["max_stress"] / 2e7, rel=1e-12)
+    assert d["total_weight"] / base["total_weight"] == pytest.approx(4 * 900.0 / 905.0, rel=1e-9)
+
+
+def test_a_design_file_s_bad_material_or_loads_is_one_line(tmp_path):
+    for section, line, match in [
+        ("material", "poisson = 0.6\nyoungs_modulus = 1e9\ndensity = 900.0", r"design\.toml: \[material\] poisson must be in \(-1, 0\.5\)"),
+        ("material", "thickness = -0.001", r"design\.toml: \[material\] thickness must be in \(0, 1\) m"),
+        ("loads", 'supports = "glued"', r"design\.toml: \[loads\] supports must be one of \"pinned\", \"roller\", got string 'glued'"),
+        ("loads", "snow = 0.5\nwind = 1", r"design\.toml: \[loads\] unknown key 'wind'"),
+    ]:
+        (tmp_path / "design.toml").write_text(f'kind = "vault"\nsamples = 201\n[vault]\ntubes = 3\n[{section}]\n{line}\n')
+        refused(run("load", "design.toml", cwd=tmp_path), match)
+        refused(run("vault", "design.toml", cwd=tmp_path), match)  # the same sections, checked the same way by every command
+
+
 @pytest.mark.parametrize(("example", "samples", "soft"), [("tube.toml", "201", 2), ("cellular-block.toml", "101", 1)])
 def test_tubes_and_blocks_are_held_at_both_end_sections(example, samples, soft):
     d = loaded(str(EXAMPLES / example), "--samples", samples)
