@@ -186,8 +186,22 @@ def test_the_output_folder_holds_the_mechanics(tmp_path):
     base = np.concatenate([accessor(gltf, blob, m.primitives[0].attributes.POSITION)[:, 1] for m in gltf.meshes])  # glTF y is up
     assert moved.max() <= scale * printed["max_displacement"] * (1 + 1e-5) and moved.max() > 0.5 * scale * printed["max_displacement"]
     assert moved[np.abs(base) < 1e-9].max() < 1e-6 * moved.max()  # the pinned feet do not move
+    # each mode at the stated amplitude: its largest nodal displacement, the mesh's samples among the model's nodes
+    amplitude = printed["mode_amplitude"]
+    for k in (names.index(n) for n in names if n.startswith("mode ")):
+        mode = np.concatenate([np.linalg.norm(accessor(gltf, blob, target_position(m.primitives[0].targets[k])), axis=1) for m in gltf.meshes])
+        assert amplitude * (1 - 1e-5) < mode.max() <= amplitude * (1 + 1e-5)
+    assert len([n for n in names if n.startswith("mode ")]) == 3
+    # the reactions balance the weight: their rounding is shown as 0, the arch's thrust at each end as measured
+    assert f'<td class="num">(0, 0, {printed["total_weight"]:.6g})</td>' in page
     # a vault with a material writes the same section; without one, none
     r = run("vault", *SMALL, "--formats", "fold", "--material", "aluminium", "--out", "a", "--json", cwd=tmp_path)
     assert r.returncode == 0 and json.loads(r.stdout)["mechanics"]["material"] == "aluminium"
     r = run("vault", *SMALL, "--formats", "fold", "--out", "b", "--json", cwd=tmp_path)
     assert "mechanics" not in json.loads(r.stdout) and not (tmp_path / "b" / "deflection.png").exists()
+    # a tube whose design file says what loads it is held at both end sections, in its report too
+    (tmp_path / "tube.toml").write_text((EXAMPLES / "tube.toml").read_text() + "\n[loads]\nsnow = 0.1\n")
+    r = run("tube", "tube.toml", "--samples", "101", "--formats", "fold", "--out", "t", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert json.loads((tmp_path / "t" / "report.json").read_text())["mechanics"]["supported"] == "ends"
+    assert "held at both end sections of every tube" in (tmp_path / "t" / "report.html").read_text()

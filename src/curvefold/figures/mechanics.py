@@ -92,7 +92,7 @@ def plot_deflection(result: LoadResult, *, magnification: float, view: View = Vi
     ax = fig.add_subplot()
     _draw(ax, scene)
     _fit(ax, scene.box, below=0.1)
-    _scale_bar(ax, scene.span)
+    _scale_bar(ax, scene.span, "m")  # the mechanics' model is in metres
     _colorbar(fig, ax, DEFLECTION_MAP, 1e6 * top, "displacement (µm)")
     largest = result.static.max_displacement
     ax.set_title(title or f"Deflected shape, displacement × {magnification:g} (largest {largest * 1e6:.3g} µm)", fontsize=10)

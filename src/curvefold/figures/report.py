@@ -134,7 +134,7 @@ def _rows(values: dict, names: dict) -> str:
         if key in values:
             value = values[key]
             shown = " × ".join(_number(v) for v in value) if key == "footprint" else _number(value)
-            out.append(f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td>{e(unit)}</td></tr>')
+            out.append(f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td class=unit>{e(unit)}</td></tr>')
     return "".join(out)
 
 
@@ -244,6 +244,15 @@ MECHANICS_QUANTITIES = {
 }
 
 
+def _balanced(forces: list[float], load: float) -> list[float]:
+    """Forces with what is below 1e-9 of the load (the rounding of forces that balance it) shown as 0.
+
+    >>> _balanced([1.1e-12, -3e-8, 70.7], 70.7)
+    [0.0, -3e-08, 70.7]
+    """
+    return [0.0 if abs(f) <= 1e-9 * load else f for f in forces]
+
+
 def _mechanics_section(m: dict, files: list[str]) -> str:
     """The structure under load: what it is made of and what loads it, the deflected shape, the numbers and the first modes."""
     e = html.escape
@@ -262,8 +271,10 @@ def _mechanics_section(m: dict, files: list[str]) -> str:
         shown["utilisation"] = "unknown (no strength)"
     if not m["buckling_resolved"]:
         shown["buckling_factor"] = f"{_number(m['buckling_factor'])}: not resolved at these samples (see below)"
+    load = max(abs(v) for v in m["applied_load"])
+    shown["reactions"] = _balanced(m["reactions"], load)
     rows = _rows(shown, MECHANICS_QUANTITIES)
-    ends = "".join(f"<tr><td>reactions at {e(end)}, [x, y, z]</td><td class=num>{e(_number(r))}</td><td>N</td></tr>"
+    ends = "".join(f"<tr><td>reactions at {e(end)}, [x, y, z]</td><td class=num>{e(_number(_balanced(r, load)))}</td><td class=unit>N</td></tr>"
                    for end, r in m["reactions_by_end"].items())
     picture = lambda name, alt, wide="": (f'<figure{wide}><a href="{name}"><img src="{name}" srcset="{name} {PHONE_DENSITY:g}x" '  # noqa: E731
                                           f'alt="{e(alt)}"></a><figcaption>{e(alt)}</figcaption></figure>' if name in files else "")
@@ -321,7 +332,7 @@ body{{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;paddin
 h1{{font-size:1.5em;overflow-wrap:anywhere}}
 table{{border-collapse:collapse;margin:1em 0;display:block;overflow-x:auto;max-width:100%}}
 td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
-.num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status{{white-space:nowrap}}
+.num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status,td.unit{{white-space:nowrap}}
 tr.pass td.status{{color:#070}}tr.fail td{{background:#fee}}tr.unresolved td{{background:#fff6dd}}
 table.certificate small{{color:#555}}table.certificate td:nth-child(7){{min-width:14em}}
 table.certificate tr.head td{{border-bottom:none}}table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}

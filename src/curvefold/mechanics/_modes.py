@@ -27,7 +27,7 @@ import scipy.sparse.linalg as spl
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
-from ._linear import Factorized, eigsh, rigid_motions, unit
+from ._linear import Factorized, eigsh, rigid_motions, unit_displacement
 from ._model import BarHingeModel
 
 __all__ = ["Modes", "free_modes", "correlation", "span_correlation"]
@@ -111,7 +111,7 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
     delta = C @ vectors
     stretch = np.einsum("bk,bk->k", delta, S @ delta)
     total = np.einsum("ik,ik->k", vectors, K @ vectors)
-    shapes = np.stack([unit(v) for v in vectors.T]).reshape(count, -1, 3)
+    shapes = np.stack([unit_displacement(v) for v in vectors.T])
     return Modes(values, shapes, np.clip(stretch / total, 0.0, 1.0))
 
 
