@@ -18,16 +18,20 @@ __all__ = ["Material", "MATERIALS", "MATERIAL", "MATERIAL_SPECS", "THICKNESS", "
 
 #: The checks of a user's material (design-file keys and keyword arguments alike).
 MATERIAL_SPECS: tuple[Spec, ...] = (
-    Spec("youngs_modulus", "real", None, "(0, inf)", "Pa", help="Young's modulus E of the sheet"),
-    Spec("poisson", "real", None, "(-1, 0.5)", help="Poisson's ratio ν of the sheet", why="an isotropic solid is stable only there"),
-    Spec("density", "real", None, "(0, inf)", "kg/m³", help="density of the sheet"),
-    Spec("strength", "real", None, "(0, inf)", "Pa", help="strength the stresses are measured against (yield or tensile)"),
+    Spec("youngs_modulus", "real", None, "(0, inf)", "Pa", help="Young's modulus E of the sheet", typical="[1e8, 2e11]",
+         label="Young's modulus E"),
+    Spec("poisson", "real", None, "(-1, 0.5)", help="Poisson's ratio ν of the sheet", why="an isotropic solid is stable only there",
+         typical="[0, 0.49]", label="Poisson's ratio ν"),
+    Spec("density", "real", None, "(0, inf)", "kg/m³", help="density of the sheet", typical="[100, 8000]", label="density"),
+    Spec("strength", "real", None, "(0, inf)", "Pa", help="strength the stresses are measured against (yield or tensile)",
+         typical="[1e6, 5e8]", label="strength"),
 )
 #: The sheet's thickness t.
-THICKNESS = Spec("thickness", "real", 1e-3, "(0, 1)", "m", help="sheet thickness t", why="a sheet, not a block")
+THICKNESS = Spec("thickness", "real", 1e-3, "(0, 1)", "m", help="sheet thickness t", why="a sheet, not a block", typical="[1e-4, 5e-3]",
+                 label="sheet thickness t")
 #: The creases' rotational stiffness per length k_c (default: the material's, see :meth:`Material.crease_stiffness`).
 CREASE_STIFFNESS = Spec("crease_stiffness", "real", None, "(0, inf)", "N·m/rad/m", help="rotational stiffness of the creases per length",
-                        why="a crease of no stiffness leaves the folding motion free")
+                        why="a crease of no stiffness leaves the folding motion free", typical="[1e-3, 10]", label="crease stiffness k_c")
 _SPEC = MappingProxyType({s.name: s for s in MATERIAL_SPECS})
 
 #: Length scale of the default crease stiffness k_c = D / L*, as a multiple of the thickness.

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import tempfile
 import zipfile
 from collections.abc import Mapping
@@ -336,6 +337,11 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
             "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": TITLES.get(c["name"], c["name"])} for c in checks]}
 
 
+#: The figures of a design under load the designer shows, in this order (the report shows them all).
+MECHANICS_SHOWN = ("total_weight", "reactions", "max_displacement", "max_stress", "utilisation", "buckling_factor", "fold_mode_gap",
+                   "soft_modes")
+
+
 def mechanics(design: Design) -> dict:
     """The design under load, as ``curvefold load --json`` gives it (its material and loads, or their defaults).
 
@@ -343,7 +349,8 @@ def mechanics(design: Design) -> dict:
     -------
     dict
         ``numbers``: :meth:`curvefold.app.loading.Loaded.to_dict`; ``labels``: each figure
-        of :data:`curvefold.figures.report.MECHANICS_QUANTITIES` in words with its unit.
+        of :data:`MECHANICS_SHOWN` as ``[words, unit, explanation]``, the report's words
+        (:data:`curvefold.figures.report.MECHANICS_QUANTITIES`) up to their explanation.
     """
     return json.loads(_mechanics(_key(design.with_mechanics())))
 
@@ -351,7 +358,9 @@ def mechanics(design: Design) -> dict:
 @lru_cache(maxsize=4)
 def _mechanics(key: str) -> bytes:
     numbers = built(_design(key)).mechanics.to_dict()
-    return json.dumps({"numbers": numbers, "labels": MECHANICS_QUANTITIES}, default=float).encode()
+    labels = {k: [re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0], MECHANICS_QUANTITIES[k][1], MECHANICS_QUANTITIES[k][0]]
+              for k in MECHANICS_SHOWN}
+    return json.dumps({"numbers": numbers, "labels": labels}, default=float).encode()
 
 
 def domain_svg(design: Design) -> str:

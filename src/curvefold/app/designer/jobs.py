@@ -78,8 +78,8 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
     elif route == "pattern" and not coarse:
         api.check_download(design, "svg")
         files = design.overrides(source=design.source, formats=["svg"])
+    loaded = design.with_mechanics() if route == "mechanics" else design  # as curvefold load analyses it
     try:
-        loaded = design.with_mechanics() if route == "mechanics" else design  # as curvefold load analyses it
         estimate = require_budget(files or loaded, files=files is not None)
     except CurvefoldError as err:
         raise InputError(str(err).removeprefix(f"{api.SOURCE}: "), parameter="samples") from None

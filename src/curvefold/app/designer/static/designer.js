@@ -350,12 +350,18 @@ function showMechanics(found) {
     return;
   }
   const n = found.numbers, rows = [];
-  for (const [key, [words, unit]] of Object.entries(found.labels)) {
+  const load = Math.max(...n.applied_load.map(Math.abs));
+  const balanced = (forces) => forces.map((f) => (Math.abs(f) <= 1e-9 * load ? 0 : f));  // the rounding of forces that balance the load
+  for (const [key, [words, unit, explained]] of Object.entries(found.labels)) {
     if (!(key in n)) continue;
-    const v = n[key], shown = v === null ? (key === "buckling_factor" ? "none" : "unknown") : Array.isArray(v) ? v.map(fmt).join(", ") : fmt(v);
-    rows.push(`<tr data-key="${escape(key)}"><td>${escape(words)}</td><td class="num">${escape(shown)}</td><td class="unit">${escape(unit)}</td></tr>`);
+    const v = key === "reactions" ? balanced(n[key]) : n[key];
+    const shown = v === null ? (key === "buckling_factor" ? "none" : "unknown") : Array.isArray(v) ? v.map(fmt).join(", ") : fmt(v);
+    rows.push(`<tr data-key="${escape(key)}" title="${escape(explained)}"><td>${escape(words)}</td><td class="num">${escape(shown)}</td>`
+      + `<td class="unit">${escape(unit)}</td></tr>`);
   }
-  rows.push(`<tr data-key="frequencies"><td>lowest free frequencies</td><td class="num">${n.frequencies.map(fmt).join(", ")}</td><td class="unit">Hz</td></tr>`);
+  const lowest = n.frequencies.slice(0, 3).map((f) => String(Number(f.toPrecision(3)))).join(", ");
+  rows.push(`<tr data-key="frequencies" title="the lowest free modes' frequencies (the first is the folding motion)"><td>lowest free frequencies</td>`
+    + `<td class="num">${lowest}</td><td class="unit">Hz</td></tr>`);
   table.innerHTML = rows.join("");
   status.textContent = `${n.material} ${fmt(n.thickness * 1e3)} mm, ${n.supports} at the ${n.supported}${n.buckling_resolved ? "" : "; the buckling mode is not resolved at these samples"}`;
 }
