@@ -52,9 +52,9 @@ MIDDLE_SAMPLES = 200
 def model_samples(n: int) -> np.ndarray:
     """The samples of n that a structure's model keeps by default (module notes), ascending.
 
-    Every sample within ⌈:data:`END_SHARE` (n − 1)⌉ of either end, every k-th in between
-    with k = ⌊(n − 1) / :data:`MIDDLE_SAMPLES`⌋ (at least 1), and the middle sample (a
-    vault's apex).
+    Every sample within ⌈e (n − 1)⌉ of either end, every k-th in between with
+    k = ⌊(n − 1) / m⌋ (at least 1), and the middle sample (a vault's apex); e is
+    ``END_SHARE`` = 0.05, m ``MIDDLE_SAMPLES`` = 200.
 
     Examples
     --------
