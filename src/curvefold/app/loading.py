@@ -223,7 +223,7 @@ class Loaded:
         factor = d["buckling_factor"]
         rows = [
             ("total_weight", f"{d['total_weight']:.6g} N"),
-            ("reactions", "[" + ", ".join(f"{v:.6g}" for v in _rounded(d["reactions"], d["total_weight"])) + "] N (x, y, z)"),
+            ("reactions", "[" + ", ".join(f"{v:.6g}" for v in _rounded(d["reactions"], max(map(abs, d["applied_load"])))) + "] N (x, y, z)"),
             ("max_displacement", f"{d['max_displacement']:.4g} m"),
             ("max_stress", f"{d['max_stress']:.4g} Pa" + ("" if use is None else f" (utilisation {use:.3g})")),
             ("buckling_factor", "none: the load only stiffens it" if factor is None else f"{factor:.4g}"
@@ -258,7 +258,7 @@ class Loaded:
 
 
 def _rounded(values: Sequence[float], scale: float) -> np.ndarray:
-    """Values with what is below 1e-9 of ``scale`` (rounding) shown as 0."""
+    """Values with what is below 1e-9 of ``scale`` (the rounding of forces that balance a load of that size) shown as 0."""
     v = np.asarray(values, float)
     return np.where(np.abs(v) <= 1e-9 * abs(scale), 0.0, v) + 0.0
 
