@@ -247,8 +247,8 @@ MECHANICS_QUANTITIES = {
 def _balanced(forces: list[float], load: float) -> list[float]:
     """Forces with what is below 1e-9 of the load (the rounding of forces that balance it) shown as 0.
 
-    >>> _balanced([1.1e-12, -3e-8, 70.7], 70.7)
-    [0.0, -3e-08, 70.7]
+    >>> _balanced([1.1e-12, -3e-7, 70.7], 70.7)
+    [0.0, -3e-07, 70.7]
     """
     return [0.0 if abs(f) <= 1e-9 * load else f for f in forces]
 
