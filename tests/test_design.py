@@ -30,6 +30,7 @@ from curvefold.app.design import (
     load_design,
     parse_design,
 )
+from curvefold.app.loading import LoadParams, MaterialParams
 from curvefold.io.formats import FORMATS
 from curvefold.io.tables import PAGES
 from curvefold.kernel.errors import InputError
@@ -172,7 +173,7 @@ def test_block_and_crease_examples():
 
 def test_schema_matches_the_dataclasses():
     types = {"vault": VaultParams, "curve": CurveParams, "tube": TubeParams, "block": BlockParams,
-             "crease": CreaseParams, "output": OutputParams}
+             "crease": CreaseParams, "output": OutputParams, "material": MaterialParams, "loads": LoadParams}
     for section, cls in types.items():
         assert [f.name for f in dataclasses.fields(cls)] == list(SCHEMA[section])
     assert set(SCHEMA) == {"", *types}

@@ -251,3 +251,27 @@ def test_pattern_pages_come_in_page_order_from_the_writer():
     count = len(pages)
     assert count >= 10  # p10 would sort before p2 by name
     assert [re.search(r"page (\d+) of (\d+)</title>", page).groups() for page in pages] == [(str(i), str(count)) for i in range(1, count + 1)]
+
+
+def test_the_design_under_load_is_what_curvefold_load_prints(url):
+    """The mechanics route answers on the heavy lane, budgeted with the model, with the numbers of ``curvefold load --json``;
+    a bad material value is a 422 naming its key."""
+    query = f"{LIGHT}&material=aluminium&thickness=0.002&snow=0.5"
+    assert jobs.plan("mechanics", "vault", urllib.parse.parse_qsl(query)).lane == "heavy"
+    status, answer = get_json(f"{url}api/vault/mechanics?{query}")
+    assert status == 200, answer
+    printed = run("load", "--samples", "201", "--tubes", "4", "--material", "aluminium", "--thickness", "0.002", "--snow", "0.5", "--json")
+    expected = json.loads(printed.stdout)
+    for key in ("total_weight", "reactions", "max_displacement", "max_stress", "utilisation", "fold_mode_gap", "soft_modes",
+                "buckling_factor", "modes", "frequencies", "reactions_by_end", "notes"):
+        assert answer["numbers"][key] == expected[key], key  # the same computation: equal to the last bit
+    assert set(answer["labels"]) <= set(answer["numbers"]) and answer["labels"]["fold_mode_gap"][0].startswith("fold-mode gap")
+    # without a material the route analyses the default one, as the command does
+    assert get_json(f"{url}api/tube/mechanics?samples=101")[1]["numbers"]["material"] == "polypropylene"
+    for path, message, key in [("api/vault/mechanics?thickness=0", "thickness must be in (0, 1) m", "thickness"),
+                               ("api/vault/mechanics?poisson=0.5&youngs_modulus=1e9&density=900", "poisson must be in (-1, 0.5)", "poisson"),
+                               ("api/crease/mechanics", "a single curved fold has no end sections to hold", None),
+                               ("api/vault/mechanics?samples=100001&tubes=9", "this job needs about", "samples")]:
+        status, answer = get_json(url + path)
+        assert status == 422 and message in answer["error"] and "\n" not in answer["error"], answer
+        assert answer["key"] == key, answer

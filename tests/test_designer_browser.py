@@ -192,6 +192,22 @@ def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp
     assert {k: rebuilt[k] for k in shown if k in rebuilt} == {k: v for k, v in shown.items() if k in rebuilt}
 
 
+def test_a_chosen_material_shows_the_design_under_load(browser):
+    page = open_page(browser)
+    settled(page)
+    assert "choose a material" in page.inner_text("#mechanics-status") and page.inner_text("#mechanics") == ""
+    page.select_option('.field[data-key="material"] select', "aluminium")
+    page.wait_for_function("window.curvefold.mechanics && window.curvefold.mechanics.numbers", timeout=120_000)
+    expected = json.loads(run("load", "--samples", "201", "--tubes", "4", "--material", "aluminium", "--json").stdout)
+    assert page.evaluate("window.curvefold.mechanics.numbers.fold_mode_gap") == expected["fold_mode_gap"]
+    shown = {key: page.inner_text(f'#mechanics tr[data-key="{key}"] td.num') for key in ("fold_mode_gap", "max_displacement", "reactions")}
+    assert float(shown["fold_mode_gap"]) == pytest.approx(expected["fold_mode_gap"], rel=1e-5)
+    assert float(shown["max_displacement"]) == pytest.approx(expected["max_displacement"], rel=1e-3)
+    x, y, z = shown["reactions"].split(", ")
+    assert (x, y) == ("0", "0") and float(z) == pytest.approx(expected["total_weight"], rel=1e-5)  # the feet carry the weight
+    assert page.inner_text("#mechanics-status").startswith("aluminium 1 mm, pinned at the feet") and page.errors == []
+
+
 def test_undo_and_redo_walk_the_browser_history(browser):
     page = open_page(browser)
     press(page, "ArrowRight", 1)  # a key step of a slider: one step of the history (a drag makes one too)

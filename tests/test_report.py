@@ -22,7 +22,7 @@ def test_derived_quantities_read_as_names_and_units_not_python():
     payload = structure_payload(built) | resolution(built) | {"files": ["vault-pattern-p10.svg", "vault-pattern-p2.svg", "vault.obj"]}
     page = report_html(payload | {"parameters": parameter_rows(built.design)})
     derived = _section(page, "Derived quantities")
-    assert "κ0·s0, the root of the arch condition (Eq. 20)" in derived and "<td>m</td>" in derived  # lengths in metres
+    assert "κ0·s0, the root of the arch condition (Eq. 20)" in derived and "<td class=unit>m</td>" in derived  # lengths in metres
     for title in ("Certificate", "The paper's example", "Design"):  # names only as symbols beside their words
         shown = re.sub(r"<code>.*?</code>|<pre>.*?</pre>", "", _section(page, title), flags=re.S)
         assert not re.search(r">(eq\d+|[a-z0-9]+_[a-z0-9_]+)<", shown), title

@@ -16,7 +16,10 @@ for the crease patterns, an amount per squared sample (:data:`COSTS`), measured 
 curvefold's own runs (``benchmarks/bench_budget.py`` compares the estimate with the
 measured peak and prints the ratio). The parts run one after the other, so the peak is the
 interpreter, plus the geometry (the structure, its state and the certificate), plus the
-largest of the file jobs.
+largest of the file jobs. A design under load (:attr:`Design.mechanics
+<curvefold.app.design.Design.mechanics>`) adds its bar-and-hinge model, its solves and its
+result, held while the files are written, counted per strip sample the model keeps
+(:func:`curvefold.mechanics.model_samples`; every panel vertex).
 """
 
 from __future__ import annotations
@@ -60,6 +63,9 @@ COSTS: dict[str, tuple[float, float, float]] = {
     "model": (75 * _MB, 5400.0, 0.0),
     "motion": (100 * _MB, 400.0, 0.0),
     "pictures": (75 * _MB, 300.0, 0.0),
+    # measured: the peak of `curvefold load --json` over the geometry's estimate, 86 MiB for the paper's vault (801
+    # samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801, 70 MiB with 256 panels, rounded up
+    "mechanics": (40 * _MB, 8000.0, 0.0),
 }
 #: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
 #: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
@@ -109,7 +115,7 @@ class Estimate:
     strip_samples : int
         Size of the job: samples times strips.
     largest : str
-        The costliest part of the job (``"geometry"``, a family of formats, ``"pictures"``).
+        The costliest part of the job (``"geometry"``, ``"mechanics"``, a family of formats, ``"pictures"``).
     """
 
     total: float
@@ -145,15 +151,28 @@ def _cost(part: str, samples: int, n: int) -> float:
     return fixed + linear * n + square * float(samples) ** 2
 
 
+def _mechanics(design: Design) -> float:
+    """The mechanics of a design under load (0 for one that is not): its model keeps every panel vertex, or the
+    samples of :func:`curvefold.mechanics.model_samples`."""
+    if not design.mechanics:
+        return 0.0
+    from ..mechanics import model_samples
+
+    panels = getattr(design.vault if design.kind == "vault" else design.curve, "panels", 0) or 0
+    kept = panels + 1 if panels else len(model_samples(design.samples))
+    return _cost("mechanics", kept, kept * _strips(design))
+
+
 def estimate(design: Design, *, files: bool) -> Estimate:
     """The peak memory of building ``design`` (and, with ``files``, writing its formats
-    and pictures), from the design alone: the interpreter, the geometry and the costliest
-    file job (they run one after the other)."""
+    and pictures), from the design alone: the interpreter, the geometry, the mechanics of
+    a design under load and the costliest file job (they run one after the other)."""
     samples = _samples(design)
     n = samples * _strips(design)
     jobs = {part: _cost(part, samples, n) for part in _parts(design, files)}
-    largest = max(jobs, key=jobs.get, default="geometry")
-    return Estimate(BASE + _cost("geometry", samples, n) + jobs.get(largest, 0.0), n, largest)
+    mechanics = _mechanics(design)
+    largest = max(jobs, key=jobs.get, default="mechanics" if mechanics else "geometry")
+    return Estimate(BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest)
 
 
 def require_budget(design: Design, *, files: bool) -> Estimate:
@@ -172,7 +191,7 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
     lower = [f"samples (at most {fits} fit)" if fits else "samples", *([what] if what else [])]
     if _samples(design) > design.samples:
         lower.insert(1, "panels")
-    if found.largest != "geometry":
+    if found.largest not in ("geometry", "mechanics"):
         lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
     raise InputError(
         f"{design.source}: this job needs about {_size(found.total)} of memory ({_points(design)} × {strips} strips), "

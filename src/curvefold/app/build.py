@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,6 +19,9 @@ from ..io.layout import Layout
 from ..kernel.errors import InputError
 from ..vault.assembly import Vault, VaultDesign, vault_panels, vault_samples
 from .design import Design
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .loading import Loaded
 
 __all__ = ["Built", "build", "vault_design", "fit_vault_targets", "design_motion", "exported_fold_angles", "MOTION_STEPS"]
 
@@ -51,6 +55,17 @@ class Built:
     def sampling(self) -> Sampling | None:
         """The samples the files' meshes keep (:func:`choose_sampling`), None for a single crease."""
         return None if self.structure is None else choose_sampling(self.structure)
+
+    @cached_property
+    def mechanics(self) -> Loaded | None:
+        """The structure under the design's material and loads (:func:`curvefold.app.loading.analyse`), when the
+        design gives them; None otherwise. A vault stands on its feet, a tube or block is held at both end sections.
+        Computed once, before the output folder's jobs fork."""
+        if not self.design.mechanics or self.structure is None:
+            return None
+        from .loading import analyse
+
+        return analyse(self.structure, self.design.material, self.design.loads, supported="feet" if self.vault is not None else "ends")
 
     @cached_property
     def single_fold(self) -> SingleFold | None:

@@ -10,7 +10,7 @@ after removing what the run had started to write. Warnings are shown only with
 ``--debug``; text a user typed is printed with its control characters escaped. The output
 folder is checked before any work and replaced only as :mod:`curvefold.app.folder` says.
 
-The flags of ``vault``, ``tube``, ``block`` and ``crease``, their help and their checks
+The flags of ``vault``, ``tube``, ``block``, ``crease`` and ``load``, their help and their checks
 are generated from the design schema (:data:`curvefold.app.design.SCHEMA`): one flag per
 key, ``--fold-angle`` for ``fold_angle``, ``--no-glue-tabs`` for a key that is true by
 default. A flag's value is checked by the key's spec and named as typed
@@ -40,7 +40,7 @@ from ..kernel.text import for_terminal
 from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
 from ..vault.atlas import GRID_A, LOCAL_CLUSTER_FROM, workers_spec
-from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
+from .design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
 from .designer import SERVER_SPECS
 from .folder import Interrupted, raise_if_interrupted, signals_interrupt
 
@@ -48,6 +48,8 @@ __all__ = ["main"]
 
 PROG = "curvefold"
 DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
+#: Kinds of design ``load`` takes.
+LOADED = ("vault", "tube", "block")
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"
 _FORCE_HELP = "replace the output folder if curvefold wrote it (or it is empty)"
 _VAULT = SCHEMA["vault"]
@@ -136,9 +138,12 @@ def _add_design_flags(p: argparse.ArgumentParser, kind: str) -> None:
     """The design file argument and one flag per schema key of the kind, help from the spec."""
     p.add_argument("design", nargs="?", type=Path, help="a TOML design file (see examples/); flags override its values")
     groups = {"design": p.add_argument_group("design"), "output": p.add_argument_group("output")}
-    output = {spec.name for spec in SCHEMA["output"].values()}
+    if OPTIONAL_SECTIONS[kind]:
+        groups["load"] = p.add_argument_group("under load", "what the structure is made of and what loads it: with any of these "
+                                              "its output folder holds its mechanics (curvefold load always analyses it)")
+    section = {spec.name: name for name in ("output", *OPTIONAL_SECTIONS[kind]) for spec in SCHEMA[name].values()}
     for name, spec in _flag_specs(kind).items():
-        group = groups["output" if name in output else "design"]
+        group = groups[{"output": "output", None: "design"}.get(section.get(name), "load")]
         if spec.kind == "flag":
             text = f"{'do not ' if spec.default else ''}{spec.help} (sets {name} = {str(not spec.default).lower()})"
             group.add_argument(_flag(spec), dest=name, action="store_const", const=not spec.default, default=None, help=text)
@@ -198,7 +203,8 @@ def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
-        g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: ./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written)")
+        default = "none: nothing is written" if kind == "load" else f"./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written"
+        g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: {default})")
         g.add_argument("--force", action="store_true", help=_FORCE_HELP)
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=_DEBUG_HELP)
@@ -228,6 +234,17 @@ def build_parser() -> argparse.ArgumentParser:
         if kind == "vault":
             _add_target_flags(p)
         _add_output(p, kind)
+
+    p = sub.add_parser("load", help="will it stand? a vault, tube or block under load",
+                       description="Analyse a vault (the paper's by default), or a tube or block from its design file, under load: "
+                       "its weight, the support reactions, the largest deflection and stress (against the material's strength), "
+                       "the linear buckling factor, the free modes and the fold-mode gap, the soft modes. A vault stands on its feet "
+                       "(the end sections on the ground); a tube or block is held at both end sections, t = 0 and t = 1. Default: "
+                       "polypropylene 1 mm under its own weight, pinned. With --out, the output folder of the design with its "
+                       "mechanics in the report, report.json and the GLB.")
+    _add_design_flags(p, "vault")
+    _add_target_flags(p)
+    _add_output(p, "load")
 
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
     p.add_argument("--a", metavar="A", help=_VAULT["a"].describe().replace("%", "%%"))
@@ -289,14 +306,20 @@ def build_parser() -> argparse.ArgumentParser:
 # -- commands ---------------------------------------------------------------------------------
 
 
-def _load_design(kind: str, args: argparse.Namespace) -> Design:
-    """The design file (or the kind's defaults) with the flags over it, named as the user typed it."""
+def _load_design(kind: str, args: argparse.Namespace, *, kinds: Sequence[str] | None = None) -> Design:
+    """The design file (or the kind's defaults) with the flags over it, named as the user typed it.
+
+    The file's kind must be ``kind``, or one of ``kinds`` when given (the flags are then
+    ``kind``'s, which the design's kind may refuse by name).
+    """
     if args.design is not None:
         design = load_design(args.design)
-        if design.kind != kind:
-            raise InputError(f"{args.design}: kind = {design.kind!r} but the command is {kind!r}; use 'curvefold {design.kind} {args.design}'")
+        if design.kind not in (kinds or (kind,)):
+            command = args.command
+            raise InputError(f"{args.design}: kind = {design.kind!r} but the command is {command!r}"
+                             + (f", which takes {', '.join(kinds)}" if kinds else f"; use 'curvefold {design.kind} {args.design}'"))
     else:
-        design = design_from_dict({"kind": kind}, source=f"{PROG} {kind}")
+        design = design_from_dict({"kind": kind}, source=f"{PROG} {args.command}")
     flags, typed = _design_flags(kind, args)
     return design.overrides(source=" ".join([design.source, *typed]), **flags) if flags else design
 
@@ -341,6 +364,35 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
         lines += [f"  {note}" for note in payload.get("notes", [])]
     _emit(args, payload, lines)
     return 1 if any(c["status"] == "fail" for c in payload["certificate"]) else 0
+
+
+def cmd_load(args: argparse.Namespace) -> int:
+    from .budget import require_budget
+    from .build import build
+    from .folder import check_output
+    from .outputs import default_title, write_outputs
+
+    design = _load_design("vault", args, kinds=LOADED)
+    design = _fit_targets(design, args) if design.kind == "vault" else design
+    design = design.with_mechanics()
+    target = None
+    if args.out is not None:
+        check_kind(design.output.formats, design.kind, f"{design.source}: [output] formats")
+        target = check_output(args.out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
+    require_budget(design, files=target is not None)
+    built = build(design)
+    head = {"kind": design.kind, "title": design.title or default_title(built), "design": design.to_dict()}
+    lines = [f"{head['title']}", *built.mechanics.lines()]
+    if target is None:
+        payload = head | built.mechanics.to_dict()
+        failed = False
+    else:
+        written = write_outputs(built, target, show_progress=not args.json)
+        payload = head | written.pop("mechanics") | {"certificate": written["certificate"], "files": written["files"], "out": str(args.out)}
+        lines += _certificate_lines(written) + [f"  wrote {len(written['files'])} files to {args.out}/ (open {args.out}/report.html)"]
+        failed = any(c["status"] == "fail" for c in written["certificate"])
+    _emit(args, payload, lines)
+    return 1 if failed else 0
 
 
 def _certificate_lines(payload: dict) -> list[str]:
@@ -575,8 +627,8 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
     with one_blas_thread():  # a command's matrices are small: more BLAS threads only wait (kernel.threads)
         if args.command in DEFAULT_OUT:
             return cmd_structure(args.command, args)
-        return {"arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism, "atlas": cmd_atlas,
-                "designer": cmd_designer}[args.command](args)
+        return {"load": cmd_load, "arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism,
+                "atlas": cmd_atlas, "designer": cmd_designer}[args.command](args)
 
 
 def run() -> None:

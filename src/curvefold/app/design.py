@@ -14,6 +14,9 @@ A design file names the kind of structure and its parameters::
     units = "mm"
     formats = ["svg", "fold"]
 
+A vault, tube or block may also say what it is made of and what loads it, in the optional
+sections ``[material]`` and ``[loads]`` (:data:`OPTIONAL_SECTIONS`, :mod:`curvefold.app.loading`).
+
 :data:`SCHEMA` holds the :class:`~curvefold.kernel.validate.Spec` of every section and key
 (kind of value, unit, allowed range, default and meaning), composed from the parameters'
 owners: ``[vault]`` from :data:`curvefold.vault.assembly.VAULT_SPECS`, ``[output]`` from
@@ -49,15 +52,15 @@ from typing import Any, Literal
 import numpy as np
 
 from ..geometry.panels import PANELS
-from ..io.columns import read_column, table_path
 from ..io.formats import OUTPUT_SPECS, check_scale, default_formats
 from ..io.reading import read_bytes
-from ..kernel.arrays import readonly
 from ..kernel.errors import InputError
-from ..kernel.expr import Expression, compile_expression
+from ..kernel.expr import Expression
 from ..kernel.functions import ScalarFunction, as_function
 from ..kernel.validate import REQUIRED, Spec, describe, suggest
 from ..vault.assembly import LENGTHS, LENGTHS_WHY, VAULT_SPECS
+from .design_functions import Context, FunctionValue, TableColumn, check_function
+from .loading import LOADS_SECTION, MATERIAL_SECTION, LoadParams, MaterialParams, check_material, material_alternatives
 
 __all__ = [
     "Design",
@@ -71,6 +74,7 @@ __all__ = [
     "SCHEMA",
     "KINDS",
     "SECTIONS_OF_KIND",
+    "OPTIONAL_SECTIONS",
     "load_design",
     "parse_design",
     "design_from_dict",
@@ -82,6 +86,10 @@ KINDS = ("vault", "tube", "block", "crease")
 #: Sections each kind reads besides ``[output]``.
 SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = MappingProxyType(
     {"vault": ("vault",), "tube": ("curve", "tube"), "block": ("curve", "block"), "crease": ("crease",)}
+)
+#: Sections a kind reads only when a design has them: what it is made of and what loads it.
+OPTIONAL_SECTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(
+    {"vault": ("material", "loads"), "tube": ("material", "loads"), "block": ("material", "loads"), "crease": ()}
 )
 
 #: Largest design file read, in bytes.
@@ -145,6 +153,8 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
                     "within 60% of the regression limit)", label=f"{side} strip width") for side in ("left", "right")),
     ),
     "output": _section(*OUTPUT_SPECS),
+    "material": _section(*MATERIAL_SECTION),
+    "loads": _section(*LOADS_SECTION),
 })
 
 _SECTIONS = tuple(name for name in SCHEMA if name)
@@ -154,42 +164,6 @@ _SECTIONS = tuple(name for name in SCHEMA if name)
 # Validated values
 
 
-@dataclass(frozen=True, eq=False)
-class TableColumn:
-    """Samples of a function read from a CSV column, uniformly spaced over ``[0, length]``.
-
-    ``np.asarray(column)`` gives the samples, so :func:`curvefold.kernel.functions.as_function`
-    accepts it directly.
-
-    Parameters
-    ----------
-    path : str
-        The path as written in the design file, relative to its folder.
-    column : str
-        Header of the column.
-    values : (M,) ndarray
-        The samples, read-only, M ≥ 2.
-    """
-
-    path: str
-    column: str
-    values: np.ndarray = field(repr=False)
-
-    def __array__(self, dtype=None, copy=None) -> np.ndarray:
-        if copy:
-            return np.array(self.values, dtype=dtype)
-        return np.asarray(self.values, dtype=dtype)
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, TableColumn):
-            return NotImplemented
-        return (self.path, self.column) == (other.path, other.column) and np.array_equal(self.values, other.values)
-
-    def __hash__(self) -> int:
-        return hash((self.path, self.column, self.values.size))
-
-
-FunctionValue = float | Expression | TableColumn
 
 
 @dataclass(frozen=True)
@@ -279,6 +253,8 @@ _PARAM_TYPES: Mapping[str, type] = MappingProxyType({
     "block": BlockParams,
     "crease": CreaseParams,
     "output": OutputParams,
+    "material": MaterialParams,
+    "loads": LoadParams,
 })
 
 
@@ -288,7 +264,8 @@ class Design:
 
     Build it with :func:`load_design`, :func:`parse_design`, :func:`design_from_dict` or
     :func:`default_design`; derive variants with :meth:`overrides`. Only the sections of
-    ``kind`` (see :data:`SECTIONS_OF_KIND`) and ``output`` are set; the others are None.
+    ``kind`` (see :data:`SECTIONS_OF_KIND`) and ``output`` are set, and its optional ones
+    (:data:`OPTIONAL_SECTIONS`) when given; the others are None.
 
     Parameters
     ----------
@@ -297,7 +274,7 @@ class Design:
         Samples along curve 1.
     title : str
     output : OutputParams
-    vault, curve, tube, block, crease : section parameters or None
+    vault, curve, tube, block, crease, material, loads : section parameters or None
     source : str
         Where the design came from (a file name), used in messages.
     base_dir : Path or None
@@ -313,6 +290,8 @@ class Design:
     tube: TubeParams | None = None
     block: BlockParams | None = None
     crease: CreaseParams | None = None
+    material: MaterialParams | None = None
+    loads: LoadParams | None = None
     source: str = field(default="<defaults>", compare=False)
     base_dir: Path | None = field(default=None, compare=False, repr=False)
 
@@ -323,8 +302,10 @@ class Design:
         ``design_from_dict(d.to_dict(), base_dir=d.base_dir) == d``.
         """
         out: dict[str, Any] = {"kind": self.kind, "samples": self.samples, "title": self.title}
-        for section in (*SECTIONS_OF_KIND[self.kind], "output"):
+        for section in (*SECTIONS_OF_KIND[self.kind], "output", *OPTIONAL_SECTIONS[self.kind]):
             params = getattr(self, section)
+            if params is None:
+                continue
             values = {f.name: _plain(getattr(params, f.name)) for f in fields(params)}
             out[section] = {k: v for k, v in values.items() if v is not None}
         return out
@@ -370,6 +351,23 @@ class Design:
                 )
         return design_from_dict(data, source=source, base_dir=self.base_dir)
 
+    @property
+    def mechanics(self) -> bool:
+        """Whether the design says what it is made of or what loads it: its output folders then hold its mechanics."""
+        return self.material is not None or self.loads is not None
+
+    def with_mechanics(self) -> Design:
+        """This design with its ``[material]`` and ``[loads]`` as given or at their defaults (``curvefold load``).
+
+        Raises
+        ------
+        InputError
+            For a single curved fold, which has no end sections to hold.
+        """
+        if not OPTIONAL_SECTIONS[self.kind]:
+            raise InputError(f"{self.source}: a single curved fold has no end sections to hold: load a tube, block or vault")
+        return self.overrides(source=self.source, material={}, loads={})
+
     def tables(self) -> tuple[Path, ...]:
         """The CSV files the design reads, each once."""
         sections = [getattr(self, section) for section in SECTIONS_OF_KIND[self.kind]]
@@ -396,13 +394,15 @@ class Design:
 
 
 def _alternatives(data: dict, flags: Mapping[str, Any]) -> None:
-    """A [crease]'s ``alpha`` and ``beta_right`` are alternatives: the one the flags set drops the other from the
-    design's data (with ``alpha``, its ``fold_angle`` too, which then follows from it), unless the flags set both."""
+    """A [crease]'s ``alpha`` and ``beta_right`` are alternatives, and a named material and one's own values: the one the
+    flags set drops the other from the design's data (with ``alpha``, its ``fold_angle`` too, which then follows from
+    it), unless the flags set both."""
+    given = {k.replace("-", "_") for k, v in flags.items() if v is not None and not isinstance(v, Mapping)}
+    given |= {key for value in flags.values() if isinstance(value, Mapping) for key in value}  # a section's keys
+    material_alternatives(data, given)
     crease = data.get("crease")
     if crease is None:
         return
-    given = {k.replace("-", "_") for k, v in flags.items() if v is not None}
-    given |= set(flags["crease"]) if isinstance(flags.get("crease"), Mapping) else set()
     if "alpha" in given:
         for key in ("beta_right", "fold_angle"):
             if key not in given:
@@ -414,7 +414,7 @@ def _alternatives(data: dict, flags: Mapping[str, Any]) -> None:
 def _flag_sections(kind: str) -> dict[str, str]:
     """Key name -> section ("" for top level) of every key a design of ``kind`` accepts."""
     out: dict[str, str] = {}
-    for section in ("", *SECTIONS_OF_KIND[kind], "output"):
+    for section in ("", *SECTIONS_OF_KIND[kind], "output", *OPTIONAL_SECTIONS[kind]):
         for key in SCHEMA[section]:
             if key != "kind":
                 out[key] = section
@@ -535,13 +535,13 @@ def design_from_dict(
         kinds = ", ".join(f'"{k}"' for k in KINDS)
         raise InputError(f"{source}: missing required key 'kind' (one of {kinds})")
     kind = top["kind"].check(data["kind"], f"{source}: kind")
-    used = SECTIONS_OF_KIND[kind]
+    used = (*SECTIONS_OF_KIND[kind], *(s for s in OPTIONAL_SECTIONS[kind] if s in data))
     for key, value in data.items():
         if key in _SECTIONS:
             if not isinstance(value, Mapping):
                 raise InputError(f"{source}: {key} must be a table ([{key}] section), got {describe(value)}")
             if key != "output" and key not in used:
-                users = " or ".join(repr(k) for k in KINDS if key in SECTIONS_OF_KIND[k])
+                users = " or ".join(repr(k) for k in KINDS if key in (*SECTIONS_OF_KIND[k], *OPTIONAL_SECTIONS[k]))
                 raise InputError(
                     f"{source}: section [{key}] is used by kind {users}, not by kind {kind!r}; "
                     "remove it or change kind"
@@ -552,13 +552,15 @@ def design_from_dict(
                 f"{source}: unknown {what} (allowed keys: {', '.join(top)}; sections: {', '.join(_SECTIONS)})"
                 + suggest(key, (*top, *_SECTIONS))
             )
-    head = _check_section("", data, _Context(source, folder, 0), skip=_SECTIONS)
-    ctx = _Context(source, folder, head["samples"])
+    head = _check_section("", data, Context(source, folder, 0), skip=_SECTIONS)
+    ctx = Context(source, folder, head["samples"])
     checked = {s: _check_section(s, data.get(s, {}), ctx) for s in (*used, "output")}
     if checked["output"]["formats"] is None:
         checked["output"]["formats"] = default_formats(kind)
     if kind == "crease":
         _check_alpha(checked["crease"], data.get("crease", {}), source)
+    if "material" in checked:
+        check_material(checked["material"], f"{source}: [material] ")
     out = checked["output"]
     check_scale(out["scale"], out["units"], _crease_length(kind, checked), f"{source}: [output] scale")
     params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}
@@ -589,14 +591,8 @@ def default_design(kind: str) -> Design:
 # Checking
 
 
-@dataclass(frozen=True)
-class _Context:
-    source: str
-    base_dir: Path
-    samples: int
 
-
-def _check_section(section: str, table: Mapping[str, Any], ctx: _Context, skip: tuple[str, ...] = ()) -> dict:
+def _check_section(section: str, table: Mapping[str, Any], ctx: Context, skip: tuple[str, ...] = ()) -> dict:
     """Validate one section against the schema; fill defaults. Function keys go last (they
     need the section's length)."""
     specs = SCHEMA[section]
@@ -615,7 +611,7 @@ def _check_section(section: str, table: Mapping[str, Any], ctx: _Context, skip: 
         if value is None:
             out[key] = None
         elif spec.kind == "function":
-            out[key] = _check_function(spec, value, section, ctx, out["length"])
+            out[key] = check_function(spec, value, section, ctx, out["length"])
         else:
             out[key] = spec.check(value, f"{prefix}{key}")
     return {key: out[key] for key in specs}
@@ -636,45 +632,3 @@ def _check_alpha(values: dict, table: Mapping[str, Any], source: str) -> None:
             parameter="fold_angle",
         )
     values["beta_right"], values["fold_angle"] = None, twice
-
-
-def _check_function(spec: Spec, value: Any, section: str, ctx: _Context, length: float) -> FunctionValue:
-    """A function-valued key as an expression, a CSV column or a number, checked on the sample
-    grid; every refusal is about ``spec.name``."""
-    name = f"[{section}] {spec.name}"
-    where = f"{ctx.source}: {name}"
-    if isinstance(value, str):
-        try:
-            expression = compile_expression(value, name=name)
-        except InputError as exc:
-            raise InputError(f"{ctx.source}: {exc}", parameter=spec.name) from None
-        grid = np.linspace(0.0, length, ctx.samples)
-        spec.check_samples(expression(grid), where, lambda i: f"at s = {grid[i]:.6g}")
-        return expression
-    if isinstance(value, Mapping):
-        try:
-            return _read_table(spec, value, where, ctx, length)
-        except InputError as exc:
-            raise InputError(str(exc), parameter=spec.name) from None
-    return spec.check(value, where)
-
-
-def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: _Context, length: float) -> TableColumn:
-    for k in table:
-        if k not in ("csv", "column"):
-            raise InputError(f"{where}: unknown key {k!r} in CSV table (allowed: csv, column)")
-    raw, column = table.get("csv"), table.get("column", spec.name)
-    if not isinstance(raw, str) or not raw.strip():
-        raise InputError(f"{where}: csv must be a file name relative to the design file, got {describe(raw)}")
-    if not isinstance(column, str):
-        raise InputError(f"{where}: column must be a column header, got {describe(column)}")
-    file = table_path(raw, where, ctx.base_dir)
-    label = f"{where} ({raw})"
-    values, lines = read_column(file, column, length=length, label=label)
-    grid = np.linspace(0.0, length, values.size)
-
-    def at(i: int) -> str:
-        return f"at line {lines[i]} (s = {grid[i]:.6g})"
-
-    spec.check_samples(values, f"{label} column {column!r}", at)
-    return TableColumn(raw, column, readonly(values))

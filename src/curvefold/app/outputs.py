@@ -27,7 +27,7 @@ from .design import Design
 from .folder import OutputTarget, output_folder, raise_if_interrupted
 from .products import exported_fold_angles
 
-__all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json"]
+__all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json", "default_title"]
 
 
 def strict_json(value, **kwargs) -> str:
@@ -59,7 +59,7 @@ def _non_finite(value, key: str = "result") -> str | None:
 def structure_payload(built: Built) -> dict:
     """Design, derived quantities and certificate of a built design, JSON-ready."""
     design = built.design
-    payload: dict = {"kind": design.kind, "title": design.title or _default_title(built), "design": design.to_dict()}
+    payload: dict = {"kind": design.kind, "title": design.title or default_title(built), "design": design.to_dict()}
     if built.vault is not None:
         payload |= built.vault.summary()
         from ..vault.paper import paper_comparison
@@ -91,6 +91,8 @@ def structure_payload(built: Built) -> dict:
                                      "first_contact": certificate.first_contact, "samples": certificate.samples}
     if certificate.mechanism is not None:  # rigid panels
         payload["mechanism"] = certificate.mechanism.to_dict()
+    if built.mechanics is not None:  # the design says what it is made of or what loads it
+        payload["mechanics"] = built.mechanics.to_dict()
     return payload
 
 
@@ -107,7 +109,8 @@ def parameter_rows(design: Design) -> list[dict]:
     return rows
 
 
-def _default_title(built: Built) -> str:
+def default_title(built: Built) -> str:
+    """The title of a design that gives none: its kind and main parameters."""
     if built.vault is not None:
         d = built.vault.design
         return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"

@@ -92,6 +92,7 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
         out.append(("pictures", partial(_pictures, built)))
     if families.keys() & {"pattern", "guide"} or "3dm" in formats:
         built.layout  # laid out once, here, for every job that draws it (forked jobs share it)
+    built.mechanics  # the design under load, if it says what loads it: analysed once, here, for the 3D models and the pictures
     return sorted(out, key=lambda job: _LONGEST_FIRST.index(job[0]))
 
 
@@ -242,12 +243,15 @@ def _guide(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
 
 def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
-    """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion."""
+    """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion, and at the design
+    angle of a design under load its deflected shape and first modes (:meth:`curvefold.app.loading.Loaded.morph_targets`)."""
     from ..io.models import write_3d
 
+    loaded = built.mechanics if fold_angle is None else None  # the mechanics is the design state's
+    morphs = None if loaded is None else loaded.morph_targets(built.structure, built.sampling.keep)
     return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), formats=names, unit=MODEL_UNIT,
                          metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units,
-                         pattern=built.layout if "3dm" in names else None, fold_angle=fold_angle))
+                         pattern=built.layout if "3dm" in names else None, fold_angle=fold_angle, morph_targets=morphs))
 
 
 def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
@@ -326,6 +330,12 @@ def _figures(built: Built) -> dict[str, Callable]:
         figures[built.design.kind] = partial(views.plot_structure, structure)
     if lattice.rigid:
         figures["singular-values"] = lambda: plots.plot_singular_values(certified_mechanism(structure).states)
+    loaded = built.mechanics
+    if loaded is not None:
+        from ..figures import mechanics
+
+        figures |= {"deflection": partial(mechanics.plot_deflection, loaded.result, magnification=loaded.deflection_scale),
+                    "modes": partial(mechanics.plot_modes, loaded.result, amplitude=loaded.mode_amplitude)}
     return figures
 
 

@@ -1,4 +1,4 @@
-"""The HTML report of an output folder: design, derived quantities, certificate and pictures.
+"""The HTML report of an output folder: design, derived quantities, the structure under load, certificate and pictures.
 
 One self-contained page that reads on a phone (390 px) as on a desktop: pictures in a
 grid (wide figures across it; on a phone each at :data:`PHONE_DENSITY` picture pixels per
@@ -18,13 +18,15 @@ import numpy as np
 from ..analysis.checks import TITLES
 from ..kernel.text import one_line
 
-__all__ = ["plain", "report_html", "QUANTITIES", "UNITS_SHOWN", "describe_file", "natural_key"]
+__all__ = ["plain", "report_html", "QUANTITIES", "MECHANICS_QUANTITIES", "UNITS_SHOWN", "describe_file", "natural_key"]
 
 #: Pictures in the report, in this order (others follow alphabetically).
 _PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "singular-values.png", "regression-domain.png",
                   "width-proportion.png")
 #: Pictures shown across the whole width (small multiples).
 _WIDE = ("sections.png",)
+#: Pictures the section of a structure under load shows (not among the others).
+_MECHANICS_PICTURES = ("deflection.png", "modes.png")
 
 #: Lengths: the model unit is the metre of the 3D files (:data:`curvefold.io.tables.UNITS`).
 _UNIT = "m"
@@ -132,7 +134,7 @@ def _rows(values: dict, names: dict) -> str:
         if key in values:
             value = values[key]
             shown = " × ".join(_number(v) for v in value) if key == "footprint" else _number(value)
-            out.append(f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td>{e(unit)}</td></tr>')
+            out.append(f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td class=unit>{e(unit)}</td></tr>')
     return "".join(out)
 
 
@@ -223,6 +225,73 @@ def _mechanism_table(mechanism: dict) -> str:
             f"<table class=cards>{head}{rows}</table>")
 
 
+#: Name and unit of every figure of a structure under load (``payload["mechanics"]``), in the order shown.
+MECHANICS_QUANTITIES = {
+    "total_weight": ("total weight", "N"),
+    "applied_load": ("applied load, sum [x, y, z]", "N"),
+    "reactions": ("support reactions, sum [x, y, z] (they carry the load)", "N"),
+    "equilibrium_error": ("|Σ reactions + Σ loads| over the forces summed (rounding when they balance)", ""),
+    "max_displacement": ("largest displacement", "m"),
+    "max_stress": ("largest stress at the sheet's faces (membrane von Mises plus bending, an upper bound)", "Pa"),
+    "utilisation": ("utilisation: largest stress over the material's strength", ""),
+    "buckling_factor": ("linear buckling factor: the load times this buckles the structure", ""),
+    "fold_mode_gap": ("fold-mode gap λ₂/λ₁: how much stiffer the next free mode is than the folding", ""),
+    "soft_modes": ("soft modes: motions that stretch no bar, rigid motions aside (the folding is one)", ""),
+    "fold_mode_correlation": ("correlation of the first free mode with the rigid folding motion", ""),
+    "fold_span_correlation": ("correlation of the rigid folding motion with the span of the free modes found", ""),
+    "nodes": ("nodes of the bar-and-hinge model", ""),
+    "samples": ("samples along each crease the model keeps", ""),
+}
+
+
+def _balanced(forces: list[float], load: float) -> list[float]:
+    """Forces with what is below 1e-9 of the load (the rounding of forces that balance it) shown as 0.
+
+    >>> _balanced([1.1e-12, -3e-7, 70.7], 70.7)
+    [0.0, -3e-07, 70.7]
+    """
+    return [0.0 if abs(f) <= 1e-9 * load else f for f in forces]
+
+
+def _mechanics_section(m: dict, files: list[str]) -> str:
+    """The structure under load: what it is made of and what loads it, the deflected shape, the numbers and the first modes."""
+    e = html.escape
+    sheet = m["sheet"]
+    strength = "no strength given" if sheet["strength"] is None else f"strength {sheet['strength'] / 1e6:.4g} MPa"
+    loads = m["loads"]
+    what = (["its own weight"] if loads["self_weight"] else []) + ([f"snow {_number(loads['snow_kpa'])} kPa"] if loads["snow_kpa"] else []) \
+        + ([f"a point load of {_number(loads['point_load'])} N at the apex"] if loads["point_load"] else [])
+    held = "its feet (the end sections on the ground)" if m["supported"] == "feet" else "both end sections of every tube (t = 0 and t = 1)"
+    intro = (f"<p>{e(m['material'])} {_number(m['thickness'] * 1e3)} mm thick (E {sheet['youngs_modulus'] / 1e9:.4g} GPa, "
+             f"ν {_number(sheet['poisson'])}, density {_number(sheet['density'])} kg/m³, {e(strength)}; {e(sheet['source'])}), creases "
+             f"of {_number(m['crease_stiffness'])} N·m/rad/m, under {e(' and '.join(what))}, held at {e(held)}, {e(m['supports'])}. "
+             "The bar-and-hinge model of the structure at its design angle, linear; SI units, z up.</p>")
+    shown = {**m, "buckling_factor": m["buckling_factor"] if m["buckling_factor"] is not None else "none (the load only stiffens it)"}
+    if m["utilisation"] is None:
+        shown["utilisation"] = "unknown (no strength)"
+    if not m["buckling_resolved"]:
+        shown["buckling_factor"] = f"{_number(m['buckling_factor'])}: not resolved at these samples (see below)"
+    load = max(abs(v) for v in m["applied_load"])
+    shown["reactions"] = _balanced(m["reactions"], load)
+    rows = _rows(shown, MECHANICS_QUANTITIES)
+    ends = "".join(f"<tr><td>reactions at {e(end)}, [x, y, z]</td><td class=num>{e(_number(_balanced(r, load)))}</td><td class=unit>N</td></tr>"
+                   for end, r in m["reactions_by_end"].items())
+    picture = lambda name, alt, wide="": (f'<figure{wide}><a href="{name}"><img src="{name}" srcset="{name} {PHONE_DENSITY:g}x" '  # noqa: E731
+                                          f'alt="{e(alt)}"></a><figcaption>{e(alt)}</figcaption></figure>' if name in files else "")
+    columns = ("mode", "λ = ω²", "frequency", "λ / λ₁", "stretching share")
+    lam = m["modes"]
+    modes = "".join("<tr>" + _cells(columns, [str(k + 1), _number(v), _number(f), _number(v / lam[0]), f"{s:.1%}"],
+                                     ("", " class=num", " class=num", " class=num", " class=num")) + "</tr>"
+                    for k, (v, f, s) in enumerate(zip(lam, m["frequencies"], m["stretching"])))
+    notes = "".join(f"<p><small>{e(one_line(n))}.</small></p>" for n in m["notes"])
+    return (f"<h2>Under load: will it stand?</h2>{intro}<table>{rows}{ends}</table>{notes}<div class=pictures>"
+            + picture("deflection.png", f"the deflected shape, displacement × {m['deflection_scale']:g}, coloured by its size")
+            + "</div><h3>The first free modes</h3><p>Of the structure without supports, its rigid motions removed (the first is "
+            "its folding motion); with the share of each one's energy that stretches the sheet.</p>"
+            + f"<table class=cards><tr>{''.join(f'<th>{e(c)}</th>' for c in columns)}</tr>{modes}</table><div class=pictures>"
+            + picture("modes.png", f"the first free modes, largest displacement {m['mode_amplitude']:g} m", " class=wide") + "</div>")
+
+
 def report_html(payload: dict) -> str:
     """A self-contained HTML report: parameters, derived quantities, certificate, pictures."""
     e = html.escape
@@ -243,7 +312,9 @@ def report_html(payload: dict) -> str:
         paper = ("<h2>The paper's example</h2><table class=cards><tr>" + "".join(f"<th>{e(c)}</th>" for c in columns) + "</tr>"
                  + "".join(f"<tr>{_cells(columns, cells)}</tr>" for cells in rows) + "</table>")
     files = sorted(payload.get("files", []), key=natural_key)
-    shown = sorted((f for f in files if f.endswith((".png", ".gif"))), key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
+    under_load = _mechanics_section(payload["mechanics"], files) if payload.get("mechanics") else ""
+    shown = sorted((f for f in files if f.endswith((".png", ".gif")) and not (under_load and f in _MECHANICS_PICTURES)),
+                   key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
     pictures = "".join(
         f'<figure{" class=wide" if f in _WIDE else ""}><a href="{e(f)}"><img src="{e(f)}" srcset="{e(f)} {PHONE_DENSITY:g}x" alt="{e(f)}"></a>'
         f'<figcaption>{e(f)}</figcaption></figure>'
@@ -261,7 +332,7 @@ body{{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;paddin
 h1{{font-size:1.5em;overflow-wrap:anywhere}}
 table{{border-collapse:collapse;margin:1em 0;display:block;overflow-x:auto;max-width:100%}}
 td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
-.num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status{{white-space:nowrap}}
+.num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status,td.unit{{white-space:nowrap}}
 tr.pass td.status{{color:#070}}tr.fail td{{background:#fee}}tr.unresolved td{{background:#fff6dd}}
 table.certificate small{{color:#555}}table.certificate td:nth-child(7){{min-width:14em}}
 table.certificate tr.head td{{border-bottom:none}}table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}
@@ -287,6 +358,7 @@ in the 3D files); crease patterns are in millimetres at their print scale. On a 
 its full size.</p>
 <h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
+{under_load}
 {mesh}
 {paper}
 <h2>Certificate</h2>{certificate}

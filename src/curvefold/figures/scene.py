@@ -267,9 +267,9 @@ def render_strips(
         Line width of the curves in points (end rulings get half of it); 0 draws strips only.
     strip_edge : float, keyword-only
         Width of the strips' outline in their own colour (hides hairline gaps), points.
-    strip_rgb : (S, 3) array_like, optional, keyword-only
-        Base colour of every strip before shading, RGB in [0, 1] (to pick some out); default
-        :data:`STRIP_RGB` for all.
+    strip_rgb : (S, 3) or (S, k − 1, 3) array_like, optional, keyword-only
+        Base colour of every strip, or of every quad of every strip, before shading, RGB in
+        [0, 1] (to pick some out, or to colour a field); default :data:`STRIP_RGB` for all.
 
     Returns
     -------
@@ -279,7 +279,8 @@ def render_strips(
     pairs = np.asarray(strips)
     quads = strip_quads(vertices, pairs)
     q2, qd = view.project(quads)
-    base = None if strip_rgb is None else np.repeat(np.asarray(strip_rgb, float).reshape(len(pairs), 3), vertices.shape[1] - 1, axis=0)
+    base = None if strip_rgb is None else np.broadcast_to(np.asarray(strip_rgb, float).reshape(len(pairs), -1, 3),
+                                                          (len(pairs), vertices.shape[1] - 1, 3)).reshape(-1, 3)
     face = shade(quads, view, base)
     strip_depth = qd.mean(axis=1)
     paths = [q2]

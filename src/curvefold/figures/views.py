@@ -72,12 +72,13 @@ def _fit(ax: Axes, points: np.ndarray, *, margin: float = 0.04, below: float = 0
     ax.set_axis_off()
 
 
-def _scale_bar(ax: Axes, span: float) -> None:
-    """A horizontal scale bar of a round length (about a fifth of ``span``) in the lower right of a view."""
+def _scale_bar(ax: Axes, span: float, unit: str | None = None) -> None:
+    """A horizontal scale bar of a round length (about a fifth of ``span``) in the lower right of a view, in ``unit``
+    (default model units)."""
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
     length = _nice_length(span)
-    label = f"{length:g} {UNITS}" if length != 1 else "1 model unit"
+    label = f"{length:g} {unit}" if unit else f"{length:g} {UNITS}" if length != 1 else "1 model unit"
     ax.add_artist(AnchoredSizeBar(ax.transData, length, label, "lower right", pad=0.3, frameon=False, size_vertical=0, fontproperties={"size": 7}))
 
 

@@ -19,22 +19,24 @@ sheet, a Miura-ori cell or a single bar), :class:`Loads` and :class:`Supports`,
 :func:`static_response`, :func:`free_modes` (the fold-mode gap), :func:`buckling`,
 :func:`soft_modes` (the inextensional motions: the paper's conjecture measured). The
 materials are :data:`MATERIALS` with their sources, or :meth:`Material.from_values`.
+
+The materials, loads and supports and their checks load at once (they need no SciPy:
+design files and flags are checked with them); the model and its solvers load when one
+of their names is first used.
 """
 
+import importlib
+
 from . import _loads, _materials
-from ._analysis import LoadResult, analyse_load
 from ._loads import Loads, Supports
 from ._materials import Material, material
-from ._model import BarHingeModel
-from ._modes import Modes, correlation, free_modes
-from ._response import Buckling, StaticResult, buckling, static_response
-from ._softmodes import SoftModes, conjecture_counts, soft_modes
-from ._structures import StructureModel
 
 #: Standard gravity, m/s².
 G = _loads.G
 #: Named sheet materials (:class:`Material`), each with its source.
 MATERIALS = _materials.MATERIALS
+#: The name of a material of :data:`MATERIALS`, checked.
+MATERIAL = _materials.MATERIAL
 #: The checks of a user's material: Young's modulus, Poisson's ratio, density, strength.
 MATERIAL_SPECS = _materials.MATERIAL_SPECS
 #: The check of a sheet's thickness (m).
@@ -43,19 +45,32 @@ THICKNESS = _materials.THICKNESS
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
 #: The checks of the loads: snow (Pa on the projected area), point load (N).
 LOAD_SPECS = _loads.LOAD_SPECS
+#: The check of how the supported nodes are held ("pinned" or "roller").
+SUPPORTS = _loads.SUPPORTS
+
+#: The module of every name loaded on first use.
+_LAZY = {
+    "analyse_load": "_analysis", "LoadResult": "_analysis", "BarHingeModel": "_model", "StructureModel": "_structures",
+    "model_samples": "_structures", "StaticResult": "_response", "static_response": "_response", "Buckling": "_response",
+    "buckling": "_response", "Modes": "_modes", "free_modes": "_modes", "correlation": "_modes", "span_correlation": "_modes",
+    "SoftModes": "_softmodes", "soft_modes": "_softmodes", "conjecture_counts": "_softmodes",
+}
 
 __all__ = [
     "analyse_load",
     "LoadResult",
     "Material",
     "MATERIALS",
+    "MATERIAL",
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
     "LOAD_SPECS",
+    "SUPPORTS",
     "material",
     "BarHingeModel",
     "StructureModel",
+    "model_samples",
     "Loads",
     "Supports",
     "G",
@@ -64,6 +79,7 @@ __all__ = [
     "Modes",
     "free_modes",
     "correlation",
+    "span_correlation",
     "Buckling",
     "buckling",
     "SoftModes",
@@ -71,7 +87,24 @@ __all__ = [
     "conjecture_counts",
 ]
 
-# The public names are documented, and pickled, as this package's: their modules are private.
-for _name in __all__:
-    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "._"):
-        globals()[_name].__module__ = __name__
+
+def _public(value):
+    """A public name is documented, and pickled, as this package's: its module is private."""
+    if getattr(value, "__module__", "").startswith(__name__ + "._"):
+        value.__module__ = __name__
+    return value
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = globals()[name] = _public(getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name))
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
+
+for _name in ("Loads", "Supports", "Material", "material"):
+    _public(globals()[_name])

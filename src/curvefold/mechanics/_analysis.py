@@ -19,7 +19,7 @@ from ..vault.assembly import Vault
 from ._loads import G, Loads, Supports
 from ._materials import THICKNESS, Material
 from ._materials import material as named
-from ._modes import Modes, correlation, free_modes
+from ._modes import Modes, correlation, free_modes, span_correlation
 from ._response import Buckling, StaticResult, buckling, static_response
 from ._softmodes import SoftModes, soft_modes
 from ._structures import StructureModel
@@ -45,7 +45,15 @@ class LoadResult:
     fold_correlation : float
         Correlation of the first mode with the kinematics' rigid folding velocity (mass
         metric, rigid motions removed), in [0, 1].
+    fold_span_correlation : float
+        Correlation of that velocity with the span of the computed modes, in [0, 1]: 1
+        when the modes hold the folding motion. The first mode alone holds less of it the
+        stiffer the creases are against the sheet (the user guide's Mechanics page).
     buckling : Buckling
+    buckling_sample_correlation : float
+        :meth:`StructureModel.sample_correlation` of the buckling mode, in [−1, 1]: at or
+        below 0 the mode alternates from sample to sample, finer than the samples resolve
+        (:attr:`buckling_resolved`).
     soft : SoftModes
         The inextensional motions of the free structure.
     """
@@ -56,7 +64,9 @@ class LoadResult:
     static: StaticResult
     modes: Modes
     fold_correlation: float
+    fold_span_correlation: float
     buckling: Buckling
+    buckling_sample_correlation: float
     soft: SoftModes
 
     @property
@@ -65,20 +75,32 @@ class LoadResult:
         return float(G * self.structure.model.masses.sum())
 
     @property
-    def utilisation(self) -> float:
-        """Largest surface stress over the material's strength."""
-        return self.static.max_stress / self.structure.material.strength
+    def utilisation(self) -> float | None:
+        """Largest surface stress over the material's strength; None for a material without one."""
+        strength = self.structure.material.strength
+        return None if strength is None else self.static.max_stress / strength
+
+    @property
+    def buckling_resolved(self) -> bool:
+        """Whether the samples resolve the buckling mode: it does not alternate from sample to sample.
+
+        A mode at the scale of the samples is not the structure's: its factor is found too
+        low, and more samples find the structure's (the user guide's Mechanics page).
+        """
+        return self.buckling_sample_correlation > 0
 
     def to_dict(self) -> dict:
         """JSON-ready results; the keys below are stable.
 
         ``total_weight`` (N), ``reactions`` (sum of the support reactions [x, y, z], N, z
-        up), ``max_displacement`` (m), ``max_stress`` (Pa), ``utilisation``,
-        ``fold_mode_gap``, ``soft_modes``, ``buckling_factor`` (None when the load cannot
-        buckle the structure), ``modes`` (the lowest eigenvalues ω², rad²/s²), and more:
-        ``frequencies`` (Hz), ``fold_mode_correlation``, ``applied_load`` (N),
+        up), ``max_displacement`` (m), ``max_stress`` (Pa), ``utilisation`` (None without
+        a strength), ``fold_mode_gap``, ``soft_modes``, ``buckling_factor`` (None when the
+        load cannot buckle the structure), ``modes`` (the lowest eigenvalues ω², rad²/s²),
+        and more: ``frequencies`` (Hz), ``stretching`` (each mode's share of its energy in
+        the bars), ``fold_mode_correlation``,
+        ``fold_span_correlation``, ``buckling_resolved``, ``applied_load`` (N),
         ``equilibrium_error``, ``material``, ``thickness`` (m), ``crease_stiffness``
-        (N·m/rad/m), ``supports``, ``nodes``.
+        (N·m/rad/m), ``supports``, ``nodes``, ``samples`` (the samples the model keeps).
         """
         s, m = self.structure, self.structure.model
         return {
@@ -92,7 +114,10 @@ class LoadResult:
             "buckling_factor": None if math.isinf(self.buckling.factor) else self.buckling.factor,
             "modes": self.modes.eigenvalues.tolist(),
             "frequencies": self.modes.frequencies.tolist(),
+            "stretching": self.modes.stretching.tolist(),
             "fold_mode_correlation": self.fold_correlation,
+            "fold_span_correlation": self.fold_span_correlation,
+            "buckling_resolved": self.buckling_resolved,
             "applied_load": self.static.total_load.tolist(),
             "equilibrium_error": self.static.equilibrium_error,
             "material": s.material.name,
@@ -100,12 +125,13 @@ class LoadResult:
             "crease_stiffness": s.crease_stiffness,
             "supports": self.supports.kind,
             "nodes": len(m.nodes),
+            "samples": len(s.samples),
         }
 
 
 def analyse_load(structure, material: Material | str = "polypropylene", thickness: float = THICKNESS.default,
                  loads: Loads | None = None, supports: Supports | None = None, *, fold_angle: float | None = None,
-                 crease_stiffness: float | None = None, modes: int = 6) -> LoadResult:
+                 crease_stiffness: float | None = None, modes: int = 6, samples="graded") -> LoadResult:
     """A structure under load, with its modes, buckling factor and soft modes.
 
     Parameters
@@ -128,6 +154,8 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
         k_c, N·m/rad/m (default the material's).
     modes : int, keyword-only
         How many lowest free modes (≥ 2, for the fold-mode gap).
+    samples : {"graded", "all"} or sequence of int, keyword-only
+        The samples the model keeps (:meth:`StructureModel.from_state`).
 
     Raises
     ------
@@ -140,7 +168,7 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
         raise InputError(f"material must be a Material or a name, got {type(mat).__name__}")
     if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 2:
         raise InputError(f"modes must be an integer ≥ 2 (the fold-mode gap needs two), got {modes!r}")
-    sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness)
+    sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness, samples)
     loads = Loads() if loads is None else loads
     supports = Supports() if supports is None else supports
     model = sm.model
@@ -148,6 +176,7 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     motions = {FOLDING: folding.ravel()}
     result, factor = static_response(model, loads.forces(model), supports.fixed(sm), motions=motions)
     free = free_modes(model, modes, motions=motions)
+    buckled = buckling(model, result, factor)
     return LoadResult(
         structure=sm,
         loads=loads,
@@ -155,13 +184,15 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
         static=result,
         modes=free,
         fold_correlation=correlation(model, free.shapes[0], folding),
-        buckling=buckling(model, result, factor),
+        fold_span_correlation=span_correlation(model, free.shapes, folding),
+        buckling=buckled,
+        buckling_sample_correlation=sm.sample_correlation(buckled.shape),
         soft=soft_modes(model),
     )
 
 
 def _structure_model(structure, mat: Material, thickness: float, fold_angle: float | None,
-                     crease_stiffness: float | None) -> StructureModel:
+                     crease_stiffness: float | None, samples) -> StructureModel:
     if isinstance(structure, StructureModel):
         return structure
     if isinstance(structure, Vault):
@@ -172,4 +203,4 @@ def _structure_model(structure, mat: Material, thickness: float, fold_angle: flo
         state = structure if fold_angle is None else structure.structure.state(fold_angle)
     else:
         raise InputError(f"analyse_load takes a Structure, State, Vault or StructureModel, got {type(structure).__name__}")
-    return StructureModel.from_state(state, mat, thickness, crease_stiffness=crease_stiffness)
+    return StructureModel.from_state(state, mat, thickness, crease_stiffness=crease_stiffness, samples=samples)

@@ -67,6 +67,20 @@ def unit(v: np.ndarray) -> np.ndarray:
     return v / v[i] if v[i] != 0 else v
 
 
+def unit_displacement(v: np.ndarray) -> np.ndarray:
+    """Nodal displacements (3P,) as (P, 3) scaled to largest nodal displacement 1, their largest |component|
+    positive (zero stays zero).
+
+    Examples
+    --------
+    >>> unit_displacement(np.array([0.0, 3.0, -4.0, 1.0, 2.0, 2.0])).tolist(), unit_displacement(np.zeros(3)).tolist()
+    ([[-0.0, -0.6, 0.8], [-0.2, -0.4, -0.4]], [[0.0, 0.0, 0.0]])
+    """
+    u = unit(v).reshape(-1, 3)
+    top = np.linalg.norm(u, axis=1).max()
+    return u / top if top > 0 else u
+
+
 def _rigid_basis(nodes: np.ndarray) -> np.ndarray:
     """Translations along x, y, z, then rotations about x, y, z through the centroid, of nodes (P, 3), shape (3P, 6)."""
     c = nodes - nodes.mean(axis=0)

@@ -11,27 +11,33 @@ Loads (:class:`Loads`), summed into nodal forces (P, 3), N:
 * a point load (N, downward) at the apex, the highest node, or at the node nearest a
   given point.
 
-Supports (:class:`Supports`): the feet, the end sections on the ground z = 0 (or given
-nodes), ``"pinned"`` (every translation held) or ``"roller"`` (the vertical held on every
-foot; three horizontal restraints, chosen among the feet by a pivoted QR to hold the
-horizontal rigid motions, keep the structure in place and, being statically
-determinate, carry no vertical load's reaction).
+Supports (:class:`Supports`): the feet, the end sections on the ground z = 0 (a vault
+stands on them), or the end sections t = 0 and t = 1 wherever they are (a tube or block
+held at both ends, as a bridge), or given nodes; ``"pinned"`` (every translation held) or
+``"roller"`` (the vertical held on every supported node; three horizontal restraints,
+chosen among them by a pivoted QR to hold the horizontal rigid motions, keep the
+structure in place and, being statically determinate, carry no vertical load's reaction).
+
+This module needs no SciPy at import (the roller's QR imports it when used): the checks
+of the loads and supports (:data:`LOAD_SPECS`, :data:`SUPPORTS`) serve design files and
+flags that are read before any solver is loaded.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
-import scipy.linalg as la
 
 from ..kernel.errors import InputError
 from ..kernel.validate import Spec
-from ._model import BarHingeModel
-from ._structures import StructureModel
 
-__all__ = ["G", "Loads", "Supports", "LOAD_SPECS", "snow_areas", "apex"]
+if TYPE_CHECKING:  # pragma: no cover
+    from ._model import BarHingeModel
+    from ._structures import StructureModel
+
+__all__ = ["G", "Loads", "Supports", "LOAD_SPECS", "SUPPORTS", "SUPPORTED", "snow_areas", "apex"]
 
 #: Standard gravity, m/s².
 G = 9.80665
@@ -42,6 +48,12 @@ LOAD_SPECS: tuple[Spec, ...] = (
     Spec("point", "real", 0.0, "[0, 1e9]", "N", help="vertical point load, downward, at the apex unless placed", why="numerical range"),
 )
 _SPEC = {s.name: s for s in LOAD_SPECS}
+#: How the supported nodes are held.
+SUPPORTS = Spec("supports", "choice", "pinned", choices=("pinned", "roller"),
+                help="how the supported end sections are held: pinned (every translation) or roller (the vertical, and three "
+                     "horizontal restraints that only keep the structure in place)", label="supports")
+#: Which nodes are supported: the feet (end sections on the ground) or both end sections wherever they are.
+SUPPORTED = ("feet", "ends")
 
 
 @dataclass(frozen=True)
@@ -178,14 +190,27 @@ class Supports:
     ----------
     kind : {"pinned", "roller"}
     nodes : tuple of int or None
-        The supported nodes; None: the feet (end sections on z = 0) of a structure's model.
+        The supported nodes; None: those ``at`` names, of a structure's model.
+    at : {"feet", "ends"}
+        Without ``nodes``: the feet (the end sections on z = 0, where a vault stands) or
+        the ends (every tube's end sections t = 0 and t = 1, wherever they are: a tube or
+        block held at both ends).
+
+    Examples
+    --------
+    >>> Supports("clamped")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: supports must be one of "pinned", "roller", got string 'clamped'
     """
 
     kind: Literal["pinned", "roller"] = "pinned"
     nodes: tuple[int, ...] | None = None
+    at: Literal["feet", "ends"] = "feet"
 
     def __post_init__(self) -> None:
-        Spec("supports", "choice", choices=("pinned", "roller")).check(self.kind)
+        SUPPORTS.check(self.kind)
+        Spec("at", "choice", choices=SUPPORTED).check(self.at)
         if self.nodes is not None:
             nodes = np.asarray(self.nodes)
             if nodes.ndim != 1 or not len(nodes) or not np.issubdtype(nodes.dtype, np.integer):
@@ -201,14 +226,15 @@ class Supports:
             If the structure has no feet (no end section on z = 0) and no nodes are given,
             or a node is out of range.
         """
-        model = target.model if isinstance(target, StructureModel) else target
+        structure = hasattr(target, "feet")  # a StructureModel, which knows its end sections
+        model = target.model if structure else target
         P = len(model.nodes)
         if self.nodes is not None:
             nodes = np.asarray(self.nodes)
             if nodes.min() < 0 or nodes.max() >= P:
                 raise InputError(f"support nodes must be in [0, {P}), got {nodes.min()} … {nodes.max()}")
-        elif isinstance(target, StructureModel):
-            nodes = target.feet
+        elif structure:
+            nodes = target.feet if self.at == "feet" else target.ends
             if not len(nodes):
                 low = float(model.nodes[target.ends, 2].min())
                 raise InputError(f"no foot: no end section of this structure lies on the ground z = 0 (the lowest end point is at "
@@ -225,6 +251,8 @@ class Supports:
         rows = np.zeros((len(nodes), 2, 3))
         rows[:, 0, 0] = rows[:, 1, 1] = 1.0
         rows[:, 0, 2], rows[:, 1, 2] = -c[:, 1], c[:, 0]
-        held = la.qr(rows.reshape(-1, 3).T, mode="r", pivoting=True)[1][:3]
+        from scipy.linalg import qr
+
+        held = qr(rows.reshape(-1, 3).T, mode="r", pivoting=True)[1][:3]
         fixed[nodes[held // 2], held % 2] = True
         return fixed

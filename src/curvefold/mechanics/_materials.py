@@ -14,20 +14,24 @@ from types import MappingProxyType
 
 from ..kernel.validate import Spec
 
-__all__ = ["Material", "MATERIALS", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
+__all__ = ["Material", "MATERIALS", "MATERIAL", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
 
 #: The checks of a user's material (design-file keys and keyword arguments alike).
 MATERIAL_SPECS: tuple[Spec, ...] = (
-    Spec("youngs_modulus", "real", None, "(0, inf)", "Pa", help="Young's modulus E of the sheet"),
-    Spec("poisson", "real", None, "(-1, 0.5)", help="Poisson's ratio ν of the sheet", why="an isotropic solid is stable only there"),
-    Spec("density", "real", None, "(0, inf)", "kg/m³", help="density of the sheet"),
-    Spec("strength", "real", None, "(0, inf)", "Pa", help="strength the stresses are measured against (yield or tensile)"),
+    Spec("youngs_modulus", "real", None, "(0, inf)", "Pa", help="Young's modulus E of the sheet", typical="[1e8, 2e11]",
+         label="Young's modulus E"),
+    Spec("poisson", "real", None, "(-1, 0.5)", help="Poisson's ratio ν of the sheet", why="an isotropic solid is stable only there",
+         typical="[0, 0.49]", label="Poisson's ratio ν"),
+    Spec("density", "real", None, "(0, inf)", "kg/m³", help="density of the sheet", typical="[100, 8000]", label="density"),
+    Spec("strength", "real", None, "(0, inf)", "Pa", help="strength the stresses are measured against (yield or tensile)",
+         typical="[1e6, 5e8]", label="strength"),
 )
 #: The sheet's thickness t.
-THICKNESS = Spec("thickness", "real", 1e-3, "(0, 1)", "m", help="sheet thickness t", why="a sheet, not a block")
+THICKNESS = Spec("thickness", "real", 1e-3, "(0, 1)", "m", help="sheet thickness t", why="a sheet, not a block", typical="[1e-4, 5e-3]",
+                 label="sheet thickness t")
 #: The creases' rotational stiffness per length k_c (default: the material's, see :meth:`Material.crease_stiffness`).
 CREASE_STIFFNESS = Spec("crease_stiffness", "real", None, "(0, inf)", "N·m/rad/m", help="rotational stiffness of the creases per length",
-                        why="a crease of no stiffness leaves the folding motion free")
+                        why="a crease of no stiffness leaves the folding motion free", typical="[1e-3, 10]", label="crease stiffness k_c")
 _SPEC = MappingProxyType({s.name: s for s in MATERIAL_SPECS})
 
 #: Length scale of the default crease stiffness k_c = D / L*, as a multiple of the thickness.
@@ -54,9 +58,9 @@ class Material:
         ν, in (−1, 0.5).
     density : float
         ρ, kg/m³.
-    strength : float
+    strength : float or None
         The stress the utilisation is measured against (yield for metals and polymers,
-        tensile strength for board), Pa.
+        tensile strength for board), Pa; None when not known (no utilisation then).
     source : str
         Where the numbers come from.
     """
@@ -65,18 +69,20 @@ class Material:
     youngs_modulus: float
     poisson: float
     density: float
-    strength: float
+    strength: float | None
     source: str = "given by the user"
 
     @classmethod
-    def from_values(cls, youngs_modulus: float, poisson: float, density: float, strength: float, *, name: str = "user",
-                    where: str = "") -> Material:
+    def from_values(cls, youngs_modulus: float, poisson: float, density: float, strength: float | None = None, *,
+                    name: str = "user", where: str = "") -> Material:
         """A user's material, every value checked against :data:`MATERIAL_SPECS`.
 
         Parameters
         ----------
-        youngs_modulus, poisson, density, strength : float
-            E (Pa), ν, ρ (kg/m³) and strength (Pa).
+        youngs_modulus, poisson, density : float
+            E (Pa), ν and ρ (kg/m³).
+        strength : float, optional
+            Pa; without it the stresses are not measured against a strength.
         name : str, keyword-only
         where : str, keyword-only
             Prefix of the parameters' names in messages (``"design.toml: [material] "``).
@@ -96,7 +102,7 @@ class Material:
         curvefold.kernel.errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is stable only there), got 0.5
         """
         values = {"youngs_modulus": youngs_modulus, "poisson": poisson, "density": density, "strength": strength}
-        checked = {k: _SPEC[k].check(v, f"{where}{k}") for k, v in values.items()}
+        checked = {k: None if v is None and k == "strength" else _SPEC[k].check(v, f"{where}{k}") for k, v in values.items()}
         return cls(name, **checked)
 
     def bending_stiffness(self, thickness: float) -> float:
@@ -159,4 +165,9 @@ def material(name: str) -> Material:
     ...
     curvefold.kernel.errors.InputError: material must be one of "polypropylene", "paperboard", "aluminium", got string 'steel'
     """
-    return MATERIALS[Spec("material", "choice", choices=tuple(MATERIALS)).check(name)]
+    return MATERIALS[MATERIAL.check(name)]
+
+
+#: The name of a material of :data:`MATERIALS` (design files and flags; no default: the user's own values, or the caller's choice).
+MATERIAL = Spec("material", "choice", None, choices=tuple(MATERIALS), help="a named sheet material (E, ν, density and strength from "
+                "its source)", label="sheet material")

@@ -27,10 +27,10 @@ import scipy.sparse.linalg as spl
 
 from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import InputError
-from ._linear import Factorized, eigsh, rigid_motions, unit
+from ._linear import Factorized, eigsh, rigid_motions, unit_displacement
 from ._model import BarHingeModel
 
-__all__ = ["Modes", "free_modes", "correlation"]
+__all__ = ["Modes", "free_modes", "correlation", "span_correlation"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -111,7 +111,7 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
     delta = C @ vectors
     stretch = np.einsum("bk,bk->k", delta, S @ delta)
     total = np.einsum("ik,ik->k", vectors, K @ vectors)
-    shapes = np.stack([unit(v) for v in vectors.T]).reshape(count, -1, 3)
+    shapes = np.stack([unit_displacement(v) for v in vectors.T])
     return Modes(values, shapes, np.clip(stretch / total, 0.0, 1.0))
 
 
@@ -120,9 +120,21 @@ def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> 
 
     1 when the mode is the motion (up to a rigid motion and scale).
     """
+    return span_correlation(model, np.asarray(shape, float)[None], motion)
+
+
+def span_correlation(model: BarHingeModel, shapes: np.ndarray, motion: np.ndarray) -> float:
+    """The cosine of the angle between a motion (P, 3) and the span of mode shapes (k, P, 3), in the mass metric, rigid parts removed.
+
+    1 when the motion is a combination of the shapes (up to a rigid motion); for one
+    shape, :func:`correlation`.
+    """
     w = np.repeat(model.masses, 3)
     R = rigid_motions(model.nodes, model.masses)
-    a, b = (np.asarray(v, float).ravel() for v in (shape, motion))
-    a, b = a - R @ (R.T @ (w * a)), b - R @ (R.T @ (w * b))
-    return float(abs(a @ (w * b)) / np.sqrt((a @ (w * a)) * (b @ (w * b))))
+    A = np.asarray(shapes, float).reshape(len(shapes), -1).T
+    b = np.asarray(motion, float).ravel()
+    A, b = A - R @ (R.T @ (w[:, None] * A)), b - R @ (R.T @ (w * b))
+    Q, _ = np.linalg.qr(np.sqrt(w)[:, None] * A)  # an orthonormal basis of the span in the mass metric
+    wb = np.sqrt(w) * b
+    return float(min(1.0, np.linalg.norm(Q.T @ wb) / np.linalg.norm(wb)))
 

@@ -35,7 +35,7 @@ import scipy.sparse.linalg as spl
 from ..kernel.arrays import FrozenArrays, readonly
 from ..kernel.errors import InputError
 from ._elements import dihedral_hessian_action
-from ._linear import Factorized, eigsh, unit
+from ._linear import Factorized, eigsh, unit_displacement
 from ._model import BarHingeModel
 
 __all__ = ["StaticResult", "Buckling", "static_response", "buckling", "RAYLEIGH_RTOL"]
@@ -210,7 +210,7 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
                 return Buckling(np.inf, np.zeros_like(model.nodes))
     shape = np.zeros(model.dofs)
     shape[free] = phi
-    return Buckling(float(1.0 / mu), unit(shape).reshape(-1, 3))
+    return Buckling(float(1.0 / mu), unit_displacement(shape))
 
 
 def _largest(KG, factor: Factorized) -> tuple[float | None, np.ndarray]:

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import tempfile
 import zipfile
 from collections.abc import Mapping
@@ -31,13 +32,13 @@ from pathlib import Path
 import numpy as np
 
 from ...analysis.checks import TITLES
-from ...figures.report import UNITS_SHOWN
+from ...figures.report import MECHANICS_QUANTITIES, UNITS_SHOWN
 from ...io.formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel.errors import CurvefoldError, InputError
 from ...kernel.validate import MAX_TEXT, Spec, from_text, suggest
 from ...vault.targets import REPLACES, TARGET_SPECS
 from ..build import Built, build, fit_vault_targets
-from ..design import KINDS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
+from ..design import KINDS, OPTIONAL_SECTIONS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
 
 __all__ = [
     "Request",
@@ -53,6 +54,7 @@ __all__ = [
     "built",
     "payload",
     "certificate",
+    "mechanics",
     "domain_svg",
     "pattern_pages",
     "download",
@@ -115,7 +117,7 @@ def _plain(value):
 def schema() -> dict:
     """The design schema as JSON-ready data: the designer's controls are generated from it.
 
-    Keys: ``kinds`` (kind → its sections), ``sections`` (section → list of specs with name,
+    Keys: ``kinds`` (kind → its sections, its optional ones last: ``material`` and ``loads``), ``sections`` (section → list of specs with name,
     label, kind, unit, help, choices, default and range; ``""`` is the top level), ``targets``
     (the vault's target specs and the parameter each replaces), ``formats`` (the
     registry: name, extension, what the file holds, the kinds it is written for),
@@ -123,7 +125,8 @@ def schema() -> dict:
     schema's units, :data:`curvefold.figures.report.UNITS_SHOWN`).
     """
     return {
-        "kinds": {kind: list(SECTIONS_OF_KIND[kind]) for kind in KINDS},
+        "kinds": {kind: [*SECTIONS_OF_KIND[kind], *OPTIONAL_SECTIONS[kind]] for kind in KINDS},
+        "optional": {kind: list(OPTIONAL_SECTIONS[kind]) for kind in KINDS},
         "sections": {section: [_spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED]
                      for section, specs in SCHEMA.items()},
         "targets": [_spec_json(spec, "vault") | {"replaces": REPLACES[spec.name]} for spec in TARGET_SPECS],
@@ -290,7 +293,8 @@ def _without_source(err: CurvefoldError, parameter: str | None = None) -> Curvef
 def caches() -> dict[str, object]:
     """This module's LRU caches by name (their ``cache_info()`` shows that memory stays bounded; see also
     :func:`curvefold.app.designer.preview.caches`)."""
-    return {"built": _built, "fitted": _fitted, "payload": _payload, "files": _files, "domain": _domain, "pattern": _pattern}
+    return {"built": _built, "fitted": _fitted, "payload": _payload, "mechanics": _mechanics, "files": _files, "domain": _domain,
+            "pattern": _pattern}
 
 
 # -- the payload, certificate and figures -----------------------------------------------------------
@@ -331,6 +335,32 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
         checks, frames = found["certificate"], found.get("certificate_frames") or {}
     return {"samples": frames.get("samples") or design.samples, "coarse": coarse, "fold_angles": frames.get("fold_angles", []),
             "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": TITLES.get(c["name"], c["name"])} for c in checks]}
+
+
+#: The figures of a design under load the designer shows, in this order (the report shows them all).
+MECHANICS_SHOWN = ("total_weight", "reactions", "max_displacement", "max_stress", "utilisation", "buckling_factor", "fold_mode_gap",
+                   "soft_modes")
+
+
+def mechanics(design: Design) -> dict:
+    """The design under load, as ``curvefold load --json`` gives it (its material and loads, or their defaults).
+
+    Returns
+    -------
+    dict
+        ``numbers``: :meth:`curvefold.app.loading.Loaded.to_dict`; ``labels``: each figure
+        of :data:`MECHANICS_SHOWN` as ``[words, unit, explanation]``, the report's words
+        (:data:`curvefold.figures.report.MECHANICS_QUANTITIES`) up to their explanation.
+    """
+    return json.loads(_mechanics(_key(design.with_mechanics())))
+
+
+@lru_cache(maxsize=4)
+def _mechanics(key: str) -> bytes:
+    numbers = built(_design(key)).mechanics.to_dict()
+    labels = {k: [re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0], MECHANICS_QUANTITIES[k][1], MECHANICS_QUANTITIES[k][0]]
+              for k in MECHANICS_SHOWN}
+    return json.dumps({"numbers": numbers, "labels": labels}, default=float).encode()
 
 
 def domain_svg(design: Design) -> str:

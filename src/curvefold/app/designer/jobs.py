@@ -12,8 +12,9 @@ budget with the estimate and what to lower) and chooses its lane:
     regression domain, of a design of at most :data:`QUICK_STRIP_SAMPLES` strip samples
     without targets to solve: sub-second work that answers every change first;
 ``heavy``
-    the rest (full certificates and crease patterns, files, the JSON payload, target fits,
-    larger designs), on workers of lower CPU priority, cancelled when the client goes away.
+    the rest (full certificates and crease patterns, files, the JSON payload, the design
+    under load, target fits, larger designs), on workers of lower CPU priority, cancelled
+    when the client goes away.
 """
 
 from __future__ import annotations
@@ -34,7 +35,8 @@ QUICK_STRIP_SAMPLES = 100_000
 #: The certificate's and the crease pattern's switch to their coarse answer.
 COARSE = Spec("coarse", "flag", False, help="answer at reduced samples first (the page shows it until the full one comes)", label="coarse")
 #: Routes that run as jobs, and the route parameters each takes besides the design's.
-ROUTES = {"preview": (), "contact": (), "certificate": (COARSE,), "pattern": (COARSE,), "domain.svg": (), "payload": (), "file": (api.STATE,)}
+ROUTES = {"preview": (), "contact": (), "certificate": (COARSE,), "pattern": (COARSE,), "domain.svg": (), "payload": (), "mechanics": (),
+          "file": (api.STATE,)}
 #: Routes that go to the quick lane when their design is small (the coarse answers only, for the two with COARSE).
 _QUICK = ("preview", "contact", "domain.svg", "certificate", "pattern")
 
@@ -76,8 +78,9 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
     elif route == "pattern" and not coarse:
         api.check_download(design, "svg")
         files = design.overrides(source=design.source, formats=["svg"])
+    loaded = design.with_mechanics() if route == "mechanics" else design  # as curvefold load analyses it
     try:
-        estimate = require_budget(files or design, files=files is not None)
+        estimate = require_budget(files or loaded, files=files is not None)
     except CurvefoldError as err:
         raise InputError(str(err).removeprefix(f"{api.SOURCE}: "), parameter="samples") from None
     small = estimate.strip_samples <= QUICK_STRIP_SAMPLES and not request.targets
@@ -104,6 +107,8 @@ def run(route: str, key: str, targets: tuple, option: str | None, state: float |
         return api.domain_svg(design).encode(), "image/svg+xml", None
     if route == "payload":
         return api.payload(design), "application/json", None
+    if route == "mechanics":
+        return _json(api.mechanics(design)), "application/json", None
     name, media, content = api.download(design, option, state=state)
     return content, media, name
 

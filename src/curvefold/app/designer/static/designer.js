@@ -1,7 +1,8 @@
 // The curvefold designer page: controls generated from the design schema, a 3D view that
 // morphs between precomputed fold states with the span and rise drawn as dimensions, the
-// numbers (beside those of a kept design to compare with), the certificate and crease
-// pattern (coarse first, then full), the downloads at the slider's angle. The design lives
+// numbers (beside those of a kept design to compare with), the design under load once a
+// material is chosen, the certificate and crease pattern (coarse first, then full), the
+// downloads at the slider's angle. The design lives
 // in this page's URL only: every change is a step of the browser's history (Back undoes it).
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
@@ -58,6 +59,7 @@ function field(spec, extraClass = "") {
   let input;
   if (spec.kind === "choice") {
     input = document.createElement("select");
+    if (spec.default === null) input.append(new Option("—", "", false, value === ""));  // none chosen
     for (const c of spec.choices) input.append(new Option(c, c, false, c === value));
   } else if (spec.kind === "flag") {
     input = document.createElement("input");
@@ -239,7 +241,7 @@ function show(body, started) {
   $("note").hidden = !body.note;
   const timing = {};
   state.contact = undefined;
-  for (const id of ["certificate-status", "certificate", "pattern", "domain"]) $(id).classList.add("stale");
+  for (const id of ["certificate-status", "certificate", "pattern", "domain", "mechanics"]) $(id).classList.add("stale");
   follow(body, started, timing);  // asked first: the server works while the page draws
   view.load(body, previous);
   timing.view = performance.now() - started;
@@ -285,7 +287,11 @@ async function follow(body, started, timing) {
   ];
   await Promise.all(first);
   if (!current()) return;
+  const loaded = underLoad();
+  if (!loaded) showMechanics(null);
+  else $("mechanics-status").textContent = "(computing: the bar-and-hinge model of the design)";
   await Promise.all([
+    loaded && when(get("mechanics"), (found) => { showMechanics(found); timing.mechanics = performance.now() - started; }),
     sheets && when(get("domain.svg", false), (found) => { if (typeof found === "string") images($("domain"), [found]); }),
     when(get("certificate"), (found) => { showCertificate(found); timing.full_certificate = performance.now() - started; }),
     sheets && when(get("pattern"), (found) => { showPattern(found); timing.full_pattern = performance.now() - started; }),
@@ -324,6 +330,40 @@ function showPattern(found) {
   const n = found.pages.length;
   $("pattern-status").textContent = found.coarse ? `(sketch of the sheets at ${found.samples} samples; the pages follow)` : `(${n} page${n > 1 ? "s" : ""} as cut, ${found.samples} samples)`;
   state.pattern = found;
+}
+
+// -- the design under load: once a material (or a load) is given, what curvefold load says of it ----------
+
+function underLoad() {  // whether the design says what it is made of or what loads it
+  const keys = new Set((state.schema.optional[state.kind] ?? []).flatMap((s) => state.schema.sections[s].map((spec) => spec.name)));
+  return Object.keys(state.values).some((k) => keys.has(k) && state.values[k] !== "");
+}
+
+function showMechanics(found) {
+  const table = $("mechanics"), status = $("mechanics-status");
+  table.classList.remove("stale");
+  state.mechanics = found;
+  if (!found || found.error) {
+    table.innerHTML = "";
+    status.textContent = found?.error ? `(${found.error})` : state.kind === "crease" ? "(for tubes, blocks and vaults)"
+      : "(choose a material or a thickness under “material” to see whether it stands)";
+    return;
+  }
+  const n = found.numbers, rows = [];
+  const load = Math.max(...n.applied_load.map(Math.abs));
+  const balanced = (forces) => forces.map((f) => (Math.abs(f) <= 1e-9 * load ? 0 : f));  // the rounding of forces that balance the load
+  for (const [key, [words, unit, explained]] of Object.entries(found.labels)) {
+    if (!(key in n)) continue;
+    const v = key === "reactions" ? balanced(n[key]) : n[key];
+    const shown = v === null ? (key === "buckling_factor" ? "none" : "unknown") : Array.isArray(v) ? v.map(fmt).join(", ") : fmt(v);
+    rows.push(`<tr data-key="${escape(key)}" title="${escape(explained)}"><td>${escape(words)}</td><td class="num">${escape(shown)}</td>`
+      + `<td class="unit">${escape(unit)}</td></tr>`);
+  }
+  const lowest = n.frequencies.slice(0, 3).map((f) => String(Number(f.toPrecision(3)))).join(", ");
+  rows.push(`<tr data-key="frequencies" title="the lowest free modes' frequencies (the first is the folding motion)"><td>lowest free frequencies</td>`
+    + `<td class="num">${lowest}</td><td class="unit">Hz</td></tr>`);
+  table.innerHTML = rows.join("");
+  status.textContent = `${n.material} ${fmt(n.thickness * 1e3)} mm, ${n.supports} at the ${n.supported}${n.buckling_resolved ? "" : "; the buckling mode is not resolved at these samples"}`;
 }
 
 function images(box, svgs) {
