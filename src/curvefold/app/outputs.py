@@ -8,7 +8,6 @@ renamed onto it at the end, never replacing what was not checked (see
 
 from __future__ import annotations
 
-import json
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import closing, contextmanager
@@ -18,42 +17,17 @@ import numpy as np
 
 from ..analysis.certificate import certify, certify_single_fold
 from ..analysis.mechanism import certified_mechanism
-from ..figures.report import UNITS_SHOWN, plain, report_html
+from ..figures.report import UNITS_SHOWN, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
-from ..kernel.errors import InputError, InternalError
+from ..kernel.errors import InputError
+from ..kernel.json_text import strict_json
 from .build import Built
 from .design import Design
 from .folder import OutputTarget, output_folder, raise_if_interrupted
 from .products import exported_fold_angles
 
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json"]
-
-
-def strict_json(value, **kwargs) -> str:
-    """JSON text of ``value`` (NumPy values as plain numbers), refusing NaN and infinities.
-
-    Raises
-    ------
-    InternalError
-        A non-finite number in ``value``, named by its key (``result.p_xz = inf``): strict
-        JSON has none, and a result that is not finite is never given as one.
-    """
-    try:
-        return json.dumps(value, allow_nan=False, default=plain, **kwargs)
-    except ValueError:
-        raise InternalError(f"the result holds a number that is not finite: {_non_finite(value)}") from None
-
-
-def _non_finite(value, key: str = "result") -> str | None:
-    """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
-    if isinstance(value, dict):
-        return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return next((found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None)
-    if isinstance(value, (float, np.floating)) and not np.isfinite(value):
-        return f"{key} = {value}"
-    return None
 
 
 def structure_payload(built: Built) -> dict:
