@@ -12,7 +12,7 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 import curvefold
-from _meshes import measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
+from _meshes import assert_written, measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
 from _node import run_node
 from curvefold.geometry.mesh import Mesh
 from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
@@ -32,13 +32,6 @@ def _write_tube(path: Path, **kw) -> tuple:
     kwargs.update(kw)
     write_fold(path, **kwargs)
     return motion, json.loads(path.read_text())
-
-
-def assert_written(got, want) -> None:
-    """Coordinates as a FOLD file holds them: within :data:`COORDINATE_RTOL` of the sheet's size."""
-    got, want = np.asarray(got, float), np.asarray(want, float)
-    assert got.shape == want.shape
-    assert_allclose(got, want, rtol=0, atol=COORDINATE_RTOL * np.ptp(want, axis=0).max())
 
 
 def test_numbers_are_written_to_their_tolerance_and_no_more(tmp_path):
