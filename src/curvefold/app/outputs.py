@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import closing, contextmanager
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -122,7 +123,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
                   workers: int | None = None) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
-    The files are written by job processes while this process computes the certificate.
+    The files are written by job processes while this process computes what they share
+    (:func:`curvefold.app.products.prepare`, while the pictures are drawn) and the certificate.
 
     Parameters
     ----------
@@ -155,7 +157,6 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
-    resolution = products.resolution(built)
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
     if built.structure is not None and built.structure.lattice.rigid:
@@ -163,9 +164,11 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers)) as done:  # closed at once on any exception
+        prepare = partial(products.prepare, built, formats)
+        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers, prepare=prepare)) as done:  # closed at once on any exception
+            done.refill()  # what the file jobs share, computed here while the drawings are drawn; then the file jobs start
             payload = structure_payload(built)
-            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | resolution | notes
+            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | products.resolution(built) | notes
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
