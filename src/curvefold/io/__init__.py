@@ -1,9 +1,9 @@
 """File exporters: FOLD (with a reader), OBJ/STL/PLY, animated GLB, Rhino 3dm and crease patterns.
 
 Every writer goes through :mod:`curvefold.io.atomic` (temporary file, then rename), so a
-failure never leaves a partial file. Heavy libraries (``trimesh``, ``pygltflib``,
-``rhino3dm``, ``ezdxf``) are optional and imported only by the writer that needs them; the
-PDF pages are written by :mod:`curvefold.io.pdf`, which needs none.
+failure never leaves a partial file. Heavy libraries (``pygltflib``, ``rhino3dm``,
+``ezdxf``) are optional and imported only by the writer that needs them; OBJ, STL and PLY
+(:mod:`curvefold.io.mesh3d`) and the PDF pages (:mod:`curvefold.io.pdf`) need none.
 
 :mod:`curvefold.io.formats` is the registry of every file format (name, extension,
 contents, kinds of design, writer, optional package); :mod:`curvefold.io.tables` is the
