@@ -19,7 +19,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from _bench import SummaryRow, markdown_table, summary_table, verdict
+from _bench import SummaryRow, bytecode_env, markdown_table, summary_table, verdict
 
 TARGET_CPU = 0.25
 ROUNDS = 7
@@ -54,7 +54,7 @@ def _heavy_imports(command: list[str], env: dict[str, str], cwd: str) -> list[st
 
 def run() -> list[SummaryRow]:
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as cwd:
-        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPYCACHEPREFIX": cache}
+        env = bytecode_env(cache)
         for command in COMMANDS.values():  # warm-up: the bytecode cache
             _cpu(command, env, cwd)
         best = {name: float("inf") for name in COMMANDS}
