@@ -571,7 +571,9 @@ def _check_workers(client: Any, scheduler: str) -> None:
         client.wait_for_workers(1, timeout=timeout)
     except TimeoutError:
         raise InputError(f"scheduler {scheduler!r} has no worker (waited {timeout:g} s)") from None
-    ours = _curvefold_version()
+    from importlib.metadata import version
+
+    ours = version("curvefold")  # this process's (the workers report theirs by _curvefold_version)
     found = client.run(_curvefold_version, on_error="return")
     wrong = {w: v for w, v in sorted(found.items()) if v != ours}
     if wrong:
