@@ -33,9 +33,10 @@ TARGET_SECONDS = 2.0
 TARGET_CPU = 3.0
 TARGET_MB = 10.0
 #: What the main job imports besides curvefold: NumPy and SciPy (contact, layout, FOLD
-#: components), matplotlib (pictures), trimesh, pygltflib, rhino3dm (3D models), ezdxf (DXF).
+#: components, the 3dm's splines), matplotlib (pictures), Pillow (GIF), pygltflib, rhino3dm
+#: (3D models), ezdxf (DXF).
 LIBRARIES = ("numpy", "scipy.spatial", "scipy.sparse.csgraph", "scipy.interpolate", "matplotlib.figure",
-             "matplotlib.backends.backend_agg", "PIL.Image", "trimesh", "pygltflib", "rhino3dm", "ezdxf")
+             "matplotlib.backends.backend_agg", "PIL.Image", "pygltflib", "rhino3dm", "ezdxf")
 
 
 def _folder_bytes(folder: Path) -> int:
