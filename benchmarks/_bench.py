@@ -10,6 +10,7 @@ move less than wall time when other programs share the machine.
 from __future__ import annotations
 
 import gc
+import os
 import time
 from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence
@@ -73,6 +74,13 @@ def choose_repeats(seconds_per_round: float, budget: float, *, low: int = 3, hig
     if seconds_per_round <= 0:
         return high
     return max(low, min(high, int(budget / seconds_per_round)))
+
+
+def bytecode_env(cache: str) -> dict[str, str]:
+    """This environment with Python's bytecode cache written to the folder ``cache``
+    (``PYTHONPYCACHEPREFIX``), even where ``PYTHONDONTWRITEBYTECODE`` is set: a command
+    timed after one warm-up run starts as an installed package does, from bytecode."""
+    return {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPYCACHEPREFIX": cache}
 
 
 def verdict(ok: bool) -> str:

@@ -9,9 +9,10 @@ the same jobs, run right after, with every sample kept. One run of each, garbage
 collector on; the folder sizes are summed on disk. Each stage is timed in CPU seconds
 too (this process's, steadier than wall time on a shared machine). A last line times the
 whole command in a fresh process, imports included, in wall and CPU seconds (the command
-and the processes it starts).
+and the processes it starts), beside the CPU seconds a fresh process takes only to import
+the libraries the command uses (:data:`LIBRARIES`: each job process imports its own).
 
-Targets: the whole command under 5 s and the folder under 10 MB.
+Targets: the whole command ≤ 2 s wall and ≤ 3 CPU-s, the folder under 10 MB.
 """
 
 from __future__ import annotations
@@ -26,10 +27,16 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _bench import SummaryRow, markdown_table, summary_table, timed, verdict
+from _bench import SummaryRow, bytecode_env, markdown_table, summary_table, timed, verdict
 
-TARGET_SECONDS = 5.0
+TARGET_SECONDS = 2.0
+TARGET_CPU = 3.0
 TARGET_MB = 10.0
+#: What the main job imports besides curvefold: NumPy and SciPy (contact, layout, FOLD
+#: components, the 3dm's splines), matplotlib (pictures), Pillow (GIF), pygltflib, rhino3dm
+#: (3D models), ezdxf (DXF).
+LIBRARIES = ("numpy", "scipy.spatial", "scipy.sparse.csgraph", "scipy.interpolate", "matplotlib.figure",
+             "matplotlib.backends.backend_agg", "PIL.Image", "pygltflib", "rhino3dm", "ezdxf")
 
 
 def _folder_bytes(folder: Path) -> int:
@@ -56,6 +63,16 @@ def _run_stages(built, folder: Path) -> tuple[dict[str, float], dict[str, float]
         wall[label], cpu[label], _ = _cpu_timed(lambda job=job: job(folder))
     wall["report"], cpu["report"], _ = _cpu_timed(lambda: (folder / "report.html").write_text(report_html({"certificate": [], "files": []})))
     return wall, cpu
+
+
+def _children_cpu(command: list[str], env: dict[str, str]) -> tuple[float, float, subprocess.CompletedProcess]:
+    """(wall seconds, CPU seconds of the command and the processes it waited for, its result)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    done = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime), done
 
 
 def run() -> list[SummaryRow]:
@@ -93,25 +110,31 @@ def run() -> list[SummaryRow]:
           f"edge stretch {sampling.stretch:.2g}, smallest triangle corner {sampling.min_angle:.2f}°)")
     print(markdown_table(["stage", "chosen samples [s]", "chosen samples [CPU s]", "every sample [s]", "ratio"], rows))
 
-    with tempfile.TemporaryDirectory() as c:
-        command = [str(Path(sys.executable).with_name("curvefold")), "vault", "--out", str(Path(c) / "v"), "--json"]
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t0 = time.perf_counter()
-        done = subprocess.run(command, capture_output=True, text=True, check=False)
-        wall = time.perf_counter() - t0
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)  # the command and the job processes it waited for
-        cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    with tempfile.TemporaryDirectory() as c, tempfile.TemporaryDirectory() as cache:
+        env = bytecode_env(cache)
+        command = [str(Path(sys.executable).with_name("curvefold")), "vault", "--out", str(Path(c) / "warm-up"), "--json"]
+        _children_cpu(command, env)  # writes the bytecode cache
+        command[3] = str(Path(c) / "v")
+        wall, cpu, done = _children_cpu(command, env)
         if done.returncode != 0:
             raise RuntimeError(done.stderr)
         size = _folder_bytes(Path(c) / "v") / 1e6
-        timings = json.loads((Path(c) / "v" / "report.json").read_text())["timings"]
+        fold_mb = (Path(c) / "v" / "vault.fold").stat().st_size / 1e6
+        report = json.loads((Path(c) / "v" / "report.json").read_text())
+        if not all(check["passed"] for check in report["certificate"]):
+            raise RuntimeError("the certificate failed")
+        timings = report["timings"]
+        _, imports, _ = _children_cpu([sys.executable, "-c", "import " + ", ".join(LIBRARIES)], env)
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
     print(f"load average of the machine during the run: {load} (on {os.cpu_count()} CPUs)")
-    print(f"`curvefold vault` in a fresh process: {wall:.2f} s wall, {cpu:.2f} CPU s, folder {size:.1f} MB; its own timings: "
-          + ", ".join(f"{k} {v:.2f} s" for k, v in timings.items()))
+    print(f"`curvefold vault` in a fresh process: {wall:.2f} s wall, {cpu:.2f} CPU s, folder {size:.1f} MB (FOLD file {fold_mb:.2f} MB), "
+          f"every check passing; its own timings: " + ", ".join(f"{k} {v:.2f} s" for k, v in timings.items()))
+    print(f"importing its libraries once in a fresh process: {imports:.2f} CPU s ({', '.join(LIBRARIES)})")
     return [
-        SummaryRow("main job", "`curvefold vault`, paper's vault, every format (fresh process)", f"{wall:.1f} s ({cpu:.1f} CPU s)", f"< {TARGET_SECONDS:g} s",
-                   verdict(wall < TARGET_SECONDS)),
+        SummaryRow("main job", "`curvefold vault`, paper's vault, every format (fresh process): wall", f"{wall:.1f} s", f"≤ {TARGET_SECONDS:g} s",
+                   verdict(wall <= TARGET_SECONDS)),
+        SummaryRow("main job", "the same, CPU seconds of the command and its job processes", f"{cpu:.1f} CPU s (importing its libraries: {imports:.1f})",
+                   f"≤ {TARGET_CPU:g} CPU s", verdict(cpu <= TARGET_CPU)),
         SummaryRow("main job", "its folder", f"{size:.1f} MB ({sizes[1] / sizes[0]:.0f}× smaller than on every sample)", f"< {TARGET_MB:g} MB",
                    verdict(size < TARGET_MB)),
         SummaryRow("main job", "all stages in one process, chosen vs every sample", f"{in_process:.1f} s vs {in_process_full:.1f} s", "—", "—"),

@@ -1,6 +1,6 @@
 """Run every benchmark and print one markdown summary table.
 
-Usage: ``python benchmarks/run_all.py [integrator folding arch atlas budget designer main_job mechanics threads]`` (default: all).
+Usage: ``python benchmarks/run_all.py [integrator folding arch atlas budget designer main_job mechanics threads startup]`` (default: all).
 The table at the end can be pasted into the README's performance section.
 """
 
@@ -23,6 +23,7 @@ import bench_folding
 import bench_integrator
 import bench_main_job
 import bench_mechanics
+import bench_startup
 import bench_threads
 from _bench import summary_table
 
@@ -36,6 +37,7 @@ BENCHMARKS = {
     "main_job": bench_main_job,
     "mechanics": bench_mechanics,
     "threads": bench_threads,
+    "startup": bench_startup,
 }
 
 

@@ -10,8 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.testing import assert_allclose
 
 from curvefold.geometry.mesh import Mesh, fold_angles
+from curvefold.io.fold import COORDINATE_RTOL
 
 
 @dataclass(frozen=True)
@@ -202,3 +204,10 @@ def two_sheet_tube(angles_deg=(0.0, 45.0, 90.0)) -> Motion:
         faces_group=np.concatenate([cp.faces_group, cp.faces_group + cp.faces_group.max() + 1]),
     )
     return Motion(both, a.angles_deg, np.concatenate([a.coords, b_coords], axis=1), partners)
+
+
+def assert_written(got, want) -> None:
+    """Coordinates as a FOLD file holds them: within ``COORDINATE_RTOL`` of the sheet's size."""
+    got, want = np.asarray(got, float), np.asarray(want, float)
+    assert got.shape == want.shape
+    assert_allclose(got, want, rtol=0, atol=COORDINATE_RTOL * np.ptp(want, axis=0).max())

@@ -150,14 +150,14 @@ def test_ply_read_back_by_trimesh(tmp_path, tube):
 
 
 @pytest.mark.parametrize(("writer", "name"), [(write_stl, "m.stl"), (write_ply, "m.ply")])
-def test_trimesh_writers_are_atomic(tmp_path, monkeypatch, tube, writer, name):
-    trimesh = pytest.importorskip("trimesh")
+def test_binary_mesh_writers_are_atomic(tmp_path, monkeypatch, tube, writer, name):
+    from curvefold.io import mesh3d
 
     def broken(*args, **kwargs):
         raise RuntimeError("exporter failed")
 
-    monkeypatch.setattr(trimesh.exchange.stl, "export_stl", broken)
-    monkeypatch.setattr(trimesh.exchange.ply, "export_ply", broken)
+    monkeypatch.setattr(mesh3d, "stl_records", broken)
+    monkeypatch.setattr(mesh3d, "ply_bytes", broken)
     with pytest.raises(RuntimeError, match="exporter failed"):
         writer(tmp_path / name, tube.state(1))
     assert list(tmp_path.iterdir()) == []

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import pathlib
+import re
 from pathlib import Path
 
 import numpy as np
@@ -11,10 +12,11 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 import curvefold
-from _meshes import measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
+from _meshes import assert_written, measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
 from _node import run_node
 from curvefold.geometry.mesh import Mesh
 from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
+from curvefold.io.fold import ANGLE_DECIMALS, COORDINATE_RTOL
 from curvefold.kernel.errors import InputError
 
 
@@ -30,6 +32,21 @@ def _write_tube(path: Path, **kw) -> tuple:
     kwargs.update(kw)
     write_fold(path, **kwargs)
     return motion, json.loads(path.read_text())
+
+
+def test_numbers_are_written_to_their_tolerance_and_no_more(tmp_path):
+    motion = oblique_motion()
+    write_fold(tmp_path / "m.fold", crease_pattern=motion.crease_pattern, folded=motion.folded)
+    text = (tmp_path / "m.fold").read_text()
+    doc = json.loads(text)
+    errors = []
+    for frame, (_, mesh) in zip(doc["file_frames"], motion.folded):
+        want = np.asarray(mesh.vertices_coords, float)
+        errors.append(np.abs(np.array(frame["vertices_coords"]) - want).max() / np.ptp(want, axis=0).max())
+        assert np.abs(np.array(frame["edges_foldAngle"]) - mesh.edges_foldAngle).max() <= 0.5 * 10.0**-ANGLE_DECIMALS
+    assert 0 < max(errors) <= 0.5 * COORDINATE_RTOL  # rounded, to half the quantum
+    decimals = [len(number.partition(".")[2]) for number in re.findall(r"-?\d+\.\d+(?![\de])", text)]
+    assert max(decimals) <= 13  # 17 before: every digit of a double
 
 
 
@@ -57,7 +74,7 @@ def test_file_layout(tmp_path):
         assert frame["frame_classes"] == ["foldedForm"]
         assert frame["frame_parent"] == 0 and frame["frame_inherit"] is True
         assert all(len(c) == 3 for c in frame["vertices_coords"])
-        assert_allclose(frame["vertices_coords"], mesh.vertices_coords, rtol=0, atol=0)
+        assert_written(frame["vertices_coords"], mesh.vertices_coords)
 
 
 def test_assignments_and_angles_follow_edge_kind(tmp_path):
@@ -87,7 +104,7 @@ def test_fold_assignments_mountain_valley_from_sign():
 
 def _assert_same_mesh(a: Mesh, b: Mesh, *, coords=True):
     if coords:
-        assert_array_equal(a.vertices_coords, b.vertices_coords)
+        assert_written(a.vertices_coords, b.vertices_coords)
     for name in ("edges_vertices", "faces_vertices", "edges_kind", "faces_group"):
         assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
 
@@ -109,7 +126,7 @@ def test_round_trip(tmp_path, make):
         _assert_same_mesh(got, want)
         assert_array_equal(got.edges_assignment, back.crease_pattern.edges_assignment)  # inherited
         flat = np.isin(got.edges_assignment, ("B", "F"))
-        assert_array_equal(got.edges_foldAngle[~flat], want.edges_foldAngle[~flat])
+        assert_allclose(got.edges_foldAngle[~flat], want.edges_foldAngle[~flat], rtol=0, atol=10.0**-ANGLE_DECIMALS)
         assert_allclose(got.edges_foldAngle[~flat], measured_fold_angles(got)[~flat], atol=1e-9)
     assert back.metadata == {"a": 1.25, "ok": True}
     assert back.unit == "m"
@@ -172,7 +189,7 @@ def test_sheet_fold_folded_is_3d(tmp_path):
     write_sheet_fold(tmp_path / "sheet.fold", motion.state(2))
     doc = json.loads((tmp_path / "sheet.fold").read_text())
     assert doc["frame_classes"] == ["foldedForm"]
-    assert_allclose(doc["vertices_coords"], motion.coords[2], rtol=0, atol=0)
+    assert_written(doc["vertices_coords"], motion.coords[2])
 
 
 # --- writer errors --------------------------------------------------------------------------

@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
+from _meshes import assert_written
 from _node import run_node
 from curvefold import Crease, CurvefoldError, InputError, Lattice, SpaceCurve, Structure
 from curvefold.geometry.mesh import fold_angles
@@ -48,6 +49,7 @@ from curvefold.io import (
     write_sheet_fold,
     write_structure_fold,
 )
+from curvefold.io.fold import ANGLE_DECIMALS
 
 
 def lattice(samples=101, widths=(0.2, 0.15), fold_angle=90.0):
@@ -378,14 +380,15 @@ def test_fold_file_round_trip(tmp_path, tube):
     assert doc["file_title"] == "helix tube" and doc["frame_unit"] == "mm"
     assert all(len(c) == 2 for c in doc["vertices_coords"])
     cp = model.crease_pattern
-    assert_array_equal(back.crease_pattern.vertices_coords, cp.vertices_coords)  # JSON floats round-trip exactly
-    for name in ("edges_vertices", "faces_vertices", "edges_kind", "faces_group", "edges_assignment", "edges_foldAngle"):
+    assert_written(back.crease_pattern.vertices_coords, cp.vertices_coords)  # to 1e-12 of the size, as written
+    for name in ("edges_vertices", "faces_vertices", "edges_kind", "faces_group", "edges_assignment"):
         assert_array_equal(getattr(back.crease_pattern, name), getattr(cp, name), err_msg=name)
+    assert_allclose(back.crease_pattern.edges_foldAngle, cp.edges_foldAngle, rtol=0, atol=10.0**-ANGLE_DECIMALS)
     assert_array_equal(back.seam_partners, model.seam_partners)
     assert back.metadata == model.metadata and back.unit == "mm"
     for (t1, got), (t2, want) in zip(back.folded, model.folded):
         assert t1 == t2
-        assert_array_equal(got.vertices_coords, want.vertices_coords)
+        assert_written(got.vertices_coords, want.vertices_coords)
         fold = got.edges_kind == "fold"
         measured = fold_angles(got.vertices_coords, got.faces_vertices, got.edges_vertices)
         assert_allclose(got.edges_foldAngle[fold], measured[fold], atol=1e-9)
@@ -449,7 +452,8 @@ def test_node_single_sheet_file_for_origami_simulator(tmp_path, tube):
     doc = json.loads(path.read_text())
     assert doc["frame_classes"] == ["creasePattern"] and all(len(c) == 2 for c in doc["vertices_coords"])
     fold = np.array(doc["edges_curvefold:kind"]) == "fold"
-    assert_array_equal(np.array(doc["edges_foldAngle"])[fold], sheet.mesh.edges_foldAngle[fold])  # target angles
+    assert_allclose(np.array(doc["edges_foldAngle"])[fold], sheet.mesh.edges_foldAngle[fold], rtol=0,
+                    atol=10.0**-ANGLE_DECIMALS)  # target angles, as written
     assert set(np.array(doc["edges_assignment"])[fold]) == {"M"}
     report = run_node("check_fold.mjs", str(path))
     assert report["fold"]["same_orientation"]

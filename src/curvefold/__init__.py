@@ -5,33 +5,51 @@ Data flows one way: a :class:`SpaceCurve` (from curvature and torsion) → a :cl
 :class:`Pattern`: widths, regression domain and all else folding keeps) → a
 :class:`Structure` (which cells) → a :class:`State` at a fold angle → meshes, files and
 pictures. :mod:`curvefold.analysis.measure` certifies each stage with numbers.
+
+The names below are imported when first used (``from curvefold import Crease`` imports
+the geometry, not the file writers or SciPy), so the command line starts quickly.
 """
 
-from importlib.metadata import version
+from typing import TYPE_CHECKING
 
-from .analysis import measure
-from .geometry.crease import Crease
-from .geometry.curve import SpaceCurve
-from .geometry.lattice import Lattice, Pattern, RegressionDomain
-from .geometry.mesh import Mesh
-from .geometry.structure import State, Structure
-from .kernel.errors import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError
+from .kernel.lazy import lazy_exports
 
-__version__ = version("curvefold")  # one source: the version in pyproject.toml
+#: Each public name -> the module that defines it.
+_EXPORTS = {
+    "CurvefoldError": ".kernel.errors",
+    "InputError": ".kernel.errors",
+    "RegressionError": ".kernel.errors",
+    "ConvergenceError": ".kernel.errors",
+    "InternalError": ".kernel.errors",
+    "SpaceCurve": ".geometry.curve",
+    "Crease": ".geometry.crease",
+    "Lattice": ".geometry.lattice",
+    "Pattern": ".geometry.lattice",
+    "RegressionDomain": ".geometry.lattice",
+    "Structure": ".geometry.structure",
+    "State": ".geometry.structure",
+    "Mesh": ".geometry.mesh",
+    "measure": ".analysis.measure",
+}
+__all__ = list(_EXPORTS)
 
-__all__ = [
-    "CurvefoldError",
-    "InputError",
-    "RegressionError",
-    "ConvergenceError",
-    "InternalError",
-    "SpaceCurve",
-    "Crease",
-    "Lattice",
-    "Pattern",
-    "RegressionDomain",
-    "Structure",
-    "State",
-    "Mesh",
-    "measure",
-]
+_getattr, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+
+def __getattr__(name: str):
+    if name == "__version__":  # one source: the version in pyproject.toml, read when asked
+        from importlib.metadata import version
+
+        globals()["__version__"] = version("curvefold")
+        return globals()["__version__"]
+    return _getattr(name)
+
+
+if TYPE_CHECKING:  # the same names, for type checkers and editors
+    from .analysis import measure
+    from .geometry.crease import Crease
+    from .geometry.curve import SpaceCurve
+    from .geometry.lattice import Lattice, Pattern, RegressionDomain
+    from .geometry.mesh import Mesh
+    from .geometry.structure import State, Structure
+    from .kernel.errors import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError

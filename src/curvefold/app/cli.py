@@ -26,20 +26,16 @@ import signal
 import sys
 import traceback
 import warnings
-from collections.abc import Sequence
-from importlib.metadata import version
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
 
-from ..analysis.foldcheck import CHECK_SPECS
-from ..analysis.mechanism import RTOL
 from ..io.formats import FORMATS, check_kind, default_formats
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.text import for_terminal
 from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
-from ..vault.atlas import GRID_A, LOCAL_CLUSTER_FROM, workers_spec
 from .design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
 from .designer import SERVER_SPECS
 from .folder import Interrupted, raise_if_interrupted, signals_interrupt
@@ -81,14 +77,45 @@ def _grid(flag: str, text: str, spec: Spec) -> np.ndarray:
 
 class _Parser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line with exit status 2, and which
-    reads ``--a -1e-3`` as a value (any number, not only ``-1`` or ``-.5``)."""
+    reads ``--a -1e-3`` as a value (any number, not only ``-1`` or ``-.5``).
 
-    def __init__(self, *args, **kwargs) -> None:
+    A command's ``flags(parser)``, if given, adds its arguments when the command is parsed
+    or its help shown: the modules their specs come from are imported only for that command.
+    """
+
+    def __init__(self, *args, flags: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs) -> None:
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
+        self._flags = flags
+
+    def _add_flags(self) -> None:
+        if self._flags is not None:
+            flags, self._flags = self._flags, None
+            flags(self)
+
+    def parse_known_args(self, args=None, namespace=None):  # type: ignore[override]
+        self._add_flags()
+        return super().parse_known_args(args, namespace)
+
+    def format_help(self) -> str:
+        self._add_flags()
+        return super().format_help()
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise InputError(f"{self.prog}: {message}")
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed version, read only when asked (the metadata reader is slow to import)."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str, **kwargs) -> None:
+        super().__init__(option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, nargs=0, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        from importlib.metadata import version
+
+        print(f"{parser.prog} {version('curvefold')}")
+        parser.exit()
 
 
 # -- flags generated from the design schema --------------------------------------------------
@@ -218,7 +245,7 @@ def build_parser() -> argparse.ArgumentParser:
         "geometry, folding motion, crease patterns and a measured certificate.",
         epilog="Run 'curvefold vault' with no arguments to build the paper's example vault into ./curvefold-vault.",
     )
-    parser.add_argument("--version", action="version", version=f"%(prog)s {version('curvefold')}")
+    parser.add_argument("--version", action=_Version, help="show the version and exit")
     parser.add_argument("--debug", action="store_true", help=_DEBUG_HELP)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
@@ -252,17 +279,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--fold-angle", metavar="FOLD_ANGLE", help=_VAULT["fold_angle"].describe())
     _add_output(p, None)
 
-    p = sub.add_parser("atlas", help="a grid of vault designs (the paper's Fig. 10)", description="Build vaults over a grid of p_xy and a; write a figure of their forms with the section slopes and a CSV/JSON of their metrics. Invalid designs are recorded with their reason.")
-    grid = f"start:stop:count or a comma-separated list, count {_GRID_COUNT.range}"
-    p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
-    p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
-    p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
-    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
-    p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of {LOCAL_CLUSTER_FROM} designs or more when Dask is installed, else 1)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
-    p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
-    p.add_argument("--force", action="store_true", help=_FORCE_HELP)
-    p.add_argument("--json", action="store_true", help="print a summary as JSON (the records are in atlas.json)")
+    sub.add_parser("atlas", help="a grid of vault designs (the paper's Fig. 10)", description="Build vaults over a grid of p_xy and a; write a figure of their forms with the section slopes and a CSV/JSON of their metrics. Invalid designs are recorded with their reason.",
+                   flags=_add_atlas_flags)
 
     p = sub.add_parser("reproduce", help="the paper's example, paper vs computed", description="Reproduce the paper's vault example (a = 0.3, p_xy = 0.75, 2α = 90°) and compare with the printed values.")
     _add_output(p, None)
@@ -283,7 +301,35 @@ def build_parser() -> argparse.ArgumentParser:
                        "frame: topology, welds (seams and bonds), edge kinds against assignments, M/V/F assignments against the recorded "
                        "and measured dihedral angles, the recorded fold angles, isometry to the crease pattern and face planarity; what "
                        "the file does not hold (a crease pattern, curvefold's keys) is not run, with the reason. With --rebuild, every "
-                       "array against the design it records.")
+                       "array against the design it records.", flags=_add_check_flags)
+
+    p = sub.add_parser("mechanism", help="degrees of freedom of a FOLD file of rigid panels",
+                       description="Build the constraint Jacobian of every folded frame of a FOLD file (edge lengths, the diagonals "
+                       "and the planarity of every polygon, join edges flat, vertices welded where the frames agree: seams and bonds) "
+                       "and report its singular values and internal degrees of freedom (nullity - 6) with the gap between null and "
+                       "nonzero ones. The lengths are the crease pattern's, or the folded form's own when the file holds none. Write "
+                       "such a file with 'curvefold tube|block|vault --panels N'.", flags=_add_mechanism_flags)
+    return parser
+
+
+def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
+    from ..vault.atlas import GRID_A, LOCAL_CLUSTER_FROM, workers_spec
+
+    grid = f"start:stop:count or a comma-separated list, count {_GRID_COUNT.range}"
+    p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
+    p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
+    p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
+    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
+    p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of {LOCAL_CLUSTER_FROM} designs or more when Dask is installed, else 1)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
+    p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
+    p.add_argument("--force", action="store_true", help=_FORCE_HELP)
+    p.add_argument("--json", action="store_true", help="print a summary as JSON (the records are in atlas.json)")
+
+
+def _add_check_flags(p: argparse.ArgumentParser) -> None:
+    from ..analysis.foldcheck import CHECK_SPECS
+
     p.add_argument("file", type=Path, help="a .fold file: a crease pattern, folded frames or both")
     for spec in CHECK_SPECS:
         p.add_argument(_flag(spec), dest=spec.name, metavar=spec.name.upper(), help=spec.describe().replace("%", "%%"))
@@ -291,16 +337,13 @@ def build_parser() -> argparse.ArgumentParser:
                    "memory budget, and compare every array of every frame")
     _add_output(p, None)
 
-    p = sub.add_parser("mechanism", help="degrees of freedom of a FOLD file of rigid panels",
-                       description="Build the constraint Jacobian of every folded frame of a FOLD file (edge lengths, the diagonals "
-                       "and the planarity of every polygon, join edges flat, vertices welded where the frames agree: seams and bonds) "
-                       "and report its singular values and internal degrees of freedom (nullity - 6) with the gap between null and "
-                       "nonzero ones. The lengths are the crease pattern's, or the folded form's own when the file holds none. Write "
-                       "such a file with 'curvefold tube|block|vault --panels N'.")
+
+def _add_mechanism_flags(p: argparse.ArgumentParser) -> None:
+    from ..analysis.mechanism import RTOL
+
     p.add_argument("file", type=Path, help="a .fold file with folded frames (and a crease pattern, or not)")
     p.add_argument("--rtol", type=float, default=RTOL, help=f"rank tolerance relative to the largest singular value (default {RTOL:g})")
     _add_output(p, None)
-    return parser
 
 
 # -- commands ---------------------------------------------------------------------------------
@@ -327,8 +370,8 @@ def _load_design(kind: str, args: argparse.Namespace, *, kinds: Sequence[str] | 
 def _emit(args: argparse.Namespace, payload: dict, lines: Sequence[str]) -> None:
     """Print the result: strict JSON with ``--json``, else the lines (control characters
     escaped). A non-finite number in the result is an error either way
-    (:func:`curvefold.app.outputs.strict_json`)."""
-    from .outputs import strict_json
+    (:func:`curvefold.kernel.json_text.strict_json`)."""
+    from ..kernel.json_text import strict_json
 
     text = strict_json(payload, indent=2)
     print(text if args.json else "\n".join(map(for_terminal, lines)))
@@ -441,7 +484,7 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    from ..analysis.foldcheck import check_fold
+    from ..analysis.foldcheck import CHECK_SPECS, check_fold
     from ..io.fold_reading import read_fold
 
     tolerances = {spec.name: _flag_value(spec, text) for spec in CHECK_SPECS if (text := getattr(args, spec.name)) is not None}
@@ -548,6 +591,7 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
 
 
 def cmd_atlas(args: argparse.Namespace) -> int:
+    from ..vault.atlas import GRID_A, workers_spec
     from .budget import require_atlas_budget
     from .folder import check_output
     from .outputs import write_atlas
@@ -600,6 +644,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             _error(f"interrupted by {signal.Signals(signum).name}")
             return 128 + int(signum)
         except Exception as err:
+            from importlib.metadata import version
+
             hint = "" if debug else " (rerun with --debug for the traceback)"
             _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {version('curvefold')}; "
                    f"please report it with the command you ran{hint}")

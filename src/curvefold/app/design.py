@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import math
 import os
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -500,6 +499,8 @@ def parse_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
         raise InputError(f"{source}: expected TOML text, got {type(text).__name__}")
     if len(text) > MAX_DESIGN_BYTES:
         raise InputError(f"{source}: design text is longer than {MAX_DESIGN_BYTES} characters")
+    import tomllib  # here: its regular expressions are compiled on import
+
     try:
         data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark, which some editors write, is not TOML
     except (RecursionError, MemoryError):

@@ -38,7 +38,6 @@ import tempfile
 import threading
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from importlib.metadata import version
 from pathlib import Path
 
 from ..io.atomic import folder_mode
@@ -190,6 +189,8 @@ def output_folder(target: OutputTarget) -> Iterator[Path]:
     path = target.path
     tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.curvefold-{os.getpid()}-", dir=path.parent))
     try:
+        from importlib.metadata import version
+
         marker = {"curvefold": version("curvefold"), "id": secrets.token_hex(16)}
         (tmp / MARKER).write_text(json.dumps(marker) + "\n", encoding="utf-8")
         yield tmp

@@ -8,52 +8,27 @@ renamed onto it at the end, never replacing what was not checked (see
 
 from __future__ import annotations
 
-import json
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import closing, contextmanager
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from ..analysis.certificate import certify, certify_single_fold
 from ..analysis.mechanism import certified_mechanism
-from ..figures.report import UNITS_SHOWN, plain, report_html
+from ..figures.report import UNITS_SHOWN, report_html
 from ..io.atomic import atomic_write
 from ..io.formats import missing_dependencies
-from ..kernel.errors import InputError, InternalError
+from ..kernel.errors import InputError
+from ..kernel.json_text import strict_json
 from .build import Built
 from .design import Design
 from .folder import OutputTarget, output_folder, raise_if_interrupted
 from .products import exported_fold_angles
 
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json", "default_title"]
-
-
-def strict_json(value, **kwargs) -> str:
-    """JSON text of ``value`` (NumPy values as plain numbers), refusing NaN and infinities.
-
-    Raises
-    ------
-    InternalError
-        A non-finite number in ``value``, named by its key (``result.p_xz = inf``): strict
-        JSON has none, and a result that is not finite is never given as one.
-    """
-    try:
-        return json.dumps(value, allow_nan=False, default=plain, **kwargs)
-    except ValueError:
-        raise InternalError(f"the result holds a number that is not finite: {_non_finite(value)}") from None
-
-
-def _non_finite(value, key: str = "result") -> str | None:
-    """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
-    if isinstance(value, dict):
-        return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return next((found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None)
-    if isinstance(value, (float, np.floating)) and not np.isfinite(value):
-        return f"{key} = {value}"
-    return None
 
 
 def structure_payload(built: Built) -> dict:
@@ -151,7 +126,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
                   workers: int | None = None) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
-    The files are written by job processes while this process computes the certificate.
+    The files are written by job processes while this process computes what they share
+    (:func:`curvefold.app.products.prepare`, while the pictures are drawn) and the certificate.
 
     Parameters
     ----------
@@ -184,7 +160,6 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))
-    resolution = products.resolution(built)
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
     if built.structure is not None and built.structure.lattice.rigid:
@@ -192,9 +167,11 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers)) as done:  # closed at once on any exception
+        prepare = partial(products.prepare, built, formats)
+        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers, prepare=prepare)) as done:  # closed at once on any exception
+            done.refill()  # what the file jobs share, computed here while the drawings are drawn; then the file jobs start
             payload = structure_payload(built)
-            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | resolution | notes
+            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | products.resolution(built) | notes
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]

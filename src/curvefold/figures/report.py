@@ -16,6 +16,7 @@ import re
 import numpy as np
 
 from ..analysis.checks import TITLES
+from ..kernel.json_text import plain
 from ..kernel.text import one_line
 
 __all__ = ["plain", "report_html", "QUANTITIES", "MECHANICS_QUANTITIES", "UNITS_SHOWN", "describe_file", "natural_key"]
@@ -79,15 +80,6 @@ _FILES = (
     (r"-pattern(-p\d+)?\.svg$", "crease pattern page, mm at 1:1, one layer per line kind, scale bar and legend"),
     (r"\.png$", "picture in this report"),
 )
-
-
-def plain(value):
-    """A JSON-ready form of NumPy scalars and arrays (anything else as its text)."""
-    if isinstance(value, (np.floating, np.integer)):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    return str(value)
 
 
 def natural_key(name: str) -> tuple:

@@ -306,7 +306,7 @@ def render_strips(
         strokes += [np.repeat(per_curve, vertices.shape[1] - 1, axis=0), np.tile(rgba(RIM_COLOR), (len(e2), 1))]
         widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
     order = np.argsort(np.concatenate(depth), kind="stable")
-    flat = [p for group in paths for p in group]
+    flat = [p for group in paths for p in readonly(group)]  # read-only views: the scene holds them without copying each
     return Scene(
         tuple(flat[i] for i in order),
         np.concatenate(roles)[order],

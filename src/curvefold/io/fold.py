@@ -60,6 +60,13 @@ __all__ = ["fold_assignments", "fold_document", "model_document", "to_fold", "wr
            "write_structure_fold"]
 
 FILE_SPEC = 1.1
+#: Coordinates are written to this fraction of their sheet's size (the crease pattern's, a
+#: frame's): far below what the checks of a file resolve (``curvefold check``: welds and
+#: rebuilt coordinates to 1e-9 of the size, isometry to 1e-3) and above the rounding of
+#: the geometry (about 1e-15 of the size), with no digits beyond it.
+COORDINATE_RTOL = 1e-12
+#: Decimal places of a fold angle written, in degrees (the checks resolve 1e-9° and more).
+ANGLE_DECIMALS = 10
 
 
 def fold_assignments(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, edges_assignment: np.ndarray) -> np.ndarray:
@@ -183,8 +190,19 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     return xy
 
 
-def _number_lists(a: np.ndarray) -> list:
-    return np.asarray(a, float).tolist()
+def _coordinate_lists(x: np.ndarray) -> list:
+    """Coordinates (V, d) as lists of numbers to :data:`COORDINATE_RTOL` of the sheet's size:
+    rounded to the power of ten at or below it, so a number has no more digits than that holds."""
+    x = np.asarray(x, float)
+    size = float(np.ptp(x, axis=0).max()) if x.size else 0.0
+    if not size > 0:
+        return x.tolist()
+    return np.round(x, int(-np.floor(np.log10(COORDINATE_RTOL * size)))).tolist()
+
+
+def _angle_lists(angles: np.ndarray, zero: np.ndarray) -> list:
+    """Fold angles in degrees to :data:`ANGLE_DECIMALS` places, 0 where ``zero``."""
+    return np.round(np.where(zero, 0.0, np.asarray(angles, float)), ANGLE_DECIMALS).tolist()
 
 
 def _face_lists(faces: np.ndarray) -> list:
@@ -336,18 +354,18 @@ def fold_document(
             "frame_classes": ["foldedForm"],
             "frame_parent": 0,
             "frame_inherit": True,
-            "vertices_coords": _number_lists(x),
-            "edges_foldAngle": np.where(zero, 0.0, angle).tolist(),
+            "vertices_coords": _coordinate_lists(x),
+            "edges_foldAngle": _angle_lists(angle, zero),
         })
 
     return _document(title, {
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
         "frame_unit": unit,
-        "vertices_coords": _number_lists(cp_xy),
+        "vertices_coords": _coordinate_lists(cp_xy),
         "edges_vertices": cp.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
-        "edges_foldAngle": np.where(zero, 0.0, np.asarray(cp.edges_foldAngle, float)).tolist(),
+        "edges_foldAngle": _angle_lists(cp.edges_foldAngle, zero),
         "faces_vertices": _face_lists(cp.faces_vertices),
         "edges_curvefold:kind": cp.edges_kind.tolist(),
         "faces_curvefold:group": np.asarray(cp.faces_group).tolist(),
@@ -403,10 +421,10 @@ def write_sheet_fold(
     return _write_document(path, _document(title, {
         "frame_classes": ["creasePattern" if flat else "foldedForm"],
         "frame_unit": unit,
-        "vertices_coords": _number_lists(x),
+        "vertices_coords": _coordinate_lists(x),
         "edges_vertices": sheet.edges_vertices.tolist(),
         "edges_assignment": assignment.tolist(),
-        "edges_foldAngle": np.where(assignment == "B", 0.0, np.asarray(sheet.edges_foldAngle, float)).tolist(),
+        "edges_foldAngle": _angle_lists(sheet.edges_foldAngle, assignment == "B"),
         "faces_vertices": _face_lists(sheet.faces_vertices),
         "edges_curvefold:kind": sheet.edges_kind.tolist(),
     }))

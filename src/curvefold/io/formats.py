@@ -145,9 +145,9 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
     FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,
                "curvefold.io.models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
     FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _ALL,
-               "curvefold.io.models:model_stl", "model/stl", "trimesh", "export"),
+               "curvefold.io.models:model_stl", "model/stl"),
     FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _ALL,
-               "curvefold.io.models:model_ply", "application/octet-stream", "trimesh", "export"),
+               "curvefold.io.models:model_ply", "application/octet-stream"),
     FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", _S,
                "curvefold.io.gif:write_gif", "image/gif", "matplotlib", "plot"),  # frames drawn with matplotlib's font and Pillow
 )})

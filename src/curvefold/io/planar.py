@@ -76,10 +76,22 @@ def cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def point_segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Distance from points p to segments a–b, all (..., 2) broadcast together; shape (...)."""
-    d = b - a
-    t = np.clip(np.sum((p - a) * d, axis=-1) / np.maximum(np.sum(d * d, axis=-1), 1e-300), 0.0, 1.0)
-    return np.linalg.norm(p - a - t[..., None] * d, axis=-1)
+    """Distance from points p to segments a–b, all (..., 2) broadcast together; shape (...).
+
+    Computed on the x and y components apart (the same operations as sums and norms over
+    the last axis, without their overhead on an axis of two).
+
+    Examples
+    --------
+    >>> point_segment_distance(np.array([[0.0, 1.0], [3.0, 0.0]]), np.zeros(2), np.array([2.0, 0.0])).tolist()
+    [1.0, 1.0]
+    """
+    p, a, b = (np.asarray(v, float) for v in (p, a, b))
+    dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
+    px, py = p[..., 0] - a[..., 0], p[..., 1] - a[..., 1]
+    t = np.clip((px * dx + py * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0.0, 1.0)
+    ex, ey = px - t * dx, py - t * dy
+    return np.sqrt(ex * ex + ey * ey)
 
 
 def distance_to_segments(points: np.ndarray, segments: np.ndarray) -> np.ndarray:

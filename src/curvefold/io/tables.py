@@ -13,23 +13,32 @@ Colours
     3dm), the crease patterns (SVG, DXF, PDF) and the figures: folds red, seams blue,
     boundaries black, rulings green, as in the paper's figures.
 Creator
-    :data:`CREATOR`: the program and version the files name as their creator (FOLD's
-    ``file_creator``, glTF's ``asset.generator``, the 3dm's application, the PDF's creator).
+    ``CREATOR``: the program and version the files name as their creator (FOLD's
+    ``file_creator``, glTF's ``asset.generator``, the 3dm's application, the PDF's creator):
+    ``"curvefold <version>"``, the version from the installed package's metadata, read
+    when first asked (importing the metadata reader would slow every start).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from importlib.metadata import version
 from types import MappingProxyType
 
 from ..kernel.errors import InputError
 
 __all__ = ["PAGES", "UNITS", "COLOURS", "CREATOR", "Unit", "page_mm", "mm_per_unit", "rgb8", "rgba", "rgba8"]
 
-#: What wrote a file: ``"curvefold <version>"``, the version from the installed package's metadata.
-CREATOR = f"curvefold {version('curvefold')}"
+
+def __getattr__(name: str) -> str:
+    """``CREATOR``, read from the package's metadata the first time it is asked for."""
+    if name != "CREATOR":
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from importlib.metadata import version
+
+    globals()["CREATOR"] = creator = f"curvefold {version('curvefold')}"
+    return creator
+
 
 #: Paper sizes, portrait (width, height) in millimetres.
 PAGES: Mapping[str, tuple[float, float]] = MappingProxyType({

@@ -23,12 +23,12 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from fractions import Fraction
+from functools import cache
 from typing import Union
 
 import numpy as np
 
-from .arrays import FrozenArrays
+from .arrays import FrozenArrays, readonly
 from .errors import InputError
 
 __all__ = [
@@ -189,6 +189,8 @@ def difference_step(length: float) -> float:
 
 def _stencil_weights(offsets: range) -> np.ndarray:
     """Weights w of f'(0) ≈ Σ w_k f(k h) / h on the integer nodes ``offsets`` (exact, then float)."""
+    from fractions import Fraction
+
     nodes = list(offsets)
     weights = []
     for k, xk in enumerate(nodes):
@@ -207,8 +209,12 @@ def _stencil_weights(offsets: range) -> np.ndarray:
 
 #: Sixth-order central difference weights for f'(s): Σ c_k (f(s+kh) − f(s−kh)) / h.
 _CENTRAL6 = ((1, 45.0 / 60.0), (2, -9.0 / 60.0), (3, 1.0 / 60.0))
-#: Seven-point stencils on the nodes shift − 3 … shift + 3 (rows: shift = −3 … 3).
-_SHIFTED6 = np.stack([_stencil_weights(range(shift - 3, shift + 4)) for shift in range(-3, 4)])
+@cache
+def _shifted6() -> np.ndarray:
+    """Seven-point stencils on the nodes shift − 3 … shift + 3 (rows: shift = −3 … 3), made when first needed."""
+    return readonly(np.stack([_stencil_weights(range(shift - 3, shift + 4)) for shift in range(-3, 4)]))
+
+
 #: Shifts tried in order: the central stencil first, then the least one-sided.
 _SHIFT_ORDER = (0, 1, -1, 2, -2, 3, -3)
 
@@ -273,7 +279,7 @@ def _shifted(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, *, length: fl
     edge = np.flatnonzero(fits.any(axis=1))
     if edge.size:
         nodes = x[edge, None] + (sigma[edge, None] + np.arange(-3, 4)) * h  # (E, 7)
-        out[edge] = np.einsum("ij,ij->i", _SHIFTED6[sigma[edge] + 3], f(nodes.reshape(-1)).reshape(-1, 7)) / h
+        out[edge] = np.einsum("ij,ij->i", _shifted6()[sigma[edge] + 3], f(nodes.reshape(-1)).reshape(-1, 7)) / h
     return out
 
 

@@ -209,8 +209,6 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
     >>> round(solve_symmetric_arch(0.0).kappa0_s0, 12) == round(float(np.pi), 12)
     True
     """
-    from scipy.optimize import brentq
-
     a = float(a)
     if not np.isfinite(a) or a < 0:
         raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}", parameter="a")
@@ -241,6 +239,8 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
     if found is not None:
         return _verified(a, *found, (lo, hi))
     # Brent on a bracket checked at full accuracy (widened if the coarse scan misled)
+    from scipy.optimize import brentq  # here only: the Chebyshev root above spares start-up SciPy
+
     while f(lo) * f(hi) > 0 and lo > grid[0] - 1e-12:
         lo, hi = lo - (hi - lo), hi + (hi - lo)
     root = float(brentq(f, lo, hi, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200))

@@ -29,7 +29,6 @@ from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import closing, contextmanager
 from dataclasses import dataclass, field, replace
-from importlib.metadata import version
 from itertools import islice
 from typing import TYPE_CHECKING, Any
 
@@ -572,7 +571,9 @@ def _check_workers(client: Any, scheduler: str) -> None:
         client.wait_for_workers(1, timeout=timeout)
     except TimeoutError:
         raise InputError(f"scheduler {scheduler!r} has no worker (waited {timeout:g} s)") from None
-    ours = version("curvefold")
+    from importlib.metadata import version
+
+    ours = version("curvefold")  # this process's (the workers report theirs by _curvefold_version)
     found = client.run(_curvefold_version, on_error="return")
     wrong = {w: v for w, v in sorted(found.items()) if v != ours}
     if wrong:
@@ -583,6 +584,8 @@ def _check_workers(client: Any, scheduler: str) -> None:
 
 def _curvefold_version() -> str:
     """The version of curvefold installed where this runs (on a worker)."""
+    from importlib.metadata import version
+
     return version("curvefold")
 
 

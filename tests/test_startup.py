@@ -1,0 +1,87 @@
+"""Start-up: a quick command imports what it needs, not the heavy libraries of the others.
+
+Each case runs in a fresh interpreter and lists which of :data:`HEAVY` ended up in
+``sys.modules``; an eager import of one of them anywhere on the way (a package's
+``__init__``, the command line's module, a spec a parser reads) makes the case fail. The
+public names stay importable as before: the packages resolve them when first read
+(:mod:`curvefold.kernel.lazy`). Speed itself is measured in ``benchmarks/bench_startup.py``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import subprocess
+import sys
+
+import pytest
+
+import curvefold
+import curvefold.io
+
+#: Libraries only some commands need (fitting, plotting, meshes, DXF).
+HEAVY = ("scipy", "matplotlib", "trimesh", "ezdxf")
+
+
+def imported(code: str, names=HEAVY) -> list[str]:
+    """Which of ``names`` (packages or modules) running ``code`` in a fresh interpreter imports."""
+    probe = f"{code}\nimport json, sys\nprint(json.dumps([n for n in {list(names)!r} if n in sys.modules]))"
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout.splitlines()[-1])
+
+
+def test_the_probe_sees_an_eager_import():
+    assert imported("import curvefold.app.cli\nimport scipy.optimize") == ["scipy"]
+    assert imported("import matplotlib.figure, ezdxf") == ["matplotlib", "ezdxf"]
+    assert imported("import curvefold.io.formats", ["curvefold.io.pattern"]) == []
+    assert imported("import curvefold.io.pattern", ["curvefold.io.pattern"]) == ["curvefold.io.pattern"]
+
+
+CASES = {
+    "import curvefold": "import curvefold",
+    "import curvefold.app.cli": "import curvefold.app.cli",
+    "curvefold --help": "import contextlib, io\nfrom curvefold.app.cli import main\n"
+                        "with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n    main(['--help'])",
+    "curvefold arch --json": "import contextlib, io\nfrom curvefold.app.cli import main\n"
+                             "with contextlib.redirect_stdout(io.StringIO()):\n    assert main(['arch', '--a', '0.3', '--json']) == 0",
+    "a name of curvefold and of curvefold.io": "from curvefold import Crease, Structure, measure\nfrom curvefold.io import FoldFile, CUTTERS",
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_quick_commands_import_no_heavy_library(case):
+    assert imported(CASES[case]) == []
+
+
+#: What the command line's start does not need: the writers, the certificate, the FOLD
+#: check and the package metadata (whose reader imports the email package).
+NOT_AT_START = ("curvefold.io.pattern", "curvefold.io.fold", "curvefold.io.gltf", "curvefold.analysis.checks",
+                "curvefold.analysis.foldcheck", "curvefold.vault.atlas", "importlib.metadata", "tomllib")
+
+
+def test_the_command_line_starts_without_what_other_commands_need():
+    assert imported(CASES["curvefold --help"], NOT_AT_START) == []
+    assert imported(CASES["curvefold arch --json"], NOT_AT_START) == []
+
+
+@pytest.mark.parametrize("package", [curvefold, curvefold.io], ids=lambda p: p.__name__)
+def test_public_names_resolve_to_their_modules(package):
+    for name in package.__all__:
+        value = getattr(package, name)
+        where = importlib.import_module(package._EXPORTS[name], package.__name__)
+        assert value is (where if where.__name__.endswith("." + name) else getattr(where, name)), name
+        assert name in dir(package)
+    with pytest.raises(AttributeError, match=f"module '{package.__name__}' has no attribute 'Nothing'"):
+        package.Nothing  # noqa: B018
+
+
+def test_from_imports_work_as_before():
+    from curvefold import Crease, InputError, __version__, measure
+    from curvefold.geometry.crease import Crease as defined
+    from curvefold.io import write_svg
+    from curvefold.io.pattern import write_svg as written
+    from curvefold.kernel.errors import InputError as raised
+
+    assert (Crease, InputError, write_svg) == (defined, raised, written)
+    assert measure.__name__ == "curvefold.analysis.measure" and __version__ == curvefold.__version__
