@@ -22,7 +22,7 @@ much memory it holds, how fast it stops, and what the page shows after a change.
 
 What a user would otherwise do is run ``curvefold vault`` and open the folder: 4.7 s for
 all files of the paper's vault (README), so the ratios below are against that.
-Targets: p95 ≤ 100 ms for one client; quick requests beside heavy work p95 ≤ 1 s; exit
+Targets: p95 ≤ 100 ms for one client and for 8 concurrent clients; quick requests beside heavy work p95 ≤ 1 s; exit
 within 5 s of SIGTERM leaving nothing; coarse certificate and pattern p95 ≤ 1 s; a frame's
 work within one 60 Hz frame.
 """
@@ -162,8 +162,9 @@ def server_latency() -> tuple[list[SummaryRow], list[list[str]], dict]:
                    f"{1e3 * p95:.0f} ms ({BATCH_SECONDS / p95:.0f}× faster than a batch run)", f"≤ {1e3 * TARGET_P95:.0f} ms",
                    verdict(p95 <= TARGET_P95 and errors_single == 0)),
         SummaryRow("designer", f"{CLIENTS} concurrent clients × {REQUESTS}: p95, errors, memory of every process (resident/proportional MB)",
-                   f"{1e3 * np.percentile(load, 95):.0f} ms, {errors_load} errors, {shown}", "no errors, flat memory",
-                   verdict(errors_load == 0 and memory[-1][1] <= 1.1 * memory[1][1])),
+                   f"{1e3 * np.percentile(load, 95):.0f} ms, {len(results) / wall:.0f} requests/s, {errors_load} errors, {shown}",
+                   f"p95 ≤ {1e3 * TARGET_P95:.0f} ms, no errors, flat memory",
+                   verdict(np.percentile(load, 95) <= TARGET_P95 and errors_load == 0 and memory[-1][1] <= 1.1 * memory[1][1])),
         SummaryRow("designer", "a change beside a heavy request (100,000 panels): p95", f"{1e3 * q95:.0f} ms",
                    f"≤ {1e3 * QUICK_P95:.0f} ms", verdict(q95 <= QUICK_P95 and errors_quick == 0 and still)),
     ]

@@ -27,8 +27,8 @@ What it promises:
 - **Every request within the budget.** Each request is estimated as the command line
   estimates a run (:mod:`curvefold.app.budget`) and refused above the budget, with the
   estimate and what to lower; the heavy jobs running at once hold at most the budget
-  between them (a job waits for memory another frees; quick jobs are small and run one at
-  a time), and a worker that grows past its job's estimate by :data:`WORKER_ALLOWANCE` is
+  between them (a job waits for memory another frees; quick jobs are small, at most
+  :data:`QUICK_WORKERS` at a time), and a worker that grows past its job's estimate by :data:`WORKER_ALLOWANCE` is
   stopped; one that a job leaves larger than :data:`RECYCLE_ABOVE` is replaced.
 - **One request never blocks the others.** Everything that builds runs in worker processes
   (:mod:`curvefold.app.workers`): a quick lane answers previews and the first coarse
@@ -78,6 +78,8 @@ VENDOR_FILES = ("three.module.js", "three.core.js", "addons/controls/OrbitContro
 TIME_LIMIT = SERVER_SPECS[1].default
 #: Seconds a quick request may take.
 QUICK_TIME_LIMIT = 30.0
+#: Workers of the quick lane: one per CPU of a laptop, so that several clients' previews run side by side.
+QUICK_WORKERS = 2
 #: Resident bytes a worker may hold beyond its job's estimate (its own interpreter and caches).
 WORKER_ALLOWANCE = 384 << 20
 #: A worker holding more than this after a job is replaced by a fresh one (its caches go with it).
@@ -197,7 +199,7 @@ class Designer:
     host : str
         The address as the user named it (the ``Host`` headers answered follow from it).
     workers : int, keyword-only
-        Heavy-lane workers (the quick lane has one).
+        Heavy-lane workers (the quick lane has :data:`QUICK_WORKERS`).
     time_limit : float, keyword-only
         Seconds a heavy request may take.
     """
@@ -208,7 +210,7 @@ class Designer:
         self.budget = memory_budget()
         self.reservations = Reservations(self.budget)
         self.answers = _Answers()
-        self.pools = {"quick": Pool(1, name="quick", scratch=self.scratch, preload=PRELOAD, recycle_above=RECYCLE_ABOVE),
+        self.pools = {"quick": Pool(QUICK_WORKERS, name="quick", scratch=self.scratch, preload=PRELOAD, recycle_above=RECYCLE_ABOVE),
                       "heavy": Pool(workers, name="heavy", scratch=self.scratch, preload=PRELOAD, niceness=10, recycle_above=RECYCLE_ABOVE)}
         self.hosts, self.any_address = allowed_hosts(host, sock.getsockname()[1])
         self.app = Guard(self._fastapi(), self.hosts, self.any_address)
@@ -276,7 +278,7 @@ class Designer:
             return self.pools[plan.lane].run(jobs.run, *plan.args, timeout=self.time_limit if heavy else QUICK_TIME_LIMIT,
                                              memory_limit=memory + WORKER_ALLOWANCE, cancelled=gone if heavy else None)
 
-        if not heavy:  # small (at most QUICK_STRIP_SAMPLES), one at a time: never kept waiting for memory
+        if not heavy:  # small (at most QUICK_STRIP_SAMPLES), QUICK_WORKERS at a time: never kept waiting for memory
             return await run()
         await self.reservations.hold(memory, self.time_limit)
         try:
