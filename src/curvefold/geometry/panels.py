@@ -172,6 +172,15 @@ class PanelPattern(FrozenArrays):
         Angle β_k of both fold lines from t_k, radians.
     left, right : (N + 1, 2) ndarray
         Fold-line vectors L_k (toward the crease's turn) and R_k.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> panels = PanelLattice.from_lattice(lat, 4)
+    >>> pattern = panels.pattern
+    >>> pattern.panels, pattern.s.tolist(), pattern.points.shape
+    (4, [0.0, 0.25, 0.5, 0.75, 1.0], (5, 2))
     """
 
     s: np.ndarray
@@ -204,6 +213,20 @@ class PanelPattern(FrozenArrays):
         InputError
             For a malformed polyline, or a vertex whose fold lines would cross the crease
             (a sector angle ≤ 0: too few panels for the crease's turn there).
+
+        Examples
+        --------
+        A straight crease (no turn) with fold lines normal to it:
+
+        >>> p = PanelPattern.from_polyline([0, 1, 2], [[0, 0], [1, 0], [2, 0]], [np.pi / 2] * 3, start_tangent=[1, 0],
+        ...                                end_tangent=[1, 0], left_length=0.1, right_length=0.2)
+        >>> p.left.round(6).tolist(), p.right.round(6).tolist()
+        ([[0.0, 0.1], [0.0, 0.1], [0.0, 0.1]], [[0.0, -0.2], [0.0, -0.2], [0.0, -0.2]])
+        >>> PanelPattern.from_polyline([0, 1], [[0, 0], [0, 0]], [1, 1], start_tangent=[1, 0], end_tangent=[1, 0],
+        ...                            left_length=0.1, right_length=0.2)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: panel crease: vertices 0 and 1 coincide
         """
         s = np.asarray(s, float)
         x = np.asarray(points, float)
@@ -255,6 +278,17 @@ class PanelPattern(FrozenArrays):
         pattern : Pattern
         panels : int
             N ≥ 1.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> PanelPattern.from_pattern(lat.pattern, 2).s.tolist()
+        [0.0, 0.5, 1.0]
+        >>> PanelPattern.from_pattern(lat.pattern, 0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: panels must be ≥ 1 for a panel lattice (0 is the smooth structure), got 0
         """
         n = check_panels(panels)
         m = -(-FLAT_STEPS // n)
@@ -321,6 +355,18 @@ class PanelPattern(FrozenArrays):
         Its last vertex keeps its tangent, the bisector of the crease edges there, so the
         virtual edge after it is the edge it leaves out: it folds exactly as the first
         panels of this pattern do.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> panels.pattern.head(1).s.tolist()
+        [0.0, 0.25]
+        >>> panels.pattern.head(0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: panels must be in [1, 4] for the head of this pattern, got 0
         """
         k = int(panels) + 1
         if not 2 <= k <= len(self.s):
@@ -338,6 +384,15 @@ class PanelPattern(FrozenArrays):
             x_k, L_k, R_k.
         frames : (A, N + 1, 3, 3) ndarray
             Vertex frames, columns t̃, ñ, b̃.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> points, left, right, frames = panels.pattern.fold(np.array([0.0, np.pi / 4]))
+        >>> points.shape, frames.shape, float(np.abs(points[0, :, 2]).max())   # α = 0: the flat pattern
+        ((2, 5, 3), (2, 5, 3, 3), 0.0)
         """
         a = np.asarray(alphas, float).reshape(-1, 1)
         A = len(a)
@@ -373,6 +428,12 @@ class PanelCurve(FramedCurve, FrozenArrays):
         The vertices x_k.
     frames : (N + 1, 3, 3) ndarray
         Vertex frames, columns t̃, ñ, b̃ (see the module notes).
+
+    Examples
+    --------
+    >>> segment = PanelCurve(np.array([0.0, 1.0]), np.array([[0.0, 0, 0], [1, 0, 0]]), np.stack([np.eye(3)] * 2))   # one panel
+    >>> segment.length, segment.tangent.tolist()
+    (1.0, [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
     """
 
     s: np.ndarray
@@ -389,6 +450,14 @@ class PanelCrease:
     curve : PanelCurve
     fold_angle : float
         2α in degrees: the crease's dihedral angle is 180° − 2α along its whole length.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> panels = PanelLattice.from_lattice(lat, 4)
+    >>> panels.crease.fold_angle, panels.crease.curve.points.shape, panels.crease.curve.length
+    (90.0, (5, 3), 1.0)
     """
 
     curve: PanelCurve
@@ -415,6 +484,14 @@ class PanelLattice(FrozenArrays):
         placement ``p`` (:meth:`PanelPattern.fold`).
     source : Lattice or None
         The smooth lattice the panels sample, if any.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> panels = PanelLattice.from_lattice(lat, 4)
+    >>> panels.source is lat, round(float(np.degrees(2 * panels.alpha)), 9), panels.points(np.zeros(2)).shape
+    (True, 90.0, (5, 3))
     """
 
     pattern: PanelPattern
@@ -504,12 +581,34 @@ class PanelLattice(FrozenArrays):
         return self.pattern.domain
 
     def points(self, uv: np.ndarray) -> np.ndarray:
-        """Lattice polylines x_k + u L_k + v R_k for uv (..., 2); shape (..., N + 1, 3)."""
+        """Lattice polylines x_k + u L_k + v R_k for uv (..., 2); shape (..., N + 1, 3).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> panels.points(np.array([[1, 0], [1, 1]])).shape, panels.points(np.zeros(2))[0].tolist()   # vertex 0 of curve 1 stays at the origin
+        ((2, 5, 3), [0.0, 0.0, 0.0])
+        """
         points, left, right, _ = self._state
         return lattice_points(points, left, right, uv)
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
-        """Raise :class:`~curvefold.kernel.errors.RegressionError` unless every polyline uv (..., 2) is valid."""
+        """Raise :class:`~curvefold.kernel.errors.RegressionError` unless every polyline uv (..., 2) is valid.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> panels.check(np.array([[1, 1]])) is None
+        True
+        >>> panels.check(np.array([[20, 0]]))
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0.875, s = 0.875); along this direction the limit is (u, v) = (14.14, 0)
+        """
         check_curves(self.domain, self.pattern.length, uv, name=name)
 
     def topology(self, cell_curves: np.ndarray, faces: str = "quads", *, keep: Sequence[np.ndarray] | None = None) -> Topology:
@@ -523,6 +622,18 @@ class PanelLattice(FrozenArrays):
         ------
         InputError
             If ``keep`` leaves out a vertex of a tube.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> panels.topology(np.array([[0, 1, 3, 2]]), "triangles").faces_vertices.shape   # quads all the same
+        (16, 4)
+        >>> panels.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]])
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: keep: a panel mesh keeps every vertex of its polylines (5 per tube, 1 tubes); two panels joined into one quad are not planar
         """
         n = len(self.s)
         tubes = len(np.reshape(cell_curves, (-1, 4)))
@@ -572,6 +683,15 @@ class PanelLattice(FrozenArrays):
             2α, degrees by default; 0 is the flat crease pattern.
         anchor : {"start", "middle"}, keyword-only
             Vertex 0, or vertex N // 2.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> flat = panels.refold(0)
+        >>> flat.crease.fold_angle, round(float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), 12)
+        (0.0, 0.0)
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         R, shift, _ = self._anchored(np.array([a]), anchor)
@@ -582,6 +702,15 @@ class PanelLattice(FrozenArrays):
         """Lattice polylines uv (K, 2) at many fold angles at once, shape (A, K, N + 1, 3).
 
         Equivalent to ``[self.refold(f, anchor=anchor).points(uv) for f in fold_angles]``.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> frames = panels.fold_points(np.array([[1, 1]]), [0, 90])
+        >>> frames.shape, bool(np.allclose(frames[1], panels.points(np.array([[1, 1]])), atol=1e-12))
+        ((2, 1, 5, 3), True)
         """
         alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
         R, shift, (points, left, right, _) = self._anchored(alphas, anchor)
@@ -590,10 +719,30 @@ class PanelLattice(FrozenArrays):
         return lattice_points(*moved, uv)
 
     def head(self, panels: int) -> PanelLattice:
-        """The lattice of the first ``panels`` panels, in place (:meth:`PanelPattern.head`)."""
+        """The lattice of the first ``panels`` panels, in place (:meth:`PanelPattern.head`).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> head = panels.head(2)
+        >>> head.points(np.zeros(2)).shape, bool(np.allclose(head.points(np.zeros(2)), panels.points(np.zeros(2))[:3], atol=1e-12))
+        ((3, 3), True)
+        """
         return PanelLattice(self.pattern.head(panels), self.alpha, self.rotation, self.translation, self.source)
 
     def moved(self, rotation: np.ndarray, translation: np.ndarray) -> PanelLattice:
-        """This lattice moved rigidly: ``rotation @ x + translation`` of every point."""
+        """This lattice moved rigidly: ``rotation @ x + translation`` of every point.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> panels = PanelLattice.from_lattice(lat, 4)
+        >>> lifted = panels.moved(np.eye(3), [0, 0, 1])
+        >>> (lifted.points(np.zeros(2)) - panels.points(np.zeros(2))).round(12)[0].tolist()
+        [0.0, 0.0, 1.0]
+        """
         R = np.asarray(rotation, float)
         return PanelLattice(self.pattern, self.alpha, R @ self.rotation, R @ self.translation + np.asarray(translation, float), self.source)
