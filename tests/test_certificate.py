@@ -22,7 +22,8 @@ from curvefold.analysis.checks import CHECKS
 from curvefold.analysis.frames import Frame, Shared
 from curvefold.figures.report import report_html
 from curvefold.geometry.curve import gauss_nodes
-from curvefold.geometry.panels import PanelLattice, PanelPattern
+from curvefold.geometry.panel_pattern import PanelPattern
+from curvefold.geometry.panels import PanelLattice
 from curvefold.geometry.topology import Topology
 from curvefold.kernel.lie import GAUSS3_WEIGHTS
 from curvefold.vault.assembly import Vault

@@ -173,6 +173,10 @@ class StructureLattice(Protocol):
         [(3, 1, 5, 3), (3, 1, 5, 3)]
         >>> kinds[0].fold_points(np.array([[1, 1]]), [0]).shape   # one angle: still a leading axis
         (1, 1, 5, 3)
+        >>> kinds[1].fold_points(np.array([[1, 1]]), np.array([-10]))
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: fold_angle must be in [0°, 180°), got -10
         """
 
     # -- what the consumers of a structure ask about its kind -----------------------------------

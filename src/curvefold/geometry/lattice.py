@@ -82,10 +82,9 @@ class RegressionDomain(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
         >>> domain.factor(np.array([1.0, 0.0])).round(6).tolist(), domain.factor(np.zeros(2)).tolist()   # curve 1: factor 1
-        ([0.929289, 0.929289, 0.929289, 0.929289, 0.929289], [1.0, 1.0, 1.0, 1.0, 1.0])
+        ([0.9, 0.9], [1.0, 1.0])
         """
         uv = np.asarray(uv, float)
         return 1.0 - uv[..., :1] * self.a - uv[..., 1:2] * self.b
@@ -95,10 +94,9 @@ class RegressionDomain(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
         >>> domain.margin(np.array([[1.0, 1.0], [20.0, 0.0]])).round(6).tolist()
-        [1.0, -0.414214]
+        [1.0, -1.0]
         """
         return self.factor(uv).min(axis=-1)
 
@@ -107,8 +105,7 @@ class RegressionDomain(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
         >>> domain.contains(np.array([[0.0, 0.0], [20.0, 0.0], [-20.0, 0.0]])).tolist()
         [True, False, True]
         """
@@ -123,10 +120,9 @@ class RegressionDomain(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
         >>> domain.extent(np.array([[1.0, 0.0], [0.0, 1.0]])).round(6).tolist()   # 1 / a; no limit along v
-        [14.142136, inf]
+        [10.0, inf]
         """
         d = np.asarray(direction, float)
         worst = (d[..., :1] * self.a + d[..., 1:2] * self.b).max(axis=-1)
@@ -138,8 +134,7 @@ class RegressionDomain(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
         >>> float(domain.where_limited(np.array([1.0, 0.0])))   # the same all along a circle: the first
         0.0
         """
@@ -150,10 +145,9 @@ class RegressionDomain(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
-        >>> domain.polygon(box=20.0).round(6).tolist()   # the box cut by the line u a − u b = 1
-        [[20.0, 20.0], [-20.0, 20.0], [-20.0, -20.0], [-5.857864, -20.0], [20.0, 5.857864]]
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> domain.polygon(box=20.0).round(6).tolist()   # the box cut by the line 0.1 u − 0.1 v = 1
+        [[-20.0, 20.0], [-20.0, -20.0], [-10.0, -20.0], [20.0, 10.0], [20.0, 20.0]]
         """
         from scipy.spatial import ConvexHull, HalfspaceIntersection
 
@@ -202,10 +196,8 @@ class Pattern(FrozenArrays):
 
     Examples
     --------
-    A helix's widths follow the width law, w_R(t) = w_R(0) exp(τ cot α s):
-
     >>> helix = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90)
-    >>> Pattern.from_crease(helix, 0.1, 0.1).width_right.round(6).tolist()
+    >>> Pattern.from_crease(helix, 0.1, 0.1).width_right.round(6).tolist()   # the width law: w_R(0) exp(τ cot α s)
     [0.1, 0.110517, 0.12214]
     """
 
@@ -382,8 +374,6 @@ class Lattice(FrozenArrays):
         Examples
         --------
         >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
-        >>> Lattice.from_crease(crease, 0.1, 0.1).width_left.tolist()
-        [0.1, 0.1, 0.1, 0.1, 0.1]
         >>> Lattice.from_crease(crease, 2.0, 0.1)
         Traceback (most recent call last):
         ...
@@ -504,12 +494,8 @@ class Lattice(FrozenArrays):
         Examples
         --------
         >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> lat.check(np.array([[1, 1], [-5, 0]])) is None
-        True
-        >>> lat.check(np.array([[20, 0]]))
-        Traceback (most recent call last):
-        ...
-        curvefold.kernel.errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (14.14, 0)
+        >>> lat.check(np.array([[1, 1], [-5, 0]])), lat.check(np.zeros((0, 2)))   # valid curves; no curves (see check_curves)
+        (None, None)
         """
         check_curves(self.domain, self.crease.curve.length, uv, name=name)
 
@@ -561,10 +547,6 @@ class Lattice(FrozenArrays):
         ((2, 1, 5, 3), 0.0)
         >>> bool(np.allclose(frames[1], lat.points(np.array([[1, 0]])), atol=1e-12))   # 90°: the lattice itself
         True
-        >>> lat.fold_points(np.array([[1, 0]]), [-10])
-        Traceback (most recent call last):
-        ...
-        curvefold.kernel.errors.InputError: fold_angle must be in [0°, 180°), got -10
         """
         alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
         points, frames = self._folded_curve1(alphas, anchor)
@@ -593,10 +575,6 @@ class Lattice(FrozenArrays):
         >>> flat = lat.refold(0)   # the crease pattern: curve 1 is the circle of radius 1 / κ_2D in the plane
         >>> flat.crease.fold_angle, float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), round(float(flat.crease.curve.kappa(0.0)), 6)
         (0.0, 0.0, 0.707107)
-        >>> lat.refold(60, anchor="end")
-        Traceback (most recent call last):
-        ...
-        curvefold.kernel.errors.InputError: anchor must be 'start' or 'middle', got 'end'
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         points, frames = self._folded_curve1(np.array([a]), anchor)
@@ -626,8 +604,6 @@ def check_anchor(anchor: str) -> None:
 
     Examples
     --------
-    >>> check_anchor("middle") is None
-    True
     >>> check_anchor("end")
     Traceback (most recent call last):
     ...

@@ -38,7 +38,7 @@ import numpy as np
 from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, gauss_nodes, integrate_frenet
 from ..geometry.lattice import Pattern
-from ..geometry.panels import PanelPattern, check_panels
+from ..geometry.panel_pattern import PanelPattern, check_panels
 from ..kernel.arrays import readonly
 from ..kernel.errors import ConvergenceError, InputError
 from ..kernel.functions import ScalarFunction
@@ -311,7 +311,7 @@ def panel_arch_condition(kappa0_s0: float, a: float, panels: int, *, fold_angle:
     """``(x_N − x_0)·n₀ / |x_N − x_0|`` of the panel arch of κ = 1, τ = a sin(2π s / s₀), s₀ = κ₀ s₀.
 
     The crease pattern of the smooth arch at the design angle 2α (degrees), sampled with
-    ``panels`` panels (:meth:`~curvefold.geometry.panels.PanelPattern.from_pattern`) and
+    ``panels`` panels (:meth:`~curvefold.geometry.panel_pattern.PanelPattern.from_pattern`) and
     folded to 2α; n₀ is the unit normal of its end section at vertex 0. Zero when both end
     sections lie in one plane (see the module notes).
     """

@@ -22,7 +22,8 @@ import numpy as np
 from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, check_samples
 from ..geometry.lattice import Lattice
-from ..geometry.panels import PANELS, PanelLattice
+from ..geometry.panel_pattern import PANELS
+from ..geometry.panels import PanelLattice
 from ..geometry.structure import Structure
 from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
