@@ -39,7 +39,8 @@ from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.text import for_terminal
 from ..kernel.validate import Spec, from_text
 from ..vault.assembly import vault_samples
-from ..vault.atlas import GRID_A, LOCAL_CLUSTER_FROM, workers_spec
+from ..vault.atlas import GRID_A
+from ..vault.cluster import LOCAL_CLUSTER_FROM, workers_spec
 from .design import SCHEMA, Design, design_from_dict, kind_specs, load_design
 from .designer import SERVER_SPECS
 from .folder import Interrupted, raise_if_interrupted, signals_interrupt
