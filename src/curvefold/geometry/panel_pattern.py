@@ -128,7 +128,7 @@ def check_panels(panels: int, *, name: str = "panels") -> int:
 
     Examples
     --------
-    >>> check_panels(4.0)
+    >>> check_panels(4)
     4
     >>> check_panels(0)
     Traceback (most recent call last):

@@ -75,3 +75,12 @@ __all__ = [
 for _name in __all__:
     if getattr(globals()[_name], "__module__", "").startswith(__name__ + "._"):
         globals()[_name].__module__ = __name__
+
+# The doctest finder takes a method for its class's module only, which is now this one while
+# the method's globals are its private module's: the methods' examples are listed here to run.
+__test__ = {
+    f"{_name}.{_attr}": getattr(_value, "__func__", _value)
+    for _name in __all__ if isinstance(globals()[_name], type)
+    for _attr, _value in vars(globals()[_name]).items()
+    if not _attr.startswith("_") and callable(getattr(_value, "__func__", _value)) and getattr(_value, "__doc__", None)
+}
