@@ -17,10 +17,15 @@ from __future__ import annotations
 import doctest
 import importlib
 import inspect
+import os
 import pkgutil
+import subprocess
+import sys
 import textwrap
 import types
 from collections.abc import Iterable, Iterator
+
+import pytest
 
 import curvefold
 
@@ -104,9 +109,9 @@ def test_every_public_callable_of_the_core_has_an_example_that_runs():
 def test_the_core_has_public_callables_to_check():
     """The walk finds what the core exports (a walk that found nothing would pass the test above)."""
     names = {name for name, _ in public_callables(core_modules())}
-    assert {"curvefold.geometry.structure.Structure.state", "curvefold.geometry.lattice.Lattice.refold",
-            "curvefold.geometry.kinds.StructureLattice.fold_points", "curvefold.mechanics.analyse_load",
-            "curvefold.mechanics.Material.crease_stiffness", "curvefold.vault.atlas.sweep"} <= names
+    assert {"curvefold.geometry.Structure.state", "curvefold.geometry.Lattice.refold", "curvefold.geometry.StructureLattice.fold_points",
+            "curvefold.geometry.topology.thin_cells", "curvefold.mechanics.analyse_load", "curvefold.mechanics.Material.crease_stiffness",
+            "curvefold.vault.sweep", "curvefold.vault.cluster.in_order"} <= names
     assert len(names) > 250
 
 
@@ -184,3 +189,87 @@ def test_an_inherited_docstring_counts_where_its_example_runs():
 
     assert inspect.getdoc(Constant.value) == inspect.getdoc(ScalarFunction.value)
     assert inspect.getdoc(ScalarFunction.value) in collected_docstrings(core_modules(["kernel"]))
+
+
+# -- the packages' declared surfaces -------------------------------------------------------------
+
+#: Every package, with the heavy libraries importing it may bring in (measured on main before
+#: the lazy exports: only the mechanics, whose model is scipy.sparse matrices, imported scipy).
+PACKAGES = {
+    "kernel": (),
+    "geometry": (),
+    "vault": (),
+    "io": (),
+    "analysis": (),
+    "figures": (),
+    "mechanics": ("scipy",),
+    "app": (),
+}
+#: Libraries a package import must not bring in unless listed above.
+HEAVY = ("scipy", "matplotlib")
+
+
+def surface_problems(package: types.ModuleType) -> list[str]:
+    """What is wrong with a package's ``__all__``: a name missing, a module, or a name its submodule shadows."""
+    names = getattr(package, "__all__", None)
+    if not names:
+        return [f"{package.__name__} declares no __all__"]
+    out = []
+    submodules = {info.name for info in pkgutil.iter_modules(package.__path__)}
+    for name in names:
+        if name in submodules:
+            out.append(f"{package.__name__}.{name} is also a module's name: importing the module replaces it")
+        elif not hasattr(package, name):
+            out.append(f"{package.__name__}.{name} is in __all__ but cannot be imported")
+        elif inspect.ismodule(getattr(package, name)):
+            out.append(f"{package.__name__}.{name} is a module")
+    missing = set(names) - set(dir(package))
+    if missing:
+        out.append(f"{package.__name__}: dir() leaves out {sorted(missing)}")
+    return out
+
+
+def heavy_imports(module: str, heavy: Iterable[str] = HEAVY, path: str | None = None) -> list[str]:
+    """The libraries of ``heavy`` that ``import module`` brings in, in a fresh interpreter."""
+    code = f"import sys, {module}; print(' '.join(m for m in {tuple(heavy)!r} if m in sys.modules))"
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (path, os.environ.get("PYTHONPATH")) if p))
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120, check=True)
+    return done.stdout.split()
+
+
+@pytest.mark.parametrize("name", PACKAGES)
+def test_every_package_declares_its_public_names(name):
+    package = importlib.import_module(f"curvefold.{name}")
+    assert not surface_problems(package)
+    for item in package.__all__:  # the package's name is its module's object
+        value = getattr(package, item)
+        module = getattr(value, "__module__", None)
+        if module and module.startswith(f"curvefold.{name}.") and hasattr(sys.modules[module], item):
+            assert getattr(sys.modules[module], item) is value
+
+
+@pytest.mark.parametrize("name", PACKAGES)
+def test_importing_a_package_brings_in_no_heavy_library(name):
+    assert set(heavy_imports(f"curvefold.{name}")) <= set(PACKAGES[name])
+
+
+def test_a_package_surface_that_does_not_resolve_is_named(tmp_path):
+    package = tmp_path / "fakepkg"
+    package.mkdir()
+    (package / "part.py").write_text("def shown():\n    return 1\n")
+    (package / "__init__.py").write_text(textwrap.dedent('''
+        import json
+        from curvefold.kernel.exports import lazy_exports
+        __all__, __getattr__, __dir__ = lazy_exports(__name__, {"part": ["shown", "gone", "part"]})
+        '''))
+    sys.path.insert(0, str(tmp_path))
+    try:
+        fake = importlib.import_module("fakepkg")
+        assert surface_problems(fake) == ["fakepkg.gone is in __all__ but cannot be imported",
+                                          "fakepkg.part is also a module's name: importing the module replaces it"]
+        assert fake.shown() == 1
+    finally:
+        sys.path.remove(str(tmp_path))
+        for key in [k for k in sys.modules if k.startswith("fakepkg")]:
+            del sys.modules[key]
+    assert heavy_imports("fakepkg", ("json", "scipy"), path=str(tmp_path)) == ["json"]

@@ -17,42 +17,20 @@ the conversions geometry makes of it (:mod:`curvefold.geometry.fold_arrays`,
 :mod:`curvefold.io.fold_reading`.
 """
 
-from .fold import fold_assignments, to_fold, write_fold, write_sheet_fold, write_structure_fold
-from .fold_reading import FoldFile, read_fold
-from .gltf import write_glb
-from .layout import Layout, layout_sheets, page_size
-from .mesh3d import check_metadata, crease_polylines, write_obj, write_ply, write_stl
-from .models import MODEL_FORMATS, write_3d
-from .cutters import CUTTERS
-from .pattern import PATTERN_FORMATS, layout_pattern, write_dxf, write_layout, write_pattern, write_pdf, write_svg
-from .rhino import write_3dm
+from ..kernel.exports import lazy_exports as _lazy_exports
 
-__all__ = [
-    "CUTTERS",
-    "FoldFile",
-    "Layout",
-    "MODEL_FORMATS",
-    "PATTERN_FORMATS",
-    "check_metadata",
-    "crease_polylines",
-    "fold_assignments",
-    "layout_pattern",
-    "layout_sheets",
-    "page_size",
-    "read_fold",
-    "to_fold",
-    "write_3d",
-    "write_3dm",
-    "write_dxf",
-    "write_fold",
-    "write_glb",
-    "write_layout",
-    "write_obj",
-    "write_pattern",
-    "write_pdf",
-    "write_ply",
-    "write_sheet_fold",
-    "write_stl",
-    "write_structure_fold",
-    "write_svg",
-]
+# The public names by module, imported when first asked for (kernel.exports).
+__all__, __getattr__, __dir__ = _lazy_exports(
+    __name__,
+    {
+        "fold": ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"],
+        "fold_reading": ["FoldFile", "read_fold"],
+        "gltf": ["write_glb"],
+        "layout": ["Layout", "layout_sheets", "page_size"],
+        "mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
+        "models": ["MODEL_FORMATS", "write_3d"],
+        "cutters": ["CUTTERS"],
+        "pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
+        "rhino": ["write_3dm"],
+    },
+)
