@@ -38,13 +38,15 @@ def lazy_exports(package: str, table: Mapping[str, Sequence[str]]) -> tuple[list
 
     Examples
     --------
-    >>> names, get, listed = lazy_exports("curvefold.kernel", {"errors": ["InputError"]})
-    >>> names, get("InputError").__name__, "InputError" in listed()
-    (['InputError'], 'InputError', True)
+    The standard library's ``json`` package, its decoder's error exported anew:
+
+    >>> names, get, listed = lazy_exports("json", {"decoder": ["JSONDecodeError"]})
+    >>> names, get("JSONDecodeError").__name__, "JSONDecodeError" in listed()
+    (['JSONDecodeError'], 'JSONDecodeError', True)
     >>> get("Nothing")
     Traceback (most recent call last):
     ...
-    AttributeError: module 'curvefold.kernel' has no attribute 'Nothing'
+    AttributeError: module 'json' has no attribute 'Nothing'
     """
     where = {name: module for module, names in table.items() for name in names}
     if len(where) != sum(len(names) for names in table.values()):
