@@ -13,6 +13,8 @@ DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
 sys.path.insert(0, str(DOCS / "_ext"))  # curvefold_docs: short names and the gallery's figures
 
+from curvefold_docs import PUBLIC_PACKAGES, public_names  # noqa: E402
+
 project = "curvefold"
 author = "curvefold developers"
 copyright = "2026, curvefold developers"
@@ -52,7 +54,13 @@ numpydoc_xref_param_type = False
 numpydoc_class_members_toctree = False
 
 autosummary_generate = True
+# The module tree is documented whole (every module a page, so that docstrings may name any
+# object by its module): autosummary does not follow __all__, which would drop the modules
+# a package does not list. Each package's page lists its public names instead, the classes
+# and functions of its __all__, each documented on its own page under the package's name
+# (curvefold.geometry.Crease); its module's page leaves it out (curvefold_docs).
 autosummary_ignore_module_all = True
+autosummary_context = {"public": public_names(PUBLIC_PACKAGES)}
 autodoc_default_options = {"members": True, "show-inheritance": True, "ignore-module-all": True}
 autodoc_typehints = "none"
 autodoc_member_order = "bysource"

@@ -26,6 +26,7 @@ from curvefold import InputError
 from curvefold.io.records import csv_records, json_records
 from curvefold.vault import Vault, VaultDesign
 from curvefold.vault import atlas as atlas_module
+from curvefold.vault import cluster as cluster_module
 from curvefold.vault.arch import A_MAX
 from curvefold.vault.atlas import FIELDS, METRICS, Atlas, AtlasGrid, run_atlas, sweep
 
@@ -297,7 +298,7 @@ def test_bugs_are_not_swallowed(where, cluster, monkeypatch):
 
 
 def test_boundary_validation_of_where_the_sweep_runs(cluster):
-    cpus = atlas_module._cpus()
+    cpus = cluster_module._cpus()
     with pytest.raises(InputError, match=rf"workers must be an integer in \[1, {cpus}\] \(the {cpus} CPUs? this process may use\), got {cpus + 1}"):
         run_atlas([0.75], [0.3], workers=cpus + 1)
     with pytest.raises(InputError, match="workers sizes a local cluster; the cluster at scheduler 'tcp://.*' has its own workers, got workers = 2"):
@@ -351,21 +352,21 @@ def test_workers_must_run_this_curvefold(theirs, have, cluster, monkeypatch):
             raise theirs
         return theirs
 
-    monkeypatch.setattr(atlas_module, "_curvefold_version", worker_version)  # what the cluster's workers report
+    monkeypatch.setattr(cluster_module, "_curvefold_version", worker_version)  # what the cluster's workers report
     with pytest.raises(InputError, match=rf"every worker needs curvefold {__version__}, as here; 2 of 2 differ, e.g. tcp://127\.0\.0\.1:\d+ has {have}$"):
         run_atlas([0.75], [0.3], scheduler=cluster.scheduler_address)
 
 
 def test_where_designs_run_by_default(monkeypatch):
-    plan = atlas_module._cluster_plan
-    local = min(2, atlas_module._cpus())
-    assert plan(atlas_module.LOCAL_CLUSTER_FROM, None, None) == (local, None)
-    assert plan(atlas_module.LOCAL_CLUSTER_FROM - 1, None, None) == (1, None)  # a cluster would cost more than it saves
+    plan = cluster_module.cluster_plan
+    local = min(2, cluster_module._cpus())
+    assert plan(cluster_module.LOCAL_CLUSTER_FROM, None, None) == (local, None)
+    assert plan(cluster_module.LOCAL_CLUSTER_FROM - 1, None, None) == (1, None)  # a cluster would cost more than it saves
     assert plan(1, 2, None) == (1, None)  # never more workers than designs
     assert plan(5, None, " tcp://10.0.0.5:8786 ") == (0, "tcp://10.0.0.5:8786")
     # without Dask: the default runs here, and asking for a cluster says what to install
-    monkeypatch.setattr(atlas_module.importlib.util, "find_spec", lambda name, *a: None)
-    assert plan(atlas_module.LOCAL_CLUSTER_FROM, None, None) == (1, None)
+    monkeypatch.setattr(cluster_module.importlib.util, "find_spec", lambda name, *a: None)
+    assert plan(cluster_module.LOCAL_CLUSTER_FROM, None, None) == (1, None)
     for workers, scheduler, what in ((2, None, "workers = 2"), (None, "tcp://10.0.0.5:8786", "scheduler 'tcp://10.0.0.5:8786'")):
         with pytest.raises(ModuleNotFoundError, match=rf"^{what} runs on Dask, which is not installed; install it with: pip install 'curvefold\[dask\]'$"):
             plan(5, workers, scheduler)
@@ -396,7 +397,7 @@ class _Futures:
 @pytest.mark.parametrize("window", [1, 3, 50])
 def test_results_come_in_order_with_at_most_window_outstanding(window):
     futures = _Futures()
-    assert list(atlas_module._in_order(futures.submit, range(20), window)) == [10 * k for k in range(20)]
+    assert list(cluster_module.in_order(futures.submit, range(20), window)) == [10 * k for k in range(20)]
     assert futures.most == min(window, 20)  # a window of 50 holds everything: the count sees it
 
 
@@ -469,7 +470,7 @@ def test_command_line_on_a_cluster_writes_the_same_files(cluster, written, tmp_p
 
 
 def test_command_line_bounds_the_workers(tmp_path):
-    cpus = atlas_module._cpus()
+    cpus = cluster_module._cpus()
     for value in (0, cpus + 1, 50 * cpus):
         r = run("atlas", "--workers", str(value), "--out", str(tmp_path / "out"))
         assert r.returncode == 2

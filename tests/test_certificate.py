@@ -14,6 +14,7 @@ import pytest
 
 import curvefold.geometry.crease as crease_module
 import curvefold.geometry.lattice as lattice_module
+import curvefold.geometry.panel_pattern as panel_pattern_module
 import curvefold.geometry.panels as panels_module
 import curvefold.vault.assembly as assembly
 from curvefold import Crease, InputError, Lattice, SpaceCurve, Structure
@@ -22,7 +23,8 @@ from curvefold.analysis.checks import CHECKS
 from curvefold.analysis.frames import Frame, Shared
 from curvefold.figures.report import report_html
 from curvefold.geometry.curve import gauss_nodes
-from curvefold.geometry.panels import PanelLattice, PanelPattern
+from curvefold.geometry.panel_pattern import PanelPattern
+from curvefold.geometry.panels import PanelLattice
 from curvefold.geometry.topology import Topology
 from curvefold.kernel.lie import GAUSS3_WEIGHTS
 from curvefold.vault.assembly import Vault
@@ -241,7 +243,7 @@ _solve = assembly.solve_symmetric_arch
 
 
 def _fold_lines_off(factor):
-    fold_line_angle = panels_module.fold_line_angle
+    fold_line_angle = panel_pattern_module.fold_line_angle
     return lambda turning, beta, alpha: factor * fold_line_angle(turning, beta, alpha)
 
 
@@ -298,7 +300,7 @@ DAMAGES = {
                                               lambda: tube(widths=(0.78, 0.65)), {"frame_agreement", "regression", "tube_closure"}),
     "refolding keeps the torsion": ((Lattice, "_folded_curve1", _torsion_kept), tube, {"developability", "fold_angles"}),
     # rigid panels: exact checks, tolerances at rounding
-    "fold lines folded by 1.000001 rho": ((panels_module, "fold_line_angle", _fold_lines_off(1 + 1e-6)), panel_tube,
+    "fold lines folded by 1.000001 rho": ((panel_pattern_module, "fold_line_angle", _fold_lines_off(1 + 1e-6)), panel_tube,
                                           {"panel_isometry", "panel_planarity", "mechanism_dof", "mechanism_clearance"}),
     "vertices not flat-foldable (left fold lines turned 1e-3 rad)": ((PanelPattern, "from_polyline", classmethod(_left_fold_lines_turned)),
                                                                     panel_tube, {"panel_isometry", "panel_planarity", "mechanism_dof"}),

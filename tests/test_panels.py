@@ -22,7 +22,8 @@ from curvefold import Crease, Lattice, SpaceCurve, Structure
 from curvefold.app.build import build, vault_design
 from curvefold.app.design import parse_design
 from curvefold.geometry.mesh import fold_angles
-from curvefold.geometry.panels import PanelLattice, PanelPattern, fold_line_angle
+from curvefold.geometry.panel_pattern import PanelPattern, fold_line_angle
+from curvefold.geometry.panels import PanelLattice
 from curvefold.geometry.sampling import choose_sampling
 from curvefold.geometry.sheets import sheets
 from curvefold.io import layout_pattern, to_fold, write_3d, write_structure_fold

@@ -12,28 +12,21 @@ the geometry, not the file writers or SciPy), so the command line starts quickly
 
 from typing import TYPE_CHECKING
 
-from .kernel.lazy import lazy_exports
+from .kernel.exports import lazy_exports as _lazy_exports
 
-#: Each public name -> the module that defines it.
-_EXPORTS = {
-    "CurvefoldError": ".kernel.errors",
-    "InputError": ".kernel.errors",
-    "RegressionError": ".kernel.errors",
-    "ConvergenceError": ".kernel.errors",
-    "InternalError": ".kernel.errors",
-    "SpaceCurve": ".geometry.curve",
-    "Crease": ".geometry.crease",
-    "Lattice": ".geometry.lattice",
-    "Pattern": ".geometry.lattice",
-    "RegressionDomain": ".geometry.lattice",
-    "Structure": ".geometry.structure",
-    "State": ".geometry.structure",
-    "Mesh": ".geometry.mesh",
-    "measure": ".analysis.measure",
-}
-__all__ = list(_EXPORTS)
+# The public names by package, imported when first asked for (kernel.exports).
+__all__, _getattr, _dir = _lazy_exports(
+    __name__,
+    {
+        "kernel": ["CurvefoldError", "InputError", "RegressionError", "ConvergenceError", "InternalError"],
+        "geometry": ["SpaceCurve", "Crease", "Lattice", "Pattern", "RegressionDomain", "Structure", "State", "Mesh"],
+    },
+)
+__all__ = [*__all__, "measure"]
 
-_getattr, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+def __dir__() -> list[str]:
+    return sorted({*_dir(), "measure", "__version__"})
 
 
 def __getattr__(name: str):
@@ -42,14 +35,14 @@ def __getattr__(name: str):
 
         globals()["__version__"] = version("curvefold")
         return globals()["__version__"]
+    if name == "measure":  # a module
+        from .analysis import measure
+
+        return measure
     return _getattr(name)
 
 
 if TYPE_CHECKING:  # the same names, for type checkers and editors
     from .analysis import measure
-    from .geometry.crease import Crease
-    from .geometry.curve import SpaceCurve
-    from .geometry.lattice import Lattice, Pattern, RegressionDomain
-    from .geometry.mesh import Mesh
-    from .geometry.structure import State, Structure
-    from .kernel.errors import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError
+    from .geometry import Crease, Lattice, Mesh, Pattern, RegressionDomain, SpaceCurve, State, Structure
+    from .kernel import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError

@@ -313,7 +313,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
-    from ..vault.atlas import GRID_A, LOCAL_CLUSTER_FROM, workers_spec
+    from ..vault.atlas import GRID_A
+    from ..vault.cluster import LOCAL_CLUSTER_FROM, workers_spec
 
     grid = f"start:stop:count or a comma-separated list, count {_GRID_COUNT.range}"
     p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
@@ -591,7 +592,8 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
 
 
 def cmd_atlas(args: argparse.Namespace) -> int:
-    from ..vault.atlas import GRID_A, workers_spec
+    from ..vault.atlas import GRID_A
+    from ..vault.cluster import workers_spec
     from .budget import require_atlas_budget
     from .folder import check_output
     from .outputs import write_atlas

@@ -50,7 +50,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ..geometry.panels import PANELS
+from ..geometry.panel_pattern import PANELS
 from ..io.formats import OUTPUT_SPECS, check_scale, default_formats
 from ..io.reading import read_bytes
 from ..kernel.errors import InputError

@@ -57,7 +57,15 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
 
 
 def contact_scales(lattice) -> tuple[float, float]:
-    """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four times its largest."""
+    """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four times its largest.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.2)
+    >>> contact_scales(lat)
+    (0.05, 0.8)
+    """
     w_min = float(min(lattice.width_left.min(), lattice.width_right.min()))
     return 0.5 * w_min, 4 * max(float(lattice.width_left.max()), float(lattice.width_right.max()))
 
@@ -79,6 +87,18 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     distance : float
         ``inf`` when no far-apart parts are within ``radius``, NaN when a point is not finite.
     where : (curve, sample, curve, sample) or None
+
+    Examples
+    --------
+    Curves 0 and 2, two lattice steps apart, pass 0.01 from each other; curve 1 is far:
+
+    >>> x = np.linspace(0, 1, 3)
+    >>> curves = np.stack([np.stack([x, 0 * x, 0 * x + z], axis=-1) for z in (0.0, 1.0, 0.01)])
+    >>> uv = np.array([[0, 0], [1, 0], [2, 0]])
+    >>> closest_far(curves, uv, radius=0.1, reach=10.0, samples=3)
+    (0.01, (0, 0, 2, 0))
+    >>> closest_far(curves[:2], uv[:2], radius=0.1, reach=10.0, samples=3)   # nothing far apart within the radius
+    (inf, None)
     """
     idx = np.unique(np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int))
     points = vertices[:, idx].reshape(-1, 3)

@@ -47,6 +47,15 @@ def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_ang
         Whether ``fold_angle`` is in degrees (default) or radians.
     allow_flat : bool, keyword-only
         Accept 2α = 0 (the flat, two-ply state); the range is then [0°, 180°).
+
+    Examples
+    --------
+    >>> round(float(half_angle(90.0)), 12), float(half_angle(0.0, allow_flat=True))   # the flat state: α = 0
+    (0.785398163397, 0.0)
+    >>> half_angle(180.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: fold_angle must be in (0°, 180°), got 180.0 (2α = 180° would need infinite curvature κ = κ_2D / cos α)
     """
     try:
         value = float(fold_angle)
@@ -58,7 +67,8 @@ def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_ang
     if not np.isfinite(full) or full < 0 or (full == 0 and not allow_flat) or full >= np.pi:
         extra = " (2α = 180° would need infinite curvature κ = κ_2D / cos α)" if np.isfinite(full) and full >= np.pi else \
             " (0 in radians: below the smallest positive float)" if full == 0 and value != 0 else ""
-        raise InputError(f"{name} must be in {low}{unit}, {top:g}{unit}), got {fold_angle!r}{extra}")
+        shown = fold_angle.item() if isinstance(fold_angle, np.generic) else fold_angle  # -10, not np.int64(-10)
+        raise InputError(f"{name} must be in {low}{unit}, {top:g}{unit}), got {shown!r}{extra}")
     return 0.5 * full
 
 
@@ -126,6 +136,16 @@ class Crease(FrozenArrays):
         The crease.
     alpha, beta_left, beta_right : ScalarFunction
         α(s), β_L(s), β_R(s) in radians, with their derivatives.
+
+    Examples
+    --------
+    A unit circle folded at 90°, then a crease folded from its pattern:
+
+    >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+    >>> crease.fold_angle, crease.s.tolist()
+    (90.0, [0.0, 0.5, 1.0])
+    >>> Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=5).fold_angle is None   # α from an ODE
+    True
     """
 
     curve: SpaceCurve
@@ -216,6 +236,22 @@ class Crease(FrozenArrays):
         InputError
             If κ_2D ≤ 0, a β leaves (0°, 180°), or α(s) leaves (0°, 90°) (the message
             gives the arc length where it does).
+
+        Examples
+        --------
+        Rulings normal to the crease on both sides keep α constant (a planar crease, τ = 0);
+        unequal ones make α grow along it:
+
+        >>> c = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=5)
+        >>> np.degrees(2 * c.alpha(c.s)).round(6).tolist(), round(float(np.abs(c.curve.tau(c.s)).max()), 12)
+        ([60.0, 60.0, 60.0, 60.0, 60.0], 0.0)
+        >>> c = Crease.from_pattern(0.5, 60.0, 120.0, 1.0, fold_angle=60.0, samples=3)
+        >>> np.degrees(2 * c.alpha(c.s)).round(6).tolist()
+        [60.0, 70.569028, 83.722504]
+        >>> Crease.from_pattern(0.5, 0.0, 90.0, 1.0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: beta_left must be in (0°, 180°); at s = 0 it is 0°
         """
         from scipy.integrate import solve_ivp
 
@@ -335,18 +371,45 @@ class Crease(FrozenArrays):
         return readonly(self.curve.kappa(self.s) * np.cos(self.alpha(self.s)))
 
     def rulings(self) -> tuple[np.ndarray, np.ndarray]:
-        """Unit ruling directions r_L, r_R (Eqs. 5–6), each shape (n, 3)."""
+        """Unit ruling directions r_L, r_R (Eqs. 5–6), each shape (n, 3).
+
+        Examples
+        --------
+        A planar circle folded at 90°: rulings normal to the tangent T = (1, 0, 0), at 45° to the plane:
+
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+        >>> left, right = crease.rulings()
+        >>> left[0].round(6).tolist(), right[0].round(6).tolist()
+        ([0.0, 0.707107, 0.707107], [0.0, -0.707107, 0.707107])
+        """
         a, bl, br = self.alpha(self.s), self.beta_left(self.s), self.beta_right(self.s)
         return ruling_vectors(self.curve.frames, a, bl, br)
 
     def normals(self) -> tuple[np.ndarray, np.ndarray]:
-        """Unit surface normals p_L, p_R at the crease (Eqs. 7–8), each shape (n, 3)."""
+        """Unit surface normals p_L, p_R at the crease (Eqs. 7–8), each shape (n, 3).
+
+        Examples
+        --------
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+        >>> left, right = crease.normals()
+        >>> left[0].round(6).tolist(), right[0].round(6).tolist()
+        ([0.0, -0.707107, 0.707107], [0.0, 0.707107, 0.707107])
+        """
         a = self.alpha(self.s)[:, None]
         N, B = self.curve.normal, self.curve.binormal
         return -np.sin(a) * N + np.cos(a) * B, np.sin(a) * N + np.cos(a) * B
 
     def regression_rates(self) -> tuple[np.ndarray, np.ndarray]:
-        """1 / w_lim on the left and right (Eqs. 14–15), each shape (n,); ≤ 0 means no limit."""
+        """1 / w_lim on the left and right (Eqs. 14–15), each shape (n,); ≤ 0 means no limit.
+
+        Examples
+        --------
+        A unit circle at 90°: ±κ_2D = ±cos 45°, the right side has no curve of regression:
+
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+        >>> [r.round(6).tolist() for r in crease.regression_rates()]
+        [[0.707107, 0.707107, 0.707107], [-0.707107, -0.707107, -0.707107]]
+        """
         s = self.s
         k2 = self.kappa_2d
         bl, br = self.beta_left(s), self.beta_right(s)
@@ -356,16 +419,42 @@ class Crease(FrozenArrays):
         """Width from the crease to the curve of regression, w_lim_L and w_lim_R, shape (n,).
 
         +∞ where that side has no curve of regression.
+
+        Examples
+        --------
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+        >>> [w.round(6).tolist() for w in crease.regression_limits()]   # 1 / cos 45° and none
+        [[1.414214, 1.414214, 1.414214], [inf, inf, inf]]
         """
         return tuple(np.where(r <= 0, np.inf, 1.0 / np.where(r <= 0, 1.0, r)) for r in self.regression_rates())  # NaN stays NaN
 
     def ruling_limits(self) -> tuple[np.ndarray, np.ndarray]:
-        """Ruling length from the crease to the curve of regression, w_lim / sin β, shape (n,)."""
+        """Ruling length from the crease to the curve of regression, w_lim / sin β, shape (n,).
+
+        Examples
+        --------
+        Rulings normal to the crease (β = 90°) are as long as the width:
+
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+        >>> [w.round(6).tolist() for w in crease.ruling_limits()]
+        [[1.414214, 1.414214, 1.414214], [inf, inf, inf]]
+        """
         wl, wr = self.regression_limits()
         return wl / np.sin(self.beta_left(self.s)), wr / np.sin(self.beta_right(self.s))
 
     def dihedral_angle(self, quadrant: Literal["L+R+", "L-R+", "L-R-", "L+R-"] = "L+R+") -> np.ndarray:
-        """Interior angle between the two surfaces of a quadrant, shape (n,): π − 2α or 2α."""
+        """Interior angle between the two surfaces of a quadrant, shape (n,): π − 2α or 2α.
+
+        Examples
+        --------
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=2), fold_angle=60)
+        >>> np.degrees(crease.dihedral_angle()).round(6).tolist(), np.degrees(crease.dihedral_angle("L-R+")).round(6).tolist()
+        ([120.0, 120.0], [60.0, 60.0])
+        >>> crease.dihedral_angle("up")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: quadrant must be one of L+R+, L-R+, L-R-, L+R-, got 'up'
+        """
         kind = _quadrant(quadrant)[2]
         a = self.alpha(self.s)
         return np.pi - 2 * a if kind == "fold" else 2 * a
@@ -380,6 +469,17 @@ class Crease(FrozenArrays):
         ------
         RegressionError
             If the width reaches a curve of regression.
+
+        Examples
+        --------
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3), fold_angle=90)
+        >>> points = crease.surface(width=0.1)
+        >>> points.shape, bool(np.array_equal(points[0, 0], crease.curve.points))   # the first ruling point is the crease
+        ((2, 2, 3, 3), True)
+        >>> crease.surface(width=2.0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.RegressionError: width on the left must stay below the regression limit 1.41421 (reached at s = 0), got 2
         """
         sign_l, sign_r, _ = _quadrant(quadrant)
         widths = np.broadcast_to(np.asarray(width, float), (2,))

@@ -58,6 +58,16 @@ def integrate_frenet(
     points : (..., n, 3) ndarray
     frames : (..., n, 3, 3) ndarray
         Columns T, N, B at every grid value.
+
+    Examples
+    --------
+    Half a unit circle in two steps of π/2, and a straight line (κ = τ = 0):
+
+    >>> points, frames = integrate_frenet(np.linspace(0, np.pi, 3), np.ones((2, 3)), np.zeros((2, 3)))
+    >>> (points.round(6) + 0.0).tolist(), frames.shape
+    ([[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 2.0, 0.0]], (3, 3, 3))
+    >>> integrate_frenet(np.linspace(0, 1, 3), np.zeros((2, 3)), np.zeros((2, 3)))[0].tolist()
+    [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]
     """
     motions = integrate_motions(grid, kappa_nodes, tau_nodes, speed_nodes=speed_nodes, origin=origin, frame=frame)
     points = np.empty(motions.shape[1:] + (3,))
@@ -106,6 +116,12 @@ class FramedCurve:
 
     For classes holding ``s`` (n,), the curve parameter of the samples, and ``frames``
     (n, 3, 3), rotations whose columns are the tangent, normal and binormal.
+
+    Examples
+    --------
+    >>> arc = SpaceCurve.from_curvature(1.0, 0.0, 2.0, samples=3)   # a SpaceCurve is a FramedCurve
+    >>> arc.length, arc.tangent[0].tolist(), arc.normal[0].tolist(), arc.binormal[0].tolist()
+    (2.0, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])
     """
 
     @property
@@ -145,6 +161,16 @@ class SpaceCurve(FramedCurve, FrozenArrays):
         Rotation matrices whose columns are T, N, B.
     kappa, tau : ScalarFunction
         Curvature and torsion as functions of s.
+
+    Examples
+    --------
+    >>> helix = SpaceCurve.from_curvature(1.0, 1.0, np.pi, samples=3)
+    >>> helix.s.round(6).tolist(), helix.points.shape, helix.points.flags.writeable
+    ([0.0, 1.570796, 3.141593], (3, 3), False)
+    >>> SpaceCurve.from_curvature(0.0, 0.0, 1.0)   # a straight line has no Frenet frame
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: kappa must be > 0 everywhere (the Frenet frame needs it); at s = 0 it is 0
     """
 
     s: np.ndarray

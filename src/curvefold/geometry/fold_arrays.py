@@ -58,6 +58,16 @@ class FoldArrays(FrozenArrays):
         The design angle 2α whose fold angles the crease pattern carries, degrees.
     fold_angles : (A,) ndarray
         2α of the folded frames, degrees.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> from curvefold.geometry.fold_arrays import fold_arrays
+    >>> arrays = fold_arrays(tube, fold_angles=[0, 45])
+    >>> arrays.fold_angle, arrays.fold_angles.tolist(), arrays.bonds.shape   # a single tube has no bonds
+    (90.0, [0.0, 45.0], (0, 2))
     """
 
     crease_pattern: Mesh

@@ -36,6 +36,15 @@ class FoldedCrease(Protocol):
 
     :class:`~curvefold.geometry.crease.Crease` and
     :class:`~curvefold.geometry.panels.PanelCrease` satisfy it.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> from curvefold.geometry.panels import PanelLattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+    >>> [(isinstance(k.crease, FoldedCrease), k.crease.fold_angle, k.crease.curve.points.shape) for k in kinds]
+    [(True, 90.0, (5, 3)), (True, 90.0, (5, 3))]
     """
 
     @property
@@ -92,21 +101,83 @@ class StructureLattice(Protocol):
         """The (u, v) of the lattice curves free of regression."""
 
     def points(self, uv: np.ndarray) -> np.ndarray:
-        """The lattice curves uv (..., 2) at this fold angle, shape (..., n, 3)."""
+        """The lattice curves uv (..., 2) at this fold angle, shape (..., n, 3).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> from curvefold.geometry.panels import PanelLattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> [k.points(np.array([[0, 0], [1, 1]])).shape for k in kinds]
+        [(2, 5, 3), (2, 5, 3)]
+        """
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
-        """Raise :class:`~curvefold.kernel.errors.RegressionError` unless every curve uv (..., 2) is valid."""
+        """Raise :class:`~curvefold.kernel.errors.RegressionError` unless every curve uv (..., 2) is valid.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> from curvefold.geometry.panels import PanelLattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> [k.check(np.array([[1, 1]])) for k in kinds]
+        [None, None]
+        >>> [k.check(np.array([[20, 0]])) for k in kinds]   # past the curve of regression
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (14.14, 0)
+        """
 
     def topology(self, cell_curves: np.ndarray, faces: Literal["triangles", "quads"] = "triangles", *,
                  keep: Sequence[np.ndarray] | None = None) -> Topology:
-        """The mesh of the cells whose corners 1–4 are the curves ``cell_curves`` (K, 4)."""
+        """The mesh of the cells whose corners 1–4 are the curves ``cell_curves`` (K, 4).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> from curvefold.geometry.panels import PanelLattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> [k.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape for k in kinds]   # triangles; planar panels
+        [(32, 3), (16, 4)]
+        """
 
     def refold(self, fold_angle: float, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> StructureLattice:
-        """The same lattice rigidly folded to 2α ∈ [0°, 180°); 0 is the flat crease pattern."""
+        """The same lattice rigidly folded to 2α ∈ [0°, 180°); 0 is the flat crease pattern.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> from curvefold.geometry.panels import PanelLattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> [(type(k.refold(60)).__name__, round(k.refold(60).crease.fold_angle, 9)) for k in kinds]
+        [('Lattice', 60.0), ('PanelLattice', 60.0)]
+        >>> [round(float(np.abs(k.refold(0).points(np.array([[1, 1]]))[..., 2]).max()), 12) for k in kinds]   # flat
+        [0.0, 0.0]
+        """
 
     def fold_points(self, uv: np.ndarray, fold_angles: np.ndarray, *, degrees: bool = True,
                     anchor: Literal["start", "middle"] = "start") -> np.ndarray:
-        """The curves uv (K, 2) at many fold angles (A,) at once, shape (A, K, n, 3)."""
+        """The curves uv (K, 2) at many fold angles (A,) at once, shape (A, K, n, 3).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> from curvefold.geometry.panels import PanelLattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> [k.fold_points(np.array([[1, 1]]), [0, 45, 90]).shape for k in kinds]
+        [(3, 1, 5, 3), (3, 1, 5, 3)]
+        >>> kinds[0].fold_points(np.array([[1, 1]]), [0]).shape   # one angle: still a leading axis
+        (1, 1, 5, 3)
+        >>> kinds[1].fold_points(np.array([[1, 1]]), np.array([-10]))
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: fold_angle must be in [0°, 180°), got -10
+        """
 
     # -- what the consumers of a structure ask about its kind -----------------------------------
     @property

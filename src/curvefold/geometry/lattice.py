@@ -59,6 +59,13 @@ class RegressionDomain(FrozenArrays):
         Curve parameter of the constraints.
     a, b : (n,) ndarray
         ``w_L(t) / w_lim_L(t)`` and ``w_R(t) / w_lim_R(t)`` (signed; ≤ 0 means no limit).
+
+    Examples
+    --------
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+    >>> domain.a.round(6).tolist(), domain.b.round(6).tolist()
+    ([0.070711, 0.070711, 0.070711, 0.070711, 0.070711], [-0.070711, -0.070711, -0.070711, -0.070711, -0.070711])
     """
 
     t: np.ndarray
@@ -71,16 +78,37 @@ class RegressionDomain(FrozenArrays):
         super().__post_init__()
 
     def factor(self, uv: np.ndarray) -> np.ndarray:
-        """``1 − u a(t) − v b(t)`` for points uv (..., 2); shape (..., n)."""
+        """``1 − u a(t) − v b(t)`` for points uv (..., 2); shape (..., n).
+
+        Examples
+        --------
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> domain.factor(np.array([1.0, 0.0])).round(6).tolist(), domain.factor(np.zeros(2)).tolist()   # curve 1: factor 1
+        ([0.9, 0.9], [1.0, 1.0])
+        """
         uv = np.asarray(uv, float)
         return 1.0 - uv[..., :1] * self.a - uv[..., 1:2] * self.b
 
     def margin(self, uv: np.ndarray) -> np.ndarray:
-        """Smallest speed factor over t for points uv (..., 2); > 0 inside, shape (...)."""
+        """Smallest speed factor over t for points uv (..., 2); > 0 inside, shape (...).
+
+        Examples
+        --------
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> domain.margin(np.array([[1.0, 1.0], [20.0, 0.0]])).round(6).tolist()
+        [1.0, -1.0]
+        """
         return self.factor(uv).min(axis=-1)
 
     def contains(self, uv: np.ndarray) -> np.ndarray:
-        """Whether the lattice curves uv (..., 2) are free of regression, shape (...)."""
+        """Whether the lattice curves uv (..., 2) are free of regression, shape (...).
+
+        Examples
+        --------
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> domain.contains(np.array([[0.0, 0.0], [20.0, 0.0], [-20.0, 0.0]])).tolist()
+        [True, False, True]
+        """
         return self.margin(uv) > 0
 
     def extent(self, direction: np.ndarray) -> np.ndarray:
@@ -89,6 +117,12 @@ class RegressionDomain(FrozenArrays):
         Parameters
         ----------
         direction : (..., 2) array_like
+
+        Examples
+        --------
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> domain.extent(np.array([[1.0, 0.0], [0.0, 1.0]])).round(6).tolist()   # 1 / a; no limit along v
+        [10.0, inf]
         """
         d = np.asarray(direction, float)
         worst = (d[..., :1] * self.a + d[..., 1:2] * self.b).max(axis=-1)
@@ -96,11 +130,25 @@ class RegressionDomain(FrozenArrays):
             return np.where(worst > 0, 1.0 / np.where(worst > 0, worst, 1.0), np.inf)
 
     def where_limited(self, uv: np.ndarray) -> np.ndarray:
-        """Curve parameter t where the speed factor of uv (..., 2) is smallest, shape (...)."""
+        """Curve parameter t where the speed factor of uv (..., 2) is smallest, shape (...).
+
+        Examples
+        --------
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> float(domain.where_limited(np.array([1.0, 0.0])))   # the same all along a circle: the first
+        0.0
+        """
         return self.t[self.factor(uv).argmin(axis=-1)]
 
     def polygon(self, box: float = 10.0) -> np.ndarray:
-        """Vertices (K, 2) of the domain clipped to ``|u|, |v| ≤ box``, counter-clockwise."""
+        """Vertices (K, 2) of the domain clipped to ``|u|, |v| ≤ box``, counter-clockwise.
+
+        Examples
+        --------
+        >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
+        >>> domain.polygon(box=20.0).round(6).tolist()   # the box cut by the line 0.1 u − 0.1 v = 1
+        [[-20.0, 20.0], [-20.0, -20.0], [-10.0, -20.0], [20.0, 10.0], [20.0, 20.0]]
+        """
         from scipy.spatial import ConvexHull, HalfspaceIntersection
 
         # Half-spaces A x + c ≤ 0: a u + b v − 1 ≤ 0, and the box.
@@ -145,6 +193,12 @@ class Pattern(FrozenArrays):
     kappa_2d_nodes, log_width_rate_nodes : (n − 1, 3) ndarray
         κ_2D and ``κ_2D cot β = τ cot α`` (d ln w_R / ds) at the Gauss nodes of every
         interval of ``s``: what a refolded curve 1 is integrated from.
+
+    Examples
+    --------
+    >>> helix = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90)
+    >>> Pattern.from_crease(helix, 0.1, 0.1).width_right.round(6).tolist()   # the width law: w_R(0) exp(τ cot α s)
+    [0.1, 0.110517, 0.12214]
     """
 
     s: np.ndarray
@@ -177,6 +231,17 @@ class Pattern(FrozenArrays):
         InputError
             If the fold angle varies, a width is not finite and > 0, or the regression
             rates are not finite (β' is not finite somewhere: the message names where).
+
+        Examples
+        --------
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
+        >>> p = Pattern.from_crease(crease, 0.1, 0.2)
+        >>> p.width_left.tolist(), p.width_right.tolist(), np.degrees(p.beta_samples).round(6).tolist()
+        ([0.1, 0.1, 0.1, 0.1, 0.1], [0.2, 0.2, 0.2, 0.2, 0.2], [90.0, 90.0, 90.0, 90.0, 90.0])
+        >>> Pattern.from_crease(crease, 0.0, 0.1)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: width_left must be a finite number > 0, got 0.0
         """
         if crease.fold_angle is None:
             raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
@@ -276,6 +341,12 @@ class Lattice(FrozenArrays):
         Curve 1 at this fold angle (constant α, β_L = β_R = β).
     pattern : Pattern
         κ_2D, β, widths, regression domain: unchanged by rigid folding.
+
+    Examples
+    --------
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> lat.crease.fold_angle, lat.refold(30).pattern is lat.pattern
+    (90.0, True)
     """
 
     crease: Crease
@@ -299,6 +370,14 @@ class Lattice(FrozenArrays):
         RegressionError
             If a corner of the unit cell [0, 1]² is not free of regression; the message
             gives the limit along that direction and where it is reached.
+
+        Examples
+        --------
+        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
+        >>> Lattice.from_crease(crease, 2.0, 0.1)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.RegressionError: widths: lattice curve (u, v) = (1, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (0.7071, 0)
         """
         lattice = cls(crease, Pattern.from_crease(crease, width_left, width_right))
         lattice.check(np.array([[0, 1], [1, 0], [1, 1]]), name="widths")
@@ -346,11 +425,25 @@ class Lattice(FrozenArrays):
         return self.pattern.kappa_2d
 
     def speed(self, uv: np.ndarray) -> np.ndarray:
-        """ds/dt of lattice curves uv (..., 2), shape (..., n) (Eq. 17)."""
+        """ds/dt of lattice curves uv (..., 2), shape (..., n) (Eq. 17).
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat.speed(np.array([[0, 0], [1, 0], [0, 1]]))[:, 0].round(6).tolist()   # curve 1 has L = 1; inside, outside the bend
+        [1.0, 0.929289, 1.070711]
+        """
         return self.crease.curve.length * self.domain.factor(uv)
 
     def section_area(self) -> np.ndarray:
-        """Area of the section parallelogram, w_L w_R sin 2α, shape (n,) (constant in t)."""
+        """Area of the section parallelogram, w_L w_R sin 2α, shape (n,) (constant in t).
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat.section_area().round(6).tolist(), float(lat.refold(0).section_area().max())   # flat: no area
+        ([0.01, 0.01, 0.01, 0.01, 0.01], 0.0)
+        """
         return self.width_left * self.width_right * np.sin(2 * self.crease.alpha.constant)
 
     # -- what the consumers of a structure ask about its kind (curvefold.geometry.kinds) ---------
@@ -376,7 +469,16 @@ class Lattice(FrozenArrays):
 
     # -- geometry at this fold angle -------------------------------------------------------
     def points(self, uv: np.ndarray) -> np.ndarray:
-        """Lattice curves x(t; u, v) (Eq. 11) for uv (..., 2); shape (..., n, 3)."""
+        """Lattice curves x(t; u, v) (Eq. 11) for uv (..., 2); shape (..., n, 3).
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat.points(np.array([1, 0]))[0].round(6).tolist(), lat.points(np.array([[0, 0], [1, 1]])).shape
+        ([0.0, 0.070711, 0.070711], (2, 5, 3))
+        >>> bool(np.array_equal(lat.points(np.zeros(2)), lat.crease.curve.points))   # (0, 0) is curve 1
+        True
+        """
         return lattice_points(self.crease.curve.points, *self._rulings, uv)
 
     @cached_property
@@ -387,12 +489,26 @@ class Lattice(FrozenArrays):
         return readonly(ll[:, None] * rl), readonly(lr[:, None] * rr)
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
-        """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is valid."""
+        """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is valid.
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat.check(np.array([[1, 1], [-5, 0]])), lat.check(np.zeros((0, 2)))   # valid curves; no curves (see check_curves)
+        (None, None)
+        """
         check_curves(self.domain, self.crease.curve.length, uv, name=name)
 
     def topology(self, cell_curves: np.ndarray, faces: Literal["triangles", "quads"] = "triangles", *,
                  keep: Sequence[np.ndarray] | None = None) -> Topology:
-        """The mesh of tubes on these cells' lattice curves, keeping the samples ``keep`` (:meth:`Topology.tubes`)."""
+        """The mesh of tubes on these cells' lattice curves, keeping the samples ``keep`` (:meth:`Topology.tubes`).
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape, lat.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]]).faces_vertices.shape
+        ((32, 3), (8, 3))
+        """
         return Topology.tubes(cell_curves, len(self.s), faces=faces, keep=keep)
 
     # -- rigid folding ------------------------------------------------------------------------
@@ -422,6 +538,15 @@ class Lattice(FrozenArrays):
         fold_angles : (A,) array_like
             2α values in [0°, 180°) (degrees by default).
         anchor : {"start", "middle"}, keyword-only
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> frames = lat.fold_points(np.array([[1, 0]]), [0, 90])
+        >>> frames.shape, float(np.abs(frames[0, ..., 2]).max())   # 2α = 0: flat
+        ((2, 1, 5, 3), 0.0)
+        >>> bool(np.allclose(frames[1], lat.points(np.array([[1, 0]])), atol=1e-12))   # 90°: the lattice itself
+        True
         """
         alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
         points, frames = self._folded_curve1(alphas, anchor)
@@ -443,6 +568,13 @@ class Lattice(FrozenArrays):
         anchor : {"start", "middle"}, keyword-only
             Which frame of curve 1 stays where it is in this lattice: the one at t = 0, or
             the one at the middle sample ``(n - 1) // 2``.
+
+        Examples
+        --------
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> flat = lat.refold(0)   # the crease pattern: curve 1 is the circle of radius 1 / κ_2D in the plane
+        >>> flat.crease.fold_angle, float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), round(float(flat.crease.curve.kappa(0.0)), 6)
+        (0.0, 0.0, 0.707107)
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         points, frames = self._folded_curve1(np.array([a]), anchor)
@@ -468,7 +600,15 @@ class _RefoldedTorsion(ScalarFunction):
 
 
 def check_anchor(anchor: str) -> None:
-    """Refuse an ``anchor`` of a refolded lattice other than ``"start"`` and ``"middle"``."""
+    """Refuse an ``anchor`` of a refolded lattice other than ``"start"`` and ``"middle"``.
+
+    Examples
+    --------
+    >>> check_anchor("end")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: anchor must be 'start' or 'middle', got 'end'
+    """
     if anchor not in ("start", "middle"):
         raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
 
@@ -478,6 +618,16 @@ def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, nam
 
     The message names the curve, its worst speed factor and where (t and s = t · length),
     and the limit along its direction.
+
+    Examples
+    --------
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> check_curves(lat.domain, 1.0, np.array([[1, 1]])) is None
+    True
+    >>> check_curves(lat.domain, 1.0, np.array([[20, 0]]), name="curves")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.RegressionError: curves: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (14.14, 0)
     """
     uv = np.atleast_2d(np.asarray(uv, float)).reshape(-1, 2)
     margin = domain.margin(uv)
@@ -500,6 +650,14 @@ def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.n
 
     For ``x1`` of shape (A, n, 3) and ``uv`` of shape (K, 2) the result is (A, K, n, 3);
     for (n, 3) and (..., 2) it is (..., n, 3). One matrix product per sample.
+
+    Examples
+    --------
+    >>> x1, left, right = np.zeros((2, 3)), np.array([[0, 1.0, 0]] * 2), np.array([[0, 0, 1.0]] * 2)
+    >>> lattice_points(x1, left, right, np.array([[1, 2]])).tolist()
+    [[[0.0, 1.0, 2.0], [0.0, 1.0, 2.0]]]
+    >>> lattice_points(x1, left, right, np.zeros((0, 2))).shape   # no curves
+    (0, 2, 3)
     """
     uv = np.asarray(uv, float)
     coeff = np.concatenate([np.ones(uv.shape[:-1] + (1,)), uv], axis=-1).reshape(-1, 3)  # (K, 3)
@@ -525,7 +683,16 @@ def _check_resolved(width_left: np.ndarray, width_right: np.ndarray, crease: Cre
 
 
 def log_width_ratio(crease: Crease) -> np.ndarray:
-    """``∫₀^s τ cot α ds`` at the samples, by 3-point Gauss–Legendre per interval, shape (n,)."""
+    """``∫₀^s τ cot α ds`` at the samples, by 3-point Gauss–Legendre per interval, shape (n,).
+
+    Examples
+    --------
+    >>> helix = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90)
+    >>> log_width_ratio(helix).round(6).tolist()   # τ cot 45° · s
+    [0.0, 0.1, 0.2]
+    >>> log_width_ratio(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3))).tolist()   # τ = 0: constant widths
+    [0.0, 0.0, 0.0]
+    """
     s = crease.s
     nodes = gauss_nodes(s)
     integrand = crease.curve.tau(nodes) / np.tan(crease.alpha(nodes))  # = κ_2D cot β

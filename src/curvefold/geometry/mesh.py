@@ -49,6 +49,17 @@ class Mesh(FrozenArrays):
         One of :data:`EDGE_KINDS`.
     faces_group : (F,) ndarray of int
         Which strip (or sheet) each face belongs to.
+
+    Examples
+    --------
+    >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+    >>> square.vertices_coords.shape, square.faces_vertices.tolist()
+    ((4, 3), [[0, 1, 2, 3]])
+    >>> Mesh(vertices_coords=np.zeros((3, 2)), edges_vertices=np.zeros((0, 2), int), edges_assignment=[], edges_foldAngle=[],
+    ...      faces_vertices=[[0, 1, 2]], edges_kind=[], faces_group=[0])
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: vertices_coords must have shape (V, 3), got (3, 2)
     """
 
     vertices_coords: np.ndarray
@@ -82,7 +93,18 @@ class Mesh(FrozenArrays):
             raise InputError(f"faces_vertices: every face needs at least 3 vertices; face {short[0]} has fewer")
 
     def with_coords(self, vertices_coords: np.ndarray, *, fold_angles_from_geometry: bool = True) -> Mesh:
-        """The same topology at other vertex positions (fold angles re-measured by default)."""
+        """The same topology at other vertex positions (fold angles re-measured by default).
+
+        Examples
+        --------
+        >>> book = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
+        ...             edges_assignment=['F', 'B', 'B', 'B', 'B'], edges_foldAngle=[0.0] * 5, faces_vertices=[[0, 1, 2], [0, 2, 3]],
+        ...             edges_kind=['fold'] + ['boundary'] * 4, faces_group=[0, 1])   # two triangles hinged on the diagonal 0–2
+        >>> book.with_coords([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]]).edges_foldAngle.round(6).tolist()
+        [90.0, 0.0, 0.0, 0.0, 0.0]
+        >>> (book.with_coords(book.vertices_coords).edges_foldAngle + 0.0).tolist()   # flat: no fold
+        [0.0, 0.0, 0.0, 0.0, 0.0]
+        """
         mesh = replace(self, vertices_coords=np.asarray(vertices_coords, float))
         if not fold_angles_from_geometry:
             return mesh
@@ -91,7 +113,14 @@ class Mesh(FrozenArrays):
         return replace(mesh, edges_foldAngle=np.where(keep, angles, 0.0))
 
     def face_sizes(self) -> np.ndarray:
-        """Number of vertices of every face, shape (F,)."""
+        """Number of vertices of every face, shape (F,).
+
+        Examples
+        --------
+        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square.face_sizes().tolist(), square.triangulated().face_sizes().tolist()
+        ([4], [3, 3])
+        """
         return np.count_nonzero(self.faces_vertices >= 0, axis=1)
 
     def triangulated(self) -> Mesh:
@@ -100,6 +129,13 @@ class Mesh(FrozenArrays):
         Triangles replace their polygon in place (the face order is kept, ``faces_group``
         repeated); the added edges come after the existing ones, of kind ``"diagonal"``,
         assignment ``"F"`` and fold angle 0. A triangle mesh is returned as it is.
+
+        Examples
+        --------
+        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> triangles = square.triangulated()
+        >>> triangles.faces_vertices.tolist(), str(triangles.edges_kind[-1]), triangles.triangulated() is triangles
+        ([[0, 1, 2], [0, 2, 3]], 'diagonal', True)
         """
         faces = self.faces_vertices
         if faces.shape[1] == 3:
@@ -122,12 +158,26 @@ class Mesh(FrozenArrays):
         )
 
     def edge_lengths(self) -> np.ndarray:
-        """Length of every edge, shape (E,)."""
+        """Length of every edge, shape (E,).
+
+        Examples
+        --------
+        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square.edge_lengths().tolist(), round(float(square.triangulated().edge_lengths()[-1]), 6)
+        ([1.0, 1.0, 1.0, 1.0], 1.414214)
+        """
         a, b = self.vertices_coords[self.edges_vertices[:, 0]], self.vertices_coords[self.edges_vertices[:, 1]]
         return np.linalg.norm(b - a, axis=-1)
 
     def face_normals(self) -> np.ndarray:
-        """Unit normals of the faces (Newell's method for polygons), shape (F, 3)."""
+        """Unit normals of the faces (Newell's method for polygons), shape (F, 3).
+
+        Examples
+        --------
+        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square.face_normals().tolist()   # counter-clockwise seen from +z
+        [[0.0, 0.0, 1.0]]
+        """
         n = vector_areas(self.vertices_coords, self.faces_vertices)
         return n / np.linalg.norm(n, axis=-1, keepdims=True)
 
@@ -205,6 +255,11 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
     (E, 2) ndarray of int
         Face indices, -1 where there is none on that side. Where more than one face
         traverses an edge the same way (a junction of several strips), the last one is kept.
+
+    Examples
+    --------
+    >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
+    [[1, 0], [0, -1], [-1, -1]]
     """
     E = len(edges_vertices)
     half, half_face = face_sides(faces_vertices)
@@ -242,6 +297,14 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     Returns
     -------
     (E,) ndarray
+
+    Examples
+    --------
+    >>> faces, edges = np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1]])
+    >>> fold_angles(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]]), faces, edges).round(6).tolist()
+    [90.0, 0.0]
+    >>> (fold_angles(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]]), faces, edges) + 0.0).tolist()   # flat; a boundary edge
+    [0.0, 0.0]
     """
     ef = edges_faces(faces_vertices, edges_vertices) if faces_of_edges is None else faces_of_edges
     x = np.asarray(vertices_coords, float)

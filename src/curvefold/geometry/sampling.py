@@ -78,6 +78,15 @@ class Sampling(FrozenArrays):
         Smallest triangle corner of the meshes, folded and flat, degrees.
     size : float
         Largest extent of the structure at the design angle, model units.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> s = choose_sampling(tube)   # 5 samples: none to spare
+    >>> s.vertices_per_crease, s.samples, s.deviation
+    ((5,), 5, 0.0)
     """
 
     keep: tuple[np.ndarray, ...]
@@ -97,7 +106,17 @@ class Sampling(FrozenArrays):
         return tuple(len(k) for k in self.keep)
 
     def summary(self) -> dict:
-        """The resolution as a JSON-ready dict (for reports and file metadata)."""
+        """The resolution as a JSON-ready dict (for reports and file metadata).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> tube = Structure.tube(lat)
+        >>> summary = choose_sampling(tube).summary()
+        >>> summary["samples_computed"], summary["mesh_samples_per_crease"], summary["mesh_deviation"]
+        (5, '5', 0.0)
+        """
         counts = self.vertices_per_crease
         return {
             "samples_computed": int(self.samples),

@@ -86,6 +86,17 @@ class PatternSheet(FrozenArrays):
     edges_seam : (E,) ndarray of int
         -1, or the seam id of a seam edge; the partner edges on the other sheet carry the
         same id.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> a, b = sheets(tube)
+    >>> a.label, a.mesh.vertices_coords.shape, float(np.abs(a.mesh.vertices_coords[:, 2]).max())
+    ('tube 1 · sheet A', (15, 3), 0.0)
+    >>> sorted(set(a.edges_seam.tolist())) == sorted(set(b.edges_seam.tolist()))   # partners share seam ids
+    True
     """
 
     label: str
@@ -179,6 +190,15 @@ class FlatPlane(FrozenArrays):
         (on the side of curve 1's binormal there), e2 = n × e1.
     residual : float
         Largest distance of a flat-state vertex from the plane.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> plane = flat_plane(tube.state(0))
+    >>> plane.origin.tolist(), plane.axes.round(6).tolist(), plane.residual
+    ([0.0, 0.0, 0.0], [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], 0.0)
     """
 
     origin: np.ndarray
@@ -186,7 +206,16 @@ class FlatPlane(FrozenArrays):
     residual: float
 
     def coords(self, points: np.ndarray, *, flip: bool = False) -> np.ndarray:
-        """In-plane coordinates (..., 2) of points (..., 3), seen from +n (or from −n if ``flip``)."""
+        """In-plane coordinates (..., 2) of points (..., 3), seen from +n (or from −n if ``flip``).
+
+        Examples
+        --------
+        >>> plane = FlatPlane(np.zeros(3), np.eye(3), 0.0)   # the plane z = 0
+        >>> plane.coords(np.array([[1.0, 2, 3]])).tolist(), plane.coords(np.array([[1.0, 2, 3]]), flip=True).tolist()
+        ([[1.0, 2.0]], [[1.0, -2.0]])
+        >>> plane.coords(np.zeros((0, 3))).shape   # no points
+        (0, 2)
+        """
         d = np.asarray(points, float) - self.origin
         x, y = d @ self.axes[0], d @ self.axes[1]
         return np.stack([x, -y if flip else y], axis=-1)
@@ -212,6 +241,18 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
         If the state is not at fold angle 0.
     InternalError
         If the flat state is not planar within ``tol`` (curvefold guarantees it).
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> flat_plane(tube.state(0)).residual
+    0.0
+    >>> flat_plane(tube.state())
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: state must be the flat state structure.state(0), got one at fold angle 90° (taken as a flat state is not planar)
     """
     if not isinstance(state, State):
         raise InputError(f"state must be a State (e.g. structure.state(0)), got {type(state).__name__}")
@@ -372,13 +413,26 @@ class Bond:
     creases : tuple of (int, int)
         (tube index, crease number 1–4) of every tube crease on this curve, in tube order.
         A fold crease (1, 3) lies on one sheet of its tube (A, B), a seam (2, 4) on both.
+
+    Examples
+    --------
+    >>> Bond((1, 1), ((0, 3), (1, 1)))
+    Bond(curve=(1, 1), creases=((0, 3), (1, 1)))
     """
 
     curve: tuple[int, int]
     creases: tuple[tuple[int, int], ...]
 
     def describe(self) -> str:
-        """One line for people: ``"curve (1, 1): tube 1 crease 3 + tube 2 crease 1"``."""
+        """One line for people: ``"curve (1, 1): tube 1 crease 3 + tube 2 crease 1"``.
+
+        Examples
+        --------
+        >>> Bond((1, 1), ((0, 3), (1, 1))).describe()
+        'curve (1, 1): tube 1 crease 3 + tube 2 crease 1'
+        >>> Bond((0, 0), ()).describe()   # no creases
+        'curve (0, 0): '
+        """
         parts = " + ".join(f"tube {k + 1} crease {c}" for k, c in self.creases)
         return f"curve ({self.curve[0]}, {self.curve[1]}): {parts}"
 
@@ -398,6 +452,16 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
     -------
     tuple of Bond
         Sorted by curve (u, v).
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> bonds(tube)   # a single tube has none
+    ()
+    >>> [b.describe() for b in bonds(Structure.diagonal(lat, 2))]
+    ['curve (1, 1): tube 1 crease 3 + tube 2 crease 1']
     """
     check_structure(structure)
     uv = structure.curves_uv.tolist()
@@ -488,6 +552,19 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
         Which frame of curve 1 stays fixed (see :meth:`Structure.state`).
     keep : sequence of (m_k,) array_like of int, optional, keyword-only
         The samples each tube's mesh keeps (see :meth:`Structure.topology`).
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> motion = folding_motion(tube, [0, 90])
+    >>> motion.shape, bool(np.allclose(motion[1], tube.state(90).mesh().vertices_coords, atol=1e-12))
+    ((2, 20, 3), True)
+    >>> folding_motion(tube, [])
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: fold_angles must be a non-empty sequence of fold angles, got shape (0,)
     """
     check_structure(structure)
     angles = check_fold_angles(fold_angles, degrees=degrees)

@@ -63,6 +63,13 @@ class SingleFold:
         The strips' widths from the crease's tangent lines, model units.
     fold_angle : float
         The design start angle 2α(0), degrees.
+
+    Examples
+    --------
+    >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+    >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+    >>> round(fold.width_left, 12), fold.fold_angle, fold.samples
+    (0.45, 60.0, 41)
     """
 
     crease: Crease
@@ -83,6 +90,17 @@ class SingleFold:
         ------
         InputError
             A width that is not positive, or that reaches a curve of regression.
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> SingleFold.of(crease, fold.kappa_2d, (0.2, None)).width_left
+        0.2
+        >>> SingleFold.of(crease, fold.kappa_2d, (0.0, None))
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: the strips' widths must be positive, got (0.0, 0.44999999999999996)
         """
         default = default_widths(crease)
         w = tuple(float(d if g is None else g) for g, d in zip(widths, default))
@@ -105,6 +123,17 @@ class SingleFold:
         ------
         InputError
             Where α(s) leaves (0°, 90°) along the crease at that start angle.
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> fold.at(60.0) is crease, fold.at(90.0).fold_angle   # α varies along a refolded crease in general
+        (True, None)
+        >>> fold.at(0.0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: fold_angle must be in (0°, 180°), got 0.0
         """
         fold_angle = check_fold_angle(fold_angle)
         if fold_angle == self.fold_angle:
@@ -125,7 +154,15 @@ class SingleFold:
         return np.stack([plane.points, left, right])
 
     def curves(self, fold_angle: float) -> np.ndarray:
-        """The crease and the two strips' edges at start angle 2α(0) (degrees; 0 the crease pattern), (3, n, 3)."""
+        """The crease and the two strips' edges at start angle 2α(0) (degrees; 0 the crease pattern), (3, n, 3).
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> fold.curves(60.0).shape, float(np.abs(fold.curves(0)[..., 2]).max())   # 0: flat
+        ((3, 41, 3), 0.0)
+        """
         if fold_angle == 0:
             return self._flat
         surface = self.at(fold_angle).surface(width=(self.width_left, self.width_right))  # (2 sides, 2, n, 3)
@@ -139,6 +176,17 @@ class SingleFold:
         the diagonals. Faces are counter-clockwise in the crease pattern, each strip's quads
         ``(a_j, a_{j+1}, b_{j+1}, b_j)`` as :meth:`Topology.tubes` orders them (the left strip from the crease, the
         right one from its edge).
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> fold.topology().faces_vertices.shape, fold.topology("quads").faces_vertices.shape, len(fold.topology().sheets)
+        ((160, 3), (80, 4), 1)
+        >>> fold.topology("hexagons")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: faces must be 'triangles' or 'quads', got 'hexagons'
         """
         if faces not in ("triangles", "quads"):
             raise InputError(f"faces must be 'triangles' or 'quads', got {faces!r}")
@@ -169,12 +217,34 @@ class SingleFold:
                         edges_vertices=edges, edges_kind=kind, edges_seam=seam, sheets=(sheet,))
 
     def mesh(self, fold_angle: float, faces: Literal["triangles", "quads"] = "triangles") -> Mesh:
-        """The fold at start angle 2α(0) (degrees; 0 the crease pattern), the crease's fold angle measured."""
+        """The fold at start angle 2α(0) (degrees; 0 the crease pattern), the crease's fold angle measured.
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> mesh = fold.mesh(60.0)
+        >>> round(float(np.median(np.abs(mesh.edges_foldAngle[mesh.edges_kind == "fold"]))), 1)
+        60.0
+        >>> float(np.abs(fold.mesh(0).edges_foldAngle).max())   # the crease pattern is flat
+        0.0
+        """
         return self.topology(faces).mesh(self.curves(fold_angle))
 
     def arrays(self, fold_angles, faces: Literal["triangles", "quads"] = "triangles") -> tuple[Mesh, tuple[tuple[str, Mesh], ...]]:
         """The crease pattern (z = 0, the design state's fold angles) and the folded frames at ``fold_angles``
-        (degrees, titled ``"fold angle 30°"``), every frame with the dihedral angle it has at every edge with two faces."""
+        (degrees, titled ``"fold angle 30°"``), every frame with the dihedral angle it has at every edge with two faces.
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> pattern, folded = fold.arrays([30, 90])
+        >>> [title for title, _ in folded], float(np.abs(pattern.vertices_coords[:, 2]).max())
+        (['fold angle 30°', 'fold angle 90°'], 0.0)
+        >>> fold.arrays([])[1]   # no frames asked
+        ()
+        """
         from .mesh import fold_angles as dihedral
 
         top = self.topology(faces)
@@ -191,7 +261,16 @@ class SingleFold:
         return pattern, folded
 
     def pattern_sheet(self, name: str = "") -> PatternSheet:
-        """The crease pattern as a sheet to fabricate (no seams), M/V of the design state."""
+        """The crease pattern as a sheet to fabricate (no seams), M/V of the design state.
+
+        Examples
+        --------
+        >>> crease = Crease.from_pattern(0.5, 90.0, 90.0, 3.0, fold_angle=60.0, samples=41)
+        >>> fold = SingleFold.of(crease, crease.curve.kappa.scaled(np.cos(np.radians(30))), fold_angle=60.0)
+        >>> sheet = fold.pattern_sheet("demo")
+        >>> sheet.label, sheet.mesh.vertices_coords.shape, int(sheet.edges_seam.max())
+        ('demo · single fold', (123, 3), -1)
+        """
         pattern, _ = self.arrays([self.fold_angle])
         return PatternSheet(f"{name} · single fold" if name else "single fold", pattern, np.full(len(pattern.edges_vertices), -1))
 

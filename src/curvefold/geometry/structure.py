@@ -51,6 +51,18 @@ class Structure(FrozenArrays):
         :class:`~curvefold.geometry.panels.PanelLattice`, or another kind.
     cells : (K, 2) ndarray of int
         Cell (i, j) spans [i, i+1] × [j, j+1] in (u, v).
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> tube.cells.tolist(), tube.curve_kinds
+    ([[0, 0]], ('fold', 'seam', 'seam', 'fold'))
+    >>> Structure.from_cells(lat, [])
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: cells must be a non-empty list of (i, j) integer pairs, got shape (0,)
     """
 
     lattice: StructureLattice
@@ -88,7 +100,15 @@ class Structure(FrozenArrays):
 
     @classmethod
     def tube(cls, lattice: StructureLattice) -> Structure:
-        """The tube of cell [0, 1]²."""
+        """The tube of cell [0, 1]².
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> Structure.tube(lat).cells.tolist()
+        [[0, 0]]
+        """
         return cls.from_cells(lattice, [(0, 0)])
 
     @classmethod
@@ -103,6 +123,17 @@ class Structure(FrozenArrays):
             Stack from the base tube in +u +v or in −u −v.
         layers : int, keyword-only
             Number of parallel diagonals (a band): layer k holds cells (j, j + k).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> Structure.diagonal(lat, 3).cells.tolist(), Structure.diagonal(lat, 1, direction=-1).cells.tolist()
+        ([[0, 0], [1, 1], [2, 2]], [[-1, -1]])
+        >>> Structure.diagonal(lat, 0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: count (tubes) must be an integer ≥ 1, got 0
         """
         count = check_integer(count, "count (tubes)", "[1, inf)")
         if direction not in (1, -1):
@@ -139,7 +170,18 @@ class Structure(FrozenArrays):
         return tuple(k.pop() if len(k) == 1 else "junction" for k in kinds)
 
     def dihedral_angles(self, fold_angle: float, *, degrees: bool = True) -> np.ndarray:
-        """Interior angle of every cell at corners 1–4, shape (K, 4): π − 2α, 2α, π − 2α, 2α."""
+        """Interior angle of every cell at corners 1–4, shape (K, 4): π − 2α, 2α, π − 2α, 2α.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> tube = Structure.tube(lat)
+        >>> np.degrees(tube.dihedral_angles(60)).round(6).tolist()
+        [[120.0, 60.0, 120.0, 60.0]]
+        >>> np.degrees(tube.dihedral_angles(0)).round(6).tolist()   # flat: folds open, seams closed
+        [[180.0, 0.0, 180.0, 0.0]]
+        """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         row = np.where(np.array(CORNER_KINDS) == "fold", np.pi - 2 * a, 2 * a)
         return np.broadcast_to(row, (len(self.cells), 4)).copy()
@@ -159,6 +201,16 @@ class Structure(FrozenArrays):
             :func:`curvefold.geometry.sampling.choose_sampling`); default every sample.
             A lattice that is not ``thinnable`` (panels) keeps every vertex: it refuses to
             be thinned.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> tube = Structure.tube(lat)
+        >>> tube.topology().faces_vertices.shape, tube.topology("quads").faces_vertices.shape
+        ((32, 3), (16, 4))
+        >>> [sheet.label for sheet in tube.topology().sheets]
+        ['tube 1 · sheet A', 'tube 1 · sheet B']
         """
         if faces == "triangles" and keep is None:
             return self._triangles
@@ -178,6 +230,20 @@ class Structure(FrozenArrays):
             2α ∈ [0°, 180°); 0 is the flat two-ply state (the crease pattern).
         anchor : {"start", "middle"}, keyword-only
             Which frame of curve 1 stays fixed: at t = 0, or at the middle sample.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> tube = Structure.tube(lat)
+        >>> tube.state().fold_angle, round(tube.state(60).fold_angle, 9), tube.state().vertices.shape
+        (90.0, 60.0, (4, 5, 3))
+        >>> float(np.abs(tube.state(0).vertices[..., 2]).max())   # 2α = 0: the flat crease pattern
+        0.0
+        >>> tube.state(180)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: fold_angle must be in [0°, 180°), got 180 (2α = 180° would need infinite curvature κ = κ_2D / cos α)
         """
         lattice = self.lattice if fold_angle is None else self.lattice.refold(fold_angle, degrees=degrees, anchor=anchor)
         return State(self, lattice, readonly(lattice.points(self.curves_uv)))
@@ -195,6 +261,14 @@ class State(FrozenArrays):
     vertices : (M, n, 3) ndarray
         Every lattice curve of the structure (rows of ``structure.curves_uv``) at the
         samples, read-only.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> state = Structure.tube(lat).state(45)
+    >>> round(state.fold_angle, 9), state.vertices.shape, state.vertices.flags.writeable
+    (45.0, (4, 5, 3), False)
     """
 
     structure: Structure
@@ -214,6 +288,17 @@ class State(FrozenArrays):
         faces : {"triangles", "quads"}, keyword-only
         keep : sequence of (m_k,) array_like of int, optional, keyword-only
             The faces and samples of :meth:`Structure.topology`.
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> state = Structure.tube(lat).state()
+        >>> mesh = state.mesh()
+        >>> mesh.vertices_coords.shape, mesh.faces_vertices.shape, sorted(set(mesh.edges_kind.tolist()))
+        ((20, 3), (32, 3), ['boundary', 'diagonal', 'fold', 'ruling', 'seam'])
+        >>> float(np.abs(Structure.tube(lat).state(0).mesh().vertices_coords[:, 2]).max())   # the flat state
+        0.0
         """
         return self.structure.topology(faces, keep=keep).mesh(self.vertices)
 
@@ -254,6 +339,15 @@ def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_c
         Rows of ``curves`` at corners 1–4 of the kept cells.
     kinds : tuple of str
         Kind of every kept curve.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> curves, cells, kinds = drawable(tube, tube.state().vertices, segments=2, max_cells=1)
+    >>> curves.shape, cells.tolist(), kinds
+    ((4, 3, 3), [[0, 1, 3, 2]], ('fold', 'seam', 'seam', 'fold'))
     """
     cells = thin_cells(structure.cell_curves, max_cells)
     used = np.unique(cells)

@@ -65,6 +65,11 @@ def quadrant_kind(sign_left: int, sign_right: int) -> str:
     """Kind of the crease between strips along ``sign_left · r_L`` and ``sign_right · r_R``.
 
     ``"fold"`` when the signs agree (interior angle π − 2α), ``"seam"`` when they differ (2α).
+
+    Examples
+    --------
+    >>> quadrant_kind(1, 1), quadrant_kind(-1, -1), quadrant_kind(-1, 1)
+    ('fold', 'fold', 'seam')
     """
     return "fold" if sign_left == sign_right else "seam"
 
@@ -76,7 +81,13 @@ def _corner_signs(c: int) -> tuple[int, int]:
 
 
 def quadrant_name(sign_left: int, sign_right: int) -> str:
-    """``"L+R-"`` for rulings ``+r_L`` and ``−r_R``."""
+    """``"L+R-"`` for rulings ``+r_L`` and ``−r_R``.
+
+    Examples
+    --------
+    >>> quadrant_name(1, -1), quadrant_name(-1, -1)
+    ('L+R-', 'L-R-')
+    """
     return f"L{'+' if sign_left > 0 else '-'}R{'+' if sign_right > 0 else '-'}"
 
 
@@ -217,6 +228,12 @@ class SheetTopology(FrozenArrays):
     edges_seam : (E_s,) ndarray of int
         Seam id of every seam edge (shared with the partner edge on the other sheet of
         the tube), -1 elsewhere.
+
+    Examples
+    --------
+    >>> sheet = Topology.tubes([[0, 1, 3, 2]], 2).sheets[0]
+    >>> sheet.label, sheet.faces.tolist(), sheet.vertices.tolist()
+    ('tube 1 · sheet A', [0, 1, 6, 7], [6, 7, 0, 1, 2, 3])
     """
 
     label: str
@@ -250,6 +267,12 @@ class Topology(FrozenArrays):
         Seam id of every seam edge, -1 elsewhere.
     sheets : tuple of SheetTopology
         Tube by tube, sheet A then B.
+
+    Examples
+    --------
+    >>> t = Topology.tubes([[0, 1, 3, 2]], 2)   # one tube, two samples per curve
+    >>> t.vertex_curve.tolist(), t.vertex_sample.tolist(), len(t.sheets)
+    ([0, 0, 1, 1, 3, 3, 2, 2], [0, 1, 0, 1, 0, 1, 0, 1], 2)
     """
 
     vertex_curve: np.ndarray
@@ -286,6 +309,15 @@ class Topology(FrozenArrays):
             For every tube, the samples its mesh keeps (ascending, at least two, within
             [0, n)): tube k then has m_k vertices per corner, vertex j being sample
             ``keep[k][j]``, and vertices are numbered tube after tube. Default: every sample.
+
+        Examples
+        --------
+        >>> Topology.tubes([[0, 1, 3, 2]], 2).faces_vertices.tolist()
+        [[0, 3, 2], [0, 1, 3], [2, 5, 4], [2, 3, 5], [4, 7, 6], [4, 5, 7], [6, 1, 0], [6, 7, 1]]
+        >>> Topology.tubes([[0, 1, 3, 2]], 2, faces="hexagons")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: faces must be 'triangles' or 'quads', got 'hexagons'
         """
         if faces not in ("triangles", "quads"):
             raise InputError(f"faces must be 'triangles' or 'quads', got {faces!r}")
@@ -374,7 +406,16 @@ class Topology(FrozenArrays):
         return replace(quads, edges_kind=np.where(quads.edges_kind == "ruling", "fold", quads.edges_kind))
 
     def coords(self, curves: np.ndarray) -> np.ndarray:
-        """Vertex positions from lattice curves (..., M, n, 3); shape (..., V, 3)."""
+        """Vertex positions from lattice curves (..., M, n, 3); shape (..., V, 3).
+
+        Examples
+        --------
+        >>> t = Topology.tubes([[0, 1, 3, 2]], 2)
+        >>> corners = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], float)   # (y, z) of curves 0–3: a square section
+        >>> curves = np.stack([[[x, y, z] for x in (0.0, 2.0)] for y, z in corners])   # (4, 2, 3)
+        >>> t.coords(curves)[:3].tolist(), t.coords(curves[None]).shape
+        ([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]], (1, 8, 3))
+        """
         return np.asarray(curves)[..., self.vertex_curve, self.vertex_sample, :]
 
     def mesh(self, curves: np.ndarray) -> Mesh:
@@ -382,6 +423,17 @@ class Topology(FrozenArrays):
 
         Fold and seam edges carry their measured fold angle (FOLD sign), every other edge
         0; assignments follow :func:`fold_assignment` (the seams are closed).
+
+        Examples
+        --------
+        >>> t = Topology.tubes([[0, 1, 3, 2]], 2)
+        >>> corners = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], float)   # (y, z) of curves 0–3: a square section
+        >>> curves = np.stack([[[x, y, z] for x in (0.0, 2.0)] for y, z in corners])   # (4, 2, 3)
+        >>> mesh = t.mesh(curves)
+        >>> mesh.edges_kind[:4].tolist(), mesh.edges_foldAngle[:4].round(6).tolist()
+        (['fold', 'seam', 'fold', 'seam'], [90.0, 90.0, 90.0, 90.0])
+        >>> bool(np.isnan(t.mesh(0 * curves).edges_foldAngle[:4]).all())   # every point at one place: no normals, NaN
+        True
         """
         coords = self.coords(curves)
         measured = fold_angles(coords, self.faces_vertices, self.edges_vertices)
@@ -490,7 +542,15 @@ def tube_strips(cell_curves: np.ndarray) -> np.ndarray:
 
 
 def thin_cells(cell_curves: np.ndarray, limit: int) -> np.ndarray:
-    """At most ``limit`` rows of cell_curves (K, 4), evenly spread, first and last kept."""
+    """At most ``limit`` rows of cell_curves (K, 4), evenly spread, first and last kept.
+
+    Examples
+    --------
+    >>> thin_cells(np.arange(20).reshape(5, 4), 3).tolist()
+    [[0, 1, 2, 3], [8, 9, 10, 11], [16, 17, 18, 19]]
+    >>> thin_cells(np.zeros((0, 4), int), 3).shape   # no cells
+    (0, 4)
+    """
     k = len(cell_curves)
     if k <= limit:
         return np.asarray(cell_curves)

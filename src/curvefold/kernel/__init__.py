@@ -1,4 +1,21 @@
 """The kernel: Lie-group steps, dense output, scalar functions, safe expressions and errors.
 
-Nothing here imports another curvefold package.
+Nothing here imports another curvefold package. The names below are its public surface;
+the Lie-group and dense-output steps of the integrator stay in their modules
+(:mod:`curvefold.kernel.lie`, :mod:`curvefold.kernel.dense`).
 """
+
+from .exports import lazy_exports as _lazy_exports
+
+# The public names by module, imported when first asked for (kernel.exports).
+__all__, __getattr__, __dir__ = _lazy_exports(
+    __name__,
+    {
+        "errors": ["CurvefoldError", "InputError", "RegressionError", "ConvergenceError", "InternalError"],
+        "validate": ["Spec", "Interval", "check_integer"],
+        "expr": ["Expression", "compile_expression"],
+        "functions": ["ScalarFunction", "Constant", "Sampled", "UserFunction", "as_function"],
+        "arrays": ["FrozenArrays", "readonly", "frozen"],
+        "threads": ["one_blas_thread"],
+    },
+)

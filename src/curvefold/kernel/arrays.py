@@ -55,6 +55,16 @@ class FrozenArrays:
     goes through the constructor, so the arrays come back read-only and cached values
     (``functools.cached_property``) are recomputed rather than stored. A subclass with its
     own ``__post_init__`` calls this one.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Points(FrozenArrays):
+    ...     xy: np.ndarray
+    >>> p = Points(np.zeros((0, 2)))   # even an empty array is held read-only
+    >>> p.xy.flags.writeable
+    False
     """
 
     def __post_init__(self) -> None:

@@ -49,16 +49,41 @@ class CurvefoldError(ValueError):
 
 
 class InputError(CurvefoldError):
-    """A parameter is outside its allowed range, has the wrong shape, or is not finite."""
+    """A parameter is outside its allowed range, has the wrong shape, or is not finite.
+
+    Examples
+    --------
+    >>> err = InputError("samples must be an integer ≥ 3, got 2", parameter="samples")
+    >>> isinstance(err, ValueError), err.parameter
+    (True, 'samples')
+    """
 
 
 class RegressionError(CurvefoldError):
-    """A requested width or lattice curve reaches past the curve of regression."""
+    """A requested width or lattice curve reaches past the curve of regression.
+
+    Examples
+    --------
+    >>> isinstance(RegressionError("width 2 reaches past the curve of regression"), CurvefoldError)
+    True
+    """
 
 
 class ConvergenceError(CurvefoldError):
-    """A root search or solver did not reach the requested tolerance."""
+    """A root search or solver did not reach the requested tolerance.
+
+    Examples
+    --------
+    >>> ConvergenceError("no arch root").parameter is None   # about no single parameter
+    True
+    """
 
 
 class InternalError(RuntimeError):
-    """An invariant that curvefold itself guarantees failed: a bug to report, not a user error."""
+    """An invariant that curvefold itself guarantees failed: a bug to report, not a user error.
+
+    Examples
+    --------
+    >>> isinstance(InternalError("frames not orthonormal"), CurvefoldError)
+    False
+    """

@@ -159,6 +159,14 @@ class Expression:
         The value when the expression does not depend on the variable.
     function : callable
         The compiled tree; it may return a scalar, which ``__call__`` broadcasts.
+
+    Examples
+    --------
+    >>> f = compile_expression("1 + 0.5*s", name="kappa")
+    >>> f(np.array([0.0, 2.0])).tolist(), f.constant
+    ([1.0, 2.0], None)
+    >>> compile_expression("2*pi", name="kappa")(np.zeros(2)).round(6).tolist()   # free of s: broadcast
+    [6.283185, 6.283185]
     """
 
     text: str

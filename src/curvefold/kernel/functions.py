@@ -53,6 +53,14 @@ class ScalarFunction(ABC):
     Call it on an array ``s`` of any shape for the values (same shape);
     :meth:`derivative` gives d/ds. ``constant`` is the value when the function is
     constant (callers then take exact shortcuts), else None.
+
+    Examples
+    --------
+    >>> f = as_function(lambda s: s**2, name="kappa", length=1.0)
+    >>> f(np.array([0.5])).tolist(), f.constant
+    ([0.25], None)
+    >>> as_function(2.0, name="kappa", length=1.0).constant
+    2.0
     """
 
     constant: float | None = None
@@ -62,20 +70,50 @@ class ScalarFunction(ABC):
 
     @abstractmethod
     def value(self, s: np.ndarray) -> np.ndarray:
-        """f(s) for a float array ``s``, same shape."""
+        """f(s) for a float array ``s``, same shape.
+
+        Examples
+        --------
+        >>> Constant(2.0).value(np.array([0.0, 1.0])).tolist()
+        [2.0, 2.0]
+        >>> Constant(2.0).value(np.array([])).shape   # no points, no values
+        (0,)
+        """
 
     @abstractmethod
     def derivative(self, s: np.ndarray) -> np.ndarray:
-        """df/ds at ``s``, same shape."""
+        """df/ds at ``s``, same shape.
+
+        Examples
+        --------
+        >>> Sampled(np.array([0.0, 1.0, 2.0]), 2.0).derivative(np.array([0.5, 1.5])).round(6).tolist()
+        [1.0, 1.0]
+        >>> Constant(2.0).derivative(np.array([0.0])).tolist()   # a constant's derivative is exactly 0
+        [0.0]
+        """
 
     def scaled(self, factor: float) -> ScalarFunction:
-        """``factor · self``."""
+        """``factor · self``.
+
+        Examples
+        --------
+        >>> Constant(2.0).scaled(-0.5).constant
+        -1.0
+        >>> Sampled(np.array([0.0, 1.0]), 1.0).scaled(0.0)(np.array([0.5])).tolist()   # zero times anything
+        [0.0]
+        """
         return Scaled(self, float(factor))
 
 
 @dataclass(frozen=True)
 class Constant(ScalarFunction):
-    """A constant c; derivative exactly 0."""
+    """A constant c; derivative exactly 0.
+
+    Examples
+    --------
+    >>> Constant(0.0)(np.array([0.0, 1.0])).tolist(), Constant(0.0).derivative(np.array([0.5])).tolist()
+    ([0.0, 0.0], [0.0])
+    """
 
     constant: float
 
@@ -88,7 +126,13 @@ class Constant(ScalarFunction):
 
 @dataclass(frozen=True)
 class Scaled(ScalarFunction):
-    """``factor · base``."""
+    """``factor · base``.
+
+    Examples
+    --------
+    >>> Scaled(Constant(3.0), 2.0).constant, Scaled(Sampled(np.array([0.0, 1.0]), 1.0), 2.0).constant
+    (6.0, None)
+    """
 
     base: ScalarFunction
     factor: float
@@ -116,6 +160,14 @@ class Sampled(FrozenArrays, ScalarFunction):
         Values at the uniform grid, read-only.
     length : float
         The domain's arc length L.
+
+    Examples
+    --------
+    >>> f = Sampled(np.array([0.0, 1.0, 4.0, 9.0]), 3.0)   # s² sampled at s = 0, 1, 2, 3
+    >>> f(np.array([1.5])).round(6).tolist(), f.derivative(np.array([1.5])).round(6).tolist()
+    ([2.25], [3.0])
+    >>> Sampled(np.array([1.0, 1.0]), 3.0)(np.array([2.0])).tolist()   # two equal samples: a constant
+    [1.0]
     """
 
     samples: np.ndarray
@@ -144,6 +196,12 @@ class Differenced(ScalarFunction):
     """A function whose derivative is a sixth-order difference inside ``[0, length]``.
 
     Subclasses provide :meth:`ScalarFunction.value` and the attributes ``length`` (L) and ``step`` (h).
+
+    Examples
+    --------
+    >>> f = UserFunction(np.sin, 1.0, difference_step(1.0))   # a Differenced function
+    >>> isinstance(f, Differenced), round(float(f.derivative(np.array([0.0]))[0]), 9)
+    (True, 1.0)
     """
 
     length: float
@@ -168,6 +226,14 @@ class UserFunction(Differenced):
         The domain's arc length L: the function is never sampled outside ``[0, L]``.
     step : float
         Difference step h (:func:`difference_step`).
+
+    Examples
+    --------
+    >>> f = UserFunction(np.exp, 1.0, difference_step(1.0))
+    >>> f(np.array([0.0])).tolist(), round(float(f.derivative(np.array([1.0]))[0]), 9)   # e at the end, one-sided
+    ([1.0], 2.718281828)
+    >>> UserFunction(lambda s: 1.0, 1.0, 0.01)(np.array([0.2, 0.4])).tolist()   # a constant callable is broadcast
+    [1.0, 1.0]
     """
 
     function: Callable[[np.ndarray], np.ndarray]
@@ -183,6 +249,11 @@ def difference_step(length: float) -> float:
 
     At most L / 8, so that a seven-point stencil (6 h wide) fits in the domain with room
     for rounding.
+
+    Examples
+    --------
+    >>> difference_step(10.0), difference_step(0.004)   # a short domain: L / 8
+    (0.01, 0.0005)
     """
     return min(1e-3 * max(float(length), 1.0), float(length) / 8.0)
 
@@ -307,6 +378,17 @@ def as_function(f: FunctionLike, *, name: str, length: float) -> ScalarFunction:
     Returns
     -------
     ScalarFunction
+
+    Examples
+    --------
+    >>> as_function(0.0, name="tau", length=1.0)   # a straight, untwisted curve's torsion
+    Constant(constant=0.0)
+    >>> as_function([1.0, 2.0], name="kappa", length=1.0)(np.array([0.5])).round(6).tolist()
+    [1.5]
+    >>> as_function([1.0], name="kappa", length=1.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: kappa: expected a number, a callable or a 1-D array of at least 2 samples, got shape (1,)
     """
     if isinstance(f, ScalarFunction):
         return f
@@ -324,7 +406,17 @@ def as_function(f: FunctionLike, *, name: str, length: float) -> ScalarFunction:
 
 
 def check_finite(values: np.ndarray, *, name: str, s: np.ndarray) -> None:
-    """Raise :class:`InputError` naming the first arc length where ``values`` is not finite."""
+    """Raise :class:`InputError` naming the first arc length where ``values`` is not finite.
+
+    Examples
+    --------
+    >>> check_finite(np.array([1.0, 2.0]), name="kappa", s=np.array([0.0, 1.0])) is None
+    True
+    >>> check_finite(np.array([1.0, np.nan]), name="kappa", s=np.array([0.0, 0.5]))
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: kappa must be finite; at s = 0.5 it is nan
+    """
     bad = np.flatnonzero(~np.isfinite(values))
     if bad.size:
         i = bad[np.argmin(s.flat[bad])]

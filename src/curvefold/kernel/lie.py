@@ -46,7 +46,13 @@ GAUSS3_WEIGHTS = np.array([5.0, 8.0, 5.0]) / 18.0
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product over the last axis (several times faster than ``np.cross`` on small vectors)."""
+    """Cross product over the last axis (several times faster than ``np.cross`` on small vectors).
+
+    Examples
+    --------
+    >>> cross(np.array([1.0, 0, 0]), np.array([[0.0, 1, 0], [1, 0, 0]])).tolist()   # parallel vectors: zero
+    [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0]]
+    """
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
     out = np.empty(np.broadcast_shapes(a.shape, b.shape))
@@ -84,6 +90,16 @@ def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray
     tuple of 6 (..., M) ndarray
         The step twist Ω = (ω, v) with ``g(q + h) = g(q) exp(Ω)``; exact when κ, τ, σ are
         constant over the step.
+
+    Examples
+    --------
+    A step of 0.5 along a helix (κ = 1, τ = 0.5) twists by h (τ, 0, κ) and moves h along T;
+    a straight line (κ = τ = 0) only moves:
+
+    >>> [round(float(x[0]) + 0.0, 12) for x in magnus6(np.array([0.5]), np.full((1, 3), 1.0), np.full((1, 3), 0.5))]
+    [0.25, 0.0, 0.5, 0.5, 0.0, 0.0]
+    >>> [float(x[0]) + 0.0 for x in magnus6(np.array([2.0]), np.zeros((1, 3)), np.zeros((1, 3)))]
+    [0.0, 0.0, 0.0, 2.0, 0.0, 0.0]
     """
     kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
     hs = np.asarray(h, float) * np.moveaxis(speed, -1, 0)  # (3, ..., M): h σ at each node
@@ -123,6 +139,13 @@ def magnus6_rotation(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: n
 
     The so(3) part of the Magnus expansion involves only the angular velocities, so the
     frame can be integrated without the position at a third of the cost.
+
+    Examples
+    --------
+    >>> [round(float(x[0]), 12) for x in magnus6_rotation(np.array([0.5]), np.full((1, 3), 1.0), np.full((1, 3), 0.5))]
+    [0.25, 0.0, 0.5]
+    >>> [float(x[0]) for x in magnus6_rotation(np.array([0.5]), np.zeros((1, 3)), np.zeros((1, 3)))]   # no turn
+    [0.0, 0.0, 0.0]
     """
     kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
     hs = np.asarray(h, float) * np.moveaxis(speed, -1, 0)
@@ -173,6 +196,13 @@ def exp_rotation(w: tuple) -> tuple:
     """Exponential map so(3) → SO(3) as quaternions ``(cos θ/2, sin(θ/2)/θ · ω)``, a 4-tuple.
 
     Any norm is fine for the callers (they normalise), so the closed form is used throughout.
+
+    Examples
+    --------
+    >>> [round(float(c), 12) for c in exp_rotation((np.array(0.0), np.array(0.0), np.array(np.pi)))]   # half turn about z
+    [0.0, 0.0, 0.0, 1.0]
+    >>> [float(c) for c in exp_rotation((np.array(0.0),) * 3)]   # ω = 0: the identity
+    [1.0, 0.0, 0.0, 0.0]
     """
     t = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
     a = 0.5 * np.sinc(t / (2 * np.pi))  # sin(θ/2)/θ without a division by zero
@@ -194,6 +224,16 @@ def exp_dual(twist: tuple) -> np.ndarray:
     Returns
     -------
     (8, ...) ndarray
+
+    Examples
+    --------
+    A quarter turn about z while moving 1 along x ends at (2/π, 2/π, 0):
+
+    >>> R, p = dual_to_motion(exp_dual(tuple(np.array([c]) for c in (0.0, 0.0, np.pi / 2, 1.0, 0.0, 0.0)))[:, 0])
+    >>> np.round(p * np.pi / 2, 12).tolist()
+    [1.0, 1.0, 0.0]
+    >>> exp_dual(tuple(np.zeros(1) for _ in range(6)))[:, 0].tolist()   # the zero twist: the identity
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
     """
     w, v = twist[:3], twist[3:]
     half_cos, a, b, c = _exp_coefficients(w)
@@ -218,6 +258,16 @@ def product_quaternions(q: tuple) -> tuple:
     Returns
     -------
     4-tuple of (...,) ndarray
+
+    Examples
+    --------
+    Three quarter turns about z make three quarters of a turn; a product of one is itself:
+
+    >>> c, s = np.cos(np.pi / 4), np.sin(np.pi / 4)
+    >>> [round(float(x), 12) for x in product_quaternions((np.full(3, c), np.zeros(3), np.zeros(3), np.full(3, s)))]
+    [-0.707106781187, 0.0, 0.0, 0.707106781187]
+    >>> [float(x) for x in product_quaternions((np.ones(1), np.zeros(1), np.zeros(1), np.zeros(1)))]
+    [1.0, 0.0, 0.0, 0.0]
     """
     stacked = np.stack(np.broadcast_arrays(*q))  # (4, ..., n)
     M = np.moveaxis(stacked[_L_INDEX] * _L_SIGN.reshape((4, 4) + (1,) * (stacked.ndim - 1)), (0, 1), (-2, -1))
@@ -247,6 +297,16 @@ def compose_dual(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     ``(r₁, d₁)(r₂, d₂) = (r₁ r₂, r₁ d₂ + d₁ r₂)``. Small batches go through one 8×8
     matrix product each (few NumPy calls); large ones through the component formulas
     (few passes over memory).
+
+    Examples
+    --------
+    Moving by (1, 0, 0), then by (0, 2, 0), moves by (1, 2, 0); the identity changes nothing:
+
+    >>> x, y = motion_to_dual([1, 0, 0, 0], [0, 2, 0]), motion_to_dual([1, 0, 0, 0], [1, 0, 0])
+    >>> dual_to_motion(compose_dual(x, y))[1].tolist()
+    [1.0, 2.0, 0.0]
+    >>> bool(np.array_equal(compose_dual(motion_to_dual([1, 0, 0, 0], [0, 0, 0]), x), x))
+    True
     """
     if x[0].size <= 512:
         padded = np.concatenate([x, np.zeros((1,) + x.shape[1:])])
@@ -275,6 +335,16 @@ def prefix_dual(x: np.ndarray) -> np.ndarray:
     Returns
     -------
     (8, ..., n) ndarray
+
+    Examples
+    --------
+    Forty steps of (1, 0, 0) put the k-th prefix at k + 1 along x:
+
+    >>> steps = np.tile(motion_to_dual([1, 0, 0, 0], [1, 0, 0])[:, None], (1, 40))
+    >>> dual_to_motion(prefix_dual(steps))[1][[0, 9, 39], 0].tolist()
+    [1.0, 10.0, 40.0]
+    >>> prefix_dual(steps[:, :0]).shape   # no steps, no prefixes
+    (8, 0)
     """
     n = x.shape[-1]
     if n <= 16:
@@ -299,7 +369,15 @@ def prefix_dual(x: np.ndarray) -> np.ndarray:
 
 
 def motion_to_dual(q: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """A rigid motion (unit quaternion (4,), translation (3,)) as a dual quaternion (8,)."""
+    """A rigid motion (unit quaternion (4,), translation (3,)) as a dual quaternion (8,).
+
+    Examples
+    --------
+    >>> motion_to_dual([1, 0, 0, 0], [2, 0, 0]).tolist()   # a pure translation: d = ½ (0, p)
+    [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0]
+    >>> motion_to_dual([1, 0, 0, 0], [0, 0, 0]).tolist()   # the identity
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    """
     d = _qmul((0.0, *p), tuple(q))
     return np.array(tuple(q) + tuple(0.5 * c for c in d))
 
@@ -308,6 +386,14 @@ def dual_to_motion(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Dual quaternions (8, ...) to rotation matrices (..., 3, 3) and translations (..., 3).
 
     Any norm is accepted: ``R = R(r / |r|)`` and ``p = 2 d r* / |r|²``.
+
+    Examples
+    --------
+    >>> R, p = dual_to_motion(2 * motion_to_dual([1, 0, 0, 0], [0, 3, 0]))   # any norm
+    >>> R.tolist(), p.tolist()
+    ([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0, 3.0, 0.0])
+    >>> dual_to_motion(np.zeros((8, 0)))[1].shape   # no motions
+    (0, 3)
     """
     r, d = x[:4], x[4:]
     scale = 2.0 / (r[0] ** 2 + r[1] ** 2 + r[2] ** 2 + r[3] ** 2)
@@ -378,7 +464,15 @@ def _rotations(q: np.ndarray, out: np.ndarray) -> None:
 
 
 def matrix_quaternion(R: np.ndarray) -> np.ndarray:
-    """Scalar-first unit quaternion (4,) of one rotation matrix (3, 3) (Shepperd's method)."""
+    """Scalar-first unit quaternion (4,) of one rotation matrix (3, 3) (Shepperd's method).
+
+    Examples
+    --------
+    >>> matrix_quaternion(np.eye(3)).tolist()
+    [1.0, 0.0, 0.0, 0.0]
+    >>> matrix_quaternion(np.diag([-1.0, -1.0, 1.0])).tolist()   # a half turn, where w = 0
+    [0.0, 0.0, 0.0, 1.0]
+    """
     R = np.asarray(R, float)
     tr = np.trace(R)
     k = int(np.argmax([tr, R[0, 0], R[1, 1], R[2, 2]]))

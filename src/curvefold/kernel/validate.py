@@ -93,7 +93,15 @@ class Interval:
 
     @classmethod
     def parse(cls, text: str) -> Interval:
-        """Read interval notation: ``"[0, 3)"``, ``"(0, inf)"``, ``"(-inf, inf)"``."""
+        """Read interval notation: ``"[0, 3)"``, ``"(0, inf)"``, ``"(-inf, inf)"``.
+
+        Examples
+        --------
+        >>> Interval.parse("[3, inf)")
+        Interval(lo=3.0, hi=inf, lo_closed=True, hi_closed=False)
+        >>> str(Interval.parse("(-inf, inf)")), 0.0 in Interval.parse("(0, 0]")   # an empty interval
+        ('finite', False)
+        """
         lo, hi = (float(x) for x in text[1:-1].split(","))
         return cls(lo, hi, text[0] == "[", text[-1] == "]")
 
@@ -103,7 +111,15 @@ class Interval:
         return above and below
 
     def mask(self, values: np.ndarray) -> np.ndarray:
-        """Which of ``values`` (any shape) are finite and inside, same shape."""
+        """Which of ``values`` (any shape) are finite and inside, same shape.
+
+        Examples
+        --------
+        >>> Interval.parse("[0, 1]").mask(np.array([0.0, 1.0, 1.5])).tolist()
+        [True, True, False]
+        >>> Interval.parse("[0, 1]").mask(np.array([])).shape   # no values
+        (0,)
+        """
         with np.errstate(invalid="ignore"):
             above = values >= self.lo if self.lo_closed else values > self.lo
             below = values <= self.hi if self.hi_closed else values < self.hi
@@ -215,6 +231,16 @@ class Spec:
         InputError
             The value is refused; its :attr:`~curvefold.kernel.errors.CurvefoldError.parameter`
             is :attr:`name`.
+
+        Examples
+        --------
+        >>> samples = Spec("samples", "integer", 201, "[3, 200000]", why="memory bound")
+        >>> samples.check(3)
+        3
+        >>> samples.check(2)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: samples must be an integer in [3, 200000] (memory bound), got 2
         """
         try:
             return _VALIDATORS[self.kind](self, value, where or self.name, shown)
@@ -226,6 +252,16 @@ class Spec:
 
         ``at(i)`` says where sample i lies, e.g. ``"at s = 1.5"``. The error's parameter
         is :attr:`name`.
+
+        Examples
+        --------
+        >>> kappa = Spec("kappa", "function", 1.0, "(0, inf)")
+        >>> kappa.check_samples(np.array([1.0, 2.0]), "kappa", lambda i: f"at sample {i}") is None
+        True
+        >>> kappa.check_samples(np.array([1.0, 0.0]), "kappa", lambda i: f"at sample {i}")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: kappa must be finite and > 0; at sample 1 it is 0
         """
         bad = np.flatnonzero(~self.range.mask(values))
         if bad.size:
@@ -234,7 +270,15 @@ class Spec:
             raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}", parameter=self.name)
 
     def describe(self) -> str:
-        """One line for help texts: meaning, allowed values, unit and default."""
+        """One line for help texts: meaning, allowed values, unit and default.
+
+        Examples
+        --------
+        >>> Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="fold angle").describe()
+        'fold angle; in (0, 180) degrees; default 90'
+        >>> Spec("name", "text").describe()   # no help, no range, no default
+        ''
+        """
         parts = [self.help] if self.help else []
         if self.kind in ("real", "integer", "count", "function") and self.range is not None and not self.range.unbounded:
             parts.append(self.requirement)
@@ -268,6 +312,13 @@ def from_text(spec: Spec, text: str) -> Any:
     ``WIDTH,HEIGHT`` reads as two numbers; ``cells`` as JSON; a flag as true or false. Text
     that is no value of its kind is returned as it is, for :meth:`Spec.check` to refuse by
     name ("max", an expression in s, a word).
+
+    Examples
+    --------
+    >>> from_text(Spec("samples", "integer"), "401"), from_text(Spec("a", "real"), "0.5")
+    (401, 0.5)
+    >>> from_text(Spec("samples", "integer"), "max")   # not a number: left for check to refuse
+    'max'
     """
     if spec.kind in ("real", "integer", "count", "function"):
         for convert in (int, float):
@@ -492,7 +543,15 @@ def describe(value: Any) -> str:
 
 
 def suggest(key: Any, options) -> str:
-    """``"; did you mean 'x'?"`` for the closest of ``options``, or ``""``."""
+    """``"; did you mean 'x'?"`` for the closest of ``options``, or ``""``.
+
+    Examples
+    --------
+    >>> suggest("fold_angel", ["fold_angle", "samples"])
+    "; did you mean 'fold_angle'?"
+    >>> suggest("zzz", []), suggest(3, ["a"])   # nothing close, not a name
+    ('', '')
+    """
     if not isinstance(key, str):
         return ""
     close = difflib.get_close_matches(key, list(options), n=1)

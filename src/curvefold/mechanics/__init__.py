@@ -96,6 +96,8 @@ def _public(value):
 
 
 def __getattr__(name: str):
+    if name == "__test__":  # asked for by the doctest finder only
+        return _examples()
     if name not in _LAZY:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     value = globals()[name] = _public(getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name))
@@ -108,3 +110,18 @@ def __dir__() -> list[str]:
 
 for _name in ("Loads", "Supports", "Material", "material"):
     _public(globals()[_name])
+
+
+def _examples() -> dict:
+    """The examples of the public classes' methods, for the doctests.
+
+    The doctest finder takes a method for its class's module only, which is this one
+    (:func:`_public`) while the method's globals are its private module's: they are listed
+    here to run.
+    """
+    return {
+        f"{name}.{attr}": getattr(value, "__func__", value)
+        for name in __all__ if isinstance(cls := __getattr__(name) if name in _LAZY else globals()[name], type)
+        for attr, value in vars(cls).items()
+        if not attr.startswith("_") and callable(getattr(value, "__func__", value)) and getattr(value, "__doc__", None)
+    }

@@ -56,6 +56,15 @@ class LoadResult:
         (:attr:`buckling_resolved`).
     soft : SoftModes
         The inextensional motions of the free structure.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> result = analyse_load(tube)
+    >>> round(result.total_weight, 6), result.soft.count, result.static.max_stress > 0
+    (22.737584, 2, True)
     """
 
     structure: StructureModel
@@ -101,6 +110,15 @@ class LoadResult:
         ``fold_span_correlation``, ``buckling_resolved``, ``applied_load`` (N),
         ``equilibrium_error``, ``material``, ``thickness`` (m), ``crease_stiffness``
         (N·m/rad/m), ``supports``, ``nodes``, ``samples`` (the samples the model keeps).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> summary = analyse_load(tube).to_dict()
+        >>> summary["nodes"], summary["supports"], summary["soft_modes"], summary["material"]
+        (20, 'pinned', 2, 'aluminium')
         """
         s, m = self.structure, self.structure.model
         return {
@@ -162,6 +180,17 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     InputError
         One line: a value out of range, a structure without feet, or a structure that is
         still a mechanism under its supports (which motion is free).
+
+    Examples
+    --------
+    >>> from curvefold.vault import Vault
+    >>> result = analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1e-3, Loads(snow=100.0))
+    >>> round(result.total_weight, 6), result.supports.kind
+    (22.737584, 'pinned')
+    >>> analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 1.0
     """
     mat = named(material) if isinstance(material, str) else material
     if not isinstance(mat, Material):

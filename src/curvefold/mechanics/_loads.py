@@ -102,6 +102,19 @@ class Loads:
         ------
         InputError
             If no load is asked for, or snow falls on a model without membranes.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> forces = Loads().forces(tube.model)   # self-weight
+        >>> round(float(forces[:, 2].sum()), 6), round(float(-G * tube.model.masses.sum()), 6)
+        (-22.737584, -22.737584)
+        >>> Loads(self_weight=False).forces(tube.model)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: no load: give self-weight, snow or a point load
         """
         if not (self.self_weight or self.snow or self.point):
             raise InputError("no load: give self-weight, snow or a point load")
@@ -225,6 +238,18 @@ class Supports:
         InputError
             If the structure has no feet (no end section on z = 0) and no nodes are given,
             or a node is out of range.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> int(Supports().fixed(tube).sum()), int(Supports("roller").fixed(tube).sum())   # 8 feet pinned; on rollers, z and 3 more
+        (24, 11)
+        >>> Supports(nodes=(99,)).fixed(tube)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: support nodes must be in [0, 20), got 99 … 99
         """
         structure = hasattr(target, "feet")  # a StructureModel, which knows its end sections
         model = target.model if structure else target

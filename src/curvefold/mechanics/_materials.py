@@ -63,6 +63,12 @@ class Material:
         tensile strength for board), Pa; None when not known (no utilisation then).
     source : str
         Where the numbers come from.
+
+    Examples
+    --------
+    >>> steel = Material("steel", 200e9, 0.3, 7850.0, 250e6)
+    >>> steel.name, steel.source, round(steel.bending_stiffness(1e-3), 6)
+    ('steel', 'given by the user', 18.315018)
     """
 
     name: str
@@ -127,6 +133,15 @@ class Material:
         piano hinge far more. L* = 1000 t is this library's default, not a measured value:
         give the crease stiffness of your own creases where it matters (the fold-mode gap
         and the first mode's shape depend on it).
+
+        Examples
+        --------
+        >>> round(MATERIALS["aluminium"].crease_stiffness(1e-3), 6)
+        6.443347
+        >>> MATERIALS["aluminium"].crease_stiffness(0.0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 0.0
         """
         return self.bending_stiffness(thickness) / (CREASE_LENGTH_SCALE * check_thickness(thickness))
 

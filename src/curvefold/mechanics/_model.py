@@ -102,6 +102,18 @@ class BarHingeModel(FrozenArrays):
         the ends of an edge between quads (default: the edge).
     hinge_faces : (H, 2) ndarray of int
         The membranes of faces A and B of every hinge (default -1: none).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+    ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+    >>> square.dofs, square.hinge_kind.tolist(), len(square.membranes)   # no membranes: bars alone
+    (12, ['hinge'], 0)
+    >>> BarHingeModel(np.zeros((2, 2)), [[0, 1]], [1.0], np.zeros((0, 4), int), [], np.ones(2))
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: nodes must be finite positions (P, 3), got shape (2, 2)
     """
 
     nodes: np.ndarray
@@ -188,6 +200,15 @@ class BarHingeModel(FrozenArrays):
         InputError
             For a face of more than four vertices, a weld joining vertices apart, an edge
             with more than two faces, or a degenerate triangle.
+
+        Examples
+        --------
+        >>> from curvefold import Mesh
+        >>> sheet = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]],
+        ...             edges_assignment=["B"] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=["boundary"] * 4, faces_group=[0])
+        >>> model = BarHingeModel.from_mesh(sheet, MATERIALS["aluminium"], 1e-3, crease_stiffness=1.0)   # 1 m², 1 mm of aluminium
+        >>> model.bars.shape, model.hinge_kind.tolist(), round(float(model.masses.sum()), 6)   # 4 sides and a diagonal; 2.7 kg
+        ((5, 2), ['diagonal'], 2.7)
         """
         t = check_thickness(thickness)
         x = np.asarray(mesh.vertices_coords, float)
@@ -312,15 +333,42 @@ class BarHingeModel(FrozenArrays):
         return readonly(dihedral_gradient(self.nodes[self.hinges]))
 
     def compatibility(self) -> sp.csr_matrix:
-        """C, the bars' elongations per nodal displacement, shape (B, 3P), dimensionless."""
+        """C, the bars' elongations per nodal displacement, shape (B, 3P), dimensionless.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> square.compatibility().shape, square.compatibility().toarray()[0].tolist()   # bar 0–1 along x
+        ((5, 12), [-1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        """
         return _rows_matrix(self._bar_rows, self.bars, self.dofs)
 
     def hinge_matrix(self) -> sp.csr_matrix:
-        """J, the hinges' rotations per nodal displacement, shape (H, 3P), rad/m."""
+        """J, the hinges' rotations per nodal displacement, shape (H, 3P), rad/m.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> square.hinge_matrix().toarray().round(6)[0, 2::3].tolist()   # only the z displacements turn the flat hinge
+        [-1.414214, 1.414214, -1.414214, 1.414214]
+        """
         return _rows_matrix(self._hinge_rows, self.hinges, self.dofs)
 
     def bar_stiffness_matrix(self) -> sp.csr_matrix:
-        """S, the bars' stiffness on their elongations (membrane blocks and EA/L), shape (B, B), N/m."""
+        """S, the bars' stiffness on their elongations (membrane blocks and EA/L), shape (B, B), N/m.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> square.bar_stiffness_matrix().toarray().diagonal().tolist()   # no membranes: the bars' own EA/L
+        [1.0, 1.0, 1.0, 1.0, 1.0]
+        """
         B = len(self.bars)
         mb = self.membrane_bars
         k = mb.shape[1] if mb.ndim == 2 else 0
@@ -331,7 +379,16 @@ class BarHingeModel(FrozenArrays):
                               np.concatenate([cols[ok], np.arange(B)]))), shape=(B, B))
 
     def triangles(self) -> tuple[np.ndarray, np.ndarray]:
-        """The membranes as triangles (a quad split along its bar diagonal): nodes (n, 3) and the membrane of each (n,)."""
+        """The membranes as triangles (a quad split along its bar diagonal): nodes (n, 3) and the membrane of each (n,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> [a.shape for a in square.triangles()]   # no membranes, no triangles
+        [(0, 3), (0,)]
+        """
         faces = self.membranes
         quads = np.flatnonzero(faces[:, 3] >= 0) if len(faces) else np.zeros(0, np.int64)
         return (np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]]), np.concatenate([np.arange(len(faces)), quads]))
@@ -351,11 +408,30 @@ class BarHingeModel(FrozenArrays):
         return sp.diags(np.repeat(self.masses, 3))
 
     def bar_forces(self, u: np.ndarray) -> np.ndarray:
-        """Axial force of every bar for displacements u (3P,), N (tension positive), shape (B,)."""
+        """Axial force of every bar for displacements u (3P,), N (tension positive), shape (B,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> u = np.zeros(12); u[3] = 0.01   # node 1 moves 1 cm along x
+        >>> square.bar_forces(u).round(6).tolist(), square.bar_forces(np.zeros(12)).tolist()
+        ([0.01, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0])
+        """
         return self.bar_stiffness_matrix() @ (self.compatibility() @ u)
 
     def membrane_stress(self, u: np.ndarray) -> np.ndarray:
-        """(σ_xx, σ_yy, τ_xy) at every membrane's centre, in its own frame, for displacements u (3P,), Pa, shape (T, 3)."""
+        """(σ_xx, σ_yy, τ_xy) at every membrane's centre, in its own frame, for displacements u (3P,), Pa, shape (T, 3).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> square.membrane_stress(np.ones(12)).shape   # bars alone: no membrane
+        (0, 3)
+        """
         delta = self.compatibility() @ np.asarray(u, float).ravel()
         mb = self.membrane_bars
         return np.einsum("tij,tj->ti", self.membrane_strain, np.where(mb >= 0, delta[mb], 0.0)) @ self.elasticity.T
@@ -367,6 +443,14 @@ class BarHingeModel(FrozenArrays):
         (2 × 2 Gauss points on a quad); a bar of its own's
         ``(N/ℓ)(I − ê êᵀ)`` (its force N times the Hessian of its length); with ``hinges``,
         every hinge's moment times the Hessian of its angle.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
+        >>> int(square.geometric_stiffness(np.zeros(12)).count_nonzero())   # no internal force, no geometric stiffness
+        0
         """
         u = np.asarray(u, float).ravel()
         P = len(self.nodes)

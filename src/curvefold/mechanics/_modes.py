@@ -46,6 +46,15 @@ class Modes(FrozenArrays):
         rigid motions in the mass metric.
     stretching : (k,) ndarray
         Share of each mode's strain energy in the bars (stretching and shear), in [0, 1].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> modes = free_modes(tube.model, 4)
+    >>> modes.shapes.shape, bool((np.diff(modes.eigenvalues) >= 0).all()), round(modes.fold_mode_gap, 1)
+    ((4, 20, 3), True, 11.1)
     """
 
     eigenvalues: np.ndarray
@@ -83,6 +92,18 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
     InputError
         For a node without mass, a count out of range, or a model that has a motion of
         zero stiffness besides the rigid ones (the message names it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> free_modes(tube.model, 2).eigenvalues.shape
+    (2,)
+    >>> free_modes(tube.model, 0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: count must be an integer in [1, 52] for this model (60 DOFs), got 0
     """
     n = model.dofs
     if not (model.masses > 0).all():
@@ -119,6 +140,15 @@ def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> 
     """The absolute cosine of the angle between a mode shape and a motion (P, 3), in the mass metric, rigid parts removed.
 
     1 when the mode is the motion (up to a rigid motion and scale).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> fold = tube.fold_velocity()
+    >>> round(correlation(tube.model, fold, 2 * fold), 12), round(correlation(tube.model, free_modes(tube.model, 2).shapes[0], fold), 3)
+    (1.0, 0.999)
     """
     return span_correlation(model, np.asarray(shape, float)[None], motion)
 
@@ -128,6 +158,19 @@ def span_correlation(model: BarHingeModel, shapes: np.ndarray, motion: np.ndarra
 
     1 when the motion is a combination of the shapes (up to a rigid motion); for one
     shape, :func:`correlation`.
+
+    Examples
+    --------
+    A motion in the span of two shapes, and one in the span of none but rigid motions:
+
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> shapes = free_modes(tube.model, 2).shapes
+    >>> round(span_correlation(tube.model, shapes, shapes[0] - 3 * shapes[1]), 12)
+    1.0
+    >>> round(span_correlation(tube.model, shapes, np.tile([0.0, 0.0, 1.0], (len(tube.model.nodes), 1)) + 1e-9 * shapes[0]), 6)
+    1.0
     """
     w = np.repeat(model.masses, 3)
     R = rigid_motions(model.nodes, model.masses)

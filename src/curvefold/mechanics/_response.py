@@ -75,6 +75,15 @@ class StaticResult(FrozenArrays):
     force_scale : float
         ``Σ |f| + Σ |K| |u|``, N: the sizes of the forces that K u − f adds up, to which its
         rounding is proportional.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
+    >>> result.total_reaction.round(6).tolist(), result.equilibrium_error < 1e-12   # the feet carry the weight
+    ([0.0, 0.0, 22.737584], True)
     """
 
     load: np.ndarray
@@ -126,6 +135,16 @@ class Buckling(FrozenArrays):
         the load only stiffens the structure).
     shape : (P, 3) ndarray
         The buckling mode, largest displacement 1 (zero if there is none).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
+    >>> b = buckling(tube.model, result, factor)
+    >>> round(b.factor, -2), round(float(np.linalg.norm(b.shape, axis=1).max()), 12)
+    (16600.0, 1.0)
     """
 
     factor: float
@@ -141,6 +160,20 @@ def static_response(model: BarHingeModel, load: np.ndarray, fixed: np.ndarray, *
     InputError
         If nothing is supported, or the model is still a mechanism under the supports (the
         message names the free motion).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> forces, feet = Loads().forces(tube.model), Supports().fixed(tube)
+    >>> result, factor = static_response(tube.model, forces, feet)
+    >>> result.displacements.shape, result.max_displacement < 1e-5   # 1 mm of aluminium under its own weight
+    ((20, 3), True)
+    >>> static_response(tube.model, forces, np.zeros_like(feet))
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: no support: at least one node must be held (the structure would fly away)
     """
     P = len(model.nodes)
     f = np.asarray(load, float).reshape(P, 3)
@@ -184,6 +217,15 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
     """The linear buckling factor of the static load of ``result`` and its mode (module notes).
 
     ``factor`` is the factorisation :func:`static_response` returned with it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
+    >>> round(buckling(tube.model, result, factor).factor, -2)   # its own weight × 16600 buckles it
+    16600.0
     """
     free = np.flatnonzero(~result.fixed.ravel())
     n = len(free)

@@ -61,6 +61,15 @@ class SoftModes(FrozenArrays):
         The relative rank tolerance.
     shapes : (count + 6, P, 3) ndarray
         A basis of the null motions (rigid ones included), orthonormal.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> soft = soft_modes(tube.model)
+    >>> soft.count, soft.shapes.shape, soft.gap > 1e3
+    (2, (8, 20, 3), True)
     """
 
     count: int

@@ -86,6 +86,14 @@ class StructureModel(FrozenArrays):
     crease_stiffness : float
         k_c used for the creases, N·m/rad/m.
     material : Material
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube.model.nodes.shape, round(tube.crease_stiffness, 6), tube.material.name   # 4 curves × 5 vertices
+    ((20, 3), 6.443347, 'aluminium')
     """
 
     model: BarHingeModel
@@ -163,6 +171,14 @@ class StructureModel(FrozenArrays):
         ------
         InputError
             For a model of single sheets (a sheet's end is two rulings, not a section).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> tube.end_sections().tolist()
+        [[0, 1, 3, 2], [16, 17, 19, 18]]
         """
         index = {(c, s): p for p, (c, s) in enumerate(zip(self.node_curve.tolist(), self.node_sample.tolist()))}
         n = self.state.vertices.shape[1]
@@ -177,7 +193,17 @@ class StructureModel(FrozenArrays):
         return readonly(np.unique(self.node_sample))
 
     def field(self, values: np.ndarray) -> np.ndarray:
-        """Nodal values (P, ...) laid out as the state's curves, shape (M, n, ...); NaN where no node is."""
+        """Nodal values (P, ...) laid out as the state's curves, shape (M, n, ...); NaN where no node is.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> z = tube.field(tube.model.nodes[:, 2])
+        >>> z.shape, bool(np.allclose(z, tube.state.vertices[..., 2]))
+        ((4, 5), True)
+        """
         values = np.asarray(values, float)
         M, n = self.state.vertices.shape[:2]
         out = np.full((M, n) + values.shape[1:], np.nan)
@@ -189,6 +215,18 @@ class StructureModel(FrozenArrays):
 
         Linear in t between the samples the model keeps; NaN on curves it has no node on
         (single sheets).
+
+        Examples
+        --------
+        A field linear in t comes back exactly on every sample; a constant one stays constant:
+
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> from curvefold.mechanics import MATERIALS
+        >>> sm = StructureModel.from_state(Vault.from_design(tubes=1, samples=41).structure.state(), MATERIALS["aluminium"], 1e-3, samples=[0, 10, 20, 30, 40])
+        >>> on_curves = sm.interpolate(np.ones(len(sm.model.nodes)))
+        >>> on_curves.shape[1], bool(np.allclose(on_curves[~np.isnan(on_curves)], 1.0))
+        (41, True)
         """
         F = self.field(values)
         kept, n = self.samples, F.shape[1]
@@ -209,6 +247,7 @@ class StructureModel(FrozenArrays):
 
         Examples
         --------
+        >>> import numpy as np
         >>> from curvefold.vault import Vault
         >>> from curvefold.mechanics import MATERIALS
         >>> sm = StructureModel.from_state(Vault.from_design(tubes=1, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
@@ -227,6 +266,15 @@ class StructureModel(FrozenArrays):
 
         The kinematics' own motion (``fold_points`` at 2α ± 0.001°, central
         difference), up to a rigid motion.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> velocity = tube.fold_velocity()
+        >>> velocity.shape, float(np.abs(velocity[0]).max())   # node 0, on the anchored foot, stays
+        ((20, 3), 0.0)
         """
         lattice = self.state.lattice
         angle = float(lattice.crease.fold_angle)

@@ -38,7 +38,7 @@ import numpy as np
 from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, gauss_nodes, integrate_frenet
 from ..geometry.lattice import Pattern
-from ..geometry.panels import PanelPattern, check_panels
+from ..geometry.panel_pattern import PanelPattern, check_panels
 from ..kernel.arrays import readonly
 from ..kernel.errors import ConvergenceError, InputError
 from ..kernel.functions import ScalarFunction
@@ -96,6 +96,13 @@ def symmetric_arch_condition(kappa0_s0: float | np.ndarray, a: float, *, steps: 
     -------
     ndarray
         Same shape as ``kappa0_s0``. For a = 0 it is cos(κ₀ s₀ / 2).
+
+    Examples
+    --------
+    >>> symmetric_arch_condition([np.pi, 2.0], 0.0).round(6).tolist()   # no torsion: cos(κ₀ s₀ / 2), a half circle stands
+    [0.0, 0.540302]
+    >>> round(float(symmetric_arch_condition(solve_symmetric_arch(0.3).kappa0_s0, 0.3)), 12)
+    0.0
     """
     x = np.atleast_1d(np.asarray(kappa0_s0, float))
     h, s1, d1, d2 = _half_arch_grid(steps)
@@ -139,6 +146,12 @@ class ArchRoot:
         ``|T(s₀/2)·T(0)|`` at the root, at most :data:`RESIDUAL_TOL`.
     bracket : tuple of float
         The bracket the root was refined in.
+
+    Examples
+    --------
+    >>> root = solve_symmetric_arch(0.0)   # no torsion: the half circle, κ₀ s₀ = π
+    >>> root.a, round(root.kappa0_s0, 12), root.residual < 1e-12
+    (0.0, 3.14159265359, True)
     """
 
     a: float
@@ -295,7 +308,16 @@ def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, poi
 
 @dataclass(frozen=True)
 class HarmonicTorsion(ScalarFunction):
-    """τ(s) = amplitude · sin(2π s / period), with its exact derivative."""
+    """τ(s) = amplitude · sin(2π s / period), with its exact derivative.
+
+    Examples
+    --------
+    >>> tau = HarmonicTorsion(0.3, 2.0)
+    >>> tau(np.array([0.5, 1.0])).round(6).tolist(), tau.derivative(np.array([0.0])).round(6).tolist()
+    ([0.3, 0.0], [0.942478])
+    >>> HarmonicTorsion(0.0, 2.0)(np.array([0.5])).tolist()   # a = 0: no torsion
+    [0.0]
+    """
 
     amplitude: float
     period: float
@@ -311,9 +333,18 @@ def panel_arch_condition(kappa0_s0: float, a: float, panels: int, *, fold_angle:
     """``(x_N − x_0)·n₀ / |x_N − x_0|`` of the panel arch of κ = 1, τ = a sin(2π s / s₀), s₀ = κ₀ s₀.
 
     The crease pattern of the smooth arch at the design angle 2α (degrees), sampled with
-    ``panels`` panels (:meth:`~curvefold.geometry.panels.PanelPattern.from_pattern`) and
+    ``panels`` panels (:meth:`~curvefold.geometry.panel_pattern.PanelPattern.from_pattern`) and
     folded to 2α; n₀ is the unit normal of its end section at vertex 0. Zero when both end
     sections lie in one plane (see the module notes).
+
+    Examples
+    --------
+    Four panels do not stand at the smooth half circle's κ₀ s₀ = π; their own root does:
+
+    >>> round(panel_arch_condition(np.pi, 0.0, 4), 6)
+    0.038037
+    >>> abs(panel_arch_condition(solve_panel_arch(0.0, 4).kappa0_s0, 0.0, 4)) < 1e-12
+    True
     """
     x = float(kappa0_s0)
     curve = SpaceCurve.from_curvature(1.0, HarmonicTorsion(a, x), x, samples=3)
@@ -383,6 +414,15 @@ def proportion_change(a: float, kappa0_s0: float, *, fold_angle: float = 90.0) -
     InputError
         When the change, squared for p_xz, overflows float64 (a fold angle so small that
         cot α is huge), or the fold angle is 0 in radians.
+
+    Examples
+    --------
+    >>> round(proportion_change(0.3, solve_symmetric_arch(0.3).kappa0_s0), 6), proportion_change(0.0, np.pi)   # a = 0: no change
+    (1.352972, 1.0)
+    >>> proportion_change(0.3, 3.0, fold_angle=0.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: fold_angle 2α = 0.0° is 0 in radians (below the smallest positive float): no fold angle
     """
     alpha = np.radians(fold_angle) / 2
     if not alpha > 0:
@@ -414,6 +454,12 @@ class GeneralArch:
         The free parameters at the solution.
     residuals : (4,) ndarray
         ``T(s₁) + T(0)`` (3 components) and ``(x(s₁) − x(0))·T(0)`` at the solution.
+
+    Examples
+    --------
+    >>> arch = solve_general_arch(lambda s, p: np.ones_like(s), lambda s, p: 0 * s, 3.0)   # κ = 1, τ = 0, no parameter
+    >>> round(arch.length, 9), arch.params, bool(np.abs(arch.residuals).max() < 1e-10)
+    (3.141592654, (), True)
     """
 
     length: float
@@ -454,6 +500,17 @@ def solve_general_arch(
     ------
     ConvergenceError
         If the solver stops with a residual norm above ``tol``; the message gives it.
+
+    Examples
+    --------
+    The unit circle turns back on itself (T(s₁) = −T(0)) after half a turn:
+
+    >>> round(solve_general_arch(lambda s, p: np.ones_like(s), lambda s, p: 0 * s, 3.0).length, 9)
+    3.141592654
+    >>> solve_general_arch(lambda s, p: np.ones_like(s), lambda s, p: 0 * s, -1.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: length0 must be a finite number > 0, got -1.0
     """
     from scipy.optimize import least_squares
 

@@ -22,7 +22,8 @@ import numpy as np
 from ..geometry.crease import Crease, half_angle
 from ..geometry.curve import SpaceCurve, check_samples
 from ..geometry.lattice import Lattice
-from ..geometry.panels import PANELS, PanelLattice
+from ..geometry.panel_pattern import PANELS
+from ..geometry.panels import PanelLattice
 from ..geometry.structure import Structure
 from ..geometry.topology import CORNERS
 from ..kernel.arrays import FrozenArrays, readonly
@@ -135,6 +136,15 @@ class VaultDesign:
     panels : int
         0 for the smooth vault, or the number N of rigid planar panels along each crease
         (even, so that the apex is a vertex; :func:`vault_panels` makes any count even).
+
+    Examples
+    --------
+    >>> VaultDesign(a=0.0).a, VaultDesign().tubes   # None: the most tubes before regression
+    (0.0, None)
+    >>> VaultDesign(a=2.0)
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: a must be in [0, 1.2707093728) (no arch stands beyond it: Eq. (20) has no root next to π there), got 2.0
     """
 
     a: float = 0.3
@@ -169,6 +179,13 @@ def standing(lattice: PanelLattice) -> PanelLattice:
     x_0 goes to the origin, the normal of the end section at vertex 0 (``L_0 × R_0``, turned
     toward the first crease edge, which rises) to +z and the span ``x_N − x_0`` to +y; with
     the discrete Eq. (20) solved the other end section lies on z = 0 too.
+
+    Examples
+    --------
+    >>> vault = Vault.from_design(samples=41, panels=4, tubes=2)   # its lattice is standing(...)
+    >>> feet = vault.lattice.crease.curve.points[[0, -1]]
+    >>> feet[0].tolist(), bool(abs(feet[1, 2]) < 1e-12), bool(feet[1, 1] > 0)
+    ([0.0, 0.0, 0.0], True, True)
     """
     points = lattice.crease.curve.points
     up = cross(lattice.left[0], lattice.right[0])
@@ -191,6 +208,12 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     invalid, the one before valid), and a bisection decides where rounding leaves it in
     doubt. Returns 0 when even the base tube regresses, and ``limit`` when the stack is
     valid that far.
+
+    Examples
+    --------
+    >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+    >>> max_tubes(vault.lattice), max_tubes(vault.lattice, limit=5)   # the search stops at the limit
+    (9, 5)
     """
     domain = lattice.domain
 
@@ -243,6 +266,12 @@ class Vault(FrozenArrays):
     """A vault built from its design: arch, lattice, structure and placement.
 
     Build it with :meth:`from_design`.
+
+    Examples
+    --------
+    >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+    >>> vault.design.tubes, vault.max_tubes, vault.structure.cells.tolist()
+    (3, 9, [[0, 0], [1, 1], [2, 2]])
     """
 
     design: VaultDesign
@@ -271,6 +300,16 @@ class Vault(FrozenArrays):
         RegressionError
             If the base tube or the requested number of tubes passes regression; the
             message names the maximum number of tubes.
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> round(vault.kappa0_s0, 6), vault.lattice.crease.fold_angle
+        (3.165717, 90.0)
+        >>> Vault.from_design(samples=41, tubes=1000)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.RegressionError: tubes must be ≤ 9 (the maximum before regression for a = 0.3, p_xy = 0.75, width = 0.08), got 1000
         """
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
         arch, crease = arch_crease(design.a, design.panels, design.radius, design.fold_angle, design.samples) if arch is None else arch
@@ -323,7 +362,14 @@ class Vault(FrozenArrays):
         return (len(self.lattice.s) - 1) // 2
 
     def measured_proportions(self) -> tuple[float, float]:
-        """(w_R/w_L at t = 0, w_R(½)/w_R(0)) measured between parallel tangent lines of the built creases."""
+        """(w_R/w_L at t = 0, w_R(½)/w_R(0)) measured between parallel tangent lines of the built creases.
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> [round(p, 6) for p in vault.measured_proportions()]   # p_xy and the proportion change exp(a κ₀ s₀ / π)
+        [0.75, 1.352972]
+        """
         X = self.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
         T = self.lattice.crease.curve.tangent
         widths = []
@@ -341,6 +387,12 @@ class Vault(FrozenArrays):
         (t = 0) it lies in the ground (xy) plane: its angle from the x axis toward y. At the
         apex (t = ½) it lies in the zx plane: its angle from the x axis toward z. Lines have
         no direction, so angles are in [−90°, 90°).
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> [round(angle, 6) for angle in vault.section_slopes()]
+        [-19.700413, -20.501275]
         """
         diag = np.array([[0, 0], [1, 1]], float) * self.design.direction
         X = self.lattice.points(diag)
@@ -353,12 +405,27 @@ class Vault(FrozenArrays):
         return line_angle(d0[0], d0[1]), line_angle(dm[0], dm[2])
 
     def ground_error(self) -> float:
-        """Largest ``|z|`` of the end sections (t = 0 and t = 1) of every crease at the design angle."""
+        """Largest ``|z|`` of the end sections (t = 0 and t = 1) of every crease at the design angle.
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault.ground_error() < 1e-9   # it stands: both ends on the ground
+        True
+        """
         V = self.vertices
         return float(np.abs(V[:, [0, -1], 2]).max())
 
     def summary(self) -> dict:
-        """Design parameters and derived quantities as a JSON-ready dict (model units)."""
+        """Design parameters and derived quantities as a JSON-ready dict (model units).
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> summary = vault.summary()
+        >>> summary["tubes"], round(summary["span"], 6), round(summary["rise"], 6), summary["design"]["a"]
+        (3, 2.008123, 1.142157, 0.3)
+        """
         V = self.vertices
         # per coordinate: NumPy reduces a (..., 3) array over its leading axes some 20× slower
         lo, hi = (np.array([f(V[..., i]) for i in range(3)]) for f in (np.min, np.max))
@@ -404,6 +471,13 @@ class Vault(FrozenArrays):
         anchor : {"start", "middle"}, keyword-only
             Hold curve 1's frame at its start (the first foot) or at its middle (the apex:
             a motion symmetric about it).
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> motion = vault.motion([0, 90])
+        >>> motion.shape, float(np.abs(motion[0][..., 2]).max()) > 1   # flat, the sheets stand up off the ground
+        ((2, 10, 41, 3), True)
         """
         return self.lattice.fold_points(self.structure.curves_uv, fold_angles, anchor=anchor)
 
@@ -411,6 +485,12 @@ class Vault(FrozenArrays):
         """How far the end sections leave the ground plane, shape (A, 2): [feet at t = 0, at t = 1].
 
         The largest ``|z|`` over the end points of every crease; zero at the design angle.
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault.lift_off([60, 90]).round(6).tolist()   # at 60° the far feet lift; at the design angle none
+        [[0.0, 0.680359], [0.0, 0.0]]
         """
         V = self.motion(fold_angles, anchor=anchor)
         return np.abs(V[:, :, [0, -1], 2]).max(axis=1)
@@ -424,6 +504,12 @@ class Vault(FrozenArrays):
         float or None
             2α in degrees of the first contact on a grid of ``step`` degrees, or None if
             none occurs up to ``max_angle``.
+
+        Examples
+        --------
+        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault.first_contact(step=5.0, samples=21), vault.first_contact(step=5.0, max_angle=100.0, samples=21)
+        (135.0, None)
         """
         from ..geometry.contact import first_contact
 

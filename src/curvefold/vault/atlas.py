@@ -21,15 +21,10 @@ processes, or on an existing Dask cluster; every way gives the same records, bit
 
 from __future__ import annotations
 
-import importlib.util
-import logging
 import math
-import os
-from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from contextlib import closing, contextmanager
+from contextlib import closing
 from dataclasses import dataclass, field, replace
-from itertools import islice
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -38,11 +33,13 @@ from ..kernel.arrays import FrozenArrays
 from ..kernel.errors import CurvefoldError, InputError
 from ..kernel.validate import Interval, Spec, check_integer
 from .arch import A_MAX, check_standing
+from .cluster import batched, cluster_plan, in_order
+from .cluster import client as cluster_client
 
 if TYPE_CHECKING:  # pragma: no cover
     from .assembly import Vault
 
-__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "workers_spec", "FIELDS", "METRICS", "GRID_A"]
+__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "FIELDS", "METRICS", "GRID_A"]
 
 #: ``a`` of the grid's rows, in [0, 2 A_MAX] (:data:`~curvefold.vault.arch.A_MAX`): a grid reaches past
 #: where the arches stop standing to show it, recording those designs as having no standing arch.
@@ -76,11 +73,6 @@ _INTEGER = {"row", "col", "tubes", "max_tubes"}
 SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
 
-#: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
-#: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
-#: workers save at most half of the 0.7 ms a design takes at 201 samples
-#: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
-LOCAL_CLUSTER_FROM = 5000
 #: Designs per task sent to a cluster at most (~0.15 s of work at 0.7 ms a design): a task's
 #: round trip through the scheduler costs milliseconds of the client's CPU, which the
 #: workers share on a small machine, so tasks are as large as the balance allows.
@@ -109,6 +101,12 @@ class Sketch(FrozenArrays):
         (j, j) of the first and last tube of the whole stack.
     apex : (2, 3) ndarray
         Ends of the section feature line at t = ½ (in the zx plane).
+
+    Examples
+    --------
+    >>> sketch = evaluate_design(0.3, 0.75, samples=41, tubes=3)[1]
+    >>> sketch.curves.dtype, sketch.kinds[:2], bool(np.abs(sketch.feet[:, 2]).max() < 1e-9)
+    (dtype('float32'), ('fold', 'seam'), True)
     """
 
     curves: np.ndarray
@@ -119,7 +117,15 @@ class Sketch(FrozenArrays):
 
     @classmethod
     def from_vault(cls, vault: Vault, *, samples: int = SKETCH_SAMPLES, tubes: int = SKETCH_TUBES) -> Sketch:
-        """Subsample a vault's curves at its design angle (at most ``tubes`` tubes, ~``samples`` points)."""
+        """Subsample a vault's curves at its design angle (at most ``tubes`` tubes, ~``samples`` points).
+
+        Examples
+        --------
+        >>> from curvefold.vault import Vault
+        >>> sketch = Sketch.from_vault(Vault.from_design(samples=41, tubes=3), samples=5)
+        >>> sketch.curves.shape, sketch.cells.shape   # 10 curves of 5 points; 3 tubes
+        ((10, 5, 3), (3, 4))
+        """
         from ..geometry.structure import drawable
 
         structure = vault.structure
@@ -154,6 +160,15 @@ def evaluate_design(
         Keys of :data:`FIELDS` except ``row`` and ``col``.
     sketch : Sketch or None
         None for an invalid design, or when not asked for.
+
+    Examples
+    --------
+    >>> record, sketch = evaluate_design(0.3, 0.75, samples=41, tubes=3)
+    >>> record["valid"], record["tubes"], sketch is not None
+    (True, 3, True)
+    >>> record, sketch = evaluate_design(1.5, 0.75, samples=41)   # past the arch family: a record, not an error
+    >>> record["valid"], record["error"], sketch
+    (False, 'ConvergenceError', None)
     """
     from .assembly import Vault, VaultDesign
 
@@ -207,6 +222,12 @@ class AtlasGrid:
         Tubes per vault (None: each design's maximum before regression).
     samples : int
         Samples along each crease.
+
+    Examples
+    --------
+    >>> grid = AtlasGrid.of([0.5, 0.75], [0.0, 0.3, 0.6], samples=41, tubes=2)
+    >>> grid.shape, grid.size
+    ((3, 2), 6)
     """
 
     p_xy_values: tuple[float, ...]
@@ -230,6 +251,16 @@ class AtlasGrid:
         """The grid of ``p_xy_values`` (columns) × ``a_values`` (rows); the shared parameters fail once, here.
 
         Each grid value is checked later, per design: a value out of range is an invalid record.
+
+        Examples
+        --------
+        >>> grid = AtlasGrid.of([0.5, 0.75], [0.0, 0.3, 0.6], samples=41, tubes=2)
+        >>> grid.a_values, grid.tubes
+        ((0.0, 0.3, 0.6), 2)
+        >>> AtlasGrid.of([0.5], [0.3], samples=2)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: samples must be odd and ≥ 21 (the apex is the middle sample), got 2
         """
         from .assembly import VaultDesign
 
@@ -247,11 +278,29 @@ class AtlasGrid:
         return len(self.a_values) * len(self.p_xy_values)
 
     def points(self) -> Iterator[tuple[int, int, float, float]]:
-        """(row, col, a, p_xy) of every design, in grid order (row-major)."""
+        """(row, col, a, p_xy) of every design, in grid order (row-major).
+
+        Examples
+        --------
+        >>> grid = AtlasGrid.of([0.5, 0.75], [0.0, 0.3, 0.6], samples=41, tubes=2)
+        >>> list(grid.points())[:2]
+        [(0, 0, 0.0, 0.5), (0, 1, 0.0, 0.75)]
+        """
         return ((i, j, a, p) for i, a in enumerate(self.a_values) for j, p in enumerate(self.p_xy_values))
 
     def every(self, step: int) -> AtlasGrid:
-        """The grid of every ``step``-th row and column (0, step, 2·step, …)."""
+        """The grid of every ``step``-th row and column (0, step, 2·step, …).
+
+        Examples
+        --------
+        >>> grid = AtlasGrid.of([0.5, 0.75], [0.0, 0.3, 0.6], samples=41, tubes=2)
+        >>> grid.every(2).a_values, grid.every(1) == grid
+        ((0.0, 0.6), True)
+        >>> grid.every(0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: step must be an integer ≥ 1, got 0
+        """
         _check_step(step)
         return replace(self, p_xy_values=self.p_xy_values[::step], a_values=self.a_values[::step])
 
@@ -261,7 +310,13 @@ class AtlasGrid:
         return {"width": self.width, "fold_angle": self.fold_angle, "tubes": self.tubes, "samples": self.samples}
 
     def to_dict(self) -> dict:
-        """The grid's values and parameters, JSON-ready."""
+        """The grid's values and parameters, JSON-ready.
+
+        Examples
+        --------
+        >>> AtlasGrid.of([0.75], [0.3], samples=41).to_dict()
+        {'p_xy_values': [0.75], 'a_values': [0.3], 'width': 0.08, 'fold_angle': 90.0, 'tubes': None, 'samples': 41}
+        """
         return {"p_xy_values": list(self.p_xy_values), "a_values": list(self.a_values), **self.shared}
 
 
@@ -294,6 +349,12 @@ class Atlas:
         One record per design, row-major (``records[row * len(grid.p_xy_values) + col]``).
     sketches : tuple of Sketch or None
         Geometry for drawing, parallel to ``records`` (None for an invalid design).
+
+    Examples
+    --------
+    >>> atlas = run_atlas([0.75], [0.0, 0.3], samples=41, tubes=2, workers=1)
+    >>> atlas.shape, len(atlas.records), len(atlas.sketches)
+    ((2, 1), 2, 2)
     """
 
     grid: AtlasGrid
@@ -306,6 +367,16 @@ class Atlas:
 
         ``row`` and ``col`` of the records are set to their place in ``grid`` (a thinned
         grid numbers its rows and columns afresh).
+
+        Examples
+        --------
+        >>> grid = AtlasGrid.of([0.75], [0.0, 0.3], samples=41, tubes=2)
+        >>> Atlas.from_results(grid, sweep(grid, workers=1)).shape
+        (2, 1)
+        >>> Atlas.from_results(grid, [])
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: results must hold one (record, sketch) pair per design of the 2 × 1 grid, got 0
         """
         pairs = list(results)
         if len(pairs) != grid.size:
@@ -320,43 +391,63 @@ class Atlas:
         return self.grid.shape
 
     def record(self, row: int, col: int) -> dict:
-        """The record of grid.a_values[row], grid.p_xy_values[col]."""
+        """The record of grid.a_values[row], grid.p_xy_values[col].
+
+        Examples
+        --------
+        >>> atlas = run_atlas([0.75], [0.0, 0.3], samples=41, tubes=2, workers=1)
+        >>> round(atlas.record(1, 0)["kappa0_s0"], 6)
+        3.165717
+        >>> atlas.record(2, 0)
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: (row, col) must be in [0, 2) × [0, 1), got (2, 0)
+        """
         rows, cols = self.shape
         if not (0 <= row < rows and 0 <= col < cols):
             raise InputError(f"(row, col) must be in [0, {rows}) × [0, {cols}), got ({row}, {col})")
         return self.records[row * cols + col]
 
     def values(self, key: str) -> np.ndarray:
-        """One numeric field over the grid, shape (rows, cols); NaN for invalid designs."""
+        """One numeric field over the grid, shape (rows, cols); NaN for invalid designs.
+
+        Examples
+        --------
+        >>> atlas = run_atlas([0.75], [0.3, 1.5], samples=41, tubes=2, workers=1)   # a = 1.5 has no standing arch
+        >>> atlas.values("kappa0_s0").round(6).tolist()
+        [[3.165717], [nan]]
+        """
         if key not in FIELDS or key in ("error", "reason"):
             raise InputError(f"key must be a numeric field of the atlas ({', '.join(k for k in FIELDS if k not in ('error', 'reason'))}), got {key!r}")
         values = [np.nan if r[key] is None else float(r[key]) for r in self.records]
         return np.array(values, float).reshape(self.shape)
 
     def every(self, step: int) -> Atlas:
-        """The atlas of every ``step``-th row and column (0, step, 2·step, …), rows and columns renumbered."""
+        """The atlas of every ``step``-th row and column (0, step, 2·step, …), rows and columns renumbered.
+
+        Examples
+        --------
+        >>> atlas = run_atlas([0.75], [0.0, 0.3], samples=41, tubes=2, workers=1)
+        >>> atlas.every(2).shape, atlas.every(2).records[0]["a"]
+        ((1, 1), 0.0)
+        """
         return Atlas.from_results(self.grid.every(step), thin(zip(self.records, self.sketches), step))
 
 
 def thin(results: Iterable[tuple[dict, Sketch | None]], step: int) -> Iterator[tuple[dict, Sketch | None]]:
-    """The (record, sketch) pairs on every ``step``-th row and column, as they come."""
+    """The (record, sketch) pairs on every ``step``-th row and column, as they come.
+
+    Examples
+    --------
+    >>> atlas = run_atlas([0.75], [0.0, 0.3], samples=41, tubes=2, workers=1)
+    >>> [(r["row"], r["col"]) for r, _ in thin(zip(atlas.records, atlas.sketches), 2)]
+    [(0, 0)]
+    """
     _check_step(step)
     return ((r, s) for r, s in results if r["row"] % step == 0 and r["col"] % step == 0)
 
 
 # -- running a sweep --------------------------------------------------------------------------
-
-
-def _cpus() -> int:
-    """CPUs this process may run on."""
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-
-
-def workers_spec() -> Spec:
-    """The ``workers`` parameter: processes of the local cluster, at most one per CPU here."""
-    cpus = _cpus()
-    return Spec("workers", "integer", None, f"[1, {cpus}]", help="processes of the local cluster (1: this process)",
-                why=f"the {cpus} CPU{'s' * (cpus != 1)} this process may use")
 
 
 def sweep(
@@ -403,35 +494,23 @@ def sweep(
     here is closed when the iterator ends, is closed, or raises (close it with
     :func:`contextlib.closing` when stopping early). Connection errors and a version
     mismatch raise :class:`InputError` at the first ``next()``.
+
+    Examples
+    --------
+    >>> results = list(sweep(AtlasGrid.of([0.75], [0.0, 0.3], samples=41, tubes=2), workers=1))
+    >>> [(record["row"], record["valid"]) for record, _ in results]
+    [(0, True), (1, True)]
+    >>> sweep([0.75, 0.3])
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel.errors.InputError: grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got list
     """
     if not isinstance(grid, AtlasGrid):
         raise InputError(f"grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got {type(grid).__name__}")
     if progress is not None and not callable(progress):
         raise InputError(f"progress must be a callable progress(done, total) or None, got {progress!r}")
     _check_step(sketch_step)
-    return _sweep(grid, *_cluster_plan(grid.size, workers, scheduler), progress, sketch_step)
-
-
-def _cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple[int, str | None]:
-    """(local processes, scheduler address): (1, None) runs in this process."""
-    if scheduler is not None:
-        if workers is not None:
-            raise InputError(f"workers sizes a local cluster; the cluster at scheduler {scheduler!r} has its own workers, got workers = {workers!r}")
-        if not isinstance(scheduler, str) or not scheduler.strip():
-            raise InputError(f"scheduler must be the address of a Dask scheduler such as 'tcp://host:8786', got {scheduler!r}")
-        _require_dask(f"scheduler {scheduler!r}")
-        return 0, scheduler.strip()
-    if workers is None:
-        workers = min(2, _cpus()) if size >= LOCAL_CLUSTER_FROM and importlib.util.find_spec("distributed") else 1
-    workers = min(workers_spec().check(workers), size)
-    if workers > 1:
-        _require_dask(f"workers = {workers}")
-    return workers, None
-
-
-def _require_dask(what: str) -> None:
-    if importlib.util.find_spec("distributed") is None:
-        raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
+    return _sweep(grid, *cluster_plan(grid.size, workers, scheduler), progress, sketch_step)
 
 
 def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None,
@@ -440,7 +519,7 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
     total, done = grid.size, 0
     if progress is not None:
         progress(0, total)
-    with _client(workers, scheduler) as client:
+    with cluster_client(workers, scheduler) as client:
         if client is None:
             arches: dict = {}  # one row's arch, shared by the designs handed out one by one
             chunks: Iterator[list] = (_evaluate_chunk([point], design, step, arches) for point in grid.points())
@@ -448,7 +527,7 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
             threads = max(1, sum(client.nthreads().values()))
             size = max(1, min(CHUNK, math.ceil(total / (TASKS_PER_THREAD * threads))))
             submit = lambda points: client.submit(_evaluate_chunk, points, design, step, pure=False)  # noqa: E731
-            chunks = _in_order(submit, _batched(grid.points(), size), IN_FLIGHT * threads)
+            chunks = in_order(submit, batched(grid.points(), size), IN_FLIGHT * threads)
         with closing(chunks):  # closed before the client, when the sweep stops early
             for results in chunks:
                 for result in results:
@@ -481,112 +560,6 @@ def _row_arch(a: float, design: dict) -> tuple | None:
         return arch_crease(check_standing(GRID_A.check(a)), shape.panels, shape.radius, design["fold_angle"], design["samples"])
     except CurvefoldError:
         return None
-
-
-def _batched(items: Iterable, size: int) -> Iterator[list]:
-    items = iter(items)
-    while batch := list(islice(items, size)):
-        yield batch
-
-
-def _in_order(submit: Callable[[Any], Any], tasks: Iterable, window: int) -> Iterator[Any]:
-    """The results of ``submit(task)`` (a future) for every task, in order, ``window`` futures at a time.
-
-    The oldest future is waited for while the others run; when it is done the next task is
-    submitted, so no more than ``window`` results (and the one handed out) are ever held.
-    """
-    tasks = iter(tasks)
-    pending = deque(submit(t) for t in islice(tasks, window))
-    while pending:
-        result = pending[0].result()
-        pending.popleft()  # the last reference: a cluster frees the result (and forgets the futures left when closed)
-        pending.extend(submit(t) for t in islice(tasks, 1))
-        yield result
-
-
-@contextmanager
-def _client(workers: int, scheduler: str | None) -> Iterator[Any]:
-    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this process.
-
-    Dask's own logging is silenced meanwhile (its scheduler runs in this process for a local
-    cluster): what goes wrong reaches the caller as an exception, and stderr keeps to one
-    line (an interrupted sweep otherwise logs the keys it could not gather).
-    """
-    if scheduler is None and workers <= 1:
-        yield None
-        return
-    import dask
-    import distributed
-
-    dask_log = logging.getLogger("distributed")
-    level = dask_log.level
-    dask_log.setLevel(logging.CRITICAL)
-    try:
-        if scheduler is not None:
-            with _scheduler_client(scheduler) as client:
-                yield client
-        else:
-            with (
-                dask.config.set({"distributed.worker.profile.enabled": False}),  # the dashboard's stack samples: nobody looks
-                distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                                         silence_logs=logging.CRITICAL) as cluster,
-                distributed.Client(cluster, set_as_default=False) as client,
-            ):
-                yield client
-    finally:
-        dask_log.setLevel(level)
-
-
-def _scheduler_client(scheduler: str) -> Any:
-    """A client of the running cluster at ``scheduler``, checked (see :func:`_check_workers`)."""
-    import distributed
-
-    try:  # first the address alone: a client made from a malformed one hangs when it is freed
-        scheme = distributed.comm.parse_address(distributed.comm.resolve_address(scheduler))[0]
-    except ValueError as err:
-        raise InputError(f"scheduler must be a Dask scheduler address such as 'tcp://host:8786', got {scheduler!r} ({err})") from None
-    except OSError as err:
-        raise InputError(f"scheduler {scheduler!r}: cannot resolve the host ({err})") from None
-    if scheme == "inproc":
-        raise InputError(f"scheduler must be a network address such as 'tcp://host:8786' (inproc:// names a scheduler inside one process), got {scheduler!r}")
-    try:
-        client = distributed.Client(scheduler, set_as_default=False)
-    except OSError as err:  # refused or timed out
-        raise InputError(f"scheduler {scheduler!r}: cannot connect to a Dask scheduler there ({err})") from None
-    try:
-        _check_workers(client, scheduler)
-    except BaseException:
-        client.close()
-        raise
-    return client
-
-
-def _check_workers(client: Any, scheduler: str) -> None:
-    """Raise unless the cluster has a worker and every worker runs this version of curvefold."""
-    from dask.config import get
-    from dask.utils import parse_timedelta
-
-    timeout = parse_timedelta(get("distributed.comm.timeouts.connect"))
-    try:
-        client.wait_for_workers(1, timeout=timeout)
-    except TimeoutError:
-        raise InputError(f"scheduler {scheduler!r} has no worker (waited {timeout:g} s)") from None
-    from importlib.metadata import version
-
-    ours = version("curvefold")  # this process's (the workers report theirs by _curvefold_version)
-    found = client.run(_curvefold_version, on_error="return")
-    wrong = {w: v for w, v in sorted(found.items()) if v != ours}
-    if wrong:
-        worker, theirs = next(iter(wrong.items()))
-        have = f"curvefold {theirs}" if isinstance(theirs, str) else "no curvefold"
-        raise InputError(f"scheduler {scheduler!r}: every worker needs curvefold {ours}, as here; {len(wrong)} of {len(found)} differ, e.g. {worker} has {have}")
-
-
-def _curvefold_version() -> str:
-    """The version of curvefold installed where this runs (on a worker)."""
-    from importlib.metadata import version
-
-    return version("curvefold")
 
 
 def run_atlas(

@@ -16,7 +16,14 @@ _NOTE = (
 
 
 def paper_comparison() -> list[dict]:
-    """Rows of (quantity, paper, computed, computed from the paper's κ0·s0, note)."""
+    """Rows of (quantity, paper, computed, computed from the paper's κ0·s0, note).
+
+    Examples
+    --------
+    >>> rows = paper_comparison()
+    >>> [row["quantity"] for row in rows], rows[0]["paper"], round(rows[0]["computed"], 6)
+    (['kappa0_s0', 'proportion_change', 'p_xz'], 3.305, 3.165717)
+    """
     a, p_xy = PAPER["a"], PAPER["p_xy"]
     ours = solve_symmetric_arch(a).kappa0_s0
     change = proportion_change(a, ours)

@@ -67,6 +67,12 @@ class TargetFit:
     note : str
         What the fit chose for the user, if anything: the number of tubes when the design
         asks for the most (``tubes = None``) and both span and rise are given.
+
+    Examples
+    --------
+    >>> fit = TargetFit(VaultDesign(), span=2.0, rise=1.0, p_xz=1.4, reached=True)
+    >>> fit.reached, fit.message, fit.require().a
+    (True, '', 0.3)
     """
 
     design: VaultDesign
@@ -78,7 +84,17 @@ class TargetFit:
     note: str = ""
 
     def require(self) -> VaultDesign:
-        """The design, or :class:`InputError` with :attr:`message` when a target is out of reach."""
+        """The design, or :class:`InputError` with :attr:`message` when a target is out of reach.
+
+        Examples
+        --------
+        >>> TargetFit(VaultDesign(), 2.0, 1.0, 1.4, True).require() == VaultDesign()
+        True
+        >>> TargetFit(VaultDesign(), 2.0, 1.0, 1.4, False, "rise must be at most 1.14 for this family").require()
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel.errors.InputError: rise must be at most 1.14 for this family
+        """
         if not self.reached:
             raise InputError(self.message, parameter="rise")  # only rise/span can be out of reach
         return self.design
