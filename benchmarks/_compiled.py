@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from curvefold.kernel.lie import GAUSS3_NODES
+from curvefold.kernel._lie import GAUSS3_NODES
 
 SOURCE = Path(__file__).with_name("magnus6.c")
 FLAGS = ("-O3", "-march=native", "-shared", "-fPIC")

@@ -17,12 +17,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from curvefold.vault.arch import solve_symmetric_arch
-
-from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
+from curvefold.vault import solve_symmetric_arch
 
 A = 0.3
 EXACT = 3.16571746805  # the digits known independently (the brief); 12 significant figures

@@ -36,7 +36,6 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
-
 from _bench import SummaryRow, markdown_table, summary_table, verdict
 
 SIDE = 40
@@ -50,14 +49,14 @@ TARGET_CPU = 60.0  # CPU seconds of the 200 × 200 atlas
 
 
 def _grid():
-    from curvefold.vault.atlas import AtlasGrid
+    from curvefold.vault import AtlasGrid
 
     return AtlasGrid.of(np.linspace(0.5, 1.5, SIDE), np.linspace(0.0, 1.2, SIDE), width=WIDTH, samples=SAMPLES)
 
 
 def _process_pool(grid) -> list[dict]:
     """The atlas's sweep before Dask: a process pool, interleaved chunks, all results held, sorted at the end."""
-    from curvefold.vault.atlas import _evaluate_chunk
+    from curvefold.vault._atlas import _evaluate_chunk
 
     points = list(grid.points())
     count = min(len(points), WORKERS * 16)
@@ -70,8 +69,8 @@ def _process_pool(grid) -> list[dict]:
 
 def _records(grid, **where) -> list[dict]:
     """The records of a sweep, sketching the designs ``curvefold atlas`` draws (every k-th row and column)."""
-    from curvefold.figures.atlas import view_step
-    from curvefold.vault.atlas import sweep
+    from curvefold.figures._atlas import view_step
+    from curvefold.vault import sweep
 
     return [record for record, _ in sweep(grid, sketch_step=view_step(grid.shape), **where)]
 
@@ -87,7 +86,7 @@ def _running(workers: int) -> str:
 
 def _warm() -> None:
     """A worker's first design, which imports what the designs use."""
-    from curvefold.vault.atlas import evaluate_design
+    from curvefold.vault import evaluate_design
 
     evaluate_design(0.3, 0.75, width=WIDTH, samples=SAMPLES)
 

@@ -3,7 +3,7 @@
 Each design runs through the command line in a process of its own (``python -m
 curvefold``, with a budget large enough to let it run); its peak resident memory comes
 from ``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` after it exits, and is compared
-with :func:`curvefold.app.budget.estimate` of the same design. The estimate must never be
+with :func:`curvefold.app._budget.estimate` of the same design. The estimate must never be
 below the peak (ratio ≥ 1); how far above it is the price of estimating from the design
 alone (``tubes = "max"`` counts as 24 tubes, the crease patterns' cost is fitted on tubes).
 
@@ -61,8 +61,8 @@ print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * (1 if sys.platfor
 
 
 def run() -> list[SummaryRow]:
-    from curvefold.app.budget import estimate
-    from curvefold.app.design import design_from_dict
+    from curvefold.app import design_from_dict
+    from curvefold.app._budget import estimate
 
     rows, ratios = [], []
     for label, argv, data in DESIGNS:

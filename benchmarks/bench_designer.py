@@ -44,7 +44,6 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 import numpy as np
-
 from _bench import SummaryRow, markdown_table, summary_table, verdict
 
 ROOT = Path(__file__).resolve().parents[1]

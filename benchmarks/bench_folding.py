@@ -23,11 +23,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
 from scipy.integrate import solve_ivp
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-
-from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
 
 SAMPLES = 2000
 LENGTH = 4.0

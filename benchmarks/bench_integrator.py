@@ -36,12 +36,11 @@ import os
 import warnings
 
 import numpy as np
+from _bench import CPU, SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, timed, verdict
+from _compiled import CompiledMagnus6
 from scipy.integrate import solve_ivp
 
 from curvefold import SpaceCurve
-
-from _bench import CPU, SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, timed, verdict
-from _compiled import CompiledMagnus6
 
 LENGTH = 20.0
 N_VALUES = (10**3, 10**4, 10**5, 10**6)

@@ -52,8 +52,8 @@ def _cpu_timed(fn):
 
 def _run_stages(built, folder: Path) -> tuple[dict[str, float], dict[str, float]]:
     """Wall and CPU seconds of every job of the output folder, and of the report (as write_outputs runs them)."""
-    from curvefold.app import products
-    from curvefold.figures.report import report_html
+    from curvefold.app import _products as products
+    from curvefold.figures import report_html
 
     wall: dict[str, float] = {}
     cpu: dict[str, float] = {}
@@ -76,10 +76,9 @@ def _children_cpu(command: list[str], env: dict[str, str]) -> tuple[float, float
 
 
 def run() -> list[SummaryRow]:
-    from curvefold.app.build import build
-    from curvefold.app.design import default_design
-    from curvefold.app.outputs import structure_payload
-    from curvefold.geometry.sampling import Sampling
+    from curvefold.app import default_design, structure_payload
+    from curvefold.app._build import build
+    from curvefold.geometry import Sampling
 
     design = default_design("vault")
     t_build, c_build, built = _cpu_timed(lambda: build(design))

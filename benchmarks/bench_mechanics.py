@@ -31,7 +31,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 import scipy.linalg as la  # noqa: E402
-
 from _bench import SummaryRow, markdown_table, verdict  # noqa: E402
 
 TARGET = 2.0  # CPU seconds

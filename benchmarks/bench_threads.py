@@ -2,7 +2,7 @@
 
 The mechanism analysis (the certificate of a panel structure, ``curvefold mechanism``)
 takes dense SVDs of constraint Jacobians of at most a few thousand columns; curvefold runs
-them on one BLAS thread (``curvefold.kernel.threads``). The contenders:
+them on one BLAS thread (``curvefold.kernel._threads``). The contenders:
 
 - commands, each in a fresh process, with OpenBLAS left at its default threads (one per
   CPU, what a user gets) and with ``OPENBLAS_NUM_THREADS=1``: ``curvefold vault --panels 64
@@ -10,7 +10,7 @@ them on one BLAS thread (``curvefold.kernel.threads``). The contenders:
   k, wall and CPU seconds (the process and its children);
 - the SVD itself, in this process: ``numpy.linalg.svd`` of the certificate's Jacobian of the
   16-panel vault on OpenBLAS's default threads (what the mechanism ran before) against
-  :func:`curvefold.analysis.mechanism.mechanism` (one thread);
+  :func:`curvefold.analysis._mechanism.mechanism` (one thread);
 - the output folder of the 16-panel vault (``write_outputs``): which processes compute the
   mechanism's SVDs. The certificate computes them before the jobs fork, so the pictures
   job (its singular values) reads them instead of computing them again.
@@ -29,7 +29,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-
 from _bench import CPU, WALL, SummaryRow, best_of_interleaved, markdown_table, summary_table, timed, verdict
 
 ROUNDS = 5
@@ -65,7 +64,7 @@ def _compare_command(label: str, args: list[str]) -> tuple[tuple, SummaryRow]:
 
 
 def _svd_rows(structure) -> tuple[list[tuple], list[SummaryRow]]:
-    from curvefold.analysis.mechanism import Framework, certified_mechanism, mechanism
+    from curvefold.analysis._mechanism import Framework, certified_mechanism, mechanism
 
     part = certified_mechanism(structure).part
     framework, points = Framework.from_structure(part)
@@ -84,9 +83,9 @@ def _svd_rows(structure) -> tuple[list[tuple], list[SummaryRow]]:
 
 def _svd_processes(folder: Path) -> tuple[int, int]:
     """Mechanism analyses (one SVD each) computed by this process and by the job processes while the 16-panel vault's folder is written."""
-    from curvefold.analysis import mechanism as m
-    from curvefold.app.folder import check_output
-    from curvefold.app.outputs import write_outputs
+    from curvefold.analysis import _mechanism as m
+    from curvefold.app import write_outputs
+    from curvefold.app._folder import check_output
 
     log = folder / "svd.log"
     analyse = m.mechanism
@@ -107,8 +106,8 @@ def _svd_processes(folder: Path) -> tuple[int, int]:
 
 
 def _built(panels: int):
-    from curvefold.app.build import build
-    from curvefold.app.design import design_from_dict
+    from curvefold.app import design_from_dict
+    from curvefold.app._build import build
 
     return build(design_from_dict({"kind": "vault", "vault": {"panels": panels}}))
 

@@ -12,9 +12,6 @@ import platform
 import sys
 import time
 
-import numpy as np
-import scipy
-
 import bench_arch
 import bench_atlas
 import bench_budget
@@ -25,6 +22,8 @@ import bench_main_job
 import bench_mechanics
 import bench_startup
 import bench_threads
+import numpy as np
+import scipy
 from _bench import summary_table
 
 BENCHMARKS = {

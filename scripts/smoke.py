@@ -138,7 +138,7 @@ def designer() -> None:
 def dask() -> None:
     import numpy as np
 
-    from curvefold.vault.atlas import AtlasGrid, sweep
+    from curvefold.vault import AtlasGrid, sweep
 
     grid = AtlasGrid.of(np.linspace(0.5, 1.0, 2), np.linspace(0.0, 0.3, 2), samples=101)
     records = [record for record, _ in sweep(grid, workers=2)]

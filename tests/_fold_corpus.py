@@ -33,8 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from curvefold.analysis.mechanism import Framework
-from curvefold.geometry.mesh import fold_angles
+from curvefold.analysis import Framework
+from curvefold.geometry import fold_angles
 
 #: The corpus: file name -> internal degrees of freedom of its folded frames.
 KNOWN_DOF = {

@@ -1,6 +1,6 @@
 """Builders of the closed-form cases of the mechanics tests: flat strips, a plate, a Miura-ori cell.
 
-Every builder returns a :class:`curvefold.geometry.mesh.Mesh` with curvefold's edge kinds,
+Every builder returns a :class:`curvefold.geometry.Mesh` with curvefold's edge kinds,
 so the cases go through :meth:`BarHingeModel.from_mesh` like a structure does.
 """
 
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from curvefold.geometry.mesh import Mesh
+from curvefold.geometry import Mesh
 
 
 def mesh_of(x: np.ndarray, triangles: np.ndarray, edges: np.ndarray, kinds) -> Mesh:

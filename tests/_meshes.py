@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.testing import assert_allclose
 
-from curvefold.geometry.mesh import Mesh, fold_angles
-from curvefold.io.fold import COORDINATE_RTOL
+from curvefold.geometry import Mesh, fold_angles
+from curvefold.io._fold import COORDINATE_RTOL
 
 
 @dataclass(frozen=True)

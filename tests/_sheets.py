@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from curvefold.geometry.mesh import Mesh
-from curvefold.geometry.sheets import PatternSheet
+from curvefold.geometry import Mesh, PatternSheet
 
 
 def annular_sheet(label: str, *, radii=(40.0, 52.0, 64.0), span_deg=(0.0, 100.0), n=24, fold="M",

@@ -19,16 +19,17 @@ from numpy.testing import assert_allclose
 
 from _cli import run, run_subprocess
 from curvefold import __version__
-from curvefold.analysis.measure import developability_residual
-from curvefold.app import cli, outputs, products
-from curvefold.app.build import build
-from curvefold.app.design import SCHEMA, SECTIONS_OF_KIND, default_design, parse_design
-from curvefold.geometry.crease import Crease
-from curvefold.io.formats import FAMILIES, FORMATS
-from curvefold.io.tables import PAGES
-from curvefold.kernel.errors import InputError, InternalError
-from curvefold.kernel.functions import as_function
-from curvefold.vault import atlas
+from curvefold.analysis._measure import developability_residual
+from curvefold.app import _outputs as outputs
+from curvefold.app import _products as products
+from curvefold.app import cli
+from curvefold.app._build import build
+from curvefold.app._design import SCHEMA, SECTIONS_OF_KIND, default_design, parse_design
+from curvefold.geometry import Crease
+from curvefold.io._formats import FAMILIES, FORMATS
+from curvefold.io._tables import PAGES
+from curvefold.kernel import InputError, InternalError, as_function
+from curvefold.vault import _atlas as atlas
 
 BETA_LEFT = "80 + 10*sin(pi*s/3)"
 ALPHA_DESIGN = f'kind = "crease"\nsamples = 401\n[crease]\nbeta_left = "{BETA_LEFT}"\nalpha = "40 + 5*s"\n'
@@ -245,10 +246,9 @@ def test_every_family_has_a_job_and_every_writer_loads():
 def test_a_familys_writer_calls_the_writer_the_registry_names_for_each_format(tmp_path, monkeypatch, family):
     """write_pattern and write_3d prepare once and hand each format to its registry writer, in the order asked:
     no branch on format names of their own."""
-    from curvefold.io.formats import FileFormat, formats_of
-    from curvefold.io.layout import Layout
-    from curvefold.io.models import FoldedModel, write_3d
-    from curvefold.io.pattern import write_pattern
+    from curvefold.io import Layout, write_pattern
+    from curvefold.io._formats import FileFormat, formats_of
+    from curvefold.io._models import FoldedModel, write_3d
 
     calls = []
 

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from _cli import run
-from curvefold.figures.assembly import HIGHLIGHT_RGB, assembly_plan, write_assembly
-from curvefold.figures.scene import GROUND_COLOR
-from curvefold.io.pattern import layout_pattern, write_pdf
-from curvefold.io.tables import rgb8
+from curvefold.figures._assembly import HIGHLIGHT_RGB, assembly_plan, write_assembly
+from curvefold.figures._scene import GROUND_COLOR
+from curvefold.io import layout_pattern, write_pdf
+from curvefold.io._tables import rgb8
 from curvefold.vault import Vault
 
 pdfplumber = pytest.importorskip("pdfplumber")

@@ -23,12 +23,11 @@ from numpy.testing import assert_array_equal
 
 from _cli import run
 from curvefold import InputError
-from curvefold.io.records import csv_records, json_records
-from curvefold.vault import Vault, VaultDesign
-from curvefold.vault import atlas as atlas_module
-from curvefold.vault import cluster as cluster_module
-from curvefold.vault.arch import A_MAX
-from curvefold.vault.atlas import FIELDS, METRICS, Atlas, AtlasGrid, run_atlas, sweep
+from curvefold.io._records import csv_records, json_records
+from curvefold.vault import A_MAX, Vault, VaultDesign
+from curvefold.vault import _atlas as atlas_module
+from curvefold.vault import _cluster as cluster_module
+from curvefold.vault._atlas import FIELDS, METRICS, Atlas, AtlasGrid, run_atlas, sweep
 
 pytest.importorskip("matplotlib")
 distributed = pytest.importorskip("distributed")
@@ -184,8 +183,8 @@ def test_values_of_a_field(serial):
 @pytest.fixture(scope="module")
 def written(tmp_path_factory) -> tuple[dict, Path]:
     """The output folder of the 3 × 3 atlas (serial) and write_atlas's summary."""
-    from curvefold.app.folder import check_output
-    from curvefold.app.outputs import write_atlas
+    from curvefold.app import write_atlas
+    from curvefold.app._folder import check_output
 
     out = tmp_path_factory.mktemp("atlas") / "out"
     summary = write_atlas(P_XY, A_VALUES, out=check_output(out, force=False), workers=1, show_progress=False, **KW)
@@ -193,7 +192,7 @@ def written(tmp_path_factory) -> tuple[dict, Path]:
 
 
 def test_written_summary_and_files(written):
-    from curvefold.app.folder import MARKER
+    from curvefold.app._folder import MARKER
 
     summary, out = written
     assert summary == {"shape": [3, 3], "designs": 9, "valid": 5, "invalid": {"ConvergenceError": 3, "RegressionError": 1},
@@ -254,8 +253,7 @@ def test_record_files_are_written_whole_or_not_at_all(tmp_path):
 def test_figure_renders(serial, tmp_path):
     from PIL import Image
 
-    from curvefold.figures.atlas import atlas_figure
-    from curvefold.figures.plots import save_figure
+    from curvefold.figures import atlas_figure, save_figure
 
     fig = atlas_figure(serial, cell_size=1.2)
     texts = [t.get_text() for t in fig.axes[0].texts]
@@ -433,9 +431,9 @@ def test_every_kth_row_and_column(serial):
 
 
 def test_a_wide_grid_writes_every_record_and_draws_every_kth(tmp_path, monkeypatch):
-    from curvefold.app.folder import check_output
-    from curvefold.app.outputs import write_atlas
-    from curvefold.figures import atlas as figure_module
+    from curvefold.app import write_atlas
+    from curvefold.app._folder import check_output
+    from curvefold.figures import _atlas as figure_module
 
     drawn = {}
     draw = figure_module.atlas_figure

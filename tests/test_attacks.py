@@ -26,11 +26,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import curvefold.app.build
+import curvefold.app._build
 from _cli import run, run_subprocess
-from curvefold.app import folder
-from curvefold.app.budget import estimate
-from curvefold.app.design import design_from_dict
+from curvefold.app import _folder as folder
+from curvefold.app import design_from_dict
+from curvefold.app._budget import estimate
 
 EXAMPLES = Path(__file__).parent.parent / "examples"
 
@@ -255,8 +255,8 @@ def test_a_kernel_file_is_not_read_past_its_size(tmp_path):
 
 
 def test_files_past_the_size_limits_are_refused_unread(tmp_path):
-    from curvefold.io.columns import MAX_CSV_BYTES
-    from curvefold.io.fold_reading import MAX_FOLD_BYTES
+    from curvefold.io._columns import MAX_CSV_BYTES
+    from curvefold.io._fold_reading import MAX_FOLD_BYTES
 
     with open(tmp_path / "big.fold", "wb") as f:  # sparse: no disk used
         f.truncate(MAX_FOLD_BYTES + 1)
@@ -384,13 +384,13 @@ class _SignalInFinalizer:
 
 def test_a_signal_raised_where_python_ignores_exceptions_still_stops_the_run(tmp_path, monkeypatch):
     """The atlas once finished a sweep and exited 0 after printing "Exception ignored ... 15"."""
-    build = curvefold.app.build.build
+    build = curvefold.app._build.build
 
     def build_then_signal(*args, **kwargs):
         _SignalInFinalizer()  # collected at once
         return build(*args, **kwargs)
 
-    monkeypatch.setattr(curvefold.app.build, "build", build_then_signal)
+    monkeypatch.setattr(curvefold.app._build, "build", build_then_signal)
     r = run("crease", "--samples", "41", "--out", "c", cwd=tmp_path)
     assert (r.returncode, r.stderr, r.stdout) == (128 + signal.SIGTERM, "curvefold: interrupted by SIGTERM\n", "")
     assert listing(tmp_path) == []  # nothing installed after the signal
@@ -427,14 +427,14 @@ def test_stale_temporary_folders_of_gone_processes_are_removed(tmp_path):
 
 def _appears_during_the_build(monkeypatch, make):
     """Run ``make()`` (another process creating or changing the target) after the build."""
-    build = curvefold.app.build.build
+    build = curvefold.app._build.build
 
     def build_then_interfere(design):
         built = build(design)
         make()
         return built
 
-    monkeypatch.setattr(curvefold.app.build, "build", build_then_interfere)
+    monkeypatch.setattr(curvefold.app._build, "build", build_then_interfere)
 
 
 @pytest.mark.parametrize("noreplace", ["renameat2", "lock on the parent"])
@@ -529,7 +529,7 @@ def test_a_block_of_ten_thousand_cells_is_refused_before_starting(tmp_path, monk
 def test_the_largest_atlas_fits_the_budget_and_a_smaller_budget_refuses_it_before_starting(tmp_path, monkeypatch):
     """Records stream to disk, so the 200 × 200 atlas (a MemoryError once) fits the default
     budget; its estimate is still checked, and refused before any work when over it."""
-    from curvefold.app.budget import memory_budget, require_atlas_budget
+    from curvefold.app._budget import memory_budget, require_atlas_budget
 
     monkeypatch.delenv("CURVEFOLD_MEMORY_BUDGET", raising=False)
     assert require_atlas_budget(40_000, samples=201, workers=2) < memory_budget()
@@ -556,7 +556,7 @@ def test_out_of_memory_is_one_line(tmp_path, monkeypatch):
     def exhausted(design):
         raise MemoryError
 
-    monkeypatch.setattr(curvefold.app.build, "build", exhausted)
+    monkeypatch.setattr(curvefold.app._build, "build", exhausted)
     refused(run("crease", "--json", cwd=tmp_path), r"^curvefold: error: out of memory; lower samples")
 
 
@@ -568,7 +568,7 @@ def test_warnings_never_come_before_the_line(tmp_path, monkeypatch, capsys):
     assert "Warning" not in quiet.stderr and len(quiet.stderr.splitlines()) == 1, quiet.stderr
     # a warning on the way to an error is kept back, and printed after the line with --debug
     from curvefold.app import cli
-    from curvefold.kernel.errors import InputError
+    from curvefold.kernel import InputError
 
     def noisy(kind, args):
         np.exp(np.array([1000.0]))  # overflow: a RuntimeWarning
@@ -590,10 +590,7 @@ HOSTILE = "vault\nv 999 999 999\r\nmtllib ../../evil.mtl\x1b[2J\u202e <script>al
 
 @pytest.fixture(scope="module")
 def small_tube():
-    from curvefold.geometry.crease import Crease
-    from curvefold.geometry.curve import SpaceCurve
-    from curvefold.geometry.lattice import Lattice
-    from curvefold.geometry.structure import Structure
+    from curvefold.geometry import Crease, Lattice, SpaceCurve, Structure
 
     curve = SpaceCurve.from_curvature(1.0, 0.2, 3.0, samples=41)
     return Structure.tube(Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.3, 0.3))
@@ -637,7 +634,7 @@ def test_glb_3dm_and_fold_hold_the_title_on_one_line(tmp_path, small_tube):
     _clean(doc["file_title"])
     _clean(doc["curvefold:metadata"]["title"])
     assert read_fold(fold).metadata["title"] == doc["curvefold:metadata"]["title"]
-    from curvefold.geometry.sheets import sheets
+    from curvefold.geometry._sheets import sheets
 
     sheet = json.loads(write_sheet_fold(tmp_path / "s.fold", sheets(small_tube)[0].mesh, title=HOSTILE).read_text())
     _clean(sheet["file_title"])
@@ -663,7 +660,7 @@ def test_pattern_pages_show_a_hostile_label_as_text(tmp_path, small_tube):
 
 
 def test_the_report_and_the_terminal_escape_a_title(tmp_path):
-    from curvefold.figures.report import report_html
+    from curvefold.figures import report_html
 
     html = report_html({"title": HOSTILE, "kind": "tube", "certificate": []})
     assert "<script>alert" not in html and "&lt;script&gt;" in html
@@ -680,16 +677,16 @@ def test_the_report_and_the_terminal_escape_a_title(tmp_path):
 
 
 def test_a_non_finite_result_is_an_error_not_json(tmp_path, monkeypatch):
-    import curvefold.vault.arch
+    import curvefold.vault._arch
 
-    monkeypatch.setattr(curvefold.vault.arch, "proportion_change", lambda *a, **k: float("inf"))
+    monkeypatch.setattr(curvefold.vault._arch, "proportion_change", lambda *a, **k: float("inf"))
     r = run("arch", "--json", cwd=tmp_path)  # printed "proportion_change": Infinity
     assert r.returncode == 1 and r.stdout == ""
     assert "the result holds a number that is not finite: result.proportion_change = inf" in r.stderr
 
 
 def test_a_non_finite_result_is_never_written(tmp_path, monkeypatch):
-    from curvefold.app import outputs
+    from curvefold.app import _outputs as outputs
 
     payload = outputs.structure_payload
     monkeypatch.setattr(outputs, "structure_payload", lambda built: payload(built) | {"span": float("nan")})

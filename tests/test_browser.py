@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 
 from _browser import chromium_page, served
 from _cli import run
-from curvefold.geometry.sampling import choose_sampling
+from curvefold.geometry import choose_sampling
 from curvefold.io import write_3d
 from curvefold.vault import Vault
 

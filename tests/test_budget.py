@@ -9,10 +9,10 @@ import sys
 
 import pytest
 
-from curvefold.app import budget
-from curvefold.app.budget import estimate, memory_budget
-from curvefold.app.design import design_from_dict
-from curvefold.kernel.errors import InputError
+from curvefold.app import _budget as budget
+from curvefold.app import design_from_dict
+from curvefold.app._budget import estimate, memory_budget
+from curvefold.kernel import InputError
 
 _CHILD = """
 import resource, subprocess, sys

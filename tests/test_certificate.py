@@ -2,7 +2,7 @@
 
 Each damage is a plausible bug in a builder, patched in for one test: the design is built
 with it (at both resolutions the error model compares), then certified. Every check of
-:data:`curvefold.analysis.checks.CHECKS` appears in :data:`DAMAGES` at least once.
+:data:`curvefold.analysis.CHECKS` appears in :data:`DAMAGES` at least once.
 """
 
 from __future__ import annotations
@@ -12,22 +12,19 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-import curvefold.geometry.crease as crease_module
-import curvefold.geometry.lattice as lattice_module
-import curvefold.geometry.panel_pattern as panel_pattern_module
-import curvefold.geometry.panels as panels_module
-import curvefold.vault.assembly as assembly
+import curvefold.geometry._crease as crease_module
+import curvefold.geometry._lattice as lattice_module
+import curvefold.geometry._panel_pattern as panel_pattern_module
+import curvefold.geometry._panels as panels_module
+import curvefold.vault._assembly as assembly
 from curvefold import Crease, InputError, Lattice, SpaceCurve, Structure
-from curvefold.analysis.certificate import certify
-from curvefold.analysis.checks import CHECKS
-from curvefold.analysis.frames import Frame, Shared
-from curvefold.figures.report import report_html
-from curvefold.geometry.curve import gauss_nodes
-from curvefold.geometry.panel_pattern import PanelPattern
-from curvefold.geometry.panels import PanelLattice
-from curvefold.geometry.topology import Topology
-from curvefold.kernel.lie import GAUSS3_WEIGHTS
-from curvefold.vault.assembly import Vault
+from curvefold.analysis import CHECKS, certify
+from curvefold.analysis._frames import Frame, Shared
+from curvefold.figures import report_html
+from curvefold.geometry import PanelLattice, PanelPattern, Topology
+from curvefold.geometry._curve import gauss_nodes
+from curvefold.kernel._lie import GAUSS3_WEIGHTS
+from curvefold.vault import Vault
 
 SAMPLES = 121
 
@@ -214,7 +211,7 @@ def _beta_wiggle(self, s):
 
 def _torsion_kept(self, alphas, anchor):
     """Refolding that keeps τ₀ instead of scaling it by tan α / tan α₀."""
-    from curvefold.geometry.curve import integrate_frenet
+    from curvefold.geometry import integrate_frenet
 
     p, c = self.pattern, self.crease.curve
     return integrate_frenet(c.s, p.kappa_2d_nodes / np.cos(alphas)[:, None, None],

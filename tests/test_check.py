@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from _cli import run
-from curvefold.analysis.foldcheck import CHECK_SPECS, check_fold
-from curvefold.app.build import build
-from curvefold.app.design import default_design
-from curvefold.io.fold import write_structure_fold
+from curvefold.analysis._foldcheck import CHECK_SPECS, check_fold
+from curvefold.app import default_design
+from curvefold.app._build import build
+from curvefold.io import write_structure_fold
 
 ANGLES = [0.0, 45.0, 90.0]
 
@@ -80,13 +80,13 @@ def test_every_frame_records_the_dihedral_angle_of_every_edge(written):
 
 
 def test_write_fold_refuses_bad_bonds_and_designs(tmp_path):
-    from curvefold.kernel.errors import InputError
+    from curvefold.kernel import InputError
 
     design = default_design("tube").overrides(samples=21)
     structure = build(design).structure
     with pytest.raises(InputError, match="design must be JSON data"):
         write_structure_fold(tmp_path / "x.fold", structure, design={"when": object()})
-    from curvefold.io.fold import to_fold, write_fold
+    from curvefold.io import to_fold, write_fold
 
     model = to_fold(structure)
     with pytest.raises(InputError, match=r"bonds must be edge indices in \[0, "):

@@ -17,8 +17,7 @@ import numpy as np
 import pytest
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.geometry.mesh import Mesh
-from curvefold.geometry.panels import PanelLattice
+from curvefold.geometry import Mesh, PanelLattice
 from curvefold.mechanics import MATERIALS, BarHingeModel, StructureModel, conjecture_counts, free_modes, soft_modes
 from curvefold.vault import Vault
 

@@ -5,8 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import InputError, SpaceCurve
-from curvefold.geometry.curve import MAX_SAMPLES
-from curvefold.kernel.lie import dual_to_motion, exp_dual, magnus6, prefix_dual
+from curvefold.geometry._curve import MAX_SAMPLES
+from curvefold.kernel._lie import dual_to_motion, exp_dual, magnus6, prefix_dual
 
 KAPPA = lambda s: 1.0 + 0.5 * np.sin(s)  # noqa: E731  manufactured smooth curvature
 TAU = lambda s: 0.3 * np.cos(2.0 * s)  # noqa: E731
@@ -147,8 +147,8 @@ def test_arrays_are_read_only():
 
 def test_dense_output_agrees_with_stepping_every_sample():
     """Far denser than accuracy needs, samples are filled by quintic Hermite interpolation."""
-    from curvefold.geometry.curve import gauss_nodes, integrate_frenet
-    from curvefold.kernel.dense import dense_stride
+    from curvefold.geometry._curve import gauss_nodes, integrate_frenet
+    from curvefold.kernel._dense import dense_stride
 
     L, n = 20.0, 100_001
     c = SpaceCurve.from_curvature(KAPPA, TAU, L, samples=n)
@@ -163,9 +163,9 @@ def test_dense_output_agrees_with_stepping_every_sample():
 
 def test_dense_output_error_falls_at_sixth_order():
     """The Hermite fill's own error, measured with growing strides on the same coarse solution."""
-    from curvefold.geometry.curve import gauss_nodes, integrate_frenet, integrate_motions
-    from curvefold.kernel.dense import coarse_indices, frenet_rates, hermite_fill
-    from curvefold.kernel.functions import as_function
+    from curvefold.geometry._curve import gauss_nodes, integrate_frenet, integrate_motions
+    from curvefold.kernel import as_function
+    from curvefold.kernel._dense import coarse_indices, frenet_rates, hermite_fill
 
     L, n = 6.0, 6401
     s = np.linspace(0, L, n)
@@ -183,9 +183,9 @@ def test_dense_output_error_falls_at_sixth_order():
 
 def test_a_derivative_that_fails_between_the_samples_means_a_step_per_sample():
     """The Hermite fill reads κ' and τ'; where they are not finite, every sample is integrated instead."""
-    from curvefold.geometry.curve import gauss_nodes, integrate_frenet
-    from curvefold.kernel.dense import coarse_indices, dense_stride
-    from curvefold.kernel.functions import as_function, difference_step
+    from curvefold.geometry._curve import gauss_nodes, integrate_frenet
+    from curvefold.kernel._dense import coarse_indices, dense_stride
+    from curvefold.kernel._functions import as_function, difference_step
 
     L, n = 20.0, 20_000
     s = np.linspace(0, L, n)

@@ -17,10 +17,10 @@ import pytest
 from shapely.geometry import LineString, Point, Polygon
 
 from _sheets import tube_sheets
-from curvefold.io.cutters import CUTTERS, LEGEND_LAYER, Cutter, aci, cutter, layer_name
-from curvefold.io.cutting import MITRE_LIMIT, offset_outline, perforation_dashes, prepare_layout
-from curvefold.io.pattern import DEFAULT_LAYERS, layout_sheets, write_dxf, write_pdf, write_svg
-from curvefold.kernel.errors import InputError
+from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, Cutter, aci, cutter, layer_name
+from curvefold.io._cutting import MITRE_LIMIT, offset_outline, perforation_dashes, prepare_layout
+from curvefold.io._pattern import DEFAULT_LAYERS, layout_sheets, write_dxf, write_pdf, write_svg
+from curvefold.kernel import InputError
 
 SVG = "{http://www.w3.org/2000/svg}"
 INK = "{http://www.inkscape.org/namespaces/inkscape}"
@@ -89,8 +89,8 @@ def test_the_footer_stays_in_its_band_whatever_its_rows():
     """Longer legend entries (with their colours) wrap into more rows; on a narrow page the rows
     close up rather than run into the margin, where printers do not print."""
     from _sheets import vault_sheets
-    from curvefold.io.legend import page_footer
-    from curvefold.io.pattern import LAYERS
+    from curvefold.io._legend import page_footer
+    from curvefold.io._pattern import LAYERS
 
     for page in ("A5", "A4", (120.0, 200.0)):
         layout = layout_sheets(vault_sheets(4), page=page)
@@ -148,8 +148,8 @@ def test_dashed_creases_are_long_arcs_through_their_points(tmp_path):
     from ezdxf import path
 
     from _sheets import vault_sheets
-    from curvefold.io.dxf import ARC_TOLERANCE
-    from curvefold.io.planar import distance_to_segments, polyline_segments
+    from curvefold.io._dxf import ARC_TOLERANCE
+    from curvefold.io._planar import distance_to_segments, polyline_segments
 
     layout = layout_sheets(vault_sheets(3), page="A4")
     doc = ezdxf.readfile(write_dxf(tmp_path / "v.dxf", layout))

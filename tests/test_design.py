@@ -1,4 +1,4 @@
-"""Tests of curvefold.app.design: the examples, the schema, every class of error, fuzzing."""
+"""Tests of curvefold.app._design: the examples, the schema, every class of error, fuzzing."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose, assert_array_equal
 
-from curvefold.app.design import (
+from curvefold.app._design import (
     KINDS,
     SCHEMA,
     SECTIONS_OF_KIND,
@@ -30,13 +30,10 @@ from curvefold.app.design import (
     load_design,
     parse_design,
 )
-from curvefold.app.loading import LoadParams, MaterialParams
-from curvefold.io.formats import FORMATS
-from curvefold.io.tables import PAGES
-from curvefold.kernel.errors import InputError
-from curvefold.kernel.expr import Expression
-from curvefold.kernel.functions import as_function
-from curvefold.kernel.validate import Interval
+from curvefold.app._loading import LoadParams, MaterialParams
+from curvefold.io._formats import FORMATS
+from curvefold.io._tables import PAGES
+from curvefold.kernel import Expression, InputError, Interval, as_function
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SRC = "design.toml"
@@ -642,8 +639,8 @@ def _without_alpha_conflicts(section: dict) -> dict:
 
 def _drawable(data: dict) -> dict:
     """A document whose print scale draws its crease at least the scale bar long (io.formats.check_scale)."""
-    from curvefold.io.formats import MIN_DRAWN_MM
-    from curvefold.io.tables import mm_per_unit
+    from curvefold.io._formats import MIN_DRAWN_MM
+    from curvefold.io._tables import mm_per_unit
 
     out = data.get("output", {})
     if out.get("scale") is None:

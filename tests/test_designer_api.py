@@ -18,10 +18,10 @@ from _cli import run
 from _designer import get, get_json, need
 
 pytest.importorskip("fastapi")
-from curvefold.analysis.foldcheck import check_fold  # noqa: E402
-from curvefold.app.design import KINDS, default_design, parse_design  # noqa: E402
+from curvefold.analysis import check_fold  # noqa: E402
+from curvefold.app._design import KINDS, default_design, parse_design  # noqa: E402
 from curvefold.app.designer import api, jobs, preview, server  # noqa: E402
-from curvefold.geometry.structure import drawable  # noqa: E402
+from curvefold.geometry._structure import drawable  # noqa: E402
 from curvefold.vault import Vault, VaultDesign  # noqa: E402
 
 #: A light vault: the answers are the same functions at any sample count.

@@ -20,9 +20,9 @@ from _cli import run
 from _designer import CHROMIUM, CHROMIUM_ARGS, need
 
 pytest.importorskip("fastapi")
-from curvefold.analysis.foldcheck import check_fold  # noqa: E402
+from curvefold.analysis import check_fold  # noqa: E402
 from curvefold.app.designer import server  # noqa: E402
-from curvefold.io.fold_reading import read_fold  # noqa: E402
+from curvefold.io import read_fold  # noqa: E402
 
 #: A light vault, so that downloads at full resolution stay quick.
 LIGHT = "?kind=vault&samples=201&tubes=4"

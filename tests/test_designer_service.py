@@ -180,7 +180,7 @@ def test_the_folder_download_holds_the_whole_output_folder(url):
 
 
 def test_files_hold_the_state_at_the_fold_angle_asked(url, tmp_path):
-    from curvefold.io.fold_reading import read_fold
+    from curvefold.io import read_fold
 
     for state, expected in ((None, 90.0), (60, 60.0)):  # the motion from flat to the state (on to the first contact by default)
         code, _, body = get(url + "api/vault.fold?samples=101&tubes=2" + ("" if state is None else f"&state={state}"))

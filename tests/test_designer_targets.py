@@ -1,4 +1,4 @@
-"""A vault from its span, rise and apex proportion (curvefold.vault.targets), in the API and on the command line."""
+"""A vault from its span, rise and apex proportion (curvefold.vault._targets), in the API and on the command line."""
 
 import math
 import re
@@ -7,12 +7,11 @@ import numpy as np
 import pytest
 
 from _cli import run
-from curvefold.app import build as build_module
-from curvefold.app.design import default_design
-from curvefold.kernel.errors import InputError, InternalError
-from curvefold.vault import Vault, VaultDesign, proportion_change, solve_symmetric_arch
-from curvefold.vault import targets as targets_module
-from curvefold.vault.targets import fit_targets
+from curvefold.app import _build as build_module
+from curvefold.app import default_design
+from curvefold.kernel import InputError, InternalError
+from curvefold.vault import Vault, VaultDesign, fit_targets, proportion_change, solve_symmetric_arch
+from curvefold.vault import _targets as targets_module
 
 #: Brent's method stops at 1e-13 in a; rise/span moves by O(1) per unit of a and the radius is a
 #: quotient of two measured lengths, so the targets are met to ~1e-12: 1e-9 is the fit's own tolerance.
@@ -146,7 +145,7 @@ def test_a_fitted_design_passes_its_own_certificate():
 
 
 def test_a_fit_failing_its_certificate_is_refused(monkeypatch):
-    from curvefold.analysis import certificate
+    from curvefold.analysis import _certificate as certificate
 
     real = certificate.certify
 

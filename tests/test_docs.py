@@ -169,7 +169,7 @@ def test_the_version_has_one_source():
     assert version == PYPROJECT["project"]["version"] == curvefold.__version__
     assert run_subprocess("--version").stdout.split() == ["curvefold", version]
     assert f"## [{version}]" in (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")  # every version has its entry
-    from curvefold.io.tables import CREATOR
+    from curvefold.io._tables import CREATOR
 
     assert CREATOR == f"curvefold {version}"
 
@@ -211,7 +211,7 @@ def rhino_script():
 
 def test_rhino_script_downloads_a_design_that_rhino_reads(designer_url, rhino_script, tmp_path):
     rhino3dm = pytest.importorskip("rhino3dm")
-    from curvefold.analysis.foldcheck import check_fold
+    from curvefold.analysis import check_fold
 
     summary, paths = rhino_script.fetch("vault", {"a": 0.4, "tubes": 2, "samples": 101}, formats=("3dm", "fold"),
                                         server=designer_url, folder=str(tmp_path))
@@ -219,7 +219,7 @@ def test_rhino_script_downloads_a_design_that_rhino_reads(designer_url, rhino_sc
     assert [Path(p).name for p in paths] == ["vault.3dm", "vault.fold"]
     model = rhino3dm.File3dm.Read(paths[0])
     assert model.ApplicationName == f"curvefold {importlib.metadata.version('curvefold')}"
-    from curvefold.io.rhino import LAYERS, PATTERN_LAYER
+    from curvefold.io._rhino import LAYERS, PATTERN_LAYER
 
     names = [layer.Name for layer in model.Layers]
     assert len(model.Objects) > 0 and names[: len(LAYERS)] == [name for name, _ in LAYERS] and PATTERN_LAYER in names

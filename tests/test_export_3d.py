@@ -11,9 +11,9 @@ from numpy.testing import assert_allclose, assert_array_equal
 from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
-from curvefold.geometry.mesh import Mesh
+from curvefold.geometry import Mesh
 from curvefold.io import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
-from curvefold.kernel.errors import InputError
+from curvefold.kernel import InputError
 
 
 @pytest.fixture
@@ -151,7 +151,7 @@ def test_ply_read_back_by_trimesh(tmp_path, tube):
 
 @pytest.mark.parametrize(("writer", "name"), [(write_stl, "m.stl"), (write_ply, "m.ply")])
 def test_binary_mesh_writers_are_atomic(tmp_path, monkeypatch, tube, writer, name):
-    from curvefold.io import mesh3d
+    from curvefold.io import _mesh3d as mesh3d
 
     def broken(*args, **kwargs):
         raise RuntimeError("exporter failed")
@@ -459,10 +459,9 @@ def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
     rhino3dm = pytest.importorskip("rhino3dm")
     from shapely.geometry import Polygon
 
-    from curvefold.io import write_3d
-    from curvefold.io.cutters import layer_name
-    from curvefold.io.pattern import layout_pattern
-    from curvefold.io.rhino import PATTERN_LAYER
+    from curvefold.io import layout_pattern, write_3d
+    from curvefold.io._cutters import layer_name
+    from curvefold.io._rhino import PATTERN_LAYER
     from curvefold.vault import Vault
 
     structure = Vault.from_design(samples=101, tubes=2).structure

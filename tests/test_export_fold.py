@@ -14,10 +14,10 @@ from numpy.testing import assert_allclose, assert_array_equal
 import curvefold
 from _meshes import assert_written, measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
 from _node import run_node
-from curvefold.geometry.mesh import Mesh
+from curvefold.geometry import Mesh
 from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
-from curvefold.io.fold import ANGLE_DECIMALS, COORDINATE_RTOL
-from curvefold.kernel.errors import InputError
+from curvefold.io._fold import ANGLE_DECIMALS, COORDINATE_RTOL
+from curvefold.kernel import InputError
 
 
 def _write_tube(path: Path, **kw) -> tuple:

@@ -24,24 +24,20 @@ from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import unary_union
 
 from _sheets import annular_sheet, tube_sheets, vault_sheets
-from curvefold.geometry.mesh import Mesh
-from curvefold.geometry.sheets import PatternSheet
-from curvefold.io import cutters, cutting, labels, legend, pattern, pdf, planar
-from curvefold.io import layout as layout_module
-from curvefold.io.cutters import CUTTERS, LEGEND_LAYER, layer_name
-from curvefold.io.pattern import (
-    DEFAULT_LAYERS,
-    LAYERS,
-    LEGEND,
-    layout_sheets,
-    seam_name,
-    write_dxf,
-    write_pdf,
-    write_svg,
-)
-from curvefold.io.planar import polyline_segments
-from curvefold.io.tabs import tab_fits, tab_outline, tab_pieces
-from curvefold.kernel.errors import InputError
+from curvefold.geometry import Mesh, PatternSheet
+from curvefold.io import _cutters as cutters
+from curvefold.io import _cutting as cutting
+from curvefold.io import _labels as labels
+from curvefold.io import _layout as layout_module
+from curvefold.io import _legend as legend
+from curvefold.io import _pattern as pattern
+from curvefold.io import _pdf as pdf
+from curvefold.io import _planar as planar
+from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, layer_name
+from curvefold.io._pattern import DEFAULT_LAYERS, LAYERS, LEGEND, layout_sheets, seam_name, write_dxf, write_pdf, write_svg
+from curvefold.io._planar import polyline_segments
+from curvefold.io._tabs import tab_fits, tab_outline, tab_pieces
+from curvefold.kernel import InputError
 
 NS = {
     "svg": "http://www.w3.org/2000/svg",

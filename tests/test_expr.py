@@ -1,4 +1,4 @@
-"""Tests of curvefold.kernel.expr: values, broadcasting, refusals, resource limits and fuzzing."""
+"""Tests of curvefold.kernel._expr: values, broadcasting, refusals, resource limits and fuzzing."""
 
 from __future__ import annotations
 
@@ -12,9 +12,8 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose, assert_array_equal
 
-from curvefold.kernel.errors import InputError
-from curvefold.kernel.expr import MAX_DEPTH, MAX_LENGTH, MAX_NODES, compile_expression
-from curvefold.kernel.functions import as_function
+from curvefold.kernel import InputError, as_function
+from curvefold.kernel._expr import MAX_DEPTH, MAX_LENGTH, MAX_NODES, compile_expression
 
 S = np.linspace(-0.9, 2.7, 37)
 

@@ -28,17 +28,8 @@ from numpy.testing import assert_allclose, assert_array_equal
 from _meshes import assert_written
 from _node import run_node
 from curvefold import Crease, CurvefoldError, InputError, Lattice, SpaceCurve, Structure
-from curvefold.geometry.mesh import fold_angles
-from curvefold.geometry.sheets import (
-    Bond,
-    PatternSheet,
-    bonds,
-    flat_plane,
-    folding_motion,
-    sheet_vertices,
-    sheets,
-    unroll_strip,
-)
+from curvefold.geometry import fold_angles
+from curvefold.geometry._sheets import Bond, PatternSheet, bonds, flat_plane, folding_motion, sheet_vertices, sheets, unroll_strip
 from curvefold.io import (
     MODEL_FORMATS,
     layout_pattern,
@@ -49,7 +40,7 @@ from curvefold.io import (
     write_sheet_fold,
     write_structure_fold,
 )
-from curvefold.io.fold import ANGLE_DECIMALS
+from curvefold.io._fold import ANGLE_DECIMALS
 
 
 def lattice(samples=101, widths=(0.2, 0.15), fold_angle=90.0):

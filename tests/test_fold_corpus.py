@@ -16,11 +16,11 @@ import pytest
 
 from _cli import run
 from _fold_corpus import KNOWN_DOF, corpus, triangulated_dof, write_corpus
-from curvefold.analysis.fold_mechanism import analyse_fold, coordinate_precision
-from curvefold.analysis.foldcheck import check_fold
-from curvefold.geometry.mesh import Mesh
-from curvefold.io.fold_keys import split_cuts
-from curvefold.io.fold_reading import read_fold
+from curvefold.analysis import check_fold
+from curvefold.analysis._fold_mechanism import analyse_fold, coordinate_precision
+from curvefold.geometry import Mesh
+from curvefold.io import read_fold
+from curvefold.io._fold_keys import split_cuts
 
 
 @pytest.fixture(scope="module")

@@ -8,15 +8,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
-from curvefold.kernel.functions import (
-    Constant,
-    Sampled,
-    Scaled,
-    UserFunction,
-    as_function,
-    difference_derivative,
-    difference_step,
-)
+from curvefold.kernel._functions import Constant, Sampled, Scaled, UserFunction, as_function, difference_derivative, difference_step
 
 
 def square_root_near_zero(s):

@@ -2,7 +2,7 @@
 
 :class:`Forwarded` is a third kind of lattice: a class of its own (so no ``isinstance`` of
 ``Lattice`` or ``PanelLattice`` can recognise it) that satisfies
-:class:`~curvefold.geometry.kinds.StructureLattice` and nothing more. Its geometry is
+:class:`~curvefold.geometry.StructureLattice` and nothing more. Its geometry is
 another lattice's; its answers about its kind (rigid, thinnable, crease degree) are its
 own fields. Structures on it are built, sampled, written, checked, drawn and certified by
 the code as it is, and each consumer follows the answers, not the type.
@@ -17,13 +17,8 @@ import pytest
 from numpy.testing import assert_array_equal
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.analysis.certificate import certify
-from curvefold.analysis.foldcheck import check_fold
-from curvefold.analysis.fold_mechanism import analyse_fold
-from curvefold.geometry.curve import FramedCurve
-from curvefold.geometry.kinds import FoldedCrease, StructureLattice
-from curvefold.geometry.panels import PanelLattice
-from curvefold.geometry.sampling import choose_sampling
+from curvefold.analysis import analyse_fold, certify, check_fold
+from curvefold.geometry import FoldedCrease, FramedCurve, PanelLattice, StructureLattice, choose_sampling
 from curvefold.io import to_fold, write_3d, write_structure_fold
 
 
@@ -131,7 +126,7 @@ def test_a_third_kind_is_built_sampled_and_written(tmp_path, panels, boards):
 
 def test_a_third_kind_is_drawn_and_certified(boards, panels):
     pytest.importorskip("matplotlib")
-    from curvefold.figures.views import plot_structure
+    from curvefold.figures import plot_structure
 
     figure = plot_structure(boards)
     assert "rigid planar panels" in [t.get_text() for t in figure.axes[0].get_legend().get_texts()]

@@ -7,8 +7,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, Lattice, RegressionDomain, RegressionError, SpaceCurve, measure
-from curvefold.geometry.lattice import Pattern
-from curvefold.kernel.functions import ScalarFunction
+from curvefold.geometry import Pattern
+from curvefold.kernel import ScalarFunction
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.3 * np.cos(1.5 * s)  # noqa: E731

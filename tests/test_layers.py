@@ -275,7 +275,7 @@ def long_modules(root: Path, package: str, limit: int = MAX_LINES) -> dict[str, 
 
 def test_curvefold_keeps_its_layers():
     graph = imports(SRC, "curvefold")
-    assert {"curvefold.kernel.errors", "curvefold.figures.plots", "curvefold.app.cli"} <= set(graph)
+    assert {"curvefold.kernel._errors", "curvefold.figures._plots", "curvefold.app.cli"} <= set(graph)
     assert sum(map(len, graph.values())) > 100  # it found the imports
     assert cycles(graph) == []
     found = {(a, b): why for a, b, why in upward(graph)}
@@ -347,7 +347,7 @@ def test_imports_up_or_across_the_layers_are_reported(tmp_path):
 
 
 KINDS = BASE | {
-    "pkg/geometry/kinds.py": (
+    "pkg/geometry/_kinds.py": (
         "from typing import Protocol\n"
         "class Shape(Protocol):\n"
         "    @property\n    def size(self) -> float: ...\n"

@@ -16,9 +16,9 @@ import pytest
 from numpy.testing import assert_allclose
 
 from _cli import run, run_subprocess
-from curvefold.app.budget import estimate
-from curvefold.app.design import parse_design
-from curvefold.kernel.arrays import readonly
+from curvefold.app import parse_design
+from curvefold.app._budget import estimate
+from curvefold.kernel import readonly
 from curvefold.mechanics import Loads, Material, StructureModel, Supports, analyse_load
 from curvefold.vault import Vault
 

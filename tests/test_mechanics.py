@@ -14,7 +14,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from _mechanics import dihedral, mesh_of, miura_cell, miura_mesh, strip
-from curvefold.kernel.errors import InputError
+from curvefold.kernel import InputError
 from curvefold.mechanics import BarHingeModel, Material, buckling, free_modes, soft_modes, static_response
 from curvefold.mechanics._elements import dihedral_angle, dihedral_gradient, dihedral_hessian, dihedral_hessian_action, triangle_strain
 from curvefold.mechanics._materials import MATERIALS, material

@@ -18,9 +18,9 @@ from shapely.ops import unary_union
 
 from _mechanics import strip
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.geometry.mesh import vector_areas
-from curvefold.geometry.panels import PanelLattice
-from curvefold.kernel.errors import InputError
+from curvefold.geometry import PanelLattice
+from curvefold.geometry._mesh import vector_areas
+from curvefold.kernel import InputError
 from curvefold.mechanics import (
     MATERIALS,
     BarHingeModel,
@@ -276,8 +276,7 @@ def test_a_point_load_sits_on_the_apex(small_vault):
 
 def test_the_hinges_part_of_the_geometric_stiffness_agrees_with_the_whole(small_vault):
     """The Rayleigh correction for the hinge moments against the full eigenproblem: equal to 1e-6."""
-    from curvefold.mechanics import buckling
-    from curvefold.mechanics import _response
+    from curvefold.mechanics import _response, buckling
 
     sm = StructureModel.from_state(small_vault.structure.state(), PP, 1e-3)
     result, factor = static_response(sm.model, Loads().forces(sm.model), Supports().fixed(sm))

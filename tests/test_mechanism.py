@@ -1,4 +1,4 @@
-"""The mechanism analysis (curvefold.analysis.mechanism): degrees of freedom measured, and able to fail.
+"""The mechanism analysis (curvefold.analysis._mechanism): degrees of freedom measured, and able to fail.
 
 Sizes stay small (a tube of 8 panels has 108 unknowns): the dense SVD is the cost.
 """
@@ -15,8 +15,8 @@ from scipy.optimize import least_squares
 
 from _cli import run
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.analysis.fold_mechanism import analyse_fold
-from curvefold.analysis.mechanism import (
+from curvefold.analysis import analyse_fold
+from curvefold.analysis._mechanism import (
     CERTIFY_UNKNOWNS,
     MAX_UNKNOWNS,
     RESIDUAL_TOL,
@@ -26,9 +26,9 @@ from curvefold.analysis.mechanism import (
     follow,
     mechanism,
 )
-from curvefold.geometry.panels import PanelLattice
+from curvefold.geometry import PanelLattice
 from curvefold.io import write_structure_fold
-from curvefold.kernel.errors import InputError
+from curvefold.kernel import InputError
 from curvefold.vault import Vault, VaultDesign
 
 EPS = np.finfo(float).eps

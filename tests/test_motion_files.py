@@ -14,12 +14,11 @@ import pytest
 
 from _cli import run
 from _node import run_node
-from curvefold.analysis.foldcheck import check_fold
-from curvefold.app.build import build
-from curvefold.app.design import default_design
-from curvefold.geometry.sheets import sheet_vertices, sheets
-from curvefold.io.fold import write_sheet_fold
-from curvefold.io.fold_reading import read_fold
+from curvefold.analysis import check_fold
+from curvefold.app import default_design
+from curvefold.app._build import build
+from curvefold.geometry._sheets import sheet_vertices, sheets
+from curvefold.io import read_fold, write_sheet_fold
 
 
 def _sheet_with_its_design_state(tmp_path, structure, index: int, *, flat_rulings: bool) -> str:

@@ -15,10 +15,9 @@ import pytest
 
 from _cli import run
 from curvefold import Lattice, Structure
-from curvefold.analysis.certificate import certify
-from curvefold.geometry.contact import first_contact
-from curvefold.vault import Vault
-from curvefold.vault.arch import A_MAX
+from curvefold.analysis import certify
+from curvefold.geometry import first_contact
+from curvefold.vault import A_MAX, Vault
 
 
 def test_the_paper_vaults_motion_ends_at_its_first_contact(tmp_path):

@@ -1,4 +1,4 @@
-"""Rigid planar panels (curvefold.geometry.panels): the construction proved at rounding level.
+"""Rigid planar panels (curvefold.geometry._panels): the construction proved at rounding level.
 
 Error model of the rigidity checks: a panel state is built by rigid motions of the flat
 panels, so a panel's sides and diagonals change only by the rounding of its vertex
@@ -19,18 +19,15 @@ from scipy.optimize import least_squares
 from _cli import run
 from _node import run_node
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.app.build import build, vault_design
-from curvefold.app.design import parse_design
-from curvefold.geometry.mesh import fold_angles
-from curvefold.geometry.panel_pattern import PanelPattern, fold_line_angle
-from curvefold.geometry.panels import PanelLattice
-from curvefold.geometry.sampling import choose_sampling
-from curvefold.geometry.sheets import sheets
+from curvefold.app import parse_design
+from curvefold.app._build import build, vault_design
+from curvefold.geometry import PanelLattice, choose_sampling, fold_angles
+from curvefold.geometry._panel_pattern import PanelPattern, fold_line_angle
+from curvefold.geometry._sheets import sheets
 from curvefold.io import layout_pattern, to_fold, write_3d, write_structure_fold
-from curvefold.kernel.errors import InputError, RegressionError
-from curvefold.vault import Vault, VaultDesign
-from curvefold.vault.arch import solve_panel_arch, solve_symmetric_arch
-from curvefold.vault.assembly import standing
+from curvefold.kernel import InputError, RegressionError
+from curvefold.vault import Vault, VaultDesign, solve_panel_arch, solve_symmetric_arch
+from curvefold.vault._assembly import standing
 
 EPS = np.finfo(float).eps
 ANGLES = (0.0, 1e-6, 0.5, 30.0, 90.0, 150.0, 179.0)

@@ -18,8 +18,10 @@ from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
 
-from curvefold.figures import motion, plots, views  # noqa: E402
-from curvefold.io.gif import write_gif  # noqa: E402
+from curvefold.figures import _motion as motion  # noqa: E402
+from curvefold.figures import _plots as plots  # noqa: E402
+from curvefold.figures import _views as views  # noqa: E402
+from curvefold.io._gif import write_gif  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -205,7 +207,7 @@ def test_vault_view(vault, tmp_path):
 
 
 def test_figures_draw_the_polygons_of_their_scenes(vault, block):
-    from curvefold.figures.scene import state_scene, vault_scene
+    from curvefold.figures import state_scene, vault_scene
 
     for fig, scene in (
         (views.plot_vault(vault, angle=60.0), vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0)),
@@ -311,7 +313,7 @@ def test_plots_leave_pyplot_alone():
     code = (
         "import sys\n"
         "from curvefold.vault import Vault, VaultDesign\n"
-        "from curvefold.figures import plots, views\n"
+        "from curvefold.figures import _plots as plots, _views as views\n"
         "v = Vault.from_design(VaultDesign(samples=41))\n"
         "views.plot_vault(v); plots.plot_sections(v); plots.plot_regression_domain(v.lattice, v.structure.cells)\n"
         "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'\n"

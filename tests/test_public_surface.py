@@ -185,7 +185,7 @@ def test_an_example_that_no_doctest_collects_is_named():
 
 def test_an_inherited_docstring_counts_where_its_example_runs():
     """A method implementing a documented one (``Constant.value`` of ``ScalarFunction.value``) shows that example."""
-    from curvefold.kernel.functions import Constant, ScalarFunction
+    from curvefold.kernel import Constant, ScalarFunction
 
     assert inspect.getdoc(Constant.value) == inspect.getdoc(ScalarFunction.value)
     assert inspect.getdoc(ScalarFunction.value) in collected_docstrings(core_modules(["kernel"]))
@@ -259,7 +259,7 @@ def test_a_package_surface_that_does_not_resolve_is_named(tmp_path):
     (package / "part.py").write_text("def shown():\n    return 1\n")
     (package / "__init__.py").write_text(textwrap.dedent('''
         import json
-        from curvefold.kernel.exports import lazy_exports
+        from curvefold.kernel._exports import lazy_exports
         __all__, __getattr__, __dir__ = lazy_exports(__name__, {"part": ["shown", "gone", "part"]})
         '''))
     sys.path.insert(0, str(tmp_path))

@@ -5,12 +5,12 @@ from __future__ import annotations
 import html
 import re
 
-from curvefold.app.build import build
-from curvefold.app.design import default_design
-from curvefold.app.outputs import parameter_rows, structure_payload
-from curvefold.app.products import resolution
-from curvefold.analysis.checks import TITLES
-from curvefold.figures.report import QUANTITIES, describe_file, report_html
+from curvefold.analysis._checks import TITLES
+from curvefold.app import default_design
+from curvefold.app._build import build
+from curvefold.app._outputs import parameter_rows, structure_payload
+from curvefold.app._products import resolution
+from curvefold.figures._report import QUANTITIES, describe_file, report_html
 
 
 def _section(page: str, title: str) -> str:

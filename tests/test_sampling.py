@@ -7,12 +7,12 @@ import pytest
 from numpy.testing import assert_array_equal
 
 from _node import run_node
-from curvefold.analysis.foldcheck import check_fold
-from curvefold.geometry.mesh import fold_angles
-from curvefold.geometry.sampling import choose_sampling, corner_angles
-from curvefold.geometry.sheets import sheets
-from curvefold.io.fold import write_sheet_fold, write_structure_fold
-from curvefold.kernel.errors import InputError
+from curvefold.analysis import check_fold
+from curvefold.geometry import fold_angles
+from curvefold.geometry._sampling import choose_sampling, corner_angles
+from curvefold.geometry._sheets import sheets
+from curvefold.io import write_sheet_fold, write_structure_fold
+from curvefold.kernel import InputError
 from curvefold.vault import Vault
 
 

@@ -10,7 +10,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, Lattice, SpaceCurve, Structure
-from curvefold.figures.scene import RIM_COLOR, Scene, View, render_strips, rgba, state_scene, vault_scene
+from curvefold.figures._scene import RIM_COLOR, Scene, View, render_strips, rgba, state_scene, vault_scene
 from curvefold.vault import Vault, VaultDesign
 
 COLORS = {"fold": "#d62728", "seam": "#1f77b4", "junction": "#7b3294", "edge": "#4d4d4d"}
@@ -30,7 +30,7 @@ def scene(vault) -> Scene:
 def test_rendering_a_vault_to_svg_needs_no_matplotlib():
     code = (
         "import sys\n"
-        "from curvefold.figures.scene import vault_scene\n"
+        "from curvefold.figures import vault_scene\n"
         "from curvefold.vault import Vault, VaultDesign\n"
         "svg = vault_scene(Vault.from_design(VaultDesign(tubes=2, samples=41)), colors={'fold': '#ff0000', 'seam': '#0000ff', 'edge': '#000000'}).svg()\n"
         "assert svg.count('<polygon') > 100, svg[:200]\n"

@@ -5,7 +5,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, Lattice, RegressionError, SpaceCurve, Structure, measure
-from curvefold.geometry.mesh import edges_faces
+from curvefold.geometry._mesh import edges_faces
 
 
 def make_lattice(samples=201, fold_angle=60.0, widths=(0.2, 0.15)):
@@ -120,8 +120,8 @@ def test_erratum_quadrants_follow_the_construction_order(tube):
     and L−R+ (4): folds where both signs agree, seams where they differ, with interior
     angles π − 2α and 2α measured on the built tube.
     """
-    from curvefold.geometry.crease import QUADRANTS
-    from curvefold.geometry.topology import CORNER_KINDS
+    from curvefold.geometry._crease import QUADRANTS
+    from curvefold.geometry._topology import CORNER_KINDS
 
     corners = [(0, 0), (0, 1), (1, 1), (1, 0)]
     lat = tube.lattice

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
-from curvefold.analysis import mechanism as m
-from curvefold.kernel.threads import one_blas_thread
+from curvefold.analysis import _mechanism as m
+from curvefold.kernel import one_blas_thread
 
 
 def _blas_threads() -> list[int]:
@@ -29,8 +29,8 @@ def test_one_blas_thread_limits_the_block_and_restores_the_pools(two_threads):
 
 
 def _panel_tube():
-    from curvefold.app.build import build
-    from curvefold.app.design import design_from_dict
+    from curvefold.app import design_from_dict
+    from curvefold.app._build import build
 
     return build(design_from_dict({"kind": "tube", "samples": 33, "curve": {"panels": 8}, "output": {"formats": ["fold"]}}))
 
@@ -47,8 +47,8 @@ def test_the_mechanism_decomposes_on_one_thread(two_threads, monkeypatch):
 
 def test_the_pictures_job_reads_the_mechanism_the_certificate_computed(tmp_path, monkeypatch):
     """The output folder of a panel structure: the mechanism is analysed before the jobs fork, in this process only."""
-    from curvefold.app.folder import check_output
-    from curvefold.app.outputs import write_outputs
+    from curvefold.app import write_outputs
+    from curvefold.app._folder import check_output
 
     log = tmp_path / "analyses"
     analyse = m.mechanism

@@ -18,11 +18,11 @@ from numpy.testing import assert_allclose, assert_array_equal
 from _meshes import assert_written
 from _node import run_node
 from curvefold import Crease, InputError, InternalError, Lattice, Mesh, SpaceCurve, State, Structure, measure
-from curvefold.analysis.foldcheck import check_fold
-from curvefold.geometry.crease import QUADRANTS
-from curvefold.geometry.mesh import edges_faces, face_sides, fold_angles, vector_areas
-from curvefold.geometry.sheets import flat_plane, sheets
-from curvefold.geometry.topology import (
+from curvefold.analysis import check_fold
+from curvefold.geometry._crease import QUADRANTS
+from curvefold.geometry._mesh import edges_faces, face_sides, fold_angles, vector_areas
+from curvefold.geometry._sheets import flat_plane, sheets
+from curvefold.geometry._topology import (
     CORNER_KINDS,
     CORNER_QUADRANTS,
     CORNERS,
@@ -308,7 +308,7 @@ def test_sheet_topology_flags_an_edge_without_faces():
 
 def test_unique_pairs_is_numpys_unique_of_rows():
     """One key per pair, and NumPy's own way where the keys would pass int64."""
-    from curvefold.geometry.topology import unique_pairs
+    from curvefold.geometry._topology import unique_pairs
 
     rng = np.random.default_rng(7)
     for scale in (1, 10**9, 10**17):

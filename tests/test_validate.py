@@ -7,15 +7,18 @@ import math
 import numpy as np
 import pytest
 
-from curvefold.app.design import SCHEMA, parse_design
-from curvefold.io import cutters, gltf, pattern, rhino
-from curvefold.io.formats import FORMATS, check_formats, default_formats, formats_of, missing_dependencies
-from curvefold.io.layout import page_size
-from curvefold.io.tables import COLOURS, PAGES, UNITS, mm_per_unit, page_mm, rgba, rgba8
-from curvefold.kernel.errors import InputError
-from curvefold.kernel.validate import KINDS, REQUIRED, Interval, Spec, describe
+from curvefold.app._design import SCHEMA, parse_design
+from curvefold.io import _cutters as cutters
+from curvefold.io import _gltf as gltf
+from curvefold.io import _pattern as pattern
+from curvefold.io import _rhino as rhino
+from curvefold.io import page_size
+from curvefold.io._formats import FORMATS, check_formats, default_formats, formats_of, missing_dependencies
+from curvefold.io._tables import COLOURS, PAGES, UNITS, mm_per_unit, page_mm, rgba, rgba8
+from curvefold.kernel import InputError
+from curvefold.kernel._validate import KINDS, REQUIRED, Interval, Spec, describe
 from curvefold.vault import VaultDesign
-from curvefold.vault.assembly import VAULT_SPECS
+from curvefold.vault._assembly import VAULT_SPECS
 
 
 def spec(kind: str, range_: str | None = None, **kw) -> Spec:
@@ -168,7 +171,7 @@ def test_registry_families_and_kinds():
 
 
 def test_text_reads_as_a_design_files_value_or_stays_text_for_the_spec_to_refuse():
-    from curvefold.kernel.validate import from_text
+    from curvefold.kernel._validate import from_text
 
     real, count = Spec("width", "real", 1.0, "(0, inf)"), Spec("tubes", "count", 9, "[1, 99]")
     assert [from_text(real, t) for t in ("3", "0.5", "wide")] == [3, 0.5, "wide"]

@@ -16,7 +16,7 @@ import pytest
 from numpy.testing import assert_array_equal
 
 from curvefold import Crease, Lattice, RegressionDomain, SpaceCurve, Structure
-from curvefold.geometry.sheets import flat_plane, sheets
+from curvefold.geometry._sheets import flat_plane, sheets
 from curvefold.vault import Vault, VaultDesign
 
 

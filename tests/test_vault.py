@@ -5,9 +5,9 @@ import pytest
 from numpy.testing import assert_allclose
 
 from curvefold import ConvergenceError, InputError, RegressionError
-from curvefold.analysis.measure import derivative
+from curvefold.analysis._measure import derivative
 from curvefold.vault import Vault, VaultDesign, max_tubes
-from curvefold.vault.arch import A_MAX, HALF_STEPS, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
+from curvefold.vault._arch import A_MAX, HALF_STEPS, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
 
 PAPER_KAPPA0_S0 = 3.305  # printed in the paper for a = 0.3
 
@@ -82,7 +82,7 @@ def test_arch_family_ends_at_a_max():
 def test_a_root_that_fails_its_residual_is_never_returned(monkeypatch):
     import scipy.optimize
 
-    from curvefold.vault import arch
+    from curvefold.vault import _arch as arch
 
     monkeypatch.setattr(arch, "_chebyshev_root", lambda *args: None)  # take the Brent fallback
     assert abs(solve_symmetric_arch(0.3).kappa0_s0 - 3.16571746805) < 1e-10
@@ -214,9 +214,9 @@ def test_vault_refusals():
 def test_the_ranges_of_a_come_from_where_the_arch_family_ends():
     """A design's a stops at A_MAX, with the reason, in design files and the Python API alike; the atlas's
     rows reach twice as far, and record past A_MAX that no arch stands, in the solver's words."""
-    from curvefold.app.design import SCHEMA, parse_design
-    from curvefold.vault.arch import A_MAX, A_STANDING, check_standing
-    from curvefold.vault.atlas import GRID_A, evaluate_design
+    from curvefold.app._design import SCHEMA, parse_design
+    from curvefold.vault._arch import A_MAX, A_STANDING, check_standing
+    from curvefold.vault._atlas import GRID_A, evaluate_design
 
     spec = SCHEMA["vault"]["a"]
     assert spec.range == A_STANDING and (A_STANDING.lo, A_STANDING.hi, A_STANDING.hi_closed) == (0.0, A_MAX, False)
@@ -265,8 +265,8 @@ def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
 
 def test_arch_condition_matches_the_general_magnus_rotation():
     """The arch's written-out Magnus terms equal the general so(3) Magnus step (κ = 1, τ = a sin)."""
-    from curvefold.geometry.curve import gauss_nodes
-    from curvefold.kernel.lie import exp_rotation, magnus6_rotation, product_quaternions
+    from curvefold.geometry._curve import gauss_nodes
+    from curvefold.kernel._lie import exp_rotation, magnus6_rotation, product_quaternions
 
     x, a, steps = np.linspace(2.5, 4.5, 7), 0.7, 64
     q = np.linspace(0, 1, steps + 1)

@@ -1,4 +1,4 @@
-"""Worker processes that stop when told (curvefold.app.workers): results, refusals, bugs, and every way a job stops.
+"""Worker processes that stop when told (curvefold.app._workers): results, refusals, bugs, and every way a job stops.
 
 Jobs are built-in callables (``eval``, ``exec``), which pickle by name: a worker imports nothing of the tests.
 """
@@ -12,7 +12,7 @@ import sys
 import psutil
 import pytest
 
-from curvefold.app.workers import JobError, Pool, Reservations, Stopped, resident_bytes
+from curvefold.app._workers import JobError, Pool, Reservations, Stopped, resident_bytes
 
 #: A job that runs until it is stopped (a minute, far past every limit below).
 FOREVER = "import time; time.sleep(60)"
@@ -39,7 +39,7 @@ def gone(pids, timeout: float = 5.0) -> bool:
 def test_a_job_answers_and_errors_come_back_by_kind(pool):
     assert run(pool, eval, "6 * 7", timeout=30) == 42
     with pytest.raises(JobError) as refused:
-        run(pool, exec, "from curvefold.kernel.errors import InputError\nraise InputError('a must be < 3, got 5', parameter='a')", timeout=30)
+        run(pool, exec, "from curvefold.kernel import InputError\nraise InputError('a must be < 3, got 5', parameter='a')", timeout=30)
     assert (str(refused.value), refused.value.refused, refused.value.parameter) == ("a must be < 3, got 5", True, "a")
     with pytest.raises(JobError) as bug:
         run(pool, eval, "1 / 0", timeout=30)
@@ -84,7 +84,7 @@ def test_closing_stops_running_jobs_and_leaves_no_process(tmp_path):
 def test_workers_die_with_their_parent(tmp_path):
     """A server killed with SIGKILL runs no cleanup: its workers end with it (their parent, the fork server, exits
     when the server's pipe closes; the kernel kills them then)."""
-    script = (f"import os, sys\nfrom curvefold.app.workers import Pool\npool = Pool(2, name='orphan', scratch={str(tmp_path)!r})\n"
+    script = (f"import os, sys\nfrom curvefold.app._workers import Pool\npool = Pool(2, name='orphan', scratch={str(tmp_path)!r})\n"
               "print(*pool.pids(), flush=True)\nos.kill(os.getpid(), 9)")
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     pids = [int(p) for p in out.stdout.split()]

@@ -41,7 +41,7 @@ def resolve_short_names(app, env, node, contnode):
     attribute of its class (``:attr:`Layout.notes```, documented in the class's Attributes).
     Each is tried in turn by suffix; a name matching more than one object still warns. On the
     page of a package's public name (``curvefold.vault.ArchRoot``) a name is first looked up
-    in the module that defines it (``curvefold.vault.arch``), as its docstring was written.
+    in the module that defines it (``curvefold.vault._arch``), as its docstring was written.
     """
     if node.get("refdomain") != "py" or node.hasattr("refspecific"):
         return None
@@ -65,7 +65,7 @@ def resolve_short_names(app, env, node, contnode):
 
 
 def _home(docname: str) -> str | None:
-    """The module that defines what a public name's page documents (``curvefold.vault.ArchRoot``: ``curvefold.vault.arch``)."""
+    """The module that defines what a public name's page documents (``curvefold.vault.ArchRoot``: ``curvefold.vault._arch``)."""
     package, _, name = docname.rpartition("/")[2].rpartition(".")
     if package not in PUBLIC_PACKAGES:
         return None

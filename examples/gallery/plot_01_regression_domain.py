@@ -10,7 +10,7 @@ corner of every cell must lie inside it.
 """
 
 # %%
-from curvefold.figures.plots import plot_regression_domain
+from curvefold.figures import plot_regression_domain
 from curvefold.vault import Vault
 
 vault = Vault.from_design(a=0.3, p_xy=0.75)

@@ -9,7 +9,7 @@ the regression domain allows. Solving the arch condition (Eq. 20) exactly gives
 """
 
 # %%
-from curvefold.figures.views import plot_motion_strip, plot_vault
+from curvefold.figures import plot_motion_strip, plot_vault
 from curvefold.vault import Vault
 
 vault = Vault.from_design(a=0.3, p_xy=0.75)

@@ -12,8 +12,8 @@ Dask cluster if you have one.
 # %%
 import numpy as np
 
-from curvefold.figures.atlas import atlas_figure
-from curvefold.vault.atlas import run_atlas
+from curvefold.figures import atlas_figure
+from curvefold.vault import run_atlas
 
 atlas = run_atlas(np.linspace(0.5, 1.25, 4), np.linspace(0.0, 0.9, 4), samples=201, workers=1)
 valid = sum(record["valid"] for record in atlas.records)

@@ -10,10 +10,9 @@ columns of a CSV file (``examples/tube-kappa-tau.csv``) by the design file
 # %%
 from pathlib import Path
 
-from curvefold.app.build import build
-from curvefold.app.design import load_design
-from curvefold.figures.plots import plot_sections
-from curvefold.figures.views import plot_structure
+from curvefold.app import load_design
+from curvefold.app._build import build
+from curvefold.figures import plot_sections, plot_structure
 
 examples = Path("..")  # the repository's examples/ folder: this script runs in examples/gallery/
 print((examples / "tube-csv.toml").read_text())

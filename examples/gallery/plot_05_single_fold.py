@@ -12,7 +12,7 @@ angle α(s) and the torsion follow, and κ = κ_2D / cos α. This is the design 
 import numpy as np
 
 from curvefold import Crease, measure
-from curvefold.figures.views import plot_crease
+from curvefold.figures import plot_crease
 
 crease = Crease.from_pattern(
     0.5,                                          # κ_2D, per model unit

@@ -11,8 +11,7 @@ and flat with one parameter, like a single tube. This is ``examples/cellular-blo
 import numpy as np
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.figures.plots import plot_regression_domain
-from curvefold.figures.views import plot_structure
+from curvefold.figures import plot_regression_domain, plot_structure
 
 curve = SpaceCurve.from_curvature(0.8, lambda s: 0.15 * np.sin(np.pi * s / 4), 4.0, samples=401)
 lattice = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.2, 0.2)

@@ -10,9 +10,8 @@ user guide).
 """
 
 # %%
-from curvefold.analysis.mechanism import analyse
-from curvefold.figures.plots import plot_singular_values
-from curvefold.figures.views import plot_vault
+from curvefold.analysis import analyse
+from curvefold.figures import plot_singular_values, plot_vault
 from curvefold.vault import Vault
 
 vault = Vault.from_design(a=0.3, p_xy=0.75, tubes=3, panels=16)

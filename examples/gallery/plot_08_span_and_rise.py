@@ -9,9 +9,8 @@ and p_xz fix a and p_xy, and the span then fixes the radius
 """
 
 # %%
-from curvefold.figures.views import plot_vault
-from curvefold.vault import Vault, VaultDesign
-from curvefold.vault.targets import fit_targets
+from curvefold.figures import plot_vault
+from curvefold.vault import Vault, VaultDesign, fit_targets
 
 fit = fit_targets(VaultDesign(tubes=9), span=4.0, rise=2.5, p_xz=1.2)
 design = fit.require()

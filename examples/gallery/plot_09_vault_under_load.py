@@ -12,7 +12,7 @@ next one is, the fold-mode gap, is what the tubes' virtual thickness buys.
 # %%
 import numpy as np
 
-from curvefold.figures.mechanics import plot_deflection, plot_modes
+from curvefold.figures._mechanics import plot_deflection, plot_modes
 from curvefold.mechanics import analyse_load
 from curvefold.vault import Vault
 

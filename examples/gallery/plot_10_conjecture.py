@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.geometry.panels import PanelLattice
+from curvefold.geometry import PanelLattice
 from curvefold.mechanics import MATERIALS, StructureModel, conjecture_counts
 from curvefold.vault import Vault
 

@@ -4,7 +4,7 @@ Data flows one way: a :class:`SpaceCurve` (from curvature and torsion) → a :cl
 (fold angle and rulings) → a :class:`Lattice` (curve 1 at one fold angle with its
 :class:`Pattern`: widths, regression domain and all else folding keeps) → a
 :class:`Structure` (which cells) → a :class:`State` at a fold angle → meshes, files and
-pictures. :mod:`curvefold.analysis.measure` certifies each stage with numbers.
+pictures. :mod:`curvefold.analysis._measure` certifies each stage with numbers.
 
 The names below are imported when first used (``from curvefold import Crease`` imports
 the geometry, not the file writers or SciPy), so the command line starts quickly.
@@ -12,7 +12,7 @@ the geometry, not the file writers or SciPy), so the command line starts quickly
 
 from typing import TYPE_CHECKING
 
-from .kernel.exports import lazy_exports as _lazy_exports
+from .kernel._exports import lazy_exports as _lazy_exports
 
 # The public names by package, imported when first asked for (kernel.exports).
 __all__, _getattr, _dir = _lazy_exports(
@@ -36,13 +36,13 @@ def __getattr__(name: str):
         globals()["__version__"] = version("curvefold")
         return globals()["__version__"]
     if name == "measure":  # a module
-        from .analysis import measure
+        from .analysis import _measure as measure
 
         return measure
     return _getattr(name)
 
 
 if TYPE_CHECKING:  # the same names, for type checkers and editors
-    from .analysis import measure
+    from .analysis import _measure as measure
     from .geometry import Crease, Lattice, Mesh, Pattern, RegressionDomain, SpaceCurve, State, Structure
     from .kernel import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError

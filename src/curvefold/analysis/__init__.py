@@ -1,19 +1,19 @@
 """Measurements, the geometric certificate and the check of FOLD files.
 
-The names below are its public surface; :mod:`curvefold.analysis.measure` holds the
+The names below are its public surface; :mod:`curvefold.analysis._measure` holds the
 measurements the checks are made of.
 """
 
-from ..kernel.exports import lazy_exports as _lazy_exports
+from ..kernel._exports import lazy_exports as _lazy_exports
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "certificate": ["Certificate", "Check", "certify", "certify_single_fold"],
-        "checks": ["CHECKS", "CheckSpec"],
-        "foldcheck": ["FoldCheck", "FileCheck", "check_fold"],
-        "fold_mechanism": ["analyse_fold"],
-        "mechanism": ["Framework", "Mechanism", "CertifiedMechanism", "analyse", "certified_mechanism", "follow"],
+        "_certificate": ["Certificate", "Check", "certify", "certify_single_fold"],
+        "_checks": ["CHECKS", "CheckSpec"],
+        "_foldcheck": ["FoldCheck", "FileCheck", "check_fold"],
+        "_fold_mechanism": ["analyse_fold"],
+        "_mechanism": ["Framework", "Mechanism", "CertifiedMechanism", "analyse", "certified_mechanism", "follow"],
     },
 )

@@ -3,15 +3,15 @@
 The names below are its public surface: a design read or made, built, and written out.
 """
 
-from ..kernel.exports import lazy_exports as _lazy_exports
+from ..kernel._exports import lazy_exports as _lazy_exports
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "design": ["Design", "load_design", "parse_design", "design_from_dict", "default_design"],
-        "build": ["Built", "vault_design"],
-        "outputs": ["write_outputs", "write_atlas", "structure_payload"],
+        "_design": ["Design", "load_design", "parse_design", "design_from_dict", "default_design"],
+        "_build": ["Built", "vault_design"],
+        "_outputs": ["write_outputs", "write_atlas", "structure_payload"],
         "cli": ["main"],
     },
 )

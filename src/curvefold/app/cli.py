@@ -5,13 +5,13 @@ on stdout (no NaN or infinity: a non-finite result is an error). Exit statuses: 
 1 a certificate check failed, or a bug (one line asking for a report with the version,
 the traceback only with ``--debug``); 2 a user error (one line on stderr: what is wrong,
 the allowed range, the value given), including a job over the memory budget
-(:mod:`curvefold.app.budget`); 128 + n when stopped by signal n (SIGINT, SIGTERM, SIGHUP),
+(:mod:`curvefold.app._budget`); 128 + n when stopped by signal n (SIGINT, SIGTERM, SIGHUP),
 after removing what the run had started to write. Warnings are shown only with
 ``--debug``; text a user typed is printed with its control characters escaped. The output
-folder is checked before any work and replaced only as :mod:`curvefold.app.folder` says.
+folder is checked before any work and replaced only as :mod:`curvefold.app._folder` says.
 
 The flags of ``vault``, ``tube``, ``block``, ``crease`` and ``load``, their help and their checks
-are generated from the design schema (:data:`curvefold.app.design.SCHEMA`): one flag per
+are generated from the design schema (:data:`curvefold.app._design.SCHEMA`): one flag per
 key, ``--fold-angle`` for ``fold_angle``, ``--no-glue-tabs`` for a key that is true by
 default. A flag's value is checked by the key's spec and named as typed
 (``--page A9: page must be one of …``); a design made of a file and flags is named by both
@@ -31,14 +31,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io.formats import FORMATS, check_kind, default_formats
-from ..kernel.errors import CurvefoldError, InputError
-from ..kernel.text import for_terminal
-from ..kernel.validate import Spec, from_text
-from ..vault.assembly import vault_samples
-from .design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
+from ..io._formats import FORMATS, check_kind, default_formats
+from ..kernel._errors import CurvefoldError, InputError
+from ..kernel._text import for_terminal
+from ..kernel._validate import Spec, from_text
+from ..vault._assembly import vault_samples
+from ._design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
+from ._folder import Interrupted, raise_if_interrupted, signals_interrupt
 from .designer import SERVER_SPECS
-from .folder import Interrupted, raise_if_interrupted, signals_interrupt
 
 __all__ = ["main"]
 
@@ -204,7 +204,7 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
 
 def _add_target_flags(p: argparse.ArgumentParser) -> None:
     """--span, --rise and --p-xz: a vault from targets (help and checks from their specs)."""
-    from ..vault.targets import TARGET_SPECS
+    from ..vault._targets import TARGET_SPECS
 
     g = p.add_argument_group("targets", "design the vault from what it must measure; each target replaces a parameter "
                              "(span the radius, rise with span a, p_xz p_xy); tubes must then be a number")
@@ -214,8 +214,8 @@ def _add_target_flags(p: argparse.ArgumentParser) -> None:
 
 def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
     """The vault design with the parameters the target flags replace solved for them."""
-    from ..vault.targets import REPLACES, TARGET_SPECS
-    from .build import fit_vault_targets
+    from ..vault._targets import REPLACES, TARGET_SPECS
+    from ._build import fit_vault_targets
 
     specs = {spec.name: spec for spec in TARGET_SPECS}
     targets = {name: _flag_value(specs[name], getattr(args, name)) for name in REPLACES if getattr(args, name) is not None}
@@ -313,8 +313,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
-    from ..vault.atlas import GRID_A
-    from ..vault.cluster import LOCAL_CLUSTER_FROM, workers_spec
+    from ..vault._atlas import GRID_A
+    from ..vault._cluster import LOCAL_CLUSTER_FROM, workers_spec
 
     grid = f"start:stop:count or a comma-separated list, count {_GRID_COUNT.range}"
     p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
@@ -329,7 +329,7 @@ def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
 
 
 def _add_check_flags(p: argparse.ArgumentParser) -> None:
-    from ..analysis.foldcheck import CHECK_SPECS
+    from ..analysis._foldcheck import CHECK_SPECS
 
     p.add_argument("file", type=Path, help="a .fold file: a crease pattern, folded frames or both")
     for spec in CHECK_SPECS:
@@ -340,7 +340,7 @@ def _add_check_flags(p: argparse.ArgumentParser) -> None:
 
 
 def _add_mechanism_flags(p: argparse.ArgumentParser) -> None:
-    from ..analysis.mechanism import RTOL
+    from ..analysis._mechanism import RTOL
 
     p.add_argument("file", type=Path, help="a .fold file with folded frames (and a crease pattern, or not)")
     p.add_argument("--rtol", type=float, default=RTOL, help=f"rank tolerance relative to the largest singular value (default {RTOL:g})")
@@ -371,18 +371,18 @@ def _load_design(kind: str, args: argparse.Namespace, *, kinds: Sequence[str] | 
 def _emit(args: argparse.Namespace, payload: dict, lines: Sequence[str]) -> None:
     """Print the result: strict JSON with ``--json``, else the lines (control characters
     escaped). A non-finite number in the result is an error either way
-    (:func:`curvefold.kernel.json_text.strict_json`)."""
-    from ..kernel.json_text import strict_json
+    (:func:`curvefold.kernel._json_text.strict_json`)."""
+    from ..kernel._json_text import strict_json
 
     text = strict_json(payload, indent=2)
     print(text if args.json else "\n".join(map(for_terminal, lines)))
 
 
 def cmd_structure(kind: str, args: argparse.Namespace) -> int:
-    from .budget import require_budget
-    from .build import build
-    from .folder import check_output
-    from .outputs import structure_payload, write_outputs
+    from ._budget import require_budget
+    from ._build import build
+    from ._folder import check_output
+    from ._outputs import structure_payload, write_outputs
 
     design = _load_design(kind, args)
     if kind == "vault":
@@ -411,10 +411,10 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
 
 
 def cmd_load(args: argparse.Namespace) -> int:
-    from .budget import require_budget
-    from .build import build
-    from .folder import check_output
-    from .outputs import default_title, write_outputs
+    from ._budget import require_budget
+    from ._build import build
+    from ._folder import check_output
+    from ._outputs import default_title, write_outputs
 
     design = _load_design("vault", args, kinds=LOADED)
     design = _fit_targets(design, args) if design.kind == "vault" else design
@@ -455,7 +455,7 @@ def _certificate_lines(payload: dict) -> list[str]:
 
 
 def cmd_arch(args: argparse.Namespace) -> int:
-    from ..vault.arch import proportion_change, solve_symmetric_arch
+    from ..vault._arch import proportion_change, solve_symmetric_arch
 
     a = _VAULT["a"].default if args.a is None else _flag_value(_VAULT["a"], args.a)
     fold_angle = _VAULT["fold_angle"].default if args.fold_angle is None else _flag_value(_VAULT["fold_angle"], args.fold_angle)
@@ -473,7 +473,7 @@ def cmd_arch(args: argparse.Namespace) -> int:
 
 
 def cmd_reproduce(args: argparse.Namespace) -> int:
-    from ..vault.paper import paper_comparison
+    from ..vault._paper import paper_comparison
 
     rows = paper_comparison()
     payload = {"rows": rows}
@@ -485,8 +485,8 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    from ..analysis.foldcheck import CHECK_SPECS, check_fold
-    from ..io.fold_reading import read_fold
+    from ..analysis._foldcheck import CHECK_SPECS, check_fold
+    from ..io._fold_reading import read_fold
 
     tolerances = {spec.name: _flag_value(spec, text) for spec in CHECK_SPECS if (text := getattr(args, spec.name)) is not None}
     doc = read_fold(args.file)
@@ -498,7 +498,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     if mismatch:  # not built: it cannot be the file's record
         from dataclasses import replace
 
-        from ..analysis.foldcheck import FileCheck
+        from ..analysis._foldcheck import FileCheck
 
         failed = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded)} fold angles, the file holds {frames} "
                                                     "frames after the key frame: the record is not the file's (not rebuilt)")
@@ -549,10 +549,10 @@ def _rebuilt_fold(doc, path: Path):
 
     The design and its frames are estimated within the memory budget before it is built.
     """
-    from ..io.fold import model_document, to_fold
-    from ..io.fold_reading import parse_fold
-    from .budget import require_rebuild_budget
-    from .build import build
+    from ..io._fold import model_document, to_fold
+    from ..io._fold_reading import parse_fold
+    from ._budget import require_rebuild_budget
+    from ._build import build
 
     record = doc.design
     where = f"{path}: curvefold:design"
@@ -564,7 +564,7 @@ def _rebuilt_fold(doc, path: Path):
     require_rebuild_budget(design, len(record["fold_angles"]))
     built = build(design)
     if built.structure is None:  # a single curved fold
-        from ..io.single_fold import single_fold_model
+        from ..io._single_fold import single_fold_model
 
         return parse_fold(model_document(single_fold_model(built.single_fold, record["fold_angles"])), f"{where} (rebuilt)")
     keep = record.get("keep")
@@ -574,8 +574,8 @@ def _rebuilt_fold(doc, path: Path):
 
 
 def cmd_mechanism(args: argparse.Namespace) -> int:
-    from ..analysis.fold_mechanism import analyse_fold
-    from ..io.fold_reading import read_fold
+    from ..analysis._fold_mechanism import analyse_fold
+    from ..io._fold_reading import read_fold
 
     doc = read_fold(args.file)
     frames = analyse_fold(doc, rtol=args.rtol, name=str(args.file))
@@ -592,11 +592,11 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
 
 
 def cmd_atlas(args: argparse.Namespace) -> int:
-    from ..vault.atlas import GRID_A
-    from ..vault.cluster import workers_spec
-    from .budget import require_atlas_budget
-    from .folder import check_output
-    from .outputs import write_atlas
+    from ..vault._atlas import GRID_A
+    from ..vault._cluster import workers_spec
+    from ._budget import require_atlas_budget
+    from ._folder import check_output
+    from ._outputs import write_atlas
 
     p_xy, a = _grid("--p-xy", args.p_xy, _VAULT["p_xy"]), _grid("--a", args.a, GRID_A)
     width = _VAULT["width"].default if args.width is None else _flag_value(_VAULT["width"], args.width)
@@ -615,7 +615,7 @@ def cmd_atlas(args: argparse.Namespace) -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (see the module doc).
 
-    A :class:`~curvefold.kernel.errors.CurvefoldError` (a user error), an unreadable or
+    A :class:`~curvefold.kernel.CurvefoldError` (a user error), an unreadable or
     unwritable file, a missing optional package or running out of memory prints one line
     and returns 2. A signal returns 128 + its number. Any other exception is a bug: one
     line asking for a report, status 1; ``--debug`` adds the traceback and the warnings,
@@ -670,7 +670,7 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
     if args.command is None:
         parser.print_help()
         return 0
-    from ..kernel.threads import one_blas_thread
+    from ..kernel._threads import one_blas_thread
 
     with one_blas_thread():  # a command's matrices are small: more BLAS threads only wait (kernel.threads)
         if args.command in DEFAULT_OUT:

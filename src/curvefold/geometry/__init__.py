@@ -5,25 +5,25 @@ the order data flows: curve → crease → lattice (smooth, or rigid panels) →
 state → mesh, sheets and FOLD arrays.
 """
 
-from ..kernel.exports import lazy_exports as _lazy_exports
+from ..kernel._exports import lazy_exports as _lazy_exports
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "curve": ["SpaceCurve", "FramedCurve", "integrate_frenet"],
-        "crease": ["Crease", "half_angle", "check_fold_angle"],
-        "lattice": ["Lattice", "Pattern", "RegressionDomain"],
-        "kinds": ["StructureLattice", "FoldedCrease"],
-        "panels": ["PanelLattice", "PanelCrease", "PanelCurve"],
-        "panel_pattern": ["PanelPattern"],
-        "structure": ["Structure", "State"],
-        "mesh": ["Mesh", "fold_angles"],
-        "topology": ["Topology", "SheetTopology"],
-        "sheets": ["PatternSheet", "Bond", "FlatPlane", "bonds", "flat_plane", "folding_motion"],
-        "fold_arrays": ["FoldArrays", "structure_metadata"],
-        "sampling": ["Sampling", "choose_sampling"],
-        "contact": ["first_contact"],
-        "single_fold": ["SingleFold"],
+        "_curve": ["SpaceCurve", "FramedCurve", "integrate_frenet"],
+        "_crease": ["Crease", "half_angle", "check_fold_angle"],
+        "_lattice": ["Lattice", "Pattern", "RegressionDomain"],
+        "_kinds": ["StructureLattice", "FoldedCrease"],
+        "_panels": ["PanelLattice", "PanelCrease", "PanelCurve"],
+        "_panel_pattern": ["PanelPattern"],
+        "_structure": ["Structure", "State"],
+        "_mesh": ["Mesh", "fold_angles"],
+        "_topology": ["Topology", "SheetTopology"],
+        "_sheets": ["PatternSheet", "Bond", "FlatPlane", "bonds", "flat_plane", "folding_motion"],
+        "_fold_arrays": ["FoldArrays", "structure_metadata"],
+        "_sampling": ["Sampling", "choose_sampling"],
+        "_contact": ["first_contact"],
+        "_single_fold": ["SingleFold"],
     },
 )

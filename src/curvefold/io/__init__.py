@@ -1,39 +1,39 @@
 """File exporters: FOLD (with a reader), OBJ/STL/PLY, animated GLB, Rhino 3dm and crease patterns.
 
-Every writer goes through :mod:`curvefold.io.atomic` (temporary file, then rename), so a
+Every writer goes through :mod:`curvefold.io._atomic` (temporary file, then rename), so a
 failure never leaves a partial file. Heavy libraries (``pygltflib``, ``rhino3dm``,
 ``ezdxf``) are optional and imported only by the writer that needs them; OBJ, STL and PLY
-(:mod:`curvefold.io.mesh3d`) and the PDF pages (:mod:`curvefold.io.pdf`) need none.
+(:mod:`curvefold.io._mesh3d`) and the PDF pages (:mod:`curvefold.io._pdf`) need none.
 
-:mod:`curvefold.io.formats` is the registry of every file format (name, extension,
-contents, kinds of design, writer, optional package); :mod:`curvefold.io.tables` is the
+:mod:`curvefold.io._formats` is the registry of every file format (name, extension,
+contents, kinds of design, writer, optional package); :mod:`curvefold.io._tables` is the
 one table of pages, length units and line colours the writers share. Files a user names
-are read through :mod:`curvefold.io.reading` (regular files only, within a size limit).
+are read through :mod:`curvefold.io._reading` (regular files only, within a size limit).
 
 The writers take meshes and laid-out sheets; the structure-level entry points
 (:func:`write_structure_fold`, :func:`write_pattern`, :func:`write_3d`) take a structure and
-the conversions geometry makes of it (:mod:`curvefold.geometry.fold_arrays`,
-:mod:`curvefold.geometry.sheets`), and only serialise them. FOLD files are read back by
-:mod:`curvefold.io.fold_reading`.
+the conversions geometry makes of it (:mod:`curvefold.geometry._fold_arrays`,
+:mod:`curvefold.geometry._sheets`), and only serialise them. FOLD files are read back by
+:mod:`curvefold.io._fold_reading`.
 
-The names are imported from their modules when first used (:mod:`curvefold.kernel.exports`):
-importing one writer, or :mod:`curvefold.io.formats`, does not import the others.
+The names are imported from their modules when first used (:mod:`curvefold.kernel._exports`):
+importing one writer, or :mod:`curvefold.io._formats`, does not import the others.
 """
 
-from ..kernel.exports import lazy_exports as _lazy_exports
+from ..kernel._exports import lazy_exports as _lazy_exports
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "fold": ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"],
-        "fold_reading": ["FoldFile", "read_fold"],
-        "gltf": ["write_glb"],
-        "layout": ["Layout", "layout_sheets", "page_size"],
-        "mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
-        "models": ["MODEL_FORMATS", "write_3d"],
-        "cutters": ["CUTTERS"],
-        "pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
-        "rhino": ["write_3dm"],
+        "_fold": ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"],
+        "_fold_reading": ["FoldFile", "read_fold"],
+        "_gltf": ["write_glb"],
+        "_layout": ["Layout", "layout_sheets", "page_size"],
+        "_mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
+        "_models": ["MODEL_FORMATS", "write_3d"],
+        "_cutters": ["CUTTERS"],
+        "_pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
+        "_rhino": ["write_3dm"],
     },
 )

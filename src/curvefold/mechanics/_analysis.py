@@ -13,9 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry.structure import State, Structure
-from ..kernel.errors import InputError
-from ..vault.assembly import Vault
+from ..geometry._structure import State, Structure
+from ..kernel._errors import InputError
+from ..vault._assembly import Vault
 from ._loads import G, Loads, Supports
 from ._materials import THICKNESS, Material
 from ._materials import material as named
@@ -190,7 +190,7 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     >>> analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1.0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 1.0
+    curvefold.kernel._errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 1.0
     """
     mat = named(material) if isinstance(material, str) else material
     if not isinstance(mat, Material):

@@ -7,7 +7,7 @@ else SuperLU with a symmetric minimum-degree ordering and diagonal pivots. A mat
 singular, or so nearly that a pivot falls below :data:`PIVOT_RTOL` of the largest
 diagonal, is examined: inverse iteration finds the motion that costs (nearly) nothing,
 and if it deforms no bar and no hinge to first order (:data:`MECHANISM_RTOL`) the model is
-a mechanism there and :class:`~curvefold.kernel.errors.InputError` says which motion is
+a mechanism there and :class:`~curvefold.kernel.InputError` says which motion is
 free (a rigid motion by its axes, the folding motion, or another one) instead of
 returning a solution of a singular system.
 """
@@ -22,7 +22,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from ..kernel.errors import ConvergenceError, InputError
+from ..kernel._errors import ConvergenceError, InputError
 from ._model import BarHingeModel
 
 __all__ = ["Factorized", "eigsh", "unit", "rigid_motions", "PIVOT_RTOL", "MECHANISM_RTOL", "MAX_BAND", "describe_motion", "kinematic_residual"]

@@ -30,8 +30,8 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
-from ..kernel.errors import InputError
-from ..kernel.validate import Spec
+from ..kernel._errors import InputError
+from ..kernel._validate import Spec
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import BarHingeModel
@@ -76,7 +76,7 @@ class Loads:
     >>> Loads(snow=-1.0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: snow must be in [0, 1000000] Pa (a roof's snow is below 1e4 Pa; 1e6 Pa is a press), got -1.0
+    curvefold.kernel._errors.InputError: snow must be in [0, 1000000] Pa (a roof's snow is below 1e4 Pa; 1e6 Pa is a press), got -1.0
     """
 
     self_weight: bool = True
@@ -114,7 +114,7 @@ class Loads:
         >>> Loads(self_weight=False).forces(tube.model)
         Traceback (most recent call last):
         ...
-        curvefold.kernel.errors.InputError: no load: give self-weight, snow or a point load
+        curvefold.kernel._errors.InputError: no load: give self-weight, snow or a point load
         """
         if not (self.self_weight or self.snow or self.point):
             raise InputError("no load: give self-weight, snow or a point load")
@@ -214,7 +214,7 @@ class Supports:
     >>> Supports("clamped")
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: supports must be one of "pinned", "roller", got string 'clamped'
+    curvefold.kernel._errors.InputError: supports must be one of "pinned", "roller", got string 'clamped'
     """
 
     kind: Literal["pinned", "roller"] = "pinned"
@@ -249,7 +249,7 @@ class Supports:
         >>> Supports(nodes=(99,)).fixed(tube)
         Traceback (most recent call last):
         ...
-        curvefold.kernel.errors.InputError: support nodes must be in [0, 20), got 99 … 99
+        curvefold.kernel._errors.InputError: support nodes must be in [0, 20), got 99 … 99
         """
         structure = hasattr(target, "feet")  # a StructureModel, which knows its end sections
         model = target.model if structure else target

@@ -3,7 +3,7 @@
 Every value is SI (Pa, kg/m³). The table's entries give where their numbers come from;
 paperboard has no single source (grades, moisture and direction change it by a factor of
 two), so its values are typical and marked as such. A user's material is checked with
-the specs below (:class:`curvefold.kernel.validate.Spec`), so a design file, a flag and
+the specs below (:class:`curvefold.kernel.Spec`), so a design file, a flag and
 the Python API refuse the same values with the same words.
 """
 
@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from types import MappingProxyType
 
-from ..kernel.validate import Spec
+from ..kernel._validate import Spec
 
 __all__ = ["Material", "MATERIALS", "MATERIAL", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
 
@@ -39,7 +39,7 @@ CREASE_LENGTH_SCALE = 1000.0
 
 
 def check_thickness(thickness: float, where: str = "thickness") -> float:
-    """The thickness in metres, or :class:`~curvefold.kernel.errors.InputError` (:data:`THICKNESS`)."""
+    """The thickness in metres, or :class:`~curvefold.kernel.InputError` (:data:`THICKNESS`)."""
     return THICKNESS.check(thickness, where)
 
 
@@ -105,7 +105,7 @@ class Material:
         >>> Material.from_values(2e9, 0.5, 1200.0, 40e6)
         Traceback (most recent call last):
         ...
-        curvefold.kernel.errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is stable only there), got 0.5
+        curvefold.kernel._errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is stable only there), got 0.5
         """
         values = {"youngs_modulus": youngs_modulus, "poisson": poisson, "density": density, "strength": strength}
         checked = {k: None if v is None and k == "strength" else _SPEC[k].check(v, f"{where}{k}") for k, v in values.items()}
@@ -141,7 +141,7 @@ class Material:
         >>> MATERIALS["aluminium"].crease_stiffness(0.0)
         Traceback (most recent call last):
         ...
-        curvefold.kernel.errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 0.0
+        curvefold.kernel._errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 0.0
         """
         return self.bending_stiffness(thickness) / (CREASE_LENGTH_SCALE * check_thickness(thickness))
 
@@ -178,7 +178,7 @@ def material(name: str) -> Material:
     >>> material("steel")
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: material must be one of "polypropylene", "paperboard", "aluminium", got string 'steel'
+    curvefold.kernel._errors.InputError: material must be one of "polypropylene", "paperboard", "aluminium", got string 'steel'
     """
     return MATERIALS[MATERIAL.check(name)]
 

@@ -45,11 +45,19 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
-from ..geometry.mesh import Mesh
-from ..kernel.arrays import FrozenArrays, readonly
-from ..kernel.errors import InputError
-from ._elements import (bar_rows, dihedral_gradient, dihedral_hessian, membrane_geometric, plane_stress, quad_membrane, triangle_areas,
-                        triangle_strain)
+from ..geometry._mesh import Mesh
+from ..kernel._arrays import FrozenArrays, readonly
+from ..kernel._errors import InputError
+from ._elements import (
+    bar_rows,
+    dihedral_gradient,
+    dihedral_hessian,
+    membrane_geometric,
+    plane_stress,
+    quad_membrane,
+    triangle_areas,
+    triangle_strain,
+)
 from ._materials import Material, check_thickness
 
 __all__ = ["BarHingeModel", "HINGE_KINDS", "CREASES"]
@@ -113,7 +121,7 @@ class BarHingeModel(FrozenArrays):
     >>> BarHingeModel(np.zeros((2, 2)), [[0, 1]], [1.0], np.zeros((0, 4), int), [], np.ones(2))
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: nodes must be finite positions (P, 3), got shape (2, 2)
+    curvefold.kernel._errors.InputError: nodes must be finite positions (P, 3), got shape (2, 2)
     """
 
     nodes: np.ndarray

@@ -25,8 +25,8 @@ import numpy as np
 import scipy.linalg as la
 import scipy.sparse.linalg as spl
 
-from ..kernel.arrays import FrozenArrays
-from ..kernel.errors import InputError
+from ..kernel._arrays import FrozenArrays
+from ..kernel._errors import InputError
 from ._linear import Factorized, eigsh, rigid_motions, unit_displacement
 from ._model import BarHingeModel
 
@@ -103,7 +103,7 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
     >>> free_modes(tube.model, 0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: count must be an integer in [1, 52] for this model (60 DOFs), got 0
+    curvefold.kernel._errors.InputError: count must be an integer in [1, 52] for this model (60 DOFs), got 0
     """
     n = model.dofs
     if not (model.masses > 0).all():

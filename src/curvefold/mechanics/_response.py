@@ -32,8 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spl
 
-from ..kernel.arrays import FrozenArrays, readonly
-from ..kernel.errors import InputError
+from ..kernel._arrays import FrozenArrays, readonly
+from ..kernel._errors import InputError
 from ._elements import dihedral_hessian_action
 from ._linear import Factorized, eigsh, unit_displacement
 from ._model import BarHingeModel
@@ -173,7 +173,7 @@ def static_response(model: BarHingeModel, load: np.ndarray, fixed: np.ndarray, *
     >>> static_response(tube.model, forces, np.zeros_like(feet))
     Traceback (most recent call last):
     ...
-    curvefold.kernel.errors.InputError: no support: at least one node must be held (the structure would fly away)
+    curvefold.kernel._errors.InputError: no support: at least one node must be held (the structure would fly away)
     """
     P = len(model.nodes)
     f = np.asarray(load, float).reshape(P, 3)

@@ -34,8 +34,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..kernel.arrays import FrozenArrays
-from ..kernel.errors import InputError
+from ..kernel._arrays import FrozenArrays
+from ..kernel._errors import InputError
 from ._linear import Factorized, eigsh
 from ._model import BarHingeModel
 from ._structures import StructureModel
@@ -91,7 +91,7 @@ def planarity_rows(nodes: np.ndarray, quads: np.ndarray) -> sp.csr_matrix:
     """First-order change of ``det[c − a, d − b, b − a] / (|c − a| |d − b|)`` of quadruples (Q, 4), shape (Q, 3P).
 
     Zero when the quadruple stays planar (its diagonals' lines keep meeting): the
-    condition of :mod:`curvefold.analysis.mechanism`, with dimensionless rows.
+    condition of :mod:`curvefold.analysis._mechanism`, with dimensionless rows.
     """
     x = np.asarray(nodes, float)
     q = np.asarray(quads, np.int64).reshape(-1, 4)

@@ -4,7 +4,7 @@ A structure's state holds every distinct lattice curve at every sample
 (``State.vertices``, (M, n, 3)); its mesh (``State.mesh``) gives each tube its own copy of
 its curves. The model's nodes are the distinct (curve, sample) points, so the two sheets
 of a tube, welded along their seams, and neighbouring tubes, sharing a crease, share
-their nodes (as :mod:`curvefold.analysis.mechanism` welds them); every tube keeps its own
+their nodes (as :mod:`curvefold.analysis._mechanism` welds them); every tube keeps its own
 crease hinges on them. Nodes are numbered sample by sample (node = sample · M + curve for
 the points in use), which keeps the stiffness matrix in a band two samples wide.
 
@@ -31,11 +31,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ..geometry.mesh import Mesh
-from ..geometry.structure import State
-from ..kernel.arrays import FrozenArrays, readonly
-from ..kernel.errors import InputError
-from ..kernel.validate import check_integer
+from ..geometry._mesh import Mesh
+from ..geometry._structure import State
+from ..kernel._arrays import FrozenArrays, readonly
+from ..kernel._errors import InputError
+from ..kernel._validate import check_integer
 from ._materials import CREASE_STIFFNESS, Material, check_thickness
 from ._model import BarHingeModel
 

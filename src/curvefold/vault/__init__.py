@@ -1,18 +1,18 @@
 """The paper's domain: arch curves that stand on the ground, vaults and the design atlas."""
 
-from ..kernel.exports import lazy_exports as _lazy_exports
+from ..kernel._exports import lazy_exports as _lazy_exports
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "arch": [
+        "_arch": [
             "A_MAX", "ArchRoot", "GeneralArch", "HarmonicTorsion", "proportion_change", "solve_general_arch", "solve_panel_arch",
             "solve_symmetric_arch",
         ],
-        "assembly": ["DEFAULT_TUBES_CAP", "MAX_TUBES_SEARCH", "Vault", "VaultDesign", "max_tubes"],
-        "atlas": ["Atlas", "AtlasGrid", "Sketch", "evaluate_design", "run_atlas", "sweep"],
-        "targets": ["TargetFit", "fit_targets"],
-        "paper": ["paper_comparison"],
+        "_assembly": ["DEFAULT_TUBES_CAP", "MAX_TUBES_SEARCH", "Vault", "VaultDesign", "max_tubes"],
+        "_atlas": ["Atlas", "AtlasGrid", "Sketch", "evaluate_design", "run_atlas", "sweep"],
+        "_targets": ["TargetFit", "fit_targets"],
+        "_paper": ["paper_comparison"],
     },
 )

@@ -8,7 +8,7 @@ the page, whose JavaScript libraries (three.js) are copied from npm into
 ``pip install 'curvefold[designer]'``.
 """
 
-from ...kernel.validate import Spec
+from ...kernel._validate import Spec
 
 __all__ = ["SERVER_SPECS"]
 

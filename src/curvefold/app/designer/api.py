@@ -3,13 +3,13 @@ their certificates, figures and files.
 
 A request names a kind (``vault``, ``tube``, ``block``, ``crease``) and gives any key of
 the design schema as a query parameter (``?a=0.4&tubes=max&fold_angle=60``); a vault also
-takes the targets ``span``, ``rise`` and ``p_xz`` (:mod:`curvefold.vault.targets`), which
+takes the targets ``span``, ``rise`` and ``p_xz`` (:mod:`curvefold.vault._targets`), which
 replace ``radius``, ``a`` and ``p_xy``. A value is read as its key's kind of value needs
 (a number, a word, an expression in s, ``cells`` as JSON ``[[0, 0], [0, 1]]``,
-``formats`` comma-separated) and checked by the key's :class:`~curvefold.kernel.validate.Spec`,
+``formats`` comma-separated) and checked by the key's :class:`~curvefold.kernel.Spec`,
 so the command line, design files and the server refuse the same values with the same
-words. A refusal is an :class:`~curvefold.kernel.errors.InputError` whose
-:attr:`~curvefold.kernel.errors.CurvefoldError.parameter` names the parameter it is about, if any.
+words. A refusal is an :class:`~curvefold.kernel.InputError` whose
+:attr:`~curvefold.kernel.CurvefoldError.parameter` names the parameter it is about, if any.
 
 :func:`read_request` only reads and checks (quick, in the server); everything that builds
 runs in worker processes (:mod:`curvefold.app.designer.jobs`). No design is kept per
@@ -31,14 +31,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ...analysis.checks import TITLES
-from ...figures.report import MECHANICS_QUANTITIES, UNITS_SHOWN
-from ...io.formats import FORMATS, check_kind, default_formats, missing_dependencies
-from ...kernel.errors import CurvefoldError, InputError
-from ...kernel.validate import MAX_TEXT, Spec, from_text, suggest
-from ...vault.targets import REPLACES, TARGET_SPECS
-from ..build import Built, build, fit_vault_targets
-from ..design import KINDS, OPTIONAL_SECTIONS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
+from ...analysis._checks import TITLES
+from ...figures._report import MECHANICS_QUANTITIES, UNITS_SHOWN
+from ...io._formats import FORMATS, check_kind, default_formats, missing_dependencies
+from ...kernel._errors import CurvefoldError, InputError
+from ...kernel._validate import MAX_TEXT, Spec, from_text, suggest
+from ...vault._targets import REPLACES, TARGET_SPECS
+from .._build import Built, build, fit_vault_targets
+from .._design import KINDS, OPTIONAL_SECTIONS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
 
 __all__ = [
     "Request",
@@ -122,7 +122,7 @@ def schema() -> dict:
     (the vault's target specs and the parameter each replaces), ``formats`` (the
     registry: name, extension, what the file holds, the kinds it is written for),
     ``state`` (the spec of the files' fold angle) and ``units`` (how the page names the
-    schema's units, :data:`curvefold.figures.report.UNITS_SHOWN`).
+    schema's units, :data:`curvefold.figures._report.UNITS_SHOWN`).
     """
     return {
         "kinds": {kind: [*SECTIONS_OF_KIND[kind], *OPTIONAL_SECTIONS[kind]] for kind in KINDS},
@@ -302,7 +302,7 @@ def caches() -> dict[str, object]:
 
 @lru_cache(maxsize=4)
 def _payload(key: str) -> bytes:
-    from ..outputs import structure_payload
+    from .._outputs import structure_payload
 
     return json.dumps(structure_payload(built(_design(key))), default=float).encode()
 
@@ -324,7 +324,7 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
         words, value, tolerance, status, passed, …).
     """
     if coarse and design.samples > COARSE_SAMPLES:
-        from ...analysis.certificate import certify
+        from ...analysis._certificate import certify
 
         found = built(design, samples=COARSE_SAMPLES)
         cert = certify(found.crease, found.structure, found.vault)
@@ -348,9 +348,9 @@ def mechanics(design: Design) -> dict:
     Returns
     -------
     dict
-        ``numbers``: :meth:`curvefold.app.loading.Loaded.to_dict`; ``labels``: each figure
+        ``numbers``: :meth:`curvefold.app._loading.Loaded.to_dict`; ``labels``: each figure
         of :data:`MECHANICS_SHOWN` as ``[words, unit, explanation]``, the report's words
-        (:data:`curvefold.figures.report.MECHANICS_QUANTITIES`) up to their explanation.
+        (:data:`curvefold.figures._report.MECHANICS_QUANTITIES`) up to their explanation.
     """
     return json.loads(_mechanics(_key(design.with_mechanics())))
 
@@ -372,7 +372,7 @@ def domain_svg(design: Design) -> str:
 
 @lru_cache(maxsize=4)
 def _domain(key: str) -> str:
-    from ...figures.plots import plot_regression_domain
+    from ...figures._plots import plot_regression_domain
 
     structure = built(_design(key), samples=PREVIEW_SAMPLES).structure
     figure = plot_regression_domain(structure.lattice, structure.cells)
@@ -399,7 +399,7 @@ def _pattern(key: str) -> tuple[str, ...]:
 def _write(built: Built, formats: tuple[str, ...], folder: Path, state: float | None = None) -> list[Path]:
     """The files of ``formats`` written by the output folder's jobs (without the report's pictures), in
     the order they are written: a format's pages in page order."""
-    from .. import products
+    from .. import _products as products
 
     missing = missing_dependencies(formats)
     if missing:
@@ -431,8 +431,8 @@ def _files(key: str, what: str, state: float | None) -> tuple[str, str, bytes]:
     with tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
         root = Path(tmp)
         if what == "zip":
-            from ..folder import check_output
-            from ..outputs import write_outputs
+            from .._folder import check_output
+            from .._outputs import write_outputs
 
             out = root / f"curvefold-{design.kind}"
             write_outputs(found, check_output(out, force=False), show_progress=False, fold_angle=state, workers=1)  # the pool is the parallelism

@@ -2,9 +2,9 @@
 within which bounds.
 
 Every route that builds geometry is a job: :func:`run`, executed in a worker process
-(:mod:`curvefold.app.workers`). Before a job is sent, :func:`plan` reads the request (the
+(:mod:`curvefold.app._workers`). Before a job is sent, :func:`plan` reads the request (the
 design, its targets and the route's own parameters), estimates its memory as the command
-line estimates a run (:func:`curvefold.app.budget.require_budget`, refused over the
+line estimates a run (:func:`curvefold.app._budget.require_budget`, refused over the
 budget with the estimate and what to lower) and chooses its lane:
 
 ``quick``
@@ -22,9 +22,9 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 
-from ...kernel.errors import CurvefoldError, InputError
-from ...kernel.validate import Spec
-from ..budget import Estimate, require_budget
+from ...kernel._errors import CurvefoldError, InputError
+from ...kernel._validate import Spec
+from .._budget import Estimate, require_budget
 from . import api, preview
 
 __all__ = ["ROUTES", "QUICK_STRIP_SAMPLES", "COARSE", "Plan", "plan", "run"]

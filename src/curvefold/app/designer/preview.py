@@ -2,7 +2,7 @@
 the 3D view with the span and rise drawn as dimensions, the first contact, and a coarse
 sketch of the crease pattern.
 
-Lengths are in model units, which the 3D files write as metres (:data:`curvefold.io.tables.UNITS`):
+Lengths are in model units, which the 3D files write as metres (:data:`curvefold.io._tables.UNITS`):
 the page says metres. The motion is built at :data:`~curvefold.app.designer.api.PREVIEW_SAMPLES`
 (the numbers at the design's own samples), the sketch at
 :data:`~curvefold.app.designer.api.COARSE_SAMPLES`.
@@ -18,13 +18,13 @@ from urllib.parse import urlencode
 
 import numpy as np
 
-from ...figures.report import QUANTITIES, UNITS_SHOWN
-from ...geometry.structure import drawable
-from ...geometry.topology import tube_strips
-from ...io.tables import COLOURS
-from ..build import Built
-from ..design import Design
-from ...kernel.errors import InputError
+from ...figures._report import QUANTITIES, UNITS_SHOWN
+from ...geometry._structure import drawable
+from ...geometry._topology import tube_strips
+from ...io._tables import COLOURS
+from ...kernel._errors import InputError
+from .._build import Built
+from .._design import Design
 from .api import COARSE_SAMPLES, PREVIEW_SAMPLES, _design, _key, built, design_query, resolve
 
 __all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
@@ -120,7 +120,7 @@ def _numbers(found: Built) -> dict:
             "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0]))}
 
 
-#: Words and units of the numbers that :data:`~curvefold.figures.report.QUANTITIES` does not name.
+#: Words and units of the numbers that :data:`~curvefold.figures._report.QUANTITIES` does not name.
 _MORE = {"a": ("torsion amplitude a", ""), "p_xy": ("section proportion at the feet p_xy", ""), "radius": ("radius of the arch curve 1/κ0", "model units"),
          "width_at_feet": ("tube width at the feet w_L(0)", "model units"), "lattice_curves": ("lattice curves", ""),
          "size_x": ("size along x", "model units"), "size_y": ("size along y", "model units"), "size_z": ("size along z", "model units")}
@@ -164,7 +164,7 @@ def preview(design: Design, targets: tuple = ()) -> bytes:
 
 def contact(design: Design) -> float | None:
     """The first fold angle past the design angle where parts of a vault touch (degrees, on a
-    1° grid; :meth:`Vault.first_contact <curvefold.vault.assembly.Vault.first_contact>`), or None
+    1° grid; :meth:`Vault.first_contact <curvefold.vault.Vault.first_contact>`), or None
     up to :data:`MAX_FOLD`: where the fold slider stops."""
     if design.kind != "vault":
         raise InputError(f"the first contact is searched for vaults, not for a {design.kind}")
@@ -193,7 +193,7 @@ def pattern_sketch(design: Design) -> str:
 
 @lru_cache(maxsize=8)
 def _sketch(key: str) -> str:
-    from ...geometry.sheets import sheets
+    from ...geometry._sheets import sheets
 
     design = _design(key)
     found = built(design, samples=min(COARSE_SAMPLES, design.samples))

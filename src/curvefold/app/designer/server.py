@@ -25,13 +25,13 @@ holds design parameters as :mod:`curvefold.app.designer.api` reads them):
 What it promises:
 
 - **Every request within the budget.** Each request is estimated as the command line
-  estimates a run (:mod:`curvefold.app.budget`) and refused above the budget, with the
+  estimates a run (:mod:`curvefold.app._budget`) and refused above the budget, with the
   estimate and what to lower; the heavy jobs running at once hold at most the budget
   between them (a job waits for memory another frees; quick jobs are small, at most
   :data:`QUICK_WORKERS` at a time), and a worker that grows past its job's estimate by :data:`WORKER_ALLOWANCE` is
   stopped; one that a job leaves larger than :data:`RECYCLE_ABOVE` is replaced.
 - **One request never blocks the others.** Everything that builds runs in worker processes
-  (:mod:`curvefold.app.workers`): a quick lane answers previews and the first coarse
+  (:mod:`curvefold.app._workers`): a quick lane answers previews and the first coarse
   answers; a heavy lane, of lower CPU priority, the rest. A job past its time limit, or
   whose client went away (heavy lane), is killed at once.
 - **It stops when told.** SIGINT or SIGTERM kills the workers at once, answers what is
@@ -61,9 +61,9 @@ from importlib.metadata import version
 from pathlib import Path
 from urllib.parse import urlencode, urlsplit
 
-from ...kernel.errors import CurvefoldError
-from ..budget import memory_budget
-from ..workers import JobError, Pool, Reservations, Stopped, resident_bytes
+from ...kernel._errors import CurvefoldError
+from .._budget import memory_budget
+from .._workers import JobError, Pool, Reservations, Stopped, resident_bytes
 from . import SERVER_SPECS, api, jobs
 
 __all__ = ["STATIC", "VENDOR", "TIME_LIMIT", "WORKER_ALLOWANCE", "SERVER_SPECS", "missing_bundle", "Designer", "bind", "serving", "serve"]
@@ -87,7 +87,7 @@ RECYCLE_ABOVE = 160 << 20
 #: Answers kept by the server (bytes), and the largest one kept.
 ANSWER_CACHE, LARGEST_ANSWER = 64 << 20, 8 << 20
 #: Modules the workers start with (imported once, in the fork server).
-PRELOAD = ("curvefold.app.designer.jobs", "curvefold.app.outputs")
+PRELOAD = ("curvefold.app.designer.jobs", "curvefold.app._outputs")
 
 log = logging.getLogger("curvefold.designer")
 
@@ -366,7 +366,7 @@ def bind(host: str, port: int) -> socket.socket:
     InputError
         The address cannot be had (in use, not this machine's), in one line.
     """
-    from ...kernel.errors import InputError
+    from ...kernel._errors import InputError
 
     if not 0 <= port <= 65535:
         raise InputError(f"--port must be in [0, 65535], got {port}")

@@ -1,0 +1,202 @@
+"""What the certificate's measurements read: a crease, or a structure in one folded state.
+
+A :class:`Frame` is one subject of the checks of :mod:`curvefold.analysis._checks`: a single
+curved fold, or a structure refolded to one angle (or as built), with the vault whose
+parameters the vault checks compare with. What every frame of one structure shares (its
+meshes' topology, its flat state, its bars and creases) is computed once, in
+:class:`Shared`. Every quantity is measured on the built geometry
+(:mod:`curvefold.analysis._measure`), never taken from the formula that built it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..geometry._crease import Crease
+from ..geometry._mesh import edges_faces
+from ..geometry._structure import State, Structure
+from ..geometry._topology import CORNER_KINDS, STRIPS, Topology
+from ..vault._assembly import Vault
+from . import _measure as measure
+
+__all__ = ["Frame", "Shared", "ROUNDING"]
+
+#: Units in the last place of the largest coordinate that a built sample may carry as rounding:
+#: twice the largest noise measured in built rulings (16 ulps, tests/test_properties.py).
+ROUNDING = 32.0
+_EPS = float(np.finfo(float).eps)
+
+
+@dataclass(frozen=True, eq=False)
+class Shared:
+    """What every frame of one structure shares: its meshes' topology and its flat state.
+
+    Attributes
+    ----------
+    structure : Structure
+    """
+
+    structure: Structure
+
+    @cached_property
+    def flat(self) -> State:
+        """The flat state: the crease pattern."""
+        return self.structure.state(0.0)
+
+    @cached_property
+    def topology(self) -> Topology:
+        """The structure's topology (corners, strips, vertex numbering)."""
+        return self.structure.topology()
+
+    @cached_property
+    def quads(self) -> np.ndarray:
+        """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`."""
+        return self.structure.topology("quads").faces_vertices
+
+    @cached_property
+    def flat_coords(self) -> np.ndarray:
+        """Vertex coordinates of the crease pattern (the flat state), (V, 3) model units."""
+        return self.topology.coords(self.flat.vertices)
+
+    @cached_property
+    def flat_lengths(self) -> np.ndarray:
+        """Edge lengths of the crease pattern, (E,)."""
+        return measure.edge_lengths(self.flat_coords, self.topology.edges_vertices)
+
+    @property
+    def shortest_edge(self) -> float:
+        """Length of the crease pattern's shortest edge, model units."""
+        return float(self.flat_lengths.min())
+
+    @cached_property
+    def bars(self) -> np.ndarray:
+        """Every edge, then both diagonals of every quad, (E + 2F, 2): what keeps a rigid panel's shape."""
+        q = self.quads
+        return np.concatenate([self.topology.edges_vertices, q[:, [0, 2]], q[:, [1, 3]]])
+
+    @cached_property
+    def bar_lengths(self) -> np.ndarray:
+        """Lengths of :attr:`bars` in the crease pattern, (E + 2F,)."""
+        return measure.edge_lengths(self.flat_coords, self.bars)
+
+    @cached_property
+    def creases(self) -> tuple[np.ndarray, np.ndarray]:
+        """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
+        top = self.topology
+        ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam")))
+        return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """What the measurements read: a single crease, or a structure folded to one angle.
+
+    Attributes
+    ----------
+    crease : Crease or FoldedCrease
+        Curve 1 in this state: a smooth :class:`Crease` (what the crease and smooth
+        checks read), or the crease of another kind of lattice
+        (:class:`~curvefold.geometry.FoldedCrease`, what the rigid checks read).
+    shared : Shared or None
+        The structure and what its frames share.
+    state : State or None
+        The structure at this fold angle.
+    vault : Vault or None
+        The vault whose parameters (a, κ₀ s₀, p_xy) the vault checks compare with.
+    """
+
+    crease: Crease
+    shared: Shared | None = None
+    state: State | None = None
+    vault: Vault | None = None
+
+    @classmethod
+    def at(cls, shared: Shared, fold_angle: float | None, vault: Vault | None = None) -> Frame:
+        """The structure refolded from its pattern to 2α = ``fold_angle`` (degrees), or as built (None).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice
+        >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+        >>> shared = Shared(tube)
+        >>> Frame.at(shared, 0.0).alpha, Frame.at(shared, None).crease.fold_angle   # flat, and as built
+        (0.0, 90.0)
+        """
+        state = shared.structure.state(fold_angle)
+        return cls(state.lattice.crease, shared, state, vault)
+
+    @property
+    def structure(self) -> Structure:
+        """The structure certified (shared by every frame)."""
+        return self.shared.structure
+
+    @property
+    def samples(self) -> int:
+        """Samples along curve 1 at this sampling."""
+        return len(self.crease.curve.s)
+
+    @property
+    def step(self) -> float:
+        """Arc-length step h of curve 1."""
+        return float(self.crease.s[1] - self.crease.s[0])
+
+    @property
+    def alpha(self) -> float:
+        """The frame's half fold angle α, radians."""
+        return float(self.crease.alpha.constant)
+
+    @property
+    def inner_t(self) -> np.ndarray:
+        """t of the samples 2 … n − 3 where differences are measured, (n − 4,)."""
+        return self.crease.s[2:-2] / self.crease.curve.length
+
+    @cached_property
+    def ulp(self) -> float:
+        """:data:`ROUNDING` units in the last place of the largest coordinate."""
+        x = self.crease.curve.points if self.state is None else self.state.vertices
+        return ROUNDING * _EPS * float(np.abs(x).max() + self.crease.curve.length)
+
+    @cached_property
+    def rulings(self) -> np.ndarray:
+        """Ruling vectors ℓ_L r_L, ℓ_R r_R at curve 1 from its built neighbours (1, 0), (0, 1), (2, n, 3)."""
+        if self.state is None:
+            return np.stack(self.crease.rulings())
+        x = self.state.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
+        return x[1:] - x[0]
+
+    @cached_property
+    def tubes(self) -> np.ndarray:
+        """Built curves at corners 1–4 of every tube, (K, 4, n, 3)."""
+        return self.state.vertices[self.structure.cell_curves]
+
+    @cached_property
+    def coords(self) -> np.ndarray:
+        """The mesh vertices of this state, (V, 3)."""
+        return self.shared.topology.coords(self.state.vertices)
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """Curve 1's unit tangent T₁ (its built frame), (n, 3)."""
+        return self.crease.curve.frames[:, :, 0]
+
+    @cached_property
+    def half_angles(self) -> np.ndarray:
+        """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
+        X, h = self.tubes, self.step
+        return np.stack([measure.crease_half_angle(X[:, c], X[:, (c - 1) % 4], X[:, (c + 1) % 4], h, kind=CORNER_KINDS[c])
+                         for c in range(4)], axis=1)
+
+    @cached_property
+    def measured_alpha(self) -> np.ndarray:
+        """α at curve 1 from its built rulings, (n − 4,)."""
+        x = self.crease.curve.points
+        return measure.crease_half_angle(x, x + self.rulings[0], x + self.rulings[1], self.step, kind="fold")
+
+    @cached_property
+    def strip_widths(self) -> np.ndarray:
+        """Distance between the tangent lines of the two creases of every strip, (K, 4, n)."""
+        X, T = self.tubes, self.tangent
+        return np.stack([measure.tangent_line_distance(X[:, a], X[:, b], T) for a, b in STRIPS], axis=1)

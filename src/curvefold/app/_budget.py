@@ -1,0 +1,262 @@
+"""The memory budget of a run, and an estimate of each job from its design before it starts.
+
+A design names how much it asks for: samples along the creases, tubes or cells, the files
+to write. The command line estimates the peak memory of the job from the design alone
+and refuses, before any work, a job whose estimate exceeds the budget, with the estimate
+and what to lower.
+
+The budget is :data:`DEFAULT_BUDGET` (2 GiB) unless the environment variable
+``CURVEFOLD_MEMORY_BUDGET`` sets another (``4G``, ``512M``, ``1.5G`` or a number of bytes).
+
+The estimate (:func:`estimate`) counts the size of the job as *strip samples*: samples
+along the creases times the strips of the structure (four per cell; a single crease has
+two surfaces). A structure of N rigid panels holds its smooth crease's samples and the
+N + 1 vertices of every polyline besides, so each vertex counts as a sample. Each part of the job costs a fixed amount, an amount per strip sample and,
+for the crease patterns, an amount per squared sample (:data:`COSTS`), measured on
+curvefold's own runs (``benchmarks/bench_budget.py`` compares the estimate with the
+measured peak and prints the ratio). The parts run one after the other, so the peak is the
+interpreter, plus the geometry (the structure, its state and the certificate), plus the
+largest of the file jobs. A design under load (:attr:`Design.mechanics
+<curvefold.app.Design.mechanics>`) adds its bar-and-hinge model, its solves and its
+result, held while the files are written, counted per strip sample the model keeps
+(:func:`curvefold.mechanics.model_samples`; every panel vertex).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from dataclasses import dataclass
+
+from ..io._formats import FAMILIES, FORMATS
+from ..kernel._errors import InputError
+from ..vault._assembly import DEFAULT_TUBES_CAP
+from ._design import Design
+
+__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget",
+           "require_rebuild_budget"]
+
+#: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
+DEFAULT_BUDGET = 2 << 30
+#: The largest budget: 1 PiB, far above any machine, far below where a byte count stops being exact.
+MAX_BUDGET = 1 << 50
+#: The environment variable that sets the budget.
+ENVIRONMENT = "CURVEFOLD_MEMORY_BUDGET"
+
+_MB = 1 << 20
+#: The interpreter with NumPy, SciPy and curvefold loaded (bytes).
+BASE = 80 * _MB
+#: (fixed bytes, bytes per strip sample, bytes per squared sample) of each part of a job:
+#: the geometry with the certificate, each family of formats, the report's pictures.
+#: Measured on tubes (2001 to 32001 samples), vaults (401 and 1601 samples, 36 strips), a
+#: block and a crease, each part in a process of its own, and rounded up. Nothing grows
+#: with the square of the samples any more (the crease patterns did, 1.6 GB at 8001
+#: samples, until their glue tabs were checked against nearby segments only and a
+#: sheet's bounding box found by rotating calipers); the third number stays for a part
+#: that would.
+COSTS: dict[str, tuple[float, float, float]] = {
+    "geometry": (46 * _MB, 2200.0, 0.0),
+    "pattern": (100 * _MB, 500.0, 0.0),
+    "guide": (40 * _MB, 300.0, 0.0),  # measured 3 MB above the built design for the paper's vault at 801 and 3201 samples
+    "fold": (35 * _MB, 4200.0, 0.0),
+    "model": (75 * _MB, 5400.0, 0.0),
+    "motion": (100 * _MB, 400.0, 0.0),
+    "pictures": (75 * _MB, 300.0, 0.0),
+    # measured: the peak of `curvefold load --json` over the geometry's estimate, 86 MiB for the paper's vault (801
+    # samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801, 70 MiB with 256 panels, rounded up
+    "mechanics": (40 * _MB, 8000.0, 0.0),
+}
+#: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
+#: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
+#: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter and
+#: the geometry of a vault of up to :data:`DEFAULT_TUBES_CAP` tubes per sample.
+ATLAS_FIGURE, ATLAS_PER_DESIGN = 130 * _MB, 0.5 * _MB
+ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = BASE, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
+
+
+def memory_budget() -> int:
+    """The budget in bytes: ``CURVEFOLD_MEMORY_BUDGET`` if set (see :func:`parse_size`),
+    else :data:`DEFAULT_BUDGET`.
+
+    Raises
+    ------
+    InputError
+        The variable is not a size.
+    """
+    text = os.environ.get(ENVIRONMENT)
+    return DEFAULT_BUDGET if text is None else parse_size(text, ENVIRONMENT)
+
+
+def parse_size(text: str, name: str) -> int:
+    """A memory size in bytes: a positive number with an optional K, M, G or T (powers of 1024).
+
+    Examples
+    --------
+    >>> parse_size("1.5G", "budget") == 3 << 29, parse_size("512 MiB", "budget"), parse_size("4096", "budget")
+    (True, 536870912, 4096)
+    """
+    match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)i?B?\s*", text, re.IGNORECASE)
+    size = float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B") if match else math.nan
+    if not 0 < size <= MAX_BUDGET:
+        shown = repr(text) if len(text) <= 40 else f"{text[:20]!r}… ({len(text)} characters)"
+        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, at most {_size(MAX_BUDGET)}, got {shown}")
+    return int(size)
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """The estimated peak memory of a job.
+
+    Attributes
+    ----------
+    total : float
+        Bytes at the peak.
+    strip_samples : int
+        Size of the job: samples times strips.
+    largest : str
+        The costliest part of the job (``"geometry"``, ``"mechanics"``, a family of formats, ``"pictures"``).
+    """
+
+    total: float
+    strip_samples: int
+    largest: str
+
+
+def _strips(design: Design) -> int:
+    """Strips of the structure a design builds (``tubes = "max"`` counts as its cap)."""
+    if design.kind == "vault":
+        tubes = DEFAULT_TUBES_CAP if design.vault.tubes == "max" else design.vault.tubes
+        return 4 * tubes * design.vault.layers
+    if design.kind == "block":
+        return 4 * len(design.block.cells)
+    return 4 if design.kind == "tube" else 2
+
+
+def _samples(design: Design) -> int:
+    """Points along each crease: the samples, and the N + 1 vertices of a structure of N panels."""
+    params = design.vault if design.kind == "vault" else design.curve
+    panels = getattr(params, "panels", 0) or 0
+    return design.samples + (panels + 1 if panels else 0)
+
+
+def _parts(design: Design, files: bool) -> list[str]:
+    if not files:
+        return []
+    return [*dict.fromkeys(FORMATS[name].family for name in design.output.formats), "pictures"]
+
+
+def _cost(part: str, samples: int, n: int) -> float:
+    fixed, linear, square = COSTS[part]
+    return fixed + linear * n + square * float(samples) ** 2
+
+
+def _mechanics(design: Design) -> float:
+    """The mechanics of a design under load (0 for one that is not): its model keeps every panel vertex, or the
+    samples of :func:`curvefold.mechanics.model_samples`."""
+    if not design.mechanics:
+        return 0.0
+    from ..mechanics import model_samples
+
+    panels = getattr(design.vault if design.kind == "vault" else design.curve, "panels", 0) or 0
+    kept = panels + 1 if panels else len(model_samples(design.samples))
+    return _cost("mechanics", kept, kept * _strips(design))
+
+
+def estimate(design: Design, *, files: bool) -> Estimate:
+    """The peak memory of building ``design`` (and, with ``files``, writing its formats
+    and pictures), from the design alone: the interpreter, the geometry, the mechanics of
+    a design under load and the costliest file job (they run one after the other)."""
+    samples = _samples(design)
+    n = samples * _strips(design)
+    jobs = {part: _cost(part, samples, n) for part in _parts(design, files)}
+    mechanics = _mechanics(design)
+    largest = max(jobs, key=jobs.get, default="mechanics" if mechanics else "geometry")
+    return Estimate(BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest)
+
+
+def require_budget(design: Design, *, files: bool) -> Estimate:
+    """The estimate of a job, or :class:`InputError` if it exceeds the budget.
+
+    The message gives the estimate, the budget, the largest sample count that fits and
+    what else to lower.
+    """
+    budget = memory_budget()
+    found = estimate(design, files=files)
+    if found.total <= budget:
+        return found
+    strips = _strips(design)
+    fits = _samples_that_fit(design, files, budget)
+    what = {"vault": f'[vault] tubes or layers (tubes = "max" counts as {DEFAULT_TUBES_CAP})', "block": "[block] cells"}.get(design.kind)
+    lower = [f"samples (at most {fits} fit)" if fits else "samples", *([what] if what else [])]
+    if _samples(design) > design.samples:
+        lower.insert(1, "panels")
+    if found.largest not in ("geometry", "mechanics"):
+        lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
+    raise InputError(
+        f"{design.source}: this job needs about {_size(found.total)} of memory ({_points(design)} × {strips} strips), "
+        f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower " + ", ".join(lower)
+    )
+
+
+def _points(design: Design) -> str:
+    extra = _samples(design) - design.samples
+    return f"{design.samples} samples" + (f" + {extra} panel vertices" if extra else "")
+
+
+def _samples_that_fit(design: Design, files: bool, budget: int) -> int | None:
+    """The largest sample count whose job fits the budget (the estimate grows with it), or None."""
+    from dataclasses import replace
+
+    fits = lambda m: estimate(replace(design, samples=m), files=files).total <= budget  # noqa: E731
+    if not fits(9):
+        return None
+    lo, hi = 9, design.samples  # fits(lo), not fits(hi)
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
+    return lo
+
+
+def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> float:
+    """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget."""
+    budget = memory_budget()
+    processes = workers or min(2, os.cpu_count() or 1)
+    from ..figures._atlas import MAX_VIEWS
+
+    held = min(designs, MAX_VIEWS**2)
+    total = BASE + ATLAS_FIGURE + ATLAS_PER_DESIGN * held + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
+    if total > budget:
+        raise InputError(
+            f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} samples, {processes} processes), "
+            f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower the grid's counts, --samples or --workers"
+        )
+    return total
+
+
+#: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check --rebuild``):
+#: its coordinates and fold angles as arrays, as JSON data and read back. Measured: the peak of
+#: ``check --rebuild`` over that of ``check`` grew by 225–250 bytes per strip sample and frame (tubes of
+#: 201 and 801 samples, 10 to 100 frames), rounded up.
+REBUILD_PER_FRAME = 300.0
+
+
+def require_rebuild_budget(design: Design, frames: int) -> float:
+    """The estimate of building ``design`` again with ``frames`` FOLD frames, or :class:`InputError` over budget."""
+    budget = memory_budget()
+    found = estimate(design, files=False)
+    total = found.total + REBUILD_PER_FRAME * frames * found.strip_samples
+    if total > budget:
+        raise InputError(
+            f"{design.source}: rebuilding this design needs about {_size(total)} of memory ({design.samples} samples × "
+            f"{_strips(design)} strips, {frames} frames), more than the budget of {_size(budget)} ({ENVIRONMENT})"
+        )
+    return total
+
+
+#: What each part writes, as the subject of a sentence ("the crease patterns").
+_FAMILY_NAMES = {**{family: text.rsplit(" ", 1)[0] for family, text in FAMILIES.items()}, "pictures": "the pictures"}
+
+
+def _size(n: float) -> str:
+    return f"{n / (1 << 50):.0f} PiB" if n >= 1 << 50 else f"{n / (1 << 30):.1f} GiB" if n >= 1 << 30 else f"{n / _MB:.0f} MiB"

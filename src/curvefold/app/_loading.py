@@ -1,0 +1,295 @@
+"""A design under load: its ``[material]`` and ``[loads]`` sections, and what the mechanics says of the built design.
+
+A vault, tube or block design may say what it is made of and what loads it::
+
+    [material]
+    material = "aluminium"      # a named material, or your own values:
+    thickness = 0.002           # youngs_modulus, poisson, density (and strength)
+    [loads]
+    snow = 0.5                  # kPa on the roof
+    supports = "pinned"
+
+The sections are optional: a design that has either is analysed under load wherever it is
+built into an output folder (``curvefold vault``, ``tube``, ``block``, the designer's
+folder), and ``curvefold load`` analyses any design, filling them with their defaults
+(polypropylene 1 mm, self-weight, pinned). Their keys are checked by the specs of
+:mod:`curvefold.mechanics` (the snow in kPa here, in Pa there). A vault stands on its feet
+(the end sections on the ground); a tube or block is held at both end sections, t = 0 and
+t = 1, wherever they are.
+
+:func:`analyse` runs :func:`curvefold.mechanics.analyse_load` on a built structure
+(:attr:`Built.mechanics <curvefold.app.Built.mechanics>`) and returns a
+:class:`Loaded`: the result with what the report, the 3D model and the command line show
+of it. The mechanics and SciPy are imported only then.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..kernel._errors import InputError
+from ..kernel._validate import Interval, Spec
+from ..mechanics import CREASE_STIFFNESS, LOAD_SPECS, MATERIAL, MATERIAL_SPECS, MATERIALS, SUPPORTS, THICKNESS
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..geometry._structure import Structure
+    from ..mechanics import LoadResult
+
+__all__ = ["MATERIAL_SECTION", "LOADS_SECTION", "MaterialParams", "LoadParams", "check_material", "material_alternatives",
+           "Loaded", "analyse", "magnification", "DEFAULT_MATERIAL", "PA_PER_KPA"]
+
+#: The material of a design that names none and gives no values of its own.
+DEFAULT_MATERIAL = "polypropylene"
+#: Snow is given in kPa and analysed in Pa.
+PA_PER_KPA = 1000.0
+_PA = {s.name: s for s in LOAD_SPECS}
+_OWN = tuple(s.name for s in MATERIAL_SPECS)  # youngs_modulus, poisson, density, strength
+_NEEDED = _OWN[:3]
+
+#: ``[material]``: a named material or the user's own values, the thickness and the creases' stiffness.
+MATERIAL_SECTION: tuple[Spec, ...] = (
+    Spec(MATERIAL.name, "choice", None, choices=MATERIAL.choices, label=MATERIAL.label,
+         help=f"{MATERIAL.help}; default {DEFAULT_MATERIAL} unless your own values are given"),
+    *MATERIAL_SPECS,
+    THICKNESS,
+    CREASE_STIFFNESS,
+)
+#: ``[loads]``: what loads the structure and how it is held (the snow in kPa, the library's in Pa).
+LOADS_SECTION: tuple[Spec, ...] = (
+    Spec("self_weight", "flag", True, help="the sheet's own weight loads it", label="self-weight"),
+    Spec("snow", "real", 0.0, Interval(_PA["snow"].range.lo / PA_PER_KPA, _PA["snow"].range.hi / PA_PER_KPA, True, True), "kPa",
+         help="snow: a uniform vertical load per projected area on the roof", why="a roof's snow is below 10 kPa; 1000 kPa is a press",
+         label="snow load"),
+    Spec("point_load", "real", 0.0, _PA["point"].range, "N", help="a vertical point load, downward, at the apex (the highest point)",
+         why=_PA["point"].why, label="point load"),
+    Spec(SUPPORTS.name, "choice", SUPPORTS.default, choices=SUPPORTS.choices, label=SUPPORTS.label,
+         help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end sections (t = 0 and t = 1)"),
+)
+
+
+@dataclass(frozen=True)
+class MaterialParams:
+    """``[material]``: a named material or the user's own values (SI), the thickness (m) and the crease stiffness (N·m/rad/m)."""
+
+    material: str | None
+    youngs_modulus: float | None
+    poisson: float | None
+    density: float | None
+    strength: float | None
+    thickness: float
+    crease_stiffness: float | None
+
+
+@dataclass(frozen=True)
+class LoadParams:
+    """``[loads]``: self-weight or not, snow (kPa), a point load (N) and the supports."""
+
+    self_weight: bool
+    snow: float
+    point_load: float
+    supports: str
+
+
+def check_material(values: dict, where: str) -> None:
+    """Check a ``[material]`` section's values together, naming the default material when none is given.
+
+    Either a named material or the user's own E, ν and density (and, optionally, a
+    strength), never both; ``values`` is completed in place.
+
+    Raises
+    ------
+    InputError
+        One line starting with ``where`` (``"design.toml: [material] "``).
+    """
+    own = [k for k in _OWN if values.get(k) is not None]
+    if values.get("material") is not None and own:
+        raise InputError(f"{where}give material or your own values ({', '.join(own)}), not both", parameter=own[0])
+    if own:
+        missing = [k for k in _NEEDED if values.get(k) is None]
+        if missing:
+            raise InputError(f"{where}your own material needs youngs_modulus, poisson and density (missing: {', '.join(missing)}), "
+                             "or name one with material", parameter=missing[0])
+    elif values.get("material") is None:
+        values["material"] = DEFAULT_MATERIAL
+
+
+def material_alternatives(data: dict, given: set[str]) -> None:
+    """A named material and the user's own values are alternatives: the one given by flags drops the other from the design's data."""
+    section = data.get("material")
+    if section is None:
+        return
+    if "material" in given:
+        for key in _OWN:
+            if key not in given:
+                section.pop(key, None)
+    elif given & set(_OWN):
+        section.pop("material", None)
+
+
+def magnification(displacement: float, size: float, *, share: float = 0.05) -> float:
+    """A round factor (1, 2 or 5 × 10^k) that shows a displacement at about ``share`` of the structure's size.
+
+    Examples
+    --------
+    >>> magnification(9.88e-5, 3.3), magnification(0.0, 3.3), magnification(1.0, 1.0)
+    (1000.0, 1.0, 0.05)
+    """
+    if not displacement > 0:
+        return 1.0
+    target = share * size / displacement
+    k = math.floor(math.log10(target))
+    return max(m * 10.0**k for m in (1.0, 2.0, 5.0) if m * 10.0**k <= target * (1 + 1e-12))
+
+
+@dataclass(frozen=True, eq=False)
+class Loaded:
+    """A built design under load: the mechanics' result and what is shown of it.
+
+    Attributes
+    ----------
+    result : LoadResult
+    material : MaterialParams
+    loads : LoadParams
+    supported : {"feet", "ends"}
+        The feet of a vault, or both end sections of a tube or block.
+    """
+
+    result: LoadResult
+    material: MaterialParams
+    loads: LoadParams
+    supported: str
+
+    @property
+    def size(self) -> float:
+        """The structure's largest extent, m."""
+        return self.result.structure.model.size
+
+    @property
+    def deflection_scale(self) -> float:
+        """How much the pictures and the 3D model magnify the deflection (:func:`magnification`)."""
+        return magnification(self.result.static.max_displacement, self.size)
+
+    @property
+    def mode_amplitude(self) -> float:
+        """Largest displacement of a mode as the pictures and the 3D model show it, m: a round 5 % of the size."""
+        return magnification(1.0, self.size)
+
+    def notes(self) -> list[str]:
+        """What a reader must know to read the numbers (the supports, a buckling mode the samples do not resolve)."""
+        r = self.result
+        held = ("the feet (the end sections on the ground)" if self.supported == "feet"
+                else "both end sections of every tube (t = 0 and t = 1)")
+        notes = [f"held at {held}, {r.supports.kind}; the model keeps {len(r.structure.samples)} of the "
+                 f"{r.structure.state.vertices.shape[1]} samples along each crease (every one near the end sections)"]
+        if not r.buckling_resolved:
+            notes.append("the buckling mode alternates from one sample to the next: the samples do not resolve it, and its factor "
+                         "is lower than the structure's; more samples find the structure's")
+        if r.utilisation is None:
+            notes.append("no strength given: the stresses are not measured against one (utilisation unknown)")
+        return notes
+
+    def to_dict(self) -> dict:
+        """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what loads and holds it."""
+        r = self.result
+        mat = r.structure.material
+        return r.to_dict() | {
+            "material": mat.name,
+            "sheet": {"youngs_modulus": mat.youngs_modulus, "poisson": mat.poisson, "density": mat.density, "strength": mat.strength,
+                      "source": mat.source},
+            "loads": {"self_weight": self.loads.self_weight, "snow_kpa": self.loads.snow, "point_load": self.loads.point_load},
+            "supported": self.supported,
+            "reactions_by_end": self.reactions_by_end(),
+            "deflection_scale": self.deflection_scale,
+            "mode_amplitude": self.mode_amplitude,
+            "notes": self.notes(),
+        }
+
+    def reactions_by_end(self) -> dict[str, list[float]]:
+        """The support reactions summed over each end, t = 0 and t = 1, [x, y, z] N: an arch's horizontal thrust, equal
+        and opposite at its two ends."""
+        sm, reactions = self.result.structure, self.result.static.reactions
+        n = sm.state.vertices.shape[1]
+        return {end: reactions[sm.node_sample == s].sum(axis=0).tolist() for end, s in (("t = 0", 0), ("t = 1", n - 1))}
+
+    def lines(self) -> list[str]:
+        """The result in a few lines for the terminal."""
+        d = self.to_dict()
+        use = d["utilisation"]
+        factor = d["buckling_factor"]
+        rows = [
+            ("total_weight", f"{d['total_weight']:.6g} N"),
+            ("reactions", "[" + ", ".join(f"{v:.6g}" for v in _rounded(d["reactions"], max(map(abs, d["applied_load"])))) + "] N (x, y, z)"),
+            ("max_displacement", f"{d['max_displacement']:.4g} m"),
+            ("max_stress", f"{d['max_stress']:.4g} Pa" + ("" if use is None else f" (utilisation {use:.3g})")),
+            ("buckling_factor", "none: the load only stiffens it" if factor is None else f"{factor:.4g}"
+             + ("" if d["buckling_resolved"] else " (not resolved at these samples)")),
+            ("fold_mode_gap", f"{d['fold_mode_gap']:.4g}"),
+            ("soft_modes", str(d["soft_modes"])),
+            ("modes", ", ".join(f"{v:.4g}" for v in d["modes"]) + " rad²/s² (" + ", ".join(f"{f:.3g}" for f in d["frequencies"]) + " Hz)"),
+        ]
+        head = f"  under load         {d['material']} {d['thickness'] * 1e3:g} mm, {self._load_words()}"
+        return [head] + [f"  {k:<18} {v}" for k, v in rows] + [f"  note: {n}" for n in d["notes"]]
+
+    def _load_words(self) -> str:
+        p = self.loads
+        parts = (["self-weight"] if p.self_weight else []) + ([f"snow {p.snow:g} kPa"] if p.snow else []) \
+            + ([f"{p.point_load:g} N at the apex"] if p.point_load else [])
+        return " + ".join(parts) + f", {p.supports} at the {self.supported}"
+
+    def morph_targets(self, structure: Structure, keep: Sequence[np.ndarray] | None = None, *, modes: int = 3) -> dict[str, np.ndarray]:
+        """The deflected shape and the first modes as named morph targets of the GLB.
+
+        Displacements (V, 3) in metres of the vertices of ``structure.state().mesh(keep=keep)``
+        (:func:`curvefold.io.write_3d`): the deflection magnified by
+        :attr:`deflection_scale`, each mode at :attr:`mode_amplitude`.
+        """
+        r, sm = self.result, self.result.structure
+        topology = structure.topology(keep=keep)
+        at = lambda values: topology.coords(sm.interpolate(values))  # noqa: E731
+        out = {f"deflection × {self.deflection_scale:g}": self.deflection_scale * at(r.static.displacements)}
+        for k in range(min(modes, len(r.modes.eigenvalues))):
+            out[f"mode {k + 1} ({r.modes.frequencies[k]:.3g} Hz)"] = self.mode_amplitude * at(r.modes.shapes[k])
+        return out
+
+
+def _rounded(values: Sequence[float], scale: float) -> np.ndarray:
+    """Values with what is below 1e-9 of ``scale`` (the rounding of forces that balance a load of that size) shown as 0."""
+    v = np.asarray(values, float)
+    return np.where(np.abs(v) <= 1e-9 * abs(scale), 0.0, v) + 0.0
+
+
+def _sheet(params: MaterialParams):
+    from ..mechanics import Material
+
+    if params.material is not None:
+        return MATERIALS[params.material]
+    return Material.from_values(params.youngs_modulus, params.poisson, params.density, params.strength)
+
+
+def analyse(structure: Structure, material: MaterialParams | None, loads: LoadParams | None, *, supported: str) -> Loaded:
+    """The mechanics of a vault, tube or block at its design angle under a design's material and loads (their defaults
+    where it gives none), held at its ``supported`` ("feet" or "ends").
+
+    Raises
+    ------
+    InputError
+        What the mechanics refuses (no load, a structure still a mechanism under its
+        supports), in one line.
+    """
+    from ..mechanics import Loads, Supports, analyse_load
+
+    material = material or MaterialParams(**_defaults(MATERIAL_SECTION, material=DEFAULT_MATERIAL))
+    loads = loads or LoadParams(**_defaults(LOADS_SECTION))
+    result = analyse_load(structure, _sheet(material), material.thickness,
+                          Loads(self_weight=loads.self_weight, snow=loads.snow * PA_PER_KPA, point=loads.point_load),
+                          Supports(loads.supports, at=supported), crease_stiffness=material.crease_stiffness)
+    return Loaded(result, material, loads, supported)
+
+
+def _defaults(specs: Sequence[Spec], **given: Any) -> dict:
+    return {spec.name: spec.default for spec in specs} | given

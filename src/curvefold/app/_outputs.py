@@ -1,0 +1,260 @@
+"""The output folder of the command line: files, pictures and the report.
+
+The folder is checked before any work and written through
+:func:`curvefold.app._folder.output_folder`: into a temporary folder beside the target,
+renamed onto it at the end, never replacing what was not checked (see
+:mod:`curvefold.app._folder`).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Callable, Iterator
+from contextlib import closing, contextmanager
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis._certificate import certify, certify_single_fold
+from ..analysis._mechanism import certified_mechanism
+from ..figures._report import UNITS_SHOWN, report_html
+from ..io._atomic import atomic_write
+from ..io._formats import missing_dependencies
+from ..kernel._errors import InputError
+from ..kernel._json_text import strict_json
+from ._build import Built
+from ._design import Design
+from ._folder import OutputTarget, output_folder, raise_if_interrupted
+from ._products import exported_fold_angles
+
+__all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json", "default_title"]
+
+
+def structure_payload(built: Built) -> dict:
+    """Design, derived quantities and certificate of a built design, JSON-ready."""
+    design = built.design
+    payload: dict = {"kind": design.kind, "title": design.title or default_title(built), "design": design.to_dict()}
+    if built.vault is not None:
+        payload |= built.vault.summary()
+        from ..vault._paper import paper_comparison
+
+        payload["paper_comparison"] = paper_comparison()
+    elif built.structure is not None:
+        V = built.structure.state().vertices
+        payload |= {
+            "cells": built.structure.cells.tolist(),
+            "curves": built.structure.curves_uv.tolist(),
+            "curve_kinds": list(built.structure.curve_kinds),
+            "bounding_box": [V.reshape(-1, 3).min(axis=0).tolist(), V.reshape(-1, 3).max(axis=0).tolist()],
+            "regression_margin": built.structure.regression_margin,
+        }
+    else:
+        c = built.crease
+        payload |= {
+            "length": c.curve.length,
+            "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
+            "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
+        }
+    if built.structure is None:  # a single fold, in every state of its motion but the flat one
+        fold = built.single_fold
+        certificate = certify_single_fold([(a, fold.at(a)) for a in exported_fold_angles(built) if a > 0])
+    else:
+        certificate = certify(built.crease, built.structure, built.vault, fold_angles=exported_fold_angles(built))
+    payload["certificate"] = [c.to_dict() for c in certificate.checks]
+    payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
+                                     "first_contact": certificate.first_contact, "samples": certificate.samples}
+    if certificate.mechanism is not None:  # rigid panels
+        payload["mechanism"] = certificate.mechanism.to_dict()
+    if built.mechanics is not None:  # the design says what it is made of or what loads it
+        payload["mechanics"] = built.mechanics.to_dict()
+    return payload
+
+
+def parameter_rows(design: Design) -> list[dict]:
+    """Every parameter of a design for the report: ``name``, ``label`` (in words, from the schema), ``value`` and ``unit``."""
+    from ._design import SCHEMA
+
+    rows = []
+    for section, values in design.to_dict().items():
+        for name, value in (values.items() if isinstance(values, dict) else [(section, values)]):
+            spec = SCHEMA["" if not isinstance(values, dict) else section][name]
+            unit = "× radius" if (section, name) == ("vault", "width") else UNITS_SHOWN.get(spec.unit, spec.unit)
+            rows.append({"name": name, "label": spec.label or name, "value": value, "unit": unit})
+    return rows
+
+
+def default_title(built: Built) -> str:
+    """The title of a design that gives none: its kind and main parameters."""
+    if built.vault is not None:
+        d = built.vault.design
+        return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"
+    if built.structure is not None:
+        return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {built.structure.lattice.crease.fold_angle:g}°"
+    return f"single curved fold, length {built.crease.curve.length:g}"
+
+
+def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
+    """A progress bar on stderr (rich) when it is a terminal, or nothing."""
+    from rich.progress import BarColumn, TextColumn, TimeElapsedColumn
+
+    bar = _bar(show, TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn())
+    if bar is None:
+        return (lambda label: None), (lambda: None)
+    bar.start()
+    task = bar.add_task("writing", total=total)
+
+    def step(label: str) -> None:
+        bar.update(task, description=label, advance=1)
+
+    return step, bar.stop
+
+
+def _bar(show: bool, *columns):
+    """A transient rich progress bar on stderr if ``show`` and stderr is a terminal, else
+    None: stdout is for the result, and a log of stderr gets nothing but errors."""
+    if not show:
+        return None
+    from rich.console import Console
+    from rich.progress import Progress
+
+    console = Console(stderr=True)
+    return Progress(*columns, transient=True, console=console) if console.is_terminal else None
+
+
+def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True, fold_angle: float | None = None,
+                  workers: int | None = None) -> dict:
+    """Write every file of a built design into the folder ``out`` (see the module doc).
+
+    The files are written by job processes while this process computes what they share
+    (:func:`curvefold.app._products.prepare`, while the pictures are drawn) and the certificate.
+
+    Parameters
+    ----------
+    built : Built
+    out : OutputTarget
+        The folder, checked by :func:`curvefold.app._folder.check_output` before the work.
+    show_progress : bool, keyword-only
+    fold_angle : float, optional, keyword-only
+        2α of the folded state the FOLD and 3D files hold (degrees); default the design angle.
+    workers : int, optional, keyword-only
+        Processes for the files (:func:`curvefold.app._products.run_jobs`; 1: this process).
+
+    Returns
+    -------
+    dict
+        :func:`structure_payload` of ``built`` with ``"files"``: the names written,
+        relative to ``out``, sorted; and ``"notes"``, lines saying what was left out and
+        why (the pictures, without matplotlib), when anything was.
+
+    Raises
+    ------
+    InputError
+        A requested format that is not written for the design's kind or whose optional
+        package is missing, or an output folder that cannot be written; nothing is written.
+    """
+    from . import _products as products
+
+    formats = built.design.output.formats
+    jobs = products.jobs(built, formats, fold_angle=fold_angle)
+    missing = missing_dependencies(formats)
+    if missing:
+        raise InputError("formats: " + "; ".join(missing))
+    left_out = products.pictures_left_out(products.picture_files(built))
+    notes = {} if left_out is None else {"notes": [left_out]}
+    if built.structure is not None and built.structure.lattice.rigid:
+        certified_mechanism(built.structure)  # cached before the jobs fork: the certificate and the pictures share it
+    step, stop = _progress(show_progress, len(jobs))
+    written: list[str] = []
+    try:
+        prepare = partial(products.prepare, built, formats)
+        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers, prepare=prepare)) as done:  # closed at once on any exception
+            done.refill()  # what the file jobs share, computed here while the drawings are drawn; then the file jobs start
+            payload = structure_payload(built)
+            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | products.resolution(built) | notes
+            for label, files, seconds in done:
+                step(label)
+                written += [str(Path(f).relative_to(tmp)) for f in files]
+                report["timings"][label] = round(seconds, 3)
+            report["files"] = sorted(written)
+            atomic_write(tmp / "report.json", strict_json(report, indent=2))
+            atomic_write(tmp / "report.html", report_html(report))
+            written += ["report.json", "report.html"]
+    finally:
+        stop()
+    return payload | {"files": sorted(written)} | notes
+
+
+def write_atlas(
+    p_xy_values,
+    a_values,
+    *,
+    out: OutputTarget,
+    width: float,
+    samples: int,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    show_progress: bool,
+) -> dict:
+    """Run the design atlas and write it into the folder ``out`` (checked by
+    :func:`curvefold.app._folder.check_output`).
+
+    ``atlas.csv`` and ``atlas.json`` hold every design's record, written as the designs
+    finish (in grid order), so memory stays flat whatever the grid's size; the figure
+    (``atlas.png``, ``atlas.svg``) shows every k-th row and column of a grid larger than
+    :data:`~curvefold.figures._atlas.MAX_VIEWS` per axis. ``workers`` and ``scheduler`` are
+    those of :func:`curvefold.vault.sweep`.
+
+    Returns
+    -------
+    dict
+        ``shape`` (rows, columns), ``designs``, ``valid``, ``invalid`` (count per error
+        class) and ``files`` (names written); without matplotlib the figure is left out
+        and ``notes`` says so.
+    """
+    from ..figures._atlas import atlas_figure, view_step
+    from ..figures._plots import save_figure
+    from ..io._records import csv_records, json_records
+    from ..vault._atlas import FIELDS, Atlas, AtlasGrid, sweep, thin
+    from ._products import can_draw, pictures_left_out
+
+    grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples)
+    step = view_step(grid.shape)
+    header = {"format": "curvefold-atlas", "version": 1, "units": "model units (radius 1), angles in degrees", **grid.to_dict(), "fields": list(FIELDS)}
+    errors: Counter[str | None] = Counter()
+    with output_folder(out) as tmp:
+        with (
+            _progress_bar(show_progress, "atlas", grid.size) as progress,
+            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress, sketch_step=step)) as results,
+            csv_records(tmp / "atlas.csv", FIELDS) as csv_row,
+            json_records(tmp / "atlas.json", header, FIELDS) as json_row,
+        ):
+
+            def written():
+                for record, sketch in results:
+                    raise_if_interrupted()
+                    csv_row(record)
+                    json_row(record)
+                    errors[record["error"]] += 1
+                    yield record, sketch
+
+            shown = Atlas.from_results(grid.every(step), thin(written(), step))
+        rows, cols = grid.shape
+        note = None if step == 1 else f"one in {step} values of a and of p_xy shown; all {rows} × {cols} designs are in atlas.csv and atlas.json"
+        files = [Path(p).name for p in save_figure(atlas_figure(shown, note=note), tmp / "atlas")] if can_draw() else []
+    valid = errors.pop(None, 0)
+    left_out = pictures_left_out(["atlas.png", "atlas.svg"])
+    return ({"shape": [rows, cols], "designs": grid.size, "valid": valid, "invalid": dict(errors), "files": ["atlas.csv", "atlas.json", *files]}
+            | ({} if left_out is None else {"notes": [left_out]}))
+
+
+@contextmanager
+def _progress_bar(show: bool, label: str, total: int) -> Iterator[Callable[[int, int], None] | None]:
+    """``progress(done, total)`` drawing a bar on stderr (when it is a terminal) while the block runs, or None."""
+    bar = _bar(show)
+    if bar is None:
+        yield None
+        return
+    with bar:
+        task = bar.add_task(label, total=total)
+        yield lambda done, total: bar.update(task, completed=done)

@@ -1,0 +1,275 @@
+"""The assembly guide (``assembly.pdf``): what to cut, which seam glues to which, and in what order.
+
+Drawn on the pages of the crease pattern it goes with (the same page size, margins and
+10 mm scale bar, :func:`~curvefold.io._legend.page_footer`), it holds
+
+* the sheets to cut, each with its id (the label printed on it), the pattern page it is
+  on and its seams (``S0``, ``S1``… as the pattern's labels name them, tabs marked);
+* the seams: which sheet carries the glue tabs of each and which sheet it glues to;
+* the steps, tube by tube: score and fold its two sheets along their creases, glue its
+  seams, then glue it to the tubes before it along the creases they share (the
+  structure's bonds), each step with a picture of the structure built so far at its design
+  angle, the new tube picked out, drawn by curvefold's own renderer
+  (:func:`~curvefold.figures._scene.render_strips`), every picture at one scale.
+
+:func:`assembly_plan` gathers what the guide says from the layout and the structure;
+:func:`write_assembly` draws it (:mod:`curvefold.io._pdf`).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry._sheets import bonds
+from ..geometry._structure import Structure, check_structure, drawable
+from ..geometry._topology import tube_strips
+from ..io._cutters import LEGEND_LAYER
+from ..io._labels import seam_name
+from ..io._layout import Layout
+from ..io._legend import check_layout
+from ..io._pattern import draw_footer
+from ..io._pdf import PdfDocument, PdfPage, text_advance
+from ..io._tables import COLOURS
+from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, _hex, ground_polygon, render_strips
+
+__all__ = ["HIGHLIGHT_RGB", "SheetToCut", "Seam", "Step", "AssemblyPlan", "assembly_plan", "write_assembly"]
+
+#: Base colour of the tube a step adds, RGB in [0, 1].
+HIGHLIGHT_RGB = np.array([0.96, 0.72, 0.38])
+_KIND_COLOURS = {kind: COLOURS[kind] for kind in ("fold", "seam", "junction", "edge")}
+_TEXT, _HEAD, _TITLE = 3.2, 4.2, 6.0  # em heights, mm
+_INK = "#222222"
+_LAYERS = ("guide - text", "guide - pictures", LEGEND_LAYER)
+
+
+@dataclass(frozen=True)
+class SheetToCut:
+    """One sheet: its id (printed on it), its pattern page (1-based) and its seams (id, whether it has the tabs)."""
+
+    label: str
+    page: int
+    seams: tuple[tuple[int, bool], ...]
+
+
+@dataclass(frozen=True)
+class Seam:
+    """A seam: the sheet with its glue tabs and the sheet they glue to (the same one for a seam closing on itself)."""
+
+    id: int
+    tabs: str
+    onto: str
+
+
+@dataclass(frozen=True)
+class Step:
+    """Step ``number``: add tube ``tube`` (0-based); what to do, one sentence a line."""
+
+    number: int
+    tube: int
+    title: str
+    lines: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class AssemblyPlan:
+    """What the guide says: the sheets, the seams and the steps."""
+
+    sheets: tuple[SheetToCut, ...]
+    seams: tuple[Seam, ...]
+    steps: tuple[Step, ...]
+
+
+def _crease_words(tube: int, crease: int) -> str:
+    where = {1: "the crease of its sheet A", 3: "the crease of its sheet B", 2: "its seam 2", 4: "its seam 4"}[crease]
+    return f"tube {tube + 1}'s crease {crease} ({where})"
+
+
+def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
+    """The sheets, seams and steps of a structure laid out as ``layout`` (:func:`~curvefold.io.layout_pattern`).
+
+    Seams and tabs are read from the layout (its seam labels and glue areas), tubes and the
+    creases they share from the structure (:func:`~curvefold.geometry.bonds`).
+    """
+    check_structure(structure)
+    check_layout(layout)
+    placed = sorted(((s, n) for n, page in enumerate(layout.pages, start=1) for s in page.sheets), key=lambda item: item[0].index)
+    tube_count = len(structure.cell_curves)
+    if len(placed) != 2 * tube_count:
+        raise ValueError(f"the layout holds {len(placed)} sheets, the structure {2 * tube_count}: lay out this structure")
+    carriers: dict[int, list[str]] = {}
+    tabbed: dict[int, str] = {}
+    sheets = []
+    for s, page in placed:
+        ids = sorted({t.seam for t in s.labels if t.kind == "seam"})
+        mine = {p.seam for p in s.on_layer("glue")}
+        for i in ids:
+            carriers.setdefault(i, []).append(s.label)
+        for i in mine:
+            tabbed.setdefault(i, s.label)
+        sheets.append(SheetToCut(s.label, page, tuple((i, i in mine) for i in ids)))
+    seams = []
+    for i, owners in sorted(carriers.items()):
+        tabs = tabbed.get(i, owners[0])
+        seams.append(Seam(i, tabs, next((o for o in owners if o != tabs), tabs)))
+    by_tube: dict[int, list] = {}
+    for bond in bonds(structure):
+        by_tube.setdefault(max(k for k, _ in bond.creases), []).append(bond)
+    steps = []
+    for tube in range(tube_count):
+        a, b = sheets[2 * tube].label, sheets[2 * tube + 1].label
+        lines = [f"Score the creases of {a} and {b} and fold each sheet along its crease."]
+        for seam in seams:
+            if seam.tabs in (a, b):
+                onto = f"the edge {seam_name(seam.id)} of {seam.onto}" if seam.onto != seam.tabs else f"its own edge {seam_name(seam.id)}"
+                lines.append(f"Glue seam {seam_name(seam.id)}: fold the glue tabs of {seam.tabs} under and glue them to {onto}.")
+        if len(lines) > 2:
+            lines.append("Let the first seam set before closing the tube with the second.")
+        for bond in by_tube.get(tube, []):
+            others = [c for c in bond.creases if c[0] != tube]
+            mine = [c for c in bond.creases if c[0] == tube]
+            if others and mine:
+                lines.append(f"Glue {_crease_words(*mine[0])} along {', '.join(_crease_words(*c) for c in others)}.")
+        steps.append(Step(tube + 1, tube, f"Step {tube + 1}: tube {tube + 1}", tuple(lines)))
+    return AssemblyPlan(tuple(sheets), tuple(seams), tuple(steps))
+
+
+def _wrap(text: str, size: float, width: float) -> list[str]:
+    """``text`` broken at spaces into lines no wider than ``width`` (mm) in Helvetica of em height ``size``."""
+    lines, line = [], ""
+    for word in text.split():
+        trial = f"{line} {word}".strip()
+        if line and text_advance(trial, size) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = trial
+    return lines + ([line] if line else [])
+
+
+class _Pages:
+    """Text and pictures flowing down pages of the layout's size, each page with its footer."""
+
+    def __init__(self, doc: PdfDocument, layout: Layout):
+        self.doc, self.layout = doc, layout
+        W, H = layout.page_size
+        self.left, self.width = layout.margin, W - 2 * layout.margin
+        self.top, self.bottom = H - layout.margin, layout.margin + max(layout.footer, 3 * 2.2)
+        self.pages: list[PdfPage] = []
+        self.y = -np.inf
+
+    def room(self, height: float) -> PdfPage:
+        """The page to draw the next ``height`` mm on, a new one if this one is full; the cursor moves down."""
+        if not self.pages or self.y - height < self.bottom:
+            self.pages.append(self.doc.page(*self.layout.page_size))
+            self.y = self.top
+        self.y -= height
+        return self.pages[-1]
+
+    def text(self, words: str, size: float = _TEXT, indent: float = 0.0, gap: float = 1.45) -> None:
+        for line in _wrap(words, size, self.width - indent):
+            page = self.room(gap * size)
+            page.text(line, self.left + indent, self.y + 0.3 * size, size, _INK, anchor="start", layer=_LAYERS[0])
+
+    def footers(self) -> None:
+        for n, page in enumerate(self.pages, start=1):
+            draw_footer(page, self.layout, 0, (), 0.25, page_text=f"assembly guide, page {n} of {len(self.pages)}")
+
+
+def _facing_the_last(V: np.ndarray, cells: np.ndarray) -> View:
+    """The figures' view, or the same from the other side, whichever sees the last tube in front of the first."""
+    step = V[cells[-1]].mean(axis=(0, 1)) - V[cells[0]].mean(axis=(0, 1))
+    view = View()
+    return view if float(step @ view.basis[2]) >= 0 else View(azim=view.azim + 180.0, elev=view.elev)
+
+
+def _pictures(structure: Structure, steps: int, view: View | None):
+    """The scenes of the structure built so far after each step (design angle, the new tube picked out), and their common box."""
+    state = structure.state()
+    V, cells, kinds = drawable(structure, state.vertices, segments=32, max_cells=len(structure.cell_curves))
+    view = _facing_the_last(V, cells) if view is None else view
+    flat = V.reshape(-1, 3)
+    lo, hi = flat.min(axis=0), flat.max(axis=0)
+    standing = abs(float(lo[2])) <= 1e-6 * float(np.max(hi - lo))  # a vault's feet on z = 0: draw the ground
+    ground = ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo))) if standing else None
+    scenes = []
+    for k in range(1, steps + 1):
+        strips = tube_strips(cells[:k])
+        rgb = np.tile(STRIP_RGB, (len(strips), 1))
+        rgb[-4:] = HIGHLIGHT_RGB
+        scenes.append(render_strips(V, strips, kinds, view, colors=_KIND_COLOURS, crease_width=0.8, strip_rgb=rgb))
+    corners = np.concatenate([view.project(np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]))[0]]
+                             + ([ground] if ground is not None else []))
+    return scenes, ground, np.stack([corners.min(axis=0), corners.max(axis=0)])
+
+
+def _draw_scene(page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[float, float, float, float]) -> None:
+    """A scene fitted, at the scale of ``box``, into ``frame`` = (x, y, width, height) mm."""
+    x0, y0, w, h = frame
+    size = np.maximum(box[1] - box[0], 1e-12)
+    s = min(w / size[0], h / size[1])
+    offset = np.array([x0 + 0.5 * (w - s * size[0]), y0 + 0.5 * (h - s * size[1])])
+
+    def to_page(p: np.ndarray) -> np.ndarray:
+        return offset + (np.asarray(p) - box[0]) * s
+
+    pt = 25.4 / 72.0
+    if ground is not None:
+        page.paint([to_page(ground)], [GROUND_COLOR], [GROUND_EDGE], [0.6 * pt], layer=_LAYERS[1])
+    fills = [_hex(f) if len(p) > 2 else None for p, f in zip(scene.paths, scene.fill)]
+    page.paint([to_page(p) for p in scene.paths], fills, [_hex(c) for c in scene.stroke], (scene.widths * pt).tolist(), layer=_LAYERS[1])
+
+
+def write_assembly(path: str | os.PathLike, structure: Structure, layout: Layout, *, view: View | None = None) -> Path:
+    """Write the assembly guide of a structure laid out as ``layout`` (see the module notes).
+
+    Parameters
+    ----------
+    path : path-like
+    structure : Structure
+    layout : Layout
+        The crease pattern the guide goes with (:func:`~curvefold.io.layout_pattern`):
+        its sheets, seam labels, page size and scale bar.
+    view : View, optional, keyword-only
+        The direction the pictures look from; default the figures' view from the side where
+        each new tube comes in front of those before it.
+
+    Returns
+    -------
+    Path
+    """
+    plan = assembly_plan(structure, layout)
+    doc = PdfDocument(title="assembly guide", layers=_LAYERS)
+    pages = _Pages(doc, layout)
+    kind = layout.sheets()[0].label.split(" · ")[0] if " · " in layout.sheets()[0].label else "structure"
+    pages.text(f"{kind.capitalize()}: assembly guide", _TITLE)
+    tubes = len(plan.steps)
+    pages.text(f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets on {len(layout.pages)} crease-pattern "
+               f"page{'s' * (len(layout.pages) != 1)} at 1 model unit = {layout.scale:.4g} mm. Print the pattern at 100 % and check its "
+               "10 mm scale bar (the one below is the same), or send it to the cutter: cut the outlines, score the creases and the "
+               "glue-tab folds. Seams are named S0, S1… on both sheets they join.")
+    pages.text("Sheets to cut", _HEAD, gap=2.0)
+    for sheet in plan.sheets:
+        seams = ", ".join(f"{seam_name(i)}{' (tabs)' * tabs}" for i, tabs in sheet.seams)
+        pages.text(f"{sheet.label}: pattern page {sheet.page}; seams {seams}", indent=3.0)
+    pages.text("Seams", _HEAD, gap=2.0)
+    for seam in plan.seams:
+        pages.text(f"{seam_name(seam.id)}: the tabs of {seam.tabs} glue to {seam.onto}", indent=3.0)
+    scenes, ground, box = _pictures(structure, len(plan.steps), view)
+    aspect = (box[1, 1] - box[0, 1]) / max(box[1, 0] - box[0, 0], 1e-12)
+    picture = min(pages.width * aspect, 0.32 * (pages.top - pages.bottom))
+    for step, scene in zip(plan.steps, scenes):
+        lines = [_wrap(line, _TEXT, pages.width - 3.0) for line in step.lines]
+        needed = 2.0 * _HEAD + sum(1.45 * _TEXT * len(w) for w in lines) + picture + 4.0
+        if pages.pages and pages.y - needed < pages.bottom:
+            pages.y = -np.inf  # a step is not split over two pages
+        pages.text(step.title, _HEAD, gap=2.0)
+        for line in step.lines:
+            pages.text(line, indent=3.0)
+        page = pages.room(picture + 4.0)
+        _draw_scene(page, scene, ground, box, (pages.left, pages.y + 2.0, pages.width, picture))
+    pages.footers()
+    return doc.save(path)

@@ -1,0 +1,120 @@
+"""Pictures of a structure under load: its deflected shape coloured by the displacement, and its first free modes.
+
+Drawn like every 3D view (:mod:`curvefold.figures._views`): the scene renderer's shaded
+strips (:mod:`curvefold.figures._scene`), here each quad coloured by the mean size of its
+corners' displacement before shading, and the creases in their colours. The displacement
+of the model's nodes is laid on every sample of the structure's curves
+(:meth:`curvefold.mechanics.StructureModel.interpolate`) and magnified by a stated factor,
+so that a deflection of micrometres shows.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..geometry._structure import drawable
+from ..geometry._topology import tube_strips
+from ._plots import KIND_COLORS, new_figure
+from ._scene import View, ground_polygon, render_strips
+from ._views import _draw, _fit, _scale_bar
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+    from ..mechanics import LoadResult
+
+__all__ = ["plot_deflection", "plot_modes", "field_scene"]
+
+#: The colour maps of the displacement and of the modes' amplitude.
+DEFLECTION_MAP, MODE_MAP = "viridis", "plasma"
+
+
+def field_scene(result: LoadResult, shape: np.ndarray, scale: float, *, cmap: str, view: View = View(), ground: bool = False,
+                segments: int = 96, max_cells: int = 200):
+    """A scene of the structure displaced by ``scale`` × ``shape`` (P, 3), each quad coloured by the size of ``shape``.
+
+    Returns
+    -------
+    scene : Scene
+    top : float
+        The largest size of ``shape`` at the drawn points (the colour scale's top), in its unit.
+    """
+    from matplotlib import colormaps
+
+    sm = result.structure
+    state = sm.state
+    moved = sm.interpolate(shape)
+    size = np.linalg.norm(moved, axis=-1)
+    both = np.stack([state.vertices + scale * moved, np.repeat(size[..., None], 3, axis=-1)])
+    drawn, cells, kinds = drawable(state.structure, both, segments=segments, max_cells=max_cells)
+    vertices, values = drawn[0], drawn[1][..., 0]
+    strips = tube_strips(cells)
+    a, b = values[strips[:, 0]], values[strips[:, 1]]  # (S, k)
+    quad = 0.25 * (a[:, :-1] + a[:, 1:] + b[:, :-1] + b[:, 1:])
+    top = float(np.nanmax(values, initial=0.0))
+    rgb = colormaps[cmap](quad / top if top > 0 else quad)[..., :3]
+    scene = render_strips(vertices, strips, kinds, view, colors=KIND_COLORS, strip_rgb=rgb, crease_width=0.7)
+    if ground:
+        flat = vertices.reshape(-1, 3)
+        lo, hi = flat.min(axis=0), flat.max(axis=0)
+        from dataclasses import replace
+
+        scene = replace(scene, ground=ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo))))
+    return scene, top
+
+
+def _colorbar(fig, ax, cmap: str, top: float, label: str) -> None:
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
+    bar = fig.colorbar(ScalarMappable(Normalize(0.0, top), cmap), ax=ax, shrink=0.6, pad=0.02)
+    bar.set_label(label, fontsize=8)
+    bar.ax.tick_params(labelsize=7)
+
+
+def plot_deflection(result: LoadResult, *, magnification: float, view: View = View(), title: str | None = None) -> Figure:
+    """The deflected structure, its displacement magnified and coloured by its size (µm), over the ground if it stands on it.
+
+    Parameters
+    ----------
+    result : LoadResult
+    magnification : float, keyword-only
+        How many times the displacement is drawn (stated in the title).
+    view : View, keyword-only
+    title : str, optional, keyword-only
+        Default: what loads it and the magnification.
+    """
+    scene, top = field_scene(result, result.static.displacements, magnification, cmap=DEFLECTION_MAP, view=view,
+                             ground=result.supports.at == "feet")
+    fig = new_figure(figsize=(6.8, 5.0))
+    ax = fig.add_subplot()
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.1)
+    _scale_bar(ax, scene.span, "m")  # the mechanics' model is in metres
+    _colorbar(fig, ax, DEFLECTION_MAP, 1e6 * top, "displacement (µm)")
+    largest = result.static.max_displacement
+    ax.set_title(title or f"Deflected shape, displacement × {magnification:g} (largest {largest * 1e6:.3g} µm)", fontsize=10)
+    return fig
+
+
+def plot_modes(result: LoadResult, *, amplitude: float, count: int = 3, view: View = View()) -> Figure:
+    """The first free modes side by side, each at largest displacement ``amplitude`` (m), coloured by its amplitude.
+
+    The first is the folding motion (when the structure folds); each title gives the
+    frequency, λ over the first and the share of the energy in stretching.
+    """
+    modes = result.modes
+    count = min(count, len(modes.eigenvalues))
+    fig = new_figure(figsize=(3.4 * count, 3.4))
+    for k in range(count):
+        ax = fig.add_subplot(1, count, k + 1)
+        scene, _ = field_scene(result, modes.shapes[k], amplitude, cmap=MODE_MAP, view=view, ground=False)
+        _draw(ax, scene)
+        _fit(ax, scene.box)
+        ratio = modes.eigenvalues[k] / modes.eigenvalues[0]
+        ax.set_title(f"mode {k + 1}: {modes.frequencies[k]:.3g} Hz, λ/λ₁ = {ratio:.3g}\nstretching {modes.stretching[k]:.0%} of its energy",
+                     fontsize=8)
+    fig.suptitle(f"The first free modes (largest displacement {amplitude:g} m); the first is the folding motion", fontsize=10)
+    return fig

@@ -1,0 +1,174 @@
+"""The folding motion as picture frames, drawn with Pillow from the scene renderer (optional).
+
+:func:`motion_frames` draws a structure or vault folding, flat to its design angle, at one
+scale: the scenes of :func:`curvefold.figures._scene.motion_scenes` rasterised by
+:func:`raster`, each under a title line naming its fold angle. :func:`write_motion_gif`
+writes them as the GIF of the output folder with :func:`curvefold.io._gif.write_gif`.
+Pillow comes with matplotlib (``pip install curvefold[plot]``), whose DejaVu Sans sets the
+titles: Pillow is imported when a frame is drawn, matplotlib never (its font file is found
+without running matplotlib, which would cost the job a fifth of its time).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..geometry._lattice import check_anchor
+from ..io._gif import write_gif
+from ..kernel._errors import InputError
+from ._plots import KIND_COLORS, structure_of
+from ._scene import GROUND_COLOR, GROUND_EDGE, Scene, View, motion_scenes
+
+if TYPE_CHECKING:  # pragma: no cover
+    from PIL import Image
+
+    from ..geometry._structure import Structure
+    from ..vault._assembly import Vault
+
+__all__ = ["raster", "motion_frames", "write_motion_gif"]
+
+
+def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, supersample: int = 2) -> Image.Image:
+    """A scene drawn with Pillow: the screen points ``box`` (P, 2) fit below a title line.
+
+    Drawn at ``supersample`` times the size and reduced, so edges are smoothed; line widths
+    in points are taken at 100 dots per inch, as in the figures.
+
+    Parameters
+    ----------
+    scene : Scene
+    box : (P, 2) ndarray
+        Screen points that must fit in the picture (the boxes of every frame of a motion,
+        so all share one scale).
+    size : (int, int)
+        Width and height in pixels.
+    title : str
+        The line above the drawing.
+    supersample : int, keyword-only
+
+    Returns
+    -------
+    PIL.Image.Image
+        An RGB image of ``size``.
+    """
+    from PIL import Image, ImageDraw, ImageFont
+
+    w, h = size[0] * supersample, size[1] * supersample
+    image = Image.new("RGB", (w, h), "white")
+    draw = ImageDraw.Draw(image)
+    top, pad = 0.12 * h, 0.02 * w
+    lo, hi = box.min(axis=0), box.max(axis=0)
+    scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - top - pad) / max(hi[1] - lo[1], 1e-12))
+    centre = np.array([w / 2, (h + top - pad) / 2])
+
+    def pixels(points: np.ndarray) -> np.ndarray:
+        return (points - 0.5 * (lo + hi)) * scale * np.array([1.0, -1.0]) + centre
+
+    if scene.ground is not None:
+        draw.polygon([tuple(p) for p in pixels(scene.ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE, width=supersample)
+    sizes = np.array([len(p) for p in scene.paths])
+    paths = np.split(pixels(np.concatenate(scene.paths)), np.cumsum(sizes)[:-1])
+    fills, strokes = (np.round(255 * np.asarray(c)[:, :3]).astype(int).tolist() for c in (scene.fill, scene.stroke))
+    lines = np.maximum(1, np.round(np.asarray(scene.widths) * 100 / 72 * supersample)).astype(int).tolist()
+    for path, fill, stroke, line in zip(paths, fills, strokes, lines):
+        xy = path.ravel().tolist()
+        if len(path) > 2:
+            draw.polygon(xy, fill=tuple(fill), outline=tuple(stroke), width=line)
+        else:
+            draw.line(xy, fill=tuple(stroke), width=line)
+    font = ImageFont.truetype(str(_title_font()), round(0.05 * h))
+    draw.text((w / 2, 0.02 * h), title, fill="black", font=font, anchor="ma")
+    return image.resize(size, Image.Resampling.BOX)
+
+
+def _title_font() -> Path:
+    """The DejaVu Sans that matplotlib ships (the font of the figures), found without importing matplotlib.
+
+    Raises
+    ------
+    ImportError
+        Without matplotlib.
+
+    Examples
+    --------
+    >>> _title_font().name
+    'DejaVuSans.ttf'
+    """
+    spec = importlib.util.find_spec("matplotlib")
+    if spec is None or not spec.submodule_search_locations:
+        raise ImportError("the folding GIF's titles need matplotlib's font: pip install 'curvefold[plot]'")
+    return Path(next(iter(spec.submodule_search_locations))) / "mpl-data" / "fonts" / "ttf" / "DejaVuSans.ttf"
+
+
+def motion_frames(
+    obj: Vault | Structure,
+    *,
+    angles: Sequence[float] | None = None,
+    anchor: str = "start",
+    view: View = View(),
+    size: tuple[int, int] = (640, 480),
+    segments: int = 48,
+    max_cells: int = 60,
+) -> list[Image.Image]:
+    """Frames of the rigid folding motion, one per fold angle, all at one scale (a vault over its ground).
+
+    Parameters
+    ----------
+    obj : Vault or Structure
+    angles : sequence of float, optional, keyword-only
+        2α of the frames in degrees; default 16 steps from 0° to the design angle.
+    anchor : {"start", "middle"}, keyword-only
+        Which frame of curve 1 stays fixed: at its start (t = 0) or at its middle sample.
+    view : View, keyword-only
+    size : (int, int), keyword-only
+        Width and height in pixels, each in [64, 4096].
+    segments, max_cells : int, keyword-only
+        Detail drawn: segments along each crease, and at most this many cells.
+
+    Returns
+    -------
+    list of PIL.Image.Image
+        RGB frames of ``size``, in the order of ``angles``, each titled with its 2α.
+    """
+    from ..vault._assembly import Vault
+
+    structure, lattice, own = structure_of(obj)
+    check_anchor(anchor)
+    w_px, h_px = (int(v) for v in size)
+    if not (64 <= w_px <= 4096 and 64 <= h_px <= 4096):
+        raise InputError(f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}")
+    steps = np.linspace(0.0, own, 16) if angles is None else np.atleast_1d(np.asarray(angles, float))
+    if steps.ndim != 1 or steps.size == 0:
+        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
+    motion = lattice.fold_points(structure.curves_uv, steps, anchor=anchor)
+    scenes = motion_scenes(structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells, crease_width=0.7,
+                           ground=isinstance(obj, Vault))
+    joint = np.concatenate([scene.box for scene in scenes])  # one scale for all frames
+    return [raster(scene, joint, (w_px, h_px), f"2α = {f:5.1f}°") for f, scene in zip(steps, scenes)]
+
+
+def write_motion_gif(obj: Vault | Structure, path: str | os.PathLike, *, frame_seconds: float = 0.12, **frames) -> Path:
+    """An animated GIF of the rigid folding motion, flat to the design angle and back, written atomically.
+
+    Parameters
+    ----------
+    obj : Vault or Structure
+    path : str or path-like
+        Target file (its folder must exist).
+    frame_seconds : float, keyword-only
+        Duration of one frame.
+    **frames
+        ``angles``, ``anchor``, ``view``, ``size``, ``segments`` and ``max_cells`` of
+        :func:`motion_frames`. The animation plays the frames forward, then backward, and loops.
+
+    Returns
+    -------
+    Path
+    """
+    return write_gif(path, motion_frames(obj, **frames), frame_seconds=frame_seconds, bounce=True)

@@ -1,0 +1,334 @@
+"""3D views of structures, vaults and single folds, drawn from scenes into matplotlib figures (optional).
+
+Each view draws the scenes of :mod:`curvefold.figures._scene` (a fixed orthographic view,
+shaded strips and creases sorted far to near; folds red, seams blue) as one collection
+each, with a scale bar in model units. Figures are built as in :mod:`curvefold.figures._plots`
+(without ``pyplot``) and written with :func:`~curvefold.figures.save_figure`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..geometry._single_fold import default_widths
+from ..geometry._topology import sample_index, thin_cells
+from ..kernel._errors import InputError
+from ._plots import KIND_COLORS, UNITS, new_figure
+from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, Scene, View, motion_scenes, render_strips, state_scene, vault_scene
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from ..geometry._crease import Crease
+    from ..geometry._structure import Structure
+    from ..vault._assembly import Vault
+
+__all__ = ["View", "plot_vault", "plot_motion_strip", "plot_structure", "plot_crease"]
+
+
+# -- drawing scenes ----------------------------------------------------------------------------------
+
+
+def _collection(scene: Scene):
+    """A matplotlib PolyCollection of a scene's paths, in painter's order."""
+    from matplotlib.collections import PolyCollection
+
+    return PolyCollection(
+        scene.paths,
+        closed=False,
+        facecolors=scene.fill,
+        edgecolors=scene.stroke,
+        linewidths=scene.widths,
+        joinstyle="round",
+        capstyle="round",
+        zorder=2.0,
+    )
+
+
+def _draw(ax: Axes, scene: Scene) -> None:
+    """Draw a scene, its ground first, into ``ax``."""
+    from matplotlib.patches import Polygon
+
+    if scene.ground is not None:
+        ax.add_patch(Polygon(scene.ground, closed=True, facecolor=GROUND_COLOR, edgecolor=GROUND_EDGE, linewidth=0.6, zorder=0))
+    ax.add_collection(_collection(scene), autolim=False)
+
+
+def _fit(ax: Axes, points: np.ndarray, *, margin: float = 0.04, below: float = 0.0) -> None:
+    """Equal-aspect limits around screen points (P, 2).
+
+    ``below`` adds that fraction of the height under the drawing (room for a scale bar).
+    """
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    c = 0.5 * (lo + hi)
+    half = np.maximum(0.5 * (hi - lo) * (1 + 2 * margin), 1e-9)
+    ax.set_xlim(c[0] - half[0], c[0] + half[0])
+    ax.set_ylim(c[1] - half[1] * (1 + 2 * below), c[1] + half[1])
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_axis_off()
+
+
+def _scale_bar(ax: Axes, span: float, unit: str | None = None) -> None:
+    """A horizontal scale bar of a round length (about a fifth of ``span``) in the lower right of a view, in ``unit``
+    (default model units)."""
+    from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
+
+    length = _nice_length(span)
+    label = f"{length:g} {unit}" if unit else f"{length:g} {UNITS}" if length != 1 else "1 model unit"
+    ax.add_artist(AnchoredSizeBar(ax.transData, length, label, "lower right", pad=0.3, frameon=False, size_vertical=0, fontproperties={"size": 7}))
+
+
+def _nice_length(span: float) -> float:
+    """A round length (1, 2 or 5 × 10^k) near a fifth of ``span``."""
+    target = max(span / 5.0, 1e-12)
+    k = np.floor(np.log10(target))
+    for m in (1.0, 2.0, 5.0, 10.0):
+        if m * 10**k >= target:
+            return float(m * 10**k)
+    return float(10 ** (k + 1))  # pragma: no cover
+
+
+def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwargs: Any) -> None:
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
+    handles = [Line2D([], [], color=KIND_COLORS[k], lw=1.5, label=names[k]) for k in ("fold", "seam", "junction") if k in set(kinds)]
+    rigid = lattice is not None and lattice.rigid
+    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="rigid planar panels" if rigid else "developable strips"))
+    ax.legend(handles=handles, fontsize=7, frameon=False, **kwargs)
+
+
+# -- 3D views of vaults ----------------------------------------------------------------------------
+
+
+def plot_vault(
+    vault: Vault,
+    *,
+    angle: float | None = None,
+    ax: Axes | None = None,
+    view: View = View(),
+    anchor: str = "start",
+    segments: int = 96,
+    max_tubes: int = 200,
+) -> Figure:
+    """One shaded 3D view of a vault: strips light grey shaded by normal, folds red, seams blue.
+
+    Parameters
+    ----------
+    vault : Vault
+    angle : float, optional, keyword-only
+        Fold angle 2α in degrees; default the design angle (standing on the ground).
+    ax : matplotlib Axes, optional, keyword-only
+        Draw into this (2D) axes instead of a new figure; its figure is returned.
+    view : View, keyword-only
+        Orthographic view direction.
+    anchor : {"start", "middle"}, keyword-only
+        Which frame stays fixed when ``angle`` differs from the design angle.
+    segments : int, keyword-only
+        Segments drawn along each crease (the crease is subsampled; ends and apex kept).
+    max_tubes : int, keyword-only
+        Draw at most this many tubes, evenly spread along the stack.
+
+    Returns
+    -------
+    Figure
+    """
+    scene = vault_scene(vault, colors=KIND_COLORS, angle=angle, view=view, anchor=anchor, segments=segments, max_tubes=max_tubes)
+    if ax is None:
+        fig = new_figure(figsize=(7.0, 5.2))
+        ax = fig.add_subplot()
+    else:
+        fig = ax.figure
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.06)
+    _scale_bar(ax, scene.span)
+    d = vault.design
+    drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
+    shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
+    angle_value = float(d.fold_angle if angle is None else angle)
+    panels = f", {d.panels} panels per crease" if d.panels else ""
+    ax.set_title(
+        f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°",
+        fontsize=10,
+    )
+    _legend_creases(ax, scene.roles, vault.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
+    return fig
+
+
+def plot_motion_strip(
+    vault: Vault,
+    angles: Sequence[float] = (0.0, 30.0, 60.0, 90.0),
+    *,
+    anchor: str = "start",
+    view: View = View(),
+    segments: int = 64,
+    max_tubes: int = 100,
+) -> Figure:
+    """Small multiples of a vault's rigid folding motion, all at one scale (the paper's Fig. 09).
+
+    Each panel shows the vault at one fold angle 2α over the ground plane z = 0, with the
+    largest lift of its end sections off the ground (zero at the design angle).
+
+    Parameters
+    ----------
+    vault : Vault
+    angles : sequence of float
+        2α in degrees, each in [0°, 180°).
+    anchor : {"start", "middle"}, keyword-only
+        Hold curve 1's frame at its first foot or at the apex.
+    view : View, keyword-only
+    segments : int, keyword-only
+        Segments drawn along each crease.
+    max_tubes : int, keyword-only
+        Draw at most this many tubes per panel.
+
+    Returns
+    -------
+    Figure
+    """
+    angles_arr = np.atleast_1d(np.asarray(angles, float))
+    if angles_arr.ndim != 1 or angles_arr.size == 0:
+        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
+    motion = vault.motion(angles_arr, anchor=anchor)  # (A, M, n, 3); validates the angles
+    lift = vault.lift_off(angles_arr, anchor=anchor)
+    scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
+    count = len(angles_arr)
+    columns = 2 if count == 4 else count  # four panels in a square: readable on a phone as on a desktop
+    rows = -(-count // columns)
+    fig = new_figure(figsize=(3.4 * columns + 0.3, 3.2 * rows + 0.4))
+    grid = fig.subplots(rows, columns, squeeze=False).ravel()
+    for ax in grid[count:]:
+        ax.set_axis_off()
+    axes = grid[:count]
+    for ax, scene, f, lf in zip(axes, scenes, angles_arr, lift):
+        _draw(ax, scene)
+        design = abs(f - vault.design.fold_angle) < 1e-9
+        ax.set_title(f"2α = {f:g}°" + (" (design)" if design else ""), fontsize=10)
+        ax.text(0.5, -0.02, f"ends off the ground: {lf.max():.3f} {UNITS}", transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
+    for ax in axes:
+        _fit(ax, np.concatenate([scene.box for scene in scenes]))  # one scale for all
+    _scale_bar(axes[-1], scenes[0].span)
+    d = vault.design
+    fig.suptitle(f"Rigid folding of the vault (a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)", fontsize=11)
+    return fig
+
+
+def plot_structure(
+    structure: Structure,
+    *,
+    fold_angle: float | None = None,
+    view: View = View(),
+    segments: int = 96,
+    max_cells: int = 400,
+) -> Figure:
+    """One shaded 3D view of a tube or cellular block: folds red, seams blue, junctions purple.
+
+    Parameters
+    ----------
+    structure : Structure
+    fold_angle : float, optional, keyword-only
+        2α in degrees, in [0°, 180°); default the lattice's own angle.
+    view : View, keyword-only
+    segments : int, keyword-only
+        Segments drawn along each crease.
+    max_cells : int, keyword-only
+        Draw at most this many cells, evenly spread.
+
+    Returns
+    -------
+    Figure
+    """
+    state = structure.state(fold_angle)
+    scene = state_scene(state, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells)
+    fig = new_figure(figsize=(6.4, 5.2))
+    ax = fig.add_subplot()
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.1)
+    _scale_bar(ax, scene.span)
+    k = len(structure.cells)
+    drawn = len(thin_cells(structure.cell_curves, max_cells))
+    what = "Tube" if k == 1 else f"Cellular block of {k} cells"
+    shown = "" if drawn == k else f" ({drawn} drawn)"
+    ax.set_title(f"{what}{shown}, 2α = {state.fold_angle:.4g}°", fontsize=10)
+    _legend_creases(ax, scene.roles, structure.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
+    return fig
+
+
+def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = None, view: View = View(), segments: int = 160) -> Figure:
+    """A single curved fold: the crease with the developable surfaces on both sides, and its functions.
+
+    Left, a 3D view of the crease (red) and the two surfaces along the rulings ``+r_L``
+    and ``+r_R`` (Eqs. 5–6). Right, κ(s) and τ(s), then the fold angle 2α(s) and the ruling
+    angles β_L(s), β_R(s) in degrees.
+
+    Parameters
+    ----------
+    crease : Crease
+    width : float or (float, float), optional, keyword-only
+        Surface widths on the left and right (distance from the crease's tangent line to
+        the edge, model units); default 15 % of the crease's length, kept to 60 % of the
+        regression limit on each side.
+    view : View, keyword-only
+    segments : int, keyword-only
+        Segments drawn along the crease.
+
+    Returns
+    -------
+    Figure
+    """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    s = crease.s
+    if width is None:
+        widths = default_widths(crease)
+    else:
+        widths = tuple(float(w) for w in np.broadcast_to(np.asarray(width, float), (2,)))
+    sheets = crease.surface("L+R+", width=widths, rulings=2)  # (2 sides, 2, n, 3); raises past regression
+    idx = sample_index(len(s), segments + 1)
+    curves = np.stack([sheets[0, 0], sheets[0, 1], sheets[1, 1]])[:, idx]  # crease, left edge, right edge
+    kinds = ("fold", "edge", "edge")
+
+    fig = new_figure(figsize=(10.0, 4.8))
+    mosaic = fig.subplot_mosaic([["view", "kt"], ["view", "angles"]], width_ratios=[1.35, 1.0])
+    ax = mosaic["view"]
+    scene = render_strips(curves, np.array([[0, 1], [0, 2]]), kinds, view, colors=KIND_COLORS, crease_width=1.4)
+    _draw(ax, scene)
+    _fit(ax, scene.box, below=0.1)
+    _scale_bar(ax, scene.span)
+    ax.set_title(f"Curved fold: surfaces {widths[0]:.3g} | {widths[1]:.3g} {UNITS} wide", fontsize=10)
+    ax.legend(
+        handles=[
+            Line2D([], [], color=KIND_COLORS["fold"], lw=1.5, label="crease"),
+            Line2D([], [], color=KIND_COLORS["edge"], lw=1.5, label="surface edges"),
+            Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="developable surfaces"),
+        ],
+        fontsize=7,
+        frameon=False,
+        loc="upper center",
+        bbox_to_anchor=(0.5, 0.0),
+        ncol=3,
+    )
+    kt = mosaic["kt"]
+    kt.plot(s, crease.curve.kappa(s), color="#2ca02c", lw=1.5, label="κ(s)")
+    kt.plot(s, crease.curve.tau(s), color="#9467bd", lw=1.5, label="τ(s)")
+    kt.axhline(0, color="#999999", lw=0.5)
+    kt.set_ylabel(f"1 / {UNITS}")
+    kt.legend(fontsize=8)
+    kt.grid(True, lw=0.3, alpha=0.5)
+    kt.tick_params(labelbottom=False)
+    ang = mosaic["angles"]
+    ang.sharex(kt)
+    ang.plot(s, np.degrees(2 * crease.alpha(s)), color="black", lw=1.5, label="2α(s)")
+    ang.plot(s, np.degrees(crease.beta_left(s)), color="#ff7f0e", lw=1.2, label="β_L(s)")
+    ang.plot(s, np.degrees(crease.beta_right(s)), color="#17becf", lw=1.2, ls="--", label="β_R(s)")
+    ang.set_ylabel("angle (°)")
+    ang.set_xlabel(f"arc length s ({UNITS})")
+    ang.legend(fontsize=8)
+    ang.grid(True, lw=0.3, alpha=0.5)
+    return fig

@@ -1,0 +1,150 @@
+"""Where a structure's folding motion ends: the first contact between parts of it far apart.
+
+Rigid folding never reaches a curve of regression (it is intrinsic), but past the design
+angle κ = κ_2D / cos α grows and a structure curls until two of its parts meet: a vault's
+arch closes on itself, its tubes on each other. :func:`first_contact` finds the first fold
+angle where that happens; the motion (its files, its certificate) ends there.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ._structure import Structure
+
+__all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
+
+
+def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: float, reach: float) -> np.ndarray:
+    """Pairs of points closer than ``radius`` that are parts far apart, shape (P, 2) (flat indices).
+
+    Points (M curves × m samples, flattened) are far apart when their curves are two lattice
+    steps apart or more (``max(|Δu|, |Δv|) ≥ 2``: two tubes moved into each other), or when
+    along each of their two curves the arc length between their samples exceeds ``reach`` (an
+    arch closing on itself): the structure joins them otherwise by a path along one of the
+    curves and across at most one strip. Neighbours along a strip, the curves of one cell
+    and a curve that pinches (its samples bunch up near a curve of regression) touch by
+    construction, and never count.
+
+    Parameters
+    ----------
+    points : (M·m, 3) ndarray
+    uv : (M, 2) ndarray
+        The lattice curve of every row of ``points``' curves.
+    arc : (M, m) ndarray
+        Arc length along every curve at its samples.
+
+    Examples
+    --------
+    >>> x = np.array([[[0.0, 0, 0], [1, 0, 0]], [[0, 0, 0.01], [1, 0, 0.01]], [[0, 0, 0], [5, 0, 0]]])  # 3 curves × 2 samples
+    >>> # curves (0, 0) and (0, 1) are one step apart: touching is theirs; (2, 2) is two steps from both
+    >>> arc = np.array([[0.0, 1.0], [0.0, 1.0], [0.0, 5.0]])
+    >>> far_pairs(x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), arc, radius=0.1, reach=2.0).tolist()
+    [[0, 4], [2, 4]]
+    """
+    from scipy.spatial import cKDTree
+
+    m = arc.shape[1]
+    pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
+    if not len(pairs):
+        return pairs.reshape(0, 2)
+    (ci, si), (cj, sj) = np.divmod(pairs[:, 0], m), np.divmod(pairs[:, 1], m)
+    steps = np.abs(uv[ci] - uv[cj]).max(axis=1)
+    along = np.minimum(np.abs(arc[ci, si] - arc[ci, sj]), np.abs(arc[cj, si] - arc[cj, sj]))
+    return pairs[(steps >= 2) | (along > reach)]
+
+
+def contact_scales(lattice) -> tuple[float, float]:
+    """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four times its largest.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.2)
+    >>> contact_scales(lat)
+    (0.05, 0.8)
+    """
+    w_min = float(min(lattice.width_left.min(), lattice.width_right.min()))
+    return 0.5 * w_min, 4 * max(float(lattice.width_left.max()), float(lattice.width_right.max()))
+
+
+def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: float,
+                samples: int = 201) -> tuple[float, tuple[int, int, int, int] | None]:
+    """The distance of the closest two far-apart parts (:func:`far_pairs`) within ``radius``, and where.
+
+    Parameters
+    ----------
+    vertices : (M, n, 3) ndarray
+        The structure's curves at one fold angle.
+    uv : (M, 2) ndarray
+    samples : int
+        Samples along t the curves are resampled to.
+
+    Returns
+    -------
+    distance : float
+        ``inf`` when no far-apart parts are within ``radius``, NaN when a point is not finite.
+    where : (curve, sample, curve, sample) or None
+
+    Examples
+    --------
+    Curves 0 and 2, two lattice steps apart, pass 0.01 from each other; curve 1 is far:
+
+    >>> x = np.linspace(0, 1, 3)
+    >>> curves = np.stack([np.stack([x, 0 * x, 0 * x + z], axis=-1) for z in (0.0, 1.0, 0.01)])
+    >>> uv = np.array([[0, 0], [1, 0], [2, 0]])
+    >>> closest_far(curves, uv, radius=0.1, reach=10.0, samples=3)
+    (0.01, (0, 0, 2, 0))
+    >>> closest_far(curves[:2], uv[:2], radius=0.1, reach=10.0, samples=3)   # nothing far apart within the radius
+    (inf, None)
+    """
+    idx = np.unique(np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int))
+    points = vertices[:, idx].reshape(-1, 3)
+    if not np.isfinite(points).all():
+        return float("nan"), None
+    curves = vertices[:, idx]
+    arc = np.concatenate([np.zeros((len(curves), 1)), np.cumsum(np.linalg.norm(np.diff(curves, axis=1), axis=-1), axis=1)], axis=1)
+    pairs = far_pairs(points, uv, arc, radius=radius, reach=reach)
+    if not len(pairs):
+        return float("inf"), None
+    d = np.linalg.norm(points[pairs[:, 0]] - points[pairs[:, 1]], axis=1)
+    i, j = pairs[int(np.argmin(d))]
+    m = len(idx)
+    return float(d.min()), (int(i // m), int(idx[i % m]), int(j // m), int(idx[j % m]))
+
+
+@lru_cache(maxsize=8)
+def first_contact(structure: Structure, *, start: float | None = None, step: float = 1.0, max_angle: float = 179.0,
+                  samples: int = 201) -> float | None:
+    """The first fold angle from ``start`` (default the design angle, included) where parts of the structure far apart touch.
+
+    The structure is refolded on a grid of ``step`` degrees up to ``max_angle``; points of
+    all its curves, resampled to ``samples`` along t, touch when closer than half the
+    smallest strip width (:func:`far_pairs`, with parts more than four of the largest widths
+    of arc length apart: :func:`contact_scales`).
+
+    Returns
+    -------
+    float or None
+        2α in degrees of the first contact on the grid, or None if none occurs up to
+        ``max_angle``. Cached for the last few structures (they are immutable).
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice
+    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=41)), 0.1, 0.1))
+    >>> first_contact(tube, max_angle=120.0) is None   # a short tube does not curl onto itself
+    True
+    """
+    lat = structure.lattice
+    start = float(lat.crease.fold_angle) if start is None else float(start)
+    radius, reach = contact_scales(lat)
+    uv = structure.curves_uv
+    angles = np.arange(start, max_angle + 1e-9, step)
+    for chunk in range(0, len(angles), 16):
+        for k, frame in enumerate(lat.fold_points(uv, angles[chunk : chunk + 16])):  # (M, n, 3) each
+            if closest_far(frame, uv, radius=radius, reach=reach, samples=samples)[1] is not None:
+                return float(angles[chunk + k])
+    return None

@@ -1,0 +1,326 @@
+"""How finely the files sample a structure: as accurate as asked, without sliver triangles.
+
+The geometry is computed at every sample of curve 1 (the design's ``samples``: dense, so
+that the certificate's finite differences are accurate to ~(κh)⁴). Meshes written to files
+need far fewer. Near the curve of regression a lattice curve moves slowly in t, so at the
+dense samples its steps are tiny beside the rulings: triangles with corners of a fraction
+of a degree, which make simulators blow up and planar-graph tools mistake faces. Each
+tube's mesh therefore keeps its own subset of the samples (:func:`choose_sampling`),
+walking from each end to the middle sample (a vault's apex, kept) in steps as long as
+they stay accurate, measured on the tube's four creases folded (at the design angle)
+and flat (the crease pattern):
+
+* every computed sample lies within ``tolerance`` × the structure's size of the polyline
+  through the kept ones;
+* no edge of the mesh changes its length by more than ``tolerance`` (relative) between
+  the folded and the flat state, and no ruling quad folds across its diagonal by more
+  than ``max_bend`` (``curvefold check`` holds FOLD files to both);
+* the triangles keep corners of at least ``min_angle`` where a shorter step allows it.
+
+The longest accurate steps have the best-shaped triangles, except where a step is long
+beside the rulings; where the accurate steps are short beside them (right next to the
+curve of regression) accuracy wins, and the smallest corner is reported as measured.
+
+A structure whose lattice is not :attr:`~curvefold.geometry.StructureLattice.thinnable`
+keeps every vertex: the polylines of rigid panels (:mod:`curvefold.geometry._panels`) are
+the creases themselves, a few per panel, and two panels joined into one quad would not be
+planar (:meth:`PanelLattice.topology <curvefold.geometry.PanelLattice.topology>`
+refuses it). Its resolution is measured and reported the same way.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernel._arrays import FrozenArrays
+from ..kernel._errors import InputError
+from ..kernel._lie import cross
+from ._mesh import edges_faces, vector_areas
+from ._structure import Structure
+from ._topology import Topology
+
+__all__ = ["Sampling", "choose_sampling", "corner_angles", "polyline_deviation", "DEFAULT_TOLERANCE", "DEFAULT_MIN_ANGLE", "DEFAULT_MAX_BEND"]
+
+#: Largest distance of the exact creases from the written polylines, relative to the structure's size.
+DEFAULT_TOLERANCE = 1e-4
+#: Smallest triangle corner, degrees.
+DEFAULT_MIN_ANGLE = 5.0
+#: Largest fold across the diagonal of a ruling quad, degrees (``curvefold check`` accepts 0.5°).
+DEFAULT_MAX_BEND = 0.5
+
+
+@dataclass(frozen=True, eq=False)
+class Sampling(FrozenArrays):
+    """The samples each tube's mesh keeps, with what they were measured to give.
+
+    Attributes
+    ----------
+    keep : tuple of (m_k,) ndarray of int
+        Per tube, the kept sample indices (ascending; the first and last sample included).
+        Pass it to :meth:`Structure.topology` or to the writers.
+    samples : int
+        Samples the geometry was computed at.
+    tolerance : float
+        The accuracy asked (relative, see :func:`choose_sampling`).
+    min_angle_bound : float
+        The smallest triangle corner asked, degrees.
+    max_bend : float
+        The largest fold across a ruling quad's diagonal asked, degrees.
+    deviation : float
+        Largest distance of a computed crease sample from the written polylines, model units.
+    stretch : float
+        Largest relative change of an edge's length between the folded and the flat mesh.
+    bend : float
+        Largest fold across a ruling quad's diagonal, degrees.
+    min_angle : float
+        Smallest triangle corner of the meshes, folded and flat, degrees.
+    size : float
+        Largest extent of the structure at the design angle, model units.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> tube = Structure.tube(lat)
+    >>> s = choose_sampling(tube)   # 5 samples: none to spare
+    >>> s.vertices_per_crease, s.samples, s.deviation
+    ((5,), 5, 0.0)
+    """
+
+    keep: tuple[np.ndarray, ...]
+    samples: int
+    tolerance: float
+    min_angle_bound: float
+    max_bend: float
+    deviation: float
+    stretch: float
+    bend: float
+    min_angle: float
+    size: float
+
+    @property
+    def vertices_per_crease(self) -> tuple[int, ...]:
+        """Vertices along each crease of every tube."""
+        return tuple(len(k) for k in self.keep)
+
+    def summary(self) -> dict:
+        """The resolution as a JSON-ready dict (for reports and file metadata).
+
+        Examples
+        --------
+        >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> tube = Structure.tube(lat)
+        >>> summary = choose_sampling(tube).summary()
+        >>> summary["samples_computed"], summary["mesh_samples_per_crease"], summary["mesh_deviation"]
+        (5, '5', 0.0)
+        """
+        counts = self.vertices_per_crease
+        return {
+            "samples_computed": int(self.samples),
+            "mesh_samples_per_crease": f"{min(counts)}–{max(counts)}" if min(counts) != max(counts) else str(counts[0]),
+            "mesh_tolerance": float(self.tolerance),
+            "mesh_deviation": float(self.deviation),
+            "mesh_deviation_relative": float(self.deviation / self.size),
+            "mesh_stretch": float(self.stretch),
+            "mesh_bend_deg": float(self.bend),
+            "mesh_bend_bound_deg": float(self.max_bend),
+            "mesh_smallest_angle_deg": float(self.min_angle),
+            "mesh_angle_bound_deg": float(self.min_angle_bound),
+        }
+
+
+def polyline_deviation(curves: np.ndarray, keep: np.ndarray) -> float:
+    """Largest distance of the samples of curves from the polylines through the kept samples.
+
+    Parameters
+    ----------
+    curves : (..., n, 3) ndarray
+    keep : (m,) ndarray of int
+        Ascending sample indices, the first 0 and the last n − 1.
+
+    Examples
+    --------
+    A quarter circle of radius 1 through 3 of its points deviates by 1 − cos(π/8):
+
+    >>> t = np.linspace(0, np.pi / 2, 9)
+    >>> arc = np.stack([np.cos(t), np.sin(t), 0 * t], axis=-1)
+    >>> bool(abs(polyline_deviation(arc, np.array([0, 4, 8])) - (1 - np.cos(np.pi / 8))) < 1e-12)
+    True
+    """
+    x = np.asarray(curves, float)
+    n = x.shape[-2]
+    j = np.clip(np.searchsorted(keep, np.arange(n), side="right") - 1, 0, len(keep) - 2)
+    a, b = x[..., keep[j], :], x[..., keep[j + 1], :]
+    d = b - a
+    t = np.clip(np.sum((x - a) * d, axis=-1) / np.maximum(np.sum(d * d, axis=-1), 1e-300), 0.0, 1.0)
+    return float(np.linalg.norm(x - a - t[..., None] * d, axis=-1).max())
+
+
+def corner_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.ndarray:
+    """The smallest corner of every triangle, degrees, shape (..., F) for vertices (..., V, 3).
+
+    Examples
+    --------
+    >>> corner_angles(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float), np.array([[0, 1, 2]])).round(6).tolist()
+    [45.0]
+    """
+    p = np.asarray(vertices_coords, float)[..., np.asarray(faces_vertices), :]  # (..., F, 3, 3)
+    u = np.roll(p, -1, axis=-2) - p
+    v = np.roll(p, 1, axis=-2) - p
+    angle = np.arctan2(np.linalg.norm(cross(u, v), axis=-1), np.sum(u * v, axis=-1))
+    return np.degrees(angle.min(axis=-1))
+
+
+#: One step of a tube's mesh: its triangles on the four corners at two samples (0, 1).
+_STEP = Topology.tubes(np.arange(4)[None], 2)
+#: The two triangles on each of its diagonals.
+_DIAGONAL_FACES = edges_faces(_STEP.faces_vertices, _STEP.edges_vertices[_STEP.edges_kind == "diagonal"])
+
+
+def _step_shape(curves: np.ndarray, i: int | np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tube's steps from samples i to ``ends`` (J,) (broadcast together), measured over the states.
+
+    Returns its smallest triangle corner (degrees), the largest relative change of an edge
+    length between the two states, and the largest fold across a diagonal in a folded
+    state (degrees), each (J,).
+    """
+    lo, hi = np.minimum(i, ends), np.maximum(i, ends)
+    samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])  # (J, 8)
+    x = curves[:, _STEP.vertex_curve[None, :], samples]  # (states, J, 8, 3)
+    angle = corner_angles(x, _STEP.faces_vertices).min(axis=(0, 2))
+    edges = x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :]
+    length = np.linalg.norm(edges, axis=-1)  # (states, J, E)
+    stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
+    normal = vector_areas(x, _STEP.faces_vertices)
+    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    cos = np.sum(normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1)
+    bend = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).max(axis=(0, 2))
+    return angle, stretch, bend
+
+
+def _chord_deviations(curves: np.ndarray, i: int, d: int, count: int) -> np.ndarray:
+    """For k = 1 … count, the largest distance of the samples between i and i + d·k from their chord, (count,)."""
+    x = curves[..., i : i + d * count + d if i + d * count + d >= 0 else None : d, :]  # samples i, i + d, …, i + d·count
+    p, q = x[..., :1, None, :], x[..., 1:, None, :]  # chord starts, and ends k = 1 … count: (..., 1, 1, 3), (..., count, 1, 3)
+    m = x[..., None, :, :]  # (..., 1, count + 1, 3)
+    t = np.clip(np.sum((m - p) * (q - p), axis=-1) / np.maximum(np.sum((q - p) ** 2, axis=-1), 1e-300), 0.0, 1.0)
+    dist = np.linalg.norm(m - p - t[..., None] * (q - p), axis=-1)  # (..., count, count + 1)
+    dist = np.where(np.arange(count + 1) <= np.arange(1, count + 1)[:, None], dist, 0.0)  # samples within each step
+    return dist.reshape(-1, count, count + 1).max(axis=(0, 2))
+
+
+def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float, float], min_angle: float) -> list[int]:
+    """Kept samples from ``start`` to ``stop`` (either way), each step as long as it stays accurate.
+
+    A step is accurate when the samples it skips lie within ``limits[0]`` of its chords,
+    no edge of its triangles changes length by more than ``limits[1]`` (relative) between
+    the states and no diagonal folds by more than ``limits[2]`` degrees. The longest
+    accurate step has the best-shaped triangles unless it is long beside the rulings: if
+    its triangles are thinner than ``min_angle``, the longest shorter step that is not is
+    taken instead, if any. The last one or two steps are chosen together, so that no short
+    step is left at the end.
+    """
+    d = 1 if stop >= start else -1
+    allowed, stretch_limit, bend_limit = limits
+
+    def accurate(a: int, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Whether each step from a to ``ends`` (J,) is accurate, and its smallest triangle corner, each (J,)."""
+        if len(ends) == 0:
+            return np.zeros(0, bool), np.zeros(0)
+        angle, stretch, bend = _step_shape(curves, a, ends)
+        lengths = np.abs(ends - a)
+        near = _chord_deviations(curves, a, 1 if ends[0] > a else -1, int(lengths.max()))[lengths - 1] <= allowed
+        return near & (stretch <= stretch_limit) & (bend <= bend_limit), angle
+
+    picks, window = [start], 8
+    while picks[-1] != stop:
+        i = picks[-1]
+        room = abs(stop - i)
+        lengths = np.arange(1, room + 1)
+        while True:  # the accurate steps are those before the first one that is not
+            span = min(window, room)
+            ok, angle = accurate(i, i + d * lengths[:span])
+            if not ok.all() or span == room:
+                break
+            window *= 2
+        k = max(1, int(np.argmin(ok)) if not ok.all() else span)
+        window = max(8, 2 * k)
+        if angle[k - 1] < min_angle:  # too long for the rulings?
+            shorter = np.flatnonzero(angle[:k] >= min_angle)
+            k = int(lengths[shorter[-1]]) if shorter.size else k
+        if room - k >= k:
+            picks.append(i + d * k)
+            continue
+        # At most two steps are left: one step, or two split at i + d·m, whichever is best.
+        ends = i + d * lengths
+        last = lengths == room
+        second, second_ok = np.full(room, np.inf), np.ones(room, bool)
+        second_ok[:-1], second[:-1] = accurate(stop, ends[:-1])
+        first_ok, first = accurate(i, ends)
+        shape = np.minimum(first, second)
+        both = first_ok & second_ok
+        good = (shape >= min_angle) & both
+        score = np.stack([good, both, last & good, shape], axis=-1)
+        m = int(lengths[np.lexsort(score.T[::-1])[-1]])
+        picks += [i + d * m] + ([stop] if m < room else [])
+    return picks
+
+
+def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANCE, min_angle: float = DEFAULT_MIN_ANGLE,
+                    max_bend: float = DEFAULT_MAX_BEND, fold_angle: float | None = None) -> Sampling:
+    """The samples each tube's mesh keeps (see the module notes).
+
+    Parameters
+    ----------
+    structure : Structure
+    tolerance : float, keyword-only
+        In (0, 1): the largest distance of the exact creases from the written polylines,
+        relative to the structure's largest extent, and the largest relative change of an
+        edge's length between the folded and the flat mesh.
+    min_angle : float, keyword-only
+        Smallest triangle corner wanted, degrees, in [0, 30].
+    max_bend : float, keyword-only
+        Largest fold across the diagonal of a ruling quad (whose triangles are then
+        coplanar to this angle), degrees, > 0.
+    fold_angle : float, optional, keyword-only
+        The folded state measured besides the flat one; default the design angle.
+
+    Returns
+    -------
+    Sampling
+
+    Examples
+    --------
+    >>> from curvefold.vault import Vault
+    >>> s = choose_sampling(Vault.from_design(samples=401).structure)
+    >>> s.deviation <= 1e-4 * s.size, s.stretch <= 1e-4, s.bend <= 0.5, len(s.keep) == 9
+    (True, True, True, True)
+    """
+    if not (isinstance(tolerance, (int, float)) and 0 < tolerance < 1):
+        raise InputError(f"tolerance must be a number in (0, 1), got {tolerance!r}")
+    if not (isinstance(min_angle, (int, float)) and 0 <= min_angle <= 30):
+        raise InputError(f"min_angle must be in [0, 30] degrees, got {min_angle!r}")
+    if not (isinstance(max_bend, (int, float)) and 0 < max_bend <= 90):
+        raise InputError(f"max_bend must be in (0, 90] degrees, got {max_bend!r}")
+    n = len(structure.lattice.s)
+    states = np.stack([structure.state(fold_angle).vertices, structure.state(0.0).vertices])  # (2, M, n, 3): folded, flat
+    size = float(np.ptp(states[0].reshape(-1, 3), axis=0).max())
+    limits = (tolerance * size, float(tolerance), float(max_bend))
+    middle = (n - 1) // 2
+    thinnable = structure.lattice.thinnable
+    keep, deviation, stretch, bend, smallest = [], 0.0, 0.0, 0.0, np.inf
+    for rows in structure.cell_curves:
+        curves = states[:, rows]  # (2, 4, n, 3)
+        if thinnable:
+            first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
+            picks = np.array(first + second[-2::-1], dtype=np.int64)
+        else:  # every vertex
+            picks = np.arange(n)
+        keep.append(picks)
+        angles, stretches, bends = _step_shape(curves, picks[:-1], picks[1:])
+        smallest, stretch, bend = min(smallest, float(angles.min())), max(stretch, float(stretches.max())), max(bend, float(bends.max()))
+        deviation = max(deviation, polyline_deviation(curves, picks))
+    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), float(max_bend), deviation, stretch, bend, smallest, size)

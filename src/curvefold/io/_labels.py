@@ -1,0 +1,235 @@
+"""Labels of crease-pattern sheets: the sheet's name and, beside every seam, its name, placed clear of the lines.
+
+A :class:`Label` is a line of text centred on a point of the page (mm). Each sheet's label
+goes near its middle, along the local direction of its lines; each seam's name
+(:func:`seam_name`, the same on both sheets it joins) goes inside the sheet beside the
+middle of the seam, parallel to it. Labels shrink, down to :data:`MIN_LABEL_SIZE`, to
+keep a quarter of their height clear of every line (:class:`Obstacles`); text widths are
+estimated by :func:`text_width`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._planar import box_corners, point_segment_distance, upright
+
+__all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
+
+#: Smallest label size (em height, mm) used before a label is placed regardless of lines.
+MIN_LABEL_SIZE = 1.5
+
+
+def seam_name(seam_id: int) -> str:
+    """The label printed beside seam ``seam_id`` on both sheets it joins.
+
+    Examples
+    --------
+    >>> seam_name(0), seam_name(12)
+    ('S0', 'S12')
+    """
+    return f"S{int(seam_id)}"
+
+
+def text_width(text: str, size: float) -> float:
+    """Estimated advance width of ``text`` set in a sans-serif font of em height ``size``.
+
+    A per-character estimate (DejaVu Sans / Arial proportions, rounded up) used to keep
+    labels clear of lines; writers set text in a sans-serif font at this em height.
+    """
+    narrow, wide = set(" .,:;·|!'ijlrtf1()-"), set("MWmw@%")
+    em = sum(0.36 if c in narrow else 0.95 if c in wide else 0.74 if c.isupper() else 0.64 for c in text)
+    return em * size
+
+
+@dataclass(frozen=True)
+class Label:
+    """A line of text centred on ``position``.
+
+    Attributes
+    ----------
+    text : str
+    position : tuple of float
+        Centre of the text box, page mm.
+    angle : float
+        Direction of the baseline in degrees, counter-clockwise from +x, in (-90, 90].
+    size : float
+        Em height in mm (the font size).
+    kind : str
+        ``"sheet"`` or ``"seam"``.
+    seam : int
+        The seam id for seam labels, else -1.
+    """
+
+    text: str
+    position: tuple[float, float]
+    angle: float
+    size: float
+    kind: str = "sheet"
+    seam: int = -1
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray) -> Label:
+        """The label mapped by the rotation ``matrix`` and ``offset`` (kept upright)."""
+        p = matrix @ np.asarray(self.position) + offset
+        turn = math.degrees(math.atan2(matrix[1, 0], matrix[0, 0]))
+        return Label(self.text, (float(p[0]), float(p[1])), upright(self.angle + turn), self.size, self.kind, self.seam)
+
+    def corners(self) -> np.ndarray:
+        """The estimated text box, shape (4, 2): width from :func:`text_width`, height = size."""
+        return box_corners(np.asarray(self.position), math.radians(self.angle), text_width(self.text, self.size), self.size)
+
+
+def label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
+    """Sample points covering the text boxes, shape (C, K, 2)."""
+    width = text_width(text, size)
+    step = 0.4 * size  # a line between two points of a box comes within 0.2 size of one: caught by the 0.25 size clearance
+    u = np.linspace(-width / 2, width / 2, max(2, math.ceil(width / step) + 1))
+    v = np.linspace(-size / 2, size / 2, 5)
+    uu, vv = (g.ravel() for g in np.meshgrid(u, v))
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    return np.stack([center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1)
+
+
+class Obstacles:
+    """Lines that labels keep clear of: a sheet's lines sampled densely for nearest-point
+    queries, and a few more segments (the labels placed so far) measured exactly."""
+
+    def __init__(self, segments: np.ndarray, spacing: float, extra: np.ndarray | None = None, *, _from: Obstacles | None = None):
+        self.spacing = spacing
+        self.extra = np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
+        if _from is not None:  # share the sampled lines of another
+            self.points, self.directions, self.tree = _from.points, _from.directions, _from.tree
+            return
+        from scipy.spatial import cKDTree
+
+        d = segments[:, 1] - segments[:, 0]
+        length = np.linalg.norm(d, axis=1)
+        count = np.maximum(1, np.ceil(length / spacing).astype(int))
+        seg = np.repeat(np.arange(len(segments)), count + 1)
+        first = np.concatenate([[0], np.cumsum(count + 1)[:-1]])  # index of each segment's first sample
+        t = (np.arange(len(seg)) - first[seg]) / count[seg]
+        self.points = segments[seg, 0] + t[:, None] * d[seg]
+        self.directions = d[seg] / np.maximum(length[seg], 1e-300)[:, None]
+        self.tree = cKDTree(self.points) if len(self.points) else None
+
+    def plus(self, segments: np.ndarray) -> Obstacles:
+        """These obstacles and ``segments`` (S, 2, 2) besides, without sampling the lines again."""
+        return Obstacles(np.zeros((0, 2, 2)), self.spacing, np.concatenate([self.extra, segments]), _from=self)
+
+    def clearance(self, points: np.ndarray, limit: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+        """Distance to the nearest obstacle (a sampled line's less half the spacing, inf beyond ``limit``) and its direction."""
+        shape = points.shape[:-1]
+        flat = points.reshape(-1, 2)
+        dist, direction = np.full(len(flat), np.inf), np.tile([1.0, 0.0], (len(flat), 1))
+        if self.tree is not None:
+            found_dist, idx = self.tree.query(flat, distance_upper_bound=limit)
+            found = idx < len(self.points)
+            dist = np.where(found, found_dist - self.spacing / 2, np.inf)
+            direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], direction)
+        if len(self.extra):
+            a, b = self.extra[:, 0], self.extra[:, 1]
+            to_extra = point_segment_distance(flat[:, None], a[None], b[None])  # (N, S)
+            nearest = np.argmin(to_extra, axis=1)
+            exact = to_extra[np.arange(len(flat)), nearest]
+            closer = (exact < dist) & (exact <= limit)
+            d = b - a
+            along = d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
+            dist = np.where(closer, exact, dist)
+            direction = np.where(closer[:, None], along[nearest], direction)
+        return dist.reshape(shape), direction.reshape(shape + (2,))
+
+    def fits(self, boxes: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
+        """For boxes (C, K, 2): whether each keeps 0.25·size clear of every line, and its margin
+        (counted up to one ``size``)."""
+        dist, _ = self.clearance(boxes, limit=size)
+        worst = np.minimum(dist.min(axis=1), size)
+        return worst >= 0.25 * size, worst
+
+
+def _best_box(obstacles: Obstacles, center: np.ndarray, angle: np.ndarray, middle: np.ndarray, text: str, h: float) -> int | None:
+    """The candidate box that keeps clear of the lines with the best score: its margin (up to
+    one ``h``) less a twentieth of its distance to ``middle``; None if none keeps clear.
+
+    Candidates are measured nearest the middle first, in batches, until no candidate left
+    could score above the best so far (a score is at most h less a twentieth of the
+    distance): the same choice as measuring them all, ties going to the first candidate.
+    """
+    away = np.linalg.norm(center - middle, axis=1)
+    order = np.argsort(away, kind="stable")
+    score = np.full(len(center), -np.inf)
+    best = -np.inf
+    for start in range(0, len(order), 16):
+        if h - 0.05 * away[order[start]] < best:
+            break
+        batch = order[start:start + 16]
+        ok, worst = obstacles.fits(label_candidates(center[batch], angle[batch], text, h), h)
+        score[batch] = np.where(ok, np.minimum(worst, h) - 0.05 * away[batch], -np.inf)
+        best = max(best, float(score[batch].max()))
+    return int(np.argmax(score)) if np.isfinite(best) else None
+
+
+def label_sizes(preferred: float) -> list[float]:
+    out, s = [], preferred
+    while s > MIN_LABEL_SIZE:
+        out.append(s)
+        s *= 0.8
+    return out + [MIN_LABEL_SIZE]
+
+
+def seam_label(points: np.ndarray, seam: int, obstacles: Obstacles, size: float) -> tuple[Label, bool]:
+    """The name of seam ``seam`` inside the sheet beside the middle of its chain ``points`` (m + 1, 2)
+    (the sheet on their left), parallel to it, and whether it keeps clear of every line."""
+    text = seam_name(seam)
+    p = points
+    d = np.diff(p, axis=0)
+    seg = np.linalg.norm(d, axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    offsets = np.array([0.0, 0.05, -0.05, 0.1, -0.1, 0.17, -0.17, 0.25, -0.25, 0.33, -0.33])
+    fallback = None
+    for h in label_sizes(size):
+        at = s[-1] * (0.5 + offsets)
+        k = np.clip(np.searchsorted(s, at, side="right") - 1, 0, len(seg) - 1)
+        t = d[k] / np.maximum(seg[k], 1e-300)[:, None]
+        base = p[k] + t * (at - s[k])[:, None]
+        left = np.stack([-t[:, 1], t[:, 0]], axis=1)
+        gaps = np.array([0.85, 1.2, 1.7]) * h
+        center = (base[:, None] + gaps[None, :, None] * left[:, None]).reshape(-1, 2)
+        angle = np.repeat(np.arctan2(t[:, 1], t[:, 0]), len(gaps))
+        ok, _ = obstacles.fits(label_candidates(center, angle, text, h), h)
+        if fallback is None:
+            fallback = Label(text, tuple(center[0]), upright(math.degrees(angle[0])), MIN_LABEL_SIZE, "seam", seam)
+        if ok.any():
+            i = int(np.argmax(ok))  # candidates are in order of preference
+            return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
+    return fallback, False
+
+
+def sheet_label(text: str, centroids: np.ndarray, areas: np.ndarray, obstacles: Obstacles,
+                 size: float) -> tuple[Label, bool]:
+    """The sheet's label: clear of every line, along the local direction, near the middle.
+
+    Candidates are triangle centroids (C, 2); among the boxes that keep clear of the lines
+    the one with the best clearance (counted up to one em) less a twentieth of its distance
+    to the sheet's area centroid wins, so labels sit in the middle unless it is crowded.
+    """
+    middle = (centroids * areas[:, None]).sum(axis=0) / max(areas.sum(), 1e-300)
+    if len(centroids) > 1500:
+        centroids = centroids[:: math.ceil(len(centroids) / 1500)]
+    dist, direction = obstacles.clearance(centroids)
+    best = int(np.argmax(dist))
+    for h in label_sizes(size):
+        keep = np.flatnonzero(dist >= 0.75 * h)
+        keep = keep[np.argsort(-dist[keep])][:80]
+        if keep.size == 0:
+            continue
+        along = np.arctan2(direction[keep, 1], direction[keep, 0])
+        center = np.concatenate([centroids[keep], centroids[keep]])
+        angle = np.concatenate([along, np.zeros(keep.size)])
+        found = _best_box(obstacles, center, angle, middle, text, h)
+        if found is not None:
+            return Label(text, (float(center[found, 0]), float(center[found, 1])), upright(math.degrees(angle[found])), h), True
+    along = math.degrees(math.atan2(direction[best, 1], direction[best, 0]))
+    return Label(text, (float(centroids[best, 0]), float(centroids[best, 1])), upright(along), MIN_LABEL_SIZE), False

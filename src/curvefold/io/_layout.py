@@ -1,0 +1,626 @@
+"""Crease patterns laid out on printable pages: placement, glue tabs, layers and labels.
+
+A tube is two developed sheets welded along seam curves; :func:`layout_sheets` places any
+number of such sheets on pages of a given size, adds glue tabs along the seams and sorts
+every line into a fabrication layer. The writers in :mod:`curvefold.io._pattern` turn
+the resulting :class:`Layout` into SVG, DXF and PDF.
+
+Coordinates and units
+    Everything in a :class:`Layout` is in millimetres on the page, origin at the page's
+    bottom-left corner, x to the right, y up (the DXF and PDF convention; SVG flips y when
+    it writes). The lengths given to :func:`layout_sheets` are in its ``units``;
+    ``scale`` multiplies model units into those units.
+
+Which side is up
+    Each sheet is drawn as seen from the side its face normals point to (triangles
+    counter-clockwise), so mountain and valley read as assigned in the mesh (FOLD's
+    convention). A sheet whose triangles are clockwise in the xy-plane is mirrored.
+    Sheets are otherwise only rotated and translated, never scaled unevenly.
+
+Layers, drawn bottom to top (:data:`LAYERS`)
+    ====================  ================================================================
+    ``glue``              glue tab areas, filled polygons (a guide: no line to cut);
+    ``rulings``           straight rulings, for scoring or engraving (writers skip it by default);
+    ``seam``              the fold line of each glue tab, i.e. the seam on the tab side;
+    ``valley``            fold creases assigned ``V``;
+    ``mountain``          fold creases assigned ``M``;
+    ``cut``               everything to cut through: each sheet's closed outline (boundary and
+                          seam edges) going around the outer sides of its glue tabs;
+    ``labels``            the sheet label and, inside the sheet beside the middle of every seam
+                          chain, the seam's name (:func:`~curvefold.io._labels.seam_name`), the same on both partners.
+    ====================  ================================================================
+
+No line appears in two layers, so a laser never cuts or scores a line twice. Triangulating
+diagonals are never drawn.
+
+Glue tabs
+    For every seam id the tabs go on one side only, the sheet with the lowest index that
+    has the seam, so that the partner sheet overlaps the tab when glued. A seam whose
+    chains all lie on one sheet gets its tab on the first chain only. How tabs are cut into
+    pieces, tapered, checked as drawn, narrowed or left out is :mod:`curvefold.io._tabs`;
+    both compromises are reported in :attr:`Layout.notes`.
+
+The plane geometry is :mod:`curvefold.io._planar`, the placement of labels
+:mod:`curvefold.io._labels` and the packing of sheets on pages :mod:`curvefold.io._packing`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..geometry._mesh import edges_faces
+from ..geometry._sheets import PatternSheet
+from ..kernel._arrays import frozen
+from ..kernel._errors import InputError
+from ._labels import MIN_LABEL_SIZE, Label, Obstacles, seam_label, seam_name, sheet_label
+from ._packing import pack_pages
+from ._planar import cross2, min_area_rotation, polyline_segments, rotation
+from ._tables import mm_per_unit, page_mm
+from ._tabs import TAB_WIDTH_STEPS, tab_fits, tab_outline, tab_pieces
+
+__all__ = [
+    "FOOTER",
+    "LAYERS",
+    "Layout",
+    "Page",
+    "PlacedSheet",
+    "Polyline",
+    "layout_sheets",
+    "page_size",
+]
+
+#: Layer names, bottom to top.
+LAYERS = ("glue", "rulings", "seam", "valley", "mountain", "cut", "labels")
+
+#: Height (mm) of the band above a page's bottom margin kept for its scale bar and legend.
+FOOTER = 14.0
+
+
+def page_size(page: str | tuple[float, float], *, units: str = "mm") -> tuple[float, float]:
+    """Page (width, height) in mm from a name in :data:`~curvefold.io._tables.PAGES` or a pair in ``units``.
+
+    Examples
+    --------
+    >>> page_size("a4")
+    (210.0, 297.0)
+    >>> page_size((8.5, 11), units="in")
+    (215.9, 279.4)
+    """
+    f = mm_per_unit(units)
+    if isinstance(page, str):
+        return page_mm(page)
+    try:
+        w, h = (float(v) for v in page)
+    except (TypeError, ValueError):
+        raise InputError(f"page must be a name or a (width, height) pair, got {page!r}") from None
+    if not (math.isfinite(w) and math.isfinite(h) and w > 0 and h > 0):
+        raise InputError(f"page width and height must be positive and finite, got {page!r}")
+    return (round(w * f, 9), round(h * f, 9))
+
+
+# --------------------------------------------------------------------------------------
+# values
+
+
+@dataclass(frozen=True, eq=False)
+class Polyline:
+    """A chain of line segments on one layer, page millimetres.
+
+    Attributes
+    ----------
+    layer : str
+        One of :data:`LAYERS`.
+    points : (n, 2) ndarray
+        Vertices; a closed polyline does not repeat its first point.
+    closed : bool
+    seam : int
+        The seam id for ``seam`` and ``glue`` polylines, else -1.
+    """
+
+    layer: str
+    points: np.ndarray
+    closed: bool = False
+    seam: int = -1
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "points", frozen(np.asarray(self.points, float)))
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray) -> Polyline:
+        """The polyline mapped by ``x -> matrix @ x + offset``."""
+        return Polyline(self.layer, self.points @ matrix.T + offset, self.closed, self.seam)
+
+
+@dataclass(frozen=True, eq=False)
+class PlacedSheet:
+    """A sheet placed on a page.
+
+    Attributes
+    ----------
+    index : int
+        Position of the sheet in the sequence given to :func:`layout_sheets`.
+    label : str
+    transform : (2, 3) ndarray
+        Maps the sheet's model (x, y) to page mm: ``page = transform[:, :2] @ xy + transform[:, 2]``
+        (scale times a rotation, with a mirror when the sheet was seen from its back).
+    polylines : tuple of Polyline
+        Every line of the sheet, glue tabs included.
+    labels : tuple of Label
+    """
+
+    index: int
+    label: str
+    transform: np.ndarray
+    polylines: tuple[Polyline, ...]
+    labels: tuple[Label, ...]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "transform", frozen(np.asarray(self.transform, float)))
+
+    def on_layer(self, layer: str) -> tuple[Polyline, ...]:
+        """The polylines of one layer."""
+        return tuple(p for p in self.polylines if p.layer == layer)
+
+    def bounds(self) -> np.ndarray:
+        """Bounding box of all lines, ``[[xmin, ymin], [xmax, ymax]]`` in page mm."""
+        pts = np.concatenate([p.points for p in self.polylines])
+        return np.stack([pts.min(axis=0), pts.max(axis=0)])
+
+
+@dataclass(frozen=True, eq=False)
+class Page:
+    """One page: its size in mm and the sheets on it."""
+
+    size: tuple[float, float]
+    sheets: tuple[PlacedSheet, ...]
+
+    def on_layer(self, layer: str) -> tuple[Polyline, ...]:
+        """The polylines of one layer over all sheets of the page."""
+        return tuple(p for s in self.sheets for p in s.polylines if p.layer == layer)
+
+    def labels(self) -> tuple[Label, ...]:
+        """All labels on the page."""
+        return tuple(t for s in self.sheets for t in s.labels)
+
+
+@dataclass(frozen=True, eq=False)
+class Layout:
+    """Sheets placed on pages, ready for the writers.
+
+    Attributes
+    ----------
+    pages : tuple of Page
+    page_size : tuple of float
+        (width, height) in mm.
+    margin : float
+        Page margin in mm; all lines lie inside it.
+    scale : float
+        Millimetres on the page per model unit.
+    footer : float
+        Height in mm of the band kept free of sheets above the bottom margin, for the
+        scale bar and the legend the writers draw there.
+    notes : tuple of str
+        What the layout had to compromise on (narrowed or dropped glue tabs, labels that
+        could not be kept clear of lines, seams whose partners differ in length).
+    cutter : str
+        The colour convention the writers draw it in (a key of :data:`curvefold.io.CUTTERS`).
+    perforation : (float, float) or None
+        (dash, gap) in mm when the creases are drawn as cut dashes (:mod:`curvefold.io._cutting`).
+    kerf : float
+        The kerf (mm) the cut outlines were moved out for, by half of it; 0 for none.
+    """
+
+    pages: tuple[Page, ...]
+    page_size: tuple[float, float]
+    margin: float
+    scale: float
+    notes: tuple[str, ...] = field(default=())
+    footer: float = 0.0
+    cutter: str = "print"
+    perforation: tuple[float, float] | None = None
+    kerf: float = 0.0
+
+    def sheets(self) -> tuple[PlacedSheet, ...]:
+        """All placed sheets, page by page."""
+        return tuple(s for p in self.pages for s in p.sheets)
+
+
+# --------------------------------------------------------------------------------------
+# one sheet in its own frame (mm)
+
+
+def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
+    """Chain undirected edges (k, 2) into polylines of vertex indices: (indices, closed)."""
+    if len(edges) == 0:
+        return []
+    adj: dict[int, list[tuple[int, int]]] = {}
+    for k, (a, b) in enumerate(edges.tolist()):
+        adj.setdefault(a, []).append((k, b))
+        adj.setdefault(b, []).append((k, a))
+    used = np.zeros(len(edges), bool)
+
+    def walk(start: int) -> tuple[list[int], bool]:
+        path, cur = [start], start
+        while True:
+            nxt = next(((k, o) for k, o in adj[cur] if not used[k]), None)
+            if nxt is None:
+                return path, False
+            used[nxt[0]] = True
+            cur = nxt[1]
+            if cur == start:
+                return path, True
+            path.append(cur)
+            if len(adj[cur]) != 2:
+                return path, False
+
+    chains = []
+    for v in sorted(adj):
+        if len(adj[v]) != 2:
+            while any(not used[k] for k, _ in adj[v]):
+                path, closed = walk(v)
+                chains.append((np.array(path), closed))
+    for k in range(len(edges)):
+        if not used[k]:
+            path, closed = walk(int(edges[k, 0]))
+            chains.append((np.array(path), closed))
+    return chains
+
+
+@dataclass(frozen=True, eq=False)
+class _Chain:
+    """A maximal run of seam edges with one id on one outline loop (local mm)."""
+
+    sheet: int
+    seam: int
+    loop: int
+    start: int  # position of its first edge in the loop
+    count: int  # number of edges
+    points: np.ndarray  # (count + 1, 2), sheet interior on the left
+
+
+@dataclass(frozen=True, eq=False)
+class _Local:
+    """A sheet in its own frame, scaled to mm and seen from the front."""
+
+    xy: np.ndarray  # (V, 2)
+    mirror: bool
+    loops: list[tuple[np.ndarray, np.ndarray]]  # per loop: vertex ids (n,), edge ids (n,), interior on the left
+    chains: list[_Chain]
+    creases: list[Polyline]  # mountain, valley, rulings
+
+
+def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
+    mesh = sheet.mesh.triangulated()  # polygons split; the added diagonals come after the sheet's own edges
+    name = sheet.label
+    xy = mesh.vertices_coords[:, :2] * scale
+    faces = mesh.faces_vertices
+    tri = xy[faces]
+    area2 = cross2(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    mirror = bool(area2.sum() < 0)
+    if mirror:
+        xy = xy * np.array([-1.0, 1.0])
+        area2 = -area2
+    tol = 1e-9 * float(np.abs(area2).max(initial=0.0))
+    if np.any(area2 < -tol):
+        raise InputError(
+            f"sheet {name!r}: triangles must all turn the same way in the plane; "
+            f"{int(np.count_nonzero(area2 < -tol))} of {len(faces)} are flipped"
+        )
+    ef = edges_faces(faces, mesh.edges_vertices)  # counter-clockwise in xy, mirrored or not
+    nfaces = np.count_nonzero(ef >= 0, axis=1)
+    outline = np.isin(mesh.edges_kind, ("boundary", "seam"))
+    bad = np.flatnonzero(outline & (nfaces != 1))
+    if bad.size:
+        raise InputError(f"sheet {name!r}: edge {bad[0]} of kind {str(mesh.edges_kind[bad[0]])!r} must border exactly one triangle, borders {nfaces[bad[0]]}")
+    bad = np.flatnonzero(~outline & (nfaces != 2))
+    if bad.size:
+        raise InputError(f"sheet {name!r}: edge {bad[0]} borders {nfaces[bad[0]]} triangle(s), so it lies on the outline, "
+                         f"but its kind is {str(mesh.edges_kind[bad[0]])!r} (must be 'boundary' or 'seam')")
+
+    # Outline loops, directed as their triangle traverses them (interior on the left).
+    ids = np.flatnonzero(outline)
+    ev = mesh.edges_vertices[ids]
+    directed = np.where((ef[ids, 0] >= 0)[:, None], ev, ev[:, ::-1])
+    out_of: dict[int, list[int]] = {}
+    for j, a in enumerate(directed[:, 0].tolist()):
+        out_of.setdefault(a, []).append(j)
+    used = np.zeros(len(ids), bool)
+    loops = []
+    for j0 in range(len(ids)):
+        if used[j0]:
+            continue
+        verts, edges, j = [], [], j0
+        while not used[j]:
+            used[j] = True
+            verts.append(int(directed[j, 0]))
+            edges.append(int(ids[j]))
+            j = next((k for k in out_of.get(int(directed[j, 1]), []) if not used[k]), j0)
+        loops.append((np.array(verts), np.array(edges)))
+
+    chains = []
+    for li, (verts, edges) in enumerate(loops):
+        sid = sheet.edges_seam[edges]
+        n = len(edges)
+        change = np.flatnonzero(sid != np.roll(sid, 1))
+        starts = change.tolist() if change.size else [0]
+        for k, s0 in enumerate(starts):
+            count = ((starts[(k + 1) % len(starts)] - s0) % n) or n
+            if sid[s0] < 0:
+                continue
+            idx = verts[(s0 + np.arange(count + 1)) % n]
+            chains.append(_Chain(index, int(sid[s0]), li, s0, count, xy[idx]))
+
+    creases = []
+    kind, assign = mesh.edges_kind, mesh.edges_assignment
+    for layer, mask in (("mountain", (kind == "fold") & (assign == "M")),
+                        ("valley", (kind == "fold") & (assign == "V")),
+                        ("rulings", kind == "ruling")):
+        for path, closed in _chain_edges(mesh.edges_vertices[mask]):
+            creases.append(Polyline(layer, xy[path], closed))
+    return _Local(xy, mirror, loops, chains, creases)
+
+
+# --------------------------------------------------------------------------------------
+# layout
+
+
+def _check_length(name: str, value: float | None, units: float, *, positive: bool) -> float | None:
+    if value is None:
+        return None
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0 or (positive and v == 0):
+        raise InputError(f"{name} must be {'positive' if positive else 'non-negative'} and finite, got {value!r}")
+    return v * units
+
+
+def layout_sheets(
+    sheets: Sequence[PatternSheet],
+    *,
+    page: str | tuple[float, float] = "A4",
+    units: str = "mm",
+    scale: float | None = None,
+    target_size: float | None = None,
+    margin: float | None = None,
+    footer: float | None = None,
+    gap: float | None = None,
+    glue_tabs: bool = True,
+    tab_width: float | None = None,
+    tab_length: float | None = None,
+    tab_angle: float = 60.0,
+    label_size: float | None = None,
+) -> Layout:
+    """Place developed sheets on pages with glue tabs, layers and labels.
+
+    Each sheet (with its tabs) is turned to its minimum-area bounding rectangle, lying
+    flat, and the rectangles are packed first-fit on shelves, tallest first, over as many
+    pages as needed. Sheets never overlap and keep ``gap`` between their bounding boxes.
+
+    Parameters
+    ----------
+    sheets : sequence of PatternSheet
+    page : str or (2,) tuple of float
+        A name in :data:`~curvefold.io._tables.PAGES` (case-insensitive: ``"A4"``, ``"A3"``, ``"Letter"``…)
+        or (width, height) in ``units``. Portrait names; pass a pair for landscape.
+    units : str
+        Unit of every length argument, a name in :data:`~curvefold.io._tables.UNITS` (``"mm"``, ``"cm"``, ``"in"``…).
+    scale : float, optional
+        Page length (in ``units``) per model unit; default 1.
+    target_size : float, optional
+        Instead of ``scale``: the longer side of the largest sheet's minimum-area
+        rectangle (without tabs) becomes this length, in ``units``.
+    margin : float, optional
+        Free border of every page; default 10 mm (printers cannot print the outer 3–6 mm).
+    footer : float, optional
+        Height of the band above the bottom margin kept for the scale bar and legend;
+        default :data:`FOOTER` mm.
+    gap : float, optional
+        Space between sheets; default 4 mm.
+    glue_tabs : bool
+        Add glue tabs along seams (see the module notes).
+    tab_width : float, optional
+        Tab width, perpendicular to the seam; default 6 mm.
+    tab_length : float, optional
+        Longest single tab piece along the seam; default 5 × ``tab_width``.
+    tab_angle : float
+        Angle in degrees between a tab's tapered end and the seam, in (0, 90).
+    label_size : float, optional
+        Em height of the sheet labels; seam names are set at 0.8 × this. Default 4 mm.
+        Labels shrink (down to 1.5 mm) to stay clear of lines.
+
+    Returns
+    -------
+    Layout
+
+    Raises
+    ------
+    InputError
+        For an invalid argument or sheet, a seam id on more than two sheets, or a sheet
+        that does not fit the page at this scale (the message gives both sizes).
+    """
+    f = mm_per_unit(units)
+    sheets = tuple(sheets)
+    if not sheets:
+        raise InputError("sheets must hold at least one PatternSheet, got none")
+    for i, sh in enumerate(sheets):
+        if not isinstance(sh, PatternSheet):
+            raise InputError(f"sheets[{i}] must be a PatternSheet, got {type(sh).__name__}")
+    W, H = page_size(page, units=units)
+    page_name = page if isinstance(page, str) else "custom"
+    if scale is not None and target_size is not None:
+        raise InputError(f"give scale or target_size, not both (got scale={scale!r}, target_size={target_size!r})")
+    scale_mm = _check_length("scale", 1.0 if scale is None else scale, f, positive=True)
+    target = _check_length("target_size", target_size, f, positive=True)
+    margin = _check_length("margin", 10.0 / f if margin is None else margin, f, positive=False)
+    gap = _check_length("gap", 4.0 / f if gap is None else gap, f, positive=False)
+    tab_width = _check_length("tab_width", 6.0 / f if tab_width is None else tab_width, f, positive=True)
+    tab_length = _check_length("tab_length", 5 * tab_width / f if tab_length is None else tab_length, f, positive=True)
+    label_size = _check_length("label_size", 4.0 / f if label_size is None else label_size, f, positive=True)
+    if not (isinstance(tab_angle, (int, float)) and 0 < tab_angle < 90):
+        raise InputError(f"tab_angle must be in (0, 90) degrees, got {tab_angle!r}")
+    footer = _check_length("footer", FOOTER / f if footer is None else footer, f, positive=False)
+    avail = (W - 2 * margin, H - 2 * margin - footer)
+    if min(avail) <= 0:
+        raise InputError(f"margin {margin:g} mm and footer {footer:g} mm leave no room on a {W:g} × {H:g} mm page")
+
+    if target is not None:
+        longest = 0.0
+        for sh in sheets:
+            xy = sh.mesh.vertices_coords[:, :2]
+            r = xy @ rotation(min_area_rotation(xy)).T
+            longest = max(longest, float(np.ptp(r, axis=0).max()))
+        if longest <= 0:
+            raise InputError("target_size needs sheets of non-zero size; every sheet is a point")
+        scale_mm = target / longest
+
+    for sh in sheets:  # a sheet too large for the page is refused before any tab or label is placed
+        xy = sh.mesh.vertices_coords[:, :2] * scale_mm
+        w, h = (np.ptp(xy @ rotation(min_area_rotation(xy)).T, axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
+        if max(w, h) > max(avail) or min(w, h) > min(avail):
+            raise InputError(
+                f"sheet {sh.label!r} needs {max(w, h):.4g} × {min(w, h):.4g} mm before glue tabs at scale {scale_mm:g} mm per unit, "
+                f"but the {page_name} page ({W:g} × {H:g} mm) has {avail[0]:g} × {avail[1]:g} mm inside its margins; "
+                f"lower the scale or choose a larger page"
+            )
+
+    notes: list[str] = []
+    locals_ = [_local_sheet(i, sh, scale_mm) for i, sh in enumerate(sheets)]
+
+    # Which chains get tabs.
+    by_seam: dict[int, list[_Chain]] = {}
+    for loc in locals_:
+        for ch in loc.chains:
+            by_seam.setdefault(ch.seam, []).append(ch)
+    tabbed: set[int] = set()  # id() of chains with tabs
+    for sid, chains in sorted(by_seam.items()):
+        owners = sorted({c.sheet for c in chains})
+        if len(owners) > 2:
+            raise InputError(f"seam id {sid} appears on sheets {owners}; a seam joins at most two sheets")
+        if len(owners) == 2:
+            lengths = [sum(float(np.linalg.norm(np.diff(c.points, axis=0), axis=1).sum()) for c in chains if c.sheet == o) for o in owners]
+            if abs(lengths[0] - lengths[1]) > 1e-2 * max(lengths):
+                notes.append(f"seam {seam_name(sid)}: lengths differ between {sheets[owners[0]].label!r} "
+                             f"({lengths[0]:.2f} mm) and {sheets[owners[1]].label!r} ({lengths[1]:.2f} mm)")
+        if glue_tabs:
+            mine = [c for c in chains if c.sheet == owners[0]]
+            for c in (mine[:1] if len(owners) == 1 and len(mine) > 1 else mine):
+                tabbed.add(id(c))
+
+    items = []
+    for i, (sh, loc) in enumerate(zip(sheets, locals_)):
+        items.append(_build_sheet(i, sh, loc, tabbed, tab_width, tab_length, math.radians(tab_angle), label_size, notes))
+
+    placements = pack_pages([it[1] for it in items], avail, gap, margin, (W, H), [sh.label for sh in sheets], page_name)
+    pages: list[list[PlacedSheet]] = [[] for _ in range(1 + max(p[0] for p in placements))]
+    for i, ((polylines, _footprint, labels, mirror), (pg, rot, offset)) in enumerate(zip(items, placements)):
+        R = rotation(rot)
+        mat = R @ np.diag([-scale_mm if mirror else scale_mm, scale_mm])
+        pages[pg].append(PlacedSheet(
+            index=i,
+            label=sheets[i].label,
+            transform=np.concatenate([mat, offset[:, None]], axis=1),
+            polylines=tuple(p.transformed(R, offset) for p in polylines),
+            labels=tuple(t.transformed(R, offset) for t in labels),
+        ))
+    return Layout(tuple(Page((W, H), tuple(p)) for p in pages), (W, H), margin, scale_mm, tuple(notes), footer)
+
+
+def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np.ndarray:
+    """Segments (S, 2, 2) of a sheet's outline loops, tabbed seams split where their tab pieces meet."""
+    segs = []
+    for li, (verts, _) in enumerate(loc.loops):
+        n = len(verts)
+        keep = np.ones(n, bool)
+        for ch in loc.chains:
+            if ch.loop == li and id(ch) in pieces_of:
+                keep[(ch.start + np.arange(ch.count)) % n] = False
+        p = loc.xy[verts]
+        segs.append(np.stack([p, np.roll(p, -1, axis=0)], axis=1)[keep])
+    segs += [polyline_segments([(piece, False)]) for pieces in pieces_of.values() for piece in pieces]
+    return np.concatenate(segs)
+
+
+def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_size, notes):
+    """Polylines and labels of one sheet in its local mm frame, and its footprint points."""
+    name = sheet.label
+    pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
+    outline = _outline_segments(loc, pieces_of)
+    tol = 1e-9 * max(float(np.ptp(loc.xy, axis=0).max()), 1.0)  # coordinate rounding, mm
+    accepted: list[np.ndarray] = []  # polygons of the tabs on this sheet
+    # per loop: position of first edge -> (count of edges, replacement points without the last)
+    replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
+    polylines: list[Polyline] = []
+    for ch in loc.chains:
+        if id(ch) not in pieces_of:
+            continue
+        pieces = pieces_of[id(ch)]
+        cut_parts, dropped, narrowed = [], 0, 0
+        runs: list[list[np.ndarray]] = [[]]  # consecutive tabbed pieces: one fold line each
+        for piece in pieces:
+            got = None
+            for k, frac in enumerate(TAB_WIDTH_STEPS):
+                tab = tab_outline(piece, frac * tab_width, taper)
+                if tab is not None and tab_fits(tab, outline, accepted, tol):
+                    got, narrowed = tab, narrowed + (k > 0)
+                    break
+            if got is None:
+                dropped += 1
+                cut_parts.append(piece[:-1])
+                runs.append([])
+                continue
+            accepted.append(got[0])
+            polylines.append(Polyline("glue", got[0], closed=True, seam=ch.seam))
+            cut_parts.append(got[1][:-1])
+            runs[-1].append(piece)
+        for run in runs:
+            if run:
+                line = np.concatenate([p[:-1] for p in run] + [run[-1][-1:]])
+                polylines.append(Polyline("seam", line, seam=ch.seam))
+        replace[(ch.loop, ch.start)] = (ch.count, np.concatenate(cut_parts))
+        if narrowed or dropped:
+            notes.append(f"sheet {name!r}, seam {seam_name(ch.seam)}: {narrowed} glue tab piece(s) narrowed, "
+                         f"{dropped} left out (of {len(pieces)}) to keep clear of the sheet")
+
+    for li, (verts, _) in enumerate(loc.loops):
+        n = len(verts)
+        starts = sorted(pos for (l2, pos) in replace if l2 == li)
+        parts, pos, done = [], 0, 0
+        # start the walk at a replaced run if any, so no run wraps around the walk's end
+        pos = starts[0] if starts else 0
+        while done < n:
+            key = (li, pos % n)
+            if key in replace:
+                count, pts = replace[key]
+                parts.append(pts)
+            else:
+                count = 1
+                parts.append(loc.xy[verts[pos % n]][None])
+            pos += count
+            done += count
+        polylines.append(Polyline("cut", np.concatenate(parts), closed=True))
+    polylines.extend(loc.creases)
+
+    # Labels: seam names first (each then becomes an obstacle), then the sheet label.
+    obstacle_lines = [(p.points, p.closed) for p in polylines if p.layer in ("cut", "seam", "mountain", "valley")]
+    segments = polyline_segments(obstacle_lines)
+    obstacles = Obstacles(segments, 0.1 * MIN_LABEL_SIZE)
+    labels: list[Label] = []
+    for ch in loc.chains:
+        lab, ok = seam_label(ch.points, ch.seam, obstacles, 0.8 * label_size)
+        if not ok:
+            notes.append(f"sheet {name!r}: seam name {lab.text} could not be kept clear of the lines")
+        labels.append(lab)
+        obstacles = obstacles.plus(polyline_segments([(lab.corners(), True)]))
+    tri = loc.xy[sheet.mesh.triangulated().faces_vertices]
+    areas = 0.5 * np.abs(cross2(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]))
+    lab, ok = sheet_label(name, tri.mean(axis=1), areas, obstacles, label_size)
+    if not ok:
+        notes.append(f"sheet {name!r}: its label could not be kept clear of the lines")
+    if name:
+        labels.append(lab)
+    return polylines, np.concatenate([p.points for p in polylines]), labels, loc.mirror

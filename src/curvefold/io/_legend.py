@@ -1,0 +1,137 @@
+"""What every crease-pattern page carries besides its sheets: the look of each layer, and the footer.
+
+:func:`layer_look` gives a layout layer's file layer name, colour and line style in the
+layout's cutter convention (:mod:`curvefold.io._cutters`); :func:`page_footer` lays out the
+footer of a page inside its footer band: a 10 mm scale bar with the print scale and page
+number, and a legend of the layers drawn on that page. The whole footer is drawn in the
+convention's reference colour, never in the colour of an operation, so cutting software
+that sorts by colour leaves it alone; each legend sample has its layer's dash pattern and
+its text names the layer's colour. The SVG, DXF and PDF writers share these.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection
+from dataclasses import dataclass
+from types import MappingProxyType
+
+import numpy as np
+
+from ..kernel._arrays import FrozenArrays, readonly
+from ..kernel._errors import InputError
+from ._cutters import STYLES, LayerStyle, cutter, layer_name
+from ._labels import Label, seam_name, text_width
+from ._layout import LAYERS, Layout
+
+__all__ = ["DEFAULT_LAYERS", "LEGEND", "Footer", "check_layout", "check_layers", "layer_look", "page_footer"]
+
+#: Layers the writers draw by default.
+DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")
+
+#: What each layer means, as the legend says it.
+LEGEND = MappingProxyType({
+    "cut": "cut",
+    "mountain": "mountain fold",
+    "valley": "valley fold",
+    "seam": "glue-tab fold",
+    "glue": "glue",
+    "rulings": "ruling",
+    "labels": "glue the edges named alike",
+})
+_FOOTER_TEXT = 2.2  # em height of the footer's text, mm
+_SAMPLE = 8.0  # length of a legend's sample line, mm
+
+
+def check_layout(layout: Layout) -> None:
+    """Refuse what is not a :class:`~curvefold.io.Layout`."""
+    if not isinstance(layout, Layout):
+        raise InputError(f"layout must be a Layout (from layout_sheets), got {type(layout).__name__}")
+
+
+def check_layers(layers: Collection[str] | None) -> tuple[str, ...]:
+    """The layout layers to draw, in drawing order; default :data:`DEFAULT_LAYERS`."""
+    if layers is None:
+        return DEFAULT_LAYERS
+    if isinstance(layers, str):
+        layers = (layers,)
+    unknown = sorted(set(layers) - set(LAYERS))
+    if unknown:
+        raise InputError(f"layers must be among {list(LAYERS)}, got unknown {unknown}")
+    return tuple(name for name in LAYERS if name in set(layers))
+
+
+def layer_look(layout: Layout, key: str) -> tuple[str, str, LayerStyle]:
+    """(file layer name, colour ``#rrggbb``, style) of a layout layer or of ``"legend"``.
+
+    Perforated creases are solid lines: their dashes are geometry.
+    """
+    perforated = layout.perforation is not None and key in ("mountain", "valley")
+    return layer_name(key, perforated=perforated), cutter(layout.cutter).colours[key], LayerStyle() if perforated else STYLES[key]
+
+
+@dataclass(frozen=True, eq=False)
+class Footer(FrozenArrays):
+    """The scale bar, scale note and legend of one page, in page mm inside its footer band,
+    all in the reference colour :attr:`colour`.
+
+    Attributes
+    ----------
+    samples : tuple of (str, (k, 2) ndarray)
+        A sample of every drawn layer but the labels: a line in the layer's dash pattern, or
+        for a filled layer a closed rectangle.
+    bar : (4, 2) ndarray
+        The 10 mm scale bar, a rectangle to fill.
+    texts : tuple of Label
+    colour : str
+        ``#rrggbb`` of everything in the footer.
+    """
+
+    samples: tuple[tuple[str, np.ndarray], ...]
+    bar: np.ndarray
+    texts: tuple[Label, ...]
+    colour: str
+
+
+def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None = None, *, page_text: str | None = None) -> Footer:
+    """The footer of a page: a 10 mm scale bar with the print scale, and the legend of the ``layers`` it draws.
+
+    It lies in the band of :attr:`Layout.footer` above the bottom margin, so it prints
+    wherever the sheets do. Text starts where its box is estimated (:func:`text_width`).
+    ``page_text`` replaces the page number of a crease-pattern page (``"page 2 of 10"``),
+    for other pages drawn at the layout's size (the assembly guide).
+    """
+    page = layout.pages[page_index]
+    drawn = set(check_layers(layers))
+    names = [name for name in LEGEND if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))]
+    page_text = f"page {page_index + 1} of {len(layout.pages)}" if page_text is None else page_text
+    W, _ = layout.page_size
+    m, size = layout.margin, _FOOTER_TEXT
+    top = m + max(layout.footer, 3 * size) - 0.5 * size  # centre line of the first row
+
+    def text(words: str, x: float, y: float) -> Label:
+        return Label(words, (x + 0.5 * text_width(words, size), y), 0.0, size, "legend")
+
+    bar = np.array([[m, top - 0.6], [m + 10.0, top - 0.6], [m + 10.0, top + 0.6], [m, top + 0.6]])
+    note = f"10 mm: print at 100 % · 1 model unit = {layout.scale:.4g} mm · {page_text} · curvefold"
+    entries, x, row = [], m, 1  # (name, x, row) of every legend entry, wrapped into rows
+    for name in names:
+        lead = text_width(seam_name(1), size) if name == "labels" else _SAMPLE
+        width = lead + 1.5 + text_width(f"{LEGEND[name]} {layer_look(layout, name)[1]}", size)
+        if x > m and x + width > W - m:  # next row
+            x, row = m, row + 1
+        entries.append((name, x, lead, row))
+        x += width + 4.0
+    step = min(1.8 * size, (top - m - 0.5 * size) / max(row, 1))  # rows closer together rather than into the margin
+    texts = [text(note, m + 12.0, top)]
+    samples = []
+    for name, x, lead, row in entries:
+        _, colour, st = layer_look(layout, name)
+        y = top - row * step
+        if name == "labels":
+            texts.append(text(seam_name(1), x, y))
+        elif st.fill:
+            samples.append((name, np.array([[x, y - 1.0], [x + _SAMPLE, y - 1.0], [x + _SAMPLE, y + 1.0], [x, y + 1.0]])))
+        else:
+            samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
+        texts.append(text(f"{LEGEND[name]} {colour}", x + lead + 1.5, y))
+    return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts), layer_look(layout, "legend")[1])

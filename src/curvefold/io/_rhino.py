@@ -1,0 +1,303 @@
+"""Rhino ``.3dm`` of one structure state, written with ``rhino3dm`` (imported when called).
+
+What a Rhino user works with, each kind on its own layer:
+
+* ``Sheets``: one mesh object per developed sheet (``"tube 1 · sheet A"``), one quad per
+  ruling quad (per panel, for rigid panels), double-precision vertices;
+* ``Strips``: each developable strip as a ruled NURBS surface between its two crease
+  curves (``"tube 1 · strip 1"``): the two curves share their parameter, so the lines of
+  equal parameter, the surface's isocurves across the strip, are the rulings at the kept
+  samples (and close to them between);
+* ``Fold``, ``Seam``: every crease of every tube as a cubic NURBS curve through its
+  samples (interpolating, parameter t in [0, 1] shared by all creases);
+  with ``degree=1`` (rigid panels) the creases are their polylines, and each strip,
+  ruled between two of them, is its planar panels exactly;
+* ``Boundary``: the end sections of every tube, closed polylines as degree-1 NURBS curves;
+* ``crease pattern``, when a :class:`~curvefold.io.Layout` is given: the sheets laid
+  flat beside the model at their printed size (millimetres on the page, in the document's
+  unit), as on a cutting table, one sub-layer per operation in the layout's colour
+  convention (``crease pattern::cut``, ``crease pattern::score - mountain``…), labels as
+  text dots, the page frames on ``crease pattern::pages``.
+
+Every sheet is a group (``"tube 1 · sheet A"``: its mesh, its two strips, its fold crease)
+and every tube a group of all its objects (``"tube 1"``). Each object carries user text:
+``curvefold:tube`` (1-based), ``curvefold:sheet`` (A or B; none for seams and end
+sections, which belong to both sheets), ``curvefold:kind`` (sheet, strip, fold, seam,
+boundary) and ``curvefold:fold_angle_deg`` (the state's 2α; for a crease, the mean of its
+edges' measured fold angles). The file has three named views: ``perspective``, ``plan``
+(from above) and ``section`` (level, along the horizontal direction in which the model is
+thinnest: across a vault's arch, so it shows the arch).
+
+The unit system is the model's (``"unit"``, the model unit, is written as metres, the
+convention of :data:`curvefold.io._tables.UNITS`). The design parameters are stored as
+document user text (``File3dm.Strings``, key → str(value)), prefixed ``curvefold:``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry._mesh import Mesh
+from ..geometry._topology import Topology
+from ..kernel._errors import InputError
+from ._atomic import atomic_path
+from ._layout import Layout
+from ._mesh3d import check_metadata, crease_polylines
+from ._tables import CREATOR, UNITS, rgb8, rgba8
+
+__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "write_3dm"]
+
+#: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
+LAYERS = (
+    ("Sheets", rgba8("surface")),
+    ("Strips", rgba8("surface")),
+    ("Fold", rgba8("fold")),
+    ("Seam", rgba8("seam")),
+    ("Boundary", rgba8("boundary")),
+)
+
+
+def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
+    """The NURBS curve of ``degree`` (fewer points: lower) through ``points`` (m, 3) at parameters t (m,)."""
+    from scipy.interpolate import make_interp_spline
+
+    spline = make_interp_spline(t, points, k=min(degree, len(t) - 1))
+    curve = rhino3dm.NurbsCurve(3, False, spline.k + 1, len(spline.c))
+    for i, knot in enumerate(spline.t[1:-1].tolist()):  # Rhino leaves out the end knots
+        curve.Knots[i] = knot
+    for i, p in enumerate(spline.c.tolist()):
+        curve.Points[i] = rhino3dm.Point4d(*p, 1.0)
+    return curve
+
+
+def write_3dm(
+    path: str | os.PathLike,
+    mesh: Mesh,
+    topology: Topology,
+    *,
+    unit: str = "unit",
+    metadata: Mapping | None = None,
+    version: int = 0,
+    degree: int = 3,
+    fold_angle: float | None = None,
+    pattern: Layout | None = None,
+) -> Path:
+    """Write one state to a Rhino 3dm file (see the module notes).
+
+    Parameters
+    ----------
+    path : path-like
+    mesh : Mesh
+        The state to write, on the quads of ``topology`` (``state.mesh(faces="quads")``).
+    topology : Topology
+        The mesh's topology (:meth:`Structure.topology` with ``faces="quads"``): its
+        sheets, and the samples of its vertices.
+    unit : str
+        Model unit, a name in :data:`curvefold.io._tables.UNITS`.
+    metadata : mapping, optional
+        Design parameters, written as document user text ``curvefold:<key>``.
+    version : int
+        3dm archive version (0 = the newest rhino3dm writes).
+    degree : {3, 1}
+        Of the crease curves: cubic through the samples of smooth creases, 1 for the
+        polylines of rigid panels.
+    fold_angle : float, optional
+        2α of the state in degrees, recorded as the objects' user text.
+    pattern : Layout, optional
+        The crease pattern to lay beside the model on the ``crease pattern`` layer.
+
+    Returns
+    -------
+    Path
+    """
+    try:
+        import rhino3dm
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError("writing 3dm needs rhino3dm: pip install 'curvefold[rhino]'") from exc
+    if unit not in UNITS:
+        raise InputError(f"unit must be one of {sorted(UNITS)} for a 3dm file, got {unit!r}")
+    faces = np.asarray(mesh.faces_vertices)
+    if faces.shape[1] != 4 or (faces < 0).any() or not np.array_equal(faces, topology.faces_vertices):
+        raise InputError("write_3dm needs a mesh of ruling quads on the given topology (state.mesh(faces='quads'))")
+    if degree not in (1, 3):
+        raise InputError(f"degree must be 1 or 3, got {degree!r}")
+    meta = check_metadata(metadata)
+    x = np.asarray(mesh.vertices_coords, float)
+    if not np.isfinite(x).all():
+        raise InputError("mesh.vertices_coords must be finite")
+    t = topology.vertex_sample / max(int(topology.vertex_sample.max()), 1)
+
+    model = rhino3dm.File3dm()
+    model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNITS[unit].rhino)
+    model.ApplicationName = CREATOR
+    layer_index = {layer: model.Layers.AddLayer(layer, colour) for layer, colour in LAYERS}
+    group_index: dict[str, int] = {}
+
+    def group(name: str) -> int:
+        if name not in group_index:
+            g = rhino3dm.Group()
+            g.Name = name
+            model.Groups.Add(g)
+            group_index[name] = model.Groups.FindName(name).Index
+        return group_index[name]
+
+    def attributes(layer: str, object_name: str, *, tube: int, kind: str, sheet: str | None = None, angle: float | None = fold_angle):
+        attr = rhino3dm.ObjectAttributes()
+        attr.LayerIndex = layer_index[layer]
+        attr.Name = object_name
+        attr.AddToGroup(group(f"tube {tube + 1}"))
+        attr.SetUserString("curvefold:tube", str(tube + 1))
+        attr.SetUserString("curvefold:kind", kind)
+        if sheet is not None:
+            attr.AddToGroup(group(f"tube {tube + 1} · sheet {sheet}"))
+            attr.SetUserString("curvefold:sheet", sheet)
+        if angle is not None:
+            attr.SetUserString("curvefold:fold_angle_deg", f"{angle:.6g}")
+        return attr
+
+    for k, sheet in enumerate(topology.sheets):
+        part = rhino3dm.Mesh()
+        part.Vertices.UseDoublePrecisionVertices = True
+        for p in x[sheet.vertices].tolist():
+            part.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
+        for a, b, c, d in sheet.faces_vertices.tolist():
+            part.Faces.AddFace(a, b, c, d)
+        part.Normals.ComputeNormals()
+        part.Compact()
+        model.Objects.AddMesh(part, attributes("Sheets", sheet.label, tube=k // 2, kind="sheet", sheet=SHEET_LETTERS[k % 2]))
+
+    # Strips: quads (a_j, a_{j+1}, b_{j+1}, b_j) along each strip (Topology.tubes); strips 4 and 1 make sheet A.
+    for g in np.unique(topology.faces_group).tolist():
+        rows = faces[topology.faces_group == g]
+        sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
+        a, b = (_nurbs_curve(rhino3dm, x[v], t[v], degree) for v in sides)
+        model.Objects.AddSurface(rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
+                                 attributes("Strips", f"tube {g // 4 + 1} · strip {g % 4 + 1}", tube=g // 4, kind="strip",
+                                            sheet="A" if g % 4 in (0, 3) else "B"))
+
+    # creases run along one lattice curve (a panel's fold lines, kind "fold" too, run across)
+    ends = topology.vertex_curve[mesh.edges_vertices]
+    along = replace(mesh, edges_kind=np.where((ends[:, 0] == ends[:, 1]) | (mesh.edges_kind == "boundary"), mesh.edges_kind, "ruling"))
+    edge_of = {frozenset(e): i for i, e in enumerate(mesh.edges_vertices.tolist())}
+    sheet_of = {int(v): SHEET_LETTERS[k % 2] for k, s in enumerate(topology.sheets) for v in s.vertices}
+    for layer, kind in (("Fold", "fold"), ("Seam", "seam"), ("Boundary", "boundary")):
+        for i, chain in enumerate(crease_polylines(along, kind)):
+            tube = int(topology.faces_group[_faces_of(topology, chain[0])].min()) // 4
+            angles = np.abs(mesh.edges_foldAngle[[edge_of[frozenset(e)] for e in zip(chain[:-1].tolist(), chain[1:].tolist())]])
+            if kind == "boundary":
+                points = [rhino3dm.Point3d(*p) for p in x[chain].tolist()]
+                curve = rhino3dm.PolylineCurve(points)
+            else:
+                chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
+                curve = _nurbs_curve(rhino3dm, x[chain], t[chain], degree)
+            model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}", tube=tube, kind=kind,
+                                                     sheet=sheet_of[int(chain[0])] if kind == "fold" else None,
+                                                     angle=float(angles.mean()) if kind != "boundary" else fold_angle))
+
+    if pattern is not None:
+        _add_pattern(rhino3dm, model, pattern, unit, x)
+    for name, vi in _views(rhino3dm, x):
+        model.NamedViews.Add(vi)
+
+    for key, value in meta.items():
+        model.Strings[f"curvefold:{key}"] = str(value)
+    model.Strings["curvefold:unit"] = unit
+
+    with atomic_path(path) as tmp:
+        if not model.Write(str(tmp), version):
+            raise OSError(f"rhino3dm could not write {path}")
+    return Path(path)
+
+
+#: The letters of a tube's two sheets, in sheet order.
+SHEET_LETTERS = ("A", "B")
+#: The parent layer of the laid-out crease pattern.
+PATTERN_LAYER = "crease pattern"
+
+
+def _faces_of(topology: Topology, vertex: int) -> np.ndarray:
+    """The faces that hold a vertex."""
+    return np.flatnonzero((topology.faces_vertices == vertex).any(axis=1))
+
+
+def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> None:
+    """The layout's pages beside the model (to its right, on z = 0), at their printed size."""
+    from ._dxf import page_grid
+    from ._legend import check_layers, layer_look
+
+    to_unit = UNITS["mm"].metres / UNITS[unit].metres  # page mm in the document's unit
+    parent = rhino3dm.Layer()
+    parent.Name = PATTERN_LAYER
+    parent_index = model.Layers.Add(parent)
+    parent_id = model.Layers.FindIndex(parent_index).Id
+
+    def child(name: str, colour: str) -> int:
+        layer = rhino3dm.Layer()
+        layer.Name, layer.ParentLayerId, layer.Color = name, parent_id, (*rgb8(colour), 255)
+        return model.Layers.Add(layer)
+
+    keys = check_layers(None)
+    looks = {key: layer_look(layout, key) for key in keys}
+    index = {key: child(name, colour) for key, (name, colour, _) in looks.items()}
+    frames = child("pages", "#808080")
+    W, H = layout.page_size
+    size = float(np.ptp(x, axis=0).max()) if len(x) else 0.0
+    origin = np.array([x[:, 0].max() + 0.25 * size if len(x) else 0.0, x[:, 1].min() if len(x) else 0.0]) / to_unit
+    corners = page_grid(len(layout.pages), (W, H), 20.0)
+    corners = corners - corners.min(axis=0) + origin
+
+    def attr(layer: int, name: str):
+        a = rhino3dm.ObjectAttributes()
+        a.LayerIndex, a.Name = layer, name
+        return a
+
+    def polyline(points: np.ndarray, closed: bool) -> object:
+        q = np.concatenate([points, points[:1]]) if closed else points
+        return rhino3dm.PolylineCurve([rhino3dm.Point3d(float(u) * to_unit, float(v) * to_unit, 0.0) for u, v in q.tolist()])
+
+    for number, (page, corner) in enumerate(zip(layout.pages, corners), start=1):
+        frame = np.array([corner, corner + (W, 0), corner + (W, H), corner + (0, H)])
+        model.Objects.AddCurve(polyline(frame, True), attr(frames, f"page {number}"))
+        for key in keys:
+            if key == "labels":
+                for t in page.labels():
+                    u, v = np.asarray(t.position) + corner
+                    model.Objects.AddTextDot(t.text, rhino3dm.Point3d(float(u) * to_unit, float(v) * to_unit, 0.0), attr(index[key], t.text))
+                continue
+            for p in page.on_layer(key):
+                model.Objects.AddCurve(polyline(p.points + corner, p.closed), attr(index[key], f"page {number} · {looks[key][0]}"))
+
+
+def _views(rhino3dm, x: np.ndarray) -> list[tuple[str, object]]:
+    """The named views ``perspective``, ``plan`` and ``section`` of points (n, 3), each framing them."""
+    lo, hi = (x.min(axis=0), x.max(axis=0)) if len(x) else (np.zeros(3), np.ones(3))
+    centre, size = 0.5 * (lo + hi), max(float(np.linalg.norm(hi - lo)), 1e-9)
+    flat = x[:, :2] - x[:, :2].mean(axis=0) if len(x) > 1 else np.eye(2)
+    _, vectors = np.linalg.eigh(flat.T @ flat)
+    thin = vectors[:, 0]  # the horizontal direction of least extent
+    az, el = np.radians(-50.0), np.radians(22.0)  # the figures' view
+    toward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+    out = []
+    for name, direction, up, parallel in (("perspective", -toward, (0.0, 0.0, 1.0), False),
+                                          ("plan", (0.0, 0.0, -1.0), (0.0, 1.0, 0.0), True),
+                                          ("section", (thin[0], thin[1], 0.0), (0.0, 0.0, 1.0), True)):
+        vp = rhino3dm.ViewportInfo()
+        if parallel:
+            vp.ChangeToParallelProjection(True)
+        else:
+            vp.ChangeToPerspectiveProjection(2.0 * size, True, 50.0)
+        d = np.asarray(direction, float)
+        vp.SetCameraLocation(rhino3dm.Point3d(*(centre - 2.0 * size * d).tolist()))
+        vp.SetCameraDirection(rhino3dm.Vector3d(*d.tolist()))
+        vp.SetCameraUp(rhino3dm.Vector3d(*up))
+        half = 0.6 * size if parallel else 0.3 * size
+        vp.SetFrustum(-half, half, -half, half, 0.5 * size if parallel else 0.05 * size, 4.0 * size)
+        vi = rhino3dm.ViewInfo()
+        vi.Name, vi.Viewport = name, vp
+        out.append((name, vi))
+    return out

@@ -1,0 +1,209 @@
+"""The processes a sweep of the atlas runs on: this one, a local Dask cluster, or a running one.
+
+:func:`cluster_plan` decides from the grid's size and the user's ``workers`` and
+``scheduler``; :func:`client` opens the Dask client (None: this process) and checks that a
+running cluster's workers have this version of curvefold; :func:`in_order` hands tasks to
+it a window at a time and gives their results back in order. Dask is optional
+(``pip install 'curvefold[dask]'``) and imported only when a cluster is used.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import logging
+import os
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from importlib.metadata import version
+from itertools import islice
+from typing import Any
+
+from ..kernel._errors import InputError
+from ..kernel._validate import Spec
+
+__all__ = ["LOCAL_CLUSTER_FROM", "batched", "client", "cluster_plan", "in_order", "workers_spec"]
+
+#: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
+#: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
+#: workers save at most half of the 0.7 ms a design takes at 201 samples
+#: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
+LOCAL_CLUSTER_FROM = 5000
+
+
+def _cpus() -> int:
+    """CPUs this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+def workers_spec() -> Spec:
+    """The ``workers`` parameter: processes of the local cluster, at most one per CPU here.
+
+    Examples
+    --------
+    >>> workers_spec().check(1)
+    1
+    >>> workers_spec().check(0)   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.InputError: workers must be an integer in [1, ...this process may use), got 0
+    """
+    cpus = _cpus()
+    return Spec("workers", "integer", None, f"[1, {cpus}]", help="processes of the local cluster (1: this process)",
+                why=f"the {cpus} CPU{'s' * (cpus != 1)} this process may use")
+
+
+def cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple[int, str | None]:
+    """(local processes, scheduler address): (1, None) runs in this process.
+
+    Examples
+    --------
+    >>> cluster_plan(10, None, None), cluster_plan(1, 2, None)   # a small grid; one design needs one process
+    ((1, None), (1, None))
+    >>> cluster_plan(10, 0, None)   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.InputError: workers must be an integer in [1, ...this process may use), got 0
+    """
+    if scheduler is not None:
+        if workers is not None:
+            raise InputError(f"workers sizes a local cluster; the cluster at scheduler {scheduler!r} has its own workers, got workers = {workers!r}")
+        if not isinstance(scheduler, str) or not scheduler.strip():
+            raise InputError(f"scheduler must be the address of a Dask scheduler such as 'tcp://host:8786', got {scheduler!r}")
+        _require_dask(f"scheduler {scheduler!r}")
+        return 0, scheduler.strip()
+    if workers is None:
+        workers = min(2, _cpus()) if size >= LOCAL_CLUSTER_FROM and importlib.util.find_spec("distributed") else 1
+    workers = min(workers_spec().check(workers), size)
+    if workers > 1:
+        _require_dask(f"workers = {workers}")
+    return workers, None
+
+
+def _require_dask(what: str) -> None:
+    if importlib.util.find_spec("distributed") is None:
+        raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
+
+
+def batched(items: Iterable, size: int) -> Iterator[list]:
+    """Lists of ``size`` items (the last one shorter) of any iterable, read as they are needed.
+
+    Examples
+    --------
+    >>> list(batched(range(5), 2)), list(batched([], 2))
+    ([[0, 1], [2, 3], [4]], [])
+    """
+    items = iter(items)
+    while batch := list(islice(items, size)):
+        yield batch
+
+
+def in_order(submit: Callable[[Any], Any], tasks: Iterable, window: int) -> Iterator[Any]:
+    """The results of ``submit(task)`` (a future) for every task, in order, ``window`` futures at a time.
+
+    The oldest future is waited for while the others run; when it is done the next task is
+    submitted, so no more than ``window`` results (and the one handed out) are ever held.
+
+    Examples
+    --------
+    >>> from concurrent.futures import ThreadPoolExecutor
+    >>> with ThreadPoolExecutor(2) as pool:
+    ...     list(in_order(lambda t: pool.submit(pow, t, 2), range(5), window=2))
+    [0, 1, 4, 9, 16]
+    >>> list(in_order(None, [], window=2))   # no tasks: nothing submitted
+    []
+    """
+    tasks = iter(tasks)
+    pending = deque(submit(t) for t in islice(tasks, window))
+    while pending:
+        result = pending[0].result()
+        pending.popleft()  # the last reference: a cluster frees the result (and forgets the futures left when closed)
+        pending.extend(submit(t) for t in islice(tasks, 1))
+        yield result
+
+
+@contextmanager
+def client(workers: int, scheduler: str | None) -> Iterator[Any]:
+    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this process.
+
+    Dask's own logging is silenced meanwhile (its scheduler runs in this process for a local
+    cluster): what goes wrong reaches the caller as an exception, and stderr keeps to one
+    line (an interrupted sweep otherwise logs the keys it could not gather).
+
+    Examples
+    --------
+    >>> with client(1, None) as c:   # one process: no cluster, no Dask
+    ...     c is None
+    True
+    """
+    if scheduler is None and workers <= 1:
+        yield None
+        return
+    import dask
+    import distributed
+
+    dask_log = logging.getLogger("distributed")
+    level = dask_log.level
+    dask_log.setLevel(logging.CRITICAL)
+    try:
+        if scheduler is not None:
+            with _scheduler_client(scheduler) as client:
+                yield client
+        else:
+            with (
+                dask.config.set({"distributed.worker.profile.enabled": False}),  # the dashboard's stack samples: nobody looks
+                distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                         silence_logs=logging.CRITICAL) as cluster,
+                distributed.Client(cluster, set_as_default=False) as client,
+            ):
+                yield client
+    finally:
+        dask_log.setLevel(level)
+
+
+def _scheduler_client(scheduler: str) -> Any:
+    """A client of the running cluster at ``scheduler``, checked (see :func:`_check_workers`)."""
+    import distributed
+
+    try:  # first the address alone: a client made from a malformed one hangs when it is freed
+        scheme = distributed.comm.parse_address(distributed.comm.resolve_address(scheduler))[0]
+    except ValueError as err:
+        raise InputError(f"scheduler must be a Dask scheduler address such as 'tcp://host:8786', got {scheduler!r} ({err})") from None
+    except OSError as err:
+        raise InputError(f"scheduler {scheduler!r}: cannot resolve the host ({err})") from None
+    if scheme == "inproc":
+        raise InputError(f"scheduler must be a network address such as 'tcp://host:8786' (inproc:// names a scheduler inside one process), got {scheduler!r}")
+    try:
+        client = distributed.Client(scheduler, set_as_default=False)
+    except OSError as err:  # refused or timed out
+        raise InputError(f"scheduler {scheduler!r}: cannot connect to a Dask scheduler there ({err})") from None
+    try:
+        _check_workers(client, scheduler)
+    except BaseException:
+        client.close()
+        raise
+    return client
+
+
+def _check_workers(client: Any, scheduler: str) -> None:
+    """Raise unless the cluster has a worker and every worker runs this version of curvefold."""
+    from dask.config import get
+    from dask.utils import parse_timedelta
+
+    timeout = parse_timedelta(get("distributed.comm.timeouts.connect"))
+    try:
+        client.wait_for_workers(1, timeout=timeout)
+    except TimeoutError:
+        raise InputError(f"scheduler {scheduler!r} has no worker (waited {timeout:g} s)") from None
+    ours = version("curvefold")
+    found = client.run(_curvefold_version, on_error="return")
+    wrong = {w: v for w, v in sorted(found.items()) if v != ours}
+    if wrong:
+        worker, theirs = next(iter(wrong.items()))
+        have = f"curvefold {theirs}" if isinstance(theirs, str) else "no curvefold"
+        raise InputError(f"scheduler {scheduler!r}: every worker needs curvefold {ours}, as here; {len(wrong)} of {len(found)} differ, e.g. {worker} has {have}")
+
+
+def _curvefold_version() -> str:
+    """The version of curvefold installed where this runs (on a worker)."""
+    return version("curvefold")
