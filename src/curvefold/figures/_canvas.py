@@ -66,7 +66,7 @@ def _font(pixels: int):
 
 
 def nice_ticks(lo: float, hi: float, count: int = 6) -> np.ndarray:
-    """Round tick values (1, 2, 2.5 or 5 × 10^k apart) inside [lo, hi], about ``count`` of them.
+    """Round tick values (1, 2 or 5 × 10^k apart) inside [lo, hi], about ``count`` of them.
 
     Examples
     --------
@@ -81,7 +81,7 @@ def nice_ticks(lo: float, hi: float, count: int = 6) -> np.ndarray:
         return np.array([float(lo)])
     raw = (hi - lo) / max(count - 1, 1)
     k = np.floor(np.log10(raw))
-    step = min((m * 10**k for m in (1.0, 2.0, 2.5, 5.0, 10.0) if m * 10**k >= raw * 0.999), default=10 ** (k + 1))
+    step = min((m * 10**k for m in (1.0, 2.0, 5.0, 10.0) if m * 10**k >= raw * 0.999), default=10 ** (k + 1))
     ticks = np.arange(np.ceil(lo / step - 1e-9), np.floor(hi / step + 1e-9) + 1) * step
     return np.round(ticks, int(max(0, -k + 2))) + 0.0
 
@@ -202,9 +202,10 @@ class Canvas:
         turned = strip.rotate(90, expand=True)
         self.image.paste((0, 0, 0), (int(xy[0] - turned.width / 2), int(xy[1] - turned.height / 2)), turned)
 
-    def frame(self, rect: Sequence[float], xlim: Sequence[float], ylim: Sequence[float], *, log: bool = False) -> Frame:
-        """Axes on the rectangle ``rect`` = (left, top, right, bottom) in picture pixels (not supersampled)."""
-        return Frame(self, np.asarray(rect, float) * self.supersample, xlim, ylim, log=log)
+    def frame(self, rect: Sequence[float], xlim: Sequence[float], ylim: Sequence[float], **options) -> Frame:
+        """Axes on the rectangle ``rect`` = (left, top, right, bottom) in picture pixels (not supersampled);
+        ``options`` (``log``, ``grid``, ``ticks``) go to :class:`Frame`."""
+        return Frame(self, np.asarray(rect, float) * self.supersample, xlim, ylim, **options)
 
     def picture(self) -> Image.Image:
         """The picture, reduced to :attr:`size` (each pixel the mean of its ``supersample`` × ``supersample`` block)."""
@@ -225,14 +226,24 @@ class Frame:
     """A plot's axes on a :class:`Canvas`: data (x, y) in ``xlim`` × ``ylim`` drawn in ``rect``
     (left, top, right, bottom; canvas pixels), clipped to it; with ``log`` both axes are logarithmic."""
 
-    def __init__(self, canvas: Canvas, rect: np.ndarray, xlim: Sequence[float], ylim: Sequence[float], *, log: bool = False) -> None:
-        from PIL import Image, ImageDraw
+    def __init__(self, canvas: Canvas, rect: np.ndarray, xlim: Sequence[float], ylim: Sequence[float], *, log: bool = False,
+                 grid: bool = True, ticks: int = 7) -> None:
+        from PIL import ImageDraw
 
         self.canvas, self.rect, self.log = canvas, rect, log
         self.xlim, self.ylim = (float(xlim[0]), float(xlim[1])), (float(ylim[0]), float(ylim[1]))
-        left, top, right, bottom = rect
-        self.layer = Image.new("RGBA", (int(round(right - left)), int(round(bottom - top))), (255, 255, 255, 0))
+        left, top, right, bottom = (int(round(v)) for v in rect)
+        self.layer = canvas.image.crop((left, top, right, bottom))  # drawn on, then put back: translucent fills blend
         self.draw = ImageDraw.Draw(self.layer, "RGBA")
+        self.x_ticks, self.y_ticks = self._ticks(self.xlim, ticks), self._ticks(self.ylim, ticks)
+        self._tick_pixels = (self.pixels(np.stack([self.x_ticks, np.full(len(self.x_ticks), self.ylim[0])], axis=-1))[:, 0],
+                             self.pixels(np.stack([np.full(len(self.y_ticks), self.xlim[0]), self.y_ticks], axis=-1))[:, 1])
+        if grid:
+            w, gray = max(1, round(0.4 * canvas.pt)), (0, 0, 0, 30)
+            for x in self._tick_pixels[0].tolist():
+                self.draw.line((x, 0, x, self.layer.height), fill=gray, width=w)
+            for y in self._tick_pixels[1].tolist():
+                self.draw.line((0, y, self.layer.width, y), fill=gray, width=w)
 
     def _axis(self, values: np.ndarray, lim: tuple[float, float]) -> np.ndarray:
         f = np.log10 if self.log else (lambda v: v)
@@ -287,26 +298,13 @@ class Frame:
         """Canvas pixels of data points."""
         return self.pixels(xy) + self.rect[:2]
 
-    def finish(self, *, title: str = "", xlabel: str = "", ylabel: str = "", grid: bool = True, ticks: int = 6,
-               xticks: bool = True, points: float = 9.0) -> None:
-        """Put the drawing on the canvas under a grid, frame it and write its ticks, labels and title."""
+    def finish(self, *, title: str = "", xlabel: str = "", ylabel: str = "", xticks: bool = True, points: float = 9.0) -> None:
+        """Put the drawing on the canvas, frame it and write its ticks, labels and title."""
         canvas, (left, top, right, bottom) = self.canvas, self.rect
         pt = canvas.pt
-        under = canvas.image.crop((int(left), int(top), int(left) + self.layer.width, int(top) + self.layer.height)).convert("RGBA")
-        if grid:  # behind the drawing
-            from PIL import ImageDraw
-
-            grid_draw = ImageDraw.Draw(under, "RGBA")
-        x_ticks, y_ticks = self._ticks(self.xlim, ticks), self._ticks(self.ylim, ticks)
-        xs = self.pixels(np.stack([x_ticks, np.full(len(x_ticks), self.ylim[0])], axis=-1))[:, 0]
-        ys = self.pixels(np.stack([np.full(len(y_ticks), self.xlim[0]), y_ticks], axis=-1))[:, 1]
-        if grid:
-            for x in xs.tolist():
-                grid_draw.line((x, 0, x, self.layer.height), fill=(0, 0, 0, 28), width=max(1, round(0.4 * pt)))
-            for y in ys.tolist():
-                grid_draw.line((0, y, self.layer.width, y), fill=(0, 0, 0, 28), width=max(1, round(0.4 * pt)))
-        under.alpha_composite(self.layer)
-        canvas.image.paste(under.convert("RGB"), (int(left), int(top)))
+        canvas.image.paste(self.layer, (int(round(left)), int(round(top))))
+        xs, ys = self._tick_pixels
+        x_ticks, y_ticks = self.x_ticks, self.y_ticks
         draw, ink, tick = canvas.draw, (0, 0, 0, 255), 3.5 * pt
         draw.rectangle((left, top, right, bottom), outline=ink, width=max(1, round(0.8 * pt)))
         for x, value in zip((xs + left).tolist(), x_ticks.tolist()):
@@ -337,10 +335,39 @@ class Frame:
             return "1" if exponent == 0 else "10" if exponent == 1 else f"1e{exponent}".replace("-", "−")
         return tick_label(value, float(np.min(np.diff(ticks))) if len(ticks) > 1 else abs(value) or 1.0)
 
-    def legend(self, entries: Sequence[tuple[str, dict]], corner: str = "upper left", *, points: float = 7.5) -> None:
+    def legend(self, entries: Sequence[tuple[str, dict]], corner: str = "upper left", *, points: float = 7.5,
+               avoid: Sequence[np.ndarray] = ()) -> None:
         """A framed legend inside the axes: ``entries`` are (label, style), the style a dict with one of
-        ``line`` (colour; ``width``, ``dash``), ``patch`` (fill; ``edge``) or ``marker`` (colour; ``shape``, ``size``)."""
+        ``line`` (colour; ``width``, ``dash``), ``patch`` (fill; ``edge``) or ``marker`` (colour; ``shape``, ``size``).
+
+        ``corner`` "best" takes the corner or side whose legend covers the fewest of the data points ``avoid`` (each (n, 2)).
+        """
+        if corner == "best":
+            points_px = self.to_canvas(np.concatenate([np.asarray(p, float).reshape(-1, 2) for p in avoid]))
+
+            def covered(where: str) -> int:
+                x0, y0, x1, y1 = legend_box(self.canvas, entries, self.rect, where, points=points)
+                return int(((points_px[:, 0] >= x0) & (points_px[:, 0] <= x1) & (points_px[:, 1] >= y0) & (points_px[:, 1] <= y1)).sum())
+
+            corner = min(_INSIDE, key=covered)
         legend(self.canvas, entries, self.rect, corner, points=points)
+
+
+#: Where a legend may go inside a frame, in order of preference.
+_INSIDE = ("upper right", "upper left", "lower left", "lower right", "center right", "center left")
+
+
+def legend_box(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[float], corner: str, *,
+               points: float = 7.5) -> tuple[float, float, float, float]:
+    """(left, top, right, bottom) of a framed legend in the ``corner`` of ``rect`` (canvas pixels)."""
+    pt = canvas.pt
+    row, key, gap = 1.45 * points * pt, 2.4 * points * pt, 0.6 * points * pt
+    width = key + 3 * gap + max((canvas.text_size(label, points)[0] for label, _ in entries), default=0.0)
+    height = row * len(entries) + gap
+    left, top, right, bottom = rect
+    x = left + gap if "left" in corner else right - gap - width if corner != "right" else right + gap
+    y = top + gap if "upper" in corner else bottom - gap - height if "lower" in corner else (top + bottom - height) / 2
+    return x, y, x + width, y + height
 
 
 def legend(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[float], corner: str, *, points: float = 7.5,
@@ -359,11 +386,9 @@ def legend(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[f
             canvas.text((x + key + gap, y + row / 2), label, points, anchor="lm")
             x += key + gap + w + 2 * gap
         return
-    width, height = key + 3 * gap + max(widths, default=0.0), row * len(entries) + gap
-    x = left + gap if "left" in corner else right - gap - width if corner != "right" else right + gap
-    y = top + gap if "upper" in corner else bottom - gap - height if "lower" in corner else (top + bottom - height) / 2
+    x, y, x1, y1 = legend_box(canvas, entries, rect, corner, points=points)
     if framed:
-        canvas.draw.rounded_rectangle((x, y, x + width, y + height), radius=0.4 * points * pt, fill=(255, 255, 255, 235),
+        canvas.draw.rounded_rectangle((x, y, x1, y1), radius=0.4 * points * pt, fill=(255, 255, 255, 235),
                                       outline=(204, 204, 204, 255), width=max(1, round(0.6 * pt)))
     for k, (label, style) in enumerate(entries):
         middle = y + gap / 2 + row * (k + 0.5)

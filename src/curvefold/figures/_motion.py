@@ -54,14 +54,14 @@ def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, 
     supersample : int, keyword-only
     canvas : Canvas, optional, keyword-only
         Draw into this canvas, in ``rect`` (left, top, right, bottom; picture pixels), rather
-        than into a picture of its own (``size`` is then that of ``rect``); nothing is returned.
+        than into a picture of its own (``size`` is not used).
     title_points : float, optional, keyword-only
         Size of the title; default a twentieth of the height.
 
     Returns
     -------
-    PIL.Image.Image or None
-        An RGB image of ``size``; None when drawn into ``canvas``.
+    PIL.Image.Image or float
+        An RGB image of ``size``; drawn into ``canvas``, the scale instead: canvas pixels per model unit.
     """
     from PIL import ImageDraw
 
@@ -83,7 +83,7 @@ def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, 
     draw_scene(ImageDraw.Draw(canvas.image), scene, pixels, canvas.pt, canvas.supersample)
     if title:
         canvas.text((left + w / 2, top + 0.02 * h), title, title_px / canvas.pt, anchor="mt")
-    return canvas.picture() if own else None
+    return canvas.picture() if own else scale
 
 
 def motion_frames(
