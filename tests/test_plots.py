@@ -319,3 +319,155 @@ def test_plots_leave_pyplot_alone():
         "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'\n"
     )
     subprocess.run([sys.executable, "-W", "error", "-c", code], check=True, timeout=120)
+
+
+# -- pictures drawn without matplotlib ------------------------------------------------------------
+
+from curvefold.figures import _canvas as canvas  # noqa: E402
+from curvefold.figures import _pictures as pictures  # noqa: E402
+
+
+def test_nice_ticks_are_round_and_inside():
+    for lo, hi in ((-11.7, 11.7), (0.058, 0.083), (-0.02, 1.02), (0.64, 1.48), (3e-5, 7e-5)):
+        ticks = canvas.nice_ticks(lo, hi, 7)
+        assert lo <= ticks[0] and ticks[-1] <= hi and 3 <= len(ticks) <= 8
+        step = np.diff(ticks)
+        assert_allclose(step, step[0])
+        mantissa = step[0] / 10 ** np.floor(np.log10(step[0]))
+        assert np.isclose(mantissa, [1, 2, 5]).any()
+    assert canvas.tick_label(-5.0, 5.0) == "−5" and canvas.tick_label(0.065, 0.005) == "0.065"
+
+
+def test_viridis_and_inks_match_matplotlib_and_pillow():
+    import matplotlib
+    from PIL import ImageDraw
+
+    t = np.linspace(0, 1, 41)
+    assert np.abs(canvas.viridis(t) - matplotlib.colormaps["viridis"](t)[:, :3]).max() < 0.06  # 11 stops, linear between
+    draw = ImageDraw.Draw(Image.new("RGB", (1, 1)))
+    colours = np.array([[0, 0, 0], [1, 0.5, 0.25], [0.2, 0.9, 1]])
+    assert canvas.inks(colours) == [draw.draw.draw_ink(tuple(int(round(255 * v)) for v in c)) for c in colours]
+
+
+def test_the_domain_polygon_is_scipys_halfspace_intersection(vault, block):
+    spatial = pytest.importorskip("scipy.spatial")
+    for domain in (vault.lattice.domain, block.lattice.domain):
+        for box in (0.5, 3.0, 11.7, 100.0):
+            poly = domain.polygon(box=box)
+            halfspaces = np.concatenate([np.stack([domain.a, domain.b, -np.ones_like(domain.a)], axis=1),
+                                         np.array([[1, 0, -box], [-1, 0, -box], [0, 1, -box], [0, -1, -box]], float)])
+            pts = spatial.HalfspaceIntersection(halfspaces, np.zeros(2)).intersections
+            reference = pts[spatial.ConvexHull(pts).vertices]
+            # every vertex of one lies on the boundary of the other, to rounding
+            for a, b in ((poly, reference), (reference, poly)):
+                edges = np.roll(b, -1, axis=0) - b
+                t = np.clip(np.einsum("pek,ek->pe", a[:, None] - b[None], edges) / np.einsum("ek,ek->e", edges, edges), 0, 1)
+                gap = np.linalg.norm(a[:, None] - (b[None] + t[..., None] * edges[None]), axis=2).min(axis=1)
+                assert gap.max() < 1e-10 * box
+            assert (poly @ np.stack([domain.a, domain.b])).max() < 1 + 1e-12
+
+
+def test_regression_domain_picture_shades_the_valid_set(vault, tmp_path):
+    plot = plots.domain_plot(vault.lattice, vault.structure.cells)
+    picture = pictures.regression_domain_picture(vault.lattice, vault.structure.cells)
+    assert picture.size == (960, 810) and picture.mode == "RGB"
+    rng = np.random.default_rng(7)
+    uv = rng.uniform(-plot.box, plot.box, (600, 2))
+    cells = (uv[:, None] >= plot.cells.min(axis=1)[None] - 0.1) & (uv[:, None] <= plot.cells.max(axis=1)[None] + 0.1)
+    free = ~cells.all(axis=2).any(axis=1)  # away from the cells drawn over the domain
+    near = np.abs(vault.lattice.domain.margin(uv)) > 0.03  # and from its edge and the lines
+    left, top, right, bottom = 100, 42, 790, 732
+    legend = (uv[:, 0] < -plot.box + 0.45 * 2 * plot.box) & (uv[:, 1] > plot.box - 0.2 * 2 * plot.box)
+    axes = (np.abs(uv) < 0.02 * plot.box).any(axis=1)
+    keep = free & near & ~legend & ~axes
+    uv, valid = uv[keep], vault.lattice.domain.contains(uv[keep])
+
+    def green(image: np.ndarray) -> np.ndarray:
+        px = np.stack([left + (uv[:, 0] + plot.box) / (2 * plot.box) * (right - left),
+                       top + (plot.box - uv[:, 1]) / (2 * plot.box) * (bottom - top)], axis=-1).round().astype(int)
+        rgb = image[px[:, 1], px[:, 0]].astype(int)
+        return np.abs(rgb - np.array([0xCF, 0xE8, 0xCF])).max(axis=1) < 16
+
+    shaded = green(np.asarray(picture))
+    assert valid.any() and (~valid).any()
+    assert (shaded == valid).mean() > 0.97  # green where Eq. 18 holds, not where it fails (a limiting line may cross a point)
+    # a picture of a damaged domain (the valid set mirrored) fails the same check
+    damaged = pictures.regression_domain_picture(vault.lattice, vault.structure.cells).transpose(Image.Transpose.FLIP_LEFT_RIGHT)
+    assert (green(np.asarray(damaged)) == valid).mean() < 0.9
+    (path,) = pictures.write_picture(picture, tmp_path / "domain")
+    with Image.open(path) as im:
+        assert im.format == "PNG" and im.size == picture.size
+        pixels = np.asarray(im.convert("RGB")).reshape(-1, 3)
+    assert len(np.unique(pixels, axis=0)) > 30 and (pixels.min(axis=1) < 200).mean() > 0.01
+
+
+def ink_columns(picture) -> np.ndarray:
+    """Whether each column of a picture holds a dark pixel."""
+    return (np.asarray(picture.convert("L")) < 128).any(axis=0)
+
+
+def test_pictures_are_drawn_from_the_figures_content(vault, block, tmp_path):
+    for picture, size in ((pictures.width_proportion_picture(vault.lattice), (960, 780)),
+                          (pictures.sections_picture(vault), (1440, 720)),
+                          (pictures.vault_picture(vault), (1050, 780)),
+                          (pictures.motion_strip_picture(vault), (1065, 1020)),
+                          (pictures.structure_picture(block), (960, 780)),
+                          (pictures.sections_picture(block, (0.0, 0.3, 1.0)), (2130, 720))):
+        assert picture.size == size
+        pixels = np.asarray(picture).reshape(-1, 3)
+        assert len(np.unique(pixels, axis=0)) > 100  # not blank: shaded, antialiased
+        dark = ink_columns(picture)
+        assert dark[: size[0] // 3].any() and dark[-size[0] // 3:].any()  # drawn across the picture
+        assert (np.asarray(picture)[:, :2] > 250).all() and (np.asarray(picture)[:, -2:] > 250).all()  # nothing cut at the sides
+    # the vault's strips are shaded grey, its creases red and blue as in the figure
+    rgb = np.asarray(pictures.vault_picture(vault)).reshape(-1, 3).astype(int)
+    assert ((rgb[:, 0] > 200) & (rgb[:, 1] < 60) & (rgb[:, 2] < 60)).sum() > 500
+    assert ((rgb[:, 2] > 200) & (rgb[:, 0] < 60) & (rgb[:, 1] < 60)).sum() > 500
+    grey = rgb[(np.ptp(rgb, axis=1) < 6) & (rgb.max(axis=1) < 200) & (rgb.max(axis=1) > 60)]
+    assert len(grey) > 20000 and np.ptp(grey[:, 0]) > 60
+
+
+def test_the_width_plot_and_its_picture_agree(vault):
+    plot = plots.width_plot(vault.lattice)
+    assert_allclose(plot.ratio, vault.lattice.width_right / vault.lattice.width_left)
+    assert [text for text, _ in plot.notes] == [f"{vault.design.p_xy:.4g} at t = 0", f"{vault.p_xz:.4g} at t = ½"]
+    assert_allclose(plot.mark_ratio, [[0.0, vault.design.p_xy], [0.5, vault.p_xz]], rtol=1e-9)
+    assert plots.mathtext(plot.top_curves[0][0]) == "$w_L$(t)"
+
+
+def test_singular_values_picture(tmp_path):
+    from curvefold.analysis._mechanism import Mechanism  # noqa: F401
+
+    class State:  # the fields the plot reads
+        def __init__(self, label, values, tolerance):
+            self.label, self.singular_values, self.tolerance = label, np.asarray(values, float), tolerance
+            self.dof, self.nullity, self.gap = 1, 7, 1e8
+
+    states = [State("flat", np.logspace(0, -16, 30), 1e-10), State("design", np.logspace(0, -15, 30), 1e-10)]
+    plot = plots.singular_values_plot(states)
+    assert_allclose(plot.values[0][-1], 1.0) and plot.labels[0].startswith("flat: 1 internal DOF (7 null), gap 1.0e+08")
+    picture = pictures.singular_values_picture(states)
+    assert picture.size == (960, 690) and len(np.unique(np.asarray(picture).reshape(-1, 3), axis=0)) > 30
+    with pytest.raises(InputError, match="at least one"):
+        pictures.singular_values_picture([])
+
+
+def test_the_pictures_job_imports_neither_matplotlib_nor_scipy(tmp_path):
+    code = (
+        "import sys\n"
+        "from pathlib import Path\n"
+        "from curvefold.app import default_design\n"
+        "from curvefold.app._build import build\n"
+        "from curvefold.app import _products as products\n"
+        "built = build(default_design('vault'))\n"
+        "jobs = dict(products.jobs(built, built.design.output.formats))\n"
+        "before = {m for m in sys.modules if m.startswith('scipy')}\n"
+        f"files = jobs['pictures'](Path({str(tmp_path)!r})) + jobs['folding GIF'](Path({str(tmp_path)!r}))\n"
+        "assert 'matplotlib' not in sys.modules, 'matplotlib imported'\n"
+        "assert {m for m in sys.modules if m.startswith('scipy')} == before, 'scipy imported'\n"
+        "print(sorted(f.name for f in files))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.split() == ["['folding-motion.png',", "'folding.gif',", "'regression-domain.png',", "'sections.png',", "'vault.png',",
+                                "'width-proportion.png']"]

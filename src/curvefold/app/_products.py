@@ -365,24 +365,26 @@ _ORDER = DRAWN + ("3D models", "assembly guide", "crease patterns", "FOLD files"
 
 
 def _figures(built: Built) -> dict[str, Callable]:
-    """The report's pictures by name, each a function that draws it (nothing is drawn here)."""
-    from ..figures import _plots as plots
-    from ..figures import _views as views
+    """The report's pictures by name, each a function that draws it (nothing is drawn here): a PIL
+    image drawn without matplotlib, but for the single fold's and the pictures of a design under load."""
+    from ..figures import _pictures as pictures
 
     structure = built.structure
     if structure is None:
+        from ..figures import _views as views
+
         fold = built.single_fold
         return {"crease": partial(views.plot_crease, built.crease, width=(fold.width_left, fold.width_right))}
     lattice = structure.lattice
-    figures = {"regression-domain": partial(plots.plot_regression_domain, lattice, structure.cells),
-               "width-proportion": partial(plots.plot_width_proportion, lattice)}
+    figures = {"regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
+               "width-proportion": partial(pictures.width_proportion_picture, lattice)}
     if built.vault is not None:
-        figures |= {"vault": partial(views.plot_vault, built.vault), "sections": partial(plots.plot_sections, built.vault),
-                    "folding-motion": partial(views.plot_motion_strip, built.vault)}
+        figures |= {"vault": partial(pictures.vault_picture, built.vault), "sections": partial(pictures.sections_picture, built.vault),
+                    "folding-motion": partial(pictures.motion_strip_picture, built.vault)}
     else:
-        figures[built.design.kind] = partial(views.plot_structure, structure)
+        figures[built.design.kind] = partial(pictures.structure_picture, structure)
     if lattice.rigid:
-        figures["singular-values"] = lambda: plots.plot_singular_values(certified_mechanism(structure).states)
+        figures["singular-values"] = lambda: pictures.singular_values_picture(certified_mechanism(structure).states)
     loaded = built.mechanics
     if loaded is not None:
         from ..figures import _mechanics as mechanics
@@ -394,9 +396,9 @@ def _figures(built: Built) -> dict[str, Callable]:
 
 def _pictures(built: Built, folder: Path) -> list:
     """Plots for the report (PNG)."""
-    from ..figures._plots import save_figure
+    from ..figures._pictures import write_picture
 
-    return [path for name, draw in _figures(built).items() for path in save_figure(draw(), folder / name, formats=("png",))]
+    return [path for name, draw in _figures(built).items() for path in write_picture(draw(), folder / name)]
 
 
 def picture_files(built: Built) -> list[str]:

@@ -6,12 +6,11 @@ scale: the scenes of :func:`curvefold.figures._scene.motion_scenes` rasterised b
 writes them as the GIF of the output folder with :func:`curvefold.io._gif.write_gif`.
 Pillow comes with matplotlib (``pip install curvefold[plot]``), whose DejaVu Sans sets the
 titles: Pillow is imported when a frame is drawn, matplotlib never (its font file is found
-without running matplotlib, which would cost the job a fifth of its time).
+without running matplotlib: :func:`curvefold.figures._canvas.font_file`).
 """
 
 from __future__ import annotations
 
-import importlib.util
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -22,8 +21,9 @@ import numpy as np
 from ..geometry._lattice import check_anchor
 from ..io._gif import write_gif
 from ..kernel._errors import InputError
+from ._canvas import Canvas, draw_scene
 from ._plots import KIND_COLORS, structure_of
-from ._scene import GROUND_COLOR, GROUND_EDGE, Scene, View, motion_scenes
+from ._scene import Scene, View, motion_scenes
 
 if TYPE_CHECKING:  # pragma: no cover
     from PIL import Image
@@ -34,7 +34,8 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["raster", "motion_frames", "write_motion_gif"]
 
 
-def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, supersample: int = 2) -> Image.Image:
+def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, supersample: int = 2, canvas: Canvas | None = None,
+           rect: Sequence[float] | None = None, title_points: float | None = None) -> Image.Image:
     """A scene drawn with Pillow: the screen points ``box`` (P, 2) fit below a title line.
 
     Drawn at ``supersample`` times the size and reduced, so edges are smoothed; line widths
@@ -51,59 +52,38 @@ def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, 
     title : str
         The line above the drawing.
     supersample : int, keyword-only
+    canvas : Canvas, optional, keyword-only
+        Draw into this canvas, in ``rect`` (left, top, right, bottom; picture pixels), rather
+        than into a picture of its own (``size`` is not used).
+    title_points : float, optional, keyword-only
+        Size of the title; default a twentieth of the height.
 
     Returns
     -------
-    PIL.Image.Image
-        An RGB image of ``size``.
+    PIL.Image.Image or float
+        An RGB image of ``size``; drawn into ``canvas``, the scale instead: canvas pixels per model unit.
     """
-    from PIL import Image, ImageDraw, ImageFont
+    from PIL import ImageDraw
 
-    w, h = size[0] * supersample, size[1] * supersample
-    image = Image.new("RGB", (w, h), "white")
-    draw = ImageDraw.Draw(image)
-    top, pad = 0.12 * h, 0.02 * w
+    own = canvas is None
+    if own:
+        canvas = Canvas(size, dpi=100.0, supersample=supersample)
+        rect = (0, 0, *size)
+    left, top, right, bottom = (v * canvas.supersample for v in rect)
+    w, h = right - left, bottom - top
+    title_px = 0.05 * h if title_points is None else title_points * canvas.pt
+    head, pad = (0.12 * h if title_points is None else 2.2 * title_px) if title else 0.0, 0.02 * w
     lo, hi = box.min(axis=0), box.max(axis=0)
-    scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - top - pad) / max(hi[1] - lo[1], 1e-12))
-    centre = np.array([w / 2, (h + top - pad) / 2])
+    scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - head - pad) / max(hi[1] - lo[1], 1e-12))
+    centre = np.array([left + w / 2, top + (h + head - pad) / 2])
 
     def pixels(points: np.ndarray) -> np.ndarray:
         return (points - 0.5 * (lo + hi)) * scale * np.array([1.0, -1.0]) + centre
 
-    if scene.ground is not None:
-        draw.polygon([tuple(p) for p in pixels(scene.ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE, width=supersample)
-    sizes = np.array([len(p) for p in scene.paths])
-    paths = np.split(pixels(np.concatenate(scene.paths)), np.cumsum(sizes)[:-1])
-    fills, strokes = (np.round(255 * np.asarray(c)[:, :3]).astype(int).tolist() for c in (scene.fill, scene.stroke))
-    lines = np.maximum(1, np.round(np.asarray(scene.widths) * 100 / 72 * supersample)).astype(int).tolist()
-    for path, fill, stroke, line in zip(paths, fills, strokes, lines):
-        xy = path.ravel().tolist()
-        if len(path) > 2:
-            draw.polygon(xy, fill=tuple(fill), outline=tuple(stroke), width=line)
-        else:
-            draw.line(xy, fill=tuple(stroke), width=line)
-    font = ImageFont.truetype(str(_title_font()), round(0.05 * h))
-    draw.text((w / 2, 0.02 * h), title, fill="black", font=font, anchor="ma")
-    return image.resize(size, Image.Resampling.BOX)
-
-
-def _title_font() -> Path:
-    """The DejaVu Sans that matplotlib ships (the font of the figures), found without importing matplotlib.
-
-    Raises
-    ------
-    ImportError
-        Without matplotlib.
-
-    Examples
-    --------
-    >>> _title_font().name
-    'DejaVuSans.ttf'
-    """
-    spec = importlib.util.find_spec("matplotlib")
-    if spec is None or not spec.submodule_search_locations:
-        raise ImportError("the folding GIF's titles need matplotlib's font: pip install 'curvefold[plot]'")
-    return Path(next(iter(spec.submodule_search_locations))) / "mpl-data" / "fonts" / "ttf" / "DejaVuSans.ttf"
+    draw_scene(ImageDraw.Draw(canvas.image), scene, pixels, canvas.pt, canvas.supersample)
+    if title:
+        canvas.text((left + w / 2, top + 0.02 * h), title, title_px / canvas.pt, anchor="mt")
+    return canvas.picture() if own else scale
 
 
 def motion_frames(

@@ -171,7 +171,7 @@ class Scene:
     ground: np.ndarray | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "paths", tuple(frozen(np.asarray(p, float)) for p in self.paths))
+        object.__setattr__(self, "paths", _frozen_paths(self.paths))
         for name in ("roles", "fill", "stroke", "widths"):
             object.__setattr__(self, name, frozen(getattr(self, name)))
         if self.ground is not None:
@@ -228,6 +228,16 @@ class Scene:
                 lines.append(f'<polygon class="{role}" points="{_points(path)}" fill="{_hex(fill)}" {paint}/>')
         lines += ["</g>", "</svg>", ""]
         return "\n".join(lines)
+
+
+class _HeldPaths(tuple):
+    """Paths that are already read-only views of read-only arrays (built by :func:`render_strips`):
+    a scene holds them without checking each (a scene has thousands)."""
+
+
+def _frozen_paths(paths: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
+    """Every path :func:`~curvefold.kernel._arrays.frozen`, as floats (:class:`_HeldPaths` as they are)."""
+    return paths if isinstance(paths, _HeldPaths) else tuple(frozen(np.asarray(p, float)) for p in paths)
 
 
 def _num(v: float) -> str:
@@ -306,9 +316,9 @@ def render_strips(
         strokes += [np.repeat(per_curve, vertices.shape[1] - 1, axis=0), np.tile(rgba(RIM_COLOR), (len(e2), 1))]
         widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
     order = np.argsort(np.concatenate(depth), kind="stable")
-    flat = [p for group in paths for p in readonly(group)]  # read-only views: the scene holds them without copying each
+    flat = [p for group in paths for p in readonly(np.asarray(group, float))]  # read-only views: held without copying each
     return Scene(
-        tuple(flat[i] for i in order),
+        _HeldPaths(flat[i] for i in order),
         np.concatenate(roles)[order],
         np.concatenate(fills)[order],
         np.concatenate(strokes)[order],

@@ -9,6 +9,7 @@ each, with a scale bar in model units. Figures are built as in :mod:`curvefold.f
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -16,7 +17,7 @@ import numpy as np
 from ..geometry._single_fold import default_widths
 from ..geometry._topology import sample_index, thin_cells
 from ..kernel._errors import InputError
-from ._plots import KIND_COLORS, UNITS, new_figure
+from ._plots import KIND_COLORS, UNITS, legend_handles, mathtext, new_figure
 from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, Scene, View, motion_scenes, render_strips, state_scene, vault_scene
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -27,7 +28,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
     from ..vault._assembly import Vault
 
-__all__ = ["View", "plot_vault", "plot_motion_strip", "plot_structure", "plot_crease"]
+__all__ = ["View", "crease_legend", "scale_length", "scale_label", "vault_title", "MotionStrip", "motion_strip", "structure_title",
+           "plot_vault", "plot_motion_strip", "plot_structure", "plot_crease"]
 
 
 # -- drawing scenes ----------------------------------------------------------------------------------
@@ -77,13 +79,24 @@ def _scale_bar(ax: Axes, span: float, unit: str | None = None) -> None:
     (default model units)."""
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
-    length = _nice_length(span)
-    label = f"{length:g} {unit}" if unit else f"{length:g} {UNITS}" if length != 1 else "1 model unit"
+    length = scale_length(span)
+    label = scale_label(length, unit)
     ax.add_artist(AnchoredSizeBar(ax.transData, length, label, "lower right", pad=0.3, frameon=False, size_vertical=0, fontproperties={"size": 7}))
 
 
-def _nice_length(span: float) -> float:
-    """A round length (1, 2 or 5 × 10^k) near a fifth of ``span``."""
+def scale_label(length: float, unit: str | None = None) -> str:
+    """The text of a scale bar of ``length`` in ``unit`` (default model units).
+
+    Examples
+    --------
+    >>> scale_label(0.5), scale_label(1.0)
+    ('0.5 model units', '1 model unit')
+    """
+    return f"{length:g} {unit}" if unit else f"{length:g} {UNITS}" if length != 1 else "1 model unit"
+
+
+def scale_length(span: float) -> float:
+    """A round length (1, 2 or 5 × 10^k) near a fifth of ``span``: the scale bar's."""
     target = max(span / 5.0, 1e-12)
     k = np.floor(np.log10(target))
     for m in (1.0, 2.0, 5.0, 10.0):
@@ -92,15 +105,87 @@ def _nice_length(span: float) -> float:
     return float(10 ** (k + 1))  # pragma: no cover
 
 
-def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwargs: Any) -> None:
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
+def vault_title(vault: Vault, *, angle: float | None = None, max_tubes: int = 200) -> str:
+    """The title of a view of a vault (subscripts written ``p_{xy}``): its parameters, tubes drawn, 2α."""
+    d = vault.design
+    drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
+    shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
+    angle_value = float(d.fold_angle if angle is None else angle)
+    panels = f", {d.panels} panels per crease" if d.panels else ""
+    return f"Vault: a = {d.a:g}, p_{{xy}} = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°"
 
+
+def structure_title(structure: Structure, fold_angle: float, *, max_cells: int = 400) -> str:
+    """The title of a view of a tube or cellular block at 2α = ``fold_angle`` degrees."""
+    k = len(structure.cells)
+    drawn = len(thin_cells(structure.cell_curves, max_cells))
+    what = "Tube" if k == 1 else f"Cellular block of {k} cells"
+    shown = "" if drawn == k else f" ({drawn} drawn)"
+    return f"{what}{shown}, 2α = {fold_angle:.4g}°"
+
+
+@dataclass(frozen=True, eq=False)
+class MotionStrip:
+    """What the small multiples of a vault's folding show (:func:`motion_strip`).
+
+    Attributes
+    ----------
+    scenes : tuple of Scene
+        One per fold angle, at one scale (:attr:`box` holds them all).
+    titles, notes : tuple of str
+        Each panel's title and the line under it (the lift of the ends off the ground).
+    title : str
+        The whole picture's (subscripts written ``p_{xy}``).
+    """
+
+    scenes: tuple
+    titles: tuple
+    notes: tuple
+    title: str
+
+    @property
+    def box(self) -> np.ndarray:
+        """Screen points (2·A, 2) that every panel fits (one scale for all)."""
+        return np.concatenate([scene.box for scene in self.scenes])
+
+    @property
+    def columns(self) -> int:
+        """Panels per row: four in a square (readable on a phone as on a desktop), else one row."""
+        return 2 if len(self.scenes) == 4 else len(self.scenes)
+
+
+def motion_strip(
+    vault: Vault,
+    angles: Sequence[float] = (0.0, 30.0, 60.0, 90.0),
+    *,
+    anchor: str = "start",
+    view: View = View(),
+    segments: int = 64,
+    max_tubes: int = 100,
+) -> MotionStrip:
+    """What :func:`plot_motion_strip` shows (same parameters and errors)."""
+    angles_arr = np.atleast_1d(np.asarray(angles, float))
+    if angles_arr.ndim != 1 or angles_arr.size == 0:
+        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
+    motion = vault.motion(angles_arr, anchor=anchor)  # (A, M, n, 3); validates the angles
+    lift = vault.lift_off(angles_arr, anchor=anchor)
+    scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
+    d = vault.design
+    titles = tuple(f"2α = {f:g}°" + (" (design)" if abs(f - d.fold_angle) < 1e-9 else "") for f in angles_arr.tolist())
+    notes = tuple(f"ends off the ground: {lf.max():.3f} {UNITS}" for lf in lift)
+    return MotionStrip(scenes, titles, notes, f"Rigid folding of the vault (a = {d.a:g}, p_{{xy}} = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)")
+
+
+def crease_legend(kinds: Sequence[str], lattice: Any = None) -> list[tuple[str, dict]]:
+    """(label, style) legend entries of a view's crease kinds and strips (see :meth:`curvefold.figures._canvas.Frame.legend`)."""
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
-    handles = [Line2D([], [], color=KIND_COLORS[k], lw=1.5, label=names[k]) for k in ("fold", "seam", "junction") if k in set(kinds)]
+    entries = [(names[k], {"line": KIND_COLORS[k], "width": 1.5}) for k in ("fold", "seam", "junction") if k in set(kinds)]
     rigid = lattice is not None and lattice.rigid
-    handles.append(Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="rigid planar panels" if rigid else "developable strips"))
-    ax.legend(handles=handles, fontsize=7, frameon=False, **kwargs)
+    return entries + [("rigid planar panels" if rigid else "developable strips", {"patch": tuple(STRIP_RGB.tolist()), "edge": "#999999"})]
+
+
+def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwargs: Any) -> None:
+    ax.legend(handles=legend_handles(crease_legend(kinds, lattice)), fontsize=7, frameon=False, **kwargs)
 
 
 # -- 3D views of vaults ----------------------------------------------------------------------------
@@ -147,15 +232,7 @@ def plot_vault(
     _draw(ax, scene)
     _fit(ax, scene.box, below=0.06)
     _scale_bar(ax, scene.span)
-    d = vault.design
-    drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
-    shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
-    angle_value = float(d.fold_angle if angle is None else angle)
-    panels = f", {d.panels} panels per crease" if d.panels else ""
-    ax.set_title(
-        f"Vault: a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°",
-        fontsize=10,
-    )
+    ax.set_title(mathtext(vault_title(vault, angle=angle, max_tubes=max_tubes)), fontsize=10)
     _legend_creases(ax, scene.roles, vault.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
     return fig
 
@@ -191,30 +268,22 @@ def plot_motion_strip(
     -------
     Figure
     """
-    angles_arr = np.atleast_1d(np.asarray(angles, float))
-    if angles_arr.ndim != 1 or angles_arr.size == 0:
-        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
-    motion = vault.motion(angles_arr, anchor=anchor)  # (A, M, n, 3); validates the angles
-    lift = vault.lift_off(angles_arr, anchor=anchor)
-    scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
-    count = len(angles_arr)
-    columns = 2 if count == 4 else count  # four panels in a square: readable on a phone as on a desktop
+    strip = motion_strip(vault, angles, anchor=anchor, view=view, segments=segments, max_tubes=max_tubes)
+    count, columns = len(strip.scenes), strip.columns
     rows = -(-count // columns)
     fig = new_figure(figsize=(3.4 * columns + 0.3, 3.2 * rows + 0.4))
     grid = fig.subplots(rows, columns, squeeze=False).ravel()
     for ax in grid[count:]:
         ax.set_axis_off()
     axes = grid[:count]
-    for ax, scene, f, lf in zip(axes, scenes, angles_arr, lift):
+    for ax, scene, title, note in zip(axes, strip.scenes, strip.titles, strip.notes):
         _draw(ax, scene)
-        design = abs(f - vault.design.fold_angle) < 1e-9
-        ax.set_title(f"2α = {f:g}°" + (" (design)" if design else ""), fontsize=10)
-        ax.text(0.5, -0.02, f"ends off the ground: {lf.max():.3f} {UNITS}", transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
+        ax.set_title(title, fontsize=10)
+        ax.text(0.5, -0.02, note, transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
     for ax in axes:
-        _fit(ax, np.concatenate([scene.box for scene in scenes]))  # one scale for all
-    _scale_bar(axes[-1], scenes[0].span)
-    d = vault.design
-    fig.suptitle(f"Rigid folding of the vault (a = {d.a:g}, $p_{{xy}}$ = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)", fontsize=11)
+        _fit(ax, strip.box)  # one scale for all
+    _scale_bar(axes[-1], strip.scenes[0].span)
+    fig.suptitle(mathtext(strip.title), fontsize=11)
     return fig
 
 
@@ -250,11 +319,7 @@ def plot_structure(
     _draw(ax, scene)
     _fit(ax, scene.box, below=0.1)
     _scale_bar(ax, scene.span)
-    k = len(structure.cells)
-    drawn = len(thin_cells(structure.cell_curves, max_cells))
-    what = "Tube" if k == 1 else f"Cellular block of {k} cells"
-    shown = "" if drawn == k else f" ({drawn} drawn)"
-    ax.set_title(f"{what}{shown}, 2α = {state.fold_angle:.4g}°", fontsize=10)
+    ax.set_title(structure_title(structure, state.fold_angle, max_cells=max_cells), fontsize=10)
     _legend_creases(ax, scene.roles, structure.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
     return fig
 

@@ -149,18 +149,18 @@ class RegressionDomain(FrozenArrays):
         >>> domain.polygon(box=20.0).round(6).tolist()   # the box cut by the line 0.1 u − 0.1 v = 1
         [[-20.0, 20.0], [-20.0, -20.0], [-10.0, -20.0], [20.0, 10.0], [20.0, 20.0]]
         """
-        from scipy.spatial import ConvexHull, HalfspaceIntersection
-
-        # Half-spaces A x + c ≤ 0: a u + b v − 1 ≤ 0, and the box.
-        halfspaces = np.concatenate(
-            [
-                np.stack([self.a, self.b, -np.ones_like(self.a)], axis=1),
-                np.array([[1, 0, -box], [-1, 0, -box], [0, 1, -box], [0, -1, -box]], float),
-            ]
-        )
-        pts = HalfspaceIntersection(halfspaces, np.zeros(2)).intersections
-        hull = ConvexHull(pts)
-        return pts[hull.vertices]
+        # The box, cut by each half-plane a u + b v ≤ 1 in turn (Sutherland–Hodgman; a convex polygon stays convex).
+        poly = np.array([[-box, box], [-box, -box], [box, -box], [box, box]], float)
+        for a, b in zip(self.a.tolist(), self.b.tolist()):
+            side = poly @ np.array([a, b]) - 1.0
+            if side.max() <= 0:
+                continue
+            following, side_next = np.roll(poly, -1, axis=0), np.roll(side, -1)
+            crossing = ((side < 0) & (side_next > 0)) | ((side > 0) & (side_next < 0))  # a vertex on the line is kept, not cut again
+            cut = poly + (side / np.where(crossing, side - side_next, 1.0))[:, None] * (following - poly)
+            keep = np.stack([side <= 0, crossing], axis=1)  # each vertex if inside, then the crossing after it
+            poly = np.stack([poly, cut], axis=1)[keep]
+        return poly
 
 
 @dataclass(frozen=True, eq=False)
