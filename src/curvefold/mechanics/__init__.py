@@ -113,15 +113,17 @@ for _name in ("Loads", "Supports", "Material", "material"):
 
 
 def _examples() -> dict:
-    """The examples of the public classes' methods, for the doctests.
+    """The examples of the public names and of the public classes' methods, for the doctests.
 
-    The doctest finder takes a method for its class's module only, which is this one
-    (:func:`_public`) while the method's globals are its private module's: they are listed
-    here to run.
+    The doctest finder takes a function or method for its module only, which is this one
+    (:func:`_public`) while its globals are its private module's, and finds this module's
+    names in its namespace only once they have been imported: they are listed here to run.
     """
-    return {
+    names = {name: __getattr__(name) if name in _LAZY else globals()[name] for name in __all__}
+    methods = {
         f"{name}.{attr}": getattr(value, "__func__", value)
-        for name in __all__ if isinstance(cls := __getattr__(name) if name in _LAZY else globals()[name], type)
+        for name, cls in names.items() if isinstance(cls, type)
         for attr, value in vars(cls).items()
         if not attr.startswith("_") and callable(getattr(value, "__func__", value)) and getattr(value, "__doc__", None)
     }
+    return {name: value for name, value in names.items() if callable(value)} | methods
