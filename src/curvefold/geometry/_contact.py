@@ -185,8 +185,8 @@ def first_contact(structure: Structure, *, start: float | None = None, step: flo
     radius, reach = contact_scales(lat)
     uv = structure.curves_uv
     angles = np.arange(start, max_angle + 1e-9, step)
-    for chunk in range(0, len(angles), 16):
-        for k, frame in enumerate(lat.fold_points(uv, angles[chunk : chunk + 16])):  # (M, n, 3) each
+    for chunk in range(0, len(angles), 8):
+        for k, frame in enumerate(lat.fold_points(uv, angles[chunk : chunk + 8])):  # (M, n, 3) each
             if closest_far(frame, uv, radius=radius, reach=reach, samples=samples)[1] is not None:
                 return float(angles[chunk + k])
     return None
