@@ -65,10 +65,15 @@ class Shared:
         r, s = (triangles.sum(axis=-1) - (p + q)[:, None]).T  # the third corner of each
         return np.stack([p, s, q, r], axis=1)
 
+    def coords(self, curves: np.ndarray) -> np.ndarray:
+        """The mesh vertices (V, 3) of a state's curves (M, n, 3): :meth:`Topology.coords` as one take of rows."""
+        top = self.topology
+        return np.take(curves.reshape(-1, 3), top.vertex_curve * curves.shape[-2] + top.vertex_sample, axis=0)
+
     @cached_property
     def flat_coords(self) -> np.ndarray:
         """Vertex coordinates of the crease pattern (the flat state), (V, 3) model units."""
-        return self.topology.coords(self.flat.vertices)
+        return self.coords(self.flat.vertices)
 
     @cached_property
     def flat_lengths(self) -> np.ndarray:
@@ -201,7 +206,7 @@ class Frame:
     @cached_property
     def coords(self) -> np.ndarray:
         """The mesh vertices of this state, (V, 3)."""
-        return self.shared.topology.coords(self.state.vertices)
+        return self.shared.coords(self.state.vertices)
 
     @property
     def tangent(self) -> np.ndarray:
