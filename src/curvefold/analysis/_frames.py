@@ -59,8 +59,12 @@ class Shared:
         top = self.topology
         if top.faces_vertices.shape[1] == 4:
             return top.faces_vertices
-        diagonals = top.edges_vertices[top.edges_kind == "diagonal"]
-        triangles = top.faces_vertices[edges_faces(top.faces_vertices, diagonals)]  # (D, 2, 3)
+        ids, sides = self._edges_faces
+        diagonal = top.edges_kind[ids] == "diagonal"
+        diagonals, sides = top.edges_vertices[ids[diagonal]], sides[diagonal]
+        if (sides < 0).any():  # a diagonal without its two triangles: the quad mesh itself
+            return self.structure.topology("quads").faces_vertices
+        triangles = top.faces_vertices[sides]  # (D, 2, 3)
         p, q = diagonals.T
         r, s = (triangles.sum(axis=-1) - (p + q)[:, None]).T  # the third corner of each
         return np.stack([p, s, q, r], axis=1)
@@ -99,8 +103,15 @@ class Shared:
     @cached_property
     def creases(self) -> tuple[np.ndarray, np.ndarray]:
         """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
+        ids, sides = self._edges_faces
+        crease = self.topology.edges_kind[ids] != "diagonal"
+        return ids[crease], sides[crease]
+
+    @cached_property
+    def _edges_faces(self) -> tuple[np.ndarray, np.ndarray]:
+        """The fold, seam and diagonal edges, and the two faces on each (one :func:`edges_faces`), (S,) and (S, 2)."""
         top = self.topology
-        ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam")))
+        ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam", "diagonal")))
         return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
 
 

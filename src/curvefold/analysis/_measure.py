@@ -237,7 +237,7 @@ def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     Examples
     --------
     >>> speed, T, N, B, kappa = frenet(np.array([[0.0, 2, 0]]), np.array([[-2.0, 0, 0]]))   # a circle of radius 2 at (2, 0, 0)
-    >>> speed.tolist(), N.tolist(), B.tolist(), kappa.tolist()
+    >>> speed.tolist(), N.tolist(), (B + 0.0).tolist(), kappa.tolist()
     ([2.0], [[-1.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]], [0.5])
     """
     speed = norm(d1)

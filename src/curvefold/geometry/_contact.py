@@ -71,7 +71,7 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
     j = np.broadcast_to((cb[:, None] * m + samples[kb])[:, None, :], (len(a), _BOX, _BOX))
     once = real[ka][:, :, None] & real[kb][:, None, :] & ((a != b)[:, None, None] | (i < j))  # a box with itself: i < j
     i, j = np.minimum(i, j)[once], np.maximum(i, j)[once]
-    d = points[i] - points[j]
+    d = np.take(points, i, axis=0) - np.take(points, j, axis=0)
     close = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2] <= radius * radius
     i, j = i[close], j[close]
     (ci, si), (cj, sj) = np.divmod(i, m), np.divmod(j, m)
@@ -93,7 +93,7 @@ def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np
     a = np.repeat(np.arange(lo.shape[1]), count)
     b = a + np.arange(len(a)) - np.repeat(np.cumsum(count) - count, count)
     hit = np.ones(len(a), bool)
-    for k in {0, 1, 2} - {axis}:
+    for k in (k for k in range(3) if k != axis):
         hit &= (lo[k, a] - hi[k, b] <= grown) & (lo[k, b] - hi[k, a] <= grown)
     return order[a[hit]], order[b[hit]]
 
