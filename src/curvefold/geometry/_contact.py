@@ -92,10 +92,10 @@ def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np
     count = np.searchsorted(lo[axis], hi[axis] + grown, side="right") - np.arange(lo.shape[1])
     a = np.repeat(np.arange(lo.shape[1]), count)
     b = a + np.arange(len(a)) - np.repeat(np.cumsum(count) - count, count)
-    hit = np.ones(len(a), bool)
     for k in (k for k in range(3) if k != axis):
-        hit &= (lo[k, a] - hi[k, b] <= grown) & (lo[k, b] - hi[k, a] <= grown)
-    return order[a[hit]], order[b[hit]]
+        hit = (lo[k, a] - hi[k, b] <= grown) & (lo[k, b] - hi[k, a] <= grown)
+        a, b = a[hit], b[hit]
+    return order[a], order[b]
 
 
 def contact_scales(lattice) -> tuple[float, float]:
