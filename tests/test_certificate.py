@@ -390,3 +390,23 @@ def test_report_table_has_status_margin_and_model():
     assert html.count(" class=num>") == 3 * len(cert.checks)  # measured, tolerance, margin: never wrapped
     assert "insufficient resolution" in html and "use ≥" in html
     assert "Richardson" in html and "2α = 0°, 45°, 90°" in html
+
+
+@pytest.mark.parametrize("make", [tube, two_tubes, panel_tube, lambda: vault().structure])
+def test_the_frames_read_the_quads_of_the_quad_mesh(make):
+    """The ruling quads are read from the triangles across their diagonals: the quad mesh's faces, in its order."""
+    structure = make()
+    assert np.array_equal(Shared(structure).quads, structure.topology("quads").faces_vertices)
+
+
+def test_the_shared_derivatives_are_each_creases_own():
+    """Every tube corner's x', x'' and Frenet frame are those of its own curve, measured alone."""
+    from curvefold.analysis import _measure as measure
+
+    frame = Frame.at(Shared(two_tubes()), 60.0)
+    X, h = frame.tubes, frame.step
+    d1, d2 = frame.tube_derivatives
+    assert np.array_equal(d1, measure.derivative(X, h)) and np.array_equal(d2, measure.second_derivative(X, h))
+    speed, T, N, B, kappa = frame.tube_frenet
+    assert np.array_equal(kappa, measure.curvature(X, h)) and np.array_equal(T, measure.unit(d1))
+    np.testing.assert_allclose(np.einsum("...i,...i->...", N, T), 0.0, atol=1e-12)

@@ -93,3 +93,43 @@ def test_a_crease_pinching_near_regression_is_no_contact():
     assert edges.min() < 1e-3 < 0.05 < edges.max()
     cert = certify(vault.lattice.crease, vault.structure, vault)
     assert {c.name: c.status for c in cert.checks}["contact"] == "pass" and cert.first_contact == 121.0
+
+
+def _far_pairs_by_kd_tree(points, uv, arc, *, radius, reach):
+    """:func:`curvefold.geometry.far_pairs` with SciPy's k-d tree finding the close pairs."""
+    from scipy.spatial import cKDTree
+
+    m = arc.shape[1]
+    pairs = cKDTree(points).query_pairs(radius, output_type="ndarray").reshape(-1, 2)
+    (ci, si), (cj, sj) = np.divmod(pairs[:, 0], m), np.divmod(pairs[:, 1], m)
+    along = np.minimum(np.abs(arc[ci, si] - arc[ci, sj]), np.abs(arc[cj, si] - arc[cj, sj]))
+    return {tuple(p) for p in pairs[(np.abs(uv[ci] - uv[cj]).max(axis=1) >= 2) | (along > reach)].tolist()}
+
+
+def test_the_far_pairs_are_those_a_kd_tree_finds():
+    """The boxes' search finds exactly the pairs a k-d tree does: on the paper's vault about its first contact (at
+    the contact radius and three times it), and on random clouds, some on a coarse grid (equal distances)."""
+    from curvefold.geometry._contact import contact_scales, far_pairs
+
+    vault = Vault.from_design(samples=401)
+    lattice, uv = vault.lattice, vault.structure.curves_uv
+    radius, reach = contact_scales(lattice)
+    found = []
+    for curves in lattice.fold_points(uv, [90.0, 119.0, 121.0, 122.0, 123.0, 130.0])[:, :, ::2]:
+        arc = np.concatenate([np.zeros((len(curves), 1)), np.cumsum(np.linalg.norm(np.diff(curves, axis=1), axis=-1), axis=1)], axis=1)
+        for r in (radius, 3 * radius):
+            pairs = far_pairs(curves.reshape(-1, 3), uv, arc, radius=r, reach=reach)
+            assert len(pairs) == len(set(map(tuple, pairs.tolist()))) and (pairs[:, 0] < pairs[:, 1]).all()
+            assert set(map(tuple, pairs.tolist())) == _far_pairs_by_kd_tree(curves.reshape(-1, 3), uv, arc, radius=r, reach=reach)
+            found.append(len(pairs))
+    assert found[0] == found[2] == 0 < found[6] < found[8] < found[10]  # none at 90° nor 121°; then more and more
+    rng = np.random.default_rng(7)
+    for trial in range(40):
+        curves, samples = rng.integers(1, 9), rng.integers(1, 30)
+        points = rng.random((curves * samples, 3)) * rng.random(3)
+        points = points.round(1) if trial % 3 == 0 else points
+        uv = rng.integers(0, 4, (curves, 2))
+        arc = np.sort(rng.random((curves, samples)), axis=1) * 3
+        for r in (0.05, 0.1, 0.3):
+            pairs = far_pairs(points, uv, arc, radius=r, reach=0.5)
+            assert set(map(tuple, pairs.tolist())) == _far_pairs_by_kd_tree(points, uv, arc, radius=r, reach=0.5) and len(pairs) == len(set(map(tuple, pairs.tolist())))

@@ -339,10 +339,9 @@ def _with_range(checks: tuple[Check, ...], specs: Sequence[CheckSpec], structure
     its first contact (the bisection cannot look for a contact: past one, parts that went through each other can be far
     apart again)."""
     motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope in scopes + ("motion",))
-    holds = _holds_up_to(run, max(angles), scopes) if motion_passes else None
     contact = first_contact(structure)
-    if holds is not None and contact is not None:
-        holds = min(holds, contact - CONTACT_STEP)
+    end = 180.0 if contact is None else contact - CONTACT_STEP
+    holds = _holds_up_to(run, max(angles), end, scopes) if motion_passes else None
     return Certificate(checks, tuple(angles), holds, samples, first_contact=contact)
 
 
@@ -378,13 +377,19 @@ def _over_frames(specs: Sequence[CheckSpec], run: Callable[[float | None, tuple[
     return outcomes
 
 
-def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float, scopes: tuple[str, ...]) -> float:
-    """Largest 2α ≥ ``start`` (to 1.5°) where every check of ``scopes`` passes, by bisection."""
-    lo, hi = start, 180.0
+def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float, end: float,
+                 scopes: tuple[str, ...]) -> float:
+    """Largest 2α in [``start``, ``end``] (to 1.5°) where every check of ``scopes`` passes: ``end`` (below 180°: one step
+    before the first contact) if they pass there, else found by bisection."""
+    def passes(angle: float) -> bool:
+        return all(o.status == "pass" for o in run(angle, scopes).values())
+
+    if end <= start or (end < 180.0 and passes(end)):
+        return round(end, 1)
+    lo, hi = start, end
     while hi - lo > 1.5:
         mid = 0.5 * (lo + hi)
-        ok = all(o.status == "pass" for o in run(mid, scopes).values())
-        lo, hi = (mid, hi) if ok else (lo, mid)
+        lo, hi = (mid, hi) if passes(mid) else (lo, mid)
     return round(lo, 1)
 
 

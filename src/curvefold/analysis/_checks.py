@@ -179,17 +179,13 @@ def _eq19(frame: Frame) -> Residual | None:
         return None  # both sides vanish in the flat state
     X, h = frame.tubes, frame.step
     alpha = frame.half_angles  # (K, 4, m)
-    kappa = measure.curvature(X, h)  # (K, 4, m)
-    speed = measure.norm(measure.derivative(X, h))
-    ratios = []
-    for a, b in STRIPS:
-        ruling = X[:, b, 2:-2] - X[:, a, 2:-2]
-        sides = []
-        for c in (a, b):
-            sin_beta = np.sin(measure.angle_between(ruling, measure.derivative(X[:, c], h)))
-            sides.append(kappa[:, c] * np.sin(alpha[:, c]) * speed[:, c] / sin_beta)
-        ratios.append(sides[0] / sides[1] - 1)
-    values = np.abs(np.stack(ratios, axis=1))  # (K, 4 strips, m)
+    d1 = frame.tube_derivatives[0]
+    speed, kappa = frame.tube_frenet[0], frame.tube_frenet[4]  # (K, 4, m)
+    nxt = [b for _, b in STRIPS]
+    ruling = X[:, nxt, 2:-2] - X[:, :, 2:-2]  # strip a → b of every tube, (K, 4, m, 3)
+    bend = kappa * np.sin(alpha) * speed  # κ sin α ds/dt = κ_2D tan α ds/dt at every corner
+    sides = [bend[:, c] / np.sin(measure.angle_between(ruling, d1[:, c])) for c in (slice(None), nxt)]
+    values = np.abs(sides[0] / sides[1] - 1)  # (K, 4 strips, m)
     length = float(measure.norm(X[:, 1] - X[:, 0]).min())
     floor = frame.ulp * (24 / (h**2 * float((kappa * speed**2).min())) + 6 / (h * length * math.sin(frame.alpha)))
     return Residual(values, floor, _strip, frame.inner_t)
@@ -240,6 +236,7 @@ def _regression(frame: Frame) -> Residual:
 
 def _tube_closure(frame: Frame) -> Residual:
     X, h, a = frame.tubes, frame.step, frame.alpha
+    frenet = frame.tube_frenet
     values = []
     for c, (_, nxt) in enumerate(STRIPS):
         prev = (c - 1) % 4
@@ -247,7 +244,8 @@ def _tube_closure(frame: Frame) -> Residual:
         back = CORNERS[prev] - CORNERS[c]  # toward the previous crease: the other family, ±1 step
         side, sign = ("L", du) if du else ("R", dv)
         ruling = (X[:, prev] - X[:, c]) * (back[0] + back[1])  # oriented as r in Eqs. 5–6
-        rebuilt = measure.rebuilt_strip(X[:, c], ruling, X[:, nxt], h, alpha=a, side=side, sign=float(sign))
+        rebuilt = measure.rebuilt_strip(X[:, c], ruling, X[:, nxt], h, alpha=a, side=side, sign=float(sign),
+                                        frenet_frame=tuple(f[:, c] for f in frenet))
         values.append(measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, c, 2:-2])
     kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())
     floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))

@@ -53,13 +53,31 @@ class Shared:
 
     @cached_property
     def quads(self) -> np.ndarray:
-        """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`."""
-        return self.structure.topology("quads").faces_vertices
+        """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`: as ``structure.topology("quads")``
+        numbers them, each the two triangles across its diagonal (p, q), the one running p → q → r and the other
+        q → p → s, read as (p, s, q, r); a panel structure's faces are its quads."""
+        top = self.topology
+        if top.faces_vertices.shape[1] == 4:
+            return top.faces_vertices
+        ids, sides = self._edges_faces
+        diagonal = top.edges_kind[ids] == "diagonal"
+        diagonals, sides = top.edges_vertices[ids[diagonal]], sides[diagonal]
+        if (sides < 0).any():  # a diagonal without its two triangles: the quad mesh itself
+            return self.structure.topology("quads").faces_vertices
+        triangles = top.faces_vertices[sides]  # (D, 2, 3)
+        p, q = diagonals.T
+        r, s = (triangles.sum(axis=-1) - (p + q)[:, None]).T  # the third corner of each
+        return np.stack([p, s, q, r], axis=1)
+
+    def coords(self, curves: np.ndarray) -> np.ndarray:
+        """The mesh vertices (V, 3) of a state's curves (M, n, 3): :meth:`Topology.coords` as one take of rows."""
+        top = self.topology
+        return np.take(curves.reshape(-1, 3), top.vertex_curve * curves.shape[-2] + top.vertex_sample, axis=0)
 
     @cached_property
     def flat_coords(self) -> np.ndarray:
         """Vertex coordinates of the crease pattern (the flat state), (V, 3) model units."""
-        return self.topology.coords(self.flat.vertices)
+        return self.coords(self.flat.vertices)
 
     @cached_property
     def flat_lengths(self) -> np.ndarray:
@@ -85,8 +103,15 @@ class Shared:
     @cached_property
     def creases(self) -> tuple[np.ndarray, np.ndarray]:
         """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
+        ids, sides = self._edges_faces
+        crease = self.topology.edges_kind[ids] != "diagonal"
+        return ids[crease], sides[crease]
+
+    @cached_property
+    def _edges_faces(self) -> tuple[np.ndarray, np.ndarray]:
+        """The fold, seam and diagonal edges, and the two faces on each (one :func:`edges_faces`), (S,) and (S, 2)."""
         top = self.topology
-        ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam")))
+        ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam", "diagonal")))
         return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
 
 
@@ -173,9 +198,26 @@ class Frame:
         return self.state.vertices[self.structure.cell_curves]
 
     @cached_property
+    def curve_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
+        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order differences), (M, n − 4, 3) each."""
+        x = self.state.vertices
+        return measure.derivative(x, self.step), measure.second_derivative(x, self.step)
+
+    @cached_property
+    def tube_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
+        """x' and x'' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (K, 4, n − 4, 3) each."""
+        cells = self.structure.cell_curves
+        return tuple(np.take(d, cells, axis=0) for d in self.curve_derivatives)
+
+    @cached_property
+    def tube_frenet(self) -> tuple[np.ndarray, ...]:
+        """:func:`~curvefold.analysis._measure.frenet` at corners 1–4 of every tube: speed, T, N, B, κ, (K, 4, n − 4[, 3])."""
+        return measure.frenet(*self.tube_derivatives)
+
+    @cached_property
     def coords(self) -> np.ndarray:
         """The mesh vertices of this state, (V, 3)."""
-        return self.shared.topology.coords(self.state.vertices)
+        return self.shared.coords(self.state.vertices)
 
     @property
     def tangent(self) -> np.ndarray:
@@ -185,8 +227,8 @@ class Frame:
     @cached_property
     def half_angles(self) -> np.ndarray:
         """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
-        X, h = self.tubes, self.step
-        return np.stack([measure.crease_half_angle(X[:, c], X[:, (c - 1) % 4], X[:, (c + 1) % 4], h, kind=CORNER_KINDS[c])
+        X, h, T = self.tubes, self.step, self.tube_frenet[1]
+        return np.stack([measure.crease_half_angle(X[:, c], X[:, (c - 1) % 4], X[:, (c + 1) % 4], h, kind=CORNER_KINDS[c], tangent=T[:, c])
                          for c in range(4)], axis=1)
 
     @cached_property

@@ -38,6 +38,7 @@ __all__ = [
     "ruling_twist",
     "crease_half_angle",
     "tangent_line_distance",
+    "frenet",
     "rebuilt_strip",
     "edge_lengths",
     "quad_nonplanarity",
@@ -74,16 +75,15 @@ def derivative(values: np.ndarray, step: float) -> np.ndarray:
     [4.0, 6.0, 8.0]
     """
     v = np.asarray(values, float)
-    v = v if v.ndim == 1 else np.moveaxis(v, -2, 0)
-    d = (v[:-4] - 8 * v[1:-3] + 8 * v[3:-1] - v[4:]) / (12.0 * step)
-    return d if np.ndim(values) == 1 else np.moveaxis(d, 0, -2)
+    if v.ndim == 1:
+        return (v[:-4] - 8 * v[1:-3] + 8 * v[3:-1] - v[4:]) / (12.0 * step)
+    return (v[..., :-4, :] - 8 * v[..., 1:-3, :] + 8 * v[..., 3:-1, :] - v[..., 4:, :]) / (12.0 * step)
 
 
 def second_derivative(values: np.ndarray, step: float) -> np.ndarray:
     """d²/dq² of samples (..., n, 3) along axis -2 by fourth-order central differences, (..., n - 4, 3)."""
-    v = np.moveaxis(np.asarray(values, float), -2, 0)
-    d = (-v[:-4] + 16 * v[1:-3] - 30 * v[2:-2] + 16 * v[3:-1] - v[4:]) / (12.0 * step**2)
-    return np.moveaxis(d, 0, -2)
+    v = np.asarray(values, float)
+    return (-v[..., :-4, :] + 16 * v[..., 1:-3, :] - 30 * v[..., 2:-2, :] + 16 * v[..., 3:-1, :] - v[..., 4:, :]) / (12.0 * step**2)
 
 
 def cumulative_integral(rate: np.ndarray, step: float) -> np.ndarray:
@@ -183,7 +183,8 @@ def ruling_twist(curve: np.ndarray, rulings: np.ndarray, step: float) -> np.ndar
     return np.abs(np.einsum("...i,...i->...", derivative(r, step), p))
 
 
-def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, step: float, *, kind: str) -> np.ndarray:
+def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, step: float, *, kind: str,
+                      tangent: np.ndarray | None = None) -> np.ndarray:
     """Half the fold angle, α, at a crease, from the rulings to its two neighbour creases.
 
     The rulings ``before − curve`` and ``after − curve`` are projected on the plane normal
@@ -196,13 +197,15 @@ def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, 
         The crease and the creases across its two strips, at equal t.
     step : float
     kind : {"fold", "seam"}, keyword-only
+    tangent : (..., n - 4, 3) ndarray, optional, keyword-only
+        The crease's unit tangent at samples 2 … n − 3 measured already (``unit(derivative(curve, step))``).
 
     Returns
     -------
     (..., n - 4) ndarray
         α in radians.
     """
-    T = unit(derivative(curve, step))
+    T = unit(derivative(curve, step)) if tangent is None else tangent
     x = curve[..., 2:-2, :]
     a, b = before[..., 2:-2, :] - x, after[..., 2:-2, :] - x
     a = a - np.einsum("...i,...i->...", a, T)[..., None] * T
@@ -217,8 +220,37 @@ def tangent_line_distance(x: np.ndarray, y: np.ndarray, T: np.ndarray) -> np.nda
     return norm(d - np.einsum("...i,...i->...", d, T)[..., None] * T)
 
 
+def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Speed, Frenet frame and curvature of a curve from its first two derivatives.
+
+    Parameters
+    ----------
+    d1, d2 : (..., m, 3) ndarray
+        x' and x'' (e.g. :func:`derivative` and :func:`second_derivative`).
+
+    Returns
+    -------
+    speed, T, N, B, kappa
+        ``|x'|`` (..., m); the unit tangent, principal normal and binormal (..., m, 3)
+        (NaN where x' × x'' vanishes); ``|x' × x''| / |x'|³`` (..., m).
+
+    Examples
+    --------
+    >>> speed, T, N, B, kappa = frenet(np.array([[0.0, 2, 0]]), np.array([[-2.0, 0, 0]]))   # a circle of radius 2 at (2, 0, 0)
+    >>> speed.tolist(), N.tolist(), (B + 0.0).tolist(), kappa.tolist()
+    ([2.0], [[-1.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]], [0.5])
+    """
+    speed = norm(d1)
+    T = d1 / speed[..., None]
+    b = cross(d1, d2)
+    bend = norm(b)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        B = b / bend[..., None]
+    return speed, T, cross(B, T), B, bend / speed**3
+
+
 def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
-                  side: str, sign: float) -> np.ndarray:
+                  side: str, sign: float, frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """The paper's construction of the next crease from this crease's own measured invariants.
 
     From the crease's samples alone: its frame T, N, B and curvature κ (differences), its
@@ -246,19 +278,15 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
         The ruling family of the strip toward ``following``.
     sign : {1.0, -1.0}, keyword-only
         Whether the step runs along +r or −r.
+    frenet_frame : tuple of ndarray, optional, keyword-only
+        The crease's :func:`frenet` at samples 2 … n − 3, measured already.
 
     Returns
     -------
     (..., n - 4, 3) ndarray
         The rebuilt ``following`` at samples 2 … n − 3.
     """
-    d1, d2 = derivative(curve, step), second_derivative(curve, step)
-    speed = norm(d1)
-    T = d1 / speed[..., None]
-    b = cross(d1, d2)
-    B = unit(b)
-    N = cross(B, T)
-    kappa = norm(b) / speed**3
+    speed, T, N, B, kappa = frenet(derivative(curve, step), second_derivative(curve, step)) if frenet_frame is None else frenet_frame
     beta = angle_between(ruling[..., 2:-2, :], T)
     lateral = -np.cos(alpha) if side == "R" else np.cos(alpha)
     r = np.cos(beta)[..., None] * T + np.sin(beta)[..., None] * (lateral * N + np.sin(alpha) * B)
@@ -271,7 +299,7 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
 
 def edge_lengths(coords: np.ndarray, edges: np.ndarray) -> np.ndarray:
     """Length of every edge (E, 2) of vertices (V, 3), shape (E,)."""
-    return norm(coords[edges[:, 1]] - coords[edges[:, 0]])
+    return norm(np.take(coords, edges[:, 1], axis=0) - np.take(coords, edges[:, 0], axis=0))
 
 
 def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
@@ -283,9 +311,9 @@ def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
     quads : (F, 4) ndarray of int
         Corners in order around each quad.
     """
-    p = coords[quads]
-    n = cross(p[:, 1] - p[:, 0], p[:, 3] - p[:, 0])
-    diagonal = p[:, 2] - p[:, 0]
+    p0, p1, p2, p3 = (np.take(coords, quads[:, k], axis=0) for k in range(4))
+    n = cross(p1 - p0, p3 - p0)
+    diagonal = p2 - p0
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.abs(np.einsum("ij,ij->i", diagonal, n)) / (norm(n) * norm(diagonal))
 

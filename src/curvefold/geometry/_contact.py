@@ -17,8 +17,12 @@ from ._structure import Structure
 __all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
 
 
+#: Consecutive samples of a curve that :func:`far_pairs` bounds by one box.
+_BOX = 8
+
+
 def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: float, reach: float) -> np.ndarray:
-    """Pairs of points closer than ``radius`` that are parts far apart, shape (P, 2) (flat indices).
+    """Pairs of points closer than ``radius`` that are parts far apart, shape (P, 2) (flat indices i < j, sorted).
 
     Points (M curves × m samples, flattened) are far apart when their curves are two lattice
     steps apart or more (``max(|Δu|, |Δv|) ≥ 2``: two tubes moved into each other), or when
@@ -28,13 +32,19 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
     and a curve that pinches (its samples bunch up near a curve of regression) touch by
     construction, and never count.
 
+    The search is exact: a pair is close when its squared distance (summed over x, y, z) is at
+    most ``radius²``. Every :data:`_BOX` consecutive samples of a curve are bounded by a box;
+    the pairs of boxes that overlap when grown by the radius (swept along the longest axis)
+    and may hold parts far apart (their curves two steps apart, or more arc than ``reach``
+    between their samples along both curves) give the point pairs whose distances decide.
+
     Parameters
     ----------
     points : (M·m, 3) ndarray
     uv : (M, 2) ndarray
         The lattice curve of every row of ``points``' curves.
     arc : (M, m) ndarray
-        Arc length along every curve at its samples.
+        Arc length along every curve at its samples, non-decreasing.
 
     Examples
     --------
@@ -44,16 +54,48 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
     >>> far_pairs(x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), arc, radius=0.1, reach=2.0).tolist()
     [[0, 4], [2, 4]]
     """
-    from scipy.spatial import cKDTree
-
-    m = arc.shape[1]
-    pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
-    if not len(pairs):
-        return pairs.reshape(0, 2)
-    (ci, si), (cj, sj) = np.divmod(pairs[:, 0], m), np.divmod(pairs[:, 1], m)
+    M, m = arc.shape
+    if M * m == 0:
+        return np.zeros((0, 2), np.int64)
+    per_curve = -(-m // _BOX)
+    slots = np.arange(per_curve * _BOX).reshape(per_curve, _BOX)
+    samples, real = np.minimum(slots, m - 1), slots < m  # the last box repeats its last sample
+    x = points.reshape(M, m, 3)[:, samples]  # (M, boxes, _BOX, 3)
+    a, b = _overlapping_boxes(x.min(axis=2).reshape(-1, 3), x.max(axis=2).reshape(-1, 3), radius * (1 + 1e-9))
+    (ca, ka), (cb, kb) = np.divmod(a, per_curve), np.divmod(b, per_curve)
+    first, last = np.minimum(samples[ka, 0], samples[kb, 0]), np.maximum(samples[ka, -1], samples[kb, -1])
+    span = np.minimum(arc[ca, last] - arc[ca, first], arc[cb, last] - arc[cb, first])  # bounds the arc between any two of their points
+    boxes = (np.abs(uv[ca] - uv[cb]).max(axis=1) >= 2) | (span > reach)
+    a, b, ca, ka, cb, kb = a[boxes], b[boxes], ca[boxes], ka[boxes], cb[boxes], kb[boxes]
+    i = np.broadcast_to((ca[:, None] * m + samples[ka])[:, :, None], (len(a), _BOX, _BOX))  # flat indices
+    j = np.broadcast_to((cb[:, None] * m + samples[kb])[:, None, :], (len(a), _BOX, _BOX))
+    once = real[ka][:, :, None] & real[kb][:, None, :] & ((a != b)[:, None, None] | (i < j))  # a box with itself: i < j
+    i, j = np.minimum(i, j)[once], np.maximum(i, j)[once]
+    d = np.take(points, i, axis=0) - np.take(points, j, axis=0)
+    close = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2] <= radius * radius
+    i, j = i[close], j[close]
+    (ci, si), (cj, sj) = np.divmod(i, m), np.divmod(j, m)
     steps = np.abs(uv[ci] - uv[cj]).max(axis=1)
     along = np.minimum(np.abs(arc[ci, si] - arc[ci, sj]), np.abs(arc[cj, si] - arc[cj, sj]))
-    return pairs[(steps >= 2) | (along > reach)]
+    pairs = np.stack([i, j], axis=1)[(steps >= 2) | (along > reach)]
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+
+
+def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (a, b) of boxes (B, 3), each once and each box with itself, whose bounds overlap when grown by ``grown``.
+
+    Sweep and prune: the boxes in order of their lower bound along the longest axis, each paired
+    with itself and the later ones that start before it ends there; the other two axes decide."""
+    axis = int(np.argmax(hi.max(axis=0) - lo.min(axis=0)))
+    order = np.argsort(lo[:, axis], kind="stable")
+    lo, hi = lo[order].T, hi[order].T  # (3, B)
+    count = np.searchsorted(lo[axis], hi[axis] + grown, side="right") - np.arange(lo.shape[1])
+    a = np.repeat(np.arange(lo.shape[1]), count)
+    b = a + np.arange(len(a)) - np.repeat(np.cumsum(count) - count, count)
+    for k in (k for k in range(3) if k != axis):
+        hit = (lo[k, a] - hi[k, b] <= grown) & (lo[k, b] - hi[k, a] <= grown)
+        a, b = a[hit], b[hit]
+    return order[a], order[b]
 
 
 def contact_scales(lattice) -> tuple[float, float]:
@@ -143,8 +185,8 @@ def first_contact(structure: Structure, *, start: float | None = None, step: flo
     radius, reach = contact_scales(lat)
     uv = structure.curves_uv
     angles = np.arange(start, max_angle + 1e-9, step)
-    for chunk in range(0, len(angles), 16):
-        for k, frame in enumerate(lat.fold_points(uv, angles[chunk : chunk + 16])):  # (M, n, 3) each
+    for chunk in range(0, len(angles), 8):
+        for k, frame in enumerate(lat.fold_points(uv, angles[chunk : chunk + 8])):  # (M, n, 3) each
             if closest_far(frame, uv, radius=radius, reach=reach, samples=samples)[1] is not None:
                 return float(angles[chunk + k])
     return None

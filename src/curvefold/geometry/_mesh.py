@@ -206,11 +206,12 @@ def vector_areas(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.
     if x.shape[-1] == 2:
         x = np.concatenate([x, np.zeros(x.shape[:-1] + (1,))], axis=-1)
     faces = np.asarray(faces_vertices)
+    if faces.shape[1] == 3:  # one cross product per face, from its corners' rows
+        p0 = np.take(x, faces[:, 0], axis=-2)
+        return cross(np.take(x, faces[:, 1], axis=-2) - p0, np.take(x, faces[:, 2], axis=-2) - p0)
     filled = np.where(faces >= 0, faces, faces[:, :1])  # padding repeats the first vertex: no area
     p = x[..., filled, :]
     d = p[..., 1:, :] - p[..., :1, :]
-    if faces.shape[1] == 3:
-        return cross(d[..., 0, :], d[..., 1, :])
     return cross(d[..., :-1, :], d[..., 1:, :]).sum(axis=-2)
 
 
@@ -236,8 +237,10 @@ def face_sides(faces_vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     faces = np.asarray(faces_vertices, dtype=np.int64)
     filled = np.where(faces >= 0, faces, faces[:, :1])
-    pairs = np.stack([filled, np.roll(filled, -1, axis=1)], axis=-1)  # (F, k, 2)
+    pairs = np.stack([filled, np.concatenate([filled[:, 1:], filled[:, :1]], axis=1)], axis=-1)  # (F, k, 2)
     keep = (faces >= 0) & (pairs[..., 0] != pairs[..., 1])  # drop the padding's degenerate sides
+    if keep.all():
+        return pairs.reshape(-1, 2), np.repeat(np.arange(len(faces)), faces.shape[1])
     return pairs[keep], np.nonzero(keep)[0]
 
 
@@ -260,18 +263,37 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
     --------
     >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
     [[1, 0], [0, -1], [-1, -1]]
+    >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [2, 0]])).tolist()   # an edge listed both ways
+    [[1, 0], [0, 1]]
     """
     E = len(edges_vertices)
     half, half_face = face_sides(faces_vertices)
     nv = int(max(np.max(edges_vertices, initial=-1), np.max(faces_vertices, initial=-1))) + 1
-    fwd = edges_vertices[:, 0].astype(np.int64) * nv + edges_vertices[:, 1]
-    rev = edges_vertices[:, 1].astype(np.int64) * nv + edges_vertices[:, 0]
-    half_key = half[:, 0] * nv + half[:, 1]
     out = np.full((E, 2), -1, dtype=np.int64)
+    if E == 0:
+        return out
+    a, b = edges_vertices[:, 0].astype(np.int64), edges_vertices[:, 1].astype(np.int64)
+    key = np.minimum(a, b) * nv + np.maximum(a, b)  # the undirected edge
+    order = np.argsort(key)
+    ordered = key[order]
+    if (ordered[1:] == ordered[:-1]).any():  # an edge listed twice (either way): each direction looked up alone
+        return _edges_faces_by_direction(a * nv + b, b * nv + a, half[:, 0] * nv + half[:, 1], half_face, out)
+    half_key = np.minimum(half[:, 0], half[:, 1]) * nv + np.maximum(half[:, 0], half[:, 1])
+    pos = np.minimum(np.searchsorted(ordered, half_key), E - 1)
+    hit = ordered[pos] == half_key
+    edge = order[pos[hit]]
+    out[edge, (half[hit, 0] != a[edge]).astype(np.int64)] = half_face[hit]  # a→b: side 0, b→a: side 1
+    return out
+
+
+def _edges_faces_by_direction(fwd: np.ndarray, rev: np.ndarray, half_key: np.ndarray, half_face: np.ndarray,
+                              out: np.ndarray) -> np.ndarray:
+    """:func:`edges_faces` from the keys of every edge a→b, b→a and every face side (a·V + b)."""
+    E = len(fwd)
     for side, keys in enumerate((fwd, rev)):
         order = np.argsort(keys)
         pos = np.clip(np.searchsorted(keys[order], half_key), 0, max(E - 1, 0))
-        hit = keys[order][pos] == half_key if E else np.zeros(len(half_key), bool)
+        hit = keys[order][pos] == half_key
         out[order[pos[hit]], side] = half_face[hit]
     return out
 
@@ -312,9 +334,11 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     out = np.zeros(len(edges_vertices))
     with np.errstate(invalid="ignore", divide="ignore"):
         n = vector_areas(x, faces_vertices)
-        n /= np.linalg.norm(n, axis=-1, keepdims=True)
-        n1, n2 = n[ef[ok, 0]], n[ef[ok, 1]]
-        e = x[edges_vertices[ok, 1]] - x[edges_vertices[ok, 0]]
-        e /= np.linalg.norm(e, axis=-1, keepdims=True)
-        out[ok] = np.degrees(np.arctan2(-np.einsum("ij,ij->i", cross(n1, n2), e), np.einsum("ij,ij->i", n1, n2)))
+        n /= np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
+        if not ok.all():
+            ef, edges_vertices = ef[ok], edges_vertices[ok]
+        n1, n2 = np.take(n, ef[:, 0], axis=0), np.take(n, ef[:, 1], axis=0)
+        e = np.take(x, edges_vertices[:, 1], axis=0) - np.take(x, edges_vertices[:, 0], axis=0)
+        sine = -np.einsum("ij,ij->i", cross(n1, n2), e) / np.sqrt(np.einsum("ij,ij->i", e, e))
+        out[ok] = np.degrees(np.arctan2(sine, np.einsum("ij,ij->i", n1, n2)))
     return out
