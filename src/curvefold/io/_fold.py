@@ -151,11 +151,9 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
 
     A sheet (a set of faces connected through shared vertices) whose triangles are all
     clockwise is mirrored, y → 2·c − y about its centre c, when ``mirror_clockwise``;
-    that is the same sheet seen from the side its normals point to.
+    that is the same sheet seen from the side its normals point to. The sheets are found
+    only when a face is clockwise (a mesh of counter-clockwise faces is left as it is).
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     x = np.asarray(mesh.vertices_coords, float)
     V = len(x)
     size = float(np.ptp(x, axis=0).max()) if V else 0.0
@@ -167,18 +165,20 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     if len(f) == 0:
         return xy
     area2 = vector_areas(xy, f)[:, 2]
-    pairs = face_sides(f)[0]
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
-    _, vertex_sheet = connected_components(graph, directed=False)
-    face_sheet = vertex_sheet[f[:, 0]]
-    for sheet in np.unique(face_sheet):
-        faces = np.flatnonzero(face_sheet == sheet)
-        cw = area2[faces] < 0
-        if mirror_clockwise and cw.all():
-            verts = np.unique(f[faces][f[faces] >= 0])
-            centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
-            xy[verts, 1] = 2 * centre - xy[verts, 1]
-            area2[faces] = -area2[faces]
+    if mirror_clockwise and (area2 < 0).any():
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        pairs = face_sides(f)[0]
+        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
+        face_sheet = connected_components(graph, directed=False)[1][f[:, 0]]
+        for sheet in np.unique(face_sheet):
+            faces = np.flatnonzero(face_sheet == sheet)
+            if (area2[faces] < 0).all():
+                verts = np.unique(f[faces][f[faces] >= 0])
+                centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
+                xy[verts, 1] = 2 * centre - xy[verts, 1]
+                area2[faces] = -area2[faces]
     bad = area2 <= 0
     if bad.any():
         i = int(np.flatnonzero(bad)[0])

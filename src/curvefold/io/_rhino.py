@@ -50,7 +50,7 @@ from ._layout import Layout
 from ._mesh3d import check_metadata, crease_polylines
 from ._tables import CREATOR, UNITS, rgb8, rgba8
 
-__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "write_3dm"]
+__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "interpolating_spline", "write_3dm"]
 
 #: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
 LAYERS = (
@@ -62,16 +62,52 @@ LAYERS = (
 )
 
 
+def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """The B-spline of degree k = min(``degree``, m − 1) through ``points`` (m, d) at increasing
+    parameters ``t`` (m,): its knots (m + k + 1,) and control points (m, d).
+
+    The spline of :func:`scipy.interpolate.make_interp_spline` (its default ends, "not-a-knot"):
+    knots at the inner parameters but the first and last (k + 1) // 2 of them (for odd k; for
+    k = 2 at the midpoints between parameters but the first and last), each end knot k + 1
+    times; the control points solve the collocation equations. Cox–de Boor gives the basis at
+    the parameters, each in its knot span (the last in the last span).
+
+    Examples
+    --------
+    >>> knots, control = interpolating_spline(np.array([0.0, 1.0]), np.array([[0.0, 0.0], [2.0, 1.0]]), 3)
+    >>> knots.tolist(), control.tolist()   # two points: the segment between them
+    ([0.0, 0.0, 1.0, 1.0], [[0.0, 0.0], [2.0, 1.0]])
+    """
+    m = len(t)
+    k = min(degree, m - 1)
+    inner = t if k % 2 else 0.5 * (t[1:] + t[:-1])
+    drop = (k + 1) // 2 if k % 2 else k // 2
+    knots = np.concatenate([np.full(k + 1, t[0]), inner[drop:len(inner) - drop], np.full(k + 1, t[-1])])
+    span = np.clip(np.searchsorted(knots, t, side="right") - 1, k, m - 1)
+    basis = np.zeros((m, len(knots) - 1))
+    basis[np.arange(m), span] = 1.0
+    for d in range(1, k + 1):  # basis j of degree d: on knots j … j + d + 1, from bases j and j + 1 of degree d − 1
+        lo, hi = knots[:-d - 1], knots[d + 1:]
+        rise = _ratio(t[:, None] - lo, knots[d:-1] - lo)
+        fall = _ratio(hi - t[:, None], hi - knots[1:-d])
+        basis = rise * basis[:, :-1] + fall * basis[:, 1:]
+    return knots, np.linalg.solve(basis, points)
+
+
+def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a / b, 0 where b is 0 (Cox–de Boor's convention for empty knot spans)."""
+    return np.divide(a, b, out=np.zeros(np.broadcast_shapes(a.shape, b.shape)), where=b != 0)
+
+
 def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
     """The NURBS curve of ``degree`` (fewer points: lower) through ``points`` (m, 3) at parameters t (m,)."""
-    from scipy.interpolate import make_interp_spline
-
-    spline = make_interp_spline(t, points, k=min(degree, len(t) - 1))
-    curve = rhino3dm.NurbsCurve(3, False, spline.k + 1, len(spline.c))
-    for i, knot in enumerate(spline.t[1:-1].tolist()):  # Rhino leaves out the end knots
-        curve.Knots[i] = knot
-    for i, p in enumerate(spline.c.tolist()):
-        curve.Points[i] = rhino3dm.Point4d(*p, 1.0)
+    knots, control = interpolating_spline(t, points, degree)
+    curve = rhino3dm.NurbsCurve(3, False, len(knots) - len(control), len(control))
+    curve_knots, curve_points, point = curve.Knots, curve.Points, rhino3dm.Point4d
+    for i, knot in enumerate(knots[1:-1].tolist()):  # Rhino leaves out the end knots
+        curve_knots[i] = knot
+    for i, (u, v, w) in enumerate(control.tolist()):
+        curve_points[i] = point(u, v, w, 1.0)
     return curve
 
 
@@ -131,6 +167,13 @@ def write_3dm(
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
     t = topology.vertex_sample / max(int(topology.vertex_sample.max()), 1)
+    curves: dict[tuple, object] = {}
+
+    def crease_curve(chain: np.ndarray):  # a strip's side is a crease: its curve is made once
+        key = tuple(chain.tolist())
+        if key not in curves:
+            curves[key] = _nurbs_curve(rhino3dm, x[chain], t[chain], degree)
+        return curves[key]
 
     model = rhino3dm.File3dm()
     model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNITS[unit].rhino)
@@ -175,7 +218,7 @@ def write_3dm(
     for g in np.unique(topology.faces_group).tolist():
         rows = faces[topology.faces_group == g]
         sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
-        a, b = (_nurbs_curve(rhino3dm, x[v], t[v], degree) for v in sides)
+        a, b = (crease_curve(v) for v in sides)
         model.Objects.AddSurface(rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
                                  attributes("Strips", f"tube {g // 4 + 1} · strip {g % 4 + 1}", tube=g // 4, kind="strip",
                                             sheet="A" if g % 4 in (0, 3) else "B"))
@@ -194,7 +237,7 @@ def write_3dm(
                 curve = rhino3dm.PolylineCurve(points)
             else:
                 chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
-                curve = _nurbs_curve(rhino3dm, x[chain], t[chain], degree)
+                curve = crease_curve(chain)
             model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}", tube=tube, kind=kind,
                                                      sheet=sheet_of[int(chain[0])] if kind == "fold" else None,
                                                      angle=float(angles.mean()) if kind != "boundary" else fold_angle))
