@@ -45,7 +45,7 @@ from typing import Literal
 
 import numpy as np
 
-from ..geometry._fold_arrays import fold_arrays, structure_metadata
+from ..geometry._fold_arrays import FoldArrays, fold_arrays, structure_metadata
 from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
 from ..geometry._structure import Structure
 from ..geometry._topology import fold_assignment
@@ -56,7 +56,7 @@ from ._fold_reading import FoldFile
 from ._mesh3d import check_metadata
 from ._tables import CREATOR
 
-__all__ = ["fold_assignments", "fold_document", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
+__all__ = ["fold_assignments", "fold_document", "fold_model", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
            "write_structure_fold"]
 
 FILE_SPEC = 1.1
@@ -485,15 +485,30 @@ def to_fold(
     >>> [title for title, _ in model.folded], model.metadata["title"], model.metadata["tubes"]
     (['fold angle 45°', 'fold angle 90°'], 'tube', 1)
     """
-    if not isinstance(unit, str) or not unit:
-        raise InputError(f"unit must be a non-empty str, got {unit!r}")
-    extra = check_metadata(metadata)
+    _check_unit(unit)
+    check_metadata(metadata)
     arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees, anchor=anchor, faces=faces, keep=keep)
+    return fold_model(structure, arrays, unit=unit, metadata=metadata, anchor=anchor, faces=faces, keep=keep, design=design)
+
+
+def fold_model(structure: Structure, arrays: FoldArrays, *, unit: str = "unit", metadata: Mapping | None = None, anchor: str = "start",
+               faces: Literal["triangles", "quads"] = "triangles", keep: Sequence[np.ndarray] | None = None,
+               design: Mapping | None = None) -> FoldFile:
+    """:func:`to_fold` of a structure whose FOLD arrays are made
+    (:func:`curvefold.geometry._fold_arrays.fold_arrays` with these ``anchor``, ``faces`` and
+    ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
+    _check_unit(unit)
+    extra = check_metadata(metadata)
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
     record = None if design is None else {"design": dict(design), "fold_angles": arrays.fold_angles.tolist(), "anchor": anchor, "faces": faces,
                                           "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
     return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta, unit=unit,
                     seam_partners=arrays.seam_partners, bonds=arrays.bonds, design=record)
+
+
+def _check_unit(unit) -> None:
+    if not isinstance(unit, str) or not unit:
+        raise InputError(f"unit must be a non-empty str, got {unit!r}")
 
 
 def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:

@@ -205,11 +205,13 @@ def write_3dm(
 
     for k, sheet in enumerate(topology.sheets):
         part = rhino3dm.Mesh()
-        part.Vertices.UseDoublePrecisionVertices = True
-        for p in x[sheet.vertices].tolist():
-            part.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
+        vertices, add_face = part.Vertices, part.Faces.AddFace
+        vertices.UseDoublePrecisionVertices = True
+        add_vertex = vertices.AddPoint3d  # double precision (Add stores single)
+        for u, v, w in x[sheet.vertices].tolist():
+            add_vertex(u, v, w)
         for a, b, c, d in sheet.faces_vertices.tolist():
-            part.Faces.AddFace(a, b, c, d)
+            add_face(a, b, c, d)
         part.Normals.ComputeNormals()
         part.Compact()
         model.Objects.AddMesh(part, attributes("Sheets", sheet.label, tube=k // 2, kind="sheet", sheet=SHEET_LETTERS[k % 2]))
@@ -233,8 +235,7 @@ def write_3dm(
             tube = int(topology.faces_group[_faces_of(topology, chain[0])].min()) // 4
             angles = np.abs(mesh.edges_foldAngle[[edge_of[frozenset(e)] for e in zip(chain[:-1].tolist(), chain[1:].tolist())]])
             if kind == "boundary":
-                points = [rhino3dm.Point3d(*p) for p in x[chain].tolist()]
-                curve = rhino3dm.PolylineCurve(points)
+                curve = _polyline(rhino3dm, x[chain])
             else:
                 chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
                 curve = crease_curve(chain)
@@ -261,6 +262,15 @@ def write_3dm(
 SHEET_LETTERS = ("A", "B")
 #: The parent layer of the laid-out crease pattern.
 PATTERN_LAYER = "crease pattern"
+
+
+def _polyline(rhino3dm, points: np.ndarray):
+    """The polyline curve through points (n, 3)."""
+    line = rhino3dm.Polyline(len(points))
+    add = line.Add
+    for u, v, w in points.tolist():
+        add(u, v, w)
+    return line.ToPolylineCurve()
 
 
 def _faces_of(topology: Topology, vertex: int) -> np.ndarray:
@@ -301,7 +311,7 @@ def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> N
 
     def polyline(points: np.ndarray, closed: bool) -> object:
         q = np.concatenate([points, points[:1]]) if closed else points
-        return rhino3dm.PolylineCurve([rhino3dm.Point3d(float(u) * to_unit, float(v) * to_unit, 0.0) for u, v in q.tolist()])
+        return _polyline(rhino3dm, np.column_stack([q * to_unit, np.zeros(len(q))]))
 
     for number, (page, corner) in enumerate(zip(layout.pages, corners), start=1):
         frame = np.array([corner, corner + (W, 0), corner + (W, H), corner + (0, H)])
