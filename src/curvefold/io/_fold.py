@@ -53,6 +53,7 @@ from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
 from ._fold_reading import FoldFile
+from ._json_text import Decimals, dumps, plain
 from ._mesh3d import check_metadata
 from ._tables import CREATOR
 
@@ -190,19 +191,19 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     return xy
 
 
-def _coordinate_lists(x: np.ndarray) -> list:
-    """Coordinates (V, d) as lists of numbers to :data:`COORDINATE_RTOL` of the sheet's size:
-    rounded to the power of ten at or below it, so a number has no more digits than that holds."""
+def _coordinate_lists(x: np.ndarray) -> Decimals | list:
+    """Coordinates (V, d) to :data:`COORDINATE_RTOL` of the sheet's size: rounded to the power
+    of ten at or below it, so a number has no more digits than that holds."""
     x = np.asarray(x, float)
     size = float(np.ptp(x, axis=0).max()) if x.size else 0.0
     if not size > 0:
         return x.tolist()
-    return np.round(x, int(-np.floor(np.log10(COORDINATE_RTOL * size)))).tolist()
+    return Decimals.round(x, int(-np.floor(np.log10(COORDINATE_RTOL * size))))
 
 
-def _angle_lists(angles: np.ndarray, zero: np.ndarray) -> list:
+def _angle_lists(angles: np.ndarray, zero: np.ndarray) -> Decimals:
     """Fold angles in degrees to :data:`ANGLE_DECIMALS` places, 0 where ``zero``."""
-    return np.round(np.where(zero, 0.0, np.asarray(angles, float)), ANGLE_DECIMALS).tolist()
+    return Decimals.round(np.where(zero, 0.0, np.asarray(angles, float)), ANGLE_DECIMALS)
 
 
 def _face_lists(faces: np.ndarray) -> list:
@@ -243,7 +244,8 @@ def _document(title: str, frame: dict) -> dict:
 
 
 def _write_document(path: str | os.PathLike, doc: dict) -> Path:
-    return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
+    """Write a document whose number arrays are :class:`~curvefold.io._json_text.Decimals` (JSON as their lists)."""
+    return atomic_write(path, dumps(doc) + "\n")
 
 
 def write_fold(path: str | os.PathLike, **arrays) -> Path:
@@ -259,7 +261,7 @@ def write_fold(path: str | os.PathLike, **arrays) -> Path:
     -------
     Path
     """
-    return _write_document(path, fold_document(**arrays))
+    return _write_document(path, _fold_frames(**arrays))
 
 
 def fold_document(
@@ -320,6 +322,24 @@ def fold_document(
         a crease edge without two faces, a non-boundary seam partner, bad metadata or a
         design that is not JSON data.
     """
+    return plain(_fold_frames(crease_pattern=crease_pattern, folded=folded, metadata=metadata, unit=unit, seam_partners=seam_partners,
+                              bonds=bonds, design=design, title=title, flat_tol=flat_tol, mirror_clockwise=mirror_clockwise))
+
+
+def _fold_frames(
+    *,
+    crease_pattern: Mesh,
+    folded: Sequence[tuple[str, Mesh]],
+    metadata: Mapping | None = None,
+    unit: str = "unit",
+    seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
+    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
+    design: Mapping | None = None,
+    title: str = "",
+    flat_tol: float = 1e-9,
+    mirror_clockwise: bool = True,
+) -> dict:
+    """:func:`fold_document` with its number arrays as :class:`~curvefold.io._json_text.Decimals`."""
     cp = crease_pattern
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
@@ -533,7 +553,7 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
     """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io._single_fold.single_fold_model`) atomically."""
-    return _write_document(path, model_document(model, title=title))
+    return _write_document(path, _fold_frames(**_model_arrays(model), title=title))
 
 
 def model_document(model: FoldFile, *, title: str = "") -> dict:
@@ -542,5 +562,10 @@ def model_document(model: FoldFile, *, title: str = "") -> dict:
     :func:`curvefold.io._fold_reading.parse_fold` reads it back as :func:`read_fold` reads the
     file (``curvefold check --rebuild`` compares a file with the document of its design).
     """
-    return fold_document(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
-                         seam_partners=model.seam_partners, bonds=model.bonds, design=model.design, title=title)
+    return fold_document(**_model_arrays(model), title=title)
+
+
+def _model_arrays(model: FoldFile) -> dict:
+    """The keyword arguments of :func:`fold_document` for a model."""
+    return dict(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
+                seam_partners=model.seam_partners, bonds=model.bonds, design=model.design)
