@@ -128,14 +128,14 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     keep = np.concatenate([sign, leading, np.ones((count, 1), bool), trailing], axis=1)
     slow = np.flatnonzero(~fast)
     if slow.size:  # repr, from the row's first column
-        texts = [repr(v).encode() for v in flat[slow].tolist()]
-        grow = max(map(len, texts)) - chars.shape[1]
-        if grow > 0:
-            chars, keep = np.pad(chars, ((0, 0), (0, grow))), np.pad(keep, ((0, 0), (0, grow)))
+        texts = [repr(v) for v in flat[slow].tolist()]
+        longest = max(map(len, texts))
+        if longest > chars.shape[1]:
+            chars, keep = (np.pad(a, ((0, 0), (0, longest - chars.shape[1]))) for a in (chars, keep))
+        block = np.frombuffer("".join(t.ljust(longest, "\0") for t in texts).encode(), np.uint8).reshape(-1, longest)
+        chars[slow, :longest] = block
         keep[slow] = False
-        for row, text in zip(slow.tolist(), texts):
-            chars[row, :len(text)] = np.frombuffer(text, np.uint8)
-            keep[row, :len(text)] = True
+        keep[slow, :longest] = block != 0
     # after each number: "," closing and opening the axes that end there ("],[" in a matrix)
     depth = x.ndim - 1
     ends = np.zeros(count, np.int64)

@@ -228,19 +228,25 @@ def write_3dm(
     # creases run along one lattice curve (a panel's fold lines, kind "fold" too, run across)
     ends = topology.vertex_curve[mesh.edges_vertices]
     along = replace(mesh, edges_kind=np.where((ends[:, 0] == ends[:, 1]) | (mesh.edges_kind == "boundary"), mesh.edges_kind, "ruling"))
-    edge_of = {frozenset(e): i for i, e in enumerate(mesh.edges_vertices.tolist())}
-    sheet_of = {int(v): SHEET_LETTERS[k % 2] for k, s in enumerate(topology.sheets) for v in s.vertices}
+    edge_key = np.sort(mesh.edges_vertices, axis=1) @ np.array([len(x), 1])
+    edge_order = np.argsort(edge_key, kind="stable")
+    sheet_of = np.zeros(len(x), np.int64)  # the letter of a vertex's (last) sheet
+    for k, s in enumerate(topology.sheets):
+        sheet_of[s.vertices] = k % 2
+    first_strip = np.full(len(x), np.iinfo(np.int64).max)  # the first strip (faces_group) on each vertex
+    np.minimum.at(first_strip, faces.reshape(-1), np.repeat(topology.faces_group, faces.shape[1]))
     for layer, kind in (("Fold", "fold"), ("Seam", "seam"), ("Boundary", "boundary")):
         for i, chain in enumerate(crease_polylines(along, kind)):
-            tube = int(topology.faces_group[_faces_of(topology, chain[0])].min()) // 4
-            angles = np.abs(mesh.edges_foldAngle[[edge_of[frozenset(e)] for e in zip(chain[:-1].tolist(), chain[1:].tolist())]])
+            tube = int(first_strip[chain[0]]) // 4
+            steps = np.sort(np.stack([chain[:-1], chain[1:]], axis=1), axis=1) @ np.array([len(x), 1])
+            angles = np.abs(mesh.edges_foldAngle[edge_order[np.searchsorted(edge_key[edge_order], steps, side="right") - 1]])
             if kind == "boundary":
                 curve = _polyline(rhino3dm, x[chain])
             else:
                 chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
                 curve = crease_curve(chain)
             model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}", tube=tube, kind=kind,
-                                                     sheet=sheet_of[int(chain[0])] if kind == "fold" else None,
+                                                     sheet=SHEET_LETTERS[sheet_of[chain[0]]] if kind == "fold" else None,
                                                      angle=float(angles.mean()) if kind != "boundary" else fold_angle))
 
     if pattern is not None:
@@ -271,11 +277,6 @@ def _polyline(rhino3dm, points: np.ndarray):
     for u, v, w in points.tolist():
         add(u, v, w)
     return line.ToPolylineCurve()
-
-
-def _faces_of(topology: Topology, vertex: int) -> np.ndarray:
-    """The faces that hold a vertex."""
-    return np.flatnonzero((topology.faces_vertices == vertex).any(axis=1))
 
 
 def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> None:
