@@ -75,6 +75,17 @@ class _Packer:
         self.accessors: list[dict] = []
 
     def add(self, data: np.ndarray, kind: str, *, target: int | None = None, min_max: bool = False) -> int:
+        count = len(data) if kind != "SCALAR" or data.ndim == 1 else data.size
+        bounds = (data.reshape(int(count), -1).max(axis=0), data.reshape(int(count), -1).min(axis=0)) if min_max else None
+        return self._add(data, kind, target, bounds)
+
+    def add_vec3(self, data: np.ndarray) -> list[int]:
+        """Accessors of float32 vertex attributes, one per state of ``data`` (S, n, 3), with their bounds."""
+        data = data.astype(np.float32)
+        highs, lows = data.max(axis=1), data.min(axis=1)
+        return [self._add(d, "VEC3", _ARRAY_BUFFER, bounds) for d, bounds in zip(data, zip(highs, lows))]
+
+    def _add(self, data: np.ndarray, kind: str, target: int | None, bounds: tuple | None) -> int:
         raw = np.ascontiguousarray(data).tobytes()
         self.blob += b"\0" * (-len(self.blob) % 4)
         self.views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(raw), **({} if target is None else {"target": target})})
@@ -83,9 +94,8 @@ class _Packer:
         count = len(data) if kind != "SCALAR" or data.ndim == 1 else data.size
         accessor = {"bufferView": len(self.views) - 1, "byteOffset": 0, "componentType": component, "normalized": False,
                     "count": int(count), "type": kind}
-        if min_max:
-            flat = data.reshape(int(count), -1)
-            accessor |= {"max": flat.max(axis=0).tolist(), "min": flat.min(axis=0).tolist()}
+        if bounds is not None:
+            accessor |= {"max": bounds[0].tolist(), "min": bounds[1].tolist()}
         self.accessors.append(accessor)
         return len(self.accessors) - 1
 
@@ -117,11 +127,15 @@ def _keyframes(count: int, base: int) -> np.ndarray:
 
 
 def _vertex_normals(pos: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """Unit normals (n, 3) of vertices (n, 3): the area-weighted mean of their triangles' normals."""
-    a, b, c = (pos[triangles[:, k]] for k in range(3))
-    face = np.cross(b - a, c - a)  # twice the area times the normal
-    out = np.stack([sum(np.bincount(triangles[:, k], face[:, j], minlength=len(pos)) for k in range(3)) for j in range(3)], axis=1)
-    return out / np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-300)
+    """Unit normals (..., n, 3) of vertices (..., n, 3), of every state at once: the area-weighted
+    mean of their triangles' normals."""
+    a, b, c = (pos[..., triangles[:, k], :] for k in range(3))
+    face = np.cross(b - a, c - a).reshape(-1, len(triangles), 3)  # twice the area times the normal, per state
+    n = pos.shape[-2]
+    states = np.arange(len(face))[:, None] * n  # each state's vertices numbered after the previous state's
+    out = np.stack([sum(np.bincount((states + triangles[:, k]).reshape(-1), face[..., j].reshape(-1), minlength=len(face) * n)
+                        for k in range(3)) for j in range(3)], axis=-1).reshape(pos.shape)
+    return out / np.maximum(np.linalg.norm(out, axis=-1, keepdims=True), 1e-300)
 
 
 def _split_by_strip(faces: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -244,7 +258,7 @@ def write_glb(
     edges_kind = np.asarray(mesh.edges_kind)
 
     def vec3(data: np.ndarray) -> int:
-        return pk.add(data.astype(np.float32), "VEC3", target=_ARRAY_BUFFER, min_max=True)
+        return pk.add_vec3(data[None])[0]
 
     meshes, nodes = [], []
     for name, part_faces, part_edges in parts:
@@ -253,8 +267,10 @@ def write_glb(
         base = pos[base_state][copies]
         normal = _vertex_normals(base, triangles)
         moved = poses[:, copies]
-        moved_normals = np.stack([_vertex_normals(m, triangles) for m in moved]) if T else moved
-        targets = [{"POSITION": vec3(m - base), "NORMAL": vec3(n - normal)} for m, n in zip(moved, moved_normals)]
+        moved_normals = _vertex_normals(moved, triangles) if T else moved
+        # accessors in the order position, normal of each target
+        pairs = pk.add_vec3(np.stack([moved - base, moved_normals - normal], axis=1).reshape(-1, *base.shape)) if T else []
+        targets = [{"POSITION": p, "NORMAL": n} for p, n in zip(pairs[::2], pairs[1::2])]
         primitives = [{"attributes": {"POSITION": vec3(base), "NORMAL": vec3(normal)},
                        "indices": pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
                        "mode": _TRIANGLES, "material": 0, **({"targets": targets} if T else {})}]
@@ -270,7 +286,7 @@ def write_glb(
                 "attributes": {"POSITION": vec3(pos[base_state][used])},
                 "indices": pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
                 "mode": _LINES, "material": kind_material[kind],
-                **({"targets": [{"POSITION": vec3(m[used] - pos[base_state][used])} for m in poses]} if T else {})})
+                **({"targets": [{"POSITION": p} for p in pk.add_vec3(poses[:, used] - pos[base_state][used])]} if T else {})})
         meshes.append({"extras": {"targetNames": names}, "primitives": primitives, **({"weights": [0.0] * T} if T else {}), "name": name})
         nodes.append({"mesh": len(meshes) - 1, "name": name})
 
