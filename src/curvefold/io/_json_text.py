@@ -110,40 +110,37 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     size = np.abs(flat)
     fast = (size == 0) | ((size >= 1e-4) & (size < 1e15) & (np.abs(n) < 2.0 ** 52) & (n / scale == flat)
                           & (2 * np.spacing(size) < 10.0 ** -decimals))
-    count = len(flat)
+    count, depth = len(flat), x.ndim - 1
     m = np.where(fast, np.abs(n), 0).astype(np.int64)  # the digits of |x| · 10^d
-    width = max(len(str(int(m.max()))), decimals + 1)  # one digit before the point at least
-    digits = (m[:, None] // np.int64(10) ** np.arange(width - 1, -1, -1) % 10).astype(np.uint8)
-    whole = width - decimals
-    if decimals == 0:
-        digits = np.concatenate([digits, np.zeros((count, 1), np.uint8)], axis=1)  # "3.0"
-    nonzero = digits != 0
-    leading = np.logical_or.accumulate(nonzero[:, :whole], axis=1)
-    leading[:, -1] = True
-    trailing = np.logical_or.accumulate(nonzero[:, :whole - 1:-1], axis=1)[:, ::-1]
-    trailing[:, 0] = True
-    sign = np.signbit(flat)[:, None]
-    chars = np.concatenate([np.where(sign, ord("-"), 0), digits[:, :whole] + 48, np.full((count, 1), ord(".")), digits[:, whole:] + 48],
-                           axis=1).astype(np.uint8)
-    keep = np.concatenate([sign, leading, np.ones((count, 1), bool), trailing], axis=1)
+    whole = max(len(str(int(m.max()))) - decimals, 1)  # digits before the point, one at least
     slow = np.flatnonzero(~fast)
+    texts = [repr(v) for v in flat[slow].tolist()]
+    width = max([whole + max(decimals, 1) + 2, *map(len, texts)])  # sign, digits, point, digits; or a repr
+    chars = np.zeros((count, width + 2 * depth + 1), np.uint8)  # each number's characters, then what follows it
+    keep = np.zeros(chars.shape, bool)
+    chars[:, 0], keep[:, 0] = ord("-"), np.signbit(flat)
+    point = whole + 1
+    for column in [*range(point + decimals, point, -1), *range(whole, 0, -1)]:  # the last digit first
+        m, digit = np.divmod(m, 10)
+        chars[:, column] = digit + 48
+    chars[:, point] = ord(".")
+    if decimals == 0:
+        chars[:, point + 1] = ord("0")  # "3.0"
+    keep[:, 1:point] = np.logical_or.accumulate(chars[:, 1:point] != ord("0"), axis=1)  # no leading zeros ...
+    keep[:, whole] = keep[:, point] = keep[:, point + 1] = True  # ... but one digit either side of the point
+    fraction = slice(point + 1, point + 1 + max(decimals, 1))
+    keep[:, fraction] |= np.logical_or.accumulate(chars[:, fraction][:, ::-1] != ord("0"), axis=1)[:, ::-1]  # no trailing zeros
     if slow.size:  # repr, from the row's first column
-        texts = [repr(v) for v in flat[slow].tolist()]
-        longest = max(map(len, texts))
-        if longest > chars.shape[1]:
-            chars, keep = (np.pad(a, ((0, 0), (0, longest - chars.shape[1]))) for a in (chars, keep))
-        block = np.frombuffer("".join(t.ljust(longest, "\0") for t in texts).encode(), np.uint8).reshape(-1, longest)
-        chars[slow, :longest] = block
-        keep[slow] = False
-        keep[slow, :longest] = block != 0
+        block = np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8).reshape(-1, width)
+        chars[slow, :width] = block
+        keep[slow, :width] = block != 0
     # after each number: "," closing and opening the axes that end there ("],[" in a matrix)
-    depth = x.ndim - 1
     ends = np.zeros(count, np.int64)
     for stride in np.cumprod(x.shape[::-1])[:-1]:
         ends += (np.arange(1, count + 1) % stride == 0)
-    sep = np.concatenate([np.full((count, depth), ord("]")), np.full((count, 1), ord(",")), np.full((count, depth), ord("["))], axis=1)
     k = np.arange(depth)
-    sep_keep = np.concatenate([k[::-1] < ends[:, None], np.ones((count, 1), bool), k < ends[:, None]], axis=1)
-    sep_keep[-1] = False
-    body = np.concatenate([chars, sep.astype(np.uint8)], axis=1)[np.concatenate([keep, sep_keep], axis=1)]
+    chars[:, width:width + depth], chars[:, width + depth], chars[:, width + depth + 1:] = ord("]"), ord(","), ord("[")
+    keep[:, width:width + depth], keep[:, width + depth], keep[:, width + depth + 1:] = k[::-1] < ends[:, None], True, k < ends[:, None]
+    keep[-1, width:] = False
+    body = chars[keep]
     return "[" * x.ndim + body.tobytes().decode() + "]" * x.ndim
