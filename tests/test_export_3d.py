@@ -598,3 +598,42 @@ def test_writers_accept_an_empty_mesh(tmp_path):
                  faces_group=np.zeros(0, int))
     write_obj(tmp_path / "e.obj", empty)
     assert "g surface" in (tmp_path / "e.obj").read_text()
+
+
+# --- what the writers import --------------------------------------------------------------------
+
+_WRITE_ALL = """
+import sys, tempfile, pathlib
+import numpy as np
+from curvefold import Crease, Lattice, SpaceCurve, Structure
+from curvefold.io import write_3d, write_sheet_fold, write_structure_fold
+from curvefold.geometry._sheets import sheets
+structure = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)), 0.2, 0.15))
+keep = [np.arange(0, 13, 2)]
+before = set(sys.modules)
+folder = pathlib.Path(tempfile.mkdtemp())
+write_3d(folder / "m", structure, keep=keep)
+write_structure_fold(folder / "m.fold", structure, fold_angles=[0, 45, 90], keep=keep)
+for k, sheet in enumerate(sheets(structure, keep=keep)):
+    write_sheet_fold(folder / f"s{k}.fold", sheet.mesh)
+{probe}
+print(sorted(set(sys.modules) - before))
+"""
+
+
+def _imported_by_writers(probe: str = "") -> list[str]:
+    import json
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-c", _WRITE_ALL.replace("{probe}", probe)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout.splitlines()[-1].replace("'", '"'))
+
+
+def test_the_3d_and_fold_writers_import_no_scipy_nor_pygltflib():
+    """The GLB, the 3dm's splines and the FOLD files' sheets need neither (each file job pays what it imports)."""
+    heavy = ("scipy.interpolate", "scipy.sparse.csgraph", "pygltflib")
+    assert [m for m in _imported_by_writers() if m in heavy] == []
+    # the probe sees such an import
+    assert [m for m in _imported_by_writers("import scipy.interpolate, pygltflib") if m in heavy] == ["pygltflib", "scipy.interpolate"]
