@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -347,14 +348,35 @@ def test_glb_rejects_bad_input(tmp_path, tube, kwargs, match):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_glb_writer_is_atomic(tmp_path, monkeypatch, tube):
+def test_glb_is_what_pygltflib_writes(tmp_path, tube):
+    """pygltflib reads the GLB of a motion and writes it back byte for byte: its objects, defaults, padding and chunks."""
     pygltflib = pytest.importorskip("pygltflib")
+    from curvefold.io import _gltf as gltf
+
+    def rewritten(glb: bytes) -> bytes:
+        return b"".join(pygltflib.GLTF2.load_from_bytes(glb).save_to_bytes())
+
+    mesh = tube.crease_pattern
+    parts = [("tube 1 · sheet A", np.arange(4), np.arange(len(mesh.edges_vertices))), ("tube 1 · sheet B", np.arange(4, len(mesh.faces_vertices)), [])]
+    data = write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, parts=parts, metadata={"panels": 4},
+                     morph_targets={"up": np.ones((len(mesh.vertices_coords), 3))}).read_bytes()
+    assert rewritten(data) == data
+    # damaged: an accessor without the byteOffset pygltflib writes
+    length = int.from_bytes(data[12:16], "little")
+    document, blob = json.loads(data[20:20 + length]), data[28 + length:]
+    del document["accessors"][0]["byteOffset"]
+    assert rewritten(gltf._glb(document, blob)) != gltf._glb(document, blob)
+
+
+def test_glb_writer_is_atomic(tmp_path, monkeypatch, tube):
+    from curvefold.io import _gltf as gltf
+
     (tmp_path / "m.glb").write_bytes(b"old")
 
-    def broken(self):
+    def broken(*args):
         raise RuntimeError("packing failed")
 
-    monkeypatch.setattr(pygltflib.GLTF2, "save_to_bytes", broken)
+    monkeypatch.setattr(gltf, "_glb", broken)
     with pytest.raises(RuntimeError, match="packing failed"):
         write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords)
     _only(tmp_path, "m.glb")
@@ -420,6 +442,27 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
                 assert_allclose(_xyz(surface.PointAt(s_, v)), want, atol=1e-12, rtol=0)
     assert all(curve.IsClosed for _, curve in layers["Boundary"])
     assert t.max() == 1
+
+
+@pytest.mark.parametrize("points", [2, 3, 4, 5, 8, 87])
+@pytest.mark.parametrize("degree", [1, 2, 3])
+def test_3dm_crease_spline_is_scipys_interpolating_spline(points, degree):
+    """The creases' B-spline (knots and control points) is scipy's make_interp_spline through the samples."""
+    interpolate = pytest.importorskip("scipy.interpolate")
+    from curvefold.io._rhino import interpolating_spline
+
+    rng = np.random.default_rng(points * 10 + degree)
+    t = np.r_[0.0, np.sort(rng.uniform(0.05, 0.95, points - 2)), 1.0] if points > 2 else np.array([0.0, 1.0])
+    x = np.column_stack([np.cos(3 * t), np.sin(3 * t), t ** 2]) + rng.normal(0, 0.01, (points, 3))
+    want = interpolate.make_interp_spline(t, x, k=min(degree, points - 1))
+    knots, control = interpolating_spline(t, x, degree)
+    assert_array_equal(knots, want.t)
+    assert_allclose(control, want.c, rtol=0, atol=1e-12)
+    assert_allclose(interpolate.BSpline(knots, control, want.k)(t), x, rtol=0, atol=1e-12)  # through the points
+    if min(degree, points - 1) > 1:  # damaged: a parameter moved by 1e-6 moves the control points beyond the tolerance
+        moved = t.copy()
+        moved[1] += 1e-6
+        assert not np.allclose(interpolating_spline(moved, x, degree)[1], want.c, rtol=0, atol=1e-12)
 
 
 def test_3dm_groups_user_text_and_named_views(tmp_path, real_tube):
@@ -555,3 +598,42 @@ def test_writers_accept_an_empty_mesh(tmp_path):
                  faces_group=np.zeros(0, int))
     write_obj(tmp_path / "e.obj", empty)
     assert "g surface" in (tmp_path / "e.obj").read_text()
+
+
+# --- what the writers import --------------------------------------------------------------------
+
+_WRITE_ALL = """
+import sys, tempfile, pathlib
+import numpy as np
+from curvefold import Crease, Lattice, SpaceCurve, Structure
+from curvefold.io import write_3d, write_sheet_fold, write_structure_fold
+from curvefold.geometry._sheets import sheets
+structure = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)), 0.2, 0.15))
+keep = [np.arange(0, 13, 2)]
+before = set(sys.modules)
+folder = pathlib.Path(tempfile.mkdtemp())
+write_3d(folder / "m", structure, keep=keep)
+write_structure_fold(folder / "m.fold", structure, fold_angles=[0, 45, 90], keep=keep)
+for k, sheet in enumerate(sheets(structure, keep=keep)):
+    write_sheet_fold(folder / f"s{k}.fold", sheet.mesh)
+{probe}
+print(sorted(set(sys.modules) - before))
+"""
+
+
+def _imported_by_writers(probe: str = "") -> list[str]:
+    import json
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-c", _WRITE_ALL.replace("{probe}", probe)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout.splitlines()[-1].replace("'", '"'))
+
+
+def test_the_3d_and_fold_writers_import_no_scipy_nor_pygltflib():
+    """The GLB, the 3dm's splines and the FOLD files' sheets need neither (each file job pays what it imports)."""
+    heavy = ("scipy.interpolate", "scipy.sparse.csgraph", "pygltflib")
+    assert [m for m in _imported_by_writers() if m in heavy] == []
+    # the probe sees such an import
+    assert [m for m in _imported_by_writers("import scipy.interpolate, pygltflib") if m in heavy] == ["pygltflib", "scipy.interpolate"]

@@ -464,3 +464,28 @@ def test_node_sheet_file(tmp_path):
     report = run_node("check_fold.mjs", str(tmp_path / "sheet.fold"))
     assert report["fold"]["same_orientation"]
     assert report["rabbit_ear"]["summary"] == "valid"
+
+
+# --- JSON text of the number arrays ----------------------------------------------------------
+
+
+@pytest.mark.parametrize("decimals", [0, 1, 4, 10, 12, 15])
+def test_number_arrays_are_written_as_json_writes_their_lists(decimals):
+    """Rounded arrays of every scale and shape, zeros of both signs, exponents: the text json.dumps writes."""
+    from curvefold.io._json_text import Decimals, array_json, dumps
+
+    rng = np.random.default_rng(decimals)
+    for shape in [(1,), (37,), (25, 3), (4, 5, 2)]:
+        for scale in [1e-9, 1e-5, 1e-3, 0.7, 1.0, 3.0, 250.0, 1e6, 1e13, 1e17]:
+            x = np.round(rng.normal(size=shape) * scale, decimals)
+            x.reshape(-1)[:3] = [0.0, -0.0, 1.0][: x.size]
+            assert array_json(x, decimals) == json.dumps(x.tolist(), separators=(",", ":"))
+    # damaged: numbers not rounded to the places given are not the decimals of their rounding (repr writes them)
+    x = rng.normal(size=(50, 3))
+    assert array_json(x, 4) == json.dumps(x.tolist(), separators=(",", ":")) != json.dumps(np.round(x, 4).tolist(), separators=(",", ":"))
+    # a document with the arrays among other values, and one whose text holds the mark itself
+    doc = {"a": Decimals.round(x, 6), "b": [{"c": Decimals.round(x[:, 0], 3), "s": "x"}], "n": [[1, 2]]}
+    plain = {"a": np.round(x, 6).tolist(), "b": [{"c": np.round(x[:, 0], 3).tolist(), "s": "x"}], "n": [[1, 2]]}
+    assert dumps(doc) == json.dumps(plain, separators=(",", ":"))
+    marked = {"s": "\0curvefold:array\0", **doc}
+    assert dumps(marked) == json.dumps({"s": "\0curvefold:array\0", **plain}, separators=(",", ":"))

@@ -265,15 +265,16 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float 
     """The structure's FOLD file: its folding motion (:func:`exported_fold_angles`), or flat to
     ``fold_angle`` when one is given; and one FOLD file per sheet, flat with its target fold angles
     (loadable by Origami Simulator)."""
-    from ..geometry._sheets import sheets
-    from ..io._fold import write_sheet_fold
+    from ..geometry._fold_arrays import fold_arrays
+    from ..io._fold import fold_model, write_model, write_sheet_fold
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
-    angles = (exported_fold_angles(built) if fold_angle is None else design_motion(built, fold_angle)).tolist()
-    files = [_writer(names)(folder / f"{built.design.kind}.fold", structure, title=meta["title"], fold_angles=angles,
-                            unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())]
+    angles = exported_fold_angles(built) if fold_angle is None else design_motion(built, fold_angle)
+    arrays = fold_arrays(structure, fold_angles=angles, keep=keep)  # the structure's file (write_structure_fold) and its sheets
+    model = fold_model(structure, arrays, unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())
+    files = [write_model(folder / f"{built.design.kind}.fold", model, title=meta["title"])]
     (folder / "sheets").mkdir()
-    for sheet in sheets(structure, keep=keep):
+    for sheet in arrays.sheets:
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
         files.append(write_sheet_fold(folder / "sheets" / f"{stem}.fold", sheet.mesh, MODEL_UNIT, title=sheet.label))
     return files

@@ -32,7 +32,7 @@ from ..kernel._errors import InternalError
 from ._crease import check_fold_angle, check_fold_angles
 from ._mesh import Mesh, edges_faces
 from ._mesh import fold_angles as dihedral_angles
-from ._sheets import bonds, develop, folding_motion
+from ._sheets import PatternSheet, bonds, develop, folding_motion
 from ._structure import Structure, check_structure
 from ._topology import Topology
 
@@ -58,6 +58,10 @@ class FoldArrays(FrozenArrays):
         The design angle 2α whose fold angles the crease pattern carries, degrees.
     fold_angles : (A,) ndarray
         2α of the folded frames, degrees.
+    sheets : tuple of PatternSheet
+        The developed sheets laid in a row (:func:`~curvefold.geometry._sheets.develop`),
+        each in its own place: :func:`~curvefold.geometry._sheets.sheets` of the structure at
+        the design angle, on the same faces and samples.
 
     Examples
     --------
@@ -76,6 +80,7 @@ class FoldArrays(FrozenArrays):
     bonds: np.ndarray
     fold_angle: float
     fold_angles: np.ndarray
+    sheets: tuple[PatternSheet, ...]
 
 
 def structure_metadata(structure: Structure, fold_angle: float | None = None, *, degrees: bool = True) -> dict:
@@ -212,13 +217,13 @@ def fold_arrays(
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
     glued = _bond_pairs(cp.edges_vertices, source, topology, mesh_edge)
     # Every frame carries the dihedral angle it has at every edge; the key frame the design state's.
-    coords = folding_motion(structure, np.concatenate([[design], angles]), anchor=anchor, keep=keep)[:, source]  # (1 + A, V, 3)
+    coords = folding_motion(structure, np.concatenate([[design], angles]), anchor=anchor, topology=topology)[:, source]  # (1 + A, V, 3)
     sides = edges_faces(cp.faces_vertices, cp.edges_vertices)
     measured = [dihedral_angles(x, cp.faces_vertices, cp.edges_vertices, faces_of_edges=sides) for x in coords]
     cp = replace(cp, edges_foldAngle=measured[0])
     folded = tuple((f"fold angle {a:g}°", replace(cp, vertices_coords=x, edges_foldAngle=m))
                    for a, x, m in zip(angles, coords[1:], measured[1:]))
-    return FoldArrays(cp, folded, readonly(pairs), glued, float(design), angles)
+    return FoldArrays(cp, folded, readonly(pairs), glued, float(design), angles, parts)
 
 
 def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topology, mesh_edge: np.ndarray) -> np.ndarray:

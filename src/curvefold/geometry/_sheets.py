@@ -313,20 +313,21 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
         raise InputError(f"name must be a str, got {type(name).__name__}")
     flat = structure.state(0.0)
     plane = flat_plane(flat)
-    flat_mesh = topology.mesh(flat.vertices)
-    design = topology.mesh(structure.state(fold_angle).vertices)
-    bends = dihedral_angles(design.vertices_coords, topology.faces_vertices, topology.edges_vertices)  # rulings and diagonals bend too
-    normals = flat_mesh.face_normals()
+    flat_coords = topology.coords(flat.vertices)
+    bends = dihedral_angles(topology.coords(structure.state(fold_angle).vertices), topology.faces_vertices,
+                            topology.edges_vertices)  # rulings and diagonals bend too
+    areas = vector_areas(flat_coords, topology.faces_vertices)
+    normals = areas / np.linalg.norm(areas, axis=-1, keepdims=True)
     out = []
     for sheet in topology.sheets:
         label = f"{name} · {sheet.label}" if name else sheet.label
         facing = normals[sheet.faces] @ plane.axes[2]  # ±1: the outside faces +n or −n
-        xy = plane.coords(flat_mesh.vertices_coords[sheet.vertices], flip=bool(facing.mean() < 0))
+        xy = plane.coords(flat_coords[sheet.vertices], flip=bool(facing.mean() < 0))
         area2 = vector_areas(xy, sheet.faces_vertices)[:, 2]
         if not (area2 > 0).all():
             raise InternalError(f"{label}: {int(np.count_nonzero(~(area2 > 0)))} of {len(area2)} faces of the flat "
                                 "state are not counter-clockwise seen from outside the tube")
-        kind = design.edges_kind[sheet.edges]
+        kind = topology.edges_kind[sheet.edges]
         angle = np.where(kind == "seam", 0.0, bends[sheet.edges])  # a seam is cut open: one face
         mesh = Mesh(
             vertices_coords=np.column_stack([xy, np.zeros(len(xy))]),
@@ -536,7 +537,7 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
 
 
 def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, anchor: str = "start",
-                   keep: Sequence[np.ndarray] | None = None) -> np.ndarray:
+                   keep: Sequence[np.ndarray] | None = None, topology: Topology | None = None) -> np.ndarray:
     """Vertex positions of ``State.mesh(keep=keep)`` at many fold angles at once, shape (A, V, 3).
 
     The vectorised form of ``[structure.state(f, anchor=anchor).mesh().vertices_coords for f
@@ -552,6 +553,9 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
         Which frame of curve 1 stays fixed (see :meth:`Structure.state`).
     keep : sequence of (m_k,) array_like of int, optional, keyword-only
         The samples each tube's mesh keeps (see :meth:`Structure.topology`).
+    topology : Topology, optional, keyword-only
+        ``structure.topology(faces, keep=keep)`` when the caller has it (it is not made again);
+        its vertices are the ones returned.
 
     Examples
     --------
@@ -569,6 +573,6 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
     check_structure(structure)
     angles = check_fold_angles(fold_angles, degrees=degrees)
     points = structure.lattice.fold_points(structure.curves_uv, angles, anchor=anchor)  # (A, M, n, 3)
-    return structure.topology(keep=keep).coords(points)
+    return (structure.topology(keep=keep) if topology is None else topology).coords(points)
 
 

@@ -1,9 +1,9 @@
 """File exporters: FOLD (with a reader), OBJ/STL/PLY, animated GLB, Rhino 3dm and crease patterns.
 
 Every writer goes through :mod:`curvefold.io._atomic` (temporary file, then rename), so a
-failure never leaves a partial file. Heavy libraries (``pygltflib``, ``rhino3dm``,
-``ezdxf``) are optional and imported only by the writer that needs them; OBJ, STL and PLY
-(:mod:`curvefold.io._mesh3d`) and the PDF pages (:mod:`curvefold.io._pdf`) need none.
+failure never leaves a partial file. Heavy libraries (``rhino3dm``, ``ezdxf``) are optional
+and imported only by the writer that needs them; GLB (:mod:`curvefold.io._gltf`), OBJ, STL
+and PLY (:mod:`curvefold.io._mesh3d`) and the PDF pages (:mod:`curvefold.io._pdf`) need none.
 
 :mod:`curvefold.io._formats` is the registry of every file format (name, extension,
 contents, kinds of design, writer, optional package); :mod:`curvefold.io._tables` is the

@@ -45,7 +45,7 @@ from typing import Literal
 
 import numpy as np
 
-from ..geometry._fold_arrays import fold_arrays, structure_metadata
+from ..geometry._fold_arrays import FoldArrays, fold_arrays, structure_metadata
 from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
 from ..geometry._structure import Structure
 from ..geometry._topology import fold_assignment
@@ -53,10 +53,11 @@ from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
 from ._fold_reading import FoldFile
+from ._json_text import Decimals, dumps, plain
 from ._mesh3d import check_metadata
 from ._tables import CREATOR
 
-__all__ = ["fold_assignments", "fold_document", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
+__all__ = ["fold_assignments", "fold_document", "fold_model", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
            "write_structure_fold"]
 
 FILE_SPEC = 1.1
@@ -151,11 +152,9 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
 
     A sheet (a set of faces connected through shared vertices) whose triangles are all
     clockwise is mirrored, y → 2·c − y about its centre c, when ``mirror_clockwise``;
-    that is the same sheet seen from the side its normals point to.
+    that is the same sheet seen from the side its normals point to. The sheets are found
+    only when a face is clockwise (a mesh of counter-clockwise faces is left as it is).
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     x = np.asarray(mesh.vertices_coords, float)
     V = len(x)
     size = float(np.ptp(x, axis=0).max()) if V else 0.0
@@ -167,18 +166,20 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     if len(f) == 0:
         return xy
     area2 = vector_areas(xy, f)[:, 2]
-    pairs = face_sides(f)[0]
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
-    _, vertex_sheet = connected_components(graph, directed=False)
-    face_sheet = vertex_sheet[f[:, 0]]
-    for sheet in np.unique(face_sheet):
-        faces = np.flatnonzero(face_sheet == sheet)
-        cw = area2[faces] < 0
-        if mirror_clockwise and cw.all():
-            verts = np.unique(f[faces][f[faces] >= 0])
-            centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
-            xy[verts, 1] = 2 * centre - xy[verts, 1]
-            area2[faces] = -area2[faces]
+    if mirror_clockwise and (area2 < 0).any():
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        pairs = face_sides(f)[0]
+        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
+        face_sheet = connected_components(graph, directed=False)[1][f[:, 0]]
+        for sheet in np.unique(face_sheet):
+            faces = np.flatnonzero(face_sheet == sheet)
+            if (area2[faces] < 0).all():
+                verts = np.unique(f[faces][f[faces] >= 0])
+                centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
+                xy[verts, 1] = 2 * centre - xy[verts, 1]
+                area2[faces] = -area2[faces]
     bad = area2 <= 0
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
@@ -190,19 +191,19 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     return xy
 
 
-def _coordinate_lists(x: np.ndarray) -> list:
-    """Coordinates (V, d) as lists of numbers to :data:`COORDINATE_RTOL` of the sheet's size:
-    rounded to the power of ten at or below it, so a number has no more digits than that holds."""
+def _coordinate_lists(x: np.ndarray) -> Decimals | list:
+    """Coordinates (V, d) to :data:`COORDINATE_RTOL` of the sheet's size: rounded to the power
+    of ten at or below it, so a number has no more digits than that holds."""
     x = np.asarray(x, float)
     size = float(np.ptp(x, axis=0).max()) if x.size else 0.0
     if not size > 0:
         return x.tolist()
-    return np.round(x, int(-np.floor(np.log10(COORDINATE_RTOL * size)))).tolist()
+    return Decimals.round(x, int(-np.floor(np.log10(COORDINATE_RTOL * size))))
 
 
-def _angle_lists(angles: np.ndarray, zero: np.ndarray) -> list:
+def _angle_lists(angles: np.ndarray, zero: np.ndarray) -> Decimals:
     """Fold angles in degrees to :data:`ANGLE_DECIMALS` places, 0 where ``zero``."""
-    return np.round(np.where(zero, 0.0, np.asarray(angles, float)), ANGLE_DECIMALS).tolist()
+    return Decimals.round(np.where(zero, 0.0, np.asarray(angles, float)), ANGLE_DECIMALS)
 
 
 def _face_lists(faces: np.ndarray) -> list:
@@ -243,7 +244,8 @@ def _document(title: str, frame: dict) -> dict:
 
 
 def _write_document(path: str | os.PathLike, doc: dict) -> Path:
-    return atomic_write(path, json.dumps(doc, allow_nan=False, separators=(",", ":")) + "\n")
+    """Write a document whose number arrays are :class:`~curvefold.io._json_text.Decimals` (JSON as their lists)."""
+    return atomic_write(path, dumps(doc) + "\n")
 
 
 def write_fold(path: str | os.PathLike, **arrays) -> Path:
@@ -259,7 +261,7 @@ def write_fold(path: str | os.PathLike, **arrays) -> Path:
     -------
     Path
     """
-    return _write_document(path, fold_document(**arrays))
+    return _write_document(path, _fold_frames(**arrays))
 
 
 def fold_document(
@@ -320,6 +322,24 @@ def fold_document(
         a crease edge without two faces, a non-boundary seam partner, bad metadata or a
         design that is not JSON data.
     """
+    return plain(_fold_frames(crease_pattern=crease_pattern, folded=folded, metadata=metadata, unit=unit, seam_partners=seam_partners,
+                              bonds=bonds, design=design, title=title, flat_tol=flat_tol, mirror_clockwise=mirror_clockwise))
+
+
+def _fold_frames(
+    *,
+    crease_pattern: Mesh,
+    folded: Sequence[tuple[str, Mesh]],
+    metadata: Mapping | None = None,
+    unit: str = "unit",
+    seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
+    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
+    design: Mapping | None = None,
+    title: str = "",
+    flat_tol: float = 1e-9,
+    mirror_clockwise: bool = True,
+) -> dict:
+    """:func:`fold_document` with its number arrays as :class:`~curvefold.io._json_text.Decimals`."""
     cp = crease_pattern
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
@@ -485,15 +505,30 @@ def to_fold(
     >>> [title for title, _ in model.folded], model.metadata["title"], model.metadata["tubes"]
     (['fold angle 45°', 'fold angle 90°'], 'tube', 1)
     """
-    if not isinstance(unit, str) or not unit:
-        raise InputError(f"unit must be a non-empty str, got {unit!r}")
-    extra = check_metadata(metadata)
+    _check_unit(unit)
+    check_metadata(metadata)
     arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees, anchor=anchor, faces=faces, keep=keep)
+    return fold_model(structure, arrays, unit=unit, metadata=metadata, anchor=anchor, faces=faces, keep=keep, design=design)
+
+
+def fold_model(structure: Structure, arrays: FoldArrays, *, unit: str = "unit", metadata: Mapping | None = None, anchor: str = "start",
+               faces: Literal["triangles", "quads"] = "triangles", keep: Sequence[np.ndarray] | None = None,
+               design: Mapping | None = None) -> FoldFile:
+    """:func:`to_fold` of a structure whose FOLD arrays are made
+    (:func:`curvefold.geometry._fold_arrays.fold_arrays` with these ``anchor``, ``faces`` and
+    ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
+    _check_unit(unit)
+    extra = check_metadata(metadata)
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
     record = None if design is None else {"design": dict(design), "fold_angles": arrays.fold_angles.tolist(), "anchor": anchor, "faces": faces,
                                           "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
     return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta, unit=unit,
                     seam_partners=arrays.seam_partners, bonds=arrays.bonds, design=record)
+
+
+def _check_unit(unit) -> None:
+    if not isinstance(unit, str) or not unit:
+        raise InputError(f"unit must be a non-empty str, got {unit!r}")
 
 
 def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:
@@ -518,7 +553,7 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
     """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io._single_fold.single_fold_model`) atomically."""
-    return _write_document(path, model_document(model, title=title))
+    return _write_document(path, _fold_frames(**_model_arrays(model), title=title))
 
 
 def model_document(model: FoldFile, *, title: str = "") -> dict:
@@ -527,5 +562,10 @@ def model_document(model: FoldFile, *, title: str = "") -> dict:
     :func:`curvefold.io._fold_reading.parse_fold` reads it back as :func:`read_fold` reads the
     file (``curvefold check --rebuild`` compares a file with the document of its design).
     """
-    return fold_document(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
-                         seam_partners=model.seam_partners, bonds=model.bonds, design=model.design, title=title)
+    return fold_document(**_model_arrays(model), title=title)
+
+
+def _model_arrays(model: FoldFile) -> dict:
+    """The keyword arguments of :func:`fold_document` for a model."""
+    return dict(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
+                seam_partners=model.seam_partners, bonds=model.bonds, design=model.design)

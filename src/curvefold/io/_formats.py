@@ -139,7 +139,7 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the frames of the folding motion, and one FOLD file per sheet", "fold", _ALL,
                "curvefold.io._fold:write_structure_fold", "application/json"),
     FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _ALL,
-               "curvefold.io._models:model_glb", "model/gltf-binary", "pygltflib", "export"),
+               "curvefold.io._models:model_glb", "model/gltf-binary"),
     FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _ALL,
                "curvefold.io._models:model_obj", "model/obj"),
     FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,

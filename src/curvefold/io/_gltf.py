@@ -32,12 +32,16 @@ so that the model's +Z points up in glTF viewers. Both are recorded in
 design parameters. Positions are 32-bit floats; accessor ``min``/``max`` are those of
 the stored 32-bit values.
 
-Written with ``pygltflib`` (an optional dependency, imported when called).
+The JSON document and its one binary buffer are written in the GLB container (glTF 2.0,
+section 4.4) by a few lines here, with the objects and defaults ``pygltflib`` writes (its
+import and serialisation cost more than the rest of the file); ``pygltflib`` reads them back.
 """
 
 from __future__ import annotations
 
+import json
 import os
+import struct
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from types import MappingProxyType
@@ -63,36 +67,52 @@ _AXES = {"z": Y_UP["y"], "y": Y_UP["z"]}  # the model's up axis -> the rotation 
 
 
 class _Packer:
-    """Collects 4-byte aligned buffer views and their accessors into one binary buffer."""
+    """Collects 4-byte aligned buffer views and their accessors (glTF JSON objects) into one binary buffer."""
 
-    def __init__(self, gltf_module):
-        self.g = gltf_module
+    def __init__(self):
         self.blob = bytearray()
-        self.views: list = []
-        self.accessors: list = []
+        self.views: list[dict] = []
+        self.accessors: list[dict] = []
 
     def add(self, data: np.ndarray, kind: str, *, target: int | None = None, min_max: bool = False) -> int:
+        count = len(data) if kind != "SCALAR" or data.ndim == 1 else data.size
+        bounds = (data.reshape(int(count), -1).max(axis=0), data.reshape(int(count), -1).min(axis=0)) if min_max else None
+        return self._add(data, kind, target, bounds)
+
+    def add_vec3(self, data: np.ndarray) -> list[int]:
+        """Accessors of float32 vertex attributes, one per state of ``data`` (S, n, 3), with their bounds."""
+        data = data.astype(np.float32)
+        highs, lows = data.max(axis=1), data.min(axis=1)
+        return [self._add(d, "VEC3", _ARRAY_BUFFER, bounds) for d, bounds in zip(data, zip(highs, lows))]
+
+    def _add(self, data: np.ndarray, kind: str, target: int | None, bounds: tuple | None) -> int:
         raw = np.ascontiguousarray(data).tobytes()
         self.blob += b"\0" * (-len(self.blob) % 4)
-        self.views.append(self.g.BufferView(buffer=0, byteOffset=len(self.blob), byteLength=len(raw), target=target))
+        self.views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(raw), **({} if target is None else {"target": target})})
         self.blob += raw
         component = _FLOAT if data.dtype == np.float32 else _UINT32
         count = len(data) if kind != "SCALAR" or data.ndim == 1 else data.size
-        accessor = self.g.Accessor(bufferView=len(self.views) - 1, componentType=component, count=int(count), type=kind)
-        if min_max:
-            flat = data.reshape(int(count), -1)
-            accessor.min = [float(v) for v in flat.min(axis=0)]
-            accessor.max = [float(v) for v in flat.max(axis=0)]
+        accessor = {"bufferView": len(self.views) - 1, "byteOffset": 0, "componentType": component, "normalized": False,
+                    "count": int(count), "type": kind}
+        if bounds is not None:
+            accessor |= {"max": bounds[0].tolist(), "min": bounds[1].tolist()}
         self.accessors.append(accessor)
         return len(self.accessors) - 1
 
 
-def _material(g, name: str, colour: tuple, *, double_sided: bool):
-    return g.Material(
-        name=name,
-        doubleSided=double_sided,
-        pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=list(colour), metallicFactor=0.0, roughnessFactor=1.0),
-    )
+def _material(name: str, colour: tuple, *, double_sided: bool) -> dict:
+    return {"pbrMetallicRoughness": {"baseColorFactor": list(colour), "metallicFactor": 0.0, "roughnessFactor": 1.0},
+            "emissiveFactor": [0.0, 0.0, 0.0], "alphaMode": "OPAQUE", "doubleSided": double_sided, "name": name}
+
+
+def _glb(document: dict, blob: bytes) -> bytes:
+    """The binary glTF container (glTF 2.0, section 4.4) of a JSON document and its buffer: a
+    12-byte header, the JSON chunk padded with spaces and the BIN chunk padded with zeros, each to 4 bytes."""
+    text = json.dumps(document, allow_nan=False, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    blob += b"\0" * (-len(blob) % 4)
+    return b"".join([b"glTF", struct.pack("<II", 2, 28 + len(text) + len(blob)), struct.pack("<I", len(text)), b"JSON", text,
+                     struct.pack("<I", len(blob)), b"BIN\0", blob])
 
 
 def _keyframes(count: int, base: int) -> np.ndarray:
@@ -107,11 +127,15 @@ def _keyframes(count: int, base: int) -> np.ndarray:
 
 
 def _vertex_normals(pos: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """Unit normals (n, 3) of vertices (n, 3): the area-weighted mean of their triangles' normals."""
-    a, b, c = (pos[triangles[:, k]] for k in range(3))
-    face = np.cross(b - a, c - a)  # twice the area times the normal
-    out = np.stack([sum(np.bincount(triangles[:, k], face[:, j], minlength=len(pos)) for k in range(3)) for j in range(3)], axis=1)
-    return out / np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-300)
+    """Unit normals (..., n, 3) of vertices (..., n, 3), of every state at once: the area-weighted
+    mean of their triangles' normals."""
+    a, b, c = (pos[..., triangles[:, k], :] for k in range(3))
+    face = np.cross(b - a, c - a).reshape(-1, len(triangles), 3)  # twice the area times the normal, per state
+    n = pos.shape[-2]
+    states = np.arange(len(face))[:, None] * n  # each state's vertices numbered after the previous state's
+    out = np.stack([sum(np.bincount((states + triangles[:, k]).reshape(-1), face[..., j].reshape(-1), minlength=len(face) * n)
+                        for k in range(3)) for j in range(3)], axis=-1).reshape(pos.shape)
+    return out / np.maximum(np.linalg.norm(out, axis=-1, keepdims=True), 1e-300)
 
 
 def _split_by_strip(faces: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -184,11 +208,6 @@ def write_glb(
         On a wrong shape, non-finite coordinates, an unknown unit without ``scale`` or
         a bad option.
     """
-    try:
-        import pygltflib as g
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise ImportError("writing GLB needs pygltflib: pip install 'curvefold[export]'") from exc
-
     V = len(mesh.vertices_coords)
     states = np.asarray(mesh.vertices_coords if coords is None else coords, float)
     if states.ndim == 2:
@@ -233,13 +252,13 @@ def write_glb(
     names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(extra)
     T = len(poses)  # morph targets
 
-    pk = _Packer(g)
-    materials = [_material(g, "surface", rgba("surface"), double_sided=True)]
+    pk = _Packer()
+    materials = [_material("surface", rgba("surface"), double_sided=True)]
     kind_material: dict[str, int] = {}
     edges_kind = np.asarray(mesh.edges_kind)
 
     def vec3(data: np.ndarray) -> int:
-        return pk.add(data.astype(np.float32), "VEC3", target=_ARRAY_BUFFER, min_max=True)
+        return pk.add_vec3(data[None])[0]
 
     meshes, nodes = [], []
     for name, part_faces, part_edges in parts:
@@ -248,26 +267,28 @@ def write_glb(
         base = pos[base_state][copies]
         normal = _vertex_normals(base, triangles)
         moved = poses[:, copies]
-        moved_normals = np.stack([_vertex_normals(m, triangles) for m in moved]) if T else moved
-        targets = [g.Attributes(POSITION=vec3(m - base), NORMAL=vec3(n - normal)) for m, n in zip(moved, moved_normals)]
-        primitives = [g.Primitive(attributes=g.Attributes(POSITION=vec3(base), NORMAL=vec3(normal)),
-                                  indices=pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
-                                  mode=_TRIANGLES, material=0, targets=targets)]
+        moved_normals = _vertex_normals(moved, triangles) if T else moved
+        # accessors in the order position, normal of each target
+        pairs = pk.add_vec3(np.stack([moved - base, moved_normals - normal], axis=1).reshape(-1, *base.shape)) if T else []
+        targets = [{"POSITION": p, "NORMAL": n} for p, n in zip(pairs[::2], pairs[1::2])]
+        primitives = [{"attributes": {"POSITION": vec3(base), "NORMAL": vec3(normal)},
+                       "indices": pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
+                       "mode": _TRIANGLES, "material": 0, **({"targets": targets} if T else {})}]
         for kind in crease_kinds:
             edges = np.asarray(mesh.edges_vertices)[part_edges[edges_kind[part_edges] == kind]]
             if len(edges) == 0:
                 continue
             if kind not in kind_material:
-                materials.append(_material(g, kind, CREASE_COLOURS[kind], double_sided=False))
+                materials.append(_material(kind, CREASE_COLOURS[kind], double_sided=False))
                 kind_material[kind] = len(materials) - 1
             used, local = np.unique(edges, return_inverse=True)
-            primitives.append(g.Primitive(
-                attributes=g.Attributes(POSITION=vec3(pos[base_state][used])),
-                indices=pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
-                mode=_LINES, material=kind_material[kind],
-                targets=[g.Attributes(POSITION=vec3(m[used] - pos[base_state][used])) for m in poses]))
-        meshes.append(g.Mesh(name=name, primitives=primitives, weights=[0.0] * T, extras={"targetNames": names}))
-        nodes.append(g.Node(name=name, mesh=len(meshes) - 1))
+            primitives.append({
+                "attributes": {"POSITION": vec3(pos[base_state][used])},
+                "indices": pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
+                "mode": _LINES, "material": kind_material[kind],
+                **({"targets": [{"POSITION": p} for p in pk.add_vec3(poses[:, used] - pos[base_state][used])]} if T else {})})
+        meshes.append({"extras": {"targetNames": names}, "primitives": primitives, **({"weights": [0.0] * T} if T else {}), "name": name})
+        nodes.append({"mesh": len(meshes) - 1, "name": name})
 
     animations = []
     if K > 1:
@@ -280,11 +301,11 @@ def write_glb(
         weights[np.flatnonzero(shown), target_of[order][shown]] = 1.0
         t_acc = pk.add(times, "SCALAR", min_max=True)
         w_acc = pk.add(weights.reshape(-1), "SCALAR")
-        animations.append(g.Animation(
-            name="fold",
-            samplers=[g.AnimationSampler(input=t_acc, output=w_acc, interpolation=interpolation)],
-            channels=[g.AnimationChannel(sampler=0, target=g.AnimationChannelTarget(node=n, path="weights")) for n in range(len(nodes))],
-        ))
+        animations.append({
+            "name": "fold",
+            "channels": [{"sampler": 0, "target": {"node": n, "path": "weights"}} for n in range(len(nodes))],
+            "samplers": [{"input": t_acc, "interpolation": interpolation, "output": w_acc}],
+        })
 
     extras = {
         "unit": unit,
@@ -299,20 +320,19 @@ def write_glb(
     }
     if angles is not None:
         extras["angles_deg"] = angles.tolist()
-    gltf = g.GLTF2(
-        asset=g.Asset(version="2.0", generator=CREATOR, extras={"curvefold": extras}),
-        scene=0,
-        scenes=[g.Scene(nodes=list(range(len(nodes))))],
-        nodes=nodes,
-        meshes=meshes,
-        materials=materials,
-        accessors=pk.accessors,
-        bufferViews=pk.views,
-        buffers=[g.Buffer(byteLength=len(pk.blob))],
-        animations=animations,
-    )
-    gltf.set_binary_blob(bytes(pk.blob))
-    return atomic_write(path, b"".join(gltf.save_to_bytes()))
+    document = {
+        "accessors": pk.accessors,
+        **({"animations": animations} if animations else {}),
+        "asset": {"extras": {"curvefold": extras}, "generator": CREATOR, "version": "2.0"},
+        "bufferViews": pk.views,
+        "buffers": [{"byteLength": len(pk.blob)}],
+        "materials": materials,
+        "meshes": meshes,
+        "nodes": nodes,
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+    }
+    return atomic_write(path, _glb(document, bytes(pk.blob)))
 
 
 def _check_parts(parts, faces: int, edges: int) -> list[tuple[str, np.ndarray, np.ndarray]]:

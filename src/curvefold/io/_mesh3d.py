@@ -149,19 +149,19 @@ def crease_polylines(
     []
     """
     kinds = _check_kinds(kinds)
-    chosen = np.flatnonzero(np.isin(mesh.edges_kind, kinds))
-    ev = mesh.edges_vertices
+    chosen = np.flatnonzero(np.isin(mesh.edges_kind, kinds)).tolist()
+    ends = dict(zip(chosen, mesh.edges_vertices[chosen].tolist()))  # Python ints: the walk below is one step at a time
     incident: dict[int, list[int]] = {}
     for e in chosen:
-        a, b = int(ev[e, 0]), int(ev[e, 1])
-        incident.setdefault(a, []).append(int(e))
-        incident.setdefault(b, []).append(int(e))
+        a, b = ends[e]
+        incident.setdefault(a, []).append(e)
+        incident.setdefault(b, []).append(e)
 
     cos_split = None if split_angle_deg is None else math.cos(math.radians(split_angle_deg))
     x = mesh.vertices_coords
 
     def other(e: int, v: int) -> int:
-        a, b = int(ev[e, 0]), int(ev[e, 1])
+        a, b = ends[e]
         return b if v == a else a
 
     def passes_through(v: int) -> bool:
@@ -199,8 +199,8 @@ def crease_polylines(
                 if e not in used:
                     out.append(walk(v, e))
     for e in chosen:  # what is left are closed loops through pass-through vertices only
-        if int(e) not in used:
-            out.append(walk(int(ev[e, 0]), int(e)))
+        if e not in used:
+            out.append(walk(ends[e][0], e))
     return out
 
 

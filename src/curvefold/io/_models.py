@@ -19,6 +19,7 @@ from ..geometry._fold_arrays import structure_metadata
 from ..geometry._mesh import Mesh
 from ..geometry._sheets import folding_motion
 from ..geometry._structure import Structure, check_structure
+from ..geometry._topology import Topology
 from ..kernel._arrays import readonly
 from . import _gltf as gltf
 from . import _mesh3d as mesh3d
@@ -102,9 +103,10 @@ def write_3d(
     static = design if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
     motion = np.linspace(0.0, design, 7) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
     meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
-    state = structure.state(static, anchor=anchor)
-    model = FoldedModel(structure, state.mesh(keep=keep), state.mesh(faces="quads", keep=keep), static, readonly(motion), unit,
-                        meta, anchor, seconds_per_state, keep, print_unit, dict(morph_targets or {}), pattern)
+    curves = structure.state(static, anchor=anchor).vertices
+    triangles, quads = structure.topology(keep=keep), structure.topology("quads", keep=keep)  # State.mesh's, made once
+    model = FoldedModel(structure, triangles.mesh(curves), quads.mesh(curves), static, readonly(motion), unit,
+                        meta, anchor, seconds_per_state, keep, print_unit, dict(morph_targets or {}), pattern, triangles, quads)
     return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
 
 
@@ -139,6 +141,9 @@ class FoldedModel:
         Further named morph targets of the GLB, displacements from :attr:`mesh`.
     pattern : Layout or None
         The crease pattern of the 3dm's ``crease pattern`` layer.
+    topology, quad_topology : Topology or None
+        The topologies of :attr:`mesh` and :attr:`quads` (``structure.topology(faces, keep=keep)``);
+        None: made when asked.
     """
 
     structure: Structure
@@ -154,6 +159,8 @@ class FoldedModel:
     print_unit: str | None = None
     morph_targets: Mapping[str, np.ndarray] = field(default_factory=dict)
     pattern: Layout | None = None
+    topology: Topology | None = None
+    quad_topology: Topology | None = None
 
     @property
     def static_metadata(self) -> dict:
@@ -164,9 +171,10 @@ class FoldedModel:
 def model_glb(path: str | os.PathLike, model: FoldedModel) -> Path:
     """The GLB of a model: a node per sheet, its state as the base pose, the folding motion as morph
     targets and an animation that starts at that state; the model's further morph targets after them."""
-    coords = folding_motion(model.structure, model.motion, anchor=model.anchor, keep=model.keep)
+    topology = model.structure.topology(keep=model.keep) if model.topology is None else model.topology
+    coords = folding_motion(model.structure, model.motion, anchor=model.anchor, topology=topology)
     base = int(np.argmin(np.abs(model.motion - model.fold_angle)))
-    sheets = model.structure.topology(keep=model.keep).sheets
+    sheets = topology.sheets
     # the base pose is the motion's state nearest the model's: the further targets move from it
     shift = coords[base] - model.mesh.vertices_coords
     morphs = {name: np.asarray(d, float) - shift for name, d in model.morph_targets.items()}
@@ -194,6 +202,7 @@ def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
     """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree),
     grouped by tube and sheet, and the model's crease pattern laid beside it when it has one."""
     structure = model.structure
-    return rhino.write_3dm(path, model.quads, structure.topology("quads", keep=model.keep), unit=model.unit,
+    topology = structure.topology("quads", keep=model.keep) if model.quad_topology is None else model.quad_topology
+    return rhino.write_3dm(path, model.quads, topology, unit=model.unit,
                            metadata=model.static_metadata, degree=structure.lattice.crease_degree, fold_angle=model.fold_angle,
                            pattern=model.pattern)

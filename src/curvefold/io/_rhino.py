@@ -50,7 +50,7 @@ from ._layout import Layout
 from ._mesh3d import check_metadata, crease_polylines
 from ._tables import CREATOR, UNITS, rgb8, rgba8
 
-__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "write_3dm"]
+__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "interpolating_spline", "write_3dm"]
 
 #: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
 LAYERS = (
@@ -62,16 +62,52 @@ LAYERS = (
 )
 
 
+def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """The B-spline of degree k = min(``degree``, m − 1) through ``points`` (m, d) at increasing
+    parameters ``t`` (m,): its knots (m + k + 1,) and control points (m, d).
+
+    The spline of :func:`scipy.interpolate.make_interp_spline` (its default ends, "not-a-knot"):
+    knots at the inner parameters but the first and last (k + 1) // 2 of them (for odd k; for
+    k = 2 at the midpoints between parameters but the first and last), each end knot k + 1
+    times; the control points solve the collocation equations. Cox–de Boor gives the basis at
+    the parameters, each in its knot span (the last in the last span).
+
+    Examples
+    --------
+    >>> knots, control = interpolating_spline(np.array([0.0, 1.0]), np.array([[0.0, 0.0], [2.0, 1.0]]), 3)
+    >>> knots.tolist(), control.tolist()   # two points: the segment between them
+    ([0.0, 0.0, 1.0, 1.0], [[0.0, 0.0], [2.0, 1.0]])
+    """
+    m = len(t)
+    k = min(degree, m - 1)
+    inner = t if k % 2 else 0.5 * (t[1:] + t[:-1])
+    drop = (k + 1) // 2 if k % 2 else k // 2
+    knots = np.concatenate([np.full(k + 1, t[0]), inner[drop:len(inner) - drop], np.full(k + 1, t[-1])])
+    span = np.clip(np.searchsorted(knots, t, side="right") - 1, k, m - 1)
+    basis = np.zeros((m, len(knots) - 1))
+    basis[np.arange(m), span] = 1.0
+    for d in range(1, k + 1):  # basis j of degree d: on knots j … j + d + 1, from bases j and j + 1 of degree d − 1
+        lo, hi = knots[:-d - 1], knots[d + 1:]
+        rise = _ratio(t[:, None] - lo, knots[d:-1] - lo)
+        fall = _ratio(hi - t[:, None], hi - knots[1:-d])
+        basis = rise * basis[:, :-1] + fall * basis[:, 1:]
+    return knots, np.linalg.solve(basis, points)
+
+
+def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a / b, 0 where b is 0 (Cox–de Boor's convention for empty knot spans)."""
+    return np.divide(a, b, out=np.zeros(np.broadcast_shapes(a.shape, b.shape)), where=b != 0)
+
+
 def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
     """The NURBS curve of ``degree`` (fewer points: lower) through ``points`` (m, 3) at parameters t (m,)."""
-    from scipy.interpolate import make_interp_spline
-
-    spline = make_interp_spline(t, points, k=min(degree, len(t) - 1))
-    curve = rhino3dm.NurbsCurve(3, False, spline.k + 1, len(spline.c))
-    for i, knot in enumerate(spline.t[1:-1].tolist()):  # Rhino leaves out the end knots
-        curve.Knots[i] = knot
-    for i, p in enumerate(spline.c.tolist()):
-        curve.Points[i] = rhino3dm.Point4d(*p, 1.0)
+    knots, control = interpolating_spline(t, points, degree)
+    curve = rhino3dm.NurbsCurve(3, False, len(knots) - len(control), len(control))
+    curve_knots, curve_points, point = curve.Knots, curve.Points, rhino3dm.Point4d
+    for i, knot in enumerate(knots[1:-1].tolist()):  # Rhino leaves out the end knots
+        curve_knots[i] = knot
+    for i, (u, v, w) in enumerate(control.tolist()):
+        curve_points[i] = point(u, v, w, 1.0)
     return curve
 
 
@@ -131,6 +167,13 @@ def write_3dm(
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
     t = topology.vertex_sample / max(int(topology.vertex_sample.max()), 1)
+    curves: dict[tuple, object] = {}
+
+    def crease_curve(chain: np.ndarray):  # a strip's side is a crease: its curve is made once
+        key = tuple(chain.tolist())
+        if key not in curves:
+            curves[key] = _nurbs_curve(rhino3dm, x[chain], t[chain], degree)
+        return curves[key]
 
     model = rhino3dm.File3dm()
     model.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNITS[unit].rhino)
@@ -162,11 +205,13 @@ def write_3dm(
 
     for k, sheet in enumerate(topology.sheets):
         part = rhino3dm.Mesh()
-        part.Vertices.UseDoublePrecisionVertices = True
-        for p in x[sheet.vertices].tolist():
-            part.Vertices.AddPoint3d(*p)  # double precision (Add stores single)
+        vertices, add_face = part.Vertices, part.Faces.AddFace
+        vertices.UseDoublePrecisionVertices = True
+        add_vertex = vertices.AddPoint3d  # double precision (Add stores single)
+        for u, v, w in x[sheet.vertices].tolist():
+            add_vertex(u, v, w)
         for a, b, c, d in sheet.faces_vertices.tolist():
-            part.Faces.AddFace(a, b, c, d)
+            add_face(a, b, c, d)
         part.Normals.ComputeNormals()
         part.Compact()
         model.Objects.AddMesh(part, attributes("Sheets", sheet.label, tube=k // 2, kind="sheet", sheet=SHEET_LETTERS[k % 2]))
@@ -175,7 +220,7 @@ def write_3dm(
     for g in np.unique(topology.faces_group).tolist():
         rows = faces[topology.faces_group == g]
         sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
-        a, b = (_nurbs_curve(rhino3dm, x[v], t[v], degree) for v in sides)
+        a, b = (crease_curve(v) for v in sides)
         model.Objects.AddSurface(rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
                                  attributes("Strips", f"tube {g // 4 + 1} · strip {g % 4 + 1}", tube=g // 4, kind="strip",
                                             sheet="A" if g % 4 in (0, 3) else "B"))
@@ -183,20 +228,25 @@ def write_3dm(
     # creases run along one lattice curve (a panel's fold lines, kind "fold" too, run across)
     ends = topology.vertex_curve[mesh.edges_vertices]
     along = replace(mesh, edges_kind=np.where((ends[:, 0] == ends[:, 1]) | (mesh.edges_kind == "boundary"), mesh.edges_kind, "ruling"))
-    edge_of = {frozenset(e): i for i, e in enumerate(mesh.edges_vertices.tolist())}
-    sheet_of = {int(v): SHEET_LETTERS[k % 2] for k, s in enumerate(topology.sheets) for v in s.vertices}
+    edge_key = np.sort(mesh.edges_vertices, axis=1) @ np.array([len(x), 1])
+    edge_order = np.argsort(edge_key, kind="stable")
+    sheet_of = np.zeros(len(x), np.int64)  # the letter of a vertex's (last) sheet
+    for k, s in enumerate(topology.sheets):
+        sheet_of[s.vertices] = k % 2
+    first_strip = np.full(len(x), np.iinfo(np.int64).max)  # the first strip (faces_group) on each vertex
+    np.minimum.at(first_strip, faces.reshape(-1), np.repeat(topology.faces_group, faces.shape[1]))
     for layer, kind in (("Fold", "fold"), ("Seam", "seam"), ("Boundary", "boundary")):
         for i, chain in enumerate(crease_polylines(along, kind)):
-            tube = int(topology.faces_group[_faces_of(topology, chain[0])].min()) // 4
-            angles = np.abs(mesh.edges_foldAngle[[edge_of[frozenset(e)] for e in zip(chain[:-1].tolist(), chain[1:].tolist())]])
+            tube = int(first_strip[chain[0]]) // 4
+            steps = np.sort(np.stack([chain[:-1], chain[1:]], axis=1), axis=1) @ np.array([len(x), 1])
+            angles = np.abs(mesh.edges_foldAngle[edge_order[np.searchsorted(edge_key[edge_order], steps, side="right") - 1]])
             if kind == "boundary":
-                points = [rhino3dm.Point3d(*p) for p in x[chain].tolist()]
-                curve = rhino3dm.PolylineCurve(points)
+                curve = _polyline(rhino3dm, x[chain])
             else:
                 chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
-                curve = _nurbs_curve(rhino3dm, x[chain], t[chain], degree)
+                curve = crease_curve(chain)
             model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}", tube=tube, kind=kind,
-                                                     sheet=sheet_of[int(chain[0])] if kind == "fold" else None,
+                                                     sheet=SHEET_LETTERS[sheet_of[chain[0]]] if kind == "fold" else None,
                                                      angle=float(angles.mean()) if kind != "boundary" else fold_angle))
 
     if pattern is not None:
@@ -220,9 +270,13 @@ SHEET_LETTERS = ("A", "B")
 PATTERN_LAYER = "crease pattern"
 
 
-def _faces_of(topology: Topology, vertex: int) -> np.ndarray:
-    """The faces that hold a vertex."""
-    return np.flatnonzero((topology.faces_vertices == vertex).any(axis=1))
+def _polyline(rhino3dm, points: np.ndarray):
+    """The polyline curve through points (n, 3)."""
+    line = rhino3dm.Polyline(len(points))
+    add = line.Add
+    for u, v, w in points.tolist():
+        add(u, v, w)
+    return line.ToPolylineCurve()
 
 
 def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> None:
@@ -258,7 +312,7 @@ def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> N
 
     def polyline(points: np.ndarray, closed: bool) -> object:
         q = np.concatenate([points, points[:1]]) if closed else points
-        return rhino3dm.PolylineCurve([rhino3dm.Point3d(float(u) * to_unit, float(v) * to_unit, 0.0) for u, v in q.tolist()])
+        return _polyline(rhino3dm, np.column_stack([q * to_unit, np.zeros(len(q))]))
 
     for number, (page, corner) in enumerate(zip(layout.pages, corners), start=1):
         frame = np.array([corner, corner + (W, 0), corner + (W, H), corner + (0, H)])

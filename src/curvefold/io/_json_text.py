@@ -1,0 +1,146 @@
+"""JSON text of documents whose large number arrays are written from NumPy at once.
+
+:func:`json.dumps` writes every float with ``repr``, one at a time: a FOLD file holds some
+10⁵ coordinates, and writing them was most of the file's cost. Here a document may hold
+:class:`Decimals` leaves, arrays rounded to a number of decimal places; :func:`dumps` writes
+it as :func:`json.dumps` writes the document with those arrays as lists, byte for byte.
+
+A number x rounded to d places is the float nearest to the decimal D = n / 10^d. Where
+x is not 0, 10⁻⁴ ≤ |x| < 10¹⁵ (``repr`` writes no exponent), |n| < 2^52 and the floats
+near x are closer together than 10^-d, no other decimal of at most as many digits reads
+back as x, so ``repr(x)`` is D without its trailing zeros (one decimal kept, as in
+``1.0``): those digits are computed for all numbers at once. Every other number (an
+exponent, a float that is not nearest to its rounded decimal) is written with ``repr``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernel._arrays import FrozenArrays
+
+__all__ = ["Decimals", "array_json", "dumps", "plain"]
+
+_MARK = "\0curvefold:array\0"  # stands for a Decimals leaf in the text json.dumps writes
+
+
+@dataclass(frozen=True, eq=False)
+class Decimals(FrozenArrays):
+    """An array of numbers written to ``decimals`` places (``np.round(values, decimals)``).
+
+    Attributes
+    ----------
+    values : ndarray of float
+        Already rounded.
+    decimals : int
+    """
+
+    values: np.ndarray
+    decimals: int
+
+    @classmethod
+    def round(cls, values, decimals: int) -> Decimals:
+        """The numbers rounded to ``decimals`` places."""
+        return cls(np.round(np.asarray(values, float), decimals), int(decimals))
+
+    def tolist(self) -> list:
+        return self.values.tolist()
+
+
+def plain(doc):
+    """The document with every :class:`Decimals` as its list: JSON data (the leaves are values
+    of objects, or items of arrays of objects and leaves; other arrays are left as they are)."""
+    if isinstance(doc, Decimals):
+        return doc.tolist()
+    if isinstance(doc, dict):
+        return {key: plain(value) for key, value in doc.items()}
+    if isinstance(doc, list) and any(isinstance(value, (dict, Decimals)) for value in doc):
+        return [plain(value) for value in doc]
+    return doc
+
+
+def dumps(doc) -> str:
+    """``json.dumps(plain(doc), allow_nan=False, separators=(",", ":"))``, the arrays written at once.
+
+    Examples
+    --------
+    >>> dumps({"x": Decimals.round([[0.1, -2.5], [1e-5, 0.0]], 3), "n": [1, 2]})
+    '{"x":[[0.1,-2.5],[0.0,0.0]],"n":[1,2]}'
+    >>> dumps({"x": Decimals.round([3.14159, -0.0, 1.5e-5, 2.0], 6)})   # exponents as repr writes them
+    '{"x":[3.14159,-0.0,1.5e-05,2.0]}'
+    """
+    leaves: list[Decimals] = []
+
+    def leaf(value):
+        if isinstance(value, Decimals):
+            leaves.append(value)
+            return _MARK
+        raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
+
+    text = json.dumps(doc, allow_nan=False, separators=(",", ":"), default=leaf)
+    pieces = text.split(json.dumps(_MARK))
+    if len(pieces) != len(leaves) + 1:  # the mark in a string of the document: no shortcut
+        return json.dumps(plain(doc), allow_nan=False, separators=(",", ":"))
+    return "".join(piece for pair in zip(pieces, [array_json(a.values, a.decimals) for a in leaves] + [""]) for piece in pair)
+
+
+def array_json(values: np.ndarray, decimals: int) -> str:
+    """``json.dumps(values.tolist(), separators=(",", ":"))`` of an array of floats (module notes).
+
+    Parameters
+    ----------
+    values : ndarray of float
+        Finite numbers, as rounded to ``decimals`` places (any others are written with ``repr``).
+    decimals : int
+
+    Examples
+    --------
+    >>> array_json(np.array([[1.25, -0.5, 12.0]]), 2), array_json(np.zeros((0, 3)), 2)
+    ('[[1.25,-0.5,12.0]]', '[]')
+    """
+    x = np.asarray(values, float)
+    if x.size == 0 or x.ndim == 0 or not np.isfinite(x).all() or not 0 <= decimals <= 15:
+        return json.dumps(x.tolist(), allow_nan=False, separators=(",", ":"))
+    flat = x.reshape(-1)
+    scale = 10.0 ** decimals
+    n = np.rint(flat * scale)
+    size = np.abs(flat)
+    fast = (size == 0) | ((size >= 1e-4) & (size < 1e15) & (np.abs(n) < 2.0 ** 52) & (n / scale == flat)
+                          & (2 * np.spacing(size) < 10.0 ** -decimals))
+    count, depth = len(flat), x.ndim - 1
+    m = np.where(fast, np.abs(n), 0).astype(np.int64)  # the digits of |x| · 10^d
+    whole = max(len(str(int(m.max()))) - decimals, 1)  # digits before the point, one at least
+    slow = np.flatnonzero(~fast)
+    texts = [repr(v) for v in flat[slow].tolist()]
+    width = max([whole + max(decimals, 1) + 2, *map(len, texts)])  # sign, digits, point, digits; or a repr
+    chars = np.zeros((count, width + 2 * depth + 1), np.uint8)  # each number's characters, then what follows it
+    keep = np.zeros(chars.shape, bool)
+    chars[:, 0], keep[:, 0] = ord("-"), np.signbit(flat)
+    point = whole + 1
+    for column in [*range(point + decimals, point, -1), *range(whole, 0, -1)]:  # the last digit first
+        m, digit = np.divmod(m, 10)
+        chars[:, column] = digit + 48
+    chars[:, point] = ord(".")
+    if decimals == 0:
+        chars[:, point + 1] = ord("0")  # "3.0"
+    keep[:, 1:point] = np.logical_or.accumulate(chars[:, 1:point] != ord("0"), axis=1)  # no leading zeros ...
+    keep[:, whole] = keep[:, point] = keep[:, point + 1] = True  # ... but one digit either side of the point
+    fraction = slice(point + 1, point + 1 + max(decimals, 1))
+    keep[:, fraction] |= np.logical_or.accumulate(chars[:, fraction][:, ::-1] != ord("0"), axis=1)[:, ::-1]  # no trailing zeros
+    if slow.size:  # repr, from the row's first column
+        block = np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8).reshape(-1, width)
+        chars[slow, :width] = block
+        keep[slow, :width] = block != 0
+    # after each number: "," closing and opening the axes that end there ("],[" in a matrix)
+    ends = np.zeros(count, np.int64)
+    for stride in np.cumprod(x.shape[::-1])[:-1]:
+        ends += (np.arange(1, count + 1) % stride == 0)
+    k = np.arange(depth)
+    chars[:, width:width + depth], chars[:, width + depth], chars[:, width + depth + 1:] = ord("]"), ord(","), ord("[")
+    keep[:, width:width + depth], keep[:, width + depth], keep[:, width + depth + 1:] = k[::-1] < ends[:, None], True, k < ends[:, None]
+    keep[-1, width:] = False
+    body = chars[keep]
+    return "[" * x.ndim + body.tobytes().decode() + "]" * x.ndim
