@@ -98,7 +98,16 @@ def tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted: 
     close = segments_near_box(others, cut, tol)
     if segments_touch(segs, close, tol).any() or (distance_to_segments(corners, close) < tol).any():
         return False
-    if inside_loops(corners, others, group).any():
+    level = _straddling(others, corners)  # the others cannot cross a ray from a corner
+    if inside_loops(corners, others[level], group[level]).any():
         return False
-    theirs = others[:, 0][distance_to_segments(others[:, 0], mine) >= tol]  # their corners off this tab's outline
+    theirs = others[:, 0][((others[:, 0] >= lo) & (others[:, 0] <= hi)).all(axis=1)]  # their corners in reach of this tab
+    theirs = theirs[distance_to_segments(theirs, mine) >= tol]  # ... and off its outline
     return not inside_loops(theirs, mine).any()
+
+
+def _straddling(segments: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Which of segments (S, 2, 2) may cross the horizontal ray from one of points (N, 2): those from at or
+    below the highest point to above the lowest (:func:`~curvefold.io._planar.inside_loops` counts no other)."""
+    low, high = segments[:, :, 1].min(axis=1), segments[:, :, 1].max(axis=1)
+    return (high > points[:, 1].min(initial=np.inf)) & (low <= points[:, 1].max(initial=-np.inf))
