@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._planar import box_corners, nearest_points, point_segment_distance, ragged, segments_near_box, upright
+from ._planar import box_corners, nearest_points, point_segment_distance, ragged, upright
 
 __all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
 
@@ -159,7 +159,8 @@ class Obstacles:
         box's grid, one of them its nearest.
         """
         u, v = grid
-        reach = np.floor((np.stack([boxes.min(axis=1) - limit, boxes.max(axis=1) + limit], axis=1) - self._origin) / self._cell)
+        lo, hi = _bounds(boxes, len(u), limit)
+        reach = np.floor((np.stack([lo, hi], axis=1) - self._origin) / self._cell)
         lo, hi = (np.clip(reach[:, k], 0, self._cells - 1).astype(np.int64) for k in (0, 1))  # the cells around each box, (C, 2) each
         box, place = ragged(np.maximum(hi[:, 0] - lo[:, 0] + 1, 0))  # a column of cells, per box
         column = (lo[box, 0] + place) * self._cells[1]
@@ -190,12 +191,23 @@ class Obstacles:
         whether each keeps 0.25·size clear of every line, and its margin (counted up to one ``size``)."""
         boxes = label_candidates(center, angle, text, size)
         worst = self._nearest_to_boxes(boxes, _box_grid(text, size), center, angle, size) - self.spacing / 2
-        extra = segments_near_box(self.extra, boxes, size)  # the others are farther than size from every box
-        if len(extra):
-            exact = point_segment_distance(boxes.reshape(-1, 1, 2), extra[None, :, 0], extra[None, :, 1]).min(axis=1)
-            worst = np.minimum(worst, np.where(exact <= size, exact, np.inf).reshape(boxes.shape[:2]).min(axis=1))
+        if len(self.extra):  # each box against the extra segments whose bounding boxes come within size of its own
+            lo, hi = _bounds(boxes, len(boxes[0]) // 5, size)
+            box, segment = np.nonzero(((self.extra.max(axis=1)[None] >= lo[:, None]) & (self.extra.min(axis=1)[None] <= hi[:, None])).all(axis=2))
+            exact = point_segment_distance(boxes[box], self.extra[segment, None, 0], self.extra[segment, None, 1])  # (pairs, K)
+            nearest = np.full(len(boxes), np.inf)
+            np.minimum.at(nearest, box, np.where(exact <= size, exact, np.inf).min(axis=1, initial=np.inf))
+            worst = np.minimum(worst, nearest)
         worst = np.minimum(worst, size)
         return worst >= 0.25 * size, worst
+
+
+def _bounds(boxes: np.ndarray, m: int, reach: float) -> tuple[np.ndarray, np.ndarray]:
+    """Corners (C, 2) of boxes around the points of boxes (C, 5·m, 2) (:func:`label_candidates`), ``reach`` wider
+    (and a little more: they are found from the four corner points, those of a straight grid)."""
+    corners = boxes[:, [0, m - 1, -m, -1]]
+    reach = reach * (1 + 1e-9) + 1e-9 * float(np.abs(corners).max(initial=1.0))
+    return corners.min(axis=1) - reach, corners.max(axis=1) + reach
 
 
 def _best_box(obstacles: Obstacles, center: np.ndarray, angle: np.ndarray, middle: np.ndarray, text: str, h: float) -> int | None:
