@@ -166,8 +166,8 @@ def ragged(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf) -> tuple[np.ndarray, np.ndarray]:
-    """The nearest of ``points`` (P, 2) to each of ``queries`` (Q, 2) nearer than ``limit``: its distance
-    (Q,) and index (Q,), inf and P where there is none; ties go to the lowest index.
+    """The nearest of ``points`` (P, 2, finite) to each of ``queries`` (Q, 2) nearer than ``limit``: its
+    distance (Q,) and index (Q,), inf and P where there is none; ties go to the lowest index.
 
     :meth:`scipy.spatial.cKDTree.query`'s answer (k = 1, ``distance_upper_bound=limit``), distances
     to the last bit: the points are bucketed in square cells of side r and each query looks in
@@ -186,7 +186,7 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
     lo = points.min(axis=0)
     extent = float(np.ptp(points, axis=0).max())
     r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
-    todo = np.arange(len(queries))
+    todo = np.flatnonzero(np.isfinite(queries).all(axis=1))  # (a query not finite has no nearest)
     while todo.size:
         d, i = _nearest_in_cells(points, queries[todo], lo, r)
         done = d < r if r < limit else np.ones(todo.size, bool)
@@ -204,7 +204,8 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
     cell = np.floor((points - lo) / r).astype(np.int64)
     order = np.argsort(key(cell), kind="stable")
     keys = key(cell)[order]
-    around = np.floor((queries - lo) / r).astype(np.int64)[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2)
+    own = np.clip(np.floor((queries - lo) / r), -2, cell.max(axis=0) + 2).astype(np.int64)  # (far off, an empty cell)
+    around = own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2)
     first, last = np.searchsorted(keys, key(around), "left"), np.searchsorted(keys, key(around), "right")  # (Q, 9)
     group, place = ragged((last - first).ravel())
     near = order[first.ravel()[group] + place]
@@ -224,8 +225,8 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
     leftmost (then lowest) point; fewer than 3 when the points span no area.
 
     Points on a hull edge (to 1e-13 of the largest coordinate) are not vertices:
-    :class:`scipy.spatial.ConvexHull`'s ``vertices``, but for where they start. Quickhull, each round splitting every edge that has points
-    outside at the farthest of them, all edges at once.
+    :class:`scipy.spatial.ConvexHull`'s ``vertices``, but for where they start. Quickhull, each
+    round splitting every edge that has points outside at the farthest of them, all edges at once.
 
     Examples
     --------
