@@ -218,8 +218,9 @@ def _draw_scene(page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[floa
         """The paths (each (n, 2)) on the page, mapped together."""
         if not paths:
             return []
-        ends = np.cumsum([len(p) for p in paths])[:-1]
-        return np.split(offset + (np.concatenate(paths) - box[0]) * s, ends)
+        ends = np.cumsum([len(p) for p in paths]).tolist()
+        mapped = offset + (np.concatenate(paths) - box[0]) * s
+        return [mapped[a:b] for a, b in zip([0] + ends[:-1], ends)]
 
     pt = 25.4 / 72.0
     if ground is not None:
