@@ -259,12 +259,13 @@ def seam_label(points: np.ndarray, seam: int, obstacles: Obstacles, size: float)
         gaps = np.array([0.85, 1.2, 1.7]) * h
         center = (base[:, None] + gaps[None, :, None] * left[:, None]).reshape(-1, 2)
         angle = np.repeat(np.arctan2(t[:, 1], t[:, 0]), len(gaps))
-        ok, _ = obstacles.fits(center, angle, text, h)
         if fallback is None:
             fallback = Label(text, tuple(center[0]), upright(math.degrees(angle[0])), MIN_LABEL_SIZE, "seam", seam)
-        if ok.any():
-            i = int(np.argmax(ok))  # candidates are in order of preference
-            return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
+        for first in range(0, len(center), 12):  # candidates are in order of preference: the first that keeps clear
+            ok, _ = obstacles.fits(center[first:first + 12], angle[first:first + 12], text, h)
+            if ok.any():
+                i = first + int(np.argmax(ok))
+                return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
     return fallback, False
 
 
