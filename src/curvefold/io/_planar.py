@@ -196,8 +196,9 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
     return dist, index
 
 
-def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float) -> tuple[np.ndarray, np.ndarray]:
-    """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance and index (inf, P for none)."""
+def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float, pairs: int = 1 << 16) -> tuple[np.ndarray, np.ndarray]:
+    """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
+    and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time."""
     def key(cells: np.ndarray) -> np.ndarray:
         return cells[..., 0] * (1 << 32) + cells[..., 1]
 
@@ -207,13 +208,17 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
     own = np.clip(np.floor((queries - lo) / r), -2, cell.max(axis=0) + 2).astype(np.int64)  # (far off, an empty cell)
     around = own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2)
     first, last = np.searchsorted(keys, key(around), "left"), np.searchsorted(keys, key(around), "right")  # (Q, 9)
-    group, place = ragged((last - first).ravel())
-    near = order[first.ravel()[group] + place]
-    query = group // 9
-    dx, dy = queries[query, 0] - points[near, 0], queries[query, 1] - points[near, 1]
-    d = np.sqrt(dx * dx + dy * dy)
     dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
-    if d.size:
+    per_query = np.cumsum((last - first).sum(axis=1))
+    bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
+    for a, b in zip([0, *bounds.tolist()], [*bounds.tolist(), len(queries)]):
+        group, place = ragged((last[a:b] - first[a:b]).ravel())
+        if group.size == 0:
+            continue
+        near = order[first[a:b].ravel()[group] + place]
+        query = a + group // 9
+        dx, dy = queries[query, 0] - points[near, 0], queries[query, 1] - points[near, 1]
+        d = np.sqrt(dx * dx + dy * dy)
         starts = np.flatnonzero(np.diff(query, prepend=-1))
         dist[query[starts]] = np.minimum.reduceat(d, starts)
         index[query[starts]] = np.minimum.reduceat(np.where(d == dist[query], near, len(points)), starts)
