@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._planar import box_corners, nearest_points, point_segment_distance, ragged, upright
+from ._planar import box_corners, cell_index, cell_key, nearest_points, point_segment_distance, ragged, upright
 
 __all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
 
@@ -104,8 +104,7 @@ class Obstacles:
         self.spacing = spacing
         self.extra = np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
         if _from is not None:  # share the sampled lines of another
-            self.points, self.directions, self._x, self._y = _from.points, _from.directions, _from._x, _from._y
-            self._cell, self._origin, self._cells, self._order, self._keys = _from._cell, _from._origin, _from._cells, _from._order, _from._keys
+            self.points, self.directions, self._cells = _from.points, _from.directions, _from._cells
             return
         d = segments[:, 1] - segments[:, 0]
         length = np.linalg.norm(d, axis=1)
@@ -114,15 +113,8 @@ class Obstacles:
         t = place / count[seg]
         self.points = segments[seg, 0] + t[:, None] * d[seg]
         self.directions = d[seg] / np.maximum(length[seg], 1e-300)[:, None]
-        self._x, self._y = self.points[:, 0].copy(), self.points[:, 1].copy()
-        # the points bucketed in square cells, sorted by column then row
-        self._cell = 20.0 * spacing
-        self._origin = self.points.min(axis=0) if len(self.points) else np.zeros(2)
-        cell = np.floor((self.points - self._origin) / self._cell).astype(np.int64)
-        self._cells = cell.max(axis=0, initial=0) + 1
-        key = cell[:, 0] * self._cells[1] + cell[:, 1]
-        self._order = np.argsort(key, kind="stable")
-        self._keys = key[self._order]
+        origin, side = (self.points.min(axis=0) if len(self.points) else np.zeros(2)), 20.0 * spacing
+        self._cells = (origin, side, *cell_index(self.points, origin, side))  # the points bucketed in cells
 
     def plus(self, segments: np.ndarray) -> Obstacles:
         """These obstacles and ``segments`` (S, 2, 2) besides, without sampling the lines again."""
@@ -159,15 +151,16 @@ class Obstacles:
         box's grid, one of them its nearest.
         """
         u, v = grid
-        lo, hi = _bounds(boxes, len(u), limit)
-        reach = np.floor((np.stack([lo, hi], axis=1) - self._origin) / self._cell)
-        lo, hi = (np.clip(reach[:, k], 0, self._cells - 1).astype(np.int64) for k in (0, 1))  # the cells around each box, (C, 2) each
+        origin, side, order, keys, cells = self._cells
+        reach = np.floor((np.stack(_bounds(boxes, len(u), limit), axis=1) - origin) / side)
+        lo, hi = (np.clip(reach[:, k], 0, cells - 1).astype(np.int64) for k in (0, 1))  # the cells around each box, (C, 2) each
         box, place = ragged(np.maximum(hi[:, 0] - lo[:, 0] + 1, 0))  # a column of cells, per box
-        column = (lo[box, 0] + place) * self._cells[1]
-        first = np.searchsorted(self._keys, column + lo[box, 1], "left")
-        group, place = ragged(np.maximum(np.searchsorted(self._keys, column + hi[box, 1], "right") - first, 0))
-        box, near = box[group], self._order[first[group] + place]
-        x, y = np.take(self._x, near), np.take(self._y, near)
+        column = np.stack([lo[box, 0] + place, lo[box, 1]], axis=1)
+        first = np.searchsorted(keys, cell_key(column), "left")
+        column[:, 1] = hi[box, 1]
+        group, place = ragged(np.maximum(np.searchsorted(keys, cell_key(column), "right") - first, 0))
+        box, near = box[group], order[first[group] + place]
+        x, y = self.points[near, 0], self.points[near, 1]
         rx, ry = x - np.take(center[:, 0], box), y - np.take(center[:, 1], box)
         c, s = np.take(np.cos(angle), box), np.take(np.sin(angle), box)
         frame = rx * c + ry * s, ry * c - rx * s  # in the box's frame

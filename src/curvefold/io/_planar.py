@@ -1,9 +1,12 @@
-"""Plane geometry of the crease-pattern pages: segments, distances, crossings, loops and boxes.
+"""Plane geometry of the crease-pattern pages: segments, distances, crossings, loops, boxes,
+nearest points and convex hulls.
 
 Vectorised NumPy on page coordinates (mm, x right, y up): points are (N, 2) arrays,
 segments (S, 2, 2) arrays of their two ends, polylines (points, closed) pairs. Used by the
 layout (:mod:`curvefold.io._layout`), its glue tabs (:mod:`curvefold.io._tabs`), label
 placement (:mod:`curvefold.io._labels`) and page packing (:mod:`curvefold.io._packing`).
+The nearest points and the hulls are those of scipy.spatial's cKDTree and ConvexHull (the
+tests hold them to it), without that package's import in every job that lays out a pattern.
 
 Examples
 --------
@@ -35,6 +38,8 @@ __all__ = [
     "segments_near_box",
     "inside_loops",
     "ragged",
+    "cell_key",
+    "cell_index",
     "nearest_points",
     "convex_hull",
     "min_area_rotation",
@@ -165,6 +170,20 @@ def ragged(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return group, np.arange(len(group)) - (np.cumsum(counts) - counts)[group]
 
 
+def cell_key(cells: np.ndarray) -> np.ndarray:
+    """A key (...) of integer cells (..., 2) that sorts them by column, then row (rows in (-2³¹, 2³¹))."""
+    return cells[..., 0] * (1 << 32) + cells[..., 1]
+
+
+def cell_index(points: np.ndarray, origin: np.ndarray, side: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Points (P, 2) bucketed in square cells of ``side`` from ``origin`` (below and left of them all):
+    their order by cell (:func:`cell_key`; by index within one), the sorted keys (P,) and the number
+    of cells along x and y (2,)."""
+    cell = np.floor((points - origin) / side).astype(np.int64)
+    order = np.argsort(cell_key(cell), kind="stable")
+    return order, cell_key(cell)[order], cell.max(axis=0, initial=0) + 1
+
+
 def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` (P, 2, finite) to each of ``queries`` (Q, 2) nearer than ``limit``: its
     distance (Q,) and index (Q,), inf and P where there is none; ties go to the lowest index.
@@ -199,15 +218,10 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
 def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float, pairs: int = 1 << 16) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
     and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time."""
-    def key(cells: np.ndarray) -> np.ndarray:
-        return cells[..., 0] * (1 << 32) + cells[..., 1]
-
-    cell = np.floor((points - lo) / r).astype(np.int64)
-    order = np.argsort(key(cell), kind="stable")
-    keys = key(cell)[order]
-    own = np.clip(np.floor((queries - lo) / r), -2, cell.max(axis=0) + 2).astype(np.int64)  # (far off, an empty cell)
-    around = own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2)
-    first, last = np.searchsorted(keys, key(around), "left"), np.searchsorted(keys, key(around), "right")  # (Q, 9)
+    order, keys, cells = cell_index(points, lo, r)
+    own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
+    around = cell_key(own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2))
+    first, last = np.searchsorted(keys, around, "left"), np.searchsorted(keys, around, "right")  # (Q, 9)
     dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
     per_query = np.cumsum((last - first).sum(axis=1))
     bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
