@@ -130,3 +130,35 @@ def test_the_main_job_writes_the_guide(tmp_path):
     assert (out / "assembly.pdf").exists() and (out / "vault-pattern.pdf").exists()
     text = "\n".join(t for *_, t, _ in _pages(out / "assembly.pdf"))
     assert "Vault: assembly guide" in text and "Step 2: tube 2" in text
+
+
+def test_the_pictures_colours_and_the_lines_are_those_of_the_one_by_one_definitions():
+    """The guide writes every colour of a picture at once and wraps lines by summing word widths:
+    the same codes as the scene's one-colour ``_hex`` (halves rounded to even, as ``round``) and
+    the same lines as measuring each trial line whole."""
+    from curvefold.figures._assembly import _hex_codes, _wrap
+    from curvefold.figures._scene import _hex
+    from curvefold.io._pdf import text_advance
+
+    rng = np.random.default_rng(3)
+    colours = np.concatenate([rng.uniform(-0.1, 1.1, size=(500, 4)), np.array([[0.5, 1.5, 2.5, 1.0]]) / 255, np.zeros((1, 4))])
+    assert _hex_codes(colours) == [_hex(c) for c in colours]
+    assert _hex_codes(colours[:1] + 1 / 255) != [_hex(colours[0])]  # the comparison sees a channel off by one
+
+    def wrapped(text, size, width):
+        lines, line = [], ""
+        for word in text.split():
+            trial = f"{line} {word}".strip()
+            if line and text_advance(trial, size) > width:
+                lines.append(line)
+                line = word
+            else:
+                line = trial
+        return lines + ([line] if line else [])
+
+    words = ["Glue", "seam", "S12:", "fold", "the", "tabs", "of", "tube 3 left · A", "under", "W", "i", "—", "°"]
+    for k in range(200):
+        text = " ".join(rng.choice(words, size=int(rng.integers(0, 40))))
+        size, width = float(rng.uniform(2.0, 5.0)), float(rng.uniform(5.0, 150.0))
+        assert _wrap(text, size, width) == wrapped(text, size, width)
+    assert _wrap("a b c", 3.2, 100.0) != wrapped("a b c", 3.2, 1.0)  # ... and a line broken elsewhere

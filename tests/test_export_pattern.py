@@ -156,6 +156,101 @@ def test_the_minimum_area_box_agrees_with_shapely_and_costs_linear_memory():
     assert peak < 40 * 40000 * 8  # a few dozen arrays of one number per vertex (H² would be 12.8 GB)
 
 
+def _point_sets(rng: np.random.Generator):
+    """Point sets of every kind the layout meets: scattered, all on a curve, on a coarse grid
+    (collinear runs and repeated points), along lines sampled with their joints twice."""
+    for k in range(80):
+        n = int(rng.integers(3, 2000))
+        if k % 4 == 0:
+            yield rng.normal(size=(n, 2)) * rng.uniform(0.1, 100.0, size=2)
+        elif k % 4 == 1:
+            t = rng.uniform(0, 2 * np.pi, n)
+            yield np.stack([3 * np.cos(t), np.sin(t)], axis=1) * rng.uniform(0.5, 1.0, size=(n, 1))
+        elif k % 4 == 2:
+            yield rng.integers(0, 12, size=(n, 2)).astype(float)
+        else:
+            segments = np.cumsum(rng.normal(size=(20, 2)), axis=0)
+            yield labels.Obstacles(np.stack([segments[:-1], segments[1:]], axis=1), 0.05).points
+
+
+def _same_cycle(a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether point sequences a and b are the same cycle, started anywhere."""
+    start = np.flatnonzero((a == b[0]).all(axis=1))
+    return len(a) == len(b) and start.size == 1 and np.array_equal(np.roll(a, -start[0], axis=0), b)
+
+
+def test_the_convex_hull_is_scipys():
+    """The hull the minimum-area box turns on is qhull's, vertex for vertex (where a point repeats, one
+    of its copies); on a line it has fewer than three vertices, where qhull refuses."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    rng = np.random.default_rng(11)
+    for pts in _point_sets(rng):
+        ours, theirs = pts[planar.convex_hull(pts)], pts[ConvexHull(pts).vertices]
+        assert _same_cycle(ours, theirs)
+        assert not _same_cycle(ours[1:], theirs) and not _same_cycle(ours[::-1], theirs)  # the check sees a vertex lost, the turn reversed
+    for pts in (np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 3.0]]), np.ones((4, 2))):
+        with pytest.raises(QhullError):
+            ConvexHull(pts)
+        assert len(planar.convex_hull(pts)) < 3 and planar.min_area_rotation(pts) == 0.0
+
+
+def test_nearest_points_are_the_kd_trees():
+    """Distances to the last bit, the same point (ties, between repeated points, aside) and the same
+    'none nearer than the limit' as scipy's cKDTree."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(12)
+    for pts in _point_sets(rng):
+        queries = rng.uniform(pts.min(axis=0) - 5, pts.max(axis=0) + 5, size=(int(rng.integers(1, 1500)), 2))
+        for limit in (np.inf, 0.3, 2.0):
+            d, i = planar.nearest_points(pts, queries, limit)
+            d0, i0 = cKDTree(pts).query(queries, distance_upper_bound=limit)
+            assert np.array_equal(d, d0) and np.array_equal(i == len(pts), i0 == len(pts))
+            found = i0 < len(pts)
+            assert np.array_equal(pts[i[found]], pts[i0[found]])
+    d, _ = planar.nearest_points(pts, queries + 1e-12)
+    assert not np.array_equal(d, cKDTree(pts).query(queries)[0])  # the check sees a femtometre
+
+
+def test_label_boxes_keep_the_clearance_the_kd_tree_measures():
+    """A label box's margin, to the last bit, as measured by querying a kd-tree of the sampled
+    lines at every point of the box (and exactly to the labels already placed)."""
+    from scipy.spatial import cKDTree
+
+    def by_tree(obstacles, center, angle, text, size):
+        boxes = labels.label_candidates(center, angle, text, size).reshape(-1, 2)
+        d, i = cKDTree(obstacles.points).query(boxes, distance_upper_bound=size)
+        dist = np.where(i < len(obstacles.points), d - obstacles.spacing / 2, np.inf)
+        if len(obstacles.extra):
+            exact = planar.point_segment_distance(boxes[:, None], obstacles.extra[None, :, 0], obstacles.extra[None, :, 1]).min(axis=1)
+            dist = np.minimum(dist, np.where(exact <= size, exact, np.inf))
+        worst = np.minimum(dist.reshape(len(center), -1).min(axis=1), size)
+        return worst >= 0.25 * size, worst
+
+    rng = np.random.default_rng(13)
+    for k in range(40):
+        walk = np.cumsum(rng.normal(size=(30, 2)) * 4, axis=0)
+        obstacles = labels.Obstacles(np.stack([walk[:-1], walk[1:]], axis=1), 0.15)
+        if k % 2:
+            obstacles = obstacles.plus(polyline_segments([(labels.Label("S1", tuple(walk[5] + 1), 30.0, 2.0).corners(), True)]))
+        center = rng.uniform(walk.min(axis=0), walk.max(axis=0), size=(20, 2))
+        angle = rng.uniform(-np.pi, np.pi, 20)
+        text, size = ("tube 3 left", "S12")[k % 2], float(rng.uniform(1.5, 5.0))
+        ok, worst = obstacles.fits(center, angle, text, size)
+        ok0, worst0 = by_tree(obstacles, center, angle, text, size)
+        assert np.array_equal(ok, ok0) and np.array_equal(worst, worst0)
+    assert not np.array_equal(obstacles.fits(center + 1e-9, angle, text, size)[1], worst0)  # the check sees a nanometre
+
+
+def test_xml_escapes_are_the_standard_librarys():
+    from xml.sax.saxutils import escape, quoteattr
+
+    for text in ["", "tube 1", "a < b & c > d", 'say "hi"', "it's", "it's \"x\"", "tab\tnew\nline\r", "&amp;"]:
+        assert pattern._escape(text) == escape(text) and pattern._quoteattr(text) == quoteattr(text)
+    assert pattern._quoteattr("it's") != quoteattr("its")
+
+
 def test_each_sheet_has_one_closed_outline_around_sheet_and_tabs(tube, tube_layout):
     for placed in tube_layout.sheets():
         sheet = tube[placed.index]

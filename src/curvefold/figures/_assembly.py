@@ -32,9 +32,9 @@ from ..io._labels import seam_name
 from ..io._layout import Layout
 from ..io._legend import check_layout
 from ..io._pattern import draw_footer
-from ..io._pdf import PdfDocument, PdfPage, text_advance
+from ..io._pdf import PdfDocument, PdfPage, advance_units
 from ..io._tables import COLOURS
-from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, _hex, ground_polygon, render_strips
+from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, ground_polygon, render_strips
 
 __all__ = ["HIGHLIGHT_RGB", "SheetToCut", "Seam", "Step", "AssemblyPlan", "assembly_plan", "write_assembly"]
 
@@ -139,14 +139,15 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
 
 def _wrap(text: str, size: float, width: float) -> list[str]:
     """``text`` broken at spaces into lines no wider than ``width`` (mm) in Helvetica of em height ``size``."""
-    lines, line = [], ""
+    lines, line, units = [], "", 0  # the line so far and its advance (thousandths of the em)
+    space = advance_units(" ")
     for word in text.split():
-        trial = f"{line} {word}".strip()
-        if line and text_advance(trial, size) > width:
+        trial = units + space + advance_units(word) if line else advance_units(word)
+        if line and trial * size / 1000.0 > width:  # text_advance of the line with the word
             lines.append(line)
-            line = word
+            line, units = word, advance_units(word)
         else:
-            line = trial
+            line, units = (f"{line} {word}" if line else word), trial
     return lines + ([line] if line else [])
 
 
@@ -213,14 +214,29 @@ def _draw_scene(page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[floa
     s = min(w / size[0], h / size[1])
     offset = np.array([x0 + 0.5 * (w - s * size[0]), y0 + 0.5 * (h - s * size[1])])
 
-    def to_page(p: np.ndarray) -> np.ndarray:
-        return offset + (np.asarray(p) - box[0]) * s
+    def to_page(paths: tuple[np.ndarray, ...]) -> list[np.ndarray]:
+        """The paths (each (n, 2)) on the page, mapped together."""
+        if not paths:
+            return []
+        ends = np.cumsum([len(p) for p in paths]).tolist()
+        mapped = offset + (np.concatenate(paths) - box[0]) * s
+        return [mapped[a:b] for a, b in zip([0] + ends[:-1], ends)]
 
     pt = 25.4 / 72.0
     if ground is not None:
-        page.paint([to_page(ground)], [GROUND_COLOR], [GROUND_EDGE], [0.6 * pt], layer=_LAYERS[1])
-    fills = [_hex(f) if len(p) > 2 else None for p, f in zip(scene.paths, scene.fill)]
-    page.paint([to_page(p) for p in scene.paths], fills, [_hex(c) for c in scene.stroke], (scene.widths * pt).tolist(), layer=_LAYERS[1])
+        page.paint(to_page((ground,)), [GROUND_COLOR], [GROUND_EDGE], [0.6 * pt], layer=_LAYERS[1])
+    fills = [f if len(p) > 2 else None for p, f in zip(scene.paths, _hex_codes(scene.fill))]
+    page.paint(to_page(scene.paths), fills, _hex_codes(scene.stroke), (scene.widths * pt).tolist(), layer=_LAYERS[1])
+
+
+def _hex_codes(colours: np.ndarray) -> list[str]:
+    """``"#rrggbb"`` of each RGB(A) colour (C, 3 or 4) in [0, 1] (:func:`~curvefold.figures._scene._hex` of each row, at once)."""
+    if len(colours) == 0:
+        return []
+    channels = np.round(255.0 * np.clip(np.asarray(colours, float)[:, :3], 0.0, 1.0)).astype(int)  # halves to even, as round()
+    unique, which = np.unique(channels, axis=0, return_inverse=True)
+    codes = ["#%02x%02x%02x" % tuple(row) for row in unique.tolist()]
+    return [codes[k] for k in which.ravel().tolist()]
 
 
 def write_assembly(path: str | os.PathLike, structure: Structure, layout: Layout, *, view: View | None = None) -> Path:

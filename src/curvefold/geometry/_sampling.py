@@ -30,6 +30,7 @@ refuses it). Its resolution is measured and reported the same way.
 
 from __future__ import annotations
 
+from collections.abc import Generator
 from dataclasses import dataclass
 
 import numpy as np
@@ -180,16 +181,28 @@ _STEP = Topology.tubes(np.arange(4)[None], 2)
 _DIAGONAL_FACES = edges_faces(_STEP.faces_vertices, _STEP.edges_vertices[_STEP.edges_kind == "diagonal"])
 
 
-def _step_shape(curves: np.ndarray, i: int | np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The tube's steps from samples i to ``ends`` (J,) (broadcast together), measured over the states.
+def _tube_points(states: np.ndarray, cell_curves: np.ndarray) -> np.ndarray:
+    """The tubes' four curves in every state, (states, K·4·n, 3), from states (states, M, n, 3):
+    row (4·k + c)·n + s holds corner c + 1 of tube k at sample s (:func:`_rows`)."""
+    return states[:, cell_curves].reshape(len(states), -1, 3)
 
-    Returns its smallest triangle corner (degrees), the largest relative change of an edge
-    length between the two states, and the largest fold across a diagonal in a folded
-    state (degrees), each (J,).
+
+def _rows(n: int, tube: np.ndarray, curve: np.ndarray, sample: np.ndarray) -> np.ndarray:
+    """The rows of :func:`_tube_points` (n samples) of curves ``curve`` of tubes ``tube`` at ``sample`` (broadcast)."""
+    return (tube * 4 + curve) * n + sample
+
+
+def _step_shape(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The steps of tubes ``tube`` from samples i to ``ends``, each (J,), measured over the states.
+
+    ``points`` are the tubes' curves (:func:`_tube_points`, n samples). Returns each step's
+    smallest triangle corner (degrees), the largest relative change of an edge length
+    between the two states, and the largest fold across a diagonal in a folded state
+    (degrees), each (J,).
     """
     lo, hi = np.minimum(i, ends), np.maximum(i, ends)
     samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])  # (J, 8)
-    x = curves[:, _STEP.vertex_curve[None, :], samples]  # (states, J, 8, 3)
+    x = np.take(points, _rows(n, tube[:, None], _STEP.vertex_curve, samples), axis=1)  # (states, J, 8, 3)
     angle = corner_angles(x, _STEP.faces_vertices).min(axis=(0, 2))
     edges = x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :]
     length = np.linalg.norm(edges, axis=-1)  # (states, J, E)
@@ -201,53 +214,71 @@ def _step_shape(curves: np.ndarray, i: int | np.ndarray, ends: np.ndarray) -> tu
     return angle, stretch, bend
 
 
-def _chord_deviations(curves: np.ndarray, i: int, d: int, count: int) -> np.ndarray:
-    """For k = 1 … count, the largest distance of the samples between i and i + d·k from their chord, (count,)."""
-    x = curves[..., i : i + d * count + d if i + d * count + d >= 0 else None : d, :]  # samples i, i + d, …, i + d·count
-    p, q = x[..., :1, None, :], x[..., 1:, None, :]  # chord starts, and ends k = 1 … count: (..., 1, 1, 3), (..., count, 1, 3)
-    m = x[..., None, :, :]  # (..., 1, count + 1, 3)
+def _chord_deviations(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """For the steps of tubes ``tube`` from samples i to ``ends``, each (J,), the largest distance
+    of the samples between them from the chords of the four curves, over the states, (J,).
+
+    Only the samples strictly inside a step are measured: its ends lie on its chords.
+    """
+    inside = np.maximum(np.abs(ends - i) - 1, 0)  # samples strictly inside each step
+    step = np.repeat(np.arange(len(i)), inside)
+    if step.size == 0:
+        return np.zeros(len(i))
+    first = np.cumsum(inside) - inside  # each step's first sample in the list
+    j = np.arange(step.size) - first[step] + 1  # 1 … inside[step]
+    rows = (_rows(n, tube[step, None], np.arange(4), at[:, None]) for at in (i[step], ends[step], i[step] + np.sign(ends - i)[step] * j))
+    p, q, m = (np.take(points, r, axis=1) for r in rows)  # chord start, chord end, sample inside: (states, P, 4, 3)
     t = np.clip(np.sum((m - p) * (q - p), axis=-1) / np.maximum(np.sum((q - p) ** 2, axis=-1), 1e-300), 0.0, 1.0)
-    dist = np.linalg.norm(m - p - t[..., None] * (q - p), axis=-1)  # (..., count, count + 1)
-    dist = np.where(np.arange(count + 1) <= np.arange(1, count + 1)[:, None], dist, 0.0)  # samples within each step
-    return dist.reshape(-1, count, count + 1).max(axis=(0, 2))
+    dist = np.linalg.norm(m - p - t[..., None] * (q - p), axis=-1).max(axis=(0, 2))  # (P,)
+    deviation = np.zeros(len(i))
+    measured = inside > 0
+    deviation[measured] = np.maximum.reduceat(dist, first[measured])
+    return deviation
 
 
-def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float, float], min_angle: float) -> list[int]:
-    """Kept samples from ``start`` to ``stop`` (either way), each step as long as it stays accurate.
+def _accurate(points: np.ndarray, n: int, steps: list[tuple[int, int, np.ndarray]], limits: tuple[float, float, float]
+              ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """For each (tube, a, ends (J,)): whether each step of the tube from sample a to ``ends`` is
+    accurate, and its smallest triangle corner, each (J,), all measured together.
 
     A step is accurate when the samples it skips lie within ``limits[0]`` of its chords,
     no edge of its triangles changes length by more than ``limits[1]`` (relative) between
-    the states and no diagonal folds by more than ``limits[2]`` degrees. The longest
-    accurate step has the best-shaped triangles unless it is long beside the rulings: if
-    its triangles are thinner than ``min_angle``, the longest shorter step that is not is
-    taken instead, if any. The last one or two steps are chosen together, so that no short
-    step is left at the end.
+    the states and no diagonal folds by more than ``limits[2]`` degrees.
+    """
+    allowed, stretch_limit, bend_limit = limits
+    sizes = [len(ends) for _, _, ends in steps]
+    tube, start = (np.repeat([step[k] for step in steps], sizes) for k in (0, 1))
+    ends = np.concatenate([ends for _, _, ends in steps])
+    angle, stretch, bend = _step_shape(points, n, tube, start, ends)
+    ok = (_chord_deviations(points, n, tube, start, ends) <= allowed) & (stretch <= stretch_limit) & (bend <= bend_limit)
+    split = np.cumsum(sizes)[:-1]
+    return list(zip(np.split(ok, split), np.split(angle, split)))
+
+
+def _walk(start: int, stop: int, min_angle: float) -> Generator[tuple[tuple[int, np.ndarray], ...], list, list[int]]:
+    """Kept samples from ``start`` to ``stop`` (either way), each step as long as it stays accurate.
+
+    A generator: it yields the steps it asks about, a tuple of (a, ends (J,)), and is sent
+    back, for each, whether each step from a to ``ends`` is accurate and its smallest
+    triangle corner (:func:`_accurate`), so that the walks of all tubes are measured
+    together; it returns the kept samples. The longest accurate step has the best-shaped
+    triangles unless it is long beside the rulings: if its triangles are thinner than
+    ``min_angle``, the longest shorter step that is not is taken instead, if any. The last
+    one or two steps are chosen together, so that no short step is left at the end.
     """
     d = 1 if stop >= start else -1
-    allowed, stretch_limit, bend_limit = limits
-
-    def accurate(a: int, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Whether each step from a to ``ends`` (J,) is accurate, and its smallest triangle corner, each (J,)."""
-        if len(ends) == 0:
-            return np.zeros(0, bool), np.zeros(0)
-        angle, stretch, bend = _step_shape(curves, a, ends)
-        lengths = np.abs(ends - a)
-        near = _chord_deviations(curves, a, 1 if ends[0] > a else -1, int(lengths.max()))[lengths - 1] <= allowed
-        return near & (stretch <= stretch_limit) & (bend <= bend_limit), angle
-
-    picks, window = [start], 8
+    picks, reach = [start], 8
     while picks[-1] != stop:
         i = picks[-1]
         room = abs(stop - i)
         lengths = np.arange(1, room + 1)
-        while True:  # the accurate steps are those before the first one that is not
-            span = min(window, room)
-            ok, angle = accurate(i, i + d * lengths[:span])
-            if not ok.all() or span == room:
-                break
-            window *= 2
-        k = max(1, int(np.argmin(ok)) if not ok.all() else span)
-        window = max(8, 2 * k)
+        ok, angle = np.zeros(0, bool), np.zeros(0)
+        while len(ok) < room and ok.all():  # the accurate steps are those before the first one that is not
+            span = min(max(reach, 2 * len(ok)), room)  # about as long as the last step and one more, then twice as many
+            ((more_ok, more_angle),) = yield ((i, i + d * lengths[len(ok) : span]),)
+            ok, angle = np.concatenate([ok, more_ok]), np.concatenate([angle, more_angle])
+        k = max(1, int(np.argmin(ok)) if not ok.all() else room)
+        reach = k + 2
         if angle[k - 1] < min_angle:  # too long for the rulings?
             shorter = np.flatnonzero(angle[:k] >= min_angle)
             k = int(lengths[shorter[-1]]) if shorter.size else k
@@ -258,14 +289,39 @@ def _walk(curves: np.ndarray, start: int, stop: int, limits: tuple[float, float,
         ends = i + d * lengths
         last = lengths == room
         second, second_ok = np.full(room, np.inf), np.ones(room, bool)
-        second_ok[:-1], second[:-1] = accurate(stop, ends[:-1])
-        first_ok, first = accurate(i, ends)
+        (second_ok[:-1], second[:-1]), (first_ok, first) = yield ((stop, ends[:-1]), (i, ends))
         shape = np.minimum(first, second)
         both = first_ok & second_ok
         good = (shape >= min_angle) & both
         score = np.stack([good, both, last & good, shape], axis=-1)
         m = int(lengths[np.lexsort(score.T[::-1])[-1]])
         picks += [i + d * m] + ([stop] if m < room else [])
+    return picks
+
+
+def _walks(points: np.ndarray, n: int, walks: list[tuple[int, int, int]], limits: tuple[float, float, float], min_angle: float
+           ) -> list[list[int]]:
+    """The kept samples of each walk (tube, start, stop) on the tubes' curves (:func:`_tube_points`, n
+    samples) (:func:`_walk`), the walks measured in lockstep: each round, every step they ask about at once."""
+    picks: list = [None] * len(walks)
+    asking = {}
+
+    def advance(w: int, answer: list | None) -> None:
+        try:
+            asking[w] = running[w].send(answer)
+        except StopIteration as done:
+            picks[w] = done.value
+            asking.pop(w, None)
+
+    running = [_walk(start, stop, min_angle) for _, start, stop in walks]
+    for w in range(len(walks)):
+        advance(w, None)
+    while asking:
+        order = list(asking)
+        steps = [(walks[w][0], a, ends) for w in order for a, ends in asking[w]]
+        answers = iter(_accurate(points, n, steps, limits))
+        for w in order:
+            advance(w, [next(answers) for _ in asking[w]])
     return picks
 
 
@@ -311,16 +367,15 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
     limits = (tolerance * size, float(tolerance), float(max_bend))
     middle = (n - 1) // 2
     thinnable = structure.lattice.thinnable
-    keep, deviation, stretch, bend, smallest = [], 0.0, 0.0, 0.0, np.inf
-    for rows in structure.cell_curves:
-        curves = states[:, rows]  # (2, 4, n, 3)
-        if thinnable:
-            first, second = _walk(curves, 0, middle, limits, min_angle), _walk(curves, n - 1, middle, limits, min_angle)
-            picks = np.array(first + second[-2::-1], dtype=np.int64)
-        else:  # every vertex
-            picks = np.arange(n)
-        keep.append(picks)
-        angles, stretches, bends = _step_shape(curves, picks[:-1], picks[1:])
-        smallest, stretch, bend = min(smallest, float(angles.min())), max(stretch, float(stretches.max())), max(bend, float(bends.max()))
-        deviation = max(deviation, polyline_deviation(curves, picks))
-    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), float(max_bend), deviation, stretch, bend, smallest, size)
+    points = _tube_points(states, structure.cell_curves)
+    tubes = range(len(structure.cell_curves))
+    if thinnable:
+        walks = _walks(points, n, [(t, end, middle) for t in tubes for end in (0, n - 1)], limits, min_angle)
+        keep = [np.array(first + second[-2::-1], dtype=np.int64) for first, second in zip(walks[::2], walks[1::2])]
+    else:  # every vertex
+        keep = [np.arange(n) for _ in tubes]
+    tube = np.concatenate([np.full(len(picks) - 1, t) for t, picks in zip(tubes, keep)])
+    angles, stretches, bends = _step_shape(points, n, tube, np.concatenate([k[:-1] for k in keep]), np.concatenate([k[1:] for k in keep]))
+    deviation = max(polyline_deviation(states[:, rows], picks) for rows, picks in zip(structure.cell_curves, keep))
+    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), float(max_bend), deviation, float(stretches.max()),
+                    float(bends.max()), float(angles.min()), size)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._planar import box_corners, point_segment_distance, upright
+from ._planar import box_corners, cell_index, cell_key, nearest_points, point_segment_distance, ragged, upright
 
 __all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
 
@@ -82,13 +82,16 @@ class Label:
         return box_corners(np.asarray(self.position), math.radians(self.angle), text_width(self.text, self.size), self.size)
 
 
-def label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
-    """Sample points covering the text boxes, shape (C, K, 2)."""
+def _box_grid(text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
+    """The box's sample points along its baseline (m,) and across it (5,), from its centre, mm."""
     width = text_width(text, size)
     step = 0.4 * size  # a line between two points of a box comes within 0.2 size of one: caught by the 0.25 size clearance
-    u = np.linspace(-width / 2, width / 2, max(2, math.ceil(width / step) + 1))
-    v = np.linspace(-size / 2, size / 2, 5)
-    uu, vv = (g.ravel() for g in np.meshgrid(u, v))
+    return np.linspace(-width / 2, width / 2, max(2, math.ceil(width / step) + 1)), np.linspace(-size / 2, size / 2, 5)
+
+
+def label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
+    """Sample points covering the text boxes, shape (C, K, 2): K = 5·m, row by row across the baseline (:func:`_box_grid`)."""
+    uu, vv = (g.ravel() for g in np.meshgrid(*_box_grid(text, size)))
     c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
     return np.stack([center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1)
 
@@ -101,52 +104,103 @@ class Obstacles:
         self.spacing = spacing
         self.extra = np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
         if _from is not None:  # share the sampled lines of another
-            self.points, self.directions, self.tree = _from.points, _from.directions, _from.tree
+            self.points, self.directions, self._cells = _from.points, _from.directions, _from._cells
             return
-        from scipy.spatial import cKDTree
-
         d = segments[:, 1] - segments[:, 0]
         length = np.linalg.norm(d, axis=1)
         count = np.maximum(1, np.ceil(length / spacing).astype(int))
-        seg = np.repeat(np.arange(len(segments)), count + 1)
-        first = np.concatenate([[0], np.cumsum(count + 1)[:-1]])  # index of each segment's first sample
-        t = (np.arange(len(seg)) - first[seg]) / count[seg]
+        seg, place = ragged(count + 1)
+        t = place / count[seg]
         self.points = segments[seg, 0] + t[:, None] * d[seg]
         self.directions = d[seg] / np.maximum(length[seg], 1e-300)[:, None]
-        self.tree = cKDTree(self.points) if len(self.points) else None
+        origin, side = (self.points.min(axis=0) if len(self.points) else np.zeros(2)), 20.0 * spacing
+        self._cells = (origin, side, *cell_index(self.points, origin, side))  # the points bucketed in cells
 
     def plus(self, segments: np.ndarray) -> Obstacles:
         """These obstacles and ``segments`` (S, 2, 2) besides, without sampling the lines again."""
         return Obstacles(np.zeros((0, 2, 2)), self.spacing, np.concatenate([self.extra, segments]), _from=self)
 
-    def clearance(self, points: np.ndarray, limit: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
-        """Distance to the nearest obstacle (a sampled line's less half the spacing, inf beyond ``limit``) and its direction."""
+    def clearance(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Distance to the nearest obstacle (a sampled line's less half the spacing) and its direction."""
         shape = points.shape[:-1]
         flat = points.reshape(-1, 2)
-        dist, direction = np.full(len(flat), np.inf), np.tile([1.0, 0.0], (len(flat), 1))
-        if self.tree is not None:
-            found_dist, idx = self.tree.query(flat, distance_upper_bound=limit)
-            found = idx < len(self.points)
-            dist = np.where(found, found_dist - self.spacing / 2, np.inf)
-            direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], direction)
+        found_dist, idx = nearest_points(self.points, flat)
+        found = idx < len(self.points)
+        dist = np.where(found, found_dist - self.spacing / 2, np.inf)
+        direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], np.array([1.0, 0.0]))
         if len(self.extra):
             a, b = self.extra[:, 0], self.extra[:, 1]
             to_extra = point_segment_distance(flat[:, None], a[None], b[None])  # (N, S)
             nearest = np.argmin(to_extra, axis=1)
             exact = to_extra[np.arange(len(flat)), nearest]
-            closer = (exact < dist) & (exact <= limit)
+            closer = exact < dist
             d = b - a
             along = d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
             dist = np.where(closer, exact, dist)
             direction = np.where(closer[:, None], along[nearest], direction)
         return dist.reshape(shape), direction.reshape(shape + (2,))
 
-    def fits(self, boxes: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
-        """For boxes (C, K, 2): whether each keeps 0.25·size clear of every line, and its margin
-        (counted up to one ``size``)."""
-        dist, _ = self.clearance(boxes, limit=size)
-        worst = np.minimum(dist.min(axis=1), size)
+    def _nearest_to_boxes(self, boxes: np.ndarray, grid: tuple[np.ndarray, np.ndarray], center: np.ndarray, angle: np.ndarray,
+                          limit: float) -> np.ndarray:
+        """For boxes (C, K, 2) of :func:`label_candidates`: the smallest distance from their points
+        to the sampled lines if below ``limit``, else inf, (C,).
+
+        The distance of the nearest point to each box point, to the last bit (as
+        :func:`~curvefold.io._planar.nearest_points` measures it), without measuring every pair:
+        a sampled point near a box is measured only to the four box points around it in the
+        box's grid, one of them its nearest.
+        """
+        u, v = grid
+        origin, side, order, keys, cells = self._cells
+        reach = np.floor((np.stack(_bounds(boxes, len(u), limit), axis=1) - origin) / side)
+        lo, hi = (np.clip(reach[:, k], 0, cells - 1).astype(np.int64) for k in (0, 1))  # the cells around each box, (C, 2) each
+        box, place = ragged(np.maximum(hi[:, 0] - lo[:, 0] + 1, 0))  # a column of cells, per box
+        column = np.stack([lo[box, 0] + place, lo[box, 1]], axis=1)
+        first = np.searchsorted(keys, cell_key(column), "left")
+        column[:, 1] = hi[box, 1]
+        group, place = ragged(np.maximum(np.searchsorted(keys, cell_key(column), "right") - first, 0))
+        box, near = box[group], order[first[group] + place]
+        x, y = self.points[near, 0], self.points[near, 1]
+        rx, ry = x - np.take(center[:, 0], box), y - np.take(center[:, 1], box)
+        c, s = np.take(np.cos(angle), box), np.take(np.sin(angle), box)
+        frame = rx * c + ry * s, ry * c - rx * s  # in the box's frame
+        slack = limit * (1 + 1e-9)
+        keep = (np.abs(frame[0]) <= u[-1] + slack) & (np.abs(frame[1]) <= v[-1] + slack)  # within reach of the box
+        box, x, y = box[keep], x[keep], y[keep]
+        cells = [np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0, len(g) - 2) for f, g in zip(frame, (u, v))]
+        at = box * boxes.shape[1] + cells[1] * len(u) + cells[0]  # the corner (0, 0) of the grid's cell around each point
+        corners_x, corners_y = boxes[..., 0].ravel(), boxes[..., 1].ravel()
+        best = np.full(len(box), np.inf)
+        for step in (0, 1, len(u), len(u) + 1):
+            dx, dy = np.take(corners_x, at + step) - x, np.take(corners_y, at + step) - y
+            best = np.minimum(best, dx * dx + dy * dy)
+        out = np.full(len(boxes), np.inf)
+        np.minimum.at(out, box, best)
+        out = np.sqrt(out)  # the distance of the nearest, as measured between the two points
+        return np.where(out < limit, out, np.inf)
+
+    def fits(self, center: np.ndarray, angle: np.ndarray, text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
+        """For the boxes of ``text`` at ``size`` centred on ``center`` (C, 2) along ``angle`` (C,) radians:
+        whether each keeps 0.25·size clear of every line, and its margin (counted up to one ``size``)."""
+        boxes = label_candidates(center, angle, text, size)
+        worst = self._nearest_to_boxes(boxes, _box_grid(text, size), center, angle, size) - self.spacing / 2
+        if len(self.extra):  # each box against the extra segments whose bounding boxes come within size of its own
+            lo, hi = _bounds(boxes, len(boxes[0]) // 5, size)
+            box, segment = np.nonzero(((self.extra.max(axis=1)[None] >= lo[:, None]) & (self.extra.min(axis=1)[None] <= hi[:, None])).all(axis=2))
+            exact = point_segment_distance(boxes[box], self.extra[segment, None, 0], self.extra[segment, None, 1])  # (pairs, K)
+            nearest = np.full(len(boxes), np.inf)
+            np.minimum.at(nearest, box, np.where(exact <= size, exact, np.inf).min(axis=1, initial=np.inf))
+            worst = np.minimum(worst, nearest)
+        worst = np.minimum(worst, size)
         return worst >= 0.25 * size, worst
+
+
+def _bounds(boxes: np.ndarray, m: int, reach: float) -> tuple[np.ndarray, np.ndarray]:
+    """Corners (C, 2) of boxes around the points of boxes (C, 5·m, 2) (:func:`label_candidates`), ``reach`` wider
+    (and a little more: they are found from the four corner points, those of a straight grid)."""
+    corners = boxes[:, [0, m - 1, -m, -1]]
+    reach = reach * (1 + 1e-9) + 1e-9 * float(np.abs(corners).max(initial=1.0))
+    return corners.min(axis=1) - reach, corners.max(axis=1) + reach
 
 
 def _best_box(obstacles: Obstacles, center: np.ndarray, angle: np.ndarray, middle: np.ndarray, text: str, h: float) -> int | None:
@@ -165,7 +219,7 @@ def _best_box(obstacles: Obstacles, center: np.ndarray, angle: np.ndarray, middl
         if h - 0.05 * away[order[start]] < best:
             break
         batch = order[start:start + 16]
-        ok, worst = obstacles.fits(label_candidates(center[batch], angle[batch], text, h), h)
+        ok, worst = obstacles.fits(center[batch], angle[batch], text, h)
         score[batch] = np.where(ok, np.minimum(worst, h) - 0.05 * away[batch], -np.inf)
         best = max(best, float(score[batch].max()))
     return int(np.argmax(score)) if np.isfinite(best) else None
@@ -198,12 +252,13 @@ def seam_label(points: np.ndarray, seam: int, obstacles: Obstacles, size: float)
         gaps = np.array([0.85, 1.2, 1.7]) * h
         center = (base[:, None] + gaps[None, :, None] * left[:, None]).reshape(-1, 2)
         angle = np.repeat(np.arctan2(t[:, 1], t[:, 0]), len(gaps))
-        ok, _ = obstacles.fits(label_candidates(center, angle, text, h), h)
         if fallback is None:
             fallback = Label(text, tuple(center[0]), upright(math.degrees(angle[0])), MIN_LABEL_SIZE, "seam", seam)
-        if ok.any():
-            i = int(np.argmax(ok))  # candidates are in order of preference
-            return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
+        for first in range(0, len(center), 12):  # candidates are in order of preference: the first that keeps clear
+            ok, _ = obstacles.fits(center[first:first + 12], angle[first:first + 12], text, h)
+            if ok.any():
+                i = first + int(np.argmax(ok))
+                return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
     return fallback, False
 
 

@@ -33,7 +33,6 @@ import os
 from collections.abc import Collection, Sequence
 from dataclasses import replace
 from pathlib import Path
-from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
@@ -88,6 +87,31 @@ __all__ = [
 ]
 
 
+def _escape(text: str) -> str:
+    """``text`` with &, < and > escaped for XML (:func:`xml.sax.saxutils.escape`, whose import brings urllib's).
+
+    Examples
+    --------
+    >>> _escape("a < b & c")
+    'a &lt; b &amp; c'
+    """
+    return text.replace("&", "&amp;").replace(">", "&gt;").replace("<", "&lt;")
+
+
+def _quoteattr(text: str) -> str:
+    """``text`` escaped and quoted as an XML attribute value (:func:`xml.sax.saxutils.quoteattr`).
+
+    Examples
+    --------
+    >>> print(_quoteattr('say "hi"'), _quoteattr("it's"), _quoteattr("it's \\"x\\""))
+    'say "hi"' "it's" "it's &quot;x&quot;"
+    """
+    text = _escape(text).replace("\n", "&#10;").replace("\r", "&#13;").replace("\t", "&#9;")
+    if '"' not in text:
+        return f'"{text}"'
+    return f"'{text}'" if "'" not in text else '"{}"'.format(text.replace('"', "&quot;"))
+
+
 def _check_width(line_width: float) -> float:
     if not (isinstance(line_width, (int, float)) and math.isfinite(line_width) and line_width > 0):
         raise InputError(f"line_width must be a positive number of mm, got {line_width!r}")
@@ -108,7 +132,7 @@ def _svg_label(t: Label, height: float) -> str:
     x = t.position[0] + 0.35 * t.size * math.sin(a)
     y = height - (t.position[1] - 0.35 * t.size * math.cos(a))
     rot = f' transform="rotate({-t.angle:.2f} {x:.3f} {y:.3f})"' if abs(t.angle) > 1e-9 else ""
-    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{escape(one_line(t.text))}</text>'
+    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{_escape(one_line(t.text))}</text>'
 
 
 _FONT = "font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;text-anchor:middle"
@@ -150,16 +174,16 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
         else:
             body = [f'<{"polygon" if p.closed else "polyline"} points="{_svg_points(p.points, H)}"/>'
                     for p in page.on_layer(key)]
-        out.append(f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={quoteattr(layer_look(layout, key)[0])} '
-                   f'style={quoteattr(_svg_style(layout, key, lw))}>')
+        out.append(f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={_quoteattr(layer_look(layout, key)[0])} '
+                   f'style={_quoteattr(_svg_style(layout, key, lw))}>')
         out.extend(body)
         out.append("</g>")
     footer = page_footer(layout, page_index, names)
-    out.append(f'<g inkscape:groupmode="layer" id="layer-legend" inkscape:label={quoteattr(LEGEND_LAYER)} '
-               f'style={quoteattr(_svg_style(layout, "legend", lw))}>')
+    out.append(f'<g inkscape:groupmode="layer" id="layer-legend" inkscape:label={_quoteattr(LEGEND_LAYER)} '
+               f'style={_quoteattr(_svg_style(layout, "legend", lw))}>')
     out.append(f'<polygon points="{_svg_points(footer.bar, H)}" style="fill:{footer.colour};stroke:none"/>')
     out += [f'<{"polygon" if layer_look(layout, key)[2].fill else "polyline"} points="{_svg_points(points, H)}" '
-            f'style={quoteattr(_svg_style(layout, key, lw, footer.colour))}/>' for key, points in footer.samples]
+            f'style={_quoteattr(_svg_style(layout, key, lw, footer.colour))}/>' for key, points in footer.samples]
     out += [_svg_label(t, H) for t in footer.texts]
     out.append("</g>")
     out.append("</svg>\n")

@@ -26,16 +26,18 @@ import math
 import os
 import zlib
 from collections.abc import Sequence
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
+from . import _tables
 from ._atomic import atomic_write
-from ._tables import CREATOR, rgb8
+from ._tables import rgb8
 
-__all__ = ["PdfDocument", "PdfPage", "text_advance"]
+__all__ = ["PdfDocument", "PdfPage", "text_advance", "advance_units"]
 
 _PT_PER_MM = 72.0 / 25.4
 
@@ -60,15 +62,33 @@ def text_advance(text: str, size: float) -> float:
     >>> text_advance("", 10.0)
     0.0
     """
-    return sum(_WIDTHS.get(c, 556) for c in text) * size / 1000.0
+    return advance_units(text) * size / 1000.0
+
+
+def advance_units(text: str) -> int:
+    """Width of ``text`` set in Helvetica, thousandths of the em: an integer, so the width of
+    a line is the sum of its words' and spaces' (:func:`text_advance` scales it).
+
+    Examples
+    --------
+    >>> advance_units("S0"), advance_units("S") + advance_units("0")
+    (1223, 1223)
+    """
+    return sum(_WIDTHS.get(c, 556) for c in text)
 
 
 def _num(v: float) -> str:
     """A number for a content stream: at most 4 decimals, never ``-0``."""
-    s = f"{float(v):.4f}".rstrip("0").rstrip(".")
+    return _number(float(v))
+
+
+@lru_cache(maxsize=4096)
+def _number(v: float) -> str:
+    s = f"{v:.4f}".rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
 
 
+@lru_cache(maxsize=1024)
 def _colour(code: str) -> str:
     return " ".join(_num(c / 255.0) for c in rgb8(code))
 
@@ -82,9 +102,9 @@ def _path(points: np.ndarray, closed: bool) -> str:
     """Path construction operators of one polyline (n, 2), mm to the micrometre."""
     if len(points) == 0:
         return ""
-    rows = ["%.3f %.3f l\n" % (x, y) for x, y in points.tolist()]
-    rows[0] = rows[0][:-2] + "m\n"
-    return "".join(rows) + ("h\n" if closed else "")
+    rows = ("%.3f %.3f l\n" * len(points)) % tuple(points.ravel().tolist())
+    first = rows.index("\n")
+    return rows[: first - 1] + "m" + rows[first:] + ("h\n" if closed else "")
 
 
 class PdfPage:
@@ -216,7 +236,7 @@ class PdfDocument:
         usage = f" /AS [<< /Event /Print /Category [/Print] /OCGs [{refs}] >>]" if self.hidden_in_print else ""
         oc = f" /OCProperties << /OCGs [{refs}] /D << /Order [{refs}] /ON [{refs}]{usage} >> >>" if groups else ""
         objects[catalog - 1] = f"<< /Type /Catalog /Pages {pages_id} 0 R{oc} >>".encode()
-        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(CREATOR) + b" /Producer " + _string(CREATOR) + b" >>")
+        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(_tables.CREATOR) + b" /Producer " + _string(_tables.CREATOR) + b" >>")
         out = bytearray(b"%PDF-1.5\n%\xe2\xe3\xcf\xd3\n")
         offsets = []
         for number, body in enumerate(objects, start=1):

@@ -1,9 +1,12 @@
-"""Plane geometry of the crease-pattern pages: segments, distances, crossings, loops and boxes.
+"""Plane geometry of the crease-pattern pages: segments, distances, crossings, loops, boxes,
+nearest points and convex hulls.
 
 Vectorised NumPy on page coordinates (mm, x right, y up): points are (N, 2) arrays,
 segments (S, 2, 2) arrays of their two ends, polylines (points, closed) pairs. Used by the
 layout (:mod:`curvefold.io._layout`), its glue tabs (:mod:`curvefold.io._tabs`), label
 placement (:mod:`curvefold.io._labels`) and page packing (:mod:`curvefold.io._packing`).
+The nearest points and the hulls are those of scipy.spatial's cKDTree and ConvexHull (the
+tests hold them to it), without that package's import in every job that lays out a pattern.
 
 Examples
 --------
@@ -34,6 +37,11 @@ __all__ = [
     "segments_touch",
     "segments_near_box",
     "inside_loops",
+    "ragged",
+    "cell_key",
+    "cell_index",
+    "nearest_points",
+    "convex_hull",
     "min_area_rotation",
     "fit_arcs",
 ]
@@ -150,6 +158,130 @@ def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | 
     return ((counts % 2) == 1).any(axis=1)
 
 
+def ragged(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For groups of ``counts`` (G,) items: each item's group and its place in it, each (sum(counts),).
+
+    Examples
+    --------
+    >>> [a.tolist() for a in ragged(np.array([2, 0, 3]))]
+    [[0, 0, 2, 2, 2], [0, 1, 0, 1, 2]]
+    """
+    group = np.repeat(np.arange(len(counts)), counts)
+    return group, np.arange(len(group)) - (np.cumsum(counts) - counts)[group]
+
+
+def cell_key(cells: np.ndarray) -> np.ndarray:
+    """A key (...) of integer cells (..., 2) that sorts them by column, then row (rows in (-2³¹, 2³¹))."""
+    return cells[..., 0] * (1 << 32) + cells[..., 1]
+
+
+def cell_index(points: np.ndarray, origin: np.ndarray, side: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Points (P, 2) bucketed in square cells of ``side`` from ``origin`` (below and left of them all):
+    their order by cell (:func:`cell_key`; by index within one), the sorted keys (P,) and the number
+    of cells along x and y (2,)."""
+    cell = np.floor((points - origin) / side).astype(np.int64)
+    order = np.argsort(cell_key(cell), kind="stable")
+    return order, cell_key(cell)[order], cell.max(axis=0, initial=0) + 1
+
+
+def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf) -> tuple[np.ndarray, np.ndarray]:
+    """The nearest of ``points`` (P, 2, finite) to each of ``queries`` (Q, 2) nearer than ``limit``: its
+    distance (Q,) and index (Q,), inf and P where there is none; ties go to the lowest index.
+
+    :meth:`scipy.spatial.cKDTree.query`'s answer (k = 1, ``distance_upper_bound=limit``), distances
+    to the last bit: the points are bucketed in square cells of side r and each query looks in
+    the 3 × 3 cells around its own, which hold every point nearer than r; the queries that
+    find none look again with r doubled (up to ``limit``).
+
+    Examples
+    --------
+    >>> d, i = nearest_points(np.array([[0.0, 0.0], [3.0, 4.0]]), np.array([[0.0, 1.0], [1.5, 2.0], [9.0, 9.0]]), limit=6.0)
+    >>> d.tolist(), i.tolist()
+    ([1.0, 2.5, inf], [0, 0, 2])
+    """
+    dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
+    if len(points) == 0 or len(queries) == 0:
+        return dist, index
+    lo = points.min(axis=0)
+    extent = float(np.ptp(points, axis=0).max())
+    r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
+    todo = np.flatnonzero(np.isfinite(queries).all(axis=1))  # (a query not finite has no nearest)
+    while todo.size:
+        d, i = _nearest_in_cells(points, queries[todo], lo, r)
+        done = d < r if r < limit else np.ones(todo.size, bool)
+        found = done & (d < limit)
+        dist[todo[found]], index[todo[found]] = d[found], i[found]
+        todo, r = todo[~done], min(2.0 * r, limit)
+    return dist, index
+
+
+def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float, pairs: int = 1 << 16) -> tuple[np.ndarray, np.ndarray]:
+    """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
+    and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time."""
+    order, keys, cells = cell_index(points, lo, r)
+    own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
+    around = cell_key(own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2))
+    first, last = np.searchsorted(keys, around, "left"), np.searchsorted(keys, around, "right")  # (Q, 9)
+    dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
+    per_query = np.cumsum((last - first).sum(axis=1))
+    bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
+    for a, b in zip([0, *bounds.tolist()], [*bounds.tolist(), len(queries)]):
+        group, place = ragged((last[a:b] - first[a:b]).ravel())
+        if group.size == 0:
+            continue
+        near = order[first[a:b].ravel()[group] + place]
+        query = a + group // 9
+        dx, dy = queries[query, 0] - points[near, 0], queries[query, 1] - points[near, 1]
+        d = np.sqrt(dx * dx + dy * dy)
+        starts = np.flatnonzero(np.diff(query, prepend=-1))
+        dist[query[starts]] = np.minimum.reduceat(d, starts)
+        index[query[starts]] = np.minimum.reduceat(np.where(d == dist[query], near, len(points)), starts)
+    return dist, index
+
+
+def convex_hull(points: np.ndarray) -> np.ndarray:
+    """Indices of the vertices of the convex hull of ``points`` (N, 2), counter-clockwise from the
+    leftmost (then lowest) point; fewer than 3 when the points span no area.
+
+    Points on a hull edge (to 1e-13 of the largest coordinate) are not vertices:
+    :class:`scipy.spatial.ConvexHull`'s ``vertices``, but for where they start. Quickhull, each
+    round splitting every edge that has points outside at the farthest of them, all edges at once.
+
+    Examples
+    --------
+    >>> convex_hull(np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [1.0, 0.2], [1.0, -1.0], [2.0, 2.0]])).tolist()
+    [0, 4, 2, 5]
+    >>> convex_hull(np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])).tolist()  # on a line
+    [0, 2]
+    """
+    points = np.asarray(points, float)
+    by_x = np.lexsort((points[:, 1], points[:, 0]))
+    if len(points) == 0 or (points[by_x[0]] == points[by_x[-1]]).all():
+        return by_x[:1]
+    chain = by_x[[0, -1]]
+    roundoff = 1e-13 * float(np.abs(points).max())  # nearer an edge than this, a point lies on it (as qhull's tolerance finds)
+    side = cross2(points[chain[1]] - points[chain[0]], points - points[chain[0]])
+    candidates = np.flatnonzero(side != 0)
+    edge = (side[candidates] > 0).astype(np.int64)  # below the first chord: outside edge 0 (left to right); above: edge 1
+    while True:
+        a, b = points[chain[edge]], points[chain[(edge + 1) % len(chain)]]
+        side = cross2(b - a, points[candidates] - a)  # < 0: outside its edge (on its right)
+        out = side < -roundoff * np.hypot(*(b - a).T)
+        candidates, edge, side = candidates[out], edge[out], side[out]
+        if candidates.size == 0:
+            return chain
+        order = np.lexsort((candidates, side, edge))  # per edge, the farthest out first (then the lowest index)
+        split, first = np.unique(edge[order], return_index=True)
+        farthest = candidates[order[first]]
+        moved = np.arange(len(chain)) + np.searchsorted(split, np.arange(len(chain)))  # each vertex's place once they are in
+        chain = np.insert(chain, split + 1, farthest)
+        apex = farthest[np.searchsorted(split, edge)]
+        start = points[chain[moved[edge]]]
+        before = cross2(points[apex] - start, points[candidates] - start) < 0  # outside the edge to the apex, else test the one on
+        keep = candidates != apex
+        candidates, edge = candidates[keep], np.where(before, moved[edge], moved[edge] + 1)[keep]
+
+
 def min_area_rotation(points: np.ndarray) -> float:
     """Rotation (radians) that turns ``points`` (N, 2) to their minimum-area bounding box.
 
@@ -172,12 +304,11 @@ def min_area_rotation(points: np.ndarray) -> float:
     >>> min_area_rotation(np.zeros((3, 2)))  # no area: no hull, no turn
     0.0
     """
-    from scipy.spatial import ConvexHull, QhullError
-
-    try:
-        hull = points[ConvexHull(points).vertices]  # counter-clockwise
-    except (QhullError, ValueError):
+    points = np.asarray(points, float)
+    vertices = convex_hull(points) if np.isfinite(points).all() else ()
+    if len(vertices) < 3:
         return 0.0
+    hull = points[vertices]  # counter-clockwise
     e = np.roll(hull, -1, axis=0) - hull
     raw = np.arctan2(e[:, 1], e[:, 0])
     ang = raw[0] + (raw - raw[0]) % (2 * math.pi)  # increasing around the hull, in [raw[0], raw[0] + 2π)

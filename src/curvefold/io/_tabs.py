@@ -91,14 +91,32 @@ def tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted: 
     corners = cut[1:-1]
     mine = polyline_segments([(polygon, True)])
     lo, hi = polygon.min(axis=0) - tol, polygon.max(axis=0) + tol
-    near = [p for p in accepted if (p.max(axis=0) >= lo).all() and (p.min(axis=0) <= hi).all()]  # the others cannot touch it
+    near = [accepted[k] for k in np.flatnonzero(_boxes_meet(accepted, lo, hi))]  # the others cannot touch it
     loops = [outline, *(polyline_segments([(p, True)]) for p in near)]  # the sheet (its loops, even-odd) and each tab
     group = np.repeat(np.arange(len(loops)), [len(loop) for loop in loops])
     others = np.concatenate(loops)
     close = segments_near_box(others, cut, tol)
     if segments_touch(segs, close, tol).any() or (distance_to_segments(corners, close) < tol).any():
         return False
-    if inside_loops(corners, others, group).any():
+    level = _straddling(others, corners)  # the others cannot cross a ray from a corner
+    if inside_loops(corners, others[level], group[level]).any():
         return False
-    theirs = others[:, 0][distance_to_segments(others[:, 0], mine) >= tol]  # their corners off this tab's outline
+    theirs = others[:, 0][((others[:, 0] >= lo) & (others[:, 0] <= hi)).all(axis=1)]  # their corners in reach of this tab
+    theirs = theirs[distance_to_segments(theirs, mine) >= tol]  # ... and off its outline
     return not inside_loops(theirs, mine).any()
+
+
+def _boxes_meet(polygons: list[np.ndarray], lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Which of polygons (each (n, 2)) have bounding boxes meeting the box from ``lo`` to ``hi`` (2,), (P,) bool."""
+    if not polygons:
+        return np.zeros(0, bool)
+    starts = np.cumsum([0] + [len(p) for p in polygons[:-1]])
+    points = np.concatenate(polygons)
+    return (np.maximum.reduceat(points, starts) >= lo).all(axis=1) & (np.minimum.reduceat(points, starts) <= hi).all(axis=1)
+
+
+def _straddling(segments: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Which of segments (S, 2, 2) may cross the horizontal ray from one of points (N, 2): those from at or
+    below the highest point to above the lowest (:func:`~curvefold.io._planar.inside_loops` counts no other)."""
+    low, high = segments[:, :, 1].min(axis=1), segments[:, :, 1].max(axis=1)
+    return (high > points[:, 1].min(initial=np.inf)) & (low <= points[:, 1].max(initial=-np.inf))
