@@ -444,7 +444,7 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
     assert t.max() == 1
 
 
-@pytest.mark.parametrize("points", [2, 3, 4, 5, 8, 87])
+@pytest.mark.parametrize("points", [2, 3, 4, 5, 8, 87, 2001])  # 2001: solved on the band (DENSE_POINTS)
 @pytest.mark.parametrize("degree", [1, 2, 3])
 def test_3dm_crease_spline_is_scipys_interpolating_spline(points, degree):
     """The creases' B-spline (knots and control points) is scipy's make_interp_spline through the samples."""
@@ -457,7 +457,8 @@ def test_3dm_crease_spline_is_scipys_interpolating_spline(points, degree):
     want = interpolate.make_interp_spline(t, x, k=min(degree, points - 1))
     knots, control = interpolating_spline(t, x, degree)
     assert_array_equal(knots, want.t)
-    assert_allclose(control, want.c, rtol=0, atol=1e-12)
+    scale = max(1.0, float(np.abs(want.c).max()))  # control points of clustered parameters grow large (1.7e3 at 2001 points)
+    assert_allclose(control, want.c, rtol=0, atol=1e-12 * scale)
     assert_allclose(interpolate.BSpline(knots, control, want.k)(t), x, rtol=0, atol=1e-12)  # through the points
     if min(degree, points - 1) > 1:  # damaged: a parameter moved by 1e-6 moves the control points beyond the tolerance
         moved = t.copy()

@@ -195,13 +195,14 @@ class _Running:
             if self._prepare is not None and self._waiting[0][1][0] not in DRAWN:
                 self.refill()  # forks what has a place, this job first
                 continue
-            index, (_, job) = self._waiting.pop(0)
+            index, (label, job) = self._waiting.pop(0)
             reader, writer = self._context.Pipe(duplex=False)
             # The ending signals wait while the process is forked (a signal then would reach
             # a child with the parent's handlers); the child sets its own, then takes them.
             held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
             try:
-                process = self._context.Process(target=_job_process, args=(job, self._folder, writer, held), daemon=True)
+                process = self._context.Process(target=_job_process, args=(job, self._folder, writer, held, label in DRAWN),
+                                                daemon=True)
                 process.start()
                 self._running[reader] = (index, process)  # known to close() before a signal can come
             finally:
@@ -239,10 +240,15 @@ class _Running:
             reader.close()
 
 
-def _job_process(job: Job, folder: Path, conn, mask: set) -> None:
+def _job_process(job: Job, folder: Path, conn, mask: set, drawn: bool) -> None:
     """A job process: it leaves signals to its parent (it ignores SIGINT, which the terminal
     sends to the whole group, and dies on SIGTERM and SIGHUP, whatever handlers it inherited),
-    takes the parent's signal mask back, runs the job and sends its outcome."""
+    takes the parent's signal mask back, runs the job and sends its outcome.
+
+    A drawing (``drawn``) runs at a lower priority (:data:`DRAWN_NICENESS`): nothing waits
+    for it but the end, while the file jobs wait for what the parent computes meanwhile."""
+    if drawn:
+        os.nice(DRAWN_NICENESS)
     for signum in ENDING_SIGNALS:
         signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_SETMASK, mask)
@@ -359,6 +365,9 @@ _FAMILY_JOBS = {
 _FOLDED = ("fold", "model")
 #: The jobs that draw the structure and need nothing :func:`prepare` computes: they start first.
 DRAWN = ("pictures", "folding GIF")
+#: How much less the drawings' processes get of a shared CPU than the parent (``nice``): on
+#: two CPUs, the two drawings and the parent's preparation of the file jobs run together.
+DRAWN_NICENESS = 10
 #: The order the jobs start in: the drawings, then the files by the time they take on the
 #: paper's vault, longest first (0.84, 0.38, 0.36 and 0.46 CPU-s, beside 2.1 and 0.7 for the
 #: drawings), so that two processes finish about together.

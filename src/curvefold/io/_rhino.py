@@ -69,8 +69,11 @@ def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tupl
     The spline of :func:`scipy.interpolate.make_interp_spline` (its default ends, "not-a-knot"):
     knots at the inner parameters but the first and last (k + 1) // 2 of them (for odd k; for
     k = 2 at the midpoints between parameters but the first and last), each end knot k + 1
-    times; the control points solve the collocation equations. Cox–de Boor gives the basis at
-    the parameters, each in its knot span (the last in the last span).
+    times; the control points solve the collocation equations. Row i of that system holds the
+    k + 1 basis functions that do not vanish at t_i (Cox–de Boor, in its knot span, the last
+    in the last span), so it is banded and, past :data:`DENSE_POINTS`, solved in O(m k²) time and memory; the matrix of a
+    B-spline collocation is totally positive, so elimination needs no pivoting (de Boor, *A
+    Practical Guide to Splines*, 2001, ch. XIII).
 
     Examples
     --------
@@ -84,19 +87,48 @@ def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tupl
     drop = (k + 1) // 2 if k % 2 else k // 2
     knots = np.concatenate([np.full(k + 1, t[0]), inner[drop:len(inner) - drop], np.full(k + 1, t[-1])])
     span = np.clip(np.searchsorted(knots, t, side="right") - 1, k, m - 1)
-    basis = np.zeros((m, len(knots) - 1))
-    basis[np.arange(m), span] = 1.0
-    for d in range(1, k + 1):  # basis j of degree d: on knots j … j + d + 1, from bases j and j + 1 of degree d − 1
-        lo, hi = knots[:-d - 1], knots[d + 1:]
-        rise = _ratio(t[:, None] - lo, knots[d:-1] - lo)
-        fall = _ratio(hi - t[:, None], hi - knots[1:-d])
-        basis = rise * basis[:, :-1] + fall * basis[:, 1:]
-    return knots, np.linalg.solve(basis, points)
+    basis = np.ones((m, 1))  # the bases of degree d at t_i: functions span_i − d … span_i
+    for d in range(1, k + 1):
+        left = t[:, None] - knots[span[:, None] + np.arange(1 - d, 1)]  # t − knot of each function's start
+        right = knots[span[:, None] + np.arange(1, d + 1)] - t[:, None]  # its end − t
+        ratio = _ratio(basis, right + left)
+        basis = np.pad(right * ratio, ((0, 0), (0, 1))) + np.pad(left * ratio, ((0, 0), (1, 0)))
+    return knots, _solve_banded(basis, span - k, np.asarray(points, float))
+
+
+#: Up to this many points, the collocation system is solved dense (LAPACK: faster than the band's
+#: Python loop, and its m² numbers at most 2 MB); beyond, on its band.
+DENSE_POINTS = 512
 
 
 def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """a / b, 0 where b is 0 (Cox–de Boor's convention for empty knot spans)."""
     return np.divide(a, b, out=np.zeros(np.broadcast_shapes(a.shape, b.shape)), where=b != 0)
+
+
+def _solve_banded(rows: np.ndarray, first: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with A x = ``rhs`` (m, d), row i of A (m, m) holding ``rows[i]`` (m, w) in columns
+    ``first[i]`` … ``first[i] + w − 1`` (nondecreasing, A totally positive): Gaussian elimination
+    without pivoting on the band, O(m w²)."""
+    m, w = rows.shape
+    if m <= DENSE_POINTS:
+        dense = np.zeros((m, m))
+        dense[np.arange(m)[:, None], first[:, None] + np.arange(w)] = rows
+        return np.linalg.solve(dense, rhs)
+    band = np.zeros((m, 2 * w - 1))  # row i, columns i − w + 1 … i + w − 1
+    band[np.arange(m)[:, None], first[:, None] - np.arange(m)[:, None] + w - 1 + np.arange(w)] = rows
+    b = rhs.copy()
+    for j in range(m - 1):  # rows below j reach column j only within w − 1 rows
+        below = np.arange(j + 1, min(j + w, m))  # row j + 1 + a holds A[r, j] at w − 2 − a, A[r, j + c] at w − 2 − a + c
+        shift = w - 2 - np.arange(len(below))
+        factor = band[below, shift] / band[j, w - 1]  # A[r, j] / A[j, j]
+        band[below[:, None], shift[:, None] + np.arange(w)] -= factor[:, None] * band[j, w - 1:]
+        b[below] -= factor[:, None] * b[j]
+    x = np.empty_like(b)
+    for j in range(m - 1, -1, -1):
+        right = min(w - 1, m - 1 - j)
+        x[j] = (b[j] - band[j, w:w + right] @ x[j + 1:j + 1 + right]) / band[j, w - 1]
+    return x
 
 
 def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
