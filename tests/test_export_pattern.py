@@ -243,6 +243,31 @@ def test_label_boxes_keep_the_clearance_the_kd_tree_measures():
     assert not np.array_equal(obstacles.fits(center + 1e-9, angle, text, size)[1], worst0)  # the check sees a nanometre
 
 
+def test_a_blocked_label_box_is_one_that_does_not_fit():
+    """The quick test that spares measuring a box blocks only boxes that do not keep clear, and most
+    of those a line crosses; a line moved into a box that fitted blocks it."""
+    rng = np.random.default_rng(14)
+    caught = failed = 0
+    for k in range(40):
+        walk = np.cumsum(rng.normal(size=(30, 2)) * 4, axis=0)
+        obstacles = labels.Obstacles(np.stack([walk[:-1], walk[1:]], axis=1), 0.15)
+        center = rng.uniform(walk.min(axis=0), walk.max(axis=0), size=(30, 2))
+        angle = rng.uniform(-np.pi, np.pi, 30)
+        text, size = ("tube 3 left", "S12")[k % 2], float(rng.uniform(1.5, 5.0))
+        ok, _ = obstacles.fits(center, angle, text, size)
+        blocked = obstacles.blocked(center, angle, text, size)
+        assert not (blocked & ok).any()
+        caught, failed = caught + int(blocked.sum()), failed + int((~ok).sum())
+    assert caught > 0.5 * failed
+    free = center[ok][:1]
+    corner = labels.label_candidates(free, angle[ok][:1], text, size)[0, 0]
+    through = labels.Obstacles(np.array([[corner - 1.0, corner + 1.0]]), 0.15)
+    assert through.blocked(free, angle[ok][:1], text, size).all()
+    pts = np.array([[0.0, 0.0], [3.0, 4.0]])
+    index = (pts.min(axis=0), *planar.cell_index(pts, pts.min(axis=0), 1.0))
+    assert planar.near_any(pts, np.array([[0.0, 0.999], [0.0, 1.0], [3.7, 4.7]]), 1.0, index).tolist() == [True, False, True]
+
+
 def test_xml_escapes_are_the_standard_librarys():
     from xml.sax.saxutils import escape, quoteattr
 

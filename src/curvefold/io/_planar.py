@@ -41,6 +41,7 @@ __all__ = [
     "cell_key",
     "cell_index",
     "nearest_points",
+    "near_any",
     "convex_hull",
     "min_area_rotation",
     "fit_arcs",
@@ -215,10 +216,27 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
     return dist, index
 
 
-def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float, pairs: int = 1 << 16) -> tuple[np.ndarray, np.ndarray]:
+def near_any(points: np.ndarray, queries: np.ndarray, reach: float, index: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
+    """Whether any of ``points`` (P, 2) lies nearer than ``reach`` to each of ``queries`` (Q, 2), (Q,) bool.
+
+    ``index`` is ``(origin, *cell_index(points, origin, reach))``, made once for many queries.
+
+    Examples
+    --------
+    >>> pts = np.array([[0.0, 0.0], [3.0, 4.0]])
+    >>> near_any(pts, np.array([[0.0, 0.9], [1.5, 2.0]]), 1.0, (pts.min(axis=0), *cell_index(pts, pts.min(axis=0), 1.0))).tolist()
+    [True, False]
+    """
+    origin, *cells = index
+    return _nearest_in_cells(points, queries, origin, reach, cells=tuple(cells))[0] < reach
+
+
+def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float, pairs: int = 1 << 16,
+                      cells: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
-    and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time."""
-    order, keys, cells = cell_index(points, lo, r)
+    and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time
+    (``cells``: the points' :func:`cell_index` for these cells, if made already)."""
+    order, keys, cells = cell_index(points, lo, r) if cells is None else cells
     own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
     around = cell_key(own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2))
     first, last = np.searchsorted(keys, around, "left"), np.searchsorted(keys, around, "right")  # (Q, 9)
