@@ -32,11 +32,10 @@ from _bench import SummaryRow, bytecode_env, markdown_table, summary_table, time
 TARGET_SECONDS = 2.0
 TARGET_CPU = 3.0
 TARGET_MB = 10.0
-#: What the main job imports besides curvefold: NumPy and SciPy (contact, layout, FOLD
-#: components, the 3dm's splines), matplotlib (pictures), Pillow (GIF), pygltflib, rhino3dm
-#: (3D models), ezdxf (DXF).
-LIBRARIES = ("numpy", "scipy.spatial", "scipy.sparse.csgraph", "scipy.interpolate", "matplotlib.figure",
-             "matplotlib.backends.backend_agg", "PIL.Image", "pygltflib", "rhino3dm", "ezdxf")
+#: What the main job imports besides curvefold: NumPy, Pillow (pictures and GIF), rhino3dm
+#: (3dm), ezdxf (DXF), and the command line's rich and threadpoolctl (no SciPy, matplotlib or
+#: pygltflib: tests/test_startup.py holds it to that).
+LIBRARIES = ("numpy", "PIL.Image", "PIL.ImageDraw", "PIL.ImageFont", "rhino3dm", "ezdxf", "rich.progress", "threadpoolctl")
 
 
 def _folder_bytes(folder: Path) -> int:

@@ -89,3 +89,21 @@ def test_from_imports_work_as_before():
 
     assert (Crease, InputError, write_svg) == (defined, raised, written)
     assert measure.__name__ == "curvefold.analysis._measure" and __version__ == curvefold.__version__
+
+
+#: What no job of the main job needs: its output folder is written with NumPy, Pillow,
+#: ezdxf and rhino3dm alone (each import is paid again in every job process that makes it).
+NOT_IN_THE_MAIN_JOB = ("scipy", "matplotlib", "pygltflib", "trimesh")
+
+
+@pytest.mark.slow
+def test_the_main_job_imports_neither_scipy_nor_matplotlib(tmp_path):
+    """Every file and picture of the paper's vault (at fewer samples), written in this one process."""
+    code = ("from curvefold.app import default_design\nfrom curvefold.app._build import build\n"
+            "from curvefold.app._folder import check_output\nfrom curvefold.app._outputs import write_outputs\n"
+            "from dataclasses import replace\n"
+            "design = default_design('vault')\ndesign = replace(design, samples=201)\n"
+            f"files = write_outputs(build(design), check_output({str(tmp_path / 'v')!r}, force=True), show_progress=False, workers=1)['files']\n"
+            "assert {'vault.fold', 'vault.glb', 'vault.3dm', 'vault-pattern.dxf', 'folding.gif', 'vault.png'} <= set(files), files")
+    assert imported(code, NOT_IN_THE_MAIN_JOB) == []
+    assert imported(code + "\nimport scipy.sparse", NOT_IN_THE_MAIN_JOB) == ["scipy"]  # the probe sees one
