@@ -33,9 +33,8 @@ import numpy as np
 
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
-from . import _tables
 from ._atomic import atomic_write
-from ._tables import rgb8
+from ._tables import CREATOR, rgb8
 
 __all__ = ["PdfDocument", "PdfPage", "text_advance", "advance_units"]
 
@@ -236,7 +235,7 @@ class PdfDocument:
         usage = f" /AS [<< /Event /Print /Category [/Print] /OCGs [{refs}] >>]" if self.hidden_in_print else ""
         oc = f" /OCProperties << /OCGs [{refs}] /D << /Order [{refs}] /ON [{refs}]{usage} >> >>" if groups else ""
         objects[catalog - 1] = f"<< /Type /Catalog /Pages {pages_id} 0 R{oc} >>".encode()
-        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(_tables.CREATOR) + b" /Producer " + _string(_tables.CREATOR) + b" >>")
+        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(CREATOR) + b" /Producer " + _string(CREATOR) + b" >>")
         out = bytearray(b"%PDF-1.5\n%\xe2\xe3\xcf\xd3\n")
         offsets = []
         for number, body in enumerate(objects, start=1):
