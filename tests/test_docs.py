@@ -166,7 +166,11 @@ def test_the_version_has_one_source():
     version = importlib.metadata.version("curvefold")
     import curvefold
 
-    assert version == PYPROJECT["project"]["version"] == curvefold.__version__
+    assert "version" not in PYPROJECT["project"] and "version" in PYPROJECT["project"]["dynamic"]
+    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "curvefold.kernel._version.VERSION"}
+    from curvefold.kernel._version import VERSION
+
+    assert version == VERSION == curvefold.__version__
     assert run_subprocess("--version").stdout.split() == ["curvefold", version]
     assert f"## [{version}]" in (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")  # every version has its entry
     from curvefold.io._tables import CREATOR

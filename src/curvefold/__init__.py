@@ -13,6 +13,7 @@ the geometry, not the file writers or SciPy), so the command line starts quickly
 from typing import TYPE_CHECKING
 
 from .kernel._exports import lazy_exports as _lazy_exports
+from .kernel._version import VERSION as __version__  # the one place it is set (pyproject.toml reads it)
 
 # The public names by package, imported when first asked for (kernel.exports).
 __all__, _getattr, _dir = _lazy_exports(
@@ -30,11 +31,6 @@ def __dir__() -> list[str]:
 
 
 def __getattr__(name: str):
-    if name == "__version__":  # one source: the version in pyproject.toml, read when asked
-        from importlib.metadata import version
-
-        globals()["__version__"] = version("curvefold")
-        return globals()["__version__"]
     if name == "measure":  # a module
         from .analysis import _measure as measure
 

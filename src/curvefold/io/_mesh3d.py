@@ -37,6 +37,7 @@ from ..kernel._errors import InputError
 from ..kernel._lie import cross
 from ..kernel._text import one_line
 from ._atomic import atomic_write
+from ._tables import CREATOR, UNITS
 
 __all__ = [
     "Y_UP",
@@ -361,8 +362,6 @@ def write_stl(path: str | os.PathLike, mesh: Mesh, *, unit: str = "unit", to_uni
     >>> UNITS["unit"].metres / UNITS["mm"].metres   # a model unit in the file when to_unit="mm"
     1000.0
     """
-    from ._tables import CREATOR, UNITS
-
     to_unit = unit if to_unit is None else to_unit
     for name, value in (("unit", unit), ("to_unit", to_unit)):
         if value not in UNITS:

@@ -33,9 +33,8 @@ import numpy as np
 
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
-from . import _tables
 from ._atomic import atomic_write
-from ._tables import rgb8
+from ._tables import CREATOR, rgb8
 
 __all__ = ["PdfDocument", "PdfPage", "text_advance", "advance_units"]
 
@@ -98,13 +97,21 @@ def _string(text: str) -> bytes:
     return b"(" + raw.replace(b"\\", b"\\\\").replace(b"(", b"\\(").replace(b")", b"\\)") + b")"
 
 
-def _path(points: np.ndarray, closed: bool) -> str:
-    """Path construction operators of one polyline (n, 2), mm to the micrometre."""
-    if len(points) == 0:
+@lru_cache(maxsize=256)
+def _path(points: int, closed: bool) -> str:
+    """Path construction operators of a polyline of ``points`` points, with a ``%.3f`` (mm to the
+    micrometre) for each of its coordinates (:func:`_drawn` fills them in)."""
+    if points == 0:
         return ""
-    rows = ("%.3f %.3f l\n" * len(points)) % tuple(points.ravel().tolist())
-    first = rows.index("\n")
-    return rows[: first - 1] + "m" + rows[first:] + ("h\n" if closed else "")
+    return "%.3f %.3f m\n" + "%.3f %.3f l\n" * (points - 1) + ("h\n" if closed else "")
+
+
+def _drawn(operators: list[str], polylines: Sequence[np.ndarray]) -> str:
+    """``operators`` (one string for each polyline, holding its :func:`_path` and no other ``%``)
+    with the coordinates of the polylines (each (n, 2), mm) filled in, all at once."""
+    drawn = [p for p in polylines if len(p)]
+    coordinates = np.concatenate(drawn, axis=0, dtype=float).ravel().tolist() if drawn else []
+    return "".join(operators) % tuple(coordinates)
 
 
 class PdfPage:
@@ -133,14 +140,14 @@ class PdfPage:
         self._on(layer)
         pattern = " ".join(_num(d) for d in dashes)
         self._parts.append(f"q {_colour(colour)} RG {_num(width)} w [{pattern}] 0 d {dict(butt=0, round=1)[cap]} J\n")
-        self._parts += [_path(np.asarray(p, float), c) for p, c in zip(polylines, closed)]
+        self._parts.append(_drawn([_path(len(p), c) for p, c in zip(polylines, closed)], polylines))
         self._parts.append("S Q\n")
 
     def fill(self, polygons: Sequence[np.ndarray], colour: str, *, layer: str | None = None) -> None:
         """Fill closed polygons (each (n, 2), mm) with a colour (non-zero winding)."""
         self._on(layer)
         self._parts.append(f"q {_colour(colour)} rg\n")
-        self._parts += [_path(np.asarray(p, float), True) for p in polygons]
+        self._parts.append(_drawn([_path(len(p), True) for p in polygons], polygons))
         self._parts.append("f Q\n")
 
     def paint(self, paths: Sequence[np.ndarray], fills: Sequence[str | None], strokes: Sequence[str], widths: Sequence[float], *,
@@ -149,9 +156,9 @@ class PdfPage:
         line, stroked only), stroke colour and width in mm, in the order given (a painter's order)."""
         self._on(layer)
         self._parts.append("q 0 J\n")
-        for path, fill, stroke, width in zip(paths, fills, strokes, widths):
-            paint = f"{_colour(stroke)} RG {_num(width)} w " + (f"{_colour(fill)} rg " if fill is not None else "")
-            self._parts.append(paint + _path(np.asarray(path, float), fill is not None) + ("B\n" if fill is not None else "S\n"))
+        self._parts.append(_drawn([f"{_colour(stroke)} RG {_num(width)} w {_colour(fill)} rg {_path(len(path), True)}B\n" if fill is not None
+                                   else f"{_colour(stroke)} RG {_num(width)} w {_path(len(path), False)}S\n"
+                                   for path, fill, stroke, width in zip(paths, fills, strokes, widths)], paths))
         self._parts.append("Q\n")
 
     def text(self, text: str, x: float, y: float, size: float, colour: str, *, angle: float = 0.0, anchor: str = "center",
@@ -236,7 +243,7 @@ class PdfDocument:
         usage = f" /AS [<< /Event /Print /Category [/Print] /OCGs [{refs}] >>]" if self.hidden_in_print else ""
         oc = f" /OCProperties << /OCGs [{refs}] /D << /Order [{refs}] /ON [{refs}]{usage} >> >>" if groups else ""
         objects[catalog - 1] = f"<< /Type /Catalog /Pages {pages_id} 0 R{oc} >>".encode()
-        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(_tables.CREATOR) + b" /Producer " + _string(_tables.CREATOR) + b" >>")
+        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(CREATOR) + b" /Producer " + _string(CREATOR) + b" >>")
         out = bytearray(b"%PDF-1.5\n%\xe2\xe3\xcf\xd3\n")
         offsets = []
         for number, body in enumerate(objects, start=1):

@@ -15,8 +15,7 @@ Colours
 Creator
     ``CREATOR``: the program and version the files name as their creator (FOLD's
     ``file_creator``, glTF's ``asset.generator``, the 3dm's application, the PDF's creator):
-    ``"curvefold <version>"``, the version from the installed package's metadata, read
-    when first asked (importing the metadata reader would slow every start).
+    ``"curvefold <version>"`` (:data:`curvefold.kernel._version.VERSION`).
 """
 
 from __future__ import annotations
@@ -26,18 +25,12 @@ from dataclasses import dataclass
 from types import MappingProxyType
 
 from ..kernel._errors import InputError
+from ..kernel._version import VERSION
 
 __all__ = ["PAGES", "UNITS", "COLOURS", "CREATOR", "Unit", "page_mm", "mm_per_unit", "rgb8", "rgba", "rgba8"]
 
-
-def __getattr__(name: str) -> str:
-    """``CREATOR``, read from the package's metadata the first time it is asked for."""
-    if name != "CREATOR":
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    from importlib.metadata import version
-
-    globals()["CREATOR"] = creator = f"curvefold {version('curvefold')}"
-    return creator
+#: The program and version the files name as their creator.
+CREATOR = f"curvefold {VERSION}"
 
 
 #: Paper sizes, portrait (width, height) in millimetres.
