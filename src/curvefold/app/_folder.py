@@ -43,6 +43,7 @@ from pathlib import Path
 from ..io._atomic import folder_mode
 from ..io._reading import read_bytes
 from ..kernel._errors import InputError
+from ..kernel._version import VERSION
 
 __all__ = [
     "MARKER", "ENDING_SIGNALS", "Interrupted", "OutputTarget", "check_output", "output_folder", "raise_if_interrupted",
@@ -189,9 +190,7 @@ def output_folder(target: OutputTarget) -> Iterator[Path]:
     path = target.path
     tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.curvefold-{os.getpid()}-", dir=path.parent))
     try:
-        from importlib.metadata import version
-
-        marker = {"curvefold": version("curvefold"), "id": secrets.token_hex(16)}
+        marker = {"curvefold": VERSION, "id": secrets.token_hex(16)}
         (tmp / MARKER).write_text(json.dumps(marker) + "\n", encoding="utf-8")
         yield tmp
         os.chmod(tmp, folder_mode())

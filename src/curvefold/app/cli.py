@@ -112,9 +112,9 @@ class _Version(argparse.Action):
         super().__init__(option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, nargs=0, **kwargs)
 
     def __call__(self, parser, namespace, values, option_string=None) -> None:
-        from importlib.metadata import version
+        from ..kernel._version import VERSION
 
-        print(f"{parser.prog} {version('curvefold')}")
+        print(f"{parser.prog} {VERSION}")
         parser.exit()
 
 
@@ -646,10 +646,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             _error(f"interrupted by {signal.Signals(signum).name}")
             return 128 + int(signum)
         except Exception as err:
-            from importlib.metadata import version
+            from ..kernel._version import VERSION
 
             hint = "" if debug else " (rerun with --debug for the traceback)"
-            _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {version('curvefold')}; "
+            _error(f"internal error: {type(err).__name__}: {err}. This is a bug in curvefold {VERSION}; "
                    f"please report it with the command you ran{hint}")
             if debug:
                 traceback.print_exc()

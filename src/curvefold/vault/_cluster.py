@@ -15,11 +15,11 @@ import os
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
-from importlib.metadata import version
 from itertools import islice
 from typing import Any
 
 from ..kernel._errors import InputError
+from ..kernel._version import VERSION
 from ..kernel._validate import Spec
 
 __all__ = ["LOCAL_CLUSTER_FROM", "batched", "client", "cluster_plan", "in_order", "workers_spec"]
@@ -195,7 +195,7 @@ def _check_workers(client: Any, scheduler: str) -> None:
         client.wait_for_workers(1, timeout=timeout)
     except TimeoutError:
         raise InputError(f"scheduler {scheduler!r} has no worker (waited {timeout:g} s)") from None
-    ours = version("curvefold")
+    ours = VERSION
     found = client.run(_curvefold_version, on_error="return")
     wrong = {w: v for w, v in sorted(found.items()) if v != ours}
     if wrong:
@@ -206,4 +206,4 @@ def _check_workers(client: Any, scheduler: str) -> None:
 
 def _curvefold_version() -> str:
     """The version of curvefold installed where this runs (on a worker)."""
-    return version("curvefold")
+    return VERSION

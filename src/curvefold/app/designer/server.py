@@ -57,11 +57,11 @@ import webbrowser
 from collections import OrderedDict
 from collections.abc import Iterator
 from contextlib import contextmanager
-from importlib.metadata import version
 from pathlib import Path
 from urllib.parse import urlencode, urlsplit
 
 from ...kernel._errors import CurvefoldError
+from ...kernel._version import VERSION
 from .._budget import memory_budget
 from .._workers import JobError, Pool, Reservations, Stopped, resident_bytes
 from . import SERVER_SPECS, api, jobs
@@ -106,7 +106,7 @@ def _one_line(message: str) -> str:
 
 
 def _bug(message: str) -> str:
-    return f"internal error: {_one_line(message)}. This is a bug in curvefold {version('curvefold')}; please report it with the request"
+    return f"internal error: {_one_line(message)}. This is a bug in curvefold {VERSION}; please report it with the request"
 
 
 class _Answers:
@@ -292,7 +292,7 @@ class Designer:
         workers = [pid for pool in self.pools.values() for pid in pool.pids()]
         processes = sorted({*workers, *(_parent(pid) for pid in workers)} - {server, 0})  # the workers and their fork server
         return {
-            "version": version("curvefold"),
+            "version": VERSION,
             "workers": {lane: {"size": pool.size, "busy": pool.busy, "pids": pool.pids(), "jobs": dict(pool.counts)}
                         for lane, pool in self.pools.items()},
             "limits": {"time_limit": self.time_limit, "quick_time_limit": QUICK_TIME_LIMIT, "budget": self.budget,
@@ -310,7 +310,7 @@ class Designer:
         from fastapi.responses import FileResponse, JSONResponse
         from fastapi.staticfiles import StaticFiles
 
-        app = FastAPI(title="curvefold designer", version=version("curvefold"), docs_url=None, redoc_url=None, openapi_url=None)
+        app = FastAPI(title="curvefold designer", version=VERSION, docs_url=None, redoc_url=None, openapi_url=None)
 
         @app.get("/")
         def page():
