@@ -1,5 +1,6 @@
 """Figures: expected axes, labels and artists; measured geometry in the sections; atomic output."""
 
+import io
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -347,6 +348,22 @@ def test_viridis_and_inks_match_matplotlib_and_pillow():
     draw = ImageDraw.Draw(Image.new("RGB", (1, 1)))
     colours = np.array([[0, 0, 0], [1, 0.5, 0.25], [0.2, 0.9, 1]])
     assert canvas.inks(colours) == [draw.draw.draw_ink(tuple(int(round(255 * v)) for v in c)) for c in colours]
+
+
+def test_png_bytes_hold_the_pictures_pixels(tmp_path):
+    """The unfiltered PNG writer: Pillow reads back every pixel; a damaged byte of its data is refused."""
+    rng = np.random.default_rng(3)
+    pixels = rng.integers(0, 256, (37, 53, 3), dtype=np.uint8)
+    pixels[10:20] = [236, 230, 218]  # flat runs, as in the pictures
+    path = canvas.write_png(Image.fromarray(pixels), tmp_path / "x.png")
+    with Image.open(path) as im:
+        assert (im.format, im.mode, im.size) == ("PNG", "RGB", (53, 37))
+        assert np.array_equal(np.asarray(im), pixels)
+    assert np.array_equal(np.asarray(Image.open(io.BytesIO(canvas.png_bytes(Image.fromarray(pixels).convert("RGBA"))))), pixels)
+    damaged = bytearray(path.read_bytes())
+    damaged[60] ^= 0xFF  # inside the image data
+    with pytest.raises(OSError, match="broken data stream"):
+        Image.open(io.BytesIO(bytes(damaged))).load()
 
 
 def test_the_domain_polygon_is_scipys_halfspace_intersection(vault, block):

@@ -180,7 +180,10 @@ class Scene:
     @property
     def strips(self) -> np.ndarray:
         """Screen corners of the strips, shape (Q, 4, 2), in painter's order."""
-        return np.array([p for p, role in zip(self.paths, self.roles) if role == "strip"]).reshape(-1, 4, 2)
+        if not self.paths:
+            return np.zeros((0, 4, 2))
+        sizes = np.fromiter(map(len, self.paths), int, len(self.paths))
+        return np.concatenate(self.paths)[np.repeat(self.roles == "strip", sizes)].reshape(-1, 4, 2)
 
     @property
     def box(self) -> np.ndarray:
@@ -301,12 +304,15 @@ def render_strips(
         # Curves and end rulings are drawn right after the nearest strip that borders them.
         per_strip = strip_depth.reshape(len(pairs), -1)  # (S, k − 1)
         eps = 1e-9 * (1.0 + float(np.abs(qd).max()))
-        used = np.unique(pairs)
+        used = np.flatnonzero(np.bincount(pairs.ravel(), minlength=len(vertices)))  # the curves of the strips, in order
         seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
         s2, _ = view.project(seg)
         used_kinds = np.asarray(kinds)[used]
         per_curve = np.array([_kind_color(colors, k) for k in used_kinds]).reshape(-1, 4)
-        seg_depth = np.concatenate([per_strip[(pairs == c).any(axis=1)].max(axis=0) for c in used]) + eps
+        nearest = np.full((len(vertices), per_strip.shape[1]), -np.inf)  # of the strips bordering each curve, per segment
+        np.maximum.at(nearest, pairs[:, 0], per_strip)
+        np.maximum.at(nearest, pairs[:, 1], per_strip)
+        seg_depth = nearest[used].reshape(-1) + eps
         rim = np.swapaxes(vertices[pairs][:, :, [0, -1]], 1, 2).reshape(-1, 2, 3)  # end rulings of every strip
         e2, _ = view.project(rim)
         paths += [s2, e2]
