@@ -138,9 +138,9 @@ def draw_scene(draw, scene: Scene, to_pixels, pixels_per_point: float, ground_wi
     if scene.ground is not None:
         draw.polygon([tuple(p) for p in to_pixels(scene.ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE,
                      width=max(1, round(ground_width)))
-    sizes = np.fromiter(map(len, scene.paths), int, len(scene.paths))
+    points, sizes = scene.flat
     ends = (2 * np.cumsum(sizes)).tolist()
-    flat = to_pixels(np.concatenate(scene.paths)).ravel().tolist()
+    flat = to_pixels(points).ravel().tolist()
     quad = (sizes > 2).tolist()
     fill_inks, stroke_inks = inks(scene.fill), inks(scene.stroke)
     widths = np.maximum(1, np.round(np.asarray(scene.widths) * pixels_per_point)).astype(int).tolist()

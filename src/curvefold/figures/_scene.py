@@ -178,12 +178,18 @@ class Scene:
             object.__setattr__(self, "ground", frozen(np.asarray(self.ground, float)))
 
     @property
+    def flat(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every path's points one after the other, shape (N, 2), and the number of points of each path (P,)."""
+        if isinstance(self.paths, _HeldPaths):
+            return self.paths.points, self.paths.sizes
+        sizes = np.fromiter(map(len, self.paths), int, len(self.paths))
+        return (np.concatenate(self.paths) if self.paths else np.zeros((0, 2))), sizes
+
+    @property
     def strips(self) -> np.ndarray:
         """Screen corners of the strips, shape (Q, 4, 2), in painter's order."""
-        if not self.paths:
-            return np.zeros((0, 4, 2))
-        sizes = np.fromiter(map(len, self.paths), int, len(self.paths))
-        return np.concatenate(self.paths)[np.repeat(self.roles == "strip", sizes)].reshape(-1, 4, 2)
+        points, sizes = self.flat
+        return points[np.repeat(self.roles == "strip", sizes)].reshape(-1, 4, 2)
 
     @property
     def box(self) -> np.ndarray:
@@ -234,8 +240,24 @@ class Scene:
 
 
 class _HeldPaths(tuple):
-    """Paths that are already read-only views of read-only arrays (built by :func:`render_strips`):
-    a scene holds them without checking each (a scene has thousands)."""
+    """Paths that are already read-only views of one read-only array of their points (built by
+    :func:`render_strips`): a scene holds them without checking each (a scene has thousands),
+    and draws from :attr:`points` and :attr:`sizes` at once."""
+
+    points: np.ndarray
+    sizes: np.ndarray
+
+    @classmethod
+    def ordered(cls, groups: Sequence[np.ndarray], order: np.ndarray) -> _HeldPaths:
+        """The paths of ``groups`` (each (G, p, 2), read-only), one after the other, taken in ``order``."""
+        every = [path for group in groups for path in group]  # read-only views: held without copying each
+        held = cls(every[i] for i in order.tolist())
+        sizes = np.concatenate([np.full(len(group), group.shape[1]) for group in groups])
+        first = (np.cumsum(sizes) - sizes)[order]  # of every path, in the groups' points
+        held.sizes = readonly(sizes[order])
+        gather = np.repeat(first - (np.cumsum(held.sizes) - held.sizes), held.sizes) + np.arange(int(held.sizes.sum()))
+        held.points = readonly(np.concatenate([group.reshape(-1, 2) for group in groups])[gather])
+        return held
 
 
 def _frozen_paths(paths: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
@@ -322,9 +344,8 @@ def render_strips(
         strokes += [np.repeat(per_curve, vertices.shape[1] - 1, axis=0), np.tile(rgba(RIM_COLOR), (len(e2), 1))]
         widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
     order = np.argsort(np.concatenate(depth), kind="stable")
-    flat = [p for group in paths for p in readonly(np.asarray(group, float))]  # read-only views: held without copying each
     return Scene(
-        _HeldPaths(flat[i] for i in order),
+        _HeldPaths.ordered([readonly(np.asarray(group, float)) for group in paths], order),
         np.concatenate(roles)[order],
         np.concatenate(fills)[order],
         np.concatenate(strokes)[order],
