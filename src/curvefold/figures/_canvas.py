@@ -267,7 +267,7 @@ class Frame:
             pieces = [px] if dash is None else _dashed(px, dash[0] * pt, dash[1] * pt)
             for piece in pieces:
                 if len(piece) > 1:
-                    self.draw.line(piece.ravel().tolist(), fill=ink, width=w, joint="curve" if w > 4 else None)
+                    _line(self.draw, piece, ink, w)
 
     def polygons(self, polygons: Sequence[np.ndarray], fill=None, edge=None, width: float = 1.0, *,
                  dash: tuple[float, float] | None = None) -> None:
@@ -441,6 +441,25 @@ def colour_key(canvas: Canvas, rect: Sequence[float], label: str, *, points: flo
         canvas.draw.line((right, y, right + 3.5 * pt, y), fill=(0, 0, 0, 255), width=max(1, round(0.8 * pt)))
         canvas.text((right + 5.5 * pt, y), f"{value:.1f}", points, anchor="lm")
     canvas.vertical_text((right + 5.5 * pt + canvas.text_size("0.0", points)[0] + 1.2 * points * pt, (top + bottom) / 2), label, points)
+
+
+def _line(draw, points: np.ndarray, ink: tuple[int, ...], width: int) -> None:
+    """A polyline (n, 2) of ``width`` pixels; wider than 4 with round joints (Pillow's) where it bends.
+
+    A joint fills the notch a bend leaves at the outer side of a wide line. Where the line
+    turns so little that the notch is under a quarter pixel deep (a smooth curve's samples),
+    it is left out; an opaque line draws its bends' joints with their two segments (drawn
+    again, the same), a translucent one its joints at every vertex, as Pillow does.
+    """
+    if width <= 4 or ink[3] < 255 or len(points) < 3:
+        draw.line(points.ravel().tolist(), fill=ink, width=width, joint="curve" if width > 4 else None)
+        return
+    step = np.diff(points, axis=0)
+    heading = np.arctan2(step[:, 1], step[:, 0])
+    turn = np.abs((np.diff(heading) + np.pi) % (2 * np.pi) - np.pi)
+    draw.line(points.ravel().tolist(), fill=ink, width=width)
+    for k in (np.flatnonzero(turn * width / 2 > 0.25) + 1).tolist():
+        draw.line(points[k - 1:k + 2].ravel().tolist(), fill=ink, width=width, joint="curve")
 
 
 def _dashed(points: np.ndarray, on: float, off: float) -> list[np.ndarray]:
