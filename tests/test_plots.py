@@ -350,6 +350,24 @@ def test_viridis_and_inks_match_matplotlib_and_pillow():
     assert canvas.inks(colours) == [draw.draw.draw_ink(tuple(int(round(255 * v)) for v in c)) for c in colours]
 
 
+def test_dashes_follow_the_polyline():
+    """Each dash runs from its start to its end along the line (interpolated there), through the vertices between."""
+    rng = np.random.default_rng(5)
+    line = np.cumsum(rng.normal(size=(60, 2)), axis=0)
+    line[20] = line[19]  # a vertex twice
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(line, axis=0), axis=1))])
+    dashes = canvas._dashed(line, 3.0, 1.5)
+    assert len(dashes) == len(np.arange(0.0, s[-1], 4.5))
+    for a, dash in zip(np.arange(0.0, s[-1], 4.5), dashes):
+        b = min(a + 3.0, s[-1])
+        inside = line[(s > a) & (s < b)]
+        expected = np.concatenate([[[np.interp(a, s, line[:, 0]), np.interp(a, s, line[:, 1])]], inside,
+                                   [[np.interp(b, s, line[:, 0]), np.interp(b, s, line[:, 1])]]])
+        assert np.array_equal(dash, expected)
+    assert not np.array_equal(canvas._dashed(line[::-1], 3.0, 1.5)[0], dashes[0])  # damaged: the line run backwards
+    assert [d.tolist() for d in canvas._dashed(line, 0.0, 0.0)] == [line.tolist()]
+
+
 def test_wide_lines_have_pillows_joints_where_they_bend():
     """A bend gets Pillow's round joint (the same pixels); a smooth curve's joints, notches under a quarter
     pixel, are left out (under one of its pixels in a hundred differs); a translucent line is drawn as Pillow draws it."""

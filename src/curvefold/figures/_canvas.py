@@ -470,13 +470,10 @@ def _dashed(points: np.ndarray, on: float, off: float) -> list[np.ndarray]:
     if s[-1] <= 0 or period <= 0:
         return [points]
     starts = np.arange(0.0, s[-1], period)
-    out = []
-    for a in starts.tolist():
-        b = min(a + on, float(s[-1]))
-        inner = (s > a) & (s < b)
-        ends = np.stack([np.interp([a, b], s, points[:, c]) for c in range(2)], axis=-1)
-        out.append(np.concatenate([ends[:1], points[inner], ends[1:]]))
-    return out
+    stops = np.minimum(starts + on, float(s[-1]))
+    ends = np.stack([np.interp(np.stack([starts, stops], axis=-1), s, points[:, c]) for c in range(2)], axis=-1)  # (D, 2, 2)
+    inside = zip(np.searchsorted(s, starts, "right").tolist(), np.searchsorted(s, stops, "left").tolist())  # vertices strictly within
+    return [np.concatenate([end[:1], points[i:j], end[1:]]) for end, (i, j) in zip(ends, inside)]
 
 
 def png_bytes(picture: Image.Image, *, level: int = 3) -> bytes:
