@@ -17,6 +17,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
+from functools import cached_property
+from itertools import chain
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -94,13 +96,13 @@ class View:
     azim: float = -50.0
     elev: float = 22.0
 
-    @property
+    @cached_property
     def basis(self) -> np.ndarray:
-        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal."""
+        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal, read-only."""
         az, el = np.radians(self.azim), np.radians(self.elev)
         toward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
         right = np.array([-np.sin(az), np.cos(az), 0.0])
-        return np.stack([right, np.cross(toward, right), toward])
+        return readonly(np.stack([right, np.cross(toward, right), toward]))
 
     def project(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Screen coordinates (..., 2) and depth (...,) of points (..., 3); larger depth is nearer."""
@@ -250,8 +252,8 @@ class _HeldPaths(tuple):
     @classmethod
     def ordered(cls, groups: Sequence[np.ndarray], order: np.ndarray) -> _HeldPaths:
         """The paths of ``groups`` (each (G, p, 2), read-only), one after the other, taken in ``order``."""
-        every = [path for group in groups for path in group]  # read-only views: held without copying each
-        held = cls(every[i] for i in order.tolist())
+        every = list(chain.from_iterable(groups))  # read-only views: held without copying each
+        held = cls(map(every.__getitem__, order.tolist()))
         sizes = np.concatenate([np.full(len(group), group.shape[1]) for group in groups])
         first = (np.cumsum(sizes) - sizes)[order]  # of every path, in the groups' points
         held.sizes = readonly(sizes[order])
