@@ -68,6 +68,21 @@ def test_scene_holds_every_strip_and_crease_segment_in_painters_order(vault, sce
         scene.paths[0][0, 0] = 0.0
 
 
+def test_a_scene_draws_its_paths_points_held_at_once(scene):
+    """A rendered scene's points, held in one array for drawing, are its paths', in order; a scene of
+    paths given one by one gathers the same."""
+    points, sizes = scene.flat
+    assert sizes.tolist() == [len(p) for p in scene.paths]
+    assert np.array_equal(points, np.concatenate(scene.paths))
+    with pytest.raises(ValueError, match="read-only"):
+        points[0, 0] = 0.0
+    plain = Scene(tuple(np.array(p) for p in scene.paths), scene.roles, scene.fill, scene.stroke, scene.widths, scene.span, scene.ground)
+    assert np.array_equal(plain.flat[0], points) and np.array_equal(plain.flat[1], sizes)
+    assert np.array_equal(plain.strips, scene.strips) and np.array_equal(plain.box, scene.box)
+    shuffled = Scene(scene.paths[::-1], scene.roles, scene.fill, scene.stroke, scene.widths, scene.span)  # damaged: paths out of order
+    assert not np.array_equal(shuffled.flat[0], points)
+
+
 def test_far_strips_are_drawn_first_and_creases_after_their_nearest_strip():
     # two flat strips facing the viewer, one behind the other; a crease on each
     view = View(azim=0.0, elev=0.0)  # looking along −x: screen right is +y, depth is +x

@@ -223,7 +223,8 @@ def domain_plot(
         box = 1.3 * min(max(reach), 1e4)
     if not np.isfinite(box) or box <= 0:
         raise InputError(f"box must be a finite number > 0, got {box!r}")
-    idx = np.unique(np.linspace(0, len(domain.t) - 1, max(lines, 2)).round().astype(int))
+    spread = np.linspace(0, len(domain.t) - 1, max(lines, 2)).round().astype(int)  # increasing: repeats are neighbours
+    idx = spread[np.r_[True, spread[1:] != spread[:-1]]]
     clipped = [(_clip_line(float(domain.a[i]), float(domain.b[i]), box), domain.t[i]) for i in idx]
     clipped = [(seg, t) for seg, t in clipped if seg is not None]
     if structure is None:

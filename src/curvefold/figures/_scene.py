@@ -17,6 +17,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
+from functools import cached_property
+from itertools import chain
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -94,13 +96,13 @@ class View:
     azim: float = -50.0
     elev: float = 22.0
 
-    @property
+    @cached_property
     def basis(self) -> np.ndarray:
-        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal."""
+        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal, read-only."""
         az, el = np.radians(self.azim), np.radians(self.elev)
         toward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
         right = np.array([-np.sin(az), np.cos(az), 0.0])
-        return np.stack([right, np.cross(toward, right), toward])
+        return readonly(np.stack([right, np.cross(toward, right), toward]))
 
     def project(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Screen coordinates (..., 2) and depth (...,) of points (..., 3); larger depth is nearer."""
@@ -178,9 +180,18 @@ class Scene:
             object.__setattr__(self, "ground", frozen(np.asarray(self.ground, float)))
 
     @property
+    def flat(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every path's points one after the other, shape (N, 2), and the number of points of each path (P,)."""
+        if isinstance(self.paths, _HeldPaths):
+            return self.paths.points, self.paths.sizes
+        sizes = np.fromiter(map(len, self.paths), int, len(self.paths))
+        return (np.concatenate(self.paths) if self.paths else np.zeros((0, 2))), sizes
+
+    @property
     def strips(self) -> np.ndarray:
         """Screen corners of the strips, shape (Q, 4, 2), in painter's order."""
-        return np.array([p for p, role in zip(self.paths, self.roles) if role == "strip"]).reshape(-1, 4, 2)
+        points, sizes = self.flat
+        return points[np.repeat(self.roles == "strip", sizes)].reshape(-1, 4, 2)
 
     @property
     def box(self) -> np.ndarray:
@@ -231,8 +242,24 @@ class Scene:
 
 
 class _HeldPaths(tuple):
-    """Paths that are already read-only views of read-only arrays (built by :func:`render_strips`):
-    a scene holds them without checking each (a scene has thousands)."""
+    """Paths that are already read-only views of one read-only array of their points (built by
+    :func:`render_strips`): a scene holds them without checking each (a scene has thousands),
+    and draws from :attr:`points` and :attr:`sizes` at once."""
+
+    points: np.ndarray
+    sizes: np.ndarray
+
+    @classmethod
+    def ordered(cls, groups: Sequence[np.ndarray], order: np.ndarray) -> _HeldPaths:
+        """The paths of ``groups`` (each (G, p, 2), read-only), one after the other, taken in ``order``."""
+        every = list(chain.from_iterable(groups))  # read-only views: held without copying each
+        held = cls(map(every.__getitem__, order.tolist()))
+        sizes = np.concatenate([np.full(len(group), group.shape[1]) for group in groups])
+        first = (np.cumsum(sizes) - sizes)[order]  # of every path, in the groups' points
+        held.sizes = readonly(sizes[order])
+        gather = np.repeat(first - (np.cumsum(held.sizes) - held.sizes), held.sizes) + np.arange(int(held.sizes.sum()))
+        held.points = readonly(np.concatenate([group.reshape(-1, 2) for group in groups])[gather])
+        return held
 
 
 def _frozen_paths(paths: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
@@ -301,12 +328,15 @@ def render_strips(
         # Curves and end rulings are drawn right after the nearest strip that borders them.
         per_strip = strip_depth.reshape(len(pairs), -1)  # (S, k − 1)
         eps = 1e-9 * (1.0 + float(np.abs(qd).max()))
-        used = np.unique(pairs)
+        used = np.flatnonzero(np.bincount(pairs.ravel(), minlength=len(vertices)))  # the curves of the strips, in order
         seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
         s2, _ = view.project(seg)
         used_kinds = np.asarray(kinds)[used]
         per_curve = np.array([_kind_color(colors, k) for k in used_kinds]).reshape(-1, 4)
-        seg_depth = np.concatenate([per_strip[(pairs == c).any(axis=1)].max(axis=0) for c in used]) + eps
+        nearest = np.full((len(vertices), per_strip.shape[1]), -np.inf)  # of the strips bordering each curve, per segment
+        np.maximum.at(nearest, pairs[:, 0], per_strip)
+        np.maximum.at(nearest, pairs[:, 1], per_strip)
+        seg_depth = nearest[used].reshape(-1) + eps
         rim = np.swapaxes(vertices[pairs][:, :, [0, -1]], 1, 2).reshape(-1, 2, 3)  # end rulings of every strip
         e2, _ = view.project(rim)
         paths += [s2, e2]
@@ -316,9 +346,8 @@ def render_strips(
         strokes += [np.repeat(per_curve, vertices.shape[1] - 1, axis=0), np.tile(rgba(RIM_COLOR), (len(e2), 1))]
         widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
     order = np.argsort(np.concatenate(depth), kind="stable")
-    flat = [p for group in paths for p in readonly(np.asarray(group, float))]  # read-only views: held without copying each
     return Scene(
-        _HeldPaths(flat[i] for i in order),
+        _HeldPaths.ordered([readonly(np.asarray(group, float)) for group in paths], order),
         np.concatenate(roles)[order],
         np.concatenate(fills)[order],
         np.concatenate(strokes)[order],

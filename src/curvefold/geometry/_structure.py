@@ -350,7 +350,7 @@ def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_c
     ((4, 3, 3), [[0, 1, 3, 2]], ('fold', 'seam', 'seam', 'fold'))
     """
     cells = thin_cells(structure.cell_curves, max_cells)
-    used = np.unique(cells)
+    used = np.flatnonzero(np.bincount(cells.ravel(), minlength=len(structure.curves_uv)))  # the cells' curves, in order
     remap = np.full(len(structure.curves_uv), -1)
     remap[used] = np.arange(len(used))
     idx = sample_index(vertices.shape[-2], segments + 1)

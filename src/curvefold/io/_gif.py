@@ -60,8 +60,8 @@ def write_gif(path: str | os.PathLike, frames: Sequence[Image.Image], *, frame_s
         raise InputError(f"frames must all have one size, got {sorted(sizes)}")
     frame_seconds = _FRAME_SECONDS.check(frame_seconds)
     palette = frames[-1].quantize(colors=COLOURS)
-    sequence = frames + frames[-2:0:-1] if bounce else frames
-    images = [frame.quantize(palette=palette, dither=Image.Dither.NONE) for frame in sequence]
+    images = [frame.quantize(palette=palette, dither=Image.Dither.NONE) for frame in frames]
+    images += images[-2:0:-1] if bounce else []
     target = Path(path)
     with atomic_path(target) as tmp:
         images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=int(round(1000 * frame_seconds)), loop=0)
