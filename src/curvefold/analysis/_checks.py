@@ -217,8 +217,7 @@ _STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b i
 
 
 def _width_law(frame: Frame) -> Residual:
-    pattern = frame.state.lattice.pattern
-    law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
+    pattern, law = frame.state.lattice.pattern, frame.shared.width_law
     left = (_STRIP_SIDES == "L")[None, :, None]
     start = np.where(left, pattern.width_left[0], pattern.width_right[0])
     values = np.abs(np.log(frame.strip_widths / start) - np.where(left, -law, law))

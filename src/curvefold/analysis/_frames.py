@@ -90,6 +90,13 @@ class Shared:
         return float(self.flat_lengths.min())
 
     @cached_property
+    def width_law(self) -> np.ndarray:
+        """``∫₀^s κ_2D cot β ds`` at the samples (:func:`~curvefold.analysis._measure.width_integral`), (n,):
+        of the pattern, which every frame folds."""
+        pattern = self.structure.lattice.pattern
+        return measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
+
+    @cached_property
     def bars(self) -> np.ndarray:
         """Every edge, then both diagonals of every quad, (E + 2F, 2): what keeps a rigid panel's shape."""
         q = self.quads

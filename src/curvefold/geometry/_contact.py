@@ -142,7 +142,8 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     >>> closest_far(curves[:2], uv[:2], radius=0.1, reach=10.0, samples=3)   # nothing far apart within the radius
     (inf, None)
     """
-    idx = np.unique(np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int))
+    idx = np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int)
+    idx = idx[np.concatenate([[True], idx[1:] != idx[:-1]])]  # ascending: np.unique, without its import of numpy.ma
     points = vertices[:, idx].reshape(-1, 3)
     if not np.isfinite(points).all():
         return float("nan"), None

@@ -353,9 +353,9 @@ class Topology(FrozenArrays):
             return start + g * size + np.arange(size)
 
         C, R = len(curve_edges), len(rulings)
-        sheets = []
+        sheets: list[SheetTopology] = []
         for k in range(K):
-            for name, strips in SHEETS:
+            for m, (name, strips) in enumerate(SHEETS):
                 corners = (strips[0],) + tuple(STRIPS[s][1] for s in strips)
                 g = [4 * k + s for s in strips]
                 edge_ids = np.concatenate(
@@ -366,7 +366,7 @@ class Topology(FrozenArrays):
                 face_ids = np.concatenate([block(0, per_strip, gg) for gg in g])
                 verts = np.concatenate([(4 * k + c) * n + i for c in corners])
                 sheets.append(_sheet(f"tube {k + 1} · sheet {name}", verts, np.sort(face_ids), np.sort(edge_ids),
-                                     faces_vertices, edges_vertices, seam))
+                                     faces_vertices, edges_vertices, seam, like=sheets[m] if k else None))
         return cls(
             vertex_curve=np.repeat(cells.reshape(-1), n),
             vertex_sample=np.tile(i, 4 * K),
@@ -489,8 +489,12 @@ def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str
 
 
 def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.ndarray, faces_vertices: np.ndarray,
-           edges_vertices: np.ndarray, seam: np.ndarray) -> SheetTopology:
-    """A sheet of the given mesh vertices, faces and edges, in its own numbering."""
+           edges_vertices: np.ndarray, seam: np.ndarray, *, like: SheetTopology | None = None) -> SheetTopology:
+    """A sheet of the given mesh vertices, faces and edges, in its own numbering; ``like``: the same sheet of another
+    tube of one :meth:`Topology.tubes`, whose numbering differs from this one's by a shift per block, so that the
+    sheet's own faces and edges are its."""
+    if like is not None:
+        return SheetTopology(label, verts, face_ids, edge_ids, like.faces_vertices, like.edges_vertices, seam[edge_ids])
     lookup = np.full(int(verts.max()) + 1, -1, np.int64)
     lookup[verts] = np.arange(len(verts))
     rows = faces_vertices[face_ids]
