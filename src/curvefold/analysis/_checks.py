@@ -20,7 +20,7 @@ from types import MappingProxyType
 import numpy as np
 
 from ..geometry._contact import closest_far, contact_scales
-from ..geometry._mesh import fold_angles as mesh_fold_angles
+from ..geometry._mesh import dihedral_angles
 from ..geometry._topology import CORNERS, STRIPS
 from . import _measure as measure
 from ._frames import Frame
@@ -194,20 +194,24 @@ def _eq19(frame: Frame) -> Residual | None:
 def _isometry(frame: Frame) -> Residual:
     top = frame.shared.topology
     with np.errstate(invalid="ignore", divide="ignore"):
-        values = np.abs(measure.edge_lengths(frame.coords, top.edges_vertices) / frame.shared.flat_lengths - 1)
+        values = np.abs(measure.norm(frame.edge_vectors) / frame.shared.flat_lengths - 1)
     return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"edge {i[0]} ({top.edges_kind[i[0]]})")
 
 
 def _quad_planarity(frame: Frame) -> Residual:
-    values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
+    sides = frame.shared.quad_sides
+    if sides is None:
+        values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
+    else:  # the quads' sides and diagonals are edges: their vectors, the same numbers
+        values = measure.corner_nonplanarity(*(np.take(frame.edge_vectors, side, axis=0) for side in sides))
     return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"quad {i[0]} (strip {i[0] // (frame.samples - 1) + 1})")
 
 
 def _fold_angles(frame: Frame) -> Residual:
     top = frame.shared.topology
     creases, faces = frame.shared.creases
-    measured = mesh_fold_angles(frame.coords, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
-    values = measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * math.degrees(frame.alpha))
+    measured = dihedral_angles(frame.face_areas, faces, np.take(frame.edge_vectors, creases, axis=0))
+    values = measure.fold_angle_deviation(measured, frame.shared.crease_kinds, 2 * math.degrees(frame.alpha))
     return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 

@@ -16,9 +16,10 @@ from functools import cached_property
 import numpy as np
 
 from ..geometry._crease import Crease
-from ..geometry._mesh import edges_faces
+from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
 from ..geometry._topology import CORNER_KINDS, STRIPS, Topology
+from ..kernel._lie import cross
 from ..vault._assembly import Vault
 from . import _measure as measure
 
@@ -71,8 +72,41 @@ class Shared:
 
     def coords(self, curves: np.ndarray) -> np.ndarray:
         """The mesh vertices (V, 3) of a state's curves (M, n, 3): :meth:`Topology.coords` as one take of rows."""
-        top = self.topology
-        return np.take(curves.reshape(-1, 3), top.vertex_curve * curves.shape[-2] + top.vertex_sample, axis=0)
+        rows, samples = self._vertex_rows
+        if curves.shape[-2] != samples:
+            top = self.topology
+            rows = top.vertex_curve * curves.shape[-2] + top.vertex_sample
+        return np.take(curves.reshape(-1, 3), rows, axis=0)
+
+    @cached_property
+    def _vertex_rows(self) -> tuple[np.ndarray, int]:
+        """The row of every mesh vertex in a state's curves flattened (V,), and their samples n."""
+        top, n = self.topology, len(self.structure.lattice.s)
+        return top.vertex_curve * n + top.vertex_sample, n
+
+    @cached_property
+    def edge_ends(self) -> tuple[np.ndarray, np.ndarray]:
+        """The first and the second vertex of every edge, (E,) each (contiguous, for takes)."""
+        ends = self.topology.edges_vertices
+        return np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+
+    @cached_property
+    def face_sides(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """For triangles, the edges along the sides p0 → p1 and p0 → p2 of every face (F,) each (their
+        :func:`~curvefold.geometry.vector_areas` is the cross product of those edges' vectors); None otherwise."""
+        faces = self.topology.faces_vertices
+        return self._edges_from_first_corner(faces, (1, 2)) if faces.shape[1] == 3 else None
+
+    @cached_property
+    def quad_sides(self) -> tuple[np.ndarray, ...] | None:
+        """The edges along p0 → p1, p0 → p3 and p0 → p2 of every quad of :attr:`quads` (F,) each, or None."""
+        return self._edges_from_first_corner(self.quads, (1, 3, 2))
+
+    def _edges_from_first_corner(self, faces: np.ndarray, corners: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
+        """The edges from corner 0 of every face to each of its ``corners``, as they run (F,) each; None unless every one is an edge run that way."""
+        pairs = np.stack([np.repeat(faces[:, :1], len(corners), axis=1), faces[:, corners]], axis=-1)
+        edge, forward = edges_along(self.topology.edges_vertices, pairs)
+        return tuple(np.ascontiguousarray(e) for e in edge.T) if forward.all() else None
 
     @cached_property
     def flat_coords(self) -> np.ndarray:
@@ -113,6 +147,11 @@ class Shared:
         ids, sides = self._edges_faces
         crease = self.topology.edges_kind[ids] != "diagonal"
         return ids[crease], sides[crease]
+
+    @cached_property
+    def crease_kinds(self) -> np.ndarray:
+        """The kind of every edge of :attr:`creases`, "fold" or "seam", (C,)."""
+        return self.topology.edges_kind[self.creases[0]]
 
     @cached_property
     def _edges_faces(self) -> tuple[np.ndarray, np.ndarray]:
@@ -225,6 +264,22 @@ class Frame:
     def coords(self) -> np.ndarray:
         """The mesh vertices of this state, (V, 3)."""
         return self.shared.coords(self.state.vertices)
+
+    @cached_property
+    def edge_vectors(self) -> np.ndarray:
+        """``x_b − x_a`` of every mesh edge (a, b) in this state, (E, 3)."""
+        a, b = self.shared.edge_ends
+        return np.take(self.coords, b, axis=0) - np.take(self.coords, a, axis=0)
+
+    @cached_property
+    def face_areas(self) -> np.ndarray:
+        """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, (F, 3): for triangles the
+        cross product of the vectors of their sides' edges (:attr:`Shared.face_sides`), the same numbers."""
+        sides = self.shared.face_sides
+        with np.errstate(invalid="ignore"):
+            if sides is None:
+                return vector_areas(self.coords, self.shared.topology.faces_vertices)
+            return cross(*(np.take(self.edge_vectors, side, axis=0) for side in sides))
 
     @property
     def tangent(self) -> np.ndarray:

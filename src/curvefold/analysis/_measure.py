@@ -42,6 +42,7 @@ __all__ = [
     "rebuilt_strip",
     "edge_lengths",
     "quad_nonplanarity",
+    "corner_nonplanarity",
     "width_integral",
     "fold_angle_deviation",
     "developability_residual",
@@ -312,8 +313,12 @@ def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
         Corners in order around each quad.
     """
     p0, p1, p2, p3 = (np.take(coords, quads[:, k], axis=0) for k in range(4))
-    n = cross(p1 - p0, p3 - p0)
-    diagonal = p2 - p0
+    return corner_nonplanarity(p1 - p0, p3 - p0, p2 - p0)
+
+
+def corner_nonplanarity(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray) -> np.ndarray:
+    """:func:`quad_nonplanarity` from the vectors from each quad's first corner to the others: its two sides and its diagonal, (F, 3) each."""
+    n = cross(side, other)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.abs(np.einsum("ij,ij->i", diagonal, n)) / (norm(n) * norm(diagonal))
 
