@@ -177,16 +177,16 @@ def _eq19(frame: Frame) -> Residual | None:
     """κ_2D tan α cosec β ds of neighbouring creases, each factor measured at its own crease."""
     if frame.alpha == 0:
         return None  # both sides vanish in the flat state
-    X, h = frame.tubes, frame.step
+    h = frame.step
     alpha = frame.half_angles  # (K, 4, m)
-    d1 = frame.tube_derivatives[0]
+    d1 = frame.tube_tangents
     speed, kappa = frame.tube_frenet[0], frame.tube_frenet[4]  # (K, 4, m)
     nxt = [b for _, b in STRIPS]
-    ruling = X[:, nxt, 2:-2] - X[:, :, 2:-2]  # strip a → b of every tube, (K, 4, m, 3)
+    ruling = frame.strip_vectors[:, :, 2:-2]  # strip a → b of every tube, (K, 4, m, 3)
     bend = kappa * np.sin(alpha) * speed  # κ sin α ds/dt = κ_2D tan α ds/dt at every corner
     sides = [bend[:, c] / np.sin(measure.angle_between(ruling, d1[:, c])) for c in (slice(None), nxt)]
     values = np.abs(sides[0] / sides[1] - 1)  # (K, 4 strips, m)
-    length = float(measure.norm(X[:, 1] - X[:, 0]).min())
+    length = float(measure.norm(frame.strip_vectors[:, 0]).min())
     floor = frame.ulp * (24 / (h**2 * float((kappa * speed**2).min())) + 6 / (h * length * math.sin(frame.alpha)))
     return Residual(values, floor, _strip, frame.inner_t)
 
@@ -218,6 +218,10 @@ def _fold_angles(frame: Frame) -> Residual:
 
 #: The ruling family of every strip of a tube: "L" where it steps in u, "R" where in v.
 _STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b in STRIPS])
+#: The step of every strip along its ruling family: +1 along +r, −1 along −r.
+_STRIP_SIGNS = np.array([float((CORNERS[b] - CORNERS[a]).sum()) for a, b in STRIPS])
+#: The step from every corner back to the previous one along the other family, ±1, broadcasting against (K, 4, n, 3).
+_BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in range(4)])[:, None, None]
 
 
 def _width_law(frame: Frame) -> Residual:
@@ -238,21 +242,15 @@ def _regression(frame: Frame) -> Residual:
 
 
 def _tube_closure(frame: Frame) -> Residual:
-    X, h, a = frame.tubes, frame.step, frame.alpha
-    frenet = frame.tube_frenet
-    values = []
-    for c, (_, nxt) in enumerate(STRIPS):
-        prev = (c - 1) % 4
-        du, dv = CORNERS[nxt] - CORNERS[c]
-        back = CORNERS[prev] - CORNERS[c]  # toward the previous crease: the other family, ±1 step
-        side, sign = ("L", du) if du else ("R", dv)
-        ruling = (X[:, prev] - X[:, c]) * (back[0] + back[1])  # oriented as r in Eqs. 5–6
-        rebuilt = measure.rebuilt_strip(X[:, c], ruling, X[:, nxt], h, alpha=a, side=side, sign=float(sign),
-                                        frenet_frame=tuple(f[:, c] for f in frenet))
-        values.append(measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, c, 2:-2])
+    X, h = frame.tubes, frame.step
+    nxt = [b for _, b in STRIPS]
+    ruling = -frame.strip_vectors[:, [(c - 1) % 4 for c in range(4)]] * _BACK  # toward the previous crease, oriented as r in Eqs. 5–6
+    rebuilt = measure.rebuilt_strip(X, ruling, X[:, nxt], h, alpha=frame.alpha, side=_STRIP_SIDES[:, None],
+                                    sign=_STRIP_SIGNS[:, None], frenet_frame=frame.tube_frenet)
+    values = measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, :, 2:-2]
     kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())
     floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))
-    return Residual(np.stack(values, axis=1), floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)
+    return Residual(values, floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)
 
 
 def _ground_plane(frame: Frame) -> Residual:

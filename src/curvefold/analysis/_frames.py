@@ -29,6 +29,8 @@ __all__ = ["Frame", "Shared", "ROUNDING"]
 #: twice the largest noise measured in built rulings (16 ulps, tests/test_properties.py).
 ROUNDING = 32.0
 _EPS = float(np.finfo(float).eps)
+#: Which of corners 1–4 are folds (the others seams), broadcasting against (K, 4, m).
+_FOLD_CORNERS = np.array([kind == "fold" for kind in CORNER_KINDS])[:, None]
 
 
 @dataclass(frozen=True, eq=False)
@@ -250,15 +252,16 @@ class Frame:
         return measure.derivative(x, self.step), measure.second_derivative(x, self.step)
 
     @cached_property
-    def tube_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
-        """x' and x'' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (K, 4, n − 4, 3) each."""
-        cells = self.structure.cell_curves
-        return tuple(np.take(d, cells, axis=0) for d in self.curve_derivatives)
+    def tube_tangents(self) -> np.ndarray:
+        """x' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (K, 4, n − 4, 3)."""
+        return np.take(self.curve_derivatives[0], self.structure.cell_curves, axis=0)
 
     @cached_property
     def tube_frenet(self) -> tuple[np.ndarray, ...]:
-        """:func:`~curvefold.analysis._measure.frenet` at corners 1–4 of every tube: speed, T, N, B, κ, (K, 4, n − 4[, 3])."""
-        return measure.frenet(*self.tube_derivatives)
+        """:func:`~curvefold.analysis._measure.frenet` at corners 1–4 of every tube: speed, T, N, B, κ, (K, 4, n − 4[, 3])
+        (of every curve once, a curve at the corners of several tubes)."""
+        cells = self.structure.cell_curves
+        return tuple(np.take(f, cells, axis=0) for f in measure.frenet(*self.curve_derivatives))
 
     @cached_property
     def coords(self) -> np.ndarray:
@@ -287,11 +290,17 @@ class Frame:
         return self.crease.curve.frames[:, :, 0]
 
     @cached_property
+    def strip_vectors(self) -> np.ndarray:
+        """From each corner's curve to the next corner's at equal t: strip c of every tube, corner c → c + 1, (K, 4, n, 3)."""
+        X = self.tubes
+        return X[:, [b for _, b in STRIPS]] - X
+
+    @cached_property
     def half_angles(self) -> np.ndarray:
         """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
-        X, h, T = self.tubes, self.step, self.tube_frenet[1]
-        return np.stack([measure.crease_half_angle(X[:, c], X[:, (c - 1) % 4], X[:, (c + 1) % 4], h, kind=CORNER_KINDS[c], tangent=T[:, c])
-                         for c in range(4)], axis=1)
+        inner = self.strip_vectors[:, :, 2:-2]
+        before = -inner[:, [(c - 1) % 4 for c in range(4)]]  # back along the previous strip (negation is exact)
+        return measure.half_angle_between(before, inner, self.tube_frenet[1], _FOLD_CORNERS)
 
     @cached_property
     def measured_alpha(self) -> np.ndarray:
@@ -302,5 +311,4 @@ class Frame:
     @cached_property
     def strip_widths(self) -> np.ndarray:
         """Distance between the tangent lines of the two creases of every strip, (K, 4, n)."""
-        X, T = self.tubes, self.tangent
-        return np.stack([measure.tangent_line_distance(X[:, a], X[:, b], T) for a, b in STRIPS], axis=1)
+        return measure.line_distance(self.strip_vectors, self.tangent)
