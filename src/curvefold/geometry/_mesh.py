@@ -275,7 +275,7 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
         return out
     a, b = edges_vertices[:, 0].astype(np.int64), edges_vertices[:, 1].astype(np.int64)
     key = np.minimum(a, b) * nv + np.maximum(a, b)  # the undirected edge
-    order = np.argsort(key)
+    order = np.argsort(key, kind="stable")  # the keys of a mesh come nearly sorted: a merge is fast
     ordered = key[order]
     if (ordered[1:] == ordered[:-1]).any():  # an edge listed twice (either way): each direction looked up alone
         return _edges_faces_by_direction(a * nv + b, b * nv + a, half[:, 0] * nv + half[:, 1], half_face, out)
@@ -400,7 +400,7 @@ def edges_along(edges_vertices: np.ndarray, pairs: np.ndarray) -> tuple[np.ndarr
         return np.full(p.shape[:-1], -1, np.int64), np.zeros(p.shape[:-1], bool)
     nv = int(max(ev.max(), np.max(p, initial=-1))) + 1
     key = np.minimum(ev[:, 0], ev[:, 1]) * nv + np.maximum(ev[:, 0], ev[:, 1])  # the undirected edge
-    order = np.argsort(key)
+    order = np.argsort(key, kind="stable")
     ordered = key[order]
     wanted = np.minimum(p[..., 0], p[..., 1]) * nv + np.maximum(p[..., 0], p[..., 1])
     pos = np.minimum(np.searchsorted(ordered, wanted), len(ev) - 1)
