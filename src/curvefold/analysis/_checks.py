@@ -23,7 +23,7 @@ from ..geometry._contact import closest_far, contact_scales
 from ..geometry._mesh import dihedral_angles
 from ..geometry._topology import CORNERS, STRIPS
 from . import _measure as measure
-from ._frames import Frame
+from ._frames import STRIP_SIDES, Frame
 from ._mechanism import CertifiedMechanism, certified_mechanism
 
 __all__ = ["CHECKS", "TITLES", "CheckSpec", "Residual"]
@@ -169,7 +169,7 @@ def _planar_curvature(frame: Frame) -> Residual:
 def _frame_agreement(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
     values = measure.tangent_deviation(frame.state.vertices, frame.tangent, frame.step)
-    f_min = float(frame.state.lattice.domain.factor(uv.astype(float)).min())
+    f_min = float(frame.shared.speed_factors.min())
     return Residual(values, 1.5 * frame.ulp / (frame.step * f_min), _curve(uv), frame.inner_t)
 
 
@@ -216,8 +216,6 @@ def _fold_angles(frame: Frame) -> Residual:
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 
 
-#: The ruling family of every strip of a tube: "L" where it steps in u, "R" where in v.
-_STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b in STRIPS])
 #: The step of every strip along its ruling family: +1 along +r, −1 along −r.
 _STRIP_SIGNS = np.array([float((CORNERS[b] - CORNERS[a]).sum()) for a, b in STRIPS])
 #: The step from every corner back to the previous one along the other family, ±1, broadcasting against (K, 4, n, 3).
@@ -225,16 +223,14 @@ _BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in rang
 
 
 def _width_law(frame: Frame) -> Residual:
-    pattern, law = frame.state.lattice.pattern, frame.shared.width_law
-    left = (_STRIP_SIDES == "L")[None, :, None]
-    start = np.where(left, pattern.width_left[0], pattern.width_right[0])
-    values = np.abs(np.log(frame.strip_widths / start) - np.where(left, -law, law))
+    start, law = frame.shared.width_law
+    values = np.abs(np.log(frame.strip_widths / start) - law)
     return Residual(values, 2 * frame.ulp / float(frame.strip_widths.min()), _strip, frame.crease.s / frame.crease.curve.length)
 
 
 def _regression(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
-    predicted = frame.state.lattice.domain.factor(uv.astype(float))
+    predicted = frame.shared.speed_factors
     margin = float(predicted.min())
     measured = measure.speed_factors(frame.state.vertices, frame.tangent, frame.step)
     values = np.abs(measured - predicted[:, 2:-2]) / margin
@@ -245,7 +241,7 @@ def _tube_closure(frame: Frame) -> Residual:
     X, h = frame.tubes, frame.step
     nxt = [b for _, b in STRIPS]
     ruling = -frame.strip_vectors[:, [(c - 1) % 4 for c in range(4)]] * _BACK  # toward the previous crease, oriented as r in Eqs. 5–6
-    rebuilt = measure.rebuilt_strip(X, ruling, X[:, nxt], h, alpha=frame.alpha, side=_STRIP_SIDES[:, None],
+    rebuilt = measure.rebuilt_strip(X, ruling, X[:, nxt], h, alpha=frame.alpha, side=STRIP_SIDES[:, None],
                                     sign=_STRIP_SIGNS[:, None], frenet_frame=frame.tube_frenet)
     values = measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, :, 2:-2]
     kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())

@@ -18,17 +18,19 @@ import numpy as np
 from ..geometry._crease import Crease
 from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
-from ..geometry._topology import CORNER_KINDS, STRIPS, Topology
+from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology
 from ..kernel._lie import cross
 from ..vault._assembly import Vault
 from . import _measure as measure
 
-__all__ = ["Frame", "Shared", "ROUNDING"]
+__all__ = ["Frame", "Shared", "ROUNDING", "STRIP_SIDES"]
 
 #: Units in the last place of the largest coordinate that a built sample may carry as rounding:
 #: twice the largest noise measured in built rulings (16 ulps, tests/test_properties.py).
 ROUNDING = 32.0
 _EPS = float(np.finfo(float).eps)
+#: The ruling family of every strip of a tube: "L" where it steps in u, "R" where in v.
+STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b in STRIPS])
 #: Which of corners 1–4 are folds (the others seams), broadcasting against (K, 4, m).
 _FOLD_CORNERS = np.array([kind == "fold" for kind in CORNER_KINDS])[:, None]
 
@@ -126,11 +128,18 @@ class Shared:
         return float(self.flat_lengths.min())
 
     @cached_property
-    def width_law(self) -> np.ndarray:
-        """``∫₀^s κ_2D cot β ds`` at the samples (:func:`~curvefold.analysis._measure.width_integral`), (n,):
-        of the pattern, which every frame folds."""
+    def width_law(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every strip's width at t = 0 and the log-width law ``∓∫₀^s κ_2D cot β ds`` it follows (− for a left strip,
+        :func:`~curvefold.analysis._measure.width_integral`), (1, 4, 1) and (1, 4, n): of the pattern every frame folds."""
         pattern = self.structure.lattice.pattern
-        return measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
+        law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
+        left = (STRIP_SIDES == "L")[None, :, None]
+        return np.where(left, pattern.width_left[0], pattern.width_right[0]), np.where(left, -law, law)
+
+    @cached_property
+    def speed_factors(self) -> np.ndarray:
+        """The Eq. (17) speed factor of every curve of the structure at its samples (M, n): of the pattern's regression domain."""
+        return self.structure.lattice.domain.factor(self.structure.curves_uv.astype(float))
 
     @cached_property
     def bars(self) -> np.ndarray:
