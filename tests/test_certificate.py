@@ -416,7 +416,7 @@ def test_the_shared_derivatives_are_each_creases_own():
 def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices():
     """Isometry, planarity and fold angles read every side and diagonal as an edge vector: the same numbers."""
     from curvefold.analysis import _measure as measure
-    from curvefold.geometry._mesh import edges_along, fold_angles, vector_areas
+    from curvefold.geometry._mesh import edges_along, edges_faces, fold_angles, vector_areas
 
     shared = Shared(two_tubes())
     frame = Frame.at(shared, 60.0)
@@ -425,6 +425,8 @@ def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices
     assert shared.face_sides is not None and np.array_equal(frame.face_areas, vector_areas(x, top.faces_vertices))
     sides = [np.take(frame.edge_vectors, s, axis=0) for s in shared.quad_sides]
     assert np.array_equal(measure.corner_nonplanarity(*sides), measure.quad_nonplanarity(x, shared.quads))
+    ids, faces = shared._edges_faces  # from the edges along the faces' sides: as edges_faces finds them
+    assert np.array_equal(faces, edges_faces(top.faces_vertices, top.edges_vertices[ids]))
     creases, faces = shared.creases
     measured = fold_angles(x, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
     values = CHECKS[[c.name for c in CHECKS].index("fold_angles")].measure(frame).values

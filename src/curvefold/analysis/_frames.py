@@ -98,8 +98,12 @@ class Shared:
     def face_sides(self) -> tuple[np.ndarray, np.ndarray] | None:
         """For triangles, the edges along the sides p0 → p1 and p0 → p2 of every face (F,) each (their
         :func:`~curvefold.geometry.vector_areas` is the cross product of those edges' vectors); None otherwise."""
-        faces = self.topology.faces_vertices
-        return self._edges_from_first_corner(faces, (1, 2)) if faces.shape[1] == 3 else None
+        if self.topology.faces_vertices.shape[1] != 3 or self._side_edges is None:
+            return None
+        edge, forward = self._side_edges
+        if not (forward[:, 0].all() and not forward[:, 2].any()):  # p0 → p1 along its edge, p2 → p0 against
+            return None
+        return np.ascontiguousarray(edge[:, 0]), np.ascontiguousarray(edge[:, 2])
 
     @cached_property
     def quad_sides(self) -> tuple[np.ndarray, ...] | None:
@@ -166,10 +170,28 @@ class Shared:
 
     @cached_property
     def _edges_faces(self) -> tuple[np.ndarray, np.ndarray]:
-        """The fold, seam and diagonal edges, and the two faces on each (one :func:`edges_faces`), (S,) and (S, 2)."""
+        """The fold, seam and diagonal edges, and the two faces on each (:func:`edges_faces`), (S,) and (S, 2):
+        from :attr:`_side_edges` where it gives every one two faces, else by :func:`edges_faces` itself."""
         top = self.topology
         ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam", "diagonal")))
+        if self._side_edges is not None:
+            edge, forward = self._side_edges
+            found = edge >= 0
+            faces_of = np.full((len(top.edges_vertices), 2), -1, np.int64)  # a → b on side 0, b → a on side 1; the last face wins
+            faces_of[edge[found], (~forward[found]).astype(np.int64)] = np.nonzero(found)[0]
+            if (faces_of[ids] >= 0).all():  # else a side missing, or an edge listed twice (its twin gets none)
+                return ids, faces_of[ids]
         return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
+
+    @cached_property
+    def _side_edges(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The edge along every side p_i → p_(i+1) of every face and whether it runs that way (:func:`edges_along`),
+        (F, k) each; None for padded faces."""
+        top = self.topology
+        faces = top.faces_vertices
+        if (faces < 0).any():
+            return None
+        return edges_along(top.edges_vertices, np.stack([faces, np.roll(faces, -1, axis=1)], axis=-1))
 
 
 @dataclass(frozen=True, eq=False)
