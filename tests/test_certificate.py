@@ -405,8 +405,36 @@ def test_the_shared_derivatives_are_each_creases_own():
 
     frame = Frame.at(Shared(two_tubes()), 60.0)
     X, h = frame.tubes, frame.step
-    d1, d2 = frame.tube_derivatives
-    assert np.array_equal(d1, measure.derivative(X, h)) and np.array_equal(d2, measure.second_derivative(X, h))
+    d1 = frame.tube_tangents
+    assert np.array_equal(d1, measure.derivative(X, h))
     speed, T, N, B, kappa = frame.tube_frenet
+    assert all(np.array_equal(a, b) for a, b in zip(frame.tube_frenet, measure.frenet(d1, measure.second_derivative(X, h))))
     assert np.array_equal(kappa, measure.curvature(X, h)) and np.array_equal(T, measure.unit(d1))
     np.testing.assert_allclose(np.einsum("...i,...i->...", N, T), 0.0, atol=1e-12)
+
+
+def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices():
+    """Isometry, planarity and fold angles read every side and diagonal as an edge vector: the same numbers."""
+    from curvefold.analysis import _measure as measure
+    from curvefold.geometry._mesh import edges_along, edges_faces, fold_angles, vector_areas
+
+    shared = Shared(two_tubes())
+    frame = Frame.at(shared, 60.0)
+    top, x = shared.topology, frame.coords
+    assert np.array_equal(measure.norm(frame.edge_vectors), measure.edge_lengths(x, top.edges_vertices))
+    assert shared.face_sides is not None and np.array_equal(frame.face_areas, vector_areas(x, top.faces_vertices))
+    sides = [np.take(frame.edge_vectors, s, axis=0) for s in shared.quad_sides]
+    assert np.array_equal(measure.corner_nonplanarity(*sides), measure.quad_nonplanarity(x, shared.quads))
+    ids, faces = shared._edges_faces  # from the edges along the faces' sides: as edges_faces finds them
+    assert np.array_equal(faces, edges_faces(top.faces_vertices, top.edges_vertices[ids]))
+    creases, faces = shared.creases
+    measured = fold_angles(x, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
+    values = CHECKS[[c.name for c in CHECKS].index("fold_angles")].measure(frame).values
+    assert np.array_equal(values, measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * np.degrees(frame.alpha)))
+    # the lookup of edges by their ends, against a direct search; a pair that is no edge
+    pairs = np.array([[5, 3], [3, 5], [0, 7], [1, 0]])
+    edges = np.array([[3, 5], [1, 0], [2, 2]])
+    edge, forward = edges_along(edges, pairs)
+    assert edge.tolist() == [0, 0, -1, 1] and forward.tolist() == [False, True, False, True]
+    edge, forward = edges_along(top.edges_vertices, top.edges_vertices[::-1][:100])
+    assert np.array_equal(edge, np.arange(len(top.edges_vertices))[::-1][:100]) and forward.all()

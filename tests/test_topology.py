@@ -111,6 +111,10 @@ def test_topology_numbers_vertices_and_owns_its_sheets(block):
         assert_array_equal(topo.edges_kind[sheet.edges][sheet.edges_seam >= 0], "seam")
         for array in (sheet.vertices, sheet.faces, sheet.edges, sheet.faces_vertices, sheet.edges_vertices, sheet.edges_seam):
             assert not array.flags.writeable
+        # every tube's sheet is the first tube's in its own numbering: the same as developed alone
+        alone = _sheet(sheet.label, sheet.vertices, sheet.faces, sheet.edges, topo.faces_vertices, topo.edges_vertices, topo.edges_seam)
+        for field in ("faces_vertices", "edges_vertices", "edges_seam"):
+            assert_array_equal(getattr(sheet, field), getattr(alone, field))
     # the quad topology numbers the vertices alike and has no diagonals
     quads = block.topology("quads")
     assert_array_equal(quads.vertex_curve, topo.vertex_curve)

@@ -20,10 +20,10 @@ from types import MappingProxyType
 import numpy as np
 
 from ..geometry._contact import closest_far, contact_scales
-from ..geometry._mesh import fold_angles as mesh_fold_angles
+from ..geometry._mesh import dihedral_angles
 from ..geometry._topology import CORNERS, STRIPS
 from . import _measure as measure
-from ._frames import Frame
+from ._frames import STRIP_SIDES, Frame
 from ._mechanism import CertifiedMechanism, certified_mechanism
 
 __all__ = ["CHECKS", "TITLES", "CheckSpec", "Residual"]
@@ -169,7 +169,7 @@ def _planar_curvature(frame: Frame) -> Residual:
 def _frame_agreement(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
     values = measure.tangent_deviation(frame.state.vertices, frame.tangent, frame.step)
-    f_min = float(frame.state.lattice.domain.factor(uv.astype(float)).min())
+    f_min = float(frame.shared.speed_factors.min())
     return Residual(values, 1.5 * frame.ulp / (frame.step * f_min), _curve(uv), frame.inner_t)
 
 
@@ -177,16 +177,16 @@ def _eq19(frame: Frame) -> Residual | None:
     """κ_2D tan α cosec β ds of neighbouring creases, each factor measured at its own crease."""
     if frame.alpha == 0:
         return None  # both sides vanish in the flat state
-    X, h = frame.tubes, frame.step
+    h = frame.step
     alpha = frame.half_angles  # (K, 4, m)
-    d1 = frame.tube_derivatives[0]
+    d1 = frame.tube_tangents
     speed, kappa = frame.tube_frenet[0], frame.tube_frenet[4]  # (K, 4, m)
     nxt = [b for _, b in STRIPS]
-    ruling = X[:, nxt, 2:-2] - X[:, :, 2:-2]  # strip a → b of every tube, (K, 4, m, 3)
+    ruling = frame.strip_vectors[:, :, 2:-2]  # strip a → b of every tube, (K, 4, m, 3)
     bend = kappa * np.sin(alpha) * speed  # κ sin α ds/dt = κ_2D tan α ds/dt at every corner
     sides = [bend[:, c] / np.sin(measure.angle_between(ruling, d1[:, c])) for c in (slice(None), nxt)]
     values = np.abs(sides[0] / sides[1] - 1)  # (K, 4 strips, m)
-    length = float(measure.norm(X[:, 1] - X[:, 0]).min())
+    length = float(measure.norm(frame.strip_vectors[:, 0]).min())
     floor = frame.ulp * (24 / (h**2 * float((kappa * speed**2).min())) + 6 / (h * length * math.sin(frame.alpha)))
     return Residual(values, floor, _strip, frame.inner_t)
 
@@ -194,40 +194,43 @@ def _eq19(frame: Frame) -> Residual | None:
 def _isometry(frame: Frame) -> Residual:
     top = frame.shared.topology
     with np.errstate(invalid="ignore", divide="ignore"):
-        values = np.abs(measure.edge_lengths(frame.coords, top.edges_vertices) / frame.shared.flat_lengths - 1)
+        values = np.abs(measure.norm(frame.edge_vectors) / frame.shared.flat_lengths - 1)
     return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"edge {i[0]} ({top.edges_kind[i[0]]})")
 
 
 def _quad_planarity(frame: Frame) -> Residual:
-    values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
+    sides = frame.shared.quad_sides
+    if sides is None:
+        values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
+    else:  # the quads' sides and diagonals are edges: their vectors, the same numbers
+        values = measure.corner_nonplanarity(*(np.take(frame.edge_vectors, side, axis=0) for side in sides))
     return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"quad {i[0]} (strip {i[0] // (frame.samples - 1) + 1})")
 
 
 def _fold_angles(frame: Frame) -> Residual:
     top = frame.shared.topology
     creases, faces = frame.shared.creases
-    measured = mesh_fold_angles(frame.coords, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
-    values = measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * math.degrees(frame.alpha))
+    measured = dihedral_angles(frame.face_areas, faces, np.take(frame.edge_vectors, creases, axis=0))
+    values = measure.fold_angle_deviation(measured, frame.shared.crease_kinds, 2 * math.degrees(frame.alpha))
     return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 
 
-#: The ruling family of every strip of a tube: "L" where it steps in u, "R" where in v.
-_STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b in STRIPS])
+#: The step of every strip along its ruling family: +1 along +r, −1 along −r.
+_STRIP_SIGNS = np.array([float((CORNERS[b] - CORNERS[a]).sum()) for a, b in STRIPS])
+#: The step from every corner back to the previous one along the other family, ±1, broadcasting against (K, 4, n, 3).
+_BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in range(4)])[:, None, None]
 
 
 def _width_law(frame: Frame) -> Residual:
-    pattern = frame.state.lattice.pattern
-    law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
-    left = (_STRIP_SIDES == "L")[None, :, None]
-    start = np.where(left, pattern.width_left[0], pattern.width_right[0])
-    values = np.abs(np.log(frame.strip_widths / start) - np.where(left, -law, law))
+    start, law = frame.shared.width_law
+    values = np.abs(np.log(frame.strip_widths / start) - law)
     return Residual(values, 2 * frame.ulp / float(frame.strip_widths.min()), _strip, frame.crease.s / frame.crease.curve.length)
 
 
 def _regression(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
-    predicted = frame.state.lattice.domain.factor(uv.astype(float))
+    predicted = frame.shared.speed_factors
     margin = float(predicted.min())
     measured = measure.speed_factors(frame.state.vertices, frame.tangent, frame.step)
     values = np.abs(measured - predicted[:, 2:-2]) / margin
@@ -235,21 +238,15 @@ def _regression(frame: Frame) -> Residual:
 
 
 def _tube_closure(frame: Frame) -> Residual:
-    X, h, a = frame.tubes, frame.step, frame.alpha
-    frenet = frame.tube_frenet
-    values = []
-    for c, (_, nxt) in enumerate(STRIPS):
-        prev = (c - 1) % 4
-        du, dv = CORNERS[nxt] - CORNERS[c]
-        back = CORNERS[prev] - CORNERS[c]  # toward the previous crease: the other family, ±1 step
-        side, sign = ("L", du) if du else ("R", dv)
-        ruling = (X[:, prev] - X[:, c]) * (back[0] + back[1])  # oriented as r in Eqs. 5–6
-        rebuilt = measure.rebuilt_strip(X[:, c], ruling, X[:, nxt], h, alpha=a, side=side, sign=float(sign),
-                                        frenet_frame=tuple(f[:, c] for f in frenet))
-        values.append(measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, c, 2:-2])
+    X, h = frame.tubes, frame.step
+    nxt = [b for _, b in STRIPS]
+    ruling = -frame.strip_vectors[:, [(c - 1) % 4 for c in range(4)]] * _BACK  # toward the previous crease, oriented as r in Eqs. 5–6
+    rebuilt = measure.rebuilt_strip(X, ruling, X[:, nxt], h, alpha=frame.alpha, side=STRIP_SIDES[:, None],
+                                    sign=_STRIP_SIGNS[:, None], frenet_frame=frame.tube_frenet)
+    values = measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, :, 2:-2]
     kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())
     floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))
-    return Residual(np.stack(values, axis=1), floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)
+    return Residual(values, floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)
 
 
 def _ground_plane(frame: Frame) -> Residual:

@@ -16,18 +16,23 @@ from functools import cached_property
 import numpy as np
 
 from ..geometry._crease import Crease
-from ..geometry._mesh import edges_faces
+from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
-from ..geometry._topology import CORNER_KINDS, STRIPS, Topology
+from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology
+from ..kernel._lie import cross
 from ..vault._assembly import Vault
 from . import _measure as measure
 
-__all__ = ["Frame", "Shared", "ROUNDING"]
+__all__ = ["Frame", "Shared", "ROUNDING", "STRIP_SIDES"]
 
 #: Units in the last place of the largest coordinate that a built sample may carry as rounding:
 #: twice the largest noise measured in built rulings (16 ulps, tests/test_properties.py).
 ROUNDING = 32.0
 _EPS = float(np.finfo(float).eps)
+#: The ruling family of every strip of a tube: "L" where it steps in u, "R" where in v.
+STRIP_SIDES = np.array(["L" if (CORNERS[b] - CORNERS[a])[0] else "R" for a, b in STRIPS])
+#: Which of corners 1–4 are folds (the others seams), broadcasting against (K, 4, m).
+_FOLD_CORNERS = np.array([kind == "fold" for kind in CORNER_KINDS])[:, None]
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,8 +76,45 @@ class Shared:
 
     def coords(self, curves: np.ndarray) -> np.ndarray:
         """The mesh vertices (V, 3) of a state's curves (M, n, 3): :meth:`Topology.coords` as one take of rows."""
-        top = self.topology
-        return np.take(curves.reshape(-1, 3), top.vertex_curve * curves.shape[-2] + top.vertex_sample, axis=0)
+        rows, samples = self._vertex_rows
+        if curves.shape[-2] != samples:
+            top = self.topology
+            rows = top.vertex_curve * curves.shape[-2] + top.vertex_sample
+        return np.take(curves.reshape(-1, 3), rows, axis=0)
+
+    @cached_property
+    def _vertex_rows(self) -> tuple[np.ndarray, int]:
+        """The row of every mesh vertex in a state's curves flattened (V,), and their samples n."""
+        top, n = self.topology, len(self.structure.lattice.s)
+        return top.vertex_curve * n + top.vertex_sample, n
+
+    @cached_property
+    def edge_ends(self) -> tuple[np.ndarray, np.ndarray]:
+        """The first and the second vertex of every edge, (E,) each (contiguous, for takes)."""
+        ends = self.topology.edges_vertices
+        return np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+
+    @cached_property
+    def face_sides(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """For triangles, the edges along the sides p0 → p1 and p0 → p2 of every face (F,) each (their
+        :func:`~curvefold.geometry.vector_areas` is the cross product of those edges' vectors); None otherwise."""
+        if self.topology.faces_vertices.shape[1] != 3 or self._side_edges is None:
+            return None
+        edge, forward = self._side_edges
+        if not (forward[:, 0].all() and not forward[:, 2].any()):  # p0 → p1 along its edge, p2 → p0 against
+            return None
+        return np.ascontiguousarray(edge[:, 0]), np.ascontiguousarray(edge[:, 2])
+
+    @cached_property
+    def quad_sides(self) -> tuple[np.ndarray, ...] | None:
+        """The edges along p0 → p1, p0 → p3 and p0 → p2 of every quad of :attr:`quads` (F,) each, or None."""
+        return self._edges_from_first_corner(self.quads, (1, 3, 2))
+
+    def _edges_from_first_corner(self, faces: np.ndarray, corners: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
+        """The edges from corner 0 of every face to each of its ``corners``, as they run (F,) each; None unless every one is an edge run that way."""
+        pairs = np.stack([np.repeat(faces[:, :1], len(corners), axis=1), faces[:, corners]], axis=-1)
+        edge, forward = edges_along(self.topology.edges_vertices, pairs)
+        return tuple(np.ascontiguousarray(e) for e in edge.T) if forward.all() else None
 
     @cached_property
     def flat_coords(self) -> np.ndarray:
@@ -88,6 +130,20 @@ class Shared:
     def shortest_edge(self) -> float:
         """Length of the crease pattern's shortest edge, model units."""
         return float(self.flat_lengths.min())
+
+    @cached_property
+    def width_law(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every strip's width at t = 0 and the log-width law ``∓∫₀^s κ_2D cot β ds`` it follows (− for a left strip,
+        :func:`~curvefold.analysis._measure.width_integral`), (1, 4, 1) and (1, 4, n): of the pattern every frame folds."""
+        pattern = self.structure.lattice.pattern
+        law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
+        left = (STRIP_SIDES == "L")[None, :, None]
+        return np.where(left, pattern.width_left[0], pattern.width_right[0]), np.where(left, -law, law)
+
+    @cached_property
+    def speed_factors(self) -> np.ndarray:
+        """The Eq. (17) speed factor of every curve of the structure at its samples (M, n): of the pattern's regression domain."""
+        return self.structure.lattice.domain.factor(self.structure.curves_uv.astype(float))
 
     @cached_property
     def bars(self) -> np.ndarray:
@@ -108,11 +164,34 @@ class Shared:
         return ids[crease], sides[crease]
 
     @cached_property
+    def crease_kinds(self) -> np.ndarray:
+        """The kind of every edge of :attr:`creases`, "fold" or "seam", (C,)."""
+        return self.topology.edges_kind[self.creases[0]]
+
+    @cached_property
     def _edges_faces(self) -> tuple[np.ndarray, np.ndarray]:
-        """The fold, seam and diagonal edges, and the two faces on each (one :func:`edges_faces`), (S,) and (S, 2)."""
+        """The fold, seam and diagonal edges, and the two faces on each (:func:`edges_faces`), (S,) and (S, 2):
+        from :attr:`_side_edges` where it gives every one two faces, else by :func:`edges_faces` itself."""
         top = self.topology
         ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam", "diagonal")))
+        if self._side_edges is not None:
+            edge, forward = self._side_edges
+            found = edge >= 0
+            faces_of = np.full((len(top.edges_vertices), 2), -1, np.int64)  # a → b on side 0, b → a on side 1; the last face wins
+            faces_of[edge[found], (~forward[found]).astype(np.int64)] = np.nonzero(found)[0]
+            if (faces_of[ids] >= 0).all():  # else a side missing, or an edge listed twice (its twin gets none)
+                return ids, faces_of[ids]
         return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
+
+    @cached_property
+    def _side_edges(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The edge along every side p_i → p_(i+1) of every face and whether it runs that way (:func:`edges_along`),
+        (F, k) each; None for padded faces."""
+        top = self.topology
+        faces = top.faces_vertices
+        if (faces < 0).any():
+            return None
+        return edges_along(top.edges_vertices, np.stack([faces, np.roll(faces, -1, axis=1)], axis=-1))
 
 
 @dataclass(frozen=True, eq=False)
@@ -204,20 +283,37 @@ class Frame:
         return measure.derivative(x, self.step), measure.second_derivative(x, self.step)
 
     @cached_property
-    def tube_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
-        """x' and x'' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (K, 4, n − 4, 3) each."""
-        cells = self.structure.cell_curves
-        return tuple(np.take(d, cells, axis=0) for d in self.curve_derivatives)
+    def tube_tangents(self) -> np.ndarray:
+        """x' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (K, 4, n − 4, 3)."""
+        return np.take(self.curve_derivatives[0], self.structure.cell_curves, axis=0)
 
     @cached_property
     def tube_frenet(self) -> tuple[np.ndarray, ...]:
-        """:func:`~curvefold.analysis._measure.frenet` at corners 1–4 of every tube: speed, T, N, B, κ, (K, 4, n − 4[, 3])."""
-        return measure.frenet(*self.tube_derivatives)
+        """:func:`~curvefold.analysis._measure.frenet` at corners 1–4 of every tube: speed, T, N, B, κ, (K, 4, n − 4[, 3])
+        (of every curve once, a curve at the corners of several tubes)."""
+        cells = self.structure.cell_curves
+        return tuple(np.take(f, cells, axis=0) for f in measure.frenet(*self.curve_derivatives))
 
     @cached_property
     def coords(self) -> np.ndarray:
         """The mesh vertices of this state, (V, 3)."""
         return self.shared.coords(self.state.vertices)
+
+    @cached_property
+    def edge_vectors(self) -> np.ndarray:
+        """``x_b − x_a`` of every mesh edge (a, b) in this state, (E, 3)."""
+        a, b = self.shared.edge_ends
+        return np.take(self.coords, b, axis=0) - np.take(self.coords, a, axis=0)
+
+    @cached_property
+    def face_areas(self) -> np.ndarray:
+        """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, (F, 3): for triangles the
+        cross product of the vectors of their sides' edges (:attr:`Shared.face_sides`), the same numbers."""
+        sides = self.shared.face_sides
+        with np.errstate(invalid="ignore"):
+            if sides is None:
+                return vector_areas(self.coords, self.shared.topology.faces_vertices)
+            return cross(*(np.take(self.edge_vectors, side, axis=0) for side in sides))
 
     @property
     def tangent(self) -> np.ndarray:
@@ -225,11 +321,17 @@ class Frame:
         return self.crease.curve.frames[:, :, 0]
 
     @cached_property
+    def strip_vectors(self) -> np.ndarray:
+        """From each corner's curve to the next corner's at equal t: strip c of every tube, corner c → c + 1, (K, 4, n, 3)."""
+        X = self.tubes
+        return X[:, [b for _, b in STRIPS]] - X
+
+    @cached_property
     def half_angles(self) -> np.ndarray:
         """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
-        X, h, T = self.tubes, self.step, self.tube_frenet[1]
-        return np.stack([measure.crease_half_angle(X[:, c], X[:, (c - 1) % 4], X[:, (c + 1) % 4], h, kind=CORNER_KINDS[c], tangent=T[:, c])
-                         for c in range(4)], axis=1)
+        inner = self.strip_vectors[:, :, 2:-2]
+        before = -inner[:, [(c - 1) % 4 for c in range(4)]]  # back along the previous strip (negation is exact)
+        return measure.half_angle_between(before, inner, self.tube_frenet[1], _FOLD_CORNERS)
 
     @cached_property
     def measured_alpha(self) -> np.ndarray:
@@ -240,5 +342,4 @@ class Frame:
     @cached_property
     def strip_widths(self) -> np.ndarray:
         """Distance between the tangent lines of the two creases of every strip, (K, 4, n)."""
-        X, T = self.tubes, self.tangent
-        return np.stack([measure.tangent_line_distance(X[:, a], X[:, b], T) for a, b in STRIPS], axis=1)
+        return measure.line_distance(self.strip_vectors, self.tangent)

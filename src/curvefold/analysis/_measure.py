@@ -37,11 +37,14 @@ __all__ = [
     "curvature",
     "ruling_twist",
     "crease_half_angle",
+    "half_angle_between",
     "tangent_line_distance",
+    "line_distance",
     "frenet",
     "rebuilt_strip",
     "edge_lengths",
     "quad_nonplanarity",
+    "corner_nonplanarity",
     "width_integral",
     "fold_angle_deviation",
     "developability_residual",
@@ -207,16 +210,28 @@ def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, 
     """
     T = unit(derivative(curve, step)) if tangent is None else tangent
     x = curve[..., 2:-2, :]
-    a, b = before[..., 2:-2, :] - x, after[..., 2:-2, :] - x
-    a = a - np.einsum("...i,...i->...", a, T)[..., None] * T
-    b = b - np.einsum("...i,...i->...", b, T)[..., None] * T
+    return half_angle_between(before[..., 2:-2, :] - x, after[..., 2:-2, :] - x, T, kind == "fold")
+
+
+def half_angle_between(before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray) -> np.ndarray:
+    """:func:`crease_half_angle` from the rulings (..., m, 3) to the two neighbour creases and the crease's unit tangent.
+
+    ``fold`` (broadcasting against (..., m)) says where the crease is a fold, elsewhere a seam.
+    """
+    T = tangent
+    a = before - np.einsum("...i,...i->...", before, T)[..., None] * T
+    b = after - np.einsum("...i,...i->...", after, T)[..., None] * T
     delta = angle_between(a, b)
-    return 0.5 * (np.pi - delta) if kind == "fold" else 0.5 * delta
+    return np.where(fold, 0.5 * (np.pi - delta), 0.5 * delta)
 
 
 def tangent_line_distance(x: np.ndarray, y: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Distance between the parallel lines through x and y along unit T, shape (..., n)."""
-    d = y - x
+    return line_distance(y - x, T)
+
+
+def line_distance(d: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Distance between two parallel lines along unit T (..., n, 3), one through the other plus d (..., n, 3), shape (..., n)."""
     return norm(d - np.einsum("...i,...i->...", d, T)[..., None] * T)
 
 
@@ -274,10 +289,11 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
         Spacing of t (any uniform parameter).
     alpha : float, keyword-only
         Half the fold angle, radians.
-    side : {"L", "R"}, keyword-only
-        The ruling family of the strip toward ``following``.
-    sign : {1.0, -1.0}, keyword-only
-        Whether the step runs along +r or −r.
+    side : {"L", "R"} or array of them, keyword-only
+        The ruling family of the strip toward ``following`` (an array broadcasts against the
+        leading axes of ``curve``: several creases of several kinds at once).
+    sign : {1.0, -1.0} or array of them, keyword-only
+        Whether the step runs along +r or −r (broadcasting as ``side``).
     frenet_frame : tuple of ndarray, optional, keyword-only
         The crease's :func:`frenet` at samples 2 … n − 3, measured already.
 
@@ -288,13 +304,14 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
     """
     speed, T, N, B, kappa = frenet(derivative(curve, step), second_derivative(curve, step)) if frenet_frame is None else frenet_frame
     beta = angle_between(ruling[..., 2:-2, :], T)
-    lateral = -np.cos(alpha) if side == "R" else np.cos(alpha)
-    r = np.cos(beta)[..., None] * T + np.sin(beta)[..., None] * (lateral * N + np.sin(alpha) * B)
-    rate = (1.0 if side == "R" else -1.0) * kappa * np.cos(alpha) / np.tan(beta) * speed
+    right = np.asarray(side) == "R"
+    sin_beta = np.sin(beta)
+    r = np.cos(beta)[..., None] * T + sin_beta[..., None] * (np.where(right, -np.cos(alpha), np.cos(alpha))[..., None] * N + np.sin(alpha) * B)
+    rate = np.where(right, 1.0, -1.0) * kappa * np.cos(alpha) / np.tan(beta) * speed
     x = curve[..., 2:-2, :]
     start = tangent_line_distance(x[..., :1, :], following[..., 2:3, :], T[..., :1, :])
     width = start * np.exp(cumulative_integral(rate, step))
-    return x + (sign * width / np.sin(beta))[..., None] * r
+    return x + (sign * width / sin_beta)[..., None] * r
 
 
 def edge_lengths(coords: np.ndarray, edges: np.ndarray) -> np.ndarray:
@@ -312,8 +329,12 @@ def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
         Corners in order around each quad.
     """
     p0, p1, p2, p3 = (np.take(coords, quads[:, k], axis=0) for k in range(4))
-    n = cross(p1 - p0, p3 - p0)
-    diagonal = p2 - p0
+    return corner_nonplanarity(p1 - p0, p3 - p0, p2 - p0)
+
+
+def corner_nonplanarity(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray) -> np.ndarray:
+    """:func:`quad_nonplanarity` from the vectors from each quad's first corner to the others: its two sides and its diagonal, (F, 3) each."""
+    n = cross(side, other)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.abs(np.einsum("ij,ij->i", diagonal, n)) / (norm(n) * norm(diagonal))
 

@@ -84,18 +84,26 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
 def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np.ndarray, np.ndarray]:
     """The pairs (a, b) of boxes (B, 3), each once and each box with itself, whose bounds overlap when grown by ``grown``.
 
-    Sweep and prune: the boxes in order of their lower bound along the longest axis, each paired
-    with itself and the later ones that start before it ends there; the other two axes decide."""
-    axis = int(np.argmax(hi.max(axis=0) - lo.min(axis=0)))
-    order = np.argsort(lo[:, axis], kind="stable")
+    Sweep and prune: the boxes in order of their lower bound along the axis where this pairs the
+    fewest, each paired with itself and the later ones that start before it ends there; the other
+    two axes decide."""
+    sweeps = [_sweep(lo[:, k], hi[:, k], grown) for k in range(3)]
+    axis = min(range(3), key=lambda k: int(sweeps[k][1].sum()))
+    order, count = sweeps[axis]
     lo, hi = lo[order].T, hi[order].T  # (3, B)
-    count = np.searchsorted(lo[axis], hi[axis] + grown, side="right") - np.arange(lo.shape[1])
     a = np.repeat(np.arange(lo.shape[1]), count)
     b = a + np.arange(len(a)) - np.repeat(np.cumsum(count) - count, count)
     for k in (k for k in range(3) if k != axis):
         hit = (lo[k, a] - hi[k, b] <= grown) & (lo[k, b] - hi[k, a] <= grown)
         a, b = a[hit], b[hit]
     return order[a], order[b]
+
+
+def _sweep(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np.ndarray, np.ndarray]:
+    """The boxes' order along one axis (by lower bound, (B,)) and how many boxes from each on, itself included, start
+    before it ends there grown by ``grown`` (B,)."""
+    order = np.argsort(lo, kind="stable")
+    return order, np.searchsorted(lo[order], hi[order] + grown, side="right") - np.arange(len(lo))
 
 
 def contact_scales(lattice) -> tuple[float, float]:
@@ -142,7 +150,8 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     >>> closest_far(curves[:2], uv[:2], radius=0.1, reach=10.0, samples=3)   # nothing far apart within the radius
     (inf, None)
     """
-    idx = np.unique(np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int))
+    idx = np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int)
+    idx = idx[np.concatenate([[True], idx[1:] != idx[:-1]])]  # ascending: np.unique, without its import of numpy.ma
     points = vertices[:, idx].reshape(-1, 3)
     if not np.isfinite(points).all():
         return float("nan"), None

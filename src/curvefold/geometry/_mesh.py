@@ -19,7 +19,8 @@ from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError
 from ..kernel._lie import cross
 
-__all__ = ["Mesh", "EDGE_KINDS", "CREASE_KINDS", "fold_angles", "edges_faces", "face_sides", "vector_areas"]
+__all__ = ["Mesh", "EDGE_KINDS", "CREASE_KINDS", "fold_angles", "dihedral_angles", "edges_faces", "face_sides", "vector_areas",
+           "edges_along"]
 
 #: What an edge is: a fold crease, a seam (two sheets welded, two-ply when flat), the outer
 #: boundary, a ruling (a straight segment on a developable strip) or a triangulating diagonal.
@@ -274,7 +275,7 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
         return out
     a, b = edges_vertices[:, 0].astype(np.int64), edges_vertices[:, 1].astype(np.int64)
     key = np.minimum(a, b) * nv + np.maximum(a, b)  # the undirected edge
-    order = np.argsort(key)
+    order = np.argsort(key, kind="stable")  # the keys of a mesh come nearly sorted: a merge is fast
     ordered = key[order]
     if (ordered[1:] == ordered[:-1]).any():  # an edge listed twice (either way): each direction looked up alone
         return _edges_faces_by_direction(a * nv + b, b * nv + a, half[:, 0] * nv + half[:, 1], half_face, out)
@@ -330,15 +331,78 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     """
     ef = edges_faces(faces_vertices, edges_vertices) if faces_of_edges is None else faces_of_edges
     x = np.asarray(vertices_coords, float)
-    ok = (ef >= 0).all(axis=1)
-    out = np.zeros(len(edges_vertices))
     with np.errstate(invalid="ignore", divide="ignore"):
-        n = vector_areas(x, faces_vertices)
-        n /= np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
+        areas = vector_areas(x, faces_vertices)
+    return dihedral_angles(areas, ef, np.take(x, edges_vertices[:, 1], axis=0) - np.take(x, edges_vertices[:, 0], axis=0))
+
+
+def dihedral_angles(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vectors: np.ndarray) -> np.ndarray:
+    """:func:`fold_angles` from the faces' :func:`vector_areas` and the edges as vectors, degrees (FOLD sign).
+
+    Parameters
+    ----------
+    face_areas : (F, 3) ndarray
+        :func:`vector_areas` of the faces (not changed).
+    faces_of_edges : (E, 2) ndarray of int
+        :func:`edges_faces`: the face that runs each edge a → b and the one that runs it b → a, -1 for none.
+    edge_vectors : (E, 3) ndarray
+        ``x_b − x_a`` of every edge (a, b).
+
+    Returns
+    -------
+    (E,) ndarray
+        0 on an edge with fewer than two faces, NaN next to a degenerate face.
+
+    Examples
+    --------
+    >>> areas, edges = np.array([[0.0, 0, 2], [0, 1, 0]]), np.array([[1.0, 0, 0], [1, 0, 0]])   # faces facing +z and +y
+    >>> dihedral_angles(areas, np.array([[0, 1], [0, -1]]), edges).tolist()   # hinged on the x axis; an edge with one face
+    [90.0, 0.0]
+    """
+    ef = faces_of_edges
+    ok = (ef[:, 0] >= 0) & (ef[:, 1] >= 0)
+    out = np.zeros(len(ef))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n = face_areas / np.sqrt(np.einsum("ij,ij->i", face_areas, face_areas))[:, None]
+        e = edge_vectors
         if not ok.all():
-            ef, edges_vertices = ef[ok], edges_vertices[ok]
+            ef, e = ef[ok], e[ok]
         n1, n2 = np.take(n, ef[:, 0], axis=0), np.take(n, ef[:, 1], axis=0)
-        e = np.take(x, edges_vertices[:, 1], axis=0) - np.take(x, edges_vertices[:, 0], axis=0)
         sine = -np.einsum("ij,ij->i", cross(n1, n2), e) / np.sqrt(np.einsum("ij,ij->i", e, e))
         out[ok] = np.degrees(np.arctan2(sine, np.einsum("ij,ij->i", n1, n2)))
     return out
+
+
+def edges_along(edges_vertices: np.ndarray, pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The edge joining each vertex pair (a, b), and whether it runs a → b.
+
+    Parameters
+    ----------
+    edges_vertices : (E, 2) ndarray of int
+    pairs : (..., 2) ndarray of int
+
+    Returns
+    -------
+    edge : (...) ndarray of int
+        -1 where no edge joins a and b (one of them where several do).
+    forward : (...) ndarray of bool
+        Whether that edge is (a, b) rather than (b, a).
+
+    Examples
+    --------
+    >>> edge, forward = edges_along(np.array([[0, 1], [2, 1]]), np.array([[1, 2], [0, 1], [0, 2]]))
+    >>> edge.tolist(), forward.tolist()
+    ([1, 0, -1], [False, True, False])
+    """
+    p = np.asarray(pairs, np.int64)
+    ev = np.asarray(edges_vertices, np.int64).reshape(-1, 2)
+    if not len(ev):
+        return np.full(p.shape[:-1], -1, np.int64), np.zeros(p.shape[:-1], bool)
+    nv = int(max(ev.max(), np.max(p, initial=-1))) + 1
+    key = np.minimum(ev[:, 0], ev[:, 1]) * nv + np.maximum(ev[:, 0], ev[:, 1])  # the undirected edge
+    order = np.argsort(key, kind="stable")
+    ordered = key[order]
+    wanted = np.minimum(p[..., 0], p[..., 1]) * nv + np.maximum(p[..., 0], p[..., 1])
+    pos = np.minimum(np.searchsorted(ordered, wanted), len(ev) - 1)
+    edge = np.where(ordered[pos] == wanted, order[pos], -1)
+    return edge, (edge >= 0) & (ev[edge, 0] == p[..., 0])

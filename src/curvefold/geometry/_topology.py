@@ -342,7 +342,7 @@ class Topology(FrozenArrays):
         corner = np.repeat(strip % 4, n - 1)  # corner of every curve edge
         curve_kind = np.array(CORNER_KINDS)[corner]
         ruling_kind = np.where(np.tile(np.isin(i, (0, n - 1)), 4 * K), "boundary", "ruling")
-        edges_kind = np.concatenate([curve_kind, ruling_kind, np.full(len(diagonals), "diagonal")]).astype("<U8")
+        edges_kind = np.concatenate([curve_kind, ruling_kind, np.full(len(diagonals), "diagonal")], dtype="<U8")
         seam = np.full(len(edges_kind), -1, np.int64)
         seam[: len(curve_edges)] = np.where(curve_kind == "seam", seam_id(np.repeat(strip // 4, n - 1), corner), -1)
         faces_vertices = face_rows.reshape(-1, face_rows.shape[-1])
@@ -353,9 +353,9 @@ class Topology(FrozenArrays):
             return start + g * size + np.arange(size)
 
         C, R = len(curve_edges), len(rulings)
-        sheets = []
+        sheets: list[SheetTopology] = []
         for k in range(K):
-            for name, strips in SHEETS:
+            for m, (name, strips) in enumerate(SHEETS):
                 corners = (strips[0],) + tuple(STRIPS[s][1] for s in strips)
                 g = [4 * k + s for s in strips]
                 edge_ids = np.concatenate(
@@ -366,15 +366,15 @@ class Topology(FrozenArrays):
                 face_ids = np.concatenate([block(0, per_strip, gg) for gg in g])
                 verts = np.concatenate([(4 * k + c) * n + i for c in corners])
                 sheets.append(_sheet(f"tube {k + 1} · sheet {name}", verts, np.sort(face_ids), np.sort(edge_ids),
-                                     faces_vertices, edges_vertices, seam))
-        return cls(
-            vertex_curve=np.repeat(cells.reshape(-1), n),
-            vertex_sample=np.tile(i, 4 * K),
-            faces_vertices=faces_vertices,
-            faces_group=np.repeat(strip, per_strip),
-            edges_vertices=edges_vertices,
-            edges_kind=edges_kind,
-            edges_seam=seam,
+                                     faces_vertices, edges_vertices, seam, like=sheets[m] if k else None))
+        return cls(  # arrays made here, held as they are (read-only, not copied)
+            vertex_curve=readonly(np.repeat(cells.reshape(-1), n)),
+            vertex_sample=readonly(np.tile(i, 4 * K)),
+            faces_vertices=readonly(faces_vertices),
+            faces_group=readonly(np.repeat(strip, per_strip)),
+            edges_vertices=readonly(edges_vertices),
+            edges_kind=readonly(edges_kind),
+            edges_seam=readonly(seam),
             sheets=tuple(sheets),
         )
 
@@ -489,8 +489,13 @@ def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str
 
 
 def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.ndarray, faces_vertices: np.ndarray,
-           edges_vertices: np.ndarray, seam: np.ndarray) -> SheetTopology:
-    """A sheet of the given mesh vertices, faces and edges, in its own numbering."""
+           edges_vertices: np.ndarray, seam: np.ndarray, *, like: SheetTopology | None = None) -> SheetTopology:
+    """A sheet of the given mesh vertices, faces and edges, in its own numbering; ``like``: the same sheet of another
+    tube of one :meth:`Topology.tubes`, whose numbering differs from this one's by a shift per block, so that the
+    sheet's own faces and edges are its."""
+    verts, face_ids, edge_ids = readonly(verts), readonly(face_ids), readonly(edge_ids)  # made for this sheet: not copied
+    if like is not None:
+        return SheetTopology(label, verts, face_ids, edge_ids, like.faces_vertices, like.edges_vertices, readonly(seam[edge_ids]))
     lookup = np.full(int(verts.max()) + 1, -1, np.int64)
     lookup[verts] = np.arange(len(verts))
     rows = faces_vertices[face_ids]
