@@ -369,9 +369,10 @@ DRAWN = ("pictures", "folding GIF")
 #: two CPUs, the two drawings and the parent's preparation of the file jobs run together.
 DRAWN_NICENESS = 10
 #: The order the jobs start in: the drawings, then the files by the time they take on the
-#: paper's vault, longest first (0.84, 0.38, 0.36 and 0.46 CPU-s, beside 2.1 and 0.7 for the
-#: drawings), so that two processes finish about together.
-_ORDER = DRAWN + ("3D models", "assembly guide", "crease patterns", "FOLD files")
+#: paper's vault, longest first (crease patterns 0.55–0.61 CPU-s, 3D models 0.37–0.50, FOLD
+#: 0.27–0.34, the guide 0.19, beside 0.46–0.54 for each drawing), so that the processes finish
+#: about together.
+_ORDER = DRAWN + ("crease patterns", "3D models", "FOLD files", "assembly guide")
 
 
 def _figures(built: Built) -> dict[str, Callable]:
