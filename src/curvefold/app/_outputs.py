@@ -95,7 +95,9 @@ def default_title(built: Built) -> str:
 
 
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
-    """A progress bar on stderr (rich) when it is a terminal, or nothing."""
+    """A progress bar on stderr (rich) when it is a terminal, or nothing (and rich is not imported)."""
+    if not show:
+        return (lambda label: None), (lambda: None)
     from rich.progress import BarColumn, TextColumn, TimeElapsedColumn
 
     bar = _bar(show, TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn())

@@ -90,6 +90,9 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
         out.append((label, partial(write, built, names, **angle)))
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
+    if can_draw() and "motion" in families:
+        for module in DRAWING_MODULES:  # both drawings need them: imported once, here, before they fork
+            importlib.import_module(module)
     built.mechanics  # the design under load, if it says what loads it: analysed once, before any job forks (the 3D models and the pictures show it)
     return sorted(out, key=lambda job: _ORDER.index(job[0]))
 
@@ -363,6 +366,8 @@ _FAMILY_JOBS = {
 }
 #: Families whose files hold a folded state (the others are flat or show the whole motion).
 _FOLDED = ("fold", "model")
+#: What the two drawings (the pictures and the GIF) import: Pillow's core and its drawing and fonts.
+DRAWING_MODULES = ("PIL.Image", "PIL.ImageDraw", "PIL.ImageFont")
 #: The jobs that draw the structure and need nothing :func:`prepare` computes: they start first.
 DRAWN = ("pictures", "folding GIF")
 #: How much less the drawings' processes get of a shared CPU than the parent (``nice``): on
