@@ -472,7 +472,7 @@ def test_node_sheet_file(tmp_path):
 @pytest.mark.parametrize("decimals", [0, 1, 4, 10, 12, 15])
 def test_number_arrays_are_written_as_json_writes_their_lists(decimals):
     """Rounded arrays of every scale and shape, zeros of both signs, exponents: the text json.dumps writes."""
-    from curvefold.io._json_text import Decimals, array_json, dumps
+    from curvefold.io._decimals import Decimals, array_json, dumps
 
     rng = np.random.default_rng(decimals)
     for shape in [(1,), (37,), (25, 3), (4, 5, 2)]:

@@ -53,7 +53,7 @@ from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
 from ._fold_reading import FoldFile
-from ._json_text import Decimals, dumps, plain
+from ._decimals import Decimals, dumps, plain
 from ._mesh3d import check_metadata
 from ._tables import CREATOR
 
@@ -244,7 +244,7 @@ def _document(title: str, frame: dict) -> dict:
 
 
 def _write_document(path: str | os.PathLike, doc: dict) -> Path:
-    """Write a document whose number arrays are :class:`~curvefold.io._json_text.Decimals` (JSON as their lists)."""
+    """Write a document whose number arrays are :class:`~curvefold.io._decimals.Decimals` (JSON as their lists)."""
     return atomic_write(path, dumps(doc) + "\n")
 
 
@@ -339,7 +339,7 @@ def _fold_frames(
     flat_tol: float = 1e-9,
     mirror_clockwise: bool = True,
 ) -> dict:
-    """:func:`fold_document` with its number arrays as :class:`~curvefold.io._json_text.Decimals`."""
+    """:func:`fold_document` with its number arrays as :class:`~curvefold.io._decimals.Decimals`."""
     cp = crease_pattern
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")

@@ -1,4 +1,4 @@
-"""JSON text of documents whose large number arrays are written from NumPy at once.
+"""Arrays rounded to decimal places, and JSON text of documents holding them, written from NumPy at once.
 
 :func:`json.dumps` writes every float with ``repr``, one at a time: a FOLD file holds some
 10⁵ coordinates, and writing them was most of the file's cost. Here a document may hold
