@@ -33,7 +33,7 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
     construction, and never count.
 
     The search is exact: a pair is close when its squared distance (summed over x, y, z) is at
-    most ``radius²``. Every :data:`_BOX` consecutive samples of a curve are bounded by a box;
+    most ``radius²``. Every ``_BOX`` consecutive samples of a curve are bounded by a box;
     the pairs of boxes that overlap when grown by the radius (swept along the longest axis)
     and may hold parts far apart (their curves two steps apart, or more arc than ``reach``
     between their samples along both curves) give the point pairs whose distances decide.

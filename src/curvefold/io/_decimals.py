@@ -6,7 +6,7 @@
 it as :func:`json.dumps` writes the document with those arrays as lists, byte for byte.
 
 A number x rounded to d places is the float nearest to the decimal D = n / 10^d. Where
-x is not 0, 10⁻⁴ ≤ |x| < 10¹⁵ (``repr`` writes no exponent), |n| < 2^52 and the floats
+x is not 0, 10⁻⁴ ≤ ``abs(x)`` < 10¹⁵ (``repr`` writes no exponent), ``abs(n)`` < 2^52 and the floats
 near x are closer together than 10^-d, no other decimal of at most as many digits reads
 back as x, so ``repr(x)`` is D without its trailing zeros (one decimal kept, as in
 ``1.0``): those digits are computed for all numbers at once. Every other number (an

@@ -90,7 +90,7 @@ def _box_grid(text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
-    """Sample points covering the text boxes, shape (C, K, 2): K = 5·m, row by row across the baseline (:func:`_box_grid`)."""
+    """Sample points covering the text boxes, shape (C, K, 2): K = 5·m, row by row across the baseline (``_box_grid``)."""
     uu, vv = (g.ravel() for g in np.meshgrid(*_box_grid(text, size)))
     c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
     return np.stack([center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1)

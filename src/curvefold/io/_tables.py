@@ -15,7 +15,7 @@ Colours
 Creator
     ``CREATOR``: the program and version the files name as their creator (FOLD's
     ``file_creator``, glTF's ``asset.generator``, the 3dm's application, the PDF's creator):
-    ``"curvefold <version>"`` (:data:`curvefold.kernel._version.VERSION`).
+    ``"curvefold <version>"`` (``curvefold.kernel._version.VERSION``).
 """
 
 from __future__ import annotations
