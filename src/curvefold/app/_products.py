@@ -90,9 +90,9 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
         out.append((label, partial(write, built, names, **angle)))
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
-    if can_draw() and "motion" in families:
-        for module in DRAWING_MODULES:  # both drawings need them: imported once, here, before they fork
-            importlib.import_module(module)
+        if "motion" in families:
+            for module in DRAWING_MODULES:  # both drawings need them: imported once, here, before they fork
+                importlib.import_module(module)
     built.mechanics  # the design under load, if it says what loads it: analysed once, before any job forks (the 3D models and the pictures show it)
     return sorted(out, key=lambda job: _ORDER.index(job[0]))
 
