@@ -311,6 +311,30 @@ def test_jobs_run_in_processes_and_come_back_in_job_order(tmp_path):
     assert sorted(os.listdir(tmp_path)) == [f"f{k}" for k in range(5)]
 
 
+def _write_frozen(name: str, folder):
+    """Write how many objects the garbage collector leaves out (:func:`gc.get_freeze_count`)."""
+    import gc
+
+    (folder / name).write_text(str(gc.get_freeze_count()))
+    return [folder / name]
+
+
+@pytest.mark.parametrize("workers", [2, 1])
+def test_a_job_process_leaves_what_it_inherits_out_of_its_collections(tmp_path, workers):
+    """The objects a forked job inherits are frozen there, never in this process (nor in a job run here)."""
+    import gc
+    from functools import partial
+
+    frozen = gc.get_freeze_count()
+    list(products.run_jobs([("a", partial(_write_frozen, "a")), ("b", partial(_write_frozen, "b"))], tmp_path, workers=workers))
+    counts = [int((tmp_path / name).read_text()) for name in "ab"]
+    assert gc.get_freeze_count() == frozen
+    if workers == 2:  # forked: everything it inherited is frozen
+        assert min(counts) > 1000
+    else:  # run here: nothing is frozen for it (the check sees a job that is not forked)
+        assert counts == [frozen, frozen]
+
+
 def test_a_job_that_fails_or_dies_is_an_error_in_the_caller(tmp_path):
     with pytest.raises(InputError, match="this job refuses"):
         list(products.run_jobs([("a", _fail), ("b", _fail)], tmp_path, workers=2))

@@ -9,7 +9,17 @@ from numpy.testing import assert_array_equal
 from _node import run_node
 from curvefold.analysis import check_fold
 from curvefold.geometry import fold_angles
-from curvefold.geometry._sampling import choose_sampling, corner_angles
+from curvefold.geometry._mesh import vector_areas
+from curvefold.geometry._sampling import (
+    _DIAGONAL_FACES,
+    _STEP,
+    _chord_deviations,
+    _step_shape,
+    _tube_points,
+    choose_sampling,
+    corner_angles,
+    polyline_deviation,
+)
 from curvefold.geometry._sheets import sheets
 from curvefold.io import write_sheet_fold, write_structure_fold
 from curvefold.kernel import InputError
@@ -107,3 +117,47 @@ def test_topology_keeps_the_samples_asked(paper):
         structure.topology(keep=sampling.keep[:3])
     with pytest.raises(InputError, match=r"keep\[1\] must be"):
         structure.topology(keep=[sampling.keep[0], sampling.keep[1][::-1], *sampling.keep[2:]])
+
+
+def _steps(structure, count: int = 300):
+    """Random steps (tube, from, to) of a structure's tubes, both ways, some one sample long."""
+    n, tubes = len(structure.lattice.s), len(structure.cell_curves)
+    rng = np.random.default_rng(7)
+    i = rng.integers(0, n - 1, count)
+    ends = np.clip(i + rng.integers(-40, 41, count), 0, n - 1)
+    ends[ends == i] += 1
+    ends[:3] = i[:3] + 1
+    return rng.integers(0, tubes, count), i, ends
+
+
+def _step_meshes(states: np.ndarray, structure, tube, i, ends) -> np.ndarray:
+    """The vertices of each step's mesh (:data:`_STEP`) in every state, (states, J, 8, 3)."""
+    lo, hi = np.minimum(i, ends), np.maximum(i, ends)
+    samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])
+    return states[:, structure.cell_curves[tube[:, None], _STEP.vertex_curve], samples]
+
+
+@pytest.mark.parametrize("damaged", [False, True])
+def test_the_steps_are_measured_as_the_mesh_functions_measure_their_meshes(paper, damaged):
+    """Each step's corners, stretch and bend and its samples' distance from its chords, component by
+    component, are the floats of corner_angles, vector_areas, np.linalg.norm and polyline_deviation on
+    the step's own mesh and curves; a state scaled by a rounding error is seen."""
+    structure, _ = paper
+    states = np.stack([structure.state().vertices, structure.state(0.0).vertices])
+    tube, i, ends = _steps(structure)
+    x = _step_meshes(states, structure, tube, i, ends)
+    angle = corner_angles(x, _STEP.faces_vertices).min(axis=(0, 2))
+    length = np.linalg.norm(x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :], axis=-1)
+    stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
+    normal = vector_areas(x, _STEP.faces_vertices)
+    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    cos = np.sum(normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1)
+    bend = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).max(axis=(0, 2))
+    walked = [np.arange(a, b + np.sign(b - a), np.sign(b - a)) for a, b in zip(i, ends)]  # the samples from i to the end
+    chords = [polyline_deviation(states[:, structure.cell_curves[t]][:, :, at], np.array([0, len(at) - 1])) for t, at in zip(tube, walked)]
+    if damaged:  # the folded state scaled by 1 + 2⁻⁴⁰: the same shapes to 1e-12, other floats
+        states = np.stack([states[0] * (1 + 2.0**-40), states[1]])
+    points = _tube_points(states, structure.cell_curves)
+    measured = (*_step_shape(points, len(structure.lattice.s), tube, i, ends), _chord_deviations(points, len(structure.lattice.s), tube, i, ends))
+    same = [np.array_equal(got, want) for got, want in zip(measured, (angle, stretch, bend, chords))]
+    assert same == [not damaged] * 4

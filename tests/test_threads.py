@@ -63,3 +63,30 @@ def test_the_pictures_job_reads_the_mechanism_the_certificate_computed(tmp_path,
     assert "singular-values.png" in result["files"]
     pids = log.read_text().split()
     assert pids == [str(os.getpid())] * 3  # flat, half and the design angle, all here
+
+
+def _blas_threads_of(code: str) -> tuple[list[int], bool]:
+    """The BLAS libraries' threads after ``code`` runs in a fresh interpreter whose environment sets none
+    of :data:`~curvefold.kernel._threads.BLAS_THREAD_VARIABLES`, and whether it sets one afterwards."""
+    import json
+    import subprocess
+    import sys
+
+    from curvefold.kernel._threads import BLAS_THREAD_VARIABLES
+
+    probe = (f"{code}\nimport json, os\nfrom threadpoolctl import threadpool_info\n"
+             "print(json.dumps([[p['num_threads'] for p in threadpool_info() if p['user_api'] == 'blas'], "
+             f"any(name in os.environ for name in {BLAS_THREAD_VARIABLES!r})]))")
+    env = {name: value for name, value in os.environ.items() if name not in BLAS_THREAD_VARIABLES}
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120, env=env, check=True)
+    threads, variable_set = json.loads(done.stdout.splitlines()[-1])
+    return threads, variable_set
+
+
+def test_the_command_line_loads_numpy_with_one_blas_thread_and_leaves_the_environment():
+    """OpenBLAS starts no thread of its own (each would spin for a tenth of a CPU-second), and the
+    processes the command starts inherit the environment it was given."""
+    assert _blas_threads_of("import curvefold.app.cli") == ([1], False)
+    if (os.cpu_count() or 1) > 1:  # the probe sees NumPy loaded otherwise: a thread per CPU
+        threads, _ = _blas_threads_of("import numpy")
+        assert threads and min(threads) > 1

@@ -29,16 +29,19 @@ import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-import numpy as np
+from ..kernel._threads import blas_loads_on_one_thread
 
-from ..io._formats import FORMATS, check_kind, default_formats
-from ..kernel._errors import CurvefoldError, InputError
-from ..kernel._text import for_terminal
-from ..kernel._validate import Spec, from_text
-from ..vault._assembly import vault_samples
-from ._design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
-from ._folder import Interrupted, raise_if_interrupted, signals_interrupt
-from .designer import SERVER_SPECS
+with blas_loads_on_one_thread():  # NumPy is loaded here; a command runs its BLAS on one thread (_run), so OpenBLAS starts none
+    import numpy as np
+
+    from ..io._formats import FORMATS, check_kind, default_formats
+    from ..kernel._errors import CurvefoldError, InputError
+    from ..kernel._text import for_terminal
+    from ..kernel._validate import Spec, from_text
+    from ..vault._assembly import vault_samples
+    from ._design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
+    from ._folder import Interrupted, raise_if_interrupted, signals_interrupt
+    from .designer import SERVER_SPECS
 
 __all__ = ["main"]
 

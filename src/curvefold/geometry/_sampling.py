@@ -38,7 +38,7 @@ import numpy as np
 from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError
 from ..kernel._lie import cross
-from ._mesh import edges_faces, vector_areas
+from ._mesh import edges_faces
 from ._structure import Structure
 from ._topology import Topology
 
@@ -182,14 +182,25 @@ _DIAGONAL_FACES = edges_faces(_STEP.faces_vertices, _STEP.edges_vertices[_STEP.e
 
 
 def _tube_points(states: np.ndarray, cell_curves: np.ndarray) -> np.ndarray:
-    """The tubes' four curves in every state, (states, K·4·n, 3), from states (states, M, n, 3):
-    row (4·k + c)·n + s holds corner c + 1 of tube k at sample s (:func:`_rows`)."""
-    return states[:, cell_curves].reshape(len(states), -1, 3)
+    """The tubes' four curves in every state, component-major: (3, states, K·4·n) from states
+    (states, M, n, 3); column (4·k + c)·n + s holds corner c + 1 of tube k at sample s (:func:`_rows`)."""
+    return np.ascontiguousarray(np.moveaxis(states[:, cell_curves].reshape(len(states), -1, 3), -1, 0))
 
 
 def _rows(n: int, tube: np.ndarray, curve: np.ndarray, sample: np.ndarray) -> np.ndarray:
-    """The rows of :func:`_tube_points` (n samples) of curves ``curve`` of tubes ``tube`` at ``sample`` (broadcast)."""
+    """The columns of :func:`_tube_points` (n samples) of curves ``curve`` of tubes ``tube`` at ``sample`` (broadcast)."""
     return (tube * 4 + curve) * n + sample
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The dot products of component-major vectors (3, ...), summed as ``np.sum(a * b, axis=-1)`` sums
+    the vectors' components (the same floats)."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The cross products of component-major vectors (3, ...), each component as :func:`~curvefold.kernel._lie.cross` computes it."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
 def _step_shape(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -198,20 +209,25 @@ def _step_shape(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, end
     ``points`` are the tubes' curves (:func:`_tube_points`, n samples). Returns each step's
     smallest triangle corner (degrees), the largest relative change of an edge length
     between the two states, and the largest fold across a diagonal in a folded state
-    (degrees), each (J,).
+    (degrees), each (J,): the floats :func:`corner_angles`, :func:`~curvefold.geometry._mesh.vector_areas`
+    and ``np.linalg.norm`` give on the steps' meshes, computed component by component.
     """
     lo, hi = np.minimum(i, ends), np.maximum(i, ends)
     samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])  # (J, 8)
-    x = np.take(points, _rows(n, tube[:, None], _STEP.vertex_curve, samples), axis=1)  # (states, J, 8, 3)
-    angle = corner_angles(x, _STEP.faces_vertices).min(axis=(0, 2))
-    edges = x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :]
-    length = np.linalg.norm(edges, axis=-1)  # (states, J, E)
+    rows = _rows(n, tube[:, None], _STEP.vertex_curve, samples)
+    corner = np.take(points, rows[:, _STEP.faces_vertices], axis=2)  # (3, states, J, F, 3): the triangles' corners
+    u = np.roll(corner, -1, axis=-1) - corner
+    v = np.roll(corner, 1, axis=-1) - corner
+    area = _cross(u, v)
+    angle = np.arctan2(np.sqrt(_dot(area, area)), _dot(u, v))
+    edges = np.take(points, rows[:, _STEP.edges_vertices[:, 1]], axis=2) - np.take(points, rows[:, _STEP.edges_vertices[:, 0]], axis=2)
+    length = np.sqrt(_dot(edges, edges))  # (states, J, E)
     stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
-    normal = vector_areas(x, _STEP.faces_vertices)
-    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
-    cos = np.sum(normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1)
-    bend = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).max(axis=(0, 2))
-    return angle, stretch, bend
+    normal = _cross(corner[..., 1] - corner[..., 0], corner[..., 2] - corner[..., 0])  # vector areas, (3, states, J, F)
+    normal /= np.sqrt(_dot(normal, normal))
+    cos = _dot(normal[..., _DIAGONAL_FACES[:, 0]], normal[..., _DIAGONAL_FACES[:, 1]])
+    bend = np.arccos(np.clip(cos, -1.0, 1.0)).max(axis=(0, 2))
+    return np.degrees(angle.min(axis=(0, 2, 3))), stretch, np.degrees(bend)
 
 
 def _chord_deviations(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> np.ndarray:
@@ -227,9 +243,11 @@ def _chord_deviations(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarra
     first = np.cumsum(inside) - inside  # each step's first sample in the list
     j = np.arange(step.size) - first[step] + 1  # 1 … inside[step]
     rows = (_rows(n, tube[step, None], np.arange(4), at[:, None]) for at in (i[step], ends[step], i[step] + np.sign(ends - i)[step] * j))
-    p, q, m = (np.take(points, r, axis=1) for r in rows)  # chord start, chord end, sample inside: (states, P, 4, 3)
-    t = np.clip(np.sum((m - p) * (q - p), axis=-1) / np.maximum(np.sum((q - p) ** 2, axis=-1), 1e-300), 0.0, 1.0)
-    dist = np.linalg.norm(m - p - t[..., None] * (q - p), axis=-1).max(axis=(0, 2))  # (P,)
+    p, q, m = (np.take(points, r, axis=2) for r in rows)  # chord start, chord end, sample inside: (3, states, P, 4)
+    chord, off = q - p, m - p
+    t = np.clip(_dot(off, chord) / np.maximum(_dot(chord, chord), 1e-300), 0.0, 1.0)
+    away = off - t * chord
+    dist = np.sqrt(_dot(away, away)).max(axis=(0, 2))  # (P,)
     deviation = np.zeros(len(i))
     measured = inside > 0
     deviation[measured] = np.maximum.reduceat(dist, first[measured])
