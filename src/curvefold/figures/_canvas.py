@@ -67,6 +67,12 @@ def _font(pixels: int):
     return ImageFont.truetype(str(font_file()), max(pixels, 1))
 
 
+@functools.lru_cache(maxsize=1024)
+def _length(pixels: int, piece: str) -> float:
+    """Advance width (pixels) of ``piece`` in DejaVu Sans at ``pixels`` (tick labels and legends repeat)."""
+    return _font(pixels).getlength(piece)
+
+
 def nice_ticks(lo: float, hi: float, count: int = 6) -> np.ndarray:
     """Round tick values (1, 2 or 5 × 10^k apart) inside [lo, hi], about ``count`` of them.
 
@@ -175,11 +181,14 @@ class Canvas:
 
     def font(self, points: float):
         """DejaVu Sans at ``points``."""
-        return _font(int(round(points * self.pt)))
+        return _font(self._pixels(points))
+
+    def _pixels(self, points: float) -> int:
+        return int(round(points * self.pt))
 
     def text_size(self, text: str, points: float) -> tuple[float, float]:
         """Width and height (canvas pixels) of a line of text."""
-        return sum(self.font(points * (0.72 if sub else 1)).getlength(piece) for piece, sub in _runs(text)), points * self.pt
+        return sum(_length(self._pixels(points * (0.72 if sub else 1)), piece) for piece, sub in _runs(text)), points * self.pt
 
     def text(self, xy: Sequence[float], text: str, points: float = 9.0, *, color="#000000", anchor: str = "lm", draw=None) -> None:
         """A line of text at ``xy`` (canvas pixels); ``anchor`` is Pillow's two letters (l/m/r, t/m/b; "b" the baseline side)."""
@@ -189,9 +198,9 @@ class Canvas:
         base = xy[1] + {"t": 0.78, "m": 0.36, "b": 0.0}[anchor[1]] * height  # the baseline
         ink = _rgba(color)
         for piece, sub in _runs(text):
-            font = self.font(points * (0.72 if sub else 1))
-            draw.text((x, base + (0.22 * height if sub else 0.0)), piece, fill=ink, font=font, anchor="ls")
-            x += font.getlength(piece)
+            pixels = self._pixels(points * (0.72 if sub else 1))
+            draw.text((x, base + (0.22 * height if sub else 0.0)), piece, fill=ink, font=_font(pixels), anchor="ls")
+            x += _length(pixels, piece)
 
     def vertical_text(self, xy: Sequence[float], text: str, points: float = 9.0) -> None:
         """A line of text turned a quarter left (reading upward), centred on ``xy``."""

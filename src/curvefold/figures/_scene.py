@@ -18,7 +18,6 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
-from itertools import chain
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
@@ -148,8 +147,8 @@ class Scene:
 
     Attributes
     ----------
-    paths : tuple of (p, 2) ndarray
-        Screen polygons in model units: strips (p = 4, filled and outlined in their own
+    paths : sequence of (p, 2) ndarray
+        Read-only screen polygons in model units: strips (p = 4, filled and outlined in their own
         colour) and segments of the creases and of the strips' end rulings (p = 2, stroked).
     roles : (P,) ndarray of str
         What each path is: ``"strip"``, the kind of the crease it belongs to (``"fold"``,
@@ -164,7 +163,7 @@ class Scene:
         The ground plane z = 0 on screen, drawn below everything, or None.
     """
 
-    paths: tuple[np.ndarray, ...]
+    paths: Sequence[np.ndarray]
     roles: np.ndarray
     fill: np.ndarray
     stroke: np.ndarray
@@ -241,28 +240,39 @@ class Scene:
         return "\n".join(lines)
 
 
-class _HeldPaths(tuple):
-    """Paths that are already read-only views of one read-only array of their points (built by
-    :func:`render_strips`): a scene holds them without checking each (a scene has thousands),
-    and draws from :attr:`points` and :attr:`sizes` at once."""
+class _HeldPaths(Sequence):
+    """Paths held as one read-only array of their points (built by :func:`render_strips`): a
+    scene draws from :attr:`points` and :attr:`sizes` at once, and makes the read-only views
+    of its thousands of paths only when they are asked for (once)."""
 
-    points: np.ndarray
-    sizes: np.ndarray
+    def __init__(self, points: np.ndarray, sizes: np.ndarray) -> None:
+        self.points, self.sizes = points, sizes
 
     @classmethod
     def ordered(cls, groups: Sequence[np.ndarray], order: np.ndarray) -> _HeldPaths:
         """The paths of ``groups`` (each (G, p, 2), read-only), one after the other, taken in ``order``."""
-        every = list(chain.from_iterable(groups))  # read-only views: held without copying each
-        held = cls(map(every.__getitem__, order.tolist()))
         sizes = np.concatenate([np.full(len(group), group.shape[1]) for group in groups])
         first = (np.cumsum(sizes) - sizes)[order]  # of every path, in the groups' points
-        held.sizes = readonly(sizes[order])
-        gather = np.repeat(first - (np.cumsum(held.sizes) - held.sizes), held.sizes) + np.arange(int(held.sizes.sum()))
-        held.points = readonly(np.concatenate([group.reshape(-1, 2) for group in groups])[gather])
-        return held
+        held_sizes = sizes[order]
+        gather = np.repeat(first - (np.cumsum(held_sizes) - held_sizes), held_sizes) + np.arange(int(held_sizes.sum()))
+        return cls(readonly(np.concatenate([group.reshape(-1, 2) for group in groups])[gather]), readonly(held_sizes))
+
+    @cached_property
+    def _views(self) -> tuple[np.ndarray, ...]:
+        ends = np.cumsum(self.sizes).tolist()
+        return tuple(map(self.points.__getitem__, map(slice, [0] + ends[:-1], ends)))
+
+    def __len__(self) -> int:
+        return len(self.sizes)
+
+    def __getitem__(self, index):
+        return self._views[index]
+
+    def __iter__(self):
+        return iter(self._views)
 
 
-def _frozen_paths(paths: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
+def _frozen_paths(paths: Sequence[np.ndarray]) -> Sequence[np.ndarray]:
     """Every path :func:`~curvefold.kernel._arrays.frozen`, as floats (:class:`_HeldPaths` as they are)."""
     return paths if isinstance(paths, _HeldPaths) else tuple(frozen(np.asarray(p, float)) for p in paths)
 

@@ -179,7 +179,8 @@ def motion_strip(
 def crease_legend(kinds: Sequence[str], lattice: Any = None) -> list[tuple[str, dict]]:
     """(label, style) legend entries of a view's crease kinds and strips (see :meth:`curvefold.figures._canvas.Frame.legend`)."""
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
-    entries = [(names[k], {"line": KIND_COLORS[k], "width": 1.5}) for k in ("fold", "seam", "junction") if k in set(kinds)]
+    drawn = set(kinds)
+    entries = [(names[k], {"line": KIND_COLORS[k], "width": 1.5}) for k in ("fold", "seam", "junction") if k in drawn]
     rigid = lattice is not None and lattice.rigid
     return entries + [("rigid planar panels" if rigid else "developable strips", {"patch": tuple(STRIP_RGB.tolist()), "edge": "#999999"})]
 
