@@ -116,31 +116,39 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     slow = np.flatnonzero(~fast)
     texts = [repr(v) for v in flat[slow].tolist()]
     width = max([whole + max(decimals, 1) + 2, *map(len, texts)])  # sign, digits, point, digits; or a repr
-    chars = np.zeros((count, width + 2 * depth + 1), np.uint8)  # each number's characters, then what follows it
+    # each number's characters, then what follows it: column i of these (W, count) arrays is number i
+    chars = np.zeros((width + 2 * depth + 1, count), np.uint8)
     keep = np.zeros(chars.shape, bool)
-    chars[:, 0], keep[:, 0] = ord("-"), np.signbit(flat)
-    point = whole + 1
-    for column in [*range(point + decimals, point, -1), *range(whole, 0, -1)]:  # the last digit first
-        m, digit = np.divmod(m, 10)
-        chars[:, column] = digit + 48
-    chars[:, point] = ord(".")
+    chars[0], keep[0] = ord("-"), np.signbit(flat)
+    point, places = whole + 1, max(decimals, 1)
+    units = m // 10 ** decimals  # the whole part, < 10^whole
+    zeros = np.ones(count, bool)  # the fraction's digits so far, from its last, are 0
+    trailing = np.zeros(count, np.int64)  # how many of them, but the first after the point
+    for row in [*range(point + decimals, point, -1), *range(whole, 0, -1)]:  # the last digit first
+        rest = m // 10  # (np.divmod takes four times as long)
+        digit = m - 10 * rest
+        chars[row], m = digit + 48, rest
+        if point + 1 < row:
+            zeros &= digit == 0
+            trailing += zeros
+    chars[point] = ord(".")
     if decimals == 0:
-        chars[:, point + 1] = ord("0")  # "3.0"
-    keep[:, 1:point] = np.logical_or.accumulate(chars[:, 1:point] != ord("0"), axis=1)  # no leading zeros ...
-    keep[:, whole] = keep[:, point] = keep[:, point + 1] = True  # ... but one digit either side of the point
-    fraction = slice(point + 1, point + 1 + max(decimals, 1))
-    keep[:, fraction] |= np.logical_or.accumulate(chars[:, fraction][:, ::-1] != ord("0"), axis=1)[:, ::-1]  # no trailing zeros
-    if slow.size:  # repr, from the row's first column
-        block = np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8).reshape(-1, width)
-        chars[slow, :width] = block
-        keep[slow, :width] = block != 0
+        chars[point + 1] = ord("0")  # "3.0"
+    # no leading or trailing zeros, but one digit either side of the point
+    keep[1:point] = units >= 10 ** np.arange(whole - 1, -1, -1, dtype=np.int64)[:, None]
+    keep[whole] = keep[point] = True
+    keep[point + 1:point + 1 + places] = np.arange(places)[:, None] < places - trailing
+    if slow.size:  # repr, from the number's first row
+        block = np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8).reshape(-1, width).T
+        chars[:width, slow] = block
+        keep[:width, slow] = block != 0
     # after each number: "," closing and opening the axes that end there ("],[" in a matrix)
     ends = np.zeros(count, np.int64)
     for stride in np.cumprod(x.shape[::-1])[:-1]:
         ends += (np.arange(1, count + 1) % stride == 0)
-    k = np.arange(depth)
-    chars[:, width:width + depth], chars[:, width + depth], chars[:, width + depth + 1:] = ord("]"), ord(","), ord("[")
-    keep[:, width:width + depth], keep[:, width + depth], keep[:, width + depth + 1:] = k[::-1] < ends[:, None], True, k < ends[:, None]
-    keep[-1, width:] = False
-    body = chars[keep]
+    k = np.arange(depth)[:, None]
+    chars[width:width + depth], chars[width + depth], chars[width + depth + 1:] = ord("]"), ord(","), ord("[")
+    keep[width:width + depth], keep[width + depth], keep[width + depth + 1:] = k[::-1] < ends, True, k < ends
+    keep[width:, -1] = False
+    body = chars.T[keep.T]
     return "[" * x.ndim + body.tobytes().decode() + "]" * x.ndim
