@@ -9,8 +9,10 @@ A number x rounded to d places is the float nearest to the decimal D = n / 10^d.
 x is not 0, 10⁻⁴ ≤ ``abs(x)`` < 10¹⁵ (``repr`` writes no exponent), ``abs(n)`` < 2^52 and the floats
 near x are closer together than 10^-d, no other decimal of at most as many digits reads
 back as x, so ``repr(x)`` is D without its trailing zeros (one decimal kept, as in
-``1.0``): those digits are computed for all numbers at once. Every other number (an
-exponent, a float that is not nearest to its rounded decimal) is written with ``repr``.
+``1.0``): those digits are computed for all numbers at once. Below 10⁻⁴ ``repr`` writes
+the same digits with an exponent (``-1.5e-05``: :func:`_scientific`), also computed at
+once. Every other number (an exponent of 10¹⁵ or more, a float that is not nearest to its
+rounded decimal) is written with ``repr``.
 """
 
 from __future__ import annotations
@@ -108,14 +110,16 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     scale = 10.0 ** decimals
     n = np.rint(flat * scale)
     size = np.abs(flat)
-    fast = (size == 0) | ((size >= 1e-4) & (size < 1e15) & (np.abs(n) < 2.0 ** 52) & (n / scale == flat)
-                          & (2 * np.spacing(size) < 10.0 ** -decimals))
+    exact = (np.abs(n) < 2.0 ** 52) & (n / scale == flat) & (2 * np.spacing(size) < 10.0 ** -decimals)
+    fast = (size == 0) | ((size >= 1e-4) & (size < 1e15) & exact)
+    small = (size > 0) & (size < 1e-4) & exact
     count, depth = len(flat), x.ndim - 1
     m = np.where(fast, np.abs(n), 0).astype(np.int64)  # the digits of |x| · 10^d
     whole = max(len(str(int(m.max()))) - decimals, 1)  # digits before the point, one at least
-    slow = np.flatnonzero(~fast)
+    slow, tiny = np.flatnonzero(~(fast | small)), np.flatnonzero(small)
     texts = [repr(v) for v in flat[slow].tolist()]
-    width = max([whole + max(decimals, 1) + 2, *map(len, texts)])  # sign, digits, point, digits; or a repr
+    tiny_chars, tiny_keep = _scientific(np.abs(n[tiny]).astype(np.int64), decimals, np.signbit(flat[tiny])) if tiny.size else ((), ())
+    width = max([whole + max(decimals, 1) + 2, len(tiny_chars), *map(len, texts)])  # sign, digits, point, digits; a repr
     # each number's characters, then what follows it: column i of these (W, count) arrays is number i
     chars = np.zeros((width + 2 * depth + 1, count), np.uint8)
     keep = np.zeros(chars.shape, bool)
@@ -138,6 +142,10 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     keep[1:point] = units >= 10 ** np.arange(whole - 1, -1, -1, dtype=np.int64)[:, None]
     keep[whole] = keep[point] = True
     keep[point + 1:point + 1 + places] = np.arange(places)[:, None] < places - trailing
+    if tiny.size:
+        chars[:len(tiny_chars), tiny] = tiny_chars
+        keep[:width, tiny] = False
+        keep[:len(tiny_chars), tiny] = tiny_keep
     if slow.size:  # repr, from the number's first row
         block = np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8).reshape(-1, width).T
         chars[:width, slow] = block
@@ -152,3 +160,39 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     keep[width:, -1] = False
     body = chars.T[keep.T]
     return "[" * x.ndim + body.tobytes().decode() + "]" * x.ndim
+
+
+def _scientific(n: np.ndarray, decimals: int, negative: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The characters (W, t) of ``repr`` of the numbers ±n / 10^decimals (each below 10⁻⁴, n ≥ 1 of (t,)), and which of them
+    to keep: the sign, the first digit, the point and the others but trailing zeros, ``e-`` and two digits of the exponent.
+
+    Examples
+    --------
+    >>> chars, keep = _scientific(np.array([15, 1, 99999]), 10, np.array([True, False, False]))
+    >>> [chars[:, i][keep[:, i]].tobytes().decode() for i in range(3)]
+    ['-1.5e-09', '1e-10', '9.9999e-06']
+    """
+    digits = 1 + (n >= 10 ** np.arange(1, decimals + 1, dtype=np.int64)[:, None]).sum(axis=0)  # of n
+    longest = int(digits.max(initial=1))
+    mantissa = n * 10 ** (longest - digits)  # n's digits, each as long as the longest
+    chars = np.zeros((longest + 6, len(n)), np.uint8)  # sign, digit, point, digits, "e-", exponent
+    keep = np.zeros(chars.shape, bool)
+    chars[0], keep[0] = ord("-"), negative
+    zeros = np.ones(len(n), bool)  # the digits so far, from the last, are 0
+    trailing = np.zeros(len(n), np.int64)  # how many of them, but the first digit
+    for j in range(longest - 1, -1, -1):  # digit j (0: the first), at row j + 2 (the first at row 1)
+        rest = mantissa // 10
+        digit = mantissa - 10 * rest
+        chars[j + 2 if j else 1], mantissa = digit + 48, rest
+        if j:
+            zeros &= digit == 0
+            trailing += zeros
+    significant = longest - trailing
+    chars[2] = ord(".")
+    keep[1], keep[2] = True, significant > 1
+    keep[3:longest + 2] = np.arange(1, longest)[:, None] < significant
+    exponent = decimals + 1 - digits  # x = d.ddd · 10^−exponent, exponent 5 … 15
+    chars[longest + 2], chars[longest + 3] = ord("e"), ord("-")
+    chars[longest + 4], chars[longest + 5] = exponent // 10 + 48, exponent % 10 + 48
+    keep[longest + 2:] = True
+    return chars, keep
