@@ -24,7 +24,7 @@ import numpy as np
 
 from ..kernel._arrays import FrozenArrays
 
-__all__ = ["Decimals", "array_json", "dumps", "plain"]
+__all__ = ["Decimals", "Integers", "array_json", "dumps", "integer_json", "plain"]
 
 _MARK = "\0curvefold:array\0"  # stands for a Decimals leaf in the text json.dumps writes
 
@@ -52,14 +52,29 @@ class Decimals(FrozenArrays):
         return self.values.tolist()
 
 
+@dataclass(frozen=True, eq=False)
+class Integers(FrozenArrays):
+    """An array of integers (vertex ids, groups) written at once.
+
+    Attributes
+    ----------
+    values : ndarray of int
+    """
+
+    values: np.ndarray
+
+    def tolist(self) -> list:
+        return self.values.tolist()
+
+
 def plain(doc):
-    """The document with every :class:`Decimals` as its list: JSON data (the leaves are values
-    of objects, or items of arrays of objects and leaves; other arrays are left as they are)."""
-    if isinstance(doc, Decimals):
+    """The document with every :class:`Decimals` and :class:`Integers` as its list: JSON data (the leaves are
+    values of objects, or items of arrays of objects and leaves; other arrays are left as they are)."""
+    if isinstance(doc, (Decimals, Integers)):
         return doc.tolist()
     if isinstance(doc, dict):
         return {key: plain(value) for key, value in doc.items()}
-    if isinstance(doc, list) and any(isinstance(value, (dict, Decimals)) for value in doc):
+    if isinstance(doc, list) and any(isinstance(value, (dict, Decimals, Integers)) for value in doc):
         return [plain(value) for value in doc]
     return doc
 
@@ -69,15 +84,15 @@ def dumps(doc) -> str:
 
     Examples
     --------
-    >>> dumps({"x": Decimals.round([[0.1, -2.5], [1e-5, 0.0]], 3), "n": [1, 2]})
-    '{"x":[[0.1,-2.5],[0.0,0.0]],"n":[1,2]}'
+    >>> dumps({"x": Decimals.round([[0.1, -2.5], [1e-5, 0.0]], 3), "n": [1, 2], "i": Integers(np.array([[3, 4]]))})
+    '{"x":[[0.1,-2.5],[0.0,0.0]],"n":[1,2],"i":[[3,4]]}'
     >>> dumps({"x": Decimals.round([3.14159, -0.0, 1.5e-5, 2.0], 6)})   # exponents as repr writes them
     '{"x":[3.14159,-0.0,1.5e-05,2.0]}'
     """
-    leaves: list[Decimals] = []
+    leaves: list[Decimals | Integers] = []
 
     def leaf(value):
-        if isinstance(value, Decimals):
+        if isinstance(value, (Decimals, Integers)):
             leaves.append(value)
             return _MARK
         raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
@@ -86,7 +101,25 @@ def dumps(doc) -> str:
     pieces = text.split(json.dumps(_MARK))
     if len(pieces) != len(leaves) + 1:  # the mark in a string of the document: no shortcut
         return json.dumps(plain(doc), allow_nan=False, separators=(",", ":"))
-    return "".join(piece for pair in zip(pieces, [array_json(a.values, a.decimals) for a in leaves] + [""]) for piece in pair)
+    texts = [array_json(a.values, a.decimals) if isinstance(a, Decimals) else integer_json(a.values) for a in leaves]
+    return "".join(piece for pair in zip(pieces, texts + [""]) for piece in pair)
+
+
+def integer_json(values: np.ndarray) -> str:
+    """``json.dumps(values.tolist(), separators=(",", ":"))`` of an array of integers, formatted at once.
+
+    Examples
+    --------
+    >>> integer_json(np.array([[0, 1], [-2, 30]])), integer_json(np.zeros((0, 2), int)), integer_json(np.arange(3))
+    ('[[0,1],[-2,30]]', '[]', '[0,1,2]')
+    """
+    x = np.asarray(values)
+    if x.size == 0 or x.ndim == 0 or x.dtype.kind not in "iu":  # (booleans are JSON's true and false)
+        return json.dumps(x.tolist(), separators=(",", ":"))
+    text = "%d"
+    for length in reversed(x.shape):  # the innermost axis first: "[%d,%d]", then "[[%d,%d],[%d,%d]]"…
+        text = "[" + ",".join([text] * length) + "]"
+    return text % tuple(x.ravel().tolist())
 
 
 def array_json(values: np.ndarray, decimals: int) -> str:
