@@ -489,3 +489,17 @@ def test_number_arrays_are_written_as_json_writes_their_lists(decimals):
     assert dumps(doc) == json.dumps(plain, separators=(",", ":"))
     marked = {"s": "\0curvefold:array\0", **doc}
     assert dumps(marked) == json.dumps({"s": "\0curvefold:array\0", **plain}, separators=(",", ":"))
+
+
+def test_integer_arrays_are_written_as_json_writes_their_lists():
+    """Integer arrays of every shape: the text json.dumps writes; booleans stay JSON's true and false."""
+    from curvefold.io._decimals import Integers, dumps, integer_json
+
+    rng = np.random.default_rng(0)
+    for shape in [(1,), (37,), (25, 3), (4, 5, 2), (0, 3), (3, 0)]:
+        for dtype in (np.int64, np.int32, np.uint8):
+            x = rng.integers(0 if dtype == np.uint8 else -10**6, 200, size=shape).astype(dtype)
+            assert integer_json(x) == json.dumps(x.tolist(), separators=(",", ":"))
+    flags = np.array([[True, False]])
+    assert integer_json(flags) == "[[true,false]]"  # not formatted as numbers
+    assert dumps({"e": Integers(np.array([[1, 2], [3, 4]])), "n": 1}) == '{"e":[[1,2],[3,4]],"n":1}'

@@ -320,3 +320,19 @@ def test_unique_pairs_is_numpys_unique_of_rows():
         found, inverse = unique_pairs(pairs)
         expected, expected_inverse = np.unique(pairs, axis=0, return_inverse=True)
         assert np.array_equal(found, expected) and np.array_equal(inverse, expected_inverse.reshape(-1))
+
+
+def test_kept_tubes_are_each_tube_made_alone_and_renumbered():
+    """Tubes keeping as many samples share one made topology; each keeps its own curves and samples."""
+    cells = np.array([[0, 1, 3, 2], [4, 5, 7, 6], [1, 8, 9, 3]])
+    keep = [np.arange(5), np.array([0, 2, 4]), np.arange(5)]  # the first and last alike in size
+    kept = Topology.tubes(cells, 5, keep=keep)
+    v = f = 0
+    for k, picks in enumerate(keep):
+        one = Topology.tubes(cells[k : k + 1], len(picks))
+        rows = slice(v, v + len(one.vertex_curve))
+        assert np.array_equal(kept.vertex_curve[rows], one.vertex_curve)
+        assert np.array_equal(kept.vertex_sample[rows], picks[one.vertex_sample])
+        assert np.array_equal(kept.faces_vertices[f : f + len(one.faces_vertices)], one.faces_vertices + v)
+        v, f = v + len(one.vertex_curve), f + len(one.faces_vertices)
+    assert v == len(kept.vertex_curve) and set(kept.vertex_curve[-20:].tolist()) == {1, 8, 9, 3}

@@ -233,9 +233,9 @@ def _hex_codes(colours: np.ndarray) -> list[str]:
     """``"#rrggbb"`` of each RGB(A) colour (C, 3 or 4) in [0, 1] (:func:`~curvefold.figures._scene._hex` of each row, at once)."""
     if len(colours) == 0:
         return []
-    channels = np.round(255.0 * np.clip(np.asarray(colours, float)[:, :3], 0.0, 1.0)).astype(int)  # halves to even, as round()
-    unique, which = np.unique(channels, axis=0, return_inverse=True)
-    codes = ["#%02x%02x%02x" % tuple(row) for row in unique.tolist()]
+    channels = np.round(255.0 * np.clip(np.asarray(colours, float)[:, :3], 0.0, 1.0)).astype(np.int64)  # halves to even, as round()
+    unique, which = np.unique(channels @ np.array([1 << 16, 1 << 8, 1]), return_inverse=True)  # 0xrrggbb
+    codes = ["#%06x" % code for code in unique.tolist()]
     return [codes[k] for k in which.ravel().tolist()]
 
 

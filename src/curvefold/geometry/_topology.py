@@ -454,12 +454,14 @@ def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str
     if len(keep) != len(cells):
         raise InputError(f"keep must list the samples of each of the {len(cells)} tubes, got {len(keep)} lists")
     parts = []
+    made: dict[int, Topology] = {}  # a tube of m samples; its curves only name its vertices' (vertex_curve, below)
     for k, picks in enumerate(keep):
         picks = np.asarray(picks, dtype=np.int64)
         if picks.ndim != 1 or len(picks) < 2 or picks[0] < 0 or picks[-1] >= samples or (np.diff(picks) <= 0).any():
             raise InputError(f"keep[{k}] must be at least two ascending sample indices in [0, {samples}), got {picks.tolist()}")
-        one = cls.tubes(cells[k : k + 1], len(picks), faces=faces)
-        parts.append((one, picks))
+        if len(picks) not in made:
+            made[len(picks)] = cls.tubes(cells[k : k + 1], len(picks), faces=faces)
+        parts.append((made[len(picks)], picks))
     V = np.cumsum([0] + [len(p.vertex_sample) for p, _ in parts])
     F = np.cumsum([0] + [len(p.faces_vertices) for p, _ in parts])
     E = np.cumsum([0] + [len(p.edges_vertices) for p, _ in parts])
@@ -477,7 +479,7 @@ def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str
                 edges_seam=np.where(sheet.edges_seam >= 0, sheet.edges_seam + seams * k, -1),
             ))
     return cls(
-        vertex_curve=np.concatenate([one.vertex_curve for one, _ in parts]),
+        vertex_curve=np.repeat(cells.reshape(-1), np.repeat([len(picks) for _, picks in parts], 4)),
         vertex_sample=np.concatenate([picks[one.vertex_sample] for one, picks in parts]),
         faces_vertices=np.concatenate([one.faces_vertices + V[k] for k, (one, _) in enumerate(parts)]),
         faces_group=np.concatenate([one.faces_group + 4 * k for k, (one, _) in enumerate(parts)]),

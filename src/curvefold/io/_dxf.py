@@ -107,13 +107,15 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
         entity = msp.add_text(words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer})
         entity.set_placement(tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER)
 
-    def line(points: np.ndarray, layer: str, closed: bool = False, arcs: bool = False) -> None:
+    def line(points: np.ndarray, layer: str, closed: bool = False, arcs: bool = False, linetype: str | None = None) -> None:
+        rows = np.zeros((len(points), 5))  # x, y, start width, end width, bulge: ezdxf's vertices
+        rows[:, :2] = points
         if arcs and not closed and len(points) > 2:
             keep, bulge = fit_arcs(points, ARC_TOLERANCE)
-            rows = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(points[keep].tolist(), bulge.tolist())]
-            msp.add_lwpolyline(rows, format="xyseb", dxfattribs={"layer": layer, "flags": LWPOLYLINE_PLINEGEN})
-            return
-        msp.add_lwpolyline(points.tolist(), close=closed, dxfattribs={"layer": layer, "flags": LWPOLYLINE_PLINEGEN})
+            rows = rows[keep]
+            rows[:, 4] = bulge
+        attributes = {"layer": layer, "flags": LWPOLYLINE_PLINEGEN} | ({"linetype": linetype} if linetype else {})
+        msp.add_lwpolyline((), close=closed, dxfattribs=attributes).lwpoints.set(rows)  # the vertices at once
 
     W, H = layout.page_size
     corners = page_grid(len(layout.pages), (W, H), page_spacing)
@@ -137,9 +139,7 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
             if looks[key][2].fill:
                 msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path((points + shift).tolist(), is_closed=True)
             else:
-                msp.add_lwpolyline((points + shift).tolist(), dxfattribs={
-                    "layer": legend, "flags": LWPOLYLINE_PLINEGEN,
-                    "linetype": looks[key][2].linetype if looks[key][2].dashes else "CONTINUOUS"})
+                line(points + shift, legend, linetype=looks[key][2].linetype if looks[key][2].dashes else "CONTINUOUS")
         for t in footer.texts:
             text(t.text, np.asarray(t.position) + shift, t.size, 0.0, legend)
     lo, hi = corners.min(axis=0), corners.max(axis=0) + (W, H)

@@ -53,7 +53,7 @@ from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
 from ._fold_reading import FoldFile
-from ._decimals import Decimals, dumps, plain
+from ._decimals import Decimals, Integers, dumps, plain
 from ._mesh3d import check_metadata
 from ._tables import CREATOR
 
@@ -206,10 +206,10 @@ def _angle_lists(angles: np.ndarray, zero: np.ndarray) -> Decimals:
     return Decimals.round(np.where(zero, 0.0, np.asarray(angles, float)), ANGLE_DECIMALS)
 
 
-def _face_lists(faces: np.ndarray) -> list:
+def _face_lists(faces: np.ndarray) -> Integers | list:
     """Faces (F, k), -1 padded, as FOLD's lists of vertex ids, each as long as its polygon."""
     if not (faces < 0).any():
-        return faces.tolist()
+        return Integers(faces)
     return [[v for v in row if v >= 0] for row in faces.tolist()]
 
 
@@ -383,14 +383,14 @@ def _fold_frames(
         "frame_classes": ["creasePattern"],
         "frame_unit": unit,
         "vertices_coords": _coordinate_lists(cp_xy),
-        "edges_vertices": cp.edges_vertices.tolist(),
+        "edges_vertices": Integers(cp.edges_vertices),
         "edges_assignment": assignment.tolist(),
         "edges_foldAngle": _angle_lists(cp.edges_foldAngle, zero),
         "faces_vertices": _face_lists(cp.faces_vertices),
         "edges_curvefold:kind": cp.edges_kind.tolist(),
-        "faces_curvefold:group": np.asarray(cp.faces_group).tolist(),
-        "curvefold:seam_partners": pairs.tolist(),
-        "curvefold:bonds": glued.tolist(),
+        "faces_curvefold:group": Integers(np.asarray(cp.faces_group)),
+        "curvefold:seam_partners": Integers(pairs),
+        "curvefold:bonds": Integers(glued),
         "curvefold:metadata": meta,
         **({"curvefold:design": dict(design)} if design is not None else {}),
         "file_frames": frames,
@@ -442,7 +442,7 @@ def write_sheet_fold(
         "frame_classes": ["creasePattern" if flat else "foldedForm"],
         "frame_unit": unit,
         "vertices_coords": _coordinate_lists(x),
-        "edges_vertices": sheet.edges_vertices.tolist(),
+        "edges_vertices": Integers(sheet.edges_vertices),
         "edges_assignment": assignment.tolist(),
         "edges_foldAngle": _angle_lists(sheet.edges_foldAngle, assignment == "B"),
         "faces_vertices": _face_lists(sheet.faces_vertices),

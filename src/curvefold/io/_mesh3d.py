@@ -209,7 +209,7 @@ def _fmt_rows(prefix: str, rows: np.ndarray, fmt: str) -> str:
     if len(rows) == 0:
         return ""
     line = prefix + " " + " ".join([fmt] * rows.shape[1]) + "\n"
-    return "".join(line % tuple(r) for r in rows.tolist())
+    return (line * len(rows)) % tuple(rows.ravel().tolist())  # every row at once
 
 
 def write_obj(

@@ -123,7 +123,8 @@ def _check_width(line_width: float) -> float:
 
 
 def _svg_points(points: np.ndarray, height: float) -> str:
-    return " ".join(f"{x:.3f},{height - y:.3f}" for x, y in points.tolist())
+    flipped = np.column_stack([points[:, 0], height - points[:, 1]])  # y down
+    return " ".join(["%.3f,%.3f"] * len(points)) % tuple(flipped.ravel().tolist())
 
 
 def _svg_label(t: Label, height: float) -> str:

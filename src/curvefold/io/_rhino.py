@@ -92,7 +92,10 @@ def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tupl
         left = t[:, None] - knots[span[:, None] + np.arange(1 - d, 1)]  # t − knot of each function's start
         right = knots[span[:, None] + np.arange(1, d + 1)] - t[:, None]  # its end − t
         ratio = _ratio(basis, right + left)
-        basis = np.pad(right * ratio, ((0, 0), (0, 1))) + np.pad(left * ratio, ((0, 0), (1, 0)))
+        higher = np.zeros((m, d + 1))  # each function's part from the lower one on its left and on its right
+        higher[:, :-1] += right * ratio
+        higher[:, 1:] += left * ratio
+        basis = higher
     return knots, _solve_banded(basis, span - k, np.asarray(points, float))
 
 
@@ -303,11 +306,15 @@ PATTERN_LAYER = "crease pattern"
 
 
 def _polyline(rhino3dm, points: np.ndarray):
-    """The polyline curve through points (n, 3)."""
+    """The polyline curve through points (n, 3), or (n, 2) on z = 0."""
     line = rhino3dm.Polyline(len(points))
     add = line.Add
-    for u, v, w in points.tolist():
-        add(u, v, w)
+    if points.shape[1] == 2:
+        for u, v in points.tolist():
+            add(u, v, 0.0)
+    else:
+        for u, v, w in points.tolist():
+            add(u, v, w)
     return line.ToPolylineCurve()
 
 
@@ -344,7 +351,7 @@ def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> N
 
     def polyline(points: np.ndarray, closed: bool) -> object:
         q = np.concatenate([points, points[:1]]) if closed else points
-        return _polyline(rhino3dm, np.column_stack([q * to_unit, np.zeros(len(q))]))
+        return _polyline(rhino3dm, q * to_unit)
 
     for number, (page, corner) in enumerate(zip(layout.pages, corners), start=1):
         frame = np.array([corner, corner + (W, 0), corner + (W, H), corner + (0, H)])
