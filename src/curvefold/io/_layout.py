@@ -60,7 +60,7 @@ from ._labels import MIN_LABEL_SIZE, Label, Obstacles, seam_label, seam_name, sh
 from ._packing import pack_pages
 from ._planar import cross2, min_area_rotation, polyline_segments, rotation
 from ._tables import mm_per_unit, page_mm
-from ._tabs import TAB_WIDTH_STEPS, tab_fits, tab_outline, tab_pieces
+from ._tabs import place_tabs, tab_pieces
 
 __all__ = [
     "FOOTER",
@@ -551,31 +551,26 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
     pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
     outline = _outline_segments(loc, pieces_of)
     tol = 1e-9 * max(float(np.ptp(loc.xy, axis=0).max()), 1.0)  # coordinate rounding, mm
-    accepted: list[np.ndarray] = []  # polygons of the tabs on this sheet
     # per loop: position of first edge -> (count of edges, replacement points without the last)
     replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     polylines: list[Polyline] = []
-    for ch in loc.chains:
-        if id(ch) not in pieces_of:
-            continue
+    tabbed_chains = [ch for ch in loc.chains if id(ch) in pieces_of]
+    placed = iter(place_tabs([piece for ch in tabbed_chains for piece in pieces_of[id(ch)]], outline, tab_width, taper, tol))
+    for ch in tabbed_chains:
         pieces = pieces_of[id(ch)]
         cut_parts, dropped, narrowed = [], 0, 0
         runs: list[list[np.ndarray]] = [[]]  # consecutive tabbed pieces: one fold line each
         for piece in pieces:
-            got = None
-            for k, frac in enumerate(TAB_WIDTH_STEPS):
-                tab = tab_outline(piece, frac * tab_width, taper)
-                if tab is not None and tab_fits(tab, outline, accepted, tol):
-                    got, narrowed = tab, narrowed + (k > 0)
-                    break
+            got = next(placed)
             if got is None:
                 dropped += 1
                 cut_parts.append(piece[:-1])
                 runs.append([])
                 continue
-            accepted.append(got[0])
-            polylines.append(Polyline("glue", got[0], closed=True, seam=ch.seam))
-            cut_parts.append(got[1][:-1])
+            (polygon, cut), step = got
+            narrowed += step > 0
+            polylines.append(Polyline("glue", polygon, closed=True, seam=ch.seam))
+            cut_parts.append(cut[:-1])
             runs[-1].append(piece)
         for run in runs:
             if run:

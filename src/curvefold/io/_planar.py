@@ -35,8 +35,9 @@ __all__ = [
     "point_segment_distance",
     "distance_to_segments",
     "segments_touch",
-    "segments_near_box",
+    "segment_pairs_touch",
     "inside_loops",
+    "ray_crossings",
     "ragged",
     "cell_key",
     "cell_index",
@@ -69,14 +70,19 @@ def box_corners(center: np.ndarray, angle: float, width: float, height: float) -
 
 
 def polyline_segments(polylines: Sequence[tuple[np.ndarray, bool]]) -> np.ndarray:
-    """All segments of (points, closed) polylines, shape (S, 2, 2)."""
-    out = []
-    for pts, closed in polylines:
-        if len(pts) < 2:
-            continue
-        q = np.concatenate([pts, pts[:1]]) if closed else pts
-        out.append(np.stack([q[:-1], q[1:]], axis=1))
-    return np.concatenate(out) if out else np.zeros((0, 2, 2))
+    """All segments of (points, closed) polylines, shape (S, 2, 2), polyline by polyline."""
+    kept = [(pts, closed) for pts, closed in polylines if len(pts) >= 2]
+    if not kept:
+        return np.zeros((0, 2, 2))
+    points = np.concatenate([pts for pts, _ in kept])
+    length = np.array([len(pts) for pts, _ in kept])
+    closed = np.array([c for _, c in kept], bool)
+    line, place = ragged(length - 1 + closed)
+    start = (np.cumsum(length) - length)[line]
+    out = np.empty((len(line), 2, 2))
+    out[:, 0] = points[start + place]
+    out[:, 1] = points[start + (place + 1) % length[line]]
+    return out
 
 
 def cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -119,23 +125,28 @@ def segments_touch(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
     spike), and two segments sharing both ends coincide. So a set of segments in which no
     two touch is a planar drawing: simple outlines, tabs that neither overlap nor graze.
     """
-    A, B = a[:, None], b[None]  # (S, 1, 2, 2), (1, T, 2, 2)
-    shared = np.linalg.norm(A[:, :, :, None] - B[:, :, None, :], axis=-1) < tol  # (S, T, 2, 2): end i of a at end j of b
-    a_shared, b_shared = shared.any(axis=3), shared.any(axis=2)  # (S, T, 2)
-    da = point_segment_distance(A, B[:, :, None, 0], B[:, :, None, 1])  # ends of a to b, (S, T, 2)
-    db = point_segment_distance(B, A[:, :, None, 0], A[:, :, None, 1])  # ends of b to a
+    return segment_pairs_touch(a[:, None], b[None], tol)
+
+
+def segment_pairs_touch(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
+    """:func:`segments_touch` of segments a and b (..., 2, 2) paired element by element, broadcast together; shape (...).
+
+    Examples
+    --------
+    >>> a = np.array([[[0.0, 0.0], [2.0, 0.0]], [[0.0, 0.0], [2.0, 0.0]]])
+    >>> b = np.array([[[2.0, 0.0], [2.0, 1.0]], [[1.0, -1.0], [1.0, 1.0]]])
+    >>> segment_pairs_touch(a, b, 1e-9).tolist()  # an end shared, a crossing
+    [False, True]
+    """
+    shared = np.linalg.norm(a[..., :, None, :] - b[..., None, :, :], axis=-1) < tol  # (..., 2, 2): end i of a at end j of b
+    a_shared, b_shared = shared.any(axis=-1), shared.any(axis=-2)  # (..., 2)
+    da = point_segment_distance(a, b[..., None, 0, :], b[..., None, 1, :])  # ends of a to b, (..., 2)
+    db = point_segment_distance(b, a[..., None, 0, :], a[..., None, 1, :])  # ends of b to a
     near = ((da < tol) & ~a_shared).any(axis=-1) | ((db < tol) & ~b_shared).any(axis=-1)
-    p, r = A[..., 0, :], A[..., 1, :] - A[..., 0, :]
-    q, s = B[..., 0, :], B[..., 1, :] - B[..., 0, :]
+    p, r = a[..., 0, :], a[..., 1, :] - a[..., 0, :]
+    q, s = b[..., 0, :], b[..., 1, :] - b[..., 0, :]
     cross = ((cross2(s, p - q) * cross2(s, p + r - q) < 0) & (cross2(r, q - p) * cross2(r, q + s - p) < 0))
     return near | (cross & ~a_shared.any(axis=-1)) | a_shared.all(axis=-1)
-
-
-def segments_near_box(segments: np.ndarray, box_of: np.ndarray, tol: float) -> np.ndarray:
-    """The segments (T, 2, 2) whose bounding boxes meet the bounding box of points ``box_of`` (..., 2)."""
-    pts = box_of.reshape(-1, 2)
-    lo, hi = pts.min(axis=0) - tol, pts.max(axis=0) + tol
-    return segments[((segments.max(axis=1) >= lo) & (segments.min(axis=1) <= hi)).all(axis=1)]
 
 
 def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | None = None) -> np.ndarray:
@@ -146,17 +157,26 @@ def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | 
     """
     if len(points) == 0 or len(segments) == 0:
         return np.zeros(len(points), bool)
-    a, b = segments[None, :, 0], segments[None, :, 1]
-    x, y = points[:, None, 0], points[:, None, 1]
-    straddle = (a[..., 1] > y) != (b[..., 1] > y)
-    # left of the crossing point, without dividing by the segment's height
-    side = (x - a[..., 0]) * (b[..., 1] - a[..., 1]) - (y - a[..., 1]) * (b[..., 0] - a[..., 0])
-    left = np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
-    crossing = straddle & left
+    crossing = ray_crossings(points[:, None], segments[None, :, 0], segments[None, :, 1])
     if groups is None:
         return (np.count_nonzero(crossing, axis=1) % 2) == 1
     counts = np.stack([np.count_nonzero(crossing[:, groups == g], axis=1) for g in np.unique(groups)], axis=1)
     return ((counts % 2) == 1).any(axis=1)
+
+
+def ray_crossings(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Whether segments a–b cross the ray from points p toward +x, all (..., 2) broadcast together;
+    shape (...). A point has an odd number of crossings inside a closed loop (:func:`inside_loops`).
+
+    Examples
+    --------
+    >>> ray_crossings(np.array([[0.0, 0.0], [2.0, 0.0]]), np.array([1.0, -1.0]), np.array([1.0, 1.0])).tolist()
+    [True, False]
+    """
+    straddle = (a[..., 1] > p[..., 1]) != (b[..., 1] > p[..., 1])
+    # left of the crossing point, without dividing by the segment's height
+    side = (p[..., 0] - a[..., 0]) * (b[..., 1] - a[..., 1]) - (p[..., 1] - a[..., 1]) * (b[..., 0] - a[..., 0])
+    return straddle & np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
 
 
 def ragged(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
