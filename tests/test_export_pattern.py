@@ -209,6 +209,10 @@ def test_nearest_points_are_the_kd_trees():
             assert np.array_equal(d, d0) and np.array_equal(i == len(pts), i0 == len(pts))
             found = i0 < len(pts)
             assert np.array_equal(pts[i[found]], pts[i0[found]])
+            origin = pts.min(axis=0) - 1.0
+            for side in (0.05, 0.7, 9.0):  # the first cells made beforehand, of any side
+                given = planar.nearest_points(pts, queries, limit, index=(origin, side, *planar.cell_index(pts, origin, side)))
+                assert np.array_equal(given[0], d) and np.array_equal(given[1], i)
     d, _ = planar.nearest_points(pts, queries + 1e-12)
     assert not np.array_equal(d, cKDTree(pts).query(queries)[0])  # the check sees a femtometre
 

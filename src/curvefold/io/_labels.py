@@ -125,7 +125,7 @@ class Obstacles:
         """Distance to the nearest obstacle (a sampled line's less half the spacing) and its direction."""
         shape = points.shape[:-1]
         flat = points.reshape(-1, 2)
-        found_dist, idx = nearest_points(self.points, flat)
+        found_dist, idx = nearest_points(self.points, flat, index=self._cells)
         found = idx < len(self.points)
         dist = np.where(found, found_dist - self.spacing / 2, np.inf)
         direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], np.array([1.0, 0.0]))

@@ -54,7 +54,7 @@ import numpy as np
 
 from ..geometry._mesh import edges_faces
 from ..geometry._sheets import PatternSheet
-from ..kernel._arrays import frozen
+from ..kernel._arrays import frozen, readonly
 from ..kernel._errors import InputError
 from ._labels import MIN_LABEL_SIZE, Label, Obstacles, seam_label, seam_name, sheet_label
 from ._packing import pack_pages
@@ -131,7 +131,7 @@ class Polyline:
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray) -> Polyline:
         """The polyline mapped by ``x -> matrix @ x + offset``."""
-        return Polyline(self.layer, self.points @ matrix.T + offset, self.closed, self.seam)
+        return Polyline(self.layer, readonly(self.points @ matrix.T + offset), self.closed, self.seam)  # (a new array: held, not copied)
 
 
 @dataclass(frozen=True, eq=False)

@@ -205,14 +205,16 @@ def cell_index(points: np.ndarray, origin: np.ndarray, side: float) -> tuple[np.
     return order, cell_key(cell)[order], cell.max(axis=0, initial=0) + 1
 
 
-def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf) -> tuple[np.ndarray, np.ndarray]:
+def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf,
+                   index: tuple[np.ndarray, float, np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` (P, 2, finite) to each of ``queries`` (Q, 2) nearer than ``limit``: its
     distance (Q,) and index (Q,), inf and P where there is none; ties go to the lowest index.
 
     :meth:`scipy.spatial.cKDTree.query`'s answer (k = 1, ``distance_upper_bound=limit``), distances
     to the last bit: the points are bucketed in square cells of side r and each query looks in
     the 3 × 3 cells around its own, which hold every point nearer than r; the queries that
-    find none look again with r doubled (up to ``limit``).
+    find none look again with r doubled (up to ``limit``). The first cells may be given, made
+    once for many queries: ``index`` is ``(origin, r, *cell_index(points, origin, r))``.
 
     Examples
     --------
@@ -220,20 +222,23 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
     >>> d.tolist(), i.tolist()
     ([1.0, 2.5, inf], [0, 0, 2])
     """
-    dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
+    dist, nearest = np.full(len(queries), math.inf), np.full(len(queries), len(points))
     if len(points) == 0 or len(queries) == 0:
-        return dist, index
-    lo = points.min(axis=0)
-    extent = float(np.ptp(points, axis=0).max())
-    r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
+        return dist, nearest
+    if index is None:
+        lo, cells = points.min(axis=0), None
+        extent = float(np.ptp(points, axis=0).max())
+        r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
+    else:
+        lo, r, *cells = index
     todo = np.flatnonzero(np.isfinite(queries).all(axis=1))  # (a query not finite has no nearest)
     while todo.size:
-        d, i = _nearest_in_cells(points, queries[todo], lo, r)
+        d, i = _nearest_in_cells(points, queries[todo], lo, r, cells=None if cells is None else tuple(cells))
         done = d < r if r < limit else np.ones(todo.size, bool)
         found = done & (d < limit)
-        dist[todo[found]], index[todo[found]] = d[found], i[found]
-        todo, r = todo[~done], min(2.0 * r, limit)
-    return dist, index
+        dist[todo[found]], nearest[todo[found]] = d[found], i[found]
+        todo, r, cells = todo[~done], min(2.0 * r, limit), None
+    return dist, nearest
 
 
 def near_any(points: np.ndarray, queries: np.ndarray, reach: float, index: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
@@ -255,11 +260,13 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
                       cells: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
     and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time
-    (``cells``: the points' :func:`cell_index` for these cells, if made already)."""
+    (``cells``: the points' :func:`cell_index` for these cells, if made already). The three cells
+    of a column are one run of the points sorted by cell."""
     order, keys, cells = cell_index(points, lo, r) if cells is None else cells
     own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
-    around = cell_key(own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2))
-    first, last = np.searchsorted(keys, around, "left"), np.searchsorted(keys, around, "right")  # (Q, 9)
+    column = own[:, None, 0] + np.array([-1, 0, 1])  # (Q, 3)
+    first = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] - 1, column.shape)], axis=-1)), "left")
+    last = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] + 1, column.shape)], axis=-1)), "right")
     dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
     per_query = np.cumsum((last - first).sum(axis=1))
     bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
@@ -268,7 +275,7 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
         if group.size == 0:
             continue
         near = order[first[a:b].ravel()[group] + place]
-        query = a + group // 9
+        query = a + group // 3
         dx, dy = queries[query, 0] - points[near, 0], queries[query, 1] - points[near, 1]
         d = np.sqrt(dx * dx + dy * dy)
         starts = np.flatnonzero(np.diff(query, prepend=-1))
