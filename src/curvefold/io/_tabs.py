@@ -125,6 +125,10 @@ def tabs_fit(tabs: list[tuple[np.ndarray, np.ndarray]], outline: np.ndarray, acc
     if n == 0:
         return np.zeros(0, bool)
     rank = np.arange(n)
+    lo, hi = _boxes([t[0] for t in tabs], tol)
+    if accepted:  # those in reach of these tabs (no other can touch them, nor hold or lie inside them)
+        low, high = _boxes(accepted, 0.0)
+        accepted = [accepted[k] for k in np.flatnonzero(_meet(low, high, lo.min(axis=0), hi.max(axis=0)))]
     polygons = [*accepted, *(t[0] for t in tabs)]
     others = np.concatenate([outline, polyline_segments([(p, True) for p in polygons])])  # the sheet's loops (even-odd), then each tab
     sizes = np.array([len(outline), *(len(p) for p in polygons)])
@@ -137,30 +141,37 @@ def tabs_fit(tabs: list[tuple[np.ndarray, np.ndarray]], outline: np.ndarray, acc
     corner_tab, _ = ragged(cut_count - 1)
     corner_start = cut_start - rank
     bad = np.zeros(n, bool)
+    low, high = others.min(axis=1), others.max(axis=1)  # their boxes: segments whose boxes lie tol apart cannot touch
+    cut_low, cut_high = cut.min(axis=1), cut.max(axis=1)
 
     # its cut line is simple: no two of its segments touch
     tab, place = ragged(cut_count * cut_count)
     first, second = cut_start[tab] + place // cut_count[tab], cut_start[tab] + place % cut_count[tab]
-    pair = first != second
+    pair = (first != second) & _meet(cut_low[first] - tol, cut_high[first] + tol, cut_low[second], cut_high[second])
     bad[tab[pair][segment_pairs_touch(cut[first[pair]], cut[second[pair]], tol)]] = True
 
     # it keeps clear of the others near its cut
-    lo, hi = _boxes([t[1] for t in tabs], tol)
-    tab, other = np.nonzero(_in_box(others.min(axis=1), others.max(axis=1), lo, hi) & (seen_by[None] < rank[:, None]))  # (n, T)
+    cut_lo, cut_hi = _boxes([t[1] for t in tabs], tol)
+    tab, other = np.nonzero(_meet(low[None], high[None], cut_lo[:, None], cut_hi[:, None]) & (seen_by[None] < rank[:, None]))  # (n, T)
     pairs, place = ragged(cut_count[tab])
-    bad[tab[pairs][segment_pairs_touch(cut[cut_start[tab[pairs]] + place], others[other[pairs]], tol)]] = True
+    mine, theirs = cut_start[tab[pairs]] + place, other[pairs]
+    pair = _meet(cut_low[mine] - tol, cut_high[mine] + tol, low[theirs], high[theirs])
+    bad[tab[pairs][pair][segment_pairs_touch(cut[mine[pair]], others[theirs[pair]], tol)]] = True
     pairs, place = ragged(cut_count[tab] - 1)
-    near = point_segment_distance(corners[corner_start[tab[pairs]] + place], others[other[pairs], 0], others[other[pairs], 1]) < tol
-    bad[tab[pairs][near]] = True
+    mine, theirs = corners[corner_start[tab[pairs]] + place], other[pairs]
+    pair = _meet(mine - tol, mine + tol, low[theirs], high[theirs])
+    bad[tab[pairs][pair][point_segment_distance(mine[pair], others[theirs[pair], 0], others[theirs[pair], 1]) < tol]] = True
 
     # none of its corners lies inside the sheet's outline (even-odd) or another tab
-    crossing = ray_crossings(corners[:, None], others[None, :, 0], others[None, :, 1]) & (seen_by[None] < corner_tab[:, None])
-    counts = np.add.reduceat(crossing, start[sizes > 0], axis=1, dtype=np.intp)
-    bad[corner_tab[(counts % 2 == 1).any(axis=1)]] = True
+    corner, other = np.nonzero((seen_by[None] < corner_tab[:, None])
+                               & ((others[None, :, 0, 1] > corners[:, None, 1]) != (others[None, :, 1, 1] > corners[:, None, 1])))  # (on a level)
+    crossing = ray_crossings(corners[corner], others[other, 0], others[other, 1])
+    loop = np.repeat(np.arange(len(sizes)), sizes)
+    counts = np.bincount(corner[crossing] * len(sizes) + loop[other[crossing]], minlength=len(corners) * len(sizes))
+    bad[corner_tab[(counts.reshape(len(corners), -1) % 2 == 1).any(axis=1)]] = True
 
     # it holds no corner of the others in reach (but those on its outline)
-    lo, hi = _boxes([t[0] for t in tabs], tol)
-    tab, point = np.nonzero(_in_box(others[:, 0], others[:, 0], lo, hi) & (seen_by[None] < rank[:, None]))
+    tab, point = np.nonzero(_meet(others[None, :, 0], others[None, :, 0], lo[:, None], hi[:, None]) & (seen_by[None] < rank[:, None]))
     own = sizes[1 + len(accepted):]  # the segments of each tab's outline
     pairs, place = ragged(own[tab])
     if pairs.size:
@@ -183,6 +194,6 @@ def _boxes(polylines: list[np.ndarray], tol: float) -> tuple[np.ndarray, np.ndar
     return np.minimum.reduceat(points, starts) - tol, np.maximum.reduceat(points, starts) + tol
 
 
-def _in_box(low: np.ndarray, high: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Which of the boxes from ``low`` to ``high`` (T, 2) meet each box from ``lo`` to ``hi`` (n, 2), (n, T) bool."""
-    return ((high[None] >= lo[:, None]) & (low[None] <= hi[:, None])).all(axis=2)
+def _meet(low: np.ndarray, high: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Whether the boxes from ``low`` to ``high`` meet those from ``lo`` to ``hi``, all (..., 2) broadcast together; shape (...)."""
+    return ((high >= lo) & (low <= hi)).all(axis=-1)
