@@ -359,7 +359,7 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
                         ("valley", (kind == "fold") & (assign == "V")),
                         ("rulings", kind == "ruling")):
         for path, closed in _chain_edges(mesh.edges_vertices[mask]):
-            creases.append(Polyline(layer, xy[path], closed))
+            creases.append(Polyline(layer, readonly(xy[path]), closed))
     return _Local(xy, mirror, loops, chains, creases)
 
 
