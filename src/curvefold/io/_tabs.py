@@ -6,7 +6,8 @@ long and turning at most :data:`TAB_MAX_TURN` each, split in the middle of a sea
 each a tapered tab (:func:`tab_outline`), so tabs bend along curved seams. Every piece is
 checked as drawn (:func:`tab_fits`): one whose outline would cross or touch itself, its
 sheet or another tab is narrowed (:data:`TAB_WIDTH_STEPS`) and, failing that, left out.
-Lengths are page millimetres.
+:func:`place_tabs` places a sheet's pieces in turn, testing the next ones together
+(:func:`tabs_fit`). Lengths are page millimetres.
 """
 
 from __future__ import annotations
