@@ -236,11 +236,12 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
     """Chain undirected edges (k, 2) into polylines of vertex indices: (indices, closed)."""
     if len(edges) == 0:
         return []
+    pairs = edges.tolist()
     adj: dict[int, list[tuple[int, int]]] = {}
-    for k, (a, b) in enumerate(edges.tolist()):
+    for k, (a, b) in enumerate(pairs):
         adj.setdefault(a, []).append((k, b))
         adj.setdefault(b, []).append((k, a))
-    used = np.zeros(len(edges), bool)
+    used = [False] * len(pairs)  # (a list: read and set one at a time)
 
     def walk(start: int) -> tuple[list[int], bool]:
         path, cur = [start], start
@@ -262,9 +263,9 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
             while any(not used[k] for k, _ in adj[v]):
                 path, closed = walk(v)
                 chains.append((np.array(path), closed))
-    for k in range(len(edges)):
+    for k in range(len(pairs)):
         if not used[k]:
-            path, closed = walk(int(edges[k, 0]))
+            path, closed = walk(pairs[k][0])
             chains.append((np.array(path), closed))
     return chains
 

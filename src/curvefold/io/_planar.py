@@ -316,10 +316,13 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
         if candidates.size == 0:
             return chain
         order = np.lexsort((candidates, side, edge))  # per edge, the farthest out first (then the lowest index)
-        split, first = np.unique(edge[order], return_index=True)
-        farthest = candidates[order[first]]
+        by_edge = edge[order]
+        first = np.flatnonzero(np.concatenate([[True], by_edge[1:] != by_edge[:-1]]))
+        split, farthest = by_edge[first], candidates[order[first]]
         moved = np.arange(len(chain)) + np.searchsorted(split, np.arange(len(chain)))  # each vertex's place once they are in
-        chain = np.insert(chain, split + 1, farthest)
+        grown = np.empty(len(chain) + len(split), chain.dtype)
+        grown[moved], grown[moved[split] + 1] = chain, farthest  # each farthest point after the start of its edge
+        chain = grown
         apex = farthest[np.searchsorted(split, edge)]
         start = points[chain[moved[edge]]]
         before = cross2(points[apex] - start, points[candidates] - start) < 0  # outside the edge to the apex, else test the one on
