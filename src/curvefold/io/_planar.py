@@ -268,19 +268,23 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
     first = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] - 1, column.shape)], axis=-1)), "left")
     last = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] + 1, column.shape)], axis=-1)), "right")
     dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
-    per_query = np.cumsum((last - first).sum(axis=1))
+    found = last - first  # (Q, 3): the points in each column's run
+    per_query = np.cumsum(found.sum(axis=1))
     bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
+    x, y, qx, qy = (np.ascontiguousarray(c) for c in (points[:, 0], points[:, 1], queries[:, 0], queries[:, 1]))
     for a, b in zip([0, *bounds.tolist()], [*bounds.tolist(), len(queries)]):
-        group, place = ragged((last[a:b] - first[a:b]).ravel())
+        group, place = ragged(found[a:b].ravel())
         if group.size == 0:
             continue
         near = order[first[a:b].ravel()[group] + place]
         query = a + group // 3
-        dx, dy = queries[query, 0] - points[near, 0], queries[query, 1] - points[near, 1]
+        dx, dy = np.take(qx, query) - np.take(x, near), np.take(qy, query) - np.take(y, near)
         d = np.sqrt(dx * dx + dy * dy)
-        starts = np.flatnonzero(np.diff(query, prepend=-1))
-        dist[query[starts]] = np.minimum.reduceat(d, starts)
-        index[query[starts]] = np.minimum.reduceat(np.where(d == dist[query], near, len(points)), starts)
+        count = found[a:b].sum(axis=1)
+        some = np.flatnonzero(count)
+        starts = (np.cumsum(count) - count)[some]
+        dist[a + some] = np.minimum.reduceat(d, starts)
+        index[a + some] = np.minimum.reduceat(np.where(d == np.repeat(dist[a + some], count[some]), near, len(points)), starts)
     return dist, index
 
 
