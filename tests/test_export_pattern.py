@@ -36,7 +36,7 @@ from curvefold.io import _planar as planar
 from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, layer_name
 from curvefold.io._pattern import DEFAULT_LAYERS, LAYERS, LEGEND, layout_sheets, seam_name, write_dxf, write_pdf, write_svg
 from curvefold.io._planar import polyline_segments
-from curvefold.io._tabs import tab_fits, tab_outline, tab_pieces
+from curvefold.io._tabs import TAB_WIDTH_STEPS, place_tabs, tab_fits, tab_outline, tab_pieces, tabs_fit
 from curvefold.kernel import InputError
 
 NS = {
@@ -209,6 +209,10 @@ def test_nearest_points_are_the_kd_trees():
             assert np.array_equal(d, d0) and np.array_equal(i == len(pts), i0 == len(pts))
             found = i0 < len(pts)
             assert np.array_equal(pts[i[found]], pts[i0[found]])
+            origin = pts.min(axis=0) - 1.0
+            for side in (0.05, 0.7, 9.0):  # the first cells made beforehand, of any side
+                given = planar.nearest_points(pts, queries, limit, index=(origin, side, *planar.cell_index(pts, origin, side)))
+                assert np.array_equal(given[0], d) and np.array_equal(given[1], i)
     d, _ = planar.nearest_points(pts, queries + 1e-12)
     assert not np.array_equal(d, cKDTree(pts).query(queries)[0])  # the check sees a femtometre
 
@@ -552,6 +556,8 @@ def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
     assert tab_fits(first, outline, [], tol) and tab_fits(second, outline, [], tol)
     assert_allclose(first[1][-2:][::-1], second[1][:2], atol=1e-12)  # the same segment, both ways
     assert not tab_fits(second, outline, [first[0]], tol)
+    assert tabs_fit([first, second], outline, [], tol).tolist() == [True, False]  # each as if those before it were placed
+    assert tabs_fit([second, first], outline, [], tol).tolist() == [True, False]
     # split in the middle of a segment instead, the two tabs leave 60° between their tapers
     pieces = tab_pieces(seam, 1e3, 15.0)  # two pieces (at least 15 long, of 32)
     assert len(pieces) == 2
@@ -586,6 +592,33 @@ def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
     touching = polyline_segments([(np.stack([m, m + 0.3 * u + 0.1 * w, m + 0.3 * u - 0.1 * w]), True)])
     assert tab_fits(first, np.concatenate([outline, touching + 1e-6 * u]), [], tol)
     assert not tab_fits(first, np.concatenate([outline, touching]), [], tol)
+
+
+def test_tabs_placed_a_batch_at_a_time_are_those_placed_one_by_one():
+    # A wavy seam on a strip, in pieces whose tabs meet their neighbours' and the strip's far side:
+    # widest, narrowed and left out, more pieces than a batch
+    x = np.linspace(0.0, 60.0, 121)
+    seam = np.stack([x, 2.5 * np.sin(x / 3.0)], axis=1)  # the strip above it (on its left), tabs below
+    taper, tol = np.radians(60.0), 1e-9
+    for width, length in ((3.0, 8.0), (6.0, 7.0), (9.0, 6.0), (14.0, 1.8), (30.0, 1.8)):
+        pieces = tab_pieces(seam, length, 1.0)
+        split = np.concatenate([p[:-1] for p in pieces] + [seam[-1:], [[60.0, 9.0], [0.0, 9.0]]])  # the seam split where they meet
+        outline = polyline_segments([(split, True)])
+        accepted, expected = [], []
+        for piece in pieces:  # one by one
+            got = None
+            for step, fraction in enumerate(TAB_WIDTH_STEPS):
+                tab = tab_outline(piece, fraction * width, taper)
+                if tab is not None and tab_fits(tab, outline, accepted, tol):
+                    got = (tab, step)
+                    accepted.append(tab[0])
+                    break
+            expected.append(got)
+        placed = place_tabs(pieces, outline, width, taper, tol)
+        assert [None if g is None else g[1] for g in placed] == [None if g is None else g[1] for g in expected]
+        for g, e in zip(placed, expected):
+            if g is not None:
+                assert np.array_equal(g[0][0], e[0][0]) and np.array_equal(g[0][1], e[0][1])
 
 
 def test_docstring_examples():

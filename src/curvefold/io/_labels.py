@@ -105,6 +105,7 @@ class Obstacles:
         self.extra = np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
         if _from is not None:  # share the sampled lines of another
             self.points, self.directions, self._cells, self._grids = _from.points, _from.directions, _from._cells, _from._grids
+            self._x, self._y = _from._x, _from._y
             return
         self._grids: dict[float, tuple] = {}  # the points bucketed in finer cells, by their side (:meth:`blocked`)
         d = segments[:, 1] - segments[:, 0]
@@ -114,6 +115,7 @@ class Obstacles:
         t = place / count[seg]
         self.points = segments[seg, 0] + t[:, None] * d[seg]
         self.directions = d[seg] / np.maximum(length[seg], 1e-300)[:, None]
+        self._x, self._y = np.ascontiguousarray(self.points[:, 0]), np.ascontiguousarray(self.points[:, 1])  # (gathered faster)
         origin, side = (self.points.min(axis=0) if len(self.points) else np.zeros(2)), 20.0 * spacing
         self._cells = (origin, side, *cell_index(self.points, origin, side))  # the points bucketed in cells
 
@@ -125,7 +127,7 @@ class Obstacles:
         """Distance to the nearest obstacle (a sampled line's less half the spacing) and its direction."""
         shape = points.shape[:-1]
         flat = points.reshape(-1, 2)
-        found_dist, idx = nearest_points(self.points, flat)
+        found_dist, idx = nearest_points(self.points, flat, index=self._cells)
         found = idx < len(self.points)
         dist = np.where(found, found_dist - self.spacing / 2, np.inf)
         direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], np.array([1.0, 0.0]))
@@ -161,8 +163,8 @@ class Obstacles:
         column[:, 1] = hi[box, 1]
         group, place = ragged(np.maximum(np.searchsorted(keys, cell_key(column), "right") - first, 0))
         box, near = box[group], order[first[group] + place]
-        x, y = self.points[near, 0], self.points[near, 1]
-        rx, ry = x - np.take(center[:, 0], box), y - np.take(center[:, 1], box)
+        x, y = np.take(self._x, near), np.take(self._y, near)
+        rx, ry = x - np.take(np.ascontiguousarray(center[:, 0]), box), y - np.take(np.ascontiguousarray(center[:, 1]), box)
         c, s = np.take(np.cos(angle), box), np.take(np.sin(angle), box)
         frame = rx * c + ry * s, ry * c - rx * s  # in the box's frame
         slack = limit * (1 + 1e-9)

@@ -54,13 +54,13 @@ import numpy as np
 
 from ..geometry._mesh import edges_faces
 from ..geometry._sheets import PatternSheet
-from ..kernel._arrays import frozen
+from ..kernel._arrays import frozen, readonly
 from ..kernel._errors import InputError
 from ._labels import MIN_LABEL_SIZE, Label, Obstacles, seam_label, seam_name, sheet_label
 from ._packing import pack_pages
 from ._planar import cross2, min_area_rotation, polyline_segments, rotation
 from ._tables import mm_per_unit, page_mm
-from ._tabs import TAB_WIDTH_STEPS, tab_fits, tab_outline, tab_pieces
+from ._tabs import place_tabs, tab_pieces
 
 __all__ = [
     "FOOTER",
@@ -131,7 +131,7 @@ class Polyline:
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray) -> Polyline:
         """The polyline mapped by ``x -> matrix @ x + offset``."""
-        return Polyline(self.layer, self.points @ matrix.T + offset, self.closed, self.seam)
+        return Polyline(self.layer, readonly(self.points @ matrix.T + offset), self.closed, self.seam)  # (a new array: held, not copied)
 
 
 @dataclass(frozen=True, eq=False)
@@ -236,11 +236,12 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
     """Chain undirected edges (k, 2) into polylines of vertex indices: (indices, closed)."""
     if len(edges) == 0:
         return []
+    pairs = edges.tolist()
     adj: dict[int, list[tuple[int, int]]] = {}
-    for k, (a, b) in enumerate(edges.tolist()):
+    for k, (a, b) in enumerate(pairs):
         adj.setdefault(a, []).append((k, b))
         adj.setdefault(b, []).append((k, a))
-    used = np.zeros(len(edges), bool)
+    used = [False] * len(pairs)  # (a list: read and set one at a time)
 
     def walk(start: int) -> tuple[list[int], bool]:
         path, cur = [start], start
@@ -262,9 +263,9 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
             while any(not used[k] for k, _ in adj[v]):
                 path, closed = walk(v)
                 chains.append((np.array(path), closed))
-    for k in range(len(edges)):
+    for k in range(len(pairs)):
         if not used[k]:
-            path, closed = walk(int(edges[k, 0]))
+            path, closed = walk(pairs[k][0])
             chains.append((np.array(path), closed))
     return chains
 
@@ -359,7 +360,7 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
                         ("valley", (kind == "fold") & (assign == "V")),
                         ("rulings", kind == "ruling")):
         for path, closed in _chain_edges(mesh.edges_vertices[mask]):
-            creases.append(Polyline(layer, xy[path], closed))
+            creases.append(Polyline(layer, readonly(xy[path]), closed))
     return _Local(xy, mirror, loops, chains, creases)
 
 
@@ -551,31 +552,26 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
     pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
     outline = _outline_segments(loc, pieces_of)
     tol = 1e-9 * max(float(np.ptp(loc.xy, axis=0).max()), 1.0)  # coordinate rounding, mm
-    accepted: list[np.ndarray] = []  # polygons of the tabs on this sheet
     # per loop: position of first edge -> (count of edges, replacement points without the last)
     replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     polylines: list[Polyline] = []
-    for ch in loc.chains:
-        if id(ch) not in pieces_of:
-            continue
+    tabbed_chains = [ch for ch in loc.chains if id(ch) in pieces_of]
+    placed = iter(place_tabs([piece for ch in tabbed_chains for piece in pieces_of[id(ch)]], outline, tab_width, taper, tol))
+    for ch in tabbed_chains:
         pieces = pieces_of[id(ch)]
         cut_parts, dropped, narrowed = [], 0, 0
         runs: list[list[np.ndarray]] = [[]]  # consecutive tabbed pieces: one fold line each
         for piece in pieces:
-            got = None
-            for k, frac in enumerate(TAB_WIDTH_STEPS):
-                tab = tab_outline(piece, frac * tab_width, taper)
-                if tab is not None and tab_fits(tab, outline, accepted, tol):
-                    got, narrowed = tab, narrowed + (k > 0)
-                    break
+            got = next(placed)
             if got is None:
                 dropped += 1
                 cut_parts.append(piece[:-1])
                 runs.append([])
                 continue
-            accepted.append(got[0])
-            polylines.append(Polyline("glue", got[0], closed=True, seam=ch.seam))
-            cut_parts.append(got[1][:-1])
+            (polygon, cut), step = got
+            narrowed += step > 0
+            polylines.append(Polyline("glue", polygon, closed=True, seam=ch.seam))
+            cut_parts.append(cut[:-1])
             runs[-1].append(piece)
         for run in runs:
             if run:

@@ -35,8 +35,9 @@ __all__ = [
     "point_segment_distance",
     "distance_to_segments",
     "segments_touch",
-    "segments_near_box",
+    "segment_pairs_touch",
     "inside_loops",
+    "ray_crossings",
     "ragged",
     "cell_key",
     "cell_index",
@@ -69,14 +70,19 @@ def box_corners(center: np.ndarray, angle: float, width: float, height: float) -
 
 
 def polyline_segments(polylines: Sequence[tuple[np.ndarray, bool]]) -> np.ndarray:
-    """All segments of (points, closed) polylines, shape (S, 2, 2)."""
-    out = []
-    for pts, closed in polylines:
-        if len(pts) < 2:
-            continue
-        q = np.concatenate([pts, pts[:1]]) if closed else pts
-        out.append(np.stack([q[:-1], q[1:]], axis=1))
-    return np.concatenate(out) if out else np.zeros((0, 2, 2))
+    """All segments of (points, closed) polylines, shape (S, 2, 2), polyline by polyline."""
+    kept = [(pts, closed) for pts, closed in polylines if len(pts) >= 2]
+    if not kept:
+        return np.zeros((0, 2, 2))
+    points = np.concatenate([pts for pts, _ in kept])
+    length = np.array([len(pts) for pts, _ in kept])
+    closed = np.array([c for _, c in kept], bool)
+    line, place = ragged(length - 1 + closed)
+    start = (np.cumsum(length) - length)[line]
+    out = np.empty((len(line), 2, 2))
+    out[:, 0] = points[start + place]
+    out[:, 1] = points[start + (place + 1) % length[line]]
+    return out
 
 
 def cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -119,23 +125,28 @@ def segments_touch(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
     spike), and two segments sharing both ends coincide. So a set of segments in which no
     two touch is a planar drawing: simple outlines, tabs that neither overlap nor graze.
     """
-    A, B = a[:, None], b[None]  # (S, 1, 2, 2), (1, T, 2, 2)
-    shared = np.linalg.norm(A[:, :, :, None] - B[:, :, None, :], axis=-1) < tol  # (S, T, 2, 2): end i of a at end j of b
-    a_shared, b_shared = shared.any(axis=3), shared.any(axis=2)  # (S, T, 2)
-    da = point_segment_distance(A, B[:, :, None, 0], B[:, :, None, 1])  # ends of a to b, (S, T, 2)
-    db = point_segment_distance(B, A[:, :, None, 0], A[:, :, None, 1])  # ends of b to a
+    return segment_pairs_touch(a[:, None], b[None], tol)
+
+
+def segment_pairs_touch(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
+    """:func:`segments_touch` of segments a and b (..., 2, 2) paired element by element, broadcast together; shape (...).
+
+    Examples
+    --------
+    >>> a = np.array([[[0.0, 0.0], [2.0, 0.0]], [[0.0, 0.0], [2.0, 0.0]]])
+    >>> b = np.array([[[2.0, 0.0], [2.0, 1.0]], [[1.0, -1.0], [1.0, 1.0]]])
+    >>> segment_pairs_touch(a, b, 1e-9).tolist()  # an end shared, a crossing
+    [False, True]
+    """
+    shared = np.linalg.norm(a[..., :, None, :] - b[..., None, :, :], axis=-1) < tol  # (..., 2, 2): end i of a at end j of b
+    a_shared, b_shared = shared.any(axis=-1), shared.any(axis=-2)  # (..., 2)
+    da = point_segment_distance(a, b[..., None, 0, :], b[..., None, 1, :])  # ends of a to b, (..., 2)
+    db = point_segment_distance(b, a[..., None, 0, :], a[..., None, 1, :])  # ends of b to a
     near = ((da < tol) & ~a_shared).any(axis=-1) | ((db < tol) & ~b_shared).any(axis=-1)
-    p, r = A[..., 0, :], A[..., 1, :] - A[..., 0, :]
-    q, s = B[..., 0, :], B[..., 1, :] - B[..., 0, :]
+    p, r = a[..., 0, :], a[..., 1, :] - a[..., 0, :]
+    q, s = b[..., 0, :], b[..., 1, :] - b[..., 0, :]
     cross = ((cross2(s, p - q) * cross2(s, p + r - q) < 0) & (cross2(r, q - p) * cross2(r, q + s - p) < 0))
     return near | (cross & ~a_shared.any(axis=-1)) | a_shared.all(axis=-1)
-
-
-def segments_near_box(segments: np.ndarray, box_of: np.ndarray, tol: float) -> np.ndarray:
-    """The segments (T, 2, 2) whose bounding boxes meet the bounding box of points ``box_of`` (..., 2)."""
-    pts = box_of.reshape(-1, 2)
-    lo, hi = pts.min(axis=0) - tol, pts.max(axis=0) + tol
-    return segments[((segments.max(axis=1) >= lo) & (segments.min(axis=1) <= hi)).all(axis=1)]
 
 
 def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | None = None) -> np.ndarray:
@@ -146,17 +157,26 @@ def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | 
     """
     if len(points) == 0 or len(segments) == 0:
         return np.zeros(len(points), bool)
-    a, b = segments[None, :, 0], segments[None, :, 1]
-    x, y = points[:, None, 0], points[:, None, 1]
-    straddle = (a[..., 1] > y) != (b[..., 1] > y)
-    # left of the crossing point, without dividing by the segment's height
-    side = (x - a[..., 0]) * (b[..., 1] - a[..., 1]) - (y - a[..., 1]) * (b[..., 0] - a[..., 0])
-    left = np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
-    crossing = straddle & left
+    crossing = ray_crossings(points[:, None], segments[None, :, 0], segments[None, :, 1])
     if groups is None:
         return (np.count_nonzero(crossing, axis=1) % 2) == 1
     counts = np.stack([np.count_nonzero(crossing[:, groups == g], axis=1) for g in np.unique(groups)], axis=1)
     return ((counts % 2) == 1).any(axis=1)
+
+
+def ray_crossings(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Whether segments a–b cross the ray from points p toward +x, all (..., 2) broadcast together;
+    shape (...). A point has an odd number of crossings inside a closed loop (:func:`inside_loops`).
+
+    Examples
+    --------
+    >>> ray_crossings(np.array([[0.0, 0.0], [2.0, 0.0]]), np.array([1.0, -1.0]), np.array([1.0, 1.0])).tolist()
+    [True, False]
+    """
+    straddle = (a[..., 1] > p[..., 1]) != (b[..., 1] > p[..., 1])
+    # left of the crossing point, without dividing by the segment's height
+    side = (p[..., 0] - a[..., 0]) * (b[..., 1] - a[..., 1]) - (p[..., 1] - a[..., 1]) * (b[..., 0] - a[..., 0])
+    return straddle & np.where(b[..., 1] > a[..., 1], side < 0, side > 0)
 
 
 def ragged(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -185,14 +205,16 @@ def cell_index(points: np.ndarray, origin: np.ndarray, side: float) -> tuple[np.
     return order, cell_key(cell)[order], cell.max(axis=0, initial=0) + 1
 
 
-def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf) -> tuple[np.ndarray, np.ndarray]:
+def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf,
+                   index: tuple[np.ndarray, float, np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` (P, 2, finite) to each of ``queries`` (Q, 2) nearer than ``limit``: its
     distance (Q,) and index (Q,), inf and P where there is none; ties go to the lowest index.
 
     :meth:`scipy.spatial.cKDTree.query`'s answer (k = 1, ``distance_upper_bound=limit``), distances
     to the last bit: the points are bucketed in square cells of side r and each query looks in
     the 3 × 3 cells around its own, which hold every point nearer than r; the queries that
-    find none look again with r doubled (up to ``limit``).
+    find none look again with r doubled (up to ``limit``). The first cells may be given, made
+    once for many queries: ``index`` is ``(origin, r, *cell_index(points, origin, r))``.
 
     Examples
     --------
@@ -200,20 +222,23 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
     >>> d.tolist(), i.tolist()
     ([1.0, 2.5, inf], [0, 0, 2])
     """
-    dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
+    dist, nearest = np.full(len(queries), math.inf), np.full(len(queries), len(points))
     if len(points) == 0 or len(queries) == 0:
-        return dist, index
-    lo = points.min(axis=0)
-    extent = float(np.ptp(points, axis=0).max())
-    r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
+        return dist, nearest
+    if index is None:
+        lo, cells = points.min(axis=0), None
+        extent = float(np.ptp(points, axis=0).max())
+        r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
+    else:
+        lo, r, *cells = index
     todo = np.flatnonzero(np.isfinite(queries).all(axis=1))  # (a query not finite has no nearest)
     while todo.size:
-        d, i = _nearest_in_cells(points, queries[todo], lo, r)
+        d, i = _nearest_in_cells(points, queries[todo], lo, r, cells=None if cells is None else tuple(cells))
         done = d < r if r < limit else np.ones(todo.size, bool)
         found = done & (d < limit)
-        dist[todo[found]], index[todo[found]] = d[found], i[found]
-        todo, r = todo[~done], min(2.0 * r, limit)
-    return dist, index
+        dist[todo[found]], nearest[todo[found]] = d[found], i[found]
+        todo, r, cells = todo[~done], min(2.0 * r, limit), None
+    return dist, nearest
 
 
 def near_any(points: np.ndarray, queries: np.ndarray, reach: float, index: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
@@ -235,25 +260,31 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
                       cells: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
     and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time
-    (``cells``: the points' :func:`cell_index` for these cells, if made already)."""
+    (``cells``: the points' :func:`cell_index` for these cells, if made already). The three cells
+    of a column are one run of the points sorted by cell."""
     order, keys, cells = cell_index(points, lo, r) if cells is None else cells
     own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
-    around = cell_key(own[:, None] + np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 2))
-    first, last = np.searchsorted(keys, around, "left"), np.searchsorted(keys, around, "right")  # (Q, 9)
+    column = own[:, None, 0] + np.array([-1, 0, 1])  # (Q, 3)
+    first = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] - 1, column.shape)], axis=-1)), "left")
+    last = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] + 1, column.shape)], axis=-1)), "right")
     dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
-    per_query = np.cumsum((last - first).sum(axis=1))
+    found = last - first  # (Q, 3): the points in each column's run
+    per_query = np.cumsum(found.sum(axis=1))
     bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
+    x, y, qx, qy = (np.ascontiguousarray(c) for c in (points[:, 0], points[:, 1], queries[:, 0], queries[:, 1]))
     for a, b in zip([0, *bounds.tolist()], [*bounds.tolist(), len(queries)]):
-        group, place = ragged((last[a:b] - first[a:b]).ravel())
+        group, place = ragged(found[a:b].ravel())
         if group.size == 0:
             continue
         near = order[first[a:b].ravel()[group] + place]
-        query = a + group // 9
-        dx, dy = queries[query, 0] - points[near, 0], queries[query, 1] - points[near, 1]
+        query = a + group // 3
+        dx, dy = np.take(qx, query) - np.take(x, near), np.take(qy, query) - np.take(y, near)
         d = np.sqrt(dx * dx + dy * dy)
-        starts = np.flatnonzero(np.diff(query, prepend=-1))
-        dist[query[starts]] = np.minimum.reduceat(d, starts)
-        index[query[starts]] = np.minimum.reduceat(np.where(d == dist[query], near, len(points)), starts)
+        count = found[a:b].sum(axis=1)
+        some = np.flatnonzero(count)
+        starts = (np.cumsum(count) - count)[some]
+        dist[a + some] = np.minimum.reduceat(d, starts)
+        index[a + some] = np.minimum.reduceat(np.where(d == np.repeat(dist[a + some], count[some]), near, len(points)), starts)
     return dist, index
 
 
@@ -289,10 +320,13 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
         if candidates.size == 0:
             return chain
         order = np.lexsort((candidates, side, edge))  # per edge, the farthest out first (then the lowest index)
-        split, first = np.unique(edge[order], return_index=True)
-        farthest = candidates[order[first]]
+        by_edge = edge[order]
+        first = np.flatnonzero(np.concatenate([[True], by_edge[1:] != by_edge[:-1]]))
+        split, farthest = by_edge[first], candidates[order[first]]
         moved = np.arange(len(chain)) + np.searchsorted(split, np.arange(len(chain)))  # each vertex's place once they are in
-        chain = np.insert(chain, split + 1, farthest)
+        grown = np.empty(len(chain) + len(split), chain.dtype)
+        grown[moved], grown[moved[split] + 1] = chain, farthest  # each farthest point after the start of its edge
+        chain = grown
         apex = farthest[np.searchsorted(split, edge)]
         start = points[chain[moved[edge]]]
         before = cross2(points[apex] - start, points[candidates] - start) < 0  # outside the edge to the apex, else test the one on

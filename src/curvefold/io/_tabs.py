@@ -6,18 +6,20 @@ long and turning at most :data:`TAB_MAX_TURN` each, split in the middle of a sea
 each a tapered tab (:func:`tab_outline`), so tabs bend along curved seams. Every piece is
 checked as drawn (:func:`tab_fits`): one whose outline would cross or touch itself, its
 sheet or another tab is narrowed (:data:`TAB_WIDTH_STEPS`) and, failing that, left out.
-Lengths are page millimetres.
+:func:`place_tabs` places a sheet's pieces in turn, testing the next ones together
+(:func:`tabs_fit`). Lengths are page millimetres.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
 
-from ._planar import distance_to_segments, inside_loops, polyline_segments, segments_near_box, segments_touch
+from ._planar import point_segment_distance, polyline_segments, ragged, ray_crossings, segment_pairs_touch
 
-__all__ = ["TAB_MAX_TURN", "TAB_WIDTH_STEPS", "tab_outline", "tab_pieces", "tab_fits"]
+__all__ = ["TAB_MAX_TURN", "TAB_WIDTH_STEPS", "tab_outline", "tab_pieces", "tab_fits", "tabs_fit", "place_tabs"]
 
 #: Largest turn of the seam along one tab piece, radians.
 TAB_MAX_TURN = math.radians(30.0)
@@ -77,46 +79,122 @@ def tab_pieces(points: np.ndarray, tab_length: float, min_length: float) -> list
 def tab_fits(tab: tuple[np.ndarray, np.ndarray], outline: np.ndarray, accepted: list[np.ndarray], tol: float) -> bool:
     """Whether a tab may be drawn: its cut line is simple and keeps ``tol`` clear of the
     sheet's outline (S, 2, 2) and of the tabs already accepted, but for its two ends on the
-    seam, and it neither lies inside them nor holds any of their corners.
+    seam, and it neither lies inside them nor holds any of their corners."""
+    return bool(tabs_fit([tab], outline, accepted, tol)[0])
 
-    The sheet's outline and the accepted tabs near this one are tested together, in one
-    array of segments: each test is one vectorised pass, whatever the number of tabs.
+
+def place_tabs(pieces: list[np.ndarray], outline: np.ndarray, width: float, taper: float, tol: float) -> list[tuple[tuple[np.ndarray, np.ndarray], int] | None]:
+    """For each seam piece in turn, the widest of its tabs (:data:`TAB_WIDTH_STEPS` × ``width``) that
+    fits (:func:`tab_fits`) the sheet's outline (S, 2, 2) and the tabs placed before it: (tab, its step
+    in the widths) or None.
+
+    The same tabs as trying every piece in turn, found a batch at a time: the widest tabs of the
+    next pieces are tested together as if all were placed, and those before the first that does not
+    fit are.
     """
-    polygon, cut = tab
-    segs = polyline_segments([(cut, False)])
-    own = segments_touch(segs, segs, tol)
-    np.fill_diagonal(own, False)
-    if own.any():
-        return False
-    corners = cut[1:-1]
-    mine = polyline_segments([(polygon, True)])
-    lo, hi = polygon.min(axis=0) - tol, polygon.max(axis=0) + tol
-    near = [accepted[k] for k in np.flatnonzero(_boxes_meet(accepted, lo, hi))]  # the others cannot touch it
-    loops = [outline, *(polyline_segments([(p, True)]) for p in near)]  # the sheet (its loops, even-odd) and each tab
-    group = np.repeat(np.arange(len(loops)), [len(loop) for loop in loops])
-    others = np.concatenate(loops)
-    close = segments_near_box(others, cut, tol)
-    if segments_touch(segs, close, tol).any() or (distance_to_segments(corners, close) < tol).any():
-        return False
-    level = _straddling(others, corners)  # the others cannot cross a ray from a corner
-    if inside_loops(corners, others[level], group[level]).any():
-        return False
-    theirs = others[:, 0][((others[:, 0] >= lo) & (others[:, 0] <= hi)).all(axis=1)]  # their corners in reach of this tab
-    theirs = theirs[distance_to_segments(theirs, mine) >= tol]  # ... and off its outline
-    return not inside_loops(theirs, mine).any()
+    widest = [tab_outline(piece, width, taper) for piece in pieces]
+    placed: list[tuple[tuple[np.ndarray, np.ndarray], int] | None] = []
+    accepted: list[np.ndarray] = []
+    while len(placed) < len(pieces):
+        i = len(placed)
+        batch = list(itertools.takewhile(lambda tab: tab is not None, widest[i:i + _BATCH]))
+        fit = np.append(tabs_fit(batch, outline, accepted, tol), False)
+        fitting = batch[:int(np.argmin(fit))]
+        placed += [(tab, 0) for tab in fitting]
+        accepted += [tab[0] for tab in fitting]
+        if len(fitting) == _BATCH or len(placed) == len(pieces):
+            continue
+        piece, got = pieces[len(placed)], None  # its widest tab does not fit: try narrower ones
+        for step, fraction in enumerate(TAB_WIDTH_STEPS[1:], 1):
+            tab = tab_outline(piece, fraction * width, taper)
+            if tab is not None and tab_fits(tab, outline, accepted, tol):
+                got = (tab, step)
+                accepted.append(tab[0])
+                break
+        placed.append(got)
+    return placed
 
 
-def _boxes_meet(polygons: list[np.ndarray], lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Which of polygons (each (n, 2)) have bounding boxes meeting the box from ``lo`` to ``hi`` (2,), (P,) bool."""
-    if not polygons:
+def tabs_fit(tabs: list[tuple[np.ndarray, np.ndarray]], outline: np.ndarray, accepted: list[np.ndarray], tol: float) -> np.ndarray:
+    """Whether each of ``tabs`` (polygon, cut) may be drawn (:func:`tab_fits`) were the tabs before it
+    in the list accepted too, (n,) bool.
+
+    Every test is one vectorised pass over all the tabs: the segment pairs whose bounding boxes
+    meet, the points in each tab's box, the rays from every corner.
+    """
+    n = len(tabs)
+    if n == 0:
         return np.zeros(0, bool)
-    starts = np.cumsum([0] + [len(p) for p in polygons[:-1]])
-    points = np.concatenate(polygons)
-    return (np.maximum.reduceat(points, starts) >= lo).all(axis=1) & (np.minimum.reduceat(points, starts) <= hi).all(axis=1)
+    rank = np.arange(n)
+    lo, hi = _boxes([t[0] for t in tabs], tol)
+    if accepted:  # those in reach of these tabs (no other can touch them, nor hold or lie inside them)
+        low, high = _boxes(accepted, 0.0)
+        accepted = [accepted[k] for k in np.flatnonzero(_meet(low, high, lo.min(axis=0), hi.max(axis=0)))]
+    polygons = [*accepted, *(t[0] for t in tabs)]
+    others = np.concatenate([outline, polyline_segments([(p, True) for p in polygons])])  # the sheet's loops (even-odd), then each tab
+    sizes = np.array([len(outline), *(len(p) for p in polygons)])
+    seen_by = np.repeat(np.concatenate([np.full(1 + len(accepted), -1), rank]), sizes)  # a tab sees the loops of lower rank
+    start = np.cumsum(sizes) - sizes
+    cut = polyline_segments([(t[1], False) for t in tabs])
+    cut_count = np.array([len(t[1]) - 1 for t in tabs])
+    cut_start = np.cumsum(cut_count) - cut_count
+    corners = np.concatenate([t[1][1:-1] for t in tabs])  # as many as its cut has segments, less one
+    corner_tab, _ = ragged(cut_count - 1)
+    corner_start = cut_start - rank
+    bad = np.zeros(n, bool)
+    low, high = others.min(axis=1), others.max(axis=1)  # their boxes: segments whose boxes lie tol apart cannot touch
+    cut_low, cut_high = cut.min(axis=1), cut.max(axis=1)
+
+    # its cut line is simple: no two of its segments touch
+    tab, place = ragged(cut_count * cut_count)
+    first, second = cut_start[tab] + place // cut_count[tab], cut_start[tab] + place % cut_count[tab]
+    pair = (first != second) & _meet(cut_low[first] - tol, cut_high[first] + tol, cut_low[second], cut_high[second])
+    bad[tab[pair][segment_pairs_touch(cut[first[pair]], cut[second[pair]], tol)]] = True
+
+    # it keeps clear of the others near its cut
+    cut_lo, cut_hi = _boxes([t[1] for t in tabs], tol)
+    tab, other = np.nonzero(_meet(low[None], high[None], cut_lo[:, None], cut_hi[:, None]) & (seen_by[None] < rank[:, None]))  # (n, T)
+    pairs, place = ragged(cut_count[tab])
+    mine, theirs = cut_start[tab[pairs]] + place, other[pairs]
+    pair = _meet(cut_low[mine] - tol, cut_high[mine] + tol, low[theirs], high[theirs])
+    bad[tab[pairs][pair][segment_pairs_touch(cut[mine[pair]], others[theirs[pair]], tol)]] = True
+    pairs, place = ragged(cut_count[tab] - 1)
+    mine, theirs = corners[corner_start[tab[pairs]] + place], other[pairs]
+    pair = _meet(mine - tol, mine + tol, low[theirs], high[theirs])
+    bad[tab[pairs][pair][point_segment_distance(mine[pair], others[theirs[pair], 0], others[theirs[pair], 1]) < tol]] = True
+
+    # none of its corners lies inside the sheet's outline (even-odd) or another tab
+    corner, other = np.nonzero((seen_by[None] < corner_tab[:, None])
+                               & ((others[None, :, 0, 1] > corners[:, None, 1]) != (others[None, :, 1, 1] > corners[:, None, 1])))  # (on a level)
+    crossing = ray_crossings(corners[corner], others[other, 0], others[other, 1])
+    loop = np.repeat(np.arange(len(sizes)), sizes)
+    counts = np.bincount(corner[crossing] * len(sizes) + loop[other[crossing]], minlength=len(corners) * len(sizes))
+    bad[corner_tab[(counts.reshape(len(corners), -1) % 2 == 1).any(axis=1)]] = True
+
+    # it holds no corner of the others in reach (but those on its outline)
+    tab, point = np.nonzero(_meet(others[None, :, 0], others[None, :, 0], lo[:, None], hi[:, None]) & (seen_by[None] < rank[:, None]))
+    own = sizes[1 + len(accepted):]  # the segments of each tab's outline
+    pairs, place = ragged(own[tab])
+    if pairs.size:
+        mine = others[start[1 + len(accepted) + tab[pairs]] + place]
+        p, bounds = others[point[pairs], 0], np.cumsum(own[tab]) - own[tab]
+        clear = np.minimum.reduceat(point_segment_distance(p, mine[:, 0], mine[:, 1]), bounds) >= tol
+        inside = np.add.reduceat(ray_crossings(p, mine[:, 0], mine[:, 1]), bounds, dtype=np.intp) % 2 == 1
+        bad[tab[clear & inside]] = True
+    return ~bad
 
 
-def _straddling(segments: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """Which of segments (S, 2, 2) may cross the horizontal ray from one of points (N, 2): those from at or
-    below the highest point to above the lowest (:func:`~curvefold.io._planar.inside_loops` counts no other)."""
-    low, high = segments[:, :, 1].min(axis=1), segments[:, :, 1].max(axis=1)
-    return (high > points[:, 1].min(initial=np.inf)) & (low <= points[:, 1].max(initial=-np.inf))
+#: Tabs tested together by :func:`place_tabs`.
+_BATCH = 32
+
+
+def _boxes(polylines: list[np.ndarray], tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Corners (n, 2) of the bounding boxes of polylines (each (m, 2), m > 0), ``tol`` wider."""
+    starts = np.cumsum([0] + [len(p) for p in polylines[:-1]])
+    points = np.concatenate(polylines)
+    return np.minimum.reduceat(points, starts) - tol, np.maximum.reduceat(points, starts) + tol
+
+
+def _meet(low: np.ndarray, high: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Whether the boxes from ``low`` to ``high`` meet those from ``lo`` to ``hi``, all (..., 2) broadcast together; shape (...)."""
+    return ((high >= lo) & (low <= hi)).all(axis=-1)
