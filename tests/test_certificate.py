@@ -400,34 +400,52 @@ def test_the_frames_read_the_quads_of_the_quad_mesh(make):
 
 
 def test_the_shared_derivatives_are_each_creases_own():
-    """Every tube corner's x', x'' and Frenet frame are those of its own curve, measured alone."""
+    """Every tube corner's x', x'' and Frenet frame are those of its own curve, measured alone (as rows: the same numbers)."""
     from curvefold.analysis import _measure as measure
 
     frame = Frame.at(Shared(two_tubes()), 60.0)
-    X, h = frame.tubes, frame.step
-    d1 = frame.tube_tangents
+    rows = lambda v: np.ascontiguousarray(np.moveaxis(v, 0, -1))  # noqa: E731  (..., 3), as the row forms read them
+    X, h = rows(frame.tubes), frame.step  # (K, 4, n, 3)
+    d1 = rows(frame.tube_tangents)
     assert np.array_equal(d1, measure.derivative(X, h))
-    speed, T, N, B, kappa = frame.tube_frenet
-    assert all(np.array_equal(a, b) for a, b in zip(frame.tube_frenet, measure.frenet(d1, measure.second_derivative(X, h))))
+    speed, T, N, B, kappa = (rows(f) if f.ndim == 4 else f for f in frame.tube_frenet)
+    assert all(np.array_equal(a, b) for a, b in zip((speed, T, N, B, kappa), measure.frenet(d1, measure.second_derivative(X, h))))
     assert np.array_equal(kappa, measure.curvature(X, h)) and np.array_equal(T, measure.unit(d1))
     np.testing.assert_allclose(np.einsum("...i,...i->...", N, T), 0.0, atol=1e-12)
+    # the frame's own measurements of its strips, against the row forms of the same points
+    strips = rows(frame.strip_vectors)
+    assert np.array_equal(frame.strip_widths, measure.line_distance(strips, frame.tangent))
+    before = -strips[:, [3, 0, 1, 2], 2:-2]
+    folds = np.array([[True], [False], [True], [False]])
+    assert np.array_equal(frame.half_angles, measure.half_angle_between(before, strips[:, :, 2:-2], T, folds))
+    x = rows(frame.components)
+    assert np.array_equal(frame.speeds_along_tangent, measure.speed_factors(x, frame.tangent, h))
 
 
-def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices():
-    """Isometry, planarity and fold angles read every side and diagonal as an edge vector: the same numbers."""
+@pytest.mark.parametrize("tube_mesh", [True, False])
+def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices(tube_mesh):
+    """Isometry, planarity and fold angles read every side and diagonal as an edge vector: the same numbers, whether
+    the edges are read off the tubes' strips (a mesh of Topology.tubes) or gathered from the vertices."""
     from curvefold.analysis import _measure as measure
     from curvefold.geometry._mesh import edges_along, edges_faces, fold_angles, vector_areas
 
     shared = Shared(two_tubes())
+    assert shared.tube_mesh
+    if not tube_mesh:
+        shared.__dict__["tube_mesh"] = False  # the general reading
     frame = Frame.at(shared, 60.0)
     top, x = shared.topology, frame.coords
-    assert np.array_equal(measure.norm(frame.edge_vectors), measure.edge_lengths(x, top.edges_vertices))
-    assert shared.face_sides is not None and np.array_equal(frame.face_areas, vector_areas(x, top.faces_vertices))
-    sides = [np.take(frame.edge_vectors, s, axis=0) for s in shared.quad_sides]
-    assert np.array_equal(measure.corner_nonplanarity(*sides), measure.quad_nonplanarity(x, shared.quads))
+    assert np.array_equal(frame.edge_lengths, measure.edge_lengths(x, top.edges_vertices))
+    assert np.array_equal(frame.edge_vectors.T, x[top.edges_vertices[:, 1]] - x[top.edges_vertices[:, 0]])
+    assert shared.face_sides is not None and np.array_equal(frame.face_areas.T, vector_areas(x, top.faces_vertices))
+    values = CHECKS[[c.name for c in CHECKS].index("ruling_quad_planarity")].measure(frame).values
+    assert np.array_equal(values, measure.quad_nonplanarity(x, shared.quads))
     ids, faces = shared._edges_faces  # from the edges along the faces' sides: as edges_faces finds them
     assert np.array_equal(faces, edges_faces(top.faces_vertices, top.edges_vertices[ids]))
     creases, faces = shared.creases
+    general = Shared(two_tubes())
+    general.__dict__["tube_mesh"] = False
+    assert all(np.array_equal(a, b) for a, b in zip(shared.creases, general.creases))
     measured = fold_angles(x, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
     values = CHECKS[[c.name for c in CHECKS].index("fold_angles")].measure(frame).values
     assert np.array_equal(values, measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * np.degrees(frame.alpha)))
