@@ -61,6 +61,9 @@ class Residual:
         v = np.asarray(self.values, float).ravel()
         if v.size == 0:
             return 0.0, -1
+        top = int(np.argmax(v))
+        if math.isfinite(v[top]) and math.isfinite(v.min()):  # every value finite: the largest, first where it is
+            return float(v[top]), top
         bad = np.flatnonzero(~np.isfinite(v))
         return (math.nan, int(bad[0])) if bad.size else (float(v.max()), int(np.argmax(v)))
 
@@ -78,7 +81,11 @@ class Residual:
             return abs(coarse.worst[0] - self.worst[0])
         k = np.clip(np.searchsorted(self.t, coarse.t), 0, len(self.t) - 1)
         same = np.abs(self.t[k] - coarse.t) < 0.25 * (self.t[1] - self.t[0])
-        diff = np.abs(np.asarray(coarse.values)[..., same] - np.asarray(self.values)[..., k[same]])
+        fine, rough = np.asarray(self.values), np.asarray(coarse.values)
+        if same.all() and len(k) > 1 and (np.diff(k) == k[1] - k[0]).all() and k[1] > k[0]:  # every coarse t, evenly: slices
+            diff = np.abs(rough - fine[..., k[0] : k[-1] + 1 : k[1] - k[0]])
+        else:
+            diff = np.abs(rough[..., same] - fine[..., k[same]])
         return float(np.max(diff)) if diff.size else math.inf
 
 
