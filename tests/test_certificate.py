@@ -7,6 +7,7 @@ with it (at both resolutions the error model compares), then certified. Every ch
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -456,3 +457,79 @@ def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices
     assert edge.tolist() == [0, 0, -1, 1] and forward.tolist() == [False, True, False, True]
     edge, forward = edges_along(top.edges_vertices, top.edges_vertices[::-1][:100])
     assert np.array_equal(edge, np.arange(len(top.edges_vertices))[::-1][:100]) and forward.all()
+
+
+def test_vectors_by_component_give_the_numbers_of_vectors_as_rows():
+    """dot3, norm3 and cross3 of (3, ...) arrays: einsum's and cross's numbers of the same vectors as rows (x + z, then y,
+    for two contiguous rows; x + y + z where one is strided), to the bit; a zero is +0 as einsum's."""
+    from curvefold.analysis import _measure as measure
+    from curvefold.kernel._lie import cross
+
+    rng = np.random.default_rng(7)
+    a, b = rng.standard_normal((2, 5000, 3)) * 10.0 ** rng.uniform(-6, 6, (2, 5000, 1))
+    rows = lambda v: np.ascontiguousarray(v.T)  # noqa: E731
+    same = lambda x, y: np.array_equal(x.view(np.int64), y.view(np.int64))  # noqa: E731  (the bits: -0 is not +0)
+    assert same(measure.dot3(rows(a), rows(b)), np.einsum("...i,...i->...", a, b))
+    assert same(measure.norm3(rows(a)), measure.norm(a)) and same(measure.cross3(rows(a), rows(b)), rows(cross(a, b)))
+    frames = np.stack([b, a, b], axis=-1)  # (5000, 3, 3): a[:, k] = frames[:, k, 1], every row strided
+    assert same(measure.dot3(rows(b), rows(a), order=(0, 1, 2)), np.einsum("...i,...i->...", b, frames[:, :, 1]))
+    assert not same(measure.dot3(rows(a), rows(b), order=(0, 1, 2)), np.einsum("...i,...i->...", a, b))  # the order matters
+    zero = np.array([[-0.0], [-0.0], [-0.0]])
+    assert same(measure.dot3(zero, np.ones((3, 1))), np.einsum("...i,...i->...", zero.T, np.ones((1, 3))))
+
+
+def test_fold_angles_wrap_as_the_remainder_by_360_degrees():
+    """The deviation of a fold angle wraps by 360° as ``%`` does, to the bit, on [0°, 720°) (where it skips ``%``) and off it."""
+    from curvefold.analysis import _measure as measure
+
+    measured = np.concatenate([np.linspace(-180.0, 180.0, 20001), [-180.0, 180.0, -0.0, 0.0, np.nextafter(180.0, 0.0)]])
+    for fold_angle in (0.0, 45.0, 90.0, 123.456, np.nextafter(180.0, 0.0)):
+        for folds in (True, False):
+            kinds = np.full(len(measured), "fold" if folds else "seam")
+            got = measure.fold_angle_deviation(measured, kinds, fold_angle)
+            assert np.array_equal(got, measure.fold_angle_deviation(measured, kinds == "fold", fold_angle))
+            expect = np.where(folds, -fold_angle, -(180.0 - fold_angle))
+            assert np.array_equal(got.view(np.int64), np.abs((measured - expect + 180.0) % 360.0 - 180.0).view(np.int64))
+    wild = np.array([900.0, -500.0, np.nan, np.inf])  # off the range, and not numbers: the remainder itself
+    with np.errstate(invalid="ignore"):
+        assert np.array_equal(measure.fold_angle_deviation(wild, np.full(4, "fold"), 30.0), np.abs((wild + 30.0 + 180.0) % 360.0 - 180.0),
+                              equal_nan=True)
+
+
+def test_a_mesh_not_numbered_as_the_tubes_is_gathered():
+    """A topology with two edges swapped, or another face order, is not read off the strips: the frames gather it."""
+    from curvefold.analysis import _measure as measure
+
+    structure = two_tubes()
+    top = structure.topology()
+    edges = top.edges_vertices.copy()
+    edges[[0, -1]] = edges[[-1, 0]]
+    faces = top.faces_vertices[::-1].copy()
+    for damaged in (replace(top, edges_vertices=edges), replace(top, faces_vertices=faces)):
+        shared = Shared(structure)
+        shared.__dict__["topology"] = damaged
+        assert not shared.tube_mesh
+        frame = Frame.at(shared, 60.0)
+        x = frame.coords
+        assert np.array_equal(frame.edge_lengths, measure.edge_lengths(x, damaged.edges_vertices))
+    assert Shared(structure).tube_mesh and not Shared(panel_tube()).tube_mesh
+
+
+def test_the_worst_value_and_the_change_read_every_value():
+    """The largest value and its first place; a NaN or an infinity anywhere wins; the change at the coarse t as slices
+    when the coarse t are every other fine one, and picked out otherwise."""
+    from curvefold.analysis._checks import Residual
+
+    name = lambda i: ""  # noqa: E731
+    values = np.array([[0.1, 0.3, 0.2], [0.3, 0.0, 0.1]])
+    assert Residual(values, 0.0, name).worst == (0.3, 1)
+    for bad in (np.nan, np.inf, -np.inf):
+        damaged = values.copy()
+        damaged[1, 2] = bad
+        assert Residual(damaged, 0.0, name).worst[1] == 5 and math.isnan(Residual(damaged, 0.0, name).worst[0])
+    t = np.linspace(0.0, 1.0, 9)
+    fine = Residual(np.arange(18.0).reshape(2, 9) ** 2, 0.0, name, t)
+    coarse = Residual(np.arange(10.0).reshape(2, 5), 0.0, name, t[::2])
+    assert fine.change(coarse) == float(np.max(np.abs(coarse.values - fine.values[:, ::2])))
+    uneven = Residual(np.arange(8.0).reshape(2, 4), 0.0, name, t[[0, 2, 3, 8]])
+    assert fine.change(uneven) == float(np.max(np.abs(uneven.values - fine.values[:, [0, 2, 3, 8]])))

@@ -113,7 +113,8 @@ class Shared:
 
     @cached_property
     def edge_rows(self) -> tuple[np.ndarray, np.ndarray]:
-        """The row of every edge's first and second vertex in a state's curves (M, n, 3) flattened, as :meth:`coords` reads them, (E,) each."""
+        """The row of every edge's first and second vertex in a state's curves (M, n, 3) flattened (as :meth:`coords`
+        reads them), (E,) each."""
         rows, _ = self._vertex_rows
         ends = self.topology.edges_vertices
         return np.take(rows, ends[:, 0]), np.take(rows, ends[:, 1])
@@ -264,7 +265,7 @@ class Frame:
         >>> Frame.at(shared, 0.0).alpha, Frame.at(shared, None).crease.fold_angle   # flat, and as built
         (0.0, 90.0)
         """
-        state = shared.structure.state(fold_angle)
+        state = shared.flat if fold_angle == 0 else shared.structure.state(fold_angle)
         return cls(state.lattice.crease, shared, state, vault)
 
     @property
@@ -318,7 +319,8 @@ class Frame:
 
     @cached_property
     def curve_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
-        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order differences), by component, (3, M, n − 4) each."""
+        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order differences), by component,
+        (3, M, n − 4) each."""
         x = self.components
         return measure.derivative(x, self.step, axis=-1), measure.second_derivative(x, self.step, axis=-1)
 

@@ -390,9 +390,10 @@ def norm3(v: np.ndarray) -> np.ndarray:
 def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``a × b`` of vectors stored by component (3, ...) (broadcasting): :func:`~curvefold.kernel._lie.cross`'s numbers."""
     out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    term = np.empty(out.shape[1:])
     for k, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
         np.multiply(a[i], b[j], out=out[k])
-        out[k] -= a[j] * b[i]
+        np.subtract(out[k], np.multiply(a[j], b[i], out=term), out=out[k])
     return out
 
 
@@ -499,7 +500,7 @@ def fold_angle_deviation(measured: np.ndarray, kinds: np.ndarray, fold_angle: fl
     kinds = np.asarray(kinds)
     expect = np.where(kinds if kinds.dtype == bool else kinds == "fold", -fold_angle, -(180.0 - fold_angle))
     turned = measured - expect + 180.0
-    if ((turned >= 0.0) & (turned < 720.0)).all():  # the remainder by 360°, exactly (x − 360 is exact there), without np.remainder's cost
+    if ((turned >= 0.0) & (turned < 720.0)).all():  # the remainder by 360° exactly (x − 360 is exact there), for less than %
         wrapped = np.where(turned >= 360.0, turned - 360.0, turned)
     else:
         wrapped = turned % 360.0
