@@ -7,6 +7,7 @@ with it (at both resolutions the error model compares), then certified. Every ch
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -400,34 +401,52 @@ def test_the_frames_read_the_quads_of_the_quad_mesh(make):
 
 
 def test_the_shared_derivatives_are_each_creases_own():
-    """Every tube corner's x', x'' and Frenet frame are those of its own curve, measured alone."""
+    """Every tube corner's x', x'' and Frenet frame are those of its own curve, measured alone (as rows: the same numbers)."""
     from curvefold.analysis import _measure as measure
 
     frame = Frame.at(Shared(two_tubes()), 60.0)
-    X, h = frame.tubes, frame.step
-    d1 = frame.tube_tangents
+    rows = lambda v: np.ascontiguousarray(np.moveaxis(v, 0, -1))  # noqa: E731  (..., 3), as the row forms read them
+    X, h = rows(frame.tubes), frame.step  # (K, 4, n, 3)
+    d1 = rows(frame.tube_tangents)
     assert np.array_equal(d1, measure.derivative(X, h))
-    speed, T, N, B, kappa = frame.tube_frenet
-    assert all(np.array_equal(a, b) for a, b in zip(frame.tube_frenet, measure.frenet(d1, measure.second_derivative(X, h))))
+    speed, T, N, B, kappa = (rows(f) if f.ndim == 4 else f for f in frame.tube_frenet)
+    assert all(np.array_equal(a, b) for a, b in zip((speed, T, N, B, kappa), measure.frenet(d1, measure.second_derivative(X, h))))
     assert np.array_equal(kappa, measure.curvature(X, h)) and np.array_equal(T, measure.unit(d1))
     np.testing.assert_allclose(np.einsum("...i,...i->...", N, T), 0.0, atol=1e-12)
+    # the frame's own measurements of its strips, against the row forms of the same points
+    strips = rows(frame.strip_vectors)
+    assert np.array_equal(frame.strip_widths, measure.line_distance(strips, frame.tangent))
+    before = -strips[:, [3, 0, 1, 2], 2:-2]
+    folds = np.array([[True], [False], [True], [False]])
+    assert np.array_equal(frame.half_angles, measure.half_angle_between(before, strips[:, :, 2:-2], T, folds))
+    x = rows(frame.components)
+    assert np.array_equal(frame.speeds_along_tangent, measure.speed_factors(x, frame.tangent, h))
 
 
-def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices():
-    """Isometry, planarity and fold angles read every side and diagonal as an edge vector: the same numbers."""
+@pytest.mark.parametrize("tube_mesh", [True, False])
+def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices(tube_mesh):
+    """Isometry, planarity and fold angles read every side and diagonal as an edge vector: the same numbers, whether
+    the edges are read off the tubes' strips (a mesh of Topology.tubes) or gathered from the vertices."""
     from curvefold.analysis import _measure as measure
     from curvefold.geometry._mesh import edges_along, edges_faces, fold_angles, vector_areas
 
     shared = Shared(two_tubes())
+    assert shared.tube_mesh
+    if not tube_mesh:
+        shared.__dict__["tube_mesh"] = False  # the general reading
     frame = Frame.at(shared, 60.0)
     top, x = shared.topology, frame.coords
-    assert np.array_equal(measure.norm(frame.edge_vectors), measure.edge_lengths(x, top.edges_vertices))
-    assert shared.face_sides is not None and np.array_equal(frame.face_areas, vector_areas(x, top.faces_vertices))
-    sides = [np.take(frame.edge_vectors, s, axis=0) for s in shared.quad_sides]
-    assert np.array_equal(measure.corner_nonplanarity(*sides), measure.quad_nonplanarity(x, shared.quads))
+    assert np.array_equal(frame.edge_lengths, measure.edge_lengths(x, top.edges_vertices))
+    assert np.array_equal(frame.edge_vectors.T, x[top.edges_vertices[:, 1]] - x[top.edges_vertices[:, 0]])
+    assert shared.face_sides is not None and np.array_equal(frame.face_areas.T, vector_areas(x, top.faces_vertices))
+    values = CHECKS[[c.name for c in CHECKS].index("ruling_quad_planarity")].measure(frame).values
+    assert np.array_equal(values, measure.quad_nonplanarity(x, shared.quads))
     ids, faces = shared._edges_faces  # from the edges along the faces' sides: as edges_faces finds them
     assert np.array_equal(faces, edges_faces(top.faces_vertices, top.edges_vertices[ids]))
     creases, faces = shared.creases
+    general = Shared(two_tubes())
+    general.__dict__["tube_mesh"] = False
+    assert all(np.array_equal(a, b) for a, b in zip(shared.creases, general.creases))
     measured = fold_angles(x, top.faces_vertices, top.edges_vertices[creases], faces_of_edges=faces)
     values = CHECKS[[c.name for c in CHECKS].index("fold_angles")].measure(frame).values
     assert np.array_equal(values, measure.fold_angle_deviation(measured, top.edges_kind[creases], 2 * np.degrees(frame.alpha)))
@@ -438,3 +457,79 @@ def test_the_mesh_measured_from_its_edges_is_the_mesh_measured_from_its_vertices
     assert edge.tolist() == [0, 0, -1, 1] and forward.tolist() == [False, True, False, True]
     edge, forward = edges_along(top.edges_vertices, top.edges_vertices[::-1][:100])
     assert np.array_equal(edge, np.arange(len(top.edges_vertices))[::-1][:100]) and forward.all()
+
+
+def test_vectors_by_component_give_the_numbers_of_vectors_as_rows():
+    """dot3, norm3 and cross3 of (3, ...) arrays: einsum's and cross's numbers of the same vectors as rows (x + z, then y,
+    for two contiguous rows; x + y + z where one is strided), to the bit; a zero is +0 as einsum's."""
+    from curvefold.analysis import _measure as measure
+    from curvefold.kernel._lie import cross
+
+    rng = np.random.default_rng(7)
+    a, b = rng.standard_normal((2, 5000, 3)) * 10.0 ** rng.uniform(-6, 6, (2, 5000, 1))
+    rows = lambda v: np.ascontiguousarray(v.T)  # noqa: E731
+    same = lambda x, y: np.array_equal(x.view(np.int64), y.view(np.int64))  # noqa: E731  (the bits: -0 is not +0)
+    assert same(measure.dot3(rows(a), rows(b)), np.einsum("...i,...i->...", a, b))
+    assert same(measure.norm3(rows(a)), measure.norm(a)) and same(measure.cross3(rows(a), rows(b)), rows(cross(a, b)))
+    frames = np.stack([b, a, b], axis=-1)  # (5000, 3, 3): a[:, k] = frames[:, k, 1], every row strided
+    assert same(measure.dot3(rows(b), rows(a), order=(0, 1, 2)), np.einsum("...i,...i->...", b, frames[:, :, 1]))
+    assert not same(measure.dot3(rows(a), rows(b), order=(0, 1, 2)), np.einsum("...i,...i->...", a, b))  # the order matters
+    zero = np.array([[-0.0], [-0.0], [-0.0]])
+    assert same(measure.dot3(zero, np.ones((3, 1))), np.einsum("...i,...i->...", zero.T, np.ones((1, 3))))
+
+
+def test_fold_angles_wrap_as_the_remainder_by_360_degrees():
+    """The deviation of a fold angle wraps by 360° as ``%`` does, to the bit, on [0°, 720°) (where it skips ``%``) and off it."""
+    from curvefold.analysis import _measure as measure
+
+    measured = np.concatenate([np.linspace(-180.0, 180.0, 20001), [-180.0, 180.0, -0.0, 0.0, np.nextafter(180.0, 0.0)]])
+    for fold_angle in (0.0, 45.0, 90.0, 123.456, np.nextafter(180.0, 0.0)):
+        for folds in (True, False):
+            kinds = np.full(len(measured), "fold" if folds else "seam")
+            got = measure.fold_angle_deviation(measured, kinds, fold_angle)
+            assert np.array_equal(got, measure.fold_angle_deviation(measured, kinds == "fold", fold_angle))
+            expect = np.where(folds, -fold_angle, -(180.0 - fold_angle))
+            assert np.array_equal(got.view(np.int64), np.abs((measured - expect + 180.0) % 360.0 - 180.0).view(np.int64))
+    wild = np.array([900.0, -500.0, np.nan, np.inf])  # off the range, and not numbers: the remainder itself
+    with np.errstate(invalid="ignore"):
+        assert np.array_equal(measure.fold_angle_deviation(wild, np.full(4, "fold"), 30.0), np.abs((wild + 30.0 + 180.0) % 360.0 - 180.0),
+                              equal_nan=True)
+
+
+def test_a_mesh_not_numbered_as_the_tubes_is_gathered():
+    """A topology with two edges swapped, or another face order, is not read off the strips: the frames gather it."""
+    from curvefold.analysis import _measure as measure
+
+    structure = two_tubes()
+    top = structure.topology()
+    edges = top.edges_vertices.copy()
+    edges[[0, -1]] = edges[[-1, 0]]
+    faces = top.faces_vertices[::-1].copy()
+    for damaged in (replace(top, edges_vertices=edges), replace(top, faces_vertices=faces)):
+        shared = Shared(structure)
+        shared.__dict__["topology"] = damaged
+        assert not shared.tube_mesh
+        frame = Frame.at(shared, 60.0)
+        x = frame.coords
+        assert np.array_equal(frame.edge_lengths, measure.edge_lengths(x, damaged.edges_vertices))
+    assert Shared(structure).tube_mesh and not Shared(panel_tube()).tube_mesh
+
+
+def test_the_worst_value_and_the_change_read_every_value():
+    """The largest value and its first place; a NaN or an infinity anywhere wins; the change at the coarse t as slices
+    when the coarse t are every other fine one, and picked out otherwise."""
+    from curvefold.analysis._checks import Residual
+
+    name = lambda i: ""  # noqa: E731
+    values = np.array([[0.1, 0.3, 0.2], [0.3, 0.0, 0.1]])
+    assert Residual(values, 0.0, name).worst == (0.3, 1)
+    for bad in (np.nan, np.inf, -np.inf):
+        damaged = values.copy()
+        damaged[1, 2] = bad
+        assert Residual(damaged, 0.0, name).worst[1] == 5 and math.isnan(Residual(damaged, 0.0, name).worst[0])
+    t = np.linspace(0.0, 1.0, 9)
+    fine = Residual(np.arange(18.0).reshape(2, 9) ** 2, 0.0, name, t)
+    coarse = Residual(np.arange(10.0).reshape(2, 5), 0.0, name, t[::2])
+    assert fine.change(coarse) == float(np.max(np.abs(coarse.values - fine.values[:, ::2])))
+    uneven = Residual(np.arange(8.0).reshape(2, 4), 0.0, name, t[[0, 2, 3, 8]])
+    assert fine.change(uneven) == float(np.max(np.abs(uneven.values - fine.values[:, [0, 2, 3, 8]])))

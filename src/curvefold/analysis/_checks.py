@@ -20,7 +20,6 @@ from types import MappingProxyType
 import numpy as np
 
 from ..geometry._contact import closest_far, contact_scales
-from ..geometry._mesh import dihedral_angles
 from ..geometry._topology import CORNERS, STRIPS
 from . import _measure as measure
 from ._frames import STRIP_SIDES, Frame
@@ -62,6 +61,9 @@ class Residual:
         v = np.asarray(self.values, float).ravel()
         if v.size == 0:
             return 0.0, -1
+        top = int(np.argmax(v))
+        if math.isfinite(v[top]) and math.isfinite(v.min()):  # every value finite: the largest, first where it is
+            return float(v[top]), top
         bad = np.flatnonzero(~np.isfinite(v))
         return (math.nan, int(bad[0])) if bad.size else (float(v.max()), int(np.argmax(v)))
 
@@ -79,7 +81,11 @@ class Residual:
             return abs(coarse.worst[0] - self.worst[0])
         k = np.clip(np.searchsorted(self.t, coarse.t), 0, len(self.t) - 1)
         same = np.abs(self.t[k] - coarse.t) < 0.25 * (self.t[1] - self.t[0])
-        diff = np.abs(np.asarray(coarse.values)[..., same] - np.asarray(self.values)[..., k[same]])
+        fine, rough = np.asarray(self.values), np.asarray(coarse.values)
+        if same.all() and len(k) > 1 and (np.diff(k) == k[1] - k[0]).all() and k[1] > k[0]:  # every coarse t, evenly: slices
+            diff = np.abs(rough - fine[..., k[0] : k[-1] + 1 : k[1] - k[0]])
+        else:
+            diff = np.abs(rough[..., same] - fine[..., k[same]])
         return float(np.max(diff)) if diff.size else math.inf
 
 
@@ -168,7 +174,8 @@ def _planar_curvature(frame: Frame) -> Residual:
 
 def _frame_agreement(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
-    values = measure.tangent_deviation(frame.state.vertices, frame.tangent, frame.step)
+    d1, tangent = frame.curve_derivatives[0], frame.tangent_components[:, None, 2:-2]  # measure.tangent_deviation, the same numbers
+    values = np.arctan2(measure.norm3(measure.cross3(d1, tangent)), frame.speeds_along_tangent)
     f_min = float(frame.shared.speed_factors.min())
     return Residual(values, 1.5 * frame.ulp / (frame.step * f_min), _curve(uv), frame.inner_t)
 
@@ -182,11 +189,11 @@ def _eq19(frame: Frame) -> Residual | None:
     d1 = frame.tube_tangents
     speed, kappa = frame.tube_frenet[0], frame.tube_frenet[4]  # (K, 4, m)
     nxt = [b for _, b in STRIPS]
-    ruling = frame.strip_vectors[:, :, 2:-2]  # strip a → b of every tube, (K, 4, m, 3)
+    ruling = frame.strip_vectors[..., 2:-2]  # strip a → b of every tube, (3, K, 4, m)
     bend = kappa * np.sin(alpha) * speed  # κ sin α ds/dt = κ_2D tan α ds/dt at every corner
-    sides = [bend[:, c] / np.sin(measure.angle_between(ruling, d1[:, c])) for c in (slice(None), nxt)]
+    sides = [bend[:, c] / np.sin(measure.angle3(ruling, d1[:, :, c])) for c in (slice(None), nxt)]
     values = np.abs(sides[0] / sides[1] - 1)  # (K, 4 strips, m)
-    length = float(measure.norm(frame.strip_vectors[:, 0]).min())
+    length = float(measure.norm3(frame.strip_vectors[:, :, 0]).min())
     floor = frame.ulp * (24 / (h**2 * float((kappa * speed**2).min())) + 6 / (h * length * math.sin(frame.alpha)))
     return Residual(values, floor, _strip, frame.inner_t)
 
@@ -194,32 +201,41 @@ def _eq19(frame: Frame) -> Residual | None:
 def _isometry(frame: Frame) -> Residual:
     top = frame.shared.topology
     with np.errstate(invalid="ignore", divide="ignore"):
-        values = np.abs(measure.norm(frame.edge_vectors) / frame.shared.flat_lengths - 1)
+        values = np.abs(frame.edge_lengths / frame.shared.flat_lengths - 1)
     return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"edge {i[0]} ({top.edges_kind[i[0]]})")
 
 
 def _quad_planarity(frame: Frame) -> Residual:
-    sides = frame.shared.quad_sides
-    if sides is None:
+    if frame.shared.tube_mesh:  # every strip's quads (a_j, a_(j+1), b_(j+1), b_j): its edges, the same numbers
+        (along, ruling, diagonal), (_, _, length) = frame.strip_edges, frame.strip_edge_lengths
+        values = measure.corner_nonplanarity3(along, ruling[..., :-1], diagonal, length).reshape(-1)
+    elif (sides := frame.shared.quad_sides) is None:
         values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
-    else:  # the quads' sides and diagonals are edges: their vectors, the same numbers
-        values = measure.corner_nonplanarity(*(np.take(frame.edge_vectors, side, axis=0) for side in sides))
+    else:  # the quads' sides and diagonals are edges: their vectors and lengths, the same numbers
+        values = measure.corner_nonplanarity3(*(np.take(frame.edge_vectors, side, axis=1) for side in sides),
+                                              np.take(frame.edge_lengths, sides[2]))
     return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"quad {i[0]} (strip {i[0] // (frame.samples - 1) + 1})")
 
 
 def _fold_angles(frame: Frame) -> Residual:
     top = frame.shared.topology
     creases, faces = frame.shared.creases
-    measured = dihedral_angles(frame.face_areas, faces, np.take(frame.edge_vectors, creases, axis=0))
-    values = measure.fold_angle_deviation(measured, frame.shared.crease_kinds, 2 * math.degrees(frame.alpha))
+    if frame.shared.tube_mesh:  # every strip's curve edges, between its second triangles and the previous strip's first ones
+        (along, ruling, diagonal), (length, _, _) = frame.strip_edges, frame.strip_edge_lengths
+        first, second = (measure.unit3(measure.cross3(*sides)) for sides in ((diagonal, ruling[..., :-1]), (along, diagonal)))
+        measured = measure.hinge_angles3(second, first[:, :, [(c - 1) % 4 for c in range(4)]], along, length).reshape(-1)
+    else:
+        measured = measure.dihedral_angles3(frame.face_areas, faces, np.take(frame.edge_vectors, creases, axis=1),
+                                            np.take(frame.edge_lengths, creases))
+    values = measure.fold_angle_deviation(measured, frame.shared.crease_folds, 2 * math.degrees(frame.alpha))
     return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 
 
 #: The step of every strip along its ruling family: +1 along +r, −1 along −r.
 _STRIP_SIGNS = np.array([float((CORNERS[b] - CORNERS[a]).sum()) for a, b in STRIPS])
-#: The step from every corner back to the previous one along the other family, ±1, broadcasting against (K, 4, n, 3).
-_BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in range(4)])[:, None, None]
+#: The step from every corner back to the previous one along the other family, ±1, broadcasting against (3, K, 4, n).
+_BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in range(4)])[:, None]
 
 
 def _width_law(frame: Frame) -> Residual:
@@ -232,18 +248,18 @@ def _regression(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
     predicted = frame.shared.speed_factors
     margin = float(predicted.min())
-    measured = measure.speed_factors(frame.state.vertices, frame.tangent, frame.step)
+    measured = frame.speeds_along_tangent  # measure.speed_factors, the same numbers
     values = np.abs(measured - predicted[:, 2:-2]) / margin
     return Residual(values, 1.5 * frame.ulp / (frame.step * margin), _curve(uv), frame.inner_t)
 
 
 def _tube_closure(frame: Frame) -> Residual:
     X, h = frame.tubes, frame.step
-    nxt = [b for _, b in STRIPS]
-    ruling = -frame.strip_vectors[:, [(c - 1) % 4 for c in range(4)]] * _BACK  # toward the previous crease, oriented as r in Eqs. 5–6
-    rebuilt = measure.rebuilt_strip(X, ruling, X[:, nxt], h, alpha=frame.alpha, side=STRIP_SIDES[:, None],
-                                    sign=_STRIP_SIGNS[:, None], frenet_frame=frame.tube_frenet)
-    values = measure.norm(rebuilt - X[:, nxt, 2:-2]) / frame.strip_widths[:, :, 2:-2]
+    following = frame.next_corners
+    ruling = -frame.strip_vectors[:, :, [(c - 1) % 4 for c in range(4)]] * _BACK  # toward the previous crease, oriented as r in Eqs. 5–6
+    rebuilt = measure.rebuilt_strip3(X, ruling, following, h, alpha=frame.alpha, side=STRIP_SIDES[:, None],
+                                     sign=_STRIP_SIGNS[:, None], frenet_frame=frame.tube_frenet)
+    values = measure.norm3(rebuilt - following[..., 2:-2]) / frame.strip_widths[:, :, 2:-2]
     kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())
     floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))
     return Residual(values, floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)

@@ -19,7 +19,6 @@ from ..geometry._crease import Crease
 from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
 from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology
-from ..kernel._lie import cross
 from ..vault._assembly import Vault
 from . import _measure as measure
 
@@ -57,6 +56,30 @@ class Shared:
         return self.structure.topology()
 
     @cached_property
+    def tube_mesh(self) -> bool:
+        """Whether the mesh is :meth:`Topology.tubes`'s triangles of the structure's cells at every sample.
+
+        Vertex (4k + c)·n + j is then sample j of corner c of tube k (its curves at the tubes' corners, in order);
+        the edges are the curve edges of every strip (the folds and seams), then its rulings, then its diagonals
+        (a_j, b_(j+1)); the faces are every strip's triangles (a_j, b_(j+1), b_j), then its (a_j, a_(j+1), b_(j+1)).
+        A frame then reads every edge, face, quad and crease off the tubes' curves (:attr:`Frame.strip_edges`),
+        the same numbers as it gathers otherwise.
+        """
+        top, cells = self.topology, self.structure.cell_curves
+        K, n = len(cells), len(self.structure.lattice.s)
+        if top.faces_vertices.shape != (8 * K * (n - 1), 3) or top.edges_vertices.shape != (4 * K * (3 * n - 2), 2):
+            return False
+        strip, j, i = np.arange(4 * K), np.arange(n - 1), np.arange(n)
+        a, b = (strip * n)[:, None], ((strip - strip % 4 + (strip + 1) % 4) * n)[:, None]  # corners c and c + 1
+        pairs = [np.stack(ends, axis=-1).reshape(-1, 2) for ends in ((a + j, a + j + 1), (a + i, b + i), (a + j, b + j + 1))]
+        faces = np.concatenate([np.stack([a + j, b + j + 1, b + j], axis=-1), np.stack([a + j, a + j + 1, b + j + 1], axis=-1)], axis=1)
+        kinds = np.split(top.edges_kind, np.cumsum([len(e) for e in pairs[:2]]))
+        return (np.array_equal(top.vertex_curve, np.repeat(cells.reshape(-1), n)) and np.array_equal(top.vertex_sample, np.tile(i, 4 * K))
+                and np.array_equal(top.edges_vertices, np.concatenate(pairs)) and np.array_equal(top.faces_vertices, faces.reshape(-1, 3))
+                and bool(np.isin(kinds[0], ("fold", "seam")).all() and (kinds[2] == "diagonal").all())
+                and not np.isin(kinds[1], ("fold", "seam", "diagonal")).any())
+
+    @cached_property
     def quads(self) -> np.ndarray:
         """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`: as ``structure.topology("quads")``
         numbers them, each the two triangles across its diagonal (p, q), the one running p → q → r and the other
@@ -89,10 +112,17 @@ class Shared:
         return top.vertex_curve * n + top.vertex_sample, n
 
     @cached_property
-    def edge_ends(self) -> tuple[np.ndarray, np.ndarray]:
-        """The first and the second vertex of every edge, (E,) each (contiguous, for takes)."""
+    def edge_rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """The row of every edge's first and second vertex in a state's curves (M, n, 3) flattened (as :meth:`coords`
+        reads them), (E,) each."""
+        rows, _ = self._vertex_rows
         ends = self.topology.edges_vertices
-        return np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+        return np.take(rows, ends[:, 0]), np.take(rows, ends[:, 1])
+
+    @cached_property
+    def crease_folds(self) -> np.ndarray:
+        """Whether every edge of :attr:`creases` is a fold (else a seam), (C,)."""
+        return self.crease_kinds == "fold"
 
     @cached_property
     def face_sides(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -123,8 +153,8 @@ class Shared:
 
     @cached_property
     def flat_lengths(self) -> np.ndarray:
-        """Edge lengths of the crease pattern, (E,)."""
-        return measure.edge_lengths(self.flat_coords, self.topology.edges_vertices)
+        """Edge lengths of the crease pattern, (E,) (:func:`~curvefold.analysis._measure.edge_lengths`' numbers)."""
+        return Frame(self.flat.lattice.crease, self, self.flat).edge_lengths
 
     @property
     def shortest_edge(self) -> float:
@@ -159,6 +189,12 @@ class Shared:
     @cached_property
     def creases(self) -> tuple[np.ndarray, np.ndarray]:
         """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
+        if self.tube_mesh:  # every strip's curve edges: its second triangles run them, the previous strip's first ones back
+            K, n = len(self.structure.cell_curves), len(self.structure.lattice.s)
+            strip, j = np.arange(4 * K)[:, None], np.arange(n - 1)
+            previous = strip - strip % 4 + (strip - 1) % 4
+            sides = np.stack([strip * 2 * (n - 1) + n - 1 + j, previous * 2 * (n - 1) + j], axis=-1).reshape(-1, 2)
+            return np.arange(len(sides)), sides
         ids, sides = self._edges_faces
         crease = self.topology.edges_kind[ids] != "diagonal"
         return ids[crease], sides[crease]
@@ -229,7 +265,7 @@ class Frame:
         >>> Frame.at(shared, 0.0).alpha, Frame.at(shared, None).crease.fold_angle   # flat, and as built
         (0.0, 90.0)
         """
-        state = shared.structure.state(fold_angle)
+        state = shared.flat if fold_angle == 0 else shared.structure.state(fold_angle)
         return cls(state.lattice.crease, shared, state, vault)
 
     @property
@@ -272,27 +308,38 @@ class Frame:
         return x[1:] - x[0]
 
     @cached_property
+    def components(self) -> np.ndarray:
+        """The state's curves stored by component, x, y and z each contiguous, (3, M, n)."""
+        return np.ascontiguousarray(np.moveaxis(self.state.vertices, -1, 0))
+
+    @cached_property
     def tubes(self) -> np.ndarray:
-        """Built curves at corners 1–4 of every tube, (K, 4, n, 3)."""
-        return self.state.vertices[self.structure.cell_curves]
+        """Built curves at corners 1–4 of every tube, by component, (3, K, 4, n)."""
+        return self.components[:, self.structure.cell_curves]
 
     @cached_property
     def curve_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
-        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order differences), (M, n − 4, 3) each."""
-        x = self.state.vertices
-        return measure.derivative(x, self.step), measure.second_derivative(x, self.step)
+        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order differences), by component,
+        (3, M, n − 4) each."""
+        x = self.components
+        return measure.derivative(x, self.step, axis=-1), measure.second_derivative(x, self.step, axis=-1)
 
     @cached_property
     def tube_tangents(self) -> np.ndarray:
-        """x' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (K, 4, n − 4, 3)."""
-        return np.take(self.curve_derivatives[0], self.structure.cell_curves, axis=0)
+        """x' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (3, K, 4, n − 4)."""
+        return np.take(self.curve_derivatives[0], self.structure.cell_curves, axis=1)
 
     @cached_property
     def tube_frenet(self) -> tuple[np.ndarray, ...]:
-        """:func:`~curvefold.analysis._measure.frenet` at corners 1–4 of every tube: speed, T, N, B, κ, (K, 4, n − 4[, 3])
+        """:func:`~curvefold.analysis._measure.frenet3` at corners 1–4 of every tube: speed, T, N, B, κ, ([3,] K, 4, n − 4)
         (of every curve once, a curve at the corners of several tubes)."""
         cells = self.structure.cell_curves
-        return tuple(np.take(f, cells, axis=0) for f in measure.frenet(*self.curve_derivatives))
+        return tuple(np.take(f, cells, axis=f.ndim - 2) for f in measure.frenet3(*self.curve_derivatives))
+
+    @cached_property
+    def speeds_along_tangent(self) -> np.ndarray:
+        """x'·T₁ of every built curve (its :attr:`curve_derivatives`) with curve 1's unit tangent at equal t, (M, n − 4)."""
+        return measure.dot3(self.curve_derivatives[0], self.tangent_components[:, None, 2:-2], order=(0, 1, 2))
 
     @cached_property
     def coords(self) -> np.ndarray:
@@ -301,37 +348,70 @@ class Frame:
 
     @cached_property
     def edge_vectors(self) -> np.ndarray:
-        """``x_b − x_a`` of every mesh edge (a, b) in this state, (E, 3)."""
-        a, b = self.shared.edge_ends
-        return np.take(self.coords, b, axis=0) - np.take(self.coords, a, axis=0)
+        """``x_b − x_a`` of every mesh edge (a, b) in this state, by component, (3, E)."""
+        if self.shared.tube_mesh:
+            return np.concatenate([e.reshape(3, -1) for e in self.strip_edges], axis=1)
+        if self.state.vertices.shape[-2] != len(self.structure.lattice.s):
+            coords, (a, b) = self.coords.T, self.shared.topology.edges_vertices.T
+        else:
+            coords, (a, b) = self.components.reshape(3, -1), self.shared.edge_rows
+        return np.take(coords, b, axis=1) - np.take(coords, a, axis=1)
+
+    @cached_property
+    def edge_lengths(self) -> np.ndarray:
+        """Length of every mesh edge in this state (of :attr:`edge_vectors`), (E,)."""
+        if self.shared.tube_mesh:
+            return np.concatenate([length.reshape(-1) for length in self.strip_edge_lengths])
+        return measure.norm3(self.edge_vectors)
 
     @cached_property
     def face_areas(self) -> np.ndarray:
-        """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, (F, 3): for triangles the
-        cross product of the vectors of their sides' edges (:attr:`Shared.face_sides`), the same numbers."""
+        """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, by component, (3, F): for triangles
+        the cross product of the vectors of their sides' edges (:attr:`Shared.face_sides`), the same numbers."""
         sides = self.shared.face_sides
         with np.errstate(invalid="ignore"):
             if sides is None:
-                return vector_areas(self.coords, self.shared.topology.faces_vertices)
-            return cross(*(np.take(self.edge_vectors, side, axis=0) for side in sides))
+                return vector_areas(self.coords, self.shared.topology.faces_vertices).T
+            return measure.cross3(*(np.take(self.edge_vectors, side, axis=1) for side in sides))
 
     @property
     def tangent(self) -> np.ndarray:
         """Curve 1's unit tangent T₁ (its built frame), (n, 3)."""
         return self.crease.curve.frames[:, :, 0]
 
+    @property
+    def tangent_components(self) -> np.ndarray:
+        """:attr:`tangent` by component, (3, n) (a view)."""
+        return self.crease.curve.frames[:, :, 0].T
+
+    @cached_property
+    def next_corners(self) -> np.ndarray:
+        """The built curve at corner c + 1 of every corner c of every tube, by component, (3, K, 4, n)."""
+        return self.tubes[:, :, [b for _, b in STRIPS]]
+
     @cached_property
     def strip_vectors(self) -> np.ndarray:
-        """From each corner's curve to the next corner's at equal t: strip c of every tube, corner c → c + 1, (K, 4, n, 3)."""
+        """From each corner's curve to the next corner's at equal t: strip c of every tube, corner c → c + 1, (3, K, 4, n)."""
+        return self.next_corners - self.tubes
+
+    @cached_property
+    def strip_edges(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """For a :attr:`Shared.tube_mesh`: the vectors of every strip's curve edges a_j → a_(j+1), rulings a_i → b_i and
+        diagonals a_j → b_(j+1), by component, (3, K, 4, n − 1), (3, K, 4, n), (3, K, 4, n − 1)."""
         X = self.tubes
-        return X[:, [b for _, b in STRIPS]] - X
+        return X[..., 1:] - X[..., :-1], self.strip_vectors, self.next_corners[..., 1:] - X[..., :-1]
+
+    @cached_property
+    def strip_edge_lengths(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The lengths of :attr:`strip_edges`, (K, 4, n − 1), (K, 4, n), (K, 4, n − 1)."""
+        return tuple(measure.norm3(e) for e in self.strip_edges)
 
     @cached_property
     def half_angles(self) -> np.ndarray:
         """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
-        inner = self.strip_vectors[:, :, 2:-2]
-        before = -inner[:, [(c - 1) % 4 for c in range(4)]]  # back along the previous strip (negation is exact)
-        return measure.half_angle_between(before, inner, self.tube_frenet[1], _FOLD_CORNERS)
+        inner = self.strip_vectors[..., 2:-2]
+        before = -inner[:, :, [(c - 1) % 4 for c in range(4)]]  # back along the previous strip (negation is exact)
+        return measure.half_angle3(before, inner, self.tube_frenet[1], _FOLD_CORNERS)
 
     @cached_property
     def measured_alpha(self) -> np.ndarray:
@@ -342,4 +422,4 @@ class Frame:
     @cached_property
     def strip_widths(self) -> np.ndarray:
         """Distance between the tangent lines of the two creases of every strip, (K, 4, n)."""
-        return measure.line_distance(self.strip_vectors, self.tangent)
+        return measure.line_distance3(self.strip_vectors, self.tangent_components[:, None, None], order=(0, 1, 2))

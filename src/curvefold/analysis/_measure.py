@@ -42,6 +42,18 @@ __all__ = [
     "line_distance",
     "frenet",
     "rebuilt_strip",
+    "dot3",
+    "norm3",
+    "cross3",
+    "angle3",
+    "line_distance3",
+    "frenet3",
+    "half_angle3",
+    "rebuilt_strip3",
+    "corner_nonplanarity3",
+    "dihedral_angles3",
+    "hinge_angles3",
+    "unit3",
     "edge_lengths",
     "quad_nonplanarity",
     "corner_nonplanarity",
@@ -58,7 +70,7 @@ __all__ = [
 ]
 
 
-def derivative(values: np.ndarray, step: float) -> np.ndarray:
+def derivative(values: np.ndarray, step: float, *, axis: int | None = None) -> np.ndarray:
     """d/dq of uniform samples by fourth-order central differences.
 
     Parameters
@@ -66,27 +78,35 @@ def derivative(values: np.ndarray, step: float) -> np.ndarray:
     values : (n,) or (..., n, 3) ndarray
         A sequence of numbers, or of points along axis -2; spacing ``step``, n ≥ 5.
     step : float
+    axis : int, optional, keyword-only
+        The axis of the samples instead (e.g. -1 of points stored by component, (3, ..., n)).
 
     Returns
     -------
     (n - 4,) or (..., n - 4, 3) ndarray
-        The derivative at samples 2 … n - 3.
+        The derivative at samples 2 … n - 3 (along ``axis``).
 
     Examples
     --------
     >>> derivative(np.arange(7.0) ** 2, 1.0).tolist()  # d(q²)/dq = 2q at q = 2, 3, 4
     [4.0, 6.0, 8.0]
     """
-    v = np.asarray(values, float)
-    if v.ndim == 1:
-        return (v[:-4] - 8 * v[1:-3] + 8 * v[3:-1] - v[4:]) / (12.0 * step)
-    return (v[..., :-4, :] - 8 * v[..., 1:-3, :] + 8 * v[..., 3:-1, :] - v[..., 4:, :]) / (12.0 * step)
+    at = _stencil(values, axis)
+    return (at(0) - 8 * at(1) + 8 * at(3) - at(4)) / (12.0 * step)
 
 
-def second_derivative(values: np.ndarray, step: float) -> np.ndarray:
-    """d²/dq² of samples (..., n, 3) along axis -2 by fourth-order central differences, (..., n - 4, 3)."""
+def second_derivative(values: np.ndarray, step: float, *, axis: int | None = None) -> np.ndarray:
+    """d²/dq² of samples (..., n, 3) along axis -2 (or ``axis``) by fourth-order central differences, (..., n - 4, 3)."""
+    at = _stencil(values, axis)
+    return (-at(0) + 16 * at(1) - 30 * at(2) + 16 * at(3) - at(4)) / (12.0 * step**2)
+
+
+def _stencil(values: np.ndarray, axis: int | None):
+    """``at(k)``: the samples k … n − 5 + k along the samples' axis (-1 of a sequence, else -2, or ``axis``)."""
     v = np.asarray(values, float)
-    return (-v[..., :-4, :] + 16 * v[..., 1:-3, :] - 30 * v[..., 2:-2, :] + 16 * v[..., 3:-1, :] - v[..., 4:, :]) / (12.0 * step**2)
+    axis = (-1 if v.ndim == 1 else -2) if axis is None else axis
+    n, head = v.shape[axis], (slice(None),) * (axis % v.ndim)
+    return lambda k: v[head + (slice(k, n - 4 + k),)]
 
 
 def cumulative_integral(rate: np.ndarray, step: float) -> np.ndarray:
@@ -218,11 +238,7 @@ def half_angle_between(before: np.ndarray, after: np.ndarray, tangent: np.ndarra
 
     ``fold`` (broadcasting against (..., m)) says where the crease is a fold, elsewhere a seam.
     """
-    T = tangent
-    a = before - np.einsum("...i,...i->...", before, T)[..., None] * T
-    b = after - np.einsum("...i,...i->...", after, T)[..., None] * T
-    delta = angle_between(a, b)
-    return np.where(fold, 0.5 * (np.pi - delta), 0.5 * delta)
+    return half_angle3(*_components(before, after, tangent), fold)
 
 
 def tangent_line_distance(x: np.ndarray, y: np.ndarray, T: np.ndarray) -> np.ndarray:
@@ -255,13 +271,8 @@ def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     >>> speed.tolist(), N.tolist(), (B + 0.0).tolist(), kappa.tolist()
     ([2.0], [[-1.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]], [0.5])
     """
-    speed = norm(d1)
-    T = d1 / speed[..., None]
-    b = cross(d1, d2)
-    bend = norm(b)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        B = b / bend[..., None]
-    return speed, T, cross(B, T), B, bend / speed**3
+    speed, T, N, B, kappa = frenet3(*_components(d1, d2))
+    return speed, _rows(T), _rows(N), _rows(B), kappa
 
 
 def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
@@ -302,16 +313,11 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
     (..., n - 4, 3) ndarray
         The rebuilt ``following`` at samples 2 … n − 3.
     """
-    speed, T, N, B, kappa = frenet(derivative(curve, step), second_derivative(curve, step)) if frenet_frame is None else frenet_frame
-    beta = angle_between(ruling[..., 2:-2, :], T)
-    right = np.asarray(side) == "R"
-    sin_beta = np.sin(beta)
-    r = np.cos(beta)[..., None] * T + sin_beta[..., None] * (np.where(right, -np.cos(alpha), np.cos(alpha))[..., None] * N + np.sin(alpha) * B)
-    rate = np.where(right, 1.0, -1.0) * kappa * np.cos(alpha) / np.tan(beta) * speed
-    x = curve[..., 2:-2, :]
-    start = tangent_line_distance(x[..., :1, :], following[..., 2:3, :], T[..., :1, :])
-    width = start * np.exp(cumulative_integral(rate, step))
-    return x + (sign * width / sin_beta)[..., None] * r
+    if frenet_frame is not None:
+        speed, T, N, B, kappa = frenet_frame
+        frenet_frame = (speed, *_components(T, N, B), kappa)
+    rebuilt = rebuilt_strip3(*_components(curve, ruling, following), step, alpha=alpha, side=side, sign=sign, frenet_frame=frenet_frame)
+    return _rows(rebuilt)
 
 
 def edge_lengths(coords: np.ndarray, edges: np.ndarray) -> np.ndarray:
@@ -334,9 +340,143 @@ def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
 
 def corner_nonplanarity(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray) -> np.ndarray:
     """:func:`quad_nonplanarity` from the vectors from each quad's first corner to the others: its two sides and its diagonal, (F, 3) each."""
-    n = cross(side, other)
+    side, other, diagonal = _components(side, other, diagonal)
+    return corner_nonplanarity3(side, other, diagonal, norm3(diagonal))
+
+
+# --------------------------------------------------------------------------------------
+# vectors stored by component, (3, ...): what the certificate's frames hold (each component contiguous)
+#
+# A dot product sums x + z, then y, as ``np.einsum("...i,...i->...")`` sums two vectors stored as contiguous rows
+# (…, 3), and x + y + z (``order=(0, 1, 2)``) as it sums them when one is strided: the same numbers as the row forms.
+
+
+def _components(*vectors: np.ndarray) -> list[np.ndarray]:
+    """Vectors (..., 3) as their components (3, ...) (views), with as many axes each as the most has (to broadcast)."""
+    arrays = [np.asarray(v, float) for v in vectors]
+    ndim = max(v.ndim for v in arrays)
+    return [np.moveaxis(v.reshape((1,) * (ndim - v.ndim) + v.shape), -1, 0) for v in arrays]
+
+
+def _rows(v: np.ndarray) -> np.ndarray:
+    """Components (3, ...) as vectors (..., 3) (a view)."""
+    return np.moveaxis(v, 0, -1)
+
+
+def dot3(a: np.ndarray, b: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
+    """``a · b`` of vectors stored by component, (3, ...) each (broadcasting), shape (...), summed in ``order``.
+
+    Examples
+    --------
+    >>> dot3(np.array([[1.0], [2.0], [3.0]]), np.array([[4.0], [5.0], [6.0]])).tolist()
+    [32.0]
+    """
+    i, j, k = order
+    out = a[i] * b[i]
+    out += a[j] * b[j]
+    out += a[k] * b[k]
+    out += 0.0  # a zero is +0, as einsum's sum into zeros leaves it
+    return out
+
+
+def norm3(v: np.ndarray) -> np.ndarray:
+    """Length of vectors stored by component (3, ...), shape (...): :func:`norm`'s numbers."""
+    out = v[0] * v[0]
+    out += v[2] * v[2]
+    out += v[1] * v[1]
+    return np.sqrt(out, out=out)
+
+
+def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a × b`` of vectors stored by component (3, ...) (broadcasting): :func:`~curvefold.kernel._lie.cross`'s numbers."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    term = np.empty(out.shape[1:])
+    for k, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
+        np.multiply(a[i], b[j], out=out[k])
+        np.subtract(out[k], np.multiply(a[j], b[i], out=term), out=out[k])
+    return out
+
+
+def angle3(a: np.ndarray, b: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
+    """:func:`angle_between` of vectors stored by component (3, ...), shape (...) (``order`` that of the dot product)."""
+    return np.arctan2(norm3(cross3(a, b)), dot3(a, b, order))
+
+
+def line_distance3(d: np.ndarray, T: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
+    """:func:`line_distance` of vectors stored by component (3, ...), shape (...)."""
+    return norm3(d - dot3(d, T, order) * T)
+
+
+def frenet3(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`frenet` of derivatives stored by component (3, ..., m): speed (..., m), T, N, B (3, ..., m), κ (..., m)."""
+    speed = norm3(d1)
+    T = d1 / speed
+    b = cross3(d1, d2)
+    bend = norm3(b)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.abs(np.einsum("ij,ij->i", diagonal, n)) / (norm(n) * norm(diagonal))
+        B = b / bend
+    return speed, T, cross3(B, T), B, bend / speed**3
+
+
+def half_angle3(before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray) -> np.ndarray:
+    """:func:`half_angle_between` of vectors stored by component (3, ..., m), shape (..., m)."""
+    T = tangent
+    a = before - dot3(before, T) * T
+    b = after - dot3(after, T) * T
+    delta = angle3(a, b)
+    return np.where(fold, 0.5 * (np.pi - delta), 0.5 * delta)
+
+
+def rebuilt_strip3(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
+                   side: str, sign: float, frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
+    """:func:`rebuilt_strip` of curves stored by component (3, ..., n) (``frenet_frame`` as :func:`frenet3` gives it), (3, ..., n − 4)."""
+    if frenet_frame is None:
+        frenet_frame = frenet3(derivative(curve, step, axis=-1), second_derivative(curve, step, axis=-1))
+    speed, T, N, B, kappa = frenet_frame
+    beta = angle3(ruling[..., 2:-2], T)
+    right = np.asarray(side) == "R"
+    sin_beta = np.sin(beta)
+    r = np.cos(beta) * T + sin_beta * (np.where(right, -np.cos(alpha), np.cos(alpha)) * N + np.sin(alpha) * B)
+    rate = np.where(right, 1.0, -1.0) * kappa * np.cos(alpha) / np.tan(beta) * speed
+    x = curve[..., 2:-2]
+    start = line_distance3(following[..., 2:3] - x[..., :1], T[..., :1])
+    width = start * np.exp(cumulative_integral(rate, step))
+    return x + (sign * width / sin_beta) * r
+
+
+def corner_nonplanarity3(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray, diagonal_length: np.ndarray) -> np.ndarray:
+    """:func:`corner_nonplanarity` of vectors stored by component (3, F), with the diagonals' lengths (F,) (:func:`norm3`)."""
+    n = cross3(side, other)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.abs(dot3(diagonal, n)) / (norm3(n) * diagonal_length)
+
+
+def dihedral_angles3(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vectors: np.ndarray, edge_lengths: np.ndarray) -> np.ndarray:
+    """:func:`~curvefold.geometry.dihedral_angles` of vectors stored by component: face areas (3, F), edge vectors (3, E)
+    and their lengths (E,) (:func:`norm3`); degrees (E,), the same numbers."""
+    ef = faces_of_edges
+    ok = (ef[:, 0] >= 0) & (ef[:, 1] >= 0)
+    out = np.zeros(len(ef))
+    n = unit3(face_areas)
+    e, length = edge_vectors, edge_lengths
+    if not ok.all():
+        ef, e, length = ef[ok], e[:, ok], length[ok]
+    out[ok] = hinge_angles3(np.take(n, ef[:, 0], axis=1), np.take(n, ef[:, 1], axis=1), e, length)
+    return out
+
+
+def hinge_angles3(n1: np.ndarray, n2: np.ndarray, e: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """The fold angle (degrees, FOLD sign) at hinges e (3, ...) of lengths (...) between faces of unit normals n1, n2
+    (3, ...), the face n1 running each hinge forward: :func:`~curvefold.geometry.dihedral_angles`' numbers."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sine = -dot3(cross3(n1, n2), e) / length
+        return np.degrees(np.arctan2(sine, dot3(n1, n2)))
+
+
+def unit3(v: np.ndarray) -> np.ndarray:
+    """Vectors stored by component (3, ...) scaled to length 1 (NaN for a zero vector)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return v / norm3(v)
 
 
 def width_integral(kappa_2d: ScalarFunction, beta: ScalarFunction, s: np.ndarray) -> np.ndarray:
@@ -354,10 +494,17 @@ def fold_angle_deviation(measured: np.ndarray, kinds: np.ndarray, fold_angle: fl
     """``|measured − expected|`` fold angle (degrees, wrapped to [0°, 180°]) of fold and seam edges, same shape.
 
     Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
-    on the seams (2, 4), mountains seen from outside the tubes.
+    on the seams (2, 4), mountains seen from outside the tubes. ``kinds``: "fold" or "seam", or
+    whether each is a fold (bool).
     """
-    expect = np.where(np.asarray(kinds) == "fold", -fold_angle, -(180.0 - fold_angle))
-    return np.abs((measured - expect + 180.0) % 360.0 - 180.0)
+    kinds = np.asarray(kinds)
+    expect = np.where(kinds if kinds.dtype == bool else kinds == "fold", -fold_angle, -(180.0 - fold_angle))
+    turned = measured - expect + 180.0
+    if ((turned >= 0.0) & (turned < 720.0)).all():  # the remainder by 360° exactly (x − 360 is exact there), for less than %
+        wrapped = np.where(turned >= 360.0, turned - 360.0, turned)
+    else:
+        wrapped = turned % 360.0
+    return np.abs(wrapped - 180.0)
 
 
 # --------------------------------------------------------------------------------------

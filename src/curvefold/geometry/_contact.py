@@ -152,10 +152,10 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     """
     idx = np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int)
     idx = idx[np.concatenate([[True], idx[1:] != idx[:-1]])]  # ascending: np.unique, without its import of numpy.ma
-    points = vertices[:, idx].reshape(-1, 3)
+    curves = vertices[:, idx]
+    points = curves.reshape(-1, 3)
     if not np.isfinite(points).all():
         return float("nan"), None
-    curves = vertices[:, idx]
     arc = np.concatenate([np.zeros((len(curves), 1)), np.cumsum(np.linalg.norm(np.diff(curves, axis=1), axis=-1), axis=1)], axis=1)
     pairs = far_pairs(points, uv, arc, radius=radius, reach=reach)
     if not len(pairs):
