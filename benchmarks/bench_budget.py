@@ -8,6 +8,11 @@ below the peak (ratio ≥ 1); how far above it is the price of estimating from t
 alone (``tubes = "max"`` counts as 24 tubes, the crease patterns' cost is fitted on tubes).
 
 Target: estimate / peak ≥ 1 for every design.
+
+``--parts`` measures what the estimate's costs stand on: each part of each design of
+:data:`PART_DESIGNS` in a process of its own (the interpreter, the built design with its
+certificate, then that one part written in the same process), and prints the interpreter's
+peak, the built design's peak over it and the part's peak over that (MiB).
 """
 
 from __future__ import annotations
@@ -38,6 +43,16 @@ DESIGNS = (
 )
 
 
+#: Designs whose parts ``--parts`` measures (small to large, each kind).
+PART_DESIGNS = (
+    {"kind": "crease", "samples": 2001}, {"kind": "crease", "samples": 20001},
+    {"kind": "tube", "samples": 2001}, {"kind": "tube", "samples": 8001}, {"kind": "tube", "samples": 20001}, {"kind": "tube", "samples": 32001},
+    {"kind": "block", "samples": 2001},
+    {"kind": "vault", "samples": 201, "vault": {"tubes": 9}}, {"kind": "vault", "samples": 801, "vault": {"tubes": 9}},
+    {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}}, {"kind": "vault", "samples": 801}, {"kind": "vault", "samples": 1601},
+)
+
+
 def peak_of(argv: list[str]) -> tuple[float, float]:
     """Peak resident bytes and seconds of ``curvefold *argv`` in a fresh process."""
     with tempfile.TemporaryDirectory() as folder:
@@ -60,6 +75,51 @@ print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * (1 if sys.platfor
 """
 
 
+# Builds a design and writes one part of it in this process; prints the peaks (bytes) after the
+# imports, after the built design and its certificate, and after the part.
+_PART = """
+import json, resource, sys, tempfile
+from pathlib import Path
+peak = lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+import curvefold.app.cli, curvefold.app._build, curvefold.app._outputs
+interpreter = peak()
+from curvefold.app import design_from_dict, _products as products
+from curvefold.app._build import build
+from curvefold.app._outputs import structure_payload
+from curvefold.io._formats import FORMATS
+data, part = json.loads(sys.argv[1]), sys.argv[2]
+built = build(design_from_dict(data))
+structure_payload(built)
+geometry = peak()
+if part != "geometry":
+    formats = [] if part == "pictures" else [name for name in built.design.output.formats if FORMATS[name].family == part]
+    jobs = dict(products.jobs(built, formats))
+    label = "pictures" if part == "pictures" else next(label for label in jobs if label != "pictures")
+    with tempfile.TemporaryDirectory() as folder:
+        if label != "pictures":
+            products.prepare(built, formats)
+        jobs[label](Path(folder))
+print(json.dumps([interpreter, geometry, peak()]))
+"""
+
+
+def parts() -> None:
+    """Print the peak of each part of each of :data:`PART_DESIGNS` (MiB) and the estimate of the same."""
+    import json
+
+    from curvefold.app import design_from_dict
+    from curvefold.app._budget import _parts, _samples, _strips, estimate
+
+    for data in PART_DESIGNS:
+        design = design_from_dict(data)
+        n = _samples(design) * _strips(design)
+        for part in ["geometry", *_parts(design, True)]:
+            done = subprocess.run([sys.executable, "-c", _PART, json.dumps(data), part], capture_output=True, text=True, check=True)
+            interpreter, geometry, peak = (x / 2**20 for x in json.loads(done.stdout))
+            print(f"{json.dumps(data)}, {n} strip samples, {part}: interpreter {interpreter:.1f}, built design +{geometry - interpreter:.1f}, "
+                  f"part +{peak - geometry:.1f}, peak {peak:.1f}; estimate {estimate(design, files=part != 'geometry').total / 2**20:.0f}", flush=True)
+
+
 def run() -> list[SummaryRow]:
     from curvefold.app import design_from_dict
     from curvefold.app._budget import estimate
@@ -78,7 +138,7 @@ def run() -> list[SummaryRow]:
 
 
 def main() -> None:
-    run()
+    parts() if "--parts" in sys.argv[1:] else run()
 
 
 if __name__ == "__main__":

@@ -150,8 +150,8 @@ HOSTILE = [
     ("api/vault/preview?width=0.5&tubes=3", "tubes must be ≤ 1", "tubes"),
     ("api/vault/preview?width=9", "width = 9 is past regression for the base tube", "width"),
     ("api/vault/preview?tubes=-1", 'tubes must be an integer in [1, 1000] or "max", got -1', "tubes"),
-    ("api/vault/preview?samples=200000", "this job needs about 39.5 GiB of memory (200000 samples × 96 strips), more than the budget of 2.0 GiB "
-                                         "(CURVEFOLD_MEMORY_BUDGET); lower samples (at most 95", "samples"),
+    ("api/vault/preview?samples=200000", "this job needs about 43.9 GiB of memory (200000 samples × 96 strips), more than the budget of 2.0 GiB "
+                                         "(CURVEFOLD_MEMORY_BUDGET); lower samples (at most 87", "samples"),
     ("api/vault/preview?span=3&radius=2", "give span or radius, not both", "span"),
     ("api/vault/preview?direction=%00", 'direction must be one of "+", "-"', "direction"),
     ("api/vault/preview?evil=1", "unknown parameter 'evil' for a vault", None),

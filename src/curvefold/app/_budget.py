@@ -45,34 +45,44 @@ MAX_BUDGET = 1 << 50
 ENVIRONMENT = "CURVEFOLD_MEMORY_BUDGET"
 
 _MB = 1 << 20
-#: The interpreter with NumPy, SciPy and curvefold loaded (bytes).
-BASE = 80 * _MB
+#: The interpreter with NumPy and the command line loaded (bytes): 37.2 MiB measured (every library a
+#: part imports, SciPy and Pillow among them, counts in that part's fixed cost), rounded up.
+BASE = 40 * _MB
 #: (fixed bytes, bytes per strip sample, bytes per squared sample) of each part of a job:
 #: the geometry with the certificate, each family of formats, the report's pictures.
-#: Measured on tubes (2001 to 32001 samples), vaults (401 and 1601 samples, 36 strips), a
-#: block and a crease, each part in a process of its own, and rounded up. Nothing grows
-#: with the square of the samples any more (the crease patterns did, 1.6 GB at 8001
-#: samples, until their glue tabs were checked against nearby segments only and a
-#: sheet's bounding box found by rotating calipers); the third number stays for a part
-#: that would.
+#: Measured with ``benchmarks/bench_budget.py --parts``: the peak of each part in a process of its
+#: own, over the interpreter (the geometry) or over the estimate of the built design (each file
+#: part), on a crease (2001 and 20001 samples), tubes (2001 to 32001), a block (2001), vaults of 9
+#: tubes (201 to 3001) and of 24 (801 and 1601), and rounded up. The geometry's fixed cost is the
+#: crease's SciPy (49 MiB at 2001 samples); per strip sample the tubes cost most (2390-2420 bytes
+#: between 8001 and 32001 samples; vaults 700-1900). A single crease's FOLD file and 3D models cost
+#: 4.8 and 4.1 kB per strip sample (187 and 165 MiB at 20001 samples), the file parts of the
+#: structures 3-41 MiB above the built design whatever their size. Nothing grows with the square
+#: of the samples any more (the crease patterns did, 1.6 GB at 8001 samples, until their glue tabs
+#: were checked against nearby segments only and a sheet's bounding box found by rotating
+#: calipers); the third number stays for a part that would.
 COSTS: dict[str, tuple[float, float, float]] = {
-    "geometry": (46 * _MB, 2200.0, 0.0),
-    "pattern": (100 * _MB, 500.0, 0.0),
-    "guide": (40 * _MB, 300.0, 0.0),  # measured 3 MB above the built design for the paper's vault at 801 and 3201 samples
-    "fold": (35 * _MB, 4200.0, 0.0),
-    "model": (75 * _MB, 5400.0, 0.0),
-    "motion": (100 * _MB, 400.0, 0.0),
-    "pictures": (75 * _MB, 300.0, 0.0),
+    "geometry": (46 * _MB, 2450.0, 0.0),
+    "pattern": (25 * _MB, 500.0, 0.0),
+    "guide": (5 * _MB, 300.0, 0.0),
+    "fold": (30 * _MB, 5000.0, 0.0),
+    "model": (20 * _MB, 5400.0, 0.0),
+    "motion": (45 * _MB, 400.0, 0.0),
+    "pictures": (40 * _MB, 300.0, 0.0),
     # measured: the peak of `curvefold load --json` over the geometry's estimate, 86 MiB for the paper's vault (801
-    # samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801, 70 MiB with 256 panels, rounded up
+    # samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801, 70 MiB with 256 panels, rounded up;
+    # measured again with the estimates above: the vault's load peaks at 221, 357 and 884 MiB (801, 3201, 12801
+    # samples) and 234 MiB (256 panels), below the estimate of its geometry alone
     "mechanics": (40 * _MB, 8000.0, 0.0),
 }
 #: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
 #: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
-#: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter and
-#: the geometry of a vault of up to :data:`DEFAULT_TUBES_CAP` tubes per sample.
+#: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter with what
+#: a sweep imports (80 MiB, the interpreter with SciPy when it was measured; the largest worker of a
+#: 200 × 200 atlas peaked at 110 MiB at 201 samples) and the geometry of a vault of up to
+#: :data:`DEFAULT_TUBES_CAP` tubes per sample.
 ATLAS_FIGURE, ATLAS_PER_DESIGN = 130 * _MB, 0.5 * _MB
-ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = BASE, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
+ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = 80 * _MB, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
 
 
 def memory_budget() -> int:
