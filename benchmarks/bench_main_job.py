@@ -36,9 +36,10 @@ TARGET_MB = 10.0
 #: on a machine others share, one run can take a third longer than the next.
 REPEATS = 3
 #: What the main job imports besides curvefold: NumPy, Pillow (pictures and GIF), rhino3dm
-#: (3dm), ezdxf (DXF), and the command line's rich and threadpoolctl (no SciPy, matplotlib or
-#: pygltflib: tests/test_startup.py holds it to that).
-LIBRARIES = ("numpy", "PIL.Image", "PIL.ImageDraw", "PIL.ImageFont", "rhino3dm", "ezdxf", "rich.progress", "threadpoolctl")
+#: (3dm), ezdxf (DXF), and the command line's threadpoolctl (no SciPy, matplotlib or pygltflib:
+#: tests/test_startup.py holds it to that; rich only for a progress bar in a terminal). NumPy is
+#: loaded on one BLAS thread, as the command line loads it.
+LIBRARIES = ("numpy", "PIL.Image", "PIL.ImageDraw", "PIL.ImageFont", "rhino3dm", "ezdxf", "threadpoolctl")
 
 
 def _folder_bytes(folder: Path) -> int:
@@ -129,7 +130,7 @@ def run() -> list[SummaryRow]:
         if not all(check["passed"] for check in report["certificate"]):
             raise RuntimeError("the certificate failed")
         timings = report["timings"]
-        _, imports, _ = _children_cpu([sys.executable, "-c", "import " + ", ".join(LIBRARIES)], env)
+        _, imports, _ = _children_cpu([sys.executable, "-c", "import " + ", ".join(LIBRARIES)], env | {"OPENBLAS_NUM_THREADS": "1"})
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
     print(f"load average of the machine during the run: {load} (on {os.cpu_count()} CPUs)")
     print(f"`curvefold vault` in a fresh process, best of {REPEATS}: {wall:.2f} s wall (at most {wall_hi:.2f}), {cpu:.2f} CPU s "
