@@ -311,6 +311,26 @@ def test_jobs_run_in_processes_and_come_back_in_job_order(tmp_path):
     assert sorted(os.listdir(tmp_path)) == [f"f{k}" for k in range(5)]
 
 
+def _write_pid(name: str, folder):
+    """Write the id of the process the job runs in."""
+    (folder / name).write_text(str(os.getpid()))
+    return [folder / name]
+
+
+def test_the_small_file_jobs_run_in_this_process_while_it_waits_for_the_others(tmp_path):
+    """The jobs of OWN_JOBS run here, the others each in a process of its own, and all come back in job order."""
+    from functools import partial
+
+    labels = ["pictures", "FOLD files", "crease patterns", "assembly guide"]
+    done = list(products.run_jobs([(label, partial(_write_pid, f"f{k}")) for k, label in enumerate(labels)], tmp_path, workers=2))
+    assert [label for label, _, _ in done] == labels
+    pids = [int((tmp_path / f"f{k}").read_text()) for k in range(4)]
+    assert [pid == os.getpid() for pid in pids] == [label in products.OWN_JOBS for label in labels] == [False, True, False, True]
+    assert len(set(pids)) == 3
+    with pytest.raises(InputError, match="this job refuses"):  # an own job's error is raised in its turn, as a forked job's
+        list(products.run_jobs([("pictures", lambda folder: []), ("FOLD files", _fail)], tmp_path, workers=2))
+
+
 def _write_frozen(name: str, folder):
     """Write how many objects the garbage collector leaves out (:func:`gc.get_freeze_count`)."""
     import gc
