@@ -169,8 +169,9 @@ class _InTurn:
 
 
 class _Running:
-    """Jobs in forked processes, at most ``workers`` at once: iterate for their results in job
-    order; ``close()`` kills the processes still running.
+    """Jobs in forked processes, at most ``workers`` at once, and those of :data:`OWN_JOBS` in this
+    one as it waits: iterate for their results in job order; ``close()`` kills the processes
+    still running.
 
     A process per job rather than a :class:`multiprocessing.pool.Pool`: a pool's
     ``terminate()`` can wait forever on its task thread, blocked sending a job into a pipe
@@ -398,9 +399,9 @@ DRAWN_NICENESS = 10
 #: 8,000 and 3,700 page faults forked against 360 and 210, on the paper's vault).
 OWN_JOBS = ("FOLD files", "assembly guide")
 #: The order the jobs start in: the drawings, then the files by the time they take on the
-#: paper's vault, longest first (crease patterns 0.55–0.61 CPU-s, 3D models 0.37–0.50, FOLD
-#: 0.27–0.34, the guide 0.19, beside 0.46–0.54 for each drawing), so that the processes finish
-#: about together.
+#: paper's vault, longest first (crease patterns 0.41–0.45 CPU-s, 3D models 0.29–0.34, FOLD
+#: 0.17–0.21, the guide 0.09–0.12, beside 0.43–0.48 for each drawing), so that the processes
+#: finish about together.
 _ORDER = DRAWN + ("crease patterns", "3D models", "FOLD files", "assembly guide")
 
 
