@@ -23,7 +23,7 @@ from ..geometry._lattice import Lattice
 from ..geometry._mesh import Mesh
 from ..geometry._structure import State
 from ..kernel._functions import ScalarFunction
-from ..kernel._lie import GAUSS3_WEIGHTS, cross
+from ..kernel._lie import GAUSS3_WEIGHTS, cross, cross3
 
 __all__ = [
     "derivative",
@@ -385,16 +385,6 @@ def norm3(v: np.ndarray) -> np.ndarray:
     out += v[2] * v[2]
     out += v[1] * v[1]
     return np.sqrt(out, out=out)
-
-
-def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``a × b`` of vectors stored by component (3, ...) (broadcasting): :func:`~curvefold.kernel._lie.cross`'s numbers."""
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    term = np.empty(out.shape[1:])
-    for k, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
-        np.multiply(a[i], b[j], out=out[k])
-        np.subtract(out[k], np.multiply(a[j], b[i], out=term), out=out[k])
-    return out
 
 
 def angle3(a: np.ndarray, b: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:

@@ -37,7 +37,7 @@ import numpy as np
 
 from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError
-from ..kernel._lie import cross
+from ..kernel._lie import cross, cross3
 from ._mesh import edges_faces
 from ._structure import Structure
 from ._topology import Topology
@@ -198,11 +198,6 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The cross products of component-major vectors (3, ...), each component as :func:`~curvefold.kernel._lie.cross` computes it."""
-    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
-
-
 def _step_shape(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The steps of tubes ``tube`` from samples i to ``ends``, each (J,), measured over the states.
 
@@ -218,12 +213,12 @@ def _step_shape(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, end
     corner = np.take(points, rows[:, _STEP.faces_vertices], axis=2)  # (3, states, J, F, 3): the triangles' corners
     u = np.roll(corner, -1, axis=-1) - corner
     v = np.roll(corner, 1, axis=-1) - corner
-    area = _cross(u, v)
+    area = cross3(u, v)
     angle = np.arctan2(np.sqrt(_dot(area, area)), _dot(u, v))
     edges = np.take(points, rows[:, _STEP.edges_vertices[:, 1]], axis=2) - np.take(points, rows[:, _STEP.edges_vertices[:, 0]], axis=2)
     length = np.sqrt(_dot(edges, edges))  # (states, J, E)
     stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
-    normal = _cross(corner[..., 1] - corner[..., 0], corner[..., 2] - corner[..., 0])  # vector areas, (3, states, J, F)
+    normal = cross3(corner[..., 1] - corner[..., 0], corner[..., 2] - corner[..., 0])  # vector areas, (3, states, J, F)
     normal /= np.sqrt(_dot(normal, normal))
     cos = _dot(normal[..., _DIAGONAL_FACES[:, 0]], normal[..., _DIAGONAL_FACES[:, 1]])
     bend = np.arccos(np.clip(cos, -1.0, 1.0)).max(axis=(0, 2))

@@ -38,6 +38,7 @@ __all__ = [
     "CHUNK",
     "matrix_quaternion",
     "cross",
+    "cross3",
 ]
 
 #: Gauss–Legendre nodes on [0, 1] (three points, order 6) and their weights.
@@ -59,6 +60,22 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     out[..., 0] = a1 * b2 - a2 * b1
     out[..., 1] = a2 * b0 - a0 * b2
     out[..., 2] = a0 * b1 - a1 * b0
+    return out
+
+
+def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a × b`` of vectors stored by component (3, ...) (broadcasting): :func:`cross`'s numbers.
+
+    Examples
+    --------
+    >>> cross3(np.array([[1.0], [0.0], [0.0]]), np.array([[0.0, 1.0], [1.0, 0.0], [0.0, 0.0]])).T.tolist()  # x × y, x × x
+    [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0]]
+    """
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    term = np.empty(out.shape[1:])
+    for k, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
+        np.multiply(a[i], b[j], out=out[k])
+        np.subtract(out[k], np.multiply(a[j], b[i], out=term), out=out[k])
     return out
 
 
