@@ -18,11 +18,12 @@ Image = pytest.importorskip("PIL.Image")
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
+from PIL import ImageSequence  # noqa: E402
 
 from curvefold.figures import _motion as motion  # noqa: E402
 from curvefold.figures import _plots as plots  # noqa: E402
 from curvefold.figures import _views as views  # noqa: E402
-from curvefold.io._gif import write_gif  # noqa: E402
+from curvefold.io._gif import COLOURS, write_gif  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -267,6 +268,13 @@ def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
         # one palette of COLOURS from the last frame: that frame comes back close (quantised, not dithered)
         back = np.asarray(im.convert("RGB"), float)
     assert np.abs(back - np.asarray(frames[2], float)).mean() < 4.0
+    palette = frames[-1].quantize(colors=COLOURS)
+    with Image.open(path) as im:  # every frame decodes to exactly its pixels on that palette
+        decoded = [np.asarray(im.convert("RGB")) for _ in ImageSequence.Iterator(im)]
+    assert all(np.array_equal(d, np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")))
+               for d, f in zip(decoded, frames, strict=True))
+    own = np.asarray(frames[0].quantize(colors=COLOURS).convert("RGB"))  # the first frame on a palette of its own: not what was written
+    assert not np.array_equal(decoded[0], own)
     with pytest.raises(InputError, match=r"frame_seconds must be in \[0\.01, 10\] seconds, got 0\.0"):
         write_gif(tmp_path / "x.gif", frames, frame_seconds=0.0)
     with pytest.raises(InputError, match="frames must all have one size"):

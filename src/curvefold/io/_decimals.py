@@ -10,7 +10,7 @@ x is not 0, 10⁻⁴ ≤ ``abs(x)`` < 10¹⁵ (``repr`` writes no exponent), ``a
 near x are closer together than 10^-d, no other decimal of at most as many digits reads
 back as x, so ``repr(x)`` is D without its trailing zeros (one decimal kept, as in
 ``1.0``): those digits are computed for all numbers at once. Below 10⁻⁴ ``repr`` writes
-the same digits with an exponent (``-1.5e-05``: :func:`_scientific`), also computed at
+the same digits with an exponent (``-1.5e-05``), also computed at
 once. Every other number (an exponent of 10¹⁵ or more, a float that is not nearest to its
 rounded decimal) is written with ``repr``.
 """
