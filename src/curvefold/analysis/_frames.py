@@ -67,17 +67,13 @@ class Shared:
         """
         top, cells = self.topology, self.structure.cell_curves
         K, n = len(cells), len(self.structure.lattice.s)
-        if top.faces_vertices.shape != (8 * K * (n - 1), 3) or top.edges_vertices.shape != (4 * K * (3 * n - 2), 2):
+        tubes = Topology.tubes(cells, n)
+        if not all(np.array_equal(getattr(top, name), getattr(tubes, name))
+                   for name in ("vertex_curve", "vertex_sample", "edges_vertices", "faces_vertices")):
             return False
-        strip, j, i = np.arange(4 * K), np.arange(n - 1), np.arange(n)
-        a, b = (strip * n)[:, None], ((strip - strip % 4 + (strip + 1) % 4) * n)[:, None]  # corners c and c + 1
-        pairs = [np.stack(ends, axis=-1).reshape(-1, 2) for ends in ((a + j, a + j + 1), (a + i, b + i), (a + j, b + j + 1))]
-        faces = np.concatenate([np.stack([a + j, b + j + 1, b + j], axis=-1), np.stack([a + j, a + j + 1, b + j + 1], axis=-1)], axis=1)
-        kinds = np.split(top.edges_kind, np.cumsum([len(e) for e in pairs[:2]]))
-        return (np.array_equal(top.vertex_curve, np.repeat(cells.reshape(-1), n)) and np.array_equal(top.vertex_sample, np.tile(i, 4 * K))
-                and np.array_equal(top.edges_vertices, np.concatenate(pairs)) and np.array_equal(top.faces_vertices, faces.reshape(-1, 3))
-                and bool(np.isin(kinds[0], ("fold", "seam")).all() and (kinds[2] == "diagonal").all())
-                and not np.isin(kinds[1], ("fold", "seam", "diagonal")).any())
+        kinds = np.split(top.edges_kind, [4 * K * (n - 1), 4 * K * (2 * n - 1)])  # curve edges, rulings, diagonals
+        return bool(np.isin(kinds[0], ("fold", "seam")).all() and (kinds[2] == "diagonal").all()
+                    and not np.isin(kinds[1], ("fold", "seam", "diagonal")).any())
 
     @cached_property
     def quads(self) -> np.ndarray:
