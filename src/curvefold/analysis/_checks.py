@@ -190,7 +190,9 @@ def _eq19(frame: Frame) -> Residual | None:
     speed, kappa = frame.tube_frenet[0], frame.tube_frenet[4]  # (K, 4, m)
     nxt = [b for _, b in STRIPS]
     ruling = frame.strip_vectors[..., 2:-2]  # strip a → b of every tube, (3, K, 4, m)
-    bend = kappa * np.sin(alpha) * speed  # κ sin α ds/dt = κ_2D tan α ds/dt at every corner
+    bend = np.sin(alpha)
+    bend *= kappa
+    bend *= speed  # κ sin α ds/dt = κ_2D tan α ds/dt at every corner
     sides = [bend[:, c] / np.sin(measure.angle3(ruling, d1[:, :, c])) for c in (slice(None), nxt)]
     values = np.abs(sides[0] / sides[1] - 1)  # (K, 4 strips, m)
     length = float(measure.norm3(frame.strip_vectors[:, :, 0]).min())

@@ -394,7 +394,13 @@ def angle3(a: np.ndarray, b: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)
 
 def line_distance3(d: np.ndarray, T: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
     """:func:`line_distance` of vectors stored by component (3, ...), shape (...)."""
-    return norm3(d - dot3(d, T, order) * T)
+    return norm3(_across3(d, T, order))
+
+
+def _across3(v: np.ndarray, T: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
+    """``v − (v·T) T`` of vectors stored by component (3, ...): v's part normal to the unit T (one new array)."""
+    along = dot3(v, T, order) * T
+    return np.subtract(v, along, out=along)
 
 
 def frenet3(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -404,16 +410,13 @@ def frenet3(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
     b = cross3(d1, d2)
     bend = norm3(b)
     with np.errstate(invalid="ignore", divide="ignore"):
-        B = b / bend
-    return speed, T, cross3(B, T), B, bend / speed**3
+        b /= bend  # B
+    return speed, T, cross3(b, T), b, bend / speed**3
 
 
 def half_angle3(before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray) -> np.ndarray:
     """:func:`half_angle_between` of vectors stored by component (3, ..., m), shape (..., m)."""
-    T = tangent
-    a = before - dot3(before, T) * T
-    b = after - dot3(after, T) * T
-    delta = angle3(a, b)
+    delta = angle3(_across3(before, tangent), _across3(after, tangent))
     return np.where(fold, 0.5 * (np.pi - delta), 0.5 * delta)
 
 
@@ -426,12 +429,23 @@ def rebuilt_strip3(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray,
     beta = angle3(ruling[..., 2:-2], T)
     right = np.asarray(side) == "R"
     sin_beta = np.sin(beta)
-    r = np.cos(beta) * T + sin_beta * (np.where(right, -np.cos(alpha), np.cos(alpha)) * N + np.sin(alpha) * B)
-    rate = np.where(right, 1.0, -1.0) * kappa * np.cos(alpha) / np.tan(beta) * speed
+    r = np.where(right, -np.cos(alpha), np.cos(alpha)) * N  # r = cos β T + sin β (±cos α N + sin α B), in place
+    r += np.sin(alpha) * B
+    r *= sin_beta
+    r += np.cos(beta) * T
+    rate = np.where(right, 1.0, -1.0) * kappa
+    rate *= np.cos(alpha)
+    rate /= np.tan(beta)
+    rate *= speed  # ±κ cos α / tan β · ds/dt
     x = curve[..., 2:-2]
     start = line_distance3(following[..., 2:3] - x[..., :1], T[..., :1])
-    width = start * np.exp(cumulative_integral(rate, step))
-    return x + (sign * width / sin_beta) * r
+    scale = np.exp(cumulative_integral(rate, step))
+    scale *= start
+    scale *= sign  # sign · w
+    scale /= sin_beta
+    r *= scale
+    r += x
+    return r
 
 
 def corner_nonplanarity3(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray, diagonal_length: np.ndarray) -> np.ndarray:
