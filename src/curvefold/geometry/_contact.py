@@ -94,7 +94,8 @@ def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np
     a = np.repeat(np.arange(lo.shape[1]), count)
     b = a + np.arange(len(a)) - np.repeat(np.cumsum(count) - count, count)
     for k in (k for k in range(3) if k != axis):
-        hit = (lo[k, a] - hi[k, b] <= grown) & (lo[k, b] - hi[k, a] <= grown)
+        hit = np.take(lo[k], a) - np.take(hi[k], b) <= grown
+        hit &= np.take(lo[k], b) - np.take(hi[k], a) <= grown
         a, b = a[hit], b[hit]
     return order[a], order[b]
 
