@@ -497,7 +497,8 @@ def test_fold_angles_wrap_as_the_remainder_by_360_degrees():
 
 
 def test_a_mesh_not_numbered_as_the_tubes_is_gathered():
-    """A topology with two edges swapped, or another face order, is not read off the strips: the frames gather it."""
+    """A topology with two edges swapped, another face order, or two vertices' samples swapped is not read off the
+    strips: the frames gather it."""
     from curvefold.analysis import _measure as measure
 
     structure = two_tubes()
@@ -505,7 +506,9 @@ def test_a_mesh_not_numbered_as_the_tubes_is_gathered():
     edges = top.edges_vertices.copy()
     edges[[0, -1]] = edges[[-1, 0]]
     faces = top.faces_vertices[::-1].copy()
-    for damaged in (replace(top, edges_vertices=edges), replace(top, faces_vertices=faces)):
+    samples = top.vertex_sample.copy()
+    samples[[0, 1]] = samples[[1, 0]]
+    for damaged in (replace(top, edges_vertices=edges), replace(top, faces_vertices=faces), replace(top, vertex_sample=samples)):
         shared = Shared(structure)
         shared.__dict__["topology"] = damaged
         assert not shared.tube_mesh

@@ -18,7 +18,7 @@ import numpy as np
 from ..geometry._crease import Crease
 from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
-from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology
+from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology, is_tube_numbering
 from ..vault._assembly import Vault
 from . import _measure as measure
 
@@ -67,9 +67,7 @@ class Shared:
         """
         top, cells = self.topology, self.structure.cell_curves
         K, n = len(cells), len(self.structure.lattice.s)
-        tubes = Topology.tubes(cells, n)
-        if not all(np.array_equal(getattr(top, name), getattr(tubes, name))
-                   for name in ("vertex_curve", "vertex_sample", "edges_vertices", "faces_vertices")):
+        if not is_tube_numbering(top, cells, n):
             return False
         kinds = np.split(top.edges_kind, [4 * K * (n - 1), 4 * K * (2 * n - 1)])  # curve edges, rulings, diagonals
         return bool(np.isin(kinds[0], ("fold", "seam")).all() and (kinds[2] == "diagonal").all()

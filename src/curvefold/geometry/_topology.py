@@ -50,6 +50,7 @@ __all__ = [
     "corner_members",
     "SheetTopology",
     "Topology",
+    "is_tube_numbering",
     "sample_index",
     "tube_strips",
     "thin_cells",
@@ -325,20 +326,9 @@ class Topology(FrozenArrays):
         if keep is not None:
             return _kept_tubes(cls, cells, int(samples), faces, keep)
         K, n = len(cells), int(samples)
-        j, i = np.arange(n - 1), np.arange(n)
-        strip = np.arange(4 * K)  # 4k + c
-        a = (strip * n)[:, None]  # first vertex of corner c of tube k
-        b = ((strip - strip % 4 + (strip + 1) % 4) * n)[:, None]  # first vertex of corner c + 1
-        if faces == "triangles":
-            first = np.stack([a + j, b + j + 1, b + j], axis=-1)
-            second = np.stack([a + j, a + j + 1, b + j + 1], axis=-1)
-            face_rows = np.concatenate([first, second], axis=1)  # (4K, 2(n − 1), 3)
-        else:
-            face_rows = np.stack([a + j, a + j + 1, b + j + 1, b + j], axis=-1)  # (4K, n − 1, 4)
+        i, strip = np.arange(n), np.arange(4 * K)  # strip 4k + c
+        vertex_curve, vertex_sample, face_rows, curve_edges, rulings, diagonals = _tube_numbering(cells, n, faces)
         per_strip = face_rows.shape[1]
-        curve_edges = np.stack([a + j, a + j + 1], axis=-1).reshape(-1, 2)
-        rulings = np.stack([a + i, b + i], axis=-1).reshape(-1, 2)
-        diagonals = np.stack([a + j, b + j + 1], axis=-1).reshape(-1, 2) if faces == "triangles" else np.zeros((0, 2), np.int64)
         corner = np.repeat(strip % 4, n - 1)  # corner of every curve edge
         curve_kind = np.array(CORNER_KINDS)[corner]
         ruling_kind = np.where(np.tile(np.isin(i, (0, n - 1)), 4 * K), "boundary", "ruling")
@@ -368,8 +358,8 @@ class Topology(FrozenArrays):
                 sheets.append(_sheet(f"tube {k + 1} · sheet {name}", verts, np.sort(face_ids), np.sort(edge_ids),
                                      faces_vertices, edges_vertices, seam, like=sheets[m] if k else None))
         return cls(  # arrays made here, held as they are (read-only, not copied)
-            vertex_curve=readonly(np.repeat(cells.reshape(-1), n)),
-            vertex_sample=readonly(np.tile(i, 4 * K)),
+            vertex_curve=readonly(vertex_curve),
+            vertex_sample=readonly(vertex_sample),
             faces_vertices=readonly(faces_vertices),
             faces_group=readonly(np.repeat(strip, per_strip)),
             edges_vertices=readonly(edges_vertices),
@@ -447,6 +437,40 @@ class Topology(FrozenArrays):
             edges_kind=self.edges_kind,
             faces_group=self.faces_group,
         )
+
+
+def _tube_numbering(cells: np.ndarray, n: int, faces: str) -> tuple[np.ndarray, ...]:
+    """The numbering of :meth:`Topology.tubes` on cells (K, 4) of n samples: every vertex's curve and sample (4Kn,),
+    every strip's faces (4K, F, 3 or 4), and the curve edges, rulings and diagonals (none for quads), each (E, 2)."""
+    j, i = np.arange(n - 1), np.arange(n)
+    strip = np.arange(4 * len(cells))  # 4k + c
+    a = (strip * n)[:, None]  # first vertex of corner c of tube k
+    b = ((strip - strip % 4 + (strip + 1) % 4) * n)[:, None]  # first vertex of corner c + 1
+    if faces == "triangles":
+        first = np.stack([a + j, b + j + 1, b + j], axis=-1)
+        second = np.stack([a + j, a + j + 1, b + j + 1], axis=-1)
+        face_rows = np.concatenate([first, second], axis=1)  # (4K, 2(n − 1), 3)
+    else:
+        face_rows = np.stack([a + j, a + j + 1, b + j + 1, b + j], axis=-1)  # (4K, n − 1, 4)
+    curve_edges = np.stack([a + j, a + j + 1], axis=-1).reshape(-1, 2)
+    rulings = np.stack([a + i, b + i], axis=-1).reshape(-1, 2)
+    diagonals = np.stack([a + j, b + j + 1], axis=-1).reshape(-1, 2) if faces == "triangles" else np.zeros((0, 2), np.int64)
+    return np.repeat(cells.reshape(-1), n), np.tile(i, len(strip)), face_rows, curve_edges, rulings, diagonals
+
+
+def is_tube_numbering(topology: Topology, cell_curves: np.ndarray, samples: int) -> bool:
+    """Whether a topology numbers its vertices, edges and faces as :meth:`Topology.tubes` numbers triangles of these
+    cells at every sample (its edges' kinds aside), without building that topology.
+
+    Examples
+    --------
+    >>> cells = np.array([[0, 1, 3, 2]])
+    >>> is_tube_numbering(Topology.tubes(cells, 3), cells, 3), is_tube_numbering(Topology.tubes(cells, 3, faces="quads"), cells, 3)
+    (True, False)
+    """
+    curve, sample, face_rows, *edges = _tube_numbering(np.asarray(cell_curves, dtype=np.int64).reshape(-1, 4), int(samples), "triangles")
+    return (np.array_equal(topology.vertex_curve, curve) and np.array_equal(topology.vertex_sample, sample)
+            and np.array_equal(topology.faces_vertices, face_rows.reshape(-1, 3)) and np.array_equal(topology.edges_vertices, np.concatenate(edges)))
 
 
 def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str, keep: Sequence[np.ndarray]) -> Topology:
