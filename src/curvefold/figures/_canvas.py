@@ -33,7 +33,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from ._scene import Scene
 
-__all__ = ["font_file", "nice_ticks", "viridis", "inks", "Canvas", "Frame", "png_bytes", "write_png", "draw_scene"]
+__all__ = ["font_file", "nice_ticks", "viridis", "inks", "Canvas", "Frame", "png_bytes", "write_png", "draw_ground", "draw_scene"]
 
 #: Viridis at t = 0, 0.1, ..., 1 (matplotlib's colour map, interpolated linearly between them).
 _VIRIDIS = ("#440154", "#482475", "#414487", "#355f8d", "#2a788e", "#21918c", "#22a884", "#44bf70", "#7ad151", "#bddf26", "#fde725")
@@ -133,17 +133,24 @@ def _runs(text: str) -> list[tuple[str, bool]]:
     return [(piece, sub) for piece, sub in out + [(text[at:], False)] if piece]
 
 
-def draw_scene(draw, scene: Scene, to_pixels, pixels_per_point: float, ground_width: float) -> None:
+def draw_ground(draw, ground: np.ndarray | None, to_pixels, width: float) -> None:
+    """Paint the ground of a scene (its screen corners (4, 2), or None: nothing) with a Pillow ImageDraw
+    of an RGB image, its outline ``width`` pixels wide; ``to_pixels`` maps screen points (N, 2) to pixels (N, 2)."""
+    from ._scene import GROUND_COLOR, GROUND_EDGE
+
+    if ground is not None:
+        draw.polygon([tuple(p) for p in to_pixels(ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE, width=max(1, round(width)))
+
+
+def draw_scene(draw, scene: Scene, to_pixels, pixels_per_point: float, ground_width: float, *, ground: bool = True) -> None:
     """Paint a scene (ground first, then its paths far to near) with a Pillow ImageDraw of an RGB image.
 
     ``to_pixels`` maps screen points (N, 2) to pixels (N, 2). Strips are filled (their
     outline is their own colour: the fill covers it), segments stroked at their widths.
+    With ``ground`` False the ground is left out (:func:`draw_ground` drew it already).
     """
-    from ._scene import GROUND_COLOR, GROUND_EDGE
-
-    if scene.ground is not None:
-        draw.polygon([tuple(p) for p in to_pixels(scene.ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE,
-                     width=max(1, round(ground_width)))
+    if ground:
+        draw_ground(draw, scene.ground, to_pixels, ground_width)
     points, sizes = scene.flat
     ends = (2 * np.cumsum(sizes)).tolist()
     flat = to_pixels(points).ravel().tolist()

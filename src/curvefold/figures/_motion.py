@@ -21,7 +21,7 @@ import numpy as np
 from ..geometry._lattice import check_anchor
 from ..io._gif import write_gif
 from ..kernel._errors import InputError
-from ._canvas import Canvas, draw_scene
+from ._canvas import Canvas, draw_ground, draw_scene
 from ._plots import KIND_COLORS, structure_of
 from ._scene import Scene, View, motion_scenes
 
@@ -69,21 +69,55 @@ def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, 
     if own:
         canvas = Canvas(size, dpi=100.0, supersample=supersample)
         rect = (0, 0, *size)
-    left, top, right, bottom = (v * canvas.supersample for v in rect)
-    w, h = right - left, bottom - top
-    title_px = 0.05 * h if title_points is None else title_points * canvas.pt
-    head, pad = (0.12 * h if title_points is None else 2.2 * title_px) if title else 0.0, 0.02 * w
-    lo, hi = box.min(axis=0), box.max(axis=0)
-    scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - head - pad) / max(hi[1] - lo[1], 1e-12))
-    centre = np.array([left + w / 2, top + (h + head - pad) / 2])
+    place = _Placement(canvas, box, rect, title, title_points)
+    draw_scene(ImageDraw.Draw(canvas.image), scene, place.pixels, canvas.pt, canvas.supersample)
+    place.title(title)
+    return canvas.picture() if own else place.scale
 
-    def pixels(points: np.ndarray) -> np.ndarray:
-        return (points - 0.5 * (lo + hi)) * scale * np.array([1.0, -1.0]) + centre
 
-    draw_scene(ImageDraw.Draw(canvas.image), scene, pixels, canvas.pt, canvas.supersample)
-    if title:
-        canvas.text((left + w / 2, top + 0.02 * h), title, title_px / canvas.pt, anchor="mt")
-    return canvas.picture() if own else scale
+class _Placement:
+    """Where a drawing goes in ``rect`` (left, top, right, bottom; picture pixels) of a canvas:
+    the screen points ``box`` (P, 2) fit below the line of a title (if there is one)."""
+
+    def __init__(self, canvas: Canvas, box: np.ndarray, rect: Sequence[float], title: str, title_points: float | None) -> None:
+        left, top, right, bottom = (v * canvas.supersample for v in rect)
+        w, h = right - left, bottom - top
+        self.canvas, self.at = canvas, (left + w / 2, top + 0.02 * h)
+        self.title_px = 0.05 * h if title_points is None else title_points * canvas.pt
+        head, pad = (0.12 * h if title_points is None else 2.2 * self.title_px) if title else 0.0, 0.02 * w
+        lo, hi = box.min(axis=0), box.max(axis=0)
+        self.middle = 0.5 * (lo + hi)
+        #: Canvas pixels per model unit.
+        self.scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - head - pad) / max(hi[1] - lo[1], 1e-12))
+        self.centre = np.array([left + w / 2, top + (h + head - pad) / 2])
+
+    def pixels(self, points: np.ndarray) -> np.ndarray:
+        """Canvas pixels (N, 2) of screen points (N, 2)."""
+        return (points - self.middle) * self.scale * np.array([1.0, -1.0]) + self.centre
+
+    def title(self, title: str) -> None:
+        """Write the title line (nothing if it is empty)."""
+        if title:
+            self.canvas.text(self.at, title, self.title_px / self.canvas.pt, anchor="mt")
+
+
+def _frames(scenes: Sequence[Scene], box: np.ndarray, size: tuple[int, int], titles: Sequence[str]) -> list[Image.Image]:
+    """:func:`raster` of every scene of a motion with its title (each scene's ground, if any, the
+    same: of the first), drawn on one canvas: the ground once, each frame over a copy of it."""
+    from PIL import ImageDraw
+
+    canvas = Canvas(size, dpi=100.0)
+    draw = ImageDraw.Draw(canvas.image)
+    place = _Placement(canvas, box, (0, 0, *size), titles[0], None)
+    draw_ground(draw, scenes[0].ground, place.pixels, canvas.supersample)
+    backdrop = canvas.image.copy()
+    frames = []
+    for scene, title in zip(scenes, titles):
+        canvas.image.paste(backdrop)
+        draw_scene(draw, scene, place.pixels, canvas.pt, canvas.supersample, ground=False)
+        place.title(title)
+        frames.append(canvas.picture())
+    return frames
 
 
 def motion_frames(
@@ -130,7 +164,7 @@ def motion_frames(
     scenes = motion_scenes(structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells, crease_width=0.7,
                            ground=isinstance(obj, Vault))
     joint = np.concatenate([scene.box for scene in scenes])  # one scale for all frames
-    return [raster(scene, joint, (w_px, h_px), f"2α = {f:5.1f}°") for f, scene in zip(steps, scenes)]
+    return _frames(scenes, joint, (w_px, h_px), [f"2α = {f:5.1f}°" for f in steps])
 
 
 def write_motion_gif(obj: Vault | Structure, path: str | os.PathLike, *, frame_seconds: float = 0.12, **frames) -> Path:
