@@ -268,7 +268,7 @@ def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
         # one palette of COLOURS from the last frame: that frame comes back close (quantised, not dithered)
         back = np.asarray(im.convert("RGB"), float)
     assert np.abs(back - np.asarray(frames[2], float)).mean() < 4.0
-    palette = frames[-1].quantize(colors=COLOURS)
+    palette = frames[-1].quantize(colors=COLOURS, method=Image.Quantize.MAXCOVERAGE)
     with Image.open(path) as im:  # every frame decodes to exactly its pixels on that palette
         decoded = [np.asarray(im.convert("RGB")) for _ in ImageSequence.Iterator(im)]
     assert all(np.array_equal(d, np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")))
