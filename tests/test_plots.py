@@ -275,13 +275,19 @@ def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
                for d, f in zip(decoded, frames, strict=True))
     own = np.asarray(frames[0].quantize(colors=COLOURS).convert("RGB"))  # the first frame on a palette of its own: not what was written
     assert not np.array_equal(decoded[0], own)
+    on_palette = [np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")) for f in frames]
+    for name, given, played in (("bounce", frames, [0, 1, 2, 1]), ("still", [frames[1], frames[1], frames[2]], [1, 1, 2])):
+        # each frame is stored once: played backward, a frame is the same as played forward; a frame that repeats the one before too
+        with Image.open(write_gif(tmp_path / f"{name}.gif", given, bounce=name == "bounce")) as im:
+            decoded = [np.asarray(im.convert("RGB")) for _ in ImageSequence.Iterator(im)]
+        assert len(decoded) == len(played) and all(np.array_equal(d, on_palette[k]) for d, k in zip(decoded, played))
     with pytest.raises(InputError, match=r"frame_seconds must be in \[0\.01, 10\] seconds, got 0\.0"):
         write_gif(tmp_path / "x.gif", frames, frame_seconds=0.0)
     with pytest.raises(InputError, match="frames must all have one size"):
         write_gif(tmp_path / "x.gif", [frames[0], frames[1].resize((80, 60))])
     with pytest.raises(InputError, match="at least one image"):
         write_gif(tmp_path / "x.gif", [])
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["plain.gif"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bounce.gif", "plain.gif", "still.gif"]
 
 
 # -- saving -----------------------------------------------------------------------------------------
