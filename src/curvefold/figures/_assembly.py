@@ -34,7 +34,7 @@ from ..io._legend import check_layout
 from ..io._pattern import draw_footer
 from ..io._pdf import PdfDocument, PdfPage, advance_units
 from ..io._tables import COLOURS
-from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, ground_polygon, render_strips
+from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, bounds, ground_polygon, render_strips
 
 __all__ = ["HIGHLIGHT_RGB", "SheetToCut", "Seam", "Step", "AssemblyPlan", "assembly_plan", "write_assembly"]
 
@@ -192,8 +192,7 @@ def _pictures(structure: Structure, steps: int, view: View | None):
     state = structure.state()
     V, cells, kinds = drawable(structure, state.vertices, segments=32, max_cells=len(structure.cell_curves))
     view = _facing_the_last(V, cells) if view is None else view
-    flat = V.reshape(-1, 3)
-    lo, hi = flat.min(axis=0), flat.max(axis=0)
+    lo, hi = bounds(V)
     standing = abs(float(lo[2])) <= 1e-6 * float(np.max(hi - lo))  # a vault's feet on z = 0: draw the ground
     ground = ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo))) if standing else None
     scenes = []
@@ -214,19 +213,18 @@ def _draw_scene(page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[floa
     s = min(w / size[0], h / size[1])
     offset = np.array([x0 + 0.5 * (w - s * size[0]), y0 + 0.5 * (h - s * size[1])])
 
-    def to_page(paths: tuple[np.ndarray, ...]) -> list[np.ndarray]:
-        """The paths (each (n, 2)) on the page, mapped together."""
-        if not paths:
-            return []
-        ends = np.cumsum([len(p) for p in paths]).tolist()
-        mapped = offset + (np.concatenate(paths) - box[0]) * s
-        return [mapped[a:b] for a, b in zip([0] + ends[:-1], ends)]
+    def to_page(points: np.ndarray, sizes: np.ndarray) -> list[np.ndarray]:
+        """Paths given as their points one after the other (N, 2) and the number of points of each, on the page."""
+        ends = np.cumsum(sizes).tolist()
+        mapped = offset + (points - box[0]) * s
+        return list(map(mapped.__getitem__, map(slice, [0] + ends[:-1], ends)))
 
     pt = 25.4 / 72.0
     if ground is not None:
-        page.paint(to_page((ground,)), [GROUND_COLOR], [GROUND_EDGE], [0.6 * pt], layer=_LAYERS[1])
-    fills = [f if len(p) > 2 else None for p, f in zip(scene.paths, _hex_codes(scene.fill))]
-    page.paint(to_page(scene.paths), fills, _hex_codes(scene.stroke), (scene.widths * pt).tolist(), layer=_LAYERS[1])
+        page.paint(to_page(ground, np.array([len(ground)])), [GROUND_COLOR], [GROUND_EDGE], [0.6 * pt], layer=_LAYERS[1])
+    points, sizes = scene.flat
+    fills = [f if n > 2 else None for n, f in zip(sizes.tolist(), _hex_codes(scene.fill))]
+    page.paint(to_page(points, sizes), fills, _hex_codes(scene.stroke), (scene.widths * pt).tolist(), layer=_LAYERS[1])
 
 
 def _hex_codes(colours: np.ndarray) -> list[str]:
