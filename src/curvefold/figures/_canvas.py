@@ -500,16 +500,15 @@ def png_bytes(picture: Image.Image, *, level: int = 3) -> bytes:
     (the paper's vault's five pictures: 0.19 CPU-s and 440 kB at level 6, unfiltered at
     level 3 0.04 CPU-s and 453 kB). The pixels are the same (PNG is lossless).
     """
-    rgb = np.asarray(picture.convert("RGB"))
-    height, width, _ = rgb.shape
+    width, height = picture.size
     rows = np.zeros((height, 1 + 3 * width), np.uint8)  # each row: filter type 0 (none), then its pixels
-    rows[:, 1:] = rgb.reshape(height, -1)
+    rows[:, 1:] = np.frombuffer((picture if picture.mode == "RGB" else picture.convert("RGB")).tobytes(), np.uint8).reshape(height, -1)
 
     def chunk(kind: bytes, data: bytes) -> bytes:
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
 
     header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)  # 8 bits, truecolour, deflate, no filter choice, no interlace
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows.tobytes(), level)) + chunk(b"IEND", b"")
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows, level)) + chunk(b"IEND", b"")
 
 
 def write_png(picture: Image.Image, path: str | os.PathLike) -> Path:
