@@ -357,7 +357,8 @@ def render_strips(
         seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
         s2, _ = view.project(seg)
         used_kinds = np.asarray(kinds)[used]
-        per_curve = np.array([_kind_color(colors, k) for k in used_kinds]).reshape(-1, 4)
+        kind_rgba = {k: _kind_color(colors, k) for k in dict.fromkeys(used_kinds.tolist())}  # a few kinds, many curves
+        per_curve = np.array([kind_rgba[k] for k in used_kinds.tolist()]).reshape(-1, 4)
         nearest = np.full((len(vertices), per_strip.shape[1]), -np.inf)  # of the strips bordering each curve, per segment
         np.maximum.at(nearest, pairs[:, 0], per_strip)
         np.maximum.at(nearest, pairs[:, 1], per_strip)
