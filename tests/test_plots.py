@@ -269,13 +269,12 @@ def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
         back = np.asarray(im.convert("RGB"), float)
     assert np.abs(back - np.asarray(frames[2], float)).mean() < 4.0
     palette = frames[-1].quantize(colors=COLOURS, method=Image.Quantize.MAXCOVERAGE)
+    on_palette = [np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")) for f in frames]
     with Image.open(path) as im:  # every frame decodes to exactly its pixels on that palette
         decoded = [np.asarray(im.convert("RGB")) for _ in ImageSequence.Iterator(im)]
-    assert all(np.array_equal(d, np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")))
-               for d, f in zip(decoded, frames, strict=True))
+    assert all(np.array_equal(d, f) for d, f in zip(decoded, on_palette, strict=True))
     own = np.asarray(frames[0].quantize(colors=COLOURS).convert("RGB"))  # the first frame on a palette of its own: not what was written
     assert not np.array_equal(decoded[0], own)
-    on_palette = [np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")) for f in frames]
     for name, given, played in (("bounce", frames, [0, 1, 2, 1]), ("still", [frames[1], frames[1], frames[2]], [1, 1, 2])):
         # each frame is stored once: played backward, a frame is the same as played forward; a frame that repeats the one before too
         with Image.open(write_gif(tmp_path / f"{name}.gif", given, bounce=name == "bounce")) as im:

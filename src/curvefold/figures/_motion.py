@@ -102,8 +102,8 @@ class _Placement:
 
 
 def _frames(scenes: Sequence[Scene], box: np.ndarray, size: tuple[int, int], titles: Sequence[str]) -> list[Image.Image]:
-    """:func:`raster` of every scene of a motion with its title (each scene's ground, if any, the
-    same: of the first), drawn on one canvas: the ground once, each frame over a copy of it."""
+    """:func:`raster` of each scene of a motion (they share one ground, or none) under its title, all
+    drawn on one canvas: the ground once, then each frame over a copy of it."""
     from PIL import ImageDraw
 
     canvas = Canvas(size, dpi=100.0)
