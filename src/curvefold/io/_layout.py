@@ -232,10 +232,8 @@ class Layout:
 # one sheet in its own frame (mm)
 
 
-def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
+def _chain_edges(edges: np.ndarray) -> list[tuple[list[int], bool]]:
     """Chain undirected edges (k, 2) into polylines of vertex indices: (indices, closed)."""
-    if len(edges) == 0:
-        return []
     pairs = edges.tolist()
     adj: dict[int, list[tuple[int, int]]] = {}
     for k, (a, b) in enumerate(pairs):
@@ -246,11 +244,13 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
     def walk(start: int) -> tuple[list[int], bool]:
         path, cur = [start], start
         while True:
-            nxt = next(((k, o) for k, o in adj[cur] if not used[k]), None)
-            if nxt is None:
+            for k, other in adj[cur]:
+                if not used[k]:
+                    break
+            else:
                 return path, False
-            used[nxt[0]] = True
-            cur = nxt[1]
+            used[k] = True
+            cur = other
             if cur == start:
                 return path, True
             path.append(cur)
@@ -260,13 +260,12 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[np.ndarray, bool]]:
     chains = []
     for v in sorted(adj):
         if len(adj[v]) != 2:
-            while any(not used[k] for k, _ in adj[v]):
-                path, closed = walk(v)
-                chains.append((np.array(path), closed))
+            for k, _ in adj[v]:  # each walk from v leaves by its first unused edge
+                if not used[k]:
+                    chains.append(walk(v))
     for k in range(len(pairs)):
         if not used[k]:
-            path, closed = walk(pairs[k][0])
-            chains.append((np.array(path), closed))
+            chains.append(walk(pairs[k][0]))
     return chains
 
 
@@ -290,7 +289,7 @@ class _Local:
     mirror: bool
     loops: list[tuple[np.ndarray, np.ndarray]]  # per loop: vertex ids (n,), edge ids (n,), interior on the left
     chains: list[_Chain]
-    creases: list[Polyline]  # mountain, valley, rulings
+    creases: list[tuple[str, np.ndarray, bool, int]]  # mountain, valley, rulings: Polyline's fields
 
 
 def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
@@ -325,21 +324,21 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
     ids = np.flatnonzero(outline)
     ev = mesh.edges_vertices[ids]
     directed = np.where((ef[ids, 0] >= 0)[:, None], ev, ev[:, ::-1])
+    tails, heads = directed[:, 0].tolist(), directed[:, 1].tolist()
     out_of: dict[int, list[int]] = {}
-    for j, a in enumerate(directed[:, 0].tolist()):
+    for j, a in enumerate(tails):
         out_of.setdefault(a, []).append(j)
-    used = np.zeros(len(ids), bool)
+    used = [False] * len(ids)
     loops = []
     for j0 in range(len(ids)):
         if used[j0]:
             continue
-        verts, edges, j = [], [], j0
+        order, j = [], j0  # the loop's outline edges, as positions in ids
         while not used[j]:
             used[j] = True
-            verts.append(int(directed[j, 0]))
-            edges.append(int(ids[j]))
-            j = next((k for k in out_of.get(int(directed[j, 1]), []) if not used[k]), j0)
-        loops.append((np.array(verts), np.array(edges)))
+            order.append(j)
+            j = next((k for k in out_of.get(heads[j], ()) if not used[k]), j0)
+        loops.append((directed[order, 0], ids[order]))
 
     chains = []
     for li, (verts, edges) in enumerate(loops):
@@ -354,13 +353,14 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
             idx = verts[(s0 + np.arange(count + 1)) % n]
             chains.append(_Chain(index, int(sid[s0]), li, s0, count, xy[idx]))
 
-    creases = []
     kind, assign = mesh.edges_kind, mesh.edges_assignment
-    for layer, mask in (("mountain", (kind == "fold") & (assign == "M")),
-                        ("valley", (kind == "fold") & (assign == "V")),
-                        ("rulings", kind == "ruling")):
-        for path, closed in _chain_edges(mesh.edges_vertices[mask]):
-            creases.append(Polyline(layer, readonly(xy[path]), closed))
+    paths = [(layer, path, closed) for layer, mask in (("mountain", (kind == "fold") & (assign == "M")),
+                                                       ("valley", (kind == "fold") & (assign == "V")),
+                                                       ("rulings", kind == "ruling"))
+             for path, closed in _chain_edges(mesh.edges_vertices[mask])]
+    points = xy[[v for _, path, _ in paths for v in path]]  # every crease's points, gathered at once
+    ends = np.cumsum([len(path) for _, path, _ in paths]).tolist()
+    creases = [(layer, points[end - len(path):end], closed, -1) for (layer, path, closed), end in zip(paths, ends)]
     return _Local(xy, mirror, loops, chains, creases)
 
 
@@ -518,14 +518,16 @@ def layout_sheets(
 
     placements = pack_pages([it[1] for it in items], avail, gap, margin, (W, H), [sh.label for sh in sheets], page_name)
     pages: list[list[PlacedSheet]] = [[] for _ in range(1 + max(p[0] for p in placements))]
-    for i, ((polylines, _footprint, labels, mirror), (pg, rot, offset)) in enumerate(zip(items, placements)):
+    for i, ((lines, footprint, labels, mirror), (pg, rot, offset)) in enumerate(zip(items, placements)):
         R = rotation(rot)
         mat = R @ np.diag([-scale_mm if mirror else scale_mm, scale_mm])
+        points = readonly(footprint @ R.T + offset)  # every line's points, moved at once
+        ends = np.cumsum([len(line[1]) for line in lines]).tolist()
         pages[pg].append(PlacedSheet(
             index=i,
             label=sheets[i].label,
             transform=np.concatenate([mat, offset[:, None]], axis=1),
-            polylines=tuple(p.transformed(R, offset) for p in polylines),
+            polylines=tuple(Polyline(layer, points[end - len(pts):end], closed, seam) for (layer, pts, closed, seam), end in zip(lines, ends)),
             labels=tuple(t.transformed(R, offset) for t in labels),
         ))
     return Layout(tuple(Page((W, H), tuple(p)) for p in pages), (W, H), margin, scale_mm, tuple(notes), footer)
@@ -547,14 +549,15 @@ def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np
 
 
 def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_size, notes):
-    """Polylines and labels of one sheet in its local mm frame, and its footprint points."""
+    """The lines of one sheet in its local mm frame, as :class:`Polyline`'s fields (layer, points,
+    closed, seam), all their points (its footprint), its labels and whether it is mirrored."""
     name = sheet.label
     pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
     outline = _outline_segments(loc, pieces_of)
     tol = 1e-9 * max(float(np.ptp(loc.xy, axis=0).max()), 1.0)  # coordinate rounding, mm
     # per loop: position of first edge -> (count of edges, replacement points without the last)
     replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
-    polylines: list[Polyline] = []
+    lines: list[tuple[str, np.ndarray, bool, int]] = []
     tabbed_chains = [ch for ch in loc.chains if id(ch) in pieces_of]
     placed = iter(place_tabs([piece for ch in tabbed_chains for piece in pieces_of[id(ch)]], outline, tab_width, taper, tol))
     for ch in tabbed_chains:
@@ -570,13 +573,13 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
                 continue
             (polygon, cut), step = got
             narrowed += step > 0
-            polylines.append(Polyline("glue", polygon, closed=True, seam=ch.seam))
+            lines.append(("glue", polygon, True, ch.seam))
             cut_parts.append(cut[:-1])
             runs[-1].append(piece)
         for run in runs:
             if run:
                 line = np.concatenate([p[:-1] for p in run] + [run[-1][-1:]])
-                polylines.append(Polyline("seam", line, seam=ch.seam))
+                lines.append(("seam", line, False, ch.seam))
         replace[(ch.loop, ch.start)] = (ch.count, np.concatenate(cut_parts))
         if narrowed or dropped:
             notes.append(f"sheet {name!r}, seam {seam_name(ch.seam)}: {narrowed} glue tab piece(s) narrowed, "
@@ -584,25 +587,19 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
 
     for li, (verts, _) in enumerate(loc.loops):
         n = len(verts)
-        starts = sorted(pos for (l2, pos) in replace if l2 == li)
-        parts, pos, done = [], 0, 0
-        # start the walk at a replaced run if any, so no run wraps around the walk's end
-        pos = starts[0] if starts else 0
-        while done < n:
-            key = (li, pos % n)
-            if key in replace:
-                count, pts = replace[key]
-                parts.append(pts)
-            else:
-                count = 1
-                parts.append(loc.xy[verts[pos % n]][None])
-            pos += count
-            done += count
-        polylines.append(Polyline("cut", np.concatenate(parts), closed=True))
-    polylines.extend(loc.creases)
+        runs = sorted((pos, *replace[(l2, pos)]) for (l2, pos) in replace if l2 == li)
+        if not runs:
+            lines.append(("cut", loc.xy[verts], True, -1))
+            continue
+        parts = []  # from the first replaced run, so no run wraps around the walk's end
+        for k, (pos, count, pts) in enumerate(runs):
+            until = runs[k + 1][0] if k + 1 < len(runs) else runs[0][0] + n  # the next run's start
+            parts += [pts, loc.xy[verts[np.arange(pos + count, until) % n]]]
+        lines.append(("cut", np.concatenate(parts), True, -1))
+    lines.extend(loc.creases)
 
     # Labels: seam names first (each then becomes an obstacle), then the sheet label.
-    obstacle_lines = [(p.points, p.closed) for p in polylines if p.layer in ("cut", "seam", "mountain", "valley")]
+    obstacle_lines = [(points, closed) for layer, points, closed, _ in lines if layer in ("cut", "seam", "mountain", "valley")]
     segments = polyline_segments(obstacle_lines)
     obstacles = Obstacles(segments, 0.1 * MIN_LABEL_SIZE)
     labels: list[Label] = []
@@ -619,4 +616,4 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
         notes.append(f"sheet {name!r}: its label could not be kept clear of the lines")
     if name:
         labels.append(lab)
-    return polylines, np.concatenate([p.points for p in polylines]), labels, loc.mirror
+    return lines, np.concatenate([points for _, points, _, _ in lines]), labels, loc.mirror
