@@ -40,9 +40,11 @@ def text_width(text: str, size: float) -> float:
     A per-character estimate (DejaVu Sans / Arial proportions, rounded up) used to keep
     labels clear of lines; writers set text in a sans-serif font at this em height.
     """
-    narrow, wide = set(" .,:;·|!'ijlrtf1()-"), set("MWmw@%")
-    em = sum(0.36 if c in narrow else 0.95 if c in wide else 0.74 if c.isupper() else 0.64 for c in text)
+    em = sum([0.36 if c in _NARROW else 0.95 if c in _WIDE else 0.74 if c.isupper() else 0.64 for c in text])
     return em * size
+
+
+_NARROW, _WIDE = frozenset(" .,:;·|!'ijlrtf1()-"), frozenset("MWmw@%")
 
 
 @dataclass(frozen=True)
@@ -91,7 +93,12 @@ def _box_grid(text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
 
 def label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
     """Sample points covering the text boxes, shape (C, K, 2): K = 5·m, row by row across the baseline (``_box_grid``)."""
-    uu, vv = (g.ravel() for g in np.meshgrid(*_box_grid(text, size)))
+    return _grid_points(center, angle, *_box_grid(text, size))
+
+
+def _grid_points(center: np.ndarray, angle: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The points (C, len(u)·len(v), 2) of the grid ``u`` × ``v`` (row by row) around each centre (C, 2), turned by ``angle`` (C,)."""
+    uu, vv = np.tile(u, len(v)), np.repeat(v, len(u))
     c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
     return np.stack([center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1)
 
@@ -144,9 +151,9 @@ class Obstacles:
         return dist.reshape(shape), direction.reshape(shape + (2,))
 
     def _nearest_to_boxes(self, boxes: np.ndarray, grid: tuple[np.ndarray, np.ndarray], center: np.ndarray, angle: np.ndarray,
-                          limit: float) -> np.ndarray:
+                          limit: float, bounds: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
         """For boxes (C, K, 2) of :func:`label_candidates`: the smallest distance from their points
-        to the sampled lines if below ``limit``, else inf, (C,).
+        to the sampled lines if below ``limit``, else inf, (C,). ``bounds`` are the boxes' :func:`_bounds` for ``limit``.
 
         The distance of the nearest point to each box point, to the last bit (as
         :func:`~curvefold.io._planar.nearest_points` measures it), without measuring every pair:
@@ -155,7 +162,7 @@ class Obstacles:
         """
         u, v = grid
         origin, side, order, keys, cells = self._cells
-        reach = np.floor((np.stack(_bounds(boxes, len(u), limit), axis=1) - origin) / side)
+        reach = np.floor((np.stack(bounds, axis=1) - origin) / side)
         lo, hi = (np.clip(reach[:, k], 0, cells - 1).astype(np.int64) for k in (0, 1))  # the cells around each box, (C, 2) each
         box, place = ragged(np.maximum(hi[:, 0] - lo[:, 0] + 1, 0))  # a column of cells, per box
         column = np.stack([lo[box, 0] + place, lo[box, 1]], axis=1)
@@ -186,26 +193,24 @@ class Obstacles:
         """Which boxes of :meth:`fits` surely do not keep clear, (C,) bool: a sampled line's point
         nearer than 0.25·size (and half the spacing, less a rounding's margin) to one of five
         points on either long side. Cheaper than :meth:`fits`; a box it passes may still not fit."""
-        reach = (0.25 * size + self.spacing / 2) * (1 - 1e-9)
-        if reach not in self._grids:
-            origin = self.points.min(axis=0) if len(self.points) else np.zeros(2)
-            self._grids[reach] = (origin, *cell_index(self.points, origin, reach))
-        u, v = _box_grid(text, size)
-        uu = np.tile(u[[0, len(u) // 4, len(u) // 2, 3 * len(u) // 4, -1]], 2)
-        vv = np.repeat([v[0], v[-1]], 5)
-        c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
-        points = np.stack([center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1)
         if len(self.points) == 0:
             return np.zeros(len(center), bool)
+        reach = (0.25 * size + self.spacing / 2) * (1 - 1e-9)
+        if reach not in self._grids:
+            origin = self.points.min(axis=0)
+            self._grids[reach] = (origin, *cell_index(self.points, origin, reach))
+        u, v = _box_grid(text, size)
+        points = _grid_points(center, angle, u[[0, len(u) // 4, len(u) // 2, 3 * len(u) // 4, -1]], v[[0, -1]])
         return near_any(self.points, points.reshape(-1, 2), reach, self._grids[reach]).reshape(len(center), -1).any(axis=1)
 
     def fits(self, center: np.ndarray, angle: np.ndarray, text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
         """For the boxes of ``text`` at ``size`` centred on ``center`` (C, 2) along ``angle`` (C,) radians:
         whether each keeps 0.25·size clear of every line, and its margin (counted up to one ``size``)."""
-        boxes = label_candidates(center, angle, text, size)
-        worst = self._nearest_to_boxes(boxes, _box_grid(text, size), center, angle, size) - self.spacing / 2
+        grid = _box_grid(text, size)
+        boxes = _grid_points(center, angle, *grid)
+        lo, hi = _bounds(boxes, len(grid[0]), size)
+        worst = self._nearest_to_boxes(boxes, grid, center, angle, size, (lo, hi)) - self.spacing / 2
         if len(self.extra):  # each box against the extra segments whose bounding boxes come within size of its own
-            lo, hi = _bounds(boxes, len(boxes[0]) // 5, size)
             box, segment = np.nonzero(((self.extra.max(axis=1)[None] >= lo[:, None]) & (self.extra.min(axis=1)[None] <= hi[:, None])).all(axis=2))
             exact = point_segment_distance(boxes[box], self.extra[segment, None, 0], self.extra[segment, None, 1])  # (pairs, K)
             nearest = np.full(len(boxes), np.inf)

@@ -201,8 +201,9 @@ def cell_index(points: np.ndarray, origin: np.ndarray, side: float) -> tuple[np.
     their order by cell (:func:`cell_key`; by index within one), the sorted keys (P,) and the number
     of cells along x and y (2,)."""
     cell = np.floor((points - origin) / side).astype(np.int64)
-    order = np.argsort(cell_key(cell), kind="stable")
-    return order, cell_key(cell)[order], cell.max(axis=0, initial=0) + 1
+    key = cell_key(cell)
+    order = np.argsort(key, kind="stable")
+    return order, key[order], cell.max(axis=0, initial=0) + 1
 
 
 def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.inf,
@@ -289,7 +290,7 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
 
 
 def convex_hull(points: np.ndarray) -> np.ndarray:
-    """Indices of the vertices of the convex hull of ``points`` (N, 2), counter-clockwise from the
+    """Indices of the vertices of the convex hull of ``points`` (N, 2, finite), counter-clockwise from the
     leftmost (then lowest) point; fewer than 3 when the points span no area.
 
     Points on a hull edge (to 1e-13 of the largest coordinate) are not vertices:
@@ -304,10 +305,13 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
     [0, 2]
     """
     points = np.asarray(points, float)
-    by_x = np.lexsort((points[:, 1], points[:, 0]))
-    if len(points) == 0 or (points[by_x[0]] == points[by_x[-1]]).all():
-        return by_x[:1]
-    chain = by_x[[0, -1]]
+    if len(points) == 0:
+        return np.zeros(0, np.intp)
+    x, y = points[:, 0], points[:, 1]
+    left, right = np.flatnonzero(x == x.min()), np.flatnonzero(x == x.max())[::-1]
+    chain = np.array([left[np.argmin(y[left])], right[np.argmax(y[right])]])  # the first leftmost-lowest, the last rightmost-highest
+    if (points[chain[0]] == points[chain[1]]).all():
+        return chain[:1]
     roundoff = 1e-13 * float(np.abs(points).max())  # nearer an edge than this, a point lies on it (as qhull's tolerance finds)
     side = cross2(points[chain[1]] - points[chain[0]], points - points[chain[0]])
     candidates = np.flatnonzero(side != 0)
@@ -319,10 +323,12 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
         candidates, edge, side = candidates[out], edge[out], side[out]
         if candidates.size == 0:
             return chain
-        order = np.lexsort((candidates, side, edge))  # per edge, the farthest out first (then the lowest index)
-        by_edge = edge[order]
-        first = np.flatnonzero(np.concatenate([[True], by_edge[1:] != by_edge[:-1]]))
-        split, farthest = by_edge[first], candidates[order[first]]
+        low = np.full(len(chain), np.inf)
+        np.minimum.at(low, edge, side)
+        farthest, at_low = np.full(len(chain), len(points)), side == low[edge]
+        np.minimum.at(farthest, edge[at_low], candidates[at_low])  # per edge, the farthest out (then the lowest index)
+        split = np.flatnonzero(farthest < len(points))
+        farthest = farthest[split]
         moved = np.arange(len(chain)) + np.searchsorted(split, np.arange(len(chain)))  # each vertex's place once they are in
         grown = np.empty(len(chain) + len(split), chain.dtype)
         grown[moved], grown[moved[split] + 1] = chain, farthest  # each farthest point after the start of its edge
