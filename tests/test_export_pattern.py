@@ -195,6 +195,20 @@ def test_the_convex_hull_is_scipys():
         assert len(planar.convex_hull(pts)) < 3 and planar.min_area_rotation(pts) == 0.0
 
 
+def test_hulls_found_together_are_each_ones_own():
+    """Several sets' hulls and minimum-area turns found in one pass are those of each set alone
+    (each within its own rounding tolerance), empty, single-point, collinear, non-finite and huge
+    sets among them."""
+    rng = np.random.default_rng(15)
+    sets = [*_point_sets(rng), np.zeros((0, 2)), np.ones((3, 2)), np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 3.0]]),
+            np.array([[0.0, 0.0], [1.0, np.nan], [2.0, 0.0]]), rng.normal(size=(50, 2)) * 1e12]
+    alone = [planar.convex_hull(p) if np.isfinite(p).all() else np.zeros(0, int) for p in sets]
+    together = planar.convex_hulls([p if np.isfinite(p).all() else p[:0] for p in sets])
+    assert all(np.array_equal(a, b) for a, b in zip(alone, together))
+    assert planar.min_area_rotations(sets) == [planar.min_area_rotation(p) for p in sets]
+    assert not np.array_equal(planar.convex_hulls([sets[0], sets[1][1:]])[1], alone[1])  # the check sees a point less
+
+
 def test_nearest_points_are_the_kd_trees():
     """Distances to the last bit, the same point (ties, between repeated points, aside) and the same
     'none nearer than the limit' as scipy's cKDTree."""

@@ -47,6 +47,7 @@ The plane geometry is :mod:`curvefold.io._planar`, the placement of labels
 from __future__ import annotations
 
 import math
+from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -58,7 +59,7 @@ from ..kernel._arrays import frozen, readonly
 from ..kernel._errors import InputError
 from ._labels import MIN_LABEL_SIZE, Label, Obstacles, seam_label, seam_name, sheet_label
 from ._packing import pack_pages
-from ._planar import cross2, min_area_rotation, polyline_segments, rotation
+from ._planar import cross2, min_area_rotations, polyline_segments, rotation
 from ._tables import mm_per_unit, page_mm
 from ._tabs import place_tabs, tab_pieces
 
@@ -235,10 +236,10 @@ class Layout:
 def _chain_edges(edges: np.ndarray) -> list[tuple[list[int], bool]]:
     """Chain undirected edges (k, 2) into polylines of vertex indices: (indices, closed)."""
     pairs = edges.tolist()
-    adj: dict[int, list[tuple[int, int]]] = {}
+    adj: defaultdict[int, list[tuple[int, int]]] = defaultdict(list)
     for k, (a, b) in enumerate(pairs):
-        adj.setdefault(a, []).append((k, b))
-        adj.setdefault(b, []).append((k, a))
+        adj[a].append((k, b))
+        adj[b].append((k, a))
     used = [False] * len(pairs)  # (a list: read and set one at a time)
 
     def walk(start: int) -> tuple[list[int], bool]:
@@ -325,9 +326,9 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
     ev = mesh.edges_vertices[ids]
     directed = np.where((ef[ids, 0] >= 0)[:, None], ev, ev[:, ::-1])
     tails, heads = directed[:, 0].tolist(), directed[:, 1].tolist()
-    out_of: dict[int, list[int]] = {}
+    out_of: defaultdict[int, list[int]] = defaultdict(list)
     for j, a in enumerate(tails):
-        out_of.setdefault(a, []).append(j)
+        out_of[a].append(j)
     used = [False] * len(ids)
     loops = []
     for j0 in range(len(ids)):
@@ -337,7 +338,8 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
         while not used[j]:
             used[j] = True
             order.append(j)
-            j = next((k for k in out_of.get(heads[j], ()) if not used[k]), j0)
+            after = out_of.get(heads[j], ())
+            j = after[0] if len(after) == 1 else next((k for k in after if not used[k]), j0)  # (one but where loops touch)
         loops.append((directed[order, 0], ids[order]))
 
     chains = []
@@ -470,18 +472,15 @@ def layout_sheets(
         raise InputError(f"margin {margin:g} mm and footer {footer:g} mm leave no room on a {W:g} × {H:g} mm page")
 
     if target is not None:
-        longest = 0.0
-        for sh in sheets:
-            xy = sh.mesh.vertices_coords[:, :2]
-            r = xy @ rotation(min_area_rotation(xy)).T
-            longest = max(longest, float(np.ptp(r, axis=0).max()))
+        xys = [sh.mesh.vertices_coords[:, :2] for sh in sheets]
+        longest = max([0.0, *(float(np.ptp(xy @ rotation(rot).T, axis=0).max()) for xy, rot in zip(xys, min_area_rotations(xys)))])
         if longest <= 0:
             raise InputError("target_size needs sheets of non-zero size; every sheet is a point")
         scale_mm = target / longest
 
-    for sh in sheets:  # a sheet too large for the page is refused before any tab or label is placed
-        xy = sh.mesh.vertices_coords[:, :2] * scale_mm
-        w, h = (np.ptp(xy @ rotation(min_area_rotation(xy)).T, axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
+    xys = [sh.mesh.vertices_coords[:, :2] * scale_mm for sh in sheets]
+    for sh, xy, rot in zip(sheets, xys, min_area_rotations(xys)):  # a sheet too large for the page is refused before any tab or label is placed
+        w, h = (np.ptp(xy @ rotation(rot).T, axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
         if max(w, h) > max(avail) or min(w, h) > min(avail):
             raise InputError(
                 f"sheet {sh.label!r} needs {max(w, h):.4g} × {min(w, h):.4g} mm before glue tabs at scale {scale_mm:g} mm per unit, "

@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ..kernel._errors import InputError
-from ._planar import min_area_rotation, rotation
+from ._planar import min_area_rotations, rotation
 
 __all__ = ["pack_pages", "shelf_pack"]
 
@@ -29,8 +29,7 @@ def pack_pages(footprints, avail, gap, margin, page, labels, page_name):
     """
     W, H = page
     rects = []
-    for i, pts in enumerate(footprints):
-        rot = min_area_rotation(pts)
+    for i, (pts, rot) in enumerate(zip(footprints, min_area_rotations(footprints))):
         r = pts @ rotation(rot).T
         w, h = np.ptp(r, axis=0)
         if w < h:

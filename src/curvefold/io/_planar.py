@@ -44,7 +44,9 @@ __all__ = [
     "nearest_points",
     "near_any",
     "convex_hull",
+    "convex_hulls",
     "min_area_rotation",
+    "min_area_rotations",
     "fit_arcs",
 ]
 
@@ -304,25 +306,54 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
     >>> convex_hull(np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])).tolist()  # on a line
     [0, 2]
     """
-    points = np.asarray(points, float)
-    if len(points) == 0:
-        return np.zeros(0, np.intp)
+    return convex_hulls([points])[0]
+
+
+def convex_hulls(point_sets: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """The :func:`convex_hull` of each of several point sets (each (N_i, 2), finite), found together:
+    the edges of all the hulls are split in the same rounds.
+
+    Examples
+    --------
+    >>> [h.tolist() for h in convex_hulls([np.array([[0.0, 0.0], [2.0, 0.0], [1.0, 1.0]]), np.zeros((0, 2)), np.ones((2, 2))])]
+    [[0, 1, 2], [], [0]]
+    """
+    hulls = [np.zeros(0, np.intp)] * len(point_sets)
+    live = [k for k, p in enumerate(point_sets) if len(p)]
+    if not live:
+        return hulls
+    sizes = np.array([len(point_sets[k]) for k in live])
+    starts = np.cumsum(sizes) - sizes
+    points = np.concatenate([np.asarray(point_sets[k], float).reshape(-1, 2) for k in live])
+    group, index = np.repeat(np.arange(len(live)), sizes), np.arange(len(points))
     x, y = points[:, 0], points[:, 1]
-    left, right = np.flatnonzero(x == x.min()), np.flatnonzero(x == x.max())[::-1]
-    chain = np.array([left[np.argmin(y[left])], right[np.argmax(y[right])]])  # the first leftmost-lowest, the last rightmost-highest
-    if (points[chain[0]] == points[chain[1]]).all():
-        return chain[:1]
-    roundoff = 1e-13 * float(np.abs(points).max())  # nearer an edge than this, a point lies on it (as qhull's tolerance finds)
-    side = cross2(points[chain[1]] - points[chain[0]], points - points[chain[0]])
-    candidates = np.flatnonzero(side != 0)
-    edge = (side[candidates] > 0).astype(np.int64)  # below the first chord: outside edge 0 (left to right); above: edge 1
-    while True:
-        a, b = points[chain[edge]], points[chain[(edge + 1) % len(chain)]]
-        side = cross2(b - a, points[candidates] - a)  # < 0: outside its edge (on its right)
-        out = side < -roundoff * np.hypot(*(b - a).T)
+    left = x == np.minimum.reduceat(x, starts)[group]
+    left &= y == np.minimum.reduceat(np.where(left, y, np.inf), starts)[group]
+    right = x == np.maximum.reduceat(x, starts)[group]
+    right &= y == np.maximum.reduceat(np.where(right, y, -np.inf), starts)[group]
+    ends = np.stack([np.minimum.reduceat(np.where(left, index, len(points)), starts),  # per set, the first leftmost-lowest
+                     np.maximum.reduceat(np.where(right, index, -1), starts)], axis=1)  # and the last rightmost-highest point
+    roundoff = 1e-13 * np.maximum.reduceat(np.maximum(np.abs(x), np.abs(y)), starts)  # nearer an edge than this, a point lies on it (as qhull's tolerance finds)
+    wide = np.flatnonzero((points[ends[:, 0]] != points[ends[:, 1]]).any(axis=1))  # the others are a single point: a hull of one
+    chain, owner = ends[wide].ravel(), np.repeat(wide, 2)  # the hulls one after the other, and each vertex's set
+    place = np.full(len(live), -1)
+    place[wide] = 2 * np.arange(len(wide))  # the first edge of each set's chain
+    fx, fy = x[ends[:, 0]][group], y[ends[:, 0]][group]
+    side = (x[ends[:, 1]][group] - fx) * (y - fy) - (y[ends[:, 1]][group] - fy) * (x - fx)  # cross2(last - first, p - first)
+    candidates = np.flatnonzero((side != 0) & (place[group] >= 0))
+    edge = place[group[candidates]] + (side[candidates] > 0)  # below the first chord: outside edge 0 (left to right); above: edge 1
+    while candidates.size:
+        closing = np.append(owner[1:] != owner[:-1], True)  # the last edge of each hull goes back to its first vertex
+        after = np.where(closing, np.searchsorted(owner, owner), np.arange(1, len(chain) + 1))
+        ax, ay = x[chain], y[chain]  # each edge's start, its direction and what a point may lie outside it
+        dx, dy = ax[after] - ax, ay[after] - ay
+        allowed = -roundoff[owner] * np.hypot(dx, dy)
+        px, py = x[candidates], y[candidates]
+        side = dx[edge] * (py - ay[edge]) - dy[edge] * (px - ax[edge])  # < 0: outside its edge (on its right)
+        out = side < allowed[edge]
         candidates, edge, side = candidates[out], edge[out], side[out]
         if candidates.size == 0:
-            return chain
+            break
         low = np.full(len(chain), np.inf)
         np.minimum.at(low, edge, side)
         farthest, at_low = np.full(len(chain), len(points)), side == low[edge]
@@ -330,14 +361,19 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
         split = np.flatnonzero(farthest < len(points))
         farthest = farthest[split]
         moved = np.arange(len(chain)) + np.searchsorted(split, np.arange(len(chain)))  # each vertex's place once they are in
-        grown = np.empty(len(chain) + len(split), chain.dtype)
-        grown[moved], grown[moved[split] + 1] = chain, farthest  # each farthest point after the start of its edge
-        chain = grown
+        grown = np.empty((2, len(chain) + len(split)), np.intp)
+        grown[:, moved], grown[:, moved[split] + 1] = (chain, owner), (farthest, owner[split])  # each farthest point after the start of its edge
+        chain, owner = grown
         apex = farthest[np.searchsorted(split, edge)]
-        start = points[chain[moved[edge]]]
-        before = cross2(points[apex] - start, points[candidates] - start) < 0  # outside the edge to the apex, else test the one on
+        sx, sy = x[chain[moved[edge]]], y[chain[moved[edge]]]
+        px, py = px[out], py[out]
+        before = (x[apex] - sx) * (py - sy) - (y[apex] - sy) * (px - sx) < 0  # outside the edge to the apex, else test the one on
         keep = candidates != apex
         candidates, edge = candidates[keep], np.where(before, moved[edge], moved[edge] + 1)[keep]
+    bounds = np.searchsorted(owner, np.arange(len(live) + 1)).tolist()
+    for k, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
+        hulls[live[k]] = chain[a:b] - starts[k] if b > a else ends[k, :1] - starts[k]
+    return hulls
 
 
 def min_area_rotation(points: np.ndarray) -> float:
@@ -362,11 +398,19 @@ def min_area_rotation(points: np.ndarray) -> float:
     >>> min_area_rotation(np.zeros((3, 2)))  # no area: no hull, no turn
     0.0
     """
-    points = np.asarray(points, float)
-    vertices = convex_hull(points) if np.isfinite(points).all() else ()
-    if len(vertices) < 3:
-        return 0.0
-    hull = points[vertices]  # counter-clockwise
+    return min_area_rotations([points])[0]
+
+
+def min_area_rotations(point_sets: Sequence[np.ndarray]) -> list[float]:
+    """The :func:`min_area_rotation` of each of several point sets (each (N_i, 2)), their hulls found together."""
+    point_sets = [np.asarray(p, float) for p in point_sets]
+    finite = [bool(np.isfinite(p).all()) for p in point_sets]
+    hulls = convex_hulls([p if ok else p[:0] for p, ok in zip(point_sets, finite)])
+    return [_min_area_turn(p[v]) if len(v) >= 3 else 0.0 for p, v in zip(point_sets, hulls)]
+
+
+def _min_area_turn(hull: np.ndarray) -> float:
+    """:func:`min_area_rotation` of the vertices of a convex hull (H ≥ 3, 2), counter-clockwise."""
     e = np.roll(hull, -1, axis=0) - hull
     raw = np.arctan2(e[:, 1], e[:, 0])
     ang = raw[0] + (raw - raw[0]) % (2 * math.pi)  # increasing around the hull, in [raw[0], raw[0] + 2π)
