@@ -140,15 +140,20 @@ def segment_pairs_touch(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
     >>> segment_pairs_touch(a, b, 1e-9).tolist()  # an end shared, a crossing
     [False, True]
     """
-    shared = np.linalg.norm(a[..., :, None, :] - b[..., None, :, :], axis=-1) < tol  # (..., 2, 2): end i of a at end j of b
-    a_shared, b_shared = shared.any(axis=-1), shared.any(axis=-2)  # (..., 2)
-    da = point_segment_distance(a, b[..., None, 0, :], b[..., None, 1, :])  # ends of a to b, (..., 2)
-    db = point_segment_distance(b, a[..., None, 0, :], a[..., None, 1, :])  # ends of b to a
-    near = ((da < tol) & ~a_shared).any(axis=-1) | ((db < tol) & ~b_shared).any(axis=-1)
-    p, r = a[..., 0, :], a[..., 1, :] - a[..., 0, :]
-    q, s = b[..., 0, :], b[..., 1, :] - b[..., 0, :]
-    cross = ((cross2(s, p - q) * cross2(s, p + r - q) < 0) & (cross2(r, q - p) * cross2(r, q + s - p) < 0))
-    return near | (cross & ~a_shared.any(axis=-1)) | a_shared.all(axis=-1)
+    a0, a1, b0, b1 = a[..., 0, :], a[..., 1, :], b[..., 0, :], b[..., 1, :]
+
+    def at(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+        """Whether ends p and q lie within tol of each other (their distance as a norm over the last axis measures it)."""
+        d = p - q
+        return np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1]) < tol
+
+    s00, s01, s10, s11 = at(a0, b0), at(a0, b1), at(a1, b0), at(a1, b1)  # end i of a at end j of b
+    a_shared, b_shared = (s00 | s01, s10 | s11), (s00 | s10, s01 | s11)
+    near = ((point_segment_distance(a0, b0, b1) < tol) & ~a_shared[0]) | ((point_segment_distance(a1, b0, b1) < tol) & ~a_shared[1])
+    near |= ((point_segment_distance(b0, a0, a1) < tol) & ~b_shared[0]) | ((point_segment_distance(b1, a0, a1) < tol) & ~b_shared[1])
+    r, s = a1 - a0, b1 - b0
+    cross = ((cross2(s, a0 - b0) * cross2(s, a0 + r - b0) < 0) & (cross2(r, b0 - a0) * cross2(r, b0 + s - a0) < 0))
+    return near | (cross & ~(a_shared[0] | a_shared[1])) | (a_shared[0] & a_shared[1])
 
 
 def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | None = None) -> np.ndarray:

@@ -142,8 +142,8 @@ def tabs_fit(tabs: list[tuple[np.ndarray, np.ndarray]], outline: np.ndarray, acc
     corner_tab, _ = ragged(cut_count - 1)
     corner_start = cut_start - rank
     bad = np.zeros(n, bool)
-    low, high = others.min(axis=1), others.max(axis=1)  # their boxes: segments whose boxes lie tol apart cannot touch
-    cut_low, cut_high = cut.min(axis=1), cut.max(axis=1)
+    low, high = np.minimum(others[:, 0], others[:, 1]), np.maximum(others[:, 0], others[:, 1])  # their boxes: segments whose boxes lie tol apart cannot touch
+    cut_low, cut_high = np.minimum(cut[:, 0], cut[:, 1]), np.maximum(cut[:, 0], cut[:, 1])
 
     # its cut line is simple: no two of its segments touch
     tab, place = ragged(cut_count * cut_count)
@@ -197,4 +197,4 @@ def _boxes(polylines: list[np.ndarray], tol: float) -> tuple[np.ndarray, np.ndar
 
 def _meet(low: np.ndarray, high: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """Whether the boxes from ``low`` to ``high`` meet those from ``lo`` to ``hi``, all (..., 2) broadcast together; shape (...)."""
-    return ((high >= lo) & (low <= hi)).all(axis=-1)
+    return (high[..., 0] >= lo[..., 0]) & (low[..., 0] <= hi[..., 0]) & (high[..., 1] >= lo[..., 1]) & (low[..., 1] <= hi[..., 1])
