@@ -115,15 +115,15 @@ class Obstacles:
             self._x, self._y = _from._x, _from._y
             return
         self._grids: dict[float, tuple] = {}  # the points bucketed in finer cells, by their side (:meth:`blocked`)
-        d = segments[:, 1] - segments[:, 0]
-        length = np.linalg.norm(d, axis=1)
+        (ax, ay), (dx, dy) = segments[:, 0].T, (segments[:, 1] - segments[:, 0]).T
+        length = np.sqrt(dx * dx + dy * dy)
         count = np.maximum(1, np.ceil(length / spacing).astype(int))
         seg, place = ragged(count + 1)
         t = place / count[seg]
-        self.points = segments[seg, 0] + t[:, None] * d[seg]
-        self.directions = d[seg] / np.maximum(length[seg], 1e-300)[:, None]
-        self._x, self._y = np.ascontiguousarray(self.points[:, 0]), np.ascontiguousarray(self.points[:, 1])  # (gathered faster)
-        origin, side = (self.points.min(axis=0) if len(self.points) else np.zeros(2)), 20.0 * spacing
+        self._x, self._y = ax[seg] + t * dx[seg], ay[seg] + t * dy[seg]  # (apart: gathered faster)
+        self.points = np.stack([self._x, self._y], axis=1)
+        self.directions = (np.stack([dx, dy], axis=1) / np.maximum(length, 1e-300)[:, None])[seg]
+        origin, side = (np.array([self._x.min(), self._y.min()]) if len(self.points) else np.zeros(2)), 20.0 * spacing
         self._cells = (origin, side, *cell_index(self.points, origin, side))  # the points bucketed in cells
 
     def plus(self, segments: np.ndarray) -> Obstacles:
@@ -197,7 +197,7 @@ class Obstacles:
             return np.zeros(len(center), bool)
         reach = (0.25 * size + self.spacing / 2) * (1 - 1e-9)
         if reach not in self._grids:
-            origin = self.points.min(axis=0)
+            origin = self._cells[0]  # below and left of every point
             self._grids[reach] = (origin, *cell_index(self.points, origin, reach))
         u, v = _box_grid(text, size)
         points = _grid_points(center, angle, u[[0, len(u) // 4, len(u) // 2, 3 * len(u) // 4, -1]], v[[0, -1]])

@@ -59,7 +59,7 @@ from ..kernel._arrays import frozen, readonly
 from ..kernel._errors import InputError
 from ._labels import MIN_LABEL_SIZE, Label, Obstacles, seam_label, seam_name, sheet_label
 from ._packing import pack_pages
-from ._planar import cross2, min_area_rotations, polyline_segments, rotation
+from ._planar import bounding_box, cross2, min_area_rotations, polyline_segments, rotation
 from ._tables import mm_per_unit, page_mm
 from ._tabs import place_tabs, tab_pieces
 
@@ -473,14 +473,14 @@ def layout_sheets(
 
     if target is not None:
         xys = [sh.mesh.vertices_coords[:, :2] for sh in sheets]
-        longest = max([0.0, *(float(np.ptp(xy @ rotation(rot).T, axis=0).max()) for xy, rot in zip(xys, min_area_rotations(xys)))])
+        longest = max([0.0, *(float(np.ptp(bounding_box(xy @ rotation(rot).T), axis=0).max()) for xy, rot in zip(xys, min_area_rotations(xys)))])
         if longest <= 0:
             raise InputError("target_size needs sheets of non-zero size; every sheet is a point")
         scale_mm = target / longest
 
     xys = [sh.mesh.vertices_coords[:, :2] * scale_mm for sh in sheets]
     for sh, xy, rot in zip(sheets, xys, min_area_rotations(xys)):  # a sheet too large for the page is refused before any tab or label is placed
-        w, h = (np.ptp(xy @ rotation(rot).T, axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
+        w, h = (np.ptp(bounding_box(xy @ rotation(rot).T), axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
         if max(w, h) > max(avail) or min(w, h) > min(avail):
             raise InputError(
                 f"sheet {sh.label!r} needs {max(w, h):.4g} × {min(w, h):.4g} mm before glue tabs at scale {scale_mm:g} mm per unit, "
@@ -553,7 +553,7 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
     name = sheet.label
     pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
     outline = _outline_segments(loc, pieces_of)
-    tol = 1e-9 * max(float(np.ptp(loc.xy, axis=0).max()), 1.0)  # coordinate rounding, mm
+    tol = 1e-9 * max(float(np.ptp(bounding_box(loc.xy), axis=0).max()), 1.0)  # coordinate rounding, mm
     # per loop: position of first edge -> (count of edges, replacement points without the last)
     replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     lines: list[tuple[str, np.ndarray, bool, int]] = []

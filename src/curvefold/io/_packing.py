@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ..kernel._errors import InputError
-from ._planar import min_area_rotations, rotation
+from ._planar import bounding_box, min_area_rotations, rotation
 
 __all__ = ["pack_pages", "shelf_pack"]
 
@@ -30,8 +30,8 @@ def pack_pages(footprints, avail, gap, margin, page, labels, page_name):
     W, H = page
     rects = []
     for i, (pts, rot) in enumerate(zip(footprints, min_area_rotations(footprints))):
-        r = pts @ rotation(rot).T
-        w, h = np.ptp(r, axis=0)
+        lo, hi = bounding_box(pts @ rotation(rot).T)
+        w, h = hi - lo
         if w < h:
             rot += math.pi / 2
             w, h = h, w
@@ -54,8 +54,7 @@ def pack_pages(footprints, avail, gap, margin, page, labels, page_name):
             best = got
     out = []
     for i, (pg, x, y_top, angle) in enumerate(best[0]):
-        r = footprints[i] @ rotation(angle).T
-        lo, hi = r.min(axis=0), r.max(axis=0)
+        lo, hi = bounding_box(footprints[i] @ rotation(angle).T)
         out.append((pg, angle, np.array([margin + x - lo[0], H - margin - y_top - hi[1]])))
     return out
 
