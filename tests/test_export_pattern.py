@@ -36,7 +36,7 @@ from curvefold.io import _planar as planar
 from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, layer_name
 from curvefold.io._pattern import DEFAULT_LAYERS, LAYERS, LEGEND, layout_sheets, seam_name, write_dxf, write_pdf, write_svg
 from curvefold.io._planar import polyline_segments
-from curvefold.io._tabs import TAB_WIDTH_STEPS, place_tabs, tab_fits, tab_outline, tab_pieces, tabs_fit
+from curvefold.io._tabs import TAB_WIDTH_STEPS, place_tabs, tab_fits, tab_outline, tab_outlines, tab_pieces, tabs_fit
 from curvefold.kernel import InputError
 
 NS = {
@@ -177,6 +177,20 @@ def _same_cycle(a: np.ndarray, b: np.ndarray) -> bool:
     """Whether point sequences a and b are the same cycle, started anywhere."""
     start = np.flatnonzero((a == b[0]).all(axis=1))
     return len(a) == len(b) and start.size == 1 and np.array_equal(np.roll(a, -start[0], axis=0), b)
+
+
+def test_tabs_drawn_together_are_each_ones_own():
+    """Tab outlines found side by side (each piece padded to the longest) are those of each piece
+    alone, bit for bit, pieces too short or of one point repeated among them."""
+    rng = np.random.default_rng(16)
+    pieces = [np.cumsum(rng.normal(size=(int(rng.integers(2, 14)), 2)), axis=0) for _ in range(200)]
+    pieces += [np.zeros((3, 2)), np.array([[0.0, 0.0], [1e-9, 0.0]]), np.array([[0.0, 0.0], [0.0, 0.0], [3.0, 0.0]])]
+    for width in (0.5, 6.0, 40.0):
+        together = tab_outlines(pieces, width, np.radians(60.0))
+        alone = [tab_outline(p, width, np.radians(60.0)) for p in pieces]
+        assert [t is None for t in together] == [t is None for t in alone] and any(t is None for t in alone)
+        assert all(a is None or all(np.array_equal(x, y) for x, y in zip(a, t)) for a, t in zip(alone, together))
+    assert not np.array_equal(tab_outlines(pieces[:2], 6.0, 1.0)[0][0], tab_outlines([pieces[0][:-1], pieces[1]], 6.0, 1.0)[0][0])  # the check sees a point less
 
 
 def test_the_convex_hull_is_scipys():

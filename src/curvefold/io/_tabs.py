@@ -19,7 +19,7 @@ import numpy as np
 
 from ._planar import point_segment_distance, polyline_segments, ragged, ray_crossings, segment_pairs_touch
 
-__all__ = ["TAB_MAX_TURN", "TAB_WIDTH_STEPS", "tab_outline", "tab_pieces", "tab_fits", "tabs_fit", "place_tabs"]
+__all__ = ["TAB_MAX_TURN", "TAB_WIDTH_STEPS", "tab_outline", "tab_outlines", "tab_pieces", "tab_fits", "tabs_fit", "place_tabs"]
 
 #: Largest turn of the seam along one tab piece, radians.
 TAB_MAX_TURN = math.radians(30.0)
@@ -29,25 +29,38 @@ TAB_WIDTH_STEPS = (1.0, 0.5, 0.25)
 
 def tab_outline(base: np.ndarray, width: float, taper: float) -> tuple[np.ndarray, np.ndarray] | None:
     """A tapered tab on the right of ``base`` (m + 1, 2): (polygon, outer polyline) or None."""
-    d = np.diff(base, axis=0)
-    length = np.linalg.norm(d, axis=1)
-    if length.sum() <= 0:
-        return None
-    t = d / np.maximum(length, 1e-300)[:, None]
-    n = np.stack([t[:, 1], -t[:, 0]], axis=1)  # right-hand normals
-    miter = np.concatenate([n[:1], (n[:-1] + n[1:]) / np.maximum(1 + np.sum(n[:-1] * n[1:], axis=1), 0.5)[:, None], n[-1:]])
-    off = base + width * miter
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(off, axis=0), axis=1))])
-    inset = min(width / math.tan(taper), 0.4 * s[-1])
-    if s[-1] <= 0 or inset <= 0:
-        return None
-    a, b = inset, s[-1] - inset
-    qa = np.array([np.interp(a, s, off[:, 0]), np.interp(a, s, off[:, 1])])
-    qb = np.array([np.interp(b, s, off[:, 0]), np.interp(b, s, off[:, 1])])
-    outer = np.concatenate([qa[None], off[(s > a) & (s < b)], qb[None]])
-    polygon = np.concatenate([base, outer[::-1]])
-    cut = np.concatenate([base[:1], outer, base[-1:]])
-    return polygon, cut
+    return tab_outlines([base], width, taper)[0]
+
+
+def tab_outlines(bases: list[np.ndarray], width: float, taper: float) -> list[tuple[np.ndarray, np.ndarray] | None]:
+    """The :func:`tab_outline` of each of ``bases`` (each (m_i + 1, 2)), found together: the
+    pieces side by side, each padded with its last point (where its segments have length 0)."""
+    if not bases:
+        return []
+    last = np.array([len(b) - 1 for b in bases])
+    pad = np.minimum(np.arange(last.max() + 1), last[:, None])  # (n, P): the point of each base at each place, its last past its end
+    rows = np.arange(len(bases))[:, None]
+    base = np.concatenate(bases)[(np.cumsum(last + 1) - last - 1)[:, None] + pad]  # (n, P, 2)
+    d = np.diff(base, axis=1)
+    length = np.linalg.norm(d, axis=2)
+    t = d / np.maximum(length, 1e-300)[..., None]
+    n = np.stack([t[..., 1], -t[..., 0]], axis=2)  # right-hand normals, 0 past the end
+    miter = np.concatenate([n[:, :1], (n[:, :-1] + n[:, 1:]) / np.maximum(1 + np.sum(n[:, :-1] * n[:, 1:], axis=2), 0.5)[..., None],
+                            n[:, -1:]], axis=1)  # (at a last point before the end: its normal / 1)
+    off = (base + width * miter)[rows, pad]
+    s = np.concatenate([np.zeros((len(bases), 1)), np.cumsum(np.linalg.norm(np.diff(off, axis=1), axis=2), axis=1)], axis=1)
+    inset = np.minimum(width / math.tan(taper), 0.4 * s[:, -1])
+    out: list[tuple[np.ndarray, np.ndarray] | None] = []
+    for k, (m, a) in enumerate(zip(last.tolist(), inset.tolist())):
+        along, offset = s[k, :m + 1], off[k, :m + 1]
+        if length[k].sum() <= 0 or along[-1] <= 0 or a <= 0:
+            out.append(None)
+            continue
+        b = along[-1] - a
+        x, y = np.interp([a, b], along, offset[:, 0]), np.interp([a, b], along, offset[:, 1])
+        outer = np.concatenate([[(x[0], y[0])], offset[(along > a) & (along < b)], [(x[1], y[1])]])
+        out.append((np.concatenate([bases[k], outer[::-1]]), np.concatenate([bases[k][:1], outer, bases[k][-1:]])))
+    return out
 
 
 def tab_pieces(points: np.ndarray, tab_length: float, min_length: float) -> list[np.ndarray]:
@@ -92,7 +105,7 @@ def place_tabs(pieces: list[np.ndarray], outline: np.ndarray, width: float, tape
     next pieces are tested together as if all were placed, and those before the first that does not
     fit are.
     """
-    widest = [tab_outline(piece, width, taper) for piece in pieces]
+    widest = tab_outlines(pieces, width, taper)
     placed: list[tuple[tuple[np.ndarray, np.ndarray], int] | None] = []
     accepted: list[np.ndarray] = []
     while len(placed) < len(pieces):
