@@ -287,11 +287,12 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
     order, keys, cells = cell_index(points, lo, r) if cells is None else cells
     own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
     column = own[:, None, 0] + np.array([-1, 0, 1])  # (Q, 3)
-    first = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] - 1, column.shape)], axis=-1)), "left")
-    last = np.searchsorted(keys, cell_key(np.stack([column, np.broadcast_to(own[:, 1:] + 1, column.shape)], axis=-1)), "right")
+    first = keys.searchsorted(column * (1 << 32) + (own[:, 1:] - 1), "left")  # cell_key of each column's lowest cell
+    last = keys.searchsorted(column * (1 << 32) + (own[:, 1:] + 1), "right")
     dist, index = np.full(len(queries), math.inf), np.full(len(queries), len(points))
     found = last - first  # (Q, 3): the points in each column's run
-    per_query = np.cumsum(found.sum(axis=1))
+    total = found[:, 0] + found[:, 1] + found[:, 2]
+    per_query = np.cumsum(total)
     bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
     x, y, qx, qy = (np.ascontiguousarray(c) for c in (points[:, 0], points[:, 1], queries[:, 0], queries[:, 1]))
     for a, b in zip([0, *bounds.tolist()], [*bounds.tolist(), len(queries)]):
@@ -302,7 +303,7 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
         query = a + group // 3
         dx, dy = np.take(qx, query) - np.take(x, near), np.take(qy, query) - np.take(y, near)
         d = np.sqrt(dx * dx + dy * dy)
-        count = found[a:b].sum(axis=1)
+        count = total[a:b]
         some = np.flatnonzero(count)
         starts = (np.cumsum(count) - count)[some]
         dist[a + some] = np.minimum.reduceat(d, starts)
