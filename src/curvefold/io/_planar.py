@@ -451,24 +451,29 @@ def _min_area_turn(hull: np.ndarray) -> float:
     return float(-raw[near[np.argmin(off)]])
 
 
-def _arc_error(points: np.ndarray) -> tuple[float, float]:
-    """(bulge, largest distance of ``points`` (k ≥ 2, 2) from it) of the circular arc from the first
-    point to the last through the middle one: the bulge is tan(θ/4) of its turn θ, positive
-    counter-clockwise (DXF's convention); 0 for a straight segment."""
-    (ax, ay), (mx, my), (bx, by) = points[0], points[len(points) // 2], points[-1]
+def _arc_error(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """(bulge, largest distance of the points ``x``, ``y`` (k ≥ 2,) from it) of the circular arc from
+    the first point to the last through the middle one: the bulge is tan(θ/4) of its turn θ,
+    positive counter-clockwise (DXF's convention); 0 for a straight segment.
+
+    The largest distance is taken from the nearest and the farthest points (rounding a
+    difference is monotone, so it is the largest of the rounded distances, bit for bit)."""
+    k = len(x)
+    ax, ay, mx, my, bx, by = x[0], y[0], x[k // 2], y[k // 2], x[-1], y[-1]
     cx, cy = bx - ax, by - ay
     length = math.hypot(cx, cy)
     side = cx * (my - ay) - cy * (mx - ax)  # < 0: the arc bulges to the right of the chord, turning counter-clockwise
-    if len(points) < 3 or abs(side) <= 1e-12 * max(length, 1e-300) ** 2:
-        return 0.0, float((np.abs(cx * (points[:, 1] - ay) - cy * (points[:, 0] - ax)) / max(length, 1e-300)).max(initial=0.0))
+    if k < 3 or abs(side) <= 1e-12 * max(length, 1e-300) ** 2:
+        return 0.0, float((np.abs(cx * (y - ay) - cy * (x - ax)) / max(length, 1e-300)).max(initial=0.0))
     ux, uy, vx, vy = mx - ax, my - ay, mx - bx, my - by
-    uu, vv, k = ux * ux + uy * uy, vx * vx + vy * vy, 2.0 * (ux * vy - uy * vx)
-    ox, oy = mx - (uu * vy - vv * uy) / k, my - (vv * ux - uu * vx) / k  # the circle through the three
+    uu, vv, k2 = ux * ux + uy * uy, vx * vx + vy * vy, 2.0 * (ux * vy - uy * vx)
+    ox, oy = mx - (uu * vy - vv * uy) / k2, my - (vv * ux - uu * vx) / k2  # the circle through the three
     r = math.hypot(ax - ox, ay - oy)
     half = math.asin(min(1.0, 0.5 * length / r))
     minor = side * (cx * (oy - ay) - cy * (ox - ax)) < 0  # the middle point and the centre on opposite sides of the chord
     theta = 2.0 * half if minor else 2.0 * math.pi - 2.0 * half
-    error = float(np.abs(np.hypot(points[:, 0] - ox, points[:, 1] - oy) - r).max())
+    d = np.hypot(x - ox, y - oy)
+    error = max(float(d.max()) - r, r - float(d.min()))
     return math.tan(theta / 4.0) * (1.0 if side < 0 else -1.0), error
 
 
@@ -493,10 +498,11 @@ def fit_arcs(points: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
     """
     points = np.asarray(points, float)
     n = len(points)
+    x, y = np.ascontiguousarray(points[:, 0]), np.ascontiguousarray(points[:, 1])
     keep, bulges, i, run = [0], [], 0, 2
 
     def fits(j: int) -> float | None:
-        b, err = _arc_error(points[i:j + 1])
+        b, err = _arc_error(x[i:j + 1], y[i:j + 1])
         return b if err <= tol and abs(b) < 1.0 else None
 
     while i < n - 1:
