@@ -32,9 +32,10 @@ from ..io._labels import seam_name
 from ..io._layout import Layout
 from ..io._legend import check_layout
 from ..io._pattern import draw_footer
+from ..io._planar import bounding_box
 from ..io._pdf import PdfDocument, PdfPage, advance_units
 from ..io._tables import COLOURS
-from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, bounds, ground_polygon, render_strips
+from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, ground_polygon, render_strips
 
 __all__ = ["HIGHLIGHT_RGB", "SheetToCut", "Seam", "Step", "AssemblyPlan", "assembly_plan", "write_assembly"]
 
@@ -192,7 +193,7 @@ def _pictures(structure: Structure, steps: int, view: View | None):
     state = structure.state()
     V, cells, kinds = drawable(structure, state.vertices, segments=32, max_cells=len(structure.cell_curves))
     view = _facing_the_last(V, cells) if view is None else view
-    lo, hi = bounds(V)
+    lo, hi = bounding_box(V)
     standing = abs(float(lo[2])) <= 1e-6 * float(np.max(hi - lo))  # a vault's feet on z = 0: draw the ground
     ground = ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo))) if standing else None
     scenes = []

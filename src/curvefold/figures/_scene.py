@@ -24,6 +24,7 @@ import numpy as np
 
 from ..geometry._structure import drawable
 from ..geometry._topology import tube_strips
+from ..io._planar import bounding_box
 from ..io._tables import rgb8
 from ..kernel._arrays import frozen, readonly
 from ..kernel._errors import InputError
@@ -41,7 +42,6 @@ __all__ = [
     "GROUND_EDGE",
     "RIM_COLOR",
     "rgba",
-    "bounds",
     "strip_quads",
     "shade",
     "render_strips",
@@ -70,21 +70,6 @@ def rgba(color: str) -> np.ndarray:
     [1.0, 0.5019607843137255, 0.0, 1.0]
     """
     return np.array([*(c / 255 for c in rgb8(color)), 1.0])
-
-
-def bounds(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The smallest and the largest coordinates (D,) of points (..., D).
-
-    Each taken along a contiguous copy of the coordinate: NumPy reduces the long axis of
-    an (N, D) array of a few columns some ten times slower.
-
-    Examples
-    --------
-    >>> [b.tolist() for b in bounds(np.array([[0.0, 5.0], [2.0, -1.0], [1.0, 1.0]]))]
-    [[0.0, -1.0], [2.0, 5.0]]
-    """
-    columns = np.ascontiguousarray(np.reshape(points, (-1, np.shape(points)[-1])).T)
-    return columns.min(axis=1), columns.max(axis=1)
 
 
 def _hex(color: np.ndarray) -> str:
@@ -211,7 +196,7 @@ class Scene:
     @property
     def box(self) -> np.ndarray:
         """Screen box ``[[xmin, ymin], [xmax, ymax]]`` of the strips and the ground, shape (2, 2)."""
-        return np.stack(bounds(np.concatenate([self.strips.reshape(-1, 2)] + ([self.ground] if self.ground is not None else []))))
+        return bounding_box(np.concatenate([self.strips.reshape(-1, 2)] + ([self.ground] if self.ground is not None else [])))
 
     def svg(self, *, pixels: int = 800, margin: float = 0.02) -> str:
         """The scene as a standalone SVG document.
@@ -372,7 +357,7 @@ def render_strips(
         strokes += [np.repeat(per_curve, vertices.shape[1] - 1, axis=0), np.tile(rgba(RIM_COLOR), (len(e2), 1))]
         widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
     order = np.argsort(np.concatenate(depth), kind="stable")
-    lo, hi = bounds(vertices)
+    lo, hi = bounding_box(vertices)
     return Scene(
         _HeldPaths.ordered([readonly(np.asarray(group, float)) for group in paths], order),
         np.concatenate(roles)[order],
@@ -440,7 +425,7 @@ def vault_scene(
     """
     vertices = vault.vertices if angle is None else vault.motion(np.array([angle], float), anchor=anchor)[0]
     V, cells, kinds = drawable(vault.structure, vertices, segments=segments, max_cells=max_tubes)
-    lo, hi = bounds(V)
+    lo, hi = bounding_box(V)
     ground = ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo)))
     return replace(render_structure(V, cells, kinds, view, colors=colors), ground=ground)
 
@@ -508,7 +493,7 @@ def motion_scenes(
         One per fold angle, each with the largest :attr:`Scene.span` of them all.
     """
     V, cells, kinds = drawable(structure, motion, segments=segments, max_cells=max_cells)
-    lo, hi = bounds(V)
+    lo, hi = bounding_box(V)
     floor = ground_polygon(lo, hi, view, pad=0.06 * float(np.max((hi - lo)[:2]))) if ground else None
     span = float(np.max(hi - lo))
     return tuple(replace(render_structure(Vf, cells, kinds, view, colors=colors, crease_width=crease_width), ground=floor, span=span) for Vf in V)
