@@ -107,3 +107,13 @@ def test_the_main_job_imports_neither_scipy_nor_matplotlib(tmp_path):
             "assert {'vault.fold', 'vault.glb', 'vault.3dm', 'vault-pattern.dxf', 'folding.gif', 'vault.png'} <= set(files), files")
     assert imported(code, NOT_IN_THE_MAIN_JOB) == []
     assert imported(code + "\nimport scipy.sparse", NOT_IN_THE_MAIN_JOB) == ["scipy"]  # the probe sees one
+
+
+def test_a_progress_bar_imports_rich_only_for_a_terminal():
+    """The main job draws its progress on stderr when that is a terminal (a pseudo-terminal here); a log of
+    stderr gets no bar, and the process does not import rich for one."""
+    quiet = "from curvefold.app._outputs import _bar, _progress\nassert _bar(True) is None\n_progress(True, 3)[0]('a')"
+    assert imported(quiet, ["rich"]) == []
+    terminal = ("import os, sys\nfrom curvefold.app._outputs import _bar\n_, slave = os.openpty()\n"
+                "sys.stderr = os.fdopen(slave, 'w')\nbar = _bar(True)\nassert bar is not None and bar.console.is_terminal")
+    assert imported(terminal, ["rich"]) == ["rich"]

@@ -8,6 +8,7 @@ renamed onto it at the end, never replacing what was not checked (see
 
 from __future__ import annotations
 
+import sys
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import closing, contextmanager
@@ -96,11 +97,8 @@ def default_title(built: Built) -> str:
 
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
     """A progress bar on stderr (rich) when it is a terminal, or nothing (and rich is not imported)."""
-    if not show:
-        return (lambda label: None), (lambda: None)
-    from rich.progress import BarColumn, TextColumn, TimeElapsedColumn
-
-    bar = _bar(show, TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn())
+    bar = _bar(show, lambda rich: (rich.TextColumn("{task.description:<28}"), rich.BarColumn(),
+                                   rich.TextColumn("{task.completed}/{task.total}"), rich.TimeElapsedColumn()))
     if bar is None:
         return (lambda label: None), (lambda: None)
     bar.start()
@@ -112,16 +110,18 @@ def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[
     return step, bar.stop
 
 
-def _bar(show: bool, *columns):
+def _bar(show: bool, columns: Callable = lambda rich: ()):
     """A transient rich progress bar on stderr if ``show`` and stderr is a terminal, else
-    None: stdout is for the result, and a log of stderr gets nothing but errors."""
-    if not show:
+    None (and rich is not imported): stdout is for the result, and a log of stderr gets
+    nothing but errors. ``columns`` makes its columns from the module ``rich.progress``
+    (none: rich's own)."""
+    if not show or not sys.stderr.isatty():
         return None
+    import rich.progress
     from rich.console import Console
-    from rich.progress import Progress
 
     console = Console(stderr=True)
-    return Progress(*columns, transient=True, console=console) if console.is_terminal else None
+    return rich.progress.Progress(*columns(rich.progress), transient=True, console=console) if console.is_terminal else None
 
 
 def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True, fold_angle: float | None = None,
