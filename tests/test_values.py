@@ -181,3 +181,18 @@ def test_a_users_lambda_does_not_pickle():
     curve = SpaceCurve.from_curvature(lambda s: 1.0 + 0 * s, 0.2, 1.0, samples=11)
     with pytest.raises((pickle.PicklingError, AttributeError)):
         pickle.dumps(curve)
+
+
+def test_distinct_values_are_those_of_np_unique():
+    """kernel's distinct is np.unique without its import of numpy.ma: the same values, dtype and order, for integers,
+    floats (signed zeros among them) and empty arrays of any shape; damaged (one duplicate kept), it differs."""
+    from curvefold.kernel._arrays import distinct
+
+    rng = np.random.default_rng(7)
+    cases = [rng.integers(-5, 6, size=shape) for shape in ((0,), (1,), (40,), (6, 7), (3, 0, 2))]
+    cases += [rng.integers(0, 4, size=30).astype(float) * rng.choice([-1.0, 1.0], size=30) * 0.5, np.array([0.0, -0.0, 0.0])]
+    for values in cases:
+        ours, theirs = distinct(values), np.unique(values)
+        assert ours.dtype == theirs.dtype and np.array_equal(ours, theirs) and ours.tobytes() == theirs.tobytes()
+    damaged = np.sort(cases[2])
+    assert not np.array_equal(damaged[np.r_[True, damaged[1:] != damaged[:-1]] | (np.arange(len(damaged)) == 1)], np.unique(cases[2]))

@@ -13,6 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..kernel._arrays import distinct
 from ..kernel._errors import InputError
 from ._mechanism import RESIDUAL_TOL, RTOL, Framework, Mechanism, _check_size, mechanism
 
@@ -65,7 +66,7 @@ def analyse_fold(path, *, rtol: float = RTOL, name: str | None = None) -> tuple[
     if cp is not None and (spatial or declared):  # the layers of a flat fold touch everywhere: they weld nothing the file does not glue
         pairs = np.concatenate([doc.seam_partners, doc.bonds])
         framework, first = Framework.from_fold(cp, spatial or [mesh for _, mesh in doc.folded], joins=joins,
-                                               glued=np.unique(cp.edges_vertices[pairs]) if declared else None)
+                                               glued=distinct(cp.edges_vertices[pairs]) if declared else None)
         welded = len(cp.vertices_coords) - framework.points
         note = "" if declared or not welded else f"{welded} vertices welded where every folded frame puts them on another"
         references = [(framework, first, note)] * len(doc.folded)

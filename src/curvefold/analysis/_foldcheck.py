@@ -57,6 +57,7 @@ from ..geometry._mesh import Mesh, edges_faces, face_sides, vector_areas
 from ..geometry._mesh import fold_angles as dihedral_angles
 from ..geometry._topology import fold_assignment
 from ..io._fold_reading import FoldFile, read_fold
+from ..kernel._arrays import distinct
 from ..kernel._errors import InputError
 from ..kernel._validate import Spec
 from ._checks import CHECKS
@@ -346,7 +347,7 @@ def _topology(frames: list[_Frame], size: float) -> FileCheck:
         area = np.linalg.norm(vector_areas(f.mesh.vertices_coords, f.mesh.faces_vertices), axis=-1)
         problems.setdefault(f.label, []).extend([(np.flatnonzero(~(f.mesh.edge_lengths() > tiny)), "edges of zero length"),
                                                  (np.flatnonzero(~(area > tiny**2)), "faces of zero area")])
-    found = [f"{label}: " + "; ".join(_ids(what)(np.unique(ids)) for ids, what in listed if len(ids))
+    found = [f"{label}: " + "; ".join(_ids(what)(distinct(ids)) for ids, what in listed if len(ids))
              for label, listed in problems.items() if any(len(ids) for ids, _ in listed)]
     return FileCheck("topology", "fail" if found else "pass", where=" | ".join(found[:3]))
 

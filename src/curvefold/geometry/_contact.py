@@ -12,6 +12,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..kernel._arrays import distinct
+
 from ._structure import Structure
 
 __all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
@@ -152,7 +154,7 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     (inf, None)
     """
     idx = np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int)
-    idx = idx[np.concatenate([[True], idx[1:] != idx[:-1]])]  # ascending: np.unique, without its import of numpy.ma
+    idx = distinct(idx)
     curves = vertices[:, idx]
     points = curves.reshape(-1, 3)
     if not np.isfinite(points).all():

@@ -31,7 +31,7 @@ from typing import Literal
 
 import numpy as np
 
-from ..kernel._arrays import FrozenArrays, readonly
+from ..kernel._arrays import FrozenArrays, distinct, readonly
 from ..kernel._errors import InputError, InternalError
 from ._mesh import CREASE_KINDS, Mesh, edges_faces, fold_angles
 
@@ -557,7 +557,7 @@ def sample_index(n: int, count: int) -> np.ndarray:
     picks = np.floor(idx + 0.5).astype(int)
     if n % 2 == 1:
         picks = np.append(picks, (n - 1) // 2)
-    return np.flatnonzero(np.bincount(picks, minlength=n))  # sorted, each once (np.unique, without importing numpy.ma)
+    return distinct(picks)
 
 
 def tube_strips(cell_curves: np.ndarray) -> np.ndarray:
@@ -585,4 +585,4 @@ def thin_cells(cell_curves: np.ndarray, limit: int) -> np.ndarray:
     k = len(cell_curves)
     if k <= limit:
         return np.asarray(cell_curves)
-    return np.asarray(cell_curves)[np.unique(np.linspace(0, k - 1, limit).round().astype(int))]
+    return np.asarray(cell_curves)[distinct(np.linspace(0, k - 1, limit).round().astype(int))]

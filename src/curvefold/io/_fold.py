@@ -49,6 +49,7 @@ from ..geometry._fold_arrays import FoldArrays, fold_arrays, structure_metadata
 from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
 from ..geometry._structure import Structure
 from ..geometry._topology import fold_assignment
+from ..kernel._arrays import distinct
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
@@ -173,10 +174,10 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
         pairs = face_sides(f)[0]
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
         face_sheet = connected_components(graph, directed=False)[1][f[:, 0]]
-        for sheet in np.unique(face_sheet):
+        for sheet in distinct(face_sheet):
             faces = np.flatnonzero(face_sheet == sheet)
             if (area2[faces] < 0).all():
-                verts = np.unique(f[faces][f[faces] >= 0])
+                verts = distinct(f[faces][f[faces] >= 0])
                 centre = 0.5 * (xy[verts, 1].min() + xy[verts, 1].max())
                 xy[verts, 1] = 2 * centre - xy[verts, 1]
                 area2[faces] = -area2[faces]

@@ -26,6 +26,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ..kernel._arrays import distinct
+
 __all__ = [
     "upright",
     "rotation",
@@ -168,7 +170,7 @@ def inside_loops(points: np.ndarray, segments: np.ndarray, groups: np.ndarray | 
     crossing = ray_crossings(points[:, None], segments[None, :, 0], segments[None, :, 1])
     if groups is None:
         return (np.count_nonzero(crossing, axis=1) % 2) == 1
-    counts = np.stack([np.count_nonzero(crossing[:, groups == g], axis=1) for g in np.unique(groups)], axis=1)
+    counts = np.stack([np.count_nonzero(crossing[:, groups == g], axis=1) for g in distinct(groups)], axis=1)
     return ((counts % 2) == 1).any(axis=1)
 
 
@@ -295,7 +297,7 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
     found = last - first  # (Q, 3): the points in each column's run
     total = found[:, 0] + found[:, 1] + found[:, 2]
     per_query = np.cumsum(total)
-    bounds = np.unique(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
+    bounds = distinct(np.searchsorted(per_query, np.arange(pairs, per_query[-1] if len(per_query) else 0, pairs), "right"))
     x, y, qx, qy = (np.ascontiguousarray(c) for c in (points[:, 0], points[:, 1], queries[:, 0], queries[:, 1]))
     for a, b in zip([0, *bounds.tolist()], [*bounds.tolist(), len(queries)]):
         group, place = ragged(found[a:b].ravel())

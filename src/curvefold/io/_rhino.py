@@ -44,6 +44,7 @@ import numpy as np
 
 from ..geometry._mesh import Mesh
 from ..geometry._topology import Topology
+from ..kernel._arrays import distinct
 from ..kernel._errors import InputError
 from ._atomic import atomic_path
 from ._layout import Layout
@@ -252,7 +253,7 @@ def write_3dm(
         model.Objects.AddMesh(part, attributes("Sheets", sheet.label, tube=k // 2, kind="sheet", sheet=SHEET_LETTERS[k % 2]))
 
     # Strips: quads (a_j, a_{j+1}, b_{j+1}, b_j) along each strip (Topology.tubes); strips 4 and 1 make sheet A.
-    for g in np.unique(topology.faces_group).tolist():
+    for g in distinct(topology.faces_group).tolist():
         rows = faces[topology.faces_group == g]
         sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
         a, b = (crease_curve(v) for v in sides)

@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from ..kernel._arrays import distinct
+
 from ._planar import point_segment_distance, polyline_segments, ragged, ray_crossings, segment_pairs_touch
 
 __all__ = ["TAB_MAX_TURN", "TAB_WIDTH_STEPS", "tab_outline", "tab_outlines", "tab_pieces", "tab_fits", "tabs_fit", "place_tabs"]
@@ -83,7 +85,7 @@ def tab_pieces(points: np.ndarray, tab_length: float, min_length: float) -> list
     # of the segment where each share is reached.
     progress = s / s[-1] + (turn / turn[-1] if turn[-1] > 0 else 0.0)
     at = np.searchsorted(progress, progress[-1] * np.arange(1, count) / count, side="right") - 1
-    at = np.unique(np.clip(at, 0, len(seg) - 1))
+    at = distinct(np.clip(at, 0, len(seg) - 1))
     refined = np.insert(points, at + 1, 0.5 * (points[at] + points[at + 1]), axis=0)
     bounds = [0, *(at + 1 + np.arange(len(at))).tolist(), len(refined) - 1]
     return [refined[i:j + 1] for i, j in zip(bounds[:-1], bounds[1:])]

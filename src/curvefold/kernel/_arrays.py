@@ -1,4 +1,5 @@
-"""Read-only arrays: how every immutable value of curvefold freezes the arrays it holds."""
+"""Read-only arrays: how every immutable value of curvefold freezes the arrays it holds; and the
+distinct values of an array, as every module takes them (:func:`distinct`)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import dataclasses
 
 import numpy as np
 
-__all__ = ["readonly", "frozen", "FrozenArrays"]
+__all__ = ["readonly", "frozen", "FrozenArrays", "distinct"]
 
 
 def _chain(array: np.ndarray):
@@ -77,3 +78,18 @@ class FrozenArrays:
 
     def __reduce__(self):
         return type(self), tuple(getattr(self, f.name) for f in dataclasses.fields(self) if f.init)
+
+
+def distinct(values: np.ndarray) -> np.ndarray:
+    """The distinct values (k,) of an array of integers or of numbers without NaN (any shape), ascending.
+
+    ``np.unique(values)``, the same array, without its import of numpy.ma (NumPy 2 looks
+    for a mask there: some 0.04 CPU-s in every process that calls it).
+
+    Examples
+    --------
+    >>> distinct(np.array([[3, 1], [3, 2]])).tolist(), distinct(np.zeros(0, int)).tolist()
+    ([1, 2, 3], [])
+    """
+    a = np.sort(np.ravel(values))
+    return a[np.concatenate([[True], a[1:] != a[:-1]])] if a.size else a

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..geometry._mesh import Mesh
 from ..geometry._structure import State
-from ..kernel._arrays import FrozenArrays, readonly
+from ..kernel._arrays import FrozenArrays, distinct, readonly
 from ..kernel._errors import InputError
 from ..kernel._validate import check_integer
 from ._materials import CREASE_STIFFNESS, Material, check_thickness
@@ -190,7 +190,7 @@ class StructureModel(FrozenArrays):
     @cached_property
     def samples(self) -> np.ndarray:
         """The samples the model keeps, ascending (every one, or :func:`model_samples`)."""
-        return readonly(np.unique(self.node_sample))
+        return readonly(distinct(self.node_sample))
 
     def field(self, values: np.ndarray) -> np.ndarray:
         """Nodal values (P, ...) laid out as the state's curves, shape (M, n, ...); NaN where no node is.
@@ -304,9 +304,9 @@ def _sheets(mesh: Mesh, topology, sheets: Sequence[int]) -> tuple[Mesh, np.ndarr
     picks = list(sheets)
     if not picks or any(isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 0 <= s < count for s in picks):
         raise InputError(f"sheets must be indices in [0, {count}) of the structure's sheets, got {list(sheets)!r}")
-    faces = np.unique(np.concatenate([topology.sheets[s].faces for s in picks]))
-    edges = np.unique(np.concatenate([topology.sheets[s].edges for s in picks]))
-    used = np.unique(mesh.faces_vertices[faces])
+    faces = distinct(np.concatenate([topology.sheets[s].faces for s in picks]))
+    edges = distinct(np.concatenate([topology.sheets[s].edges for s in picks]))
+    used = distinct(mesh.faces_vertices[faces])
     remap = np.full(len(mesh.vertices_coords), -1)
     remap[used] = np.arange(len(used))
     sub = Mesh(

@@ -22,6 +22,7 @@ from ...figures._report import QUANTITIES, UNITS_SHOWN
 from ...geometry._structure import drawable
 from ...geometry._topology import tube_strips
 from ...io._tables import COLOURS
+from ...kernel._arrays import distinct
 from ...kernel._errors import InputError
 from .._build import Built
 from .._design import Design
@@ -68,7 +69,7 @@ def _motion(found: Built) -> dict:
         limits = [float(np.min(w)) for w in crease.regression_limits()]
         widths = tuple(min(0.15 * crease.curve.length, 0.6 * lim) for lim in limits)
         surface = crease.surface("L+R+", width=widths, rulings=2)
-        idx = np.unique(np.linspace(0, len(crease.s) - 1, PREVIEW_SEGMENTS + 1).round().astype(int))
+        idx = distinct(np.linspace(0, len(crease.s) - 1, PREVIEW_SEGMENTS + 1).round().astype(int))
         curves = np.stack([surface[0, 0], surface[0, 1], surface[1, 1]])[:, idx][None]
         angle = float(np.degrees(2 * crease.alpha(crease.s[:1])[0]))
         return {"angles": [angle], "design_angle": angle, "end": "the design", "ground": False,
@@ -76,7 +77,7 @@ def _motion(found: Built) -> dict:
     structure = found.structure
     design_angle = float(structure.lattice.crease.fold_angle)
     end, reason = (MAX_FOLD, "first contact") if found.vault is not None else (0.5 * (design_angle + 180.0), "halfway to 180°")
-    angles = np.unique(np.concatenate([
+    angles = distinct(np.concatenate([
         np.linspace(0.0, design_angle, int(np.ceil(design_angle / MOTION_STEP)) + 1),
         np.linspace(design_angle, end, int(np.ceil((end - design_angle) / MOTION_STEP)) + 1),
     ]))
