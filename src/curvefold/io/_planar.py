@@ -470,8 +470,8 @@ def _arc_error(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     if k < 3 or abs(side) <= 1e-12 * max(length, 1e-300) ** 2:
         return 0.0, float((np.abs(cx * (y - ay) - cy * (x - ax)) / max(length, 1e-300)).max(initial=0.0))
     ux, uy, vx, vy = mx - ax, my - ay, mx - bx, my - by
-    uu, vv, k2 = ux * ux + uy * uy, vx * vx + vy * vy, 2.0 * (ux * vy - uy * vx)
-    ox, oy = mx - (uu * vy - vv * uy) / k2, my - (vv * ux - uu * vx) / k2  # the circle through the three
+    uu, vv, det = ux * ux + uy * uy, vx * vx + vy * vy, 2.0 * (ux * vy - uy * vx)
+    ox, oy = mx - (uu * vy - vv * uy) / det, my - (vv * ux - uu * vx) / det  # the circle through the three
     r = math.hypot(ax - ox, ay - oy)
     half = math.asin(min(1.0, 0.5 * length / r))
     minor = side * (cx * (oy - ay) - cy * (ox - ax)) < 0  # the middle point and the centre on opposite sides of the chord
