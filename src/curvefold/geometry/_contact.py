@@ -13,7 +13,6 @@ from functools import lru_cache
 import numpy as np
 
 from ..kernel._arrays import distinct
-
 from ._structure import Structure
 
 __all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
