@@ -10,33 +10,52 @@ cd "$(dirname "$0")/.."
 repo=$PWD
 PYTHON=${PYTHON:-python3}
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 
 .venv/bin/python -m build --outdir "$work/dist" . >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; exit 1; }
 .venv/bin/python -m twine check --strict "$work"/dist/*
 wheel=$(echo "$work"/dist/*.whl)
 
-for extra in core export rhino designer dask dev; do
-    start=$SECONDS
+# Each extra in a venv of its own, two at a time (installing is half waiting for the disk);
+# a failing one fails the script when it ends.
+smoke() {
+    local extra=$1 start=$SECONDS spec=$wheel
     "$PYTHON" -m venv "$work/$extra"
-    spec=$wheel
     [ "$extra" = core ] || spec="$wheel[$extra]"
     "$work/$extra/bin/python" -m pip install --quiet --disable-pip-version-check "$spec"
     # From an empty folder, so that only the installed package can be imported.
     (cd "$work" && "$work/$extra/bin/python" "$repo/scripts/smoke.py" "$extra")
     echo "smoke test of the wheel with extra '$extra' passed in $((SECONDS - start)) s"
     rm -rf "${work:?}/$extra"
-done
+}
 
-if command -v npm >/dev/null 2>&1; then
-    start=$SECONDS
+clone_install() {
+    local start=$SECONDS
     mkdir "$work/clone"
     git ls-files -z | tar --null -T - -c | tar -x -C "$work/clone"
     "$PYTHON" -m venv "$work/clone-venv"
-    "$work/clone-venv/bin/python" -m pip install --quiet --disable-pip-version-check "$work/clone" >"$work/clone.log" 2>&1 || { cat "$work/clone.log" >&2; exit 1; }
+    "$work/clone-venv/bin/python" -m pip install --quiet --disable-pip-version-check "$work/clone" >"$work/clone.log" 2>&1 || { cat "$work/clone.log" >&2; return 1; }
     (cd "$work" && "$work/clone-venv/bin/python" -c 'import sys; from curvefold.app.designer.server import missing_bundle; sys.exit(missing_bundle())')
     echo "pip install . from a fresh clone made and installed the designer's JavaScript in $((SECONDS - start)) s"
     rm -rf "${work:?}/clone" "${work:?}/clone-venv"
+}
+
+checks=(dev core export rhino designer dask)  # the longest first
+if command -v npm >/dev/null 2>&1; then
+    checks+=(clone)
 else
     echo "note: npm is not installed, so pip install . from a fresh clone (which runs npm) is not checked" >&2
 fi
+started=0 ended=0
+for job in "${checks[@]}"; do
+    if [ "$job" = clone ]; then clone_install & else smoke "$job" & fi
+    started=$((started + 1))
+    if [ $((started - ended)) -eq 2 ]; then
+        wait -n  # whichever ends first (its failure ends the script)
+        ended=$((ended + 1))
+    fi
+done
+while [ "$ended" -lt "$started" ]; do
+    wait -n
+    ended=$((ended + 1))
+done
