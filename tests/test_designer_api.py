@@ -121,12 +121,14 @@ def test_preview_holds_the_motion_the_vault_makes(url):
     assert angles[0] == 0 and motion["design_angle"] in angles and np.all(np.diff(angles) > 0)
     assert motion["end"] == "first contact" and angles[-1] == preview.MAX_FOLD
     # the state at the design angle is the vault standing on the ground, to float32 rounding
-    vault = Vault.from_design(VaultDesign(tubes=4, samples=api.PREVIEW_SAMPLES))
+    vault = Vault.from_design(VaultDesign(tubes=4, samples=preview.MOTION_SAMPLES))
     curves, _, _ = drawable(vault.structure, vault.vertices, segments=preview.PREVIEW_SEGMENTS, max_cells=preview.PREVIEW_CELLS)
     k = int(np.flatnonzero(angles == motion["design_angle"])[0])
     size = float(np.abs(curves).max())
     assert np.abs(positions[k] - curves.reshape(-1, 3)).max() <= 4 * np.finfo(np.float32).eps * size
-    assert motion["lift_off"][k] <= 1e-13 * size and motion["lift_off"][0] > 0.1 * size
+    # on the ground to the integrator's error at the motion's 41 samples (7e-12 of the size; sixth order, so under 1e-13 at
+    # 97), far below the float32 positions' rounding (6e-8)
+    assert motion["lift_off"][k] <= 1e-10 * size and motion["lift_off"][0] > 0.1 * size
     triangles = np.frombuffer(base64.b64decode(motion["triangles"]), np.uint32)
     assert triangles.max() < motion["vertices"] and set(motion["lines"]) == {"fold", "seam", "rim"}
 

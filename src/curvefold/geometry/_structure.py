@@ -355,4 +355,4 @@ def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_c
     remap[used] = np.arange(len(used))
     idx = sample_index(vertices.shape[-2], segments + 1)
     kinds = tuple(str(k) for k in np.asarray(structure.curve_kinds)[used])
-    return vertices[..., used, :, :][..., idx, :], remap[cells], kinds
+    return vertices[..., used[:, None], idx, :], remap[cells], kinds  # one gather: a copy of what is kept alone

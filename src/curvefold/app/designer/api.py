@@ -62,7 +62,7 @@ __all__ = [
     "caches",
 ]
 
-#: Samples along curve 1 of the 3D preview, the regression domain and the first crease pattern (odd, so a vault's apex is a sample).
+#: Samples along curve 1 of the regression domain's picture (odd, so a vault's apex is a sample; the 3D preview has its own, :data:`curvefold.app.designer.preview.MOTION_SAMPLES`).
 PREVIEW_SAMPLES = 97
 #: Samples of the coarse certificate and crease pattern that answer first after a change.
 COARSE_SAMPLES = 49

@@ -3,9 +3,8 @@ the 3D view with the span and rise drawn as dimensions, the first contact, and a
 sketch of the crease pattern.
 
 Lengths are in model units, which the 3D files write as metres (:data:`curvefold.io._tables.UNITS`):
-the page says metres. The motion is built at :data:`~curvefold.app.designer.api.PREVIEW_SAMPLES`
-(the numbers at the design's own samples), the sketch at
-:data:`~curvefold.app.designer.api.COARSE_SAMPLES`.
+the page says metres. The motion is built at :data:`MOTION_SAMPLES` (the numbers at the
+design's own samples), the sketch at :data:`~curvefold.app.designer.api.COARSE_SAMPLES`.
 """
 
 from __future__ import annotations
@@ -26,12 +25,15 @@ from ...kernel._arrays import distinct
 from ...kernel._errors import InputError
 from .._build import Built
 from .._design import Design
-from .api import COARSE_SAMPLES, PREVIEW_SAMPLES, _design, _key, built, design_query, resolve
+from .api import COARSE_SAMPLES, _design, _key, built, design_query, resolve
 
-__all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
+__all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_SAMPLES", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
 
 #: Segments drawn along each crease in the 3D preview, and cells drawn at most.
 PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
+#: Samples along curve 1 of the preview's motion: one per drawn vertex, so that no state is folded
+#: at samples it does not draw (odd, so a vault's apex is a sample; the default 801 samples hold them).
+MOTION_SAMPLES = PREVIEW_SEGMENTS + 1
 #: Fold-angle step between the precomputed states of the 3D preview, degrees.
 MOTION_STEP = 5.0
 #: Largest fold angle of the preview's states, degrees (where the first-contact search of a vault stops).
@@ -142,7 +144,7 @@ def _preview(key: str, targets: tuple) -> bytes:
         "numbers": numbers, "labels": _labels(numbers),
         "colours": {kind: COLOURS.get(kind, "#3a3a3a") for kind in ("fold", "seam", "junction", "edge", "rim")},
         "dimensions": _dimensions(built(design)),
-        "motion": _motion(built(design, samples=PREVIEW_SAMPLES)),
+        "motion": _motion(built(design, samples=MOTION_SAMPLES)),
     }, default=float).encode()
 
 
@@ -158,7 +160,7 @@ def preview(design: Design, targets: tuple = ()) -> bytes:
     range ends, the lift-off of a vault per state (the largest ``|z|`` of its end sections,
     model units; zero at the design angle), and the mesh: ``positions`` (states × vertices
     × 3 float32, base64), ``triangles`` (uint32 triples) and ``lines`` per crease kind
-    (uint32 pairs), at :data:`~curvefold.app.designer.api.PREVIEW_SAMPLES`.
+    (uint32 pairs), at :data:`MOTION_SAMPLES`.
     """
     return _preview(_key(design), tuple(targets))
 
