@@ -10,7 +10,8 @@ collector on; the folder sizes are summed on disk. Each stage is timed in CPU se
 too (this process's, steadier than wall time on a shared machine). A last line times the
 whole command in a fresh process (best of :data:`REPEATS`), imports included, in wall and CPU seconds (the command
 and the processes it starts), beside the CPU seconds a fresh process takes only to import
-the libraries the command uses (:data:`LIBRARIES`: each job process imports its own).
+the libraries the command uses (:data:`LIBRARIES`: each job process imports its own), and
+the machine's speed (:func:`_bench.machine_speed`).
 
 Targets: the whole command ≤ 2 s wall and ≤ 3 CPU-s, the folder under 10 MB.
 """
@@ -27,7 +28,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _bench import SummaryRow, bytecode_env, markdown_table, summary_table, timed, verdict
+from _bench import SummaryRow, bytecode_env, machine_speed, markdown_table, summary_table, timed, verdict
 
 TARGET_SECONDS = 2.0
 TARGET_CPU = 3.0
@@ -131,16 +132,18 @@ def run() -> list[SummaryRow]:
             raise RuntimeError("the certificate failed")
         timings = report["timings"]
         _, imports, _ = _children_cpu([sys.executable, "-c", "import " + ", ".join(LIBRARIES)], env | {"OPENBLAS_NUM_THREADS": "1"})
+        numpy = machine_speed(env)
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
     print(f"load average of the machine during the run: {load} (on {os.cpu_count()} CPUs)")
     print(f"`curvefold vault` in a fresh process, best of {REPEATS}: {wall:.2f} s wall (at most {wall_hi:.2f}), {cpu:.2f} CPU s "
           f"(at most {cpu_hi:.2f}), folder {size:.1f} MB (FOLD file {fold_mb:.2f} MB), "
           f"every check passing; its own timings: " + ", ".join(f"{k} {v:.2f} s" for k, v in timings.items()))
-    print(f"importing its libraries once in a fresh process: {imports:.2f} CPU s ({', '.join(LIBRARIES)})")
+    print(f"importing its libraries once in a fresh process: {imports:.2f} CPU s ({', '.join(LIBRARIES)}); "
+          f"the machine's speed: `python -c \"import numpy\"` takes {numpy:.2f} CPU s")
     return [
         SummaryRow("main job", "`curvefold vault`, paper's vault, every format (fresh process): wall", f"{wall:.1f} s", f"≤ {TARGET_SECONDS:g} s",
                    verdict(wall <= TARGET_SECONDS)),
-        SummaryRow("main job", "the same, CPU seconds of the command and its job processes", f"{cpu:.1f} CPU s (importing its libraries: {imports:.1f})",
+        SummaryRow("main job", "the same, CPU seconds of the command and its job processes", f"{cpu:.1f} CPU s (importing its libraries: {imports:.1f}; NumPy alone: {numpy:.2f})",
                    f"≤ {TARGET_CPU:g} CPU s", verdict(cpu <= TARGET_CPU)),
         SummaryRow("main job", "its folder", f"{size:.1f} MB ({sizes[1] / sizes[0]:.0f}× smaller than on every sample)", f"< {TARGET_MB:g} MB",
                    verdict(size < TARGET_MB)),
