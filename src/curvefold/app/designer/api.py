@@ -262,7 +262,9 @@ def _key(design: Design) -> str:
     return json.dumps(design.to_dict(), sort_keys=True)
 
 
+@lru_cache(maxsize=32)
 def _design(key: str) -> Design:
+    """The design a key holds (a frozen value, so one is shared: a request reads it about five times)."""
     return design_from_dict(json.loads(key), source=SOURCE)
 
 
@@ -293,7 +295,7 @@ def _without_source(err: CurvefoldError, parameter: str | None = None) -> Curvef
 def caches() -> dict[str, object]:
     """This module's LRU caches by name (their ``cache_info()`` shows that memory stays bounded; see also
     :func:`curvefold.app.designer.preview.caches`)."""
-    return {"built": _built, "fitted": _fitted, "payload": _payload, "mechanics": _mechanics, "files": _files, "domain": _domain,
+    return {"design": _design, "built": _built, "fitted": _fitted, "payload": _payload, "mechanics": _mechanics, "files": _files, "domain": _domain,
             "pattern": _pattern}
 
 
