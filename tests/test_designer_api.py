@@ -133,6 +133,14 @@ def test_preview_holds_the_motion_the_vault_makes(url):
     assert triangles.max() < motion["vertices"] and set(motion["lines"]) == {"fold", "seam", "rim"}
 
 
+def test_the_answer_splices_its_base64_into_the_json():
+    """Bytes (base64) go in as strings after encoding, NumPy numbers as floats; text that looks like the splice stays text."""
+    answer = {"positions": b"QUJD", "n": np.int64(3), "title": 'a "quoted" 0', "lines": {"fold": b"AAAA", "rim": b""}}
+    out = preview._json(answer)
+    assert json.loads(out) == {"positions": "QUJD", "n": 3.0, "title": 'a "quoted" 0', "lines": {"fold": "AAAA", "rim": ""}}
+    assert out == json.dumps({**answer, "positions": "QUJD", "n": 3.0, "lines": {"fold": "AAAA", "rim": ""}}).encode()
+
+
 def test_the_fold_slider_stops_at_the_first_contact(url):
     status, answer = get_json(f"{url}api/vault/contact?{LIGHT}")
     assert status == 200 and answer == {"first_contact": Vault.from_design(VaultDesign(tubes=4, samples=201)).first_contact()}

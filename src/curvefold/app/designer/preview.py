@@ -12,6 +12,8 @@ from __future__ import annotations
 import base64
 import html
 import json
+import re
+import secrets
 from functools import lru_cache
 from urllib.parse import urlencode
 
@@ -40,8 +42,27 @@ MOTION_STEP = 5.0
 MAX_FOLD = 179.0
 
 
-def _b64(array: np.ndarray, dtype) -> str:
-    return base64.b64encode(np.ascontiguousarray(array, dtype=dtype).tobytes()).decode("ascii")
+def _b64(array: np.ndarray, dtype) -> bytes:
+    """The array's bytes in base64, as bytes: :func:`_json` writes them as a JSON string."""
+    return base64.b64encode(np.ascontiguousarray(array, dtype=dtype).tobytes())
+
+
+def _json(answer: dict) -> bytes:
+    """``answer`` as JSON bytes, its bytes values (base64) written as strings and NumPy numbers as floats.
+
+    Base64 has nothing JSON escapes, so each is spliced in after encoding rather than scanned
+    by the encoder (about 200 MB/s: 3.4 ms for a vault's positions)."""
+    token, blobs = secrets.token_hex(16), []
+
+    def placeholder(value):
+        if isinstance(value, bytes):
+            blobs.append(value)
+            return f"{token}{len(blobs) - 1}"
+        return float(value)
+
+    parts = re.split(f'"{token}(\\d+)"'.encode(), json.dumps(answer, default=placeholder).encode())
+    parts[1::2] = [b'"' + blobs[int(i)] + b'"' for i in parts[1::2]]
+    return b"".join(parts)
 
 
 def _mesh(curves: np.ndarray, strips: np.ndarray, kinds: tuple[str, ...]) -> dict:
@@ -139,13 +160,13 @@ def _labels(numbers: dict) -> dict[str, list[str]]:
 def _preview(key: str, targets: tuple) -> bytes:
     design, note = resolve(key, targets)
     numbers = _numbers(built(design))
-    return json.dumps({
+    return _json({
         "kind": design.kind, "design": design.to_dict(), "query": urlencode(design_query(design)), "note": note,
         "numbers": numbers, "labels": _labels(numbers),
         "colours": {kind: COLOURS.get(kind, "#3a3a3a") for kind in ("fold", "seam", "junction", "edge", "rim")},
         "dimensions": _dimensions(built(design)),
         "motion": _motion(built(design, samples=MOTION_SAMPLES)),
-    }, default=float).encode()
+    })
 
 
 def preview(design: Design, targets: tuple = ()) -> bytes:
