@@ -111,17 +111,17 @@ def _motion(found: Built) -> dict:
             "lift_off": None if lift is None else lift.tolist(), **_mesh(curves, tube_strips(cells), kinds)}
 
 
-def _dimensions(found: Built) -> dict | None:
+def _dimensions(found: Built, numbers: dict) -> dict | None:
     """A vault's span (between the feet of curve 1, on the ground) and rise (from the ground to the
-    highest crease point) at the design angle: the ends of each dimension line, model units."""
+    highest crease point) at the design angle, its :func:`_numbers` given: the ends of each
+    dimension line, model units."""
     if found.vault is None:
         return None
     points = found.crease.curve.points
     vertices = found.vault.vertices.reshape(-1, 3)
     top = vertices[np.argmax(vertices[:, 2])]
-    summary = found.vault.summary()
-    return {"span": {"from": points[0].tolist(), "to": points[-1].tolist(), "value": summary["span"]},
-            "rise": {"from": [float(top[0]), float(top[1]), 0.0], "to": top.tolist(), "value": summary["rise"]}}
+    return {"span": {"from": points[0].tolist(), "to": points[-1].tolist(), "value": numbers["span"]},
+            "rise": {"from": [float(top[0]), float(top[1]), 0.0], "to": top.tolist(), "value": numbers["rise"]}}
 
 
 #: The derived numbers shown beside the 3D view, in order.
@@ -164,7 +164,7 @@ def _preview(key: str, targets: tuple) -> bytes:
         "kind": design.kind, "design": design.to_dict(), "query": urlencode(design_query(design)), "note": note,
         "numbers": numbers, "labels": _labels(numbers),
         "colours": {kind: COLOURS.get(kind, "#3a3a3a") for kind in ("fold", "seam", "junction", "edge", "rim")},
-        "dimensions": _dimensions(built(design)),
+        "dimensions": _dimensions(built(design), numbers),
         "motion": _motion(built(design, samples=MOTION_SAMPLES)),
     })
 
