@@ -34,7 +34,7 @@ __all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_SAMPLES", "MOTION_STEP",
 #: Segments drawn along each crease in the 3D preview, and cells drawn at most.
 PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
 #: Samples along curve 1 of the preview's motion: one per drawn vertex, so that no state is folded
-#: at samples it does not draw (odd, so a vault's apex is a sample; the default 801 samples hold them).
+#: at samples it does not draw (odd, so a vault's apex is a sample; every 20th of the default 801).
 MOTION_SAMPLES = PREVIEW_SEGMENTS + 1
 #: Fold-angle step between the precomputed states of the 3D preview, degrees.
 MOTION_STEP = 5.0
