@@ -133,6 +133,27 @@ def test_preview_holds_the_motion_the_vault_makes(url):
     assert triangles.max() < motion["vertices"] and set(motion["lines"]) == {"fold", "seam", "rim"}
 
 
+def test_a_coarse_build_solves_no_second_arch(monkeypatch):
+    """The design at fewer samples takes the arch root of its build at its own samples: the same vault bit for bit
+    as one built anew, for a smooth and a panel vault, and one solve of Eq. (20) for both."""
+    from curvefold.app._build import build
+    from curvefold.vault import _assembly
+    from curvefold.vault._arch import solve_symmetric_arch
+
+    solves = []
+    monkeypatch.setattr(_assembly, "solve_symmetric_arch", lambda a: solves.append(a) or solve_symmetric_arch(a))
+    api.caches()["built"].cache_clear()  # builds of this process's earlier tests would solve nothing
+    for values, coarse in (({"vault": {"a": 0.3125}}, preview.MOTION_SAMPLES), ({"samples": 201, "vault": {"a": 0.3125, "panels": 8}}, 49)):
+        design = api.design_from_dict({"kind": "vault", **values})
+        shown = api.built(design, samples=coarse)
+        anew = build(design.overrides(samples=coarse))
+        assert shown.design.samples == coarse and shown.vault.arch == anew.vault.arch
+        assert np.array_equal(shown.vault.vertices, anew.vault.vertices)
+    assert solves == [0.3125, 0.3125]  # one for the smooth vault's two builds, one for its build anew (panels: solve_panel_arch)
+    with pytest.raises(_assembly.InputError, match="the arch root given is for a = 0.2, not a = 0.3"):
+        _assembly.arch_crease(0.3, 0, 1.0, 90.0, 41, root=solve_symmetric_arch(0.2))
+
+
 def test_the_answer_splices_its_base64_into_the_json():
     """Bytes (base64) go in as strings after encoding, NumPy numbers as floats; text that looks like the splice stays text."""
     answer = {"positions": b"QUJD", "n": np.int64(3), "title": 'a "quoted" 0', "lines": {"fold": b"AAAA", "rim": b""}}

@@ -17,7 +17,8 @@ from ..geometry._single_fold import SingleFold
 from ..geometry._structure import Structure
 from ..io._layout import Layout
 from ..kernel._errors import InputError
-from ..vault._assembly import Vault, VaultDesign, vault_panels, vault_samples
+from ..vault._arch import ArchRoot
+from ..vault._assembly import Vault, VaultDesign, arch_crease, vault_panels, vault_samples
 from ._design import Design
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -179,8 +180,11 @@ def exported_fold_angles(built: Built) -> np.ndarray:
     return np.concatenate([motion, np.arange(motion[-1] + step, contact - 1e-9, step)])
 
 
-def build(design: Design) -> Built:
+def build(design: Design, *, arch_root: ArchRoot | None = None) -> Built:
     """Build the structure a design describes.
+
+    ``arch_root``: a vault's arch root when the caller has it (the same design built at other
+    samples: :func:`curvefold.vault._assembly.arch_crease`).
 
     Raises
     ------
@@ -188,7 +192,9 @@ def build(design: Design) -> Built:
         Whatever the builders refuse (regression, no arch, bad curvature), with its message.
     """
     if design.kind == "vault":
-        vault = Vault.from_design(vault_design(design))
+        v = vault_design(design)
+        arch = None if arch_root is None else arch_crease(v.a, v.panels, v.radius, v.fold_angle, v.samples, root=arch_root)
+        vault = Vault.from_design(v, arch=arch)
         return Built(design, vault, vault.structure, vault.lattice.smooth.crease)
     if design.kind == "crease":
         c = design.crease

@@ -239,14 +239,21 @@ def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SE
     return hi
 
 
-def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples: int) -> tuple[ArchRoot, Crease]:
+def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples: int, *,
+                root: ArchRoot | None = None) -> tuple[ArchRoot, Crease]:
     """The arch of a vault and its crease, standing with the span along +y.
 
     What every vault of the same a, panels, radius, fold angle and samples shares, whatever
     its widths and tubes: a sweep over p_xy or the width builds it once per row and hands
-    it to :meth:`Vault.from_design`.
+    it to :meth:`Vault.from_design`. ``root``: the arch's root for this a, panels and fold
+    angle when the caller has it (it does not depend on the samples: the same design at
+    fewer samples needs no new solve); by default it is solved here.
     """
-    arch = solve_panel_arch(a, panels, fold_angle=fold_angle) if panels else solve_symmetric_arch(a)
+    if root is None:
+        root = solve_panel_arch(a, panels, fold_angle=fold_angle) if panels else solve_symmetric_arch(a)
+    elif root.a != a:
+        raise InputError(f"the arch root given is for a = {root.a!r}, not a = {a!r}")
+    arch = root
     k0 = 1.0 / radius
     s0 = arch.kappa0_s0 / k0
     # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.

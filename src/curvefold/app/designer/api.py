@@ -36,6 +36,7 @@ from ...figures._report import MECHANICS_QUANTITIES, UNITS_SHOWN
 from ...io._formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel._errors import CurvefoldError, InputError
 from ...kernel._validate import MAX_TEXT, Spec, from_text, suggest
+from ...vault._arch import ArchRoot
 from ...vault._targets import REPLACES, TARGET_SPECS
 from .._build import Built, build, fit_vault_targets
 from .._design import KINDS, OPTIONAL_SECTIONS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
@@ -269,18 +270,19 @@ def _design(key: str) -> Design:
 
 
 @lru_cache(maxsize=4)
-def _built(key: str) -> Built:
-    return build(_design(key))
+def _built(key: str, arch_root: ArchRoot | None = None) -> Built:
+    return build(_design(key), arch_root=arch_root)
 
 
 def built(design: Design, *, samples: int | None = None) -> Built:
     """The design built (cached), at fewer ``samples`` if given: then the design is first built at
     its own samples, so that what its samples refuse (regression between coarse samples) is
-    refused, never drawn."""
+    refused, never drawn, and a vault's arch root is solved once for both."""
     try:
         if samples is not None and samples < design.samples:
-            _built(_key(design))
-            design = design.overrides(source=SOURCE, samples=samples)
+            full = _built(_key(design))
+            coarse = design.overrides(source=SOURCE, samples=samples)
+            return _built(_key(coarse), None if full.vault is None else full.vault.arch)
         return _built(_key(design))
     except CurvefoldError as err:
         raise _without_source(err) from None
