@@ -86,17 +86,24 @@ def bytecode_env(cache: str) -> dict[str, str]:
     return {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPYCACHEPREFIX": cache}
 
 
+def children_cpu(command: Sequence[str], env: Mapping[str, str] | None = None) -> tuple[float, float, subprocess.CompletedProcess]:
+    """(wall seconds, CPU seconds of the command and the processes it waited for, its result) of one run of ``command``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    done = subprocess.run(list(command), capture_output=True, text=True, check=False, env=None if env is None else dict(env))
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime), done
+
+
 def machine_speed(env: Mapping[str, str] | None = None, repeats: int = 3) -> float:
     """CPU seconds of ``python -c "import numpy"`` in a fresh process, best of ``repeats``: the
     machine's speed beside a figure, since a CPU second here grows when others hold the
     machine's CPUs (0.13–0.15 on an idle development machine, up to 0.30 when shared)."""
-    best = float("inf")
-    for _ in range(repeats):
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        subprocess.run([sys.executable, "-c", "import numpy"], check=True, env=None if env is None else dict(env))
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        best = min(best, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime))
-    return best
+    runs = [children_cpu([sys.executable, "-c", "import numpy"], env) for _ in range(repeats)]
+    if any(done.returncode for _, _, done in runs):
+        raise RuntimeError("python -c 'import numpy' failed: " + runs[0][2].stderr.strip())
+    return min(cpu for _, cpu, _ in runs)
 
 
 def verdict(ok: bool) -> str:

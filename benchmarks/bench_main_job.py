@@ -20,15 +20,13 @@ from __future__ import annotations
 
 import json
 import os
-import resource
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
-from _bench import SummaryRow, bytecode_env, machine_speed, markdown_table, summary_table, timed, verdict
+from _bench import SummaryRow, bytecode_env, children_cpu, machine_speed, markdown_table, summary_table, timed, verdict
 
 TARGET_SECONDS = 2.0
 TARGET_CPU = 3.0
@@ -69,16 +67,6 @@ def _run_stages(built, folder: Path) -> tuple[dict[str, float], dict[str, float]
     return wall, cpu
 
 
-def _children_cpu(command: list[str], env: dict[str, str]) -> tuple[float, float, subprocess.CompletedProcess]:
-    """(wall seconds, CPU seconds of the command and the processes it waited for, its result)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return wall, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime), done
-
-
 def run() -> list[SummaryRow]:
     from curvefold.app import default_design, structure_payload
     from curvefold.app._build import build
@@ -116,11 +104,11 @@ def run() -> list[SummaryRow]:
     with tempfile.TemporaryDirectory() as c, tempfile.TemporaryDirectory() as cache:
         env = bytecode_env(cache)
         command = [str(Path(sys.executable).with_name("curvefold")), "vault", "--out", str(Path(c) / "warm-up"), "--json"]
-        _children_cpu(command, env)  # writes the bytecode cache
+        children_cpu(command, env)  # writes the bytecode cache
         runs = []
         for k in range(REPEATS):
             command[3] = str(Path(c) / "v") + ("" if k == REPEATS - 1 else str(k))
-            wall, cpu, done = _children_cpu(command, env)
+            wall, cpu, done = children_cpu(command, env)
             if done.returncode != 0:
                 raise RuntimeError(done.stderr)
             runs.append((wall, cpu))
@@ -131,7 +119,7 @@ def run() -> list[SummaryRow]:
         if not all(check["passed"] for check in report["certificate"]):
             raise RuntimeError("the certificate failed")
         timings = report["timings"]
-        _, imports, _ = _children_cpu([sys.executable, "-c", "import " + ", ".join(LIBRARIES)], env | {"OPENBLAS_NUM_THREADS": "1"})
+        _, imports, _ = children_cpu([sys.executable, "-c", "import " + ", ".join(LIBRARIES)], env | {"OPENBLAS_NUM_THREADS": "1"})
         numpy = machine_speed(env)
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
     print(f"load average of the machine during the run: {load} (on {os.cpu_count()} CPUs)")
