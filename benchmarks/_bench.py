@@ -106,6 +106,30 @@ def machine_speed(env: Mapping[str, str] | None = None, repeats: int = 3) -> flo
     return min(cpu for _, cpu, _ in runs)
 
 
+#: A fixed piece of pure-Python work, about half a second, for :func:`parallel_throughput`.
+_SPIN = "s = 0\nfor i in range(10_000_000): s += i"
+
+
+def parallel_throughput(processes: int = 2, repeats: int = 3) -> float:
+    """How many CPUs' worth of work the machine gives ``processes`` busy processes at once.
+
+    ``processes`` × (wall seconds of one fixed CPU-bound process alone) / (wall seconds of
+    ``processes`` of them started together), best of ``repeats`` interleaved rounds each, at most
+    ``processes``: that many on an idle machine with that many CPUs, less when others share the
+    host, which bounds what a parallel run measured beside it can gain."""
+    spin = [sys.executable, "-c", _SPIN]
+
+    def together(n: int) -> float:
+        t0 = time.perf_counter()
+        running = [subprocess.Popen(spin) for _ in range(n)]
+        if any(p.wait() for p in running):
+            raise RuntimeError("the CPU-bound reference process failed")
+        return time.perf_counter() - t0
+
+    rounds = [(together(1), together(processes)) for _ in range(repeats)]
+    return min(processes, processes * min(a for a, _ in rounds) / min(b for _, b in rounds))
+
+
 def verdict(ok: bool) -> str:
     return "PASS" if ok else "MISS"
 
