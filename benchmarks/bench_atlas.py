@@ -13,6 +13,10 @@ Throughput: a 40 × 40 grid (p_xy in [0.5, 1.5] × a in [0, 1.2], 1600 designs, 
   (its imports), then the sweep, best of 3. Wall time, and the CPU seconds of a sweep in the
   workers and in this process (which hosts the scheduler).
 
+What a cluster of 2 spends idle, a second, with Dask's defaults and with the atlas's settings
+(``curvefold.vault._cluster.QUIET``), CPU seconds of its workers and of this process (the
+scheduler's) over 3 s.
+
 Every way must return the same records (compared exactly); the speed-ups are printed as
 measured, with the machine's load average and how many CPUs' worth of work two busy processes
 got from it just after (``_bench.parallel_throughput``: 2 on two free CPUs, 1.3–2 measured on a
@@ -40,6 +44,8 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
 from _bench import SummaryRow, markdown_table, parallel_throughput, summary_table, verdict
+
+from curvefold.vault._cluster import QUIET
 
 SIDE = 40
 WIDTH = 0.08
@@ -95,6 +101,22 @@ def _warm() -> None:
     evaluate_design(0.3, 0.75, width=WIDTH, samples=SAMPLES)
 
 
+def _idle(config: dict, seconds: float = 3.0) -> tuple[float, float]:
+    """CPU seconds a second that an idle local cluster of 2 spends under ``config``: (workers, this process)."""
+    import dask
+    import distributed
+
+    with (
+        dask.config.set(config),
+        distributed.LocalCluster(n_workers=WORKERS, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        time.sleep(1.0)  # past the start
+        workers, here = sum(client.run(time.process_time).values()), time.process_time()
+        time.sleep(seconds)
+        return (sum(client.run(time.process_time).values()) - workers) / seconds, (time.process_time() - here) / seconds
+
+
 def run() -> list[SummaryRow]:
     import distributed
 
@@ -125,6 +147,7 @@ def run() -> list[SummaryRow]:
             worker_cpu = (sum(client.run(time.process_time).values()) - before) / REPEATS
             cpu[_running(workers)] = f"{worker_cpu:.2f} + {(time.process_time() - c0) / REPEATS:.2f}"
     throughput = parallel_throughput(WORKERS)
+    idle = {"Dask's defaults": _idle({}), "the atlas's (QUIET)": _idle(QUIET)}
 
     serial = times[SERIAL]
     two = times[_running(2)]
@@ -133,6 +156,8 @@ def run() -> list[SummaryRow]:
           f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; {WORKERS} busy processes got {throughput:.2f} CPUs' worth of work)")
     rows = [(name, f"{t:.2f}", cpu.get(name, "—"), f"{grid.size / t:.0f}", f"{t / serial:.2f}") for name, t in times.items()]
     print(markdown_table(["run", "wall [s]", "CPU [s] (workers + this process)", "designs/s", "time / serial"], rows))
+    print("an idle cluster of 2, CPU-s a second (workers + this process): "
+          + "; ".join(f"{name} {w:.3f} + {h:.3f}" for name, (w, h) in idle.items()))
     print(f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records identical in every run: {same}")
     ok = two <= TARGET_TWO * serial
     scaling = ", ".join(f"{w}: {times[_running(w)] / serial:.2f}" for w in SCALING)

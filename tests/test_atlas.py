@@ -370,6 +370,21 @@ def test_where_designs_run_by_default(monkeypatch):
             plan(5, workers, scheduler)
 
 
+def _quiet_settings() -> tuple:
+    import dask
+
+    return tuple(dask.config.get(key) for key in cluster_module.QUIET)
+
+
+def test_the_local_cluster_runs_without_the_profiler_and_with_a_slow_tick():
+    assert cluster_module.QUIET == {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"}
+    assert _quiet_settings() == (True, "20ms")  # Dask's defaults here: the settings are the cluster's alone
+    with cluster_module.client(2, None) as client:
+        assert set(client.run(_quiet_settings).values()) == {(False, "1s")}  # the worker processes
+        assert client.run_on_scheduler(_quiet_settings) == (False, "1s")
+    assert _quiet_settings() == (True, "20ms")
+
+
 class _Futures:
     """A submit function whose futures finish at once; it counts the futures outstanding (result not yet taken)."""
 

@@ -13,22 +13,28 @@ import importlib.util
 import logging
 import os
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from itertools import islice
+from types import MappingProxyType
 from typing import Any
 
 from ..kernel._errors import InputError
 from ..kernel._version import VERSION
 from ..kernel._validate import Spec
 
-__all__ = ["LOCAL_CLUSTER_FROM", "batched", "client", "cluster_plan", "in_order", "workers_spec"]
+__all__ = ["LOCAL_CLUSTER_FROM", "QUIET", "batched", "client", "cluster_plan", "in_order", "workers_spec"]
 
 #: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
 #: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
 #: workers save at most half of the 0.7 ms a design takes at 201 samples
 #: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
 LOCAL_CLUSTER_FROM = 5000
+
+#: Dask settings of the local cluster: no profiler (stack samples every 10 ms for a dashboard
+#: nobody looks at) and the event loop's health check once a second instead of every 20 ms.
+#: An idle cluster of 2 then spends 0.04–0.05 instead of 0.13–0.15 CPU-s a second (benchmarks/bench_atlas.py).
+QUIET: Mapping[str, Any] = MappingProxyType({"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"})
 
 
 def _cpus() -> int:
@@ -151,7 +157,7 @@ def client(workers: int, scheduler: str | None) -> Iterator[Any]:
                 yield client
         else:
             with (
-                dask.config.set({"distributed.worker.profile.enabled": False}),  # the dashboard's stack samples: nobody looks
+                dask.config.set(QUIET),
                 distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                                          silence_logs=logging.CRITICAL) as cluster,
                 distributed.Client(cluster, set_as_default=False) as client,
