@@ -42,7 +42,9 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 
 import numpy as np
 from _bench import SummaryRow, markdown_table, parallel_throughput, summary_table, verdict
@@ -104,25 +106,35 @@ def _warm() -> None:
     evaluate_design(0.3, 0.75, width=WIDTH, samples=SAMPLES)
 
 
-def _idle(config: dict, seconds: float = 3.0) -> tuple[float, float]:
-    """CPU seconds a second that an idle local cluster of 2 spends under ``config``: (workers, this process)."""
-    import dask
+@contextmanager
+def _cluster(workers: int) -> Iterator[tuple]:
+    """(cluster, client) of a local cluster of ``workers`` single-thread processes, started here."""
     import distributed
 
     with (
-        dask.config.set(config),
-        distributed.LocalCluster(n_workers=WORKERS, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
+        distributed.LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
         distributed.Client(cluster) as client,
     ):
+        yield cluster, client
+
+
+def _workers_cpu(client) -> float:
+    """CPU seconds the cluster's worker processes have spent so far."""
+    return sum(client.run(time.process_time).values())
+
+
+def _idle(config: dict, seconds: float = 3.0) -> tuple[float, float]:
+    """CPU seconds a second that an idle local cluster of 2 spends under ``config``: (workers, this process)."""
+    import dask
+
+    with dask.config.set(config), _cluster(WORKERS) as (_, client):
         time.sleep(1.0)  # past the start
-        workers, here = sum(client.run(time.process_time).values()), time.process_time()
+        workers, here = _workers_cpu(client), time.process_time()
         time.sleep(seconds)
-        return (sum(client.run(time.process_time).values()) - workers) / seconds, (time.process_time() - here) / seconds
+        return (_workers_cpu(client) - workers) / seconds, (time.process_time() - here) / seconds
 
 
 def run() -> list[SummaryRow]:
-    import distributed
-
     grid = _grid()
     times: dict[str, float] = {}
     cpu: dict[str, str] = {}
@@ -140,14 +152,11 @@ def run() -> list[SummaryRow]:
     once(POOL, lambda: _process_pool(grid))
     once(LOCAL, lambda: _records(grid, workers=WORKERS))
     for workers in SCALING:
-        with (
-            distributed.LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
-            distributed.Client(cluster) as client,
-        ):
+        with _cluster(workers) as (cluster, client):
             client.run(_warm)
-            before, c0 = sum(client.run(time.process_time).values()), time.process_time()
+            before, c0 = _workers_cpu(client), time.process_time()
             once(_running(workers), lambda: _records(grid, scheduler=cluster.scheduler_address), REPEATS)
-            worker_cpu = (sum(client.run(time.process_time).values()) - before) / REPEATS
+            worker_cpu = (_workers_cpu(client) - before) / REPEATS
             cpu[_running(workers)] = f"{worker_cpu:.2f} + {(time.process_time() - c0) / REPEATS:.2f}"
     throughput = parallel_throughput(WORKERS)
     idle = {"Dask's defaults": _idle({}), "the atlas's (QUIET)": _idle(QUIET)}
