@@ -370,19 +370,42 @@ def test_where_designs_run_by_default(monkeypatch):
             plan(5, workers, scheduler)
 
 
-def _quiet_settings() -> tuple:
+def _cluster_settings() -> tuple:
     import dask
 
-    return tuple(dask.config.get(key) for key in cluster_module.QUIET)
+    return tuple(dask.config.get(key) for key in cluster_module.CLUSTER_SETTINGS)
 
 
-def test_the_local_cluster_runs_without_the_profiler_and_with_a_slow_tick():
-    assert cluster_module.QUIET == {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"}
-    here = _quiet_settings()  # Dask's defaults, (True, "20ms")
+def _heap_trim() -> str | None:
+    return os.environ.get("MALLOC_TRIM_THRESHOLD_")
+
+
+def test_the_local_cluster_runs_quiet_and_trims_its_workers_heap_at_4_mib(monkeypatch):
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)  # a variable set here would outrank the settings
+    settings = (False, "1s", 4 * 2**20)
+    assert tuple(cluster_module.CLUSTER_SETTINGS.values()) == settings
+    here = _cluster_settings()  # Dask's defaults, (True, "20ms", 65536)
+    assert here != settings
     with cluster_module.client(2, None) as client:
-        assert set(client.run(_quiet_settings).values()) == {(False, "1s")}  # the worker processes
-        assert client.run_on_scheduler(_quiet_settings) == (False, "1s")
-    assert _quiet_settings() == here  # the settings were the cluster's alone
+        assert set(client.run(_cluster_settings).values()) == {settings}  # the worker processes
+        assert client.run_on_scheduler(_cluster_settings) == settings
+        assert set(client.run(_heap_trim).values()) == {str(4 * 2**20)}  # what glibc reads in the workers
+    assert _cluster_settings() == here  # the settings were the cluster's alone
+
+
+def test_a_local_cluster_leaves_this_process_environment_as_it_was(monkeypatch):
+    import dask
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    before = dict(os.environ)
+    dasks = str(dask.config.get("distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"))  # 65536
+    with cluster_module.local_cluster(1, {}) as cluster, distributed.Client(cluster) as client:  # Dask's defaults
+        assert set(client.run(_heap_trim).values()) == {dasks}
+        assert os.environ.get("MALLOC_TRIM_THRESHOLD_") == dasks  # Dask's nanny wrote it here, to spawn the worker
+    assert dict(os.environ) == before
+    with cluster_module.client(2, None) as client:  # so the next cluster gets its own settings
+        assert set(client.run(_heap_trim).values()) == {str(4 * 2**20)}
+    assert dict(os.environ) == before
 
 
 class _Futures:

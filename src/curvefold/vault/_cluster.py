@@ -23,7 +23,7 @@ from ..kernel._errors import InputError
 from ..kernel._version import VERSION
 from ..kernel._validate import Spec
 
-__all__ = ["LOCAL_CLUSTER_FROM", "QUIET", "batched", "client", "cluster_plan", "in_order", "workers_spec"]
+__all__ = ["LOCAL_CLUSTER_FROM", "CLUSTER_SETTINGS", "batched", "client", "cluster_plan", "in_order", "local_cluster", "workers_spec"]
 
 #: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
 #: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
@@ -31,10 +31,22 @@ __all__ = ["LOCAL_CLUSTER_FROM", "QUIET", "batched", "client", "cluster_plan", "
 #: (benchmarks/bench_atlas.py): the cluster pays from some 4000–7000 designs.
 LOCAL_CLUSTER_FROM = 5000
 
-#: Dask settings of the local cluster: no profiler (stack samples every 10 ms for a dashboard
-#: nobody looks at) and the event loop's health check once a second instead of every 20 ms.
-#: An idle cluster of 2 then spends 0.04–0.05 instead of 0.13–0.15 CPU-s a second (benchmarks/bench_atlas.py).
-QUIET: Mapping[str, Any] = MappingProxyType({"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s"})
+#: Dask settings of the local cluster (benchmarks/bench_atlas.py measures each):
+#:
+#: - no profiler (stack samples every 10 ms for a dashboard nobody looks at) and the event
+#:   loop's health check once a second instead of every 20 ms: an idle cluster of 2 spends
+#:   0.04–0.05 instead of 0.12–0.15 CPU-s a second;
+#: - the workers' C heap trimmed only when 4 MiB lie free at its top. Dask's nanny sets
+#:   glibc's threshold to 64 KiB, which also fixes glibc's mmap threshold at 128 KiB: a
+#:   design's arrays of a few hundred KiB are then mapped and faulted in afresh each time.
+#:   Two workers took 62,900–65,800 page faults for 1600 designs and 1.53–1.61 CPU-s, against
+#:   1,680 and 1.34–1.45 at 4 MiB (one process alone: 51,000 at 64 KiB, 4,000 with glibc's
+#:   default, 1,650 at 4 MiB); the largest worker of a 200 × 200 atlas stays at 70 MiB.
+CLUSTER_SETTINGS: Mapping[str, Any] = MappingProxyType({
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 4 * 2**20,
+})
 
 
 def _cpus() -> int:
@@ -145,7 +157,6 @@ def client(workers: int, scheduler: str | None) -> Iterator[Any]:
     if scheduler is None and workers <= 1:
         yield None
         return
-    import dask
     import distributed
 
     dask_log = logging.getLogger("distributed")
@@ -156,15 +167,36 @@ def client(workers: int, scheduler: str | None) -> Iterator[Any]:
             with _scheduler_client(scheduler) as client:
                 yield client
         else:
-            with (
-                dask.config.set(QUIET),
-                distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                                         silence_logs=logging.CRITICAL) as cluster,
-                distributed.Client(cluster, set_as_default=False) as client,
-            ):
+            with local_cluster(workers) as cluster, distributed.Client(cluster, set_as_default=False) as client:
                 yield client
     finally:
         dask_log.setLevel(level)
+
+
+@contextmanager
+def local_cluster(workers: int, settings: Mapping[str, Any] = CLUSTER_SETTINGS) -> Iterator[Any]:
+    """A Dask LocalCluster of ``workers`` single-thread processes under the Dask ``settings``.
+
+    This process's environment is left as it was: Dask's nanny writes its
+    ``pre-spawn-environ`` into ``os.environ`` to hand it to the worker it spawns and leaves
+    it there, where it would outrank the settings of the next cluster started here (an
+    environment variable overrides Dask's configuration) and reach every later subprocess.
+    """
+    import dask
+    import distributed
+
+    before = dict(os.environ)
+    try:
+        with (
+            dask.config.set(settings),
+            distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                     silence_logs=logging.CRITICAL) as cluster,
+        ):
+            yield cluster
+    finally:
+        for key in set(os.environ) - set(before):
+            del os.environ[key]
+        os.environ.update({key: value for key, value in before.items() if os.environ.get(key) != value})
 
 
 def _scheduler_client(scheduler: str) -> Any:
