@@ -9,13 +9,14 @@ Throughput: a 40 × 40 grid (p_xy in [0.5, 1.5] × a in [0, 1.2], 1600 designs, 
   processes, interleaved chunks, every result held until the end);
 - Dask, local cluster: ``workers=2``, starting and closing the cluster included;
 - Dask, running cluster of 1, 2 and 4 workers: ``scheduler=`` the address of a LocalCluster
-  started beforehand (standing in for a real cluster), every worker warmed by one design
-  (its imports), then the sweep, best of 3. Wall time, and the CPU seconds of a sweep in the
-  workers and in this process (which hosts the scheduler).
+  started beforehand (standing in for a real cluster) with the settings the README gives for
+  one's own workers (``curvefold.vault._cluster.CLUSTER_SETTINGS``), and one of 2 with Dask's
+  defaults; every worker warmed by one design (its imports), then the sweep, best of 3. Wall
+  time, the CPU seconds of a sweep in the workers and in this process (which hosts the
+  scheduler), and the workers' page faults a sweep.
 
-What a cluster of 2 spends idle, a second, with Dask's defaults and with the atlas's settings
-(``curvefold.vault._cluster.QUIET``), CPU seconds of its workers and of this process (the
-scheduler's) over 3 s.
+What a cluster of 2 spends idle, a second, with Dask's defaults and with the atlas's settings,
+CPU seconds of its workers and of this process (the scheduler's) over 3 s.
 
 Every way must return the same records (compared exactly); the speed-ups are printed as
 measured, with the machine's load average and how many CPUs' worth of work two busy processes
@@ -39,10 +40,11 @@ import argparse
 import logging
 import math
 import os
+import resource
 import subprocess
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 
@@ -50,7 +52,7 @@ import numpy as np
 from _bench import SummaryRow, markdown_table, parallel_throughput, summary_table, verdict
 
 from curvefold.figures._atlas import MAX_VIEWS
-from curvefold.vault._cluster import QUIET
+from curvefold.vault._cluster import CLUSTER_SETTINGS, local_cluster
 
 SIDE = 40
 WIDTH = 0.08
@@ -95,8 +97,8 @@ POOL = f"process pool, {WORKERS} processes"
 LOCAL = f"Dask, local cluster (workers={WORKERS}, start included)"
 
 
-def _running(workers: int) -> str:
-    return f"Dask, running cluster of {workers} worker{'s' * (workers != 1)} (scheduler=)"
+def _running(workers: int, defaults: bool = False) -> str:
+    return f"Dask, running cluster of {workers} worker{'s' * (workers != 1)} (scheduler=){', Dask defaults' * defaults}"
 
 
 def _warm() -> None:
@@ -107,14 +109,11 @@ def _warm() -> None:
 
 
 @contextmanager
-def _cluster(workers: int) -> Iterator[tuple]:
-    """(cluster, client) of a local cluster of ``workers`` single-thread processes, started here."""
+def _cluster(workers: int, settings: Mapping) -> Iterator[tuple]:
+    """(cluster, client) of a local cluster of ``workers`` single-thread processes started here under Dask ``settings``."""
     import distributed
 
-    with (
-        distributed.LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR) as cluster,
-        distributed.Client(cluster) as client,
-    ):
+    with local_cluster(workers, settings) as cluster, distributed.Client(cluster) as client:
         yield cluster, client
 
 
@@ -123,11 +122,19 @@ def _workers_cpu(client) -> float:
     return sum(client.run(time.process_time).values())
 
 
-def _idle(config: dict, seconds: float = 3.0) -> tuple[float, float]:
-    """CPU seconds a second that an idle local cluster of 2 spends under ``config``: (workers, this process)."""
-    import dask
+def _faults() -> int:
+    """Minor page faults of this process so far."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
 
-    with dask.config.set(config), _cluster(WORKERS) as (_, client):
+
+def _workers_faults(client) -> int:
+    """Page faults the cluster's worker processes have taken so far."""
+    return sum(client.run(_faults).values())
+
+
+def _idle(settings: Mapping, seconds: float = 3.0) -> tuple[float, float]:
+    """CPU seconds a second that an idle local cluster of 2 spends under ``settings``: (workers, this process)."""
+    with _cluster(WORKERS, settings) as (_, client):
         time.sleep(1.0)  # past the start
         workers, here = _workers_cpu(client), time.process_time()
         time.sleep(seconds)
@@ -138,6 +145,7 @@ def run() -> list[SummaryRow]:
     grid = _grid()
     times: dict[str, float] = {}
     cpu: dict[str, str] = {}
+    faulted: dict[str, str] = {}  # page faults of the workers a sweep
     records: dict[str, list[dict]] = {}
 
     def once(name: str, fn, repeats: int = 1) -> None:
@@ -151,23 +159,25 @@ def run() -> list[SummaryRow]:
     cpu[SERIAL] = f"{(time.process_time() - c0) / REPEATS:.2f}"
     once(POOL, lambda: _process_pool(grid))
     once(LOCAL, lambda: _records(grid, workers=WORKERS))
-    for workers in SCALING:
-        with _cluster(workers) as (cluster, client):
+    for workers, defaults in [(w, False) for w in SCALING] + [(WORKERS, True)]:
+        name = _running(workers, defaults)
+        with _cluster(workers, {} if defaults else CLUSTER_SETTINGS) as (cluster, client):
             client.run(_warm)
-            before, c0 = _workers_cpu(client), time.process_time()
-            once(_running(workers), lambda: _records(grid, scheduler=cluster.scheduler_address), REPEATS)
+            before, faults, c0 = _workers_cpu(client), _workers_faults(client), time.process_time()
+            once(name, lambda: _records(grid, scheduler=cluster.scheduler_address), REPEATS)
             worker_cpu = (_workers_cpu(client) - before) / REPEATS
-            cpu[_running(workers)] = f"{worker_cpu:.2f} + {(time.process_time() - c0) / REPEATS:.2f}"
+            cpu[name] = f"{worker_cpu:.2f} + {(time.process_time() - c0) / REPEATS:.2f}"
+            faulted[name] = f"{(_workers_faults(client) - faults) / REPEATS:,.0f}"
     throughput = parallel_throughput(WORKERS)
-    idle = {"Dask's defaults": _idle({}), "the atlas's (QUIET)": _idle(QUIET)}
+    idle = {"Dask's defaults": _idle({}), "the atlas's": _idle(CLUSTER_SETTINGS)}
 
     serial = times[SERIAL]
     two = times[_running(2)]
     same = all(r == records[SERIAL] for r in records.values())
     print(f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; serial and running clusters best of {REPEATS}, the others one run "
           f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; {WORKERS} busy processes got {throughput:.2f} CPUs' worth of work)")
-    rows = [(name, f"{t:.2f}", cpu.get(name, "—"), f"{grid.size / t:.0f}", f"{t / serial:.2f}") for name, t in times.items()]
-    print(markdown_table(["run", "wall [s]", "CPU [s] (workers + this process)", "designs/s", "time / serial"], rows))
+    rows = [(name, f"{t:.2f}", cpu.get(name, "—"), faulted.get(name, "—"), f"{grid.size / t:.0f}", f"{t / serial:.2f}") for name, t in times.items()]
+    print(markdown_table(["run", "wall [s]", "CPU [s] (workers + this process)", "workers' page faults", "designs/s", "time / serial"], rows))
     print("an idle cluster of 2, CPU-s a second (workers + this process): "
           + "; ".join(f"{name} {w:.3f} + {h:.3f}" for name, (w, h) in idle.items()))
     print(f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records identical in every run: {same}")
@@ -178,8 +188,9 @@ def run() -> list[SummaryRow]:
                    f"{two:.2f} s ({two / serial:.2f}× the serial time; {WORKERS} busy processes got {throughput:.2f} CPUs' worth, "
                    f"{1 / throughput:.2f}× at best; load {os.getloadavg()[0]:.1f})", f"≤ {TARGET_TWO:g}×", verdict(ok)),
         SummaryRow("atlas", f"{SIDE} × {SIDE} designs, running cluster of 1, 2, 4 workers: time / serial", scaling, "records identical", verdict(same)),
-        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, local Dask cluster (start included); process pool",
-                   f"{times[LOCAL]:.1f} s ({times[LOCAL] / serial:.2f}×); {times[POOL]:.1f} s ({times[POOL] / serial:.2f}×)", "—", "—"),
+        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, local Dask cluster (start included); process pool; running cluster of 2 with Dask's defaults",
+                   f"{times[LOCAL]:.1f} s ({times[LOCAL] / serial:.2f}×); {times[POOL]:.1f} s ({times[POOL] / serial:.2f}×); "
+                   f"{times[_running(WORKERS, True)]:.2f} s ({times[_running(WORKERS, True)] / serial:.2f}×)", "—", "—"),
     ]
 
 
