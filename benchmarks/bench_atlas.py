@@ -37,7 +37,6 @@ figure or the processes. Target: ≤ 60 CPU-s for 200 × 200, and the same memor
 from __future__ import annotations
 
 import argparse
-import logging
 import math
 import os
 import resource
