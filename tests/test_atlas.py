@@ -408,6 +408,36 @@ def test_a_local_cluster_leaves_this_process_environment_as_it_was(monkeypatch):
     assert dict(os.environ) == before
 
 
+def test_workers_started_with_the_readmes_environment_get_the_atlas_settings(tmp_path, monkeypatch):
+    """``dask worker`` under :func:`worker_environment` (the README's line) runs as the atlas's own workers; without it, on Dask's defaults."""
+    import dask
+
+    env = cluster_module.worker_environment()
+    line = " ".join(f"{k}={v}" for k, v in env.items())
+    assert f"`{line} dask worker ...`" in (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    for key in env:
+        monkeypatch.delenv(key, raising=False)
+    dask_cli, file = Path(sys.executable).with_name("dask"), tmp_path / "scheduler.json"
+    common = ["--scheduler-file", str(file), "--no-dashboard"]
+    processes = [subprocess.Popen([dask_cli, "scheduler", "--host", "127.0.0.1", *common], stderr=subprocess.DEVNULL)]
+    try:
+        for extra in ({}, env):
+            processes.append(subprocess.Popen([dask_cli, "worker", "--nthreads", "1", *common], env=os.environ | extra, stderr=subprocess.DEVNULL))
+        with distributed.Client(scheduler_file=str(file), timeout=60) as client:
+            client.wait_for_workers(2, timeout=60)
+            dasks = {key: value for key, value in cluster_module.CLUSTER_SETTINGS.items() if "pre-spawn-environ" not in key}
+            found = {key: set(client.run(dask.config.get, key).values()) for key in dasks}
+            trims = set(client.run(os.getenv, "MALLOC_TRIM_THRESHOLD_").values())  # what glibc reads
+            client.shutdown()
+    finally:
+        for process in processes[::-1]:
+            if process.poll() is None:
+                process.terminate()
+            process.wait(30)
+    assert found == {key: {value, dask.config.get(key)} for key, value in dasks.items()}
+    assert trims == {str(4 * 2**20), str(dask.config.get("distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"))}  # 65536: Dask's
+
+
 class _Futures:
     """A submit function whose futures finish at once; it counts the futures outstanding (result not yet taken)."""
 
@@ -428,6 +458,23 @@ class _Futures:
 
         future.result = result
         return future
+
+
+def _within_rows(sizes, cols):
+    """Whether every task of these sizes holds whole rows or lies within one row."""
+    starts = np.cumsum([0, *sizes[:-1]])
+    return all(start // cols == (start + n - 1) // cols or (start % cols == 0 and n % cols == 0) for start, n in zip(starts, sizes))
+
+
+@pytest.mark.parametrize(("rows", "cols", "threads"), [(40, 40, 2), (200, 200, 2), (24, 24, 4), (5000, 1, 2), (1, 1000, 2), (3, 7, 2), (1, 1, 1)])
+def test_tasks_cover_the_grid_shrink_and_never_straddle_two_rows(rows, cols, threads):
+    sizes = list(atlas_module.task_sizes(rows * cols, cols, threads))
+    assert sum(sizes) == rows * cols and _within_rows(sizes, cols)
+    assert max(sizes) <= max(atlas_module.CHUNK, min(cols, rows * cols))
+    assert min(sizes[:-1], default=atlas_module.MIN_CHUNK) >= min(atlas_module.MIN_CHUNK, cols)
+    if len(sizes) > 2 * threads:  # guided: the last tasks are the smallest
+        assert sizes[-1] <= min(sizes[: 2 * threads])
+    assert not _within_rows([100] * 16, 40)  # the sweep's cut before: 100 designs a task on rows of 40
 
 
 @pytest.mark.parametrize("window", [1, 3, 50])

@@ -73,15 +73,47 @@ _INTEGER = {"row", "col", "tubes", "max_tubes"}
 SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
 
-#: Designs per task sent to a cluster at most (~0.15 s of work at 0.7 ms a design): a task's
-#: round trip through the scheduler costs milliseconds of the client's CPU, which the
-#: workers share on a small machine, so tasks are as large as the balance allows.
-CHUNK = 200
-#: Tasks per worker thread a grid is cut into at least, for the balance between workers.
-TASKS_PER_THREAD = 8
+#: Designs per task sent to a cluster, at most and at least. Tasks shrink as the grid runs
+#: out (each takes a 1/(2 × worker threads) share of the designs left, between the two
+#: bounds), so a sweep has few tasks, each costing the client and scheduler milliseconds of
+#: CPU that the workers share on a small machine, and ends on small ones, which keep every
+#: worker busy to the end. A task holds whole rows (one arch each) unless a row is larger.
+CHUNK = 400
+MIN_CHUNK = 40
 #: Tasks queued or running per worker thread; results wait, in grid order, for at most
 #: this many tasks per thread (the sweep's memory bound).
 IN_FLIGHT = 3
+
+
+def task_sizes(size: int, row: int, threads: int) -> Iterator[int]:
+    """Designs of each task of a sweep of ``size`` designs in rows of ``row``, for ``threads`` worker threads.
+
+    Guided self-scheduling: every task takes a 1/(2 × ``threads``) share of the designs
+    left, within [:data:`MIN_CHUNK`, :data:`CHUNK`], rounded to whole rows; a row larger
+    than that is cut into equal parts, so that no task straddles two rows.
+
+    Examples
+    --------
+    >>> list(task_sizes(1600, 40, 2))   # 40 × 40 on 2 workers: 12 tasks, 10 rows first, 1 row last
+    [400, 320, 240, 160, 120, 80, 80, 40, 40, 40, 40, 40]
+    >>> sizes = list(task_sizes(40_000, 200, 2))   # 200 × 200: two rows a task, the last row cut
+    >>> len(sizes), sizes[:2], sizes[-4:], sum(sizes)
+    (107, [400, 400], [50, 40, 40, 70], 40000)
+    >>> list(task_sizes(7, 7, 2)), list(task_sizes(0, 5, 2))
+    ([7], [])
+    """
+    done = 0
+    while done < size:
+        want = min(CHUNK, max(MIN_CHUNK, math.ceil((size - done) / (2 * threads))))
+        offset = done % row
+        if want >= row and offset == 0:
+            n = round(want / row) * row
+        else:  # an equal part of the row, or all that is left of it when less would remain
+            n = min(math.ceil(row / math.ceil(row / want)), row - offset)
+            n = row - offset if row - offset - n < MIN_CHUNK else n
+        n = min(n, size - done)
+        yield n
+        done += n
 
 
 @dataclass(frozen=True, eq=False)
@@ -487,9 +519,9 @@ def sweep(
 
     Notes
     -----
-    Designs go to the cluster in chunks of up to :data:`CHUNK` (at least
-    :data:`TASKS_PER_THREAD` chunks per worker thread), at most :data:`IN_FLIGHT` chunks per
-    worker thread at a time; a finished chunk waits until the ones before it
+    Designs go to the cluster in tasks of :func:`task_sizes`, which shrink from
+    :data:`CHUNK` designs as the grid runs out, at most :data:`IN_FLIGHT` tasks per
+    worker thread at a time; a finished task waits until the ones before it
     are handed out, so memory stays bounded whatever the grid's size. A cluster started
     here is closed when the iterator ends, is closed, or raises (close it with
     :func:`contextlib.closing` when stopping early). Connection errors and a version
@@ -525,9 +557,9 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
             chunks: Iterator[list] = (_evaluate_chunk([point], design, step, arches) for point in grid.points())
         else:
             threads = max(1, sum(client.nthreads().values()))
-            size = max(1, min(CHUNK, math.ceil(total / (TASKS_PER_THREAD * threads))))
+            sizes = task_sizes(total, grid.shape[1], threads)
             submit = lambda points: client.submit(_evaluate_chunk, points, design, step, pure=False)  # noqa: E731
-            chunks = in_order(submit, batched(grid.points(), size), IN_FLIGHT * threads)
+            chunks = in_order(submit, batched(grid.points(), sizes), IN_FLIGHT * threads)
         with closing(chunks):  # closed before the client, when the sweep stops early
             for results in chunks:
                 for result in results:

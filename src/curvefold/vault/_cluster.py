@@ -23,7 +23,7 @@ from ..kernel._errors import InputError
 from ..kernel._version import VERSION
 from ..kernel._validate import Spec
 
-__all__ = ["LOCAL_CLUSTER_FROM", "CLUSTER_SETTINGS", "batched", "client", "cluster_plan", "in_order", "local_cluster", "workers_spec"]
+__all__ = ["LOCAL_CLUSTER_FROM", "CLUSTER_SETTINGS", "batched", "client", "cluster_plan", "in_order", "local_cluster", "worker_environment", "workers_spec"]
 
 #: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
 #: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
@@ -47,6 +47,27 @@ CLUSTER_SETTINGS: Mapping[str, Any] = MappingProxyType({
     "distributed.admin.tick.interval": "1s",
     "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 4 * 2**20,
 })
+
+
+_NANNY_ENVIRON = "distributed.nanny.pre-spawn-environ."
+
+
+def worker_environment(settings: Mapping[str, Any] = CLUSTER_SETTINGS) -> dict[str, str]:
+    """The environment variables that give workers started with ``dask worker`` the Dask ``settings``.
+
+    A ``pre-spawn-environ`` setting is the variable itself (the name Dask derives from a
+    ``DASK_…__PRE_SPAWN_ENVIRON__…`` variable is in lower case, which glibc does not read);
+    any other is Dask's ``DASK_`` form of its key.
+
+    Examples
+    --------
+    >>> " ".join(f"{k}={v}" for k, v in worker_environment().items())
+    'DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL=1s MALLOC_TRIM_THRESHOLD_=4194304'
+    """
+    def name(key: str) -> str:
+        return key.removeprefix(_NANNY_ENVIRON) if key.startswith(_NANNY_ENVIRON) else "DASK_" + key.upper().replace(".", "__").replace("-", "_")
+
+    return {name(key): str(value) for key, value in settings.items()}
 
 
 def _cpus() -> int:
@@ -103,16 +124,20 @@ def _require_dask(what: str) -> None:
         raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
 
 
-def batched(items: Iterable, size: int) -> Iterator[list]:
-    """Lists of ``size`` items (the last one shorter) of any iterable, read as they are needed.
+def batched(items: Iterable, sizes: Iterable[int]) -> Iterator[list]:
+    """Lists of consecutive items of any iterable, of the given sizes, read as they are needed.
+
+    Stops when either runs out (the last list then shorter).
 
     Examples
     --------
-    >>> list(batched(range(5), 2)), list(batched([], 2))
-    ([[0, 1], [2, 3], [4]], [])
+    >>> list(batched(range(5), [2, 2, 2])), list(batched(range(5), [1])), list(batched([], [2]))
+    ([[0, 1], [2, 3], [4]], [[0]], [])
     """
     items = iter(items)
-    while batch := list(islice(items, size)):
+    for size in sizes:
+        if not (batch := list(islice(items, size))):
+            return
         yield batch
 
 
