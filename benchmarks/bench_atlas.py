@@ -8,12 +8,13 @@ Throughput: a 40 × 40 grid (p_xy in [0.5, 1.5] × a in [0, 1.2], 1600 designs, 
 - process pool: the sweep as the atlas ran it before Dask (a ``ProcessPoolExecutor`` of 2
   processes, interleaved chunks, every result held until the end);
 - Dask, local cluster: ``workers=2``, starting and closing the cluster included;
-- Dask, running cluster of 1, 2 and 4 workers: ``scheduler=`` the address of a LocalCluster
-  started beforehand (standing in for a real cluster) with the settings the README gives for
-  one's own workers (``curvefold.vault._cluster.CLUSTER_SETTINGS``), and one of 2 with Dask's
-  defaults; every worker warmed by one design (its imports), then the sweep, best of 3. Wall
-  time, the CPU seconds of a sweep in the workers and in this process (which hosts the
-  scheduler), and the workers' page faults a sweep.
+- Dask, running cluster of 1, 2 and 4 workers: ``scheduler=`` the address of a cluster
+  started as one starts one's own, a ``dask scheduler`` process and a ``dask worker`` process
+  of single-thread workers, under the environment the README gives
+  (``curvefold.vault._cluster.worker_environment``), and one of 2 with Dask's defaults; every
+  worker warmed by one design (its imports), then the sweep, best of 3. The serial sweeps
+  alternate with those of the cluster of 2, so both see the machine alike. Wall time, the CPU
+  seconds of a sweep in the workers and in this process, and the workers' page faults a sweep.
 
 What a cluster of 2 spends idle, a second, with Dask's defaults and with the atlas's settings,
 CPU seconds of its workers and of this process (the scheduler's) over 3 s.
@@ -51,7 +52,7 @@ import numpy as np
 from _bench import SummaryRow, markdown_table, parallel_throughput, summary_table, verdict
 
 from curvefold.figures._atlas import MAX_VIEWS
-from curvefold.vault._cluster import CLUSTER_SETTINGS, local_cluster
+from curvefold.vault._cluster import CLUSTER_SETTINGS, local_cluster, worker_environment
 
 SIDE = 40
 WIDTH = 0.08
@@ -116,6 +117,32 @@ def _cluster(workers: int, settings: Mapping) -> Iterator[tuple]:
         yield cluster, client
 
 
+@contextmanager
+def _running_cluster(workers: int, env: Mapping[str, str]) -> Iterator:
+    """A client of a cluster started as one's own: ``dask scheduler`` and ``dask worker`` of ``workers`` single-thread workers under ``env``."""
+    import tempfile
+
+    import distributed
+
+    dask = [os.path.join(os.path.dirname(sys.executable), "dask")]
+    plain = {k: v for k, v in os.environ.items() if k not in worker_environment() and not k.startswith("DASK_")}
+    with tempfile.TemporaryDirectory() as folder:
+        common = ["--scheduler-file", f"{folder}/scheduler.json", "--no-dashboard"]
+        started = [subprocess.Popen([*dask, "scheduler", "--host", "127.0.0.1", *common], env=plain, stderr=subprocess.DEVNULL)]
+        try:
+            started.append(subprocess.Popen([*dask, "worker", "--nworkers", str(workers), "--nthreads", "1", *common], env=plain | dict(env),
+                                            stderr=subprocess.DEVNULL))
+            with distributed.Client(scheduler_file=f"{folder}/scheduler.json", timeout=60) as client:
+                client.wait_for_workers(workers, timeout=60)
+                yield client
+                client.shutdown()
+        finally:
+            for process in started[::-1]:
+                if process.poll() is None:
+                    process.terminate()
+                process.wait(30)
+
+
 def _workers_cpu(client) -> float:
     """CPU seconds the cluster's worker processes have spent so far."""
     return sum(client.run(time.process_time).values())
@@ -142,31 +169,36 @@ def _idle(settings: Mapping, seconds: float = 3.0) -> tuple[float, float]:
 
 def run() -> list[SummaryRow]:
     grid = _grid()
-    times: dict[str, float] = {}
+    times: dict[str, float] = {SERIAL: math.inf}  # the first row
     cpu: dict[str, str] = {}
     faulted: dict[str, str] = {}  # page faults of the workers a sweep
     records: dict[str, list[dict]] = {}
 
-    def once(name: str, fn, repeats: int = 1) -> None:
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            records[name] = fn()
-            times[name] = min(times.get(name, math.inf), time.perf_counter() - t0)
+    def once(name: str, fn) -> None:
+        t0 = time.perf_counter()
+        records[name] = fn()
+        times[name] = min(times.get(name, math.inf), time.perf_counter() - t0)
 
-    c0 = time.process_time()
-    once(SERIAL, lambda: _records(grid, workers=1), REPEATS)
-    cpu[SERIAL] = f"{(time.process_time() - c0) / REPEATS:.2f}"
     once(POOL, lambda: _process_pool(grid))
     once(LOCAL, lambda: _records(grid, workers=WORKERS))
-    for workers, defaults in [(w, False) for w in SCALING] + [(WORKERS, True)]:
+    serial_cpu = []
+    for workers, defaults in [(WORKERS, False)] + [(w, False) for w in SCALING if w != WORKERS] + [(WORKERS, True)]:
         name = _running(workers, defaults)
-        with _cluster(workers, {} if defaults else CLUSTER_SETTINGS) as (cluster, client):
+        with _running_cluster(workers, {} if defaults else worker_environment()) as client:
+            address = client.scheduler.address
             client.run(_warm)
-            before, faults, c0 = _workers_cpu(client), _workers_faults(client), time.process_time()
-            once(name, lambda: _records(grid, scheduler=cluster.scheduler_address), REPEATS)
+            before, faults, c0, spent = _workers_cpu(client), _workers_faults(client), time.process_time(), 0.0
+            for _ in range(REPEATS):
+                if name == _running(WORKERS):  # the serial sweeps alternate with these
+                    s0 = time.process_time()
+                    once(SERIAL, lambda: _records(grid, workers=1))
+                    serial_cpu.append(time.process_time() - s0)
+                    spent += serial_cpu[-1]
+                once(name, lambda: _records(grid, scheduler=address))
             worker_cpu = (_workers_cpu(client) - before) / REPEATS
-            cpu[name] = f"{worker_cpu:.2f} + {(time.process_time() - c0) / REPEATS:.2f}"
+            cpu[name] = f"{worker_cpu:.2f} + {(time.process_time() - c0 - spent) / REPEATS:.2f}"
             faulted[name] = f"{(_workers_faults(client) - faults) / REPEATS:,.0f}"
+    cpu[SERIAL] = f"{min(serial_cpu):.2f}"
     throughput = parallel_throughput(WORKERS)
     idle = {"Dask's defaults": _idle({}), "the atlas's": _idle(CLUSTER_SETTINGS)}
 
