@@ -14,7 +14,8 @@ Throughput: a 40 × 40 grid (p_xy in [0.5, 1.5] × a in [0, 1.2], 1600 designs, 
   (``curvefold.vault._cluster.worker_environment``), and one of 2 with Dask's defaults; every
   worker warmed by one design (its imports), then the sweep, best of 3. The serial sweeps
   alternate with those of the cluster of 2, so both see the machine alike. Wall time, the CPU
-  seconds of a sweep in the workers and in this process, and the workers' page faults a sweep.
+  seconds of a sweep in the workers, the scheduler and this process, and the workers' page
+  faults a sweep.
 
 What a cluster of 2 spends idle, a second, with Dask's defaults and with the atlas's settings,
 CPU seconds of its workers and of this process (the scheduler's) over 3 s.
@@ -126,6 +127,7 @@ def _running_cluster(workers: int, env: Mapping[str, str]) -> Iterator:
 
     dask = [os.path.join(os.path.dirname(sys.executable), "dask")]
     plain = {k: v for k, v in os.environ.items() if k not in worker_environment() and not k.startswith("DASK_")}
+    plain["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.abspath(__file__)), plain.get("PYTHONPATH")]))  # this module's functions
     with tempfile.TemporaryDirectory() as folder:
         common = ["--scheduler-file", f"{folder}/scheduler.json", "--no-dashboard"]
         started = [subprocess.Popen([*dask, "scheduler", "--host", "127.0.0.1", *common], env=plain, stderr=subprocess.DEVNULL)]
@@ -188,6 +190,7 @@ def run() -> list[SummaryRow]:
             address = client.scheduler.address
             client.run(_warm)
             before, faults, c0, spent = _workers_cpu(client), _workers_faults(client), time.process_time(), 0.0
+            scheduler = client.run_on_scheduler(time.process_time)
             for _ in range(REPEATS):
                 if name == _running(WORKERS):  # the serial sweeps alternate with these
                     s0 = time.process_time()
@@ -196,7 +199,8 @@ def run() -> list[SummaryRow]:
                     spent += serial_cpu[-1]
                 once(name, lambda: _records(grid, scheduler=address))
             worker_cpu = (_workers_cpu(client) - before) / REPEATS
-            cpu[name] = f"{worker_cpu:.2f} + {(time.process_time() - c0 - spent) / REPEATS:.2f}"
+            scheduler = (client.run_on_scheduler(time.process_time) - scheduler) / REPEATS
+            cpu[name] = f"{worker_cpu:.2f} + {scheduler:.2f} + {(time.process_time() - c0 - spent) / REPEATS:.2f}"
             faulted[name] = f"{(_workers_faults(client) - faults) / REPEATS:,.0f}"
     cpu[SERIAL] = f"{min(serial_cpu):.2f}"
     throughput = parallel_throughput(WORKERS)
@@ -208,7 +212,7 @@ def run() -> list[SummaryRow]:
     print(f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; serial and running clusters best of {REPEATS}, the others one run "
           f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; {WORKERS} busy processes got {throughput:.2f} CPUs' worth of work)")
     rows = [(name, f"{t:.2f}", cpu.get(name, "—"), faulted.get(name, "—"), f"{grid.size / t:.0f}", f"{t / serial:.2f}") for name, t in times.items()]
-    print(markdown_table(["run", "wall [s]", "CPU [s] (workers + this process)", "workers' page faults", "designs/s", "time / serial"], rows))
+    print(markdown_table(["run", "wall [s]", "CPU [s] (workers + scheduler + this process)", "workers' page faults", "designs/s", "time / serial"], rows))
     print("an idle cluster of 2, CPU-s a second (workers + this process): "
           + "; ".join(f"{name} {w:.3f} + {h:.3f}" for name, (w, h) in idle.items()))
     print(f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records identical in every run: {same}")
