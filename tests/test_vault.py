@@ -263,6 +263,24 @@ def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
     assert lat.refold(angle).domain.contains(paper_vault.structure.curves_uv).all()
 
 
+@pytest.mark.parametrize(("batch", "n"), [(16, 128), (3, 129), (1, 1), (2, 5)])
+def test_the_tree_product_of_quaternions_is_the_ordered_product(batch, n):
+    """The pairwise reduction against one left-multiplication matrix at a time, in order (rounding: ~n ε)."""
+    from curvefold.kernel._lie import _L_INDEX, _L_SIGN, product_quaternions
+
+    q = np.random.default_rng(batch * 1000 + n).normal(size=(4, batch, n))
+    ordered = np.empty((4, batch))
+    for b in range(batch):
+        M = np.eye(4)
+        for t in range(n):
+            M = M @ (_L_SIGN * q[:, b, t][_L_INDEX])
+        ordered[:, b] = M[:, 0]
+    scale = np.abs(ordered).max()
+    assert_allclose(np.array(product_quaternions(tuple(q))), ordered, rtol=0, atol=4 * n * np.finfo(float).eps * scale)
+    if n > 1:  # the check sees the order: the reversed product differs
+        assert np.abs(np.array(product_quaternions(tuple(q[..., ::-1]))) - ordered).max() > 1e-3 * scale
+
+
 def test_arch_condition_matches_the_general_magnus_rotation():
     """The arch's written-out Magnus terms equal the general so(3) Magnus step (κ = 1, τ = a sin)."""
     from curvefold.geometry._curve import gauss_nodes
