@@ -82,7 +82,7 @@ class StaticResult(FrozenArrays):
     >>> from curvefold.vault import Vault
     >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
     >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
-    >>> result.total_reaction.round(6).tolist(), result.equilibrium_error < 1e-12   # the feet carry the weight
+    >>> (result.total_reaction.round(6) + 0.0).tolist(), result.equilibrium_error < 1e-12   # the feet carry the weight (+ 0.0: no -0.0)
     ([0.0, 0.0, 22.737584], True)
     """
 
