@@ -74,12 +74,13 @@ _INTEGER = {"row", "col", "tubes", "max_tubes"}
 SKETCH_SAMPLES = 17
 SKETCH_TUBES = 24
 
-#: Designs per task sent to a cluster, at most and at least. Tasks shrink as the grid runs
-#: out (each takes a 1/(2 × worker threads) share of the designs left, between the two
-#: bounds), so a sweep has few tasks, each costing the client and scheduler milliseconds of
-#: CPU that the workers share on a small machine, and ends on small ones, which keep every
-#: worker busy to the end. A task holds whole rows (one arch each) unless a row is larger.
+#: Designs per task sent to a cluster at most. Tasks shrink as the grid runs out (each takes
+#: a 1/(2 × worker threads) share of the designs left, down to :data:`MIN_CHUNK`), so a
+#: sweep has few tasks, each costing the client and scheduler milliseconds of CPU that the
+#: workers share on a small machine, and ends on small ones, which keep every worker busy to
+#: the end. A task holds whole rows (one arch each) unless a row is larger.
 CHUNK = 400
+#: Designs per task at least, where a row holds as many (the grid's last task may be smaller).
 MIN_CHUNK = 40
 #: Tasks queued or running per worker thread; results wait, in grid order, for at most
 #: this many tasks per thread (the sweep's memory bound).
