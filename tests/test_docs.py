@@ -668,3 +668,22 @@ def test_a_benchmark_run_is_recorded_as_its_printed_text_and_its_figures(tmp_pat
                       **env, "rows": [{"benchmark": "arch", "measure": "solve vs brentq", "value": "13.4×",
                                        "target": "≥ 10×", "status": "pass"}]}
     assert set(run_all.NAMES) == {p.stem.removeprefix("bench_") for p in (ROOT / "benchmarks").glob("bench_*.py")}
+
+
+# -- the changelog --------------------------------------------------------------------------
+
+
+def long_entries(changelog: str) -> list[str]:
+    """Entries of the Unreleased section longer than two lines (their first words)."""
+    unreleased = changelog.split("## [Unreleased]", 1)[1].split("\n## [", 1)[0]
+    entries = re.split(r"^- ", unreleased, flags=re.M)[1:]
+    return [entry[:40] for entry in entries if len(entry.split("\n\n")[0].strip().splitlines()) > 2]
+
+
+def test_every_unreleased_change_is_told_in_one_or_two_lines():
+    text = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert long_entries(text) == []
+    entry = "- The licence is declared as the SPDX expression `MIT`.\n"
+    assert entry in text
+    longer = entry + "  Measured: nothing, it is a declaration.\n  It reads `MIT`.\n"
+    assert long_entries(text.replace(entry, longer)) == ["The licence is declared as the SPDX expr"]
