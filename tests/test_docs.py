@@ -724,3 +724,26 @@ def test_every_unreleased_change_is_told_in_one_or_two_lines():
     assert entry in text
     longer = entry + "  Measured: nothing, it is a declaration.\n  It reads `MIT`.\n"
     assert long_entries(text.replace(entry, longer)) == ["The licence is declared as the SPDX expr"]
+
+
+# -- the README's links ---------------------------------------------------------------------
+
+
+def missing_targets(markdown: str) -> list[str]:
+    """The README's relative links and pictures (``[..](path)``, ``src="path"``) that name no file
+    of the repository."""
+    targets = re.findall(r"\]\(([^)\s#]+)(?:#[^)]*)?\)", markdown) + re.findall(
+        r'src="([^"]+)"', markdown
+    )
+    return [t for t in targets if "://" not in t and not (ROOT / t).exists()]
+
+
+def test_the_readmes_links_and_pictures_are_files_of_the_repository():
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert missing_targets(text) == [] and len(re.findall(r"\]\(docs/", text)) >= 10
+    for name in ("vault.png", "folding-motion.png", "crease-pattern.png", "designer.png"):
+        assert f"docs/{name}" in text
+    assert missing_targets(text.replace("(docs/guide/atlas.md)", "(docs/guide/sweeps.md)")) == [
+        "docs/guide/sweeps.md"
+    ]
+    assert missing_targets('<img src="docs/gone.png">') == ["docs/gone.png"]
