@@ -414,7 +414,8 @@ def test_workers_started_with_the_readmes_environment_get_the_atlas_settings(tmp
 
     env = cluster_module.worker_environment()
     line = " ".join(f"{k}={v}" for k, v in env.items())
-    assert f"`{line} dask worker ...`" in (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    guide = Path(__file__).parents[1] / "docs" / "guide" / "atlas.md"  # the line moved there from the README
+    assert f"`{line} dask worker ...`" in guide.read_text(encoding="utf-8")
     for key in env:
         monkeypatch.delenv(key, raising=False)
     dask_cli, file = Path(sys.executable).with_name("dask"), tmp_path / "scheduler.json"
