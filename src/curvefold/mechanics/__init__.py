@@ -31,7 +31,17 @@ of their names is first used.
 import importlib
 
 from . import _loads, _materials
-from ._loads import HalfSnow, LoadCase, Loads, Parameter, PointLoad, SelfWeight, Snow, Supports, Wind
+from ._loads import (
+    HalfSnow,
+    LoadCase,
+    Loads,
+    Parameter,
+    PointLoad,
+    SelfWeight,
+    Snow,
+    Supports,
+    Wind,
+)
 from ._materials import Material, material
 
 #: Standard gravity, m/s².
