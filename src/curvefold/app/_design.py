@@ -166,7 +166,8 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
 })
 
 _SECTIONS = tuple(name for name in SCHEMA if name)
-#: Keys of a section that hold a list of tables, checked apart: ``[[loads.case]]`` (:func:`check_cases`).
+#: Keys of a section that hold a list of tables, checked apart: ``[[loads.case]]``
+#: (:func:`check_cases`).
 _LISTED: Mapping[str, tuple[str, ...]] = MappingProxyType({"loads": ("case",)})
 
 
@@ -568,7 +569,8 @@ def design_from_dict(
             )
     head = _check_section("", data, Context(source, folder, 0), skip=_SECTIONS)
     ctx = Context(source, folder, head["samples"])
-    checked = {s: _check_section(s, data.get(s, {}), ctx, skip=_LISTED.get(s, ())) for s in (*used, "output")}
+    checked = {s: _check_section(s, data.get(s, {}), ctx, skip=_LISTED.get(s, ()))
+               for s in (*used, "output")}
     if checked["output"]["formats"] is None:
         checked["output"]["formats"] = default_formats(kind)
     if kind == "crease":
@@ -576,7 +578,8 @@ def design_from_dict(
     if "material" in checked:
         check_material(checked["material"], f"{source}: [material] ")
     if "loads" in checked:
-        checked["loads"]["case"] = check_cases(data["loads"].get("case"), f"{source}: [[loads.case]] ")
+        listed = data["loads"].get("case")
+        checked["loads"]["case"] = check_cases(listed, f"{source}: [[loads.case]] ")
     out = checked["output"]
     check_scale(out["scale"], out["units"], _crease_length(kind, checked), f"{source}: [output] scale")
     params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}

@@ -39,7 +39,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -62,9 +62,21 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
     from ..mechanics import LoadResult
 
-__all__ = ["MATERIAL_SECTION", "LOADS_SECTION", "LOADS_KEYS", "MaterialParams", "LoadParams", "check_material",
-           "check_cases", "material_alternatives", "Loaded", "analyse", "magnification", "DEFAULT_MATERIAL",
-           "MAX_CASES"]
+__all__ = [
+    "MATERIAL_SECTION",
+    "LOADS_SECTION",
+    "LOADS_KEYS",
+    "MaterialParams",
+    "LoadParams",
+    "check_material",
+    "check_cases",
+    "material_alternatives",
+    "Loaded",
+    "analyse",
+    "magnification",
+    "DEFAULT_MATERIAL",
+    "MAX_CASES",
+]
 
 #: The material of a design that names none and gives no values of its own.
 DEFAULT_MATERIAL = "polypropylene"
@@ -83,8 +95,9 @@ MATERIAL_SECTION: tuple[Spec, ...] = (
 )
 
 
-def _key(name: str, case: str, parameter: str, **words: str) -> Spec:
-    """The ``[loads]`` key ``name``: the spec of a case's parameter in the user's unit, renamed (and reworded)."""
+def _key(name: str, case: str, parameter: str, **words: Any) -> Spec:
+    """The ``[loads]`` key ``name``: the spec of a case's parameter in the user's unit, renamed
+    (and reworded)."""
     spec = next(p for p in LOAD_CASES[case].parameters if p.name == parameter).user_spec
     return replace(spec, name=name, **words)
 
@@ -107,13 +120,32 @@ LOADS_SECTION: tuple[Spec, ...] = (
     _key("snow", "snow", "load", label="snow load"),
     _key("snow_half", "snow_half", "load", label="snow on half the span"),
     _key("snow_half_side", "snow_half", "side", label="half of the span under snow"),
-    _key("wind", "wind", "velocity_pressure", label="wind velocity pressure",
-         help="wind: its peak velocity pressure q_p (EN 1991-1-4 §4.5), times wind_cp, presses normal to every face"),
+    _key(
+        "wind",
+        "wind",
+        "velocity_pressure",
+        label="wind velocity pressure",
+        help="wind: its peak velocity pressure q_p (EN 1991-1-4 §4.5), times wind_cp, presses "
+        "normal to every face",
+    ),
     _key("wind_cp", "wind", "cp", label="wind pressure coefficient"),
-    _key("point_load", "point", "force", help="a vertical point load, downward, at the apex (the highest point); "
-         "elsewhere: a [[loads.case]] of type point", label="point load"),
-    Spec(SUPPORTS.name, "choice", SUPPORTS.default, choices=SUPPORTS.choices, label=SUPPORTS.label,
-         help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end sections (t = 0 and t = 1)"),
+    _key(
+        "point_load",
+        "point",
+        "force",
+        help="a vertical point load, downward, at the apex (the highest point); "
+        "elsewhere: a [[loads.case]] of type point",
+        label="point load",
+    ),
+    Spec(
+        SUPPORTS.name,
+        "choice",
+        SUPPORTS.default,
+        choices=SUPPORTS.choices,
+        label=SUPPORTS.label,
+        help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end "
+        "sections (t = 0 and t = 1)",
+    ),
 )
 
 
@@ -126,22 +158,26 @@ def check_cases(entries: Any, where: str) -> tuple[LoadCase, ...] | None:
     Raises
     ------
     InputError
-        One line starting with ``where`` (``"design.toml: [[loads.case]] "``) and the entry's number.
+        One line starting with ``where`` (``"design.toml: [[loads.case]] "``) and the entry's
+        number.
 
     Examples
     --------
-    >>> check_cases([{"type": "wind", "velocity_pressure": 0.5, "cp": -0.8}], "design.toml: [[loads.case]] ")
+    >>> check_cases([{"type": "wind", "velocity_pressure": 0.5, "cp": -0.8}], "[[loads.case]] ")
     (Wind(velocity_pressure=500.0, cp=-0.8),)
-    >>> check_cases({"type": "wind"}, "design.toml: [[loads.case]] ")
+    >>> check_cases({"type": "wind"}, "[[loads.case]] ")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: design.toml: [[loads.case]] must be an array of tables ([[loads.case]] entries with a type), got table {'type': 'wind'}
+    curvefold.kernel._errors.InputError: [[loads.case]] must be an array of tables (...), got ...
     """
     if entries is None:
         return None
     if not isinstance(entries, (list, tuple)) or not 1 <= len(entries) <= MAX_CASES:
-        raise InputError(f"{where}must be an array of tables ([[loads.case]] entries with a type), got {describe(entries)}",
-                         parameter="case")
+        raise InputError(
+            f"{where}must be an array of tables ([[loads.case]] entries with a type), "
+            f"got {describe(entries)}",
+            parameter="case",
+        )
     return tuple(LoadCase.from_dict(entry, f"{where}{n + 1}: ") for n, entry in enumerate(entries))
 
 
@@ -160,8 +196,9 @@ class MaterialParams:
 
 @dataclass(frozen=True)
 class LoadParams:
-    """``[loads]``: self-weight or not, the keys of :data:`LOADS_KEYS` in the user's units (snow and wind in kPa, a
-    point load in N), the supports, and the ``[[loads.case]]`` entries (SI; None: none listed)."""
+    """``[loads]``: self-weight or not, the keys of :data:`LOADS_KEYS` in the user's units (snow
+    and wind in kPa, a point load in N), the supports, and the ``[[loads.case]]`` entries (SI;
+    None: none listed)."""
 
     self_weight: bool
     snow: float
@@ -174,8 +211,8 @@ class LoadParams:
     case: tuple[LoadCase, ...] | None = None
 
     def cases(self) -> Loads:
-        """The load cases these keys and entries make, SI: the self-weight, each case whose first key is not zero, then
-        the listed ones.
+        """The load cases these keys and entries make, SI: the self-weight, each case whose first
+        key is not zero, then the listed ones.
 
         Examples
         --------
@@ -191,7 +228,9 @@ class LoadParams:
             if case not in given and not value:  # a case's first key, zero: no such case
                 absent.add(case)
             if case not in absent:
-                given.setdefault(case, {})[parameter] = value * spec.scale if isinstance(value, float) else value
+                given.setdefault(case, {})[parameter] = (
+                    value * spec.scale if isinstance(value, float) else value
+                )
         made = tuple(LOAD_CASES[case](**values) for case, values in given.items())
         return Loads(((SelfWeight(),) if self.self_weight else ()) + made + (self.case or ()))
 
@@ -302,8 +341,13 @@ class Loaded:
             "material": mat.name,
             "sheet": {"youngs_modulus": mat.youngs_modulus, "poisson": mat.poisson, "density": mat.density, "strength": mat.strength,
                       "source": mat.source},
-            "loads": {"self_weight": self.loads.self_weight, "snow_kpa": self.loads.snow, "point_load": self.loads.point_load,
-                      "cases": [case.to_dict() for case in r.loads.cases], "described": [case.describe() for case in r.loads.cases]},
+            "loads": {
+                "self_weight": self.loads.self_weight,
+                "snow_kpa": self.loads.snow,
+                "point_load": self.loads.point_load,
+                "cases": [case.to_dict() for case in r.loads.cases],
+                "described": [case.describe() for case in r.loads.cases],
+            },
             "supported": self.supported,
             "reactions_by_end": self.reactions_by_end(),
             "deflection_scale": self.deflection_scale,
@@ -367,7 +411,11 @@ def _sheet(params: MaterialParams):
 
     if params.material is not None:
         return MATERIALS[params.material]
-    return Material.from_values(params.youngs_modulus, params.poisson, params.density, params.strength)
+    own = params.youngs_modulus, params.poisson, params.density
+    if None in own:  # check_material asks for all three
+        raise InputError("your own material needs youngs_modulus, poisson and density")
+    E, nu, rho = cast("tuple[float, float, float]", own)
+    return Material.from_values(E, nu, rho, params.strength)
 
 
 def analyse(structure: Structure, material: MaterialParams | None, loads: LoadParams | None, *, supported: str) -> Loaded:

@@ -128,8 +128,19 @@ def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__all__))
 
 
-for _name in ("Loads", "LoadCase", "Parameter", "SelfWeight", "Snow", "HalfSnow", "Wind", "PointLoad", "Supports",
-              "Material", "material"):
+for _name in (
+    "Loads",
+    "LoadCase",
+    "Parameter",
+    "SelfWeight",
+    "Snow",
+    "HalfSnow",
+    "Wind",
+    "PointLoad",
+    "Supports",
+    "Material",
+    "material",
+):
     _public(globals()[_name])
 
 

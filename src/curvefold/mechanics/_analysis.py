@@ -149,7 +149,8 @@ class LoadResult:
 
 
 def analyse_load(structure, material: Material | str = "polypropylene", thickness: float = THICKNESS.default,
-                 loads: Loads | Sequence[LoadCase] | None = None, supports: Supports | None = None, *, fold_angle: float | None = None,
+                 loads: Loads | Sequence[LoadCase] | None = None, supports: Supports | None = None,
+                 *, fold_angle: float | None = None,
                  crease_stiffness: float | None = None, modes: int = 6, samples="graded") -> LoadResult:
     """A structure under load, with its modes, buckling factor and soft modes.
 
@@ -185,7 +186,8 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     Examples
     --------
     >>> from curvefold.vault import Vault
-    >>> result = analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1e-3, Loads((SelfWeight(), Snow(100.0))))
+    >>> vault = Vault.from_design(tubes=1, panels=4, samples=21)
+    >>> result = analyse_load(vault, "aluminium", 1e-3, Loads((SelfWeight(), Snow(100.0))))
     >>> round(result.total_weight, 6), result.supports.kind
     (22.737584, 'pinned')
     >>> analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1.0)

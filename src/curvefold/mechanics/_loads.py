@@ -46,7 +46,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, ClassVar, Literal, TypeVar, Union
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, TypeVar, Union, cast
 
 import numpy as np
 
@@ -58,19 +58,42 @@ if TYPE_CHECKING:  # pragma: no cover
     from ._model import BarHingeModel
     from ._structures import StructureModel
 
-__all__ = ["G", "Parameter", "LoadCase", "SelfWeight", "Snow", "HalfSnow", "Wind", "PointLoad", "LOAD_CASES",
-           "POINT_REACH", "Loads", "Supports", "SUPPORTS", "SUPPORTED", "snow_areas", "apex"]
+__all__ = [
+    "G",
+    "Parameter",
+    "LoadCase",
+    "SelfWeight",
+    "Snow",
+    "HalfSnow",
+    "Wind",
+    "PointLoad",
+    "LOAD_CASES",
+    "POINT_REACH",
+    "Loads",
+    "Supports",
+    "SUPPORTS",
+    "SUPPORTED",
+    "snow_areas",
+    "apex",
+]
 
 #: Standard gravity, m/s².
 G = 9.80665
 #: How far from its nearest node a point load may be placed, as a share of the structure's size.
 POINT_REACH = 0.05
 #: How the supported nodes are held.
-SUPPORTS = Spec("supports", "choice", "pinned", choices=("pinned", "roller"),
-                help="how the supported end sections are held: pinned (every translation) or roller "
-                     "(the vertical, and three horizontal restraints that only keep the structure "
-                     "in place)", label="supports")
-#: Which nodes are supported: the feet (end sections on the ground) or both end sections wherever they are.
+SUPPORTS = Spec(
+    "supports",
+    "choice",
+    "pinned",
+    choices=("pinned", "roller"),
+    help="how the supported end sections are held: pinned (every translation) or roller "
+    "(the vertical, and three horizontal restraints that only keep the structure "
+    "in place)",
+    label="supports",
+)
+#: Which nodes are supported: the feet (end sections on the ground) or both end sections
+#: wherever they are.
 SUPPORTED = ("feet", "ends")
 
 #: What a load case acts on: a model, or a structure's model (which knows its end sections).
@@ -120,19 +143,25 @@ class Parameter:
         Examples
         --------
         >>> from curvefold.kernel import Spec
-        >>> Parameter(Spec("load", "real", 0.0, "[0, 1e6]", "Pa"), "kPa", 1000.0).user_spec.describe()
+        >>> snow = Parameter(Spec("load", "real", 0.0, "[0, 1e6]", "Pa"), "kPa", 1000.0)
+        >>> snow.user_spec.describe()
         'in [0, 1000] kPa; default 0'
         """
         spec = self.spec
         if not self.unit:
             return spec
         r = spec.range
-        range_ = None if r is None else Interval(r.lo / self.scale, r.hi / self.scale, r.lo_closed, r.hi_closed)
+        range_ = (
+            None
+            if r is None
+            else Interval(r.lo / self.scale, r.hi / self.scale, r.lo_closed, r.hi_closed)
+        )
         default = spec.default / self.scale if isinstance(spec.default, float) else spec.default
         return replace(spec, range=range_, default=default, unit=self.unit)
 
     def check(self, value: Any, where: str | None = None, *, spec: Spec | None = None) -> Any:
-        """The value checked by the spec (SI, or ``spec``'s unit): a number, a point as a tuple, or None where it may be none.
+        """The value checked by the spec (SI, or ``spec``'s unit): a number, a point as a tuple,
+        or None where it may be none.
 
         Examples
         --------
@@ -152,18 +181,41 @@ class Parameter:
         if self.size == 1:
             return spec.check(value, where)
         if not isinstance(value, (list, tuple, np.ndarray)) or len(value) != self.size:
-            raise InputError(f"{where} must be a point [x, y, z] in {spec.unit}, got {describe(value)}", parameter=spec.name)
+            raise InputError(
+                f"{where} must be a point [x, y, z] in {spec.unit}, got {describe(value)}",
+                parameter=spec.name,
+            )
         return tuple(spec.check(v, f"{where}[{i}]") for i, v in enumerate(value))
 
     def from_user(self, value: Any, where: str) -> Any:
-        """A value in the user's unit, checked by :attr:`user_spec` (its message in that unit), in SI."""
+        """A value in the user's unit, checked by :attr:`user_spec` (its message in that unit),
+        in SI.
+
+        Examples
+        --------
+        >>> from curvefold.kernel import Spec
+        >>> snow = Parameter(Spec("load", "real", 0.0, "[0, 1e6]", "Pa"), "kPa", 1000.0)
+        >>> snow.from_user(0.25, "snow")
+        250.0
+        >>> snow.from_user(2000, "snow")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel._errors.InputError: snow must be in [0, 1000] kPa, got 2000.0
+        """
         value = self.check(value, where, spec=self.user_spec)
         if value is None or self.scale == 1.0:
             return value
         return tuple(v * self.scale for v in value) if self.size > 1 else value * self.scale
 
     def to_user(self, value: Any) -> Any:
-        """An SI value in the user's unit (a point as a list), as a design file holds it."""
+        """An SI value in the user's unit (a point as a list), as a design file holds it.
+
+        Examples
+        --------
+        >>> from curvefold.kernel import Spec
+        >>> Parameter(Spec("load", "real", 0.0, "[0, 1e6]", "Pa"), "kPa", 1000.0).to_user(250.0)
+        0.25
+        """
         if value is None:
             return None
         if self.size > 1:
@@ -171,7 +223,14 @@ class Parameter:
         return value / self.scale if isinstance(value, float) else value
 
     def text(self, value: Any) -> str:
-        """An SI value in words, in the user's unit: ``0.5 kPa``, ``[0, 1, 2] m``."""
+        """An SI value in words, in the user's unit: ``0.5 kPa``, ``[0, 1, 2] m``.
+
+        Examples
+        --------
+        >>> from curvefold.kernel import Spec
+        >>> Parameter(Spec("at", "real", None, "(-inf, inf)", "m"), size=3).text((0.0, 1.0, 2.5))
+        '[0, 1, 2.5] m'
+        """
         shown = self.to_user(value)
         unit = self.unit or self.spec.unit
         if self.size > 1:
@@ -198,10 +257,10 @@ class LoadCase:
     --------
     >>> sorted(LOAD_CASES)
     ['point', 'self_weight', 'snow', 'snow_half', 'wind']
-    >>> Snow(-1.0)
+    >>> Snow(-1.0)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: snow load must be in [0, 1000000] Pa (a roof's snow is below 10 kPa; 1000 kPa is a press), got -1.0
+    curvefold.kernel._errors.InputError: snow load must be in [0, 1000000] Pa (...), got -1.0
     """
 
     name: ClassVar[str]
@@ -210,7 +269,9 @@ class LoadCase:
 
     def __post_init__(self) -> None:
         for p in self.parameters:
-            object.__setattr__(self, p.name, p.check(getattr(self, p.name), f"{self.name} {p.name}"))
+            object.__setattr__(
+                self, p.name, p.check(getattr(self, p.name), f"{self.name} {p.name}")
+            )
 
     def forces(self, model: Target) -> np.ndarray:
         """The nodal forces of this case on a model (or a structure's model), N, shape (P, 3).
@@ -224,10 +285,12 @@ class LoadCase:
         Examples
         --------
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
-        >>> round(float(SelfWeight().forces(tube)[:, 2].sum()), 6), round(float(-G * tube.model.masses.sum()), 6)
+        >>> state = Vault.from_design(tubes=1, panels=4, samples=21).structure.state()
+        >>> tube = StructureModel.from_state(state, MATERIALS["aluminium"], 1e-3)
+        >>> weight = SelfWeight().forces(tube)
+        >>> round(float(weight[:, 2].sum()), 6), round(float(-G * tube.model.masses.sum()), 6)
         (-22.737584, -22.737584)
-        >>> [round(float(Snow(100.0).forces(tube)[:, 2].sum()), 6), round(float(HalfSnow(100.0).forces(tube)[:, 2].sum()), 6)]
+        >>> [round(float(c.forces(tube)[:, 2].sum()), 6) for c in (Snow(100.0), HalfSnow(100.0))]
         [-19.6211, -9.81055]
         """
         raise NotImplementedError
@@ -237,13 +300,20 @@ class LoadCase:
 
         Examples
         --------
-        >>> [case.describe() for case in (SelfWeight(), Snow(500.0), HalfSnow(500.0, "end"), Wind(600.0, -0.8), PointLoad(10.0))]
-        ['self-weight', 'snow 0.5 kPa', 'snow 0.5 kPa on the end half of the span', 'wind 0.6 kPa × c_p -0.8 normal to the sheets', '10 N at the apex']
+        >>> for case in (SelfWeight(), Snow(500.0), HalfSnow(500.0, "end"), Wind(600.0, -0.8),
+        ...              PointLoad(10.0)):
+        ...     print(case.describe())
+        self-weight
+        snow 0.5 kPa
+        snow 0.5 kPa on the end half of the span
+        wind 0.6 kPa × c_p -0.8 normal to the sheets
+        10 N at the apex
         """
         raise NotImplementedError
 
     def to_dict(self) -> dict[str, Any]:
-        """The case as a design file's ``[[loads.case]]`` entry: its ``type`` and its values in the user's units.
+        """The case as a design file's ``[[loads.case]]`` entry: its ``type`` and its values in
+        the user's units.
 
         Examples
         --------
@@ -255,7 +325,8 @@ class LoadCase:
 
     @classmethod
     def from_dict(cls, entry: Mapping[str, Any], where: str) -> LoadCase:
-        """The case of a ``[[loads.case]]`` entry (``type`` and values in the user's units), checked.
+        """The case of a ``[[loads.case]]`` entry (``type`` and values in the user's units),
+        checked.
 
         Raises
         ------
@@ -266,10 +337,10 @@ class LoadCase:
         --------
         >>> LoadCase.from_dict({"type": "snow", "load": 0.5}, "design.toml: [[loads.case]] 1: ")
         Snow(load=500.0)
-        >>> LoadCase.from_dict({"type": "hail"}, "design.toml: [[loads.case]] 1: ")
+        >>> LoadCase.from_dict({"type": "hail"}, "case 1: ")  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: design.toml: [[loads.case]] 1: type must be one of "self_weight", "snow", "snow_half", "wind", "point", got string 'hail'
+        curvefold.kernel._errors.InputError: case 1: type must be one of ..., got string 'hail'
         """
         if not isinstance(entry, Mapping):
             raise InputError(f"{where}must be a table with a type, got {describe(entry)}")
@@ -279,9 +350,13 @@ class LoadCase:
         for key in entry:
             if key != "type" and key not in names:
                 allowed = ", ".join(names) or "none"
-                raise InputError(f"{where}unknown key {key!r} for type {kind!r} (allowed: {allowed})")
-        values = {p.name: p.from_user(entry.get(p.name, p.user_spec.default), f"{where}{kind} {p.name}")
-                  for p in case.parameters}
+                raise InputError(
+                    f"{where}unknown key {key!r} for type {kind!r} (allowed: {allowed})"
+                )
+        values = {
+            p.name: p.from_user(entry.get(p.name, p.user_spec.default), f"{where}{kind} {p.name}")
+            for p in case.parameters
+        }
         return case(**values)
 
 
@@ -297,8 +372,14 @@ def _register(case: _Case) -> _Case:
     return case
 
 
+def _structure(target: Target) -> StructureModel | None:
+    """The structure's model, when the target is one (it knows its end sections)."""
+    return cast("StructureModel", target) if hasattr(target, "feet") else None
+
+
 def _model(target: Target) -> BarHingeModel:
-    return target.model if hasattr(target, "feet") else target  # type: ignore[union-attr,return-value]
+    structure = _structure(target)
+    return cast("BarHingeModel", target) if structure is None else structure.model
 
 
 def _needs_sheet(model: BarHingeModel, what: str) -> None:
@@ -312,7 +393,8 @@ _PRESSURE_WHY = "a roof's snow is below 10 kPa; 1000 kPa is a press"
 @_register
 @dataclass(frozen=True)
 class SelfWeight(LoadCase):
-    """The sheet's weight: every node's lumped mass (density × thickness × area) times g, downward.
+    """The sheet's weight: every node's lumped mass (density × thickness × area) times g,
+    downward.
 
     Examples
     --------
@@ -336,7 +418,8 @@ class SelfWeight(LoadCase):
 @_register
 @dataclass(frozen=True)
 class Snow(LoadCase):
-    """Snow: a uniform vertical load per projected area (Pa) on the surface seen from above (module notes).
+    """Snow: a uniform vertical load per projected area (Pa) on the surface seen from above
+    (module notes).
 
     Examples
     --------
@@ -349,8 +432,19 @@ class Snow(LoadCase):
     name: ClassVar[str] = "snow"
     title: ClassVar[str] = "snow, uniform on the roof seen from above"
     parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(Spec("load", "real", 0.0, "[0, 1e6]", "Pa", help="a uniform vertical load per projected area on the roof",
-                       why=_PRESSURE_WHY), "kPa", 1000.0),
+        Parameter(
+            Spec(
+                "load",
+                "real",
+                0.0,
+                Interval.parse("[0, 1e6]"),
+                "Pa",
+                help="a uniform vertical load per projected area on the roof",
+                why=_PRESSURE_WHY,
+            ),
+            "kPa",
+            1000.0,
+        ),
     )
 
     def forces(self, model: Target) -> np.ndarray:
@@ -381,20 +475,39 @@ class HalfSnow(LoadCase):
     name: ClassVar[str] = "snow_half"
     title: ClassVar[str] = "snow on half the span (EN 1991-1-3's drifted case, simplified)"
     parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(Spec("load", "real", 0.0, "[0, 1e6]", "Pa", help="snow on half the span: a vertical load per projected "
-                       "area on one half of the roof, none on the other", why=_PRESSURE_WHY), "kPa", 1000.0),
-        Parameter(Spec("side", "choice", "end", choices=("start", "end"),
-                       help="which half carries it: from the start of the span (t = 0) to its middle, or from there "
-                            "to its end (t = 1)")),
+        Parameter(
+            Spec(
+                "load",
+                "real",
+                0.0,
+                Interval.parse("[0, 1e6]"),
+                "Pa",
+                help="snow on half the span: a vertical load per projected "
+                "area on one half of the roof, none on the other",
+                why=_PRESSURE_WHY,
+            ),
+            "kPa",
+            1000.0,
+        ),
+        Parameter(
+            Spec(
+                "side",
+                "choice",
+                "end",
+                choices=("start", "end"),
+                help="which half carries it: from the start of the span (t = 0) to its middle, "
+                "or from there to its end (t = 1)",
+            )
+        ),
     )
 
     def forces(self, model: Target) -> np.ndarray:
         m = _model(model)
         _needs_sheet(m, "snow")
-        ends = None
-        if hasattr(model, "feet"):
-            n = model.state.vertices.shape[1]  # type: ignore[union-attr]
-            ends = (np.flatnonzero(model.node_sample == 0), np.flatnonzero(model.node_sample == n - 1))  # type: ignore[union-attr]
+        ends, sm = None, _structure(model)
+        if sm is not None:
+            n = sm.state.vertices.shape[1]
+            ends = np.flatnonzero(sm.node_sample == 0), np.flatnonzero(sm.node_sample == n - 1)
         return projected_forces(m, self.load, half=self.side, ends=ends)
 
     def describe(self) -> str:
@@ -418,10 +531,30 @@ class Wind(LoadCase):
     name: ClassVar[str] = "wind"
     title: ClassVar[str] = "wind, a uniform pressure normal to the sheets"
     parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(Spec("velocity_pressure", "real", 0.0, "[0, 1e5]", "Pa", help="the peak velocity pressure q_p of the "
-                       "wind (EN 1991-1-4 §4.5)", why="a hurricane's is below 5 kPa"), "kPa", 1000.0),
-        Parameter(Spec("cp", "real", 1.0, "[-3, 3]", help="the pressure coefficient c_p on every face: positive presses "
-                       "on the surface, negative pulls (suction)", why="EN 1991-1-4's coefficients lie within ±3")),
+        Parameter(
+            Spec(
+                "velocity_pressure",
+                "real",
+                0.0,
+                Interval.parse("[0, 1e5]"),
+                "Pa",
+                help="the peak velocity pressure q_p of the wind (EN 1991-1-4 §4.5)",
+                why="a hurricane's is below 5 kPa",
+            ),
+            "kPa",
+            1000.0,
+        ),
+        Parameter(
+            Spec(
+                "cp",
+                "real",
+                1.0,
+                Interval.parse("[-3, 3]"),
+                help="the pressure coefficient c_p on every face: positive presses "
+                "on the surface, negative pulls (suction)",
+                why="EN 1991-1-4's coefficients lie within ±3",
+            )
+        ),
     )
 
     @property
@@ -434,13 +567,16 @@ class Wind(LoadCase):
         _needs_sheet(m, "wind")
         triangles, vectors = face_vectors(m)
         f = np.zeros((len(m.nodes), 3))
-        share = np.repeat(-self.pressure * vectors / 3, 3, axis=0)  # towards the surface: against its outward normal
+        share = np.repeat(
+            -self.pressure * vectors / 3, 3, axis=0
+        )  # towards the surface: against its outward normal
         for k in range(3):
             f[:, k] = np.bincount(triangles.ravel(), share[:, k], minlength=len(f))
         return f
 
     def describe(self) -> str:
-        return f"wind {self.parameters[0].text(self.velocity_pressure)} × c_p {self.cp:g} normal to the sheets"
+        pressure = self.parameters[0].text(self.velocity_pressure)
+        return f"wind {pressure} × c_p {self.cp:g} normal to the sheets"
 
 
 @_register
@@ -460,10 +596,29 @@ class PointLoad(LoadCase):
     name: ClassVar[str] = "point"
     title: ClassVar[str] = "a point load"
     parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(Spec("force", "real", 0.0, "[0, 1e9]", "N", help="a vertical point load, downward",
-                       why="numerical range")),
-        Parameter(Spec("at", "real", None, "(-inf, inf)", "m", help="where it is, [x, y, z]: the nearest node carries "
-                       f"it, within {POINT_REACH:.0%} of the structure's size; default the apex"), size=3),
+        Parameter(
+            Spec(
+                "force",
+                "real",
+                0.0,
+                Interval.parse("[0, 1e9]"),
+                "N",
+                help="a vertical point load, downward",
+                why="numerical range",
+            )
+        ),
+        Parameter(
+            Spec(
+                "at",
+                "real",
+                None,
+                Interval.parse("(-inf, inf)"),
+                "m",
+                help="where it is, [x, y, z]: the nearest node carries "
+                f"it, within {POINT_REACH:.0%} of the structure's size; default the apex",
+            ),
+            size=3,
+        ),
     )
 
     def node(self, model: Target) -> int:
@@ -478,13 +633,14 @@ class PointLoad(LoadCase):
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> state = Vault.from_design(tubes=1, panels=4, samples=21).structure.state()
+        >>> tube = StructureModel.from_state(state, MATERIALS["aluminium"], 1e-3)
         >>> PointLoad(1.0).node(tube) == int(np.argmax(tube.model.nodes[:, 2]))
         True
-        >>> PointLoad(1.0, (0.0, 1.0, 3.0)).node(tube)
+        >>> PointLoad(1.0, (0.0, 1.0, 3.0)).node(tube)  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: point load at [0, 1, 3] m is 1.89 m from the structure's nearest node, farther than the 0.108 m allowed (5% of its size, 2.16 m)
+        curvefold.kernel._errors.InputError: point load at [0, 1, 3] m is 1.89 m ... allowed (...)
         """
         m = _model(model)
         if self.at is None:
@@ -493,9 +649,13 @@ class PointLoad(LoadCase):
         node = int(np.argmin(distance))
         reach = POINT_REACH * m.size
         if not distance[node] <= reach:
-            raise InputError(f"point load at {self.parameters[1].text(self.at)} is {distance[node]:.3g} m from the "
-                             f"structure's nearest node, farther than the {reach:.3g} m allowed "
-                             f"({POINT_REACH:.0%} of its size, {m.size:.3g} m)", parameter="at")
+            raise InputError(
+                f"point load at {self.parameters[1].text(self.at)} is {distance[node]:.3g} m from "
+                "the "
+                f"structure's nearest node, farther than the {reach:.3g} m allowed "
+                f"({POINT_REACH:.0%} of its size, {m.size:.3g} m)",
+                parameter="at",
+            )
         return node
 
     def forces(self, model: Target) -> np.ndarray:
@@ -514,7 +674,8 @@ CASE_TYPE = Spec("type", "choice", choices=tuple(LOAD_CASES), help="the kind of 
 
 @dataclass(frozen=True)
 class Loads:
-    """What loads the structure: load cases (module notes), their forces summed. Checked on construction.
+    """What loads the structure: load cases (module notes), their forces summed. Checked on
+    construction.
 
     Attributes
     ----------
@@ -525,10 +686,10 @@ class Loads:
     --------
     >>> Loads((SelfWeight(), Snow(500.0))).describe()
     'self-weight + snow 0.5 kPa'
-    >>> Loads(("snow",))
+    >>> Loads(("snow",))  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: loads must be load cases (SelfWeight(), Snow(500.0), …), got string 'snow'
+    curvefold.kernel._errors.InputError: loads must be load cases (...), got string 'snow'
     """
 
     cases: tuple[LoadCase, ...] = (SelfWeight(),)
@@ -538,13 +699,22 @@ class Loads:
             raise InputError(f"loads must be a sequence of load cases, got {describe(self.cases)}")
         for case in self.cases:
             if not isinstance(case, LoadCase):
-                raise InputError(f"loads must be load cases (SelfWeight(), Snow(500.0), …), got {describe(case)}")
+                raise InputError(
+                    f"loads must be load cases (Snow(500.0), …), got {describe(case)}"
+                )
         object.__setattr__(self, "cases", tuple(self.cases))
 
     @classmethod
-    def from_values(cls, *, self_weight: bool = True, snow: float = 0.0, point: float = 0.0,
-                    point_at: Sequence[float] | None = None) -> Loads:
-        """The loads of the usual keywords: the self-weight or not, snow (Pa), a point load (N) at the apex or ``point_at`` (m).
+    def from_values(
+        cls,
+        *,
+        self_weight: bool = True,
+        snow: float = 0.0,
+        point: float = 0.0,
+        point_at: Sequence[float] | None = None,
+    ) -> Loads:
+        """The loads of the usual keywords: the self-weight or not, snow (Pa), a point load (N) at
+        the apex or ``point_at`` (m).
 
         A zero snow or point load is no case.
 
@@ -552,21 +722,23 @@ class Loads:
         --------
         >>> Loads.from_values(snow=100.0, point=5.0).cases
         (SelfWeight(), Snow(load=100.0), PointLoad(force=5.0, at=None))
-        >>> Loads.from_values(snow=-1.0)
+        >>> Loads.from_values(snow=-1.0)  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: snow load must be in [0, 1000000] Pa (a roof's snow is below 10 kPa; 1000 kPa is a press), got -1.0
+        curvefold.kernel._errors.InputError: snow load must be in [0, 1000000] Pa (...), got -1.0
         """
         if not isinstance(self_weight, (bool, np.bool_)):
             raise InputError(f"self_weight must be true or false, got {self_weight!r}")
         cases: list[LoadCase] = [SelfWeight()] if self_weight else []
-        snowed, pointed = Snow(snow), PointLoad(point, None if point_at is None else tuple(point_at))  # type: ignore[arg-type]
+        at = None if point_at is None else cast("tuple[float, float, float]", tuple(point_at))
+        snowed, pointed = Snow(snow), PointLoad(point, at)
         cases += [snowed] if snowed.load else []
         cases += [pointed] if pointed.force else []
         return cls(tuple(cases))
 
     def forces(self, model: Target) -> np.ndarray:
-        """The nodal forces of every case on a model (or a structure's model), summed, N, shape (P, 3).
+        """The nodal forces of every case on a model (or a structure's model), summed, N, shape
+        (P, 3).
 
         Raises
         ------
@@ -577,7 +749,8 @@ class Loads:
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> state = Vault.from_design(tubes=1, panels=4, samples=21).structure.state()
+        >>> tube = StructureModel.from_state(state, MATERIALS["aluminium"], 1e-3)
         >>> forces = Loads().forces(tube.model)   # self-weight
         >>> round(float(forces[:, 2].sum()), 6), round(float(-G * tube.model.masses.sum()), 6)
         (-22.737584, -22.737584)
@@ -588,7 +761,9 @@ class Loads:
         """
         if not self.cases:
             raise InputError("no load: give self-weight, snow or a point load")
-        return sum((case.forces(model) for case in self.cases), np.zeros((len(_model(model).nodes), 3)))
+        return sum(
+            (case.forces(model) for case in self.cases), np.zeros((len(_model(model).nodes), 3))
+        )
 
     def describe(self) -> str:
         """Every case in words, joined by " + " (:meth:`LoadCase.describe`).
@@ -649,7 +824,8 @@ class Supports:
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> state = Vault.from_design(tubes=1, panels=4, samples=21).structure.state()
+        >>> tube = StructureModel.from_state(state, MATERIALS["aluminium"], 1e-3)
         >>> int(Supports().fixed(tube).sum()), int(Supports("roller").fixed(tube).sum())   # 8 feet pinned; on rollers, z and 3 more
         (24, 11)
         >>> Supports(nodes=(99,)).fixed(tube)
@@ -657,17 +833,17 @@ class Supports:
         ...
         curvefold.kernel._errors.InputError: support nodes must be in [0, 20), got 99 … 99
         """
-        structure = hasattr(target, "feet")  # a StructureModel, which knows its end sections
-        model = target.model if structure else target
+        sm = _structure(target)  # a StructureModel, which knows its end sections
+        model = _model(target)
         P = len(model.nodes)
         if self.nodes is not None:
             nodes = np.asarray(self.nodes)
             if nodes.min() < 0 or nodes.max() >= P:
                 raise InputError(f"support nodes must be in [0, {P}), got {nodes.min()} … {nodes.max()}")
-        elif structure:
-            nodes = target.feet if self.at == "feet" else target.ends
+        elif sm is not None:
+            nodes = sm.feet if self.at == "feet" else sm.ends
             if not len(nodes):
-                low = float(model.nodes[target.ends, 2].min())
+                low = float(model.nodes[sm.ends, 2].min())
                 raise InputError(f"no foot: no end section of this structure lies on the ground z = 0 (the lowest end point is at "
                                  f"z = {low:.6g} m); place it on the ground or give the supported nodes")
         else:
