@@ -158,7 +158,7 @@ def test_a_bad_load_case_is_one_line_naming_its_entry(tmp_path):
         (
             '[[loads.case]]\ntype = "hail"\n',
             r"design\.toml: \[\[loads\.case\]\] 1: type must be one of \"self_weight\", \"snow\", "
-            r"\"snow_half\", \"wind\", \"point\", got string 'hail'$",
+            r"\"snow_half\", \"wind\", \"wind_zones\", \"point\", got string 'hail'$",
         ),
         (
             '[[loads.case]]\ntype = "snow"\n[[loads.case]]\ntype = "wind"\ncp = 9\n',

@@ -31,6 +31,7 @@ from curvefold.mechanics import (
     StructureModel,
     Supports,
     Wind,
+    ZonedWind,
     _loads,
     _surface,
     static_response,
@@ -111,7 +112,7 @@ def end_caps(sm: StructureModel) -> np.ndarray:
 
 
 def test_the_registry_holds_every_case_by_its_name():
-    assert list(LOAD_CASES) == ["self_weight", "snow", "snow_half", "wind", "point"]
+    assert list(LOAD_CASES) == ["self_weight", "snow", "snow_half", "wind", "wind_zones", "point"]
     for name, case in LOAD_CASES.items():
         assert case.name == name and issubclass(case, LoadCase) and case().describe()
         assert (
@@ -195,6 +196,40 @@ def test_a_normal_pressure_on_an_arch_is_the_pressure_times_its_projected_areas(
     assert resultant_error(Wind(q, cp), quarter, [-w * R * W, 0, -w * R * W]) == pytest.approx(2.0)
 
 
+def band(x: np.ndarray, z: np.ndarray, right: float, left: float) -> np.ndarray:
+    """The vector area of an arch's polygon (nodes x, z by angle) between x = right and x = left
+    (its outward normals): W (Δz, 0, −Δx) from the point at ``right`` to the one at ``left``."""
+    order = np.argsort(x)
+    zr, zl = np.interp([right, left], x[order], z[order])
+    return W * np.array([zl - zr, 0.0, -(left - right)])
+
+
+def test_wind_in_en_zones_is_each_zone_s_pressure_times_its_projected_areas(monkeypatch):
+    """16 segments: the zones' borders x = ±R/2 cut triangles; each zone's resultant is its
+    pressure times the vector area of its band of the polygon."""
+    sheet = arch(0.0, np.pi, segments=16)
+    section = sheet.nodes[sheet.nodes[:, 1] == 0]
+    x, z = section[:, 0], section[:, 2]
+    q, cp = 500.0, (-0.5, -1.1, -0.4)
+    expected = {}
+    for windward, (a, c) in (("start", (-R, R)), ("end", (R, -R))):
+        borders = np.linspace(a, c, 5)[[0, 1, 3, 4]]  # the span's quarters from the windward edge
+        bands = [band(x, z, *sorted(pair, reverse=True)) for pair in
+                 ((borders[0], borders[1]), (borders[1], borders[2]), (borders[2], borders[3]))]
+        expected[windward] = -q * sum(k * b for k, b in zip(cp, bands))
+        assert resultant_error(ZonedWind(q, *cp, windward), sheet, expected[windward]) < 1e-12
+    assert not np.allclose(expected["start"], expected["end"])  # the windward side matters
+    # one coefficient everywhere: the uniform wind's
+    uniform = ZonedWind(q, -0.7, -0.7, -0.7).forces(sheet)
+    assert_allclose(uniform, Wind(q, -0.7).forces(sheet), rtol=0, atol=1e-12 * q)
+    # damaged: the zones taken by the triangles' centroids (the cut triangles wholly in one zone)
+    def by_centroid(d):
+        return np.where(d.mean(axis=1) >= 0, 1 / 3, 0.0)[:, None] * np.ones(3)
+
+    monkeypatch.setattr(_loads, "beyond_shares", by_centroid)
+    assert resultant_error(ZonedWind(q, *cp), sheet, expected["start"]) > 1e-3
+
+
 def test_a_normal_pressure_on_a_tube_closed_by_its_end_sections_sums_to_zero(tube, vault):
     """A tube is open at its end sections: the pressure on its sheets is the pressure on the two
     ends it lacks, turned. Between bonded tubes the faces press on each other and cancel: the
@@ -227,7 +262,8 @@ def test_a_point_load_is_its_force_on_the_nearest_node(vault):
 
 @pytest.mark.parametrize(
     "case",
-    [SelfWeight(), Snow(500.0), HalfSnow(500.0, "start"), Wind(600.0, -0.8), PointLoad(80.0)],
+    [SelfWeight(), Snow(500.0), HalfSnow(500.0, "start"), Wind(600.0, -0.8),
+     ZonedWind(600.0, 0.3, -1.0, -0.4), PointLoad(80.0)],
     ids=lambda c: c.name,
 )
 def test_the_supports_carry_each_case_equal_and_opposite(vault, case):

@@ -19,7 +19,8 @@ sheet, a Miura-ori cell or a single bar), :class:`Loads` and :class:`Supports`,
 :func:`static_response`, :func:`free_modes` (the fold-mode gap), :func:`buckling`,
 :func:`soft_modes` (the inextensional motions: the paper's conjecture measured). The
 load cases are classes registered in :data:`LOAD_CASES` (:class:`SelfWeight`,
-:class:`Snow`, :class:`HalfSnow`, :class:`Wind`, :class:`PointLoad`), summed by
+:class:`Snow`, :class:`HalfSnow`, :class:`Wind`, :class:`ZonedWind`, :class:`PointLoad`),
+summed by
 :class:`Loads`. The
 materials are :data:`MATERIALS` with their sources, or :meth:`Material.from_values`.
 
@@ -41,6 +42,7 @@ from ._loads import (
     Snow,
     Supports,
     Wind,
+    ZonedWind,
 )
 from ._materials import Material, material
 
@@ -91,6 +93,7 @@ __all__ = [
     "Snow",
     "HalfSnow",
     "Wind",
+    "ZonedWind",
     "PointLoad",
     "Supports",
     "G",
@@ -136,6 +139,7 @@ for _name in (
     "Snow",
     "HalfSnow",
     "Wind",
+    "ZonedWind",
     "PointLoad",
     "Supports",
     "Material",

@@ -23,6 +23,9 @@ cases are registered by name (:data:`LOAD_CASES`): a new case is one new class. 
   tubes share cancel), a third of each triangle's force on each corner. One uniform
   coefficient: EN 1991-1-4's zones of a vaulted roof (§7.2.8) and the internal pressure
   are not modelled; on a closed surface a uniform pressure is in equilibrium by itself;
+* ``wind_zones`` (:class:`ZonedWind`): the same with EN 1991-1-4's zones of a vaulted roof
+  (§7.2.8, Fig. 7.11: the windward quarter of the span A, the middle half B, the leeward
+  quarter C), a coefficient each, the user's (read off the figure for the roof's f/d, h/d);
 * ``point`` (:class:`PointLoad`): a vertical force (N, downward) at the apex, the highest
   node, or at the node nearest a given point, refused when that node is farther than
   :data:`POINT_REACH` of the structure's size from the point.
@@ -52,7 +55,7 @@ import numpy as np
 
 from ..kernel._errors import InputError
 from ..kernel._validate import Interval, Spec, describe
-from ._surface import apex, face_vectors, projected_forces, snow_areas
+from ._surface import apex, beyond_shares, face_vectors, projected_forces, snow_areas, span
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import BarHingeModel
@@ -66,6 +69,7 @@ __all__ = [
     "Snow",
     "HalfSnow",
     "Wind",
+    "ZonedWind",
     "PointLoad",
     "LOAD_CASES",
     "POINT_REACH",
@@ -255,8 +259,8 @@ class LoadCase:
 
     Examples
     --------
-    >>> sorted(LOAD_CASES)
-    ['point', 'self_weight', 'snow', 'snow_half', 'wind']
+    >>> list(LOAD_CASES)
+    ['self_weight', 'snow', 'snow_half', 'wind', 'wind_zones', 'point']
     >>> Snow(-1.0)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
@@ -382,6 +386,15 @@ def _model(target: Target) -> BarHingeModel:
     return cast("BarHingeModel", target) if structure is None else structure.model
 
 
+def _ends(target: Target) -> tuple[np.ndarray, np.ndarray] | None:
+    """The nodes of the end sections t = 0 and t = 1 of a structure's model (None for a model)."""
+    sm = _structure(target)
+    if sm is None:
+        return None
+    n = sm.state.vertices.shape[1]
+    return np.flatnonzero(sm.node_sample == 0), np.flatnonzero(sm.node_sample == n - 1)
+
+
 def _needs_sheet(model: BarHingeModel, what: str) -> None:
     if not len(model.membranes):
         raise InputError(f"{what} needs a sheet (membrane triangles) to fall on")
@@ -504,11 +517,7 @@ class HalfSnow(LoadCase):
     def forces(self, model: Target) -> np.ndarray:
         m = _model(model)
         _needs_sheet(m, "snow")
-        ends, sm = None, _structure(model)
-        if sm is not None:
-            n = sm.state.vertices.shape[1]
-            ends = np.flatnonzero(sm.node_sample == 0), np.flatnonzero(sm.node_sample == n - 1)
-        return projected_forces(m, self.load, half=self.side, ends=ends)
+        return projected_forces(m, self.load, half=self.side, ends=_ends(model))
 
     def describe(self) -> str:
         return f"snow {self.parameters[0].text(self.load)} on the {self.side} half of the span"
@@ -577,6 +586,74 @@ class Wind(LoadCase):
     def describe(self) -> str:
         pressure = self.parameters[0].text(self.velocity_pressure)
         return f"wind {pressure} × c_p {self.cp:g} normal to the sheets"
+
+
+def _coefficient(name: str, zone: str) -> Parameter:
+    return Parameter(
+        Spec(name, "real", 0.0, Interval.parse("[-3, 3]"),
+             help=f"c_pe,10 of zone {zone} (EN 1991-1-4 Fig. 7.11, read for the roof's rise f/d "
+                  "and height h/d)", why="EN 1991-1-4's coefficients lie within ±3")
+    )
+
+
+@_register
+@dataclass(frozen=True)
+class ZonedWind(LoadCase):
+    """Wind across a vaulted roof in EN 1991-1-4's zones (§7.2.8, Fig. 7.11): the span, from
+    the windward edge, in a quarter A, a half B and a quarter C, each with its own coefficient.
+
+    The pressure c_p q_p of each zone acts normal to the sheets as :class:`Wind`'s; every
+    triangle is cut exactly at the zones' borders (:func:`._surface.beyond_shares`). The
+    coefficients are the user's, read off the standard's figure for the roof's f/d and h/d
+    (its values depend on them and on the national annex); they default to 0.
+
+    Examples
+    --------
+    >>> ZonedWind(500.0, -0.5, -1.0, -0.4, "end").describe()
+    'wind 0.5 kPa from the end of the span, c_p -0.5, -1, -0.4 on its zones A, B, C'
+    """
+
+    velocity_pressure: float = 0.0
+    cp_a: float = 0.0
+    cp_b: float = 0.0
+    cp_c: float = 0.0
+    windward: str = "start"
+
+    name: ClassVar[str] = "wind_zones"
+    title: ClassVar[str] = "wind on a vaulted roof in EN 1991-1-4's zones A, B and C"
+    parameters: ClassVar[tuple[Parameter, ...]] = (
+        Wind.parameters[0],
+        _coefficient("cp_a", "A, the windward quarter of the span"),
+        _coefficient("cp_b", "B, the middle half"),
+        _coefficient("cp_c", "C, the leeward quarter"),
+        Parameter(
+            Spec("windward", "choice", "start", choices=("start", "end"),
+                 help="where the wind comes from: the start of the span (t = 0) or its end (t = 1)")
+        ),
+    )
+
+    def forces(self, model: Target) -> np.ndarray:
+        m = _model(model)
+        _needs_sheet(m, "wind")
+        triangles, vectors = face_vectors(m)
+        axis, lo, hi = span(m, _ends(model))
+        along = m.nodes[triangles][..., :2] @ axis  # (n, 3)
+        if self.windward == "end":
+            along, lo, hi = -along, -hi, -lo
+        quarter = 0.25 * (hi - lo)
+        past_a, past_b = beyond_shares(along - lo - quarter), beyond_shares(along - hi + quarter)
+        shares = self.cp_a * (1 / 3 - past_a) + self.cp_b * (past_a - past_b) + self.cp_c * past_b
+        # (n, 3 corners, 3): towards the surface, against its outward normal
+        load = -self.velocity_pressure * shares[..., None] * vectors[:, None, :]
+        f = np.zeros((len(m.nodes), 3))
+        for k in range(3):
+            f[:, k] = np.bincount(triangles.ravel(), load[..., k].ravel(), minlength=len(f))
+        return f
+
+    def describe(self) -> str:
+        pressure = self.parameters[0].text(self.velocity_pressure)
+        return (f"wind {pressure} from the {self.windward} of the span, c_p {self.cp_a:g}, "
+                f"{self.cp_b:g}, {self.cp_c:g} on its zones A, B, C")
 
 
 @_register
