@@ -23,7 +23,8 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import BarHingeModel
 
-__all__ = ["apex", "snow_areas", "span_axis", "span", "projected_forces", "face_vectors", "beyond_shares"]
+__all__ = ["apex", "snow_areas", "span_axis", "span", "projected_forces", "face_vectors",
+           "beyond_shares"]
 
 
 def apex(model: BarHingeModel) -> int:
@@ -147,7 +148,8 @@ def span_axis(
     return axis, 0.5 * (lo + hi)
 
 
-def span(model: BarHingeModel, ends: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, float, float]:
+def span(model: BarHingeModel,
+         ends: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, float, float]:
     """The span's horizontal unit direction (2,) (:func:`span_axis`) and where the seen surface
     starts and ends along it, m.
 
