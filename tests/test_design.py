@@ -172,7 +172,8 @@ def test_schema_matches_the_dataclasses():
     types = {"vault": VaultParams, "curve": CurveParams, "tube": TubeParams, "block": BlockParams,
              "crease": CreaseParams, "output": OutputParams, "material": MaterialParams, "loads": LoadParams}
     for section, cls in types.items():
-        assert [f.name for f in dataclasses.fields(cls)] == list(SCHEMA[section])
+        listed = ["case"] if section == "loads" else []  # [[loads.case]]: tables checked apart
+        assert [f.name for f in dataclasses.fields(cls)] == list(SCHEMA[section]) + listed
     assert set(SCHEMA) == {"", *types}
 
 

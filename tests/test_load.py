@@ -16,10 +16,21 @@ import pytest
 from numpy.testing import assert_allclose
 
 from _cli import run, run_subprocess
-from curvefold.app import parse_design
+from curvefold.app import design_from_dict, parse_design
 from curvefold.app._budget import estimate
 from curvefold.kernel import readonly
-from curvefold.mechanics import Loads, Material, StructureModel, Supports, analyse_load
+from curvefold.mechanics import (
+    HalfSnow,
+    Loads,
+    Material,
+    PointLoad,
+    SelfWeight,
+    Snow,
+    StructureModel,
+    Supports,
+    Wind,
+    analyse_load,
+)
 from curvefold.vault import Vault
 
 EXAMPLES = Path(__file__).parent.parent / "examples"
@@ -69,8 +80,13 @@ def test_the_material_and_loads_come_from_flags_and_design_files_alike(tmp_path)
         assert from_file[key] == from_flags[key], key
     # snow in kPa at the boundary, Pa in the library; a material without a strength has no utilisation
     own = Material.from_values(70e9, 0.33, 2700.0)
-    library = analyse_load(Vault.from_design(a=0.3, p_xy=0.75, tubes=3, samples=201), own, 0.002, Loads(self_weight=False, snow=500.0),
-                           Supports("roller"))
+    library = analyse_load(
+        Vault.from_design(a=0.3, p_xy=0.75, tubes=3, samples=201),
+        own,
+        0.002,
+        Loads.from_values(self_weight=False, snow=500.0),
+        Supports("roller"),
+    )
     assert_allclose(from_file["applied_load"], library.static.total_load, rtol=1e-12)
     assert from_file["utilisation"] is None and any("no strength" in note for note in from_file["notes"])
     # on rollers the feet carry the vertical only
@@ -80,6 +96,101 @@ def test_the_material_and_loads_come_from_flags_and_design_files_alike(tmp_path)
     named = loaded("design.toml", "--material", "aluminium", "--point-load", "10", cwd=tmp_path)
     assert named["material"] == "aluminium" and named["design"]["material"].get("youngs_modulus") is None
     assert_allclose(named["applied_load"][2], library.static.total_load[2] - 10.0, rtol=1e-12)
+
+
+def test_the_load_cases_come_from_flags_keys_and_listed_cases_as_the_library_takes_them(tmp_path):
+    """Snow on half the span and wind by their keys or flags (kPa), a point load anywhere listed
+    as a case: the same applied load as the library's cases in Pa, the cases told in the JSON,
+    and the design's cases kept through its dict."""
+    (tmp_path / "design.toml").write_text(
+        'kind = "vault"\nsamples = 201\n[vault]\ntubes = 3\n'
+        '[loads]\nsnow_half = 0.4\nsnow_half_side = "start"\nwind = 0.6\nwind_cp = -0.8\n'
+        '[[loads.case]]\ntype = "point"\nforce = 30.0\nat = [-0.1, 1.0, 1.1]\n'
+        '[[loads.case]]\ntype = "snow"\nload = 0.2\n'
+    )
+    from_file = loaded("design.toml", cwd=tmp_path)
+    cases = (
+        SelfWeight(),
+        HalfSnow(400.0, "start"),
+        Wind(600.0, -0.8),
+        PointLoad(30.0, (-0.1, 1.0, 1.1)),
+        Snow(200.0),
+    )
+    library = analyse_load(
+        Vault.from_design(a=0.3, p_xy=0.75, tubes=3, samples=201), loads=Loads(cases)
+    )
+    assert_allclose(
+        from_file["applied_load"],
+        library.static.total_load,
+        rtol=1e-12,
+        atol=1e-12 * library.total_weight,
+    )
+    assert from_file["loads"]["described"] == [c.describe() for c in cases]
+    assert from_file["design"]["loads"]["case"] == [c.to_dict() for c in cases[3:]]
+    design = parse_design((tmp_path / "design.toml").read_text())
+    assert design_from_dict(design.to_dict()) == design and design.loads.cases() == Loads(cases)
+    flags = loaded(
+        *SMALL,
+        "--snow-half",
+        "0.4",
+        "--snow-half-side",
+        "start",
+        "--wind",
+        "0.6",
+        "--wind-cp",
+        "-0.8",
+    )
+    keys = analyse_load(
+        Vault.from_design(a=0.3, p_xy=0.75, tubes=3, samples=201), loads=Loads(cases[:3])
+    )
+    assert_allclose(
+        flags["applied_load"], keys.static.total_load, rtol=1e-12, atol=1e-12 * keys.total_weight
+    )
+    assert (
+        run("load", *SMALL, "--wind", "0.6")
+        .stdout.splitlines()[1]
+        .endswith("self-weight + wind 0.6 kPa × c_p 1 normal to the sheets, pinned at the feet")
+    )
+
+
+def test_a_bad_load_case_is_one_line_naming_its_entry(tmp_path):
+    for entries, match in [
+        (
+            '[[loads.case]]\ntype = "hail"\n',
+            r"design\.toml: \[\[loads\.case\]\] 1: type must be one of \"self_weight\", \"snow\", "
+            r"\"snow_half\", \"wind\", \"wind_zones\", \"point\", got string 'hail'$",
+        ),
+        (
+            '[[loads.case]]\ntype = "snow"\n[[loads.case]]\ntype = "wind"\ncp = 9\n',
+            r"design\.toml: \[\[loads\.case\]\] 2: wind cp must be in \[-3, 3\] "
+            r"\(EN 1991-1-4's coefficients lie within ±3\), got 9\.0$",
+        ),
+        (
+            '[[loads.case]]\ntype = "point"\nforce = 1.0\nat = [0, 1]\n',
+            r"design\.toml: \[\[loads\.case\]\] 1: point at must be a point \[x, y, z\] in m, "
+            r"got array \[0, 1\]$",
+        ),
+        (
+            '[[loads.case]]\ntype = "point"\nforce = 1.0\nat = [0, 1, -2]\n',
+            r"point load at \[0, 1, -2\] m is 2\.\d+ m from the structure's nearest node, "
+            r"farther than the 0\.104 m allowed",
+        ),
+        (
+            "[loads]\ncase = 3\n",
+            r"design\.toml: \[\[loads\.case\]\] must be an array of tables "
+            r"\(\[\[loads\.case\]\] entries "
+            r"with a type\), got 3$",
+        ),
+    ]:
+        (tmp_path / "design.toml").write_text(
+            f'kind = "vault"\nsamples = 201\n[vault]\ntubes = 3\n{entries}'
+        )
+        refused(run("load", "design.toml", cwd=tmp_path), match)
+    refused(run("load", *SMALL, "--wind-cp", "-4"), r"--wind-cp -4: wind_cp must be in \[-3, 3\]")
+    refused(
+        run("load", *SMALL, "--snow-half", "2000"),
+        r"--snow-half 2000: snow_half must be in \[0, 1000\] kPa",
+    )
 
 
 def test_the_size_strength_and_creases_come_from_flags_as_the_library_takes_them():
@@ -102,7 +213,7 @@ def test_a_design_file_s_bad_material_or_loads_is_one_line(tmp_path):
         ("material", "poisson = 0.6\nyoungs_modulus = 1e9\ndensity = 900.0", r"design\.toml: \[material\] poisson must be in \(-1, 0\.5\)"),
         ("material", "thickness = -0.001", r"design\.toml: \[material\] thickness must be in \(0, 1\) m"),
         ("loads", 'supports = "glued"', r"design\.toml: \[loads\] supports must be one of \"pinned\", \"roller\", got string 'glued'"),
-        ("loads", "snow = 0.5\nwind = 1", r"design\.toml: \[loads\] unknown key 'wind'"),
+        ("loads", "snow = 0.5\nhail = 1", r"design\.toml: \[loads\] unknown key 'hail'"),
     ]:
         (tmp_path / "design.toml").write_text(f'kind = "vault"\nsamples = 201\n[vault]\ntubes = 3\n[{section}]\n{line}\n')
         refused(run("load", "design.toml", cwd=tmp_path), match)

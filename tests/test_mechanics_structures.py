@@ -25,6 +25,8 @@ from curvefold.mechanics import (
     MATERIALS,
     BarHingeModel,
     Loads,
+    PointLoad,
+    Snow,
     StructureModel,
     Supports,
     analyse_load,
@@ -247,7 +249,7 @@ def test_snow_falls_on_the_footprint_once(small_vault, lattice):
     areas = snow_areas(m)
     footprint = unary_union([Polygon(p) for p in m.nodes[m.triangles()[0]][..., :2]]).area
     assert areas.sum() == pytest.approx(footprint, rel=1e-3)  # each triangle whole, seen or not, at the occlusion edges
-    snow = Loads(self_weight=False, snow=500.0).forces(m)
+    snow = Loads((Snow(500.0),)).forces(m)
     assert snow[:, :2].max() == 0 and -snow[:, 2].sum() == pytest.approx(500.0 * areas.sum(), rel=1e-14)
     # a closed tube: every vertical line through it meets it twice, and the snow falls on the upper meeting only
     tube = StructureModel.from_state(Structure.tube(lattice).state(), PP, 1e-3).model
@@ -261,17 +263,25 @@ def test_snow_falls_on_the_footprint_once(small_vault, lattice):
 
 def test_a_point_load_sits_on_the_apex(small_vault):
     sm = StructureModel.from_state(small_vault.structure.state(), PP, 1e-3)
-    f = Loads(self_weight=False, point=100.0).forces(sm.model)
+    f = Loads((PointLoad(100.0),)).forces(sm.model)
     node = int(np.flatnonzero(f[:, 2])[0])
     assert f[node, 2] == -100.0 and np.count_nonzero(f) == 1
     assert sm.model.nodes[node, 2] == sm.model.nodes[:, 2].max()
     assert sm.node_sample[node] == (small_vault.structure.state().vertices.shape[1] - 1) // 2  # the middle sample
-    placed = Loads(self_weight=False, point=1.0, point_at=(0.0, 1.0, 0.0)).forces(sm.model)
-    assert np.flatnonzero(placed[:, 2])[0] == np.argmin(np.linalg.norm(sm.model.nodes - [0, 1, 0], axis=1))
+    near = (0.0, 1.0, 1.1)  # 0.05 m under the crown
+    placed = Loads((PointLoad(1.0, near),)).forces(sm.model)
+    nearest = np.argmin(np.linalg.norm(sm.model.nodes - near, axis=1))
+    assert np.flatnonzero(placed[:, 2])[0] == nearest
+    with pytest.raises(
+        InputError,
+        match=r"^point load at \[0, 1, 0\] m is 0\.896 m from the structure's nearest node, "
+        r"farther than the 0\.104 m allowed \(5% of its size, 2\.07 m\)$",
+    ):
+        Loads((PointLoad(1.0, (0.0, 1.0, 0.0)),)).forces(sm.model)
     with pytest.raises(InputError, match="^no load"):
-        Loads(self_weight=False).forces(sm.model)
-    with pytest.raises(InputError, match=r"^point must be in \[0, 1000000000\] N"):
-        Loads(point=-5.0)
+        Loads(()).forces(sm.model)
+    with pytest.raises(InputError, match=r"^point force must be in \[0, 1000000000\] N"):
+        PointLoad(-5.0)
 
 
 def test_the_hinges_part_of_the_geometric_stiffness_agrees_with_the_whole(small_vault):

@@ -57,9 +57,18 @@ from ..kernel._errors import InputError
 from ..kernel._expr import Expression
 from ..kernel._functions import ScalarFunction, as_function
 from ..kernel._validate import REQUIRED, Spec, describe, suggest
+from ..mechanics import LoadCase
 from ..vault._assembly import LENGTHS, LENGTHS_WHY, VAULT_SPECS
 from ._design_functions import Context, FunctionValue, TableColumn, check_function
-from ._loading import LOADS_SECTION, MATERIAL_SECTION, LoadParams, MaterialParams, check_material, material_alternatives
+from ._loading import (
+    LOADS_SECTION,
+    MATERIAL_SECTION,
+    LoadParams,
+    MaterialParams,
+    check_cases,
+    check_material,
+    material_alternatives,
+)
 
 __all__ = [
     "Design",
@@ -157,6 +166,9 @@ SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
 })
 
 _SECTIONS = tuple(name for name in SCHEMA if name)
+#: Keys of a section that hold a list of tables, checked apart: ``[[loads.case]]``
+#: (:func:`check_cases`).
+_LISTED: Mapping[str, tuple[str, ...]] = MappingProxyType({"loads": ("case",)})
 
 
 # --------------------------------------------------------------------------------------------
@@ -427,6 +439,8 @@ def kind_specs(kind: str) -> dict[str, Spec]:
 
 
 def _plain(value: Any) -> Any:
+    if isinstance(value, LoadCase):
+        return value.to_dict()
     if isinstance(value, Expression):
         return value.text
     if isinstance(value, TableColumn):
@@ -555,13 +569,17 @@ def design_from_dict(
             )
     head = _check_section("", data, Context(source, folder, 0), skip=_SECTIONS)
     ctx = Context(source, folder, head["samples"])
-    checked = {s: _check_section(s, data.get(s, {}), ctx) for s in (*used, "output")}
+    checked = {s: _check_section(s, data.get(s, {}), ctx, skip=_LISTED.get(s, ()))
+               for s in (*used, "output")}
     if checked["output"]["formats"] is None:
         checked["output"]["formats"] = default_formats(kind)
     if kind == "crease":
         _check_alpha(checked["crease"], data.get("crease", {}), source)
     if "material" in checked:
         check_material(checked["material"], f"{source}: [material] ")
+    if "loads" in checked:
+        listed = data["loads"].get("case")
+        checked["loads"]["case"] = check_cases(listed, f"{source}: [[loads.case]] ")
     out = checked["output"]
     check_scale(out["scale"], out["units"], _crease_length(kind, checked), f"{source}: [output] scale")
     params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}

@@ -6,14 +6,25 @@ A vault, tube or block design may say what it is made of and what loads it::
     material = "aluminium"      # a named material, or your own values:
     thickness = 0.002           # youngs_modulus, poisson, density (and strength)
     [loads]
-    snow = 0.5                  # kPa on the roof
+    snow = 0.5                  # kPa on the roof seen from above
+    snow_half = 0.3             # kPa more on half the span (snow_half_side = "end")
+    wind = 0.6                  # kPa, the wind's velocity pressure q_p, times
+    wind_cp = -0.8              # its pressure coefficient on every face
+    point_load = 100.0          # N at the apex
     supports = "pinned"
+
+    [[loads.case]]              # any number of cases more, each of a type of
+    type = "point"              # curvefold.mechanics.LOAD_CASES, in the units above
+    force = 50.0
+    at = [0.0, 1.0, 1.1]
 
 The sections are optional: a design that has either is analysed under load wherever it is
 built into an output folder (``curvefold vault``, ``tube``, ``block``, the designer's
 folder), and ``curvefold load`` analyses any design, filling them with their defaults
 (polypropylene 1 mm, self-weight, pinned). Their keys are checked by the specs of
-:mod:`curvefold.mechanics` (the snow in kPa here, in Pa there). A vault stands on its feet
+:mod:`curvefold.mechanics`: a load key is a parameter of a load case
+(:data:`LOADS_KEYS`), its spec that parameter's in the user's unit (pressures in kPa
+here, in Pa there: :class:`curvefold.mechanics.Parameter` converts). A vault stands on its feet
 (the end sections on the ground); a tube or block is held at both end sections, t = 0 and
 t = 1, wherever they are.
 
@@ -26,28 +37,51 @@ of it. The mechanics and SciPy are imported only then.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ..kernel._errors import InputError
-from ..kernel._validate import Interval, Spec
-from ..mechanics import CREASE_STIFFNESS, LOAD_SPECS, MATERIAL, MATERIAL_SPECS, MATERIALS, SUPPORTS, THICKNESS
+from ..kernel._validate import Spec, describe
+from ..mechanics import (
+    CREASE_STIFFNESS,
+    LOAD_CASES,
+    MATERIAL,
+    MATERIAL_SPECS,
+    MATERIALS,
+    SUPPORTS,
+    THICKNESS,
+    LoadCase,
+    Loads,
+    SelfWeight,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
     from ..mechanics import LoadResult
 
-__all__ = ["MATERIAL_SECTION", "LOADS_SECTION", "MaterialParams", "LoadParams", "check_material", "material_alternatives",
-           "Loaded", "analyse", "magnification", "DEFAULT_MATERIAL", "PA_PER_KPA"]
+__all__ = [
+    "MATERIAL_SECTION",
+    "LOADS_SECTION",
+    "LOADS_KEYS",
+    "MaterialParams",
+    "LoadParams",
+    "check_material",
+    "check_cases",
+    "material_alternatives",
+    "Loaded",
+    "analyse",
+    "magnification",
+    "DEFAULT_MATERIAL",
+    "MAX_CASES",
+]
 
 #: The material of a design that names none and gives no values of its own.
 DEFAULT_MATERIAL = "polypropylene"
-#: Snow is given in kPa and analysed in Pa.
-PA_PER_KPA = 1000.0
-_PA = {s.name: s for s in LOAD_SPECS}
+#: Most ``[[loads.case]]`` entries a design may list.
+MAX_CASES = 1000
 _OWN = tuple(s.name for s in MATERIAL_SPECS)  # youngs_modulus, poisson, density, strength
 _NEEDED = _OWN[:3]
 
@@ -59,17 +93,92 @@ MATERIAL_SECTION: tuple[Spec, ...] = (
     THICKNESS,
     CREASE_STIFFNESS,
 )
-#: ``[loads]``: what loads the structure and how it is held (the snow in kPa, the library's in Pa).
+
+
+def _key(name: str, case: str, parameter: str, **words: Any) -> Spec:
+    """The ``[loads]`` key ``name``: the spec of a case's parameter in the user's unit, renamed
+    (and reworded)."""
+    spec = next(p for p in LOAD_CASES[case].parameters if p.name == parameter).user_spec
+    return replace(spec, name=name, **words)
+
+
+#: The ``[loads]`` keys that set a load case: key -> (case, parameter). A case's first key
+#: adds it when non-zero; its others set its other parameters.
+LOADS_KEYS: Mapping[str, tuple[str, str]] = {
+    "snow": ("snow", "load"),
+    "snow_half": ("snow_half", "load"),
+    "snow_half_side": ("snow_half", "side"),
+    "wind": ("wind", "velocity_pressure"),
+    "wind_cp": ("wind", "cp"),
+    "point_load": ("point", "force"),
+}
+#: ``[loads]``: what loads the structure and how it is held, the keys' specs those of the
+#: load cases' parameters in the user's units (:data:`LOADS_KEYS`); the ``[[loads.case]]``
+#: entries are checked apart (:func:`check_cases`).
 LOADS_SECTION: tuple[Spec, ...] = (
     Spec("self_weight", "flag", True, help="the sheet's own weight loads it", label="self-weight"),
-    Spec("snow", "real", 0.0, Interval(_PA["snow"].range.lo / PA_PER_KPA, _PA["snow"].range.hi / PA_PER_KPA, True, True), "kPa",
-         help="snow: a uniform vertical load per projected area on the roof", why="a roof's snow is below 10 kPa; 1000 kPa is a press",
-         label="snow load"),
-    Spec("point_load", "real", 0.0, _PA["point"].range, "N", help="a vertical point load, downward, at the apex (the highest point)",
-         why=_PA["point"].why, label="point load"),
-    Spec(SUPPORTS.name, "choice", SUPPORTS.default, choices=SUPPORTS.choices, label=SUPPORTS.label,
-         help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end sections (t = 0 and t = 1)"),
+    _key("snow", "snow", "load", label="snow load"),
+    _key("snow_half", "snow_half", "load", label="snow on half the span"),
+    _key("snow_half_side", "snow_half", "side", label="half of the span under snow"),
+    _key(
+        "wind",
+        "wind",
+        "velocity_pressure",
+        label="wind velocity pressure",
+        help="wind: its peak velocity pressure q_p (EN 1991-1-4 §4.5), times wind_cp, presses "
+        "normal to every face",
+    ),
+    _key("wind_cp", "wind", "cp", label="wind pressure coefficient"),
+    _key(
+        "point_load",
+        "point",
+        "force",
+        help="a vertical point load, downward, at the apex (the highest point); "
+        "elsewhere: a [[loads.case]] of type point",
+        label="point load",
+    ),
+    Spec(
+        SUPPORTS.name,
+        "choice",
+        SUPPORTS.default,
+        choices=SUPPORTS.choices,
+        label=SUPPORTS.label,
+        help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end "
+        "sections (t = 0 and t = 1)",
+    ),
 )
+
+
+def check_cases(entries: Any, where: str) -> tuple[LoadCase, ...] | None:
+    """The ``[[loads.case]]`` entries of a design as load cases (SI), or None when it lists none.
+
+    Each entry is a table with a ``type`` of :data:`curvefold.mechanics.LOAD_CASES` and
+    that case's parameters in the user's units (:meth:`curvefold.mechanics.LoadCase.from_dict`).
+
+    Raises
+    ------
+    InputError
+        One line starting with ``where`` (``"design.toml: [[loads.case]] "``) and the entry's
+        number.
+
+    Examples
+    --------
+    >>> check_cases([{"type": "wind", "velocity_pressure": 0.5, "cp": -0.8}], "[[loads.case]] ")
+    (Wind(velocity_pressure=500.0, cp=-0.8),)
+    >>> check_cases({"type": "wind"}, "[[loads.case]] ")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.InputError: [[loads.case]] must be an array of tables (...), got ...
+    """
+    if entries is None:
+        return None
+    if not isinstance(entries, (list, tuple)) or not 1 <= len(entries) <= MAX_CASES:
+        raise InputError(
+            f"{where}must be an array of tables ([[loads.case]] entries with a type), "
+            f"got {describe(entries)}",
+            parameter="case",
+        )
+    return tuple(LoadCase.from_dict(entry, f"{where}{n + 1}: ") for n, entry in enumerate(entries))
 
 
 @dataclass(frozen=True)
@@ -87,12 +196,43 @@ class MaterialParams:
 
 @dataclass(frozen=True)
 class LoadParams:
-    """``[loads]``: self-weight or not, snow (kPa), a point load (N) and the supports."""
+    """``[loads]``: self-weight or not, the keys of :data:`LOADS_KEYS` in the user's units (snow
+    and wind in kPa, a point load in N), the supports, and the ``[[loads.case]]`` entries (SI;
+    None: none listed)."""
 
     self_weight: bool
     snow: float
+    snow_half: float
+    snow_half_side: str
+    wind: float
+    wind_cp: float
     point_load: float
     supports: str
+    case: tuple[LoadCase, ...] | None = None
+
+    def cases(self) -> Loads:
+        """The load cases these keys and entries make, SI: the self-weight, each case whose first
+        key is not zero, then the listed ones.
+
+        Examples
+        --------
+        >>> params = LoadParams(True, 0.5, 0.0, "end", 0.0, 1.0, 10.0, "pinned")
+        >>> params.cases().describe()
+        'self-weight + snow 0.5 kPa + 10 N at the apex'
+        """
+        given: dict[str, dict[str, Any]] = {}
+        absent: set[str] = set()
+        for key, (case, parameter) in LOADS_KEYS.items():
+            spec = next(p for p in LOAD_CASES[case].parameters if p.name == parameter)
+            value = getattr(self, key)
+            if case not in given and not value:  # a case's first key, zero: no such case
+                absent.add(case)
+            if case not in absent:
+                given.setdefault(case, {})[parameter] = (
+                    value * spec.scale if isinstance(value, float) else value
+                )
+        made = tuple(LOAD_CASES[case](**values) for case, values in given.items())
+        return Loads(((SelfWeight(),) if self.self_weight else ()) + made + (self.case or ()))
 
 
 def check_material(values: dict, where: str) -> None:
@@ -201,7 +341,13 @@ class Loaded:
             "material": mat.name,
             "sheet": {"youngs_modulus": mat.youngs_modulus, "poisson": mat.poisson, "density": mat.density, "strength": mat.strength,
                       "source": mat.source},
-            "loads": {"self_weight": self.loads.self_weight, "snow_kpa": self.loads.snow, "point_load": self.loads.point_load},
+            "loads": {
+                "self_weight": self.loads.self_weight,
+                "snow_kpa": self.loads.snow,
+                "point_load": self.loads.point_load,
+                "cases": [case.to_dict() for case in r.loads.cases],
+                "described": [case.describe() for case in r.loads.cases],
+            },
             "supported": self.supported,
             "reactions_by_end": self.reactions_by_end(),
             "deflection_scale": self.deflection_scale,
@@ -236,10 +382,7 @@ class Loaded:
         return [head] + [f"  {k:<18} {v}" for k, v in rows] + [f"  note: {n}" for n in d["notes"]]
 
     def _load_words(self) -> str:
-        p = self.loads
-        parts = (["self-weight"] if p.self_weight else []) + ([f"snow {p.snow:g} kPa"] if p.snow else []) \
-            + ([f"{p.point_load:g} N at the apex"] if p.point_load else [])
-        return " + ".join(parts) + f", {p.supports} at the {self.supported}"
+        return f"{self.result.loads.describe()}, {self.loads.supports} at the {self.supported}"
 
     def morph_targets(self, structure: Structure, keep: Sequence[np.ndarray] | None = None, *, modes: int = 3) -> dict[str, np.ndarray]:
         """The deflected shape and the first modes as named morph targets of the GLB.
@@ -268,7 +411,11 @@ def _sheet(params: MaterialParams):
 
     if params.material is not None:
         return MATERIALS[params.material]
-    return Material.from_values(params.youngs_modulus, params.poisson, params.density, params.strength)
+    own = params.youngs_modulus, params.poisson, params.density
+    if None in own:  # check_material asks for all three
+        raise InputError("your own material needs youngs_modulus, poisson and density")
+    E, nu, rho = cast("tuple[float, float, float]", own)
+    return Material.from_values(E, nu, rho, params.strength)
 
 
 def analyse(structure: Structure, material: MaterialParams | None, loads: LoadParams | None, *, supported: str) -> Loaded:
@@ -281,13 +428,13 @@ def analyse(structure: Structure, material: MaterialParams | None, loads: LoadPa
         What the mechanics refuses (no load, a structure still a mechanism under its
         supports), in one line.
     """
-    from ..mechanics import Loads, Supports, analyse_load
+    from ..mechanics import Supports, analyse_load
 
     material = material or MaterialParams(**_defaults(MATERIAL_SECTION, material=DEFAULT_MATERIAL))
     loads = loads or LoadParams(**_defaults(LOADS_SECTION))
-    result = analyse_load(structure, _sheet(material), material.thickness,
-                          Loads(self_weight=loads.self_weight, snow=loads.snow * PA_PER_KPA, point=loads.point_load),
-                          Supports(loads.supports, at=supported), crease_stiffness=material.crease_stiffness)
+    result = analyse_load(structure, _sheet(material), material.thickness, loads.cases(),
+                          Supports(loads.supports, at=supported),  # type: ignore[arg-type]
+                          crease_stiffness=material.crease_stiffness)
     return Loaded(result, material, loads, supported)
 
 

@@ -251,8 +251,7 @@ def _mechanics_section(m: dict, files: list[str]) -> str:
     sheet = m["sheet"]
     strength = "no strength given" if sheet["strength"] is None else f"strength {sheet['strength'] / 1e6:.4g} MPa"
     loads = m["loads"]
-    what = (["its own weight"] if loads["self_weight"] else []) + ([f"snow {_number(loads['snow_kpa'])} kPa"] if loads["snow_kpa"] else []) \
-        + ([f"a point load of {_number(loads['point_load'])} N at the apex"] if loads["point_load"] else [])
+    what = loads["described"]  # each load case in words (curvefold.mechanics.LoadCase.describe)
     held = "its feet (the end sections on the ground)" if m["supported"] == "feet" else "both end sections of every tube (t = 0 and t = 1)"
     intro = (f"<p>{e(m['material'])} {_number(m['thickness'] * 1e3)} mm thick (E {sheet['youngs_modulus'] / 1e9:.4g} GPa, "
              f"ν {_number(sheet['poisson'])}, density {_number(sheet['density'])} kg/m³, {e(strength)}; {e(sheet['source'])}), creases "

@@ -18,6 +18,10 @@ From a structure to a result in one call: :func:`analyse_load`. The parts:
 sheet, a Miura-ori cell or a single bar), :class:`Loads` and :class:`Supports`,
 :func:`static_response`, :func:`free_modes` (the fold-mode gap), :func:`buckling`,
 :func:`soft_modes` (the inextensional motions: the paper's conjecture measured). The
+load cases are classes registered in :data:`LOAD_CASES` (:class:`SelfWeight`,
+:class:`Snow`, :class:`HalfSnow`, :class:`Wind`, :class:`ZonedWind`, :class:`PointLoad`),
+summed by
+:class:`Loads`. The
 materials are :data:`MATERIALS` with their sources, or :meth:`Material.from_values`.
 
 The materials, loads and supports and their checks load at once (they need no SciPy:
@@ -28,7 +32,18 @@ of their names is first used.
 import importlib
 
 from . import _loads, _materials
-from ._loads import Loads, Supports
+from ._loads import (
+    HalfSnow,
+    LoadCase,
+    Loads,
+    Parameter,
+    PointLoad,
+    SelfWeight,
+    Snow,
+    Supports,
+    Wind,
+    ZonedWind,
+)
 from ._materials import Material, material
 
 #: Standard gravity, m/s².
@@ -43,8 +58,8 @@ MATERIAL_SPECS = _materials.MATERIAL_SPECS
 THICKNESS = _materials.THICKNESS
 #: The check of a crease stiffness per length (N·m/rad/m).
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
-#: The checks of the loads: snow (Pa on the projected area), point load (N).
-LOAD_SPECS = _loads.LOAD_SPECS
+#: Every load case class by name (:class:`LoadCase`): a new case is one class registered there.
+LOAD_CASES = _loads.LOAD_CASES
 #: The check of how the supported nodes are held ("pinned" or "roller").
 SUPPORTS = _loads.SUPPORTS
 
@@ -65,13 +80,21 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
-    "LOAD_SPECS",
+    "LOAD_CASES",
     "SUPPORTS",
     "material",
     "BarHingeModel",
     "StructureModel",
     "model_samples",
     "Loads",
+    "LoadCase",
+    "Parameter",
+    "SelfWeight",
+    "Snow",
+    "HalfSnow",
+    "Wind",
+    "ZonedWind",
+    "PointLoad",
     "Supports",
     "G",
     "StaticResult",
@@ -108,7 +131,20 @@ def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__all__))
 
 
-for _name in ("Loads", "Supports", "Material", "material"):
+for _name in (
+    "Loads",
+    "LoadCase",
+    "Parameter",
+    "SelfWeight",
+    "Snow",
+    "HalfSnow",
+    "Wind",
+    "ZonedWind",
+    "PointLoad",
+    "Supports",
+    "Material",
+    "material",
+):
     _public(globals()[_name])
 
 

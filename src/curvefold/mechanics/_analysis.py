@@ -9,6 +9,7 @@ supports, and returns a :class:`LoadResult` holding everything a report or a
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,7 +17,7 @@ import numpy as np
 from ..geometry._structure import State, Structure
 from ..kernel._errors import InputError
 from ..vault._assembly import Vault
-from ._loads import G, Loads, Supports
+from ._loads import G, LoadCase, Loads, Supports
 from ._materials import THICKNESS, Material
 from ._materials import material as named
 from ._modes import Modes, correlation, free_modes, span_correlation
@@ -148,7 +149,8 @@ class LoadResult:
 
 
 def analyse_load(structure, material: Material | str = "polypropylene", thickness: float = THICKNESS.default,
-                 loads: Loads | None = None, supports: Supports | None = None, *, fold_angle: float | None = None,
+                 loads: Loads | Sequence[LoadCase] | None = None, supports: Supports | None = None,
+                 *, fold_angle: float | None = None,
                  crease_stiffness: float | None = None, modes: int = 6, samples="graded") -> LoadResult:
     """A structure under load, with its modes, buckling factor and soft modes.
 
@@ -162,7 +164,7 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
         A material or a name of :data:`~curvefold.mechanics.MATERIALS`.
     thickness : float
         Sheet thickness, m.
-    loads : Loads, optional
+    loads : Loads or sequence of LoadCase, optional
         Default: self-weight.
     supports : Supports, optional
         Default: the feet pinned.
@@ -184,7 +186,8 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     Examples
     --------
     >>> from curvefold.vault import Vault
-    >>> result = analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1e-3, Loads(snow=100.0))
+    >>> vault = Vault.from_design(tubes=1, panels=4, samples=21)
+    >>> result = analyse_load(vault, "aluminium", 1e-3, Loads((SelfWeight(), Snow(100.0))))
     >>> round(result.total_weight, 6), result.supports.kind
     (22.737584, 'pinned')
     >>> analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1.0)
@@ -198,12 +201,12 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 2:
         raise InputError(f"modes must be an integer ≥ 2 (the fold-mode gap needs two), got {modes!r}")
     sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness, samples)
-    loads = Loads() if loads is None else loads
+    loads = Loads() if loads is None else loads if isinstance(loads, Loads) else Loads(tuple(loads))
     supports = Supports() if supports is None else supports
     model = sm.model
     folding = sm.fold_velocity()
     motions = {FOLDING: folding.ravel()}
-    result, factor = static_response(model, loads.forces(model), supports.fixed(sm), motions=motions)
+    result, factor = static_response(model, loads.forces(sm), supports.fixed(sm), motions=motions)
     free = free_modes(model, modes, motions=motions)
     buckled = buckling(model, result, factor)
     return LoadResult(

@@ -11,27 +11,79 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import Any
 
-from ..kernel._validate import Spec
+from ..kernel._validate import Interval, Spec
 
 __all__ = ["Material", "MATERIALS", "MATERIAL", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
 
 #: The checks of a user's material (design-file keys and keyword arguments alike).
 MATERIAL_SPECS: tuple[Spec, ...] = (
-    Spec("youngs_modulus", "real", None, "(0, inf)", "Pa", help="Young's modulus E of the sheet", typical="[1e8, 2e11]",
-         label="Young's modulus E"),
-    Spec("poisson", "real", None, "(-1, 0.5)", help="Poisson's ratio ν of the sheet", why="an isotropic solid is stable only there",
-         typical="[0, 0.49]", label="Poisson's ratio ν"),
-    Spec("density", "real", None, "(0, inf)", "kg/m³", help="density of the sheet", typical="[100, 8000]", label="density"),
-    Spec("strength", "real", None, "(0, inf)", "Pa", help="strength the stresses are measured against (yield or tensile)",
-         typical="[1e6, 5e8]", label="strength"),
+    Spec(
+        "youngs_modulus",
+        "real",
+        None,
+        Interval.parse("(0, inf)"),
+        "Pa",
+        help="Young's modulus E of the sheet",
+        typical=Interval.parse("[1e8, 2e11]"),
+        label="Young's modulus E",
+    ),
+    Spec(
+        "poisson",
+        "real",
+        None,
+        Interval.parse("(-1, 0.5)"),
+        help="Poisson's ratio ν of the sheet",
+        why="an isotropic solid is stable only there",
+        typical=Interval.parse("[0, 0.49]"),
+        label="Poisson's ratio ν",
+    ),
+    Spec(
+        "density",
+        "real",
+        None,
+        Interval.parse("(0, inf)"),
+        "kg/m³",
+        help="density of the sheet",
+        typical=Interval.parse("[100, 8000]"),
+        label="density",
+    ),
+    Spec(
+        "strength",
+        "real",
+        None,
+        Interval.parse("(0, inf)"),
+        "Pa",
+        help="strength the stresses are measured against (yield or tensile)",
+        typical=Interval.parse("[1e6, 5e8]"),
+        label="strength",
+    ),
 )
 #: The sheet's thickness t.
-THICKNESS = Spec("thickness", "real", 1e-3, "(0, 1)", "m", help="sheet thickness t", why="a sheet, not a block", typical="[1e-4, 5e-3]",
-                 label="sheet thickness t")
+THICKNESS = Spec(
+    "thickness",
+    "real",
+    1e-3,
+    Interval.parse("(0, 1)"),
+    "m",
+    help="sheet thickness t",
+    why="a sheet, not a block",
+    typical=Interval.parse("[1e-4, 5e-3]"),
+    label="sheet thickness t",
+)
 #: The creases' rotational stiffness per length k_c (default: the material's, see :meth:`Material.crease_stiffness`).
-CREASE_STIFFNESS = Spec("crease_stiffness", "real", None, "(0, inf)", "N·m/rad/m", help="rotational stiffness of the creases per length",
-                        why="a crease of no stiffness leaves the folding motion free", typical="[1e-3, 10]", label="crease stiffness k_c")
+CREASE_STIFFNESS = Spec(
+    "crease_stiffness",
+    "real",
+    None,
+    Interval.parse("(0, inf)"),
+    "N·m/rad/m",
+    help="rotational stiffness of the creases per length",
+    why="a crease of no stiffness leaves the folding motion free",
+    typical=Interval.parse("[1e-3, 10]"),
+    label="crease stiffness k_c",
+)
 _SPEC = MappingProxyType({s.name: s for s in MATERIAL_SPECS})
 
 #: Length scale of the default crease stiffness k_c = D / L*, as a multiple of the thickness.
@@ -108,7 +160,10 @@ class Material:
         curvefold.kernel._errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is stable only there), got 0.5
         """
         values = {"youngs_modulus": youngs_modulus, "poisson": poisson, "density": density, "strength": strength}
-        checked = {k: None if v is None and k == "strength" else _SPEC[k].check(v, f"{where}{k}") for k, v in values.items()}
+        checked: dict[str, Any] = {
+            k: None if v is None and k == "strength" else _SPEC[k].check(v, f"{where}{k}")
+            for k, v in values.items()
+        }
         return cls(name, **checked)
 
     def bending_stiffness(self, thickness: float) -> float:

@@ -522,10 +522,10 @@ def _membranes(x: np.ndarray, faces: np.ndarray, sizes: np.ndarray, area: np.nda
         ends = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
         e = local[:, ends[:, 1]] - local[:, ends[:, 0]]
         e /= np.linalg.norm(e, axis=-1, keepdims=True)
-        C = np.zeros((len(corners), 5, 4, 2))
-        C[:, np.arange(5), ends[:, 0]] -= e
-        C[:, np.arange(5), ends[:, 1]] += e
-        C = C.reshape(-1, 5, 8)
+        rows = np.zeros((len(corners), 5, 4, 2))
+        rows[:, np.arange(5), ends[:, 0]] -= e
+        rows[:, np.arange(5), ends[:, 1]] += e
+        C = rows.reshape(-1, 5, 8)
         Cinv = np.swapaxes(C, 1, 2) @ np.linalg.inv(C @ np.swapaxes(C, 1, 2))  # (Q, 8, 5): Cᵀ(CCᵀ)⁻¹, C of full rank
         S[quad] = np.swapaxes(Cinv, 1, 2) @ K8 @ Cinv
         strain[quad] = B0 @ Cinv

@@ -179,5 +179,5 @@ def span_correlation(model: BarHingeModel, shapes: np.ndarray, motion: np.ndarra
     A, b = A - R @ (R.T @ (w[:, None] * A)), b - R @ (R.T @ (w * b))
     Q, _ = np.linalg.qr(np.sqrt(w)[:, None] * A)  # an orthonormal basis of the span in the mass metric
     wb = np.sqrt(w) * b
-    return float(min(1.0, np.linalg.norm(Q.T @ wb) / np.linalg.norm(wb)))
+    return min(1.0, float(np.linalg.norm(Q.T @ wb) / np.linalg.norm(wb)))
 

@@ -200,10 +200,11 @@ def _result(model: BarHingeModel, f: np.ndarray, fixed: np.ndarray, u: np.ndarra
     sx, sy, txy = stress.T
     von_mises = np.sqrt(np.maximum(sx * sx - sx * sy + sy * sy + 3 * txy * txy, 0.0))
     t = model.thickness
-    bending = 6 * np.abs(moments) / (model.hinge_length * t * t) if t > 0 else np.zeros(len(moments))
+    length = np.asarray(model.hinge_length)  # set on construction
+    bending = 6 * np.abs(moments) / (length * t * t) if t > 0 else np.zeros(len(moments))
     worst = np.zeros(len(model.membranes))
     for side in (0, 1):
-        faces = model.hinge_faces[:, side]
+        faces = np.asarray(model.hinge_faces)[:, side]
         ok = faces >= 0
         np.maximum.at(worst, faces[ok], bending[ok])
     return StaticResult(

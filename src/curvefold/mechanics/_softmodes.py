@@ -148,7 +148,7 @@ def soft_modes(model: BarHingeModel, *, held_hinges: Sequence[str] = (), planar:
     if not 0 < rtol < 1:
         raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
     blocks = [model.compatibility()]
-    held = np.flatnonzero(np.isin(model.hinge_kind, list(held_hinges)))
+    held = np.flatnonzero(np.isin(np.asarray(model.hinge_kind), list(held_hinges)))
     if held.size:  # a hinge's turn times its edge's length: a displacement, like a bar's elongation
         edge = np.linalg.norm(np.diff(model.nodes[model.hinges[held, :2]], axis=1)[:, 0], axis=1)
         blocks.append(sp.diags(edge) @ model.hinge_matrix()[held])

@@ -280,7 +280,7 @@ class StructureModel(FrozenArrays):
         angle = float(lattice.crease.fold_angle)
         h = min(FOLD_STEP, 0.5 * angle, 0.5 * (180.0 - angle)) if angle > 0 else FOLD_STEP
         lo, hi = max(angle - h, 0.0), angle + h
-        X = lattice.fold_points(self.state.structure.curves_uv, [lo, hi])
+        X = lattice.fold_points(self.state.structure.curves_uv, np.array([lo, hi]))
         velocity = (X[1] - X[0]) / np.radians(hi - lo)
         return readonly(velocity[self.node_curve, self.node_sample])
 
