@@ -194,15 +194,20 @@ def test_nothing_of_the_page_is_left_out_of_git():
 
 
 def _eslint(*args: str, stdin: str | None = None) -> subprocess.CompletedProcess:
+    """ESLint with the designer's configuration, from the checkout's root (as npm run lint)."""
     eslint = FRONTEND / "node_modules" / ".bin" / "eslint"
     need(eslint.is_file() and shutil.which("node") is not None,
          "the designer's ESLint is not installed (npm ci --prefix frontend)")
-    return subprocess.run([str(eslint), *args], cwd=FRONTEND, input=stdin, capture_output=True,
-                          text=True, timeout=300, env={**os.environ, "NO_COLOR": "1"})
+    return subprocess.run([str(eslint), "--config", "frontend/eslint.config.js", *args], cwd=ROOT,
+                          input=stdin, capture_output=True, text=True, timeout=300,
+                          env={**os.environ, "NO_COLOR": "1"})
 
 
 def test_eslint_passes_over_the_designers_modules():
-    done = _eslint()
+    lint = json.loads((FRONTEND / "package.json").read_text(encoding="utf-8"))["scripts"]["lint"]
+    static = STATIC.relative_to(ROOT).as_posix()
+    assert lint.endswith(f"--config frontend/eslint.config.js {static}")  # what this test runs
+    done = _eslint(static)
     assert done.returncode == 0, done.stdout + done.stderr
 
 
@@ -213,6 +218,6 @@ def test_eslint_passes_over_the_designers_modules():
     ("const unused = 1;\n", "no-unused-vars"),
 ])
 def test_eslint_refuses_what_it_is_there_for(code, rule):
-    name = "../src/curvefold/app/designer/static/probe.js"
+    name = f"{STATIC.relative_to(ROOT).as_posix()}/probe.js"
     done = _eslint("--stdin", "--stdin-filename", name, stdin=code)
     assert done.returncode == 1 and rule in done.stdout, done.stdout + done.stderr
