@@ -180,7 +180,8 @@ def test_the_package_data_carries_every_file_of_the_page():
 
 def test_nothing_of_the_page_is_left_out_of_git():
     """The vendored files are kept in git: a clone installs without npm."""
-    need(shutil.which("git") is not None and (ROOT / ".git").exists(), "not a git checkout")
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("not a git checkout")
     def git(*args: str) -> list[str]:
         done = subprocess.run(["git", "ls-files", *args, "--", str(STATIC)], cwd=ROOT,
                               capture_output=True, text=True, check=True)
