@@ -1,26 +1,36 @@
 #!/usr/bin/env bash
-# Set up a development environment from scratch: a virtual environment with curvefold and
-# all its extras, the Node.js readers the tests use, the designer's JavaScript, the renderers
-# for SVG and PDF checks and the browser that drives the designer's tests.
+# Set up a development environment: .venv with curvefold (editable) and the extras named by
+# the first argument (default dev: every extra with the test, docs and lint tools), the
+# Node.js readers the tests use (tests/node), the designer's npm packages (frontend/: ESLint,
+# and three.js for scripts/build-designer.sh), and the system packages of the rendering,
+# browser and finite-element checks. scripts/test.sh runs it with "all,test".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-bash scripts/venv.sh dev
+bash scripts/venv.sh "${1:-dev}"
 
 if command -v npm >/dev/null 2>&1; then
     npm ci --prefix tests/node --no-audit --no-fund --loglevel=error
-    bash scripts/build-designer.sh
+    npm ci --prefix frontend --no-audit --no-fund --loglevel=error
+else
+    echo "note: npm is not installed: the tests that read files with Node.js" \
+        "and the designer's ESLint will not run" >&2
 fi
 
-# rsvg-convert (SVG → PNG) and pdftoppm (PDF → PNG) check what a person would see; Debian's
-# chromium is the browser Playwright drives in the designer's, three.js and report tests
-# (Playwright's own browser download is not used); OpenSees, the mechanics tests' independent
-# finite-element engine, links the system's libblas.so.3.
-if ! command -v rsvg-convert >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1 || ! command -v chromium >/dev/null 2>&1 \
+# Debian's chromium is the browser Playwright drives in the designer's, three.js and report
+# tests (Playwright's own browser download is not used); pdftoppm (poppler-utils) and
+# rsvg-convert (librsvg2-bin) render PDF and SVG to check what a person would see; OpenSees,
+# the mechanics tests' independent finite-element engine, links the system's libblas.so.3.
+packages="chromium poppler-utils librsvg2-bin libblas3"
+why="the browser tests, PDF/SVG rendering and OpenSees need them"
+has() { command -v "$1" >/dev/null 2>&1; }
+if ! has chromium || ! has pdftoppm || ! has rsvg-convert \
     || ! { ldconfig -p 2>/dev/null | grep -q 'libblas\.so\.3'; }; then
-    if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
-        apt-get update -qq >/dev/null && apt-get install -y -qq librsvg2-bin poppler-utils chromium libblas3 >/dev/null
+    if has apt-get && [ "$(id -u)" = 0 ]; then
+        echo "installing $packages as root with apt-get: $why"
+        apt-get update -qq >/dev/null && apt-get install -y -qq $packages >/dev/null
     else
-        echo "note: install librsvg2-bin, poppler-utils, chromium and libblas3 for the rendering, browser and finite-element checks" >&2
+        echo "note: not root with apt-get, so not installing $packages ($why):" \
+            "install them (sudo apt-get install $packages); going on without them" >&2
     fi
 fi

@@ -15,6 +15,7 @@ per check and exits non-zero on the first failure.
 import importlib.metadata
 import importlib.util
 import json
+import re
 import socket
 import subprocess
 import sys
@@ -128,6 +129,15 @@ def designer() -> None:
         for name in ("three.module.js", "three.core.js", "addons/controls/OrbitControls.js"):
             with urllib.request.urlopen(f"{base}/static/vendor/{name}", timeout=60) as r:
                 check(r.status == 200 and len(r.read()) > 10_000, f"the wheel's bundled {name} is served")
+        # the page's own modules, from the one it loads through those each imports
+        modules, served = re.findall(r'<script type="module" src="/static/([^"]+)"', page), set()
+        while modules:
+            name = modules.pop()
+            if name not in served:
+                with urllib.request.urlopen(f"{base}/static/{name}", timeout=60) as r:
+                    modules += re.findall(r'from "\./([^"]+)"', r.read().decode())
+                served.add(name)
+        check(len(served) > 5, f"the page's {len(served)} modules are served: {sorted(served)}")
         with urllib.request.urlopen(f"{base}/api/vault?tubes=2", timeout=300) as r:
             check("kappa0_s0" in json.loads(r.read()), "the JSON API builds a vault")
     finally:

@@ -1,8 +1,8 @@
 """Documentation and distribution: the tutorial stored without outputs, the site's offline link
-check, the build's refusal to ship without the designer's JavaScript, the Rhino script's HTTP part
-against the real designer, one source of the version, the licence and the citation file; the
-README and the docs against the program (every quoted command line, the stable JSON keys, the
-figures quoted about the output folder, the guide's examples) and the benchmarks' run record."""
+check, the Rhino script's HTTP part against the real designer, one source of the version, the
+licence and the citation file; the README and the docs against the program (every quoted command
+line, the stable JSON keys, the figures quoted about the output folder, the guide's examples) and
+the benchmarks' run record (the designer's JavaScript: test_frontend.py)."""
 
 from __future__ import annotations
 
@@ -103,71 +103,6 @@ def test_link_check_finds_every_kind_of_broken_link(tmp_path):
 
 
 # -- the distribution ---------------------------------------------------------------------------------
-
-
-def test_a_build_without_the_designers_javascript_or_npm_fails_and_says_how_to_make_it(tmp_path, monkeypatch):
-    setup = _load(ROOT / "setup.py", "curvefold_setup")
-    monkeypatch.setattr(setup.shutil, "which", lambda name: None)  # no npm on PATH
-    with pytest.raises(SystemExit, match=r"three\.module\.js\) and is made with npm, which is not on PATH.*scripts/build-designer\.sh"):
-        setup.require_bundle(tmp_path)
-    for name in setup.VENDOR_FILES[:-1]:  # all but the licence: still refused
-        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / name).write_text("//")
-    with pytest.raises(SystemExit, match=r"vendor|LICENSE"):
-        setup.require_bundle(tmp_path)
-    pytest.importorskip("fastapi")
-    from curvefold.app.designer import server
-
-    assert set(server.VENDOR_FILES) <= set(setup.VENDOR_FILES)  # the build checks every file the page imports
-    need(server.missing_bundle() is None, "the designer's JavaScript is not built (scripts/build-designer.sh)")
-    setup.require_bundle()  # the package as built here passes
-
-
-def _fake_npm(folder: Path) -> Path:
-    """An ``npm`` that records its arguments and, for ``ci --prefix DIR``, puts marked copies of three's files under DIR."""
-    script = folder / "npm"
-    script.write_text("#!/bin/sh\n"
-                      'echo "$@" > "$(dirname "$0")/npm-args"\n'
-                      'three="$3/node_modules/three"\n'
-                      'mkdir -p "$three/build" "$three/examples/jsm/controls"\n'
-                      'for f in build/three.module.js build/three.core.js examples/jsm/controls/OrbitControls.js LICENSE; do echo "npm: $f" > "$three/$f"; done\n')
-    script.chmod(0o755)
-    return script
-
-
-def test_a_build_without_the_designers_javascript_makes_it_with_npm(tmp_path, monkeypatch):
-    """Where npm is, the build runs npm ci in frontend/ (the pinned versions) and copies each file where the page imports it."""
-    setup = _load(ROOT / "setup.py", "curvefold_setup")
-    root, vendor = tmp_path / "clone", tmp_path / "clone" / "vendor"
-    (root / "frontend").mkdir(parents=True)
-    shutil.copy(ROOT / "frontend" / "package-lock.json", root / "frontend")
-    npm = _fake_npm(tmp_path)
-    monkeypatch.setattr(setup.shutil, "which", lambda name: str(npm) if name == "npm" else None)
-    setup.require_bundle(vendor, root=root)
-    assert (tmp_path / "npm-args").read_text().split()[:3] == ["ci", "--prefix", str(root / "frontend")]
-    assert {name: (vendor / name).read_text().strip() for name in setup.VENDOR_FILES} == {
-        name: f"npm: {setup.FROM_NPM[name]}" for name in setup.VENDOR_FILES}
-    (tmp_path / "npm-args").unlink()
-    setup.require_bundle(vendor, root=root)  # complete: npm is not run again
-    assert not (tmp_path / "npm-args").exists()
-    shutil.rmtree(root / "frontend")  # an sdist has no frontend/ (it carries the files): without them it is refused
-    (vendor / "LICENSE").unlink()
-    with pytest.raises(SystemExit, match=r"LICENSE"):
-        setup.require_bundle(vendor, root=root)
-
-
-@pytest.mark.slow
-def test_npm_builds_the_same_javascript_the_package_carries(tmp_path):
-    """The real npm ci from the lock file gives, byte for byte, the files the designer serves."""
-    setup = _load(ROOT / "setup.py", "curvefold_setup")
-    need(shutil.which("npm") is not None, "npm is not installed")
-    need(not setup.missing(), "the designer's JavaScript is not built (scripts/build-designer.sh)")
-    (tmp_path / "frontend").mkdir()
-    for name in ("package.json", "package-lock.json"):
-        shutil.copy(ROOT / "frontend" / name, tmp_path / "frontend")
-    setup.require_bundle(tmp_path / "vendor", root=tmp_path)
-    for name in setup.VENDOR_FILES:
-        assert (tmp_path / "vendor" / name).read_bytes() == (setup.VENDOR / name).read_bytes(), name
 
 
 def test_the_version_has_one_source():

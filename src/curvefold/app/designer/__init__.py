@@ -3,8 +3,8 @@
 ``curvefold designer`` serves it (:mod:`.server`, FastAPI on uvicorn); :mod:`.api` reads
 its requests and answers them without the web framework, :mod:`.preview` gives the page's
 first view of a design, :mod:`.jobs` runs that work in worker processes; ``static/`` holds
-the page, whose JavaScript libraries (three.js) are copied from npm into
-``static/vendor/`` by ``scripts/build-designer.sh``. Needs the ``designer`` extra:
+the page and its ES modules, with three.js vendored in ``static/vendor/`` at the version
+``frontend/package-lock.json`` pins. Needs the ``designer`` extra:
 ``pip install 'curvefold[designer]'``.
 """
 

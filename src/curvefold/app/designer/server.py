@@ -70,7 +70,8 @@ __all__ = ["STATIC", "VENDOR", "TIME_LIMIT", "WORKER_ALLOWANCE", "SERVER_SPECS",
 
 #: The page's own files.
 STATIC = Path(__file__).with_name("static")
-#: The JavaScript libraries copied from npm by ``scripts/build-designer.sh``.
+#: three.js, vendored at the version ``frontend/package-lock.json`` pins
+#: (``scripts/build-designer.sh`` refreshes it).
 VENDOR = STATIC / "vendor"
 #: Files the page imports from :data:`VENDOR`.
 VENDOR_FILES = ("three.module.js", "three.core.js", "addons/controls/OrbitControls.js")

@@ -1,0 +1,41 @@
+// The designer's JSON API as the page uses it (routes: curvefold.app.designer.server).
+
+const NO_SERVER = (err) => `the designer's server did not answer (${err.message}); `
+  + "is 'curvefold designer' still running?";
+
+/** The design schema: every parameter's range, default, unit and help, the targets, the formats. */
+export async function schema() {
+  return (await fetch("/api/schema")).json();
+}
+
+/**
+ * The preview of a design (its numbers and folding motion): `{ok, body}`, where a refused
+ * design's body is `{error, key}` (the parameter at fault, or null).
+ */
+export async function preview(kind, query) {
+  try {
+    const response = await fetch(`/api/${kind}/preview?${query}`);
+    return { ok: response.ok, body: await response.json() };
+  } catch (err) {
+    return { ok: false, body: { error: NO_SERVER(err), key: null } };
+  }
+}
+
+/**
+ * What follows a preview (`path`: certificate, pattern, contact, mechanics, domain.svg, with
+ * its own query if any): the answer (JSON, or text when `json` is false), `{error}` when the
+ * design is refused, null when there is no answer (aborted, failed).
+ */
+export async function detail(kind, path, query, { signal, json = true } = {}) {
+  try {
+    const joined = `${path}${path.includes("?") ? "&" : "?"}${query}`;
+    const r = await fetch(`/api/${kind}/${joined}`, { signal });
+    if (!r.ok) return r.status === 422 ? { error: (await r.json()).error } : null;
+    return json ? await r.json() : await r.text();
+  } catch {
+    return null;
+  }
+}
+
+/** The address of a file of the design (a format's name, `zip` or `toml`). */
+export const fileURL = (kind, format, query) => `/api/${kind}.${format}?${query}`;

@@ -1,0 +1,96 @@
+// What the server works out after a preview: the certificate, the crease pattern and the
+// regression domain (SVG), the design under load.
+import { byId, el } from "./dom.js";
+import { fmt } from "./format.js";
+
+/** SVG documents shown as images in `box` (the images shown before are released). */
+export function showImages(box, svgs) {
+  box.querySelectorAll("img").forEach((img) => URL.revokeObjectURL(img.src));
+  const url = (svg) => URL.createObjectURL(new Blob([svg], { type: "image/svg+xml" }));
+  box.replaceChildren(...svgs.map((svg) => Object.assign(new Image(), { src: url(svg) })));
+  box.classList.remove("stale");
+}
+
+function checkItem(c) {
+  const className = c.passed ? "" : c.status === "fail" ? "fail" : "unresolved";
+  const mark = c.passed ? "✓" : c.status === "fail" ? "✗" : "…";
+  const value = c.value === null ? "—"
+    : `${c.value.toExponential(2)} (tolerance ${c.tolerance.toExponential(1)})`;
+  return el("li", { className, title: `${c.name}: ${c.measures}` }, `${mark} ${c.title}: ${value}`);
+}
+
+/** The certificate's checks (coarse first, then full), or why there are none. */
+export function showCertificate(state, found) {
+  const status = byId("certificate-status");
+  if (!found || found.error) {
+    const why = found?.error ?? "the certificate could not be computed";
+    status.replaceChildren(el("span", { className: "bad" }, why));
+    byId("certificate").replaceChildren();
+  } else {
+    const checks = found.checks, passed = checks.filter((c) => c.passed).length;
+    const unresolved = checks.filter((c) => c.status === "insufficient resolution").length;
+    const where = found.coarse
+      ? [" ", el("span", { className: "coarse" }, `(coarse: ${found.samples} samples, `
+        + "flat and at the design angle; the full certificate follows)")]
+      : [` at ${found.samples} samples, in ${found.fold_angles.length} frames`];
+    const className = passed === checks.length ? "ok"
+      : found.coarse && passed + unresolved === checks.length ? "coarse" : "bad";
+    const summary = el("span", { className }, `${passed}/${checks.length} checks pass`);
+    status.replaceChildren(summary, ...where);
+    byId("certificate").replaceChildren(...checks.map(checkItem));
+  }
+  status.classList.remove("stale");
+  byId("certificate").classList.remove("stale");
+  state.certificate = found;
+}
+
+/** The crease pattern's pages (a coarse sketch first), or why there are none. */
+export function showPattern(state, found) {
+  if (!found || found.error) {
+    byId("pattern-status").textContent = found?.error ? `(${found.error})` : "(not available)";
+    return;
+  }
+  showImages(byId("pattern"), found.pages);
+  const n = found.pages.length;
+  byId("pattern-status").textContent = found.coarse
+    ? `(sketch of the sheets at ${found.samples} samples; the pages follow)`
+    : `(${n} page${n > 1 ? "s" : ""} as cut, ${found.samples} samples)`;
+  state.pattern = found;
+}
+
+/** The design under load (what curvefold load says of it), or what to choose to see it. */
+export function showMechanics(state, found) {
+  const table = byId("mechanics"), status = byId("mechanics-status");
+  table.classList.remove("stale");
+  state.mechanics = found;
+  if (!found || found.error) {
+    table.replaceChildren();
+    status.textContent = found?.error ? `(${found.error})`
+      : state.kind === "crease" ? "(for tubes, blocks and vaults)"
+        : "(choose a material or a thickness under “material” to see whether it stands)";
+    return;
+  }
+  const n = found.numbers, rows = [];
+  const load = Math.max(...n.applied_load.map(Math.abs));
+  // the rounding of forces that balance the load
+  const balanced = (forces) => forces.map((f) => (Math.abs(f) <= 1e-9 * load ? 0 : f));
+  const row = (key, title, words, shown, unit) => el("tr", { dataset: { key }, title },
+    el("td", {}, words), el("td", { className: "num" }, shown),
+    el("td", { className: "unit" }, unit));
+  for (const [key, [words, unit, explained]] of Object.entries(found.labels)) {
+    if (!(key in n)) continue;
+    const v = key === "reactions" ? balanced(n[key]) : n[key];
+    const shown = v === null ? (key === "buckling_factor" ? "none" : "unknown")
+      : Array.isArray(v) ? v.map(fmt).join(", ") : fmt(v);
+    rows.push(row(key, explained, words, shown, unit));
+  }
+  const lowest = n.frequencies.slice(0, 3).map((f) => String(Number(f.toPrecision(3)))).join(", ");
+  rows.push(row("frequencies",
+    "the lowest free modes' frequencies (the first is the folding motion)",
+    "lowest free frequencies", lowest, "Hz"));
+  table.replaceChildren(...rows);
+  const resolved = n.buckling_resolved ? ""
+    : "; the buckling mode is not resolved at these samples";
+  status.textContent = `${n.material} ${fmt(n.thickness * 1e3)} mm, `
+    + `${n.supports} at the ${n.supported}${resolved}`;
+}
