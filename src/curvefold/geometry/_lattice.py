@@ -296,9 +296,15 @@ class Pattern(FrozenArrays):
         return self.domain.t
 
 
+def constant_alpha(crease: Crease) -> float:
+    """α of a lattice's crease, the same all along it (:meth:`Pattern.from_crease` checks it)."""
+    assert crease.alpha.constant is not None, "a lattice's crease has a constant fold angle"
+    return crease.alpha.constant
+
+
 def _kappa_2d(crease: Crease) -> ScalarFunction:
     """κ_2D = κ cos α of a crease of constant fold angle."""
-    return crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
+    return crease.curve.kappa.scaled(np.cos(constant_alpha(crease)))
 
 
 #: What a pattern reads from a crease, kept while the crease lives (creases are immutable).
@@ -321,7 +327,8 @@ def _compute_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.nda
     s = crease.s
     nodes = gauss_nodes(s)
     k2_nodes = _kappa_2d(crease)(nodes)
-    rates = tuple(readonly(r) for r in crease.regression_rates())
+    left, right = crease.regression_rates()
+    rates = (readonly(left), readonly(right))
     values = (log_width_ratio(crease), crease.beta_left(s), k2_nodes, k2_nodes / np.tan(crease.beta_left(nodes)))
     log_ratio, beta_samples, k2_nodes, width_rate_nodes = (readonly(v) for v in values)
     return log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes
@@ -444,7 +451,7 @@ class Lattice(FrozenArrays):
         >>> lat.section_area().round(6).tolist(), float(lat.refold(0).section_area().max())   # flat: no area
         ([0.01, 0.01, 0.01, 0.01, 0.01], 0.0)
         """
-        return self.width_left * self.width_right * np.sin(2 * self.crease.alpha.constant)
+        return self.width_left * self.width_right * np.sin(2 * constant_alpha(self.crease))
 
     # -- what the consumers of a structure ask about its kind (curvefold.geometry._kinds) ---------
     @property
@@ -484,7 +491,8 @@ class Lattice(FrozenArrays):
     @cached_property
     def _rulings(self) -> tuple[np.ndarray, np.ndarray]:
         """ℓ_L r_L and ℓ_R r_R at this fold angle, each (n, 3), read-only."""
-        rl, rr = ruling_vectors(self.crease.curve.frames, self.crease.alpha.constant, self.beta, self.beta)
+        alpha = constant_alpha(self.crease)
+        rl, rr = ruling_vectors(self.crease.curve.frames, alpha, self.beta, self.beta)
         ll, lr = self.ruling_lengths
         return readonly(ll[:, None] * rl), readonly(lr[:, None] * rr)
 

@@ -30,7 +30,14 @@ from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
 from ._crease import half_angle
 from ._curve import FramedCurve
-from ._lattice import Lattice, RegressionDomain, check_anchor, check_curves, lattice_points
+from ._lattice import (
+    Lattice,
+    RegressionDomain,
+    check_anchor,
+    check_curves,
+    constant_alpha,
+    lattice_points,
+)
 from ._panel_pattern import PanelPattern
 from ._topology import Topology
 
@@ -144,7 +151,7 @@ class PanelLattice(FrozenArrays):
         if not isinstance(lattice, Lattice):
             raise InputError(f"lattice must be a Lattice, got {type(lattice).__name__}")
         pattern = PanelPattern.from_pattern(lattice.pattern, panels)
-        a = float(lattice.crease.alpha.constant)
+        a = constant_alpha(lattice.crease)
         points, _, _, frames = pattern.fold(np.array([a]))
         c = lattice.crease.curve
         R = c.frames[0] @ frames[0, 0].T
@@ -157,7 +164,9 @@ class PanelLattice(FrozenArrays):
     def _state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         points, left, right, frames = self.pattern.fold(np.array([self.alpha]))
         R = self.rotation
-        return tuple(readonly(v) for v in (points[0] @ R.T + self.translation, left[0] @ R.T, right[0] @ R.T, R @ frames[0]))
+        placed = (points[0] @ R.T + self.translation, left[0] @ R.T, right[0] @ R.T, R @ frames[0])
+        x, x_left, x_right, vertex_frames = (readonly(v) for v in placed)
+        return x, x_left, x_right, vertex_frames
 
     @cached_property
     def crease(self) -> PanelCrease:
@@ -285,7 +294,8 @@ class PanelLattice(FrozenArrays):
         return self.source
 
     # -- rigid folding ----------------------------------------------------------------------------
-    def _anchored(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _anchored(self, alphas: np.ndarray, anchor: str
+                  ) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
         """Placements (A, 3, 3), (A, 3) of the states at α (A,) keeping this state's frame at the anchor vertex, and those states."""
         check_anchor(anchor)
         k = 0 if anchor == "start" else self.pattern.panels // 2
@@ -335,9 +345,8 @@ class PanelLattice(FrozenArrays):
         """
         alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
         R, shift, (points, left, right, _) = self._anchored(alphas, anchor)
-        moved = [np.einsum("aij,akj->aki", R, v) for v in (points, left, right)]
-        moved[0] = moved[0] + shift[:, None]
-        return lattice_points(*moved, uv)
+        points, left, right = (np.einsum("aij,akj->aki", R, v) for v in (points, left, right))
+        return lattice_points(points + shift[:, None], left, right, uv)
 
     def head(self, panels: int) -> PanelLattice:
         """The lattice of the first ``panels`` panels, in place (:meth:`PanelPattern.head`).

@@ -317,11 +317,11 @@ def _walks(points: np.ndarray, n: int, walks: list[tuple[int, int, int]], limits
     """The kept samples of each walk (tube, start, stop) on the tubes' curves (:func:`_tube_points`, n
     samples) (:func:`_walk`), the walks measured in lockstep: each round, every step they ask about at once."""
     picks: list = [None] * len(walks)
-    asking = {}
+    asking: dict[int, tuple[tuple[int, np.ndarray], ...]] = {}
 
     def advance(w: int, answer: list | None) -> None:
         try:
-            asking[w] = running[w].send(answer)
+            asking[w] = next(running[w]) if answer is None else running[w].send(answer)
         except StopIteration as done:
             picks[w] = done.value
             asking.pop(w, None)

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError, InternalError
@@ -536,7 +537,8 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
 # folding motion
 
 
-def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, anchor: str = "start",
+def folding_motion(structure: Structure, fold_angles: ArrayLike, *, degrees: bool = True,
+                   anchor: Literal["start", "middle"] = "start",
                    keep: Sequence[np.ndarray] | None = None, topology: Topology | None = None) -> np.ndarray:
     """Vertex positions of ``State.mesh(keep=keep)`` at many fold angles at once, shape (A, V, 3).
 
