@@ -562,7 +562,8 @@ class Lattice(FrozenArrays):
         ll, lr = self.ruling_lengths
         return lattice_points(points, ll[:, None] * rl, lr[:, None] * rr, uv)
 
-    def refold(self, fold_angle: float, *, degrees: bool = True, anchor: str = "start") -> Lattice:
+    def refold(self, fold_angle: float, *, degrees: bool = True,
+               anchor: Literal["start", "middle"] = "start") -> Lattice:
         """The same lattice rigidly folded to another fold angle 2α ∈ [0°, 180°).
 
         The pattern (κ_2D, β, widths, t-correspondence) is shared; curve 1 is rebuilt with
