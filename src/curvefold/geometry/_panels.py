@@ -151,7 +151,7 @@ class PanelLattice(FrozenArrays):
         if not isinstance(lattice, Lattice):
             raise InputError(f"lattice must be a Lattice, got {type(lattice).__name__}")
         pattern = PanelPattern.from_pattern(lattice.pattern, panels)
-        a = constant_alpha(lattice.crease)
+        a = float(constant_alpha(lattice.crease))
         points, _, _, frames = pattern.fold(np.array([a]))
         c = lattice.crease.curve
         R = c.frames[0] @ frames[0, 0].T

@@ -69,7 +69,8 @@ class Structure(FrozenArrays):
     cells: np.ndarray
 
     @classmethod
-    def from_cells(cls, lattice: StructureLattice, cells: Sequence[Sequence[int]]) -> Structure:
+    def from_cells(cls, lattice: StructureLattice,
+                   cells: Sequence[Sequence[int]] | np.ndarray) -> Structure:
         """A structure of the given cells, refused if any crease passes regression.
 
         Parameters
