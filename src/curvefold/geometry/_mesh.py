@@ -53,11 +53,15 @@ class Mesh(FrozenArrays):
 
     Examples
     --------
-    >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+    >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+    ...               edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4,
+    ...               edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]],
+    ...               edges_kind=['boundary'] * 4, faces_group=[0])
     >>> square.vertices_coords.shape, square.faces_vertices.tolist()
     ((4, 3), [[0, 1, 2, 3]])
-    >>> Mesh(vertices_coords=np.zeros((3, 2)), edges_vertices=np.zeros((0, 2), int), edges_assignment=[], edges_foldAngle=[],
-    ...      faces_vertices=[[0, 1, 2]], edges_kind=[], faces_group=[0])
+    >>> Mesh(vertices_coords=np.zeros((3, 2)), edges_vertices=np.zeros((0, 2), int),
+    ...      edges_assignment=[], edges_foldAngle=[], faces_vertices=[[0, 1, 2]], edges_kind=[],
+    ...      faces_group=[0])
     Traceback (most recent call last):
     ...
     curvefold.kernel._errors.InputError: vertices_coords must have shape (V, 3), got (3, 2)
@@ -118,7 +122,7 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square = _unit_square()   # the unit square of the Mesh example
         >>> square.face_sizes().tolist(), square.triangulated().face_sizes().tolist()
         ([4], [3, 3])
         """
@@ -133,9 +137,10 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square = _unit_square()   # the unit square of the Mesh example
         >>> triangles = square.triangulated()
-        >>> triangles.faces_vertices.tolist(), str(triangles.edges_kind[-1]), triangles.triangulated() is triangles
+        >>> faces, last = triangles.faces_vertices.tolist(), str(triangles.edges_kind[-1])
+        >>> faces, last, triangles.triangulated() is triangles
         ([[0, 1, 2], [0, 2, 3]], 'diagonal', True)
         """
         faces = self.faces_vertices
@@ -163,8 +168,9 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
-        >>> square.edge_lengths().tolist(), round(float(square.triangulated().edge_lengths()[-1]), 6)
+        >>> square = _unit_square()   # the unit square of the Mesh example
+        >>> diagonal = square.triangulated().edge_lengths()[-1]
+        >>> square.edge_lengths().tolist(), round(float(diagonal), 6)
         ([1.0, 1.0, 1.0, 1.0], 1.414214)
         """
         a, b = self.vertices_coords[self.edges_vertices[:, 0]], self.vertices_coords[self.edges_vertices[:, 1]]
@@ -175,7 +181,7 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square = _unit_square()   # the unit square of the Mesh example
         >>> square.face_normals().tolist()   # counter-clockwise seen from +z
         [[0.0, 0.0, 1.0]]
         """
@@ -406,3 +412,16 @@ def edges_along(edges_vertices: np.ndarray, pairs: np.ndarray) -> tuple[np.ndarr
     pos = np.minimum(np.searchsorted(ordered, wanted), len(ev) - 1)
     edge = np.where(ordered[pos] == wanted, order[pos], -1)
     return edge, (edge >= 0) & (ev[edge, 0] == p[..., 0])
+
+
+def _unit_square() -> Mesh:
+    """The unit square of the :class:`Mesh` example, one quad face, for the methods' examples."""
+    return Mesh(
+        vertices_coords=np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        edges_vertices=np.array([[0, 1], [1, 2], [2, 3], [3, 0]]),
+        edges_assignment=np.array(["B"] * 4),
+        edges_foldAngle=np.zeros(4),
+        faces_vertices=np.array([[0, 1, 2, 3]]),
+        edges_kind=np.array(["boundary"] * 4),
+        faces_group=np.array([0]),
+    )
