@@ -62,7 +62,7 @@ class RegressionDomain(FrozenArrays):
 
     Examples
     --------
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
     >>> domain.a.round(6).tolist(), domain.b.round(6).tolist()
     ([0.070711, 0.070711, 0.070711, 0.070711, 0.070711], [-0.070711, -0.070711, -0.070711, -0.070711, -0.070711])
@@ -351,7 +351,8 @@ class Lattice(FrozenArrays):
 
     Examples
     --------
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)   # a unit circle
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> lat.crease.fold_angle, lat.refold(30).pattern is lat.pattern
     (90.0, True)
     """
@@ -436,7 +437,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.speed(np.array([[0, 0], [1, 0], [0, 1]]))[:, 0].round(6).tolist()   # curve 1 has L = 1; inside, outside the bend
         [1.0, 0.929289, 1.070711]
         """
@@ -447,7 +448,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.section_area().round(6).tolist(), float(lat.refold(0).section_area().max())   # flat: no area
         ([0.01, 0.01, 0.01, 0.01, 0.01], 0.0)
         """
@@ -480,7 +481,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.points(np.array([1, 0]))[0].round(6).tolist(), lat.points(np.array([[0, 0], [1, 1]])).shape
         ([0.0, 0.070711, 0.070711], (2, 5, 3))
         >>> bool(np.array_equal(lat.points(np.zeros(2)), lat.crease.curve.points))   # (0, 0) is curve 1
@@ -501,7 +502,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.check(np.array([[1, 1], [-5, 0]])), lat.check(np.zeros((0, 2)))   # valid curves; no curves (see check_curves)
         (None, None)
         """
@@ -513,7 +514,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape, lat.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]]).faces_vertices.shape
         ((32, 3), (8, 3))
         """
@@ -549,7 +550,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> frames = lat.fold_points(np.array([[1, 0]]), [0, 90])
         >>> frames.shape, float(np.abs(frames[0, ..., 2]).max())   # 2α = 0: flat
         ((2, 1, 5, 3), 0.0)
@@ -580,7 +581,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> flat = lat.refold(0)   # the crease pattern: curve 1 is the circle of radius 1 / κ_2D in the plane
         >>> flat.crease.fold_angle, float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), round(float(flat.crease.curve.kappa(0.0)), 6)
         (0.0, 0.0, 0.707107)
@@ -630,7 +631,7 @@ def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, nam
 
     Examples
     --------
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> check_curves(lat.domain, 1.0, np.array([[1, 1]])) is None
     True
     >>> check_curves(lat.domain, 1.0, np.array([[20, 0]]), name="curves")
@@ -707,3 +708,9 @@ def log_width_ratio(crease: Crease) -> np.ndarray:
     integrand = crease.curve.tau(nodes) / np.tan(crease.alpha(nodes))  # = κ_2D cot β
     steps = np.diff(s) * (integrand @ GAUSS3_WEIGHTS)
     return np.concatenate([[0.0], np.cumsum(steps)])
+
+
+def _example_lattice() -> Lattice:
+    """The lattice of the examples: a unit circle folded at 90° (5 samples), widths 0.1."""
+    crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
+    return Lattice.from_crease(crease, 0.1, 0.1)

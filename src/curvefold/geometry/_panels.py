@@ -33,6 +33,7 @@ from ._curve import FramedCurve
 from ._lattice import (
     Lattice,
     RegressionDomain,
+    _example_lattice,  # noqa: F401  (the examples' lattice)
     check_anchor,
     check_curves,
     constant_alpha,
@@ -81,8 +82,8 @@ class PanelCrease:
 
     Examples
     --------
-    >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> from curvefold import Crease
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> panels = PanelLattice.from_lattice(lat, 4)
     >>> panels.crease.fold_angle, panels.crease.curve.points.shape, panels.crease.curve.length
     (90.0, (5, 3), 1.0)
@@ -115,8 +116,8 @@ class PanelLattice(FrozenArrays):
 
     Examples
     --------
-    >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> from curvefold import Lattice
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> panels = PanelLattice.from_lattice(lat, 4)
     >>> panels.source is lat, round(float(np.degrees(2 * panels.alpha)), 9), panels.points(np.zeros(2)).shape
     (True, 90.0, (5, 3))
@@ -215,8 +216,8 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> from curvefold import Lattice
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.points(np.array([[1, 0], [1, 1]])).shape, panels.points(np.zeros(2))[0].tolist()   # vertex 0 of curve 1 stays at the origin
         ((2, 5, 3), [0.0, 0.0, 0.0])
@@ -229,8 +230,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.check(np.array([[1, 1]])) is None
         True
@@ -255,8 +255,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.topology(np.array([[0, 1, 3, 2]]), "triangles").faces_vertices.shape   # quads all the same
         (16, 4)
@@ -317,8 +316,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> flat = panels.refold(0)
         >>> flat.crease.fold_angle, round(float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), 12)
@@ -336,8 +334,8 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> from curvefold import Lattice
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> frames = panels.fold_points(np.array([[1, 1]]), [0, 90])
         >>> frames.shape, bool(np.allclose(frames[1], panels.points(np.array([[1, 1]])), atol=1e-12))
@@ -353,8 +351,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> head = panels.head(2)
         >>> head.points(np.zeros(2)).shape, bool(np.allclose(head.points(np.zeros(2)), panels.points(np.zeros(2))[:3], atol=1e-12))
@@ -367,8 +364,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> lifted = panels.moved(np.eye(3), [0, 0, 1])
         >>> (lifted.points(np.zeros(2)) - panels.points(np.zeros(2))).round(12)[0].tolist()

@@ -83,7 +83,8 @@ class Sampling(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> s = choose_sampling(tube)   # 5 samples: none to spare
     >>> s.vertices_per_crease, s.samples, s.deviation
@@ -112,7 +113,8 @@ class Sampling(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
         >>> summary = choose_sampling(tube).summary()
         >>> summary["samples_computed"], summary["mesh_samples_per_crease"], summary["mesh_deviation"]
