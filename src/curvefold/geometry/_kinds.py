@@ -209,11 +209,8 @@ class StructureLattice(Protocol):
 def _example_kinds() -> tuple[Lattice, PanelLattice]:
     """The lattices of the examples: a unit circle folded at 90° (5 samples, widths 0.1),
     smooth and as 4 rigid panels."""
-    from ._crease import Crease
-    from ._curve import SpaceCurve
-    from ._lattice import Lattice
+    from ._lattice import _example_lattice
     from ._panels import PanelLattice
 
-    crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
-    smooth = Lattice.from_crease(crease, 0.1, 0.1)
+    smooth = _example_lattice()
     return smooth, PanelLattice.from_lattice(smooth, 4)
