@@ -102,12 +102,17 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> book = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
-        ...             edges_assignment=['F', 'B', 'B', 'B', 'B'], edges_foldAngle=[0.0] * 5, faces_vertices=[[0, 1, 2], [0, 2, 3]],
-        ...             edges_kind=['fold'] + ['boundary'] * 4, faces_group=[0, 1])   # two triangles hinged on the diagonal 0–2
-        >>> book.with_coords([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]]).edges_foldAngle.round(6).tolist()
+        >>> book = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+        ...             edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
+        ...             edges_assignment=['F', 'B', 'B', 'B', 'B'], edges_foldAngle=[0.0] * 5,
+        ...             faces_vertices=[[0, 1, 2], [0, 2, 3]],
+        ...             edges_kind=['fold'] + ['boundary'] * 4,
+        ...             faces_group=[0, 1])   # two triangles hinged on the diagonal 0–2
+        >>> lifted = book.with_coords([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]])
+        >>> lifted.edges_foldAngle.round(6).tolist()
         [90.0, 0.0, 0.0, 0.0, 0.0]
-        >>> (book.with_coords(book.vertices_coords).edges_foldAngle + 0.0).tolist()   # flat: no fold
+        >>> flat = book.with_coords(book.vertices_coords)
+        >>> (flat.edges_foldAngle + 0.0).tolist()   # flat: no fold
         [0.0, 0.0, 0.0, 0.0, 0.0]
         """
         mesh = replace(self, vertices_coords=np.asarray(vertices_coords, float))
@@ -206,7 +211,8 @@ def vector_areas(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.
 
     Examples
     --------
-    >>> vector_areas(np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float), np.array([[0, 1, 2, 3]])).tolist()
+    >>> rectangle = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
+    >>> vector_areas(rectangle, np.array([[0, 1, 2, 3]])).tolist()
     [[0.0, 0.0, 4.0]]
     """
     x = np.asarray(vertices_coords, float)
@@ -268,9 +274,10 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
 
     Examples
     --------
-    >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
+    >>> faces = np.array([[0, 1, 2], [0, 2, 3]])
+    >>> edges_faces(faces, np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
     [[1, 0], [0, -1], [-1, -1]]
-    >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [2, 0]])).tolist()   # an edge listed both ways
+    >>> edges_faces(faces, np.array([[0, 2], [2, 0]])).tolist()   # an edge listed both ways
     [[1, 0], [0, 1]]
     """
     E = len(edges_vertices)
@@ -330,9 +337,11 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     Examples
     --------
     >>> faces, edges = np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1]])
-    >>> fold_angles(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]]), faces, edges).round(6).tolist()
+    >>> lifted = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]])
+    >>> fold_angles(lifted, faces, edges).round(6).tolist()
     [90.0, 0.0]
-    >>> (fold_angles(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]]), faces, edges) + 0.0).tolist()   # flat; a boundary edge
+    >>> flat = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]])
+    >>> (fold_angles(flat, faces, edges) + 0.0).tolist()   # flat; a boundary edge
     [0.0, 0.0]
     """
     ef = edges_faces(faces_vertices, edges_vertices) if faces_of_edges is None else faces_of_edges
@@ -361,8 +370,9 @@ def dihedral_angles(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vec
 
     Examples
     --------
-    >>> areas, edges = np.array([[0.0, 0, 2], [0, 1, 0]]), np.array([[1.0, 0, 0], [1, 0, 0]])   # faces facing +z and +y
-    >>> dihedral_angles(areas, np.array([[0, 1], [0, -1]]), edges).tolist()   # hinged on the x axis; an edge with one face
+    >>> areas = np.array([[0.0, 0, 2], [0, 1, 0]])   # faces facing +z and +y
+    >>> edges = np.array([[1.0, 0, 0], [1, 0, 0]])   # along the x axis
+    >>> dihedral_angles(areas, np.array([[0, 1], [0, -1]]), edges).tolist()   # one face only
     [90.0, 0.0]
     """
     ef = faces_of_edges
