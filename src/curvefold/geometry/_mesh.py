@@ -372,7 +372,8 @@ def dihedral_angles(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vec
     --------
     >>> areas = np.array([[0.0, 0, 2], [0, 1, 0]])   # faces facing +z and +y
     >>> edges = np.array([[1.0, 0, 0], [1, 0, 0]])   # along the x axis
-    >>> dihedral_angles(areas, np.array([[0, 1], [0, -1]]), edges).tolist()   # one face only
+    >>> sides = np.array([[0, 1], [0, -1]])   # hinged on the first edge; one face at the second
+    >>> dihedral_angles(areas, sides, edges).tolist()
     [90.0, 0.0]
     """
     ef = faces_of_edges
