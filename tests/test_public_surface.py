@@ -381,3 +381,21 @@ def test_a_damaged_stub_is_named(damage, expected):
         assert source.count(old) == 1, old  # the damage applies to the stub as it stands
         source = source.replace(old, new)
     assert stub_problems(geometry, source) == expected
+
+
+@pytest.mark.slow
+def test_a_type_checker_sees_the_lazy_names_through_the_stubs(tmp_path, monkeypatch):
+    """mypy, run on a user's imports, finds the classes (without the stubs: ``object``)."""
+    api = pytest.importorskip("mypy.api")
+    probe = tmp_path / "probe.py"
+    probe.write_text("from curvefold import Structure\nfrom curvefold.geometry import Crease\n"
+                     "reveal_type(Crease)\nreveal_type(Structure.state)\n")
+    monkeypatch.setenv("MYPYPATH", str(Path(str(curvefold.__file__)).parents[1]))  # this checkout
+    out, _, _ = api.run([str(probe), "--config-file=", "--follow-imports=silent",
+                         "--no-error-summary", f"--cache-dir={tmp_path / 'cache'}",
+                         "--python-version=3.11"])
+    revealed = [line.split("Revealed type is ", 1)[1]
+                for line in out.splitlines() if "Revealed type" in line]
+    assert len(revealed) == 2, out
+    assert revealed[0].startswith('"def (curve: curvefold.geometry._curve.SpaceCurve'), revealed[0]
+    assert revealed[1].endswith('-> curvefold.geometry._structure.State"'), revealed[1]
