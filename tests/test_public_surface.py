@@ -14,8 +14,10 @@ package's ``__test__``.
 
 from __future__ import annotations
 
+import ast
 import doctest
 import importlib
+import importlib.util
 import inspect
 import os
 import pkgutil
@@ -24,6 +26,7 @@ import sys
 import textwrap
 import types
 from collections.abc import Iterable, Iterator
+from pathlib import Path
 
 import pytest
 
@@ -273,3 +276,126 @@ def test_a_package_surface_that_does_not_resolve_is_named(tmp_path):
         for key in [k for k in sys.modules if k.startswith("fakepkg")]:
             del sys.modules[key]
     assert heavy_imports("fakepkg", ("json", "scipy"), path=str(tmp_path)) == ["json"]
+
+
+
+# -- the packages' stubs: the lazy names as type checkers see them -------------------------------
+
+
+def stub_exports(source: str, package: str) -> tuple[dict[str, tuple[str, str]], list[str]]:
+    """What an ``__init__.pyi`` declares: its ``__all__``, and each name it imports.
+
+    Returns the imported names, each → (absolute module, name there), and the ``__all__``.
+    """
+    imported: dict[str, tuple[str, str]] = {}
+    listed: list[str] = []
+    for node in ast.parse(source).body:
+        if isinstance(node, ast.ImportFrom):
+            module = importlib.util.resolve_name("." * node.level + (node.module or ""), package)
+            imported |= {alias.asname or alias.name: (module, alias.name) for alias in node.names}
+        elif isinstance(node, ast.Assign) and ast.unparse(node.targets[0]) == "__all__":
+            listed = list(ast.literal_eval(node.value))
+    return imported, listed
+
+
+def _stub_source(module: str, name: str) -> object:
+    """``from module import name`` at run time: an attribute of the module, else its submodule."""
+    try:
+        return getattr(importlib.import_module(module), name)
+    except AttributeError:
+        return importlib.import_module(f"{module}.{name}")
+
+
+def stub_problems(package: types.ModuleType, source: str) -> list[str]:
+    """Where a package's stub and its lazy exports differ.
+
+    A name the package exports that the stub leaves out of its ``__all__`` or does not import,
+    a name the stub declares that the package does not export, and a name the stub imports
+    from a module whose object is not the package's.
+    """
+    imported, listed = stub_exports(source, package.__name__)
+    exported = list(package.__all__)
+    where = package.__name__
+    out = [f"{where}.{name}: exported, not in the stub's __all__"
+           for name in exported if name not in listed]
+    out += [f"{where}.{name}: in the stub's __all__, not exported"
+            for name in listed if name not in exported]
+    out += [f"{where}.{name}: in the stub's __all__, not imported"
+            for name in listed if name not in imported]
+    for name, (module, original) in imported.items():
+        if name not in exported:
+            out.append(f"{where}.{name}: imported by the stub, not exported")
+        elif _stub_source(module, original) is not getattr(package, name):
+            out.append(f"{where}.{name}: the stub imports another object, from {module}")
+    return out
+
+
+def _stub(package: types.ModuleType) -> str:
+    return Path(str(package.__file__)).with_suffix(".pyi").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("name", ["", *PACKAGES])
+def test_every_package_stub_declares_exactly_its_lazy_names(name):
+    package = importlib.import_module(f"curvefold.{name}".rstrip("."))
+    assert stub_problems(package, _stub(package)) == []
+
+
+def test_every_package_with_lazy_names_has_a_stub():
+    """A package loading names through a module ``__getattr__`` is opaque to type checkers."""
+    found = pkgutil.walk_packages(curvefold.__path__, "curvefold.")
+    packages = [curvefold, *(importlib.import_module(info.name) for info in found if info.ispkg)]
+    lazy = [package for package in packages if "__getattr__" in vars(package)]
+    assert {"curvefold", "curvefold.geometry", "curvefold.mechanics"} <= {p.__name__ for p in lazy}
+    stubs = [Path(str(package.__file__)).with_suffix(".pyi") for package in lazy]
+    assert [str(stub) for stub in stubs if not stub.is_file()] == []
+
+
+#: Damages to the geometry's stub: the texts replaced, each with its replacement.
+STUB_DAMAGES = {
+    "a name left out": [("from ._crease import Crease as Crease\n", ""), ('    "Crease",\n', "")],
+    "a name not exported": [
+        ("from ._mesh import Mesh as Mesh\n", "from ._mesh import Mesh as Mesh, Part as Part\n"),
+        ('    "Mesh",\n', '    "Mesh",\n    "Part",\n'),
+    ],
+    "a name not imported": [("from ._lattice import Pattern as Pattern\n", "")],
+    "a name from another module": [
+        ("from ._structure import State as State\n", "from ._lattice import Lattice as State\n"),
+    ],
+}
+
+
+@pytest.mark.parametrize(("damage", "expected"), [
+    ("a name left out", ["curvefold.geometry.Crease: exported, not in the stub's __all__"]),
+    ("a name not exported", ["curvefold.geometry.Part: in the stub's __all__, not exported",
+                             "curvefold.geometry.Part: imported by the stub, not exported"]),
+    ("a name not imported", ["curvefold.geometry.Pattern: in the stub's __all__, not imported"]),
+    ("a name from another module",
+     ["curvefold.geometry.State: the stub imports another object, from "
+      "curvefold.geometry._lattice"]),
+])
+def test_a_damaged_stub_is_named(damage, expected):
+    import curvefold.geometry as geometry
+
+    source = _stub(geometry)
+    for old, new in STUB_DAMAGES[damage]:
+        assert source.count(old) == 1, old  # the damage applies to the stub as it stands
+        source = source.replace(old, new)
+    assert stub_problems(geometry, source) == expected
+
+
+@pytest.mark.slow
+def test_a_type_checker_sees_the_lazy_names_through_the_stubs(tmp_path, monkeypatch):
+    """mypy, run on a user's imports, finds the classes (without the stubs: ``object``)."""
+    api = pytest.importorskip("mypy.api")
+    probe = tmp_path / "probe.py"
+    probe.write_text("from curvefold import Structure\nfrom curvefold.geometry import Crease\n"
+                     "reveal_type(Crease)\nreveal_type(Structure.state)\n")
+    monkeypatch.setenv("MYPYPATH", str(Path(str(curvefold.__file__)).parents[1]))  # this checkout
+    out, _, _ = api.run([str(probe), "--config-file=", "--follow-imports=silent",
+                         "--no-error-summary", f"--cache-dir={tmp_path / 'cache'}",
+                         "--python-version=3.11"])
+    revealed = [line.split("Revealed type is ", 1)[1]
+                for line in out.splitlines() if "Revealed type" in line]
+    assert len(revealed) == 2, out
+    assert revealed[0].startswith('"def (curve: curvefold.geometry._curve.SpaceCurve'), revealed[0]
+    assert revealed[1].endswith('-> curvefold.geometry._structure.State"'), revealed[1]

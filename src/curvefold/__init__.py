@@ -10,12 +10,11 @@ The names below are imported when first used (``from curvefold import Crease`` i
 the geometry, not the file writers or SciPy), so the command line starts quickly.
 """
 
-from typing import TYPE_CHECKING
-
 from .kernel._exports import lazy_exports as _lazy_exports
 from .kernel._version import VERSION as __version__  # the one place it is set (pyproject.toml reads it)
 
-# The public names by package, imported when first asked for (kernel.exports).
+# The public names by package, imported when first asked for (kernel.exports); type
+# checkers and editors read them from __init__.pyi.
 __all__, _getattr, _dir = _lazy_exports(
     __name__,
     {
@@ -37,8 +36,3 @@ def __getattr__(name: str):
         return measure
     return _getattr(name)
 
-
-if TYPE_CHECKING:  # the same names, for type checkers and editors
-    from .analysis import _measure as measure
-    from .geometry import Crease, Lattice, Mesh, Pattern, RegressionDomain, SpaceCurve, State, Structure
-    from .kernel import ConvergenceError, CurvefoldError, InputError, InternalError, RegressionError

@@ -188,7 +188,8 @@ def _rebuilt(crease: Crease, structure: Structure | None, samples: int) -> tuple
         return coarse, None
     lattice = structure.lattice
     pattern = Pattern.from_crease(coarse, float(lattice.width_left[0]), float(lattice.width_right[0]))
-    return coarse, Structure(Lattice(coarse, pattern), structure.cells)
+    # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)
+    return coarse, Structure(Lattice(coarse, pattern), structure.cells)  # type: ignore[arg-type]
 
 
 @dataclass(frozen=True)
@@ -204,10 +205,15 @@ class _Outcome:
         return self.value / self.tolerance if math.isfinite(self.value) and self.tolerance > 0 else math.inf
 
 
-def _judge(spec: CheckSpec, fine: Residual, coarse: Residual, samples: int, label: str) -> _Outcome:
+def _judge(spec: CheckSpec, fine: Residual, coarse: Residual | None, samples: int,
+           label: str) -> _Outcome:
     value, index = fine.worst
     where = label + (fine.locate(index) if index >= 0 else "")
-    tolerance = fine.floor if spec.order == 0 else fine.change(coarse) / 2 + fine.floor
+    if spec.order == 0:
+        tolerance = fine.floor
+    else:
+        assert coarse is not None, "a check of order > 0 is measured on the coarse frame too"
+        tolerance = fine.change(coarse) / 2 + fine.floor
     if not (math.isfinite(value) and math.isfinite(tolerance)):
         return _Outcome("fail", math.nan, tolerance, where + " (not a number)", None)
     if spec.order == 0 or value > tolerance or tolerance <= spec.cap:  # exact, more than the discretisation explains, or certified
@@ -232,7 +238,8 @@ def _measure(specs: Sequence[CheckSpec], fine: Frame, coarse: Frame | None, labe
     for spec in specs:
         residual = spec.measure(fine)
         if residual is not None:
-            out[spec.name] = _judge(spec, residual, spec.measure(coarse) if spec.order else None, fine.samples, label)
+            rough = spec.measure(coarse) if spec.order and coarse is not None else None
+            out[spec.name] = _judge(spec, residual, rough, fine.samples, label)
     return out
 
 
@@ -268,6 +275,7 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     if structure is not None and structure.lattice.rigid:
         return _certify_rigid(structure, vault, _certified_angles(structure, fold_angles, degrees))
     if structure is not None:
+        assert isinstance(structure.lattice.crease, Crease)  # not rigid: a smooth lattice's
         crease = structure.lattice.crease
     elif fold_angles is not None:
         raise InputError("fold_angles: a single curved fold is certified in the one state it is built in")
@@ -278,11 +286,12 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
     coarse_crease, coarse_structure = _rebuilt(crease, structure, coarse_samples)
     if structure is None:
         specs = [s for s in CHECKS if s.scope == "crease"]
-        outcomes = _measure(specs, Frame(crease), Frame(coarse_crease), "")
-        return Certificate(tuple(_check(spec, [outcomes[spec.name]]) for spec in specs), samples=n)
+        measured = _measure(specs, Frame(crease), Frame(coarse_crease), "")
+        return Certificate(tuple(_check(spec, [measured[spec.name]]) for spec in specs), samples=n)
 
     angles = _certified_angles(structure, fold_angles, degrees)
     specs = [s for s in CHECKS if s.scope in ("crease", "frame", "motion") or (s.scope == "vault" and vault is not None)]
+    assert coarse_structure is not None  # rebuilt with the structure
     run = _runner(specs, vault, Shared(structure), Shared(coarse_structure))
     outcomes = _over_frames(specs, run, angles, ("crease", "frame", "vault", "motion"), ("crease", "frame"), structure.lattice.crease.fold_angle)
     checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)

@@ -154,8 +154,9 @@ def _strip(i: tuple[int, ...]) -> str:
 
 
 def _developability(frame: Frame) -> Residual:
-    x, h = frame.crease.curve.points, frame.step
-    rates = np.hypot(frame.crease.curve.kappa(frame.crease.s), frame.crease.curve.tau(frame.crease.s)).max()
+    crease, h = frame.smooth_crease, frame.step
+    x = crease.curve.points
+    rates = np.hypot(crease.curve.kappa(crease.s), crease.curve.tau(crease.s)).max()
     values = measure.ruling_twist(x, frame.rulings, h) / rates
     length = float(measure.norm(frame.rulings).min())
     return Residual(values, 1.5 * frame.ulp / (length * h * rates), lambda i: ("left", "right")[i[0]] + " rulings", frame.inner_t)
@@ -164,9 +165,9 @@ def _developability(frame: Frame) -> Residual:
 def _planar_curvature(frame: Frame) -> Residual:
     x, h = frame.crease.curve.points, frame.step
     if frame.shared is None:
-        k2 = frame.crease.kappa_2d[2:-2]  # the crease pattern of a single fold is its input
+        k2 = frame.smooth_crease.kappa_2d[2:-2]  # the crease pattern of a single fold is its input
     else:
-        k2 = measure.curvature(frame.shared.flat.lattice.crease.curve.points, h)
+        k2 = measure.curvature(frame.common.flat.lattice.crease.curve.points, h)
     scale = float(np.abs(k2).max())
     values = np.abs(measure.curvature(x, h) * np.cos(frame.measured_alpha) - k2) / scale
     return Residual(values, 12 * frame.ulp / (h**2 * scale), lambda i: "", frame.inner_t)
@@ -176,7 +177,7 @@ def _frame_agreement(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
     d1, tangent = frame.curve_derivatives[0], frame.tangent_components[:, None, 2:-2]  # measure.tangent_deviation, the same numbers
     values = np.arctan2(measure.norm3(measure.cross3(d1, tangent)), frame.speeds_along_tangent)
-    f_min = float(frame.shared.speed_factors.min())
+    f_min = float(frame.common.speed_factors.min())
     return Residual(values, 1.5 * frame.ulp / (frame.step * f_min), _curve(uv), frame.inner_t)
 
 
@@ -201,36 +202,37 @@ def _eq19(frame: Frame) -> Residual | None:
 
 
 def _isometry(frame: Frame) -> Residual:
-    top = frame.shared.topology
+    top = frame.common.topology
     with np.errstate(invalid="ignore", divide="ignore"):
-        values = np.abs(frame.edge_lengths / frame.shared.flat_lengths - 1)
-    return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"edge {i[0]} ({top.edges_kind[i[0]]})")
+        values = np.abs(frame.edge_lengths / frame.common.flat_lengths - 1)
+    return Residual(values, 4 * frame.ulp / frame.common.shortest_edge, lambda i: f"edge {i[0]} ({top.edges_kind[i[0]]})")
 
 
 def _quad_planarity(frame: Frame) -> Residual:
-    if frame.shared.tube_mesh:  # every strip's quads (a_j, a_(j+1), b_(j+1), b_j): its edges, the same numbers
+    if frame.common.tube_mesh:  # every strip's quads (a_j, a_(j+1), b_(j+1), b_j): its edges, the same numbers
         (along, ruling, diagonal), (_, _, length) = frame.strip_edges, frame.strip_edge_lengths
         values = measure.corner_nonplanarity3(along, ruling[..., :-1], diagonal, length).reshape(-1)
-    elif (sides := frame.shared.quad_sides) is None:
-        values = measure.quad_nonplanarity(frame.coords, frame.shared.quads)
+    elif (sides := frame.common.quad_sides) is None:
+        values = measure.quad_nonplanarity(frame.coords, frame.common.quads)
     else:  # the quads' sides and diagonals are edges: their vectors and lengths, the same numbers
-        values = measure.corner_nonplanarity3(*(np.take(frame.edge_vectors, side, axis=1) for side in sides),
-                                              np.take(frame.edge_lengths, sides[2]))
-    return Residual(values, 4 * frame.ulp / frame.shared.shortest_edge, lambda i: f"quad {i[0]} (strip {i[0] // (frame.samples - 1) + 1})")
+        side, other, diagonal = (np.take(frame.edge_vectors, side, axis=1) for side in sides)
+        length = np.take(frame.edge_lengths, sides[2])
+        values = measure.corner_nonplanarity3(side, other, diagonal, length)
+    return Residual(values, 4 * frame.ulp / frame.common.shortest_edge, lambda i: f"quad {i[0]} (strip {i[0] // (frame.samples - 1) + 1})")
 
 
 def _fold_angles(frame: Frame) -> Residual:
-    top = frame.shared.topology
-    creases, faces = frame.shared.creases
-    if frame.shared.tube_mesh:  # every strip's curve edges, between its second triangles and the previous strip's first ones
+    top = frame.common.topology
+    creases, faces = frame.common.creases
+    if frame.common.tube_mesh:  # every strip's curve edges, between its second triangles and the previous strip's first ones
         (along, ruling, diagonal), (length, _, _) = frame.strip_edges, frame.strip_edge_lengths
         first, second = (measure.unit3(measure.cross3(*sides)) for sides in ((diagonal, ruling[..., :-1]), (along, diagonal)))
         measured = measure.hinge_angles3(second, first[:, :, [(c - 1) % 4 for c in range(4)]], along, length).reshape(-1)
     else:
         measured = measure.dihedral_angles3(frame.face_areas, faces, np.take(frame.edge_vectors, creases, axis=1),
                                             np.take(frame.edge_lengths, creases))
-    values = measure.fold_angle_deviation(measured, frame.shared.crease_folds, 2 * math.degrees(frame.alpha))
-    return Residual(values, math.degrees(4 * frame.ulp / frame.shared.shortest_edge),
+    values = measure.fold_angle_deviation(measured, frame.common.crease_folds, 2 * math.degrees(frame.alpha))
+    return Residual(values, math.degrees(4 * frame.ulp / frame.common.shortest_edge),
                     lambda i: f"edge {creases[i[0]]} ({top.edges_kind[creases[i[0]]]})")
 
 
@@ -241,14 +243,15 @@ _BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in rang
 
 
 def _width_law(frame: Frame) -> Residual:
-    start, law = frame.shared.width_law
+    start, law = frame.common.width_law
     values = np.abs(np.log(frame.strip_widths / start) - law)
-    return Residual(values, 2 * frame.ulp / float(frame.strip_widths.min()), _strip, frame.crease.s / frame.crease.curve.length)
+    return Residual(values, 2 * frame.ulp / float(frame.strip_widths.min()), _strip,
+                    frame.crease.curve.s / frame.crease.curve.length)
 
 
 def _regression(frame: Frame) -> Residual:
     uv = frame.structure.curves_uv
-    predicted = frame.shared.speed_factors
+    predicted = frame.common.speed_factors
     margin = float(predicted.min())
     measured = frame.speeds_along_tangent  # measure.speed_factors, the same numbers
     values = np.abs(measured - predicted[:, 2:-2]) / margin
@@ -262,13 +265,14 @@ def _tube_closure(frame: Frame) -> Residual:
     rebuilt = measure.rebuilt_strip3(X, ruling, following, h, alpha=frame.alpha, side=STRIP_SIDES[:, None],
                                      sign=_STRIP_SIGNS[:, None], frenet_frame=frame.tube_frenet)
     values = measure.norm3(rebuilt - following[..., 2:-2]) / frame.strip_widths[:, :, 2:-2]
-    kappa_min = float(frame.crease.curve.kappa(frame.crease.s).min())
+    crease = frame.smooth_crease
+    kappa_min = float(crease.curve.kappa(crease.s).min())
     floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))
     return Residual(values, floor, lambda i: f"tube {i[0] + 1}, crease {i[1] + 1} → {i[1] % 4 + 2}", frame.inner_t)
 
 
 def _ground_plane(frame: Frame) -> Residual:
-    vertices = frame.state.vertices
+    vertices = frame.folded.vertices
     size = float(np.abs(vertices).max())
     uv = frame.structure.curves_uv
     return Residual(np.abs(vertices[:, [0, -1], 2]) / size, _accumulated(frame) / size,
@@ -286,7 +290,7 @@ def _arch_condition(frame: Frame) -> Residual:
 
 
 def _proportion_change(frame: Frame) -> Residual:
-    vault = frame.vault
+    vault = frame.compared_vault
     widths = frame.strip_widths
     w_r, w_l = widths[0, 0], widths[0, 3]  # strips 1→2 and 4→1 of the base tube
     m = (frame.samples - 1) // 2
@@ -296,7 +300,7 @@ def _proportion_change(frame: Frame) -> Residual:
 
 
 def _panel_isometry(frame: Frame) -> Residual:
-    shared = frame.shared
+    shared = frame.common
     values = np.abs(measure.edge_lengths(frame.coords, shared.bars) / shared.bar_lengths - 1)
     edges, kinds = len(shared.topology.edges_vertices), shared.topology.edges_kind
 
@@ -309,10 +313,10 @@ def _panel_isometry(frame: Frame) -> Residual:
 
 def _panel_ground_plane(frame: Frame) -> Residual:
     """``|z|`` of every foot over the vault's size; the floor adds the tilt the arch root's residual leaves."""
-    vertices = frame.state.vertices
+    vertices = frame.folded.vertices
     size = float(np.abs(vertices).max())
     uv = frame.structure.curves_uv
-    return Residual(np.abs(vertices[:, [0, -1], 2]) / size, frame.ulp / size + 3 * frame.vault.arch.residual,
+    return Residual(np.abs(vertices[:, [0, -1], 2]) / size, frame.ulp / size + 3 * frame.compared_vault.arch.residual,
                     lambda i: f"curve {tuple(uv[i[0]].tolist())}, " + ("first", "last")[i[1]] + " vertex")
 
 
@@ -342,7 +346,7 @@ def _mechanism_clearance(frame: Frame) -> Residual:
 
 def _contact(frame: Frame) -> Residual:
     """How far the closest two far-apart parts are inside half the smallest width of each other: 0 when none are."""
-    state, uv = frame.state, frame.structure.curves_uv
+    state, uv = frame.folded, frame.structure.curves_uv
     lattice = state.lattice
     radius, reach = contact_scales(lattice)
     distance, where = closest_far(state.vertices, uv, radius=radius, reach=reach)

@@ -241,7 +241,7 @@ def check_fold(path: str | os.PathLike | FoldFile, *, reference: FoldFile | None
         checks = (FileCheck("topology", "fail", where=reason),) + tuple(
             FileCheck(name, "not run", reason="the frames do not share one topology") for name in _CHECK_NAMES[1:])
         return FoldCheck(len(folded), checks, tol, doc.notes)
-    checks = [
+    found = [
         _topology(frames, size),
         _welds(doc, folded, size, tol["weld_tol"]),
         _edge_kinds(doc, frames[0]),
@@ -251,8 +251,8 @@ def check_fold(path: str | os.PathLike | FoldFile, *, reference: FoldFile | None
         _planarity(doc, folded, tol["planarity_tol"]),
     ]
     if reference is not None:
-        checks.append(_rebuild(doc, reference, [f.label for f in frames], size, tol))
-    return FoldCheck(len(folded), tuple(checks), tol, doc.notes)
+        found.append(_rebuild(doc, reference, [f.label for f in frames], size, tol))
+    return FoldCheck(len(folded), tuple(found), tol, doc.notes)
 
 
 def _label(doc: FoldFile, i: int, title: str) -> str:
@@ -455,6 +455,7 @@ def _isometry(pattern: Mesh | None, frames: list[_Frame], tolerance: float) -> F
 
 def _planarity(doc: FoldFile, frames: list[_Frame], tolerance: float) -> FileCheck:
     ref = frames[0].mesh if frames else doc.crease_pattern
+    assert ref is not None  # a file holds a crease pattern or a folded frame (read_fold)
     polygons = ref.faces_vertices.shape[1] > 3
     kinds_known = bool({"edges_curvefold:kind", "curvefold:edges_kind"} & doc.keys)
     joins = (ref.edges_assignment == "J").any()

@@ -16,6 +16,8 @@ from functools import cached_property
 import numpy as np
 
 from ..geometry._crease import Crease
+from ..geometry._kinds import FoldedCrease
+from ..geometry._lattice import Lattice, constant_alpha
 from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
 from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology, is_tube_numbering
@@ -159,7 +161,9 @@ class Shared:
     def width_law(self) -> tuple[np.ndarray, np.ndarray]:
         """Every strip's width at t = 0 and the log-width law ``∓∫₀^s κ_2D cot β ds`` it follows (− for a left strip,
         :func:`~curvefold.analysis._measure.width_integral`), (1, 4, 1) and (1, 4, n): of the pattern every frame folds."""
-        pattern = self.structure.lattice.pattern
+        lattice = self.structure.lattice
+        assert isinstance(lattice, Lattice), "the width law of a smooth lattice"
+        pattern = lattice.pattern
         law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
         left = (STRIP_SIDES == "L")[None, :, None]
         return np.where(left, pattern.width_left[0], pattern.width_right[0]), np.where(left, -law, law)
@@ -242,10 +246,36 @@ class Frame:
         The vault whose parameters (a, κ₀ s₀, p_xy) the vault checks compare with.
     """
 
-    crease: Crease
+    crease: Crease | FoldedCrease
     shared: Shared | None = None
     state: State | None = None
     vault: Vault | None = None
+
+    # The parts only some frames have, for the measurements that read them (a check runs only
+    # on the frames that have what it reads: a structure's, a vault's).
+    @property
+    def smooth_crease(self) -> Crease:
+        """:attr:`crease`, of a smooth frame (what the crease and smooth checks read)."""
+        assert isinstance(self.crease, Crease), "a frame of a smooth crease"
+        return self.crease
+
+    @property
+    def common(self) -> Shared:
+        """:attr:`shared`, of a structure's frame."""
+        assert self.shared is not None, "a frame of a structure"
+        return self.shared
+
+    @property
+    def folded(self) -> State:
+        """:attr:`state`, of a structure's frame."""
+        assert self.state is not None, "a frame of a structure"
+        return self.state
+
+    @property
+    def compared_vault(self) -> Vault:
+        """:attr:`vault`, of a vault's frame."""
+        assert self.vault is not None, "a frame of a vault"
+        return self.vault
 
     @classmethod
     def at(cls, shared: Shared, fold_angle: float | None, vault: Vault | None = None) -> Frame:
@@ -265,7 +295,7 @@ class Frame:
     @property
     def structure(self) -> Structure:
         """The structure certified (shared by every frame)."""
-        return self.shared.structure
+        return self.common.structure
 
     @property
     def samples(self) -> int:
@@ -275,17 +305,17 @@ class Frame:
     @property
     def step(self) -> float:
         """Arc-length step h of curve 1."""
-        return float(self.crease.s[1] - self.crease.s[0])
+        return float(self.crease.curve.s[1] - self.crease.curve.s[0])
 
     @property
     def alpha(self) -> float:
         """The frame's half fold angle α, radians."""
-        return float(self.crease.alpha.constant)
+        return float(constant_alpha(self.smooth_crease))
 
     @property
     def inner_t(self) -> np.ndarray:
         """t of the samples 2 … n − 3 where differences are measured, (n − 4,)."""
-        return self.crease.s[2:-2] / self.crease.curve.length
+        return self.crease.curve.s[2:-2] / self.crease.curve.length
 
     @cached_property
     def ulp(self) -> float:
@@ -297,14 +327,14 @@ class Frame:
     def rulings(self) -> np.ndarray:
         """Ruling vectors ℓ_L r_L, ℓ_R r_R at curve 1 from its built neighbours (1, 0), (0, 1), (2, n, 3)."""
         if self.state is None:
-            return np.stack(self.crease.rulings())
-        x = self.state.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
+            return np.stack(self.smooth_crease.rulings())
+        x = self.folded.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
         return x[1:] - x[0]
 
     @cached_property
     def components(self) -> np.ndarray:
         """The state's curves stored by component, x, y and z each contiguous, (3, M, n)."""
-        return np.ascontiguousarray(np.moveaxis(self.state.vertices, -1, 0))
+        return np.ascontiguousarray(np.moveaxis(self.folded.vertices, -1, 0))
 
     @cached_property
     def tubes(self) -> np.ndarray:
@@ -338,23 +368,23 @@ class Frame:
     @cached_property
     def coords(self) -> np.ndarray:
         """The mesh vertices of this state, (V, 3)."""
-        return self.shared.coords(self.state.vertices)
+        return self.common.coords(self.folded.vertices)
 
     @cached_property
     def edge_vectors(self) -> np.ndarray:
         """``x_b − x_a`` of every mesh edge (a, b) in this state, by component, (3, E)."""
-        if self.shared.tube_mesh:
+        if self.common.tube_mesh:
             return np.concatenate([e.reshape(3, -1) for e in self.strip_edges], axis=1)
-        if self.state.vertices.shape[-2] != len(self.structure.lattice.s):
-            coords, (a, b) = self.coords.T, self.shared.topology.edges_vertices.T
+        if self.folded.vertices.shape[-2] != len(self.structure.lattice.s):
+            coords, (a, b) = self.coords.T, self.common.topology.edges_vertices.T
         else:
-            coords, (a, b) = self.components.reshape(3, -1), self.shared.edge_rows
+            coords, (a, b) = self.components.reshape(3, -1), self.common.edge_rows
         return np.take(coords, b, axis=1) - np.take(coords, a, axis=1)
 
     @cached_property
     def edge_lengths(self) -> np.ndarray:
         """Length of every mesh edge in this state (of :attr:`edge_vectors`), (E,)."""
-        if self.shared.tube_mesh:
+        if self.common.tube_mesh:
             return np.concatenate([length.reshape(-1) for length in self.strip_edge_lengths])
         return measure.norm3(self.edge_vectors)
 
@@ -362,10 +392,10 @@ class Frame:
     def face_areas(self) -> np.ndarray:
         """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, by component, (3, F): for triangles
         the cross product of the vectors of their sides' edges (:attr:`Shared.face_sides`), the same numbers."""
-        sides = self.shared.face_sides
+        sides = self.common.face_sides
         with np.errstate(invalid="ignore"):
             if sides is None:
-                return vector_areas(self.coords, self.shared.topology.faces_vertices).T
+                return vector_areas(self.coords, self.common.topology.faces_vertices).T
             return measure.cross3(*(np.take(self.edge_vectors, side, axis=1) for side in sides))
 
     @property
@@ -398,7 +428,8 @@ class Frame:
     @cached_property
     def strip_edge_lengths(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The lengths of :attr:`strip_edges`, (K, 4, n − 1), (K, 4, n), (K, 4, n − 1)."""
-        return tuple(measure.norm3(e) for e in self.strip_edges)
+        along, ruling, diagonal = (measure.norm3(e) for e in self.strip_edges)
+        return along, ruling, diagonal
 
     @cached_property
     def half_angles(self) -> np.ndarray:

@@ -238,7 +238,8 @@ def half_angle_between(before: np.ndarray, after: np.ndarray, tangent: np.ndarra
 
     ``fold`` (broadcasting against (..., m)) says where the crease is a fold, elsewhere a seam.
     """
-    return half_angle3(*_components(before, after, tangent), fold)
+    before3, after3, tangent3 = _components(before, after, tangent)
+    return half_angle3(before3, after3, tangent3, fold)
 
 
 def tangent_line_distance(x: np.ndarray, y: np.ndarray, T: np.ndarray) -> np.ndarray:
@@ -276,7 +277,8 @@ def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
 
 
 def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
-                  side: str, sign: float, frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
+                  side: str | np.ndarray, sign: float | np.ndarray,
+                  frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """The paper's construction of the next crease from this crease's own measured invariants.
 
     From the crease's samples alone: its frame T, N, B and curvature κ (differences), its
@@ -316,7 +318,9 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
     if frenet_frame is not None:
         speed, T, N, B, kappa = frenet_frame
         frenet_frame = (speed, *_components(T, N, B), kappa)
-    rebuilt = rebuilt_strip3(*_components(curve, ruling, following), step, alpha=alpha, side=side, sign=sign, frenet_frame=frenet_frame)
+    curve3, ruling3, following3 = _components(curve, ruling, following)
+    rebuilt = rebuilt_strip3(curve3, ruling3, following3, step, alpha=alpha, side=side, sign=sign,
+                             frenet_frame=frenet_frame)
     return _rows(rebuilt)
 
 
@@ -421,7 +425,8 @@ def half_angle3(before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold
 
 
 def rebuilt_strip3(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
-                   side: str, sign: float, frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
+                   side: str | np.ndarray, sign: float | np.ndarray,
+                   frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """:func:`rebuilt_strip` of curves stored by component (3, ..., n) (``frenet_frame`` as :func:`frenet3` gives it), (3, ..., n − 4)."""
     if frenet_frame is None:
         frenet_frame = frenet3(derivative(curve, step, axis=-1), second_derivative(curve, step, axis=-1))

@@ -45,6 +45,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..geometry._mesh import Mesh, edges_faces
+from ..geometry._panels import PanelLattice
 from ..geometry._structure import Structure
 from ..geometry._topology import lattice_corners
 from ..kernel._arrays import FrozenArrays, readonly
@@ -121,13 +122,13 @@ class Framework(FrozenArrays):
         x = np.asarray(reference, float)
         weld = np.asarray(weld, np.int64)
         faces = np.asarray(faces_vertices)
-        pairs, quads = [np.asarray(edges_vertices)], []
+        pieces, quads = [np.asarray(edges_vertices)], []
         for m in range(4, faces.shape[1] + 1):
             rows = faces[(faces >= 0).sum(axis=1) == m][:, :m]
             i, j = np.triu_indices(m, 1)
-            pairs.append(rows[:, np.stack([i, j], axis=1)].reshape(-1, 2))
+            pieces.append(rows[:, np.stack([i, j], axis=1)].reshape(-1, 2))
             quads += [rows[:, [0, 1, 2, q]] for q in range(3, m)]
-        pairs = np.concatenate(pairs)
+        pairs = np.concatenate(pieces)
         welded = np.sort(weld[pairs], axis=1)
         bars, first = np.unique(welded, axis=0, return_index=True)  # one bar per welded pair (edges come first)
         lengths = np.linalg.norm(x[pairs[first, 0]] - x[pairs[first, 1]], axis=1)
@@ -443,6 +444,7 @@ def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) ->
         part, scope = Structure.from_cells(lattice, structure.cells[:k]), f"the first {k} of the {K} tubes"
     if _unknowns(part, 1) > budget:
         n = max(1, budget // 12 - 1)  # 4 lattice polylines of n + 1 vertices, 3 unknowns each
+        assert isinstance(lattice, PanelLattice), "a tube too large for the budget is one of panels"
         part = Structure.from_cells(lattice.head(n), structure.cells[:1])
         scope = f"the first {n} of the {len(lattice.s) - 1} panels of tube 1"
     return CertifiedMechanism(part, scope, analyse(part))

@@ -131,9 +131,9 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
             lines.append("Let the first seam set before closing the tube with the second.")
         for bond in by_tube.get(tube, []):
             others = [c for c in bond.creases if c[0] != tube]
-            mine = [c for c in bond.creases if c[0] == tube]
-            if others and mine:
-                lines.append(f"Glue {_crease_words(*mine[0])} along {', '.join(_crease_words(*c) for c in others)}.")
+            here = [c for c in bond.creases if c[0] == tube]
+            if others and here:
+                lines.append(f"Glue {_crease_words(*here[0])} along {', '.join(_crease_words(*c) for c in others)}.")
         steps.append(Step(tube + 1, tube, f"Step {tube + 1}: tube {tube + 1}", tuple(lines)))
     return AssemblyPlan(tuple(sheets), tuple(seams), tuple(steps))
 

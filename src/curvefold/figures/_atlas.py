@@ -135,8 +135,8 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     )
     fig.text(0.5, 1 - 0.08 / fig_h, title, ha="center", va="top", fontsize=title_size)
     # room for a wrapped title: grow the figure at the top, keeping the grid's size in inches
-    lines = title.count("\n") + 1
-    extra = max(0.0, (lines - 2) * title_size * 1.25 / 72)
+    title_lines = title.count("\n") + 1
+    extra = max(0.0, (title_lines - 2) * title_size * 1.25 / 72)
     if extra:
         fig.set_size_inches(fig_w, fig_h + extra)
         ax.set_position((margin_l / fig_w, margin_b / (fig_h + extra), size * cols / fig_w, size * rows / (fig_h + extra)))

@@ -375,7 +375,8 @@ class Frame:
 _INSIDE = ("upper right", "upper left", "lower left", "lower right", "center right", "center left")
 
 
-def legend_box(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[float], corner: str, *,
+def legend_box(canvas: Canvas, entries: Sequence[tuple[str, dict]],
+               rect: Sequence[float] | np.ndarray, corner: str, *,
                points: float = 7.5) -> tuple[float, float, float, float]:
     """(left, top, right, bottom) of a framed legend in the ``corner`` of ``rect`` (canvas pixels)."""
     pt = canvas.pt
@@ -388,7 +389,8 @@ def legend_box(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequen
     return x, y, x + width, y + height
 
 
-def legend(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[float], corner: str, *, points: float = 7.5,
+def legend(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[float] | np.ndarray,
+           corner: str, *, points: float = 7.5,
            framed: bool = True) -> None:
     """Draw a legend in the ``corner`` ("upper left", "lower right", "right", "below", ...) of ``rect``
     (canvas pixels): see :meth:`Frame.legend`."""
@@ -508,7 +510,8 @@ def png_bytes(picture: Image.Image, *, level: int = 3) -> bytes:
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
 
     header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)  # 8 bits, truecolour, deflate, no filter choice, no interlace
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows, level)) + chunk(b"IEND", b"")
+    data = zlib.compress(rows, level)  # type: ignore[arg-type]  # an array is a buffer
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", data) + chunk(b"IEND", b"")
 
 
 def write_png(picture: Image.Image, path: str | os.PathLike) -> Path:

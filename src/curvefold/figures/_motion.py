@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
 
@@ -34,8 +34,17 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["raster", "motion_frames", "write_motion_gif"]
 
 
-def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, supersample: int = 2, canvas: Canvas | None = None,
-           rect: Sequence[float] | None = None, title_points: float | None = None) -> Image.Image:
+@overload
+def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *,
+           supersample: int = 2, canvas: None = None, rect: None = None,
+           title_points: float | None = None) -> Image.Image: ...
+@overload
+def raster(scene: Scene, box: np.ndarray, size: tuple[int, int] | None, title: str, *,
+           supersample: int = 2, canvas: Canvas, rect: Sequence[float],
+           title_points: float | None = None) -> float: ...
+def raster(scene: Scene, box: np.ndarray, size: tuple[int, int] | None, title: str, *,
+           supersample: int = 2, canvas: Canvas | None = None, rect: Sequence[float] | None = None,
+           title_points: float | None = None) -> Image.Image | float:
     """A scene drawn with Pillow: the screen points ``box`` (P, 2) fit below a title line.
 
     Drawn at ``supersample`` times the size and reduced, so edges are smoothed; line widths
@@ -66,9 +75,11 @@ def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *, 
     from PIL import ImageDraw
 
     own = canvas is None
-    if own:
+    if canvas is None:
+        assert size is not None  # a picture of its own has a size
         canvas = Canvas(size, dpi=100.0, supersample=supersample)
         rect = (0, 0, *size)
+    assert rect is not None  # drawn into a canvas: in rect
     place = _Placement(canvas, box, rect, title, title_points)
     draw_scene(ImageDraw.Draw(canvas.image), scene, place.pixels, canvas.pt, canvas.supersample)
     place.title(title)
@@ -124,7 +135,7 @@ def motion_frames(
     obj: Vault | Structure,
     *,
     angles: Sequence[float] | None = None,
-    anchor: str = "start",
+    anchor: Literal["start", "middle"] = "start",
     view: View = View(),
     size: tuple[int, int] = (640, 480),
     segments: int = 48,

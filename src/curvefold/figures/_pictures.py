@@ -20,9 +20,25 @@ import numpy as np
 
 from ._canvas import Canvas, colour_key, legend, viridis, write_png
 from ._motion import raster
-from ._plots import DOMAIN_EDGE, DOMAIN_FILL, KIND_COLORS, MARKED_KINDS, domain_plot, section_plot, singular_values_plot, width_plot
+from ._plots import (
+    DOMAIN_EDGE,
+    DOMAIN_FILL,
+    KIND_COLORS,
+    MARKED_KINDS,
+    domain_plot,
+    section_plot,
+    singular_values_plot,
+    width_plot,
+)
 from ._scene import View, state_scene, vault_scene
-from ._views import crease_legend, motion_strip, scale_label, scale_length, structure_title, vault_title
+from ._views import (
+    crease_legend,
+    motion_strip,
+    scale_label,
+    scale_length,
+    structure_title,
+    vault_title,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from PIL import Image

@@ -31,6 +31,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
     from ..analysis._mechanism import Mechanism
+    from ..geometry._kinds import StructureLattice
     from ..geometry._lattice import Lattice
     from ..geometry._structure import State, Structure
     from ..vault._assembly import Vault
@@ -90,7 +91,7 @@ def new_figure(**kwargs: Any) -> Figure:
     return Figure(**kwargs)
 
 
-def structure_of(obj: Any) -> tuple[Structure, Lattice, float]:
+def structure_of(obj: Any) -> tuple[Structure, StructureLattice, float]:
     """(structure, lattice, design fold angle in degrees) of a Vault, Structure or State."""
     from ..geometry._structure import State, Structure
     from ..vault._assembly import Vault
@@ -182,7 +183,8 @@ class DomainPlot(FrozenArrays):
 
     def legend(self) -> list[tuple[str, dict]]:
         """(label, style) of the legend's entries: see :meth:`curvefold.figures._canvas.Frame.legend`."""
-        entries = [(self.valid_label, {"patch": DOMAIN_FILL, "edge": DOMAIN_EDGE})]
+        entries: list[tuple[str, dict]] = [
+            (self.valid_label, {"patch": DOMAIN_FILL, "edge": DOMAIN_EDGE})]
         if len(self.cells):
             entries.append((f"cells ({len(self.cells)})", {"patch": "#ffffff", "edge": "#555555"}))
         entries += [(f"lattice curve: {kind}", {"marker": KIND_COLORS[kind]}) for kind in MARKED_KINDS if (self.kinds == kind).any()]
@@ -213,7 +215,9 @@ def domain_plot(
         arr = np.asarray(cells)
         if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) == 0 or not np.issubdtype(arr.dtype, np.integer):
             raise InputError(f"cells must be a non-empty (K, 2) array of integers, got shape {arr.shape} and dtype {arr.dtype}")
-        structure = Structure(lattice, arr.astype(np.int64))  # unchecked: cells past regression are shown, not refused
+        # Unchecked: cells past regression are shown, not refused. A Lattice is a
+        # StructureLattice: its crease's fold angle is constant (not Crease's).
+        structure = Structure(lattice, arr.astype(np.int64))  # type: ignore[arg-type]
     if box is None:  # the nearest part of the boundary, and every cell
         dirs = np.array([[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, -1], [1, -1], [-1, 1]], float)
         ext = domain.extent(dirs)
@@ -275,14 +279,14 @@ def plot_regression_domain(
     ax = fig.add_subplot()
     ax.add_patch(Polygon(plot.valid, closed=True, facecolor=DOMAIN_FILL, edgecolor=DOMAIN_EDGE, linewidth=1.4, zorder=1))
     if len(plot.lines):
-        lc = LineCollection(plot.lines, cmap="viridis", linewidths=0.8, alpha=0.9, zorder=2)
+        lc = LineCollection(list(plot.lines), cmap="viridis", linewidths=0.8, alpha=0.9, zorder=2)
         lc.set_array(plot.line_t)
         lc.set_clim(0.0, 1.0)
         ax.add_collection(lc, autolim=False)
         cbar = fig.colorbar(lc, ax=ax, shrink=0.85, pad=0.02)
         cbar.set_label(plot.key_label)
     if len(plot.cells):
-        ax.add_collection(PolyCollection(plot.cells, facecolors="#ffffff80", edgecolors="#555555", linewidths=0.8, zorder=3), autolim=False)
+        ax.add_collection(PolyCollection(list(plot.cells), facecolors="#ffffff80", edgecolors="#555555", linewidths=0.8, zorder=3), autolim=False)
         for kind in MARKED_KINDS:
             sel = plot.kinds == kind
             if sel.any():
@@ -396,7 +400,7 @@ def plot_width_proportion(lattice: Lattice) -> Figure:
 # -- sections (the pantograph) --------------------------------------------------------------------
 
 
-def section_coordinates(lattice: Lattice, uv: np.ndarray, index: int) -> np.ndarray:
+def section_coordinates(lattice: StructureLattice, uv: np.ndarray, index: int) -> np.ndarray:
     """Lattice curves uv (M, 2) at sample ``index`` projected along curve 1's tangent.
 
     Returns the coordinates (M, 2) of ``x(t; u, v) − x₁(t)`` on curve 1's N(t) and B(t)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -18,11 +18,21 @@ from ..geometry._single_fold import default_widths
 from ..geometry._topology import sample_index, thin_cells
 from ..kernel._errors import InputError
 from ._plots import KIND_COLORS, UNITS, legend_handles, mathtext, new_figure
-from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, Scene, View, motion_scenes, render_strips, state_scene, vault_scene
+from ._scene import (
+    GROUND_COLOR,
+    GROUND_EDGE,
+    STRIP_RGB,
+    Scene,
+    View,
+    motion_scenes,
+    render_strips,
+    state_scene,
+    vault_scene,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
+    from matplotlib.figure import Figure, SubFigure
 
     from ..geometry._crease import Crease
     from ..geometry._structure import Structure
@@ -158,7 +168,7 @@ def motion_strip(
     vault: Vault,
     angles: Sequence[float] = (0.0, 30.0, 60.0, 90.0),
     *,
-    anchor: str = "start",
+    anchor: Literal["start", "middle"] = "start",
     view: View = View(),
     segments: int = 64,
     max_tubes: int = 100,
@@ -176,7 +186,7 @@ def motion_strip(
     return MotionStrip(scenes, titles, notes, f"Rigid folding of the vault (a = {d.a:g}, p_{{xy}} = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)")
 
 
-def crease_legend(kinds: Sequence[str], lattice: Any = None) -> list[tuple[str, dict]]:
+def crease_legend(kinds: Sequence[str] | np.ndarray, lattice: Any = None) -> list[tuple[str, dict]]:
     """(label, style) legend entries of a view's crease kinds and strips (see :meth:`curvefold.figures._canvas.Frame.legend`)."""
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
     drawn = set(kinds)
@@ -185,7 +195,8 @@ def crease_legend(kinds: Sequence[str], lattice: Any = None) -> list[tuple[str, 
     return entries + [("rigid planar panels" if rigid else "developable strips", {"patch": tuple(STRIP_RGB.tolist()), "edge": "#999999"})]
 
 
-def _legend_creases(ax: Axes, kinds: Sequence[str], lattice: Any = None, **kwargs: Any) -> None:
+def _legend_creases(ax: Axes, kinds: Sequence[str] | np.ndarray, lattice: Any = None,
+                    **kwargs: Any) -> None:
     ax.legend(handles=legend_handles(crease_legend(kinds, lattice)), fontsize=7, frameon=False, **kwargs)
 
 
@@ -198,10 +209,10 @@ def plot_vault(
     angle: float | None = None,
     ax: Axes | None = None,
     view: View = View(),
-    anchor: str = "start",
+    anchor: Literal["start", "middle"] = "start",
     segments: int = 96,
     max_tubes: int = 200,
-) -> Figure:
+) -> Figure | SubFigure:
     """One shaded 3D view of a vault: strips light grey shaded by normal, folds red, seams blue.
 
     Parameters
@@ -223,8 +234,10 @@ def plot_vault(
     Returns
     -------
     Figure
+        The new figure, or the one ``ax`` is in (a SubFigure if it is in one).
     """
     scene = vault_scene(vault, colors=KIND_COLORS, angle=angle, view=view, anchor=anchor, segments=segments, max_tubes=max_tubes)
+    fig: Figure | SubFigure
     if ax is None:
         fig = new_figure(figsize=(7.0, 5.2))
         ax = fig.add_subplot()
@@ -242,7 +255,7 @@ def plot_motion_strip(
     vault: Vault,
     angles: Sequence[float] = (0.0, 30.0, 60.0, 90.0),
     *,
-    anchor: str = "start",
+    anchor: Literal["start", "middle"] = "start",
     view: View = View(),
     segments: int = 64,
     max_tubes: int = 100,
@@ -354,7 +367,8 @@ def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = N
     if width is None:
         widths = default_widths(crease)
     else:
-        widths = tuple(float(w) for w in np.broadcast_to(np.asarray(width, float), (2,)))
+        w_left, w_right = (float(w) for w in np.broadcast_to(np.asarray(width, float), (2,)))
+        widths = (w_left, w_right)
     sheets = crease.surface("L+R+", width=widths, rulings=2)  # (2 sides, 2, n, 3); raises past regression
     idx = sample_index(len(s), segments + 1)
     curves = np.stack([sheets[0, 0], sheets[0, 1], sheets[1, 1]])[:, idx]  # crease, left edge, right edge
@@ -368,11 +382,14 @@ def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = N
     _fit(ax, scene.box, below=0.1)
     _scale_bar(ax, scene.span)
     ax.set_title(f"Curved fold: surfaces {widths[0]:.3g} | {widths[1]:.3g} {UNITS} wide", fontsize=10)
+    # An RGB array is a colour to matplotlib, not to its stubs
+    surfaces = Patch(facecolor=STRIP_RGB, edgecolor="#999999",  # type: ignore[arg-type]
+                     label="developable surfaces")
     ax.legend(
         handles=[
             Line2D([], [], color=KIND_COLORS["fold"], lw=1.5, label="crease"),
             Line2D([], [], color=KIND_COLORS["edge"], lw=1.5, label="surface edges"),
-            Patch(facecolor=STRIP_RGB, edgecolor="#999999", label="developable surfaces"),
+            surfaces,
         ],
         fontsize=7,
         frameon=False,

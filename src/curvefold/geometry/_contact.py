@@ -13,6 +13,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..kernel._arrays import distinct
+from ._kinds import StructureLattice
 from ._structure import Structure
 
 __all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
@@ -108,7 +109,7 @@ def _sweep(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np.ndarray, np
     return order, np.searchsorted(lo[order], hi[order] + grown, side="right") - np.arange(len(lo))
 
 
-def contact_scales(lattice) -> tuple[float, float]:
+def contact_scales(lattice: StructureLattice) -> tuple[float, float]:
     """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four times its largest.
 
     Examples

@@ -16,15 +16,25 @@ Conventions (the paper's Eqs. 2, 5–8, with the torsion sign corrected, see DES
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError, RegressionError
-from ..kernel._functions import Constant, Differenced, FunctionLike, ScalarFunction, as_function, check_finite, difference_step
+from ..kernel._functions import (
+    Constant,
+    Differenced,
+    FunctionLike,
+    ScalarFunction,
+    as_function,
+    check_finite,
+    difference_step,
+)
 from ._curve import SpaceCurve, check_length, check_samples
 from ._topology import quadrant_kind, quadrant_name
 
@@ -36,7 +46,8 @@ __all__ = ["Crease", "QUADRANTS", "check_fold_angle", "check_fold_angles", "half
 QUADRANTS = {quadrant_name(sl, sr): (sl, sr, quadrant_kind(sl, sr)) for sl, sr in ((1, 1), (-1, 1), (-1, -1), (1, -1))}
 
 
-def half_angle(fold_angle: float, *, degrees: bool = True, name: str = "fold_angle", allow_flat: bool = False) -> float:
+def half_angle(fold_angle: float | np.ndarray, *, degrees: bool = True, name: str = "fold_angle",
+               allow_flat: bool = False) -> float:
     """Validate a fold angle 2α and return α in radians.
 
     Parameters
@@ -88,7 +99,8 @@ def check_fold_angle(fold_angle: float, *, degrees: bool = True, name: str = "fo
     return float(fold_angle) if degrees else float(np.degrees(fold_angle))
 
 
-def check_fold_angles(fold_angles, *, degrees: bool = True, name: str = "fold_angles") -> np.ndarray:
+def check_fold_angles(fold_angles: ArrayLike, *, degrees: bool = True,
+                      name: str = "fold_angles") -> np.ndarray:
     """Validate a non-empty sequence of fold angles 2α, each in [0°, 180°), and return them in degrees.
 
     Parameters
@@ -265,13 +277,13 @@ class Crease(FrozenArrays):
         probe = np.linspace(0.0, L, max(samples, 257))
         _check_pattern(probe, ("kappa_2d", k2, np.inf), ("beta_left", bl, np.pi), ("beta_right", br, np.pi))
 
-        def rhs(s, y):
+        def rhs(s: float, y: np.ndarray) -> np.ndarray:
             return _fold_angle_rate(k2, bl, br, np.atleast_1d(s), y)
 
-        def leaves(s, y):
+        def leaves(s: float, y: np.ndarray) -> float:
             return np.sin(2 * y[0])  # zero at α = 0 and α = 90°
 
-        leaves.terminal = True
+        leaves.terminal = True  # type: ignore[attr-defined]  # SciPy reads its events' attributes
         sol = solve_ivp(rhs, (0.0, L), [a0], method="DOP853", rtol=rtol, atol=rtol * 1e-2, dense_output=True, events=leaves)
         a_probe = sol.sol(probe)[0] if sol.status == 0 else None
         if a_probe is None or not ((a_probe > 0) & (a_probe < np.pi / 2)).all():
@@ -281,6 +293,7 @@ class Crease(FrozenArrays):
             elif sol.status == -1:
                 s_end = float(sol.t[-1])
             else:
+                assert a_probe is not None  # the solver finished (status 0)
                 s_end = float(probe[np.argmax(~((a_probe > 0) & (a_probe < np.pi / 2)))])
             raise InputError(
                 f"fold angle 2α leaves (0°, 180°) at s = {s_end:.6g} (α' = ½ κ_2D tan α (cot β_L − cot β_R) drives it there); "
@@ -426,7 +439,9 @@ class Crease(FrozenArrays):
         >>> [w.round(6).tolist() for w in crease.regression_limits()]   # 1 / cos 45° and none
         [[1.414214, 1.414214, 1.414214], [inf, inf, inf]]
         """
-        return tuple(np.where(r <= 0, np.inf, 1.0 / np.where(r <= 0, 1.0, r)) for r in self.regression_rates())  # NaN stays NaN
+        left, right = (np.where(r <= 0, np.inf, 1.0 / np.where(r <= 0, 1.0, r))
+                       for r in self.regression_rates())
+        return left, right  # NaN stays NaN
 
     def ruling_limits(self) -> tuple[np.ndarray, np.ndarray]:
         """Ruling length from the crease to the curve of regression, w_lim / sin β, shape (n,).
@@ -498,7 +513,8 @@ class Crease(FrozenArrays):
         return np.stack(out)
 
 
-def ruling_vectors(frames: np.ndarray, alpha: np.ndarray, beta_left: np.ndarray, beta_right: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def ruling_vectors(frames: np.ndarray, alpha: ArrayLike, beta_left: ArrayLike,
+                   beta_right: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Rulings r_L, r_R (Eqs. 5–6) from frames (..., 3, 3) and angles (...,); each (..., 3)."""
     a = np.asarray(alpha, float)[..., None]
     bl = np.asarray(beta_left, float)[..., None]
@@ -593,7 +609,7 @@ class _PatternFoldAngle(ScalarFunction):
         The pattern, β in radians.
     """
 
-    solution: object
+    solution: Callable[[np.ndarray], np.ndarray]
     kappa_2d: ScalarFunction
     beta_left: ScalarFunction
     beta_right: ScalarFunction

@@ -114,8 +114,8 @@ def gauss_nodes(grid: np.ndarray) -> np.ndarray:
 class FramedCurve:
     """A curve with a frame at every sample: its length and the columns of its frames.
 
-    For classes holding ``s`` (n,), the curve parameter of the samples, and ``frames``
-    (n, 3, 3), rotations whose columns are the tangent, normal and binormal.
+    For classes holding ``s`` (n,), the curve parameter of the samples, ``points`` (n, 3)
+    and ``frames`` (n, 3, 3), rotations whose columns are the tangent, normal and binormal.
 
     Examples
     --------
@@ -123,6 +123,11 @@ class FramedCurve:
     >>> arc.length, arc.tangent[0].tolist(), arc.normal[0].tolist(), arc.binormal[0].tolist()
     (2.0, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])
     """
+
+    # What the subclasses hold (their fields).
+    s: np.ndarray
+    points: np.ndarray
+    frames: np.ndarray
 
     @property
     def length(self) -> float:
@@ -244,6 +249,7 @@ class SpaceCurve(FramedCurve, FrozenArrays):
             points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
         else:
             motions = integrate_motions(grid, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
+            assert rates is not None  # a coarse grid (stride > 1) comes with its rates
             points, frames = hermite_fill(s, stride, motions, rates)
         return cls(readonly(s), readonly(points), readonly(frames), kf, tf)
 

@@ -26,6 +26,7 @@ from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InternalError
@@ -66,7 +67,8 @@ class FoldArrays(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> from curvefold.geometry._fold_arrays import fold_arrays
     >>> arrays = fold_arrays(tube, fold_angles=[0, 45])
@@ -139,7 +141,7 @@ def _row_offsets(xys: Sequence[np.ndarray], gap: float) -> list[np.ndarray]:
 def fold_arrays(
     structure: Structure,
     *,
-    fold_angles=None,
+    fold_angles: ArrayLike | None = None,
     fold_angle: float | None = None,
     degrees: bool = True,
     anchor: Literal["start", "middle"] = "start",
@@ -194,7 +196,7 @@ def fold_arrays(
     offsets = _row_offsets(xys, 0.05 * size)
     v_off = np.concatenate([[0], np.cumsum([len(xy) for xy in xys])])
 
-    def cat(name):
+    def cat(name: str) -> np.ndarray:
         return np.concatenate([getattr(p.mesh, name) for p in parts])
 
     cp = Mesh(

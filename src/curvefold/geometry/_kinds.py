@@ -25,6 +25,7 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     from ._curve import FramedCurve
     from ._lattice import Lattice, RegressionDomain
+    from ._panels import PanelLattice
     from ._topology import Topology
 
 __all__ = ["FoldedCrease", "StructureLattice"]
@@ -39,11 +40,9 @@ class FoldedCrease(Protocol):
 
     Examples
     --------
-    >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> from curvefold.geometry import PanelLattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-    >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
-    >>> [(isinstance(k.crease, FoldedCrease), k.crease.fold_angle, k.crease.curve.points.shape) for k in kinds]
+    >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+    >>> [(isinstance(k.crease, FoldedCrease), k.crease.fold_angle, k.crease.curve.points.shape)
+    ...  for k in kinds]
     [(True, 90.0, (5, 3)), (True, 90.0, (5, 3))]
     """
 
@@ -68,7 +67,8 @@ class StructureLattice(Protocol):
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
     >>> from curvefold.geometry import PanelLattice
-    >>> smooth = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=33)), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=33)
+    >>> smooth = Lattice.from_crease(Crease.from_curve(curve), 0.1, 0.1)
     >>> panels = PanelLattice.from_lattice(smooth, 8)
     >>> [isinstance(k, StructureLattice) for k in (smooth, panels)]
     [True, True]
@@ -105,10 +105,7 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> from curvefold.geometry import PanelLattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
         >>> [k.points(np.array([[0, 0], [1, 1]])).shape for k in kinds]
         [(2, 5, 3), (2, 5, 3)]
         """
@@ -118,10 +115,7 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> from curvefold.geometry import PanelLattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
         >>> [k.check(np.array([[1, 1]])) for k in kinds]
         [None, None]
         >>> [k.check(np.array([[20, 0]])) for k in kinds]   # past the curve of regression
@@ -136,11 +130,9 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> from curvefold.geometry import PanelLattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
-        >>> [k.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape for k in kinds]   # triangles; planar panels
+        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+        >>> cell = np.array([[0, 1, 3, 2]])
+        >>> [k.topology(cell).faces_vertices.shape for k in kinds]   # triangles; planar panels
         [(32, 3), (16, 4)]
         """
 
@@ -149,13 +141,11 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> from curvefold.geometry import PanelLattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
         >>> [(type(k.refold(60)).__name__, round(k.refold(60).crease.fold_angle, 9)) for k in kinds]
         [('Lattice', 60.0), ('PanelLattice', 60.0)]
-        >>> [round(float(np.abs(k.refold(0).points(np.array([[1, 1]]))[..., 2]).max()), 12) for k in kinds]   # flat
+        >>> flat = [k.refold(0).points(np.array([[1, 1]])) for k in kinds]
+        >>> [round(float(np.abs(x[..., 2]).max()), 12) for x in flat]   # flat
         [0.0, 0.0]
         """
 
@@ -165,10 +155,7 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> from curvefold.geometry import PanelLattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
-        >>> kinds = (lat, PanelLattice.from_lattice(lat, 4))   # smooth curves of 5 samples, 4 panels
+        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
         >>> [k.fold_points(np.array([[1, 1]]), [0, 45, 90]).shape for k in kinds]
         [(3, 1, 5, 3), (3, 1, 5, 3)]
         >>> kinds[0].fold_points(np.array([[1, 1]]), [0]).shape   # one angle: still a leading axis
@@ -217,3 +204,13 @@ class StructureLattice(Protocol):
         Its smooth crease is the design's curve 1, which the certificate's crease checks
         measure.
         """
+
+
+def _example_kinds() -> tuple[Lattice, PanelLattice]:
+    """The lattices of the examples: a unit circle folded at 90° (5 samples, widths 0.1),
+    smooth and as 4 rigid panels."""
+    from ._lattice import _example_lattice
+    from ._panels import PanelLattice
+
+    smooth = _example_lattice()
+    return smooth, PanelLattice.from_lattice(smooth, 4)

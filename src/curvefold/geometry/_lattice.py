@@ -62,7 +62,7 @@ class RegressionDomain(FrozenArrays):
 
     Examples
     --------
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
     >>> domain.a.round(6).tolist(), domain.b.round(6).tolist()
     ([0.070711, 0.070711, 0.070711, 0.070711, 0.070711], [-0.070711, -0.070711, -0.070711, -0.070711, -0.070711])
@@ -296,9 +296,15 @@ class Pattern(FrozenArrays):
         return self.domain.t
 
 
+def constant_alpha(crease: Crease) -> float:
+    """α of a lattice's crease, the same all along it (:meth:`Pattern.from_crease` checks it)."""
+    assert crease.alpha.constant is not None, "a lattice's crease has a constant fold angle"
+    return crease.alpha.constant
+
+
 def _kappa_2d(crease: Crease) -> ScalarFunction:
     """κ_2D = κ cos α of a crease of constant fold angle."""
-    return crease.curve.kappa.scaled(np.cos(crease.alpha.constant))
+    return crease.curve.kappa.scaled(np.cos(constant_alpha(crease)))
 
 
 #: What a pattern reads from a crease, kept while the crease lives (creases are immutable).
@@ -321,7 +327,8 @@ def _compute_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.nda
     s = crease.s
     nodes = gauss_nodes(s)
     k2_nodes = _kappa_2d(crease)(nodes)
-    rates = tuple(readonly(r) for r in crease.regression_rates())
+    left, right = crease.regression_rates()
+    rates = (readonly(left), readonly(right))
     values = (log_width_ratio(crease), crease.beta_left(s), k2_nodes, k2_nodes / np.tan(crease.beta_left(nodes)))
     log_ratio, beta_samples, k2_nodes, width_rate_nodes = (readonly(v) for v in values)
     return log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes
@@ -344,7 +351,8 @@ class Lattice(FrozenArrays):
 
     Examples
     --------
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)   # a unit circle
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> lat.crease.fold_angle, lat.refold(30).pattern is lat.pattern
     (90.0, True)
     """
@@ -429,7 +437,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.speed(np.array([[0, 0], [1, 0], [0, 1]]))[:, 0].round(6).tolist()   # curve 1 has L = 1; inside, outside the bend
         [1.0, 0.929289, 1.070711]
         """
@@ -440,11 +448,11 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.section_area().round(6).tolist(), float(lat.refold(0).section_area().max())   # flat: no area
         ([0.01, 0.01, 0.01, 0.01, 0.01], 0.0)
         """
-        return self.width_left * self.width_right * np.sin(2 * self.crease.alpha.constant)
+        return self.width_left * self.width_right * np.sin(2 * constant_alpha(self.crease))
 
     # -- what the consumers of a structure ask about its kind (curvefold.geometry._kinds) ---------
     @property
@@ -473,7 +481,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.points(np.array([1, 0]))[0].round(6).tolist(), lat.points(np.array([[0, 0], [1, 1]])).shape
         ([0.0, 0.070711, 0.070711], (2, 5, 3))
         >>> bool(np.array_equal(lat.points(np.zeros(2)), lat.crease.curve.points))   # (0, 0) is curve 1
@@ -484,7 +492,8 @@ class Lattice(FrozenArrays):
     @cached_property
     def _rulings(self) -> tuple[np.ndarray, np.ndarray]:
         """ℓ_L r_L and ℓ_R r_R at this fold angle, each (n, 3), read-only."""
-        rl, rr = ruling_vectors(self.crease.curve.frames, self.crease.alpha.constant, self.beta, self.beta)
+        alpha = constant_alpha(self.crease)
+        rl, rr = ruling_vectors(self.crease.curve.frames, alpha, self.beta, self.beta)
         ll, lr = self.ruling_lengths
         return readonly(ll[:, None] * rl), readonly(lr[:, None] * rr)
 
@@ -493,7 +502,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.check(np.array([[1, 1], [-5, 0]])), lat.check(np.zeros((0, 2)))   # valid curves; no curves (see check_curves)
         (None, None)
         """
@@ -505,7 +514,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> lat.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape, lat.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]]).faces_vertices.shape
         ((32, 3), (8, 3))
         """
@@ -541,7 +550,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> frames = lat.fold_points(np.array([[1, 0]]), [0, 90])
         >>> frames.shape, float(np.abs(frames[0, ..., 2]).max())   # 2α = 0: flat
         ((2, 1, 5, 3), 0.0)
@@ -554,7 +563,8 @@ class Lattice(FrozenArrays):
         ll, lr = self.ruling_lengths
         return lattice_points(points, ll[:, None] * rl, lr[:, None] * rr, uv)
 
-    def refold(self, fold_angle: float, *, degrees: bool = True, anchor: str = "start") -> Lattice:
+    def refold(self, fold_angle: float, *, degrees: bool = True,
+               anchor: Literal["start", "middle"] = "start") -> Lattice:
         """The same lattice rigidly folded to another fold angle 2α ∈ [0°, 180°).
 
         The pattern (κ_2D, β, widths, t-correspondence) is shared; curve 1 is rebuilt with
@@ -571,7 +581,7 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> flat = lat.refold(0)   # the crease pattern: curve 1 is the circle of radius 1 / κ_2D in the plane
         >>> flat.crease.fold_angle, float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), round(float(flat.crease.curve.kappa(0.0)), 6)
         (0.0, 0.0, 0.707107)
@@ -621,7 +631,7 @@ def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, nam
 
     Examples
     --------
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> check_curves(lat.domain, 1.0, np.array([[1, 1]])) is None
     True
     >>> check_curves(lat.domain, 1.0, np.array([[20, 0]]), name="curves")
@@ -698,3 +708,9 @@ def log_width_ratio(crease: Crease) -> np.ndarray:
     integrand = crease.curve.tau(nodes) / np.tan(crease.alpha(nodes))  # = κ_2D cot β
     steps = np.diff(s) * (integrand @ GAUSS3_WEIGHTS)
     return np.concatenate([[0.0], np.cumsum(steps)])
+
+
+def _example_lattice() -> Lattice:
+    """The lattice of the examples: a unit circle folded at 90° (5 samples), widths 0.1."""
+    crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
+    return Lattice.from_crease(crease, 0.1, 0.1)

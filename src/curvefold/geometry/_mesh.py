@@ -53,11 +53,15 @@ class Mesh(FrozenArrays):
 
     Examples
     --------
-    >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+    >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+    ...               edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4,
+    ...               edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]],
+    ...               edges_kind=['boundary'] * 4, faces_group=[0])
     >>> square.vertices_coords.shape, square.faces_vertices.tolist()
     ((4, 3), [[0, 1, 2, 3]])
-    >>> Mesh(vertices_coords=np.zeros((3, 2)), edges_vertices=np.zeros((0, 2), int), edges_assignment=[], edges_foldAngle=[],
-    ...      faces_vertices=[[0, 1, 2]], edges_kind=[], faces_group=[0])
+    >>> Mesh(vertices_coords=np.zeros((3, 2)), edges_vertices=np.zeros((0, 2), int),
+    ...      edges_assignment=[], edges_foldAngle=[], faces_vertices=[[0, 1, 2]], edges_kind=[],
+    ...      faces_group=[0])
     Traceback (most recent call last):
     ...
     curvefold.kernel._errors.InputError: vertices_coords must have shape (V, 3), got (3, 2)
@@ -98,12 +102,17 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> book = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
-        ...             edges_assignment=['F', 'B', 'B', 'B', 'B'], edges_foldAngle=[0.0] * 5, faces_vertices=[[0, 1, 2], [0, 2, 3]],
-        ...             edges_kind=['fold'] + ['boundary'] * 4, faces_group=[0, 1])   # two triangles hinged on the diagonal 0–2
-        >>> book.with_coords([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]]).edges_foldAngle.round(6).tolist()
+        >>> book = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+        ...             edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
+        ...             edges_assignment=['F', 'B', 'B', 'B', 'B'], edges_foldAngle=[0.0] * 5,
+        ...             faces_vertices=[[0, 1, 2], [0, 2, 3]],
+        ...             edges_kind=['fold'] + ['boundary'] * 4,
+        ...             faces_group=[0, 1])   # two triangles hinged on the diagonal 0–2
+        >>> lifted = book.with_coords([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]])
+        >>> lifted.edges_foldAngle.round(6).tolist()
         [90.0, 0.0, 0.0, 0.0, 0.0]
-        >>> (book.with_coords(book.vertices_coords).edges_foldAngle + 0.0).tolist()   # flat: no fold
+        >>> flat = book.with_coords(book.vertices_coords)
+        >>> (flat.edges_foldAngle + 0.0).tolist()   # flat: no fold
         [0.0, 0.0, 0.0, 0.0, 0.0]
         """
         mesh = replace(self, vertices_coords=np.asarray(vertices_coords, float))
@@ -118,7 +127,7 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square = _unit_square()   # the unit square of the Mesh example
         >>> square.face_sizes().tolist(), square.triangulated().face_sizes().tolist()
         ([4], [3, 3])
         """
@@ -133,9 +142,10 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square = _unit_square()   # the unit square of the Mesh example
         >>> triangles = square.triangulated()
-        >>> triangles.faces_vertices.tolist(), str(triangles.edges_kind[-1]), triangles.triangulated() is triangles
+        >>> faces, last = triangles.faces_vertices.tolist(), str(triangles.edges_kind[-1])
+        >>> faces, last, triangles.triangulated() is triangles
         ([[0, 1, 2], [0, 2, 3]], 'diagonal', True)
         """
         faces = self.faces_vertices
@@ -163,8 +173,9 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
-        >>> square.edge_lengths().tolist(), round(float(square.triangulated().edge_lengths()[-1]), 6)
+        >>> square = _unit_square()   # the unit square of the Mesh example
+        >>> diagonal = square.triangulated().edge_lengths()[-1]
+        >>> square.edge_lengths().tolist(), round(float(diagonal), 6)
         ([1.0, 1.0, 1.0, 1.0], 1.414214)
         """
         a, b = self.vertices_coords[self.edges_vertices[:, 0]], self.vertices_coords[self.edges_vertices[:, 1]]
@@ -175,7 +186,7 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=['boundary'] * 4, faces_group=[0])
+        >>> square = _unit_square()   # the unit square of the Mesh example
         >>> square.face_normals().tolist()   # counter-clockwise seen from +z
         [[0.0, 0.0, 1.0]]
         """
@@ -200,7 +211,8 @@ def vector_areas(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np.
 
     Examples
     --------
-    >>> vector_areas(np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float), np.array([[0, 1, 2, 3]])).tolist()
+    >>> rectangle = np.array([[0, 0], [2, 0], [2, 1], [0, 1]], float)
+    >>> vector_areas(rectangle, np.array([[0, 1, 2, 3]])).tolist()
     [[0.0, 0.0, 4.0]]
     """
     x = np.asarray(vertices_coords, float)
@@ -262,9 +274,10 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
 
     Examples
     --------
-    >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
+    >>> faces = np.array([[0, 1, 2], [0, 2, 3]])
+    >>> edges_faces(faces, np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
     [[1, 0], [0, -1], [-1, -1]]
-    >>> edges_faces(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [2, 0]])).tolist()   # an edge listed both ways
+    >>> edges_faces(faces, np.array([[0, 2], [2, 0]])).tolist()   # an edge listed both ways
     [[1, 0], [0, 1]]
     """
     E = len(edges_vertices)
@@ -324,9 +337,11 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     Examples
     --------
     >>> faces, edges = np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 2], [0, 1]])
-    >>> fold_angles(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]]), faces, edges).round(6).tolist()
+    >>> lifted = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]])
+    >>> fold_angles(lifted, faces, edges).round(6).tolist()
     [90.0, 0.0]
-    >>> (fold_angles(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]]), faces, edges) + 0.0).tolist()   # flat; a boundary edge
+    >>> flat = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]])
+    >>> (fold_angles(flat, faces, edges) + 0.0).tolist()   # flat; a boundary edge
     [0.0, 0.0]
     """
     ef = edges_faces(faces_vertices, edges_vertices) if faces_of_edges is None else faces_of_edges
@@ -355,8 +370,10 @@ def dihedral_angles(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vec
 
     Examples
     --------
-    >>> areas, edges = np.array([[0.0, 0, 2], [0, 1, 0]]), np.array([[1.0, 0, 0], [1, 0, 0]])   # faces facing +z and +y
-    >>> dihedral_angles(areas, np.array([[0, 1], [0, -1]]), edges).tolist()   # hinged on the x axis; an edge with one face
+    >>> areas = np.array([[0.0, 0, 2], [0, 1, 0]])   # faces facing +z and +y
+    >>> edges = np.array([[1.0, 0, 0], [1, 0, 0]])   # along the x axis
+    >>> sides = np.array([[0, 1], [0, -1]])   # hinged on the first edge; one face at the second
+    >>> dihedral_angles(areas, sides, edges).tolist()
     [90.0, 0.0]
     """
     ef = faces_of_edges
@@ -406,3 +423,16 @@ def edges_along(edges_vertices: np.ndarray, pairs: np.ndarray) -> tuple[np.ndarr
     pos = np.minimum(np.searchsorted(ordered, wanted), len(ev) - 1)
     edge = np.where(ordered[pos] == wanted, order[pos], -1)
     return edge, (edge >= 0) & (ev[edge, 0] == p[..., 0])
+
+
+def _unit_square() -> Mesh:
+    """The unit square of the :class:`Mesh` example, one quad face, for the methods' examples."""
+    return Mesh(
+        vertices_coords=np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        edges_vertices=np.array([[0, 1], [1, 2], [2, 3], [3, 0]]),
+        edges_assignment=np.array(["B"] * 4),
+        edges_foldAngle=np.zeros(4),
+        faces_vertices=np.array([[0, 1, 2, 3]]),
+        edges_kind=np.array(["boundary"] * 4),
+        faces_group=np.array([0]),
+    )

@@ -52,7 +52,7 @@ from ..kernel._errors import InputError
 from ..kernel._lie import cross, dual_to_motion, exp_dual, prefix_dual
 from ..kernel._validate import Spec
 from ._curve import SpaceCurve
-from ._lattice import Pattern, RegressionDomain
+from ._lattice import Pattern, RegressionDomain, _example_lattice  # noqa: F401  (the examples')
 
 __all__ = ["MAX_PANELS", "PANELS", "PanelPattern", "check_panels", "fold_line_angle"]
 
@@ -163,8 +163,8 @@ class PanelPattern(FrozenArrays):
 
     Examples
     --------
-    >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> from curvefold import Crease
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> pattern = PanelPattern.from_pattern(lat.pattern, 4)
     >>> pattern.panels, pattern.s.tolist(), pattern.points.shape
     (4, [0.0, 0.25, 0.5, 0.75, 1.0], (5, 2))
@@ -268,8 +268,7 @@ class PanelPattern(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> PanelPattern.from_pattern(lat.pattern, 2).s.tolist()
         [0.0, 0.5, 1.0]
         >>> PanelPattern.from_pattern(lat.pattern, 0)
@@ -345,8 +344,7 @@ class PanelPattern(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> pattern = PanelPattern.from_pattern(lat.pattern, 4)
         >>> pattern.head(1).s.tolist()
         [0.0, 0.25]
@@ -374,8 +372,7 @@ class PanelPattern(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> pattern = PanelPattern.from_pattern(lat.pattern, 4)
         >>> points, left, right, frames = pattern.fold(np.array([0.0, np.pi / 4]))
         >>> points.shape, frames.shape, float(np.abs(points[0, :, 2]).max())   # α = 0: the flat pattern

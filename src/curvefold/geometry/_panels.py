@@ -30,7 +30,15 @@ from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
 from ._crease import half_angle
 from ._curve import FramedCurve
-from ._lattice import Lattice, RegressionDomain, check_anchor, check_curves, lattice_points
+from ._lattice import (
+    Lattice,
+    RegressionDomain,
+    _example_lattice,  # noqa: F401  (the examples' lattice)
+    check_anchor,
+    check_curves,
+    constant_alpha,
+    lattice_points,
+)
 from ._panel_pattern import PanelPattern
 from ._topology import Topology
 
@@ -74,8 +82,8 @@ class PanelCrease:
 
     Examples
     --------
-    >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> from curvefold import Crease
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> panels = PanelLattice.from_lattice(lat, 4)
     >>> panels.crease.fold_angle, panels.crease.curve.points.shape, panels.crease.curve.length
     (90.0, (5, 3), 1.0)
@@ -108,8 +116,8 @@ class PanelLattice(FrozenArrays):
 
     Examples
     --------
-    >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> from curvefold import Lattice
+    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
     >>> panels = PanelLattice.from_lattice(lat, 4)
     >>> panels.source is lat, round(float(np.degrees(2 * panels.alpha)), 9), panels.points(np.zeros(2)).shape
     (True, 90.0, (5, 3))
@@ -144,7 +152,7 @@ class PanelLattice(FrozenArrays):
         if not isinstance(lattice, Lattice):
             raise InputError(f"lattice must be a Lattice, got {type(lattice).__name__}")
         pattern = PanelPattern.from_pattern(lattice.pattern, panels)
-        a = float(lattice.crease.alpha.constant)
+        a = float(constant_alpha(lattice.crease))
         points, _, _, frames = pattern.fold(np.array([a]))
         c = lattice.crease.curve
         R = c.frames[0] @ frames[0, 0].T
@@ -157,7 +165,9 @@ class PanelLattice(FrozenArrays):
     def _state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         points, left, right, frames = self.pattern.fold(np.array([self.alpha]))
         R = self.rotation
-        return tuple(readonly(v) for v in (points[0] @ R.T + self.translation, left[0] @ R.T, right[0] @ R.T, R @ frames[0]))
+        placed = (points[0] @ R.T + self.translation, left[0] @ R.T, right[0] @ R.T, R @ frames[0])
+        x, x_left, x_right, vertex_frames = (readonly(v) for v in placed)
+        return x, x_left, x_right, vertex_frames
 
     @cached_property
     def crease(self) -> PanelCrease:
@@ -206,8 +216,8 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> from curvefold import Lattice
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.points(np.array([[1, 0], [1, 1]])).shape, panels.points(np.zeros(2))[0].tolist()   # vertex 0 of curve 1 stays at the origin
         ((2, 5, 3), [0.0, 0.0, 0.0])
@@ -220,8 +230,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.check(np.array([[1, 1]])) is None
         True
@@ -246,8 +255,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.topology(np.array([[0, 1, 3, 2]]), "triangles").faces_vertices.shape   # quads all the same
         (16, 4)
@@ -285,7 +293,8 @@ class PanelLattice(FrozenArrays):
         return self.source
 
     # -- rigid folding ----------------------------------------------------------------------------
-    def _anchored(self, alphas: np.ndarray, anchor: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _anchored(self, alphas: np.ndarray, anchor: str
+                  ) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
         """Placements (A, 3, 3), (A, 3) of the states at α (A,) keeping this state's frame at the anchor vertex, and those states."""
         check_anchor(anchor)
         k = 0 if anchor == "start" else self.pattern.panels // 2
@@ -307,8 +316,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> flat = panels.refold(0)
         >>> flat.crease.fold_angle, round(float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), 12)
@@ -326,8 +334,8 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> from curvefold import Lattice
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> frames = panels.fold_points(np.array([[1, 1]]), [0, 90])
         >>> frames.shape, bool(np.allclose(frames[1], panels.points(np.array([[1, 1]])), atol=1e-12))
@@ -335,17 +343,15 @@ class PanelLattice(FrozenArrays):
         """
         alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
         R, shift, (points, left, right, _) = self._anchored(alphas, anchor)
-        moved = [np.einsum("aij,akj->aki", R, v) for v in (points, left, right)]
-        moved[0] = moved[0] + shift[:, None]
-        return lattice_points(*moved, uv)
+        points, left, right = (np.einsum("aij,akj->aki", R, v) for v in (points, left, right))
+        return lattice_points(points + shift[:, None], left, right, uv)
 
     def head(self, panels: int) -> PanelLattice:
         """The lattice of the first ``panels`` panels, in place (:meth:`PanelPattern.head`).
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> head = panels.head(2)
         >>> head.points(np.zeros(2)).shape, bool(np.allclose(head.points(np.zeros(2)), panels.points(np.zeros(2))[:3], atol=1e-12))
@@ -358,8 +364,7 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> lifted = panels.moved(np.eye(3), [0, 0, 1])
         >>> (lifted.points(np.zeros(2)) - panels.points(np.zeros(2))).round(12)[0].tolist()

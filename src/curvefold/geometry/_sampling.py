@@ -83,7 +83,8 @@ class Sampling(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> s = choose_sampling(tube)   # 5 samples: none to spare
     >>> s.vertices_per_crease, s.samples, s.deviation
@@ -112,7 +113,8 @@ class Sampling(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
         >>> summary = choose_sampling(tube).summary()
         >>> summary["samples_computed"], summary["mesh_samples_per_crease"], summary["mesh_deviation"]
@@ -317,11 +319,11 @@ def _walks(points: np.ndarray, n: int, walks: list[tuple[int, int, int]], limits
     """The kept samples of each walk (tube, start, stop) on the tubes' curves (:func:`_tube_points`, n
     samples) (:func:`_walk`), the walks measured in lockstep: each round, every step they ask about at once."""
     picks: list = [None] * len(walks)
-    asking = {}
+    asking: dict[int, tuple[tuple[int, np.ndarray], ...]] = {}
 
     def advance(w: int, answer: list | None) -> None:
         try:
-            asking[w] = running[w].send(answer)
+            asking[w] = next(running[w]) if answer is None else running[w].send(answer)
         except StopIteration as done:
             picks[w] = done.value
             asking.pop(w, None)

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError, InternalError
@@ -90,7 +91,8 @@ class PatternSheet(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> a, b = sheets(tube)
     >>> a.label, a.mesh.vertices_coords.shape, float(np.abs(a.mesh.vertices_coords[:, 2]).max())
@@ -194,7 +196,8 @@ class FlatPlane(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> plane = flat_plane(tube.state(0))
     >>> plane.origin.tolist(), plane.axes.round(6).tolist(), plane.residual
@@ -245,7 +248,8 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> flat_plane(tube.state(0)).residual
     0.0
@@ -457,7 +461,8 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> bonds(tube)   # a single tube has none
     ()
@@ -536,7 +541,8 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
 # folding motion
 
 
-def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, anchor: str = "start",
+def folding_motion(structure: Structure, fold_angles: ArrayLike, *, degrees: bool = True,
+                   anchor: Literal["start", "middle"] = "start",
                    keep: Sequence[np.ndarray] | None = None, topology: Topology | None = None) -> np.ndarray:
     """Vertex positions of ``State.mesh(keep=keep)`` at many fold angles at once, shape (A, V, 3).
 
@@ -560,7 +566,8 @@ def folding_motion(structure: Structure, fold_angles, *, degrees: bool = True, a
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> motion = folding_motion(tube, [0, 90])
     >>> motion.shape, bool(np.allclose(motion[1], tube.state(90).mesh().vertices_coords, atol=1e-12))

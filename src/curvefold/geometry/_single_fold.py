@@ -18,6 +18,7 @@ from functools import cached_property
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kernel._errors import InputError
 from ..kernel._functions import ScalarFunction
@@ -45,8 +46,8 @@ def default_widths(crease: Crease) -> tuple[float, float]:
     [0.45, 0.45]
     """
     length = crease.curve.length
-    limits = [float(np.min(w)) for w in crease.regression_limits()]
-    return tuple(min(0.15 * length, 0.6 * limit) for limit in limits)
+    left, right = (min(0.15 * length, 0.6 * float(np.min(w))) for w in crease.regression_limits())
+    return left, right
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,7 +104,8 @@ class SingleFold:
         curvefold.kernel._errors.InputError: the strips' widths must be positive, got (0.0, 0.44999999999999996)
         """
         default = default_widths(crease)
-        w = tuple(float(d if g is None else g) for g, d in zip(widths, default))
+        w_left, w_right = (float(d if g is None else g) for g, d in zip(widths, default))
+        w = (w_left, w_right)
         if not all(np.isfinite(w)) or min(w) <= 0:
             raise InputError(f"the strips' widths must be positive, got {w}")
         crease.surface(width=w)  # refuses a width past a curve of regression, naming it
@@ -231,7 +233,8 @@ class SingleFold:
         """
         return self.topology(faces).mesh(self.curves(fold_angle))
 
-    def arrays(self, fold_angles, faces: Literal["triangles", "quads"] = "triangles") -> tuple[Mesh, tuple[tuple[str, Mesh], ...]]:
+    def arrays(self, fold_angles: ArrayLike, faces: Literal["triangles", "quads"] = "triangles"
+               ) -> tuple[Mesh, tuple[tuple[str, Mesh], ...]]:
         """The crease pattern (z = 0, the design state's fold angles) and the folded frames at ``fold_angles``
         (degrees, titled ``"fold angle 30°"``), every frame with the dihedral angle it has at every edge with two faces.
 

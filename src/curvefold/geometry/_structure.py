@@ -55,7 +55,8 @@ class Structure(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> tube.cells.tolist(), tube.curve_kinds
     ([[0, 0]], ('fold', 'seam', 'seam', 'fold'))
@@ -69,7 +70,8 @@ class Structure(FrozenArrays):
     cells: np.ndarray
 
     @classmethod
-    def from_cells(cls, lattice: StructureLattice, cells: Sequence[Sequence[int]]) -> Structure:
+    def from_cells(cls, lattice: StructureLattice,
+                   cells: Sequence[Sequence[int]] | np.ndarray) -> Structure:
         """A structure of the given cells, refused if any crease passes regression.
 
         Parameters
@@ -105,7 +107,8 @@ class Structure(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> Structure.tube(lat).cells.tolist()
         [[0, 0]]
         """
@@ -127,7 +130,8 @@ class Structure(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> Structure.diagonal(lat, 3).cells.tolist(), Structure.diagonal(lat, 1, direction=-1).cells.tolist()
         ([[0, 0], [1, 1], [2, 2]], [[-1, -1]])
         >>> Structure.diagonal(lat, 0)
@@ -175,7 +179,8 @@ class Structure(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
         >>> np.degrees(tube.dihedral_angles(60)).round(6).tolist()
         [[120.0, 60.0, 120.0, 60.0]]
@@ -205,7 +210,8 @@ class Structure(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
         >>> tube.topology().faces_vertices.shape, tube.topology("quads").faces_vertices.shape
         ((32, 3), (16, 4))
@@ -234,7 +240,8 @@ class Structure(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
         >>> tube.state().fold_angle, round(tube.state(60).fold_angle, 9), tube.state().vertices.shape
         (90.0, 60.0, (4, 5, 3))
@@ -265,7 +272,8 @@ class State(FrozenArrays):
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> state = Structure.tube(lat).state(45)
     >>> round(state.fold_angle, 9), state.vertices.shape, state.vertices.flags.writeable
     (45.0, (4, 5, 3), False)
@@ -292,7 +300,8 @@ class State(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+        >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+        >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> state = Structure.tube(lat).state()
         >>> mesh = state.mesh()
         >>> mesh.vertices_coords.shape, mesh.faces_vertices.shape, sorted(set(mesh.edges_kind.tolist()))
@@ -343,7 +352,8 @@ def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_c
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.1)
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
+    >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> curves, cells, kinds = drawable(tube, tube.state().vertices, segments=2, max_cells=1)
     >>> curves.shape, cells.tolist(), kinds

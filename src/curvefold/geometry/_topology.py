@@ -473,7 +473,8 @@ def is_tube_numbering(topology: Topology, cell_curves: np.ndarray, samples: int)
             and np.array_equal(topology.faces_vertices, face_rows.reshape(-1, 3)) and np.array_equal(topology.edges_vertices, np.concatenate(edges)))
 
 
-def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int, faces: str, keep: Sequence[np.ndarray]) -> Topology:
+def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int,
+                faces: Literal["triangles", "quads"], keep: Sequence[np.ndarray]) -> Topology:
     """:meth:`Topology.tubes` with its own samples per tube: the tubes one by one, renumbered."""
     if len(keep) != len(cells):
         raise InputError(f"keep must list the samples of each of the {len(cells)} tubes, got {len(keep)} lists")

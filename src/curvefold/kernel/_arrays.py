@@ -4,17 +4,20 @@ distinct values of an array, as every module takes them (:func:`distinct`)."""
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterator
+from typing import Any, ClassVar
 
 import numpy as np
 
 __all__ = ["readonly", "frozen", "FrozenArrays", "distinct"]
 
 
-def _chain(array: np.ndarray):
+def _chain(array: np.ndarray) -> Iterator[np.ndarray]:
     """``array`` and the arrays it is a view of."""
-    while isinstance(array, np.ndarray):
-        yield array
-        array = array.base
+    item: object = array  # a base may be another buffer than an array
+    while isinstance(item, np.ndarray):
+        yield item
+        item = item.base
 
 
 def readonly(array: np.ndarray) -> np.ndarray:
@@ -68,6 +71,8 @@ class FrozenArrays:
     False
     """
 
+    __dataclass_fields__: ClassVar[dict[str, dataclasses.Field[Any]]]  # a dataclass's
+
     def __post_init__(self) -> None:
         for name in self.__dataclass_fields__:
             value = getattr(self, name, None)  # fields with init=False may not be set yet
@@ -76,7 +81,7 @@ class FrozenArrays:
             elif isinstance(value, tuple) and value and all(isinstance(v, np.ndarray) for v in value):
                 object.__setattr__(self, name, tuple(frozen(v) for v in value))
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[type[FrozenArrays], tuple[object, ...]]:
         return type(self), tuple(getattr(self, f.name) for f in dataclasses.fields(self) if f.init)
 
 

@@ -27,6 +27,7 @@ import ast
 import keyword
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TypeAlias
 
 import numpy as np
 
@@ -87,7 +88,7 @@ FUNCTIONS: dict[str, tuple[Callable[..., np.ndarray], int]] = {
     "clip": (_clip, 3),
 }
 
-_BINARY: dict[type, Callable[[np.ndarray, np.ndarray], np.ndarray]] = {
+_BINARY: dict[type, Callable[..., np.ndarray]] = {  # on arrays or float64 constants
     ast.Add: np.add,
     ast.Sub: np.subtract,
     ast.Mult: np.multiply,
@@ -95,6 +96,11 @@ _BINARY: dict[type, Callable[[np.ndarray, np.ndarray], np.ndarray]] = {
     ast.Pow: np.power,
 }
 _UNARY: dict[type, Callable[[np.ndarray], np.ndarray]] = {ast.UAdd: np.positive, ast.USub: np.negative}
+
+#: A compiled piece of an expression: a function of the variable's values, which may return
+#: a scalar, or a constant folded at compile time.
+_Values: TypeAlias = Callable[[np.ndarray], "np.ndarray | np.float64"]
+_Node: TypeAlias = "np.float64 | _Values"
 
 # Spelling of refused operators, for messages.
 _OPERATOR_TEXT: dict[type, str] = {
@@ -172,7 +178,7 @@ class Expression:
     text: str
     variable: str
     constant: float | None = field(compare=False)
-    function: Callable[[np.ndarray], np.ndarray] = field(repr=False, compare=False)
+    function: _Values = field(repr=False, compare=False)
 
     def __call__(self, s: np.ndarray) -> np.ndarray:
         """Evaluate at ``s`` (any shape); returns a new float64 array of the same shape."""
@@ -181,7 +187,7 @@ class Expression:
             out = self.function(x)
         return np.array(np.broadcast_to(out, x.shape), dtype=float)
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[Callable[[str, str], Expression], tuple[str, str]]:
         # Closures do not pickle; recompiling the text does.
         return (_recompile, (self.text, self.variable))
 
@@ -244,7 +250,7 @@ def compile_expression(text: str, *, variable: str = "s", name: str = "expressio
     if callable(node):
         return Expression(text, variable, None, node)
     value = np.float64(node)
-    return Expression(text, variable, float(value), lambda s, v=value: v)
+    return Expression(text, variable, float(value), _constant(value))
 
 
 def _check_variable(variable: str, name: str) -> None:
@@ -328,7 +334,7 @@ class _Compiler:
     def refuse(self, node: ast.AST, message: str) -> InputError:
         return InputError(f"{self.name}: {message} ({self.piece(node)!r})")
 
-    def build(self, node: ast.AST):
+    def build(self, node: ast.AST) -> _Node:
         """A float64 constant (folded now) or a function of the variable."""
         if isinstance(node, ast.Constant):
             return self.literal(node)
@@ -363,7 +369,7 @@ class _Compiler:
             raise self.refuse(node, "number is too large for float64")
         return np.float64(number)
 
-    def name_value(self, node: ast.Name):
+    def name_value(self, node: ast.Name) -> _Node:
         if node.id == self.variable:
             return _identity
         if node.id in CONSTANTS:
@@ -374,16 +380,17 @@ class _Compiler:
         hint = "; 'tau' is not a constant here (τ means torsion), write 2*pi" if node.id == "tau" else ""
         raise InputError(f"{self.name}: unknown name {node.id!r} (allowed: {allowed}){hint}")
 
-    def binary(self, node: ast.BinOp):
+    def binary(self, node: ast.BinOp) -> _Node:
         """A chain of binary operations along their left operands (``a + b - c * d …``, a
         sum of many terms) is built in one loop and evaluated in one: it nests no deeper
         than a single operation, when compiled or evaluated."""
         spine = []
-        while isinstance(node, ast.BinOp):
-            spine.append(node)
-            node = node.left
-        value = self.build(node)
-        steps: list[tuple[Callable, object]] = []
+        left: ast.expr = node
+        while isinstance(left, ast.BinOp):
+            spine.append(left)
+            left = left.left
+        value = self.build(left)
+        steps: list[tuple[Callable[..., np.ndarray], _Node]] = []
         for step in reversed(spine):
             op = _BINARY.get(type(step.op))
             if op is None:
@@ -400,7 +407,7 @@ class _Compiler:
                 value = np.float64(op(value, right))  # a constant start of the chain is folded now
         return _chain(value, steps) if steps else value
 
-    def call(self, node: ast.Call):
+    def call(self, node: ast.Call) -> _Node:
         func = node.func
         if not isinstance(func, ast.Name):
             raise self.refuse(node, "only plain function names can be called")
@@ -424,10 +431,15 @@ def _identity(s: np.ndarray) -> np.ndarray:
     return s
 
 
-def _chain(first, steps: list[tuple[Callable, object]]) -> Callable[[np.ndarray], np.ndarray]:
+def _constant(value: np.float64) -> _Values:
+    """The function of a constant: ``value`` whatever the variable."""
+    return lambda s: value
+
+
+def _chain(first: _Node, steps: list[tuple[Callable[..., np.ndarray], _Node]]) -> _Values:
     """``(((first op₁ part₁) op₂ part₂) …)``, left to right in one loop; constants or functions."""
 
-    def evaluate(s: np.ndarray) -> np.ndarray:
+    def evaluate(s: np.ndarray) -> np.ndarray | np.float64:
         value = first(s) if callable(first) else first
         for op, part in steps:
             value = op(value, part(s) if callable(part) else part)
@@ -436,11 +448,11 @@ def _chain(first, steps: list[tuple[Callable, object]]) -> Callable[[np.ndarray]
     return evaluate
 
 
-def _apply(fn: Callable[..., np.ndarray], args: list):
+def _apply(fn: Callable[..., np.ndarray], args: list[_Node]) -> _Node:
     """Fold constant arguments now; otherwise return a closure over the argument functions."""
     if not any(callable(a) for a in args):
         return np.float64(fn(*args))
-    parts = [a if callable(a) else (lambda s, v=a: v) for a in args]
+    parts = [a if callable(a) else _constant(a) for a in args]
     if len(parts) == 1:
         (f,) = parts
         return lambda s: fn(f(s))

@@ -172,8 +172,8 @@ class Sampled(FrozenArrays, ScalarFunction):
 
     samples: np.ndarray
     length: float
-    spline: object = field(init=False, repr=False)
-    slope: object = field(init=False, repr=False)
+    spline: Callable[[np.ndarray], np.ndarray] = field(init=False, repr=False)
+    slope: Callable[[np.ndarray], np.ndarray] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         from scipy.interpolate import CubicSpline

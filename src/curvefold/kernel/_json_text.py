@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import numpy as np
 
@@ -11,7 +12,7 @@ from ._errors import InternalError
 __all__ = ["plain", "strict_json"]
 
 
-def plain(value):
+def plain(value: object) -> object:
     """A JSON-ready form of NumPy scalars and arrays (anything else as its text).
 
     Examples
@@ -26,7 +27,7 @@ def plain(value):
     return str(value)
 
 
-def strict_json(value, **kwargs) -> str:
+def strict_json(value: object, **kwargs: Any) -> str:
     """JSON text of ``value`` (NumPy values as plain numbers), refusing NaN and infinities.
 
     Raises
@@ -50,7 +51,7 @@ def strict_json(value, **kwargs) -> str:
         raise InternalError(f"the result holds a number that is not finite: {_non_finite(value)}") from None
 
 
-def _non_finite(value, key: str = "result") -> str | None:
+def _non_finite(value: object, key: str = "result") -> str | None:
     """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
     if isinstance(value, dict):
         return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)

@@ -20,7 +20,11 @@ so that every operation runs on contiguous arrays of samples.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import Any, TypeAlias
+
 import numpy as np
+from numpy.typing import NDArray
 
 __all__ = [
     "GAUSS3_NODES",
@@ -40,6 +44,10 @@ __all__ = [
     "cross",
     "cross3",
 ]
+
+#: Component-major vectors as the private products take them: an array with its components
+#: first, or a tuple of its components (arrays, or numbers for a constant component).
+_Vectors: TypeAlias = np.ndarray | Sequence[Any]
 
 #: Gauss–Legendre nodes on [0, 1] (three points, order 6) and their weights.
 GAUSS3_NODES = np.array([0.5 - np.sqrt(15.0) / 10.0, 0.5, 0.5 + np.sqrt(15.0) / 10.0])
@@ -79,7 +87,7 @@ def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def _cross3(a, b) -> tuple:
+def _cross3(a: _Vectors, b: _Vectors) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Cross product of component-major vectors (3 arrays)."""
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
@@ -181,7 +189,7 @@ def magnus6_rotation(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: n
     return (a1 + E / 12 + g * w[0], g * w[1], c1 + G / 12 + g * w[2])
 
 
-def _qmul(a, b) -> tuple:
+def _qmul(a: _Vectors, b: _Vectors) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Hamilton product of component-major quaternions (w, x, y, z)."""
     aw, ax, ay, az = a
     bw, bx, by, bz = b
@@ -309,7 +317,7 @@ _L_INDEX = np.array([[0, 1, 2, 3], [1, 0, 3, 2], [2, 3, 0, 1], [3, 2, 1, 0]])
 _L_SIGN = np.array([[1, -1, -1, -1], [1, 1, -1, 1], [1, 1, 1, -1], [1, -1, 1, 1]], float)
 _IDENTITY = np.array([1.0, 0.0, 0.0, 0.0])
 #: (ab)_i = Σ_jk _HAMILTON[i, 4j + k] a_j b_k, from L(a)[i, k] = _L_SIGN[i, k] a[_L_INDEX[i, k]].
-_HAMILTON = np.zeros((4, 4, 4))
+_HAMILTON: NDArray[np.float64] = np.zeros((4, 4, 4))
 _HAMILTON[np.arange(4)[:, None], _L_INDEX, np.arange(4)[None, :]] = _L_SIGN
 _HAMILTON = _HAMILTON.reshape(4, 16)
 _DQ_INDEX = np.block([[_L_INDEX, np.full((4, 4), 8)], [_L_INDEX + 4, _L_INDEX]])

@@ -44,7 +44,7 @@ from __future__ import annotations
 import difflib
 import json
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
@@ -139,7 +139,7 @@ class Interval:
         return f"in {left}{_fmt(self.lo)}, {_fmt(self.hi)}{right}"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Spec:
     """One parameter: its name, kind of value, default, range, unit and meaning.
 
@@ -192,13 +192,20 @@ class Spec:
     typical: Interval | None = None
     label: str = ""
 
-    def __post_init__(self) -> None:
-        if self.kind not in KINDS:
-            raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
-        for name in ("range", "typical"):
-            if isinstance(getattr(self, name), str):
-                object.__setattr__(self, name, Interval.parse(getattr(self, name)))
-        object.__setattr__(self, "choices", tuple(self.choices))
+    # The fields, in their order; a range also in its notation ("(0, 180)"), held as an Interval.
+    def __init__(self, name: str, kind: str, default: Any = REQUIRED,
+                 range: Interval | str | None = None, unit: str = "", help: str = "", why: str = "",
+                 choices: Iterable[str] = (), typical: Interval | str | None = None,
+                 label: str = "") -> None:
+        if kind not in KINDS:
+            raise ValueError(f"kind must be one of {KINDS}, got {kind!r}")
+        range_, typical_ = (Interval.parse(x) if isinstance(x, str) else x
+                            for x in (range, typical))
+        values = {"name": name, "kind": kind, "default": default, "range": range_, "unit": unit,
+                  "help": help, "why": why, "choices": tuple(choices), "typical": typical_,
+                  "label": label}
+        for key, value in values.items():
+            object.__setattr__(self, key, value)
 
     @property
     def required(self) -> bool:
@@ -263,10 +270,10 @@ class Spec:
         ...
         curvefold.kernel._errors.InputError: kappa must be finite and > 0; at sample 1 it is 0
         """
-        bad = np.flatnonzero(~self.range.mask(values))
+        bad = np.flatnonzero(~_bounds(self).mask(values))
         if bad.size:
             i = int(bad[0])
-            need = "finite" if self.range.unbounded else f"finite and {self.requirement}"
+            need = "finite" if _bounds(self).unbounded else f"finite and {self.requirement}"
             raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}", parameter=self.name)
 
     def describe(self) -> str:
@@ -391,6 +398,12 @@ def check_integer(value: Any, name: str, range: Interval | str, *, why: str = ""
     return Spec(name, "integer", range=range, why=why).check(value)
 
 
+def _bounds(spec: Spec) -> Interval:
+    """The range of a spec of a kind that has one (a number, a function, a page, cells)."""
+    assert spec.range is not None, f"{spec.name}: a {spec.kind} has a range"
+    return spec.range
+
+
 def _real(spec: Spec, value: Any, where: str, shown: str | None) -> float:
     if not _is_number(value):
         unit = f" ({spec.unit})" if spec.unit else ""
@@ -401,7 +414,7 @@ def _real(spec: Spec, value: Any, where: str, shown: str | None) -> float:
         raise InputError(f"{where} is too large, got an integer of {int(value).bit_length()} bits") from None
     if not math.isfinite(x):
         raise InputError(f"{where} must be a finite number, got {shown or x}")
-    if x not in spec.range:
+    if x not in _bounds(spec):
         raise InputError(f"{where} must be {spec.requirement}, got {shown or repr(x)}")
     return x
 
@@ -413,7 +426,7 @@ def _function(spec: Spec, value: Any, where: str, shown: str | None) -> float:
 
 
 def _integer(spec: Spec, value: Any, where: str, shown: str | None) -> int:
-    if not is_integer(value) or value not in spec.range:
+    if not is_integer(value) or value not in _bounds(spec):
         raise InputError(f"{where} must be an integer {spec.requirement}, got {shown or describe(value)}")
     return int(value)
 
@@ -421,7 +434,7 @@ def _integer(spec: Spec, value: Any, where: str, shown: str | None) -> int:
 def _count(spec: Spec, value: Any, where: str, shown: str | None) -> int | str:
     if isinstance(value, str) and value == "max":
         return value
-    if not is_integer(value) or value not in spec.range:
+    if not is_integer(value) or value not in _bounds(spec):
         raise InputError(f'{where} must be an integer {spec.requirement} or "max", got {shown or describe(value)}')
     return int(value)
 
@@ -473,7 +486,8 @@ def _cells(spec: Spec, value: Any, where: str, shown: str | None) -> tuple[tuple
         raise InputError(f"{where} must be an array of 1 to {MAX_CELLS} [i, j] pairs, got {shown or describe(value)}")
     seen: dict[tuple[int, int], int] = {}
     for n, cell in enumerate(value):
-        if not (isinstance(cell, (list, tuple)) and len(cell) == 2 and all(is_integer(x) and x in spec.range for x in cell)):
+        pair_ok = isinstance(cell, (list, tuple)) and len(cell) == 2
+        if not (pair_ok and all(is_integer(x) and x in _bounds(spec) for x in cell)):
             raise InputError(f"{where}[{n}] must be a pair [i, j] of integers {spec.range}, got {describe(cell)}")
         pair = (int(cell[0]), int(cell[1]))
         if pair in seen:
@@ -542,7 +556,7 @@ def describe(value: Any) -> str:
     return f"{type(value).__name__} {text}"
 
 
-def suggest(key: Any, options) -> str:
+def suggest(key: Any, options: Iterable[str]) -> str:
     """``"; did you mean 'x'?"`` for the closest of ``options``, or ``""``.
 
     Examples

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..geometry._crease import Crease, half_angle
 from ..geometry._curve import SpaceCurve, check_samples
+from ..geometry._kinds import StructureLattice
 from ..geometry._lattice import Lattice
 from ..geometry._panel_pattern import PANELS
 from ..geometry._panels import PanelLattice
@@ -30,7 +31,15 @@ from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError, RegressionError
 from ..kernel._lie import cross
 from ..kernel._validate import Interval, Spec, check_integer
-from ._arch import A_MAX, A_STANDING, ArchRoot, HarmonicTorsion, proportion_change, solve_panel_arch, solve_symmetric_arch
+from ._arch import (
+    A_MAX,
+    A_STANDING,
+    ArchRoot,
+    HarmonicTorsion,
+    proportion_change,
+    solve_panel_arch,
+    solve_symmetric_arch,
+)
 
 __all__ = [
     "VaultDesign",
@@ -166,7 +175,9 @@ class VaultDesign:
         if self.samples % 2 == 0 or self.samples < MIN_SAMPLES:
             raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}", parameter="samples")
         if self.tubes is not None:
-            check_integer(self.tubes, "tubes", _SPEC["tubes"].range, why="or None for the maximum")
+            tubes = _SPEC["tubes"].range
+            assert tubes is not None  # a count's spec has a range
+            check_integer(self.tubes, "tubes", tubes, why="or None for the maximum")
         if self.direction not in (1, -1):
             raise InputError(f"direction must be +1 or -1, got {self.direction!r}", parameter="direction")
         if PANELS.check(self.panels) % 2:
@@ -197,7 +208,8 @@ def standing(lattice: PanelLattice) -> PanelLattice:
     return lattice.moved(rotation, -rotation @ points[0])
 
 
-def max_tubes(lattice: Lattice, *, direction: int = 1, limit: int = MAX_TUBES_SEARCH) -> int:
+def max_tubes(lattice: StructureLattice, *, direction: int = 1,
+              limit: int = MAX_TUBES_SEARCH) -> int:
     """Largest n such that the tubes [j, j+1]², j = 0 … n−1 (stacked in ±(u, v)) are free of regression.
 
     All four corner creases of every tube must be valid lattice curves (Eq. 18). The valid
@@ -283,7 +295,7 @@ class Vault(FrozenArrays):
 
     design: VaultDesign
     arch: ArchRoot
-    lattice: Lattice
+    lattice: StructureLattice
     structure: Structure
     max_tubes: int
 
@@ -319,13 +331,18 @@ class Vault(FrozenArrays):
         curvefold.kernel._errors.RegressionError: tubes must be ≤ 9 (the maximum before regression for a = 0.3, p_xy = 0.75, width = 0.08), got 1000
         """
         design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
-        arch, crease = arch_crease(design.a, design.panels, design.radius, design.fold_angle, design.samples) if arch is None else arch
+        if arch is None:
+            arch = arch_crease(design.a, design.panels, design.radius, design.fold_angle,
+                               design.samples)
+        root, crease = arch
         k0, a = 1.0 / design.radius, design.a
         w_left = design.width / k0
         try:
-            lattice = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
+            smooth = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
+            # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)
+            lattice: StructureLattice = smooth  # type: ignore[assignment]
             if design.panels:
-                lattice = standing(PanelLattice.from_lattice(lattice, design.panels))
+                lattice = standing(PanelLattice.from_lattice(smooth, design.panels))
         except RegressionError as err:
             raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}", parameter="width") from None
         n_max = max_tubes(lattice, direction=design.direction)
@@ -336,7 +353,7 @@ class Vault(FrozenArrays):
                 f"width = {design.width:g}), got {tubes}", parameter="tubes",
             )
         structure = Structure.diagonal(lattice, tubes, direction=design.direction, layers=design.layers)
-        return cls(replace(design, tubes=tubes), arch, lattice, structure, n_max)
+        return cls(replace(design, tubes=tubes), root, lattice, structure, n_max)
 
     # -- derived quantities -----------------------------------------------------------------
     @property
@@ -440,6 +457,8 @@ class Vault(FrozenArrays):
         p_xy_measured, change_measured = self.measured_proportions()
         chord = self.lattice.crease.curve.points[-1] - self.lattice.crease.curve.points[0]
         uv = self.structure.curves_uv
+        tubes = self.design.tubes
+        assert tubes is not None  # from_design sets the count
         return {
             "design": asdict(self.design),
             "kappa0_s0": self.kappa0_s0,
@@ -448,7 +467,7 @@ class Vault(FrozenArrays):
             "proportion_change_measured": change_measured,
             "p_xy_measured": p_xy_measured,
             "p_xz": self.p_xz,
-            "tubes": int(self.design.tubes),
+            "tubes": int(tubes),
             "panels": int(self.design.panels),
             "max_tubes": int(self.max_tubes),
             "span": float(np.linalg.norm(chord)),

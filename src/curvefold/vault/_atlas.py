@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import pickle
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from contextlib import closing
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
@@ -556,7 +556,8 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
     with cluster_client(workers, scheduler) as client:
         if client is None:
             arches: dict = {}  # one row's arch, shared by the designs handed out one by one
-            chunks: Iterator[list] = (_evaluate_chunk([point], design, step, arches) for point in grid.points())
+            chunks: Generator[list, None, None] = (
+                _evaluate_chunk([point], design, step, arches) for point in grid.points())
         else:
             threads = max(1, sum(client.nthreads().values()))
             sizes = task_sizes(total, grid.shape[1], threads)
@@ -591,7 +592,8 @@ def _evaluate_packed(points: Sequence[tuple[int, int, float, float]], design: di
     return pickle.dumps(_evaluate_chunk(points, design, step), protocol=pickle.HIGHEST_PROTOCOL)
 
 
-def _unpacked(packed: Iterator[bytes]) -> Iterator[list[tuple[dict, Sketch | None]]]:
+def _unpacked(packed: Generator[bytes, None, None]
+              ) -> Generator[list[tuple[dict, Sketch | None]], None, None]:
     """The results of :func:`_evaluate_packed` tasks, as they come; closing it closes ``packed``."""
     with closing(packed):
         for blob in packed:

@@ -13,15 +13,15 @@ import importlib.util
 import logging
 import os
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Generator, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from itertools import islice
 from types import MappingProxyType
 from typing import Any
 
 from ..kernel._errors import InputError
-from ..kernel._version import VERSION
 from ..kernel._validate import Spec
+from ..kernel._version import VERSION
 
 __all__ = ["LOCAL_CLUSTER_FROM", "CLUSTER_SETTINGS", "batched", "client", "cluster_plan", "in_order", "local_cluster", "worker_environment", "workers_spec"]
 
@@ -141,7 +141,8 @@ def batched(items: Iterable, sizes: Iterable[int]) -> Iterator[list]:
         yield batch
 
 
-def in_order(submit: Callable[[Any], Any], tasks: Iterable, window: int) -> Iterator[Any]:
+def in_order(submit: Callable[[Any], Any], tasks: Iterable,
+             window: int) -> Generator[Any, None, None]:
     """The results of ``submit(task)`` (a future) for every task, in order, ``window`` futures at a time.
 
     The oldest future is waited for while the others run; when it is done the next task is

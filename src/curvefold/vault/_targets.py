@@ -188,6 +188,7 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
 def _fit_tube_count(design: VaultDesign, given: dict, rtol: float) -> TargetFit:
     """The fit with the most tubes that reaches the targets, counting down from the most the design has as given."""
     most = Vault.from_design(design).design.tubes
+    assert most is not None  # a vault's design has its count
     for tubes in range(most, 0, -1):
         fit = fit_targets(replace(design, tubes=tubes), rtol=rtol, **given)
         if fit.reached:
@@ -205,6 +206,8 @@ def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -
     states is always met (rise/span is continuous on it), so a refusal agrees with its words.
     """
     from scipy.optimize import brentq
+
+    assert design.tubes is not None  # fit_targets fits a count of None otherwise (_fit_tube_count)
 
     def value(a: float) -> float:
         """rise/span at a, NaN where the family cannot build the vault (regression, no arch)."""
