@@ -3,7 +3,7 @@
 # the first argument (default dev: every extra with the test, docs and lint tools), the
 # Node.js readers the tests use (tests/node), the designer's npm packages (frontend/: ESLint,
 # and three.js for scripts/build-designer.sh), and the system packages of the rendering,
-# browser and finite-element checks. scripts/test.sh runs it with "all,test".
+# browser and finite-element checks. scripts/test.sh runs it with "all,test,lint".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
