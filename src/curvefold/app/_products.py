@@ -28,10 +28,18 @@ from pathlib import Path
 from ..analysis._mechanism import certified_mechanism
 from ..io._formats import FORMATS, check_kind, formats_of
 from ..kernel._errors import InternalError
-from ._build import MOTION_STEPS, Built, design_motion, exported_fold_angles
+from ._build import (
+    MOTION_STEPS,
+    Built,
+    BuiltCrease,
+    BuiltStructure,
+    BuiltVault,
+    design_motion,
+    exported_fold_angles,
+)
 from ._folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "prepare", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw",
+__all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw",
            "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
 
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
@@ -44,15 +52,15 @@ Job = Callable[[Path], list]
 
 def resolution(built: Built) -> dict:
     """The mesh resolution of the files, for the report (empty for a single crease)."""
-    return {} if built.sampling is None else {"mesh": built.sampling.summary()}
+    return {"mesh": built.sampling.summary()} if isinstance(built, BuiltStructure) else {}
 
 
 def _metadata(built: Built) -> dict:
     design = built.design
     meta = {"kind": design.kind, "title": design.title or design.kind, "samples": design.samples}
-    if built.sampling is not None:
+    if isinstance(built, BuiltStructure):
         meta |= built.sampling.summary()
-    if built.vault is not None:
+    if isinstance(built, BuiltVault):
         v = built.vault
         meta |= {
             "a": v.design.a,
@@ -80,9 +88,9 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
     InputError
         A format that is not written for the design's kind, with the reason.
     """
-    check_kind(formats, built.design.kind, "formats")
+    check_kind(formats, built.design.design_kind.formats_kind, "formats")
     families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
-    family_jobs = _FAMILY_JOBS if built.structure is not None else _SINGLE_FOLD_JOBS
+    family_jobs: dict[str, tuple[str, Callable[..., list]]] = _FAMILY_JOBS if isinstance(built, BuiltStructure) else _SINGLE_FOLD_JOBS
     out: list[tuple[str, Job]] = []
     for family in families:
         label, write = family_jobs[family]
@@ -94,19 +102,7 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
         if "motion" in families:
             for module in DRAWING_MODULES:  # both drawings need them: imported once, here, before they fork
                 importlib.import_module(module)
-    built.mechanics  # the design under load, if it says what loads it: analysed once, before any job forks (the 3D models and the pictures show it)
     return sorted(out, key=lambda job: _ORDER.index(job[0]))
-
-
-def prepare(built: Built, formats: Collection[str]) -> None:
-    """Compute, in this process, what the file jobs share, so that the jobs forked afterwards
-    inherit it rather than each computing it: the first contact (the FOLD file's motion, and
-    the certificate's), the meshes' samples and the crease patterns' layout (the patterns,
-    the assembly guide and the 3dm draw it)."""
-    exported_fold_angles(built)
-    resolution(built)
-    if "3dm" in formats or {FORMATS[name].family for name in formats if name in FORMATS} & {"pattern", "guide"}:
-        built.layout
 
 
 def _timed(job: Job, folder: Path) -> tuple[list, float]:
@@ -289,7 +285,7 @@ def _writer(names: tuple[str, ...]) -> Callable:
     return FORMATS[names[0]].load_writer()
 
 
-def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _fold(built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
     """The structure's FOLD file: its folding motion (:func:`exported_fold_angles`), or flat to
     ``fold_angle`` when one is given; and one FOLD file per sheet, flat with its target fold angles
     (loadable by Origami Simulator)."""
@@ -308,20 +304,20 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float 
     return files
 
 
-def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
+def _pattern(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
     """The crease patterns, from the one layout of the design (:attr:`Built.layout`)."""
     from ..io._pattern import write_layout
 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
-def _guide(built: Built, names: tuple[str, ...], folder: Path) -> list:
+def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
     """The assembly guide, on the pages of the design's crease pattern (:attr:`Built.layout`)."""
     f = FORMATS[names[0]]
     return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
 
 
-def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _model(built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
     """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion, and at the design
     angle of a design under load its deflected shape and first modes (:meth:`curvefold.app._loading.Loaded.morph_targets`)."""
     from ..io._models import write_3d
@@ -333,15 +329,15 @@ def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float
                          pattern=built.layout if "3dm" in names else None, fold_angle=fold_angle, morph_targets=morphs))
 
 
-def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
+def _motion(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
     """The GIF of the folding motion, flat to the design angle and back."""
     from ..figures._motion import motion_frames
 
-    frames = motion_frames(built.vault if built.vault is not None else built.structure)
+    frames = motion_frames(built.vault if isinstance(built, BuiltVault) else built.structure)
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
-def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _single_fold_fold(built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
     """A single fold's FOLD file (its motion, flat to the design angle or to ``fold_angle``) and its
     sheet's (loadable by Origami Simulator)."""
     from ..io._fold import write_model, write_sheet_fold
@@ -354,14 +350,14 @@ def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path, fold_a
             write_sheet_fold(folder / "sheets" / "single-fold.fold", fold.pattern_sheet().mesh, MODEL_UNIT, title="single fold")]
 
 
-def _single_fold_pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
+def _single_fold_pattern(built: BuiltCrease, names: tuple[str, ...], folder: Path) -> list:
     """A single fold's crease pattern, from its one layout (:attr:`Built.layout`)."""
     from ..io._pattern import write_layout
 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
-def _single_fold_model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _single_fold_model(built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
     """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the folding motion."""
     from ..io._single_fold import write_single_fold_3d
 
@@ -410,16 +406,18 @@ def _figures(built: Built) -> dict[str, Callable]:
     image drawn without matplotlib, but for the single fold's and the pictures of a design under load."""
     from ..figures import _pictures as pictures
 
-    structure = built.structure
-    if structure is None:
+    if isinstance(built, BuiltCrease):
         from ..figures import _views as views
 
         fold = built.single_fold
         return {"crease": partial(views.plot_crease, built.crease, width=(fold.width_left, fold.width_right))}
+    if not isinstance(built, BuiltStructure):
+        return {}
+    structure = built.structure
     lattice = structure.lattice
-    figures = {"regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
+    figures: dict[str, Callable] = {"regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
                "width-proportion": partial(pictures.width_proportion_picture, lattice)}
-    if built.vault is not None:
+    if isinstance(built, BuiltVault):
         figures |= {"vault": partial(pictures.vault_picture, built.vault), "sections": partial(pictures.sections_picture, built.vault),
                     "folding-motion": partial(pictures.motion_strip_picture, built.vault)}
     else:
