@@ -228,7 +228,7 @@ def register_kind(kind: DesignKind) -> DesignKind:
         for other in _KINDS.values():
             theirs = {s.name: s for s in other.sections}.get(section.name)
             if theirs is not None and theirs != section:
-                raise InputError(f"section [{section.name}] of kind {kind.name!r} is another than kind {other.name!r}'s")
+                raise InputError(f"section [{section.name}] of kind {kind.name!r} differs from kind {other.name!r}'s")
     _KINDS[kind.name] = kind
     _version[0] += 1
     return kind
