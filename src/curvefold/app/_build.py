@@ -119,7 +119,7 @@ class BuiltStructure(Built):
         return choose_sampling(self.structure)
 
     @cached_property
-    def mechanics(self) -> Loaded | None:  # type: ignore[override]
+    def mechanics(self) -> Loaded | None:
         """The structure under the design's material and loads (:func:`curvefold.app._loading.analyse`), when the
         design gives them; None otherwise. A vault stands on its feet, a tube or block is held at both end sections."""
         if not self.design.mechanics:
@@ -129,7 +129,7 @@ class BuiltStructure(Built):
         return analyse(self.structure, self.design.material, self.design.loads, supported=self.supported)
 
     @cached_property
-    def layout(self) -> Layout:  # type: ignore[override]
+    def layout(self) -> Layout:
         """The crease pattern laid out on the output's pages, at its scale, in its cutter's convention,
         perforated and kerf-compensated as asked (:func:`~curvefold.io.layout_pattern`), on the
         files' samples. The crease-pattern files, the 3dm and the assembly guide are drawn from it."""
@@ -181,7 +181,7 @@ class BuiltCrease(Built):
         return SingleFold.of(self.crease, self.design.function("kappa_2d"), (c.width_left, c.width_right), fold_angle=c.fold_angle)
 
     @cached_property
-    def layout(self) -> Layout:  # type: ignore[override]
+    def layout(self) -> Layout:
         """The single fold's crease pattern at its scale, or as large as the page takes it
         (:func:`curvefold.io._single_fold.layout_single_fold`)."""
         from ..io._single_fold import layout_single_fold

@@ -21,9 +21,10 @@ import multiprocessing.connection
 import os
 import signal
 import time
-from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
+from collections.abc import Callable, Collection, Generator, Iterator, Sequence
 from functools import partial
 from pathlib import Path
+from typing import Any, Protocol
 
 from ..analysis._mechanism import certified_mechanism
 from ..io._formats import FORMATS, check_kind, formats_of
@@ -50,6 +51,17 @@ PICTURES_NEED, PICTURES_EXTRA = "matplotlib", "plot"
 Job = Callable[[Path], list]
 
 
+class JobRun(Protocol):
+    """Jobs started by :func:`run_jobs`: iterated for their results in job order, ``refill()`` to run
+    ``prepare`` and start those that have a place, ``close()`` to stop those still running."""
+
+    def __iter__(self) -> Iterator[tuple[str, list, float]]: ...
+
+    def refill(self) -> None: ...
+
+    def close(self) -> None: ...
+
+
 def resolution(built: Built) -> dict:
     """The mesh resolution of the files, for the report (empty for a single crease)."""
     return {"mesh": built.sampling.summary()} if isinstance(built, BuiltStructure) else {}
@@ -68,7 +80,7 @@ def _metadata(built: Built) -> dict:
             "width": v.design.width,
             "radius": v.design.radius,
             "fold_angle_deg": v.design.fold_angle,
-            "tubes": int(v.design.tubes),
+            "tubes": v.summary()["tubes"] if v.design.tubes is None else int(v.design.tubes),
             "kappa0_s0": v.kappa0_s0,
             "p_xz": v.p_xz,
         }
@@ -112,7 +124,7 @@ def _timed(job: Job, folder: Path) -> tuple[list, float]:
 
 
 def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None,
-             prepare: Callable[[], None] | None = None) -> Iterable[tuple[str, list, float]]:
+             prepare: Callable[[], None] | None = None) -> JobRun:
     """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most 2).
 
     ``prepare``, if given, runs in this process once, before the first job that is not one
@@ -127,8 +139,8 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
 
     Returns
     -------
-    iterable of (str, list, float)
-        (label, files written, seconds the job took) in job order as each finishes in
+    JobRun
+        An iterable of (label, files written, seconds the job took) in job order as each finishes in
         turn; a job's exception is raised there. Its ``close()`` stops the jobs still
         running (an interrupted run waits for none): use it in :func:`contextlib.closing`;
         its ``refill()`` runs ``prepare`` now and starts the jobs that have a place.
@@ -151,7 +163,7 @@ class _InTurn:
             prepare, self._prepare = self._prepare, None
             prepare()
 
-    def _run(self, jobs: list[tuple[str, Job]], folder: Path) -> Iterator[tuple[str, list, float]]:
+    def _run(self, jobs: list[tuple[str, Job]], folder: Path) -> Generator[tuple[str, list, float], None, None]:
         for label, job in jobs:
             if label not in DRAWN:
                 self.refill()
@@ -181,8 +193,8 @@ class _Running:
         numbered = list(enumerate(jobs))
         self._waiting = [(i, job) for i, job in numbered if job[0] not in OWN_JOBS]
         self._own = [(i, job) for i, job in numbered if job[0] in OWN_JOBS]  # run here while the others run
-        self._running: dict = {}  # reader -> (index, process)
-        self._results: dict[int, tuple] = {}
+        self._running: dict[Any, tuple[int, Any]] = {}  # reader -> (index, process)
+        self._results: dict[int, tuple[str, Any]] = {}
         self._labels = [label for label, _ in jobs]
         self._fill()
 
@@ -215,7 +227,8 @@ class _Running:
 
     def _collect(self, timeout: float | None = None) -> None:
         """Wait for a running job to end (up to ``timeout`` seconds) and keep its outcome."""
-        for reader in multiprocessing.connection.wait(list(self._running), timeout):
+        ready: list[Any] = multiprocessing.connection.wait(list(self._running), timeout)  # the pipes' readers
+        for reader in ready:
             index, process = self._running.pop(reader)
             try:
                 outcome = reader.recv()
@@ -270,6 +283,7 @@ def _job_process(job: Job, folder: Path, conn, mask: set, drawn: bool) -> None:
     for signum in ENDING_SIGNALS:
         signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    outcome: tuple[str, Any]
     try:
         outcome = ("done", _timed(job, folder))
     except Exception as err:  # raised again in the parent

@@ -22,6 +22,7 @@ default. A flag's value is checked by the key's spec and named as typed
 from __future__ import annotations
 
 import argparse
+import math
 import re
 import signal
 import sys
@@ -104,7 +105,7 @@ class _Parser(argparse.ArgumentParser):
             flags, self._flags = self._flags, None
             flags(self)
 
-    def parse_known_args(self, args=None, namespace=None):  # type: ignore[override]
+    def parse_known_args(self, args=None, namespace=None):
         self._add_flags()
         return super().parse_known_args(args, namespace)
 
@@ -145,10 +146,11 @@ def _from_text(spec: Spec, text: str, flag: str | None = None):
     """A flag's text as the value a design file would hold (checked by the spec afterwards);
     a number that does not read as one is refused here, naming the flag."""
     value = from_text(spec, text)
-    number = {"real": (int, float), "integer": int, "count": int}.get(spec.kind)
-    if number is not None and not isinstance(value, number) and value != ("max" if spec.kind == "count" else None):
+    number: dict[str, tuple[type, ...]] = {"real": (int, float), "integer": (int,), "count": (int,)}
+    if spec.kind in number and not isinstance(value, number[spec.kind]) and value != ("max" if spec.kind == "count" else None):
+        least = "" if spec.range is None else f" ≥ {spec.range.lo:g}"
         form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
-                "count": f"a whole number ≥ {spec.range.lo:g} or 'max'"}[spec.kind]
+                "count": f"a whole number{least} or 'max'"}[spec.kind]
         raise InputError(f"{flag or _flag(spec)}: must be {form}, got {text!r}")
     return value
 
@@ -327,7 +329,8 @@ def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
     p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
     p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
     p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
-    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
+    most = SCHEMA[""]["samples"].range
+    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {most.hi if most else math.inf:g}] (default 201)")
     p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of {LOCAL_CLUSTER_FROM} designs or more when Dask is installed, else 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
@@ -508,9 +511,9 @@ def cmd_check(args: argparse.Namespace) -> int:
 
         from ..analysis._foldcheck import FileCheck
 
-        failed = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded)} fold angles, the file holds {frames} "
-                                                    "frames after the key frame: the record is not the file's (not rebuilt)")
-        result = replace(result, checks=result.checks + (failed,))
+        unbuilt = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
+                                                      f"{frames} frames after the key frame: the record is not the file's (not rebuilt)")
+        result = replace(result, checks=result.checks + (unbuilt,))
     ran = [c for c in result.checks if c.status != "not run"]
     failed = [c for c in ran if c.status == "fail"]
     lines = [f"{args.file}: {'OK' if result.ok else 'FAILED'} ({result.frames} folded frame{'s' * (result.frames != 1)}; "

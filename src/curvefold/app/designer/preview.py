@@ -90,7 +90,8 @@ def _motion(found: Built) -> dict:
     if not isinstance(found, BuiltStructure):  # a single curved fold: its two surfaces, one state
         crease = found.crease
         limits = [float(np.min(w)) for w in crease.regression_limits()]
-        widths = tuple(min(0.15 * crease.curve.length, 0.6 * lim) for lim in limits)
+        left, right = (min(0.15 * crease.curve.length, 0.6 * lim) for lim in limits)
+        widths = (left, right)
         surface = crease.surface("L+R+", width=widths, rulings=2)
         idx = distinct(np.linspace(0, len(crease.s) - 1, PREVIEW_SEGMENTS + 1).round().astype(int))
         curves = np.stack([surface[0, 0], surface[0, 1], surface[1, 1]])[:, idx][None]
