@@ -1,4 +1,4 @@
-"""The registry of design kinds: a kind registered here, and nowhere in curvefold, reaches every front.
+"""The registry of design kinds: a kind registered here, nowhere in curvefold, reaches every front.
 
 ``ring`` is a short tube on a circle, with a section of its own (``[ring]``). Registered with
 :func:`~curvefold.app._kinds.register_kind` in this file alone, it is a subcommand of the command
@@ -53,11 +53,44 @@ class RingParams:
 
 
 RING = Section.of(
-    "ring", RingParams,
-    Spec("radius", "real", 2.0, "(0, 100]", "model units", help="radius of the circle of curve 1", label="radius"),
-    Spec("arc", "real", 60.0, "(0, 180]", "degrees", help="angle of the circle the tube covers", label="arc"),
-    Spec("width", "real", 0.2, "(0, 10]", "model units", help="width on both sides of curve 1", label="width"),
-    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="fold angle 2 alpha", label="fold angle"),
+    "ring",
+    RingParams,
+    Spec(
+        "radius",
+        "real",
+        2.0,
+        "(0, 100]",
+        "model units",
+        help="radius of the circle of curve 1",
+        label="radius",
+    ),
+    Spec(
+        "arc",
+        "real",
+        60.0,
+        "(0, 180]",
+        "degrees",
+        help="angle of the circle the tube covers",
+        label="arc",
+    ),
+    Spec(
+        "width",
+        "real",
+        0.2,
+        "(0, 10]",
+        "model units",
+        help="width on both sides of curve 1",
+        label="width",
+    ),
+    Spec(
+        "fold_angle",
+        "real",
+        90.0,
+        "(0, 180)",
+        "degrees",
+        help="fold angle 2 alpha",
+        label="fold angle",
+    ),
 )
 
 
@@ -67,7 +100,9 @@ def build_ring(design, like) -> BuiltStructure:
     length = ring.radius * math.radians(ring.arc)
     curve = SpaceCurve.from_curvature(1.0 / ring.radius, 0.0, length, samples=design.samples)
     crease = Crease.from_curve(curve, fold_angle=ring.fold_angle)
-    return BuiltStructure(design, crease, Structure.tube(Lattice.from_crease(crease, ring.width, ring.width)))
+    return BuiltStructure(
+        design, crease, Structure.tube(Lattice.from_crease(crease, ring.width, ring.width))
+    )
 
 
 RING_KIND = DesignKind(
@@ -89,15 +124,26 @@ def ring():
 
 def test_a_registered_kind_is_in_the_schema_and_builds(ring):
     assert design_kind("ring") is ring and design_kinds()[-1] is ring
-    assert SECTIONS_OF_KIND["ring"] == ("ring",) and list(SCHEMA["ring"]) == ["radius", "arc", "width", "fold_angle"]
+    assert SECTIONS_OF_KIND["ring"] == ("ring",) and list(SCHEMA["ring"]) == [
+        "radius",
+        "arc",
+        "width",
+        "fold_angle",
+    ]
     assert SCHEMA[""]["kind"].choices == ("vault", "tube", "block", "crease", "ring")
     design = design_from_dict({"kind": "ring", "samples": 41, "ring": {"radius": 3.0}})
-    assert design.params(RingParams) == RingParams(3.0, 60.0, 0.2, 90.0) and design.ring is design.params(RingParams)
+    assert design.params(RingParams) == RingParams(
+        3.0, 60.0, 0.2, 90.0
+    ) and design.ring is design.params(RingParams)
     assert design.vault is None and design.to_dict()["ring"]["radius"] == 3.0
     built = build(design)
     points = built.crease.curve.points
-    assert_allclose(np.linalg.norm(points[:, :2] - points[0, :2] - [0.0, 3.0], axis=1), 3.0, rtol=1e-6)  # on its circle
-    with pytest.raises(InputError, match=r"section \[ring\] is used by kind 'ring', not by kind 'tube'"):
+    assert_allclose(
+        np.linalg.norm(points[:, :2] - points[0, :2] - [0.0, 3.0], axis=1), 3.0, rtol=1e-6
+    )  # on its circle
+    with pytest.raises(
+        InputError, match=r"section \[ring\] is used by kind 'ring', not by kind 'tube'"
+    ):
         design_from_dict({"kind": "tube", "ring": {}})
 
 
@@ -112,15 +158,26 @@ def helped(*argv: str) -> str:
 def test_a_registered_kind_is_a_subcommand_with_help_and_json(ring, tmp_path):
     assert "a short tube on a circle" in helped()
     shown = " ".join(helped("ring").split())  # as the terminal's width wraps it
-    for text in ("Build a short tube around an arc of a circle.", "--radius RADIUS", "--arc ARC", "./curvefold-ring"):
+    for text in (
+        "Build a short tube around an arc of a circle.",
+        "--radius RADIUS",
+        "--arc ARC",
+        "./curvefold-ring",
+    ):
         assert text in shown, text
     done = run("ring", "--json", "--samples", "41", "--arc", "45", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     payload = json.loads(done.stdout)
-    assert payload["kind"] == "ring" and payload["design"]["ring"]["arc"] == 45.0 and payload["cells"] == [[0, 0]]
+    assert (
+        payload["kind"] == "ring"
+        and payload["design"]["ring"]["arc"] == 45.0
+        and payload["cells"] == [[0, 0]]
+    )
     assert payload["certificate"] and all(c["passed"] for c in payload["certificate"])
     refused = run("ring", "--arc", "270", "--json", cwd=tmp_path)
-    assert refused.returncode == 2 and "--arc 270: arc must be in (0, 180] degrees" in refused.stderr
+    assert (
+        refused.returncode == 2 and "--arc 270: arc must be in (0, 180] degrees" in refused.stderr
+    )
 
 
 def test_the_budget_estimates_a_registered_kind(ring):
@@ -135,11 +192,20 @@ def test_the_designer_api_gives_a_registered_kinds_schema_and_preview(ring):
 
     schema = api.schema()
     assert schema["kinds"]["ring"] == ["ring"] and schema["optional"]["ring"] == []
-    assert [spec["name"] for spec in schema["sections"]["ring"]] == ["radius", "arc", "width", "fold_angle"]
+    assert [spec["name"] for spec in schema["sections"]["ring"]] == [
+        "radius",
+        "arc",
+        "width",
+        "fold_angle",
+    ]
     plan = jobs.plan("preview", "ring", {"samples": "41", "radius": "1.5"})
     content, media, _ = jobs.run(*plan.args)
     preview = json.loads(content)
-    assert media == "application/json" and preview["kind"] == "ring" and preview["design"]["ring"]["radius"] == 1.5
+    assert (
+        media == "application/json"
+        and preview["kind"] == "ring"
+        and preview["design"]["ring"]["radius"] == 1.5
+    )
     assert preview["numbers"]["cells"] == 1 and preview["motion"]["ground"] is False
     with pytest.raises(InputError, match="unknown parameter 'span' for a ring"):
         api.read_request("ring", {"span": "2"})
@@ -153,8 +219,13 @@ def test_an_unregistered_kind_is_refused_in_one_line(tmp_path):
         lines = r.stderr.strip().splitlines()
         assert r.returncode == 2 and len(lines) == 1 and r.stdout == "", r.stderr
     assert "invalid choice: 'ring'" in run("ring", cwd=tmp_path).stderr
-    assert 'ring.toml: kind must be one of "vault", "tube", "block", "crease", got string \'ring\'' in lines[0]
-    with pytest.raises(InputError, match=r"^unknown kind 'ring' \(allowed: vault, tube, block, crease\)$"):
+    assert (
+        'ring.toml: kind must be one of "vault", "tube", "block", "crease", got string \'ring\''
+        in lines[0]
+    )
+    with pytest.raises(
+        InputError, match=r"^unknown kind 'ring' \(allowed: vault, tube, block, crease\)$"
+    ):
         design_kind("ring")
     from curvefold.app.designer import api
 
@@ -166,10 +237,14 @@ def test_a_kind_is_registered_once_and_shares_a_section_only_as_it_is():
     with pytest.raises(InputError, match="kind 'tube' is registered already"):
         register_kind(design_kind("tube"))
     other_tube = Section.of("tube", RingParams, *RING.specs.values())
-    with pytest.raises(InputError, match=r"section \[tube\] of kind 'ring' differs from kind 'tube''s"):
+    with pytest.raises(
+        InputError, match=r"section \[tube\] of kind 'ring' differs from kind 'tube''s"
+    ):
         register_kind(replace(RING_KIND, sections=(other_tube,)))
     assert "ring" not in {kind.name for kind in design_kinds()}
-    shared = register_kind(replace(RING_KIND, name="arc", sections=(design_kind("tube").sections[0], RING)))  # [curve], as it is
+    shared = register_kind(
+        replace(RING_KIND, name="arc", sections=(design_kind("tube").sections[0], RING))
+    )  # [curve], as it is
     try:
         assert SECTIONS_OF_KIND["arc"] == ("curve", "ring")
     finally:

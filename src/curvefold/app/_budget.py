@@ -134,7 +134,8 @@ class Estimate:
 
 
 def _strips(design: Design) -> int:
-    """Strips of the structure a design builds, as its kind counts them (a vault's ``tubes = "max"`` counts as its cap)."""
+    """Strips of the structure a design builds, as its kind counts them (a vault's
+    ``tubes = "max"`` counts as its cap)."""
     return design.design_kind.strips(design)
 
 
@@ -175,7 +176,9 @@ def estimate(design: Design, *, files: bool) -> Estimate:
     n = samples * _strips(design)
     jobs = {part: _cost(part, samples, n) for part in _parts(design, files)}
     mechanics = _mechanics(design)
-    largest = max(jobs, key=lambda part: jobs[part], default="mechanics" if mechanics else "geometry")
+    largest = max(
+        jobs, key=lambda part: jobs[part], default="mechanics" if mechanics else "geometry"
+    )
     return Estimate(BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest)
 
 

@@ -27,9 +27,23 @@ from ._kinds import BlockParams, CreaseParams, CurveParams, TubeParams, VaultPar
 if TYPE_CHECKING:  # pragma: no cover
     from ._loading import Loaded
 
-__all__ = ["Built", "BuiltStructure", "BuiltVault", "BuiltCrease", "build", "build_vault", "build_tube", "build_block", "build_lattice_structure",
-           "build_crease",
-           "vault_design", "fit_vault_targets", "design_motion", "exported_fold_angles", "MOTION_STEPS"]
+__all__ = [
+    "Built",
+    "BuiltStructure",
+    "BuiltVault",
+    "BuiltCrease",
+    "build",
+    "build_vault",
+    "build_tube",
+    "build_block",
+    "build_lattice_structure",
+    "build_crease",
+    "vault_design",
+    "fit_vault_targets",
+    "design_motion",
+    "exported_fold_angles",
+    "MOTION_STEPS",
+]
 
 #: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
 MOTION_STEPS = 7
@@ -67,7 +81,8 @@ class Built:
 
     @property
     def layout(self) -> Layout:
-        """The crease pattern laid out on the output's pages (:func:`~curvefold.io.layout_pattern`)."""
+        """The crease pattern laid out on the output's pages
+        (:func:`~curvefold.io.layout_pattern`)."""
         raise NotImplementedError
 
     def prepare(self) -> None:
@@ -75,12 +90,15 @@ class Built:
         before any of them forks, so that they inherit it rather than each computing it."""
 
     def prepare_files(self, formats: Collection[str]) -> None:
-        """Compute, in this process, what the output folder's file jobs writing ``formats`` share before
-        they fork (the drawings need none of it, and start first): the first contact (the FOLD file's
-        motion, and the certificate's) and the crease patterns' layout (the patterns, the assembly
-        guide and the 3dm draw it)."""
+        """Compute, in this process, what the output folder's file jobs writing ``formats``
+        share before they fork (the drawings need none of it, and start first): the first
+        contact (the FOLD file's motion, and the certificate's) and the crease patterns'
+        layout (the patterns, the assembly guide and the 3dm draw it)."""
         exported_fold_angles(self)
-        if "3dm" in formats or {FORMATS[name].family for name in formats if name in FORMATS} & {"pattern", "guide"}:
+        if "3dm" in formats or {FORMATS[name].family for name in formats if name in FORMATS} & {
+            "pattern",
+            "guide",
+        }:
             self.layout  # noqa: B018 (computed once, here)
 
     def _page(self) -> dict:
@@ -88,10 +106,21 @@ class Built:
         from ..io._tables import mm_per_unit
 
         o = self.design.output
-        page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
+        page = (
+            o.page
+            if isinstance(o.page, str)
+            else tuple(side / mm_per_unit(o.units) for side in o.page)
+        )  # mm -> units
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
-        return {"page": page, "units": o.units, "scale": o.scale, "name": self.design.kind, "cutter": o.cutter,
-                "perforation": perforation, "kerf": o.kerf}
+        return {
+            "page": page,
+            "units": o.units,
+            "scale": o.scale,
+            "name": self.design.kind,
+            "cutter": o.cutter,
+            "perforation": perforation,
+            "kerf": o.kerf,
+        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,9 +135,6 @@ class BuiltStructure(Built):
 
     structure: Structure
 
-    #: Where it is held under load (:func:`curvefold.app._loading.analyse`).
-    supported = "ends"
-
     @property
     def fold_angle(self) -> float:
         return float(self.structure.lattice.crease.fold_angle)
@@ -121,21 +147,30 @@ class BuiltStructure(Built):
     @cached_property
     def mechanics(self) -> Loaded | None:
         """The structure under the design's material and loads (:func:`curvefold.app._loading.analyse`), when the
-        design gives them; None otherwise. A vault stands on its feet, a tube or block is held at both end sections."""
+        design gives them; None otherwise. A kind that stands on the ground (a vault:
+        :attr:`DesignKind.grounded <curvefold.app._kinds.DesignKind.grounded>`) stands on its
+        feet, a tube or block is held at both end sections."""
         if not self.design.mechanics:
             return None
         from ._loading import analyse
 
-        return analyse(self.structure, self.design.material, self.design.loads, supported=self.supported)
+        supported = "feet" if self.design.design_kind.grounded else "ends"
+        return analyse(self.structure, self.design.material, self.design.loads, supported=supported)
 
     @cached_property
     def layout(self) -> Layout:
         """The crease pattern laid out on the output's pages, at its scale, in its cutter's convention,
         perforated and kerf-compensated as asked (:func:`~curvefold.io.layout_pattern`), on the
-        files' samples. The crease-pattern files, the 3dm and the assembly guide are drawn from it."""
+        files' samples. The crease-pattern files, the 3dm and the assembly guide are drawn
+        from it."""
         from ..io._pattern import layout_pattern
 
-        return layout_pattern(self.structure, glue_tabs=self.design.output.glue_tabs, keep=self.sampling.keep, **self._page())
+        return layout_pattern(
+            self.structure,
+            glue_tabs=self.design.output.glue_tabs,
+            keep=self.sampling.keep,
+            **self._page(),
+        )
 
     def prepare(self) -> None:
         """The mechanics of a design under load (the 3D models and the pictures show it) and a rigid
@@ -147,7 +182,8 @@ class BuiltStructure(Built):
             certified_mechanism(self.structure)
 
     def prepare_files(self, formats: Collection[str]) -> None:
-        """As :meth:`Built.prepare_files`, and the meshes' samples (every mesh written keeps them)."""
+        """As :meth:`Built.prepare_files`, and the meshes' samples (every mesh written
+        keeps them)."""
         self.sampling  # noqa: B018 (computed once, here)
         super().prepare_files(formats)
 
@@ -163,8 +199,6 @@ class BuiltVault(BuiltStructure):
 
     vault: Vault
 
-    supported = "feet"
-
 
 @dataclass(frozen=True, eq=False)
 class BuiltCrease(Built):
@@ -178,7 +212,12 @@ class BuiltCrease(Built):
     def single_fold(self) -> SingleFold:
         """The single curved fold, with the strips' widths its files draw."""
         c = self.design.params(CreaseParams)
-        return SingleFold.of(self.crease, self.design.function("kappa_2d"), (c.width_left, c.width_right), fold_angle=c.fold_angle)
+        return SingleFold.of(
+            self.crease,
+            self.design.function("kappa_2d"),
+            (c.width_left, c.width_right),
+            fold_angle=c.fold_angle,
+        )
 
     @cached_property
     def layout(self) -> Layout:
@@ -240,7 +279,9 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
     chosen = {} if fitted.tubes is None else {"tubes": fitted.tubes}
     found = design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius, **chosen)
     built = build_vault(found)
-    certificate = certify(built.crease, built.structure, built.vault, fold_angles=list(exported_fold_angles(built)))
+    certificate = certify(
+        built.crease, built.structure, built.vault, fold_angles=list(exported_fold_angles(built))
+    )
     failed = [c for c in certificate.checks if not c.passed]
     if failed:
         c = failed[0]
@@ -285,10 +326,15 @@ def build(design: Design, *, like: Built | None = None) -> Built:
 
 
 def build_vault(design: Design, like: Built | None = None) -> BuiltVault:
-    """A vault design built (on the arch root of ``like``, a build of it at other samples, if given)."""
+    """A vault design built (on the arch root of ``like``, a build of it at other samples,
+    if given)."""
     v = vault_design(design)
     root = like.vault.arch if isinstance(like, BuiltVault) else None
-    arch = None if root is None else arch_crease(v.a, v.panels, v.radius, v.fold_angle, v.samples, root=root)
+    arch = (
+        None
+        if root is None
+        else arch_crease(v.a, v.panels, v.radius, v.fold_angle, v.samples, root=root)
+    )
     vault = Vault.from_design(v, arch=arch)
     return BuiltVault(design, vault.lattice.smooth.crease, vault.structure, vault)
 
@@ -298,10 +344,18 @@ def build_crease(design: Design, like: Built | None = None) -> BuiltCrease:
     c = design.params(CreaseParams)
     k2, beta_left = design.function("kappa_2d"), design.function("beta_left")
     if c.alpha is not None:
-        crease = Crease.from_alpha(k2, beta_left, design.function("alpha"), c.length, samples=design.samples)
+        crease = Crease.from_alpha(
+            k2, beta_left, design.function("alpha"), c.length, samples=design.samples
+        )
     else:
-        crease = Crease.from_pattern(k2, beta_left, design.function("beta_right"), c.length, fold_angle=c.fold_angle,
-                                     samples=design.samples)
+        crease = Crease.from_pattern(
+            k2,
+            beta_left,
+            design.function("beta_right"),
+            c.length,
+            fold_angle=c.fold_angle,
+            samples=design.samples,
+        )
     return BuiltCrease(design, crease)
 
 
@@ -319,8 +373,8 @@ def build_block(design: Design, like: Built | None = None) -> BuiltStructure:
 
 def build_lattice_structure(design: Design, widths: tuple[float, float],
                             cells: Sequence[tuple[int, int]] | None = None) -> BuiltStructure:
-    """A structure on the lattice of curve 1 (``[curve]``) with the given widths at s = 0: a single tube,
-    or the given lattice ``cells``; on rigid panels if ``[curve]`` says so."""
+    """A structure on the lattice of curve 1 (``[curve]``) with the given widths at s = 0: a
+    single tube, or the given lattice ``cells``; on rigid panels if ``[curve]`` says so."""
     c = design.params(CurveParams)
     curve = SpaceCurve.from_curvature(design.function("kappa"), design.function("tau"), c.length, samples=design.samples)
     crease = Crease.from_curve(curve, fold_angle=c.fold_angle)

@@ -99,13 +99,14 @@ MAX_DESIGN_BYTES = 1 << 20
 
 _P = TypeVar("_P")
 
-#: The kinds curvefold itself registers (:mod:`curvefold.app._kinds`); :func:`~curvefold.app._kinds.design_kinds`
-#: gives them with any registered since.
+#: The kinds curvefold itself registers (:mod:`curvefold.app._kinds`);
+#: :func:`~curvefold.app._kinds.design_kinds` gives them with any registered since.
 KINDS = tuple(kind.name for kind in design_kinds())
 
 
 class _ByKind(Mapping[str, tuple[str, ...]]):
-    """Kind name -> the names of some of its sections, read from the registry of kinds when asked."""
+    """Kind name -> the names of some of its sections, read from the registry of kinds when
+    asked."""
 
     def __init__(self, read: Callable[[DesignKind], tuple[str, ...]]) -> None:
         self._read = read
@@ -123,7 +124,8 @@ class _ByKind(Mapping[str, tuple[str, ...]]):
         return len(design_kinds())
 
 
-#: Sections each kind reads besides ``[output]`` (:attr:`DesignKind.sections <curvefold.app._kinds.DesignKind.sections>`).
+#: Sections each kind reads besides ``[output]``
+#: (:attr:`DesignKind.sections <curvefold.app._kinds.DesignKind.sections>`).
 SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = _ByKind(lambda kind: kind.section_names)
 #: Sections a kind reads only when a design has them: what it is made of and what loads it.
 OPTIONAL_SECTIONS: Mapping[str, tuple[str, ...]] = _ByKind(lambda kind: kind.optional)
@@ -149,8 +151,15 @@ _COMMON = {
 def _top(kinds: tuple[str, ...]) -> Mapping[str, Spec]:
     return _section(
         Spec("kind", "choice", REQUIRED, choices=kinds, help="what to build", label="structure"),
-        Spec("samples", "integer", 801, "[9, 200000]", help="samples along curve 1",
-             why="the certificate's differences need 9; memory is budgeted besides", label="samples along each crease"),
+        Spec(
+            "samples",
+            "integer",
+            801,
+            "[9, 200000]",
+            help="samples along curve 1",
+            why="the certificate's differences need 9; memory is budgeted besides",
+            label="samples along each crease",
+        ),
         Spec("title", "text", "", help="free text for reports", label="title"),
     )
 
@@ -239,7 +248,8 @@ class Design:
     Parameters
     ----------
     kind : str
-        A registered kind (:func:`curvefold.app._kinds.design_kinds`): ``"vault"``, ``"tube"``, ``"block"``, ``"crease"``.
+        A registered kind (:func:`curvefold.app._kinds.design_kinds`): ``"vault"``,
+        ``"tube"``, ``"block"``, ``"crease"``.
     samples : int
         Samples along curve 1.
     title : str
@@ -264,7 +274,8 @@ class Design:
     base_dir: Path | None = field(default=None, compare=False, repr=False)
 
     def __getattr__(self, name: str) -> Any:
-        """A section by name (``design.vault``): its values, or None for a section of another kind."""
+        """A section by name (``design.vault``): its values, or None for a section of
+        another kind."""
         if name.startswith("_") or "sections" not in self.__dict__:
             raise AttributeError(name)
         found = dict(self.__dict__["sections"])
@@ -363,9 +374,18 @@ class Design:
             For a single curved fold, which has no end sections to hold.
         """
         if not self.design_kind.loaded:
-            *others, last = sorted((k.name for k in design_kinds() if k.loaded), key=lambda k: design_kind(k).grounded)
-            what = "a single curved fold" if not self.design_kind.structure else f"a {self.kind} design"
-            raise InputError(f"{self.source}: {what} has no end sections to hold: load a {', '.join(others)} or {last}")
+            *others, last = sorted(
+                (k.name for k in design_kinds() if k.loaded), key=lambda k: design_kind(k).grounded
+            )
+            what = (
+                "a single curved fold"
+                if not self.design_kind.structure
+                else f"a {self.kind} design"
+            )
+            raise InputError(
+                f"{self.source}: {what} has no end sections to hold: "
+                f"load a {', '.join(others)} or {last}"
+            )
         return self.overrides(source=self.source, material={}, loads={})
 
     def tables(self) -> tuple[Path, ...]:
@@ -545,7 +565,9 @@ def design_from_dict(
             if not isinstance(value, Mapping):
                 raise InputError(f"{source}: {key} must be a table ([{key}] section), got {describe(value)}")
             if key != "output" and key not in used:
-                users = " or ".join(repr(k.name) for k in design_kinds() if key in (*k.section_names, *k.optional))
+                users = " or ".join(
+                    repr(k.name) for k in design_kinds() if key in (*k.section_names, *k.optional)
+                )
                 raise InputError(
                     f"{source}: section [{key}] is used by kind {users}, not by kind {kind!r}; "
                     "remove it or change kind"
@@ -553,7 +575,8 @@ def design_from_dict(
         elif key not in top:
             what = f"section [{key}]" if isinstance(value, Mapping) else f"key {key!r}"
             raise InputError(
-                f"{source}: unknown {what} (allowed keys: {', '.join(top)}; sections: {', '.join(names)})"
+                f"{source}: unknown {what} (allowed keys: {', '.join(top)}; "
+                f"sections: {', '.join(names)})"
                 + suggest(key, (*top, *names))
             )
     head = _check_section("", data, Context(source, folder, 0), skip=names)
@@ -567,12 +590,20 @@ def design_from_dict(
         check_material(checked["material"], f"{source}: [material] ")
     out = checked["output"]
     # crease 1's length in model units (a vault's at least π × radius: its κ0·s0 is above π)
-    check_scale(out["scale"], out["units"], registered.crease_length(checked), f"{source}: [output] scale")
+    check_scale(
+        out["scale"], out["units"], registered.crease_length(checked), f"{source}: [output] scale"
+    )
     params = {s: _params_type(s)(**values) for s, values in checked.items()}
     optional = {s: params.pop(s) for s in registered.optional if s in params}
     return Design(
-        kind=kind, samples=head["samples"], title=head["title"], output=params.pop("output"),
-        sections=tuple((s, params[s]) for s in registered.section_names), source=source, base_dir=folder.resolve(), **optional,
+        kind=kind,
+        samples=head["samples"],
+        title=head["title"],
+        output=params.pop("output"),
+        sections=tuple((s, params[s]) for s in registered.section_names),
+        source=source,
+        base_dir=folder.resolve(),
+        **optional,
     )
 
 

@@ -9,9 +9,9 @@ design schema (:mod:`curvefold.app._design`), the command line (:mod:`curvefold.
 the budget (:mod:`curvefold.app._budget`) and the designer's API read the registry, so a new
 kind touches no other file::
 
-    register_kind(DesignKind("ring", sections=(RING,), builder=build_ring, strips=lambda design: 4,
+    register_kind(DesignKind("ring", (RING,), build_ring, strips=lambda design: 4,
                              crease_length=lambda values: values["ring"]["length"],
-                             help="a tube on a circle", description="Build a short tube on a circle."))
+                             help="a tube on a circle", description="Build a tube on a circle."))
 
 What only some kinds have is theirs: a vault's targets (:class:`Targets`), which replace
 some of its parameters, and the arch root a build at other samples shares
@@ -36,8 +36,8 @@ from ..kernel._validate import Spec
 from ..vault._assembly import DEFAULT_TUBES_CAP, LENGTHS, LENGTHS_WHY, VAULT_SPECS
 from ._design_functions import FunctionValue
 
-#: A :class:`curvefold.app._design.Design` and a :class:`curvefold.app._build.Built`, named in words: both
-#: modules import this one, which sits below them.
+#: A :class:`curvefold.app._design.Design` and a :class:`curvefold.app._build.Built`, named in
+#: words: both modules import this one, which sits below them.
 Design = Any
 Built = Any
 
@@ -99,8 +99,11 @@ class Targets:
     fit_with: str | Callable[..., tuple[Design, str]]
     help: str = ""
 
-    def fit(self, design: Design, *, source: str | None = None, **targets: float) -> tuple[Design, str]:
-        """The design with the parameters the targets replace solved for them, and a note (or "")."""
+    def fit(
+        self, design: Design, *, source: str | None = None, **targets: float
+    ) -> tuple[Design, str]:
+        """The design with the parameters the targets replace solved for them, and a note
+        (or "")."""
         return _load(self.fit_with)(design, source=source, **targets)
 
     def specs(self) -> tuple[Spec, ...]:
@@ -165,7 +168,8 @@ class DesignKind:
     targets : Targets or None
         What it may be designed from besides its parameters.
     formats_as : str
-        The kind whose file formats it writes (:attr:`curvefold.io.FileFormat.kinds`); default its own name.
+        The kind whose file formats it writes (:attr:`curvefold.io.FileFormat.kinds`); default
+        its own name.
     """
 
     name: str
@@ -228,7 +232,10 @@ def register_kind(kind: DesignKind) -> DesignKind:
         for other in _KINDS.values():
             theirs = {s.name: s for s in other.sections}.get(section.name)
             if theirs is not None and theirs != section:
-                raise InputError(f"section [{section.name}] of kind {kind.name!r} differs from kind {other.name!r}'s")
+                raise InputError(
+                    f"section [{section.name}] of kind {kind.name!r} "
+                    f"differs from kind {other.name!r}'s"
+                )
     _KINDS[kind.name] = kind
     _version[0] += 1
     return kind
@@ -242,7 +249,8 @@ def deregister_kind(name: str) -> None:
 
 
 def registry_version() -> int:
-    """A number that changes whenever a kind is registered or removed (what caches of the registry are keyed by)."""
+    """A number that changes whenever a kind is registered or removed (what caches of the
+    registry are keyed by)."""
     return _version[0]
 
 
@@ -277,13 +285,21 @@ def _fold_angle(default: float, help: str) -> Spec:
 
 
 def _width(side: str, default: float) -> Spec:
-    return Spec(f"width_{side}", "real", default, "(0, inf)", "model units", help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0",
-                label=f"width on the {side}")
+    return Spec(
+        f"width_{side}",
+        "real",
+        default,
+        "(0, inf)",
+        "model units",
+        help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0",
+        label=f"width on the {side}",
+    )
 
 
 @dataclass(frozen=True)
 class VaultParams:
-    """``[vault]``: a composite deployable vault (see :data:`~curvefold.app._design.SCHEMA` for ranges and units)."""
+    """``[vault]``: a composite deployable vault (see :data:`~curvefold.app._design.SCHEMA`
+    for ranges and units)."""
 
     a: float
     p_xy: float
@@ -347,34 +363,117 @@ class CreaseParams:
 
 VAULT = Section.of("vault", VaultParams, *VAULT_SPECS)
 CURVE = Section.of(
-    "curve", CurveParams,
-    Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s", label="curvature"),
-    Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s", label="torsion"),
-    Spec("length", "real", 6.0, LENGTHS, "model units", help="arc length of curve 1", why=LENGTHS_WHY, label="length of curve 1"),
+    "curve",
+    CurveParams,
+    Spec(
+        "kappa",
+        "function",
+        1.0,
+        "(0, inf)",
+        "per model unit",
+        help="curvature of curve 1 as a function of s",
+        label="curvature",
+    ),
+    Spec(
+        "tau",
+        "function",
+        0.2,
+        "(-inf, inf)",
+        "per model unit",
+        help="torsion of curve 1 as a function of s",
+        label="torsion",
+    ),
+    Spec(
+        "length",
+        "real",
+        6.0,
+        LENGTHS,
+        "model units",
+        help="arc length of curve 1",
+        why=LENGTHS_WHY,
+        label="length of curve 1",
+    ),
     _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
     PANELS,
 )
 TUBE = Section.of("tube", TubeParams, _width("left", 0.3), _width("right", 0.3))
 BLOCK = Section.of(
-    "block", BlockParams,
+    "block",
+    BlockParams,
     _width("left", 0.2),
     _width("right", 0.2),
-    Spec("cells", "cells", ((0, 0), (0, 1), (1, 1)), "[-1000, 1000]", help="lattice cells [i, j]", label="cells"),
+    Spec(
+        "cells",
+        "cells",
+        ((0, 0), (0, 1), (1, 1)),
+        "[-1000, 1000]",
+        help="lattice cells [i, j]",
+        label="cells",
+    ),
 )
 CREASE = Section.of(
-    "crease", CreaseParams,
-    Spec("kappa_2d", "function", 0.5, "(0, inf)", "per model unit", help="curvature of the crease in the flat pattern",
-         label="curvature in the flat pattern"),
-    Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left", label="ruling angle on the left"),
-    Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)",
-         label="ruling angle on the right"),
+    "crease",
+    CreaseParams,
+    Spec(
+        "kappa_2d",
+        "function",
+        0.5,
+        "(0, inf)",
+        "per model unit",
+        help="curvature of the crease in the flat pattern",
+        label="curvature in the flat pattern",
+    ),
+    Spec(
+        "beta_left",
+        "function",
+        90.0,
+        _ANGLE,
+        "degrees",
+        help="ruling angle on the left",
+        label="ruling angle on the left",
+    ),
+    Spec(
+        "beta_right",
+        "function",
+        90.0,
+        _ANGLE,
+        "degrees",
+        help="ruling angle on the right (not with alpha)",
+        label="ruling angle on the right",
+    ),
     _fold_angle(60.0, "fold angle 2 alpha(0) at the start of the crease"),
-    Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY, label="crease length"),
-    Spec("alpha", "function", None, "(0, 90)", "degrees",
-         help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)", label="half fold angle"),
-    *(Spec(f"width_{side}", "real", None, "(0, inf)", "model units",
-           help=f"width of the {side} strip from the crease's tangent lines, in the files (default: 15% of the length, "
-                "within 60% of the regression limit)", label=f"{side} strip width") for side in ("left", "right")),
+    Spec(
+        "length",
+        "real",
+        3.0,
+        LENGTHS,
+        "model units",
+        help="arc length of the crease",
+        why=LENGTHS_WHY,
+        label="crease length",
+    ),
+    Spec(
+        "alpha",
+        "function",
+        None,
+        "(0, 90)",
+        "degrees",
+        help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)",
+        label="half fold angle",
+    ),
+    *(
+        Spec(
+            f"width_{side}",
+            "real",
+            None,
+            "(0, inf)",
+            "model units",
+            help=f"width of the {side} strip from the crease's tangent lines, in the files "
+            "(default: 15% of the length, within 60% of the regression limit)",
+            label=f"{side} strip width",
+        )
+        for side in ("left", "right")
+    ),
 )
 
 
@@ -389,7 +488,8 @@ def _vault_strips(design: Design) -> int:
 
 
 def _check_alpha(values: dict, given: Mapping[str, Any], source: str) -> None:
-    """With ``alpha`` given, β_R follows from Eq. (3): refuse ``beta_right`` and set ``fold_angle`` to 2α(0)."""
+    """With ``alpha`` given, β_R follows from Eq. (3): refuse ``beta_right`` and set
+    ``fold_angle`` to 2α(0)."""
     import numpy as np
 
     checked, table = values["crease"], given.get("crease", {})
@@ -397,12 +497,18 @@ def _check_alpha(values: dict, given: Mapping[str, Any], source: str) -> None:
     if alpha is None:
         return
     if table.get("beta_right") is not None:
-        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))",
-                         parameter="beta_right")
-    twice = float(2 * np.asarray(alpha(np.zeros(1)) if callable(alpha) else alpha, float).flat[0])
-    if table.get("fold_angle") is not None and not math.isclose(checked["fold_angle"], twice, rel_tol=1e-12):
         raise InputError(
-            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {checked['fold_angle']!r}",
+            f"{source}: [crease] give beta_right or alpha, not both "
+            "(with alpha, beta_right follows from Eq. (3))",
+            parameter="beta_right",
+        )
+    twice = float(2 * np.asarray(alpha(np.zeros(1)) if callable(alpha) else alpha, float).flat[0])
+    if table.get("fold_angle") is not None and not math.isclose(
+        checked["fold_angle"], twice, rel_tol=1e-12
+    ):
+        raise InputError(
+            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees "
+            f"or be left out, got {checked['fold_angle']!r}",
             parameter="fold_angle",
         )
     checked["beta_right"], checked["fold_angle"] = None, twice
@@ -418,34 +524,68 @@ def _curve_panels(design: Design) -> int:
     return design.params(CurveParams).panels
 
 
-register_kind(DesignKind(
-    "vault", (VAULT,), "curvefold.app._build:build_vault", _vault_strips, lambda values: math.pi * values["vault"]["radius"],
-    help="the composite deployable vault (the main job)",
-    description="Build a vault of tubed arches stacked along the lattice diagonal, standing on z = 0 at the design fold angle, "
-                "and write its files, pictures and report.",
-    optional=LOAD_SECTIONS, panels=lambda design: design.params(VaultParams).panels,
-    lower=f'[vault] tubes or layers (tubes = "max" counts as {DEFAULT_TUBES_CAP})', grounded=True,
-    targets=Targets(_vault_targets, "curvefold.app._build:fit_vault_targets", help="design the vault from what it must measure; each target replaces a "
-                    "parameter (span the radius, rise with span a, p_xz p_xy); tubes must then be a number"),
-))
-register_kind(DesignKind(
-    "tube", (CURVE, TUBE), "curvefold.app._build:build_tube", lambda design: 4, lambda values: values["curve"]["length"],
-    help="a single tube around curve 1",
-    description='Build a single tube around curve 1 from a design file (kind = "tube") or the defaults, and write its files and report.',
-    optional=LOAD_SECTIONS, panels=_curve_panels,
-))
-register_kind(DesignKind(
-    "block", (CURVE, BLOCK), "curvefold.app._build:build_block", lambda design: 4 * len(design.params(BlockParams).cells),
-    lambda values: values["curve"]["length"],
-    help="a cellular block of lattice cells",
-    description='Build a cellular block of lattice cells from a design file (kind = "block") or the defaults, and write its files '
-                "and report.",
-    optional=LOAD_SECTIONS, panels=_curve_panels, lower="[block] cells",
-))
-register_kind(DesignKind(
-    "crease", (CREASE,), "curvefold.app._build:build_crease", lambda design: 2, lambda values: values["crease"]["length"],
-    help="a single curved fold from its crease pattern",
-    description="Fold a single curved crease from its crease pattern (kappa_2d, ruling angles, start fold angle or alpha(s)): "
-                "the paper's Fig. 08.",
-    check=_check_alpha, structure=False,
-))
+register_kind(
+    DesignKind(
+        "vault",
+        (VAULT,),
+        "curvefold.app._build:build_vault",
+        _vault_strips,
+        lambda values: math.pi * values["vault"]["radius"],
+        help="the composite deployable vault (the main job)",
+        description="Build a vault of tubed arches stacked along the lattice diagonal, "
+        "standing on z = 0 at the design fold angle, and write its files, pictures and report.",
+        optional=LOAD_SECTIONS,
+        panels=lambda design: design.params(VaultParams).panels,
+        lower=f'[vault] tubes or layers (tubes = "max" counts as {DEFAULT_TUBES_CAP})',
+        grounded=True,
+        targets=Targets(
+            _vault_targets,
+            "curvefold.app._build:fit_vault_targets",
+            help="design the vault from what it must measure; each target replaces a "
+            "parameter (span the radius, rise with span a, p_xz p_xy); tubes must then be a number",
+        ),
+    )
+)
+register_kind(
+    DesignKind(
+        "tube",
+        (CURVE, TUBE),
+        "curvefold.app._build:build_tube",
+        lambda design: 4,
+        lambda values: values["curve"]["length"],
+        help="a single tube around curve 1",
+        description='Build a single tube around curve 1 from a design file (kind = "tube") '
+        "or the defaults, and write its files and report.",
+        optional=LOAD_SECTIONS,
+        panels=_curve_panels,
+    )
+)
+register_kind(
+    DesignKind(
+        "block",
+        (CURVE, BLOCK),
+        "curvefold.app._build:build_block",
+        lambda design: 4 * len(design.params(BlockParams).cells),
+        lambda values: values["curve"]["length"],
+        help="a cellular block of lattice cells",
+        description='Build a cellular block of lattice cells from a design file (kind = "block") '
+        "or the defaults, and write its files and report.",
+        optional=LOAD_SECTIONS,
+        panels=_curve_panels,
+        lower="[block] cells",
+    )
+)
+register_kind(
+    DesignKind(
+        "crease",
+        (CREASE,),
+        "curvefold.app._build:build_crease",
+        lambda design: 2,
+        lambda values: values["crease"]["length"],
+        help="a single curved fold from its crease pattern",
+        description="Fold a single curved crease from its crease pattern (kappa_2d, ruling "
+        "angles, start fold angle or alpha(s)): the paper's Fig. 08.",
+        check=_check_alpha,
+        structure=False,
+    )
+)

@@ -56,12 +56,16 @@ def structure_payload(built: Built) -> dict:
             "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
             "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
         }
-    if isinstance(built, BuiltCrease):  # a single fold, in every state of its motion but the flat one
+    if isinstance(
+        built, BuiltCrease
+    ):  # a single fold, in every state of its motion but the flat one
         fold = built.single_fold
         certificate = certify_single_fold([(a, fold.at(a)) for a in exported_fold_angles(built) if a > 0])
     elif isinstance(built, BuiltStructure):
         vault = built.vault if isinstance(built, BuiltVault) else None
-        certificate = certify(built.crease, built.structure, vault, fold_angles=list(exported_fold_angles(built)))
+        certificate = certify(
+            built.crease, built.structure, vault, fold_angles=list(exported_fold_angles(built))
+        )
     else:
         raise TypeError(f"no certificate for a {type(built).__name__}")
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
@@ -132,7 +136,8 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
 
     The files are written by job processes while this process computes what they share
     (:meth:`Built.prepare <curvefold.app._build.Built.prepare>` before any job forks, then
-    :meth:`~curvefold.app._build.Built.prepare_files` while the pictures are drawn) and the certificate.
+    :meth:`~curvefold.app._build.Built.prepare_files` while the pictures are drawn) and the
+    certificate.
 
     Parameters
     ----------

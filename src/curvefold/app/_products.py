@@ -7,8 +7,8 @@ GIF by the registry's writer. The pictures of the report are written (PNG) when 
 is installed.
 
 Every mesh written (FOLD, 3D models, crease patterns) keeps the samples of
-:attr:`Built.sampling <curvefold.app.Built.sampling>`: as accurate as the default
-tolerance asks, without sliver triangles; the resolution is recorded in the files'
+:attr:`BuiltStructure.sampling <curvefold.app._build.BuiltStructure.sampling>`: as accurate as
+the default tolerance asks, without sliver triangles; the resolution is recorded in the files'
 metadata and in the report (:func:`resolution`).
 """
 
@@ -40,8 +40,19 @@ from ._build import (
 )
 from ._folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw",
-           "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = [
+    "jobs",
+    "run_jobs",
+    "resolution",
+    "design_motion",
+    "exported_fold_angles",
+    "picture_files",
+    "can_draw",
+    "pictures_left_out",
+    "MOTION_STEPS",
+    "PICTURES_NEED",
+    "PICTURES_EXTRA",
+]
 
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
@@ -52,8 +63,9 @@ Job = Callable[[Path], list]
 
 
 class JobRun(Protocol):
-    """Jobs started by :func:`run_jobs`: iterated for their results in job order, ``refill()`` to run
-    ``prepare`` and start those that have a place, ``close()`` to stop those still running."""
+    """Jobs started by :func:`run_jobs`: iterated for their results in job order, ``refill()``
+    to run ``prepare`` and start those that have a place, ``close()`` to stop those still
+    running."""
 
     def __iter__(self) -> Iterator[tuple[str, list, float]]: ...
 
@@ -102,7 +114,9 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
     """
     check_kind(formats, built.design.design_kind.formats_kind, "formats")
     families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
-    family_jobs: dict[str, tuple[str, Callable[..., list]]] = _FAMILY_JOBS if isinstance(built, BuiltStructure) else _SINGLE_FOLD_JOBS
+    family_jobs: dict[str, tuple[str, Callable[..., list]]] = (
+        _FAMILY_JOBS if isinstance(built, BuiltStructure) else _SINGLE_FOLD_JOBS
+    )
     out: list[tuple[str, Job]] = []
     for family in families:
         label, write = family_jobs[family]
@@ -163,7 +177,9 @@ class _InTurn:
             prepare, self._prepare = self._prepare, None
             prepare()
 
-    def _run(self, jobs: list[tuple[str, Job]], folder: Path) -> Generator[tuple[str, list, float], None, None]:
+    def _run(
+        self, jobs: list[tuple[str, Job]], folder: Path
+    ) -> Generator[tuple[str, list, float], None, None]:
         for label, job in jobs:
             if label not in DRAWN:
                 self.refill()
@@ -227,7 +243,9 @@ class _Running:
 
     def _collect(self, timeout: float | None = None) -> None:
         """Wait for a running job to end (up to ``timeout`` seconds) and keep its outcome."""
-        ready: list[Any] = multiprocessing.connection.wait(list(self._running), timeout)  # the pipes' readers
+        ready: list[Any] = multiprocessing.connection.wait(
+            list(self._running), timeout
+        )  # the pipes' readers
         for reader in ready:
             index, process = self._running.pop(reader)
             try:
@@ -299,7 +317,9 @@ def _writer(names: tuple[str, ...]) -> Callable:
     return FORMATS[names[0]].load_writer()
 
 
-def _fold(built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _fold(
+    built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """The structure's FOLD file: its folding motion (:func:`exported_fold_angles`), or flat to
     ``fold_angle`` when one is given; and one FOLD file per sheet, flat with its target fold angles
     (loadable by Origami Simulator)."""
@@ -319,19 +339,23 @@ def _fold(built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angl
 
 
 def _pattern(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
-    """The crease patterns, from the one layout of the design (:attr:`Built.layout`)."""
+    """The crease patterns, from the one layout of the design
+    (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
 def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
-    """The assembly guide, on the pages of the design's crease pattern (:attr:`Built.layout`)."""
+    """The assembly guide, on the pages of the design's crease pattern
+    (:attr:`~curvefold.app._build.Built.layout`)."""
     f = FORMATS[names[0]]
     return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
 
 
-def _model(built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _model(
+    built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion, and at the design
     angle of a design under load its deflected shape and first modes (:meth:`curvefold.app._loading.Loaded.morph_targets`)."""
     from ..io._models import write_3d
@@ -351,7 +375,9 @@ def _motion(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
-def _single_fold_fold(built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _single_fold_fold(
+    built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """A single fold's FOLD file (its motion, flat to the design angle or to ``fold_angle``) and its
     sheet's (loadable by Origami Simulator)."""
     from ..io._fold import write_model, write_sheet_fold
@@ -365,13 +391,16 @@ def _single_fold_fold(built: BuiltCrease, names: tuple[str, ...], folder: Path, 
 
 
 def _single_fold_pattern(built: BuiltCrease, names: tuple[str, ...], folder: Path) -> list:
-    """A single fold's crease pattern, from its one layout (:attr:`Built.layout`)."""
+    """A single fold's crease pattern, from its one layout
+    (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
-def _single_fold_model(built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _single_fold_model(
+    built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the folding motion."""
     from ..io._single_fold import write_single_fold_3d
 
@@ -429,8 +458,10 @@ def _figures(built: Built) -> dict[str, Callable]:
         return {}
     structure = built.structure
     lattice = structure.lattice
-    figures: dict[str, Callable] = {"regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
-               "width-proportion": partial(pictures.width_proportion_picture, lattice)}
+    figures: dict[str, Callable] = {
+        "regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
+        "width-proportion": partial(pictures.width_proportion_picture, lattice),
+    }
     if isinstance(built, BuiltVault):
         figures |= {"vault": partial(pictures.vault_picture, built.vault), "sections": partial(pictures.sections_picture, built.vault),
                     "folding-motion": partial(pictures.motion_strip_picture, built.vault)}

@@ -10,19 +10,17 @@ after removing what the run had started to write. Warnings are shown only with
 ``--debug``; text a user typed is printed with its control characters escaped. The output
 folder is checked before any work and replaced only as :mod:`curvefold.app._folder` says.
 
-One subcommand per registered kind of design (:mod:`curvefold.app._kinds`: ``vault``, ``tube``,
-``block``, ``crease``), its help from the kind. The flags of those and of ``load``, their help and their checks
-are generated from the design schema (:data:`curvefold.app._design.SCHEMA`): one flag per
-key, ``--fold-angle`` for ``fold_angle``, ``--no-glue-tabs`` for a key that is true by
-default. A flag's value is checked by the key's spec and named as typed
-(``--page A9: page must be one of …``); a design made of a file and flags is named by both
-(``design.toml --samples 10: …``).
+A subcommand per registered kind of design (:mod:`curvefold.app._kinds`), its help the kind's.
+The flags of those and of ``load``, their help and their checks are generated from the design
+schema (:data:`curvefold.app._design.SCHEMA`): one flag per key, ``--fold-angle`` for
+``fold_angle``, ``--no-glue-tabs`` for a key that is true by default. A flag's value is
+checked by the key's spec and named as typed (``--page A9: page must be one of …``); a design
+made of a file and flags is named by both (``design.toml --samples 10: …``).
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 import re
 import signal
 import sys
@@ -146,8 +144,9 @@ def _from_text(spec: Spec, text: str, flag: str | None = None):
     """A flag's text as the value a design file would hold (checked by the spec afterwards);
     a number that does not read as one is refused here, naming the flag."""
     value = from_text(spec, text)
-    number: dict[str, tuple[type, ...]] = {"real": (int, float), "integer": (int,), "count": (int,)}
-    if spec.kind in number and not isinstance(value, number[spec.kind]) and value != ("max" if spec.kind == "count" else None):
+    types = {"real": (int, float), "integer": (int,), "count": (int,)}.get(spec.kind)
+    unset = "max" if spec.kind == "count" else None  # a count's other value
+    if types and not isinstance(value, types) and value != unset:
         least = "" if spec.range is None else f" ≥ {spec.range.lo:g}"
         form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
                 "count": f"a whole number{least} or 'max'"}[spec.kind]
@@ -216,7 +215,7 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
 
 
 def _add_target_flags(p: argparse.ArgumentParser, kind: DesignKind) -> None:
-    """A kind's targets as flags (a vault's --span, --rise and --p-xz; help and checks from their specs)."""
+    """A kind's targets as flags (a vault's --span, --rise, --p-xz), help and checks from specs."""
     if kind.targets is None:
         return
     g = p.add_argument_group("targets", kind.targets.help)
@@ -225,28 +224,28 @@ def _add_target_flags(p: argparse.ArgumentParser, kind: DesignKind) -> None:
 
 
 def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
-    """The design with the parameters its kind's target flags replace solved for them (a vault's)."""
+    """The design with the parameters its kind's target flags replace solved for them."""
     fit = design.design_kind.targets
-    if fit is None:
+    specs = {} if fit is None else {spec.name: spec for spec in fit.specs()}
+    given = {name: text for name in specs if (text := getattr(args, name, None)) is not None}
+    if fit is None or not given:
         return design
-    specs = {spec.name: spec for spec in fit.specs()}
-    replaces = fit.replaces()
-    given = {name: text for name in replaces if (text := getattr(args, name, None)) is not None}
     targets = {name: _flag_value(specs[name], text) for name, text in given.items()}
-    if not targets:
-        return design
     flags = kind_specs(design.kind)
-    for target, replaced in replaces.items():
+    for target, replaced in fit.replaces().items():
         if target in targets and getattr(args, replaced, None) is not None:
-            raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} or {_flag(flags[replaced])}, not both")
+            raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} "
+                             f"or {_flag(flags[replaced])}, not both")
     return fit.fit(design, source=design.source, **targets)[0]
 
 
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
-        default = ("none: nothing is written" if kind == "load"
-                   else f"./{design_kind(kind).default_out}; with --json and no --out nothing is written")
+        default = "none: nothing is written"
+        if kind != "load":
+            folder = design_kind(kind).default_out
+            default = f"./{folder}; with --json and no --out nothing is written"
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: {default})")
         g.add_argument("--force", action="store_true", help=_FORCE_HELP)
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
@@ -330,7 +329,8 @@ def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
     p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
     p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
     most = SCHEMA[""]["samples"].range
-    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {most.hi if most else math.inf:g}] (default 201)")
+    text = f"samples per crease, in [21, {most.hi if most else float('inf'):g}] (default 201)"
+    p.add_argument("--samples", metavar="N", help=text)
     p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of {LOCAL_CLUSTER_FROM} designs or more when Dask is installed, else 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
@@ -395,10 +395,11 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     from ._outputs import structure_payload, write_outputs
 
     design = _fit_targets(_load_design(kind, args), args)
-    out = args.out if args.out is not None else (None if args.json else Path(design.design_kind.default_out))
+    out = args.out or (None if args.json else Path(design.design_kind.default_out))
     target = None
     if out is not None:
-        check_kind(design.output.formats, design.design_kind.formats_kind, f"{design.source}: [output] formats")
+        formats_kind = design.design_kind.formats_kind
+        check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
         target = check_output(out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
     require_budget(design, files=out is not None)
     built = build(design)
@@ -429,7 +430,8 @@ def cmd_load(args: argparse.Namespace) -> int:
     design = design.with_mechanics()
     target = None
     if args.out is not None:
-        check_kind(design.output.formats, design.design_kind.formats_kind, f"{design.source}: [output] formats")
+        formats_kind = design.design_kind.formats_kind
+        check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
         target = check_output(args.out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
     require_budget(design, files=target is not None)
     built = build(design)
@@ -511,8 +513,9 @@ def cmd_check(args: argparse.Namespace) -> int:
 
         from ..analysis._foldcheck import FileCheck
 
-        unbuilt = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
-                                                      f"{frames} frames after the key frame: the record is not the file's (not rebuilt)")
+        where = (f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
+                 f"{frames} frames after the key frame: the record is not the file's (not rebuilt)")
+        unbuilt = FileCheck("rebuild", "fail", where=where)
         result = replace(result, checks=result.checks + (unbuilt,))
     ran = [c for c in result.checks if c.status != "not run"]
     failed = [c for c in ran if c.status == "fail"]

@@ -81,8 +81,9 @@ STATE = Spec("state", "real", None, "[0, 180)", "degrees", help="fold angle 2 al
 
 
 def parameters(kind: str) -> dict[str, Spec]:
-    """Every query parameter of a kind: the schema keys of its sections and ``[output]``, and its targets
-    (:attr:`DesignKind.targets <curvefold.app._kinds.DesignKind.targets>`: a vault's)."""
+    """Every query parameter of a kind: the schema keys of its sections and ``[output]``, and
+    its targets (:attr:`DesignKind.targets <curvefold.app._kinds.DesignKind.targets>`: a
+    vault's)."""
     specs = kind_specs(design_kind(kind).name)
     return specs | {spec.name: spec for spec in _target_specs(kind)}
 
@@ -137,7 +138,10 @@ def _kind_targets(kind: DesignKind) -> list[dict]:
     if kind.targets is None:
         return []
     replaces = kind.targets.replaces()
-    return [_spec_json(spec, kind.name) | {"replaces": replaces[spec.name]} for spec in kind.targets.specs()]
+    return [
+        _spec_json(spec, kind.name) | {"replaces": replaces[spec.name]}
+        for spec in kind.targets.specs()
+    ]
 
 
 @lru_cache(maxsize=1)
@@ -302,7 +306,8 @@ def _built(key: str, like: Built | None = None) -> Built:
 def built(design: Design, *, samples: int | None = None) -> Built:
     """The design built (cached), at fewer ``samples`` if given: then the design is first built at
     its own samples, so that what its samples refuse (regression between coarse samples) is
-    refused, never drawn, and what the build solves (a vault's arch root) is solved once for both."""
+    refused, never drawn, and what the build solves (a vault's arch root) is solved once for
+    both."""
     try:
         if samples is not None and samples < design.samples:
             full = _built(_key(design))
@@ -357,7 +362,9 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
 
         found = built(design, samples=COARSE_SAMPLES)
         structure = found.structure if isinstance(found, BuiltStructure) else None
-        cert = certify(found.crease, structure, found.vault if isinstance(found, BuiltVault) else None)
+        cert = certify(
+            found.crease, structure, found.vault if isinstance(found, BuiltVault) else None
+        )
         checks, frames = [c.to_dict() for c in cert.checks], {"samples": cert.samples, "holds_up_to": cert.holds_up_to,
                                                                  "fold_angles": list(cert.fold_angles)}
     else:
@@ -404,8 +411,9 @@ def domain_svg(design: Design) -> str:
 
 
 def built_structure(design: Design, *, samples: int | None = None) -> BuiltStructure:
-    """:func:`built` of a design whose kind builds a structure of strips (:attr:`DesignKind.structure
-    <curvefold.app._kinds.DesignKind.structure>`, checked by the caller)."""
+    """:func:`built` of a design whose kind builds a structure of strips
+    (:attr:`DesignKind.structure <curvefold.app._kinds.DesignKind.structure>`, checked by the
+    caller)."""
     found = built(design, samples=samples)
     if not isinstance(found, BuiltStructure):
         raise InputError(f"a {design.kind} design builds no structure of strips")

@@ -101,7 +101,11 @@ def _motion(found: Built) -> dict:
     structure = found.structure
     design_angle = float(structure.lattice.crease.fold_angle)
     grounded = found.design.design_kind.grounded
-    end, reason = (MAX_FOLD, "first contact") if grounded else (0.5 * (design_angle + 180.0), "halfway to 180°")
+    end, reason = (
+        (MAX_FOLD, "first contact")
+        if grounded
+        else (0.5 * (design_angle + 180.0), "halfway to 180°")
+    )
     angles = distinct(np.concatenate([
         np.linspace(0.0, design_angle, int(np.ceil(design_angle / MOTION_STEP)) + 1),
         np.linspace(design_angle, end, int(np.ceil((end - design_angle) / MOTION_STEP)) + 1),
@@ -109,8 +113,14 @@ def _motion(found: Built) -> dict:
     vertices = structure.lattice.fold_points(structure.curves_uv, angles)
     curves, cells, kinds = drawable(structure, vertices, segments=PREVIEW_SEGMENTS, max_cells=PREVIEW_CELLS)
     lift = np.abs(vertices[:, :, [0, -1], 2]).max(axis=(1, 2)) if grounded else None
-    return {"angles": angles.tolist(), "design_angle": design_angle, "end": reason, "ground": grounded,
-            "lift_off": None if lift is None else lift.tolist(), **_mesh(curves, tube_strips(cells), kinds)}
+    return {
+        "angles": angles.tolist(),
+        "design_angle": design_angle,
+        "end": reason,
+        "ground": grounded,
+        "lift_off": None if lift is None else lift.tolist(),
+        **_mesh(curves, tube_strips(cells), kinds),
+    }
 
 
 def _dimensions(found: Built, numbers: dict) -> dict | None:
@@ -235,7 +245,9 @@ def _sketch(key: str) -> str:
     rows_h = [max(float(hi[1] - lo[1]) for lo, hi in boxes[r:r + columns]) * scale for r in range(0, len(drawn), columns)]
     parts, y = [], _GAP
     for r, height in enumerate(rows_h):
-        for c, ((label, mesh), (lo, _hi)) in enumerate(zip(drawn[r * columns:(r + 1) * columns], boxes[r * columns:(r + 1) * columns])):
+        for c, ((label, mesh), (lo, _hi)) in enumerate(
+            zip(drawn[r * columns : (r + 1) * columns], boxes[r * columns : (r + 1) * columns])
+        ):
             x0 = _GAP + c * (cell + _GAP)
             xy = (mesh.vertices_coords[:, :2] - lo) * scale
             xy[:, 1] = height - xy[:, 1]  # SVG's y runs down

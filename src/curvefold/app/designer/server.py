@@ -433,7 +433,15 @@ class _Url(str):
         return self
 
 
-def serve(host: str, port: int, *, query: Sequence[tuple[str, str]] = (), open_browser: bool = True, say=print, **options) -> None:
+def serve(
+    host: str,
+    port: int,
+    *,
+    query: Sequence[tuple[str, str]] = (),
+    open_browser: bool = True,
+    say=print,
+    **options,
+) -> None:
     """Serve the designer until interrupted; open the page (with the design ``query``) in a browser.
     ``options`` are those of :class:`Designer`."""
     sock = bind(host, port)
