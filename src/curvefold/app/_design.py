@@ -414,21 +414,16 @@ class Design:
 
 
 def _alternatives(data: dict, flags: Mapping[str, Any]) -> None:
-    """A [crease]'s ``alpha`` and ``beta_right`` are alternatives, and a named material and one's own values: the one the
-    flags set drops the other from the design's data (with ``alpha``, its ``fold_angle`` too, which then follows from
-    it), unless the flags set both."""
+    """A named material and one's own values are alternatives, and keys of a kind's sections
+    (:attr:`DesignKind.alternatives <curvefold.app._kinds.DesignKind.alternatives>`: a
+    [crease]'s ``alpha`` and ``beta_right``): the one the flags set drops the other from the
+    design's data, unless the flags set both."""
     given = {k.replace("-", "_") for k, v in flags.items() if v is not None and not isinstance(v, Mapping)}
     given |= {key for value in flags.values() if isinstance(value, Mapping) for key in value}  # a section's keys
     material_alternatives(data, given)
-    crease = data.get("crease")
-    if crease is None:
-        return
-    if "alpha" in given:
-        for key in ("beta_right", "fold_angle"):
-            if key not in given:
-                crease.pop(key, None)
-    elif "beta_right" in given:
-        crease.pop("alpha", None)
+    kind = design_kind(data["kind"])
+    if kind.alternatives is not None:
+        kind.alternatives(data, given)
 
 
 def _flag_sections(kind: str) -> dict[str, str]:

@@ -157,6 +157,9 @@ class DesignKind:
     check : callable or None
         ``check(values, given, source)``: checks across the keys of its checked sections
         (``values``, by section; completed in place), ``given`` the design's raw data.
+    alternatives : callable or None
+        ``alternatives(data, given)``: drops from a design's data (by section) the keys that the
+        keys ``given`` (by flags, to override) replace.
     lower : str
         What besides samples lowers its memory (``"[block] cells"``), or "".
     structure : bool
@@ -182,6 +185,7 @@ class DesignKind:
     optional: tuple[str, ...] = ()
     panels: Callable[[Design], int] = _no_panels
     check: Callable[[dict, Mapping[str, Any], str], None] | None = None
+    alternatives: Callable[[dict, set[str]], None] | None = None
     lower: str = ""
     structure: bool = True
     grounded: bool = False
@@ -514,6 +518,20 @@ def _check_alpha(values: dict, given: Mapping[str, Any], source: str) -> None:
     checked["beta_right"], checked["fold_angle"] = None, twice
 
 
+def _crease_alternatives(data: dict, given: set[str]) -> None:
+    """A [crease]'s ``alpha`` and ``beta_right`` are alternatives: the one given drops the other
+    (with ``alpha``, its ``fold_angle`` too, which then follows from it), unless both are given."""
+    crease = data.get("crease")
+    if crease is None:
+        return
+    if "alpha" in given:
+        for key in ("beta_right", "fold_angle"):
+            if key not in given:
+                crease.pop(key, None)
+    elif "beta_right" in given:
+        crease.pop("alpha", None)
+
+
 def _vault_targets() -> tuple[tuple[Spec, ...], Mapping[str, str]]:
     from ..vault._targets import REPLACES, TARGET_SPECS
 
@@ -586,6 +604,7 @@ register_kind(
         description="Fold a single curved crease from its crease pattern (kappa_2d, ruling "
         "angles, start fold angle or alpha(s)): the paper's Fig. 08.",
         check=_check_alpha,
+        alternatives=_crease_alternatives,
         structure=False,
     )
 )

@@ -426,7 +426,7 @@ def cmd_load(args: argparse.Namespace) -> int:
     from ._outputs import default_title, write_outputs
 
     design = _load_design(LOAD_KIND, args, kinds=[k.name for k in design_kinds() if k.loaded])
-    design = _fit_targets(design, args) if design.kind == LOAD_KIND else design
+    design = _fit_targets(design, args)
     design = design.with_mechanics()
     target = None
     if args.out is not None:
