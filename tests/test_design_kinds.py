@@ -253,3 +253,14 @@ def test_a_kind_is_registered_once_and_shares_a_section_only_as_it_is():
     assert tube.design_kind is design_kind("tube")
     with pytest.raises(InputError, match="<defaults>: a tube design has no VaultParams"):
         tube.params(VaultParams)
+
+
+def test_a_kind_says_which_of_its_keys_replace_others():
+    """A crease's ``alpha`` and ``beta_right`` are alternatives (its kind's ``alternatives``): the one
+    an override gives drops the other, and with ``alpha`` the fold angle follows from it."""
+    by_alpha = default_design("crease").overrides(alpha="30 + s")
+    assert (by_alpha.crease.beta_right, by_alpha.crease.fold_angle) == (None, 60.0)
+    by_beta = by_alpha.overrides(beta_right=80.0, fold_angle=50.0)
+    assert (by_beta.crease.alpha, by_beta.crease.beta_right, by_beta.crease.fold_angle) == (None, 80.0, 50.0)
+    with pytest.raises(InputError, match="give beta_right or alpha, not both"):
+        by_alpha.overrides(alpha="30", beta_right=80.0)
