@@ -19,22 +19,23 @@ import pytest
 from numpy.testing import assert_allclose
 
 from _cli import run
-from curvefold.app._budget import estimate
-from curvefold.app._build import BuiltStructure, build
-from curvefold.app._design import (
-    SCHEMA,
-    SECTIONS_OF_KIND,
-    VaultParams,
-    default_design,
-    design_from_dict,
-)
-from curvefold.app._kinds import (
+from curvefold.app import (
+    BuiltStructure,
     DesignKind,
     Section,
     deregister_kind,
     design_kind,
     design_kinds,
     register_kind,
+)
+from curvefold.app._budget import estimate
+from curvefold.app._build import build
+from curvefold.app._design import (
+    SCHEMA,
+    SECTIONS_OF_KIND,
+    VaultParams,
+    default_design,
+    design_from_dict,
 )
 from curvefold.app.cli import main
 from curvefold.geometry import Crease, Lattice, SpaceCurve, Structure
@@ -256,11 +257,12 @@ def test_a_kind_is_registered_once_and_shares_a_section_only_as_it_is():
 
 
 def test_a_kind_says_which_of_its_keys_replace_others():
-    """A crease's ``alpha`` and ``beta_right`` are alternatives (its kind's ``alternatives``): the one
-    an override gives drops the other, and with ``alpha`` the fold angle follows from it."""
+    """A crease's ``alpha`` and ``beta_right`` are alternatives (its kind's ``alternatives``): the
+    one an override gives drops the other, and with ``alpha`` the fold angle follows from it."""
     by_alpha = default_design("crease").overrides(alpha="30 + s")
     assert (by_alpha.crease.beta_right, by_alpha.crease.fold_angle) == (None, 60.0)
     by_beta = by_alpha.overrides(beta_right=80.0, fold_angle=50.0)
-    assert (by_beta.crease.alpha, by_beta.crease.beta_right, by_beta.crease.fold_angle) == (None, 80.0, 50.0)
+    crease = by_beta.crease
+    assert (crease.alpha, crease.beta_right, crease.fold_angle) == (None, 80.0, 50.0)
     with pytest.raises(InputError, match="give beta_right or alpha, not both"):
         by_alpha.overrides(alpha="30", beta_right=80.0)

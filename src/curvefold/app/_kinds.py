@@ -270,6 +270,12 @@ def design_kind(name: object, where: str = "") -> DesignKind:
     ------
     InputError
         An unknown kind, in one line: ``unknown kind 'dome' (allowed: vault, tube, block, crease)``.
+
+    Examples
+    --------
+    >>> vault = design_kind("vault")
+    >>> vault.default_out, vault.section_names, vault.grounded, design_kind("crease").structure
+    ('curvefold-vault', ('vault',), True, False)
     """
     found = _KINDS.get(name) if isinstance(name, str) else None
     if found is None:
