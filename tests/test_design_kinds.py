@@ -266,3 +266,12 @@ def test_a_kind_says_which_of_its_keys_replace_others():
     assert (crease.alpha, crease.beta_right, crease.fold_angle) == (None, 80.0, 50.0)
     with pytest.raises(InputError, match="give beta_right or alpha, not both"):
         by_alpha.overrides(alpha="30", beta_right=80.0)
+
+
+def test_the_designer_schema_says_which_kinds_stand_and_whose_targets_are_whose():
+    from curvefold.app.designer import api
+
+    schema = api.schema()
+    assert schema["grounded"] == ["vault"]
+    targets = {(t["kind"], t["name"]) for t in schema["targets"]}
+    assert targets == {("vault", "span"), ("vault", "rise"), ("vault", "p_xz")}

@@ -123,10 +123,13 @@ def _plain(value):
 def schema() -> dict:
     """The design schema as JSON-ready data: the designer's controls are generated from it.
 
-    Keys: ``kinds`` (kind → its sections, its optional ones last: ``material`` and ``loads``), ``sections`` (section → list of specs with name,
-    label, kind, unit, help, choices, default and range; ``""`` is the top level), ``targets``
-    (the vault's target specs and the parameter each replaces), ``formats`` (the
-    registry: name, extension, what the file holds, the kinds it is written for),
+    Keys: ``kinds`` (kind → its sections, its optional ones last: ``material`` and ``loads``),
+    ``optional`` (kind → its optional sections), ``grounded`` (the kinds that stand on the
+    ground: a vault, whose fold stops at its first contact), ``sections`` (section → list of
+    specs with name, label, kind, unit, help, choices, default and range; ``""`` is the top
+    level), ``targets`` (the kinds' target specs, a vault's, with their kind and the parameter
+    each replaces), ``formats`` (the registry: name, extension, what the file holds, the kinds
+    it is written for),
     ``state`` (the spec of the files' fold angle) and ``units`` (how the page names the
     schema's units, :data:`curvefold.figures._report.UNITS_SHOWN`). Read from the registry of
     kinds (:mod:`curvefold.app._kinds`), once for each state of it.
@@ -139,7 +142,7 @@ def _kind_targets(kind: DesignKind) -> list[dict]:
         return []
     replaces = kind.targets.replaces()
     return [
-        _spec_json(spec, kind.name) | {"replaces": replaces[spec.name]}
+        _spec_json(spec, kind.name) | {"kind": kind.name, "replaces": replaces[spec.name]}
         for spec in kind.targets.specs()
     ]
 
@@ -150,6 +153,7 @@ def _schema(version: int) -> dict:
     return {
         "kinds": {kind.name: [*kind.section_names, *kind.optional] for kind in kinds},
         "optional": {kind.name: list(kind.optional) for kind in kinds},
+        "grounded": [kind.name for kind in kinds if kind.grounded],
         "sections": {section: [_spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED]
                      for section, specs in SCHEMA.items()},
         "targets": [target for kind in kinds for target in _kind_targets(kind)],
