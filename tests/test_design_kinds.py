@@ -242,6 +242,11 @@ def test_a_kind_is_registered_once_and_shares_a_section_only_as_it_is():
         InputError, match=r"section \[tube\] of kind 'ring' differs from kind 'tube''s"
     ):
         register_kind(replace(RING_KIND, sections=(other_tube,)))
+    output = Section.of("output", RingParams, *RING.specs.values())
+    with pytest.raises(InputError, match=r"kind 'ring': section \[output\] is every kind's"):
+        register_kind(replace(RING_KIND, sections=(output,)))
+    with pytest.raises(InputError, match=r"optional section \[wind\] must be one of material"):
+        register_kind(replace(RING_KIND, optional=("wind",)))
     assert "ring" not in {kind.name for kind in design_kinds()}
     shared = register_kind(
         replace(RING_KIND, name="arc", sections=(design_kind("tube").sections[0], RING))

@@ -4,7 +4,7 @@ A kind of design (``vault``, ``tube``, ``block``, ``crease``) is a :class:`Desig
 sections of a design file it reads (their specs and the frozen values they become), how a
 design of it is built, what it costs (the strips the memory budget counts), where its
 output folder goes, which file formats it writes and how the command line describes it.
-:func:`register_kind` adds one, as :func:`curvefold.io._formats` registers formats; the
+:func:`register_kind` adds one, as :mod:`curvefold.io._formats` registers file formats; the
 design schema (:mod:`curvefold.app._design`), the command line (:mod:`curvefold.app.cli`),
 the budget (:mod:`curvefold.app._budget`) and the designer's API read the registry, so a new
 kind touches no other file::
@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Literal
 
@@ -56,10 +56,14 @@ __all__ = [
     "BlockParams",
     "CreaseParams",
     "LOAD_SECTIONS",
+    "SHARED_SECTIONS",
 ]
 
 #: The optional sections of a kind that can stand under load: what it is made of and what loads it.
 LOAD_SECTIONS = ("material", "loads")
+#: Sections every kind shares (the top level, ``[output]`` and :data:`LOAD_SECTIONS`), which no
+#: kind's own section may be named.
+SHARED_SECTIONS = ("", "output", *LOAD_SECTIONS)
 
 
 @dataclass(frozen=True)
@@ -190,7 +194,7 @@ class DesignKind:
     structure: bool = True
     grounded: bool = False
     targets: Targets | None = None
-    formats_as: str = field(default="")
+    formats_as: str = ""
 
     def build(self, design: Design, like: Built | None = None) -> Built:
         """Build a design of this kind; ``like`` is None or the same design built at other samples,
@@ -227,11 +231,20 @@ def register_kind(kind: DesignKind) -> DesignKind:
     Raises
     ------
     InputError
-        A kind of that name is registered, or a section of its name belongs to another
-        kind with other specs.
+        A kind of that name is registered, one of its sections is named as a shared one
+        (:data:`SHARED_SECTIONS`) or as another kind's with other specs, or an optional
+        section is none of :data:`LOAD_SECTIONS`.
     """
     if kind.name in _KINDS:
         raise InputError(f"kind {kind.name!r} is registered already")
+    shared = [s.name for s in kind.sections if s.name in SHARED_SECTIONS]
+    if shared:
+        raise InputError(f"kind {kind.name!r}: section [{shared[0]}] is every kind's; "
+                         "name its own sections otherwise")
+    unknown = [name for name in kind.optional if name not in LOAD_SECTIONS]
+    if unknown:
+        raise InputError(f"kind {kind.name!r}: optional section [{unknown[0]}] "
+                         f"must be one of {', '.join(LOAD_SECTIONS)}")
     for section in kind.sections:
         for other in _KINDS.values():
             theirs = {s.name: s for s in other.sections}.get(section.name)
