@@ -95,10 +95,8 @@ class Built:
         contact (the FOLD file's motion, and the certificate's) and the crease patterns'
         layout (the patterns, the assembly guide and the 3dm draw it)."""
         exported_fold_angles(self)
-        if "3dm" in formats or {FORMATS[name].family for name in formats if name in FORMATS} & {
-            "pattern",
-            "guide",
-        }:
+        families = {FORMATS[name].family for name in formats if name in FORMATS}
+        if "3dm" in formats or families & {"pattern", "guide"}:
             self.layout  # noqa: B018 (computed once, here)
 
     def _page(self) -> dict:
@@ -106,11 +104,8 @@ class Built:
         from ..io._tables import mm_per_unit
 
         o = self.design.output
-        page = (
-            o.page
-            if isinstance(o.page, str)
-            else tuple(side / mm_per_unit(o.units) for side in o.page)
-        )  # mm -> units
+        mm = mm_per_unit(o.units)
+        page = o.page if isinstance(o.page, str) else tuple(side / mm for side in o.page)  # mm -> units
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
         return {
             "page": page,
@@ -165,12 +160,8 @@ class BuiltStructure(Built):
         from it."""
         from ..io._pattern import layout_pattern
 
-        return layout_pattern(
-            self.structure,
-            glue_tabs=self.design.output.glue_tabs,
-            keep=self.sampling.keep,
-            **self._page(),
-        )
+        return layout_pattern(self.structure, glue_tabs=self.design.output.glue_tabs,
+                              keep=self.sampling.keep, **self._page())
 
     def prepare(self) -> None:
         """The mechanics of a design under load (the 3D models and the pictures show it) and a rigid
