@@ -104,8 +104,8 @@ class Built:
         from ..io._tables import mm_per_unit
 
         o = self.design.output
-        mm = mm_per_unit(o.units)
-        page = o.page if isinstance(o.page, str) else tuple(side / mm for side in o.page)  # mm -> units
+        mm = mm_per_unit(o.units)  # a page's sides are in mm
+        page = o.page if isinstance(o.page, str) else tuple(side / mm for side in o.page)
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
         return {
             "page": page,
