@@ -97,7 +97,8 @@ if part != "geometry":
     label = "pictures" if part == "pictures" else next(label for label in jobs if label != "pictures")
     with tempfile.TemporaryDirectory() as folder:
         if label != "pictures":
-            products.prepare(built, formats)
+            built.prepare()
+            built.prepare_files(formats)
         jobs[label](Path(folder))
 print(json.dumps([interpreter, geometry, peak()]))
 """

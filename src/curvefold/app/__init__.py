@@ -1,6 +1,7 @@
 """The application layer: design files, the command line and the output folder.
 
-The names below are its public surface: a design read or made, built, and written out.
+The names below are its public surface: a design read or made, built, and written out, and the
+registry of kinds of design a new kind registers with (:func:`register_kind`).
 """
 
 from ..kernel._exports import lazy_exports as _lazy_exports
@@ -10,7 +11,9 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
         "_design": ["Design", "load_design", "parse_design", "design_from_dict", "default_design"],
-        "_build": ["Built", "vault_design"],
+        "_build": ["Built", "BuiltStructure", "BuiltVault", "BuiltCrease", "vault_design"],
+        "_kinds": ["DesignKind", "Section", "Targets", "register_kind", "deregister_kind",
+                   "design_kind", "design_kinds"],
         "_outputs": ["write_outputs", "write_atlas", "structure_payload"],
         "cli": ["main"],
     },

@@ -134,19 +134,14 @@ class Estimate:
 
 
 def _strips(design: Design) -> int:
-    """Strips of the structure a design builds (``tubes = "max"`` counts as its cap)."""
-    if design.kind == "vault":
-        tubes = DEFAULT_TUBES_CAP if design.vault.tubes == "max" else design.vault.tubes
-        return 4 * tubes * design.vault.layers
-    if design.kind == "block":
-        return 4 * len(design.block.cells)
-    return 4 if design.kind == "tube" else 2
+    """Strips of the structure a design builds, as its kind counts them (a vault's
+    ``tubes = "max"`` counts as its cap)."""
+    return design.design_kind.strips(design)
 
 
 def _samples(design: Design) -> int:
     """Points along each crease: the samples, and the N + 1 vertices of a structure of N panels."""
-    params = design.vault if design.kind == "vault" else design.curve
-    panels = getattr(params, "panels", 0) or 0
+    panels = design.design_kind.panels(design)
     return design.samples + (panels + 1 if panels else 0)
 
 
@@ -168,7 +163,7 @@ def _mechanics(design: Design) -> float:
         return 0.0
     from ..mechanics import model_samples
 
-    panels = getattr(design.vault if design.kind == "vault" else design.curve, "panels", 0) or 0
+    panels = design.design_kind.panels(design)
     kept = panels + 1 if panels else len(model_samples(design.samples))
     return _cost("mechanics", kept, kept * _strips(design))
 
@@ -181,7 +176,9 @@ def estimate(design: Design, *, files: bool) -> Estimate:
     n = samples * _strips(design)
     jobs = {part: _cost(part, samples, n) for part in _parts(design, files)}
     mechanics = _mechanics(design)
-    largest = max(jobs, key=jobs.get, default="mechanics" if mechanics else "geometry")
+    largest = max(
+        jobs, key=lambda part: jobs[part], default="mechanics" if mechanics else "geometry"
+    )
     return Estimate(BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest)
 
 
@@ -197,7 +194,7 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
         return found
     strips = _strips(design)
     fits = _samples_that_fit(design, files, budget)
-    what = {"vault": f'[vault] tubes or layers (tubes = "max" counts as {DEFAULT_TUBES_CAP})', "block": "[block] cells"}.get(design.kind)
+    what = design.design_kind.lower
     lower = [f"samples (at most {fits} fit)" if fits else "samples", *([what] if what else [])]
     if _samples(design) > design.samples:
         lower.insert(1, "panels")

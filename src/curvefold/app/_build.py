@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING
@@ -10,21 +11,39 @@ import numpy as np
 
 from ..geometry._crease import Crease
 from ..geometry._curve import SpaceCurve
+from ..geometry._kinds import StructureLattice
 from ..geometry._lattice import Lattice
 from ..geometry._panels import PanelLattice
 from ..geometry._sampling import Sampling, choose_sampling
 from ..geometry._single_fold import SingleFold
 from ..geometry._structure import Structure
+from ..io._formats import FORMATS
 from ..io._layout import Layout
 from ..kernel._errors import InputError
-from ..vault._arch import ArchRoot
 from ..vault._assembly import Vault, VaultDesign, arch_crease, vault_panels, vault_samples
 from ._design import Design
+from ._kinds import BlockParams, CreaseParams, CurveParams, TubeParams, VaultParams
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._loading import Loaded
 
-__all__ = ["Built", "build", "vault_design", "fit_vault_targets", "design_motion", "exported_fold_angles", "MOTION_STEPS"]
+__all__ = [
+    "Built",
+    "BuiltStructure",
+    "BuiltVault",
+    "BuiltCrease",
+    "build",
+    "build_vault",
+    "build_tube",
+    "build_block",
+    "build_lattice_structure",
+    "build_crease",
+    "vault_design",
+    "fit_vault_targets",
+    "design_motion",
+    "exported_fold_angles",
+    "MOTION_STEPS",
+]
 
 #: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
 MOTION_STEPS = 7
@@ -32,70 +51,172 @@ MOTION_STEPS = 7
 
 @dataclass(frozen=True, eq=False)
 class Built:
-    """What a design builds: a vault, another structure, or a single crease.
+    """What a design builds: the base of one type per kind of what it builds
+    (:class:`BuiltStructure`, :class:`BuiltVault`, :class:`BuiltCrease`).
+
+    Its derived values are computed when first read, once; :meth:`prepare` computes, in this
+    process, those that the output folder's jobs share before they fork.
 
     Attributes
     ----------
     design : Design
-    vault : Vault or None
-        Set for kind "vault".
-    structure : Structure or None
-        Set for kinds "vault", "tube" and "block" (on a
-        :class:`~curvefold.geometry.PanelLattice` for a design with panels).
-    crease : Crease or None
-        Set for kind "crease" (a single curved fold); for the others, curve 1's smooth
-        crease (the one the panels sample, for a design with panels).
+    crease : Crease
+        Curve 1's smooth crease (the one the panels sample, for a design with panels), or the
+        single curved fold's.
     """
 
     design: Design
-    vault: Vault | None
-    structure: Structure | None
     crease: Crease
 
+    @property
+    def fold_angle(self) -> float:
+        """2α of the design state (degrees; a single fold's at its start)."""
+        raise NotImplementedError
+
+    @property
+    def mechanics(self) -> Loaded | None:
+        """The structure under the design's material and loads, when the design gives them
+        (:func:`curvefold.app._loading.analyse`); None otherwise."""
+        return None
+
+    @property
+    def layout(self) -> Layout:
+        """The crease pattern laid out on the output's pages
+        (:func:`~curvefold.io.layout_pattern`)."""
+        raise NotImplementedError
+
+    def prepare(self) -> None:
+        """Compute, in this process, what every job of the output folder shares (the drawings too)
+        before any of them forks, so that they inherit it rather than each computing it."""
+
+    def prepare_files(self, formats: Collection[str]) -> None:
+        """Compute, in this process, what the output folder's file jobs writing ``formats``
+        share before they fork (the drawings need none of it, and start first): the first
+        contact (the FOLD file's motion, and the certificate's) and the crease patterns'
+        layout (the patterns, the assembly guide and the 3dm draw it)."""
+        exported_fold_angles(self)
+        families = {FORMATS[name].family for name in formats if name in FORMATS}
+        if "3dm" in formats or families & {"pattern", "guide"}:
+            self.layout  # noqa: B018 (computed once, here)
+
+    def _page(self) -> dict:
+        """The page, units, scale and cutting of the crease patterns, as the layouts take them."""
+        from ..io._tables import mm_per_unit
+
+        o = self.design.output
+        mm = mm_per_unit(o.units)  # a page's sides are in mm
+        page = o.page if isinstance(o.page, str) else tuple(side / mm for side in o.page)
+        perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
+        return {
+            "page": page,
+            "units": o.units,
+            "scale": o.scale,
+            "name": self.design.kind,
+            "cutter": o.cutter,
+            "perforation": perforation,
+            "kerf": o.kerf,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class BuiltStructure(Built):
+    """A tube or block (a structure on a lattice; on a :class:`~curvefold.geometry.PanelLattice`
+    for a design with panels), held at both end sections under load.
+
+    Attributes
+    ----------
+    structure : Structure
+    """
+
+    structure: Structure
+
+    @property
+    def fold_angle(self) -> float:
+        return float(self.structure.lattice.crease.fold_angle)
+
     @cached_property
-    def sampling(self) -> Sampling | None:
-        """The samples the files' meshes keep (:func:`choose_sampling`), None for a single crease."""
-        return None if self.structure is None else choose_sampling(self.structure)
+    def sampling(self) -> Sampling:
+        """The samples the files' meshes keep (:func:`choose_sampling`)."""
+        return choose_sampling(self.structure)
 
     @cached_property
     def mechanics(self) -> Loaded | None:
         """The structure under the design's material and loads (:func:`curvefold.app._loading.analyse`), when the
-        design gives them; None otherwise. A vault stands on its feet, a tube or block is held at both end sections.
-        Computed once, before the output folder's jobs fork."""
-        if not self.design.mechanics or self.structure is None:
+        design gives them; None otherwise. A kind that stands on the ground (a vault:
+        :attr:`DesignKind.grounded <curvefold.app._kinds.DesignKind.grounded>`) stands on its
+        feet, a tube or block is held at both end sections."""
+        if not self.design.mechanics:
             return None
         from ._loading import analyse
 
-        return analyse(self.structure, self.design.material, self.design.loads, supported="feet" if self.vault is not None else "ends")
-
-    @cached_property
-    def single_fold(self) -> SingleFold | None:
-        """The single curved fold of a design of kind "crease", with the strips' widths its files draw;
-        None for a structure."""
-        if self.structure is not None:
-            return None
-        c = self.design.crease
-        return SingleFold.of(self.crease, self.design.function("kappa_2d"), (c.width_left, c.width_right), fold_angle=c.fold_angle)
+        supported = "feet" if self.design.design_kind.grounded else "ends"
+        return analyse(self.structure, self.design.material, self.design.loads, supported=supported)
 
     @cached_property
     def layout(self) -> Layout:
         """The crease pattern laid out on the output's pages, at its scale, in its cutter's convention,
         perforated and kerf-compensated as asked (:func:`~curvefold.io.layout_pattern`), on the
-        files' samples; a single fold's pattern at its scale or as large as the page takes it. The
-        crease-pattern files, the 3dm and the assembly guide are drawn from it."""
+        files' samples. The crease-pattern files, the 3dm and the assembly guide are drawn
+        from it."""
         from ..io._pattern import layout_pattern
-        from ..io._tables import mm_per_unit
 
-        o = self.design.output
-        page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
-        perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
-        if self.structure is None:
-            from ..io._single_fold import layout_single_fold
+        return layout_pattern(self.structure, glue_tabs=self.design.output.glue_tabs,
+                              keep=self.sampling.keep, **self._page())
 
-            return layout_single_fold(self.single_fold, page=page, units=o.units, scale=o.scale, name=self.design.kind,
-                                      cutter=o.cutter, perforation=perforation, kerf=o.kerf)
-        return layout_pattern(self.structure, page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, name=self.design.kind,
-                              keep=self.sampling.keep, cutter=o.cutter, perforation=perforation, kerf=o.kerf)
+    def prepare(self) -> None:
+        """The mechanics of a design under load (the 3D models and the pictures show it) and a rigid
+        structure's certified mechanism (the certificate and the pictures share it)."""
+        from ..analysis._mechanism import certified_mechanism
+
+        self.mechanics  # noqa: B018 (computed once, here)
+        if self.structure.lattice.rigid:
+            certified_mechanism(self.structure)
+
+    def prepare_files(self, formats: Collection[str]) -> None:
+        """As :meth:`Built.prepare_files`, and the meshes' samples (every mesh written
+        keeps them)."""
+        self.sampling  # noqa: B018 (computed once, here)
+        super().prepare_files(formats)
+
+
+@dataclass(frozen=True, eq=False)
+class BuiltVault(BuiltStructure):
+    """A composite deployable vault: its structure is the vault's, and it stands on its feet.
+
+    Attributes
+    ----------
+    vault : Vault
+    """
+
+    vault: Vault
+
+
+@dataclass(frozen=True, eq=False)
+class BuiltCrease(Built):
+    """A single curved fold (its crease is the design's)."""
+
+    @property
+    def fold_angle(self) -> float:
+        return self.single_fold.fold_angle
+
+    @cached_property
+    def single_fold(self) -> SingleFold:
+        """The single curved fold, with the strips' widths its files draw."""
+        c = self.design.params(CreaseParams)
+        return SingleFold.of(
+            self.crease,
+            self.design.function("kappa_2d"),
+            (c.width_left, c.width_right),
+            fold_angle=c.fold_angle,
+        )
+
+    @cached_property
+    def layout(self) -> Layout:
+        """The single fold's crease pattern at its scale, or as large as the page takes it
+        (:func:`curvefold.io._single_fold.layout_single_fold`)."""
+        from ..io._single_fold import layout_single_fold
+
+        return layout_single_fold(self.single_fold, **self._page())
 
 
 def vault_design(design: Design) -> VaultDesign:
@@ -107,7 +228,7 @@ def vault_design(design: Design) -> VaultDesign:
     InputError
         Fewer samples than a vault needs; the message names the design's source.
     """
-    v = design.vault
+    v = design.params(VaultParams)
     return VaultDesign(
         a=v.a,
         p_xy=v.p_xy,
@@ -148,8 +269,11 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
     fitted = fit.require()
     chosen = {} if fitted.tubes is None else {"tubes": fitted.tubes}
     found = design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius, **chosen)
-    built = build(found)
-    failed = [c for c in certify(built.crease, built.structure, built.vault, fold_angles=exported_fold_angles(built)).checks if not c.passed]
+    built = build_vault(found)
+    certificate = certify(
+        built.crease, built.structure, built.vault, fold_angles=list(exported_fold_angles(built))
+    )
+    failed = [c for c in certificate.checks if not c.passed]
     if failed:
         c = failed[0]
         need = f"; use ≥ {c.samples_needed} samples" if c.samples_needed else ""
@@ -161,9 +285,7 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
 def design_motion(built: Built, fold_angle: float | None = None) -> np.ndarray:
     """2α of the states of the folding motion from flat to the design angle, or to ``fold_angle``
     (degrees): the GLB's (a single fold's start angle 2α(0))."""
-    if fold_angle is None:
-        fold_angle = built.single_fold.fold_angle if built.structure is None else built.structure.lattice.crease.fold_angle
-    return np.linspace(0.0, fold_angle, MOTION_STEPS)
+    return np.linspace(0.0, built.fold_angle if fold_angle is None else fold_angle, MOTION_STEPS)
 
 
 def exported_fold_angles(built: Built) -> np.ndarray:
@@ -173,43 +295,81 @@ def exported_fold_angles(built: Built) -> np.ndarray:
     from ..geometry._contact import first_contact
 
     motion = design_motion(built)
-    contact = None if built.structure is None else first_contact(built.structure)
+    contact = first_contact(built.structure) if isinstance(built, BuiltStructure) else None
     if contact is None:
         return motion
     step = motion[1] - motion[0]
     return np.concatenate([motion, np.arange(motion[-1] + step, contact - 1e-9, step)])
 
 
-def build(design: Design, *, arch_root: ArchRoot | None = None) -> Built:
-    """Build the structure a design describes.
+def build(design: Design, *, like: Built | None = None) -> Built:
+    """Build the structure a design describes, as its kind builds it (:mod:`curvefold.app._kinds`).
 
-    ``arch_root``: a vault's arch root when the caller has it (the same design built at other
-    samples: :func:`curvefold.vault._assembly.arch_crease`).
+    ``like``: the same design built at other samples, when the caller has it; what it solved
+    is reused (a vault's arch root: :func:`curvefold.vault._assembly.arch_crease`).
 
     Raises
     ------
     CurvefoldError
         Whatever the builders refuse (regression, no arch, bad curvature), with its message.
     """
-    if design.kind == "vault":
-        v = vault_design(design)
-        arch = None if arch_root is None else arch_crease(v.a, v.panels, v.radius, v.fold_angle, v.samples, root=arch_root)
-        vault = Vault.from_design(v, arch=arch)
-        return Built(design, vault, vault.structure, vault.lattice.smooth.crease)
-    if design.kind == "crease":
-        c = design.crease
-        k2, beta_left = design.function("kappa_2d"), design.function("beta_left")
-        if c.alpha is not None:
-            crease = Crease.from_alpha(k2, beta_left, design.function("alpha"), c.length, samples=design.samples)
-        else:
-            crease = Crease.from_pattern(k2, beta_left, design.function("beta_right"), c.length, fold_angle=c.fold_angle, samples=design.samples)
-        return Built(design, None, None, crease)
-    c = design.curve
+    return design.design_kind.build(design, like)
+
+
+def build_vault(design: Design, like: Built | None = None) -> BuiltVault:
+    """A vault design built (on the arch root of ``like``, a build of it at other samples,
+    if given)."""
+    v = vault_design(design)
+    root = like.vault.arch if isinstance(like, BuiltVault) else None
+    arch = (
+        None
+        if root is None
+        else arch_crease(v.a, v.panels, v.radius, v.fold_angle, v.samples, root=root)
+    )
+    vault = Vault.from_design(v, arch=arch)
+    return BuiltVault(design, vault.lattice.smooth.crease, vault.structure, vault)
+
+
+def build_crease(design: Design, like: Built | None = None) -> BuiltCrease:
+    """A single curved fold from its crease pattern: β_R given, or α(s)."""
+    c = design.params(CreaseParams)
+    k2, beta_left = design.function("kappa_2d"), design.function("beta_left")
+    if c.alpha is not None:
+        crease = Crease.from_alpha(
+            k2, beta_left, design.function("alpha"), c.length, samples=design.samples
+        )
+    else:
+        crease = Crease.from_pattern(
+            k2,
+            beta_left,
+            design.function("beta_right"),
+            c.length,
+            fold_angle=c.fold_angle,
+            samples=design.samples,
+        )
+    return BuiltCrease(design, crease)
+
+
+def build_tube(design: Design, like: Built | None = None) -> BuiltStructure:
+    """A single tube around curve 1."""
+    tube = design.params(TubeParams)
+    return build_lattice_structure(design, (tube.width_left, tube.width_right))
+
+
+def build_block(design: Design, like: Built | None = None) -> BuiltStructure:
+    """A cellular block of lattice cells."""
+    block = design.params(BlockParams)
+    return build_lattice_structure(design, (block.width_left, block.width_right), block.cells)
+
+
+def build_lattice_structure(design: Design, widths: tuple[float, float],
+                            cells: Sequence[tuple[int, int]] | None = None) -> BuiltStructure:
+    """A structure on the lattice of curve 1 (``[curve]``) with the given widths at s = 0: a
+    single tube, or the given lattice ``cells``; on rigid panels if ``[curve]`` says so."""
+    c = design.params(CurveParams)
     curve = SpaceCurve.from_curvature(design.function("kappa"), design.function("tau"), c.length, samples=design.samples)
     crease = Crease.from_curve(curve, fold_angle=c.fold_angle)
-    params = design.tube if design.kind == "tube" else design.block
-    lattice = Lattice.from_crease(crease, params.width_left, params.width_right)
-    if c.panels:
-        lattice = PanelLattice.from_lattice(lattice, c.panels)
-    structure = Structure.tube(lattice) if design.kind == "tube" else Structure.from_cells(lattice, params.cells)
-    return Built(design, None, structure, crease)
+    smooth = Lattice.from_crease(crease, *widths)
+    lattice: StructureLattice = PanelLattice.from_lattice(smooth, c.panels) if c.panels else smooth
+    structure = Structure.tube(lattice) if cells is None else Structure.from_cells(lattice, cells)
+    return BuiltStructure(design, crease, structure)

@@ -40,17 +40,13 @@ be left out), never both.
 
 from __future__ import annotations
 
-import math
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, Literal
+from typing import Any, TypeVar
 
-import numpy as np
-
-from ..geometry._panel_pattern import PANELS
 from ..io._formats import OUTPUT_SPECS, check_scale, default_formats
 from ..io._reading import read_bytes
 from ..kernel._errors import InputError
@@ -58,8 +54,18 @@ from ..kernel._expr import Expression
 from ..kernel._functions import ScalarFunction, as_function
 from ..kernel._validate import REQUIRED, Spec, describe, suggest
 from ..mechanics import LoadCase
-from ..vault._assembly import LENGTHS, LENGTHS_WHY, VAULT_SPECS
-from ._design_functions import Context, FunctionValue, TableColumn, check_function
+from ._design_functions import Context, TableColumn, check_function
+from ._kinds import (
+    BlockParams,
+    CreaseParams,
+    CurveParams,
+    DesignKind,
+    TubeParams,
+    VaultParams,
+    design_kind,
+    design_kinds,
+    registry_version,
+)
 from ._loading import (
     LOADS_SECTION,
     MATERIAL_SECTION,
@@ -90,155 +96,130 @@ __all__ = [
     "kind_specs",
 ]
 
-KINDS = ("vault", "tube", "block", "crease")
-#: Sections each kind reads besides ``[output]``.
-SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = MappingProxyType(
-    {"vault": ("vault",), "tube": ("curve", "tube"), "block": ("curve", "block"), "crease": ("crease",)}
-)
-#: Sections a kind reads only when a design has them: what it is made of and what loads it.
-OPTIONAL_SECTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(
-    {"vault": ("material", "loads"), "tube": ("material", "loads"), "block": ("material", "loads"), "crease": ()}
-)
-
 #: Largest design file read, in bytes.
 MAX_DESIGN_BYTES = 1 << 20
+
+_P = TypeVar("_P")
+
+#: The kinds curvefold itself registers (:mod:`curvefold.app._kinds`);
+#: :func:`~curvefold.app._kinds.design_kinds` gives them with any registered since.
+KINDS = tuple(kind.name for kind in design_kinds())
+
+
+class _ByKind(Mapping[str, tuple[str, ...]]):
+    """Kind name -> the names of some of its sections, read from the registry of kinds when
+    asked."""
+
+    def __init__(self, read: Callable[[DesignKind], tuple[str, ...]]) -> None:
+        self._read = read
+
+    def __getitem__(self, kind: str) -> tuple[str, ...]:
+        found = {k.name: k for k in design_kinds()}.get(kind)
+        if found is None:
+            raise KeyError(kind)
+        return self._read(found)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter([k.name for k in design_kinds()])
+
+    def __len__(self) -> int:
+        return len(design_kinds())
+
+
+#: Sections each kind reads besides ``[output]``
+#: (:attr:`DesignKind.sections <curvefold.app._kinds.DesignKind.sections>`).
+SECTIONS_OF_KIND: Mapping[str, tuple[str, ...]] = _ByKind(lambda kind: kind.section_names)
+#: Sections a kind reads only when a design has them: what it is made of and what loads it.
+OPTIONAL_SECTIONS: Mapping[str, tuple[str, ...]] = _ByKind(lambda kind: kind.optional)
 
 
 # --------------------------------------------------------------------------------------------
 # The schema: the specs of every section, composed from their owners
 
 
-_ANGLE = "(0, 180)"
-
-
-def _fold_angle(default: float, help: str) -> Spec:
-    return Spec("fold_angle", "real", default, _ANGLE, "degrees", help=help, label="fold angle")
-
-
-def _width(side: str, default: float) -> Spec:
-    return Spec(f"width_{side}", "real", default, "(0, inf)", "model units", help=f"width w_{side[0].upper()}(0) on the {side}, at s = 0",
-                label=f"width on the {side}")
-
-
 def _section(*specs: Spec) -> Mapping[str, Spec]:
     return MappingProxyType({spec.name: spec for spec in specs})
 
 
-#: Every section ("" is the top level) and the specs of its keys, in file order. The
-#: ``[vault]`` specs are :data:`curvefold.vault._assembly.VAULT_SPECS`, the ``[output]``
-#: specs :data:`curvefold.io._formats.OUTPUT_SPECS`.
-SCHEMA: Mapping[str, Mapping[str, Spec]] = MappingProxyType({
-    "": _section(
-        Spec("kind", "choice", REQUIRED, choices=KINDS, help="what to build", label="structure"),
-        Spec("samples", "integer", 801, "[9, 200000]", help="samples along curve 1",
-             why="the certificate's differences need 9; memory is budgeted besides", label="samples along each crease"),
-        Spec("title", "text", "", help="free text for reports", label="title"),
-    ),
-    "vault": _section(*VAULT_SPECS),
-    "curve": _section(
-        Spec("kappa", "function", 1.0, "(0, inf)", "per model unit", help="curvature of curve 1 as a function of s", label="curvature"),
-        Spec("tau", "function", 0.2, "(-inf, inf)", "per model unit", help="torsion of curve 1 as a function of s", label="torsion"),
-        Spec("length", "real", 6.0, LENGTHS, "model units", help="arc length of curve 1", why=LENGTHS_WHY, label="length of curve 1"),
-        _fold_angle(90.0, "fold angle 2 alpha at which kappa and tau are given"),
-        PANELS,
-    ),
-    "tube": _section(_width("left", 0.3), _width("right", 0.3)),
-    "block": _section(
-        _width("left", 0.2),
-        _width("right", 0.2),
-        Spec("cells", "cells", ((0, 0), (0, 1), (1, 1)), "[-1000, 1000]", help="lattice cells [i, j]", label="cells"),
-    ),
-    "crease": _section(
-        Spec("kappa_2d", "function", 0.5, "(0, inf)", "per model unit", help="curvature of the crease in the flat pattern", label="curvature in the flat pattern"),
-        Spec("beta_left", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the left", label="ruling angle on the left"),
-        Spec("beta_right", "function", 90.0, _ANGLE, "degrees", help="ruling angle on the right (not with alpha)", label="ruling angle on the right"),
-        _fold_angle(60.0, "fold angle 2 alpha(0) at the start of the crease"),
-        Spec("length", "real", 3.0, LENGTHS, "model units", help="arc length of the crease", why=LENGTHS_WHY, label="crease length"),
-        Spec("alpha", "function", None, "(0, 90)", "degrees",
-             help="alpha(s), half the fold angle along the crease; beta_right then follows from Eq. (3)", label="half fold angle"),
-        *(Spec(f"width_{side}", "real", None, "(0, inf)", "model units",
-               help=f"width of the {side} strip from the crease's tangent lines, in the files (default: 15% of the length, "
-                    "within 60% of the regression limit)", label=f"{side} strip width") for side in ("left", "right")),
-    ),
+#: The sections every kind may read: ``[output]`` (:data:`curvefold.io._formats.OUTPUT_SPECS`),
+#: ``[material]`` and ``[loads]`` (:mod:`curvefold.app._loading`).
+_COMMON = {
     "output": _section(*OUTPUT_SPECS),
     "material": _section(*MATERIAL_SECTION),
     "loads": _section(*LOADS_SECTION),
-})
+}
 
-_SECTIONS = tuple(name for name in SCHEMA if name)
 #: Keys of a section that hold a list of tables, checked apart: ``[[loads.case]]``
 #: (:func:`check_cases`).
 _LISTED: Mapping[str, tuple[str, ...]] = MappingProxyType({"loads": ("case",)})
 
+def _top(kinds: tuple[str, ...]) -> Mapping[str, Spec]:
+    return _section(
+        Spec("kind", "choice", REQUIRED, choices=kinds, help="what to build", label="structure"),
+        Spec(
+            "samples",
+            "integer",
+            801,
+            "[9, 200000]",
+            help="samples along curve 1",
+            why="the certificate's differences need 9; memory is budgeted besides",
+            label="samples along each crease",
+        ),
+        Spec("title", "text", "", help="free text for reports", label="title"),
+    )
+
+
+class _Schema(Mapping[str, Mapping[str, Spec]]):
+    """Every section ("" is the top level) and the specs of its keys, in file order: the top level,
+    the sections of the registered kinds (:mod:`curvefold.app._kinds`), then ``[output]``,
+    ``[material]`` and ``[loads]``. Read from the registry when asked, so a kind registered later
+    is in it."""
+
+    def __init__(self) -> None:
+        self._cache: tuple[int, Mapping[str, Mapping[str, Spec]]] | None = None
+
+    def _sections(self) -> Mapping[str, Mapping[str, Spec]]:
+        version = registry_version()
+        if self._cache is None or self._cache[0] != version:
+            kinds = design_kinds()
+            sections: dict[str, Mapping[str, Spec]] = {"": _top(tuple(k.name for k in kinds))}
+            for kind in kinds:
+                sections |= {section.name: section.specs for section in kind.sections}
+            self._cache = (version, MappingProxyType(sections | _COMMON))
+        return self._cache[1]
+
+    def __getitem__(self, section: str) -> Mapping[str, Spec]:
+        return self._sections()[section]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._sections())
+
+    def __len__(self) -> int:
+        return len(self._sections())
+
+
+#: Every section ("" is the top level) and the specs of its keys, in file order: the ``[vault]``
+#: specs are :data:`curvefold.vault._assembly.VAULT_SPECS`, the ``[output]`` specs
+#: :data:`curvefold.io._formats.OUTPUT_SPECS`, each kind's those it registers with
+#: (:class:`curvefold.app._kinds.DesignKind`).
+SCHEMA: Mapping[str, Mapping[str, Spec]] = _Schema()
+
+
+def _section_names() -> tuple[str, ...]:
+    """Every section name but the top level's."""
+    return tuple(name for name in SCHEMA if name)
+
+
+def _params_type(section: str) -> type:
+    """The frozen dataclass a section's checked values become."""
+    common = {"output": OutputParams, "material": MaterialParams, "loads": LoadParams}
+    if section in common:
+        return common[section]
+    return next(s.params for kind in design_kinds() for s in kind.sections if s.name == section)
+
 
 # --------------------------------------------------------------------------------------------
 # Validated values
-
-
-
-
-@dataclass(frozen=True)
-class VaultParams:
-    """``[vault]``: a composite deployable vault (see :data:`SCHEMA` for ranges and units)."""
-
-    a: float
-    p_xy: float
-    width: float
-    tubes: int | Literal["max"]
-    fold_angle: float
-    radius: float
-    layers: int
-    direction: Literal["+", "-"]
-    panels: int = 0
-
-
-@dataclass(frozen=True)
-class CurveParams:
-    """``[curve]``: curve 1 of a tube or block, with κ and τ given at ``fold_angle``, and the
-    number of rigid planar panels along it (0: the smooth structure)."""
-
-    kappa: FunctionValue
-    tau: FunctionValue
-    length: float
-    fold_angle: float
-    panels: int = 0
-
-
-@dataclass(frozen=True)
-class TubeParams:
-    """``[tube]``: the widths of a single tube at s = 0."""
-
-    width_left: float
-    width_right: float
-
-
-@dataclass(frozen=True)
-class BlockParams:
-    """``[block]``: a cellular block, the widths at s = 0 and the lattice cells it uses."""
-
-    width_left: float
-    width_right: float
-    cells: tuple[tuple[int, int], ...]
-
-
-@dataclass(frozen=True)
-class CreaseParams:
-    """``[crease]``: a single curved fold from its crease pattern (angles in degrees).
-
-    Either ``beta_right`` is given and α(s) follows from Eq. (3) integrated from
-    ``fold_angle``, or ``alpha`` is given (``beta_right`` is then None and
-    ``fold_angle`` = 2α(0)) and β_R follows from Eq. (3). The strips' widths are those of
-    its files (None: as :func:`curvefold.geometry._single_fold.default_widths` chooses).
-    """
-
-    kappa_2d: FunctionValue
-    beta_left: FunctionValue
-    beta_right: FunctionValue | None
-    fold_angle: float
-    length: float
-    alpha: FunctionValue | None
-    width_left: float | None = None
-    width_right: float | None = None
 
 
 @dataclass(frozen=True)
@@ -257,16 +238,6 @@ class OutputParams:
     formats: tuple[str, ...]
 
 
-_PARAM_TYPES: Mapping[str, type] = MappingProxyType({
-    "vault": VaultParams,
-    "curve": CurveParams,
-    "tube": TubeParams,
-    "block": BlockParams,
-    "crease": CreaseParams,
-    "output": OutputParams,
-    "material": MaterialParams,
-    "loads": LoadParams,
-})
 
 
 @dataclass(frozen=True)
@@ -274,18 +245,23 @@ class Design:
     """A validated design: what to build, with every default filled in.
 
     Build it with :func:`load_design`, :func:`parse_design`, :func:`design_from_dict` or
-    :func:`default_design`; derive variants with :meth:`overrides`. Only the sections of
-    ``kind`` (see :data:`SECTIONS_OF_KIND`) and ``output`` are set, and its optional ones
-    (:data:`OPTIONAL_SECTIONS`) when given; the others are None.
+    :func:`default_design`; derive variants with :meth:`overrides`. It holds the sections of
+    its kind (:data:`SECTIONS_OF_KIND`), read by :meth:`params` (``design.params(VaultParams)``)
+    or by name (``design.vault``: None for a section of another kind), ``output``, and its
+    optional ones (:data:`OPTIONAL_SECTIONS`) when given, else None.
 
     Parameters
     ----------
-    kind : {"vault", "tube", "block", "crease"}
+    kind : str
+        A registered kind (:func:`curvefold.app._kinds.design_kinds`): ``"vault"``,
+        ``"tube"``, ``"block"``, ``"crease"``.
     samples : int
         Samples along curve 1.
     title : str
     output : OutputParams
-    vault, curve, tube, block, crease, material, loads : section parameters or None
+    sections : tuple of (str, params)
+        The kind's sections by name, in file order.
+    material, loads : section parameters or None
     source : str
         Where the design came from (a file name), used in messages.
     base_dir : Path or None
@@ -296,15 +272,42 @@ class Design:
     samples: int
     title: str
     output: OutputParams
-    vault: VaultParams | None = None
-    curve: CurveParams | None = None
-    tube: TubeParams | None = None
-    block: BlockParams | None = None
-    crease: CreaseParams | None = None
+    sections: tuple[tuple[str, Any], ...] = ()
     material: MaterialParams | None = None
     loads: LoadParams | None = None
     source: str = field(default="<defaults>", compare=False)
     base_dir: Path | None = field(default=None, compare=False, repr=False)
+
+    def __getattr__(self, name: str) -> Any:
+        """A section by name (``design.vault``): its values, or None for a section of
+        another kind."""
+        if name.startswith("_") or "sections" not in self.__dict__:
+            raise AttributeError(name)
+        found = dict(self.__dict__["sections"])
+        if name in found:
+            return found[name]
+        if name in _section_names():
+            return None
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    @property
+    def design_kind(self) -> DesignKind:
+        """The registered kind of this design."""
+        return design_kind(self.kind)
+
+    def params(self, section: type[_P]) -> _P:
+        """The values of the section of this design's kind that are a ``section``
+        (``design.params(VaultParams)``).
+
+        Raises
+        ------
+        InputError
+            The design's kind has no such section.
+        """
+        for _, values in self.sections:
+            if isinstance(values, section):
+                return values
+        raise InputError(f"{self.source}: a {self.kind} design has no {section.__name__}")
 
     def to_dict(self) -> dict[str, Any]:
         """The design as plain data in TOML form: expressions as their text, CSV columns as
@@ -375,15 +378,26 @@ class Design:
         InputError
             For a single curved fold, which has no end sections to hold.
         """
-        if not OPTIONAL_SECTIONS[self.kind]:
-            raise InputError(f"{self.source}: a single curved fold has no end sections to hold: load a tube, block or vault")
+        if not self.design_kind.loaded:
+            *others, last = sorted(
+                (k.name for k in design_kinds() if k.loaded), key=lambda k: design_kind(k).grounded
+            )
+            what = (
+                "a single curved fold"
+                if not self.design_kind.structure
+                else f"a {self.kind} design"
+            )
+            raise InputError(
+                f"{self.source}: {what} has no end sections to hold: "
+                f"load a {', '.join(others)} or {last}"
+            )
         return self.overrides(source=self.source, material={}, loads={})
 
     def tables(self) -> tuple[Path, ...]:
         """The CSV files the design reads, each once."""
-        sections = [getattr(self, section) for section in SECTIONS_OF_KIND[self.kind]]
-        values = [getattr(params, f.name) for params in sections for f in fields(params)]
-        return tuple(dict.fromkeys(self.base_dir / v.path for v in values if isinstance(v, TableColumn)))
+        values = [getattr(params, f.name) for _, params in self.sections for f in fields(params)]
+        folder = Path.cwd() if self.base_dir is None else self.base_dir
+        return tuple(dict.fromkeys(folder / v.path for v in values if isinstance(v, TableColumn)))
 
     def function(self, key: str) -> ScalarFunction:
         """A function-valued key (e.g. ``"kappa"``) as a :class:`ScalarFunction` of arc length.
@@ -393,7 +407,7 @@ class Design:
         section = next((s for s in SECTIONS_OF_KIND[self.kind] if key in SCHEMA[s] and SCHEMA[s][key].kind == "function"), None)
         if section is None:
             raise InputError(f"{key!r} is not a function-valued key of kind {self.kind!r}")
-        params = getattr(self, section)
+        params = dict(self.sections)[section]
         value = getattr(params, key)
         if value is None:
             raise InputError(f"[{section}] {key} is not set in {self.source}")
@@ -405,21 +419,16 @@ class Design:
 
 
 def _alternatives(data: dict, flags: Mapping[str, Any]) -> None:
-    """A [crease]'s ``alpha`` and ``beta_right`` are alternatives, and a named material and one's own values: the one the
-    flags set drops the other from the design's data (with ``alpha``, its ``fold_angle`` too, which then follows from
-    it), unless the flags set both."""
+    """A named material and one's own values are alternatives, and keys of a kind's sections
+    (:attr:`DesignKind.alternatives <curvefold.app._kinds.DesignKind.alternatives>`: a
+    [crease]'s ``alpha`` and ``beta_right``): the one the flags set drops the other from the
+    design's data, unless the flags set both."""
     given = {k.replace("-", "_") for k, v in flags.items() if v is not None and not isinstance(v, Mapping)}
     given |= {key for value in flags.values() if isinstance(value, Mapping) for key in value}  # a section's keys
     material_alternatives(data, given)
-    crease = data.get("crease")
-    if crease is None:
-        return
-    if "alpha" in given:
-        for key in ("beta_right", "fold_angle"):
-            if key not in given:
-                crease.pop(key, None)
-    elif "beta_right" in given:
-        crease.pop("alpha", None)
+    kind = design_kind(data["kind"])
+    if kind.alternatives is not None:
+        kind.alternatives(data, given)
 
 
 def _flag_sections(kind: str) -> dict[str, str]:
@@ -546,17 +555,21 @@ def design_from_dict(
         raise InputError(f"{source}: a design must be a table, got {describe(data)}")
     folder = Path.cwd() if base_dir is None else Path(base_dir)
     top = SCHEMA[""]
+    names = _section_names()
     if "kind" not in data:
-        kinds = ", ".join(f'"{k}"' for k in KINDS)
+        kinds = ", ".join(f'"{k.name}"' for k in design_kinds())
         raise InputError(f"{source}: missing required key 'kind' (one of {kinds})")
     kind = top["kind"].check(data["kind"], f"{source}: kind")
-    used = (*SECTIONS_OF_KIND[kind], *(s for s in OPTIONAL_SECTIONS[kind] if s in data))
+    registered = design_kind(kind)
+    used = (*registered.section_names, *(s for s in registered.optional if s in data))
     for key, value in data.items():
-        if key in _SECTIONS:
+        if key in names:
             if not isinstance(value, Mapping):
                 raise InputError(f"{source}: {key} must be a table ([{key}] section), got {describe(value)}")
             if key != "output" and key not in used:
-                users = " or ".join(repr(k) for k in KINDS if key in (*SECTIONS_OF_KIND[k], *OPTIONAL_SECTIONS[k]))
+                users = " or ".join(
+                    repr(k.name) for k in design_kinds() if key in (*k.section_names, *k.optional)
+                )
                 raise InputError(
                     f"{source}: section [{key}] is used by kind {users}, not by kind {kind!r}; "
                     "remove it or change kind"
@@ -564,35 +577,40 @@ def design_from_dict(
         elif key not in top:
             what = f"section [{key}]" if isinstance(value, Mapping) else f"key {key!r}"
             raise InputError(
-                f"{source}: unknown {what} (allowed keys: {', '.join(top)}; sections: {', '.join(_SECTIONS)})"
-                + suggest(key, (*top, *_SECTIONS))
+                f"{source}: unknown {what} (allowed keys: {', '.join(top)}; "
+                f"sections: {', '.join(names)})"
+                + suggest(key, (*top, *names))
             )
-    head = _check_section("", data, Context(source, folder, 0), skip=_SECTIONS)
+    head = _check_section("", data, Context(source, folder, 0), skip=names)
     ctx = Context(source, folder, head["samples"])
     checked = {s: _check_section(s, data.get(s, {}), ctx, skip=_LISTED.get(s, ()))
                for s in (*used, "output")}
     if checked["output"]["formats"] is None:
-        checked["output"]["formats"] = default_formats(kind)
-    if kind == "crease":
-        _check_alpha(checked["crease"], data.get("crease", {}), source)
+        checked["output"]["formats"] = default_formats(registered.formats_kind)
+    if registered.check is not None:
+        registered.check(checked, data, source)
     if "material" in checked:
         check_material(checked["material"], f"{source}: [material] ")
     if "loads" in checked:
         listed = data["loads"].get("case")
         checked["loads"]["case"] = check_cases(listed, f"{source}: [[loads.case]] ")
     out = checked["output"]
-    check_scale(out["scale"], out["units"], _crease_length(kind, checked), f"{source}: [output] scale")
-    params = {s: _PARAM_TYPES[s](**values) for s, values in checked.items()}
-    return Design(
-        kind=kind, samples=head["samples"], title=head["title"], source=source, base_dir=folder.resolve(), **params
+    # crease 1's length in model units (a vault's at least π × radius: its κ0·s0 is above π)
+    check_scale(
+        out["scale"], out["units"], registered.crease_length(checked), f"{source}: [output] scale"
     )
-
-
-def _crease_length(kind: str, checked: dict) -> float:
-    """The length of a design's crease 1 in model units (a vault's at least π × radius: its κ0·s0 is above π)."""
-    if kind == "vault":
-        return math.pi * checked["vault"]["radius"]
-    return checked["crease" if kind == "crease" else "curve"]["length"]
+    params = {s: _params_type(s)(**values) for s, values in checked.items()}
+    optional = {s: params.pop(s) for s in registered.optional if s in params}
+    return Design(
+        kind=kind,
+        samples=head["samples"],
+        title=head["title"],
+        output=params.pop("output"),
+        sections=tuple((s, params[s]) for s in registered.section_names),
+        source=source,
+        base_dir=folder.resolve(),
+        **optional,
+    )
 
 
 def default_design(kind: str) -> Design:
@@ -634,20 +652,3 @@ def _check_section(section: str, table: Mapping[str, Any], ctx: Context, skip: t
         else:
             out[key] = spec.check(value, f"{prefix}{key}")
     return {key: out[key] for key in specs}
-
-
-def _check_alpha(values: dict, table: Mapping[str, Any], source: str) -> None:
-    """With ``alpha`` given, β_R follows from Eq. (3): refuse ``beta_right`` and set ``fold_angle`` to 2α(0)."""
-    alpha = values["alpha"]
-    if alpha is None:
-        return
-    if table.get("beta_right") is not None:
-        raise InputError(f"{source}: [crease] give beta_right or alpha, not both (with alpha, beta_right follows from Eq. (3))",
-                         parameter="beta_right")
-    twice = float(2 * np.asarray(alpha(np.zeros(1)) if callable(alpha) else alpha, float).flat[0])
-    if table.get("fold_angle") is not None and not math.isclose(values["fold_angle"], twice, rel_tol=1e-12):
-        raise InputError(
-            f"{source}: [crease] fold_angle must equal 2 alpha(0) = {twice:.12g} degrees or be left out, got {values['fold_angle']!r}",
-            parameter="fold_angle",
-        )
-    values["beta_right"], values["fold_angle"] = None, twice

@@ -18,13 +18,12 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis._certificate import certify, certify_single_fold
-from ..analysis._mechanism import certified_mechanism
 from ..figures._report import UNITS_SHOWN, report_html
 from ..io._atomic import atomic_write
 from ..io._formats import missing_dependencies
 from ..kernel._errors import InputError
 from ..kernel._json_text import strict_json
-from ._build import Built
+from ._build import Built, BuiltCrease, BuiltStructure, BuiltVault
 from ._design import Design
 from ._folder import OutputTarget, output_folder, raise_if_interrupted
 from ._products import exported_fold_angles
@@ -36,12 +35,12 @@ def structure_payload(built: Built) -> dict:
     """Design, derived quantities and certificate of a built design, JSON-ready."""
     design = built.design
     payload: dict = {"kind": design.kind, "title": design.title or default_title(built), "design": design.to_dict()}
-    if built.vault is not None:
+    if isinstance(built, BuiltVault):
         payload |= built.vault.summary()
         from ..vault._paper import paper_comparison
 
         payload["paper_comparison"] = paper_comparison()
-    elif built.structure is not None:
+    elif isinstance(built, BuiltStructure):
         V = built.structure.state().vertices
         payload |= {
             "cells": built.structure.cells.tolist(),
@@ -50,18 +49,25 @@ def structure_payload(built: Built) -> dict:
             "bounding_box": [V.reshape(-1, 3).min(axis=0).tolist(), V.reshape(-1, 3).max(axis=0).tolist()],
             "regression_margin": built.structure.regression_margin,
         }
-    else:
+    else:  # a single curved fold
         c = built.crease
         payload |= {
             "length": c.curve.length,
             "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
             "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
         }
-    if built.structure is None:  # a single fold, in every state of its motion but the flat one
+    if isinstance(
+        built, BuiltCrease
+    ):  # a single fold, in every state of its motion but the flat one
         fold = built.single_fold
         certificate = certify_single_fold([(a, fold.at(a)) for a in exported_fold_angles(built) if a > 0])
+    elif isinstance(built, BuiltStructure):
+        vault = built.vault if isinstance(built, BuiltVault) else None
+        certificate = certify(
+            built.crease, built.structure, vault, fold_angles=list(exported_fold_angles(built))
+        )
     else:
-        certificate = certify(built.crease, built.structure, built.vault, fold_angles=exported_fold_angles(built))
+        raise TypeError(f"no certificate for a {type(built).__name__}")
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
     payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
                                      "first_contact": certificate.first_contact, "samples": certificate.samples}
@@ -87,10 +93,10 @@ def parameter_rows(design: Design) -> list[dict]:
 
 def default_title(built: Built) -> str:
     """The title of a design that gives none: its kind and main parameters."""
-    if built.vault is not None:
+    if isinstance(built, BuiltVault):
         d = built.vault.design
         return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"
-    if built.structure is not None:
+    if isinstance(built, BuiltStructure):
         return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {built.structure.lattice.crease.fold_angle:g}°"
     return f"single curved fold, length {built.crease.curve.length:g}"
 
@@ -129,7 +135,9 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
     The files are written by job processes while this process computes what they share
-    (:func:`curvefold.app._products.prepare`, while the pictures are drawn) and the certificate.
+    (:meth:`Built.prepare <curvefold.app._build.Built.prepare>` before any job forks, then
+    :meth:`~curvefold.app._build.Built.prepare_files` while the pictures are drawn) and the
+    certificate.
 
     Parameters
     ----------
@@ -164,12 +172,11 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
         raise InputError("formats: " + "; ".join(missing))
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
-    if built.structure is not None and built.structure.lattice.rigid:
-        certified_mechanism(built.structure)  # cached before the jobs fork: the certificate and the pictures share it
+    built.prepare()  # what every job shares, before any forks
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
     try:
-        prepare = partial(products.prepare, built, formats)
+        prepare = partial(built.prepare_files, formats)
         with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers, prepare=prepare)) as done:  # closed at once on any exception
             done.refill()  # what the file jobs share, computed here while the drawings are drawn; then the file jobs start
             payload = structure_payload(built)

@@ -7,8 +7,8 @@ GIF by the registry's writer. The pictures of the report are written (PNG) when 
 is installed.
 
 Every mesh written (FOLD, 3D models, crease patterns) keeps the samples of
-:attr:`Built.sampling <curvefold.app.Built.sampling>`: as accurate as the default
-tolerance asks, without sliver triangles; the resolution is recorded in the files'
+:attr:`BuiltStructure.sampling <curvefold.app._build.BuiltStructure.sampling>`: as accurate as
+the default tolerance asks, without sliver triangles; the resolution is recorded in the files'
 metadata and in the report (:func:`resolution`).
 """
 
@@ -21,18 +21,38 @@ import multiprocessing.connection
 import os
 import signal
 import time
-from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
+from collections.abc import Callable, Collection, Generator, Iterator, Sequence
 from functools import partial
 from pathlib import Path
+from typing import Any, Protocol
 
 from ..analysis._mechanism import certified_mechanism
 from ..io._formats import FORMATS, check_kind, formats_of
 from ..kernel._errors import InternalError
-from ._build import MOTION_STEPS, Built, design_motion, exported_fold_angles
+from ._build import (
+    MOTION_STEPS,
+    Built,
+    BuiltCrease,
+    BuiltStructure,
+    BuiltVault,
+    design_motion,
+    exported_fold_angles,
+)
 from ._folder import ENDING_SIGNALS
 
-__all__ = ["jobs", "prepare", "run_jobs", "resolution", "design_motion", "exported_fold_angles", "picture_files", "can_draw",
-           "pictures_left_out", "MOTION_STEPS", "PICTURES_NEED", "PICTURES_EXTRA"]
+__all__ = [
+    "jobs",
+    "run_jobs",
+    "resolution",
+    "design_motion",
+    "exported_fold_angles",
+    "picture_files",
+    "can_draw",
+    "pictures_left_out",
+    "MOTION_STEPS",
+    "PICTURES_NEED",
+    "PICTURES_EXTRA",
+]
 
 #: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
 MODEL_UNIT = "unit"
@@ -42,17 +62,29 @@ PICTURES_NEED, PICTURES_EXTRA = "matplotlib", "plot"
 Job = Callable[[Path], list]
 
 
+class JobRun(Protocol):
+    """Jobs started by :func:`run_jobs`: iterated for their results in job order, ``refill()``
+    to run ``prepare`` and start those that have a place, ``close()`` to stop those still
+    running."""
+
+    def __iter__(self) -> Iterator[tuple[str, list, float]]: ...
+
+    def refill(self) -> None: ...
+
+    def close(self) -> None: ...
+
+
 def resolution(built: Built) -> dict:
     """The mesh resolution of the files, for the report (empty for a single crease)."""
-    return {} if built.sampling is None else {"mesh": built.sampling.summary()}
+    return {"mesh": built.sampling.summary()} if isinstance(built, BuiltStructure) else {}
 
 
 def _metadata(built: Built) -> dict:
     design = built.design
     meta = {"kind": design.kind, "title": design.title or design.kind, "samples": design.samples}
-    if built.sampling is not None:
+    if isinstance(built, BuiltStructure):
         meta |= built.sampling.summary()
-    if built.vault is not None:
+    if isinstance(built, BuiltVault):
         v = built.vault
         meta |= {
             "a": v.design.a,
@@ -60,7 +92,7 @@ def _metadata(built: Built) -> dict:
             "width": v.design.width,
             "radius": v.design.radius,
             "fold_angle_deg": v.design.fold_angle,
-            "tubes": int(v.design.tubes),
+            "tubes": v.summary()["tubes"] if v.design.tubes is None else int(v.design.tubes),
             "kappa0_s0": v.kappa0_s0,
             "p_xz": v.p_xz,
         }
@@ -80,9 +112,11 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
     InputError
         A format that is not written for the design's kind, with the reason.
     """
-    check_kind(formats, built.design.kind, "formats")
+    check_kind(formats, built.design.design_kind.formats_kind, "formats")
     families = dict.fromkeys(f.family for name, f in FORMATS.items() if name in formats)
-    family_jobs = _FAMILY_JOBS if built.structure is not None else _SINGLE_FOLD_JOBS
+    family_jobs: dict[str, tuple[str, Callable[..., list]]] = (
+        _FAMILY_JOBS if isinstance(built, BuiltStructure) else _SINGLE_FOLD_JOBS
+    )
     out: list[tuple[str, Job]] = []
     for family in families:
         label, write = family_jobs[family]
@@ -94,19 +128,7 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
         if "motion" in families:
             for module in DRAWING_MODULES:  # both drawings need them: imported once, here, before they fork
                 importlib.import_module(module)
-    built.mechanics  # the design under load, if it says what loads it: analysed once, before any job forks (the 3D models and the pictures show it)
     return sorted(out, key=lambda job: _ORDER.index(job[0]))
-
-
-def prepare(built: Built, formats: Collection[str]) -> None:
-    """Compute, in this process, what the file jobs share, so that the jobs forked afterwards
-    inherit it rather than each computing it: the first contact (the FOLD file's motion, and
-    the certificate's), the meshes' samples and the crease patterns' layout (the patterns,
-    the assembly guide and the 3dm draw it)."""
-    exported_fold_angles(built)
-    resolution(built)
-    if "3dm" in formats or {FORMATS[name].family for name in formats if name in FORMATS} & {"pattern", "guide"}:
-        built.layout
 
 
 def _timed(job: Job, folder: Path) -> tuple[list, float]:
@@ -116,7 +138,7 @@ def _timed(job: Job, folder: Path) -> tuple[list, float]:
 
 
 def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None,
-             prepare: Callable[[], None] | None = None) -> Iterable[tuple[str, list, float]]:
+             prepare: Callable[[], None] | None = None) -> JobRun:
     """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most 2).
 
     ``prepare``, if given, runs in this process once, before the first job that is not one
@@ -131,8 +153,8 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
 
     Returns
     -------
-    iterable of (str, list, float)
-        (label, files written, seconds the job took) in job order as each finishes in
+    JobRun
+        An iterable of (label, files written, seconds the job took) in job order as each finishes in
         turn; a job's exception is raised there. Its ``close()`` stops the jobs still
         running (an interrupted run waits for none): use it in :func:`contextlib.closing`;
         its ``refill()`` runs ``prepare`` now and starts the jobs that have a place.
@@ -155,7 +177,9 @@ class _InTurn:
             prepare, self._prepare = self._prepare, None
             prepare()
 
-    def _run(self, jobs: list[tuple[str, Job]], folder: Path) -> Iterator[tuple[str, list, float]]:
+    def _run(
+        self, jobs: list[tuple[str, Job]], folder: Path
+    ) -> Generator[tuple[str, list, float], None, None]:
         for label, job in jobs:
             if label not in DRAWN:
                 self.refill()
@@ -185,8 +209,8 @@ class _Running:
         numbered = list(enumerate(jobs))
         self._waiting = [(i, job) for i, job in numbered if job[0] not in OWN_JOBS]
         self._own = [(i, job) for i, job in numbered if job[0] in OWN_JOBS]  # run here while the others run
-        self._running: dict = {}  # reader -> (index, process)
-        self._results: dict[int, tuple] = {}
+        self._running: dict[Any, tuple[int, Any]] = {}  # reader -> (index, process)
+        self._results: dict[int, tuple[str, Any]] = {}
         self._labels = [label for label, _ in jobs]
         self._fill()
 
@@ -219,7 +243,10 @@ class _Running:
 
     def _collect(self, timeout: float | None = None) -> None:
         """Wait for a running job to end (up to ``timeout`` seconds) and keep its outcome."""
-        for reader in multiprocessing.connection.wait(list(self._running), timeout):
+        ready: list[Any] = multiprocessing.connection.wait(
+            list(self._running), timeout
+        )  # the pipes' readers
+        for reader in ready:
             index, process = self._running.pop(reader)
             try:
                 outcome = reader.recv()
@@ -274,6 +301,7 @@ def _job_process(job: Job, folder: Path, conn, mask: set, drawn: bool) -> None:
     for signum in ENDING_SIGNALS:
         signal.signal(signum, signal.SIG_IGN if signum == signal.SIGINT else signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    outcome: tuple[str, Any]
     try:
         outcome = ("done", _timed(job, folder))
     except Exception as err:  # raised again in the parent
@@ -289,7 +317,9 @@ def _writer(names: tuple[str, ...]) -> Callable:
     return FORMATS[names[0]].load_writer()
 
 
-def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _fold(
+    built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """The structure's FOLD file: its folding motion (:func:`exported_fold_angles`), or flat to
     ``fold_angle`` when one is given; and one FOLD file per sheet, flat with its target fold angles
     (loadable by Origami Simulator)."""
@@ -308,20 +338,24 @@ def _fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float 
     return files
 
 
-def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The crease patterns, from the one layout of the design (:attr:`Built.layout`)."""
+def _pattern(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
+    """The crease patterns, from the one layout of the design
+    (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
-def _guide(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """The assembly guide, on the pages of the design's crease pattern (:attr:`Built.layout`)."""
+def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
+    """The assembly guide, on the pages of the design's crease pattern
+    (:attr:`~curvefold.app._build.Built.layout`)."""
     f = FORMATS[names[0]]
     return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
 
 
-def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _model(
+    built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion, and at the design
     angle of a design under load its deflected shape and first modes (:meth:`curvefold.app._loading.Loaded.morph_targets`)."""
     from ..io._models import write_3d
@@ -333,15 +367,17 @@ def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float
                          pattern=built.layout if "3dm" in names else None, fold_angle=fold_angle, morph_targets=morphs))
 
 
-def _motion(built: Built, names: tuple[str, ...], folder: Path) -> list:
+def _motion(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
     """The GIF of the folding motion, flat to the design angle and back."""
     from ..figures._motion import motion_frames
 
-    frames = motion_frames(built.vault if built.vault is not None else built.structure)
+    frames = motion_frames(built.vault if isinstance(built, BuiltVault) else built.structure)
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
-def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _single_fold_fold(
+    built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """A single fold's FOLD file (its motion, flat to the design angle or to ``fold_angle``) and its
     sheet's (loadable by Origami Simulator)."""
     from ..io._fold import write_model, write_sheet_fold
@@ -354,14 +390,17 @@ def _single_fold_fold(built: Built, names: tuple[str, ...], folder: Path, fold_a
             write_sheet_fold(folder / "sheets" / "single-fold.fold", fold.pattern_sheet().mesh, MODEL_UNIT, title="single fold")]
 
 
-def _single_fold_pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
-    """A single fold's crease pattern, from its one layout (:attr:`Built.layout`)."""
+def _single_fold_pattern(built: BuiltCrease, names: tuple[str, ...], folder: Path) -> list:
+    """A single fold's crease pattern, from its one layout
+    (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
 
     return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
 
 
-def _single_fold_model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float | None = None) -> list:
+def _single_fold_model(
+    built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
+) -> list:
     """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the folding motion."""
     from ..io._single_fold import write_single_fold_3d
 
@@ -410,16 +449,20 @@ def _figures(built: Built) -> dict[str, Callable]:
     image drawn without matplotlib, but for the single fold's and the pictures of a design under load."""
     from ..figures import _pictures as pictures
 
-    structure = built.structure
-    if structure is None:
+    if isinstance(built, BuiltCrease):
         from ..figures import _views as views
 
         fold = built.single_fold
         return {"crease": partial(views.plot_crease, built.crease, width=(fold.width_left, fold.width_right))}
+    if not isinstance(built, BuiltStructure):
+        return {}
+    structure = built.structure
     lattice = structure.lattice
-    figures = {"regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
-               "width-proportion": partial(pictures.width_proportion_picture, lattice)}
-    if built.vault is not None:
+    figures: dict[str, Callable] = {
+        "regression-domain": partial(pictures.regression_domain_picture, lattice, structure.cells),
+        "width-proportion": partial(pictures.width_proportion_picture, lattice),
+    }
+    if isinstance(built, BuiltVault):
         figures |= {"vault": partial(pictures.vault_picture, built.vault), "sections": partial(pictures.sections_picture, built.vault),
                     "folding-motion": partial(pictures.motion_strip_picture, built.vault)}
     else:

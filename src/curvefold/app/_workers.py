@@ -89,11 +89,13 @@ class Reservations:
             fits = lambda: self.held == 0 or self.held + amount <= self.capacity  # noqa: E731
             try:
                 await asyncio.wait_for(self._changed.wait_for(fits), timeout)
-            except asyncio.TimeoutError:
+            except TimeoutError:
                 raise Stopped("time", f"waited {timeout:.0f} s for memory that the running jobs hold") from None
             self.held += amount
 
     async def release(self, amount: float) -> None:
+        if self._changed is None:  # nothing was held
+            self._changed = asyncio.Condition()
         async with self._changed:
             self.held -= amount
             self._changed.notify_all()
@@ -103,7 +105,8 @@ class _Worker:
     """One worker process and its end of the pipe; ``stop`` says why it was killed."""
 
     def __init__(self, process, conn) -> None:
-        self.process, self.conn, self.stop = process, conn, None
+        self.process, self.conn = process, conn
+        self.stop: str | None = None
 
     def call(self, fn: Callable, args: tuple) -> tuple:
         self.conn.send((fn, args))
@@ -213,7 +216,7 @@ class Pool:
             raise Stopped("closed", "the designer is stopping")
         try:
             worker = await asyncio.wait_for(self._idle.get(), timeout)
-        except asyncio.TimeoutError:
+        except TimeoutError:
             raise Stopped("time", f"every {self.name} worker stayed busy for the {timeout:g} s time limit") from None
         watch = asyncio.ensure_future(cancelled()) if cancelled is not None else None
         answer = loop.run_in_executor(self._threads, worker.call, fn, args)
@@ -269,8 +272,11 @@ class Pool:
         if worker.stop is None and not self._closing and resident_bytes(worker.process.pid) > self.recycle_above:
             worker.kill("recycled")
             self.counts["recycled"] += 1
+        idle = self._idle
+        if idle is None:  # made by run(), which gave this worker out
+            raise RuntimeError("a worker given back to a pool that gave none out")
         if worker.stop is None:
-            self._idle.put_nowait(worker)
+            idle.put_nowait(worker)
             return
         loop = asyncio.get_running_loop()
         await loop.run_in_executor(self._threads, worker.reap)
@@ -281,7 +287,7 @@ class Pool:
             self._all[self._all.index(worker)] = fresh
         if self._closing:  # closed while the fresh one started
             fresh.kill("closed")
-        self._idle.put_nowait(fresh)
+        idle.put_nowait(fresh)
 
     def close(self) -> None:
         """Kill every worker now (callable from a signal handler); running jobs raise :class:`Stopped`."""
@@ -337,6 +343,7 @@ def _serve(conn, scratch: str, niceness: int) -> None:
             fn, args = conn.recv()
         except (EOFError, OSError):
             return
+        answer: tuple[str, Any] | tuple[str, str, str | None]
         try:
             answer = ("ok", fn(*args))
         except CurvefoldError as err:

@@ -10,12 +10,12 @@ after removing what the run had started to write. Warnings are shown only with
 ``--debug``; text a user typed is printed with its control characters escaped. The output
 folder is checked before any work and replaced only as :mod:`curvefold.app._folder` says.
 
-The flags of ``vault``, ``tube``, ``block``, ``crease`` and ``load``, their help and their checks
-are generated from the design schema (:data:`curvefold.app._design.SCHEMA`): one flag per
-key, ``--fold-angle`` for ``fold_angle``, ``--no-glue-tabs`` for a key that is true by
-default. A flag's value is checked by the key's spec and named as typed
-(``--page A9: page must be one of …``); a design made of a file and flags is named by both
-(``design.toml --samples 10: …``).
+A subcommand per registered kind of design (:mod:`curvefold.app._kinds`), its help the kind's.
+The flags of those and of ``load``, their help and their checks are generated from the design
+schema (:data:`curvefold.app._design.SCHEMA`): one flag per key, ``--fold-angle`` for
+``fold_angle``, ``--no-glue-tabs`` for a key that is true by default. A flag's value is
+checked by the key's spec and named as typed (``--page A9: page must be one of …``); a design
+made of a file and flags is named by both (``design.toml --samples 10: …``).
 """
 
 from __future__ import annotations
@@ -39,16 +39,23 @@ with blas_loads_on_one_thread():  # NumPy is loaded here; a command runs its BLA
     from ..kernel._text import for_terminal
     from ..kernel._validate import Spec, from_text
     from ..vault._assembly import vault_samples
-    from ._design import OPTIONAL_SECTIONS, SCHEMA, Design, design_from_dict, kind_specs, load_design
+    from ._design import (
+        OPTIONAL_SECTIONS,
+        SCHEMA,
+        Design,
+        design_from_dict,
+        kind_specs,
+        load_design,
+    )
     from ._folder import Interrupted, raise_if_interrupted, signals_interrupt
+    from ._kinds import DesignKind, design_kind, design_kinds
     from .designer import SERVER_SPECS
 
 __all__ = ["main"]
 
 PROG = "curvefold"
-DEFAULT_OUT = {"vault": "curvefold-vault", "tube": "curvefold-tube", "block": "curvefold-block", "crease": "curvefold-crease"}
-#: Kinds of design ``load`` takes.
-LOADED = ("vault", "tube", "block")
+#: The kind of design ``load`` analyses unless its design file says another: the paper's vault.
+LOAD_KIND = "vault"
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"
 _FORCE_HELP = "replace the output folder if curvefold wrote it (or it is empty)"
 _VAULT = SCHEMA["vault"]
@@ -96,7 +103,7 @@ class _Parser(argparse.ArgumentParser):
             flags, self._flags = self._flags, None
             flags(self)
 
-    def parse_known_args(self, args=None, namespace=None):  # type: ignore[override]
+    def parse_known_args(self, args=None, namespace=None):
         self._add_flags()
         return super().parse_known_args(args, namespace)
 
@@ -137,10 +144,12 @@ def _from_text(spec: Spec, text: str, flag: str | None = None):
     """A flag's text as the value a design file would hold (checked by the spec afterwards);
     a number that does not read as one is refused here, naming the flag."""
     value = from_text(spec, text)
-    number = {"real": (int, float), "integer": int, "count": int}.get(spec.kind)
-    if number is not None and not isinstance(value, number) and value != ("max" if spec.kind == "count" else None):
+    types = {"real": (int, float), "integer": (int,), "count": (int,)}.get(spec.kind)
+    unset = "max" if spec.kind == "count" else None  # a count's other value
+    if types and not isinstance(value, types) and value != unset:
+        least = "" if spec.range is None else f" ≥ {spec.range.lo:g}"
         form = {"real": f"a number ({spec.unit})" if spec.unit else "a number", "integer": "a whole number",
-                "count": f"a whole number ≥ {spec.range.lo:g} or 'max'"}[spec.kind]
+                "count": f"a whole number{least} or 'max'"}[spec.kind]
         raise InputError(f"{flag or _flag(spec)}: must be {form}, got {text!r}")
     return value
 
@@ -157,7 +166,7 @@ def _flag_specs(kind: str) -> dict[str, Spec]:
 
 
 def _formats_help(kind: str) -> str:
-    names = default_formats(kind)
+    names = default_formats(design_kind(kind).formats_kind)
     if not names:
         return f"no file formats are written for a {kind} design (the report and its pictures always are)"
     listed = "; ".join(f"{n}: {FORMATS[n].holds}" for n in names)
@@ -205,35 +214,38 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
     return values, typed
 
 
-def _add_target_flags(p: argparse.ArgumentParser) -> None:
-    """--span, --rise and --p-xz: a vault from targets (help and checks from their specs)."""
-    from ..vault._targets import TARGET_SPECS
-
-    g = p.add_argument_group("targets", "design the vault from what it must measure; each target replaces a parameter "
-                             "(span the radius, rise with span a, p_xz p_xy); tubes must then be a number")
-    for spec in TARGET_SPECS:
+def _add_target_flags(p: argparse.ArgumentParser, kind: DesignKind) -> None:
+    """A kind's targets as flags (a vault's --span, --rise, --p-xz), help and checks from specs."""
+    if kind.targets is None:
+        return
+    g = p.add_argument_group("targets", kind.targets.help)
+    for spec in kind.targets.specs():
         g.add_argument(_flag(spec), dest=spec.name, metavar=spec.name.upper(), help=spec.describe().replace("%", "%%"))
 
 
 def _fit_targets(design: Design, args: argparse.Namespace) -> Design:
-    """The vault design with the parameters the target flags replace solved for them."""
-    from ..vault._targets import REPLACES, TARGET_SPECS
-    from ._build import fit_vault_targets
-
-    specs = {spec.name: spec for spec in TARGET_SPECS}
-    targets = {name: _flag_value(specs[name], getattr(args, name)) for name in REPLACES if getattr(args, name) is not None}
-    if not targets:
+    """The design with the parameters its kind's target flags replace solved for them."""
+    fit = design.design_kind.targets
+    specs = {} if fit is None else {spec.name: spec for spec in fit.specs()}
+    given = {name: text for name in specs if (text := getattr(args, name, None)) is not None}
+    if fit is None or not given:
         return design
-    for target, replaced in REPLACES.items():
-        if target in targets and getattr(args, replaced) is not None:
-            raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} or {_flag(_VAULT[replaced])}, not both")
-    return fit_vault_targets(design, source=design.source, **targets)[0]
+    targets = {name: _flag_value(specs[name], text) for name, text in given.items()}
+    flags = kind_specs(design.kind)
+    for target, replaced in fit.replaces().items():
+        if target in targets and getattr(args, replaced, None) is not None:
+            raise InputError(f"{_flag(specs[target])} sets {replaced}: give {_flag(specs[target])} "
+                             f"or {_flag(flags[replaced])}, not both")
+    return fit.fit(design, source=design.source, **targets)[0]
 
 
 def _add_output(p: argparse.ArgumentParser, kind: str | None) -> None:
     g = p.add_argument_group("output")
     if kind is not None:
-        default = "none: nothing is written" if kind == "load" else f"./{DEFAULT_OUT[kind]}; with --json and no --out nothing is written"
+        default = "none: nothing is written"
+        if kind != "load":
+            folder = design_kind(kind).default_out
+            default = f"./{folder}; with --json and no --out nothing is written"
         g.add_argument("--out", metavar="DIR", type=Path, help=f"folder to write (default: {default})")
         g.add_argument("--force", action="store_true", help=_FORCE_HELP)
     g.add_argument("--json", action="store_true", help="print one JSON object on stdout instead of the summary")
@@ -252,18 +264,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--debug", action="store_true", help=_DEBUG_HELP)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
-    descriptions = {
-        "vault": ("the composite deployable vault (the main job)", "Build a vault of tubed arches stacked along the lattice diagonal, standing on z = 0 at the design fold angle, and write its files, pictures and report."),
-        "tube": ("a single tube around curve 1", 'Build a single tube around curve 1 from a design file (kind = "tube") or the defaults, and write its files and report.'),
-        "block": ("a cellular block of lattice cells", 'Build a cellular block of lattice cells from a design file (kind = "block") or the defaults, and write its files and report.'),
-        "crease": ("a single curved fold from its crease pattern", "Fold a single curved crease from its crease pattern (kappa_2d, ruling angles, start fold angle or alpha(s)): the paper's Fig. 08."),
-    }
-    for kind, (short, long) in descriptions.items():
-        p = sub.add_parser(kind, help=short, description=long)
-        _add_design_flags(p, kind)
-        if kind == "vault":
-            _add_target_flags(p)
-        _add_output(p, kind)
+    for kind in design_kinds():
+        p = sub.add_parser(kind.name, help=kind.help, description=kind.description)
+        _add_design_flags(p, kind.name)
+        _add_target_flags(p, kind)
+        _add_output(p, kind.name)
 
     p = sub.add_parser("load", help="will it stand? a vault, tube or block under load",
                        description="Analyse a vault (the paper's by default), or a tube or block from its design file, under load: "
@@ -272,8 +277,8 @@ def build_parser() -> argparse.ArgumentParser:
                        "(the end sections on the ground); a tube or block is held at both end sections, t = 0 and t = 1. Default: "
                        "polypropylene 1 mm under its own weight, pinned. With --out, the output folder of the design with its "
                        "mechanics in the report, report.json and the GLB.")
-    _add_design_flags(p, "vault")
-    _add_target_flags(p)
+    _add_design_flags(p, LOAD_KIND)
+    _add_target_flags(p, design_kind(LOAD_KIND))
     _add_output(p, "load")
 
     p = sub.add_parser("arch", help="solve the arch equation (Eq. 20) for κ0·s0", description="Solve T(s0/2)·T(0) = 0 for the arch κ = κ0, τ = a κ0 sin(2π s/s0).")
@@ -323,7 +328,9 @@ def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
     p.add_argument("--p-xy", metavar="GRID", default="0.5:1.5:5", help=f"values of p_xy {_VAULT['p_xy'].requirement}: {grid} (default 0.5:1.5:5)")
     p.add_argument("--a", metavar="GRID", default="0:1.2:5", help=f"values of a {GRID_A.requirement}: {grid} (default 0:1.2:5)".replace("%", "%%"))
     p.add_argument("--width", metavar="WIDTH", help=_VAULT["width"].describe())
-    p.add_argument("--samples", metavar="N", help=f"samples per crease, in [21, {SCHEMA['']['samples'].range.hi:g}] (default 201)")
+    most = SCHEMA[""]["samples"].range
+    text = f"samples per crease, in [21, {most.hi if most else float('inf'):g}] (default 201)"
+    p.add_argument("--samples", metavar="N", help=text)
     p.add_argument("--workers", metavar="N", help=f"processes of a local Dask cluster, {workers_spec().requirement}; 1 runs in this process (default: up to 2 for grids of {LOCAL_CLUSTER_FROM} designs or more when Dask is installed, else 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on the existing Dask cluster of this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)")
     p.add_argument("--out", metavar="DIR", type=Path, default=Path("curvefold-atlas"), help="folder to write (default ./curvefold-atlas)")
@@ -387,13 +394,12 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     from ._folder import check_output
     from ._outputs import structure_payload, write_outputs
 
-    design = _load_design(kind, args)
-    if kind == "vault":
-        design = _fit_targets(design, args)
-    out = args.out if args.out is not None else (None if args.json else Path(DEFAULT_OUT[kind]))
+    design = _fit_targets(_load_design(kind, args), args)
+    out = args.out or (None if args.json else Path(design.design_kind.default_out))
     target = None
     if out is not None:
-        check_kind(design.output.formats, kind, f"{design.source}: [output] formats")
+        formats_kind = design.design_kind.formats_kind
+        check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
         target = check_output(out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
     require_budget(design, files=out is not None)
     built = build(design)
@@ -419,19 +425,23 @@ def cmd_load(args: argparse.Namespace) -> int:
     from ._folder import check_output
     from ._outputs import default_title, write_outputs
 
-    design = _load_design("vault", args, kinds=LOADED)
-    design = _fit_targets(design, args) if design.kind == "vault" else design
+    design = _load_design(LOAD_KIND, args, kinds=[k.name for k in design_kinds() if k.loaded])
+    design = _fit_targets(design, args)
     design = design.with_mechanics()
     target = None
     if args.out is not None:
-        check_kind(design.output.formats, design.kind, f"{design.source}: [output] formats")
+        formats_kind = design.design_kind.formats_kind
+        check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
         target = check_output(args.out, force=args.force, inputs=([] if args.design is None else [args.design]) + list(design.tables()))
     require_budget(design, files=target is not None)
     built = build(design)
+    loaded = built.mechanics
+    if loaded is None:  # with_mechanics gave it material and loads
+        raise InputError(f"{design.source}: a {design.kind} design is not analysed under load")
     head = {"kind": design.kind, "title": design.title or default_title(built), "design": design.to_dict()}
-    lines = [f"{head['title']}", *built.mechanics.lines()]
+    lines = [f"{head['title']}", *loaded.lines()]
     if target is None:
-        payload = head | built.mechanics.to_dict()
+        payload = head | loaded.to_dict()
         failed = False
     else:
         written = write_outputs(built, target, show_progress=not args.json)
@@ -503,9 +513,10 @@ def cmd_check(args: argparse.Namespace) -> int:
 
         from ..analysis._foldcheck import FileCheck
 
-        failed = FileCheck("rebuild", "fail", where=f"curvefold:design records {len(recorded)} fold angles, the file holds {frames} "
-                                                    "frames after the key frame: the record is not the file's (not rebuilt)")
-        result = replace(result, checks=result.checks + (failed,))
+        where = (f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
+                 f"{frames} frames after the key frame: the record is not the file's (not rebuilt)")
+        unbuilt = FileCheck("rebuild", "fail", where=where)
+        result = replace(result, checks=result.checks + (unbuilt,))
     ran = [c for c in result.checks if c.status != "not run"]
     failed = [c for c in ran if c.status == "fail"]
     lines = [f"{args.file}: {'OK' if result.ok else 'FAILED'} ({result.frames} folded frame{'s' * (result.frames != 1)}; "
@@ -555,7 +566,7 @@ def _rebuilt_fold(doc, path: Path):
     from ..io._fold import model_document, to_fold
     from ..io._fold_reading import parse_fold
     from ._budget import require_rebuild_budget
-    from ._build import build
+    from ._build import BuiltCrease, BuiltStructure, build
 
     record = doc.design
     where = f"{path}: curvefold:design"
@@ -566,10 +577,12 @@ def _rebuilt_fold(doc, path: Path):
     design = design_from_dict(record["design"], source=where, base_dir=path.parent)
     require_rebuild_budget(design, len(record["fold_angles"]))
     built = build(design)
-    if built.structure is None:  # a single curved fold
+    if isinstance(built, BuiltCrease):  # a single curved fold
         from ..io._single_fold import single_fold_model
 
         return parse_fold(model_document(single_fold_model(built.single_fold, record["fold_angles"])), f"{where} (rebuilt)")
+    if not isinstance(built, BuiltStructure):
+        raise InputError(f"{where}: a {design.kind} design has no FOLD file to rebuild")
     keep = record.get("keep")
     model = to_fold(built.structure, fold_angles=record["fold_angles"], anchor=record.get("anchor", "start"),
                     faces=record.get("faces", "triangles"), keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])
@@ -676,7 +689,7 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
     from ..kernel._threads import one_blas_thread
 
     with one_blas_thread():  # a command's matrices are small: more BLAS threads only wait (kernel.threads)
-        if args.command in DEFAULT_OUT:
+        if args.command in {kind.name for kind in design_kinds()}:
             return cmd_structure(args.command, args)
         return {"load": cmd_load, "arch": cmd_arch, "reproduce": cmd_reproduce, "check": cmd_check, "mechanism": cmd_mechanism,
                 "atlas": cmd_atlas, "designer": cmd_designer}[args.command](args)

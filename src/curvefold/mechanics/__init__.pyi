@@ -2,11 +2,19 @@
 
 from ._analysis import LoadResult as LoadResult
 from ._analysis import analyse_load as analyse_load
-from ._loads import LOAD_SPECS as LOAD_SPECS
+from ._loads import LOAD_CASES as LOAD_CASES
 from ._loads import SUPPORTS as SUPPORTS
 from ._loads import G as G
+from ._loads import HalfSnow as HalfSnow
+from ._loads import LoadCase as LoadCase
 from ._loads import Loads as Loads
+from ._loads import Parameter as Parameter
+from ._loads import PointLoad as PointLoad
+from ._loads import SelfWeight as SelfWeight
+from ._loads import Snow as Snow
 from ._loads import Supports as Supports
+from ._loads import Wind as Wind
+from ._loads import ZonedWind as ZonedWind
 from ._materials import CREASE_STIFFNESS as CREASE_STIFFNESS
 from ._materials import MATERIAL as MATERIAL
 from ._materials import MATERIAL_SPECS as MATERIAL_SPECS
@@ -38,7 +46,15 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
-    "LOAD_SPECS",
+    "LOAD_CASES",
+    "LoadCase",
+    "Parameter",
+    "SelfWeight",
+    "Snow",
+    "HalfSnow",
+    "Wind",
+    "ZonedWind",
+    "PointLoad",
     "SUPPORTS",
     "material",
     "BarHingeModel",

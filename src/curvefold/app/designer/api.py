@@ -36,10 +36,9 @@ from ...figures._report import MECHANICS_QUANTITIES, UNITS_SHOWN
 from ...io._formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel._errors import CurvefoldError, InputError
 from ...kernel._validate import MAX_TEXT, Spec, from_text, suggest
-from ...vault._arch import ArchRoot
-from ...vault._targets import REPLACES, TARGET_SPECS
-from .._build import Built, build, fit_vault_targets
-from .._design import KINDS, OPTIONAL_SECTIONS, SCHEMA, SECTIONS_OF_KIND, Design, default_design, design_from_dict, kind_specs
+from .._build import Built, BuiltStructure, BuiltVault, build
+from .._design import SCHEMA, Design, default_design, design_from_dict, kind_specs
+from .._kinds import DesignKind, design_kind, design_kinds, registry_version
 
 __all__ = [
     "Request",
@@ -73,8 +72,6 @@ MAX_VALUE = 2 * MAX_TEXT
 SOURCE = "query"
 #: Keys a request never sets (the kind is in the path).
 _FIXED = ("kind",)
-#: The target that sets each parameter a target replaces.
-_TARGET_OF = {replaced: target for target, replaced in REPLACES.items()}
 #: The fold angle of the state a downloaded file holds (a query parameter of the files only).
 STATE = Spec("state", "real", None, "[0, 180)", "degrees", help="fold angle 2 alpha of the state the files hold; default the design angle",
              label="fold angle of the files")
@@ -84,13 +81,22 @@ STATE = Spec("state", "real", None, "[0, 180)", "degrees", help="fold angle 2 al
 
 
 def parameters(kind: str) -> dict[str, Spec]:
-    """Every query parameter of a kind: the schema keys of its sections and ``[output]``, and a vault's targets."""
-    if kind not in KINDS:
-        raise InputError(f"unknown kind {kind!r} (allowed: {', '.join(KINDS)})")
-    specs = kind_specs(kind)
-    if kind == "vault":
-        specs |= {spec.name: spec for spec in TARGET_SPECS}
-    return specs
+    """Every query parameter of a kind: the schema keys of its sections and ``[output]``, and
+    its targets (:attr:`DesignKind.targets <curvefold.app._kinds.DesignKind.targets>`: a
+    vault's)."""
+    specs = kind_specs(design_kind(kind).name)
+    return specs | {spec.name: spec for spec in _target_specs(kind)}
+
+
+def _target_specs(kind: str) -> tuple[Spec, ...]:
+    targets = design_kind(kind).targets
+    return () if targets is None else targets.specs()
+
+
+def _replaces(kind: str) -> dict[str, str]:
+    """Target -> the parameter it replaces, for a kind's targets."""
+    targets = design_kind(kind).targets
+    return {} if targets is None else dict(targets.replaces())
 
 
 def _spec_json(spec: Spec, section: str) -> dict:
@@ -114,23 +120,43 @@ def _plain(value):
     return [_plain(v) for v in value] if isinstance(value, tuple) else value
 
 
-@lru_cache(maxsize=1)
 def schema() -> dict:
     """The design schema as JSON-ready data: the designer's controls are generated from it.
 
-    Keys: ``kinds`` (kind → its sections, its optional ones last: ``material`` and ``loads``), ``sections`` (section → list of specs with name,
-    label, kind, unit, help, choices, default and range; ``""`` is the top level), ``targets``
-    (the vault's target specs and the parameter each replaces), ``formats`` (the
-    registry: name, extension, what the file holds, the kinds it is written for),
+    Keys: ``kinds`` (kind → its sections, its optional ones last: ``material`` and ``loads``),
+    ``optional`` (kind → its optional sections), ``grounded`` (the kinds that stand on the
+    ground: a vault, whose fold stops at its first contact), ``sections`` (section → list of
+    specs with name, label, kind, unit, help, choices, default and range; ``""`` is the top
+    level), ``targets`` (the kinds' target specs, a vault's, with their kind and the parameter
+    each replaces), ``formats`` (the registry: name, extension, what the file holds, the kinds
+    it is written for),
     ``state`` (the spec of the files' fold angle) and ``units`` (how the page names the
-    schema's units, :data:`curvefold.figures._report.UNITS_SHOWN`).
+    schema's units, :data:`curvefold.figures._report.UNITS_SHOWN`). Read from the registry of
+    kinds (:mod:`curvefold.app._kinds`), once for each state of it.
     """
+    return _schema(registry_version())
+
+
+def _kind_targets(kind: DesignKind) -> list[dict]:
+    if kind.targets is None:
+        return []
+    replaces = kind.targets.replaces()
+    return [
+        _spec_json(spec, kind.name) | {"kind": kind.name, "replaces": replaces[spec.name]}
+        for spec in kind.targets.specs()
+    ]
+
+
+@lru_cache(maxsize=1)
+def _schema(version: int) -> dict:
+    kinds = design_kinds()
     return {
-        "kinds": {kind: [*SECTIONS_OF_KIND[kind], *OPTIONAL_SECTIONS[kind]] for kind in KINDS},
-        "optional": {kind: list(OPTIONAL_SECTIONS[kind]) for kind in KINDS},
+        "kinds": {kind.name: [*kind.section_names, *kind.optional] for kind in kinds},
+        "optional": {kind.name: list(kind.optional) for kind in kinds},
+        "grounded": [kind.name for kind in kinds if kind.grounded],
         "sections": {section: [_spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED]
                      for section, specs in SCHEMA.items()},
-        "targets": [_spec_json(spec, "vault") | {"replaces": REPLACES[spec.name]} for spec in TARGET_SPECS],
+        "targets": [target for kind in kinds for target in _kind_targets(kind)],
         "formats": [{"name": f.name, "title": f.title, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)}
                     for f in FORMATS.values()],
         "state": _spec_json(STATE, ""),
@@ -192,9 +218,10 @@ def read_request(kind: str, query: Mapping[str, str] | list[tuple[str, str]], *,
         if len(text) > MAX_VALUE:
             raise InputError(f"{name} is longer than {MAX_VALUE} characters", parameter=name)
         values[name] = from_text(specs[name], text)
-    targets = {k: values.pop(k) for k in REPLACES if k in values}
+    replaces = _replaces(kind)
+    targets = {k: values.pop(k) for k in replaces if k in values}
     extras = {spec.name: values.pop(spec.name) for spec in extra if spec.name in values}
-    for target, replaced in REPLACES.items():
+    for target, replaced in replaces.items():
         if target in targets and replaced in values:
             raise InputError(f"give {target} or {replaced}, not both ({target} sets {replaced})", parameter=target)
     for group in (values, targets, extras):
@@ -219,10 +246,16 @@ def resolve(key: str, targets: tuple[tuple[str, float], ...] = ()) -> tuple[Desi
 
 @lru_cache(maxsize=16)
 def _fitted(design_key: str, targets: tuple) -> tuple[str, str]:
+    given = _design(design_key)
+    fit = given.design_kind.targets
+    if fit is None:
+        raise InputError(f"a {given.kind} has no targets")
     try:
-        design, note = fit_vault_targets(_design(design_key), source=SOURCE, **dict(targets))
+        design, note = fit.fit(given, source=SOURCE, **dict(targets))
     except CurvefoldError as err:  # about a parameter a target replaces: about that target
-        raise _without_source(err, _TARGET_OF.get(err.parameter, err.parameter)) from None
+        target_of = {replaced: target for target, replaced in fit.replaces().items()}
+        parameter = None if err.parameter is None else target_of.get(err.parameter, err.parameter)
+        raise _without_source(err, parameter) from None
     return _key(design), note
 
 
@@ -270,19 +303,20 @@ def _design(key: str) -> Design:
 
 
 @lru_cache(maxsize=4)
-def _built(key: str, arch_root: ArchRoot | None = None) -> Built:
-    return build(_design(key), arch_root=arch_root)
+def _built(key: str, like: Built | None = None) -> Built:
+    return build(_design(key), like=like)
 
 
 def built(design: Design, *, samples: int | None = None) -> Built:
     """The design built (cached), at fewer ``samples`` if given: then the design is first built at
     its own samples, so that what its samples refuse (regression between coarse samples) is
-    refused, never drawn, and a vault's arch root is solved once for both."""
+    refused, never drawn, and what the build solves (a vault's arch root) is solved once for
+    both."""
     try:
         if samples is not None and samples < design.samples:
             full = _built(_key(design))
             coarse = design.overrides(source=SOURCE, samples=samples)
-            return _built(_key(coarse), None if full.vault is None else full.vault.arch)
+            return _built(_key(coarse), full)
         return _built(_key(design))
     except CurvefoldError as err:
         raise _without_source(err) from None
@@ -331,7 +365,10 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
         from ...analysis._certificate import certify
 
         found = built(design, samples=COARSE_SAMPLES)
-        cert = certify(found.crease, found.structure, found.vault)
+        structure = found.structure if isinstance(found, BuiltStructure) else None
+        cert = certify(
+            found.crease, structure, found.vault if isinstance(found, BuiltVault) else None
+        )
         checks, frames = [c.to_dict() for c in cert.checks], {"samples": cert.samples, "holds_up_to": cert.holds_up_to,
                                                                  "fold_angles": list(cert.fold_angles)}
     else:
@@ -361,7 +398,10 @@ def mechanics(design: Design) -> dict:
 
 @lru_cache(maxsize=4)
 def _mechanics(key: str) -> bytes:
-    numbers = built(_design(key)).mechanics.to_dict()
+    loaded = built(_design(key)).mechanics
+    if loaded is None:
+        raise InputError("the design has no material or loads to analyse")
+    numbers = loaded.to_dict()
     labels = {k: [re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0], MECHANICS_QUANTITIES[k][1], MECHANICS_QUANTITIES[k][0]]
               for k in MECHANICS_SHOWN}
     return json.dumps({"numbers": numbers, "labels": labels}, default=float).encode()
@@ -369,16 +409,26 @@ def _mechanics(key: str) -> bytes:
 
 def domain_svg(design: Design) -> str:
     """The regression domain of a tube, block or vault with its cells (Eq. 18), as SVG text."""
-    if design.kind == "crease":
+    if not design.design_kind.structure:
         raise InputError("a single curved fold has no lattice: the regression domain is drawn for tubes, blocks and vaults")
     return _domain(_key(design))
+
+
+def built_structure(design: Design, *, samples: int | None = None) -> BuiltStructure:
+    """:func:`built` of a design whose kind builds a structure of strips
+    (:attr:`DesignKind.structure <curvefold.app._kinds.DesignKind.structure>`, checked by the
+    caller)."""
+    found = built(design, samples=samples)
+    if not isinstance(found, BuiltStructure):
+        raise InputError(f"a {design.kind} design builds no structure of strips")
+    return found
 
 
 @lru_cache(maxsize=4)
 def _domain(key: str) -> str:
     from ...figures._plots import plot_regression_domain
 
-    structure = built(_design(key), samples=PREVIEW_SAMPLES).structure
+    structure = built_structure(_design(key), samples=PREVIEW_SAMPLES).structure
     figure = plot_regression_domain(structure.lattice, structure.cells)
     out = io.StringIO()
     figure.savefig(out, format="svg")
@@ -387,7 +437,7 @@ def _domain(key: str) -> str:
 
 def pattern_pages(design: Design) -> list[str]:
     """The crease-pattern pages as they will be cut (the SVG files a download gives), in page order, at the design's samples."""
-    check_kind(["svg"], design.kind, "crease pattern")
+    check_kind(["svg"], design.design_kind.formats_kind, "crease pattern")
     return list(_pattern(_key(design)))
 
 
@@ -458,8 +508,9 @@ def check_download(design: Design, what: str) -> None:
     if what in ("zip", "toml"):
         return
     if what not in FORMATS:
-        raise InputError(f"unknown file {what!r} (allowed: {', '.join([*default_formats(design.kind), 'zip', 'toml'])})")
-    check_kind([what], design.kind, "download")
+        allowed = [*default_formats(design.design_kind.formats_kind), "zip", "toml"]
+        raise InputError(f"unknown file {what!r} (allowed: {', '.join(allowed)})")
+    check_kind([what], design.design_kind.formats_kind, "download")
 
 
 def download(design: Design, what: str, *, state: float | None = None) -> tuple[str, str, bytes]:

@@ -73,6 +73,7 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
     coarse = bool(extras.get("coarse"))
     files = None
     if route == "file":
+        what = what or ""  # the route gives it: /api/KIND.FORMAT
         api.check_download(design, what)
         files = design if what in ("zip", "toml") else design.overrides(source=design.source, formats=[what])
     elif route == "pattern" and not coarse:
@@ -109,7 +110,7 @@ def run(route: str, key: str, targets: tuple, option: str | None, state: float |
         return api.payload(design), "application/json", None
     if route == "mechanics":
         return _json(api.mechanics(design)), "application/json", None
-    name, media, content = api.download(design, option, state=state)
+    name, media, content = api.download(design, option or "", state=state)
     return content, media, name
 
 

@@ -25,9 +25,9 @@ from ...geometry._topology import tube_strips
 from ...io._tables import COLOURS
 from ...kernel._arrays import distinct
 from ...kernel._errors import InputError
-from .._build import Built
+from .._build import Built, BuiltStructure, BuiltVault
 from .._design import Design
-from .api import COARSE_SAMPLES, _design, _key, built, design_query, resolve
+from .api import COARSE_SAMPLES, _design, _key, built, built_structure, design_query, resolve
 
 __all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_SAMPLES", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
 
@@ -87,10 +87,11 @@ def _motion(found: Built) -> dict:
     """The folding motion from flat through the design angle to 179° (a vault: :func:`contact`
     then says where it stops) or halfway to 180° (a tube or block): precomputed states the
     browser morphs between."""
-    if found.structure is None:  # a single curved fold: its two surfaces, one state
+    if not isinstance(found, BuiltStructure):  # a single curved fold: its two surfaces, one state
         crease = found.crease
         limits = [float(np.min(w)) for w in crease.regression_limits()]
-        widths = tuple(min(0.15 * crease.curve.length, 0.6 * lim) for lim in limits)
+        left, right = (min(0.15 * crease.curve.length, 0.6 * lim) for lim in limits)
+        widths = (left, right)
         surface = crease.surface("L+R+", width=widths, rulings=2)
         idx = distinct(np.linspace(0, len(crease.s) - 1, PREVIEW_SEGMENTS + 1).round().astype(int))
         curves = np.stack([surface[0, 0], surface[0, 1], surface[1, 1]])[:, idx][None]
@@ -99,23 +100,34 @@ def _motion(found: Built) -> dict:
                 "lift_off": None, **_mesh(curves, np.array([[0, 1], [0, 2]]), ("fold", "edge", "edge"))}
     structure = found.structure
     design_angle = float(structure.lattice.crease.fold_angle)
-    end, reason = (MAX_FOLD, "first contact") if found.vault is not None else (0.5 * (design_angle + 180.0), "halfway to 180°")
+    grounded = found.design.design_kind.grounded
+    end, reason = (
+        (MAX_FOLD, "first contact")
+        if grounded
+        else (0.5 * (design_angle + 180.0), "halfway to 180°")
+    )
     angles = distinct(np.concatenate([
         np.linspace(0.0, design_angle, int(np.ceil(design_angle / MOTION_STEP)) + 1),
         np.linspace(design_angle, end, int(np.ceil((end - design_angle) / MOTION_STEP)) + 1),
     ]))
     vertices = structure.lattice.fold_points(structure.curves_uv, angles)
     curves, cells, kinds = drawable(structure, vertices, segments=PREVIEW_SEGMENTS, max_cells=PREVIEW_CELLS)
-    lift = np.abs(vertices[:, :, [0, -1], 2]).max(axis=(1, 2)) if found.vault is not None else None
-    return {"angles": angles.tolist(), "design_angle": design_angle, "end": reason, "ground": found.vault is not None,
-            "lift_off": None if lift is None else lift.tolist(), **_mesh(curves, tube_strips(cells), kinds)}
+    lift = np.abs(vertices[:, :, [0, -1], 2]).max(axis=(1, 2)) if grounded else None
+    return {
+        "angles": angles.tolist(),
+        "design_angle": design_angle,
+        "end": reason,
+        "ground": grounded,
+        "lift_off": None if lift is None else lift.tolist(),
+        **_mesh(curves, tube_strips(cells), kinds),
+    }
 
 
 def _dimensions(found: Built, numbers: dict) -> dict | None:
     """A vault's span (between the feet of curve 1, on the ground) and rise (from the ground to the
     highest crease point) at the design angle, its :func:`_numbers` given: the ends of each
     dimension line, model units."""
-    if found.vault is None:
+    if not isinstance(found, BuiltVault):
         return None
     points = found.crease.curve.points
     vertices = found.vault.vertices.reshape(-1, 3)
@@ -129,11 +141,11 @@ NUMBERS = ("span", "rise", "kappa0_s0", "proportion_change", "p_xz", "tubes", "m
 
 
 def _numbers(found: Built) -> dict:
-    if found.vault is not None:
+    if isinstance(found, BuiltVault):
         summary = found.vault.summary()
         d = found.vault.design
         return {k: summary[k] for k in NUMBERS} | {"a": d.a, "p_xy": d.p_xy, "radius": d.radius, "width_at_feet": d.width * d.radius}
-    if found.structure is not None:
+    if isinstance(found, BuiltStructure):
         s = found.structure
         V = s.state().vertices.reshape(-1, 3)
         size = V.max(axis=0) - V.min(axis=0)
@@ -190,14 +202,17 @@ def contact(design: Design) -> float | None:
     """The first fold angle past the design angle where parts of a vault touch (degrees, on a
     1° grid; :meth:`Vault.first_contact <curvefold.vault.Vault.first_contact>`), or None
     up to :data:`MAX_FOLD`: where the fold slider stops."""
-    if design.kind != "vault":
+    if not design.design_kind.grounded:
         raise InputError(f"the first contact is searched for vaults, not for a {design.kind}")
     return _contact(_key(design))
 
 
 @lru_cache(maxsize=32)
 def _contact(key: str) -> float | None:
-    return built(_design(key)).vault.first_contact(max_angle=MAX_FOLD)
+    found = built(_design(key))
+    if not isinstance(found, BuiltVault):
+        raise InputError(f"the first contact is searched for vaults, not for a {found.design.kind}")
+    return found.vault.first_contact(max_angle=MAX_FOLD)
 
 
 # -- the coarse crease pattern ------------------------------------------------------------------------
@@ -210,7 +225,7 @@ def pattern_sketch(design: Design) -> str:
     """The developed sheets at :data:`~curvefold.app.designer.api.COARSE_SAMPLES`, side by side in one SVG
     (outlines, seams and folds; no glue tabs, labels or page layout): the crease pattern
     shown while the pages as they will be cut are laid out."""
-    if design.kind == "crease":
+    if not design.design_kind.structure:
         raise InputError("a single curved fold has no sheets to lay out: crease patterns are drawn for tubes, blocks and vaults")
     return _sketch(_key(design))
 
@@ -220,7 +235,7 @@ def _sketch(key: str) -> str:
     from ...geometry._sheets import sheets
 
     design = _design(key)
-    found = built(design, samples=min(COARSE_SAMPLES, design.samples))
+    found = built_structure(design, samples=min(COARSE_SAMPLES, design.samples))
     drawn = [(sheet.label, sheet.mesh) for sheet in sheets(found.structure, name=design.kind)]
     boxes = [(m.vertices_coords[:, :2].min(axis=0), m.vertices_coords[:, :2].max(axis=0)) for _, m in drawn]
     widest = max(float((hi - lo).max()) for lo, hi in boxes)
@@ -230,7 +245,9 @@ def _sketch(key: str) -> str:
     rows_h = [max(float(hi[1] - lo[1]) for lo, hi in boxes[r:r + columns]) * scale for r in range(0, len(drawn), columns)]
     parts, y = [], _GAP
     for r, height in enumerate(rows_h):
-        for c, ((label, mesh), (lo, hi)) in enumerate(zip(drawn[r * columns:(r + 1) * columns], boxes[r * columns:(r + 1) * columns])):
+        for c, ((label, mesh), (lo, _hi)) in enumerate(
+            zip(drawn[r * columns : (r + 1) * columns], boxes[r * columns : (r + 1) * columns])
+        ):
             x0 = _GAP + c * (cell + _GAP)
             xy = (mesh.vertices_coords[:, :2] - lo) * scale
             xy[:, 1] = height - xy[:, 1]  # SVG's y runs down

@@ -55,7 +55,7 @@ import tempfile
 import threading
 import webbrowser
 from collections import OrderedDict
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from urllib.parse import urlencode, urlsplit
@@ -395,7 +395,7 @@ def _server(designer: Designer):
     return Server(config)
 
 
-def url_of(sock: socket.socket, query: list[tuple[str, str]] = ()) -> str:
+def url_of(sock: socket.socket, query: Sequence[tuple[str, str]] = ()) -> str:
     """The page's address on a bound socket, with the design ``query``."""
     host, port = sock.getsockname()[:2]
     shown = f"[{host}]" if ":" in host else host
@@ -426,13 +426,23 @@ def serving(host: str = "127.0.0.1", port: int = 0, **options) -> Iterator[str]:
 class _Url(str):
     """The URL of a served designer, with the designer it reaches."""
 
+    designer: Designer
+
     def __new__(cls, url: str, designer: Designer):
         self = super().__new__(cls, url)
         self.designer = designer
         return self
 
 
-def serve(host: str, port: int, *, query: list[tuple[str, str]] = (), open_browser: bool = True, say=print, **options) -> None:
+def serve(
+    host: str,
+    port: int,
+    *,
+    query: Sequence[tuple[str, str]] = (),
+    open_browser: bool = True,
+    say=print,
+    **options,
+) -> None:
     """Serve the designer until interrupted; open the page (with the design ``query``) in a browser.
     ``options`` are those of :class:`Designer`."""
     sock = bind(host, port)
