@@ -327,7 +327,9 @@ def build_vault(design: Design, like: Built | None = None) -> BuiltVault:
         else arch_crease(v.a, v.panels, v.radius, v.fold_angle, v.samples, root=root)
     )
     vault = Vault.from_design(v, arch=arch)
-    return BuiltVault(design, vault.lattice.smooth.crease, vault.structure, vault)
+    smooth = vault.lattice.smooth
+    assert smooth is not None  # a vault's panels sample its smooth arch
+    return BuiltVault(design, smooth.crease, vault.structure, vault)
 
 
 def build_crease(design: Design, like: Built | None = None) -> BuiltCrease:
@@ -370,6 +372,9 @@ def build_lattice_structure(design: Design, widths: tuple[float, float],
     curve = SpaceCurve.from_curvature(design.function("kappa"), design.function("tau"), c.length, samples=design.samples)
     crease = Crease.from_curve(curve, fold_angle=c.fold_angle)
     smooth = Lattice.from_crease(crease, *widths)
-    lattice: StructureLattice = PanelLattice.from_lattice(smooth, c.panels) if c.panels else smooth
+    # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)
+    lattice: StructureLattice = (
+        PanelLattice.from_lattice(smooth, c.panels) if c.panels else smooth  # type: ignore[assignment]
+    )
     structure = Structure.tube(lattice) if cells is None else Structure.from_cells(lattice, cells)
     return BuiltStructure(design, crease, structure)

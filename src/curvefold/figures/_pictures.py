@@ -44,7 +44,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from PIL import Image
 
     from ..analysis._mechanism import Mechanism
-    from ..geometry._lattice import Lattice
+    from ..geometry._kinds import StructureLattice
     from ..geometry._structure import Structure
     from ..vault._assembly import Vault
 
@@ -67,7 +67,7 @@ def _equal(lo: np.ndarray, hi: np.ndarray, rect: Sequence[float]) -> tuple[np.nd
     return centre - half, centre + half
 
 
-def regression_domain_picture(lattice: Lattice, cells: np.ndarray | None = None) -> Image.Image:
+def regression_domain_picture(lattice: StructureLattice, cells: np.ndarray | None = None) -> Image.Image:
     """The regression domain (:func:`curvefold.figures._plots.plot_regression_domain`) as a picture."""
     plot = domain_plot(lattice, cells)
     canvas = _canvas((6.4, 5.4))
@@ -94,7 +94,7 @@ def regression_domain_picture(lattice: Lattice, cells: np.ndarray | None = None)
     return canvas.picture()
 
 
-def width_proportion_picture(lattice: Lattice) -> Image.Image:
+def width_proportion_picture(lattice: StructureLattice) -> Image.Image:
     """The widths and proportion along the crease (:func:`curvefold.figures._plots.plot_width_proportion`) as a picture."""
     plot = width_plot(lattice)
     canvas = _canvas((6.4, 5.2))

@@ -32,7 +32,6 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from ..analysis._mechanism import Mechanism
     from ..geometry._kinds import StructureLattice
-    from ..geometry._lattice import Lattice
     from ..geometry._structure import State, Structure
     from ..vault._assembly import Vault
 
@@ -194,7 +193,7 @@ class DomainPlot(FrozenArrays):
 
 
 def domain_plot(
-    lattice: Lattice,
+    lattice: StructureLattice,
     cells: np.ndarray | Sequence[Sequence[int]] | None = None,
     *,
     box: float | None = None,
@@ -215,9 +214,8 @@ def domain_plot(
         arr = np.asarray(cells)
         if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) == 0 or not np.issubdtype(arr.dtype, np.integer):
             raise InputError(f"cells must be a non-empty (K, 2) array of integers, got shape {arr.shape} and dtype {arr.dtype}")
-        # Unchecked: cells past regression are shown, not refused. A Lattice is a
-        # StructureLattice: its crease's fold angle is constant (not Crease's).
-        structure = Structure(lattice, arr.astype(np.int64))  # type: ignore[arg-type]
+        # Unchecked: cells past regression are shown, not refused.
+        structure = Structure(lattice, arr.astype(np.int64))
     if box is None:  # the nearest part of the boundary, and every cell
         dirs = np.array([[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, -1], [1, -1], [-1, 1]], float)
         ext = domain.extent(dirs)
@@ -241,7 +239,7 @@ def domain_plot(
 
 
 def plot_regression_domain(
-    lattice: Lattice,
+    lattice: StructureLattice,
     cells: np.ndarray | Sequence[Sequence[int]] | None = None,
     *,
     box: float | None = None,
@@ -349,7 +347,7 @@ class WidthPlot(FrozenArrays):
         return np.stack([self.marks, self.ratio[at]], axis=-1)
 
 
-def width_plot(lattice: Lattice) -> WidthPlot:
+def width_plot(lattice: StructureLattice) -> WidthPlot:
     """What the width-proportion plot of a lattice shows: see :func:`plot_width_proportion`."""
     t = lattice.t
     ratio = lattice.width_right / lattice.width_left
@@ -359,7 +357,7 @@ def width_plot(lattice: Lattice) -> WidthPlot:
                      np.array([t[0], t[m]]), notes)
 
 
-def plot_width_proportion(lattice: Lattice) -> Figure:
+def plot_width_proportion(lattice: StructureLattice) -> Figure:
     """Widths w_L(t), w_R(t) and the section proportion w_R/w_L along the crease.
 
     Two panels sharing t: the widths in model units (Eqs. 12–13: ``ln w_R`` grows by

@@ -491,7 +491,7 @@ def sweep(
     scheduler: str | None = None,
     progress: Callable[[int, int], Any] | None = None,
     sketch_step: int = 1,
-) -> Iterator[tuple[dict, Sketch | None]]:
+) -> Generator[tuple[dict, Sketch | None], None, None]:
     """The record and sketch of every design of ``grid``, in grid order, as the designs finish.
 
     Parameters
@@ -548,7 +548,7 @@ def sweep(
 
 
 def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None,
-           step: int) -> Iterator[tuple[dict, Sketch | None]]:
+           step: int) -> Generator[tuple[dict, Sketch | None], None, None]:
     design = grid.shared
     total, done = grid.size, 0
     if progress is not None:
