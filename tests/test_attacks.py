@@ -645,9 +645,9 @@ def test_pattern_pages_show_a_hostile_label_as_text(tmp_path, small_tube):
 
     import ezdxf
 
-    from curvefold.io import write_pattern
+    from curvefold.io import PatternOutput, write_pattern
 
-    files = write_pattern(tmp_path / "p", small_tube, formats=("svg", "dxf", "pdf"), name=HOSTILE)  # "$\frac{" broke mathtext
+    files = write_pattern(tmp_path / "p", small_tube, PatternOutput(name=HOSTILE), formats=("svg", "dxf", "pdf"))  # "$\frac{" broke mathtext
     svg = next(f for f in files if str(f).endswith(".svg"))
     texts = [t.text for t in ET.parse(svg).iter("{http://www.w3.org/2000/svg}text")]
     assert any("<script>" in t for t in texts)  # parsed back as text, not as an element

@@ -503,13 +503,13 @@ def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
     rhino3dm = pytest.importorskip("rhino3dm")
     from shapely.geometry import Polygon
 
-    from curvefold.io import layout_pattern, write_3d
+    from curvefold.io import PatternOutput, layout_pattern, write_3d
     from curvefold.io._cutters import layer_name
     from curvefold.io._rhino import PATTERN_LAYER
     from curvefold.vault import Vault
 
     structure = Vault.from_design(samples=101, tubes=2).structure
-    layout = layout_pattern(structure, name="vault", cutter="laser")
+    layout = layout_pattern(structure, PatternOutput(name="vault", cutter="laser"))
     (path,) = write_3d(tmp_path / "v", structure, formats=("3dm",), pattern=layout)
     model = rhino3dm.File3dm.Read(str(path))
     paths = {layer.Index: layer.FullPath for layer in model.Layers}

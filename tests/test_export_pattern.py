@@ -31,6 +31,7 @@ from curvefold.io import _labels as labels
 from curvefold.io import _layout as layout_module
 from curvefold.io import _legend as legend
 from curvefold.io import _pattern as pattern
+from curvefold.io import _svg as svg
 from curvefold.io import _pdf as pdf
 from curvefold.io import _planar as planar
 from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, layer_name
@@ -304,8 +305,8 @@ def test_xml_escapes_are_the_standard_librarys():
     from xml.sax.saxutils import escape, quoteattr
 
     for text in ["", "tube 1", "a < b & c > d", 'say "hi"', "it's", "it's \"x\"", "tab\tnew\nline\r", "&amp;"]:
-        assert pattern._escape(text) == escape(text) and pattern._quoteattr(text) == quoteattr(text)
-    assert pattern._quoteattr("it's") != quoteattr("its")
+        assert svg._escape(text) == escape(text) and svg._quoteattr(text) == quoteattr(text)
+    assert svg._quoteattr("it's") != quoteattr("its")
 
 
 def test_each_sheet_has_one_closed_outline_around_sheet_and_tabs(tube, tube_layout):

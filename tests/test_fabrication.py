@@ -32,6 +32,7 @@ from curvefold.geometry import fold_angles
 from curvefold.geometry._sheets import Bond, PatternSheet, bonds, flat_plane, folding_motion, sheet_vertices, sheets, unroll_strip
 from curvefold.io import (
     MODEL_FORMATS,
+    PatternOutput,
     layout_pattern,
     read_fold,
     to_fold,
@@ -474,14 +475,14 @@ def test_default_scale_is_plain_and_fits(stack, block):
     # the largest sheet fills a good part of the page
     biggest = max(np.ptp(s.bounds(), axis=0).max() for s in layout_pattern(stack).sheets())
     assert biggest > 0.5 * (297 - 20)
-    fixed = layout_pattern(stack, scale=30.0)
+    fixed = layout_pattern(stack, PatternOutput(scale=30.0))
     assert fixed.scale == 30.0
 
 
 @pytest.fixture(scope="module")
 def stack_pattern(tmp_path_factory, stack):
     folder = tmp_path_factory.mktemp("pattern")
-    return folder, write_pattern(folder / "stack", stack, name="vault", rulings=True)
+    return folder, write_pattern(folder / "stack", stack, PatternOutput(name="vault", rulings=True))
 
 
 def test_write_pattern_files(stack_pattern):
@@ -530,7 +531,7 @@ def test_pattern_pdf_has_one_page_per_layout_page(stack_pattern):
 
 
 def test_write_pattern_options(tmp_path, tube):
-    (svg,) = write_pattern(tmp_path / "tube", tube, formats=("svg",), glue_tabs=False, page="A3")
+    (svg,) = write_pattern(tmp_path / "tube", tube, PatternOutput(glue_tabs=False, page="A3"), formats=("svg",))
     assert svg.name == "tube.svg" and sorted(p.name for p in tmp_path.iterdir()) == ["tube.svg"]
     text = svg.read_text()
     assert 'width="297mm"' in text and "layer-rulings" not in text

@@ -2,7 +2,10 @@
 
 Every module of ``src/curvefold`` is read with :mod:`ast` (imports inside functions and
 ``TYPE_CHECKING`` blocks included, since they are dependencies all the same) and every
-import of a curvefold module becomes an edge of a graph. The layers, from the ground up::
+import of a curvefold module becomes an edge of a graph. So does a module named by a
+string, which is imported all the same when the string is used: a ``"package.module"`` or
+``"package.module:function"`` literal, and the literal argument of
+``importlib.import_module`` or ``__import__``. The layers, from the ground up::
 
     kernel < geometry < {vault, io} < analysis < figures < app
 
@@ -25,6 +28,7 @@ And no module is over :data:`MAX_LINES` lines.
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src"
@@ -83,6 +87,15 @@ def imports(root: Path, package: str) -> dict[str, dict[str, int]]:
                     base = node.module or ""
                 # "from a import b" imports module a.b when there is one, else names of a
                 targets = [f"{base}.{alias.name}" if f"{base}.{alias.name}" in names else base for alias in node.names]
+            elif isinstance(node, ast.Call) and _imports_by_name(node):
+                literal = node.args[0].value  # type: ignore[attr-defined]
+                targets = [_absolute(literal, name, is_package)]
+            elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+                # a module named by a string, on its own or with an attribute: "a.b" or "a.b:f"
+                named = node.value.partition(":")[0] if _QUALIFIED.fullmatch(node.value) else None
+                if named not in names:
+                    continue
+                targets = [named]
             else:
                 continue
             for target in targets:
@@ -93,6 +106,28 @@ def imports(root: Path, package: str) -> dict[str, dict[str, int]]:
                     edges[target] = min(edges.get(target, node.lineno), node.lineno)
         graph[name] = edges
     return graph
+
+
+#: A dotted name, optionally with an attribute after a colon: ``"a.b.c"``, ``"a.b:f"``.
+_QUALIFIED = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+(:[A-Za-z_]\w*(\.[A-Za-z_]\w*)*)?")
+
+
+def _imports_by_name(node: ast.Call) -> bool:
+    """Whether a call is ``importlib.import_module("...")``, ``import_module("...")`` or ``__import__("...")``."""
+    func = node.func
+    called = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
+    return (called in ("import_module", "__import__") and bool(node.args) and isinstance(node.args[0], ast.Constant)
+            and isinstance(node.args[0].value, str))
+
+
+def _absolute(target: str, name: str, is_package: bool) -> str:
+    """A module name given to ``import_module`` from module ``name``: relative (``".x"``) to its package."""
+    level = len(target) - len(target.lstrip("."))
+    if not level:
+        return target
+    here = name.split(".") if is_package else name.split(".")[:-1]
+    rest = target[level:]
+    return ".".join(here[: len(here) - level + 1] + ([rest] if rest else []))
 
 
 def layer_of(name: str) -> str | None:
@@ -325,6 +360,36 @@ def test_a_cycle_is_reported_with_its_edges(tmp_path):
     assert graph["pkg.geometry.b"] == {"pkg.geometry.c": 2}
     assert cycles(graph) == [["pkg.geometry.a", "pkg.geometry.b", "pkg.geometry.c", "pkg.geometry.a"]]
     assert upward(graph) == []
+
+
+def test_modules_named_by_strings_up_or_across_the_layers_are_reported(tmp_path):
+    _package(tmp_path, BASE | {
+        "pkg/io/w.py": 'REGISTRY = {"guide": "pkg.figures.guide:write"}\n',  # "module:function" in a registry
+        "pkg/io/r.py": "import importlib\ndef f():\n    return importlib.import_module('pkg.app.cli')\n",
+        "pkg/vault/v.py": "from importlib import import_module\nm = import_module('..analysis.m', __package__)\n",
+        "pkg/geometry/g.py": "x = __import__('pkg.vault.v')\n",
+        "pkg/figures/guide.py": "def write(): ...\n",
+        "pkg/analysis/m.py": "MODULES = ('pkg.io.w', 'pkg.figures')\n",  # a module's name on its own
+        "pkg/app/a.py": ('"""See pkg.figures.guide:write."""\n'  # prose, not a name
+                         'NAMES = ("pkg.io.w:REGISTRY", "pkg.kernel", "pkg.logs", "pkg.io.nothing:f", "pkg.figures.guide:write")\n'),
+    })
+    graph = imports(tmp_path, "pkg")
+    assert graph["pkg.app.a"] == {"pkg.io.w": 2, "pkg.kernel": 2, "pkg.figures.guide": 2}
+    assert {(a, b): why for a, b, why in upward(graph)} == {
+        ("pkg.io.w", "pkg.figures.guide"): "line 1: io may import geometry, kernel, not figures",
+        ("pkg.io.r", "pkg.app.cli"): "line 3: io may import geometry, kernel, not app",
+        ("pkg.vault.v", "pkg.analysis.m"): "line 2: vault may import geometry, kernel, not analysis",
+        ("pkg.geometry.g", "pkg.vault.v"): "line 1: geometry may import kernel, not vault",
+        ("pkg.analysis.m", "pkg.figures"): "line 1: analysis may import geometry, io, kernel, mechanics, vault, not figures",
+    }
+
+
+def test_the_registry_of_formats_names_no_module_above_io():
+    """The assembly guide's writer is figures': figures registers it, io does not name it."""
+    graph = imports(SRC, "curvefold")
+    assert "curvefold.io._svg" in graph["curvefold.io._formats"]  # its own writers, named by string, are read
+    assert not any(layer_of(b) == "figures" for b in graph["curvefold.io._formats"])
+    assert "curvefold.io._formats" in graph["curvefold.figures"]
 
 
 def test_imports_up_or_across_the_layers_are_reported(tmp_path):

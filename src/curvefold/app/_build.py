@@ -83,19 +83,20 @@ class Built:
         perforated and kerf-compensated as asked (:func:`~curvefold.io.layout_pattern`), on the
         files' samples; a single fold's pattern at its scale or as large as the page takes it. The
         crease-pattern files, the 3dm and the assembly guide are drawn from it."""
+        from ..io._output import PatternOutput
         from ..io._pattern import layout_pattern
         from ..io._tables import mm_per_unit
 
         o = self.design.output
         page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
+        output = PatternOutput(page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, rulings=o.rulings, cutter=o.cutter,
+                               perforation=perforation, kerf=o.kerf, name=self.design.kind)
         if self.structure is None:
             from ..io._single_fold import layout_single_fold
 
-            return layout_single_fold(self.single_fold, page=page, units=o.units, scale=o.scale, name=self.design.kind,
-                                      cutter=o.cutter, perforation=perforation, kerf=o.kerf)
-        return layout_pattern(self.structure, page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, name=self.design.kind,
-                              keep=self.sampling.keep, cutter=o.cutter, perforation=perforation, kerf=o.kerf)
+            return layout_single_fold(self.single_fold, output)
+        return layout_pattern(self.structure, output, keep=self.sampling.keep)
 
 
 def vault_design(design: Design) -> VaultDesign:

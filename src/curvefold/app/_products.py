@@ -317,6 +317,8 @@ def _pattern(built: Built, names: tuple[str, ...], folder: Path) -> list:
 
 def _guide(built: Built, names: tuple[str, ...], folder: Path) -> list:
     """The assembly guide, on the pages of the design's crease pattern (:attr:`Built.layout`)."""
+    from .. import figures  # noqa: F401  (registers the guide's writer, which figures draws)
+
     f = FORMATS[names[0]]
     return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
 
