@@ -16,7 +16,7 @@ from _cli import run
 from curvefold.analysis._foldcheck import CHECK_SPECS, check_fold
 from curvefold.app import default_design
 from curvefold.app._build import build
-from curvefold.io import write_structure_fold
+from curvefold.io import FoldFile, write_structure_fold
 
 ANGLES = [0.0, 45.0, 90.0]
 
@@ -90,7 +90,7 @@ def test_write_fold_refuses_bad_bonds_and_designs(tmp_path):
 
     model = to_fold(structure)
     with pytest.raises(InputError, match=r"bonds must be edge indices in \[0, "):
-        write_fold(tmp_path / "x.fold", crease_pattern=model.crease_pattern, folded=model.folded, bonds=[[0, 10**9]])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=model.crease_pattern, folded=model.folded, bonds=[[0, 10**9]]))
     assert not (tmp_path / "x.fold").exists()
 
 

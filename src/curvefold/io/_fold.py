@@ -249,63 +249,59 @@ def _write_document(path: str | os.PathLike, doc: dict) -> Path:
     return atomic_write(path, dumps(doc) + "\n")
 
 
-def write_fold(path: str | os.PathLike, **arrays) -> Path:
+def write_fold(path: str | os.PathLike, model: FoldFile, *, title: str = "", flat_tol: float = 1e-9,
+               mirror_clockwise: bool = True) -> Path:
     """Write a crease pattern and its folded states as one FOLD 1.1 file: :func:`fold_document`, atomically.
 
     Parameters
     ----------
     path : path-like
-    **arrays
-        The keyword arguments of :func:`fold_document`.
+    model : FoldFile
+        The crease pattern, its folded frames and what the file records with them
+        (:func:`to_fold`, :func:`~curvefold.io._single_fold.single_fold_model`, or a
+        :class:`~curvefold.io.FoldFile` made or read).
+    title, flat_tol, mirror_clockwise : keyword-only
+        As in :func:`fold_document`.
 
     Returns
     -------
     Path
     """
-    return _write_document(path, _fold_frames(**arrays))
+    return _write_document(path, _fold_frames(model, title, flat_tol, mirror_clockwise))
 
 
-def fold_document(
-    *,
-    crease_pattern: Mesh,
-    folded: Sequence[tuple[str, Mesh]],
-    metadata: Mapping | None = None,
-    unit: str = "unit",
-    seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
-    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
-    design: Mapping | None = None,
-    title: str = "",
-    flat_tol: float = 1e-9,
-    mirror_clockwise: bool = True,
-) -> dict:
+def fold_document(model: FoldFile, *, title: str = "", flat_tol: float = 1e-9, mirror_clockwise: bool = True) -> dict:
     """A crease pattern and its folded states as one FOLD 1.1 document (JSON data, as :func:`write_fold` writes it).
 
     Parameters
     ----------
-    crease_pattern : Mesh
-        The flat crease pattern (z = 0, counter-clockwise faces) with the fold angles of
-        the design state. Seams are cut open: each seam is two boundary edges, one per
-        sheet, paired in ``seam_partners``.
-    folded : sequence of (str, Mesh)
-        Title and state of each folded frame; each Mesh has the crease pattern's topology
-        (same ``edges_vertices``, ``faces_vertices``, ``edges_kind``).
-    metadata : mapping of str to number or str, optional
-        Design parameters, stored under ``curvefold:metadata``.
-    unit : str
-        Length unit (``frame_unit``), e.g. ``"m"``, ``"mm"``, ``"unit"``.
-    seam_partners : (P, 2) array_like of int, optional
-        Pairs of boundary edge indices glued together in the folded structure.
-    bonds : (Q, 2) array_like of int, optional
-        Pairs of edge indices of different sheets that coincide in the folded structure
-        (tubes glued where they touch).
-    design : mapping, optional
-        The design and how the frames were made (:func:`to_fold`), stored as
-        ``curvefold:design``; JSON data.
-    title : str
+    model : FoldFile
+        What the file holds:
+
+        ``crease_pattern``
+            The flat crease pattern (z = 0, counter-clockwise faces) with the fold angles
+            of the design state. Seams are cut open: each seam is two boundary edges, one
+            per sheet, paired in ``seam_partners``.
+        ``folded``
+            Title and state (Mesh) of each folded frame; each Mesh has the crease
+            pattern's topology (same ``edges_vertices``, ``faces_vertices``, ``edges_kind``).
+        ``metadata``
+            Design parameters (str to number or str), stored under ``curvefold:metadata``.
+        ``unit``
+            Length unit (``frame_unit``), e.g. ``"m"``, ``"mm"``, ``"unit"``.
+        ``seam_partners``
+            (P, 2) pairs of boundary edge indices glued together in the folded structure.
+        ``bonds``
+            (Q, 2) pairs of edge indices of different sheets that coincide in the folded
+            structure (tubes glued where they touch).
+        ``design``
+            The design and how the frames were made (:func:`to_fold`), stored as
+            ``curvefold:design``; JSON data, or None.
+    title : str, keyword-only
         ``file_title`` (omitted when empty), on one line without control characters.
-    flat_tol : float
+    flat_tol : float, keyword-only
         Allowed ``max |z|`` of the crease pattern relative to its size.
-    mirror_clockwise : bool
+    mirror_clockwise : bool, keyword-only
         Mirror (y → −y about its centre) every sheet of the crease pattern whose
         triangles are all clockwise, so that it is seen from the side its normals point
         to, as FOLD requires; the folded frames and fold angles are unchanged. If False,
@@ -318,36 +314,26 @@ def fold_document(
     Raises
     ------
     InputError
-        On a non-flat crease pattern, a sheet with both clockwise and counter-clockwise
-        (or degenerate) triangles, topology that differs between frames,
+        On a missing or non-flat crease pattern, a sheet with both clockwise and
+        counter-clockwise (or degenerate) triangles, topology that differs between frames,
         a crease edge without two faces, a non-boundary seam partner, bad metadata or a
         design that is not JSON data.
     """
-    return plain(_fold_frames(crease_pattern=crease_pattern, folded=folded, metadata=metadata, unit=unit, seam_partners=seam_partners,
-                              bonds=bonds, design=design, title=title, flat_tol=flat_tol, mirror_clockwise=mirror_clockwise))
+    return plain(_fold_frames(model, title, flat_tol, mirror_clockwise))
 
 
-def _fold_frames(
-    *,
-    crease_pattern: Mesh,
-    folded: Sequence[tuple[str, Mesh]],
-    metadata: Mapping | None = None,
-    unit: str = "unit",
-    seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
-    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
-    design: Mapping | None = None,
-    title: str = "",
-    flat_tol: float = 1e-9,
-    mirror_clockwise: bool = True,
-) -> dict:
+def _fold_frames(model: FoldFile, title: str, flat_tol: float, mirror_clockwise: bool) -> dict:
     """:func:`fold_document` with its number arrays as :class:`~curvefold.io._decimals.Decimals`."""
-    cp = crease_pattern
+    cp = model.crease_pattern
+    if not isinstance(cp, Mesh):
+        raise InputError(f"the model's crease_pattern must be a Mesh, got {type(cp).__name__}", parameter="crease_pattern")
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
     cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
-    pairs = _check_seam_partners(seam_partners, assignment)
-    glued = _check_pairs(bonds, len(assignment), "bonds", "Q")
-    meta = check_metadata(metadata)
+    pairs = _check_seam_partners(model.seam_partners, assignment)
+    glued = _check_pairs(model.bonds, len(assignment), "bonds", "Q")
+    meta = check_metadata(model.metadata)
+    design = model.design
     if design is not None:
         try:
             json.dumps(dict(design), allow_nan=False)
@@ -356,7 +342,7 @@ def _fold_frames(
     zero = assignment == "B"  # one face: no dihedral angle
 
     frames = []
-    for i, item in enumerate(folded):
+    for i, item in enumerate(model.folded):
         try:
             frame_title, mesh = item
         except (TypeError, ValueError) as exc:
@@ -382,7 +368,7 @@ def _fold_frames(
     return _document(title, {
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
-        "frame_unit": unit,
+        "frame_unit": model.unit,
         "vertices_coords": _coordinate_lists(cp_xy),
         "edges_vertices": Integers(cp.edges_vertices),
         "edges_assignment": assignment.tolist(),
@@ -553,8 +539,9 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title
 
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
-    """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io._single_fold.single_fold_model`) atomically."""
-    return _write_document(path, _fold_frames(**_model_arrays(model), title=title))
+    """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io._single_fold.single_fold_model`):
+    :func:`write_fold` with the default tolerance and mirroring."""
+    return write_fold(path, model, title=title)
 
 
 def model_document(model: FoldFile, *, title: str = "") -> dict:
@@ -563,10 +550,4 @@ def model_document(model: FoldFile, *, title: str = "") -> dict:
     :func:`curvefold.io._fold_reading.parse_fold` reads it back as :func:`read_fold` reads the
     file (``curvefold check --rebuild`` compares a file with the document of its design).
     """
-    return fold_document(**_model_arrays(model), title=title)
-
-
-def _model_arrays(model: FoldFile) -> dict:
-    """The keyword arguments of :func:`fold_document` for a model."""
-    return dict(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
-                seam_partners=model.seam_partners, bonds=model.bonds, design=model.design)
+    return fold_document(model, title=title)
