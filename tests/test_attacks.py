@@ -618,10 +618,10 @@ def test_glb_3dm_and_fold_hold_the_title_on_one_line(tmp_path, small_tube):
     import pygltflib
     import rhino3dm
 
-    from curvefold.io import read_fold, write_3dm, write_glb, write_sheet_fold, write_structure_fold
+    from curvefold.io import GlbOptions, read_fold, write_3dm, write_glb, write_sheet_fold, write_structure_fold
 
     state = small_tube.state().mesh()
-    glb = write_glb(tmp_path / "t.glb", state, metadata={"title": HOSTILE})
+    glb = write_glb(tmp_path / "t.glb", state, options=GlbOptions(metadata={"title": HOSTILE}))
     title = pygltflib.GLTF2().load(str(glb)).asset.extras["curvefold"]["metadata"]["title"]
     _clean(title)
     assert title.startswith("vault v 999 999 999 mtllib") and title.endswith("$\\frac{ %%c \\")  # the text stays

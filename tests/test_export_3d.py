@@ -13,7 +13,7 @@ from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
 from curvefold.geometry import Mesh
-from curvefold.io import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
+from curvefold.io import GlbOptions, crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
 from curvefold.kernel import InputError
 
 
@@ -183,7 +183,7 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     pygltflib = pytest.importorskip("pygltflib")
     K = len(tube.angles_deg)
     write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg,
-              unit="mm", metadata={"panels": 4}, seconds_per_state=0.5)
+              options=GlbOptions(unit="mm", metadata={"panels": 4}, seconds_per_state=0.5))
     _only(tmp_path, "m.glb")
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
@@ -249,8 +249,8 @@ def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_pa
     parts = [("tube 1 · sheet A", np.arange(half), np.arange(E)), ("tube 1 · sheet B", np.arange(half, F), [])]
     mode = np.zeros_like(mesh.vertices_coords)
     mode[:, 2] = 1.0  # one model unit up
-    write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", parts=parts,
-              morph_targets={"mode 1": mode})
+    write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg,
+              morph_targets={"mode 1": mode}, options=GlbOptions(unit="mm", parts=parts))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
     assert [n.name for n in gltf.nodes] == [m.name for m in gltf.meshes] == ["tube 1 · sheet A", "tube 1 · sheet B"]
@@ -271,12 +271,13 @@ def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_pa
     with pytest.raises(InputError, match=r"morph_targets\['bad'\] must be finite displacements of shape"):
         write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, morph_targets={"bad": mode[:2]})
     with pytest.raises(InputError, match=r"parts\[0\] must be a name and indices"):
-        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, parts=[("x", [F], [])])
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, options=GlbOptions(parts=[("x", [F], [])]))
 
 
 def test_glb_base_state_can_be_any_state(tmp_path, tube):
     pygltflib = pytest.importorskip("pygltflib")
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", base_state=0)
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg,
+              base_state=0, options=GlbOptions(unit="mm"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
     prim = gltf.meshes[0].primitives[0]
@@ -291,7 +292,7 @@ def test_glb_base_state_can_be_any_state(tmp_path, tube):
 def test_glb_single_state_has_no_animation(tmp_path):
     pygltflib = pytest.importorskip("pygltflib")
     motion = oblique_motion()
-    write_glb(tmp_path / "m.glb", motion.state(2), unit="m", up="y")
+    write_glb(tmp_path / "m.glb", motion.state(2), options=GlbOptions(unit="m", up="y"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     assert gltf.animations == []
     assert all(p.targets in (None, []) for m in gltf.meshes for p in m.primitives)
@@ -306,7 +307,8 @@ def test_glb_single_state_has_no_animation(tmp_path):
 @pytest.mark.parametrize("states", ["motion", "single"])
 def test_glb_khronos_validator(tmp_path, tube, states):
     coords = tube.coords if states == "motion" else None
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=coords, unit="mm", interpolation="STEP")
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=coords,
+              options=GlbOptions(unit="mm", interpolation="STEP"))
     report = _validate_gltf(tmp_path / "m.glb")
     assert report["errors"] == 0, report["messages"]
     assert report["warnings"] == 0, report["messages"]
@@ -319,7 +321,7 @@ def test_glb_khronos_validator(tmp_path, tube, states):
 def test_khronos_validator_reports_errors(tmp_path, tube):
     """The validator check can fail: a GLB with a wrong POSITION max is reported."""
     pygltflib = pytest.importorskip("pygltflib")
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, unit="mm")
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, options=GlbOptions(unit="mm"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     gltf.accessors[gltf.meshes[0].primitives[0].attributes.POSITION].max = [9.0, 9.0, 9.0]
     gltf.save_binary(str(tmp_path / "broken.glb"))
@@ -334,12 +336,12 @@ def test_khronos_validator_reports_errors(tmp_path, tube):
         (dict(coords=np.zeros((2, 3, 3))), r"coords must have shape \(K, 15, 3\)"),
         (dict(coords=np.full((1, 15, 3), np.inf)), "finite"),
         (dict(angles_deg=[1, 2]), r"angles_deg must have shape \(1,\)"),
-        (dict(unit="furlong"), "give scale="),
-        (dict(scale=-1.0), "scale must be a positive"),
-        (dict(seconds_per_state=0.0), "seconds_per_state"),
-        (dict(interpolation="CUBICSPLINE"), "interpolation"),
-        (dict(up="x"), "up must be"),
-        (dict(crease_kinds=("ruling",)), "crease_kinds"),
+        (dict(options=GlbOptions(unit="furlong")), "give scale="),
+        (dict(options=GlbOptions(scale=-1.0)), "scale must be a positive"),
+        (dict(options=GlbOptions(seconds_per_state=0.0)), "seconds_per_state"),
+        (dict(options=GlbOptions(interpolation="CUBICSPLINE")), "interpolation"),
+        (dict(options=GlbOptions(up="x")), "up must be"),
+        (dict(options=GlbOptions(crease_kinds=("ruling",))), "crease_kinds"),
     ],
 )
 def test_glb_rejects_bad_input(tmp_path, tube, kwargs, match):
@@ -358,8 +360,9 @@ def test_glb_is_what_pygltflib_writes(tmp_path, tube):
 
     mesh = tube.crease_pattern
     parts = [("tube 1 · sheet A", np.arange(4), np.arange(len(mesh.edges_vertices))), ("tube 1 · sheet B", np.arange(4, len(mesh.faces_vertices)), [])]
-    data = write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, parts=parts, metadata={"panels": 4},
-                     morph_targets={"up": np.ones((len(mesh.vertices_coords), 3))}).read_bytes()
+    data = write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg,
+                     morph_targets={"up": np.ones((len(mesh.vertices_coords), 3))},
+                     options=GlbOptions(parts=parts, metadata={"panels": 4})).read_bytes()
     assert rewritten(data) == data
     # damaged: an accessor without the byteOffset pygltflib writes
     length = int.from_bytes(data[12:16], "little")
@@ -533,7 +536,8 @@ def test_glb_parts_of_a_polygon_mesh_hold_their_polygons_triangles(tmp_path, rea
     """Parts name the mesh's own faces; on a quad mesh each part gets both triangles of each of its quads."""
     pygltflib = pytest.importorskip("pygltflib")
     mesh, topology, _ = real_tube
-    write_glb(tmp_path / "q.glb", mesh, unit="m", parts=[(s.label, s.faces, s.edges) for s in topology.sheets])
+    parts = [(s.label, s.faces, s.edges) for s in topology.sheets]
+    write_glb(tmp_path / "q.glb", mesh, options=GlbOptions(unit="m", parts=parts))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "q.glb"))
     blob = gltf.binary_blob()
     for sheet, m in zip(topology.sheets, gltf.meshes):

@@ -28,7 +28,7 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     {
         "_fold": ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"],
         "_fold_reading": ["FoldFile", "read_fold"],
-        "_gltf": ["write_glb"],
+        "_gltf": ["GlbOptions", "write_glb"],
         "_layout": ["Layout", "layout_sheets", "page_size"],
         "_mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
         "_models": ["MODEL_FORMATS", "write_3d"],

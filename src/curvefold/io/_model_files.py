@@ -95,9 +95,10 @@ def model_glb(path: str | os.PathLike, model: FoldedModel) -> Path:
     # the base pose is the motion's state nearest the model's: the further targets move from it
     shift = coords[base] - model.mesh.vertices_coords
     morphs = {name: np.asarray(d, float) - shift for name, d in model.morph_targets.items()}
-    return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base, unit=model.unit,
-                          metadata=model.metadata, seconds_per_state=model.seconds_per_state,
-                          parts=[(s.label, s.faces, s.edges) for s in sheets], morph_targets=morphs)
+    options = gltf.GlbOptions(unit=model.unit, metadata=model.metadata, seconds_per_state=model.seconds_per_state,
+                              parts=[(s.label, s.faces, s.edges) for s in sheets])
+    return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base, morph_targets=morphs,
+                          options=options)
 
 
 def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:

@@ -35,8 +35,9 @@ __all__ = ["single_fold_model", "write_single_fold_3d", "layout_single_fold"]
 
 def _glb(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
     coords = np.stack([fold.topology().coords(fold.curves(a)) for a in motion])
-    return gltf.write_glb(path, fold.mesh(fold.fold_angle), coords=coords, angles_deg=motion, unit=unit, metadata=meta,
-                          base_state=int(np.argmin(np.abs(motion - fold.fold_angle))))
+    return gltf.write_glb(path, fold.mesh(fold.fold_angle), coords=coords, angles_deg=motion,
+                          base_state=int(np.argmin(np.abs(motion - fold.fold_angle))),
+                          options=gltf.GlbOptions(unit=unit, metadata=meta))
 
 
 def _obj(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
