@@ -506,14 +506,14 @@ def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
     rhino3dm = pytest.importorskip("rhino3dm")
     from shapely.geometry import Polygon
 
-    from curvefold.io import PatternOutput, layout_pattern, write_3d
+    from curvefold.io import ModelOutput, PatternOutput, layout_pattern, write_3d
     from curvefold.io._cutters import layer_name
     from curvefold.io._rhino import PATTERN_LAYER
     from curvefold.vault import Vault
 
     structure = Vault.from_design(samples=101, tubes=2).structure
     layout = layout_pattern(structure, PatternOutput(name="vault", cutter="laser"))
-    (path,) = write_3d(tmp_path / "v", structure, formats=("3dm",), pattern=layout)
+    (path,) = write_3d(tmp_path / "v", structure, output=ModelOutput(pattern=layout), formats=("3dm",))
     model = rhino3dm.File3dm.Read(str(path))
     paths = {layer.Index: layer.FullPath for layer in model.Layers}
     assert {f"{PATTERN_LAYER}::{layer_name(k)}" for k in ("cut", "mountain", "seam", "glue", "labels")} <= set(paths.values())
@@ -611,14 +611,14 @@ _WRITE_ALL = """
 import sys, tempfile, pathlib
 import numpy as np
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.io import write_3d, write_sheet_fold, write_structure_fold
+from curvefold.io import FoldOutput, ModelOutput, write_3d, write_sheet_fold, write_structure_fold
 from curvefold.geometry._sheets import sheets
 structure = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)), 0.2, 0.15))
 keep = [np.arange(0, 13, 2)]
 before = set(sys.modules)
 folder = pathlib.Path(tempfile.mkdtemp())
-write_3d(folder / "m", structure, keep=keep)
-write_structure_fold(folder / "m.fold", structure, fold_angles=[0, 45, 90], keep=keep)
+write_3d(folder / "m", structure, output=ModelOutput(keep=keep))
+write_structure_fold(folder / "m.fold", structure, fold_angles=[0, 45, 90], output=FoldOutput(keep=keep))
 for k, sheet in enumerate(sheets(structure, keep=keep)):
     write_sheet_fold(folder / f"s{k}.fold", sheet.mesh)
 {probe}

@@ -32,6 +32,8 @@ from curvefold.geometry import fold_angles
 from curvefold.geometry._sheets import Bond, PatternSheet, bonds, flat_plane, folding_motion, sheet_vertices, sheets, unroll_strip
 from curvefold.io import (
     MODEL_FORMATS,
+    FoldOutput,
+    ModelOutput,
     PatternOutput,
     layout_pattern,
     read_fold,
@@ -325,7 +327,7 @@ def test_folding_motion_is_the_states(stack):
 
 
 def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
-    model = to_fold(stack, fold_angles=[0.0, 60.0, 90.0], unit="m", metadata={"name": "stack"})
+    model = to_fold(stack, fold_angles=[0.0, 60.0, 90.0], output=FoldOutput(unit="m", metadata={"name": "stack"}))
     cp = model.crease_pattern
     parts, maps = sheets(stack), sheet_vertices(stack)
     source = np.concatenate(maps)
@@ -365,8 +367,8 @@ def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
 
 
 def test_fold_file_round_trip(tmp_path, tube):
-    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0], unit="mm", title="helix tube")
-    model = to_fold(tube, fold_angles=[30.0, 90.0], unit="mm")
+    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0], title="helix tube", output=FoldOutput(unit="mm"))
+    model = to_fold(tube, fold_angles=[30.0, 90.0], output=FoldOutput(unit="mm"))
     back = read_fold(path)
     doc = json.loads(path.read_text())
     assert doc["file_title"] == "helix tube" and doc["frame_unit"] == "mm"
@@ -395,9 +397,9 @@ def test_fold_rejects_bad_input(tube):
     with pytest.raises(InputError, match=r"fold_angle must be in \(0°, 180°\)"):
         sheets(tube, fold_angle=0.0)
     with pytest.raises(InputError, match="unit must be"):
-        to_fold(tube, unit="")
+        to_fold(tube, output=FoldOutput(unit=""))
     with pytest.raises(InputError, match="metadata"):
-        to_fold(tube, metadata={"bad": [1, 2]})
+        to_fold(tube, output=FoldOutput(metadata={"bad": [1, 2]}))
 
 
 @pytest.mark.node
@@ -546,7 +548,8 @@ def test_write_pattern_options(tmp_path, tube):
 def test_write_3d_every_format(tmp_path, stack):
     pygltflib = pytest.importorskip("pygltflib")
     rhino3dm = pytest.importorskip("rhino3dm")
-    paths = write_3d(tmp_path / "stack", stack, [0.0, 30.0, 60.0, 90.0], unit="mm", metadata={"name": "stack"}, print_unit="cm")
+    output = ModelOutput(unit="mm", metadata={"name": "stack"}, print_unit="cm")
+    paths = write_3d(tmp_path / "stack", stack, [0.0, 30.0, 60.0, 90.0], output)
     assert [p.suffix for p in paths] == [f".{f}" for f in MODEL_FORMATS]
     mesh = stack.state().mesh()
     gltf = pygltflib.GLTF2.load(str(tmp_path / "stack.glb"))
@@ -597,7 +600,7 @@ def test_glb_first_keyframe_is_the_design_state_of_every_sheet(tmp_path, stack):
 
 @pytest.mark.node
 def test_glb_of_the_folding_motion_passes_the_khronos_validator(tmp_path, tube):
-    (path,) = write_3d(tmp_path / "tube", tube, formats=("glb",), unit="m")
+    (path,) = write_3d(tmp_path / "tube", tube, output=ModelOutput(unit="m"), formats=("glb",))
     report = run_node("validate_gltf.mjs", str(path))
     assert report["errors"] == 0 and report["warnings"] == 0, report["messages"]
     assert report["info"]["hasMorphTargets"] and report["info"]["animationCount"] == 1

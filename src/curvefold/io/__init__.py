@@ -33,7 +33,7 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
         "_models": ["MODEL_FORMATS", "write_3d"],
         "_cutters": ["CUTTERS"],
-        "_output": ["PatternOutput"],
+        "_output": ["FoldOutput", "ModelOutput", "PatternOutput"],
         "_pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
         "_rhino": ["write_3dm"],
     },

@@ -41,9 +41,9 @@ import json
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..geometry._fold_arrays import FoldArrays, fold_arrays, structure_metadata
 from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
@@ -56,6 +56,7 @@ from ._atomic import atomic_write
 from ._fold_reading import FoldFile
 from ._decimals import Decimals, Integers, dumps, plain
 from ._mesh3d import check_metadata
+from ._output import FoldOutput
 from ._tables import CREATOR
 
 __all__ = ["fold_assignments", "fold_document", "fold_model", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
@@ -440,43 +441,23 @@ def write_sheet_fold(
 # ---------------------------------------------------------------------------------------
 # structures
 
-def to_fold(
-    structure: Structure,
-    *,
-    fold_angles=None,
-    fold_angle: float | None = None,
-    degrees: bool = True,
-    unit: str = "unit",
-    metadata: Mapping | None = None,
-    anchor: str = "start",
-    faces: Literal["triangles", "quads"] = "triangles",
-    keep: Sequence[np.ndarray] | None = None,
-    design: Mapping | None = None,
-) -> FoldFile:
+def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *, fold_angles: ArrayLike | None = None,
+            fold_angle: float | None = None, degrees: bool = True) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
     The arrays are :func:`curvefold.geometry._fold_arrays.fold_arrays` of the structure (every
     sheet in a row, seams cut open and paired, the folded frames on the same vertices, the
     measured fold angles of every frame); the metadata is
-    :func:`~curvefold.geometry.structure_metadata` with ``metadata`` over it.
+    :func:`~curvefold.geometry.structure_metadata` with the output's metadata over it.
 
     Parameters
     ----------
     structure : Structure
-    fold_angles, fold_angle, degrees, anchor, faces, keep : keyword-only
+    output : FoldOutput
+        Unit, extra metadata, anchor, faces, the samples kept and the design recorded.
+    fold_angles, fold_angle, degrees : keyword-only
         As in :func:`~curvefold.geometry._fold_arrays.fold_arrays`: the frames' fold angles
-        (default the design angle only), the design angle the crease pattern carries, which
-        frame of curve 1 stays fixed, the sheets' faces and the samples each tube keeps.
-    unit : str, keyword-only
-        Model unit (``frame_unit``).
-    metadata : mapping, optional, keyword-only
-        Extra design parameters; merged over the ones recorded by default (tubes, cells,
-        samples, curve length, widths at t = 0, the design, crease and seam angles, the seam
-        numbering and the bonds as text).
-    design : mapping, optional, keyword-only
-        The design the structure was built from, as a design file holds it
-        (:meth:`curvefold.app.Design.to_dict`); recorded with the frames' fold
-        angles, anchor and faces, so that the file can be built again and compared.
+        (default the design angle only) and the design angle the crease pattern carries.
 
     Returns
     -------
@@ -488,54 +469,61 @@ def to_fold(
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
     >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
-    >>> model = to_fold(tube, fold_angles=[45, 90], unit="m", metadata={"title": "tube"})
+    >>> model = to_fold(tube, FoldOutput(unit="m", metadata={"title": "tube"}), fold_angles=[45, 90])
     >>> [title for title, _ in model.folded], model.metadata["title"], model.metadata["tubes"]
     (['fold angle 45°', 'fold angle 90°'], 'tube', 1)
     """
-    _check_unit(unit)
-    check_metadata(metadata)
-    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees, anchor=anchor, faces=faces, keep=keep)
-    return fold_model(structure, arrays, unit=unit, metadata=metadata, anchor=anchor, faces=faces, keep=keep, design=design)
+    _check_fold_output(output)
+    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees, anchor=output.anchor,
+                         faces=output.faces, keep=output.keep)
+    return fold_model(structure, arrays, output)
 
 
-def fold_model(structure: Structure, arrays: FoldArrays, *, unit: str = "unit", metadata: Mapping | None = None, anchor: str = "start",
-               faces: Literal["triangles", "quads"] = "triangles", keep: Sequence[np.ndarray] | None = None,
-               design: Mapping | None = None) -> FoldFile:
+def fold_model(structure: Structure, arrays: FoldArrays, output: FoldOutput = FoldOutput()) -> FoldFile:
     """:func:`to_fold` of a structure whose FOLD arrays are made
-    (:func:`curvefold.geometry._fold_arrays.fold_arrays` with these ``anchor``, ``faces`` and
-    ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
-    _check_unit(unit)
-    extra = check_metadata(metadata)
+    (:func:`curvefold.geometry._fold_arrays.fold_arrays` with the output's ``anchor``, ``faces``
+    and ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
+    extra = _check_fold_output(output)
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
-    record = None if design is None else {"design": dict(design), "fold_angles": arrays.fold_angles.tolist(), "anchor": anchor, "faces": faces,
-                                          "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
-    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta, unit=unit,
+    keep = output.keep
+    record = None if output.design is None else {
+        "design": dict(output.design), "fold_angles": arrays.fold_angles.tolist(), "anchor": output.anchor, "faces": output.faces,
+        "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
+    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta, unit=output.unit,
                     seam_partners=arrays.seam_partners, bonds=arrays.bonds, design=record)
 
 
-def _check_unit(unit) -> None:
-    if not isinstance(unit, str) or not unit:
-        raise InputError(f"unit must be a non-empty str, got {unit!r}")
+def _check_fold_output(output: FoldOutput) -> dict:
+    """The output's extra metadata, checked with its unit."""
+    if not isinstance(output, FoldOutput):
+        raise InputError(f"output must be a FoldOutput (unit, metadata…), got {type(output).__name__}", parameter="output")
+    if not isinstance(output.unit, str) or not output.unit:
+        raise InputError(f"unit must be a non-empty str, got {output.unit!r}")
+    return check_metadata(output.metadata)
 
 
-def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:
+def write_structure_fold(path: str | os.PathLike, structure: Structure, output: FoldOutput = FoldOutput(), *,
+                         title: str = "", fold_angles: ArrayLike | None = None, fold_angle: float | None = None,
+                         degrees: bool = True) -> Path:
     """Write :func:`to_fold` of a structure as a FOLD 1.1 file (via :func:`curvefold.io.write_fold`).
 
     Parameters
     ----------
     path : path-like
     structure : Structure
+    output : FoldOutput
+        As in :func:`to_fold`.
     title : str, keyword-only
         ``file_title``.
-    **kwargs
-        Passed to :func:`to_fold` (``fold_angles``, ``fold_angle``, ``degrees``, ``unit``,
-        ``metadata``, ``anchor``, ``faces``, ``keep``, ``design``).
+    fold_angles, fold_angle, degrees : keyword-only
+        As in :func:`to_fold`.
 
     Returns
     -------
     Path
     """
-    return write_model(path, to_fold(structure, **kwargs), title=title)
+    return write_fold(path, to_fold(structure, output, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees),
+                      title=title)
 
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:

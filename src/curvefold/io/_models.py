@@ -9,21 +9,23 @@ writer the registry (:data:`curvefold.io._formats.FORMATS`) names for it: :func:
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..geometry._crease import check_fold_angle, check_fold_angles
 from ..geometry._fold_arrays import structure_metadata
 from ..geometry._structure import Structure, check_structure
 from ..kernel._arrays import readonly
+from ..kernel._errors import InputError
 from . import _mesh3d as mesh3d
 from ._formats import FORMATS, check_formats, formats_of
-from ._layout import Layout
 from ._model_files import FoldedModel, model_3dm, model_glb, model_obj, model_ply, model_stl
+from ._output import ModelOutput
 
-__all__ = ["MODEL_FORMATS", "FoldedModel", "write_3d", "model_glb", "model_obj", "model_stl", "model_ply", "model_3dm"]
+__all__ = ["MODEL_FORMATS", "FoldedModel", "ModelOutput", "write_3d", "model_glb", "model_obj", "model_stl", "model_ply", "model_3dm"]
 
 #: 3D formats :func:`write_3d` writes.
 MODEL_FORMATS = formats_of("model")
@@ -35,19 +37,12 @@ MODEL_FORMATS = formats_of("model")
 def write_3d(
     path_stem: str | os.PathLike,
     structure: Structure,
-    fold_angles=None,
+    fold_angles: ArrayLike | None = None,
+    output: ModelOutput = ModelOutput(),
     *,
+    formats: Sequence[str] = MODEL_FORMATS,
     fold_angle: float | None = None,
     degrees: bool = True,
-    formats: Sequence[str] = MODEL_FORMATS,
-    unit: str = "unit",
-    metadata: Mapping | None = None,
-    anchor: str = "start",
-    seconds_per_state: float = 1.0,
-    keep: Sequence[np.ndarray] | None = None,
-    print_unit: str | None = None,
-    morph_targets: Mapping[str, np.ndarray] | None = None,
-    pattern: Layout | None = None,
 ) -> tuple[Path, ...]:
     """Write the folded structure as 3D files; the GLB holds the folding motion.
 
@@ -63,30 +58,13 @@ def write_3d(
     fold_angles : (A,) array_like, optional
         2α of the states of the GLB animation (morph targets), in [0°, 180°); default
         seven steps from 0° (flat) to the design angle.
+    output : ModelOutput
+        Units, metadata, anchor, sampling, animation timing, further morph targets and the
+        crease pattern of the 3dm.
+    formats : sequence of {"glb", "obj", "stl", "ply", "3dm"}, keyword-only
     fold_angle : float, optional, keyword-only
         The state written to OBJ, STL, PLY and 3dm; default the design angle.
     degrees : bool, keyword-only
-    formats : sequence of {"glb", "obj", "stl", "ply", "3dm"}, keyword-only
-    unit : str, keyword-only
-        Model unit (``"unit"``, ``"m"``, ``"mm"``…); GLB converts it to metres.
-    metadata : mapping, optional, keyword-only
-        Extra design parameters, merged over the defaults of :func:`to_fold`.
-    anchor : {"start", "middle"}, keyword-only
-    seconds_per_state : float, keyword-only
-        GLB animation time between consecutive states.
-    keep : sequence of (m_k,) array_like of int, optional, keyword-only
-        The samples each tube's mesh keeps (:func:`curvefold.geometry.choose_sampling`);
-        default every sample.
-    print_unit : str, optional, keyword-only
-        Length unit of the STL, which slicers read as millimetres (``"mm"``); default the
-        model unit. The model unit counts as one metre (:data:`curvefold.io._tables.UNITS`).
-    morph_targets : mapping of str to (V, 3) array_like, optional, keyword-only
-        Further named morph targets of the GLB (a deformed shape, mode shapes): displacements,
-        in model units, of the vertices of ``structure.state(fold_angle).mesh(keep=keep)``
-        from that state (see :func:`curvefold.io.write_glb`).
-    pattern : Layout, optional, keyword-only
-        The crease pattern the 3dm lays beside the model on its ``crease pattern`` layer
-        (:func:`curvefold.io.layout_pattern`).
 
     Returns
     -------
@@ -94,13 +72,16 @@ def write_3d(
         The files written, in the order of ``formats``.
     """
     check_structure(structure)
+    if not isinstance(output, ModelOutput):
+        raise InputError(f"output must be a ModelOutput (unit, metadata…), got {type(output).__name__}", parameter="output")
     formats = check_formats(formats, "model")
     design = structure.lattice.crease.fold_angle
     static = design if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
     motion = np.linspace(0.0, design, 7) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
-    meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(metadata)})
-    curves = structure.state(static, anchor=anchor).vertices
-    triangles, quads = structure.topology(keep=keep), structure.topology("quads", keep=keep)  # State.mesh's, made once
-    model = FoldedModel(structure, triangles.mesh(curves), quads.mesh(curves), static, readonly(motion), unit,
-                        meta, anchor, seconds_per_state, keep, print_unit, dict(morph_targets or {}), pattern, triangles, quads)
+    meta = mesh3d.check_metadata({**structure_metadata(structure), **mesh3d.check_metadata(output.metadata)})
+    o = output
+    curves = structure.state(static, anchor=o.anchor).vertices
+    triangles, quads = structure.topology(keep=o.keep), structure.topology("quads", keep=o.keep)  # State.mesh's, made once
+    model = FoldedModel(structure, triangles.mesh(curves), quads.mesh(curves), static, readonly(motion), o.unit, meta, o.anchor,
+                        o.seconds_per_state, o.keep, o.print_unit, dict(o.morph_targets or {}), o.pattern, triangles, quads)
     return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
