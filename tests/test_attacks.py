@@ -618,7 +618,7 @@ def test_glb_3dm_and_fold_hold_the_title_on_one_line(tmp_path, small_tube):
     import pygltflib
     import rhino3dm
 
-    from curvefold.io import FoldOutput, GlbOptions, read_fold, write_3dm, write_glb, write_sheet_fold, write_structure_fold
+    from curvefold.io import FoldOutput, GlbOptions, RhinoOptions, read_fold, write_3dm, write_glb, write_sheet_fold, write_structure_fold
 
     state = small_tube.state().mesh()
     glb = write_glb(tmp_path / "t.glb", state, options=GlbOptions(metadata={"title": HOSTILE}))
@@ -627,7 +627,7 @@ def test_glb_3dm_and_fold_hold_the_title_on_one_line(tmp_path, small_tube):
     assert title.startswith("vault v 999 999 999 mtllib") and title.endswith("$\\frac{ %%c \\")  # the text stays
     topology = small_tube.topology("quads")
     quads = topology.mesh(small_tube.state().vertices)
-    model = rhino3dm.File3dm.Read(str(write_3dm(tmp_path / "t.3dm", quads, topology, metadata={"title": HOSTILE})))
+    model = rhino3dm.File3dm.Read(str(write_3dm(tmp_path / "t.3dm", quads, topology, options=RhinoOptions(metadata={"title": HOSTILE}))))
     _clean(model.Strings["curvefold:title"])
     fold = write_structure_fold(tmp_path / "t.fold", small_tube, title=HOSTILE, output=FoldOutput(metadata={"title": HOSTILE}))
     doc = json.loads(fold.read_text())

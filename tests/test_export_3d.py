@@ -13,7 +13,7 @@ from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
 from curvefold.geometry import Mesh
-from curvefold.io import GlbOptions, crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
+from curvefold.io import GlbOptions, RhinoOptions, crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
 from curvefold.kernel import InputError
 
 
@@ -415,7 +415,7 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
     """Sheets as quad meshes, strips as ruled NURBS surfaces, creases as NURBS curves through the samples."""
     rhino3dm = pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube
-    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", metadata={"length": 2.0, "name": "tube"})
+    write_3dm(tmp_path / "m.3dm", mesh, topology, options=RhinoOptions(unit="mm", metadata={"length": 2.0, "name": "tube"}))
     _only(tmp_path, "m.3dm")
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     assert [layer.Name for layer in model.Layers] == ["Sheets", "Strips", "Fold", "Seam", "Boundary"]
@@ -474,7 +474,7 @@ def test_3dm_groups_user_text_and_named_views(tmp_path, real_tube):
     kind and fold angle; three named views that frame the model."""
     rhino3dm = pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube
-    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", fold_angle=90.0)
+    write_3dm(tmp_path / "m.3dm", mesh, topology, fold_angle=90.0, options=RhinoOptions(unit="mm"))
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     groups = {g.Name: g.Index for g in model.Groups}
     assert set(groups) == {"tube 1", "tube 1 · sheet A", "tube 1 · sheet B"}
@@ -560,7 +560,7 @@ def test_3dm_refuses_a_mesh_of_other_faces(tmp_path, real_tube):
 def test_3dm_unit_system(tmp_path, real_tube, unit, system):
     """Rhino needs a unit system: the model unit is taken as one metre, as in every file."""
     rhino3dm = pytest.importorskip("rhino3dm")
-    write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit=unit)
+    write_3dm(tmp_path / "m.3dm", *real_tube[:2], options=RhinoOptions(unit=unit))
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     assert model.Settings.ModelUnitSystem == getattr(rhino3dm.UnitSystem, system)
     assert model.Strings["curvefold:unit"] == unit
@@ -569,7 +569,7 @@ def test_3dm_unit_system(tmp_path, real_tube, unit, system):
 def test_3dm_rejects_unknown_unit(tmp_path, real_tube):
     pytest.importorskip("rhino3dm")
     with pytest.raises(InputError, match="unit must be one of"):
-        write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit="furlong")
+        write_3dm(tmp_path / "m.3dm", *real_tube[:2], options=RhinoOptions(unit="furlong"))
     with pytest.raises(InputError, match=r"^degree must be 1 or 3, got 2$"):
         write_3dm(tmp_path / "m.3dm", *real_tube[:2], degree=2)
     assert list(tmp_path.iterdir()) == []

@@ -35,6 +35,6 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_cutters": ["CUTTERS"],
         "_output": ["FoldOutput", "ModelOutput", "PatternOutput"],
         "_pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
-        "_rhino": ["write_3dm"],
+        "_rhino": ["RhinoOptions", "write_3dm"],
     },
 )

@@ -121,6 +121,6 @@ def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
     grouped by tube and sheet, and the model's crease pattern laid beside it when it has one."""
     structure = model.structure
     topology = structure.topology("quads", keep=model.keep) if model.quad_topology is None else model.quad_topology
-    return rhino.write_3dm(path, model.quads, topology, unit=model.unit,
-                           metadata=model.static_metadata, degree=structure.lattice.crease_degree, fold_angle=model.fold_angle,
-                           pattern=model.pattern)
+    options = rhino.RhinoOptions(unit=model.unit, metadata=model.static_metadata, pattern=model.pattern)
+    return rhino.write_3dm(path, model.quads, topology, degree=structure.lattice.crease_degree, fold_angle=model.fold_angle,
+                           options=options)

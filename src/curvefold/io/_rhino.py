@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -51,7 +51,7 @@ from ._layout import Layout
 from ._mesh3d import check_metadata, crease_polylines
 from ._tables import CREATOR, UNITS, rgb8, rgba8
 
-__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "interpolating_spline", "write_3dm"]
+__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "RhinoOptions", "interpolating_spline", "write_3dm"]
 
 #: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
 LAYERS = (
@@ -147,17 +147,36 @@ def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
     return curve
 
 
+@dataclass(frozen=True, eq=False)
+class RhinoOptions:
+    """How :func:`write_3dm` writes a state: unit, user text, archive version and the crease pattern beside it.
+
+    Attributes
+    ----------
+    unit : str
+        Model unit, a name in :data:`curvefold.io._tables.UNITS`.
+    metadata : mapping or None
+        Design parameters, written as document user text ``curvefold:<key>``.
+    version : int
+        3dm archive version (0 = the newest rhino3dm writes).
+    pattern : Layout or None
+        The crease pattern to lay beside the model on the ``crease pattern`` layer.
+    """
+
+    unit: str = "unit"
+    metadata: Mapping[str, object] | None = None
+    version: int = 0
+    pattern: Layout | None = None
+
+
 def write_3dm(
     path: str | os.PathLike,
     mesh: Mesh,
     topology: Topology,
     *,
-    unit: str = "unit",
-    metadata: Mapping | None = None,
-    version: int = 0,
     degree: int = 3,
     fold_angle: float | None = None,
-    pattern: Layout | None = None,
+    options: RhinoOptions = RhinoOptions(),
 ) -> Path:
     """Write one state to a Rhino 3dm file (see the module notes).
 
@@ -169,24 +188,21 @@ def write_3dm(
     topology : Topology
         The mesh's topology (:meth:`Structure.topology` with ``faces="quads"``): its
         sheets, and the samples of its vertices.
-    unit : str
-        Model unit, a name in :data:`curvefold.io._tables.UNITS`.
-    metadata : mapping, optional
-        Design parameters, written as document user text ``curvefold:<key>``.
-    version : int
-        3dm archive version (0 = the newest rhino3dm writes).
-    degree : {3, 1}
+    degree : {3, 1}, keyword-only
         Of the crease curves: cubic through the samples of smooth creases, 1 for the
         polylines of rigid panels.
-    fold_angle : float, optional
+    fold_angle : float, optional, keyword-only
         2α of the state in degrees, recorded as the objects' user text.
-    pattern : Layout, optional
-        The crease pattern to lay beside the model on the ``crease pattern`` layer.
+    options : RhinoOptions, keyword-only
+        Unit, metadata, archive version and the crease pattern laid beside the model.
 
     Returns
     -------
     Path
     """
+    if not isinstance(options, RhinoOptions):
+        raise InputError(f"options must be a RhinoOptions, got {type(options).__name__}", parameter="options")
+    unit, metadata, version, pattern = options.unit, options.metadata, options.version, options.pattern
     try:
         import rhino3dm
     except ImportError as exc:  # pragma: no cover - depends on the environment

@@ -53,7 +53,8 @@ def _ply(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict
 
 
 def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
-    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"), unit=unit, metadata=meta, degree=3)
+    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"), degree=3,
+                           options=rhino.RhinoOptions(unit=unit, metadata=meta))
 
 
 #: How a single fold writes each 3D format of the registry: its meshes to the format's serialiser.
