@@ -88,7 +88,8 @@ class Built:
         from ..io._tables import mm_per_unit
 
         o = self.design.output
-        page = o.page if isinstance(o.page, str) else tuple(side / mm_per_unit(o.units) for side in o.page)  # mm -> units
+        mm = mm_per_unit(o.units)
+        page = o.page if isinstance(o.page, str) else (o.page[0] / mm, o.page[1] / mm)  # mm -> units
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
         output = PatternOutput(page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, rulings=o.rulings, cutter=o.cutter,
                                perforation=perforation, kerf=o.kerf, name=self.design.kind)

@@ -36,7 +36,7 @@ from types import MappingProxyType
 from typing import Any, cast
 
 from ..kernel._errors import InputError, InternalError
-from ..kernel._validate import Spec
+from ..kernel._validate import Interval, Spec
 from ._cutters import CUTTERS
 from ._output import PatternOutput
 from ._tables import PAGES, mm_per_unit
@@ -291,18 +291,18 @@ OUTPUT_SPECS: tuple[Spec, ...] = (
     Spec("units", "choice", _OUT.units, choices=("mm", "cm", "m", "in"),
          help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)",
          label="units of the printed files"),
-    Spec("scale", "real", None, "(0, inf)", "output units per model unit",
+    Spec("scale", "real", None, Interval.parse("(0, inf)"), "output units per model unit",
          help="crease-pattern scale (default: fit the largest sheet to the page)", label="print scale"),
-    Spec("page", "page", _OUT.page, "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns", label="page size"),
+    Spec("page", "page", _OUT.page, Interval.parse("(0, 10000]"), "mm", choices=tuple(PAGES), help="page of the crease patterns", label="page size"),
     Spec("glue_tabs", "flag", _OUT.glue_tabs, help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
     Spec("rulings", "flag", _OUT.rulings, help="draw the rulings on the crease patterns (for scoring or engraving)", label="rulings drawn"),
     Spec("cutter", "choice", _OUT.cutter, choices=tuple(CUTTERS),
          help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)",
          label="cutter convention"),
-    Spec("perforation", "real", None, "(0, 100]", "mm",
+    Spec("perforation", "real", None, Interval.parse("(0, 100]"), "mm",
          help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)", label="perforation dash"),
-    Spec("perforation_gap", "real", 1.0, "(0, 100]", "mm", help="gap between the dashes of perforated creases", label="perforation gap"),
-    Spec("kerf", "real", _OUT.kerf, "[0, 5]", "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size",
+    Spec("perforation_gap", "real", 1.0, Interval.parse("(0, 100]"), "mm", help="gap between the dashes of perforated creases", label="perforation gap"),
+    Spec("kerf", "real", _OUT.kerf, Interval.parse("[0, 5]"), "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size",
          label="kerf"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)", label="file formats"),

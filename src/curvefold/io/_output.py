@@ -119,7 +119,7 @@ class ModelOutput:
     unit: str = "unit"
     print_unit: str | None = None
     metadata: Mapping[str, object] | None = None
-    anchor: str = "start"
+    anchor: Literal["start", "middle"] = "start"
     keep: Sequence[np.ndarray] | None = None
     seconds_per_state: float = 1.0
     morph_targets: Mapping[str, np.ndarray] | None = None
@@ -157,7 +157,7 @@ class FoldOutput:
 
     unit: str = "unit"
     metadata: Mapping[str, object] | None = None
-    anchor: str = "start"
+    anchor: Literal["start", "middle"] = "start"
     faces: Literal["triangles", "quads"] = "triangles"
     keep: Sequence[np.ndarray] | None = None
     design: Mapping[str, object] | None = None

@@ -39,6 +39,7 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -204,9 +205,11 @@ def write_3dm(
         raise InputError(f"options must be a RhinoOptions, got {type(options).__name__}", parameter="options")
     unit, metadata, version, pattern = options.unit, options.metadata, options.version, options.pattern
     try:
-        import rhino3dm
+        import rhino3dm as module
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError("writing 3dm needs rhino3dm: pip install 'curvefold[rhino]'") from exc
+    # its stubs call settable properties read-only and lack tables (Groups): untyped here
+    rhino3dm: Any = module
     if unit not in UNITS:
         raise InputError(f"unit must be one of {sorted(UNITS)} for a 3dm file, got {unit!r}")
     faces = np.asarray(mesh.faces_vertices)

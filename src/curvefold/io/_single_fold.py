@@ -102,7 +102,8 @@ def layout_single_fold(fold: SingleFold, output: PatternOutput = PatternOutput()
     """
     check_output(output)
     fitted = _fitted(fold.pattern_sheet(output.name), output.page, output.units, output.scale)
-    return prepare_layout(replace(fitted, cutter=check_cutter(output.cutter)), perforation=output.perforation, kerf=output.kerf)
+    check_cutter(output.cutter)
+    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation, kerf=output.kerf)
 
 
 def _fitted(sheet, page, units: str, scale: float | None) -> Layout:

@@ -112,7 +112,7 @@ def place_tabs(pieces: list[np.ndarray], outline: np.ndarray, width: float, tape
     accepted: list[np.ndarray] = []
     while len(placed) < len(pieces):
         i = len(placed)
-        batch = list(itertools.takewhile(lambda tab: tab is not None, widest[i:i + _BATCH]))
+        batch = [tab for tab in itertools.takewhile(lambda tab: tab is not None, widest[i:i + _BATCH]) if tab is not None]
         fit = np.append(tabs_fit(batch, outline, accepted, tol), False)
         fitting = batch[:int(np.argmin(fit))]
         placed += [(tab, 0) for tab in fitting]
