@@ -13,7 +13,16 @@ from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
 from curvefold.geometry import Mesh
-from curvefold.io import GlbOptions, RhinoOptions, crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
+from curvefold.io import (
+    GlbOptions,
+    RhinoOptions,
+    crease_polylines,
+    write_3dm,
+    write_glb,
+    write_obj,
+    write_ply,
+    write_stl,
+)
 from curvefold.kernel import InputError
 
 
@@ -271,12 +280,14 @@ def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_pa
     with pytest.raises(InputError, match=r"morph_targets\['bad'\] must be finite displacements of shape"):
         write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, morph_targets={"bad": mode[:2]})
     with pytest.raises(InputError, match=r"parts\[0\] must be a name and indices"):
-        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, options=GlbOptions(parts=[("x", [F], [])]))
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords,
+                  options=GlbOptions(parts=[("x", [F], [])]))
 
 
 def test_glb_base_state_can_be_any_state(tmp_path, tube):
     pygltflib = pytest.importorskip("pygltflib")
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg,
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords,
+              angles_deg=tube.angles_deg,
               base_state=0, options=GlbOptions(unit="mm"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
@@ -321,7 +332,8 @@ def test_glb_khronos_validator(tmp_path, tube, states):
 def test_khronos_validator_reports_errors(tmp_path, tube):
     """The validator check can fail: a GLB with a wrong POSITION max is reported."""
     pygltflib = pytest.importorskip("pygltflib")
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, options=GlbOptions(unit="mm"))
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords,
+              options=GlbOptions(unit="mm"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     gltf.accessors[gltf.meshes[0].primitives[0].attributes.POSITION].max = [9.0, 9.0, 9.0]
     gltf.save_binary(str(tmp_path / "broken.glb"))
@@ -415,7 +427,8 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
     """Sheets as quad meshes, strips as ruled NURBS surfaces, creases as NURBS curves through the samples."""
     rhino3dm = pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube
-    write_3dm(tmp_path / "m.3dm", mesh, topology, options=RhinoOptions(unit="mm", metadata={"length": 2.0, "name": "tube"}))
+    options = RhinoOptions(unit="mm", metadata={"length": 2.0, "name": "tube"})
+    write_3dm(tmp_path / "m.3dm", mesh, topology, options=options)
     _only(tmp_path, "m.3dm")
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     assert [layer.Name for layer in model.Layers] == ["Sheets", "Strips", "Fold", "Seam", "Boundary"]
@@ -513,7 +526,8 @@ def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
 
     structure = Vault.from_design(samples=101, tubes=2).structure
     layout = layout_pattern(structure, PatternOutput(name="vault", cutter="laser"))
-    (path,) = write_3d(tmp_path / "v", structure, output=ModelOutput(pattern=layout), formats=("3dm",))
+    (path,) = write_3d(tmp_path / "v", structure, output=ModelOutput(pattern=layout),
+                       formats=("3dm",))
     model = rhino3dm.File3dm.Read(str(path))
     paths = {layer.Index: layer.FullPath for layer in model.Layers}
     assert {f"{PATTERN_LAYER}::{layer_name(k)}" for k in ("cut", "mountain", "seam", "glue", "labels")} <= set(paths.values())
@@ -618,7 +632,7 @@ keep = [np.arange(0, 13, 2)]
 before = set(sys.modules)
 folder = pathlib.Path(tempfile.mkdtemp())
 write_3d(folder / "m", structure, output=ModelOutput(keep=keep))
-write_structure_fold(folder / "m.fold", structure, fold_angles=[0, 45, 90], output=FoldOutput(keep=keep))
+write_structure_fold(folder / "m.fold", structure, FoldOutput(keep=keep), fold_angles=[0, 45, 90])
 for k, sheet in enumerate(sheets(structure, keep=keep)):
     write_sheet_fold(folder / f"s{k}.fold", sheet.mesh)
 {probe}

@@ -37,7 +37,8 @@ def _write_tube(path: Path, **kw) -> tuple:
 
 def test_numbers_are_written_to_their_tolerance_and_no_more(tmp_path):
     motion = oblique_motion()
-    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded))
+    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=motion.crease_pattern,
+                                             folded=motion.folded))
     text = (tmp_path / "m.fold").read_text()
     doc = json.loads(text)
     errors = []
@@ -114,8 +115,9 @@ def _assert_same_mesh(a: Mesh, b: Mesh, *, coords=True):
 def test_round_trip(tmp_path, make):
     motion = make()
     path = tmp_path / "m.fold"
-    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded, metadata={"a": 1.25, "ok": True},
-                              unit="m", seam_partners=motion.seam_partners))
+    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded,
+                              metadata={"a": 1.25, "ok": True}, unit="m",
+                              seam_partners=motion.seam_partners))
     back = read_fold(path)
     cp = motion.crease_pattern
     _assert_same_mesh(back.crease_pattern, cp)
@@ -137,7 +139,9 @@ def test_round_trip(tmp_path, make):
 @pytest.mark.parametrize("make", [lambda: strip_motion(4, 2, seam=True), two_sheet_tube], ids=["tube", "two-sheets"])
 def test_round_trip_seams_close_in_the_tube(tmp_path, make):
     motion = make()
-    write_fold(tmp_path / "tube.fold", FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded, seam_partners=motion.seam_partners))
+    write_fold(tmp_path / "tube.fold", FoldFile(crease_pattern=motion.crease_pattern,
+                                                folded=motion.folded,
+                                                seam_partners=motion.seam_partners))
     back = read_fold(tmp_path / "tube.fold")
     assert len(back.seam_partners) == len(motion.seam_partners) > 0
     _, closed = back.folded[-1]
@@ -230,7 +234,8 @@ def test_clockwise_sheet_is_mirrored_back(tmp_path):
 def test_clockwise_sheet_rejected_without_mirroring(tmp_path):
     motion = strip_motion()
     with pytest.raises(InputError, match="counter-clockwise"):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_mirrored(motion), folded=[]), mirror_clockwise=False)
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_mirrored(motion), folded=[]),
+                   mirror_clockwise=False)
 
 
 def test_sheet_with_both_orientations_rejected(tmp_path):
@@ -238,13 +243,15 @@ def test_sheet_with_both_orientations_rejected(tmp_path):
     faces = cp.faces_vertices.copy()
     faces[0] = faces[0][::-1]
     with pytest.raises(InputError, match="both orientations"):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_replace(cp, faces_vertices=faces), folded=[]))
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_replace(cp, faces_vertices=faces),
+                                                 folded=[]))
 
 
 def test_write_rejects_topology_mismatch(tmp_path):
     a, b = strip_motion(2), strip_motion(3)
     with pytest.raises(InputError, match=r"folded\[0\].*differs"):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=a.crease_pattern, folded=[("other", b.state(0))]))
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=a.crease_pattern,
+                                                 folded=[("other", b.state(0))]))
 
 
 def test_write_rejects_crease_with_one_face(tmp_path):
@@ -253,7 +260,8 @@ def test_write_rejects_crease_with_one_face(tmp_path):
     kinds = cp.edges_kind.copy()
     kinds[np.flatnonzero(kinds == "boundary")[0]] = "fold"
     with pytest.raises(InputError, match="has 1 faces, expected 2"):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_replace(cp, edges_kind=kinds), folded=[]))
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_replace(cp, edges_kind=kinds),
+                                                 folded=[]))
 
 
 def test_write_rejects_missing_edge(tmp_path):
@@ -272,21 +280,24 @@ def test_write_rejects_missing_edge(tmp_path):
 def test_write_rejects_bad_seam_partners(tmp_path, partners, match):
     m = strip_motion(4, 2, seam=True)
     with pytest.raises(InputError, match=match):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[], seam_partners=partners))
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[],
+                                                 seam_partners=partners))
 
 
 @pytest.mark.parametrize(("metadata", "match"), [({"a": float("nan")}, "finite"), ({"a": [1]}, "number or a str"), ({1: 2}, "keys must be str")])
 def test_write_rejects_bad_metadata(tmp_path, metadata, match):
     m = strip_motion()
     with pytest.raises(InputError, match=match):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[], metadata=metadata))
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[],
+                                                 metadata=metadata))
     assert not list(tmp_path.iterdir())
 
 
 def test_write_rejects_non_pair_frame(tmp_path):
     m = strip_motion()
     with pytest.raises(InputError, match=r"folded\[0\] must be a \(title, Mesh\) pair"):
-        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[m.state(1)]))
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern,
+                                                 folded=[m.state(1)]))
 
 
 def test_sheet_rejects_welded_seam(tmp_path):
@@ -420,7 +431,8 @@ def test_failed_write_leaves_no_file_and_keeps_old(tmp_path, monkeypatch):
 def test_node_fold_and_rabbit_ear(tmp_path, make):
     motion = make()
     path = tmp_path / "m.fold"
-    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded, seam_partners=motion.seam_partners))
+    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded,
+                              seam_partners=motion.seam_partners))
     report = run_node("check_fold.mjs", str(path))
     fold, ear = report["fold"], report["rabbit_ear"]
     assert fold["same_vertex_sets"], fold
@@ -437,7 +449,8 @@ def test_node_fold_and_rabbit_ear(tmp_path, make):
 @pytest.mark.node
 def test_node_mirrored_crease_pattern_still_folds_to_the_frames(tmp_path):
     motion = oblique_motion()
-    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=_mirrored(motion), folded=motion.folded))
+    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=_mirrored(motion),
+                                             folded=motion.folded))
     report = run_node("check_fold.mjs", str(tmp_path / "m.fold"))
     assert report["rabbit_ear"]["faces_cw"] == 0
     assert max(f["max_distance"] for f in report["rabbit_ear"]["frames"]) < 1e-9

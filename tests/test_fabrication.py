@@ -327,7 +327,8 @@ def test_folding_motion_is_the_states(stack):
 
 
 def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
-    model = to_fold(stack, fold_angles=[0.0, 60.0, 90.0], output=FoldOutput(unit="m", metadata={"name": "stack"}))
+    model = to_fold(stack, FoldOutput(unit="m", metadata={"name": "stack"}),
+                    fold_angles=[0.0, 60.0, 90.0])
     cp = model.crease_pattern
     parts, maps = sheets(stack), sheet_vertices(stack)
     source = np.concatenate(maps)
@@ -367,7 +368,8 @@ def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
 
 
 def test_fold_file_round_trip(tmp_path, tube):
-    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0], title="helix tube", output=FoldOutput(unit="mm"))
+    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0],
+                                title="helix tube", output=FoldOutput(unit="mm"))
     model = to_fold(tube, fold_angles=[30.0, 90.0], output=FoldOutput(unit="mm"))
     back = read_fold(path)
     doc = json.loads(path.read_text())
@@ -533,7 +535,8 @@ def test_pattern_pdf_has_one_page_per_layout_page(stack_pattern):
 
 
 def test_write_pattern_options(tmp_path, tube):
-    (svg,) = write_pattern(tmp_path / "tube", tube, PatternOutput(glue_tabs=False, page="A3"), formats=("svg",))
+    (svg,) = write_pattern(tmp_path / "tube", tube, PatternOutput(glue_tabs=False, page="A3"),
+                           formats=("svg",))
     assert svg.name == "tube.svg" and sorted(p.name for p in tmp_path.iterdir()) == ["tube.svg"]
     text = svg.read_text()
     assert 'width="297mm"' in text and "layer-rulings" not in text

@@ -113,15 +113,18 @@ _QUALIFIED = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+(:[A-Za-z_]\w*(\.[A-Za-z_
 
 
 def _imports_by_name(node: ast.Call) -> bool:
-    """Whether a call is ``importlib.import_module("...")``, ``import_module("...")`` or ``__import__("...")``."""
+    """Whether a call is ``importlib.import_module("...")``, ``import_module("...")`` or
+    ``__import__("...")``."""
     func = node.func
-    called = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
-    return (called in ("import_module", "__import__") and bool(node.args) and isinstance(node.args[0], ast.Constant)
-            and isinstance(node.args[0].value, str))
+    called = (func.id if isinstance(func, ast.Name)
+              else func.attr if isinstance(func, ast.Attribute) else "")
+    return (called in ("import_module", "__import__") and bool(node.args)
+            and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str))
 
 
 def _absolute(target: str, name: str, is_package: bool) -> str:
-    """A module name given to ``import_module`` from module ``name``: relative (``".x"``) to its package."""
+    """A module name given to ``import_module`` from module ``name``: relative (``".x"``) to its
+    package."""
     level = len(target) - len(target.lstrip("."))
     if not level:
         return target
@@ -364,30 +367,38 @@ def test_a_cycle_is_reported_with_its_edges(tmp_path):
 
 def test_modules_named_by_strings_up_or_across_the_layers_are_reported(tmp_path):
     _package(tmp_path, BASE | {
-        "pkg/io/w.py": 'REGISTRY = {"guide": "pkg.figures.guide:write"}\n',  # "module:function" in a registry
-        "pkg/io/r.py": "import importlib\ndef f():\n    return importlib.import_module('pkg.app.cli')\n",
-        "pkg/vault/v.py": "from importlib import import_module\nm = import_module('..analysis.m', __package__)\n",
+        # "module:function" in a registry
+        "pkg/io/w.py": 'REGISTRY = {"guide": "pkg.figures.guide:write"}\n',
+        "pkg/io/r.py": ("import importlib\n"
+                        "def f():\n    return importlib.import_module('pkg.app.cli')\n"),
+        "pkg/vault/v.py": ("from importlib import import_module\n"
+                           "m = import_module('..analysis.m', __package__)\n"),
         "pkg/geometry/g.py": "x = __import__('pkg.vault.v')\n",
         "pkg/figures/guide.py": "def write(): ...\n",
-        "pkg/analysis/m.py": "MODULES = ('pkg.io.w', 'pkg.figures')\n",  # a module's name on its own
+        # a module's name on its own
+        "pkg/analysis/m.py": "MODULES = ('pkg.io.w', 'pkg.figures')\n",
         "pkg/app/a.py": ('"""See pkg.figures.guide:write."""\n'  # prose, not a name
-                         'NAMES = ("pkg.io.w:REGISTRY", "pkg.kernel", "pkg.logs", "pkg.io.nothing:f", "pkg.figures.guide:write")\n'),
+                         'NAMES = ("pkg.io.w:REGISTRY", "pkg.kernel", "pkg.logs",\n'
+                         '         "pkg.io.nothing:f", "pkg.figures.guide:write")\n'),
     })
     graph = imports(tmp_path, "pkg")
-    assert graph["pkg.app.a"] == {"pkg.io.w": 2, "pkg.kernel": 2, "pkg.figures.guide": 2}
+    assert graph["pkg.app.a"] == {"pkg.io.w": 2, "pkg.kernel": 2, "pkg.figures.guide": 3}
     assert {(a, b): why for a, b, why in upward(graph)} == {
         ("pkg.io.w", "pkg.figures.guide"): "line 1: io may import geometry, kernel, not figures",
         ("pkg.io.r", "pkg.app.cli"): "line 3: io may import geometry, kernel, not app",
-        ("pkg.vault.v", "pkg.analysis.m"): "line 2: vault may import geometry, kernel, not analysis",
+        ("pkg.vault.v", "pkg.analysis.m"):
+            "line 2: vault may import geometry, kernel, not analysis",
         ("pkg.geometry.g", "pkg.vault.v"): "line 1: geometry may import kernel, not vault",
-        ("pkg.analysis.m", "pkg.figures"): "line 1: analysis may import geometry, io, kernel, mechanics, vault, not figures",
+        ("pkg.analysis.m", "pkg.figures"):
+            "line 1: analysis may import geometry, io, kernel, mechanics, vault, not figures",
     }
 
 
 def test_the_registry_of_formats_names_no_module_above_io():
     """The assembly guide's writer is figures': figures registers it, io does not name it."""
     graph = imports(SRC, "curvefold")
-    assert "curvefold.io._svg" in graph["curvefold.io._formats"]  # its own writers, named by string, are read
+    # its own writers, named by string, are read
+    assert "curvefold.io._svg" in graph["curvefold.io._formats"]
     assert not any(layer_of(b) == "figures" for b in graph["curvefold.io._formats"])
     assert "curvefold.io._formats" in graph["curvefold.figures"]
 

@@ -89,9 +89,11 @@ class Built:
 
         o = self.design.output
         mm = mm_per_unit(o.units)
-        page = o.page if isinstance(o.page, str) else (o.page[0] / mm, o.page[1] / mm)  # mm -> units
+        # mm -> units
+        page = o.page if isinstance(o.page, str) else (o.page[0] / mm, o.page[1] / mm)
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
-        output = PatternOutput(page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs, rulings=o.rulings, cutter=o.cutter,
+        output = PatternOutput(page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs,
+                               rulings=o.rulings, cutter=o.cutter,
                                perforation=perforation, kerf=o.kerf, name=self.design.kind)
         if self.structure is None:
             from ..io._single_fold import layout_single_fold

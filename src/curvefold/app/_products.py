@@ -333,9 +333,11 @@ def _model(built: Built, names: tuple[str, ...], folder: Path, fold_angle: float
 
     loaded = built.mechanics if fold_angle is None else None  # the mechanics is the design state's
     morphs = None if loaded is None else loaded.morph_targets(built.structure, built.sampling.keep)
-    output = ModelOutput(unit=MODEL_UNIT, metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units,
+    output = ModelOutput(unit=MODEL_UNIT, metadata=_metadata(built), keep=built.sampling.keep,
+                         print_unit=built.design.output.units,
                          pattern=built.layout if "3dm" in names else None, morph_targets=morphs)
-    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), output, formats=names,
+    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), output,
+                         formats=names,
                          fold_angle=fold_angle))
 
 

@@ -553,8 +553,8 @@ def _rebuilt_fold(doc, path: Path):
     The design and its frames are estimated within the memory budget before it is built.
     """
     from ..io._fold import model_document, to_fold
-    from ..io._output import FoldOutput
     from ..io._fold_reading import parse_fold
+    from ..io._output import FoldOutput
     from ._budget import require_rebuild_budget
     from ._build import build
 
@@ -572,8 +572,9 @@ def _rebuilt_fold(doc, path: Path):
 
         return parse_fold(model_document(single_fold_model(built.single_fold, record["fold_angles"])), f"{where} (rebuilt)")
     keep = record.get("keep")
-    output = FoldOutput(anchor=record.get("anchor", "start"), faces=record.get("faces", "triangles"),
-                        keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])
+    kept = None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep]
+    output = FoldOutput(anchor=record.get("anchor", "start"),
+                        faces=record.get("faces", "triangles"), keep=kept)
     model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
     return parse_fold(model_document(model), f"{where} (rebuilt)")
 

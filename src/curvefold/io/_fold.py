@@ -39,7 +39,6 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -53,8 +52,8 @@ from ..kernel._arrays import distinct
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
-from ._fold_reading import FoldFile
 from ._decimals import Decimals, Integers, dumps, plain
+from ._fold_reading import FoldFile
 from ._mesh3d import check_metadata
 from ._output import FoldOutput
 from ._tables import CREATOR
@@ -271,7 +270,8 @@ def write_fold(path: str | os.PathLike, model: FoldFile, *, title: str = "", fla
     return _write_document(path, _fold_frames(model, title, flat_tol, mirror_clockwise))
 
 
-def fold_document(model: FoldFile, *, title: str = "", flat_tol: float = 1e-9, mirror_clockwise: bool = True) -> dict:
+def fold_document(model: FoldFile, *, title: str = "", flat_tol: float = 1e-9,
+                  mirror_clockwise: bool = True) -> dict:
     """A crease pattern and its folded states as one FOLD 1.1 document (JSON data, as :func:`write_fold` writes it).
 
     Parameters
@@ -327,7 +327,8 @@ def _fold_frames(model: FoldFile, title: str, flat_tol: float, mirror_clockwise:
     """:func:`fold_document` with its number arrays as :class:`~curvefold.io._decimals.Decimals`."""
     cp = model.crease_pattern
     if not isinstance(cp, Mesh):
-        raise InputError(f"the model's crease_pattern must be a Mesh, got {type(cp).__name__}", parameter="crease_pattern")
+        raise InputError(f"the model's crease_pattern must be a Mesh, got {type(cp).__name__}",
+                         parameter="crease_pattern")
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
     cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
@@ -441,7 +442,8 @@ def write_sheet_fold(
 # ---------------------------------------------------------------------------------------
 # structures
 
-def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *, fold_angles: ArrayLike | None = None,
+def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *,
+            fold_angles: ArrayLike | None = None,
             fold_angle: float | None = None, degrees: bool = True) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
@@ -469,17 +471,20 @@ def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *, fold_ang
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
     >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
-    >>> model = to_fold(tube, FoldOutput(unit="m", metadata={"title": "tube"}), fold_angles=[45, 90])
+    >>> output = FoldOutput(unit="m", metadata={"title": "tube"})
+    >>> model = to_fold(tube, output, fold_angles=[45, 90])
     >>> [title for title, _ in model.folded], model.metadata["title"], model.metadata["tubes"]
     (['fold angle 45°', 'fold angle 90°'], 'tube', 1)
     """
     _check_fold_output(output)
-    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees, anchor=output.anchor,
+    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle,
+                         degrees=degrees, anchor=output.anchor,
                          faces=output.faces, keep=output.keep)
     return fold_model(structure, arrays, output)
 
 
-def fold_model(structure: Structure, arrays: FoldArrays, output: FoldOutput = FoldOutput()) -> FoldFile:
+def fold_model(structure: Structure, arrays: FoldArrays,
+               output: FoldOutput = FoldOutput()) -> FoldFile:
     """:func:`to_fold` of a structure whose FOLD arrays are made
     (:func:`curvefold.geometry._fold_arrays.fold_arrays` with the output's ``anchor``, ``faces``
     and ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
@@ -487,23 +492,28 @@ def fold_model(structure: Structure, arrays: FoldArrays, output: FoldOutput = Fo
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
     keep = output.keep
     record = None if output.design is None else {
-        "design": dict(output.design), "fold_angles": arrays.fold_angles.tolist(), "anchor": output.anchor, "faces": output.faces,
+        "design": dict(output.design), "fold_angles": arrays.fold_angles.tolist(),
+        "anchor": output.anchor, "faces": output.faces,
         "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
-    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta, unit=output.unit,
+    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta,
+                    unit=output.unit,
                     seam_partners=arrays.seam_partners, bonds=arrays.bonds, design=record)
 
 
 def _check_fold_output(output: FoldOutput) -> dict:
     """The output's extra metadata, checked with its unit."""
     if not isinstance(output, FoldOutput):
-        raise InputError(f"output must be a FoldOutput (unit, metadata…), got {type(output).__name__}", parameter="output")
+        raise InputError(f"output must be a FoldOutput (unit, metadata…), got {type(output).__name__}",
+                         parameter="output")
     if not isinstance(output.unit, str) or not output.unit:
         raise InputError(f"unit must be a non-empty str, got {output.unit!r}")
     return check_metadata(output.metadata)
 
 
-def write_structure_fold(path: str | os.PathLike, structure: Structure, output: FoldOutput = FoldOutput(), *,
-                         title: str = "", fold_angles: ArrayLike | None = None, fold_angle: float | None = None,
+def write_structure_fold(path: str | os.PathLike, structure: Structure,
+                         output: FoldOutput = FoldOutput(), *,
+                         title: str = "", fold_angles: ArrayLike | None = None,
+                         fold_angle: float | None = None,
                          degrees: bool = True) -> Path:
     """Write :func:`to_fold` of a structure as a FOLD 1.1 file (via :func:`curvefold.io.write_fold`).
 
@@ -522,13 +532,15 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure, output: 
     -------
     Path
     """
-    return write_fold(path, to_fold(structure, output, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees),
+    return write_fold(path, to_fold(structure, output, fold_angles=fold_angles,
+                                    fold_angle=fold_angle, degrees=degrees),
                       title=title)
 
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
-    """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io._single_fold.single_fold_model`):
-    :func:`write_fold` with the default tolerance and mirroring."""
+    """Write a FOLD model (:func:`to_fold`, or a single fold's
+    :func:`curvefold.io._single_fold.single_fold_model`): :func:`write_fold` with the default
+    tolerance and mirroring."""
     return write_fold(path, model, title=title)
 
 

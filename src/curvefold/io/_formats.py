@@ -133,8 +133,8 @@ class FileFormat:
             The format's writer was never registered (:func:`register_writer`).
         """
         if self.writer is None:
-            raise InternalError(f"format {self.name!r} has no writer: the package that draws it registers one "
-                                "(register_writer) when it is imported")
+            raise InternalError(f"format {self.name!r} has no writer: the package that draws it "
+                                "registers one (register_writer) when it is imported")
         if callable(self.writer):
             return self.writer
         module, function = self.writer.split(":")
@@ -154,7 +154,8 @@ _FORMATS: dict[str, FileFormat] = {f.name: f for f in (
                "curvefold.io._pattern_pdf:write_pdf", "application/pdf"),
     FileFormat("assembly", ".pdf", "the assembly guide: the sheets to cut, which seam glues to which, the order of folding and "
                "gluing tube by tube with a picture of each step, on the pattern's pages", "guide", _S,
-               None, "application/pdf", stem="assembly"),  # the writer is figures' (register_writer)
+               # the writer is figures' (register_writer)
+               None, "application/pdf", stem="assembly"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the frames of the folding motion, and one FOLD file per sheet", "fold", _ALL,
                "curvefold.io._fold:write_structure_fold", "application/json"),
     FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _ALL,
@@ -162,7 +163,8 @@ _FORMATS: dict[str, FileFormat] = {f.name: f for f in (
     FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _ALL,
                "curvefold.io._model_files:model_obj", "model/obj"),
     FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,
-               "curvefold.io._model_files:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
+               "curvefold.io._model_files:model_3dm", "application/octet-stream", "rhino3dm",
+               "rhino"),
     FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _ALL,
                "curvefold.io._model_files:model_stl", "model/stl"),
     FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _ALL,
@@ -194,14 +196,15 @@ def register_writer(name: str, writer: str | Callable[..., Any]) -> None:
     Examples
     --------
     >>> register_writer("svg", "curvefold.io._svg:write_svg")  # its own: nothing changes
-    >>> register_writer("svg", print)
+    >>> register_writer("svg", "a:b")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: writer of 'svg' is 'curvefold.io._svg:write_svg' already, cannot register <built-in function print>
+    curvefold.kernel._errors.InputError: writer of 'svg' is 'curvefold.io._svg:write_svg' already, cannot register 'a:b'
     """
     f = _FORMATS.get(name)
     if f is None:
-        raise InputError(f"name must be a format of the registry ({', '.join(_FORMATS)}), got {name!r}")
+        raise InputError(f"name must be a format of the registry ({', '.join(_FORMATS)}), "
+                         f"got {name!r}")
     if not (callable(writer) or (isinstance(writer, str) and writer.count(":") == 1)):
         raise InputError(f"writer must be a function or 'module:function', got {writer!r}")
     if f.writer is not None and f.writer != writer:
@@ -286,23 +289,31 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
 
 
 _OUT = PatternOutput()  # the defaults of the crease-pattern files
-#: The ``[output]`` parameters of a design (the crease pattern's defaults are :class:`PatternOutput`'s).
+#: The ``[output]`` parameters of a design (the crease pattern's defaults are
+#: :class:`PatternOutput`'s).
 OUTPUT_SPECS: tuple[Spec, ...] = (
     Spec("units", "choice", _OUT.units, choices=("mm", "cm", "m", "in"),
          help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)",
          label="units of the printed files"),
     Spec("scale", "real", None, Interval.parse("(0, inf)"), "output units per model unit",
          help="crease-pattern scale (default: fit the largest sheet to the page)", label="print scale"),
-    Spec("page", "page", _OUT.page, Interval.parse("(0, 10000]"), "mm", choices=tuple(PAGES), help="page of the crease patterns", label="page size"),
-    Spec("glue_tabs", "flag", _OUT.glue_tabs, help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
-    Spec("rulings", "flag", _OUT.rulings, help="draw the rulings on the crease patterns (for scoring or engraving)", label="rulings drawn"),
+    Spec("page", "page", _OUT.page, Interval.parse("(0, 10000]"), "mm", choices=tuple(PAGES),
+         help="page of the crease patterns", label="page size"),
+    Spec("glue_tabs", "flag", _OUT.glue_tabs,
+         help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
+    Spec("rulings", "flag", _OUT.rulings,
+         help="draw the rulings on the crease patterns (for scoring or engraving)",
+         label="rulings drawn"),
     Spec("cutter", "choice", _OUT.cutter, choices=tuple(CUTTERS),
          help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)",
          label="cutter convention"),
     Spec("perforation", "real", None, Interval.parse("(0, 100]"), "mm",
          help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)", label="perforation dash"),
-    Spec("perforation_gap", "real", 1.0, Interval.parse("(0, 100]"), "mm", help="gap between the dashes of perforated creases", label="perforation gap"),
-    Spec("kerf", "real", _OUT.kerf, Interval.parse("[0, 5]"), "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size",
+    Spec("perforation_gap", "real", 1.0, Interval.parse("(0, 100]"), "mm",
+         help="gap between the dashes of perforated creases", label="perforation gap"),
+    Spec("kerf", "real", _OUT.kerf, Interval.parse("[0, 5]"), "mm",
+         help="width the cutter removes: the cut outlines move out by half of it, so parts keep "
+              "their size",
          label="kerf"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)", label="file formats"),

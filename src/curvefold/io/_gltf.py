@@ -187,13 +187,14 @@ class GlbOptions:
 
 @dataclass(frozen=True, eq=False)
 class _Motion:
-    """The states of a motion checked and turned into glTF's frame: what every node and the animation read."""
+    """The states of a motion, checked and turned into glTF's frame: what every node and the
+    animation read."""
 
     states: int  # K
     base_state: int
     positions: np.ndarray  # (K, V, 3) metres, glTF axes
     others: np.ndarray  # the states of morph targets 0 … K − 2, all but the base
-    poses: np.ndarray  # (T, V, 3) the morph targets' positions: the other states, then the further targets
+    poses: np.ndarray  # (T, V, 3) the morph targets' positions: other states, further targets
     names: list[str]  # (T,) the morph targets' names
     angles: np.ndarray | None  # (K,) degrees
 
@@ -249,7 +250,8 @@ def write_glb(
         a bad option.
     """
     if not isinstance(options, GlbOptions):
-        raise InputError(f"options must be a GlbOptions, got {type(options).__name__}", parameter="options")
+        raise InputError(f"options must be a GlbOptions, got {type(options).__name__}",
+                         parameter="options")
     scale = _check_options(options)
     meta = check_metadata(options.metadata)
     parts = _check_parts(options.parts, len(mesh.faces_vertices), len(mesh.edges_vertices))
@@ -281,8 +283,8 @@ def _check_options(options: GlbOptions) -> float:
     scale = options.scale
     if scale is None:
         if options.unit not in UNITS:
-            raise InputError(f"unit {options.unit!r} has no known size in metres; give scale= (metres per unit) "
-                             f"or use one of {sorted(UNITS)}")
+            raise InputError(f"unit {options.unit!r} has no known size in metres; give scale= "
+                             f"(metres per unit) or use one of {sorted(UNITS)}")
         scale = UNITS[options.unit].metres
     if not (np.isfinite(scale) and scale > 0):
         raise InputError(f"scale must be a positive number of metres per unit, got {scale}")
@@ -299,9 +301,11 @@ def _check_options(options: GlbOptions) -> float:
     return float(scale)
 
 
-def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequence[float] | None, base_state: int,
-            morph_targets: Mapping[str, np.ndarray] | None, scale: float, up: str) -> _Motion:
-    """The states checked, in metres and glTF's axes, and the morph targets they and ``morph_targets`` make."""
+def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequence[float] | None,
+            base_state: int, morph_targets: Mapping[str, np.ndarray] | None, scale: float,
+            up: str) -> _Motion:
+    """The states checked, in metres and glTF's axes, and the morph targets they and
+    ``morph_targets`` make."""
     V = len(mesh.vertices_coords)
     states = np.asarray(mesh.vertices_coords if coords is None else coords, float)
     if states.ndim == 2:
@@ -320,18 +324,19 @@ def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequ
     extra = _check_morphs(morph_targets, V)
     rotation = _AXES[up]
     pos = (states * scale) @ rotation.T  # (K, V, 3) metres, glTF axes
-    others = np.array([k for k in range(K) if k != base], dtype=np.int64)  # the states of targets 0 … K − 2
+    others = np.array([k for k in range(K) if k != base], dtype=np.int64)  # targets 0 … K − 2
     poses = pos[others]
     if extra:
-        poses = np.concatenate([poses, pos[base] + (np.stack(list(extra.values())) * scale) @ rotation.T])
+        further = (np.stack(list(extra.values())) * scale) @ rotation.T
+        poses = np.concatenate([poses, pos[base] + further])
     names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(extra)
     return _Motion(K, base, pos, others, poses, names, angles)
 
 
-def _part_mesh(pk: _Packer, materials: list[dict], mesh: Mesh, motion: _Motion, part: tuple[str, np.ndarray, np.ndarray],
-               crease_kinds: Sequence[str]) -> dict:
-    """The glTF mesh of one part: its triangles, then a line primitive per crease kind on it (materials
-    added as first used)."""
+def _part_mesh(pk: _Packer, materials: list[dict], mesh: Mesh, motion: _Motion,
+               part: tuple[str, np.ndarray, np.ndarray], crease_kinds: Sequence[str]) -> dict:
+    """The glTF mesh of one part: its triangles, then a line primitive per crease kind on it
+    (materials added as first used)."""
     name, part_faces, part_edges = part
     primitives = [_surface(pk, mesh, motion, part_faces)]
     edges_kind = np.asarray(mesh.edges_kind)
@@ -341,16 +346,21 @@ def _part_mesh(pk: _Packer, materials: list[dict], mesh: Mesh, motion: _Motion, 
             continue
         if all(m["name"] != kind for m in materials):
             materials.append(_material(kind, CREASE_COLOURS[kind], double_sided=False))
-        primitives.append(_lines(pk, motion, edges, next(i for i, m in enumerate(materials) if m["name"] == kind)))
+        material = next(i for i, m in enumerate(materials) if m["name"] == kind)
+        primitives.append(_lines(pk, motion, edges, material))
     T = motion.targets
-    return {"extras": {"targetNames": motion.names}, "primitives": primitives, **({"weights": [0.0] * T} if T else {}), "name": name}
+    weights = {"weights": [0.0] * T} if T else {}
+    return {"extras": {"targetNames": motion.names}, "primitives": primitives, **weights,
+            "name": name}
 
 
 def _surface(pk: _Packer, mesh: Mesh, motion: _Motion, part_faces: np.ndarray) -> dict:
-    """The triangle primitive of a part's faces, its vertices split between strips, with its morph targets."""
+    """The triangle primitive of a part's faces, its vertices split between strips, with its
+    morph targets."""
     triangulated = mesh.triangulated()  # polygons split in place, in face order
     faces, groups = triangulated.faces_vertices, np.asarray(triangulated.faces_group)
-    polygon_of = np.repeat(np.arange(len(mesh.faces_vertices)), mesh.face_sizes() - 2)  # the mesh face of every triangle
+    # the mesh face of every triangle
+    polygon_of = np.repeat(np.arange(len(mesh.faces_vertices)), mesh.face_sizes() - 2)
     mine = np.flatnonzero(np.isin(polygon_of, part_faces))  # the part's triangles
     copies, triangles = _split_by_strip(faces[mine], groups[mine])
     base = motion.base[copies]
@@ -359,11 +369,14 @@ def _surface(pk: _Packer, mesh: Mesh, motion: _Motion, part_faces: np.ndarray) -
     moved = motion.poses[:, copies]
     moved_normals = _vertex_normals(moved, triangles) if T else moved
     # accessors in the order position, normal of each target
-    pairs = pk.add_vec3(np.stack([moved - base, moved_normals - normal], axis=1).reshape(-1, *base.shape)) if T else []
+    deltas = np.stack([moved - base, moved_normals - normal], axis=1).reshape(-1, *base.shape)
+    pairs = pk.add_vec3(deltas) if T else []
     targets = [{"POSITION": p, "NORMAL": n} for p, n in zip(pairs[::2], pairs[1::2])]
     attributes = {"POSITION": pk.add_vec3(base[None])[0], "NORMAL": pk.add_vec3(normal[None])[0]}
-    indices = pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER)
-    return {"attributes": attributes, "indices": indices, "mode": _TRIANGLES, "material": 0, **({"targets": targets} if T else {})}
+    indices = pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR",
+                     target=_ELEMENT_ARRAY_BUFFER)
+    return {"attributes": attributes, "indices": indices, "mode": _TRIANGLES, "material": 0,
+            **({"targets": targets} if T else {})}
 
 
 def _lines(pk: _Packer, motion: _Motion, edges: np.ndarray, material: int) -> dict:
@@ -372,13 +385,16 @@ def _lines(pk: _Packer, motion: _Motion, edges: np.ndarray, material: int) -> di
     base = motion.base[used]
     position = pk.add_vec3(base[None])[0]
     indices = pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER)
-    targets = [{"POSITION": p} for p in pk.add_vec3(motion.poses[:, used] - base)] if motion.targets else None
-    return {"attributes": {"POSITION": position}, "indices": indices, "mode": _LINES, "material": material,
+    moved = pk.add_vec3(motion.poses[:, used] - base) if motion.targets else None
+    targets = None if moved is None else [{"POSITION": p} for p in moved]
+    return {"attributes": {"POSITION": position}, "indices": indices, "mode": _LINES,
+            "material": material,
             **({"targets": targets} if targets is not None else {})}
 
 
 def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -> list[dict]:
-    """The one animation of the weights of every node: from the base state to flat, to the last and back."""
+    """The one animation of the weights of every node: from the base state to flat, to the last
+    and back."""
     K, T = motion.states, motion.targets
     order = _keyframes(K, motion.base_state)
     times = (np.arange(len(order)) * float(options.seconds_per_state)).astype(np.float32)
@@ -391,13 +407,15 @@ def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -
     w_acc = pk.add(weights.reshape(-1), "SCALAR")
     return [{
         "name": "fold",
-        "channels": [{"sampler": 0, "target": {"node": n, "path": "weights"}} for n in range(nodes)],
+        "channels": [{"sampler": 0, "target": {"node": n, "path": "weights"}}
+                     for n in range(nodes)],
         "samplers": [{"input": t_acc, "interpolation": options.interpolation, "output": w_acc}],
     }]
 
 
 def _extras(motion: _Motion, options: GlbOptions, scale: float, meta: dict) -> dict:
-    """The asset's ``extras["curvefold"]``: units, axes, states, morph targets, timing and the design."""
+    """The asset's ``extras["curvefold"]``: units, axes, states, morph targets, timing and the
+    design."""
     extras = {
         "unit": options.unit,
         "scale_to_metres": scale,

@@ -16,7 +16,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernel._errors import InternalError
-from ._planar import box_corners, cell_index, cell_key, near_any, nearest_points, point_segment_distance, ragged, upright
+from ._planar import (
+    box_corners,
+    cell_index,
+    cell_key,
+    near_any,
+    nearest_points,
+    point_segment_distance,
+    ragged,
+    upright,
+)
 
 __all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
 
@@ -112,8 +121,10 @@ class Obstacles:
     directions: np.ndarray  # (N, 2) the unit direction of each sample's line
     _x: np.ndarray  # (N,) the samples' coordinates apart
     _y: np.ndarray
-    _cells: tuple[np.ndarray, float, np.ndarray, np.ndarray, np.ndarray]  # nearest_points' index of the samples
-    _grids: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]  # near_any's, by the cells' side
+    # nearest_points' index of the samples
+    _cells: tuple[np.ndarray, float, np.ndarray, np.ndarray, np.ndarray]
+    # near_any's, by the cells' side
+    _grids: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
 
     def __init__(self, segments: np.ndarray, spacing: float, extra: np.ndarray | None = None, *, _from: Obstacles | None = None):
         self.spacing = spacing
@@ -185,8 +196,10 @@ class Obstacles:
         slack = limit * (1 + 1e-9)
         keep = (np.abs(frame[0]) <= u[-1] + slack) & (np.abs(frame[1]) <= v[-1] + slack)  # within reach of the box
         box, x, y = box[keep], x[keep], y[keep]
-        grid_cell = [np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0, len(g) - 2) for f, g in zip(frame, (u, v))]
-        at = box * boxes.shape[1] + grid_cell[1] * len(u) + grid_cell[0]  # the corner (0, 0) of the grid's cell around each point
+        grid_cell = [np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0,
+                             len(g) - 2) for f, g in zip(frame, (u, v))]
+        # the corner (0, 0) of the grid's cell around each point
+        at = box * boxes.shape[1] + grid_cell[1] * len(u) + grid_cell[0]
         corners_x, corners_y = boxes[..., 0].ravel(), boxes[..., 1].ravel()
         best = np.full(len(box), np.inf)
         for step in (0, 1, len(u), len(u) + 1):

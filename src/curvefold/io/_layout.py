@@ -483,19 +483,26 @@ def layout_sheets(
     if scale is not None and target_size is not None:
         raise InputError(f"give scale or target_size, not both (got scale={scale!r}, target_size={target_size!r})")
     scale_mm = _check_length("scale", 1.0 if scale is None else scale, f, positive=True)
-    target = None if target_size is None else _check_length("target_size", target_size, f, positive=True)
+    target = (None if target_size is None
+              else _check_length("target_size", target_size, f, positive=True))
     if not isinstance(rules, LayoutRules):
-        raise InputError(f"rules must be a LayoutRules, got {type(rules).__name__}", parameter="rules")
+        raise InputError(f"rules must be a LayoutRules, got {type(rules).__name__}",
+                         parameter="rules")
     r = rules
     margin = _check_length("margin", 10.0 / f if r.margin is None else r.margin, f, positive=False)
     gap = _check_length("gap", 4.0 / f if r.gap is None else r.gap, f, positive=False)
-    tab_width = _check_length("tab_width", 6.0 / f if r.tab_width is None else r.tab_width, f, positive=True)
-    tab_length = _check_length("tab_length", 5 * tab_width / f if r.tab_length is None else r.tab_length, f, positive=True)
-    label_size = _check_length("label_size", 4.0 / f if r.label_size is None else r.label_size, f, positive=True)
+    tab_width = _check_length("tab_width", 6.0 / f if r.tab_width is None else r.tab_width, f,
+                              positive=True)
+    tab_length = _check_length("tab_length",
+                               5 * tab_width / f if r.tab_length is None else r.tab_length, f,
+                               positive=True)
+    label_size = _check_length("label_size", 4.0 / f if r.label_size is None else r.label_size, f,
+                               positive=True)
     tab_angle = r.tab_angle
     if not (isinstance(tab_angle, (int, float)) and 0 < tab_angle < 90):
         raise InputError(f"tab_angle must be in (0, 90) degrees, got {tab_angle!r}")
-    footer = _check_length("footer", FOOTER / f if r.footer is None else r.footer, f, positive=False)
+    footer = _check_length("footer", FOOTER / f if r.footer is None else r.footer, f,
+                           positive=False)
     avail = (W - 2 * margin, H - 2 * margin - footer)
     if min(avail) <= 0:
         raise InputError(f"margin {margin:g} mm and footer {footer:g} mm leave no room on a {W:g} × {H:g} mm page")
@@ -576,10 +583,12 @@ def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np
 
 
 def _build_sheet(sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _SheetRules,
-                 notes: list[str]) -> tuple[list[tuple[str, np.ndarray, bool, int]], np.ndarray, list[Label], bool]:
+                 notes: list[str]) -> tuple[list[tuple[str, np.ndarray, bool, int]], np.ndarray,
+                                            list[Label], bool]:
     """The lines of one sheet in its local mm frame, as :class:`Polyline`'s fields (layer, points,
     closed, seam), all their points (its footprint), its labels and whether it is mirrored."""
-    tab_width, tab_length, taper, label_size = rules.tab_width, rules.tab_length, rules.taper, rules.label_size
+    tab_width, tab_length, taper = rules.tab_width, rules.tab_length, rules.taper
+    label_size = rules.label_size
     name = sheet.label
     pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
     outline = _outline_segments(loc, pieces_of)
@@ -622,7 +631,8 @@ def _build_sheet(sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _She
             continue
         parts = []  # from the first replaced run, so no run wraps around the walk's end
         for k, (pos, count, pts) in enumerate(replaced):
-            until = replaced[k + 1][0] if k + 1 < len(replaced) else replaced[0][0] + n  # the next run's start
+            # the next run's start
+            until = replaced[k + 1][0] if k + 1 < len(replaced) else replaced[0][0] + n
             parts += [pts, loc.xy[verts[np.arange(pos + count, until) % n]]]
         lines.append(("cut", np.concatenate(parts), True, -1))
     lines.extend(loc.creases)

@@ -24,7 +24,8 @@ from ._cutters import STYLES, LayerStyle, cutter, layer_name
 from ._labels import Label, seam_name, text_width
 from ._layout import LAYERS, Layout
 
-__all__ = ["DEFAULT_LAYERS", "LEGEND", "Footer", "check_layout", "check_layers", "check_line_width", "layer_look", "page_footer"]
+__all__ = ["DEFAULT_LAYERS", "LEGEND", "Footer", "check_layout", "check_layers",
+           "check_line_width", "layer_look", "page_footer"]
 
 #: Layers the writers draw by default.
 DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")

@@ -87,18 +87,22 @@ class FoldedModel:
 
 def model_glb(path: str | os.PathLike, model: FoldedModel) -> Path:
     """The GLB of a model: a node per sheet, its state as the base pose, the folding motion as morph
-    targets and an animation that starts at that state; the model's further morph targets after them."""
-    topology = model.structure.topology(keep=model.keep) if model.topology is None else model.topology
+    targets and an animation that starts at that state; the model's further morph targets after
+    them."""
+    topology = model.topology
+    if topology is None:
+        topology = model.structure.topology(keep=model.keep)
     coords = folding_motion(model.structure, model.motion, anchor=model.anchor, topology=topology)
     base = int(np.argmin(np.abs(model.motion - model.fold_angle)))
     sheets = topology.sheets
     # the base pose is the motion's state nearest the model's: the further targets move from it
     shift = coords[base] - model.mesh.vertices_coords
     morphs = {name: np.asarray(d, float) - shift for name, d in model.morph_targets.items()}
-    options = gltf.GlbOptions(unit=model.unit, metadata=model.metadata, seconds_per_state=model.seconds_per_state,
+    options = gltf.GlbOptions(unit=model.unit, metadata=model.metadata,
+                              seconds_per_state=model.seconds_per_state,
                               parts=[(s.label, s.faces, s.edges) for s in sheets])
-    return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base, morph_targets=morphs,
-                          options=options)
+    return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base,
+                          morph_targets=morphs, options=options)
 
 
 def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:
@@ -117,10 +121,14 @@ def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:
 
 
 def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the lattice's crease degree),
-    grouped by tube and sheet, and the model's crease pattern laid beside it when it has one."""
+    """The Rhino model of a model: a mesh per sheet, ruled NURBS strips and NURBS creases (of the
+    lattice's crease degree), grouped by tube and sheet, and the model's crease pattern laid beside
+    it when it has one."""
     structure = model.structure
-    topology = structure.topology("quads", keep=model.keep) if model.quad_topology is None else model.quad_topology
-    options = rhino.RhinoOptions(unit=model.unit, metadata=model.static_metadata, pattern=model.pattern)
-    return rhino.write_3dm(path, model.quads, topology, degree=structure.lattice.crease_degree, fold_angle=model.fold_angle,
-                           options=options)
+    topology = model.quad_topology
+    if topology is None:
+        topology = structure.topology("quads", keep=model.keep)
+    options = rhino.RhinoOptions(unit=model.unit, metadata=model.static_metadata,
+                                 pattern=model.pattern)
+    return rhino.write_3dm(path, model.quads, topology, degree=structure.lattice.crease_degree,
+                           fold_angle=model.fold_angle, options=options)

@@ -1,4 +1,4 @@
-"""What the files of a structure are written as, one value per family: crease patterns and 3D models.
+"""What the files of a structure are written as: one value per family of files.
 
 A :class:`PatternOutput` is what a design's ``[output]`` table says about the crease-pattern
 files; the layout functions (:func:`~curvefold.io.layout_pattern`,
@@ -77,8 +77,8 @@ class PatternOutput:
 def check_output(output: PatternOutput) -> PatternOutput:
     """``output`` if it is a :class:`PatternOutput`, else the error saying what it is."""
     if not isinstance(output, PatternOutput):
-        raise InputError(f"output must be a PatternOutput (page, units, scale…), got {type(output).__name__}: {output!r}",
-                         parameter="output")
+        raise InputError(f"output must be a PatternOutput (page, units, scale…), "
+                         f"got {type(output).__name__}: {output!r}", parameter="output")
     return output
 
 
@@ -128,7 +128,8 @@ class ModelOutput:
 
 @dataclass(frozen=True, eq=False)
 class FoldOutput:
-    """How a structure's FOLD file is made (:func:`~curvefold.io.to_fold`), besides its frames' fold angles.
+    """How a structure's FOLD file is made (:func:`~curvefold.io.to_fold`), besides the fold angles
+    of its frames.
 
     Attributes
     ----------

@@ -151,7 +151,8 @@ def layout_pattern(
     _cutter(output.cutter)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=output.name, keep=keep)
     fitted = _fit(parts, output)
-    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation, kerf=output.kerf)
+    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation,
+                          kerf=output.kerf)
 
 
 def _fit(parts: Sequence[PatternSheet], output: PatternOutput) -> Layout:
@@ -206,7 +207,8 @@ def write_pattern(
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)
+    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(curve), 0.1, 0.1))
     >>> write_pattern("tube", tube, PatternOutput(page="A3", scale=50.0), formats=("svg", "pdfx"))
     Traceback (most recent call last):
     ...

@@ -291,7 +291,8 @@ def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r
     (``cells``: the points' :func:`cell_index` for these cells, if made already). The three cells
     of a column are one run of the points sorted by cell."""
     order, keys, size = cell_index(points, lo, r) if cells is None else cells
-    own = np.clip(np.floor((queries - lo) / r), -2, size + 1).astype(np.int64)  # (far off, an empty cell)
+    # (far off, an empty cell)
+    own = np.clip(np.floor((queries - lo) / r), -2, size + 1).astype(np.int64)
     column = own[:, None, 0] + np.array([-1, 0, 1])  # (Q, 3)
     first = keys.searchsorted(column * (1 << 32) + (own[:, 1:] - 1), "left")  # cell_key of each column's lowest cell
     last = keys.searchsorted(column * (1 << 32) + (own[:, 1:] + 1), "right")

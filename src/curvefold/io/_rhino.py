@@ -52,7 +52,8 @@ from ._layout import Layout
 from ._mesh3d import check_metadata, crease_polylines
 from ._tables import CREATOR, UNITS, rgb8, rgba8
 
-__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "RhinoOptions", "interpolating_spline", "write_3dm"]
+__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "RhinoOptions", "interpolating_spline",
+           "write_3dm"]
 
 #: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
 LAYERS = (
@@ -150,7 +151,8 @@ def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
 
 @dataclass(frozen=True, eq=False)
 class RhinoOptions:
-    """How :func:`write_3dm` writes a state: unit, user text, archive version and the crease pattern beside it.
+    """How :func:`write_3dm` writes a state: unit, user text, archive version and the crease
+    pattern beside it.
 
     Attributes
     ----------
@@ -202,8 +204,9 @@ def write_3dm(
     Path
     """
     if not isinstance(options, RhinoOptions):
-        raise InputError(f"options must be a RhinoOptions, got {type(options).__name__}", parameter="options")
-    unit, metadata, version, pattern = options.unit, options.metadata, options.version, options.pattern
+        raise InputError(f"options must be a RhinoOptions, got {type(options).__name__}",
+                         parameter="options")
+    unit, metadata, pattern = options.unit, options.metadata, options.pattern
     try:
         import rhino3dm as module
     except ImportError as exc:  # pragma: no cover - depends on the environment
@@ -314,7 +317,7 @@ def write_3dm(
     model.Strings["curvefold:unit"] = unit
 
     with atomic_path(path) as tmp:
-        if not model.Write(str(tmp), version):
+        if not model.Write(str(tmp), options.version):
             raise OSError(f"rhino3dm could not write {path}")
     return Path(path)
 

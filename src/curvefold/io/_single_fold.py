@@ -53,7 +53,8 @@ def _ply(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict
 
 
 def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
-    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"), degree=3,
+    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"),
+                           degree=3,
                            options=rhino.RhinoOptions(unit=unit, metadata=meta))
 
 
@@ -90,7 +91,8 @@ def write_single_fold_3d(path_stem: str | os.PathLike, fold: SingleFold, fold_an
 
 
 def layout_single_fold(fold: SingleFold, output: PatternOutput = PatternOutput()) -> Layout:
-    """The crease pattern of a single fold on its page: at the output's scale, or as large as the page takes it.
+    """The crease pattern of a single fold on its page: at the output's scale, or as large as the
+    page takes it.
 
     The output's page, units, scale, cutter, perforation, kerf and name are used; a single
     sheet has no seam, so no glue tab.
@@ -103,7 +105,8 @@ def layout_single_fold(fold: SingleFold, output: PatternOutput = PatternOutput()
     check_output(output)
     fitted = _fitted(fold.pattern_sheet(output.name), output.page, output.units, output.scale)
     check_cutter(output.cutter)
-    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation, kerf=output.kerf)
+    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation,
+                          kerf=output.kerf)
 
 
 def _fitted(sheet, page, units: str, scale: float | None) -> Layout:

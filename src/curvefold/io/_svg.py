@@ -29,7 +29,8 @@ __all__ = ["svg_page", "write_svg"]
 
 
 def _escape(text: str) -> str:
-    """``text`` with &, < and > escaped for XML (:func:`xml.sax.saxutils.escape`, whose import brings urllib's).
+    """``text`` with &, < and > escaped for XML (:func:`xml.sax.saxutils.escape`, whose import
+    brings urllib's).
 
     Examples
     --------
@@ -64,22 +65,26 @@ def _svg_label(t: Label, height: float) -> str:
     x = t.position[0] + 0.35 * t.size * math.sin(a)
     y = height - (t.position[1] - 0.35 * t.size * math.cos(a))
     rot = f' transform="rotate({-t.angle:.2f} {x:.3f} {y:.3f})"' if abs(t.angle) > 1e-9 else ""
-    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{_escape(one_line(t.text))}</text>'
+    text = _escape(one_line(t.text))
+    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{text}</text>'
 
 
 _FONT = "font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;text-anchor:middle"
 
 
 def _svg_style(layout: Layout, key: str, lw: float, colour: str | None = None) -> str:
-    """The SVG style of a layer's lines (or text, for ``labels``), in ``colour`` or the layer's own."""
+    """The SVG style of a layer's lines (or text, for ``labels``), in ``colour`` or the layer's
+    own."""
     _, own, st = layer_look(layout, key)
     colour = colour or own
     if key in ("labels", "legend"):
         return f"fill:{colour};stroke:none;{_FONT}"
     if st.fill:
         return f"fill:{colour};stroke:none"
-    style = f"fill:none;stroke:{colour};stroke-width:{lw * st.width:g};stroke-linecap:butt;stroke-linejoin:round"
-    return style + (";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes) if st.dashes else "")
+    style = (f"fill:none;stroke:{colour};stroke-width:{lw * st.width:g};stroke-linecap:butt;"
+             "stroke-linejoin:round")
+    dashes = ";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes) if st.dashes else ""
+    return style + dashes
 
 
 def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | None = None,
@@ -104,18 +109,23 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
         if key == "labels":
             body = [_svg_label(t, H) for t in page.labels()]
         else:
-            body = [f'<{"polygon" if p.closed else "polyline"} points="{_svg_points(p.points, H)}"/>'
-                    for p in page.on_layer(key)]
-        out.append(f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={_quoteattr(layer_look(layout, key)[0])} '
+            body = [f'<{"polygon" if p.closed else "polyline"} '
+                    f'points="{_svg_points(p.points, H)}"/>' for p in page.on_layer(key)]
+        label = _quoteattr(layer_look(layout, key)[0])
+        out.append(f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={label} '
                    f'style={_quoteattr(_svg_style(layout, key, lw))}>')
         out.extend(body)
         out.append("</g>")
     footer = page_footer(layout, page_index, names)
-    out.append(f'<g inkscape:groupmode="layer" id="layer-legend" inkscape:label={_quoteattr(LEGEND_LAYER)} '
+    out.append(f'<g inkscape:groupmode="layer" id="layer-legend" '
+               f'inkscape:label={_quoteattr(LEGEND_LAYER)} '
                f'style={_quoteattr(_svg_style(layout, "legend", lw))}>')
-    out.append(f'<polygon points="{_svg_points(footer.bar, H)}" style="fill:{footer.colour};stroke:none"/>')
-    out += [f'<{"polygon" if layer_look(layout, key)[2].fill else "polyline"} points="{_svg_points(points, H)}" '
-            f'style={_quoteattr(_svg_style(layout, key, lw, footer.colour))}/>' for key, points in footer.samples]
+    out.append(f'<polygon points="{_svg_points(footer.bar, H)}" '
+               f'style="fill:{footer.colour};stroke:none"/>')
+    out += [f'<{"polygon" if layer_look(layout, key)[2].fill else "polyline"} '
+            f'points="{_svg_points(points, H)}" '
+            f'style={_quoteattr(_svg_style(layout, key, lw, footer.colour))}/>'
+            for key, points in footer.samples]
     out += [_svg_label(t, H) for t in footer.texts]
     out.append("</g>")
     out.append("</svg>\n")
@@ -152,8 +162,10 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
     elif len(layout.pages) == 1:
         jobs = [(target, 0)]
     else:
-        jobs = [(target.with_name(f"{target.stem}-p{i + 1}{target.suffix}"), i) for i in range(len(layout.pages))]
-    texts = [(p, svg_page(layout, i, layers=layers, line_width=line_width).encode("utf-8")) for p, i in jobs]
+        jobs = [(target.with_name(f"{target.stem}-p{i + 1}{target.suffix}"), i)
+                for i in range(len(layout.pages))]
+    texts = [(p, svg_page(layout, i, layers=layers, line_width=line_width).encode("utf-8"))
+             for p, i in jobs]
     # All pages or none: every page goes to a temporary file, renamed only once all are written.
     with contextlib.ExitStack() as stack:
         for p, data in texts:
