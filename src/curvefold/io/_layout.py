@@ -246,10 +246,8 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[list[int], bool]]:
     def walk(start: int) -> tuple[list[int], bool]:
         path, cur = [start], start
         while True:
-            for k, other in adj[cur]:
-                if not used[k]:
-                    break
-            else:
+            k, other = next(((k, other) for k, other in adj[cur] if not used[k]), (-1, -1))
+            if k < 0:
                 return path, False
             used[k] = True
             cur = other

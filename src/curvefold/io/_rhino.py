@@ -309,7 +309,7 @@ def write_3dm(
 
     if pattern is not None:
         _add_pattern(rhino3dm, model, pattern, unit, x)
-    for name, vi in _views(rhino3dm, x):
+    for _, vi in _views(rhino3dm, x):
         model.NamedViews.Add(vi)
 
     for key, value in meta.items():
