@@ -212,6 +212,14 @@ def test_write_rejects_folded_crease_pattern(tmp_path):
         write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.state(2), folded=[]))
 
 
+def test_write_rejects_a_model_without_crease_pattern(tmp_path):
+    """A FoldFile read from a file of folded frames only has no crease pattern to write."""
+    m = strip_motion()
+    with pytest.raises(InputError, match="the model's crease_pattern must be a Mesh, got NoneType"):
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=None, folded=m.folded))
+    assert list(tmp_path.iterdir()) == []
+
+
 def _mirrored(motion):
     """The same motion with a crease pattern whose triangles are all clockwise (seen from below)."""
     cp = motion.crease_pattern

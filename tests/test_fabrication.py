@@ -616,3 +616,34 @@ def test_write_3d_rejects_bad_input(tmp_path, tube):
     with pytest.raises(InputError, match="fold_angles"):
         write_3d(tmp_path / "x", tube, [0.0, 200.0])
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_writers_take_their_values_and_refuse_anything_else(tmp_path, tube):
+    """A writer's options are one value; a value of another writer, or a bare mapping, is refused by
+    name before anything is written (the keywords it replaced would otherwise be lost silently)."""
+    from curvefold.io import GlbOptions, RhinoOptions, write_3dm, write_glb
+    from curvefold.io._layout import LayoutRules, layout_sheets
+    from curvefold.io._single_fold import layout_single_fold
+
+    mesh = tube.state().mesh()
+    quads = tube.state().mesh(faces="quads")
+    wrong = {"page": "A3"}
+    glb, rhino = tmp_path / "x.glb", tmp_path / "x.3dm"
+    cases = [
+        ("output must be a PatternOutput", lambda: write_pattern(tmp_path / "x", tube, wrong)),
+        ("output must be a PatternOutput", lambda: layout_pattern(tube, ModelOutput())),
+        ("output must be a PatternOutput", lambda: layout_single_fold(None, wrong)),
+        ("output must be a ModelOutput", lambda: write_3d(tmp_path / "x", tube, None, wrong)),
+        ("output must be a FoldOutput", lambda: to_fold(tube, ModelOutput())),
+        ("output must be a FoldOutput", lambda: write_structure_fold(tmp_path / "x", tube, wrong)),
+        ("options must be a GlbOptions", lambda: write_glb(glb, mesh, options=wrong)),
+        ("options must be a RhinoOptions",
+         lambda: write_3dm(rhino, quads, tube.topology("quads"), options=GlbOptions())),
+        ("rules must be a LayoutRules", lambda: layout_sheets(sheets(tube), rules=wrong)),
+    ]
+    for match, write in cases:
+        with pytest.raises(InputError, match=match):
+            write()
+    assert list(tmp_path.iterdir()) == []
+    assert layout_sheets(sheets(tube), rules=LayoutRules(margin=12.0)).margin == 12.0
+    assert RhinoOptions().version == 0 and PatternOutput().page == "A4"

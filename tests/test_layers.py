@@ -403,6 +403,30 @@ def test_the_registry_of_formats_names_no_module_above_io():
     assert "curvefold.io._formats" in graph["curvefold.figures"]
 
 
+def test_a_format_declared_without_its_writer_is_given_one_by_register_writer():
+    """io declares the guide; figures gives its writer, and only a writer, only once."""
+    from dataclasses import replace
+
+    import pytest
+
+    import curvefold.figures  # noqa: F401  (registers the guide's writer)
+    from curvefold.figures._assembly import write_assembly
+    from curvefold.io._formats import FORMATS, register_writer
+    from curvefold.kernel import InputError, InternalError
+
+    assert FORMATS["assembly"].load_writer() is write_assembly
+    register_writer("assembly", "curvefold.figures._assembly:write_assembly")  # again: the same
+    with pytest.raises(InternalError, match="'assembly' has no writer"):
+        replace(FORMATS["assembly"], writer=None).load_writer()
+    with pytest.raises(InputError, match="name must be a format of the registry"):
+        register_writer("png", "curvefold.figures._plots:save_figure")
+    with pytest.raises(InputError, match="writer must be a function or 'module:function'"):
+        register_writer("assembly", "curvefold.figures._assembly.write_assembly")
+    with pytest.raises(InputError, match="writer of 'assembly' is .* already"):
+        register_writer("assembly", write_assembly)
+    assert FORMATS["assembly"].writer == "curvefold.figures._assembly:write_assembly"
+
+
 def test_imports_up_or_across_the_layers_are_reported(tmp_path):
     _package(tmp_path, BASE | {
         "pkg/kernel/k.py": "def f():\n    from ..geometry.g import x\n",
