@@ -13,7 +13,7 @@ import pytest
 from _cli import run
 from curvefold.figures._assembly import HIGHLIGHT_RGB, assembly_plan, write_assembly
 from curvefold.figures._scene import GROUND_COLOR
-from curvefold.io import layout_pattern, write_pdf
+from curvefold.io import PatternOutput, layout_pattern, write_pdf
 from curvefold.io._tables import rgb8
 from curvefold.vault import Vault
 
@@ -25,7 +25,7 @@ MM = 72 / 25.4
 @pytest.fixture(scope="module")
 def vault():
     structure = Vault.from_design(samples=101, tubes=3).structure
-    return structure, layout_pattern(structure, name="vault", page="A5")
+    return structure, layout_pattern(structure, PatternOutput(name="vault", page="A5"))
 
 
 @pytest.fixture(scope="module")

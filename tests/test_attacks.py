@@ -618,18 +618,29 @@ def test_glb_3dm_and_fold_hold_the_title_on_one_line(tmp_path, small_tube):
     import pygltflib
     import rhino3dm
 
-    from curvefold.io import read_fold, write_3dm, write_glb, write_sheet_fold, write_structure_fold
+    from curvefold.io import (
+        FoldOutput,
+        GlbOptions,
+        RhinoOptions,
+        read_fold,
+        write_3dm,
+        write_glb,
+        write_sheet_fold,
+        write_structure_fold,
+    )
 
     state = small_tube.state().mesh()
-    glb = write_glb(tmp_path / "t.glb", state, metadata={"title": HOSTILE})
+    glb = write_glb(tmp_path / "t.glb", state, options=GlbOptions(metadata={"title": HOSTILE}))
     title = pygltflib.GLTF2().load(str(glb)).asset.extras["curvefold"]["metadata"]["title"]
     _clean(title)
     assert title.startswith("vault v 999 999 999 mtllib") and title.endswith("$\\frac{ %%c \\")  # the text stays
     topology = small_tube.topology("quads")
     quads = topology.mesh(small_tube.state().vertices)
-    model = rhino3dm.File3dm.Read(str(write_3dm(tmp_path / "t.3dm", quads, topology, metadata={"title": HOSTILE})))
+    model = rhino3dm.File3dm.Read(str(write_3dm(tmp_path / "t.3dm", quads, topology,
+                                                options=RhinoOptions(metadata={"title": HOSTILE}))))
     _clean(model.Strings["curvefold:title"])
-    fold = write_structure_fold(tmp_path / "t.fold", small_tube, title=HOSTILE, metadata={"title": HOSTILE})
+    fold = write_structure_fold(tmp_path / "t.fold", small_tube, title=HOSTILE,
+                                output=FoldOutput(metadata={"title": HOSTILE}))
     doc = json.loads(fold.read_text())
     _clean(doc["file_title"])
     _clean(doc["curvefold:metadata"]["title"])
@@ -645,9 +656,11 @@ def test_pattern_pages_show_a_hostile_label_as_text(tmp_path, small_tube):
 
     import ezdxf
 
-    from curvefold.io import write_pattern
+    from curvefold.io import PatternOutput, write_pattern
 
-    files = write_pattern(tmp_path / "p", small_tube, formats=("svg", "dxf", "pdf"), name=HOSTILE)  # "$\frac{" broke mathtext
+    # "$\frac{" broke mathtext
+    files = write_pattern(tmp_path / "p", small_tube, PatternOutput(name=HOSTILE),
+                          formats=("svg", "dxf", "pdf"))
     svg = next(f for f in files if str(f).endswith(".svg"))
     texts = [t.text for t in ET.parse(svg).iter("{http://www.w3.org/2000/svg}text")]
     assert any("<script>" in t for t in texts)  # parsed back as text, not as an element

@@ -11,7 +11,7 @@ from numpy.testing import assert_allclose
 from _browser import chromium_page, served
 from _cli import run
 from curvefold.geometry import choose_sampling
-from curvefold.io import write_3d
+from curvefold.io import ModelOutput, write_3d
 from curvefold.vault import Vault
 
 _THREE_PAGE = """<!doctype html><html><head><meta charset="utf-8">
@@ -62,7 +62,7 @@ def test_three_js_opens_the_glb_at_the_design_state_with_a_node_per_sheet(tmp_pa
     structure = vault.structure
     keep = choose_sampling(structure).keep
     angles = np.linspace(0.0, 90.0, 4)
-    write_3d(tmp_path / "vault", structure, angles, formats=("glb",), keep=keep)
+    write_3d(tmp_path / "vault", structure, angles, ModelOutput(keep=keep), formats=("glb",))
     (tmp_path / "index.html").write_text(_THREE_PAGE)
     with served(tmp_path) as url, chromium_page() as page:
         page.goto(f"{url}/index.html")

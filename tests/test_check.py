@@ -16,7 +16,7 @@ from _cli import run
 from curvefold.analysis._foldcheck import CHECK_SPECS, check_fold
 from curvefold.app import default_design
 from curvefold.app._build import build
-from curvefold.io import write_structure_fold
+from curvefold.io import FoldFile, FoldOutput, write_structure_fold
 
 ANGLES = [0.0, 45.0, 90.0]
 
@@ -26,7 +26,8 @@ def written(tmp_path_factory):
     """A tube FOLD file with the flat, 45° and 90° frames and the design it was built from."""
     design = default_design("tube").overrides(samples=61)
     path = tmp_path_factory.mktemp("check") / "tube.fold"
-    write_structure_fold(path, build(design).structure, fold_angles=ANGLES, design=design.to_dict())
+    write_structure_fold(path, build(design).structure, fold_angles=ANGLES,
+                         output=FoldOutput(design=design.to_dict()))
     return path, json.loads(path.read_text())
 
 
@@ -85,12 +86,14 @@ def test_write_fold_refuses_bad_bonds_and_designs(tmp_path):
     design = default_design("tube").overrides(samples=21)
     structure = build(design).structure
     with pytest.raises(InputError, match="design must be JSON data"):
-        write_structure_fold(tmp_path / "x.fold", structure, design={"when": object()})
+        write_structure_fold(tmp_path / "x.fold", structure,
+                             output=FoldOutput(design={"when": object()}))
     from curvefold.io import to_fold, write_fold
 
     model = to_fold(structure)
     with pytest.raises(InputError, match=r"bonds must be edge indices in \[0, "):
-        write_fold(tmp_path / "x.fold", crease_pattern=model.crease_pattern, folded=model.folded, bonds=[[0, 10**9]])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=model.crease_pattern,
+                                                 folded=model.folded, bonds=[[0, 10**9]]))
     assert not (tmp_path / "x.fold").exists()
 
 
@@ -129,7 +132,8 @@ def test_two_tubes_pulled_apart_break_their_bonds(tmp_path):
     """Tubes glued where they touch: moving the second tube whole keeps every seam closed and
     breaks only the bonds."""
     design = default_design("vault").overrides(samples=41, tubes=2)
-    path = write_structure_fold(tmp_path / "vault.fold", build(design).structure, fold_angles=[90.0], design=design.to_dict())
+    path = write_structure_fold(tmp_path / "vault.fold", build(design).structure,
+                                fold_angles=[90.0], output=FoldOutput(design=design.to_dict()))
     doc = json.loads(path.read_text())
     assert len(doc["curvefold:bonds"]) == 40 and not failing(str(path))
     second = np.unique(np.concatenate([f for f, g in zip(doc["faces_vertices"], doc["faces_curvefold:group"]) if g >= 4]))
@@ -256,7 +260,8 @@ def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):
     """Without the edge kinds every F edge reads as a diagonal; face planarity must look only at
     the fan diagonals that split each quad, and still catch a bent quad."""
     design = default_design("tube").overrides(samples=61)
-    path = write_structure_fold(tmp_path / "quads.fold", build(design).structure, fold_angles=ANGLES, faces="quads")
+    path = write_structure_fold(tmp_path / "quads.fold", build(design).structure,
+                                fold_angles=ANGLES, output=FoldOutput(faces="quads"))
     doc = json.loads(path.read_text())
     for key in [k for k in doc if "curvefold:" in k]:
         del doc[key]

@@ -13,7 +13,16 @@ from _gltf import accessor, target_position, to_gltf
 from _meshes import oblique_motion, strip_motion
 from _node import run_node
 from curvefold.geometry import Mesh
-from curvefold.io import crease_polylines, write_3dm, write_glb, write_obj, write_ply, write_stl
+from curvefold.io import (
+    GlbOptions,
+    RhinoOptions,
+    crease_polylines,
+    write_3dm,
+    write_glb,
+    write_obj,
+    write_ply,
+    write_stl,
+)
 from curvefold.kernel import InputError
 
 
@@ -183,7 +192,7 @@ def test_glb_read_back_by_pygltflib(tmp_path, tube):
     pygltflib = pytest.importorskip("pygltflib")
     K = len(tube.angles_deg)
     write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg,
-              unit="mm", metadata={"panels": 4}, seconds_per_state=0.5)
+              options=GlbOptions(unit="mm", metadata={"panels": 4}, seconds_per_state=0.5))
     _only(tmp_path, "m.glb")
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
@@ -249,8 +258,8 @@ def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_pa
     parts = [("tube 1 · sheet A", np.arange(half), np.arange(E)), ("tube 1 · sheet B", np.arange(half, F), [])]
     mode = np.zeros_like(mesh.vertices_coords)
     mode[:, 2] = 1.0  # one model unit up
-    write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", parts=parts,
-              morph_targets={"mode 1": mode})
+    write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg,
+              morph_targets={"mode 1": mode}, options=GlbOptions(unit="mm", parts=parts))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
     assert [n.name for n in gltf.nodes] == [m.name for m in gltf.meshes] == ["tube 1 · sheet A", "tube 1 · sheet B"]
@@ -271,12 +280,15 @@ def test_glb_has_a_named_node_and_mesh_per_part_and_further_morph_targets(tmp_pa
     with pytest.raises(InputError, match=r"morph_targets\['bad'\] must be finite displacements of shape"):
         write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, morph_targets={"bad": mode[:2]})
     with pytest.raises(InputError, match=r"parts\[0\] must be a name and indices"):
-        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords, parts=[("x", [F], [])])
+        write_glb(tmp_path / "n.glb", mesh, coords=tube.coords,
+                  options=GlbOptions(parts=[("x", [F], [])]))
 
 
 def test_glb_base_state_can_be_any_state(tmp_path, tube):
     pygltflib = pytest.importorskip("pygltflib")
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, angles_deg=tube.angles_deg, unit="mm", base_state=0)
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords,
+              angles_deg=tube.angles_deg,
+              base_state=0, options=GlbOptions(unit="mm"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     blob = gltf.binary_blob()
     prim = gltf.meshes[0].primitives[0]
@@ -291,7 +303,7 @@ def test_glb_base_state_can_be_any_state(tmp_path, tube):
 def test_glb_single_state_has_no_animation(tmp_path):
     pygltflib = pytest.importorskip("pygltflib")
     motion = oblique_motion()
-    write_glb(tmp_path / "m.glb", motion.state(2), unit="m", up="y")
+    write_glb(tmp_path / "m.glb", motion.state(2), options=GlbOptions(unit="m", up="y"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     assert gltf.animations == []
     assert all(p.targets in (None, []) for m in gltf.meshes for p in m.primitives)
@@ -306,7 +318,8 @@ def test_glb_single_state_has_no_animation(tmp_path):
 @pytest.mark.parametrize("states", ["motion", "single"])
 def test_glb_khronos_validator(tmp_path, tube, states):
     coords = tube.coords if states == "motion" else None
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=coords, unit="mm", interpolation="STEP")
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=coords,
+              options=GlbOptions(unit="mm", interpolation="STEP"))
     report = _validate_gltf(tmp_path / "m.glb")
     assert report["errors"] == 0, report["messages"]
     assert report["warnings"] == 0, report["messages"]
@@ -319,7 +332,8 @@ def test_glb_khronos_validator(tmp_path, tube, states):
 def test_khronos_validator_reports_errors(tmp_path, tube):
     """The validator check can fail: a GLB with a wrong POSITION max is reported."""
     pygltflib = pytest.importorskip("pygltflib")
-    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords, unit="mm")
+    write_glb(tmp_path / "m.glb", tube.crease_pattern, coords=tube.coords,
+              options=GlbOptions(unit="mm"))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "m.glb"))
     gltf.accessors[gltf.meshes[0].primitives[0].attributes.POSITION].max = [9.0, 9.0, 9.0]
     gltf.save_binary(str(tmp_path / "broken.glb"))
@@ -334,12 +348,12 @@ def test_khronos_validator_reports_errors(tmp_path, tube):
         (dict(coords=np.zeros((2, 3, 3))), r"coords must have shape \(K, 15, 3\)"),
         (dict(coords=np.full((1, 15, 3), np.inf)), "finite"),
         (dict(angles_deg=[1, 2]), r"angles_deg must have shape \(1,\)"),
-        (dict(unit="furlong"), "give scale="),
-        (dict(scale=-1.0), "scale must be a positive"),
-        (dict(seconds_per_state=0.0), "seconds_per_state"),
-        (dict(interpolation="CUBICSPLINE"), "interpolation"),
-        (dict(up="x"), "up must be"),
-        (dict(crease_kinds=("ruling",)), "crease_kinds"),
+        (dict(options=GlbOptions(unit="furlong")), "give scale="),
+        (dict(options=GlbOptions(scale=-1.0)), "scale must be a positive"),
+        (dict(options=GlbOptions(seconds_per_state=0.0)), "seconds_per_state"),
+        (dict(options=GlbOptions(interpolation="CUBICSPLINE")), "interpolation"),
+        (dict(options=GlbOptions(up="x")), "up must be"),
+        (dict(options=GlbOptions(crease_kinds=("ruling",))), "crease_kinds"),
     ],
 )
 def test_glb_rejects_bad_input(tmp_path, tube, kwargs, match):
@@ -358,8 +372,9 @@ def test_glb_is_what_pygltflib_writes(tmp_path, tube):
 
     mesh = tube.crease_pattern
     parts = [("tube 1 · sheet A", np.arange(4), np.arange(len(mesh.edges_vertices))), ("tube 1 · sheet B", np.arange(4, len(mesh.faces_vertices)), [])]
-    data = write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg, parts=parts, metadata={"panels": 4},
-                     morph_targets={"up": np.ones((len(mesh.vertices_coords), 3))}).read_bytes()
+    data = write_glb(tmp_path / "m.glb", mesh, coords=tube.coords, angles_deg=tube.angles_deg,
+                     morph_targets={"up": np.ones((len(mesh.vertices_coords), 3))},
+                     options=GlbOptions(parts=parts, metadata={"panels": 4})).read_bytes()
     assert rewritten(data) == data
     # damaged: an accessor without the byteOffset pygltflib writes
     length = int.from_bytes(data[12:16], "little")
@@ -412,7 +427,8 @@ def test_3dm_read_back_by_rhino3dm(tmp_path, real_tube):
     """Sheets as quad meshes, strips as ruled NURBS surfaces, creases as NURBS curves through the samples."""
     rhino3dm = pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube
-    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", metadata={"length": 2.0, "name": "tube"})
+    options = RhinoOptions(unit="mm", metadata={"length": 2.0, "name": "tube"})
+    write_3dm(tmp_path / "m.3dm", mesh, topology, options=options)
     _only(tmp_path, "m.3dm")
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     assert [layer.Name for layer in model.Layers] == ["Sheets", "Strips", "Fold", "Seam", "Boundary"]
@@ -471,7 +487,7 @@ def test_3dm_groups_user_text_and_named_views(tmp_path, real_tube):
     kind and fold angle; three named views that frame the model."""
     rhino3dm = pytest.importorskip("rhino3dm")
     mesh, topology, structure = real_tube
-    write_3dm(tmp_path / "m.3dm", mesh, topology, unit="mm", fold_angle=90.0)
+    write_3dm(tmp_path / "m.3dm", mesh, topology, fold_angle=90.0, options=RhinoOptions(unit="mm"))
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     groups = {g.Name: g.Index for g in model.Groups}
     assert set(groups) == {"tube 1", "tube 1 · sheet A", "tube 1 · sheet B"}
@@ -503,14 +519,15 @@ def test_3dm_lays_the_crease_pattern_at_its_printed_size_on_its_layer(tmp_path):
     rhino3dm = pytest.importorskip("rhino3dm")
     from shapely.geometry import Polygon
 
-    from curvefold.io import layout_pattern, write_3d
+    from curvefold.io import ModelOutput, PatternOutput, layout_pattern, write_3d
     from curvefold.io._cutters import layer_name
     from curvefold.io._rhino import PATTERN_LAYER
     from curvefold.vault import Vault
 
     structure = Vault.from_design(samples=101, tubes=2).structure
-    layout = layout_pattern(structure, name="vault", cutter="laser")
-    (path,) = write_3d(tmp_path / "v", structure, formats=("3dm",), pattern=layout)
+    layout = layout_pattern(structure, PatternOutput(name="vault", cutter="laser"))
+    (path,) = write_3d(tmp_path / "v", structure, output=ModelOutput(pattern=layout),
+                       formats=("3dm",))
     model = rhino3dm.File3dm.Read(str(path))
     paths = {layer.Index: layer.FullPath for layer in model.Layers}
     assert {f"{PATTERN_LAYER}::{layer_name(k)}" for k in ("cut", "mountain", "seam", "glue", "labels")} <= set(paths.values())
@@ -533,7 +550,8 @@ def test_glb_parts_of_a_polygon_mesh_hold_their_polygons_triangles(tmp_path, rea
     """Parts name the mesh's own faces; on a quad mesh each part gets both triangles of each of its quads."""
     pygltflib = pytest.importorskip("pygltflib")
     mesh, topology, _ = real_tube
-    write_glb(tmp_path / "q.glb", mesh, unit="m", parts=[(s.label, s.faces, s.edges) for s in topology.sheets])
+    parts = [(s.label, s.faces, s.edges) for s in topology.sheets]
+    write_glb(tmp_path / "q.glb", mesh, options=GlbOptions(unit="m", parts=parts))
     gltf = pygltflib.GLTF2.load(str(tmp_path / "q.glb"))
     blob = gltf.binary_blob()
     for sheet, m in zip(topology.sheets, gltf.meshes):
@@ -556,7 +574,7 @@ def test_3dm_refuses_a_mesh_of_other_faces(tmp_path, real_tube):
 def test_3dm_unit_system(tmp_path, real_tube, unit, system):
     """Rhino needs a unit system: the model unit is taken as one metre, as in every file."""
     rhino3dm = pytest.importorskip("rhino3dm")
-    write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit=unit)
+    write_3dm(tmp_path / "m.3dm", *real_tube[:2], options=RhinoOptions(unit=unit))
     model = rhino3dm.File3dm.Read(str(tmp_path / "m.3dm"))
     assert model.Settings.ModelUnitSystem == getattr(rhino3dm.UnitSystem, system)
     assert model.Strings["curvefold:unit"] == unit
@@ -565,7 +583,7 @@ def test_3dm_unit_system(tmp_path, real_tube, unit, system):
 def test_3dm_rejects_unknown_unit(tmp_path, real_tube):
     pytest.importorskip("rhino3dm")
     with pytest.raises(InputError, match="unit must be one of"):
-        write_3dm(tmp_path / "m.3dm", *real_tube[:2], unit="furlong")
+        write_3dm(tmp_path / "m.3dm", *real_tube[:2], options=RhinoOptions(unit="furlong"))
     with pytest.raises(InputError, match=r"^degree must be 1 or 3, got 2$"):
         write_3dm(tmp_path / "m.3dm", *real_tube[:2], degree=2)
     assert list(tmp_path.iterdir()) == []
@@ -607,14 +625,14 @@ _WRITE_ALL = """
 import sys, tempfile, pathlib
 import numpy as np
 from curvefold import Crease, Lattice, SpaceCurve, Structure
-from curvefold.io import write_3d, write_sheet_fold, write_structure_fold
+from curvefold.io import FoldOutput, ModelOutput, write_3d, write_sheet_fold, write_structure_fold
 from curvefold.geometry._sheets import sheets
 structure = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)), 0.2, 0.15))
 keep = [np.arange(0, 13, 2)]
 before = set(sys.modules)
 folder = pathlib.Path(tempfile.mkdtemp())
-write_3d(folder / "m", structure, keep=keep)
-write_structure_fold(folder / "m.fold", structure, fold_angles=[0, 45, 90], keep=keep)
+write_3d(folder / "m", structure, output=ModelOutput(keep=keep))
+write_structure_fold(folder / "m.fold", structure, FoldOutput(keep=keep), fold_angles=[0, 45, 90])
 for k, sheet in enumerate(sheets(structure, keep=keep)):
     write_sheet_fold(folder / f"s{k}.fold", sheet.mesh)
 {probe}

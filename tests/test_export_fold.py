@@ -15,7 +15,7 @@ import curvefold
 from _meshes import assert_written, measured_fold_angles, oblique_motion, strip_motion, two_sheet_tube
 from _node import run_node
 from curvefold.geometry import Mesh
-from curvefold.io import fold_assignments, read_fold, write_fold, write_sheet_fold
+from curvefold.io import FoldFile, fold_assignments, read_fold, write_fold, write_sheet_fold
 from curvefold.io._fold import ANGLE_DECIMALS, COORDINATE_RTOL
 from curvefold.kernel import InputError
 
@@ -30,13 +30,15 @@ def _write_tube(path: Path, **kw) -> tuple:
         seam_partners=motion.seam_partners,
     )
     kwargs.update(kw)
-    write_fold(path, **kwargs)
+    title = kwargs.pop("title", "")
+    write_fold(path, FoldFile(**kwargs), title=title)
     return motion, json.loads(path.read_text())
 
 
 def test_numbers_are_written_to_their_tolerance_and_no_more(tmp_path):
     motion = oblique_motion()
-    write_fold(tmp_path / "m.fold", crease_pattern=motion.crease_pattern, folded=motion.folded)
+    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=motion.crease_pattern,
+                                             folded=motion.folded))
     text = (tmp_path / "m.fold").read_text()
     doc = json.loads(text)
     errors = []
@@ -113,8 +115,9 @@ def _assert_same_mesh(a: Mesh, b: Mesh, *, coords=True):
 def test_round_trip(tmp_path, make):
     motion = make()
     path = tmp_path / "m.fold"
-    write_fold(path, crease_pattern=motion.crease_pattern, folded=motion.folded, metadata={"a": 1.25, "ok": True},
-               unit="m", seam_partners=motion.seam_partners)
+    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded,
+                              metadata={"a": 1.25, "ok": True}, unit="m",
+                              seam_partners=motion.seam_partners))
     back = read_fold(path)
     cp = motion.crease_pattern
     _assert_same_mesh(back.crease_pattern, cp)
@@ -136,7 +139,9 @@ def test_round_trip(tmp_path, make):
 @pytest.mark.parametrize("make", [lambda: strip_motion(4, 2, seam=True), two_sheet_tube], ids=["tube", "two-sheets"])
 def test_round_trip_seams_close_in_the_tube(tmp_path, make):
     motion = make()
-    write_fold(tmp_path / "tube.fold", crease_pattern=motion.crease_pattern, folded=motion.folded, seam_partners=motion.seam_partners)
+    write_fold(tmp_path / "tube.fold", FoldFile(crease_pattern=motion.crease_pattern,
+                                                folded=motion.folded,
+                                                seam_partners=motion.seam_partners))
     back = read_fold(tmp_path / "tube.fold")
     assert len(back.seam_partners) == len(motion.seam_partners) > 0
     _, closed = back.folded[-1]
@@ -204,7 +209,15 @@ def _replace(mesh: Mesh, **kw) -> Mesh:
 def test_write_rejects_folded_crease_pattern(tmp_path):
     m = strip_motion()
     with pytest.raises(InputError, match="crease_pattern must be flat"):
-        write_fold(tmp_path / "x.fold", crease_pattern=m.state(2), folded=[])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.state(2), folded=[]))
+
+
+def test_write_rejects_a_model_without_crease_pattern(tmp_path):
+    """A FoldFile read from a file of folded frames only has no crease pattern to write."""
+    m = strip_motion()
+    with pytest.raises(InputError, match="the model's crease_pattern must be a Mesh, got NoneType"):
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=None, folded=m.folded))
+    assert list(tmp_path.iterdir()) == []
 
 
 def _mirrored(motion):
@@ -216,7 +229,7 @@ def _mirrored(motion):
 def test_clockwise_sheet_is_mirrored_back(tmp_path):
     motion = two_sheet_tube()
     clockwise = _mirrored(motion)
-    write_fold(tmp_path / "m.fold", crease_pattern=clockwise, folded=motion.folded)
+    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=clockwise, folded=motion.folded))
     back = read_fold(tmp_path / "m.fold").crease_pattern
     assert (back.face_normals()[:, 2] > 0).all()
     # each sheet is mirrored in place, about its own centre line: same place, same lengths
@@ -229,7 +242,8 @@ def test_clockwise_sheet_is_mirrored_back(tmp_path):
 def test_clockwise_sheet_rejected_without_mirroring(tmp_path):
     motion = strip_motion()
     with pytest.raises(InputError, match="counter-clockwise"):
-        write_fold(tmp_path / "x.fold", crease_pattern=_mirrored(motion), folded=[], mirror_clockwise=False)
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_mirrored(motion), folded=[]),
+                   mirror_clockwise=False)
 
 
 def test_sheet_with_both_orientations_rejected(tmp_path):
@@ -237,13 +251,15 @@ def test_sheet_with_both_orientations_rejected(tmp_path):
     faces = cp.faces_vertices.copy()
     faces[0] = faces[0][::-1]
     with pytest.raises(InputError, match="both orientations"):
-        write_fold(tmp_path / "x.fold", crease_pattern=_replace(cp, faces_vertices=faces), folded=[])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_replace(cp, faces_vertices=faces),
+                                                 folded=[]))
 
 
 def test_write_rejects_topology_mismatch(tmp_path):
     a, b = strip_motion(2), strip_motion(3)
     with pytest.raises(InputError, match=r"folded\[0\].*differs"):
-        write_fold(tmp_path / "x.fold", crease_pattern=a.crease_pattern, folded=[("other", b.state(0))])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=a.crease_pattern,
+                                                 folded=[("other", b.state(0))]))
 
 
 def test_write_rejects_crease_with_one_face(tmp_path):
@@ -252,7 +268,8 @@ def test_write_rejects_crease_with_one_face(tmp_path):
     kinds = cp.edges_kind.copy()
     kinds[np.flatnonzero(kinds == "boundary")[0]] = "fold"
     with pytest.raises(InputError, match="has 1 faces, expected 2"):
-        write_fold(tmp_path / "x.fold", crease_pattern=_replace(cp, edges_kind=kinds), folded=[])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=_replace(cp, edges_kind=kinds),
+                                                 folded=[]))
 
 
 def test_write_rejects_missing_edge(tmp_path):
@@ -261,7 +278,7 @@ def test_write_rejects_missing_edge(tmp_path):
     short = _replace(cp, edges_vertices=cp.edges_vertices[keep], edges_assignment=cp.edges_assignment[keep],
                      edges_foldAngle=cp.edges_foldAngle[keep], edges_kind=cp.edges_kind[keep])
     with pytest.raises(InputError, match="is not an edge"):
-        write_fold(tmp_path / "x.fold", crease_pattern=short, folded=[])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=short, folded=[]))
 
 
 @pytest.mark.parametrize(
@@ -271,21 +288,24 @@ def test_write_rejects_missing_edge(tmp_path):
 def test_write_rejects_bad_seam_partners(tmp_path, partners, match):
     m = strip_motion(4, 2, seam=True)
     with pytest.raises(InputError, match=match):
-        write_fold(tmp_path / "x.fold", crease_pattern=m.crease_pattern, folded=[], seam_partners=partners)
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[],
+                                                 seam_partners=partners))
 
 
 @pytest.mark.parametrize(("metadata", "match"), [({"a": float("nan")}, "finite"), ({"a": [1]}, "number or a str"), ({1: 2}, "keys must be str")])
 def test_write_rejects_bad_metadata(tmp_path, metadata, match):
     m = strip_motion()
     with pytest.raises(InputError, match=match):
-        write_fold(tmp_path / "x.fold", crease_pattern=m.crease_pattern, folded=[], metadata=metadata)
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern, folded=[],
+                                                 metadata=metadata))
     assert not list(tmp_path.iterdir())
 
 
 def test_write_rejects_non_pair_frame(tmp_path):
     m = strip_motion()
     with pytest.raises(InputError, match=r"folded\[0\] must be a \(title, Mesh\) pair"):
-        write_fold(tmp_path / "x.fold", crease_pattern=m.crease_pattern, folded=[m.state(1)])
+        write_fold(tmp_path / "x.fold", FoldFile(crease_pattern=m.crease_pattern,
+                                                 folded=[m.state(1)]))
 
 
 def test_sheet_rejects_welded_seam(tmp_path):
@@ -404,7 +424,7 @@ def test_failed_write_leaves_no_file_and_keeps_old(tmp_path, monkeypatch):
 
     monkeypatch.setattr(pathlib.Path, "write_bytes", broken)
     with pytest.raises(OSError, match="disk full"):
-        write_fold(target, crease_pattern=m.crease_pattern, folded=m.folded)
+        write_fold(target, FoldFile(crease_pattern=m.crease_pattern, folded=m.folded))
     with pytest.raises(OSError, match="disk full"):
         write_sheet_fold(tmp_path / "new.fold", m.crease_pattern)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["m.fold"]
@@ -419,7 +439,8 @@ def test_failed_write_leaves_no_file_and_keeps_old(tmp_path, monkeypatch):
 def test_node_fold_and_rabbit_ear(tmp_path, make):
     motion = make()
     path = tmp_path / "m.fold"
-    write_fold(path, crease_pattern=motion.crease_pattern, folded=motion.folded, seam_partners=motion.seam_partners)
+    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded,
+                              seam_partners=motion.seam_partners))
     report = run_node("check_fold.mjs", str(path))
     fold, ear = report["fold"], report["rabbit_ear"]
     assert fold["same_vertex_sets"], fold
@@ -436,7 +457,8 @@ def test_node_fold_and_rabbit_ear(tmp_path, make):
 @pytest.mark.node
 def test_node_mirrored_crease_pattern_still_folds_to_the_frames(tmp_path):
     motion = oblique_motion()
-    write_fold(tmp_path / "m.fold", crease_pattern=_mirrored(motion), folded=motion.folded)
+    write_fold(tmp_path / "m.fold", FoldFile(crease_pattern=_mirrored(motion),
+                                             folded=motion.folded))
     report = run_node("check_fold.mjs", str(tmp_path / "m.fold"))
     assert report["rabbit_ear"]["faces_cw"] == 0
     assert max(f["max_distance"] for f in report["rabbit_ear"]["frames"]) < 1e-9
@@ -447,7 +469,7 @@ def test_node_rabbit_ear_detects_wrong_fold_sign(tmp_path):
     """The folding check can fail: flipping valley/mountain of a chiral sheet moves it far away."""
     motion = oblique_motion()
     path = tmp_path / "m.fold"
-    write_fold(path, crease_pattern=motion.crease_pattern, folded=motion.folded)
+    write_fold(path, FoldFile(crease_pattern=motion.crease_pattern, folded=motion.folded))
     doc = json.loads(path.read_text())
     for frame in doc["file_frames"]:
         frame["edges_foldAngle"] = [-a for a in frame["edges_foldAngle"]]

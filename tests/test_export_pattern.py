@@ -31,10 +31,12 @@ from curvefold.io import _labels as labels
 from curvefold.io import _layout as layout_module
 from curvefold.io import _legend as legend
 from curvefold.io import _pattern as pattern
+from curvefold.io import _svg as svg
 from curvefold.io import _pdf as pdf
 from curvefold.io import _planar as planar
 from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, layer_name
 from curvefold.io._pattern import DEFAULT_LAYERS, LAYERS, LEGEND, layout_sheets, seam_name, write_dxf, write_pdf, write_svg
+from curvefold.io._layout import LayoutRules
 from curvefold.io._planar import polyline_segments
 from curvefold.io._tabs import TAB_WIDTH_STEPS, place_tabs, tab_fits, tab_outline, tab_outlines, tab_pieces, tabs_fit
 from curvefold.kernel import InputError
@@ -304,8 +306,8 @@ def test_xml_escapes_are_the_standard_librarys():
     from xml.sax.saxutils import escape, quoteattr
 
     for text in ["", "tube 1", "a < b & c > d", 'say "hi"', "it's", "it's \"x\"", "tab\tnew\nline\r", "&amp;"]:
-        assert pattern._escape(text) == escape(text) and pattern._quoteattr(text) == quoteattr(text)
-    assert pattern._quoteattr("it's") != quoteattr("its")
+        assert svg._escape(text) == escape(text) and svg._quoteattr(text) == quoteattr(text)
+    assert svg._quoteattr("it's") != quoteattr("its")
 
 
 def test_each_sheet_has_one_closed_outline_around_sheet_and_tabs(tube, tube_layout):
@@ -504,9 +506,9 @@ def test_tight_concave_seams_get_narrower_tabs_or_none_and_a_note(inner, note, f
         (dict(units="furlong"), "units must be one of"),
         (dict(scale=1.0, target_size=100.0), "not both"),
         (dict(scale=-1.0), "scale must be positive"),
-        (dict(tab_angle=95.0), "tab_angle must be in"),
-        (dict(margin=200.0), "leave no room"),
-        (dict(tab_width=float("nan")), "tab_width must be positive"),
+        (dict(rules=LayoutRules(tab_angle=95.0)), "tab_angle must be in"),
+        (dict(rules=LayoutRules(margin=200.0)), "leave no room"),
+        (dict(rules=LayoutRules(tab_width=float("nan"))), "tab_width must be positive"),
     ],
 )
 def test_invalid_layout_arguments(tube, kwargs, match):

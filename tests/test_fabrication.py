@@ -32,6 +32,9 @@ from curvefold.geometry import fold_angles
 from curvefold.geometry._sheets import Bond, PatternSheet, bonds, flat_plane, folding_motion, sheet_vertices, sheets, unroll_strip
 from curvefold.io import (
     MODEL_FORMATS,
+    FoldOutput,
+    ModelOutput,
+    PatternOutput,
     layout_pattern,
     read_fold,
     to_fold,
@@ -324,7 +327,8 @@ def test_folding_motion_is_the_states(stack):
 
 
 def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
-    model = to_fold(stack, fold_angles=[0.0, 60.0, 90.0], unit="m", metadata={"name": "stack"})
+    model = to_fold(stack, FoldOutput(unit="m", metadata={"name": "stack"}),
+                    fold_angles=[0.0, 60.0, 90.0])
     cp = model.crease_pattern
     parts, maps = sheets(stack), sheet_vertices(stack)
     source = np.concatenate(maps)
@@ -364,8 +368,9 @@ def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
 
 
 def test_fold_file_round_trip(tmp_path, tube):
-    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0], unit="mm", title="helix tube")
-    model = to_fold(tube, fold_angles=[30.0, 90.0], unit="mm")
+    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0],
+                                title="helix tube", output=FoldOutput(unit="mm"))
+    model = to_fold(tube, fold_angles=[30.0, 90.0], output=FoldOutput(unit="mm"))
     back = read_fold(path)
     doc = json.loads(path.read_text())
     assert doc["file_title"] == "helix tube" and doc["frame_unit"] == "mm"
@@ -394,9 +399,9 @@ def test_fold_rejects_bad_input(tube):
     with pytest.raises(InputError, match=r"fold_angle must be in \(0°, 180°\)"):
         sheets(tube, fold_angle=0.0)
     with pytest.raises(InputError, match="unit must be"):
-        to_fold(tube, unit="")
+        to_fold(tube, output=FoldOutput(unit=""))
     with pytest.raises(InputError, match="metadata"):
-        to_fold(tube, metadata={"bad": [1, 2]})
+        to_fold(tube, output=FoldOutput(metadata={"bad": [1, 2]}))
 
 
 @pytest.mark.node
@@ -474,14 +479,14 @@ def test_default_scale_is_plain_and_fits(stack, block):
     # the largest sheet fills a good part of the page
     biggest = max(np.ptp(s.bounds(), axis=0).max() for s in layout_pattern(stack).sheets())
     assert biggest > 0.5 * (297 - 20)
-    fixed = layout_pattern(stack, scale=30.0)
+    fixed = layout_pattern(stack, PatternOutput(scale=30.0))
     assert fixed.scale == 30.0
 
 
 @pytest.fixture(scope="module")
 def stack_pattern(tmp_path_factory, stack):
     folder = tmp_path_factory.mktemp("pattern")
-    return folder, write_pattern(folder / "stack", stack, name="vault", rulings=True)
+    return folder, write_pattern(folder / "stack", stack, PatternOutput(name="vault", rulings=True))
 
 
 def test_write_pattern_files(stack_pattern):
@@ -530,7 +535,8 @@ def test_pattern_pdf_has_one_page_per_layout_page(stack_pattern):
 
 
 def test_write_pattern_options(tmp_path, tube):
-    (svg,) = write_pattern(tmp_path / "tube", tube, formats=("svg",), glue_tabs=False, page="A3")
+    (svg,) = write_pattern(tmp_path / "tube", tube, PatternOutput(glue_tabs=False, page="A3"),
+                           formats=("svg",))
     assert svg.name == "tube.svg" and sorted(p.name for p in tmp_path.iterdir()) == ["tube.svg"]
     text = svg.read_text()
     assert 'width="297mm"' in text and "layer-rulings" not in text
@@ -545,7 +551,8 @@ def test_write_pattern_options(tmp_path, tube):
 def test_write_3d_every_format(tmp_path, stack):
     pygltflib = pytest.importorskip("pygltflib")
     rhino3dm = pytest.importorskip("rhino3dm")
-    paths = write_3d(tmp_path / "stack", stack, [0.0, 30.0, 60.0, 90.0], unit="mm", metadata={"name": "stack"}, print_unit="cm")
+    output = ModelOutput(unit="mm", metadata={"name": "stack"}, print_unit="cm")
+    paths = write_3d(tmp_path / "stack", stack, [0.0, 30.0, 60.0, 90.0], output)
     assert [p.suffix for p in paths] == [f".{f}" for f in MODEL_FORMATS]
     mesh = stack.state().mesh()
     gltf = pygltflib.GLTF2.load(str(tmp_path / "stack.glb"))
@@ -596,7 +603,7 @@ def test_glb_first_keyframe_is_the_design_state_of_every_sheet(tmp_path, stack):
 
 @pytest.mark.node
 def test_glb_of_the_folding_motion_passes_the_khronos_validator(tmp_path, tube):
-    (path,) = write_3d(tmp_path / "tube", tube, formats=("glb",), unit="m")
+    (path,) = write_3d(tmp_path / "tube", tube, output=ModelOutput(unit="m"), formats=("glb",))
     report = run_node("validate_gltf.mjs", str(path))
     assert report["errors"] == 0 and report["warnings"] == 0, report["messages"]
     assert report["info"]["hasMorphTargets"] and report["info"]["animationCount"] == 1
@@ -609,3 +616,34 @@ def test_write_3d_rejects_bad_input(tmp_path, tube):
     with pytest.raises(InputError, match="fold_angles"):
         write_3d(tmp_path / "x", tube, [0.0, 200.0])
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_writers_take_their_values_and_refuse_anything_else(tmp_path, tube):
+    """A writer's options are one value; a value of another writer, or a bare mapping, is refused by
+    name before anything is written (the keywords it replaced would otherwise be lost silently)."""
+    from curvefold.io import GlbOptions, RhinoOptions, write_3dm, write_glb
+    from curvefold.io._layout import LayoutRules, layout_sheets
+    from curvefold.io._single_fold import layout_single_fold
+
+    mesh = tube.state().mesh()
+    quads = tube.state().mesh(faces="quads")
+    wrong = {"page": "A3"}
+    glb, rhino = tmp_path / "x.glb", tmp_path / "x.3dm"
+    cases = [
+        ("output must be a PatternOutput", lambda: write_pattern(tmp_path / "x", tube, wrong)),
+        ("output must be a PatternOutput", lambda: layout_pattern(tube, ModelOutput())),
+        ("output must be a PatternOutput", lambda: layout_single_fold(None, wrong)),
+        ("output must be a ModelOutput", lambda: write_3d(tmp_path / "x", tube, None, wrong)),
+        ("output must be a FoldOutput", lambda: to_fold(tube, ModelOutput())),
+        ("output must be a FoldOutput", lambda: write_structure_fold(tmp_path / "x", tube, wrong)),
+        ("options must be a GlbOptions", lambda: write_glb(glb, mesh, options=wrong)),
+        ("options must be a RhinoOptions",
+         lambda: write_3dm(rhino, quads, tube.topology("quads"), options=GlbOptions())),
+        ("rules must be a LayoutRules", lambda: layout_sheets(sheets(tube), rules=wrong)),
+    ]
+    for match, write in cases:
+        with pytest.raises(InputError, match=match):
+            write()
+    assert list(tmp_path.iterdir()) == []
+    assert layout_sheets(sheets(tube), rules=LayoutRules(margin=12.0)).margin == 12.0
+    assert RhinoOptions().version == 0 and PatternOutput().page == "A4"

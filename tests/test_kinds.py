@@ -19,7 +19,7 @@ from numpy.testing import assert_array_equal
 from curvefold import Crease, Lattice, SpaceCurve, Structure
 from curvefold.analysis import analyse_fold, certify, check_fold
 from curvefold.geometry import FoldedCrease, FramedCurve, PanelLattice, StructureLattice, choose_sampling
-from curvefold.io import to_fold, write_3d, write_structure_fold
+from curvefold.io import FoldOutput, to_fold, write_3d, write_structure_fold
 
 
 @dataclass(frozen=True)
@@ -117,7 +117,8 @@ def test_a_third_kind_is_built_sampled_and_written(tmp_path, panels, boards):
     sampling = choose_sampling(boards)  # not thinnable: every vertex
     assert [k.tolist() for k in sampling.keep] == [list(range(13))]
 
-    path = write_structure_fold(tmp_path / "boards.fold", boards, fold_angles=[0.0, 45.0, 90.0], keep=sampling.keep)
+    path = write_structure_fold(tmp_path / "boards.fold", boards, fold_angles=[0.0, 45.0, 90.0],
+                                output=FoldOutput(keep=sampling.keep))
     assert check_fold(path).ok
     assert [m.dof for m in analyse_fold(path)][1:] == [1, 1]  # rigid panels, one internal degree of freedom folded
     model = to_fold(boards)

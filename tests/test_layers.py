@@ -2,7 +2,10 @@
 
 Every module of ``src/curvefold`` is read with :mod:`ast` (imports inside functions and
 ``TYPE_CHECKING`` blocks included, since they are dependencies all the same) and every
-import of a curvefold module becomes an edge of a graph. The layers, from the ground up::
+import of a curvefold module becomes an edge of a graph. So does a module named by a
+string, which is imported all the same when the string is used: a ``"package.module"`` or
+``"package.module:function"`` literal, and the literal argument of
+``importlib.import_module`` or ``__import__``. The layers, from the ground up::
 
     kernel < geometry < {vault, io} < analysis < figures < app
 
@@ -25,6 +28,7 @@ And no module is over :data:`MAX_LINES` lines.
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src"
@@ -83,6 +87,15 @@ def imports(root: Path, package: str) -> dict[str, dict[str, int]]:
                     base = node.module or ""
                 # "from a import b" imports module a.b when there is one, else names of a
                 targets = [f"{base}.{alias.name}" if f"{base}.{alias.name}" in names else base for alias in node.names]
+            elif isinstance(node, ast.Call) and _imports_by_name(node):
+                literal = node.args[0].value  # type: ignore[attr-defined]
+                targets = [_absolute(literal, name, is_package)]
+            elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+                # a module named by a string, on its own or with an attribute: "a.b" or "a.b:f"
+                named = node.value.partition(":")[0] if _QUALIFIED.fullmatch(node.value) else None
+                if named not in names:
+                    continue
+                targets = [named]
             else:
                 continue
             for target in targets:
@@ -93,6 +106,31 @@ def imports(root: Path, package: str) -> dict[str, dict[str, int]]:
                     edges[target] = min(edges.get(target, node.lineno), node.lineno)
         graph[name] = edges
     return graph
+
+
+#: A dotted name, optionally with an attribute after a colon: ``"a.b.c"``, ``"a.b:f"``.
+_QUALIFIED = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+(:[A-Za-z_]\w*(\.[A-Za-z_]\w*)*)?")
+
+
+def _imports_by_name(node: ast.Call) -> bool:
+    """Whether a call is ``importlib.import_module("...")``, ``import_module("...")`` or
+    ``__import__("...")``."""
+    func = node.func
+    called = (func.id if isinstance(func, ast.Name)
+              else func.attr if isinstance(func, ast.Attribute) else "")
+    return (called in ("import_module", "__import__") and bool(node.args)
+            and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str))
+
+
+def _absolute(target: str, name: str, is_package: bool) -> str:
+    """A module name given to ``import_module`` from module ``name``: relative (``".x"``) to its
+    package."""
+    level = len(target) - len(target.lstrip("."))
+    if not level:
+        return target
+    here = name.split(".") if is_package else name.split(".")[:-1]
+    rest = target[level:]
+    return ".".join(here[: len(here) - level + 1] + ([rest] if rest else []))
 
 
 def layer_of(name: str) -> str | None:
@@ -325,6 +363,68 @@ def test_a_cycle_is_reported_with_its_edges(tmp_path):
     assert graph["pkg.geometry.b"] == {"pkg.geometry.c": 2}
     assert cycles(graph) == [["pkg.geometry.a", "pkg.geometry.b", "pkg.geometry.c", "pkg.geometry.a"]]
     assert upward(graph) == []
+
+
+def test_modules_named_by_strings_up_or_across_the_layers_are_reported(tmp_path):
+    _package(tmp_path, BASE | {
+        # "module:function" in a registry
+        "pkg/io/w.py": 'REGISTRY = {"guide": "pkg.figures.guide:write"}\n',
+        "pkg/io/r.py": ("import importlib\n"
+                        "def f():\n    return importlib.import_module('pkg.app.cli')\n"),
+        "pkg/vault/v.py": ("from importlib import import_module\n"
+                           "m = import_module('..analysis.m', __package__)\n"),
+        "pkg/geometry/g.py": "x = __import__('pkg.vault.v')\n",
+        "pkg/figures/guide.py": "def write(): ...\n",
+        # a module's name on its own
+        "pkg/analysis/m.py": "MODULES = ('pkg.io.w', 'pkg.figures')\n",
+        "pkg/app/a.py": ('"""See pkg.figures.guide:write."""\n'  # prose, not a name
+                         'NAMES = ("pkg.io.w:REGISTRY", "pkg.kernel", "pkg.logs",\n'
+                         '         "pkg.io.nothing:f", "pkg.figures.guide:write")\n'),
+    })
+    graph = imports(tmp_path, "pkg")
+    assert graph["pkg.app.a"] == {"pkg.io.w": 2, "pkg.kernel": 2, "pkg.figures.guide": 3}
+    assert {(a, b): why for a, b, why in upward(graph)} == {
+        ("pkg.io.w", "pkg.figures.guide"): "line 1: io may import geometry, kernel, not figures",
+        ("pkg.io.r", "pkg.app.cli"): "line 3: io may import geometry, kernel, not app",
+        ("pkg.vault.v", "pkg.analysis.m"):
+            "line 2: vault may import geometry, kernel, not analysis",
+        ("pkg.geometry.g", "pkg.vault.v"): "line 1: geometry may import kernel, not vault",
+        ("pkg.analysis.m", "pkg.figures"):
+            "line 1: analysis may import geometry, io, kernel, mechanics, vault, not figures",
+    }
+
+
+def test_the_registry_of_formats_names_no_module_above_io():
+    """The assembly guide's writer is figures': figures registers it, io does not name it."""
+    graph = imports(SRC, "curvefold")
+    # its own writers, named by string, are read
+    assert "curvefold.io._svg" in graph["curvefold.io._formats"]
+    assert not any(layer_of(b) == "figures" for b in graph["curvefold.io._formats"])
+    assert "curvefold.io._formats" in graph["curvefold.figures"]
+
+
+def test_a_format_declared_without_its_writer_is_given_one_by_register_writer():
+    """io declares the guide; figures gives its writer, and only a writer, only once."""
+    from dataclasses import replace
+
+    import pytest
+
+    import curvefold.figures  # noqa: F401  (registers the guide's writer)
+    from curvefold.figures._assembly import write_assembly
+    from curvefold.io._formats import FORMATS, register_writer
+    from curvefold.kernel import InputError, InternalError
+
+    assert FORMATS["assembly"].load_writer() is write_assembly
+    register_writer("assembly", "curvefold.figures._assembly:write_assembly")  # again: the same
+    with pytest.raises(InternalError, match="'assembly' has no writer"):
+        replace(FORMATS["assembly"], writer=None).load_writer()
+    with pytest.raises(InputError, match="name must be a format of the registry"):
+        register_writer("png", "curvefold.figures._plots:save_figure")
+    with pytest.raises(InputError, match="writer must be a function or 'module:function'"):
+        register_writer("assembly", "curvefold.figures._assembly.write_assembly")
+    with pytest.raises(InputError, match="writer of 'assembly' is .* already"):
+        register_writer("assembly", write_assembly)
+    assert FORMATS["assembly"].writer == "curvefold.figures._assembly:write_assembly"
 
 
 def test_imports_up_or_across_the_layers_are_reported(tmp_path):

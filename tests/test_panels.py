@@ -24,7 +24,7 @@ from curvefold.app._build import build, vault_design
 from curvefold.geometry import PanelLattice, choose_sampling, fold_angles
 from curvefold.geometry._panel_pattern import PanelPattern, fold_line_angle
 from curvefold.geometry._sheets import sheets
-from curvefold.io import layout_pattern, to_fold, write_3d, write_structure_fold
+from curvefold.io import PatternOutput, layout_pattern, to_fold, write_3d, write_structure_fold
 from curvefold.kernel import InputError, RegressionError
 from curvefold.vault import Vault, VaultDesign, solve_panel_arch, solve_symmetric_arch
 from curvefold.vault._assembly import standing
@@ -322,7 +322,7 @@ def test_fold_file_has_planar_quads_without_diagonals_and_welded_seams(tube):
 
 
 def test_crease_pattern_draws_every_panel_edge_as_one_straight_segment(tube):
-    layout = layout_pattern(tube, glue_tabs=False)
+    layout = layout_pattern(tube, PatternOutput(glue_tabs=False))
     for placed, sheet in zip(layout.sheets(), sheets(tube)):
         mesh = sheet.mesh
         page = mesh.vertices_coords[:, :2] @ placed.transform[:, :2].T + placed.transform[:, 2]

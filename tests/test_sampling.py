@@ -21,7 +21,7 @@ from curvefold.geometry._sampling import (
     polyline_deviation,
 )
 from curvefold.geometry._sheets import sheets
-from curvefold.io import write_sheet_fold, write_structure_fold
+from curvefold.io import FoldOutput, write_sheet_fold, write_structure_fold
 from curvefold.kernel import InputError
 from curvefold.vault import Vault
 
@@ -95,7 +95,8 @@ def test_the_fold_library_rebuilds_every_sheet_exactly(tmp_path, paper):
 
 def test_the_written_fold_file_passes_the_fold_check(tmp_path, paper):
     structure, sampling = paper
-    path = write_structure_fold(tmp_path / "vault.fold", structure, keep=sampling.keep)
+    path = write_structure_fold(tmp_path / "vault.fold", structure,
+                                output=FoldOutput(keep=sampling.keep))
     result = check_fold(path)
     assert result.ok and result.max_isometry_error <= 1e-4
 

@@ -34,7 +34,15 @@ from curvefold.geometry._topology import (
     seam_id,
     tube_strips,
 )
-from curvefold.io import fold_assignments, read_fold, to_fold, write_obj, write_stl, write_structure_fold
+from curvefold.io import (
+    FoldOutput,
+    fold_assignments,
+    read_fold,
+    to_fold,
+    write_obj,
+    write_stl,
+    write_structure_fold,
+)
 
 
 def lattice(samples=81, widths=(0.2, 0.15), fold_angle=90.0):
@@ -212,8 +220,9 @@ def test_mesh_refuses_malformed_polygons(faces, match):
 
 def test_quad_mesh_through_fold_obj_and_stl(tmp_path, tube):
     trimesh = pytest.importorskip("trimesh")
-    path = write_structure_fold(tmp_path / "quads.fold", tube, fold_angles=[0.0, 45.0, 90.0], faces="quads")
-    model = to_fold(tube, fold_angles=[0.0, 45.0, 90.0], faces="quads")
+    path = write_structure_fold(tmp_path / "quads.fold", tube, fold_angles=[0.0, 45.0, 90.0],
+                                output=FoldOutput(faces="quads"))
+    model = to_fold(tube, fold_angles=[0.0, 45.0, 90.0], output=FoldOutput(faces="quads"))
     back = read_fold(path)
     assert back.crease_pattern.faces_vertices.shape == (4 * (len(tube.lattice.s) - 1), 4)
     assert_array_equal(back.crease_pattern.faces_vertices, model.crease_pattern.faces_vertices)
@@ -241,7 +250,7 @@ def test_quad_mesh_through_fold_obj_and_stl(tmp_path, tube):
 @pytest.mark.node
 def test_node_rebuilds_the_quad_crease_pattern(tmp_path, tube):
     """The `fold` library rebuilds the quad faces from the planar graph; Rabbit Ear finds them valid and counter-clockwise."""
-    path = write_structure_fold(tmp_path / "quads.fold", tube, faces="quads")
+    path = write_structure_fold(tmp_path / "quads.fold", tube, output=FoldOutput(faces="quads"))
     report = run_node("check_fold.mjs", str(path))
     fold, ear = report["fold"], report["rabbit_ear"]
     faces = 4 * (len(tube.lattice.s) - 1)
@@ -251,7 +260,8 @@ def test_node_rebuilds_the_quad_crease_pattern(tmp_path, tube):
 
 def test_check_fold_measures_bent_polygons(tmp_path, tube):
     """A quad bent out of its plane in a folded frame fails the planarity check."""
-    path = write_structure_fold(tmp_path / "quads.fold", tube, fold_angles=[90.0], faces="quads")
+    path = write_structure_fold(tmp_path / "quads.fold", tube, fold_angles=[90.0],
+                                output=FoldOutput(faces="quads"))
     doc = json.loads(path.read_text())
     frame = doc["file_frames"][0]
     face = doc["faces_vertices"][len(doc["faces_vertices"]) // 2]

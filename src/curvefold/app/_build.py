@@ -25,6 +25,7 @@ from ._design import Design
 from ._kinds import BlockParams, CreaseParams, CurveParams, TubeParams, VaultParams
 
 if TYPE_CHECKING:  # pragma: no cover
+    from ..io._output import PatternOutput
     from ._loading import Loaded
 
 __all__ = [
@@ -99,23 +100,18 @@ class Built:
         if "3dm" in formats or families & {"pattern", "guide"}:
             self.layout  # noqa: B018 (computed once, here)
 
-    def _page(self) -> dict:
+    def _pattern_output(self) -> PatternOutput:
         """The page, units, scale and cutting of the crease patterns, as the layouts take them."""
+        from ..io._output import PatternOutput
         from ..io._tables import mm_per_unit
 
         o = self.design.output
         mm = mm_per_unit(o.units)  # a page's sides are in mm
-        page = o.page if isinstance(o.page, str) else tuple(side / mm for side in o.page)
+        page = o.page if isinstance(o.page, str) else (o.page[0] / mm, o.page[1] / mm)
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
-        return {
-            "page": page,
-            "units": o.units,
-            "scale": o.scale,
-            "name": self.design.kind,
-            "cutter": o.cutter,
-            "perforation": perforation,
-            "kerf": o.kerf,
-        }
+        return PatternOutput(page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs,
+                             rulings=o.rulings, cutter=o.cutter, perforation=perforation,
+                             kerf=o.kerf, name=self.design.kind)
 
 
 @dataclass(frozen=True, eq=False)
@@ -160,8 +156,7 @@ class BuiltStructure(Built):
         from it."""
         from ..io._pattern import layout_pattern
 
-        return layout_pattern(self.structure, glue_tabs=self.design.output.glue_tabs,
-                              keep=self.sampling.keep, **self._page())
+        return layout_pattern(self.structure, self._pattern_output(), keep=self.sampling.keep)
 
     def prepare(self) -> None:
         """The mechanics of a design under load (the 3D models and the pictures show it) and a rigid
@@ -216,7 +211,7 @@ class BuiltCrease(Built):
         (:func:`curvefold.io._single_fold.layout_single_fold`)."""
         from ..io._single_fold import layout_single_fold
 
-        return layout_single_fold(self.single_fold, **self._page())
+        return layout_single_fold(self.single_fold, self._pattern_output())
 
 
 def vault_design(design: Design) -> VaultDesign:

@@ -325,11 +325,13 @@ def _fold(
     (loadable by Origami Simulator)."""
     from ..geometry._fold_arrays import fold_arrays
     from ..io._fold import fold_model, write_model, write_sheet_fold
+    from ..io._output import FoldOutput
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     angles = exported_fold_angles(built) if fold_angle is None else design_motion(built, fold_angle)
     arrays = fold_arrays(structure, fold_angles=angles, keep=keep)  # the structure's file (write_structure_fold) and its sheets
-    model = fold_model(structure, arrays, unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())
+    output = FoldOutput(unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())
+    model = fold_model(structure, arrays, output)
     files = [write_model(folder / f"{built.design.kind}.fold", model, title=meta["title"])]
     (folder / "sheets").mkdir()
     for sheet in arrays.sheets:
@@ -349,6 +351,8 @@ def _pattern(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> lis
 def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
     """The assembly guide, on the pages of the design's crease pattern
     (:attr:`~curvefold.app._build.Built.layout`)."""
+    from .. import figures  # noqa: F401  (registers the guide's writer, which figures draws)
+
     f = FORMATS[names[0]]
     return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
 
@@ -359,12 +363,16 @@ def _model(
     """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion, and at the design
     angle of a design under load its deflected shape and first modes (:meth:`curvefold.app._loading.Loaded.morph_targets`)."""
     from ..io._models import write_3d
+    from ..io._output import ModelOutput
 
     loaded = built.mechanics if fold_angle is None else None  # the mechanics is the design state's
     morphs = None if loaded is None else loaded.morph_targets(built.structure, built.sampling.keep)
-    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), formats=names, unit=MODEL_UNIT,
-                         metadata=_metadata(built), keep=built.sampling.keep, print_unit=built.design.output.units,
-                         pattern=built.layout if "3dm" in names else None, fold_angle=fold_angle, morph_targets=morphs))
+    output = ModelOutput(unit=MODEL_UNIT, metadata=_metadata(built), keep=built.sampling.keep,
+                         print_unit=built.design.output.units,
+                         pattern=built.layout if "3dm" in names else None, morph_targets=morphs)
+    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), output,
+                         formats=names,
+                         fold_angle=fold_angle))
 
 
 def _motion(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:

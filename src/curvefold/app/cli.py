@@ -565,6 +565,7 @@ def _rebuilt_fold(doc, path: Path):
     """
     from ..io._fold import model_document, to_fold
     from ..io._fold_reading import parse_fold
+    from ..io._output import FoldOutput
     from ._budget import require_rebuild_budget
     from ._build import BuiltCrease, BuiltStructure, build
 
@@ -584,8 +585,10 @@ def _rebuilt_fold(doc, path: Path):
     if not isinstance(built, BuiltStructure):
         raise InputError(f"{where}: a {design.kind} design has no FOLD file to rebuild")
     keep = record.get("keep")
-    model = to_fold(built.structure, fold_angles=record["fold_angles"], anchor=record.get("anchor", "start"),
-                    faces=record.get("faces", "triangles"), keep=None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep])
+    kept = None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep]
+    output = FoldOutput(anchor=record.get("anchor", "start"),
+                        faces=record.get("faces", "triangles"), keep=kept)
+    model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
     return parse_fold(model_document(model), f"{where} (rebuilt)")
 
 

@@ -28,12 +28,13 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     {
         "_fold": ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"],
         "_fold_reading": ["FoldFile", "read_fold"],
-        "_gltf": ["write_glb"],
+        "_gltf": ["GlbOptions", "write_glb"],
         "_layout": ["Layout", "layout_sheets", "page_size"],
         "_mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
         "_models": ["MODEL_FORMATS", "write_3d"],
         "_cutters": ["CUTTERS"],
+        "_output": ["FoldOutput", "ModelOutput", "PatternOutput"],
         "_pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
-        "_rhino": ["write_3dm"],
+        "_rhino": ["RhinoOptions", "write_3dm"],
     },
 )

@@ -144,24 +144,31 @@ class Cutter:
         object.__setattr__(self, "colours", MappingProxyType(dict(self.colours)))
 
 
-def _palette(cut, mountain, valley, seam, rulings, labels, glue, legend) -> dict[str, str]:
-    return dict(zip(("cut", "mountain", "valley", "seam", "rulings", "labels", "glue", "legend"),
-                    (cut, mountain, valley, seam, rulings, labels, glue, legend)))
+#: The order of a palette's colours (:func:`_palette`).
+_PALETTE = ("cut", "mountain", "valley", "seam", "rulings", "labels", "glue", "legend")
+
+
+def _palette(colours: tuple[str, str, str, str, str, str, str, str]) -> dict[str, str]:
+    """The colour of each layer, given in the order of :data:`_PALETTE`."""
+    return dict(zip(_PALETTE, colours, strict=True))
 
 
 #: The conventions ``--cutter`` offers, by name.
 CUTTERS: Mapping[str, Cutter] = MappingProxyType({c.name: c for c in (
     Cutter("print", "printing on paper, folding and cutting by hand: folds red and blue, as in the 3D files",
-           _palette(COLOURS["boundary"], COLOURS["fold"], COLOURS["valley"], COLOURS["tab"], COLOURS["ruling"], COLOURS["label"],
-                    COLOURS["glue"], "#808080")),
+           _palette((COLOURS["boundary"], COLOURS["fold"], COLOURS["valley"], COLOURS["tab"],
+                     COLOURS["ruling"], COLOURS["label"],
+                     COLOURS["glue"], "#808080"))),
     Cutter("laser", "laser software that gives each colour its own layer and operation (LightBurn; Epilog's colour mapping): "
            "one of the six basic colours, or black, per layer",
-           _palette("#ff0000", "#0000ff", "#00ff00", "#00ffff", "#ff00ff", "#000000", "#ffff00", "#ffff00"),
+           _palette(("#ff0000", "#0000ff", "#00ff00", "#00ffff", "#ff00ff", "#000000", "#ffff00",
+                     "#ffff00")),
            "LightBurn documentation, 'Colors and Layers': each colour is a layer, each layer one operation, run in "
            "layer order; Epilog Laser, Zing manual, section 'Color Mapping': use the six basic colours red, green, blue, "
            "cyan, yellow, magenta, whose values must match exactly"),
     Cutter("service", "laser-cutting services that read red as cut, blue as score and black as engrave",
-           _palette("#ff0000", "#0000ff", "#0000ff", "#0000ff", "#000000", "#000000", "#ffff00", "#ffff00"),
+           _palette(("#ff0000", "#0000ff", "#0000ff", "#0000ff", "#000000", "#000000", "#ffff00",
+                     "#ffff00")),
            "Lasergarage Berlin, 'Farbenkodierung in den Schnittdateien für Lasercutter': red (255, 0, 0) cut, blue "
            "(0, 0, 255) score, black (0, 0, 0) engrave, yellow (255, 255, 0) a frame to check the scale, not processed"),
 )})

@@ -39,11 +39,10 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..geometry._fold_arrays import FoldArrays, fold_arrays, structure_metadata
 from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
@@ -53,9 +52,10 @@ from ..kernel._arrays import distinct
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
-from ._fold_reading import FoldFile
 from ._decimals import Decimals, Integers, dumps, plain
+from ._fold_reading import FoldFile
 from ._mesh3d import check_metadata
+from ._output import FoldOutput
 from ._tables import CREATOR
 
 __all__ = ["fold_assignments", "fold_document", "fold_model", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
@@ -249,63 +249,60 @@ def _write_document(path: str | os.PathLike, doc: dict) -> Path:
     return atomic_write(path, dumps(doc) + "\n")
 
 
-def write_fold(path: str | os.PathLike, **arrays) -> Path:
+def write_fold(path: str | os.PathLike, model: FoldFile, *, title: str = "", flat_tol: float = 1e-9,
+               mirror_clockwise: bool = True) -> Path:
     """Write a crease pattern and its folded states as one FOLD 1.1 file: :func:`fold_document`, atomically.
 
     Parameters
     ----------
     path : path-like
-    **arrays
-        The keyword arguments of :func:`fold_document`.
+    model : FoldFile
+        The crease pattern, its folded frames and what the file records with them
+        (:func:`to_fold`, :func:`~curvefold.io._single_fold.single_fold_model`, or a
+        :class:`~curvefold.io.FoldFile` made or read).
+    title, flat_tol, mirror_clockwise : keyword-only
+        As in :func:`fold_document`.
 
     Returns
     -------
     Path
     """
-    return _write_document(path, _fold_frames(**arrays))
+    return _write_document(path, _fold_frames(model, title, flat_tol, mirror_clockwise))
 
 
-def fold_document(
-    *,
-    crease_pattern: Mesh,
-    folded: Sequence[tuple[str, Mesh]],
-    metadata: Mapping | None = None,
-    unit: str = "unit",
-    seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
-    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
-    design: Mapping | None = None,
-    title: str = "",
-    flat_tol: float = 1e-9,
-    mirror_clockwise: bool = True,
-) -> dict:
+def fold_document(model: FoldFile, *, title: str = "", flat_tol: float = 1e-9,
+                  mirror_clockwise: bool = True) -> dict:
     """A crease pattern and its folded states as one FOLD 1.1 document (JSON data, as :func:`write_fold` writes it).
 
     Parameters
     ----------
-    crease_pattern : Mesh
-        The flat crease pattern (z = 0, counter-clockwise faces) with the fold angles of
-        the design state. Seams are cut open: each seam is two boundary edges, one per
-        sheet, paired in ``seam_partners``.
-    folded : sequence of (str, Mesh)
-        Title and state of each folded frame; each Mesh has the crease pattern's topology
-        (same ``edges_vertices``, ``faces_vertices``, ``edges_kind``).
-    metadata : mapping of str to number or str, optional
-        Design parameters, stored under ``curvefold:metadata``.
-    unit : str
-        Length unit (``frame_unit``), e.g. ``"m"``, ``"mm"``, ``"unit"``.
-    seam_partners : (P, 2) array_like of int, optional
-        Pairs of boundary edge indices glued together in the folded structure.
-    bonds : (Q, 2) array_like of int, optional
-        Pairs of edge indices of different sheets that coincide in the folded structure
-        (tubes glued where they touch).
-    design : mapping, optional
-        The design and how the frames were made (:func:`to_fold`), stored as
-        ``curvefold:design``; JSON data.
-    title : str
+    model : FoldFile
+        What the file holds:
+
+        ``crease_pattern``
+            The flat crease pattern (z = 0, counter-clockwise faces) with the fold angles
+            of the design state. Seams are cut open: each seam is two boundary edges, one
+            per sheet, paired in ``seam_partners``.
+        ``folded``
+            Title and state (Mesh) of each folded frame; each Mesh has the crease
+            pattern's topology (same ``edges_vertices``, ``faces_vertices``, ``edges_kind``).
+        ``metadata``
+            Design parameters (str to number or str), stored under ``curvefold:metadata``.
+        ``unit``
+            Length unit (``frame_unit``), e.g. ``"m"``, ``"mm"``, ``"unit"``.
+        ``seam_partners``
+            (P, 2) pairs of boundary edge indices glued together in the folded structure.
+        ``bonds``
+            (Q, 2) pairs of edge indices of different sheets that coincide in the folded
+            structure (tubes glued where they touch).
+        ``design``
+            The design and how the frames were made (:func:`to_fold`), stored as
+            ``curvefold:design``; JSON data, or None.
+    title : str, keyword-only
         ``file_title`` (omitted when empty), on one line without control characters.
-    flat_tol : float
+    flat_tol : float, keyword-only
         Allowed ``max |z|`` of the crease pattern relative to its size.
-    mirror_clockwise : bool
+    mirror_clockwise : bool, keyword-only
         Mirror (y → −y about its centre) every sheet of the crease pattern whose
         triangles are all clockwise, so that it is seen from the side its normals point
         to, as FOLD requires; the folded frames and fold angles are unchanged. If False,
@@ -318,36 +315,27 @@ def fold_document(
     Raises
     ------
     InputError
-        On a non-flat crease pattern, a sheet with both clockwise and counter-clockwise
-        (or degenerate) triangles, topology that differs between frames,
+        On a missing or non-flat crease pattern, a sheet with both clockwise and
+        counter-clockwise (or degenerate) triangles, topology that differs between frames,
         a crease edge without two faces, a non-boundary seam partner, bad metadata or a
         design that is not JSON data.
     """
-    return plain(_fold_frames(crease_pattern=crease_pattern, folded=folded, metadata=metadata, unit=unit, seam_partners=seam_partners,
-                              bonds=bonds, design=design, title=title, flat_tol=flat_tol, mirror_clockwise=mirror_clockwise))
+    return plain(_fold_frames(model, title, flat_tol, mirror_clockwise))
 
 
-def _fold_frames(
-    *,
-    crease_pattern: Mesh,
-    folded: Sequence[tuple[str, Mesh]],
-    metadata: Mapping | None = None,
-    unit: str = "unit",
-    seam_partners: np.ndarray | Sequence[Sequence[int]] | None = None,
-    bonds: np.ndarray | Sequence[Sequence[int]] | None = None,
-    design: Mapping | None = None,
-    title: str = "",
-    flat_tol: float = 1e-9,
-    mirror_clockwise: bool = True,
-) -> dict:
+def _fold_frames(model: FoldFile, title: str, flat_tol: float, mirror_clockwise: bool) -> dict:
     """:func:`fold_document` with its number arrays as :class:`~curvefold.io._decimals.Decimals`."""
-    cp = crease_pattern
+    cp = model.crease_pattern
+    if not isinstance(cp, Mesh):
+        raise InputError(f"the model's crease_pattern must be a Mesh, got {type(cp).__name__}",
+                         parameter="crease_pattern")
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
     cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
-    pairs = _check_seam_partners(seam_partners, assignment)
-    glued = _check_pairs(bonds, len(assignment), "bonds", "Q")
-    meta = check_metadata(metadata)
+    pairs = _check_seam_partners(model.seam_partners, assignment)
+    glued = _check_pairs(model.bonds, len(assignment), "bonds", "Q")
+    meta = check_metadata(model.metadata)
+    design = model.design
     if design is not None:
         try:
             json.dumps(dict(design), allow_nan=False)
@@ -356,7 +344,7 @@ def _fold_frames(
     zero = assignment == "B"  # one face: no dihedral angle
 
     frames = []
-    for i, item in enumerate(folded):
+    for i, item in enumerate(model.folded):
         try:
             frame_title, mesh = item
         except (TypeError, ValueError) as exc:
@@ -382,7 +370,7 @@ def _fold_frames(
     return _document(title, {
         "frame_title": "crease pattern",
         "frame_classes": ["creasePattern"],
-        "frame_unit": unit,
+        "frame_unit": model.unit,
         "vertices_coords": _coordinate_lists(cp_xy),
         "edges_vertices": Integers(cp.edges_vertices),
         "edges_assignment": assignment.tolist(),
@@ -454,43 +442,24 @@ def write_sheet_fold(
 # ---------------------------------------------------------------------------------------
 # structures
 
-def to_fold(
-    structure: Structure,
-    *,
-    fold_angles=None,
-    fold_angle: float | None = None,
-    degrees: bool = True,
-    unit: str = "unit",
-    metadata: Mapping | None = None,
-    anchor: str = "start",
-    faces: Literal["triangles", "quads"] = "triangles",
-    keep: Sequence[np.ndarray] | None = None,
-    design: Mapping | None = None,
-) -> FoldFile:
+def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *,
+            fold_angles: ArrayLike | None = None,
+            fold_angle: float | None = None, degrees: bool = True) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
     The arrays are :func:`curvefold.geometry._fold_arrays.fold_arrays` of the structure (every
     sheet in a row, seams cut open and paired, the folded frames on the same vertices, the
     measured fold angles of every frame); the metadata is
-    :func:`~curvefold.geometry.structure_metadata` with ``metadata`` over it.
+    :func:`~curvefold.geometry.structure_metadata` with the output's metadata over it.
 
     Parameters
     ----------
     structure : Structure
-    fold_angles, fold_angle, degrees, anchor, faces, keep : keyword-only
+    output : FoldOutput
+        Unit, extra metadata, anchor, faces, the samples kept and the design recorded.
+    fold_angles, fold_angle, degrees : keyword-only
         As in :func:`~curvefold.geometry._fold_arrays.fold_arrays`: the frames' fold angles
-        (default the design angle only), the design angle the crease pattern carries, which
-        frame of curve 1 stays fixed, the sheets' faces and the samples each tube keeps.
-    unit : str, keyword-only
-        Model unit (``frame_unit``).
-    metadata : mapping, optional, keyword-only
-        Extra design parameters; merged over the ones recorded by default (tubes, cells,
-        samples, curve length, widths at t = 0, the design, crease and seam angles, the seam
-        numbering and the bonds as text).
-    design : mapping, optional, keyword-only
-        The design the structure was built from, as a design file holds it
-        (:meth:`curvefold.app.Design.to_dict`); recorded with the frames' fold
-        angles, anchor and faces, so that the file can be built again and compared.
+        (default the design angle only) and the design angle the crease pattern carries.
 
     Returns
     -------
@@ -502,59 +471,77 @@ def to_fold(
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
     >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
-    >>> model = to_fold(tube, fold_angles=[45, 90], unit="m", metadata={"title": "tube"})
+    >>> output = FoldOutput(unit="m", metadata={"title": "tube"})
+    >>> model = to_fold(tube, output, fold_angles=[45, 90])
     >>> [title for title, _ in model.folded], model.metadata["title"], model.metadata["tubes"]
     (['fold angle 45°', 'fold angle 90°'], 'tube', 1)
     """
-    _check_unit(unit)
-    check_metadata(metadata)
-    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees, anchor=anchor, faces=faces, keep=keep)
-    return fold_model(structure, arrays, unit=unit, metadata=metadata, anchor=anchor, faces=faces, keep=keep, design=design)
+    _check_fold_output(output)
+    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle,
+                         degrees=degrees, anchor=output.anchor,
+                         faces=output.faces, keep=output.keep)
+    return fold_model(structure, arrays, output)
 
 
-def fold_model(structure: Structure, arrays: FoldArrays, *, unit: str = "unit", metadata: Mapping | None = None, anchor: str = "start",
-               faces: Literal["triangles", "quads"] = "triangles", keep: Sequence[np.ndarray] | None = None,
-               design: Mapping | None = None) -> FoldFile:
+def fold_model(structure: Structure, arrays: FoldArrays,
+               output: FoldOutput = FoldOutput()) -> FoldFile:
     """:func:`to_fold` of a structure whose FOLD arrays are made
-    (:func:`curvefold.geometry._fold_arrays.fold_arrays` with these ``anchor``, ``faces`` and
-    ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
-    _check_unit(unit)
-    extra = check_metadata(metadata)
+    (:func:`curvefold.geometry._fold_arrays.fold_arrays` with the output's ``anchor``, ``faces``
+    and ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
+    extra = _check_fold_output(output)
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
-    record = None if design is None else {"design": dict(design), "fold_angles": arrays.fold_angles.tolist(), "anchor": anchor, "faces": faces,
-                                          "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
-    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta, unit=unit,
+    keep = output.keep
+    record = None if output.design is None else {
+        "design": dict(output.design), "fold_angles": arrays.fold_angles.tolist(),
+        "anchor": output.anchor, "faces": output.faces,
+        "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
+    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta,
+                    unit=output.unit,
                     seam_partners=arrays.seam_partners, bonds=arrays.bonds, design=record)
 
 
-def _check_unit(unit) -> None:
-    if not isinstance(unit, str) or not unit:
-        raise InputError(f"unit must be a non-empty str, got {unit!r}")
+def _check_fold_output(output: FoldOutput) -> dict:
+    """The output's extra metadata, checked with its unit."""
+    if not isinstance(output, FoldOutput):
+        raise InputError(f"output must be a FoldOutput (unit, metadata…), got {type(output).__name__}",
+                         parameter="output")
+    if not isinstance(output.unit, str) or not output.unit:
+        raise InputError(f"unit must be a non-empty str, got {output.unit!r}")
+    return check_metadata(output.metadata)
 
 
-def write_structure_fold(path: str | os.PathLike, structure: Structure, *, title: str = "", **kwargs) -> Path:
+def write_structure_fold(path: str | os.PathLike, structure: Structure,
+                         output: FoldOutput = FoldOutput(), *,
+                         title: str = "", fold_angles: ArrayLike | None = None,
+                         fold_angle: float | None = None,
+                         degrees: bool = True) -> Path:
     """Write :func:`to_fold` of a structure as a FOLD 1.1 file (via :func:`curvefold.io.write_fold`).
 
     Parameters
     ----------
     path : path-like
     structure : Structure
+    output : FoldOutput
+        As in :func:`to_fold`.
     title : str, keyword-only
         ``file_title``.
-    **kwargs
-        Passed to :func:`to_fold` (``fold_angles``, ``fold_angle``, ``degrees``, ``unit``,
-        ``metadata``, ``anchor``, ``faces``, ``keep``, ``design``).
+    fold_angles, fold_angle, degrees : keyword-only
+        As in :func:`to_fold`.
 
     Returns
     -------
     Path
     """
-    return write_model(path, to_fold(structure, **kwargs), title=title)
+    return write_fold(path, to_fold(structure, output, fold_angles=fold_angles,
+                                    fold_angle=fold_angle, degrees=degrees),
+                      title=title)
 
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:
-    """Write a FOLD model (:func:`to_fold`, or a single fold's :func:`curvefold.io._single_fold.single_fold_model`) atomically."""
-    return _write_document(path, _fold_frames(**_model_arrays(model), title=title))
+    """Write a FOLD model (:func:`to_fold`, or a single fold's
+    :func:`curvefold.io._single_fold.single_fold_model`): :func:`write_fold` with the default
+    tolerance and mirroring."""
+    return write_fold(path, model, title=title)
 
 
 def model_document(model: FoldFile, *, title: str = "") -> dict:
@@ -563,10 +550,4 @@ def model_document(model: FoldFile, *, title: str = "") -> dict:
     :func:`curvefold.io._fold_reading.parse_fold` reads it back as :func:`read_fold` reads the
     file (``curvefold check --rebuild`` compares a file with the document of its design).
     """
-    return fold_document(**_model_arrays(model), title=title)
-
-
-def _model_arrays(model: FoldFile) -> dict:
-    """The keyword arguments of :func:`fold_document` for a model."""
-    return dict(crease_pattern=model.crease_pattern, folded=model.folded, metadata=model.metadata, unit=model.unit,
-                seam_partners=model.seam_partners, bonds=model.bonds, design=model.design)
+    return fold_document(model, title=title)

@@ -116,9 +116,10 @@ def _split(mesh: Mesh):
     order = np.argsort(key, kind="stable")
     pair = np.flatnonzero((key[order][1:] == key[order][:-1]) & ~cut[order][1:])
     s, t = order[pair], order[pair + 1]  # two sides along one edge that is not a cut
-    joins = [np.stack([s, np.where(sides[t, 0] == sides[s, 0], t, following[t])], axis=1),  # at the first vertex of s
-             np.stack([following[s], np.where(sides[t, 0] == sides[s, 1], t, following[t])], axis=1)]  # at its second
-    joins = np.concatenate(joins)
+    at_first = np.stack([s, np.where(sides[t, 0] == sides[s, 0], t, following[t])], axis=1)  # of s
+    at_second = np.stack([following[s], np.where(sides[t, 0] == sides[s, 1], t, following[t])],
+                         axis=1)
+    joins = np.concatenate([at_first, at_second])
     graph = coo_matrix((np.ones(len(joins)), (joins[:, 0], joins[:, 1])), shape=(len(sides), len(sides)))
     _, component = connected_components(graph, directed=False)
     vertex = sides[:, 0]

@@ -38,6 +38,7 @@ import os
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from typing import TypeGuard
 
 import numpy as np
 
@@ -148,7 +149,7 @@ def _fail(where: str, msg: str) -> InputError:
     return InputError(f"{where}: {msg}")
 
 
-def _is_number(v) -> bool:
+def _is_number(v: object) -> TypeGuard[float]:
     return type(v) is float or (type(v) is int)
 
 
@@ -278,14 +279,14 @@ def _frame_mesh(frame: dict, where: str, notes: list[str], coords_key: str = "ve
         raise _fail(where, f"faces_vertices[{bad[0]}] = {faces[bad[0]]} refers to a vertex outside [0, {V})")
 
     assignment = _assignments(frame, ev, fv, where, notes)
-    key = next((k for k in ("edges_foldAngle", "edges_foldAngles") if k in frame), None)
-    if key is None:  # the FOLD convention for a flat-folded M/V assignment
+    angle_key = next((k for k in ("edges_foldAngle", "edges_foldAngles") if k in frame), None)
+    if angle_key is None:  # the FOLD convention for a flat-folded M/V assignment
         angle = np.select([assignment == "V", assignment == "M"], [180.0, -180.0], 0.0)
         unrecorded = np.flatnonzero(np.isin(assignment, ("M", "V")))
     else:
-        if key == "edges_foldAngles":
+        if angle_key == "edges_foldAngles":
             notes.append(f"{where}: edges_foldAngles (FOLD 1.0's name) read as edges_foldAngle")
-        angle, unrecorded = _angles(frame[key], E, assignment, key, where, notes)
+        angle, unrecorded = _angles(frame[angle_key], E, assignment, angle_key, where, notes)
 
     kind_key = next((k for k in _KIND_KEYS if k in frame), None)
     if kind_key is None:

@@ -16,6 +16,10 @@ path and that value; the family's writer (:func:`~curvefold.io.write_pattern`,
 names for each format asked. Writers are named by their qualified name and imported only
 when a file is written, so reading the registry costs no optional import.
 
+A format drawn by a layer above io (the assembly guide, drawn by :mod:`curvefold.figures`)
+is declared here without its writer; that layer registers it with :func:`register_writer`
+when it is imported, so io never names a module above it.
+
 :data:`OUTPUT_SPECS` are the ``[output]`` parameters of a design (see
 :class:`curvefold.kernel.Spec`).
 """
@@ -26,13 +30,15 @@ import importlib
 import importlib.util
 import os
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any, cast
 
-from ..kernel._errors import InputError
-from ..kernel._validate import Spec
-from ._cutters import CUTTERS, DEFAULT_CUTTER
+from ..kernel._errors import InputError, InternalError
+from ..kernel._validate import Interval, Spec
+from ._cutters import CUTTERS
+from ._output import PatternOutput
 from ._tables import PAGES, mm_per_unit
 
 __all__ = [
@@ -47,6 +53,7 @@ __all__ = [
     "check_kind",
     "check_scale",
     "missing_dependencies",
+    "register_writer",
     "MIN_DRAWN_MM",
 ]
 
@@ -70,9 +77,10 @@ class FileFormat:
         Formats of one family are written together (a key of :data:`FAMILIES`).
     kinds : tuple of str
         Kinds of design the format is written for.
-    writer : str
-        Qualified name of the function that writes it, ``"module:function"``, called with
-        the target path and the family's prepared value (see the module notes).
+    writer : str or callable or None
+        The function that writes it, or its qualified name ``"module:function"``, called with
+        the target path and the family's prepared value (see the module notes); None until
+        the layer that draws the format registers it (:func:`register_writer`).
     media_type : str
         The file's media type (MIME type), as the designer serves it.
     dependency : str or None
@@ -88,7 +96,7 @@ class FileFormat:
     holds: str
     family: str
     kinds: tuple[str, ...]
-    writer: str
+    writer: str | Callable[..., Any] | None
     media_type: str
     dependency: str | None = None
     extra: str | None = None
@@ -116,41 +124,92 @@ class FileFormat:
         """
         return self.name.upper() if self.stem is None else f"{self.stem} ({self.extension[1:].upper()})"
 
-    def load_writer(self) -> Callable:
-        """Import and return the writing function."""
+    def load_writer(self) -> Callable[..., Any]:
+        """Import and return the writing function.
+
+        Raises
+        ------
+        InternalError
+            The format's writer was never registered (:func:`register_writer`).
+        """
+        if self.writer is None:
+            raise InternalError(f"format {self.name!r} has no writer: the package that draws it "
+                                "registers one (register_writer) when it is imported")
+        if callable(self.writer):
+            return self.writer
         module, function = self.writer.split(":")
-        return getattr(importlib.import_module(module), function)
+        return cast(Callable[..., Any], getattr(importlib.import_module(module), function))
 
 
 _S = STRUCTURE_KINDS
 _ALL = (*STRUCTURE_KINDS, "crease")  # a single curved fold writes its crease pattern, FOLD file and 3D models too
 
-#: Every format, in the order files are written and listed.
-FORMATS: Mapping[str, FileFormat] = MappingProxyType({f.name: f for f in (
+#: The registry, filled once here; a writer of a layer above io is added by :func:`register_writer`.
+_FORMATS: dict[str, FileFormat] = {f.name: f for f in (
     FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per operation, a scale bar and legend", "pattern", _ALL,
-               "curvefold.io._pattern:write_svg", "image/svg+xml"),
+               "curvefold.io._svg:write_svg", "image/svg+xml"),
     FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _ALL,
-               "curvefold.io._pattern:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
+               "curvefold.io._dxf:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
     FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _ALL,
-               "curvefold.io._pattern:write_pdf", "application/pdf"),
+               "curvefold.io._pattern_pdf:write_pdf", "application/pdf"),
     FileFormat("assembly", ".pdf", "the assembly guide: the sheets to cut, which seam glues to which, the order of folding and "
                "gluing tube by tube with a picture of each step, on the pattern's pages", "guide", _S,
-               "curvefold.figures._assembly:write_assembly", "application/pdf", stem="assembly"),
+               # the writer is figures' (register_writer)
+               None, "application/pdf", stem="assembly"),
     FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the frames of the folding motion, and one FOLD file per sheet", "fold", _ALL,
                "curvefold.io._fold:write_structure_fold", "application/json"),
     FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _ALL,
-               "curvefold.io._models:model_glb", "model/gltf-binary"),
+               "curvefold.io._model_files:model_glb", "model/gltf-binary"),
     FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _ALL,
-               "curvefold.io._models:model_obj", "model/obj"),
+               "curvefold.io._model_files:model_obj", "model/obj"),
     FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,
-               "curvefold.io._models:model_3dm", "application/octet-stream", "rhino3dm", "rhino"),
+               "curvefold.io._model_files:model_3dm", "application/octet-stream", "rhino3dm",
+               "rhino"),
     FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _ALL,
-               "curvefold.io._models:model_stl", "model/stl"),
+               "curvefold.io._model_files:model_stl", "model/stl"),
     FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _ALL,
-               "curvefold.io._models:model_ply", "application/octet-stream"),
+               "curvefold.io._model_files:model_ply", "application/octet-stream"),
     FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", _S,
                "curvefold.io._gif:write_gif", "image/gif", "matplotlib", "plot"),  # frames drawn with matplotlib's font and Pillow
-)})
+)}
+#: Every format, in the order files are written and listed.
+FORMATS: Mapping[str, FileFormat] = MappingProxyType(_FORMATS)
+
+
+def register_writer(name: str, writer: str | Callable[..., Any]) -> None:
+    """Give a declared format its writer: how a layer above io adds the writer it owns.
+
+    Parameters
+    ----------
+    name : str
+        A format of :data:`FORMATS` declared without a writer (or with this one: registering
+        again changes nothing).
+    writer : str or callable
+        The function, called as the format's family calls its writers, or its qualified
+        name ``"module:function"``, imported when a file is first written.
+
+    Raises
+    ------
+    InputError
+        An unknown format, one whose writer is another, or a writer that is neither.
+
+    Examples
+    --------
+    >>> register_writer("svg", "curvefold.io._svg:write_svg")  # its own: nothing changes
+    >>> register_writer("svg", "a:b")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.InputError: writer of 'svg' is 'curvefold.io._svg:write_svg' already, cannot register 'a:b'
+    """
+    f = _FORMATS.get(name)
+    if f is None:
+        raise InputError(f"name must be a format of the registry ({', '.join(_FORMATS)}), "
+                         f"got {name!r}")
+    if not (callable(writer) or (isinstance(writer, str) and writer.count(":") == 1)):
+        raise InputError(f"writer must be a function or 'module:function', got {writer!r}")
+    if f.writer is not None and f.writer != writer:
+        raise InputError(f"writer of {name!r} is {f.writer!r} already, cannot register {writer!r}")
+    _FORMATS[name] = replace(f, writer=writer)
 
 #: What each family of formats writes, as the subject of a sentence in messages.
 FAMILIES: Mapping[str, str] = MappingProxyType({
@@ -229,23 +288,32 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
     return out
 
 
-#: The ``[output]`` parameters of a design.
+_OUT = PatternOutput()  # the defaults of the crease-pattern files
+#: The ``[output]`` parameters of a design (the crease pattern's defaults are
+#: :class:`PatternOutput`'s).
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", "mm", choices=("mm", "cm", "m", "in"),
+    Spec("units", "choice", _OUT.units, choices=("mm", "cm", "m", "in"),
          help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)",
          label="units of the printed files"),
-    Spec("scale", "real", None, "(0, inf)", "output units per model unit",
+    Spec("scale", "real", None, Interval.parse("(0, inf)"), "output units per model unit",
          help="crease-pattern scale (default: fit the largest sheet to the page)", label="print scale"),
-    Spec("page", "page", "A4", "(0, 10000]", "mm", choices=tuple(PAGES), help="page of the crease patterns", label="page size"),
-    Spec("glue_tabs", "flag", True, help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
-    Spec("rulings", "flag", False, help="draw the rulings on the crease patterns (for scoring or engraving)", label="rulings drawn"),
-    Spec("cutter", "choice", DEFAULT_CUTTER, choices=tuple(CUTTERS),
+    Spec("page", "page", _OUT.page, Interval.parse("(0, 10000]"), "mm", choices=tuple(PAGES),
+         help="page of the crease patterns", label="page size"),
+    Spec("glue_tabs", "flag", _OUT.glue_tabs,
+         help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
+    Spec("rulings", "flag", _OUT.rulings,
+         help="draw the rulings on the crease patterns (for scoring or engraving)",
+         label="rulings drawn"),
+    Spec("cutter", "choice", _OUT.cutter, choices=tuple(CUTTERS),
          help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)",
          label="cutter convention"),
-    Spec("perforation", "real", None, "(0, 100]", "mm",
+    Spec("perforation", "real", None, Interval.parse("(0, 100]"), "mm",
          help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)", label="perforation dash"),
-    Spec("perforation_gap", "real", 1.0, "(0, 100]", "mm", help="gap between the dashes of perforated creases", label="perforation gap"),
-    Spec("kerf", "real", 0.0, "[0, 5]", "mm", help="width the cutter removes: the cut outlines move out by half of it, so parts keep their size",
+    Spec("perforation_gap", "real", 1.0, Interval.parse("(0, 100]"), "mm",
+         help="gap between the dashes of perforated creases", label="perforation gap"),
+    Spec("kerf", "real", _OUT.kerf, Interval.parse("[0, 5]"), "mm",
+         help="width the cutter removes: the cut outlines move out by half of it, so parts keep "
+              "their size",
          label="kerf"),
     Spec("formats", "formats", None, choices=tuple(FORMATS),
          help="files to write besides the report (default: every format the design's kind writes)", label="file formats"),

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..kernel._errors import InputError
-from ..kernel._validate import Spec
+from ..kernel._validate import Interval, Spec
 from ._atomic import atomic_path
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -36,7 +36,7 @@ __all__ = ["write_gif", "COLOURS"]
 
 #: Colours of the palette every frame shares.
 COLOURS = 128
-_FRAME_SECONDS = Spec("frame_seconds", "real", 0.12, "[0.01, 10]", "seconds")
+_FRAME_SECONDS = Spec("frame_seconds", "real", 0.12, Interval.parse("[0.01, 10]"), "seconds")
 
 
 def write_gif(path: str | os.PathLike, frames: Sequence[Image.Image], *, frame_seconds: float = 0.12, bounce: bool = False) -> Path:

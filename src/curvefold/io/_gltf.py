@@ -45,8 +45,10 @@ import json
 import os
 import struct
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -57,7 +59,7 @@ from ._atomic import atomic_write
 from ._mesh3d import Y_UP, check_metadata
 from ._tables import CREATOR, UNITS, rgba
 
-__all__ = ["CREASE_COLOURS", "write_glb"]
+__all__ = ["CREASE_COLOURS", "GlbOptions", "write_glb"]
 
 #: RGBA colour of each crease kind drawn as lines (from :data:`curvefold.io._tables.COLOURS`).
 CREASE_COLOURS = MappingProxyType({kind: rgba(kind) for kind in ("fold", "seam", "boundary")})
@@ -147,43 +149,18 @@ def _split_by_strip(faces: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, 
     return pairs % (int(faces.max(initial=0)) + 1), local.reshape(-1, 3)
 
 
-def write_glb(
-    path: str | os.PathLike,
-    mesh: Mesh,
-    *,
-    coords: np.ndarray | None = None,
-    angles_deg: np.ndarray | Sequence[float] | None = None,
-    unit: str = "unit",
-    scale: float | None = None,
-    metadata: Mapping | None = None,
-    base_state: int = -1,
-    seconds_per_state: float = 1.0,
-    interpolation: str = "LINEAR",
-    up: str = "z",
-    crease_kinds: Sequence[str] = ("fold", "seam", "boundary"),
-    parts: Sequence[tuple[str, np.ndarray, np.ndarray]] | None = None,
-    morph_targets: Mapping[str, np.ndarray] | None = None,
-) -> Path:
-    """Write a folding motion as an animated GLB (see the module notes).
+@dataclass(frozen=True, eq=False)
+class GlbOptions:
+    """How :func:`write_glb` writes a motion: units and axes, nodes, lines and the animation.
 
-    Parameters
+    Attributes
     ----------
-    path : path-like
-    mesh : Mesh
-        Topology (V vertices, polygon faces, triangulated for glTF) and edge kinds.
-    coords : (K, V, 3) array_like, optional
-        The states of the motion, in model units. Default: the single state
-        ``mesh.vertices_coords`` (no morph targets, no animation).
-    angles_deg : (K,) array_like, optional
-        Design fold angle of each state, recorded in the asset extras.
     unit : str
-        Model unit of ``coords``.
-    scale : float, optional
-        Metres per model unit. Default: from ``unit`` (see :data:`curvefold.io._tables.UNITS`).
-    metadata : mapping, optional
+        Model unit of the coordinates.
+    scale : float or None
+        Metres per model unit. None: from ``unit`` (see :data:`curvefold.io._tables.UNITS`).
+    metadata : mapping or None
         Design parameters, recorded in the asset extras.
-    base_state : int
-        The state whose positions are the meshes' own (index into ``coords``; default the last).
     seconds_per_state : float
         Animation time from one state to the next (> 0).
     interpolation : {"LINEAR", "STEP"}
@@ -192,13 +169,75 @@ def write_glb(
         Which model axis points up; ``"z"`` is rotated onto glTF's +Y.
     crease_kinds : sequence of str
         Kinds drawn as coloured lines (keys of :data:`CREASE_COLOURS`).
-    parts : sequence of (str, (F_p,) array_like of int, (E_p,) array_like of int), optional
+    parts : sequence of (str, (F_p,) array_like of int, (E_p,) array_like of int), or None
         The nodes: a name, the faces and the edges of the mesh on each (a structure's sheets:
         :attr:`SheetTopology.faces <curvefold.geometry.SheetTopology>` and ``edges``).
-        Default: one node ``"surface"`` with every face and edge.
-    morph_targets : mapping of str to (V, 3) array_like, optional
+        None: one node ``"surface"`` with every face and edge.
+    """
+
+    unit: str = "unit"
+    scale: float | None = None
+    metadata: Mapping[str, Any] | None = None
+    seconds_per_state: float = 1.0
+    interpolation: str = "LINEAR"
+    up: str = "z"
+    crease_kinds: Sequence[str] = ("fold", "seam", "boundary")
+    parts: Sequence[tuple[str, Any, Any]] | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class _Motion:
+    """The states of a motion, checked and turned into glTF's frame: what every node and the
+    animation read."""
+
+    states: int  # K
+    base_state: int
+    positions: np.ndarray  # (K, V, 3) metres, glTF axes
+    others: np.ndarray  # the states of morph targets 0 … K − 2, all but the base
+    poses: np.ndarray  # (T, V, 3) the morph targets' positions: other states, further targets
+    names: list[str]  # (T,) the morph targets' names
+    angles: np.ndarray | None  # (K,) degrees
+
+    @property
+    def base(self) -> np.ndarray:
+        """The base state's positions (V, 3)."""
+        return self.positions[self.base_state]
+
+    @property
+    def targets(self) -> int:
+        """Number of morph targets, T."""
+        return len(self.poses)
+
+
+def write_glb(
+    path: str | os.PathLike,
+    mesh: Mesh,
+    *,
+    coords: np.ndarray | None = None,
+    angles_deg: np.ndarray | Sequence[float] | None = None,
+    base_state: int = -1,
+    morph_targets: Mapping[str, np.ndarray] | None = None,
+    options: GlbOptions = GlbOptions(),
+) -> Path:
+    """Write a folding motion as an animated GLB (see the module notes).
+
+    Parameters
+    ----------
+    path : path-like
+    mesh : Mesh
+        Topology (V vertices, polygon faces, triangulated for glTF) and edge kinds.
+    coords : (K, V, 3) array_like, optional, keyword-only
+        The states of the motion, in model units. Default: the single state
+        ``mesh.vertices_coords`` (no morph targets, no animation).
+    angles_deg : (K,) array_like, optional, keyword-only
+        Design fold angle of each state, recorded in the asset extras.
+    base_state : int, keyword-only
+        The state whose positions are the meshes' own (index into ``coords``; default the last).
+    morph_targets : mapping of str to (V, 3) array_like, optional, keyword-only
         Further morph targets by name: displacements of the vertices from the base state,
         in model units (a deformed shape less the base state, a mode shape).
+    options : GlbOptions, keyword-only
+        Unit and scale, up axis, metadata, nodes (``parts``), crease lines and animation timing.
 
     Returns
     -------
@@ -210,118 +249,20 @@ def write_glb(
         On a wrong shape, non-finite coordinates, an unknown unit without ``scale`` or
         a bad option.
     """
-    V = len(mesh.vertices_coords)
-    states = np.asarray(mesh.vertices_coords if coords is None else coords, float)
-    if states.ndim == 2:
-        states = states[None]
-    if states.ndim != 3 or states.shape[1:] != (V, 3) or len(states) == 0:
-        raise InputError(f"coords must have shape (K, {V}, 3) with K >= 1, got {states.shape}")
-    if not np.isfinite(states).all():
-        raise InputError("coords must be finite")
-    K = len(states)
-    base_state = check_integer(base_state, "base_state", f"[{-K}, {K})", why="a state index") % K
-    angles = None
-    if angles_deg is not None:
-        angles = np.asarray(angles_deg, float).reshape(-1)
-        if angles.shape != (K,):
-            raise InputError(f"angles_deg must have shape ({K},) like coords, got {np.shape(angles_deg)}")
-    if scale is None:
-        if unit not in UNITS:
-            raise InputError(f"unit {unit!r} has no known size in metres; give scale= (metres per unit) or use one of {sorted(UNITS)}")
-        scale = UNITS[unit].metres
-    if not (np.isfinite(scale) and scale > 0):
-        raise InputError(f"scale must be a positive number of metres per unit, got {scale}")
-    if not (np.isfinite(seconds_per_state) and seconds_per_state > 0):
-        raise InputError(f"seconds_per_state must be > 0, got {seconds_per_state}")
-    if interpolation not in ("LINEAR", "STEP"):
-        raise InputError(f"interpolation must be 'LINEAR' or 'STEP', got {interpolation!r}")
-    if up not in _AXES:
-        raise InputError(f"up must be 'z' or 'y', got {up!r}")
-    bad = [k for k in crease_kinds if k not in CREASE_COLOURS]
-    if bad:
-        raise InputError(f"crease_kinds must be among {tuple(CREASE_COLOURS)}, got {bad}")
-    meta = check_metadata(metadata)
-    triangulated = mesh.triangulated()  # polygons split in place, in face order
-    faces, groups = triangulated.faces_vertices, np.asarray(triangulated.faces_group)
-    polygon_of = np.repeat(np.arange(len(mesh.faces_vertices)), mesh.face_sizes() - 2)  # the mesh face of every triangle
-    parts = _check_parts(parts, len(mesh.faces_vertices), len(mesh.edges_vertices))
-    extra = _check_morphs(morph_targets, V)
-
-    rotation = _AXES[up]
-    pos = (states * float(scale)) @ rotation.T  # (K, V, 3) metres, glTF axes
-    others = np.array([k for k in range(K) if k != base_state], dtype=np.int64)  # the states of targets 0 … K − 2
-    poses = np.concatenate([pos[others], pos[base_state] + (np.stack(list(extra.values())) * float(scale)) @ rotation.T]) if extra else pos[others]
-    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(extra)
-    T = len(poses)  # morph targets
+    if not isinstance(options, GlbOptions):
+        raise InputError(f"options must be a GlbOptions, got {type(options).__name__}",
+                         parameter="options")
+    scale = _check_options(options)
+    meta = check_metadata(options.metadata)
+    parts = _check_parts(options.parts, len(mesh.faces_vertices), len(mesh.edges_vertices))
+    motion = _motion(mesh, coords, angles_deg, base_state, morph_targets, scale, options.up)
 
     pk = _Packer()
     materials = [_material("surface", rgba("surface"), double_sided=True)]
-    kind_material: dict[str, int] = {}
-    edges_kind = np.asarray(mesh.edges_kind)
-
-    def vec3(data: np.ndarray) -> int:
-        return pk.add_vec3(data[None])[0]
-
-    meshes, nodes = [], []
-    for name, part_faces, part_edges in parts:
-        mine = np.flatnonzero(np.isin(polygon_of, part_faces))  # the part's triangles
-        copies, triangles = _split_by_strip(faces[mine], groups[mine])
-        base = pos[base_state][copies]
-        normal = _vertex_normals(base, triangles)
-        moved = poses[:, copies]
-        moved_normals = _vertex_normals(moved, triangles) if T else moved
-        # accessors in the order position, normal of each target
-        pairs = pk.add_vec3(np.stack([moved - base, moved_normals - normal], axis=1).reshape(-1, *base.shape)) if T else []
-        targets = [{"POSITION": p, "NORMAL": n} for p, n in zip(pairs[::2], pairs[1::2])]
-        primitives = [{"attributes": {"POSITION": vec3(base), "NORMAL": vec3(normal)},
-                       "indices": pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
-                       "mode": _TRIANGLES, "material": 0, **({"targets": targets} if T else {})}]
-        for kind in crease_kinds:
-            edges = np.asarray(mesh.edges_vertices)[part_edges[edges_kind[part_edges] == kind]]
-            if len(edges) == 0:
-                continue
-            if kind not in kind_material:
-                materials.append(_material(kind, CREASE_COLOURS[kind], double_sided=False))
-                kind_material[kind] = len(materials) - 1
-            used, local = np.unique(edges, return_inverse=True)
-            primitives.append({
-                "attributes": {"POSITION": vec3(pos[base_state][used])},
-                "indices": pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER),
-                "mode": _LINES, "material": kind_material[kind],
-                **({"targets": [{"POSITION": p} for p in pk.add_vec3(poses[:, used] - pos[base_state][used])]} if T else {})})
-        meshes.append({"extras": {"targetNames": names}, "primitives": primitives, **({"weights": [0.0] * T} if T else {}), "name": name})
-        nodes.append({"mesh": len(meshes) - 1, "name": name})
-
-    animations = []
-    if K > 1:
-        order = _keyframes(K, base_state)
-        times = (np.arange(len(order)) * float(seconds_per_state)).astype(np.float32)
-        target_of = np.full(K, -1)
-        target_of[others] = np.arange(K - 1)  # the base state has all weights 0
-        weights = np.zeros((len(order), T), np.float32)
-        shown = target_of[order] >= 0
-        weights[np.flatnonzero(shown), target_of[order][shown]] = 1.0
-        t_acc = pk.add(times, "SCALAR", min_max=True)
-        w_acc = pk.add(weights.reshape(-1), "SCALAR")
-        animations.append({
-            "name": "fold",
-            "channels": [{"sampler": 0, "target": {"node": n, "path": "weights"}} for n in range(len(nodes))],
-            "samplers": [{"input": t_acc, "interpolation": interpolation, "output": w_acc}],
-        })
-
-    extras = {
-        "unit": unit,
-        "scale_to_metres": float(scale),
-        "up_axis": up,
-        "axis_mapping": "(x, y, z) -> (x, z, -y)" if up == "z" else "none",
-        "states": K,
-        "base_state": base_state,
-        "morph_targets": names,
-        "seconds_per_state": float(seconds_per_state),
-        "metadata": meta,
-    }
-    if angles is not None:
-        extras["angles_deg"] = angles.tolist()
+    meshes = [_part_mesh(pk, materials, mesh, motion, part, options.crease_kinds) for part in parts]
+    nodes = [{"mesh": i, "name": m["name"]} for i, m in enumerate(meshes)]
+    animations = _animations(pk, motion, len(nodes), options) if motion.states > 1 else []
+    extras = _extras(motion, options, scale, meta)
     document = {
         "accessors": pk.accessors,
         **({"animations": animations} if animations else {}),
@@ -335,6 +276,160 @@ def write_glb(
         "scenes": [{"nodes": list(range(len(nodes)))}],
     }
     return atomic_write(path, _glb(document, bytes(pk.blob)))
+
+
+def _check_options(options: GlbOptions) -> float:
+    """The options' metres per model unit, once every option is checked."""
+    scale = options.scale
+    if scale is None:
+        if options.unit not in UNITS:
+            raise InputError(f"unit {options.unit!r} has no known size in metres; give scale= "
+                             f"(metres per unit) or use one of {sorted(UNITS)}")
+        scale = UNITS[options.unit].metres
+    if not (np.isfinite(scale) and scale > 0):
+        raise InputError(f"scale must be a positive number of metres per unit, got {scale}")
+    seconds = options.seconds_per_state
+    if not (np.isfinite(seconds) and seconds > 0):
+        raise InputError(f"seconds_per_state must be > 0, got {seconds}")
+    if options.interpolation not in ("LINEAR", "STEP"):
+        raise InputError(f"interpolation must be 'LINEAR' or 'STEP', got {options.interpolation!r}")
+    if options.up not in _AXES:
+        raise InputError(f"up must be 'z' or 'y', got {options.up!r}")
+    bad = [k for k in options.crease_kinds if k not in CREASE_COLOURS]
+    if bad:
+        raise InputError(f"crease_kinds must be among {tuple(CREASE_COLOURS)}, got {bad}")
+    return float(scale)
+
+
+def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequence[float] | None,
+            base_state: int, morph_targets: Mapping[str, np.ndarray] | None, scale: float,
+            up: str) -> _Motion:
+    """The states checked, in metres and glTF's axes, and the morph targets they and
+    ``morph_targets`` make."""
+    V = len(mesh.vertices_coords)
+    states = np.asarray(mesh.vertices_coords if coords is None else coords, float)
+    if states.ndim == 2:
+        states = states[None]
+    if states.ndim != 3 or states.shape[1:] != (V, 3) or len(states) == 0:
+        raise InputError(f"coords must have shape (K, {V}, 3) with K >= 1, got {states.shape}")
+    if not np.isfinite(states).all():
+        raise InputError("coords must be finite")
+    K = len(states)
+    base = check_integer(base_state, "base_state", f"[{-K}, {K})", why="a state index") % K
+    angles = None
+    if angles_deg is not None:
+        angles = np.asarray(angles_deg, float).reshape(-1)
+        if angles.shape != (K,):
+            raise InputError(f"angles_deg must have shape ({K},) like coords, got {np.shape(angles_deg)}")
+    extra = _check_morphs(morph_targets, V)
+    rotation = _AXES[up]
+    pos = (states * scale) @ rotation.T  # (K, V, 3) metres, glTF axes
+    others = np.array([k for k in range(K) if k != base], dtype=np.int64)  # targets 0 … K − 2
+    poses = pos[others]
+    if extra:
+        further = (np.stack(list(extra.values())) * scale) @ rotation.T
+        poses = np.concatenate([poses, pos[base] + further])
+    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(extra)
+    return _Motion(K, base, pos, others, poses, names, angles)
+
+
+def _part_mesh(pk: _Packer, materials: list[dict], mesh: Mesh, motion: _Motion,
+               part: tuple[str, np.ndarray, np.ndarray], crease_kinds: Sequence[str]) -> dict:
+    """The glTF mesh of one part: its triangles, then a line primitive per crease kind on it
+    (materials added as first used)."""
+    name, part_faces, part_edges = part
+    primitives = [_surface(pk, mesh, motion, part_faces)]
+    edges_kind = np.asarray(mesh.edges_kind)
+    for kind in crease_kinds:
+        edges = np.asarray(mesh.edges_vertices)[part_edges[edges_kind[part_edges] == kind]]
+        if len(edges) == 0:
+            continue
+        if all(m["name"] != kind for m in materials):
+            materials.append(_material(kind, CREASE_COLOURS[kind], double_sided=False))
+        material = next(i for i, m in enumerate(materials) if m["name"] == kind)
+        primitives.append(_lines(pk, motion, edges, material))
+    T = motion.targets
+    weights = {"weights": [0.0] * T} if T else {}
+    return {"extras": {"targetNames": motion.names}, "primitives": primitives, **weights,
+            "name": name}
+
+
+def _surface(pk: _Packer, mesh: Mesh, motion: _Motion, part_faces: np.ndarray) -> dict:
+    """The triangle primitive of a part's faces, its vertices split between strips, with its
+    morph targets."""
+    triangulated = mesh.triangulated()  # polygons split in place, in face order
+    faces, groups = triangulated.faces_vertices, np.asarray(triangulated.faces_group)
+    # the mesh face of every triangle
+    polygon_of = np.repeat(np.arange(len(mesh.faces_vertices)), mesh.face_sizes() - 2)
+    mine = np.flatnonzero(np.isin(polygon_of, part_faces))  # the part's triangles
+    copies, triangles = _split_by_strip(faces[mine], groups[mine])
+    base = motion.base[copies]
+    normal = _vertex_normals(base, triangles)
+    T = motion.targets
+    moved = motion.poses[:, copies]
+    moved_normals = _vertex_normals(moved, triangles) if T else moved
+    # accessors in the order position, normal of each target
+    deltas = np.stack([moved - base, moved_normals - normal], axis=1).reshape(-1, *base.shape)
+    pairs = pk.add_vec3(deltas) if T else []
+    targets = [{"POSITION": p, "NORMAL": n} for p, n in zip(pairs[::2], pairs[1::2])]
+    attributes = {"POSITION": pk.add_vec3(base[None])[0], "NORMAL": pk.add_vec3(normal[None])[0]}
+    indices = pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR",
+                     target=_ELEMENT_ARRAY_BUFFER)
+    return {"attributes": attributes, "indices": indices, "mode": _TRIANGLES, "material": 0,
+            **({"targets": targets} if T else {})}
+
+
+def _lines(pk: _Packer, motion: _Motion, edges: np.ndarray, material: int) -> dict:
+    """The ``LINES`` primitive of a part's edges (E, 2) of one kind, with its morph targets."""
+    used, local = np.unique(edges, return_inverse=True)
+    base = motion.base[used]
+    position = pk.add_vec3(base[None])[0]
+    indices = pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER)
+    moved = pk.add_vec3(motion.poses[:, used] - base) if motion.targets else None
+    targets = None if moved is None else [{"POSITION": p} for p in moved]
+    return {"attributes": {"POSITION": position}, "indices": indices, "mode": _LINES,
+            "material": material,
+            **({"targets": targets} if targets is not None else {})}
+
+
+def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -> list[dict]:
+    """The one animation of the weights of every node: from the base state to flat, to the last
+    and back."""
+    K, T = motion.states, motion.targets
+    order = _keyframes(K, motion.base_state)
+    times = (np.arange(len(order)) * float(options.seconds_per_state)).astype(np.float32)
+    target_of = np.full(K, -1)
+    target_of[motion.others] = np.arange(K - 1)  # the base state has all weights 0
+    weights = np.zeros((len(order), T), np.float32)
+    shown = target_of[order] >= 0
+    weights[np.flatnonzero(shown), target_of[order][shown]] = 1.0
+    t_acc = pk.add(times, "SCALAR", min_max=True)
+    w_acc = pk.add(weights.reshape(-1), "SCALAR")
+    return [{
+        "name": "fold",
+        "channels": [{"sampler": 0, "target": {"node": n, "path": "weights"}}
+                     for n in range(nodes)],
+        "samplers": [{"input": t_acc, "interpolation": options.interpolation, "output": w_acc}],
+    }]
+
+
+def _extras(motion: _Motion, options: GlbOptions, scale: float, meta: dict) -> dict:
+    """The asset's ``extras["curvefold"]``: units, axes, states, morph targets, timing and the
+    design."""
+    extras = {
+        "unit": options.unit,
+        "scale_to_metres": scale,
+        "up_axis": options.up,
+        "axis_mapping": "(x, y, z) -> (x, z, -y)" if options.up == "z" else "none",
+        "states": motion.states,
+        "base_state": motion.base_state,
+        "morph_targets": motion.names,
+        "seconds_per_state": float(options.seconds_per_state),
+        "metadata": meta,
+    }
+    if motion.angles is not None:
+        extras["angles_deg"] = motion.angles.tolist()
+    return extras
 
 
 def _check_parts(parts, faces: int, edges: int) -> list[tuple[str, np.ndarray, np.ndarray]]:

@@ -15,7 +15,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._planar import box_corners, cell_index, cell_key, near_any, nearest_points, point_segment_distance, ragged, upright
+from ..kernel._errors import InternalError
+from ._planar import (
+    box_corners,
+    cell_index,
+    cell_key,
+    near_any,
+    nearest_points,
+    point_segment_distance,
+    ragged,
+    upright,
+)
 
 __all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
 
@@ -107,6 +117,15 @@ class Obstacles:
     """Lines that labels keep clear of: a sheet's lines sampled densely for nearest-point
     queries, and a few more segments (the labels placed so far) measured exactly."""
 
+    points: np.ndarray  # (N, 2) the lines sampled
+    directions: np.ndarray  # (N, 2) the unit direction of each sample's line
+    _x: np.ndarray  # (N,) the samples' coordinates apart
+    _y: np.ndarray
+    # nearest_points' index of the samples
+    _cells: tuple[np.ndarray, float, np.ndarray, np.ndarray, np.ndarray]
+    # near_any's, by the cells' side
+    _grids: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
+
     def __init__(self, segments: np.ndarray, spacing: float, extra: np.ndarray | None = None, *, _from: Obstacles | None = None):
         self.spacing = spacing
         self.extra = np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
@@ -114,7 +133,7 @@ class Obstacles:
             self.points, self.directions, self._cells, self._grids = _from.points, _from.directions, _from._cells, _from._grids
             self._x, self._y = _from._x, _from._y
             return
-        self._grids: dict[float, tuple] = {}  # the points bucketed in finer cells, by their side (:meth:`blocked`)
+        self._grids = {}  # the points bucketed in finer cells, by their side (:meth:`blocked`)
         (ax, ay), (dx, dy) = segments[:, 0].T, (segments[:, 1] - segments[:, 0]).T
         length = np.sqrt(dx * dx + dy * dy)
         count = np.maximum(1, np.ceil(length / spacing).astype(int))
@@ -177,8 +196,10 @@ class Obstacles:
         slack = limit * (1 + 1e-9)
         keep = (np.abs(frame[0]) <= u[-1] + slack) & (np.abs(frame[1]) <= v[-1] + slack)  # within reach of the box
         box, x, y = box[keep], x[keep], y[keep]
-        cells = [np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0, len(g) - 2) for f, g in zip(frame, (u, v))]
-        at = box * boxes.shape[1] + cells[1] * len(u) + cells[0]  # the corner (0, 0) of the grid's cell around each point
+        grid_cell = [np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0,
+                             len(g) - 2) for f, g in zip(frame, (u, v))]
+        # the corner (0, 0) of the grid's cell around each point
+        at = box * boxes.shape[1] + grid_cell[1] * len(u) + grid_cell[0]
         corners_x, corners_y = boxes[..., 0].ravel(), boxes[..., 1].ravel()
         best = np.full(len(box), np.inf)
         for step in (0, 1, len(u), len(u) + 1):
@@ -201,7 +222,8 @@ class Obstacles:
             self._grids[reach] = (origin, *cell_index(self.points, origin, reach))
         u, v = _box_grid(text, size)
         points = _grid_points(center, angle, u[[0, len(u) // 4, len(u) // 2, 3 * len(u) // 4, -1]], v[[0, -1]])
-        return near_any(self.points, points.reshape(-1, 2), reach, self._grids[reach]).reshape(len(center), -1).any(axis=1)
+        near = near_any(self.points, points.reshape(-1, 2), reach, self._grids[reach])
+        return np.asarray(near.reshape(len(center), -1).any(axis=1))
 
     def fits(self, center: np.ndarray, angle: np.ndarray, text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
         """For the boxes of ``text`` at ``size`` centred on ``center`` (C, 2) along ``angle`` (C,) radians:
@@ -285,6 +307,8 @@ def seam_label(points: np.ndarray, seam: int, obstacles: Obstacles, size: float)
             if ok.any():
                 i = first + int(np.argmax(ok))
                 return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
+    if fallback is None:  # pragma: no cover - label_sizes gives at least one size
+        raise InternalError(f"no label size to try for seam {seam}")
     return fallback, False
 
 

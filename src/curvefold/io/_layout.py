@@ -67,6 +67,7 @@ __all__ = [
     "FOOTER",
     "LAYERS",
     "Layout",
+    "LayoutRules",
     "Page",
     "PlacedSheet",
     "Polyline",
@@ -245,10 +246,8 @@ def _chain_edges(edges: np.ndarray) -> list[tuple[list[int], bool]]:
     def walk(start: int) -> tuple[list[int], bool]:
         path, cur = [start], start
         while True:
-            for k, other in adj[cur]:
-                if not used[k]:
-                    break
-            else:
+            k, other = next(((k, other) for k, other in adj[cur] if not used[k]), (-1, -1))
+            if k < 0:
                 return path, False
             used[k] = True
             cur = other
@@ -370,9 +369,8 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
 # layout
 
 
-def _check_length(name: str, value: float | None, units: float, *, positive: bool) -> float | None:
-    if value is None:
-        return None
+def _check_length(name: str, value: float, units: float, *, positive: bool) -> float:
+    """``value`` in ``units`` as mm, once it is a finite number, positive or non-negative."""
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -382,6 +380,51 @@ def _check_length(name: str, value: float | None, units: float, *, positive: boo
     return v * units
 
 
+@dataclass(frozen=True)
+class LayoutRules:
+    """The spacing of a layout: margins, footer band, gaps, glue tabs and labels.
+
+    Lengths are in the ``units`` of :func:`layout_sheets`; None stands for the default in mm.
+
+    Attributes
+    ----------
+    margin : float or None
+        Free border of every page; default 10 mm (printers cannot print the outer 3–6 mm).
+    footer : float or None
+        Height of the band above the bottom margin kept for the scale bar and legend;
+        default :data:`FOOTER` mm.
+    gap : float or None
+        Space between sheets; default 4 mm.
+    tab_width : float or None
+        Glue tab width, perpendicular to the seam; default 6 mm.
+    tab_length : float or None
+        Longest single tab piece along the seam; default 5 × ``tab_width``.
+    tab_angle : float
+        Angle in degrees between a tab's tapered end and the seam, in (0, 90).
+    label_size : float or None
+        Em height of the sheet labels; seam names are set at 0.8 × this. Default 4 mm.
+        Labels shrink (down to 1.5 mm) to stay clear of lines.
+    """
+
+    margin: float | None = None
+    footer: float | None = None
+    gap: float | None = None
+    tab_width: float | None = None
+    tab_length: float | None = None
+    tab_angle: float = 60.0
+    label_size: float | None = None
+
+
+@dataclass(frozen=True)
+class _SheetRules:
+    """What :func:`_build_sheet` needs of the rules, in mm (and the taper in radians)."""
+
+    tab_width: float
+    tab_length: float
+    taper: float
+    label_size: float
+
+
 def layout_sheets(
     sheets: Sequence[PatternSheet],
     *,
@@ -389,14 +432,8 @@ def layout_sheets(
     units: str = "mm",
     scale: float | None = None,
     target_size: float | None = None,
-    margin: float | None = None,
-    footer: float | None = None,
-    gap: float | None = None,
     glue_tabs: bool = True,
-    tab_width: float | None = None,
-    tab_length: float | None = None,
-    tab_angle: float = 60.0,
-    label_size: float | None = None,
+    rules: LayoutRules = LayoutRules(),
 ) -> Layout:
     """Place developed sheets on pages with glue tabs, layers and labels.
 
@@ -417,24 +454,10 @@ def layout_sheets(
     target_size : float, optional
         Instead of ``scale``: the longer side of the largest sheet's minimum-area
         rectangle (without tabs) becomes this length, in ``units``.
-    margin : float, optional
-        Free border of every page; default 10 mm (printers cannot print the outer 3–6 mm).
-    footer : float, optional
-        Height of the band above the bottom margin kept for the scale bar and legend;
-        default :data:`FOOTER` mm.
-    gap : float, optional
-        Space between sheets; default 4 mm.
     glue_tabs : bool
         Add glue tabs along seams (see the module notes).
-    tab_width : float, optional
-        Tab width, perpendicular to the seam; default 6 mm.
-    tab_length : float, optional
-        Longest single tab piece along the seam; default 5 × ``tab_width``.
-    tab_angle : float
-        Angle in degrees between a tab's tapered end and the seam, in (0, 90).
-    label_size : float, optional
-        Em height of the sheet labels; seam names are set at 0.8 × this. Default 4 mm.
-        Labels shrink (down to 1.5 mm) to stay clear of lines.
+    rules : LayoutRules
+        Margins, footer band, gaps between sheets, glue tab size and label size.
 
     Returns
     -------
@@ -458,15 +481,26 @@ def layout_sheets(
     if scale is not None and target_size is not None:
         raise InputError(f"give scale or target_size, not both (got scale={scale!r}, target_size={target_size!r})")
     scale_mm = _check_length("scale", 1.0 if scale is None else scale, f, positive=True)
-    target = _check_length("target_size", target_size, f, positive=True)
-    margin = _check_length("margin", 10.0 / f if margin is None else margin, f, positive=False)
-    gap = _check_length("gap", 4.0 / f if gap is None else gap, f, positive=False)
-    tab_width = _check_length("tab_width", 6.0 / f if tab_width is None else tab_width, f, positive=True)
-    tab_length = _check_length("tab_length", 5 * tab_width / f if tab_length is None else tab_length, f, positive=True)
-    label_size = _check_length("label_size", 4.0 / f if label_size is None else label_size, f, positive=True)
+    target = (None if target_size is None
+              else _check_length("target_size", target_size, f, positive=True))
+    if not isinstance(rules, LayoutRules):
+        raise InputError(f"rules must be a LayoutRules, got {type(rules).__name__}",
+                         parameter="rules")
+    r = rules
+    margin = _check_length("margin", 10.0 / f if r.margin is None else r.margin, f, positive=False)
+    gap = _check_length("gap", 4.0 / f if r.gap is None else r.gap, f, positive=False)
+    tab_width = _check_length("tab_width", 6.0 / f if r.tab_width is None else r.tab_width, f,
+                              positive=True)
+    tab_length = _check_length("tab_length",
+                               5 * tab_width / f if r.tab_length is None else r.tab_length, f,
+                               positive=True)
+    label_size = _check_length("label_size", 4.0 / f if r.label_size is None else r.label_size, f,
+                               positive=True)
+    tab_angle = r.tab_angle
     if not (isinstance(tab_angle, (int, float)) and 0 < tab_angle < 90):
         raise InputError(f"tab_angle must be in (0, 90) degrees, got {tab_angle!r}")
-    footer = _check_length("footer", FOOTER / f if footer is None else footer, f, positive=False)
+    footer = _check_length("footer", FOOTER / f if r.footer is None else r.footer, f,
+                           positive=False)
     avail = (W - 2 * margin, H - 2 * margin - footer)
     if min(avail) <= 0:
         raise InputError(f"margin {margin:g} mm and footer {footer:g} mm leave no room on a {W:g} × {H:g} mm page")
@@ -511,9 +545,8 @@ def layout_sheets(
             for c in (mine[:1] if len(owners) == 1 and len(mine) > 1 else mine):
                 tabbed.add(id(c))
 
-    items = []
-    for i, (sh, loc) in enumerate(zip(sheets, locals_)):
-        items.append(_build_sheet(i, sh, loc, tabbed, tab_width, tab_length, math.radians(tab_angle), label_size, notes))
+    sheet_rules = _SheetRules(tab_width, tab_length, math.radians(tab_angle), label_size)
+    items = [_build_sheet(sh, loc, tabbed, sheet_rules, notes) for sh, loc in zip(sheets, locals_)]
 
     placements = pack_pages([it[1] for it in items], avail, gap, margin, (W, H), [sh.label for sh in sheets], page_name)
     pages: list[list[PlacedSheet]] = [[] for _ in range(1 + max(p[0] for p in placements))]
@@ -547,9 +580,13 @@ def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np
     return np.concatenate(segs)
 
 
-def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_size, notes):
+def _build_sheet(sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _SheetRules,
+                 notes: list[str]) -> tuple[list[tuple[str, np.ndarray, bool, int]], np.ndarray,
+                                            list[Label], bool]:
     """The lines of one sheet in its local mm frame, as :class:`Polyline`'s fields (layer, points,
     closed, seam), all their points (its footprint), its labels and whether it is mirrored."""
+    tab_width, tab_length, taper = rules.tab_width, rules.tab_length, rules.taper
+    label_size = rules.label_size
     name = sheet.label
     pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
     outline = _outline_segments(loc, pieces_of)
@@ -586,13 +623,14 @@ def _build_sheet(index, sheet, loc, tabbed, tab_width, tab_length, taper, label_
 
     for li, (verts, _) in enumerate(loc.loops):
         n = len(verts)
-        runs = sorted((pos, *replace[(l2, pos)]) for (l2, pos) in replace if l2 == li)
-        if not runs:
+        replaced = sorted((pos, *replace[(l2, pos)]) for (l2, pos) in replace if l2 == li)
+        if not replaced:
             lines.append(("cut", loc.xy[verts], True, -1))
             continue
         parts = []  # from the first replaced run, so no run wraps around the walk's end
-        for k, (pos, count, pts) in enumerate(runs):
-            until = runs[k + 1][0] if k + 1 < len(runs) else runs[0][0] + n  # the next run's start
+        for k, (pos, count, pts) in enumerate(replaced):
+            # the next run's start
+            until = replaced[k + 1][0] if k + 1 < len(replaced) else replaced[0][0] + n
             parts += [pts, loc.xy[verts[np.arange(pos + count, until) % n]]]
         lines.append(("cut", np.concatenate(parts), True, -1))
     lines.extend(loc.creases)

@@ -11,6 +11,7 @@ its text names the layer's colour. The SVG, DXF and PDF writers share these.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Collection
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -23,7 +24,8 @@ from ._cutters import STYLES, LayerStyle, cutter, layer_name
 from ._labels import Label, seam_name, text_width
 from ._layout import LAYERS, Layout
 
-__all__ = ["DEFAULT_LAYERS", "LEGEND", "Footer", "check_layout", "check_layers", "layer_look", "page_footer"]
+__all__ = ["DEFAULT_LAYERS", "LEGEND", "Footer", "check_layout", "check_layers",
+           "check_line_width", "layer_look", "page_footer"]
 
 #: Layers the writers draw by default.
 DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")
@@ -135,3 +137,10 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
             samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
         texts.append(text(f"{LEGEND[name]} {colour}", x + lead + 1.5, y))
     return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts), layer_look(layout, "legend")[1])
+
+
+def check_line_width(line_width: float) -> float:
+    """A line width in mm: a positive number."""
+    if not (isinstance(line_width, (int, float)) and math.isfinite(line_width) and line_width > 0):
+        raise InputError(f"line_width must be a positive number of mm, got {line_width!r}")
+    return float(line_width)

@@ -251,15 +251,17 @@ def nearest_points(points: np.ndarray, queries: np.ndarray, limit: float = math.
     dist, nearest = np.full(len(queries), math.inf), np.full(len(queries), len(points))
     if len(points) == 0 or len(queries) == 0:
         return dist, nearest
+    cells: tuple[np.ndarray, ...] | None = None
     if index is None:
-        (lo, hi), cells = bounding_box(points), None
+        lo, hi = bounding_box(points)
         extent = float((hi - lo).max())
         r = min(limit, max(extent, 1e-300) / math.sqrt(len(points)))  # about a point per cell, were they spread evenly
     else:
-        lo, r, *cells = index
+        lo, r, *given = index
+        cells = tuple(given)
     todo = np.flatnonzero(np.isfinite(queries).all(axis=1))  # (a query not finite has no nearest)
     while todo.size:
-        d, i = _nearest_in_cells(points, queries[todo], lo, r, cells=None if cells is None else tuple(cells))
+        d, i = _nearest_in_cells(points, queries[todo], lo, r, cells=cells)
         done = d < r if r < limit else np.ones(todo.size, bool)
         found = done & (d < limit)
         dist[todo[found]], nearest[todo[found]] = d[found], i[found]
@@ -283,13 +285,14 @@ def near_any(points: np.ndarray, queries: np.ndarray, reach: float, index: tuple
 
 
 def _nearest_in_cells(points: np.ndarray, queries: np.ndarray, lo: np.ndarray, r: float, pairs: int = 1 << 16,
-                      cells: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
+                      cells: tuple[np.ndarray, ...] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of ``points`` in the 3 × 3 cells of side r (from ``lo``) around each query: distance
     and index (inf, P for none), measuring at most about ``pairs`` query–point pairs at a time
     (``cells``: the points' :func:`cell_index` for these cells, if made already). The three cells
     of a column are one run of the points sorted by cell."""
-    order, keys, cells = cell_index(points, lo, r) if cells is None else cells
-    own = np.clip(np.floor((queries - lo) / r), -2, cells + 1).astype(np.int64)  # (far off, an empty cell)
+    order, keys, size = cell_index(points, lo, r) if cells is None else cells
+    # (far off, an empty cell)
+    own = np.clip(np.floor((queries - lo) / r), -2, size + 1).astype(np.int64)
     column = own[:, None, 0] + np.array([-1, 0, 1])  # (Q, 3)
     first = keys.searchsorted(column * (1 << 32) + (own[:, 1:] - 1), "left")  # cell_key of each column's lowest cell
     last = keys.searchsorted(column * (1 << 32) + (own[:, 1:] + 1), "right")

@@ -37,8 +37,9 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -51,7 +52,8 @@ from ._layout import Layout
 from ._mesh3d import check_metadata, crease_polylines
 from ._tables import CREATOR, UNITS, rgb8, rgba8
 
-__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "interpolating_spline", "write_3dm"]
+__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "RhinoOptions", "interpolating_spline",
+           "write_3dm"]
 
 #: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
 LAYERS = (
@@ -147,17 +149,37 @@ def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
     return curve
 
 
+@dataclass(frozen=True, eq=False)
+class RhinoOptions:
+    """How :func:`write_3dm` writes a state: unit, user text, archive version and the crease
+    pattern beside it.
+
+    Attributes
+    ----------
+    unit : str
+        Model unit, a name in :data:`curvefold.io._tables.UNITS`.
+    metadata : mapping or None
+        Design parameters, written as document user text ``curvefold:<key>``.
+    version : int
+        3dm archive version (0 = the newest rhino3dm writes).
+    pattern : Layout or None
+        The crease pattern to lay beside the model on the ``crease pattern`` layer.
+    """
+
+    unit: str = "unit"
+    metadata: Mapping[str, object] | None = None
+    version: int = 0
+    pattern: Layout | None = None
+
+
 def write_3dm(
     path: str | os.PathLike,
     mesh: Mesh,
     topology: Topology,
     *,
-    unit: str = "unit",
-    metadata: Mapping | None = None,
-    version: int = 0,
     degree: int = 3,
     fold_angle: float | None = None,
-    pattern: Layout | None = None,
+    options: RhinoOptions = RhinoOptions(),
 ) -> Path:
     """Write one state to a Rhino 3dm file (see the module notes).
 
@@ -169,28 +191,28 @@ def write_3dm(
     topology : Topology
         The mesh's topology (:meth:`Structure.topology` with ``faces="quads"``): its
         sheets, and the samples of its vertices.
-    unit : str
-        Model unit, a name in :data:`curvefold.io._tables.UNITS`.
-    metadata : mapping, optional
-        Design parameters, written as document user text ``curvefold:<key>``.
-    version : int
-        3dm archive version (0 = the newest rhino3dm writes).
-    degree : {3, 1}
+    degree : {3, 1}, keyword-only
         Of the crease curves: cubic through the samples of smooth creases, 1 for the
         polylines of rigid panels.
-    fold_angle : float, optional
+    fold_angle : float, optional, keyword-only
         2α of the state in degrees, recorded as the objects' user text.
-    pattern : Layout, optional
-        The crease pattern to lay beside the model on the ``crease pattern`` layer.
+    options : RhinoOptions, keyword-only
+        Unit, metadata, archive version and the crease pattern laid beside the model.
 
     Returns
     -------
     Path
     """
+    if not isinstance(options, RhinoOptions):
+        raise InputError(f"options must be a RhinoOptions, got {type(options).__name__}",
+                         parameter="options")
+    unit, metadata, pattern = options.unit, options.metadata, options.pattern
     try:
-        import rhino3dm
+        import rhino3dm as module
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError("writing 3dm needs rhino3dm: pip install 'curvefold[rhino]'") from exc
+    # its stubs call settable properties read-only and lack tables (Groups): untyped here
+    rhino3dm: Any = module
     if unit not in UNITS:
         raise InputError(f"unit must be one of {sorted(UNITS)} for a 3dm file, got {unit!r}")
     faces = np.asarray(mesh.faces_vertices)
@@ -287,7 +309,7 @@ def write_3dm(
 
     if pattern is not None:
         _add_pattern(rhino3dm, model, pattern, unit, x)
-    for name, vi in _views(rhino3dm, x):
+    for _, vi in _views(rhino3dm, x):
         model.NamedViews.Add(vi)
 
     for key, value in meta.items():
@@ -295,7 +317,7 @@ def write_3dm(
     model.Strings["curvefold:unit"] = unit
 
     with atomic_path(path) as tmp:
-        if not model.Write(str(tmp), version):
+        if not model.Write(str(tmp), options.version):
             raise OSError(f"rhino3dm could not write {path}")
     return Path(path)
 

@@ -22,21 +22,22 @@ from ..kernel._errors import InputError
 from . import _gltf as gltf
 from . import _mesh3d as mesh3d
 from . import _rhino as rhino
-from ._cutters import DEFAULT_CUTTER
 from ._cutters import cutter as check_cutter
 from ._cutting import prepare_layout
 from ._fold_reading import FoldFile
 from ._formats import FORMATS, check_formats
 from ._layout import FOOTER, Layout, layout_sheets, page_size
 from ._mesh3d import check_metadata
+from ._output import PatternOutput, check_output
 from ._tables import mm_per_unit
 
 __all__ = ["single_fold_model", "write_single_fold_3d", "layout_single_fold"]
 
 def _glb(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
     coords = np.stack([fold.topology().coords(fold.curves(a)) for a in motion])
-    return gltf.write_glb(path, fold.mesh(fold.fold_angle), coords=coords, angles_deg=motion, unit=unit, metadata=meta,
-                          base_state=int(np.argmin(np.abs(motion - fold.fold_angle))))
+    return gltf.write_glb(path, fold.mesh(fold.fold_angle), coords=coords, angles_deg=motion,
+                          base_state=int(np.argmin(np.abs(motion - fold.fold_angle))),
+                          options=gltf.GlbOptions(unit=unit, metadata=meta))
 
 
 def _obj(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
@@ -52,7 +53,9 @@ def _ply(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict
 
 
 def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
-    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"), unit=unit, metadata=meta, degree=3)
+    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"),
+                           degree=3,
+                           options=rhino.RhinoOptions(unit=unit, metadata=meta))
 
 
 #: How a single fold writes each 3D format of the registry: its meshes to the format's serialiser.
@@ -87,17 +90,23 @@ def write_single_fold_3d(path_stem: str | os.PathLike, fold: SingleFold, fold_an
     return tuple(_MODELS[name](FORMATS[name].path(path_stem), fold, motion, unit, meta) for name in formats)
 
 
-def layout_single_fold(fold: SingleFold, *, page="A4", units: str = "mm", scale: float | None = None, name: str = "",
-                       cutter: str = DEFAULT_CUTTER, perforation: tuple[float, float] | None = None, kerf: float = 0.0) -> Layout:
-    """The crease pattern of a single fold on its page: at ``scale``, or as large as the page takes it.
+def layout_single_fold(fold: SingleFold, output: PatternOutput = PatternOutput()) -> Layout:
+    """The crease pattern of a single fold on its page: at the output's scale, or as large as the
+    page takes it.
+
+    The output's page, units, scale, cutter, perforation, kerf and name are used; a single
+    sheet has no seam, so no glue tab.
 
     Raises
     ------
     InputError
         A scale at which the pattern does not fit the page (the message gives both sizes).
     """
-    return prepare_layout(replace(_fitted(fold.pattern_sheet(name), page, units, scale), cutter=check_cutter(cutter)),
-                          perforation=perforation, kerf=kerf)
+    check_output(output)
+    fitted = _fitted(fold.pattern_sheet(output.name), output.page, output.units, output.scale)
+    check_cutter(output.cutter)
+    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation,
+                          kerf=output.kerf)
 
 
 def _fitted(sheet, page, units: str, scale: float | None) -> Layout:

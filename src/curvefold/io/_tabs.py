@@ -18,8 +18,13 @@ import math
 import numpy as np
 
 from ..kernel._arrays import distinct
-
-from ._planar import point_segment_distance, polyline_segments, ragged, ray_crossings, segment_pairs_touch
+from ._planar import (
+    point_segment_distance,
+    polyline_segments,
+    ragged,
+    ray_crossings,
+    segment_pairs_touch,
+)
 
 __all__ = ["TAB_MAX_TURN", "TAB_WIDTH_STEPS", "tab_outline", "tab_outlines", "tab_pieces", "tab_fits", "tabs_fit", "place_tabs"]
 
@@ -112,7 +117,8 @@ def place_tabs(pieces: list[np.ndarray], outline: np.ndarray, width: float, tape
     accepted: list[np.ndarray] = []
     while len(placed) < len(pieces):
         i = len(placed)
-        batch = list(itertools.takewhile(lambda tab: tab is not None, widest[i:i + _BATCH]))
+        batch = [tab for tab in itertools.takewhile(lambda tab: tab is not None,
+                                                    widest[i:i + _BATCH]) if tab is not None]
         fit = np.append(tabs_fit(batch, outline, accepted, tol), False)
         fitting = batch[:int(np.argmin(fit))]
         placed += [(tab, 0) for tab in fitting]
