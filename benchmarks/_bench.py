@@ -15,8 +15,8 @@ import resource
 import subprocess
 import sys
 import time
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
 
 #: The clocks a timing can read: wall time, and the CPU time of this process.
 WALL, CPU = time.perf_counter, time.process_time
@@ -33,7 +33,9 @@ class SummaryRow:
     status: str
 
 
-def timed(fn: Callable[[], object], *, pause_gc: bool = True, clock: Callable[[], float] = WALL) -> tuple[float, object]:
+def timed(
+    fn: Callable[[], object], *, pause_gc: bool = True, clock: Callable[[], float] = WALL
+) -> tuple[float, object]:
     """Time of one call of ``fn`` on ``clock`` and its result.
 
     The garbage collector runs a full collection first and is paused during the call
@@ -54,7 +56,11 @@ def timed(fn: Callable[[], object], *, pause_gc: bool = True, clock: Callable[[]
 
 
 def best_of_interleaved(
-    contenders: Mapping[str, Callable[[], object]], repeats: int, *, pause_gc: bool = True, clock: Callable[[], float] = WALL
+    contenders: Mapping[str, Callable[[], object]],
+    repeats: int,
+    *,
+    pause_gc: bool = True,
+    clock: Callable[[], float] = WALL,
 ) -> tuple[dict[str, float], dict[str, object]]:
     """Best time (on ``clock``) of each contender over ``repeats`` interleaved rounds.
 
@@ -83,14 +89,25 @@ def bytecode_env(cache: str) -> dict[str, str]:
     """This environment with Python's bytecode cache written to the folder ``cache``
     (``PYTHONPYCACHEPREFIX``), even where ``PYTHONDONTWRITEBYTECODE`` is set: a command
     timed after one warm-up run starts as an installed package does, from bytecode."""
-    return {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPYCACHEPREFIX": cache}
+    return {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {
+        "PYTHONPYCACHEPREFIX": cache
+    }
 
 
-def children_cpu(command: Sequence[str], env: Mapping[str, str] | None = None) -> tuple[float, float, subprocess.CompletedProcess]:
-    """(wall seconds, CPU seconds of the command and the processes it waited for, its result) of one run of ``command``."""
+def children_cpu(
+    command: Sequence[str], env: Mapping[str, str] | None = None
+) -> tuple[float, float, subprocess.CompletedProcess]:
+    """(wall seconds, CPU seconds of the command and the processes it waited for, its result) of
+    one run of ``command``."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    done = subprocess.run(list(command), capture_output=True, text=True, check=False, env=None if env is None else dict(env))
+    done = subprocess.run(
+        list(command),
+        capture_output=True,
+        text=True,
+        check=False,
+        env=None if env is None else dict(env),
+    )
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime), done
@@ -139,11 +156,17 @@ def markdown_table(headers: Sequence[str], rows: Sequence[Sequence[object]]) -> 
     cells = [[str(c) for c in headers]] + [[str(c) for c in row] for row in rows]
     widths = [max(len(row[i]) for row in cells) for i in range(len(headers))]
     line = lambda row: "| " + " | ".join(c.ljust(w) for c, w in zip(row, widths)) + " |"  # noqa: E731
-    return "\n".join([line(cells[0]), "|" + "|".join("-" * (w + 2) for w in widths) + "|"] + [line(r) for r in cells[1:]])
+    return "\n".join(
+        [line(cells[0]), "|" + "|".join("-" * (w + 2) for w in widths) + "|"]
+        + [line(r) for r in cells[1:]]
+    )
 
 
 def summary_table(rows: Sequence[SummaryRow]) -> str:
-    return markdown_table(["benchmark", "measure", "value", "target", "status"], [(r.benchmark, r.measure, r.value, r.target, r.status) for r in rows])
+    return markdown_table(
+        ["benchmark", "measure", "value", "target", "status"],
+        [(r.benchmark, r.measure, r.value, r.target, r.status) for r in rows],
+    )
 
 
 def ms(seconds: float) -> str:

@@ -1,4 +1,5 @@
-"""The compiled reference of the integrator benchmark: ``magnus6.c`` built with the machine's C compiler.
+"""The compiled reference of the integrator benchmark: ``magnus6.c`` built with the machine's C
+compiler.
 
 It is built at benchmark time into a temporary folder (``cc -O3 -march=native``) and
 loaded with ctypes; it is a reference to time against, never part of curvefold.
@@ -44,7 +45,14 @@ class CompiledMagnus6:
         subprocess.run([cc, *FLAGS, "-o", str(library), str(SOURCE), "-lm"], check=True)
         self._lib = ctypes.CDLL(str(library))
         pointer = np.ctypeslib.ndpointer(np.float64, flags="C_CONTIGUOUS")
-        self._lib.frenet_magnus6.argtypes = [ctypes.c_long, ctypes.c_double, pointer, pointer, pointer, pointer]
+        self._lib.frenet_magnus6.argtypes = [
+            ctypes.c_long,
+            ctypes.c_double,
+            pointer,
+            pointer,
+            pointer,
+            pointer,
+        ]
         self._lib.frenet_magnus6.restype = None
         self.command = " ".join([Path(cc).name, *FLAGS])
 

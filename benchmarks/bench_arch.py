@@ -17,7 +17,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
+from _bench import (
+    SummaryRow,
+    best_of_interleaved,
+    choose_repeats,
+    markdown_table,
+    ms,
+    summary_table,
+    verdict,
+)
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
@@ -58,19 +66,61 @@ def run() -> list[SummaryRow]:
     k = choose_repeats(sum(warm.values()), BUDGET, high=30)
     best, roots = best_of_interleaved(contenders, k)
     user = roots["solve_ivp + brentq"]
-    print(f"symmetric arch, a = {A}: root of T(s0/2)·T(0) = 0 near π; best of k = {k} interleaved rounds")
+    print(
+        f"symmetric arch, a = {A}: root of T(s0/2)·T(0) = 0 near π; best of k = {k} "
+        "interleaved rounds"
+    )
     rows = []
     for name in contenders:
         ratio = best["solve_ivp + brentq"] / best[name]
-        rows.append((name, ms(best[name]), f"{ratio:.2f}", f"{roots[name]:.15f}", f"{roots[name] - EXACT:+.1e}", f"{roots[name] - user:+.1e}"))
-    print(markdown_table(["solver", "time [ms]", "speed-up vs ivp", "κ0·s0", f"− {EXACT} (12 s.f.)", "− ivp root"], rows))
+        rows.append(
+            (
+                name,
+                ms(best[name]),
+                f"{ratio:.2f}",
+                f"{roots[name]:.15f}",
+                f"{roots[name] - EXACT:+.1e}",
+                f"{roots[name] - user:+.1e}",
+            )
+        )
+    print(
+        markdown_table(
+            [
+                "solver",
+                "time [ms]",
+                "speed-up vs ivp",
+                "κ0·s0",
+                f"− {EXACT} (12 s.f.)",
+                "− ivp root",
+            ],
+            rows,
+        )
+    )
     ratio = best["solve_ivp + brentq"] / best["ours (xtol 1e-12)"]
     diff = abs(roots["ours (xtol 1e-12)"] - user)
-    print(f"speed-up {ratio:.2f}× (target ≥ {SPEEDUP_TARGET:g}×): {verdict(ratio >= SPEEDUP_TARGET)}")
-    print(f"ours − ivp (absolute) = {diff:.1e} (target ≤ {AGREEMENT_TARGET:g}): {verdict(diff <= AGREEMENT_TARGET)}")
+    print(
+        f"speed-up {ratio:.2f}× (target ≥ {SPEEDUP_TARGET:g}×): {verdict(ratio >= SPEEDUP_TARGET)}"
+    )
+    print(
+        f"ours − ivp (absolute) = {diff:.1e} (target ≤ {AGREEMENT_TARGET:g}): "
+        f"{verdict(diff <= AGREEMENT_TARGET)}"
+    )
     return [
-        SummaryRow("arch", "solve_symmetric_arch(0.3) vs solve_ivp + brentq", f"{ms(best['ours (xtol 1e-12)'])} ms vs {ms(best['solve_ivp + brentq'])} ms ({ratio:.2f}×)", f"≥ {SPEEDUP_TARGET:g}×", verdict(ratio >= SPEEDUP_TARGET)),
-        SummaryRow("arch", "root agreement, ours − ivp (absolute)", f"{diff:.1e} (κ0·s0 = {roots['ours (xtol 1e-12)']:.12f})", f"≤ {AGREEMENT_TARGET:g}", verdict(diff <= AGREEMENT_TARGET)),
+        SummaryRow(
+            "arch",
+            "solve_symmetric_arch(0.3) vs solve_ivp + brentq",
+            f"{ms(best['ours (xtol 1e-12)'])} "
+            f"ms vs {ms(best['solve_ivp + brentq'])} ms ({ratio:.2f}×)",
+            f"≥ {SPEEDUP_TARGET:g}×",
+            verdict(ratio >= SPEEDUP_TARGET),
+        ),
+        SummaryRow(
+            "arch",
+            "root agreement, ours − ivp (absolute)",
+            f"{diff:.1e} (κ0·s0 = {roots['ours (xtol 1e-12)']:.12f})",
+            f"≤ {AGREEMENT_TARGET:g}",
+            verdict(diff <= AGREEMENT_TARGET),
+        ),
     ]
 
 

@@ -69,24 +69,30 @@ TARGET_CPU = 60.0  # CPU seconds of the 200 × 200 atlas
 def _grid():
     from curvefold.vault import AtlasGrid
 
-    return AtlasGrid.of(np.linspace(0.5, 1.5, SIDE), np.linspace(0.0, 1.2, SIDE), width=WIDTH, samples=SAMPLES)
+    return AtlasGrid.of(
+        np.linspace(0.5, 1.5, SIDE), np.linspace(0.0, 1.2, SIDE), width=WIDTH, samples=SAMPLES
+    )
 
 
 def _process_pool(grid) -> list[dict]:
-    """The atlas's sweep before Dask: a process pool, interleaved chunks, all results held, sorted at the end."""
+    """The atlas's sweep before Dask: a process pool, interleaved chunks, all results held,
+    sorted at the end."""
     from curvefold.vault._atlas import _evaluate_chunk
 
     points = list(grid.points())
     count = min(len(points), WORKERS * 16)
     with ProcessPoolExecutor(max_workers=WORKERS) as pool:
-        futures = [pool.submit(_evaluate_chunk, points[k::count], grid.shared) for k in range(count)]
+        futures = [
+            pool.submit(_evaluate_chunk, points[k::count], grid.shared) for k in range(count)
+        ]
         results = [pair for future in as_completed(futures) for pair in future.result()]
     results.sort(key=lambda pair: (pair[0]["row"], pair[0]["col"]))
     return [record for record, _ in results]
 
 
 def _records(grid, **where) -> list[dict]:
-    """The records of a sweep, sketching the designs ``curvefold atlas`` draws (every k-th row and column)."""
+    """The records of a sweep, sketching the designs ``curvefold atlas`` draws (every k-th row
+    and column)."""
     from curvefold.figures._atlas import view_step
     from curvefold.vault import sweep
 
@@ -99,7 +105,10 @@ LOCAL = f"Dask, local cluster (workers={WORKERS}, start included)"
 
 
 def _running(workers: int, defaults: bool = False) -> str:
-    return f"Dask, running cluster of {workers} worker{'s' * (workers != 1)} (scheduler=){', Dask defaults' * defaults}"
+    return (
+        f"Dask, running cluster of {workers} worker{'s' * (workers != 1)} "
+        f"(scheduler=){', Dask defaults' * defaults}"
+    )
 
 
 def _warm() -> None:
@@ -111,7 +120,8 @@ def _warm() -> None:
 
 @contextmanager
 def _cluster(workers: int, settings: Mapping) -> Iterator[tuple]:
-    """(cluster, client) of a local cluster of ``workers`` single-thread processes started here under Dask ``settings``."""
+    """(cluster, client) of a local cluster of ``workers`` single-thread processes started here
+    under Dask ``settings``."""
     import distributed
 
     with local_cluster(workers, settings) as cluster, distributed.Client(cluster) as client:
@@ -120,21 +130,42 @@ def _cluster(workers: int, settings: Mapping) -> Iterator[tuple]:
 
 @contextmanager
 def _running_cluster(workers: int, env: Mapping[str, str]) -> Iterator:
-    """A client of a cluster started as one's own: ``dask scheduler`` and ``dask worker`` of ``workers`` single-thread workers under ``env``."""
+    """A client of a cluster started as one's own: ``dask scheduler`` and ``dask worker`` of
+    ``workers`` single-thread workers under ``env``."""
     import tempfile
 
     import distributed
 
     dask = [os.path.join(os.path.dirname(sys.executable), "dask")]
-    plain = {k: v for k, v in os.environ.items() if k not in worker_environment() and not k.startswith("DASK_")}
-    plain["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.abspath(__file__)), plain.get("PYTHONPATH")]))  # this module's functions
+    plain = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in worker_environment() and not k.startswith("DASK_")
+    }
+    # this module's functions
+    plain["PYTHONPATH"] = os.pathsep.join(
+        filter(None, [os.path.dirname(os.path.abspath(__file__)), plain.get("PYTHONPATH")])
+    )
     with tempfile.TemporaryDirectory() as folder:
         common = ["--scheduler-file", f"{folder}/scheduler.json", "--no-dashboard"]
-        started = [subprocess.Popen([*dask, "scheduler", "--host", "127.0.0.1", *common], env=plain, stderr=subprocess.DEVNULL)]
+        started = [
+            subprocess.Popen(
+                [*dask, "scheduler", "--host", "127.0.0.1", *common],
+                env=plain,
+                stderr=subprocess.DEVNULL,
+            )
+        ]
         try:
-            started.append(subprocess.Popen([*dask, "worker", "--nworkers", str(workers), "--nthreads", "1", *common], env=plain | dict(env),
-                                            stderr=subprocess.DEVNULL))
-            with distributed.Client(scheduler_file=f"{folder}/scheduler.json", timeout=60) as client:
+            started.append(
+                subprocess.Popen(
+                    [*dask, "worker", "--nworkers", str(workers), "--nthreads", "1", *common],
+                    env=plain | dict(env),
+                    stderr=subprocess.DEVNULL,
+                )
+            )
+            with distributed.Client(
+                scheduler_file=f"{folder}/scheduler.json", timeout=60
+            ) as client:
                 client.wait_for_workers(workers, timeout=60)
                 yield client
                 client.shutdown()
@@ -161,7 +192,8 @@ def _workers_faults(client) -> int:
 
 
 def _idle(settings: Mapping, seconds: float = 3.0) -> tuple[float, float]:
-    """CPU seconds a second that an idle local cluster of 2 spends under ``settings``: (workers, this process)."""
+    """CPU seconds a second that an idle local cluster of 2 spends under ``settings``: (workers,
+    this process)."""
     with _cluster(WORKERS, settings) as (_, client):
         time.sleep(1.0)  # past the start
         workers, here = _workers_cpu(client), time.process_time()
@@ -184,12 +216,19 @@ def run() -> list[SummaryRow]:
     once(POOL, lambda: _process_pool(grid))
     once(LOCAL, lambda: _records(grid, workers=WORKERS))
     serial_cpu = []
-    for workers, defaults in [(WORKERS, False)] + [(w, False) for w in SCALING if w != WORKERS] + [(WORKERS, True)]:
+    for workers, defaults in (
+        [(WORKERS, False)] + [(w, False) for w in SCALING if w != WORKERS] + [(WORKERS, True)]
+    ):
         name = _running(workers, defaults)
         with _running_cluster(workers, {} if defaults else worker_environment()) as client:
             address = client.scheduler.address
             client.run(_warm)
-            before, faults, c0, spent = _workers_cpu(client), _workers_faults(client), time.process_time(), 0.0
+            before, faults, c0, spent = (
+                _workers_cpu(client),
+                _workers_faults(client),
+                time.process_time(),
+                0.0,
+            )
             scheduler = client.run_on_scheduler(time.process_time)
             for _ in range(REPEATS):
                 if name == _running(WORKERS):  # the serial sweeps alternate with these
@@ -197,10 +236,13 @@ def run() -> list[SummaryRow]:
                     once(SERIAL, lambda: _records(grid, workers=1))
                     serial_cpu.append(time.process_time() - s0)
                     spent += serial_cpu[-1]
-                once(name, lambda: _records(grid, scheduler=address))
+                once(name, lambda address=address: _records(grid, scheduler=address))
             worker_cpu = (_workers_cpu(client) - before) / REPEATS
             scheduler = (client.run_on_scheduler(time.process_time) - scheduler) / REPEATS
-            cpu[name] = f"{worker_cpu:.2f} + {scheduler:.2f} + {(time.process_time() - c0 - spent) / REPEATS:.2f}"
+            cpu[name] = (
+                f"{worker_cpu:.2f} + {scheduler:.2f} + "
+                f"{(time.process_time() - c0 - spent) / REPEATS:.2f}"
+            )
             faulted[name] = f"{(_workers_faults(client) - faults) / REPEATS:,.0f}"
     cpu[SERIAL] = f"{min(serial_cpu):.2f}"
     throughput = parallel_throughput(WORKERS)
@@ -209,23 +251,74 @@ def run() -> list[SummaryRow]:
     serial = times[SERIAL]
     two = times[_running(2)]
     same = all(r == records[SERIAL] for r in records.values())
-    print(f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; serial and running clusters best of {REPEATS}, the others one run "
-          f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; {WORKERS} busy processes got {throughput:.2f} CPUs' worth of work)")
-    rows = [(name, f"{t:.2f}", cpu.get(name, "—"), faulted.get(name, "—"), f"{grid.size / t:.0f}", f"{t / serial:.2f}") for name, t in times.items()]
-    print(markdown_table(["run", "wall [s]", "CPU [s] (workers + scheduler + this process)", "workers' page faults", "designs/s", "time / serial"], rows))
-    print("an idle cluster of 2, CPU-s a second (workers + this process): "
-          + "; ".join(f"{name} {w:.3f} + {h:.3f}" for name, (w, h) in idle.items()))
-    print(f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records identical in every run: {same}")
+    print(
+        f"atlas: {SIDE} × {SIDE} designs, width {WIDTH}, {SAMPLES} samples; serial and running "
+        f"clusters best of {REPEATS}, the others one run (load average "
+        f"{os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; {WORKERS} busy processes got "
+        f"{throughput:.2f} CPUs' worth of work)"
+    )
+    rows = [
+        (
+            name,
+            f"{t:.2f}",
+            cpu.get(name, "—"),
+            faulted.get(name, "—"),
+            f"{grid.size / t:.0f}",
+            f"{t / serial:.2f}",
+        )
+        for name, t in times.items()
+    ]
+    print(
+        markdown_table(
+            [
+                "run",
+                "wall [s]",
+                "CPU [s] (workers + scheduler + this process)",
+                "workers' page faults",
+                "designs/s",
+                "time / serial",
+            ],
+            rows,
+        )
+    )
+    print(
+        "an idle cluster of 2, CPU-s a second (workers + this process): "
+        + "; ".join(f"{name} {w:.3f} + {h:.3f}" for name, (w, h) in idle.items())
+    )
+    print(
+        f"valid designs: {sum(r['valid'] for r in records[SERIAL])} of {grid.size}; records "
+        f"identical in every run: {same}"
+    )
     ok = two <= TARGET_TWO * serial
     scaling = ", ".join(f"{w}: {times[_running(w)] / serial:.2f}" for w in SCALING)
     return [
-        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, running Dask cluster of 2 workers vs serial ({serial:.1f} s)",
-                   f"{two:.2f} s ({two / serial:.2f}× the serial time; {WORKERS} busy processes got {throughput:.2f} CPUs' worth, "
-                   f"{1 / throughput:.2f}× at best; load {os.getloadavg()[0]:.1f})", f"≤ {TARGET_TWO:g}×", verdict(ok)),
-        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, running cluster of 1, 2, 4 workers: time / serial", scaling, "records identical", verdict(same)),
-        SummaryRow("atlas", f"{SIDE} × {SIDE} designs, local Dask cluster (start included); process pool; running cluster of 2 with Dask's defaults",
-                   f"{times[LOCAL]:.1f} s ({times[LOCAL] / serial:.2f}×); {times[POOL]:.1f} s ({times[POOL] / serial:.2f}×); "
-                   f"{times[_running(WORKERS, True)]:.2f} s ({times[_running(WORKERS, True)] / serial:.2f}×)", "—", "—"),
+        SummaryRow(
+            "atlas",
+            f"{SIDE} × {SIDE} designs, running Dask cluster of 2 workers vs "
+            f"serial ({serial:.1f} s)",
+            f"{two:.2f} s ({two / serial:.2f}× the serial time; {WORKERS} busy processes "
+            f"got {throughput:.2f} CPUs' worth, {1 / throughput:.2f}× at best; load "
+            f"{os.getloadavg()[0]:.1f})",
+            f"≤ {TARGET_TWO:g}×",
+            verdict(ok),
+        ),
+        SummaryRow(
+            "atlas",
+            f"{SIDE} × {SIDE} designs, running cluster of 1, 2, 4 workers: time / serial",
+            scaling,
+            "records identical",
+            verdict(same),
+        ),
+        SummaryRow(
+            "atlas",
+            f"{SIDE} × {SIDE} designs, local Dask cluster (start included); "
+            "process pool; running cluster of 2 with Dask's defaults",
+            f"{times[LOCAL]:.1f} s ({times[LOCAL] / serial:.2f}×); {times[POOL]:.1f} s "
+            f"({times[POOL] / serial:.2f}×); {times[_running(WORKERS, True)]:.2f} s "
+            f"({times[_running(WORKERS, True)] / serial:.2f}×)",
+            "—",
+            "—",
+        ),
     ]
 
 
@@ -244,33 +337,80 @@ print("RESULT", wall, cpu, me.ru_maxrss / 1024, children.ru_maxrss / 1024, file=
 
 
 def memory() -> list[SummaryRow]:
-    """CPU seconds and peak resident memory of ``curvefold atlas``, per grid size, each in a fresh process."""
+    """CPU seconds and peak resident memory of ``curvefold atlas``, per grid size, each in a
+    fresh process."""
     import tempfile
 
     script = _PEAK.format(width=WIDTH, samples=SAMPLES, workers=WORKERS)
     rows, results = [], {}
     with tempfile.TemporaryDirectory() as folder:
         for side in MEMORY_SIDES:
-            done = subprocess.run([sys.executable, "-c", script, str(side), f"{folder}/atlas-{side}"], capture_output=True, text=True, check=True)
+            done = subprocess.run(
+                [sys.executable, "-c", script, str(side), f"{folder}/atlas-{side}"],
+                capture_output=True,
+                text=True,
+                check=True,
+            )
             wall, cpu, peak, worker = (float(x) for x in done.stderr.split("RESULT")[-1].split())
             results[side] = (cpu, peak, worker)
-            rows.append((f"{side} × {side}", f"{side * side}", f"{WORKERS}", f"{wall:.0f}", f"{cpu:.1f}", f"{peak:.0f}", f"{worker:.0f}" if worker else "—",
-                         f"{os.getloadavg()[0]:.1f}"))
+            rows.append(
+                (
+                    f"{side} × {side}",
+                    f"{side * side}",
+                    f"{WORKERS}",
+                    f"{wall:.0f}",
+                    f"{cpu:.1f}",
+                    f"{peak:.0f}",
+                    f"{worker:.0f}" if worker else "—",
+                    f"{os.getloadavg()[0]:.1f}",
+                )
+            )
             print(" | ".join(rows[-1]), flush=True)
-    print(markdown_table(["grid", "designs", "workers", "wall [s]", "CPU [s], workers included", "peak RSS [MiB]", "largest worker [MiB]", "load average"], rows))
+    print(
+        markdown_table(
+            [
+                "grid",
+                "designs",
+                "workers",
+                "wall [s]",
+                "CPU [s], workers included",
+                "peak RSS [MiB]",
+                "largest worker [MiB]",
+                "load average",
+            ],
+            rows,
+        )
+    )
     small, large = results[MEMORY_SIDES[0]], results[MEMORY_SIDES[-1]]
     flat = large[1] <= 1.1 * small[1]
     return [
-        SummaryRow("atlas", f"curvefold atlas {MEMORY_SIDES[-1]} × {MEMORY_SIDES[-1]}: CPU seconds, its workers included", f"{large[0]:.1f} s",
-                   f"≤ {TARGET_CPU:g} s", verdict(large[0] <= TARGET_CPU)),
-        SummaryRow("atlas", f"curvefold atlas: peak memory {MEMORY_SIDES[0]} × {MEMORY_SIDES[0]} vs {MEMORY_SIDES[-1]} × {MEMORY_SIDES[-1]} (largest worker)",
-                   f"{small[1]:.0f} MiB vs {large[1]:.0f} MiB ({large[2]:.0f} MiB)", "within 10%", verdict(flat)),
+        SummaryRow(
+            "atlas",
+            f"curvefold atlas {MEMORY_SIDES[-1]} × {MEMORY_SIDES[-1]}: CPU "
+            "seconds, its workers included",
+            f"{large[0]:.1f} s",
+            f"≤ {TARGET_CPU:g} s",
+            verdict(large[0] <= TARGET_CPU),
+        ),
+        SummaryRow(
+            "atlas",
+            f"curvefold atlas: peak memory {MEMORY_SIDES[0]} × {MEMORY_SIDES[0]} "
+            f"vs {MEMORY_SIDES[-1]} × {MEMORY_SIDES[-1]} (largest worker)",
+            f"{small[1]:.0f} MiB vs {large[1]:.0f} MiB ({large[2]:.0f} MiB)",
+            "within 10%",
+            verdict(flat),
+        ),
     ]
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--memory", action="store_true", help=f"measure the client's peak memory for {' and '.join(f'{s} × {s}' for s in MEMORY_SIDES)} grids instead")
+    parser.add_argument(
+        "--memory",
+        action="store_true",
+        help="measure the client's peak memory "
+        f"for {' and '.join(f'{s} × {s}' for s in MEMORY_SIDES)} grids instead",
+    )
     print("\n" + summary_table(memory() if parser.parse_args().memory else run()))
 
 

@@ -27,29 +27,73 @@ from _bench import SummaryRow, markdown_table, verdict
 
 #: (label, command-line arguments, design given to the estimate)
 DESIGNS = (
-    ("crease, 20001 samples, pictures", ["crease", "--samples", "20001"], {"kind": "crease", "samples": 20001}),
-    ("tube, 20001 samples, --json", ["tube", "--samples", "20001", "--json"], {"kind": "tube", "samples": 20001}),
-    ("tube, 2001 samples, SVG", ["tube", "--samples", "2001", "--formats", "svg"], {"kind": "tube", "samples": 2001, "output": {"formats": ["svg"]}}),
-    ("tube, 8001 samples, FOLD and 3D", ["tube", "--samples", "8001", "--formats", "fold,glb,obj,stl,ply,3dm"],
-     {"kind": "tube", "samples": 8001, "output": {"formats": ["fold", "glb", "obj", "stl", "ply", "3dm"]}}),
-    ("block, 2001 samples, all formats", ["block", "--samples", "2001"], {"kind": "block", "samples": 2001}),
+    (
+        "crease, 20001 samples, pictures",
+        ["crease", "--samples", "20001"],
+        {"kind": "crease", "samples": 20001},
+    ),
+    (
+        "tube, 20001 samples, --json",
+        ["tube", "--samples", "20001", "--json"],
+        {"kind": "tube", "samples": 20001},
+    ),
+    (
+        "tube, 2001 samples, SVG",
+        ["tube", "--samples", "2001", "--formats", "svg"],
+        {"kind": "tube", "samples": 2001, "output": {"formats": ["svg"]}},
+    ),
+    (
+        "tube, 8001 samples, FOLD and 3D",
+        ["tube", "--samples", "8001", "--formats", "fold,glb,obj,stl,ply,3dm"],
+        {
+            "kind": "tube",
+            "samples": 8001,
+            "output": {"formats": ["fold", "glb", "obj", "stl", "ply", "3dm"]},
+        },
+    ),
+    (
+        "block, 2001 samples, all formats",
+        ["block", "--samples", "2001"],
+        {"kind": "block", "samples": 2001},
+    ),
     ("vault, 801 samples, all formats", ["vault"], {"kind": "vault"}),
-    ("vault, 801 samples, 9 tubes, all formats", ["vault", "--tubes", "9"], {"kind": "vault", "vault": {"tubes": 9}}),
-    ("vault, 3001 samples, 9 tubes, FOLD", ["vault", "--samples", "3001", "--tubes", "9", "--formats", "fold"],
-     {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}, "output": {"formats": ["fold"]}}),
-    ("tube, 100000 panels, --json", ["tube", "--panels", "100000", "--json"], {"kind": "tube", "curve": {"panels": 100000}}),
-    ("vault, 20000 panels, 9 tubes, --json", ["vault", "--panels", "20000", "--tubes", "9", "--json"],
-     {"kind": "vault", "vault": {"panels": 20000, "tubes": 9}}),
+    (
+        "vault, 801 samples, 9 tubes, all formats",
+        ["vault", "--tubes", "9"],
+        {"kind": "vault", "vault": {"tubes": 9}},
+    ),
+    (
+        "vault, 3001 samples, 9 tubes, FOLD",
+        ["vault", "--samples", "3001", "--tubes", "9", "--formats", "fold"],
+        {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}, "output": {"formats": ["fold"]}},
+    ),
+    (
+        "tube, 100000 panels, --json",
+        ["tube", "--panels", "100000", "--json"],
+        {"kind": "tube", "curve": {"panels": 100000}},
+    ),
+    (
+        "vault, 20000 panels, 9 tubes, --json",
+        ["vault", "--panels", "20000", "--tubes", "9", "--json"],
+        {"kind": "vault", "vault": {"panels": 20000, "tubes": 9}},
+    ),
 )
 
 
 #: Designs whose parts ``--parts`` measures (small to large, each kind).
 PART_DESIGNS = (
-    {"kind": "crease", "samples": 2001}, {"kind": "crease", "samples": 20001},
-    {"kind": "tube", "samples": 2001}, {"kind": "tube", "samples": 8001}, {"kind": "tube", "samples": 20001}, {"kind": "tube", "samples": 32001},
+    {"kind": "crease", "samples": 2001},
+    {"kind": "crease", "samples": 20001},
+    {"kind": "tube", "samples": 2001},
+    {"kind": "tube", "samples": 8001},
+    {"kind": "tube", "samples": 20001},
+    {"kind": "tube", "samples": 32001},
     {"kind": "block", "samples": 2001},
-    {"kind": "vault", "samples": 201, "vault": {"tubes": 9}}, {"kind": "vault", "samples": 801, "vault": {"tubes": 9}},
-    {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}}, {"kind": "vault", "samples": 801}, {"kind": "vault", "samples": 1601},
+    {"kind": "vault", "samples": 201, "vault": {"tubes": 9}},
+    {"kind": "vault", "samples": 801, "vault": {"tubes": 9}},
+    {"kind": "vault", "samples": 3001, "vault": {"tubes": 9}},
+    {"kind": "vault", "samples": 801},
+    {"kind": "vault", "samples": 1601},
 )
 
 
@@ -60,7 +104,9 @@ def peak_of(argv: list[str]) -> tuple[float, float]:
         env = dict(os.environ, CURVEFOLD_MEMORY_BUDGET="1000G")
         t0 = time.perf_counter()
         # one process per design, so ru_maxrss of the children is this design's peak
-        code = subprocess.run([sys.executable, "-c", _CHILD, *argv, *out], env=env, capture_output=True, text=True)
+        code = subprocess.run(
+            [sys.executable, "-c", _CHILD, *argv, *out], env=env, capture_output=True, text=True
+        )
         elapsed = time.perf_counter() - t0
     if code.returncode not in (0, 1):
         raise RuntimeError(f"curvefold {' '.join(argv)} failed: {code.stderr}")
@@ -105,7 +151,8 @@ print(json.dumps([interpreter, geometry, peak()]))
 
 
 def parts() -> None:
-    """Print the peak of each part of each of :data:`PART_DESIGNS` (MiB) and the estimate of the same."""
+    """Print the peak of each part of each of :data:`PART_DESIGNS` (MiB) and the estimate of the
+    same."""
     import json
 
     from curvefold.app import design_from_dict
@@ -115,10 +162,20 @@ def parts() -> None:
         design = design_from_dict(data)
         n = _samples(design) * _strips(design)
         for part in ["geometry", *_parts(design, True)]:
-            done = subprocess.run([sys.executable, "-c", _PART, json.dumps(data), part], capture_output=True, text=True, check=True)
+            done = subprocess.run(
+                [sys.executable, "-c", _PART, json.dumps(data), part],
+                capture_output=True,
+                text=True,
+                check=True,
+            )
             interpreter, geometry, peak = (x / 2**20 for x in json.loads(done.stdout))
-            print(f"{json.dumps(data)}, {n} strip samples, {part}: interpreter {interpreter:.1f}, built design +{geometry - interpreter:.1f}, "
-                  f"part +{peak - geometry:.1f}, peak {peak:.1f}; estimate {estimate(design, files=part != 'geometry').total / 2**20:.0f}", flush=True)
+            print(
+                f"{json.dumps(data)}, {n} strip samples, {part}: interpreter "
+                f"{interpreter:.1f}, built design +{geometry - interpreter:.1f}, part "
+                f"+{peak - geometry:.1f}, peak {peak:.1f}; estimate "
+                f"{estimate(design, files=part != 'geometry').total / 2**20:.0f}",
+                flush=True,
+            )
 
 
 def run() -> list[SummaryRow]:
@@ -130,12 +187,45 @@ def run() -> list[SummaryRow]:
         peak, seconds = peak_of(argv)
         guess = estimate(design_from_dict(data), files="--json" not in argv)
         ratios.append(guess.total / peak)
-        rows.append((label, f"{peak / 2**20:.0f}", f"{guess.total / 2**20:.0f}", f"{guess.total / peak:.2f}", guess.largest, f"{seconds:.0f}",
-                     verdict(guess.total >= peak)))
-        print(f"{label}: peak {peak / 2**20:.0f} MiB, estimate {guess.total / 2**20:.0f} MiB", flush=True)
-    print(markdown_table(["design", "peak [MiB]", "estimate [MiB]", "estimate / peak", "costliest part", "time [s]", "estimate ≥ peak"], rows))
+        rows.append(
+            (
+                label,
+                f"{peak / 2**20:.0f}",
+                f"{guess.total / 2**20:.0f}",
+                f"{guess.total / peak:.2f}",
+                guess.largest,
+                f"{seconds:.0f}",
+                verdict(guess.total >= peak),
+            )
+        )
+        print(
+            f"{label}: peak {peak / 2**20:.0f} MiB, estimate {guess.total / 2**20:.0f} MiB",
+            flush=True,
+        )
+    print(
+        markdown_table(
+            [
+                "design",
+                "peak [MiB]",
+                "estimate [MiB]",
+                "estimate / peak",
+                "costliest part",
+                "time [s]",
+                "estimate ≥ peak",
+            ],
+            rows,
+        )
+    )
     low, high = min(ratios), max(ratios)
-    return [SummaryRow("budget", f"estimate / measured peak over {len(DESIGNS)} designs", f"{low:.2f} to {high:.2f}", "≥ 1", verdict(low >= 1))]
+    return [
+        SummaryRow(
+            "budget",
+            f"estimate / measured peak over {len(DESIGNS)} designs",
+            f"{low:.2f} to {high:.2f}",
+            "≥ 1",
+            verdict(low >= 1),
+        )
+    ]
 
 
 def main() -> None:

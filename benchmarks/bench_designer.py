@@ -1,5 +1,5 @@
-"""The designer as a service: how fast it answers a design change alone, under load and beside heavy work, how
-much memory it holds, how fast it stops, and what the page shows after a change.
+"""The designer as a service: how fast it answers a design change alone, under load and beside heavy
+work, how much memory it holds, how fast it stops, and what the page shows after a change.
 
 1. Server latency. ``curvefold designer --no-browser --port 0`` runs in its own process on
    127.0.0.1. A design change of the paper's vault (801 samples; a and p_xy moved by a
@@ -22,9 +22,9 @@ much memory it holds, how fast it stops, and what the page shows after a change.
 
 What a user would otherwise do is run ``curvefold vault`` and open the folder: all files of the
 paper's vault, timed once here before the designer starts; the ratios below are against that.
-Targets: p95 ≤ 100 ms for one client and for 8 concurrent clients; quick requests beside heavy work p95 ≤ 1 s; exit
-within 5 s of SIGTERM leaving nothing; coarse certificate and pattern p95 ≤ 1 s; a frame's
-work within one 60 Hz frame.
+Targets: p95 ≤ 100 ms for one client and for 8 concurrent clients; quick requests beside heavy work
+p95 ≤ 1 s; exit within 5 s of SIGTERM leaving nothing; coarse certificate and pattern p95 ≤ 1 s; a
+frame's work within one 60 Hz frame.
 """
 
 from __future__ import annotations
@@ -82,13 +82,19 @@ def _memory(url: str) -> tuple[float, float]:
 
 
 def _start(env: dict | None = None) -> tuple[subprocess.Popen, str]:
-    proc = subprocess.Popen([str(CURVEFOLD), "designer", "--no-browser", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, env=env)
+    proc = subprocess.Popen(
+        [str(CURVEFOLD), "designer", "--no-browser", "--port", "0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
     return proc, re.search(r"(http://\S+/)", proc.stdout.readline()).group(1)
 
 
 def _heavy(url: str) -> socket.socket:
-    """Send the heavy request and wait until a heavy worker runs it; closing the socket cancels it."""
+    """Send the heavy request and wait until a heavy worker runs it; closing the socket cancels
+    it."""
     parts = urlsplit(url)
     sock = socket.create_connection((parts.hostname, parts.port))
     sock.sendall(f"GET /{HEAVY} HTTP/1.1\r\nHost: {parts.netloc}\r\n\r\n".encode())
@@ -101,14 +107,26 @@ def _heavy(url: str) -> socket.socket:
 
 def _row(label: str, times: np.ndarray, errors: int, memory: str = "—") -> list[str]:
     p50, p95 = np.percentile(times, [50, 95])
-    return [label, f"{1e3 * p50:.0f} ms", f"{1e3 * p95:.0f} ms", f"{1e3 * times.max():.0f} ms", str(errors), memory]
+    return [
+        label,
+        f"{1e3 * p50:.0f} ms",
+        f"{1e3 * p95:.0f} ms",
+        f"{1e3 * times.max():.0f} ms",
+        str(errors),
+        memory,
+    ]
 
 
 def _batch_seconds() -> float:
-    """Wall seconds of one ``curvefold vault`` writing every file of the paper's vault (what a user would otherwise run)."""
+    """Wall seconds of one ``curvefold vault`` writing every file of the paper's vault (what a
+    user would otherwise run)."""
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        subprocess.run([str(CURVEFOLD), "vault", "--out", str(Path(tmp) / "vault")], check=True, capture_output=True)
+        subprocess.run(
+            [str(CURVEFOLD), "vault", "--out", str(Path(tmp) / "vault")],
+            check=True,
+            capture_output=True,
+        )
         return time.perf_counter() - t0
 
 
@@ -159,22 +177,51 @@ def server_latency() -> tuple[list[SummaryRow], list[list[str]], dict]:
         proc.terminate()
         proc.communicate(timeout=10)
     shown = " → ".join(f"{r:.0f}/{p:.0f}" for r, p in memory)
-    table = [_row("1 client, 200 changes", times, errors_single, f"{idle[0]:.0f}/{idle[1]:.0f} idle"),
-             _row(f"{CLIENTS} clients × {REQUESTS} ({len(results)} in {wall:.0f} s)", load, errors_load, shown),
-             _row(f"1 client, 50 changes beside a heavy request{'' if still else ' (it ended first)'}", quick, errors_quick,
-                  f"{peak[0]:.0f}/{peak[1]:.0f}")]
+    table = [
+        _row("1 client, 200 changes", times, errors_single, f"{idle[0]:.0f}/{idle[1]:.0f} idle"),
+        _row(
+            f"{CLIENTS} clients × {REQUESTS} ({len(results)} in {wall:.0f} s)",
+            load,
+            errors_load,
+            shown,
+        ),
+        _row(
+            f"1 client, 50 changes beside a heavy request{'' if still else ' (it ended first)'}",
+            quick,
+            errors_quick,
+            f"{peak[0]:.0f}/{peak[1]:.0f}",
+        ),
+    ]
     p95, q95 = np.percentile(times, 95), np.percentile(quick, 95)
     rows = [
-        SummaryRow("designer", "paper's vault changed, 1 client: p95 server answer (preview)",
-                   f"{1e3 * p95:.0f} ms ({batch / p95:.0f}× faster than a batch run, {batch:.1f} s)", f"≤ {1e3 * TARGET_P95:.0f} ms",
-                   verdict(p95 <= TARGET_P95 and errors_single == 0)),
-        SummaryRow("designer", f"{CLIENTS} concurrent clients × {REQUESTS}: p95, errors, memory of every process (resident/proportional MB)",
-                   f"{1e3 * np.percentile(load, 95):.0f} ms, {len(results) / wall:.0f} requests/s, {errors_load} errors, {shown} "
-                   f"(load {os.getloadavg()[0]:.1f}; `import numpy` {speed:.2f} CPU s)",
-                   f"p95 ≤ {1e3 * TARGET_P95:.0f} ms, no errors, flat memory",
-                   verdict(np.percentile(load, 95) <= TARGET_P95 and errors_load == 0 and memory[-1][1] <= 1.1 * memory[1][1])),
-        SummaryRow("designer", "a change beside a heavy request (100,000 panels): p95", f"{1e3 * q95:.0f} ms",
-                   f"≤ {1e3 * QUICK_P95:.0f} ms", verdict(q95 <= QUICK_P95 and errors_quick == 0 and still)),
+        SummaryRow(
+            "designer",
+            "paper's vault changed, 1 client: p95 server answer (preview)",
+            f"{1e3 * p95:.0f} ms ({batch / p95:.0f}× faster than a batch run, {batch:.1f} s)",
+            f"≤ {1e3 * TARGET_P95:.0f} ms",
+            verdict(p95 <= TARGET_P95 and errors_single == 0),
+        ),
+        SummaryRow(
+            "designer",
+            f"{CLIENTS} concurrent clients × {REQUESTS}: p95, errors, memory "
+            "of every process (resident/proportional MB)",
+            f"{1e3 * np.percentile(load, 95):.0f} ms, {len(results) / wall:.0f} "
+            f"requests/s, {errors_load} errors, {shown} (load "
+            f"{os.getloadavg()[0]:.1f}; `import numpy` {speed:.2f} CPU s)",
+            f"p95 ≤ {1e3 * TARGET_P95:.0f} ms, no errors, flat memory",
+            verdict(
+                np.percentile(load, 95) <= TARGET_P95
+                and errors_load == 0
+                and memory[-1][1] <= 1.1 * memory[1][1]
+            ),
+        ),
+        SummaryRow(
+            "designer",
+            "a change beside a heavy request (100,000 panels): p95",
+            f"{1e3 * q95:.0f} ms",
+            f"≤ {1e3 * QUICK_P95:.0f} ms",
+            verdict(q95 <= QUICK_P95 and errors_quick == 0 and still),
+        ),
     ]
     return rows, table, {"idle": idle, "load": memory, "beside_heavy": peak}
 
@@ -190,10 +237,26 @@ def stopping() -> tuple[list[SummaryRow], list[list[str]]]:
         seconds = time.perf_counter() - t0
         heavy.close()
         time.sleep(0.5)
-        left = [p for p in pids if Path(f"/proc/{p}").exists()] + [str(p) for p in Path(tmp).iterdir()]
-    table = [["SIGTERM during a heavy request: exit", f"{seconds:.2f} s", f"status {proc.returncode}", f"{len(left)} processes or files left"]]
-    rows = [SummaryRow("designer", "SIGTERM during heavy work: seconds to exit, what is left", f"{seconds:.2f} s, {len(left)} left",
-                       "≤ 5 s, nothing", verdict(seconds <= 5 and not left))]
+        left = [p for p in pids if Path(f"/proc/{p}").exists()] + [
+            str(p) for p in Path(tmp).iterdir()
+        ]
+    table = [
+        [
+            "SIGTERM during a heavy request: exit",
+            f"{seconds:.2f} s",
+            f"status {proc.returncode}",
+            f"{len(left)} processes or files left",
+        ]
+    ]
+    rows = [
+        SummaryRow(
+            "designer",
+            "SIGTERM during heavy work: seconds to exit, what is left",
+            f"{seconds:.2f} s, {len(left)} left",
+            "≤ 5 s, nothing",
+            verdict(seconds <= 5 and not left),
+        )
+    ]
     return rows, table
 
 
@@ -215,15 +278,26 @@ def page() -> tuple[list[SummaryRow], list[list[str]]]:
         for k in range(CHANGES):
             slider.focus()
             tab.keyboard.press("ArrowRight")
-            tab.wait_for_function(f"window.curvefold.timings.length === {k + 2} && {settled}", timeout=120_000)
+            tab.wait_for_function(
+                f"window.curvefold.timings.length === {k + 2} && {settled}", timeout=120_000
+            )
         timings = tab.evaluate("window.curvefold.timings.slice(1)")
         with tab.expect_download(timeout=300_000):  # the whole folder, as a user would take it home
             tab.click("#downloads a:text-is('folder (zip)')")
         session = _memory(url)
         tab.close()
-        after = {key: np.percentile([t[key] for t in timings], [50, 95]) for key in ("view", "certificate", "pattern", "full_certificate", "full_pattern")}
+        after = {
+            key: np.percentile([t[key] for t in timings], [50, 95])
+            for key in ("view", "certificate", "pattern", "full_certificate", "full_pattern")
+        }
         for key, (p50, p95) in after.items():
-            table.append([f"input → {key.replace('_', ' ')} ({CHANGES} changes)", f"{p50:.0f} ms", f"{p95:.0f} ms"])
+            table.append(
+                [
+                    f"input → {key.replace('_', ' ')} ({CHANGES} changes)",
+                    f"{p50:.0f} ms",
+                    f"{p95:.0f} ms",
+                ]
+            )
         for width, height in ((1280, 800), (960, 600)):
             tab = browser.new_page(viewport={"width": width, "height": height})
             tab.goto(url)
@@ -242,28 +316,66 @@ def page() -> tuple[list[SummaryRow], list[list[str]]]:
             fps_at[width, height] = (tab.evaluate("window.curvefold.frames") - start) / 5.0
             tab.close()
             frame_ms = max(frame_ms, ms)
-            table += [[f"{width} × {height}: one frame (morph {vertices} vertices, render, finish)", f"{ms:.2f} ms", ""],
-                      [f"{width} × {height}: frames/s while playing", f"{fps_at[width, height]:.0f}", ""]]
+            table += [
+                [
+                    f"{width} × {height}: one frame (morph {vertices} vertices, render, finish)",
+                    f"{ms:.2f} ms",
+                    "",
+                ],
+                [f"{width} × {height}: frames/s while playing", f"{fps_at[width, height]:.0f}", ""],
+            ]
         browser.close()
     peak = _memory(url)
     proc.terminate()
     proc.communicate(timeout=10)
-    table.append([f"memory of every process after the {CHANGES} changes and the folder, and after the slider (resident/proportional MB)",
-                  f"{session[0]:.0f}/{session[1]:.0f}", f"{peak[0]:.0f}/{peak[1]:.0f}"])
+    table.append(
+        [
+            f"memory of every process after the {CHANGES} changes and the folder, and "
+            "after the slider (resident/proportional MB)",
+            f"{session[0]:.0f}/{session[1]:.0f}",
+            f"{peak[0]:.0f}/{peak[1]:.0f}",
+        ]
+    )
     coarse = max(after["certificate"][1], after["pattern"][1])
-    rows = [SummaryRow("designer", "input → 3D view, → coarse certificate and pattern, → full ones (p95, headless chromium)",
-                       f"{after['view'][1]:.0f} ms, {after['certificate'][1]:.0f} and {after['pattern'][1]:.0f} ms, "
-                       f"{after['full_certificate'][1] / 1e3:.1f} and {after['full_pattern'][1] / 1e3:.1f} s",
-                       "coarse ≤ 1 s", verdict(coarse <= 1e3 * QUICK_P95)),
-            SummaryRow("designer", "fold slider in headless chromium (SwiftShader): the page's work per frame; frames/s at 1280 × 800, 960 × 600",
-                       f"{frame_ms:.1f} ms; {fps_at[1280, 800]:.0f} and {fps_at[960, 600]:.0f} frames/s",
-                       "≤ 16.7 ms (60 Hz)", verdict(frame_ms <= 1000 / 60))]
+    rows = [
+        SummaryRow(
+            "designer",
+            "input → 3D view, → coarse certificate and pattern, → full "
+            "ones (p95, headless chromium)",
+            f"{after['view'][1]:.0f} ms, {after['certificate'][1]:.0f} and "
+            f"{after['pattern'][1]:.0f} ms, "
+            f"{after['full_certificate'][1] / 1e3:.1f} and "
+            f"{after['full_pattern'][1] / 1e3:.1f} s",
+            "coarse ≤ 1 s",
+            verdict(coarse <= 1e3 * QUICK_P95),
+        ),
+        SummaryRow(
+            "designer",
+            "fold slider in headless chromium (SwiftShader): the page's "
+            "work per frame; frames/s at 1280 × 800, 960 × 600",
+            f"{frame_ms:.1f} ms; {fps_at[1280, 800]:.0f} and {fps_at[960, 600]:.0f} frames/s",
+            "≤ 16.7 ms (60 Hz)",
+            verdict(frame_ms <= 1000 / 60),
+        ),
+    ]
     return rows, table
 
 
 def run() -> list[SummaryRow]:
     rows, table, _ = server_latency()
-    print(markdown_table(["load", "p50", "p95", "max", "errors", "memory, every process (resident/proportional MB)"], table))
+    print(
+        markdown_table(
+            [
+                "load",
+                "p50",
+                "p95",
+                "max",
+                "errors",
+                "memory, every process (resident/proportional MB)",
+            ],
+            table,
+        )
+    )
     stop_rows, stop_table = stopping()
     print()
     print(markdown_table(["stopping", "time", "status", "left"], stop_table))
@@ -277,7 +389,11 @@ def main() -> None:
     rows = run()
     print()
     print(summary_table(rows))
-    print(json.dumps({"python": sys.version.split()[0], "cpus": os.cpu_count(), "load": os.getloadavg()}))
+    print(
+        json.dumps(
+            {"python": sys.version.split()[0], "cpus": os.cpu_count(), "load": os.getloadavg()}
+        )
+    )
 
 
 if __name__ == "__main__":

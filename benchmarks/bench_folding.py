@@ -23,7 +23,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from _bench import SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, verdict
+from _bench import (
+    SummaryRow,
+    best_of_interleaved,
+    choose_repeats,
+    markdown_table,
+    ms,
+    summary_table,
+    verdict,
+)
 from scipy.integrate import solve_ivp
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
@@ -76,12 +84,16 @@ def ivp_curve1(structure: Structure, angles: np.ndarray) -> list:
         a = math.radians(angle) / 2
         k_scale, t_scale = math.cos(a0) / math.cos(a), math.tan(a) / math.tan(a0)
 
-        def rhs(s: float, y: np.ndarray) -> np.ndarray:
+        def rhs(s: float, y: np.ndarray, k_scale=k_scale, t_scale=t_scale) -> np.ndarray:
             k, t = k_scale * (1.0 + 0.3 * math.sin(s)), t_scale * 0.3 * math.cos(s)
             T, N, B = y[3:6], y[6:9], y[9:12]
             return np.concatenate([T, k * N, -k * T + t * B, -t * N])
 
-        out.append(solve_ivp(rhs, (0.0, LENGTH), y0, method="DOP853", rtol=1e-12, atol=1e-12, t_eval=curve.s).y)
+        out.append(
+            solve_ivp(
+                rhs, (0.0, LENGTH), y0, method="DOP853", rtol=1e-12, atol=1e-12, t_eval=curve.s
+            ).y
+        )
     return out
 
 
@@ -90,7 +102,10 @@ def run() -> list[SummaryRow]:
     curves = len(structure.curves_uv)
     angles = np.linspace(10.0, 170.0, STATES)
     ivp_angles = angles[:: STATES // IVP_STATES]
-    print(f"fold-state throughput: {curves} curves × {SAMPLES} samples ({len(structure.cells)} cells), {STATES} states per round")
+    print(
+        f"fold-state throughput: {curves} curves × {SAMPLES} samples ({len(structure.cells)} "
+        f"cells), {STATES} states per round"
+    )
     contenders = {"state": lambda: one_at_a_time(structure, angles)}
     for c in CHUNKS:
         contenders[f"fold_points/{c}"] = lambda c=c: batched(structure, angles, c)
@@ -100,7 +115,11 @@ def run() -> list[SummaryRow]:
     k = choose_repeats(sum(warm.values()), BUDGET, high=10)
     best, results = best_of_interleaved(contenders, k)
     reference = np.stack(results["state"])
-    agree = max(float(np.abs(np.concatenate(results[name]) - reference).max()) for name in contenders if name.startswith("fold_points"))
+    agree = max(
+        float(np.abs(np.concatenate(results[name]) - reference).max())
+        for name in contenders
+        if name.startswith("fold_points")
+    )
     rate = {name: counts[name] / t for name, t in best.items()}
     best_chunk = max((n for n in contenders if n.startswith("fold_points")), key=rate.get)
     rows = []
@@ -118,12 +137,44 @@ def run() -> list[SummaryRow]:
             )
         )
     print(f"best of k = {k} interleaved rounds")
-    print(markdown_table(["path", "states", "round [ms]", "per state [ms]", "states/s", "vs solve_ivp", f"≥ {TARGET:g}/s"], rows))
+    print(
+        markdown_table(
+            [
+                "path",
+                "states",
+                "round [ms]",
+                "per state [ms]",
+                "states/s",
+                "vs solve_ivp",
+                f"≥ {TARGET:g}/s",
+            ],
+            rows,
+        )
+    )
     print(f"fold_points vs state(): max |Δ vertex| = {agree:.1e}")
     return [
-        SummaryRow("folding", f"batched {best_chunk} ({curves} curves × {SAMPLES})", f"{rate[best_chunk]:.0f} states/s ({rate[best_chunk] / rate['solve_ivp']:.0f}× solve_ivp)", f"≥ {TARGET:g}/s", verdict(rate[best_chunk] >= TARGET)),
-        SummaryRow("folding", "one at a time, structure.state()", f"{rate['state']:.0f} states/s", f"≥ {TARGET:g}/s", verdict(rate["state"] >= TARGET)),
-        SummaryRow("folding", "solve_ivp curve 1 only (baseline)", f"{rate['solve_ivp']:.0f} states/s", "—", "—"),
+        SummaryRow(
+            "folding",
+            f"batched {best_chunk} ({curves} curves × {SAMPLES})",
+            f"{rate[best_chunk]:.0f} "
+            f"states/s ({rate[best_chunk] / rate['solve_ivp']:.0f}× solve_ivp)",
+            f"≥ {TARGET:g}/s",
+            verdict(rate[best_chunk] >= TARGET),
+        ),
+        SummaryRow(
+            "folding",
+            "one at a time, structure.state()",
+            f"{rate['state']:.0f} states/s",
+            f"≥ {TARGET:g}/s",
+            verdict(rate["state"] >= TARGET),
+        ),
+        SummaryRow(
+            "folding",
+            "solve_ivp curve 1 only (baseline)",
+            f"{rate['solve_ivp']:.0f} states/s",
+            "—",
+            "—",
+        ),
     ]
 
 

@@ -36,7 +36,17 @@ import os
 import warnings
 
 import numpy as np
-from _bench import CPU, SummaryRow, best_of_interleaved, choose_repeats, markdown_table, ms, summary_table, timed, verdict
+from _bench import (
+    CPU,
+    SummaryRow,
+    best_of_interleaved,
+    choose_repeats,
+    markdown_table,
+    ms,
+    summary_table,
+    timed,
+    verdict,
+)
 from _compiled import CompiledMagnus6
 from scipy.integrate import solve_ivp
 
@@ -78,7 +88,9 @@ def ours(samples: int) -> tuple[np.ndarray, np.ndarray]:
 def ivp(s: np.ndarray, tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray]:
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=".*rtol.*too small.*")
-        sol = solve_ivp(frenet_rhs, (0.0, LENGTH), Y0, method="DOP853", rtol=tol, atol=tol, t_eval=s)
+        sol = solve_ivp(
+            frenet_rhs, (0.0, LENGTH), Y0, method="DOP853", rtol=tol, atol=tol, t_eval=s
+        )
     if not sol.success:
         raise RuntimeError(f"solve_ivp failed: {sol.message}")
     return ivp_arrays(sol.y)
@@ -97,9 +109,13 @@ def write_floor(samples: int) -> tuple[np.ndarray, np.ndarray]:
     return points, frames
 
 
-def max_errors(result: tuple[np.ndarray, np.ndarray], reference: tuple[np.ndarray, np.ndarray]) -> tuple[float, float]:
+def max_errors(
+    result: tuple[np.ndarray, np.ndarray], reference: tuple[np.ndarray, np.ndarray]
+) -> tuple[float, float]:
     """Largest absolute error in the positions and in the frame entries."""
-    return float(np.abs(result[0] - reference[0]).max()), float(np.abs(result[1] - reference[1]).max())
+    return float(np.abs(result[0] - reference[0]).max()), float(
+        np.abs(result[1] - reference[1]).max()
+    )
 
 
 def orthonormality_error(frames: np.ndarray) -> float:
@@ -110,17 +126,24 @@ def orthonormality_error(frames: np.ndarray) -> float:
 def run() -> list[SummaryRow]:
     n_max = max(N_VALUES)
     compiled = CompiledMagnus6()
-    print(f"Frenet integrator: κ = 1 + 0.5 sin s, τ = 0.3 cos 2s, L = {LENGTH:g}; samples = N + 1; compiled reference: {compiled.command}")
+    print(
+        f"Frenet integrator: κ = 1 + 0.5 sin s, τ = 0.3 cos 2s, L = {LENGTH:g}; samples = N + "
+        f"1; compiled reference: {compiled.command}"
+    )
     t_fine, fine = timed(lambda: ours(REFINE * n_max + 1))
     s_common = np.linspace(0.0, LENGTH, COMMON + 1)
     t_ref, ref_ivp = timed(lambda: ivp(s_common, tol=1e-14))
     stride = REFINE * n_max // COMMON
     agreement = max_errors((fine[0][::stride], fine[1][::stride]), ref_ivp)
     print(
-        f"references: fine = ours at {REFINE * n_max + 1:,} samples ({t_fine:.1f} s); DOP853 at rtol = atol = 1e-14 "
-        f"(SciPy raises rtol to 2.2e-14) at {COMMON + 1} samples ({t_ref:.2f} s)"
+        f"references: fine = ours at {REFINE * n_max + 1:,} samples ({t_fine:.1f} s); DOP853 at "
+        f"rtol = atol = 1e-14 (SciPy raises rtol to 2.2e-14) at {COMMON + 1} samples "
+        f"({t_ref:.2f} s)"
     )
-    print(f"mutual agreement of the references: positions {agreement[0]:.2e}, frames {agreement[1]:.2e}\n")
+    print(
+        f"mutual agreement of the references: positions {agreement[0]:.2e}, frames "
+        f"{agreement[1]:.2e}\n"
+    )
 
     rows, error_rows, summary, frames_1e6 = [], [], [], None
     worst = (0.0, 0.0)
@@ -128,8 +151,12 @@ def run() -> list[SummaryRow]:
     for n in N_VALUES:
         label = f"1e{round(math.log10(n))}"
         s = np.linspace(0.0, LENGTH, n + 1)
-        contenders = {"ours": lambda: ours(n + 1), "ivp": lambda: ivp(s), "compiled": lambda: compiled(kappa, tau, LENGTH, n + 1),
-                      "floor": lambda: write_floor(n + 1)}
+        contenders = {
+            "ours": lambda n=n: ours(n + 1),
+            "ivp": lambda s=s: ivp(s),
+            "compiled": lambda n=n: compiled(kappa, tau, LENGTH, n + 1),
+            "floor": lambda n=n: write_floor(n + 1),
+        }
         warm, _ = best_of_interleaved(contenders, 1, clock=CPU)
         k = choose_repeats(sum(warm.values()), BUDGET_PER_N)
         best, results = best_of_interleaved(contenders, k, clock=CPU)
@@ -143,7 +170,9 @@ def run() -> list[SummaryRow]:
             e_ivp = max_errors((res[0][::common], res[1][::common]), ref_ivp)
             err[name] = (max(e_fine[0], e_ivp[0]), max(e_fine[1], e_ivp[1]))
             split[name] = (e_fine, e_ivp)
-        error_rows.append((label,) + tuple(f"{a:.1e} / {b:.1e}" for name in names for a, b in split[name]))
+        error_rows.append(
+            (label,) + tuple(f"{a:.1e} / {b:.1e}" for name in names for a, b in split[name])
+        )
         vs_ivp, vs_compiled = best["ivp"] / best["ours"], best["ours"] / best["compiled"]
         ivp_ok = vs_ivp >= SPEEDUP
         compiled_ok = None if n < COMPILED_FROM else vs_compiled <= COMPILED_WITHIN
@@ -168,9 +197,12 @@ def run() -> list[SummaryRow]:
         summary.append(
             SummaryRow(
                 "integrator",
-                f"N = {label}: from_curvature vs solve_ivp (DOP853, rtol 1e-12) and a compiled Magnus-6 loop",
-                f"{ms(best['ours'])} ms vs {ms(best['ivp'])} ms ({vs_ivp:.1f}×) and {ms(best['compiled'])} ms ({vs_compiled:.2f}× its time)",
-                f"≥ {SPEEDUP:g}×" + ("" if compiled_ok is None else f"; ≤ {COMPILED_WITHIN:g}× compiled"),
+                f"N = {label}: from_curvature vs solve_ivp (DOP853, rtol 1e-12) and a compiled "
+                "Magnus-6 loop",
+                f"{ms(best['ours'])} ms vs {ms(best['ivp'])} ms ({vs_ivp:.1f}×) and "
+                f"{ms(best['compiled'])} ms ({vs_compiled:.2f}× its time)",
+                f"≥ {SPEEDUP:g}×"
+                + ("" if compiled_ok is None else f"; ≤ {COMPILED_WITHIN:g}× compiled"),
                 verdict(ivp_ok and compiled_ok is not False),
             )
         )
@@ -180,21 +212,77 @@ def run() -> list[SummaryRow]:
             floor_1e6 = (best["ours"], best["floor"])
         del results
     compiled.close()
-    headers = ["N", "k", "ours [ms]", "solve_ivp [ms]", "compiled [ms]", "write floor [ms]", f"ivp/ours (≥ {SPEEDUP:g})",
-               f"ours/compiled (≤ {COMPILED_WITHIN:g} from 1e{round(math.log10(COMPILED_FROM))})", "ours/floor",
-               "ours err (pos, frame)", "ivp err", "compiled err", f"ours err ≤ {ERROR_TARGET:g}"]
-    print(f"CPU seconds, best of k interleaved rounds; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+    headers = [
+        "N",
+        "k",
+        "ours [ms]",
+        "solve_ivp [ms]",
+        "compiled [ms]",
+        "write floor [ms]",
+        f"ivp/ours (≥ {SPEEDUP:g})",
+        f"ours/compiled (≤ {COMPILED_WITHIN:g} from 1e{round(math.log10(COMPILED_FROM))})",
+        "ours/floor",
+        "ours err (pos, frame)",
+        "ivp err",
+        "compiled err",
+        f"ours err ≤ {ERROR_TARGET:g}",
+    ]
+    print(
+        f"CPU seconds, best of k interleaved rounds; load average {os.getloadavg()[0]:.1f} on "
+        f"{os.cpu_count()} CPUs"
+    )
     print(markdown_table(headers, rows))
-    print("\nerrors split by reference, position / frame (the table above shows the larger of the two):")
-    print(markdown_table(["N"] + [f"{name} vs {ref}" for name in names for ref in ("fine", "DOP853")], error_rows))
+    print(
+        "\nerrors split by reference, position / frame (the table above shows the larger of "
+        "the two):"
+    )
+    print(
+        markdown_table(
+            ["N"] + [f"{name} vs {ref}" for name in names for ref in ("fine", "DOP853")], error_rows
+        )
+    )
     orth = {name: orthonormality_error(f) for name, f in frames_1e6.items()}
-    print(f"\nframe orthonormality max|FᵀF − I| at N = 1e{round(math.log10(n_max))}: " + ", ".join(f"{name} {orth[name]:.1e}" for name in names))
+    print(
+        f"\nframe orthonormality max|FᵀF − I| at N = 1e{round(math.log10(n_max))}: "
+        + ", ".join(f"{name} {orth[name]:.1e}" for name in names)
+    )
     ok = max(worst) <= ERROR_TARGET
-    summary.append(SummaryRow("integrator", "max error over all N (pos, frame)", f"{worst[0]:.1e}, {worst[1]:.1e}", f"≤ {ERROR_TARGET:g}", verdict(ok)))
-    summary.append(SummaryRow("integrator", f"N = 1e6 against writing its {12 * 8 * (n_max + 1) / 1e6:.0f} MB once", f"{ms(floor_1e6[0])} ms vs {ms(floor_1e6[1])} ms "
-                              f"({floor_1e6[0] / floor_1e6[1]:.1f}×)", "—", "—"))
-    summary.append(SummaryRow("integrator", "orthonormality at N = 1e6", f"{orth['ours']:.1e} (solve_ivp {orth['ivp']:.1e}, compiled {orth['compiled']:.1e})", "—", "—"))
-    summary.append(SummaryRow("integrator", "reference agreement (pos, frame)", f"{agreement[0]:.1e}, {agreement[1]:.1e}", "—", "—"))
+    summary.append(
+        SummaryRow(
+            "integrator",
+            "max error over all N (pos, frame)",
+            f"{worst[0]:.1e}, {worst[1]:.1e}",
+            f"≤ {ERROR_TARGET:g}",
+            verdict(ok),
+        )
+    )
+    summary.append(
+        SummaryRow(
+            "integrator",
+            f"N = 1e6 against writing its {12 * 8 * (n_max + 1) / 1e6:.0f} MB once",
+            f"{ms(floor_1e6[0])} ms vs {ms(floor_1e6[1])} ms ({floor_1e6[0] / floor_1e6[1]:.1f}×)",
+            "—",
+            "—",
+        )
+    )
+    summary.append(
+        SummaryRow(
+            "integrator",
+            "orthonormality at N = 1e6",
+            f"{orth['ours']:.1e} (solve_ivp {orth['ivp']:.1e}, compiled {orth['compiled']:.1e})",
+            "—",
+            "—",
+        )
+    )
+    summary.append(
+        SummaryRow(
+            "integrator",
+            "reference agreement (pos, frame)",
+            f"{agreement[0]:.1e}, {agreement[1]:.1e}",
+            "—",
+            "—",
+        )
+    )
     return summary
 
 

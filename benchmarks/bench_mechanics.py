@@ -1,4 +1,5 @@
-"""The paper's vault under its weight: the mechanics pipeline (sparse) against a dense solve of the same model.
+"""The paper's vault under its weight: the mechanics pipeline (sparse) against a dense solve of the
+same model.
 
 Pipeline, as ``analyse_load`` runs it: the model of the state (``StructureModel.from_state``,
 the stiffness assembled), the static response to self-weight with the feet pinned, the six
@@ -39,7 +40,15 @@ AGREEMENT = 1e-6
 
 def pipeline(panels: int, samples: int = 401):
     """One run of the pipeline on the paper's vault; returns the results and the model's pieces."""
-    from curvefold.mechanics import MATERIALS, Loads, StructureModel, Supports, buckling, free_modes, static_response
+    from curvefold.mechanics import (
+        MATERIALS,
+        Loads,
+        StructureModel,
+        Supports,
+        buckling,
+        free_modes,
+        static_response,
+    )
     from curvefold.vault import Vault
 
     state = Vault.from_design(a=0.3, p_xy=0.75, panels=panels, samples=samples).structure.state()
@@ -63,7 +72,8 @@ def _child(panels: int, samples: int, queue) -> None:
 
 
 def peak_memory(panels: int, samples: int) -> tuple[float, float, int, int]:
-    """CPU seconds and MB of resident memory the pipeline adds, in a fresh child process (imports done before the count)."""
+    """CPU seconds and MB of resident memory the pipeline adds, in a fresh child process (imports
+    done before the count)."""
     context = multiprocessing.get_context("spawn")
     queue = context.Queue()
     process = context.Process(target=_warm_child, args=(panels, samples, queue))
@@ -81,7 +91,8 @@ def _warm_child(panels: int, samples: int, queue) -> None:
 
 
 def dense(sm, fixed: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, float]:
-    """The same model dense: CPU seconds, static deflection, six lowest free eigenvalues, buckling factor."""
+    """The same model dense: CPU seconds, static deflection, six lowest free eigenvalues,
+    buckling factor."""
     from curvefold.mechanics import Loads
 
     model = sm.model
@@ -105,28 +116,64 @@ def dense(sm, fixed: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, float]:
 
 def run() -> list[SummaryRow]:
     rows, summary = [], []
-    for panels, samples, label in ((0, 801, "paper's vault, 801 samples (curvefold load)"), (0, 401, "paper's vault, 401 samples"),
-                                   (64, 401, "its 64-panel version")):
+    for panels, samples, label in (
+        (0, 801, "paper's vault, 801 samples (curvefold load)"),
+        (0, 401, "paper's vault, 401 samples"),
+        (64, 401, "its 64-panel version"),
+    ):
         cpu, mb, nodes, dofs = peak_memory(panels, samples)
         rows.append([label, f"{nodes:,}", f"{dofs:,}", f"{cpu:.2f}", f"{mb:.0f}"])
-        summary.append(SummaryRow("mechanics", f"{label}: assembly, static, 6 modes, buckling (CPU s)", f"{cpu:.2f}",
-                                  f"≤ {TARGET:g}", verdict(cpu <= TARGET)))
+        summary.append(
+            SummaryRow(
+                "mechanics",
+                f"{label}: assembly, static, 6 modes, buckling (CPU s)",
+                f"{cpu:.2f}",
+                f"≤ {TARGET:g}",
+                verdict(cpu <= TARGET),
+            )
+        )
     print(markdown_table(["structure", "nodes", "DOFs", "CPU s", "peak MB added"], rows))
     cpu, sm, fixed, result, lam, factor = pipeline(64)
     dense_cpu, u, dense_lam, dense_factor = dense(sm, fixed)
     errors = {
-        "deflection": float(np.abs(u - result.displacements).max() / np.abs(result.displacements).max()),
+        "deflection": float(
+            np.abs(u - result.displacements).max() / np.abs(result.displacements).max()
+        ),
         "eigenvalues": float(np.abs(dense_lam / lam - 1).max()),
         "buckling factor": abs(dense_factor / factor - 1),
     }
     print()
-    print(markdown_table(["64-panel vault", "CPU s", "ratio"], [["ours (sparse)", f"{cpu:.2f}", "1"],
-                                                               ["dense (Cholesky, LAPACK eigh)", f"{dense_cpu:.1f}", f"{dense_cpu / cpu:.0f}×"]]))
-    print("\nagreement of the dense solve, relative: " + ", ".join(f"{k} {v:.1e}" for k, v in errors.items()))
-    summary.append(SummaryRow("mechanics", "dense / ours, 64-panel vault (CPU s, one run)", f"{dense_cpu / cpu:.0f}×", "> 1",
-                              verdict(dense_cpu > cpu)))
-    summary.append(SummaryRow("mechanics", "dense vs ours, largest relative difference", f"{max(errors.values()):.1e}",
-                              f"≤ {AGREEMENT:g}", verdict(max(errors.values()) <= AGREEMENT)))
+    print(
+        markdown_table(
+            ["64-panel vault", "CPU s", "ratio"],
+            [
+                ["ours (sparse)", f"{cpu:.2f}", "1"],
+                ["dense (Cholesky, LAPACK eigh)", f"{dense_cpu:.1f}", f"{dense_cpu / cpu:.0f}×"],
+            ],
+        )
+    )
+    print(
+        "\nagreement of the dense solve, relative: "
+        + ", ".join(f"{k} {v:.1e}" for k, v in errors.items())
+    )
+    summary.append(
+        SummaryRow(
+            "mechanics",
+            "dense / ours, 64-panel vault (CPU s, one run)",
+            f"{dense_cpu / cpu:.0f}×",
+            "> 1",
+            verdict(dense_cpu > cpu),
+        )
+    )
+    summary.append(
+        SummaryRow(
+            "mechanics",
+            "dense vs ours, largest relative difference",
+            f"{max(errors.values()):.1e}",
+            f"≤ {AGREEMENT:g}",
+            verdict(max(errors.values()) <= AGREEMENT),
+        )
+    )
     return summary
 
 

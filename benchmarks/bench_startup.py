@@ -17,7 +17,6 @@ import resource
 import subprocess
 import sys
 import tempfile
-from pathlib import Path
 
 from _bench import SummaryRow, bytecode_env, markdown_table, summary_table, verdict
 
@@ -40,15 +39,28 @@ TARGETED = ("curvefold --help", "curvefold arch --a 0.3 --json")
 def _cpu(command: list[str], env: dict[str, str], cwd: str) -> float:
     """CPU seconds of one run of ``command`` (and the processes it waited for)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(command, env=env, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    subprocess.run(
+        command, env=env, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True
+    )
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
 
 
 def _heavy_imports(command: list[str], env: dict[str, str], cwd: str) -> list[str]:
     """The libraries of :data:`HEAVY` that ``command`` imports."""
-    done = subprocess.run([command[0], "-X", "importtime", *command[1:]], env=env, cwd=cwd, capture_output=True, text=True, check=True)
-    names = {line.rpartition("|")[2].strip() for line in done.stderr.splitlines() if line.startswith("import time:")}
+    done = subprocess.run(
+        [command[0], "-X", "importtime", *command[1:]],
+        env=env,
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    names = {
+        line.rpartition("|")[2].strip()
+        for line in done.stderr.splitlines()
+        if line.startswith("import time:")
+    }
     return [name for name in HEAVY if name in names]
 
 
@@ -60,17 +72,44 @@ def run() -> list[SummaryRow]:
         best = {name: float("inf") for name in COMMANDS}
         names = list(COMMANDS)
         for r in range(ROUNDS):
-            for name in names[r % len(names):] + names[: r % len(names)]:
+            for name in names[r % len(names) :] + names[: r % len(names)]:
                 best[name] = min(best[name], _cpu(COMMANDS[name], env, cwd))
-        heavy = {name: _heavy_imports(command, env, cwd) for name, command in COMMANDS.items() if name.startswith("curvefold")}
+        heavy = {
+            name: _heavy_imports(command, env, cwd)
+            for name, command in COMMANDS.items()
+            if name.startswith("curvefold")
+        }
     numpy = best['python -c "import numpy"']
-    rows = [(name, f"{cpu:.3f}", f"{cpu / numpy:.2f}", f"{cpu - numpy:+.3f}", ", ".join(heavy.get(name, [])) or "—")
-            for name, cpu in best.items()]
+    rows = [
+        (
+            name,
+            f"{cpu:.3f}",
+            f"{cpu / numpy:.2f}",
+            f"{cpu - numpy:+.3f}",
+            ", ".join(heavy.get(name, [])) or "—",
+        )
+        for name, cpu in best.items()
+    ]
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
-    print(f"start-up, CPU seconds, best of {ROUNDS} interleaved rounds (load average {load} on {os.cpu_count()} CPUs)")
-    print(markdown_table(["command", "CPU s", "× import numpy", "beyond import numpy", "heavy imports"], rows))
-    return [SummaryRow("start-up", f"`{name}`", f"{best[name]:.2f} CPU s ({best[name] / numpy:.1f}× import numpy)", f"≤ {TARGET_CPU:g} CPU s",
-                       verdict(best[name] <= TARGET_CPU)) for name in TARGETED]
+    print(
+        f"start-up, CPU seconds, best of {ROUNDS} interleaved rounds (load average {load} on "
+        f"{os.cpu_count()} CPUs)"
+    )
+    print(
+        markdown_table(
+            ["command", "CPU s", "× import numpy", "beyond import numpy", "heavy imports"], rows
+        )
+    )
+    return [
+        SummaryRow(
+            "start-up",
+            f"`{name}`",
+            f"{best[name]:.2f} CPU s ({best[name] / numpy:.1f}× import numpy)",
+            f"≤ {TARGET_CPU:g} CPU s",
+            verdict(best[name] <= TARGET_CPU),
+        )
+        for name in TARGETED
+    ]
 
 
 def main() -> None:

@@ -29,7 +29,15 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _bench import CPU, WALL, SummaryRow, best_of_interleaved, markdown_table, summary_table, timed, verdict
+from _bench import (
+    CPU,
+    WALL,
+    SummaryRow,
+    best_of_interleaved,
+    markdown_table,
+    summary_table,
+    verdict,
+)
 
 ROUNDS = 5
 WITHIN = 1.15  # default threads / one thread, CPU seconds: the noise of a shared machine
@@ -37,30 +45,46 @@ CURVEFOLD = [sys.executable, "-m", "curvefold"]
 
 
 def _command(args: list[str], threads: int | None) -> tuple[float, float]:
-    """(wall, CPU) seconds of one run of ``curvefold args`` in a fresh process (its children included)."""
+    """(wall, CPU) seconds of one run of ``curvefold args`` in a fresh process (its children
+    included)."""
     env = dict(os.environ)
     env.pop("OPENBLAS_NUM_THREADS", None)
     if threads is not None:
         env["OPENBLAS_NUM_THREADS"] = str(threads)
     before = os.times()
     t0 = time.perf_counter()
-    subprocess.run(CURVEFOLD + args, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    subprocess.run(
+        CURVEFOLD + args, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
     wall = time.perf_counter() - t0
     after = os.times()
-    return wall, (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    return wall, (after.children_user - before.children_user) + (
+        after.children_system - before.children_system
+    )
 
 
 def _compare_command(label: str, args: list[str]) -> tuple[tuple, SummaryRow]:
     best = {name: [float("inf"), float("inf")] for name in ("default", "one")}
     for r in range(ROUNDS):
-        for name in (("default", "one") if r % 2 == 0 else ("one", "default")):
+        for name in ("default", "one") if r % 2 == 0 else ("one", "default"):
             wall, cpu = _command(args, None if name == "default" else 1)
             best[name] = [min(best[name][0], wall), min(best[name][1], cpu)]
     (dw, dc), (ow, oc) = best["default"], best["one"]
     ok = dc <= WITHIN * oc
-    row = (label, f"{dw:.2f} / {dc:.2f}", f"{ow:.2f} / {oc:.2f}", f"{dw / ow:.2f} / {dc / oc:.2f}", verdict(ok))
-    return row, SummaryRow("threads", f"{label}: OpenBLAS's default threads vs one (wall / CPU, best of {ROUNDS})",
-                           f"{dw:.2f} / {dc:.2f} s vs {ow:.2f} / {oc:.2f} s ({dw / ow:.2f}× / {dc / oc:.2f}×)", f"CPU ≤ {WITHIN:g}×", verdict(ok))
+    row = (
+        label,
+        f"{dw:.2f} / {dc:.2f}",
+        f"{ow:.2f} / {oc:.2f}",
+        f"{dw / ow:.2f} / {dc / oc:.2f}",
+        verdict(ok),
+    )
+    return row, SummaryRow(
+        "threads",
+        f"{label}: OpenBLAS's default threads vs one (wall / CPU, best of {ROUNDS})",
+        f"{dw:.2f} / {dc:.2f} s vs {ow:.2f} / {oc:.2f} s ({dw / ow:.2f}× / {dc / oc:.2f}×)",
+        f"CPU ≤ {WITHIN:g}×",
+        verdict(ok),
+    )
 
 
 def _svd_rows(structure) -> tuple[list[tuple], list[SummaryRow]]:
@@ -70,19 +94,39 @@ def _svd_rows(structure) -> tuple[list[tuple], list[SummaryRow]]:
     framework, points = Framework.from_structure(part)
     x = part.state().vertices.reshape(-1, 3)[points]
     J = framework.jacobian(x)
-    contenders = {"svd, default threads": lambda: np.linalg.svd(J, compute_uv=False), "mechanism (one thread)": lambda: mechanism(framework, x)}
+    contenders = {
+        "svd, default threads": lambda: np.linalg.svd(J, compute_uv=False),
+        "mechanism (one thread)": lambda: mechanism(framework, x),
+    }
     rows, summary = [], []
     for clock, name in ((WALL, "wall"), (CPU, "CPU")):
         best, _ = best_of_interleaved(contenders, 5, clock=clock)
         a, b = best["svd, default threads"], best["mechanism (one thread)"]
-        rows.append((f"SVD of the certificate's Jacobian {J.shape[0]} × {J.shape[1]} ({name})", f"{a:.3f}", f"{b:.3f}", f"{a / b:.2f} ({name})", "—"))
-        summary.append(SummaryRow("threads", f"the certificate's SVD, {J.shape[0]} × {J.shape[1]}, default threads vs one ({name}, best of 5)",
-                                  f"{a * 1e3:.0f} ms vs {b * 1e3:.0f} ms ({a / b:.2f}×)", "—", "—"))
+        rows.append(
+            (
+                f"SVD of the certificate's Jacobian {J.shape[0]} × {J.shape[1]} ({name})",
+                f"{a:.3f}",
+                f"{b:.3f}",
+                f"{a / b:.2f} ({name})",
+                "—",
+            )
+        )
+        summary.append(
+            SummaryRow(
+                "threads",
+                f"the certificate's SVD, {J.shape[0]} × "
+                f"{J.shape[1]}, default threads vs one ({name}, best of 5)",
+                f"{a * 1e3:.0f} ms vs {b * 1e3:.0f} ms ({a / b:.2f}×)",
+                "—",
+                "—",
+            )
+        )
     return rows, summary
 
 
 def _svd_processes(folder: Path) -> tuple[int, int]:
-    """Mechanism analyses (one SVD each) computed by this process and by the job processes while the 16-panel vault's folder is written."""
+    """Mechanism analyses (one SVD each) computed by this process and by the job processes while
+    the 16-panel vault's folder is written."""
     from curvefold.analysis import _mechanism as m
     from curvefold.app import write_outputs
     from curvefold.app._folder import check_output
@@ -116,21 +160,50 @@ def run() -> list[SummaryRow]:
     rows, summary = [], []
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
-        subprocess.run(CURVEFOLD + ["vault", "--panels", "16", "--formats", "fold", "--out", str(folder / "v16")], check=True,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        for label, args in (("vault --panels 64 --json", ["vault", "--panels", "64", "--json"]),
-                            ("mechanism of a 16-panel vault", ["mechanism", str(folder / "v16" / "vault.fold")])):
+        subprocess.run(
+            CURVEFOLD
+            + ["vault", "--panels", "16", "--formats", "fold", "--out", str(folder / "v16")],
+            check=True,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        for label, args in (
+            ("vault --panels 64 --json", ["vault", "--panels", "64", "--json"]),
+            ("mechanism of a 16-panel vault", ["mechanism", str(folder / "v16" / "vault.fold")]),
+        ):
             row, line = _compare_command(label, args)
             rows.append(row)
             summary.append(line)
         svd_rows, svd_summary = _svd_rows(_built(16).structure)
         here, jobs = _svd_processes(folder)
     print(f"BLAS threads (load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")
-    print(markdown_table(["run", "default threads: wall / CPU [s]", "one thread: wall / CPU [s]", "default / one", f"CPU ≤ {WITHIN:g}×"], rows + svd_rows))
-    print(f"\n16-panel vault's output folder: mechanism analyses in the main process {here}, in the job processes {jobs}")
+    print(
+        markdown_table(
+            [
+                "run",
+                "default threads: wall / CPU [s]",
+                "one thread: wall / CPU [s]",
+                "default / one",
+                f"CPU ≤ {WITHIN:g}×",
+            ],
+            rows + svd_rows,
+        )
+    )
+    print(
+        f"\n16-panel vault's output folder: mechanism analyses in the main process {here}, in "
+        f"the job processes {jobs}"
+    )
     summary += svd_summary
-    summary.append(SummaryRow("threads", "16-panel vault's output folder: mechanism analyses in the main process, in the job processes", f"{here}, {jobs}", "0 in the jobs",
-                              verdict(jobs == 0)))
+    summary.append(
+        SummaryRow(
+            "threads",
+            "16-panel vault's output folder: mechanism analyses in "
+            "the main process, in the job processes",
+            f"{here}, {jobs}",
+            "0 in the jobs",
+            verdict(jobs == 0),
+        )
+    )
     return summary
 
 

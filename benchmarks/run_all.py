@@ -26,8 +26,18 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any, TextIO
 
-NAMES = ("integrator", "folding", "arch", "atlas", "budget", "designer", "main_job", "mechanics",
-         "threads", "startup")
+NAMES = (
+    "integrator",
+    "folding",
+    "arch",
+    "atlas",
+    "budget",
+    "designer",
+    "main_job",
+    "mechanics",
+    "threads",
+    "startup",
+)
 RESULTS = Path(__file__).resolve().parent / "results"
 
 
@@ -54,14 +64,26 @@ def environment() -> dict[str, Any]:
 
     import curvefold
 
-    return {"curvefold": curvefold.__version__, "python": platform.python_version(),
-            "numpy": np.__version__, "scipy": scipy.__version__, "machine": platform.machine(),
-            "cpus": os.cpu_count(), "load_average": list(os.getloadavg())}
+    return {
+        "curvefold": curvefold.__version__,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "machine": platform.machine(),
+        "cpus": os.cpu_count(),
+        "load_average": list(os.getloadavg()),
+    }
 
 
-def save_results(folder: Path, started: datetime.datetime, names: Sequence[str],
-                 rows: Sequence[Any], printed: str, env: dict[str, Any],
-                 seconds: float) -> tuple[Path, Path]:
+def save_results(
+    folder: Path,
+    started: datetime.datetime,
+    names: Sequence[str],
+    rows: Sequence[Any],
+    printed: str,
+    env: dict[str, Any],
+    seconds: float,
+) -> tuple[Path, Path]:
     """Write a run's record: ``<stamp>.txt`` (what it printed) and ``<stamp>.json`` (its figures).
 
     Parameters
@@ -90,18 +112,31 @@ def save_results(folder: Path, started: datetime.datetime, names: Sequence[str],
     stamp = started.strftime("%Y-%m-%dT%H%M%S")
     text, data = folder / f"{stamp}.txt", folder / f"{stamp}.json"
     text.write_text(printed, encoding="utf-8")
-    record = {"started": started.isoformat(timespec="seconds"), "seconds": round(seconds, 1),
-              "benchmarks": list(names), **env, "rows": [asdict(row) for row in rows]}
+    record = {
+        "started": started.isoformat(timespec="seconds"),
+        "seconds": round(seconds, 1),
+        "benchmarks": list(names),
+        **env,
+        "rows": [asdict(row) for row in rows],
+    }
     data.write_text(json.dumps(record, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return text, data
 
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("names", nargs="*", metavar="name",
-                        help=f"benchmarks to run: {', '.join(NAMES)} (default: all)")
-    parser.add_argument("--results", type=Path, default=RESULTS,
-                        help="folder of the run's record (default: benchmarks/results)")
+    parser.add_argument(
+        "names",
+        nargs="*",
+        metavar="name",
+        help=f"benchmarks to run: {', '.join(NAMES)} (default: all)",
+    )
+    parser.add_argument(
+        "--results",
+        type=Path,
+        default=RESULTS,
+        help="folder of the run's record (default: benchmarks/results)",
+    )
     parser.add_argument("--no-save", action="store_true", help="print only; record nothing")
     args = parser.parse_args(argv)
     names = args.names or list(NAMES)
@@ -122,10 +157,12 @@ def main(argv: list[str] | None = None) -> None:
             print(f"({name}: {time.perf_counter() - t0:.0f} s)", flush=True)
         seconds = time.perf_counter() - start
         print(f"\n## summary ({seconds:.0f} s)\n")
-        print(f"curvefold {env['curvefold']}, Python {env['python']}, NumPy {env['numpy']}, "
-              f"SciPy {env['scipy']}, {env['machine']} with {env['cpus']} CPUs, load average "
-              f"{env['load_average'][0]:.1f} at the start; best of k interleaved rounds, "
-              "ratios from the same run.\n")
+        print(
+            f"curvefold {env['curvefold']}, Python {env['python']}, NumPy {env['numpy']}, "
+            f"SciPy {env['scipy']}, {env['machine']} with {env['cpus']} CPUs, load average "
+            f"{env['load_average'][0]:.1f} at the start; best of k interleaved rounds, "
+            "ratios from the same run.\n"
+        )
         print(summary_table(rows))
     if not args.no_save:
         paths = save_results(args.results, started, names, rows, printed.getvalue(), env, seconds)

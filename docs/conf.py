@@ -33,8 +33,17 @@ extensions = [
 ]
 
 # The gallery also writes each example as a notebook and a script: only its pages are sources.
-exclude_patterns = ["_build", "_vendor", "node_modules", "jupyter_execute", "auto_examples/*.ipynb", "auto_examples/*.py",
-                    "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
+exclude_patterns = [
+    "_build",
+    "_vendor",
+    "node_modules",
+    "jupyter_execute",
+    "auto_examples/*.ipynb",
+    "auto_examples/*.py",
+    "auto_examples/*.zip",
+    "auto_examples/*.md5",
+    "auto_examples/*.codeobj.json",
+]
 templates_path = ["_templates"]
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
@@ -43,12 +52,19 @@ root_doc = "index"
 # build needs no network). Built-in and third-party names are listed here once.
 nitpicky = True
 nitpick_ignore_regex = [
-    (r"py:.*", r"(numpy|np|scipy|matplotlib|PIL|pathlib|os|abc|ast|collections|typing|types|enum|io|dask|distributed|fastapi|rhino3dm|argparse|concurrent|contextlib|dataclasses|json|logging|threading|socket)\..*"),
+    (
+        r"py:.*",
+        r"(numpy|np|scipy|matplotlib|PIL|pathlib|os|abc|ast|collections|typing|types|enum|io|dask|distributed|fastapi|rhino3dm|argparse|concurrent|contextlib|dataclasses|json|logging|threading|socket)\..*",
+    ),
     (r"py:mod", r"(ast|abc|numpy|scipy|matplotlib|dask|fastapi|rhino3dm|ezdxf|trimesh|pygltflib)"),
-    (r"py:class", r"(str|int|float|bool|bytes|dict|list|tuple|set|frozenset|object|callable|None|Any|Path|Figure|Axes|Image|ndarray|Mapping|Sequence|Iterable|Iterator|Callable|Collection|PathLike|Literal|MappingProxyType|ArrayLike|Enum|IntEnum|ValueError|RuntimeError|Exception|NamedTuple|TextIO|BinaryIO|Self)"),
+    (
+        r"py:class",
+        r"(str|int|float|bool|bytes|dict|list|tuple|set|frozenset|object|callable|None|Any|Path|Figure|Axes|Image|ndarray|Mapping|Sequence|Iterable|Iterator|Callable|Collection|PathLike|Literal|MappingProxyType|ArrayLike|Enum|IntEnum|ValueError|RuntimeError|Exception|NamedTuple|TextIO|BinaryIO|Self)",
+    ),
 ]
 
-# numpydoc: parameter types are text (shapes and units read as written); classes are linked from the prose.
+# numpydoc: parameter types are text (shapes and units read as written); classes are linked from the
+# prose.
 numpydoc_show_class_members = False
 numpydoc_xref_param_type = False
 numpydoc_class_members_toctree = False
@@ -103,7 +119,8 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
 }
 # Pages without sub-pages need no section navigation: the text gets the width.
-html_sidebars = {page: [] for page in ("index", "install", "tutorial", "rhino", "errata", "changelog", "citing")}
+html_sidebars = {
+    page: [] for page in ("index", "install", "tutorial", "rhino", "errata", "changelog", "citing")
+}
 html_show_sourcelink = False
 html_copy_source = False
-

@@ -58,7 +58,11 @@ def broken_links(site: str | Path) -> list[str]:
         Empty when every internal link resolves.
     """
     root = Path(site).resolve()
-    pages = {path: _parse(path) for path in sorted(root.rglob("*.html")) if "_static" not in path.relative_to(root).parts}
+    pages = {
+        path: _parse(path)
+        for path in sorted(root.rglob("*.html"))
+        if "_static" not in path.relative_to(root).parts
+    }
     problems = []
     for path, page in pages.items():
         for link in page.links:

@@ -1,4 +1,5 @@
-"""Smoke test of an installed curvefold, run by scripts/check-dist.sh in a fresh virtual environment.
+"""Smoke test of an installed curvefold, run by scripts/check-dist.sh in a fresh virtual
+environment.
 
     python smoke.py EXTRA      EXTRA: core, export, rhino, designer, dask or dev
 
@@ -54,20 +55,35 @@ def core() -> None:
     import curvefold
 
     version = importlib.metadata.version("curvefold")
-    check(curvefold.__version__ == version, f"curvefold.__version__ is the package's version {version}")
+    check(
+        curvefold.__version__ == version,
+        f"curvefold.__version__ is the package's version {version}",
+    )
     check(run("--version").split() == ["curvefold", version], "curvefold --version prints it")
-    check(Path(sys.prefix) in Path(curvefold.__file__).resolve().parents, "curvefold is imported from the installation")
+    check(
+        Path(sys.prefix) in Path(curvefold.__file__).resolve().parents,
+        "curvefold is imported from the installation",
+    )
     meta = importlib.metadata.metadata("curvefold")
     check(meta["License-Expression"] == "MIT", "the licence is the SPDX expression MIT")
     files = importlib.metadata.distribution("curvefold").files or []
-    check(any(f.name == "LICENSE" and "licenses" in f.parts for f in files), "the licence file is installed with the metadata")
+    check(
+        any(f.name == "LICENSE" and "licenses" in f.parts for f in files),
+        "the licence file is installed with the metadata",
+    )
     summary = json.loads(run("tube", "--json"))
-    check(all(c["passed"] for c in summary["certificate"]), "curvefold tube: every check of its certificate passes")
+    check(
+        all(c["passed"] for c in summary["certificate"]),
+        "curvefold tube: every check of its certificate passes",
+    )
     from curvefold.io import write_structure_fold
 
     with tempfile.TemporaryDirectory() as tmp:
         path = write_structure_fold(f"{tmp}/tube.fold", small_tube())
-        check(json.loads(path.read_text())["file_creator"] == f"curvefold {version}", "the API writes a FOLD file naming the version that wrote it")
+        check(
+            json.loads(path.read_text())["file_creator"] == f"curvefold {version}",
+            "the API writes a FOLD file naming the version that wrote it",
+        )
         check(json.loads(run("check", str(path), "--json"))["ok"], "curvefold check passes it")
 
 
@@ -78,11 +94,21 @@ def core_alone() -> None:
         summary = run("tube", "--formats", "fold", "--out", f"{tmp}/tube")
         folder = Path(f"{tmp}/tube")
         names = {p.name for p in folder.iterdir()}
-        check({"tube.fold", "sheets", "report.json", "report.html"} <= names and not any(n.endswith(".png") for n in names),
-              f"without matplotlib, curvefold tube --out writes the folder but the pictures: {sorted(names)}")
+        check(
+            {"tube.fold", "sheets", "report.json", "report.html"} <= names
+            and not any(n.endswith(".png") for n in names),
+            "without matplotlib, curvefold tube --out writes the folder but the pictures: "
+            f"{sorted(names)}",
+        )
         said = [line.strip() for line in summary.splitlines() if "pictures left out" in line]
-        check(len(said) == 1 and "pip install 'curvefold[plot]'" in said[0], f"and one line says which pictures and which extra: {said}")
-        check(json.loads(run("check", str(folder / "tube.fold"), "--json"))["ok"], "curvefold check passes its FOLD file")
+        check(
+            len(said) == 1 and "pip install 'curvefold[plot]'" in said[0],
+            f"and one line says which pictures and which extra: {said}",
+        )
+        check(
+            json.loads(run("check", str(folder / "tube.fold"), "--json"))["ok"],
+            "curvefold check passes its FOLD file",
+        )
 
 
 def export() -> None:
@@ -90,9 +116,19 @@ def export() -> None:
         run("tube", "--out", f"{tmp}/tube", "--formats", "glb,obj,stl,ply,svg,dxf,pdf")
         folder = Path(f"{tmp}/tube")
         names = {p.suffix for p in folder.iterdir()}
-        check({".glb", ".obj", ".stl", ".ply", ".svg", ".dxf", ".pdf", ".png"} <= names, f"export writes every model and pattern format and the pictures: {sorted(names)}")
+        check(
+            {".glb", ".obj", ".stl", ".ply", ".svg", ".dxf", ".pdf", ".png"} <= names,
+            f"export writes every model and pattern format and the pictures: {sorted(names)}",
+        )
         creator = f"curvefold {importlib.metadata.version('curvefold')}".encode()
-        check(all(creator in p.read_bytes() for p in folder.glob("*.*") if p.suffix in (".glb", ".pdf")), "the GLB and PDF files name the version that wrote them")
+        check(
+            all(
+                creator in p.read_bytes()
+                for p in folder.glob("*.*")
+                if p.suffix in (".glb", ".pdf")
+            ),
+            "the GLB and PDF files name the version that wrote them",
+        )
 
 
 def rhino() -> None:
@@ -103,15 +139,25 @@ def rhino() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         (path,) = write_3d(f"{tmp}/tube", small_tube(), formats=("3dm",))
         model = rhino3dm.File3dm.Read(str(path))
-        check(model is not None and len(model.Objects) > 0, "rhino writes a 3DM file that rhino3dm reads back")
-        check(model.ApplicationName == f"curvefold {importlib.metadata.version('curvefold')}", "the 3DM file names the version that wrote it")
+        check(
+            model is not None and len(model.Objects) > 0,
+            "rhino writes a 3DM file that rhino3dm reads back",
+        )
+        check(
+            model.ApplicationName == f"curvefold {importlib.metadata.version('curvefold')}",
+            "the 3DM file names the version that wrote it",
+        )
 
 
 def designer() -> None:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
-    server = subprocess.Popen([CURVEFOLD, "designer", "--no-browser", "--port", str(port)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    server = subprocess.Popen(
+        [CURVEFOLD, "designer", "--no-browser", "--port", str(port)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     base = f"http://127.0.0.1:{port}"
     try:
         for _ in range(600):
@@ -121,14 +167,20 @@ def designer() -> None:
                 break
             except OSError:
                 if server.poll() is not None:
-                    sys.exit(f"the designer exited {server.returncode}: {server.stderr.read().decode().strip()}")
+                    sys.exit(
+                        f"the designer exited {server.returncode}: "
+                        f"{server.stderr.read().decode().strip()}"
+                    )
                 time.sleep(0.1)
         else:
             sys.exit("the designer did not answer within a minute")
         check("vendor/three.module.js" in page, "the designer serves its page")
         for name in ("three.module.js", "three.core.js", "addons/controls/OrbitControls.js"):
             with urllib.request.urlopen(f"{base}/static/vendor/{name}", timeout=60) as r:
-                check(r.status == 200 and len(r.read()) > 10_000, f"the wheel's bundled {name} is served")
+                check(
+                    r.status == 200 and len(r.read()) > 10_000,
+                    f"the wheel's bundled {name} is served",
+                )
         # the page's own modules, from the one it loads through those each imports
         modules, served = re.findall(r'<script type="module" src="/static/([^"]+)"', page), set()
         while modules:
@@ -153,7 +205,10 @@ def dask() -> None:
     grid = AtlasGrid.of(np.linspace(0.5, 1.0, 2), np.linspace(0.0, 0.3, 2), samples=101)
     records = [record for record, _ in sweep(grid, workers=2)]
     serial = [record for record, _ in sweep(grid, workers=1)]
-    check(records == serial and len(records) == 4, "a sweep on a local Dask cluster of two workers gives the serial records")
+    check(
+        records == serial and len(records) == 4,
+        "a sweep on a local Dask cluster of two workers gives the serial records",
+    )
 
 
 CHECKS = {

@@ -1,4 +1,5 @@
-"""Pages in headless Chromium (through Playwright): three.js reading our files, the report at phone and desktop widths.
+"""Pages in headless Chromium (through Playwright): three.js reading our files, the report at phone
+and desktop widths.
 
 A folder is served on 127.0.0.1 with ``tests/node/node_modules`` beside it as ``/node_modules``,
 so pages import three.js as its users do. Skips when Chromium or Playwright is missing,
@@ -67,7 +68,10 @@ def chromium_page(width: int = 1280, height: int = 900) -> Iterator:
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=shutil.which("chromium"), args=["--use-gl=swiftshader", "--enable-unsafe-swiftshader"])
+        browser = p.chromium.launch(
+            executable_path=shutil.which("chromium"),
+            args=["--use-gl=swiftshader", "--enable-unsafe-swiftshader"],
+        )
         try:
             page = browser.new_page(viewport={"width": width, "height": height})
             yield page

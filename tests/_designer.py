@@ -17,7 +17,8 @@ CHROMIUM_ARGS = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no
 
 
 def need(condition: bool, reason: str) -> None:
-    """Skip without ``condition``, or fail when the environment sets CURVEFOLD_REQUIRE_NODE (the test command, after set-up)."""
+    """Skip without ``condition``, or fail when the environment sets CURVEFOLD_REQUIRE_NODE (the
+    test command, after set-up)."""
     if not condition:
         if os.environ.get("CURVEFOLD_REQUIRE_NODE"):
             pytest.fail(reason)

@@ -16,7 +16,8 @@ def accessor(gltf, blob: bytes, index: int) -> np.ndarray:
 
 
 def target_position(target) -> int:
-    return target["POSITION"] if isinstance(target, dict) else target.POSITION  # pygltflib reads targets as dicts
+    # pygltflib reads targets as dicts
+    return target["POSITION"] if isinstance(target, dict) else target.POSITION
 
 
 def to_gltf(coords: np.ndarray, scale: float) -> np.ndarray:

@@ -12,7 +12,8 @@ from curvefold.geometry import Mesh
 
 
 def mesh_of(x: np.ndarray, triangles: np.ndarray, edges: np.ndarray, kinds) -> Mesh:
-    """A mesh of triangles with the given edges and kinds (no fold angles: the FOLD fields are placeholders)."""
+    """A mesh of triangles with the given edges and kinds (no fold angles: the FOLD fields are
+    placeholders)."""
     E = len(edges)
     return Mesh(
         vertices_coords=np.asarray(x, float),
@@ -33,9 +34,12 @@ def strip(length: float, width: float, quads: int, *, triangles: bool = False) -
     two triangles split by a ``"diagonal"`` edge from (x_i, 0) to (x_i+1, width).
     """
     xs = np.linspace(0.0, length, quads + 1)
-    x = np.stack([np.repeat(xs, 2), np.tile([0.0, width], quads + 1), np.zeros(2 * quads + 2)], axis=1)
+    x = np.stack(
+        [np.repeat(xs, 2), np.tile([0.0, width], quads + 1), np.zeros(2 * quads + 2)], axis=1
+    )
     i = np.arange(quads)
-    a, b, c, d = 2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1  # (x_i, 0), (x_i+1, 0), (x_i+1, w), (x_i, w)
+    # (x_i, 0), (x_i+1, 0), (x_i+1, w), (x_i, w)
+    a, b, c, d = 2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1
     long = np.concatenate([np.stack([a, b], 1), np.stack([d, c], 1)])
     rulings = np.stack([2 * np.arange(quads + 1), 2 * np.arange(quads + 1) + 1], 1)
     kinds = ["boundary"] * len(long) + ["boundary"] + ["ruling"] * (quads - 1) + ["boundary"]
@@ -43,11 +47,14 @@ def strip(length: float, width: float, quads: int, *, triangles: bool = False) -
     if not triangles:
         return mesh_of(x, np.stack([a, b, c, d], 1), edges, kinds)
     faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
-    return mesh_of(x, faces, np.concatenate([edges, np.stack([a, c], 1)]), kinds + ["diagonal"] * quads)
+    return mesh_of(
+        x, faces, np.concatenate([edges, np.stack([a, c], 1)]), kinds + ["diagonal"] * quads
+    )
 
 
 def miura_cell(a: float, b: float, gamma: float, theta: float) -> np.ndarray:
-    """The 3 × 3 nodes of a Miura-ori unit cell (four parallelograms, sides a and b, acute angle γ), shape (9, 3).
+    """The 3 × 3 nodes of a Miura-ori unit cell (four parallelograms, sides a and b, acute angle γ),
+    shape (9, 3).
 
     Schenk and Guest's (2013) dimensions at the fold angle θ (the facets' dihedral angle
     with the xy plane): H = a sin θ sin γ, L = a √(1 − sin²θ sin²γ),
@@ -66,7 +73,8 @@ def miura_cell(a: float, b: float, gamma: float, theta: float) -> np.ndarray:
 
 
 def miura_mesh(a: float, b: float, gamma: float, theta: float) -> Mesh:
-    """The Miura-ori cell as a mesh: its four creases at the centre node folds, the panels split by diagonals."""
+    """The Miura-ori cell as a mesh: its four creases at the centre node folds, the panels split
+    by diagonals."""
     x = miura_cell(a, b, gamma, theta).real
     triangles, diagonals = [], []
     for i in range(2):
@@ -81,10 +89,11 @@ def miura_mesh(a: float, b: float, gamma: float, theta: float) -> Mesh:
     return mesh_of(x, np.array(triangles), np.array(edges), kinds)
 
 
-def dihedral(x: np.ndarray, i: int, j: int, k: int, l: int) -> complex:
-    """Angle between the normals of faces (i, j, k) and (j, i, l) of points x, radians; complex-safe (no abs)."""
+def dihedral(x: np.ndarray, i: int, j: int, k: int, m: int) -> complex:
+    """Angle between the normals of faces (i, j, k) and (j, i, m) of points x, radians;
+    complex-safe (no abs)."""
     e = x[j] - x[i]
     n1 = np.cross(e, x[k] - x[i])
-    n2 = np.cross(x[l] - x[i], e)
+    n2 = np.cross(x[m] - x[i], e)
     cos = (n1 @ n2) / np.sqrt((n1 @ n1) * (n2 @ n2))
     return np.arccos(cos)

@@ -34,7 +34,11 @@ class Motion:
 def _grid(n: int, rows: int, width: float, height: float) -> tuple[np.ndarray, np.ndarray]:
     """Crease-pattern vertices (V, 3) and counter-clockwise triangles (F, 3) of the strip."""
     i, j = np.meshgrid(np.arange(n + 1), np.arange(rows + 1), indexing="ij")
-    xy = np.stack([i * width, j * height / rows, np.zeros_like(i, float)], axis=-1).reshape(-1, 3).astype(float)
+    xy = (
+        np.stack([i * width, j * height / rows, np.zeros_like(i, float)], axis=-1)
+        .reshape(-1, 3)
+        .astype(float)
+    )
     vid = lambda a, b: a * (rows + 1) + b  # noqa: E731
     faces = []
     for a in range(n):
@@ -93,7 +97,11 @@ def strip_motion(
     coords = np.stack([fold_strip(xy, n, width, a) for a in angles]) + np.asarray(offset, float)
     design = angles[design_index]
     fold_angle = np.where(kinds == "fold", design, 0.0)
-    assignment = np.where(kinds == "fold", "V" if design >= 0 else "M", np.where(np.isin(kinds, ("boundary", "seam")), "B", "F"))
+    assignment = np.where(
+        kinds == "fold",
+        "V" if design >= 0 else "M",
+        np.where(np.isin(kinds, ("boundary", "seam")), "B", "F"),
+    )
     cp = Mesh(
         vertices_coords=xy,
         edges_vertices=edges,
@@ -106,8 +114,14 @@ def strip_motion(
     seam_ids = np.flatnonzero(kinds == "seam")
     partners = np.zeros((0, 2), int)
     if seam:  # pair the seam edges at x = 0 with those at x = n, row by row
-        left = sorted((e for e in seam_ids if xy[edges[e, 0], 0] == 0), key=lambda e: xy[edges[e]].min(axis=0)[1])
-        right = sorted((e for e in seam_ids if xy[edges[e, 0], 0] != 0), key=lambda e: xy[edges[e]].min(axis=0)[1])
+        left = sorted(
+            (e for e in seam_ids if xy[edges[e, 0], 0] == 0),
+            key=lambda e: xy[edges[e]].min(axis=0)[1],
+        )
+        right = sorted(
+            (e for e in seam_ids if xy[edges[e, 0], 0] != 0),
+            key=lambda e: xy[edges[e]].min(axis=0)[1],
+        )
         partners = np.array(list(zip(left, right)))
     return Motion(cp, angles, coords, partners)
 
@@ -117,7 +131,9 @@ def measured_fold_angles(mesh: Mesh) -> np.ndarray:
     return fold_angles(mesh.vertices_coords, mesh.faces_vertices, mesh.edges_vertices)
 
 
-def _rotation(axis_point: np.ndarray, axis_dir: np.ndarray, child_point: np.ndarray, angle_deg: float) -> np.ndarray:
+def _rotation(
+    axis_point: np.ndarray, axis_dir: np.ndarray, child_point: np.ndarray, angle_deg: float
+) -> np.ndarray:
     """4x4 rotation about a crease line in the plane z = 0, valley positive for the child side."""
     a = axis_dir / np.linalg.norm(axis_dir)
     r = child_point - axis_point
@@ -141,7 +157,8 @@ def oblique_motion(angles_deg=(0.0, 20.0, 45.0, 70.0), ratio: float = -0.7) -> M
     xy = np.array([[0, 0], [1, 0], [2, 0], [3, 0], [0, 1], [1, 1], [2.4, 1], [3, 1]], float)
     xyz = np.column_stack([xy, np.zeros(len(xy))])
     faces = np.array([[0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6]])
-    panel_of_vertex = np.array([0, 0, 1, 2, 0, 0, 1, 2])  # vertices on a crease belong to the parent panel
+    # vertices on a crease belong to the parent panel
+    panel_of_vertex = np.array([0, 0, 1, 2, 0, 0, 1, 2])
     edges, kinds = [], []
     for f in faces:
         for a, b in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0])):
@@ -149,7 +166,13 @@ def oblique_motion(angles_deg=(0.0, 20.0, 45.0, 70.0), ratio: float = -0.7) -> M
                 continue
             edges.append([a, b])
             pair = {int(a), int(b)}
-            kinds.append("fold" if pair in ({1, 5}, {2, 6}) else "diagonal" if pair in ({0, 5}, {1, 6}, {2, 7}) else "boundary")
+            kinds.append(
+                "fold"
+                if pair in ({1, 5}, {2, 6})
+                else "diagonal"
+                if pair in ({0, 5}, {1, 6}, {2, 7})
+                else "boundary"
+            )
     edges, kinds = np.array(edges), np.array(kinds)
     coords = []
     for a in angles_deg:
@@ -165,7 +188,9 @@ def oblique_motion(angles_deg=(0.0, 20.0, 45.0, 70.0), ratio: float = -0.7) -> M
             fold_angle[e] = last
         elif {int(a), int(b)} == {2, 6}:
             fold_angle[e] = ratio * last
-    assignment = np.where(fold_angle > 0, "V", np.where(fold_angle < 0, "M", np.where(kinds == "boundary", "B", "F")))
+    assignment = np.where(
+        fold_angle > 0, "V", np.where(fold_angle < 0, "M", np.where(kinds == "boundary", "B", "F"))
+    )
     cp = Mesh(
         vertices_coords=xyz,
         edges_vertices=edges,
@@ -191,9 +216,13 @@ def two_sheet_tube(angles_deg=(0.0, 45.0, 90.0)) -> Motion:
     seam_a = np.flatnonzero(cp.edges_kind == "seam")
     at_x0 = seam_a[cp.vertices_coords[cp.edges_vertices[seam_a, 0], 0] == 0]
     at_x2 = seam_a[cp.vertices_coords[cp.edges_vertices[seam_a, 0], 0] != 0]
-    order = lambda ids: ids[np.argsort(cp.vertices_coords[cp.edges_vertices[ids]].min(axis=1)[:, 1])]  # noqa: E731
+    order = lambda ids: ids[
+        np.argsort(cp.vertices_coords[cp.edges_vertices[ids]].min(axis=1)[:, 1])
+    ]  # noqa: E731
     at_x0, at_x2 = order(at_x0), order(at_x2)
-    partners = np.concatenate([np.column_stack([at_x0, at_x2 + E]), np.column_stack([at_x2, at_x0 + E])])
+    partners = np.concatenate(
+        [np.column_stack([at_x0, at_x2 + E]), np.column_stack([at_x2, at_x0 + E])]
+    )
     both = Mesh(
         vertices_coords=np.concatenate([cp.vertices_coords, cp.vertices_coords + [3.0, 0, 0]]),
         edges_vertices=np.concatenate([cp.edges_vertices, cp.edges_vertices + V]),

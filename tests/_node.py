@@ -24,6 +24,12 @@ def run_node(script: str, *args: str) -> dict:
         if os.environ.get("CURVEFOLD_REQUIRE_NODE"):
             pytest.fail(reason)
         pytest.skip(reason)
-    run = subprocess.run([node, str(NODE_DIR / script), *args], capture_output=True, text=True, timeout=120, check=False)
+    run = subprocess.run(
+        [node, str(NODE_DIR / script), *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
     assert run.returncode == 0, run.stderr
     return json.loads(run.stdout)

@@ -1,4 +1,5 @@
-"""An independent finite-element model of a panel structure in OpenSees: shells for the panels, springs for the creases.
+"""An independent finite-element model of a panel structure in OpenSees: shells for the panels,
+springs for the creases.
 
 Every panel (a planar quad of the structure's mesh) is meshed by m × m ShellMITC4
 elements (ElasticMembranePlateSection: E, ν, t, ρ) on its own nodes. Where two panels
@@ -17,15 +18,17 @@ import numpy as np
 
 from curvefold.mechanics import StructureModel
 
-#: Rotational stiffness of the zeroLength springs about the axes across a crease, per D:
-#: stiff enough that the results move by 1e-5 between 1e4 and 1e5 (measured on the panel tube; 6e-5 from 1e3).
+#: Rotational stiffness of the zeroLength springs about the axes across a crease, per D: stiff
+#: enough that the results move by 1e-5 between 1e4 and 1e5 (measured on the panel tube; 6e-5 from
+#: 1e3).
 RIGID = 1e4
 #: The shell element.
 SHELL = "ASDShellQ4"
 
 
 def opensees_model(sm: StructureModel, refine: int):
-    """Build the OpenSees model of a panel structure's state; return the node tags at the model's nodes and the total mass.
+    """Build the OpenSees model of a panel structure's state; return the node tags at the model's
+    nodes and the total mass.
 
     Returns
     -------
@@ -56,7 +59,12 @@ def opensees_model(sm: StructureModel, refine: int):
     for f, (a, b, c, d) in enumerate(faces):
         for i, u in enumerate(s):
             for j, v in enumerate(s):
-                p = (1 - u) * (1 - v) * x[a] + u * (1 - v) * x[b] + u * v * x[c] + (1 - u) * v * x[d]
+                p = (
+                    (1 - u) * (1 - v) * x[a]
+                    + u * (1 - v) * x[b]
+                    + u * v * x[c]
+                    + (1 - u) * v * x[d]
+                )
                 tag = 1 + f * k * k + i * k + j
                 ops.node(tag, *p.tolist())
                 coords[tag] = p
@@ -66,11 +74,17 @@ def opensees_model(sm: StructureModel, refine: int):
     for f in range(len(faces)):
         for i in range(m):
             for j in range(m):
-                n = [1 + f * k * k + (i + di) * k + (j + dj) for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1))]
+                n = [
+                    1 + f * k * k + (i + di) * k + (j + dj)
+                    for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1))
+                ]
                 ops.element(SHELL, element, *n, 1)
                 element += 1
                 p = np.array([coords[q] for q in n])
-                area = 0.5 * (np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])) + np.linalg.norm(np.cross(p[2] - p[0], p[3] - p[0])))
+                area = 0.5 * (
+                    np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0]))
+                    + np.linalg.norm(np.cross(p[2] - p[0], p[3] - p[0]))
+                )
                 for q in n:
                     weight[q] = weight.get(q, 0.0) + mat.density * t * area * g / 4
     # coincident nodes share their translations
@@ -89,7 +103,10 @@ def opensees_model(sm: StructureModel, refine: int):
         for c in range(4):
             a, b = int(quad[c]), int(quad[(c + 1) % 4])
             sides.setdefault((min(a, b), max(a, b)), []).append((f, c))
-    kind_of = {tuple(sorted(e)): kind for e, kind in zip(mesh.edges_vertices.tolist(), mesh.edges_kind.tolist())}
+    kind_of = {
+        tuple(sorted(e)): kind
+        for e, kind in zip(mesh.edges_vertices.tolist(), mesh.edges_kind.tolist())
+    }
     material = 2
     for edge, where in sides.items():
         if len(where) != 2 or kind_of.get(edge) not in ("fold", "seam"):
@@ -107,8 +124,23 @@ def opensees_model(sm: StructureModel, refine: int):
             along = (coords[q1] - a) @ axis / length
             share = length / m * (0.5 if min(along, 1 - along) < 0.25 / m else 1.0)
             ops.uniaxialMaterial("Elastic", material, sm.crease_stiffness * share)
-            ops.element("zeroLength", element, int(q1), int(q2), "-mat", material, 1, 1, "-dir", 4, 5, 6,
-                        "-orient", *axis.tolist(), *across.tolist())
+            ops.element(
+                "zeroLength",
+                element,
+                int(q1),
+                int(q2),
+                "-mat",
+                material,
+                1,
+                1,
+                "-dir",
+                4,
+                5,
+                6,
+                "-orient",
+                *axis.tolist(),
+                *across.tolist(),
+            )
             element += 1
             material += 1
     nearest = _nearest(pos, sm.model.nodes)
@@ -117,8 +149,12 @@ def opensees_model(sm: StructureModel, refine: int):
 
 def _side_nodes(face: int, corner: int, k: int) -> list[int]:
     """The tags of a face's grid nodes along its side from corner ``corner`` to the next."""
-    ij = {0: [(i, 0) for i in range(k)], 1: [(k - 1, j) for j in range(k)], 2: [(i, k - 1) for i in range(k - 1, -1, -1)],
-          3: [(0, j) for j in range(k - 1, -1, -1)]}[corner]
+    ij = {
+        0: [(i, 0) for i in range(k)],
+        1: [(k - 1, j) for j in range(k)],
+        2: [(i, k - 1) for i in range(k - 1, -1, -1)],
+        3: [(0, j) for j in range(k - 1, -1, -1)],
+    }[corner]
     return [1 + face * k * k + i * k + j for i, j in ij]
 
 
@@ -159,7 +195,9 @@ def static_deflection(sm: StructureModel, refine: int) -> np.ndarray:
     return u
 
 
-def free_eigenvalues(sm: StructureModel, refine: int, count: int, ground: np.ndarray, spring: float) -> np.ndarray:
+def free_eigenvalues(
+    sm: StructureModel, refine: int, count: int, ground: np.ndarray, spring: float
+) -> np.ndarray:
     """The lowest ``count`` elastic ω² (rad²/s²) of the free structure.
 
     The six rigid motions are held by soft springs of stiffness ``spring`` (N/m) at the

@@ -12,8 +12,17 @@ import numpy as np
 from curvefold.geometry import Mesh, PatternSheet
 
 
-def annular_sheet(label: str, *, radii=(40.0, 52.0, 64.0), span_deg=(0.0, 100.0), n=24, fold="M",
-                  seams=(0, 1), clockwise=False, origin=(0.0, 0.0)) -> PatternSheet:
+def annular_sheet(
+    label: str,
+    *,
+    radii=(40.0, 52.0, 64.0),
+    span_deg=(0.0, 100.0),
+    n=24,
+    fold="M",
+    seams=(0, 1),
+    clockwise=False,
+    origin=(0.0, 0.0),
+) -> PatternSheet:
     """An annular-sector sheet, shape (3 arcs × (n + 1)) vertices, z = 0.
 
     ``seams`` gives the seam ids of the inner and outer arcs (None: a boundary instead).
@@ -36,8 +45,11 @@ def annular_sheet(label: str, *, radii=(40.0, 52.0, 64.0), span_deg=(0.0, 100.0)
             edges.append((a, c))
             kinds.append("diagonal")
             seam_ids.append(-1)
-    arc_kind = {0: "seam" if seams[0] is not None else "boundary", 1: "fold",
-                2: "seam" if seams[1] is not None else "boundary"}
+    arc_kind = {
+        0: "seam" if seams[0] is not None else "boundary",
+        1: "fold",
+        2: "seam" if seams[1] is not None else "boundary",
+    }
     arc_seam = {0: seams[0], 1: None, 2: seams[1]}
     for k in range(3):
         for j in range(n):
@@ -50,7 +62,9 @@ def annular_sheet(label: str, *, radii=(40.0, 52.0, 64.0), span_deg=(0.0, 100.0)
             kinds.append("boundary" if j in (0, n) else "ruling")
             seam_ids.append(-1)
     kinds = np.array(kinds)
-    assign = np.where(kinds == "fold", fold, np.where(np.isin(kinds, ("seam", "boundary")), "B", "F"))
+    assign = np.where(
+        kinds == "fold", fold, np.where(np.isin(kinds, ("seam", "boundary")), "B", "F")
+    )
     angle = np.where(kinds == "fold", 60.0 if fold == "V" else -60.0, 0.0)
     faces = np.array(faces)
     if clockwise:
@@ -67,14 +81,29 @@ def annular_sheet(label: str, *, radii=(40.0, 52.0, 64.0), span_deg=(0.0, 100.0)
     return PatternSheet(label, mesh, np.array(seam_ids))
 
 
-def tube_sheets(tube: int = 1, *, seams=(0, 1), n=24, scale=1.0) -> tuple[PatternSheet, PatternSheet]:
+def tube_sheets(
+    tube: int = 1, *, seams=(0, 1), n=24, scale=1.0
+) -> tuple[PatternSheet, PatternSheet]:
     """The two sheets of one tube: A (mountain crease) and B (valley crease), seams shared.
 
     Both seams have equal lengths on A and B (same radii and span), as in a real tube.
     """
-    a = annular_sheet(f"tube {tube} · sheet A", radii=(40 * scale, 52 * scale, 64 * scale), n=n, fold="M", seams=seams)
-    b = annular_sheet(f"tube {tube} · sheet B", radii=(40 * scale, 50 * scale, 64 * scale), span_deg=(30.0, 130.0),
-                      n=n, fold="V", seams=seams, origin=(300.0 * scale, 0.0))
+    a = annular_sheet(
+        f"tube {tube} · sheet A",
+        radii=(40 * scale, 52 * scale, 64 * scale),
+        n=n,
+        fold="M",
+        seams=seams,
+    )
+    b = annular_sheet(
+        f"tube {tube} · sheet B",
+        radii=(40 * scale, 50 * scale, 64 * scale),
+        span_deg=(30.0, 130.0),
+        n=n,
+        fold="V",
+        seams=seams,
+        origin=(300.0 * scale, 0.0),
+    )
     return a, b
 
 

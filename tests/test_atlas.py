@@ -42,15 +42,25 @@ KW = dict(width=0.08, samples=61)
 
 def _run(**where) -> tuple[Atlas, list]:
     calls: list = []
-    result = run_atlas(P_XY, A_VALUES, progress=lambda done, total: calls.append((done, total)), **where, **KW)
+    result = run_atlas(
+        P_XY, A_VALUES, progress=lambda done, total: calls.append((done, total)), **where, **KW
+    )
     return result, calls
 
 
 @pytest.fixture(scope="module")
 def cluster():
-    """An existing Dask cluster: 2 single-thread workers in this process, reached over TCP on 127.0.0.1."""
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp://", host="127.0.0.1",
-                                  dashboard_address=":0", silence_logs=logging.ERROR) as c:
+    """An existing Dask cluster: 2 single-thread workers in this process, reached over TCP on
+    127.0.0.1."""
+    with distributed.LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=False,
+        protocol="tcp://",
+        host="127.0.0.1",
+        dashboard_address=":0",
+        silence_logs=logging.ERROR,
+    ) as c:
         yield c
 
 
@@ -112,7 +122,11 @@ def test_invalid_designs_are_recorded_and_the_grid_goes_on(serial):
 def test_input_errors_of_a_grid_value_are_recorded():
     result = run_atlas([-1.0, 0.75], [0.3], workers=1, **KW)
     bad, good = result.records
-    assert bad["valid"] is False and bad["error"] == "InputError" and "p_xy must be in" in bad["reason"]
+    assert (
+        bad["valid"] is False
+        and bad["error"] == "InputError"
+        and "p_xy must be in" in bad["reason"]
+    )
     assert good["valid"] is True
 
 
@@ -157,7 +171,12 @@ def test_cluster_records_are_identical_to_serial(which, serial, request):
     for a, b in zip(serial.sketches, other.sketches):
         assert (a is None) == (b is None)
         if a is not None:
-            for x, y in ((a.curves, b.curves), (a.cells, b.cells), (a.feet, b.feet), (a.apex, b.apex)):
+            for x, y in (
+                (a.curves, b.curves),
+                (a.cells, b.cells),
+                (a.feet, b.feet),
+                (a.apex, b.apex),
+            ):
                 assert_array_equal(x, y, strict=True)
             assert a.kinds == b.kinds
 
@@ -187,7 +206,9 @@ def written(tmp_path_factory) -> tuple[dict, Path]:
     from curvefold.app._folder import check_output
 
     out = tmp_path_factory.mktemp("atlas") / "out"
-    summary = write_atlas(P_XY, A_VALUES, out=check_output(out, force=False), workers=1, show_progress=False, **KW)
+    summary = write_atlas(
+        P_XY, A_VALUES, out=check_output(out, force=False), workers=1, show_progress=False, **KW
+    )
     return summary, out
 
 
@@ -195,8 +216,13 @@ def test_written_summary_and_files(written):
     from curvefold.app._folder import MARKER
 
     summary, out = written
-    assert summary == {"shape": [3, 3], "designs": 9, "valid": 5, "invalid": {"ConvergenceError": 3, "RegressionError": 1},
-                       "files": ["atlas.csv", "atlas.json", "atlas.png", "atlas.svg"]}
+    assert summary == {
+        "shape": [3, 3],
+        "designs": 9,
+        "valid": 5,
+        "invalid": {"ConvergenceError": 3, "RegressionError": 1},
+        "files": ["atlas.csv", "atlas.json", "atlas.png", "atlas.svg"],
+    }
     assert sorted(set(os.listdir(out)) - {MARKER}) == summary["files"]  # no temporary file left
 
 
@@ -221,32 +247,56 @@ def test_csv_round_trip(serial, written):
 
 def test_json_round_trip(serial, written):
     doc = json.loads((written[1] / "atlas.json").read_text(encoding="utf-8"))
-    assert doc["format"] == "curvefold-atlas" and doc["version"] == 1 and doc["fields"] == list(FIELDS)
+    assert (
+        doc["format"] == "curvefold-atlas" and doc["version"] == 1 and doc["fields"] == list(FIELDS)
+    )
     assert doc["p_xy_values"] == P_XY and doc["a_values"] == A_VALUES
     assert (doc["width"], doc["fold_angle"], doc["samples"], doc["tubes"]) == (0.08, 90.0, 61, None)
     assert doc["records"] == list(serial.records)
 
 
 def test_record_files_are_written_whole_or_not_at_all(tmp_path):
-    records = [{"x": 0.1, "ok": True, "why": None}, {"x": math.nan, "ok": False, "why": "a, \"quoted\"\nreason"}]
+    records = [
+        {"x": 0.1, "ok": True, "why": None},
+        {"x": math.nan, "ok": False, "why": 'a, "quoted"\nreason'},
+    ]
     for name in ("t.csv", "t.json"):
         (tmp_path / name).write_text("old")
-    with pytest.raises(RuntimeError, match="stopped"), csv_records(tmp_path / "t.csv", ("x", "ok", "why")) as write:
+    with (
+        pytest.raises(RuntimeError, match="stopped"),
+        csv_records(tmp_path / "t.csv", ("x", "ok", "why")) as write,
+    ):
         write(records[0])
         raise RuntimeError("stopped")
-    with pytest.raises(RuntimeError, match="stopped"), json_records(tmp_path / "t.json", {"format": "t"}, ("x", "ok", "why")) as write:
+    with (
+        pytest.raises(RuntimeError, match="stopped"),
+        json_records(tmp_path / "t.json", {"format": "t"}, ("x", "ok", "why")) as write,
+    ):
         write(records[0])
         raise RuntimeError("stopped")
     assert sorted(os.listdir(tmp_path)) == ["t.csv", "t.json"]  # no temporary file left
     assert (tmp_path / "t.csv").read_text() == (tmp_path / "t.json").read_text() == "old"
-    with csv_records(tmp_path / "t.csv", ("x", "ok", "why")) as write_csv, json_records(tmp_path / "t.json", {"format": "t"}, ("x", "ok", "why")) as write_json:
+    with (
+        csv_records(tmp_path / "t.csv", ("x", "ok", "why")) as write_csv,
+        json_records(tmp_path / "t.json", {"format": "t"}, ("x", "ok", "why")) as write_json,
+    ):
         for r in records:
             write_csv(r)
             write_json(r)
     with open(tmp_path / "t.csv", newline="", encoding="utf-8") as f:
-        assert list(csv.reader(f)) == [["x", "ok", "why"], ["0.1", "True", ""], ["nan", "False", records[1]["why"]]]
-    assert json.loads((tmp_path / "t.json").read_text()) == {"format": "t", "records": [records[0], {**records[1], "x": None}]}
-    with pytest.raises(InputError, match="must not have a 'records' key"), json_records(tmp_path / "u.json", {"records": 1}, ("x",)):
+        assert list(csv.reader(f)) == [
+            ["x", "ok", "why"],
+            ["0.1", "True", ""],
+            ["nan", "False", records[1]["why"]],
+        ]
+    assert json.loads((tmp_path / "t.json").read_text()) == {
+        "format": "t",
+        "records": [records[0], {**records[1], "x": None}],
+    }
+    with (
+        pytest.raises(InputError, match="must not have a 'records' key"),
+        json_records(tmp_path / "u.json", {"records": 1}, ("x",)),
+    ):
         pass
 
 
@@ -278,7 +328,8 @@ def test_boundary_validation():
     with pytest.raises(InputError, match="workers must be an integer"):
         run_atlas([0.75], [0.3], workers=0)
     with pytest.raises(InputError, match="width must be"):
-        run_atlas([0.75], [0.3], width=-1.0, workers=1)  # shared parameters fail once, not per design
+        # shared parameters fail once, not per design
+        run_atlas([0.75], [0.3], width=-1.0, workers=1)
     with pytest.raises(InputError, match="samples must be odd"):
         run_atlas([0.75], [0.3], samples=60, workers=1)
     with pytest.raises(InputError, match="progress must be a callable"):
@@ -290,16 +341,29 @@ def test_bugs_are_not_swallowed(where, cluster, monkeypatch):
     def broken(*args, **kwargs):
         raise RuntimeError("a bug, not an invalid design")
 
-    monkeypatch.setattr(atlas_module, "evaluate_design", broken)  # the cluster's workers run in this process
+    # the cluster's workers run in this process
+    monkeypatch.setattr(atlas_module, "evaluate_design", broken)
     with pytest.raises(RuntimeError, match="a bug"):
-        run_atlas([0.75], [0.3], **({"workers": 1} if where == "serial" else {"scheduler": cluster.scheduler_address}))
+        run_atlas(
+            [0.75],
+            [0.3],
+            **({"workers": 1} if where == "serial" else {"scheduler": cluster.scheduler_address}),
+        )
 
 
 def test_boundary_validation_of_where_the_sweep_runs(cluster):
     cpus = cluster_module._cpus()
-    with pytest.raises(InputError, match=rf"workers must be an integer in \[1, {cpus}\] \(the {cpus} CPUs? this process may use\), got {cpus + 1}"):
+    with pytest.raises(
+        InputError,
+        match=rf"workers must be an integer in \[1, {cpus}\] \(the "
+        rf"{cpus} CPUs? this process may use\), got {cpus + 1}",
+    ):
         run_atlas([0.75], [0.3], workers=cpus + 1)
-    with pytest.raises(InputError, match="workers sizes a local cluster; the cluster at scheduler 'tcp://.*' has its own workers, got workers = 2"):
+    with pytest.raises(
+        InputError,
+        match="workers sizes a local cluster; the cluster at "
+        "scheduler 'tcp://.*' has its own workers, got workers = 2",
+    ):
         run_atlas([0.75], [0.3], workers=2, scheduler=cluster.scheduler_address)
     with pytest.raises(InputError, match="scheduler must be the address of a Dask scheduler"):
         run_atlas([0.75], [0.3], scheduler=8786)
@@ -315,18 +379,31 @@ def _closed_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.mark.parametrize(("address", "message"), [
-    ("nonsense://x:1", "scheduler must be a Dask scheduler address such as 'tcp://host:8786', got 'nonsense://x:1' (unknown address scheme"),
-    ("tcp://localhost", "got 'tcp://localhost' (missing port number"),
-    ("inproc://x", "scheduler must be a network address"),
-    ("tcp://no-such-host.invalid:8786", "scheduler 'tcp://no-such-host.invalid:8786': cannot resolve the host"),
-    ("closed", "cannot connect to a Dask scheduler there"),
-])
+@pytest.mark.parametrize(
+    ("address", "message"),
+    [
+        (
+            "nonsense://x:1",
+            "scheduler must be a Dask scheduler address such as 'tcp://host:8786', "
+            "got 'nonsense://x:1' (unknown address scheme",
+        ),
+        ("tcp://localhost", "got 'tcp://localhost' (missing port number"),
+        ("inproc://x", "scheduler must be a network address"),
+        (
+            "tcp://no-such-host.invalid:8786",
+            "scheduler 'tcp://no-such-host.invalid:8786': cannot resolve the host",
+        ),
+        ("closed", "cannot connect to a Dask scheduler there"),
+    ],
+)
 def test_a_scheduler_that_cannot_be_reached_is_a_user_error(address, message):
     import dask
 
     address = f"tcp://127.0.0.1:{_closed_port()}" if address == "closed" else address
-    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}), pytest.raises(InputError, match=message.replace("(", r"\(").replace(")", r"\)")):
+    with (
+        dask.config.set({"distributed.comm.timeouts.connect": "1s"}),
+        pytest.raises(InputError, match=message.replace("(", r"\(").replace(")", r"\)")),
+    ):
         run_atlas([0.75], [0.3], scheduler=address)
 
 
@@ -334,14 +411,30 @@ def test_a_cluster_without_workers_is_a_user_error():
     import dask
 
     with (
-        distributed.LocalCluster(n_workers=0, processes=False, protocol="tcp://", host="127.0.0.1", dashboard_address=":0", silence_logs=logging.ERROR) as empty,
+        distributed.LocalCluster(
+            n_workers=0,
+            processes=False,
+            protocol="tcp://",
+            host="127.0.0.1",
+            dashboard_address=":0",
+            silence_logs=logging.ERROR,
+        ) as empty,
         dask.config.set({"distributed.comm.timeouts.connect": "0.5s"}),
-        pytest.raises(InputError, match=r"scheduler 'tcp://127\.0\.0\.1:\d+' has no worker \(waited 0\.5 s\)"),
+        pytest.raises(
+            InputError,
+            match=r"scheduler 'tcp://127\.0\.0\.1:\d+' has no worker " r"\(waited 0\.5 s\)",
+        ),
     ):
         run_atlas([0.75], [0.3], scheduler=empty.scheduler_address)
 
 
-@pytest.mark.parametrize(("theirs", "have"), [("0.0.1", "curvefold 0.0.1"), (ModuleNotFoundError("No module named 'curvefold'"), "no curvefold")])
+@pytest.mark.parametrize(
+    ("theirs", "have"),
+    [
+        ("0.0.1", "curvefold 0.0.1"),
+        (ModuleNotFoundError("No module named 'curvefold'"), "no curvefold"),
+    ],
+)
 def test_workers_must_run_this_curvefold(theirs, have, cluster, monkeypatch):
     from curvefold import __version__
 
@@ -350,8 +443,13 @@ def test_workers_must_run_this_curvefold(theirs, have, cluster, monkeypatch):
             raise theirs
         return theirs
 
-    monkeypatch.setattr(cluster_module, "_curvefold_version", worker_version)  # what the cluster's workers report
-    with pytest.raises(InputError, match=rf"every worker needs curvefold {__version__}, as here; 2 of 2 differ, e.g. tcp://127\.0\.0\.1:\d+ has {have}$"):
+    # what the cluster's workers report
+    monkeypatch.setattr(cluster_module, "_curvefold_version", worker_version)
+    with pytest.raises(
+        InputError,
+        match=rf"every worker needs curvefold {__version__}, as here; "
+        rf"2 of 2 differ, e.g. tcp://127\.0\.0\.1:\d+ has {have}$",
+    ):
         run_atlas([0.75], [0.3], scheduler=cluster.scheduler_address)
 
 
@@ -359,14 +457,22 @@ def test_where_designs_run_by_default(monkeypatch):
     plan = cluster_module.cluster_plan
     local = min(2, cluster_module._cpus())
     assert plan(cluster_module.LOCAL_CLUSTER_FROM, None, None) == (local, None)
-    assert plan(cluster_module.LOCAL_CLUSTER_FROM - 1, None, None) == (1, None)  # a cluster would cost more than it saves
+    # a cluster would cost more than it saves
+    assert plan(cluster_module.LOCAL_CLUSTER_FROM - 1, None, None) == (1, None)
     assert plan(1, 2, None) == (1, None)  # never more workers than designs
     assert plan(5, None, " tcp://10.0.0.5:8786 ") == (0, "tcp://10.0.0.5:8786")
     # without Dask: the default runs here, and asking for a cluster says what to install
     monkeypatch.setattr(cluster_module.importlib.util, "find_spec", lambda name, *a: None)
     assert plan(cluster_module.LOCAL_CLUSTER_FROM, None, None) == (1, None)
-    for workers, scheduler, what in ((2, None, "workers = 2"), (None, "tcp://10.0.0.5:8786", "scheduler 'tcp://10.0.0.5:8786'")):
-        with pytest.raises(ModuleNotFoundError, match=rf"^{what} runs on Dask, which is not installed; install it with: pip install 'curvefold\[dask\]'$"):
+    for workers, scheduler, what in (
+        (2, None, "workers = 2"),
+        (None, "tcp://10.0.0.5:8786", "scheduler 'tcp://10.0.0.5:8786'"),
+    ):
+        with pytest.raises(
+            ModuleNotFoundError,
+            match=rf"^{what} runs on Dask, which is not "
+            r"installed; install it with: pip install 'curvefold\[dask\]'$",
+        ):
             plan(5, workers, scheduler)
 
 
@@ -381,7 +487,8 @@ def _heap_trim() -> str | None:
 
 
 def test_the_local_cluster_runs_quiet_and_trims_its_workers_heap_at_4_mib(monkeypatch):
-    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)  # a variable set here would outrank the settings
+    # a variable set here would outrank the settings
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
     settings = (False, "1s", 4 * 2**20)
     assert tuple(cluster_module.CLUSTER_SETTINGS.values()) == settings
     here = _cluster_settings()  # Dask's defaults, (True, "20ms", 65536)
@@ -389,7 +496,8 @@ def test_the_local_cluster_runs_quiet_and_trims_its_workers_heap_at_4_mib(monkey
     with cluster_module.client(2, None) as client:
         assert set(client.run(_cluster_settings).values()) == {settings}  # the worker processes
         assert client.run_on_scheduler(_cluster_settings) == settings
-        assert set(client.run(_heap_trim).values()) == {str(4 * 2**20)}  # what glibc reads in the workers
+        # what glibc reads in the workers
+        assert set(client.run(_heap_trim).values()) == {str(4 * 2**20)}
     assert _cluster_settings() == here  # the settings were the cluster's alone
 
 
@@ -398,10 +506,13 @@ def test_a_local_cluster_leaves_this_process_environment_as_it_was(monkeypatch):
 
     monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
     before = dict(os.environ)
-    dasks = str(dask.config.get("distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"))  # 65536
-    with cluster_module.local_cluster(1, {}) as cluster, distributed.Client(cluster) as client:  # Dask's defaults
+    # 65536
+    dasks = str(dask.config.get("distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"))
+    # Dask's defaults
+    with cluster_module.local_cluster(1, {}) as cluster, distributed.Client(cluster) as client:
         assert set(client.run(_heap_trim).values()) == {dasks}
-        assert os.environ.get("MALLOC_TRIM_THRESHOLD_") == dasks  # Dask's nanny wrote it here, to spawn the worker
+        # Dask's nanny wrote it here, to spawn the worker
+        assert os.environ.get("MALLOC_TRIM_THRESHOLD_") == dasks
     assert dict(os.environ) == before
     with cluster_module.client(2, None) as client:  # so the next cluster gets its own settings
         assert set(client.run(_heap_trim).values()) == {str(4 * 2**20)}
@@ -409,26 +520,43 @@ def test_a_local_cluster_leaves_this_process_environment_as_it_was(monkeypatch):
 
 
 def test_workers_started_with_the_readmes_environment_get_the_atlas_settings(tmp_path, monkeypatch):
-    """``dask worker`` under :func:`worker_environment` (the README's line) runs as the atlas's own workers; without it, on Dask's defaults."""
+    """``dask worker`` under :func:`worker_environment` (the README's line) runs as the atlas's
+    own workers; without it, on Dask's defaults."""
     import dask
 
     env = cluster_module.worker_environment()
     line = " ".join(f"{k}={v}" for k, v in env.items())
-    guide = Path(__file__).parents[1] / "docs" / "guide" / "atlas.md"  # the line moved there from the README
+    # the line moved there from the README
+    guide = Path(__file__).parents[1] / "docs" / "guide" / "atlas.md"
     assert f"`{line} dask worker ...`" in guide.read_text(encoding="utf-8")
     for key in env:
         monkeypatch.delenv(key, raising=False)
     dask_cli, file = Path(sys.executable).with_name("dask"), tmp_path / "scheduler.json"
     common = ["--scheduler-file", str(file), "--no-dashboard"]
-    processes = [subprocess.Popen([dask_cli, "scheduler", "--host", "127.0.0.1", *common], stderr=subprocess.DEVNULL)]
+    processes = [
+        subprocess.Popen(
+            [dask_cli, "scheduler", "--host", "127.0.0.1", *common], stderr=subprocess.DEVNULL
+        )
+    ]
     try:
         for extra in ({}, env):
-            processes.append(subprocess.Popen([dask_cli, "worker", "--nthreads", "1", *common], env=os.environ | extra, stderr=subprocess.DEVNULL))
+            processes.append(
+                subprocess.Popen(
+                    [dask_cli, "worker", "--nthreads", "1", *common],
+                    env=os.environ | extra,
+                    stderr=subprocess.DEVNULL,
+                )
+            )
         with distributed.Client(scheduler_file=str(file), timeout=60) as client:
             client.wait_for_workers(2, timeout=60)
-            dasks = {key: value for key, value in cluster_module.CLUSTER_SETTINGS.items() if "pre-spawn-environ" not in key}
+            dasks = {
+                key: value
+                for key, value in cluster_module.CLUSTER_SETTINGS.items()
+                if "pre-spawn-environ" not in key
+            }
             found = {key: set(client.run(dask.config.get, key).values()) for key in dasks}
-            trims = set(client.run(os.getenv, "MALLOC_TRIM_THRESHOLD_").values())  # what glibc reads
+            # what glibc reads
+            trims = set(client.run(os.getenv, "MALLOC_TRIM_THRESHOLD_").values())
             client.shutdown()
     finally:
         for process in processes[::-1]:
@@ -436,11 +564,16 @@ def test_workers_started_with_the_readmes_environment_get_the_atlas_settings(tmp
                 process.terminate()
             process.wait(30)
     assert found == {key: {value, dask.config.get(key)} for key, value in dasks.items()}
-    assert trims == {str(4 * 2**20), str(dask.config.get("distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"))}  # 65536: Dask's
+    # 65536: Dask's
+    assert trims == {
+        str(4 * 2**20),
+        str(dask.config.get("distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_")),
+    }
 
 
 class _Futures:
-    """A submit function whose futures finish at once; it counts the futures outstanding (result not yet taken)."""
+    """A submit function whose futures finish at once; it counts the futures outstanding (result
+    not yet taken)."""
 
     def __init__(self):
         self.outstanding = 0
@@ -464,10 +597,16 @@ class _Futures:
 def _within_rows(sizes, cols):
     """Whether every task of these sizes holds whole rows or lies within one row."""
     starts = np.cumsum([0, *sizes[:-1]])
-    return all(start // cols == (start + n - 1) // cols or (start % cols == 0 and n % cols == 0) for start, n in zip(starts, sizes))
+    return all(
+        start // cols == (start + n - 1) // cols or (start % cols == 0 and n % cols == 0)
+        for start, n in zip(starts, sizes)
+    )
 
 
-@pytest.mark.parametrize(("rows", "cols", "threads"), [(40, 40, 2), (200, 200, 2), (24, 24, 4), (5000, 1, 2), (1, 1000, 2), (3, 7, 2), (1, 1, 1)])
+@pytest.mark.parametrize(
+    ("rows", "cols", "threads"),
+    [(40, 40, 2), (200, 200, 2), (24, 24, 4), (5000, 1, 2), (1, 1000, 2), (3, 7, 2), (1, 1, 1)],
+)
 def test_tasks_cover_the_grid_shrink_and_never_straddle_two_rows(rows, cols, threads):
     sizes = list(atlas_module.task_sizes(rows * cols, cols, threads))
     assert sum(sizes) == rows * cols and _within_rows(sizes, cols)
@@ -475,13 +614,16 @@ def test_tasks_cover_the_grid_shrink_and_never_straddle_two_rows(rows, cols, thr
     assert min(sizes[:-1], default=atlas_module.MIN_CHUNK) >= min(atlas_module.MIN_CHUNK, cols)
     if len(sizes) > 2 * threads:  # guided: the last tasks are the smallest
         assert sizes[-1] <= min(sizes[: 2 * threads])
-    assert not _within_rows([100] * 16, 40)  # the sweep's cut before: 100 designs a task on rows of 40
+    # the sweep's cut before: 100 designs a task on rows of 40
+    assert not _within_rows([100] * 16, 40)
 
 
 @pytest.mark.parametrize("window", [1, 3, 50])
 def test_results_come_in_order_with_at_most_window_outstanding(window):
     futures = _Futures()
-    assert list(cluster_module.in_order(futures.submit, range(20), window)) == [10 * k for k in range(20)]
+    assert list(cluster_module.in_order(futures.submit, range(20), window)) == [
+        10 * k for k in range(20)
+    ]
     assert futures.most == min(window, 20)  # a window of 50 holds everything: the count sees it
 
 
@@ -504,16 +646,29 @@ def test_a_serial_sweep_hands_out_each_design_before_the_next_runs(monkeypatch):
 def test_every_kth_row_and_column(serial):
     step = 2
     sub = serial.every(step)
-    assert sub.shape == (2, 2) and sub.grid.p_xy_values == (0.75, 4.0) and sub.grid.a_values == (0.3, 1.3)
+    assert (
+        sub.shape == (2, 2)
+        and sub.grid.p_xy_values == (0.75, 4.0)
+        and sub.grid.a_values == (0.3, 1.3)
+    )
     for r in sub.records:
         original = serial.record(step * r["row"], step * r["col"])
         assert r == original | {"row": r["row"], "col": r["col"]}
-    assert sub.sketches[:2] == (serial.sketches[0], serial.sketches[2]) and sub.sketches[2:] == (None, None)
+    assert sub.sketches[:2] == (serial.sketches[0], serial.sketches[2]) and sub.sketches[2:] == (
+        None,
+        None,
+    )
     assert serial.every(1).records == serial.records
     with pytest.raises(InputError, match="step must be an integer ≥ 1, got 0"):
         serial.every(0)
-    with pytest.raises(InputError, match=r"results must hold one \(record, sketch\) pair per design of the 3 × 3 grid, got 2"):
-        Atlas.from_results(AtlasGrid.of(P_XY, A_VALUES), zip(serial.records[:2], serial.sketches[:2]))
+    with pytest.raises(
+        InputError,
+        match=r"results must hold one \(record, sketch\) pair per "
+        r"design of the 3 × 3 grid, got 2",
+    ):
+        Atlas.from_results(
+            AtlasGrid.of(P_XY, A_VALUES), zip(serial.records[:2], serial.sketches[:2])
+        )
 
 
 def test_a_wide_grid_writes_every_record_and_draws_every_kth(tmp_path, monkeypatch):
@@ -529,28 +684,66 @@ def test_a_wide_grid_writes_every_record_and_draws_every_kth(tmp_path, monkeypat
         return draw(atlas, cell_size=0.5, **kwargs)
 
     monkeypatch.setattr(figure_module, "atlas_figure", spy)
-    p_xy = np.linspace(0.5, 1.5, figure_module.MAX_VIEWS + 1).tolist()  # one column too many: every 2nd is drawn
-    summary = write_atlas(p_xy, [0.3], out=check_output(tmp_path / "out", force=False), width=0.08, samples=41, workers=1, show_progress=False)
+    # one column too many: every 2nd is drawn
+    p_xy = np.linspace(0.5, 1.5, figure_module.MAX_VIEWS + 1).tolist()
+    summary = write_atlas(
+        p_xy,
+        [0.3],
+        out=check_output(tmp_path / "out", force=False),
+        width=0.08,
+        samples=41,
+        workers=1,
+        show_progress=False,
+    )
     assert summary["designs"] == 25 and summary["valid"] == 25
     records = json.loads((tmp_path / "out" / "atlas.json").read_text())["records"]
     assert [r["col"] for r in records] == list(range(25))
     shown = drawn["atlas"]
     assert shown.shape == (1, 13) and shown.grid.p_xy_values == tuple(p_xy[::2])
-    assert [r["p_xy"] for r in shown.records] == p_xy[::2] and all(s is not None for s in shown.sketches)
-    assert drawn["note"] == "one in 2 values of a and of p_xy shown; all 1 × 25 designs are in atlas.csv and atlas.json"
-    with pytest.raises(InputError, match=r"atlas_figure draws at most 24 × 24 views, got a 1 × 25 atlas; draw atlas.every\(2\)"):
+    assert [r["p_xy"] for r in shown.records] == p_xy[::2] and all(
+        s is not None for s in shown.sketches
+    )
+    assert drawn["note"] == (
+        "one in 2 values of a and of p_xy shown; all 1 × 25 designs are in atlas.csv and atlas.json"
+    )
+    with pytest.raises(
+        InputError,
+        match=r"atlas_figure draws at most 24 × 24 views, got a 1 × "
+        r"25 atlas; draw atlas.every\(2\)",
+    ):
         draw(Atlas.from_results(AtlasGrid.of(p_xy, [0.3]), [(r, None) for r in records]))
 
 
 def test_command_line_on_a_cluster_writes_the_same_files(cluster, written, tmp_path):
     flags = ["--p-xy", "0.75,1.5,4", "--a", "0.3,0.8,1.3", "--width", "0.08", "--samples", "61"]
-    r = run("atlas", *flags, "--scheduler", cluster.scheduler_address, "--out", str(tmp_path / "out"), "--json")
+    r = run(
+        "atlas",
+        *flags,
+        "--scheduler",
+        cluster.scheduler_address,
+        "--out",
+        str(tmp_path / "out"),
+        "--json",
+    )
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["valid"] == 5
     for name in ("atlas.csv", "atlas.json"):
         assert (tmp_path / "out" / name).read_bytes() == (written[1] / name).read_bytes()
-    r = run("atlas", *flags, "--workers", "2", "--scheduler", cluster.scheduler_address, "--out", str(tmp_path / "other"))
-    assert r.returncode == 2 and "has its own workers" in r.stderr and not (tmp_path / "other").exists()
+    r = run(
+        "atlas",
+        *flags,
+        "--workers",
+        "2",
+        "--scheduler",
+        cluster.scheduler_address,
+        "--out",
+        str(tmp_path / "other"),
+    )
+    assert (
+        r.returncode == 2
+        and "has its own workers" in r.stderr
+        and not (tmp_path / "other").exists()
+    )
 
 
 def test_command_line_bounds_the_workers(tmp_path):
@@ -558,8 +751,11 @@ def test_command_line_bounds_the_workers(tmp_path):
     for value in (0, cpus + 1, 50 * cpus):
         r = run("atlas", "--workers", str(value), "--out", str(tmp_path / "out"))
         assert r.returncode == 2
-        assert r.stderr.strip() == (f"curvefold: error: --workers {value}: workers must be an integer in [1, {cpus}] "
-                                    f"(the {cpus} CPU{'s' * (cpus != 1)} this process may use), got {value}")
+        assert r.stderr.strip() == (
+            f"curvefold: error: --workers {value}: workers must be an "
+            f"integer in [1, {cpus}] (the {cpus} CPU{'s' * (cpus != 1)} this process may use), "
+            f"got {value}"
+        )
     assert os.listdir(tmp_path) == []
 
 
@@ -567,25 +763,47 @@ def test_command_line_bounds_the_workers(tmp_path):
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
 def test_a_signal_stops_the_sweep_and_its_workers(signum, tmp_path):
     # 3600 designs: several seconds on 2 workers, stopped once a record reaches the temporary CSV
-    argv = [sys.executable, "-m", "curvefold", "atlas", "--workers", "2", "--p-xy", "0.5:1.5:60", "--a", "0:1.2:60", "--out", str(tmp_path / "out")]
+    argv = [
+        sys.executable,
+        "-m",
+        "curvefold",
+        "atlas",
+        "--workers",
+        "2",
+        "--p-xy",
+        "0.5:1.5:60",
+        "--a",
+        "0:1.2:60",
+        "--out",
+        str(tmp_path / "out"),
+    ]
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     children: list = []
     try:
         deadline = time.monotonic() + 120
         while True:
-            assert proc.poll() is None and time.monotonic() < deadline, "the sweep ended or never started"
+            assert proc.poll() is None and time.monotonic() < deadline, (
+                "the sweep ended or never started"
+            )
             time.sleep(0.05)
             try:
                 children = psutil.Process(proc.pid).children(recursive=True)
                 workers = [p for p in children if "spawn_main" in " ".join(p.cmdline())]
-                records = sum(p.read_text().count("\n") - 1 for p in tmp_path.glob(".out.*/.atlas.csv.*"))  # lines after the header
-            except (psutil.NoSuchProcess, FileNotFoundError):  # a process or file that went while looking
+                # lines after the header
+                records = sum(
+                    p.read_text().count("\n") - 1 for p in tmp_path.glob(".out.*/.atlas.csv.*")
+                )
+            # a process or file that went while looking
+            except (psutil.NoSuchProcess, FileNotFoundError):
                 continue
             if len(workers) == 2 and records > 0:
                 break
         proc.send_signal(signum)
         _, err = proc.communicate(timeout=60)
-        assert (proc.returncode, err) == (128 + signum, f"curvefold: interrupted by {signal.Signals(signum).name}\n")
+        assert (proc.returncode, err) == (
+            128 + signum,
+            f"curvefold: interrupted by {signal.Signals(signum).name}\n",
+        )
         _, alive = psutil.wait_procs(children, timeout=30)
         assert alive == [], f"processes left running: {alive}"
         assert os.listdir(tmp_path) == []  # neither the output folder nor its temporary one
@@ -602,7 +820,12 @@ def test_a_sweep_sketches_only_the_designs_of_every_kth_row_and_column_with_the_
     every = list(sweep(grid, workers=1))
     some = list(sweep(grid, workers=1, sketch_step=2))
     assert [r for r, _ in some] == [r for r, _ in every]
-    assert [(r["row"], r["col"]) for r, s in some if s is not None] == [(0, 0), (0, 2), (2, 0), (2, 2)]
+    assert [(r["row"], r["col"]) for r, s in some if s is not None] == [
+        (0, 0),
+        (0, 2),
+        (2, 0),
+        (2, 2),
+    ]
     assert all(s is not None for _, s in every)
     with pytest.raises(InputError, match="step"):
         sweep(grid, workers=1, sketch_step=0)

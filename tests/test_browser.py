@@ -1,4 +1,5 @@
-"""Our files and report in a browser: three.js (GLTFLoader) in headless Chromium, the report at 390 and 1280 px."""
+"""Our files and report in a browser: three.js (GLTFLoader) in headless Chromium, the report at
+390 and 1280 px."""
 
 from __future__ import annotations
 
@@ -55,9 +56,9 @@ new GLTFLoader().load("/vault.glb", (gltf) => {
 
 
 def test_three_js_opens_the_glb_at_the_design_state_with_a_node_per_sheet(tmp_path):
-    """GLTFLoader gives a named node per sheet with normals; the morph targets are named by fold angle;
-    the animation starts at the design state (what Blender opens, as it applies the first keyframe),
-    unfolds to the flat state half-way and folds back."""
+    """GLTFLoader gives a named node per sheet with normals; the morph targets are named by fold
+    angle; the animation starts at the design state (what Blender opens, as it applies the
+    first keyframe), unfolds to the flat state half-way and folds back."""
     vault = Vault.from_design(samples=201)
     structure = vault.structure
     keep = choose_sampling(structure).keep
@@ -75,11 +76,15 @@ def test_three_js_opens_the_glb_at_the_design_state_with_a_node_per_sheet(tmp_pa
     design = to_gltf(structure.state().mesh(keep=keep).vertices_coords)
     flat = to_gltf(structure.state(0.0).mesh(keep=keep).vertices_coords)
     # three.js turns spaces in node names into underscores (PropertyBinding.sanitizeNodeName)
-    assert result["nodes"] == [s.label.replace(" ", "_") for s in topology.sheets] and len(result["nodes"]) == 2 * vault.design.tubes
+    assert (
+        result["nodes"] == [s.label.replace(" ", "_") for s in topology.sheets]
+        and len(result["nodes"]) == 2 * vault.design.tubes
+    )
     assert result["names"] == ["2α = 0°", "2α = 30°", "2α = 60°"] and result["normals"]
     assert result["clips"] == [["fold", 6.0]]
-    for k, sheet in enumerate(topology.sheets):  # 32-bit floats of coordinates up to ~2: within 1e-6
-        corners = lambda x: x[faces[sheet.faces]].reshape(-1, 3)  # noqa: E731
+    # 32-bit floats of coordinates up to ~2: within 1e-6
+    for k, sheet in enumerate(topology.sheets):
+        corners = lambda x, sheet=sheet: x[faces[sheet.faces]].reshape(-1, 3)  # noqa: E731
         assert_allclose(np.reshape(result["start"][k], (-1, 3)), corners(design), atol=1e-6, rtol=0)
         assert_allclose(np.reshape(result["middle"][k], (-1, 3)), corners(flat), atol=1e-6, rtol=0)
         assert_allclose(np.reshape(result["end"][k], (-1, 3)), corners(design), atol=1e-6, rtol=0)
@@ -108,20 +113,25 @@ def test_the_report_reads_at_phone_and_desktop_widths(vault_folder, width):
             viewport: document.querySelector('meta[name=viewport]')?.content,
         })""")
     assert layout["overflow"] <= 0  # nothing wider than the screen
-    if width == 390:  # a phone: every table reads without sliding sideways (one card per row), every figure's text readable
+    # a phone: every table reads without sliding sideways (one card per row), every figure's text
+    # readable
+    if width == 390:
         assert max(layout["tables"]) <= 1, layout["tables"]
         from PIL import Image
 
         for src, _, shown_width in layout["images"]:
-            if src.endswith(".png"):  # 7 pt text at 150 dpi is 14.6 px in the picture: at least 9 px on the screen
+            # 7 pt text at 150 dpi is 14.6 px in the picture: at least 9 px on the screen
+            if src.endswith(".png"):
                 with Image.open(vault_folder / src) as picture:
                     pixels = picture.width
                 assert 14.6 * shown_width / pixels >= 9, (src, pixels, shown_width)
     assert layout["viewport"] == "width=device-width, initial-scale=1"
     assert all(natural > 0 for _, natural, _ in layout["images"])  # every picture loads
     shown = {src: (natural, w) for src, natural, w in layout["images"]}
-    # the folding motion (four panels in a square) is shown at least 340 px wide, or its own size (it was 530 × 147 px)
+    # the folding motion (four panels in a square) is shown at least 340 px wide, or its own size
+    # (it was 530 × 147 px)
     natural, width = shown["folding-motion.png"]
     assert width >= min(natural, 340) and width >= 0.45 * min(layout["body"], 1100)
     pages = [f for f in layout["files"] if re.fullmatch(r"vault-pattern-p\d+\.svg", f)]
-    assert pages == sorted(pages, key=lambda f: int(re.search(r"\d+", f)[0])) and len(pages) >= 10  # p2 before p10
+    # p2 before p10
+    assert pages == sorted(pages, key=lambda f: int(re.search(r"\d+", f)[0])) and len(pages) >= 10

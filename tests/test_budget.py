@@ -23,7 +23,14 @@ print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
 
 def peak_bytes(argv, cwd) -> float:
     """Peak resident memory of ``curvefold *argv``, run in a process of its own (Linux: kB)."""
-    out = subprocess.run([sys.executable, "-c", _CHILD, *argv], capture_output=True, text=True, cwd=cwd, timeout=300, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", _CHILD, *argv],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=300,
+        check=True,
+    )
     return float(out.stdout) * 1024
 
 
@@ -34,20 +41,32 @@ def peak_bytes(argv, cwd) -> float:
     [
         (["crease", "--samples", "2001", "--out", "c"], {"kind": "crease", "samples": 2001}),
         (["tube", "--samples", "8001", "--json"], {"kind": "tube", "samples": 8001}),
-        (["vault", "--samples", "201", "--tubes", "9", "--formats", "fold,obj", "--out", "v"],
-         {"kind": "vault", "samples": 201, "vault": {"tubes": 9}, "output": {"formats": ["fold", "obj"]}}),
+        (
+            ["vault", "--samples", "201", "--tubes", "9", "--formats", "fold,obj", "--out", "v"],
+            {
+                "kind": "vault",
+                "samples": 201,
+                "vault": {"tubes": 9},
+                "output": {"formats": ["fold", "obj"]},
+            },
+        ),
         (["tube", "--panels", "20000", "--json"], {"kind": "tube", "curve": {"panels": 20000}}),
     ],
 )
 def test_the_estimate_is_never_below_the_peak(tmp_path, monkeypatch, argv, data):
     peak = peak_bytes(argv, tmp_path)
     guess = estimate(design_from_dict(data), files="--out" in argv).total
-    assert peak <= guess <= 4 * peak, (peak / 2**20, guess / 2**20)  # holds, and not so loose it refuses what fits
+    # holds, and not so loose it refuses what fits
+    assert peak <= guess <= 4 * peak, (peak / 2**20, guess / 2**20)
     monkeypatch.setattr(budget, "COSTS", {part: (0.0, 0.0, 0.0) for part in budget.COSTS})
-    assert estimate(design_from_dict(data), files="--out" in argv).total < peak  # without its costs it cannot hold
+    # without its costs it cannot hold
+    assert estimate(design_from_dict(data), files="--out" in argv).total < peak
 
 
-@pytest.mark.parametrize(("text", "size"), [("2G", 2 << 30), ("512M", 512 << 20), ("1.5GiB", 3 << 29), ("4096", 4096), (" 8 kb ", 8192)])
+@pytest.mark.parametrize(
+    ("text", "size"),
+    [("2G", 2 << 30), ("512M", 512 << 20), ("1.5GiB", 3 << 29), ("4096", 4096), (" 8 kb ", 8192)],
+)
 def test_the_budget_is_read_from_the_environment(monkeypatch, text, size):
     monkeypatch.setenv(budget.ENVIRONMENT, text)
     assert memory_budget() == size
@@ -56,7 +75,11 @@ def test_the_budget_is_read_from_the_environment(monkeypatch, text, size):
 @pytest.mark.parametrize("text", ["", "lots", "-1G", "0", "2X", "1e9"])
 def test_a_budget_that_is_not_a_size_is_refused(monkeypatch, text):
     monkeypatch.setenv(budget.ENVIRONMENT, text)
-    with pytest.raises(InputError, match=rf"CURVEFOLD_MEMORY_BUDGET must be a memory size such as 2G, 512M or a number of bytes, at most 1 PiB, got '{text}'"):
+    with pytest.raises(
+        InputError,
+        match=r"CURVEFOLD_MEMORY_BUDGET must be a memory size such "
+        rf"as 2G, 512M or a number of bytes, at most 1 PiB, got '{text}'",
+    ):
         memory_budget()
 
 
@@ -69,17 +92,28 @@ def test_the_estimate_grows_with_what_the_design_asks_for():
     def total(**data):
         return estimate(design_from_dict({"kind": "vault", **data}), files=True).total
 
-    assert total(samples=1601) > total(samples=801) > total(samples=801, output={"formats": ["fold"]})
+    assert (
+        total(samples=1601) > total(samples=801) > total(samples=801, output={"formats": ["fold"]})
+    )
     assert total(vault={"tubes": 9, "layers": 2}) > total(vault={"tubes": 9})
     assert estimate(design_from_dict({"kind": "vault"}), files=False).largest == "geometry"
 
 
 def test_panels_count_in_the_estimate():
-    """A structure of N panels holds N + 1 vertices along every crease besides its samples: 100,000 panels on a
-    vault of 9 tubes (3.4 GB measured) are refused before any work, and the message says to lower the panels."""
-    many = design_from_dict({"kind": "vault", "samples": 201, "vault": {"panels": 100_000, "tubes": 9}}, source="v.toml")
-    with pytest.raises(InputError, match=r"^v.toml: this job needs about 8.3 GiB of memory \(201 samples \+ 100001 panel vertices × 36 strips\), "
-                                         r"more than the budget of 2.0 GiB \(CURVEFOLD_MEMORY_BUDGET\); lower samples, panels, \[vault\] tubes"):
+    """A structure of N panels holds N + 1 vertices along every crease besides its samples:
+    100,000 panels on a vault of 9 tubes (3.4 GB measured) are refused before any work, and
+    the message says to lower the panels."""
+    many = design_from_dict(
+        {"kind": "vault", "samples": 201, "vault": {"panels": 100_000, "tubes": 9}}, source="v.toml"
+    )
+    with pytest.raises(
+        InputError,
+        match=r"^v.toml: this job needs about 8.3 GiB of memory \(201 "
+        r"samples \+ 100001 panel vertices × 36 strips\), more than the budget of 2.0 GiB "
+        r"\(CURVEFOLD_MEMORY_BUDGET\); lower samples, panels, \[vault\] tubes",
+    ):
         budget.require_budget(many, files=False)
-    smooth = estimate(design_from_dict({"kind": "vault", "samples": 201, "vault": {"tubes": 9}}), files=False)
+    smooth = estimate(
+        design_from_dict({"kind": "vault", "samples": 201, "vault": {"tubes": 9}}), files=False
+    )
     assert estimate(many, files=False).strip_samples == smooth.strip_samples + 100_001 * 36

@@ -48,10 +48,18 @@ def test_reproduce_prints_the_paper_table(capsys):
         (["vault", "--fold-angle", "nan"], r"fold_angle"),
         (["vault", "--tubes", "50"], r"tubes must be ≤ 9 \(the maximum before regression"),
         (["vault", "--width", "5"], r"width = 5 is past regression for the base tube"),
-        (["vault", "--a", "1.5"], r"--a 1.5: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 1.5$"),
+        (
+            ["vault", "--a", "1.5"],
+            r"--a 1.5: a must be in \[0, 1\.2707093728\) \(no arch stands "
+            r"beyond it: Eq\. \(20\) has no root next to π there\), got 1.5$",
+        ),
         (["vault", "--tubes", "many"], r"--tubes: must be a whole number ≥ 1 or 'max', got 'many'"),
         (["vault", "--samples", "100000000"], r"samples"),
-        (["arch", "--a", "-1"], r"--a -1: a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got -1"),
+        (
+            ["arch", "--a", "-1"],
+            r"--a -1: a must be in \[0, 1\.2707093728\) \(no arch stands "
+            r"beyond it: Eq\. \(20\) has no root next to π there\), got -1",
+        ),
         (["check", "missing.fold"], r"missing.fold"),
         (["tube", "nonexistent.toml"], r"nonexistent.toml"),
         (["frobnicate"], r"invalid choice: 'frobnicate'"),
@@ -77,7 +85,9 @@ def test_design_file_errors_name_their_location(tmp_path):
     assert r.returncode == 2
     assert "unknown key 'radios'" in r.stderr and "bad.toml" in r.stderr
     evil = tmp_path / "evil.toml"
-    evil.write_text('kind = "tube"\n[curve]\nkappa = "__import__(\'os\').system(\'echo hacked\')"\n')
+    evil.write_text(
+        "kind = \"tube\"\n[curve]\nkappa = \"__import__('os').system('echo hacked')\"\n"
+    )
     r = run_subprocess("tube", str(evil), "--json", cwd=tmp_path)
     assert r.returncode == 2 and r.stdout == ""  # refused, never run: nothing echoed
     assert len(r.stderr.strip().splitlines()) == 1
@@ -87,7 +97,17 @@ def test_design_file_errors_name_their_location(tmp_path):
 def tube_folder(tmp_path_factory):
     """A tube from the example design, built at a light sampling, written by the CLI."""
     root = tmp_path_factory.mktemp("cli")
-    r = run("tube", "examples/tube.toml".replace("examples", os.path.join(os.path.dirname(__file__), "..", "examples")), "--samples", "121", "--out", str(root / "tube"), "--json")
+    r = run(
+        "tube",
+        "examples/tube.toml".replace(
+            "examples", os.path.join(os.path.dirname(__file__), "..", "examples")
+        ),
+        "--samples",
+        "121",
+        "--out",
+        str(root / "tube"),
+        "--json",
+    )
     assert r.returncode == 0, r.stderr
     return root / "tube", json.loads(r.stdout)
 
@@ -95,13 +115,24 @@ def tube_folder(tmp_path_factory):
 def test_tube_output_folder_is_complete(tube_folder):
     folder, out = tube_folder
     names = set(os.listdir(folder))
-    for expected in ("report.html", "report.json", "tube.fold", "tube.obj", "tube-pattern.dxf", "regression-domain.png", "width-proportion.png", "sheets"):
+    for expected in (
+        "report.html",
+        "report.json",
+        "tube.fold",
+        "tube.obj",
+        "tube-pattern.dxf",
+        "regression-domain.png",
+        "width-proportion.png",
+        "sheets",
+    ):
         assert expected in names, expected
     assert any(n.startswith("tube-pattern") and n.endswith(".svg") for n in names)
     report = json.loads((folder / "report.json").read_text())
     assert all(c["passed"] for c in report["certificate"])
     assert set(report["files"]) >= {"tube.fold", "tube.obj"}
-    assert (folder / "report.html").read_text().count("<tr class='pass head'>") == len(report["certificate"])
+    assert (folder / "report.html").read_text().count("<tr class='pass head'>") == len(
+        report["certificate"]
+    )
     assert oct((folder / "tube.fold").stat().st_mode & 0o777) != oct(0o600)  # ordinary file modes
 
 
@@ -130,7 +161,8 @@ def test_existing_folder_needs_force(tmp_path):
     r = run("crease", "--samples", "101", "--out", str(target))
     assert r.returncode == 2 and "exists; pass --force" in r.stderr
     assert (target / "keep.txt").read_text() == "mine"
-    r = run("crease", "--samples", "101", "--out", str(target), "--force")  # a folder curvefold wrote
+    # a folder curvefold wrote
+    r = run("crease", "--samples", "101", "--out", str(target), "--force")
     assert r.returncode == 0, r.stderr
     assert not (target / "keep.txt").exists() and (target / "report.html").exists()
     assert os.listdir(tmp_path) == ["out"]  # no leftovers
@@ -147,16 +179,40 @@ def test_unwritable_output_is_one_line(tmp_path):
 @pytest.mark.parametrize(
     "kind,text,message",
     [
-        ("tube", 'kind = "tube"\n[curve]\nkappa = "cos(s)"\nlength = 4.0\n', r"kappa .*> 0.*at s = 1\.5"),
+        (
+            "tube",
+            'kind = "tube"\n[curve]\nkappa = "cos(s)"\nlength = 4.0\n',
+            r"kappa .*> 0.*at s " r"= 1\.5",
+        ),
         ("tube", 'kind = "tube"\n[curve]\nkappa = "1/(s - 1)"\nlength = 2.0\n', r"kappa"),
         ("tube", 'kind = "tube"\n[curve\nkappa = 1\n', r"design\.toml.*line 2"),
         ("tube", 'kind = "tube"\n[curve]\ntau = "9**9**9"\n', r"exponent"),
-        ("tube", 'kind = "tube"\n[curve]\ntau = "s.__class__"\n', r"attribute access is not allowed"),
-        ("tube", 'kind = "tube"\n[tube]\nwidth_left = 50.0\nwidth_right = 50.0\n', r"passes the curve of regression"),
-        ("vault", 'kind = "vault"\n[vault]\ntubes = 1000\n', r"this job needs about .* lower samples .*, \[vault\] tubes or layers"),
+        (
+            "tube",
+            'kind = "tube"\n[curve]\ntau = "s.__class__"\n',
+            r"attribute access is not " r"allowed",
+        ),
+        (
+            "tube",
+            'kind = "tube"\n[tube]\nwidth_left = 50.0\nwidth_right = 50.0\n',
+            r"passes the curve " r"of regression",
+        ),
+        (
+            "vault",
+            'kind = "vault"\n[vault]\ntubes = 1000\n',
+            r"this job needs about .* lower " r"samples .*, \[vault\] tubes or layers",
+        ),
         ("vault", 'kind = "vault"\n[vault]\ntubes = 20\n', r"tubes must be ≤ 9"),
-        ("vault", 'kind = "vault"\n[vault]\nfold_angle = 0\n', r"fold_angle must be in \(0, 180\) degrees, got 0"),
-        ("vault", 'kind = "vault"\nsamples = 100000000\n', r"samples must be an integer in \[9, 200000\] \(.*\), got 100000000"),
+        (
+            "vault",
+            'kind = "vault"\n[vault]\nfold_angle = 0\n',
+            r"fold_angle must be in \(0, " r"180\) degrees, got 0",
+        ),
+        (
+            "vault",
+            'kind = "vault"\nsamples = 100000000\n',
+            r"samples must be an integer in \[9, " r"200000\] \(.*\), got 100000000",
+        ),
     ],
 )
 def test_bad_design_files_are_one_line(tmp_path, kind, text, message):
@@ -174,10 +230,27 @@ def test_bad_design_files_are_one_line(tmp_path, kind, text, message):
 
 def test_atlas_records_invalid_designs_and_goes_on(tmp_path):
     out = tmp_path / "atlas"
-    r = run("atlas", "--p-xy", "0.75,1.0", "--a", "0.3,1.5", "--samples", "51", "--workers", "1", "--out", str(out), "--json")
+    r = run(
+        "atlas",
+        "--p-xy",
+        "0.75,1.0",
+        "--a",
+        "0.3,1.5",
+        "--samples",
+        "51",
+        "--workers",
+        "1",
+        "--out",
+        str(out),
+        "--json",
+    )
     assert r.returncode == 0, r.stderr
     summary = json.loads(r.stdout)
-    assert (summary["designs"], summary["valid"], summary["invalid"]) == (4, 2, {"ConvergenceError": 2})
+    assert (summary["designs"], summary["valid"], summary["invalid"]) == (
+        4,
+        2,
+        {"ConvergenceError": 2},
+    )
     records = json.loads((out / "atlas.json").read_text())["records"]
     assert len(records) == 4
     bad = [rec for rec in records if not rec["valid"]]
@@ -186,7 +259,20 @@ def test_atlas_records_invalid_designs_and_goes_on(tmp_path):
 
 
 def test_output_flags_override_the_design(tmp_path):
-    r = run("tube", "--samples", "101", "--page", "A3", "--scale", "80", "--formats", "svg", "--out", str(tmp_path / "t"), "--json")
+    r = run(
+        "tube",
+        "--samples",
+        "101",
+        "--page",
+        "A3",
+        "--scale",
+        "80",
+        "--formats",
+        "svg",
+        "--out",
+        str(tmp_path / "t"),
+        "--json",
+    )
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["design"]["output"]["page"] == "A3" and out["design"]["output"]["scale"] == 80.0
@@ -205,5 +291,7 @@ def test_pattern_flags_tabs_and_rulings(tmp_path):
 
     plain, bare, ruled = pattern_svg(), pattern_svg("--no-glue-tabs"), pattern_svg("--rulings")
     assert 'inkscape:label="reference - glue (not cut)"' in plain
-    assert plain.count("<polygon") > bare.count("<polygon") or plain.count("<polyline") > bare.count("<polyline")
+    assert plain.count("<polygon") > bare.count("<polygon") or plain.count(
+        "<polyline"
+    ) > bare.count("<polyline")
     assert ruled.count("<polyline") > plain.count("<polyline")  # the ruling lines

@@ -6,7 +6,13 @@ from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, RegressionError, SpaceCurve
 from curvefold.analysis._measure import derivative, developability_residual
-from curvefold.geometry._crease import QUADRANTS, check_fold_angle, check_fold_angles, half_angle, ruling_vectors
+from curvefold.geometry._crease import (
+    QUADRANTS,
+    check_fold_angle,
+    check_fold_angles,
+    half_angle,
+    ruling_vectors,
+)
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.4 * np.cos(1.5 * s)  # noqa: E731
@@ -23,7 +29,10 @@ def residual_with_beta(crease: Crease, beta: np.ndarray) -> float:
     rl, rr = ruling_vectors(crease.curve.frames, a, beta, beta)
     pl, pr = crease.normals()
     h = crease.s[1]
-    return max(np.abs(np.einsum("ij,ij->i", derivative(r, h), p[2:-2])).max() for r, p in ((rl, pl), (rr, pr)))
+    return max(
+        np.abs(np.einsum("ij,ij->i", derivative(r, h), p[2:-2])).max()
+        for r, p in ((rl, pl), (rr, pr))
+    )
 
 
 @pytest.mark.parametrize("fold_angle", [20.0, 90.0, 150.0])
@@ -71,7 +80,9 @@ def test_single_fold_from_pattern_has_excess_freedom():
     """One crease pattern (κ_2D, length) with two ruling layouts folds into two shapes (Fig. 08)."""
     L = 2.5
     a = Crease.from_pattern(0.8, 90.0, 90.0, L, fold_angle=60.0, samples=801)
-    b = Crease.from_pattern(0.8, lambda s: 75 + 10 * s, lambda s: 95 - 5 * s, L, fold_angle=60.0, samples=801)
+    b = Crease.from_pattern(
+        0.8, lambda s: 75 + 10 * s, lambda s: 95 - 5 * s, L, fold_angle=60.0, samples=801
+    )
     for c in (a, b):
         assert developability_residual(c) < 1e-8
         assert_allclose(c.kappa_2d, 0.8, rtol=1e-10)  # same crease pattern
@@ -94,14 +105,24 @@ def test_single_fold_refuses_fold_angle_leaving_range():
     [
         (dict(kappa_2d=-1.0), r"kappa_2d must be > 0 everywhere; at s = 0 it is -1"),
         (dict(beta_left=190.0), r"beta_left must be in \(0°, 180°\); at s = 0 it is 190°"),
-        (dict(fold_angle=180.0), r"fold_angle must be in \(0°, 180°\), got 180.0 \(2α = 180° would need infinite curvature"),
+        (
+            dict(fold_angle=180.0),
+            r"fold_angle must be in \(0°, 180°\), got 180.0 \(2α = 180° "
+            r"would need infinite curvature",
+        ),
         (dict(fold_angle=0.0), r"fold_angle must be in \(0°, 180°\), got 0.0"),
     ],
 )
 def test_pattern_bad_input(kwargs, match):
     args = dict(kappa_2d=1.0, beta_left=90.0, beta_right=90.0, length=1.0) | kwargs
     with pytest.raises(InputError, match=match):
-        Crease.from_pattern(args.pop("kappa_2d"), args.pop("beta_left"), args.pop("beta_right"), args.pop("length"), **args)
+        Crease.from_pattern(
+            args.pop("kappa_2d"),
+            args.pop("beta_left"),
+            args.pop("beta_right"),
+            args.pop("length"),
+            **args,
+        )
 
 
 @pytest.mark.parametrize("value", ["ninety", None, [90.0, 45.0]])
@@ -113,15 +134,25 @@ def test_a_fold_angle_that_is_not_a_number_is_refused(value):
 
 
 def test_fold_angles_are_checked_and_given_in_degrees():
-    assert check_fold_angles(np.radians([0.0, 60.0]), degrees=False).tolist() == pytest.approx([0.0, 60.0], abs=1e-12)
+    assert check_fold_angles(np.radians([0.0, 60.0]), degrees=False).tolist() == pytest.approx(
+        [0.0, 60.0], abs=1e-12
+    )
     assert check_fold_angle(60.0) == 60.0 and check_fold_angle(0.0, allow_flat=True) == 0.0
-    for values, match in (([], "non-empty"), ([[1.0, 2.0]], "non-empty"), (["x"], "a sequence of numbers"), ([0.0, 180.0], r"\[0°, 180°\)")):
+    for values, match in (
+        ([], "non-empty"),
+        ([[1.0, 2.0]], "non-empty"),
+        (["x"], "a sequence of numbers"),
+        ([0.0, 180.0], r"\[0°, 180°\)"),
+    ):
         with pytest.raises(InputError, match=rf"^motion must .*{match}"):
             check_fold_angles(values, name="motion")
 
 
 def test_fold_angle_function_out_of_range_names_location(curve):
-    with pytest.raises(InputError, match=r"fold_angle must be in \(0°, 180°\) along the whole crease; at s = 2 it is 180°"):
+    with pytest.raises(
+        InputError,
+        match=r"fold_angle must be in \(0°, 180°\) along the whole " r"crease; at s = 2 it is 180°",
+    ):
         Crease.from_curve(curve, fold_angle=lambda s: 60 + 60 * s)
 
 
@@ -138,7 +169,9 @@ def test_rulings_normals_and_quadrants(curve):
     assert_allclose(crease.dihedral_angle("L+R+"), np.radians(110), rtol=1e-14)
     assert_allclose(crease.dihedral_angle("L+R-"), np.radians(70), rtol=1e-14)
     n_l, n_r = np.cross(T, rl), np.cross(T, rr)
-    cos = np.einsum("ij,ij->i", n_l, n_r) / np.linalg.norm(n_l, axis=1) / np.linalg.norm(n_r, axis=1)
+    cos = (
+        np.einsum("ij,ij->i", n_l, n_r) / np.linalg.norm(n_l, axis=1) / np.linalg.norm(n_r, axis=1)
+    )
     assert_allclose(np.arccos(cos), np.radians(110), atol=1e-12)
     assert {k for _, _, k in QUADRANTS.values()} == {"fold", "seam"}
 
@@ -155,7 +188,10 @@ def test_regression_limit_matches_finite_difference_cusp():
     T = curve.tangent
     for factor, forward in ((0.98, True), (1.02, False)):
         # the ruled surface's edge at width factor·w_lim (built by hand: surface() refuses past it)
-        edge = curve.points + (factor * w_star / np.sin(crease.beta_right(curve.s)))[:, None] * crease.rulings()[1]
+        edge = (
+            curve.points
+            + (factor * w_star / np.sin(crease.beta_right(curve.s)))[:, None] * crease.rulings()[1]
+        )
         speed = np.einsum("ij,ij->i", derivative(edge, h), T[2:-2])
         assert bool(speed.min() > 0) == forward, (factor, speed.min(), curve.s[i])
         assert_allclose(speed.min(), 1 - factor, atol=1e-6)  # the speed factor of Eq. 16
@@ -165,7 +201,11 @@ def test_surface_refuses_width_past_regression():
     curve = SpaceCurve.from_curvature(1.0, lambda s: -0.8 * (s - 1.0), 2.0, samples=401)
     crease = Crease.from_curve(curve, fold_angle=90.0)
     lim = np.min(crease.regression_limits()[1])
-    with pytest.raises(RegressionError, match=r"width on the right must stay below the regression limit .* \(reached at s = .*\), got"):
+    with pytest.raises(
+        RegressionError,
+        match=r"width on the right must stay below the "
+        r"regression limit .* \(reached at s = .*\), got",
+    ):
         crease.surface("L+R+", width=(0.01, 1.5 * lim))
     with pytest.raises(InputError, match="quadrant must be one of"):
         crease.surface("L+R+R-", width=0.01)

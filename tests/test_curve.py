@@ -26,7 +26,11 @@ def helix(kappa: float, tau: float, s: np.ndarray) -> tuple[np.ndarray, np.ndarr
     R = np.eye(3) + np.sin(th)[:, None, None] * K + (1 - np.cos(th))[:, None, None] * (K @ K)
     e1 = np.array([1, 0, 0], dtype=ld)
     par = (e1 @ d) * d
-    x = s[:, None] * par + (np.sin(th) / w)[:, None] * (e1 - par) + ((1 - np.cos(th)) / w)[:, None] * np.cross(d, e1)
+    x = (
+        s[:, None] * par
+        + (np.sin(th) / w)[:, None] * (e1 - par)
+        + ((1 - np.cos(th)) / w)[:, None] * np.cross(d, e1)
+    )
     return x.astype(float), R.astype(float)
 
 
@@ -53,7 +57,12 @@ def test_manufactured_solution_converges_at_order_six():
     errors = []
     for n in (11, 21, 41, 81):
         c = SpaceCurve.from_curvature(KAPPA, TAU, L, samples=n)
-        errors.append(max(np.abs(c.points[-1] - ref.points[-1]).max(), np.abs(c.frames[-1] - ref.frames[-1]).max()))
+        errors.append(
+            max(
+                np.abs(c.points[-1] - ref.points[-1]).max(),
+                np.abs(c.frames[-1] - ref.frames[-1]).max(),
+            )
+        )
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all(orders > 5.7), orders  # sixth order in both frame and position
     assert errors[-1] < 1e-10
@@ -67,7 +76,15 @@ def test_agrees_with_independent_integrator():
         return np.concatenate([KAPPA(s) * N, -KAPPA(s) * T + TAU(s) * B, -TAU(s) * N, T])
 
     s = np.linspace(0, 6.0, 301)
-    sol = solve_ivp(rhs, (0, 6.0), np.concatenate([np.eye(3).ravel(), np.zeros(3)]), method="DOP853", rtol=1e-13, atol=1e-13, t_eval=s)
+    sol = solve_ivp(
+        rhs,
+        (0, 6.0),
+        np.concatenate([np.eye(3).ravel(), np.zeros(3)]),
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-13,
+        t_eval=s,
+    )
     c = SpaceCurve.from_curvature(KAPPA, TAU, 6.0, samples=301)
     assert_allclose(c.points, sol.y[9:].T, atol=1e-11)
     assert_allclose(c.tangent, sol.y[0:3].T, atol=1e-11)
@@ -110,7 +127,13 @@ def test_lie_building_blocks_round_trip():
     h = np.full(8, 0.3)
     k, t = np.full((8, 3), 1.2), np.full((8, 3), -0.4)
     twist = magnus6(h, k, t)
-    assert_allclose(np.stack(twist), np.stack([0.3 * -0.4 * np.ones(8), 0 * h, 0.3 * 1.2 * np.ones(8), 0.3 * np.ones(8), 0 * h, 0 * h]), atol=1e-16)
+    assert_allclose(
+        np.stack(twist),
+        np.stack(
+            [0.3 * -0.4 * np.ones(8), 0 * h, 0.3 * 1.2 * np.ones(8), 0.3 * np.ones(8), 0 * h, 0 * h]
+        ),
+        atol=1e-16,
+    )
     steps = exp_dual(twist)
     R, p = dual_to_motion(prefix_dual(steps))
     x, F = helix(1.2, -0.4, 0.3 * np.arange(1, 9))
@@ -121,22 +144,46 @@ def test_lie_building_blocks_round_trip():
 @pytest.mark.parametrize(
     "kwargs,match",
     [
-        (dict(kappa=lambda s: 1 - s, tau=0.0, length=2.0), r"kappa must be > 0 .* at s = 1 it is 0"),
-        (dict(kappa=lambda s: np.where(s > 0.5, np.nan, 1.0), tau=0.0, length=1.0), r"kappa must be finite; at s = 0\.5\d* it is nan"),
-        (dict(kappa=1.0, tau=lambda s: np.where(s > 2, np.inf, 0.0), length=3.0), r"tau must be finite; at s = 2\.\d* it is inf"),
+        (
+            dict(kappa=lambda s: 1 - s, tau=0.0, length=2.0),
+            r"kappa must be > 0 .* at s = 1 it is " r"0",
+        ),
+        (
+            dict(kappa=lambda s: np.where(s > 0.5, np.nan, 1.0), tau=0.0, length=1.0),
+            r"kappa must be " r"finite; at s = 0\.5\d* it is nan",
+        ),
+        (
+            dict(kappa=1.0, tau=lambda s: np.where(s > 2, np.inf, 0.0), length=3.0),
+            r"tau must be " r"finite; at s = 2\.\d* it is inf",
+        ),
         (dict(kappa=-2.0, tau=0.0, length=1.0), r"kappa must be > 0 .* at s = 0 it is -2"),
         (dict(kappa=1.0, tau=0.0, length=0.0), r"length must be a finite number > 0, got 0\.0"),
-        (dict(kappa=1.0, tau=0.0, length=1.0, samples=1), r"samples must be an integer in \[2, 10000000\] \(memory bound, about 1 GB\), got 1$"),
-        (dict(kappa=1.0, tau=0.0, length=1.0, samples=MAX_SAMPLES + 1), r"samples must be an integer in \[2, 10000000\]"),
+        (
+            dict(kappa=1.0, tau=0.0, length=1.0, samples=1),
+            r"samples must be an integer in \[2, "
+            r"10000000\] \(memory bound, about 1 GB\), got 1$",
+        ),
+        (
+            dict(kappa=1.0, tau=0.0, length=1.0, samples=MAX_SAMPLES + 1),
+            r"samples must be an " r"integer in \[2, 10000000\]",
+        ),
         (dict(kappa=1.0, tau=0.0, length=1.0, samples=2.5), r"samples must be an integer"),
-        (dict(kappa=1.0, tau=0.0, length=1.0, frame=np.diag([1, 1, -1.0])), r"frame must be a rotation"),
+        (
+            dict(kappa=1.0, tau=0.0, length=1.0, frame=np.diag([1, 1, -1.0])),
+            r"frame must be a " r"rotation",
+        ),
         (dict(kappa=1.0, tau=0.0, length=1.0, origin=[0, 0]), r"origin must be 3 finite numbers"),
-        (dict(kappa=[1.0], tau=0.0, length=1.0), r"kappa: expected .* at least 2 samples, got shape \(1,\)"),
+        (
+            dict(kappa=[1.0], tau=0.0, length=1.0),
+            r"kappa: expected .* at least 2 samples, got " r"shape \(1,\)",
+        ),
     ],
 )
 def test_bad_input_is_refused_with_location(kwargs, match):
     with pytest.raises(InputError, match=match):
-        SpaceCurve.from_curvature(kwargs.pop("kappa"), kwargs.pop("tau"), kwargs.pop("length"), **kwargs)
+        SpaceCurve.from_curvature(
+            kwargs.pop("kappa"), kwargs.pop("tau"), kwargs.pop("length"), **kwargs
+        )
 
 
 def test_arrays_are_read_only():
@@ -158,7 +205,10 @@ def test_dense_output_agrees_with_stepping_every_sample():
     points, frames = integrate_frenet(c.s, KAPPA(nodes), TAU(nodes))  # a Magnus step per sample
     assert np.abs(c.points - points).max() < 1e-13 * L
     assert np.abs(c.frames - frames).max() < 1e-13
-    assert np.abs(np.einsum("nji,njk->nik", c.frames[::101], c.frames[::101]) - np.eye(3)).max() < 1e-14
+    assert (
+        np.abs(np.einsum("nji,njk->nik", c.frames[::101], c.frames[::101]) - np.eye(3)).max()
+        < 1e-14
+    )
 
 
 def test_dense_output_error_falls_at_sixth_order():
@@ -182,18 +232,23 @@ def test_dense_output_error_falls_at_sixth_order():
 
 
 def test_a_derivative_that_fails_between_the_samples_means_a_step_per_sample():
-    """The Hermite fill reads κ' and τ'; where they are not finite, every sample is integrated instead."""
+    """The Hermite fill reads κ' and τ'; where they are not finite, every sample is integrated
+    instead."""
     from curvefold.geometry._curve import gauss_nodes, integrate_frenet
     from curvefold.kernel._dense import coarse_indices, dense_stride
     from curvefold.kernel._functions import as_function, difference_step
 
     L, n = 20.0, 20_000
     s = np.linspace(0, L, n)
-    stride = lambda k: dense_stride(as_function(k, name="kappa", length=L), as_function(TAU, name="tau", length=L), L, n)  # noqa: E731
-    bad = s[coarse_indices(n, stride(KAPPA))][50] + 2 * difference_step(L)  # a node of the difference there
+    stride = lambda k: dense_stride(
+        as_function(k, name="kappa", length=L), as_function(TAU, name="tau", length=L), L, n
+    )  # noqa: E731
+    # a node of the difference there
+    bad = s[coarse_indices(n, stride(KAPPA))][50] + 2 * difference_step(L)
     kappa = lambda x: np.where(x == bad, np.nan, KAPPA(x))  # noqa: E731
     nodes = gauss_nodes(s)
-    assert np.isfinite(kappa(s)).all() and np.isfinite(kappa(nodes)).all() and stride(kappa) > 1  # only the derivative fails
+    # only the derivative fails
+    assert np.isfinite(kappa(s)).all() and np.isfinite(kappa(nodes)).all() and stride(kappa) > 1
     c = SpaceCurve.from_curvature(kappa, TAU, L, samples=n)
     points, frames = integrate_frenet(s, KAPPA(nodes), TAU(nodes))
     assert np.array_equal(c.points, points) and np.array_equal(c.frames, frames)

@@ -1,5 +1,5 @@
-"""Crease patterns for cutting machines: layers by operation, colour conventions, perforated creases,
-kerf compensation, DXF linetype generation and extents.
+"""Crease patterns for cutting machines: layers by operation, colour conventions, perforated
+creases, kerf compensation, DXF linetype generation and extents.
 
 Read back by readers we did not write: ``xml.etree`` for SVG, ``ezdxf`` for DXF (layers,
 polyline flags, header), ``pdfplumber`` for PDF; geometry is checked against ``shapely``'s
@@ -38,9 +38,18 @@ def tube_layout():
 def test_layer_names_say_the_operation_and_are_valid_dxf_names():
     from ezdxf.lldxf.validator import is_valid_layer_name
 
-    names = [layer_name(k) for k in (*DEFAULT_LAYERS, "rulings", "legend")] + [layer_name(k, perforated=True) for k in ("mountain", "valley")]
-    assert names[:7] == ["reference - glue (not cut)", "score - seam", "score - valley", "score - mountain", "cut", "engrave - labels",
-                         "engrave - rulings"]
+    names = [layer_name(k) for k in (*DEFAULT_LAYERS, "rulings", "legend")] + [
+        layer_name(k, perforated=True) for k in ("mountain", "valley")
+    ]
+    assert names[:7] == [
+        "reference - glue (not cut)",
+        "score - seam",
+        "score - valley",
+        "score - mountain",
+        "cut",
+        "engrave - labels",
+        "engrave - rulings",
+    ]
     assert names[7:] == [LEGEND_LAYER, "perforate - mountain", "perforate - valley"]
     assert all(is_valid_layer_name(n) for n in names)
     assert not is_valid_layer_name("score: mountain")  # why the names use " - "
@@ -55,24 +64,37 @@ def test_a_convention_never_draws_anything_else_in_its_cut_colour():
     bad = dict(CUTTERS["laser"].colours, legend=CUTTERS["laser"].colours["cut"])
     with pytest.raises(ValueError, match="only the cut layer may be drawn in the cut colour"):
         Cutter("bad", "", bad)
-    with pytest.raises(InputError, match=r"cutter must be one of print, laser, service, got 'glowforge'") as err:
+    with pytest.raises(
+        InputError, match=r"cutter must be one of print, laser, service, got " r"'glowforge'"
+    ) as err:
         cutter("glowforge")
     assert err.value.parameter == "cutter"
-    # the laser convention uses exactly the six basic colours and black (colour-mapping drivers match exactly)
+    # the laser convention uses exactly the six basic colours and black (colour-mapping drivers
+    # match exactly)
     basic = {"#ff0000", "#00ff00", "#0000ff", "#00ffff", "#ffff00", "#ff00ff", "#000000"}
-    assert set(CUTTERS["laser"].colours.values()) <= basic and len(set(CUTTERS["laser"].colours.values())) == 7
-    assert [aci(CUTTERS["laser"].colours[k]) for k in ("cut", "legend", "valley", "seam", "mountain", "rulings", "labels")] == [1, 2, 3, 4, 5, 6, 7]
+    assert (
+        set(CUTTERS["laser"].colours.values()) <= basic
+        and len(set(CUTTERS["laser"].colours.values())) == 7
+    )
+    assert [
+        aci(CUTTERS["laser"].colours[k])
+        for k in ("cut", "legend", "valley", "seam", "mountain", "rulings", "labels")
+    ] == [1, 2, 3, 4, 5, 6, 7]
     assert all(c.source for name, c in CUTTERS.items() if name != "print")
 
 
 @pytest.mark.parametrize("name", list(CUTTERS))
-def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operation(tmp_path, tube_layout, name):
+def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operation(
+    tmp_path, tube_layout, name
+):
     layout = replace(tube_layout, cutter=name)
     colours = CUTTERS[name].colours
     (svg,) = write_svg(tmp_path / "t.svg", layout)
     groups = {g.get(f"{INK}label"): g for g in ET.parse(svg).getroot().findall(f"{SVG}g")}
     for key in DEFAULT_LAYERS:
-        assert re.findall(r"#[0-9a-f]{6}", groups[layer_name(key)].get("style")) == [colours[key]], key
+        assert re.findall(r"#[0-9a-f]{6}", groups[layer_name(key)].get("style")) == [
+            colours[key]
+        ], key
     legend = groups[LEGEND_LAYER]
     painted = {m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", el.get("style", ""))}
     assert painted == {colours["legend"]}
@@ -80,9 +102,12 @@ def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operat
     doc = __import__("ezdxf").readfile(write_dxf(tmp_path / "t.dxf", layout))
     for key in (*DEFAULT_LAYERS, "legend"):
         entry = doc.layers.get(layer_name(key))
-        assert "#%02x%02x%02x" % entry.rgb == colours[key] and entry.color == aci(colours[key]), key
+        assert "#{:02x}{:02x}{:02x}".format(*entry.rgb) == colours[key] and entry.color == aci(colours[key]), key
     # legend entities take their layer's colour (BYLAYER), so none is in the cut colour
-    assert all(e.dxf.color == 256 and not e.dxf.hasattr("true_color") for e in doc.modelspace().query(f'*[layer=="{LEGEND_LAYER}"]'))
+    assert all(
+        e.dxf.color == 256 and not e.dxf.hasattr("true_color")
+        for e in doc.modelspace().query(f'*[layer=="{LEGEND_LAYER}"]')
+    )
 
 
 def test_the_footer_stays_in_its_band_whatever_its_rows():
@@ -96,10 +121,19 @@ def test_the_footer_stays_in_its_band_whatever_its_rows():
         layout = layout_sheets(vault_sheets(4), page=page)
         for i in range(len(layout.pages)):
             foot = page_footer(layout, i, LAYERS)
-            boxes = [t.corners() for t in foot.texts] + [points for _, points in foot.samples] + [foot.bar]
+            boxes = (
+                [t.corners() for t in foot.texts]
+                + [points for _, points in foot.samples]
+                + [foot.bar]
+            )
             lo = min(float(b[:, 1].min()) for b in boxes)
             hi = max(float(b[:, 1].max()) for b in boxes)
-            assert layout.margin - 1e-9 <= lo and hi <= layout.margin + layout.footer + 1e-9, (page, i, lo, hi)
+            assert layout.margin - 1e-9 <= lo and hi <= layout.margin + layout.footer + 1e-9, (
+                page,
+                i,
+                lo,
+                hi,
+            )
 
 
 def test_the_pdf_draws_nothing_off_the_sheets_in_an_operations_colour(tmp_path, tube_layout):
@@ -109,21 +143,30 @@ def test_the_pdf_draws_nothing_off_the_sheets_in_an_operations_colour(tmp_path, 
     red = (1.0, 0.0, 0.0)
     with pdfplumber.open(write_pdf(tmp_path / "t.pdf", layout)) as doc:
         page = doc.pages[0]
-        band = page.height - (layout.margin + layout.footer) * mm  # pdfplumber's top runs down from the page's top
+        # pdfplumber's top runs down from the page's top
+        band = page.height - (layout.margin + layout.footer) * mm
         footer = [o for o in page.curves + page.rects + page.lines + page.chars if o["top"] >= band]
         cut = [o for o in page.curves + page.lines if tuple(o.get("stroking_color") or ()) == red]
+
     def paint(o):
-        return o["non_stroking_color"] if o["object_type"] == "char" or o.get("fill") else o["stroking_color"]
+        return (
+            o["non_stroking_color"]
+            if o["object_type"] == "char" or o.get("fill")
+            else o["stroking_color"]
+        )
 
     assert footer and all(tuple(paint(o)) == (1.0, 1.0, 0.0) for o in footer)
-    assert len(cut) == 2 and all(o["top"] < band for o in cut)  # the two sheets' outlines, nothing else
+    # the two sheets' outlines, nothing else
+    assert len(cut) == 2 and all(o["top"] < band for o in cut)
 
 
 # --------------------------------------------------------------------------------------
 # DXF: linetype generation, extents in every file
 
 
-def test_dxf_polylines_generate_their_linetype_across_vertices_and_the_header_holds_the_extents(tmp_path, tube_layout):
+def test_dxf_polylines_generate_their_linetype_across_vertices_and_the_header_holds_the_extents(
+    tmp_path, tube_layout
+):
     """One page starts at (0, 0, 0): ezdxf left $EXTMIN/$EXTMAX at its 1e20 defaults there."""
     ezdxf = pytest.importorskip("ezdxf")
     from ezdxf import bbox
@@ -136,8 +179,13 @@ def test_dxf_polylines_generate_their_linetype_across_vertices_and_the_header_ho
     assert len(polylines) > 10 and all(p.dxf.flags & LWPOLYLINE_PLINEGEN for p in polylines)
     assert doc.header["$PLINEGEN"] == 1
     extents = bbox.extents(msp)
-    assert doc.header["$EXTMIN"][:2] == (0.0, 0.0) and doc.header["$EXTMAX"][:2] == tube_layout.page_size
-    assert tuple(extents.extmin)[:2] == pytest.approx((0.0, 0.0)) and tuple(extents.extmax)[:2] == pytest.approx(tube_layout.page_size)
+    assert (
+        doc.header["$EXTMIN"][:2] == (0.0, 0.0)
+        and doc.header["$EXTMAX"][:2] == tube_layout.page_size
+    )
+    assert tuple(extents.extmin)[:2] == pytest.approx((0.0, 0.0)) and tuple(extents.extmax)[
+        :2
+    ] == pytest.approx(tube_layout.page_size)
 
 
 def test_dashed_creases_are_long_arcs_through_their_points(tmp_path):
@@ -160,16 +208,26 @@ def test_dashed_creases_are_long_arcs_through_their_points(tmp_path):
             continue
         theirs = msp.query(f'LWPOLYLINE[layer=="{layer_name(key)}"]')
         assert len(theirs) == len(ours)
-        pattern = sum(doc.linetypes.get(doc.layers.get(layer_name(key)).dxf.linetype).simplified_line_pattern())
-        for points, entity in zip(sorted(ours, key=lambda p: tuple(p[0])), sorted(theirs, key=lambda e: tuple(e.get_points("xy")[0]))):
+        pattern = sum(
+            doc.linetypes.get(
+                doc.layers.get(layer_name(key)).dxf.linetype
+            ).simplified_line_pattern()
+        )
+        for points, entity in zip(
+            sorted(ours, key=lambda p: tuple(p[0])),
+            sorted(theirs, key=lambda e: tuple(e.get_points("xy")[0])),
+        ):
             assert len(entity) < len(points)  # fewer vertices than the chords
-            flat = np.array([(v.x, v.y) for v in path.make_path(entity).flattening(1e-5)])  # ezdxf reads the bulges as arcs
+            # ezdxf reads the bulges as arcs
+            flat = np.array([(v.x, v.y) for v in path.make_path(entity).flattening(1e-5)])
             gap = distance_to_segments(points, polyline_segments([(flat, False)]))
             assert gap.max() <= ARC_TOLERANCE + 1e-5
             vertices = np.array([v[:2] for v in entity.vertices()])
             along = np.linalg.norm(np.diff(flat, axis=0), axis=1).sum()
-            assert along / (len(vertices) - 1) > pattern  # arcs longer than a dash pattern, on average
-    # the check can fail: the crease written as its chords lies within the tolerance but has no room for a pattern
+            # arcs longer than a dash pattern, on average
+            assert along / (len(vertices) - 1) > pattern
+    # the check can fail: the crease written as its chords lies within the tolerance but has no room
+    # for a pattern
     chords = np.linalg.norm(np.diff(layout.pages[0].on_layer("mountain")[0].points, axis=0), axis=1)
     assert chords.mean() < 4.0
 
@@ -186,14 +244,19 @@ def test_perforation_dashes_have_the_asked_lengths_and_gaps():
         lengths = np.array([LineString(d).length for d in dashes])
         full = lengths[:-1]  # the last may be cut short by the end
         assert_periodic = np.tile(pattern, len(full))[: len(full)]
-        np.testing.assert_allclose(full, assert_periodic, rtol=0, atol=2e-3)  # chords of a 50 mm arc: sagitta < 2e-3 mm
-        # every dash lies on the crease; the gaps between are 1.5 mm along it, half a gap at each end
+        # chords of a 50 mm arc: sagitta < 2e-3 mm
+        np.testing.assert_allclose(full, assert_periodic, rtol=0, atol=2e-3)
+        # every dash lies on the crease; the gaps between are 1.5 mm along it, half a gap at each
+        # end
         s = [np.arctan2(d[[0, -1], 1], d[[0, -1], 0]) * 50.0 for d in dashes]
         starts, ends = np.array([x[0] for x in s]), np.array([x[1] for x in s])
         along = np.sort(np.concatenate([starts, ends]))[::-1]
         gaps = -np.diff(along)[1::2]
         np.testing.assert_allclose(gaps, 1.5, atol=2e-3)
-        assert np.pi * 50 - along[0] == pytest.approx(0.75, abs=2e-3) and along[-1] <= np.pi * 50 - 0.75
+        assert (
+            np.pi * 50 - along[0] == pytest.approx(0.75, abs=2e-3)
+            and along[-1] <= np.pi * 50 - 0.75
+        )
         assert all(np.abs(np.linalg.norm(d, axis=1) - 50.0).max() < 2e-3 for d in dashes)
 
 
@@ -205,13 +268,17 @@ def test_perforated_layout_cuts_dashes_on_their_own_layers(tmp_path, tube_layout
         before = sum(LineString(p.points).length for p in tube_layout.pages[0].on_layer(key))
         dashes = perforated.pages[0].on_layer(key)
         cut = sum(LineString(p.points).length for p in dashes)
-        share = 3.0 / 4.5 if key == "valley" else (3.0 + 1.0) / (3.0 + 1.5 + 1.0 + 1.5)  # dash, gap (mountain: dash, gap, dash / 3, gap)
+        # dash, gap (mountain: dash, gap, dash / 3, gap)
+        share = 3.0 / 4.5 if key == "valley" else (3.0 + 1.0) / (3.0 + 1.5 + 1.0 + 1.5)
         assert len(dashes) > 10 and cut == pytest.approx(before * share, rel=0.05)
     doc = ezdxf.readfile(write_dxf(tmp_path / "p.dxf", perforated))
     for key in ("mountain", "valley"):
         layer = doc.layers.get(layer_name(key, perforated=True))
-        assert layer.dxf.linetype.upper() == "CONTINUOUS"  # the dashes are geometry, not a line style
-        assert len(doc.modelspace().query(f'LWPOLYLINE[layer=="{layer.dxf.name}"]')) == len(perforated.pages[0].on_layer(key))
+        # the dashes are geometry, not a line style
+        assert layer.dxf.linetype.upper() == "CONTINUOUS"
+        assert len(doc.modelspace().query(f'LWPOLYLINE[layer=="{layer.dxf.name}"]')) == len(
+            perforated.pages[0].on_layer(key)
+        )
     assert not doc.layers.has_entry(layer_name("mountain"))
     with pytest.raises(InputError, match="perforation dash and gap must be positive") as err:
         prepare_layout(tube_layout, perforation=(3.0, 0.0))
@@ -232,14 +299,19 @@ def test_offset_outline_agrees_with_shapely_buffer_on_the_sheets_outlines(tube_l
             theirs = Polygon(outline.points).buffer(d, join_style="mitre", mitre_limit=MITRE_LIMIT)
             assert ours.is_valid
             assert ours.symmetric_difference(theirs).area < 1e-6 * theirs.length, (placed.label, d)
-            assert ours.area - Polygon(outline.points).area == pytest.approx(d * Polygon(outline.points).length, rel=0.02)
+            assert ours.area - Polygon(outline.points).area == pytest.approx(
+                d * Polygon(outline.points).length, rel=0.02
+            )
 
 
 def test_offset_outline_fails_on_a_wrong_offset_direction(tube_layout):
     """The check above can fail: the outline moved inward is not the buffer."""
     (outline,) = tube_layout.sheets()[0].on_layer("cut")
     inward = Polygon(offset_outline(outline.points, -0.1))
-    assert inward.symmetric_difference(Polygon(outline.points).buffer(0.1, join_style="mitre")).area > 1.0
+    assert (
+        inward.symmetric_difference(Polygon(outline.points).buffer(0.1, join_style="mitre")).area
+        > 1.0
+    )
     clockwise = offset_outline(outline.points[::-1], 0.1)  # either turning sense moves outward
     assert Polygon(clockwise).area > Polygon(outline.points).area
 
@@ -251,11 +323,18 @@ def test_kerf_moves_only_the_cut_outlines_out_by_half_of_it(tube_layout):
         (a,), (b,) = before.on_layer("cut"), after.on_layer("cut")
         ring = Polygon(a.points).exterior
         corners = np.array([ring.distance(Point(p)) for p in b.points])
-        sides = np.array([ring.distance(Point(p)) for p in 0.5 * (b.points + np.roll(b.points, -1, axis=0))])
-        assert corners.min() >= 0.1 - 1e-9 and corners.max() <= 0.1 * MITRE_LIMIT + 1e-9  # mitred corners reach further
-        assert np.median(sides) == pytest.approx(0.1, abs=1e-9)  # each side moved parallel to itself by half the kerf
+        sides = np.array(
+            [ring.distance(Point(p)) for p in 0.5 * (b.points + np.roll(b.points, -1, axis=0))]
+        )
+        # mitred corners reach further
+        assert corners.min() >= 0.1 - 1e-9 and corners.max() <= 0.1 * MITRE_LIMIT + 1e-9
+        # each side moved parallel to itself by half the kerf
+        assert np.median(sides) == pytest.approx(0.1, abs=1e-9)
         for key in ("mountain", "valley", "seam", "glue"):
-            assert all(np.array_equal(p.points, q.points) for p, q in zip(before.on_layer(key), after.on_layer(key)))
+            assert all(
+                np.array_equal(p.points, q.points)
+                for p, q in zip(before.on_layer(key), after.on_layer(key))
+            )
     assert prepare_layout(tube_layout) is tube_layout
     with pytest.raises(InputError, match="kerf must be a non-negative number of mm, got -0.1"):
         prepare_layout(tube_layout, kerf=-0.1)
@@ -265,10 +344,39 @@ def test_the_command_line_writes_a_perforated_kerfed_laser_pattern(tmp_path):
     from _cli import run
 
     out = tmp_path / "t"
-    r = run("tube", "--samples", "81", "--formats", "svg,dxf", "--cutter", "laser", "--perforation", "2", "--perforation-gap", "1",
-            "--kerf", "0.15", "--out", str(out))
+    r = run(
+        "tube",
+        "--samples",
+        "81",
+        "--formats",
+        "svg,dxf",
+        "--cutter",
+        "laser",
+        "--perforation",
+        "2",
+        "--perforation-gap",
+        "1",
+        "--kerf",
+        "0.15",
+        "--out",
+        str(out),
+    )
     assert r.returncode == 0, r.stderr
     text = "".join(p.read_text() for p in sorted(out.glob("tube-pattern*.svg")))
-    assert 'inkscape:label="perforate - mountain"' in text and "stroke:#ff0000" in text and "stroke:#0000ff" in text
-    r = run("tube", "--samples", "81", "--formats", "svg", "--cutter", "glowforge", "--out", str(tmp_path / "x"))
+    assert (
+        'inkscape:label="perforate - mountain"' in text
+        and "stroke:#ff0000" in text
+        and "stroke:#0000ff" in text
+    )
+    r = run(
+        "tube",
+        "--samples",
+        "81",
+        "--formats",
+        "svg",
+        "--cutter",
+        "glowforge",
+        "--out",
+        str(tmp_path / "x"),
+    )
     assert r.returncode == 2 and "cutter" in r.stderr and "glowforge" in r.stderr

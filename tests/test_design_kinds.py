@@ -107,9 +107,13 @@ def build_ring(design, like) -> BuiltStructure:
 
 
 RING_KIND = DesignKind(
-    "ring", (RING,), build_ring, strips=lambda design: 4,
+    "ring",
+    (RING,),
+    build_ring,
+    strips=lambda design: 4,
     crease_length=lambda values: values["ring"]["radius"] * math.radians(values["ring"]["arc"]),
-    help="a short tube on a circle", description="Build a short tube around an arc of a circle.",
+    help="a short tube on a circle",
+    description="Build a short tube around an arc of a circle.",
     formats_as="tube",
 )
 

@@ -1,8 +1,9 @@
-"""The designer used as a person would: Playwright driving Debian's chromium against a real server on 127.0.0.1.
+"""The designer used as a person would: Playwright driving Debian's chromium against a real server
+on 127.0.0.1.
 
-Besides what the page does, it measures what follows a change (input → 3D view, → certificate, coarse and full, at the
-median and 95th percentile) and takes the screenshots the README shows; set ``CURVEFOLD_SCREENSHOTS`` to a folder
-(``docs``) to keep them there.
+Besides what the page does, it measures what follows a change (input → 3D view, → certificate,
+coarse and full, at the median and 95th percentile) and takes the screenshots the README shows; set
+``CURVEFOLD_SCREENSHOTS`` to a folder (``docs``) to keep them there.
 """
 
 from __future__ import annotations
@@ -32,7 +33,10 @@ CHANGES = 12
 
 @pytest.fixture(scope="module")
 def browser():
-    need(server.missing_bundle() is None, "the designer's JavaScript is not built (bash scripts/build-designer.sh)")
+    need(
+        server.missing_bundle() is None,
+        "the designer's JavaScript is not built (bash scripts/build-designer.sh)",
+    )
     need(os.path.exists(CHROMIUM), "chromium is not installed (apt-get install chromium)")
     try:
         from playwright.sync_api import sync_playwright
@@ -46,11 +50,22 @@ def browser():
 
 
 def open_page(browser, query: str = LIGHT, context=None, width: int = 1200, height: int = 800):
-    """A page of the designer with its first preview shown; console errors (but refusals) are collected in ``page.errors``."""
-    page = context.new_page() if context else browser.new_page(viewport={"width": width, "height": height})
+    """A page of the designer with its first preview shown; console errors (but refusals) are
+    collected in ``page.errors``."""
+    page = (
+        context.new_page()
+        if context
+        else browser.new_page(viewport={"width": width, "height": height})
+    )
     page.errors = []
-    refused = "the server responded with a status of 422"  # a refused value: the page shows its message
-    page.on("console", lambda m: page.errors.append(m.text) if m.type == "error" and refused not in m.text else None)
+    # a refused value: the page shows its message
+    refused = "the server responded with a status of 422"
+    page.on(
+        "console",
+        lambda m: (
+            page.errors.append(m.text) if m.type == "error" and refused not in m.text else None
+        ),
+    )
     page.on("pageerror", lambda e: page.errors.append(str(e)))
     page.goto(browser.url + query)
     page.wait_for_function("window.curvefold && window.curvefold.preview")
@@ -59,13 +74,17 @@ def open_page(browser, query: str = LIGHT, context=None, width: int = 1200, heig
 
 def settled(page) -> None:
     """Wait until the full certificate and crease pattern of the design shown have come."""
-    page.wait_for_function("(t => t && t.settled !== undefined)(window.curvefold.timings.at(-1))", timeout=120_000)
+    page.wait_for_function(
+        "(t => t && t.settled !== undefined)(window.curvefold.timings.at(-1))", timeout=120_000
+    )
 
 
 def canvas(page) -> np.ndarray:
     from PIL import Image
 
-    return np.asarray(Image.open(io.BytesIO(page.locator("#canvas").screenshot())).convert("RGB"), float)
+    return np.asarray(
+        Image.open(io.BytesIO(page.locator("#canvas").screenshot())).convert("RGB"), float
+    )
 
 
 def numbers(page) -> dict:
@@ -94,18 +113,27 @@ def test_a_slider_changes_the_numbers_and_the_view(browser):
 
 
 def test_what_follows_a_change_is_quick(browser):
-    """Input → 3D view and input → the coarse certificate and pattern, then the full ones, over changes of the paper's
-    vault (801 samples): the coarse answers come before the full ones, every time; the figures are printed."""
+    """Input → 3D view and input → the coarse certificate and pattern, then the full ones, over
+    changes of the paper's vault (801 samples): the coarse answers come before the full ones,
+    every time; the figures are printed."""
     page = open_page(browser, "?kind=vault")
     settled(page)
     for k in range(CHANGES):
         press(page, "ArrowRight", 1, "p_xy")  # a new design every time: nothing comes from a cache
-        page.wait_for_function(f"window.curvefold.timings.length === {k + 2} && window.curvefold.timings.at(-1).settled !== undefined",
-                               timeout=120_000)
+        page.wait_for_function(
+            f"window.curvefold.timings.length === {k + 2} && "
+            "window.curvefold.timings.at(-1).settled !== undefined",
+            timeout=120_000,
+        )
     timings = page.evaluate("window.curvefold.timings.slice(1)")
-    assert len(timings) == CHANGES and all(t["certificate"] <= t["full_certificate"] and t["pattern"] <= t["full_pattern"] for t in timings)
+    assert len(timings) == CHANGES and all(
+        t["certificate"] <= t["full_certificate"] and t["pattern"] <= t["full_pattern"]
+        for t in timings
+    )
     keys = ("view", "certificate", "pattern", "full_certificate", "full_pattern")
-    figures = {key: np.percentile([t[key] for t in timings], [50, 95]).round().tolist() for key in keys}
+    figures = {
+        key: np.percentile([t[key] for t in timings], [50, 95]).round().tolist() for key in keys
+    }
     print("input → shown, ms [p50, p95] over", CHANGES, "changes:", json.dumps(figures))
     status = page.evaluate("fetch('/api/status').then(r => r.json())")
     print("server after them:", json.dumps(status["memory"]))
@@ -118,7 +146,10 @@ def test_the_fold_slider_plays_without_a_request_and_the_numbers_follow_it(brows
     contact = page.evaluate("window.curvefold.contact")
     assert page.input_value("#fold") == "90" and page.get_attribute("#fold", "max") == str(contact)
     # the first contact on the slider and in the numbers
-    assert f"first contact {contact:.0f}°" in page.inner_text("#marks") and page.inner_text("#first-contact") == f"{contact:.0f}"
+    assert (
+        f"first contact {contact:.0f}°" in page.inner_text("#marks")
+        and page.inner_text("#first-contact") == f"{contact:.0f}"
+    )
     requests = []
     page.on("request", lambda r: requests.append(r.url))
     designed = canvas(page)
@@ -129,11 +160,19 @@ def test_the_fold_slider_plays_without_a_request_and_the_numbers_follow_it(brows
     assert requests == [] and np.abs(moved - designed).mean() > 1.0
     page.fill("#fold", "30")
     page.dispatch_event("#fold", "input")
-    assert page.inner_text("#fold-value") == "30.0°" and page.inner_text("#angle-now") == "30.0"  # the numbers' row follows
-    assert float(page.inner_text("#lift-off")) > 0.1 and not page.evaluate("window.curvefold.view.dimensions.visible")
+    # the numbers' row follows
+    assert page.inner_text("#fold-value") == "30.0°" and page.inner_text("#angle-now") == "30.0"
+    assert float(page.inner_text("#lift-off")) > 0.1 and not page.evaluate(
+        "window.curvefold.view.dimensions.visible"
+    )
     page.click("#to-design")
-    assert page.inner_text("#fold-value") == "90.0° (design)" and page.inner_text("#angle-now") == "90.0"
-    assert float(page.inner_text("#lift-off")) == 0 and page.evaluate("window.curvefold.view.dimensions.visible")
+    assert (
+        page.inner_text("#fold-value") == "90.0° (design)"
+        and page.inner_text("#angle-now") == "90.0"
+    )
+    assert float(page.inner_text("#lift-off")) == 0 and page.evaluate(
+        "window.curvefold.view.dimensions.visible"
+    )
     assert page.errors == []
 
 
@@ -141,14 +180,25 @@ def test_plain_words_units_and_the_span_and_rise_drawn(browser):
     page = open_page(browser)
     words = page.evaluate("""() => Object.fromEntries([...document.querySelectorAll('.field')].map((f) =>
         [f.dataset.key, [f.querySelector('.words').textContent, f.querySelector('.unit').textContent]]))""")
-    assert words["a"] == ["torsion amplitude", ""] and words["p_xy"] == ["section proportion at the feet", ""]
-    assert words["width"] == ["tube width at the feet, in radii", "× radius"] and words["radius"] == ["radius of the arch curve", "m"]
+    assert words["a"] == ["torsion amplitude", ""] and words["p_xy"] == [
+        "section proportion at the feet",
+        "",
+    ]
+    assert words["width"] == ["tube width at the feet, in radii", "× radius"] and words[
+        "radius"
+    ] == ["radius of the arch curve", "m"]
     assert words["fold_angle"] == ["design fold angle", "°"]
     text = page.inner_text("body")
-    assert "dimensionless" not in text and "model units" not in text and "span, foot to foot" in text
+    assert (
+        "dimensionless" not in text and "model units" not in text and "span, foot to foot" in text
+    )
     n = numbers(page)
-    labels = page.evaluate("[...window.curvefold.view.dimensions.children].filter((c) => c.isSprite).length")
-    assert labels == 2 and f"{n['span']:.6g}" in page.evaluate("JSON.stringify(window.curvefold.preview.dimensions)")
+    labels = page.evaluate(
+        "[...window.curvefold.view.dimensions.children].filter((c) => c.isSprite).length"
+    )
+    assert labels == 2 and f"{n['span']:.6g}" in page.evaluate(
+        "JSON.stringify(window.curvefold.preview.dimensions)"
+    )
     assert page.errors == []
 
 
@@ -161,7 +211,9 @@ def test_an_invalid_value_shows_its_message_and_keeps_the_design(browser):
     assert error.inner_text().startswith("width = 9 is past regression for the base tube: ")
     assert numbers(page) == shown
     page.fill('.field[data-key="width"] input.value', "0.08")
-    page.wait_for_function("document.querySelector('.field[data-key=\"width\"] .error').textContent === ''")
+    page.wait_for_function(
+        "document.querySelector('.field[data-key=\"width\"] .error').textContent === ''"
+    )
 
 
 def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp_path):
@@ -173,51 +225,78 @@ def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp
     assert "2α = 60.0°" in page.inner_text("#downloads-state")
     links = page.locator("#downloads a")
     names = [links.nth(i).inner_text() for i in range(links.count())]
-    assert names[-2:] == ["folder (zip)", "design (TOML)"] and len(names) == 13  # eleven formats, the folder, the design
+    # eleven formats, the folder, the design
+    assert names[-2:] == ["folder (zip)", "design (TOML)"] and len(names) == 13
     assert "assembly (PDF)" in names
     got = {}
     for name in names:
         with page.expect_download(timeout=120_000) as download:
             page.click(f"#downloads a:text-is('{name}')")
-        assert download.value.failure() is None, name  # the zip used to be a cancelled download (HTTP 500)
+        # the zip used to be a cancelled download (HTTP 500)
+        assert download.value.failure() is None, name
         path = tmp_path / download.value.suggested_filename
         download.value.save_as(path)
         assert path.stat().st_size > 0, name
         got[name] = path
-    assert check_fold(got["FOLD"]).ok and read_fold(got["FOLD"]).design["fold_angles"][-1] == 60.0  # the motion to the slider's angle
+    # the motion to the slider's angle
+    assert check_fold(got["FOLD"]).ok and read_fold(got["FOLD"]).design["fold_angles"][-1] == 60.0
     folder = zipfile.ZipFile(got["folder (zip)"]).namelist()
     assert "curvefold-vault/report.html" in folder and "curvefold-vault/vault.glb" in folder
     rebuilt = json.loads(run("vault", str(got["design (TOML)"]), "--json").stdout)
     shown = numbers(page)
-    assert {k: rebuilt[k] for k in shown if k in rebuilt} == {k: v for k, v in shown.items() if k in rebuilt}
+    assert {k: rebuilt[k] for k in shown if k in rebuilt} == {
+        k: v for k, v in shown.items() if k in rebuilt
+    }
 
 
 def test_a_chosen_material_shows_the_design_under_load(browser):
     page = open_page(browser)
     settled(page)
-    assert "choose a material" in page.inner_text("#mechanics-status") and page.inner_text("#mechanics") == ""
+    assert (
+        "choose a material" in page.inner_text("#mechanics-status")
+        and page.inner_text("#mechanics") == ""
+    )
     page.select_option('.field[data-key="material"] select', "aluminium")
-    page.wait_for_function("window.curvefold.mechanics && window.curvefold.mechanics.numbers", timeout=120_000)
-    expected = json.loads(run("load", "--samples", "201", "--tubes", "4", "--material", "aluminium", "--json").stdout)
-    assert page.evaluate("window.curvefold.mechanics.numbers.fold_mode_gap") == expected["fold_mode_gap"]
-    shown = {key: page.inner_text(f'#mechanics tr[data-key="{key}"] td.num') for key in ("fold_mode_gap", "max_displacement", "reactions")}
+    page.wait_for_function(
+        "window.curvefold.mechanics && window.curvefold.mechanics.numbers", timeout=120_000
+    )
+    expected = json.loads(
+        run("load", "--samples", "201", "--tubes", "4", "--material", "aluminium", "--json").stdout
+    )
+    assert (
+        page.evaluate("window.curvefold.mechanics.numbers.fold_mode_gap")
+        == expected["fold_mode_gap"]
+    )
+    shown = {
+        key: page.inner_text(f'#mechanics tr[data-key="{key}"] td.num')
+        for key in ("fold_mode_gap", "max_displacement", "reactions")
+    }
     assert float(shown["fold_mode_gap"]) == pytest.approx(expected["fold_mode_gap"], rel=1e-5)
     assert float(shown["max_displacement"]) == pytest.approx(expected["max_displacement"], rel=1e-3)
     x, y, z = shown["reactions"].split(", ")
-    assert (x, y) == ("0", "0") and float(z) == pytest.approx(expected["total_weight"], rel=1e-5)  # the feet carry the weight
-    assert page.inner_text("#mechanics-status").startswith("aluminium 1 mm, pinned at the feet") and page.errors == []
+    # the feet carry the weight
+    assert (x, y) == ("0", "0") and float(z) == pytest.approx(expected["total_weight"], rel=1e-5)
+    assert (
+        page.inner_text("#mechanics-status").startswith("aluminium 1 mm, pinned at the feet")
+        and page.errors == []
+    )
 
 
 def test_undo_and_redo_walk_the_browser_history(browser):
     page = open_page(browser)
-    press(page, "ArrowRight", 1)  # a key step of a slider: one step of the history (a drag makes one too)
+    # a key step of a slider: one step of the history (a drag makes one too)
+    press(page, "ArrowRight", 1)
     page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.303) < 1e-9")
-    page.fill('.field[data-key="p_xy"] input.value', "1.1")  # typing: one step when the value is committed
+    # typing: one step when the value is committed
+    page.fill('.field[data-key="p_xy"] input.value', "1.1")
     page.dispatch_event('.field[data-key="p_xy"] input.value', "change")
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 1.1")
     page.click("#undo")
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 0.75")
-    assert abs(numbers(page)["a"] - 0.303) < 1e-9 and page.input_value('.field[data-key="p_xy"] input.value') == "0.75"
+    assert (
+        abs(numbers(page)["a"] - 0.303) < 1e-9
+        and page.input_value('.field[data-key="p_xy"] input.value') == "0.75"
+    )
     page.evaluate("history.back()")  # the browser's own Back
     page.wait_for_function("window.curvefold.preview.numbers.a === 0.3")
     page.click("#redo")
@@ -240,7 +319,8 @@ def projected_inside(page) -> bool:
 
 def test_the_camera_fits_the_design_and_the_fit_button_brings_it_back(browser):
     page = open_page(browser)
-    page.fill('.field[data-key="radius"] input.value', "6")  # six times the size: the view fits again
+    # six times the size: the view fits again
+    page.fill('.field[data-key="radius"] input.value', "6")
     page.wait_for_function("window.curvefold.preview.numbers.radius === 6")
     assert projected_inside(page)
     page.mouse.move(600, 400)
@@ -251,7 +331,8 @@ def test_the_camera_fits_the_design_and_the_fit_button_brings_it_back(browser):
     assert projected_inside(page)
     # from span and rise (it showed a cropped corner)
     page.check("input[name=mode][value=targets]")
-    page.locator('.field[data-key="rise"] input.value').fill("6.9")  # out of reach with the span shown: refused, kept
+    # out of reach with the span shown: refused, kept
+    page.locator('.field[data-key="rise"] input.value').fill("6.9")
     page.locator('.field[data-key="span"] input.value').fill("12")  # six times larger
     page.wait_for_function("Math.abs(window.curvefold.preview.numbers.span - 12) < 1e-6")
     assert projected_inside(page)
@@ -265,14 +346,25 @@ def test_two_designs_side_by_side_or_overlaid_with_their_numbers(browser):
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 1.2")
     rows = page.evaluate("""() => Object.fromEntries([...document.querySelectorAll('#numbers tr')].map((r) =>
         [r.cells[0].textContent, [...r.cells].slice(1, 3).map((c) => c.textContent)]))""")
-    assert rows["section proportion at the feet p_xy"] == ["1.2", "0.75"] and "kept" in page.inner_text("#numbers")
+    assert rows["section proportion at the feet p_xy"] == [
+        "1.2",
+        "0.75",
+    ] and "kept" in page.inner_text("#numbers")
     side = page.evaluate("window.curvefold.view.kept.group.position.x")
-    assert side > 0 and page.evaluate("window.curvefold.view.kept.group.visible") and projected_inside(page)
+    assert (
+        side > 0
+        and page.evaluate("window.curvefold.view.kept.group.visible")
+        and projected_inside(page)
+    )
     page.select_option("#compare-mode", "overlay")
-    assert page.evaluate("window.curvefold.view.kept.group.position.x") == 0 and "overlaid" in page.inner_text("#legend")
+    assert page.evaluate(
+        "window.curvefold.view.kept.group.position.x"
+    ) == 0 and "overlaid" in page.inner_text("#legend")
     assert "compare=" in page.url  # the pair lives in the URL too
     page.reload()
-    page.wait_for_function("window.curvefold.kept && window.curvefold.kept.preview && window.curvefold.preview")
+    page.wait_for_function(
+        "window.curvefold.kept && window.curvefold.kept.preview && window.curvefold.preview"
+    )
     assert page.evaluate("window.curvefold.kept.preview.numbers.p_xy") == 0.75
     page.click("#drop")
     assert not page.evaluate("window.curvefold.view.kept.group.visible") and page.errors == []
@@ -281,11 +373,18 @@ def test_two_designs_side_by_side_or_overlaid_with_their_numbers(browser):
 def test_the_tubes_control_never_contradicts_itself(browser):
     page = open_page(browser, "?kind=vault&samples=201")
     slider = '.field[data-key="tubes"] input[type=range]'
-    assert page.is_checked('.field[data-key="tubes"] input[type=checkbox]') and page.is_disabled(slider)
-    assert page.input_value(slider) == str(numbers(page)["tubes"])  # "max" shows the count it gives (it sat at 1)
+    assert page.is_checked('.field[data-key="tubes"] input[type=checkbox]') and page.is_disabled(
+        slider
+    )
+    # "max" shows the count it gives (it sat at 1)
+    assert page.input_value(slider) == str(numbers(page)["tubes"])
     page.uncheck('.field[data-key="tubes"] input[type=checkbox]')
-    page.wait_for_function("!window.curvefold.values.tubes || window.curvefold.values.tubes !== 'max'")
-    assert page.input_value('.field[data-key="tubes"] input.value') == str(numbers(page)["tubes"]) and not page.is_disabled(slider)
+    page.wait_for_function(
+        "!window.curvefold.values.tubes || window.curvefold.values.tubes !== 'max'"
+    )
+    assert page.input_value('.field[data-key="tubes"] input.value') == str(
+        numbers(page)["tubes"]
+    ) and not page.is_disabled(slider)
 
 
 def test_two_sessions_never_see_each_other(browser):
@@ -309,11 +408,15 @@ def test_a_vault_from_span_and_rise(browser):
     rise.fill("1.5")  # at this p_xz and 4 tubes rise/span stays below 0.59
     error = page.locator('.field[data-key="rise"] .error')
     error.wait_for(state="visible")
-    assert "is out of reach for width = 0.08 and 4 tubes: vaults of the family reach rise/span from" in error.inner_text()
+    assert (
+        "is out of reach for width = 0.08 and 4 tubes: vaults of the family reach rise/span from"
+    ) in error.inner_text()
     rise.fill("1.15")
     page.wait_for_function("Math.abs(window.curvefold.preview.numbers.rise - 1.15) < 1e-9")
     solved = numbers(page)
-    assert solved["a"] != 0.3 and float(page.input_value('.field[data-key="a"] input.value')) == pytest.approx(solved["a"], rel=1e-5)
+    assert solved["a"] != 0.3 and float(
+        page.input_value('.field[data-key="a"] input.value')
+    ) == pytest.approx(solved["a"], rel=1e-5)
     # span and rise alone, tubes = "max": a count is chosen and said
     page.goto(browser.url + "?kind=vault&samples=201&span=4&rise=2.5")
     page.wait_for_function("window.curvefold.preview && window.curvefold.preview.note")
@@ -327,8 +430,16 @@ def test_the_layout_fits_phones_to_large_screens(browser, width, height, tmp_pat
     box = page.evaluate("""() => { const r = document.getElementById('canvas').getBoundingClientRect();
         return {overflow: document.documentElement.scrollWidth - innerWidth, top: r.top, bottom: r.bottom, width: r.width, height: r.height}; }""")
     assert box["overflow"] <= 0  # at 390 px it overflowed by 327 px
-    assert box["top"] < 100 and box["bottom"] <= height and box["width"] >= 0.35 * width and box["height"] >= 0.4 * height  # the view on screen
+    # the view on screen
+    assert (
+        box["top"] < 100
+        and box["bottom"] <= height
+        and box["width"] >= 0.35 * width
+        and box["height"] >= 0.4 * height
+    )
     folder = Path(os.environ.get("CURVEFOLD_SCREENSHOTS") or tmp_path)
     if width in (390, 1280):  # the README's pictures
-        page.screenshot(path=str(folder / ("designer.png" if width == 1280 else "designer-phone.png")))
+        page.screenshot(
+            path=str(folder / ("designer.png" if width == 1280 else "designer-phone.png"))
+        )
     assert page.errors == []

@@ -21,7 +21,6 @@ from pathlib import Path
 import pytest
 
 from _cli import run, run_subprocess
-from _designer import need
 from curvefold.app import cli
 from curvefold.kernel._errors import CurvefoldError
 
@@ -41,13 +40,17 @@ def _load(path: Path, name: str):
 check_links = _load(ROOT / "scripts" / "check_links.py", "check_links")
 
 
-# -- the tutorial notebook ---------------------------------------------------------------------------
+# -- the tutorial notebook
+# ---------------------------------------------------------------------------
 
 
 def stored_outputs(notebook: dict) -> list[str]:
     """Cells of a notebook that hold what running it made (outputs, execution counts)."""
-    return [f"cell {i}" for i, cell in enumerate(notebook["cells"])
-            if cell.get("outputs") or cell.get("execution_count") is not None]
+    return [
+        f"cell {i}"
+        for i, cell in enumerate(notebook["cells"])
+        if cell.get("outputs") or cell.get("execution_count") is not None
+    ]
 
 
 def test_the_tutorial_is_stored_without_outputs():
@@ -56,11 +59,15 @@ def test_the_tutorial_is_stored_without_outputs():
     assert len(code) >= 6 and stored_outputs(notebook) == []
     ran = copy.deepcopy(notebook)  # as a notebook saved after running it
     first = next(i for i, cell in enumerate(ran["cells"]) if cell["cell_type"] == "code")
-    ran["cells"][first].update(execution_count=1, outputs=[{"output_type": "stream", "name": "stdout", "text": ["0.1.0\n"]}])
+    ran["cells"][first].update(
+        execution_count=1,
+        outputs=[{"output_type": "stream", "name": "stdout", "text": ["0.1.0\n"]}],
+    )
     assert stored_outputs(ran) == [f"cell {first}"]
 
 
-# -- the link check of the built site ----------------------------------------------------------------
+# -- the link check of the built site
+# ----------------------------------------------------------------
 
 
 def _site(root: Path, pages: dict[str, str]) -> Path:
@@ -72,24 +79,34 @@ def _site(root: Path, pages: dict[str, str]) -> Path:
 
 
 def test_link_check_passes_a_site_whose_internal_links_resolve(tmp_path):
-    site = _site(tmp_path, {
-        "index.html": '<a href="guide/a.html#eq-2">a</a> <a href="#top">top</a> <img src="_images/x.png">'
-                      '<a href="https://example.org/missing">external</a> <a href="guide/">folder</a> <p id="top"></p>',
-        "guide/index.html": '<a href="../index.html">up</a>',
-        "guide/a.html": '<h2 id="eq-2">Eq. 2</h2><a href="a.html#eq-2">self</a><a name="old"></a><a href="#old">old</a>',
-        "_static/webpack-macros.html": "<a href=\"{{ pathto('x') }}\">a template, not a page</a>",
-    })
+    site = _site(
+        tmp_path,
+        {
+            "index.html": '<a href="guide/a.html#eq-2">a</a> <a href="#top">top</a> <img '
+            'src="_images/x.png"><a href="https://example.org/missing">external</a> <a '
+            'href="guide/">folder</a> <p id="top"></p>',
+            "guide/index.html": '<a href="../index.html">up</a>',
+            "guide/a.html": '<h2 id="eq-2">Eq. 2</h2><a href="a.html#eq-2">self</a><a '
+            'name="old"></a><a href="#old">old</a>',
+            "_static/webpack-macros.html": "<a href=\"{{ pathto('x') }}\">a template, not a "
+            "page</a>",
+        },
+    )
     (site / "_images").mkdir()
     (site / "_images" / "x.png").write_bytes(b"png")
     assert check_links.broken_links(site) == []
 
 
 def test_link_check_finds_every_kind_of_broken_link(tmp_path):
-    site = _site(tmp_path / "site", {
-        "index.html": '<a href="missing.html">1</a> <a href="a.html#nowhere">2</a> <img src="_images/gone.png">'
-                      '<a href="empty/">3</a> <a href="../outside.html">4</a> <a href="#">5</a>',
-        "a.html": '<p id="somewhere"></p>',
-    })
+    site = _site(
+        tmp_path / "site",
+        {
+            "index.html": '<a href="missing.html">1</a> <a href="a.html#nowhere">2</a> <img '
+            'src="_images/gone.png"><a href="empty/">3</a> <a href="../outside.html">4</a> <a '
+            'href="#">5</a>',
+            "a.html": '<p id="somewhere"></p>',
+        },
+    )
     (site / "empty").mkdir()
     (tmp_path / "outside.html").write_text("<html></html>")
     found = check_links.broken_links(site)
@@ -102,7 +119,8 @@ def test_link_check_finds_every_kind_of_broken_link(tmp_path):
     ]
 
 
-# -- the distribution ---------------------------------------------------------------------------------
+# -- the distribution
+# ---------------------------------------------------------------------------------
 
 
 def test_the_version_has_one_source():
@@ -110,12 +128,15 @@ def test_the_version_has_one_source():
     import curvefold
 
     assert "version" not in PYPROJECT["project"] and "version" in PYPROJECT["project"]["dynamic"]
-    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "curvefold.kernel._version.VERSION"}
+    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {
+        "attr": "curvefold.kernel._version.VERSION"
+    }
     from curvefold.kernel._version import VERSION
 
     assert version == VERSION == curvefold.__version__
     assert run_subprocess("--version").stdout.split() == ["curvefold", version]
-    assert f"## [{version}]" in (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")  # every version has its entry
+    # every version has its entry
+    assert f"## [{version}]" in (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
     from curvefold.io._tables import CREATOR
 
     assert CREATOR == f"curvefold {version}"
@@ -125,13 +146,19 @@ def test_licence_is_an_spdx_expression_and_its_file_ships():
     project = PYPROJECT["project"]
     assert project["license"] == "MIT" and project["license-files"] == ["LICENSE"]
     assert (ROOT / "LICENSE").read_text().startswith("MIT License")
-    assert {"export", "rhino", "designer", "dask", "docs", "dev"} <= set(project["optional-dependencies"])
+    assert {"export", "rhino", "designer", "dask", "docs", "dev"} <= set(
+        project["optional-dependencies"]
+    )
 
 
 def test_citation_cites_curvefold_and_the_paper():
     yaml = pytest.importorskip("yaml")
     cff = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
-    assert cff["cff-version"] == "1.2.0" and cff["type"] == "software" and cff["title"].startswith("curvefold")
+    assert (
+        cff["cff-version"] == "1.2.0"
+        and cff["type"] == "software"
+        and cff["title"].startswith("curvefold")
+    )
     assert cff["license"] == PYPROJECT["project"]["license"]
     assert "version" not in cff  # one source of the version: pyproject.toml
     (paper,) = cff["references"]
@@ -139,7 +166,8 @@ def test_citation_cites_curvefold_and_the_paper():
     assert paper["authors"][0] == {"family-names": "Tachi", "given-names": "Tomohiro"}
 
 
-# -- the Rhino script's HTTP part, against the real designer ------------------------------------------
+# -- the Rhino script's HTTP part, against the real designer
+# ------------------------------------------
 
 
 @pytest.fixture(scope="module")
@@ -160,21 +188,40 @@ def test_rhino_script_downloads_a_design_that_rhino_reads(designer_url, rhino_sc
     rhino3dm = pytest.importorskip("rhino3dm")
     from curvefold.analysis import check_fold
 
-    summary, paths = rhino_script.fetch("vault", {"a": 0.4, "tubes": 2, "samples": 101}, formats=("3dm", "fold"),
-                                        server=designer_url, folder=str(tmp_path))
-    assert summary["tubes"] == 2 and summary["design"]["a"] == 0.4 and all(c["passed"] for c in summary["certificate"])
+    summary, paths = rhino_script.fetch(
+        "vault",
+        {"a": 0.4, "tubes": 2, "samples": 101},
+        formats=("3dm", "fold"),
+        server=designer_url,
+        folder=str(tmp_path),
+    )
+    assert (
+        summary["tubes"] == 2
+        and summary["design"]["a"] == 0.4
+        and all(c["passed"] for c in summary["certificate"])
+    )
     assert [Path(p).name for p in paths] == ["vault.3dm", "vault.fold"]
     model = rhino3dm.File3dm.Read(paths[0])
     assert model.ApplicationName == f"curvefold {importlib.metadata.version('curvefold')}"
     from curvefold.io._rhino import LAYERS, PATTERN_LAYER
 
     names = [layer.Name for layer in model.Layers]
-    assert len(model.Objects) > 0 and names[: len(LAYERS)] == [name for name, _ in LAYERS] and PATTERN_LAYER in names
+    assert (
+        len(model.Objects) > 0
+        and names[: len(LAYERS)] == [name for name, _ in LAYERS]
+        and PATTERN_LAYER in names
+    )
     assert check_fold(paths[1]).ok
 
 
-def test_rhino_script_reports_a_refused_parameter_and_a_missing_designer(designer_url, rhino_script, tmp_path):
-    with pytest.raises(rhino_script.DesignError, match=r"^a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 5") as refused:
+def test_rhino_script_reports_a_refused_parameter_and_a_missing_designer(
+    designer_url, rhino_script, tmp_path
+):
+    with pytest.raises(
+        rhino_script.DesignError,
+        match=r"^a must be in \[0, 1\.2707093728\) \(no "
+        r"arch stands beyond it: Eq\. \(20\) has no root next to π there\), got 5",
+    ) as refused:
         rhino_script.fetch("vault", {"a": 5}, server=designer_url, folder=str(tmp_path))
     assert refused.value.key == "a"
     with socket.socket() as s:  # a port nothing listens on
@@ -185,15 +232,20 @@ def test_rhino_script_reports_a_refused_parameter_and_a_missing_designer(designe
     assert list(tmp_path.iterdir()) == []  # nothing written for a refused design
 
 
-def test_rhino_script_run_outside_rhino_downloads_and_says_what_it_got(designer_url, rhino_script, monkeypatch, capsys):
+def test_rhino_script_run_outside_rhino_downloads_and_says_what_it_got(
+    designer_url, rhino_script, monkeypatch, capsys
+):
     monkeypatch.setattr(rhino_script, "SERVER", designer_url)
-    kind, parameters = rhino_script._parse(["tube", "samples=101", "width_left=0.2"])  # as typed after the script's name
+    # as typed after the script's name
+    kind, parameters = rhino_script._parse(["tube", "samples=101", "width_left=0.2"])
     assert rhino_script.main(kind, parameters, inside_rhino=False) is None
     printed = capsys.readouterr().out.splitlines()
     assert printed[0].startswith("tube: ") and printed[0].endswith("certificate checks, all passed")
     assert Path(printed[1]).name == "tube.3dm" and Path(printed[1]).stat().st_size > 0
     shutil.rmtree(Path(printed[1]).parent)  # the script's own temporary folder
-    assert rhino_script.main("tube", {"width_left": "-1"}, inside_rhino=False).startswith("curvefold refused the design: width_left")
+    assert rhino_script.main("tube", {"width_left": "-1"}, inside_rhino=False).startswith(
+        "curvefold refused the design: width_left"
+    )
 
 
 # -- the README and the docs against the program ---------------------------------------------

@@ -31,14 +31,31 @@ from curvefold.io import _labels as labels
 from curvefold.io import _layout as layout_module
 from curvefold.io import _legend as legend
 from curvefold.io import _pattern as pattern
-from curvefold.io import _svg as svg
 from curvefold.io import _pdf as pdf
 from curvefold.io import _planar as planar
+from curvefold.io import _svg as svg
 from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, layer_name
-from curvefold.io._pattern import DEFAULT_LAYERS, LAYERS, LEGEND, layout_sheets, seam_name, write_dxf, write_pdf, write_svg
 from curvefold.io._layout import LayoutRules
+from curvefold.io._pattern import (
+    DEFAULT_LAYERS,
+    LAYERS,
+    LEGEND,
+    layout_sheets,
+    seam_name,
+    write_dxf,
+    write_pdf,
+    write_svg,
+)
 from curvefold.io._planar import polyline_segments
-from curvefold.io._tabs import TAB_WIDTH_STEPS, place_tabs, tab_fits, tab_outline, tab_outlines, tab_pieces, tabs_fit
+from curvefold.io._tabs import (
+    TAB_WIDTH_STEPS,
+    place_tabs,
+    tab_fits,
+    tab_outline,
+    tab_outlines,
+    tab_pieces,
+    tabs_fit,
+)
 from curvefold.kernel import InputError
 
 NS = {
@@ -127,7 +144,9 @@ def test_sheets_do_not_overlap_and_stay_inside_the_margins(vault, vault_layout):
 
 def test_packing_turns_sheets_to_small_rectangles():
     # A thin strip at 30° would waste most of its axis-aligned box if not turned.
-    sheet = annular_sheet("strip", radii=(2000.0, 2010.0, 2020.0), span_deg=(30.0, 33.0), n=6, seams=(None, None))
+    sheet = annular_sheet(
+        "strip", radii=(2000.0, 2010.0, 2020.0), span_deg=(30.0, 33.0), n=6, seams=(None, None)
+    )
     lay = layout_sheets([sheet], glue_tabs=False)
     placed = lay.sheets()[0]
     lo, hi = placed.bounds()
@@ -149,13 +168,16 @@ def test_the_minimum_area_box_agrees_with_shapely_and_costs_linear_memory():
             t = np.sort(rng.uniform(0, 2 * np.pi, len(pts)))
             pts = np.stack([3 * np.cos(t + k), np.sin(t)], axis=1)
         turned = pts @ planar.rotation(planar.min_area_rotation(pts)).T
-        assert np.ptp(turned, axis=0).prod() == pytest.approx(MultiPoint(pts).minimum_rotated_rectangle.area, rel=2e-6)
+        assert np.ptp(turned, axis=0).prod() == pytest.approx(
+            MultiPoint(pts).minimum_rotated_rectangle.area, rel=2e-6
+        )
     t = np.linspace(0, 2 * np.pi, 40001)[:-1]
     tracemalloc.start()
     planar.min_area_rotation(np.stack([3 * np.cos(t), np.sin(t)], axis=1))
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
-    assert peak < 40 * 40000 * 8  # a few dozen arrays of one number per vertex (H² would be 12.8 GB)
+    # a few dozen arrays of one number per vertex (H² would be 12.8 GB)
+    assert peak < 40 * 40000 * 8
 
 
 def _point_sets(rng: np.random.Generator):
@@ -186,25 +208,40 @@ def test_tabs_drawn_together_are_each_ones_own():
     alone, bit for bit, pieces too short or of one point repeated among them."""
     rng = np.random.default_rng(16)
     pieces = [np.cumsum(rng.normal(size=(int(rng.integers(2, 14)), 2)), axis=0) for _ in range(200)]
-    pieces += [np.zeros((3, 2)), np.array([[0.0, 0.0], [1e-9, 0.0]]), np.array([[0.0, 0.0], [0.0, 0.0], [3.0, 0.0]])]
+    pieces += [
+        np.zeros((3, 2)),
+        np.array([[0.0, 0.0], [1e-9, 0.0]]),
+        np.array([[0.0, 0.0], [0.0, 0.0], [3.0, 0.0]]),
+    ]
     for width in (0.5, 6.0, 40.0):
         together = tab_outlines(pieces, width, np.radians(60.0))
         alone = [tab_outline(p, width, np.radians(60.0)) for p in pieces]
-        assert [t is None for t in together] == [t is None for t in alone] and any(t is None for t in alone)
-        assert all(a is None or all(np.array_equal(x, y) for x, y in zip(a, t)) for a, t in zip(alone, together))
-    assert not np.array_equal(tab_outlines(pieces[:2], 6.0, 1.0)[0][0], tab_outlines([pieces[0][:-1], pieces[1]], 6.0, 1.0)[0][0])  # the check sees a point less
+        assert [t is None for t in together] == [t is None for t in alone] and any(
+            t is None for t in alone
+        )
+        assert all(
+            a is None or all(np.array_equal(x, y) for x, y in zip(a, t))
+            for a, t in zip(alone, together)
+        )
+    # the check sees a point less
+    assert not np.array_equal(
+        tab_outlines(pieces[:2], 6.0, 1.0)[0][0],
+        tab_outlines([pieces[0][:-1], pieces[1]], 6.0, 1.0)[0][0],
+    )
 
 
 def test_the_convex_hull_is_scipys():
-    """The hull the minimum-area box turns on is qhull's, vertex for vertex (where a point repeats, one
-    of its copies); on a line it has fewer than three vertices, where qhull refuses."""
+    """The hull the minimum-area box turns on is qhull's, vertex for vertex (where a point
+    repeats, one of its copies); on a line it has fewer than three vertices, where qhull
+    refuses."""
     from scipy.spatial import ConvexHull, QhullError
 
     rng = np.random.default_rng(11)
     for pts in _point_sets(rng):
         ours, theirs = pts[planar.convex_hull(pts)], pts[ConvexHull(pts).vertices]
         assert _same_cycle(ours, theirs)
-        assert not _same_cycle(ours[1:], theirs) and not _same_cycle(ours[::-1], theirs)  # the check sees a vertex lost, the turn reversed
+        # the check sees a vertex lost, the turn reversed
+        assert not _same_cycle(ours[1:], theirs) and not _same_cycle(ours[::-1], theirs)
     for pts in (np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 3.0]]), np.ones((4, 2))):
         with pytest.raises(QhullError):
             ConvexHull(pts)
@@ -216,13 +253,20 @@ def test_hulls_found_together_are_each_ones_own():
     (each within its own rounding tolerance), empty, single-point, collinear, non-finite and huge
     sets among them."""
     rng = np.random.default_rng(15)
-    sets = [*_point_sets(rng), np.zeros((0, 2)), np.ones((3, 2)), np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 3.0]]),
-            np.array([[0.0, 0.0], [1.0, np.nan], [2.0, 0.0]]), rng.normal(size=(50, 2)) * 1e12]
+    sets = [
+        *_point_sets(rng),
+        np.zeros((0, 2)),
+        np.ones((3, 2)),
+        np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 3.0]]),
+        np.array([[0.0, 0.0], [1.0, np.nan], [2.0, 0.0]]),
+        rng.normal(size=(50, 2)) * 1e12,
+    ]
     alone = [planar.convex_hull(p) if np.isfinite(p).all() else np.zeros(0, int) for p in sets]
     together = planar.convex_hulls([p if np.isfinite(p).all() else p[:0] for p in sets])
     assert all(np.array_equal(a, b) for a, b in zip(alone, together))
     assert planar.min_area_rotations(sets) == [planar.min_area_rotation(p) for p in sets]
-    assert not np.array_equal(planar.convex_hulls([sets[0], sets[1][1:]])[1], alone[1])  # the check sees a point less
+    # the check sees a point less
+    assert not np.array_equal(planar.convex_hulls([sets[0], sets[1][1:]])[1], alone[1])
 
 
 def test_nearest_points_are_the_kd_trees():
@@ -232,7 +276,9 @@ def test_nearest_points_are_the_kd_trees():
 
     rng = np.random.default_rng(12)
     for pts in _point_sets(rng):
-        queries = rng.uniform(pts.min(axis=0) - 5, pts.max(axis=0) + 5, size=(int(rng.integers(1, 1500)), 2))
+        queries = rng.uniform(
+            pts.min(axis=0) - 5, pts.max(axis=0) + 5, size=(int(rng.integers(1, 1500)), 2)
+        )
         for limit in (np.inf, 0.3, 2.0):
             d, i = planar.nearest_points(pts, queries, limit)
             d0, i0 = cKDTree(pts).query(queries, distance_upper_bound=limit)
@@ -241,7 +287,9 @@ def test_nearest_points_are_the_kd_trees():
             assert np.array_equal(pts[i[found]], pts[i0[found]])
             origin = pts.min(axis=0) - 1.0
             for side in (0.05, 0.7, 9.0):  # the first cells made beforehand, of any side
-                given = planar.nearest_points(pts, queries, limit, index=(origin, side, *planar.cell_index(pts, origin, side)))
+                given = planar.nearest_points(
+                    pts, queries, limit, index=(origin, side, *planar.cell_index(pts, origin, side))
+                )
                 assert np.array_equal(given[0], d) and np.array_equal(given[1], i)
     d, _ = planar.nearest_points(pts, queries + 1e-12)
     assert not np.array_equal(d, cKDTree(pts).query(queries)[0])  # the check sees a femtometre
@@ -257,7 +305,9 @@ def test_label_boxes_keep_the_clearance_the_kd_tree_measures():
         d, i = cKDTree(obstacles.points).query(boxes, distance_upper_bound=size)
         dist = np.where(i < len(obstacles.points), d - obstacles.spacing / 2, np.inf)
         if len(obstacles.extra):
-            exact = planar.point_segment_distance(boxes[:, None], obstacles.extra[None, :, 0], obstacles.extra[None, :, 1]).min(axis=1)
+            exact = planar.point_segment_distance(
+                boxes[:, None], obstacles.extra[None, :, 0], obstacles.extra[None, :, 1]
+            ).min(axis=1)
             dist = np.minimum(dist, np.where(exact <= size, exact, np.inf))
         worst = np.minimum(dist.reshape(len(center), -1).min(axis=1), size)
         return worst >= 0.25 * size, worst
@@ -267,14 +317,19 @@ def test_label_boxes_keep_the_clearance_the_kd_tree_measures():
         walk = np.cumsum(rng.normal(size=(30, 2)) * 4, axis=0)
         obstacles = labels.Obstacles(np.stack([walk[:-1], walk[1:]], axis=1), 0.15)
         if k % 2:
-            obstacles = obstacles.plus(polyline_segments([(labels.Label("S1", tuple(walk[5] + 1), 30.0, 2.0).corners(), True)]))
+            obstacles = obstacles.plus(
+                polyline_segments(
+                    [(labels.Label("S1", tuple(walk[5] + 1), 30.0, 2.0).corners(), True)]
+                )
+            )
         center = rng.uniform(walk.min(axis=0), walk.max(axis=0), size=(20, 2))
         angle = rng.uniform(-np.pi, np.pi, 20)
         text, size = ("tube 3 left", "S12")[k % 2], float(rng.uniform(1.5, 5.0))
         ok, worst = obstacles.fits(center, angle, text, size)
         ok0, worst0 = by_tree(obstacles, center, angle, text, size)
         assert np.array_equal(ok, ok0) and np.array_equal(worst, worst0)
-    assert not np.array_equal(obstacles.fits(center + 1e-9, angle, text, size)[1], worst0)  # the check sees a nanometre
+    # the check sees a nanometre
+    assert not np.array_equal(obstacles.fits(center + 1e-9, angle, text, size)[1], worst0)
 
 
 def test_a_blocked_label_box_is_one_that_does_not_fit():
@@ -299,13 +354,24 @@ def test_a_blocked_label_box_is_one_that_does_not_fit():
     assert through.blocked(free, angle[ok][:1], text, size).all()
     pts = np.array([[0.0, 0.0], [3.0, 4.0]])
     index = (pts.min(axis=0), *planar.cell_index(pts, pts.min(axis=0), 1.0))
-    assert planar.near_any(pts, np.array([[0.0, 0.999], [0.0, 1.0], [3.7, 4.7]]), 1.0, index).tolist() == [True, False, True]
+    assert planar.near_any(
+        pts, np.array([[0.0, 0.999], [0.0, 1.0], [3.7, 4.7]]), 1.0, index
+    ).tolist() == [True, False, True]
 
 
 def test_xml_escapes_are_the_standard_librarys():
     from xml.sax.saxutils import escape, quoteattr
 
-    for text in ["", "tube 1", "a < b & c > d", 'say "hi"', "it's", "it's \"x\"", "tab\tnew\nline\r", "&amp;"]:
+    for text in [
+        "",
+        "tube 1",
+        "a < b & c > d",
+        'say "hi"',
+        "it's",
+        'it\'s "x"',
+        "tab\tnew\nline\r",
+        "&amp;",
+    ]:
         assert svg._escape(text) == escape(text) and svg._quoteattr(text) == quoteattr(text)
     assert svg._quoteattr("it's") != quoteattr("its")
 
@@ -368,7 +434,10 @@ def test_seam_labels_match_in_pairs_inside_their_sheets(vault, vault_layout):
             # beside its own seam: closer to it than to any other line of the sheet's outline
             mask = sheet.edges_seam == t.seam
             ev = sheet.mesh.edges_vertices[mask]
-            xy = sheet.mesh.vertices_coords[:, :2] @ placed.transform[:, :2].T + placed.transform[:, 2]
+            xy = (
+                sheet.mesh.vertices_coords[:, :2] @ placed.transform[:, :2].T
+                + placed.transform[:, 2]
+            )
             seam_line = unary_union([LineString(xy[e]) for e in ev])
             assert seam_line.distance(box) < 1.5 * t.size
     assert sorted(seen) == sorted(seam_name(i) for i in range(8))
@@ -425,7 +494,10 @@ def test_a_sheet_seen_from_its_back_is_mirrored():
 def test_a_sheet_seen_from_its_back_keeps_its_glue_tabs_outside():
     # Mirrored, the back's clockwise triangles turn counter-clockwise: its outline runs with
     # the sheet on its left like the front's, so tabs and seam names land as on the front.
-    front, back = (layout_sheets([annular_sheet(name, clockwise=cw)], page="A3") for name, cw in (("front", False), ("back", True)))
+    front, back = (
+        layout_sheets([annular_sheet(name, clockwise=cw)], page="A3")
+        for name, cw in (("front", False), ("back", True))
+    )
     assert back.notes == front.notes == ()
     for lay, cw in ((front, False), (back, True)):
         placed = lay.sheets()[0]
@@ -434,7 +506,9 @@ def test_a_sheet_seen_from_its_back_keeps_its_glue_tabs_outside():
         assert len(tabs) == 8
         assert all(tab.intersection(body).area < 1e-9 * tab.area for tab in tabs)
         assert all(body.contains(Point(t.position)) for t in placed.labels if t.kind == "seam")
-    assert sum(t.area for t in tab_polygons(back.sheets()[0])) == pytest.approx(sum(t.area for t in tab_polygons(front.sheets()[0])), rel=1e-9)
+    assert sum(t.area for t in tab_polygons(back.sheets()[0])) == pytest.approx(
+        sum(t.area for t in tab_polygons(front.sheets()[0])), rel=1e-9
+    )
 
 
 def test_without_tabs_seams_are_cut_edges():
@@ -465,7 +539,9 @@ def test_scale_target_size_and_units(tube):
 
 
 def test_a_sheet_too_big_for_the_page_is_refused_with_both_sizes(tube):
-    with pytest.raises(InputError, match=r"tube 1 · sheet A.*needs [\d.]+ × [\d.]+ mm.*210 × 297 mm"):
+    with pytest.raises(
+        InputError, match=r"tube 1 · sheet A.*needs [\d.]+ × [\d.]+ mm.*210 × 297 " r"mm"
+    ):
         layout_sheets(tube, scale=10.0)
     with pytest.raises(InputError, match=r"A5 page \(148 × 210 mm\)"):
         layout_sheets(tube, page="A5", scale=3.0)
@@ -473,20 +549,30 @@ def test_a_sheet_too_big_for_the_page_is_refused_with_both_sizes(tube):
 
 def _with(sheet: PatternSheet, **changes) -> dict:
     m = sheet.mesh
-    fields = dict(vertices_coords=m.vertices_coords, edges_vertices=m.edges_vertices,
-                  edges_assignment=m.edges_assignment, edges_foldAngle=m.edges_foldAngle,
-                  faces_vertices=m.faces_vertices, edges_kind=m.edges_kind, faces_group=m.faces_group)
+    fields = dict(
+        vertices_coords=m.vertices_coords,
+        edges_vertices=m.edges_vertices,
+        edges_assignment=m.edges_assignment,
+        edges_foldAngle=m.edges_foldAngle,
+        faces_vertices=m.faces_vertices,
+        edges_kind=m.edges_kind,
+        faces_group=m.faces_group,
+    )
     fields.update(changes)
     return fields
 
 
 @pytest.mark.parametrize(
     "inner, note, folds",
-    [(4.0, "1 glue tab piece(s) narrowed, 0 left out (of 1)", [0, 1]),
-     (1.0, "0 glue tab piece(s) narrowed, 1 left out (of 1)", [1])],
+    [
+        (4.0, "1 glue tab piece(s) narrowed, 0 left out (of 1)", [0, 1]),
+        (1.0, "0 glue tab piece(s) narrowed, 1 left out (of 1)", [1]),
+    ],
 )
 def test_tight_concave_seams_get_narrower_tabs_or_none_and_a_note(inner, note, folds):
-    a = annular_sheet("tight", radii=(inner, inner + 8.0, inner + 16.0), span_deg=(0.0, 300.0), n=30)
+    a = annular_sheet(
+        "tight", radii=(inner, inner + 8.0, inner + 16.0), span_deg=(0.0, 300.0), n=30
+    )
     lay = layout_sheets([a])
     assert lay.notes == (f"sheet 'tight', seam S0: {note} to keep clear of the sheet",)
     placed = lay.sheets()[0]
@@ -551,10 +637,13 @@ def test_invalid_sheets():
     n=st.integers(3, 40),
     angle=st.floats(0.0, 360.0),
 )
-@example(inner=8.0, width=6.0, span=300.0, n=5, angle=0.0)  # tabs split where the seam turns 60° toward them
+# tabs split where the seam turns 60° toward them
+@example(inner=8.0, width=6.0, span=300.0, n=5, angle=0.0)
 def test_tabs_never_overlap_their_sheet_on_random_sectors(inner, width, span, n, angle):
     # Tight concave seams (small inner radius) make tabs narrow or drop out, never overlap.
-    a = annular_sheet("a", radii=(inner, inner + width / 2, inner + width), span_deg=(angle, angle + span), n=n)
+    a = annular_sheet(
+        "a", radii=(inner, inner + width / 2, inner + width), span_deg=(angle, angle + span), n=n
+    )
     lay = layout_sheets([a], page="A3")
     placed = lay.sheets()[0]
     body = sheet_polygon(a, placed)
@@ -586,7 +675,8 @@ def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
     assert tab_fits(first, outline, [], tol) and tab_fits(second, outline, [], tol)
     assert_allclose(first[1][-2:][::-1], second[1][:2], atol=1e-12)  # the same segment, both ways
     assert not tab_fits(second, outline, [first[0]], tol)
-    assert tabs_fit([first, second], outline, [], tol).tolist() == [True, False]  # each as if those before it were placed
+    # each as if those before it were placed
+    assert tabs_fit([first, second], outline, [], tol).tolist() == [True, False]
     assert tabs_fit([second, first], outline, [], tol).tolist() == [True, False]
     # split in the middle of a segment instead, the two tabs leave 60° between their tapers
     pieces = tab_pieces(seam, 1e3, 15.0)  # two pieces (at least 15 long, of 32)
@@ -619,7 +709,9 @@ def test_tab_check_rejects_tabs_that_fold_back_graze_or_cross_themselves():
     # ... or a corner of the sheet that touches the cut from outside
     m = 0.5 * (cut[1] + cut[2])
     u, w = -m / np.linalg.norm(m), np.array([m[1], -m[0]]) / np.linalg.norm(m)
-    touching = polyline_segments([(np.stack([m, m + 0.3 * u + 0.1 * w, m + 0.3 * u - 0.1 * w]), True)])
+    touching = polyline_segments(
+        [(np.stack([m, m + 0.3 * u + 0.1 * w, m + 0.3 * u - 0.1 * w]), True)]
+    )
     assert tab_fits(first, np.concatenate([outline, touching + 1e-6 * u]), [], tol)
     assert not tab_fits(first, np.concatenate([outline, touching]), [], tol)
 
@@ -628,11 +720,13 @@ def test_tabs_placed_a_batch_at_a_time_are_those_placed_one_by_one():
     # A wavy seam on a strip, in pieces whose tabs meet their neighbours' and the strip's far side:
     # widest, narrowed and left out, more pieces than a batch
     x = np.linspace(0.0, 60.0, 121)
-    seam = np.stack([x, 2.5 * np.sin(x / 3.0)], axis=1)  # the strip above it (on its left), tabs below
+    # the strip above it (on its left), tabs below
+    seam = np.stack([x, 2.5 * np.sin(x / 3.0)], axis=1)
     taper, tol = np.radians(60.0), 1e-9
     for width, length in ((3.0, 8.0), (6.0, 7.0), (9.0, 6.0), (14.0, 1.8), (30.0, 1.8)):
         pieces = tab_pieces(seam, length, 1.0)
-        split = np.concatenate([p[:-1] for p in pieces] + [seam[-1:], [[60.0, 9.0], [0.0, 9.0]]])  # the seam split where they meet
+        # the seam split where they meet
+        split = np.concatenate([p[:-1] for p in pieces] + [seam[-1:], [[60.0, 9.0], [0.0, 9.0]]])
         outline = polyline_segments([(split, True)])
         accepted, expected = [], []
         for piece in pieces:  # one by one
@@ -645,7 +739,9 @@ def test_tabs_placed_a_batch_at_a_time_are_those_placed_one_by_one():
                     break
             expected.append(got)
         placed = place_tabs(pieces, outline, width, taper, tol)
-        assert [None if g is None else g[1] for g in placed] == [None if g is None else g[1] for g in expected]
+        assert [None if g is None else g[1] for g in placed] == [
+            None if g is None else g[1] for g in expected
+        ]
         for g, e in zip(placed, expected):
             if g is not None:
                 assert np.array_equal(g[0][0], e[0][0]) and np.array_equal(g[0][1], e[0][1])
@@ -665,11 +761,22 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
     assert path == tmp_path / "tube.svg"
     root = ET.parse(path).getroot()
     assert root.tag == "{http://www.w3.org/2000/svg}svg"
-    assert (root.get("width"), root.get("height"), root.get("viewBox")) == ("210mm", "297mm", "0 0 210 297")
+    assert (root.get("width"), root.get("height"), root.get("viewBox")) == (
+        "210mm",
+        "297mm",
+        "0 0 210 297",
+    )
     assert "sodipodi:namedview" in path.read_text() and "xmlns:sodipodi" in path.read_text()
     groups = root.findall("svg:g", NS)
-    assert [g.get(f"{INK}label") for g in groups] == [layer_name(k) for k in DEFAULT_LAYERS] + [LEGEND_LAYER]
-    assert [g.get(f"{INK}label") for g in groups][:4] == ["reference - glue (not cut)", "score - seam", "score - valley", "score - mountain"]
+    assert [g.get(f"{INK}label") for g in groups] == [layer_name(k) for k in DEFAULT_LAYERS] + [
+        LEGEND_LAYER
+    ]
+    assert [g.get(f"{INK}label") for g in groups][:4] == [
+        "reference - glue (not cut)",
+        "score - seam",
+        "score - valley",
+        "score - mountain",
+    ]
     assert all(g.get(f"{INK}groupmode") == "layer" for g in groups)
     by_name = {k: g for k, g in zip([*DEFAULT_LAYERS, "legend"], groups)}
     legend = by_name.pop("legend")
@@ -684,20 +791,43 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
     texts = [t.text for t in by_name["labels"].findall("svg:text", NS)]
     assert sorted(texts) == sorted(["tube 1 · sheet A", "tube 1 · sheet B", "S0", "S0", "S1", "S1"])
     # coordinates are page mm, y flipped: every point inside the margins
-    pts = np.array([[float(v) for v in pair.split(",")]
-                    for g in groups for el in g if el.get("points") for pair in el.get("points").split()])
+    pts = np.array(
+        [
+            [float(v) for v in pair.split(",")]
+            for g in groups
+            for el in g
+            if el.get("points")
+            for pair in el.get("points").split()
+        ]
+    )
     assert pts.min() >= 10 - 1e-6 and pts[:, 0].max() <= 200 and pts[:, 1].max() <= 287
-    assert pts[:, 1].max() <= 287 - tube_layout.footer  # the sheets keep clear of the footer band (SVG y runs down)
+    # the sheets keep clear of the footer band (SVG y runs down)
+    assert pts[:, 1].max() <= 287 - tube_layout.footer
     # the footer: a 10 mm scale bar with the print scale, and a legend of what this page draws
-    bar = np.array([[float(v) for v in pair.split(",")] for pair in legend[0].get("points").split()])
-    assert np.ptp(bar[:, 0]) == pytest.approx(10.0) and 297 - 10 - tube_layout.footer <= bar[:, 1].min() <= bar[:, 1].max() <= 287
+    bar = np.array(
+        [[float(v) for v in pair.split(",")] for pair in legend[0].get("points").split()]
+    )
+    assert (
+        np.ptp(bar[:, 0]) == pytest.approx(10.0)
+        and 297 - 10 - tube_layout.footer <= bar[:, 1].min() <= bar[:, 1].max() <= 287
+    )
     words = [t.text for t in legend.iter(f"{{{NS['svg']}}}text")]
-    assert any("10 mm: print at 100 %" in w and "1 model unit = " in w and "page 1 of 1" in w for w in words)
+    assert any(
+        "10 mm: print at 100 %" in w and "1 model unit = " in w and "page 1 of 1" in w
+        for w in words
+    )
     colours = CUTTERS["print"].colours
-    assert {f"{LEGEND[k]} {colours[k]}" for k in ("cut", "mountain", "valley", "seam", "glue", "labels")} | {"S1"} <= set(words)
-    # nothing in the legend is drawn in an operation's colour: the scale bar, the samples and the text are grey
-    painted = {m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", f"{el.get('style', '')}")}
-    assert painted == {colours["legend"]} and colours["legend"] not in {colours[k] for k in DEFAULT_LAYERS}
+    assert {
+        f"{LEGEND[k]} {colours[k]}" for k in ("cut", "mountain", "valley", "seam", "glue", "labels")
+    } | {"S1"} <= set(words)
+    # nothing in the legend is drawn in an operation's colour: the scale bar, the samples and the
+    # text are grey
+    painted = {
+        m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", f"{el.get('style', '')}")
+    }
+    assert painted == {colours["legend"]} and colours["legend"] not in {
+        colours[k] for k in DEFAULT_LAYERS
+    }
 
 
 def _png(path: Path) -> np.ndarray:
@@ -723,7 +853,10 @@ def _colour_counts(img: np.ndarray) -> dict[str, int]:
 def test_svg_renders_at_true_size_with_every_layer_visible(tmp_path, tube_layout):
     (path,) = write_svg(tmp_path / "tube.svg", tube_layout)
     png = tmp_path / "tube.png"
-    subprocess.run(["rsvg-convert", "-d", "150", "-p", "150", "-b", "white", str(path), "-o", str(png)], check=True)
+    subprocess.run(
+        ["rsvg-convert", "-d", "150", "-p", "150", "-b", "white", str(path), "-o", str(png)],
+        check=True,
+    )
     img = _png(png)
     assert np.abs(np.array(img.shape[:2]) - np.array([297, 210]) / 25.4 * 150).max() <= 1
     counts = _colour_counts(img)
@@ -743,10 +876,15 @@ def test_svg_pages_get_numbered_files(tmp_path, vault_layout):
         assert len(root.findall("svg:g[@id='layer-labels']/svg:text", NS)) == len(page.labels())
     (one,) = write_svg(tmp_path / "second.svg", vault_layout, 1, layers=LAYERS)
     root = ET.parse(one).getroot()
-    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [layer_name(k) for k in LAYERS] + [LEGEND_LAYER]
-    with pytest.raises(InputError, match=rf"page_index must be an integer in \[0, {n - 1}\], got {n}$"):
+    assert [g.get(f"{INK}label") for g in root.findall("svg:g", NS)] == [
+        layer_name(k) for k in LAYERS
+    ] + [LEGEND_LAYER]
+    with pytest.raises(
+        InputError, match=rf"page_index must be an integer in \[0, {n - 1}\], got " rf"{n}$"
+    ):
         write_svg(tmp_path / "x.svg", vault_layout, n)
-    with pytest.raises(InputError, match=r"page_index must be an integer .*, got boolean True$"):  # was taken as page 1
+    # was taken as page 1
+    with pytest.raises(InputError, match=r"page_index must be an integer .*, got boolean True$"):
         write_svg(tmp_path / "x.svg", vault_layout, True)
     with pytest.raises(InputError, match="layers must be among"):
         write_svg(tmp_path / "x.svg", vault_layout, layers=["cut", "engrave"])
@@ -784,15 +922,21 @@ def test_dxf_reads_back_with_layers_linetypes_units_and_entities(tmp_path, vault
     assert not auditor.has_errors, [str(e) for e in auditor.errors]
     assert doc.header["$INSUNITS"] == 4
     by_name = {layer.dxf.name: layer for layer in doc.layers}
-    assert {layer_name(k) for k in DEFAULT_LAYERS} <= set(by_name) and "engrave - rulings" not in by_name
+    assert {layer_name(k) for k in DEFAULT_LAYERS} <= set(
+        by_name
+    ) and "engrave - rulings" not in by_name
     layers = {k: by_name[layer_name(k)] for k in DEFAULT_LAYERS}
     assert layers["cut"].dxf.linetype.upper() == "CONTINUOUS"
-    assert layers["mountain"].dxf.linetype == "DASHDOTTINY"  # LibreCAD's small built-in patterns by name, ours inside
+    # LibreCAD's small built-in patterns by name, ours inside
+    assert layers["mountain"].dxf.linetype == "DASHDOTTINY"
     assert layers["valley"].dxf.linetype == "DASHEDTINY"
     assert layers["seam"].dxf.linetype == "DOTTINY"
     assert (layers["cut"].color, layers["mountain"].color, layers["valley"].color) == (7, 1, 5)
-    assert doc.linetypes.get("DASHEDTINY").simplified_line_pattern() == pytest.approx((3.0, 1.5))  # mm
-    assert doc.linetypes.get("DASHDOTTINY").simplified_line_pattern() == pytest.approx((4.0, 1.2, 0.7, 1.2))
+    # mm
+    assert doc.linetypes.get("DASHEDTINY").simplified_line_pattern() == pytest.approx((3.0, 1.5))
+    assert doc.linetypes.get("DASHDOTTINY").simplified_line_pattern() == pytest.approx(
+        (4.0, 1.2, 0.7, 1.2)
+    )
     msp = doc.modelspace()
     sheets = vault_layout.sheets()
 
@@ -843,15 +987,23 @@ def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layou
     counts = _colour_counts(img)
     assert counts["ink"] > 1000 and counts["red"] > 10 and counts["blue"] > 10
     dpi = 300
-    subprocess.run(["pdftoppm", "-r", str(dpi), "-png", str(path), str(tmp_path / "high")], check=True)
+    subprocess.run(
+        ["pdftoppm", "-r", str(dpi), "-png", str(path), str(tmp_path / "high")], check=True
+    )
     (high,) = tmp_path.glob("high-*.png")
     img = _png(high)
     mm = dpi / 25.4
     ink = img.max(axis=-1) < 0.9
-    edge = int(9.5 * mm)  # printers leave the outer 3–6 mm blank: nothing is drawn within 9.5 mm of an edge
-    assert not ink[:edge].any() and not ink[-edge:].any() and not ink[:, :edge].any() and not ink[:, -edge:].any()
-    band = img[-int((10 + tube_layout.footer) * mm):-int(10 * mm), : int(25 * mm)]
-    grey = (np.abs(band - 0.5).max(axis=-1) < 0.06)  # the footer's reference grey, #808080
+    # printers leave the outer 3–6 mm blank: nothing is drawn within 9.5 mm of an edge
+    edge = int(9.5 * mm)
+    assert (
+        not ink[:edge].any()
+        and not ink[-edge:].any()
+        and not ink[:, :edge].any()
+        and not ink[:, -edge:].any()
+    )
+    band = img[-int((10 + tube_layout.footer) * mm) : -int(10 * mm), : int(25 * mm)]
+    grey = np.abs(band - 0.5).max(axis=-1) < 0.06  # the footer's reference grey, #808080
     row = grey[np.argmax(grey.sum(axis=1))]
     runs = np.diff(np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]]))))[::2]
     assert runs.max() / mm == pytest.approx(10.0, abs=0.15)
@@ -859,14 +1011,21 @@ def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layou
 
 def test_pdf_scale_bar_is_10_mm_and_every_operation_has_its_layer(tmp_path, tube_layout):
     """pdfplumber (pdfminer) reads the drawing back: the scale bar is a 10.00 mm rectangle in the
-    reference colour, the labels are text, and the document lists one optional-content layer per operation."""
+    reference colour, the labels are text, and the document lists one optional-content layer per
+    operation."""
     pdfplumber = pytest.importorskip("pdfplumber")
     path = write_pdf(tmp_path / "tube.pdf", tube_layout)
     mm = 72 / 25.4
     with pdfplumber.open(path) as doc:
         (page,) = doc.pages
         assert (page.width, page.height) == pytest.approx((210 * mm, 297 * mm))
-        bars = [c for c in page.curves + page.rects if c.get("fill") and abs(c["width"] - 10 * mm) < 0.5 and abs(c["height"] - 1.2 * mm) < 0.1]
+        bars = [
+            c
+            for c in page.curves + page.rects
+            if c.get("fill")
+            and abs(c["width"] - 10 * mm) < 0.5
+            and abs(c["height"] - 1.2 * mm) < 0.1
+        ]
         assert len(bars) == 1 and bars[0]["width"] / mm == pytest.approx(10.0, abs=1e-3)
         assert tuple(bars[0]["non_stroking_color"]) == pytest.approx((128 / 255,) * 3, abs=1e-3)
         words = page.extract_text()
@@ -887,12 +1046,14 @@ def test_pdf_text_is_centred_with_the_fonts_own_widths(tmp_path, tube_layout):
         chars = doc.pages[0].chars
     text = "".join(c["text"] for c in chars)
     start = text.index("10 mm: print")
-    run = chars[start:start + len(note.text)]
+    run = chars[start : start + len(note.text)]
     assert "".join(c["text"] for c in run) == note.text
     left, right = run[0]["x0"] / mm, run[-1]["x1"] / mm
     assert 0.5 * (left + right) == pytest.approx(note.position[0], abs=5e-3)
-    assert right - left == pytest.approx(pdf.text_advance(note.text, note.size), abs=5e-3)  # positions written to 0.1 µm, sizes to 4 decimals
-    assert right - left <= labels.text_width(note.text, note.size)  # within the box the layout kept clear
+    # positions written to 0.1 µm, sizes to 4 decimals
+    assert right - left == pytest.approx(pdf.text_advance(note.text, note.size), abs=5e-3)
+    # within the box the layout kept clear
+    assert right - left <= labels.text_width(note.text, note.size)
 
 
 # --------------------------------------------------------------------------------------
@@ -923,7 +1084,9 @@ def test_svg_write_failing_midway_leaves_nothing(tmp_path, vault_layout, monkeyp
     assert _leftovers(tmp_path) == []
 
 
-def test_dxf_write_failing_midway_leaves_nothing_and_keeps_the_old_file(tmp_path, tube_layout, monkeypatch):
+def test_dxf_write_failing_midway_leaves_nothing_and_keeps_the_old_file(
+    tmp_path, tube_layout, monkeypatch
+):
     ezdxf = pytest.importorskip("ezdxf")
     old = tmp_path / "tube.dxf"
     old.write_text("old")
@@ -956,4 +1119,6 @@ def test_writers_refuse_what_is_not_a_layout(tmp_path):
         with pytest.raises(InputError, match="layout must be a Layout"):
             writer(tmp_path / "x.out", "not a layout")
     assert _leftovers(tmp_path) == []
-    assert cutters.STYLES.keys() == {*LAYERS, "legend"} and all(c.colours.keys() == {*LAYERS, "legend"} for c in CUTTERS.values())
+    assert cutters.STYLES.keys() == {*LAYERS, "legend"} and all(
+        c.colours.keys() == {*LAYERS, "legend"} for c in CUTTERS.values()
+    )

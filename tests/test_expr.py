@@ -152,7 +152,9 @@ def test_works_with_as_function():
 def test_doc_example_error_message_is_exact():
     with pytest.raises(InputError) as info:
         compile_expression("s.__class__", name="kappa")
-    assert str(info.value) == "kappa: attribute access is not allowed in expressions ('s.__class__')"
+    assert (
+        str(info.value) == "kappa: attribute access is not allowed in expressions ('s.__class__')"
+    )
 
 
 # --------------------------------------------------------------------------------------------
@@ -162,7 +164,10 @@ def test_doc_example_error_message_is_exact():
 @pytest.mark.parametrize(
     ("text", "match"),
     [
-        ("s.__class__", r"kappa: attribute access is not allowed in expressions \('s\.__class__'\)"),
+        (
+            "s.__class__",
+            r"kappa: attribute access is not allowed in expressions " r"\('s\.__class__'\)",
+        ),
         ("().__class__", r"attribute access is not allowed .*\('\(\)\.__class__'\)"),
         ("__import__('os')", r"kappa: function '__import__' is not allowed \(allowed: sin, cos, "),
         ("open(s)", r"kappa: function 'open' is not allowed \(allowed: sin, cos, tan, "),
@@ -274,7 +279,8 @@ def _refused_quickly(text: str, match: str) -> None:
         ("(" * 300 + "s" + ")" * 300, r"too many nested parentheses"),
         ("-" * (MAX_LENGTH - 1) + "s", r"nested too deeply"),
         ("sin(" * 60 + "s" + ")" * 60, r"nested too deeply \(more than 50 levels\)"),
-        ("1+" * 499 + "1", rf"more than {MAX_NODES} terms"),  # a flat sum is one level deep, but 999 terms
+        # a flat sum is one level deep, but 999 terms
+        ("1+" * 499 + "1", rf"more than {MAX_NODES} terms"),
         # 20 products of 20 factors: 799 terms at depth ~40.
         ("+".join(["*".join(["s"] * 20)] * 20), rf"more than {MAX_NODES} terms"),
         ("s+" * 5000 + "s", rf"expression is 10001 characters long, the limit is {MAX_LENGTH}"),
@@ -295,7 +301,8 @@ def test_a_chain_of_operations_is_one_level_deep():
     s = np.linspace(0.5, 2.5, 9)
     flat = "+".join(["s"] * 51) + "-s*2/s"  # 53 operations along the left operands
     assert_allclose(compile_expression(flat)(s), 51 * s - 2, rtol=1e-15)
-    assert_array_equal(compile_expression("2+s*3-1/s**2")(s), 2 + s * 3 - 1 / s**2)  # left to right, as Python
+    # left to right, as Python
+    assert_array_equal(compile_expression("2+s*3-1/s**2")(s), 2 + s * 3 - 1 / s**2)
     with pytest.raises(InputError, match="nested too deeply"):
         compile_expression("s+(" * 51 + "s" + ")" * 51)  # a chain on the right operands nests
 
@@ -327,9 +334,17 @@ def test_random_text_only_raises_input_error(text):
 # same tree with NumPy, constants as float64 scalars exactly as the compiler folds them.
 _BIN = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.true_divide}
 _CALLS = {
-    "sin": (np.sin, 1), "cos": (np.cos, 1), "tanh": (np.tanh, 1), "exp": (np.exp, 1),
-    "sqrt": (np.sqrt, 1), "abs": (np.abs, 1), "atan": (np.arctan, 1), "log": (np.log, 1),
-    "arctan2": (np.arctan2, 2), "min": (np.minimum, 2), "max": (np.maximum, 2),
+    "sin": (np.sin, 1),
+    "cos": (np.cos, 1),
+    "tanh": (np.tanh, 1),
+    "exp": (np.exp, 1),
+    "sqrt": (np.sqrt, 1),
+    "abs": (np.abs, 1),
+    "atan": (np.arctan, 1),
+    "log": (np.log, 1),
+    "arctan2": (np.arctan2, 2),
+    "min": (np.minimum, 2),
+    "max": (np.maximum, 2),
     "clip": (lambda x, lo, hi: np.minimum(np.maximum(x, lo), hi), 3),
 }
 
@@ -405,7 +420,12 @@ def test_random_trees_match_numpy_reference(tree):
 
 
 def test_tree_text_is_parsed_back_exactly():
-    tree = ("bin", "*", ("const", 0.1), ("call", "clip", ("var",), ("name", "pi"), ("neg", ("const", 2.0))))
+    tree = (
+        "bin",
+        "*",
+        ("const", 0.1),
+        ("call", "clip", ("var",), ("name", "pi"), ("neg", ("const", 2.0))),
+    )
     assert _text(tree) == "(0.1) * (clip(s, pi, -(2.0)))"
     assert_array_equal(compile_expression(_text(tree))(S), np.full(S.shape, 0.1 * -2.0))
 

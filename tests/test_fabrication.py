@@ -29,7 +29,16 @@ from _meshes import assert_written
 from _node import run_node
 from curvefold import Crease, CurvefoldError, InputError, Lattice, SpaceCurve, Structure
 from curvefold.geometry import fold_angles
-from curvefold.geometry._sheets import Bond, PatternSheet, bonds, flat_plane, folding_motion, sheet_vertices, sheets, unroll_strip
+from curvefold.geometry._sheets import (
+    Bond,
+    PatternSheet,
+    bonds,
+    flat_plane,
+    folding_motion,
+    sheet_vertices,
+    sheets,
+    unroll_strip,
+)
 from curvefold.io import (
     MODEL_FORMATS,
     FoldOutput,
@@ -76,8 +85,6 @@ def structure(request):
     return request.getfixturevalue(request.param)
 
 
-
-
 def needs(tool: str):
     return pytest.mark.skipif(shutil.which(tool) is None, reason=f"{tool} not installed")
 
@@ -86,7 +93,9 @@ def turning(points: np.ndarray) -> float:
     """Largest angle between consecutive chords of polylines (..., n, 3): θ ≈ κh."""
     d = np.diff(points, axis=-2)
     d /= np.linalg.norm(d, axis=-1, keepdims=True)
-    return float(np.arccos(np.clip(np.einsum("...i,...i->...", d[..., :-1, :], d[..., 1:, :]), -1, 1)).max())
+    return float(
+        np.arccos(np.clip(np.einsum("...i,...i->...", d[..., :-1, :], d[..., 1:, :]), -1, 1)).max()
+    )
 
 
 def signed_areas(xy: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -112,7 +121,9 @@ def test_sheet_counts_labels_and_vertex_maps(structure):
     parts = sheets(structure)
     K = len(structure.cells)
     assert len(parts) == 2 * K
-    assert [p.label for p in parts] == [f"tube {k} · sheet {s}" for k in range(1, K + 1) for s in "AB"]
+    assert [p.label for p in parts] == [
+        f"tube {k} · sheet {s}" for k in range(1, K + 1) for s in "AB"
+    ]
     assert all(isinstance(p, PatternSheet) for p in parts)
     assert sheets(structure, name="vault")[-1].label == f"vault · tube {K} · sheet B"
     n = len(structure.lattice.s)
@@ -121,7 +132,9 @@ def test_sheet_counts_labels_and_vertex_maps(structure):
     for k in range(K):
         for s, corners in enumerate(((3, 0, 1), (1, 2, 3))):
             idx = maps[2 * k + s]
-            assert_array_equal(idx, np.concatenate([(4 * k + c) * n + np.arange(n) for c in corners]))
+            assert_array_equal(
+                idx, np.concatenate([(4 * k + c) * n + np.arange(n) for c in corners])
+            )
             p = parts[2 * k + s]
             assert len(p.mesh.vertices_coords) == 3 * n
             assert_array_equal(p.mesh.vertices_coords[:, 2], 0.0)
@@ -138,7 +151,8 @@ def test_flat_state_is_one_plane_through_curve_1(tube):
     size = np.ptp(flat.vertices.reshape(-1, 3), axis=0).max()
     assert plane.residual < 1e-12 * size
     assert_allclose(plane.axes @ plane.axes.T, np.eye(3), atol=1e-14)
-    assert_allclose(plane.axes[2], tube.lattice.crease.curve.frames[0][:, 2], atol=1e-12)  # binormal at the start
+    # binormal at the start
+    assert_allclose(plane.axes[2], tube.lattice.crease.curve.frames[0][:, 2], atol=1e-12)
     assert_allclose(plane.coords(tube.lattice.crease.curve.points[0]), [0, 0], atol=0)
     with pytest.raises(CurvefoldError, match="flat state is not planar"):
         flat_plane(tube.state(90))
@@ -149,7 +163,11 @@ def test_seams_pair_up_across_the_two_sheets_of_a_tube(structure):
     maps = sheet_vertices(structure)
     for k in range(len(structure.cells)):
         a, b = parts[2 * k], parts[2 * k + 1]
-        assert set(a.edges_seam[a.edges_seam >= 0]) == set(b.edges_seam[b.edges_seam >= 0]) == {2 * k, 2 * k + 1}
+        assert (
+            set(a.edges_seam[a.edges_seam >= 0])
+            == set(b.edges_seam[b.edges_seam >= 0])
+            == {2 * k, 2 * k + 1}
+        )
         for sid in (2 * k, 2 * k + 1):
             got = []
             for p, idx in ((a, maps[2 * k]), (b, maps[2 * k + 1])):
@@ -158,7 +176,8 @@ def test_seams_pair_up_across_the_two_sheets_of_a_tube(structure):
                 order = np.lexsort(key.T[::-1])
                 got.append((key[order], p.mesh.edge_lengths()[ids][order]))
             assert_array_equal(got[0][0], got[1][0])  # the same curve edges on both sheets
-            assert_allclose(got[0][1], got[1][1], rtol=1e-12, atol=0)  # equal lengths: one flat curve
+            # equal lengths: one flat curve
+            assert_allclose(got[0][1], got[1][1], rtol=1e-12, atol=0)
             n = len(structure.lattice.s)
             assert len(got[0][1]) == n - 1
 
@@ -173,8 +192,17 @@ def test_edge_kinds_and_mountain_valley(tube):
         m = p.mesh
         corner = (idx[m.edges_vertices] // n) % 4
         same = corner[:, 0] == corner[:, 1]
-        kinds = {k: int(np.count_nonzero(m.edges_kind == k)) for k in ("fold", "seam", "boundary", "ruling", "diagonal")}
-        assert kinds == {"fold": n - 1, "seam": 2 * (n - 1), "boundary": 4, "ruling": 2 * (n - 2), "diagonal": 2 * (n - 1)}
+        kinds = {
+            k: int(np.count_nonzero(m.edges_kind == k))
+            for k in ("fold", "seam", "boundary", "ruling", "diagonal")
+        }
+        assert kinds == {
+            "fold": n - 1,
+            "seam": 2 * (n - 1),
+            "boundary": 4,
+            "ruling": 2 * (n - 2),
+            "diagonal": 2 * (n - 1),
+        }
         fold_corner = (0, 2)[s]
         assert (corner[m.edges_kind == "fold"] == fold_corner).all()  # crease 1 on A, crease 3 on B
         assert set(corner[m.edges_kind == "seam"].ravel()) == {1, 3}  # seams 2 and 4
@@ -187,7 +215,8 @@ def test_edge_kinds_and_mountain_valley(tube):
         assert set(m.edges_assignment[np.isin(m.edges_kind, ("seam", "boundary"))]) == {"B"}
         assert set(m.edges_assignment[np.isin(m.edges_kind, ("ruling", "diagonal"))]) == {"F"}
         assert_array_equal(m.edges_foldAngle[np.isin(m.edges_kind, ("seam", "boundary"))], 0.0)
-        bends = m.edges_foldAngle[np.isin(m.edges_kind, ("ruling", "diagonal"))]  # the design state's, small
+        # the design state's, small
+        bends = m.edges_foldAngle[np.isin(m.edges_kind, ("ruling", "diagonal"))]
         assert 0 < np.abs(bends).max() < 10 * np.degrees(theta)
     # another target angle changes the angles, not the geometry
     at60 = sheets(tube, fold_angle=60)
@@ -198,7 +227,10 @@ def test_edge_kinds_and_mountain_valley(tube):
 
 def test_sheets_are_seen_from_outside_the_tube(structure):
     """Counter-clockwise in 2D, and the same vertex cycles as the tube mesh (outward normals)."""
-    tube_faces = {tuple(np.roll(f, -int(np.argmin(f)))) for f in structure.state().mesh().faces_vertices.tolist()}
+    tube_faces = {
+        tuple(np.roll(f, -int(np.argmin(f))))
+        for f in structure.state().mesh().faces_vertices.tolist()
+    }
     for p, idx in zip(sheets(structure), sheet_vertices(structure)):
         assert (signed_areas(p.mesh.vertices_coords[:, :2], p.mesh.faces_vertices) > 0).all()
         cycles = idx[p.mesh.faces_vertices]
@@ -255,11 +287,17 @@ def _unrolling_error(samples: int, fold_angle: float = 90.0) -> tuple[float, flo
     for c in range(4):
         s = 0 if c in (3, 0) else 1  # strip c → c+1 lies on sheet A (4→1, 1→2) or B (2→3, 3→4)
         lookup = {v: i for i, v in enumerate(maps[s].tolist())}
-        rows = [[lookup[c * n + j] for j in range(n)], [lookup[((c + 1) % 4) * n + j] for j in range(n)]]
+        rows = [
+            [lookup[c * n + j] for j in range(n)],
+            [lookup[((c + 1) % 4) * n + j] for j in range(n)],
+        ]
         target = parts[s].mesh.vertices_coords[np.array(rows).ravel(), :2]
         got = unroll_strip(folded[c], folded[(c + 1) % 4]).reshape(-1, 2)
         worst = max(worst, rigid_residual(got, target))
-        flat_worst = max(flat_worst, rigid_residual(unroll_strip(flat[c], flat[(c + 1) % 4]).reshape(-1, 2), target))
+        flat_worst = max(
+            flat_worst,
+            rigid_residual(unroll_strip(flat[c], flat[(c + 1) % 4]).reshape(-1, 2), target),
+        )
     length = max(float(np.linalg.norm(np.diff(folded, axis=1), axis=-1).sum(axis=1).max()), 1.0)
     return worst, length * turning(folded) ** 2 / 24, flat_worst
 
@@ -308,7 +346,8 @@ def test_bonds(tube, stack, block):
     assert bonds(stack) == (Bond((1, 1), ((0, 3), (1, 1))),)
     assert bonds(stack)[0].describe() == "curve (1, 1): tube 1 crease 3 + tube 2 crease 1"
     got = {b.curve: b.creases for b in bonds(block)}
-    assert got[(1, 1)] == ((0, 3), (1, 4), (2, 2), (3, 1))  # the block's centre line joins four tubes
+    # the block's centre line joins four tubes
+    assert got[(1, 1)] == ((0, 3), (1, 4), (2, 2), (3, 1))
     assert set(got) == {(0, 1), (1, 0), (1, 1), (1, 2), (2, 1)}
 
 
@@ -327,8 +366,9 @@ def test_folding_motion_is_the_states(stack):
 
 
 def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
-    model = to_fold(stack, FoldOutput(unit="m", metadata={"name": "stack"}),
-                    fold_angles=[0.0, 60.0, 90.0])
+    model = to_fold(
+        stack, FoldOutput(unit="m", metadata={"name": "stack"}), fold_angles=[0.0, 60.0, 90.0]
+    )
     cp = model.crease_pattern
     parts, maps = sheets(stack), sheet_vertices(stack)
     source = np.concatenate(maps)
@@ -336,26 +376,41 @@ def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
     assert_array_equal(cp.vertices_coords[:, 2], 0.0)
     assert (signed_areas(cp.vertices_coords[:, :2], cp.faces_vertices) > 0).all()
     start = np.cumsum([0] + [len(p.mesh.vertices_coords) for p in parts])
-    boxes = [(cp.vertices_coords[a:b, 0].min(), cp.vertices_coords[a:b, 0].max()) for a, b in zip(start[:-1], start[1:])]
+    boxes = [
+        (cp.vertices_coords[a:b, 0].min(), cp.vertices_coords[a:b, 0].max())
+        for a, b in zip(start[:-1], start[1:])
+    ]
     assert all(hi < lo for (_, hi), (lo, _) in zip(boxes[:-1], boxes[1:]))
     for p, a, b in zip(parts, start[:-1], start[1:]):  # each sheet only translated
-        assert_allclose(cp.vertices_coords[a:b, :2] - p.mesh.vertices_coords[:, :2],
-                        np.broadcast_to(cp.vertices_coords[a, :2] - p.mesh.vertices_coords[0, :2], (b - a, 2)), atol=1e-12)
+        assert_allclose(
+            cp.vertices_coords[a:b, :2] - p.mesh.vertices_coords[:, :2],
+            np.broadcast_to(cp.vertices_coords[a, :2] - p.mesh.vertices_coords[0, :2], (b - a, 2)),
+            atol=1e-12,
+        )
     # folded frames: the tube mesh's vertices on the sheets' topology
     assert [t for t, _ in model.folded] == ["fold angle 0°", "fold angle 60°", "fold angle 90°"]
     for (_, m), a in zip(model.folded, (0.0, 60.0, 90.0)):
         for name in ("edges_vertices", "faces_vertices", "edges_kind", "faces_group"):
             assert_array_equal(getattr(m, name), getattr(cp, name))
-        assert_allclose(m.vertices_coords, stack.state(a).mesh().vertices_coords[source], atol=1e-12, rtol=0)
+        assert_allclose(
+            m.vertices_coords, stack.state(a).mesh().vertices_coords[source], atol=1e-12, rtol=0
+        )
         ev, x = m.edges_vertices, m.vertices_coords
         # the glue check: seam partners coincide (their edges run opposite ways)
-        assert_allclose(x[ev[model.seam_partners[:, 0]]], x[ev[model.seam_partners[:, 1]]][:, ::-1], atol=1e-12, rtol=0)
+        assert_allclose(
+            x[ev[model.seam_partners[:, 0]]],
+            x[ev[model.seam_partners[:, 1]]][:, ::-1],
+            atol=1e-12,
+            rtol=0,
+        )
     # every seam edge is paired once, with an edge of the other sheet of its tube
     seam = np.flatnonzero(cp.edges_kind == "seam")
     assert_array_equal(np.sort(model.seam_partners.ravel()), seam)
     sheet_of_edge = np.repeat(np.arange(len(parts)), [len(p.mesh.edges_vertices) for p in parts])
     pair_sheets = sheet_of_edge[model.seam_partners]
-    assert (pair_sheets[:, 0] // 2 == pair_sheets[:, 1] // 2).all() and (pair_sheets[:, 0] != pair_sheets[:, 1]).all()
+    assert (pair_sheets[:, 0] // 2 == pair_sheets[:, 1] // 2).all() and (
+        pair_sheets[:, 0] != pair_sheets[:, 1]
+    ).all()
     # bonds: crease 3 of tube 1 (sheet B) and crease 1 of tube 2 (sheet A) coincide when folded
     n = len(stack.lattice.s)
     on_b1 = start[1] + np.flatnonzero(maps[1] // n == 2)  # tube 0, corner index 2
@@ -368,18 +423,32 @@ def test_fold_model_shares_one_topology_and_closes_its_seams(stack):
 
 
 def test_fold_file_round_trip(tmp_path, tube):
-    path = write_structure_fold(tmp_path / "tube.fold", tube, fold_angles=[30.0, 90.0],
-                                title="helix tube", output=FoldOutput(unit="mm"))
+    path = write_structure_fold(
+        tmp_path / "tube.fold",
+        tube,
+        fold_angles=[30.0, 90.0],
+        title="helix tube",
+        output=FoldOutput(unit="mm"),
+    )
     model = to_fold(tube, fold_angles=[30.0, 90.0], output=FoldOutput(unit="mm"))
     back = read_fold(path)
     doc = json.loads(path.read_text())
     assert doc["file_title"] == "helix tube" and doc["frame_unit"] == "mm"
     assert all(len(c) == 2 for c in doc["vertices_coords"])
     cp = model.crease_pattern
-    assert_written(back.crease_pattern.vertices_coords, cp.vertices_coords)  # to 1e-12 of the size, as written
-    for name in ("edges_vertices", "faces_vertices", "edges_kind", "faces_group", "edges_assignment"):
+    # to 1e-12 of the size, as written
+    assert_written(back.crease_pattern.vertices_coords, cp.vertices_coords)
+    for name in (
+        "edges_vertices",
+        "faces_vertices",
+        "edges_kind",
+        "faces_group",
+        "edges_assignment",
+    ):
         assert_array_equal(getattr(back.crease_pattern, name), getattr(cp, name), err_msg=name)
-    assert_allclose(back.crease_pattern.edges_foldAngle, cp.edges_foldAngle, rtol=0, atol=10.0**-ANGLE_DECIMALS)
+    assert_allclose(
+        back.crease_pattern.edges_foldAngle, cp.edges_foldAngle, rtol=0, atol=10.0**-ANGLE_DECIMALS
+    )
     assert_array_equal(back.seam_partners, model.seam_partners)
     assert back.metadata == model.metadata and back.unit == "mm"
     for (t1, got), (t2, want) in zip(back.folded, model.folded):
@@ -406,7 +475,8 @@ def test_fold_rejects_bad_input(tube):
 
 @pytest.mark.node
 def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
-    """The file is a valid FOLD graph, and its crease pattern folded by each frame's own angles lands on the frame.
+    """The file is a valid FOLD graph, and its crease pattern folded by each frame's own angles
+    lands on the frame.
 
     Every frame records the dihedral angle it has at every edge (a curved sheet bends across
     its rulings and diagonals too). Rabbit Ear folds the crease pattern by those angles and
@@ -417,7 +487,9 @@ def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
     residual = []
     for samples in (101, 201):
         st = helix_tube(samples)
-        path = write_structure_fold(tmp_path / f"t{samples}.fold", st, fold_angles=[0.0, 60.0, 120.0])
+        path = write_structure_fold(
+            tmp_path / f"t{samples}.fold", st, fold_angles=[0.0, 60.0, 120.0]
+        )
         report = run_node("check_fold.mjs", str(path))
         fold, ear = report["fold"], report["rabbit_ear"]
         faces = 8 * (samples - 1)
@@ -429,7 +501,10 @@ def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
         assert ear["frames"][0]["max_distance"] < 1e-12  # the flat frame
         model = to_fold(st, fold_angles=[0.0, 60.0, 120.0])
         # L·θ²/24 over the frame's size L, θ measured on its first curve
-        bound = max(np.ptp(m.vertices_coords, axis=0).max() * turning(m.vertices_coords[:samples]) ** 2 / 24 for _, m in model.folded)
+        bound = max(
+            np.ptp(m.vertices_coords, axis=0).max() * turning(m.vertices_coords[:samples]) ** 2 / 24
+            for _, m in model.folded
+        )
         residual.append(max(f["max_distance"] for f in ear["frames"]))
         assert residual[-1] < bound, (residual, bound)
     assert 3.6 < residual[0] / residual[1] < 4.4, residual
@@ -438,7 +513,10 @@ def test_node_fold_and_rabbit_ear_check_the_structure_file(tmp_path):
     for frame in doc["file_frames"]:
         frame["edges_foldAngle"] = np.where(flat, 0.0, frame["edges_foldAngle"]).tolist()
     path.write_text(json.dumps(doc))
-    assert run_node("check_fold.mjs", str(path))["rabbit_ear"]["frames"][2]["max_distance"] > 100 * residual[-1]
+    assert (
+        run_node("check_fold.mjs", str(path))["rabbit_ear"]["frames"][2]["max_distance"]
+        > 100 * residual[-1]
+    )
 
 
 @pytest.mark.node
@@ -446,10 +524,16 @@ def test_node_single_sheet_file_for_origami_simulator(tmp_path, tube):
     sheet = sheets(tube)[0]
     path = write_sheet_fold(tmp_path / "sheet.fold", sheet.mesh, "unit", title=sheet.label)
     doc = json.loads(path.read_text())
-    assert doc["frame_classes"] == ["creasePattern"] and all(len(c) == 2 for c in doc["vertices_coords"])
+    assert doc["frame_classes"] == ["creasePattern"] and all(
+        len(c) == 2 for c in doc["vertices_coords"]
+    )
     fold = np.array(doc["edges_curvefold:kind"]) == "fold"
-    assert_allclose(np.array(doc["edges_foldAngle"])[fold], sheet.mesh.edges_foldAngle[fold], rtol=0,
-                    atol=10.0**-ANGLE_DECIMALS)  # target angles, as written
+    assert_allclose(
+        np.array(doc["edges_foldAngle"])[fold],
+        sheet.mesh.edges_foldAngle[fold],
+        rtol=0,
+        atol=10.0**-ANGLE_DECIMALS,
+    )  # target angles, as written
     assert set(np.array(doc["edges_assignment"])[fold]) == {"M"}
     report = run_node("check_fold.mjs", str(path))
     assert report["fold"]["same_orientation"]
@@ -470,12 +554,18 @@ def test_default_scale_is_plain_and_fits(stack, block):
     for st in (stack, block):
         layout = layout_pattern(st)
         mant = layout.scale / 10 ** np.floor(np.log10(layout.scale))
-        assert any(abs(mant - m) < 1e-9 for m in (1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 8)), layout.scale
+        assert any(abs(mant - m) < 1e-9 for m in (1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 8)), (
+            layout.scale
+        )
         assert not [n for n in layout.notes if "lengths differ" in n], layout.notes  # seams match
         W, H = layout.page_size
         for s in layout.sheets():
             lo, hi = s.bounds()
-            assert (lo >= layout.margin - 1e-9).all() and hi[0] <= W - layout.margin + 1e-9 and hi[1] <= H - layout.margin + 1e-9
+            assert (
+                (lo >= layout.margin - 1e-9).all()
+                and hi[0] <= W - layout.margin + 1e-9
+                and hi[1] <= H - layout.margin + 1e-9
+            )
     # the largest sheet fills a good part of the page
     biggest = max(np.ptp(s.bounds(), axis=0).max() for s in layout_pattern(stack).sheets())
     assert biggest > 0.5 * (297 - 20)
@@ -493,7 +583,7 @@ def test_write_pattern_files(stack_pattern):
     folder, paths = stack_pattern
     svgs = [p for p in paths if p.suffix == ".svg"]
     assert [p.name for p in svgs] == [f"stack-p{i + 1}.svg" for i in range(len(svgs))]
-    assert [p.name for p in paths[len(svgs):]] == ["stack.dxf", "stack.pdf"]
+    assert [p.name for p in paths[len(svgs) :]] == ["stack.dxf", "stack.pdf"]
     assert all(p.exists() for p in paths)
     assert all("layer-rulings" in p.read_text() for p in svgs)
 
@@ -507,11 +597,17 @@ def test_pattern_dxf_passes_the_ezdxf_audit(stack_pattern):
     assert doc.header["$INSUNITS"] == 4
     msp = doc.modelspace()
     assert len(msp.query('LWPOLYLINE[layer=="cut"]')) == 4
-    assert len(msp.query('LWPOLYLINE[layer=="score - mountain"]')) == 4 and len(msp.query('LWPOLYLINE[layer=="score - valley"]')) == 0
+    assert (
+        len(msp.query('LWPOLYLINE[layer=="score - mountain"]')) == 4
+        and len(msp.query('LWPOLYLINE[layer=="score - valley"]')) == 0
+    )
     assert len(msp.query('LWPOLYLINE[layer=="engrave - rulings"]')) > 0
     texts = sorted(t.dxf.text for t in msp.query('TEXT[layer=="engrave - labels"]'))
-    assert [t for t in texts if t.startswith("vault")] == [f"vault · tube {k} · sheet {s}" for k in (1, 2) for s in "AB"]
-    assert sorted(t for t in texts if t.startswith("S")) == sorted(["S0", "S1", "S2", "S3"] * 2)  # both partners named
+    assert [t for t in texts if t.startswith("vault")] == [
+        f"vault · tube {k} · sheet {s}" for k in (1, 2) for s in "AB"
+    ]
+    # both partners named
+    assert sorted(t for t in texts if t.startswith("S")) == sorted(["S0", "S1", "S2", "S3"] * 2)
 
 
 @needs("rsvg-convert")
@@ -519,7 +615,10 @@ def test_pattern_svg_renders_with_folds_and_tabs(stack_pattern):
     folder, paths = stack_pattern
     for svg in (p for p in paths if p.suffix == ".svg"):
         png = svg.with_suffix(".png")
-        subprocess.run(["rsvg-convert", "-d", "100", "-p", "100", "-b", "white", str(svg), "-o", str(png)], check=True)
+        subprocess.run(
+            ["rsvg-convert", "-d", "100", "-p", "100", "-b", "white", str(svg), "-o", str(png)],
+            check=True,
+        )
         img = _png(png)
         assert abs(img.shape[1] - 210 / 25.4 * 100) <= 1  # A4 at true size
         red = (img[..., 0] > 0.7) & (img[..., 1] < 0.35) & (img[..., 2] < 0.35)
@@ -530,13 +629,17 @@ def test_pattern_svg_renders_with_folds_and_tabs(stack_pattern):
 @needs("pdftoppm")
 def test_pattern_pdf_has_one_page_per_layout_page(stack_pattern):
     folder, paths = stack_pattern
-    subprocess.run(["pdftoppm", "-r", "30", "-png", str(folder / "stack.pdf"), str(folder / "page")], check=True)
+    subprocess.run(
+        ["pdftoppm", "-r", "30", "-png", str(folder / "stack.pdf"), str(folder / "page")],
+        check=True,
+    )
     assert len(list(folder.glob("page-*.png"))) == len([p for p in paths if p.suffix == ".svg"])
 
 
 def test_write_pattern_options(tmp_path, tube):
-    (svg,) = write_pattern(tmp_path / "tube", tube, PatternOutput(glue_tabs=False, page="A3"),
-                           formats=("svg",))
+    (svg,) = write_pattern(
+        tmp_path / "tube", tube, PatternOutput(glue_tabs=False, page="A3"), formats=("svg",)
+    )
     assert svg.name == "tube.svg" and sorted(p.name for p in tmp_path.iterdir()) == ["tube.svg"]
     text = svg.read_text()
     assert 'width="297mm"' in text and "layer-rulings" not in text
@@ -557,8 +660,16 @@ def test_write_3d_every_format(tmp_path, stack):
     mesh = stack.state().mesh()
     gltf = pygltflib.GLTF2.load(str(tmp_path / "stack.glb"))
     labels = [s.label for s in stack.topology().sheets]
-    assert [n.name for n in gltf.nodes] == [m.name for m in gltf.meshes] == labels == [f"tube {k} · sheet {x}" for k in (1, 2) for x in "AB"]
-    assert all(len(m.primitives[0].targets) == 3 and m.primitives[0].attributes.NORMAL is not None for m in gltf.meshes)
+    assert (
+        [n.name for n in gltf.nodes]
+        == [m.name for m in gltf.meshes]
+        == labels
+        == [f"tube {k} · sheet {x}" for k in (1, 2) for x in "AB"]
+    )
+    assert all(
+        len(m.primitives[0].targets) == 3 and m.primitives[0].attributes.NORMAL is not None
+        for m in gltf.meshes
+    )
     assert (tmp_path / "stack.stl").read_bytes()[:80].rstrip().endswith(b", unit cm, z up")
     assert gltf.asset.extras["curvefold"]["angles_deg"] == [0.0, 30.0, 60.0, 90.0]
     assert gltf.asset.extras["curvefold"]["metadata"]["name"] == "stack"
@@ -569,15 +680,22 @@ def test_write_3d_every_format(tmp_path, stack):
     assert len(sheets) == 4  # one mesh per sheet
     vertices = np.concatenate([[[p.X, p.Y, p.Z] for p in sheet.Vertices] for sheet in sheets])
     # the design state (read back as 32-bit floats, so ~1e-7 of the size)
-    assert_allclose(vertices, mesh.vertices_coords[np.concatenate([s.vertices for s in stack.topology().sheets])], atol=1e-6, rtol=0)
+    assert_allclose(
+        vertices,
+        mesh.vertices_coords[np.concatenate([s.vertices for s in stack.topology().sheets])],
+        atol=1e-6,
+        rtol=0,
+    )
     obj = (tmp_path / "stack.obj").read_text()
-    assert obj.count("\nf ") == len(mesh.faces_vertices) // 2 and "# unit: mm" in obj  # one quad per two triangles
+    # one quad per two triangles
+    assert obj.count("\nf ") == len(mesh.faces_vertices) // 2 and "# unit: mm" in obj
     assert (tmp_path / "stack.stl").stat().st_size == 84 + 50 * len(mesh.faces_vertices)
 
 
 def test_glb_first_keyframe_is_the_design_state_of_every_sheet(tmp_path, stack):
     """What an importer that applies the first keyframe shows (Blender): each sheet's node, at the
-    weights of the animation's first keyframe, is the design state; a later keyframe is the flat state."""
+    weights of the animation's first keyframe, is the design state; a later keyframe is the flat
+    state."""
     pygltflib = pytest.importorskip("pygltflib")
     from _gltf import accessor, target_position
 
@@ -590,12 +708,15 @@ def test_glb_first_keyframe_is_the_design_state_of_every_sheet(tmp_path, stack):
     weights = accessor(gltf, blob, anim.samplers[0].output).reshape(len(times), -1)
     to_gltf = lambda x: np.stack([x[..., 0], x[..., 2], -x[..., 1]], axis=-1)  # noqa: E731
     faces = stack.state().mesh().faces_vertices
-    for key, angle in ((0, 90.0), (3, 0.0)):  # the first keyframe, and the flat state three steps on
+    # the first keyframe, and the flat state three steps on
+    for key, angle in ((0, 90.0), (3, 0.0)):
         want = to_gltf(stack.state(angle).mesh().vertices_coords)
         for sheet, node in zip(stack.topology().sheets, gltf.nodes):
             prim = gltf.meshes[node.mesh].primitives[0]
             pose = accessor(gltf, blob, prim.attributes.POSITION) + sum(
-                w * accessor(gltf, blob, target_position(t)) for w, t in zip(weights[key], prim.targets))
+                w * accessor(gltf, blob, target_position(t))
+                for w, t in zip(weights[key], prim.targets)
+            )
             triangles = accessor(gltf, blob, prim.indices).reshape(-1, 3)
             assert_allclose(pose[triangles], want[faces[sheet.faces]], atol=1e-6, rtol=0)
     assert times[0] == 0.0 and not weights[0].any()
@@ -637,8 +758,10 @@ def test_the_writers_take_their_values_and_refuse_anything_else(tmp_path, tube):
         ("output must be a FoldOutput", lambda: to_fold(tube, ModelOutput())),
         ("output must be a FoldOutput", lambda: write_structure_fold(tmp_path / "x", tube, wrong)),
         ("options must be a GlbOptions", lambda: write_glb(glb, mesh, options=wrong)),
-        ("options must be a RhinoOptions",
-         lambda: write_3dm(rhino, quads, tube.topology("quads"), options=GlbOptions())),
+        (
+            "options must be a RhinoOptions",
+            lambda: write_3dm(rhino, quads, tube.topology("quads"), options=GlbOptions()),
+        ),
         ("rules must be a LayoutRules", lambda: layout_sheets(sheets(tube), rules=wrong)),
     ]
     for match, write in cases:

@@ -71,14 +71,16 @@ def page_files(static: Path) -> tuple[set[str], list[str]]:
         if specifier.startswith(("/", "./", "../")):
             url = urljoin(base, specifier)
         else:
-            prefixes = [k for k in imports
-                        if k == specifier or (k.endswith("/") and specifier.startswith(k))]
+            prefixes = [
+                k
+                for k in imports
+                if k == specifier or (k.endswith("/") and specifier.startswith(k))
+            ]
             if not prefixes:
-                problems.append(
-                    f"{by} imports {specifier!r}, which the import map does not name")
+                problems.append(f"{by} imports {specifier!r}, which the import map does not name")
                 return None
             key = max(prefixes, key=len)
-            url = urljoin(page, imports[key] + specifier[len(key):])
+            url = urljoin(page, imports[key] + specifier[len(key) :])
         path = urlsplit(url).path
         name = path.removeprefix(SERVED)
         if name == path or not (static / name).is_file():
@@ -109,10 +111,12 @@ def test_the_vendored_three_js_is_the_version_the_lock_file_pins(tmp_path):
     other = json.loads(json.dumps(lock))
     other["packages"]["node_modules/three"]["version"] = "0.186.0"
     assert version_problems(STATIC / "vendor", other) == [
-        "vendor/three.core.js is three.js r187, the lock file pins 0.186.0"]
+        "vendor/three.core.js is three.js r187, the lock file pins 0.186.0"
+    ]
     (tmp_path / "three.core.js").write_text("const REVISION = '186';\n")
     assert version_problems(tmp_path, lock) == [
-        "vendor/three.core.js is three.js r186, the lock file pins 0.187.0"]
+        "vendor/three.core.js is three.js r186, the lock file pins 0.187.0"
+    ]
     (tmp_path / "three.core.js").write_text("// no revision\n")
     assert version_problems(tmp_path, lock) == ["vendor/three.core.js states no REVISION"]
 
@@ -141,10 +145,13 @@ def test_a_missing_or_unmapped_import_is_found(tmp_path):
     html = html.replace('"three/addons/"', '"three/elsewhere/"')
     (static / "index.html").write_text(html, encoding="utf-8")
     _, problems = page_files(static)
-    assert ("vendor/three.module.js loads './three.core.js': "
-            "no such file in the package (/static/vendor/three.core.js)") in problems
-    unmapped = ("imports 'three/addons/controls/OrbitControls.js', "
-                "which the import map does not name")
+    assert (
+        "vendor/three.module.js loads './three.core.js': "
+        "no such file in the package (/static/vendor/three.core.js)"
+    ) in problems
+    unmapped = (
+        "imports 'three/addons/controls/OrbitControls.js', which the import map does not name"
+    )
     assert any(p.endswith(unmapped) for p in problems)
 
 
@@ -153,13 +160,18 @@ def test_the_vendored_files_are_the_bytes_npm_installs():
     vendored files are those it installed, and nothing else is vendored."""
     vendor = json.loads((FRONTEND / "package.json").read_text(encoding="utf-8"))["vendor"]
     modules = FRONTEND / "node_modules"
-    need((modules / "three").is_dir(),
-         "the designer's npm packages are not installed (npm ci --prefix frontend)")
+    need(
+        (modules / "three").is_dir(),
+        "the designer's npm packages are not installed (npm ci --prefix frontend)",
+    )
     lock = json.loads((FRONTEND / "package-lock.json").read_text(encoding="utf-8"))
     installed = json.loads((modules / "three" / "package.json").read_text(encoding="utf-8"))
     assert installed["version"] == pinned_three(lock)
-    different = [name for name, source in vendor.items()
-                 if (STATIC / "vendor" / name).read_bytes() != (modules / source).read_bytes()]
+    different = [
+        name
+        for name, source in vendor.items()
+        if (STATIC / "vendor" / name).read_bytes() != (modules / source).read_bytes()
+    ]
     assert different == [], "run bash scripts/build-designer.sh and commit the vendored files"
     files = [p for p in (STATIC / "vendor").rglob("*") if p.is_file()]
     assert {p.relative_to(STATIC / "vendor").as_posix() for p in files} == set(vendor)
@@ -182,9 +194,15 @@ def test_nothing_of_the_page_is_left_out_of_git():
     """The vendored files are kept in git: a clone installs without npm."""
     if shutil.which("git") is None or not (ROOT / ".git").exists():
         pytest.skip("not a git checkout")
+
     def git(*args: str) -> list[str]:
-        done = subprocess.run(["git", "ls-files", *args, "--", str(STATIC)], cwd=ROOT,
-                              capture_output=True, text=True, check=True)
+        done = subprocess.run(
+            ["git", "ls-files", *args, "--", str(STATIC)],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
         return done.stdout.split()
 
     tracked, ignored = git(), git("--others", "--ignored", "--exclude-standard")
@@ -197,11 +215,19 @@ def test_nothing_of_the_page_is_left_out_of_git():
 def _eslint(*args: str, stdin: str | None = None) -> subprocess.CompletedProcess:
     """ESLint with the designer's configuration, from the checkout's root (as npm run lint)."""
     eslint = FRONTEND / "node_modules" / ".bin" / "eslint"
-    need(eslint.is_file() and shutil.which("node") is not None,
-         "the designer's ESLint is not installed (npm ci --prefix frontend)")
-    return subprocess.run([str(eslint), "--config", "frontend/eslint.config.js", *args], cwd=ROOT,
-                          input=stdin, capture_output=True, text=True, timeout=300,
-                          env={**os.environ, "NO_COLOR": "1"})
+    need(
+        eslint.is_file() and shutil.which("node") is not None,
+        "the designer's ESLint is not installed (npm ci --prefix frontend)",
+    )
+    return subprocess.run(
+        [str(eslint), "--config", "frontend/eslint.config.js", *args],
+        cwd=ROOT,
+        input=stdin,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "NO_COLOR": "1"},
+    )
 
 
 def test_eslint_passes_over_the_designers_modules():
@@ -212,12 +238,18 @@ def test_eslint_passes_over_the_designers_modules():
     assert done.returncode == 0, done.stdout + done.stderr
 
 
-@pytest.mark.parametrize("code, rule", [
-    ("export const f = () => missing;\n", "no-undef"),
-    ("export const f = (box, text) => { box.innerHTML = text; };\n", "no-restricted-syntax"),
-    ("export const f = (box, t) => box.insertAdjacentHTML('end', t);\n", "no-restricted-syntax"),
-    ("const unused = 1;\n", "no-unused-vars"),
-])
+@pytest.mark.parametrize(
+    "code, rule",
+    [
+        ("export const f = () => missing;\n", "no-undef"),
+        ("export const f = (box, text) => { box.innerHTML = text; };\n", "no-restricted-syntax"),
+        (
+            "export const f = (box, t) => box.insertAdjacentHTML('end', t);\n",
+            "no-restricted-syntax",
+        ),
+        ("const unused = 1;\n", "no-unused-vars"),
+    ],
+)
 def test_eslint_refuses_what_it_is_there_for(code, rule):
     name = f"{STATIC.relative_to(ROOT).as_posix()}/probe.js"
     done = _eslint("--stdin", "--stdin-filename", name, stdin=code)

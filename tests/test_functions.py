@@ -8,7 +8,15 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
-from curvefold.kernel._functions import Constant, Sampled, Scaled, UserFunction, as_function, difference_derivative, difference_step
+from curvefold.kernel._functions import (
+    Constant,
+    Sampled,
+    Scaled,
+    UserFunction,
+    as_function,
+    difference_derivative,
+    difference_step,
+)
 
 
 def square_root_near_zero(s):
@@ -37,16 +45,30 @@ def test_a_sqrt_type_derivative_is_finite_and_sixth_order_at_both_ends():
     s = 0 and its mirror image √(1.5 − s) at s = 1, halving h divides the error by about
     2⁶ (orders 5.6, 5.8: the one-sided stencil's h⁷ term still shows at h = 0.02).
     """
-    d = as_function(lambda s: 1 + np.sqrt(s), name="kappa", length=2.0).derivative(np.array([0.0, 2.0]))
+    d = as_function(lambda s: 1 + np.sqrt(s), name="kappa", length=2.0).derivative(
+        np.array([0.0, 2.0])
+    )
     assert np.isfinite(d).all() and d[0] > 10  # the true slope at 0 is infinite
     assert_allclose(d[1], 0.5 / np.sqrt(2.0), rtol=1e-9)
-    for f, end, exact in ((square_root_near_zero, 0.0, 0.5 / np.sqrt(0.5)), (lambda s: np.sqrt(1.5 - s), 1.0, -0.5 / np.sqrt(0.5))):
-        errors = np.array([abs(difference_derivative(f, np.array([end]), length=1.0, step=h)[0] - exact) for h in (0.02, 0.01, 0.005)])
+    for f, end, exact in (
+        (square_root_near_zero, 0.0, 0.5 / np.sqrt(0.5)),
+        (lambda s: np.sqrt(1.5 - s), 1.0, -0.5 / np.sqrt(0.5)),
+    ):
+        errors = np.array(
+            [
+                abs(difference_derivative(f, np.array([end]), length=1.0, step=h)[0] - exact)
+                for h in (0.02, 0.01, 0.005)
+            ]
+        )
         orders = np.log2(errors[:-1] / errors[1:])
         assert ((orders > 5.5) & (orders < 6.5)).all(), orders
     # at the default step the error is at the rounding level
     ends = np.array([0.0, 1.0])
-    assert_allclose(as_function(square_root_near_zero, name="f", length=1.0).derivative(ends), 0.5 / np.sqrt(ends + 0.5), rtol=1e-11)
+    assert_allclose(
+        as_function(square_root_near_zero, name="f", length=1.0).derivative(ends),
+        0.5 / np.sqrt(ends + 0.5),
+        rtol=1e-11,
+    )
 
 
 def test_difference_step_leaves_room_for_the_stencil():
@@ -54,7 +76,11 @@ def test_difference_step_leaves_room_for_the_stencil():
     short = 1e-3
     h = difference_step(short)
     assert 6 * h < short
-    assert_allclose(as_function(np.exp, name="f", length=short).derivative(np.array([0.0, short])), np.exp([0.0, short]), rtol=1e-6)
+    assert_allclose(
+        as_function(np.exp, name="f", length=short).derivative(np.array([0.0, short])),
+        np.exp([0.0, short]),
+        rtol=1e-6,
+    )
 
 
 @pytest.mark.parametrize(

@@ -1,4 +1,5 @@
-"""One interface for every kind of structure: a kind no writer, figure or certificate knows plugs in.
+"""One interface for every kind of structure: a kind no writer, figure or certificate knows plugs
+in.
 
 :class:`Forwarded` is a third kind of lattice: a class of its own (so no ``isinstance`` of
 ``Lattice`` or ``PanelLattice`` can recognise it) that satisfies
@@ -18,7 +19,13 @@ from numpy.testing import assert_array_equal
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure
 from curvefold.analysis import analyse_fold, certify, check_fold
-from curvefold.geometry import FoldedCrease, FramedCurve, PanelLattice, StructureLattice, choose_sampling
+from curvefold.geometry import (
+    FoldedCrease,
+    FramedCurve,
+    PanelLattice,
+    StructureLattice,
+    choose_sampling,
+)
 from curvefold.io import FoldOutput, to_fold, write_3d, write_structure_fold
 
 
@@ -113,14 +120,21 @@ def test_every_kind_satisfies_the_protocols(smooth, panels, boards):
 def test_a_third_kind_is_built_sampled_and_written(tmp_path, panels, boards):
     own = Structure.tube(panels)
     for angle in (0.0, 45.0, 90.0):
-        assert_array_equal(boards.state(angle).mesh().vertices_coords, own.state(angle).mesh().vertices_coords)
+        assert_array_equal(
+            boards.state(angle).mesh().vertices_coords, own.state(angle).mesh().vertices_coords
+        )
     sampling = choose_sampling(boards)  # not thinnable: every vertex
     assert [k.tolist() for k in sampling.keep] == [list(range(13))]
 
-    path = write_structure_fold(tmp_path / "boards.fold", boards, fold_angles=[0.0, 45.0, 90.0],
-                                output=FoldOutput(keep=sampling.keep))
+    path = write_structure_fold(
+        tmp_path / "boards.fold",
+        boards,
+        fold_angles=[0.0, 45.0, 90.0],
+        output=FoldOutput(keep=sampling.keep),
+    )
     assert check_fold(path).ok
-    assert [m.dof for m in analyse_fold(path)][1:] == [1, 1]  # rigid panels, one internal degree of freedom folded
+    # rigid panels, one internal degree of freedom folded
+    assert [m.dof for m in analyse_fold(path)][1:] == [1, 1]
     model = to_fold(boards)
     assert model.metadata["samples"] == 13 and model.metadata["tubes"] == 1
 
@@ -132,7 +146,10 @@ def test_a_third_kind_is_drawn_and_certified(boards, panels):
     figure = plot_structure(boards)
     assert "rigid planar panels" in [t.get_text() for t in figure.axes[0].get_legend().get_texts()]
 
-    cert, own = certify(boards.lattice.crease, boards), certify(panels.crease, Structure.tube(panels))
+    cert, own = (
+        certify(boards.lattice.crease, boards),
+        certify(panels.crease, Structure.tube(panels)),
+    )
     assert cert.passed, [(c.name, c.status, c.where) for c in cert.checks if not c.passed]
     assert [c.name for c in cert.checks] == [c.name for c in own.checks]
     assert "panel_isometry" in {c.name for c in cert.checks} and cert.mechanism is not None
@@ -140,7 +157,10 @@ def test_a_third_kind_is_drawn_and_certified(boards, panels):
 
 def test_consumers_follow_the_answers_not_the_type(tmp_path, smooth):
     """The same smooth geometry, told it may not be thinned and that its creases are polylines."""
-    plain, told = Structure.tube(smooth), Structure.tube(Forwarded(smooth, rigid=False, thinnable=False, crease_degree=1))
+    plain, told = (
+        Structure.tube(smooth),
+        Structure.tube(Forwarded(smooth, rigid=False, thinnable=False, crease_degree=1)),
+    )
     assert len(choose_sampling(plain, tolerance=1e-2).keep[0]) < 121
     assert len(choose_sampling(told, tolerance=1e-2).keep[0]) == 121
 
@@ -150,5 +170,9 @@ def test_consumers_follow_the_answers_not_the_type(tmp_path, smooth):
         (path,) = write_3d(tmp_path / name, structure, formats=["3dm"])
         model = rhino3dm.File3dm.Read(str(path))
         layers = {layer.Index: layer.Name for layer in model.Layers}
-        degrees[name] = {o.Geometry.Degree for o in model.Objects if layers[o.Attributes.LayerIndex] in ("Fold", "Seam")}
+        degrees[name] = {
+            o.Geometry.Degree
+            for o in model.Objects
+            if layers[o.Attributes.LayerIndex] in ("Fold", "Seam")
+        }
     assert degrees == {"plain": {3}, "told": {1}}

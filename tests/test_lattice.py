@@ -6,7 +6,15 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from curvefold import Crease, InputError, Lattice, RegressionDomain, RegressionError, SpaceCurve, measure
+from curvefold import (
+    Crease,
+    InputError,
+    Lattice,
+    RegressionDomain,
+    RegressionError,
+    SpaceCurve,
+    measure,
+)
 from curvefold.geometry import Pattern
 from curvefold.kernel import ScalarFunction
 
@@ -43,7 +51,8 @@ def test_erratum_eq12_width_law_uses_tau_cot_alpha(lattice):
     s = lattice.s
     a = np.radians(30)
     tau = lattice.crease.curve.tau(s)
-    integral = np.concatenate([[0], np.cumsum(np.diff(s) * 0.5 * (tau[1:] + tau[:-1]))])  # trapezoid, ~1e-7
+    # trapezoid, ~1e-7
+    integral = np.concatenate([[0], np.cumsum(np.diff(s) * 0.5 * (tau[1:] + tau[:-1]))])
     assert_allclose(w_r, 0.15 * np.exp(integral / np.tan(a)), rtol=1e-6)
     assert np.abs(w_r / (0.15 * np.exp(integral * np.tan(a))) - 1).max() > 0.05
     # and the width is intrinsic: the same at every fold angle
@@ -56,12 +65,15 @@ def test_erratum_section_area_is_wl_wr_sin_2alpha(lattice):
     X = lattice.points(np.array([[0, 0], [0, 1], [1, 0]], float))
     T = lattice.crease.curve.tangent
     area = np.abs(np.einsum("ij,ij->i", np.cross(X[1] - X[0], X[2] - X[0]), T))
-    assert_allclose(area, lattice.width_left * lattice.width_right * np.sin(np.radians(60)), rtol=1e-12)
+    assert_allclose(
+        area, lattice.width_left * lattice.width_right * np.sin(np.radians(60)), rtol=1e-12
+    )
     assert np.abs(area / (lattice.width_left * lattice.width_right) - 1).min() > 0.1
 
 
 def test_speed_of_lattice_curves_is_eq16_17(lattice):
-    """ds/dt of curve (u, v) is (1 − u w_L/w_lim_L − v w_R/w_lim_R) ds₁/dt (Eq. 16 read correctly)."""
+    """ds/dt of curve (u, v) is (1 − u w_L/w_lim_L − v w_R/w_lim_R) ds₁/dt (Eq. 16 read
+    correctly)."""
     uv = np.array([[0, 1], [1, 0], [1.5, 2.0]])
     X = lattice.points(uv)
     h = lattice.t[1]
@@ -75,8 +87,14 @@ def test_eq19_holds_between_neighbouring_creases(lattice):
         assert measure.eq19_residual(lattice, a, b) < 1e-8
 
 
-#: The paper's construction around a tube: (crease, previous, next, side, ±r, sign of the ruling toward the previous crease).
-TUBE_STEPS = ((0, 3, 1, "R", 1.0, 1.0), (1, 0, 2, "L", 1.0, -1.0), (2, 1, 3, "R", -1.0, -1.0), (3, 2, 0, "L", -1.0, 1.0))
+#: The paper's construction around a tube: (crease, previous, next, side, ±r, sign of the ruling
+#: toward the previous crease).
+TUBE_STEPS = (
+    (0, 3, 1, "R", 1.0, 1.0),
+    (1, 0, 2, "L", 1.0, -1.0),
+    (2, 1, 3, "R", -1.0, -1.0),
+    (3, 2, 0, "L", -1.0, 1.0),
+)
 
 
 def test_tube_built_crease_by_crease_closes():
@@ -91,12 +109,28 @@ def test_tube_built_crease_by_crease_closes():
         T = lattice.crease.curve.frames[2:-2, :, 0]
         errors = []
         for c, prev, nxt, side, sign, back in TUBE_STEPS:
-            rebuilt = measure.rebuilt_strip(x[c], back * (x[prev] - x[c]), x[nxt], lattice.s[1], alpha=np.radians(30), side=side, sign=sign)
-            errors.append(np.max(measure.norm(rebuilt - x[nxt, 2:-2]) / measure.tangent_line_distance(x[c, 2:-2], x[nxt, 2:-2], T)))
+            rebuilt = measure.rebuilt_strip(
+                x[c],
+                back * (x[prev] - x[c]),
+                x[nxt],
+                lattice.s[1],
+                alpha=np.radians(30),
+                side=side,
+                sign=sign,
+            )
+            errors.append(
+                np.max(
+                    measure.norm(rebuilt - x[nxt, 2:-2])
+                    / measure.tangent_line_distance(x[c, 2:-2], x[nxt, 2:-2], T)
+                )
+            )
         worst.append(max(errors))
     assert worst[1] < 1e-9 and worst[0] / worst[1] > 12, worst
-    # the same step taken for another fold angle (2α = 120° for 60°) misses by O(1): the measurement can fail
-    wrong = measure.rebuilt_strip(x[0], x[3] - x[0], x[1], lattice.s[1], alpha=np.radians(60), side="R", sign=1.0)
+    # the same step taken for another fold angle (2α = 120° for 60°) misses by O(1): the measurement
+    # can fail
+    wrong = measure.rebuilt_strip(
+        x[0], x[3] - x[0], x[1], lattice.s[1], alpha=np.radians(60), side="R", sign=1.0
+    )
     assert np.max(measure.norm(wrong - x[1, 2:-2])) > 0.01
 
 
@@ -117,9 +151,15 @@ def test_regression_domain_queries(lattice):
 def test_regression_refused_with_limit():
     lat = make_lattice()
     lam = float(lat.domain.extent([1, 1]))
-    with pytest.raises(RegressionError, match=r"lattice curve \(u, v\) = \(\d+, \d+\) passes the curve of regression .* the limit is \(u, v\) = "):
+    with pytest.raises(
+        RegressionError,
+        match=r"lattice curve \(u, v\) = \(\d+, \d+\) passes the "
+        r"curve of regression .* the limit is \(u, v\) = ",
+    ):
         lat.check([[np.ceil(lam) + 1, np.ceil(lam) + 1]])
-    with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \([01], [01]\) passes"):
+    with pytest.raises(
+        RegressionError, match=r"widths: lattice curve \(u, v\) = \([01], [01]\) " r"passes"
+    ):
         make_lattice(widths=(0.2 * 3 * lam, 0.15 * 3 * lam))
 
 
@@ -140,8 +180,16 @@ def test_refold_keeps_intrinsic_quantities(lattice):
         assert_allclose(other.crease.kappa_2d, lattice.crease.kappa_2d, rtol=1e-14)
         assert_allclose(other.domain.a, lattice.domain.a, rtol=1e-13, atol=1e-15)
         # τ = τ₀ tan α / tan α₀
-        assert_allclose(other.crease.curve.tau(lattice.s), TAU(lattice.s) * np.tan(np.radians(f / 2)) / np.tan(np.radians(30)), atol=1e-13)
-    with pytest.raises(InputError, match=r"fold_angle must be in \[0°, 180°\), got 180 \(2α = 180° would need infinite curvature"):
+        assert_allclose(
+            other.crease.curve.tau(lattice.s),
+            TAU(lattice.s) * np.tan(np.radians(f / 2)) / np.tan(np.radians(30)),
+            atol=1e-13,
+        )
+    with pytest.raises(
+        InputError,
+        match=r"fold_angle must be in \[0°, 180°\), got 180 \(2α = "
+        r"180° would need infinite curvature",
+    ):
         lattice.refold(180)
 
 
@@ -178,8 +226,14 @@ def test_every_corner_of_the_unit_cell_is_checked():
     assert (a > 0).all() and (b < 0).all()
     f_left = 1.2 / a.max()  # (1, 0) reaches 1.2× past its limit ...
     f_right = 2 * ((f_left * a - 1).clip(0) / -b).max()  # ... while (1, 1) keeps margin
-    lat = Lattice(crease, Pattern.from_crease(crease, unit.width_left * f_left, unit.width_right * f_right))
-    assert lat.domain.contains([1, 1]) and lat.domain.contains([0, 1]) and not lat.domain.contains([1, 0])
+    lat = Lattice(
+        crease, Pattern.from_crease(crease, unit.width_left * f_left, unit.width_right * f_right)
+    )
+    assert (
+        lat.domain.contains([1, 1])
+        and lat.domain.contains([0, 1])
+        and not lat.domain.contains([1, 0])
+    )
     with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \(1, 0\)"):
         Lattice.from_crease(crease, 1e-3 * f_left, 1e-3 * f_right)
 
@@ -198,7 +252,10 @@ def test_defect_2_a_regression_margin_never_passes_as_nan():
     curve = SpaceCurve.from_curvature(lambda s: 1 + np.sqrt(s), 0.3, 2.0, samples=201)
     crease = Crease.from_curve(curve, fold_angle=90.0)
     assert np.isfinite(crease.regression_rates()).all()
-    with pytest.raises(RegressionError, match=r"widths: lattice curve \(u, v\) = \(1, 1\) passes the curve of regression"):
+    with pytest.raises(
+        RegressionError,
+        match=r"widths: lattice curve \(u, v\) = \(1, 1\) passes " r"the curve of regression",
+    ):
         Lattice.from_crease(crease, 5.0, 5.0)
 
 
@@ -217,29 +274,58 @@ class _NanSlope(ScalarFunction):
 
 def test_nan_fails_every_validity_test(lattice):
     crease = lattice.crease
-    damaged = Crease(crease.curve, crease.alpha, _NanSlope(crease.beta_left), _NanSlope(crease.beta_left))
-    with pytest.raises(InputError, match=r"regression rate 1/w_lim on the left .* must be finite; at s = 0 it is nan"):
+    damaged = Crease(
+        crease.curve, crease.alpha, _NanSlope(crease.beta_left), _NanSlope(crease.beta_left)
+    )
+    with pytest.raises(
+        InputError,
+        match=r"regression rate 1/w_lim on the left .* must be " r"finite; at s = 0 it is nan",
+    ):
         Lattice.from_crease(damaged, 0.2, 0.15)
-    with pytest.raises(RegressionError, match="width on the left must stay below the regression limit nan"):
+    with pytest.raises(
+        RegressionError, match="width on the left must stay below the regression limit nan"
+    ):
         damaged.surface(width=0.01)
     assert np.isnan(damaged.regression_limits()[0][0])  # not +∞ ("no limit")
     a = np.array(lattice.domain.a)
     a[5] = np.nan
-    broken = Lattice(crease, replace(lattice.pattern, domain=RegressionDomain(lattice.t, a, lattice.domain.b)))
+    broken = Lattice(
+        crease, replace(lattice.pattern, domain=RegressionDomain(lattice.t, a, lattice.domain.b))
+    )
     assert not broken.domain.contains([0.5, 0.5])
-    with pytest.raises(RegressionError, match=r"cells: lattice curve \(u, v\) = \(0.5, 0.5\) passes"):
+    with pytest.raises(
+        RegressionError, match=r"cells: lattice curve \(u, v\) = \(0.5, 0.5\) " r"passes"
+    ):
         broken.check([[0.5, 0.5]])
 
 
-@pytest.mark.parametrize(("widths", "tau", "length", "message"), [
-    ((1e-300, 0.15), TAU, 3.0, r"width_left w\(t\) = 8.19e-301 at s = 1.05 is below 1e-09 of the structure's size 3: "),
-    ((1e-8, 0.15), TAU, 3.0, None),  # 3e-9 of the size: resolved
-    ((0.2, 0.2), lambda s: np.tan(s), 6.0, r"width_left w\(t\) = 2.27e-09 at s = 4.74 is below 1e-09 of the structure's size 1.76e\+07: "),
-])
+@pytest.mark.parametrize(
+    ("widths", "tau", "length", "message"),
+    [
+        (
+            (1e-300, 0.15),
+            TAU,
+            3.0,
+            r"width_left w\(t\) = 8.19e-301 at s = 1.05 is below 1e-09 of the "
+            r"structure's size 3: ",
+        ),
+        ((1e-8, 0.15), TAU, 3.0, None),  # 3e-9 of the size: resolved
+        (
+            (0.2, 0.2),
+            lambda s: np.tan(s),
+            6.0,
+            r"width_left w\(t\) = 2.27e-09 at s = 4.74 is below "
+            r"1e-09 of the structure's size 1.76e\+07: ",
+        ),
+    ],
+)
 def test_a_strip_narrower_than_rounding_is_refused(widths, tau, length, message):
-    """Coordinates of size L resolve a strip of width 1e-9 L by 10⁷ ulps; a narrower one has edges that round to nothing
-    (zero-length edges broke the certificate). τ = tan s spreads the widths over 16 decades along t."""
-    crease = Crease.from_curve(SpaceCurve.from_curvature(KAPPA, tau, length, samples=101), fold_angle=90.0)
+    """Coordinates of size L resolve a strip of width 1e-9 L by 10⁷ ulps; a narrower one has
+    edges that round to nothing (zero-length edges broke the certificate). τ = tan s spreads
+    the widths over 16 decades along t."""
+    crease = Crease.from_curve(
+        SpaceCurve.from_curvature(KAPPA, tau, length, samples=101), fold_angle=90.0
+    )
     if message is None:
         assert Pattern.from_crease(crease, *widths).width_left.min() > 0
         return

@@ -61,7 +61,8 @@ LONG: dict[str, str] = {}
 
 
 def modules(root: Path, package: str) -> dict[str, Path]:
-    """Dotted name -> file of every module of ``package`` under ``root`` (packages by their __init__)."""
+    """Dotted name -> file of every module of ``package`` under ``root`` (packages by their
+    __init__)."""
     out = {}
     for path in sorted((root / package).rglob("*.py")):
         parts = path.relative_to(root).with_suffix("").parts
@@ -82,11 +83,16 @@ def imports(root: Path, package: str) -> dict[str, dict[str, int]]:
             elif isinstance(node, ast.ImportFrom):
                 if node.level:
                     here = name.split(".") if is_package else name.split(".")[:-1]
-                    base = ".".join(here[: len(here) - node.level + 1] + ([node.module] if node.module else []))
+                    base = ".".join(
+                        here[: len(here) - node.level + 1] + ([node.module] if node.module else [])
+                    )
                 else:
                     base = node.module or ""
                 # "from a import b" imports module a.b when there is one, else names of a
-                targets = [f"{base}.{alias.name}" if f"{base}.{alias.name}" in names else base for alias in node.names]
+                targets = [
+                    f"{base}.{alias.name}" if f"{base}.{alias.name}" in names else base
+                    for alias in node.names
+                ]
             elif isinstance(node, ast.Call) and _imports_by_name(node):
                 literal = node.args[0].value  # type: ignore[attr-defined]
                 targets = [_absolute(literal, name, is_package)]
@@ -116,10 +122,19 @@ def _imports_by_name(node: ast.Call) -> bool:
     """Whether a call is ``importlib.import_module("...")``, ``import_module("...")`` or
     ``__import__("...")``."""
     func = node.func
-    called = (func.id if isinstance(func, ast.Name)
-              else func.attr if isinstance(func, ast.Attribute) else "")
-    return (called in ("import_module", "__import__") and bool(node.args)
-            and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str))
+    called = (
+        func.id
+        if isinstance(func, ast.Name)
+        else func.attr
+        if isinstance(func, ast.Attribute)
+        else ""
+    )
+    return (
+        called in ("import_module", "__import__")
+        and bool(node.args)
+        and isinstance(node.args[0], ast.Constant)
+        and isinstance(node.args[0].value, str)
+    )
 
 
 def _absolute(target: str, name: str, is_package: bool) -> str:
@@ -139,7 +154,9 @@ def layer_of(name: str) -> str | None:
     return parts[1] if len(parts) > 1 and parts[1] not in EXEMPT else None
 
 
-def upward(graph: dict[str, dict[str, int]], allowed: dict[str, set[str]] = ALLOWED) -> list[tuple[str, str, str]]:
+def upward(
+    graph: dict[str, dict[str, int]], allowed: dict[str, set[str]] = ALLOWED
+) -> list[tuple[str, str, str]]:
     """Imports that break the layers: (importer, imported, why)."""
     out = []
     for a, edges in graph.items():
@@ -220,20 +237,36 @@ def _members(node: ast.ClassDef) -> set[str]:
 
 
 def _trees(root: Path, package: str) -> dict[str, ast.Module]:
-    return {name: ast.parse(path.read_text(encoding="utf-8"), str(path)) for name, path in modules(root, package).items()}
+    return {
+        name: ast.parse(path.read_text(encoding="utf-8"), str(path))
+        for name, path in modules(root, package).items()
+    }
 
 
 def kinds(root: Path, package: str) -> dict[str, str]:
-    """The kinds of :data:`KINDS_LAYER`: class name -> the protocol of that layer whose every member it has."""
-    trees = {name: tree for name, tree in _trees(root, package).items() if layer_of(name) == KINDS_LAYER}
-    classes = [node for tree in trees.values() for node in ast.walk(tree) if isinstance(node, ast.ClassDef)]
+    """The kinds of :data:`KINDS_LAYER`: class name -> the protocol of that layer whose every
+    member it has."""
+    trees = {
+        name: tree for name, tree in _trees(root, package).items() if layer_of(name) == KINDS_LAYER
+    }
+    classes = [
+        node for tree in trees.values() for node in ast.walk(tree) if isinstance(node, ast.ClassDef)
+    ]
 
     def is_protocol(node: ast.ClassDef) -> bool:
-        return any((b.id if isinstance(b, ast.Name) else getattr(b, "attr", "")) == "Protocol" for b in node.bases)
+        return any(
+            (b.id if isinstance(b, ast.Name) else getattr(b, "attr", "")) == "Protocol"
+            for b in node.bases
+        )
 
     protocols = {node.name: _members(node) - {"__init__"} for node in classes if is_protocol(node)}
-    return {node.name: proto for node in classes if not is_protocol(node)
-            for proto, members in protocols.items() if members and members <= _members(node)}
+    return {
+        node.name: proto
+        for node in classes
+        if not is_protocol(node)
+        for proto, members in protocols.items()
+        if members and members <= _members(node)
+    }
 
 
 def _named(node: ast.expr) -> list[str]:
@@ -258,12 +291,25 @@ def kind_tests(root: Path, package: str) -> list[tuple[str, str, str]]:
             continue
         for node in ast.walk(tree):
             tested = []
-            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("isinstance", "issubclass") and len(node.args) == 2:
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Name)
+                and node.func.id in ("isinstance", "issubclass")
+                and len(node.args) == 2
+            ):
                 tested = [(node.func.id, n) for n in _named(node.args[1])]
-            elif (isinstance(node, ast.Compare) and isinstance(node.left, ast.Call) and isinstance(node.left.func, ast.Name)
-                  and node.left.func.id == "type"):
+            elif (
+                isinstance(node, ast.Compare)
+                and isinstance(node.left, ast.Call)
+                and isinstance(node.left.func, ast.Name)
+                and node.left.func.id == "type"
+            ):
                 tested = [("type() is", n) for c in node.comparators for n in _named(c)]
-            out += [(name, kind, f"line {node.lineno}: {how} {kind}, a kind of {found[kind]}") for how, kind in tested if kind in found]
+            out += [
+                (name, kind, f"line {node.lineno}: {how} {kind}, a kind of {found[kind]}")
+                for how, kind in tested
+                if kind in found
+            ]
     return out
 
 
@@ -283,8 +329,13 @@ def private_imports(root: Path, package: str) -> list[tuple[str, str, str]]:
         for node in ast.walk(tree):
             if isinstance(node, ast.ImportFrom):
                 here = name.split(".") if is_package else name.split(".")[:-1]
-                base = (".".join(here[: len(here) - node.level + 1] + ([node.module] if node.module else [])) if node.level
-                        else node.module or "")
+                base = (
+                    ".".join(
+                        here[: len(here) - node.level + 1] + ([node.module] if node.module else [])
+                    )
+                    if node.level
+                    else node.module or ""
+                )
                 if layer_of(base) != KINDS_LAYER:
                     continue
                 for alias in node.names:
@@ -292,28 +343,51 @@ def private_imports(root: Path, package: str) -> list[tuple[str, str, str]]:
                     if full in names:
                         bound[alias.asname or alias.name] = full
                     if alias.name.startswith("_"):
-                        out.append((name, full, f"line {node.lineno}: imports the private name {alias.name} of {base}"))
+                        out.append(
+                            (
+                                name,
+                                full,
+                                f"line {node.lineno}: imports the private name "
+                                f"{alias.name} of {base}",
+                            )
+                        )
             elif isinstance(node, ast.Import):
                 for alias in node.names:
                     if alias.asname and alias.name in names and layer_of(alias.name) == KINDS_LAYER:
                         bound[alias.asname] = alias.name
         for node in ast.walk(tree):
-            if (isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__")
-                    and isinstance(node.value, ast.Name) and node.value.id in bound):
+            if (
+                isinstance(node, ast.Attribute)
+                and node.attr.startswith("_")
+                and not node.attr.startswith("__")
+                and isinstance(node.value, ast.Name)
+                and node.value.id in bound
+            ):
                 module = bound[node.value.id]
-                out.append((name, f"{module}.{node.attr}", f"line {node.lineno}: reads the private name {node.attr} of {module}"))
+                out.append(
+                    (
+                        name,
+                        f"{module}.{node.attr}",
+                        f"line {node.lineno}: reads the private name {node.attr} of {module}",
+                    )
+                )
     return out
 
 
 def long_modules(root: Path, package: str, limit: int = MAX_LINES) -> dict[str, int]:
     """Modules over ``limit`` lines: name -> lines."""
-    counts = {name: len(path.read_text(encoding="utf-8").splitlines()) for name, path in modules(root, package).items()}
+    counts = {
+        name: len(path.read_text(encoding="utf-8").splitlines())
+        for name, path in modules(root, package).items()
+    }
     return {name: n for name, n in counts.items() if n > limit}
 
 
 def test_curvefold_keeps_its_layers():
     graph = imports(SRC, "curvefold")
-    assert {"curvefold.kernel._errors", "curvefold.figures._plots", "curvefold.app.cli"} <= set(graph)
+    assert {"curvefold.kernel._errors", "curvefold.figures._plots", "curvefold.app.cli"} <= set(
+        graph
+    )
     assert sum(map(len, graph.values())) > 100  # it found the imports
     assert cycles(graph) == []
     found = {(a, b): why for a, b, why in upward(graph)}
@@ -324,8 +398,12 @@ def test_curvefold_keeps_its_layers():
 
 
 def test_no_module_outside_geometry_tests_the_kind_of_a_structure():
-    assert kinds(SRC, "curvefold") == {"Lattice": "StructureLattice", "PanelLattice": "StructureLattice",
-                                       "Crease": "FoldedCrease", "PanelCrease": "FoldedCrease"}
+    assert kinds(SRC, "curvefold") == {
+        "Lattice": "StructureLattice",
+        "PanelLattice": "StructureLattice",
+        "Crease": "FoldedCrease",
+        "PanelCrease": "FoldedCrease",
+    }
     assert kind_tests(SRC, "curvefold") == []
 
 
@@ -335,7 +413,14 @@ def test_no_module_above_geometry_uses_a_private_geometry_name():
 
 def test_no_module_is_too_long():
     found = long_modules(SRC, "curvefold")
-    assert sum(len(p.read_text(encoding="utf-8").splitlines()) for p in modules(SRC, "curvefold").values()) > 10_000  # it read them
+    # it read them
+    assert (
+        sum(
+            len(p.read_text(encoding="utf-8").splitlines())
+            for p in modules(SRC, "curvefold").values()
+        )
+        > 10_000
+    )
     unexpected = {name: n for name, n in found.items() if name not in LONG}
     assert not unexpected, f"modules over {MAX_LINES} lines: {unexpected}"
     split = sorted(set(LONG) - set(found))
@@ -349,48 +434,71 @@ def _package(root: Path, files: dict[str, str]) -> None:
         path.write_text(text, encoding="utf-8")
 
 
-BASE = {f"pkg/{layer}/__init__.py": "" for layer in ALLOWED} | {"pkg/__init__.py": "from .app.cli import run\n", "pkg/app/cli.py": "def run(): ...\n"}
+BASE = {f"pkg/{layer}/__init__.py": "" for layer in ALLOWED} | {
+    "pkg/__init__.py": "from .app.cli import run\n",
+    "pkg/app/cli.py": "def run(): ...\n",
+}
 
 
 def test_a_cycle_is_reported_with_its_edges(tmp_path):
-    _package(tmp_path, BASE | {
-        "pkg/geometry/a.py": "from .b import f\n",
-        "pkg/geometry/b.py": "def f():\n    from . import c  # inside a function\n",
-        "pkg/geometry/c.py": "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import pkg.geometry.a\n",
-        "pkg/geometry/d.py": "from . import a\n",  # on the way in, not on the cycle
-    })
+    _package(
+        tmp_path,
+        BASE
+        | {
+            "pkg/geometry/a.py": "from .b import f\n",
+            "pkg/geometry/b.py": "def f():\n    from . import c  # inside a function\n",
+            "pkg/geometry/c.py": "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import "
+            "pkg.geometry.a\n",
+            "pkg/geometry/d.py": "from . import a\n",  # on the way in, not on the cycle
+        },
+    )
     graph = imports(tmp_path, "pkg")
     assert graph["pkg.geometry.b"] == {"pkg.geometry.c": 2}
-    assert cycles(graph) == [["pkg.geometry.a", "pkg.geometry.b", "pkg.geometry.c", "pkg.geometry.a"]]
+    assert cycles(graph) == [
+        ["pkg.geometry.a", "pkg.geometry.b", "pkg.geometry.c", "pkg.geometry.a"]
+    ]
     assert upward(graph) == []
 
 
 def test_modules_named_by_strings_up_or_across_the_layers_are_reported(tmp_path):
-    _package(tmp_path, BASE | {
-        # "module:function" in a registry
-        "pkg/io/w.py": 'REGISTRY = {"guide": "pkg.figures.guide:write"}\n',
-        "pkg/io/r.py": ("import importlib\n"
-                        "def f():\n    return importlib.import_module('pkg.app.cli')\n"),
-        "pkg/vault/v.py": ("from importlib import import_module\n"
-                           "m = import_module('..analysis.m', __package__)\n"),
-        "pkg/geometry/g.py": "x = __import__('pkg.vault.v')\n",
-        "pkg/figures/guide.py": "def write(): ...\n",
-        # a module's name on its own
-        "pkg/analysis/m.py": "MODULES = ('pkg.io.w', 'pkg.figures')\n",
-        "pkg/app/a.py": ('"""See pkg.figures.guide:write."""\n'  # prose, not a name
-                         'NAMES = ("pkg.io.w:REGISTRY", "pkg.kernel", "pkg.logs",\n'
-                         '         "pkg.io.nothing:f", "pkg.figures.guide:write")\n'),
-    })
+    _package(
+        tmp_path,
+        BASE
+        | {
+            # "module:function" in a registry
+            "pkg/io/w.py": 'REGISTRY = {"guide": "pkg.figures.guide:write"}\n',
+            "pkg/io/r.py": (
+                "import importlib\ndef f():\n    return importlib.import_module('pkg.app.cli')\n"
+            ),
+            "pkg/vault/v.py": (
+                "from importlib import import_module\n"
+                "m = import_module('..analysis.m', __package__)\n"
+            ),
+            "pkg/geometry/g.py": "x = __import__('pkg.vault.v')\n",
+            "pkg/figures/guide.py": "def write(): ...\n",
+            # a module's name on its own
+            "pkg/analysis/m.py": "MODULES = ('pkg.io.w', 'pkg.figures')\n",
+            "pkg/app/a.py": (
+                '"""See pkg.figures.guide:write."""\n'  # prose, not a name
+                'NAMES = ("pkg.io.w:REGISTRY", "pkg.kernel", "pkg.logs",\n'
+                '         "pkg.io.nothing:f", "pkg.figures.guide:write")\n'
+            ),
+        },
+    )
     graph = imports(tmp_path, "pkg")
     assert graph["pkg.app.a"] == {"pkg.io.w": 2, "pkg.kernel": 2, "pkg.figures.guide": 3}
     assert {(a, b): why for a, b, why in upward(graph)} == {
         ("pkg.io.w", "pkg.figures.guide"): "line 1: io may import geometry, kernel, not figures",
         ("pkg.io.r", "pkg.app.cli"): "line 3: io may import geometry, kernel, not app",
-        ("pkg.vault.v", "pkg.analysis.m"):
-            "line 2: vault may import geometry, kernel, not analysis",
+        (
+            "pkg.vault.v",
+            "pkg.analysis.m",
+        ): "line 2: vault may import geometry, kernel, not analysis",
         ("pkg.geometry.g", "pkg.vault.v"): "line 1: geometry may import kernel, not vault",
-        ("pkg.analysis.m", "pkg.figures"):
-            "line 1: analysis may import geometry, io, kernel, mechanics, vault, not figures",
+        (
+            "pkg.analysis.m",
+            "pkg.figures",
+        ): "line 1: analysis may import geometry, io, kernel, mechanics, vault, not figures",
     }
 
 
@@ -428,18 +536,24 @@ def test_a_format_declared_without_its_writer_is_given_one_by_register_writer():
 
 
 def test_imports_up_or_across_the_layers_are_reported(tmp_path):
-    _package(tmp_path, BASE | {
-        "pkg/kernel/k.py": "def f():\n    from ..geometry.g import x\n",
-        "pkg/geometry/g.py": "import pkg.kernel.k\nx = 1\n",
-        "pkg/geometry/h.py": "from .. import run\n",
-        "pkg/vault/v.py": "from ..io import w\n",
-        "pkg/io/w.py": "from pkg import app\n",
-        "pkg/analysis/m.py": "from ..io.w import *\nfrom ..vault import v\nfrom ..geometry import g\n",
-    })
+    _package(
+        tmp_path,
+        BASE
+        | {
+            "pkg/kernel/k.py": "def f():\n    from ..geometry.g import x\n",
+            "pkg/geometry/g.py": "import pkg.kernel.k\nx = 1\n",
+            "pkg/geometry/h.py": "from .. import run\n",
+            "pkg/vault/v.py": "from ..io import w\n",
+            "pkg/io/w.py": "from pkg import app\n",
+            "pkg/analysis/m.py": "from ..io.w import *\nfrom ..vault import v\nfrom ..geometry "
+            "import g\n",
+        },
+    )
     graph = imports(tmp_path, "pkg")
     assert cycles(graph) == [["pkg.geometry.g", "pkg.kernel.k", "pkg.geometry.g"]]
     assert {(a, b): why for a, b, why in upward(graph)} == {
-        ("pkg.kernel.k", "pkg.geometry.g"): "line 2: kernel may import no other layer, not geometry",
+        ("pkg.kernel.k", "pkg.geometry.g"): "line 2: kernel may import no other layer, not "
+        "geometry",
         ("pkg.geometry.h", "pkg"): "line 1: geometry imports the top-level package",
         ("pkg.vault.v", "pkg.io.w"): "line 1: vault may import geometry, kernel, not io",
         ("pkg.io.w", "pkg.app"): "line 1: io may import geometry, kernel, not app",
@@ -454,10 +568,10 @@ KINDS = BASE | {
         "    def fold(self, angle): ...\n"
     ),
     "pkg/geometry/shapes.py": (
-        "from dataclasses import dataclass\n"
-        "@dataclass\nclass Smooth:\n    size: float\n    def fold(self, angle): ...\n"
-        "class Panels:\n    size = 1.0\n    def fold(self, angle): ...\n    def head(self, n): ...\n"
-        "class Sheet:\n    size = 2.0\n"  # not every member: not a kind
+        # not every member: not a kind
+        "from dataclasses import dataclass\n@dataclass\nclass Smooth:\n    size: float\n    def "
+        "fold(self, angle): ...\nclass Panels:\n    size = 1.0\n    def fold(self, angle): "
+        "...\n    def head(self, n): ...\nclass Sheet:\n    size = 2.0\n"
         "def _helper(): ...\n"
         "def check(x):\n    return isinstance(x, Smooth)\n"  # geometry may ask
     ),
@@ -470,13 +584,19 @@ def test_kinds_are_the_classes_with_every_member_of_a_protocol(tmp_path):
 
 
 def test_a_kind_test_outside_geometry_is_reported(tmp_path):
-    _package(tmp_path, KINDS | {
-        "pkg/io/w.py": ("from ..geometry.shapes import Panels, Sheet, Smooth\nfrom ..geometry import shapes\n"
-                        "def write(x):\n"
-                        "    if isinstance(x.lattice, (Sheet, shapes.Panels)):\n        return 1\n"
-                        "    return isinstance(x, Sheet) or issubclass(type(x), Smooth | int) or type(x) is Panels\n"),
-        "pkg/app/a.py": "def run(x):\n    return x.size\n",  # asks the object: fine
-    })
+    _package(
+        tmp_path,
+        KINDS
+        | {
+            "pkg/io/w.py": (
+                "from ..geometry.shapes import Panels, Sheet, Smooth\nfrom ..geometry "
+                "import shapes\ndef write(x):\n    if isinstance(x.lattice, (Sheet, "
+                "shapes.Panels)):\n        return 1\n    return isinstance(x, Sheet) or "
+                "issubclass(type(x), Smooth | int) or type(x) is Panels\n"
+            ),
+            "pkg/app/a.py": "def run(x):\n    return x.size\n",  # asks the object: fine
+        },
+    )
     assert sorted(kind_tests(tmp_path, "pkg")) == [
         ("pkg.io.w", "Panels", "line 4: isinstance Panels, a kind of Shape"),
         ("pkg.io.w", "Panels", "line 6: type() is Panels, a kind of Shape"),
@@ -485,20 +605,40 @@ def test_a_kind_test_outside_geometry_is_reported(tmp_path):
 
 
 def test_a_private_geometry_name_above_geometry_is_reported(tmp_path):
-    _package(tmp_path, KINDS | {
-        "pkg/io/w.py": "from ..geometry.shapes import Smooth, _helper\n",
-        "pkg/analysis/c.py": "def f():\n    from pkg.geometry import shapes as s\n    return s._helper() + s.check(1)\n",
-        "pkg/app/a.py": "import pkg.geometry.shapes as g\nfrom ..geometry import kinds\nx = g._helper, kinds.Shape, g.__name__\n",
-        "pkg/vault/v.py": "class A:\n    _x = 1\nprint(A._x)\n",  # its own private names: fine
-        "pkg/geometry/g.py": "from .shapes import _helper\n",  # within geometry: fine
-    })
+    _package(
+        tmp_path,
+        KINDS
+        | {
+            "pkg/io/w.py": "from ..geometry.shapes import Smooth, _helper\n",
+            "pkg/analysis/c.py": "def f():\n    from pkg.geometry import shapes as s\n    return "
+            "s._helper() + s.check(1)\n",
+            "pkg/app/a.py": "import pkg.geometry.shapes as g\nfrom ..geometry import kinds\nx = "
+            "g._helper, kinds.Shape, g.__name__\n",
+            "pkg/vault/v.py": "class A:\n    _x = 1\nprint(A._x)\n",  # its own private names: fine
+            "pkg/geometry/g.py": "from .shapes import _helper\n",  # within geometry: fine
+        },
+    )
     assert sorted(private_imports(tmp_path, "pkg")) == [
-        ("pkg.analysis.c", "pkg.geometry.shapes._helper", "line 3: reads the private name _helper of pkg.geometry.shapes"),
-        ("pkg.app.a", "pkg.geometry.shapes._helper", "line 3: reads the private name _helper of pkg.geometry.shapes"),
-        ("pkg.io.w", "pkg.geometry.shapes._helper", "line 1: imports the private name _helper of pkg.geometry.shapes"),
+        (
+            "pkg.analysis.c",
+            "pkg.geometry.shapes._helper",
+            "line 3: reads the private name _helper of pkg.geometry.shapes",
+        ),
+        (
+            "pkg.app.a",
+            "pkg.geometry.shapes._helper",
+            "line 3: reads the private name _helper of pkg.geometry.shapes",
+        ),
+        (
+            "pkg.io.w",
+            "pkg.geometry.shapes._helper",
+            "line 1: imports the private name _helper of pkg.geometry.shapes",
+        ),
     ]
 
 
 def test_a_long_module_is_reported(tmp_path):
-    _package(tmp_path, BASE | {"pkg/io/long.py": "x = 1\n" * 701, "pkg/io/short.py": "x = 1\n" * 700})
+    _package(
+        tmp_path, BASE | {"pkg/io/long.py": "x = 1\n" * 701, "pkg/io/short.py": "x = 1\n" * 700}
+    )
     assert long_modules(tmp_path, "pkg") == {"pkg.io.long": 701}

@@ -214,14 +214,21 @@ def test_wind_in_en_zones_is_each_zone_s_pressure_times_its_projected_areas(monk
     expected = {}
     for windward, (a, c) in (("start", (-R, R)), ("end", (R, -R))):
         borders = np.linspace(a, c, 5)[[0, 1, 3, 4]]  # the span's quarters from the windward edge
-        bands = [band(x, z, *sorted(pair, reverse=True)) for pair in
-                 ((borders[0], borders[1]), (borders[1], borders[2]), (borders[2], borders[3]))]
+        bands = [
+            band(x, z, *sorted(pair, reverse=True))
+            for pair in (
+                (borders[0], borders[1]),
+                (borders[1], borders[2]),
+                (borders[2], borders[3]),
+            )
+        ]
         expected[windward] = -q * sum(k * b for k, b in zip(cp, bands))
         assert resultant_error(ZonedWind(q, *cp, windward), sheet, expected[windward]) < 1e-12
     assert not np.allclose(expected["start"], expected["end"])  # the windward side matters
     # one coefficient everywhere: the uniform wind's
     uniform = ZonedWind(q, -0.7, -0.7, -0.7).forces(sheet)
     assert_allclose(uniform, Wind(q, -0.7).forces(sheet), rtol=0, atol=1e-12 * q)
+
     # damaged: the zones taken by the triangles' centroids (the cut triangles wholly in one zone)
     def by_centroid(d):
         return np.where(d.mean(axis=1) >= 0, 1 / 3, 0.0)[:, None] * np.ones(3)
@@ -262,8 +269,14 @@ def test_a_point_load_is_its_force_on_the_nearest_node(vault):
 
 @pytest.mark.parametrize(
     "case",
-    [SelfWeight(), Snow(500.0), HalfSnow(500.0, "start"), Wind(600.0, -0.8),
-     ZonedWind(600.0, 0.3, -1.0, -0.4), PointLoad(80.0)],
+    [
+        SelfWeight(),
+        Snow(500.0),
+        HalfSnow(500.0, "start"),
+        Wind(600.0, -0.8),
+        ZonedWind(600.0, 0.3, -1.0, -0.4),
+        PointLoad(80.0),
+    ],
     ids=lambda c: c.name,
 )
 def test_the_supports_carry_each_case_equal_and_opposite(vault, case):

@@ -1,4 +1,5 @@
-"""The bar-and-hinge model against an independent finite-element engine: OpenSees shells (tests/_opensees.py).
+"""The bar-and-hinge model against an independent finite-element engine: OpenSees shells
+(tests/_opensees.py).
 
 On the paper's panel tube and panel vault (aluminium 2 mm, creases of the default
 stiffness): the self-weight deflection with the feet pinned and the six lowest free
@@ -26,7 +27,15 @@ import scipy.linalg as la
 from numpy.testing import assert_allclose
 
 import _opensees
-from curvefold.mechanics import MATERIALS, Loads, Material, StructureModel, Supports, free_modes, static_response
+from curvefold.mechanics import (
+    MATERIALS,
+    Loads,
+    Material,
+    StructureModel,
+    Supports,
+    free_modes,
+    static_response,
+)
 from curvefold.mechanics._linear import rigid_motions
 from curvefold.vault import Vault
 
@@ -34,7 +43,8 @@ AL = MATERIALS["aluminium"]
 
 
 def ours(sm: StructureModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Our deflection (P, 3), six lowest eigenvalues, and the six DOFs that hold the rigid motions (for OpenSees's soft springs)."""
+    """Our deflection (P, 3), six lowest eigenvalues, and the six DOFs that hold the rigid
+    motions (for OpenSees's soft springs)."""
     result, _ = static_response(sm.model, Loads().forces(sm.model), Supports().fixed(sm))
     modes = free_modes(sm.model, 6)
     R = rigid_motions(sm.model.nodes, sm.model.masses)
@@ -42,8 +52,11 @@ def ours(sm: StructureModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return result.displacements, modes.eigenvalues, np.stack([held // 3, held % 3], axis=1)
 
 
-def theirs(sm: StructureModel, refine: int, eigenvalues: np.ndarray, ground: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """OpenSees's deflection and six lowest elastic eigenvalues (soft springs a millionth of the folding mode's stiffness)."""
+def theirs(
+    sm: StructureModel, refine: int, eigenvalues: np.ndarray, ground: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """OpenSees's deflection and six lowest elastic eigenvalues (soft springs a millionth of the
+    folding mode's stiffness)."""
     u = _opensees.static_deflection(sm, refine)
     spring = 1e-6 * sm.model.masses.sum() * eigenvalues[0]
     return u, _opensees.free_eigenvalues(sm, refine, 6, ground, spring)
@@ -55,7 +68,9 @@ def peak(u: np.ndarray) -> float:
 
 @pytest.fixture(scope="module")
 def tube():
-    return StructureModel.from_state(Vault.from_design(a=0.3, p_xy=0.75, panels=32, tubes=1).structure.state(), AL, 2e-3)
+    return StructureModel.from_state(
+        Vault.from_design(a=0.3, p_xy=0.75, panels=32, tubes=1).structure.state(), AL, 2e-3
+    )
 
 
 def test_one_shell_per_panel_is_the_same_discretisation(tube):
@@ -65,7 +80,11 @@ def test_one_shell_per_panel_is_the_same_discretisation(tube):
     assert_allclose(lam[:4], mu[:4], rtol=0.005)  # measured ≤ 0.2 %
     assert_allclose(lam[4:], mu[4:], rtol=0.02)  # measured 1.7 %, 0.3 %
     # damaged: a modulus 30 % too high (say, a unit slip in the table) is seen
-    stiff = StructureModel.from_state(tube.state, Material.from_values(1.3 * AL.youngs_modulus, AL.poisson, AL.density, AL.strength), 2e-3)
+    stiff = StructureModel.from_state(
+        tube.state,
+        Material.from_values(1.3 * AL.youngs_modulus, AL.poisson, AL.density, AL.strength),
+        2e-3,
+    )
     assert abs(peak(ours(stiff)[0]) / peak(v) - 1) > 0.1
 
 
@@ -73,7 +92,8 @@ def test_one_shell_per_panel_is_the_same_discretisation(tube):
 def test_refined_shells_bound_the_approximation_on_the_panel_tube(tube):
     u, lam, ground = ours(tube)
     v, mu = theirs(tube, 4, lam, ground)
-    assert 0.80 < peak(u) / peak(v) < 0.92  # stiffer: a panel bends only across its diagonal (measured 0.86)
+    # stiffer: a panel bends only across its diagonal (measured 0.86)
+    assert 0.80 < peak(u) / peak(v) < 0.92
     assert_allclose(lam[0], mu[0], rtol=0.015)  # the folding mode: measured 0.8 %
     assert_allclose(lam[1], mu[1], rtol=0.04)  # measured 2.5 %
     assert_allclose(lam[2:], mu[2:], rtol=0.3)  # measured 12 %, 21 %, 7 %, 24 %
@@ -81,7 +101,9 @@ def test_refined_shells_bound_the_approximation_on_the_panel_tube(tube):
 
 @pytest.mark.slow
 def test_the_paper_panel_vault_against_refined_shells():
-    vault = StructureModel.from_state(Vault.from_design(a=0.3, p_xy=0.75, panels=16).structure.state(), AL, 2e-3)
+    vault = StructureModel.from_state(
+        Vault.from_design(a=0.3, p_xy=0.75, panels=16).structure.state(), AL, 2e-3
+    )
     u, lam, ground = ours(vault)
     v, mu = theirs(vault, 1, lam, ground)
     assert_allclose(peak(u), peak(v), rtol=0.02)  # the same discretisation: measured 1.1 %

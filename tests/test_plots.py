@@ -33,7 +33,9 @@ def vault() -> Vault:
 
 @pytest.fixture(scope="module")
 def block() -> Structure:
-    curve = SpaceCurve.from_curvature(lambda s: 1 + 0.3 * np.sin(s), lambda s: 0.3 * np.cos(1.5 * s), 3.0, samples=101)
+    curve = SpaceCurve.from_curvature(
+        lambda s: 1 + 0.3 * np.sin(s), lambda s: 0.3 * np.cos(1.5 * s), 3.0, samples=101
+    )
     lattice = Lattice.from_crease(Crease.from_curve(curve, fold_angle=60.0), 0.2, 0.15)
     return Structure.from_cells(lattice, [(0, 0), (0, 1), (1, 0), (1, 1), (2, 1)])
 
@@ -82,7 +84,8 @@ def test_regression_domain(vault, tmp_path):
     margin = vault.lattice.domain.margin(xy)
     box = ax.get_xlim()[1]
     assert np.all((np.abs(margin) < 1e-9) | (np.abs(xy).max(axis=1) > box - 1e-9))
-    assert any(isinstance(c, LineCollection) for c in ax.collections)  # limiting lines, coloured by t
+    # limiting lines, coloured by t
+    assert any(isinstance(c, LineCollection) for c in ax.collections)
     cells = polys(ax)[0]
     assert len(cells.get_paths()) == len(vault.structure.cells)
     labels = legend_texts(ax)
@@ -105,7 +108,8 @@ def test_regression_domain_marks_cells_past_regression(vault):
         plots.plot_regression_domain(vault.lattice, [(0.5, 0.0)])
 
 
-# -- widths -----------------------------------------------------------------------------------------
+# -- widths
+# -----------------------------------------------------------------------------------------
 
 
 def test_width_proportion(vault, tmp_path):
@@ -121,7 +125,8 @@ def test_width_proportion(vault, tmp_path):
     check_saved(fig, tmp_path)
 
 
-# -- sections: the pantograph ------------------------------------------------------------------------
+# -- sections: the pantograph
+# ------------------------------------------------------------------------
 
 
 def test_sections_are_pantographs(vault, tmp_path):
@@ -131,7 +136,11 @@ def test_sections_are_pantographs(vault, tmp_path):
     assert "feet" in fig.axes[0].get_title() and "apex" in fig.axes[1].get_title()
     assert all("model units" in ax.get_xlabel() for ax in fig.axes)
     labels = legend_texts(fig)
-    assert [t for t in labels if t.startswith("2α")] == ["2α = 30°", "2α = 60°", "2α = 90° (design)"]
+    assert [t for t in labels if t.startswith("2α")] == [
+        "2α = 30°",
+        "2α = 60°",
+        "2α = 90° (design)",
+    ]
     lat = vault.lattice
     for ax, t in zip(fig.axes, (0.0, 0.5)):
         i = int(np.argmin(np.abs(lat.t - t)))
@@ -141,8 +150,10 @@ def test_sections_are_pantographs(vault, tmp_path):
         for coll, f in zip(collections, angles):
             cells = np.array([p.vertices[:4] for p in coll.get_paths()])  # (K, 4, 2), corners 1–4
             assert len(cells) == len(vault.structure.cells)
-            side12 = np.linalg.norm(cells[:, 1] - cells[:, 0], axis=1)  # corner 1 → 2: along v, width w_R
-            side14 = np.linalg.norm(cells[:, 3] - cells[:, 0], axis=1)  # corner 1 → 4: along u, width w_L
+            # corner 1 → 2: along v, width w_R
+            side12 = np.linalg.norm(cells[:, 1] - cells[:, 0], axis=1)
+            # corner 1 → 4: along u, width w_L
+            side14 = np.linalg.norm(cells[:, 3] - cells[:, 0], axis=1)
             assert_allclose(side12, wr, rtol=1e-9)
             assert_allclose(side14, wl, rtol=1e-9)
             d1, d2 = cells[:, 1] - cells[:, 0], cells[:, 3] - cells[:, 0]
@@ -164,7 +175,8 @@ def test_sections_of_structures_and_states(block):
         plots.plot_sections(block.lattice)
 
 
-# -- 3D views ------------------------------------------------------------------------------------------
+# -- 3D views
+# ------------------------------------------------------------------------------------------
 
 
 def test_motion_strip(vault, tmp_path):
@@ -193,7 +205,10 @@ def test_vault_view(vault, tmp_path):
     assert any(t.startswith("fold") for t in labels) and any(t.startswith("seam") for t in labels)
     (coll,) = polys(ax)
     edges = coll.get_edgecolors()
-    red, blue = (np.array(Image.new("RGB", (1, 1), c).getpixel((0, 0))) / 255 for c in (plots.KIND_COLORS["fold"], plots.KIND_COLORS["seam"]))
+    red, blue = (
+        np.array(Image.new("RGB", (1, 1), c).getpixel((0, 0))) / 255
+        for c in (plots.KIND_COLORS["fold"], plots.KIND_COLORS["seam"])
+    )
     assert np.isclose(edges[:, :3], red, atol=1e-3).all(axis=1).any()
     assert np.isclose(edges[:, :3], blue, atol=1e-3).all(axis=1).any()
     faces = coll.get_facecolors()
@@ -212,14 +227,21 @@ def test_figures_draw_the_polygons_of_their_scenes(vault, block):
     from curvefold.figures import state_scene, vault_scene
 
     for fig, scene in (
-        (views.plot_vault(vault, angle=60.0), vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0)),
-        (views.plot_structure(block, fold_angle=30.0), state_scene(block.state(30.0), colors=plots.KIND_COLORS)),
+        (
+            views.plot_vault(vault, angle=60.0),
+            vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0),
+        ),
+        (
+            views.plot_structure(block, fold_angle=30.0),
+            state_scene(block.state(30.0), colors=plots.KIND_COLORS),
+        ),
     ):
         ax = fig.axes[0]
         (coll,) = polys(ax)
         drawn = [p.vertices for p in coll.get_paths()]
         assert len(drawn) == len(scene.paths) > 1000
-        assert all(np.array_equal(a, b) for a, b in zip(drawn, scene.paths))  # the same polygons, in the same order
+        # the same polygons, in the same order
+        assert all(np.array_equal(a, b) for a, b in zip(drawn, scene.paths))
         assert_allclose(coll.get_facecolors(), scene.fill)
         assert_allclose(coll.get_edgecolors(), scene.stroke)
         assert_allclose(coll.get_linewidths(), scene.widths)
@@ -244,7 +266,9 @@ def test_structure_and_crease_views(block, tmp_path):
 
 
 def test_motion_gif(vault, block, tmp_path):
-    path = motion.write_motion_gif(vault, tmp_path / "fold.gif", angles=np.linspace(0, 90, 5), size=(200, 150))
+    path = motion.write_motion_gif(
+        vault, tmp_path / "fold.gif", angles=np.linspace(0, 90, 5), size=(200, 150)
+    )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["fold.gif"]
     with Image.open(path) as im:
         assert im.format == "GIF" and im.size == (200, 150)
@@ -257,30 +281,45 @@ def test_motion_gif(vault, block, tmp_path):
 
 
 def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
-    """motion_frames draws RGB frames at one scale; write_gif only encodes what it is given, with one palette."""
+    """motion_frames draws RGB frames at one scale; write_gif only encodes what it is given, with
+    one palette."""
     frames = motion.motion_frames(vault, angles=(0.0, 45.0, 90.0), size=(160, 120))
     assert [(f.mode, f.size) for f in frames] == [("RGB", (160, 120))] * 3
-    assert not np.array_equal(np.asarray(frames[0]), np.asarray(frames[2]))  # flat and folded differ
+    # flat and folded differ
+    assert not np.array_equal(np.asarray(frames[0]), np.asarray(frames[2]))
     path = write_gif(tmp_path / "plain.gif", frames, frame_seconds=0.5)
     with Image.open(path) as im:
         assert im.n_frames == 3 and im.info["duration"] == 500 and im.info["loop"] == 0
         im.seek(2)
-        # one palette of COLOURS from the last frame: that frame comes back close (quantised, not dithered)
+        # one palette of COLOURS from the last frame: that frame comes back close (quantised, not
+        # dithered)
         back = np.asarray(im.convert("RGB"), float)
     assert np.abs(back - np.asarray(frames[2], float)).mean() < 4.0
     palette = frames[-1].quantize(colors=COLOURS, method=Image.Quantize.MAXCOVERAGE)
-    on_palette = [np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB")) for f in frames]
+    on_palette = [
+        np.asarray(f.quantize(palette=palette, dither=Image.Dither.NONE).convert("RGB"))
+        for f in frames
+    ]
     with Image.open(path) as im:  # every frame decodes to exactly its pixels on that palette
         decoded = [np.asarray(im.convert("RGB")) for _ in ImageSequence.Iterator(im)]
     assert all(np.array_equal(d, f) for d, f in zip(decoded, on_palette, strict=True))
-    own = np.asarray(frames[0].quantize(colors=COLOURS).convert("RGB"))  # the first frame on a palette of its own: not what was written
+    # the first frame on a palette of its own: not what was written
+    own = np.asarray(frames[0].quantize(colors=COLOURS).convert("RGB"))
     assert not np.array_equal(decoded[0], own)
-    for name, given, played in (("bounce", frames, [0, 1, 2, 1]), ("still", [frames[1], frames[1], frames[2]], [1, 1, 2])):
-        # each frame is stored once: played backward, a frame is the same as played forward; a frame that repeats the one before too
+    for name, given, played in (
+        ("bounce", frames, [0, 1, 2, 1]),
+        ("still", [frames[1], frames[1], frames[2]], [1, 1, 2]),
+    ):
+        # each frame is stored once: played backward, a frame is the same as played forward; a frame
+        # that repeats the one before too
         with Image.open(write_gif(tmp_path / f"{name}.gif", given, bounce=name == "bounce")) as im:
             decoded = [np.asarray(im.convert("RGB")) for _ in ImageSequence.Iterator(im)]
-        assert len(decoded) == len(played) and all(np.array_equal(d, on_palette[k]) for d, k in zip(decoded, played))
-    with pytest.raises(InputError, match=r"frame_seconds must be in \[0\.01, 10\] seconds, got 0\.0"):
+        assert len(decoded) == len(played) and all(
+            np.array_equal(d, on_palette[k]) for d, k in zip(decoded, played)
+        )
+    with pytest.raises(
+        InputError, match=r"frame_seconds must be in \[0\.01, 10\] seconds, got " r"0\.0"
+    ):
         write_gif(tmp_path / "x.gif", frames, frame_seconds=0.0)
     with pytest.raises(InputError, match="frames must all have one size"):
         write_gif(tmp_path / "x.gif", [frames[0], frames[1].resize((80, 60))])
@@ -289,7 +328,8 @@ def test_the_frames_are_drawn_by_figures_and_encoded_by_io(vault, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bounce.gif", "plain.gif", "still.gif"]
 
 
-# -- saving -----------------------------------------------------------------------------------------
+# -- saving
+# -----------------------------------------------------------------------------------------
 
 
 def test_save_figure_formats_and_reproducible_svg(vault, tmp_path):
@@ -297,8 +337,12 @@ def test_save_figure_formats_and_reproducible_svg(vault, tmp_path):
     (pdf,) = plots.save_figure(fig, tmp_path / "w", formats=("pdf",))
     assert pdf.read_bytes().startswith(b"%PDF")
     # the same figure built twice gives the same SVG bytes (no date, fixed ids)
-    a = plots.save_figure(plots.plot_width_proportion(vault.lattice), tmp_path / "a", formats=("svg",))[0].read_bytes()
-    b = plots.save_figure(plots.plot_width_proportion(vault.lattice), tmp_path / "b", formats=("svg",))[0].read_bytes()
+    a = plots.save_figure(
+        plots.plot_width_proportion(vault.lattice), tmp_path / "a", formats=("svg",)
+    )[0].read_bytes()
+    b = plots.save_figure(
+        plots.plot_width_proportion(vault.lattice), tmp_path / "b", formats=("svg",)
+    )[0].read_bytes()
     assert a == b and b"<dc:date>" not in a
     with pytest.raises(InputError, match="formats must be"):
         plots.save_figure(fig, tmp_path / "w", formats=("bmpx",))
@@ -325,12 +369,12 @@ def test_save_figure_is_atomic(vault, tmp_path, monkeypatch):
 
 def test_plots_leave_pyplot_alone():
     code = (
-        "import sys\n"
-        "from curvefold.vault import Vault, VaultDesign\n"
-        "from curvefold.figures import _plots as plots, _views as views\n"
-        "v = Vault.from_design(VaultDesign(samples=41))\n"
-        "views.plot_vault(v); plots.plot_sections(v); plots.plot_regression_domain(v.lattice, v.structure.cells)\n"
-        "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'\n"
+        "import sys\nfrom curvefold.vault import Vault, VaultDesign\nfrom curvefold.figures "
+        "import _plots as plots, _views as views\nv = "
+        "Vault.from_design(VaultDesign(samples=41))\nviews.plot_vault(v); "
+        "plots.plot_sections(v); plots.plot_regression_domain(v.lattice, "
+        "v.structure.cells)\nassert 'matplotlib.pyplot' not in sys.modules, 'pyplot "
+        "imported'\n"
     )
     subprocess.run([sys.executable, "-W", "error", "-c", code], check=True, timeout=120)
 
@@ -357,14 +401,18 @@ def test_viridis_and_inks_match_matplotlib_and_pillow():
     from PIL import ImageDraw
 
     t = np.linspace(0, 1, 41)
-    assert np.abs(canvas.viridis(t) - matplotlib.colormaps["viridis"](t)[:, :3]).max() < 0.06  # 11 stops, linear between
+    # 11 stops, linear between
+    assert np.abs(canvas.viridis(t) - matplotlib.colormaps["viridis"](t)[:, :3]).max() < 0.06
     draw = ImageDraw.Draw(Image.new("RGB", (1, 1)))
     colours = np.array([[0, 0, 0], [1, 0.5, 0.25], [0.2, 0.9, 1]])
-    assert canvas.inks(colours) == [draw.draw.draw_ink(tuple(int(round(255 * v)) for v in c)) for c in colours]
+    assert canvas.inks(colours) == [
+        draw.draw.draw_ink(tuple(int(round(255 * v)) for v in c)) for c in colours
+    ]
 
 
 def test_dashes_follow_the_polyline():
-    """Each dash runs from its start to its end along the line (interpolated there), through the vertices between."""
+    """Each dash runs from its start to its end along the line (interpolated there), through the
+    vertices between."""
     rng = np.random.default_rng(5)
     line = np.cumsum(rng.normal(size=(60, 2)), axis=0)
     line[20] = line[19]  # a vertex twice
@@ -374,16 +422,23 @@ def test_dashes_follow_the_polyline():
     for a, dash in zip(np.arange(0.0, s[-1], 4.5), dashes):
         b = min(a + 3.0, s[-1])
         inside = line[(s > a) & (s < b)]
-        expected = np.concatenate([[[np.interp(a, s, line[:, 0]), np.interp(a, s, line[:, 1])]], inside,
-                                   [[np.interp(b, s, line[:, 0]), np.interp(b, s, line[:, 1])]]])
+        expected = np.concatenate(
+            [
+                [[np.interp(a, s, line[:, 0]), np.interp(a, s, line[:, 1])]],
+                inside,
+                [[np.interp(b, s, line[:, 0]), np.interp(b, s, line[:, 1])]],
+            ]
+        )
         assert np.array_equal(dash, expected)
-    assert not np.array_equal(canvas._dashed(line[::-1], 3.0, 1.5)[0], dashes[0])  # damaged: the line run backwards
+    # damaged: the line run backwards
+    assert not np.array_equal(canvas._dashed(line[::-1], 3.0, 1.5)[0], dashes[0])
     assert [d.tolist() for d in canvas._dashed(line, 0.0, 0.0)] == [line.tolist()]
 
 
 def test_wide_lines_have_pillows_joints_where_they_bend():
-    """A bend gets Pillow's round joint (the same pixels); a smooth curve's joints, notches under a quarter
-    pixel, are left out (under one of its pixels in a hundred differs); a translucent line is drawn as Pillow draws it."""
+    """A bend gets Pillow's round joint (the same pixels); a smooth curve's joints, notches under
+    a quarter pixel, are left out (under one of its pixels in a hundred differs); a
+    translucent line is drawn as Pillow draws it."""
     from PIL import ImageDraw
 
     def drawn(points, ink, joints):
@@ -404,12 +459,14 @@ def test_wide_lines_have_pillows_joints_where_they_bend():
     assert (differ > 0).sum() <= 0.01 * (with_joints[..., 0] < 255).sum()  # of the line's pixels
     assert np.array_equal(drawn(arc, (0, 0, 255, 128), False), drawn(arc, (0, 0, 255, 128), True))
     without = Image.new("RGB", (120, 120), "white")
-    ImageDraw.Draw(without, "RGBA").line(bend.ravel().tolist(), fill=(0, 0, 255, 255), width=9)  # damaged: no joint at the bend
+    # damaged: no joint at the bend
+    ImageDraw.Draw(without, "RGBA").line(bend.ravel().tolist(), fill=(0, 0, 255, 255), width=9)
     assert not np.array_equal(np.asarray(without, int), drawn(bend, (0, 0, 255, 255), True))
 
 
 def test_png_bytes_hold_the_pictures_pixels(tmp_path):
-    """The unfiltered PNG writer: Pillow reads back every pixel; a damaged byte of its data is refused."""
+    """The unfiltered PNG writer: Pillow reads back every pixel; a damaged byte of its data is
+    refused."""
     rng = np.random.default_rng(3)
     pixels = rng.integers(0, 256, (37, 53, 3), dtype=np.uint8)
     pixels[10:20] = [236, 230, 218]  # flat runs, as in the pictures
@@ -417,7 +474,12 @@ def test_png_bytes_hold_the_pictures_pixels(tmp_path):
     with Image.open(path) as im:
         assert (im.format, im.mode, im.size) == ("PNG", "RGB", (53, 37))
         assert np.array_equal(np.asarray(im), pixels)
-    assert np.array_equal(np.asarray(Image.open(io.BytesIO(canvas.png_bytes(Image.fromarray(pixels).convert("RGBA"))))), pixels)
+    assert np.array_equal(
+        np.asarray(
+            Image.open(io.BytesIO(canvas.png_bytes(Image.fromarray(pixels).convert("RGBA"))))
+        ),
+        pixels,
+    )
     damaged = bytearray(path.read_bytes())
     damaged[60] ^= 0xFF  # inside the image data
     with pytest.raises(OSError, match="broken data stream"):
@@ -429,15 +491,26 @@ def test_the_domain_polygon_is_scipys_halfspace_intersection(vault, block):
     for domain in (vault.lattice.domain, block.lattice.domain):
         for box in (0.5, 3.0, 11.7, 100.0):
             poly = domain.polygon(box=box)
-            halfspaces = np.concatenate([np.stack([domain.a, domain.b, -np.ones_like(domain.a)], axis=1),
-                                         np.array([[1, 0, -box], [-1, 0, -box], [0, 1, -box], [0, -1, -box]], float)])
+            halfspaces = np.concatenate(
+                [
+                    np.stack([domain.a, domain.b, -np.ones_like(domain.a)], axis=1),
+                    np.array([[1, 0, -box], [-1, 0, -box], [0, 1, -box], [0, -1, -box]], float),
+                ]
+            )
             pts = spatial.HalfspaceIntersection(halfspaces, np.zeros(2)).intersections
             reference = pts[spatial.ConvexHull(pts).vertices]
             # every vertex of one lies on the boundary of the other, to rounding
             for a, b in ((poly, reference), (reference, poly)):
                 edges = np.roll(b, -1, axis=0) - b
-                t = np.clip(np.einsum("pek,ek->pe", a[:, None] - b[None], edges) / np.einsum("ek,ek->e", edges, edges), 0, 1)
-                gap = np.linalg.norm(a[:, None] - (b[None] + t[..., None] * edges[None]), axis=2).min(axis=1)
+                t = np.clip(
+                    np.einsum("pek,ek->pe", a[:, None] - b[None], edges)
+                    / np.einsum("ek,ek->e", edges, edges),
+                    0,
+                    1,
+                )
+                gap = np.linalg.norm(
+                    a[:, None] - (b[None] + t[..., None] * edges[None]), axis=2
+                ).min(axis=1)
                 assert gap.max() < 1e-10 * box
             assert (poly @ np.stack([domain.a, domain.b])).max() < 1 + 1e-12
 
@@ -448,26 +521,42 @@ def test_regression_domain_picture_shades_the_valid_set(vault, tmp_path):
     assert picture.size == (960, 810) and picture.mode == "RGB"
     rng = np.random.default_rng(7)
     uv = rng.uniform(-plot.box, plot.box, (600, 2))
-    cells = (uv[:, None] >= plot.cells.min(axis=1)[None] - 0.1) & (uv[:, None] <= plot.cells.max(axis=1)[None] + 0.1)
+    cells = (uv[:, None] >= plot.cells.min(axis=1)[None] - 0.1) & (
+        uv[:, None] <= plot.cells.max(axis=1)[None] + 0.1
+    )
     free = ~cells.all(axis=2).any(axis=1)  # away from the cells drawn over the domain
     near = np.abs(vault.lattice.domain.margin(uv)) > 0.03  # and from its edge and the lines
     left, top, right, bottom = 100, 42, 790, 732
-    legend = (uv[:, 0] < -plot.box + 0.45 * 2 * plot.box) & (uv[:, 1] > plot.box - 0.2 * 2 * plot.box)
+    legend = (uv[:, 0] < -plot.box + 0.45 * 2 * plot.box) & (
+        uv[:, 1] > plot.box - 0.2 * 2 * plot.box
+    )
     axes = (np.abs(uv) < 0.02 * plot.box).any(axis=1)
     keep = free & near & ~legend & ~axes
     uv, valid = uv[keep], vault.lattice.domain.contains(uv[keep])
 
     def green(image: np.ndarray) -> np.ndarray:
-        px = np.stack([left + (uv[:, 0] + plot.box) / (2 * plot.box) * (right - left),
-                       top + (plot.box - uv[:, 1]) / (2 * plot.box) * (bottom - top)], axis=-1).round().astype(int)
+        px = (
+            np.stack(
+                [
+                    left + (uv[:, 0] + plot.box) / (2 * plot.box) * (right - left),
+                    top + (plot.box - uv[:, 1]) / (2 * plot.box) * (bottom - top),
+                ],
+                axis=-1,
+            )
+            .round()
+            .astype(int)
+        )
         rgb = image[px[:, 1], px[:, 0]].astype(int)
         return np.abs(rgb - np.array([0xCF, 0xE8, 0xCF])).max(axis=1) < 16
 
     shaded = green(np.asarray(picture))
     assert valid.any() and (~valid).any()
-    assert (shaded == valid).mean() > 0.97  # green where Eq. 18 holds, not where it fails (a limiting line may cross a point)
+    # green where Eq. 18 holds, not where it fails (a limiting line may cross a point)
+    assert (shaded == valid).mean() > 0.97
     # a picture of a damaged domain (the valid set mirrored) fails the same check
-    damaged = pictures.regression_domain_picture(vault.lattice, vault.structure.cells).transpose(Image.Transpose.FLIP_LEFT_RIGHT)
+    damaged = pictures.regression_domain_picture(vault.lattice, vault.structure.cells).transpose(
+        Image.Transpose.FLIP_LEFT_RIGHT
+    )
     assert (green(np.asarray(damaged)) == valid).mean() < 0.9
     (path,) = pictures.write_picture(picture, tmp_path / "domain")
     with Image.open(path) as im:
@@ -482,18 +571,25 @@ def ink_columns(picture) -> np.ndarray:
 
 
 def test_pictures_are_drawn_from_the_figures_content(vault, block, tmp_path):
-    for picture, size in ((pictures.width_proportion_picture(vault.lattice), (960, 780)),
-                          (pictures.sections_picture(vault), (1440, 720)),
-                          (pictures.vault_picture(vault), (1050, 780)),
-                          (pictures.motion_strip_picture(vault), (1065, 1020)),
-                          (pictures.structure_picture(block), (960, 780)),
-                          (pictures.sections_picture(block, (0.0, 0.3, 1.0)), (2130, 720))):
+    for picture, size in (
+        (pictures.width_proportion_picture(vault.lattice), (960, 780)),
+        (pictures.sections_picture(vault), (1440, 720)),
+        (pictures.vault_picture(vault), (1050, 780)),
+        (pictures.motion_strip_picture(vault), (1065, 1020)),
+        (pictures.structure_picture(block), (960, 780)),
+        (pictures.sections_picture(block, (0.0, 0.3, 1.0)), (2130, 720)),
+    ):
         assert picture.size == size
         pixels = np.asarray(picture).reshape(-1, 3)
         assert len(np.unique(pixels, axis=0)) > 100  # not blank: shaded, antialiased
         dark = ink_columns(picture)
-        assert dark[: size[0] // 3].any() and dark[-size[0] // 3:].any()  # drawn across the picture
-        assert (np.asarray(picture)[:, :2] > 250).all() and (np.asarray(picture)[:, -2:] > 250).all()  # nothing cut at the sides
+        assert (
+            dark[: size[0] // 3].any() and dark[-size[0] // 3 :].any()
+        )  # drawn across the picture
+        # nothing cut at the sides
+        assert (np.asarray(picture)[:, :2] > 250).all() and (
+            np.asarray(picture)[:, -2:] > 250
+        ).all()
     # the vault's strips are shaded grey, its creases red and blue as in the figure
     rgb = np.asarray(pictures.vault_picture(vault)).reshape(-1, 3).astype(int)
     assert ((rgb[:, 0] > 200) & (rgb[:, 1] < 60) & (rgb[:, 2] < 60)).sum() > 500
@@ -505,7 +601,10 @@ def test_pictures_are_drawn_from_the_figures_content(vault, block, tmp_path):
 def test_the_width_plot_and_its_picture_agree(vault):
     plot = plots.width_plot(vault.lattice)
     assert_allclose(plot.ratio, vault.lattice.width_right / vault.lattice.width_left)
-    assert [text for text, _ in plot.notes] == [f"{vault.design.p_xy:.4g} at t = 0", f"{vault.p_xz:.4g} at t = ½"]
+    assert [text for text, _ in plot.notes] == [
+        f"{vault.design.p_xy:.4g} at t = 0",
+        f"{vault.p_xz:.4g} at t = ½",
+    ]
     assert_allclose(plot.mark_ratio, [[0.0, vault.design.p_xy], [0.5, vault.p_xz]], rtol=1e-9)
     assert plots.mathtext(plot.top_curves[0][0]) == "$w_L$(t)"
 
@@ -515,34 +614,50 @@ def test_singular_values_picture(tmp_path):
 
     class State:  # the fields the plot reads
         def __init__(self, label, values, tolerance):
-            self.label, self.singular_values, self.tolerance = label, np.asarray(values, float), tolerance
+            self.label, self.singular_values, self.tolerance = (
+                label,
+                np.asarray(values, float),
+                tolerance,
+            )
             self.dof, self.nullity, self.gap = 1, 7, 1e8
 
-    states = [State("flat", np.logspace(0, -16, 30), 1e-10), State("design", np.logspace(0, -15, 30), 1e-10)]
+    states = [
+        State("flat", np.logspace(0, -16, 30), 1e-10),
+        State("design", np.logspace(0, -15, 30), 1e-10),
+    ]
     plot = plots.singular_values_plot(states)
-    assert_allclose(plot.values[0][-1], 1.0) and plot.labels[0].startswith("flat: 1 internal DOF (7 null), gap 1.0e+08")
+    assert_allclose(plot.values[0][-1], 1.0) and plot.labels[0].startswith(
+        "flat: 1 internal DOF (7 null), gap 1.0e+08"
+    )
     picture = pictures.singular_values_picture(states)
-    assert picture.size == (960, 690) and len(np.unique(np.asarray(picture).reshape(-1, 3), axis=0)) > 30
+    assert (
+        picture.size == (960, 690)
+        and len(np.unique(np.asarray(picture).reshape(-1, 3), axis=0)) > 30
+    )
     with pytest.raises(InputError, match="at least one"):
         pictures.singular_values_picture([])
 
 
 def test_the_pictures_job_imports_neither_matplotlib_nor_scipy(tmp_path):
     code = (
-        "import sys\n"
-        "from pathlib import Path\n"
-        "from curvefold.app import default_design\n"
-        "from curvefold.app._build import build\n"
-        "from curvefold.app import _products as products\n"
-        "built = build(default_design('vault'))\n"
-        "jobs = dict(products.jobs(built, built.design.output.formats))\n"
-        "before = {m for m in sys.modules if m.startswith('scipy')}\n"
-        f"files = jobs['pictures'](Path({str(tmp_path)!r})) + jobs['folding GIF'](Path({str(tmp_path)!r}))\n"
-        "assert 'matplotlib' not in sys.modules, 'matplotlib imported'\n"
-        "assert {m for m in sys.modules if m.startswith('scipy')} == before, 'scipy imported'\n"
-        "print(sorted(f.name for f in files))\n"
+        "import sys\nfrom pathlib import Path\nfrom curvefold.app import default_design\nfrom "
+        "curvefold.app._build import build\nfrom curvefold.app import _products as "
+        "products\nbuilt = build(default_design('vault'))\njobs = "
+        "dict(products.jobs(built, built.design.output.formats))\nbefore = "
+        f"{{m for m in sys.modules if m.startswith('scipy')}}\nfiles = "
+        f"jobs['pictures'](Path({str(tmp_path)!r})) + jobs['folding "
+        f"GIF'](Path({str(tmp_path)!r}))\nassert 'matplotlib' not in sys.modules, "
+        "'matplotlib imported'\nassert "
+        f"{{m for m in sys.modules if m.startswith('scipy')}} == before, 'scipy "
+        "imported'\nprint(sorted(f.name for f in files))\n"
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
-    assert r.stdout.split() == ["['folding-motion.png',", "'folding.gif',", "'regression-domain.png',", "'sections.png',", "'vault.png',",
-                                "'width-proportion.png']"]
+    assert r.stdout.split() == [
+        "['folding-motion.png',",
+        "'folding.gif',",
+        "'regression-domain.png',",
+        "'sections.png',",
+        "'vault.png',",
+        "'width-proportion.png']",
+    ]

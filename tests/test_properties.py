@@ -65,7 +65,10 @@ designs = st.builds(
 def build(d: Design, samples: int = SAMPLES) -> Lattice:
     """The lattice of a design, sampled at ``samples`` points along the crease."""
     curve = SpaceCurve.from_curvature(
-        lambda s: d.k0 * (1 + d.k1 * np.sin(d.fk * s + d.phase)), lambda s: d.t0 + d.t1 * np.cos(d.ft * s), LENGTH, samples=samples
+        lambda s: d.k0 * (1 + d.k1 * np.sin(d.fk * s + d.phase)),
+        lambda s: d.t0 + d.t1 * np.cos(d.ft * s),
+        LENGTH,
+        samples=samples,
     )
     crease = Crease.from_curve(curve, fold_angle=d.fold_angle)
     # Buildable designs: proportions that change less than 100× along the crease (a
@@ -75,7 +78,11 @@ def build(d: Design, samples: int = SAMPLES) -> Lattice:
     unit = Lattice(crease, Pattern.from_crease(crease, np.exp(-log_ratio), np.exp(log_ratio)))
     # widths at a fraction of the largest valid unit cell along the direction theta
     u = np.array([np.cos(d.theta), np.sin(d.theta)]) / max(np.cos(d.theta), np.sin(d.theta))
-    reach = min(float(unit.domain.extent(u)), float(unit.domain.extent([1, 0])) / u[0], float(unit.domain.extent([0, 1])) / u[1])
+    reach = min(
+        float(unit.domain.extent(u)),
+        float(unit.domain.extent([1, 0])) / u[0],
+        float(unit.domain.extent([0, 1])) / u[1],
+    )
     scale = min(reach * d.fraction, 0.3 / d.k0)  # every corner of the unit cell inside
     return Lattice.from_crease(crease, scale * u[0], scale * u[1])
 
@@ -122,23 +129,64 @@ def rounding(lattice: Lattice, uv: np.ndarray, derivatives: int) -> float:
 @SETTINGS
 @given(designs)
 # Eq. 19 near rounding: 1.9e-10 at 401 samples, only 3.7× below 201 (0.14 of its rounding bound)
-@example(Design(k0=0.3, k1=0.278761105508582, fk=1.2702460296271272, ft=1.473811043416585, t0=0.0, t1=0.0,
-                phase=0.9170173669015288, fold_angle=15.0, theta=1.0125456665761283, fraction=0.21022672607743953))
+@example(
+    Design(
+        k0=0.3,
+        k1=0.278761105508582,
+        fk=1.2702460296271272,
+        ft=1.473811043416585,
+        t0=0.0,
+        t1=0.0,
+        phase=0.9170173669015288,
+        fold_angle=15.0,
+        theta=1.0125456665761283,
+        fraction=0.21022672607743953,
+    )
+)
 # Eq. 19 at rounding: 1.7e-9 from 401 to 3201 samples (0.8 of its rounding bound)
-@example(Design(k0=0.375, k1=0.125, fk=2.0, ft=1.0, t0=0.125, t1=0.0, phase=0.0, fold_angle=29.0, theta=1.0, fraction=0.5))
+@example(
+    Design(
+        k0=0.375,
+        k1=0.125,
+        fk=2.0,
+        ft=1.0,
+        t0=0.125,
+        t1=0.0,
+        phase=0.0,
+        fold_angle=29.0,
+        theta=1.0,
+        fraction=0.5,
+    )
+)
 def test_random_lattices_satisfy_the_geometry(design):
     lattice = build(design)
     coarse = build(design, (SAMPLES + 1) // 2)
     # r' of unit rulings with noise RULING_NOISE · ε, sampled at spacing h in s
     h = lattice.s[1] - lattice.s[0]
     developable = 1.5 * RULING_NOISE * EPS / h
-    assert converges(measure.developability_residual(lattice.crease), measure.developability_residual(coarse.crease), rounding=developable)
+    assert converges(
+        measure.developability_residual(lattice.crease),
+        measure.developability_residual(coarse.crease),
+        rounding=developable,
+    )
     uv = [[0, 1], [1, 1], [1, 0]]
-    assert converges(measure.frame_agreement(lattice, uv), measure.frame_agreement(coarse, uv), rounding=rounding(lattice, uv, 1))
+    assert converges(
+        measure.frame_agreement(lattice, uv),
+        measure.frame_agreement(coarse, uv),
+        rounding=rounding(lattice, uv, 1),
+    )
     for a, b in (([0, 0], [0, 1]), ([0, 1], [1, 1])):
-        assert converges(measure.eq19_residual(lattice, a, b), measure.eq19_residual(coarse, a, b), rounding=rounding(lattice, [a, b], 2))
+        assert converges(
+            measure.eq19_residual(lattice, a, b),
+            measure.eq19_residual(coarse, a, b),
+            rounding=rounding(lattice, [a, b], 2),
+        )
     # exact laws, measured from coordinates of size |x|: rounding ~ε|x|/w relative to a width w
-    rounding_w = 1e-14 * (np.abs(lattice.crease.curve.points).max() + LENGTH) / min(lattice.width_left.min(), lattice.width_right.min())
+    rounding_w = (
+        1e-14
+        * (np.abs(lattice.crease.curve.points).max() + LENGTH)
+        / min(lattice.width_left.min(), lattice.width_right.min())
+    )
     assert measure.width_law_error(lattice) < 1e-12 + rounding_w
 
 
@@ -146,8 +194,36 @@ def test_random_lattices_satisfy_the_geometry(design):
 @given(designs, st.floats(0.0, 170.0))
 # folded by a hundredth of a degree the error is rounding alone and does not fall (0.14 and
 # 0.21 of its bound)
-@example(Design(k0=1.0625, k1=0.71875, fk=1.0, ft=1.0, t0=0.0, t1=0.0, phase=0.0, fold_angle=15.0, theta=1.0, fraction=0.5), 0.009765625)
-@example(Design(k0=1.0, k1=0.0, fk=1.0, ft=1.0, t0=0.0, t1=0.5, phase=0.0, fold_angle=33.0, theta=1.0, fraction=0.5), 0.03125)
+@example(
+    Design(
+        k0=1.0625,
+        k1=0.71875,
+        fk=1.0,
+        ft=1.0,
+        t0=0.0,
+        t1=0.0,
+        phase=0.0,
+        fold_angle=15.0,
+        theta=1.0,
+        fraction=0.5,
+    ),
+    0.009765625,
+)
+@example(
+    Design(
+        k0=1.0,
+        k1=0.0,
+        fk=1.0,
+        ft=1.0,
+        t0=0.0,
+        t1=0.5,
+        phase=0.0,
+        fold_angle=33.0,
+        theta=1.0,
+        fraction=0.5,
+    ),
+    0.03125,
+)
 def test_random_tubes_fold_isometrically(design, other_angle):
     errors, noise = [], []
     for samples in (SAMPLES, (SAMPLES + 1) // 2):
@@ -162,5 +238,7 @@ def test_random_tubes_fold_isometrically(design, other_angle):
         errors.append(measure.isometry_error(folded, flat).max_relative_edge_error)
         # an edge's length differs by the noise of its two ends in each of the two meshes,
         # relative to the shortest edge
-        noise.append(4 * POINT_NOISE * EPS * np.abs(folded.vertices_coords).max() / flat.edge_lengths().min())
+        noise.append(
+            4 * POINT_NOISE * EPS * np.abs(folded.vertices_coords).max() / flat.edge_lengths().min()
+        )
     assert converges(errors[0], errors[1], rounding=noise[0], order=2)

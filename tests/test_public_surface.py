@@ -46,19 +46,28 @@ def core_modules(packages: Iterable[str] = CORE) -> list[types.ModuleType]:
     for name in packages:
         package = importlib.import_module(f"curvefold.{name}")
         out.append(package)
-        out += [importlib.import_module(info.name) for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")]
+        out += [
+            importlib.import_module(info.name)
+            for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
+        ]
     return out
 
 
 def declared_names(module: types.ModuleType) -> list[str]:
-    """The names a module declares public: its ``__all__``, else what it defines without a leading ``_``."""
+    """The names a module declares public: its ``__all__``, else what it defines without a
+    leading ``_``."""
     if hasattr(module, "__all__"):
         return list(module.__all__)
-    return [n for n, v in vars(module).items() if not n.startswith("_") and getattr(v, "__module__", None) == module.__name__]
+    return [
+        n
+        for n, v in vars(module).items()
+        if not n.startswith("_") and getattr(v, "__module__", None) == module.__name__
+    ]
 
 
 def public_callables(modules: Iterable[types.ModuleType]) -> Iterator[tuple[str, object]]:
-    """(qualified name, object) of every public function, class and public method of the public modules, once each."""
+    """(qualified name, object) of every public function, class and public method of the public
+    modules, once each."""
     seen: set[int] = set()
     for module in modules:
         if _is_private(module.__name__):
@@ -77,13 +86,22 @@ def public_callables(modules: Iterable[types.ModuleType]) -> Iterator[tuple[str,
 
 
 def collected_docstrings(modules: Iterable[types.ModuleType]) -> set[str]:
-    """The docstrings (cleaned) the doctest finder collects from the modules: the examples ``--doctest-modules`` runs."""
+    """The docstrings (cleaned) the doctest finder collects from the modules: the examples
+    ``--doctest-modules`` runs."""
     finder = doctest.DocTestFinder(exclude_empty=True)
-    return {inspect.cleandoc(test.docstring) for module in modules for test in finder.find(module) if test.examples}
+    return {
+        inspect.cleandoc(test.docstring)
+        for module in modules
+        for test in finder.find(module)
+        if test.examples
+    }
 
 
-def without_example(modules: list[types.ModuleType], extra: Iterable[tuple[str, object]] = ()) -> list[str]:
-    """Public callables whose docstring has no example, or has one that no doctest runs, each with why."""
+def without_example(
+    modules: list[types.ModuleType], extra: Iterable[tuple[str, object]] = ()
+) -> list[str]:
+    """Public callables whose docstring has no example, or has one that no doctest runs, each
+    with why."""
     run = collected_docstrings(modules)
     out = []
     for name, obj in [*public_callables(modules), *extra]:
@@ -110,11 +128,20 @@ def test_every_public_callable_of_the_core_has_an_example_that_runs():
 
 
 def test_the_core_has_public_callables_to_check():
-    """The walk finds what the core exports (a walk that found nothing would pass the test above)."""
+    """The walk finds what the core exports (a walk that found nothing would pass the test
+    above)."""
     names = {name for name, _ in public_callables(core_modules())}
-    assert {"curvefold.geometry.Structure.state", "curvefold.geometry.Lattice.refold", "curvefold.geometry.StructureLattice.fold_points",
-            "curvefold.geometry.SingleFold.mesh", "curvefold.mechanics.analyse_load", "curvefold.mechanics.Material.crease_stiffness",
-            "curvefold.vault.sweep", "curvefold.vault.Atlas.values", "curvefold.kernel.Spec.check"} <= names
+    assert {
+        "curvefold.geometry.Structure.state",
+        "curvefold.geometry.Lattice.refold",
+        "curvefold.geometry.StructureLattice.fold_points",
+        "curvefold.geometry.SingleFold.mesh",
+        "curvefold.mechanics.analyse_load",
+        "curvefold.mechanics.Material.crease_stiffness",
+        "curvefold.vault.sweep",
+        "curvefold.vault.Atlas.values",
+        "curvefold.kernel.Spec.check",
+    } <= names
     assert len(names) > 150
 
 
@@ -125,7 +152,9 @@ def _module(name: str, source: str) -> types.ModuleType:
 
 
 def test_a_callable_without_an_example_is_named():
-    fake = _module("fake_core", '''
+    fake = _module(
+        "fake_core",
+        '''
         def shown(x):
             """Twice x.
 
@@ -158,13 +187,20 @@ def test_a_callable_without_an_example_is_named():
 
             def _private(self):
                 return 0
-        ''')
-    assert without_example([fake]) == ["fake_core.bare: no example", "fake_core.Thing.weight: no example"]
+        ''',
+    )
+    assert without_example([fake]) == [
+        "fake_core.bare: no example",
+        "fake_core.Thing.weight: no example",
+    ]
 
 
 def test_an_example_that_no_doctest_collects_is_named():
-    """A class re-labelled to another module (as a package re-labels what its private modules define)."""
-    fake = _module("fake_private", '''
+    """A class re-labelled to another module (as a package re-labels what its private modules
+    define)."""
+    fake = _module(
+        "fake_private",
+        '''
         __all__ = ["Relabelled"]
 
         class Relabelled:
@@ -180,14 +216,18 @@ def test_an_example_that_no_doctest_collects_is_named():
                 >>> 2 + 2
                 4
                 """
-        ''')
+        ''',
+    )
     fake.Relabelled.__module__ = "fake_package"
-    assert without_example([fake]) == ["fake_private.Relabelled: its example is not collected by the doctests",
-                                       "fake_private.Relabelled.method: its example is not collected by the doctests"]
+    assert without_example([fake]) == [
+        "fake_private.Relabelled: its example is not collected by the doctests",
+        "fake_private.Relabelled.method: its example is not collected by the doctests",
+    ]
 
 
 def test_an_inherited_docstring_counts_where_its_example_runs():
-    """A method implementing a documented one (``Constant.value`` of ``ScalarFunction.value``) shows that example."""
+    """A method implementing a documented one (``Constant.value`` of ``ScalarFunction.value``)
+    shows that example."""
     from curvefold.kernel import Constant, ScalarFunction
 
     assert inspect.getdoc(Constant.value) == inspect.getdoc(ScalarFunction.value)
@@ -213,7 +253,8 @@ HEAVY = ("scipy", "matplotlib")
 
 
 def surface_problems(package: types.ModuleType) -> list[str]:
-    """What is wrong with a package's ``__all__``: a name missing, a module, or a name its submodule shadows."""
+    """What is wrong with a package's ``__all__``: a name missing, a module, or a name its
+    submodule shadows."""
     names = getattr(package, "__all__", None)
     if not names:
         return [f"{package.__name__} declares no __all__"]
@@ -221,7 +262,10 @@ def surface_problems(package: types.ModuleType) -> list[str]:
     submodules = {info.name for info in pkgutil.iter_modules(package.__path__)}
     for name in names:
         if name in submodules:
-            out.append(f"{package.__name__}.{name} is also a module's name: importing the module replaces it")
+            out.append(
+                f"{package.__name__}.{name} is also a module's name: importing the module "
+                "replaces it"
+            )
         elif not hasattr(package, name):
             out.append(f"{package.__name__}.{name} is in __all__ but cannot be imported")
         elif inspect.ismodule(getattr(package, name)):
@@ -235,8 +279,17 @@ def surface_problems(package: types.ModuleType) -> list[str]:
 def heavy_imports(module: str, heavy: Iterable[str] = HEAVY, path: str | None = None) -> list[str]:
     """The libraries of ``heavy`` that ``import module`` brings in, in a fresh interpreter."""
     code = f"import sys, {module}; print(' '.join(m for m in {tuple(heavy)!r} if m in sys.modules))"
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (path, os.environ.get("PYTHONPATH")) if p))
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120, check=True)
+    env = dict(
+        os.environ, PYTHONPATH=os.pathsep.join(p for p in (path, os.environ.get("PYTHONPATH")) if p)
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+        check=True,
+    )
     return done.stdout.split()
 
 
@@ -247,7 +300,11 @@ def test_every_package_declares_its_public_names(name):
     for item in package.__all__:  # the package's name is its module's object
         value = getattr(package, item)
         module = getattr(value, "__module__", None)
-        if module and module.startswith(f"curvefold.{name}.") and hasattr(sys.modules[module], item):
+        if (
+            module
+            and module.startswith(f"curvefold.{name}.")
+            and hasattr(sys.modules[module], item)
+        ):
             assert getattr(sys.modules[module], item) is value
 
 
@@ -260,23 +317,26 @@ def test_a_package_surface_that_does_not_resolve_is_named(tmp_path):
     package = tmp_path / "fakepkg"
     package.mkdir()
     (package / "part.py").write_text("def shown():\n    return 1\n")
-    (package / "__init__.py").write_text(textwrap.dedent('''
+    (package / "__init__.py").write_text(
+        textwrap.dedent("""
         import json
         from curvefold.kernel._exports import lazy_exports
         __all__, __getattr__, __dir__ = lazy_exports(__name__, {"part": ["shown", "gone", "part"]})
-        '''))
+        """)
+    )
     sys.path.insert(0, str(tmp_path))
     try:
         fake = importlib.import_module("fakepkg")
-        assert surface_problems(fake) == ["fakepkg.gone is in __all__ but cannot be imported",
-                                          "fakepkg.part is also a module's name: importing the module replaces it"]
+        assert surface_problems(fake) == [
+            "fakepkg.gone is in __all__ but cannot be imported",
+            "fakepkg.part is also a module's name: importing the module replaces it",
+        ]
         assert fake.shown() == 1
     finally:
         sys.path.remove(str(tmp_path))
         for key in [k for k in sys.modules if k.startswith("fakepkg")]:
             del sys.modules[key]
     assert heavy_imports("fakepkg", ("json", "scipy"), path=str(tmp_path)) == ["json"]
-
 
 
 # -- the packages' stubs: the lazy names as type checkers see them -------------------------------
@@ -316,12 +376,21 @@ def stub_problems(package: types.ModuleType, source: str) -> list[str]:
     imported, listed = stub_exports(source, package.__name__)
     exported = list(package.__all__)
     where = package.__name__
-    out = [f"{where}.{name}: exported, not in the stub's __all__"
-           for name in exported if name not in listed]
-    out += [f"{where}.{name}: in the stub's __all__, not exported"
-            for name in listed if name not in exported]
-    out += [f"{where}.{name}: in the stub's __all__, not imported"
-            for name in listed if name not in imported]
+    out = [
+        f"{where}.{name}: exported, not in the stub's __all__"
+        for name in exported
+        if name not in listed
+    ]
+    out += [
+        f"{where}.{name}: in the stub's __all__, not exported"
+        for name in listed
+        if name not in exported
+    ]
+    out += [
+        f"{where}.{name}: in the stub's __all__, not imported"
+        for name in listed
+        if name not in imported
+    ]
     for name, (module, original) in imported.items():
         if name not in exported:
             out.append(f"{where}.{name}: imported by the stub, not exported")
@@ -364,15 +433,30 @@ STUB_DAMAGES = {
 }
 
 
-@pytest.mark.parametrize(("damage", "expected"), [
-    ("a name left out", ["curvefold.geometry.Crease: exported, not in the stub's __all__"]),
-    ("a name not exported", ["curvefold.geometry.Part: in the stub's __all__, not exported",
-                             "curvefold.geometry.Part: imported by the stub, not exported"]),
-    ("a name not imported", ["curvefold.geometry.Pattern: in the stub's __all__, not imported"]),
-    ("a name from another module",
-     ["curvefold.geometry.State: the stub imports another object, from "
-      "curvefold.geometry._lattice"]),
-])
+@pytest.mark.parametrize(
+    ("damage", "expected"),
+    [
+        ("a name left out", ["curvefold.geometry.Crease: exported, not in the stub's __all__"]),
+        (
+            "a name not exported",
+            [
+                "curvefold.geometry.Part: in the stub's __all__, not exported",
+                "curvefold.geometry.Part: imported by the stub, not exported",
+            ],
+        ),
+        (
+            "a name not imported",
+            ["curvefold.geometry.Pattern: in the stub's __all__, not imported"],
+        ),
+        (
+            "a name from another module",
+            [
+                "curvefold.geometry.State: the stub imports another object, from "
+                "curvefold.geometry._lattice"
+            ],
+        ),
+    ],
+)
 def test_a_damaged_stub_is_named(damage, expected):
     import curvefold.geometry as geometry
 
@@ -388,14 +472,26 @@ def test_a_type_checker_sees_the_lazy_names_through_the_stubs(tmp_path, monkeypa
     """mypy, run on a user's imports, finds the classes (without the stubs: ``object``)."""
     api = pytest.importorskip("mypy.api")
     probe = tmp_path / "probe.py"
-    probe.write_text("from curvefold import Structure\nfrom curvefold.geometry import Crease\n"
-                     "reveal_type(Crease)\nreveal_type(Structure.state)\n")
+    probe.write_text(
+        "from curvefold import Structure\nfrom curvefold.geometry import Crease\n"
+        "reveal_type(Crease)\nreveal_type(Structure.state)\n"
+    )
     monkeypatch.setenv("MYPYPATH", str(Path(str(curvefold.__file__)).parents[1]))  # this checkout
-    out, _, _ = api.run([str(probe), "--config-file=", "--follow-imports=silent",
-                         "--no-error-summary", f"--cache-dir={tmp_path / 'cache'}",
-                         "--python-version=3.11"])
-    revealed = [line.split("Revealed type is ", 1)[1]
-                for line in out.splitlines() if "Revealed type" in line]
+    out, _, _ = api.run(
+        [
+            str(probe),
+            "--config-file=",
+            "--follow-imports=silent",
+            "--no-error-summary",
+            f"--cache-dir={tmp_path / 'cache'}",
+            "--python-version=3.11",
+        ]
+    )
+    revealed = [
+        line.split("Revealed type is ", 1)[1]
+        for line in out.splitlines()
+        if "Revealed type" in line
+    ]
     assert len(revealed) == 2, out
     assert revealed[0].startswith('"def (curve: curvefold.geometry._curve.SpaceCurve'), revealed[0]
     assert revealed[1].endswith('-> curvefold.geometry._structure.State"'), revealed[1]

@@ -19,20 +19,36 @@ def _section(page: str, title: str) -> str:
 
 def test_derived_quantities_read_as_names_and_units_not_python():
     built = build(default_design("vault").overrides(samples=201))
-    payload = structure_payload(built) | resolution(built) | {"files": ["vault-pattern-p10.svg", "vault-pattern-p2.svg", "vault.obj"]}
+    payload = (
+        structure_payload(built)
+        | resolution(built)
+        | {"files": ["vault-pattern-p10.svg", "vault-pattern-p2.svg", "vault.obj"]}
+    )
     page = report_html(payload | {"parameters": parameter_rows(built.design)})
     derived = _section(page, "Derived quantities")
-    assert "κ0·s0, the root of the arch condition (Eq. 20)" in derived and "<td class=unit>m</td>" in derived  # lengths in metres
-    for title in ("Certificate", "The paper's example", "Design"):  # names only as symbols beside their words
+    # lengths in metres
+    assert (
+        "κ0·s0, the root of the arch condition (Eq. 20)" in derived
+        and "<td class=unit>m</td>" in derived
+    )
+    # names only as symbols beside their words
+    for title in ("Certificate", "The paper's example", "Design"):
         shown = re.sub(r"<code>.*?</code>|<pre>.*?</pre>", "", _section(page, title), flags=re.S)
         assert not re.search(r">(eq\d+|[a-z0-9]+_[a-z0-9_]+)<", shown), title
-    smooth = [words for words in TITLES.values() if not re.search("panel|degree of freedom|rank", words)]
+    smooth = [
+        words for words in TITLES.values() if not re.search("panel|degree of freedom|rank", words)
+    ]
     assert all(html.escape(words) in page for words in smooth)
-    assert "torsion amplitude" in _section(page, "Design") and "× radius" in _section(page, "Design")
+    assert "torsion amplitude" in _section(page, "Design") and "× radius" in _section(
+        page, "Design"
+    )
     assert not re.search(r">[a-z0-9]+_[a-z0-9_]+<", derived)  # no snake_case key shown as a name
-    assert "[" not in derived and not re.search(r"\d{11,}", derived)  # no Python list, no 16-digit number
+    # no Python list, no 16-digit number
+    assert "[" not in derived and not re.search(r"\d{11,}", derived)
     assert "×" in derived and "→" in derived  # the footprint and the bounding box, read as such
-    assert [key for key in QUANTITIES if key in payload] and "samples along each crease, in the files" in _section(page, "Meshes of the files")
+    assert [
+        key for key in QUANTITIES if key in payload
+    ] and "samples along each crease, in the files" in _section(page, "Meshes of the files")
     files = _section(page, "Files")
     assert files.index("vault-pattern-p2.svg") < files.index("vault-pattern-p10.svg")
     assert describe_file("vault.obj") in files and "Y up" in describe_file("vault.obj")

@@ -34,7 +34,8 @@ def paper():
 
 
 def _deviation(curves: np.ndarray, keep: np.ndarray) -> float:
-    """Largest distance of the samples of curves (..., n, 3) from the polylines through the kept ones."""
+    """Largest distance of the samples of curves (..., n, 3) from the polylines through the kept
+    ones."""
     n = curves.shape[-2]
     j = np.clip(np.searchsorted(keep, np.arange(n), side="right") - 1, 0, len(keep) - 2)
     a, b = curves[..., keep[j], :], curves[..., keep[j + 1], :]
@@ -46,29 +47,49 @@ def test_each_tube_keeps_the_fewest_samples_within_the_tolerances(paper):
     """Measured on the meshes themselves, independently of how the samples were chosen."""
     structure, sampling = paper
     n = sampling.samples
-    assert len(sampling.keep) == 9 and all(k[0] == 0 and k[-1] == n - 1 and (n - 1) // 2 in k for k in sampling.keep)
+    assert len(sampling.keep) == 9 and all(
+        k[0] == 0 and k[-1] == n - 1 and (n - 1) // 2 in k for k in sampling.keep
+    )
     assert max(sampling.vertices_per_crease) < n / 8  # the files hold a ninth of the samples
     folded, flat = structure.state(), structure.state(0.0)
     mesh, flat_mesh = folded.mesh(keep=sampling.keep), flat.mesh(keep=sampling.keep)
-    # every computed sample of every crease lies within the tolerance of the polyline through the kept ones
-    worst = max(_deviation(state.vertices[rows], keep) for rows, keep in zip(structure.cell_curves, sampling.keep) for state in (folded, flat))
+    # every computed sample of every crease lies within the tolerance of the polyline through the
+    # kept ones
+    worst = max(
+        _deviation(state.vertices[rows], keep)
+        for rows, keep in zip(structure.cell_curves, sampling.keep)
+        for state in (folded, flat)
+    )
     assert worst == pytest.approx(sampling.deviation, rel=1e-12) and worst <= 1e-4 * sampling.size
-    # ... and would not with every other kept sample dropped: the steps are about as long as they may be
+    # ... and would not with every other kept sample dropped: the steps are about as long as they
+    # may be
     coarser = [np.unique(np.append(k[::2], k[-1])) for k in sampling.keep]
-    assert max(_deviation(folded.vertices[rows], keep) for rows, keep in zip(structure.cell_curves, coarser)) > 2e-4 * sampling.size
+    assert (
+        max(
+            _deviation(folded.vertices[rows], keep)
+            for rows, keep in zip(structure.cell_curves, coarser)
+        )
+        > 2e-4 * sampling.size
+    )
     # edge lengths folded against flat, the fold across the diagonals, the triangles' corners
     stretch = np.abs(mesh.edge_lengths() / flat_mesh.edge_lengths() - 1).max()
     assert stretch == pytest.approx(sampling.stretch, rel=1e-9) and stretch <= 1e-4
     diagonal = mesh.edges_kind == "diagonal"
-    bend = np.abs(fold_angles(mesh.vertices_coords, mesh.faces_vertices, mesh.edges_vertices[diagonal])).max()
+    bend = np.abs(
+        fold_angles(mesh.vertices_coords, mesh.faces_vertices, mesh.edges_vertices[diagonal])
+    ).max()
     assert bend == pytest.approx(sampling.bend, rel=1e-9) and bend <= 0.5
-    corners = np.minimum(corner_angles(mesh.vertices_coords, mesh.faces_vertices), corner_angles(flat_mesh.vertices_coords, flat_mesh.faces_vertices))
+    corners = np.minimum(
+        corner_angles(mesh.vertices_coords, mesh.faces_vertices),
+        corner_angles(flat_mesh.vertices_coords, flat_mesh.faces_vertices),
+    )
     assert corners.min() == pytest.approx(sampling.min_angle, rel=1e-9)
 
 
 def test_the_chosen_samples_leave_no_slivers(paper):
-    """On every sample, tube 9 (speed factor 0.077, next to regression) has corners of 0.2°; kept, 5° in
-    tubes 1–8 and 3.5° in tube 9, where the accuracy asked keeps its steps from growing further."""
+    """On every sample, tube 9 (speed factor 0.077, next to regression) has corners of 0.2°;
+    kept, 5° in tubes 1–8 and 3.5° in tube 9, where the accuracy asked keeps its steps from
+    growing further."""
     structure, sampling = paper
     every = structure.state(0.0).mesh()
     kept = structure.state(0.0).mesh(keep=sampling.keep)
@@ -82,28 +103,43 @@ def test_the_chosen_samples_leave_no_slivers(paper):
 
 @pytest.mark.node
 def test_the_fold_library_rebuilds_every_sheet_exactly(tmp_path, paper):
-    """FOLD's own library rebuilds the faces of tubes 8 and 9's sheets from their edges: all of them,
-    counter-clockwise; on every sample it loses hundreds (the failure the chosen samples fix)."""
+    """FOLD's own library rebuilds the faces of tubes 8 and 9's sheets from their edges: all of
+    them, counter-clockwise; on every sample it loses hundreds (the failure the chosen samples
+    fix)."""
     structure, sampling = paper
     chosen, every = sheets(structure, keep=sampling.keep), sheets(structure)
     for sheet in chosen[14:]:
-        report = run_node("check_fold.mjs", str(write_sheet_fold(tmp_path / "s.fold", sheet.mesh, title=sheet.label)))["fold"]
-        assert report["faces_rebuilt"] == report["faces_file"] and report["same_vertex_sets"] and report["same_orientation"], sheet.label
-    report = run_node("check_fold.mjs", str(write_sheet_fold(tmp_path / "every.fold", every[-1].mesh)))["fold"]
+        report = run_node(
+            "check_fold.mjs",
+            str(write_sheet_fold(tmp_path / "s.fold", sheet.mesh, title=sheet.label)),
+        )["fold"]
+        assert (
+            report["faces_rebuilt"] == report["faces_file"]
+            and report["same_vertex_sets"]
+            and report["same_orientation"]
+        ), sheet.label
+    report = run_node(
+        "check_fold.mjs", str(write_sheet_fold(tmp_path / "every.fold", every[-1].mesh))
+    )["fold"]
     assert not report["same_vertex_sets"] and report["faces_rebuilt"] < report["faces_file"] - 100
 
 
 def test_the_written_fold_file_passes_the_fold_check(tmp_path, paper):
     structure, sampling = paper
-    path = write_structure_fold(tmp_path / "vault.fold", structure,
-                                output=FoldOutput(keep=sampling.keep))
+    path = write_structure_fold(
+        tmp_path / "vault.fold", structure, output=FoldOutput(keep=sampling.keep)
+    )
     result = check_fold(path)
     assert result.ok and result.max_isometry_error <= 1e-4
 
 
 def test_sampling_refuses_bad_parameters(paper):
     structure, _ = paper
-    for kwargs, match in ((dict(tolerance=0.0), "tolerance"), (dict(min_angle=45.0), "min_angle"), (dict(max_bend=0.0), "max_bend")):
+    for kwargs, match in (
+        (dict(tolerance=0.0), "tolerance"),
+        (dict(min_angle=45.0), "min_angle"),
+        (dict(max_bend=0.0), "max_bend"),
+    ):
         with pytest.raises(InputError, match=match):
             choose_sampling(structure, **kwargs)
 
@@ -111,8 +147,12 @@ def test_sampling_refuses_bad_parameters(paper):
 def test_topology_keeps_the_samples_asked(paper):
     structure, sampling = paper
     topology = structure.topology(keep=sampling.keep)
-    assert_array_equal(np.bincount(topology.faces_group // 4), [8 * (len(k) - 1) for k in sampling.keep])
-    assert sorted(set(topology.vertex_sample.tolist())) == sorted(set(np.concatenate(sampling.keep).tolist()))
+    assert_array_equal(
+        np.bincount(topology.faces_group // 4), [8 * (len(k) - 1) for k in sampling.keep]
+    )
+    assert sorted(set(topology.vertex_sample.tolist())) == sorted(
+        set(np.concatenate(sampling.keep).tolist())
+    )
     assert [s.label for s in topology.sheets] == [s.label for s in structure.topology().sheets]
     with pytest.raises(InputError, match="keep must list"):
         structure.topology(keep=sampling.keep[:3])
@@ -141,24 +181,40 @@ def _step_meshes(states: np.ndarray, structure, tube, i, ends) -> np.ndarray:
 @pytest.mark.parametrize("damaged", [False, True])
 def test_the_steps_are_measured_as_the_mesh_functions_measure_their_meshes(paper, damaged):
     """Each step's corners, stretch and bend and its samples' distance from its chords, component by
-    component, are the floats of corner_angles, vector_areas, np.linalg.norm and polyline_deviation on
-    the step's own mesh and curves; a state scaled by a rounding error is seen."""
+    component, are the floats of corner_angles, vector_areas, np.linalg.norm and
+    polyline_deviation on the step's own mesh and curves; a state scaled by a rounding error is
+    seen."""
     structure, _ = paper
     states = np.stack([structure.state().vertices, structure.state(0.0).vertices])
     tube, i, ends = _steps(structure)
     x = _step_meshes(states, structure, tube, i, ends)
     angle = corner_angles(x, _STEP.faces_vertices).min(axis=(0, 2))
-    length = np.linalg.norm(x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :], axis=-1)
+    length = np.linalg.norm(
+        x[..., _STEP.edges_vertices[:, 1], :] - x[..., _STEP.edges_vertices[:, 0], :], axis=-1
+    )
     stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
     normal = vector_areas(x, _STEP.faces_vertices)
     normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
-    cos = np.sum(normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1)
+    cos = np.sum(
+        normal[..., _DIAGONAL_FACES[:, 0], :] * normal[..., _DIAGONAL_FACES[:, 1], :], axis=-1
+    )
     bend = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).max(axis=(0, 2))
-    walked = [np.arange(a, b + np.sign(b - a), np.sign(b - a)) for a, b in zip(i, ends)]  # the samples from i to the end
-    chords = [polyline_deviation(states[:, structure.cell_curves[t]][:, :, at], np.array([0, len(at) - 1])) for t, at in zip(tube, walked)]
+    # the samples from i to the end
+    walked = [np.arange(a, b + np.sign(b - a), np.sign(b - a)) for a, b in zip(i, ends)]
+    chords = [
+        polyline_deviation(
+            states[:, structure.cell_curves[t]][:, :, at], np.array([0, len(at) - 1])
+        )
+        for t, at in zip(tube, walked)
+    ]
     if damaged:  # the folded state scaled by 1 + 2⁻⁴⁰: the same shapes to 1e-12, other floats
         states = np.stack([states[0] * (1 + 2.0**-40), states[1]])
     points = _tube_points(states, structure.cell_curves)
-    measured = (*_step_shape(points, len(structure.lattice.s), tube, i, ends), _chord_deviations(points, len(structure.lattice.s), tube, i, ends))
-    same = [np.array_equal(got, want) for got, want in zip(measured, (angle, stretch, bend, chords))]
+    measured = (
+        *_step_shape(points, len(structure.lattice.s), tube, i, ends),
+        _chord_deviations(points, len(structure.lattice.s), tube, i, ends),
+    )
+    same = [
+        np.array_equal(got, want) for got, want in zip(measured, (angle, stretch, bend, chords))
+    ]
     assert same == [not damaged] * 4

@@ -26,8 +26,13 @@ HEAVY = ("scipy", "matplotlib", "trimesh", "ezdxf")
 
 def imported(code: str, names=HEAVY) -> list[str]:
     """Which of ``names`` (packages or modules) running ``code`` in a fresh interpreter imports."""
-    probe = f"{code}\nimport json, sys\nprint(json.dumps([n for n in {list(names)!r} if n in sys.modules]))"
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120)
+    probe = (
+        f"{code}\nimport json, sys\nprint(json.dumps([n for n in {list(names)!r} if n in "
+        "sys.modules]))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, timeout=120
+    )
     assert done.returncode == 0, done.stderr
     return json.loads(done.stdout.splitlines()[-1])
 
@@ -36,17 +41,22 @@ def test_the_probe_sees_an_eager_import():
     assert imported("import curvefold.app.cli\nimport scipy.optimize") == ["scipy"]
     assert imported("import matplotlib.figure, ezdxf") == ["matplotlib", "ezdxf"]
     assert imported("import curvefold.io._formats", ["curvefold.io._pattern"]) == []
-    assert imported("import curvefold.io._pattern", ["curvefold.io._pattern"]) == ["curvefold.io._pattern"]
+    assert imported("import curvefold.io._pattern", ["curvefold.io._pattern"]) == [
+        "curvefold.io._pattern"
+    ]
 
 
 CASES = {
     "import curvefold": "import curvefold",
     "import curvefold.app.cli": "import curvefold.app.cli",
-    "curvefold --help": "import contextlib, io\nfrom curvefold.app.cli import main\n"
-                        "with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n    main(['--help'])",
-    "curvefold arch --json": "import contextlib, io\nfrom curvefold.app.cli import main\n"
-                             "with contextlib.redirect_stdout(io.StringIO()):\n    assert main(['arch', '--a', '0.3', '--json']) == 0",
-    "a name of curvefold and of curvefold.io": "from curvefold import Crease, Structure, measure\nfrom curvefold.io import FoldFile, CUTTERS",
+    "curvefold --help": "import contextlib, io\nfrom curvefold.app.cli import main\nwith "
+    "contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n    "
+    "main(['--help'])",
+    "curvefold arch --json": "import contextlib, io\nfrom curvefold.app.cli import main\nwith "
+    "contextlib.redirect_stdout(io.StringIO()):\n    assert main(['arch', '--a', '0.3', "
+    "'--json']) == 0",
+    "a name of curvefold and of curvefold.io": "from curvefold import Crease, Structure, "
+    "measure\nfrom curvefold.io import FoldFile, CUTTERS",
 }
 
 
@@ -57,8 +67,16 @@ def test_quick_commands_import_no_heavy_library(case):
 
 #: What the command line's start does not need: the writers, the certificate, the FOLD
 #: check and the package metadata (whose reader imports the email package).
-NOT_AT_START = ("curvefold.io._pattern", "curvefold.io._fold", "curvefold.io._gltf", "curvefold.analysis._checks",
-                "curvefold.analysis._foldcheck", "curvefold.vault._atlas", "importlib.metadata", "tomllib")
+NOT_AT_START = (
+    "curvefold.io._pattern",
+    "curvefold.io._fold",
+    "curvefold.io._gltf",
+    "curvefold.analysis._checks",
+    "curvefold.analysis._foldcheck",
+    "curvefold.vault._atlas",
+    "importlib.metadata",
+    "tomllib",
+)
 
 
 def test_the_command_line_starts_without_what_other_commands_need():
@@ -72,11 +90,14 @@ def test_public_names_resolve_to_their_modules(package):
         value = getattr(package, name)
         home = getattr(value, "__module__", None)
         if isinstance(value, types.ModuleType):
-            assert value.__name__.rpartition(".")[2].lstrip("_") == name  # a module, perhaps private
+            # a module, perhaps private
+            assert value.__name__.rpartition(".")[2].lstrip("_") == name
         elif home is not None:  # a class or function: the object its module defines
             assert getattr(importlib.import_module(home), name) is value, name
         assert name in dir(package)
-    with pytest.raises(AttributeError, match=f"module '{package.__name__}' has no attribute 'Nothing'"):
+    with pytest.raises(
+        AttributeError, match=f"module '{package.__name__}' has no attribute 'Nothing'"
+    ):
         package.Nothing  # noqa: B018
 
 
@@ -88,34 +109,50 @@ def test_from_imports_work_as_before():
     from curvefold.kernel import InputError as raised
 
     assert (Crease, InputError, write_svg) == (defined, raised, written)
-    assert measure.__name__ == "curvefold.analysis._measure" and __version__ == curvefold.__version__
+    assert (
+        measure.__name__ == "curvefold.analysis._measure" and __version__ == curvefold.__version__
+    )
 
 
-#: What no job of the main job needs: its output folder is written with NumPy, Pillow,
-#: ezdxf and rhino3dm alone (each import is paid again in every job process that makes it),
-#: and without NumPy's masked arrays, which ``np.unique`` imports (``kernel._arrays.distinct`` does not).
+#: What no job of the main job needs: its output folder is written with NumPy, Pillow, ezdxf and
+#: rhino3dm alone (each import is paid again in every job process that makes it), and without
+#: NumPy's masked arrays, which ``np.unique`` imports (``kernel._arrays.distinct`` does not).
 NOT_IN_THE_MAIN_JOB = ("scipy", "matplotlib", "pygltflib", "trimesh", "numpy.ma")
 
 
 @pytest.mark.slow
 def test_the_main_job_imports_neither_scipy_nor_matplotlib(tmp_path):
-    """Every file and picture of the paper's vault (at fewer samples), written in this one process."""
-    code = ("from curvefold.app import default_design\nfrom curvefold.app._build import build\n"
-            "from curvefold.app._folder import check_output\nfrom curvefold.app._outputs import write_outputs\n"
-            "from dataclasses import replace\n"
-            "design = default_design('vault')\ndesign = replace(design, samples=201)\n"
-            f"files = write_outputs(build(design), check_output({str(tmp_path / 'v')!r}, force=True), show_progress=False, workers=1)['files']\n"
-            "assert {'vault.fold', 'vault.glb', 'vault.3dm', 'vault-pattern.dxf', 'folding.gif', 'vault.png'} <= set(files), files")
+    """Every file and picture of the paper's vault (at fewer samples), written in this one
+    process."""
+    code = (
+        "from curvefold.app import default_design\nfrom curvefold.app._build import build\nfrom "
+        "curvefold.app._folder import check_output\nfrom curvefold.app._outputs import "
+        "write_outputs\nfrom dataclasses import replace\ndesign = "
+        "default_design('vault')\ndesign = replace(design, samples=201)\nfiles = "
+        f"write_outputs(build(design), check_output({str(tmp_path / 'v')!r}, force=True), "
+        "show_progress=False, workers=1)['files']\nassert "
+        f"{{'vault.fold', 'vault.glb', 'vault.3dm', 'vault-pattern.dxf', 'folding.gif', 'vault.png'}} "
+        "<= set(files), files"
+    )
     assert imported(code, NOT_IN_THE_MAIN_JOB) == []
-    assert "scipy" in imported(code + "\nimport scipy.sparse", NOT_IN_THE_MAIN_JOB)  # the probe sees one (and its numpy.ma)
-    assert imported(code + "\nimport numpy as np\nnp.unique(np.arange(3))", NOT_IN_THE_MAIN_JOB) == ["numpy.ma"]
+    # the probe sees one (and its numpy.ma)
+    assert "scipy" in imported(code + "\nimport scipy.sparse", NOT_IN_THE_MAIN_JOB)
+    assert imported(
+        code + "\nimport numpy as np\nnp.unique(np.arange(3))", NOT_IN_THE_MAIN_JOB
+    ) == ["numpy.ma"]
 
 
 def test_a_progress_bar_imports_rich_only_for_a_terminal():
-    """The main job draws its progress on stderr when that is a terminal (a pseudo-terminal here); a log of
-    stderr gets no bar, and the process does not import rich for one."""
-    quiet = "from curvefold.app._outputs import _bar, _progress\nassert _bar(True) is None\n_progress(True, 3)[0]('a')"
+    """The main job draws its progress on stderr when that is a terminal (a pseudo-terminal
+    here); a log of stderr gets no bar, and the process does not import rich for one."""
+    quiet = (
+        "from curvefold.app._outputs import _bar, _progress\nassert _bar(True) is "
+        "None\n_progress(True, 3)[0]('a')"
+    )
     assert imported(quiet, ["rich"]) == []
-    terminal = ("import os, sys\nfrom curvefold.app._outputs import _bar\n_, slave = os.openpty()\n"
-                "sys.stderr = os.fdopen(slave, 'w')\nbar = _bar(True)\nassert bar is not None and bar.console.is_terminal")
+    terminal = (
+        "import os, sys\nfrom curvefold.app._outputs import _bar\n_, slave = "
+        "os.openpty()\nsys.stderr = os.fdopen(slave, 'w')\nbar = _bar(True)\nassert bar is not "
+        "None and bar.console.is_terminal"
+    )
     assert imported(terminal, ["rich"]) == ["rich"]

@@ -9,7 +9,9 @@ from curvefold.geometry._mesh import edges_faces
 
 
 def make_lattice(samples=201, fold_angle=60.0, widths=(0.2, 0.15)):
-    curve = SpaceCurve.from_curvature(lambda s: 1 + 0.3 * np.sin(s), lambda s: 0.3 * np.cos(1.5 * s), 3.0, samples=samples)
+    curve = SpaceCurve.from_curvature(
+        lambda s: 1 + 0.3 * np.sin(s), lambda s: 0.3 * np.cos(1.5 * s), 3.0, samples=samples
+    )
     return Lattice.from_crease(Crease.from_curve(curve, fold_angle=fold_angle), *widths)
 
 
@@ -51,10 +53,14 @@ def test_fold_angles_and_assignments(tube, fold_angle):
     kh = state.lattice.crease.curve.kappa(tube.lattice.s).max() * tube.lattice.s[1]
     assert measure.fold_angle_error(mesh, fold_angle) < 0.01 + 10 * kh**2
     creases = np.isin(mesh.edges_kind, ("fold", "seam"))
-    assert set(mesh.edges_assignment[creases & (np.abs(mesh.edges_foldAngle) > 1e-9)]) <= {"M"}  # convex tube
+    # convex tube
+    assert set(mesh.edges_assignment[creases & (np.abs(mesh.edges_foldAngle) > 1e-9)]) <= {"M"}
     assert set(mesh.edges_assignment[mesh.edges_kind == "boundary"]) == {"B"}
     assert set(mesh.edges_assignment[np.isin(mesh.edges_kind, ("ruling", "diagonal"))]) == {"F"}
-    assert_allclose(tube.dihedral_angles(fold_angle)[0], np.radians([180 - fold_angle, fold_angle, 180 - fold_angle, fold_angle]))
+    assert_allclose(
+        tube.dihedral_angles(fold_angle)[0],
+        np.radians([180 - fold_angle, fold_angle, 180 - fold_angle, fold_angle]),
+    )
 
 
 def test_every_state_is_isometric_to_the_flat_crease_pattern():
@@ -63,11 +69,16 @@ def test_every_state_is_isometric_to_the_flat_crease_pattern():
     for samples in (101, 201, 401):
         st = Structure.tube(make_lattice(samples=samples))
         flat = st.state(0).mesh()
-        worst = max(measure.isometry_error(st.state(f).mesh(), flat).max_relative_edge_error for f in (40.0, 100.0, 170.0))
+        worst = max(
+            measure.isometry_error(st.state(f).mesh(), flat).max_relative_edge_error
+            for f in (40.0, 100.0, 170.0)
+        )
         errors.append(worst)
         # a chord of an arc of curvature κ is shorter by the factor (κh)²/24: the polyline
         # curves' edges change as κ changes between states; the rulings are exact
-        kappa = max(st.state(f).lattice.crease.curve.kappa(st.lattice.s).max() for f in (0.0, 170.0))
+        kappa = max(
+            st.state(f).lattice.crease.curve.kappa(st.lattice.s).max() for f in (0.0, 170.0)
+        )
         bounds.append((kappa * st.lattice.s[1] * 1.5) ** 2 / 24)
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all(orders > 1.9), orders
@@ -75,7 +86,10 @@ def test_every_state_is_isometric_to_the_flat_crease_pattern():
 
 
 def test_ruling_quads_are_planar_to_discretisation():
-    values = [measure.ruling_quad_planarity(Structure.tube(make_lattice(samples=n)).state()) for n in (101, 201, 401)]
+    values = [
+        measure.ruling_quad_planarity(Structure.tube(make_lattice(samples=n)).state())
+        for n in (101, 201, 401)
+    ]
     orders = np.log2(np.array(values[:-1]) / np.array(values[1:]))
     assert np.all(orders > 2.8), orders  # third order: consecutive rulings are coplanar
     assert values[-1] < 1e-7
@@ -89,22 +103,30 @@ def test_cellular_block_and_diagonal_stack():
     stack = Structure.diagonal(lat, 3)
     assert stack.cells.tolist() == [[0, 0], [1, 1], [2, 2]]
     # curve 3 of one tube is curve 1 of the next
-    assert set(map(tuple, stack.curves_uv[stack.cell_curves[:-1, 2]].tolist())) == set(map(tuple, stack.curves_uv[stack.cell_curves[1:, 0]].tolist()))
+    assert set(map(tuple, stack.curves_uv[stack.cell_curves[:-1, 2]].tolist())) == set(
+        map(tuple, stack.curves_uv[stack.cell_curves[1:, 0]].tolist())
+    )
     assert all(k in ("fold", "seam") for k in stack.curve_kinds)
     down = Structure.diagonal(lat, 2, direction=-1, layers=2)
     assert sorted(down.cells.tolist()) == [[-2, -2], [-2, -1], [-1, -1], [-1, 0]]
     mesh = block.state().mesh()
-    assert len(mesh.vertices_coords) == 4 * 4 * len(lat.s)  # each tube keeps its own copy of shared curves
+    # each tube keeps its own copy of shared curves
+    assert len(mesh.vertices_coords) == 4 * 4 * len(lat.s)
 
 
 def test_structure_refusals():
     lat = make_lattice()
     lam = float(lat.domain.extent([1, 1]))
-    with pytest.raises(RegressionError, match=r"cells: lattice curve \(u, v\) = .* passes the curve of regression"):
+    with pytest.raises(
+        RegressionError,
+        match=r"cells: lattice curve \(u, v\) = .* passes the " r"curve of regression",
+    ):
         Structure.diagonal(lat, int(np.ceil(lam)) + 1)
     with pytest.raises(InputError, match="cells must be distinct"):
         Structure.from_cells(lat, [(0, 0), (0, 0)])
-    with pytest.raises(InputError, match=r"cells must be a non-empty list of \(i, j\) integer pairs"):
+    with pytest.raises(
+        InputError, match=r"cells must be a non-empty list of \(i, j\) integer " r"pairs"
+    ):
         Structure.from_cells(lat, [])
     with pytest.raises(InputError, match="cells must hold integers"):
         Structure.from_cells(lat, [(0.5, 0)])
@@ -144,4 +166,3 @@ def test_erratum_quadrants_follow_the_construction_order(tube):
         a, b = a - (a @ T[j]) * T[j], b - (b @ T[j]) * T[j]  # in the section plane
         angle = np.arccos(a @ b / np.linalg.norm(a) / np.linalg.norm(b))
         assert_allclose(angle, tube.dihedral_angles(60.0)[0, k], atol=1e-12)
-

@@ -32,13 +32,19 @@ def _panel_tube():
     from curvefold.app import design_from_dict
     from curvefold.app._build import build
 
-    return build(design_from_dict({"kind": "tube", "samples": 33, "curve": {"panels": 8}, "output": {"formats": ["fold"]}}))
+    return build(
+        design_from_dict(
+            {"kind": "tube", "samples": 33, "curve": {"panels": 8}, "output": {"formats": ["fold"]}}
+        )
+    )
 
 
 def test_the_mechanism_decomposes_on_one_thread(two_threads, monkeypatch):
     seen = []
     svd = np.linalg.svd
-    monkeypatch.setattr(np.linalg, "svd", lambda *a, **k: (seen.append(_blas_threads()), svd(*a, **k))[1])
+    monkeypatch.setattr(
+        np.linalg, "svd", lambda *a, **k: (seen.append(_blas_threads()), svd(*a, **k))[1]
+    )
     structure = _panel_tube().structure
     framework, points = m.Framework.from_structure(structure)
     m.mechanism(framework, structure.state().vertices.reshape(-1, 3)[points])
@@ -46,7 +52,8 @@ def test_the_mechanism_decomposes_on_one_thread(two_threads, monkeypatch):
 
 
 def test_the_pictures_job_reads_the_mechanism_the_certificate_computed(tmp_path, monkeypatch):
-    """The output folder of a panel structure: the mechanism is analysed before the jobs fork, in this process only."""
+    """The output folder of a panel structure: the mechanism is analysed before the jobs fork, in
+    this process only."""
     from curvefold.app import write_outputs
     from curvefold.app._folder import check_output
 
@@ -59,26 +66,39 @@ def test_the_pictures_job_reads_the_mechanism_the_certificate_computed(tmp_path,
         return analyse(*args, **kwargs)
 
     monkeypatch.setattr(m, "mechanism", counted)
-    result = write_outputs(_panel_tube(), check_output(tmp_path / "out", force=False), show_progress=False)
+    result = write_outputs(
+        _panel_tube(), check_output(tmp_path / "out", force=False), show_progress=False
+    )
     assert "singular-values.png" in result["files"]
     pids = log.read_text().split()
     assert pids == [str(os.getpid())] * 3  # flat, half and the design angle, all here
 
 
 def _blas_threads_of(code: str) -> tuple[list[int], bool]:
-    """The BLAS libraries' threads after ``code`` runs in a fresh interpreter whose environment sets none
-    of :data:`~curvefold.kernel._threads.BLAS_THREAD_VARIABLES`, and whether it sets one afterwards."""
+    """The BLAS libraries' threads after ``code`` runs in a fresh interpreter whose environment
+    sets none of :data:`~curvefold.kernel._threads.BLAS_THREAD_VARIABLES`, and whether it sets
+    one afterwards."""
     import json
     import subprocess
     import sys
 
     from curvefold.kernel._threads import BLAS_THREAD_VARIABLES
 
-    probe = (f"{code}\nimport json, os\nfrom threadpoolctl import threadpool_info\n"
-             "print(json.dumps([[p['num_threads'] for p in threadpool_info() if p['user_api'] == 'blas'], "
-             f"any(name in os.environ for name in {BLAS_THREAD_VARIABLES!r})]))")
+    probe = (
+        f"{code}\nimport json, os\nfrom threadpoolctl import "
+        "threadpool_info\nprint(json.dumps([[p['num_threads'] for p in threadpool_info() if "
+        "p['user_api'] == 'blas'], any(name in os.environ for name in "
+        f"{BLAS_THREAD_VARIABLES!r})]))"
+    )
     env = {name: value for name, value in os.environ.items() if name not in BLAS_THREAD_VARIABLES}
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120, env=env, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", probe],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+        check=True,
+    )
     threads, variable_set = json.loads(done.stdout.splitlines()[-1])
     return threads, variable_set
 

@@ -81,18 +81,44 @@ def arrays_of(lattice: Lattice):
     curve, pattern, topology = lattice.crease.curve, lattice.pattern, structure.topology()
     out = {f"curve.{k}": getattr(curve, k) for k in ("s", "points", "frames")}
     out["crease.kappa_2d"] = lattice.crease.kappa_2d
-    out |= {f"pattern.{k}": getattr(pattern, k) for k in ("s", "beta_samples", "width_left", "width_right", "log_width_ratio",
-                                                             "kappa_2d_nodes", "log_width_rate_nodes")}
+    out |= {
+        f"pattern.{k}": getattr(pattern, k)
+        for k in (
+            "s",
+            "beta_samples",
+            "width_left",
+            "width_right",
+            "log_width_ratio",
+            "kappa_2d_nodes",
+            "log_width_rate_nodes",
+        )
+    }
     out |= {f"pattern.ruling_lengths[{i}]": a for i, a in enumerate(pattern.ruling_lengths)}
     out |= {f"pattern.regression_rates[{i}]": a for i, a in enumerate(pattern.regression_rates)}
     out |= {f"domain.{k}": getattr(lattice.domain, k) for k in ("t", "a", "b")}
     out |= {f"structure.{k}": getattr(structure, k) for k in ("cells", "curves_uv", "cell_curves")}
     out["state.vertices"] = state.vertices
-    out |= {f"topology.{k}": getattr(topology, k) for k in ("vertex_curve", "faces_vertices", "edges_vertices", "edges_seam")}
-    out |= {f"mesh.{k}": getattr(mesh, k) for k in ("vertices_coords", "edges_vertices", "edges_assignment", "edges_foldAngle",
-                                                    "faces_vertices", "edges_kind", "faces_group")}
+    out |= {
+        f"topology.{k}": getattr(topology, k)
+        for k in ("vertex_curve", "faces_vertices", "edges_vertices", "edges_seam")
+    }
+    out |= {
+        f"mesh.{k}": getattr(mesh, k)
+        for k in (
+            "vertices_coords",
+            "edges_vertices",
+            "edges_assignment",
+            "edges_foldAngle",
+            "faces_vertices",
+            "edges_kind",
+            "faces_group",
+        )
+    }
     sheet = sheets(structure)[0]
-    out |= {"sheet.edges_seam": sheet.edges_seam, "sheet.mesh.vertices_coords": sheet.mesh.vertices_coords}
+    out |= {
+        "sheet.edges_seam": sheet.edges_seam,
+        "sheet.mesh.vertices_coords": sheet.mesh.vertices_coords,
+    }
     plane = flat_plane(structure.state(0.0))
     out |= {"plane.origin": plane.origin, "plane.axes": plane.axes}
     return out
@@ -130,8 +156,13 @@ def same_functions(f, g, s):
 @pytest.mark.parametrize(
     "build",
     [
-        lambda: Crease.from_curve(SpaceCurve.from_curvature(kappa, tau, 3.0, samples=41), fold_angle=70.0),
-        lambda: Crease.from_curve(SpaceCurve.from_curvature(1.0, np.linspace(0.1, 0.4, 9), 2.0, samples=41), fold_angle=np.linspace(40, 80, 5)),
+        lambda: Crease.from_curve(
+            SpaceCurve.from_curvature(kappa, tau, 3.0, samples=41), fold_angle=70.0
+        ),
+        lambda: Crease.from_curve(
+            SpaceCurve.from_curvature(1.0, np.linspace(0.1, 0.4, 9), 2.0, samples=41),
+            fold_angle=np.linspace(40, 80, 5),
+        ),
         lambda: Crease.from_pattern(0.8, 85.0, 95.0, 2.0, fold_angle=90.0, samples=41),
     ],
     ids=["callables", "samples-and-varying-fold-angle", "from-pattern"],
@@ -155,7 +186,9 @@ def test_lattices_structures_states_and_meshes_pickle(lattice):
     assert_array_equal(back.points([[1, 1]]), folded.points([[1, 1]]))
     assert_array_equal(back.domain.a, folded.domain.a)
     same_functions(back.crease.curve.tau, folded.crease.curve.tau, lattice.s)
-    assert_array_equal(back.fold_points([[0, 1]], [20.0, 50.0]), folded.fold_points([[0, 1]], [20.0, 50.0]))
+    assert_array_equal(
+        back.fold_points([[0, 1]], [20.0, 50.0]), folded.fold_points([[0, 1]], [20.0, 50.0])
+    )
     structure = Structure.diagonal(lattice, 2)
     state = structure.state(80.0)
     state_back, structure_back = round_trip(state), round_trip(structure)
@@ -163,7 +196,15 @@ def test_lattices_structures_states_and_meshes_pickle(lattice):
     assert_array_equal(structure_back.state(30.0).vertices, structure.state(30.0).vertices)
     mesh = state.mesh(faces="quads")
     mesh_back = round_trip(mesh)
-    for name in ("vertices_coords", "edges_vertices", "edges_assignment", "edges_foldAngle", "faces_vertices", "edges_kind", "faces_group"):
+    for name in (
+        "vertices_coords",
+        "edges_vertices",
+        "edges_assignment",
+        "edges_foldAngle",
+        "faces_vertices",
+        "edges_kind",
+        "faces_group",
+    ):
         assert_array_equal(getattr(mesh_back, name), getattr(mesh, name))
         assert not getattr(mesh_back, name).flags.writeable
 
@@ -184,15 +225,26 @@ def test_a_users_lambda_does_not_pickle():
 
 
 def test_distinct_values_are_those_of_np_unique():
-    """kernel's distinct is np.unique without its import of numpy.ma: the same values, dtype and order, for integers,
-    floats (signed zeros among them) and empty arrays of any shape; damaged (one duplicate kept), it differs."""
+    """kernel's distinct is np.unique without its import of numpy.ma: the same values, dtype and
+    order, for integers, floats (signed zeros among them) and empty arrays of any shape;
+    damaged (one duplicate kept), it differs."""
     from curvefold.kernel._arrays import distinct
 
     rng = np.random.default_rng(7)
     cases = [rng.integers(-5, 6, size=shape) for shape in ((0,), (1,), (40,), (6, 7), (3, 0, 2))]
-    cases += [rng.integers(0, 4, size=30).astype(float) * rng.choice([-1.0, 1.0], size=30) * 0.5, np.array([0.0, -0.0, 0.0])]
+    cases += [
+        rng.integers(0, 4, size=30).astype(float) * rng.choice([-1.0, 1.0], size=30) * 0.5,
+        np.array([0.0, -0.0, 0.0]),
+    ]
     for values in cases:
         ours, theirs = distinct(values), np.unique(values)
-        assert ours.dtype == theirs.dtype and np.array_equal(ours, theirs) and ours.tobytes() == theirs.tobytes()
+        assert (
+            ours.dtype == theirs.dtype
+            and np.array_equal(ours, theirs)
+            and ours.tobytes() == theirs.tobytes()
+        )
     damaged = np.sort(cases[2])
-    assert not np.array_equal(damaged[np.r_[True, damaged[1:] != damaged[:-1]] | (np.arange(len(damaged)) == 1)], np.unique(cases[2]))
+    assert not np.array_equal(
+        damaged[np.r_[True, damaged[1:] != damaged[:-1]] | (np.arange(len(damaged)) == 1)],
+        np.unique(cases[2]),
+    )

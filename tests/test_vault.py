@@ -7,7 +7,14 @@ from numpy.testing import assert_allclose
 from curvefold import ConvergenceError, InputError, RegressionError
 from curvefold.analysis._measure import derivative
 from curvefold.vault import Vault, VaultDesign, max_tubes
-from curvefold.vault._arch import A_MAX, HALF_STEPS, proportion_change, solve_general_arch, solve_symmetric_arch, symmetric_arch_condition
+from curvefold.vault._arch import (
+    A_MAX,
+    HALF_STEPS,
+    proportion_change,
+    solve_general_arch,
+    solve_symmetric_arch,
+    symmetric_arch_condition,
+)
 
 PAPER_KAPPA0_S0 = 3.305  # printed in the paper for a = 0.3
 
@@ -49,10 +56,11 @@ def test_paper_example_against_an_independent_integrator():
 
 @pytest.mark.parametrize("a", [0.3, 1.15, 1.25, 1.27, 1.2707])
 def test_the_arch_root_is_converged_in_its_steps_across_the_family(a):
-    """Near the end of the family the torsion term grows: the root meets Eq. (20) integrated with 8× the steps to
-    2e-14 at every a (1.8e-15 at a = 0.3, 1.0e-14 at 1.2707, where the 128 steps' own error is largest; 64 steps left
-    1.6e-13 to 6.8e-13 from a = 1.15 on, which a vault's built curve 1 shows as a failed arch_condition). The root
-    itself moves more as the slope of the condition vanishes at A_MAX."""
+    """Near the end of the family the torsion term grows: the root meets Eq. (20) integrated with
+    8× the steps to 2e-14 at every a (1.8e-15 at a = 0.3, 1.0e-14 at 1.2707, where the 128
+    steps' own error is largest; 64 steps left 1.6e-13 to 6.8e-13 from a = 1.15 on, which a
+    vault's built curve 1 shows as a failed arch_condition). The root itself moves more as the
+    slope of the condition vanishes at A_MAX."""
     ours = solve_symmetric_arch(a).kappa0_s0
     assert abs(float(symmetric_arch_condition(ours, a, steps=8 * HALF_STEPS))) < 2e-14
 
@@ -72,11 +80,19 @@ def test_arch_family_ends_at_a_max():
     assert solve_symmetric_arch(A_MAX - 1e-4).kappa0_s0 > np.pi
     # the refusal past A_MAX hides no root: the condition stays positive over (π/2, 2π)
     x = np.linspace(0.5 * np.pi, 2 * np.pi, 4001)
-    assert symmetric_arch_condition(x, A_MAX + 1e-4).min() > 0 > symmetric_arch_condition(x, A_MAX - 1e-4).min()
+    assert (
+        symmetric_arch_condition(x, A_MAX + 1e-4).min()
+        > 0
+        > symmetric_arch_condition(x, A_MAX - 1e-4).min()
+    )
     for a in (A_MAX + 1e-4, 1.5, 3.0):
-        with pytest.raises(ConvergenceError, match=rf"no standing arch for a = {a:g}: .* only for a < 1\.2707"):
+        with pytest.raises(
+            ConvergenceError, match=rf"no standing arch for a = {a:g}: .* only " r"for a < 1\.2707"
+        ):
             solve_symmetric_arch(a)
-    with pytest.raises(InputError, match=r"a \(torsion amplitude\) must be a finite number ≥ 0, got nan"):
+    with pytest.raises(
+        InputError, match=r"a \(torsion amplitude\) must be a finite number ≥ 0, " r"got nan"
+    ):
         solve_symmetric_arch(float("nan"))
 
 
@@ -87,13 +103,19 @@ def test_a_root_that_fails_its_residual_is_never_returned(monkeypatch):
 
     monkeypatch.setattr(arch, "_chebyshev_root", lambda *args: None)  # take the Brent fallback
     assert abs(solve_symmetric_arch(0.3).kappa0_s0 - 3.16571746805) < 1e-10
-    monkeypatch.setattr(scipy.optimize, "brentq", lambda f, lo, hi, **kw: 3.16571746805 + 1e-6)  # off by 1e-6: |f| ≈ slope 0.486 × 1e-6
-    with pytest.raises(ConvergenceError, match=r"for a = 0\.3 was not solved: at κ0·s0 = 3\.16571846805, \|T\(s0/2\)·T\(0\)\| = 4\.86e-07 exceeds 1e-12"):
+    # off by 1e-6: |f| ≈ slope 0.486 × 1e-6
+    monkeypatch.setattr(scipy.optimize, "brentq", lambda f, lo, hi, **kw: 3.16571746805 + 1e-6)
+    with pytest.raises(
+        ConvergenceError,
+        match=r"for a = 0\.3 was not solved: at κ0·s0 = "
+        r"3\.16571846805, \|T\(s0/2\)·T\(0\)\| = 4\.86e-07 exceeds 1e-12",
+    ):
         solve_symmetric_arch(0.3)
 
 
 def test_erratum_end_condition_sign(paper_vault):
-    """The ends face opposite ways: T(0) + T(s₁) = 0 holds; the printed T(0) − T(s₁) = 0 does not."""
+    """The ends face opposite ways: T(0) + T(s₁) = 0 holds; the printed T(0) − T(s₁) = 0 does
+    not."""
     F = paper_vault.lattice.crease.curve.frames
     x = paper_vault.lattice.crease.curve.points
     assert np.abs(F[0, :, 0] + F[-1, :, 0]).max() < 1e-12
@@ -108,7 +130,9 @@ def test_general_arch_without_symmetry():
     assert abs(sym.length - L0) < 1e-9 and np.linalg.norm(sym.residuals) < 1e-10
     # A family with no reflection symmetry: κ grows along s, torsion τ = p₀ s² + p₁ s³.
     # Generically three unknowns (s₁, p₀, p₁) meet the three independent end conditions.
-    gen = solve_general_arch(lambda s, p: 1.0 + 0.05 * s, lambda s, p: p[0] * s**2 + p[1] * s**3, 3.0, (0.2, 0.0))
+    gen = solve_general_arch(
+        lambda s, p: 1.0 + 0.05 * s, lambda s, p: p[0] * s**2 + p[1] * s**3, 3.0, (0.2, 0.0)
+    )
     assert np.linalg.norm(gen.residuals) < 1e-12
     # check the solution with an independent integrator
     from scipy.integrate import solve_ivp
@@ -120,10 +144,19 @@ def test_general_arch_without_symmetry():
         k, t = 1.0 + 0.05 * s, p0 * s**2 + p1 * s**3
         return np.concatenate([k * N, -k * T + t * B, -t * N, T])
 
-    y = solve_ivp(rhs, (0, gen.length), np.concatenate([np.eye(3).ravel(), np.zeros(3)]), method="DOP853", rtol=1e-13, atol=1e-14).y[:, -1]
+    y = solve_ivp(
+        rhs,
+        (0, gen.length),
+        np.concatenate([np.eye(3).ravel(), np.zeros(3)]),
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-14,
+    ).y[:, -1]
     assert np.abs(y[0:3] + [1, 0, 0]).max() < 1e-9  # T(s₁) = −T(0)
     assert abs(y[9]) < 1e-9  # (x(s₁) − x(0))·T(0) = 0
-    with pytest.raises(ConvergenceError, match=r"general arch did not converge: residual norm .* > tol"):
+    with pytest.raises(
+        ConvergenceError, match=r"general arch did not converge: residual norm .* " r"> tol"
+    ):
         solve_general_arch(lambda s, p: 1.0, lambda s, p: 0.0, 0.5, tol=1e-30)
 
 
@@ -148,7 +181,8 @@ def test_lift_off_away_from_the_design_angle(paper_vault):
     angles = [0.0, 45.0, 89.0, 90.0, 91.0, 120.0]
     base = paper_vault.lift_off(angles, anchor="start")
     assert np.abs(base[:, 0]).max() < 1e-13  # the held feet stay down
-    assert base[3, 1] < 1e-13 and (np.delete(base[:, 1], 3) > 1e-3).all()  # the far feet lift except at 90°
+    # the far feet lift except at 90°
+    assert base[3, 1] < 1e-13 and (np.delete(base[:, 1], 3) > 1e-3).all()
     apex = paper_vault.lift_off(angles, anchor="middle")
     assert_allclose(apex[:, 0], apex[:, 1], atol=1e-12)  # symmetric motion
     assert apex[3].max() < 1e-13 and (np.delete(apex[:, 0], 3) > 1e-3).all()
@@ -167,7 +201,9 @@ def brute_force_max_tubes(lattice, limit):
     return n
 
 
-@pytest.mark.parametrize("a,p_xy,width", [(0.3, 0.75, 0.08), (0.0, 1.0, 0.05), (0.8, 0.5, 0.03), (0.3, 2.0, 0.1)])
+@pytest.mark.parametrize(
+    "a,p_xy,width", [(0.3, 0.75, 0.08), (0.0, 1.0, 0.05), (0.8, 0.5, 0.03), (0.3, 2.0, 0.1)]
+)
 def test_max_tubes_follows_its_definition(a, p_xy, width):
     vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, tubes=1, samples=201))
     # a = 0, p_xy = 1 never regresses along the diagonal: the search stops at its limit
@@ -185,26 +221,36 @@ def test_regression_past_max_tubes_is_a_finite_difference_cusp(paper_vault):
     T = lat.crease.curve.tangent[2:-2]
     for uv in bad:
         x = lat.points(uv)
-        assert np.einsum("ij,ij->i", derivative(x, h), T).min() < 0  # the crease runs backwards: a cusp
+        # the crease runs backwards: a cusp
+        assert np.einsum("ij,ij->i", derivative(x, h), T).min() < 0
     for uv in corners[lat.domain.contains(corners)] - 1:
         x = lat.points(uv)
         assert np.einsum("ij,ij->i", derivative(x, h), T).min() > 0
 
 
 def test_vault_refusals():
-    with pytest.raises(RegressionError, match=r"tubes must be ≤ 9 \(the maximum before regression for a = 0\.3, p_xy = 0\.75, width = 0\.08\), got 10"):
+    with pytest.raises(
+        RegressionError,
+        match=r"tubes must be ≤ 9 \(the maximum before "
+        r"regression for a = 0\.3, p_xy = 0\.75, width = 0\.08\), got 10",
+    ):
         Vault.from_design(VaultDesign(tubes=10))
     with pytest.raises(RegressionError, match=r"width = 5 is past regression for the base tube"):
         Vault.from_design(VaultDesign(width=5.0))
     with pytest.raises(ConvergenceError, match="no standing arch for a = 1.5"):
         solve_symmetric_arch(1.5)
-    with pytest.raises(InputError, match=r"^a must be in \[0, 1\.2707093728\) \(no arch stands beyond it"):
+    with pytest.raises(
+        InputError, match=r"^a must be in \[0, 1\.2707093728\) \(no arch stands " r"beyond it"
+    ):
         VaultDesign(a=1.5)
     for kwargs, match in (
         (dict(fold_angle=180.0), r"fold_angle must be in \(0°, 180°\), got 180.0"),
         (dict(p_xy=-1.0), r"p_xy must be in \(0, 100\], got -1.0"),
         (dict(samples=400), r"samples must be odd and ≥ 21"),
-        (dict(tubes=0), r"tubes must be an integer in \[1, 1000\] \(or None for the maximum\), got 0$"),
+        (
+            dict(tubes=0),
+            r"tubes must be an integer in \[1, 1000\] \(or None for the maximum\), " r"got 0$",
+        ),
         (dict(tubes=True), r"tubes must be an integer .*, got boolean True$"),
         (dict(width=float("inf")), r"width must be a finite number, got inf"),
     ):
@@ -213,37 +259,64 @@ def test_vault_refusals():
 
 
 def test_the_ranges_of_a_come_from_where_the_arch_family_ends():
-    """A design's a stops at A_MAX, with the reason, in design files and the Python API alike; the atlas's
-    rows reach twice as far, and record past A_MAX that no arch stands, in the solver's words."""
+    """A design's a stops at A_MAX, with the reason, in design files and the Python API alike;
+    the atlas's rows reach twice as far, and record past A_MAX that no arch stands, in the
+    solver's words."""
     from curvefold.app._design import SCHEMA, parse_design
     from curvefold.vault._arch import A_MAX, A_STANDING, check_standing
     from curvefold.vault._atlas import GRID_A, evaluate_design
 
     spec = SCHEMA["vault"]["a"]
-    assert spec.range == A_STANDING and (A_STANDING.lo, A_STANDING.hi, A_STANDING.hi_closed) == (0.0, A_MAX, False)
+    assert spec.range == A_STANDING and (A_STANDING.lo, A_STANDING.hi, A_STANDING.hi_closed) == (
+        0.0,
+        A_MAX,
+        False,
+    )
     assert (GRID_A.range.lo, GRID_A.range.hi, GRID_A.range.hi_closed) == (0.0, 2 * A_MAX, True)
-    assert spec.typical.hi < A_MAX < spec.typical.hi + 0.1  # the designer's slider stops short of it, at 1.2
+    # the designer's slider stops short of it, at 1.2
+    assert spec.typical.hi < A_MAX < spec.typical.hi + 0.1
     below = A_MAX * (1 - 1e-12)
-    assert parse_design(f'kind = "vault"\n[vault]\na = {below!r}').vault.a == below == VaultDesign(a=below).a == check_standing(below)
-    with pytest.raises(InputError, match=r"^t\.toml: \[vault\] a must be in \[0, 1\.2707093728\) \(no arch stands beyond it: .*\), got 1\.2707093728$") as err:
+    assert (
+        parse_design(f'kind = "vault"\n[vault]\na = {below!r}').vault.a
+        == below
+        == VaultDesign(a=below).a
+        == check_standing(below)
+    )
+    with pytest.raises(
+        InputError,
+        match=r"^t\.toml: \[vault\] a must be in \[0, 1\.2707093728\) "
+        r"\(no arch stands beyond it: .*\), got 1\.2707093728$",
+    ) as err:
         parse_design(f'kind = "vault"\n[vault]\na = {A_MAX!r}', source="t.toml")
     assert err.value.parameter == "a"
     with pytest.raises(InputError, match=r"^a must be in \[0, 1\.2707093728\)"):
         VaultDesign(a=A_MAX)
     record, sketch = evaluate_design(A_MAX, 0.75, samples=41)
-    assert (record["error"], sketch) == ("ConvergenceError", None) and record["reason"].startswith("no standing arch for a = 1.2707")
+    assert (record["error"], sketch) == ("ConvergenceError", None) and record["reason"].startswith(
+        "no standing arch for a = 1.2707"
+    )
     record, _ = evaluate_design(2 * A_MAX * (1 + 1e-12), 0.75, samples=41)
-    assert record["error"] == "InputError" and record["reason"].startswith("a must be in [0, 2.5414187456] (up to twice 1.2707")
+    assert record["error"] == "InputError" and record["reason"].startswith(
+        "a must be in [0, 2.5414187456] (up to twice 1.2707"
+    )
 
 
 def test_bands_and_direction():
     v = Vault.from_design(VaultDesign(tubes=3, layers=2, direction=-1, samples=201))
-    assert sorted(v.structure.cells.tolist()) == [[-3, -3], [-3, -2], [-2, -2], [-2, -1], [-1, -1], [-1, 0]]
+    assert sorted(v.structure.cells.tolist()) == [
+        [-3, -3],
+        [-3, -2],
+        [-2, -2],
+        [-2, -1],
+        [-1, -1],
+        [-1, 0],
+    ]
     assert v.ground_error() < 1e-13
 
 
 def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
-    """Past 90° the arch curls until distant parts meet; regression never comes (it is intrinsic)."""
+    """Past 90° the arch curls until distant parts meet; regression never comes (it is
+    intrinsic)."""
     from scipy.spatial import cKDTree
 
     angle = paper_vault.first_contact(step=1.0)
@@ -257,7 +330,10 @@ def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
         pts = V.reshape(-1, 3)
         d, j = cKDTree(pts).query(pts, k=60)
         t = np.tile(np.arange(n), V.shape[0])
-        far = np.abs(t[j] - t[:, None]) / (n - 1) > 4 * max(lat.width_left.max(), lat.width_right.max()) / lat.crease.curve.length
+        far = (
+            np.abs(t[j] - t[:, None]) / (n - 1)
+            > 4 * max(lat.width_left.max(), lat.width_right.max()) / lat.crease.curve.length
+        )
         return np.where(far, d, np.inf).min()
 
     assert closest_far_pair(angle) < 0.5 * w_min <= closest_far_pair(angle - 1.0)
@@ -266,7 +342,8 @@ def test_motion_beyond_the_design_angle_stops_at_first_contact(paper_vault):
 
 @pytest.mark.parametrize(("batch", "n"), [(16, 128), (3, 129), (1, 1), (2, 5)])
 def test_the_tree_product_of_quaternions_is_the_ordered_product(batch, n):
-    """The pairwise reduction against one left-multiplication matrix at a time, in order (rounding: ~n ε)."""
+    """The pairwise reduction against one left-multiplication matrix at a time, in order
+    (rounding: ~n ε)."""
     from curvefold.kernel._lie import _L_INDEX, _L_SIGN, product_quaternions
 
     q = np.random.default_rng(batch * 1000 + n).normal(size=(4, batch, n))
@@ -277,13 +354,22 @@ def test_the_tree_product_of_quaternions_is_the_ordered_product(batch, n):
             M = M @ (_L_SIGN * q[:, b, t][_L_INDEX])
         ordered[:, b] = M[:, 0]
     scale = np.abs(ordered).max()
-    assert_allclose(np.array(product_quaternions(tuple(q))), ordered, rtol=0, atol=4 * n * np.finfo(float).eps * scale)
+    assert_allclose(
+        np.array(product_quaternions(tuple(q))),
+        ordered,
+        rtol=0,
+        atol=4 * n * np.finfo(float).eps * scale,
+    )
     if n > 1:  # the check sees the order: the reversed product differs
-        assert np.abs(np.array(product_quaternions(tuple(q[..., ::-1]))) - ordered).max() > 1e-3 * scale
+        assert (
+            np.abs(np.array(product_quaternions(tuple(q[..., ::-1]))) - ordered).max()
+            > 1e-3 * scale
+        )
 
 
 def test_arch_condition_matches_the_general_magnus_rotation():
-    """The arch's written-out Magnus terms equal the general so(3) Magnus step (κ = 1, τ = a sin)."""
+    """The arch's written-out Magnus terms equal the general so(3) Magnus step (κ = 1, τ = a
+    sin)."""
     from curvefold.geometry._curve import gauss_nodes
     from curvefold.kernel._lie import exp_rotation, magnus6_rotation, product_quaternions
 

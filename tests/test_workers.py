@@ -1,6 +1,8 @@
-"""Worker processes that stop when told (curvefold.app._workers): results, refusals, bugs, and every way a job stops.
+"""Worker processes that stop when told (curvefold.app._workers): results, refusals, bugs, and every
+way a job stops.
 
-Jobs are built-in callables (``eval``, ``exec``), which pickle by name: a worker imports nothing of the tests.
+Jobs are built-in callables (``eval``, ``exec``), which pickle by name: a worker imports nothing of
+the tests.
 """
 
 from __future__ import annotations
@@ -20,7 +22,9 @@ FOREVER = "import time; time.sleep(60)"
 
 @pytest.fixture(scope="module")
 def pool(tmp_path_factory):
-    workers = Pool(2, name="test", scratch=tmp_path_factory.mktemp("scratch"), recycle_above=1 << 40)
+    workers = Pool(
+        2, name="test", scratch=tmp_path_factory.mktemp("scratch"), recycle_above=1 << 40
+    )
     yield workers
     workers.join()
 
@@ -39,8 +43,18 @@ def gone(pids, timeout: float = 5.0) -> bool:
 def test_a_job_answers_and_errors_come_back_by_kind(pool):
     assert run(pool, eval, "6 * 7", timeout=30) == 42
     with pytest.raises(JobError) as refused:
-        run(pool, exec, "from curvefold.kernel import InputError\nraise InputError('a must be < 3, got 5', parameter='a')", timeout=30)
-    assert (str(refused.value), refused.value.refused, refused.value.parameter) == ("a must be < 3, got 5", True, "a")
+        run(
+            pool,
+            exec,
+            "from curvefold.kernel import InputError\nraise InputError('a must be < "
+            "3, got 5', parameter='a')",
+            timeout=30,
+        )
+    assert (str(refused.value), refused.value.refused, refused.value.parameter) == (
+        "a must be < 3, got 5",
+        True,
+        "a",
+    )
     with pytest.raises(JobError) as bug:
         run(pool, eval, "1 / 0", timeout=30)
     assert (str(bug.value), bug.value.refused) == ("ZeroDivisionError: division by zero", False)
@@ -49,9 +63,11 @@ def test_a_job_answers_and_errors_come_back_by_kind(pool):
 @pytest.mark.parametrize("reason", ["time", "cancelled", "memory"])
 def test_a_stopped_job_kills_its_worker_which_is_replaced(pool, reason):
     before = pool.pids()
-    options = {"time": {"timeout": 0.5},
-               "cancelled": {"timeout": 60, "cancelled": lambda: asyncio.sleep(0.3)},
-               "memory": {"timeout": 60, "memory_limit": 100 << 20}}[reason]
+    options = {
+        "time": {"timeout": 0.5},
+        "cancelled": {"timeout": 60, "cancelled": lambda: asyncio.sleep(0.3)},
+        "memory": {"timeout": 60, "memory_limit": 100 << 20},
+    }[reason]
     job = FOREVER if reason != "memory" else "import time; x = bytearray(400 << 20); time.sleep(60)"
     with pytest.raises(Stopped) as stopped:
         run(pool, exec, job, **options)
@@ -82,11 +98,16 @@ def test_closing_stops_running_jobs_and_leaves_no_process(tmp_path):
 
 
 def test_workers_die_with_their_parent(tmp_path):
-    """A server killed with SIGKILL runs no cleanup: its workers end with it (their parent, the fork server, exits
-    when the server's pipe closes; the kernel kills them then)."""
-    script = (f"import os, sys\nfrom curvefold.app._workers import Pool\npool = Pool(2, name='orphan', scratch={str(tmp_path)!r})\n"
-              "print(*pool.pids(), flush=True)\nos.kill(os.getpid(), 9)")
-    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    """A server killed with SIGKILL runs no cleanup: its workers end with it (their parent, the
+    fork server, exits when the server's pipe closes; the kernel kills them then)."""
+    script = (
+        "import os, sys\nfrom curvefold.app._workers import Pool\npool = Pool(2, "
+        f"name='orphan', scratch={str(tmp_path)!r})\nprint(*pool.pids(), "
+        "flush=True)\nos.kill(os.getpid(), 9)"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=120
+    )
     pids = [int(p) for p in out.stdout.split()]
     assert len(pids) == 2 and gone(pids)
 
@@ -98,7 +119,8 @@ def test_reservations_hold_the_jobs_within_a_capacity():
         with pytest.raises(Stopped, match="waited 0 s for memory"):
             await held.hold(60, timeout=0.05)  # would pass the capacity beside the first
         await held.release(60)
-        await held.hold(150, timeout=1)  # alone, a job may use more (it was checked against the budget before)
+        # alone, a job may use more (it was checked against the budget before)
+        await held.hold(150, timeout=1)
         return held.held
 
     assert asyncio.run(main()) == 150

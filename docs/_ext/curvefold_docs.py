@@ -1,12 +1,20 @@
-"""Sphinx extension of the curvefold documentation: short names in docstrings resolved, the packages' public names, and the gallery's figures."""
+"""Sphinx extension of the curvefold documentation: short names in docstrings resolved, the
+packages' public names, and the gallery's figures."""
 
 import importlib
 import inspect
 
-#: The packages whose pages list their public names (``__all__``), each on a page of its own
-#: under the package's name. The mechanics' page documents its names itself (its modules are private).
-PUBLIC_PACKAGES = ("curvefold.kernel", "curvefold.geometry", "curvefold.vault", "curvefold.io", "curvefold.analysis",
-                   "curvefold.figures", "curvefold.app")
+#: The packages whose pages list their public names (``__all__``), each on a page of its own under
+#: the package's name. The mechanics' page documents its names itself (its modules are private).
+PUBLIC_PACKAGES = (
+    "curvefold.kernel",
+    "curvefold.geometry",
+    "curvefold.vault",
+    "curvefold.io",
+    "curvefold.analysis",
+    "curvefold.figures",
+    "curvefold.app",
+)
 
 
 def _documented(value) -> bool:
@@ -14,7 +22,8 @@ def _documented(value) -> bool:
 
 
 def public_names(packages) -> dict:
-    """Package → the classes and functions of its ``__all__`` (the names its page lists and documents)."""
+    """Package → the classes and functions of its ``__all__`` (the names its page lists and
+    documents)."""
     out = {}
     for name in packages:
         package = importlib.import_module(name)
@@ -23,7 +32,8 @@ def public_names(packages) -> dict:
 
 
 def skip_reexported(app, what, name, obj, skip, options):
-    """Leave off a module's page a class or function its package lists: it is documented under the package's name."""
+    """Leave off a module's page a class or function its package lists: it is documented under
+    the package's name."""
     if what != "module" or not _documented(obj):
         return None
     package = (getattr(obj, "__module__", None) or "").rpartition(".")[0]
@@ -34,7 +44,8 @@ def skip_reexported(app, what, name, obj, skip, options):
 
 
 def resolve_short_names(app, env, node, contnode):
-    """Resolve a docstring's name the way its module's code reads it, else leave it unresolved (a warning).
+    """Resolve a docstring's name the way its module's code reads it, else leave it unresolved (a
+    warning).
 
     Docstrings name what their module imports without the package path (``:class:`InputError```),
     a re-export by its package (``curvefold.vault.VaultDesign``), and a dataclass field as an
@@ -48,8 +59,13 @@ def resolve_short_names(app, env, node, contnode):
     py = env.get_domain("py")
     target, kind = node["reftarget"], node["reftype"]
     home = _home(node["refdoc"])
-    if home and home != node.get("py:module") and py.find_obj(env, home, node.get("py:class"), target, kind, 0):
-        node["py:module"] = home  # a public name's page: its docstring names what its own module holds
+    if (
+        home
+        and home != node.get("py:module")
+        and py.find_obj(env, home, node.get("py:class"), target, kind, 0)
+    ):
+        # a public name's page: its docstring names what its own module holds
+        node["py:module"] = home
         return py.resolve_xref(env, node["refdoc"], app.builder, kind, target, node, contnode)
     parts = target.split(".")
     candidates = [(kind, ".".join(parts[i:])) for i in range(len(parts) - 1)]
@@ -65,7 +81,8 @@ def resolve_short_names(app, env, node, contnode):
 
 
 def _home(docname: str) -> str | None:
-    """The module that defines what a public name's page documents (``curvefold.vault.ArchRoot``: ``curvefold.vault._arch``)."""
+    """The module that defines what a public name's page documents (``curvefold.vault.ArchRoot``:
+    ``curvefold.vault._arch``)."""
     package, _, name = docname.rpartition("/")[2].rpartition(".")
     if package not in PUBLIC_PACKAGES:
         return None
@@ -73,7 +90,8 @@ def _home(docname: str) -> str | None:
 
 
 def curvefold_figures(block, block_vars, gallery_conf):
-    """Sphinx-Gallery scraper: save the figures a block made (variables holding a Figure, or a list of them).
+    """Sphinx-Gallery scraper: save the figures a block made (variables holding a Figure, or a list
+    of them).
 
     curvefold's plots return matplotlib Figures that pyplot does not manage, so the
     matplotlib scraper, which asks pyplot, finds none.
@@ -83,7 +101,12 @@ def curvefold_figures(block, block_vars, gallery_conf):
 
     saved = block_vars.setdefault("curvefold_saved_figures", [])
     values = block_vars["example_globals"].values()
-    found = [f for v in values for f in (v if isinstance(v, (list, tuple)) else [v]) if isinstance(f, Figure)]
+    found = [
+        f
+        for v in values
+        for f in (v if isinstance(v, (list, tuple)) else [v])
+        if isinstance(f, Figure)
+    ]
     paths = []
     for figure in found:
         if not any(figure is s for s in saved):

@@ -31,7 +31,8 @@ FORMATS = ("3dm",)
 
 
 class DesignError(Exception):
-    """The designer refused the design: its one-line message, and the parameter at fault (or None)."""
+    """The designer refused the design: its one-line message, and the parameter at fault (or
+    None)."""
 
     def __init__(self, message, key=None):
         super().__init__(message)
@@ -114,16 +115,23 @@ def _parse(arguments):
 
 
 def main(kind, parameters, inside_rhino):
-    """Build, download and (inside Rhino) import; None when done, else the one-line reason why not."""
+    """Build, download and (inside Rhino) import; None when done, else the one-line reason why
+    not."""
     try:
         summary, paths = fetch(kind, parameters, server=SERVER)
     except DesignError as err:
         return f"curvefold refused the design: {err}"
     except OSError as err:
-        return f"no curvefold designer at {SERVER} ({err}): start it with 'curvefold designer --no-browser'"
+        return (
+            f"no curvefold designer at {SERVER} ({err}): start it with 'curvefold designer "
+            "--no-browser'"
+        )
     checks = summary.get("certificate", [])
     failed = [c["name"] for c in checks if c.get("passed") is False]
-    print(f"{kind}: {len(checks)} certificate checks, " + ("failed: " + ", ".join(failed) if failed else "all passed"))
+    print(
+        f"{kind}: {len(checks)} certificate checks, "
+        + ("failed: " + ", ".join(failed) if failed else "all passed")
+    )
     if inside_rhino:
         import_into_rhino(paths)
     print("\n".join(paths))
@@ -133,6 +141,7 @@ def main(kind, parameters, inside_rhino):
 if __name__ == "__main__":
     try:
         import Rhino  # noqa: F401
+
         inside_rhino = True
     except ImportError:
         inside_rhino = False

@@ -14,8 +14,14 @@ from curvefold.vault import Vault
 
 vault = Vault.from_design(a=0.3, p_xy=0.75)
 print(f"κ0·s0 = {vault.kappa0_s0:.11f}")
-print(f"proportion change = {vault.proportion_change:.3f}, p_xz = {vault.p_xz:.3f}, tubes = {vault.max_tubes}")
-print(f"largest |z| of the feet at the design angle: {vault.ground_error():.1e} (model units, radius 1)")
+print(
+    f"proportion change = {vault.proportion_change:.3f}, p_xz = {vault.p_xz:.3f}, tubes = "
+    f"{vault.max_tubes}"
+)
+print(
+    f"largest |z| of the feet at the design angle: {vault.ground_error():.1e} (model units, "
+    "radius 1)"
+)
 
 # %%
 # At its design angle every end section stands on the ground plane z = 0.

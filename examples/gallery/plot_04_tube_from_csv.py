@@ -22,7 +22,10 @@ built = build(load_design(examples / "tube-csv.toml"))
 tube = built.structure
 curve = tube.lattice.crease.curve
 kappa = curve.kappa(curve.s)
-print(f"{curve.s.size} samples over s ∈ [0, {curve.s[-1]:g}]; κ from {kappa.min():.3f} to {kappa.max():.3f}")
+print(
+    f"{curve.s.size} samples over s ∈ [0, {curve.s[-1]:g}]; κ from {kappa.min():.3f} to "
+    f"{kappa.max():.3f}"
+)
 
 # %%
 # The tube at its design angle: folds red, seams blue.

@@ -15,16 +15,19 @@ from curvefold import Crease, measure
 from curvefold.figures import plot_crease
 
 crease = Crease.from_pattern(
-    0.5,                                          # κ_2D, per model unit
-    lambda s: 80 + 10 * np.sin(np.pi * s / 3),    # β_L(s), degrees
-    lambda s: 100 - 5 * np.sin(np.pi * s / 3),    # β_R(s), degrees
-    3.0,                                          # length
-    fold_angle=60.0,                              # 2α at s = 0, degrees
+    0.5,  # κ_2D, per model unit
+    lambda s: 80 + 10 * np.sin(np.pi * s / 3),  # β_L(s), degrees
+    lambda s: 100 - 5 * np.sin(np.pi * s / 3),  # β_R(s), degrees
+    3.0,  # length
+    fold_angle=60.0,  # 2α at s = 0, degrees
     samples=301,
 )
 two_alpha = 2 * np.degrees(crease.alpha(crease.s))
 print(f"2α runs from {two_alpha[0]:.1f}° to {two_alpha[-1]:.1f}° along the crease")
-print(f"developability: the tangent planes turn along the rulings by at most {measure.developability_residual(crease):.1e} per unit length")
+print(
+    "developability: the tangent planes turn along the rulings by at most "
+    f"{measure.developability_residual(crease):.1e} per unit length"
+)
 
 # %%
 # Left, the folded crease and the developable surfaces on both sides along its rulings;

@@ -19,12 +19,23 @@ from curvefold.vault import Vault
 vault = Vault.from_design(a=0.3, p_xy=0.75, samples=801)
 result = analyse_load(vault, "polypropylene", 1e-3)
 summary = result.to_dict()
-reactions = np.where(np.abs(summary["reactions"]) < 1e-9 * summary["total_weight"], 0.0, summary["reactions"])  # rounding shown as 0
-print(f"weight {summary['total_weight']:.1f} N, carried by the feet: reactions {reactions.round(4).tolist()} N")
-print(f"largest deflection {summary['max_displacement'] * 1e6:.1f} µm, largest stress {summary['max_stress'] / 1e3:.1f} kPa "
-      f"(utilisation {summary['utilisation']:.2%})")
-print(f"buckling factor {summary['buckling_factor']:.0f}; fold-mode gap {summary['fold_mode_gap']:.2f}; "
-      f"first mode against the rigid folding: correlation {summary['fold_mode_correlation']:.3f}; soft modes {summary['soft_modes']}")
+# rounding shown as 0
+reactions = np.where(
+    np.abs(summary["reactions"]) < 1e-9 * summary["total_weight"], 0.0, summary["reactions"]
+)
+print(
+    f"weight {summary['total_weight']:.1f} N, carried by the feet: reactions "
+    f"{reactions.round(4).tolist()} N"
+)
+print(
+    f"largest deflection {summary['max_displacement'] * 1e6:.1f} µm, largest stress "
+    f"{summary['max_stress'] / 1e3:.1f} kPa (utilisation {summary['utilisation']:.2%})"
+)
+print(
+    f"buckling factor {summary['buckling_factor']:.0f}; fold-mode gap "
+    f"{summary['fold_mode_gap']:.2f}; first mode against the rigid folding: correlation "
+    f"{summary['fold_mode_correlation']:.3f}; soft modes {summary['soft_modes']}"
+)
 
 # %%
 # The deflected vault, its displacement magnified 1,000 times and coloured by its size: the

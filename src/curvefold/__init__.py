@@ -11,15 +11,34 @@ the geometry, not the file writers or SciPy), so the command line starts quickly
 """
 
 from .kernel._exports import lazy_exports as _lazy_exports
-from .kernel._version import VERSION as __version__  # the one place it is set (pyproject.toml reads it)
+
+# the one place it is set (pyproject.toml reads it)
+from .kernel._version import VERSION
+
+__version__ = VERSION  # the one place it is set (pyproject.toml reads it)
 
 # The public names by package, imported when first asked for (kernel.exports); type
 # checkers and editors read them from __init__.pyi.
 __all__, _getattr, _dir = _lazy_exports(
     __name__,
     {
-        "kernel": ["CurvefoldError", "InputError", "RegressionError", "ConvergenceError", "InternalError"],
-        "geometry": ["SpaceCurve", "Crease", "Lattice", "Pattern", "RegressionDomain", "Structure", "State", "Mesh"],
+        "kernel": [
+            "CurvefoldError",
+            "InputError",
+            "RegressionError",
+            "ConvergenceError",
+            "InternalError",
+        ],
+        "geometry": [
+            "SpaceCurve",
+            "Crease",
+            "Lattice",
+            "Pattern",
+            "RegressionDomain",
+            "Structure",
+            "State",
+            "Mesh",
+        ],
     },
 )
 __all__ = [*__all__, "measure"]
@@ -35,4 +54,3 @@ def __getattr__(name: str):
 
         return measure
     return _getattr(name)
-

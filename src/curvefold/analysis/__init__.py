@@ -14,6 +14,13 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_checks": ["CHECKS", "CheckSpec"],
         "_foldcheck": ["FoldCheck", "FileCheck", "check_fold"],
         "_fold_mechanism": ["analyse_fold"],
-        "_mechanism": ["Framework", "Mechanism", "CertifiedMechanism", "analyse", "certified_mechanism", "follow"],
+        "_mechanism": [
+            "Framework",
+            "Mechanism",
+            "CertifiedMechanism",
+            "analyse",
+            "certified_mechanism",
+            "follow",
+        ],
     },
 )

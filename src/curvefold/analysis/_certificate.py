@@ -1,8 +1,8 @@
 """The geometric certificate: every check of the registry measured on the built geometry and judged.
 
-Every check (:data:`curvefold.analysis.CHECKS`) measures a residual that the construction makes zero in the continuum, from
-the built points (:mod:`curvefold.analysis._measure`), never from the formula that built
-them: a wrong formula leaves a residual of order one, a correct design only the
+Every check (:data:`curvefold.analysis.CHECKS`) measures a residual that the construction makes zero
+in the continuum, from the built points (:mod:`curvefold.analysis._measure`), never from the formula
+that built them: a wrong formula leaves a residual of order one, a correct design only the
 discretisation error.
 
 Error model, the same for every check
@@ -37,23 +37,21 @@ Rigid panels
     A structure of rigid planar panels (a lattice that is
     :attr:`~curvefold.geometry.StructureLattice.rigid`, such as
     :mod:`curvefold.geometry._panels`) is exact by construction: every folded state is the
-    flat panels moved rigidly, so its residuals are rounding, whatever the number of panels. Its checks have order 0: the tolerance is
-    the rounding floor alone (:attr:`CheckSpec.rounding` states it), with no half-sampled
-    design. They are ``panel_isometry`` (sides and both diagonals of every panel),
-    ``panel_planarity``, ``panel_ground_plane`` (a vault standing by the discrete Eq. 20),
-    and the mechanism (:func:`curvefold.analysis.certified_mechanism`):
-    ``mechanism_dof`` (one internal degree of freedom at half and full design angle) and
-    ``mechanism_clearance`` (how clearly the singular values count it). The smooth crease
-    the panels sample (:attr:`~curvefold.geometry.StructureLattice.smooth`) is
-    certified by the crease checks. The smooth frame and vault checks
-    do not apply: ``frame_agreement``, ``eq19``, ``width_law``,
-    ``regression``, ``tube_closure``, ``arch_condition`` and ``proportion_change`` take
-    derivatives along the creases or compare with the smooth closed forms, which a
-    polyline meets only to O(1/N²) (measured in ``tests/test_panels.py``); ``isometry``,
-    ``ruling_quad_planarity`` and ``ground_plane`` have exact panel counterparts above;
-    ``fold_angles`` compares every fold edge with 2α, and a panel's fold lines fold by
-    their own angle (``tan(ρ/2) = sin(φ/2) / sin β · tan α``), which isometry and
-    planarity hold to (a wrong ρ breaks the panels).
+    flat panels moved rigidly, so its residuals are rounding, whatever the number of panels. Its
+    checks have order 0: the tolerance is the rounding floor alone (:attr:`CheckSpec.rounding`
+    states it), with no half-sampled design. They are ``panel_isometry`` (sides and both diagonals
+    of every panel), ``panel_planarity``, ``panel_ground_plane`` (a vault standing by the discrete
+    Eq. 20), and the mechanism (:func:`curvefold.analysis.certified_mechanism`): ``mechanism_dof``
+    (one internal degree of freedom at half and full design angle) and ``mechanism_clearance`` (how
+    clearly the singular values count it). The smooth crease the panels sample
+    (:attr:`~curvefold.geometry.StructureLattice.smooth`) is certified by the crease checks. The
+    smooth frame and vault checks do not apply: ``frame_agreement``, ``eq19``, ``width_law``,
+    ``regression``, ``tube_closure``, ``arch_condition`` and ``proportion_change`` take derivatives
+    along the creases or compare with the smooth closed forms, which a polyline meets only to
+    O(1/N²) (measured in ``tests/test_panels.py``); ``isometry``, ``ruling_quad_planarity`` and
+    ``ground_plane`` have exact panel counterparts above; ``fold_angles`` compares every fold edge
+    with 2α, and a panel's fold lines fold by their own angle (``tan(ρ/2) = sin(φ/2) / sin β · tan
+    α``), which isometry and planarity hold to (a wrong ρ breaks the panels).
 
 Adding a check is one entry in :data:`~curvefold.analysis.CHECKS`: a
 :class:`~curvefold.analysis.CheckSpec` with a measurement ``frame -> Residual`` and its
@@ -81,7 +79,8 @@ __all__ = ["Check", "Certificate", "certify", "certify_single_fold"]
 
 #: Fewest samples of the half-sampled design: the measurements' 5-point stencils need room.
 _MIN_COARSE = 9
-#: The grid of :func:`~curvefold.geometry.first_contact`, degrees: the motion holds to one step before it.
+#: The grid of :func:`~curvefold.geometry.first_contact`, degrees: the motion holds to one step
+#: before it.
 CONTACT_STEP = 1.0
 #: Statuses, best first.
 STATUSES = ("pass", "insufficient resolution", "fail")
@@ -126,17 +125,30 @@ class Check:
 
     @property
     def margin(self) -> float | None:
-        """tolerance / value: how many times the residual fits in its tolerance (None if it is 0 or NaN)."""
+        """tolerance / value: how many times the residual fits in its tolerance (None if it is 0
+        or NaN)."""
         return self.tolerance / self.value if self.value > 0 and math.isfinite(self.value) else None
 
     def to_dict(self) -> dict:
         """JSON-ready (NaN as None)."""
+
         def finite(x):
             return x if x is None or math.isfinite(x) else None
 
-        return {"name": self.name, "value": finite(self.value), "tolerance": finite(self.tolerance), "margin": finite(self.margin),
-                "status": self.status, "passed": self.passed, "unit": self.unit, "where": self.where, "frames": self.frames,
-                "samples_needed": self.samples_needed, "measures": self.measures, "model": self.model}
+        return {
+            "name": self.name,
+            "value": finite(self.value),
+            "tolerance": finite(self.tolerance),
+            "margin": finite(self.margin),
+            "status": self.status,
+            "passed": self.passed,
+            "unit": self.unit,
+            "where": self.where,
+            "frames": self.frames,
+            "samples_needed": self.samples_needed,
+            "measures": self.measures,
+            "model": self.model,
+        }
 
 
 @dataclass(frozen=True)
@@ -179,15 +191,21 @@ class Certificate:
 # certification
 
 
-def _rebuilt(crease: Crease, structure: Structure | None, samples: int) -> tuple[Crease, Structure | None]:
+def _rebuilt(
+    crease: Crease, structure: Structure | None, samples: int
+) -> tuple[Crease, Structure | None]:
     """The same design built again at another sample count, from the same functions."""
     c = crease.curve
-    curve = SpaceCurve.from_curvature(c.kappa, c.tau, c.length, samples=samples, origin=c.points[0], frame=c.frames[0])
+    curve = SpaceCurve.from_curvature(
+        c.kappa, c.tau, c.length, samples=samples, origin=c.points[0], frame=c.frames[0]
+    )
     coarse = Crease(curve, crease.alpha, crease.beta_left, crease.beta_right)
     if structure is None:
         return coarse, None
     lattice = structure.lattice
-    pattern = Pattern.from_crease(coarse, float(lattice.width_left[0]), float(lattice.width_right[0]))
+    pattern = Pattern.from_crease(
+        coarse, float(lattice.width_left[0]), float(lattice.width_right[0])
+    )
     # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)
     return coarse, Structure(Lattice(coarse, pattern), structure.cells)  # type: ignore[arg-type]
 
@@ -202,11 +220,16 @@ class _Outcome:
 
     @property
     def ratio(self) -> float:
-        return self.value / self.tolerance if math.isfinite(self.value) and self.tolerance > 0 else math.inf
+        return (
+            self.value / self.tolerance
+            if math.isfinite(self.value) and self.tolerance > 0
+            else math.inf
+        )
 
 
-def _judge(spec: CheckSpec, fine: Residual, coarse: Residual | None, samples: int,
-           label: str) -> _Outcome:
+def _judge(
+    spec: CheckSpec, fine: Residual, coarse: Residual | None, samples: int, label: str
+) -> _Outcome:
     value, index = fine.worst
     where = label + (fine.locate(index) if index >= 0 else "")
     if spec.order == 0:
@@ -216,11 +239,14 @@ def _judge(spec: CheckSpec, fine: Residual, coarse: Residual | None, samples: in
         tolerance = fine.change(coarse) / 2 + fine.floor
     if not (math.isfinite(value) and math.isfinite(tolerance)):
         return _Outcome("fail", math.nan, tolerance, where + " (not a number)", None)
-    if spec.order == 0 or value > tolerance or tolerance <= spec.cap:  # exact, more than the discretisation explains, or certified
+    # exact, more than the discretisation explains, or certified
+    if spec.order == 0 or value > tolerance or tolerance <= spec.cap:
         return _Outcome("pass" if value <= tolerance else "fail", value, tolerance, where, None)
     if fine.floor >= spec.cap / 4:  # rounding alone fills the cap: more samples cannot help
         return _Outcome("insufficient resolution", value, tolerance, where + " (rounding)", None)
-    needed = 1 + math.ceil((samples - 1) * (4 * (tolerance - fine.floor) / spec.cap) ** (1 / spec.order))
+    needed = 1 + math.ceil(
+        (samples - 1) * (4 * (tolerance - fine.floor) / spec.cap) ** (1 / spec.order)
+    )
     return _Outcome("insufficient resolution", value, tolerance, where, max(needed, samples + 1))
 
 
@@ -229,11 +255,16 @@ def _worst(outcomes: list[_Outcome]) -> _Outcome:
     pick = [o for o in outcomes if STATUSES.index(o.status) == rank]
     worst = max(pick, key=lambda o: o.ratio)
     needed = [o.samples_needed for o in pick if o.samples_needed is not None]
-    return _Outcome(worst.status, worst.value, worst.tolerance, worst.where, max(needed) if needed else None)
+    return _Outcome(
+        worst.status, worst.value, worst.tolerance, worst.where, max(needed) if needed else None
+    )
 
 
-def _measure(specs: Sequence[CheckSpec], fine: Frame, coarse: Frame | None, label: str) -> dict[str, _Outcome]:
-    """Each spec's outcome on a frame (``coarse``, the half-sampled one, is read by orders > 0 only)."""
+def _measure(
+    specs: Sequence[CheckSpec], fine: Frame, coarse: Frame | None, label: str
+) -> dict[str, _Outcome]:
+    """Each spec's outcome on a frame (``coarse``, the half-sampled one, is read by orders > 0
+    only)."""
     out = {}
     for spec in specs:
         residual = spec.measure(fine)
@@ -243,8 +274,14 @@ def _measure(specs: Sequence[CheckSpec], fine: Frame, coarse: Frame | None, labe
     return out
 
 
-def certify(crease: Crease, structure: Structure | None = None, vault: Vault | None = None, *,
-            fold_angles: Sequence[float] | None = None, degrees: bool = True) -> Certificate:
+def certify(
+    crease: Crease,
+    structure: Structure | None = None,
+    vault: Vault | None = None,
+    *,
+    fold_angles: Sequence[float] | None = None,
+    degrees: bool = True,
+) -> Certificate:
     """Measure every check that applies, in every frame, against its tolerance.
 
     Parameters
@@ -278,7 +315,9 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
         assert isinstance(structure.lattice.crease, Crease)  # not rigid: a smooth lattice's
         crease = structure.lattice.crease
     elif fold_angles is not None:
-        raise InputError("fold_angles: a single curved fold is certified in the one state it is built in")
+        raise InputError(
+            "fold_angles: a single curved fold is certified in the one state it is built in"
+        )
     n = len(crease.s)
     coarse_samples = (n - 1) // 2 + 1
     if coarse_samples < _MIN_COARSE:
@@ -290,16 +329,28 @@ def certify(crease: Crease, structure: Structure | None = None, vault: Vault | N
         return Certificate(tuple(_check(spec, [measured[spec.name]]) for spec in specs), samples=n)
 
     angles = _certified_angles(structure, fold_angles, degrees)
-    specs = [s for s in CHECKS if s.scope in ("crease", "frame", "motion") or (s.scope == "vault" and vault is not None)]
+    specs = [
+        s
+        for s in CHECKS
+        if s.scope in ("crease", "frame", "motion") or (s.scope == "vault" and vault is not None)
+    ]
     assert coarse_structure is not None  # rebuilt with the structure
     run = _runner(specs, vault, Shared(structure), Shared(coarse_structure))
-    outcomes = _over_frames(specs, run, angles, ("crease", "frame", "vault", "motion"), ("crease", "frame"), structure.lattice.crease.fold_angle)
+    outcomes = _over_frames(
+        specs,
+        run,
+        angles,
+        ("crease", "frame", "vault", "motion"),
+        ("crease", "frame"),
+        structure.lattice.crease.fold_angle,
+    )
     checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
     return _with_range(checks, specs, structure, angles, run, ("crease", "frame"), n)
 
 
 def certify_single_fold(states: Sequence[tuple[float, Crease]]) -> Certificate:
-    """The crease checks of a single curved fold in every state of its motion, judged as :func:`certify` judges them.
+    """The crease checks of a single curved fold in every state of its motion, judged as
+    :func:`certify` judges them.
 
     Parameters
     ----------
@@ -320,64 +371,110 @@ def certify_single_fold(states: Sequence[tuple[float, Crease]]) -> Certificate:
     outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
     for angle, crease in states:
         coarse, _ = _rebuilt(crease, None, coarse_samples)
-        for name, outcome in _measure(specs, Frame(crease), Frame(coarse), f"2α(0) = {angle:g}°: ").items():
+        for name, outcome in _measure(
+            specs, Frame(crease), Frame(coarse), f"2α(0) = {angle:g}°: "
+        ).items():
             outcomes[name].append(outcome)
-    return Certificate(tuple(_check(spec, outcomes[spec.name]) for spec in specs), tuple(a for a, _ in states), samples=n)
+    return Certificate(
+        tuple(_check(spec, outcomes[spec.name]) for spec in specs),
+        tuple(a for a, _ in states),
+        samples=n,
+    )
 
 
 def _certify_rigid(structure: Structure, vault: Vault | None, angles: list[float]) -> Certificate:
-    """:func:`certify` of a structure of rigid panels: its exact checks in every frame, its mechanism
-    once, and the crease checks of the smooth crease it samples."""
+    """:func:`certify` of a structure of rigid panels: its exact checks in every frame, its
+    mechanism once, and the crease checks of the smooth crease it samples."""
     smooth = structure.lattice.smooth
     crease_checks = () if smooth is None else certify(smooth.crease).checks
-    specs = [s for s in CHECKS if s.scope in ("panels", "mechanism", "motion") or (s.scope == "panel_vault" and vault is not None)]
+    specs = [
+        s
+        for s in CHECKS
+        if s.scope in ("panels", "mechanism", "motion")
+        or (s.scope == "panel_vault" and vault is not None)
+    ]
     shared = Shared(structure)
     run = _runner(specs, vault, shared, None)
-    outcomes = _over_frames(specs, run, angles, ("panels", "panel_vault", "motion"), ("panels",), structure.lattice.crease.fold_angle)
+    outcomes = _over_frames(
+        specs,
+        run,
+        angles,
+        ("panels", "panel_vault", "motion"),
+        ("panels",),
+        structure.lattice.crease.fold_angle,
+    )
     mechanism = [s for s in specs if s.scope == "mechanism"]
-    for name, outcome in _measure(mechanism, Frame.at(shared, None, vault), None, "").items():  # its states name themselves
+    # its states name themselves
+    for name, outcome in _measure(mechanism, Frame.at(shared, None, vault), None, "").items():
         outcomes[name].append(outcome)
     checks = tuple(_check(spec, outcomes[spec.name]) for spec in specs)
     cert = _with_range(checks, specs, structure, angles, run, ("panels",), len(structure.lattice.s))
-    return replace(cert, checks=crease_checks + cert.checks, mechanism=certified_mechanism(structure))
+    return replace(
+        cert, checks=crease_checks + cert.checks, mechanism=certified_mechanism(structure)
+    )
 
 
-def _with_range(checks: tuple[Check, ...], specs: Sequence[CheckSpec], structure: Structure, angles: list[float],
-                run: Callable, scopes: tuple[str, ...], samples: int) -> Certificate:
-    """The certificate of a structure with the range of its motion: where its checks hold, up to the last degree before
-    its first contact (the bisection cannot look for a contact: past one, parts that went through each other can be far
-    apart again)."""
-    motion_passes = all(c.passed for c, spec in zip(checks, specs) if spec.scope in scopes + ("motion",))
+def _with_range(
+    checks: tuple[Check, ...],
+    specs: Sequence[CheckSpec],
+    structure: Structure,
+    angles: list[float],
+    run: Callable,
+    scopes: tuple[str, ...],
+    samples: int,
+) -> Certificate:
+    """The certificate of a structure with the range of its motion: where its checks hold, up to
+    the last degree before its first contact (the bisection cannot look for a contact: past
+    one, parts that went through each other can be far apart again)."""
+    motion_passes = all(
+        c.passed for c, spec in zip(checks, specs) if spec.scope in scopes + ("motion",)
+    )
     contact = first_contact(structure)
     end = 180.0 if contact is None else contact - CONTACT_STEP
     holds = _holds_up_to(run, max(angles), end, scopes) if motion_passes else None
     return Certificate(checks, tuple(angles), holds, samples, first_contact=contact)
 
 
-def _certified_angles(structure: Structure, fold_angles: Sequence[float] | None, degrees: bool) -> list[float]:
-    """2α of the certified frames, degrees, ascending: 0°, the design angle and ``fold_angles`` (validated)."""
+def _certified_angles(
+    structure: Structure, fold_angles: Sequence[float] | None, degrees: bool
+) -> list[float]:
+    """2α of the certified frames, degrees, ascending: 0°, the design angle and ``fold_angles``
+    (validated)."""
     extra = [] if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees).tolist()
     return sorted({0.0, float(structure.lattice.crease.fold_angle), *map(float, extra)})
 
 
-def _runner(specs: Sequence[CheckSpec], vault: Vault | None, fine: Shared,
-            coarse: Shared | None) -> Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]]:
+def _runner(
+    specs: Sequence[CheckSpec], vault: Vault | None, fine: Shared, coarse: Shared | None
+) -> Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]]:
     """``run(angle, scopes)``: the outcomes of the ``specs`` of ``scopes`` on the structure refolded
-    to ``angle`` (None: as built), against the half-sampled one (``coarse``; None for order-0 checks)."""
+    to ``angle`` (None: as built), against the half-sampled one (``coarse``; None for order-0
+    checks)."""
     design = float(fine.structure.lattice.crease.fold_angle)
 
     def run(angle: float | None, scopes: tuple[str, ...]) -> dict[str, _Outcome]:
         label = f"2α = {design:g}° as built: " if angle is None else f"2α = {angle:g}°: "
         chosen = [s for s in specs if s.scope in scopes]
-        return _measure(chosen, Frame.at(fine, angle, vault), None if coarse is None else Frame.at(coarse, angle, vault), label)
+        return _measure(
+            chosen,
+            Frame.at(fine, angle, vault),
+            None if coarse is None else Frame.at(coarse, angle, vault),
+            label,
+        )
 
     return run
 
 
-def _over_frames(specs: Sequence[CheckSpec], run: Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]],
-                 angles: Sequence[float], built: tuple[str, ...], folded: tuple[str, ...], design: float) -> dict[str, list[_Outcome]]:
-    """Every spec's outcomes: on the structure as built (the scopes ``built``), then refolded to each angle
-    (``folded``, and ``"motion"`` from the ``design`` angle on)."""
+def _over_frames(
+    specs: Sequence[CheckSpec],
+    run: Callable[[float | None, tuple[str, ...]], dict[str, _Outcome]],
+    angles: Sequence[float],
+    built: tuple[str, ...],
+    folded: tuple[str, ...],
+    design: float,
+) -> dict[str, list[_Outcome]]:
+    """Every spec's outcomes: on the structure as built (the scopes ``built``), then refolded to
+    each angle (``folded``, and ``"motion"`` from the ``design`` angle on)."""
     outcomes: dict[str, list[_Outcome]] = {s.name: [] for s in specs}
     for angle in (None, *angles):
         scopes = built if angle is None else folded + (("motion",) if angle >= design else ())
@@ -386,10 +483,16 @@ def _over_frames(specs: Sequence[CheckSpec], run: Callable[[float | None, tuple[
     return outcomes
 
 
-def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], start: float, end: float,
-                 scopes: tuple[str, ...]) -> float:
-    """Largest 2α in [``start``, ``end``] (to 1.5°) where every check of ``scopes`` passes: ``end`` (below 180°: one step
-    before the first contact) if they pass there, else found by bisection."""
+def _holds_up_to(
+    run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]],
+    start: float,
+    end: float,
+    scopes: tuple[str, ...],
+) -> float:
+    """Largest 2α in [``start``, ``end``] (to 1.5°) where every check of ``scopes`` passes:
+    ``end`` (below 180°: one step before the first contact) if they pass there, else found by
+    bisection."""
+
     def passes(angle: float) -> bool:
         return all(o.status == "pass" for o in run(angle, scopes).values())
 
@@ -404,15 +507,42 @@ def _holds_up_to(run: Callable[[float, tuple[str, ...]], dict[str, _Outcome]], s
 
 def _check(spec: CheckSpec, outcomes: list[_Outcome]) -> Check:
     worst = _worst(outcomes)
-    return Check(spec.name, worst.value, worst.tolerance, worst.status, spec.unit, spec.measures, spec.model,
-                 worst.where, len(outcomes), worst.samples_needed)
+    return Check(
+        spec.name,
+        worst.value,
+        worst.tolerance,
+        worst.status,
+        spec.unit,
+        spec.measures,
+        spec.model,
+        worst.where,
+        len(outcomes),
+        worst.samples_needed,
+    )
 
 
 def _too_coarse(structure: Structure | None, vault: Vault | None, samples: int) -> Certificate:
     """Every check "insufficient resolution": the half-sampled design would not hold a stencil."""
-    scopes = ("crease",) if structure is None else ("crease", "frame") + (("vault",) if vault is not None else ())
+    scopes = (
+        ("crease",)
+        if structure is None
+        else ("crease", "frame") + (("vault",) if vault is not None else ())
+    )
     needed = 2 * (_MIN_COARSE - 1) + 1
-    checks = tuple(Check(s.name, math.nan, math.nan, "insufficient resolution", s.unit, s.measures, s.model,
-                         f"{samples} samples; the check compares them with half as many", 0, needed)
-                   for s in CHECKS if s.scope in scopes)
+    checks = tuple(
+        Check(
+            s.name,
+            math.nan,
+            math.nan,
+            "insufficient resolution",
+            s.unit,
+            s.measures,
+            s.model,
+            f"{samples} samples; the check compares them with half as many",
+            0,
+            needed,
+        )
+        for s in CHECKS
+        if s.scope in scopes
+    )
     return Certificate(checks, samples=samples)

@@ -21,7 +21,8 @@ __all__ = ["PRECISION_FACTOR", "analyse_fold", "coordinate_precision"]
 
 
 def analyse_fold(path, *, rtol: float = RTOL, name: str | None = None) -> tuple[Mechanism, ...]:
-    """The mechanism of every folded frame of a FOLD file (a path, or a ``FoldFile`` read from ``name``).
+    """The mechanism of every folded frame of a FOLD file (a path, or a ``FoldFile`` read from
+    ``name``).
 
     With a crease pattern, every folded frame is analysed against it, and vertices that
     coincide in every folded frame are welded (:meth:`Framework.from_fold`). Without one
@@ -52,46 +53,104 @@ def analyse_fold(path, *, rtol: float = RTOL, name: str | None = None) -> tuple[
     doc = path if isinstance(path, FoldFile) else read_fold(path)
     where = f"{name}: " if name else "" if isinstance(path, FoldFile) else f"{os.fspath(path)}: "
     if not doc.folded:
-        raise InputError(f"{where}no folded frame to analyse (the file holds only a crease pattern)")
+        raise InputError(
+            f"{where}no folded frame to analyse (the file holds only a crease pattern)"
+        )
     cp = doc.crease_pattern
     ref = cp if cp is not None else doc.folded[0][1]
     for title, mesh in doc.folded:
-        if not (mesh.vertices_coords.shape == ref.vertices_coords.shape and np.array_equal(mesh.edges_vertices, ref.edges_vertices)
-                and np.array_equal(mesh.faces_vertices, ref.faces_vertices)):
-            raise InputError(f"{where}frame {title!r} has other vertices, edges or faces than the "
-                             f"{'crease pattern' if cp is not None else 'first folded frame'}; the mechanism is analysed on frames of one topology")
+        if not (
+            mesh.vertices_coords.shape == ref.vertices_coords.shape
+            and np.array_equal(mesh.edges_vertices, ref.edges_vertices)
+            and np.array_equal(mesh.faces_vertices, ref.faces_vertices)
+        ):
+            raise InputError(
+                f"{where}frame {title!r} has other vertices, edges or faces than "
+                f"the {'crease pattern' if cp is not None else 'first folded frame'}; the "
+                "mechanism is analysed on frames of one topology"
+            )
     joins = np.flatnonzero(ref.edges_assignment == "J")
     spatial = [mesh for i, (_, mesh) in enumerate(doc.folded) if not doc.is_flat_folded(i)]
     declared = bool({"curvefold:seam_partners", "curvefold:bonds"} & doc.keys)
-    if cp is not None and (spatial or declared):  # the layers of a flat fold touch everywhere: they weld nothing the file does not glue
+    # the layers of a flat fold touch everywhere: they weld nothing the file does not glue
+    if cp is not None and (spatial or declared):
         pairs = np.concatenate([doc.seam_partners, doc.bonds])
-        framework, first = Framework.from_fold(cp, spatial or [mesh for _, mesh in doc.folded], joins=joins,
-                                               glued=distinct(cp.edges_vertices[pairs]) if declared else None)
+        framework, first = Framework.from_fold(
+            cp,
+            spatial or [mesh for _, mesh in doc.folded],
+            joins=joins,
+            glued=distinct(cp.edges_vertices[pairs]) if declared else None,
+        )
         welded = len(cp.vertices_coords) - framework.points
-        note = "" if declared or not welded else f"{welded} vertices welded where every folded frame puts them on another"
+        note = (
+            ""
+            if declared or not welded
+            else f"{welded} vertices welded where every folded frame puts them on another"
+        )
         references = [(framework, first, note)] * len(doc.folded)
     elif cp is not None:
-        framework = Framework.from_mesh(cp.vertices_coords, cp.edges_vertices, cp.faces_vertices, np.arange(len(cp.vertices_coords)), joins=joins)
-        references = [(framework, np.arange(len(cp.vertices_coords)), "no vertex welded (the layers of a flat fold touch)")] * len(doc.folded)
+        framework = Framework.from_mesh(
+            cp.vertices_coords,
+            cp.edges_vertices,
+            cp.faces_vertices,
+            np.arange(len(cp.vertices_coords)),
+            joins=joins,
+        )
+        references = [
+            (
+                framework,
+                np.arange(len(cp.vertices_coords)),
+                "no vertex welded (the layers of a flat fold touch)",
+            )
+        ] * len(doc.folded)
     else:
-        references = [(Framework.from_mesh(m.vertices_coords, m.edges_vertices, m.faces_vertices, np.arange(len(m.vertices_coords)), joins=joins),
-                       np.arange(len(m.vertices_coords)), "no crease pattern: the frame's own lengths, no vertex welded")
-                      for _, m in doc.folded]
+        references = [
+            (
+                Framework.from_mesh(
+                    m.vertices_coords,
+                    m.edges_vertices,
+                    m.faces_vertices,
+                    np.arange(len(m.vertices_coords)),
+                    joins=joins,
+                ),
+                np.arange(len(m.vertices_coords)),
+                "no crease pattern: the frame's own lengths, no vertex welded",
+            )
+            for _, m in doc.folded
+        ]
     out = []
     for i, ((title, mesh), (framework, first, note)) in enumerate(zip(doc.folded, references)):
         _check_size(framework)
         _check_lengths(framework, f"{where}frame {title!r}")
         x = mesh.vertices_coords[first]
-        precision = max(coordinate_precision(m.vertices_coords) for m in ([mesh] if cp is None else [mesh, cp])) / framework.shortest
+        precision = (
+            max(
+                coordinate_precision(m.vertices_coords)
+                for m in ([mesh] if cp is None else [mesh, cp])
+            )
+            / framework.shortest
+        )
         residual = float(np.abs(framework.residual(x) / framework.scales).max())
         notes = [note] if note else []
         if doc.is_flat_folded(i):
-            notes.append("flat-folded: every lift of its layers that keeps the panels planar counts, to first order")
+            notes.append(
+                "flat-folded: every lift of its layers that keeps the panels planar "
+                "counts, to first order"
+            )
         tol = max(rtol, PRECISION_FACTOR * residual)
         if tol > rtol and tol < 1:
-            notes.append(f"rank tolerance raised to {tol:.1e} σ_max, {PRECISION_FACTOR:g} × the frame's residual (its coordinates "
-                         f"are given to {precision:.1e} of the shortest edge)")
-        m = mechanism(framework, x, rtol=tol if tol < 1 else rtol, label=title, residual_tol=max(RESIDUAL_TOL, PRECISION_FACTOR * precision))
+            notes.append(
+                f"rank tolerance raised to {tol:.1e} σ_max, {PRECISION_FACTOR:g} × the "
+                f"frame's residual (its coordinates are given to {precision:.1e} of the "
+                "shortest edge)"
+            )
+        m = mechanism(
+            framework,
+            x,
+            rtol=tol if tol < 1 else rtol,
+            label=title,
+            residual_tol=max(RESIDUAL_TOL, PRECISION_FACTOR * precision),
+        )
         out.append(replace(m, note="; ".join(notes)))
     return tuple(out)
 
@@ -131,8 +190,14 @@ def _check_lengths(framework: Framework, where: str) -> None:
     """Every bar and quad of the reference has a length: a zero one makes the rows undefined."""
     bad = np.flatnonzero(~(framework.lengths > 0))
     if bad.size:
-        raise InputError(f"{where}: vertices {framework.bars[bad[0]].tolist()} coincide in the reference (an edge or diagonal of "
-                         "length 0): the mechanism of a degenerate panel is not defined")
+        raise InputError(
+            f"{where}: vertices {framework.bars[bad[0]].tolist()} coincide in the "
+            "reference (an edge or diagonal of length 0): the mechanism of a degenerate panel "
+            "is not defined"
+        )
     bad = np.flatnonzero(~(framework.diagonals > 0))
     if bad.size:
-        raise InputError(f"{where}: the polygon of vertices {framework.quads[bad[0]].tolist()} has a diagonal of length 0 in the reference")
+        raise InputError(
+            f"{where}: the polygon of vertices {framework.quads[bad[0]].tolist()} "
+            "has a diagonal of length 0 in the reference"
+        )

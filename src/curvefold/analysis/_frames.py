@@ -59,27 +59,34 @@ class Shared:
 
     @cached_property
     def tube_mesh(self) -> bool:
-        """Whether the mesh is :meth:`Topology.tubes`'s triangles of the structure's cells at every sample.
+        """Whether the mesh is :meth:`Topology.tubes`'s triangles of the structure's cells at every
+        sample.
 
-        Vertex (4k + c)·n + j is then sample j of corner c of tube k (its curves at the tubes' corners, in order);
-        the edges are the curve edges of every strip (the folds and seams), then its rulings, then its diagonals
-        (a_j, b_(j+1)); the faces are every strip's triangles (a_j, b_(j+1), b_j), then its (a_j, a_(j+1), b_(j+1)).
-        A frame then reads every edge, face, quad and crease off the tubes' curves (:attr:`Frame.strip_edges`),
-        the same numbers as it gathers otherwise.
+        Vertex (4k + c)·n + j is then sample j of corner c of tube k (its curves at the tubes'
+        corners, in order); the edges are the curve edges of every strip (the folds and seams), then
+        its rulings, then its diagonals (a_j, b_(j+1)); the faces are every strip's triangles (a_j,
+        b_(j+1), b_j), then its (a_j, a_(j+1), b_(j+1)). A frame then reads every edge, face, quad
+        and crease off the tubes' curves (:attr:`Frame.strip_edges`), the same numbers as it gathers
+        otherwise.
         """
         top, cells = self.topology, self.structure.cell_curves
         K, n = len(cells), len(self.structure.lattice.s)
         if not is_tube_numbering(top, cells, n):
             return False
-        kinds = np.split(top.edges_kind, [4 * K * (n - 1), 4 * K * (2 * n - 1)])  # curve edges, rulings, diagonals
-        return bool(np.isin(kinds[0], ("fold", "seam")).all() and (kinds[2] == "diagonal").all()
-                    and not np.isin(kinds[1], ("fold", "seam", "diagonal")).any())
+        # curve edges, rulings, diagonals
+        kinds = np.split(top.edges_kind, [4 * K * (n - 1), 4 * K * (2 * n - 1)])
+        return bool(
+            np.isin(kinds[0], ("fold", "seam")).all()
+            and (kinds[2] == "diagonal").all()
+            and not np.isin(kinds[1], ("fold", "seam", "diagonal")).any()
+        )
 
     @cached_property
     def quads(self) -> np.ndarray:
-        """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`: as ``structure.topology("quads")``
-        numbers them, each the two triangles across its diagonal (p, q), the one running p → q → r and the other
-        q → p → s, read as (p, s, q, r); a panel structure's faces are its quads."""
+        """The ruling quads (F, 4), in the vertex numbering of :attr:`Shared.topology`: as
+        ``structure.topology("quads")`` numbers them, each the two triangles across its
+        diagonal (p, q), the one running p → q → r and the other q → p → s, read as (p, s, q,
+        r); a panel structure's faces are its quads."""
         top = self.topology
         if top.faces_vertices.shape[1] == 4:
             return top.faces_vertices
@@ -94,7 +101,8 @@ class Shared:
         return np.stack([p, s, q, r], axis=1)
 
     def coords(self, curves: np.ndarray) -> np.ndarray:
-        """The mesh vertices (V, 3) of a state's curves (M, n, 3): :meth:`Topology.coords` as one take of rows."""
+        """The mesh vertices (V, 3) of a state's curves (M, n, 3): :meth:`Topology.coords` as one
+        take of rows."""
         rows, samples = self._vertex_rows
         if curves.shape[-2] != samples:
             top = self.topology
@@ -109,8 +117,8 @@ class Shared:
 
     @cached_property
     def edge_rows(self) -> tuple[np.ndarray, np.ndarray]:
-        """The row of every edge's first and second vertex in a state's curves (M, n, 3) flattened (as :meth:`coords`
-        reads them), (E,) each."""
+        """The row of every edge's first and second vertex in a state's curves (M, n, 3)
+        flattened (as :meth:`coords` reads them), (E,) each."""
         rows, _ = self._vertex_rows
         ends = self.topology.edges_vertices
         return np.take(rows, ends[:, 0]), np.take(rows, ends[:, 1])
@@ -122,23 +130,31 @@ class Shared:
 
     @cached_property
     def face_sides(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """For triangles, the edges along the sides p0 → p1 and p0 → p2 of every face (F,) each (their
-        :func:`~curvefold.geometry.vector_areas` is the cross product of those edges' vectors); None otherwise."""
+        """For triangles, the edges along the sides p0 → p1 and p0 → p2 of every face (F,) each
+        (their :func:`~curvefold.geometry.vector_areas` is the cross product of those edges'
+        vectors); None otherwise."""
         if self.topology.faces_vertices.shape[1] != 3 or self._side_edges is None:
             return None
         edge, forward = self._side_edges
-        if not (forward[:, 0].all() and not forward[:, 2].any()):  # p0 → p1 along its edge, p2 → p0 against
+        # p0 → p1 along its edge, p2 → p0 against
+        if not (forward[:, 0].all() and not forward[:, 2].any()):
             return None
         return np.ascontiguousarray(edge[:, 0]), np.ascontiguousarray(edge[:, 2])
 
     @cached_property
     def quad_sides(self) -> tuple[np.ndarray, ...] | None:
-        """The edges along p0 → p1, p0 → p3 and p0 → p2 of every quad of :attr:`quads` (F,) each, or None."""
+        """The edges along p0 → p1, p0 → p3 and p0 → p2 of every quad of :attr:`quads` (F,) each,
+        or None."""
         return self._edges_from_first_corner(self.quads, (1, 3, 2))
 
-    def _edges_from_first_corner(self, faces: np.ndarray, corners: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
-        """The edges from corner 0 of every face to each of its ``corners``, as they run (F,) each; None unless every one is an edge run that way."""
-        pairs = np.stack([np.repeat(faces[:, :1], len(corners), axis=1), faces[:, corners]], axis=-1)
+    def _edges_from_first_corner(
+        self, faces: np.ndarray, corners: tuple[int, ...]
+    ) -> tuple[np.ndarray, ...] | None:
+        """The edges from corner 0 of every face to each of its ``corners``, as they run (F,)
+        each; None unless every one is an edge run that way."""
+        pairs = np.stack(
+            [np.repeat(faces[:, :1], len(corners), axis=1), faces[:, corners]], axis=-1
+        )
         edge, forward = edges_along(self.topology.edges_vertices, pairs)
         return tuple(np.ascontiguousarray(e) for e in edge.T) if forward.all() else None
 
@@ -149,7 +165,8 @@ class Shared:
 
     @cached_property
     def flat_lengths(self) -> np.ndarray:
-        """Edge lengths of the crease pattern, (E,) (:func:`~curvefold.analysis._measure.edge_lengths`' numbers)."""
+        """Edge lengths of the crease pattern, (E,)
+        (:func:`~curvefold.analysis._measure.edge_lengths`' numbers)."""
         return Frame(self.flat.lattice.crease, self, self.flat).edge_lengths
 
     @property
@@ -159,23 +176,28 @@ class Shared:
 
     @cached_property
     def width_law(self) -> tuple[np.ndarray, np.ndarray]:
-        """Every strip's width at t = 0 and the log-width law ``∓∫₀^s κ_2D cot β ds`` it follows (− for a left strip,
-        :func:`~curvefold.analysis._measure.width_integral`), (1, 4, 1) and (1, 4, n): of the pattern every frame folds."""
+        """Every strip's width at t = 0 and the log-width law ``∓∫₀^s κ_2D cot β ds`` it follows
+        (− for a left strip, :func:`~curvefold.analysis._measure.width_integral`), (1, 4, 1)
+        and (1, 4, n): of the pattern every frame folds."""
         lattice = self.structure.lattice
         assert isinstance(lattice, Lattice), "the width law of a smooth lattice"
         pattern = lattice.pattern
         law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
         left = (STRIP_SIDES == "L")[None, :, None]
-        return np.where(left, pattern.width_left[0], pattern.width_right[0]), np.where(left, -law, law)
+        return np.where(left, pattern.width_left[0], pattern.width_right[0]), np.where(
+            left, -law, law
+        )
 
     @cached_property
     def speed_factors(self) -> np.ndarray:
-        """The Eq. (17) speed factor of every curve of the structure at its samples (M, n): of the pattern's regression domain."""
+        """The Eq. (17) speed factor of every curve of the structure at its samples (M, n): of
+        the pattern's regression domain."""
         return self.structure.lattice.domain.factor(self.structure.curves_uv.astype(float))
 
     @cached_property
     def bars(self) -> np.ndarray:
-        """Every edge, then both diagonals of every quad, (E + 2F, 2): what keeps a rigid panel's shape."""
+        """Every edge, then both diagonals of every quad, (E + 2F, 2): what keeps a rigid panel's
+        shape."""
         q = self.quads
         return np.concatenate([self.topology.edges_vertices, q[:, [0, 2]], q[:, [1, 3]]])
 
@@ -187,11 +209,15 @@ class Shared:
     @cached_property
     def creases(self) -> tuple[np.ndarray, np.ndarray]:
         """The fold and seam edges, and the two faces on each, (C,) and (C, 2)."""
-        if self.tube_mesh:  # every strip's curve edges: its second triangles run them, the previous strip's first ones back
+        # every strip's curve edges: its second triangles run them, the previous strip's first ones
+        # back
+        if self.tube_mesh:
             K, n = len(self.structure.cell_curves), len(self.structure.lattice.s)
             strip, j = np.arange(4 * K)[:, None], np.arange(n - 1)
             previous = strip - strip % 4 + (strip - 1) % 4
-            sides = np.stack([strip * 2 * (n - 1) + n - 1 + j, previous * 2 * (n - 1) + j], axis=-1).reshape(-1, 2)
+            sides = np.stack(
+                [strip * 2 * (n - 1) + n - 1 + j, previous * 2 * (n - 1) + j], axis=-1
+            ).reshape(-1, 2)
             return np.arange(len(sides)), sides
         ids, sides = self._edges_faces
         crease = self.topology.edges_kind[ids] != "diagonal"
@@ -204,28 +230,33 @@ class Shared:
 
     @cached_property
     def _edges_faces(self) -> tuple[np.ndarray, np.ndarray]:
-        """The fold, seam and diagonal edges, and the two faces on each (:func:`edges_faces`), (S,) and (S, 2):
-        from :attr:`_side_edges` where it gives every one two faces, else by :func:`edges_faces` itself."""
+        """The fold, seam and diagonal edges, and the two faces on each (:func:`edges_faces`),
+        (S,) and (S, 2): from :attr:`_side_edges` where it gives every one two faces, else by
+        :func:`edges_faces` itself."""
         top = self.topology
         ids = np.flatnonzero(np.isin(top.edges_kind, ("fold", "seam", "diagonal")))
         if self._side_edges is not None:
             edge, forward = self._side_edges
             found = edge >= 0
-            faces_of = np.full((len(top.edges_vertices), 2), -1, np.int64)  # a → b on side 0, b → a on side 1; the last face wins
+            # a → b on side 0, b → a on side 1; the last face wins
+            faces_of = np.full((len(top.edges_vertices), 2), -1, np.int64)
             faces_of[edge[found], (~forward[found]).astype(np.int64)] = np.nonzero(found)[0]
-            if (faces_of[ids] >= 0).all():  # else a side missing, or an edge listed twice (its twin gets none)
+            # else a side missing, or an edge listed twice (its twin gets none)
+            if (faces_of[ids] >= 0).all():
                 return ids, faces_of[ids]
         return ids, edges_faces(top.faces_vertices, top.edges_vertices[ids])
 
     @cached_property
     def _side_edges(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """The edge along every side p_i → p_(i+1) of every face and whether it runs that way (:func:`edges_along`),
-        (F, k) each; None for padded faces."""
+        """The edge along every side p_i → p_(i+1) of every face and whether it runs that way
+        (:func:`edges_along`), (F, k) each; None for padded faces."""
         top = self.topology
         faces = top.faces_vertices
         if (faces < 0).any():
             return None
-        return edges_along(top.edges_vertices, np.stack([faces, np.roll(faces, -1, axis=1)], axis=-1))
+        return edges_along(
+            top.edges_vertices, np.stack([faces, np.roll(faces, -1, axis=1)], axis=-1)
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -279,14 +310,22 @@ class Frame:
 
     @classmethod
     def at(cls, shared: Shared, fold_angle: float | None, vault: Vault | None = None) -> Frame:
-        """The structure refolded from its pattern to 2α = ``fold_angle`` (degrees), or as built (None).
+        """The structure refolded from its pattern to 2α = ``fold_angle`` (degrees), or as built
+        (None).
 
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+        >>> tube = Structure.tube(
+        ...     Lattice.from_crease(
+        ...         Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+        ...     )
+        ... )
         >>> shared = Shared(tube)
-        >>> Frame.at(shared, 0.0).alpha, Frame.at(shared, None).crease.fold_angle   # flat, and as built
+        >>> (
+        ...     Frame.at(shared, 0.0).alpha,
+        ...     Frame.at(shared, None).crease.fold_angle,
+        ... )  # flat, and as built
         (0.0, 90.0)
         """
         state = shared.flat if fold_angle == 0 else shared.structure.state(fold_angle)
@@ -325,7 +364,8 @@ class Frame:
 
     @cached_property
     def rulings(self) -> np.ndarray:
-        """Ruling vectors ℓ_L r_L, ℓ_R r_R at curve 1 from its built neighbours (1, 0), (0, 1), (2, n, 3)."""
+        """Ruling vectors ℓ_L r_L, ℓ_R r_R at curve 1 from its built neighbours (1, 0), (0, 1),
+        (2, n, 3)."""
         if self.state is None:
             return np.stack(self.smooth_crease.rulings())
         x = self.folded.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
@@ -343,27 +383,36 @@ class Frame:
 
     @cached_property
     def curve_derivatives(self) -> tuple[np.ndarray, np.ndarray]:
-        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order differences), by component,
-        (3, M, n − 4) each."""
+        """x' and x'' of every built curve of the state at samples 2 … n − 3 (fourth-order
+        differences), by component, (3, M, n − 4) each."""
         x = self.components
-        return measure.derivative(x, self.step, axis=-1), measure.second_derivative(x, self.step, axis=-1)
+        return measure.derivative(x, self.step, axis=-1), measure.second_derivative(
+            x, self.step, axis=-1
+        )
 
     @cached_property
     def tube_tangents(self) -> np.ndarray:
-        """x' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (3, K, 4, n − 4)."""
+        """x' at corners 1–4 of every tube (its curves' :attr:`curve_derivatives`), (3, K, 4, n −
+        4)."""
         return np.take(self.curve_derivatives[0], self.structure.cell_curves, axis=1)
 
     @cached_property
     def tube_frenet(self) -> tuple[np.ndarray, ...]:
-        """:func:`~curvefold.analysis._measure.frenet3` at corners 1–4 of every tube: speed, T, N, B, κ, ([3,] K, 4, n − 4)
-        (of every curve once, a curve at the corners of several tubes)."""
+        """:func:`~curvefold.analysis._measure.frenet3` at corners 1–4 of every tube: speed, T,
+        N, B, κ, ([3,] K, 4, n − 4) (of every curve once, a curve at the corners of several
+        tubes)."""
         cells = self.structure.cell_curves
-        return tuple(np.take(f, cells, axis=f.ndim - 2) for f in measure.frenet3(*self.curve_derivatives))
+        return tuple(
+            np.take(f, cells, axis=f.ndim - 2) for f in measure.frenet3(*self.curve_derivatives)
+        )
 
     @cached_property
     def speeds_along_tangent(self) -> np.ndarray:
-        """x'·T₁ of every built curve (its :attr:`curve_derivatives`) with curve 1's unit tangent at equal t, (M, n − 4)."""
-        return measure.dot3(self.curve_derivatives[0], self.tangent_components[:, None, 2:-2], order=(0, 1, 2))
+        """x'·T₁ of every built curve (its :attr:`curve_derivatives`) with curve 1's unit tangent
+        at equal t, (M, n − 4)."""
+        return measure.dot3(
+            self.curve_derivatives[0], self.tangent_components[:, None, 2:-2], order=(0, 1, 2)
+        )
 
     @cached_property
     def coords(self) -> np.ndarray:
@@ -390,8 +439,9 @@ class Frame:
 
     @cached_property
     def face_areas(self) -> np.ndarray:
-        """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, by component, (3, F): for triangles
-        the cross product of the vectors of their sides' edges (:attr:`Shared.face_sides`), the same numbers."""
+        """:func:`~curvefold.geometry.vector_areas` of the mesh's faces in this state, by
+        component, (3, F): for triangles the cross product of the vectors of their sides'
+        edges (:attr:`Shared.face_sides`), the same numbers."""
         sides = self.common.face_sides
         with np.errstate(invalid="ignore"):
             if sides is None:
@@ -410,20 +460,27 @@ class Frame:
 
     @cached_property
     def next_corners(self) -> np.ndarray:
-        """The built curve at corner c + 1 of every corner c of every tube, by component, (3, K, 4, n)."""
+        """The built curve at corner c + 1 of every corner c of every tube, by component, (3, K,
+        4, n)."""
         return self.tubes[:, :, [b for _, b in STRIPS]]
 
     @cached_property
     def strip_vectors(self) -> np.ndarray:
-        """From each corner's curve to the next corner's at equal t: strip c of every tube, corner c → c + 1, (3, K, 4, n)."""
+        """From each corner's curve to the next corner's at equal t: strip c of every tube,
+        corner c → c + 1, (3, K, 4, n)."""
         return self.next_corners - self.tubes
 
     @cached_property
     def strip_edges(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """For a :attr:`Shared.tube_mesh`: the vectors of every strip's curve edges a_j → a_(j+1), rulings a_i → b_i and
-        diagonals a_j → b_(j+1), by component, (3, K, 4, n − 1), (3, K, 4, n), (3, K, 4, n − 1)."""
+        """For a :attr:`Shared.tube_mesh`: the vectors of every strip's curve edges a_j →
+        a_(j+1), rulings a_i → b_i and diagonals a_j → b_(j+1), by component, (3, K, 4, n −
+        1), (3, K, 4, n), (3, K, 4, n − 1)."""
         X = self.tubes
-        return X[..., 1:] - X[..., :-1], self.strip_vectors, self.next_corners[..., 1:] - X[..., :-1]
+        return (
+            X[..., 1:] - X[..., :-1],
+            self.strip_vectors,
+            self.next_corners[..., 1:] - X[..., :-1],
+        )
 
     @cached_property
     def strip_edge_lengths(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -435,16 +492,21 @@ class Frame:
     def half_angles(self) -> np.ndarray:
         """α measured at corners 1–4 of every tube from its two strips, (K, 4, n − 4)."""
         inner = self.strip_vectors[..., 2:-2]
-        before = -inner[:, :, [(c - 1) % 4 for c in range(4)]]  # back along the previous strip (negation is exact)
+        # back along the previous strip (negation is exact)
+        before = -inner[:, :, [(c - 1) % 4 for c in range(4)]]
         return measure.half_angle3(before, inner, self.tube_frenet[1], _FOLD_CORNERS)
 
     @cached_property
     def measured_alpha(self) -> np.ndarray:
         """α at curve 1 from its built rulings, (n − 4,)."""
         x = self.crease.curve.points
-        return measure.crease_half_angle(x, x + self.rulings[0], x + self.rulings[1], self.step, kind="fold")
+        return measure.crease_half_angle(
+            x, x + self.rulings[0], x + self.rulings[1], self.step, kind="fold"
+        )
 
     @cached_property
     def strip_widths(self) -> np.ndarray:
         """Distance between the tangent lines of the two creases of every strip, (K, 4, n)."""
-        return measure.line_distance3(self.strip_vectors, self.tangent_components[:, None, None], order=(0, 1, 2))
+        return measure.line_distance3(
+            self.strip_vectors, self.tangent_components[:, None, None], order=(0, 1, 2)
+        )

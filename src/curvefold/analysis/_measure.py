@@ -96,13 +96,15 @@ def derivative(values: np.ndarray, step: float, *, axis: int | None = None) -> n
 
 
 def second_derivative(values: np.ndarray, step: float, *, axis: int | None = None) -> np.ndarray:
-    """d²/dq² of samples (..., n, 3) along axis -2 (or ``axis``) by fourth-order central differences, (..., n - 4, 3)."""
+    """d²/dq² of samples (..., n, 3) along axis -2 (or ``axis``) by fourth-order central
+    differences, (..., n - 4, 3)."""
     at = _stencil(values, axis)
     return (-at(0) + 16 * at(1) - 30 * at(2) + 16 * at(3) - at(4)) / (12.0 * step**2)
 
 
 def _stencil(values: np.ndarray, axis: int | None):
-    """``at(k)``: the samples k … n − 5 + k along the samples' axis (-1 of a sequence, else -2, or ``axis``)."""
+    """``at(k)``: the samples k … n − 5 + k along the samples' axis (-1 of a sequence, else -2,
+    or ``axis``)."""
     v = np.asarray(values, float)
     axis = (-1 if v.ndim == 1 else -2) if axis is None else axis
     n, head = v.shape[axis], (slice(None),) * (axis % v.ndim)
@@ -122,7 +124,13 @@ def cumulative_integral(rate: np.ndarray, step: float) -> np.ndarray:
     0.25
     """
     g = np.asarray(rate, float)
-    trapezoid = np.concatenate([np.zeros(g.shape[:-1] + (1,)), np.cumsum(0.5 * step * (g[..., 1:] + g[..., :-1]), axis=-1)], axis=-1)
+    trapezoid = np.concatenate(
+        [
+            np.zeros(g.shape[:-1] + (1,)),
+            np.cumsum(0.5 * step * (g[..., 1:] + g[..., :-1]), axis=-1),
+        ],
+        axis=-1,
+    )
     slope = np.gradient(g, step, axis=-1, edge_order=2)
     return trapezoid - step**2 / 12 * (slope - slope[..., :1])
 
@@ -206,8 +214,15 @@ def ruling_twist(curve: np.ndarray, rulings: np.ndarray, step: float) -> np.ndar
     return np.abs(np.einsum("...i,...i->...", derivative(r, step), p))
 
 
-def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, step: float, *, kind: str,
-                      tangent: np.ndarray | None = None) -> np.ndarray:
+def crease_half_angle(
+    curve: np.ndarray,
+    before: np.ndarray,
+    after: np.ndarray,
+    step: float,
+    *,
+    kind: str,
+    tangent: np.ndarray | None = None,
+) -> np.ndarray:
     """Half the fold angle, α, at a crease, from the rulings to its two neighbour creases.
 
     The rulings ``before − curve`` and ``after − curve`` are projected on the plane normal
@@ -221,7 +236,8 @@ def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, 
     step : float
     kind : {"fold", "seam"}, keyword-only
     tangent : (..., n - 4, 3) ndarray, optional, keyword-only
-        The crease's unit tangent at samples 2 … n − 3 measured already (``unit(derivative(curve, step))``).
+        The crease's unit tangent at samples 2 … n − 3 measured already (``unit(derivative(curve,
+        step))``).
 
     Returns
     -------
@@ -233,8 +249,11 @@ def crease_half_angle(curve: np.ndarray, before: np.ndarray, after: np.ndarray, 
     return half_angle_between(before[..., 2:-2, :] - x, after[..., 2:-2, :] - x, T, kind == "fold")
 
 
-def half_angle_between(before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray) -> np.ndarray:
-    """:func:`crease_half_angle` from the rulings (..., m, 3) to the two neighbour creases and the crease's unit tangent.
+def half_angle_between(
+    before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray
+) -> np.ndarray:
+    """:func:`crease_half_angle` from the rulings (..., m, 3) to the two neighbour creases and the
+    crease's unit tangent.
 
     ``fold`` (broadcasting against (..., m)) says where the crease is a fold, elsewhere a seam.
     """
@@ -248,11 +267,14 @@ def tangent_line_distance(x: np.ndarray, y: np.ndarray, T: np.ndarray) -> np.nda
 
 
 def line_distance(d: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """Distance between two parallel lines along unit T (..., n, 3), one through the other plus d (..., n, 3), shape (..., n)."""
+    """Distance between two parallel lines along unit T (..., n, 3), one through the other plus d
+    (..., n, 3), shape (..., n)."""
     return norm(d - np.einsum("...i,...i->...", d, T)[..., None] * T)
 
 
-def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def frenet(
+    d1: np.ndarray, d2: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Speed, Frenet frame and curvature of a curve from its first two derivatives.
 
     Parameters
@@ -268,7 +290,9 @@ def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
 
     Examples
     --------
-    >>> speed, T, N, B, kappa = frenet(np.array([[0.0, 2, 0]]), np.array([[-2.0, 0, 0]]))   # a circle of radius 2 at (2, 0, 0)
+    >>> speed, T, N, B, kappa = frenet(
+    ...     np.array([[0.0, 2, 0]]), np.array([[-2.0, 0, 0]])
+    ... )  # a circle of radius 2 at (2, 0, 0)
     >>> speed.tolist(), N.tolist(), (B + 0.0).tolist(), kappa.tolist()
     ([2.0], [[-1.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]], [0.5])
     """
@@ -276,9 +300,17 @@ def frenet(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     return speed, _rows(T), _rows(N), _rows(B), kappa
 
 
-def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
-                  side: str | np.ndarray, sign: float | np.ndarray,
-                  frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
+def rebuilt_strip(
+    curve: np.ndarray,
+    ruling: np.ndarray,
+    following: np.ndarray,
+    step: float,
+    *,
+    alpha: float,
+    side: str | np.ndarray,
+    sign: float | np.ndarray,
+    frenet_frame: tuple[np.ndarray, ...] | None = None,
+) -> np.ndarray:
     """The paper's construction of the next crease from this crease's own measured invariants.
 
     From the crease's samples alone: its frame T, N, B and curvature κ (differences), its
@@ -319,8 +351,16 @@ def rebuilt_strip(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, 
         speed, T, N, B, kappa = frenet_frame
         frenet_frame = (speed, *_components(T, N, B), kappa)
     curve3, ruling3, following3 = _components(curve, ruling, following)
-    rebuilt = rebuilt_strip3(curve3, ruling3, following3, step, alpha=alpha, side=side, sign=sign,
-                             frenet_frame=frenet_frame)
+    rebuilt = rebuilt_strip3(
+        curve3,
+        ruling3,
+        following3,
+        step,
+        alpha=alpha,
+        side=side,
+        sign=sign,
+        frenet_frame=frenet_frame,
+    )
     return _rows(rebuilt)
 
 
@@ -330,7 +370,8 @@ def edge_lengths(coords: np.ndarray, edges: np.ndarray) -> np.ndarray:
 
 
 def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
-    """Distance of each quad's third corner from the plane of the other three, over its diagonal, (F,).
+    """Distance of each quad's third corner from the plane of the other three, over its diagonal,
+    (F,).
 
     Parameters
     ----------
@@ -343,20 +384,23 @@ def quad_nonplanarity(coords: np.ndarray, quads: np.ndarray) -> np.ndarray:
 
 
 def corner_nonplanarity(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray) -> np.ndarray:
-    """:func:`quad_nonplanarity` from the vectors from each quad's first corner to the others: its two sides and its diagonal, (F, 3) each."""
+    """:func:`quad_nonplanarity` from the vectors from each quad's first corner to the others:
+    its two sides and its diagonal, (F, 3) each."""
     side, other, diagonal = _components(side, other, diagonal)
     return corner_nonplanarity3(side, other, diagonal, norm3(diagonal))
 
 
-# --------------------------------------------------------------------------------------
-# vectors stored by component, (3, ...): what the certificate's frames hold (each component contiguous)
+# -------------------------------------------------------------------------------------- vectors
+# stored by component, (3, ...): what the certificate's frames hold (each component contiguous)
 #
-# A dot product sums x + z, then y, as ``np.einsum("...i,...i->...")`` sums two vectors stored as contiguous rows
-# (…, 3), and x + y + z (``order=(0, 1, 2)``) as it sums them when one is strided: the same numbers as the row forms.
+# A dot product sums x + z, then y, as ``np.einsum("...i,...i->...")`` sums two vectors stored as
+# contiguous rows (…, 3), and x + y + z (``order=(0, 1, 2)``) as it sums them when one is strided:
+# the same numbers as the row forms.
 
 
 def _components(*vectors: np.ndarray) -> list[np.ndarray]:
-    """Vectors (..., 3) as their components (3, ...) (views), with as many axes each as the most has (to broadcast)."""
+    """Vectors (..., 3) as their components (3, ...) (views), with as many axes each as the most
+    has (to broadcast)."""
     arrays = [np.asarray(v, float) for v in vectors]
     ndim = max(v.ndim for v in arrays)
     return [np.moveaxis(v.reshape((1,) * (ndim - v.ndim) + v.shape), -1, 0) for v in arrays]
@@ -368,7 +412,8 @@ def _rows(v: np.ndarray) -> np.ndarray:
 
 
 def dot3(a: np.ndarray, b: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
-    """``a · b`` of vectors stored by component, (3, ...) each (broadcasting), shape (...), summed in ``order``.
+    """``a · b`` of vectors stored by component, (3, ...) each (broadcasting), shape (...), summed
+    in ``order``.
 
     Examples
     --------
@@ -392,23 +437,30 @@ def norm3(v: np.ndarray) -> np.ndarray:
 
 
 def angle3(a: np.ndarray, b: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
-    """:func:`angle_between` of vectors stored by component (3, ...), shape (...) (``order`` that of the dot product)."""
+    """:func:`angle_between` of vectors stored by component (3, ...), shape (...) (``order`` that
+    of the dot product)."""
     return np.arctan2(norm3(cross3(a, b)), dot3(a, b, order))
 
 
-def line_distance3(d: np.ndarray, T: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
+def line_distance3(
+    d: np.ndarray, T: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)
+) -> np.ndarray:
     """:func:`line_distance` of vectors stored by component (3, ...), shape (...)."""
     return norm3(_across3(d, T, order))
 
 
 def _across3(v: np.ndarray, T: np.ndarray, order: tuple[int, int, int] = (0, 2, 1)) -> np.ndarray:
-    """``v − (v·T) T`` of vectors stored by component (3, ...): v's part normal to the unit T (one new array)."""
+    """``v − (v·T) T`` of vectors stored by component (3, ...): v's part normal to the unit T
+    (one new array)."""
     along = dot3(v, T, order) * T
     return np.subtract(v, along, out=along)
 
 
-def frenet3(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`frenet` of derivatives stored by component (3, ..., m): speed (..., m), T, N, B (3, ..., m), κ (..., m)."""
+def frenet3(
+    d1: np.ndarray, d2: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`frenet` of derivatives stored by component (3, ..., m): speed (..., m), T, N, B (3,
+    ..., m), κ (..., m)."""
     speed = norm3(d1)
     T = d1 / speed
     b = cross3(d1, d2)
@@ -418,23 +470,37 @@ def frenet3(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.
     return speed, T, cross3(b, T), b, bend / speed**3
 
 
-def half_angle3(before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray) -> np.ndarray:
+def half_angle3(
+    before: np.ndarray, after: np.ndarray, tangent: np.ndarray, fold: bool | np.ndarray
+) -> np.ndarray:
     """:func:`half_angle_between` of vectors stored by component (3, ..., m), shape (..., m)."""
     delta = angle3(_across3(before, tangent), _across3(after, tangent))
     return np.where(fold, 0.5 * (np.pi - delta), 0.5 * delta)
 
 
-def rebuilt_strip3(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray, step: float, *, alpha: float,
-                   side: str | np.ndarray, sign: float | np.ndarray,
-                   frenet_frame: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
-    """:func:`rebuilt_strip` of curves stored by component (3, ..., n) (``frenet_frame`` as :func:`frenet3` gives it), (3, ..., n − 4)."""
+def rebuilt_strip3(
+    curve: np.ndarray,
+    ruling: np.ndarray,
+    following: np.ndarray,
+    step: float,
+    *,
+    alpha: float,
+    side: str | np.ndarray,
+    sign: float | np.ndarray,
+    frenet_frame: tuple[np.ndarray, ...] | None = None,
+) -> np.ndarray:
+    """:func:`rebuilt_strip` of curves stored by component (3, ..., n) (``frenet_frame`` as
+    :func:`frenet3` gives it), (3, ..., n − 4)."""
     if frenet_frame is None:
-        frenet_frame = frenet3(derivative(curve, step, axis=-1), second_derivative(curve, step, axis=-1))
+        frenet_frame = frenet3(
+            derivative(curve, step, axis=-1), second_derivative(curve, step, axis=-1)
+        )
     speed, T, N, B, kappa = frenet_frame
     beta = angle3(ruling[..., 2:-2], T)
     right = np.asarray(side) == "R"
     sin_beta = np.sin(beta)
-    r = np.where(right, -np.cos(alpha), np.cos(alpha)) * N  # r = cos β T + sin β (±cos α N + sin α B), in place
+    # r = cos β T + sin β (±cos α N + sin α B), in place
+    r = np.where(right, -np.cos(alpha), np.cos(alpha)) * N
     r += np.sin(alpha) * B
     r *= sin_beta
     r += np.cos(beta) * T
@@ -453,16 +519,25 @@ def rebuilt_strip3(curve: np.ndarray, ruling: np.ndarray, following: np.ndarray,
     return r
 
 
-def corner_nonplanarity3(side: np.ndarray, other: np.ndarray, diagonal: np.ndarray, diagonal_length: np.ndarray) -> np.ndarray:
-    """:func:`corner_nonplanarity` of vectors stored by component (3, F), with the diagonals' lengths (F,) (:func:`norm3`)."""
+def corner_nonplanarity3(
+    side: np.ndarray, other: np.ndarray, diagonal: np.ndarray, diagonal_length: np.ndarray
+) -> np.ndarray:
+    """:func:`corner_nonplanarity` of vectors stored by component (3, F), with the diagonals'
+    lengths (F,) (:func:`norm3`)."""
     n = cross3(side, other)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.abs(dot3(diagonal, n)) / (norm3(n) * diagonal_length)
 
 
-def dihedral_angles3(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vectors: np.ndarray, edge_lengths: np.ndarray) -> np.ndarray:
-    """:func:`~curvefold.geometry.dihedral_angles` of vectors stored by component: face areas (3, F), edge vectors (3, E)
-    and their lengths (E,) (:func:`norm3`); degrees (E,), the same numbers."""
+def dihedral_angles3(
+    face_areas: np.ndarray,
+    faces_of_edges: np.ndarray,
+    edge_vectors: np.ndarray,
+    edge_lengths: np.ndarray,
+) -> np.ndarray:
+    """:func:`~curvefold.geometry.dihedral_angles` of vectors stored by component: face areas (3,
+    F), edge vectors (3, E) and their lengths (E,) (:func:`norm3`); degrees (E,), the same
+    numbers."""
     ef = faces_of_edges
     ok = (ef[:, 0] >= 0) & (ef[:, 1] >= 0)
     out = np.zeros(len(ef))
@@ -475,8 +550,9 @@ def dihedral_angles3(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_ve
 
 
 def hinge_angles3(n1: np.ndarray, n2: np.ndarray, e: np.ndarray, length: np.ndarray) -> np.ndarray:
-    """The fold angle (degrees, FOLD sign) at hinges e (3, ...) of lengths (...) between faces of unit normals n1, n2
-    (3, ...), the face n1 running each hinge forward: :func:`~curvefold.geometry.dihedral_angles`' numbers."""
+    """The fold angle (degrees, FOLD sign) at hinges e (3, ...) of lengths (...) between faces of
+    unit normals n1, n2 (3, ...), the face n1 running each hinge forward:
+    :func:`~curvefold.geometry.dihedral_angles`' numbers."""
     with np.errstate(invalid="ignore", divide="ignore"):
         sine = -dot3(cross3(n1, n2), e) / length
         return np.degrees(np.arctan2(sine, dot3(n1, n2)))
@@ -500,16 +576,20 @@ def width_integral(kappa_2d: ScalarFunction, beta: ScalarFunction, s: np.ndarray
 
 
 def fold_angle_deviation(measured: np.ndarray, kinds: np.ndarray, fold_angle: float) -> np.ndarray:
-    """``|measured − expected|`` fold angle (degrees, wrapped to [0°, 180°]) of fold and seam edges, same shape.
+    """``|measured − expected|`` fold angle (degrees, wrapped to [0°, 180°]) of fold and seam edges,
+    same shape.
 
     Expected for a fold angle 2α (degrees): −2α on the folds (creases 1, 3) and −(180° − 2α)
     on the seams (2, 4), mountains seen from outside the tubes. ``kinds``: "fold" or "seam", or
     whether each is a fold (bool).
     """
     kinds = np.asarray(kinds)
-    expect = np.where(kinds if kinds.dtype == bool else kinds == "fold", -fold_angle, -(180.0 - fold_angle))
+    expect = np.where(
+        kinds if kinds.dtype == bool else kinds == "fold", -fold_angle, -(180.0 - fold_angle)
+    )
     turned = measured - expect + 180.0
-    if ((turned >= 0.0) & (turned < 720.0)).all():  # the remainder by 360° exactly (x − 360 is exact there), for less than %
+    # the remainder by 360° exactly (x − 360 is exact there), for less than %
+    if ((turned >= 0.0) & (turned < 720.0)).all():
         wrapped = np.where(turned >= 360.0, turned - 360.0, turned)
     else:
         wrapped = turned % 360.0
@@ -521,14 +601,26 @@ def fold_angle_deviation(measured: np.ndarray, kinds: np.ndarray, fold_angle: fl
 
 
 def developability_residual(crease: Crease) -> float:
-    """Largest ``|r'·p|`` of both families of rulings of a crease (:func:`ruling_twist`), per unit length."""
-    return float(np.max(ruling_twist(crease.curve.points, np.stack(crease.rulings()), crease.s[1] - crease.s[0])))
+    """Largest ``|r'·p|`` of both families of rulings of a crease (:func:`ruling_twist`), per
+    unit length."""
+    return float(
+        np.max(
+            ruling_twist(crease.curve.points, np.stack(crease.rulings()), crease.s[1] - crease.s[0])
+        )
+    )
 
 
 def frame_agreement(lattice: Lattice, uv: np.ndarray) -> float:
-    """Largest angle (rad) between the lattice curves uv (K, 2) and curve 1's T at equal t (:func:`tangent_deviation`)."""
+    """Largest angle (rad) between the lattice curves uv (K, 2) and curve 1's T at equal t
+    (:func:`tangent_deviation`)."""
     curves = lattice.points(np.asarray(uv, float).reshape(-1, 2))
-    return float(np.max(tangent_deviation(curves, lattice.crease.curve.frames[:, :, 0], lattice.s[1] - lattice.s[0])))
+    return float(
+        np.max(
+            tangent_deviation(
+                curves, lattice.crease.curve.frames[:, :, 0], lattice.s[1] - lattice.s[0]
+            )
+        )
+    )
 
 
 def eq19_residual(lattice: Lattice, uv_a: np.ndarray, uv_b: np.ndarray) -> float:
@@ -555,7 +647,9 @@ def width_law_error(lattice: Lattice) -> float:
 def fold_angle_error(mesh: Mesh, fold_angle: float) -> float:
     """Largest :func:`fold_angle_deviation` on the fold and seam edges of a tube mesh (degrees)."""
     sel = np.isin(mesh.edges_kind, ("fold", "seam"))
-    return float(np.max(fold_angle_deviation(mesh.edges_foldAngle[sel], mesh.edges_kind[sel], fold_angle)))
+    return float(
+        np.max(fold_angle_deviation(mesh.edges_foldAngle[sel], mesh.edges_kind[sel], fold_angle))
+    )
 
 
 def ruling_quad_planarity(state: State) -> float:
@@ -585,4 +679,6 @@ def isometry_error(folded: Mesh, flat: Mesh) -> IsometryError:
     isometric to another exactly when all its edges keep their lengths). NaN propagates."""
     lf, l0 = folded.edge_lengths(), flat.edge_lengths()
     diff = np.abs(lf - l0)
-    return IsometryError(max_edge_error=float(np.max(diff)), max_relative_edge_error=float(np.max(diff / l0)))
+    return IsometryError(
+        max_edge_error=float(np.max(diff)), max_relative_edge_error=float(np.max(diff / l0))
+    )

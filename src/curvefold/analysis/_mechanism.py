@@ -1,4 +1,5 @@
-"""The mechanism of a structure of rigid panels: constraint Jacobian, singular values, degrees of freedom.
+"""The mechanism of a structure of rigid panels: constraint Jacobian, singular values, degrees of
+freedom.
 
 A panel structure moves as its vertices x (V, 3) do, under these constraints
 (a :class:`Framework`), each a length that vanishes on the constraint:
@@ -25,8 +26,8 @@ how clear the count is. Internal degrees of freedom are nullity − 6.
 
 The flat state is special: out of its plane lengths change only at second order, so every
 lift of the flat sheets that keeps each panel planar is a first-order motion, and its
-nullity is larger (N + 1 extra for a tube of N panels, measured; reported, not hidden). A state whose
-residual is not at rounding level (:attr:`Mechanism.consistent`) does not satisfy its own
+nullity is larger (N + 1 extra for a tube of N panels, measured; reported, not hidden). A state
+whose residual is not at rounding level (:attr:`Mechanism.consistent`) does not satisfy its own
 constraints; its count says little and is reported as such.
 
 The certificate (:func:`certified_mechanism`) analyses a structure at flat, half and full
@@ -37,7 +38,6 @@ longer tube, which fold exactly as they do in the whole.
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
@@ -53,8 +53,19 @@ from ..kernel._errors import InputError
 from ..kernel._lie import cross
 from ..kernel._threads import on_one_blas_thread
 
-__all__ = ["MAX_UNKNOWNS", "CERTIFY_UNKNOWNS", "RTOL", "RESIDUAL_TOL", "Framework", "Mechanism", "CertifiedMechanism", "mechanism",
-           "analyse", "certified_mechanism", "follow"]
+__all__ = [
+    "MAX_UNKNOWNS",
+    "CERTIFY_UNKNOWNS",
+    "RTOL",
+    "RESIDUAL_TOL",
+    "Framework",
+    "Mechanism",
+    "CertifiedMechanism",
+    "mechanism",
+    "analyse",
+    "certified_mechanism",
+    "follow",
+]
 
 #: Largest number of unknowns (3 per distinct vertex) of a dense SVD: about a minute on one
 #: core at the bound (49 s measured for a tube of 240 panels, 2892 unknowns); the Jacobian
@@ -100,8 +111,15 @@ class Framework(FrozenArrays):
     sides: np.ndarray
 
     @classmethod
-    def from_mesh(cls, reference: np.ndarray, edges_vertices: np.ndarray, faces_vertices: np.ndarray, weld: np.ndarray, *,
-                  joins: np.ndarray | None = None) -> Framework:
+    def from_mesh(
+        cls,
+        reference: np.ndarray,
+        edges_vertices: np.ndarray,
+        faces_vertices: np.ndarray,
+        weld: np.ndarray,
+        *,
+        joins: np.ndarray | None = None,
+    ) -> Framework:
         """The framework of a polygon mesh whose vertex v is the point ``weld[v]``.
 
         Parameters
@@ -130,7 +148,8 @@ class Framework(FrozenArrays):
             quads += [rows[:, [0, 1, 2, q]] for q in range(3, m)]
         pairs = np.concatenate(pieces)
         welded = np.sort(weld[pairs], axis=1)
-        bars, first = np.unique(welded, axis=0, return_index=True)  # one bar per welded pair (edges come first)
+        # one bar per welded pair (edges come first)
+        bars, first = np.unique(welded, axis=0, return_index=True)
         lengths = np.linalg.norm(x[pairs[first, 0]] - x[pairs[first, 1]], axis=1)
         if joins is not None and len(joins):
             quads.append(_join_quads(faces, np.asarray(edges_vertices)[joins]))
@@ -141,7 +160,9 @@ class Framework(FrozenArrays):
         q = np.concatenate(quads) if quads else np.zeros((0, 4), np.int64)
         a, b, c, d = (x[q[:, i]] for i in range(4))
         diagonals = np.linalg.norm(c - a, axis=1) * np.linalg.norm(d - b, axis=1)
-        return cls(int(weld.max()) + 1, bars, lengths, weld[q], diagonals, np.linalg.norm(b - a, axis=1))
+        return cls(
+            int(weld.max()) + 1, bars, lengths, weld[q], diagonals, np.linalg.norm(b - a, axis=1)
+        )
 
     @classmethod
     def from_structure(cls, structure: Structure) -> tuple[Framework, np.ndarray]:
@@ -163,8 +184,15 @@ class Framework(FrozenArrays):
         return cls.from_mesh(flat, topology.edges_vertices, topology.faces_vertices, weld), points
 
     @classmethod
-    def from_fold(cls, crease_pattern: Mesh, folded: Sequence[Mesh], *, tol: float = 1e-9,
-                  joins: np.ndarray | None = None, glued: np.ndarray | None = None) -> tuple[Framework, np.ndarray]:
+    def from_fold(
+        cls,
+        crease_pattern: Mesh,
+        folded: Sequence[Mesh],
+        *,
+        tol: float = 1e-9,
+        joins: np.ndarray | None = None,
+        glued: np.ndarray | None = None,
+    ) -> tuple[Framework, np.ndarray]:
         """The framework of a FOLD file's crease pattern, welded where its folded frames agree.
 
         Vertices that coincide (within ``tol`` times the frame's size) in every folded frame
@@ -186,7 +214,12 @@ class Framework(FrozenArrays):
         for mesh in folded:
             x = mesh.vertices_coords
             size = float(np.ptp(x, axis=0).max()) if V else 0.0
-            found = {tuple(p) for p in cKDTree(x).query_pairs(tol * max(size, 1e-300), output_type="ndarray").tolist()}
+            found = {
+                tuple(p)
+                for p in cKDTree(x)
+                .query_pairs(tol * max(size, 1e-300), output_type="ndarray")
+                .tolist()
+            }
             common = found if common is None else common & found
         pairs = np.array(sorted(common or ()), np.int64).reshape(-1, 2)
         if glued is not None:
@@ -194,8 +227,13 @@ class Framework(FrozenArrays):
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(V, V))
         _, weld = connected_components(graph, directed=False)
         first = np.unique(weld, return_index=True)[1]
-        return cls.from_mesh(crease_pattern.vertices_coords, crease_pattern.edges_vertices, crease_pattern.faces_vertices, weld,
-                             joins=joins), first
+        return cls.from_mesh(
+            crease_pattern.vertices_coords,
+            crease_pattern.edges_vertices,
+            crease_pattern.faces_vertices,
+            weld,
+            joins=joins,
+        ), first
 
     @property
     def unknowns(self) -> int:
@@ -214,7 +252,8 @@ class Framework(FrozenArrays):
 
     @property
     def scales(self) -> np.ndarray:
-        """Reference length of every constraint, shape (B + Q,): a bar's length, a quad's side ab."""
+        """Reference length of every constraint, shape (B + Q,): a bar's length, a quad's side
+        ab."""
         return np.concatenate([self.lengths, self.sides])
 
     def residual(self, x: np.ndarray) -> np.ndarray:
@@ -228,10 +267,16 @@ class Framework(FrozenArrays):
         d = x[self.bars[:, 0]] - x[self.bars[:, 1]]
         a, b, c, dd = (x[self.quads[:, i]] for i in range(4))
         volume = np.einsum("ij,ij->i", cross(c - a, dd - b), b - a)
-        return np.concatenate([(np.einsum("ij,ij->i", d, d) - self.lengths**2) / (2 * self.lengths), volume / self.diagonals])
+        return np.concatenate(
+            [
+                (np.einsum("ij,ij->i", d, d) - self.lengths**2) / (2 * self.lengths),
+                volume / self.diagonals,
+            ]
+        )
 
     def jacobian(self, x: np.ndarray) -> np.ndarray:
-        """The Jacobian (B + Q, 3P) of :meth:`residual`: dimensionless rows, a bar's the unit vector along it."""
+        """The Jacobian (B + Q, 3P) of :meth:`residual`: dimensionless rows, a bar's the unit
+        vector along it."""
         x = np.asarray(x, float).reshape(-1, 3)
         P, B, Q = len(x), len(self.bars), len(self.quads)
         J = np.zeros((B + Q, P, 3))
@@ -294,7 +339,8 @@ class Mechanism(FrozenArrays):
 
     @property
     def clearance(self) -> float:
-        """How near the rank tolerance the nearest singular value lies: ``max min(σ/tol, tol/σ)`` ≤ 1.
+        """How near the rank tolerance the nearest singular value lies: ``max min(σ/tol, tol/σ)`` ≤
+        1.
 
         1e-3 means every singular value is at least a thousand times above or below the
         tolerance, so the count does not depend on where in that range the tolerance is.
@@ -309,7 +355,8 @@ class Mechanism(FrozenArrays):
         return self.residual <= self.residual_tol
 
     def to_dict(self, smallest: int = 12) -> dict:
-        """JSON-ready summary: the counts, σ_max and the ``smallest`` singular values (ascending)."""
+        """JSON-ready summary: the counts, σ_max and the ``smallest`` singular values
+        (ascending)."""
         return {
             "label": self.label,
             "dof": self.dof,
@@ -328,7 +375,8 @@ class Mechanism(FrozenArrays):
 
 
 def _join_quads(faces: np.ndarray, joins: np.ndarray) -> np.ndarray:
-    """(p, r, q, t) for every join edge (p, q) with its faces' vertices r and t off it: coplanar, r–t a bar."""
+    """(p, r, q, t) for every join edge (p, q) with its faces' vertices r and t off it: coplanar,
+    r–t a bar."""
     sides = edges_faces(faces, joins)
     two = (sides >= 0).all(axis=1)
     out = []
@@ -342,15 +390,22 @@ def _join_quads(faces: np.ndarray, joins: np.ndarray) -> np.ndarray:
 def _check_size(framework: Framework) -> None:
     if framework.unknowns > MAX_UNKNOWNS:
         raise InputError(
-            f"the mechanism analysis takes a dense SVD of the constraint Jacobian and is bounded to {MAX_UNKNOWNS} unknowns "
-            f"({MAX_UNKNOWNS // 3} vertices); this structure has {framework.unknowns} ({framework.points} vertices): "
-            "use fewer panels, tubes or cells"
+            "the mechanism analysis takes a dense SVD of the constraint Jacobian and is bounded "
+            f"to {MAX_UNKNOWNS} unknowns ({MAX_UNKNOWNS // 3} vertices); this structure "
+            f"has {framework.unknowns} ({framework.points} vertices): use fewer panels, "
+            "tubes or cells"
         )
 
 
 @on_one_blas_thread  # small dense SVDs: threads only wait (curvefold.kernel._threads)
-def mechanism(framework: Framework, x: np.ndarray, *, rtol: float = RTOL, label: str = "",
-              residual_tol: float = RESIDUAL_TOL) -> Mechanism:
+def mechanism(
+    framework: Framework,
+    x: np.ndarray,
+    *,
+    rtol: float = RTOL,
+    label: str = "",
+    residual_tol: float = RESIDUAL_TOL,
+) -> Mechanism:
     """Singular values and degrees of freedom of a framework at positions x (V, 3).
 
     Raises
@@ -366,26 +421,58 @@ def mechanism(framework: Framework, x: np.ndarray, *, rtol: float = RTOL, label:
     with np.errstate(all="ignore"):
         J = framework.jacobian(x)
     if not np.isfinite(J).all():
-        raise InputError(f"{label or 'the state'}: the constraint Jacobian is not finite (a panel of no size)")
+        raise InputError(
+            f"{label or 'the state'}: the constraint Jacobian is not finite (a panel of no size)"
+        )
     sigma = np.linalg.svd(J, compute_uv=False)
     tol = rtol * float(sigma[0])
     null = int(np.count_nonzero(sigma <= tol)) + max(0, J.shape[1] - J.shape[0])
     above, below = sigma[sigma > tol], sigma[sigma <= tol]
-    gap = math.inf if not below.size or below[0] == 0 else float(above[-1] / below[0]) if above.size else 1.0
+    gap = (
+        math.inf
+        if not below.size or below[0] == 0
+        else float(above[-1] / below[0])
+        if above.size
+        else 1.0
+    )
     residual = float(np.abs(framework.residual(x) / framework.scales).max())
-    return Mechanism(label, readonly(sigma), tol, null, null - 6, gap, residual, J.shape[1], J.shape[0], residual_tol)
+    return Mechanism(
+        label,
+        readonly(sigma),
+        tol,
+        null,
+        null - 6,
+        gap,
+        residual,
+        J.shape[1],
+        J.shape[0],
+        residual_tol,
+    )
 
 
 @lru_cache(maxsize=4)
-def _analysed(structure: Structure, angles: tuple[float, ...], rtol: float) -> tuple[Mechanism, ...]:
+def _analysed(
+    structure: Structure, angles: tuple[float, ...], rtol: float
+) -> tuple[Mechanism, ...]:
     framework, points = Framework.from_structure(structure)
     _check_size(framework)
     motion = structure.lattice.fold_points(structure.curves_uv, np.array(angles))  # (A, M, n, 3)
-    return tuple(mechanism(framework, m.reshape(-1, 3)[points], rtol=rtol, label=f"2α = {a:g}°" + (" (flat)" if a == 0 else "")) for a, m in zip(angles, motion))
+    return tuple(
+        mechanism(
+            framework,
+            m.reshape(-1, 3)[points],
+            rtol=rtol,
+            label=f"2α = {a:g}°" + (" (flat)" if a == 0 else ""),
+        )
+        for a, m in zip(angles, motion)
+    )
 
 
-def analyse(structure: Structure, fold_angles: Sequence[float] | None = None, *, rtol: float = RTOL) -> tuple[Mechanism, ...]:
-    """The mechanism of a structure at several fold angles (default: flat, half the design angle, the design angle).
+def analyse(
+    structure: Structure, fold_angles: Sequence[float] | None = None, *, rtol: float = RTOL
+) -> tuple[Mechanism, ...]:
+    """The mechanism of a structure at several fold angles (default: flat, half the design angle,
+    the design angle).
 
     Its framework is :meth:`Framework.from_structure`; results are cached for the last
     few structures (they are immutable).
@@ -430,7 +517,8 @@ def _unknowns(structure: Structure, cells: int) -> int:
 
 @lru_cache(maxsize=4)
 def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) -> CertifiedMechanism:
-    """The mechanism of a panel structure at flat, half and full design angle, within ``budget`` unknowns.
+    """The mechanism of a panel structure at flat, half and full design angle, within ``budget``
+    unknowns.
 
     The longest run of its first tubes that fits is analysed; if one tube does not fit, its
     first panels (:meth:`PanelLattice.head <curvefold.geometry.PanelLattice.head>`),
@@ -441,7 +529,10 @@ def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) ->
     k = next((k for k in range(K, 0, -1) if _unknowns(structure, k) <= budget), 1)
     part, scope = structure, ""
     if k < K:
-        part, scope = Structure.from_cells(lattice, structure.cells[:k]), f"the first {k} of the {K} tubes"
+        part, scope = (
+            Structure.from_cells(lattice, structure.cells[:k]),
+            f"the first {k} of the {K} tubes",
+        )
     if _unknowns(part, 1) > budget:
         n = max(1, budget // 12 - 1)  # 4 lattice polylines of n + 1 vertices, 3 unknowns each
         assert isinstance(lattice, PanelLattice), "a tube too large for the budget is one of panels"
@@ -453,14 +544,24 @@ def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) ->
 def _rigid_motions(x: np.ndarray) -> np.ndarray:
     """Orthonormal basis (6, 3V) of the infinitesimal rigid motions of points x (V, 3)."""
     c = x - x.mean(axis=0)
-    basis = [np.tile(e, len(x)) for e in np.eye(3)] + [cross(np.broadcast_to(e, c.shape), c).ravel() for e in np.eye(3)]
+    basis = [np.tile(e, len(x)) for e in np.eye(3)] + [
+        cross(np.broadcast_to(e, c.shape), c).ravel() for e in np.eye(3)
+    ]
     q, _ = np.linalg.qr(np.stack(basis, axis=1))
     return q.T
 
 
 @on_one_blas_thread
-def follow(framework: Framework, start: np.ndarray, *, steps: int, step: float, toward: np.ndarray | None = None,
-           tol: float = 1e-13, rtol: float = RTOL) -> np.ndarray:
+def follow(
+    framework: Framework,
+    start: np.ndarray,
+    *,
+    steps: int,
+    step: float,
+    toward: np.ndarray | None = None,
+    tol: float = 1e-13,
+    rtol: float = RTOL,
+) -> np.ndarray:
     """Follow a one-dimensional motion from a state by predictor–corrector continuation.
 
     Each step predicts along the null vector of the Jacobian (rigid motions removed by six
@@ -501,16 +602,28 @@ def follow(framework: Framework, start: np.ndarray, *, steps: int, step: float, 
         _, sigma, vt = np.linalg.svd(A, full_matrices=True)
         sigma = np.concatenate([sigma, np.zeros(A.shape[1] - len(sigma))])
         if sigma[-2] <= rtol * sigma[0]:
-            raise ConvergenceError(f"step {k}: the motion is not one-dimensional here (two singular values ≤ {rtol:g} σ_max)")
+            raise ConvergenceError(
+                f"step {k}: the motion is not one-dimensional here (two "
+                f"singular values ≤ {rtol:g} σ_max)"
+            )
         tangent = vt[-1] if previous is None or vt[-1] @ previous >= 0 else -vt[-1]
         y = x + step * tangent
         for _ in range(20):
-            F = np.concatenate([framework.residual(y), gauge @ (y - x0), [tangent @ (y - x) - step]])
+            F = np.concatenate(
+                [framework.residual(y), gauge @ (y - x0), [tangent @ (y - x) - step]]
+            )
             if np.abs(F).max() <= tol:
                 break
-            y = y - np.linalg.lstsq(np.concatenate([framework.jacobian(y), gauge, tangent[None]]), F, rcond=None)[0]
+            y = (
+                y
+                - np.linalg.lstsq(
+                    np.concatenate([framework.jacobian(y), gauge, tangent[None]]), F, rcond=None
+                )[0]
+            )
         else:
-            raise ConvergenceError(f"step {k}: the corrector did not converge (residual {np.abs(F).max():.3g})")
+            raise ConvergenceError(
+                f"step {k}: the corrector did not converge (residual {np.abs(F).max():.3g})"
+            )
         x, previous = y, tangent
         out.append(y.reshape(-1, 3))
     return np.stack(out)

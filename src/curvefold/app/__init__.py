@@ -12,8 +12,15 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     {
         "_design": ["Design", "load_design", "parse_design", "design_from_dict", "default_design"],
         "_build": ["Built", "BuiltStructure", "BuiltVault", "BuiltCrease", "vault_design"],
-        "_kinds": ["DesignKind", "Section", "Targets", "register_kind", "deregister_kind",
-                   "design_kind", "design_kinds"],
+        "_kinds": [
+            "DesignKind",
+            "Section",
+            "Targets",
+            "register_kind",
+            "deregister_kind",
+            "design_kind",
+            "design_kinds",
+        ],
         "_outputs": ["write_outputs", "write_atlas", "structure_payload"],
         "cli": ["main"],
     },

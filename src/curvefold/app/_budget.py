@@ -11,14 +11,14 @@ The budget is :data:`DEFAULT_BUDGET` (2 GiB) unless the environment variable
 The estimate (:func:`estimate`) counts the size of the job as *strip samples*: samples
 along the creases times the strips of the structure (four per cell; a single crease has
 two surfaces). A structure of N rigid panels holds its smooth crease's samples and the
-N + 1 vertices of every polyline besides, so each vertex counts as a sample. Each part of the job costs a fixed amount, an amount per strip sample and,
-for the crease patterns, an amount per squared sample (:data:`COSTS`), measured on
-curvefold's own runs (``benchmarks/bench_budget.py`` compares the estimate with the
-measured peak and prints the ratio). The parts run one after the other, so the peak is the
-interpreter, plus the geometry (the structure, its state and the certificate), plus the
+N + 1 vertices of every polyline besides, so each vertex counts as a sample. Each part of the job
+costs a fixed amount, an amount per strip sample and, for the crease patterns, an amount per squared
+sample (:data:`COSTS`), measured on curvefold's own runs (``benchmarks/bench_budget.py`` compares
+the estimate with the measured peak and prints the ratio). The parts run one after the other, so the
+peak is the interpreter, plus the geometry (the structure, its state and the certificate), plus the
 largest of the file jobs. A design under load (:attr:`Design.mechanics
-<curvefold.app.Design.mechanics>`) adds its bar-and-hinge model, its solves and its
-result, held while the files are written, counted per strip sample the model keeps
+<curvefold.app.Design.mechanics>`) adds its bar-and-hinge model, its solves and its result, held
+while the files are written, counted per strip sample the model keeps
 (:func:`curvefold.mechanics.model_samples`; every panel vertex).
 """
 
@@ -34,8 +34,17 @@ from ..kernel._errors import InputError
 from ..vault._assembly import DEFAULT_TUBES_CAP
 from ._design import Design
 
-__all__ = ["DEFAULT_BUDGET", "ENVIRONMENT", "Estimate", "memory_budget", "parse_size", "estimate", "require_budget", "require_atlas_budget",
-           "require_rebuild_budget"]
+__all__ = [
+    "DEFAULT_BUDGET",
+    "ENVIRONMENT",
+    "Estimate",
+    "memory_budget",
+    "parse_size",
+    "estimate",
+    "require_budget",
+    "require_atlas_budget",
+    "require_rebuild_budget",
+]
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
 DEFAULT_BUDGET = 2 << 30
@@ -45,8 +54,8 @@ MAX_BUDGET = 1 << 50
 ENVIRONMENT = "CURVEFOLD_MEMORY_BUDGET"
 
 _MB = 1 << 20
-#: The interpreter with NumPy and the command line loaded (bytes): 37.2 MiB measured (every library a
-#: part imports, SciPy and Pillow among them, counts in that part's fixed cost), rounded up.
+#: The interpreter with NumPy and the command line loaded (bytes): 37.2 MiB measured (every library
+#: a part imports, SciPy and Pillow among them, counts in that part's fixed cost), rounded up.
 BASE = 40 * _MB
 #: (fixed bytes, bytes per strip sample, bytes per squared sample) of each part of a job:
 #: the geometry with the certificate, each family of formats, the report's pictures.
@@ -69,10 +78,11 @@ COSTS: dict[str, tuple[float, float, float]] = {
     "model": (20 * _MB, 5400.0, 0.0),
     "motion": (45 * _MB, 400.0, 0.0),
     "pictures": (40 * _MB, 300.0, 0.0),
-    # measured: the peak of `curvefold load --json` over the geometry's estimate, 86 MiB for the paper's vault (801
-    # samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801, 70 MiB with 256 panels, rounded up;
-    # measured again with the estimates above: the vault's load peaks at 221, 357 and 884 MiB (801, 3201, 12801
-    # samples) and 234 MiB (256 panels), below the estimate of its geometry alone
+    # measured: the peak of `curvefold load --json` over the geometry's estimate, 86 MiB for the
+    # paper's vault (801 samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801,
+    # 70 MiB with 256 panels, rounded up; measured again with the estimates above: the vault's load
+    # peaks at 221, 357 and 884 MiB (801, 3201, 12801 samples) and 234 MiB (256 panels), below the
+    # estimate of its geometry alone
     "mechanics": (40 * _MB, 8000.0, 0.0),
 }
 #: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
@@ -103,14 +113,25 @@ def parse_size(text: str, name: str) -> int:
 
     Examples
     --------
-    >>> parse_size("1.5G", "budget") == 3 << 29, parse_size("512 MiB", "budget"), parse_size("4096", "budget")
+    >>> (
+    ...     parse_size("1.5G", "budget") == 3 << 29,
+    ...     parse_size("512 MiB", "budget"),
+    ...     parse_size("4096", "budget"),
+    ... )
     (True, 536870912, 4096)
     """
     match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)i?B?\s*", text, re.IGNORECASE)
-    size = float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B") if match else math.nan
+    size = (
+        float(match.group(1)) * 1024 ** "BKMGT".index(match.group(2).upper() or "B")
+        if match
+        else math.nan
+    )
     if not 0 < size <= MAX_BUDGET:
         shown = repr(text) if len(text) <= 40 else f"{text[:20]!r}… ({len(text)} characters)"
-        raise InputError(f"{name} must be a memory size such as 2G, 512M or a number of bytes, at most {_size(MAX_BUDGET)}, got {shown}")
+        raise InputError(
+            f"{name} must be a memory size such as 2G, 512M or a number of bytes, "
+            f"at most {_size(MAX_BUDGET)}, got {shown}"
+        )
     return int(size)
 
 
@@ -125,7 +146,8 @@ class Estimate:
     strip_samples : int
         Size of the job: samples times strips.
     largest : str
-        The costliest part of the job (``"geometry"``, ``"mechanics"``, a family of formats, ``"pictures"``).
+        The costliest part of the job (``"geometry"``, ``"mechanics"``, a family of formats,
+        ``"pictures"``).
     """
 
     total: float
@@ -157,8 +179,8 @@ def _cost(part: str, samples: int, n: int) -> float:
 
 
 def _mechanics(design: Design) -> float:
-    """The mechanics of a design under load (0 for one that is not): its model keeps every panel vertex, or the
-    samples of :func:`curvefold.mechanics.model_samples`."""
+    """The mechanics of a design under load (0 for one that is not): its model keeps every panel
+    vertex, or the samples of :func:`curvefold.mechanics.model_samples`."""
     if not design.mechanics:
         return 0.0
     from ..mechanics import model_samples
@@ -179,7 +201,9 @@ def estimate(design: Design, *, files: bool) -> Estimate:
     largest = max(
         jobs, key=lambda part: jobs[part], default="mechanics" if mechanics else "geometry"
     )
-    return Estimate(BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest)
+    return Estimate(
+        BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest
+    )
 
 
 def require_budget(design: Design, *, files: bool) -> Estimate:
@@ -201,8 +225,9 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
     if found.largest not in ("geometry", "mechanics"):
         lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
     raise InputError(
-        f"{design.source}: this job needs about {_size(found.total)} of memory ({_points(design)} × {strips} strips), "
-        f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower " + ", ".join(lower)
+        f"{design.source}: this job needs about {_size(found.total)} of memory "
+        f"({_points(design)} × {strips} strips), more than the budget of {_size(budget)} "
+        f"({ENVIRONMENT}); lower " + ", ".join(lower)
     )
 
 
@@ -232,38 +257,55 @@ def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> 
     from ..figures._atlas import MAX_VIEWS
 
     held = min(designs, MAX_VIEWS**2)
-    total = BASE + ATLAS_FIGURE + ATLAS_PER_DESIGN * held + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
+    total = (
+        BASE
+        + ATLAS_FIGURE
+        + ATLAS_PER_DESIGN * held
+        + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
+    )
     if total > budget:
         raise InputError(
-            f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} samples, {processes} processes), "
-            f"more than the budget of {_size(budget)} ({ENVIRONMENT}); lower the grid's counts, --samples or --workers"
+            f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} "
+            f"samples, {processes} processes), more than the budget of {_size(budget)} "
+            f"({ENVIRONMENT}); lower the grid's counts, --samples or --workers"
         )
     return total
 
 
-#: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check --rebuild``):
-#: its coordinates and fold angles as arrays, as JSON data and read back. Measured: the peak of
-#: ``check --rebuild`` over that of ``check`` grew by 225–250 bytes per strip sample and frame (tubes of
-#: 201 and 801 samples, 10 to 100 frames), rounded up.
+#: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check
+#: --rebuild``): its coordinates and fold angles as arrays, as JSON data and read back. Measured:
+#: the peak of ``check --rebuild`` over that of ``check`` grew by 225–250 bytes per strip sample and
+#: frame (tubes of 201 and 801 samples, 10 to 100 frames), rounded up.
 REBUILD_PER_FRAME = 300.0
 
 
 def require_rebuild_budget(design: Design, frames: int) -> float:
-    """The estimate of building ``design`` again with ``frames`` FOLD frames, or :class:`InputError` over budget."""
+    """The estimate of building ``design`` again with ``frames`` FOLD frames, or
+    :class:`InputError` over budget."""
     budget = memory_budget()
     found = estimate(design, files=False)
     total = found.total + REBUILD_PER_FRAME * frames * found.strip_samples
     if total > budget:
         raise InputError(
-            f"{design.source}: rebuilding this design needs about {_size(total)} of memory ({design.samples} samples × "
-            f"{_strips(design)} strips, {frames} frames), more than the budget of {_size(budget)} ({ENVIRONMENT})"
+            f"{design.source}: rebuilding this design needs about {_size(total)} of memory "
+            f"({design.samples} samples × {_strips(design)} strips, {frames} frames), more "
+            f"than the budget of {_size(budget)} ({ENVIRONMENT})"
         )
     return total
 
 
 #: What each part writes, as the subject of a sentence ("the crease patterns").
-_FAMILY_NAMES = {**{family: text.rsplit(" ", 1)[0] for family, text in FAMILIES.items()}, "pictures": "the pictures"}
+_FAMILY_NAMES = {
+    **{family: text.rsplit(" ", 1)[0] for family, text in FAMILIES.items()},
+    "pictures": "the pictures",
+}
 
 
 def _size(n: float) -> str:
-    return f"{n / (1 << 50):.0f} PiB" if n >= 1 << 50 else f"{n / (1 << 30):.1f} GiB" if n >= 1 << 30 else f"{n / _MB:.0f} MiB"
+    return (
+        f"{n / (1 << 50):.0f} PiB"
+        if n >= 1 << 50
+        else f"{n / (1 << 30):.1f} GiB"
+        if n >= 1 << 30
+        else f"{n / _MB:.0f} MiB"
+    )

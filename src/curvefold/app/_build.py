@@ -46,7 +46,8 @@ __all__ = [
     "MOTION_STEPS",
 ]
 
-#: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue to the first contact).
+#: States of the folding motion from flat to the design angle (the GLB's; the FOLD file's continue
+#: to the first contact).
 MOTION_STEPS = 7
 
 
@@ -109,9 +110,17 @@ class Built:
         mm = mm_per_unit(o.units)  # a page's sides are in mm
         page = o.page if isinstance(o.page, str) else (o.page[0] / mm, o.page[1] / mm)
         perforation = None if o.perforation is None else (o.perforation, o.perforation_gap)
-        return PatternOutput(page=page, units=o.units, scale=o.scale, glue_tabs=o.glue_tabs,
-                             rulings=o.rulings, cutter=o.cutter, perforation=perforation,
-                             kerf=o.kerf, name=self.design.kind)
+        return PatternOutput(
+            page=page,
+            units=o.units,
+            scale=o.scale,
+            glue_tabs=o.glue_tabs,
+            rulings=o.rulings,
+            cutter=o.cutter,
+            perforation=perforation,
+            kerf=o.kerf,
+            name=self.design.kind,
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -137,10 +146,11 @@ class BuiltStructure(Built):
 
     @cached_property
     def mechanics(self) -> Loaded | None:
-        """The structure under the design's material and loads (:func:`curvefold.app._loading.analyse`), when the
-        design gives them; None otherwise. A kind that stands on the ground (a vault:
-        :attr:`DesignKind.grounded <curvefold.app._kinds.DesignKind.grounded>`) stands on its
-        feet, a tube or block is held at both end sections."""
+        """The structure under the design's material and loads
+        (:func:`curvefold.app._loading.analyse`), when the design gives them; None otherwise.
+        A kind that stands on the ground (a vault: :attr:`DesignKind.grounded
+        <curvefold.app._kinds.DesignKind.grounded>`) stands on its feet, a tube or block is
+        held at both end sections."""
         if not self.design.mechanics:
             return None
         from ._loading import analyse
@@ -150,10 +160,10 @@ class BuiltStructure(Built):
 
     @cached_property
     def layout(self) -> Layout:
-        """The crease pattern laid out on the output's pages, at its scale, in its cutter's convention,
-        perforated and kerf-compensated as asked (:func:`~curvefold.io.layout_pattern`), on the
-        files' samples. The crease-pattern files, the 3dm and the assembly guide are drawn
-        from it."""
+        """The crease pattern laid out on the output's pages, at its scale, in its cutter's
+        convention, perforated and kerf-compensated as asked
+        (:func:`~curvefold.io.layout_pattern`), on the files' samples. The crease-pattern
+        files, the 3dm and the assembly guide are drawn from it."""
         from ..io._pattern import layout_pattern
 
         return layout_pattern(self.structure, self._pattern_output(), keep=self.sampling.keep)
@@ -238,9 +248,11 @@ def vault_design(design: Design) -> VaultDesign:
     )
 
 
-def fit_vault_targets(design: Design, *, source: str | None = None, **targets: float) -> tuple[Design, str]:
-    """A vault design with the parameters the targets replace solved for them (see :mod:`curvefold.vault._targets`),
-    never one that fails its own certificate.
+def fit_vault_targets(
+    design: Design, *, source: str | None = None, **targets: float
+) -> tuple[Design, str]:
+    """A vault design with the parameters the targets replace solved for them (see
+    :mod:`curvefold.vault._targets`), never one that fails its own certificate.
 
     ``targets`` are ``span``, ``rise`` and ``p_xz``; they set ``radius``, ``a`` and ``p_xy``
     (and, with ``tubes = "max"``, the number of tubes).
@@ -263,7 +275,9 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
     fit = fit_targets(vault_design(design), **targets)
     fitted = fit.require()
     chosen = {} if fitted.tubes is None else {"tubes": fitted.tubes}
-    found = design.overrides(source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius, **chosen)
+    found = design.overrides(
+        source=source, a=fitted.a, p_xy=fitted.p_xy, radius=fitted.radius, **chosen
+    )
     built = build_vault(found)
     certificate = certify(
         built.crease, built.structure, built.vault, fold_angles=list(exported_fold_angles(built))
@@ -272,8 +286,10 @@ def fit_vault_targets(design: Design, *, source: str | None = None, **targets: f
     if failed:
         c = failed[0]
         need = f"; use ≥ {c.samples_needed} samples" if c.samples_needed else ""
-        raise InputError(f"the vault that meets these targets (a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}) fails its "
-                         f"certificate: {c.name} {c.status} at {c.where}{need}")
+        raise InputError(
+            f"the vault that meets these targets (a = {fitted.a:.6g}, p_xy = "
+            f"{fitted.p_xy:.6g}) fails its certificate: {c.name} {c.status} at {c.where}{need}"
+        )
     return found, fit.note
 
 
@@ -284,9 +300,10 @@ def design_motion(built: Built, fold_angle: float | None = None) -> np.ndarray:
 
 
 def exported_fold_angles(built: Built) -> np.ndarray:
-    """2α of the frames the FOLD file holds and the certificate certifies (degrees): the folding motion from
-    flat to the design angle, and on by the same step while nothing touches, when the structure meets
-    itself before 180° (:func:`curvefold.geometry.first_contact`: where its motion ends)."""
+    """2α of the frames the FOLD file holds and the certificate certifies (degrees): the folding
+    motion from flat to the design angle, and on by the same step while nothing touches, when
+    the structure meets itself before 180° (:func:`curvefold.geometry.first_contact`: where
+    its motion ends)."""
     from ..geometry._contact import first_contact
 
     motion = design_motion(built)
@@ -359,12 +376,15 @@ def build_block(design: Design, like: Built | None = None) -> BuiltStructure:
     return build_lattice_structure(design, (block.width_left, block.width_right), block.cells)
 
 
-def build_lattice_structure(design: Design, widths: tuple[float, float],
-                            cells: Sequence[tuple[int, int]] | None = None) -> BuiltStructure:
+def build_lattice_structure(
+    design: Design, widths: tuple[float, float], cells: Sequence[tuple[int, int]] | None = None
+) -> BuiltStructure:
     """A structure on the lattice of curve 1 (``[curve]``) with the given widths at s = 0: a
     single tube, or the given lattice ``cells``; on rigid panels if ``[curve]`` says so."""
     c = design.params(CurveParams)
-    curve = SpaceCurve.from_curvature(design.function("kappa"), design.function("tau"), c.length, samples=design.samples)
+    curve = SpaceCurve.from_curvature(
+        design.function("kappa"), design.function("tau"), c.length, samples=design.samples
+    )
     crease = Crease.from_curve(curve, fold_angle=c.fold_angle)
     smooth = Lattice.from_crease(crease, *widths)
     # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)

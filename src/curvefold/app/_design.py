@@ -153,6 +153,7 @@ _COMMON = {
 #: (:func:`check_cases`).
 _LISTED: Mapping[str, tuple[str, ...]] = MappingProxyType({"loads": ("case",)})
 
+
 def _top(kinds: tuple[str, ...]) -> Mapping[str, Spec]:
     return _section(
         Spec("kind", "choice", REQUIRED, choices=kinds, help="what to build", label="structure"),
@@ -236,8 +237,6 @@ class OutputParams:
     perforation_gap: float
     kerf: float
     formats: tuple[str, ...]
-
-
 
 
 @dataclass(frozen=True)
@@ -344,7 +343,12 @@ class Design:
         kind = flags.pop("kind", None)
         if kind is not None and kind != self.kind:
             kind = SCHEMA[""]["kind"].check(kind, f"{source}: kind")
-            data = {"kind": kind, "samples": data["samples"], "title": data["title"], "output": data["output"]}
+            data = {
+                "kind": kind,
+                "samples": data["samples"],
+                "title": data["title"],
+                "output": data["output"],
+            }
         kind = data["kind"]
         allowed = _flag_sections(kind)
         _alternatives(data, flags)
@@ -360,18 +364,20 @@ class Design:
                 target[key] = value
             else:
                 raise InputError(
-                    f"{source}: unknown option {flag!r} for kind {kind!r} (allowed: {', '.join(allowed)})"
-                    + suggest(key, allowed)
+                    f"{source}: unknown option {flag!r} for kind {kind!r} (allowed: "
+                    f"{', '.join(allowed)})" + suggest(key, allowed)
                 )
         return design_from_dict(data, source=source, base_dir=self.base_dir)
 
     @property
     def mechanics(self) -> bool:
-        """Whether the design says what it is made of or what loads it: its output folders then hold its mechanics."""
+        """Whether the design says what it is made of or what loads it: its output folders then
+        hold its mechanics."""
         return self.material is not None or self.loads is not None
 
     def with_mechanics(self) -> Design:
-        """This design with its ``[material]`` and ``[loads]`` as given or at their defaults (``curvefold load``).
+        """This design with its ``[material]`` and ``[loads]`` as given or at their defaults
+        (``curvefold load``).
 
         Raises
         ------
@@ -404,7 +410,14 @@ class Design:
 
         Values are in the design file's units: angles stay in degrees.
         """
-        section = next((s for s in SECTIONS_OF_KIND[self.kind] if key in SCHEMA[s] and SCHEMA[s][key].kind == "function"), None)
+        section = next(
+            (
+                s
+                for s in SECTIONS_OF_KIND[self.kind]
+                if key in SCHEMA[s] and SCHEMA[s][key].kind == "function"
+            ),
+            None,
+        )
         if section is None:
             raise InputError(f"{key!r} is not a function-valued key of kind {self.kind!r}")
         params = dict(self.sections)[section]
@@ -423,8 +436,13 @@ def _alternatives(data: dict, flags: Mapping[str, Any]) -> None:
     (:attr:`DesignKind.alternatives <curvefold.app._kinds.DesignKind.alternatives>`: a
     [crease]'s ``alpha`` and ``beta_right``): the one the flags set drops the other from the
     design's data, unless the flags set both."""
-    given = {k.replace("-", "_") for k, v in flags.items() if v is not None and not isinstance(v, Mapping)}
-    given |= {key for value in flags.values() if isinstance(value, Mapping) for key in value}  # a section's keys
+    given = {
+        k.replace("-", "_")
+        for k, v in flags.items()
+        if v is not None and not isinstance(v, Mapping)
+    }
+    # a section's keys
+    given |= {key for value in flags.values() if isinstance(value, Mapping) for key in value}
     material_alternatives(data, given)
     kind = design_kind(data["kind"])
     if kind.alternatives is not None:
@@ -488,11 +506,15 @@ def load_design(path: str | os.PathLike) -> Design:
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise InputError(f"{source}: design file is not UTF-8 text (bad byte at offset {exc.start})") from None
+        raise InputError(
+            f"{source}: design file is not UTF-8 text (bad byte at offset {exc.start})"
+        ) from None
     return parse_design(text, source=source, base_dir=file.parent)
 
 
-def parse_design(text: str, *, source: str = "<string>", base_dir: str | os.PathLike | None = None) -> Design:
+def parse_design(
+    text: str, *, source: str = "<string>", base_dir: str | os.PathLike | None = None
+) -> Design:
     """Validate a design given as TOML text.
 
     Parameters
@@ -516,7 +538,8 @@ def parse_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     >>> parse_design('kind = "vault"\\n[vault]\\nfold_angle = 180.0', source="design.toml")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: design.toml: [vault] fold_angle must be in (0, 180) degrees, got 180.0
+    curvefold.kernel._errors.InputError: design.toml: [vault] fold_angle must be in (0, 180)
+    degrees, got 180.0
     """
     if not isinstance(text, str):
         raise InputError(f"{source}: expected TOML text, got {type(text).__name__}")
@@ -525,7 +548,8 @@ def parse_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     import tomllib  # here: its regular expressions are compiled on import
 
     try:
-        data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark, which some editors write, is not TOML
+        # a byte-order mark, which some editors write, is not TOML
+        data = tomllib.loads(text.removeprefix("\ufeff"))
     except (RecursionError, MemoryError):
         raise InputError(f"{source}: invalid TOML: nested too deeply") from None
     except ValueError as exc:  # TOMLDecodeError, and integers past Python's digit limit
@@ -565,7 +589,9 @@ def design_from_dict(
     for key, value in data.items():
         if key in names:
             if not isinstance(value, Mapping):
-                raise InputError(f"{source}: {key} must be a table ([{key}] section), got {describe(value)}")
+                raise InputError(
+                    f"{source}: {key} must be a table ([{key}] section), got {describe(value)}"
+                )
             if key != "output" and key not in used:
                 users = " or ".join(
                     repr(k.name) for k in design_kinds() if key in (*k.section_names, *k.optional)
@@ -578,13 +604,14 @@ def design_from_dict(
             what = f"section [{key}]" if isinstance(value, Mapping) else f"key {key!r}"
             raise InputError(
                 f"{source}: unknown {what} (allowed keys: {', '.join(top)}; "
-                f"sections: {', '.join(names)})"
-                + suggest(key, (*top, *names))
+                f"sections: {', '.join(names)})" + suggest(key, (*top, *names))
             )
     head = _check_section("", data, Context(source, folder, 0), skip=names)
     ctx = Context(source, folder, head["samples"])
-    checked = {s: _check_section(s, data.get(s, {}), ctx, skip=_LISTED.get(s, ()))
-               for s in (*used, "output")}
+    checked = {
+        s: _check_section(s, data.get(s, {}), ctx, skip=_LISTED.get(s, ()))
+        for s in (*used, "output")
+    }
     if checked["output"]["formats"] is None:
         checked["output"]["formats"] = default_formats(registered.formats_kind)
     if registered.check is not None:
@@ -628,15 +655,18 @@ def default_design(kind: str) -> Design:
 # Checking
 
 
-
-def _check_section(section: str, table: Mapping[str, Any], ctx: Context, skip: tuple[str, ...] = ()) -> dict:
+def _check_section(
+    section: str, table: Mapping[str, Any], ctx: Context, skip: tuple[str, ...] = ()
+) -> dict:
     """Validate one section against the schema; fill defaults. Function keys go last (they
     need the section's length)."""
     specs = SCHEMA[section]
     prefix = f"{ctx.source}: " if section == "" else f"{ctx.source}: [{section}] "
     for key in table:
         if key not in specs and key not in skip:
-            raise InputError(f"{prefix}unknown key {key!r} (allowed: {', '.join(specs)})" + suggest(key, specs))
+            raise InputError(
+                f"{prefix}unknown key {key!r} (allowed: {', '.join(specs)})" + suggest(key, specs)
+            )
     out: dict[str, Any] = {}
     for key in sorted(specs, key=lambda k: specs[k].kind == "function"):
         spec = specs[key]

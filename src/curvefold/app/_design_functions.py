@@ -1,4 +1,5 @@
-"""Function-valued keys of a design: a number, an expression in s or a CSV column, checked on the design's samples.
+"""Function-valued keys of a design: a number, an expression in s or a CSV column, checked on the
+design's samples.
 
 ``kappa``, ``tau``, ``kappa_2d``, ``beta_left``, ``beta_right`` and ``alpha`` take a number,
 an expression in ``s`` (:func:`curvefold.kernel.compile_expression`) or a CSV column
@@ -55,7 +56,9 @@ class TableColumn:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, TableColumn):
             return NotImplemented
-        return (self.path, self.column) == (other.path, other.column) and np.array_equal(self.values, other.values)
+        return (self.path, self.column) == (other.path, other.column) and np.array_equal(
+            self.values, other.values
+        )
 
     def __hash__(self) -> int:
         return hash((self.path, self.column, self.values.size))
@@ -66,14 +69,17 @@ FunctionValue = float | Expression | TableColumn
 
 @dataclass(frozen=True)
 class Context:
-    """Where a design is checked: its name in messages, the folder of its CSV files and its samples along curve 1."""
+    """Where a design is checked: its name in messages, the folder of its CSV files and its
+    samples along curve 1."""
 
     source: str
     base_dir: Path
     samples: int
 
 
-def check_function(spec: Spec, value: Any, section: str, ctx: Context, length: float) -> FunctionValue:
+def check_function(
+    spec: Spec, value: Any, section: str, ctx: Context, length: float
+) -> FunctionValue:
     """A function-valued key as an expression, a CSV column or a number, checked on the sample
     grid; every refusal is about ``spec.name``."""
     name = f"[{section}] {spec.name}"
@@ -94,13 +100,17 @@ def check_function(spec: Spec, value: Any, section: str, ctx: Context, length: f
     return spec.check(value, where)
 
 
-def _read_table(spec: Spec, table: Mapping[str, Any], where: str, ctx: Context, length: float) -> TableColumn:
+def _read_table(
+    spec: Spec, table: Mapping[str, Any], where: str, ctx: Context, length: float
+) -> TableColumn:
     for k in table:
         if k not in ("csv", "column"):
             raise InputError(f"{where}: unknown key {k!r} in CSV table (allowed: csv, column)")
     raw, column = table.get("csv"), table.get("column", spec.name)
     if not isinstance(raw, str) or not raw.strip():
-        raise InputError(f"{where}: csv must be a file name relative to the design file, got {describe(raw)}")
+        raise InputError(
+            f"{where}: csv must be a file name relative to the design file, got {describe(raw)}"
+        )
     if not isinstance(column, str):
         raise InputError(f"{where}: column must be a column header, got {describe(column)}")
     file = table_path(raw, where, ctx.base_dir)

@@ -46,8 +46,15 @@ from ..kernel._errors import InputError
 from ..kernel._version import VERSION
 
 __all__ = [
-    "MARKER", "ENDING_SIGNALS", "Interrupted", "OutputTarget", "check_output", "output_folder", "raise_if_interrupted",
-    "rename_noreplace", "signals_interrupt",
+    "MARKER",
+    "ENDING_SIGNALS",
+    "Interrupted",
+    "OutputTarget",
+    "check_output",
+    "output_folder",
+    "raise_if_interrupted",
+    "rename_noreplace",
+    "signals_interrupt",
 ]
 
 #: The file every output folder holds: curvefold's version and a random id.
@@ -55,7 +62,9 @@ MARKER = ".curvefold-output"
 #: Temporary folders (and folders moved aside) of a run, with its process id.
 _TEMPORARY = re.compile(r"\..+\.curvefold-(\d+)-\w+(\.old)?")
 #: The signals that end a run (the command line turns them into a clean stop).
-ENDING_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
+ENDING_SIGNALS = tuple(
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
 
 
 #: The ending signal this process received while :func:`signals_interrupt` was active, if any.
@@ -130,7 +139,9 @@ class OutputTarget:
     replaces: str | None
 
 
-def check_output(path: str | os.PathLike, *, force: bool, inputs: Iterable[str | os.PathLike] = ()) -> OutputTarget:
+def check_output(
+    path: str | os.PathLike, *, force: bool, inputs: Iterable[str | os.PathLike] = ()
+) -> OutputTarget:
     """Check an output folder before any work (see the module doc), and remove stale
     temporary folders beside it.
 
@@ -151,26 +162,37 @@ def check_output(path: str | os.PathLike, *, force: bool, inputs: Iterable[str |
     name = f"output folder {path}"
     resolved = path.resolve()
     if path.name in ("", ".", "..") or Path.cwd().resolve().is_relative_to(resolved):
-        raise InputError(f"{name} is the current folder or contains it; name a new folder, e.g. --out curvefold-output")
+        raise InputError(
+            f"{name} is the current folder or contains it; name a new folder, e.g. "
+            "--out curvefold-output"
+        )
     for file in inputs:
         if Path(file).resolve().is_relative_to(resolved):
             raise InputError(f"{name} holds {file}, which this run reads; choose another folder")
     parent = path.parent
     if not parent.is_dir():
-        raise InputError(f"cannot write {path}: its parent folder {parent} does not exist or is not a folder")
+        raise InputError(
+            f"cannot write {path}: its parent folder {parent} does not exist or is not a folder"
+        )
     if not os.access(parent, os.W_OK | os.X_OK):
         raise InputError(f"cannot write {path}: its parent folder {parent} is not writable")
     _remove_stale(parent)
     if path.is_symlink():
-        raise InputError(f"{name} is a symbolic link; curvefold replaces only a folder it wrote; choose another folder")
+        raise InputError(
+            f"{name} is a symbolic link; curvefold replaces only a folder it wrote; "
+            "choose another folder"
+        )
     if not path.exists():
         return OutputTarget(path, None)
     if not path.is_dir():
         raise InputError(f"output path {path} exists and is not a folder; choose another folder")
     identity = _identity(path)
     if identity is None:
-        raise InputError(f"{name} exists and was not written by curvefold (it has no {MARKER} file and is not empty); "
-                         "choose another folder: --force replaces only a folder curvefold wrote")
+        raise InputError(
+            f"{name} exists and was not written by curvefold (it has no {MARKER} "
+            "file and is not empty); choose another folder: --force replaces only a folder "
+            "curvefold wrote"
+        )
     if not force:
         raise InputError(f"{name} exists; pass --force to replace it")
     return OutputTarget(path, identity)
@@ -236,8 +258,13 @@ def _conflict(tmp: Path, path: Path, what: str) -> None:
             rename_noreplace(tmp, kept)
         except FileExistsError:
             continue
-        raise InputError(f"output folder {path} {what}; it was left as it is, and the new output is in {kept}")
-    raise InputError(f"output folder {path} {what}; it was left as it is, and no free name was found beside it for the new output")
+        raise InputError(
+            f"output folder {path} {what}; it was left as it is, and the new output is in {kept}"
+        )
+    raise InputError(
+        f"output folder {path} {what}; it was left as it is, and no free name was "
+        "found beside it for the new output"
+    )
 
 
 def _identity(folder: Path) -> str | None:
@@ -249,7 +276,9 @@ def _identity(folder: Path) -> str | None:
         marker = json.loads(read_bytes(folder / MARKER, limit=4096, what="marker"))
     except (OSError, ValueError):  # InputError is a ValueError
         return None
-    return marker.get("id") if isinstance(marker, dict) and isinstance(marker.get("id"), str) else None
+    return (
+        marker.get("id") if isinstance(marker, dict) and isinstance(marker.get("id"), str) else None
+    )
 
 
 def _remove_stale(parent: Path) -> None:
@@ -263,7 +292,11 @@ def _remove_stale(parent: Path) -> None:
         return
     for entry in entries:
         match = _TEMPORARY.fullmatch(entry.name)
-        if match is None or int(match.group(1)) == os.getpid() or not entry.is_dir(follow_symlinks=False):
+        if (
+            match is None
+            or int(match.group(1)) == os.getpid()
+            or not entry.is_dir(follow_symlinks=False)
+        ):
             continue
         if not _alive(int(match.group(1))) and _identity(Path(entry.path)) is not None:
             shutil.rmtree(entry.path, ignore_errors=True)
@@ -304,7 +337,13 @@ def _load_renameat2():
         function = ctypes.CDLL(None, use_errno=True).renameat2  # glibc ≥ 2.28, musl ≥ 1.2.2
     except (OSError, AttributeError, TypeError):
         return None
-    function.argtypes = (ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint)
+    function.argtypes = (
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_uint,
+    )
     function.restype = ctypes.c_int
     return function
 
@@ -323,7 +362,12 @@ def rename_noreplace(source: str | os.PathLike, target: str | os.PathLike) -> No
     refuses any existing target).
     """
     if _renameat2 is not None:
-        if _renameat2(_AT_FDCWD, os.fsencode(source), _AT_FDCWD, os.fsencode(target), _RENAME_NOREPLACE) == 0:
+        if (
+            _renameat2(
+                _AT_FDCWD, os.fsencode(source), _AT_FDCWD, os.fsencode(target), _RENAME_NOREPLACE
+            )
+            == 0
+        ):
             return
         code = ctypes.get_errno()
         if code not in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):

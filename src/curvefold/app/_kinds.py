@@ -9,9 +9,17 @@ design schema (:mod:`curvefold.app._design`), the command line (:mod:`curvefold.
 the budget (:mod:`curvefold.app._budget`) and the designer's API read the registry, so a new
 kind touches no other file::
 
-    register_kind(DesignKind("ring", (RING,), build_ring, strips=lambda design: 4,
-                             crease_length=lambda values: values["ring"]["length"],
-                             help="a tube on a circle", description="Build a tube on a circle."))
+    register_kind(
+        DesignKind(
+            "ring",
+            (RING,),
+            build_ring,
+            strips=lambda design: 4,
+            crease_length=lambda values: values["ring"]["length"],
+            help="a tube on a circle",
+            description="Build a tube on a circle.",
+        )
+    )
 
 What only some kinds have is theirs: a vault's targets (:class:`Targets`), which replace
 some of its parameters, and the arch root a build at other samples shares
@@ -239,12 +247,16 @@ def register_kind(kind: DesignKind) -> DesignKind:
         raise InputError(f"kind {kind.name!r} is registered already")
     shared = [s.name for s in kind.sections if s.name in SHARED_SECTIONS]
     if shared:
-        raise InputError(f"kind {kind.name!r}: section [{shared[0]}] is every kind's; "
-                         "name its own sections otherwise")
+        raise InputError(
+            f"kind {kind.name!r}: section [{shared[0]}] is every kind's; "
+            "name its own sections otherwise"
+        )
     unknown = [name for name in kind.optional if name not in LOAD_SECTIONS]
     if unknown:
-        raise InputError(f"kind {kind.name!r}: optional section [{unknown[0]}] "
-                         f"must be one of {', '.join(LOAD_SECTIONS)}")
+        raise InputError(
+            f"kind {kind.name!r}: optional section [{unknown[0]}] "
+            f"must be one of {', '.join(LOAD_SECTIONS)}"
+        )
     for section in kind.sections:
         for other in _KINDS.values():
             theirs = {s.name: s for s in other.sections}.get(section.name)

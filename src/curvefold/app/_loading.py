@@ -1,20 +1,21 @@
-"""A design under load: its ``[material]`` and ``[loads]`` sections, and what the mechanics says of the built design.
+"""A design under load: its ``[material]`` and ``[loads]`` sections, and what the mechanics says of
+the built design.
 
 A vault, tube or block design may say what it is made of and what loads it::
 
     [material]
-    material = "aluminium"      # a named material, or your own values:
-    thickness = 0.002           # youngs_modulus, poisson, density (and strength)
+    material = "aluminium"  # a named material, or your own values:
+    thickness = 0.002  # youngs_modulus, poisson, density (and strength)
     [loads]
-    snow = 0.5                  # kPa on the roof seen from above
-    snow_half = 0.3             # kPa more on half the span (snow_half_side = "end")
-    wind = 0.6                  # kPa, the wind's velocity pressure q_p, times
-    wind_cp = -0.8              # its pressure coefficient on every face
-    point_load = 100.0          # N at the apex
+    snow = 0.5  # kPa on the roof seen from above
+    snow_half = 0.3  # kPa more on half the span (snow_half_side = "end")
+    wind = 0.6  # kPa, the wind's velocity pressure q_p, times
+    wind_cp = -0.8  # its pressure coefficient on every face
+    point_load = 100.0  # N at the apex
     supports = "pinned"
 
-    [[loads.case]]              # any number of cases more, each of a type of
-    type = "point"              # curvefold.mechanics.LOAD_CASES, in the units above
+    [[loads.case]]  # any number of cases more, each of a type of
+    type = "point"  # curvefold.mechanics.LOAD_CASES, in the units above
     force = 50.0
     at = [0.0, 1.0, 1.1]
 
@@ -85,10 +86,17 @@ MAX_CASES = 1000
 _OWN = tuple(s.name for s in MATERIAL_SPECS)  # youngs_modulus, poisson, density, strength
 _NEEDED = _OWN[:3]
 
-#: ``[material]``: a named material or the user's own values, the thickness and the creases' stiffness.
+#: ``[material]``: a named material or the user's own values, the thickness and the creases'
+#: stiffness.
 MATERIAL_SECTION: tuple[Spec, ...] = (
-    Spec(MATERIAL.name, "choice", None, choices=MATERIAL.choices, label=MATERIAL.label,
-         help=f"{MATERIAL.help}; default {DEFAULT_MATERIAL} unless your own values are given"),
+    Spec(
+        MATERIAL.name,
+        "choice",
+        None,
+        choices=MATERIAL.choices,
+        label=MATERIAL.label,
+        help=f"{MATERIAL.help}; default {DEFAULT_MATERIAL} unless your own values are given",
+    ),
     *MATERIAL_SPECS,
     THICKNESS,
     CREASE_STIFFNESS,
@@ -183,7 +191,8 @@ def check_cases(entries: Any, where: str) -> tuple[LoadCase, ...] | None:
 
 @dataclass(frozen=True)
 class MaterialParams:
-    """``[material]``: a named material or the user's own values (SI), the thickness (m) and the crease stiffness (N·m/rad/m)."""
+    """``[material]``: a named material or the user's own values (SI), the thickness (m) and the
+    crease stiffness (N·m/rad/m)."""
 
     material: str | None
     youngs_modulus: float | None
@@ -236,7 +245,8 @@ class LoadParams:
 
 
 def check_material(values: dict, where: str) -> None:
-    """Check a ``[material]`` section's values together, naming the default material when none is given.
+    """Check a ``[material]`` section's values together, naming the default material when none is
+    given.
 
     Either a named material or the user's own E, ν and density (and, optionally, a
     strength), never both; ``values`` is completed in place.
@@ -248,18 +258,25 @@ def check_material(values: dict, where: str) -> None:
     """
     own = [k for k in _OWN if values.get(k) is not None]
     if values.get("material") is not None and own:
-        raise InputError(f"{where}give material or your own values ({', '.join(own)}), not both", parameter=own[0])
+        raise InputError(
+            f"{where}give material or your own values ({', '.join(own)}), not both",
+            parameter=own[0],
+        )
     if own:
         missing = [k for k in _NEEDED if values.get(k) is None]
         if missing:
-            raise InputError(f"{where}your own material needs youngs_modulus, poisson and density (missing: {', '.join(missing)}), "
-                             "or name one with material", parameter=missing[0])
+            raise InputError(
+                f"{where}your own material needs youngs_modulus, poisson and "
+                f"density (missing: {', '.join(missing)}), or name one with material",
+                parameter=missing[0],
+            )
     elif values.get("material") is None:
         values["material"] = DEFAULT_MATERIAL
 
 
 def material_alternatives(data: dict, given: set[str]) -> None:
-    """A named material and the user's own values are alternatives: the one given by flags drops the other from the design's data."""
+    """A named material and the user's own values are alternatives: the one given by flags drops
+    the other from the design's data."""
     section = data.get("material")
     if section is None:
         return
@@ -272,7 +289,8 @@ def material_alternatives(data: dict, given: set[str]) -> None:
 
 
 def magnification(displacement: float, size: float, *, share: float = 0.05) -> float:
-    """A round factor (1, 2 or 5 × 10^k) that shows a displacement at about ``share`` of the structure's size.
+    """A round factor (1, 2 or 5 × 10^k) that shows a displacement at about ``share`` of the
+    structure's size.
 
     Examples
     --------
@@ -316,31 +334,50 @@ class Loaded:
 
     @property
     def mode_amplitude(self) -> float:
-        """Largest displacement of a mode as the pictures and the 3D model show it, m: a round 5 % of the size."""
+        """Largest displacement of a mode as the pictures and the 3D model show it, m: a round 5
+        % of the size."""
         return magnification(1.0, self.size)
 
     def notes(self) -> list[str]:
-        """What a reader must know to read the numbers (the supports, a buckling mode the samples do not resolve)."""
+        """What a reader must know to read the numbers (the supports, a buckling mode the samples
+        do not resolve)."""
         r = self.result
-        held = ("the feet (the end sections on the ground)" if self.supported == "feet"
-                else "both end sections of every tube (t = 0 and t = 1)")
-        notes = [f"held at {held}, {r.supports.kind}; the model keeps {len(r.structure.samples)} of the "
-                 f"{r.structure.state.vertices.shape[1]} samples along each crease (every one near the end sections)"]
+        held = (
+            "the feet (the end sections on the ground)"
+            if self.supported == "feet"
+            else "both end sections of every tube (t = 0 and t = 1)"
+        )
+        notes = [
+            f"held at {held}, {r.supports.kind}; the model keeps {len(r.structure.samples)} "
+            f"of the {r.structure.state.vertices.shape[1]} samples along each crease (every "
+            "one near the end sections)"
+        ]
         if not r.buckling_resolved:
-            notes.append("the buckling mode alternates from one sample to the next: the samples do not resolve it, and its factor "
-                         "is lower than the structure's; more samples find the structure's")
+            notes.append(
+                "the buckling mode alternates from one sample to the next: the samples "
+                "do not resolve it, and its factor is lower than the structure's; more samples "
+                "find the structure's"
+            )
         if r.utilisation is None:
-            notes.append("no strength given: the stresses are not measured against one (utilisation unknown)")
+            notes.append(
+                "no strength given: the stresses are not measured against one (utilisation unknown)"
+            )
         return notes
 
     def to_dict(self) -> dict:
-        """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what loads and holds it."""
+        """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what
+        loads and holds it."""
         r = self.result
         mat = r.structure.material
         return r.to_dict() | {
             "material": mat.name,
-            "sheet": {"youngs_modulus": mat.youngs_modulus, "poisson": mat.poisson, "density": mat.density, "strength": mat.strength,
-                      "source": mat.source},
+            "sheet": {
+                "youngs_modulus": mat.youngs_modulus,
+                "poisson": mat.poisson,
+                "density": mat.density,
+                "strength": mat.strength,
+                "source": mat.source,
+            },
             "loads": {
                 "self_weight": self.loads.self_weight,
                 "snow_kpa": self.loads.snow,
@@ -356,11 +393,14 @@ class Loaded:
         }
 
     def reactions_by_end(self) -> dict[str, list[float]]:
-        """The support reactions summed over each end, t = 0 and t = 1, [x, y, z] N: an arch's horizontal thrust, equal
-        and opposite at its two ends."""
+        """The support reactions summed over each end, t = 0 and t = 1, [x, y, z] N: an arch's
+        horizontal thrust, equal and opposite at its two ends."""
         sm, reactions = self.result.structure, self.result.static.reactions
         n = sm.state.vertices.shape[1]
-        return {end: reactions[sm.node_sample == s].sum(axis=0).tolist() for end, s in (("t = 0", 0), ("t = 1", n - 1))}
+        return {
+            end: reactions[sm.node_sample == s].sum(axis=0).tolist()
+            for end, s in (("t = 0", 0), ("t = 1", n - 1))
+        }
 
     def lines(self) -> list[str]:
         """The result in a few lines for the terminal."""
@@ -369,22 +409,48 @@ class Loaded:
         factor = d["buckling_factor"]
         rows = [
             ("total_weight", f"{d['total_weight']:.6g} N"),
-            ("reactions", "[" + ", ".join(f"{v:.6g}" for v in _rounded(d["reactions"], max(map(abs, d["applied_load"])))) + "] N (x, y, z)"),
+            (
+                "reactions",
+                "["
+                + ", ".join(
+                    f"{v:.6g}" for v in _rounded(d["reactions"], max(map(abs, d["applied_load"])))
+                )
+                + "] N (x, y, z)",
+            ),
             ("max_displacement", f"{d['max_displacement']:.4g} m"),
-            ("max_stress", f"{d['max_stress']:.4g} Pa" + ("" if use is None else f" (utilisation {use:.3g})")),
-            ("buckling_factor", "none: the load only stiffens it" if factor is None else f"{factor:.4g}"
-             + ("" if d["buckling_resolved"] else " (not resolved at these samples)")),
+            (
+                "max_stress",
+                f"{d['max_stress']:.4g} Pa" + ("" if use is None else f" (utilisation {use:.3g})"),
+            ),
+            (
+                "buckling_factor",
+                "none: the load only stiffens it"
+                if factor is None
+                else f"{factor:.4g}"
+                + ("" if d["buckling_resolved"] else " (not resolved at these samples)"),
+            ),
             ("fold_mode_gap", f"{d['fold_mode_gap']:.4g}"),
             ("soft_modes", str(d["soft_modes"])),
-            ("modes", ", ".join(f"{v:.4g}" for v in d["modes"]) + " rad²/s² (" + ", ".join(f"{f:.3g}" for f in d["frequencies"]) + " Hz)"),
+            (
+                "modes",
+                ", ".join(f"{v:.4g}" for v in d["modes"])
+                + " rad²/s² ("
+                + ", ".join(f"{f:.3g}" for f in d["frequencies"])
+                + " Hz)",
+            ),
         ]
-        head = f"  under load         {d['material']} {d['thickness'] * 1e3:g} mm, {self._load_words()}"
+        head = (
+            f"  under load         {d['material']} {d['thickness'] * 1e3:g} mm, "
+            f"{self._load_words()}"
+        )
         return [head] + [f"  {k:<18} {v}" for k, v in rows] + [f"  note: {n}" for n in d["notes"]]
 
     def _load_words(self) -> str:
         return f"{self.result.loads.describe()}, {self.loads.supports} at the {self.supported}"
 
-    def morph_targets(self, structure: Structure, keep: Sequence[np.ndarray] | None = None, *, modes: int = 3) -> dict[str, np.ndarray]:
+    def morph_targets(
+        self, structure: Structure, keep: Sequence[np.ndarray] | None = None, *, modes: int = 3
+    ) -> dict[str, np.ndarray]:
         """The deflected shape and the first modes as named morph targets of the GLB.
 
         Displacements (V, 3) in metres of the vertices of ``structure.state().mesh(keep=keep)``
@@ -394,14 +460,20 @@ class Loaded:
         r, sm = self.result, self.result.structure
         topology = structure.topology(keep=keep)
         at = lambda values: topology.coords(sm.interpolate(values))  # noqa: E731
-        out = {f"deflection × {self.deflection_scale:g}": self.deflection_scale * at(r.static.displacements)}
+        out = {
+            f"deflection × {self.deflection_scale:g}": self.deflection_scale
+            * at(r.static.displacements)
+        }
         for k in range(min(modes, len(r.modes.eigenvalues))):
-            out[f"mode {k + 1} ({r.modes.frequencies[k]:.3g} Hz)"] = self.mode_amplitude * at(r.modes.shapes[k])
+            out[f"mode {k + 1} ({r.modes.frequencies[k]:.3g} Hz)"] = self.mode_amplitude * at(
+                r.modes.shapes[k]
+            )
         return out
 
 
 def _rounded(values: Sequence[float], scale: float) -> np.ndarray:
-    """Values with what is below 1e-9 of ``scale`` (the rounding of forces that balance a load of that size) shown as 0."""
+    """Values with what is below 1e-9 of ``scale`` (the rounding of forces that balance a load of
+    that size) shown as 0."""
     v = np.asarray(values, float)
     return np.where(np.abs(v) <= 1e-9 * abs(scale), 0.0, v) + 0.0
 
@@ -418,9 +490,15 @@ def _sheet(params: MaterialParams):
     return Material.from_values(E, nu, rho, params.strength)
 
 
-def analyse(structure: Structure, material: MaterialParams | None, loads: LoadParams | None, *, supported: str) -> Loaded:
-    """The mechanics of a vault, tube or block at its design angle under a design's material and loads (their defaults
-    where it gives none), held at its ``supported`` ("feet" or "ends").
+def analyse(
+    structure: Structure,
+    material: MaterialParams | None,
+    loads: LoadParams | None,
+    *,
+    supported: str,
+) -> Loaded:
+    """The mechanics of a vault, tube or block at its design angle under a design's material and
+    loads (their defaults where it gives none), held at its ``supported`` ("feet" or "ends").
 
     Raises
     ------
@@ -432,9 +510,14 @@ def analyse(structure: Structure, material: MaterialParams | None, loads: LoadPa
 
     material = material or MaterialParams(**_defaults(MATERIAL_SECTION, material=DEFAULT_MATERIAL))
     loads = loads or LoadParams(**_defaults(LOADS_SECTION))
-    result = analyse_load(structure, _sheet(material), material.thickness, loads.cases(),
-                          Supports(loads.supports, at=supported),  # type: ignore[arg-type]
-                          crease_stiffness=material.crease_stiffness)
+    result = analyse_load(
+        structure,
+        _sheet(material),
+        material.thickness,
+        loads.cases(),
+        Supports(loads.supports, at=supported),  # type: ignore[arg-type]
+        crease_stiffness=material.crease_stiffness,
+    )
     return Loaded(result, material, loads, supported)
 
 

@@ -34,7 +34,11 @@ __all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json", "
 def structure_payload(built: Built) -> dict:
     """Design, derived quantities and certificate of a built design, JSON-ready."""
     design = built.design
-    payload: dict = {"kind": design.kind, "title": design.title or default_title(built), "design": design.to_dict()}
+    payload: dict = {
+        "kind": design.kind,
+        "title": design.title or default_title(built),
+        "design": design.to_dict(),
+    }
     if isinstance(built, BuiltVault):
         payload |= built.vault.summary()
         from ..vault._paper import paper_comparison
@@ -46,7 +50,10 @@ def structure_payload(built: Built) -> dict:
             "cells": built.structure.cells.tolist(),
             "curves": built.structure.curves_uv.tolist(),
             "curve_kinds": list(built.structure.curve_kinds),
-            "bounding_box": [V.reshape(-1, 3).min(axis=0).tolist(), V.reshape(-1, 3).max(axis=0).tolist()],
+            "bounding_box": [
+                V.reshape(-1, 3).min(axis=0).tolist(),
+                V.reshape(-1, 3).max(axis=0).tolist(),
+            ],
             "regression_margin": built.structure.regression_margin,
         }
     else:  # a single curved fold
@@ -60,7 +67,9 @@ def structure_payload(built: Built) -> dict:
         built, BuiltCrease
     ):  # a single fold, in every state of its motion but the flat one
         fold = built.single_fold
-        certificate = certify_single_fold([(a, fold.at(a)) for a in exported_fold_angles(built) if a > 0])
+        certificate = certify_single_fold(
+            [(a, fold.at(a)) for a in exported_fold_angles(built) if a > 0]
+        )
     elif isinstance(built, BuiltStructure):
         vault = built.vault if isinstance(built, BuiltVault) else None
         certificate = certify(
@@ -69,8 +78,12 @@ def structure_payload(built: Built) -> dict:
     else:
         raise TypeError(f"no certificate for a {type(built).__name__}")
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
-    payload["certificate_frames"] = {"fold_angles": list(certificate.fold_angles), "holds_up_to": certificate.holds_up_to,
-                                     "first_contact": certificate.first_contact, "samples": certificate.samples}
+    payload["certificate_frames"] = {
+        "fold_angles": list(certificate.fold_angles),
+        "holds_up_to": certificate.holds_up_to,
+        "first_contact": certificate.first_contact,
+        "samples": certificate.samples,
+    }
     if certificate.mechanism is not None:  # rigid panels
         payload["mechanism"] = certificate.mechanism.to_dict()
     if built.mechanics is not None:  # the design says what it is made of or what loads it
@@ -79,14 +92,19 @@ def structure_payload(built: Built) -> dict:
 
 
 def parameter_rows(design: Design) -> list[dict]:
-    """Every parameter of a design for the report: ``name``, ``label`` (in words, from the schema), ``value`` and ``unit``."""
+    """Every parameter of a design for the report: ``name``, ``label`` (in words, from the
+    schema), ``value`` and ``unit``."""
     from ._design import SCHEMA
 
     rows = []
     for section, values in design.to_dict().items():
-        for name, value in (values.items() if isinstance(values, dict) else [(section, values)]):
+        for name, value in values.items() if isinstance(values, dict) else [(section, values)]:
             spec = SCHEMA["" if not isinstance(values, dict) else section][name]
-            unit = "× radius" if (section, name) == ("vault", "width") else UNITS_SHOWN.get(spec.unit, spec.unit)
+            unit = (
+                "× radius"
+                if (section, name) == ("vault", "width")
+                else UNITS_SHOWN.get(spec.unit, spec.unit)
+            )
             rows.append({"name": name, "label": spec.label or name, "value": value, "unit": unit})
     return rows
 
@@ -95,16 +113,30 @@ def default_title(built: Built) -> str:
     """The title of a design that gives none: its kind and main parameters."""
     if isinstance(built, BuiltVault):
         d = built.vault.design
-        return f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α = {d.fold_angle:g}°"
+        return (
+            f"vault: a = {d.a:g}, p_xy = {d.p_xy:g}, width = {d.width:g}, {d.tubes} tubes, 2α "
+            f"= {d.fold_angle:g}°"
+        )
     if isinstance(built, BuiltStructure):
-        return f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = {built.structure.lattice.crease.fold_angle:g}°"
+        return (
+            f"{built.design.kind}: {len(built.structure.cells)} cell(s), 2α = "
+            f"{built.structure.lattice.crease.fold_angle:g}°"
+        )
     return f"single curved fold, length {built.crease.curve.length:g}"
 
 
 def _progress(show: bool, total: int) -> tuple[Callable[[str], None], Callable[[], None]]:
-    """A progress bar on stderr (rich) when it is a terminal, or nothing (and rich is not imported)."""
-    bar = _bar(show, lambda rich: (rich.TextColumn("{task.description:<28}"), rich.BarColumn(),
-                                   rich.TextColumn("{task.completed}/{task.total}"), rich.TimeElapsedColumn()))
+    """A progress bar on stderr (rich) when it is a terminal, or nothing (and rich is not
+    imported)."""
+    bar = _bar(
+        show,
+        lambda rich: (
+            rich.TextColumn("{task.description:<28}"),
+            rich.BarColumn(),
+            rich.TextColumn("{task.completed}/{task.total}"),
+            rich.TimeElapsedColumn(),
+        ),
+    )
     if bar is None:
         return (lambda label: None), (lambda: None)
     bar.start()
@@ -127,11 +159,21 @@ def _bar(show: bool, columns: Callable = lambda rich: ()):
     from rich.console import Console
 
     console = Console(stderr=True)
-    return rich.progress.Progress(*columns(rich.progress), transient=True, console=console) if console.is_terminal else None
+    return (
+        rich.progress.Progress(*columns(rich.progress), transient=True, console=console)
+        if console.is_terminal
+        else None
+    )
 
 
-def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True, fold_angle: float | None = None,
-                  workers: int | None = None) -> dict:
+def write_outputs(
+    built: Built,
+    out: OutputTarget,
+    *,
+    show_progress: bool = True,
+    fold_angle: float | None = None,
+    workers: int | None = None,
+) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
     The files are written by job processes while this process computes what they share
@@ -177,10 +219,20 @@ def write_outputs(built: Built, out: OutputTarget, *, show_progress: bool = True
     written: list[str] = []
     try:
         prepare = partial(built.prepare_files, formats)
-        with output_folder(out) as tmp, closing(products.run_jobs(jobs, tmp, workers=workers, prepare=prepare)) as done:  # closed at once on any exception
-            done.refill()  # what the file jobs share, computed here while the drawings are drawn; then the file jobs start
+        # closed at once on any exception
+        with (
+            output_folder(out) as tmp,
+            closing(products.run_jobs(jobs, tmp, workers=workers, prepare=prepare)) as done,
+        ):
+            # what the file jobs share, computed here while the drawings are drawn; then the file
+            # jobs start
+            done.refill()
             payload = structure_payload(built)
-            report = dict(payload, timings={}, parameters=parameter_rows(built.design)) | products.resolution(built) | notes
+            report = (
+                dict(payload, timings={}, parameters=parameter_rows(built.design))
+                | products.resolution(built)
+                | notes
+            )
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
@@ -229,12 +281,22 @@ def write_atlas(
 
     grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples)
     step = view_step(grid.shape)
-    header = {"format": "curvefold-atlas", "version": 1, "units": "model units (radius 1), angles in degrees", **grid.to_dict(), "fields": list(FIELDS)}
+    header = {
+        "format": "curvefold-atlas",
+        "version": 1,
+        "units": "model units (radius 1), angles in degrees",
+        **grid.to_dict(),
+        "fields": list(FIELDS),
+    }
     errors: Counter[str | None] = Counter()
     with output_folder(out) as tmp:
         with (
             _progress_bar(show_progress, "atlas", grid.size) as progress,
-            closing(sweep(grid, workers=workers, scheduler=scheduler, progress=progress, sketch_step=step)) as results,
+            closing(
+                sweep(
+                    grid, workers=workers, scheduler=scheduler, progress=progress, sketch_step=step
+                )
+            ) as results,
             csv_records(tmp / "atlas.csv", FIELDS) as csv_row,
             json_records(tmp / "atlas.json", header, FIELDS) as json_row,
         ):
@@ -249,17 +311,36 @@ def write_atlas(
 
             shown = Atlas.from_results(grid.every(step), thin(written(), step))
         rows, cols = grid.shape
-        note = None if step == 1 else f"one in {step} values of a and of p_xy shown; all {rows} × {cols} designs are in atlas.csv and atlas.json"
-        files = [Path(p).name for p in save_figure(atlas_figure(shown, note=note), tmp / "atlas")] if can_draw() else []
+        note = (
+            None
+            if step == 1
+            else (
+                f"one in {step} values of a and of p_xy shown; all {rows} × {cols} designs are in "
+                "atlas.csv and atlas.json"
+            )
+        )
+        files = (
+            [Path(p).name for p in save_figure(atlas_figure(shown, note=note), tmp / "atlas")]
+            if can_draw()
+            else []
+        )
     valid = errors.pop(None, 0)
     left_out = pictures_left_out(["atlas.png", "atlas.svg"])
-    return ({"shape": [rows, cols], "designs": grid.size, "valid": valid, "invalid": dict(errors), "files": ["atlas.csv", "atlas.json", *files]}
-            | ({} if left_out is None else {"notes": [left_out]}))
+    return {
+        "shape": [rows, cols],
+        "designs": grid.size,
+        "valid": valid,
+        "invalid": dict(errors),
+        "files": ["atlas.csv", "atlas.json", *files],
+    } | ({} if left_out is None else {"notes": [left_out]})
 
 
 @contextmanager
-def _progress_bar(show: bool, label: str, total: int) -> Iterator[Callable[[int, int], None] | None]:
-    """``progress(done, total)`` drawing a bar on stderr (when it is a terminal) while the block runs, or None."""
+def _progress_bar(
+    show: bool, label: str, total: int
+) -> Iterator[Callable[[int, int], None] | None]:
+    """``progress(done, total)`` drawing a bar on stderr (when it is a terminal) while the block
+    runs, or None."""
     bar = _bar(show)
     if bar is None:
         yield None

@@ -1,4 +1,5 @@
-"""The files of an output folder, each a job ``folder -> list of paths`` (see :mod:`curvefold.app._outputs`).
+"""The files of an output folder, each a job ``folder -> list of paths`` (see
+:mod:`curvefold.app._outputs`).
 
 The requested formats are grouped by family (:data:`curvefold.io._formats.FAMILIES`), in
 registry order; each family is one job: the crease patterns and the 3D models by their
@@ -54,7 +55,8 @@ __all__ = [
     "PICTURES_EXTRA",
 ]
 
-#: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease patterns).
+#: Unit of the FOLD and 3D files: the model unit (the fabrication scale applies to the crease
+#: patterns).
 MODEL_UNIT = "unit"
 #: The package the report's pictures are drawn with, and the extra that brings it.
 PICTURES_NEED, PICTURES_EXTRA = "matplotlib", "plot"
@@ -99,7 +101,9 @@ def _metadata(built: Built) -> dict:
     return meta
 
 
-def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = None) -> list[tuple[str, Job]]:
+def jobs(
+    built: Built, formats: Collection[str], *, fold_angle: float | None = None
+) -> list[tuple[str, Job]]:
     """The jobs that write the requested formats of a built design and its pictures (when
     :data:`PICTURES_NEED` is installed: see :func:`pictures_left_out`): the drawings first
     (:data:`DRAWN`: they need nothing :func:`prepare` computes), then the files, longest first.
@@ -126,7 +130,8 @@ def jobs(built: Built, formats: Collection[str], *, fold_angle: float | None = N
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
         if "motion" in families:
-            for module in DRAWING_MODULES:  # both drawings need them: imported once, here, before they fork
+            # both drawings need them: imported once, here, before they fork
+            for module in DRAWING_MODULES:
                 importlib.import_module(module)
     return sorted(out, key=lambda job: _ORDER.index(job[0]))
 
@@ -137,9 +142,15 @@ def _timed(job: Job, folder: Path) -> tuple[list, float]:
     return files, time.perf_counter() - started
 
 
-def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None = None,
-             prepare: Callable[[], None] | None = None) -> JobRun:
-    """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most 2).
+def run_jobs(
+    jobs: list[tuple[str, Job]],
+    folder: Path,
+    *,
+    workers: int | None = None,
+    prepare: Callable[[], None] | None = None,
+) -> JobRun:
+    """Start the jobs into ``folder`` on up to ``workers`` processes (default: one per CPU, at most
+    2).
 
     ``prepare``, if given, runs in this process once, before the first job that is not one
     of :data:`DRAWN` starts (those start at once, and the others inherit what it computed).
@@ -166,9 +177,12 @@ def run_jobs(jobs: list[tuple[str, Job]], folder: Path, *, workers: int | None =
 
 
 class _InTurn:
-    """The jobs one after the other in this process, as they are iterated (where there is no fork)."""
+    """The jobs one after the other in this process, as they are iterated (where there is no
+    fork)."""
 
-    def __init__(self, jobs: list[tuple[str, Job]], folder: Path, prepare: Callable[[], None] | None) -> None:
+    def __init__(
+        self, jobs: list[tuple[str, Job]], folder: Path, prepare: Callable[[], None] | None
+    ) -> None:
         self._prepare = prepare
         self._results = self._run(jobs, folder)
 
@@ -203,20 +217,27 @@ class _Running:
     thread sends anything and every process can be killed.
     """
 
-    def __init__(self, jobs: list[tuple[str, Job]], folder: Path, workers: int, prepare: Callable[[], None] | None) -> None:
+    def __init__(
+        self,
+        jobs: list[tuple[str, Job]],
+        folder: Path,
+        workers: int,
+        prepare: Callable[[], None] | None,
+    ) -> None:
         self._context = multiprocessing.get_context("fork")
         self._folder, self._workers, self._prepare = folder, workers, prepare
         numbered = list(enumerate(jobs))
         self._waiting = [(i, job) for i, job in numbered if job[0] not in OWN_JOBS]
-        self._own = [(i, job) for i, job in numbered if job[0] in OWN_JOBS]  # run here while the others run
+        # run here while the others run
+        self._own = [(i, job) for i, job in numbered if job[0] in OWN_JOBS]
         self._running: dict[Any, tuple[int, Any]] = {}  # reader -> (index, process)
         self._results: dict[int, tuple[str, Any]] = {}
         self._labels = [label for label, _ in jobs]
         self._fill()
 
     def refill(self) -> None:
-        """Run ``prepare`` now if it has not run, keep the outcomes of the jobs that have ended and start
-        waiting jobs in their places, without waiting for any."""
+        """Run ``prepare`` now if it has not run, keep the outcomes of the jobs that have ended
+        and start waiting jobs in their places, without waiting for any."""
         if self._prepare is not None:
             prepare, self._prepare = self._prepare, None
             prepare()
@@ -233,10 +254,14 @@ class _Running:
             # a child with the parent's handlers); the child sets its own, then takes them.
             held = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING_SIGNALS)
             try:
-                process = self._context.Process(target=_job_process, args=(job, self._folder, writer, held, label in DRAWN),
-                                                daemon=True)
+                process = self._context.Process(
+                    target=_job_process,
+                    args=(job, self._folder, writer, held, label in DRAWN),
+                    daemon=True,
+                )
                 process.start()
-                self._running[reader] = (index, process)  # known to close() before a signal can come
+                # known to close() before a signal can come
+                self._running[reader] = (index, process)
             finally:
                 signal.pthread_sigmask(signal.SIG_SETMASK, held)
                 writer.close()
@@ -252,7 +277,13 @@ class _Running:
                 outcome = reader.recv()
             except EOFError:  # it died without a word
                 process.join()
-                outcome = ("error", InternalError(f"the job writing the {self._labels[index]} ended with exit code {process.exitcode}"))
+                outcome = (
+                    "error",
+                    InternalError(
+                        f"the job writing the {self._labels[index]} "
+                        f"ended with exit code {process.exitcode}"
+                    ),
+                )
             reader.close()
             process.join()
             self._results[index] = outcome
@@ -309,7 +340,12 @@ def _job_process(job: Job, folder: Path, conn, mask: set, drawn: bool) -> None:
     try:
         conn.send(outcome)
     except Exception as err:  # an exception that does not pickle
-        conn.send(("error", InternalError(f"{type(outcome[1]).__name__}: {outcome[1]} (not picklable: {err})")))
+        conn.send(
+            (
+                "error",
+                InternalError(f"{type(outcome[1]).__name__}: {outcome[1]} (not picklable: {err})"),
+            )
+        )
     conn.close()
 
 
@@ -329,14 +365,19 @@ def _fold(
 
     structure, meta, keep = built.structure, _metadata(built), built.sampling.keep
     angles = exported_fold_angles(built) if fold_angle is None else design_motion(built, fold_angle)
-    arrays = fold_arrays(structure, fold_angles=angles, keep=keep)  # the structure's file (write_structure_fold) and its sheets
+    # the structure's file (write_structure_fold) and its sheets
+    arrays = fold_arrays(structure, fold_angles=angles, keep=keep)
     output = FoldOutput(unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())
     model = fold_model(structure, arrays, output)
     files = [write_model(folder / f"{built.design.kind}.fold", model, title=meta["title"])]
     (folder / "sheets").mkdir()
     for sheet in arrays.sheets:
         stem = sheet.label.replace(" · ", "-").replace(" ", "-")
-        files.append(write_sheet_fold(folder / "sheets" / f"{stem}.fold", sheet.mesh, MODEL_UNIT, title=sheet.label))
+        files.append(
+            write_sheet_fold(
+                folder / "sheets" / f"{stem}.fold", sheet.mesh, MODEL_UNIT, title=sheet.label
+            )
+        )
     return files
 
 
@@ -345,7 +386,14 @@ def _pattern(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> lis
     (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
 
-    return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
+    return list(
+        write_layout(
+            folder / f"{built.design.kind}-pattern",
+            built.layout,
+            formats=names,
+            rulings=built.design.output.rulings,
+        )
+    )
 
 
 def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
@@ -360,19 +408,32 @@ def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
 def _model(
     built: BuiltStructure, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
 ) -> list:
-    """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the folding motion, and at the design
-    angle of a design under load its deflected shape and first modes (:meth:`curvefold.app._loading.Loaded.morph_targets`)."""
+    """The 3D files, folded at ``fold_angle`` (default the design angle); the GLB holds the
+    folding motion, and at the design angle of a design under load its deflected shape and
+    first modes (:meth:`curvefold.app._loading.Loaded.morph_targets`)."""
     from ..io._models import write_3d
     from ..io._output import ModelOutput
 
     loaded = built.mechanics if fold_angle is None else None  # the mechanics is the design state's
     morphs = None if loaded is None else loaded.morph_targets(built.structure, built.sampling.keep)
-    output = ModelOutput(unit=MODEL_UNIT, metadata=_metadata(built), keep=built.sampling.keep,
-                         print_unit=built.design.output.units,
-                         pattern=built.layout if "3dm" in names else None, morph_targets=morphs)
-    return list(write_3d(folder / built.design.kind, built.structure, design_motion(built), output,
-                         formats=names,
-                         fold_angle=fold_angle))
+    output = ModelOutput(
+        unit=MODEL_UNIT,
+        metadata=_metadata(built),
+        keep=built.sampling.keep,
+        print_unit=built.design.output.units,
+        pattern=built.layout if "3dm" in names else None,
+        morph_targets=morphs,
+    )
+    return list(
+        write_3d(
+            folder / built.design.kind,
+            built.structure,
+            design_motion(built),
+            output,
+            formats=names,
+            fold_angle=fold_angle,
+        )
+    )
 
 
 def _motion(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
@@ -392,10 +453,23 @@ def _single_fold_fold(
     from ..io._single_fold import single_fold_model
 
     fold, meta = built.single_fold, _metadata(built)
-    model = single_fold_model(fold, design_motion(built, fold_angle), unit=MODEL_UNIT, metadata=meta, design=built.design.to_dict())
+    model = single_fold_model(
+        fold,
+        design_motion(built, fold_angle),
+        unit=MODEL_UNIT,
+        metadata=meta,
+        design=built.design.to_dict(),
+    )
     (folder / "sheets").mkdir()
-    return [write_model(FORMATS[names[0]].path(folder / built.design.kind), model, title=meta["title"]),
-            write_sheet_fold(folder / "sheets" / "single-fold.fold", fold.pattern_sheet().mesh, MODEL_UNIT, title="single fold")]
+    return [
+        write_model(FORMATS[names[0]].path(folder / built.design.kind), model, title=meta["title"]),
+        write_sheet_fold(
+            folder / "sheets" / "single-fold.fold",
+            fold.pattern_sheet().mesh,
+            MODEL_UNIT,
+            title="single fold",
+        ),
+    ]
 
 
 def _single_fold_pattern(built: BuiltCrease, names: tuple[str, ...], folder: Path) -> list:
@@ -403,17 +477,33 @@ def _single_fold_pattern(built: BuiltCrease, names: tuple[str, ...], folder: Pat
     (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
 
-    return list(write_layout(folder / f"{built.design.kind}-pattern", built.layout, formats=names, rulings=built.design.output.rulings))
+    return list(
+        write_layout(
+            folder / f"{built.design.kind}-pattern",
+            built.layout,
+            formats=names,
+            rulings=built.design.output.rulings,
+        )
+    )
 
 
 def _single_fold_model(
     built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
 ) -> list:
-    """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the folding motion."""
+    """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the
+    folding motion."""
     from ..io._single_fold import write_single_fold_3d
 
-    return list(write_single_fold_3d(folder / built.design.kind, built.single_fold, design_motion(built, fold_angle), formats=names,
-                                     unit=MODEL_UNIT, metadata=_metadata(built)))
+    return list(
+        write_single_fold_3d(
+            folder / built.design.kind,
+            built.single_fold,
+            design_motion(built, fold_angle),
+            formats=names,
+            unit=MODEL_UNIT,
+            metadata=_metadata(built),
+        )
+    )
 
 
 #: Progress label and job of every family of formats a single curved fold writes.
@@ -432,9 +522,16 @@ _FAMILY_JOBS = {
 }
 #: Families whose files hold a folded state (the others are flat or show the whole motion).
 _FOLDED = ("fold", "model")
-#: What the two drawings (the pictures and the GIF) import: Pillow's core, its drawing, fonts and image
-#: files, and the drawing modules of curvefold (about 0.03 CPU-s that each would pay after it forks).
-DRAWING_MODULES = ("PIL.Image", "PIL.ImageDraw", "PIL.ImageFont", "PIL.ImageFile", "curvefold.figures._motion")
+#: What the two drawings (the pictures and the GIF) import: Pillow's core, its drawing, fonts and
+#: image files, and the drawing modules of curvefold (about 0.03 CPU-s that each would pay after it
+#: forks).
+DRAWING_MODULES = (
+    "PIL.Image",
+    "PIL.ImageDraw",
+    "PIL.ImageFont",
+    "PIL.ImageFile",
+    "curvefold.figures._motion",
+)
 #: The jobs that draw the structure and need nothing :func:`prepare` computes: they start first.
 DRAWN = ("pictures", "folding GIF")
 #: How much less the drawings' processes get of a shared CPU than the parent (``nice``): on
@@ -454,14 +551,19 @@ _ORDER = DRAWN + ("crease patterns", "3D models", "FOLD files", "assembly guide"
 
 def _figures(built: Built) -> dict[str, Callable]:
     """The report's pictures by name, each a function that draws it (nothing is drawn here): a PIL
-    image drawn without matplotlib, but for the single fold's and the pictures of a design under load."""
+    image drawn without matplotlib, but for the single fold's and the pictures of a design under
+    load."""
     from ..figures import _pictures as pictures
 
     if isinstance(built, BuiltCrease):
         from ..figures import _views as views
 
         fold = built.single_fold
-        return {"crease": partial(views.plot_crease, built.crease, width=(fold.width_left, fold.width_right))}
+        return {
+            "crease": partial(
+                views.plot_crease, built.crease, width=(fold.width_left, fold.width_right)
+            )
+        }
     if not isinstance(built, BuiltStructure):
         return {}
     structure = built.structure
@@ -471,18 +573,27 @@ def _figures(built: Built) -> dict[str, Callable]:
         "width-proportion": partial(pictures.width_proportion_picture, lattice),
     }
     if isinstance(built, BuiltVault):
-        figures |= {"vault": partial(pictures.vault_picture, built.vault), "sections": partial(pictures.sections_picture, built.vault),
-                    "folding-motion": partial(pictures.motion_strip_picture, built.vault)}
+        figures |= {
+            "vault": partial(pictures.vault_picture, built.vault),
+            "sections": partial(pictures.sections_picture, built.vault),
+            "folding-motion": partial(pictures.motion_strip_picture, built.vault),
+        }
     else:
         figures[built.design.kind] = partial(pictures.structure_picture, structure)
     if lattice.rigid:
-        figures["singular-values"] = lambda: pictures.singular_values_picture(certified_mechanism(structure).states)
+        figures["singular-values"] = lambda: pictures.singular_values_picture(
+            certified_mechanism(structure).states
+        )
     loaded = built.mechanics
     if loaded is not None:
         from ..figures import _mechanics as mechanics
 
-        figures |= {"deflection": partial(mechanics.plot_deflection, loaded.result, magnification=loaded.deflection_scale),
-                    "modes": partial(mechanics.plot_modes, loaded.result, amplitude=loaded.mode_amplitude)}
+        figures |= {
+            "deflection": partial(
+                mechanics.plot_deflection, loaded.result, magnification=loaded.deflection_scale
+            ),
+            "modes": partial(mechanics.plot_modes, loaded.result, amplitude=loaded.mode_amplitude),
+        }
     return figures
 
 
@@ -490,7 +601,11 @@ def _pictures(built: Built, folder: Path) -> list:
     """Plots for the report (PNG)."""
     from ..figures._pictures import write_picture
 
-    return [path for name, draw in _figures(built).items() for path in write_picture(draw(), folder / name)]
+    return [
+        path
+        for name, draw in _figures(built).items()
+        for path in write_picture(draw(), folder / name)
+    ]
 
 
 def picture_files(built: Built) -> list[str]:
@@ -509,9 +624,15 @@ def pictures_left_out(files: Sequence[str]) -> str | None:
 
     Examples
     --------
-    >>> pictures_left_out(["atlas.png"]) in (None, "pictures left out: atlas.png (they need matplotlib: pip install 'curvefold[plot]')")
+    >>> pictures_left_out(["atlas.png"]) in (
+    ...     None,
+    ...     "pictures left out: atlas.png (they need matplotlib: pip install 'curvefold[plot]')",
+    ... )
     True
     """
     if can_draw():
         return None
-    return f"pictures left out: {', '.join(files)} (they need {PICTURES_NEED}: pip install 'curvefold[{PICTURES_EXTRA}]')"
+    return (
+        f"pictures left out: {', '.join(files)} (they need {PICTURES_NEED}: pip install "
+        f"'curvefold[{PICTURES_EXTRA}]')"
+    )

@@ -82,7 +82,8 @@ class Reservations:
         self._changed: asyncio.Condition | None = None
 
     async def hold(self, amount: float, timeout: float) -> None:
-        """Reserve ``amount`` bytes; :class:`Stopped` (``"time"``) after ``timeout`` seconds of waiting."""
+        """Reserve ``amount`` bytes; :class:`Stopped` (``"time"``) after ``timeout`` seconds of
+        waiting."""
         if self._changed is None:
             self._changed = asyncio.Condition()
         async with self._changed:
@@ -90,7 +91,9 @@ class Reservations:
             try:
                 await asyncio.wait_for(self._changed.wait_for(fits), timeout)
             except TimeoutError:
-                raise Stopped("time", f"waited {timeout:.0f} s for memory that the running jobs hold") from None
+                raise Stopped(
+                    "time", f"waited {timeout:.0f} s for memory that the running jobs hold"
+                ) from None
             self.held += amount
 
     async def release(self, amount: float) -> None:
@@ -113,12 +116,14 @@ class _Worker:
         return self.conn.recv()
 
     def kill(self, reason: str) -> None:
-        """Kill the process and any it started, now (safe in a signal handler: a flag and ``killpg``)."""
+        """Kill the process and any it started, now (safe in a signal handler: a flag and
+        ``killpg``)."""
         self.stop = self.stop or reason
         pid = self.process.pid
         if pid is not None:
             try:
-                os.killpg(pid, signal.SIGKILL)  # its own process group: the processes a job forked too
+                # its own process group: the processes a job forked too
+                os.killpg(pid, signal.SIGKILL)
             except (ProcessLookupError, PermissionError, AttributeError):
                 try:
                     os.kill(pid, signal.SIGKILL)
@@ -131,7 +136,8 @@ class _Worker:
 
 
 class Pool:
-    """A fixed number of worker processes for jobs with a time limit, a memory limit and cancellation.
+    """A fixed number of worker processes for jobs with a time limit, a memory limit and
+    cancellation.
 
     Parameters
     ----------
@@ -150,17 +156,35 @@ class Pool:
         A worker that a job leaves with more resident bytes is replaced by a fresh one.
     """
 
-    def __init__(self, size: int, *, name: str, scratch: str | os.PathLike, preload: Sequence[str] = (), niceness: int = 0,
-                 recycle_above: int = 512 << 20) -> None:
-        self.name, self.scratch, self.niceness, self.recycle_above = name, str(scratch), niceness, recycle_above
+    def __init__(
+        self,
+        size: int,
+        *,
+        name: str,
+        scratch: str | os.PathLike,
+        preload: Sequence[str] = (),
+        niceness: int = 0,
+        recycle_above: int = 512 << 20,
+    ) -> None:
+        self.name, self.scratch, self.niceness, self.recycle_above = (
+            name,
+            str(scratch),
+            niceness,
+            recycle_above,
+        )
         self._context = _context(preload)
         self._closing = False
         self._lock = threading.Lock()
         self._threads = ThreadPoolExecutor(max_workers=size, thread_name_prefix=f"curvefold-{name}")
         self._all: list[_Worker] = [self._start() for _ in range(size)]
         self._idle: asyncio.Queue | None = None  # made in the event loop that runs the jobs
-        self.counts = {"done": 0, "refused": 0, "bug": 0, **{reason: 0 for reason in ("time", "memory", "cancelled", "closed", "died")},
-                       "recycled": 0}
+        self.counts = {
+            "done": 0,
+            "refused": 0,
+            "bug": 0,
+            **{reason: 0 for reason in ("time", "memory", "cancelled", "closed", "died")},
+            "recycled": 0,
+        }
 
     @property
     def size(self) -> int:
@@ -178,13 +202,24 @@ class Pool:
 
     def _start(self) -> _Worker:
         mine, theirs = self._context.Pipe()
-        process = self._context.Process(target=_serve, args=(theirs, self.scratch, self.niceness), daemon=True, name=f"curvefold-{self.name}")
+        process = self._context.Process(
+            target=_serve,
+            args=(theirs, self.scratch, self.niceness),
+            daemon=True,
+            name=f"curvefold-{self.name}",
+        )
         process.start()
         theirs.close()
         return _Worker(process, mine)
 
-    async def run(self, fn: Callable, *args: Any, timeout: float, memory_limit: float | None = None,
-                  cancelled: Callable[[], Awaitable[Any]] | None = None) -> Any:
+    async def run(
+        self,
+        fn: Callable,
+        *args: Any,
+        timeout: float,
+        memory_limit: float | None = None,
+        cancelled: Callable[[], Awaitable[Any]] | None = None,
+    ) -> Any:
         """Run ``fn(*args)`` in a worker and return its result.
 
         Parameters
@@ -217,13 +252,19 @@ class Pool:
         try:
             worker = await asyncio.wait_for(self._idle.get(), timeout)
         except TimeoutError:
-            raise Stopped("time", f"every {self.name} worker stayed busy for the {timeout:g} s time limit") from None
+            raise Stopped(
+                "time", f"every {self.name} worker stayed busy for the {timeout:g} s time limit"
+            ) from None
         watch = asyncio.ensure_future(cancelled()) if cancelled is not None else None
         answer = loop.run_in_executor(self._threads, worker.call, fn, args)
         try:
             while not answer.done():
                 waiting = [answer, watch] if watch is not None else [answer]
-                await asyncio.wait(waiting, timeout=max(0.0, min(WATCH_PERIOD, deadline - loop.time())), return_when=asyncio.FIRST_COMPLETED)
+                await asyncio.wait(
+                    waiting,
+                    timeout=max(0.0, min(WATCH_PERIOD, deadline - loop.time())),
+                    return_when=asyncio.FIRST_COMPLETED,
+                )
                 if answer.done():
                     break
                 if self._closing:
@@ -245,7 +286,8 @@ class Pool:
     def _result(self, worker: _Worker, answer, timeout: float, memory_limit: float | None) -> Any:
         error = answer.exception()
         if worker.stop is None and error is not None:
-            if not isinstance(error, (EOFError, OSError)):  # the job could not be sent (not picklable): ours, a bug
+            # the job could not be sent (not picklable): ours, a bug
+            if not isinstance(error, (EOFError, OSError)):
                 worker.kill("bug")
                 self.counts["bug"] += 1
                 raise JobError(" ".join(f"{type(error).__name__}: {error}".split()), refused=False)
@@ -253,13 +295,17 @@ class Pool:
         if worker.stop is not None:
             self.counts[worker.stop] += 1
             code = worker.process.exitcode
-            raise Stopped(worker.stop, {
-                "time": f"took longer than the time limit of {timeout:g} s",
-                "memory": f"grew past its memory limit of {(memory_limit or 0) / 2**20:.0f} MiB",
-                "cancelled": "cancelled: the client went away",
-                "closed": "the designer is stopping",
-                "died": f"its worker process ended by itself (exit code {code})",
-            }[worker.stop])
+            raise Stopped(
+                worker.stop,
+                {
+                    "time": f"took longer than the time limit of {timeout:g} s",
+                    "memory": f"grew past its memory limit of {(memory_limit or 0) / 2**20:.0f} "
+                    "MiB",
+                    "cancelled": "cancelled: the client went away",
+                    "closed": "the designer is stopping",
+                    "died": f"its worker process ended by itself (exit code {code})",
+                }[worker.stop],
+            )
         kind, *rest = answer.result()
         if kind == "ok":
             self.counts["done"] += 1
@@ -269,7 +315,11 @@ class Pool:
 
     async def _give_back(self, worker: _Worker) -> None:
         """Put the worker back, or a fresh one in its place if it was killed or grew too large."""
-        if worker.stop is None and not self._closing and resident_bytes(worker.process.pid) > self.recycle_above:
+        if (
+            worker.stop is None
+            and not self._closing
+            and resident_bytes(worker.process.pid) > self.recycle_above
+        ):
             worker.kill("recycled")
             self.counts["recycled"] += 1
         idle = self._idle
@@ -290,7 +340,8 @@ class Pool:
         idle.put_nowait(fresh)
 
     def close(self) -> None:
-        """Kill every worker now (callable from a signal handler); running jobs raise :class:`Stopped`."""
+        """Kill every worker now (callable from a signal handler); running jobs raise
+        :class:`Stopped`."""
         self._closing = True
         for worker in list(self._all):
             worker.kill("closed")
@@ -304,7 +355,8 @@ class Pool:
 
 
 def _context(preload: Sequence[str]):
-    """The fork server's context (a spawning one where there is none), with ``preload`` set before it starts."""
+    """The fork server's context (a spawning one where there is none), with ``preload`` set
+    before it starts."""
     if "forkserver" not in multiprocessing.get_all_start_methods():
         return multiprocessing.get_context("spawn")
     context = multiprocessing.get_context("forkserver")
@@ -323,8 +375,8 @@ def _die_with_parent() -> None:
 
 
 def _serve(conn, scratch: str, niceness: int) -> None:
-    """A worker's loop: run each job received and send back ``("ok", result)``, ``("refused", message, parameter)``
-    or ``("bug", message, None)``, until the pipe closes."""
+    """A worker's loop: run each job received and send back ``("ok", result)``, ``("refused",
+    message, parameter)`` or ``("bug", message, None)``, until the pipe closes."""
     _die_with_parent()
     if hasattr(os, "setpgrp"):
         os.setpgrp()  # a group of its own, which a kill ends whole
@@ -349,7 +401,12 @@ def _serve(conn, scratch: str, niceness: int) -> None:
         except CurvefoldError as err:
             answer = ("refused", " ".join(str(err).split()), err.parameter)
         except MemoryError:
-            answer = ("refused", "out of memory; lower samples, the number of tubes, cells or panels, or the formats", None)
+            answer = (
+                "refused",
+                "out of memory; lower samples, the number of tubes, cells or "
+                "panels, or the formats",
+                None,
+            )
         except Exception as err:  # a bug: one line for the caller
             answer = ("bug", " ".join(f"{type(err).__name__}: {err}".split()), None)
         conn.send(answer)

@@ -15,7 +15,13 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
         "_views": ["plot_vault", "plot_motion_strip", "plot_structure", "plot_crease"],
-        "_plots": ["plot_regression_domain", "plot_width_proportion", "plot_sections", "plot_singular_values", "save_figure"],
+        "_plots": [
+            "plot_regression_domain",
+            "plot_width_proportion",
+            "plot_sections",
+            "plot_singular_values",
+            "save_figure",
+        ],
         "_scene": ["View", "Scene", "state_scene", "vault_scene"],
         "_motion": ["motion_frames", "write_motion_gif"],
         "_atlas": ["atlas_figure"],

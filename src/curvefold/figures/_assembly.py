@@ -32,12 +32,20 @@ from ..io._labels import seam_name
 from ..io._layout import Layout
 from ..io._legend import check_layout
 from ..io._pattern import draw_footer
-from ..io._planar import bounding_box
 from ..io._pdf import PdfDocument, PdfPage, advance_units
+from ..io._planar import bounding_box
 from ..io._tables import COLOURS
 from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, ground_polygon, render_strips
 
-__all__ = ["HIGHLIGHT_RGB", "SheetToCut", "Seam", "Step", "AssemblyPlan", "assembly_plan", "write_assembly"]
+__all__ = [
+    "HIGHLIGHT_RGB",
+    "SheetToCut",
+    "Seam",
+    "Step",
+    "AssemblyPlan",
+    "assembly_plan",
+    "write_assembly",
+]
 
 #: Base colour of the tube a step adds, RGB in [0, 1].
 HIGHLIGHT_RGB = np.array([0.96, 0.72, 0.38])
@@ -49,7 +57,8 @@ _LAYERS = ("guide - text", "guide - pictures", LEGEND_LAYER)
 
 @dataclass(frozen=True)
 class SheetToCut:
-    """One sheet: its id (printed on it), its pattern page (1-based) and its seams (id, whether it has the tabs)."""
+    """One sheet: its id (printed on it), its pattern page (1-based) and its seams (id, whether
+    it has the tabs)."""
 
     label: str
     page: int
@@ -58,7 +67,8 @@ class SheetToCut:
 
 @dataclass(frozen=True)
 class Seam:
-    """A seam: the sheet with its glue tabs and the sheet they glue to (the same one for a seam closing on itself)."""
+    """A seam: the sheet with its glue tabs and the sheet they glue to (the same one for a seam
+    closing on itself)."""
 
     id: int
     tabs: str
@@ -85,22 +95,34 @@ class AssemblyPlan:
 
 
 def _crease_words(tube: int, crease: int) -> str:
-    where = {1: "the crease of its sheet A", 3: "the crease of its sheet B", 2: "its seam 2", 4: "its seam 4"}[crease]
+    where = {
+        1: "the crease of its sheet A",
+        3: "the crease of its sheet B",
+        2: "its seam 2",
+        4: "its seam 4",
+    }[crease]
     return f"tube {tube + 1}'s crease {crease} ({where})"
 
 
 def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
-    """The sheets, seams and steps of a structure laid out as ``layout`` (:func:`~curvefold.io.layout_pattern`).
+    """The sheets, seams and steps of a structure laid out as ``layout``
+    (:func:`~curvefold.io.layout_pattern`).
 
     Seams and tabs are read from the layout (its seam labels and glue areas), tubes and the
     creases they share from the structure (:func:`~curvefold.geometry.bonds`).
     """
     check_structure(structure)
     check_layout(layout)
-    placed = sorted(((s, n) for n, page in enumerate(layout.pages, start=1) for s in page.sheets), key=lambda item: item[0].index)
+    placed = sorted(
+        ((s, n) for n, page in enumerate(layout.pages, start=1) for s in page.sheets),
+        key=lambda item: item[0].index,
+    )
     tube_count = len(structure.cell_curves)
     if len(placed) != 2 * tube_count:
-        raise ValueError(f"the layout holds {len(placed)} sheets, the structure {2 * tube_count}: lay out this structure")
+        raise ValueError(
+            f"the layout holds {len(placed)} sheets, the structure "
+            f"{2 * tube_count}: lay out this structure"
+        )
     carriers: dict[int, list[str]] = {}
     tabbed: dict[int, str] = {}
     sheets = []
@@ -125,21 +147,32 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
         lines = [f"Score the creases of {a} and {b} and fold each sheet along its crease."]
         for seam in seams:
             if seam.tabs in (a, b):
-                onto = f"the edge {seam_name(seam.id)} of {seam.onto}" if seam.onto != seam.tabs else f"its own edge {seam_name(seam.id)}"
-                lines.append(f"Glue seam {seam_name(seam.id)}: fold the glue tabs of {seam.tabs} under and glue them to {onto}.")
+                onto = (
+                    f"the edge {seam_name(seam.id)} of {seam.onto}"
+                    if seam.onto != seam.tabs
+                    else f"its own edge {seam_name(seam.id)}"
+                )
+                lines.append(
+                    f"Glue seam {seam_name(seam.id)}: fold the glue tabs of {seam.tabs} "
+                    f"under and glue them to {onto}."
+                )
         if len(lines) > 2:
             lines.append("Let the first seam set before closing the tube with the second.")
         for bond in by_tube.get(tube, []):
             others = [c for c in bond.creases if c[0] != tube]
             here = [c for c in bond.creases if c[0] == tube]
             if others and here:
-                lines.append(f"Glue {_crease_words(*here[0])} along {', '.join(_crease_words(*c) for c in others)}.")
+                lines.append(
+                    f"Glue {_crease_words(*here[0])} along "
+                    f"{', '.join(_crease_words(*c) for c in others)}."
+                )
         steps.append(Step(tube + 1, tube, f"Step {tube + 1}: tube {tube + 1}", tuple(lines)))
     return AssemblyPlan(tuple(sheets), tuple(seams), tuple(steps))
 
 
 def _wrap(text: str, size: float, width: float) -> list[str]:
-    """``text`` broken at spaces into lines no wider than ``width`` (mm) in Helvetica of em height ``size``."""
+    """``text`` broken at spaces into lines no wider than ``width`` (mm) in Helvetica of em
+    height ``size``."""
     lines, line, units = [], "", 0  # the line so far and its advance (thousandths of the em)
     space = advance_units(" ")
     for word in text.split():
@@ -164,7 +197,8 @@ class _Pages:
         self.y = -np.inf
 
     def room(self, height: float) -> PdfPage:
-        """The page to draw the next ``height`` mm on, a new one if this one is full; the cursor moves down."""
+        """The page to draw the next ``height`` mm on, a new one if this one is full; the cursor
+        moves down."""
         if not self.pages or self.y - height < self.bottom:
             self.pages.append(self.doc.page(*self.layout.page_size))
             self.y = self.top
@@ -174,40 +208,81 @@ class _Pages:
     def text(self, words: str, size: float = _TEXT, indent: float = 0.0, gap: float = 1.45) -> None:
         for line in _wrap(words, size, self.width - indent):
             page = self.room(gap * size)
-            page.text(line, self.left + indent, self.y + 0.3 * size, size, _INK, anchor="start", layer=_LAYERS[0])
+            page.text(
+                line,
+                self.left + indent,
+                self.y + 0.3 * size,
+                size,
+                _INK,
+                anchor="start",
+                layer=_LAYERS[0],
+            )
 
     def footers(self) -> None:
         for n, page in enumerate(self.pages, start=1):
-            draw_footer(page, self.layout, 0, (), 0.25, page_text=f"assembly guide, page {n} of {len(self.pages)}")
+            draw_footer(
+                page,
+                self.layout,
+                0,
+                (),
+                0.25,
+                page_text=f"assembly guide, page {n} of {len(self.pages)}",
+            )
 
 
 def _facing_the_last(V: np.ndarray, cells: np.ndarray) -> View:
-    """The figures' view, or the same from the other side, whichever sees the last tube in front of the first."""
+    """The figures' view, or the same from the other side, whichever sees the last tube in front
+    of the first."""
     step = V[cells[-1]].mean(axis=(0, 1)) - V[cells[0]].mean(axis=(0, 1))
     view = View()
-    return view if float(step @ view.basis[2]) >= 0 else View(azim=view.azim + 180.0, elev=view.elev)
+    return (
+        view if float(step @ view.basis[2]) >= 0 else View(azim=view.azim + 180.0, elev=view.elev)
+    )
 
 
 def _pictures(structure: Structure, steps: int, view: View | None):
-    """The scenes of the structure built so far after each step (design angle, the new tube picked out), and their common box."""
+    """The scenes of the structure built so far after each step (design angle, the new tube
+    picked out), and their common box."""
     state = structure.state()
-    V, cells, kinds = drawable(structure, state.vertices, segments=32, max_cells=len(structure.cell_curves))
+    V, cells, kinds = drawable(
+        structure, state.vertices, segments=32, max_cells=len(structure.cell_curves)
+    )
     view = _facing_the_last(V, cells) if view is None else view
     lo, hi = bounding_box(V)
-    standing = abs(float(lo[2])) <= 1e-6 * float(np.max(hi - lo))  # a vault's feet on z = 0: draw the ground
+    # a vault's feet on z = 0: draw the ground
+    standing = abs(float(lo[2])) <= 1e-6 * float(np.max(hi - lo))
     ground = ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo))) if standing else None
     scenes = []
     for k in range(1, steps + 1):
         strips = tube_strips(cells[:k])
         rgb = np.tile(STRIP_RGB, (len(strips), 1))
         rgb[-4:] = HIGHLIGHT_RGB
-        scenes.append(render_strips(V, strips, kinds, view, colors=_KIND_COLOURS, crease_width=0.8, strip_rgb=rgb))
-    corners = np.concatenate([view.project(np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]))[0]]
-                             + ([ground] if ground is not None else []))
+        scenes.append(
+            render_strips(
+                V, strips, kinds, view, colors=_KIND_COLOURS, crease_width=0.8, strip_rgb=rgb
+            )
+        )
+    corners = np.concatenate(
+        [
+            view.project(
+                np.array(
+                    [
+                        [x, y, z]
+                        for x in (lo[0], hi[0])
+                        for y in (lo[1], hi[1])
+                        for z in (lo[2], hi[2])
+                    ]
+                )
+            )[0]
+        ]
+        + ([ground] if ground is not None else [])
+    )
     return scenes, ground, np.stack([corners.min(axis=0), corners.max(axis=0)])
 
 
-def _draw_scene(page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[float, float, float, float]) -> None:
+def _draw_scene(
+    page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[float, float, float, float]
+) -> None:
     """A scene fitted, at the scale of ``box``, into ``frame`` = (x, y, width, height) mm."""
     x0, y0, w, h = frame
     size = np.maximum(box[1] - box[0], 1e-12)
@@ -215,30 +290,50 @@ def _draw_scene(page: PdfPage, scene, ground, box: np.ndarray, frame: tuple[floa
     offset = np.array([x0 + 0.5 * (w - s * size[0]), y0 + 0.5 * (h - s * size[1])])
 
     def to_page(points: np.ndarray, sizes: np.ndarray) -> list[np.ndarray]:
-        """Paths given as their points one after the other (N, 2) and the number of points of each, on the page."""
+        """Paths given as their points one after the other (N, 2) and the number of points of
+        each, on the page."""
         ends = np.cumsum(sizes).tolist()
         mapped = offset + (points - box[0]) * s
         return list(map(mapped.__getitem__, map(slice, [0] + ends[:-1], ends)))
 
     pt = 25.4 / 72.0
     if ground is not None:
-        page.paint(to_page(ground, np.array([len(ground)])), [GROUND_COLOR], [GROUND_EDGE], [0.6 * pt], layer=_LAYERS[1])
+        page.paint(
+            to_page(ground, np.array([len(ground)])),
+            [GROUND_COLOR],
+            [GROUND_EDGE],
+            [0.6 * pt],
+            layer=_LAYERS[1],
+        )
     points, sizes = scene.flat
     fills = [f if n > 2 else None for n, f in zip(sizes.tolist(), _hex_codes(scene.fill))]
-    page.paint(to_page(points, sizes), fills, _hex_codes(scene.stroke), (scene.widths * pt).tolist(), layer=_LAYERS[1])
+    page.paint(
+        to_page(points, sizes),
+        fills,
+        _hex_codes(scene.stroke),
+        (scene.widths * pt).tolist(),
+        layer=_LAYERS[1],
+    )
 
 
 def _hex_codes(colours: np.ndarray) -> list[str]:
-    """``"#rrggbb"`` of each RGB(A) colour (C, 3 or 4) in [0, 1] (:func:`~curvefold.figures._scene._hex` of each row, at once)."""
+    """``"#rrggbb"`` of each RGB(A) colour (C, 3 or 4) in [0, 1]
+    (:func:`~curvefold.figures._scene._hex` of each row, at once)."""
     if len(colours) == 0:
         return []
-    channels = np.round(255.0 * np.clip(np.asarray(colours, float)[:, :3], 0.0, 1.0)).astype(np.int64)  # halves to even, as round()
-    unique, which = np.unique(channels @ np.array([1 << 16, 1 << 8, 1]), return_inverse=True)  # 0xrrggbb
-    codes = ["#%06x" % code for code in unique.tolist()]
+    # halves to even, as round()
+    channels = np.round(255.0 * np.clip(np.asarray(colours, float)[:, :3], 0.0, 1.0)).astype(
+        np.int64
+    )
+    # 0xrrggbb
+    unique, which = np.unique(channels @ np.array([1 << 16, 1 << 8, 1]), return_inverse=True)
+    codes = [f"#{code:06x}" for code in unique.tolist()]
     return [codes[k] for k in which.ravel().tolist()]
 
 
-def write_assembly(path: str | os.PathLike, structure: Structure, layout: Layout, *, view: View | None = None) -> Path:
+def write_assembly(
+    path: str | os.PathLike, structure: Structure, layout: Layout, *, view: View | None = None
+) -> Path:
     """Write the assembly guide of a structure laid out as ``layout`` (see the module notes).
 
     Parameters
@@ -259,13 +354,21 @@ def write_assembly(path: str | os.PathLike, structure: Structure, layout: Layout
     plan = assembly_plan(structure, layout)
     doc = PdfDocument(title="assembly guide", layers=_LAYERS)
     pages = _Pages(doc, layout)
-    kind = layout.sheets()[0].label.split(" · ")[0] if " · " in layout.sheets()[0].label else "structure"
+    kind = (
+        layout.sheets()[0].label.split(" · ")[0]
+        if " · " in layout.sheets()[0].label
+        else "structure"
+    )
     pages.text(f"{kind.capitalize()}: assembly guide", _TITLE)
     tubes = len(plan.steps)
-    pages.text(f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets on {len(layout.pages)} crease-pattern "
-               f"page{'s' * (len(layout.pages) != 1)} at 1 model unit = {layout.scale:.4g} mm. Print the pattern at 100 % and check its "
-               "10 mm scale bar (the one below is the same), or send it to the cutter: cut the outlines, score the creases and the "
-               "glue-tab folds. Seams are named S0, S1… on both sheets they join.")
+    pages.text(
+        f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets "
+        f"on {len(layout.pages)} crease-pattern page{'s' * (len(layout.pages) != 1)} at 1 "
+        f"model unit = {layout.scale:.4g} mm. Print the pattern at 100 % and check its 10 mm "
+        "scale bar (the one below is the same), or send it to the cutter: cut the outlines, "
+        "score the creases and the glue-tab folds. Seams are named S0, S1… on both sheets "
+        "they join."
+    )
     pages.text("Sheets to cut", _HEAD, gap=2.0)
     for sheet in plan.sheets:
         seams = ", ".join(f"{seam_name(i)}{' (tabs)' * tabs}" for i, tabs in sheet.seams)

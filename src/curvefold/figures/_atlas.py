@@ -38,7 +38,9 @@ def view_step(shape: tuple[int, int]) -> int:
     return max(1, math.ceil(max(shape) / MAX_VIEWS))
 
 
-def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = None, note: str | None = None) -> Figure:
+def atlas_figure(
+    atlas: Atlas, *, cell_size: float | None = None, view: Any = None, note: str | None = None
+) -> Figure:
     """Small views of every vault: rows = a, columns = p_xy (the paper's Fig. 10).
 
     Each valid design is drawn at its design angle on the ground (strips shaded grey,
@@ -65,7 +67,10 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     view = View() if view is None else view
     rows, cols = atlas.shape
     if max(rows, cols) > MAX_VIEWS:
-        raise InputError(f"atlas_figure draws at most {MAX_VIEWS} × {MAX_VIEWS} views, got a {rows} × {cols} atlas; draw atlas.every({view_step(atlas.shape)})")
+        raise InputError(
+            f"atlas_figure draws at most {MAX_VIEWS} × {MAX_VIEWS} views, got a "
+            f"{rows} × {cols} atlas; draw atlas.every({view_step(atlas.shape)})"
+        )
     size = float(np.clip(24.0 / max(rows, cols), 0.9, 2.2)) if cell_size is None else cell_size
     if not isinstance(size, (int, float)) or not np.isfinite(size) or size <= 0:
         raise InputError(f"cell_size must be a finite number > 0, got {cell_size!r}")
@@ -73,7 +78,9 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     margin_l, margin_r, margin_b, margin_t = 0.45 + 0.02 * font, 0.15, 0.12, 0.25 + 0.04 * font * 2
     fig_w, fig_h = size * cols + margin_l + margin_r, size * rows + margin_b + margin_t
     fig = new_figure(figsize=(fig_w, fig_h), layout=None)
-    ax = fig.add_axes((margin_l / fig_w, margin_b / fig_h, size * cols / fig_w, size * rows / fig_h))
+    ax = fig.add_axes(
+        (margin_l / fig_w, margin_b / fig_h, size * cols / fig_w, size * rows / fig_h)
+    )
     ax.set_xlim(0, cols)
     ax.set_ylim(0, rows)
     ax.set_aspect("equal")
@@ -85,12 +92,26 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
         i, j = divmod(index, cols)
         x0, y0 = float(j), float(rows - 1 - i)  # lower-left corner of the cell; row 0 on top
         if sk is None:
-            ax.text(x0 + 0.5, y0 + 0.5, _short_reason(r), ha="center", va="center", fontsize=font * 0.8, color="#8a8a8a", linespacing=1.1)
+            ax.text(
+                x0 + 0.5,
+                y0 + 0.5,
+                _short_reason(r),
+                ha="center",
+                va="center",
+                fontsize=font * 0.8,
+                color="#8a8a8a",
+                linespacing=1.1,
+            )
             continue
         curves = sk.curves.astype(float)
         lo, hi = curves.reshape(-1, 3).min(axis=0), curves.reshape(-1, 3).max(axis=0)
         ground = ground_polygon(lo, hi, view, pad=0.04 * float(np.max(hi - lo)))
-        scene = replace(render_structure(curves, sk.cells, sk.kinds, view, colors={}, crease_width=0.0, strip_edge=0.25), ground=ground)
+        scene = replace(
+            render_structure(
+                curves, sk.cells, sk.kinds, view, colors={}, crease_width=0.0, strip_edge=0.25
+            ),
+            ground=ground,
+        )
         low, high = scene.box
         c = 0.5 * (low + high)
         ext = np.maximum(high - low, 1e-12)
@@ -105,31 +126,91 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
             xy, _ = view.project(_extend(line, 0.12))
             lines.append(xy * scale + offset)
             line_colors.append(color)
-        ax.text(x0 + 0.04, y0 + 0.96, f"{r['tubes']}", ha="left", va="top", fontsize=font * 0.75, color="#666666")
-        ax.text(x0 + 0.28, y0 + 0.03, f"{r['slope_xy_deg']:.1f}°", ha="center", va="bottom", fontsize=font * 0.8, color="#d62728")
-        ax.text(x0 + 0.72, y0 + 0.03, f"{r['slope_zx_deg']:.1f}°", ha="center", va="bottom", fontsize=font * 0.8, color="#1f77b4")
+        ax.text(
+            x0 + 0.04,
+            y0 + 0.96,
+            f"{r['tubes']}",
+            ha="left",
+            va="top",
+            fontsize=font * 0.75,
+            color="#666666",
+        )
+        ax.text(
+            x0 + 0.28,
+            y0 + 0.03,
+            f"{r['slope_xy_deg']:.1f}°",
+            ha="center",
+            va="bottom",
+            fontsize=font * 0.8,
+            color="#d62728",
+        )
+        ax.text(
+            x0 + 0.72,
+            y0 + 0.03,
+            f"{r['slope_zx_deg']:.1f}°",
+            ha="center",
+            va="bottom",
+            fontsize=font * 0.8,
+            color="#1f77b4",
+        )
     if grounds:
-        ax.add_collection(PolyCollection(grounds, facecolors=GROUND_COLOR, edgecolors="#c9bfa9", linewidths=0.3, zorder=1, rasterized=True), autolim=False)
-        strips = PolyCollection(paths, closed=False, facecolors=np.concatenate(faces), edgecolors=np.concatenate(edges), linewidths=np.concatenate(widths), zorder=2)
+        ax.add_collection(
+            PolyCollection(
+                grounds,
+                facecolors=GROUND_COLOR,
+                edgecolors="#c9bfa9",
+                linewidths=0.3,
+                zorder=1,
+                rasterized=True,
+            ),
+            autolim=False,
+        )
+        strips = PolyCollection(
+            paths,
+            closed=False,
+            facecolors=np.concatenate(faces),
+            edgecolors=np.concatenate(edges),
+            linewidths=np.concatenate(widths),
+            zorder=2,
+        )
         strips.set_rasterized(True)
         ax.add_collection(strips, autolim=False)
-        ax.add_collection(LineCollection(lines, colors=line_colors, linewidths=1.1, capstyle="round", zorder=3), autolim=False)
+        ax.add_collection(
+            LineCollection(lines, colors=line_colors, linewidths=1.1, capstyle="round", zorder=3),
+            autolim=False,
+        )
     for j in range(1, cols):
         ax.axvline(j, color="#e4e4e4", lw=0.5, zorder=0)
     for i in range(1, rows):
         ax.axhline(i, color="#e4e4e4", lw=0.5, zorder=0)
     for i, a in enumerate(atlas.grid.a_values):
-        ax.text(-0.06, rows - 1 - i + 0.5, f"a = {a:.3g}", ha="right", va="center", rotation=90, fontsize=font)
+        ax.text(
+            -0.06,
+            rows - 1 - i + 0.5,
+            f"a = {a:.3g}",
+            ha="right",
+            va="center",
+            rotation=90,
+            fontsize=font,
+        )
     for j, p in enumerate(atlas.grid.p_xy_values):
-        ax.text(j + 0.5, rows + 0.04, f"$p_{{xy}}$ = {p:.3g}", ha="center", va="bottom", fontsize=font)
-    tubes = f"up to {DEFAULT_TUBES_CAP} tubes, fewer where regression limits the stack" if atlas.grid.tubes is None else f"{atlas.grid.tubes} tubes"
+        ax.text(
+            j + 0.5, rows + 0.04, f"$p_{{xy}}$ = {p:.3g}", ha="center", va="bottom", fontsize=font
+        )
+    tubes = (
+        f"up to {DEFAULT_TUBES_CAP} tubes, fewer where regression limits the stack"
+        if atlas.grid.tubes is None
+        else f"{atlas.grid.tubes} tubes"
+    )
     title_size = max(font * 1.1, 7.0)
     chars = max(40, int(fig_w * 72 / (0.55 * title_size)))
     title = "\n".join(
         textwrap.fill(line, chars)
         for line in (
-            f"Vault design atlas: width w_L(0)·κ₀ = {atlas.grid.width:g}, 2α = {atlas.grid.fold_angle:g}°, {tubes} (number at the top left of each view)",
-            "slope of the section feature line at the feet (xy plane) in red, at the apex (zx plane) in blue",
+            f"Vault design atlas: width w_L(0)·κ₀ = {atlas.grid.width:g}, 2α = "
+            f"{atlas.grid.fold_angle:g}°, {tubes} (number at the top left of each view)",
+            "slope of the section feature line at the feet (xy plane) in red, at the apex (zx "
+            "plane) in blue",
             *([note] if note else []),
         )
     )
@@ -139,7 +220,14 @@ def atlas_figure(atlas: Atlas, *, cell_size: float | None = None, view: Any = No
     extra = max(0.0, (title_lines - 2) * title_size * 1.25 / 72)
     if extra:
         fig.set_size_inches(fig_w, fig_h + extra)
-        ax.set_position((margin_l / fig_w, margin_b / (fig_h + extra), size * cols / fig_w, size * rows / (fig_h + extra)))
+        ax.set_position(
+            (
+                margin_l / fig_w,
+                margin_b / (fig_h + extra),
+                size * cols / fig_w,
+                size * rows / (fig_h + extra),
+            )
+        )
         fig.texts[-1].set_y(1 - 0.08 / (fig_h + extra))
     return fig
 
@@ -154,6 +242,13 @@ def _short_reason(record: dict, width: int = 22, lines: int = 5) -> str:
     """The first clause of an invalid design's reason, wrapped for a small panel."""
     text = str(record.get("reason") or "invalid")
     head = text.split(": ")[0] if ": " in text else text
-    kind = {"ConvergenceError": "no arch", "RegressionError": "regression", "InputError": "invalid input"}.get(str(record.get("error")), "invalid")
-    head = textwrap.shorten(head, width * (lines - 1), placeholder=" …").replace(" = ", "\u00a0=\u00a0")  # keep "a = 1.3" whole
+    kind = {
+        "ConvergenceError": "no arch",
+        "RegressionError": "regression",
+        "InputError": "invalid input",
+    }.get(str(record.get("error")), "invalid")
+    # keep "a = 1.3" whole
+    head = textwrap.shorten(head, width * (lines - 1), placeholder=" …").replace(
+        " = ", "\u00a0=\u00a0"
+    )
     return kind + "\n" + textwrap.fill(head, width)

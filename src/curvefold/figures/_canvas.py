@@ -33,16 +33,40 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from ._scene import Scene
 
-__all__ = ["font_file", "nice_ticks", "viridis", "inks", "Canvas", "Frame", "png_bytes", "write_png", "draw_ground", "draw_scene"]
+__all__ = [
+    "font_file",
+    "nice_ticks",
+    "viridis",
+    "inks",
+    "Canvas",
+    "Frame",
+    "png_bytes",
+    "write_png",
+    "draw_ground",
+    "draw_scene",
+]
 
 #: Viridis at t = 0, 0.1, ..., 1 (matplotlib's colour map, interpolated linearly between them).
-_VIRIDIS = ("#440154", "#482475", "#414487", "#355f8d", "#2a788e", "#21918c", "#22a884", "#44bf70", "#7ad151", "#bddf26", "#fde725")
+_VIRIDIS = (
+    "#440154",
+    "#482475",
+    "#414487",
+    "#355f8d",
+    "#2a788e",
+    "#21918c",
+    "#22a884",
+    "#44bf70",
+    "#7ad151",
+    "#bddf26",
+    "#fde725",
+)
 #: A subscript: ``_x`` or ``_{...}``.
 _SUBSCRIPT = re.compile(r"_(\{[^}]*\}|\w)")
 
 
 def font_file() -> Path:
-    """The DejaVu Sans that matplotlib ships (the font of the figures), found without importing matplotlib.
+    """The DejaVu Sans that matplotlib ships (the font of the figures), found without importing
+    matplotlib.
 
     Raises
     ------
@@ -56,8 +80,16 @@ def font_file() -> Path:
     """
     spec = importlib.util.find_spec("matplotlib")
     if spec is None or not spec.submodule_search_locations:
-        raise ImportError("curvefold's pictures need matplotlib's font: pip install 'curvefold[plot]'")
-    return Path(next(iter(spec.submodule_search_locations))) / "mpl-data" / "fonts" / "ttf" / "DejaVuSans.ttf"
+        raise ImportError(
+            "curvefold's pictures need matplotlib's font: pip install 'curvefold[plot]'"
+        )
+    return (
+        Path(next(iter(spec.submodule_search_locations)))
+        / "mpl-data"
+        / "fonts"
+        / "ttf"
+        / "DejaVuSans.ttf"
+    )
 
 
 @functools.lru_cache(maxsize=32)
@@ -69,7 +101,8 @@ def _font(pixels: int):
 
 @functools.lru_cache(maxsize=1024)
 def _length(pixels: int, piece: str) -> float:
-    """Advance width (pixels) of ``piece`` in DejaVu Sans at ``pixels`` (tick labels and legends repeat)."""
+    """Advance width (pixels) of ``piece`` in DejaVu Sans at ``pixels`` (tick labels and legends
+    repeat)."""
     return _font(pixels).getlength(piece)
 
 
@@ -89,7 +122,10 @@ def nice_ticks(lo: float, hi: float, count: int = 6) -> np.ndarray:
         return np.array([float(lo)])
     raw = (hi - lo) / max(count - 1, 1)
     k = np.floor(np.log10(raw))
-    step = min((m * 10**k for m in (1.0, 2.0, 5.0, 10.0) if m * 10**k >= raw * 0.999), default=10 ** (k + 1))
+    step = min(
+        (m * 10**k for m in (1.0, 2.0, 5.0, 10.0) if m * 10**k >= raw * 0.999),
+        default=10 ** (k + 1),
+    )
     ticks = np.arange(np.ceil(lo / step - 1e-9), np.floor(hi / step + 1e-9) + 1) * step
     return np.round(ticks, int(max(0, -k + 2))) + 0.0
 
@@ -110,8 +146,13 @@ def viridis(t: np.ndarray) -> np.ndarray:
 
 
 def inks(rgb: np.ndarray) -> list[int]:
-    """Pillow's ink integers of opaque RGB colours (..., 3) in [0, 1], for drawing on an RGB image."""
-    c = np.round(255 * np.clip(np.asarray(rgb, float)[..., :3], 0, 1)).astype(np.int64).reshape(-1, 3)
+    """Pillow's ink integers of opaque RGB colours (..., 3) in [0, 1], for drawing on an RGB
+    image."""
+    c = (
+        np.round(255 * np.clip(np.asarray(rgb, float)[..., :3], 0, 1))
+        .astype(np.int64)
+        .reshape(-1, 3)
+    )
     packed = c[:, 0] | c[:, 1] << 8 | c[:, 2] << 16 | 255 << 24
     return packed.astype(np.uint32).view(np.int32).tolist()
 
@@ -128,22 +169,37 @@ def _runs(text: str) -> list[tuple[str, bool]]:
     """``text`` as (piece, is subscript) runs."""
     out, at = [], 0
     for match in _SUBSCRIPT.finditer(text):
-        out += [(text[at:match.start()], False), (match.group(1).strip("{}"), True)]
+        out += [(text[at : match.start()], False), (match.group(1).strip("{}"), True)]
         at = match.end()
     return [(piece, sub) for piece, sub in out + [(text[at:], False)] if piece]
 
 
 def draw_ground(draw, ground: np.ndarray | None, to_pixels, width: float) -> None:
-    """Paint the ground of a scene (its screen corners (4, 2), or None: nothing) with a Pillow ImageDraw
-    of an RGB image, its outline ``width`` pixels wide; ``to_pixels`` maps screen points (N, 2) to pixels (N, 2)."""
+    """Paint the ground of a scene (its screen corners (4, 2), or None: nothing) with a Pillow
+    ImageDraw of an RGB image, its outline ``width`` pixels wide; ``to_pixels`` maps screen
+    points (N, 2) to pixels (N, 2)."""
     from ._scene import GROUND_COLOR, GROUND_EDGE
 
     if ground is not None:
-        draw.polygon([tuple(p) for p in to_pixels(ground).tolist()], fill=GROUND_COLOR, outline=GROUND_EDGE, width=max(1, round(width)))
+        draw.polygon(
+            [tuple(p) for p in to_pixels(ground).tolist()],
+            fill=GROUND_COLOR,
+            outline=GROUND_EDGE,
+            width=max(1, round(width)),
+        )
 
 
-def draw_scene(draw, scene: Scene, to_pixels, pixels_per_point: float, ground_width: float, *, ground: bool = True) -> None:
-    """Paint a scene (ground first, then its paths far to near) with a Pillow ImageDraw of an RGB image.
+def draw_scene(
+    draw,
+    scene: Scene,
+    to_pixels,
+    pixels_per_point: float,
+    ground_width: float,
+    *,
+    ground: bool = True,
+) -> None:
+    """Paint a scene (ground first, then its paths far to near) with a Pillow ImageDraw of an RGB
+    image.
 
     ``to_pixels`` maps screen points (N, 2) to pixels (N, 2). Strips are filled (their
     outline is their own colour: the fill covers it), segments stroked at their widths.
@@ -156,7 +212,9 @@ def draw_scene(draw, scene: Scene, to_pixels, pixels_per_point: float, ground_wi
     flat = to_pixels(points).ravel().tolist()
     quad = (sizes > 2).tolist()
     fill_inks, stroke_inks = inks(scene.fill), inks(scene.stroke)
-    widths = np.maximum(1, np.round(np.asarray(scene.widths) * pixels_per_point)).astype(int).tolist()
+    widths = (
+        np.maximum(1, np.round(np.asarray(scene.widths) * pixels_per_point)).astype(int).tolist()
+    )
     core, start = draw.draw, 0
     for end, is_quad, fill, stroke, width in zip(ends, quad, fill_inks, stroke_inks, widths):
         if is_quad:
@@ -183,7 +241,9 @@ class Canvas:
 
         self.size, self.supersample = (int(size[0]), int(size[1])), int(supersample)
         self.pt = dpi / 72 * self.supersample  # canvas pixels per point
-        self.image = Image.new("RGB", (self.size[0] * self.supersample, self.size[1] * self.supersample), "white")
+        self.image = Image.new(
+            "RGB", (self.size[0] * self.supersample, self.size[1] * self.supersample), "white"
+        )
         self.draw = ImageDraw.Draw(self.image, "RGBA")
 
     def font(self, points: float):
@@ -195,10 +255,23 @@ class Canvas:
 
     def text_size(self, text: str, points: float) -> tuple[float, float]:
         """Width and height (canvas pixels) of a line of text."""
-        return sum(_length(self._pixels(points * (0.72 if sub else 1)), piece) for piece, sub in _runs(text)), points * self.pt
+        return sum(
+            _length(self._pixels(points * (0.72 if sub else 1)), piece)
+            for piece, sub in _runs(text)
+        ), points * self.pt
 
-    def text(self, xy: Sequence[float], text: str, points: float = 9.0, *, color="#000000", anchor: str = "lm", draw=None) -> None:
-        """A line of text at ``xy`` (canvas pixels); ``anchor`` is Pillow's two letters (l/m/r, t/m/b; "b" the baseline side)."""
+    def text(
+        self,
+        xy: Sequence[float],
+        text: str,
+        points: float = 9.0,
+        *,
+        color="#000000",
+        anchor: str = "lm",
+        draw=None,
+    ) -> None:
+        """A line of text at ``xy`` (canvas pixels); ``anchor`` is Pillow's two letters (l/m/r,
+        t/m/b; "b" the baseline side)."""
         draw = self.draw if draw is None else draw
         width, height = self.text_size(text, points)
         x = xy[0] - {"l": 0.0, "m": 0.5, "r": 1.0}[anchor[0]] * width
@@ -206,7 +279,13 @@ class Canvas:
         ink = _rgba(color)
         for piece, sub in _runs(text):
             pixels = self._pixels(points * (0.72 if sub else 1))
-            draw.text((x, base + (0.22 * height if sub else 0.0)), piece, fill=ink, font=_font(pixels), anchor="ls")
+            draw.text(
+                (x, base + (0.22 * height if sub else 0.0)),
+                piece,
+                fill=ink,
+                font=_font(pixels),
+                anchor="ls",
+            )
             x += _length(pixels, piece)
 
     def vertical_text(self, xy: Sequence[float], text: str, points: float = 9.0) -> None:
@@ -216,17 +295,29 @@ class Canvas:
         width, height = self.text_size(text, points)
         strip = Image.new("L", (int(width) + 4, int(1.4 * height) + 4), 0)
         mask_canvas = ImageDraw.Draw(strip)
-        self.text((2, strip.height / 2), text, points, color=(1, 1, 1), anchor="lm", draw=_MaskDraw(mask_canvas))
+        self.text(
+            (2, strip.height / 2),
+            text,
+            points,
+            color=(1, 1, 1),
+            anchor="lm",
+            draw=_MaskDraw(mask_canvas),
+        )
         turned = strip.rotate(90, expand=True)
-        self.image.paste((0, 0, 0), (int(xy[0] - turned.width / 2), int(xy[1] - turned.height / 2)), turned)
+        self.image.paste(
+            (0, 0, 0), (int(xy[0] - turned.width / 2), int(xy[1] - turned.height / 2)), turned
+        )
 
-    def frame(self, rect: Sequence[float], xlim: Sequence[float], ylim: Sequence[float], **options) -> Frame:
-        """Axes on the rectangle ``rect`` = (left, top, right, bottom) in picture pixels (not supersampled);
-        ``options`` (``log``, ``grid``, ``ticks``) go to :class:`Frame`."""
+    def frame(
+        self, rect: Sequence[float], xlim: Sequence[float], ylim: Sequence[float], **options
+    ) -> Frame:
+        """Axes on the rectangle ``rect`` = (left, top, right, bottom) in picture pixels (not
+        supersampled); ``options`` (``log``, ``grid``, ``ticks``) go to :class:`Frame`."""
         return Frame(self, np.asarray(rect, float) * self.supersample, xlim, ylim, **options)
 
     def picture(self) -> Image.Image:
-        """The picture, reduced to :attr:`size` (each pixel the mean of its ``supersample`` × ``supersample`` block)."""
+        """The picture, reduced to :attr:`size` (each pixel the mean of its ``supersample`` ×
+        ``supersample`` block)."""
         return self.image.reduce(self.supersample) if self.supersample > 1 else self.image.copy()
 
 
@@ -242,20 +333,37 @@ class _MaskDraw:
 
 class Frame:
     """A plot's axes on a :class:`Canvas`: data (x, y) in ``xlim`` × ``ylim`` drawn in ``rect``
-    (left, top, right, bottom; canvas pixels), clipped to it; with ``log`` both axes are logarithmic."""
+    (left, top, right, bottom; canvas pixels), clipped to it; with ``log`` both axes are
+    logarithmic."""
 
-    def __init__(self, canvas: Canvas, rect: np.ndarray, xlim: Sequence[float], ylim: Sequence[float], *, log: bool = False,
-                 grid: bool = True, ticks: int = 7) -> None:
+    def __init__(
+        self,
+        canvas: Canvas,
+        rect: np.ndarray,
+        xlim: Sequence[float],
+        ylim: Sequence[float],
+        *,
+        log: bool = False,
+        grid: bool = True,
+        ticks: int = 7,
+    ) -> None:
         from PIL import ImageDraw
 
         self.canvas, self.rect, self.log = canvas, rect, log
         self.xlim, self.ylim = (float(xlim[0]), float(xlim[1])), (float(ylim[0]), float(ylim[1]))
         left, top, right, bottom = (int(round(v)) for v in rect)
-        self.layer = canvas.image.crop((left, top, right, bottom))  # drawn on, then put back: translucent fills blend
+        # drawn on, then put back: translucent fills blend
+        self.layer = canvas.image.crop((left, top, right, bottom))
         self.draw = ImageDraw.Draw(self.layer, "RGBA")
         self.x_ticks, self.y_ticks = self._ticks(self.xlim, ticks), self._ticks(self.ylim, ticks)
-        self._tick_pixels = (self.pixels(np.stack([self.x_ticks, np.full(len(self.x_ticks), self.ylim[0])], axis=-1))[:, 0],
-                             self.pixels(np.stack([np.full(len(self.y_ticks), self.xlim[0]), self.y_ticks], axis=-1))[:, 1])
+        self._tick_pixels = (
+            self.pixels(
+                np.stack([self.x_ticks, np.full(len(self.x_ticks), self.ylim[0])], axis=-1)
+            )[:, 0],
+            self.pixels(
+                np.stack([np.full(len(self.y_ticks), self.xlim[0]), self.y_ticks], axis=-1)
+            )[:, 1],
+        )
         if grid:
             w, gray = max(1, round(0.4 * canvas.pt)), (0, 0, 0, 30)
             for x in self._tick_pixels[0].tolist():
@@ -272,10 +380,24 @@ class Frame:
         """Layer pixels (..., 2) of data points (..., 2)."""
         xy = np.asarray(xy, float)
         width, height = self.layer.size
-        return np.stack([self._axis(xy[..., 0], self.xlim) * width, (1 - self._axis(xy[..., 1], self.ylim)) * height], axis=-1)
+        return np.stack(
+            [
+                self._axis(xy[..., 0], self.xlim) * width,
+                (1 - self._axis(xy[..., 1], self.ylim)) * height,
+            ],
+            axis=-1,
+        )
 
-    def lines(self, paths: Sequence[np.ndarray], color, width: float = 1.0, *, dash: tuple[float, float] | None = None) -> None:
-        """Polylines (each (n, 2), data units); ``width`` and the ``dash`` (on, off) lengths in points."""
+    def lines(
+        self,
+        paths: Sequence[np.ndarray],
+        color,
+        width: float = 1.0,
+        *,
+        dash: tuple[float, float] | None = None,
+    ) -> None:
+        """Polylines (each (n, 2), data units); ``width`` and the ``dash`` (on, off) lengths in
+        points."""
         pt, ink = self.canvas.pt, _rgba(color)
         w = max(1, int(round(width * pt)))
         for path in paths:
@@ -285,18 +407,33 @@ class Frame:
                 if len(piece) > 1:
                     _line(self.draw, piece, ink, w)
 
-    def polygons(self, polygons: Sequence[np.ndarray], fill=None, edge=None, width: float = 1.0, *,
-                 dash: tuple[float, float] | None = None) -> None:
-        """Filled (RGBA ``fill``, may be translucent) and outlined polygons, each (p, 2) in data units."""
+    def polygons(
+        self,
+        polygons: Sequence[np.ndarray],
+        fill=None,
+        edge=None,
+        width: float = 1.0,
+        *,
+        dash: tuple[float, float] | None = None,
+    ) -> None:
+        """Filled (RGBA ``fill``, may be translucent) and outlined polygons, each (p, 2) in data
+        units."""
         for polygon in polygons:
             if fill is not None:
                 self.draw.polygon(self.pixels(polygon).ravel().tolist(), fill=_rgba(fill))
         if edge is not None:
             self.lines([np.concatenate([p, p[:1]]) for p in polygons], edge, width, dash=dash)
 
-    def markers(self, xy: np.ndarray, color, size: float = 4.0, *, shape: str = "o", width: float = 1.0) -> None:
-        """Markers of ``size`` points across at data points (N, 2): discs ("o"), rings ("ring") or crosses ("x")."""
-        r, ink, w = 0.5 * size * self.canvas.pt, _rgba(color), max(1, int(round(width * self.canvas.pt)))
+    def markers(
+        self, xy: np.ndarray, color, size: float = 4.0, *, shape: str = "o", width: float = 1.0
+    ) -> None:
+        """Markers of ``size`` points across at data points (N, 2): discs ("o"), rings ("ring")
+        or crosses ("x")."""
+        r, ink, w = (
+            0.5 * size * self.canvas.pt,
+            _rgba(color),
+            max(1, int(round(width * self.canvas.pt))),
+        )
         for x, y in self.pixels(np.asarray(xy, float).reshape(-1, 2)).tolist():
             if shape == "o":
                 self.draw.ellipse((x - r, y - r, x + r, y + r), fill=ink)
@@ -306,17 +443,40 @@ class Frame:
                 self.draw.line((x - r, y - r, x + r, y + r), fill=ink, width=w)
                 self.draw.line((x - r, y + r, x + r, y - r), fill=ink, width=w)
 
-    def text(self, xy: Sequence[float], text: str, points: float = 8.0, *, offset: Sequence[float] = (0, 0), anchor: str = "lm",
-             color="#000000") -> None:
+    def text(
+        self,
+        xy: Sequence[float],
+        text: str,
+        points: float = 8.0,
+        *,
+        offset: Sequence[float] = (0, 0),
+        anchor: str = "lm",
+        color="#000000",
+    ) -> None:
         """Text at a data point, moved by ``offset`` points (x right, y up)."""
         (x, y), pt = self.pixels(np.asarray(xy, float)), self.canvas.pt
-        self.canvas.text((x + offset[0] * pt, y - offset[1] * pt), text, points, color=color, anchor=anchor, draw=self.draw)
+        self.canvas.text(
+            (x + offset[0] * pt, y - offset[1] * pt),
+            text,
+            points,
+            color=color,
+            anchor=anchor,
+            draw=self.draw,
+        )
 
     def to_canvas(self, xy: np.ndarray) -> np.ndarray:
         """Canvas pixels of data points."""
         return self.pixels(xy) + self.rect[:2]
 
-    def finish(self, *, title: str = "", xlabel: str = "", ylabel: str = "", xticks: bool = True, points: float = 9.0) -> None:
+    def finish(
+        self,
+        *,
+        title: str = "",
+        xlabel: str = "",
+        ylabel: str = "",
+        xticks: bool = True,
+        points: float = 9.0,
+    ) -> None:
         """Put the drawing on the canvas, frame it and write its ticks, labels and title."""
         canvas, (left, top, right, bottom) = self.canvas, self.rect
         pt = canvas.pt
@@ -328,15 +488,28 @@ class Frame:
         for x, value in zip((xs + left).tolist(), x_ticks.tolist()):
             if xticks:
                 draw.line((x, bottom, x, bottom + tick), fill=ink, width=max(1, round(0.8 * pt)))
-                canvas.text((x, bottom + tick + 2 * pt), self._label(value, x_ticks), points, anchor="mt")
+                canvas.text(
+                    (x, bottom + tick + 2 * pt), self._label(value, x_ticks), points, anchor="mt"
+                )
         for y, value in zip((ys + top).tolist(), y_ticks.tolist()):
             draw.line((left - tick, y, left, y), fill=ink, width=max(1, round(0.8 * pt)))
             canvas.text((left - tick - 2 * pt, y), self._label(value, y_ticks), points, anchor="rm")
         if xlabel:
-            canvas.text(((left + right) / 2, bottom + tick + 4 * pt + points * pt), xlabel, points + 1, anchor="mt")
+            canvas.text(
+                ((left + right) / 2, bottom + tick + 4 * pt + points * pt),
+                xlabel,
+                points + 1,
+                anchor="mt",
+            )
         if ylabel:
-            widest = max((canvas.text_size(self._label(v, y_ticks), points)[0] for v in y_ticks), default=0.0)
-            canvas.vertical_text((left - tick - 5 * pt - widest - 0.6 * (points + 1) * pt, (top + bottom) / 2), ylabel, points + 1)
+            widest = max(
+                (canvas.text_size(self._label(v, y_ticks), points)[0] for v in y_ticks), default=0.0
+            )
+            canvas.vertical_text(
+                (left - tick - 5 * pt - widest - 0.6 * (points + 1) * pt, (top + bottom) / 2),
+                ylabel,
+                points + 1,
+            )
         if title:
             canvas.text(((left + right) / 2, top - 5 * pt), title, points + 2, anchor="mb")
 
@@ -350,22 +523,47 @@ class Frame:
     def _label(self, value: float, ticks: np.ndarray) -> str:
         if self.log:
             exponent = int(round(np.log10(value)))
-            return "1" if exponent == 0 else "10" if exponent == 1 else f"1e{exponent}".replace("-", "−")
-        return tick_label(value, float(np.min(np.diff(ticks))) if len(ticks) > 1 else abs(value) or 1.0)
+            return (
+                "1"
+                if exponent == 0
+                else "10"
+                if exponent == 1
+                else f"1e{exponent}".replace("-", "−")
+            )
+        return tick_label(
+            value, float(np.min(np.diff(ticks))) if len(ticks) > 1 else abs(value) or 1.0
+        )
 
-    def legend(self, entries: Sequence[tuple[str, dict]], corner: str = "upper left", *, points: float = 7.5,
-               avoid: Sequence[np.ndarray] = ()) -> None:
-        """A framed legend inside the axes: ``entries`` are (label, style), the style a dict with one of
-        ``line`` (colour; ``width``, ``dash``), ``patch`` (fill; ``edge``) or ``marker`` (colour; ``shape``, ``size``).
+    def legend(
+        self,
+        entries: Sequence[tuple[str, dict]],
+        corner: str = "upper left",
+        *,
+        points: float = 7.5,
+        avoid: Sequence[np.ndarray] = (),
+    ) -> None:
+        """A framed legend inside the axes: ``entries`` are (label, style), the style a dict with
+        one of ``line`` (colour; ``width``, ``dash``), ``patch`` (fill; ``edge``) or ``marker``
+        (colour; ``shape``, ``size``).
 
-        ``corner`` "best" takes the corner or side whose legend covers the fewest of the data points ``avoid`` (each (n, 2)).
+        ``corner`` "best" takes the corner or side whose legend covers the fewest of the data points
+        ``avoid`` (each (n, 2)).
         """
         if corner == "best":
-            points_px = self.to_canvas(np.concatenate([np.asarray(p, float).reshape(-1, 2) for p in avoid]))
+            points_px = self.to_canvas(
+                np.concatenate([np.asarray(p, float).reshape(-1, 2) for p in avoid])
+            )
 
             def covered(where: str) -> int:
                 x0, y0, x1, y1 = legend_box(self.canvas, entries, self.rect, where, points=points)
-                return int(((points_px[:, 0] >= x0) & (points_px[:, 0] <= x1) & (points_px[:, 1] >= y0) & (points_px[:, 1] <= y1)).sum())
+                return int(
+                    (
+                        (points_px[:, 0] >= x0)
+                        & (points_px[:, 0] <= x1)
+                        & (points_px[:, 1] >= y0)
+                        & (points_px[:, 1] <= y1)
+                    ).sum()
+                )
 
             corner = min(_INSIDE, key=covered)
         legend(self.canvas, entries, self.rect, corner, points=points)
@@ -375,25 +573,53 @@ class Frame:
 _INSIDE = ("upper right", "upper left", "lower left", "lower right", "center right", "center left")
 
 
-def legend_box(canvas: Canvas, entries: Sequence[tuple[str, dict]],
-               rect: Sequence[float] | np.ndarray, corner: str, *,
-               points: float = 7.5) -> tuple[float, float, float, float]:
-    """(left, top, right, bottom) of a framed legend in the ``corner`` of ``rect`` (canvas pixels)."""
+def legend_box(
+    canvas: Canvas,
+    entries: Sequence[tuple[str, dict]],
+    rect: Sequence[float] | np.ndarray,
+    corner: str,
+    *,
+    points: float = 7.5,
+) -> tuple[float, float, float, float]:
+    """(left, top, right, bottom) of a framed legend in the ``corner`` of ``rect`` (canvas
+    pixels)."""
     pt = canvas.pt
     row, key, gap = 1.45 * points * pt, 2.4 * points * pt, 0.6 * points * pt
-    width = key + 3 * gap + max((canvas.text_size(label, points)[0] for label, _ in entries), default=0.0)
+    width = (
+        key
+        + 3 * gap
+        + max((canvas.text_size(label, points)[0] for label, _ in entries), default=0.0)
+    )
     height = row * len(entries) + gap
     left, top, right, bottom = rect
-    x = left + gap if "left" in corner else right - gap - width if corner != "right" else right + gap
-    y = top + gap if "upper" in corner else bottom - gap - height if "lower" in corner else (top + bottom - height) / 2
+    x = (
+        left + gap
+        if "left" in corner
+        else right - gap - width
+        if corner != "right"
+        else right + gap
+    )
+    y = (
+        top + gap
+        if "upper" in corner
+        else bottom - gap - height
+        if "lower" in corner
+        else (top + bottom - height) / 2
+    )
     return x, y, x + width, y + height
 
 
-def legend(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[float] | np.ndarray,
-           corner: str, *, points: float = 7.5,
-           framed: bool = True) -> None:
-    """Draw a legend in the ``corner`` ("upper left", "lower right", "right", "below", ...) of ``rect``
-    (canvas pixels): see :meth:`Frame.legend`."""
+def legend(
+    canvas: Canvas,
+    entries: Sequence[tuple[str, dict]],
+    rect: Sequence[float] | np.ndarray,
+    corner: str,
+    *,
+    points: float = 7.5,
+    framed: bool = True,
+) -> None:
+    """Draw a legend in the ``corner`` ("upper left", "lower right", "right", "below", ...) of
+    ``rect`` (canvas pixels): see :meth:`Frame.legend`."""
     pt = canvas.pt
     row, key, gap = 1.45 * points * pt, 2.4 * points * pt, 0.6 * points * pt
     widths = [canvas.text_size(label, points)[0] for label, _ in entries]
@@ -408,8 +634,13 @@ def legend(canvas: Canvas, entries: Sequence[tuple[str, dict]], rect: Sequence[f
         return
     x, y, x1, y1 = legend_box(canvas, entries, rect, corner, points=points)
     if framed:
-        canvas.draw.rounded_rectangle((x, y, x1, y1), radius=0.4 * points * pt, fill=(255, 255, 255, 235),
-                                      outline=(204, 204, 204, 255), width=max(1, round(0.6 * pt)))
+        canvas.draw.rounded_rectangle(
+            (x, y, x1, y1),
+            radius=0.4 * points * pt,
+            fill=(255, 255, 255, 235),
+            outline=(204, 204, 204, 255),
+            width=max(1, round(0.6 * pt)),
+        )
     for k, (label, style) in enumerate(entries):
         middle = y + gap / 2 + row * (k + 0.5)
         _key(canvas, style, (x + gap, middle), key, points)
@@ -425,11 +656,19 @@ def _key(canvas: Canvas, style: dict, at: tuple[float, float], key: float, point
         dash = style.get("dash")
         pieces = [line] if dash is None else _dashed(line, dash[0] * pt, dash[1] * pt)
         for piece in pieces:
-            draw.line(piece.ravel().tolist(), fill=_rgba(style["line"]), width=max(1, round(style.get("width", 1.2) * pt)))
+            draw.line(
+                piece.ravel().tolist(),
+                fill=_rgba(style["line"]),
+                width=max(1, round(style.get("width", 1.2) * pt)),
+            )
     elif "patch" in style:
         h = 0.7 * points * pt
-        draw.rectangle((x, y - h / 2, x + key, y + h / 2), fill=_rgba(style["patch"]), outline=_rgba(style.get("edge", "#555555")),
-                       width=max(1, round(0.8 * pt)))
+        draw.rectangle(
+            (x, y - h / 2, x + key, y + h / 2),
+            fill=_rgba(style["patch"]),
+            outline=_rgba(style.get("edge", "#555555")),
+            width=max(1, round(0.8 * pt)),
+        )
     else:
         r = 0.5 * style.get("size", 4.0) * pt
         c = (x + key / 2, y)
@@ -445,24 +684,42 @@ def _key(canvas: Canvas, style: dict, at: tuple[float, float], key: float, point
 
 
 def colour_key(canvas: Canvas, rect: Sequence[float], label: str, *, points: float = 8.0) -> None:
-    """A vertical viridis key for t in [0, 1] in ``rect`` (canvas pixels), ticks every 0.2, ``label`` beside it."""
+    """A vertical viridis key for t in [0, 1] in ``rect`` (canvas pixels), ticks every 0.2,
+    ``label`` beside it."""
     from PIL import Image
 
     left, top, right, bottom = (int(round(v)) for v in rect)
     t = np.linspace(1, 0, bottom - top)
     column = np.round(255 * viridis(t)).astype(np.uint8)[:, None, :]
-    canvas.image.paste(Image.fromarray(np.ascontiguousarray(np.broadcast_to(column, (bottom - top, right - left, 3)))), (left, top))
+    canvas.image.paste(
+        Image.fromarray(
+            np.ascontiguousarray(np.broadcast_to(column, (bottom - top, right - left, 3)))
+        ),
+        (left, top),
+    )
     pt = canvas.pt
-    canvas.draw.rectangle((left, top, right, bottom), outline=(0, 0, 0, 255), width=max(1, round(0.8 * pt)))
+    canvas.draw.rectangle(
+        (left, top, right, bottom), outline=(0, 0, 0, 255), width=max(1, round(0.8 * pt))
+    )
     for value in np.linspace(0, 1, 6):
         y = bottom - value * (bottom - top)
-        canvas.draw.line((right, y, right + 3.5 * pt, y), fill=(0, 0, 0, 255), width=max(1, round(0.8 * pt)))
+        canvas.draw.line(
+            (right, y, right + 3.5 * pt, y), fill=(0, 0, 0, 255), width=max(1, round(0.8 * pt))
+        )
         canvas.text((right + 5.5 * pt, y), f"{value:.1f}", points, anchor="lm")
-    canvas.vertical_text((right + 5.5 * pt + canvas.text_size("0.0", points)[0] + 1.2 * points * pt, (top + bottom) / 2), label, points)
+    canvas.vertical_text(
+        (
+            right + 5.5 * pt + canvas.text_size("0.0", points)[0] + 1.2 * points * pt,
+            (top + bottom) / 2,
+        ),
+        label,
+        points,
+    )
 
 
 def _line(draw, points: np.ndarray, ink: tuple[int, ...], width: int) -> None:
-    """A polyline (n, 2) of ``width`` pixels; wider than 4 with round joints (Pillow's) where it bends.
+    """A polyline (n, 2) of ``width`` pixels; wider than 4 with round joints (Pillow's) where it
+    bends.
 
     A joint fills the notch a bend leaves at the outer side of a wide line. Where the line
     turns so little that the notch is under a quarter pixel deep (a smooth curve's samples),
@@ -470,18 +727,21 @@ def _line(draw, points: np.ndarray, ink: tuple[int, ...], width: int) -> None:
     again, the same), a translucent one its joints at every vertex, as Pillow does.
     """
     if width <= 4 or ink[3] < 255 or len(points) < 3:
-        draw.line(points.ravel().tolist(), fill=ink, width=width, joint="curve" if width > 4 else None)
+        draw.line(
+            points.ravel().tolist(), fill=ink, width=width, joint="curve" if width > 4 else None
+        )
         return
     step = np.diff(points, axis=0)
     heading = np.arctan2(step[:, 1], step[:, 0])
     turn = np.abs((np.diff(heading) + np.pi) % (2 * np.pi) - np.pi)
     draw.line(points.ravel().tolist(), fill=ink, width=width)
     for k in (np.flatnonzero(turn * width / 2 > 0.25) + 1).tolist():
-        draw.line(points[k - 1:k + 2].ravel().tolist(), fill=ink, width=width, joint="curve")
+        draw.line(points[k - 1 : k + 2].ravel().tolist(), fill=ink, width=width, joint="curve")
 
 
 def _dashed(points: np.ndarray, on: float, off: float) -> list[np.ndarray]:
-    """The dashes (each (k, 2)) of a polyline (n, 2): ``on`` drawn, ``off`` left out, along its length (pixels)."""
+    """The dashes (each (k, 2)) of a polyline (n, 2): ``on`` drawn, ``off`` left out, along its
+    length (pixels)."""
     step = np.linalg.norm(np.diff(points, axis=0), axis=1)
     s = np.concatenate([[0.0], np.cumsum(step)])
     period = on + off
@@ -489,13 +749,20 @@ def _dashed(points: np.ndarray, on: float, off: float) -> list[np.ndarray]:
         return [points]
     starts = np.arange(0.0, s[-1], period)
     stops = np.minimum(starts + on, float(s[-1]))
-    ends = np.stack([np.interp(np.stack([starts, stops], axis=-1), s, points[:, c]) for c in range(2)], axis=-1)  # (D, 2, 2)
-    inside = zip(np.searchsorted(s, starts, "right").tolist(), np.searchsorted(s, stops, "left").tolist())  # vertices strictly within
+    # (D, 2, 2)
+    ends = np.stack(
+        [np.interp(np.stack([starts, stops], axis=-1), s, points[:, c]) for c in range(2)], axis=-1
+    )
+    # vertices strictly within
+    inside = zip(
+        np.searchsorted(s, starts, "right").tolist(), np.searchsorted(s, stops, "left").tolist()
+    )
     return [np.concatenate([end[:1], points[i:j], end[1:]]) for end, (i, j) in zip(ends, inside)]
 
 
 def png_bytes(picture: Image.Image, *, level: int = 3) -> bytes:
-    """An RGB picture as the bytes of a PNG file: 8-bit RGB, every row unfiltered, deflated at zlib ``level``.
+    """An RGB picture as the bytes of a PNG file: 8-bit RGB, every row unfiltered, deflated at zlib
+    ``level``.
 
     Pillow's PNG encoder picks one of five filters for every row of an RGB picture; on
     drawings of flat colours that costs about five times the time and compresses worse
@@ -503,15 +770,23 @@ def png_bytes(picture: Image.Image, *, level: int = 3) -> bytes:
     level 3 0.04 CPU-s and 453 kB). The pixels are the same (PNG is lossless).
     """
     width, height = picture.size
-    rows = np.zeros((height, 1 + 3 * width), np.uint8)  # each row: filter type 0 (none), then its pixels
-    rows[:, 1:] = np.frombuffer((picture if picture.mode == "RGB" else picture.convert("RGB")).tobytes(), np.uint8).reshape(height, -1)
+    # each row: filter type 0 (none), then its pixels
+    rows = np.zeros((height, 1 + 3 * width), np.uint8)
+    rows[:, 1:] = np.frombuffer(
+        (picture if picture.mode == "RGB" else picture.convert("RGB")).tobytes(), np.uint8
+    ).reshape(height, -1)
 
     def chunk(kind: bytes, data: bytes) -> bytes:
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        return (
+            struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        )
 
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)  # 8 bits, truecolour, deflate, no filter choice, no interlace
+    # 8 bits, truecolour, deflate, no filter choice, no interlace
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
     data = zlib.compress(rows, level)  # type: ignore[arg-type]  # an array is a buffer
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", data) + chunk(b"IEND", b"")
+    return (
+        b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", data) + chunk(b"IEND", b"")
+    )
 
 
 def write_png(picture: Image.Image, path: str | os.PathLike) -> Path:

@@ -1,4 +1,5 @@
-"""Pictures of a structure under load: its deflected shape coloured by the displacement, and its first free modes.
+"""Pictures of a structure under load: its deflected shape coloured by the displacement, and its
+first free modes.
 
 Drawn like every 3D view (:mod:`curvefold.figures._views`): the scene renderer's shaded
 strips (:mod:`curvefold.figures._scene`), here each quad coloured by the mean size of its
@@ -31,9 +32,19 @@ __all__ = ["plot_deflection", "plot_modes", "field_scene"]
 DEFLECTION_MAP, MODE_MAP = "viridis", "plasma"
 
 
-def field_scene(result: LoadResult, shape: np.ndarray, scale: float, *, cmap: str, view: View = View(), ground: bool = False,
-                segments: int = 96, max_cells: int = 200):
-    """A scene of the structure displaced by ``scale`` × ``shape`` (P, 3), each quad coloured by the size of ``shape``.
+def field_scene(
+    result: LoadResult,
+    shape: np.ndarray,
+    scale: float,
+    *,
+    cmap: str,
+    view: View = View(),
+    ground: bool = False,
+    segments: int = 96,
+    max_cells: int = 200,
+):
+    """A scene of the structure displaced by ``scale`` × ``shape`` (P, 3), each quad coloured by the
+    size of ``shape``.
 
     Returns
     -------
@@ -55,13 +66,17 @@ def field_scene(result: LoadResult, shape: np.ndarray, scale: float, *, cmap: st
     quad = 0.25 * (a[:, :-1] + a[:, 1:] + b[:, :-1] + b[:, 1:])
     top = float(np.nanmax(values, initial=0.0))
     rgb = colormaps[cmap](quad / top if top > 0 else quad)[..., :3]
-    scene = render_strips(vertices, strips, kinds, view, colors=KIND_COLORS, strip_rgb=rgb, crease_width=0.7)
+    scene = render_strips(
+        vertices, strips, kinds, view, colors=KIND_COLORS, strip_rgb=rgb, crease_width=0.7
+    )
     if ground:
         flat = vertices.reshape(-1, 3)
         lo, hi = flat.min(axis=0), flat.max(axis=0)
         from dataclasses import replace
 
-        scene = replace(scene, ground=ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo))))
+        scene = replace(
+            scene, ground=ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo)))
+        )
     return scene, top
 
 
@@ -74,8 +89,11 @@ def _colorbar(fig, ax, cmap: str, top: float, label: str) -> None:
     bar.ax.tick_params(labelsize=7)
 
 
-def plot_deflection(result: LoadResult, *, magnification: float, view: View = View(), title: str | None = None) -> Figure:
-    """The deflected structure, its displacement magnified and coloured by its size (µm), over the ground if it stands on it.
+def plot_deflection(
+    result: LoadResult, *, magnification: float, view: View = View(), title: str | None = None
+) -> Figure:
+    """The deflected structure, its displacement magnified and coloured by its size (µm), over the
+    ground if it stands on it.
 
     Parameters
     ----------
@@ -86,8 +104,14 @@ def plot_deflection(result: LoadResult, *, magnification: float, view: View = Vi
     title : str, optional, keyword-only
         Default: what loads it and the magnification.
     """
-    scene, top = field_scene(result, result.static.displacements, magnification, cmap=DEFLECTION_MAP, view=view,
-                             ground=result.supports.at == "feet")
+    scene, top = field_scene(
+        result,
+        result.static.displacements,
+        magnification,
+        cmap=DEFLECTION_MAP,
+        view=view,
+        ground=result.supports.at == "feet",
+    )
     fig = new_figure(figsize=(6.8, 5.0))
     ax = fig.add_subplot()
     _draw(ax, scene)
@@ -95,12 +119,19 @@ def plot_deflection(result: LoadResult, *, magnification: float, view: View = Vi
     _scale_bar(ax, scene.span, "m")  # the mechanics' model is in metres
     _colorbar(fig, ax, DEFLECTION_MAP, 1e6 * top, "displacement (µm)")
     largest = result.static.max_displacement
-    ax.set_title(title or f"Deflected shape, displacement × {magnification:g} (largest {largest * 1e6:.3g} µm)", fontsize=10)
+    ax.set_title(
+        title
+        or f"Deflected shape, displacement × {magnification:g} (largest {largest * 1e6:.3g} µm)",
+        fontsize=10,
+    )
     return fig
 
 
-def plot_modes(result: LoadResult, *, amplitude: float, count: int = 3, view: View = View()) -> Figure:
-    """The first free modes side by side, each at largest displacement ``amplitude`` (m), coloured by its amplitude.
+def plot_modes(
+    result: LoadResult, *, amplitude: float, count: int = 3, view: View = View()
+) -> Figure:
+    """The first free modes side by side, each at largest displacement ``amplitude`` (m), coloured
+    by its amplitude.
 
     The first is the folding motion (when the structure folds); each title gives the
     frequency, λ over the first and the share of the energy in stretching.
@@ -110,11 +141,20 @@ def plot_modes(result: LoadResult, *, amplitude: float, count: int = 3, view: Vi
     fig = new_figure(figsize=(3.4 * count, 3.4))
     for k in range(count):
         ax = fig.add_subplot(1, count, k + 1)
-        scene, _ = field_scene(result, modes.shapes[k], amplitude, cmap=MODE_MAP, view=view, ground=False)
+        scene, _ = field_scene(
+            result, modes.shapes[k], amplitude, cmap=MODE_MAP, view=view, ground=False
+        )
         _draw(ax, scene)
         _fit(ax, scene.box)
         ratio = modes.eigenvalues[k] / modes.eigenvalues[0]
-        ax.set_title(f"mode {k + 1}: {modes.frequencies[k]:.3g} Hz, λ/λ₁ = {ratio:.3g}\nstretching {modes.stretching[k]:.0%} of its energy",
-                     fontsize=8)
-    fig.suptitle(f"The first free modes (largest displacement {amplitude:g} m); the first is the folding motion", fontsize=10)
+        ax.set_title(
+            f"mode {k + 1}: {modes.frequencies[k]:.3g} Hz, λ/λ₁ = "
+            f"{ratio:.3g}\nstretching {modes.stretching[k]:.0%} of its energy",
+            fontsize=8,
+        )
+    fig.suptitle(
+        f"The first free modes (largest displacement {amplitude:g} m); the first is the "
+        "folding motion",
+        fontsize=10,
+    )
     return fig

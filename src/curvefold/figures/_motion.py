@@ -35,16 +35,40 @@ __all__ = ["raster", "motion_frames", "write_motion_gif"]
 
 
 @overload
-def raster(scene: Scene, box: np.ndarray, size: tuple[int, int], title: str, *,
-           supersample: int = 2, canvas: None = None, rect: None = None,
-           title_points: float | None = None) -> Image.Image: ...
+def raster(
+    scene: Scene,
+    box: np.ndarray,
+    size: tuple[int, int],
+    title: str,
+    *,
+    supersample: int = 2,
+    canvas: None = None,
+    rect: None = None,
+    title_points: float | None = None,
+) -> Image.Image: ...
 @overload
-def raster(scene: Scene, box: np.ndarray, size: tuple[int, int] | None, title: str, *,
-           supersample: int = 2, canvas: Canvas, rect: Sequence[float],
-           title_points: float | None = None) -> float: ...
-def raster(scene: Scene, box: np.ndarray, size: tuple[int, int] | None, title: str, *,
-           supersample: int = 2, canvas: Canvas | None = None, rect: Sequence[float] | None = None,
-           title_points: float | None = None) -> Image.Image | float:
+def raster(
+    scene: Scene,
+    box: np.ndarray,
+    size: tuple[int, int] | None,
+    title: str,
+    *,
+    supersample: int = 2,
+    canvas: Canvas,
+    rect: Sequence[float],
+    title_points: float | None = None,
+) -> float: ...
+def raster(
+    scene: Scene,
+    box: np.ndarray,
+    size: tuple[int, int] | None,
+    title: str,
+    *,
+    supersample: int = 2,
+    canvas: Canvas | None = None,
+    rect: Sequence[float] | None = None,
+    title_points: float | None = None,
+) -> Image.Image | float:
     """A scene drawn with Pillow: the screen points ``box`` (P, 2) fit below a title line.
 
     Drawn at ``supersample`` times the size and reduced, so edges are smoothed; line widths
@@ -70,7 +94,8 @@ def raster(scene: Scene, box: np.ndarray, size: tuple[int, int] | None, title: s
     Returns
     -------
     PIL.Image.Image or float
-        An RGB image of ``size``; drawn into ``canvas``, the scale instead: canvas pixels per model unit.
+        An RGB image of ``size``; drawn into ``canvas``, the scale instead: canvas pixels per model
+        unit.
     """
     from PIL import ImageDraw
 
@@ -90,16 +115,28 @@ class _Placement:
     """Where a drawing goes in ``rect`` (left, top, right, bottom; picture pixels) of a canvas:
     the screen points ``box`` (P, 2) fit below the line of a title (if there is one)."""
 
-    def __init__(self, canvas: Canvas, box: np.ndarray, rect: Sequence[float], title: str, title_points: float | None) -> None:
+    def __init__(
+        self,
+        canvas: Canvas,
+        box: np.ndarray,
+        rect: Sequence[float],
+        title: str,
+        title_points: float | None,
+    ) -> None:
         left, top, right, bottom = (v * canvas.supersample for v in rect)
         w, h = right - left, bottom - top
         self.canvas, self.at = canvas, (left + w / 2, top + 0.02 * h)
         self.title_px = 0.05 * h if title_points is None else title_points * canvas.pt
-        head, pad = (0.12 * h if title_points is None else 2.2 * self.title_px) if title else 0.0, 0.02 * w
+        head, pad = (
+            (0.12 * h if title_points is None else 2.2 * self.title_px) if title else 0.0,
+            0.02 * w,
+        )
         lo, hi = box.min(axis=0), box.max(axis=0)
         self.middle = 0.5 * (lo + hi)
         #: Canvas pixels per model unit.
-        self.scale = min((w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - head - pad) / max(hi[1] - lo[1], 1e-12))
+        self.scale = min(
+            (w - 2 * pad) / max(hi[0] - lo[0], 1e-12), (h - head - pad) / max(hi[1] - lo[1], 1e-12)
+        )
         self.centre = np.array([left + w / 2, top + (h + head - pad) / 2])
 
     def pixels(self, points: np.ndarray) -> np.ndarray:
@@ -112,9 +149,11 @@ class _Placement:
             self.canvas.text(self.at, title, self.title_px / self.canvas.pt, anchor="mt")
 
 
-def _frames(scenes: Sequence[Scene], box: np.ndarray, size: tuple[int, int], titles: Sequence[str]) -> list[Image.Image]:
-    """:func:`raster` of each scene of a motion (they share one ground, or none) under its title, all
-    drawn on one canvas: the ground once, then each frame over a copy of it."""
+def _frames(
+    scenes: Sequence[Scene], box: np.ndarray, size: tuple[int, int], titles: Sequence[str]
+) -> list[Image.Image]:
+    """:func:`raster` of each scene of a motion (they share one ground, or none) under its title,
+    all drawn on one canvas: the ground once, then each frame over a copy of it."""
     from PIL import ImageDraw
 
     canvas = Canvas(size, dpi=100.0)
@@ -141,7 +180,8 @@ def motion_frames(
     segments: int = 48,
     max_cells: int = 60,
 ) -> list[Image.Image]:
-    """Frames of the rigid folding motion, one per fold angle, all at one scale (a vault over its ground).
+    """Frames of the rigid folding motion, one per fold angle, all at one scale (a vault over its
+    ground).
 
     Parameters
     ----------
@@ -167,19 +207,36 @@ def motion_frames(
     check_anchor(anchor)
     w_px, h_px = (int(v) for v in size)
     if not (64 <= w_px <= 4096 and 64 <= h_px <= 4096):
-        raise InputError(f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}")
-    steps = np.linspace(0.0, own, 16) if angles is None else np.atleast_1d(np.asarray(angles, float))
+        raise InputError(
+            f"size must be (width, height) in pixels, each in [64, 4096], got {size!r}"
+        )
+    steps = (
+        np.linspace(0.0, own, 16) if angles is None else np.atleast_1d(np.asarray(angles, float))
+    )
     if steps.ndim != 1 or steps.size == 0:
-        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
+        raise InputError(
+            f"angles must be a non-empty list of fold angles in degrees, got {angles!r}"
+        )
     motion = lattice.fold_points(structure.curves_uv, steps, anchor=anchor)
-    scenes = motion_scenes(structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells, crease_width=0.7,
-                           ground=isinstance(obj, Vault))
+    scenes = motion_scenes(
+        structure,
+        motion,
+        colors=KIND_COLORS,
+        view=view,
+        segments=segments,
+        max_cells=max_cells,
+        crease_width=0.7,
+        ground=isinstance(obj, Vault),
+    )
     joint = np.concatenate([scene.box for scene in scenes])  # one scale for all frames
     return _frames(scenes, joint, (w_px, h_px), [f"2α = {f:5.1f}°" for f in steps])
 
 
-def write_motion_gif(obj: Vault | Structure, path: str | os.PathLike, *, frame_seconds: float = 0.12, **frames) -> Path:
-    """An animated GIF of the rigid folding motion, flat to the design angle and back, written atomically.
+def write_motion_gif(
+    obj: Vault | Structure, path: str | os.PathLike, *, frame_seconds: float = 0.12, **frames
+) -> Path:
+    """An animated GIF of the rigid folding motion, flat to the design angle and back, written
+    atomically.
 
     Parameters
     ----------

@@ -81,11 +81,14 @@ def mathtext(label: str) -> str:
 
 
 def new_figure(**kwargs: Any) -> Figure:
-    """A new Figure with constrained layout, never registered with pyplot (keyword arguments go to it)."""
+    """A new Figure with constrained layout, never registered with pyplot (keyword arguments go
+    to it)."""
     try:
         from matplotlib.figure import Figure
     except ImportError as err:  # pragma: no cover - exercised only without matplotlib
-        raise ImportError("curvefold's plots need matplotlib: pip install 'curvefold[plot]'") from err
+        raise ImportError(
+            "curvefold's plots need matplotlib: pip install 'curvefold[plot]'"
+        ) from err
     kwargs.setdefault("layout", "constrained")
     return Figure(**kwargs)
 
@@ -105,19 +108,38 @@ def structure_of(obj: Any) -> tuple[Structure, StructureLattice, float]:
 
 
 def legend_handles(entries: Sequence[tuple[str, dict]]) -> list:
-    """matplotlib legend handles of (label, style) entries (the styles of :meth:`curvefold.figures._canvas.Frame.legend`)."""
+    """matplotlib legend handles of (label, style) entries (the styles of
+    :meth:`curvefold.figures._canvas.Frame.legend`)."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     def handle(label: str, style: dict):
         if "line" in style:
             dash = style.get("dash")
-            return Line2D([], [], color=style["line"], lw=style.get("width", 1.2), ls="-" if dash is None else (0, dash), label=label)
+            return Line2D(
+                [],
+                [],
+                color=style["line"],
+                lw=style.get("width", 1.2),
+                ls="-" if dash is None else (0, dash),
+                label=label,
+            )
         if "patch" in style:
-            return Patch(facecolor=style["patch"], edgecolor=style.get("edge", "#555555"), label=label)
+            return Patch(
+                facecolor=style["patch"], edgecolor=style.get("edge", "#555555"), label=label
+            )
         shape, size = style.get("shape", "o"), style.get("size", 4.0)
         face = "none" if shape == "ring" else style["marker"]
-        return Line2D([], [], ls="", marker="o" if shape == "ring" else shape, ms=size, mfc=face, mec=style["marker"], label=label)
+        return Line2D(
+            [],
+            [],
+            ls="",
+            marker="o" if shape == "ring" else shape,
+            ms=size,
+            mfc=face,
+            mec=style["marker"],
+            label=label,
+        )
 
     return [handle(label, style) for label, style in entries]
 
@@ -181,12 +203,18 @@ class DomainPlot(FrozenArrays):
     key_label = "t of the limiting line  u a(t) + v b(t) = 1"
 
     def legend(self) -> list[tuple[str, dict]]:
-        """(label, style) of the legend's entries: see :meth:`curvefold.figures._canvas.Frame.legend`."""
+        """(label, style) of the legend's entries: see
+        :meth:`curvefold.figures._canvas.Frame.legend`."""
         entries: list[tuple[str, dict]] = [
-            (self.valid_label, {"patch": DOMAIN_FILL, "edge": DOMAIN_EDGE})]
+            (self.valid_label, {"patch": DOMAIN_FILL, "edge": DOMAIN_EDGE})
+        ]
         if len(self.cells):
             entries.append((f"cells ({len(self.cells)})", {"patch": "#ffffff", "edge": "#555555"}))
-        entries += [(f"lattice curve: {kind}", {"marker": KIND_COLORS[kind]}) for kind in MARKED_KINDS if (self.kinds == kind).any()]
+        entries += [
+            (f"lattice curve: {kind}", {"marker": KIND_COLORS[kind]})
+            for kind in MARKED_KINDS
+            if (self.kinds == kind).any()
+        ]
         if self.past.any():
             entries.append(("past regression", {"marker": "#000000", "shape": "x", "size": 6.0}))
         return entries + [(self.lines_label, {"line": "#2ca02c", "width": 0.8})]
@@ -199,7 +227,8 @@ def domain_plot(
     box: float | None = None,
     lines: int = 24,
 ) -> DomainPlot:
-    """What the regression-domain plot of a lattice shows: see :func:`plot_regression_domain` (same parameters).
+    """What the regression-domain plot of a lattice shows: see :func:`plot_regression_domain` (same
+    parameters).
 
     Raises
     ------
@@ -212,12 +241,22 @@ def domain_plot(
     structure = None
     if cells is not None:
         arr = np.asarray(cells)
-        if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) == 0 or not np.issubdtype(arr.dtype, np.integer):
-            raise InputError(f"cells must be a non-empty (K, 2) array of integers, got shape {arr.shape} and dtype {arr.dtype}")
+        if (
+            arr.ndim != 2
+            or arr.shape[1] != 2
+            or len(arr) == 0
+            or not np.issubdtype(arr.dtype, np.integer)
+        ):
+            raise InputError(
+                "cells must be a non-empty (K, 2) array of integers, got shape "
+                f"{arr.shape} and dtype {arr.dtype}"
+            )
         # Unchecked: cells past regression are shown, not refused.
         structure = Structure(lattice, arr.astype(np.int64))
     if box is None:  # the nearest part of the boundary, and every cell
-        dirs = np.array([[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, -1], [1, -1], [-1, 1]], float)
+        dirs = np.array(
+            [[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, -1], [1, -1], [-1, 1]], float
+        )
         ext = domain.extent(dirs)
         reach = [1.5, float(ext[np.isfinite(ext)].min()) if np.isfinite(ext).any() else 1.5]
         if structure is not None:
@@ -225,17 +264,28 @@ def domain_plot(
         box = 1.3 * min(max(reach), 1e4)
     if not np.isfinite(box) or box <= 0:
         raise InputError(f"box must be a finite number > 0, got {box!r}")
-    spread = np.linspace(0, len(domain.t) - 1, max(lines, 2)).round().astype(int)  # increasing: repeats are neighbours
+    # increasing: repeats are neighbours
+    spread = np.linspace(0, len(domain.t) - 1, max(lines, 2)).round().astype(int)
     idx = spread[np.r_[True, spread[1:] != spread[:-1]]]
     clipped = [(_clip_line(float(domain.a[i]), float(domain.b[i]), box), domain.t[i]) for i in idx]
     clipped = [(seg, t) for seg, t in clipped if seg is not None]
     if structure is None:
         squares, uv, kinds = np.zeros((0, 4, 2)), np.zeros((0, 2)), np.zeros(0, str)
     else:
-        squares = (structure.cells[:, None, :] + np.array([[0, 0], [1, 0], [1, 1], [0, 1]])).astype(float)
+        squares = (structure.cells[:, None, :] + np.array([[0, 0], [1, 0], [1, 1], [0, 1]])).astype(
+            float
+        )
         uv, kinds = structure.curves_uv.astype(float), np.asarray(structure.curve_kinds)
-    return DomainPlot(float(box), domain.polygon(box=box), np.array([seg for seg, _ in clipped]).reshape(-1, 2, 2),
-                      np.array([t for _, t in clipped], float), squares, uv, kinds, ~domain.contains(uv))
+    return DomainPlot(
+        float(box),
+        domain.polygon(box=box),
+        np.array([seg for seg, _ in clipped]).reshape(-1, 2, 2),
+        np.array([t for _, t in clipped], float),
+        squares,
+        uv,
+        kinds,
+        ~domain.contains(uv),
+    )
 
 
 def plot_regression_domain(
@@ -275,7 +325,16 @@ def plot_regression_domain(
     box = plot.box
     fig = new_figure(figsize=(6.4, 5.4))
     ax = fig.add_subplot()
-    ax.add_patch(Polygon(plot.valid, closed=True, facecolor=DOMAIN_FILL, edgecolor=DOMAIN_EDGE, linewidth=1.4, zorder=1))
+    ax.add_patch(
+        Polygon(
+            plot.valid,
+            closed=True,
+            facecolor=DOMAIN_FILL,
+            edgecolor=DOMAIN_EDGE,
+            linewidth=1.4,
+            zorder=1,
+        )
+    )
     if len(plot.lines):
         lc = LineCollection(list(plot.lines), cmap="viridis", linewidths=0.8, alpha=0.9, zorder=2)
         lc.set_array(plot.line_t)
@@ -284,14 +343,31 @@ def plot_regression_domain(
         cbar = fig.colorbar(lc, ax=ax, shrink=0.85, pad=0.02)
         cbar.set_label(plot.key_label)
     if len(plot.cells):
-        ax.add_collection(PolyCollection(list(plot.cells), facecolors="#ffffff80", edgecolors="#555555", linewidths=0.8, zorder=3), autolim=False)
+        ax.add_collection(
+            PolyCollection(
+                list(plot.cells),
+                facecolors="#ffffff80",
+                edgecolors="#555555",
+                linewidths=0.8,
+                zorder=3,
+            ),
+            autolim=False,
+        )
         for kind in MARKED_KINDS:
             sel = plot.kinds == kind
             if sel.any():
-                ax.scatter(plot.corners[sel, 0], plot.corners[sel, 1], s=14, color=KIND_COLORS[kind], zorder=4)
+                ax.scatter(
+                    plot.corners[sel, 0],
+                    plot.corners[sel, 1],
+                    s=14,
+                    color=KIND_COLORS[kind],
+                    zorder=4,
+                )
         if plot.past.any():
             bad = plot.corners[plot.past]
-            ax.scatter(bad[:, 0], bad[:, 1], s=40, marker="x", color="black", linewidths=1.2, zorder=5)
+            ax.scatter(
+                bad[:, 0], bad[:, 1], s=40, marker="x", color="black", linewidths=1.2, zorder=5
+            )
     ax.plot([0], [0], marker="o", ms=9, mfc="none", mec="black", mew=1.0, zorder=6)
     ax.annotate("curve 1", (0, 0), xytext=(6, -12), textcoords="offset points", fontsize=7)
     ax.axhline(0, color="#999999", lw=0.5, zorder=0)
@@ -335,10 +411,17 @@ class WidthPlot(FrozenArrays):
     notes: tuple
 
     title = "Section widths and proportion along the crease"
-    widths_label, ratio_label, xlabel = f"width ({UNITS})", "proportion", "t  (curve 1's normalised arc length)"
+    widths_label, ratio_label, xlabel = (
+        f"width ({UNITS})",
+        "proportion",
+        "t  (curve 1's normalised arc length)",
+    )
     #: (label, colour, width in points, dash or None) of the curves of each panel.
     top_curves = (("w_L(t)", "#ff7f0e", 1.6, None), ("w_R(t)", "#9467bd", 1.6, None))
-    bottom_curves = (("w_R / w_L", "#000000", 1.6, None), ("w_R(t) / w_R(0)", "#8c564b", 1.2, (3.7, 1.6)))
+    bottom_curves = (
+        ("w_R / w_L", "#000000", 1.6, None),
+        ("w_R(t) / w_R(0)", "#8c564b", 1.2, (3.7, 1.6)),
+    )
 
     @property
     def mark_ratio(self) -> np.ndarray:
@@ -352,9 +435,19 @@ def width_plot(lattice: StructureLattice) -> WidthPlot:
     t = lattice.t
     ratio = lattice.width_right / lattice.width_left
     m = int(np.argmin(np.abs(t - 0.5)))
-    notes = ((f"{ratio[0]:.4g} at t = 0", bool(ratio[0] >= ratio[m])), (f"{ratio[m]:.4g} at t = ½", bool(ratio[m] >= ratio[0])))
-    return WidthPlot(t, lattice.width_left, lattice.width_right, ratio, lattice.width_right / lattice.width_right[0],
-                     np.array([t[0], t[m]]), notes)
+    notes = (
+        (f"{ratio[0]:.4g} at t = 0", bool(ratio[0] >= ratio[m])),
+        (f"{ratio[m]:.4g} at t = ½", bool(ratio[m] >= ratio[0])),
+    )
+    return WidthPlot(
+        t,
+        lattice.width_left,
+        lattice.width_right,
+        ratio,
+        lattice.width_right / lattice.width_right[0],
+        np.array([t[0], t[m]]),
+        notes,
+    )
 
 
 def plot_width_proportion(lattice: StructureLattice) -> Figure:
@@ -376,9 +469,19 @@ def plot_width_proportion(lattice: StructureLattice) -> Figure:
     plot = width_plot(lattice)
     fig = new_figure(figsize=(6.4, 5.2))
     top, bottom = fig.subplots(2, 1, sharex=True)
-    for ax, curves, values in ((top, plot.top_curves, (plot.width_left, plot.width_right)), (bottom, plot.bottom_curves, (plot.ratio, plot.change))):
+    for ax, curves, values in (
+        (top, plot.top_curves, (plot.width_left, plot.width_right)),
+        (bottom, plot.bottom_curves, (plot.ratio, plot.change)),
+    ):
         for (label, color, width, dash), y in zip(curves, values):
-            ax.plot(plot.t, y, color=color, lw=width, ls="-" if dash is None else "--", label=mathtext(label))
+            ax.plot(
+                plot.t,
+                y,
+                color=color,
+                lw=width,
+                ls="-" if dash is None else "--",
+                label=mathtext(label),
+            )
         for x in plot.marks:
             ax.axvline(x, color="#999999", lw=0.8, ls=":", zorder=0)
         ax.grid(True, lw=0.3, alpha=0.5)
@@ -389,7 +492,14 @@ def plot_width_proportion(lattice: StructureLattice) -> Figure:
     bottom.set_xlabel(plot.xlabel)
     for (x, y), (text, above) in zip(plot.mark_ratio, plot.notes):
         bottom.plot([x], [y], "o", color="black", ms=4)
-        bottom.annotate(text, (x, y), xytext=(6, 7 if above else -7), textcoords="offset points", fontsize=8, va="bottom" if above else "top")
+        bottom.annotate(
+            text,
+            (x, y),
+            xytext=(6, 7 if above else -7),
+            textcoords="offset points",
+            fontsize=8,
+            va="bottom" if above else "top",
+        )
     bottom.margins(y=0.18)
     bottom.set_xlim(-0.02, 1.02)
     return fig
@@ -412,7 +522,8 @@ def section_coordinates(lattice: StructureLattice, uv: np.ndarray, index: int) -
 
 @dataclass(frozen=True, eq=False)
 class SectionPlot(FrozenArrays):
-    """What the sections plot shows (:func:`section_plot`): one panel per t, the cells at every fold angle.
+    """What the sections plot shows (:func:`section_plot`): one panel per t, the cells at every fold
+    angle.
 
     Attributes
     ----------
@@ -446,10 +557,20 @@ class SectionPlot(FrozenArrays):
 
     def legend(self) -> list[tuple[str, dict]]:
         """(label, style) of the legend's entries (see :meth:`DomainPlot.legend`)."""
-        entries = [(f"2α = {f:g}°" + (" (design)" if k == self.design else ""),
-                    {"line": c, "width": 1.5} if k == self.design else {"line": c, "width": 1.0, "dash": self.dash})
-                   for k, (f, c) in enumerate(zip(self.angles.tolist(), self.colors))]
-        entries += [(kind, {"marker": KIND_COLORS[kind]}) for kind in MARKED_KINDS if (self.kinds == kind).any()]
+        entries = [
+            (
+                f"2α = {f:g}°" + (" (design)" if k == self.design else ""),
+                {"line": c, "width": 1.5}
+                if k == self.design
+                else {"line": c, "width": 1.0, "dash": self.dash},
+            )
+            for k, (f, c) in enumerate(zip(self.angles.tolist(), self.colors))
+        ]
+        entries += [
+            (kind, {"marker": KIND_COLORS[kind]})
+            for kind in MARKED_KINDS
+            if (self.kinds == kind).any()
+        ]
         return entries + [("curve 1", {"marker": "#000000", "shape": "ring", "size": 8.0})]
 
 
@@ -464,19 +585,44 @@ def section_plot(
 
     structure, lattice, own = structure_of(obj)
     t_arr = np.atleast_1d(np.asarray(t_values, float))
-    if t_arr.ndim != 1 or t_arr.size == 0 or not np.all(np.isfinite(t_arr)) or np.any((t_arr < 0) | (t_arr > 1)):
-        raise InputError(f"t_values must be a non-empty list of numbers in [0, 1], got {t_values!r}")
-    angles = sorted(set(np.round([30.0, 60.0, 90.0, own], 9))) if fold_angles is None else list(np.atleast_1d(np.asarray(fold_angles, float)))
+    if (
+        t_arr.ndim != 1
+        or t_arr.size == 0
+        or not np.all(np.isfinite(t_arr))
+        or np.any((t_arr < 0) | (t_arr > 1))
+    ):
+        raise InputError(
+            f"t_values must be a non-empty list of numbers in [0, 1], got {t_values!r}"
+        )
+    angles = (
+        sorted(set(np.round([30.0, 60.0, 90.0, own], 9)))
+        if fold_angles is None
+        else list(np.atleast_1d(np.asarray(fold_angles, float)))
+    )
     if len(angles) == 0:
         raise InputError("fold_angles must hold at least one angle")
     lattices = [lattice.refold(f) for f in angles]  # validates every angle
     design = int(np.argmin(np.abs(np.asarray(angles) - own)))
     n = len(lattice.t)
     samples = [int(np.argmin(np.abs(lattice.t - tv))) for tv in t_arr]
-    xy = np.array([[section_coordinates(lat, structure.curves_uv, i) for lat in lattices] for i in samples])  # (T, A, M, 2)
+    # (T, A, M, 2)
+    xy = np.array(
+        [[section_coordinates(lat, structure.curves_uv, i) for lat in lattices] for i in samples]
+    )
     vault = isinstance(obj, Vault)
-    titles = tuple(f"section at t = {lattice.t[i]:.3g}" + ({0: " (feet)", (n - 1) // 2: " (apex)"}.get(i, "") if vault else "") for i in samples)
-    return SectionPlot(np.asarray(angles, float), design, xy[:, :, structure.cell_curves], xy[:, design], np.asarray(structure.curve_kinds), titles)
+    titles = tuple(
+        f"section at t = {lattice.t[i]:.3g}"
+        + ({0: " (feet)", (n - 1) // 2: " (apex)"}.get(i, "") if vault else "")
+        for i in samples
+    )
+    return SectionPlot(
+        np.asarray(angles, float),
+        design,
+        xy[:, :, structure.cell_curves],
+        xy[:, design],
+        np.asarray(structure.curve_kinds),
+        titles,
+    )
 
 
 def plot_sections(
@@ -527,7 +673,9 @@ def plot_sections(
         for kind in MARKED_KINDS:
             sel = plot.kinds == kind
             if sel.any():
-                ax.scatter(corners[sel, 0], corners[sel, 1], s=12, color=KIND_COLORS[kind], zorder=5)
+                ax.scatter(
+                    corners[sel, 0], corners[sel, 1], s=12, color=KIND_COLORS[kind], zorder=5
+                )
         ax.plot([0], [0], marker="o", ms=8, mfc="none", mec="black", mew=1.0, zorder=6)
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
@@ -535,7 +683,9 @@ def plot_sections(
         ax.set_title(title, fontsize=10)
         ax.set_xlabel(plot.xlabel)
     axes[0].set_ylabel(plot.ylabel)
-    fig.legend(handles=legend_handles(plot.legend()), loc="outside right center", fontsize=8, frameon=False)
+    fig.legend(
+        handles=legend_handles(plot.legend()), loc="outside right center", fontsize=8, frameon=False
+    )
     fig.suptitle(plot.title, fontsize=11)
     return fig
 
@@ -569,18 +719,31 @@ class SingularValuesPlot(FrozenArrays):
         return [PALETTE[k % 6] for k in range(len(self.labels))]
 
 
-def singular_values_plot(mechanisms: Sequence[Mechanism], *, title: str = "Singular values of the constraint Jacobian") -> SingularValuesPlot:
+def singular_values_plot(
+    mechanisms: Sequence[Mechanism], *, title: str = "Singular values of the constraint Jacobian"
+) -> SingularValuesPlot:
     """What the singular-values plot shows: see :func:`plot_singular_values`."""
     if len(mechanisms) == 0:
         raise InputError("mechanisms must hold at least one analysed state")
     tiny = np.finfo(float).tiny
-    values = tuple(np.maximum(m.singular_values[::-1] / m.singular_values[0], tiny) for m in mechanisms)
-    labels = tuple(f"{m.label}: {m.dof} internal DOF ({m.nullity} null), " + f"gap {m.gap:.1e}".replace("inf", "∞") for m in mechanisms)
-    return SingularValuesPlot(values, np.array([m.tolerance / m.singular_values[0] for m in mechanisms]), labels, title)
+    values = tuple(
+        np.maximum(m.singular_values[::-1] / m.singular_values[0], tiny) for m in mechanisms
+    )
+    labels = tuple(
+        f"{m.label}: {m.dof} internal DOF ({m.nullity} null), "
+        + f"gap {m.gap:.1e}".replace("inf", "∞")
+        for m in mechanisms
+    )
+    return SingularValuesPlot(
+        values, np.array([m.tolerance / m.singular_values[0] for m in mechanisms]), labels, title
+    )
 
 
-def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singular values of the constraint Jacobian") -> Figure:
-    """The singular values of panel structures' constraint Jacobians, smallest first, one line per state.
+def plot_singular_values(
+    mechanisms: Sequence[Mechanism], *, title: str = "Singular values of the constraint Jacobian"
+) -> Figure:
+    """The singular values of panel structures' constraint Jacobians, smallest first, one line per
+    state.
 
     Each state's values are divided by its largest and drawn against their rank from the
     smallest (log–log), with its rank tolerance: those on or below it are the first-order
@@ -603,7 +766,9 @@ def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singu
     for s, tolerance, label, color in zip(plot.values, plot.tolerances, plot.labels, plot.colors):
         ax.loglog(np.arange(1, len(s) + 1), s, ".-", ms=3, lw=0.8, color=color, label=label)
         ax.axhline(tolerance, color="#999999", lw=0.8, ls="--", zorder=0)
-    ax.text(1.05, plot.tolerances[0], plot.tolerance_label, fontsize=8, color="#666666", va="bottom")
+    ax.text(
+        1.05, plot.tolerances[0], plot.tolerance_label, fontsize=8, color="#666666", va="bottom"
+    )
     ax.set_xlabel(plot.xlabel)
     ax.set_ylabel(plot.ylabel)
     ax.set_title(plot.title, fontsize=10)
@@ -615,7 +780,12 @@ def plot_singular_values(mechanisms: Sequence[Mechanism], *, title: str = "Singu
 # -- output ----------------------------------------------------------------------------------------
 
 
-def save_figure(fig: Figure, path_stem: str | os.PathLike, formats: Sequence[str] = ("png", "svg"), dpi: int = 150) -> list[Path]:
+def save_figure(
+    fig: Figure,
+    path_stem: str | os.PathLike,
+    formats: Sequence[str] = ("png", "svg"),
+    dpi: int = 150,
+) -> list[Path]:
     """Write a figure in several formats, each atomically, to ``path_stem + "." + format``.
 
     Parameters
@@ -639,14 +809,20 @@ def save_figure(fig: Figure, path_stem: str | os.PathLike, formats: Sequence[str
     formats = tuple(formats)
     bad = [f for f in formats if f not in supported]
     if bad or not formats:
-        raise InputError(f"formats must be a non-empty list of {', '.join(sorted(supported))}; got {list(formats)!r}")
+        raise InputError(
+            f"formats must be a non-empty list of {', '.join(sorted(supported))}; "
+            f"got {list(formats)!r}"
+        )
     dpi = check_integer(dpi, "dpi", "[10, 2400]")
     stem = os.fspath(path_stem)
     written = []
     for fmt in formats:
         target = Path(f"{stem}.{fmt}")
         metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None}}.get(fmt)
-        with rc_context({"svg.hashsalt": "curvefold", "svg.fonttype": "path"}), atomic_path(target) as tmp:
+        with (
+            rc_context({"svg.hashsalt": "curvefold", "svg.fonttype": "path"}),
+            atomic_path(target) as tmp,
+        ):
             fig.savefig(tmp, format=fmt, dpi=int(dpi), metadata=metadata)
         written.append(target)
     return written

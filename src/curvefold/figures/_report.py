@@ -1,10 +1,11 @@
-"""The HTML report of an output folder: design, derived quantities, the structure under load, certificate and pictures.
+"""The HTML report of an output folder: design, derived quantities, the structure under load,
+certificate and pictures.
 
 One self-contained page that reads on a phone (390 px) as on a desktop: pictures in a
 grid (wide figures across it; on a phone each at :data:`PHONE_DENSITY` picture pixels per
-screen pixel in a frame of its own, so that its text stays readable, and full size on a tap), tables that
-become one card per row on a phone rather than scroll sideways, every quantity and check
-in words with its symbol and unit, and every file with what it holds.
+screen pixel in a frame of its own, so that its text stays readable, and full size on a tap), tables
+that become one card per row on a phone rather than scroll sideways, every quantity and check in
+words with its symbol and unit, and every file with what it holds.
 """
 
 from __future__ import annotations
@@ -19,11 +20,26 @@ from ..analysis._checks import TITLES
 from ..kernel._json_text import plain
 from ..kernel._text import one_line
 
-__all__ = ["plain", "report_html", "QUANTITIES", "MECHANICS_QUANTITIES", "UNITS_SHOWN", "describe_file", "natural_key"]
+__all__ = [
+    "plain",
+    "report_html",
+    "QUANTITIES",
+    "MECHANICS_QUANTITIES",
+    "UNITS_SHOWN",
+    "describe_file",
+    "natural_key",
+]
 
 #: Pictures in the report, in this order (others follow alphabetically).
-_PICTURE_ORDER = ("vault.png", "folding.gif", "folding-motion.png", "sections.png", "singular-values.png", "regression-domain.png",
-                  "width-proportion.png")
+_PICTURE_ORDER = (
+    "vault.png",
+    "folding.gif",
+    "folding-motion.png",
+    "sections.png",
+    "singular-values.png",
+    "regression-domain.png",
+    "width-proportion.png",
+)
 #: Pictures shown across the whole width (small multiples).
 _WIDE = ("sections.png",)
 #: Pictures the section of a structure under load shows (not among the others).
@@ -32,8 +48,14 @@ _MECHANICS_PICTURES = ("deflection.png", "modes.png")
 #: Lengths: the model unit is the metre of the 3D files (:data:`curvefold.io._tables.UNITS`).
 _UNIT = "m"
 #: How the report and the designer name the schema's units.
-UNITS_SHOWN = {"model units": _UNIT, "per model unit": f"1/{_UNIT}", "output units per model unit": f"print units per {_UNIT}", "degrees": "°"}
-#: Picture pixels per CSS pixel on a phone: the figures' 7 pt text (14.6 px at 150 dpi) shows at 9.7 px.
+UNITS_SHOWN = {
+    "model units": _UNIT,
+    "per model unit": f"1/{_UNIT}",
+    "output units per model unit": f"print units per {_UNIT}",
+    "degrees": "°",
+}
+#: Picture pixels per CSS pixel on a phone: the figures' 7 pt text (14.6 px at 150 dpi) shows at 9.7
+#: px.
 PHONE_DENSITY = 1.5
 #: Name and unit of every derived quantity of a payload, in the order shown.
 QUANTITIES = {
@@ -51,7 +73,10 @@ QUANTITIES = {
     "bounding_box": ("bounding box, min → max (x, y, z)", _UNIT),
     "slope_xy_deg": ("section slope at the feet (xy plane)", "°"),
     "slope_zx_deg": ("section slope at the apex (zx plane)", "°"),
-    "regression_margin": ("smallest speed factor over the creases (Eq. 17; > 0 is free of regression)", ""),
+    "regression_margin": (
+        "smallest speed factor over the creases (Eq. 17; > 0 is free of regression)",
+        "",
+    ),
     "ground_error": ("largest height of an end section above the ground", _UNIT),
     "cells": ("cells (i, j)", ""),
     "curves": ("lattice curves (u, v)", ""),
@@ -74,10 +99,16 @@ MESH_QUANTITIES = {
 }
 #: What the files of an output folder hold, by name pattern (first match wins).
 _FILES = (
-    (r"^sheets/.*\.fold$", "one developed sheet, flat with its target fold angles (loads in Origami Simulator)"),
+    (
+        r"^sheets/.*\.fold$",
+        "one developed sheet, flat with its target fold angles (loads in Origami Simulator)",
+    ),
     (r"^report\.json$", "everything on this page, for programs"),
     (r"^report\.html$", "this page"),
-    (r"-pattern(-p\d+)?\.svg$", "crease pattern page, mm at 1:1, one layer per line kind, scale bar and legend"),
+    (
+        r"-pattern(-p\d+)?\.svg$",
+        "crease pattern page, mm at 1:1, one layer per line kind, scale bar and legend",
+    ),
     (r"\.png$", "picture in this report"),
 )
 
@@ -90,7 +121,11 @@ def natural_key(name: str) -> tuple:
     >>> sorted(["p10.svg", "p2.svg", "p1.svg"], key=natural_key)
     ['p1.svg', 'p2.svg', 'p10.svg']
     """
-    return tuple((0, int(part), "") if part.isdigit() else (1, 0, part) for part in re.split(r"(\d+)", name) if part)
+    return tuple(
+        (0, int(part), "") if part.isdigit() else (1, 0, part)
+        for part in re.split(r"(\d+)", name)
+        if part
+    )
 
 
 def describe_file(name: str) -> str:
@@ -100,7 +135,7 @@ def describe_file(name: str) -> str:
     for pattern, text in _FILES:
         if re.search(pattern, name):
             return text
-    suffix = name[name.rfind("."):]
+    suffix = name[name.rfind(".") :]
     return next((f.holds for f in FORMATS.values() if f.extension == suffix), "")
 
 
@@ -111,7 +146,11 @@ def _number(value) -> str:
     if isinstance(value, float):
         return f"{value:.6g}" if value == 0 or 1e-3 <= abs(value) < 1e6 else f"{value:.3e}"
     if isinstance(value, (list, tuple)):
-        if len(value) == 2 and all(isinstance(v, (list, tuple)) for v in value) and len(value[0]) == 3:
+        if (
+            len(value) == 2
+            and all(isinstance(v, (list, tuple)) for v in value)
+            and len(value[0]) == 3
+        ):
             return f"{_number(value[0])} → {_number(value[1])}"
         if len(value) > 12:
             return ", ".join(_number(v) for v in value[:12]) + f", … ({len(value)} in all)"
@@ -126,28 +165,47 @@ def _rows(values: dict, names: dict) -> str:
         if key in values:
             value = values[key]
             shown = " × ".join(_number(v) for v in value) if key == "footprint" else _number(value)
-            out.append(f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td class=unit>{e(unit)}</td></tr>')
+            out.append(
+                f'<tr><td>{e(label)}</td><td class="num">{e(shown)}</td><td '
+                f"class=unit>{e(unit)}</td></tr>"
+            )
     return "".join(out)
 
 
 def _cells(labels: tuple[str, ...], cells: list[str], attrs: tuple[str, ...] = ()) -> str:
-    """A row whose cells carry their column's label (a phone shows each row as a card: label, value)."""
+    """A row whose cells carry their column's label (a phone shows each row as a card: label,
+    value)."""
     attrs = attrs or ("",) * len(cells)
-    return "".join(f'<td data-label="{html.escape(label)}"{a}>{cell}</td>' for label, cell, a in zip(labels, cells, attrs))
+    return "".join(
+        f'<td data-label="{html.escape(label)}"{a}>{cell}</td>'
+        for label, cell, a in zip(labels, cells, attrs)
+    )
 
 
 def _parameters_table(payload: dict) -> str:
-    """The design's parameters in words with their symbols and units, or its raw form when the payload has no words."""
+    """The design's parameters in words with their symbols and units, or its raw form when the
+    payload has no words."""
     e = html.escape
     raw = e(json.dumps(payload.get("design", {}), indent=2, default=plain))
     rows = payload.get("parameters")
     if not rows:
         return f"<pre>{raw}</pre>"
     columns, attrs = ("parameter", "symbol", "value", "unit"), ("", "", " class=num", "")
-    body = "".join("<tr>" + _cells(columns, [e(r["label"]), f"<code>{e(r['name'])}</code>", e(_number(r["value"])), e(r["unit"])], attrs) + "</tr>"
-                   for r in rows)
-    return (f"<table class=cards><tr><th>parameter</th><th>symbol</th><th>value</th><th>unit</th></tr>{body}</table>"
-            f"<details><summary>as a design file holds it</summary><pre>{raw}</pre></details>")
+    body = "".join(
+        "<tr>"
+        + _cells(
+            columns,
+            [e(r["label"]), f"<code>{e(r['name'])}</code>", e(_number(r["value"])), e(r["unit"])],
+            attrs,
+        )
+        + "</tr>"
+        for r in rows
+    )
+    return (
+        "<table "
+        f"class=cards><tr><th>parameter</th><th>symbol</th><th>value</th><th>unit</th></tr>{body}</table><details><summary>as "
+        f"a design file holds it</summary><pre>{raw}</pre></details>"
+    )
 
 
 def _sci(x: float | None, prefix: str = "") -> str:
@@ -155,89 +213,179 @@ def _sci(x: float | None, prefix: str = "") -> str:
     return "—" if x is None else f"{prefix}{x:.3g}" if prefix else f"{x:.2e}"
 
 
-_CERTIFICATE_COLUMNS = ("check", "status", "measured", "tolerance", "margin", "unit", "worst frame and place")
+_CERTIFICATE_COLUMNS = (
+    "check",
+    "status",
+    "measured",
+    "tolerance",
+    "margin",
+    "unit",
+    "worst frame and place",
+)
 
 
 def _certificate_row(c: dict) -> str:
     e = html.escape
     kind = "pass" if c["passed"] else "fail" if c["status"] == "fail" else "unresolved"
-    needed = f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
+    needed = (
+        f"<br><small>use ≥ {c['samples_needed']} samples</small>" if c["samples_needed"] else ""
+    )
     title = f"<b>{e(TITLES.get(c['name'], c['name']))}</b><br><code>{e(c['name'])}</code>"
-    cells = [title, f"{e(c['status'])}{needed}", _sci(c["value"]), _sci(c["tolerance"]), _sci(c["margin"], "×"), e(c["unit"]), e(c["where"])]
-    return (f"<tr class='{kind} head'>{_cells(_CERTIFICATE_COLUMNS, cells, ('', ' class=status', ' class=num', ' class=num', ' class=num', '', ''))}</tr>"
-            f"<tr class='{kind} about'><td colspan=7 data-label='what it measures'>{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>")
+    cells = [
+        title,
+        f"{e(c['status'])}{needed}",
+        _sci(c["value"]),
+        _sci(c["tolerance"]),
+        _sci(c["margin"], "×"),
+        e(c["unit"]),
+        e(c["where"]),
+    ]
+    return (
+        f"<tr class='{kind} "
+        f"head'>{_cells(_CERTIFICATE_COLUMNS, cells, ('', ' class=status', ' class=num', ' class=num', ' class=num', '', ''))}</tr><tr "
+        f"class='{kind} about'><td colspan=7 data-label='what it "
+        f"measures'>{e(c['measures'])}<br><small>Error model: "
+        f"{e(c['model'])}</small></td></tr>"
+    )
 
 
 def _certificate_table(payload: dict) -> str:
-    """The certificate: per check its status, value, tolerance, margin, where, what it measures and its error model."""
+    """The certificate: per check its status, value, tolerance, margin, where, what it measures
+    and its error model."""
     e = html.escape
     rows = "".join(_certificate_row(c) for c in payload["certificate"])
-    head = ("<tr><th>check</th><th>status</th><th>measured</th><th>tolerance</th><th>margin</th><th>unit</th>"
-            "<th>worst frame and place</th></tr>")
+    head = (
+        "<tr><th>check</th><th>status</th><th>measured</th><th>tolerance</th><th>margin</th><th>unit</th><th>worst "
+        "frame and place</th></tr>"
+    )
     frames = payload.get("certificate_frames") or {}
     angles = frames.get("fold_angles") or []
     motion = ""
     contact = frames.get("first_contact")
-    ends = "" if contact is None else (f"The folding motion runs from flat to 2α = {contact:g}°, where the structure first touches "
-                                       "itself (the first contact): its files hold the frames before it. ")
+    ends = (
+        ""
+        if contact is None
+        else (
+            f"The folding motion runs from flat to 2α = {contact:g}°, "
+            "where the structure first touches itself (the first contact): its files hold the "
+            "frames before it. "
+        )
+    )
     if angles:
         listed = ", ".join(f"{a:g}°" for a in angles)
         motion = f"<p>{ends}Certified as built and in the frames 2α = {e(listed)}."
         panels = bool(payload.get("mechanism"))
         if frames.get("holds_up_to") is not None and panels:
-            motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° (rigid panels: their residuals are rounding "
-                       "at any angle; the search ends within 1.5° of 180°).")
+            motion += (
+                f" Every check passes up to 2α = {frames['holds_up_to']:g}° (rigid "
+                "panels: their residuals are rounding at any angle; the search ends within "
+                "1.5° of 180°)."
+            )
         elif frames.get("holds_up_to") is not None:
-            motion += (f" Every check passes up to 2α = {frames['holds_up_to']:g}° at {frames['samples']} samples (past it the error "
-                       "of the folded state, growing as κ = κ_2D / cos α, outgrows a cap).")
+            motion += (
+                f" Every check passes up to 2α = {frames['holds_up_to']:g}° at "
+                f"{frames['samples']} samples (past it the error of the folded state, growing "
+                "as κ = κ_2D / cos α, outgrows a cap)."
+            )
         else:
-            motion += " Not every check passes in every frame (see below)." if panels else \
-                f" At {frames['samples']} samples not every check passes in every frame (see below)."
-        motion += " The crease checks measure the smooth crease the panels sample.</p>" if panels else "</p>"
+            motion += (
+                " Not every check passes in every frame (see below)."
+                if panels
+                else (
+                    f" At {frames['samples']} samples not every check passes in every frame "
+                    "(see below)."
+                )
+            )
+        motion += (
+            " The crease checks measure the smooth crease the panels sample.</p>"
+            if panels
+            else "</p>"
+        )
     return f"{motion}<table class='certificate cards'>{head}{rows}</table>"
 
 
 def _mechanism_table(mechanism: dict) -> str:
-    """A panel structure's degrees of freedom at each analysed state, with its smallest singular values."""
+    """A panel structure's degrees of freedom at each analysed state, with its smallest singular
+    values."""
     e = html.escape
     scope = f" of {e(mechanism['scope'])} (the dense SVD is bounded)" if mechanism["scope"] else ""
-    head = ("<tr><th>state</th><th>internal DOF</th><th>nullity</th><th>smallest singular values / σ_max</th><th>gap</th>"
-            "<th>clearance</th><th>residual</th></tr>")
+    head = (
+        "<tr><th>state</th><th>internal DOF</th><th>nullity</th><th>smallest singular values "
+        "/ σ_max</th><th>gap</th><th>clearance</th><th>residual</th></tr>"
+    )
     rows = ""
-    columns = ("state", "internal DOF", "nullity", "smallest singular values / σ_max", "gap", "clearance", "residual")
+    columns = (
+        "state",
+        "internal DOF",
+        "nullity",
+        "smallest singular values / σ_max",
+        "gap",
+        "clearance",
+        "residual",
+    )
     for m in mechanism["states"]:
         smallest = ", ".join(f"{v / m['sigma_max']:.1e}" for v in m["smallest_singular_values"][:9])
-        cells = [e(m["label"]), str(m["dof"]), str(m["nullity"]), f"{smallest}, …", "∞" if m["gap"] is None else _sci(m["gap"]),
-                 _sci(m["clearance"]), _sci(m["residual"])]
+        cells = [
+            e(m["label"]),
+            str(m["dof"]),
+            str(m["nullity"]),
+            f"{smallest}, …",
+            "∞" if m["gap"] is None else _sci(m["gap"]),
+            _sci(m["clearance"]),
+            _sci(m["residual"]),
+        ]
         rows += f"<tr>{_cells(columns, cells, ('', ' class=num', ' class=num', '', ' class=num', ' class=num', ' class=num'))}</tr>"
-    return ("<h2>Mechanism</h2><p>Degrees of freedom of the rigid panels" + scope + ": the first-order motions are the null "
-            "space of the Jacobian of every edge length, both diagonals and the planarity of every panel, seams and bonds "
-            "welded; six of them move the whole rigidly. A singular value counts as null at or below 1e-9 σ_max. The flat "
-            "state's extra ones lift the flat sheets at first order only.</p>"
-            f"<table class=cards>{head}{rows}</table>")
+    return (
+        "<h2>Mechanism</h2><p>Degrees of freedom of the rigid panels" + scope + ": the "
+        "first-order motions are the null space of the Jacobian of every edge length, both "
+        "diagonals and the planarity of every panel, seams and bonds welded; six of them move "
+        "the whole rigidly. A singular value counts as null at or below 1e-9 σ_max. The flat "
+        "state's extra ones lift the flat sheets at first order only.</p><table "
+        f"class=cards>{head}{rows}</table>"
+    )
 
 
-#: Name and unit of every figure of a structure under load (``payload["mechanics"]``), in the order shown.
+#: Name and unit of every figure of a structure under load (``payload["mechanics"]``), in the order
+#: shown.
 MECHANICS_QUANTITIES = {
     "total_weight": ("total weight", "N"),
     "applied_load": ("applied load, sum [x, y, z]", "N"),
     "reactions": ("support reactions, sum [x, y, z] (they carry the load)", "N"),
-    "equilibrium_error": ("|Σ reactions + Σ loads| over the forces summed (rounding when they balance)", ""),
+    "equilibrium_error": (
+        "|Σ reactions + Σ loads| over the forces summed (rounding when they balance)",
+        "",
+    ),
     "max_displacement": ("largest displacement", "m"),
-    "max_stress": ("largest stress at the sheet's faces (membrane von Mises plus bending, an upper bound)", "Pa"),
+    "max_stress": (
+        "largest stress at the sheet's faces (membrane von Mises plus bending, an upper bound)",
+        "Pa",
+    ),
     "utilisation": ("utilisation: largest stress over the material's strength", ""),
     "buckling_factor": ("linear buckling factor: the load times this buckles the structure", ""),
-    "fold_mode_gap": ("fold-mode gap λ₂/λ₁: how much stiffer the next free mode is than the folding", ""),
-    "soft_modes": ("soft modes: motions that stretch no bar, rigid motions aside (the folding is one)", ""),
-    "fold_mode_correlation": ("correlation of the first free mode with the rigid folding motion", ""),
-    "fold_span_correlation": ("correlation of the rigid folding motion with the span of the free modes found", ""),
+    "fold_mode_gap": (
+        "fold-mode gap λ₂/λ₁: how much stiffer the next free mode is than the folding",
+        "",
+    ),
+    "soft_modes": (
+        "soft modes: motions that stretch no bar, rigid motions aside (the folding is one)",
+        "",
+    ),
+    "fold_mode_correlation": (
+        "correlation of the first free mode with the rigid folding motion",
+        "",
+    ),
+    "fold_span_correlation": (
+        "correlation of the rigid folding motion with the span of the free modes found",
+        "",
+    ),
     "nodes": ("nodes of the bar-and-hinge model", ""),
     "samples": ("samples along each crease the model keeps", ""),
 }
 
 
 def _balanced(forces: list[float], load: float) -> list[float]:
-    """Forces with what is below 1e-9 of the load (the rounding of forces that balance it) shown as 0.
+    """Forces with what is below 1e-9 of the load (the rounding of forces that balance it) shown as
+    0.
 
     >>> _balanced([1.1e-12, -3e-7, 70.7], 70.7)
     [0.0, -3e-07, 70.7]
@@ -246,41 +394,89 @@ def _balanced(forces: list[float], load: float) -> list[float]:
 
 
 def _mechanics_section(m: dict, files: list[str]) -> str:
-    """The structure under load: what it is made of and what loads it, the deflected shape, the numbers and the first modes."""
+    """The structure under load: what it is made of and what loads it, the deflected shape, the
+    numbers and the first modes."""
     e = html.escape
     sheet = m["sheet"]
-    strength = "no strength given" if sheet["strength"] is None else f"strength {sheet['strength'] / 1e6:.4g} MPa"
+    strength = (
+        "no strength given"
+        if sheet["strength"] is None
+        else f"strength {sheet['strength'] / 1e6:.4g} MPa"
+    )
     loads = m["loads"]
     what = loads["described"]  # each load case in words (curvefold.mechanics.LoadCase.describe)
-    held = "its feet (the end sections on the ground)" if m["supported"] == "feet" else "both end sections of every tube (t = 0 and t = 1)"
-    intro = (f"<p>{e(m['material'])} {_number(m['thickness'] * 1e3)} mm thick (E {sheet['youngs_modulus'] / 1e9:.4g} GPa, "
-             f"ν {_number(sheet['poisson'])}, density {_number(sheet['density'])} kg/m³, {e(strength)}; {e(sheet['source'])}), creases "
-             f"of {_number(m['crease_stiffness'])} N·m/rad/m, under {e(' and '.join(what))}, held at {e(held)}, {e(m['supports'])}. "
-             "The bar-and-hinge model of the structure at its design angle, linear; SI units, z up.</p>")
-    shown = {**m, "buckling_factor": m["buckling_factor"] if m["buckling_factor"] is not None else "none (the load only stiffens it)"}
+    held = (
+        "its feet (the end sections on the ground)"
+        if m["supported"] == "feet"
+        else "both end sections of every tube (t = 0 and t = 1)"
+    )
+    intro = (
+        f"<p>{e(m['material'])} {_number(m['thickness'] * 1e3)} mm thick (E "
+        f"{sheet['youngs_modulus'] / 1e9:.4g} GPa, ν {_number(sheet['poisson'])}, density "
+        f"{_number(sheet['density'])} kg/m³, {e(strength)}; {e(sheet['source'])}), creases of "
+        f"{_number(m['crease_stiffness'])} N·m/rad/m, under {e(' and '.join(what))}, held at "
+        f"{e(held)}, {e(m['supports'])}. The bar-and-hinge model of the structure at its "
+        "design angle, linear; SI units, z up.</p>"
+    )
+    shown = {
+        **m,
+        "buckling_factor": m["buckling_factor"]
+        if m["buckling_factor"] is not None
+        else "none (the load only stiffens it)",
+    }
     if m["utilisation"] is None:
         shown["utilisation"] = "unknown (no strength)"
     if not m["buckling_resolved"]:
-        shown["buckling_factor"] = f"{_number(m['buckling_factor'])}: not resolved at these samples (see below)"
+        shown["buckling_factor"] = (
+            f"{_number(m['buckling_factor'])}: not resolved at these samples (see below)"
+        )
     load = max(abs(v) for v in m["applied_load"])
     shown["reactions"] = _balanced(m["reactions"], load)
     rows = _rows(shown, MECHANICS_QUANTITIES)
-    ends = "".join(f"<tr><td>reactions at {e(end)}, [x, y, z]</td><td class=num>{e(_number(_balanced(r, load)))}</td><td class=unit>N</td></tr>"
-                   for end, r in m["reactions_by_end"].items())
-    picture = lambda name, alt, wide="": (f'<figure{wide}><a href="{name}"><img src="{name}" srcset="{name} {PHONE_DENSITY:g}x" '  # noqa: E731
-                                          f'alt="{e(alt)}"></a><figcaption>{e(alt)}</figcaption></figure>' if name in files else "")
+    ends = "".join(
+        f"<tr><td>reactions at {e(end)}, [x, y, z]</td><td "
+        f"class=num>{e(_number(_balanced(r, load)))}</td><td class=unit>N</td></tr>"
+        for end, r in m["reactions_by_end"].items()
+    )
+    picture = lambda name, alt, wide="": (
+        f'<figure{wide}><a href="{name}"><img src="{name}" '
+        f'srcset="{name} {PHONE_DENSITY:g}x" '  # noqa: E731
+        f'alt="{e(alt)}"></a><figcaption>{e(alt)}</figcaption></figure>'
+        if name in files
+        else ""
+    )
     columns = ("mode", "λ = ω²", "frequency", "λ / λ₁", "stretching share")
     lam = m["modes"]
-    modes = "".join("<tr>" + _cells(columns, [str(k + 1), _number(v), _number(f), _number(v / lam[0]), f"{s:.1%}"],
-                                     ("", " class=num", " class=num", " class=num", " class=num")) + "</tr>"
-                    for k, (v, f, s) in enumerate(zip(lam, m["frequencies"], m["stretching"])))
+    modes = "".join(
+        "<tr>"
+        + _cells(
+            columns,
+            [str(k + 1), _number(v), _number(f), _number(v / lam[0]), f"{s:.1%}"],
+            ("", " class=num", " class=num", " class=num", " class=num"),
+        )
+        + "</tr>"
+        for k, (v, f, s) in enumerate(zip(lam, m["frequencies"], m["stretching"]))
+    )
     notes = "".join(f"<p><small>{e(one_line(n))}.</small></p>" for n in m["notes"])
-    return (f"<h2>Under load: will it stand?</h2>{intro}<table>{rows}{ends}</table>{notes}<div class=pictures>"
-            + picture("deflection.png", f"the deflected shape, displacement × {m['deflection_scale']:g}, coloured by its size")
-            + "</div><h3>The first free modes</h3><p>Of the structure without supports, its rigid motions removed (the first is "
-            "its folding motion); with the share of each one's energy that stretches the sheet.</p>"
-            + f"<table class=cards><tr>{''.join(f'<th>{e(c)}</th>' for c in columns)}</tr>{modes}</table><div class=pictures>"
-            + picture("modes.png", f"the first free modes, largest displacement {m['mode_amplitude']:g} m", " class=wide") + "</div>")
+    return (
+        f"<h2>Under load: will it stand?</h2>{intro}<table>{rows}{ends}</table>{notes}<div "
+        "class=pictures>"
+        + picture(
+            "deflection.png",
+            f"the deflected shape, displacement × {m['deflection_scale']:g}, coloured by its size",
+        )
+        + "</div><h3>The first free modes</h3><p>Of the structure without supports, its "
+        "rigid motions removed (the first is its folding motion); with the share of "
+        "each one's energy that stretches the sheet.</p>" + "<table "
+        f"class=cards><tr>{''.join(f'<th>{e(c)}</th>' for c in columns)}</tr>{modes}</table><div "
+        "class=pictures>"
+        + picture(
+            "modes.png",
+            f"the first free modes, largest displacement {m['mode_amplitude']:g} m",
+            " class=wide",
+        )
+        + "</div>"
+    )
 
 
 def report_html(payload: dict) -> str:
@@ -290,28 +486,53 @@ def report_html(payload: dict) -> str:
     derived = _rows(payload, QUANTITIES)
     mesh = ""
     if payload.get("mesh"):
-        mesh = ("<h2>Meshes of the files</h2><p>The 3D, FOLD and crease-pattern files keep, tube by tube, the fewest samples "
-                "that stay within the accuracy asked; measured:</p>"
-                f"<table>{_rows(payload['mesh'], MESH_QUANTITIES)}</table>")
+        mesh = (
+            "<h2>Meshes of the files</h2><p>The 3D, FOLD and crease-pattern files keep, "
+            "tube by tube, the fewest samples that stay within the accuracy asked; "
+            f"measured:</p><table>{_rows(payload['mesh'], MESH_QUANTITIES)}</table>"
+        )
     mechanism = _mechanism_table(payload["mechanism"]) if payload.get("mechanism") else ""
     design = _parameters_table(payload)
     paper = ""
     if payload.get("paper_comparison"):
         columns = ("quantity", "paper", "computed", "from the paper's κ0·s0", "note")
-        rows = [[e(QUANTITIES.get(r["quantity"], (r["quantity"],))[0]), str(r["paper"]), f"{r['computed']:.12g}",
-                 f"{r['from_paper_kappa0_s0']:.4g}", e(r["note"])] for r in payload["paper_comparison"]]
-        paper = ("<h2>The paper's example</h2><table class=cards><tr>" + "".join(f"<th>{e(c)}</th>" for c in columns) + "</tr>"
-                 + "".join(f"<tr>{_cells(columns, cells)}</tr>" for cells in rows) + "</table>")
+        rows = [
+            [
+                e(QUANTITIES.get(r["quantity"], (r["quantity"],))[0]),
+                str(r["paper"]),
+                f"{r['computed']:.12g}",
+                f"{r['from_paper_kappa0_s0']:.4g}",
+                e(r["note"]),
+            ]
+            for r in payload["paper_comparison"]
+        ]
+        paper = (
+            "<h2>The paper's example</h2><table class=cards><tr>"
+            + "".join(f"<th>{e(c)}</th>" for c in columns)
+            + "</tr>"
+            + "".join(f"<tr>{_cells(columns, cells)}</tr>" for cells in rows)
+            + "</table>"
+        )
     files = sorted(payload.get("files", []), key=natural_key)
     under_load = _mechanics_section(payload["mechanics"], files) if payload.get("mechanics") else ""
-    shown = sorted((f for f in files if f.endswith((".png", ".gif")) and not (under_load and f in _MECHANICS_PICTURES)),
-                   key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f))
+    shown = sorted(
+        (
+            f
+            for f in files
+            if f.endswith((".png", ".gif")) and not (under_load and f in _MECHANICS_PICTURES)
+        ),
+        key=lambda f: (_PICTURE_ORDER.index(f) if f in _PICTURE_ORDER else len(_PICTURE_ORDER), f),
+    )
     pictures = "".join(
-        f'<figure{" class=wide" if f in _WIDE else ""}><a href="{e(f)}"><img src="{e(f)}" srcset="{e(f)} {PHONE_DENSITY:g}x" alt="{e(f)}"></a>'
-        f'<figcaption>{e(f)}</figcaption></figure>'
+        f'<figure{" class=wide" if f in _WIDE else ""}><a href="{e(f)}"><img src="{e(f)}" '
+        f'srcset="{e(f)} {PHONE_DENSITY:g}x" '
+        f'alt="{e(f)}"></a><figcaption>{e(f)}</figcaption></figure>'
         for f in shown
     )
-    links = "".join(f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>' for f in files)
+    links = "".join(
+        f'<tr><td><a href="{e(f)}">{e(f)}</a></td><td>{e(describe_file(f))}</td></tr>'
+        for f in files
+    )
     notes = "".join(f"<p>{e(one_line(note))}</p>" for note in payload.get("notes", []))
     passed = sum(c["passed"] for c in payload["certificate"])
     title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
@@ -344,7 +565,7 @@ td{{overflow-wrap:anywhere}}
 }}
 </style></head><body>
 <h1>curvefold — {title}</h1>
-<p>Geometric certificate: <b>{passed}/{len(payload['certificate'])}</b> checks pass. Lengths are in metres (the model unit, as
+<p>Geometric certificate: <b>{passed}/{len(payload["certificate"])}</b> checks pass. Lengths are in metres (the model unit, as
 in the 3D files); crease patterns are in millimetres at their print scale. On a phone, slide a picture sideways or tap it for
 its full size.</p>
 <h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>

@@ -98,14 +98,16 @@ class View:
 
     @cached_property
     def basis(self) -> np.ndarray:
-        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal, read-only."""
+        """Rows: screen right, screen up, toward the viewer; shape (3, 3), orthonormal,
+        read-only."""
         az, el = np.radians(self.azim), np.radians(self.elev)
         toward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
         right = np.array([-np.sin(az), np.cos(az), 0.0])
         return readonly(np.stack([right, np.cross(toward, right), toward]))
 
     def project(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Screen coordinates (..., 2) and depth (...,) of points (..., 3); larger depth is nearer."""
+        """Screen coordinates (..., 2) and depth (...,) of points (..., 3); larger depth is
+        nearer."""
         q = np.asarray(points, float) @ self.basis.T
         return q[..., :2], q[..., 2]
 
@@ -121,7 +123,8 @@ def strip_quads(vertices: np.ndarray, strips: np.ndarray) -> np.ndarray:
     vertices : (M, n, 3) ndarray
         Curves sampled at common parameters (lattice curves, or a crease and its edges).
     strips : (S, 2) ndarray of int
-        Rows of ``vertices`` bounding every strip (see :func:`~curvefold.geometry._topology.tube_strips`).
+        Rows of ``vertices`` bounding every strip (see
+        :func:`~curvefold.geometry._topology.tube_strips`).
     """
     pairs = np.asarray(strips)
     a, b = vertices[pairs[:, 0]], vertices[pairs[:, 1]]  # (S, n, 3)
@@ -130,15 +133,17 @@ def strip_quads(vertices: np.ndarray, strips: np.ndarray) -> np.ndarray:
 
 
 def shade(quads: np.ndarray, view: View, base: np.ndarray | None = None) -> np.ndarray:
-    """RGBA colours (Q, 4) of quads (Q, 4, 3) shaded two-sidedly by their normals under a fixed light,
-    from their base colours ``base`` (Q, 3) in [0, 1] (default :data:`STRIP_RGB`)."""
+    """RGBA colours (Q, 4) of quads (Q, 4, 3) shaded two-sidedly by their normals under a fixed
+    light, from their base colours ``base`` (Q, 3) in [0, 1] (default :data:`STRIP_RGB`)."""
     normal = np.cross(quads[:, 2] - quads[:, 0], quads[:, 3] - quads[:, 1])
     length = np.linalg.norm(normal, axis=1, keepdims=True)
     normal = normal / np.where(length > 0, length, 1.0)
     light = np.array([-0.45, 0.6, 0.66]) @ view.basis  # from the upper left, in front
     light /= np.linalg.norm(light)
     lambert = np.abs(normal @ light)
-    rgb = (STRIP_RGB[None] if base is None else np.asarray(base, float)) * (0.38 + 0.66 * lambert[:, None])
+    rgb = (STRIP_RGB[None] if base is None else np.asarray(base, float)) * (
+        0.38 + 0.66 * lambert[:, None]
+    )
     return np.concatenate([np.clip(rgb, 0, 1), np.ones((len(quads), 1))], axis=1)
 
 
@@ -181,7 +186,8 @@ class Scene:
 
     @property
     def flat(self) -> tuple[np.ndarray, np.ndarray]:
-        """Every path's points one after the other, shape (N, 2), and the number of points of each path (P,)."""
+        """Every path's points one after the other, shape (N, 2), and the number of points of
+        each path (P,)."""
         if isinstance(self.paths, _HeldPaths):
             return self.paths.points, self.paths.sizes
         sizes = np.fromiter(map(len, self.paths), int, len(self.paths))
@@ -191,12 +197,19 @@ class Scene:
     def strips(self) -> np.ndarray:
         """Screen corners of the strips, shape (Q, 4, 2), in painter's order."""
         points, sizes = self.flat
-        return np.compress(np.repeat(self.roles == "strip", sizes), points, axis=0).reshape(-1, 4, 2)
+        return np.compress(np.repeat(self.roles == "strip", sizes), points, axis=0).reshape(
+            -1, 4, 2
+        )
 
     @property
     def box(self) -> np.ndarray:
-        """Screen box ``[[xmin, ymin], [xmax, ymax]]`` of the strips and the ground, shape (2, 2)."""
-        return bounding_box(np.concatenate([self.strips.reshape(-1, 2)] + ([self.ground] if self.ground is not None else [])))
+        """Screen box ``[[xmin, ymin], [xmax, ymax]]`` of the strips and the ground, shape (2,
+        2)."""
+        return bounding_box(
+            np.concatenate(
+                [self.strips.reshape(-1, 2)] + ([self.ground] if self.ground is not None else [])
+            )
+        )
 
     def svg(self, *, pixels: int = 800, margin: float = 0.02) -> str:
         """The scene as a standalone SVG document.
@@ -222,20 +235,32 @@ class Scene:
         lo, size = lo - pad, np.maximum(hi - lo + 2 * pad, 1e-12)
         unit = size[0] / pixels * 96 / 72  # one point in model units
         lines = [
-            f'<svg xmlns="http://www.w3.org/2000/svg" width="{pixels}" height="{_num(pixels * size[1] / size[0])}" '
-            f'viewBox="{_num(lo[0])} {_num(-(lo[1] + size[1]))} {_num(size[0])} {_num(size[1])}">',
+            f'<svg xmlns="http://www.w3.org/2000/svg" width="{pixels}" '
+            f'height="{_num(pixels * size[1] / size[0])}" viewBox="{_num(lo[0])} '
+            f'{_num(-(lo[1] + size[1]))} {_num(size[0])} {_num(size[1])}">',
             '<g stroke-linejoin="round" stroke-linecap="round">',
         ]
         if self.ground is not None:
-            lines.append(f'<polygon class="ground" points="{_points(self.ground)}" fill="{GROUND_COLOR}" '
-                         f'stroke="{GROUND_EDGE}" stroke-width="{_num(0.6 * unit)}"/>')
-        for path, role, fill, stroke, width in zip(self.paths, self.roles, self.fill, self.stroke, self.widths):
+            lines.append(
+                f'<polygon class="ground" points="{_points(self.ground)}" '
+                f'fill="{GROUND_COLOR}" stroke="{GROUND_EDGE}" '
+                f'stroke-width="{_num(0.6 * unit)}"/>'
+            )
+        for path, role, fill, stroke, width in zip(
+            self.paths, self.roles, self.fill, self.stroke, self.widths
+        ):
             paint = f'stroke="{_hex(stroke)}" stroke-width="{_num(width * unit)}"'
             if len(path) == 2:
                 (x1, y1), (x2, y2) = path
-                lines.append(f'<line class="{role}" x1="{_num(x1)}" y1="{_num(-y1)}" x2="{_num(x2)}" y2="{_num(-y2)}" {paint}/>')
+                lines.append(
+                    f'<line class="{role}" x1="{_num(x1)}" y1="{_num(-y1)}" '
+                    f'x2="{_num(x2)}" y2="{_num(-y2)}" {paint}/>'
+                )
             else:
-                lines.append(f'<polygon class="{role}" points="{_points(path)}" fill="{_hex(fill)}" {paint}/>')
+                lines.append(
+                    f'<polygon class="{role}" points="{_points(path)}" '
+                    f'fill="{_hex(fill)}" {paint}/>'
+                )
         lines += ["</g>", "</svg>", ""]
         return "\n".join(lines)
 
@@ -250,12 +275,20 @@ class _HeldPaths(Sequence):
 
     @classmethod
     def ordered(cls, groups: Sequence[np.ndarray], order: np.ndarray) -> _HeldPaths:
-        """The paths of ``groups`` (each (G, p, 2), read-only), one after the other, taken in ``order``."""
+        """The paths of ``groups`` (each (G, p, 2), read-only), one after the other, taken in
+        ``order``."""
         sizes = np.concatenate([np.full(len(group), group.shape[1]) for group in groups])
         first = (np.cumsum(sizes) - sizes)[order]  # of every path, in the groups' points
         held_sizes = sizes[order]
-        gather = np.repeat(first - (np.cumsum(held_sizes) - held_sizes), held_sizes) + np.arange(int(held_sizes.sum()))
-        return cls(readonly(np.take(np.concatenate([group.reshape(-1, 2) for group in groups]), gather, axis=0)), readonly(held_sizes))
+        gather = np.repeat(first - (np.cumsum(held_sizes) - held_sizes), held_sizes) + np.arange(
+            int(held_sizes.sum())
+        )
+        return cls(
+            readonly(
+                np.take(np.concatenate([group.reshape(-1, 2) for group in groups]), gather, axis=0)
+            ),
+            readonly(held_sizes),
+        )
 
     @cached_property
     def _views(self) -> tuple[np.ndarray, ...]:
@@ -273,8 +306,13 @@ class _HeldPaths(Sequence):
 
 
 def _frozen_paths(paths: Sequence[np.ndarray]) -> Sequence[np.ndarray]:
-    """Every path :func:`~curvefold.kernel._arrays.frozen`, as floats (:class:`_HeldPaths` as they are)."""
-    return paths if isinstance(paths, _HeldPaths) else tuple(frozen(np.asarray(p, float)) for p in paths)
+    """Every path :func:`~curvefold.kernel._arrays.frozen`, as floats (:class:`_HeldPaths` as
+    they are)."""
+    return (
+        paths
+        if isinstance(paths, _HeldPaths)
+        else tuple(frozen(np.asarray(p, float)) for p in paths)
+    )
 
 
 def _num(v: float) -> str:
@@ -304,12 +342,14 @@ def render_strips(
     vertices : (M, k, 3) ndarray
         Curves, already subsampled along t.
     strips : (S, 2) ndarray of int
-        Rows of ``vertices`` bounding every strip (see :func:`~curvefold.geometry._topology.tube_strips`).
+        Rows of ``vertices`` bounding every strip (see
+        :func:`~curvefold.geometry._topology.tube_strips`).
     kinds : sequence of str, length M
         Kind of every curve ("fold", "seam", "junction", "edge").
     view : View
     colors : mapping of str to str, keyword-only
-        Line colour ``"#rrggbb"`` of every kind; a kind without one is drawn in the colour of "edge".
+        Line colour ``"#rrggbb"`` of every kind; a kind without one is drawn in the colour of
+        "edge".
     crease_width : float, keyword-only
         Line width of the curves in points (end rulings get half of it); 0 draws strips only.
     strip_edge : float, keyword-only
@@ -326,8 +366,14 @@ def render_strips(
     pairs = np.asarray(strips)
     quads = strip_quads(vertices, pairs)
     q2, qd = view.project(quads)
-    base = None if strip_rgb is None else np.broadcast_to(np.asarray(strip_rgb, float).reshape(len(pairs), -1, 3),
-                                                          (len(pairs), vertices.shape[1] - 1, 3)).reshape(-1, 3)
+    base = (
+        None
+        if strip_rgb is None
+        else np.broadcast_to(
+            np.asarray(strip_rgb, float).reshape(len(pairs), -1, 3),
+            (len(pairs), vertices.shape[1] - 1, 3),
+        ).reshape(-1, 3)
+    )
     face = shade(quads, view, base)
     strip_depth = qd.mean(axis=1)
     paths = [q2]
@@ -338,30 +384,38 @@ def render_strips(
         # Curves and end rulings are drawn right after the nearest strip that borders them.
         per_strip = strip_depth.reshape(len(pairs), -1)  # (S, k − 1)
         eps = 1e-9 * (1.0 + float(np.abs(qd).max()))
-        used = np.flatnonzero(np.bincount(pairs.ravel(), minlength=len(vertices)))  # the curves of the strips, in order
+        # the curves of the strips, in order
+        used = np.flatnonzero(np.bincount(pairs.ravel(), minlength=len(vertices)))
         seg = np.stack([vertices[used, :-1], vertices[used, 1:]], axis=-2).reshape(-1, 2, 3)
         s2, _ = view.project(seg)
         used_kinds = np.asarray(kinds)[used]
-        kind_rgba = {k: _kind_color(colors, k) for k in dict.fromkeys(used_kinds.tolist())}  # a few kinds, many curves
+        # a few kinds, many curves
+        kind_rgba = {k: _kind_color(colors, k) for k in dict.fromkeys(used_kinds.tolist())}
         per_curve = np.array([kind_rgba[k] for k in used_kinds.tolist()]).reshape(-1, 4)
-        nearest = np.full((len(vertices), per_strip.shape[1]), -np.inf)  # of the strips bordering each curve, per segment
+        # of the strips bordering each curve, per segment
+        nearest = np.full((len(vertices), per_strip.shape[1]), -np.inf)
         np.maximum.at(nearest, pairs[:, 0], per_strip)
         np.maximum.at(nearest, pairs[:, 1], per_strip)
         seg_depth = nearest[used].reshape(-1) + eps
-        rim = np.swapaxes(vertices[pairs][:, :, [0, -1]], 1, 2).reshape(-1, 2, 3)  # end rulings of every strip
+        # end rulings of every strip
+        rim = np.swapaxes(vertices[pairs][:, :, [0, -1]], 1, 2).reshape(-1, 2, 3)
         e2, _ = view.project(rim)
         paths += [s2, e2]
         depth += [seg_depth, per_strip[:, [0, -1]].reshape(-1) + eps]
         roles += [np.repeat(used_kinds, vertices.shape[1] - 1), np.full(len(e2), "rim")]
         fills += [np.zeros((len(s2) + len(e2), 4))]
-        strokes += [np.repeat(per_curve, vertices.shape[1] - 1, axis=0), np.tile(rgba(RIM_COLOR), (len(e2), 1))]
+        strokes += [
+            np.repeat(per_curve, vertices.shape[1] - 1, axis=0),
+            np.tile(rgba(RIM_COLOR), (len(e2), 1)),
+        ]
         widths += [np.full(len(s2), crease_width), np.full(len(e2), 0.5 * crease_width)]
     order = np.argsort(np.concatenate(depth), kind="stable")
     lo, hi = bounding_box(vertices)
     return Scene(
         _HeldPaths.ordered([readonly(np.asarray(group, float)) for group in paths], order),
         np.concatenate(roles)[order],
-        np.take(np.concatenate(fills), order, axis=0),  # (rows gathered by np.take: NumPy's indexing is slower)
+        # (rows gathered by np.take: NumPy's indexing is slower)
+        np.take(np.concatenate(fills), order, axis=0),
         np.take(np.concatenate(strokes), order, axis=0),
         np.concatenate(widths)[order],
         float((hi - lo).max()),
@@ -371,11 +425,16 @@ def render_strips(
 def _kind_color(colors: Mapping[str, str], kind: str) -> np.ndarray:
     color = colors.get(kind, colors.get("edge"))
     if color is None:
-        raise InputError(f"colors must give a colour for the crease kind {str(kind)!r} or for 'edge', got one for {sorted(colors)}")
+        raise InputError(
+            f"colors must give a colour for the crease kind {str(kind)!r} or for "
+            f"'edge', got one for {sorted(colors)}"
+        )
     return rgba(color)
 
 
-def render_structure(vertices: np.ndarray, cell_curves: np.ndarray, kinds: Sequence[str], view: View, **kwargs) -> Scene:
+def render_structure(
+    vertices: np.ndarray, cell_curves: np.ndarray, kinds: Sequence[str], view: View, **kwargs
+) -> Scene:
     """:func:`render_strips` of the four strips of every tube (cell_curves (K, 4))."""
     return render_strips(vertices, tube_strips(cell_curves), kinds, view, **kwargs)
 
@@ -423,7 +482,11 @@ def vault_scene(
     Scene
         With the ground under the vault's box, grown by 8 % of its largest side.
     """
-    vertices = vault.vertices if angle is None else vault.motion(np.array([angle], float), anchor=anchor)[0]
+    vertices = (
+        vault.vertices
+        if angle is None
+        else vault.motion(np.array([angle], float), anchor=anchor)[0]
+    )
     V, cells, kinds = drawable(vault.structure, vertices, segments=segments, max_cells=max_tubes)
     lo, hi = bounding_box(V)
     ground = ground_polygon(lo, hi, view, pad=0.08 * float(np.max(hi - lo)))
@@ -452,7 +515,9 @@ def state_scene(
     max_cells : int, keyword-only
         Draw at most this many cells, evenly spread.
     """
-    V, cells, kinds = drawable(state.structure, state.vertices, segments=segments, max_cells=max_cells)
+    V, cells, kinds = drawable(
+        state.structure, state.vertices, segments=segments, max_cells=max_cells
+    )
     return render_structure(V, cells, kinds, view, colors=colors)
 
 
@@ -494,6 +559,15 @@ def motion_scenes(
     """
     V, cells, kinds = drawable(structure, motion, segments=segments, max_cells=max_cells)
     lo, hi = bounding_box(V)
-    floor = ground_polygon(lo, hi, view, pad=0.06 * float(np.max((hi - lo)[:2]))) if ground else None
+    floor = (
+        ground_polygon(lo, hi, view, pad=0.06 * float(np.max((hi - lo)[:2]))) if ground else None
+    )
     span = float(np.max(hi - lo))
-    return tuple(replace(render_structure(Vf, cells, kinds, view, colors=colors, crease_width=crease_width), ground=floor, span=span) for Vf in V)
+    return tuple(
+        replace(
+            render_structure(Vf, cells, kinds, view, colors=colors, crease_width=crease_width),
+            ground=floor,
+            span=span,
+        )
+        for Vf in V
+    )

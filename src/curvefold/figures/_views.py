@@ -1,4 +1,5 @@
-"""3D views of structures, vaults and single folds, drawn from scenes into matplotlib figures (optional).
+"""3D views of structures, vaults and single folds, drawn from scenes into matplotlib figures
+(optional).
 
 Each view draws the scenes of :mod:`curvefold.figures._scene` (a fixed orthographic view,
 shaded strips and creases sorted far to near; folds red, seams blue) as one collection
@@ -38,11 +39,24 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
     from ..vault._assembly import Vault
 
-__all__ = ["View", "crease_legend", "scale_length", "scale_label", "vault_title", "MotionStrip", "motion_strip", "structure_title",
-           "plot_vault", "plot_motion_strip", "plot_structure", "plot_crease"]
+__all__ = [
+    "View",
+    "crease_legend",
+    "scale_length",
+    "scale_label",
+    "vault_title",
+    "MotionStrip",
+    "motion_strip",
+    "structure_title",
+    "plot_vault",
+    "plot_motion_strip",
+    "plot_structure",
+    "plot_crease",
+]
 
 
-# -- drawing scenes ----------------------------------------------------------------------------------
+# -- drawing scenes
+# ----------------------------------------------------------------------------------
 
 
 def _collection(scene: Scene):
@@ -66,7 +80,16 @@ def _draw(ax: Axes, scene: Scene) -> None:
     from matplotlib.patches import Polygon
 
     if scene.ground is not None:
-        ax.add_patch(Polygon(scene.ground, closed=True, facecolor=GROUND_COLOR, edgecolor=GROUND_EDGE, linewidth=0.6, zorder=0))
+        ax.add_patch(
+            Polygon(
+                scene.ground,
+                closed=True,
+                facecolor=GROUND_COLOR,
+                edgecolor=GROUND_EDGE,
+                linewidth=0.6,
+                zorder=0,
+            )
+        )
     ax.add_collection(_collection(scene), autolim=False)
 
 
@@ -85,13 +108,24 @@ def _fit(ax: Axes, points: np.ndarray, *, margin: float = 0.04, below: float = 0
 
 
 def _scale_bar(ax: Axes, span: float, unit: str | None = None) -> None:
-    """A horizontal scale bar of a round length (about a fifth of ``span``) in the lower right of a view, in ``unit``
-    (default model units)."""
+    """A horizontal scale bar of a round length (about a fifth of ``span``) in the lower right of
+    a view, in ``unit`` (default model units)."""
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
     length = scale_length(span)
     label = scale_label(length, unit)
-    ax.add_artist(AnchoredSizeBar(ax.transData, length, label, "lower right", pad=0.3, frameon=False, size_vertical=0, fontproperties={"size": 7}))
+    ax.add_artist(
+        AnchoredSizeBar(
+            ax.transData,
+            length,
+            label,
+            "lower right",
+            pad=0.3,
+            frameon=False,
+            size_vertical=0,
+            fontproperties={"size": 7},
+        )
+    )
 
 
 def scale_label(length: float, unit: str | None = None) -> str:
@@ -102,7 +136,9 @@ def scale_label(length: float, unit: str | None = None) -> str:
     >>> scale_label(0.5), scale_label(1.0)
     ('0.5 model units', '1 model unit')
     """
-    return f"{length:g} {unit}" if unit else f"{length:g} {UNITS}" if length != 1 else "1 model unit"
+    return (
+        f"{length:g} {unit}" if unit else f"{length:g} {UNITS}" if length != 1 else "1 model unit"
+    )
 
 
 def scale_length(span: float) -> float:
@@ -116,13 +152,17 @@ def scale_length(span: float) -> float:
 
 
 def vault_title(vault: Vault, *, angle: float | None = None, max_tubes: int = 200) -> str:
-    """The title of a view of a vault (subscripts written ``p_{xy}``): its parameters, tubes drawn, 2α."""
+    """The title of a view of a vault (subscripts written ``p_{xy}``): its parameters, tubes
+    drawn, 2α."""
     d = vault.design
     drawn = len(thin_cells(vault.structure.cell_curves, max_tubes))
     shown = "" if drawn == len(vault.structure.cells) else f", {drawn} drawn"
     angle_value = float(d.fold_angle if angle is None else angle)
     panels = f", {d.panels} panels per crease" if d.panels else ""
-    return f"Vault: a = {d.a:g}, p_{{xy}} = {d.p_xy:g}, {d.tubes} tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°"
+    return (
+        f"Vault: a = {d.a:g}, p_{{xy}} = {d.p_xy:g}, {d.tubes} "
+        f"tube{'s' if d.tubes != 1 else ''}{shown}{panels}, 2α = {angle_value:g}°"
+    )
 
 
 def structure_title(structure: Structure, fold_angle: float, *, max_cells: int = 400) -> str:
@@ -176,28 +216,60 @@ def motion_strip(
     """What :func:`plot_motion_strip` shows (same parameters and errors)."""
     angles_arr = np.atleast_1d(np.asarray(angles, float))
     if angles_arr.ndim != 1 or angles_arr.size == 0:
-        raise InputError(f"angles must be a non-empty list of fold angles in degrees, got {angles!r}")
+        raise InputError(
+            f"angles must be a non-empty list of fold angles in degrees, got {angles!r}"
+        )
     motion = vault.motion(angles_arr, anchor=anchor)  # (A, M, n, 3); validates the angles
     lift = vault.lift_off(angles_arr, anchor=anchor)
-    scenes = motion_scenes(vault.structure, motion, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_tubes, crease_width=0.45)
+    scenes = motion_scenes(
+        vault.structure,
+        motion,
+        colors=KIND_COLORS,
+        view=view,
+        segments=segments,
+        max_cells=max_tubes,
+        crease_width=0.45,
+    )
     d = vault.design
-    titles = tuple(f"2α = {f:g}°" + (" (design)" if abs(f - d.fold_angle) < 1e-9 else "") for f in angles_arr.tolist())
+    titles = tuple(
+        f"2α = {f:g}°" + (" (design)" if abs(f - d.fold_angle) < 1e-9 else "")
+        for f in angles_arr.tolist()
+    )
     notes = tuple(f"ends off the ground: {lf.max():.3f} {UNITS}" for lf in lift)
-    return MotionStrip(scenes, titles, notes, f"Rigid folding of the vault (a = {d.a:g}, p_{{xy}} = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)")
+    return MotionStrip(
+        scenes,
+        titles,
+        notes,
+        f"Rigid folding of the vault (a = {d.a:g}, "
+        f"p_{{xy}} = {d.p_xy:g}, {d.tubes} tubes; {anchor} held fixed)",
+    )
 
 
 def crease_legend(kinds: Sequence[str] | np.ndarray, lattice: Any = None) -> list[tuple[str, dict]]:
-    """(label, style) legend entries of a view's crease kinds and strips (see :meth:`curvefold.figures._canvas.Frame.legend`)."""
+    """(label, style) legend entries of a view's crease kinds and strips (see
+    :meth:`curvefold.figures._canvas.Frame.legend`)."""
     names = {"fold": "fold (creases 1, 3)", "seam": "seam (curves 2, 4)", "junction": "junction"}
     drawn = set(kinds)
-    entries = [(names[k], {"line": KIND_COLORS[k], "width": 1.5}) for k in ("fold", "seam", "junction") if k in drawn]
+    entries = [
+        (names[k], {"line": KIND_COLORS[k], "width": 1.5})
+        for k in ("fold", "seam", "junction")
+        if k in drawn
+    ]
     rigid = lattice is not None and lattice.rigid
-    return entries + [("rigid planar panels" if rigid else "developable strips", {"patch": tuple(STRIP_RGB.tolist()), "edge": "#999999"})]
+    return entries + [
+        (
+            "rigid planar panels" if rigid else "developable strips",
+            {"patch": tuple(STRIP_RGB.tolist()), "edge": "#999999"},
+        )
+    ]
 
 
-def _legend_creases(ax: Axes, kinds: Sequence[str] | np.ndarray, lattice: Any = None,
-                    **kwargs: Any) -> None:
-    ax.legend(handles=legend_handles(crease_legend(kinds, lattice)), fontsize=7, frameon=False, **kwargs)
+def _legend_creases(
+    ax: Axes, kinds: Sequence[str] | np.ndarray, lattice: Any = None, **kwargs: Any
+) -> None:
+    ax.legend(
+        handles=legend_handles(crease_legend(kinds, lattice)), fontsize=7, frameon=False, **kwargs
+    )
 
 
 # -- 3D views of vaults ----------------------------------------------------------------------------
@@ -236,7 +308,15 @@ def plot_vault(
     Figure
         The new figure, or the one ``ax`` is in (a SubFigure if it is in one).
     """
-    scene = vault_scene(vault, colors=KIND_COLORS, angle=angle, view=view, anchor=anchor, segments=segments, max_tubes=max_tubes)
+    scene = vault_scene(
+        vault,
+        colors=KIND_COLORS,
+        angle=angle,
+        view=view,
+        anchor=anchor,
+        segments=segments,
+        max_tubes=max_tubes,
+    )
     fig: Figure | SubFigure
     if ax is None:
         fig = new_figure(figsize=(7.0, 5.2))
@@ -247,7 +327,9 @@ def plot_vault(
     _fit(ax, scene.box, below=0.06)
     _scale_bar(ax, scene.span)
     ax.set_title(mathtext(vault_title(vault, angle=angle, max_tubes=max_tubes)), fontsize=10)
-    _legend_creases(ax, scene.roles, vault.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
+    _legend_creases(
+        ax, scene.roles, vault.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3
+    )
     return fig
 
 
@@ -282,7 +364,9 @@ def plot_motion_strip(
     -------
     Figure
     """
-    strip = motion_strip(vault, angles, anchor=anchor, view=view, segments=segments, max_tubes=max_tubes)
+    strip = motion_strip(
+        vault, angles, anchor=anchor, view=view, segments=segments, max_tubes=max_tubes
+    )
     count, columns = len(strip.scenes), strip.columns
     rows = -(-count // columns)
     fig = new_figure(figsize=(3.4 * columns + 0.3, 3.2 * rows + 0.4))
@@ -293,7 +377,16 @@ def plot_motion_strip(
     for ax, scene, title, note in zip(axes, strip.scenes, strip.titles, strip.notes):
         _draw(ax, scene)
         ax.set_title(title, fontsize=10)
-        ax.text(0.5, -0.02, note, transform=ax.transAxes, ha="center", va="top", fontsize=7, color="#555555")
+        ax.text(
+            0.5,
+            -0.02,
+            note,
+            transform=ax.transAxes,
+            ha="center",
+            va="top",
+            fontsize=7,
+            color="#555555",
+        )
     for ax in axes:
         _fit(ax, strip.box)  # one scale for all
     _scale_bar(axes[-1], strip.scenes[0].span)
@@ -327,19 +420,30 @@ def plot_structure(
     Figure
     """
     state = structure.state(fold_angle)
-    scene = state_scene(state, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells)
+    scene = state_scene(
+        state, colors=KIND_COLORS, view=view, segments=segments, max_cells=max_cells
+    )
     fig = new_figure(figsize=(6.4, 5.2))
     ax = fig.add_subplot()
     _draw(ax, scene)
     _fit(ax, scene.box, below=0.1)
     _scale_bar(ax, scene.span)
     ax.set_title(structure_title(structure, state.fold_angle, max_cells=max_cells), fontsize=10)
-    _legend_creases(ax, scene.roles, structure.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4)
+    _legend_creases(
+        ax, scene.roles, structure.lattice, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4
+    )
     return fig
 
 
-def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = None, view: View = View(), segments: int = 160) -> Figure:
-    """A single curved fold: the crease with the developable surfaces on both sides, and its functions.
+def plot_crease(
+    crease: Crease,
+    *,
+    width: float | tuple[float, float] | None = None,
+    view: View = View(),
+    segments: int = 160,
+) -> Figure:
+    """A single curved fold: the crease with the developable surfaces on both sides, and its
+    functions.
 
     Left, a 3D view of the crease (red) and the two surfaces along the rulings ``+r_L``
     and ``+r_R`` (Eqs. 5–6). Right, κ(s) and τ(s), then the fold angle 2α(s) and the ruling
@@ -369,22 +473,31 @@ def plot_crease(crease: Crease, *, width: float | tuple[float, float] | None = N
     else:
         w_left, w_right = (float(w) for w in np.broadcast_to(np.asarray(width, float), (2,)))
         widths = (w_left, w_right)
-    sheets = crease.surface("L+R+", width=widths, rulings=2)  # (2 sides, 2, n, 3); raises past regression
+    # (2 sides, 2, n, 3); raises past regression
+    sheets = crease.surface("L+R+", width=widths, rulings=2)
     idx = sample_index(len(s), segments + 1)
-    curves = np.stack([sheets[0, 0], sheets[0, 1], sheets[1, 1]])[:, idx]  # crease, left edge, right edge
+    # crease, left edge, right edge
+    curves = np.stack([sheets[0, 0], sheets[0, 1], sheets[1, 1]])[:, idx]
     kinds = ("fold", "edge", "edge")
 
     fig = new_figure(figsize=(10.0, 4.8))
     mosaic = fig.subplot_mosaic([["view", "kt"], ["view", "angles"]], width_ratios=[1.35, 1.0])
     ax = mosaic["view"]
-    scene = render_strips(curves, np.array([[0, 1], [0, 2]]), kinds, view, colors=KIND_COLORS, crease_width=1.4)
+    scene = render_strips(
+        curves, np.array([[0, 1], [0, 2]]), kinds, view, colors=KIND_COLORS, crease_width=1.4
+    )
     _draw(ax, scene)
     _fit(ax, scene.box, below=0.1)
     _scale_bar(ax, scene.span)
-    ax.set_title(f"Curved fold: surfaces {widths[0]:.3g} | {widths[1]:.3g} {UNITS} wide", fontsize=10)
+    ax.set_title(
+        f"Curved fold: surfaces {widths[0]:.3g} | {widths[1]:.3g} {UNITS} wide", fontsize=10
+    )
     # An RGB array is a colour to matplotlib, not to its stubs
-    surfaces = Patch(facecolor=STRIP_RGB, edgecolor="#999999",  # type: ignore[arg-type]
-                     label="developable surfaces")
+    surfaces = Patch(
+        facecolor=STRIP_RGB,
+        edgecolor="#999999",  # type: ignore[arg-type]
+        label="developable surfaces",
+    )
     ax.legend(
         handles=[
             Line2D([], [], color=KIND_COLORS["fold"], lw=1.5, label="crease"),

@@ -23,8 +23,11 @@ __all__ = ["first_contact", "far_pairs", "closest_far", "contact_scales"]
 _BOX = 8
 
 
-def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: float, reach: float) -> np.ndarray:
-    """Pairs of points closer than ``radius`` that are parts far apart, shape (P, 2) (flat indices i < j, sorted).
+def far_pairs(
+    points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: float, reach: float
+) -> np.ndarray:
+    """Pairs of points closer than ``radius`` that are parts far apart, shape (P, 2) (flat indices i
+    < j, sorted).
 
     Points (M curves × m samples, flattened) are far apart when their curves are two lattice
     steps apart or more (``max(|Δu|, |Δv|) ≥ 2``: two tubes moved into each other), or when
@@ -50,10 +53,14 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
 
     Examples
     --------
-    >>> x = np.array([[[0.0, 0, 0], [1, 0, 0]], [[0, 0, 0.01], [1, 0, 0.01]], [[0, 0, 0], [5, 0, 0]]])  # 3 curves × 2 samples
+    >>> x = np.array(
+    ...     [[[0.0, 0, 0], [1, 0, 0]], [[0, 0, 0.01], [1, 0, 0.01]], [[0, 0, 0], [5, 0, 0]]]
+    ... )  # 3 curves × 2 samples
     >>> # curves (0, 0) and (0, 1) are one step apart: touching is theirs; (2, 2) is two steps from both
     >>> arc = np.array([[0.0, 1.0], [0.0, 1.0], [0.0, 5.0]])
-    >>> far_pairs(x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), arc, radius=0.1, reach=2.0).tolist()
+    >>> far_pairs(
+    ...     x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), arc, radius=0.1, reach=2.0
+    ... ).tolist()
     [[0, 4], [2, 4]]
     """
     M, m = arc.shape
@@ -63,15 +70,23 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
     slots = np.arange(per_curve * _BOX).reshape(per_curve, _BOX)
     samples, real = np.minimum(slots, m - 1), slots < m  # the last box repeats its last sample
     x = points.reshape(M, m, 3)[:, samples]  # (M, boxes, _BOX, 3)
-    a, b = _overlapping_boxes(x.min(axis=2).reshape(-1, 3), x.max(axis=2).reshape(-1, 3), radius * (1 + 1e-9))
+    a, b = _overlapping_boxes(
+        x.min(axis=2).reshape(-1, 3), x.max(axis=2).reshape(-1, 3), radius * (1 + 1e-9)
+    )
     (ca, ka), (cb, kb) = np.divmod(a, per_curve), np.divmod(b, per_curve)
-    first, last = np.minimum(samples[ka, 0], samples[kb, 0]), np.maximum(samples[ka, -1], samples[kb, -1])
-    span = np.minimum(arc[ca, last] - arc[ca, first], arc[cb, last] - arc[cb, first])  # bounds the arc between any two of their points
+    first, last = (
+        np.minimum(samples[ka, 0], samples[kb, 0]),
+        np.maximum(samples[ka, -1], samples[kb, -1]),
+    )
+    # bounds the arc between any two of their points
+    span = np.minimum(arc[ca, last] - arc[ca, first], arc[cb, last] - arc[cb, first])
     boxes = (np.abs(uv[ca] - uv[cb]).max(axis=1) >= 2) | (span > reach)
     a, b, ca, ka, cb, kb = a[boxes], b[boxes], ca[boxes], ka[boxes], cb[boxes], kb[boxes]
-    i = np.broadcast_to((ca[:, None] * m + samples[ka])[:, :, None], (len(a), _BOX, _BOX))  # flat indices
+    # flat indices
+    i = np.broadcast_to((ca[:, None] * m + samples[ka])[:, :, None], (len(a), _BOX, _BOX))
     j = np.broadcast_to((cb[:, None] * m + samples[kb])[:, None, :], (len(a), _BOX, _BOX))
-    once = real[ka][:, :, None] & real[kb][:, None, :] & ((a != b)[:, None, None] | (i < j))  # a box with itself: i < j
+    # a box with itself: i < j
+    once = real[ka][:, :, None] & real[kb][:, None, :] & ((a != b)[:, None, None] | (i < j))
     i, j = np.minimum(i, j)[once], np.maximum(i, j)[once]
     d = np.take(points, i, axis=0) - np.take(points, j, axis=0)
     close = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2] <= radius * radius
@@ -83,8 +98,11 @@ def far_pairs(points: np.ndarray, uv: np.ndarray, arc: np.ndarray, *, radius: fl
     return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
 
 
-def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np.ndarray, np.ndarray]:
-    """The pairs (a, b) of boxes (B, 3), each once and each box with itself, whose bounds overlap when grown by ``grown``.
+def _overlapping_boxes(
+    lo: np.ndarray, hi: np.ndarray, grown: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (a, b) of boxes (B, 3), each once and each box with itself, whose bounds overlap
+    when grown by ``grown``.
 
     Sweep and prune: the boxes in order of their lower bound along the axis where this pairs the
     fewest, each paired with itself and the later ones that start before it ends there; the other
@@ -103,19 +121,24 @@ def _overlapping_boxes(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np
 
 
 def _sweep(lo: np.ndarray, hi: np.ndarray, grown: float) -> tuple[np.ndarray, np.ndarray]:
-    """The boxes' order along one axis (by lower bound, (B,)) and how many boxes from each on, itself included, start
-    before it ends there grown by ``grown`` (B,)."""
+    """The boxes' order along one axis (by lower bound, (B,)) and how many boxes from each on,
+    itself included, start before it ends there grown by ``grown`` (B,)."""
     order = np.argsort(lo, kind="stable")
     return order, np.searchsorted(lo[order], hi[order] + grown, side="right") - np.arange(len(lo))
 
 
 def contact_scales(lattice: StructureLattice) -> tuple[float, float]:
-    """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four times its largest.
+    """(radius, reach) of :func:`far_pairs` for a lattice: half its smallest strip width, and four
+    times its largest.
 
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90), 0.1, 0.2)
+    >>> lat = Lattice.from_crease(
+    ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90),
+    ...     0.1,
+    ...     0.2,
+    ... )
     >>> contact_scales(lat)
     (0.05, 0.8)
     """
@@ -123,9 +146,11 @@ def contact_scales(lattice: StructureLattice) -> tuple[float, float]:
     return 0.5 * w_min, 4 * max(float(lattice.width_left.max()), float(lattice.width_right.max()))
 
 
-def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: float,
-                samples: int = 201) -> tuple[float, tuple[int, int, int, int] | None]:
-    """The distance of the closest two far-apart parts (:func:`far_pairs`) within ``radius``, and where.
+def closest_far(
+    vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: float, samples: int = 201
+) -> tuple[float, tuple[int, int, int, int] | None]:
+    """The distance of the closest two far-apart parts (:func:`far_pairs`) within ``radius``, and
+    where.
 
     Parameters
     ----------
@@ -150,7 +175,9 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     >>> uv = np.array([[0, 0], [1, 0], [2, 0]])
     >>> closest_far(curves, uv, radius=0.1, reach=10.0, samples=3)
     (0.01, (0, 0, 2, 0))
-    >>> closest_far(curves[:2], uv[:2], radius=0.1, reach=10.0, samples=3)   # nothing far apart within the radius
+    >>> closest_far(
+    ...     curves[:2], uv[:2], radius=0.1, reach=10.0, samples=3
+    ... )  # nothing far apart within the radius
     (inf, None)
     """
     idx = np.linspace(0, vertices.shape[1] - 1, samples).round().astype(int)
@@ -159,7 +186,13 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
     points = curves.reshape(-1, 3)
     if not np.isfinite(points).all():
         return float("nan"), None
-    arc = np.concatenate([np.zeros((len(curves), 1)), np.cumsum(np.linalg.norm(np.diff(curves, axis=1), axis=-1), axis=1)], axis=1)
+    arc = np.concatenate(
+        [
+            np.zeros((len(curves), 1)),
+            np.cumsum(np.linalg.norm(np.diff(curves, axis=1), axis=-1), axis=1),
+        ],
+        axis=1,
+    )
     pairs = far_pairs(points, uv, arc, radius=radius, reach=reach)
     if not len(pairs):
         return float("inf"), None
@@ -170,9 +203,16 @@ def closest_far(vertices: np.ndarray, uv: np.ndarray, *, radius: float, reach: f
 
 
 @lru_cache(maxsize=8)
-def first_contact(structure: Structure, *, start: float | None = None, step: float = 1.0, max_angle: float = 179.0,
-                  samples: int = 201) -> float | None:
-    """The first fold angle from ``start`` (default the design angle, included) where parts of the structure far apart touch.
+def first_contact(
+    structure: Structure,
+    *,
+    start: float | None = None,
+    step: float = 1.0,
+    max_angle: float = 179.0,
+    samples: int = 201,
+) -> float | None:
+    """The first fold angle from ``start`` (default the design angle, included) where parts of the
+    structure far apart touch.
 
     The structure is refolded on a grid of ``step`` degrees up to ``max_angle``; points of
     all its curves, resampled to ``samples`` along t, touch when closer than half the
@@ -188,8 +228,12 @@ def first_contact(structure: Structure, *, start: float | None = None, step: flo
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=41)), 0.1, 0.1))
-    >>> first_contact(tube, max_angle=120.0) is None   # a short tube does not curl onto itself
+    >>> tube = Structure.tube(
+    ...     Lattice.from_crease(
+    ...         Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=41)), 0.1, 0.1
+    ...     )
+    ... )
+    >>> first_contact(tube, max_angle=120.0) is None  # a short tube does not curl onto itself
     True
     """
     lat = structure.lattice

@@ -18,7 +18,16 @@ from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._dense import coarse_indices, dense_stride, frenet_rates, hermite_fill
 from ..kernel._errors import InputError
 from ..kernel._functions import FunctionLike, ScalarFunction, as_function, check_finite
-from ..kernel._lie import CHUNK, GAUSS3_NODES, dual_to_motion, exp_dual, magnus6, matrix_quaternion, motion_to_dual, prefix_dual
+from ..kernel._lie import (
+    CHUNK,
+    GAUSS3_NODES,
+    dual_to_motion,
+    exp_dual,
+    magnus6,
+    matrix_quaternion,
+    motion_to_dual,
+    prefix_dual,
+)
 from ..kernel._validate import check_integer
 
 __all__ = ["FramedCurve", "SpaceCurve", "integrate_frenet", "MAX_SAMPLES"]
@@ -63,13 +72,17 @@ def integrate_frenet(
     --------
     Half a unit circle in two steps of π/2, and a straight line (κ = τ = 0):
 
-    >>> points, frames = integrate_frenet(np.linspace(0, np.pi, 3), np.ones((2, 3)), np.zeros((2, 3)))
+    >>> points, frames = integrate_frenet(
+    ...     np.linspace(0, np.pi, 3), np.ones((2, 3)), np.zeros((2, 3))
+    ... )
     >>> (points.round(6) + 0.0).tolist(), frames.shape
     ([[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 2.0, 0.0]], (3, 3, 3))
     >>> integrate_frenet(np.linspace(0, 1, 3), np.zeros((2, 3)), np.zeros((2, 3)))[0].tolist()
     [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]
     """
-    motions = integrate_motions(grid, kappa_nodes, tau_nodes, speed_nodes=speed_nodes, origin=origin, frame=frame)
+    motions = integrate_motions(
+        grid, kappa_nodes, tau_nodes, speed_nodes=speed_nodes, origin=origin, frame=frame
+    )
     points = np.empty(motions.shape[1:] + (3,))
     frames = np.empty(motions.shape[1:] + (3, 3))
     for sl in _slices(motions.shape[-1], CHUNK):
@@ -94,11 +107,15 @@ def integrate_motions(
     steps = np.empty((8,) + kappa_nodes.shape[:-1])  # (8, ..., n-1)
     # Work in slices that stay in cache: each step is independent of the others.
     for sl in _slices(len(h), CHUNK):
-        steps[..., sl] = exp_dual(magnus6(h[sl], kappa_nodes[..., sl, :], tau_nodes[..., sl, :], speed_nodes[..., sl, :]))
+        steps[..., sl] = exp_dual(
+            magnus6(h[sl], kappa_nodes[..., sl, :], tau_nodes[..., sl, :], speed_nodes[..., sl, :])
+        )
     # The start frame is the first factor of the prefix product.
     q0 = np.array([1.0, 0.0, 0.0, 0.0]) if frame is None else matrix_quaternion(frame)
     x0 = np.zeros(3) if origin is None else np.asarray(origin, float)
-    start = np.broadcast_to(motion_to_dual(q0, x0)[(...,) + (None,) * (steps.ndim - 1)], steps.shape[:-1] + (1,))
+    start = np.broadcast_to(
+        motion_to_dual(q0, x0)[(...,) + (None,) * (steps.ndim - 1)], steps.shape[:-1] + (1,)
+    )
     return prefix_dual(np.concatenate([start, steps], axis=-1))
 
 
@@ -119,7 +136,7 @@ class FramedCurve:
 
     Examples
     --------
-    >>> arc = SpaceCurve.from_curvature(1.0, 0.0, 2.0, samples=3)   # a SpaceCurve is a FramedCurve
+    >>> arc = SpaceCurve.from_curvature(1.0, 0.0, 2.0, samples=3)  # a SpaceCurve is a FramedCurve
     >>> arc.length, arc.tangent[0].tolist(), arc.normal[0].tolist(), arc.binormal[0].tolist()
     (2.0, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])
     """
@@ -172,10 +189,11 @@ class SpaceCurve(FramedCurve, FrozenArrays):
     >>> helix = SpaceCurve.from_curvature(1.0, 1.0, np.pi, samples=3)
     >>> helix.s.round(6).tolist(), helix.points.shape, helix.points.flags.writeable
     ([0.0, 1.570796, 3.141593], (3, 3), False)
-    >>> SpaceCurve.from_curvature(0.0, 0.0, 1.0)   # a straight line has no Frenet frame
+    >>> SpaceCurve.from_curvature(0.0, 0.0, 1.0)  # a straight line has no Frenet frame
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: kappa must be > 0 everywhere (the Frenet frame needs it); at s = 0 it is 0
+    curvefold.kernel._errors.InputError: kappa must be > 0 everywhere (the Frenet frame needs it);
+    at s = 0 it is 0
     """
 
     s: np.ndarray
@@ -207,7 +225,8 @@ class SpaceCurve(FramedCurve, FrozenArrays):
         samples : int, keyword-only
             Number of output samples n ≥ 2. The integration step is L / (n - 1), or a
             multiple of it when that is still below ``0.015 / max(|ω|, √|ω'|)``; the samples
-            in between then come from quintic Hermite interpolation (:mod:`curvefold.kernel._dense`).
+            in between then come from quintic Hermite interpolation
+            (:mod:`curvefold.kernel._dense`).
         origin : (3,) array_like, optional
             x(0); default the origin.
         frame : (3, 3) array_like, optional
@@ -240,13 +259,19 @@ class SpaceCurve(FramedCurve, FrozenArrays):
         k_nodes, t_nodes = kf(nodes), tf(nodes)
         ends = np.array([0.0, length])
         k_ends, t_ends = kf(ends), tf(ends)
-        ok = all(np.isfinite(v).all() for v in (k_nodes, t_nodes, k_ends, t_ends)) and (k_nodes > 0).all() and (k_ends > 0).all()
+        ok = (
+            all(np.isfinite(v).all() for v in (k_nodes, t_nodes, k_ends, t_ends))
+            and (k_nodes > 0).all()
+            and (k_ends > 0).all()
+        )
         if not ok:  # find and report the first offending arc length, samples included
             where = np.concatenate([s, nodes.ravel()])
             _check_curvature(np.concatenate([kf(s), k_nodes.ravel()]), where)
             check_finite(np.concatenate([tf(s), t_nodes.ravel()]), name="tau", s=where)
         if stride == 1:
-            points, frames = integrate_frenet(s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
+            points, frames = integrate_frenet(
+                s, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr
+            )
         else:
             motions = integrate_motions(grid, k_nodes, t_nodes, origin=origin_arr, frame=frame_arr)
             assert rates is not None  # a coarse grid (stride > 1) comes with its rates
@@ -254,8 +279,11 @@ class SpaceCurve(FramedCurve, FrozenArrays):
         return cls(readonly(s), readonly(points), readonly(frames), kf, tf)
 
 
-def _coarse_grid(kappa: ScalarFunction, tau: ScalarFunction, s: np.ndarray) -> tuple[int, np.ndarray, np.ndarray | None]:
-    """The stride of the Magnus steps over the samples s, their grid and the rates the Hermite fill reads there.
+def _coarse_grid(
+    kappa: ScalarFunction, tau: ScalarFunction, s: np.ndarray
+) -> tuple[int, np.ndarray, np.ndarray | None]:
+    """The stride of the Magnus steps over the samples s, their grid and the rates the Hermite fill
+    reads there.
 
     Where a derivative is not finite although the values are, every sample is a step (the
     integration needs no derivative).
@@ -297,10 +325,15 @@ def _check_frame(frame: np.ndarray | None, *, tol: float = 1e-9) -> np.ndarray |
         return None
     R = np.asarray(frame, float)
     if R.shape != (3, 3) or not np.isfinite(R).all():
-        raise InputError(f"frame must be a 3×3 rotation matrix (columns T, N, B), got shape {R.shape}")
+        raise InputError(
+            f"frame must be a 3×3 rotation matrix (columns T, N, B), got shape {R.shape}"
+        )
     err = np.abs(R.T @ R - np.eye(3)).max()
     if err > tol or np.linalg.det(R) < 0:
-        raise InputError(f"frame must be a rotation (orthonormal, det +1) to within {tol:g}; orthonormality error {err:.3g}, det {np.linalg.det(R):.6g}")
+        raise InputError(
+            f"frame must be a rotation (orthonormal, det +1) to within {tol:g}; "
+            f"orthonormality error {err:.3g}, det {np.linalg.det(R):.6g}"
+        )
     return R
 
 
@@ -309,4 +342,7 @@ def _check_curvature(k: np.ndarray, s: np.ndarray) -> None:
     bad = np.flatnonzero(~(k > 0))
     if bad.size:
         i = bad[np.argmin(s[bad])]
-        raise InputError(f"kappa must be > 0 everywhere (the Frenet frame needs it); at s = {s[i]:.6g} it is {k[i]:.6g}")
+        raise InputError(
+            "kappa must be > 0 everywhere (the Frenet frame needs it); at s = "
+            f"{s[i]:.6g} it is {k[i]:.6g}"
+        )

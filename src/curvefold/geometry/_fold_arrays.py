@@ -72,7 +72,11 @@ class FoldArrays(FrozenArrays):
     >>> tube = Structure.tube(lat)
     >>> from curvefold.geometry._fold_arrays import fold_arrays
     >>> arrays = fold_arrays(tube, fold_angles=[0, 45])
-    >>> arrays.fold_angle, arrays.fold_angles.tolist(), arrays.bonds.shape   # a single tube has no bonds
+    >>> (
+    ...     arrays.fold_angle,
+    ...     arrays.fold_angles.tolist(),
+    ...     arrays.bonds.shape,
+    ... )  # a single tube has no bonds
     (90.0, [0.0, 45.0], (0, 2))
     """
 
@@ -85,7 +89,9 @@ class FoldArrays(FrozenArrays):
     sheets: tuple[PatternSheet, ...]
 
 
-def structure_metadata(structure: Structure, fold_angle: float | None = None, *, degrees: bool = True) -> dict:
+def structure_metadata(
+    structure: Structure, fold_angle: float | None = None, *, degrees: bool = True
+) -> dict:
     """What the files of a structure record about it, JSON-ready.
 
     Parameters
@@ -105,14 +111,22 @@ def structure_metadata(structure: Structure, fold_angle: float | None = None, *,
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+    >>> tube = Structure.tube(
+    ...     Lattice.from_crease(
+    ...         Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+    ...     )
+    ... )
     >>> meta = structure_metadata(tube)
     >>> meta["tubes"], meta["samples"], meta["seam_angle_deg"], meta["bonds"]
     (1, 9, -90.0, 'none')
     """
     check_structure(structure)
     lat = structure.lattice
-    design = lat.crease.fold_angle if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees)
+    design = (
+        lat.crease.fold_angle
+        if fold_angle is None
+        else check_fold_angle(fold_angle, degrees=degrees)
+    )
     return {
         "tubes": len(structure.cells),
         "cells": "; ".join(f"({i}, {j})" for i, j in structure.cells.tolist()),
@@ -148,7 +162,8 @@ def fold_arrays(
     faces: Literal["triangles", "quads"] = "triangles",
     keep: Sequence[np.ndarray] | None = None,
 ) -> FoldArrays:
-    """A structure as FOLD arrays: its crease pattern and folded frames on one topology (module notes).
+    """A structure as FOLD arrays: its crease pattern and folded frames on one topology (module
+    notes).
 
     Parameters
     ----------
@@ -179,16 +194,30 @@ def fold_arrays(
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+    >>> tube = Structure.tube(
+    ...     Lattice.from_crease(
+    ...         Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+    ...     )
+    ... )
     >>> arrays = fold_arrays(tube, fold_angles=[0, 90])
     >>> [title for title, _ in arrays.folded], arrays.seam_partners.shape
     (['fold angle 0°', 'fold angle 90°'], (16, 2))
-    >>> float(abs(arrays.folded[0][1].vertices_coords[:, 2]).max()) < 1e-12   # the flat frame is flat
+    >>> float(
+    ...     abs(arrays.folded[0][1].vertices_coords[:, 2]).max()
+    ... ) < 1e-12  # the flat frame is flat
     True
     """
     check_structure(structure)
-    design = structure.lattice.crease.fold_angle if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees)
-    angles = np.array([design]) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
+    design = (
+        structure.lattice.crease.fold_angle
+        if fold_angle is None
+        else check_fold_angle(fold_angle, degrees=degrees)
+    )
+    angles = (
+        np.array([design])
+        if fold_angles is None
+        else check_fold_angles(fold_angles, degrees=degrees)
+    )
     topology = structure.topology(faces, keep=keep)
     parts = develop(structure, topology, design)
     xys = [p.mesh.vertices_coords[:, :2] for p in parts]
@@ -200,11 +229,20 @@ def fold_arrays(
         return np.concatenate([getattr(p.mesh, name) for p in parts])
 
     cp = Mesh(
-        vertices_coords=np.column_stack([np.concatenate([xy + o for xy, o in zip(xys, offsets)]), np.zeros(v_off[-1])]),
-        edges_vertices=np.concatenate([p.mesh.edges_vertices + v_off[i] for i, p in enumerate(parts)]),
+        vertices_coords=np.column_stack(
+            [np.concatenate([xy + o for xy, o in zip(xys, offsets)]), np.zeros(v_off[-1])]
+        ),
+        edges_vertices=np.concatenate(
+            [p.mesh.edges_vertices + v_off[i] for i, p in enumerate(parts)]
+        ),
         edges_assignment=cat("edges_assignment"),
         edges_foldAngle=cat("edges_foldAngle"),
-        faces_vertices=np.concatenate([np.where(p.mesh.faces_vertices >= 0, p.mesh.faces_vertices + v_off[i], -1) for i, p in enumerate(parts)]),
+        faces_vertices=np.concatenate(
+            [
+                np.where(p.mesh.faces_vertices >= 0, p.mesh.faces_vertices + v_off[i], -1)
+                for i, p in enumerate(parts)
+            ]
+        ),
         edges_kind=cat("edges_kind"),
         faces_group=cat("faces_group"),
     )
@@ -213,23 +251,37 @@ def fold_arrays(
     ids = np.flatnonzero(np.concatenate([p.edges_seam for p in parts]) >= 0)
     ordered = ids[np.argsort(mesh_edge[ids], kind="stable")]
     pairs = ordered.reshape(-1, 2) if ordered.size % 2 == 0 else np.zeros((0, 2), np.int64)
-    if len(pairs) * 2 != ordered.size or not (mesh_edge[pairs[:, 0]] == mesh_edge[pairs[:, 1]]).all():
+    if (
+        len(pairs) * 2 != ordered.size
+        or not (mesh_edge[pairs[:, 0]] == mesh_edge[pairs[:, 1]]).all()
+    ):
         raise InternalError("seam edges do not pair up between the two sheets of a tube")
 
     source = np.concatenate([sheet.vertices for sheet in topology.sheets])
     glued = _bond_pairs(cp.edges_vertices, source, topology, mesh_edge)
     # Every frame carries the dihedral angle it has at every edge; the key frame the design state's.
-    coords = folding_motion(structure, np.concatenate([[design], angles]), anchor=anchor, topology=topology)[:, source]  # (1 + A, V, 3)
+    # (1 + A, V, 3)
+    coords = folding_motion(
+        structure, np.concatenate([[design], angles]), anchor=anchor, topology=topology
+    )[:, source]
     sides = edges_faces(cp.faces_vertices, cp.edges_vertices)
-    measured = [dihedral_angles(x, cp.faces_vertices, cp.edges_vertices, faces_of_edges=sides) for x in coords]
+    measured = [
+        dihedral_angles(x, cp.faces_vertices, cp.edges_vertices, faces_of_edges=sides)
+        for x in coords
+    ]
     cp = replace(cp, edges_foldAngle=measured[0])
-    folded = tuple((f"fold angle {a:g}°", replace(cp, vertices_coords=x, edges_foldAngle=m))
-                   for a, x, m in zip(angles, coords[1:], measured[1:]))
+    folded = tuple(
+        (f"fold angle {a:g}°", replace(cp, vertices_coords=x, edges_foldAngle=m))
+        for a, x, m in zip(angles, coords[1:], measured[1:])
+    )
     return FoldArrays(cp, folded, readonly(pairs), glued, float(design), angles, parts)
 
 
-def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topology, mesh_edge: np.ndarray) -> np.ndarray:
-    """Pairs of file edges between the same two samples of one lattice curve, in different tubes' meshes.
+def _bond_pairs(
+    edges_vertices: np.ndarray, source: np.ndarray, topology: Topology, mesh_edge: np.ndarray
+) -> np.ndarray:
+    """Pairs of file edges between the same two samples of one lattice curve, in different tubes'
+    meshes.
 
     Every tube carries its own copy of its curves; where tubes share a lattice curve those
     copies are glued. Each crease edge is keyed by its lattice curve and both its samples
@@ -238,7 +290,8 @@ def _bond_pairs(edges_vertices: np.ndarray, source: np.ndarray, topology: Topolo
     edge: that pair is a seam partner), chained pairwise.
     """
     a, b = source[edges_vertices[:, 0]], source[edges_vertices[:, 1]]
-    ids = np.flatnonzero(topology.vertex_curve[a] == topology.vertex_curve[b])  # rulings and diagonals join two curves
+    # rulings and diagonals join two curves
+    ids = np.flatnonzero(topology.vertex_curve[a] == topology.vertex_curve[b])
     n = int(topology.vertex_sample.max()) + 1
     lo = np.minimum(topology.vertex_sample[a[ids]], topology.vertex_sample[b[ids]])
     hi = np.maximum(topology.vertex_sample[a[ids]], topology.vertex_sample[b[ids]])

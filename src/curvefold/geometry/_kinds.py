@@ -40,15 +40,18 @@ class FoldedCrease(Protocol):
 
     Examples
     --------
-    >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
-    >>> [(isinstance(k.crease, FoldedCrease), k.crease.fold_angle, k.crease.curve.points.shape)
-    ...  for k in kinds]
+    >>> kinds = _example_kinds()  # smooth curves of 5 samples, and 4 panels
+    >>> [
+    ...     (isinstance(k.crease, FoldedCrease), k.crease.fold_angle, k.crease.curve.points.shape)
+    ...     for k in kinds
+    ... ]
     [(True, 90.0, (5, 3)), (True, 90.0, (5, 3))]
     """
 
     @property
     def curve(self) -> FramedCurve:
-        """Curve 1: ``s`` (n,), ``points`` (n, 3) and ``frames`` (n, 3, 3) at its samples (or vertices)."""
+        """Curve 1: ``s`` (n,), ``points`` (n, 3) and ``frames`` (n, 3, 3) at its samples (or
+        vertices)."""
 
     @property
     def fold_angle(self) -> float:
@@ -105,7 +108,7 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+        >>> kinds = _example_kinds()  # smooth curves of 5 samples, and 4 panels
         >>> [k.points(np.array([[0, 0], [1, 1]])).shape for k in kinds]
         [(2, 5, 3), (2, 5, 3)]
         """
@@ -115,50 +118,69 @@ class StructureLattice(Protocol):
 
         Examples
         --------
-        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+        >>> kinds = _example_kinds()  # smooth curves of 5 samples, and 4 panels
         >>> [k.check(np.array([[1, 1]])) for k in kinds]
         [None, None]
-        >>> [k.check(np.array([[20, 0]])) for k in kinds]   # past the curve of regression
+        >>> [k.check(np.array([[20, 0]])) for k in kinds]  # past the curve of regression
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (14.14, 0)
+        curvefold.kernel._errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the
+        curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this
+        direction the limit is (u, v) = (14.14, 0)
         """
 
-    def topology(self, cell_curves: np.ndarray, faces: Literal["triangles", "quads"] = "triangles", *,
-                 keep: Sequence[np.ndarray] | None = None) -> Topology:
+    def topology(
+        self,
+        cell_curves: np.ndarray,
+        faces: Literal["triangles", "quads"] = "triangles",
+        *,
+        keep: Sequence[np.ndarray] | None = None,
+    ) -> Topology:
         """The mesh of the cells whose corners 1–4 are the curves ``cell_curves`` (K, 4).
 
         Examples
         --------
-        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+        >>> kinds = _example_kinds()  # smooth curves of 5 samples, and 4 panels
         >>> cell = np.array([[0, 1, 3, 2]])
-        >>> [k.topology(cell).faces_vertices.shape for k in kinds]   # triangles; planar panels
+        >>> [k.topology(cell).faces_vertices.shape for k in kinds]  # triangles; planar panels
         [(32, 3), (16, 4)]
         """
 
-    def refold(self, fold_angle: float, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> StructureLattice:
+    def refold(
+        self,
+        fold_angle: float,
+        *,
+        degrees: bool = True,
+        anchor: Literal["start", "middle"] = "start",
+    ) -> StructureLattice:
         """The same lattice rigidly folded to 2α ∈ [0°, 180°); 0 is the flat crease pattern.
 
         Examples
         --------
-        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+        >>> kinds = _example_kinds()  # smooth curves of 5 samples, and 4 panels
         >>> [(type(k.refold(60)).__name__, round(k.refold(60).crease.fold_angle, 9)) for k in kinds]
         [('Lattice', 60.0), ('PanelLattice', 60.0)]
         >>> flat = [k.refold(0).points(np.array([[1, 1]])) for k in kinds]
-        >>> [round(float(np.abs(x[..., 2]).max()), 12) for x in flat]   # flat
+        >>> [round(float(np.abs(x[..., 2]).max()), 12) for x in flat]  # flat
         [0.0, 0.0]
         """
 
-    def fold_points(self, uv: np.ndarray, fold_angles: np.ndarray, *, degrees: bool = True,
-                    anchor: Literal["start", "middle"] = "start") -> np.ndarray:
+    def fold_points(
+        self,
+        uv: np.ndarray,
+        fold_angles: np.ndarray,
+        *,
+        degrees: bool = True,
+        anchor: Literal["start", "middle"] = "start",
+    ) -> np.ndarray:
         """The curves uv (K, 2) at many fold angles (A,) at once, shape (A, K, n, 3).
 
         Examples
         --------
-        >>> kinds = _example_kinds()   # smooth curves of 5 samples, and 4 panels
+        >>> kinds = _example_kinds()  # smooth curves of 5 samples, and 4 panels
         >>> [k.fold_points(np.array([[1, 1]]), [0, 45, 90]).shape for k in kinds]
         [(3, 1, 5, 3), (3, 1, 5, 3)]
-        >>> kinds[0].fold_points(np.array([[1, 1]]), [0]).shape   # one angle: still a leading axis
+        >>> kinds[0].fold_points(np.array([[1, 1]]), [0]).shape  # one angle: still a leading axis
         (1, 1, 5, 3)
         >>> kinds[1].fold_points(np.array([[1, 1]]), np.array([-10]))
         Traceback (most recent call last):

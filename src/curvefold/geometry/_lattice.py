@@ -39,10 +39,20 @@ from ._crease import Crease, half_angle, ruling_vectors
 from ._curve import SpaceCurve, gauss_nodes, integrate_frenet
 from ._topology import Topology
 
-__all__ = ["Lattice", "Pattern", "RegressionDomain", "WIDTH_RESOLUTION", "check_anchor", "check_curves", "lattice_points", "log_width_ratio"]
+__all__ = [
+    "Lattice",
+    "Pattern",
+    "RegressionDomain",
+    "WIDTH_RESOLUTION",
+    "check_anchor",
+    "check_curves",
+    "lattice_points",
+    "log_width_ratio",
+]
 
-#: Narrowest width w(t) of a strip, as a fraction of the structure's size (the curve's length or its widest
-#: strip): coordinates of that size resolve it by 10⁷ ulps; a narrower strip's edges round to nothing.
+#: Narrowest width w(t) of a strip, as a fraction of the structure's size (the curve's length or its
+#: widest strip): coordinates of that size resolve it by 10⁷ ulps; a narrower strip's edges round to
+#: nothing.
 WIDTH_RESOLUTION = 1e-9
 
 
@@ -62,10 +72,11 @@ class RegressionDomain(FrozenArrays):
 
     Examples
     --------
-    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-    >>> domain = lat.domain   # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
+    >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+    >>> domain = lat.domain  # a unit circle at 90°: a = w_L / w_lim_L = 0.1 cos 45°, b = −a
     >>> domain.a.round(6).tolist(), domain.b.round(6).tolist()
-    ([0.070711, 0.070711, 0.070711, 0.070711, 0.070711], [-0.070711, -0.070711, -0.070711, -0.070711, -0.070711])
+    ([0.070711, 0.070711, 0.070711, 0.070711, 0.070711], [-0.070711, -0.070711, -0.070711,
+    -0.070711, -0.070711])
     """
 
     t: np.ndarray
@@ -83,7 +94,10 @@ class RegressionDomain(FrozenArrays):
         Examples
         --------
         >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
-        >>> domain.factor(np.array([1.0, 0.0])).round(6).tolist(), domain.factor(np.zeros(2)).tolist()   # curve 1: factor 1
+        >>> (
+        ...     domain.factor(np.array([1.0, 0.0])).round(6).tolist(),
+        ...     domain.factor(np.zeros(2)).tolist(),
+        ... )  # curve 1: factor 1
         ([0.9, 0.9], [1.0, 1.0])
         """
         uv = np.asarray(uv, float)
@@ -121,7 +135,9 @@ class RegressionDomain(FrozenArrays):
         Examples
         --------
         >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
-        >>> domain.extent(np.array([[1.0, 0.0], [0.0, 1.0]])).round(6).tolist()   # 1 / a; no limit along v
+        >>> domain.extent(np.array([[1.0, 0.0], [0.0, 1.0]])).round(
+        ...     6
+        ... ).tolist()  # 1 / a; no limit along v
         [10.0, inf]
         """
         d = np.asarray(direction, float)
@@ -135,7 +151,9 @@ class RegressionDomain(FrozenArrays):
         Examples
         --------
         >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
-        >>> float(domain.where_limited(np.array([1.0, 0.0])))   # the same all along a circle: the first
+        >>> float(
+        ...     domain.where_limited(np.array([1.0, 0.0]))
+        ... )  # the same all along a circle: the first
         0.0
         """
         return self.t[self.factor(uv).argmin(axis=-1)]
@@ -146,19 +164,28 @@ class RegressionDomain(FrozenArrays):
         Examples
         --------
         >>> domain = RegressionDomain(np.zeros(2), np.array([0.1, 0.1]), np.array([-0.1, -0.1]))
-        >>> domain.polygon(box=20.0).round(6).tolist()   # the box cut by the line 0.1 u − 0.1 v = 1
+        >>> domain.polygon(box=20.0).round(6).tolist()  # the box cut by the line 0.1 u − 0.1 v = 1
         [[-20.0, 20.0], [-20.0, -20.0], [-10.0, -20.0], [20.0, 10.0], [20.0, 20.0]]
         """
-        # The box, cut by each half-plane a u + b v ≤ 1 in turn (Sutherland–Hodgman; a convex polygon stays convex).
+        # The box, cut by each half-plane a u + b v ≤ 1 in turn (Sutherland–Hodgman; a convex
+        # polygon stays convex).
         poly = np.array([[-box, box], [-box, -box], [box, -box], [box, box]], float)
         for a, b in zip(self.a.tolist(), self.b.tolist()):
             side = poly @ np.array([a, b]) - 1.0
             if side.max() <= 0:
                 continue
-            following, side_next = np.concatenate([poly[1:], poly[:1]]), np.concatenate([side[1:], side[:1]])  # np.roll(·, -1), cheaper
-            crossing = ((side < 0) & (side_next > 0)) | ((side > 0) & (side_next < 0))  # a vertex on the line is kept, not cut again
-            cut = poly + (side / np.where(crossing, side - side_next, 1.0))[:, None] * (following - poly)
-            keep = np.stack([side <= 0, crossing], axis=1)  # each vertex if inside, then the crossing after it
+            # np.roll(·, -1), cheaper
+            following, side_next = (
+                np.concatenate([poly[1:], poly[:1]]),
+                np.concatenate([side[1:], side[:1]]),
+            )
+            # a vertex on the line is kept, not cut again
+            crossing = ((side < 0) & (side_next > 0)) | ((side > 0) & (side_next < 0))
+            cut = poly + (side / np.where(crossing, side - side_next, 1.0))[:, None] * (
+                following - poly
+            )
+            # each vertex if inside, then the crossing after it
+            keep = np.stack([side <= 0, crossing], axis=1)
             poly = np.concatenate([poly[:, None], cut[:, None]], axis=1)[keep]
         return poly
 
@@ -196,8 +223,12 @@ class Pattern(FrozenArrays):
 
     Examples
     --------
-    >>> helix = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90)
-    >>> Pattern.from_crease(helix, 0.1, 0.1).width_right.round(6).tolist()   # the width law: w_R(0) exp(τ cot α s)
+    >>> helix = Crease.from_curve(
+    ...     SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90
+    ... )
+    >>> Pattern.from_crease(helix, 0.1, 0.1).width_right.round(
+    ...     6
+    ... ).tolist()  # the width law: w_R(0) exp(τ cot α s)
     [0.1, 0.110517, 0.12214]
     """
 
@@ -215,7 +246,9 @@ class Pattern(FrozenArrays):
     log_width_rate_nodes: np.ndarray
 
     @classmethod
-    def from_crease(cls, crease: Crease, width_left: float | np.ndarray, width_right: float | np.ndarray) -> Pattern:
+    def from_crease(
+        cls, crease: Crease, width_left: float | np.ndarray, width_right: float | np.ndarray
+    ) -> Pattern:
         """The pattern of a crease with constant fold angle and the given widths.
 
         Parameters
@@ -234,9 +267,15 @@ class Pattern(FrozenArrays):
 
         Examples
         --------
-        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
+        >>> crease = Crease.from_curve(
+        ...     SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90
+        ... )
         >>> p = Pattern.from_crease(crease, 0.1, 0.2)
-        >>> p.width_left.tolist(), p.width_right.tolist(), np.degrees(p.beta_samples).round(6).tolist()
+        >>> (
+        ...     p.width_left.tolist(),
+        ...     p.width_right.tolist(),
+        ...     np.degrees(p.beta_samples).round(6).tolist(),
+        ... )
         ([0.1, 0.1, 0.1, 0.1, 0.1], [0.2, 0.2, 0.2, 0.2, 0.2], [90.0, 90.0, 90.0, 90.0, 90.0])
         >>> Pattern.from_crease(crease, 0.0, 0.1)
         Traceback (most recent call last):
@@ -244,7 +283,10 @@ class Pattern(FrozenArrays):
         curvefold.kernel._errors.InputError: width_left must be a finite number > 0, got 0.0
         """
         if crease.fold_angle is None:
-            raise InputError("a lattice needs a crease with a constant fold angle; this crease's fold angle varies along s")
+            raise InputError(
+                "a lattice needs a crease with a constant fold angle; this crease's "
+                "fold angle varies along s"
+            )
         s = crease.s
         log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes = _crease_rates(crease)
         widths = []
@@ -259,16 +301,22 @@ class Pattern(FrozenArrays):
                 if bad.size:
                     i = int(bad[0])
                     raise InputError(
-                        f"{name} w(t) = w(0)·exp({'-' if sign < 0 else '+'}∫ τ cot α ds) leaves the range of float64 at s = {s[i]:.6g} "
-                        f"(∫ τ cot α ds = {log_ratio[i]:.6g} there); lower tau or the length"
+                        f"{name} w(t) = w(0)·exp({'-' if sign < 0 else '+'}∫ τ cot α ds) leaves "
+                        f"the range of float64 at s = {s[i]:.6g} (∫ τ cot α ds = "
+                        f"{log_ratio[i]:.6g} there); lower tau or the length"
                     )
             elif arr.shape != s.shape or not (np.isfinite(arr) & (arr > 0)).all():
-                raise InputError(f"{name} must be a number or {len(s)} finite values > 0 (one per sample), got shape {arr.shape}")
+                raise InputError(
+                    f"{name} must be a number or {len(s)} finite values > 0 (one "
+                    f"per sample), got shape {arr.shape}"
+                )
             widths.append(arr)
         wl, wr = widths
         _check_resolved(wl, wr, crease)
         for side, rate in zip(("left", "right"), rates):
-            check_finite(rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s)
+            check_finite(
+                rate, name=f"the regression rate 1/w_lim on the {side} (β' ± κ_2D)/sin²β", s=s
+            )
         sin_beta = np.sin(beta_samples)
         return cls(
             s=s,
@@ -311,7 +359,9 @@ def _kappa_2d(crease: Crease) -> ScalarFunction:
 _RATES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def _crease_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+def _crease_rates(
+    crease: Crease,
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
     """What a pattern reads from its crease alone, whatever its widths: the log width ratio,
     the regression rates, β at the samples, κ_2D and κ_2D cot β at the Gauss nodes.
 
@@ -323,13 +373,20 @@ def _crease_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndar
     return _RATES[crease]
 
 
-def _compute_rates(crease: Crease) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+def _compute_rates(
+    crease: Crease,
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
     s = crease.s
     nodes = gauss_nodes(s)
     k2_nodes = _kappa_2d(crease)(nodes)
     left, right = crease.regression_rates()
     rates = (readonly(left), readonly(right))
-    values = (log_width_ratio(crease), crease.beta_left(s), k2_nodes, k2_nodes / np.tan(crease.beta_left(nodes)))
+    values = (
+        log_width_ratio(crease),
+        crease.beta_left(s),
+        k2_nodes,
+        k2_nodes / np.tan(crease.beta_left(nodes)),
+    )
     log_ratio, beta_samples, k2_nodes, width_rate_nodes = (readonly(v) for v in values)
     return log_ratio, rates, beta_samples, k2_nodes, width_rate_nodes
 
@@ -351,7 +408,7 @@ class Lattice(FrozenArrays):
 
     Examples
     --------
-    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)   # a unit circle
+    >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)  # a unit circle
     >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> lat.crease.fold_angle, lat.refold(30).pattern is lat.pattern
     (90.0, True)
@@ -361,7 +418,9 @@ class Lattice(FrozenArrays):
     pattern: Pattern
 
     @classmethod
-    def from_crease(cls, crease: Crease, width_left: float | np.ndarray, width_right: float | np.ndarray) -> Lattice:
+    def from_crease(
+        cls, crease: Crease, width_left: float | np.ndarray, width_right: float | np.ndarray
+    ) -> Lattice:
         """Lattice of a crease with constant fold angle from the widths at t = 0.
 
         Parameters
@@ -381,11 +440,15 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> crease = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90)
+        >>> crease = Crease.from_curve(
+        ...     SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90
+        ... )
         >>> Lattice.from_crease(crease, 2.0, 0.1)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.RegressionError: widths: lattice curve (u, v) = (1, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (0.7071, 0)
+        curvefold.kernel._errors.RegressionError: widths: lattice curve (u, v) = (1, 0) passes the
+        curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this
+        direction the limit is (u, v) = (0.7071, 0)
         """
         lattice = cls(crease, Pattern.from_crease(crease, width_left, width_right))
         lattice.check(np.array([[0, 1], [1, 0], [1, 1]]), name="widths")
@@ -437,8 +500,10 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-        >>> lat.speed(np.array([[0, 0], [1, 0], [0, 1]]))[:, 0].round(6).tolist()   # curve 1 has L = 1; inside, outside the bend
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+        >>> lat.speed(np.array([[0, 0], [1, 0], [0, 1]]))[:, 0].round(
+        ...     6
+        ... ).tolist()  # curve 1 has L = 1; inside, outside the bend
         [1.0, 0.929289, 1.070711]
         """
         return self.crease.curve.length * self.domain.factor(uv)
@@ -448,8 +513,11 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-        >>> lat.section_area().round(6).tolist(), float(lat.refold(0).section_area().max())   # flat: no area
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+        >>> (
+        ...     lat.section_area().round(6).tolist(),
+        ...     float(lat.refold(0).section_area().max()),
+        ... )  # flat: no area
         ([0.01, 0.01, 0.01, 0.01, 0.01], 0.0)
         """
         return self.width_left * self.width_right * np.sin(2 * constant_alpha(self.crease))
@@ -481,10 +549,15 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-        >>> lat.points(np.array([1, 0]))[0].round(6).tolist(), lat.points(np.array([[0, 0], [1, 1]])).shape
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+        >>> (
+        ...     lat.points(np.array([1, 0]))[0].round(6).tolist(),
+        ...     lat.points(np.array([[0, 0], [1, 1]])).shape,
+        ... )
         ([0.0, 0.070711, 0.070711], (2, 5, 3))
-        >>> bool(np.array_equal(lat.points(np.zeros(2)), lat.crease.curve.points))   # (0, 0) is curve 1
+        >>> bool(
+        ...     np.array_equal(lat.points(np.zeros(2)), lat.crease.curve.points)
+        ... )  # (0, 0) is curve 1
         True
         """
         return lattice_points(self.crease.curve.points, *self._rulings, uv)
@@ -502,20 +575,32 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-        >>> lat.check(np.array([[1, 1], [-5, 0]])), lat.check(np.zeros((0, 2)))   # valid curves; no curves (see check_curves)
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+        >>> (
+        ...     lat.check(np.array([[1, 1], [-5, 0]])),
+        ...     lat.check(np.zeros((0, 2))),
+        ... )  # valid curves; no curves (see check_curves)
         (None, None)
         """
         check_curves(self.domain, self.crease.curve.length, uv, name=name)
 
-    def topology(self, cell_curves: np.ndarray, faces: Literal["triangles", "quads"] = "triangles", *,
-                 keep: Sequence[np.ndarray] | None = None) -> Topology:
-        """The mesh of tubes on these cells' lattice curves, keeping the samples ``keep`` (:meth:`Topology.tubes`).
+    def topology(
+        self,
+        cell_curves: np.ndarray,
+        faces: Literal["triangles", "quads"] = "triangles",
+        *,
+        keep: Sequence[np.ndarray] | None = None,
+    ) -> Topology:
+        """The mesh of tubes on these cells' lattice curves, keeping the samples ``keep``
+        (:meth:`Topology.tubes`).
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-        >>> lat.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape, lat.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]]).faces_vertices.shape
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+        >>> (
+        ...     lat.topology(np.array([[0, 1, 3, 2]])).faces_vertices.shape,
+        ...     lat.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]]).faces_vertices.shape,
+        ... )
         ((32, 3), (8, 3))
         """
         return Topology.tubes(cell_curves, len(self.s), faces=faces, keep=keep)
@@ -527,7 +612,13 @@ class Lattice(FrozenArrays):
         p = self.pattern
         c = self.crease.curve
         ca, ta = np.cos(alphas)[:, None, None], np.tan(alphas)[:, None, None]
-        points, frames = integrate_frenet(c.s, p.kappa_2d_nodes / ca, p.log_width_rate_nodes * ta, origin=c.points[0], frame=c.frames[0])
+        points, frames = integrate_frenet(
+            c.s,
+            p.kappa_2d_nodes / ca,
+            p.log_width_rate_nodes * ta,
+            origin=c.points[0],
+            frame=c.frames[0],
+        )
         if anchor == "middle":
             m = (len(c.s) - 1) // 2
             R = c.frames[m] @ np.swapaxes(frames[:, m], -1, -2)  # (A, 3, 3)
@@ -535,7 +626,14 @@ class Lattice(FrozenArrays):
             frames = R[:, None] @ frames
         return points, frames
 
-    def fold_points(self, uv: np.ndarray, fold_angles: np.ndarray, *, degrees: bool = True, anchor: str = "start") -> np.ndarray:
+    def fold_points(
+        self,
+        uv: np.ndarray,
+        fold_angles: np.ndarray,
+        *,
+        degrees: bool = True,
+        anchor: str = "start",
+    ) -> np.ndarray:
         """Lattice curves uv at many fold angles at once, shape (A, K, n, 3).
 
         The vectorised path behind a folding motion: equivalent to
@@ -550,21 +648,30 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> frames = lat.fold_points(np.array([[1, 0]]), [0, 90])
-        >>> frames.shape, float(np.abs(frames[0, ..., 2]).max())   # 2α = 0: flat
+        >>> frames.shape, float(np.abs(frames[0, ..., 2]).max())  # 2α = 0: flat
         ((2, 1, 5, 3), 0.0)
-        >>> bool(np.allclose(frames[1], lat.points(np.array([[1, 0]])), atol=1e-12))   # 90°: the lattice itself
+        >>> bool(
+        ...     np.allclose(frames[1], lat.points(np.array([[1, 0]])), atol=1e-12)
+        ... )  # 90°: the lattice itself
         True
         """
-        alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
+        alphas = np.array(
+            [half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)]
+        )
         points, frames = self._folded_curve1(alphas, anchor)
         rl, rr = ruling_vectors(frames, alphas[:, None], self.beta, self.beta)
         ll, lr = self.ruling_lengths
         return lattice_points(points, ll[:, None] * rl, lr[:, None] * rr, uv)
 
-    def refold(self, fold_angle: float, *, degrees: bool = True,
-               anchor: Literal["start", "middle"] = "start") -> Lattice:
+    def refold(
+        self,
+        fold_angle: float,
+        *,
+        degrees: bool = True,
+        anchor: Literal["start", "middle"] = "start",
+    ) -> Lattice:
         """The same lattice rigidly folded to another fold angle 2α ∈ [0°, 180°).
 
         The pattern (κ_2D, β, widths, t-correspondence) is shared; curve 1 is rebuilt with
@@ -581,15 +688,27 @@ class Lattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
-        >>> flat = lat.refold(0)   # the crease pattern: curve 1 is the circle of radius 1 / κ_2D in the plane
-        >>> flat.crease.fold_angle, float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), round(float(flat.crease.curve.kappa(0.0)), 6)
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+        >>> flat = lat.refold(
+        ...     0
+        ... )  # the crease pattern: curve 1 is the circle of radius 1 / κ_2D in the plane
+        >>> (
+        ...     flat.crease.fold_angle,
+        ...     float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()),
+        ...     round(float(flat.crease.curve.kappa(0.0)), 6),
+        ... )
         (0.0, 0.0, 0.707107)
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         points, frames = self._folded_curve1(np.array([a]), anchor)
         p = self.pattern
-        curve = SpaceCurve(p.s, readonly(points[0]), readonly(frames[0]), p.kappa_2d.scaled(1.0 / np.cos(a)), _RefoldedTorsion(p.kappa_2d, p.beta, np.tan(a)))
+        curve = SpaceCurve(
+            p.s,
+            readonly(points[0]),
+            readonly(frames[0]),
+            p.kappa_2d.scaled(1.0 / np.cos(a)),
+            _RefoldedTorsion(p.kappa_2d, p.beta, np.tan(a)),
+        )
         return Lattice(Crease(curve, Constant(a), p.beta, p.beta), p)
 
 
@@ -606,7 +725,9 @@ class _RefoldedTorsion(ScalarFunction):
 
     def derivative(self, s: np.ndarray) -> np.ndarray:
         k2, beta = self.kappa_2d, self.beta
-        return self.tan_alpha * (k2.derivative(s) / np.tan(beta(s)) - k2(s) * beta.derivative(s) / np.sin(beta(s)) ** 2)
+        return self.tan_alpha * (
+            k2.derivative(s) / np.tan(beta(s)) - k2(s) * beta.derivative(s) / np.sin(beta(s)) ** 2
+        )
 
 
 def check_anchor(anchor: str) -> None:
@@ -623,7 +744,9 @@ def check_anchor(anchor: str) -> None:
         raise InputError(f"anchor must be 'start' or 'middle', got {anchor!r}")
 
 
-def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, name: str = "cells") -> None:
+def check_curves(
+    domain: RegressionDomain, length: float, uv: np.ndarray, *, name: str = "cells"
+) -> None:
     """Raise :class:`RegressionError` unless every lattice curve uv (..., 2) is inside ``domain``.
 
     The message names the curve, its worst speed factor and where (t and s = t · length),
@@ -631,13 +754,15 @@ def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, nam
 
     Examples
     --------
-    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+    >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
     >>> check_curves(lat.domain, 1.0, np.array([[1, 1]])) is None
     True
     >>> check_curves(lat.domain, 1.0, np.array([[20, 0]]), name="curves")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.RegressionError: curves: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this direction the limit is (u, v) = (14.14, 0)
+    curvefold.kernel._errors.RegressionError: curves: lattice curve (u, v) = (20, 0) passes the
+    curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0, s = 0); along this
+    direction the limit is (u, v) = (14.14, 0)
     """
     uv = np.atleast_2d(np.asarray(uv, float)).reshape(-1, 2)
     margin = domain.margin(uv)
@@ -649,13 +774,16 @@ def check_curves(domain: RegressionDomain, length: float, uv: np.ndarray, *, nam
         lam = float(domain.extent(direction))
         t = float(domain.where_limited(uv[i]))
         raise RegressionError(
-            f"{name}: lattice curve (u, v) = ({u:g}, {v:g}) passes the curve of regression "
-            f"(Eq. 17 speed factor {margin[i]:.3g} ≤ 0, worst at t = {t:.4g}, s = {t * length:.4g}); "
-            f"along this direction the limit is (u, v) = ({lam * direction[0]:.4g}, {lam * direction[1]:.4g})"
+            f"{name}: lattice curve (u, v) = ({u:g}, {v:g}) passes the curve of regression (Eq. "
+            f"17 speed factor {margin[i]:.3g} ≤ 0, worst at t = {t:.4g}, s = "
+            f"{t * length:.4g}); along this direction the limit is (u, v) = "
+            f"({lam * direction[0]:.4g}, {lam * direction[1]:.4g})"
         )
 
 
-def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.ndarray) -> np.ndarray:
+def lattice_points(
+    x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.ndarray
+) -> np.ndarray:
     """Eq. 11, ``x1 + u ℓ_L r_L + v ℓ_R r_R``, for curve-1 data (..., n, 3) and uv (..., 2).
 
     For ``x1`` of shape (A, n, 3) and ``uv`` of shape (K, 2) the result is (A, K, n, 3);
@@ -666,7 +794,7 @@ def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.n
     >>> x1, left, right = np.zeros((2, 3)), np.array([[0, 1.0, 0]] * 2), np.array([[0, 0, 1.0]] * 2)
     >>> lattice_points(x1, left, right, np.array([[1, 2]])).tolist()
     [[[0.0, 1.0, 2.0], [0.0, 1.0, 2.0]]]
-    >>> lattice_points(x1, left, right, np.zeros((0, 2))).shape   # no curves
+    >>> lattice_points(x1, left, right, np.zeros((0, 2))).shape  # no curves
     (0, 2, 3)
     """
     uv = np.asarray(uv, float)
@@ -681,14 +809,16 @@ def lattice_points(x1: np.ndarray, left: np.ndarray, right: np.ndarray, uv: np.n
 
 
 def _check_resolved(width_left: np.ndarray, width_right: np.ndarray, crease: Crease) -> None:
-    """Refuse widths that coordinates of the structure's size cannot resolve (:data:`WIDTH_RESOLUTION`)."""
+    """Refuse widths that coordinates of the structure's size cannot resolve
+    (:data:`WIDTH_RESOLUTION`)."""
     size = max(crease.curve.length, float(width_left.max()), float(width_right.max()))
     for name, w in (("width_left", width_left), ("width_right", width_right)):
         i = int(np.argmin(w))
         if w[i] < WIDTH_RESOLUTION * size:
             raise InputError(
-                f"{name} w(t) = {w[i]:.3g} at s = {crease.s[i]:.6g} is below {WIDTH_RESOLUTION:g} of the structure's size {size:.3g}: "
-                "its coordinates cannot resolve so narrow a strip; widen it, or lower tau or the length"
+                f"{name} w(t) = {w[i]:.3g} at s = {crease.s[i]:.6g} is below "
+                f"{WIDTH_RESOLUTION:g} of the structure's size {size:.3g}: its coordinates "
+                "cannot resolve so narrow a strip; widen it, or lower tau or the length"
             )
 
 
@@ -697,10 +827,14 @@ def log_width_ratio(crease: Crease) -> np.ndarray:
 
     Examples
     --------
-    >>> helix = Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90)
-    >>> log_width_ratio(helix).round(6).tolist()   # τ cot 45° · s
+    >>> helix = Crease.from_curve(
+    ...     SpaceCurve.from_curvature(1.0, 0.2, 1.0, samples=3), fold_angle=90
+    ... )
+    >>> log_width_ratio(helix).round(6).tolist()  # τ cot 45° · s
     [0.0, 0.1, 0.2]
-    >>> log_width_ratio(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3))).tolist()   # τ = 0: constant widths
+    >>> log_width_ratio(
+    ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=3))
+    ... ).tolist()  # τ = 0: constant widths
     [0.0, 0.0, 0.0]
     """
     s = crease.s

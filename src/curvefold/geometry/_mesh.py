@@ -19,8 +19,17 @@ from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError
 from ..kernel._lie import cross
 
-__all__ = ["Mesh", "EDGE_KINDS", "CREASE_KINDS", "fold_angles", "dihedral_angles", "edges_faces", "face_sides", "vector_areas",
-           "edges_along"]
+__all__ = [
+    "Mesh",
+    "EDGE_KINDS",
+    "CREASE_KINDS",
+    "fold_angles",
+    "dihedral_angles",
+    "edges_faces",
+    "face_sides",
+    "vector_areas",
+    "edges_along",
+]
 
 #: What an edge is: a fold crease, a seam (two sheets welded, two-ply when flat), the outer
 #: boundary, a ruling (a straight segment on a developable strip) or a triangulating diagonal.
@@ -53,15 +62,26 @@ class Mesh(FrozenArrays):
 
     Examples
     --------
-    >>> square = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
-    ...               edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]], edges_assignment=['B'] * 4,
-    ...               edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]],
-    ...               edges_kind=['boundary'] * 4, faces_group=[0])
+    >>> square = Mesh(
+    ...     vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+    ...     edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]],
+    ...     edges_assignment=["B"] * 4,
+    ...     edges_foldAngle=[0.0] * 4,
+    ...     faces_vertices=[[0, 1, 2, 3]],
+    ...     edges_kind=["boundary"] * 4,
+    ...     faces_group=[0],
+    ... )
     >>> square.vertices_coords.shape, square.faces_vertices.tolist()
     ((4, 3), [[0, 1, 2, 3]])
-    >>> Mesh(vertices_coords=np.zeros((3, 2)), edges_vertices=np.zeros((0, 2), int),
-    ...      edges_assignment=[], edges_foldAngle=[], faces_vertices=[[0, 1, 2]], edges_kind=[],
-    ...      faces_group=[0])
+    >>> Mesh(
+    ...     vertices_coords=np.zeros((3, 2)),
+    ...     edges_vertices=np.zeros((0, 2), int),
+    ...     edges_assignment=[],
+    ...     edges_foldAngle=[],
+    ...     faces_vertices=[[0, 1, 2]],
+    ...     edges_kind=[],
+    ...     faces_group=[0],
+    ... )
     Traceback (most recent call last):
     ...
     curvefold.kernel._errors.InputError: vertices_coords must have shape (V, 3), got (3, 2)
@@ -81,38 +101,55 @@ class Mesh(FrozenArrays):
         super().__post_init__()
         V, E, F = len(self.vertices_coords), len(self.edges_vertices), len(self.faces_vertices)
         if self.vertices_coords.shape != (V, 3):
-            raise InputError(f"vertices_coords must have shape (V, 3), got {self.vertices_coords.shape}")
+            raise InputError(
+                f"vertices_coords must have shape (V, 3), got {self.vertices_coords.shape}"
+            )
         faces = self.faces_vertices
         if faces.ndim != 2 or faces.shape[1] < 3:
             raise InputError(f"faces_vertices must have shape (F, k) with k ≥ 3, got {faces.shape}")
-        for name, shape in (("edges_vertices", (E, 2)), ("edges_assignment", (E,)), ("edges_foldAngle", (E,)),
-                            ("edges_kind", (E,)), ("faces_group", (F,))):
+        for name, shape in (
+            ("edges_vertices", (E, 2)),
+            ("edges_assignment", (E,)),
+            ("edges_foldAngle", (E,)),
+            ("edges_kind", (E,)),
+            ("faces_group", (F,)),
+        ):
             if getattr(self, name).shape != shape:
                 raise InputError(f"{name} must have shape {shape}, got {getattr(self, name).shape}")
         pad = faces < 0
         bad = np.flatnonzero((pad[:, :-1] & ~pad[:, 1:]).any(axis=1) | (faces < -1).any(axis=1))
         if bad.size:
-            raise InputError(f"faces_vertices: -1 may only pad the end of a face; face {bad[0]} is {faces[bad[0]].tolist()}")
+            raise InputError(
+                f"faces_vertices: -1 may only pad the end of a face; face {bad[0]} "
+                f"is {faces[bad[0]].tolist()}"
+            )
         short = np.flatnonzero(pad[:, 2])
         if short.size:
-            raise InputError(f"faces_vertices: every face needs at least 3 vertices; face {short[0]} has fewer")
+            raise InputError(
+                f"faces_vertices: every face needs at least 3 vertices; face {short[0]} has fewer"
+            )
 
-    def with_coords(self, vertices_coords: np.ndarray, *, fold_angles_from_geometry: bool = True) -> Mesh:
+    def with_coords(
+        self, vertices_coords: np.ndarray, *, fold_angles_from_geometry: bool = True
+    ) -> Mesh:
         """The same topology at other vertex positions (fold angles re-measured by default).
 
         Examples
         --------
-        >>> book = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
-        ...             edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
-        ...             edges_assignment=['F', 'B', 'B', 'B', 'B'], edges_foldAngle=[0.0] * 5,
-        ...             faces_vertices=[[0, 1, 2], [0, 2, 3]],
-        ...             edges_kind=['fold'] + ['boundary'] * 4,
-        ...             faces_group=[0, 1])   # two triangles hinged on the diagonal 0–2
+        >>> book = Mesh(
+        ...     vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+        ...     edges_vertices=[[0, 2], [0, 1], [1, 2], [2, 3], [3, 0]],
+        ...     edges_assignment=["F", "B", "B", "B", "B"],
+        ...     edges_foldAngle=[0.0] * 5,
+        ...     faces_vertices=[[0, 1, 2], [0, 2, 3]],
+        ...     edges_kind=["fold"] + ["boundary"] * 4,
+        ...     faces_group=[0, 1],
+        ... )  # two triangles hinged on the diagonal 0–2
         >>> lifted = book.with_coords([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0.5, 0.5, 1]])
         >>> lifted.edges_foldAngle.round(6).tolist()
         [90.0, 0.0, 0.0, 0.0, 0.0]
         >>> flat = book.with_coords(book.vertices_coords)
-        >>> (flat.edges_foldAngle + 0.0).tolist()   # flat: no fold
+        >>> (flat.edges_foldAngle + 0.0).tolist()  # flat: no fold
         [0.0, 0.0, 0.0, 0.0, 0.0]
         """
         mesh = replace(self, vertices_coords=np.asarray(vertices_coords, float))
@@ -127,7 +164,7 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = _unit_square()   # the unit square of the Mesh example
+        >>> square = _unit_square()  # the unit square of the Mesh example
         >>> square.face_sizes().tolist(), square.triangulated().face_sizes().tolist()
         ([4], [3, 3])
         """
@@ -142,7 +179,7 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = _unit_square()   # the unit square of the Mesh example
+        >>> square = _unit_square()  # the unit square of the Mesh example
         >>> triangles = square.triangulated()
         >>> faces, last = triangles.faces_vertices.tolist(), str(triangles.edges_kind[-1])
         >>> faces, last, triangles.triangulated() is triangles
@@ -153,15 +190,20 @@ class Mesh(FrozenArrays):
             return self
         sizes = self.face_sizes()
         polygon = np.repeat(np.arange(len(faces)), sizes - 2)  # (T,) the polygon of each triangle
-        fan = np.arange(len(polygon)) - np.repeat(np.cumsum(sizes - 2) - (sizes - 2), sizes - 2) + 1  # 1 … m − 2
-        triangles = np.stack([faces[polygon, 0], faces[polygon, fan], faces[polygon, fan + 1]], axis=1)
+        # 1 … m − 2
+        fan = np.arange(len(polygon)) - np.repeat(np.cumsum(sizes - 2) - (sizes - 2), sizes - 2) + 1
+        triangles = np.stack(
+            [faces[polygon, 0], faces[polygon, fan], faces[polygon, fan + 1]], axis=1
+        )
         added = fan > 1  # the fan's diagonals (first vertex → vertex i, 2 ≤ i ≤ m − 2)
         diagonals = np.stack([faces[polygon[added], 0], faces[polygon[added], fan[added]]], axis=1)
         count = len(diagonals)
         return Mesh(
             vertices_coords=self.vertices_coords,
             edges_vertices=np.concatenate([self.edges_vertices, diagonals]),
-            edges_assignment=np.concatenate([self.edges_assignment, np.full(count, "F", self.edges_assignment.dtype)]),
+            edges_assignment=np.concatenate(
+                [self.edges_assignment, np.full(count, "F", self.edges_assignment.dtype)]
+            ),
             edges_foldAngle=np.concatenate([self.edges_foldAngle, np.zeros(count)]),
             faces_vertices=triangles,
             edges_kind=np.concatenate([self.edges_kind, np.full(count, "diagonal", dtype="<U8")]),
@@ -173,12 +215,15 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = _unit_square()   # the unit square of the Mesh example
+        >>> square = _unit_square()  # the unit square of the Mesh example
         >>> diagonal = square.triangulated().edge_lengths()[-1]
         >>> square.edge_lengths().tolist(), round(float(diagonal), 6)
         ([1.0, 1.0, 1.0, 1.0], 1.414214)
         """
-        a, b = self.vertices_coords[self.edges_vertices[:, 0]], self.vertices_coords[self.edges_vertices[:, 1]]
+        a, b = (
+            self.vertices_coords[self.edges_vertices[:, 0]],
+            self.vertices_coords[self.edges_vertices[:, 1]],
+        )
         return np.linalg.norm(b - a, axis=-1)
 
     def face_normals(self) -> np.ndarray:
@@ -186,8 +231,8 @@ class Mesh(FrozenArrays):
 
         Examples
         --------
-        >>> square = _unit_square()   # the unit square of the Mesh example
-        >>> square.face_normals().tolist()   # counter-clockwise seen from +z
+        >>> square = _unit_square()  # the unit square of the Mesh example
+        >>> square.face_normals().tolist()  # counter-clockwise seen from +z
         [[0.0, 0.0, 1.0]]
         """
         n = vector_areas(self.vertices_coords, self.faces_vertices)
@@ -250,7 +295,8 @@ def face_sides(faces_vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     faces = np.asarray(faces_vertices, dtype=np.int64)
     filled = np.where(faces >= 0, faces, faces[:, :1])
-    pairs = np.stack([filled, np.concatenate([filled[:, 1:], filled[:, :1]], axis=1)], axis=-1)  # (F, k, 2)
+    # (F, k, 2)
+    pairs = np.stack([filled, np.concatenate([filled[:, 1:], filled[:, :1]], axis=1)], axis=-1)
     keep = (faces >= 0) & (pairs[..., 0] != pairs[..., 1])  # drop the padding's degenerate sides
     if keep.all():
         return pairs.reshape(-1, 2), np.repeat(np.arange(len(faces)), faces.shape[1])
@@ -275,9 +321,9 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
     Examples
     --------
     >>> faces = np.array([[0, 1, 2], [0, 2, 3]])
-    >>> edges_faces(faces, np.array([[0, 2], [0, 1], [1, 3]])).tolist()   # 1–3 is no side of a face
+    >>> edges_faces(faces, np.array([[0, 2], [0, 1], [1, 3]])).tolist()  # 1–3 is no side of a face
     [[1, 0], [0, -1], [-1, -1]]
-    >>> edges_faces(faces, np.array([[0, 2], [2, 0]])).tolist()   # an edge listed both ways
+    >>> edges_faces(faces, np.array([[0, 2], [2, 0]])).tolist()  # an edge listed both ways
     [[1, 0], [0, 1]]
     """
     E = len(edges_vertices)
@@ -290,18 +336,23 @@ def edges_faces(faces_vertices: np.ndarray, edges_vertices: np.ndarray) -> np.nd
     key = np.minimum(a, b) * nv + np.maximum(a, b)  # the undirected edge
     order = np.argsort(key, kind="stable")  # the keys of a mesh come nearly sorted: a merge is fast
     ordered = key[order]
-    if (ordered[1:] == ordered[:-1]).any():  # an edge listed twice (either way): each direction looked up alone
-        return _edges_faces_by_direction(a * nv + b, b * nv + a, half[:, 0] * nv + half[:, 1], half_face, out)
+    # an edge listed twice (either way): each direction looked up alone
+    if (ordered[1:] == ordered[:-1]).any():
+        return _edges_faces_by_direction(
+            a * nv + b, b * nv + a, half[:, 0] * nv + half[:, 1], half_face, out
+        )
     half_key = np.minimum(half[:, 0], half[:, 1]) * nv + np.maximum(half[:, 0], half[:, 1])
     pos = np.minimum(np.searchsorted(ordered, half_key), E - 1)
     hit = ordered[pos] == half_key
     edge = order[pos[hit]]
-    out[edge, (half[hit, 0] != a[edge]).astype(np.int64)] = half_face[hit]  # a→b: side 0, b→a: side 1
+    # a→b: side 0, b→a: side 1
+    out[edge, (half[hit, 0] != a[edge]).astype(np.int64)] = half_face[hit]
     return out
 
 
-def _edges_faces_by_direction(fwd: np.ndarray, rev: np.ndarray, half_key: np.ndarray, half_face: np.ndarray,
-                              out: np.ndarray) -> np.ndarray:
+def _edges_faces_by_direction(
+    fwd: np.ndarray, rev: np.ndarray, half_key: np.ndarray, half_face: np.ndarray, out: np.ndarray
+) -> np.ndarray:
     """:func:`edges_faces` from the keys of every edge a→b, b→a and every face side (a·V + b)."""
     E = len(fwd)
     for side, keys in enumerate((fwd, rev)):
@@ -312,8 +363,13 @@ def _edges_faces_by_direction(fwd: np.ndarray, rev: np.ndarray, half_key: np.nda
     return out
 
 
-def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_vertices: np.ndarray, *,
-                faces_of_edges: np.ndarray | None = None) -> np.ndarray:
+def fold_angles(
+    vertices_coords: np.ndarray,
+    faces_vertices: np.ndarray,
+    edges_vertices: np.ndarray,
+    *,
+    faces_of_edges: np.ndarray | None = None,
+) -> np.ndarray:
     """Signed fold angle of every edge in degrees, FOLD sign (valley positive).
 
     The angle between the normals of the two faces on the edge (Newell normals for
@@ -341,25 +397,33 @@ def fold_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray, edges_v
     >>> fold_angles(lifted, faces, edges).round(6).tolist()
     [90.0, 0.0]
     >>> flat = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]])
-    >>> (fold_angles(flat, faces, edges) + 0.0).tolist()   # flat; a boundary edge
+    >>> (fold_angles(flat, faces, edges) + 0.0).tolist()  # flat; a boundary edge
     [0.0, 0.0]
     """
     ef = edges_faces(faces_vertices, edges_vertices) if faces_of_edges is None else faces_of_edges
     x = np.asarray(vertices_coords, float)
     with np.errstate(invalid="ignore", divide="ignore"):
         areas = vector_areas(x, faces_vertices)
-    return dihedral_angles(areas, ef, np.take(x, edges_vertices[:, 1], axis=0) - np.take(x, edges_vertices[:, 0], axis=0))
+    return dihedral_angles(
+        areas,
+        ef,
+        np.take(x, edges_vertices[:, 1], axis=0) - np.take(x, edges_vertices[:, 0], axis=0),
+    )
 
 
-def dihedral_angles(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vectors: np.ndarray) -> np.ndarray:
-    """:func:`fold_angles` from the faces' :func:`vector_areas` and the edges as vectors, degrees (FOLD sign).
+def dihedral_angles(
+    face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vectors: np.ndarray
+) -> np.ndarray:
+    """:func:`fold_angles` from the faces' :func:`vector_areas` and the edges as vectors, degrees
+    (FOLD sign).
 
     Parameters
     ----------
     face_areas : (F, 3) ndarray
         :func:`vector_areas` of the faces (not changed).
     faces_of_edges : (E, 2) ndarray of int
-        :func:`edges_faces`: the face that runs each edge a → b and the one that runs it b → a, -1 for none.
+        :func:`edges_faces`: the face that runs each edge a → b and the one that runs it b → a, -1
+        for none.
     edge_vectors : (E, 3) ndarray
         ``x_b − x_a`` of every edge (a, b).
 
@@ -370,9 +434,9 @@ def dihedral_angles(face_areas: np.ndarray, faces_of_edges: np.ndarray, edge_vec
 
     Examples
     --------
-    >>> areas = np.array([[0.0, 0, 2], [0, 1, 0]])   # faces facing +z and +y
-    >>> edges = np.array([[1.0, 0, 0], [1, 0, 0]])   # along the x axis
-    >>> sides = np.array([[0, 1], [0, -1]])   # hinged on the first edge; one face at the second
+    >>> areas = np.array([[0.0, 0, 2], [0, 1, 0]])  # faces facing +z and +y
+    >>> edges = np.array([[1.0, 0, 0], [1, 0, 0]])  # along the x axis
+    >>> sides = np.array([[0, 1], [0, -1]])  # hinged on the first edge; one face at the second
     >>> dihedral_angles(areas, sides, edges).tolist()
     [90.0, 0.0]
     """
@@ -416,7 +480,8 @@ def edges_along(edges_vertices: np.ndarray, pairs: np.ndarray) -> tuple[np.ndarr
     if not len(ev):
         return np.full(p.shape[:-1], -1, np.int64), np.zeros(p.shape[:-1], bool)
     nv = int(max(ev.max(), np.max(p, initial=-1))) + 1
-    key = np.minimum(ev[:, 0], ev[:, 1]) * nv + np.maximum(ev[:, 0], ev[:, 1])  # the undirected edge
+    # the undirected edge
+    key = np.minimum(ev[:, 0], ev[:, 1]) * nv + np.maximum(ev[:, 0], ev[:, 1])
     order = np.argsort(key, kind="stable")
     ordered = key[order]
     wanted = np.minimum(p[..., 0], p[..., 1]) * nv + np.maximum(p[..., 0], p[..., 1])

@@ -1,4 +1,5 @@
-"""The flat crease pattern of rigid planar panels and its rigid folding (flat-foldable degree-4 vertices).
+"""The flat crease pattern of rigid planar panels and its rigid folding (flat-foldable degree-4
+vertices).
 
 The lattice these panels make is :class:`~curvefold.geometry.PanelLattice` (the notation of
 :mod:`curvefold.geometry._panels`).
@@ -60,9 +61,15 @@ __all__ = ["MAX_PANELS", "PANELS", "PanelPattern", "check_panels", "fold_line_an
 MAX_PANELS = 100_000
 #: The ``panels`` parameter of a design (0: the smooth structure).
 PANELS = Spec(
-    "panels", "integer", 0, f"[0, {MAX_PANELS}]",
-    help="rigid planar panels along each crease (polyline creases, exactly planar panels); 0 builds the smooth curved creases",
-    why="memory bound", typical="[0, 64]", label="rigid panels per crease",
+    "panels",
+    "integer",
+    0,
+    f"[0, {MAX_PANELS}]",
+    help="rigid planar panels along each crease (polyline creases, exactly planar panels); 0 "
+    "builds the smooth curved creases",
+    why="memory bound",
+    typical="[0, 64]",
+    label="rigid panels per crease",
 )
 #: Integration steps of the flat crease sampled by :meth:`PanelPattern.from_pattern` (at least).
 FLAT_STEPS = 2048
@@ -95,7 +102,9 @@ def _unit(v: np.ndarray) -> np.ndarray:
 def _turn(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
     """2D vectors (..., 2) turned counter-clockwise by angle (...)."""
     c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
-    return np.concatenate([c * v[..., :1] - s * v[..., 1:], s * v[..., :1] + c * v[..., 1:]], axis=-1)
+    return np.concatenate(
+        [c * v[..., :1] - s * v[..., 1:], s * v[..., :1] + c * v[..., 1:]], axis=-1
+    )
 
 
 def _lift(v: np.ndarray) -> np.ndarray:
@@ -120,7 +129,9 @@ def _turning(T: np.ndarray, t: np.ndarray) -> np.ndarray:
     the end edge (the turn to the virtual edge mirrored across the tangent), so that an end
     edge leaving the tangent by more than 90° shows as a turn of more than 180°.
     """
-    return np.concatenate([2 * _angle(t[:1], T[:1]), _angle(T[:-1], T[1:]), 2 * _angle(T[-1:], t[-1:])])
+    return np.concatenate(
+        [2 * _angle(t[:1], T[:1]), _angle(T[:-1], T[1:]), 2 * _angle(T[-1:], t[-1:])]
+    )
 
 
 def check_panels(panels: int, *, name: str = "panels") -> int:
@@ -133,11 +144,14 @@ def check_panels(panels: int, *, name: str = "panels") -> int:
     >>> check_panels(0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: panels must be ≥ 1 for a panel lattice (0 is the smooth structure), got 0
+    curvefold.kernel._errors.InputError: panels must be ≥ 1 for a panel lattice (0 is the smooth
+    structure), got 0
     """
     n = PANELS.check(panels, name)
     if n < 1:
-        raise InputError(f"{name} must be ≥ 1 for a panel lattice (0 is the smooth structure), got {n}")
+        raise InputError(
+            f"{name} must be ≥ 1 for a panel lattice (0 is the smooth structure), got {n}"
+        )
     return n
 
 
@@ -164,7 +178,7 @@ class PanelPattern(FrozenArrays):
     Examples
     --------
     >>> from curvefold import Crease
-    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+    >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
     >>> pattern = PanelPattern.from_pattern(lat.pattern, 4)
     >>> pattern.panels, pattern.s.tolist(), pattern.points.shape
     (4, [0.0, 0.25, 0.5, 0.75, 1.0], (5, 2))
@@ -178,8 +192,17 @@ class PanelPattern(FrozenArrays):
     right: np.ndarray
 
     @classmethod
-    def from_polyline(cls, s: np.ndarray, points: np.ndarray, beta: np.ndarray, *, start_tangent: np.ndarray,
-                      end_tangent: np.ndarray, left_length: float, right_length: float) -> PanelPattern:
+    def from_polyline(
+        cls,
+        s: np.ndarray,
+        points: np.ndarray,
+        beta: np.ndarray,
+        *,
+        start_tangent: np.ndarray,
+        end_tangent: np.ndarray,
+        left_length: float,
+        right_length: float,
+    ) -> PanelPattern:
         """The pattern of a flat polyline crease with fold lines at β_k from the vertex tangents.
 
         Parameters
@@ -205,12 +228,26 @@ class PanelPattern(FrozenArrays):
         --------
         A straight crease (no turn) with fold lines normal to it:
 
-        >>> p = PanelPattern.from_polyline([0, 1, 2], [[0, 0], [1, 0], [2, 0]], [np.pi / 2] * 3, start_tangent=[1, 0],
-        ...                                end_tangent=[1, 0], left_length=0.1, right_length=0.2)
+        >>> p = PanelPattern.from_polyline(
+        ...     [0, 1, 2],
+        ...     [[0, 0], [1, 0], [2, 0]],
+        ...     [np.pi / 2] * 3,
+        ...     start_tangent=[1, 0],
+        ...     end_tangent=[1, 0],
+        ...     left_length=0.1,
+        ...     right_length=0.2,
+        ... )
         >>> p.left.round(6).tolist(), p.right.round(6).tolist()
         ([[0.0, 0.1], [0.0, 0.1], [0.0, 0.1]], [[0.0, -0.2], [0.0, -0.2], [0.0, -0.2]])
-        >>> PanelPattern.from_polyline([0, 1], [[0, 0], [0, 0]], [1, 1], start_tangent=[1, 0], end_tangent=[1, 0],
-        ...                            left_length=0.1, right_length=0.2)
+        >>> PanelPattern.from_polyline(
+        ...     [0, 1],
+        ...     [[0, 0], [0, 0]],
+        ...     [1, 1],
+        ...     start_tangent=[1, 0],
+        ...     end_tangent=[1, 0],
+        ...     left_length=0.1,
+        ...     right_length=0.2,
+        ... )
         Traceback (most recent call last):
         ...
         curvefold.kernel._errors.InputError: panel crease: vertices 0 and 1 coincide
@@ -218,31 +255,52 @@ class PanelPattern(FrozenArrays):
         s = np.asarray(s, float)
         x = np.asarray(points, float)
         beta = np.asarray(beta, float)
-        if x.ndim != 2 or x.shape[1] != 2 or len(x) < 2 or s.shape != (len(x),) or beta.shape != s.shape:
-            raise InputError(f"a panel crease needs N + 1 ≥ 2 points (N + 1, 2) with one s and one beta each, got shapes "
-                             f"{x.shape}, {s.shape}, {beta.shape}")
+        if (
+            x.ndim != 2
+            or x.shape[1] != 2
+            or len(x) < 2
+            or s.shape != (len(x),)
+            or beta.shape != s.shape
+        ):
+            raise InputError(
+                "a panel crease needs N + 1 ≥ 2 points (N + 1, 2) with one s and "
+                f"one beta each, got shapes {x.shape}, {s.shape}, {beta.shape}"
+            )
         if not all(np.isfinite(a).all() for a in (s, x, beta)) or not (np.diff(s) > 0).all():
             raise InputError("a panel crease needs finite points and beta, and increasing s")
         chords = np.diff(x, axis=0)
         h = np.linalg.norm(chords, axis=1)
         if not (h > 0).all():
-            raise InputError(f"panel crease: vertices {int(np.argmin(h))} and {int(np.argmin(h)) + 1} coincide")
+            raise InputError(
+                f"panel crease: vertices {int(np.argmin(h))} and {int(np.argmin(h)) + 1} coincide"
+            )
         T = chords / h[:, None]
-        t = np.concatenate([_unit(np.asarray(start_tangent, float))[None], _unit(T[:-1] + T[1:]), _unit(np.asarray(end_tangent, float))[None]])
+        t = np.concatenate(
+            [
+                _unit(np.asarray(start_tangent, float))[None],
+                _unit(T[:-1] + T[1:]),
+                _unit(np.asarray(end_tangent, float))[None],
+            ]
+        )
         turning = _turning(T, t)
         bad = np.flatnonzero(~((np.abs(turning) / 2 < beta) & (beta < np.pi - np.abs(turning) / 2)))
         if bad.size:
             k = int(bad[0])
             raise InputError(
-                f"too few panels: at vertex {k} (s = {s[k]:.6g}) the crease turns by {np.degrees(turning[k]):.4g}° and its fold "
-                f"lines leave at {np.degrees(beta[k]):.4g}°; they would cross the crease (need |turn|/2 < beta < 180° − |turn|/2)",
+                f"too few panels: at vertex {k} (s = {s[k]:.6g}) the crease turns by "
+                f"{np.degrees(turning[k]):.4g}° and its fold lines leave at "
+                f"{np.degrees(beta[k]):.4g}°; they would cross the crease (need |turn|/2 < "
+                "beta < 180° − |turn|/2)",
                 parameter="panels",
             )
         normal = _turn(t, np.full(len(t), 0.5 * np.pi))
         lhat = np.cos(beta)[:, None] * t + np.sin(beta)[:, None] * normal
         rhat = np.cos(beta)[:, None] * t - np.sin(beta)[:, None] * normal
         lengths = []
-        for name, first, hat in (("left_length", left_length, lhat), ("right_length", right_length, rhat)):
+        for name, first, hat in (
+            ("left_length", left_length, lhat),
+            ("right_length", right_length, rhat),
+        ):
             if not (np.isfinite(first) and first > 0):
                 raise InputError(f"{name} must be a finite number > 0, got {first!r}")
             # equal heights of trapezoid k at both ends: ℓ_{k+1} |T_k × l_{k+1}| = ℓ_k |T_k × l_k|
@@ -268,13 +326,14 @@ class PanelPattern(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> PanelPattern.from_pattern(lat.pattern, 2).s.tolist()
         [0.0, 0.5, 1.0]
         >>> PanelPattern.from_pattern(lat.pattern, 0)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: panels must be ≥ 1 for a panel lattice (0 is the smooth structure), got 0
+        curvefold.kernel._errors.InputError: panels must be ≥ 1 for a panel lattice (0 is the smooth
+        structure), got 0
         """
         n = check_panels(panels)
         m = -(-FLAT_STEPS // n)
@@ -283,11 +342,22 @@ class PanelPattern(FrozenArrays):
         turn = np.diff(np.unwrap(np.arctan2(flat.tangent[:, 1], flat.tangent[:, 0]))[::m])
         if not (np.abs(turn) < 0.5 * np.pi).all():
             k = int(np.argmax(np.abs(turn)))
-            raise InputError(f"too few panels: the crease turns by {np.degrees(turn[k]):.4g}° over panel {k} (s = {s[k]:.6g} to "
-                             f"{s[k + 1]:.6g}); use more panels (below 90° each)", parameter="panels")
+            raise InputError(
+                f"too few panels: the crease turns by {np.degrees(turn[k]):.4g}° "
+                f"over panel {k} (s = {s[k]:.6g} to {s[k + 1]:.6g}); use more panels (below "
+                "90° each)",
+                parameter="panels",
+            )
         ends = flat.tangent[[0, -1], :2]
-        return cls.from_polyline(s, flat.points[::m, :2], pattern.beta(s), start_tangent=ends[0], end_tangent=ends[1],
-                                 left_length=float(pattern.ruling_lengths[0][0]), right_length=float(pattern.ruling_lengths[1][0]))
+        return cls.from_polyline(
+            s,
+            flat.points[::m, :2],
+            pattern.beta(s),
+            start_tangent=ends[0],
+            end_tangent=ends[1],
+            left_length=float(pattern.ruling_lengths[0][0]),
+            right_length=float(pattern.ruling_lengths[1][0]),
+        )
 
     # -- derived, fold-invariant ---------------------------------------------------------
     @property
@@ -307,19 +377,22 @@ class PanelPattern(FrozenArrays):
 
     @cached_property
     def chords(self) -> np.ndarray:
-        """Unit edge directions T_{−1}, T_0 … T_{N−1}, T_N (the two ends virtual), shape (N + 2, 2)."""
+        """Unit edge directions T_{−1}, T_0 … T_{N−1}, T_N (the two ends virtual), shape (N + 2,
+        2)."""
         T = np.diff(self.points, axis=0) / self.edge_lengths[:, None]
         t = self.tangents
         return readonly(np.concatenate([_mirror(T[0], t[0])[None], T, _mirror(T[-1], t[-1])[None]]))
 
     @cached_property
     def turning(self) -> np.ndarray:
-        """φ_k, the turn of the crease at every vertex (virtual edges at the ends), shape (N + 1,)."""
+        """φ_k, the turn of the crease at every vertex (virtual edges at the ends), shape (N +
+        1,)."""
         return readonly(_turning(self.chords[1:-1], self.tangents))
 
     @cached_property
     def domain(self) -> RegressionDomain:
-        """The valid (u, v): ``1 − u a_k − v b_k > 0`` on every edge, ``a = −μ^L/h``, ``b = −μ^R/h``.
+        """The valid (u, v): ``1 − u a_k − v b_k > 0`` on every edge, ``a = −μ^L/h``, ``b =
+        −μ^R/h``.
 
         ``t`` holds the edges' midpoints in the normalised parameter.
         """
@@ -333,7 +406,9 @@ class PanelPattern(FrozenArrays):
     @cached_property
     def widths(self) -> tuple[np.ndarray, np.ndarray]:
         """Distances of x_k + L_k and x_k + R_k from the vertex tangent lines, each (N + 1,)."""
-        return readonly(np.abs(_cross2(self.tangents, self.left))), readonly(np.abs(_cross2(self.tangents, self.right)))
+        return readonly(np.abs(_cross2(self.tangents, self.left))), readonly(
+            np.abs(_cross2(self.tangents, self.right))
+        )
 
     def head(self, panels: int) -> PanelPattern:
         """The pattern of the first ``panels`` panels (1 ≤ panels ≤ N).
@@ -344,19 +419,29 @@ class PanelPattern(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> pattern = PanelPattern.from_pattern(lat.pattern, 4)
         >>> pattern.head(1).s.tolist()
         [0.0, 0.25]
         >>> pattern.head(0)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: panels must be in [1, 4] for the head of this pattern, got 0
+        curvefold.kernel._errors.InputError: panels must be in [1, 4] for the head of this pattern,
+        got 0
         """
         k = int(panels) + 1
         if not 2 <= k <= len(self.s):
-            raise InputError(f"panels must be in [1, {self.panels}] for the head of this pattern, got {panels!r}")
-        return PanelPattern(self.s[:k], self.points[:k], self.tangents[:k], self.beta[:k], self.left[:k], self.right[:k])
+            raise InputError(
+                f"panels must be in [1, {self.panels}] for the head of this pattern, got {panels!r}"
+            )
+        return PanelPattern(
+            self.s[:k],
+            self.points[:k],
+            self.tangents[:k],
+            self.beta[:k],
+            self.left[:k],
+            self.right[:k],
+        )
 
     def fold(self, alphas: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The folded states at half fold angles α (A,), in the pattern's own placement.
@@ -372,21 +457,30 @@ class PanelPattern(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> pattern = PanelPattern.from_pattern(lat.pattern, 4)
         >>> points, left, right, frames = pattern.fold(np.array([0.0, np.pi / 4]))
-        >>> points.shape, frames.shape, float(np.abs(points[0, :, 2]).max())   # α = 0: the flat pattern
+        >>> (
+        ...     points.shape,
+        ...     frames.shape,
+        ...     float(np.abs(points[0, :, 2]).max()),
+        ... )  # α = 0: the flat pattern
         ((2, 5, 3), (2, 5, 3, 3), 0.0)
         """
         a = np.asarray(alphas, float).reshape(-1, 1)
         A = len(a)
         x = _lift(self.points)
         rhat = _lift(self.right / np.linalg.norm(self.right, axis=1, keepdims=True))
-        w = fold_line_angle(self.turning, self.beta, a)[..., None] * rhat  # (A, N + 1, 3): ρ_R along r
+        # (A, N + 1, 3): ρ_R along r
+        w = fold_line_angle(self.turning, self.beta, a)[..., None] * rhat
         twist = np.concatenate([w, -cross(w, np.broadcast_to(x, w.shape))], axis=-1)
-        R, shift = dual_to_motion(prefix_dual(exp_dual(tuple(np.moveaxis(twist, -1, 0)))))  # R panels 0 … N
+        # R panels 0 … N
+        R, shift = dual_to_motion(prefix_dual(exp_dual(tuple(np.moveaxis(twist, -1, 0)))))
         chords = _lift(self.chords)
-        T = np.concatenate([np.broadcast_to(chords[0], (A, 1, 3)), np.einsum("akij,kj->aki", R, chords[1:])], axis=1)
+        T = np.concatenate(
+            [np.broadcast_to(chords[0], (A, 1, 3)), np.einsum("akij,kj->aki", R, chords[1:])],
+            axis=1,
+        )
         points = np.einsum("akij,kj->aki", R, x) + shift
         right = np.einsum("akij,kj->aki", R, _lift(self.right))
         # L panel k: the R panel k turned by 2α about T_k (Rodrigues, flat vectors)

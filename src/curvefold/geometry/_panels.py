@@ -1,4 +1,5 @@
-"""Rigid planar panels: the discrete tubes, blocks and vaults (polyline creases, flat-foldable vertices).
+"""Rigid planar panels: the discrete tubes, blocks and vaults (polyline creases, flat-foldable
+vertices).
 
 A panel lattice replaces the smooth lattice (Eq. 11) by its discrete form. Curve 1 is a
 polyline x_0 … x_N with unit edge directions T_k (edge k from x_k to x_{k+1}, length h_k);
@@ -60,7 +61,9 @@ class PanelCurve(FramedCurve, FrozenArrays):
 
     Examples
     --------
-    >>> segment = PanelCurve(np.array([0.0, 1.0]), np.array([[0.0, 0, 0], [1, 0, 0]]), np.stack([np.eye(3)] * 2))   # one panel
+    >>> segment = PanelCurve(
+    ...     np.array([0.0, 1.0]), np.array([[0.0, 0, 0], [1, 0, 0]]), np.stack([np.eye(3)] * 2)
+    ... )  # one panel
     >>> segment.length, segment.tangent.tolist()
     (1.0, [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
     """
@@ -72,7 +75,8 @@ class PanelCurve(FramedCurve, FrozenArrays):
 
 @dataclass(frozen=True)
 class PanelCrease:
-    """Crease 1 of a panel lattice: its polyline and fold angle (a :class:`~curvefold.geometry.FoldedCrease`).
+    """Crease 1 of a panel lattice: its polyline and fold angle (a
+    :class:`~curvefold.geometry.FoldedCrease`).
 
     Attributes
     ----------
@@ -83,7 +87,7 @@ class PanelCrease:
     Examples
     --------
     >>> from curvefold import Crease
-    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+    >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
     >>> panels = PanelLattice.from_lattice(lat, 4)
     >>> panels.crease.fold_angle, panels.crease.curve.points.shape, panels.crease.curve.length
     (90.0, (5, 3), 1.0)
@@ -117,9 +121,13 @@ class PanelLattice(FrozenArrays):
     Examples
     --------
     >>> from curvefold import Lattice
-    >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+    >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
     >>> panels = PanelLattice.from_lattice(lat, 4)
-    >>> panels.source is lat, round(float(np.degrees(2 * panels.alpha)), 9), panels.points(np.zeros(2)).shape
+    >>> (
+    ...     panels.source is lat,
+    ...     round(float(np.degrees(2 * panels.alpha)), 9),
+    ...     panels.points(np.zeros(2)).shape,
+    ... )
     (True, 90.0, (5, 3))
     """
 
@@ -145,7 +153,9 @@ class PanelLattice(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> smooth = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=33)), 0.1, 0.1)
+        >>> smooth = Lattice.from_crease(
+        ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=33)), 0.1, 0.1
+        ... )
         >>> PanelLattice.from_lattice(smooth, 8).points([[1, 1]]).shape
         (1, 9, 3)
         """
@@ -173,7 +183,9 @@ class PanelLattice(FrozenArrays):
     def crease(self) -> PanelCrease:
         """Crease 1 at this fold angle."""
         points, _, _, frames = self._state
-        return PanelCrease(PanelCurve(self.pattern.s, points, frames), float(np.degrees(2 * self.alpha)))
+        return PanelCrease(
+            PanelCurve(self.pattern.s, points, frames), float(np.degrees(2 * self.alpha))
+        )
 
     @property
     def left(self) -> np.ndarray:
@@ -217,32 +229,45 @@ class PanelLattice(FrozenArrays):
         Examples
         --------
         >>> from curvefold import Lattice
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
-        >>> panels.points(np.array([[1, 0], [1, 1]])).shape, panels.points(np.zeros(2))[0].tolist()   # vertex 0 of curve 1 stays at the origin
+        >>> (
+        ...     panels.points(np.array([[1, 0], [1, 1]])).shape,
+        ...     panels.points(np.zeros(2))[0].tolist(),
+        ... )  # vertex 0 of curve 1 stays at the origin
         ((2, 5, 3), [0.0, 0.0, 0.0])
         """
         points, left, right, _ = self._state
         return lattice_points(points, left, right, uv)
 
     def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
-        """Raise :class:`~curvefold.kernel.RegressionError` unless every polyline uv (..., 2) is valid.
+        """Raise :class:`~curvefold.kernel.RegressionError` unless every polyline uv (..., 2) is
+        valid.
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> panels.check(np.array([[1, 1]])) is None
         True
         >>> panels.check(np.array([[20, 0]]))
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0.875, s = 0.875); along this direction the limit is (u, v) = (14.14, 0)
+        curvefold.kernel._errors.RegressionError: cells: lattice curve (u, v) = (20, 0) passes the
+        curve of regression (Eq. 17 speed factor -0.414 ≤ 0, worst at t = 0.875, s = 0.875); along
+        this direction the limit is (u, v) = (14.14, 0)
         """
         check_curves(self.domain, self.pattern.length, uv, name=name)
 
-    def topology(self, cell_curves: np.ndarray, faces: str = "quads", *, keep: Sequence[np.ndarray] | None = None) -> Topology:
-        """The panel mesh of cells (:meth:`Topology.panels`): one planar quad per panel, whatever ``faces`` asks.
+    def topology(
+        self,
+        cell_curves: np.ndarray,
+        faces: str = "quads",
+        *,
+        keep: Sequence[np.ndarray] | None = None,
+    ) -> Topology:
+        """The panel mesh of cells (:meth:`Topology.panels`): one planar quad per panel, whatever
+        ``faces`` asks.
 
         ``keep`` may only keep every vertex (as :func:`~curvefold.geometry.choose_sampling`
         does for panels): a mesh that left out a vertex would join two panels into one quad
@@ -255,20 +280,27 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
-        >>> panels.topology(np.array([[0, 1, 3, 2]]), "triangles").faces_vertices.shape   # quads all the same
+        >>> panels.topology(
+        ...     np.array([[0, 1, 3, 2]]), "triangles"
+        ... ).faces_vertices.shape  # quads all the same
         (16, 4)
         >>> panels.topology(np.array([[0, 1, 3, 2]]), keep=[[0, 4]])
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: keep: a panel mesh keeps every vertex of its polylines (5 per tube, 1 tubes); two panels joined into one quad are not planar
+        curvefold.kernel._errors.InputError: keep: a panel mesh keeps every vertex of its polylines
+        (5 per tube, 1 tubes); two panels joined into one quad are not planar
         """
         n = len(self.s)
         tubes = len(np.reshape(cell_curves, (-1, 4)))
-        if keep is not None and (len(keep) != tubes or not all(np.array_equal(np.asarray(k), np.arange(n)) for k in keep)):
-            raise InputError(f"keep: a panel mesh keeps every vertex of its polylines ({n} per tube, {tubes} tubes); two "
-                             "panels joined into one quad are not planar")
+        if keep is not None and (
+            len(keep) != tubes or not all(np.array_equal(np.asarray(k), np.arange(n)) for k in keep)
+        ):
+            raise InputError(
+                f"keep: a panel mesh keeps every vertex of its polylines ({n} per "
+                f"tube, {tubes} tubes); two panels joined into one quad are not planar"
+            )
         return Topology.panels(cell_curves, n)
 
     # -- what the consumers of a structure ask about its kind (curvefold.geometry._kinds) ---------
@@ -293,9 +325,11 @@ class PanelLattice(FrozenArrays):
         return self.source
 
     # -- rigid folding ----------------------------------------------------------------------------
-    def _anchored(self, alphas: np.ndarray, anchor: str
-                  ) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
-        """Placements (A, 3, 3), (A, 3) of the states at α (A,) keeping this state's frame at the anchor vertex, and those states."""
+    def _anchored(
+        self, alphas: np.ndarray, anchor: str
+    ) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
+        """Placements (A, 3, 3), (A, 3) of the states at α (A,) keeping this state's frame at the
+        anchor vertex, and those states."""
         check_anchor(anchor)
         k = 0 if anchor == "start" else self.pattern.panels // 2
         states = self.pattern.fold(alphas)
@@ -304,7 +338,13 @@ class PanelLattice(FrozenArrays):
         shift = here_points[k] - np.einsum("aij,aj->ai", R, states[0][:, k])
         return R, shift, states
 
-    def refold(self, fold_angle: float, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> PanelLattice:
+    def refold(
+        self,
+        fold_angle: float,
+        *,
+        degrees: bool = True,
+        anchor: Literal["start", "middle"] = "start",
+    ) -> PanelLattice:
         """The same panels rigidly folded to 2α ∈ [0°, 180°); the frame at the anchor vertex stays.
 
         Parameters
@@ -316,18 +356,27 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> flat = panels.refold(0)
-        >>> flat.crease.fold_angle, round(float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), 12)
+        >>> (
+        ...     flat.crease.fold_angle,
+        ...     round(float(np.abs(flat.points(np.array([[1, 1]]))[..., 2]).max()), 12),
+        ... )
         (0.0, 0.0)
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         R, shift, _ = self._anchored(np.array([a]), anchor)
         return PanelLattice(self.pattern, a, R[0], shift[0], self.source)
 
-    def fold_points(self, uv: np.ndarray, fold_angles: np.ndarray, *, degrees: bool = True,
-                    anchor: Literal["start", "middle"] = "start") -> np.ndarray:
+    def fold_points(
+        self,
+        uv: np.ndarray,
+        fold_angles: np.ndarray,
+        *,
+        degrees: bool = True,
+        anchor: Literal["start", "middle"] = "start",
+    ) -> np.ndarray:
         """Lattice polylines uv (K, 2) at many fold angles at once, shape (A, K, N + 1, 3).
 
         Equivalent to ``[self.refold(f, anchor=anchor).points(uv) for f in fold_angles]``.
@@ -335,13 +384,18 @@ class PanelLattice(FrozenArrays):
         Examples
         --------
         >>> from curvefold import Lattice
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> frames = panels.fold_points(np.array([[1, 1]]), [0, 90])
-        >>> frames.shape, bool(np.allclose(frames[1], panels.points(np.array([[1, 1]])), atol=1e-12))
+        >>> (
+        ...     frames.shape,
+        ...     bool(np.allclose(frames[1], panels.points(np.array([[1, 1]])), atol=1e-12)),
+        ... )
         ((2, 1, 5, 3), True)
         """
-        alphas = np.array([half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)])
+        alphas = np.array(
+            [half_angle(f, degrees=degrees, allow_flat=True) for f in np.atleast_1d(fold_angles)]
+        )
         R, shift, (points, left, right, _) = self._anchored(alphas, anchor)
         points, left, right = (np.einsum("aij,akj->aki", R, v) for v in (points, left, right))
         return lattice_points(points + shift[:, None], left, right, uv)
@@ -351,24 +405,39 @@ class PanelLattice(FrozenArrays):
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> head = panels.head(2)
-        >>> head.points(np.zeros(2)).shape, bool(np.allclose(head.points(np.zeros(2)), panels.points(np.zeros(2))[:3], atol=1e-12))
+        >>> (
+        ...     head.points(np.zeros(2)).shape,
+        ...     bool(
+        ...         np.allclose(
+        ...             head.points(np.zeros(2)), panels.points(np.zeros(2))[:3], atol=1e-12
+        ...         )
+        ...     ),
+        ... )
         ((3, 3), True)
         """
-        return PanelLattice(self.pattern.head(panels), self.alpha, self.rotation, self.translation, self.source)
+        return PanelLattice(
+            self.pattern.head(panels), self.alpha, self.rotation, self.translation, self.source
+        )
 
     def moved(self, rotation: np.ndarray, translation: np.ndarray) -> PanelLattice:
         """This lattice moved rigidly: ``rotation @ x + translation`` of every point.
 
         Examples
         --------
-        >>> lat = _example_lattice()   # a unit circle folded at 90°, 5 samples
+        >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
         >>> panels = PanelLattice.from_lattice(lat, 4)
         >>> lifted = panels.moved(np.eye(3), [0, 0, 1])
         >>> (lifted.points(np.zeros(2)) - panels.points(np.zeros(2))).round(12)[0].tolist()
         [0.0, 0.0, 1.0]
         """
         R = np.asarray(rotation, float)
-        return PanelLattice(self.pattern, self.alpha, R @ self.rotation, R @ self.translation + np.asarray(translation, float), self.source)
+        return PanelLattice(
+            self.pattern,
+            self.alpha,
+            R @ self.rotation,
+            R @ self.translation + np.asarray(translation, float),
+            self.source,
+        )

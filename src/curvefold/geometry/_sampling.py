@@ -42,9 +42,18 @@ from ._mesh import edges_faces
 from ._structure import Structure
 from ._topology import Topology
 
-__all__ = ["Sampling", "choose_sampling", "corner_angles", "polyline_deviation", "DEFAULT_TOLERANCE", "DEFAULT_MIN_ANGLE", "DEFAULT_MAX_BEND"]
+__all__ = [
+    "Sampling",
+    "choose_sampling",
+    "corner_angles",
+    "polyline_deviation",
+    "DEFAULT_TOLERANCE",
+    "DEFAULT_MIN_ANGLE",
+    "DEFAULT_MAX_BEND",
+]
 
-#: Largest distance of the exact creases from the written polylines, relative to the structure's size.
+#: Largest distance of the exact creases from the written polylines, relative to the structure's
+#: size.
 DEFAULT_TOLERANCE = 1e-4
 #: Smallest triangle corner, degrees.
 DEFAULT_MIN_ANGLE = 5.0
@@ -86,7 +95,7 @@ class Sampling(FrozenArrays):
     >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
     >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
-    >>> s = choose_sampling(tube)   # 5 samples: none to spare
+    >>> s = choose_sampling(tube)  # 5 samples: none to spare
     >>> s.vertices_per_crease, s.samples, s.deviation
     ((5,), 5, 0.0)
     """
@@ -117,13 +126,19 @@ class Sampling(FrozenArrays):
         >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
         >>> summary = choose_sampling(tube).summary()
-        >>> summary["samples_computed"], summary["mesh_samples_per_crease"], summary["mesh_deviation"]
+        >>> (
+        ...     summary["samples_computed"],
+        ...     summary["mesh_samples_per_crease"],
+        ...     summary["mesh_deviation"],
+        ... )
         (5, '5', 0.0)
         """
         counts = self.vertices_per_crease
         return {
             "samples_computed": int(self.samples),
-            "mesh_samples_per_crease": f"{min(counts)}–{max(counts)}" if min(counts) != max(counts) else str(counts[0]),
+            "mesh_samples_per_crease": f"{min(counts)}–{max(counts)}"
+            if min(counts) != max(counts)
+            else str(counts[0]),
             "mesh_tolerance": float(self.tolerance),
             "mesh_deviation": float(self.deviation),
             "mesh_deviation_relative": float(self.deviation / self.size),
@@ -167,7 +182,9 @@ def corner_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np
 
     Examples
     --------
-    >>> corner_angles(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float), np.array([[0, 1, 2]])).round(6).tolist()
+    >>> corner_angles(
+    ...     np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float), np.array([[0, 1, 2]])
+    ... ).round(6).tolist()
     [45.0]
     """
     p = np.asarray(vertices_coords, float)[..., np.asarray(faces_vertices), :]  # (..., F, 3, 3)
@@ -180,54 +197,69 @@ def corner_angles(vertices_coords: np.ndarray, faces_vertices: np.ndarray) -> np
 #: One step of a tube's mesh: its triangles on the four corners at two samples (0, 1).
 _STEP = Topology.tubes(np.arange(4)[None], 2)
 #: The two triangles on each of its diagonals.
-_DIAGONAL_FACES = edges_faces(_STEP.faces_vertices, _STEP.edges_vertices[_STEP.edges_kind == "diagonal"])
+_DIAGONAL_FACES = edges_faces(
+    _STEP.faces_vertices, _STEP.edges_vertices[_STEP.edges_kind == "diagonal"]
+)
 
 
 def _tube_points(states: np.ndarray, cell_curves: np.ndarray) -> np.ndarray:
     """The tubes' four curves in every state, component-major: (3, states, K·4·n) from states
-    (states, M, n, 3); column (4·k + c)·n + s holds corner c + 1 of tube k at sample s (:func:`_rows`)."""
-    return np.ascontiguousarray(np.moveaxis(states[:, cell_curves].reshape(len(states), -1, 3), -1, 0))
+    (states, M, n, 3); column (4·k + c)·n + s holds corner c + 1 of tube k at sample s
+    (:func:`_rows`)."""
+    return np.ascontiguousarray(
+        np.moveaxis(states[:, cell_curves].reshape(len(states), -1, 3), -1, 0)
+    )
 
 
 def _rows(n: int, tube: np.ndarray, curve: np.ndarray, sample: np.ndarray) -> np.ndarray:
-    """The columns of :func:`_tube_points` (n samples) of curves ``curve`` of tubes ``tube`` at ``sample`` (broadcast)."""
+    """The columns of :func:`_tube_points` (n samples) of curves ``curve`` of tubes ``tube`` at
+    ``sample`` (broadcast)."""
     return (tube * 4 + curve) * n + sample
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The dot products of component-major vectors (3, ...), summed as ``np.sum(a * b, axis=-1)`` sums
-    the vectors' components (the same floats)."""
+    """The dot products of component-major vectors (3, ...), summed as ``np.sum(a * b, axis=-1)``
+    sums the vectors' components (the same floats)."""
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-def _step_shape(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _step_shape(
+    points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The steps of tubes ``tube`` from samples i to ``ends``, each (J,), measured over the states.
 
     ``points`` are the tubes' curves (:func:`_tube_points`, n samples). Returns each step's
     smallest triangle corner (degrees), the largest relative change of an edge length
     between the two states, and the largest fold across a diagonal in a folded state
-    (degrees), each (J,): the floats :func:`corner_angles`, :func:`~curvefold.geometry._mesh.vector_areas`
-    and ``np.linalg.norm`` give on the steps' meshes, computed component by component.
+    (degrees), each (J,): the floats :func:`corner_angles`,
+    :func:`~curvefold.geometry._mesh.vector_areas` and ``np.linalg.norm`` give on the steps' meshes,
+    computed component by component.
     """
     lo, hi = np.minimum(i, ends), np.maximum(i, ends)
     samples = np.where(_STEP.vertex_sample == 0, lo[:, None], hi[:, None])  # (J, 8)
     rows = _rows(n, tube[:, None], _STEP.vertex_curve, samples)
-    corner = np.take(points, rows[:, _STEP.faces_vertices], axis=2)  # (3, states, J, F, 3): the triangles' corners
+    # (3, states, J, F, 3): the triangles' corners
+    corner = np.take(points, rows[:, _STEP.faces_vertices], axis=2)
     u = np.roll(corner, -1, axis=-1) - corner
     v = np.roll(corner, 1, axis=-1) - corner
     area = cross3(u, v)
     angle = np.arctan2(np.sqrt(_dot(area, area)), _dot(u, v))
-    edges = np.take(points, rows[:, _STEP.edges_vertices[:, 1]], axis=2) - np.take(points, rows[:, _STEP.edges_vertices[:, 0]], axis=2)
+    edges = np.take(points, rows[:, _STEP.edges_vertices[:, 1]], axis=2) - np.take(
+        points, rows[:, _STEP.edges_vertices[:, 0]], axis=2
+    )
     length = np.sqrt(_dot(edges, edges))  # (states, J, E)
     stretch = np.abs(length / length[-1:] - 1).max(axis=(0, 2))
-    normal = cross3(corner[..., 1] - corner[..., 0], corner[..., 2] - corner[..., 0])  # vector areas, (3, states, J, F)
+    # vector areas, (3, states, J, F)
+    normal = cross3(corner[..., 1] - corner[..., 0], corner[..., 2] - corner[..., 0])
     normal /= np.sqrt(_dot(normal, normal))
     cos = _dot(normal[..., _DIAGONAL_FACES[:, 0]], normal[..., _DIAGONAL_FACES[:, 1]])
     bend = np.arccos(np.clip(cos, -1.0, 1.0)).max(axis=(0, 2))
     return np.degrees(angle.min(axis=(0, 2, 3))), stretch, np.degrees(bend)
 
 
-def _chord_deviations(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray) -> np.ndarray:
+def _chord_deviations(
+    points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarray, ends: np.ndarray
+) -> np.ndarray:
     """For the steps of tubes ``tube`` from samples i to ``ends``, each (J,), the largest distance
     of the samples between them from the chords of the four curves, over the states, (J,).
 
@@ -239,8 +271,12 @@ def _chord_deviations(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarra
         return np.zeros(len(i))
     first = np.cumsum(inside) - inside  # each step's first sample in the list
     j = np.arange(step.size) - first[step] + 1  # 1 … inside[step]
-    rows = (_rows(n, tube[step, None], np.arange(4), at[:, None]) for at in (i[step], ends[step], i[step] + np.sign(ends - i)[step] * j))
-    p, q, m = (np.take(points, r, axis=2) for r in rows)  # chord start, chord end, sample inside: (3, states, P, 4)
+    rows = (
+        _rows(n, tube[step, None], np.arange(4), at[:, None])
+        for at in (i[step], ends[step], i[step] + np.sign(ends - i)[step] * j)
+    )
+    # chord start, chord end, sample inside: (3, states, P, 4)
+    p, q, m = (np.take(points, r, axis=2) for r in rows)
     chord, off = q - p, m - p
     t = np.clip(_dot(off, chord) / np.maximum(_dot(chord, chord), 1e-300), 0.0, 1.0)
     away = off - t * chord
@@ -251,8 +287,12 @@ def _chord_deviations(points: np.ndarray, n: int, tube: np.ndarray, i: np.ndarra
     return deviation
 
 
-def _accurate(points: np.ndarray, n: int, steps: list[tuple[int, int, np.ndarray]], limits: tuple[float, float, float]
-              ) -> list[tuple[np.ndarray, np.ndarray]]:
+def _accurate(
+    points: np.ndarray,
+    n: int,
+    steps: list[tuple[int, int, np.ndarray]],
+    limits: tuple[float, float, float],
+) -> list[tuple[np.ndarray, np.ndarray]]:
     """For each (tube, a, ends (J,)): whether each step of the tube from sample a to ``ends`` is
     accurate, and its smallest triangle corner, each (J,), all measured together.
 
@@ -265,12 +305,18 @@ def _accurate(points: np.ndarray, n: int, steps: list[tuple[int, int, np.ndarray
     tube, start = (np.repeat([step[k] for step in steps], sizes) for k in (0, 1))
     ends = np.concatenate([ends for _, _, ends in steps])
     angle, stretch, bend = _step_shape(points, n, tube, start, ends)
-    ok = (_chord_deviations(points, n, tube, start, ends) <= allowed) & (stretch <= stretch_limit) & (bend <= bend_limit)
+    ok = (
+        (_chord_deviations(points, n, tube, start, ends) <= allowed)
+        & (stretch <= stretch_limit)
+        & (bend <= bend_limit)
+    )
     split = np.cumsum(sizes)[:-1]
     return list(zip(np.split(ok, split), np.split(angle, split)))
 
 
-def _walk(start: int, stop: int, min_angle: float) -> Generator[tuple[tuple[int, np.ndarray], ...], list, list[int]]:
+def _walk(
+    start: int, stop: int, min_angle: float
+) -> Generator[tuple[tuple[int, np.ndarray], ...], list, list[int]]:
     """Kept samples from ``start`` to ``stop`` (either way), each step as long as it stays accurate.
 
     A generator: it yields the steps it asks about, a tuple of (a, ends (J,)), and is sent
@@ -288,8 +334,10 @@ def _walk(start: int, stop: int, min_angle: float) -> Generator[tuple[tuple[int,
         room = abs(stop - i)
         lengths = np.arange(1, room + 1)
         ok, angle = np.zeros(0, bool), np.zeros(0)
-        while len(ok) < room and ok.all():  # the accurate steps are those before the first one that is not
-            span = min(max(reach, 2 * len(ok)), room)  # about as long as the last step and one more, then twice as many
+        # the accurate steps are those before the first one that is not
+        while len(ok) < room and ok.all():
+            # about as long as the last step and one more, then twice as many
+            span = min(max(reach, 2 * len(ok)), room)
             ((more_ok, more_angle),) = yield ((i, i + d * lengths[len(ok) : span]),)
             ok, angle = np.concatenate([ok, more_ok]), np.concatenate([angle, more_angle])
         k = max(1, int(np.argmin(ok)) if not ok.all() else room)
@@ -314,10 +362,16 @@ def _walk(start: int, stop: int, min_angle: float) -> Generator[tuple[tuple[int,
     return picks
 
 
-def _walks(points: np.ndarray, n: int, walks: list[tuple[int, int, int]], limits: tuple[float, float, float], min_angle: float
-           ) -> list[list[int]]:
-    """The kept samples of each walk (tube, start, stop) on the tubes' curves (:func:`_tube_points`, n
-    samples) (:func:`_walk`), the walks measured in lockstep: each round, every step they ask about at once."""
+def _walks(
+    points: np.ndarray,
+    n: int,
+    walks: list[tuple[int, int, int]],
+    limits: tuple[float, float, float],
+    min_angle: float,
+) -> list[list[int]]:
+    """The kept samples of each walk (tube, start, stop) on the tubes' curves
+    (:func:`_tube_points`, n samples) (:func:`_walk`), the walks measured in lockstep: each
+    round, every step they ask about at once."""
     picks: list = [None] * len(walks)
     asking: dict[int, tuple[tuple[int, np.ndarray], ...]] = {}
 
@@ -340,8 +394,14 @@ def _walks(points: np.ndarray, n: int, walks: list[tuple[int, int, int]], limits
     return picks
 
 
-def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANCE, min_angle: float = DEFAULT_MIN_ANGLE,
-                    max_bend: float = DEFAULT_MAX_BEND, fold_angle: float | None = None) -> Sampling:
+def choose_sampling(
+    structure: Structure,
+    *,
+    tolerance: float = DEFAULT_TOLERANCE,
+    min_angle: float = DEFAULT_MIN_ANGLE,
+    max_bend: float = DEFAULT_MAX_BEND,
+    fold_angle: float | None = None,
+) -> Sampling:
     """The samples each tube's mesh keeps (see the module notes).
 
     Parameters
@@ -377,7 +437,8 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
     if not (isinstance(max_bend, (int, float)) and 0 < max_bend <= 90):
         raise InputError(f"max_bend must be in (0, 90] degrees, got {max_bend!r}")
     n = len(structure.lattice.s)
-    states = np.stack([structure.state(fold_angle).vertices, structure.state(0.0).vertices])  # (2, M, n, 3): folded, flat
+    # (2, M, n, 3): folded, flat
+    states = np.stack([structure.state(fold_angle).vertices, structure.state(0.0).vertices])
     size = float(np.ptp(states[0].reshape(-1, 3), axis=0).max())
     limits = (tolerance * size, float(tolerance), float(max_bend))
     middle = (n - 1) // 2
@@ -385,12 +446,36 @@ def choose_sampling(structure: Structure, *, tolerance: float = DEFAULT_TOLERANC
     points = _tube_points(states, structure.cell_curves)
     tubes = range(len(structure.cell_curves))
     if thinnable:
-        walks = _walks(points, n, [(t, end, middle) for t in tubes for end in (0, n - 1)], limits, min_angle)
-        keep = [np.array(first + second[-2::-1], dtype=np.int64) for first, second in zip(walks[::2], walks[1::2])]
+        walks = _walks(
+            points, n, [(t, end, middle) for t in tubes for end in (0, n - 1)], limits, min_angle
+        )
+        keep = [
+            np.array(first + second[-2::-1], dtype=np.int64)
+            for first, second in zip(walks[::2], walks[1::2])
+        ]
     else:  # every vertex
         keep = [np.arange(n) for _ in tubes]
     tube = np.concatenate([np.full(len(picks) - 1, t) for t, picks in zip(tubes, keep)])
-    angles, stretches, bends = _step_shape(points, n, tube, np.concatenate([k[:-1] for k in keep]), np.concatenate([k[1:] for k in keep]))
-    deviation = max(polyline_deviation(states[:, rows], picks) for rows, picks in zip(structure.cell_curves, keep))
-    return Sampling(tuple(keep), n, float(tolerance), float(min_angle), float(max_bend), deviation, float(stretches.max()),
-                    float(bends.max()), float(angles.min()), size)
+    angles, stretches, bends = _step_shape(
+        points,
+        n,
+        tube,
+        np.concatenate([k[:-1] for k in keep]),
+        np.concatenate([k[1:] for k in keep]),
+    )
+    deviation = max(
+        polyline_deviation(states[:, rows], picks)
+        for rows, picks in zip(structure.cell_curves, keep)
+    )
+    return Sampling(
+        tuple(keep),
+        n,
+        float(tolerance),
+        float(min_angle),
+        float(max_bend),
+        deviation,
+        float(stretches.max()),
+        float(bends.max()),
+        float(angles.min()),
+        size,
+    )

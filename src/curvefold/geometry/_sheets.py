@@ -97,7 +97,9 @@ class PatternSheet(FrozenArrays):
     >>> a, b = sheets(tube)
     >>> a.label, a.mesh.vertices_coords.shape, float(np.abs(a.mesh.vertices_coords[:, 2]).max())
     ('tube 1 · sheet A', (15, 3), 0.0)
-    >>> sorted(set(a.edges_seam.tolist())) == sorted(set(b.edges_seam.tolist()))   # partners share seam ids
+    >>> sorted(set(a.edges_seam.tolist())) == sorted(
+    ...     set(b.edges_seam.tolist())
+    ... )  # partners share seam ids
     True
     """
 
@@ -109,25 +111,34 @@ class PatternSheet(FrozenArrays):
         if not isinstance(self.label, str):
             raise InputError(f"label must be a str, got {type(self.label).__name__}")
         if not isinstance(self.mesh, Mesh):
-            raise InputError(f"sheet {self.label!r}: mesh must be a Mesh, got {type(self.mesh).__name__}")
+            raise InputError(
+                f"sheet {self.label!r}: mesh must be a Mesh, got {type(self.mesh).__name__}"
+            )
         mesh = self.mesh
         E = len(mesh.edges_vertices)
         seam = np.asarray(self.edges_seam)
         if seam.shape != (E,):
-            raise InputError(f"sheet {self.label!r}: edges_seam must have shape ({E},), got {seam.shape}")
+            raise InputError(
+                f"sheet {self.label!r}: edges_seam must have shape ({E},), got {seam.shape}"
+            )
         if seam.size and not np.array_equal(seam, np.round(seam)):
-            raise InputError(f"sheet {self.label!r}: edges_seam must hold integers, got {seam.dtype} values")
+            raise InputError(
+                f"sheet {self.label!r}: edges_seam must hold integers, got {seam.dtype} values"
+            )
         seam = seam.astype(np.int64)
         object.__setattr__(self, "edges_seam", seam)
         if seam.size and seam.min() < -1:
-            raise InputError(f"sheet {self.label!r}: edges_seam must be -1 or a seam id >= 0, got {seam.min()}")
+            raise InputError(
+                f"sheet {self.label!r}: edges_seam must be -1 or a seam id >= 0, got {seam.min()}"
+            )
         is_seam = mesh.edges_kind == "seam"
         bad = np.flatnonzero(is_seam != (seam >= 0))
         if bad.size:
             i = bad[0]
             raise InputError(
                 f"sheet {self.label!r}: edges_seam must be >= 0 exactly on edges of kind 'seam'; "
-                f"{bad.size} edges disagree, e.g. edge {i} of kind {str(mesh.edges_kind[i])!r} has seam id {seam[i]}"
+                f"{bad.size} edges disagree, e.g. edge {i} of kind "
+                f"{str(mesh.edges_kind[i])!r} has seam id {seam[i]}"
             )
         xyz = mesh.vertices_coords
         if len(xyz) and not np.isfinite(xyz).all():
@@ -137,8 +148,8 @@ class PatternSheet(FrozenArrays):
             zmax = float(np.abs(xyz[:, 2]).max())
             if zmax > 1e-6 * max(extent, 1e-300):
                 raise InputError(
-                    f"sheet {self.label!r}: a developed sheet must lie in z = 0, got |z| up to {zmax:.3g} "
-                    f"for a sheet {extent:.3g} across"
+                    f"sheet {self.label!r}: a developed sheet must lie in z = 0, got |z| up to "
+                    f"{zmax:.3g} for a sheet {extent:.3g} across"
                 )
         fold = mesh.edges_kind == "fold"
         odd = np.flatnonzero(fold & ~np.isin(mesh.edges_assignment, ("M", "V")))
@@ -171,7 +182,9 @@ def sheet_vertices(structure: Structure) -> tuple[np.ndarray, ...]:
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=3)), 0.1, 0.1)
+    >>> lat = Lattice.from_crease(
+    ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=3)), 0.1, 0.1
+    ... )
     >>> [v.tolist() for v in sheet_vertices(Structure.tube(lat))]
     [[9, 10, 11, 0, 1, 2, 3, 4, 5], [3, 4, 5, 6, 7, 8, 9, 10, 11]]
     """
@@ -213,10 +226,13 @@ class FlatPlane(FrozenArrays):
 
         Examples
         --------
-        >>> plane = FlatPlane(np.zeros(3), np.eye(3), 0.0)   # the plane z = 0
-        >>> plane.coords(np.array([[1.0, 2, 3]])).tolist(), plane.coords(np.array([[1.0, 2, 3]]), flip=True).tolist()
+        >>> plane = FlatPlane(np.zeros(3), np.eye(3), 0.0)  # the plane z = 0
+        >>> (
+        ...     plane.coords(np.array([[1.0, 2, 3]])).tolist(),
+        ...     plane.coords(np.array([[1.0, 2, 3]]), flip=True).tolist(),
+        ... )
         ([[1.0, 2.0]], [[1.0, -2.0]])
-        >>> plane.coords(np.zeros((0, 3))).shape   # no points
+        >>> plane.coords(np.zeros((0, 3))).shape  # no points
         (0, 2)
         """
         d = np.asarray(points, float) - self.origin
@@ -256,13 +272,18 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     >>> flat_plane(tube.state())
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: state must be the flat state structure.state(0), got one at fold angle 90° (taken as a flat state is not planar)
+    curvefold.kernel._errors.InputError: state must be the flat state structure.state(0), got one at
+    fold angle 90° (taken as a flat state is not planar)
     """
     if not isinstance(state, State):
-        raise InputError(f"state must be a State (e.g. structure.state(0)), got {type(state).__name__}")
+        raise InputError(
+            f"state must be a State (e.g. structure.state(0)), got {type(state).__name__}"
+        )
     if state.fold_angle != 0:
-        raise InputError(f"state must be the flat state structure.state(0), got one at fold angle {state.fold_angle:g}° "
-                         "(taken as a flat state is not planar)")
+        raise InputError(
+            "state must be the flat state structure.state(0), got one at fold "
+            f"angle {state.fold_angle:g}° (taken as a flat state is not planar)"
+        )
     x = state.vertices.reshape(-1, 3)
     centre = x.mean(axis=0)
     _, _, vt = np.linalg.svd(x - centre, full_matrices=False)
@@ -274,11 +295,16 @@ def flat_plane(state: State, *, tol: float = 1e-9) -> FlatPlane:
     residual = float(np.abs((x - origin) @ normal).max())
     size = float(np.ptp(x, axis=0).max())
     if not residual <= tol * max(size, 1e-300):
-        raise InternalError(f"the flat state is not planar: a vertex lies {residual:.3g} from the fitted plane (allowed {tol:g} × size {size:.3g})")
+        raise InternalError(
+            f"the flat state is not planar: a vertex lies {residual:.3g} from "
+            f"the fitted plane (allowed {tol:g} × size {size:.3g})"
+        )
     return FlatPlane(origin, np.stack([e1, cross(normal, e1), normal]), residual)
 
 
-def develop(structure: Structure, topology: Topology, fold_angle: float, *, name: str = "") -> tuple[PatternSheet, ...]:
+def develop(
+    structure: Structure, topology: Topology, fold_angle: float, *, name: str = ""
+) -> tuple[PatternSheet, ...]:
     """The sheets of one of the structure's topologies, developed into the plane of the flat state.
 
     :func:`sheets` with the topology given, for callers that read its sheet maps too
@@ -307,7 +333,11 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+    >>> tube = Structure.tube(
+    ...     Lattice.from_crease(
+    ...         Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+    ...     )
+    ... )
     >>> [len(s.mesh.faces_vertices) for s in develop(tube, tube.topology("quads"), 90.0)]
     [16, 16]
     """
@@ -318,8 +348,11 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
     flat = structure.state(0.0)
     plane = flat_plane(flat)
     flat_coords = topology.coords(flat.vertices)
-    bends = dihedral_angles(topology.coords(structure.state(fold_angle).vertices), topology.faces_vertices,
-                            topology.edges_vertices)  # rulings and diagonals bend too
+    bends = dihedral_angles(
+        topology.coords(structure.state(fold_angle).vertices),
+        topology.faces_vertices,
+        topology.edges_vertices,
+    )  # rulings and diagonals bend too
     areas = vector_areas(flat_coords, topology.faces_vertices)
     normals = areas / np.linalg.norm(areas, axis=-1, keepdims=True)
     out = []
@@ -329,8 +362,10 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
         xy = plane.coords(flat_coords[sheet.vertices], flip=bool(facing.mean() < 0))
         area2 = vector_areas(xy, sheet.faces_vertices)[:, 2]
         if not (area2 > 0).all():
-            raise InternalError(f"{label}: {int(np.count_nonzero(~(area2 > 0)))} of {len(area2)} faces of the flat "
-                                "state are not counter-clockwise seen from outside the tube")
+            raise InternalError(
+                f"{label}: {int(np.count_nonzero(~(area2 > 0)))} of {len(area2)} "
+                "faces of the flat state are not counter-clockwise seen from outside the tube"
+            )
         kind = topology.edges_kind[sheet.edges]
         angle = np.where(kind == "seam", 0.0, bends[sheet.edges])  # a seam is cut open: one face
         mesh = Mesh(
@@ -346,9 +381,15 @@ def develop(structure: Structure, topology: Topology, fold_angle: float, *, name
     return tuple(out)
 
 
-def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bool = True,
-           name: str = "", faces: Literal["triangles", "quads"] = "triangles",
-           keep: Sequence[np.ndarray] | None = None) -> tuple[PatternSheet, ...]:
+def sheets(
+    structure: Structure,
+    *,
+    fold_angle: float | None = None,
+    degrees: bool = True,
+    name: str = "",
+    faces: Literal["triangles", "quads"] = "triangles",
+    keep: Sequence[np.ndarray] | None = None,
+) -> tuple[PatternSheet, ...]:
     """The developed sheets of a structure: its crease pattern, two sheets per tube.
 
     Coordinates come from the flat state ``structure.state(0)``, in model units, in the
@@ -394,12 +435,18 @@ def sheets(structure: Structure, *, fold_angle: float | None = None, degrees: bo
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1)
+    >>> lat = Lattice.from_crease(
+    ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+    ... )
     >>> [s.label for s in sheets(Structure.tube(lat))]
     ['tube 1 · sheet A', 'tube 1 · sheet B']
     """
     check_structure(structure)
-    target = structure.lattice.crease.fold_angle if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees)
+    target = (
+        structure.lattice.crease.fold_angle
+        if fold_angle is None
+        else check_fold_angle(fold_angle, degrees=degrees)
+    )
     return develop(structure, structure.topology(faces, keep=keep), target, name=name)
 
 
@@ -435,7 +482,7 @@ class Bond:
         --------
         >>> Bond((1, 1), ((0, 3), (1, 1))).describe()
         'curve (1, 1): tube 1 crease 3 + tube 2 crease 1'
-        >>> Bond((0, 0), ()).describe()   # no creases
+        >>> Bond((0, 0), ()).describe()  # no creases
         'curve (0, 0): '
         """
         parts = " + ".join(f"tube {k + 1} crease {c}" for k, c in self.creases)
@@ -464,7 +511,7 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
     >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
     >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
-    >>> bonds(tube)   # a single tube has none
+    >>> bonds(tube)  # a single tube has none
     ()
     >>> [b.describe() for b in bonds(Structure.diagonal(lat, 2))]
     ['curve (1, 1): tube 1 crease 3 + tube 2 crease 1']
@@ -472,7 +519,11 @@ def bonds(structure: Structure) -> tuple[Bond, ...]:
     check_structure(structure)
     uv = structure.curves_uv.tolist()
     members = corner_members(structure.cell_curves, len(uv))
-    return tuple(Bond(tuple(uv[m]), tuple((k, c + 1) for k, c in on)) for m, on in enumerate(members) if len(on) > 1)
+    return tuple(
+        Bond(tuple(uv[m]), tuple((k, c + 1) for k, c in on))
+        for m, on in enumerate(members)
+        if len(on) > 1
+    )
 
 
 # --------------------------------------------------------------------------------------
@@ -515,13 +566,19 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
     >>> t = np.linspace(0, np.pi / 2, 5)
     >>> a = np.stack([np.cos(t), np.sin(t), 0 * t], axis=1)
     >>> flat = unroll_strip(a, a + [0, 0, 1])
-    >>> bool(np.allclose(flat[1] - flat[0], [0, 1])), bool(np.allclose(flat[0, -1], [8 * np.sin(np.pi / 16), 0]))
+    >>> (
+    ...     bool(np.allclose(flat[1] - flat[0], [0, 1])),
+    ...     bool(np.allclose(flat[0, -1], [8 * np.sin(np.pi / 16), 0])),
+    ... )
     (True, True)
     """
     a = np.asarray(points_a, float)
     b = np.asarray(points_b, float)
     if a.ndim != 2 or a.shape[1] != 3 or a.shape != b.shape or len(a) < 2:
-        raise InputError(f"points_a and points_b must both have shape (n, 3) with n ≥ 2, got {a.shape} and {b.shape}")
+        raise InputError(
+            "points_a and points_b must both have shape (n, 3) with n ≥ 2, got "
+            f"{a.shape} and {b.shape}"
+        )
     if not (np.isfinite(a).all() and np.isfinite(b).all()):
         raise InputError("points_a and points_b must be finite")
     a0, a1, b0, b1 = a[:-1], a[1:], b[:-1], b[1:]
@@ -531,9 +588,13 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
     # direction of the ruling a_j → b_j, and of the chord a_j → a_{j+1}
     ruling = 0.5 * np.pi + np.concatenate([[0.0], np.cumsum(np.pi - first - second - second_next)])
     along = ruling[:-1] - first - second
-    step = np.linalg.norm(a1 - a0, axis=-1)[:, None] * np.stack([np.cos(along), np.sin(along)], axis=-1)
+    step = np.linalg.norm(a1 - a0, axis=-1)[:, None] * np.stack(
+        [np.cos(along), np.sin(along)], axis=-1
+    )
     a2 = np.concatenate([np.zeros((1, 2)), np.cumsum(step, axis=0)])
-    b2 = a2 + np.linalg.norm(b - a, axis=-1)[:, None] * np.stack([np.cos(ruling), np.sin(ruling)], axis=-1)
+    b2 = a2 + np.linalg.norm(b - a, axis=-1)[:, None] * np.stack(
+        [np.cos(ruling), np.sin(ruling)], axis=-1
+    )
     return np.stack([a2, b2])
 
 
@@ -541,9 +602,15 @@ def unroll_strip(points_a: np.ndarray, points_b: np.ndarray) -> np.ndarray:
 # folding motion
 
 
-def folding_motion(structure: Structure, fold_angles: ArrayLike, *, degrees: bool = True,
-                   anchor: Literal["start", "middle"] = "start",
-                   keep: Sequence[np.ndarray] | None = None, topology: Topology | None = None) -> np.ndarray:
+def folding_motion(
+    structure: Structure,
+    fold_angles: ArrayLike,
+    *,
+    degrees: bool = True,
+    anchor: Literal["start", "middle"] = "start",
+    keep: Sequence[np.ndarray] | None = None,
+    topology: Topology | None = None,
+) -> np.ndarray:
     """Vertex positions of ``State.mesh(keep=keep)`` at many fold angles at once, shape (A, V, 3).
 
     The vectorised form of ``[structure.state(f, anchor=anchor).mesh().vertices_coords for f
@@ -570,16 +637,19 @@ def folding_motion(structure: Structure, fold_angles: ArrayLike, *, degrees: boo
     >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
     >>> tube = Structure.tube(lat)
     >>> motion = folding_motion(tube, [0, 90])
-    >>> motion.shape, bool(np.allclose(motion[1], tube.state(90).mesh().vertices_coords, atol=1e-12))
+    >>> (
+    ...     motion.shape,
+    ...     bool(np.allclose(motion[1], tube.state(90).mesh().vertices_coords, atol=1e-12)),
+    ... )
     ((2, 20, 3), True)
     >>> folding_motion(tube, [])
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: fold_angles must be a non-empty sequence of fold angles, got shape (0,)
+    curvefold.kernel._errors.InputError: fold_angles must be a non-empty sequence of fold angles,
+    got shape (0,)
     """
     check_structure(structure)
     angles = check_fold_angles(fold_angles, degrees=degrees)
-    points = structure.lattice.fold_points(structure.curves_uv, angles, anchor=anchor)  # (A, M, n, 3)
+    # (A, M, n, 3)
+    points = structure.lattice.fold_points(structure.curves_uv, angles, anchor=anchor)
     return (structure.topology(keep=keep) if topology is None else topology).coords(points)
-
-

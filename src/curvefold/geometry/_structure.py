@@ -27,7 +27,15 @@ from ..kernel._errors import InputError
 from ..kernel._validate import check_integer
 from ._crease import half_angle
 from ._mesh import Mesh
-from ._topology import CORNER_KINDS, Topology, corner_members, lattice_corners, sample_index, thin_cells, unique_pairs
+from ._topology import (
+    CORNER_KINDS,
+    Topology,
+    corner_members,
+    lattice_corners,
+    sample_index,
+    thin_cells,
+    unique_pairs,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._kinds import StructureLattice
@@ -63,15 +71,17 @@ class Structure(FrozenArrays):
     >>> Structure.from_cells(lat, [])
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: cells must be a non-empty list of (i, j) integer pairs, got shape (0,)
+    curvefold.kernel._errors.InputError: cells must be a non-empty list of (i, j) integer pairs, got
+    shape (0,)
     """
 
     lattice: StructureLattice
     cells: np.ndarray
 
     @classmethod
-    def from_cells(cls, lattice: StructureLattice,
-                   cells: Sequence[Sequence[int]] | np.ndarray) -> Structure:
+    def from_cells(
+        cls, lattice: StructureLattice, cells: Sequence[Sequence[int]] | np.ndarray
+    ) -> Structure:
         """A structure of the given cells, refused if any crease passes regression.
 
         Parameters
@@ -83,13 +93,17 @@ class Structure(FrozenArrays):
         Examples
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=33)), 0.1, 0.1)
+        >>> lat = Lattice.from_crease(
+        ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=33)), 0.1, 0.1
+        ... )
         >>> Structure.tube(lat).curves_uv.tolist()
         [[0, 0], [0, 1], [1, 0], [1, 1]]
         """
         arr = np.asarray(cells)
         if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) == 0:
-            raise InputError(f"cells must be a non-empty list of (i, j) integer pairs, got shape {arr.shape}")
+            raise InputError(
+                f"cells must be a non-empty list of (i, j) integer pairs, got shape {arr.shape}"
+            )
         if not np.issubdtype(arr.dtype, np.integer):
             if not np.all(np.isfinite(arr)) or not np.all(arr == np.round(arr)):
                 raise InputError(f"cells must hold integers, got {cells!r}")
@@ -115,7 +129,9 @@ class Structure(FrozenArrays):
         return cls.from_cells(lattice, [(0, 0)])
 
     @classmethod
-    def diagonal(cls, lattice: StructureLattice, count: int, *, direction: int = 1, layers: int = 1) -> Structure:
+    def diagonal(
+        cls, lattice: StructureLattice, count: int, *, direction: int = 1, layers: int = 1
+    ) -> Structure:
         """Tubes stacked along the lattice diagonal, curve 3 of one being curve 1 of the next.
 
         Parameters
@@ -132,7 +148,10 @@ class Structure(FrozenArrays):
         >>> from curvefold import SpaceCurve, Crease, Lattice
         >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
         >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
-        >>> Structure.diagonal(lat, 3).cells.tolist(), Structure.diagonal(lat, 1, direction=-1).cells.tolist()
+        >>> (
+        ...     Structure.diagonal(lat, 3).cells.tolist(),
+        ...     Structure.diagonal(lat, 1, direction=-1).cells.tolist(),
+        ... )
         ([[0, 0], [1, 1], [2, 2]], [[-1, -1]])
         >>> Structure.diagonal(lat, 0)
         Traceback (most recent call last):
@@ -164,13 +183,17 @@ class Structure(FrozenArrays):
 
     @property
     def regression_margin(self) -> float:
-        """The smallest Eq. (17) speed factor of its lattice curves: > 0 when they are free of regression."""
+        """The smallest Eq. (17) speed factor of its lattice curves: > 0 when they are free of
+        regression."""
         return float(self.lattice.domain.margin(self.curves_uv.astype(float)).min())
 
     @cached_property
     def curve_kinds(self) -> tuple[str, ...]:
         """For each curve: "fold" or "seam" in every cell it bounds, else "junction"."""
-        kinds = ({CORNER_KINDS[c] for _, c in members} for members in corner_members(self.cell_curves, len(self.curves_uv)))
+        kinds = (
+            {CORNER_KINDS[c] for _, c in members}
+            for members in corner_members(self.cell_curves, len(self.curves_uv))
+        )
         return tuple(k.pop() if len(k) == 1 else "junction" for k in kinds)
 
     def dihedral_angles(self, fold_angle: float, *, degrees: bool = True) -> np.ndarray:
@@ -184,14 +207,19 @@ class Structure(FrozenArrays):
         >>> tube = Structure.tube(lat)
         >>> np.degrees(tube.dihedral_angles(60)).round(6).tolist()
         [[120.0, 60.0, 120.0, 60.0]]
-        >>> np.degrees(tube.dihedral_angles(0)).round(6).tolist()   # flat: folds open, seams closed
+        >>> np.degrees(tube.dihedral_angles(0)).round(6).tolist()  # flat: folds open, seams closed
         [[180.0, 0.0, 180.0, 0.0]]
         """
         a = half_angle(fold_angle, degrees=degrees, allow_flat=True)
         row = np.where(np.array(CORNER_KINDS) == "fold", np.pi - 2 * a, 2 * a)
         return np.broadcast_to(row, (len(self.cells), 4)).copy()
 
-    def topology(self, faces: Literal["triangles", "quads"] = "triangles", *, keep: Sequence[np.ndarray] | None = None) -> Topology:
+    def topology(
+        self,
+        faces: Literal["triangles", "quads"] = "triangles",
+        *,
+        keep: Sequence[np.ndarray] | None = None,
+    ) -> Topology:
         """The mesh of the tubes and their sheets, as the lattice puts it on its curves.
 
         Parameters
@@ -227,7 +255,13 @@ class Structure(FrozenArrays):
         return self.lattice.topology(self.cell_curves, "triangles")
 
     # -- states ------------------------------------------------------------------------------
-    def state(self, fold_angle: float | None = None, *, degrees: bool = True, anchor: Literal["start", "middle"] = "start") -> State:
+    def state(
+        self,
+        fold_angle: float | None = None,
+        *,
+        degrees: bool = True,
+        anchor: Literal["start", "middle"] = "start",
+    ) -> State:
         """The structure rigidly folded to 2α (default: the lattice's own fold angle).
 
         Parameters
@@ -243,16 +277,25 @@ class Structure(FrozenArrays):
         >>> curve = SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5)
         >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> tube = Structure.tube(lat)
-        >>> tube.state().fold_angle, round(tube.state(60).fold_angle, 9), tube.state().vertices.shape
+        >>> (
+        ...     tube.state().fold_angle,
+        ...     round(tube.state(60).fold_angle, 9),
+        ...     tube.state().vertices.shape,
+        ... )
         (90.0, 60.0, (4, 5, 3))
-        >>> float(np.abs(tube.state(0).vertices[..., 2]).max())   # 2α = 0: the flat crease pattern
+        >>> float(np.abs(tube.state(0).vertices[..., 2]).max())  # 2α = 0: the flat crease pattern
         0.0
         >>> tube.state(180)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: fold_angle must be in [0°, 180°), got 180 (2α = 180° would need infinite curvature κ = κ_2D / cos α)
+        curvefold.kernel._errors.InputError: fold_angle must be in [0°, 180°), got 180 (2α = 180°
+        would need infinite curvature κ = κ_2D / cos α)
         """
-        lattice = self.lattice if fold_angle is None else self.lattice.refold(fold_angle, degrees=degrees, anchor=anchor)
+        lattice = (
+            self.lattice
+            if fold_angle is None
+            else self.lattice.refold(fold_angle, degrees=degrees, anchor=anchor)
+        )
         return State(self, lattice, readonly(lattice.points(self.curves_uv)))
 
 
@@ -288,7 +331,12 @@ class State(FrozenArrays):
         """2α in degrees."""
         return self.lattice.crease.fold_angle
 
-    def mesh(self, *, faces: Literal["triangles", "quads"] = "triangles", keep: Sequence[np.ndarray] | None = None) -> Mesh:
+    def mesh(
+        self,
+        *,
+        faces: Literal["triangles", "quads"] = "triangles",
+        keep: Sequence[np.ndarray] | None = None,
+    ) -> Mesh:
         """The mesh of all tubes at this state (FOLD arrays, fold angles measured).
 
         Parameters
@@ -304,9 +352,15 @@ class State(FrozenArrays):
         >>> lat = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.1)
         >>> state = Structure.tube(lat).state()
         >>> mesh = state.mesh()
-        >>> mesh.vertices_coords.shape, mesh.faces_vertices.shape, sorted(set(mesh.edges_kind.tolist()))
+        >>> (
+        ...     mesh.vertices_coords.shape,
+        ...     mesh.faces_vertices.shape,
+        ...     sorted(set(mesh.edges_kind.tolist())),
+        ... )
         ((20, 3), (32, 3), ['boundary', 'diagonal', 'fold', 'ruling', 'seam'])
-        >>> float(np.abs(Structure.tube(lat).state(0).mesh().vertices_coords[:, 2]).max())   # the flat state
+        >>> float(
+        ...     np.abs(Structure.tube(lat).state(0).mesh().vertices_coords[:, 2]).max()
+        ... )  # the flat state
         0.0
         """
         return self.structure.topology(faces, keep=keep).mesh(self.vertices)
@@ -327,7 +381,9 @@ def check_structure(structure: Structure, *, name: str = "structure") -> Structu
     return structure
 
 
-def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_cells: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+def drawable(
+    structure: Structure, vertices: np.ndarray, *, segments: int, max_cells: int
+) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
     """Thin a structure's curves for drawing.
 
     Parameters
@@ -360,9 +416,11 @@ def drawable(structure: Structure, vertices: np.ndarray, *, segments: int, max_c
     ((4, 3, 3), [[0, 1, 3, 2]], ('fold', 'seam', 'seam', 'fold'))
     """
     cells = thin_cells(structure.cell_curves, max_cells)
-    used = np.flatnonzero(np.bincount(cells.ravel(), minlength=len(structure.curves_uv)))  # the cells' curves, in order
+    # the cells' curves, in order
+    used = np.flatnonzero(np.bincount(cells.ravel(), minlength=len(structure.curves_uv)))
     remap = np.full(len(structure.curves_uv), -1)
     remap[used] = np.arange(len(used))
     idx = sample_index(vertices.shape[-2], segments + 1)
     kinds = tuple(str(k) for k in np.asarray(structure.curve_kinds)[used])
-    return vertices[..., used[:, None], idx, :], remap[cells], kinds  # one gather: a copy of what is kept alone
+    # one gather: a copy of what is kept alone
+    return vertices[..., used[:, None], idx, :], remap[cells], kinds

@@ -114,7 +114,9 @@ def seam_id(tube: np.ndarray | int, corner: np.ndarray | int) -> np.ndarray:
     return len(_SEAMS) * np.asarray(tube) + _SEAM_INDEX[corner]
 
 
-def fold_assignment(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, *, seams_open: bool = False) -> np.ndarray:
+def fold_assignment(
+    edges_kind: np.ndarray, edges_foldAngle: np.ndarray, *, seams_open: bool = False
+) -> np.ndarray:
     """FOLD assignment of every edge from its kind and fold angle: the one rule.
 
     ``B`` on boundaries, and on seams cut open (``seams_open``: a sheet, where each seam
@@ -174,7 +176,8 @@ def lattice_corners(cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def unique_pairs(pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``np.unique(pairs, axis=0, return_inverse=True)`` for integer pairs (N, 2), by one key per pair (many times faster).
+    """``np.unique(pairs, axis=0, return_inverse=True)`` for integer pairs (N, 2), by one key per
+    pair (many times faster).
 
     >>> uv, inverse = unique_pairs(np.array([[1, 0], [0, 5], [1, 0]]))
     >>> uv.tolist(), inverse.tolist()
@@ -188,7 +191,9 @@ def unique_pairs(pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if (int(pairs[:, 0].max()) - int(low[0]) + 1) * span >= 2**62:  # keys past int64: the slow way
         found, inverse = np.unique(pairs, axis=0, return_inverse=True)
         return found, inverse.reshape(-1)
-    keys, inverse = np.unique((pairs[:, 0] - low[0]) * span + (pairs[:, 1] - low[1]), return_inverse=True)
+    keys, inverse = np.unique(
+        (pairs[:, 0] - low[0]) * span + (pairs[:, 1] - low[1]), return_inverse=True
+    )
     return np.stack([keys // span + low[0], keys % span + low[1]], axis=1), inverse.reshape(-1)
 
 
@@ -271,7 +276,7 @@ class Topology(FrozenArrays):
 
     Examples
     --------
-    >>> t = Topology.tubes([[0, 1, 3, 2]], 2)   # one tube, two samples per curve
+    >>> t = Topology.tubes([[0, 1, 3, 2]], 2)  # one tube, two samples per curve
     >>> t.vertex_curve.tolist(), t.vertex_sample.tolist(), len(t.sheets)
     ([0, 0, 1, 1, 3, 3, 2, 2], [0, 1, 0, 1, 0, 1, 0, 1], 2)
     """
@@ -286,8 +291,14 @@ class Topology(FrozenArrays):
     sheets: tuple[SheetTopology, ...]
 
     @classmethod
-    def tubes(cls, cell_curves: np.ndarray, samples: int, *, faces: Literal["triangles", "quads"] = "triangles",
-              keep: Sequence[np.ndarray] | None = None) -> Topology:
+    def tubes(
+        cls,
+        cell_curves: np.ndarray,
+        samples: int,
+        *,
+        faces: Literal["triangles", "quads"] = "triangles",
+        keep: Sequence[np.ndarray] | None = None,
+    ) -> Topology:
         """Closed tubes of four ruled strips, one per cell, each with its own vertices.
 
         Vertex ``(4k + c)·n + j`` is sample j of corner c (0-based) of tube k. Strip c of a
@@ -327,14 +338,20 @@ class Topology(FrozenArrays):
             return _kept_tubes(cls, cells, int(samples), faces, keep)
         K, n = len(cells), int(samples)
         i, strip = np.arange(n), np.arange(4 * K)  # strip 4k + c
-        vertex_curve, vertex_sample, face_rows, curve_edges, rulings, diagonals = _tube_numbering(cells, n, faces)
+        vertex_curve, vertex_sample, face_rows, curve_edges, rulings, diagonals = _tube_numbering(
+            cells, n, faces
+        )
         per_strip = face_rows.shape[1]
         corner = np.repeat(strip % 4, n - 1)  # corner of every curve edge
         curve_kind = np.array(CORNER_KINDS)[corner]
         ruling_kind = np.where(np.tile(np.isin(i, (0, n - 1)), 4 * K), "boundary", "ruling")
-        edges_kind = np.concatenate([curve_kind, ruling_kind, np.full(len(diagonals), "diagonal")], dtype="<U8")
+        edges_kind = np.concatenate(
+            [curve_kind, ruling_kind, np.full(len(diagonals), "diagonal")], dtype="<U8"
+        )
         seam = np.full(len(edges_kind), -1, np.int64)
-        seam[: len(curve_edges)] = np.where(curve_kind == "seam", seam_id(np.repeat(strip // 4, n - 1), corner), -1)
+        seam[: len(curve_edges)] = np.where(
+            curve_kind == "seam", seam_id(np.repeat(strip // 4, n - 1), corner), -1
+        )
         faces_vertices = face_rows.reshape(-1, face_rows.shape[-1])
         edges_vertices = np.concatenate([curve_edges, rulings, diagonals])
 
@@ -355,8 +372,18 @@ class Topology(FrozenArrays):
                 )
                 face_ids = np.concatenate([block(0, per_strip, gg) for gg in g])
                 verts = np.concatenate([(4 * k + c) * n + i for c in corners])
-                sheets.append(_sheet(f"tube {k + 1} · sheet {name}", verts, np.sort(face_ids), np.sort(edge_ids),
-                                     faces_vertices, edges_vertices, seam, like=sheets[m] if k else None))
+                sheets.append(
+                    _sheet(
+                        f"tube {k + 1} · sheet {name}",
+                        verts,
+                        np.sort(face_ids),
+                        np.sort(edge_ids),
+                        faces_vertices,
+                        edges_vertices,
+                        seam,
+                        like=sheets[m] if k else None,
+                    )
+                )
         return cls(  # arrays made here, held as they are (read-only, not copied)
             vertex_curve=readonly(vertex_curve),
             vertex_sample=readonly(vertex_sample),
@@ -393,7 +420,9 @@ class Topology(FrozenArrays):
         ['ruling']
         """
         quads = cls.tubes(cell_curves, samples, faces="quads")
-        return replace(quads, edges_kind=np.where(quads.edges_kind == "ruling", "fold", quads.edges_kind))
+        return replace(
+            quads, edges_kind=np.where(quads.edges_kind == "ruling", "fold", quads.edges_kind)
+        )
 
     def coords(self, curves: np.ndarray) -> np.ndarray:
         """Vertex positions from lattice curves (..., M, n, 3); shape (..., V, 3).
@@ -401,8 +430,10 @@ class Topology(FrozenArrays):
         Examples
         --------
         >>> t = Topology.tubes([[0, 1, 3, 2]], 2)
-        >>> corners = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], float)   # (y, z) of curves 0–3: a square section
-        >>> curves = np.stack([[[x, y, z] for x in (0.0, 2.0)] for y, z in corners])   # (4, 2, 3)
+        >>> corners = np.array(
+        ...     [[0, 0], [1, 0], [0, 1], [1, 1]], float
+        ... )  # (y, z) of curves 0–3: a square section
+        >>> curves = np.stack([[[x, y, z] for x in (0.0, 2.0)] for y, z in corners])  # (4, 2, 3)
         >>> t.coords(curves)[:3].tolist(), t.coords(curves[None]).shape
         ([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]], (1, 8, 3))
         """
@@ -417,12 +448,16 @@ class Topology(FrozenArrays):
         Examples
         --------
         >>> t = Topology.tubes([[0, 1, 3, 2]], 2)
-        >>> corners = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], float)   # (y, z) of curves 0–3: a square section
-        >>> curves = np.stack([[[x, y, z] for x in (0.0, 2.0)] for y, z in corners])   # (4, 2, 3)
+        >>> corners = np.array(
+        ...     [[0, 0], [1, 0], [0, 1], [1, 1]], float
+        ... )  # (y, z) of curves 0–3: a square section
+        >>> curves = np.stack([[[x, y, z] for x in (0.0, 2.0)] for y, z in corners])  # (4, 2, 3)
         >>> mesh = t.mesh(curves)
         >>> mesh.edges_kind[:4].tolist(), mesh.edges_foldAngle[:4].round(6).tolist()
         (['fold', 'seam', 'fold', 'seam'], [90.0, 90.0, 90.0, 90.0])
-        >>> bool(np.isnan(t.mesh(0 * curves).edges_foldAngle[:4]).all())   # every point at one place: no normals, NaN
+        >>> bool(
+        ...     np.isnan(t.mesh(0 * curves).edges_foldAngle[:4]).all()
+        ... )  # every point at one place: no normals, NaN
         True
         """
         coords = self.coords(curves)
@@ -440,8 +475,9 @@ class Topology(FrozenArrays):
 
 
 def _tube_numbering(cells: np.ndarray, n: int, faces: str) -> tuple[np.ndarray, ...]:
-    """The numbering of :meth:`Topology.tubes` on cells (K, 4) of n samples: every vertex's curve and sample (4Kn,),
-    every strip's faces (4K, F, 3 or 4), and the curve edges, rulings and diagonals (none for quads), each (E, 2)."""
+    """The numbering of :meth:`Topology.tubes` on cells (K, 4) of n samples: every vertex's curve
+    and sample (4Kn,), every strip's faces (4K, F, 3 or 4), and the curve edges, rulings and
+    diagonals (none for quads), each (E, 2)."""
     j, i = np.arange(n - 1), np.arange(n)
     strip = np.arange(4 * len(cells))  # 4k + c
     a = (strip * n)[:, None]  # first vertex of corner c of tube k
@@ -454,36 +490,74 @@ def _tube_numbering(cells: np.ndarray, n: int, faces: str) -> tuple[np.ndarray, 
         face_rows = np.stack([a + j, a + j + 1, b + j + 1, b + j], axis=-1)  # (4K, n − 1, 4)
     curve_edges = np.stack([a + j, a + j + 1], axis=-1).reshape(-1, 2)
     rulings = np.stack([a + i, b + i], axis=-1).reshape(-1, 2)
-    diagonals = np.stack([a + j, b + j + 1], axis=-1).reshape(-1, 2) if faces == "triangles" else np.zeros((0, 2), np.int64)
-    return np.repeat(cells.reshape(-1), n), np.tile(i, len(strip)), face_rows, curve_edges, rulings, diagonals
+    diagonals = (
+        np.stack([a + j, b + j + 1], axis=-1).reshape(-1, 2)
+        if faces == "triangles"
+        else np.zeros((0, 2), np.int64)
+    )
+    return (
+        np.repeat(cells.reshape(-1), n),
+        np.tile(i, len(strip)),
+        face_rows,
+        curve_edges,
+        rulings,
+        diagonals,
+    )
 
 
 def is_tube_numbering(topology: Topology, cell_curves: np.ndarray, samples: int) -> bool:
-    """Whether a topology numbers its vertices, edges and faces as :meth:`Topology.tubes` numbers triangles of these
-    cells at every sample (its edges' kinds aside), without building that topology.
+    """Whether a topology numbers its vertices, edges and faces as :meth:`Topology.tubes` numbers
+    triangles of these cells at every sample (its edges' kinds aside), without building that
+    topology.
 
     Examples
     --------
     >>> cells = np.array([[0, 1, 3, 2]])
-    >>> is_tube_numbering(Topology.tubes(cells, 3), cells, 3), is_tube_numbering(Topology.tubes(cells, 3, faces="quads"), cells, 3)
+    >>> (
+    ...     is_tube_numbering(Topology.tubes(cells, 3), cells, 3),
+    ...     is_tube_numbering(Topology.tubes(cells, 3, faces="quads"), cells, 3),
+    ... )
     (True, False)
     """
-    curve, sample, face_rows, *edges = _tube_numbering(np.asarray(cell_curves, dtype=np.int64).reshape(-1, 4), int(samples), "triangles")
-    return (np.array_equal(topology.vertex_curve, curve) and np.array_equal(topology.vertex_sample, sample)
-            and np.array_equal(topology.faces_vertices, face_rows.reshape(-1, 3)) and np.array_equal(topology.edges_vertices, np.concatenate(edges)))
+    curve, sample, face_rows, *edges = _tube_numbering(
+        np.asarray(cell_curves, dtype=np.int64).reshape(-1, 4), int(samples), "triangles"
+    )
+    return (
+        np.array_equal(topology.vertex_curve, curve)
+        and np.array_equal(topology.vertex_sample, sample)
+        and np.array_equal(topology.faces_vertices, face_rows.reshape(-1, 3))
+        and np.array_equal(topology.edges_vertices, np.concatenate(edges))
+    )
 
 
-def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int,
-                faces: Literal["triangles", "quads"], keep: Sequence[np.ndarray]) -> Topology:
+def _kept_tubes(
+    cls: type[Topology],
+    cells: np.ndarray,
+    samples: int,
+    faces: Literal["triangles", "quads"],
+    keep: Sequence[np.ndarray],
+) -> Topology:
     """:meth:`Topology.tubes` with its own samples per tube: the tubes one by one, renumbered."""
     if len(keep) != len(cells):
-        raise InputError(f"keep must list the samples of each of the {len(cells)} tubes, got {len(keep)} lists")
+        raise InputError(
+            f"keep must list the samples of each of the {len(cells)} tubes, got {len(keep)} lists"
+        )
     parts = []
-    made: dict[int, Topology] = {}  # a tube of m samples; its curves only name its vertices' (vertex_curve, below)
+    # a tube of m samples; its curves only name its vertices' (vertex_curve, below)
+    made: dict[int, Topology] = {}
     for k, picks in enumerate(keep):
         picks = np.asarray(picks, dtype=np.int64)
-        if picks.ndim != 1 or len(picks) < 2 or picks[0] < 0 or picks[-1] >= samples or (np.diff(picks) <= 0).any():
-            raise InputError(f"keep[{k}] must be at least two ascending sample indices in [0, {samples}), got {picks.tolist()}")
+        if (
+            picks.ndim != 1
+            or len(picks) < 2
+            or picks[0] < 0
+            or picks[-1] >= samples
+            or (np.diff(picks) <= 0).any()
+        ):
+            raise InputError(
+                f"keep[{k}] must be at least two ascending sample indices in [0, "
+                f"{samples}), got {picks.tolist()}"
+            )
         if len(picks) not in made:
             made[len(picks)] = cls.tubes(cells[k : k + 1], len(picks), faces=faces)
         parts.append((made[len(picks)], picks))
@@ -494,35 +568,64 @@ def _kept_tubes(cls: type[Topology], cells: np.ndarray, samples: int,
     sheets = []
     for k, (one, _) in enumerate(parts):
         for sheet in one.sheets:
-            sheets.append(SheetTopology(
-                label=sheet.label.replace("tube 1 ", f"tube {k + 1} ", 1),
-                vertices=sheet.vertices + V[k],
-                faces=sheet.faces + F[k],
-                edges=sheet.edges + E[k],
-                faces_vertices=sheet.faces_vertices,
-                edges_vertices=sheet.edges_vertices,
-                edges_seam=np.where(sheet.edges_seam >= 0, sheet.edges_seam + seams * k, -1),
-            ))
+            sheets.append(
+                SheetTopology(
+                    label=sheet.label.replace("tube 1 ", f"tube {k + 1} ", 1),
+                    vertices=sheet.vertices + V[k],
+                    faces=sheet.faces + F[k],
+                    edges=sheet.edges + E[k],
+                    faces_vertices=sheet.faces_vertices,
+                    edges_vertices=sheet.edges_vertices,
+                    edges_seam=np.where(sheet.edges_seam >= 0, sheet.edges_seam + seams * k, -1),
+                )
+            )
     return cls(
         vertex_curve=np.repeat(cells.reshape(-1), np.repeat([len(picks) for _, picks in parts], 4)),
         vertex_sample=np.concatenate([picks[one.vertex_sample] for one, picks in parts]),
-        faces_vertices=np.concatenate([one.faces_vertices + V[k] for k, (one, _) in enumerate(parts)]),
+        faces_vertices=np.concatenate(
+            [one.faces_vertices + V[k] for k, (one, _) in enumerate(parts)]
+        ),
         faces_group=np.concatenate([one.faces_group + 4 * k for k, (one, _) in enumerate(parts)]),
-        edges_vertices=np.concatenate([one.edges_vertices + V[k] for k, (one, _) in enumerate(parts)]),
+        edges_vertices=np.concatenate(
+            [one.edges_vertices + V[k] for k, (one, _) in enumerate(parts)]
+        ),
         edges_kind=np.concatenate([one.edges_kind for one, _ in parts]),
-        edges_seam=np.concatenate([np.where(one.edges_seam >= 0, one.edges_seam + seams * k, -1) for k, (one, _) in enumerate(parts)]),
+        edges_seam=np.concatenate(
+            [
+                np.where(one.edges_seam >= 0, one.edges_seam + seams * k, -1)
+                for k, (one, _) in enumerate(parts)
+            ]
+        ),
         sheets=tuple(sheets),
     )
 
 
-def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.ndarray, faces_vertices: np.ndarray,
-           edges_vertices: np.ndarray, seam: np.ndarray, *, like: SheetTopology | None = None) -> SheetTopology:
-    """A sheet of the given mesh vertices, faces and edges, in its own numbering; ``like``: the same sheet of another
-    tube of one :meth:`Topology.tubes`, whose numbering differs from this one's by a shift per block, so that the
-    sheet's own faces and edges are its."""
-    verts, face_ids, edge_ids = readonly(verts), readonly(face_ids), readonly(edge_ids)  # made for this sheet: not copied
+def _sheet(
+    label: str,
+    verts: np.ndarray,
+    face_ids: np.ndarray,
+    edge_ids: np.ndarray,
+    faces_vertices: np.ndarray,
+    edges_vertices: np.ndarray,
+    seam: np.ndarray,
+    *,
+    like: SheetTopology | None = None,
+) -> SheetTopology:
+    """A sheet of the given mesh vertices, faces and edges, in its own numbering; ``like``: the
+    same sheet of another tube of one :meth:`Topology.tubes`, whose numbering differs from
+    this one's by a shift per block, so that the sheet's own faces and edges are its."""
+    # made for this sheet: not copied
+    verts, face_ids, edge_ids = readonly(verts), readonly(face_ids), readonly(edge_ids)
     if like is not None:
-        return SheetTopology(label, verts, face_ids, edge_ids, like.faces_vertices, like.edges_vertices, readonly(seam[edge_ids]))
+        return SheetTopology(
+            label,
+            verts,
+            face_ids,
+            edge_ids,
+            like.faces_vertices,
+            like.edges_vertices,
+            readonly(seam[edge_ids]),
+        )
     lookup = np.full(int(verts.max()) + 1, -1, np.int64)
     lookup[verts] = np.arange(len(verts))
     rows = faces_vertices[face_ids]
@@ -533,7 +636,8 @@ def _sheet(label: str, verts: np.ndarray, face_ids: np.ndarray, edge_ids: np.nda
         raise InternalError(f"{label}: an edge borders none of the sheet's faces")
     big = np.iinfo(np.int64).max
     fwd, rev = np.where(ef[:, 0] >= 0, ef[:, 0], big), np.where(ef[:, 1] >= 0, ef[:, 1], big)
-    oriented = np.where((rev < fwd)[:, None], local_edges[:, ::-1], local_edges)  # as the first face runs
+    # as the first face runs
+    oriented = np.where((rev < fwd)[:, None], local_edges[:, ::-1], local_edges)
     return SheetTopology(label, verts, face_ids, edge_ids, local_faces, oriented, seam[edge_ids])
 
 
@@ -580,7 +684,7 @@ def thin_cells(cell_curves: np.ndarray, limit: int) -> np.ndarray:
     --------
     >>> thin_cells(np.arange(20).reshape(5, 4), 3).tolist()
     [[0, 1, 2, 3], [8, 9, 10, 11], [16, 17, 18, 19]]
-    >>> thin_cells(np.zeros((0, 4), int), 3).shape   # no cells
+    >>> thin_cells(np.zeros((0, 4), int), 3).shape  # no cells
     (0, 4)
     """
     k = len(cell_curves)

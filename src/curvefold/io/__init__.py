@@ -26,7 +26,13 @@ from ..kernel._exports import lazy_exports as _lazy_exports
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "_fold": ["fold_assignments", "to_fold", "write_fold", "write_sheet_fold", "write_structure_fold"],
+        "_fold": [
+            "fold_assignments",
+            "to_fold",
+            "write_fold",
+            "write_sheet_fold",
+            "write_structure_fold",
+        ],
         "_fold_reading": ["FoldFile", "read_fold"],
         "_gltf": ["GlbOptions", "write_glb"],
         "_layout": ["Layout", "layout_sheets", "page_size"],
@@ -34,7 +40,15 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_models": ["MODEL_FORMATS", "write_3d"],
         "_cutters": ["CUTTERS"],
         "_output": ["FoldOutput", "ModelOutput", "PatternOutput"],
-        "_pattern": ["PATTERN_FORMATS", "layout_pattern", "write_dxf", "write_layout", "write_pattern", "write_pdf", "write_svg"],
+        "_pattern": [
+            "PATTERN_FORMATS",
+            "layout_pattern",
+            "write_dxf",
+            "write_layout",
+            "write_pattern",
+            "write_pdf",
+            "write_svg",
+        ],
         "_rhino": ["RhinoOptions", "write_3dm"],
     },
 )

@@ -14,7 +14,9 @@ Examples
 >>> import shutil, tempfile
 >>> folder = Path(tempfile.mkdtemp())
 >>> _ = (folder / "k.csv").write_text("s,kappa\\n0,1\\n1,1.5\\n# a comment\\n2,2\\n")
->>> values, lines = read_column(table_path("k.csv", "kappa", folder), "kappa", length=2.0, label="k.csv")
+>>> values, lines = read_column(
+...     table_path("k.csv", "kappa", folder), "kappa", length=2.0, label="k.csv"
+... )
 >>> values.tolist(), lines
 ([1.0, 1.5, 2.0], [2, 3, 5])
 >>> read_column(folder / "k.csv", "kappa", length=4.0, label="k.csv")
@@ -24,7 +26,8 @@ curvefold.kernel._errors.InputError: k.csv: the s column must run from 0 to leng
 >>> table_path("../k.csv", "kappa", folder)
 Traceback (most recent call last):
 ...
-curvefold.kernel._errors.InputError: kappa: csv path must be relative to the design file's folder and stay inside it, got '../k.csv'
+curvefold.kernel._errors.InputError: kappa: csv path must be relative to the design file's folder
+and stay inside it, got '../k.csv'
 >>> shutil.rmtree(folder)
 """
 
@@ -50,7 +53,9 @@ MAX_CSV_LINE = 10_000
 MAX_CSV_ROWS = 200_000
 
 
-def read_column(file: Path, column: str, *, length: float, label: str) -> tuple[np.ndarray, list[int]]:
+def read_column(
+    file: Path, column: str, *, length: float, label: str
+) -> tuple[np.ndarray, list[int]]:
     """The samples (M,) of ``column`` of the CSV ``file``, M ≥ 2, and the line number of each.
 
     The samples lie on the uniform grid over [0, ``length``]; an ``s`` column, if the file
@@ -78,7 +83,9 @@ def read_column(file: Path, column: str, *, length: float, label: str) -> tuple[
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        raise InputError(f"{label}: CSV file is not UTF-8 text (bad byte at offset {exc.start})") from None
+        raise InputError(
+            f"{label}: CSV file is not UTF-8 text (bad byte at offset {exc.start})"
+        ) from None
     lines, values, s = _parse_csv(text, label, column)
     if values.size < 2:
         raise InputError(f"{label}: column {column!r} needs at least 2 samples, got {values.size}")
@@ -88,7 +95,8 @@ def read_column(file: Path, column: str, *, length: float, label: str) -> tuple[
 
 
 def table_path(raw: str, where: str, base_dir: Path) -> Path:
-    """The CSV file ``raw`` (as the design file writes it) inside ``base_dir``; absolute paths and escapes are refused.
+    """The CSV file ``raw`` (as the design file writes it) inside ``base_dir``; absolute paths and
+    escapes are refused.
 
     Raises
     ------
@@ -99,7 +107,8 @@ def table_path(raw: str, where: str, base_dir: Path) -> Path:
     posix = PurePosixPath(raw.replace("\\", "/"))
     if posix.is_absolute() or PureWindowsPath(raw).anchor or ".." in posix.parts:
         raise InputError(
-            f"{where}: csv path must be relative to the design file's folder and stay inside it, got {raw!r}"
+            f"{where}: csv path must be relative to the design file's folder and stay inside it, "
+            f"got {raw!r}"
         )
     base = base_dir.resolve()
     file = (base / posix).resolve()
@@ -110,7 +119,9 @@ def table_path(raw: str, where: str, base_dir: Path) -> Path:
     return file
 
 
-def _parse_csv(text: str, label: str, column: str) -> tuple[list[int], np.ndarray, np.ndarray | None]:
+def _parse_csv(
+    text: str, label: str, column: str
+) -> tuple[list[int], np.ndarray, np.ndarray | None]:
     """Line number of every data row, the samples of ``column`` and those of the ``s``
     column (None without one).
 
@@ -118,6 +129,7 @@ def _parse_csv(text: str, label: str, column: str) -> tuple[list[int], np.ndarra
     only the two columns are kept. Bounded: lines of at most :data:`MAX_CSV_LINE`
     characters, at most :data:`MAX_CSV_ROWS` data rows, distinct headers.
     """
+
     def bounded(lines):
         for number, line in enumerate(lines, 1):
             if len(line) > MAX_CSV_LINE:
@@ -138,14 +150,21 @@ def _parse_csv(text: str, label: str, column: str) -> tuple[list[int], np.ndarra
                 wanted = _columns(header, column, label)
                 continue
             if len(row) != len(header):
-                raise InputError(f"{label}: line {reader.line_num} has {len(row)} fields, the header has {len(header)}")
+                raise InputError(
+                    f"{label}: line {reader.line_num} has {len(row)} fields, the "
+                    f"header has {len(header)}"
+                )
             if len(rows) == MAX_CSV_ROWS:
-                raise InputError(f"{label}: more than {MAX_CSV_ROWS} data rows (at line {reader.line_num})")
+                raise InputError(
+                    f"{label}: more than {MAX_CSV_ROWS} data rows (at line {reader.line_num})"
+                )
             try:
                 numbers = [float(x) for x in row]
             except ValueError:
                 bad = next(x for x in row if not _is_float(x))
-                raise InputError(f"{label}: line {reader.line_num}: {bad.strip()!r} is not a number") from None
+                raise InputError(
+                    f"{label}: line {reader.line_num}: {bad.strip()!r} is not a number"
+                ) from None
             rows.append([numbers[j] for j in wanted])
             lines.append(reader.line_num)
     except csv.Error as exc:
@@ -162,7 +181,10 @@ def _columns(header: list[str], column: str, label: str) -> list[int]:
     seen: dict[str, int] = {}
     for j, name in enumerate(header):
         if name in seen:
-            raise InputError(f"{label}: column {name!r} appears twice in the header (fields {seen[name] + 1} and {j + 1})")
+            raise InputError(
+                f"{label}: column {name!r} appears twice in the header (fields "
+                f"{seen[name] + 1} and {j + 1})"
+            )
         seen[name] = j
     if column not in seen:
         raise InputError(f"{label}: no column {column!r} (columns: {', '.join(map(repr, header))})")
@@ -177,7 +199,9 @@ def _is_float(text: str) -> bool:
     return True
 
 
-def _check_grid(s: np.ndarray, grid: np.ndarray, lines: list[int], label: str, length: float) -> None:
+def _check_grid(
+    s: np.ndarray, grid: np.ndarray, lines: list[int], label: str, length: float
+) -> None:
     """The ``s`` column must be the uniform grid over [0, length] (to print rounding)."""
     h = length / (grid.size - 1)
     tol = max(1e-3 * h, 1e-6 * length)
@@ -185,11 +209,13 @@ def _check_grid(s: np.ndarray, grid: np.ndarray, lines: list[int], label: str, l
         off = np.flatnonzero(~(np.abs(s - grid) <= tol))
     if off.size and (off[0] == 0 or off[-1] == grid.size - 1):
         raise InputError(
-            f"{label}: the s column must run from 0 to length {length:g}, got {s[0]:.6g} to {s[-1]:.6g}"
+            f"{label}: the s column must run from 0 to length {length:g}, got {s[0]:.6g} to "
+            f"{s[-1]:.6g}"
         )
     if off.size:
         i = int(off[0])
         raise InputError(
-            f"{label}: the s column must be uniformly spaced over [0, {length:g}]: at line {lines[i]} "
-            f"s = {s[i]:.6g}, expected {grid[i]:.6g} ({grid.size} samples, spacing {h:.6g})"
+            f"{label}: the s column must be uniformly spaced over [0, {length:g}]: at line "
+            f"{lines[i]} s = {s[i]:.6g}, expected {grid[i]:.6g} ({grid.size} samples, "
+            f"spacing {h:.6g})"
         )

@@ -6,18 +6,21 @@ alone. The crease-pattern writers (SVG, DXF, PDF) therefore put every kind of li
 layer named by its operation and the fold it makes (:func:`layer_name`), and draw it in the
 colour the chosen convention (a :class:`Cutter` of :data:`CUTTERS`) gives that layer:
 
-========================  ========================================  =====================================
-layout layer              file layer                                operation
-========================  ========================================  =====================================
-``cut``                   ``cut``                                   cut through: each sheet's outline
-``mountain``, ``valley``  ``score - mountain``, ``- valley``        score and fold
-(perforated)              ``perforate - mountain``, ``- valley``    cut dashes (:mod:`curvefold.io._cutting`)
-``seam``                  ``score - seam``                          score: the fold line of each glue tab
-``rulings``               ``engrave - rulings``                     engrave (optional guide lines)
-``labels``                ``engrave - labels``                      engrave: sheet names and seam names
-``glue``                  ``reference - glue (not cut)``            nothing: where the glue goes
-(footer)                  ``reference - legend (not cut)``          nothing: scale bar, scale, legend
-========================  ========================================  =====================================
+========================  ========================================
+===================================== layout layer              file layer
+operation
+========================  ========================================
+===================================== ``cut``                   ``cut``
+cut through: each sheet's outline ``mountain``, ``valley``  ``score - mountain``, ``- valley``
+score and fold (perforated)              ``perforate - mountain``, ``- valley``    cut dashes
+(:mod:`curvefold.io._cutting`) ``seam``                  ``score - seam``
+score: the fold line of each glue tab ``rulings``               ``engrave - rulings``
+engrave (optional guide lines) ``labels``                ``engrave - labels``
+engrave: sheet names and seam names ``glue``                  ``reference - glue (not cut)``
+nothing: where the glue goes (footer)                  ``reference - legend (not cut)``
+nothing: scale bar, scale, legend
+========================  ========================================
+=====================================
 
 Nothing that is not to be cut is drawn in the cut colour: the scale bar, the legend's
 sample lines and its text are in the convention's reference colour, with each sample in
@@ -37,21 +40,33 @@ from types import MappingProxyType
 from ..kernel._errors import InputError
 from ._tables import COLOURS, rgb8
 
-__all__ = ["Cutter", "CUTTERS", "DEFAULT_CUTTER", "LayerStyle", "STYLES", "LEGEND_LAYER", "layer_name", "cutter", "aci"]
+__all__ = [
+    "Cutter",
+    "CUTTERS",
+    "DEFAULT_CUTTER",
+    "LayerStyle",
+    "STYLES",
+    "LEGEND_LAYER",
+    "layer_name",
+    "cutter",
+    "aci",
+]
 
 _KEYS = ("glue", "rulings", "seam", "valley", "mountain", "cut", "labels", "legend")
 
 #: What is done with each layout layer, and the fold it makes (:func:`layer_name`).
-_OPERATIONS = MappingProxyType({
-    "cut": ("cut", ""),
-    "mountain": ("score", "mountain"),
-    "valley": ("score", "valley"),
-    "seam": ("score", "seam"),
-    "rulings": ("engrave", "rulings"),
-    "labels": ("engrave", "labels"),
-    "glue": ("reference", "glue (not cut)"),
-    "legend": ("reference", "legend (not cut)"),
-})
+_OPERATIONS = MappingProxyType(
+    {
+        "cut": ("cut", ""),
+        "mountain": ("score", "mountain"),
+        "valley": ("score", "valley"),
+        "seam": ("score", "seam"),
+        "rulings": ("engrave", "rulings"),
+        "labels": ("engrave", "labels"),
+        "glue": ("reference", "glue (not cut)"),
+        "legend": ("reference", "legend (not cut)"),
+    }
+)
 
 #: The file layer of the page footer (scale bar, scale note and legend).
 LEGEND_LAYER = "reference - legend (not cut)"
@@ -99,16 +114,18 @@ class LayerStyle:
 #: solid: their dashes are geometry. The DXF linetypes carry these patterns under the names of
 #: LibreCAD's small built-in ones, which LibreCAD draws in their place (it reads no pattern
 #: from a file), so that they come out dashed there at about the same size.
-STYLES: Mapping[str, LayerStyle] = MappingProxyType({
-    "glue": LayerStyle(fill=True),
-    "rulings": LayerStyle(width=0.5),
-    "seam": LayerStyle("DOTTINY", (0.8, 0.8)),
-    "valley": LayerStyle("DASHEDTINY", (3.0, 1.5)),
-    "mountain": LayerStyle("DASHDOTTINY", (4.0, 1.2, 0.7, 1.2)),
-    "cut": LayerStyle(),
-    "labels": LayerStyle(),
-    "legend": LayerStyle(),
-})
+STYLES: Mapping[str, LayerStyle] = MappingProxyType(
+    {
+        "glue": LayerStyle(fill=True),
+        "rulings": LayerStyle(width=0.5),
+        "seam": LayerStyle("DOTTINY", (0.8, 0.8)),
+        "valley": LayerStyle("DASHEDTINY", (3.0, 1.5)),
+        "mountain": LayerStyle("DASHDOTTINY", (4.0, 1.2, 0.7, 1.2)),
+        "cut": LayerStyle(),
+        "labels": LayerStyle(),
+        "legend": LayerStyle(),
+    }
+)
 
 
 @dataclass(frozen=True)
@@ -138,7 +155,9 @@ class Cutter:
             raise ValueError(f"cutter {self.name!r} gives no colour for {missing}")
         cut = self.colours["cut"].lower()
         if any(self.colours[k].lower() == cut for k in _KEYS if k != "cut"):
-            raise ValueError(f"cutter {self.name!r}: only the cut layer may be drawn in the cut colour {cut}")
+            raise ValueError(
+                f"cutter {self.name!r}: only the cut layer may be drawn in the cut colour {cut}"
+            )
         for code in self.colours.values():
             rgb8(code)
         object.__setattr__(self, "colours", MappingProxyType(dict(self.colours)))
@@ -154,24 +173,71 @@ def _palette(colours: tuple[str, str, str, str, str, str, str, str]) -> dict[str
 
 
 #: The conventions ``--cutter`` offers, by name.
-CUTTERS: Mapping[str, Cutter] = MappingProxyType({c.name: c for c in (
-    Cutter("print", "printing on paper, folding and cutting by hand: folds red and blue, as in the 3D files",
-           _palette((COLOURS["boundary"], COLOURS["fold"], COLOURS["valley"], COLOURS["tab"],
-                     COLOURS["ruling"], COLOURS["label"],
-                     COLOURS["glue"], "#808080"))),
-    Cutter("laser", "laser software that gives each colour its own layer and operation (LightBurn; Epilog's colour mapping): "
-           "one of the six basic colours, or black, per layer",
-           _palette(("#ff0000", "#0000ff", "#00ff00", "#00ffff", "#ff00ff", "#000000", "#ffff00",
-                     "#ffff00")),
-           "LightBurn documentation, 'Colors and Layers': each colour is a layer, each layer one operation, run in "
-           "layer order; Epilog Laser, Zing manual, section 'Color Mapping': use the six basic colours red, green, blue, "
-           "cyan, yellow, magenta, whose values must match exactly"),
-    Cutter("service", "laser-cutting services that read red as cut, blue as score and black as engrave",
-           _palette(("#ff0000", "#0000ff", "#0000ff", "#0000ff", "#000000", "#000000", "#ffff00",
-                     "#ffff00")),
-           "Lasergarage Berlin, 'Farbenkodierung in den Schnittdateien für Lasercutter': red (255, 0, 0) cut, blue "
-           "(0, 0, 255) score, black (0, 0, 0) engrave, yellow (255, 255, 0) a frame to check the scale, not processed"),
-)})
+CUTTERS: Mapping[str, Cutter] = MappingProxyType(
+    {
+        c.name: c
+        for c in (
+            Cutter(
+                "print",
+                "printing on paper, folding and cutting by hand: folds red and blue, as in "
+                "the 3D files",
+                _palette(
+                    (
+                        COLOURS["boundary"],
+                        COLOURS["fold"],
+                        COLOURS["valley"],
+                        COLOURS["tab"],
+                        COLOURS["ruling"],
+                        COLOURS["label"],
+                        COLOURS["glue"],
+                        "#808080",
+                    )
+                ),
+            ),
+            Cutter(
+                "laser",
+                "laser software that gives each colour its own layer and operation "
+                "(LightBurn; Epilog's colour mapping): one of the six basic colours, or black, per "
+                "layer",
+                _palette(
+                    (
+                        "#ff0000",
+                        "#0000ff",
+                        "#00ff00",
+                        "#00ffff",
+                        "#ff00ff",
+                        "#000000",
+                        "#ffff00",
+                        "#ffff00",
+                    )
+                ),
+                "LightBurn documentation, 'Colors and Layers': each colour is a layer, each "
+                "layer one operation, run in layer order; Epilog Laser, Zing manual, "
+                "section 'Color Mapping': use the six basic colours red, green, blue, "
+                "cyan, yellow, magenta, whose values must match exactly",
+            ),
+            Cutter(
+                "service",
+                "laser-cutting services that read red as cut, blue as score and black as engrave",
+                _palette(
+                    (
+                        "#ff0000",
+                        "#0000ff",
+                        "#0000ff",
+                        "#0000ff",
+                        "#000000",
+                        "#000000",
+                        "#ffff00",
+                        "#ffff00",
+                    )
+                ),
+                "Lasergarage Berlin, 'Farbenkodierung in den Schnittdateien für Lasercutter': red "
+                "(255, 0, 0) cut, blue (0, 0, 255) score, black (0, 0, 0) engrave, yellow (255, "
+                "255, 0) a frame to check the scale, not processed",
+            ),
+        )
+    }
+)
 
 #: The convention of the files unless told otherwise.
 DEFAULT_CUTTER = "print"
@@ -188,17 +254,30 @@ def cutter(name: str | Cutter) -> Cutter:
     if isinstance(name, Cutter):
         return name
     if name not in CUTTERS:
-        raise InputError(f"cutter must be one of {', '.join(CUTTERS)}, got {name!r}", parameter="cutter")
+        raise InputError(
+            f"cutter must be one of {', '.join(CUTTERS)}, got {name!r}", parameter="cutter"
+        )
     return CUTTERS[name]
 
 
-# AutoCAD colour index 1–9: red, yellow, green, cyan, blue, magenta, white (drawn black on white), grey, light grey.
-_ACI = {1: (255, 0, 0), 2: (255, 255, 0), 3: (0, 255, 0), 4: (0, 255, 255), 5: (0, 0, 255), 6: (255, 0, 255), 7: (0, 0, 0),
-        8: (128, 128, 128), 9: (192, 192, 192)}
+# AutoCAD colour index 1–9: red, yellow, green, cyan, blue, magenta, white (drawn black on white),
+# grey, light grey.
+_ACI = {
+    1: (255, 0, 0),
+    2: (255, 255, 0),
+    3: (0, 255, 0),
+    4: (0, 255, 255),
+    5: (0, 0, 255),
+    6: (255, 0, 255),
+    7: (0, 0, 0),
+    8: (128, 128, 128),
+    9: (192, 192, 192),
+}
 
 
 def aci(colour: str) -> int:
-    """The AutoCAD colour index nearest to ``#rrggbb`` among 1–9 (7 for black), for DXF readers that ignore true colour.
+    """The AutoCAD colour index nearest to ``#rrggbb`` among 1–9 (7 for black), for DXF readers that
+    ignore true colour.
 
     Examples
     --------
@@ -206,4 +285,6 @@ def aci(colour: str) -> int:
     (1, 7, 5)
     """
     r, g, b = rgb8(colour)
-    return min(_ACI, key=lambda i: (_ACI[i][0] - r) ** 2 + (_ACI[i][1] - g) ** 2 + (_ACI[i][2] - b) ** 2)
+    return min(
+        _ACI, key=lambda i: (_ACI[i][0] - r) ** 2 + (_ACI[i][1] - g) ** 2 + (_ACI[i][2] - b) ** 2
+    )

@@ -24,7 +24,14 @@ from ..kernel._errors import InputError
 from ._layout import Layout, Page, Polyline
 from ._planar import cross2
 
-__all__ = ["MITRE_LIMIT", "perforation_dashes", "offset_outline", "prepare_layout", "check_perforation", "check_kerf"]
+__all__ = [
+    "MITRE_LIMIT",
+    "perforation_dashes",
+    "offset_outline",
+    "prepare_layout",
+    "check_perforation",
+    "check_kerf",
+]
 
 #: Longest mitre of an offset corner, as a multiple of the offset; sharper corners are bevelled.
 MITRE_LIMIT = 4.0
@@ -37,20 +44,35 @@ def check_perforation(perforation) -> tuple[float, float] | None:
     try:
         dash, gap = (float(v) for v in perforation)
     except (TypeError, ValueError):
-        raise InputError(f"perforation must be a (dash, gap) pair of lengths in mm, got {perforation!r}", parameter="perforation") from None
+        raise InputError(
+            f"perforation must be a (dash, gap) pair of lengths in mm, got {perforation!r}",
+            parameter="perforation",
+        ) from None
     if not (math.isfinite(dash) and math.isfinite(gap) and dash > 0 and gap > 0):
-        raise InputError(f"perforation dash and gap must be positive and finite mm, got {perforation!r}", parameter="perforation")
+        raise InputError(
+            f"perforation dash and gap must be positive and finite mm, got {perforation!r}",
+            parameter="perforation",
+        )
     return dash, gap
 
 
 def check_kerf(kerf) -> float:
     """A kerf width: a non-negative finite number of millimetres."""
-    if isinstance(kerf, bool) or not isinstance(kerf, (int, float)) or not math.isfinite(kerf) or kerf < 0:
-        raise InputError(f"kerf must be a non-negative number of mm, got {kerf!r}", parameter="kerf")
+    if (
+        isinstance(kerf, bool)
+        or not isinstance(kerf, (int, float))
+        or not math.isfinite(kerf)
+        or kerf < 0
+    ):
+        raise InputError(
+            f"kerf must be a non-negative number of mm, got {kerf!r}", parameter="kerf"
+        )
     return float(kerf)
 
 
-def perforation_dashes(points: np.ndarray, dash: float, gap: float, *, mountain: bool = False) -> list[np.ndarray]:
+def perforation_dashes(
+    points: np.ndarray, dash: float, gap: float, *, mountain: bool = False
+) -> list[np.ndarray]:
     """The cuts (each (k, 2)) that perforate an open polyline ``points`` (n, 2).
 
     Examples
@@ -71,9 +93,13 @@ def perforation_dashes(points: np.ndarray, dash: float, gap: float, *, mountain:
     while at < end:
         a, b = at, min(at + lengths[k % len(lengths)], end)
         inside = (s > a) & (s < b)
-        piece = np.concatenate([[np.array([np.interp(a, s, points[:, 0]), np.interp(a, s, points[:, 1])])],
-                                points[inside],
-                                [np.array([np.interp(b, s, points[:, 0]), np.interp(b, s, points[:, 1])])]])
+        piece = np.concatenate(
+            [
+                [np.array([np.interp(a, s, points[:, 0]), np.interp(a, s, points[:, 1])])],
+                points[inside],
+                [np.array([np.interp(b, s, points[:, 0]), np.interp(b, s, points[:, 1])])],
+            ]
+        )
         out.append(piece)
         at, k = b + gap, k + 1
     return out
@@ -98,12 +124,15 @@ def offset_outline(points: np.ndarray, distance: float) -> np.ndarray:
     area2 = float(np.sum(cross2(p, np.roll(p, -1, axis=0))))
     d = np.roll(p, -1, axis=0) - p  # side i runs from p_i to p_{i+1}
     t = d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
-    n = np.stack([t[:, 1], -t[:, 0]], axis=1) * (1.0 if area2 > 0 else -1.0)  # outward normals of the sides
+    # outward normals of the sides
+    n = np.stack([t[:, 1], -t[:, 0]], axis=1) * (1.0 if area2 > 0 else -1.0)
     before, after = np.roll(n, 1, axis=0), n  # at vertex i: side i − 1 and side i
     cosine = np.sum(before * after, axis=1)
     mitre = (before + after) / np.maximum(1.0 + cosine, 1e-300)[:, None]
     sharp = np.linalg.norm(mitre, axis=1) > MITRE_LIMIT
-    corners = p[:, None] + distance * np.where(sharp[:, None, None], np.stack([before, after], axis=1), mitre[:, None])
+    corners = p[:, None] + distance * np.where(
+        sharp[:, None, None], np.stack([before, after], axis=1), mitre[:, None]
+    )
     counts = np.where(sharp, 2, 1)
     keep = np.repeat(np.arange(len(p)), counts) * 2 + np.concatenate([np.arange(c) for c in counts])
     return corners.reshape(-1, 2)[keep]
@@ -122,10 +151,20 @@ def prepare_layout(layout: Layout, *, perforation=None, kerf: float = 0.0) -> La
             return [Polyline("cut", offset_outline(p.points, 0.5 * kerf), True)]
         if p.layer in ("mountain", "valley") and perforation is not None:
             points = np.concatenate([p.points, p.points[:1]]) if p.closed else p.points
-            return [Polyline(p.layer, d) for d in perforation_dashes(points, *perforation, mountain=p.layer == "mountain")]
+            return [
+                Polyline(p.layer, d)
+                for d in perforation_dashes(points, *perforation, mountain=p.layer == "mountain")
+            ]
         return [p]
 
-    pages = tuple(Page(page.size, tuple(replace(s, polylines=tuple(q for p in s.polylines for q in lines(p))) for s in page.sheets))
-                  for page in layout.pages)
+    pages = tuple(
+        Page(
+            page.size,
+            tuple(
+                replace(s, polylines=tuple(q for p in s.polylines for q in lines(p)))
+                for s in page.sheets
+            ),
+        )
+        for page in layout.pages
+    )
     return replace(layout, pages=pages, perforation=perforation, kerf=kerf)
-

@@ -1,4 +1,5 @@
-"""Arrays rounded to decimal places, and JSON text of documents holding them, written from NumPy at once.
+"""Arrays rounded to decimal places, and JSON text of documents holding them, written from NumPy at
+once.
 
 :func:`json.dumps` writes every float with ``repr``, one at a time: a FOLD file holds some
 10⁵ coordinates, and writing them was most of the file's cost. Here a document may hold
@@ -68,25 +69,37 @@ class Integers(FrozenArrays):
 
 
 def plain(doc):
-    """The document with every :class:`Decimals` and :class:`Integers` as its list: JSON data (the leaves are
-    values of objects, or items of arrays of objects and leaves; other arrays are left as they are)."""
+    """The document with every :class:`Decimals` and :class:`Integers` as its list: JSON data
+    (the leaves are values of objects, or items of arrays of objects and leaves; other arrays
+    are left as they are)."""
     if isinstance(doc, (Decimals, Integers)):
         return doc.tolist()
     if isinstance(doc, dict):
         return {key: plain(value) for key, value in doc.items()}
-    if isinstance(doc, list) and any(isinstance(value, (dict, Decimals, Integers)) for value in doc):
+    if isinstance(doc, list) and any(
+        isinstance(value, (dict, Decimals, Integers)) for value in doc
+    ):
         return [plain(value) for value in doc]
     return doc
 
 
 def dumps(doc) -> str:
-    """``json.dumps(plain(doc), allow_nan=False, separators=(",", ":"))``, the arrays written at once.
+    """``json.dumps(plain(doc), allow_nan=False, separators=(",", ":"))``, the arrays written at
+    once.
 
     Examples
     --------
-    >>> dumps({"x": Decimals.round([[0.1, -2.5], [1e-5, 0.0]], 3), "n": [1, 2], "i": Integers(np.array([[3, 4]]))})
+    >>> dumps(
+    ...     {
+    ...         "x": Decimals.round([[0.1, -2.5], [1e-5, 0.0]], 3),
+    ...         "n": [1, 2],
+    ...         "i": Integers(np.array([[3, 4]])),
+    ...     }
+    ... )
     '{"x":[[0.1,-2.5],[0.0,0.0]],"n":[1,2],"i":[[3,4]]}'
-    >>> dumps({"x": Decimals.round([3.14159, -0.0, 1.5e-5, 2.0], 6)})   # exponents as repr writes them
+    >>> dumps(
+    ...     {"x": Decimals.round([3.14159, -0.0, 1.5e-5, 2.0], 6)}
+    ... )  # exponents as repr writes them
     '{"x":[3.14159,-0.0,1.5e-05,2.0]}'
     """
     leaves: list[Decimals | Integers] = []
@@ -101,23 +114,33 @@ def dumps(doc) -> str:
     pieces = text.split(json.dumps(_MARK))
     if len(pieces) != len(leaves) + 1:  # the mark in a string of the document: no shortcut
         return json.dumps(plain(doc), allow_nan=False, separators=(",", ":"))
-    texts = [array_json(a.values, a.decimals) if isinstance(a, Decimals) else integer_json(a.values) for a in leaves]
+    texts = [
+        array_json(a.values, a.decimals) if isinstance(a, Decimals) else integer_json(a.values)
+        for a in leaves
+    ]
     return "".join(piece for pair in zip(pieces, texts + [""]) for piece in pair)
 
 
 def integer_json(values: np.ndarray) -> str:
-    """``json.dumps(values.tolist(), separators=(",", ":"))`` of an array of integers, formatted at once.
+    """``json.dumps(values.tolist(), separators=(",", ":"))`` of an array of integers, formatted at
+    once.
 
     Examples
     --------
-    >>> integer_json(np.array([[0, 1], [-2, 30]])), integer_json(np.zeros((0, 2), int)), integer_json(np.arange(3))
+    >>> (
+    ...     integer_json(np.array([[0, 1], [-2, 30]])),
+    ...     integer_json(np.zeros((0, 2), int)),
+    ...     integer_json(np.arange(3)),
+    ... )
     ('[[0,1],[-2,30]]', '[]', '[0,1,2]')
     """
     x = np.asarray(values)
-    if x.size == 0 or x.ndim == 0 or x.dtype.kind not in "iu":  # (booleans are JSON's true and false)
+    # (booleans are JSON's true and false)
+    if x.size == 0 or x.ndim == 0 or x.dtype.kind not in "iu":
         return json.dumps(x.tolist(), separators=(",", ":"))
     text = "%d"
-    for length in reversed(x.shape):  # the innermost axis first: "[%d,%d]", then "[[%d,%d],[%d,%d]]"…
+    # the innermost axis first: "[%d,%d]", then "[[%d,%d],[%d,%d]]"…
+    for length in reversed(x.shape):
         text = "[" + ",".join([text] * length) + "]"
     return text % tuple(x.ravel().tolist())
 
@@ -140,10 +163,10 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     if x.size == 0 or x.ndim == 0 or not np.isfinite(x).all() or not 0 <= decimals <= 15:
         return json.dumps(x.tolist(), allow_nan=False, separators=(",", ":"))
     flat = x.reshape(-1)
-    scale = 10.0 ** decimals
+    scale = 10.0**decimals
     n = np.rint(flat * scale)
     size = np.abs(flat)
-    exact = (np.abs(n) < 2.0 ** 52) & (n / scale == flat) & (2 * np.spacing(size) < 10.0 ** -decimals)
+    exact = (np.abs(n) < 2.0**52) & (n / scale == flat) & (2 * np.spacing(size) < 10.0**-decimals)
     fast = (size == 0) | ((size >= 1e-4) & (size < 1e15) & exact)
     small = (size > 0) & (size < 1e-4) & exact
     count, depth = len(flat), x.ndim - 1
@@ -151,14 +174,20 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     whole = max(len(str(int(m.max()))) - decimals, 1)  # digits before the point, one at least
     slow, tiny = np.flatnonzero(~(fast | small)), np.flatnonzero(small)
     texts = [repr(v) for v in flat[slow].tolist()]
-    tiny_chars, tiny_keep = _scientific(np.abs(n[tiny]).astype(np.int64), decimals, np.signbit(flat[tiny])) if tiny.size else ((), ())
-    width = max([whole + max(decimals, 1) + 2, len(tiny_chars), *map(len, texts)])  # sign, digits, point, digits; a repr
-    # each number's characters, then what follows it: column i of these (W, count) arrays is number i
+    tiny_chars, tiny_keep = (
+        _scientific(np.abs(n[tiny]).astype(np.int64), decimals, np.signbit(flat[tiny]))
+        if tiny.size
+        else ((), ())
+    )
+    # sign, digits, point, digits; a repr
+    width = max([whole + max(decimals, 1) + 2, len(tiny_chars), *map(len, texts)])
+    # each number's characters, then what follows it: column i of these (W, count) arrays is number
+    # i
     chars = np.zeros((width + 2 * depth + 1, count), np.uint8)
     keep = np.zeros(chars.shape, bool)
     chars[0], keep[0] = ord("-"), np.signbit(flat)
     point, places = whole + 1, max(decimals, 1)
-    units = m // 10 ** decimals  # the whole part, < 10^whole
+    units = m // 10**decimals  # the whole part, < 10^whole
     zeros = np.ones(count, bool)  # the fraction's digits so far, from its last, are 0
     trailing = np.zeros(count, np.int64)  # how many of them, but the first after the point
     for row in [*range(point + decimals, point, -1), *range(whole, 0, -1)]:  # the last digit first
@@ -174,30 +203,45 @@ def array_json(values: np.ndarray, decimals: int) -> str:
     # no leading or trailing zeros, but one digit either side of the point
     keep[1:point] = units >= 10 ** np.arange(whole - 1, -1, -1, dtype=np.int64)[:, None]
     keep[whole] = keep[point] = True
-    keep[point + 1:point + 1 + places] = np.arange(places)[:, None] < places - trailing
+    keep[point + 1 : point + 1 + places] = np.arange(places)[:, None] < places - trailing
     if tiny.size:
-        chars[:len(tiny_chars), tiny] = tiny_chars
+        chars[: len(tiny_chars), tiny] = tiny_chars
         keep[:width, tiny] = False
-        keep[:len(tiny_chars), tiny] = tiny_keep
+        keep[: len(tiny_chars), tiny] = tiny_keep
     if slow.size:  # repr, from the number's first row
-        block = np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8).reshape(-1, width).T
+        block = (
+            np.frombuffer("".join(t.ljust(width, "\0") for t in texts).encode(), np.uint8)
+            .reshape(-1, width)
+            .T
+        )
         chars[:width, slow] = block
         keep[:width, slow] = block != 0
     # after each number: "," closing and opening the axes that end there ("],[" in a matrix)
     ends = np.zeros(count, np.int64)
     for stride in np.cumprod(x.shape[::-1])[:-1]:
-        ends += (np.arange(1, count + 1) % stride == 0)
+        ends += np.arange(1, count + 1) % stride == 0
     k = np.arange(depth)[:, None]
-    chars[width:width + depth], chars[width + depth], chars[width + depth + 1:] = ord("]"), ord(","), ord("[")
-    keep[width:width + depth], keep[width + depth], keep[width + depth + 1:] = k[::-1] < ends, True, k < ends
+    chars[width : width + depth], chars[width + depth], chars[width + depth + 1 :] = (
+        ord("]"),
+        ord(","),
+        ord("["),
+    )
+    keep[width : width + depth], keep[width + depth], keep[width + depth + 1 :] = (
+        k[::-1] < ends,
+        True,
+        k < ends,
+    )
     keep[width:, -1] = False
     body = chars.T[keep.T]
     return "[" * x.ndim + body.tobytes().decode() + "]" * x.ndim
 
 
-def _scientific(n: np.ndarray, decimals: int, negative: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The characters (W, t) of ``repr`` of the numbers ±n / 10^decimals (each below 10⁻⁴, n ≥ 1 of (t,)), and which of them
-    to keep: the sign, the first digit, the point and the others but trailing zeros, ``e-`` and two digits of the exponent.
+def _scientific(
+    n: np.ndarray, decimals: int, negative: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The characters (W, t) of ``repr`` of the numbers ±n / 10^decimals (each below 10⁻⁴, n ≥ 1 of
+    (t,)), and which of them to keep: the sign, the first digit, the point and the others but
+    trailing zeros, ``e-`` and two digits of the exponent.
 
     Examples
     --------
@@ -205,7 +249,8 @@ def _scientific(n: np.ndarray, decimals: int, negative: np.ndarray) -> tuple[np.
     >>> [chars[:, i][keep[:, i]].tobytes().decode() for i in range(3)]
     ['-1.5e-09', '1e-10', '9.9999e-06']
     """
-    digits = 1 + (n >= 10 ** np.arange(1, decimals + 1, dtype=np.int64)[:, None]).sum(axis=0)  # of n
+    # of n
+    digits = 1 + (n >= 10 ** np.arange(1, decimals + 1, dtype=np.int64)[:, None]).sum(axis=0)
     longest = int(digits.max(initial=1))
     mantissa = n * 10 ** (longest - digits)  # n's digits, each as long as the longest
     chars = np.zeros((longest + 6, len(n)), np.uint8)  # sign, digit, point, digits, "e-", exponent
@@ -213,7 +258,8 @@ def _scientific(n: np.ndarray, decimals: int, negative: np.ndarray) -> tuple[np.
     chars[0], keep[0] = ord("-"), negative
     zeros = np.ones(len(n), bool)  # the digits so far, from the last, are 0
     trailing = np.zeros(len(n), np.int64)  # how many of them, but the first digit
-    for j in range(longest - 1, -1, -1):  # digit j (0: the first), at row j + 2 (the first at row 1)
+    # digit j (0: the first), at row j + 2 (the first at row 1)
+    for j in range(longest - 1, -1, -1):
         rest = mantissa // 10
         digit = mantissa - 10 * rest
         chars[j + 2 if j else 1], mantissa = digit + 48, rest
@@ -223,9 +269,9 @@ def _scientific(n: np.ndarray, decimals: int, negative: np.ndarray) -> tuple[np.
     significant = longest - trailing
     chars[2] = ord(".")
     keep[1], keep[2] = True, significant > 1
-    keep[3:longest + 2] = np.arange(1, longest)[:, None] < significant
+    keep[3 : longest + 2] = np.arange(1, longest)[:, None] < significant
     exponent = decimals + 1 - digits  # x = d.ddd · 10^−exponent, exponent 5 … 15
     chars[longest + 2], chars[longest + 3] = ord("e"), ord("-")
     chars[longest + 4], chars[longest + 5] = exponent // 10 + 48, exponent % 10 + 48
-    keep[longest + 2:] = True
+    keep[longest + 2 :] = True
     return chars, keep

@@ -45,7 +45,8 @@ ARC_TOLERANCE = 0.005
 
 
 def page_grid(count: int, size: tuple[float, float], spacing: float) -> np.ndarray:
-    """Lower-left corners (count, 2) of pages laid in a grid of ⌈√count⌉ columns, row by row from the top.
+    """Lower-left corners (count, 2) of pages laid in a grid of ⌈√count⌉ columns, row by row from
+    the top.
 
     Examples
     --------
@@ -54,11 +55,18 @@ def page_grid(count: int, size: tuple[float, float], spacing: float) -> np.ndarr
     """
     columns = math.ceil(math.sqrt(count))
     i = np.arange(count)
-    return np.stack([(i % columns) * (size[0] + spacing), -(i // columns) * (size[1] + spacing)], axis=1).astype(float)
+    return np.stack(
+        [(i % columns) * (size[0] + spacing), -(i // columns) * (size[1] + spacing)], axis=1
+    ).astype(float)
 
 
-def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str] | None = None,
-              page_spacing: float = 20.0) -> Path:
+def write_dxf(
+    path: str | os.PathLike,
+    layout: Layout,
+    *,
+    layers: Collection[str] | None = None,
+    page_spacing: float = 20.0,
+) -> Path:
     """Write the layout as one DXF drawing in millimetres (needs ``ezdxf``); see the module notes.
 
     Parameters
@@ -66,7 +74,8 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     path : path-like
     layout : Layout
     layers : collection of str, optional
-        Layout layers to write; default :data:`~curvefold.io._legend.DEFAULT_LAYERS` (all but ``rulings``).
+        Layout layers to write; default :data:`~curvefold.io._legend.DEFAULT_LAYERS` (all but
+        ``rulings``).
     page_spacing : float
         Gap between pages, mm.
 
@@ -76,7 +85,9 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     """
     check_layout(layout)
     names = check_layers(layers)
-    if not (isinstance(page_spacing, (int, float)) and math.isfinite(page_spacing) and page_spacing >= 0):
+    if not (
+        isinstance(page_spacing, (int, float)) and math.isfinite(page_spacing) and page_spacing >= 0
+    ):
         raise InputError(f"page_spacing must be a non-negative number of mm, got {page_spacing!r}")
     try:
         import ezdxf
@@ -94,34 +105,62 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     looks = {name: layer_look(layout, name) for name in (*names, "legend")}
     for key, (layer, colour, st) in looks.items():
         if st.dashes and st.linetype not in doc.linetypes:
-            pattern = [float(sum(st.dashes))] + [d if k % 2 == 0 else -d for k, d in enumerate(st.dashes)]
-            doc.linetypes.add(st.linetype, pattern, description=f"curvefold {key} " + " ".join(f"{d:g}" for d in st.dashes))
-        entry = doc.layers.add(layer, color=aci(colour), true_color=colors.rgb2int(rgb8(colour)),
-                               linetype=st.linetype if st.dashes else "CONTINUOUS", lineweight=13 if st.width < 1 else 25)
+            pattern = [float(sum(st.dashes))] + [
+                d if k % 2 == 0 else -d for k, d in enumerate(st.dashes)
+            ]
+            doc.linetypes.add(
+                st.linetype,
+                pattern,
+                description=f"curvefold {key} " + " ".join(f"{d:g}" for d in st.dashes),
+            )
+        entry = doc.layers.add(
+            layer,
+            color=aci(colour),
+            true_color=colors.rgb2int(rgb8(colour)),
+            linetype=st.linetype if st.dashes else "CONTINUOUS",
+            lineweight=13 if st.width < 1 else 25,
+        )
         if key == "legend":
             entry.dxf.plot = 0
     doc.layers.add(PAGES_LAYER, color=8).dxf.plot = 0
     msp = doc.modelspace()
 
     def text(words: str, position, size: float, angle: float, layer: str) -> None:
-        entity = msp.add_text(words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer})
-        entity.set_placement(tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER)
+        entity = msp.add_text(
+            words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer}
+        )
+        entity.set_placement(
+            tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER
+        )
 
-    def line(points: np.ndarray, layer: str, closed: bool = False, arcs: bool = False, linetype: str | None = None) -> None:
+    def line(
+        points: np.ndarray,
+        layer: str,
+        closed: bool = False,
+        arcs: bool = False,
+        linetype: str | None = None,
+    ) -> None:
         rows = np.zeros((len(points), 5))  # x, y, start width, end width, bulge: ezdxf's vertices
         rows[:, :2] = points
         if arcs and not closed and len(points) > 2:
             keep, bulge = fit_arcs(points, ARC_TOLERANCE)
             rows = rows[keep]
             rows[:, 4] = bulge
-        attributes = {"layer": layer, "flags": LWPOLYLINE_PLINEGEN} | ({"linetype": linetype} if linetype else {})
-        msp.add_lwpolyline((), close=closed, dxfattribs=attributes).lwpoints.set(rows)  # the vertices at once
+        attributes = {"layer": layer, "flags": LWPOLYLINE_PLINEGEN} | (
+            {"linetype": linetype} if linetype else {}
+        )
+        # the vertices at once
+        msp.add_lwpolyline((), close=closed, dxfattribs=attributes).lwpoints.set(rows)
 
     W, H = layout.page_size
     corners = page_grid(len(layout.pages), (W, H), page_spacing)
     legend = LEGEND_LAYER
     for i, (page, shift) in enumerate(zip(layout.pages, corners)):
-        line(np.array([shift, shift + (W, 0), shift + (W, H), shift + (0, H)]), PAGES_LAYER, closed=True)
+        line(
+            np.array([shift, shift + (W, 0), shift + (W, H), shift + (0, H)]),
+            PAGES_LAYER,
+            closed=True,
+        )
         for key in names:
             layer, _, st = looks[key]
             if key == "labels":
@@ -130,16 +169,26 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
                 continue
             for p in page.on_layer(key):
                 if st.fill and p.closed:
-                    msp.add_hatch(color=256, dxfattribs={"layer": layer}).paths.add_polyline_path((p.points + shift).tolist(), is_closed=True)
+                    msp.add_hatch(color=256, dxfattribs={"layer": layer}).paths.add_polyline_path(
+                        (p.points + shift).tolist(), is_closed=True
+                    )
                 else:
                     line(p.points + shift, layer, p.closed, arcs=bool(st.dashes))
         footer = page_footer(layout, i, names)
-        msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path((footer.bar + shift).tolist(), is_closed=True)
+        msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path(
+            (footer.bar + shift).tolist(), is_closed=True
+        )
         for key, points in footer.samples:
             if looks[key][2].fill:
-                msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path((points + shift).tolist(), is_closed=True)
+                msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path(
+                    (points + shift).tolist(), is_closed=True
+                )
             else:
-                line(points + shift, legend, linetype=looks[key][2].linetype if looks[key][2].dashes else "CONTINUOUS")
+                line(
+                    points + shift,
+                    legend,
+                    linetype=looks[key][2].linetype if looks[key][2].dashes else "CONTINUOUS",
+                )
         for t in footer.texts:
             text(t.text, np.asarray(t.position) + shift, t.size, 0.0, legend)
     lo, hi = corners.min(axis=0), corners.max(axis=0) + (W, H)
@@ -148,8 +197,9 @@ def write_dxf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str
     doc.header["$EXTMIN"] = (float(lo[0]), float(lo[1]), 0.0)
     doc.header["$EXTMAX"] = (float(hi[0]), float(hi[1]), 0.0)
     msp.dxf.extmin, msp.dxf.extmax = doc.header["$EXTMIN"], doc.header["$EXTMAX"]
-    doc.set_modelspace_vport(height=float(hi[1] - lo[1]) * 1.05, center=tuple(float(v) for v in 0.5 * (lo + hi)))
+    doc.set_modelspace_vport(
+        height=float(hi[1] - lo[1]) * 1.05, center=tuple(float(v) for v in 0.5 * (lo + hi))
+    )
     with atomic_path(path) as tmp:
         doc.saveas(tmp)
     return Path(path)
-

@@ -58,8 +58,17 @@ from ._mesh3d import check_metadata
 from ._output import FoldOutput
 from ._tables import CREATOR
 
-__all__ = ["fold_assignments", "fold_document", "fold_model", "model_document", "to_fold", "write_fold", "write_model", "write_sheet_fold",
-           "write_structure_fold"]
+__all__ = [
+    "fold_assignments",
+    "fold_document",
+    "fold_model",
+    "model_document",
+    "to_fold",
+    "write_fold",
+    "write_model",
+    "write_sheet_fold",
+    "write_structure_fold",
+]
 
 FILE_SPEC = 1.1
 #: Coordinates are written to this fraction of their sheet's size (the crease pattern's, a
@@ -71,7 +80,9 @@ COORDINATE_RTOL = 1e-12
 ANGLE_DECIMALS = 10
 
 
-def fold_assignments(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, edges_assignment: np.ndarray) -> np.ndarray:
+def fold_assignments(
+    edges_kind: np.ndarray, edges_foldAngle: np.ndarray, edges_assignment: np.ndarray
+) -> np.ndarray:
     """FOLD assignment of every edge of a cut-open crease pattern from its kind.
 
     :func:`curvefold.geometry._topology.fold_assignment` with the seams open: ``B`` for
@@ -92,8 +103,11 @@ def fold_assignments(edges_kind: np.ndarray, edges_foldAngle: np.ndarray, edges_
 
     Examples
     --------
-    >>> fold_assignments(np.array(["fold", "fold", "seam", "ruling"]), np.array([30., 0., 5., 0.]),
-    ...                  np.array(["M", "M", "V", "F"])).tolist()
+    >>> fold_assignments(
+    ...     np.array(["fold", "fold", "seam", "ruling"]),
+    ...     np.array([30.0, 0.0, 5.0, 0.0]),
+    ...     np.array(["M", "M", "V", "F"]),
+    ... ).tolist()
     ['V', 'M', 'B', 'F']
     """
     kind = np.asarray(edges_kind)
@@ -116,7 +130,9 @@ def _edge_face_counts(mesh: Mesh, what: str) -> np.ndarray:
     found = keys[order][pos] == side_keys if len(keys) else np.zeros(len(side_keys), bool)
     if not found.all():
         i = int(np.flatnonzero(~found)[0])
-        raise InputError(f"{what}: face {side_face[i]} side {sides[i].tolist()} is not an edge in edges_vertices")
+        raise InputError(
+            f"{what}: face {side_face[i]} side {sides[i].tolist()} is not an edge in edges_vertices"
+        )
     return np.bincount(order[pos], minlength=len(keys))
 
 
@@ -124,9 +140,15 @@ def _check_sheet(mesh: Mesh, assignment: np.ndarray, what: str) -> None:
     """Mesh indices in range, M/V/F edges with two faces, B edges with one."""
     V, E = len(mesh.vertices_coords), len(mesh.edges_vertices)
     faces = mesh.faces_vertices
-    for name, idx in (("edges_vertices", mesh.edges_vertices), ("faces_vertices", faces[faces >= 0])):
+    for name, idx in (
+        ("edges_vertices", mesh.edges_vertices),
+        ("faces_vertices", faces[faces >= 0]),
+    ):
         if idx.size and (idx.min() < 0 or idx.max() >= V):
-            raise InputError(f"{what}.{name} refers to vertices outside [0, {V}), got {int(idx.min())}..{int(idx.max())}")
+            raise InputError(
+                f"{what}.{name} refers to vertices outside [0, {V}), got "
+                f"{int(idx.min())}..{int(idx.max())}"
+            )
     if not np.isfinite(mesh.vertices_coords).all():
         raise InputError(f"{what}.vertices_coords must be finite")
     angle = np.asarray(mesh.edges_foldAngle, float)
@@ -135,16 +157,23 @@ def _check_sheet(mesh: Mesh, assignment: np.ndarray, what: str) -> None:
     bad_kind = ~np.isin(mesh.edges_kind, EDGE_KINDS)
     if bad_kind.any():
         e = int(np.flatnonzero(bad_kind)[0])
-        raise InputError(f"{what}.edges_kind[{e}] must be one of {EDGE_KINDS}, got {mesh.edges_kind[e]!r}")
+        raise InputError(
+            f"{what}.edges_kind[{e}] must be one of {EDGE_KINDS}, got {mesh.edges_kind[e]!r}"
+        )
     counts = _edge_face_counts(mesh, what)
     want = np.where(assignment == "B", 1, 2)
     wrong = counts != want
     if wrong.any():
         e = int(np.flatnonzero(wrong)[0])
-        hint = "; a seam must be two boundary edges, one per sheet, paired in seam_partners" if mesh.edges_kind[e] == "seam" else ""
+        hint = (
+            "; a seam must be two boundary edges, one per sheet, paired in seam_partners"
+            if mesh.edges_kind[e] == "seam"
+            else ""
+        )
         raise InputError(
-            f"{what}: edge {e} ({mesh.edges_kind[e]}, assignment {assignment[e]}) has {counts[e]} faces, "
-            f"expected {want[e]} ({int(wrong.sum())} of {E} edges are wrong){hint}"
+            f"{what}: edge {e} ({mesh.edges_kind[e]}, assignment {assignment[e]}) has "
+            f"{counts[e]} faces, expected {want[e]} ({int(wrong.sum())} of {E} edges are "
+            f"wrong){hint}"
         )
 
 
@@ -161,7 +190,10 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     size = float(np.ptp(x, axis=0).max()) if V else 0.0
     zmax = float(np.abs(x[:, 2]).max()) if V else 0.0
     if zmax > flat_tol * max(size, 1e-300):
-        raise InputError(f"{what} must be flat (z = 0): max |z| = {zmax:.3g}, allowed {flat_tol:g} x size {size:.3g}")
+        raise InputError(
+            f"{what} must be flat (z = 0): max |z| = {zmax:.3g}, allowed "
+            f"{flat_tol:g} x size {size:.3g}"
+        )
     xy = x[:, :2].copy()
     f = np.asarray(mesh.faces_vertices)
     if len(f) == 0:
@@ -185,9 +217,14 @@ def _flat_ccw_coords(mesh: Mesh, what: str, flat_tol: float, mirror_clockwise: b
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         raise InputError(
-            f"{what}: FOLD needs counter-clockwise faces in the crease pattern, but {int(bad.sum())} of "
-            f"{len(area2)} faces are clockwise or degenerate (first: face {i}, signed area {area2[i] / 2:.3g})"
-            + ("; a sheet with both orientations cannot be fixed by mirroring" if mirror_clockwise else "")
+            f"{what}: FOLD needs counter-clockwise faces in the crease pattern, but "
+            f"{int(bad.sum())} of {len(area2)} faces are clockwise or degenerate (first: "
+            f"face {i}, signed area {area2[i] / 2:.3g})"
+            + (
+                "; a sheet with both orientations cannot be fixed by mirroring"
+                if mirror_clockwise
+                else ""
+            )
         )
     return xy
 
@@ -223,7 +260,10 @@ def _check_pairs(value, edges: int, name: str, rows: str) -> np.ndarray:
     except (TypeError, ValueError) as exc:
         raise InputError(f"{name} must be ({rows}, 2) edge indices, got {value!r}") from exc
     if pairs.size and (pairs.min() < 0 or pairs.max() >= edges):
-        raise InputError(f"{name} must be edge indices in [0, {edges}), got {int(pairs.min())}..{int(pairs.max())}")
+        raise InputError(
+            f"{name} must be edge indices in [0, {edges}), got "
+            f"{int(pairs.min())}..{int(pairs.max())}"
+        )
     return pairs
 
 
@@ -234,24 +274,39 @@ def _check_seam_partners(seam_partners, assignment: np.ndarray) -> np.ndarray:
     not_b = pairs.size and (assignment[pairs] != "B").any()
     if not_b:
         e = int(pairs[assignment[pairs] != "B"][0])
-        raise InputError(f"seam_partners: edge {e} is not a boundary (B) edge, so it cannot be glued")
+        raise InputError(
+            f"seam_partners: edge {e} is not a boundary (B) edge, so it cannot be glued"
+        )
     return pairs
 
 
 def _document(title: str, frame: dict) -> dict:
     """A FOLD document: curvefold's file keys, the title if any, then ``frame``'s keys."""
-    return {"file_spec": FILE_SPEC, "file_creator": CREATOR, "file_classes": ["singleModel"],
-            **({"file_title": one_line(title)} if title else {}), **frame}
+    return {
+        "file_spec": FILE_SPEC,
+        "file_creator": CREATOR,
+        "file_classes": ["singleModel"],
+        **({"file_title": one_line(title)} if title else {}),
+        **frame,
+    }
 
 
 def _write_document(path: str | os.PathLike, doc: dict) -> Path:
-    """Write a document whose number arrays are :class:`~curvefold.io._decimals.Decimals` (JSON as their lists)."""
+    """Write a document whose number arrays are :class:`~curvefold.io._decimals.Decimals` (JSON
+    as their lists)."""
     return atomic_write(path, dumps(doc) + "\n")
 
 
-def write_fold(path: str | os.PathLike, model: FoldFile, *, title: str = "", flat_tol: float = 1e-9,
-               mirror_clockwise: bool = True) -> Path:
-    """Write a crease pattern and its folded states as one FOLD 1.1 file: :func:`fold_document`, atomically.
+def write_fold(
+    path: str | os.PathLike,
+    model: FoldFile,
+    *,
+    title: str = "",
+    flat_tol: float = 1e-9,
+    mirror_clockwise: bool = True,
+) -> Path:
+    """Write a crease pattern and its folded states as one FOLD 1.1 file: :func:`fold_document`,
+    atomically.
 
     Parameters
     ----------
@@ -270,9 +325,11 @@ def write_fold(path: str | os.PathLike, model: FoldFile, *, title: str = "", fla
     return _write_document(path, _fold_frames(model, title, flat_tol, mirror_clockwise))
 
 
-def fold_document(model: FoldFile, *, title: str = "", flat_tol: float = 1e-9,
-                  mirror_clockwise: bool = True) -> dict:
-    """A crease pattern and its folded states as one FOLD 1.1 document (JSON data, as :func:`write_fold` writes it).
+def fold_document(
+    model: FoldFile, *, title: str = "", flat_tol: float = 1e-9, mirror_clockwise: bool = True
+) -> dict:
+    """A crease pattern and its folded states as one FOLD 1.1 document (JSON data, as
+    :func:`write_fold` writes it).
 
     Parameters
     ----------
@@ -327,8 +384,10 @@ def _fold_frames(model: FoldFile, title: str, flat_tol: float, mirror_clockwise:
     """:func:`fold_document` with its number arrays as :class:`~curvefold.io._decimals.Decimals`."""
     cp = model.crease_pattern
     if not isinstance(cp, Mesh):
-        raise InputError(f"the model's crease_pattern must be a Mesh, got {type(cp).__name__}",
-                         parameter="crease_pattern")
+        raise InputError(
+            f"the model's crease_pattern must be a Mesh, got {type(cp).__name__}",
+            parameter="crease_pattern",
+        )
     assignment = fold_assignments(cp.edges_kind, cp.edges_foldAngle, cp.edges_assignment)
     _check_sheet(cp, assignment, "crease_pattern")
     cp_xy = _flat_ccw_coords(cp, "crease_pattern", flat_tol, mirror_clockwise)
@@ -340,7 +399,9 @@ def _fold_frames(model: FoldFile, title: str, flat_tol: float, mirror_clockwise:
         try:
             json.dumps(dict(design), allow_nan=False)
         except (TypeError, ValueError) as exc:
-            raise InputError(f"design must be JSON data (numbers, strings, lists, objects): {exc}") from None
+            raise InputError(
+                f"design must be JSON data (numbers, strings, lists, objects): {exc}"
+            ) from None
     zero = assignment == "B"  # one face: no dihedral angle
 
     frames = []
@@ -351,39 +412,53 @@ def _fold_frames(model: FoldFile, title: str, flat_tol: float, mirror_clockwise:
             raise InputError(f"folded[{i}] must be a (title, Mesh) pair, got {item!r}") from exc
         for name in ("edges_vertices", "faces_vertices", "edges_kind"):
             if not np.array_equal(getattr(mesh, name), getattr(cp, name)):
-                raise InputError(f"folded[{i}] ({frame_title!r}): {name} differs from the crease pattern's; all frames must share one topology")
+                raise InputError(
+                    f"folded[{i}] ({frame_title!r}): {name} differs from the crease "
+                    "pattern's; all frames must share one topology"
+                )
         x = np.asarray(mesh.vertices_coords, float)
         angle = np.asarray(mesh.edges_foldAngle, float)
         if not np.isfinite(x).all() or x.shape != cp.vertices_coords.shape:
-            raise InputError(f"folded[{i}] ({frame_title!r}): vertices_coords must be finite with shape {cp.vertices_coords.shape}")
+            raise InputError(
+                f"folded[{i}] ({frame_title!r}): vertices_coords must be finite "
+                f"with shape {cp.vertices_coords.shape}"
+            )
         if not (np.isfinite(angle) & (np.abs(angle) <= 180)).all():
-            raise InputError(f"folded[{i}] ({frame_title!r}): edges_foldAngle must be finite degrees in [-180, 180]")
-        frames.append({
-            "frame_title": one_line(frame_title),
-            "frame_classes": ["foldedForm"],
-            "frame_parent": 0,
-            "frame_inherit": True,
-            "vertices_coords": _coordinate_lists(x),
-            "edges_foldAngle": _angle_lists(angle, zero),
-        })
+            raise InputError(
+                f"folded[{i}] ({frame_title!r}): edges_foldAngle must be finite "
+                "degrees in [-180, 180]"
+            )
+        frames.append(
+            {
+                "frame_title": one_line(frame_title),
+                "frame_classes": ["foldedForm"],
+                "frame_parent": 0,
+                "frame_inherit": True,
+                "vertices_coords": _coordinate_lists(x),
+                "edges_foldAngle": _angle_lists(angle, zero),
+            }
+        )
 
-    return _document(title, {
-        "frame_title": "crease pattern",
-        "frame_classes": ["creasePattern"],
-        "frame_unit": model.unit,
-        "vertices_coords": _coordinate_lists(cp_xy),
-        "edges_vertices": Integers(cp.edges_vertices),
-        "edges_assignment": assignment.tolist(),
-        "edges_foldAngle": _angle_lists(cp.edges_foldAngle, zero),
-        "faces_vertices": _face_lists(cp.faces_vertices),
-        "edges_curvefold:kind": cp.edges_kind.tolist(),
-        "faces_curvefold:group": Integers(np.asarray(cp.faces_group)),
-        "curvefold:seam_partners": Integers(pairs),
-        "curvefold:bonds": Integers(glued),
-        "curvefold:metadata": meta,
-        **({"curvefold:design": dict(design)} if design is not None else {}),
-        "file_frames": frames,
-    })
+    return _document(
+        title,
+        {
+            "frame_title": "crease pattern",
+            "frame_classes": ["creasePattern"],
+            "frame_unit": model.unit,
+            "vertices_coords": _coordinate_lists(cp_xy),
+            "edges_vertices": Integers(cp.edges_vertices),
+            "edges_assignment": assignment.tolist(),
+            "edges_foldAngle": _angle_lists(cp.edges_foldAngle, zero),
+            "faces_vertices": _face_lists(cp.faces_vertices),
+            "edges_curvefold:kind": cp.edges_kind.tolist(),
+            "faces_curvefold:group": Integers(np.asarray(cp.faces_group)),
+            "curvefold:seam_partners": Integers(pairs),
+            "curvefold:bonds": Integers(glued),
+            "curvefold:metadata": meta,
+            **({"curvefold:design": dict(design)} if design is not None else {}),
+            "file_frames": frames,
+        },
+    )
 
 
 def write_sheet_fold(
@@ -427,24 +502,36 @@ def write_sheet_fold(
     flat = len(x) == 0 or float(np.abs(x[:, 2]).max()) <= flat_tol * max(size, 1e-300)
     if flat:
         x = _flat_ccw_coords(sheet, "sheet", flat_tol, mirror_clockwise)
-    return _write_document(path, _document(title, {
-        "frame_classes": ["creasePattern" if flat else "foldedForm"],
-        "frame_unit": unit,
-        "vertices_coords": _coordinate_lists(x),
-        "edges_vertices": Integers(sheet.edges_vertices),
-        "edges_assignment": assignment.tolist(),
-        "edges_foldAngle": _angle_lists(sheet.edges_foldAngle, assignment == "B"),
-        "faces_vertices": _face_lists(sheet.faces_vertices),
-        "edges_curvefold:kind": sheet.edges_kind.tolist(),
-    }))
+    return _write_document(
+        path,
+        _document(
+            title,
+            {
+                "frame_classes": ["creasePattern" if flat else "foldedForm"],
+                "frame_unit": unit,
+                "vertices_coords": _coordinate_lists(x),
+                "edges_vertices": Integers(sheet.edges_vertices),
+                "edges_assignment": assignment.tolist(),
+                "edges_foldAngle": _angle_lists(sheet.edges_foldAngle, assignment == "B"),
+                "faces_vertices": _face_lists(sheet.faces_vertices),
+                "edges_curvefold:kind": sheet.edges_kind.tolist(),
+            },
+        ),
+    )
 
 
 # ---------------------------------------------------------------------------------------
 # structures
 
-def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *,
-            fold_angles: ArrayLike | None = None,
-            fold_angle: float | None = None, degrees: bool = True) -> FoldFile:
+
+def to_fold(
+    structure: Structure,
+    output: FoldOutput = FoldOutput(),
+    *,
+    fold_angles: ArrayLike | None = None,
+    fold_angle: float | None = None,
+    degrees: bool = True,
+) -> FoldFile:
     """A structure as a FOLD model: crease pattern plus folded states on one topology.
 
     The arrays are :func:`curvefold.geometry._fold_arrays.fold_arrays` of the structure (every
@@ -470,52 +557,84 @@ def to_fold(structure: Structure, output: FoldOutput = FoldOutput(), *,
     Examples
     --------
     >>> from curvefold import SpaceCurve, Crease, Lattice
-    >>> tube = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1))
+    >>> tube = Structure.tube(
+    ...     Lattice.from_crease(
+    ...         Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+    ...     )
+    ... )
     >>> output = FoldOutput(unit="m", metadata={"title": "tube"})
     >>> model = to_fold(tube, output, fold_angles=[45, 90])
     >>> [title for title, _ in model.folded], model.metadata["title"], model.metadata["tubes"]
     (['fold angle 45°', 'fold angle 90°'], 'tube', 1)
     """
     _check_fold_output(output)
-    arrays = fold_arrays(structure, fold_angles=fold_angles, fold_angle=fold_angle,
-                         degrees=degrees, anchor=output.anchor,
-                         faces=output.faces, keep=output.keep)
+    arrays = fold_arrays(
+        structure,
+        fold_angles=fold_angles,
+        fold_angle=fold_angle,
+        degrees=degrees,
+        anchor=output.anchor,
+        faces=output.faces,
+        keep=output.keep,
+    )
     return fold_model(structure, arrays, output)
 
 
-def fold_model(structure: Structure, arrays: FoldArrays,
-               output: FoldOutput = FoldOutput()) -> FoldFile:
+def fold_model(
+    structure: Structure, arrays: FoldArrays, output: FoldOutput = FoldOutput()
+) -> FoldFile:
     """:func:`to_fold` of a structure whose FOLD arrays are made
     (:func:`curvefold.geometry._fold_arrays.fold_arrays` with the output's ``anchor``, ``faces``
     and ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
     extra = _check_fold_output(output)
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
     keep = output.keep
-    record = None if output.design is None else {
-        "design": dict(output.design), "fold_angles": arrays.fold_angles.tolist(),
-        "anchor": output.anchor, "faces": output.faces,
-        "keep": None if keep is None else [np.asarray(k).tolist() for k in keep]}
-    return FoldFile(crease_pattern=arrays.crease_pattern, folded=arrays.folded, metadata=meta,
-                    unit=output.unit,
-                    seam_partners=arrays.seam_partners, bonds=arrays.bonds, design=record)
+    record = (
+        None
+        if output.design is None
+        else {
+            "design": dict(output.design),
+            "fold_angles": arrays.fold_angles.tolist(),
+            "anchor": output.anchor,
+            "faces": output.faces,
+            "keep": None if keep is None else [np.asarray(k).tolist() for k in keep],
+        }
+    )
+    return FoldFile(
+        crease_pattern=arrays.crease_pattern,
+        folded=arrays.folded,
+        metadata=meta,
+        unit=output.unit,
+        seam_partners=arrays.seam_partners,
+        bonds=arrays.bonds,
+        design=record,
+    )
 
 
 def _check_fold_output(output: FoldOutput) -> dict:
     """The output's extra metadata, checked with its unit."""
     if not isinstance(output, FoldOutput):
-        raise InputError(f"output must be a FoldOutput (unit, metadata…), got {type(output).__name__}",
-                         parameter="output")
+        raise InputError(
+            f"output must be a FoldOutput (unit, metadata…), got {type(output).__name__}",
+            parameter="output",
+        )
     if not isinstance(output.unit, str) or not output.unit:
         raise InputError(f"unit must be a non-empty str, got {output.unit!r}")
     return check_metadata(output.metadata)
 
 
-def write_structure_fold(path: str | os.PathLike, structure: Structure,
-                         output: FoldOutput = FoldOutput(), *,
-                         title: str = "", fold_angles: ArrayLike | None = None,
-                         fold_angle: float | None = None,
-                         degrees: bool = True) -> Path:
-    """Write :func:`to_fold` of a structure as a FOLD 1.1 file (via :func:`curvefold.io.write_fold`).
+def write_structure_fold(
+    path: str | os.PathLike,
+    structure: Structure,
+    output: FoldOutput = FoldOutput(),
+    *,
+    title: str = "",
+    fold_angles: ArrayLike | None = None,
+    fold_angle: float | None = None,
+    degrees: bool = True,
+) -> Path:
+    """Write :func:`to_fold` of a structure as a FOLD 1.1 file (via
+    :func:`curvefold.io.write_fold`).
 
     Parameters
     ----------
@@ -532,9 +651,11 @@ def write_structure_fold(path: str | os.PathLike, structure: Structure,
     -------
     Path
     """
-    return write_fold(path, to_fold(structure, output, fold_angles=fold_angles,
-                                    fold_angle=fold_angle, degrees=degrees),
-                      title=title)
+    return write_fold(
+        path,
+        to_fold(structure, output, fold_angles=fold_angles, fold_angle=fold_angle, degrees=degrees),
+        title=title,
+    )
 
 
 def write_model(path: str | os.PathLike, model: FoldFile, *, title: str = "") -> Path:

@@ -20,19 +20,45 @@ __all__ = ["SPEC_READ", "READ_KEYS", "ignored_keys", "split_cuts"]
 #: The FOLD version read.
 SPEC_READ = 1.2
 #: Frame keys the reader reads, or that only describe (titles, authors, attributes).
-READ_KEYS = frozenset({
-    "frame_title", "frame_classes", "frame_attributes", "frame_unit", "frame_author", "frame_description", "frame_parent",
-    "frame_inherit", "vertices_coords", "edges_vertices", "edges_assignment", "edges_foldAngle", "edges_foldAngles",
-    "faces_vertices", "vertices_flatUnfoldCoords",
-})
+READ_KEYS = frozenset(
+    {
+        "frame_title",
+        "frame_classes",
+        "frame_attributes",
+        "frame_unit",
+        "frame_author",
+        "frame_description",
+        "frame_parent",
+        "frame_inherit",
+        "vertices_coords",
+        "edges_vertices",
+        "edges_assignment",
+        "edges_foldAngle",
+        "edges_foldAngles",
+        "faces_vertices",
+        "vertices_flatUnfoldCoords",
+    }
+)
 #: Keys of the specification that are not read, by the reason.
 _NOT_READ = {
-    "layer order (checking it needs the overlaps of faces, which curvefold does not compute)": ("faceOrders", "edgeOrders"),
+    "layer order (checking it needs the overlaps of faces, which curvefold does not compute)": (
+        "faceOrders",
+        "edgeOrders",
+    ),
     "derived from the vertices, edges and faces read, and not compared with them": (
-        "vertices_vertices", "vertices_edges", "vertices_faces", "edges_faces", "faces_edges", "faces_faces", "edges_length",
-        "edges_lengths"),
+        "vertices_vertices",
+        "vertices_edges",
+        "vertices_faces",
+        "edges_faces",
+        "faces_edges",
+        "faces_faces",
+        "edges_length",
+        "edges_lengths",
+    ),
     "derived from the crease pattern and the flat-folded coordinates, which are read": (
-        "faces_flatFoldTransform", "faces_flatFoldOrientation"),
+        "faces_flatFoldTransform",
+        "faces_flatFoldOrientation",
+    ),
 }
 
 
@@ -41,25 +67,38 @@ def ignored_keys(frames: Sequence[dict], labels: Sequence[str]) -> list[str]:
 
     Examples
     --------
-    >>> print(*ignored_keys([{"faceOrders": [], "cpedit:page": {}, "vertices_coords": []}], ["f.fold"]))
-    f.fold: not read: faceOrders (layer order (checking it needs the overlaps of faces, which curvefold does not compute)); cpedit:page (another tool's key)
+    >>> print(
+    ...     *ignored_keys(
+    ...         [{"faceOrders": [], "cpedit:page": {}, "vertices_coords": []}], ["f.fold"]
+    ...     )
+    ... )
+    f.fold: not read: faceOrders (layer order (checking it needs the overlaps of faces, which
+    curvefold does not compute)); cpedit:page (another tool's key)
     """
     reason_of = {key: reason for reason, keys in _NOT_READ.items() for key in keys}
     found: dict[str, list[str]] = {}
     for frame in frames:
         for key in frame:
-            if key in READ_KEYS or key.startswith(("curvefold:", "edges_curvefold:", "faces_curvefold:")):
+            if key in READ_KEYS or key.startswith(
+                ("curvefold:", "edges_curvefold:", "faces_curvefold:")
+            ):
                 continue
-            reason = reason_of.get(key, "another tool's key" if ":" in key else "not a key of FOLD 1.2")
+            reason = reason_of.get(
+                key, "another tool's key" if ":" in key else "not a key of FOLD 1.2"
+            )
             if key not in found.setdefault(reason, []):
                 found[reason].append(key)
     if not found:
         return []
-    return [f"{labels[0]}: not read: " + "; ".join(f"{', '.join(keys)} ({reason})" for reason, keys in found.items())]
+    return [
+        f"{labels[0]}: not read: "
+        + "; ".join(f"{', '.join(keys)} ({reason})" for reason, keys in found.items())
+    ]
 
 
-def split_cuts(crease_pattern: Mesh | None, folded: tuple[tuple[str, Mesh], ...], where: str,
-               notes: list[str]) -> tuple[Mesh | None, tuple[tuple[str, Mesh], ...]]:
+def split_cuts(
+    crease_pattern: Mesh | None, folded: tuple[tuple[str, Mesh], ...], where: str, notes: list[str]
+) -> tuple[Mesh | None, tuple[tuple[str, Mesh], ...]]:
     """The frames with every cut edge (``C``) read as one boundary edge per face, and each
     vertex along a cut split into one per side (FOLD 1.2: "treated as multiple B edges").
 
@@ -77,18 +116,41 @@ def split_cuts(crease_pattern: Mesh | None, folded: tuple[tuple[str, Mesh], ...]
     vertex_of, faces, edges, copies = split
 
     def apply(mesh: Mesh) -> Mesh:
-        if not (np.array_equal(mesh.edges_vertices, ref.edges_vertices) and np.array_equal(mesh.faces_vertices, ref.faces_vertices)):
+        if not (
+            np.array_equal(mesh.edges_vertices, ref.edges_vertices)
+            and np.array_equal(mesh.faces_vertices, ref.faces_vertices)
+        ):
             return mesh
+
         def extend(a, fill):
-            return np.concatenate([np.where(mesh.edges_assignment == "C", fill, a), np.full(len(copies), fill, a.dtype)])
-        return replace(mesh, vertices_coords=mesh.vertices_coords[vertex_of], faces_vertices=faces, edges_vertices=edges,
-                       edges_assignment=extend(mesh.edges_assignment, "B"),
-                       edges_foldAngle=np.concatenate([np.where(mesh.edges_assignment == "C", 0.0, mesh.edges_foldAngle), np.zeros(len(copies))]),
-                       edges_kind=extend(mesh.edges_kind, "boundary"))
+            return np.concatenate(
+                [
+                    np.where(mesh.edges_assignment == "C", fill, a),
+                    np.full(len(copies), fill, a.dtype),
+                ]
+            )
+
+        return replace(
+            mesh,
+            vertices_coords=mesh.vertices_coords[vertex_of],
+            faces_vertices=faces,
+            edges_vertices=edges,
+            edges_assignment=extend(mesh.edges_assignment, "B"),
+            edges_foldAngle=np.concatenate(
+                [
+                    np.where(mesh.edges_assignment == "C", 0.0, mesh.edges_foldAngle),
+                    np.zeros(len(copies)),
+                ]
+            ),
+            edges_kind=extend(mesh.edges_kind, "boundary"),
+        )
 
     cuts = int((ref.edges_assignment == "C").sum())
-    notes.append(f"{where}: {cuts} cut (C) edges read as {cuts + len(copies)} boundary edges, one per face, "
-                 f"{len(vertex_of) - len(ref.vertices_coords)} vertices split along the cuts (FOLD 1.2)")
+    notes.append(
+        f"{where}: {cuts} cut (C) edges read as {cuts + len(copies)} boundary edges, "
+        f"one per face, {len(vertex_of) - len(ref.vertices_coords)} vertices split along the "
+        "cuts (FOLD 1.2)"
+    )
     cp = None if crease_pattern is None else apply(crease_pattern)
     return cp, tuple((title, apply(m)) for title, m in folded)
 
@@ -117,18 +179,25 @@ def _split(mesh: Mesh):
     pair = np.flatnonzero((key[order][1:] == key[order][:-1]) & ~cut[order][1:])
     s, t = order[pair], order[pair + 1]  # two sides along one edge that is not a cut
     at_first = np.stack([s, np.where(sides[t, 0] == sides[s, 0], t, following[t])], axis=1)  # of s
-    at_second = np.stack([following[s], np.where(sides[t, 0] == sides[s, 1], t, following[t])],
-                         axis=1)
+    at_second = np.stack(
+        [following[s], np.where(sides[t, 0] == sides[s, 1], t, following[t])], axis=1
+    )
     joins = np.concatenate([at_first, at_second])
-    graph = coo_matrix((np.ones(len(joins)), (joins[:, 0], joins[:, 1])), shape=(len(sides), len(sides)))
+    graph = coo_matrix(
+        (np.ones(len(joins)), (joins[:, 0], joins[:, 1])), shape=(len(sides), len(sides))
+    )
     _, component = connected_components(graph, directed=False)
     vertex = sides[:, 0]
     split = np.isin(vertex, ev[a == "C"])  # only the vertices on a cut are split
-    copies_of = np.unique(np.stack([vertex[split], component[split]], axis=1), axis=0)  # (vertex, component), by vertex
+    # (vertex, component), by vertex
+    copies_of = np.unique(np.stack([vertex[split], component[split]], axis=1), axis=0)
     first = np.r_[True, copies_of[1:, 0] != copies_of[:-1, 0]]
     ids = np.where(first, copies_of[:, 0], V + np.cumsum(~first) - 1)
     corner_vertex = vertex.copy()
-    at = np.searchsorted(copies_of[:, 0] * len(sides) + copies_of[:, 1], vertex[split] * len(sides) + component[split])
+    at = np.searchsorted(
+        copies_of[:, 0] * len(sides) + copies_of[:, 1],
+        vertex[split] * len(sides) + component[split],
+    )
     corner_vertex[split] = ids[at]
     vertex_of = np.concatenate([np.arange(V), copies_of[~first, 0]])
     new_faces = faces.copy()
@@ -148,7 +217,11 @@ def _split(mesh: Mesh):
     edges[found] = ends(first_side[found], np.flatnonzero(found))
     copies = []
     for e in np.flatnonzero(a == "C"):
-        more = order[np.searchsorted(sorted_keys, edge_key[e]) + 1: np.searchsorted(sorted_keys, edge_key[e], side="right")]
+        more = order[
+            np.searchsorted(sorted_keys, edge_key[e]) + 1 : np.searchsorted(
+                sorted_keys, edge_key[e], side="right"
+            )
+        ]
         copies += ends(more, np.full(len(more), e)).tolist()
     edges = np.concatenate([edges, np.array(copies, np.int64).reshape(-1, 2)])
     return vertex_of, new_faces, edges, np.arange(len(copies))

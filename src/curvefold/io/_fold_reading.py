@@ -50,8 +50,17 @@ from ._fold_keys import SPEC_READ, ignored_keys, split_cuts
 from ._mesh3d import check_metadata
 from ._reading import read_bytes
 
-__all__ = ["FoldFile", "read_fold", "parse_fold", "ASSIGNMENTS", "MAX_FOLD_BYTES", "MAX_FRAMES", "MAX_FOLD_ITEMS",
-           "MAX_COORDINATE", "MIN_SIZE"]
+__all__ = [
+    "FoldFile",
+    "read_fold",
+    "parse_fold",
+    "ASSIGNMENTS",
+    "MAX_FOLD_BYTES",
+    "MAX_FRAMES",
+    "MAX_FOLD_ITEMS",
+    "MAX_COORDINATE",
+    "MIN_SIZE",
+]
 
 #: The assignments of FOLD 1.2 (curvefold writes M, V, B and F).
 ASSIGNMENTS = ("M", "V", "B", "F", "U", "C", "J")
@@ -70,7 +79,14 @@ MIN_SIZE = 1e-100
 #: A folded frame with every ``|z|`` at most this fraction of its size is flat-folded.
 FLAT = 1e-12
 #: Edge kind assumed for files without ``edges_curvefold:kind``.
-_KIND_OF_ASSIGNMENT = {"M": "fold", "V": "fold", "U": "fold", "B": "boundary", "F": "diagonal", "J": "diagonal"}
+_KIND_OF_ASSIGNMENT = {
+    "M": "fold",
+    "V": "fold",
+    "U": "fold",
+    "B": "boundary",
+    "F": "diagonal",
+    "J": "diagonal",
+}
 _KIND_KEYS = ("edges_curvefold:kind", "curvefold:edges_kind")
 _GROUP_KEYS = ("faces_curvefold:group", "curvefold:faces_group")
 #: Assignments FOLD gives the fold angle 0.
@@ -164,7 +180,8 @@ def _int_rows(value, n_cols: int | None, key: str, where: str) -> np.ndarray:
     try:
         if n_cols is not None:
             return np.array(value, dtype=np.int64).reshape(len(value), n_cols)
-        out = np.full((len(value), max([3] + [len(row) for row in value])), -1, np.int64)  # rows of any length, -1 padded
+        # rows of any length, -1 padded
+        out = np.full((len(value), max([3] + [len(row) for row in value])), -1, np.int64)
         for i, row in enumerate(value):
             out[i, : len(row)] = row
     except OverflowError:
@@ -173,8 +190,11 @@ def _int_rows(value, n_cols: int | None, key: str, where: str) -> np.ndarray:
 
 
 def _coordinates(coords, where: str) -> np.ndarray:
-    """``vertices_coords`` as (V, 3) floats: numbers only (a string or a boolean is refused), each within the bounds."""
-    if not isinstance(coords, list) or any(not isinstance(c, list) or len(c) not in (2, 3) for c in coords):
+    """``vertices_coords`` as (V, 3) floats: numbers only (a string or a boolean is refused),
+    each within the bounds."""
+    if not isinstance(coords, list) or any(
+        not isinstance(c, list) or len(c) not in (2, 3) for c in coords
+    ):
         raise _fail(where, "vertices_coords must be a list of [x, y] or [x, y, z] lists")
     x = np.zeros((len(coords), 3))
     for i, c in enumerate(coords):
@@ -183,16 +203,24 @@ def _coordinates(coords, where: str) -> np.ndarray:
         try:
             x[i, : len(c)] = c
         except OverflowError:
-            raise _fail(where, f"vertices_coords[{i}] must hold numbers within ±{MAX_COORDINATE:g}, got an integer of "
-                               f"{len(str(max(map(abs, c))))} digits") from None
+            raise _fail(
+                where,
+                f"vertices_coords[{i}] must hold numbers within "
+                f"±{MAX_COORDINATE:g}, got an integer of {len(str(max(map(abs, c))))} digits",
+            ) from None
     big = np.flatnonzero(~(np.abs(x) <= MAX_COORDINATE).all(axis=1))
     if big.size:
-        raise _fail(where, f"vertices_coords[{big[0]}] = {coords[big[0]]} must lie within ±{MAX_COORDINATE:g} "
-                           "(lengths, areas and volumes must be representable)")
+        raise _fail(
+            where,
+            f"vertices_coords[{big[0]}] = {coords[big[0]]} must lie within "
+            f"±{MAX_COORDINATE:g} (lengths, areas and volumes must be representable)",
+        )
     return x
 
 
-def _angles(value, E: int, assignment: np.ndarray, key: str, where: str, notes: list[str]) -> tuple[np.ndarray, np.ndarray]:
+def _angles(
+    value, E: int, assignment: np.ndarray, key: str, where: str, notes: list[str]
+) -> tuple[np.ndarray, np.ndarray]:
     """``edges_foldAngle`` (E,) in degrees and the edges it does not record: ``null`` is FOLD's 0 on
     an edge that is not a crease, and not recorded on a mountain or valley."""
     if not isinstance(value, list) or len(value) != E:
@@ -207,28 +235,41 @@ def _angles(value, E: int, assignment: np.ndarray, key: str, where: str, notes: 
         raise _fail(where, f"{key} holds an integer too large for an angle") from None
     out = np.flatnonzero(~(np.abs(angle) <= 180))
     if out.size:
-        raise _fail(where, f"{key} must lie in [-180, 180] degrees, got {value[out[0]]} at edge {out[0]}")
+        raise _fail(
+            where, f"{key} must lie in [-180, 180] degrees, got {value[out[0]]} at edge {out[0]}"
+        )
     crease = np.isin(assignment, ("M", "V"))
     if (null & ~crease).any():
         kinds = ", ".join(sorted(set(assignment[null & ~crease].tolist())))
-        notes.append(f"{where}: {key} is null on {int((null & ~crease).sum())} {kinds} edges, read as 0 (FOLD's angle of an edge "
-                     "that is not folded)")
+        notes.append(
+            f"{where}: {key} is null on {int((null & ~crease).sum())} {kinds} edges, "
+            "read as 0 (FOLD's angle of an edge that is not folded)"
+        )
     if (null & crease).any():
-        notes.append(f"{where}: {key} is null on {int((null & crease).sum())} M/V edges: their fold angle is not recorded, "
-                     "so it is not checked")
+        notes.append(
+            f"{where}: {key} is null on {int((null & crease).sum())} M/V edges: their "
+            "fold angle is not recorded, so it is not checked"
+        )
     return angle, np.flatnonzero(null & crease)
 
 
-def _assignments(frame: dict, ev: np.ndarray, fv: np.ndarray, where: str, notes: list[str]) -> np.ndarray:
+def _assignments(
+    frame: dict, ev: np.ndarray, fv: np.ndarray, where: str, notes: list[str]
+) -> np.ndarray:
     E = len(ev)
     if "edges_assignment" not in frame:
         on_one = _faces_per_edge(ev, fv) == 1
-        notes.append(f"{where}: no edges_assignment: edges on one face read as B, the others as U (unassigned)")
+        notes.append(
+            f"{where}: no edges_assignment: edges on one face read as B, the others as "
+            "U (unassigned)"
+        )
         return np.where(on_one, "B", "U").astype("<U1")
     assignment = frame["edges_assignment"]
     if not isinstance(assignment, list) or len(assignment) != E:
         n = len(assignment) if isinstance(assignment, list) else type(assignment).__name__
-        raise _fail(where, f"edges_assignment must be a list of {E} entries (one per edge), got {n}")
+        raise _fail(
+            where, f"edges_assignment must be a list of {E} entries (one per edge), got {n}"
+        )
     for i, a in enumerate(assignment):
         if a not in ASSIGNMENTS:
             raise _fail(where, f"edges_assignment[{i}] = {a!r} is not one of FOLD's {ASSIGNMENTS}")
@@ -247,7 +288,9 @@ def _faces_per_edge(ev: np.ndarray, fv: np.ndarray) -> np.ndarray:
     return np.bincount(order[pos[hit]], minlength=len(ev))
 
 
-def _frame_mesh(frame: dict, where: str, notes: list[str], coords_key: str = "vertices_coords") -> tuple[Mesh, np.ndarray]:
+def _frame_mesh(
+    frame: dict, where: str, notes: list[str], coords_key: str = "vertices_coords"
+) -> tuple[Mesh, np.ndarray]:
     """A frame's Mesh and the M/V edges whose fold angle it does not record."""
     for key in (coords_key, "edges_vertices", "faces_vertices"):
         if key not in frame:
@@ -260,23 +303,32 @@ def _frame_mesh(frame: dict, where: str, notes: list[str], coords_key: str = "ve
         raise _fail(where, "edges_vertices is empty: a crease pattern needs edges")
     bad = np.flatnonzero(((ev < 0) | (ev >= V)).any(axis=1))
     if bad.size:
-        raise _fail(where, f"edges_vertices[{bad[0]}] = {ev[bad[0]].tolist()} refers to a vertex outside [0, {V})")
+        raise _fail(
+            where,
+            f"edges_vertices[{bad[0]}] = {ev[bad[0]].tolist()} refers to a vertex outside [0, {V})",
+        )
     loops = np.flatnonzero(ev[:, 0] == ev[:, 1])
     if loops.size:
-        raise _fail(where, f"edges_vertices[{loops[0]}] = {ev[loops[0]].tolist()} joins a vertex to itself")
+        raise _fail(
+            where, f"edges_vertices[{loops[0]}] = {ev[loops[0]].tolist()} joins a vertex to itself"
+        )
 
     faces = frame["faces_vertices"]
     if isinstance(faces, list):
         for i, f in enumerate(faces):
             if isinstance(f, list) and len(f) < 3:
-                raise _fail(where, f"faces_vertices[{i}] has {len(f)} vertices; a face needs at least 3")
+                raise _fail(
+                    where, f"faces_vertices[{i}] has {len(f)} vertices; a face needs at least 3"
+                )
     fv = _int_rows(faces, None, "faces_vertices", where)  # polygons, -1 padded
     if len(fv) == 0:
         raise _fail(where, "faces_vertices is empty: a crease pattern needs faces")
     real = np.arange(fv.shape[1]) < np.array([len(f) for f in faces], dtype=np.int64).reshape(-1, 1)
     bad = np.flatnonzero((((fv < 0) | (fv >= V)) & real).any(axis=1))
     if bad.size:
-        raise _fail(where, f"faces_vertices[{bad[0]}] = {faces[bad[0]]} refers to a vertex outside [0, {V})")
+        raise _fail(
+            where, f"faces_vertices[{bad[0]}] = {faces[bad[0]]} refers to a vertex outside [0, {V})"
+        )
 
     assignment = _assignments(frame, ev, fv, where, notes)
     angle_key = next((k for k in ("edges_foldAngle", "edges_foldAngles") if k in frame), None)
@@ -290,7 +342,9 @@ def _frame_mesh(frame: dict, where: str, notes: list[str], coords_key: str = "ve
 
     kind_key = next((k for k in _KIND_KEYS if k in frame), None)
     if kind_key is None:
-        kind = np.array([_KIND_OF_ASSIGNMENT.get(a, "boundary") for a in assignment], dtype="<U8").reshape(E)
+        kind = np.array(
+            [_KIND_OF_ASSIGNMENT.get(a, "boundary") for a in assignment], dtype="<U8"
+        ).reshape(E)
     else:
         kind = frame[kind_key]
         if not isinstance(kind, list) or len(kind) != E:
@@ -305,11 +359,22 @@ def _frame_mesh(frame: dict, where: str, notes: list[str], coords_key: str = "ve
         group = np.zeros(len(fv), np.int64)
     else:
         group = frame[group_key]
-        if not isinstance(group, list) or len(group) != len(fv) or not all(is_integer(g) for g in group):
+        if (
+            not isinstance(group, list)
+            or len(group) != len(fv)
+            or not all(is_integer(g) for g in group)
+        ):
             raise _fail(where, f"{group_key} must be a list of {len(fv)} integers (one per face)")
         group = np.array(group, dtype=np.int64).reshape(len(fv))
-    mesh = Mesh(vertices_coords=x, edges_vertices=ev, edges_assignment=assignment, edges_foldAngle=angle, faces_vertices=fv,
-                edges_kind=kind, faces_group=group)
+    mesh = Mesh(
+        vertices_coords=x,
+        edges_vertices=ev,
+        edges_assignment=assignment,
+        edges_foldAngle=angle,
+        faces_vertices=fv,
+        edges_kind=kind,
+        faces_group=group,
+    )
     return mesh, readonly(unrecorded)
 
 
@@ -324,7 +389,11 @@ def _resolve_frames(doc: dict, frames: list, where: str) -> list[dict]:
         f: int | None = fid
         while f is not None and f not in resolved:
             if f in chain:
-                raise _fail(where, f"file_frames[{chain[-1] - 1}].frame_parent = {f} closes a cycle of inheriting frames")
+                raise _fail(
+                    where,
+                    f"file_frames[{chain[-1] - 1}].frame_parent = {f} closes a "
+                    "cycle of inheriting frames",
+                )
             chain.append(f)
             frame = frames[f - 1]
             if not isinstance(frame, dict):
@@ -334,7 +403,11 @@ def _resolve_frames(doc: dict, frames: list, where: str) -> list[dict]:
                 break
             parent = frame.get("frame_parent", 0)
             if not is_integer(parent) or not 0 <= parent <= n or parent == f:
-                raise _fail(where, f"file_frames[{f - 1}].frame_parent must be another frame id in [0, {n}] without cycles, got {parent!r}")
+                raise _fail(
+                    where,
+                    f"file_frames[{f - 1}].frame_parent must be another frame id "
+                    f"in [0, {n}] without cycles, got {parent!r}",
+                )
             f = parent
         merged = {} if f is None else resolved[f]
         for g in reversed(chain):
@@ -345,7 +418,10 @@ def _resolve_frames(doc: dict, frames: list, where: str) -> list[dict]:
 
 def _size(frame: dict) -> int:
     """Vertices, edges and faces a frame declares (before any is read)."""
-    return sum(len(v) if isinstance(v := frame.get(key), list) else 0 for key in ("vertices_coords", "edges_vertices", "faces_vertices"))
+    return sum(
+        len(v) if isinstance(v := frame.get(key), list) else 0
+        for key in ("vertices_coords", "edges_vertices", "faces_vertices")
+    )
 
 
 def _classes(frame: dict, where: str, notes: list[str]) -> tuple[str, ...]:
@@ -416,16 +492,24 @@ def read_fold(path: str | os.PathLike) -> FoldFile:
     if not raw.strip():
         raise InputError(f"{where}: FOLD file is empty")
     try:
-        doc = json.loads(raw.decode("utf-8"), object_pairs_hook=_duplicates_refused, parse_constant=_no_constant)
+        doc = json.loads(
+            raw.decode("utf-8"), object_pairs_hook=_duplicates_refused, parse_constant=_no_constant
+        )
     except UnicodeDecodeError as exc:
-        raise InputError(f"{where}: not a FOLD file: not UTF-8 text (bad byte at offset {exc.start})") from None
+        raise InputError(
+            f"{where}: not a FOLD file: not UTF-8 text (bad byte at offset {exc.start})"
+        ) from None
     except RecursionError:
         raise InputError(f"{where}: not valid JSON: nested too deeply") from None
     except json.JSONDecodeError as exc:
         raise InputError(f"{where}: not valid JSON: {exc}") from None
-    except ValueError as exc:  # a repeated key, NaN or Infinity, or an integer past Python's digit limit
-        text = str(exc) if "twice" in str(exc) or "JSON number" in str(exc) else \
-            f"it holds an integer of more than {sys.get_int_max_str_digits()} digits"
+    # a repeated key, NaN or Infinity, or an integer past Python's digit limit
+    except ValueError as exc:
+        text = (
+            str(exc)
+            if "twice" in str(exc) or "JSON number" in str(exc)
+            else f"it holds an integer of more than {sys.get_int_max_str_digits()} digits"
+        )
         raise InputError(f"{where}: not a FOLD file: {text}") from None
     return parse_fold(doc, where, notes=notes)
 
@@ -447,26 +531,43 @@ def parse_fold(doc, where: str = "FOLD document", *, notes: Sequence[str] = ()) 
     if not isinstance(frames, list):
         raise InputError(f"{where}: file_frames must be a list")
     if len(frames) > MAX_FRAMES:
-        raise InputError(f"{where}: {len(frames)} frames in file_frames, more than curvefold reads ({MAX_FRAMES})")
+        raise InputError(
+            f"{where}: {len(frames)} frames in file_frames, more than curvefold "
+            f"reads ({MAX_FRAMES})"
+        )
     spec = doc.get("file_spec")
     if _is_number(spec) and spec > SPEC_READ:
-        notes.append(f"{where}: file_spec {spec} is newer than the FOLD {SPEC_READ} curvefold reads; read as {SPEC_READ}")
+        notes.append(
+            f"{where}: file_spec {spec} is newer than the FOLD {SPEC_READ} curvefold "
+            f"reads; read as {SPEC_READ}"
+        )
     resolved = _resolve_frames(doc, frames, where)
     items = sum(map(_size, resolved))
     if items > MAX_FOLD_ITEMS:
-        raise InputError(f"{where}: its frames hold {items} vertices, edges and faces in all (inherited ones counted in every frame), "
-                         f"more than curvefold reads ({MAX_FOLD_ITEMS})")
+        raise InputError(
+            f"{where}: its frames hold {items} vertices, edges and faces in all "
+            "(inherited ones counted in every frame), more than curvefold reads "
+            f"({MAX_FOLD_ITEMS})"
+        )
     labels = [f"{where} (key frame)"] + [f"{where} (file_frames[{i}])" for i in range(len(frames))]
     classes = [_classes(frame, label, notes) for frame, label in zip(resolved, labels)]
     meshes = [_frame_mesh(frame, label, notes) for frame, label in zip(resolved, labels)]
-    titles = [str(doc.get("frame_title") or "key frame")] + [str(frames[i].get("frame_title") or f"frame {i + 1}")
-                                                            for i in range(len(frames))]  # a title is not inherited
+    titles = [str(doc.get("frame_title") or "key frame")] + [
+        str(frames[i].get("frame_title") or f"frame {i + 1}")
+        # a title is not inherited
+        for i in range(len(frames))
+    ]
 
     size = max(_extent(m.vertices_coords) for m, _ in meshes)
     if not size >= MIN_SIZE:
-        raise InputError(f"{where}: the model is {size:.3g} across; curvefold reads models at least {MIN_SIZE:g} across "
-                         "(the cube of a smaller length is not a normal number)")
-    flat = [float(np.abs(m.vertices_coords[:, 2]).max()) <= FLAT * _extent(m.vertices_coords) for m, _ in meshes]
+        raise InputError(
+            f"{where}: the model is {size:.3g} across; curvefold reads models at "
+            f"least {MIN_SIZE:g} across (the cube of a smaller length is not a normal number)"
+        )
+    flat = [
+        float(np.abs(m.vertices_coords[:, 2]).max()) <= FLAT * _extent(m.vertices_coords)
+        for m, _ in meshes
+    ]
     cp_index = next((i for i, c in enumerate(classes) if "creasePattern" in c), None)
     if cp_index is None and "foldedForm" not in classes[0] and flat[0]:
         cp_index = 0
@@ -476,12 +577,16 @@ def parse_fold(doc, where: str = "FOLD document", *, notes: Sequence[str] = ()) 
         crease_pattern = _unfolded(resolved, chosen, meshes, labels, notes)
     folded = tuple((titles[i], meshes[i][0]) for i in chosen)
     if crease_pattern is None:
-        notes.append(f"{where}: no crease pattern: the file holds a folded form only, so what compares with a crease pattern "
-                     "is not checked")
+        notes.append(
+            f"{where}: no crease pattern: the file holds a folded form only, so what "
+            "compares with a crease pattern is not checked"
+        )
 
     metadata = doc.get("curvefold:metadata", {})
     if not isinstance(metadata, dict):
-        raise InputError(f"{where}: curvefold:metadata must be an object, got {type(metadata).__name__}")
+        raise InputError(
+            f"{where}: curvefold:metadata must be an object, got {type(metadata).__name__}"
+        )
     try:
         metadata = check_metadata(metadata)
     except InputError as exc:
@@ -491,37 +596,68 @@ def parse_fold(doc, where: str = "FOLD document", *, notes: Sequence[str] = ()) 
         raise InputError(f"{where}: frame_unit must be a string, got {unit!r}")
 
     E = len(meshes[0][0].edges_vertices)
-    pairs, bonds = (_edge_pairs(doc, key, E, where) for key in ("curvefold:seam_partners", "curvefold:bonds"))
+    pairs, bonds = (
+        _edge_pairs(doc, key, E, where) for key in ("curvefold:seam_partners", "curvefold:bonds")
+    )
     design = doc.get("curvefold:design")
     if design is not None and not isinstance(design, dict):
-        raise InputError(f"{where}: curvefold:design must be an object, got {type(design).__name__}")
-    keys = frozenset(k for k in doc if k.startswith(("curvefold:", "edges_curvefold:", "faces_curvefold:")))
+        raise InputError(
+            f"{where}: curvefold:design must be an object, got {type(design).__name__}"
+        )
+    keys = frozenset(
+        k for k in doc if k.startswith(("curvefold:", "edges_curvefold:", "faces_curvefold:"))
+    )
     notes += ignored_keys(resolved, labels)
     crease_pattern, folded = split_cuts(crease_pattern, folded, where, notes)
-    return FoldFile(crease_pattern=crease_pattern, folded=folded, metadata=metadata, unit=unit, seam_partners=pairs,
-                    bonds=bonds, design=design, keys=keys, notes=_collapsed(notes), flat_folded=tuple(flat[i] for i in chosen),
-                    unrecorded=tuple(meshes[i][1] for i in chosen), classes=tuple(classes), frame_ids=tuple(chosen),
-                    crease_frame=cp_index)
+    return FoldFile(
+        crease_pattern=crease_pattern,
+        folded=folded,
+        metadata=metadata,
+        unit=unit,
+        seam_partners=pairs,
+        bonds=bonds,
+        design=design,
+        keys=keys,
+        notes=_collapsed(notes),
+        flat_folded=tuple(flat[i] for i in chosen),
+        unrecorded=tuple(meshes[i][1] for i in chosen),
+        classes=tuple(classes),
+        frame_ids=tuple(chosen),
+        crease_frame=cp_index,
+    )
 
 
 def _collapsed(notes: list[str]) -> tuple[str, ...]:
-    """The notes, each said once: the same words about several frames (inherited keys) name the first and count the others."""
+    """The notes, each said once: the same words about several frames (inherited keys) name the
+    first and count the others."""
     said: dict[str, list[str]] = {}
     for note in notes:
         where, _, words = note.partition("): ") if "): " in note else ("", "", note)
         said.setdefault(words, []).append(where + ")" if where else "")
-    return tuple(f"{places[0]}: {words}" + (f" (and in {len(places) - 1} more frames)" if len(places) > 1 else "") if places[0] else words
-                 for words, places in said.items())
+    return tuple(
+        f"{places[0]}: {words}"
+        + (f" (and in {len(places) - 1} more frames)" if len(places) > 1 else "")
+        if places[0]
+        else words
+        for words, places in said.items()
+    )
 
 
-def _unfolded(resolved: list[dict], chosen: list[int], meshes, labels: list[str], notes: list[str]) -> Mesh | None:
-    """The crease pattern of a flat-folded frame's ``vertices_flatUnfoldCoords``, on its topology, or None."""
+def _unfolded(
+    resolved: list[dict], chosen: list[int], meshes, labels: list[str], notes: list[str]
+) -> Mesh | None:
+    """The crease pattern of a flat-folded frame's ``vertices_flatUnfoldCoords``, on its
+    topology, or None."""
     for i in chosen:
         if "vertices_flatUnfoldCoords" in resolved[i]:
             x = _coordinates(resolved[i]["vertices_flatUnfoldCoords"], labels[i])
             mesh = meshes[i][0]
             if len(x) != len(mesh.vertices_coords):
-                raise _fail(labels[i], f"vertices_flatUnfoldCoords must have one point per vertex ({len(mesh.vertices_coords)}), got {len(x)}")
+                raise _fail(
+                    labels[i],
+                    "vertices_flatUnfoldCoords must have one point per "
+                    f"vertex ({len(mesh.vertices_coords)}), got {len(x)}",
+                )
             notes.append(f"{labels[i]}: its vertices_flatUnfoldCoords read as the crease pattern")
             return replace(mesh, vertices_coords=x)
     return None
@@ -532,5 +668,8 @@ def _edge_pairs(doc: dict, key: str, edges: int, where: str) -> np.ndarray:
     pairs = _int_rows(doc.get(key, []), 2, key, where)
     bad = np.flatnonzero(((pairs < 0) | (pairs >= edges)).any(axis=1))
     if bad.size:
-        raise InputError(f"{where}: {key}[{bad[0]}] = {pairs[bad[0]].tolist()} refers to an edge outside [0, {edges})")
+        raise InputError(
+            f"{where}: {key}[{bad[0]}] = {pairs[bad[0]].tolist()} refers to an edge "
+            f"outside [0, {edges})"
+        )
     return readonly(pairs)

@@ -88,7 +88,8 @@ class FileFormat:
     extra : str or None
         The ``pip install 'curvefold[extra]'`` that brings ``dependency``.
     stem : str or None
-        A file name of its own (``"assembly"``: ``assembly.pdf``), instead of the stem its family is given.
+        A file name of its own (``"assembly"``: ``assembly.pdf``), instead of the stem its family is
+        given.
     """
 
     name: str
@@ -103,11 +104,15 @@ class FileFormat:
     stem: str | None = None
 
     def path(self, stem: str | os.PathLike) -> Path:
-        """The file of this format for a path stem: ``<stem><extension>``, or its own name beside it.
+        """The file of this format for a path stem: ``<stem><extension>``, or its own name beside
+        it.
 
         Examples
         --------
-        >>> FORMATS["svg"].path("out/vault-pattern").as_posix(), FORMATS["assembly"].path("out/vault").as_posix()
+        >>> (
+        ...     FORMATS["svg"].path("out/vault-pattern").as_posix(),
+        ...     FORMATS["assembly"].path("out/vault").as_posix(),
+        ... )
         ('out/vault-pattern.svg', 'out/assembly.pdf')
         """
         stem = Path(stem)
@@ -122,7 +127,11 @@ class FileFormat:
         >>> FORMATS["svg"].title, FORMATS["assembly"].title
         ('SVG', 'assembly (PDF)')
         """
-        return self.name.upper() if self.stem is None else f"{self.stem} ({self.extension[1:].upper()})"
+        return (
+            self.name.upper()
+            if self.stem is None
+            else f"{self.stem} ({self.extension[1:].upper()})"
+        )
 
     def load_writer(self) -> Callable[..., Any]:
         """Import and return the writing function.
@@ -133,8 +142,10 @@ class FileFormat:
             The format's writer was never registered (:func:`register_writer`).
         """
         if self.writer is None:
-            raise InternalError(f"format {self.name!r} has no writer: the package that draws it "
-                                "registers one (register_writer) when it is imported")
+            raise InternalError(
+                f"format {self.name!r} has no writer: the package that draws it "
+                "registers one (register_writer) when it is imported"
+            )
         if callable(self.writer):
             return self.writer
         module, function = self.writer.split(":")
@@ -142,36 +153,130 @@ class FileFormat:
 
 
 _S = STRUCTURE_KINDS
-_ALL = (*STRUCTURE_KINDS, "crease")  # a single curved fold writes its crease pattern, FOLD file and 3D models too
+# a single curved fold writes its crease pattern, FOLD file and 3D models too
+_ALL = (*STRUCTURE_KINDS, "crease")
 
 #: The registry, filled once here; a writer of a layer above io is added by :func:`register_writer`.
-_FORMATS: dict[str, FileFormat] = {f.name: f for f in (
-    FileFormat("svg", ".svg", "crease pattern pages in mm with one layer per operation, a scale bar and legend", "pattern", _ALL,
-               "curvefold.io._svg:write_svg", "image/svg+xml"),
-    FileFormat("dxf", ".dxf", "crease pattern pages in mm with layers, colours and linetypes, framed in a grid", "pattern", _ALL,
-               "curvefold.io._dxf:write_dxf", "image/vnd.dxf", "ezdxf", "export"),
-    FileFormat("pdf", ".pdf", "printable crease pattern pages at 1:1 with a layer per operation, a scale bar and legend", "pattern", _ALL,
-               "curvefold.io._pattern_pdf:write_pdf", "application/pdf"),
-    FileFormat("assembly", ".pdf", "the assembly guide: the sheets to cut, which seam glues to which, the order of folding and "
-               "gluing tube by tube with a picture of each step, on the pattern's pages", "guide", _S,
-               # the writer is figures' (register_writer)
-               None, "application/pdf", stem="assembly"),
-    FileFormat("fold", ".fold", "FOLD 1.1: the crease pattern and the frames of the folding motion, and one FOLD file per sheet", "fold", _ALL,
-               "curvefold.io._fold:write_structure_fold", "application/json"),
-    FileFormat("glb", ".glb", "glTF 3D model, a node per sheet, at the design state, the folding motion as named morph targets and an animation", "model", _ALL,
-               "curvefold.io._model_files:model_glb", "model/gltf-binary"),
-    FileFormat("obj", ".obj", "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines", "model", _ALL,
-               "curvefold.io._model_files:model_obj", "model/obj"),
-    FileFormat("3dm", ".3dm", "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS surface, the creases NURBS curves", "model", _ALL,
-               "curvefold.io._model_files:model_3dm", "application/octet-stream", "rhino3dm",
-               "rhino"),
-    FileFormat("stl", ".stl", "3D mesh of the folded state (triangles) in the output units, millimetres by default, for slicers", "model", _ALL,
-               "curvefold.io._model_files:model_stl", "model/stl"),
-    FileFormat("ply", ".ply", "3D mesh of the folded state (binary PLY)", "model", _ALL,
-               "curvefold.io._model_files:model_ply", "application/octet-stream"),
-    FileFormat("gif", ".gif", "animation of the folding motion, flat to the design angle", "motion", _S,
-               "curvefold.io._gif:write_gif", "image/gif", "matplotlib", "plot"),  # frames drawn with matplotlib's font and Pillow
-)}
+_FORMATS: dict[str, FileFormat] = {
+    f.name: f
+    for f in (
+        FileFormat(
+            "svg",
+            ".svg",
+            "crease pattern pages in mm with one layer per operation, a scale bar and legend",
+            "pattern",
+            _ALL,
+            "curvefold.io._svg:write_svg",
+            "image/svg+xml",
+        ),
+        FileFormat(
+            "dxf",
+            ".dxf",
+            "crease pattern pages in mm with layers, colours and linetypes, framed in a grid",
+            "pattern",
+            _ALL,
+            "curvefold.io._dxf:write_dxf",
+            "image/vnd.dxf",
+            "ezdxf",
+            "export",
+        ),
+        FileFormat(
+            "pdf",
+            ".pdf",
+            "printable crease pattern pages at 1:1 with a layer per operation, "
+            "a scale bar and legend",
+            "pattern",
+            _ALL,
+            "curvefold.io._pattern_pdf:write_pdf",
+            "application/pdf",
+        ),
+        FileFormat(
+            "assembly",
+            ".pdf",
+            "the assembly guide: the sheets to cut, which seam glues to "
+            "which, the order of folding and gluing tube by tube with a picture of each step, on "
+            "the pattern's pages",
+            "guide",
+            _S,
+            # the writer is figures' (register_writer)
+            None,
+            "application/pdf",
+            stem="assembly",
+        ),
+        FileFormat(
+            "fold",
+            ".fold",
+            "FOLD 1.1: the crease pattern and the frames of the folding "
+            "motion, and one FOLD file per sheet",
+            "fold",
+            _ALL,
+            "curvefold.io._fold:write_structure_fold",
+            "application/json",
+        ),
+        FileFormat(
+            "glb",
+            ".glb",
+            "glTF 3D model, a node per sheet, at the design state, the folding "
+            "motion as named morph targets and an animation",
+            "model",
+            _ALL,
+            "curvefold.io._model_files:model_glb",
+            "model/gltf-binary",
+        ),
+        FileFormat(
+            "obj",
+            ".obj",
+            "3D mesh of the folded state (Y up, ruling quads) with the creases as polylines",
+            "model",
+            _ALL,
+            "curvefold.io._model_files:model_obj",
+            "model/obj",
+        ),
+        FileFormat(
+            "3dm",
+            ".3dm",
+            "Rhino model in metres: a mesh per sheet, each strip a ruled NURBS "
+            "surface, the creases NURBS curves",
+            "model",
+            _ALL,
+            "curvefold.io._model_files:model_3dm",
+            "application/octet-stream",
+            "rhino3dm",
+            "rhino",
+        ),
+        FileFormat(
+            "stl",
+            ".stl",
+            "3D mesh of the folded state (triangles) in the output units, "
+            "millimetres by default, for slicers",
+            "model",
+            _ALL,
+            "curvefold.io._model_files:model_stl",
+            "model/stl",
+        ),
+        FileFormat(
+            "ply",
+            ".ply",
+            "3D mesh of the folded state (binary PLY)",
+            "model",
+            _ALL,
+            "curvefold.io._model_files:model_ply",
+            "application/octet-stream",
+        ),
+        FileFormat(
+            "gif",
+            ".gif",
+            "animation of the folding motion, flat to the design angle",
+            "motion",
+            _S,
+            # frames drawn with matplotlib's font and Pillow
+            "curvefold.io._gif:write_gif",
+            "image/gif",
+            "matplotlib",
+            "plot",
+        ),
+    )
+}
 #: Every format, in the order files are written and listed.
 FORMATS: Mapping[str, FileFormat] = MappingProxyType(_FORMATS)
 
@@ -199,26 +304,31 @@ def register_writer(name: str, writer: str | Callable[..., Any]) -> None:
     >>> register_writer("svg", "a:b")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: writer of 'svg' is 'curvefold.io._svg:write_svg' already, cannot register 'a:b'
+    curvefold.kernel._errors.InputError: writer of 'svg' is 'curvefold.io._svg:write_svg' already,
+    cannot register 'a:b'
     """
     f = _FORMATS.get(name)
     if f is None:
-        raise InputError(f"name must be a format of the registry ({', '.join(_FORMATS)}), "
-                         f"got {name!r}")
+        raise InputError(
+            f"name must be a format of the registry ({', '.join(_FORMATS)}), got {name!r}"
+        )
     if not (callable(writer) or (isinstance(writer, str) and writer.count(":") == 1)):
         raise InputError(f"writer must be a function or 'module:function', got {writer!r}")
     if f.writer is not None and f.writer != writer:
         raise InputError(f"writer of {name!r} is {f.writer!r} already, cannot register {writer!r}")
     _FORMATS[name] = replace(f, writer=writer)
 
+
 #: What each family of formats writes, as the subject of a sentence in messages.
-FAMILIES: Mapping[str, str] = MappingProxyType({
-    "pattern": "the crease patterns are",
-    "guide": "the assembly guide is",
-    "fold": "the FOLD file is",
-    "model": "the 3D models are",
-    "motion": "the GIF of the folding motion is",
-})
+FAMILIES: Mapping[str, str] = MappingProxyType(
+    {
+        "pattern": "the crease patterns are",
+        "guide": "the assembly guide is",
+        "fold": "the FOLD file is",
+        "model": "the 3D models are",
+        "motion": "the GIF of the folding motion is",
+    }
+)
 
 
 def formats_of(family: str) -> tuple[str, ...]:
@@ -243,7 +353,9 @@ def default_formats(kind: str) -> tuple[str, ...]:
     return tuple(name for name, f in FORMATS.items() if kind in f.kinds)
 
 
-def check_formats(formats: str | Iterable[str], family: str, *, name: str = "formats") -> tuple[str, ...]:
+def check_formats(
+    formats: str | Iterable[str], family: str, *, name: str = "formats"
+) -> tuple[str, ...]:
     """A non-empty selection of the formats of ``family``, duplicates dropped.
 
     Raises
@@ -267,19 +379,26 @@ def check_kind(formats: Iterable[str], kind: str, where: str) -> None:
     >>> check_kind(["gif"], "crease", "formats")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: formats: "gif" is not written for a crease design: the GIF of the folding motion is written for vault, tube and block designs
+    curvefold.kernel._errors.InputError: formats: "gif" is not written for a crease design: the GIF
+    of the folding motion is written for vault, tube and block designs
     """
     for name in formats:
         f = FORMATS.get(name)
         if f is None:
             raise InputError(f"{where}: unknown format {name!r} (allowed: {', '.join(FORMATS)})")
         if kind not in f.kinds:
-            kinds = ", ".join(f.kinds[:-1]) + f" and {f.kinds[-1]}" if len(f.kinds) > 1 else f.kinds[0]
-            raise InputError(f'{where}: "{name}" is not written for a {kind} design: {FAMILIES[f.family]} written for {kinds} designs')
+            kinds = (
+                ", ".join(f.kinds[:-1]) + f" and {f.kinds[-1]}" if len(f.kinds) > 1 else f.kinds[0]
+            )
+            raise InputError(
+                f'{where}: "{name}" is not written for a {kind} design: '
+                f"{FAMILIES[f.family]} written for {kinds} designs"
+            )
 
 
 def missing_dependencies(formats: Iterable[str]) -> list[str]:
-    """For each requested format whose optional package is not installed, one line saying how to get it."""
+    """For each requested format whose optional package is not installed, one line saying how to
+    get it."""
     out = []
     for name in formats:
         f = FORMATS[name]
@@ -292,31 +411,94 @@ _OUT = PatternOutput()  # the defaults of the crease-pattern files
 #: The ``[output]`` parameters of a design (the crease pattern's defaults are
 #: :class:`PatternOutput`'s).
 OUTPUT_SPECS: tuple[Spec, ...] = (
-    Spec("units", "choice", _OUT.units, choices=("mm", "cm", "m", "in"),
-         help="unit of the crease-pattern page lengths and scale, and of the STL (printed lengths, so not the model unit)",
-         label="units of the printed files"),
-    Spec("scale", "real", None, Interval.parse("(0, inf)"), "output units per model unit",
-         help="crease-pattern scale (default: fit the largest sheet to the page)", label="print scale"),
-    Spec("page", "page", _OUT.page, Interval.parse("(0, 10000]"), "mm", choices=tuple(PAGES),
-         help="page of the crease patterns", label="page size"),
-    Spec("glue_tabs", "flag", _OUT.glue_tabs,
-         help="draw glue tabs along the seams of the crease patterns", label="glue tabs"),
-    Spec("rulings", "flag", _OUT.rulings,
-         help="draw the rulings on the crease patterns (for scoring or engraving)",
-         label="rulings drawn"),
-    Spec("cutter", "choice", _OUT.cutter, choices=tuple(CUTTERS),
-         help="colour convention of the crease patterns' layers: print (paper), laser (a colour per operation), service (red cut, blue score)",
-         label="cutter convention"),
-    Spec("perforation", "real", None, Interval.parse("(0, 100]"), "mm",
-         help="draw the creases as cut dashes this long, for machines that only cut (default: score lines)", label="perforation dash"),
-    Spec("perforation_gap", "real", 1.0, Interval.parse("(0, 100]"), "mm",
-         help="gap between the dashes of perforated creases", label="perforation gap"),
-    Spec("kerf", "real", _OUT.kerf, Interval.parse("[0, 5]"), "mm",
-         help="width the cutter removes: the cut outlines move out by half of it, so parts keep "
-              "their size",
-         label="kerf"),
-    Spec("formats", "formats", None, choices=tuple(FORMATS),
-         help="files to write besides the report (default: every format the design's kind writes)", label="file formats"),
+    Spec(
+        "units",
+        "choice",
+        _OUT.units,
+        choices=("mm", "cm", "m", "in"),
+        help="unit of the crease-pattern page lengths and scale, and of the STL (printed "
+        "lengths, so not the model unit)",
+        label="units of the printed files",
+    ),
+    Spec(
+        "scale",
+        "real",
+        None,
+        Interval.parse("(0, inf)"),
+        "output units per model unit",
+        help="crease-pattern scale (default: fit the largest sheet to the page)",
+        label="print scale",
+    ),
+    Spec(
+        "page",
+        "page",
+        _OUT.page,
+        Interval.parse("(0, 10000]"),
+        "mm",
+        choices=tuple(PAGES),
+        help="page of the crease patterns",
+        label="page size",
+    ),
+    Spec(
+        "glue_tabs",
+        "flag",
+        _OUT.glue_tabs,
+        help="draw glue tabs along the seams of the crease patterns",
+        label="glue tabs",
+    ),
+    Spec(
+        "rulings",
+        "flag",
+        _OUT.rulings,
+        help="draw the rulings on the crease patterns (for scoring or engraving)",
+        label="rulings drawn",
+    ),
+    Spec(
+        "cutter",
+        "choice",
+        _OUT.cutter,
+        choices=tuple(CUTTERS),
+        help="colour convention of the crease patterns' layers: print (paper), laser (a colour "
+        "per operation), service (red cut, blue score)",
+        label="cutter convention",
+    ),
+    Spec(
+        "perforation",
+        "real",
+        None,
+        Interval.parse("(0, 100]"),
+        "mm",
+        help="draw the creases as cut dashes this long, for machines that only cut (default: "
+        "score lines)",
+        label="perforation dash",
+    ),
+    Spec(
+        "perforation_gap",
+        "real",
+        1.0,
+        Interval.parse("(0, 100]"),
+        "mm",
+        help="gap between the dashes of perforated creases",
+        label="perforation gap",
+    ),
+    Spec(
+        "kerf",
+        "real",
+        _OUT.kerf,
+        Interval.parse("[0, 5]"),
+        "mm",
+        help="width the cutter removes: the cut outlines move out by half of it, so parts keep "
+        "their size",
+        label="kerf",
+    ),
+    Spec(
+        "formats",
+        "formats",
+        None,
+        choices=tuple(FORMATS),
+        help="files to write besides the report (default: every format the design's kind writes)",
+        label="file formats",
+    ),
 )
 
 
@@ -326,7 +508,8 @@ MIN_DRAWN_MM = 10.0
 
 
 def check_scale(scale: float | None, units: str, length: float, where: str) -> float | None:
-    """The print scale of a design whose crease is ``length`` model units long, or the error saying it draws too small.
+    """The print scale of a design whose crease is ``length`` model units long, or the error saying
+    it draws too small.
 
     The scale's spec bounds it by > 0; what a page and a line width can show bounds it
     further: the crease must be drawn at least :data:`MIN_DRAWN_MM` long (a scale too large
@@ -339,14 +522,20 @@ def check_scale(scale: float | None, units: str, length: float, where: str) -> f
     >>> check_scale(0.001, "mm", 6.0, "scale")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: scale: 0.001 mm per model unit draws the 6-unit crease 0.006 mm long, shorter than the 10 mm scale bar: use a scale of at least 1.67 mm per unit (or leave it out to fit the page)
+    curvefold.kernel._errors.InputError: scale: 0.001 mm per model unit draws the 6-unit crease
+    0.006 mm long, shorter than the 10 mm scale bar: use a scale of at least 1.67 mm per unit (or
+    leave it out to fit the page)
     """
     if scale is None:
         return None
     drawn = scale * length * mm_per_unit(units)
     if not drawn >= MIN_DRAWN_MM:
         least = MIN_DRAWN_MM / (length * mm_per_unit(units))
-        raise InputError(f"{where}: {scale:g} {units} per model unit draws the {length:g}-unit crease {drawn:.3g} mm long, shorter "
-                         f"than the {MIN_DRAWN_MM:g} mm scale bar: use a scale of at least {least:.3g} {units} per unit (or leave it "
-                         "out to fit the page)", parameter="scale")
+        raise InputError(
+            f"{where}: {scale:g} {units} per model unit draws the {length:g}-unit "
+            f"crease {drawn:.3g} mm long, shorter than the {MIN_DRAWN_MM:g} mm scale bar: use "
+            f"a scale of at least {least:.3g} {units} per unit (or leave it out to fit the "
+            "page)",
+            parameter="scale",
+        )
     return scale

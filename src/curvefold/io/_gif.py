@@ -39,7 +39,13 @@ COLOURS = 128
 _FRAME_SECONDS = Spec("frame_seconds", "real", 0.12, Interval.parse("[0.01, 10]"), "seconds")
 
 
-def write_gif(path: str | os.PathLike, frames: Sequence[Image.Image], *, frame_seconds: float = 0.12, bounce: bool = False) -> Path:
+def write_gif(
+    path: str | os.PathLike,
+    frames: Sequence[Image.Image],
+    *,
+    frame_seconds: float = 0.12,
+    bounce: bool = False,
+) -> Path:
     """Write frames as an animated GIF that loops, atomically.
 
     Parameters
@@ -97,8 +103,14 @@ def _stored(images: Sequence[Image.Image], played: Sequence[int], duration: int)
         before.setdefault(b, set()).add(a)
     stored = []
     for k, image in enumerate(images):
-        box = (0, 0, *image.size) if k == 0 else _changed(pixels[k], [pixels[j] for j in sorted(before[k])])
-        stored.append(b"".join(GifImagePlugin.getdata(image.crop(box), offset=box[:2], duration=duration)))
+        box = (
+            (0, 0, *image.size)
+            if k == 0
+            else _changed(pixels[k], [pixels[j] for j in sorted(before[k])])
+        )
+        stored.append(
+            b"".join(GifImagePlugin.getdata(image.crop(box), offset=box[:2], duration=duration))
+        )
     return stored
 
 

@@ -71,33 +71,56 @@ _AXES = {"z": Y_UP["y"], "y": Y_UP["z"]}  # the model's up axis -> the rotation 
 
 
 class _Packer:
-    """Collects 4-byte aligned buffer views and their accessors (glTF JSON objects) into one binary buffer."""
+    """Collects 4-byte aligned buffer views and their accessors (glTF JSON objects) into one
+    binary buffer."""
 
     def __init__(self):
         self.blob = bytearray()
         self.views: list[dict] = []
         self.accessors: list[dict] = []
 
-    def add(self, data: np.ndarray, kind: str, *, target: int | None = None, min_max: bool = False) -> int:
+    def add(
+        self, data: np.ndarray, kind: str, *, target: int | None = None, min_max: bool = False
+    ) -> int:
         count = len(data) if kind != "SCALAR" or data.ndim == 1 else data.size
-        bounds = (data.reshape(int(count), -1).max(axis=0), data.reshape(int(count), -1).min(axis=0)) if min_max else None
+        bounds = (
+            (data.reshape(int(count), -1).max(axis=0), data.reshape(int(count), -1).min(axis=0))
+            if min_max
+            else None
+        )
         return self._add(data, kind, target, bounds)
 
     def add_vec3(self, data: np.ndarray) -> list[int]:
-        """Accessors of float32 vertex attributes, one per state of ``data`` (S, n, 3), with their bounds."""
+        """Accessors of float32 vertex attributes, one per state of ``data`` (S, n, 3), with
+        their bounds."""
         data = data.astype(np.float32)
         highs, lows = data.max(axis=1), data.min(axis=1)
-        return [self._add(d, "VEC3", _ARRAY_BUFFER, bounds) for d, bounds in zip(data, zip(highs, lows))]
+        return [
+            self._add(d, "VEC3", _ARRAY_BUFFER, bounds) for d, bounds in zip(data, zip(highs, lows))
+        ]
 
     def _add(self, data: np.ndarray, kind: str, target: int | None, bounds: tuple | None) -> int:
         raw = np.ascontiguousarray(data).tobytes()
         self.blob += b"\0" * (-len(self.blob) % 4)
-        self.views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(raw), **({} if target is None else {"target": target})})
+        self.views.append(
+            {
+                "buffer": 0,
+                "byteOffset": len(self.blob),
+                "byteLength": len(raw),
+                **({} if target is None else {"target": target}),
+            }
+        )
         self.blob += raw
         component = _FLOAT if data.dtype == np.float32 else _UINT32
         count = len(data) if kind != "SCALAR" or data.ndim == 1 else data.size
-        accessor = {"bufferView": len(self.views) - 1, "byteOffset": 0, "componentType": component, "normalized": False,
-                    "count": int(count), "type": kind}
+        accessor = {
+            "bufferView": len(self.views) - 1,
+            "byteOffset": 0,
+            "componentType": component,
+            "normalized": False,
+            "count": int(count),
+            "type": kind,
+        }
         if bounds is not None:
             accessor |= {"max": bounds[0].tolist(), "min": bounds[1].tolist()}
         self.accessors.append(accessor)
@@ -105,45 +128,83 @@ class _Packer:
 
 
 def _material(name: str, colour: tuple, *, double_sided: bool) -> dict:
-    return {"pbrMetallicRoughness": {"baseColorFactor": list(colour), "metallicFactor": 0.0, "roughnessFactor": 1.0},
-            "emissiveFactor": [0.0, 0.0, 0.0], "alphaMode": "OPAQUE", "doubleSided": double_sided, "name": name}
+    return {
+        "pbrMetallicRoughness": {
+            "baseColorFactor": list(colour),
+            "metallicFactor": 0.0,
+            "roughnessFactor": 1.0,
+        },
+        "emissiveFactor": [0.0, 0.0, 0.0],
+        "alphaMode": "OPAQUE",
+        "doubleSided": double_sided,
+        "name": name,
+    }
 
 
 def _glb(document: dict, blob: bytes) -> bytes:
     """The binary glTF container (glTF 2.0, section 4.4) of a JSON document and its buffer: a
-    12-byte header, the JSON chunk padded with spaces and the BIN chunk padded with zeros, each to 4 bytes."""
+    12-byte header, the JSON chunk padded with spaces and the BIN chunk padded with zeros, each
+    to 4 bytes."""
     text = json.dumps(document, allow_nan=False, separators=(",", ":")).encode()
     text += b" " * (-len(text) % 4)
     blob += b"\0" * (-len(blob) % 4)
-    return b"".join([b"glTF", struct.pack("<II", 2, 28 + len(text) + len(blob)), struct.pack("<I", len(text)), b"JSON", text,
-                     struct.pack("<I", len(blob)), b"BIN\0", blob])
+    return b"".join(
+        [
+            b"glTF",
+            struct.pack("<II", 2, 28 + len(text) + len(blob)),
+            struct.pack("<I", len(text)),
+            b"JSON",
+            text,
+            struct.pack("<I", len(blob)),
+            b"BIN\0",
+            blob,
+        ]
+    )
 
 
 def _keyframes(count: int, base: int) -> np.ndarray:
-    """The states of the animation's keyframes: from ``base`` down to 0, up to the last and back to ``base``.
+    """The states of the animation's keyframes: from ``base`` down to 0, up to the last and back to
+    ``base``.
 
     Examples
     --------
     >>> _keyframes(4, 3).tolist(), _keyframes(3, 0).tolist(), _keyframes(1, 0).tolist()
     ([3, 2, 1, 0, 1, 2, 3], [0, 1, 2, 1, 0], [0])
     """
-    return np.array([*range(base, -1, -1), *range(1, count), *range(count - 2, base - 1, -1)], dtype=np.int64)
+    return np.array(
+        [*range(base, -1, -1), *range(1, count), *range(count - 2, base - 1, -1)], dtype=np.int64
+    )
 
 
 def _vertex_normals(pos: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """Unit normals (..., n, 3) of vertices (..., n, 3), of every state at once: the area-weighted
     mean of their triangles' normals."""
     a, b, c = (pos[..., triangles[:, k], :] for k in range(3))
-    face = np.cross(b - a, c - a).reshape(-1, len(triangles), 3)  # twice the area times the normal, per state
+    # twice the area times the normal, per state
+    face = np.cross(b - a, c - a).reshape(-1, len(triangles), 3)
     n = pos.shape[-2]
-    states = np.arange(len(face))[:, None] * n  # each state's vertices numbered after the previous state's
-    out = np.stack([sum(np.bincount((states + triangles[:, k]).reshape(-1), face[..., j].reshape(-1), minlength=len(face) * n)
-                        for k in range(3)) for j in range(3)], axis=-1).reshape(pos.shape)
+    # each state's vertices numbered after the previous state's
+    states = np.arange(len(face))[:, None] * n
+    out = np.stack(
+        [
+            sum(
+                np.bincount(
+                    (states + triangles[:, k]).reshape(-1),
+                    face[..., j].reshape(-1),
+                    minlength=len(face) * n,
+                )
+                for k in range(3)
+            )
+            for j in range(3)
+        ],
+        axis=-1,
+    ).reshape(pos.shape)
     return out / np.maximum(np.linalg.norm(out, axis=-1, keepdims=True), 1e-300)
 
 
 def _split_by_strip(faces: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A part's triangles (F, 3) with their vertices copied per strip: (mesh vertex of every copy, triangles in copies)."""
+    """A part's triangles (F, 3) with their vertices copied per strip: (mesh vertex of every
+    copy, triangles in copies)."""
     key = groups[:, None] * (int(faces.max(initial=0)) + 1) + faces  # (strip, vertex) pairs
     pairs, local = np.unique(key.reshape(-1), return_inverse=True)
     return pairs % (int(faces.max(initial=0)) + 1), local.reshape(-1, 3)
@@ -250,8 +311,9 @@ def write_glb(
         a bad option.
     """
     if not isinstance(options, GlbOptions):
-        raise InputError(f"options must be a GlbOptions, got {type(options).__name__}",
-                         parameter="options")
+        raise InputError(
+            f"options must be a GlbOptions, got {type(options).__name__}", parameter="options"
+        )
     scale = _check_options(options)
     meta = check_metadata(options.metadata)
     parts = _check_parts(options.parts, len(mesh.faces_vertices), len(mesh.edges_vertices))
@@ -283,8 +345,10 @@ def _check_options(options: GlbOptions) -> float:
     scale = options.scale
     if scale is None:
         if options.unit not in UNITS:
-            raise InputError(f"unit {options.unit!r} has no known size in metres; give scale= "
-                             f"(metres per unit) or use one of {sorted(UNITS)}")
+            raise InputError(
+                f"unit {options.unit!r} has no known size in metres; give scale= "
+                f"(metres per unit) or use one of {sorted(UNITS)}"
+            )
         scale = UNITS[options.unit].metres
     if not (np.isfinite(scale) and scale > 0):
         raise InputError(f"scale must be a positive number of metres per unit, got {scale}")
@@ -301,9 +365,15 @@ def _check_options(options: GlbOptions) -> float:
     return float(scale)
 
 
-def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequence[float] | None,
-            base_state: int, morph_targets: Mapping[str, np.ndarray] | None, scale: float,
-            up: str) -> _Motion:
+def _motion(
+    mesh: Mesh,
+    coords: np.ndarray | None,
+    angles_deg: np.ndarray | Sequence[float] | None,
+    base_state: int,
+    morph_targets: Mapping[str, np.ndarray] | None,
+    scale: float,
+    up: str,
+) -> _Motion:
     """The states checked, in metres and glTF's axes, and the morph targets they and
     ``morph_targets`` make."""
     V = len(mesh.vertices_coords)
@@ -320,7 +390,9 @@ def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequ
     if angles_deg is not None:
         angles = np.asarray(angles_deg, float).reshape(-1)
         if angles.shape != (K,):
-            raise InputError(f"angles_deg must have shape ({K},) like coords, got {np.shape(angles_deg)}")
+            raise InputError(
+                f"angles_deg must have shape ({K},) like coords, got {np.shape(angles_deg)}"
+            )
     extra = _check_morphs(morph_targets, V)
     rotation = _AXES[up]
     pos = (states * scale) @ rotation.T  # (K, V, 3) metres, glTF axes
@@ -329,12 +401,20 @@ def _motion(mesh: Mesh, coords: np.ndarray | None, angles_deg: np.ndarray | Sequ
     if extra:
         further = (np.stack(list(extra.values())) * scale) @ rotation.T
         poses = np.concatenate([poses, pos[base] + further])
-    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(extra)
+    names = [f"2α = {angles[k]:g}°" if angles is not None else f"state {k}" for k in others] + list(
+        extra
+    )
     return _Motion(K, base, pos, others, poses, names, angles)
 
 
-def _part_mesh(pk: _Packer, materials: list[dict], mesh: Mesh, motion: _Motion,
-               part: tuple[str, np.ndarray, np.ndarray], crease_kinds: Sequence[str]) -> dict:
+def _part_mesh(
+    pk: _Packer,
+    materials: list[dict],
+    mesh: Mesh,
+    motion: _Motion,
+    part: tuple[str, np.ndarray, np.ndarray],
+    crease_kinds: Sequence[str],
+) -> dict:
     """The glTF mesh of one part: its triangles, then a line primitive per crease kind on it
     (materials added as first used)."""
     name, part_faces, part_edges = part
@@ -350,8 +430,12 @@ def _part_mesh(pk: _Packer, materials: list[dict], mesh: Mesh, motion: _Motion,
         primitives.append(_lines(pk, motion, edges, material))
     T = motion.targets
     weights = {"weights": [0.0] * T} if T else {}
-    return {"extras": {"targetNames": motion.names}, "primitives": primitives, **weights,
-            "name": name}
+    return {
+        "extras": {"targetNames": motion.names},
+        "primitives": primitives,
+        **weights,
+        "name": name,
+    }
 
 
 def _surface(pk: _Packer, mesh: Mesh, motion: _Motion, part_faces: np.ndarray) -> dict:
@@ -373,10 +457,16 @@ def _surface(pk: _Packer, mesh: Mesh, motion: _Motion, part_faces: np.ndarray) -
     pairs = pk.add_vec3(deltas) if T else []
     targets = [{"POSITION": p, "NORMAL": n} for p, n in zip(pairs[::2], pairs[1::2])]
     attributes = {"POSITION": pk.add_vec3(base[None])[0], "NORMAL": pk.add_vec3(normal[None])[0]}
-    indices = pk.add(triangles.astype(np.uint32).reshape(-1), "SCALAR",
-                     target=_ELEMENT_ARRAY_BUFFER)
-    return {"attributes": attributes, "indices": indices, "mode": _TRIANGLES, "material": 0,
-            **({"targets": targets} if T else {})}
+    indices = pk.add(
+        triangles.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER
+    )
+    return {
+        "attributes": attributes,
+        "indices": indices,
+        "mode": _TRIANGLES,
+        "material": 0,
+        **({"targets": targets} if T else {}),
+    }
 
 
 def _lines(pk: _Packer, motion: _Motion, edges: np.ndarray, material: int) -> dict:
@@ -387,9 +477,13 @@ def _lines(pk: _Packer, motion: _Motion, edges: np.ndarray, material: int) -> di
     indices = pk.add(local.astype(np.uint32).reshape(-1), "SCALAR", target=_ELEMENT_ARRAY_BUFFER)
     moved = pk.add_vec3(motion.poses[:, used] - base) if motion.targets else None
     targets = None if moved is None else [{"POSITION": p} for p in moved]
-    return {"attributes": {"POSITION": position}, "indices": indices, "mode": _LINES,
-            "material": material,
-            **({"targets": targets} if targets is not None else {})}
+    return {
+        "attributes": {"POSITION": position},
+        "indices": indices,
+        "mode": _LINES,
+        "material": material,
+        **({"targets": targets} if targets is not None else {}),
+    }
 
 
 def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -> list[dict]:
@@ -405,12 +499,15 @@ def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -
     weights[np.flatnonzero(shown), target_of[order][shown]] = 1.0
     t_acc = pk.add(times, "SCALAR", min_max=True)
     w_acc = pk.add(weights.reshape(-1), "SCALAR")
-    return [{
-        "name": "fold",
-        "channels": [{"sampler": 0, "target": {"node": n, "path": "weights"}}
-                     for n in range(nodes)],
-        "samplers": [{"input": t_acc, "interpolation": options.interpolation, "output": w_acc}],
-    }]
+    return [
+        {
+            "name": "fold",
+            "channels": [
+                {"sampler": 0, "target": {"node": n, "path": "weights"}} for n in range(nodes)
+            ],
+            "samplers": [{"input": t_acc, "interpolation": options.interpolation, "output": w_acc}],
+        }
+    ]
 
 
 def _extras(motion: _Motion, options: GlbOptions, scale: float, meta: dict) -> dict:
@@ -441,9 +538,20 @@ def _check_parts(parts, faces: int, edges: int) -> list[tuple[str, np.ndarray, n
             name, f, e = part
             f, e = np.asarray(f, np.int64).reshape(-1), np.asarray(e, np.int64).reshape(-1)
         except (TypeError, ValueError):
-            raise InputError(f"parts[{i}] must be (name, face indices, edge indices), got {part!r}") from None
-        if not isinstance(name, str) or len(f) == 0 or f.min() < 0 or f.max() >= faces or (len(e) and (e.min() < 0 or e.max() >= edges)):
-            raise InputError(f"parts[{i}] must be a name and indices of the mesh's {faces} faces (at least one) and {edges} edges")
+            raise InputError(
+                f"parts[{i}] must be (name, face indices, edge indices), got {part!r}"
+            ) from None
+        if (
+            not isinstance(name, str)
+            or len(f) == 0
+            or f.min() < 0
+            or f.max() >= faces
+            or (len(e) and (e.min() < 0 or e.max() >= edges))
+        ):
+            raise InputError(
+                f"parts[{i}] must be a name and indices of the mesh's {faces} faces "
+                f"(at least one) and {edges} edges"
+            )
         out.append((name, f, e))
     if not out:
         raise InputError("parts must hold at least one part")
@@ -455,6 +563,9 @@ def _check_morphs(morph_targets, vertices: int) -> dict[str, np.ndarray]:
     for name, delta in (morph_targets or {}).items():
         d = np.asarray(delta, float)
         if not isinstance(name, str) or d.shape != (vertices, 3) or not np.isfinite(d).all():
-            raise InputError(f"morph_targets[{name!r}] must be finite displacements of shape ({vertices}, 3), got shape {d.shape}")
+            raise InputError(
+                f"morph_targets[{name!r}] must be finite displacements of shape "
+                f"({vertices}, 3), got shape {d.shape}"
+            )
         out[name] = d
     return out

@@ -1,4 +1,5 @@
-"""Labels of crease-pattern sheets: the sheet's name and, beside every seam, its name, placed clear of the lines.
+"""Labels of crease-pattern sheets: the sheet's name and, beside every seam, its name, placed clear
+of the lines.
 
 A :class:`Label` is a line of text centred on a point of the page (mm). Each sheet's label
 goes near its middle, along the local direction of its lines; each seam's name
@@ -27,7 +28,17 @@ from ._planar import (
     upright,
 )
 
-__all__ = ["MIN_LABEL_SIZE", "Label", "seam_name", "text_width", "Obstacles", "label_sizes", "label_candidates", "seam_label", "sheet_label"]
+__all__ = [
+    "MIN_LABEL_SIZE",
+    "Label",
+    "seam_name",
+    "text_width",
+    "Obstacles",
+    "label_sizes",
+    "label_candidates",
+    "seam_label",
+    "sheet_label",
+]
 
 #: Smallest label size (em height, mm) used before a label is placed regardless of lines.
 MIN_LABEL_SIZE = 1.5
@@ -50,7 +61,12 @@ def text_width(text: str, size: float) -> float:
     A per-character estimate (DejaVu Sans / Arial proportions, rounded up) used to keep
     labels clear of lines; writers set text in a sans-serif font at this em height.
     """
-    em = sum([0.36 if c in _NARROW else 0.95 if c in _WIDE else 0.74 if c.isupper() else 0.64 for c in text])
+    em = sum(
+        [
+            0.36 if c in _NARROW else 0.95 if c in _WIDE else 0.74 if c.isupper() else 0.64
+            for c in text
+        ]
+    )
     return em * size
 
 
@@ -87,30 +103,50 @@ class Label:
         """The label mapped by the rotation ``matrix`` and ``offset`` (kept upright)."""
         p = matrix @ np.asarray(self.position) + offset
         turn = math.degrees(math.atan2(matrix[1, 0], matrix[0, 0]))
-        return Label(self.text, (float(p[0]), float(p[1])), upright(self.angle + turn), self.size, self.kind, self.seam)
+        return Label(
+            self.text,
+            (float(p[0]), float(p[1])),
+            upright(self.angle + turn),
+            self.size,
+            self.kind,
+            self.seam,
+        )
 
     def corners(self) -> np.ndarray:
         """The estimated text box, shape (4, 2): width from :func:`text_width`, height = size."""
-        return box_corners(np.asarray(self.position), math.radians(self.angle), text_width(self.text, self.size), self.size)
+        return box_corners(
+            np.asarray(self.position),
+            math.radians(self.angle),
+            text_width(self.text, self.size),
+            self.size,
+        )
 
 
 def _box_grid(text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
     """The box's sample points along its baseline (m,) and across it (5,), from its centre, mm."""
     width = text_width(text, size)
-    step = 0.4 * size  # a line between two points of a box comes within 0.2 size of one: caught by the 0.25 size clearance
-    return np.linspace(-width / 2, width / 2, max(2, math.ceil(width / step) + 1)), np.linspace(-size / 2, size / 2, 5)
+    # a line between two points of a box comes within 0.2 size of one: caught by the 0.25 size
+    # clearance
+    step = 0.4 * size
+    return np.linspace(-width / 2, width / 2, max(2, math.ceil(width / step) + 1)), np.linspace(
+        -size / 2, size / 2, 5
+    )
 
 
 def label_candidates(center: np.ndarray, angle: np.ndarray, text: str, size: float) -> np.ndarray:
-    """Sample points covering the text boxes, shape (C, K, 2): K = 5·m, row by row across the baseline (``_box_grid``)."""
+    """Sample points covering the text boxes, shape (C, K, 2): K = 5·m, row by row across the
+    baseline (``_box_grid``)."""
     return _grid_points(center, angle, *_box_grid(text, size))
 
 
 def _grid_points(center: np.ndarray, angle: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """The points (C, len(u)·len(v), 2) of the grid ``u`` × ``v`` (row by row) around each centre (C, 2), turned by ``angle`` (C,)."""
+    """The points (C, len(u)·len(v), 2) of the grid ``u`` × ``v`` (row by row) around each centre
+    (C, 2), turned by ``angle`` (C,)."""
     uu, vv = np.tile(u, len(v)), np.repeat(v, len(u))
     c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
-    return np.stack([center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1)
+    return np.stack(
+        [center[:, None, 0] + uu * c - vv * s, center[:, None, 1] + uu * s + vv * c], axis=-1
+    )
 
 
 class Obstacles:
@@ -126,11 +162,25 @@ class Obstacles:
     # near_any's, by the cells' side
     _grids: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
 
-    def __init__(self, segments: np.ndarray, spacing: float, extra: np.ndarray | None = None, *, _from: Obstacles | None = None):
+    def __init__(
+        self,
+        segments: np.ndarray,
+        spacing: float,
+        extra: np.ndarray | None = None,
+        *,
+        _from: Obstacles | None = None,
+    ):
         self.spacing = spacing
-        self.extra = np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
+        self.extra = (
+            np.zeros((0, 2, 2)) if extra is None else np.asarray(extra, float).reshape(-1, 2, 2)
+        )
         if _from is not None:  # share the sampled lines of another
-            self.points, self.directions, self._cells, self._grids = _from.points, _from.directions, _from._cells, _from._grids
+            self.points, self.directions, self._cells, self._grids = (
+                _from.points,
+                _from.directions,
+                _from._cells,
+                _from._grids,
+            )
             self._x, self._y = _from._x, _from._y
             return
         self._grids = {}  # the points bucketed in finer cells, by their side (:meth:`blocked`)
@@ -142,21 +192,30 @@ class Obstacles:
         self._x, self._y = ax[seg] + t * dx[seg], ay[seg] + t * dy[seg]  # (apart: gathered faster)
         self.points = np.stack([self._x, self._y], axis=1)
         self.directions = (np.stack([dx, dy], axis=1) / np.maximum(length, 1e-300)[:, None])[seg]
-        origin, side = (np.array([self._x.min(), self._y.min()]) if len(self.points) else np.zeros(2)), 20.0 * spacing
-        self._cells = (origin, side, *cell_index(self.points, origin, side))  # the points bucketed in cells
+        origin, side = (
+            (np.array([self._x.min(), self._y.min()]) if len(self.points) else np.zeros(2)),
+            20.0 * spacing,
+        )
+        # the points bucketed in cells
+        self._cells = (origin, side, *cell_index(self.points, origin, side))
 
     def plus(self, segments: np.ndarray) -> Obstacles:
         """These obstacles and ``segments`` (S, 2, 2) besides, without sampling the lines again."""
-        return Obstacles(np.zeros((0, 2, 2)), self.spacing, np.concatenate([self.extra, segments]), _from=self)
+        return Obstacles(
+            np.zeros((0, 2, 2)), self.spacing, np.concatenate([self.extra, segments]), _from=self
+        )
 
     def clearance(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Distance to the nearest obstacle (a sampled line's less half the spacing) and its direction."""
+        """Distance to the nearest obstacle (a sampled line's less half the spacing) and its
+        direction."""
         shape = points.shape[:-1]
         flat = points.reshape(-1, 2)
         found_dist, idx = nearest_points(self.points, flat, index=self._cells)
         found = idx < len(self.points)
         dist = np.where(found, found_dist - self.spacing / 2, np.inf)
-        direction = np.where(found[:, None], self.directions[np.where(found, idx, 0)], np.array([1.0, 0.0]))
+        direction = np.where(
+            found[:, None], self.directions[np.where(found, idx, 0)], np.array([1.0, 0.0])
+        )
         if len(self.extra):
             a, b = self.extra[:, 0], self.extra[:, 1]
             to_extra = point_segment_distance(flat[:, None], a[None], b[None])  # (N, S)
@@ -169,10 +228,18 @@ class Obstacles:
             direction = np.where(closer[:, None], along[nearest], direction)
         return dist.reshape(shape), direction.reshape(shape + (2,))
 
-    def _nearest_to_boxes(self, boxes: np.ndarray, grid: tuple[np.ndarray, np.ndarray], center: np.ndarray, angle: np.ndarray,
-                          limit: float, bounds: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    def _nearest_to_boxes(
+        self,
+        boxes: np.ndarray,
+        grid: tuple[np.ndarray, np.ndarray],
+        center: np.ndarray,
+        angle: np.ndarray,
+        limit: float,
+        bounds: tuple[np.ndarray, np.ndarray],
+    ) -> np.ndarray:
         """For boxes (C, K, 2) of :func:`label_candidates`: the smallest distance from their points
-        to the sampled lines if below ``limit``, else inf, (C,). ``bounds`` are the boxes' :func:`_bounds` for ``limit``.
+        to the sampled lines if below ``limit``, else inf, (C,). ``bounds`` are the boxes'
+        :func:`_bounds` for ``limit``.
 
         The distance of the nearest point to each box point, to the last bit (as
         :func:`~curvefold.io._planar.nearest_points` measures it), without measuring every pair:
@@ -182,22 +249,31 @@ class Obstacles:
         u, v = grid
         origin, side, order, keys, cells = self._cells
         reach = np.floor((np.stack(bounds, axis=1) - origin) / side)
-        lo, hi = (np.clip(reach[:, k], 0, cells - 1).astype(np.int64) for k in (0, 1))  # the cells around each box, (C, 2) each
+        # the cells around each box, (C, 2) each
+        lo, hi = (np.clip(reach[:, k], 0, cells - 1).astype(np.int64) for k in (0, 1))
         box, place = ragged(np.maximum(hi[:, 0] - lo[:, 0] + 1, 0))  # a column of cells, per box
         column = np.stack([lo[box, 0] + place, lo[box, 1]], axis=1)
         first = np.searchsorted(keys, cell_key(column), "left")
         column[:, 1] = hi[box, 1]
-        group, place = ragged(np.maximum(np.searchsorted(keys, cell_key(column), "right") - first, 0))
+        group, place = ragged(
+            np.maximum(np.searchsorted(keys, cell_key(column), "right") - first, 0)
+        )
         box, near = box[group], order[first[group] + place]
         x, y = np.take(self._x, near), np.take(self._y, near)
-        rx, ry = x - np.take(np.ascontiguousarray(center[:, 0]), box), y - np.take(np.ascontiguousarray(center[:, 1]), box)
+        rx, ry = (
+            x - np.take(np.ascontiguousarray(center[:, 0]), box),
+            y - np.take(np.ascontiguousarray(center[:, 1]), box),
+        )
         c, s = np.take(np.cos(angle), box), np.take(np.sin(angle), box)
         frame = rx * c + ry * s, ry * c - rx * s  # in the box's frame
         slack = limit * (1 + 1e-9)
-        keep = (np.abs(frame[0]) <= u[-1] + slack) & (np.abs(frame[1]) <= v[-1] + slack)  # within reach of the box
+        # within reach of the box
+        keep = (np.abs(frame[0]) <= u[-1] + slack) & (np.abs(frame[1]) <= v[-1] + slack)
         box, x, y = box[keep], x[keep], y[keep]
-        grid_cell = [np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0,
-                             len(g) - 2) for f, g in zip(frame, (u, v))]
+        grid_cell = [
+            np.clip(np.floor((f[keep] - g[0]) / (g[1] - g[0])).astype(np.int64), 0, len(g) - 2)
+            for f, g in zip(frame, (u, v))
+        ]
         # the corner (0, 0) of the grid's cell around each point
         at = box * boxes.shape[1] + grid_cell[1] * len(u) + grid_cell[0]
         corners_x, corners_y = boxes[..., 0].ravel(), boxes[..., 1].ravel()
@@ -221,36 +297,62 @@ class Obstacles:
             origin = self._cells[0]  # below and left of every point
             self._grids[reach] = (origin, *cell_index(self.points, origin, reach))
         u, v = _box_grid(text, size)
-        points = _grid_points(center, angle, u[[0, len(u) // 4, len(u) // 2, 3 * len(u) // 4, -1]], v[[0, -1]])
+        points = _grid_points(
+            center, angle, u[[0, len(u) // 4, len(u) // 2, 3 * len(u) // 4, -1]], v[[0, -1]]
+        )
         near = near_any(self.points, points.reshape(-1, 2), reach, self._grids[reach])
         return np.asarray(near.reshape(len(center), -1).any(axis=1))
 
-    def fits(self, center: np.ndarray, angle: np.ndarray, text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
-        """For the boxes of ``text`` at ``size`` centred on ``center`` (C, 2) along ``angle`` (C,) radians:
-        whether each keeps 0.25·size clear of every line, and its margin (counted up to one ``size``)."""
+    def fits(
+        self, center: np.ndarray, angle: np.ndarray, text: str, size: float
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """For the boxes of ``text`` at ``size`` centred on ``center`` (C, 2) along ``angle``
+        (C,) radians: whether each keeps 0.25·size clear of every line, and its margin
+        (counted up to one ``size``)."""
         grid = _box_grid(text, size)
         boxes = _grid_points(center, angle, *grid)
         lo, hi = _bounds(boxes, len(grid[0]), size)
-        worst = self._nearest_to_boxes(boxes, grid, center, angle, size, (lo, hi)) - self.spacing / 2
-        if len(self.extra):  # each box against the extra segments whose bounding boxes come within size of its own
-            box, segment = np.nonzero(((self.extra.max(axis=1)[None] >= lo[:, None]) & (self.extra.min(axis=1)[None] <= hi[:, None])).all(axis=2))
-            exact = point_segment_distance(boxes[box], self.extra[segment, None, 0], self.extra[segment, None, 1])  # (pairs, K)
+        worst = (
+            self._nearest_to_boxes(boxes, grid, center, angle, size, (lo, hi)) - self.spacing / 2
+        )
+        # each box against the extra segments whose bounding boxes come within size of its own
+        if len(self.extra):
+            box, segment = np.nonzero(
+                (
+                    (self.extra.max(axis=1)[None] >= lo[:, None])
+                    & (self.extra.min(axis=1)[None] <= hi[:, None])
+                ).all(axis=2)
+            )
+            # (pairs, K)
+            exact = point_segment_distance(
+                boxes[box], self.extra[segment, None, 0], self.extra[segment, None, 1]
+            )
             nearest = np.full(len(boxes), np.inf)
-            np.minimum.at(nearest, box, np.where(exact <= size, exact, np.inf).min(axis=1, initial=np.inf))
+            np.minimum.at(
+                nearest, box, np.where(exact <= size, exact, np.inf).min(axis=1, initial=np.inf)
+            )
             worst = np.minimum(worst, nearest)
         worst = np.minimum(worst, size)
         return worst >= 0.25 * size, worst
 
 
 def _bounds(boxes: np.ndarray, m: int, reach: float) -> tuple[np.ndarray, np.ndarray]:
-    """Corners (C, 2) of boxes around the points of boxes (C, 5·m, 2) (:func:`label_candidates`), ``reach`` wider
-    (and a little more: they are found from the four corner points, those of a straight grid)."""
+    """Corners (C, 2) of boxes around the points of boxes (C, 5·m, 2) (:func:`label_candidates`),
+    ``reach`` wider (and a little more: they are found from the four corner points, those of a
+    straight grid)."""
     corners = boxes[:, [0, m - 1, -m, -1]]
     reach = reach * (1 + 1e-9) + 1e-9 * float(np.abs(corners).max(initial=1.0))
     return corners.min(axis=1) - reach, corners.max(axis=1) + reach
 
 
-def _best_box(obstacles: Obstacles, center: np.ndarray, angle: np.ndarray, middle: np.ndarray, text: str, h: float) -> int | None:
+def _best_box(
+    obstacles: Obstacles,
+    center: np.ndarray,
+    angle: np.ndarray,
+    middle: np.ndarray,
+    text: str,
+    h: float,
+) -> int | None:
     """The candidate box that keeps clear of the lines with the best score: its margin (up to
     one ``h``) less a twentieth of its distance to ``middle``; None if none keeps clear.
 
@@ -260,13 +362,14 @@ def _best_box(obstacles: Obstacles, center: np.ndarray, angle: np.ndarray, middl
     """
     away = np.linalg.norm(center - middle, axis=1)
     order = np.argsort(away, kind="stable")
-    order = order[~obstacles.blocked(center[order], angle[order], text, h)]  # (they would score -inf)
+    # (they would score -inf)
+    order = order[~obstacles.blocked(center[order], angle[order], text, h)]
     score = np.full(len(center), -np.inf)
     best = -np.inf
     for start in range(0, len(order), 16):
         if h - 0.05 * away[order[start]] < best:
             break
-        batch = order[start:start + 16]
+        batch = order[start : start + 16]
         ok, worst = obstacles.fits(center[batch], angle[batch], text, h)
         score[batch] = np.where(ok, np.minimum(worst, h) - 0.05 * away[batch], -np.inf)
         best = max(best, float(score[batch].max()))
@@ -281,9 +384,11 @@ def label_sizes(preferred: float) -> list[float]:
     return out + [MIN_LABEL_SIZE]
 
 
-def seam_label(points: np.ndarray, seam: int, obstacles: Obstacles, size: float) -> tuple[Label, bool]:
-    """The name of seam ``seam`` inside the sheet beside the middle of its chain ``points`` (m + 1, 2)
-    (the sheet on their left), parallel to it, and whether it keeps clear of every line."""
+def seam_label(
+    points: np.ndarray, seam: int, obstacles: Obstacles, size: float
+) -> tuple[Label, bool]:
+    """The name of seam ``seam`` inside the sheet beside the middle of its chain ``points`` (m +
+    1, 2) (the sheet on their left), parallel to it, and whether it keeps clear of every line."""
     text = seam_name(seam)
     p = points
     d = np.diff(p, axis=0)
@@ -301,19 +406,35 @@ def seam_label(points: np.ndarray, seam: int, obstacles: Obstacles, size: float)
         center = (base[:, None] + gaps[None, :, None] * left[:, None]).reshape(-1, 2)
         angle = np.repeat(np.arctan2(t[:, 1], t[:, 0]), len(gaps))
         if fallback is None:
-            fallback = Label(text, tuple(center[0]), upright(math.degrees(angle[0])), MIN_LABEL_SIZE, "seam", seam)
-        for first in range(0, len(center), 12):  # candidates are in order of preference: the first that keeps clear
-            ok, _ = obstacles.fits(center[first:first + 12], angle[first:first + 12], text, h)
+            fallback = Label(
+                text,
+                tuple(center[0]),
+                upright(math.degrees(angle[0])),
+                MIN_LABEL_SIZE,
+                "seam",
+                seam,
+            )
+        # candidates are in order of preference: the first that keeps clear
+        for first in range(0, len(center), 12):
+            ok, _ = obstacles.fits(center[first : first + 12], angle[first : first + 12], text, h)
             if ok.any():
                 i = first + int(np.argmax(ok))
-                return Label(text, (float(center[i, 0]), float(center[i, 1])), upright(math.degrees(angle[i])), h, "seam", seam), True
+                return Label(
+                    text,
+                    (float(center[i, 0]), float(center[i, 1])),
+                    upright(math.degrees(angle[i])),
+                    h,
+                    "seam",
+                    seam,
+                ), True
     if fallback is None:  # pragma: no cover - label_sizes gives at least one size
         raise InternalError(f"no label size to try for seam {seam}")
     return fallback, False
 
 
-def sheet_label(text: str, centroids: np.ndarray, areas: np.ndarray, obstacles: Obstacles,
-                 size: float) -> tuple[Label, bool]:
+def sheet_label(
+    text: str, centroids: np.ndarray, areas: np.ndarray, obstacles: Obstacles, size: float
+) -> tuple[Label, bool]:
     """The sheet's label: clear of every line, along the local direction, near the middle.
 
     Candidates are triangle centroids (C, 2); among the boxes that keep clear of the lines
@@ -335,6 +456,13 @@ def sheet_label(text: str, centroids: np.ndarray, areas: np.ndarray, obstacles: 
         angle = np.concatenate([along, np.zeros(keep.size)])
         found = _best_box(obstacles, center, angle, middle, text, h)
         if found is not None:
-            return Label(text, (float(center[found, 0]), float(center[found, 1])), upright(math.degrees(angle[found])), h), True
+            return Label(
+                text,
+                (float(center[found, 0]), float(center[found, 1])),
+                upright(math.degrees(angle[found])),
+                h,
+            ), True
     along = math.degrees(math.atan2(direction[best, 1], direction[best, 0]))
-    return Label(text, (float(centroids[best, 0]), float(centroids[best, 1])), upright(along), MIN_LABEL_SIZE), False
+    return Label(
+        text, (float(centroids[best, 0]), float(centroids[best, 1])), upright(along), MIN_LABEL_SIZE
+    ), False

@@ -27,7 +27,8 @@ Layers, drawn bottom to top (:data:`LAYERS`)
     ``cut``               everything to cut through: each sheet's closed outline (boundary and
                           seam edges) going around the outer sides of its glue tabs;
     ``labels``            the sheet label and, inside the sheet beside the middle of every seam
-                          chain, the seam's name (:func:`~curvefold.io._labels.seam_name`), the same on both partners.
+                          chain, the seam's name (:func:`~curvefold.io._labels.seam_name`), the same
+                          on both partners.
     ====================  ================================================================
 
 No line appears in two layers, so a laser never cuts or scores a line twice. Triangulating
@@ -83,7 +84,8 @@ FOOTER = 14.0
 
 
 def page_size(page: str | tuple[float, float], *, units: str = "mm") -> tuple[float, float]:
-    """Page (width, height) in mm from a name in :data:`~curvefold.io._tables.PAGES` or a pair in ``units``.
+    """Page (width, height) in mm from a name in :data:`~curvefold.io._tables.PAGES` or a pair in
+    ``units``.
 
     Examples
     --------
@@ -133,7 +135,10 @@ class Polyline:
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray) -> Polyline:
         """The polyline mapped by ``x -> matrix @ x + offset``."""
-        return Polyline(self.layer, readonly(self.points @ matrix.T + offset), self.closed, self.seam)  # (a new array: held, not copied)
+        # (a new array: held, not copied)
+        return Polyline(
+            self.layer, readonly(self.points @ matrix.T + offset), self.closed, self.seam
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -287,13 +292,15 @@ class _Local:
 
     xy: np.ndarray  # (V, 2)
     mirror: bool
-    loops: list[tuple[np.ndarray, np.ndarray]]  # per loop: vertex ids (n,), edge ids (n,), interior on the left
+    # per loop: vertex ids (n,), edge ids (n,), interior on the left
+    loops: list[tuple[np.ndarray, np.ndarray]]
     chains: list[_Chain]
     creases: list[tuple[str, np.ndarray, bool, int]]  # mountain, valley, rulings: Polyline's fields
 
 
 def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
-    mesh = sheet.mesh.triangulated()  # polygons split; the added diagonals come after the sheet's own edges
+    # polygons split; the added diagonals come after the sheet's own edges
+    mesh = sheet.mesh.triangulated()
     name = sheet.label
     xy = mesh.vertices_coords[:, :2] * scale
     faces = mesh.faces_vertices
@@ -314,11 +321,18 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
     outline = np.isin(mesh.edges_kind, ("boundary", "seam"))
     bad = np.flatnonzero(outline & (nfaces != 1))
     if bad.size:
-        raise InputError(f"sheet {name!r}: edge {bad[0]} of kind {str(mesh.edges_kind[bad[0]])!r} must border exactly one triangle, borders {nfaces[bad[0]]}")
+        raise InputError(
+            f"sheet {name!r}: edge {bad[0]} of kind "
+            f"{str(mesh.edges_kind[bad[0]])!r} must border exactly one triangle, borders "
+            f"{nfaces[bad[0]]}"
+        )
     bad = np.flatnonzero(~outline & (nfaces != 2))
     if bad.size:
-        raise InputError(f"sheet {name!r}: edge {bad[0]} borders {nfaces[bad[0]]} triangle(s), so it lies on the outline, "
-                         f"but its kind is {str(mesh.edges_kind[bad[0]])!r} (must be 'boundary' or 'seam')")
+        raise InputError(
+            f"sheet {name!r}: edge {bad[0]} borders {nfaces[bad[0]]} triangle(s), "
+            f"so it lies on the outline, but its kind is {str(mesh.edges_kind[bad[0]])!r} "
+            "(must be 'boundary' or 'seam')"
+        )
 
     # Outline loops, directed as their triangle traverses them (interior on the left).
     ids = np.flatnonzero(outline)
@@ -338,7 +352,8 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
             used[j] = True
             order.append(j)
             after = out_of.get(heads[j], ())
-            j = after[0] if len(after) == 1 else next((k for k in after if not used[k]), j0)  # (one but where loops touch)
+            # (one but where loops touch)
+            j = after[0] if len(after) == 1 else next((k for k in after if not used[k]), j0)
         loops.append((directed[order, 0], ids[order]))
 
     chains = []
@@ -355,13 +370,22 @@ def _local_sheet(index: int, sheet: PatternSheet, scale: float) -> _Local:
             chains.append(_Chain(index, int(sid[s0]), li, s0, count, xy[idx]))
 
     kind, assign = mesh.edges_kind, mesh.edges_assignment
-    paths = [(layer, path, closed) for layer, mask in (("mountain", (kind == "fold") & (assign == "M")),
-                                                       ("valley", (kind == "fold") & (assign == "V")),
-                                                       ("rulings", kind == "ruling"))
-             for path, closed in _chain_edges(mesh.edges_vertices[mask])]
-    points = xy[[v for _, path, _ in paths for v in path]]  # every crease's points, gathered at once
+    paths = [
+        (layer, path, closed)
+        for layer, mask in (
+            ("mountain", (kind == "fold") & (assign == "M")),
+            ("valley", (kind == "fold") & (assign == "V")),
+            ("rulings", kind == "ruling"),
+        )
+        for path, closed in _chain_edges(mesh.edges_vertices[mask])
+    ]
+    # every crease's points, gathered at once
+    points = xy[[v for _, path, _ in paths for v in path]]
     ends = np.cumsum([len(path) for _, path, _ in paths]).tolist()
-    creases = [(layer, points[end - len(path):end], closed, -1) for (layer, path, closed), end in zip(paths, ends)]
+    creases = [
+        (layer, points[end - len(path) : end], closed, -1)
+        for (layer, path, closed), end in zip(paths, ends)
+    ]
     return _Local(xy, mirror, loops, chains, creases)
 
 
@@ -376,7 +400,9 @@ def _check_length(name: str, value: float, units: float, *, positive: bool) -> f
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a number, got {value!r}") from None
     if not math.isfinite(v) or v < 0 or (positive and v == 0):
-        raise InputError(f"{name} must be {'positive' if positive else 'non-negative'} and finite, got {value!r}")
+        raise InputError(
+            f"{name} must be {'positive' if positive else 'non-negative'} and finite, got {value!r}"
+        )
     return v * units
 
 
@@ -445,10 +471,11 @@ def layout_sheets(
     ----------
     sheets : sequence of PatternSheet
     page : str or (2,) tuple of float
-        A name in :data:`~curvefold.io._tables.PAGES` (case-insensitive: ``"A4"``, ``"A3"``, ``"Letter"``…)
-        or (width, height) in ``units``. Portrait names; pass a pair for landscape.
+        A name in :data:`~curvefold.io._tables.PAGES` (case-insensitive: ``"A4"``, ``"A3"``,
+        ``"Letter"``…) or (width, height) in ``units``. Portrait names; pass a pair for landscape.
     units : str
-        Unit of every length argument, a name in :data:`~curvefold.io._tables.UNITS` (``"mm"``, ``"cm"``, ``"in"``…).
+        Unit of every length argument, a name in :data:`~curvefold.io._tables.UNITS` (``"mm"``,
+        ``"cm"``, ``"in"``…).
     scale : float, optional
         Page length (in ``units``) per model unit; default 1.
     target_size : float, optional
@@ -479,47 +506,72 @@ def layout_sheets(
     W, H = page_size(page, units=units)
     page_name = page if isinstance(page, str) else "custom"
     if scale is not None and target_size is not None:
-        raise InputError(f"give scale or target_size, not both (got scale={scale!r}, target_size={target_size!r})")
+        raise InputError(
+            f"give scale or target_size, not both (got scale={scale!r}, "
+            f"target_size={target_size!r})"
+        )
     scale_mm = _check_length("scale", 1.0 if scale is None else scale, f, positive=True)
-    target = (None if target_size is None
-              else _check_length("target_size", target_size, f, positive=True))
+    target = (
+        None if target_size is None else _check_length("target_size", target_size, f, positive=True)
+    )
     if not isinstance(rules, LayoutRules):
-        raise InputError(f"rules must be a LayoutRules, got {type(rules).__name__}",
-                         parameter="rules")
+        raise InputError(
+            f"rules must be a LayoutRules, got {type(rules).__name__}", parameter="rules"
+        )
     r = rules
     margin = _check_length("margin", 10.0 / f if r.margin is None else r.margin, f, positive=False)
     gap = _check_length("gap", 4.0 / f if r.gap is None else r.gap, f, positive=False)
-    tab_width = _check_length("tab_width", 6.0 / f if r.tab_width is None else r.tab_width, f,
-                              positive=True)
-    tab_length = _check_length("tab_length",
-                               5 * tab_width / f if r.tab_length is None else r.tab_length, f,
-                               positive=True)
-    label_size = _check_length("label_size", 4.0 / f if r.label_size is None else r.label_size, f,
-                               positive=True)
+    tab_width = _check_length(
+        "tab_width", 6.0 / f if r.tab_width is None else r.tab_width, f, positive=True
+    )
+    tab_length = _check_length(
+        "tab_length", 5 * tab_width / f if r.tab_length is None else r.tab_length, f, positive=True
+    )
+    label_size = _check_length(
+        "label_size", 4.0 / f if r.label_size is None else r.label_size, f, positive=True
+    )
     tab_angle = r.tab_angle
     if not (isinstance(tab_angle, (int, float)) and 0 < tab_angle < 90):
         raise InputError(f"tab_angle must be in (0, 90) degrees, got {tab_angle!r}")
-    footer = _check_length("footer", FOOTER / f if r.footer is None else r.footer, f,
-                           positive=False)
+    footer = _check_length(
+        "footer", FOOTER / f if r.footer is None else r.footer, f, positive=False
+    )
     avail = (W - 2 * margin, H - 2 * margin - footer)
     if min(avail) <= 0:
-        raise InputError(f"margin {margin:g} mm and footer {footer:g} mm leave no room on a {W:g} × {H:g} mm page")
+        raise InputError(
+            f"margin {margin:g} mm and footer {footer:g} mm leave no room on a "
+            f"{W:g} × {H:g} mm page"
+        )
 
     if target is not None:
         xys = [sh.mesh.vertices_coords[:, :2] for sh in sheets]
-        longest = max([0.0, *(float(np.ptp(bounding_box(xy @ rotation(rot).T), axis=0).max()) for xy, rot in zip(xys, min_area_rotations(xys)))])
+        longest = max(
+            [
+                0.0,
+                *(
+                    float(np.ptp(bounding_box(xy @ rotation(rot).T), axis=0).max())
+                    for xy, rot in zip(xys, min_area_rotations(xys))
+                ),
+            ]
+        )
         if longest <= 0:
             raise InputError("target_size needs sheets of non-zero size; every sheet is a point")
         scale_mm = target / longest
 
     xys = [sh.mesh.vertices_coords[:, :2] * scale_mm for sh in sheets]
-    for sh, xy, rot in zip(sheets, xys, min_area_rotations(xys)):  # a sheet too large for the page is refused before any tab or label is placed
-        w, h = (np.ptp(bounding_box(xy @ rotation(rot).T), axis=0) if np.isfinite(xy).all() else (math.inf,) * 2)
+    # a sheet too large for the page is refused before any tab or label is placed
+    for sh, xy, rot in zip(sheets, xys, min_area_rotations(xys)):
+        w, h = (
+            np.ptp(bounding_box(xy @ rotation(rot).T), axis=0)
+            if np.isfinite(xy).all()
+            else (math.inf,) * 2
+        )
         if max(w, h) > max(avail) or min(w, h) > min(avail):
             raise InputError(
-                f"sheet {sh.label!r} needs {max(w, h):.4g} × {min(w, h):.4g} mm before glue tabs at scale {scale_mm:g} mm per unit, "
-                f"but the {page_name} page ({W:g} × {H:g} mm) has {avail[0]:g} × {avail[1]:g} mm inside its margins; "
-                f"lower the scale or choose a larger page"
+                f"sheet {sh.label!r} needs {max(w, h):.4g} × {min(w, h):.4g} mm before glue tabs "
+                f"at scale {scale_mm:g} mm per unit, but the {page_name} page ({W:g} × "
+                f"{H:g} mm) has {avail[0]:g} × {avail[1]:g} mm inside its margins; lower "
+                "the scale or choose a larger page"
             )
 
     notes: list[str] = []
@@ -534,39 +586,63 @@ def layout_sheets(
     for sid, chains in sorted(by_seam.items()):
         owners = sorted({c.sheet for c in chains})
         if len(owners) > 2:
-            raise InputError(f"seam id {sid} appears on sheets {owners}; a seam joins at most two sheets")
+            raise InputError(
+                f"seam id {sid} appears on sheets {owners}; a seam joins at most two sheets"
+            )
         if len(owners) == 2:
-            lengths = [sum(float(np.linalg.norm(np.diff(c.points, axis=0), axis=1).sum()) for c in chains if c.sheet == o) for o in owners]
+            lengths = [
+                sum(
+                    float(np.linalg.norm(np.diff(c.points, axis=0), axis=1).sum())
+                    for c in chains
+                    if c.sheet == o
+                )
+                for o in owners
+            ]
             if abs(lengths[0] - lengths[1]) > 1e-2 * max(lengths):
-                notes.append(f"seam {seam_name(sid)}: lengths differ between {sheets[owners[0]].label!r} "
-                             f"({lengths[0]:.2f} mm) and {sheets[owners[1]].label!r} ({lengths[1]:.2f} mm)")
+                notes.append(
+                    f"seam {seam_name(sid)}: lengths differ between "
+                    f"{sheets[owners[0]].label!r} ({lengths[0]:.2f} mm) and "
+                    f"{sheets[owners[1]].label!r} ({lengths[1]:.2f} mm)"
+                )
         if glue_tabs:
             mine = [c for c in chains if c.sheet == owners[0]]
-            for c in (mine[:1] if len(owners) == 1 and len(mine) > 1 else mine):
+            for c in mine[:1] if len(owners) == 1 and len(mine) > 1 else mine:
                 tabbed.add(id(c))
 
     sheet_rules = _SheetRules(tab_width, tab_length, math.radians(tab_angle), label_size)
     items = [_build_sheet(sh, loc, tabbed, sheet_rules, notes) for sh, loc in zip(sheets, locals_)]
 
-    placements = pack_pages([it[1] for it in items], avail, gap, margin, (W, H), [sh.label for sh in sheets], page_name)
+    placements = pack_pages(
+        [it[1] for it in items], avail, gap, margin, (W, H), [sh.label for sh in sheets], page_name
+    )
     pages: list[list[PlacedSheet]] = [[] for _ in range(1 + max(p[0] for p in placements))]
-    for i, ((lines, footprint, labels, mirror), (pg, rot, offset)) in enumerate(zip(items, placements)):
+    for i, ((lines, footprint, labels, mirror), (pg, rot, offset)) in enumerate(
+        zip(items, placements)
+    ):
         R = rotation(rot)
         mat = R @ np.diag([-scale_mm if mirror else scale_mm, scale_mm])
         points = readonly(footprint @ R.T + offset)  # every line's points, moved at once
         ends = np.cumsum([len(line[1]) for line in lines]).tolist()
-        pages[pg].append(PlacedSheet(
-            index=i,
-            label=sheets[i].label,
-            transform=np.concatenate([mat, offset[:, None]], axis=1),
-            polylines=tuple(Polyline(layer, points[end - len(pts):end], closed, seam) for (layer, pts, closed, seam), end in zip(lines, ends)),
-            labels=tuple(t.transformed(R, offset) for t in labels),
-        ))
-    return Layout(tuple(Page((W, H), tuple(p)) for p in pages), (W, H), margin, scale_mm, tuple(notes), footer)
+        pages[pg].append(
+            PlacedSheet(
+                index=i,
+                label=sheets[i].label,
+                transform=np.concatenate([mat, offset[:, None]], axis=1),
+                polylines=tuple(
+                    Polyline(layer, points[end - len(pts) : end], closed, seam)
+                    for (layer, pts, closed, seam), end in zip(lines, ends)
+                ),
+                labels=tuple(t.transformed(R, offset) for t in labels),
+            )
+        )
+    return Layout(
+        tuple(Page((W, H), tuple(p)) for p in pages), (W, H), margin, scale_mm, tuple(notes), footer
+    )
 
 
 def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np.ndarray:
-    """Segments (S, 2, 2) of a sheet's outline loops, tabbed seams split where their tab pieces meet."""
+    """Segments (S, 2, 2) of a sheet's outline loops, tabbed seams split where their tab pieces
+    meet."""
     segs = []
     for li, (verts, _) in enumerate(loc.loops):
         n = len(verts)
@@ -576,26 +652,41 @@ def _outline_segments(loc: _Local, pieces_of: dict[int, list[np.ndarray]]) -> np
                 keep[(ch.start + np.arange(ch.count)) % n] = False
         p = loc.xy[verts]
         segs.append(np.stack([p, np.roll(p, -1, axis=0)], axis=1)[keep])
-    segs += [polyline_segments([(piece, False)]) for pieces in pieces_of.values() for piece in pieces]
+    segs += [
+        polyline_segments([(piece, False)]) for pieces in pieces_of.values() for piece in pieces
+    ]
     return np.concatenate(segs)
 
 
-def _build_sheet(sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _SheetRules,
-                 notes: list[str]) -> tuple[list[tuple[str, np.ndarray, bool, int]], np.ndarray,
-                                            list[Label], bool]:
+def _build_sheet(
+    sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _SheetRules, notes: list[str]
+) -> tuple[list[tuple[str, np.ndarray, bool, int]], np.ndarray, list[Label], bool]:
     """The lines of one sheet in its local mm frame, as :class:`Polyline`'s fields (layer, points,
     closed, seam), all their points (its footprint), its labels and whether it is mirrored."""
     tab_width, tab_length, taper = rules.tab_width, rules.tab_length, rules.taper
     label_size = rules.label_size
     name = sheet.label
-    pieces_of = {id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width) for ch in loc.chains if id(ch) in tabbed}
+    pieces_of = {
+        id(ch): tab_pieces(ch.points, tab_length, 2.5 * tab_width)
+        for ch in loc.chains
+        if id(ch) in tabbed
+    }
     outline = _outline_segments(loc, pieces_of)
-    tol = 1e-9 * max(float(np.ptp(bounding_box(loc.xy), axis=0).max()), 1.0)  # coordinate rounding, mm
+    # coordinate rounding, mm
+    tol = 1e-9 * max(float(np.ptp(bounding_box(loc.xy), axis=0).max()), 1.0)
     # per loop: position of first edge -> (count of edges, replacement points without the last)
     replace: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     lines: list[tuple[str, np.ndarray, bool, int]] = []
     tabbed_chains = [ch for ch in loc.chains if id(ch) in pieces_of]
-    placed = iter(place_tabs([piece for ch in tabbed_chains for piece in pieces_of[id(ch)]], outline, tab_width, taper, tol))
+    placed = iter(
+        place_tabs(
+            [piece for ch in tabbed_chains for piece in pieces_of[id(ch)]],
+            outline,
+            tab_width,
+            taper,
+            tol,
+        )
+    )
     for ch in tabbed_chains:
         pieces = pieces_of[id(ch)]
         cut_parts, dropped, narrowed = [], 0, 0
@@ -618,8 +709,11 @@ def _build_sheet(sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _She
                 lines.append(("seam", line, False, ch.seam))
         replace[(ch.loop, ch.start)] = (ch.count, np.concatenate(cut_parts))
         if narrowed or dropped:
-            notes.append(f"sheet {name!r}, seam {seam_name(ch.seam)}: {narrowed} glue tab piece(s) narrowed, "
-                         f"{dropped} left out (of {len(pieces)}) to keep clear of the sheet")
+            notes.append(
+                f"sheet {name!r}, seam {seam_name(ch.seam)}: {narrowed} glue tab "
+                f"piece(s) narrowed, {dropped} left out (of {len(pieces)}) to keep clear of "
+                "the sheet"
+            )
 
     for li, (verts, _) in enumerate(loc.loops):
         n = len(verts)
@@ -636,14 +730,20 @@ def _build_sheet(sheet: PatternSheet, loc: _Local, tabbed: set[int], rules: _She
     lines.extend(loc.creases)
 
     # Labels: seam names first (each then becomes an obstacle), then the sheet label.
-    obstacle_lines = [(points, closed) for layer, points, closed, _ in lines if layer in ("cut", "seam", "mountain", "valley")]
+    obstacle_lines = [
+        (points, closed)
+        for layer, points, closed, _ in lines
+        if layer in ("cut", "seam", "mountain", "valley")
+    ]
     segments = polyline_segments(obstacle_lines)
     obstacles = Obstacles(segments, 0.1 * MIN_LABEL_SIZE)
     labels: list[Label] = []
     for ch in loc.chains:
         lab, ok = seam_label(ch.points, ch.seam, obstacles, 0.8 * label_size)
         if not ok:
-            notes.append(f"sheet {name!r}: seam name {lab.text} could not be kept clear of the lines")
+            notes.append(
+                f"sheet {name!r}: seam name {lab.text} could not be kept clear of the lines"
+            )
         labels.append(lab)
         obstacles = obstacles.plus(polyline_segments([(lab.corners(), True)]))
     tri = loc.xy[sheet.mesh.triangulated().faces_vertices]

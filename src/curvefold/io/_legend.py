@@ -1,4 +1,5 @@
-"""What every crease-pattern page carries besides its sheets: the look of each layer, and the footer.
+"""What every crease-pattern page carries besides its sheets: the look of each layer, and the
+footer.
 
 :func:`layer_look` gives a layout layer's file layer name, colour and line style in the
 layout's cutter convention (:mod:`curvefold.io._cutters`); :func:`page_footer` lays out the
@@ -24,22 +25,32 @@ from ._cutters import STYLES, LayerStyle, cutter, layer_name
 from ._labels import Label, seam_name, text_width
 from ._layout import LAYERS, Layout
 
-__all__ = ["DEFAULT_LAYERS", "LEGEND", "Footer", "check_layout", "check_layers",
-           "check_line_width", "layer_look", "page_footer"]
+__all__ = [
+    "DEFAULT_LAYERS",
+    "LEGEND",
+    "Footer",
+    "check_layout",
+    "check_layers",
+    "check_line_width",
+    "layer_look",
+    "page_footer",
+]
 
 #: Layers the writers draw by default.
 DEFAULT_LAYERS = tuple(name for name in LAYERS if name != "rulings")
 
 #: What each layer means, as the legend says it.
-LEGEND = MappingProxyType({
-    "cut": "cut",
-    "mountain": "mountain fold",
-    "valley": "valley fold",
-    "seam": "glue-tab fold",
-    "glue": "glue",
-    "rulings": "ruling",
-    "labels": "glue the edges named alike",
-})
+LEGEND = MappingProxyType(
+    {
+        "cut": "cut",
+        "mountain": "mountain fold",
+        "valley": "valley fold",
+        "seam": "glue-tab fold",
+        "glue": "glue",
+        "rulings": "ruling",
+        "labels": "glue the edges named alike",
+    }
+)
 _FOOTER_TEXT = 2.2  # em height of the footer's text, mm
 _SAMPLE = 8.0  # length of a legend's sample line, mm
 
@@ -47,7 +58,9 @@ _SAMPLE = 8.0  # length of a legend's sample line, mm
 def check_layout(layout: Layout) -> None:
     """Refuse what is not a :class:`~curvefold.io.Layout`."""
     if not isinstance(layout, Layout):
-        raise InputError(f"layout must be a Layout (from layout_sheets), got {type(layout).__name__}")
+        raise InputError(
+            f"layout must be a Layout (from layout_sheets), got {type(layout).__name__}"
+        )
 
 
 def check_layers(layers: Collection[str] | None) -> tuple[str, ...]:
@@ -68,7 +81,11 @@ def layer_look(layout: Layout, key: str) -> tuple[str, str, LayerStyle]:
     Perforated creases are solid lines: their dashes are geometry.
     """
     perforated = layout.perforation is not None and key in ("mountain", "valley")
-    return layer_name(key, perforated=perforated), cutter(layout.cutter).colours[key], LayerStyle() if perforated else STYLES[key]
+    return (
+        layer_name(key, perforated=perforated),
+        cutter(layout.cutter).colours[key],
+        LayerStyle() if perforated else STYLES[key],
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,8 +111,15 @@ class Footer(FrozenArrays):
     colour: str
 
 
-def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None = None, *, page_text: str | None = None) -> Footer:
-    """The footer of a page: a 10 mm scale bar with the print scale, and the legend of the ``layers`` it draws.
+def page_footer(
+    layout: Layout,
+    page_index: int,
+    layers: Collection[str] | None = None,
+    *,
+    page_text: str | None = None,
+) -> Footer:
+    """The footer of a page: a 10 mm scale bar with the print scale, and the legend of the
+    ``layers`` it draws.
 
     It lies in the band of :attr:`Layout.footer` above the bottom margin, so it prints
     wherever the sheets do. Text starts where its box is estimated (:func:`text_width`).
@@ -104,7 +128,11 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
     """
     page = layout.pages[page_index]
     drawn = set(check_layers(layers))
-    names = [name for name in LEGEND if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))]
+    names = [
+        name
+        for name in LEGEND
+        if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))
+    ]
     page_text = f"page {page_index + 1} of {len(layout.pages)}" if page_text is None else page_text
     W, _ = layout.page_size
     m, size = layout.margin, _FOOTER_TEXT
@@ -123,7 +151,8 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
             x, row = m, row + 1
         entries.append((name, x, lead, row))
         x += width + 4.0
-    step = min(1.8 * size, (top - m - 0.5 * size) / max(row, 1))  # rows closer together rather than into the margin
+    # rows closer together rather than into the margin
+    step = min(1.8 * size, (top - m - 0.5 * size) / max(row, 1))
     texts = [text(note, m + 12.0, top)]
     samples = []
     for name, x, lead, row in entries:
@@ -132,11 +161,23 @@ def page_footer(layout: Layout, page_index: int, layers: Collection[str] | None 
         if name == "labels":
             texts.append(text(seam_name(1), x, y))
         elif st.fill:
-            samples.append((name, np.array([[x, y - 1.0], [x + _SAMPLE, y - 1.0], [x + _SAMPLE, y + 1.0], [x, y + 1.0]])))
+            samples.append(
+                (
+                    name,
+                    np.array(
+                        [[x, y - 1.0], [x + _SAMPLE, y - 1.0], [x + _SAMPLE, y + 1.0], [x, y + 1.0]]
+                    ),
+                )
+            )
         else:
             samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
         texts.append(text(f"{LEGEND[name]} {colour}", x + lead + 1.5, y))
-    return Footer(tuple((name, readonly(points)) for name, points in samples), bar, tuple(texts), layer_look(layout, "legend")[1])
+    return Footer(
+        tuple((name, readonly(points)) for name, points in samples),
+        bar,
+        tuple(texts),
+        layer_look(layout, "legend")[1],
+    )
 
 
 def check_line_width(line_width: float) -> float:

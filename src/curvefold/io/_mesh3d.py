@@ -51,7 +51,9 @@ __all__ = [
 ]
 
 #: Rotation from the model's axes to a file's, for a file whose up axis is y or z.
-Y_UP = MappingProxyType({"y": readonly(np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])), "z": readonly(np.eye(3))})
+Y_UP = MappingProxyType(
+    {"y": readonly(np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])), "z": readonly(np.eye(3))}
+)
 
 
 def check_metadata(metadata: Mapping | None) -> dict:
@@ -85,7 +87,9 @@ def check_metadata(metadata: Mapping | None) -> dict:
     if metadata is None:
         return {}
     if not isinstance(metadata, Mapping):
-        raise InputError(f"metadata must be a mapping of str to number/str, got {type(metadata).__name__}")
+        raise InputError(
+            f"metadata must be a mapping of str to number/str, got {type(metadata).__name__}"
+        )
     out: dict = {}
     for key, value in metadata.items():
         if not isinstance(key, str):
@@ -100,7 +104,9 @@ def check_metadata(metadata: Mapping | None) -> dict:
                 raise InputError(f"metadata[{key!r}] must be finite, got {value}")
             out[key] = float(value)
         else:
-            raise InputError(f"metadata[{key!r}] must be a number or a str, got {type(value).__name__} {value!r}")
+            raise InputError(
+                f"metadata[{key!r}] must be a number or a str, got {type(value).__name__} {value!r}"
+            )
     return out
 
 
@@ -142,16 +148,22 @@ def crease_polylines(
     Examples
     --------
     >>> from curvefold.geometry import Mesh
-    >>> m = Mesh(vertices_coords=np.zeros((0, 3)), edges_vertices=np.zeros((0, 2), int),
-    ...          edges_assignment=np.zeros(0, str), edges_foldAngle=np.zeros(0),
-    ...          faces_vertices=np.zeros((0, 3), int), edges_kind=np.zeros(0, str),
-    ...          faces_group=np.zeros(0, int))
+    >>> m = Mesh(
+    ...     vertices_coords=np.zeros((0, 3)),
+    ...     edges_vertices=np.zeros((0, 2), int),
+    ...     edges_assignment=np.zeros(0, str),
+    ...     edges_foldAngle=np.zeros(0),
+    ...     faces_vertices=np.zeros((0, 3), int),
+    ...     edges_kind=np.zeros(0, str),
+    ...     faces_group=np.zeros(0, int),
+    ... )
     >>> crease_polylines(m)
     []
     """
     kinds = _check_kinds(kinds)
     chosen = np.flatnonzero(np.isin(mesh.edges_kind, kinds)).tolist()
-    ends = dict(zip(chosen, mesh.edges_vertices[chosen].tolist()))  # Python ints: the walk below is one step at a time
+    # Python ints: the walk below is one step at a time
+    ends = dict(zip(chosen, mesh.edges_vertices[chosen].tolist()))
     incident: dict[int, list[int]] = {}
     for e in chosen:
         a, b = ends[e]
@@ -259,7 +271,11 @@ def write_obj(
     x = np.asarray(mesh.vertices_coords, float) @ Y_UP[up].T
     if not np.isfinite(x).all():
         raise InputError("mesh.vertices_coords must be finite")
-    axes = "+Y up: (x, y, z) of the model written as (x, z, -y)" if up == "y" else "+Z up, as in the model"
+    axes = (
+        "+Y up: (x, y, z) of the model written as (x, z, -y)"
+        if up == "y"
+        else "+Z up, as in the model"
+    )
     parts = ["# written by curvefold\n", f"# unit: {_line_end(unit)}\n", f"# axes: {axes}\n"]
     parts += [f"# {k}: {_comment(v)}\n" for k, v in meta.items()]
     parts.append(f"o {_line_end(name)}\n")
@@ -267,7 +283,11 @@ def write_obj(
     parts.append("g surface\n")
     faces = mesh.faces_vertices
     if (faces < 0).any():  # polygons of mixed sizes
-        parts.append("".join("f " + " ".join(str(v + 1) for v in row if v >= 0) + "\n" for row in faces.tolist()))
+        parts.append(
+            "".join(
+                "f " + " ".join(str(v + 1) for v in row if v >= 0) + "\n" for row in faces.tolist()
+            )
+        )
     else:
         parts.append(_fmt_rows("f", faces + 1, "%d"))
     for kind in crease_kinds:
@@ -306,20 +326,28 @@ def stl_records(x: np.ndarray, triangles: np.ndarray) -> bytes:
     Examples
     --------
     >>> body = stl_records(np.eye(3), np.array([[0, 1, 2]]))
-    >>> len(body), int(np.frombuffer(body[:4], "<u4")[0]), np.frombuffer(body[4:16], "<f4").astype(float).round(4).tolist()
+    >>> (
+    ...     len(body),
+    ...     int(np.frombuffer(body[:4], "<u4")[0]),
+    ...     np.frombuffer(body[4:16], "<f4").astype(float).round(4).tolist(),
+    ... )
     (54, 1, [0.5774, 0.5774, 0.5774])
     """
     corners = x[triangles]  # (T, 3, 3)
     normal = cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     length = np.linalg.norm(normal, axis=1, keepdims=True)
-    record = np.zeros(len(triangles), dtype=[("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    record = np.zeros(
+        len(triangles),
+        dtype=[("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")],
+    )
     record["normal"] = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
     record["corners"] = corners
     return np.uint32(len(triangles)).astype("<u4").tobytes() + record.tobytes()
 
 
 def ply_bytes(x: np.ndarray, triangles: np.ndarray, groups: np.ndarray) -> bytes:
-    r"""A binary little-endian PLY: vertices as 32-bit floats, triangles with the face property ``group``.
+    r"""A binary little-endian PLY: vertices as 32-bit floats, triangles with the face property
+    ``group``.
 
     Examples
     --------
@@ -329,15 +357,32 @@ def ply_bytes(x: np.ndarray, triangles: np.ndarray, groups: np.ndarray) -> bytes
     >>> len(text.split(b"end_header\n")[1])  # 3 vertices of 12 bytes, a face of 1 + 12 + 4
     53
     """
-    header = "\n".join(["ply", "format binary_little_endian 1.0", "comment curvefold", f"element vertex {len(x)}",
-                        "property float x", "property float y", "property float z", f"element face {len(triangles)}",
-                        "property list uchar int vertex_indices", "property int group", "end_header", ""])
-    face = np.zeros(len(triangles), dtype=[("count", "u1"), ("vertices", "<i4", 3), ("group", "<i4")])
+    header = "\n".join(
+        [
+            "ply",
+            "format binary_little_endian 1.0",
+            "comment curvefold",
+            f"element vertex {len(x)}",
+            "property float x",
+            "property float y",
+            "property float z",
+            f"element face {len(triangles)}",
+            "property list uchar int vertex_indices",
+            "property int group",
+            "end_header",
+            "",
+        ]
+    )
+    face = np.zeros(
+        len(triangles), dtype=[("count", "u1"), ("vertices", "<i4", 3), ("group", "<i4")]
+    )
     face["count"], face["vertices"], face["group"] = 3, triangles, groups
     return header.encode("ascii") + np.asarray(x, "<f4").tobytes() + face.tobytes()
 
 
-def write_stl(path: str | os.PathLike, mesh: Mesh, *, unit: str = "unit", to_unit: str | None = None) -> Path:
+def write_stl(
+    path: str | os.PathLike, mesh: Mesh, *, unit: str = "unit", to_unit: str | None = None
+) -> Path:
     """Write one state as a binary STL (polygons triangulated, 32-bit floats: :func:`stl_records`).
 
     Parameters
@@ -359,18 +404,26 @@ def write_stl(path: str | os.PathLike, mesh: Mesh, *, unit: str = "unit", to_uni
     Examples
     --------
     >>> from curvefold.io._tables import UNITS
-    >>> UNITS["unit"].metres / UNITS["mm"].metres   # a model unit in the file when to_unit="mm"
+    >>> UNITS["unit"].metres / UNITS["mm"].metres  # a model unit in the file when to_unit="mm"
     1000.0
     """
     to_unit = unit if to_unit is None else to_unit
     for name, value in (("unit", unit), ("to_unit", to_unit)):
         if value not in UNITS:
-            raise InputError(f"{name} must be one of {', '.join(UNITS)}, got {value!r}", parameter="units")
+            raise InputError(
+                f"{name} must be one of {', '.join(UNITS)}, got {value!r}", parameter="units"
+            )
     factor = UNITS[unit].metres / UNITS[to_unit].metres
-    scaled = mesh if factor == 1.0 else replace(mesh, vertices_coords=np.asarray(mesh.vertices_coords) * factor)
+    scaled = (
+        mesh
+        if factor == 1.0
+        else replace(mesh, vertices_coords=np.asarray(mesh.vertices_coords) * factor)
+    )
     x, triangles = _triangles(scaled)
     words = "model units (1 model unit = 1 m)" if to_unit == "unit" else to_unit
-    header = one_line(f"{CREATOR}, unit {words}, z up").encode("ascii", "replace")[:80].ljust(80, b" ")
+    header = (
+        one_line(f"{CREATOR}, unit {words}, z up").encode("ascii", "replace")[:80].ljust(80, b" ")
+    )
     return atomic_write(path, header + stl_records(x, triangles.faces_vertices))
 
 

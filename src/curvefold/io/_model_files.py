@@ -99,11 +99,21 @@ def model_glb(path: str | os.PathLike, model: FoldedModel) -> Path:
     # the base pose is the motion's state nearest the model's: the further targets move from it
     shift = coords[base] - model.mesh.vertices_coords
     morphs = {name: np.asarray(d, float) - shift for name, d in model.morph_targets.items()}
-    options = gltf.GlbOptions(unit=model.unit, metadata=model.metadata,
-                              seconds_per_state=model.seconds_per_state,
-                              parts=[(s.label, s.faces, s.edges) for s in sheets])
-    return gltf.write_glb(path, model.mesh, coords=coords, angles_deg=model.motion, base_state=base,
-                          morph_targets=morphs, options=options)
+    options = gltf.GlbOptions(
+        unit=model.unit,
+        metadata=model.metadata,
+        seconds_per_state=model.seconds_per_state,
+        parts=[(s.label, s.faces, s.edges) for s in sheets],
+    )
+    return gltf.write_glb(
+        path,
+        model.mesh,
+        coords=coords,
+        angles_deg=model.motion,
+        base_state=base,
+        morph_targets=morphs,
+        options=options,
+    )
 
 
 def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:
@@ -129,7 +139,14 @@ def model_3dm(path: str | os.PathLike, model: FoldedModel) -> Path:
     topology = model.quad_topology
     if topology is None:
         topology = structure.topology("quads", keep=model.keep)
-    options = rhino.RhinoOptions(unit=model.unit, metadata=model.static_metadata,
-                                 pattern=model.pattern)
-    return rhino.write_3dm(path, model.quads, topology, degree=structure.lattice.crease_degree,
-                           fold_angle=model.fold_angle, options=options)
+    options = rhino.RhinoOptions(
+        unit=model.unit, metadata=model.static_metadata, pattern=model.pattern
+    )
+    return rhino.write_3dm(
+        path,
+        model.quads,
+        topology,
+        degree=structure.lattice.crease_degree,
+        fold_angle=model.fold_angle,
+        options=options,
+    )

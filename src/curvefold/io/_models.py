@@ -25,8 +25,17 @@ from ._formats import FORMATS, check_formats, formats_of
 from ._model_files import FoldedModel, model_3dm, model_glb, model_obj, model_ply, model_stl
 from ._output import ModelOutput
 
-__all__ = ["MODEL_FORMATS", "FoldedModel", "ModelOutput", "write_3d", "model_glb", "model_obj",
-           "model_stl", "model_ply", "model_3dm"]
+__all__ = [
+    "MODEL_FORMATS",
+    "FoldedModel",
+    "ModelOutput",
+    "write_3d",
+    "model_glb",
+    "model_obj",
+    "model_stl",
+    "model_ply",
+    "model_3dm",
+]
 
 #: 3D formats :func:`write_3d` writes.
 MODEL_FORMATS = formats_of("model")
@@ -74,20 +83,47 @@ def write_3d(
     """
     check_structure(structure)
     if not isinstance(output, ModelOutput):
-        raise InputError(f"output must be a ModelOutput (unit, metadata…), got {type(output).__name__}",
-                         parameter="output")
+        raise InputError(
+            f"output must be a ModelOutput (unit, metadata…), got {type(output).__name__}",
+            parameter="output",
+        )
     formats = check_formats(formats, "model")
     design = structure.lattice.crease.fold_angle
-    static = design if fold_angle is None else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
-    motion = np.linspace(0.0, design, 7) if fold_angles is None else check_fold_angles(fold_angles, degrees=degrees)
-    meta = mesh3d.check_metadata({**structure_metadata(structure),
-                                  **mesh3d.check_metadata(output.metadata)})
+    static = (
+        design
+        if fold_angle is None
+        else check_fold_angle(fold_angle, degrees=degrees, allow_flat=True)
+    )
+    motion = (
+        np.linspace(0.0, design, 7)
+        if fold_angles is None
+        else check_fold_angles(fold_angles, degrees=degrees)
+    )
+    meta = mesh3d.check_metadata(
+        {**structure_metadata(structure), **mesh3d.check_metadata(output.metadata)}
+    )
     o = output
     curves = structure.state(static, anchor=o.anchor).vertices
     # State.mesh's, made once
     triangles, quads = structure.topology(keep=o.keep), structure.topology("quads", keep=o.keep)
-    model = FoldedModel(structure, triangles.mesh(curves), quads.mesh(curves), static,
-                        readonly(motion), o.unit, meta, o.anchor,
-                        o.seconds_per_state, o.keep, o.print_unit, dict(o.morph_targets or {}),
-                        o.pattern, triangles, quads)
-    return tuple(FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats)  # each format's writer
+    model = FoldedModel(
+        structure,
+        triangles.mesh(curves),
+        quads.mesh(curves),
+        static,
+        readonly(motion),
+        o.unit,
+        meta,
+        o.anchor,
+        o.seconds_per_state,
+        o.keep,
+        o.print_unit,
+        dict(o.morph_targets or {}),
+        o.pattern,
+        triangles,
+        quads,
+    )
+    # each format's writer
+    return tuple(
+        FORMATS[name].load_writer()(FORMATS[name].path(path_stem), model) for name in formats
+    )

@@ -77,8 +77,11 @@ class PatternOutput:
 def check_output(output: PatternOutput) -> PatternOutput:
     """``output`` if it is a :class:`PatternOutput`, else the error saying what it is."""
     if not isinstance(output, PatternOutput):
-        raise InputError(f"output must be a PatternOutput (page, units, scale…), "
-                         f"got {type(output).__name__}: {output!r}", parameter="output")
+        raise InputError(
+            f"output must be a PatternOutput (page, units, scale…), "
+            f"got {type(output).__name__}: {output!r}",
+            parameter="output",
+        )
     return output
 
 

@@ -1,4 +1,5 @@
-"""Packing sheets onto pages: each sheet's minimum-area rectangle, first-fit on shelves, tallest first.
+"""Packing sheets onto pages: each sheet's minimum-area rectangle, first-fit on shelves, tallest
+first.
 
 Page millimetres; used by :func:`curvefold.io.layout_sheets`.
 """
@@ -38,9 +39,9 @@ def pack_pages(footprints, avail, gap, margin, page, labels, page_name):
         lying, standing = (w <= avail[0] and h <= avail[1]), (h <= avail[0] and w <= avail[1])
         if not (lying or standing):
             raise InputError(
-                f"sheet {labels[i]!r} needs {w:.1f} × {h:.1f} mm (with glue tabs) but the {page_name} page "
-                f"({W:g} × {H:g} mm) has {avail[0]:g} × {avail[1]:g} mm inside its margins; "
-                f"lower the scale or choose a larger page"
+                f"sheet {labels[i]!r} needs {w:.1f} × {h:.1f} mm (with glue tabs) but the "
+                f"{page_name} page ({W:g} × {H:g} mm) has {avail[0]:g} × {avail[1]:g} mm "
+                "inside its margins; lower the scale or choose a larger page"
             )
         options = [(float(w), float(h), rot)] if lying else []
         if standing:

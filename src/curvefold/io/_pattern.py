@@ -103,9 +103,14 @@ def _nice_floor(value: float) -> float:
 def _fit_scale(parts, page, units: str, margin_mm: float, footer_mm: float, tab_mm: float) -> float:
     """Page units per model unit that fit the largest sheet (principal axes) with its tabs."""
     W, H = page_size(page, units=units)
-    room = np.array(sorted((W - 2 * margin_mm, H - 2 * margin_mm - footer_mm), reverse=True)) - 2 * tab_mm
+    room = (
+        np.array(sorted((W - 2 * margin_mm, H - 2 * margin_mm - footer_mm), reverse=True))
+        - 2 * tab_mm
+    )
     if (room <= 0).any():
-        raise InputError(f"page {page!r} leaves no room for a sheet inside the margins and glue tabs")
+        raise InputError(
+            f"page {page!r} leaves no room for a sheet inside the margins and glue tabs"
+        )
     best = math.inf
     for p in parts:
         xy = p.mesh.vertices_coords[:, :2]
@@ -151,8 +156,9 @@ def layout_pattern(
     _cutter(output.cutter)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=output.name, keep=keep)
     fitted = _fit(parts, output)
-    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation,
-                          kerf=output.kerf)
+    return prepare_layout(
+        replace(fitted, cutter=output.cutter), perforation=output.perforation, kerf=output.kerf
+    )
 
 
 def _fit(parts: Sequence[PatternSheet], output: PatternOutput) -> Layout:
@@ -212,17 +218,24 @@ def write_pattern(
     >>> write_pattern("tube", tube, PatternOutput(page="A3", scale=50.0), formats=("svg", "pdfx"))
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: formats must be a non-empty selection of ('svg', 'dxf', 'pdf'), got ('svg', 'pdfx')
+    curvefold.kernel._errors.InputError: formats must be a non-empty selection of ('svg', 'dxf',
+    'pdf'), got ('svg', 'pdfx')
     """
     formats = check_formats(formats, "pattern")
     layout = layout_pattern(structure, output, fold_angle=fold_angle, degrees=degrees, keep=keep)
     return write_layout(path_stem, layout, formats=formats, rulings=output.rulings)
 
 
-def write_layout(path_stem: str | os.PathLike, layout: Layout, *, formats: Sequence[str] = PATTERN_FORMATS,
-                 rulings: bool = False) -> tuple[Path, ...]:
-    """Write a crease pattern already laid out (:func:`layout_pattern`) in each of ``formats``, with the
-    writer the registry names for it; arguments and result as in :func:`write_pattern`."""
+def write_layout(
+    path_stem: str | os.PathLike,
+    layout: Layout,
+    *,
+    formats: Sequence[str] = PATTERN_FORMATS,
+    rulings: bool = False,
+) -> tuple[Path, ...]:
+    """Write a crease pattern already laid out (:func:`layout_pattern`) in each of ``formats``,
+    with the writer the registry names for it; arguments and result as in
+    :func:`write_pattern`."""
     check_layout(layout)
     formats = check_formats(formats, "pattern")
     layers = LAYERS if rulings else DEFAULT_LAYERS

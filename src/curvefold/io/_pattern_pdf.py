@@ -19,8 +19,15 @@ from ._pdf import PdfDocument, PdfPage
 __all__ = ["draw_footer", "write_pdf"]
 
 
-def draw_footer(canvas: PdfPage, layout: Layout, page_index: int, names: Sequence[str],
-                lw: float, *, page_text: str | None = None) -> None:
+def draw_footer(
+    canvas: PdfPage,
+    layout: Layout,
+    page_index: int,
+    names: Sequence[str],
+    lw: float,
+    *,
+    page_text: str | None = None,
+) -> None:
     """Draw a page's footer (:func:`page_footer`) on a :class:`~curvefold.io._pdf.PdfPage`, on the
     legend layer."""
     foot = page_footer(layout, page_index, names, page_text=page_text)
@@ -30,23 +37,43 @@ def draw_footer(canvas: PdfPage, layout: Layout, page_index: int, names: Sequenc
         if st.fill:
             canvas.fill([points], foot.colour, layer=LEGEND_LAYER)
         else:
-            canvas.stroke([points], foot.colour, lw * st.width, dashes=st.dashes,
-                          layer=LEGEND_LAYER)
+            canvas.stroke(
+                [points], foot.colour, lw * st.width, dashes=st.dashes, layer=LEGEND_LAYER
+            )
     for t in foot.texts:
-        canvas.text(t.text, t.position[0], t.position[1] - 0.35 * t.size, t.size, foot.colour,
-                    layer=LEGEND_LAYER)
+        canvas.text(
+            t.text,
+            t.position[0],
+            t.position[1] - 0.35 * t.size,
+            t.size,
+            foot.colour,
+            layer=LEGEND_LAYER,
+        )
 
 
-def _draw_page(canvas: PdfPage, page: Page, layout: Layout, index: int, names: tuple[str, ...],
-               lw: float, footer: bool) -> None:
+def _draw_page(
+    canvas: PdfPage,
+    page: Page,
+    layout: Layout,
+    index: int,
+    names: tuple[str, ...],
+    lw: float,
+    footer: bool,
+) -> None:
     for key in names:
         layer, colour, st = layer_look(layout, key)
         if key == "labels":
             for t in page.labels():
                 a = math.radians(t.angle)  # baseline 0.35 em below the centre, as in the SVG
-                canvas.text(t.text, t.position[0] + 0.35 * t.size * math.sin(a),
-                            t.position[1] - 0.35 * t.size * math.cos(a),
-                            t.size, colour, angle=t.angle, layer=layer)
+                canvas.text(
+                    t.text,
+                    t.position[0] + 0.35 * t.size * math.sin(a),
+                    t.position[1] - 0.35 * t.size * math.cos(a),
+                    t.size,
+                    colour,
+                    angle=t.angle,
+                    layer=layer,
+                )
             continue
         lines = page.on_layer(key)
         if not lines:
@@ -54,14 +81,26 @@ def _draw_page(canvas: PdfPage, page: Page, layout: Layout, index: int, names: t
         if st.fill:
             canvas.fill([p.points for p in lines], colour, layer=layer)
         else:
-            canvas.stroke([p.points for p in lines], colour, lw * st.width, dashes=st.dashes,
-                          closed=[p.closed for p in lines], layer=layer)
+            canvas.stroke(
+                [p.points for p in lines],
+                colour,
+                lw * st.width,
+                dashes=st.dashes,
+                closed=[p.closed for p in lines],
+                layer=layer,
+            )
     if footer:
         draw_footer(canvas, layout, index, names, lw)
 
 
-def write_pdf(path: str | os.PathLike, layout: Layout, *, layers: Collection[str] | None = None,
-              line_width: float = 0.25, scale_bar: bool = True) -> Path:
+def write_pdf(
+    path: str | os.PathLike,
+    layout: Layout,
+    *,
+    layers: Collection[str] | None = None,
+    line_width: float = 0.25,
+    scale_bar: bool = True,
+) -> Path:
     """Write the layout as a printable multi-page PDF at 1:1, one PDF layer per operation.
 
     Each page is the layout's page size in mm; its footer (:func:`page_footer`: a 10 mm

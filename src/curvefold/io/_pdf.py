@@ -15,7 +15,13 @@ Examples
 --------
 >>> doc = PdfDocument(title="a square", layers=["cut"])
 >>> page = doc.page(210.0, 297.0)
->>> page.stroke([np.array([[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]])], "#ff0000", 0.25, closed=True, layer="cut")
+>>> page.stroke(
+...     [np.array([[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]])],
+...     "#ff0000",
+...     0.25,
+...     closed=True,
+...     layer="cut",
+... )
 >>> doc.to_bytes()[:8]
 b'%PDF-1.5'
 """
@@ -43,12 +49,111 @@ _PT_PER_MM = 72.0 / 25.4
 # Advance widths of Helvetica (thousandths of the em) for the characters 32–126 (Adobe's
 # metrics of the standard font), and a few of Windows-1252 beyond them.
 _HELVETICA = (
-    278, 278, 355, 556, 556, 889, 667, 191, 333, 333, 389, 584, 278, 333, 278, 278, 556, 556, 556, 556, 556, 556, 556, 556,
-    556, 556, 278, 278, 584, 584, 584, 556, 1015, 667, 667, 722, 722, 667, 611, 778, 722, 278, 500, 667, 556, 833, 722, 778,
-    667, 778, 722, 667, 611, 722, 667, 944, 667, 667, 611, 278, 278, 278, 469, 556, 333, 556, 556, 500, 556, 556, 278, 556,
-    556, 222, 222, 500, 222, 833, 556, 556, 556, 556, 333, 500, 278, 556, 500, 722, 500, 500, 500, 334, 260, 334, 584,
+    278,
+    278,
+    355,
+    556,
+    556,
+    889,
+    667,
+    191,
+    333,
+    333,
+    389,
+    584,
+    278,
+    333,
+    278,
+    278,
+    556,
+    556,
+    556,
+    556,
+    556,
+    556,
+    556,
+    556,
+    556,
+    556,
+    278,
+    278,
+    584,
+    584,
+    584,
+    556,
+    1015,
+    667,
+    667,
+    722,
+    722,
+    667,
+    611,
+    778,
+    722,
+    278,
+    500,
+    667,
+    556,
+    833,
+    722,
+    778,
+    667,
+    778,
+    722,
+    667,
+    611,
+    722,
+    667,
+    944,
+    667,
+    667,
+    611,
+    278,
+    278,
+    278,
+    469,
+    556,
+    333,
+    556,
+    556,
+    500,
+    556,
+    556,
+    278,
+    556,
+    556,
+    222,
+    222,
+    500,
+    222,
+    833,
+    556,
+    556,
+    556,
+    556,
+    333,
+    500,
+    278,
+    556,
+    500,
+    722,
+    500,
+    500,
+    500,
+    334,
+    260,
+    334,
+    584,
 )
-_WIDTHS = {chr(32 + i): w for i, w in enumerate(_HELVETICA)} | {"·": 278, "°": 400, "×": 584, "–": 556, "—": 1000, "•": 350, "±": 584}
+_WIDTHS = {chr(32 + i): w for i, w in enumerate(_HELVETICA)} | {
+    "·": 278,
+    "°": 400,
+    "×": 584,
+    "–": 556,
+    "—": 1000,
+    "•": 350,
+    "±": 584,
+}
 
 
 def text_advance(text: str, size: float) -> float:
@@ -120,7 +225,9 @@ class PdfPage:
     def __init__(self, document: PdfDocument, width: float, height: float) -> None:
         self.size = (float(width), float(height))
         self._doc = document
-        self._parts: list[str | bytes] = [f"{_num(_PT_PER_MM)} 0 0 {_num(_PT_PER_MM)} 0 0 cm\n1 J 1 j\n"]
+        self._parts: list[str | bytes] = [
+            f"{_num(_PT_PER_MM)} 0 0 {_num(_PT_PER_MM)} 0 0 cm\n1 J 1 j\n"
+        ]
         self._layer: str | None = None
 
     def _on(self, layer: str | None) -> None:
@@ -133,48 +240,96 @@ class PdfPage:
             self._parts.append(f"/OC /{self._doc.layer_tag(layer)} BDC\n")
         self._layer = layer
 
-    def stroke(self, polylines: Sequence[np.ndarray], colour: str, width: float, *, dashes: Sequence[float] = (),
-               closed: bool | Sequence[bool] = False, layer: str | None = None, cap: str = "butt") -> None:
-        """Stroke polylines (each (n, 2), mm) with a colour, a width in mm and a dash pattern in mm."""
+    def stroke(
+        self,
+        polylines: Sequence[np.ndarray],
+        colour: str,
+        width: float,
+        *,
+        dashes: Sequence[float] = (),
+        closed: bool | Sequence[bool] = False,
+        layer: str | None = None,
+        cap: str = "butt",
+    ) -> None:
+        """Stroke polylines (each (n, 2), mm) with a colour, a width in mm and a dash pattern in
+        mm."""
         closed = [closed] * len(polylines) if isinstance(closed, bool) else list(closed)
         self._on(layer)
         pattern = " ".join(_num(d) for d in dashes)
-        self._parts.append(f"q {_colour(colour)} RG {_num(width)} w [{pattern}] 0 d {dict(butt=0, round=1)[cap]} J\n")
+        self._parts.append(
+            f"q {_colour(colour)} RG {_num(width)} w [{pattern}] 0 d "
+            f"{dict(butt=0, round=1)[cap]} J\n"
+        )
         self._parts.append(_drawn([_path(len(p), c) for p, c in zip(polylines, closed)], polylines))
         self._parts.append("S Q\n")
 
-    def fill(self, polygons: Sequence[np.ndarray], colour: str, *, layer: str | None = None) -> None:
+    def fill(
+        self, polygons: Sequence[np.ndarray], colour: str, *, layer: str | None = None
+    ) -> None:
         """Fill closed polygons (each (n, 2), mm) with a colour (non-zero winding)."""
         self._on(layer)
         self._parts.append(f"q {_colour(colour)} rg\n")
         self._parts.append(_drawn([_path(len(p), True) for p in polygons], polygons))
         self._parts.append("f Q\n")
 
-    def paint(self, paths: Sequence[np.ndarray], fills: Sequence[str | None], strokes: Sequence[str], widths: Sequence[float], *,
-              layer: str | None = None) -> None:
+    def paint(
+        self,
+        paths: Sequence[np.ndarray],
+        fills: Sequence[str | None],
+        strokes: Sequence[str],
+        widths: Sequence[float],
+        *,
+        layer: str | None = None,
+    ) -> None:
         """Paths (each (n, 2), mm) one after the other, each with its own fill (None: an open
-        line, stroked only), stroke colour and width in mm, in the order given (a painter's order)."""
+        line, stroked only), stroke colour and width in mm, in the order given (a painter's
+        order)."""
         self._on(layer)
         self._parts.append("q 0 J\n")
-        self._parts.append(_drawn([f"{_colour(stroke)} RG {_num(width)} w {_colour(fill)} rg {_path(len(path), True)}B\n" if fill is not None
-                                   else f"{_colour(stroke)} RG {_num(width)} w {_path(len(path), False)}S\n"
-                                   for path, fill, stroke, width in zip(paths, fills, strokes, widths)], paths))
+        self._parts.append(
+            _drawn(
+                [
+                    f"{_colour(stroke)} RG {_num(width)} w {_colour(fill)} rg "
+                    f"{_path(len(path), True)}B\n"
+                    if fill is not None
+                    else f"{_colour(stroke)} RG {_num(width)} w {_path(len(path), False)}S\n"
+                    for path, fill, stroke, width in zip(paths, fills, strokes, widths)
+                ],
+                paths,
+            )
+        )
         self._parts.append("Q\n")
 
-    def text(self, text: str, x: float, y: float, size: float, colour: str, *, angle: float = 0.0, anchor: str = "center",
-             layer: str | None = None) -> None:
-        """One line of Helvetica of em height ``size`` mm, its baseline through (x, y) turned by ``angle`` degrees.
+    def text(
+        self,
+        text: str,
+        x: float,
+        y: float,
+        size: float,
+        colour: str,
+        *,
+        angle: float = 0.0,
+        anchor: str = "center",
+        layer: str | None = None,
+    ) -> None:
+        """One line of Helvetica of em height ``size`` mm, its baseline through (x, y) turned by
+        ``angle`` degrees.
 
         ``anchor`` is where (x, y) is along the baseline: ``"start"``, ``"center"`` or ``"end"``.
         """
         if anchor not in ("start", "center", "end"):
             raise InputError(f"anchor must be 'start', 'center' or 'end', got {anchor!r}")
         self._on(layer)
-        shift = {"start": 0.0, "center": 0.5, "end": 1.0}[anchor] * text_advance(one_line(text), size)
+        shift = {"start": 0.0, "center": 0.5, "end": 1.0}[anchor] * text_advance(
+            one_line(text), size
+        )
         a = math.radians(angle)
         c, s = math.cos(a), math.sin(a)
         x0, y0 = x - shift * c, y - shift * s
-        self._parts.append(f"BT {_colour(colour)} rg /F1 {_num(size)} Tf {_num(c)} {_num(s)} {_num(-s)} {_num(c)} {_num(x0)} {_num(y0)} Tm ")
+        self._parts.append(
+            f"BT {_colour(colour)} rg /F1 {_num(size)} Tf {_num(c)} {_num(s)} "
+            f"{_num(-s)} {_num(c)} {_num(x0)} {_num(y0)} Tm "
+        )
         self._parts.append(_string(text) + b" Tj ET\n")
 
     def content(self) -> bytes:
@@ -196,7 +351,9 @@ class PdfDocument:
         Layers shown on screen but not printed.
     """
 
-    def __init__(self, *, title: str, layers: Sequence[str] = (), hidden_in_print: Sequence[str] = ()) -> None:
+    def __init__(
+        self, *, title: str, layers: Sequence[str] = (), hidden_in_print: Sequence[str] = ()
+    ) -> None:
         self.title = one_line(title)
         self.layers = list(dict.fromkeys(layers))
         self.hidden_in_print = [name for name in hidden_in_print if name in self.layers]
@@ -211,7 +368,9 @@ class PdfDocument:
     def page(self, width: float, height: float) -> PdfPage:
         """A new page of width × height mm, added at the end."""
         if not (math.isfinite(width) and math.isfinite(height) and width > 0 and height > 0):
-            raise InputError(f"a page must have a positive finite size in mm, got {width!r} × {height!r}")
+            raise InputError(
+                f"a page must have a positive finite size in mm, got {width!r} × {height!r}"
+            )
         page = PdfPage(self, width, height)
         self.pages.append(page)
         return page
@@ -225,25 +384,56 @@ class PdfDocument:
             return len(objects)
 
         catalog, pages_id = add(b""), add(b"")  # filled in at the end
-        font = add("<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica /Encoding /WinAnsiEncoding >>")
-        groups = [add(f"<< /Type /OCG /Name {_string(name).decode('latin-1')} >>") for name in self.layers]
+        font = add(
+            "<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica /Encoding /WinAnsiEncoding >>"
+        )
+        groups = [
+            add(f"<< /Type /OCG /Name {_string(name).decode('latin-1')} >>") for name in self.layers
+        ]
         properties = " ".join(f"/oc{i + 1} {g} 0 R" for i, g in enumerate(groups))
         kids = []
         for page in self.pages:
             data = zlib.compress(page.content(), 6)
-            stream = add(b"<< /Length %d /Filter /FlateDecode >>\nstream\n" % len(data) + data + b"\nendstream")
+            stream = add(
+                b"<< /Length %d /Filter /FlateDecode >>\nstream\n" % len(data)
+                + data
+                + b"\nendstream"
+            )
             w, h = (_num(side * _PT_PER_MM) for side in page.size)
-            kids.append(add(f"<< /Type /Page /Parent {pages_id} 0 R /MediaBox [0 0 {w} {h}] /Contents {stream} 0 R "
-                            f"/Resources << /Font << /F1 {font} 0 R >> /Properties << {properties} >> >> >>"))
-        objects[pages_id - 1] = f"<< /Type /Pages /Kids [{' '.join(f'{k} 0 R' for k in kids)}] /Count {len(kids)} >>".encode()
+            kids.append(
+                add(
+                    f"<< /Type /Page /Parent {pages_id} 0 R /MediaBox [0 0 {w} {h}] "
+                    f"/Contents {stream} 0 R /Resources << /Font << /F1 {font} 0 R >> /Properties "
+                    f"<< {properties} >> >> >>"
+                )
+            )
+        objects[pages_id - 1] = (
+            f"<< /Type /Pages /Kids [{' '.join(f'{k} 0 R' for k in kids)}] /Count {len(kids)} >>"
+        ).encode()
         refs = " ".join(f"{g} 0 R" for g in groups)
         for name in self.hidden_in_print:  # shown on screen, left out when printed
             g = groups[self.layers.index(name)]
             objects[g - 1] = objects[g - 1][:-2] + b"/Usage << /Print << /PrintState /OFF >> >> >>"
-        usage = f" /AS [<< /Event /Print /Category [/Print] /OCGs [{refs}] >>]" if self.hidden_in_print else ""
-        oc = f" /OCProperties << /OCGs [{refs}] /D << /Order [{refs}] /ON [{refs}]{usage} >> >>" if groups else ""
+        usage = (
+            f" /AS [<< /Event /Print /Category [/Print] /OCGs [{refs}] >>]"
+            if self.hidden_in_print
+            else ""
+        )
+        oc = (
+            f" /OCProperties << /OCGs [{refs}] /D << /Order [{refs}] /ON [{refs}]{usage} >> >>"
+            if groups
+            else ""
+        )
         objects[catalog - 1] = f"<< /Type /Catalog /Pages {pages_id} 0 R{oc} >>".encode()
-        info = add(b"<< /Title " + _string(self.title) + b" /Creator " + _string(CREATOR) + b" /Producer " + _string(CREATOR) + b" >>")
+        info = add(
+            b"<< /Title "
+            + _string(self.title)
+            + b" /Creator "
+            + _string(CREATOR)
+            + b" /Producer "
+            + _string(CREATOR)
+            + b" >>"
+        )
         out = bytearray(b"%PDF-1.5\n%\xe2\xe3\xcf\xd3\n")
         offsets = []
         for number, body in enumerate(objects, start=1):
@@ -252,7 +442,12 @@ class PdfDocument:
         xref = len(out)
         out += b"xref\n0 %d\n0000000000 65535 f \n" % (len(objects) + 1)
         out += b"".join(b"%010d 00000 n \n" % o for o in offsets)
-        out += b"trailer\n<< /Size %d /Root %d 0 R /Info %d 0 R >>\nstartxref\n%d\n%%%%EOF\n" % (len(objects) + 1, catalog, info, xref)
+        out += b"trailer\n<< /Size %d /Root %d 0 R /Info %d 0 R >>\nstartxref\n%d\n%%%%EOF\n" % (
+            len(objects) + 1,
+            catalog,
+            info,
+            xref,
+        )
         return bytes(out)
 
     def save(self, path: str | os.PathLike) -> Path:

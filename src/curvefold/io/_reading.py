@@ -18,8 +18,13 @@ from ..kernel._errors import InputError
 
 __all__ = ["read_bytes"]
 
-_KINDS = ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO"), (stat.S_ISCHR, "a character device"),
-          (stat.S_ISBLK, "a block device"), (stat.S_ISSOCK, "a socket"))
+_KINDS = (
+    (stat.S_ISDIR, "a folder"),
+    (stat.S_ISFIFO, "a FIFO"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
 
 
 def read_bytes(path: str | os.PathLike, *, limit: int, what: str, name: str | None = None) -> bytes:
@@ -49,10 +54,14 @@ def read_bytes(path: str | os.PathLike, *, limit: int, what: str, name: str | No
     try:
         info = os.fstat(fd)
         if not stat.S_ISREG(info.st_mode):
-            kind = next((name for test, name in _KINDS if test(info.st_mode)), "another kind of file")
+            kind = next(
+                (name for test, name in _KINDS if test(info.st_mode)), "another kind of file"
+            )
             raise InputError(f"{where}: cannot read {what}: it is {kind}, not a regular file")
         if info.st_size > limit:
-            raise InputError(f"{where}: {what} is {info.st_size} bytes, more than the limit of {limit} bytes")
+            raise InputError(
+                f"{where}: {what} is {info.st_size} bytes, more than the limit of {limit} bytes"
+            )
         chunks, left = [], info.st_size
         while left > 0:
             chunk = os.read(fd, min(left, 1 << 24))

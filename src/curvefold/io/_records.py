@@ -53,13 +53,24 @@ def csv_records(path: str | os.PathLike, fields: Sequence[str]) -> Iterator[Writ
         rows.writerow(fields)
 
         def write(record: Mapping[str, Any]) -> None:
-            rows.writerow(["" if record[k] is None else repr(record[k]) if isinstance(record[k], float) else record[k] for k in fields])
+            rows.writerow(
+                [
+                    ""
+                    if record[k] is None
+                    else repr(record[k])
+                    if isinstance(record[k], float)
+                    else record[k]
+                    for k in fields
+                ]
+            )
 
         yield write
 
 
 @contextlib.contextmanager
-def json_records(path: str | os.PathLike, header: Mapping[str, Any], fields: Sequence[str]) -> Iterator[Write]:
+def json_records(
+    path: str | os.PathLike, header: Mapping[str, Any], fields: Sequence[str]
+) -> Iterator[Write]:
     """Write ``{**header, "records": [...]}`` as a JSON file, one record (keys ``fields``) a line.
 
     A float that is not finite is written as null (JSON has no NaN).
@@ -74,7 +85,12 @@ def json_records(path: str | os.PathLike, header: Mapping[str, Any], fields: Seq
 
         def write(record: Mapping[str, Any]) -> None:
             nonlocal separator
-            f.write(separator + json.dumps({k: _json_value(record[k]) for k in fields}, ensure_ascii=False, allow_nan=False))
+            f.write(
+                separator
+                + json.dumps(
+                    {k: _json_value(record[k]) for k in fields}, ensure_ascii=False, allow_nan=False
+                )
+            )
             separator = ",\n  "
 
         yield write

@@ -52,8 +52,14 @@ from ._layout import Layout
 from ._mesh3d import check_metadata, crease_polylines
 from ._tables import CREATOR, UNITS, rgb8, rgba8
 
-__all__ = ["LAYERS", "PATTERN_LAYER", "SHEET_LETTERS", "RhinoOptions", "interpolating_spline",
-           "write_3dm"]
+__all__ = [
+    "LAYERS",
+    "PATTERN_LAYER",
+    "SHEET_LETTERS",
+    "RhinoOptions",
+    "interpolating_spline",
+    "write_3dm",
+]
 
 #: Layer name and RGBA colour (from :data:`curvefold.io._tables.COLOURS`), in layer order.
 LAYERS = (
@@ -65,7 +71,9 @@ LAYERS = (
 )
 
 
-def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tuple[np.ndarray, np.ndarray]:
+def interpolating_spline(
+    t: np.ndarray, points: np.ndarray, degree: int
+) -> tuple[np.ndarray, np.ndarray]:
     """The B-spline of degree k = min(``degree``, m − 1) through ``points`` (m, d) at increasing
     parameters ``t`` (m,): its knots (m + k + 1,) and control points (m, d).
 
@@ -74,28 +82,34 @@ def interpolating_spline(t: np.ndarray, points: np.ndarray, degree: int) -> tupl
     k = 2 at the midpoints between parameters but the first and last), each end knot k + 1
     times; the control points solve the collocation equations. Row i of that system holds the
     k + 1 basis functions that do not vanish at t_i (Cox–de Boor, in its knot span, the last
-    in the last span), so it is banded and, past :data:`DENSE_POINTS`, solved in O(m k²) time and memory; the matrix of a
-    B-spline collocation is totally positive, so elimination needs no pivoting (de Boor, *A
-    Practical Guide to Splines*, 2001, ch. XIII).
+    in the last span), so it is banded and, past :data:`DENSE_POINTS`, solved in O(m k²) time and
+    memory; the matrix of a B-spline collocation is totally positive, so elimination needs no
+    pivoting (de Boor, *A Practical Guide to Splines*, 2001, ch. XIII).
 
     Examples
     --------
-    >>> knots, control = interpolating_spline(np.array([0.0, 1.0]), np.array([[0.0, 0.0], [2.0, 1.0]]), 3)
-    >>> knots.tolist(), control.tolist()   # two points: the segment between them
+    >>> knots, control = interpolating_spline(
+    ...     np.array([0.0, 1.0]), np.array([[0.0, 0.0], [2.0, 1.0]]), 3
+    ... )
+    >>> knots.tolist(), control.tolist()  # two points: the segment between them
     ([0.0, 0.0, 1.0, 1.0], [[0.0, 0.0], [2.0, 1.0]])
     """
     m = len(t)
     k = min(degree, m - 1)
     inner = t if k % 2 else 0.5 * (t[1:] + t[:-1])
     drop = (k + 1) // 2 if k % 2 else k // 2
-    knots = np.concatenate([np.full(k + 1, t[0]), inner[drop:len(inner) - drop], np.full(k + 1, t[-1])])
+    knots = np.concatenate(
+        [np.full(k + 1, t[0]), inner[drop : len(inner) - drop], np.full(k + 1, t[-1])]
+    )
     span = np.clip(np.searchsorted(knots, t, side="right") - 1, k, m - 1)
     basis = np.ones((m, 1))  # the bases of degree d at t_i: functions span_i − d … span_i
     for d in range(1, k + 1):
-        left = t[:, None] - knots[span[:, None] + np.arange(1 - d, 1)]  # t − knot of each function's start
+        # t − knot of each function's start
+        left = t[:, None] - knots[span[:, None] + np.arange(1 - d, 1)]
         right = knots[span[:, None] + np.arange(1, d + 1)] - t[:, None]  # its end − t
         ratio = _ratio(basis, right + left)
-        higher = np.zeros((m, d + 1))  # each function's part from the lower one on its left and on its right
+        # each function's part from the lower one on its left and on its right
+        higher = np.zeros((m, d + 1))
         higher[:, :-1] += right * ratio
         higher[:, 1:] += left * ratio
         basis = higher
@@ -122,23 +136,27 @@ def _solve_banded(rows: np.ndarray, first: np.ndarray, rhs: np.ndarray) -> np.nd
         dense[np.arange(m)[:, None], first[:, None] + np.arange(w)] = rows
         return np.linalg.solve(dense, rhs)
     band = np.zeros((m, 2 * w - 1))  # row i, columns i − w + 1 … i + w − 1
-    band[np.arange(m)[:, None], first[:, None] - np.arange(m)[:, None] + w - 1 + np.arange(w)] = rows
+    band[np.arange(m)[:, None], first[:, None] - np.arange(m)[:, None] + w - 1 + np.arange(w)] = (
+        rows
+    )
     b = rhs.copy()
     for j in range(m - 1):  # rows below j reach column j only within w − 1 rows
-        below = np.arange(j + 1, min(j + w, m))  # row j + 1 + a holds A[r, j] at w − 2 − a, A[r, j + c] at w − 2 − a + c
+        # row j + 1 + a holds A[r, j] at w − 2 − a, A[r, j + c] at w − 2 − a + c
+        below = np.arange(j + 1, min(j + w, m))
         shift = w - 2 - np.arange(len(below))
         factor = band[below, shift] / band[j, w - 1]  # A[r, j] / A[j, j]
-        band[below[:, None], shift[:, None] + np.arange(w)] -= factor[:, None] * band[j, w - 1:]
+        band[below[:, None], shift[:, None] + np.arange(w)] -= factor[:, None] * band[j, w - 1 :]
         b[below] -= factor[:, None] * b[j]
     x = np.empty_like(b)
     for j in range(m - 1, -1, -1):
         right = min(w - 1, m - 1 - j)
-        x[j] = (b[j] - band[j, w:w + right] @ x[j + 1:j + 1 + right]) / band[j, w - 1]
+        x[j] = (b[j] - band[j, w : w + right] @ x[j + 1 : j + 1 + right]) / band[j, w - 1]
     return x
 
 
 def _nurbs_curve(rhino3dm, points: np.ndarray, t: np.ndarray, degree: int):
-    """The NURBS curve of ``degree`` (fewer points: lower) through ``points`` (m, 3) at parameters t (m,)."""
+    """The NURBS curve of ``degree`` (fewer points: lower) through ``points`` (m, 3) at
+    parameters t (m,)."""
     knots, control = interpolating_spline(t, points, degree)
     curve = rhino3dm.NurbsCurve(3, False, len(knots) - len(control), len(control))
     curve_knots, curve_points, point = curve.Knots, curve.Points, rhino3dm.Point4d
@@ -204,8 +222,9 @@ def write_3dm(
     Path
     """
     if not isinstance(options, RhinoOptions):
-        raise InputError(f"options must be a RhinoOptions, got {type(options).__name__}",
-                         parameter="options")
+        raise InputError(
+            f"options must be a RhinoOptions, got {type(options).__name__}", parameter="options"
+        )
     unit, metadata, pattern = options.unit, options.metadata, options.pattern
     try:
         import rhino3dm as module
@@ -216,8 +235,15 @@ def write_3dm(
     if unit not in UNITS:
         raise InputError(f"unit must be one of {sorted(UNITS)} for a 3dm file, got {unit!r}")
     faces = np.asarray(mesh.faces_vertices)
-    if faces.shape[1] != 4 or (faces < 0).any() or not np.array_equal(faces, topology.faces_vertices):
-        raise InputError("write_3dm needs a mesh of ruling quads on the given topology (state.mesh(faces='quads'))")
+    if (
+        faces.shape[1] != 4
+        or (faces < 0).any()
+        or not np.array_equal(faces, topology.faces_vertices)
+    ):
+        raise InputError(
+            "write_3dm needs a mesh of ruling quads on the given topology "
+            "(state.mesh(faces='quads'))"
+        )
     if degree not in (1, 3):
         raise InputError(f"degree must be 1 or 3, got {degree!r}")
     meta = check_metadata(metadata)
@@ -247,7 +273,15 @@ def write_3dm(
             group_index[name] = model.Groups.FindName(name).Index
         return group_index[name]
 
-    def attributes(layer: str, object_name: str, *, tube: int, kind: str, sheet: str | None = None, angle: float | None = fold_angle):
+    def attributes(
+        layer: str,
+        object_name: str,
+        *,
+        tube: int,
+        kind: str,
+        sheet: str | None = None,
+        angle: float | None = fold_angle,
+    ):
         attr = rhino3dm.ObjectAttributes()
         attr.LayerIndex = layer_index[layer]
         attr.Name = object_name
@@ -272,40 +306,73 @@ def write_3dm(
             add_face(a, b, c, d)
         part.Normals.ComputeNormals()
         part.Compact()
-        model.Objects.AddMesh(part, attributes("Sheets", sheet.label, tube=k // 2, kind="sheet", sheet=SHEET_LETTERS[k % 2]))
+        model.Objects.AddMesh(
+            part,
+            attributes(
+                "Sheets", sheet.label, tube=k // 2, kind="sheet", sheet=SHEET_LETTERS[k % 2]
+            ),
+        )
 
-    # Strips: quads (a_j, a_{j+1}, b_{j+1}, b_j) along each strip (Topology.tubes); strips 4 and 1 make sheet A.
+    # Strips: quads (a_j, a_{j+1}, b_{j+1}, b_j) along each strip (Topology.tubes); strips 4 and 1
+    # make sheet A.
     for g in distinct(topology.faces_group).tolist():
         rows = faces[topology.faces_group == g]
         sides = [np.append(rows[:, 0], rows[-1, 1]), np.append(rows[:, 3], rows[-1, 2])]
         a, b = (crease_curve(v) for v in sides)
-        model.Objects.AddSurface(rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
-                                 attributes("Strips", f"tube {g // 4 + 1} · strip {g % 4 + 1}", tube=g // 4, kind="strip",
-                                            sheet="A" if g % 4 in (0, 3) else "B"))
+        model.Objects.AddSurface(
+            rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
+            attributes(
+                "Strips",
+                f"tube {g // 4 + 1} · strip {g % 4 + 1}",
+                tube=g // 4,
+                kind="strip",
+                sheet="A" if g % 4 in (0, 3) else "B",
+            ),
+        )
 
     # creases run along one lattice curve (a panel's fold lines, kind "fold" too, run across)
     ends = topology.vertex_curve[mesh.edges_vertices]
-    along = replace(mesh, edges_kind=np.where((ends[:, 0] == ends[:, 1]) | (mesh.edges_kind == "boundary"), mesh.edges_kind, "ruling"))
+    along = replace(
+        mesh,
+        edges_kind=np.where(
+            (ends[:, 0] == ends[:, 1]) | (mesh.edges_kind == "boundary"), mesh.edges_kind, "ruling"
+        ),
+    )
     edge_key = np.sort(mesh.edges_vertices, axis=1) @ np.array([len(x), 1])
     edge_order = np.argsort(edge_key, kind="stable")
     sheet_of = np.zeros(len(x), np.int64)  # the letter of a vertex's (last) sheet
     for k, s in enumerate(topology.sheets):
         sheet_of[s.vertices] = k % 2
-    first_strip = np.full(len(x), np.iinfo(np.int64).max)  # the first strip (faces_group) on each vertex
+    # the first strip (faces_group) on each vertex
+    first_strip = np.full(len(x), np.iinfo(np.int64).max)
     np.minimum.at(first_strip, faces.reshape(-1), np.repeat(topology.faces_group, faces.shape[1]))
     for layer, kind in (("Fold", "fold"), ("Seam", "seam"), ("Boundary", "boundary")):
         for i, chain in enumerate(crease_polylines(along, kind)):
             tube = int(first_strip[chain[0]]) // 4
-            steps = np.sort(np.stack([chain[:-1], chain[1:]], axis=1), axis=1) @ np.array([len(x), 1])
-            angles = np.abs(mesh.edges_foldAngle[edge_order[np.searchsorted(edge_key[edge_order], steps, side="right") - 1]])
+            steps = np.sort(np.stack([chain[:-1], chain[1:]], axis=1), axis=1) @ np.array(
+                [len(x), 1]
+            )
+            angles = np.abs(
+                mesh.edges_foldAngle[
+                    edge_order[np.searchsorted(edge_key[edge_order], steps, side="right") - 1]
+                ]
+            )
             if kind == "boundary":
                 curve = _polyline(rhino3dm, x[chain])
             else:
                 chain = chain if t[chain[0]] < t[chain[-1]] else chain[::-1]
                 curve = crease_curve(chain)
-            model.Objects.AddCurve(curve, attributes(layer, f"{kind} {i + 1}", tube=tube, kind=kind,
-                                                     sheet=SHEET_LETTERS[sheet_of[chain[0]]] if kind == "fold" else None,
-                                                     angle=float(angles.mean()) if kind != "boundary" else fold_angle))
+            model.Objects.AddCurve(
+                curve,
+                attributes(
+                    layer,
+                    f"{kind} {i + 1}",
+                    tube=tube,
+                    kind=kind,
+                    sheet=SHEET_LETTERS[sheet_of[chain[0]]] if kind == "fold" else None,
+                    angle=float(angles.mean()) if kind != "boundary" else fold_angle,
+                ),
+            )
 
     if pattern is not None:
         _add_pattern(rhino3dm, model, pattern, unit, x)
@@ -363,7 +430,10 @@ def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> N
     frames = child("pages", "#808080")
     W, H = layout.page_size
     size = float(np.ptp(x, axis=0).max()) if len(x) else 0.0
-    origin = np.array([x[:, 0].max() + 0.25 * size if len(x) else 0.0, x[:, 1].min() if len(x) else 0.0]) / to_unit
+    origin = (
+        np.array([x[:, 0].max() + 0.25 * size if len(x) else 0.0, x[:, 1].min() if len(x) else 0.0])
+        / to_unit
+    )
     corners = page_grid(len(layout.pages), (W, H), 20.0)
     corners = corners - corners.min(axis=0) + origin
 
@@ -383,14 +453,22 @@ def _add_pattern(rhino3dm, model, layout: Layout, unit: str, x: np.ndarray) -> N
             if key == "labels":
                 for t in page.labels():
                     u, v = np.asarray(t.position) + corner
-                    model.Objects.AddTextDot(t.text, rhino3dm.Point3d(float(u) * to_unit, float(v) * to_unit, 0.0), attr(index[key], t.text))
+                    model.Objects.AddTextDot(
+                        t.text,
+                        rhino3dm.Point3d(float(u) * to_unit, float(v) * to_unit, 0.0),
+                        attr(index[key], t.text),
+                    )
                 continue
             for p in page.on_layer(key):
-                model.Objects.AddCurve(polyline(p.points + corner, p.closed), attr(index[key], f"page {number} · {looks[key][0]}"))
+                model.Objects.AddCurve(
+                    polyline(p.points + corner, p.closed),
+                    attr(index[key], f"page {number} · {looks[key][0]}"),
+                )
 
 
 def _views(rhino3dm, x: np.ndarray) -> list[tuple[str, object]]:
-    """The named views ``perspective``, ``plan`` and ``section`` of points (n, 3), each framing them."""
+    """The named views ``perspective``, ``plan`` and ``section`` of points (n, 3), each framing
+    them."""
     lo, hi = (x.min(axis=0), x.max(axis=0)) if len(x) else (np.zeros(3), np.ones(3))
     centre, size = 0.5 * (lo + hi), max(float(np.linalg.norm(hi - lo)), 1e-9)
     flat = x[:, :2] - x[:, :2].mean(axis=0) if len(x) > 1 else np.eye(2)
@@ -399,9 +477,11 @@ def _views(rhino3dm, x: np.ndarray) -> list[tuple[str, object]]:
     az, el = np.radians(-50.0), np.radians(22.0)  # the figures' view
     toward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
     out = []
-    for name, direction, up, parallel in (("perspective", -toward, (0.0, 0.0, 1.0), False),
-                                          ("plan", (0.0, 0.0, -1.0), (0.0, 1.0, 0.0), True),
-                                          ("section", (thin[0], thin[1], 0.0), (0.0, 0.0, 1.0), True)):
+    for name, direction, up, parallel in (
+        ("perspective", -toward, (0.0, 0.0, 1.0), False),
+        ("plan", (0.0, 0.0, -1.0), (0.0, 1.0, 0.0), True),
+        ("section", (thin[0], thin[1], 0.0), (0.0, 0.0, 1.0), True),
+    ):
         vp = rhino3dm.ViewportInfo()
         if parallel:
             vp.ChangeToParallelProjection(True)

@@ -1,4 +1,5 @@
-"""The files of a single curved fold: its FOLD file with the folding motion, its 3D models and its crease pattern.
+"""The files of a single curved fold: its FOLD file with the folding motion, its 3D models and its
+crease pattern.
 
 A single fold (:class:`curvefold.geometry.SingleFold`) is no structure of tubes, so
 it has its own preparation, and then the writers every kind shares: the FOLD document of
@@ -33,11 +34,17 @@ from ._tables import mm_per_unit
 
 __all__ = ["single_fold_model", "write_single_fold_3d", "layout_single_fold"]
 
+
 def _glb(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
     coords = np.stack([fold.topology().coords(fold.curves(a)) for a in motion])
-    return gltf.write_glb(path, fold.mesh(fold.fold_angle), coords=coords, angles_deg=motion,
-                          base_state=int(np.argmin(np.abs(motion - fold.fold_angle))),
-                          options=gltf.GlbOptions(unit=unit, metadata=meta))
+    return gltf.write_glb(
+        path,
+        fold.mesh(fold.fold_angle),
+        coords=coords,
+        angles_deg=motion,
+        base_state=int(np.argmin(np.abs(motion - fold.fold_angle))),
+        options=gltf.GlbOptions(unit=unit, metadata=meta),
+    )
 
 
 def _obj(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
@@ -53,41 +60,73 @@ def _ply(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict
 
 
 def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
-    return rhino.write_3dm(path, fold.mesh(fold.fold_angle, "quads"), fold.topology("quads"),
-                           degree=3,
-                           options=rhino.RhinoOptions(unit=unit, metadata=meta))
+    return rhino.write_3dm(
+        path,
+        fold.mesh(fold.fold_angle, "quads"),
+        fold.topology("quads"),
+        degree=3,
+        options=rhino.RhinoOptions(unit=unit, metadata=meta),
+    )
 
 
 #: How a single fold writes each 3D format of the registry: its meshes to the format's serialiser.
 _MODELS = {"glb": _glb, "obj": _obj, "stl": _stl, "ply": _ply, "3dm": _3dm}
 
 
-def single_fold_model(fold: SingleFold, fold_angles, *, unit: str = "unit", metadata: Mapping | None = None,
-                      design: Mapping | None = None) -> FoldFile:
-    """A single fold as a FOLD model: its crease pattern and its folded frames at ``fold_angles`` (degrees).
+def single_fold_model(
+    fold: SingleFold,
+    fold_angles,
+    *,
+    unit: str = "unit",
+    metadata: Mapping | None = None,
+    design: Mapping | None = None,
+) -> FoldFile:
+    """A single fold as a FOLD model: its crease pattern and its folded frames at ``fold_angles``
+    (degrees).
 
     ``design`` (the design as a design file holds it) is recorded with the frames' fold
     angles, so that the file can be built again and compared (``curvefold check --rebuild``).
     """
     angles = np.asarray(fold_angles, float)
     pattern, folded = fold.arrays(angles)
-    meta = check_metadata({"kind": "crease", "samples": fold.samples, "curve_length": float(fold.crease.curve.length),
-                           "width_left": fold.width_left, "width_right": fold.width_right, "design_fold_angle_deg": fold.fold_angle,
-                           **check_metadata(metadata)})
+    meta = check_metadata(
+        {
+            "kind": "crease",
+            "samples": fold.samples,
+            "curve_length": float(fold.crease.curve.length),
+            "width_left": fold.width_left,
+            "width_right": fold.width_right,
+            "design_fold_angle_deg": fold.fold_angle,
+            **check_metadata(metadata),
+        }
+    )
     record = None if design is None else {"design": dict(design), "fold_angles": angles.tolist()}
     return FoldFile(crease_pattern=pattern, folded=folded, metadata=meta, unit=unit, design=record)
 
 
-def write_single_fold_3d(path_stem: str | os.PathLike, fold: SingleFold, fold_angles, *, formats: Sequence[str],
-                         unit: str = "unit", metadata: Mapping | None = None) -> tuple[Path, ...]:
-    """The 3D files of a single fold at its design angle; the GLB holds the folding motion at ``fold_angles``.
+def write_single_fold_3d(
+    path_stem: str | os.PathLike,
+    fold: SingleFold,
+    fold_angles,
+    *,
+    formats: Sequence[str],
+    unit: str = "unit",
+    metadata: Mapping | None = None,
+) -> tuple[Path, ...]:
+    """The 3D files of a single fold at its design angle; the GLB holds the folding motion at
+    ``fold_angles``.
 
-    OBJ and 3dm hold one quad per ruling quad, GLB, STL and PLY two triangles, as for the other kinds.
+    OBJ and 3dm hold one quad per ruling quad, GLB, STL and PLY two triangles, as for the other
+    kinds.
     """
     formats = check_formats(formats, "model")
     motion = np.asarray(fold_angles, float)
-    meta = check_metadata({"kind": "crease", "fold_angle_deg": fold.fold_angle, **check_metadata(metadata)})
-    return tuple(_MODELS[name](FORMATS[name].path(path_stem), fold, motion, unit, meta) for name in formats)
+    meta = check_metadata(
+        {"kind": "crease", "fold_angle_deg": fold.fold_angle, **check_metadata(metadata)}
+    )
+    return tuple(
+        _MODELS[name](FORMATS[name].path(path_stem), fold, motion, unit, meta) for name in formats
+    )
 
 
 def layout_single_fold(fold: SingleFold, output: PatternOutput = PatternOutput()) -> Layout:
@@ -105,8 +144,9 @@ def layout_single_fold(fold: SingleFold, output: PatternOutput = PatternOutput()
     check_output(output)
     fitted = _fitted(fold.pattern_sheet(output.name), output.page, output.units, output.scale)
     check_cutter(output.cutter)
-    return prepare_layout(replace(fitted, cutter=output.cutter), perforation=output.perforation,
-                          kerf=output.kerf)
+    return prepare_layout(
+        replace(fitted, cutter=output.cutter), perforation=output.perforation, kerf=output.kerf
+    )
 
 
 def _fitted(sheet, page, units: str, scale: float | None) -> Layout:
@@ -115,9 +155,15 @@ def _fitted(sheet, page, units: str, scale: float | None) -> Layout:
         return layout_sheets([sheet], page=page, units=units, scale=scale, glue_tabs=False)
     width, height = page_size(page, units=units)
     target = max(width, height) - 20.0 / mm_per_unit(units)  # the margins' 10 mm either side
-    for _ in range(40):  # the pattern turned to its narrowest rectangle may be too wide: shrink until it fits
+    # the pattern turned to its narrowest rectangle may be too wide: shrink until it fits
+    for _ in range(40):
         try:
-            return layout_sheets([sheet], page=page, units=units, target_size=target, glue_tabs=False)
+            return layout_sheets(
+                [sheet], page=page, units=units, target_size=target, glue_tabs=False
+            )
         except InputError:
             target *= 0.9
-    raise InputError(f"page {page!r} leaves no room for the single fold's pattern inside its margins and footer ({FOOTER:g} mm)")
+    raise InputError(
+        f"page {page!r} leaves no room for the single fold's pattern inside its "
+        f"margins and footer ({FOOTER:g} mm)"
+    )

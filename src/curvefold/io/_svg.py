@@ -81,14 +81,21 @@ def _svg_style(layout: Layout, key: str, lw: float, colour: str | None = None) -
         return f"fill:{colour};stroke:none;{_FONT}"
     if st.fill:
         return f"fill:{colour};stroke:none"
-    style = (f"fill:none;stroke:{colour};stroke-width:{lw * st.width:g};stroke-linecap:butt;"
-             "stroke-linejoin:round")
+    style = (
+        f"fill:none;stroke:{colour};stroke-width:{lw * st.width:g};stroke-linecap:butt;"
+        "stroke-linejoin:round"
+    )
     dashes = ";stroke-dasharray:" + ",".join(f"{d:g}" for d in st.dashes) if st.dashes else ""
     return style + dashes
 
 
-def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | None = None,
-             line_width: float = 0.25) -> str:
+def svg_page(
+    layout: Layout,
+    page_index: int = 0,
+    *,
+    layers: Collection[str] | None = None,
+    line_width: float = 0.25,
+) -> str:
     """One page of ``layout`` as SVG text (see :func:`write_svg`)."""
     check_layout(layout)
     page_index = check_integer(page_index, "page_index", f"[0, {len(layout.pages) - 1}]")
@@ -109,31 +116,46 @@ def svg_page(layout: Layout, page_index: int = 0, *, layers: Collection[str] | N
         if key == "labels":
             body = [_svg_label(t, H) for t in page.labels()]
         else:
-            body = [f'<{"polygon" if p.closed else "polyline"} '
-                    f'points="{_svg_points(p.points, H)}"/>' for p in page.on_layer(key)]
+            body = [
+                f'<{"polygon" if p.closed else "polyline"} points="{_svg_points(p.points, H)}"/>'
+                for p in page.on_layer(key)
+            ]
         label = _quoteattr(layer_look(layout, key)[0])
-        out.append(f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={label} '
-                   f'style={_quoteattr(_svg_style(layout, key, lw))}>')
+        out.append(
+            f'<g inkscape:groupmode="layer" id="layer-{key}" inkscape:label={label} '
+            f"style={_quoteattr(_svg_style(layout, key, lw))}>"
+        )
         out.extend(body)
         out.append("</g>")
     footer = page_footer(layout, page_index, names)
-    out.append(f'<g inkscape:groupmode="layer" id="layer-legend" '
-               f'inkscape:label={_quoteattr(LEGEND_LAYER)} '
-               f'style={_quoteattr(_svg_style(layout, "legend", lw))}>')
-    out.append(f'<polygon points="{_svg_points(footer.bar, H)}" '
-               f'style="fill:{footer.colour};stroke:none"/>')
-    out += [f'<{"polygon" if layer_look(layout, key)[2].fill else "polyline"} '
-            f'points="{_svg_points(points, H)}" '
-            f'style={_quoteattr(_svg_style(layout, key, lw, footer.colour))}/>'
-            for key, points in footer.samples]
+    out.append(
+        f'<g inkscape:groupmode="layer" id="layer-legend" '
+        f"inkscape:label={_quoteattr(LEGEND_LAYER)} "
+        f"style={_quoteattr(_svg_style(layout, 'legend', lw))}>"
+    )
+    out.append(
+        f'<polygon points="{_svg_points(footer.bar, H)}" style="fill:{footer.colour};stroke:none"/>'
+    )
+    out += [
+        f"<{'polygon' if layer_look(layout, key)[2].fill else 'polyline'} "
+        f'points="{_svg_points(points, H)}" '
+        f"style={_quoteattr(_svg_style(layout, key, lw, footer.colour))}/>"
+        for key, points in footer.samples
+    ]
     out += [_svg_label(t, H) for t in footer.texts]
     out.append("</g>")
     out.append("</svg>\n")
     return "\n".join(out)
 
 
-def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = None, *,
-              layers: Collection[str] | None = None, line_width: float = 0.25) -> tuple[Path, ...]:
+def write_svg(
+    path: str | os.PathLike,
+    layout: Layout,
+    page_index: int | None = None,
+    *,
+    layers: Collection[str] | None = None,
+    line_width: float = 0.25,
+) -> tuple[Path, ...]:
     """Write the layout as SVG, one file per page, in millimetres.
 
     Parameters
@@ -162,10 +184,14 @@ def write_svg(path: str | os.PathLike, layout: Layout, page_index: int | None = 
     elif len(layout.pages) == 1:
         jobs = [(target, 0)]
     else:
-        jobs = [(target.with_name(f"{target.stem}-p{i + 1}{target.suffix}"), i)
-                for i in range(len(layout.pages))]
-    texts = [(p, svg_page(layout, i, layers=layers, line_width=line_width).encode("utf-8"))
-             for p, i in jobs]
+        jobs = [
+            (target.with_name(f"{target.stem}-p{i + 1}{target.suffix}"), i)
+            for i in range(len(layout.pages))
+        ]
+    texts = [
+        (p, svg_page(layout, i, layers=layers, line_width=line_width).encode("utf-8"))
+        for p, i in jobs
+    ]
     # All pages or none: every page goes to a temporary file, renamed only once all are written.
     with contextlib.ExitStack() as stack:
         for p, data in texts:

@@ -27,24 +27,37 @@ from types import MappingProxyType
 from ..kernel._errors import InputError
 from ..kernel._version import VERSION
 
-__all__ = ["PAGES", "UNITS", "COLOURS", "CREATOR", "Unit", "page_mm", "mm_per_unit", "rgb8", "rgba", "rgba8"]
+__all__ = [
+    "PAGES",
+    "UNITS",
+    "COLOURS",
+    "CREATOR",
+    "Unit",
+    "page_mm",
+    "mm_per_unit",
+    "rgb8",
+    "rgba",
+    "rgba8",
+]
 
 #: The program and version the files name as their creator.
 CREATOR = f"curvefold {VERSION}"
 
 
 #: Paper sizes, portrait (width, height) in millimetres.
-PAGES: Mapping[str, tuple[float, float]] = MappingProxyType({
-    "A5": (148.0, 210.0),
-    "A4": (210.0, 297.0),
-    "A3": (297.0, 420.0),
-    "A2": (420.0, 594.0),
-    "A1": (594.0, 841.0),
-    "A0": (841.0, 1189.0),
-    "Letter": (215.9, 279.4),
-    "Legal": (215.9, 355.6),
-    "Tabloid": (279.4, 431.8),
-})
+PAGES: Mapping[str, tuple[float, float]] = MappingProxyType(
+    {
+        "A5": (148.0, 210.0),
+        "A4": (210.0, 297.0),
+        "A3": (297.0, 420.0),
+        "A2": (420.0, 594.0),
+        "A1": (594.0, 841.0),
+        "A0": (841.0, 1189.0),
+        "Letter": (215.9, 279.4),
+        "Legal": (215.9, 355.6),
+        "Tabloid": (279.4, 431.8),
+    }
+)
 
 
 @dataclass(frozen=True)
@@ -64,34 +77,38 @@ class Unit:
 
 
 #: Every length unit, by name.
-UNITS: Mapping[str, Unit] = MappingProxyType({
-    "mm": Unit(1e-3, "Millimeters"),
-    "cm": Unit(1e-2, "Centimeters"),
-    "m": Unit(1.0, "Meters"),
-    "in": Unit(0.0254, "Inches"),
-    "pt": Unit(0.0254 / 72.0, "PrinterPoints"),
-    "ft": Unit(0.3048, "Feet"),
-    "um": Unit(1e-6, "Microns"),
-    "nm": Unit(1e-9, "Nanometers"),
-    "unit": Unit(1.0, "Meters"),
-})
+UNITS: Mapping[str, Unit] = MappingProxyType(
+    {
+        "mm": Unit(1e-3, "Millimeters"),
+        "cm": Unit(1e-2, "Centimeters"),
+        "m": Unit(1.0, "Meters"),
+        "in": Unit(0.0254, "Inches"),
+        "pt": Unit(0.0254 / 72.0, "PrinterPoints"),
+        "ft": Unit(0.3048, "Feet"),
+        "um": Unit(1e-6, "Microns"),
+        "nm": Unit(1e-9, "Nanometers"),
+        "unit": Unit(1.0, "Meters"),
+    }
+)
 
 #: Colour of every kind of line: the edge kinds of a mesh (``fold``, ``seam``,
 #: ``boundary``, ``ruling``), the curve kinds of the figures (``junction``, ``edge``), the
 #: surfaces, and the crease-pattern layers that have no edge kind of their own.
-COLOURS: Mapping[str, str] = MappingProxyType({
-    "fold": "#ff0000",
-    "seam": "#0000ff",
-    "boundary": "#000000",
-    "ruling": "#00a000",
-    "junction": "#7b3294",
-    "edge": "#4d4d4d",
-    "surface": "#cccccc",
-    "valley": "#1f4fe0",
-    "tab": "#16a016",
-    "glue": "#c6ecc6",
-    "label": "#7b2fa6",
-})
+COLOURS: Mapping[str, str] = MappingProxyType(
+    {
+        "fold": "#ff0000",
+        "seam": "#0000ff",
+        "boundary": "#000000",
+        "ruling": "#00a000",
+        "junction": "#7b3294",
+        "edge": "#4d4d4d",
+        "surface": "#cccccc",
+        "valley": "#1f4fe0",
+        "tab": "#16a016",
+        "glue": "#c6ecc6",
+        "label": "#7b2fa6",
+    }
+)
 
 
 def page_mm(name: str) -> tuple[float, float]:

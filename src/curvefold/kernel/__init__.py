@@ -11,7 +11,13 @@ from ._exports import lazy_exports as _lazy_exports
 __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
-        "_errors": ["CurvefoldError", "InputError", "RegressionError", "ConvergenceError", "InternalError"],
+        "_errors": [
+            "CurvefoldError",
+            "InputError",
+            "RegressionError",
+            "ConvergenceError",
+            "InternalError",
+        ],
         "_validate": ["Spec", "Interval", "check_integer"],
         "_expr": ["Expression", "compile_expression"],
         "_functions": ["ScalarFunction", "Constant", "Sampled", "UserFunction", "as_function"],

@@ -66,7 +66,7 @@ class FrozenArrays:
     >>> @dataclasses.dataclass(frozen=True)
     ... class Points(FrozenArrays):
     ...     xy: np.ndarray
-    >>> p = Points(np.zeros((0, 2)))   # even an empty array is held read-only
+    >>> p = Points(np.zeros((0, 2)))  # even an empty array is held read-only
     >>> p.xy.flags.writeable
     False
     """
@@ -78,7 +78,9 @@ class FrozenArrays:
             value = getattr(self, name, None)  # fields with init=False may not be set yet
             if isinstance(value, np.ndarray):
                 object.__setattr__(self, name, frozen(value))
-            elif isinstance(value, tuple) and value and all(isinstance(v, np.ndarray) for v in value):
+            elif (
+                isinstance(value, tuple) and value and all(isinstance(v, np.ndarray) for v in value)
+            ):
                 object.__setattr__(self, name, tuple(frozen(v) for v in value))
 
     def __reduce__(self) -> tuple[type[FrozenArrays], tuple[object, ...]]:
@@ -86,7 +88,8 @@ class FrozenArrays:
 
 
 def distinct(values: np.ndarray) -> np.ndarray:
-    """The distinct values (k,) of an array of integers or of numbers without NaN (any shape), ascending.
+    """The distinct values (k,) of an array of integers or of numbers without NaN (any shape),
+    ascending.
 
     ``np.unique(values)``, the same array, without its import of numpy.ma (NumPy 2 looks
     for a mask there: some 0.04 CPU-s in every process that calls it).

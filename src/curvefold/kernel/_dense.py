@@ -21,7 +21,14 @@ import numpy as np
 from ._functions import ScalarFunction
 from ._lie import CHUNK, dual_to_motion, quaternion_matrix
 
-__all__ = ["dense_stride", "frenet_rates", "hermite_fill", "coarse_indices", "STEP_RATE", "MIN_STRIDE"]
+__all__ = [
+    "dense_stride",
+    "frenet_rates",
+    "hermite_fill",
+    "coarse_indices",
+    "STEP_RATE",
+    "MIN_STRIDE",
+]
 
 #: Largest coarse step, as a multiple of the curve's rate scale 1/r.
 STEP_RATE = 0.015
@@ -29,7 +36,9 @@ STEP_RATE = 0.015
 MIN_STRIDE = 4
 
 
-def dense_stride(kappa: ScalarFunction, tau: ScalarFunction, length: float, samples: int, *, probes: int = 4001) -> int:
+def dense_stride(
+    kappa: ScalarFunction, tau: ScalarFunction, length: float, samples: int, *, probes: int = 4001
+) -> int:
     """How many samples one coarse Magnus step may span (1: integrate every sample).
 
     The rate scale ``r = max(|ω|, √|ω'|)`` with ``|ω| = √(κ² + τ²)`` is read on ``probes``
@@ -40,9 +49,11 @@ def dense_stride(kappa: ScalarFunction, tau: ScalarFunction, length: float, samp
     Examples
     --------
     >>> from curvefold.kernel import Constant
-    >>> dense_stride(Constant(1.0), Constant(0.0), 1.0, 100001)   # a circle sampled every 10 µm
+    >>> dense_stride(Constant(1.0), Constant(0.0), 1.0, 100001)  # a circle sampled every 10 µm
     1499
-    >>> dense_stride(Constant(0.0), Constant(0.0), 1.0, 100001)   # zero curvature: every sample integrated
+    >>> dense_stride(
+    ...     Constant(0.0), Constant(0.0), 1.0, 100001
+    ... )  # zero curvature: every sample integrated
     1
     """
     h = length / (samples - 1)
@@ -83,13 +94,15 @@ def frenet_rates(kappa: ScalarFunction, tau: ScalarFunction, s: np.ndarray) -> n
     >>> from curvefold.kernel import Constant
     >>> frenet_rates(Constant(1.0), Constant(0.0), np.array([0.0, 1.0])).tolist()
     [[1.0, 1.0], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]]
-    >>> frenet_rates(Constant(1.0), Constant(0.0), np.array([])).shape   # no samples
+    >>> frenet_rates(Constant(1.0), Constant(0.0), np.array([])).shape  # no samples
     (4, 0)
     """
     return np.stack([kappa(s), tau(s), kappa.derivative(s), tau.derivative(s)])
 
 
-def hermite_fill(s: np.ndarray, stride: int, motions: np.ndarray, rates: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def hermite_fill(
+    s: np.ndarray, stride: int, motions: np.ndarray, rates: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Fill every sample from the coarse solution at ``s[::stride]`` (and ``s[-1]``).
 
     Parameters
@@ -117,7 +130,10 @@ def hermite_fill(s: np.ndarray, stride: int, motions: np.ndarray, rates: np.ndar
     >>> s = np.linspace(0.0, 1.0, 9)
     >>> S = s[coarse_indices(9, 4)]
     >>> circle = lambda s: np.stack([np.sin(s), 1 - np.cos(s), 0 * s], axis=-1)
-    >>> motions = np.stack([motion_to_dual([np.cos(a / 2), 0, 0, np.sin(a / 2)], x) for a, x in zip(S, circle(S))], axis=1)
+    >>> motions = np.stack(
+    ...     [motion_to_dual([np.cos(a / 2), 0, 0, np.sin(a / 2)], x) for a, x in zip(S, circle(S))],
+    ...     axis=1,
+    ... )
     >>> points, frames = hermite_fill(s, 4, motions, frenet_rates(Constant(1.0), Constant(0.0), S))
     >>> float(np.abs(points - circle(s)).max()) < 1e-6, frames.shape
     (True, (9, 3, 3))
@@ -154,14 +170,16 @@ def hermite_fill(s: np.ndarray, stride: int, motions: np.ndarray, rates: np.ndar
 
 def _step_data(f0: np.ndarray, f1: np.ndarray, f2: np.ndarray, H: np.ndarray) -> np.ndarray:
     """Hermite data (p0, H v0, H² a0, H² a1, H v1, p1) of every step, shape (M - 1, 6, C), from
-    the values and first two derivatives (M, C) at the coarse samples and the step lengths H (M - 1,)."""
+    the values and first two derivatives (M, C) at the coarse samples and the step lengths H (M -
+    1,)."""
     H = H[:, None]
     H2 = H * H
     return np.stack([f0[:-1], H * f1[:-1], H2 * f2[:-1], H2 * f2[1:], H * f1[1:], f0[1:]], axis=1)
 
 
 def _times_twist(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The Hamilton products q (0, a, 0, b) of quaternions q (4, M) by pure ones in the x–z plane, (4, M)."""
+    """The Hamilton products q (0, a, 0, b) of quaternions q (4, M) by pure ones in the x–z
+    plane, (4, M)."""
     w, x, y, z = q
     return np.stack([-(x * a + z * b), w * a + y * b, z * a - x * b, w * b - y * a])
 
@@ -173,7 +191,7 @@ def coarse_indices(n: int, stride: int) -> np.ndarray:
     --------
     >>> coarse_indices(10, 4).tolist(), coarse_indices(9, 4).tolist()
     ([0, 4, 8, 9], [0, 4, 8])
-    >>> coarse_indices(1, 4).tolist()   # a single sample is its own last
+    >>> coarse_indices(1, 4).tolist()  # a single sample is its own last
     [0]
     """
     idx = np.arange(0, n, stride)

@@ -74,7 +74,7 @@ class ConvergenceError(CurvefoldError):
 
     Examples
     --------
-    >>> ConvergenceError("no arch root").parameter is None   # about no single parameter
+    >>> ConvergenceError("no arch root").parameter is None  # about no single parameter
     True
     """
 

@@ -16,7 +16,9 @@ from collections.abc import Callable, Mapping, Sequence
 __all__ = ["lazy_exports"]
 
 
-def lazy_exports(package: str, table: Mapping[str, Sequence[str]]) -> tuple[list[str], Callable[[str], object], Callable[[], list[str]]]:
+def lazy_exports(
+    package: str, table: Mapping[str, Sequence[str]]
+) -> tuple[list[str], Callable[[str], object], Callable[[], list[str]]]:
     """``__all__``, ``__getattr__`` and ``__dir__`` of ``package`` from its table: module → names.
 
     Parameters

@@ -95,7 +95,10 @@ _BINARY: dict[type, Callable[..., np.ndarray]] = {  # on arrays or float64 const
     ast.Div: np.true_divide,
     ast.Pow: np.power,
 }
-_UNARY: dict[type, Callable[[np.ndarray], np.ndarray]] = {ast.UAdd: np.positive, ast.USub: np.negative}
+_UNARY: dict[type, Callable[[np.ndarray], np.ndarray]] = {
+    ast.UAdd: np.positive,
+    ast.USub: np.negative,
+}
 
 #: A compiled piece of an expression: a function of the variable's values, which may return
 #: a scalar, or a constant folded at compile time.
@@ -144,6 +147,7 @@ _REFUSED: dict[type, str] = {
 
 _EXCERPT = 60
 
+
 def _excerpt(text: str, limit: int = _EXCERPT) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
@@ -171,7 +175,9 @@ class Expression:
     >>> f = compile_expression("1 + 0.5*s", name="kappa")
     >>> f(np.array([0.0, 2.0])).tolist(), f.constant
     ([1.0, 2.0], None)
-    >>> compile_expression("2*pi", name="kappa")(np.zeros(2)).round(6).tolist()   # free of s: broadcast
+    >>> compile_expression("2*pi", name="kappa")(np.zeros(2)).round(
+    ...     6
+    ... ).tolist()  # free of s: broadcast
     [6.283185, 6.283185]
     """
 
@@ -235,13 +241,19 @@ def compile_expression(text: str, *, variable: str = "s", name: str = "expressio
     >>> compile_expression("s.__class__", name="kappa")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: kappa: attribute access is not allowed in expressions ('s.__class__')
+    curvefold.kernel._errors.InputError: kappa: attribute access is not allowed in expressions
+    ('s.__class__')
     """
     if not isinstance(text, str):
-        raise InputError(f"{name}: expected an expression string, got {type(text).__name__} {_excerpt(repr(text))}")
+        raise InputError(
+            f"{name}: expected an expression string, got {type(text).__name__} "
+            f"{_excerpt(repr(text))}"
+        )
     _check_variable(variable, name)
     if len(text) > MAX_LENGTH:
-        raise InputError(f"{name}: expression is {len(text)} characters long, the limit is {MAX_LENGTH}")
+        raise InputError(
+            f"{name}: expression is {len(text)} characters long, the limit is {MAX_LENGTH}"
+        )
     tree, body_text = _parse(text, name)
     _check_size(tree, body_text, name)
     compiler = _Compiler(body_text, variable, name)
@@ -262,7 +274,8 @@ def _check_variable(variable: str, name: str) -> None:
         or variable in FUNCTIONS
     ):
         raise InputError(
-            f"{name}: variable must be an identifier other than a keyword, constant or function name, got {variable!r}"
+            f"{name}: variable must be an identifier other than a keyword, constant or function "
+            f"name, got {variable!r}"
         )
 
 
@@ -277,7 +290,10 @@ def _parse(text: str, name: str) -> tuple[ast.Expression, str]:
     """Parse ``text`` in eval mode; return the tree and the text its positions refer to."""
     for i, ch in enumerate(text):
         if (ord(ch) < 32 and ch not in "\t\n\r") or ord(ch) == 127 or 0xD800 <= ord(ch) <= 0xDFFF:
-            raise InputError(f"{name}: invalid character U+{ord(ch):04X} at {_position(text, i)} in {_excerpt(text)!r}")
+            raise InputError(
+                f"{name}: invalid character U+{ord(ch):04X} at {_position(text, i)} "
+                f"in {_excerpt(text)!r}"
+            )
     body = text.lstrip()
     lead = len(text) - len(body)
     if not body:
@@ -292,9 +308,13 @@ def _parse(text: str, name: str) -> tuple[ast.Expression, str]:
             line = min(max(exc.lineno, 1), len(lines))
             index = lead + sum(len(x) + 1 for x in lines[: line - 1]) + exc.offset - 1
             where = _position(text, min(index, len(text)))
-        raise InputError(f"{name}: invalid expression: {exc.msg} at {where} in {_excerpt(text)!r}") from None
+        raise InputError(
+            f"{name}: invalid expression: {exc.msg} at {where} in {_excerpt(text)!r}"
+        ) from None
     except (RecursionError, MemoryError):
-        raise InputError(f"{name}: expression is nested too deeply (limit {MAX_DEPTH}) in {_excerpt(text)!r}") from None
+        raise InputError(
+            f"{name}: expression is nested too deeply (limit {MAX_DEPTH}) in {_excerpt(text)!r}"
+        ) from None
     except ValueError as exc:
         raise InputError(f"{name}: invalid expression: {exc} in {_excerpt(text)!r}") from None
 
@@ -308,15 +328,21 @@ def _check_size(tree: ast.Expression, text: str, name: str) -> None:
         if isinstance(node, ast.expr):
             count += 1
             if count > MAX_NODES:
-                raise InputError(f"{name}: expression has more than {MAX_NODES} terms in {_excerpt(text)!r}")
+                raise InputError(
+                    f"{name}: expression has more than {MAX_NODES} terms in {_excerpt(text)!r}"
+                )
             if depth > MAX_DEPTH:
                 raise InputError(
-                    f"{name}: expression is nested too deeply (more than {MAX_DEPTH} levels) in {_excerpt(text)!r}"
+                    f"{name}: expression is nested too deeply (more than {MAX_DEPTH} levels) in "
+                    f"{_excerpt(text)!r}"
                 )
         step = 1 if isinstance(node, ast.expr) else 0
         for child in ast.iter_child_nodes(node):
-            chained = isinstance(node, ast.BinOp) and child is node.left and isinstance(child, ast.BinOp)
-            stack.append((child, depth if chained else depth + step))  # a chain a + b - c … is one level
+            chained = (
+                isinstance(node, ast.BinOp) and child is node.left and isinstance(child, ast.BinOp)
+            )
+            # a chain a + b - c … is one level
+            stack.append((child, depth if chained else depth + step))
 
 
 @dataclass(frozen=True)
@@ -375,9 +401,15 @@ class _Compiler:
         if node.id in CONSTANTS:
             return np.float64(CONSTANTS[node.id])
         if node.id in FUNCTIONS:
-            raise self.refuse(node, f"function '{node.id}' must be called, e.g. {node.id}({self.variable})")
+            raise self.refuse(
+                node, f"function '{node.id}' must be called, e.g. {node.id}({self.variable})"
+            )
         allowed = ", ".join([self.variable, *CONSTANTS])
-        hint = "; 'tau' is not a constant here (τ means torsion), write 2*pi" if node.id == "tau" else ""
+        hint = (
+            "; 'tau' is not a constant here (τ means torsion), write 2*pi"
+            if node.id == "tau"
+            else ""
+        )
         raise InputError(f"{self.name}: unknown name {node.id!r} (allowed: {allowed}){hint}")
 
     def binary(self, node: ast.BinOp) -> _Node:
@@ -396,11 +428,19 @@ class _Compiler:
             if op is None:
                 symbol = _OPERATOR_TEXT[type(step.op)]
                 hint = "; use ** for powers" if symbol == "^" else ""
-                raise self.refuse(step, f"operator '{symbol}' is not allowed (allowed: + - * / **){hint}")
+                raise self.refuse(
+                    step, f"operator '{symbol}' is not allowed (allowed: + - * / **){hint}"
+                )
             right = self.build(step.right)
-            if isinstance(step.op, ast.Pow) and not callable(right) and not abs(right) <= MAX_EXPONENT:
+            if (
+                isinstance(step.op, ast.Pow)
+                and not callable(right)
+                and not abs(right) <= MAX_EXPONENT
+            ):
                 limit = f"|exponent| ≤ {MAX_EXPONENT:g}"
-                raise self.refuse(step, f"constant exponent {float(right):g} is out of range ({limit})")
+                raise self.refuse(
+                    step, f"constant exponent {float(right):g} is out of range ({limit})"
+                )
             if steps or callable(value) or callable(right):
                 steps.append((op, right))
             else:
@@ -414,7 +454,9 @@ class _Compiler:
         if func.id not in FUNCTIONS:
             if func.id == self.variable or func.id in CONSTANTS:
                 raise self.refuse(node, f"'{func.id}' is not a function")
-            raise self.refuse(node, f"function '{func.id}' is not allowed (allowed: {', '.join(FUNCTIONS)})")
+            raise self.refuse(
+                node, f"function '{func.id}' is not allowed (allowed: {', '.join(FUNCTIONS)})"
+            )
         if node.keywords:
             raise self.refuse(node, "keyword arguments are not allowed in expressions")
         for arg in node.args:
@@ -423,7 +465,9 @@ class _Compiler:
         fn, arity = FUNCTIONS[func.id]
         if len(node.args) != arity:
             plural = "" if arity == 1 else "s"
-            raise self.refuse(node, f"function '{func.id}' takes {arity} argument{plural}, got {len(node.args)}")
+            raise self.refuse(
+                node, f"function '{func.id}' takes {arity} argument{plural}, got {len(node.args)}"
+            )
         return _apply(fn, [self.build(arg) for arg in node.args])
 
 

@@ -76,7 +76,7 @@ class ScalarFunction(ABC):
         --------
         >>> Constant(2.0).value(np.array([0.0, 1.0])).tolist()
         [2.0, 2.0]
-        >>> Constant(2.0).value(np.array([])).shape   # no points, no values
+        >>> Constant(2.0).value(np.array([])).shape  # no points, no values
         (0,)
         """
 
@@ -86,9 +86,13 @@ class ScalarFunction(ABC):
 
         Examples
         --------
-        >>> Sampled(np.array([0.0, 1.0, 2.0]), 2.0).derivative(np.array([0.5, 1.5])).round(6).tolist()
+        >>> Sampled(np.array([0.0, 1.0, 2.0]), 2.0).derivative(np.array([0.5, 1.5])).round(
+        ...     6
+        ... ).tolist()
         [1.0, 1.0]
-        >>> Constant(2.0).derivative(np.array([0.0])).tolist()   # a constant's derivative is exactly 0
+        >>> Constant(2.0).derivative(
+        ...     np.array([0.0])
+        ... ).tolist()  # a constant's derivative is exactly 0
         [0.0]
         """
 
@@ -99,7 +103,9 @@ class ScalarFunction(ABC):
         --------
         >>> Constant(2.0).scaled(-0.5).constant
         -1.0
-        >>> Sampled(np.array([0.0, 1.0]), 1.0).scaled(0.0)(np.array([0.5])).tolist()   # zero times anything
+        >>> Sampled(np.array([0.0, 1.0]), 1.0).scaled(0.0)(
+        ...     np.array([0.5])
+        ... ).tolist()  # zero times anything
         [0.0]
         """
         return Scaled(self, float(factor))
@@ -111,7 +117,10 @@ class Constant(ScalarFunction):
 
     Examples
     --------
-    >>> Constant(0.0)(np.array([0.0, 1.0])).tolist(), Constant(0.0).derivative(np.array([0.5])).tolist()
+    >>> (
+    ...     Constant(0.0)(np.array([0.0, 1.0])).tolist(),
+    ...     Constant(0.0).derivative(np.array([0.5])).tolist(),
+    ... )
     ([0.0, 0.0], [0.0])
     """
 
@@ -130,7 +139,10 @@ class Scaled(ScalarFunction):
 
     Examples
     --------
-    >>> Scaled(Constant(3.0), 2.0).constant, Scaled(Sampled(np.array([0.0, 1.0]), 1.0), 2.0).constant
+    >>> (
+    ...     Scaled(Constant(3.0), 2.0).constant,
+    ...     Scaled(Sampled(np.array([0.0, 1.0]), 1.0), 2.0).constant,
+    ... )
     (6.0, None)
     """
 
@@ -163,10 +175,12 @@ class Sampled(FrozenArrays, ScalarFunction):
 
     Examples
     --------
-    >>> f = Sampled(np.array([0.0, 1.0, 4.0, 9.0]), 3.0)   # s² sampled at s = 0, 1, 2, 3
+    >>> f = Sampled(np.array([0.0, 1.0, 4.0, 9.0]), 3.0)  # s² sampled at s = 0, 1, 2, 3
     >>> f(np.array([1.5])).round(6).tolist(), f.derivative(np.array([1.5])).round(6).tolist()
     ([2.25], [3.0])
-    >>> Sampled(np.array([1.0, 1.0]), 3.0)(np.array([2.0])).tolist()   # two equal samples: a constant
+    >>> Sampled(np.array([1.0, 1.0]), 3.0)(
+    ...     np.array([2.0])
+    ... ).tolist()  # two equal samples: a constant
     [1.0]
     """
 
@@ -181,7 +195,9 @@ class Sampled(FrozenArrays, ScalarFunction):
         object.__setattr__(self, "samples", np.asarray(self.samples, dtype=float))
         super().__post_init__()
         grid = np.linspace(0.0, float(self.length), self.samples.size)
-        spline = CubicSpline(grid, self.samples, bc_type="not-a-knot" if self.samples.size > 3 else "natural")
+        spline = CubicSpline(
+            grid, self.samples, bc_type="not-a-knot" if self.samples.size > 3 else "natural"
+        )
         object.__setattr__(self, "spline", spline)
         object.__setattr__(self, "slope", spline.derivative())
 
@@ -195,11 +211,12 @@ class Sampled(FrozenArrays, ScalarFunction):
 class Differenced(ScalarFunction):
     """A function whose derivative is a sixth-order difference inside ``[0, length]``.
 
-    Subclasses provide :meth:`ScalarFunction.value` and the attributes ``length`` (L) and ``step`` (h).
+    Subclasses provide :meth:`ScalarFunction.value` and the attributes ``length`` (L) and ``step``
+    (h).
 
     Examples
     --------
-    >>> f = UserFunction(np.sin, 1.0, difference_step(1.0))   # a Differenced function
+    >>> f = UserFunction(np.sin, 1.0, difference_step(1.0))  # a Differenced function
     >>> isinstance(f, Differenced), round(float(f.derivative(np.array([0.0]))[0]), 9)
     (True, 1.0)
     """
@@ -230,9 +247,14 @@ class UserFunction(Differenced):
     Examples
     --------
     >>> f = UserFunction(np.exp, 1.0, difference_step(1.0))
-    >>> f(np.array([0.0])).tolist(), round(float(f.derivative(np.array([1.0]))[0]), 9)   # e at the end, one-sided
+    >>> (
+    ...     f(np.array([0.0])).tolist(),
+    ...     round(float(f.derivative(np.array([1.0]))[0]), 9),
+    ... )  # e at the end, one-sided
     ([1.0], 2.718281828)
-    >>> UserFunction(lambda s: 1.0, 1.0, 0.01)(np.array([0.2, 0.4])).tolist()   # a constant callable is broadcast
+    >>> UserFunction(lambda s: 1.0, 1.0, 0.01)(
+    ...     np.array([0.2, 0.4])
+    ... ).tolist()  # a constant callable is broadcast
     [1.0, 1.0]
     """
 
@@ -252,14 +274,15 @@ def difference_step(length: float) -> float:
 
     Examples
     --------
-    >>> difference_step(10.0), difference_step(0.004)   # a short domain: L / 8
+    >>> difference_step(10.0), difference_step(0.004)  # a short domain: L / 8
     (0.01, 0.0005)
     """
     return min(1e-3 * max(float(length), 1.0), float(length) / 8.0)
 
 
 def _stencil_weights(offsets: range) -> np.ndarray:
-    """Weights w of f'(0) ≈ Σ w_k f(k h) / h on the integer nodes ``offsets`` (exact, then float)."""
+    """Weights w of f'(0) ≈ Σ w_k f(k h) / h on the integer nodes ``offsets`` (exact, then
+    float)."""
     from fractions import Fraction
 
     nodes = list(offsets)
@@ -280,17 +303,24 @@ def _stencil_weights(offsets: range) -> np.ndarray:
 
 #: Sixth-order central difference weights for f'(s): Σ c_k (f(s+kh) − f(s−kh)) / h.
 _CENTRAL6 = ((1, 45.0 / 60.0), (2, -9.0 / 60.0), (3, 1.0 / 60.0))
+
+
 @cache
 def _shifted6() -> np.ndarray:
-    """Seven-point stencils on the nodes shift − 3 … shift + 3 (rows: shift = −3 … 3), made when first needed."""
-    return readonly(np.stack([_stencil_weights(range(shift - 3, shift + 4)) for shift in range(-3, 4)]))
+    """Seven-point stencils on the nodes shift − 3 … shift + 3 (rows: shift = −3 … 3), made when
+    first needed."""
+    return readonly(
+        np.stack([_stencil_weights(range(shift - 3, shift + 4)) for shift in range(-3, 4)])
+    )
 
 
 #: Shifts tried in order: the central stencil first, then the least one-sided.
 _SHIFT_ORDER = (0, 1, -1, 2, -2, 3, -3)
 
 
-def difference_derivative(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, *, length: float, step: float) -> np.ndarray:
+def difference_derivative(
+    f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, *, length: float, step: float
+) -> np.ndarray:
     """Sixth-order finite-difference derivative of ``f`` that samples only ``[0, length]``.
 
     At every point the central stencil ``s + k h`` (k = −3 … 3) is used if all its nodes
@@ -324,7 +354,8 @@ def difference_derivative(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, 
     s = np.asarray(s, dtype=float)
     flat = s.reshape(-1)
     h = float(step)
-    # The central stencil where it fits (its nodes grow with m, so its ends tell), the others placed one by one.
+    # The central stencil where it fits (its nodes grow with m, so its ends tell), the others placed
+    # one by one.
     central = (flat + -3 * h >= 0.0) & (flat + 3 * h <= length)
     if central.all():
         return _central(f, flat, h).reshape(s.shape)
@@ -340,17 +371,25 @@ def _central(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, h: float) -> 
     return sum(c * (f(x + k * h) - f(x - k * h)) for k, c in _CENTRAL6) / h
 
 
-def _shifted(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, *, length: float, h: float) -> np.ndarray:
-    """The difference at points x (M,) where the central stencil does not fit: the least shifted one that does, else NaN."""
-    first = x[:, None] + (np.arange(-3, 4) - 3) * h  # (M, 7): first node of the stencil shifted by σ = −3 … 3
+def _shifted(
+    f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, *, length: float, h: float
+) -> np.ndarray:
+    """The difference at points x (M,) where the central stencil does not fit: the least shifted
+    one that does, else NaN."""
+    # (M, 7): first node of the stencil shifted by σ = −3 … 3
+    first = x[:, None] + (np.arange(-3, 4) - 3) * h
     last = x[:, None] + (np.arange(-3, 4) + 3) * h
-    fits = ((first >= 0.0) & (last <= length))[:, np.array(_SHIFT_ORDER) + 3]  # columns by preference
+    # columns by preference
+    fits = ((first >= 0.0) & (last <= length))[:, np.array(_SHIFT_ORDER) + 3]
     sigma = np.array(_SHIFT_ORDER)[np.argmax(fits, axis=1)]
     out = np.full(x.shape, np.nan)
     edge = np.flatnonzero(fits.any(axis=1))
     if edge.size:
         nodes = x[edge, None] + (sigma[edge, None] + np.arange(-3, 4)) * h  # (E, 7)
-        out[edge] = np.einsum("ij,ij->i", _shifted6()[sigma[edge] + 3], f(nodes.reshape(-1)).reshape(-1, 7)) / h
+        out[edge] = (
+            np.einsum("ij,ij->i", _shifted6()[sigma[edge] + 3], f(nodes.reshape(-1)).reshape(-1, 7))
+            / h
+        )
     return out
 
 
@@ -381,14 +420,15 @@ def as_function(f: FunctionLike, *, name: str, length: float) -> ScalarFunction:
 
     Examples
     --------
-    >>> as_function(0.0, name="tau", length=1.0)   # a straight, untwisted curve's torsion
+    >>> as_function(0.0, name="tau", length=1.0)  # a straight, untwisted curve's torsion
     Constant(constant=0.0)
     >>> as_function([1.0, 2.0], name="kappa", length=1.0)(np.array([0.5])).round(6).tolist()
     [1.5]
     >>> as_function([1.0], name="kappa", length=1.0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: kappa: expected a number, a callable or a 1-D array of at least 2 samples, got shape (1,)
+    curvefold.kernel._errors.InputError: kappa: expected a number, a callable or a 1-D array of at
+    least 2 samples, got shape (1,)
     """
     if isinstance(f, ScalarFunction):
         return f
@@ -400,7 +440,10 @@ def as_function(f: FunctionLike, *, name: str, length: float) -> ScalarFunction:
         check_finite(np.array([c]), name=name, s=np.array([0.0]))
         return Constant(c)
     if arr.ndim != 1 or arr.size < 2:
-        raise InputError(f"{name}: expected a number, a callable or a 1-D array of at least 2 samples, got shape {arr.shape}")
+        raise InputError(
+            f"{name}: expected a number, a callable or a 1-D array of at least 2 "
+            f"samples, got shape {arr.shape}"
+        )
     check_finite(arr, name=name, s=np.linspace(0.0, float(length), arr.size))
     return Sampled(arr, float(length))
 

@@ -43,20 +43,27 @@ def strict_json(value: object, **kwargs: Any) -> str:
     >>> strict_json({"x": [1.0, float("nan")]})
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InternalError: the result holds a number that is not finite: result.x[1] = nan
+    curvefold.kernel._errors.InternalError: the result holds a number that is not finite:
+    result.x[1] = nan
     """
     try:
         return json.dumps(value, allow_nan=False, default=plain, **kwargs)
     except ValueError:
-        raise InternalError(f"the result holds a number that is not finite: {_non_finite(value)}") from None
+        raise InternalError(
+            f"the result holds a number that is not finite: {_non_finite(value)}"
+        ) from None
 
 
 def _non_finite(value: object, key: str = "result") -> str | None:
     """``key = value`` of the first non-finite number in a JSON-ready value, or None."""
     if isinstance(value, dict):
-        return next((found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None)
+        return next(
+            (found for k, v in value.items() if (found := _non_finite(v, f"{key}.{k}"))), None
+        )
     if isinstance(value, (list, tuple, np.ndarray)):
-        return next((found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None)
+        return next(
+            (found for i, v in enumerate(value) if (found := _non_finite(v, f"{key}[{i}]"))), None
+        )
     if isinstance(value, (float, np.floating)) and not np.isfinite(value):
         return f"{key} = {value}"
     return None

@@ -59,7 +59,9 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> cross(np.array([1.0, 0, 0]), np.array([[0.0, 1, 0], [1, 0, 0]])).tolist()   # parallel vectors: zero
+    >>> cross(
+    ...     np.array([1.0, 0, 0]), np.array([[0.0, 1, 0], [1, 0, 0]])
+    ... ).tolist()  # parallel vectors: zero
     [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0]]
     """
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
@@ -76,7 +78,9 @@ def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> cross3(np.array([[1.0], [0.0], [0.0]]), np.array([[0.0, 1.0], [1.0, 0.0], [0.0, 0.0]])).T.tolist()  # x × y, x × x
+    >>> cross3(
+    ...     np.array([[1.0], [0.0], [0.0]]), np.array([[0.0, 1.0], [1.0, 0.0], [0.0, 0.0]])
+    ... ).T.tolist()  # x × y, x × x
     [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0]]
     """
     out = np.empty(np.broadcast_shapes(a.shape, b.shape))
@@ -92,7 +96,9 @@ def _cross3(a: _Vectors, b: _Vectors) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0) -> tuple:
+def magnus6(
+    h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0
+) -> tuple:
     """The sixth-order Magnus twist of every step of the Frenet–Serret equations.
 
     With ``A_i = h σ_i (τ_i, 0, κ_i ; 1, 0, 0)`` at the Gauss nodes, ``α₁ = A₂``,
@@ -121,12 +127,17 @@ def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray
     A step of 0.5 along a helix (κ = 1, τ = 0.5) twists by h (τ, 0, κ) and moves h along T;
     a straight line (κ = τ = 0) only moves:
 
-    >>> [round(float(x[0]) + 0.0, 12) for x in magnus6(np.array([0.5]), np.full((1, 3), 1.0), np.full((1, 3), 0.5))]
+    >>> [
+    ...     round(float(x[0]) + 0.0, 12)
+    ...     for x in magnus6(np.array([0.5]), np.full((1, 3), 1.0), np.full((1, 3), 0.5))
+    ... ]
     [0.25, 0.0, 0.5, 0.5, 0.0, 0.0]
     >>> [float(x[0]) + 0.0 for x in magnus6(np.array([2.0]), np.zeros((1, 3)), np.zeros((1, 3)))]
     [0.0, 0.0, 0.0, 2.0, 0.0, 0.0]
     """
-    kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
+    kappa, tau, speed = np.broadcast_arrays(
+        np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float)
+    )
     hs = np.asarray(h, float) * np.moveaxis(speed, -1, 0)  # (3, ..., M): h σ at each node
     a = hs * np.moveaxis(tau, -1, 0)  # ω₀ at the nodes
     c = hs * np.moveaxis(kappa, -1, 0)  # ω₂
@@ -135,14 +146,25 @@ def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray
     # α₁ = (a1, 0, c1; d1, 0, 0), α₂ = (A, 0, C; D, 0, 0), α₃ = (E, 0, G; H, 0, 0)
     a1, c1, d1 = a[1], c[1], d[1]
     A, C, D = k * (a[2] - a[0]), k * (c[2] - c[0]), k * (d[2] - d[0])
-    E, G, H = (10.0 / 3.0) * (a[2] - 2 * a[1] + a[0]), (10.0 / 3.0) * (c[2] - 2 * c[1] + c[0]), (10.0 / 3.0) * (d[2] - 2 * d[1] + d[0])
+    E, G, H = (
+        (10.0 / 3.0) * (a[2] - 2 * a[1] + a[0]),
+        (10.0 / 3.0) * (c[2] - 2 * c[1] + c[0]),
+        (10.0 / 3.0) * (d[2] - 2 * d[1] + d[0]),
+    )
     # C₁ = [α₁, α₂] = (0, p, 0; 0, q, 0)
     p = C * a1 - A * c1
     q = C * d1 - c1 * D
     # C₂ = −[α₁, Y]/60 with Y = 2α₃ + C₁ = (2E, p, 2G; 2H, q, 0)
     y1, y3, y4 = 2 * E, 2 * G, 2 * H
     f = -1.0 / 60.0
-    C2 = (f * p * c1, f * (y3 * a1 - y1 * c1), -f * p * a1, f * c1 * q, f * (y3 * d1 - c1 * y4), f * (-p * d1 - a1 * q))
+    C2 = (
+        f * p * c1,
+        f * (y3 * a1 - y1 * c1),
+        -f * p * a1,
+        f * c1 * q,
+        f * (y3 * d1 - c1 * y4),
+        f * (-p * d1 - a1 * q),
+    )
     # last = [X, Z] with X = −20α₁ − α₃ + C₁ and Z = α₂ + C₂ (both full bracket arguments)
     X = (-20 * a1 - E, p, -20 * c1 - G, -20 * d1 - H, q, 0.0)
     Z = (A + C2[0], C2[1], C + C2[2], D + C2[3], C2[4], C2[5])
@@ -159,7 +181,9 @@ def magnus6(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray
     )
 
 
-def magnus6_rotation(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0) -> tuple:
+def magnus6_rotation(
+    h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: np.ndarray | float = 1.0
+) -> tuple:
     """The rotational part ω of :func:`magnus6` alone (3-tuple), for when only frames matter.
 
     The so(3) part of the Magnus expansion involves only the angular velocities, so the
@@ -167,12 +191,20 @@ def magnus6_rotation(h: np.ndarray, kappa: np.ndarray, tau: np.ndarray, speed: n
 
     Examples
     --------
-    >>> [round(float(x[0]), 12) for x in magnus6_rotation(np.array([0.5]), np.full((1, 3), 1.0), np.full((1, 3), 0.5))]
+    >>> [
+    ...     round(float(x[0]), 12)
+    ...     for x in magnus6_rotation(np.array([0.5]), np.full((1, 3), 1.0), np.full((1, 3), 0.5))
+    ... ]
     [0.25, 0.0, 0.5]
-    >>> [float(x[0]) for x in magnus6_rotation(np.array([0.5]), np.zeros((1, 3)), np.zeros((1, 3)))]   # no turn
+    >>> [
+    ...     float(x[0])
+    ...     for x in magnus6_rotation(np.array([0.5]), np.zeros((1, 3)), np.zeros((1, 3)))
+    ... ]  # no turn
     [0.0, 0.0, 0.0]
     """
-    kappa, tau, speed = np.broadcast_arrays(np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float))
+    kappa, tau, speed = np.broadcast_arrays(
+        np.asarray(kappa, float), np.asarray(tau, float), np.asarray(speed, float)
+    )
     hs = np.asarray(h, float) * np.moveaxis(speed, -1, 0)
     a = hs * np.moveaxis(tau, -1, 0)
     c = hs * np.moveaxis(kappa, -1, 0)
@@ -202,7 +234,8 @@ def _qmul(a: _Vectors, b: _Vectors) -> tuple[np.ndarray, np.ndarray, np.ndarray,
 
 
 def _exp_coefficients(w: tuple) -> tuple[np.ndarray, ...]:
-    """cos(θ/2), sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ for ``θ = |ω|`` (Taylor series below 0.1)."""
+    """cos(θ/2), sin(θ/2)/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³ for ``θ = |ω|`` (Taylor series below
+    0.1)."""
     t2 = w[0] ** 2 + w[1] ** 2 + w[2] ** 2
     t = np.sqrt(t2)
     half_cos = 1 - t2 / 8 * (1 - t2 / 48 * (1 - t2 / 120 * (1 - t2 / 224 * (1 - t2 / 360))))
@@ -224,9 +257,12 @@ def exp_rotation(w: tuple) -> tuple:
 
     Examples
     --------
-    >>> [round(float(c), 12) for c in exp_rotation((np.array(0.0), np.array(0.0), np.array(np.pi)))]   # half turn about z
+    >>> [
+    ...     round(float(c), 12)
+    ...     for c in exp_rotation((np.array(0.0), np.array(0.0), np.array(np.pi)))
+    ... ]  # half turn about z
     [0.0, 0.0, 0.0, 1.0]
-    >>> [float(c) for c in exp_rotation((np.array(0.0),) * 3)]   # ω = 0: the identity
+    >>> [float(c) for c in exp_rotation((np.array(0.0),) * 3)]  # ω = 0: the identity
     [1.0, 0.0, 0.0, 0.0]
     """
     t = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
@@ -254,10 +290,14 @@ def exp_dual(twist: tuple) -> np.ndarray:
     --------
     A quarter turn about z while moving 1 along x ends at (2/π, 2/π, 0):
 
-    >>> R, p = dual_to_motion(exp_dual(tuple(np.array([c]) for c in (0.0, 0.0, np.pi / 2, 1.0, 0.0, 0.0)))[:, 0])
+    >>> R, p = dual_to_motion(
+    ...     exp_dual(tuple(np.array([c]) for c in (0.0, 0.0, np.pi / 2, 1.0, 0.0, 0.0)))[:, 0]
+    ... )
     >>> np.round(p * np.pi / 2, 12).tolist()
     [1.0, 1.0, 0.0]
-    >>> exp_dual(tuple(np.zeros(1) for _ in range(6)))[:, 0].tolist()   # the zero twist: the identity
+    >>> exp_dual(tuple(np.zeros(1) for _ in range(6)))[
+    ...     :, 0
+    ... ].tolist()  # the zero twist: the identity
     [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
     """
     w, v = twist[:3], twist[3:]
@@ -291,7 +331,10 @@ def product_quaternions(q: tuple) -> tuple:
     Three quarter turns about z make three quarters of a turn; a product of one is itself:
 
     >>> c, s = np.cos(np.pi / 4), np.sin(np.pi / 4)
-    >>> [round(float(x), 12) for x in product_quaternions((np.full(3, c), np.zeros(3), np.zeros(3), np.full(3, s)))]
+    >>> [
+    ...     round(float(x), 12)
+    ...     for x in product_quaternions((np.full(3, c), np.zeros(3), np.zeros(3), np.full(3, s)))
+    ... ]
     [-0.707106781187, 0.0, 0.0, 0.707106781187]
     >>> [float(x) for x in product_quaternions((np.ones(1), np.zeros(1), np.zeros(1), np.zeros(1)))]
     [1.0, 0.0, 0.0, 0.0]
@@ -301,7 +344,9 @@ def product_quaternions(q: tuple) -> tuple:
     Q = stacked.reshape(4, -1, stacked.shape[-1])  # (4, batch, n)
     while Q.shape[-1] > 1:
         if Q.shape[-1] % 2:  # an odd count: the last one times the identity
-            Q = np.concatenate([Q, np.broadcast_to(_IDENTITY[:, None, None], (4, Q.shape[1], 1))], axis=-1)
+            Q = np.concatenate(
+                [Q, np.broadcast_to(_IDENTITY[:, None, None], (4, Q.shape[1], 1))], axis=-1
+            )
         pairs = Q[:, None, :, 0::2] * Q[None, :, :, 1::2]  # (4, 4, batch, n/2): a_j b_k
         Q = (_HAMILTON @ pairs.reshape(16, -1)).reshape(4, Q.shape[1], -1)
     return tuple(Q[i, :, 0].reshape(lead) for i in range(4))
@@ -376,7 +421,7 @@ def prefix_dual(x: np.ndarray) -> np.ndarray:
     >>> steps = np.tile(motion_to_dual([1, 0, 0, 0], [1, 0, 0])[:, None], (1, 40))
     >>> dual_to_motion(prefix_dual(steps))[1][[0, 9, 39], 0].tolist()
     [1.0, 10.0, 40.0]
-    >>> prefix_dual(steps[:, :0]).shape   # no steps, no prefixes
+    >>> prefix_dual(steps[:, :0]).shape  # no steps, no prefixes
     (8, 0)
     """
     n = x.shape[-1]
@@ -390,7 +435,12 @@ def prefix_dual(x: np.ndarray) -> np.ndarray:
     identity = np.zeros(x.shape[:-1] + (nb * b - n,))
     identity[0] = 1.0
     # Layout (8, ..., b, nb): step k of every block is one contiguous row.
-    xb = np.concatenate([x, identity], axis=-1).reshape(x.shape[:-1] + (nb, b)).swapaxes(-1, -2).copy()
+    xb = (
+        np.concatenate([x, identity], axis=-1)
+        .reshape(x.shape[:-1] + (nb, b))
+        .swapaxes(-1, -2)
+        .copy()
+    )
     for k in range(1, b):
         xb[..., k, :] = compose_dual(xb[..., k - 1, :], xb[..., k, :])
     # Block j > 0 is moved by the product of blocks 0 … j−1.
@@ -406,9 +456,9 @@ def motion_to_dual(q: np.ndarray, p: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> motion_to_dual([1, 0, 0, 0], [2, 0, 0]).tolist()   # a pure translation: d = ½ (0, p)
+    >>> motion_to_dual([1, 0, 0, 0], [2, 0, 0]).tolist()  # a pure translation: d = ½ (0, p)
     [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0]
-    >>> motion_to_dual([1, 0, 0, 0], [0, 0, 0]).tolist()   # the identity
+    >>> motion_to_dual([1, 0, 0, 0], [0, 0, 0]).tolist()  # the identity
     [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
     """
     d = _qmul((0.0, *p), tuple(q))
@@ -422,10 +472,10 @@ def dual_to_motion(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
     Examples
     --------
-    >>> R, p = dual_to_motion(2 * motion_to_dual([1, 0, 0, 0], [0, 3, 0]))   # any norm
+    >>> R, p = dual_to_motion(2 * motion_to_dual([1, 0, 0, 0], [0, 3, 0]))  # any norm
     >>> R.tolist(), p.tolist()
     ([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0, 3.0, 0.0])
-    >>> dual_to_motion(np.zeros((8, 0)))[1].shape   # no motions
+    >>> dual_to_motion(np.zeros((8, 0)))[1].shape  # no motions
     (0, 3)
     """
     r, d = x[:4], x[4:]
@@ -478,7 +528,8 @@ def quaternion_matrix(q: np.ndarray, *, out: np.ndarray | None = None) -> np.nda
 
 
 def _rotations(q: np.ndarray, out: np.ndarray) -> None:
-    """Write R(q) of quaternions q (4, ...) into out (..., 3, 3): ``R = I + s (w v̂ + v̂²)`` with v = (x, y, z), s = 2/|q|²."""
+    """Write R(q) of quaternions q (4, ...) into out (..., 3, 3): ``R = I + s (w v̂ + v̂²)`` with
+    v = (x, y, z), s = 2/|q|²."""
     w, x, y, z = q
     s = 2.0 / (w * w + x * x + y * y + z * z)
     sx, sy, sz = s * x, s * y, s * z
@@ -503,7 +554,7 @@ def matrix_quaternion(R: np.ndarray) -> np.ndarray:
     --------
     >>> matrix_quaternion(np.eye(3)).tolist()
     [1.0, 0.0, 0.0, 0.0]
-    >>> matrix_quaternion(np.diag([-1.0, -1.0, 1.0])).tolist()   # a half turn, where w = 0
+    >>> matrix_quaternion(np.diag([-1.0, -1.0, 1.0])).tolist()  # a half turn, where w = 0
     [0.0, 0.0, 0.0, 1.0]
     """
     R = np.asarray(R, float)
@@ -511,11 +562,20 @@ def matrix_quaternion(R: np.ndarray) -> np.ndarray:
     k = int(np.argmax([tr, R[0, 0], R[1, 1], R[2, 2]]))
     if k == 0:
         w = 0.5 * np.sqrt(1.0 + tr)
-        q = [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
+        q = [
+            w,
+            (R[2, 1] - R[1, 2]) / (4 * w),
+            (R[0, 2] - R[2, 0]) / (4 * w),
+            (R[1, 0] - R[0, 1]) / (4 * w),
+        ]
     else:
         i, j, m = k - 1, k % 3, (k + 1) % 3
         r = 0.5 * np.sqrt(1.0 + R[i, i] - R[j, j] - R[m, m])
         q = [0.0] * 4
         q[0] = (R[m, j] - R[j, m]) / (4 * r)
-        q[1 + i], q[1 + j], q[1 + m] = r, (R[j, i] + R[i, j]) / (4 * r), (R[m, i] + R[i, m]) / (4 * r)
+        q[1 + i], q[1 + j], q[1 + m] = (
+            r,
+            (R[j, i] + R[i, j]) / (4 * r),
+            (R[m, i] + R[i, m]) / (4 * r),
+        )
     return np.array(q)

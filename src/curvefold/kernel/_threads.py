@@ -23,13 +23,15 @@ from typing import Any
 
 __all__ = ["one_blas_thread", "on_one_blas_thread", "blas_loads_on_one_thread"]
 
-#: The variables the BLAS libraries NumPy and SciPy may bring read for their thread count when loaded.
+#: The variables the BLAS libraries NumPy and SciPy may bring read for their thread count when
+#: loaded.
 BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 
 @cache
 def _controller() -> Any:
-    """The thread pools of the BLAS libraries loaded now (NumPy's among them), found once per process."""
+    """The thread pools of the BLAS libraries loaded now (NumPy's among them), found once per
+    process."""
     from threadpoolctl import ThreadpoolController
 
     return ThreadpoolController()

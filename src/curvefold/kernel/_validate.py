@@ -54,7 +54,18 @@ import numpy as np
 from ._errors import InputError
 from ._text import control_characters
 
-__all__ = ["Interval", "Spec", "REQUIRED", "KINDS", "MAX_TEXT", "check_integer", "describe", "from_text", "is_integer", "suggest"]
+__all__ = [
+    "Interval",
+    "Spec",
+    "REQUIRED",
+    "KINDS",
+    "MAX_TEXT",
+    "check_integer",
+    "describe",
+    "from_text",
+    "is_integer",
+    "suggest",
+]
 
 #: Longest string a ``text`` value may hold.
 MAX_TEXT = 1000
@@ -99,7 +110,7 @@ class Interval:
         --------
         >>> Interval.parse("[3, inf)")
         Interval(lo=3.0, hi=inf, lo_closed=True, hi_closed=False)
-        >>> str(Interval.parse("(-inf, inf)")), 0.0 in Interval.parse("(0, 0]")   # an empty interval
+        >>> str(Interval.parse("(-inf, inf)")), 0.0 in Interval.parse("(0, 0]")  # an empty interval
         ('finite', False)
         """
         lo, hi = (float(x) for x in text[1:-1].split(","))
@@ -117,7 +128,7 @@ class Interval:
         --------
         >>> Interval.parse("[0, 1]").mask(np.array([0.0, 1.0, 1.5])).tolist()
         [True, True, False]
-        >>> Interval.parse("[0, 1]").mask(np.array([])).shape   # no values
+        >>> Interval.parse("[0, 1]").mask(np.array([])).shape  # no values
         (0,)
         """
         with np.errstate(invalid="ignore"):
@@ -178,7 +189,8 @@ class Spec:
     >>> angle.check(180, "design.toml: [vault] fold_angle")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: design.toml: [vault] fold_angle must be in (0, 180) degrees, got 180.0
+    curvefold.kernel._errors.InputError: design.toml: [vault] fold_angle must be in (0, 180)
+    degrees, got 180.0
     """
 
     name: str
@@ -193,17 +205,36 @@ class Spec:
     label: str = ""
 
     # The fields, in their order; a range also in its notation ("(0, 180)"), held as an Interval.
-    def __init__(self, name: str, kind: str, default: Any = REQUIRED,
-                 range: Interval | str | None = None, unit: str = "", help: str = "", why: str = "",
-                 choices: Iterable[str] = (), typical: Interval | str | None = None,
-                 label: str = "") -> None:
+    def __init__(
+        self,
+        name: str,
+        kind: str,
+        default: Any = REQUIRED,
+        range: Interval | str | None = None,
+        unit: str = "",
+        help: str = "",
+        why: str = "",
+        choices: Iterable[str] = (),
+        typical: Interval | str | None = None,
+        label: str = "",
+    ) -> None:
         if kind not in KINDS:
             raise ValueError(f"kind must be one of {KINDS}, got {kind!r}")
-        range_, typical_ = (Interval.parse(x) if isinstance(x, str) else x
-                            for x in (range, typical))
-        values = {"name": name, "kind": kind, "default": default, "range": range_, "unit": unit,
-                  "help": help, "why": why, "choices": tuple(choices), "typical": typical_,
-                  "label": label}
+        range_, typical_ = (
+            Interval.parse(x) if isinstance(x, str) else x for x in (range, typical)
+        )
+        values = {
+            "name": name,
+            "kind": kind,
+            "default": default,
+            "range": range_,
+            "unit": unit,
+            "help": help,
+            "why": why,
+            "choices": tuple(choices),
+            "typical": typical_,
+            "label": label,
+        }
         for key, value in values.items():
             object.__setattr__(self, key, value)
 
@@ -247,7 +278,8 @@ class Spec:
         >>> samples.check(2)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: samples must be an integer in [3, 200000] (memory bound), got 2
+        curvefold.kernel._errors.InputError: samples must be an integer in [3, 200000] (memory
+        bound), got 2
         """
         try:
             return _VALIDATORS[self.kind](self, value, where or self.name, shown)
@@ -274,7 +306,9 @@ class Spec:
         if bad.size:
             i = int(bad[0])
             need = "finite" if _bounds(self).unbounded else f"finite and {self.requirement}"
-            raise InputError(f"{where} must be {need}; {at(i)} it is {values[i]:.6g}", parameter=self.name)
+            raise InputError(
+                f"{where} must be {need}; {at(i)} it is {values[i]:.6g}", parameter=self.name
+            )
 
     def describe(self) -> str:
         """One line for help texts: meaning, allowed values, unit and default.
@@ -283,14 +317,22 @@ class Spec:
         --------
         >>> Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="fold angle").describe()
         'fold angle; in (0, 180) degrees; default 90'
-        >>> Spec("name", "text").describe()   # no help, no range, no default
+        >>> Spec("name", "text").describe()  # no help, no range, no default
         ''
         """
         parts = [self.help] if self.help else []
-        if self.kind in ("real", "integer", "count", "function") and self.range is not None and not self.range.unbounded:
+        if (
+            self.kind in ("real", "integer", "count", "function")
+            and self.range is not None
+            and not self.range.unbounded
+        ):
             parts.append(self.requirement)
         elif self.kind in ("choice", "formats"):
-            parts.append("one of " + ", ".join(self.choices) if self.kind == "choice" else "any of " + ",".join(self.choices))
+            parts.append(
+                "one of " + ", ".join(self.choices)
+                if self.kind == "choice"
+                else "any of " + ",".join(self.choices)
+            )
         elif self.kind == "page":
             parts.append(f"{', '.join(self.choices)}, or WIDTH,HEIGHT in {self.unit}")
         elif self.unit:
@@ -324,7 +366,7 @@ def from_text(spec: Spec, text: str) -> Any:
     --------
     >>> from_text(Spec("samples", "integer"), "401"), from_text(Spec("a", "real"), "0.5")
     (401, 0.5)
-    >>> from_text(Spec("samples", "integer"), "max")   # not a number: left for check to refuse
+    >>> from_text(Spec("samples", "integer"), "max")  # not a number: left for check to refuse
     'max'
     """
     if spec.kind in ("real", "integer", "count", "function"):
@@ -352,11 +394,14 @@ def from_text(spec: Spec, text: str) -> Any:
 
 
 def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, (bool, np.bool_)
+    )
 
 
 def is_integer(value: Any) -> bool:
-    """Whether ``value`` is an integer: a Python or NumPy integer, not a boolean nor an integral float.
+    """Whether ``value`` is an integer: a Python or NumPy integer, not a boolean nor an integral
+    float.
 
     Examples
     --------
@@ -367,7 +412,8 @@ def is_integer(value: Any) -> bool:
 
 
 def check_integer(value: Any, name: str, range: Interval | str, *, why: str = "") -> int:
-    """``value`` as an ``int``, or :class:`InputError` naming ``name``, the range, the reason and the value.
+    """``value`` as an ``int``, or :class:`InputError` naming ``name``, the range, the reason and
+    the value.
 
     The one check of an integer argument of the Python API (a design's integers are
     checked by their :class:`Spec`, which says the same words).
@@ -393,7 +439,8 @@ def check_integer(value: Any, name: str, range: Interval | str, *, why: str = ""
     >>> check_integer(True, "dpi", "[10, 2400]", why="printable")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: dpi must be an integer in [10, 2400] (printable), got boolean True
+    curvefold.kernel._errors.InputError: dpi must be an integer in [10, 2400] (printable), got
+    boolean True
     """
     return Spec(name, "integer", range=range, why=why).check(value)
 
@@ -411,7 +458,9 @@ def _real(spec: Spec, value: Any, where: str, shown: str | None) -> float:
     try:
         x = float(value)
     except OverflowError:
-        raise InputError(f"{where} is too large, got an integer of {int(value).bit_length()} bits") from None
+        raise InputError(
+            f"{where} is too large, got an integer of {int(value).bit_length()} bits"
+        ) from None
     if not math.isfinite(x):
         raise InputError(f"{where} must be a finite number, got {shown or x}")
     if x not in _bounds(spec):
@@ -421,13 +470,18 @@ def _real(spec: Spec, value: Any, where: str, shown: str | None) -> float:
 
 def _function(spec: Spec, value: Any, where: str, shown: str | None) -> float:
     if not _is_number(value):
-        raise InputError(f"{where} must be a number, an expression in s or a table {{csv = ..., column = ...}}, got {shown or describe(value)}")
+        raise InputError(
+            f"{where} must be a number, an expression in s or a table "
+            f"{{csv = ..., column = ...}}, got {shown or describe(value)}"
+        )
     return _real(spec, value, where, shown)
 
 
 def _integer(spec: Spec, value: Any, where: str, shown: str | None) -> int:
     if not is_integer(value) or value not in _bounds(spec):
-        raise InputError(f"{where} must be an integer {spec.requirement}, got {shown or describe(value)}")
+        raise InputError(
+            f"{where} must be an integer {spec.requirement}, got {shown or describe(value)}"
+        )
     return int(value)
 
 
@@ -435,22 +489,33 @@ def _count(spec: Spec, value: Any, where: str, shown: str | None) -> int | str:
     if isinstance(value, str) and value == "max":
         return value
     if not is_integer(value) or value not in _bounds(spec):
-        raise InputError(f'{where} must be an integer {spec.requirement} or "max", got {shown or describe(value)}')
+        raise InputError(
+            f'{where} must be an integer {spec.requirement} or "max", got '
+            f"{shown or describe(value)}"
+        )
     return int(value)
 
 
 def _choice(spec: Spec, value: Any, where: str, shown: str | None) -> str:
     if not isinstance(value, str) or value not in spec.choices:
-        raise InputError(f"{where} must be one of {_quoted(spec.choices)}, got {shown or describe(value)}")
+        raise InputError(
+            f"{where} must be one of {_quoted(spec.choices)}, got {shown or describe(value)}"
+        )
     return value
 
 
 def _text(spec: Spec, value: Any, where: str, shown: str | None) -> str:
     if not isinstance(value, str) or len(value) > MAX_TEXT:
-        raise InputError(f"{where} must be a string of at most {MAX_TEXT} characters, got {shown or describe(value)}")
+        raise InputError(
+            f"{where} must be a string of at most {MAX_TEXT} characters, got "
+            f"{shown or describe(value)}"
+        )
     bad = control_characters(value)
     if bad:
-        raise InputError(f"{where} must be one line of printable text; character {bad[0] + 1} is the control character U+{ord(value[bad[0]]):04X}")
+        raise InputError(
+            f"{where} must be one line of printable text; character {bad[0] + 1} is "
+            f"the control character U+{ord(value[bad[0]]):04X}"
+        )
     return value
 
 
@@ -467,47 +532,65 @@ def _page(spec: Spec, value: Any, where: str, shown: str | None) -> str | tuple[
             return canonical
     elif isinstance(value, (list, tuple)) and len(value) == 2:
         side = Spec(spec.name, "real", range=spec.range, unit=spec.unit)
-        return tuple(_real(side, v, f"{where} {name}", None) for v, name in zip(value, ("width", "height")))  # type: ignore[return-value]
+        return tuple(
+            _real(side, v, f"{where} {name}", None) for v, name in zip(value, ("width", "height"))
+        )  # type: ignore[return-value]
     pair = f"[width, height] in {spec.unit}" if shown is None else f"WIDTH,HEIGHT in {spec.unit}"
-    raise InputError(f"{where} must be one of {_quoted(spec.choices)} or {pair}, got {shown or describe(value)}")
+    raise InputError(
+        f"{where} must be one of {_quoted(spec.choices)} or {pair}, got {shown or describe(value)}"
+    )
 
 
 def _formats(spec: Spec, value: Any, where: str, shown: str | None) -> tuple[str, ...]:
     if not isinstance(value, (list, tuple)):
-        raise InputError(f"{where} must be an array of format names ({', '.join(spec.choices)}), got {shown or describe(value)}")
+        raise InputError(
+            f"{where} must be an array of format names ({', '.join(spec.choices)}), "
+            f"got {shown or describe(value)}"
+        )
     for item in value:
         if not isinstance(item, str) or item not in spec.choices:
-            raise InputError(f"{where}: unknown format {describe(item)} (allowed: {', '.join(spec.choices)})")
+            raise InputError(
+                f"{where}: unknown format {describe(item)} (allowed: {', '.join(spec.choices)})"
+            )
     return tuple(dict.fromkeys(value))
 
 
 def _cells(spec: Spec, value: Any, where: str, shown: str | None) -> tuple[tuple[int, int], ...]:
     if not isinstance(value, (list, tuple)) or not 1 <= len(value) <= MAX_CELLS:
-        raise InputError(f"{where} must be an array of 1 to {MAX_CELLS} [i, j] pairs, got {shown or describe(value)}")
+        raise InputError(
+            f"{where} must be an array of 1 to {MAX_CELLS} [i, j] pairs, got "
+            f"{shown or describe(value)}"
+        )
     seen: dict[tuple[int, int], int] = {}
     for n, cell in enumerate(value):
         pair_ok = isinstance(cell, (list, tuple)) and len(cell) == 2
         if not (pair_ok and all(is_integer(x) and x in _bounds(spec) for x in cell)):
-            raise InputError(f"{where}[{n}] must be a pair [i, j] of integers {spec.range}, got {describe(cell)}")
+            raise InputError(
+                f"{where}[{n}] must be a pair [i, j] of integers {spec.range}, got {describe(cell)}"
+            )
         pair = (int(cell[0]), int(cell[1]))
         if pair in seen:
-            raise InputError(f"{where}[{n}] repeats cell {list(pair)} (first at index {seen[pair]})")
+            raise InputError(
+                f"{where}[{n}] repeats cell {list(pair)} (first at index {seen[pair]})"
+            )
         seen[pair] = n
     return tuple(seen)
 
 
-_VALIDATORS: Mapping[str, Callable[[Spec, Any, str, str | None], Any]] = MappingProxyType({
-    "real": _real,
-    "integer": _integer,
-    "count": _count,
-    "choice": _choice,
-    "text": _text,
-    "flag": _flag,
-    "page": _page,
-    "formats": _formats,
-    "cells": _cells,
-    "function": _function,
-})
+_VALIDATORS: Mapping[str, Callable[[Spec, Any, str, str | None], Any]] = MappingProxyType(
+    {
+        "real": _real,
+        "integer": _integer,
+        "count": _count,
+        "choice": _choice,
+        "text": _text,
+        "flag": _flag,
+        "page": _page,
+        "formats": _formats,
+        "cells": _cells,
+        "function": _function,
+    }
+)
 
 #: Every kind of value a :class:`Spec` can take.
 KINDS = tuple(_VALIDATORS)
@@ -527,7 +610,13 @@ def _quoted(choices: tuple[str, ...]) -> str:
     return ", ".join(f'"{c}"' for c in choices)
 
 
-_TYPE_NAMES = ((bool, "boolean"), (str, "string"), (int, "integer"), (float, "float"), (Mapping, "table"))
+_TYPE_NAMES = (
+    (bool, "boolean"),
+    (str, "string"),
+    (int, "integer"),
+    (float, "float"),
+    (Mapping, "table"),
+)
 
 
 def describe(value: Any) -> str:
@@ -563,7 +652,7 @@ def suggest(key: Any, options: Iterable[str]) -> str:
     --------
     >>> suggest("fold_angel", ["fold_angle", "samples"])
     "; did you mean 'fold_angle'?"
-    >>> suggest("zzz", []), suggest(3, ["a"])   # nothing close, not a name
+    >>> suggest("zzz", []), suggest(3, ["a"])  # nothing close, not a name
     ('', '')
     """
     if not isinstance(key, str):

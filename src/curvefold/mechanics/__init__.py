@@ -1,4 +1,5 @@
-"""Mechanics: the bar-and-hinge model of a structure at a fold angle, under load, its modes and soft modes.
+"""Mechanics: the bar-and-hinge model of a structure at a fold angle, under load, its modes and soft
+modes.
 
 Will a deployed vault stand? The model (Filipov, Liu, Tachi, Schenk and Paulino 2017; Liu
 and Paulino 2017; Woodruff and Filipov 2020 for curved creases) puts on every state
@@ -65,10 +66,22 @@ SUPPORTS = _loads.SUPPORTS
 
 #: The module of every name loaded on first use.
 _LAZY = {
-    "analyse_load": "_analysis", "LoadResult": "_analysis", "BarHingeModel": "_model", "StructureModel": "_structures",
-    "model_samples": "_structures", "StaticResult": "_response", "static_response": "_response", "Buckling": "_response",
-    "buckling": "_response", "Modes": "_modes", "free_modes": "_modes", "correlation": "_modes", "span_correlation": "_modes",
-    "SoftModes": "_softmodes", "soft_modes": "_softmodes", "conjecture_counts": "_softmodes",
+    "analyse_load": "_analysis",
+    "LoadResult": "_analysis",
+    "BarHingeModel": "_model",
+    "StructureModel": "_structures",
+    "model_samples": "_structures",
+    "StaticResult": "_response",
+    "static_response": "_response",
+    "Buckling": "_response",
+    "buckling": "_response",
+    "Modes": "_modes",
+    "free_modes": "_modes",
+    "correlation": "_modes",
+    "span_correlation": "_modes",
+    "SoftModes": "_softmodes",
+    "soft_modes": "_softmodes",
+    "conjecture_counts": "_softmodes",
 }
 
 __all__ = [
@@ -123,7 +136,9 @@ def __getattr__(name: str):
         return _examples()
     if name not in _LAZY:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = globals()[name] = _public(getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name))
+    value = globals()[name] = _public(
+        getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    )
     return value
 
 
@@ -158,8 +173,11 @@ def _examples() -> dict:
     names = {name: __getattr__(name) if name in _LAZY else globals()[name] for name in __all__}
     methods = {
         f"{name}.{attr}": getattr(value, "__func__", value)
-        for name, cls in names.items() if isinstance(cls, type)
+        for name, cls in names.items()
+        if isinstance(cls, type)
         for attr, value in vars(cls).items()
-        if not attr.startswith("_") and callable(getattr(value, "__func__", value)) and getattr(value, "__doc__", None)
+        if not attr.startswith("_")
+        and callable(getattr(value, "__func__", value))
+        and getattr(value, "__doc__", None)
     }
     return {name: value for name, value in names.items() if callable(value)} | methods

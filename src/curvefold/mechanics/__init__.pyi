@@ -1,4 +1,5 @@
-"""The names of :mod:`curvefold.mechanics`, most loaded on first use, for type checkers and editors."""
+"""The names of :mod:`curvefold.mechanics`, most loaded on first use, for type checkers and
+editors."""
 
 from ._analysis import LoadResult as LoadResult
 from ._analysis import analyse_load as analyse_load

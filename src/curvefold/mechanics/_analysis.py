@@ -1,4 +1,5 @@
-"""Will it stand: one call from a structure (or a vault) to its response, modes, buckling and soft modes.
+"""Will it stand: one call from a structure (or a vault) to its response, modes, buckling and soft
+modes.
 
 :func:`analyse_load` builds the structure's model at a fold angle (default: its own, a
 vault's design angle, at which it stands on the ground), applies the loads with the
@@ -62,7 +63,11 @@ class LoadResult:
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> result = analyse_load(tube)
     >>> round(result.total_weight, 6), result.soft.count, result.static.max_stress > 0
     (22.737584, 2, True)
@@ -92,7 +97,8 @@ class LoadResult:
 
     @property
     def buckling_resolved(self) -> bool:
-        """Whether the samples resolve the buckling mode: it does not alternate from sample to sample.
+        """Whether the samples resolve the buckling mode: it does not alternate from sample to
+        sample.
 
         A mode at the scale of the samples is not the structure's: its factor is found too
         low, and more samples find the structure's (the user guide's Mechanics page).
@@ -116,7 +122,11 @@ class LoadResult:
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> tube = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
         >>> summary = analyse_load(tube).to_dict()
         >>> summary["nodes"], summary["supports"], summary["soft_modes"], summary["material"]
         (20, 'pinned', 2, 'aluminium')
@@ -148,10 +158,18 @@ class LoadResult:
         }
 
 
-def analyse_load(structure, material: Material | str = "polypropylene", thickness: float = THICKNESS.default,
-                 loads: Loads | Sequence[LoadCase] | None = None, supports: Supports | None = None,
-                 *, fold_angle: float | None = None,
-                 crease_stiffness: float | None = None, modes: int = 6, samples="graded") -> LoadResult:
+def analyse_load(
+    structure,
+    material: Material | str = "polypropylene",
+    thickness: float = THICKNESS.default,
+    loads: Loads | Sequence[LoadCase] | None = None,
+    supports: Supports | None = None,
+    *,
+    fold_angle: float | None = None,
+    crease_stiffness: float | None = None,
+    modes: int = 6,
+    samples="graded",
+) -> LoadResult:
     """A structure under load, with its modes, buckling factor and soft modes.
 
     Parameters
@@ -193,13 +211,16 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     >>> analyse_load(Vault.from_design(tubes=1, panels=4, samples=21), "aluminium", 1.0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 1.0
+    curvefold.kernel._errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got
+    1.0
     """
     mat = named(material) if isinstance(material, str) else material
     if not isinstance(mat, Material):
         raise InputError(f"material must be a Material or a name, got {type(mat).__name__}")
     if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 2:
-        raise InputError(f"modes must be an integer ≥ 2 (the fold-mode gap needs two), got {modes!r}")
+        raise InputError(
+            f"modes must be an integer ≥ 2 (the fold-mode gap needs two), got {modes!r}"
+        )
     sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness, samples)
     loads = Loads() if loads is None else loads if isinstance(loads, Loads) else Loads(tuple(loads))
     supports = Supports() if supports is None else supports
@@ -223,8 +244,14 @@ def analyse_load(structure, material: Material | str = "polypropylene", thicknes
     )
 
 
-def _structure_model(structure, mat: Material, thickness: float, fold_angle: float | None,
-                     crease_stiffness: float | None, samples) -> StructureModel:
+def _structure_model(
+    structure,
+    mat: Material,
+    thickness: float,
+    fold_angle: float | None,
+    crease_stiffness: float | None,
+    samples,
+) -> StructureModel:
     if isinstance(structure, StructureModel):
         return structure
     if isinstance(structure, Vault):
@@ -234,5 +261,10 @@ def _structure_model(structure, mat: Material, thickness: float, fold_angle: flo
     elif isinstance(structure, State):
         state = structure if fold_angle is None else structure.structure.state(fold_angle)
     else:
-        raise InputError(f"analyse_load takes a Structure, State, Vault or StructureModel, got {type(structure).__name__}")
-    return StructureModel.from_state(state, mat, thickness, crease_stiffness=crease_stiffness, samples=samples)
+        raise InputError(
+            "analyse_load takes a Structure, State, Vault or StructureModel, got "
+            f"{type(structure).__name__}"
+        )
+    return StructureModel.from_state(
+        state, mat, thickness, crease_stiffness=crease_stiffness, samples=samples
+    )

@@ -1,4 +1,5 @@
-"""The elements of a bar-and-hinge model: bars, membrane triangles and hinges, as pure array functions.
+"""The elements of a bar-and-hinge model: bars, membrane triangles and hinges, as pure array
+functions.
 
 A bar measures the length change of a node pair, a hinge the change of a dihedral angle,
 both to first order: their rows of the compatibility matrix. Every function takes the
@@ -57,9 +58,14 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
-                     a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
-                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
+    return np.stack(
+        [
+            a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+            a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+            a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0],
+        ],
+        axis=-1,
+    )
 
 
 def bar_rows(x: np.ndarray) -> np.ndarray:
@@ -78,13 +84,14 @@ def bar_rows(x: np.ndarray) -> np.ndarray:
 
 
 def dihedral_angle(x: np.ndarray) -> np.ndarray:
-    """The dihedral angle θ of hinges (H, 4, 3) (nodes i, j, k, l; module notes), radians, shape (H,).
+    """The dihedral angle θ of hinges (H, 4, 3) (nodes i, j, k, l; module notes), radians, shape
+    (H,).
 
     Examples
     --------
     A square folded by 90° about its diagonal:
 
-    >>> x = np.array([[[0.0, 0, 0], [1, 1, 0], [1, 0, 0], [0.5, 0.5, -2 ** -0.5]]])
+    >>> x = np.array([[[0.0, 0, 0], [1, 1, 0], [1, 0, 0], [0.5, 0.5, -(2**-0.5)]]])
     >>> round(float(abs(dihedral_angle(x)[0])), 12) == round(np.pi / 2, 12)
     True
     """
@@ -134,7 +141,8 @@ def dihedral_hessian(x: np.ndarray) -> np.ndarray:
 
 
 def dihedral_hessian_action(x: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """∂²θ/∂x² · v of hinges (H, 4, 3) along motions v (H, 4, 3), shape (H, 4, 3): one complex step of the gradient."""
+    """∂²θ/∂x² · v of hinges (H, 4, 3) along motions v (H, 4, 3), shape (H, 4, 3): one complex
+    step of the gradient."""
     x = np.asarray(x, float)
     scale = np.abs(x - x[:, :1]).max(axis=(1, 2)) / np.maximum(np.abs(v).max(axis=(1, 2)), 1e-300)
     h = (COMPLEX_STEP * np.where(scale > 0, scale, 1.0))[:, None, None]
@@ -173,7 +181,8 @@ def triangle_strain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def quad_frame(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The plane of quads (Q, 4, 3): x̂ along the mean first side, the normal along the cross product of the diagonals.
+    """The plane of quads (Q, 4, 3): x̂ along the mean first side, the normal along the cross
+    product of the diagonals.
 
     Returns
     -------
@@ -188,17 +197,20 @@ def quad_frame(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     n = _cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])
     ey = _cross(n / np.linalg.norm(n, axis=1, keepdims=True), ex)
     c = x - x.mean(axis=1, keepdims=True)
-    return np.stack([ex, ey], axis=1), np.stack([_dot(c, ex[:, None]), _dot(c, ey[:, None])], axis=-1)
+    return np.stack([ex, ey], axis=1), np.stack(
+        [_dot(c, ex[:, None]), _dot(c, ey[:, None])], axis=-1
+    )
 
 
 #: Corners of the bilinear quad in (ξ, η).
 _XI, _ETA = np.array([-1.0, 1.0, 1.0, -1.0]), np.array([-1.0, -1.0, 1.0, 1.0])
 #: The 2 × 2 Gauss points.
-_GAUSS = [(s, r) for s in (-3**-0.5, 3**-0.5) for r in (-3**-0.5, 3**-0.5)]
+_GAUSS = [(s, r) for s in (-(3**-0.5), 3**-0.5) for r in (-(3**-0.5), 3**-0.5)]
 
 
 def _jacobian(local: np.ndarray, s: float, r: float) -> tuple[np.ndarray, np.ndarray]:
-    """The Jacobian (Q, 2, 2) of bilinear quads at (ξ, η) = (s, r), J[a, b] = ∂x_b/∂ξ_a, and the shape derivatives (2, 4)."""
+    """The Jacobian (Q, 2, 2) of bilinear quads at (ξ, η) = (s, r), J[a, b] = ∂x_b/∂ξ_a, and the
+    shape derivatives (2, 4)."""
     dN = 0.25 * np.stack([_XI * (1 + _ETA * r), _ETA * (1 + _XI * s)])
     return np.einsum("an,qnb->qab", dN, local), dN
 
@@ -211,8 +223,11 @@ def _strain_rows(dNx: np.ndarray) -> np.ndarray:
     return B
 
 
-def quad_membrane(x: np.ndarray, youngs_modulus: float, poisson: float, thickness: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """In-plane stiffness of quads (Q, 4, 3) with two incompatible modes per direction (Wilson and Taylor's QM6).
+def quad_membrane(
+    x: np.ndarray, youngs_modulus: float, poisson: float, thickness: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """In-plane stiffness of quads (Q, 4, 3) with two incompatible modes per direction (Wilson and
+    Taylor's QM6).
 
     Bilinear displacements plus the modes ``1 − ξ²`` and ``1 − η²`` in each direction,
     their derivatives taken with the Jacobian at the centre (Taylor's correction, which
@@ -240,7 +255,10 @@ def quad_membrane(x: np.ndarray, youngs_modulus: float, poisson: float, thicknes
         J, dN = _jacobian(local, s, r)
         det = np.linalg.det(J)
         B = _strain_rows(np.linalg.inv(J) @ dN)
-        dP = np.einsum("qab,pb->qpa", J0inv, np.array([[-2 * s, 0.0], [0.0, -2 * r]])) * (det0 / det)[:, None, None]
+        dP = (
+            np.einsum("qab,pb->qpa", J0inv, np.array([[-2 * s, 0.0], [0.0, -2 * r]]))
+            * (det0 / det)[:, None, None]
+        )
         Gm = np.zeros((Q, 3, 4))  # modes: u·P1, u·P2, v·P1, v·P2
         Gm[:, 0, :2], Gm[:, 1, 2:] = dP[:, :, 0], dP[:, :, 1]
         Gm[:, 2, :2], Gm[:, 2, 2:] = dP[:, :, 1], dP[:, :, 0]
@@ -255,7 +273,8 @@ def quad_membrane(x: np.ndarray, youngs_modulus: float, poisson: float, thicknes
 
 
 def membrane_geometric(x: np.ndarray, stress: np.ndarray, thickness: float) -> np.ndarray:
-    """Geometric stiffness ``t ∫ ∇N_a · σ · ∇N_b dA`` of membranes under a uniform stress, shape (T, k, k), N/m.
+    """Geometric stiffness ``t ∫ ∇N_a · σ · ∇N_b dA`` of membranes under a uniform stress, shape (T,
+    k, k), N/m.
 
     The same for each displacement component: the element's geometric stiffness is this
     times the 3 × 3 identity.
@@ -278,15 +297,30 @@ def membrane_geometric(x: np.ndarray, stress: np.ndarray, thickness: float) -> n
         local = np.einsum("tnk,tak->tna", x - x[:, :1], frame)
         area2 = local[:, 1, 0] * local[:, 2, 1] - local[:, 2, 0] * local[:, 1, 1]
         y, z = local[..., 1], local[..., 0]
-        grad = np.stack([np.roll(y, -1, 1) - np.roll(y, -2, 1), np.roll(z, -2, 1) - np.roll(z, -1, 1)], axis=1) / area2[:, None, None]
-        scalar = 0.5 * thickness * np.abs(area2)[:, None, None] * (np.swapaxes(grad, 1, 2) @ sigma @ grad)
+        grad = (
+            np.stack(
+                [np.roll(y, -1, 1) - np.roll(y, -2, 1), np.roll(z, -2, 1) - np.roll(z, -1, 1)],
+                axis=1,
+            )
+            / area2[:, None, None]
+        )
+        scalar = (
+            0.5
+            * thickness
+            * np.abs(area2)[:, None, None]
+            * (np.swapaxes(grad, 1, 2) @ sigma @ grad)
+        )
     else:
         _, local = quad_frame(x)
         scalar = np.zeros((T, 4, 4))
         for s, r in _GAUSS:
             J, dN = _jacobian(local, s, r)
             grad = np.linalg.inv(J) @ dN
-            scalar += thickness * np.linalg.det(J)[:, None, None] * (np.swapaxes(grad, 1, 2) @ sigma @ grad)
+            scalar += (
+                thickness
+                * np.linalg.det(J)[:, None, None]
+                * (np.swapaxes(grad, 1, 2) @ sigma @ grad)
+            )
     return scalar
 
 
@@ -299,4 +333,6 @@ def plane_stress(youngs_modulus: float, poisson: float) -> np.ndarray:
     [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.5]]
     """
     E, nu = float(youngs_modulus), float(poisson)
-    return E / (1 - nu * nu) * np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
+    return (
+        E / (1 - nu * nu) * np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
+    )

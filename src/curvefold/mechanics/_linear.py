@@ -25,7 +25,17 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from ..kernel._errors import ConvergenceError, InputError
 from ._model import BarHingeModel
 
-__all__ = ["Factorized", "eigsh", "unit", "rigid_motions", "PIVOT_RTOL", "MECHANISM_RTOL", "MAX_BAND", "describe_motion", "kinematic_residual"]
+__all__ = [
+    "Factorized",
+    "eigsh",
+    "unit",
+    "rigid_motions",
+    "PIVOT_RTOL",
+    "MECHANISM_RTOL",
+    "MAX_BAND",
+    "describe_motion",
+    "kinematic_residual",
+]
 
 #: A pivot below this fraction of the largest diagonal entry makes the factorisation suspect.
 PIVOT_RTOL = 1e-10
@@ -38,7 +48,8 @@ MAX_BAND = 600
 
 
 def eigsh(A, *, what: str, **options) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`scipy.sparse.linalg.eigsh` from a fixed start vector, its failure to converge one line.
+    """:func:`scipy.sparse.linalg.eigsh` from a fixed start vector, its failure to converge one
+    line.
 
     ``what`` names the eigenproblem for the message; the start vector is seeded, so that a
     run gives the same result every time.
@@ -52,7 +63,10 @@ def eigsh(A, *, what: str, **options) -> tuple[np.ndarray, np.ndarray]:
     try:
         return spl.eigsh(A, **options)
     except spl.ArpackNoConvergence as error:
-        raise ConvergenceError(f"the eigenvalue solver did not converge for {what} ({error}); a report of the design helps") from None
+        raise ConvergenceError(
+            f"the eigenvalue solver did not converge for {what} ({error}); a "
+            "report of the design helps"
+        ) from None
 
 
 def unit(v: np.ndarray) -> np.ndarray:
@@ -68,12 +82,15 @@ def unit(v: np.ndarray) -> np.ndarray:
 
 
 def unit_displacement(v: np.ndarray) -> np.ndarray:
-    """Nodal displacements (3P,) as (P, 3) scaled to largest nodal displacement 1, their largest |component|
-    positive (zero stays zero).
+    """Nodal displacements (3P,) as (P, 3) scaled to largest nodal displacement 1, their largest
+    |component| positive (zero stays zero).
 
     Examples
     --------
-    >>> unit_displacement(np.array([0.0, 3.0, -4.0, 1.0, 2.0, 2.0])).tolist(), unit_displacement(np.zeros(3)).tolist()
+    >>> (
+    ...     unit_displacement(np.array([0.0, 3.0, -4.0, 1.0, 2.0, 2.0])).tolist(),
+    ...     unit_displacement(np.zeros(3)).tolist(),
+    ... )
     ([[-0.0, -0.6, 0.8], [-0.2, -0.4, -0.4]], [[0.0, 0.0, 0.0]])
     """
     u = unit(v).reshape(-1, 3)
@@ -82,9 +99,13 @@ def unit_displacement(v: np.ndarray) -> np.ndarray:
 
 
 def _rigid_basis(nodes: np.ndarray) -> np.ndarray:
-    """Translations along x, y, z, then rotations about x, y, z through the centroid, of nodes (P, 3), shape (3P, 6)."""
+    """Translations along x, y, z, then rotations about x, y, z through the centroid, of nodes
+    (P, 3), shape (3P, 6)."""
     c = nodes - nodes.mean(axis=0)
-    return np.stack([np.tile(e, len(c)) for e in np.eye(3)] + [np.cross(e, c).ravel() for e in np.eye(3)], axis=1)
+    return np.stack(
+        [np.tile(e, len(c)) for e in np.eye(3)] + [np.cross(e, c).ravel() for e in np.eye(3)],
+        axis=1,
+    )
 
 
 def rigid_motions(nodes: np.ndarray, masses: np.ndarray | None = None) -> np.ndarray:
@@ -113,8 +134,11 @@ def kinematic_residual(model: BarHingeModel, u: np.ndarray) -> float:
     return float(max(stretch, turn) / scale)
 
 
-def describe_motion(model: BarHingeModel, u: np.ndarray, motions: Mapping[str, np.ndarray] | None = None) -> str:
-    """A motion u (3P,) in words: a known motion by name, a rigid motion by its axis, or where it is largest.
+def describe_motion(
+    model: BarHingeModel, u: np.ndarray, motions: Mapping[str, np.ndarray] | None = None
+) -> str:
+    """A motion u (3P,) in words: a known motion by name, a rigid motion by its axis, or where it is
+    largest.
 
     A rigid part with rotation ω and velocity v at the centroid c is a rotation about the
     axis along ω through ``c + ω × v / |ω|²`` (its screw axis), or a translation if ω is
@@ -130,14 +154,21 @@ def describe_motion(model: BarHingeModel, u: np.ndarray, motions: Mapping[str, n
     if np.linalg.norm(basis @ coef - u) > 1e-3 * scale:
         node = int(np.argmax(np.linalg.norm(u.reshape(-1, 3), axis=1)))
         return f"a motion of its own, largest at node {node} (x = {_point(x[node])} m)"
-    parts = [name for (name, v), a in zip(known.items(), coef[6:]) if np.linalg.norm(a * v) > 0.05 * scale]
+    parts = [
+        name
+        for (name, v), a in zip(known.items(), coef[6:])
+        if np.linalg.norm(a * v) > 0.05 * scale
+    ]
     v, w = coef[:3], coef[3:6]
     if np.linalg.norm(R @ coef[:6]) > 0.05 * scale:
         if np.linalg.norm(w) * model.size < 1e-3 * np.linalg.norm(v):
             parts.append(f"a rigid motion (translation along {_point(v / np.linalg.norm(v))})")
         else:
             axis = w / np.linalg.norm(w)
-            parts.append(f"a rigid motion (rotation about the axis along {_point(axis)} through {_point(c + np.cross(w, v) / (w @ w))} m)")
+            parts.append(
+                f"a rigid motion (rotation about the axis along {_point(axis)} through "
+                f"{_point(c + np.cross(w, v) / (w @ w))} m)"
+            )
     return " with ".join(parts) or "a motion too small to name"
 
 
@@ -178,9 +209,17 @@ class Factorized:
         return self.pivots
 
     @classmethod
-    def checked(cls, matrix: sp.spmatrix, model: BarHingeModel, dofs: np.ndarray, *, where: str,
-                motions: Mapping[str, np.ndarray] | None = None) -> Factorized:
-        """The factorisation of a model's stiffness on some DOFs, refused if the model is a mechanism there.
+    def checked(
+        cls,
+        matrix: sp.spmatrix,
+        model: BarHingeModel,
+        dofs: np.ndarray,
+        *,
+        where: str,
+        motions: Mapping[str, np.ndarray] | None = None,
+    ) -> Factorized:
+        """The factorisation of a model's stiffness on some DOFs, refused if the model is a
+        mechanism there.
 
         Parameters
         ----------
@@ -205,7 +244,8 @@ class Factorized:
         A = self.matrix
         scale = float(A.diagonal().max(initial=0.0))
         if self.pivots is None or not self.pivots.min(initial=np.inf) > PIVOT_RTOL * scale:
-            if self.pivots is None:  # not positive definite: shift by a rounding-sized amount to find the null motion
+            # not positive definite: shift by a rounding-sized amount to find the null motion
+            if self.pivots is None:
                 self._factor(A, 1e-12 * max(scale, 1e-300))
             x = np.random.default_rng(0).standard_normal(A.shape[0])
             for _ in range(3):
@@ -214,12 +254,16 @@ class Factorized:
             u = np.zeros(model.dofs)
             u[np.asarray(dofs)] = x
             if kinematic_residual(model, u) < MECHANISM_RTOL:
-                raise InputError(f"the structure is still a mechanism {where}: {describe_motion(model, u, motions)} is free "
-                                 "(it stretches no bar and turns no hinge); support or connect it so that no motion is free")
+                raise InputError(
+                    f"the structure is still a mechanism {where}: "
+                    f"{describe_motion(model, u, motions)} is free (it stretches no bar and "
+                    "turns no hinge); support or connect it so that no motion is free"
+                )
         return self
 
     def _factor(self, A: sp.csr_matrix, shift: float) -> np.ndarray | None:
-        """Factorise A + shift·I; the pivots (the factor's diagonal, squared for Cholesky), or None if not definite."""
+        """Factorise A + shift·I; the pivots (the factor's diagonal, squared for Cholesky), or
+        None if not definite."""
         if shift:
             A = A + shift * sp.identity(A.shape[0], format="csr")
         if self._order is not None:
@@ -234,7 +278,12 @@ class Factorized:
                 return None
             return self._banded[0] ** 2
         try:
-            self._lu = spl.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+            self._lu = spl.splu(
+                A.tocsc(),
+                permc_spec="MMD_AT_PLUS_A",
+                diag_pivot_thresh=0.0,
+                options={"SymmetricMode": True},
+            )
         except RuntimeError:  # "Factor is exactly singular"
             return None
         return np.abs(self._lu.U.diagonal())
@@ -259,7 +308,8 @@ def _bandwidth(A: sp.coo_matrix) -> int:
 
 
 def _band_order(A: sp.csr_matrix) -> tuple[np.ndarray, int] | None:
-    """The ordering of smaller bandwidth (as numbered, or reverse Cuthill–McKee) and the band, or None past MAX_BAND."""
+    """The ordering of smaller bandwidth (as numbered, or reverse Cuthill–McKee) and the band, or
+    None past MAX_BAND."""
     natural = np.arange(A.shape[0])
     best = (natural, _bandwidth(A.tocoo()))
     if best[1] > MAX_BAND // 2:

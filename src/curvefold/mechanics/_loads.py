@@ -304,8 +304,13 @@ class LoadCase:
 
         Examples
         --------
-        >>> for case in (SelfWeight(), Snow(500.0), HalfSnow(500.0, "end"), Wind(600.0, -0.8),
-        ...              PointLoad(10.0)):
+        >>> for case in (
+        ...     SelfWeight(),
+        ...     Snow(500.0),
+        ...     HalfSnow(500.0, "end"),
+        ...     Wind(600.0, -0.8),
+        ...     PointLoad(10.0),
+        ... ):
         ...     print(case.describe())
         self-weight
         snow 0.5 kPa
@@ -590,9 +595,15 @@ class Wind(LoadCase):
 
 def _coefficient(name: str, zone: str) -> Parameter:
     return Parameter(
-        Spec(name, "real", 0.0, Interval.parse("[-3, 3]"),
-             help=f"c_pe,10 of zone {zone} (EN 1991-1-4 Fig. 7.11, read for the roof's rise f/d "
-                  "and height h/d)", why="EN 1991-1-4's coefficients lie within ±3")
+        Spec(
+            name,
+            "real",
+            0.0,
+            Interval.parse("[-3, 3]"),
+            help=f"c_pe,10 of zone {zone} (EN 1991-1-4 Fig. 7.11, read for the roof's rise f/d "
+            "and height h/d)",
+            why="EN 1991-1-4's coefficients lie within ±3",
+        )
     )
 
 
@@ -627,8 +638,13 @@ class ZonedWind(LoadCase):
         _coefficient("cp_b", "B, the middle half"),
         _coefficient("cp_c", "C, the leeward quarter"),
         Parameter(
-            Spec("windward", "choice", "start", choices=("start", "end"),
-                 help="where the wind comes from: the start of the span (t = 0) or its end (t = 1)")
+            Spec(
+                "windward",
+                "choice",
+                "start",
+                choices=("start", "end"),
+                help="where the wind comes from: the start of the span (t = 0) or its end (t = 1)",
+            )
         ),
     )
 
@@ -652,8 +668,10 @@ class ZonedWind(LoadCase):
 
     def describe(self) -> str:
         pressure = self.parameters[0].text(self.velocity_pressure)
-        return (f"wind {pressure} from the {self.windward} of the span, c_p {self.cp_a:g}, "
-                f"{self.cp_b:g}, {self.cp_c:g} on its zones A, B, C")
+        return (
+            f"wind {pressure} from the {self.windward} of the span, c_p {self.cp_a:g}, "
+            f"{self.cp_b:g}, {self.cp_c:g} on its zones A, B, C"
+        )
 
 
 @_register
@@ -776,9 +794,7 @@ class Loads:
             raise InputError(f"loads must be a sequence of load cases, got {describe(self.cases)}")
         for case in self.cases:
             if not isinstance(case, LoadCase):
-                raise InputError(
-                    f"loads must be load cases (Snow(500.0), …), got {describe(case)}"
-                )
+                raise InputError(f"loads must be load cases (Snow(500.0), …), got {describe(case)}")
         object.__setattr__(self, "cases", tuple(self.cases))
 
     @classmethod
@@ -828,7 +844,7 @@ class Loads:
         >>> from curvefold.vault import Vault
         >>> state = Vault.from_design(tubes=1, panels=4, samples=21).structure.state()
         >>> tube = StructureModel.from_state(state, MATERIALS["aluminium"], 1e-3)
-        >>> forces = Loads().forces(tube.model)   # self-weight
+        >>> forces = Loads().forces(tube.model)  # self-weight
         >>> round(float(forces[:, 2].sum()), 6), round(float(-G * tube.model.masses.sum()), 6)
         (-22.737584, -22.737584)
         >>> Loads(()).forces(tube.model)
@@ -872,7 +888,8 @@ class Supports:
     >>> Supports("clamped")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: supports must be one of "pinned", "roller", got string 'clamped'
+    curvefold.kernel._errors.InputError: supports must be one of "pinned", "roller", got string
+    'clamped'
     """
 
     kind: Literal["pinned", "roller"] = "pinned"
@@ -885,7 +902,9 @@ class Supports:
         if self.nodes is not None:
             nodes = np.asarray(self.nodes)
             if nodes.ndim != 1 or not len(nodes) or not np.issubdtype(nodes.dtype, np.integer):
-                raise InputError(f"support nodes must be a non-empty list of node indices, got {self.nodes!r}")
+                raise InputError(
+                    f"support nodes must be a non-empty list of node indices, got {self.nodes!r}"
+                )
             object.__setattr__(self, "nodes", tuple(int(v) for v in nodes))
 
     def fixed(self, target: StructureModel | BarHingeModel) -> np.ndarray:
@@ -903,7 +922,10 @@ class Supports:
         >>> from curvefold.vault import Vault
         >>> state = Vault.from_design(tubes=1, panels=4, samples=21).structure.state()
         >>> tube = StructureModel.from_state(state, MATERIALS["aluminium"], 1e-3)
-        >>> int(Supports().fixed(tube).sum()), int(Supports("roller").fixed(tube).sum())   # 8 feet pinned; on rollers, z and 3 more
+        >>> (
+        ...     int(Supports().fixed(tube).sum()),
+        ...     int(Supports("roller").fixed(tube).sum()),
+        ... )  # 8 feet pinned; on rollers, z and 3 more
         (24, 11)
         >>> Supports(nodes=(99,)).fixed(tube)
         Traceback (most recent call last):
@@ -916,13 +938,18 @@ class Supports:
         if self.nodes is not None:
             nodes = np.asarray(self.nodes)
             if nodes.min() < 0 or nodes.max() >= P:
-                raise InputError(f"support nodes must be in [0, {P}), got {nodes.min()} … {nodes.max()}")
+                raise InputError(
+                    f"support nodes must be in [0, {P}), got {nodes.min()} … {nodes.max()}"
+                )
         elif sm is not None:
             nodes = sm.feet if self.at == "feet" else sm.ends
             if not len(nodes):
                 low = float(model.nodes[sm.ends, 2].min())
-                raise InputError(f"no foot: no end section of this structure lies on the ground z = 0 (the lowest end point is at "
-                                 f"z = {low:.6g} m); place it on the ground or give the supported nodes")
+                raise InputError(
+                    "no foot: no end section of this structure lies on the ground "
+                    f"z = 0 (the lowest end point is at z = {low:.6g} m); place it on the "
+                    "ground or give the supported nodes"
+                )
         else:
             raise InputError("a model without a structure needs its supported nodes")
         fixed = np.zeros((P, 3), bool)

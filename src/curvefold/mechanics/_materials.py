@@ -15,7 +15,16 @@ from typing import Any
 
 from ..kernel._validate import Interval, Spec
 
-__all__ = ["Material", "MATERIALS", "MATERIAL", "MATERIAL_SPECS", "THICKNESS", "CREASE_STIFFNESS", "material", "check_thickness"]
+__all__ = [
+    "Material",
+    "MATERIALS",
+    "MATERIAL",
+    "MATERIAL_SPECS",
+    "THICKNESS",
+    "CREASE_STIFFNESS",
+    "material",
+    "check_thickness",
+]
 
 #: The checks of a user's material (design-file keys and keyword arguments alike).
 MATERIAL_SPECS: tuple[Spec, ...] = (
@@ -72,7 +81,8 @@ THICKNESS = Spec(
     typical=Interval.parse("[1e-4, 5e-3]"),
     label="sheet thickness t",
 )
-#: The creases' rotational stiffness per length k_c (default: the material's, see :meth:`Material.crease_stiffness`).
+#: The creases' rotational stiffness per length k_c (default: the material's, see
+#: :meth:`Material.crease_stiffness`).
 CREASE_STIFFNESS = Spec(
     "crease_stiffness",
     "real",
@@ -131,8 +141,16 @@ class Material:
     source: str = "given by the user"
 
     @classmethod
-    def from_values(cls, youngs_modulus: float, poisson: float, density: float, strength: float | None = None, *,
-                    name: str = "user", where: str = "") -> Material:
+    def from_values(
+        cls,
+        youngs_modulus: float,
+        poisson: float,
+        density: float,
+        strength: float | None = None,
+        *,
+        name: str = "user",
+        where: str = "",
+    ) -> Material:
         """A user's material, every value checked against :data:`MATERIAL_SPECS`.
 
         Parameters
@@ -157,9 +175,15 @@ class Material:
         >>> Material.from_values(2e9, 0.5, 1200.0, 40e6)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is stable only there), got 0.5
+        curvefold.kernel._errors.InputError: poisson must be in (-1, 0.5) (an isotropic solid is
+        stable only there), got 0.5
         """
-        values = {"youngs_modulus": youngs_modulus, "poisson": poisson, "density": density, "strength": strength}
+        values = {
+            "youngs_modulus": youngs_modulus,
+            "poisson": poisson,
+            "density": density,
+            "strength": strength,
+        }
         checked: dict[str, Any] = {
             k: None if v is None and k == "strength" else _SPEC[k].check(v, f"{where}{k}")
             for k, v in values.items()
@@ -196,31 +220,52 @@ class Material:
         >>> MATERIALS["aluminium"].crease_stiffness(0.0)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: thickness must be in (0, 1) m (a sheet, not a block), got 0.0
+        curvefold.kernel._errors.InputError: thickness must be in (0, 1) m (a sheet, not a block),
+        got 0.0
         """
-        return self.bending_stiffness(thickness) / (CREASE_LENGTH_SCALE * check_thickness(thickness))
+        return self.bending_stiffness(thickness) / (
+            CREASE_LENGTH_SCALE * check_thickness(thickness)
+        )
 
 
 #: Named sheet materials, with their sources.
-MATERIALS: MappingProxyType[str, Material] = MappingProxyType({
-    m.name: m for m in (
-        Material(
-            "polypropylene", 1.3e9, 0.42, 905.0, 31e6,
-            "homopolymer sheet: E 1.14–1.55 GPa (ASTM D638), tensile yield 31–37 MPa, density 0.90–0.91 g/cm³, from "
-            "Modern Plastics Encyclopedia 99; ν 0.40–0.45 is typical (no single source); the lower ends are taken",
-        ),
-        Material(
-            "paperboard", 4.0e9, 0.3, 700.0, 25e6,
-            "typical folding boxboard in its machine direction (no single source): E 2–7 GPa, ν 0.2–0.4, density "
-            "600–900 kg/m³, tensile strength 20–50 MPa; the cross direction is 2–3 times softer: measure your board",
-        ),
-        Material(
-            "aluminium", 68.9e9, 0.33, 2700.0, 276e6,
-            "6061-T6 sheet: E 68.9 GPa, ν 0.33, density 2.70 g/cm³, tensile yield 276 MPa, typical values of the "
-            "Aluminum Association as given in the ASM/MatWeb data sheet 'Aluminum 6061-T6; 6061-T651'",
-        ),
-    )
-})
+MATERIALS: MappingProxyType[str, Material] = MappingProxyType(
+    {
+        m.name: m
+        for m in (
+            Material(
+                "polypropylene",
+                1.3e9,
+                0.42,
+                905.0,
+                31e6,
+                "homopolymer sheet: E 1.14–1.55 GPa (ASTM D638), tensile yield 31–37 MPa, density "
+                "0.90–0.91 g/cm³, from Modern Plastics Encyclopedia 99; ν 0.40–0.45 is typical "
+                "(no single source); the lower ends are taken",
+            ),
+            Material(
+                "paperboard",
+                4.0e9,
+                0.3,
+                700.0,
+                25e6,
+                "typical folding boxboard in its machine direction (no single source): E 2–7 "
+                "GPa, ν 0.2–0.4, density 600–900 kg/m³, tensile strength 20–50 MPa; the "
+                "cross direction is 2–3 times softer: measure your board",
+            ),
+            Material(
+                "aluminium",
+                68.9e9,
+                0.33,
+                2700.0,
+                276e6,
+                "6061-T6 sheet: E 68.9 GPa, ν 0.33, density 2.70 g/cm³, tensile yield 276 MPa, "
+                "typical values of the Aluminum Association as given in the ASM/MatWeb data "
+                "sheet 'Aluminum 6061-T6; 6061-T651'",
+            ),
+        )
+    }
+)
 
 
 def material(name: str) -> Material:
@@ -233,11 +278,19 @@ def material(name: str) -> Material:
     >>> material("steel")
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: material must be one of "polypropylene", "paperboard", "aluminium", got string 'steel'
+    curvefold.kernel._errors.InputError: material must be one of "polypropylene", "paperboard",
+    "aluminium", got string 'steel'
     """
     return MATERIALS[MATERIAL.check(name)]
 
 
-#: The name of a material of :data:`MATERIALS` (design files and flags; no default: the user's own values, or the caller's choice).
-MATERIAL = Spec("material", "choice", None, choices=tuple(MATERIALS), help="a named sheet material (E, ν, density and strength from "
-                "its source)", label="sheet material")
+#: The name of a material of :data:`MATERIALS` (design files and flags; no default: the user's own
+#: values, or the caller's choice).
+MATERIAL = Spec(
+    "material",
+    "choice",
+    None,
+    choices=tuple(MATERIALS),
+    help="a named sheet material (E, ν, density and strength from its source)",
+    label="sheet material",
+)

@@ -114,9 +114,15 @@ class BarHingeModel(FrozenArrays):
     Examples
     --------
     >>> import numpy as np
-    >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-    ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-    >>> square.dofs, square.hinge_kind.tolist(), len(square.membranes)   # no membranes: bars alone
+    >>> square = BarHingeModel(
+    ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+    ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+    ...     np.ones(5),
+    ...     [[0, 2, 1, 3]],
+    ...     [1.0],
+    ...     np.ones(4),
+    ... )  # four bars, a diagonal and its hinge
+    >>> square.dofs, square.hinge_kind.tolist(), len(square.membranes)  # no membranes: bars alone
     (12, ['hinge'], 0)
     >>> BarHingeModel(np.zeros((2, 2)), [[0, 1]], [1.0], np.zeros((0, 4), int), [], np.ones(2))
     Traceback (most recent call last):
@@ -156,18 +162,31 @@ class BarHingeModel(FrozenArrays):
         for name in ("bar_stiffness", "hinge_stiffness", "masses"):
             object.__setattr__(self, name, np.asarray(getattr(self, name), float))
         P, B = len(nodes), len(self.bars)
-        for name, shape in (("bar_stiffness", (B,)), ("hinge_stiffness", (H,)), ("masses", (P,)), ("hinge_kind", (H,))):
+        for name, shape in (
+            ("bar_stiffness", (B,)),
+            ("hinge_stiffness", (H,)),
+            ("masses", (P,)),
+            ("hinge_kind", (H,)),
+        ):
             if np.shape(getattr(self, name)) != shape:
-                raise InputError(f"{name} must have shape {shape}, got {np.shape(getattr(self, name))}")
+                raise InputError(
+                    f"{name} must have shape {shape}, got {np.shape(getattr(self, name))}"
+                )
         for name in ("bars", "hinges", "membranes"):
             index = np.asarray(getattr(self, name))
             index = index[index >= 0] if name == "membranes" else index
             if index.size and (index.min() < 0 or index.max() >= P):
-                raise InputError(f"{name} must index the {P} nodes, got indices in [{index.min()}, {index.max()}]")
+                raise InputError(
+                    f"{name} must index the {P} nodes, got indices in "
+                    f"[{index.min()}, {index.max()}]"
+                )
         for name in ("bar_stiffness", "hinge_stiffness", "masses"):
             values = getattr(self, name)
             if not (np.isfinite(values).all() and (values >= 0).all()):
-                raise InputError(f"{name} must be finite and ≥ 0, got a minimum of {values.min() if values.size else 0:g}")
+                raise InputError(
+                    f"{name} must be finite and ≥ 0, got a minimum of "
+                    f"{values.min() if values.size else 0:g}"
+                )
         if self.hinge_length is None:
             x = nodes[self.hinges[:, :2]]
             object.__setattr__(self, "hinge_length", np.linalg.norm(x[:, 1] - x[:, 0], axis=-1))
@@ -175,9 +194,17 @@ class BarHingeModel(FrozenArrays):
 
     # -- construction from a sheet -------------------------------------------------------------
     @classmethod
-    def from_mesh(cls, mesh: Mesh, material: Material, thickness: float, *, crease_stiffness: float,
-                  weld: np.ndarray | None = None) -> BarHingeModel:
-        """The model of a sheet mesh of triangles and quads: membranes, and hinges on its edges by kind.
+    def from_mesh(
+        cls,
+        mesh: Mesh,
+        material: Material,
+        thickness: float,
+        *,
+        crease_stiffness: float,
+        weld: np.ndarray | None = None,
+    ) -> BarHingeModel:
+        """The model of a sheet mesh of triangles and quads: membranes, and hinges on its edges by
+        kind.
 
         A face is a membrane on its bars (a quad's four sides and its diagonal from its
         first corner), and a quad has a ``"diagonal"`` hinge across that diagonal (its
@@ -212,10 +239,23 @@ class BarHingeModel(FrozenArrays):
         Examples
         --------
         >>> from curvefold import Mesh
-        >>> sheet = Mesh(vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]],
-        ...             edges_assignment=["B"] * 4, edges_foldAngle=[0.0] * 4, faces_vertices=[[0, 1, 2, 3]], edges_kind=["boundary"] * 4, faces_group=[0])
-        >>> model = BarHingeModel.from_mesh(sheet, MATERIALS["aluminium"], 1e-3, crease_stiffness=1.0)   # 1 m², 1 mm of aluminium
-        >>> model.bars.shape, model.hinge_kind.tolist(), round(float(model.masses.sum()), 6)   # 4 sides and a diagonal; 2.7 kg
+        >>> sheet = Mesh(
+        ...     vertices_coords=[[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+        ...     edges_vertices=[[0, 1], [1, 2], [2, 3], [3, 0]],
+        ...     edges_assignment=["B"] * 4,
+        ...     edges_foldAngle=[0.0] * 4,
+        ...     faces_vertices=[[0, 1, 2, 3]],
+        ...     edges_kind=["boundary"] * 4,
+        ...     faces_group=[0],
+        ... )
+        >>> model = BarHingeModel.from_mesh(
+        ...     sheet, MATERIALS["aluminium"], 1e-3, crease_stiffness=1.0
+        ... )  # 1 m², 1 mm of aluminium
+        >>> (
+        ...     model.bars.shape,
+        ...     model.hinge_kind.tolist(),
+        ...     round(float(model.masses.sum()), 6),
+        ... )  # 4 sides and a diagonal; 2.7 kg
         ((5, 2), ['diagonal'], 2.7)
         """
         t = check_thickness(thickness)
@@ -223,12 +263,19 @@ class BarHingeModel(FrozenArrays):
         faces = np.asarray(mesh.faces_vertices, np.int64)
         sizes = (faces >= 0).sum(axis=1)
         if (sizes > 4).any():
-            raise InputError(f"the model takes faces of three or four vertices; face {int(np.argmax(sizes > 4))} has {sizes.max()}")
-        faces = np.concatenate([faces, np.full((len(faces), 4 - faces.shape[1]), -1, np.int64)], axis=1)[:, :4]
+            raise InputError(
+                "the model takes faces of three or four vertices; face "
+                f"{int(np.argmax(sizes > 4))} has {sizes.max()}"
+            )
+        faces = np.concatenate(
+            [faces, np.full((len(faces), 4 - faces.shape[1]), -1, np.int64)], axis=1
+        )[:, :4]
         V = len(x)
         weld = np.arange(V) if weld is None else np.asarray(weld, np.int64)
         if weld.shape != (V,) or weld.min(initial=0) < 0:
-            raise InputError(f"weld must give a node ≥ 0 for each of the {V} vertices, got shape {weld.shape}")
+            raise InputError(
+                f"weld must give a node ≥ 0 for each of the {V} vertices, got shape {weld.shape}"
+            )
         P = int(weld.max()) + 1
         nodes = np.zeros((P, 3))
         nodes[weld] = x
@@ -236,38 +283,53 @@ class BarHingeModel(FrozenArrays):
         apart = np.linalg.norm(nodes[weld] - x, axis=1)
         if apart.size and apart.max() > 1e-9 * size:
             v = int(np.argmax(apart))
-            raise InputError(f"weld joins vertices that are {apart[v]:.3g} m apart (vertex {v}); welded vertices must coincide")
+            raise InputError(
+                f"weld joins vertices that are {apart[v]:.3g} m apart (vertex {v}); "
+                "welded vertices must coincide"
+            )
 
         # membranes: the faces; a quad's bars are its sides and its diagonal from corner 0
         quads = sizes == 4
-        split = np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]])  # triangles of the faces (for areas)
+        # triangles of the faces (for areas)
+        split = np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]])
         tri_area = triangle_areas(x[split])
         if not (tri_area > 1e-14 * size**2).all():
-            raise InputError(f"a face of the mesh is degenerate (a triangle of area {tri_area.min():.3g} m²)")
+            raise InputError(
+                f"a face of the mesh is degenerate (a triangle of area {tri_area.min():.3g} m²)"
+            )
         face_area = tri_area[: len(faces)].copy()
-        face_area[quads] += tri_area[len(faces):]
+        face_area[quads] += tri_area[len(faces) :]
         S, strain = _membranes(x, faces, sizes, face_area, material, t)
 
         # sides of the faces: side m of a face runs from its corner m to m + 1
         m = np.arange(faces.shape[1])
         corner = np.where(m[None] < sizes[:, None], faces, -1)
         nxt = np.where(m[None] + 1 < sizes[:, None], np.roll(faces, -1, axis=1), faces[:, :1])
-        prev = np.where(m[None] > 0, np.roll(faces, 1, axis=1), faces[np.arange(len(faces)), sizes - 1][:, None])
+        prev = np.where(
+            m[None] > 0, np.roll(faces, 1, axis=1), faces[np.arange(len(faces)), sizes - 1][:, None]
+        )
         after = np.take_along_axis(faces, (m[None] + 2) % sizes[:, None], axis=1)
         keep = corner >= 0
         side_face = np.broadcast_to(np.arange(len(faces))[:, None], faces.shape)[keep]
         p, q = corner[keep], nxt[keep]
-        near_p, near_q = prev[keep], np.where(sizes[side_face] == 3, prev[keep], after[keep])  # corners next to p and to q
+        # corners next to p and to q
+        near_p, near_q = prev[keep], np.where(sizes[side_face] == 3, prev[keep], after[keep])
         side_tri = side_face
         key = np.sort(np.stack([p, q], axis=1), axis=1)
         order = np.lexsort((key[:, 1], key[:, 0]))
         sk = key[order]
-        start = np.flatnonzero(np.r_[True, (sk[1:] != sk[:-1]).any(axis=1)]) if len(sk) else np.zeros(0, np.int64)
+        start = (
+            np.flatnonzero(np.r_[True, (sk[1:] != sk[:-1]).any(axis=1)])
+            if len(sk)
+            else np.zeros(0, np.int64)
+        )
         counts = np.diff(np.r_[start, len(sk)])
         if counts.max(initial=0) > 2:
             g = int(np.argmax(counts))
-            raise InputError(f"edge {sk[start[g]].tolist()} borders {counts[g]} faces; a sheet's edge borders one or two "
-                             "(join sheets by welding their vertices)")
+            raise InputError(
+                f"edge {sk[start[g]].tolist()} borders {counts[g]} faces; a sheet's "
+                "edge borders one or two (join sheets by welding their vertices)"
+            )
         first, second = order[start[counts == 2]], order[start[counts == 2] + 1]
         kinds = _kinds_of(key[first], mesh)
         hinged = np.isin(kinds, HINGE_KINDS)
@@ -278,15 +340,30 @@ class BarHingeModel(FrozenArrays):
         near_a2 = np.where(same, near_p[second], near_q[second])
         near_b2 = np.where(same, near_q[second], near_p[second])
         quad_pair = (sizes[side_face[first]] == 4) & (sizes[side_face[second]] == 4)
-        ends = np.concatenate([np.stack([a, b, near_p[first], near_a2], 1), np.stack([a, b, near_q[first], near_b2], 1)[quad_pair]])
+        ends = np.concatenate(
+            [
+                np.stack([a, b, near_p[first], near_a2], 1),
+                np.stack([a, b, near_q[first], near_b2], 1)[quad_pair],
+            ]
+        )
         length = np.linalg.norm(x[b] - x[a], axis=1)
         f1, f2 = side_face[first], side_face[second]
         pair_area = face_area[f1] + face_area[f2]
         # the faces' widths across the edge (a quad's area over the edge, a triangle's height)
-        spacing = 0.5 * ((face_area * np.where(sizes == 3, 2.0, 1.0))[f1] + (face_area * np.where(sizes == 3, 2.0, 1.0))[f2]) / length
+        spacing = (
+            0.5
+            * (
+                (face_area * np.where(sizes == 3, 2.0, 1.0))[f1]
+                + (face_area * np.where(sizes == 3, 2.0, 1.0))[f2]
+            )
+            / length
+        )
         D, nu = material.bending_stiffness(t), material.poisson
-        k_edge = np.select([np.isin(kinds, CREASES), kinds == "diagonal"],
-                           [crease_stiffness * length, 2 * D * (1 - nu) * pair_area / length**2], D * length / spacing)
+        k_edge = np.select(
+            [np.isin(kinds, CREASES), kinds == "diagonal"],
+            [crease_stiffness * length, 2 * D * (1 - nu) * pair_area / length**2],
+            D * length / spacing,
+        )
         share = np.where(quad_pair, 0.5, 1.0)
         edge_faces = np.stack([side_tri[first], side_tri[second]], axis=1)
         # the quads' diagonal hinges: twist
@@ -306,8 +383,16 @@ class BarHingeModel(FrozenArrays):
             bars=bars,
             bar_stiffness=np.zeros(len(bars)),
             hinges=weld[corners],
-            hinge_stiffness=np.concatenate([k_edge * share, (k_edge * share)[quad_pair], 2 * D * (1 - nu) * face_area[quads] / d**2]),
-            masses=np.bincount(weld[np.where(faces >= 0, faces, 0)].ravel(), share_mass.ravel(), minlength=P),
+            hinge_stiffness=np.concatenate(
+                [
+                    k_edge * share,
+                    (k_edge * share)[quad_pair],
+                    2 * D * (1 - nu) * face_area[quads] / d**2,
+                ]
+            ),
+            masses=np.bincount(
+                weld[np.where(faces >= 0, faces, 0)].ravel(), share_mass.ravel(), minlength=P
+            ),
             membranes=np.where(faces >= 0, weld[np.where(faces >= 0, faces, 0)], -1),
             membrane_bars=membrane_bars,
             membrane_stiffness=S,
@@ -315,9 +400,13 @@ class BarHingeModel(FrozenArrays):
             membrane_area=face_area,
             elasticity=plane_stress(material.youngs_modulus, material.poisson),
             thickness=t,
-            hinge_kind=np.concatenate([kinds, kinds[quad_pair], np.full(Q, "diagonal")]).astype("<U8"),
+            hinge_kind=np.concatenate([kinds, kinds[quad_pair], np.full(Q, "diagonal")]).astype(
+                "<U8"
+            ),
             hinge_length=np.concatenate([length * share, (length * share)[quad_pair], d]),
-            hinge_faces=np.concatenate([edge_faces, edge_faces[quad_pair], np.stack([quad_faces, quad_faces], 1)]),
+            hinge_faces=np.concatenate(
+                [edge_faces, edge_faces[quad_pair], np.stack([quad_faces, quad_faces], 1)]
+            ),
         )
 
     # -- sizes ---------------------------------------------------------------------------------
@@ -346,9 +435,18 @@ class BarHingeModel(FrozenArrays):
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> square.compatibility().shape, square.compatibility().toarray()[0].tolist()   # bar 0–1 along x
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> (
+        ...     square.compatibility().shape,
+        ...     square.compatibility().toarray()[0].tolist(),
+        ... )  # bar 0–1 along x
         ((5, 12), [-1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
         """
         return _rows_matrix(self._bar_rows, self.bars, self.dofs)
@@ -359,22 +457,37 @@ class BarHingeModel(FrozenArrays):
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> square.hinge_matrix().toarray().round(6)[0, 2::3].tolist()   # only the z displacements turn the flat hinge
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> square.hinge_matrix().toarray().round(6)[
+        ...     0, 2::3
+        ... ].tolist()  # only the z displacements turn the flat hinge
         [-1.414214, 1.414214, -1.414214, 1.414214]
         """
         return _rows_matrix(self._hinge_rows, self.hinges, self.dofs)
 
     def bar_stiffness_matrix(self) -> sp.csr_matrix:
-        """S, the bars' stiffness on their elongations (membrane blocks and EA/L), shape (B, B), N/m.
+        """S, the bars' stiffness on their elongations (membrane blocks and EA/L), shape (B, B),
+        N/m.
 
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> square.bar_stiffness_matrix().toarray().diagonal().tolist()   # no membranes: the bars' own EA/L
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> square.bar_stiffness_matrix().toarray().diagonal().tolist()  # no membranes: the bars' own EA/L
         [1.0, 1.0, 1.0, 1.0, 1.0]
         """
         B = len(self.bars)
@@ -383,29 +496,49 @@ class BarHingeModel(FrozenArrays):
         rows, cols = np.repeat(mb, k, axis=1).ravel(), np.tile(mb, (1, k)).ravel()
         vals = self.membrane_stiffness.reshape(-1)
         ok = (rows >= 0) & (cols >= 0)
-        return sp.csr_matrix((np.concatenate([vals[ok], self.bar_stiffness]), (np.concatenate([rows[ok], np.arange(B)]),
-                              np.concatenate([cols[ok], np.arange(B)]))), shape=(B, B))
+        return sp.csr_matrix(
+            (
+                np.concatenate([vals[ok], self.bar_stiffness]),
+                (
+                    np.concatenate([rows[ok], np.arange(B)]),
+                    np.concatenate([cols[ok], np.arange(B)]),
+                ),
+            ),
+            shape=(B, B),
+        )
 
     def triangles(self) -> tuple[np.ndarray, np.ndarray]:
-        """The membranes as triangles (a quad split along its bar diagonal): nodes (n, 3) and the membrane of each (n,).
+        """The membranes as triangles (a quad split along its bar diagonal): nodes (n, 3) and the
+        membrane of each (n,).
 
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> [a.shape for a in square.triangles()]   # no membranes, no triangles
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> [a.shape for a in square.triangles()]  # no membranes, no triangles
         [(0, 3), (0,)]
         """
         faces = self.membranes
         quads = np.flatnonzero(faces[:, 3] >= 0) if len(faces) else np.zeros(0, np.int64)
-        return (np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]]), np.concatenate([np.arange(len(faces)), quads]))
+        return (
+            np.concatenate([faces[:, :3], faces[quads][:, [0, 2, 3]]]),
+            np.concatenate([np.arange(len(faces)), quads]),
+        )
 
     @cached_property
     def stiffness(self) -> sp.csr_matrix:
         """K = Cᵀ S C + Jᵀ diag(k) J, shape (3P, 3P), N/m (symmetric, positive semi-definite)."""
         C, J = self.compatibility(), self.hinge_matrix()
-        K = (C.T @ self.bar_stiffness_matrix() @ C + J.T @ sp.diags(self.hinge_stiffness) @ J).tocsr()
+        K = (
+            C.T @ self.bar_stiffness_matrix() @ C + J.T @ sp.diags(self.hinge_stiffness) @ J
+        ).tocsr()
         K = 0.5 * (K + K.T)
         K.sort_indices()
         return K
@@ -421,28 +554,45 @@ class BarHingeModel(FrozenArrays):
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> u = np.zeros(12); u[3] = 0.01   # node 1 moves 1 cm along x
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> u = np.zeros(12)
+        >>> u[3] = 0.01  # node 1 moves 1 cm along x
         >>> square.bar_forces(u).round(6).tolist(), square.bar_forces(np.zeros(12)).tolist()
         ([0.01, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0])
         """
         return self.bar_stiffness_matrix() @ (self.compatibility() @ u)
 
     def membrane_stress(self, u: np.ndarray) -> np.ndarray:
-        """(σ_xx, σ_yy, τ_xy) at every membrane's centre, in its own frame, for displacements u (3P,), Pa, shape (T, 3).
+        """(σ_xx, σ_yy, τ_xy) at every membrane's centre, in its own frame, for displacements u
+        (3P,), Pa, shape (T, 3).
 
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> square.membrane_stress(np.ones(12)).shape   # bars alone: no membrane
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> square.membrane_stress(np.ones(12)).shape  # bars alone: no membrane
         (0, 3)
         """
         delta = self.compatibility() @ np.asarray(u, float).ravel()
         mb = self.membrane_bars
-        return np.einsum("tij,tj->ti", self.membrane_strain, np.where(mb >= 0, delta[mb], 0.0)) @ self.elasticity.T
+        return (
+            np.einsum("tij,tj->ti", self.membrane_strain, np.where(mb >= 0, delta[mb], 0.0))
+            @ self.elasticity.T
+        )
 
     def geometric_stiffness(self, u: np.ndarray, *, hinges: bool = True) -> sp.csr_matrix:
         """K_G of the internal forces of displacements u (3P,), shape (3P, 3P), N/m.
@@ -455,9 +605,17 @@ class BarHingeModel(FrozenArrays):
         Examples
         --------
         >>> import numpy as np
-        >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-        ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))   # four bars, a diagonal and its hinge
-        >>> int(square.geometric_stiffness(np.zeros(12)).count_nonzero())   # no internal force, no geometric stiffness
+        >>> square = BarHingeModel(
+        ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+        ...     np.ones(5),
+        ...     [[0, 2, 1, 3]],
+        ...     [1.0],
+        ...     np.ones(4),
+        ... )  # four bars, a diagonal and its hinge
+        >>> int(
+        ...     square.geometric_stiffness(np.zeros(12)).count_nonzero()
+        ... )  # no internal force, no geometric stiffness
         0
         """
         u = np.asarray(u, float).ravel()
@@ -468,11 +626,18 @@ class BarHingeModel(FrozenArrays):
         for keep, k in ((~quads, 3), (quads, 4)):  # the same scalar matrix for x, y and z
             if keep.any():
                 corners = self.membranes[keep][:, :k]
-                vals.append(membrane_geometric(self.nodes[corners], stress[keep], self.thickness).ravel())
+                vals.append(
+                    membrane_geometric(self.nodes[corners], stress[keep], self.thickness).ravel()
+                )
                 rows.append(np.repeat(corners, k, axis=1).ravel())
                 cols.append(np.tile(corners, (1, k)).ravel())
-        scalar = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(P, P)) if vals \
+        scalar = (
+            sp.csr_matrix(
+                (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(P, P)
+            )
+            if vals
             else sp.csr_matrix((P, P))
+        )
         KG = sp.kron(scalar, sp.identity(3), format="csr")
         plain = np.flatnonzero(self.bar_stiffness)
         if plain.size:
@@ -482,17 +647,27 @@ class BarHingeModel(FrozenArrays):
             e = d / ell[:, None]
             forces = self.bar_stiffness[plain] * (self.compatibility()[plain] @ u)
             block = (forces / ell)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
-            KG = KG + _assemble(np.einsum("ab,nij->naibj", np.array([[1.0, -1.0], [-1.0, 1.0]]), block).reshape(-1, 6, 6),
-                                self.bars[plain], self.dofs)
+            KG = KG + _assemble(
+                np.einsum("ab,nij->naibj", np.array([[1.0, -1.0], [-1.0, 1.0]]), block).reshape(
+                    -1, 6, 6
+                ),
+                self.bars[plain],
+                self.dofs,
+            )
         if hinges:
             moments = self.hinge_stiffness * (self.hinge_matrix() @ u)
             moving = np.flatnonzero(moments)
-            KG = KG + _assemble(moments[moving, None, None] * dihedral_hessian(self.nodes[self.hinges[moving]]), self.hinges[moving], self.dofs)
+            KG = KG + _assemble(
+                moments[moving, None, None] * dihedral_hessian(self.nodes[self.hinges[moving]]),
+                self.hinges[moving],
+                self.dofs,
+            )
         return (0.5 * (KG + KG.T)).tocsr()
 
 
 def _face_bars(faces: np.ndarray, sizes: np.ndarray) -> np.ndarray:
-    """The bars of faces (F, k) as vertex pairs, shape (F, 5, 2): sides from corner m to m + 1, then a quad's diagonal 0–2; -1 pads."""
+    """The bars of faces (F, k) as vertex pairs, shape (F, 5, 2): sides from corner m to m + 1,
+    then a quad's diagonal 0–2; -1 pads."""
     F = len(faces)
     out = np.full((F, 5, 2), -1, np.int64)
     tri, quad = sizes == 3, sizes == 4
@@ -504,9 +679,16 @@ def _face_bars(faces: np.ndarray, sizes: np.ndarray) -> np.ndarray:
     return out
 
 
-def _membranes(x: np.ndarray, faces: np.ndarray, sizes: np.ndarray, area: np.ndarray, material: Material,
-               t: float) -> tuple[np.ndarray, np.ndarray]:
-    """Every face's stiffness (F, 5, 5) and centre strain (F, 3, 5) on its bars (:func:`_face_bars`)."""
+def _membranes(
+    x: np.ndarray,
+    faces: np.ndarray,
+    sizes: np.ndarray,
+    area: np.ndarray,
+    material: Material,
+    t: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Every face's stiffness (F, 5, 5) and centre strain (F, 3, 5) on its bars
+    (:func:`_face_bars`)."""
     F = len(faces)
     S, strain = np.zeros((F, 5, 5)), np.zeros((F, 3, 5))
     D = plane_stress(material.youngs_modulus, material.poisson)
@@ -518,7 +700,8 @@ def _membranes(x: np.ndarray, faces: np.ndarray, sizes: np.ndarray, area: np.nda
     if quad.any():
         corners = x[faces[quad][:, :4]]
         K8, B0, frame = quad_membrane(corners, material.youngs_modulus, material.poisson, t)
-        local = np.einsum("qnk,qak->qna", corners - corners.mean(axis=1, keepdims=True), frame)  # (Q, 4, 2)
+        # (Q, 4, 2)
+        local = np.einsum("qnk,qak->qna", corners - corners.mean(axis=1, keepdims=True), frame)
         ends = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
         e = local[:, ends[:, 1]] - local[:, ends[:, 0]]
         e /= np.linalg.norm(e, axis=-1, keepdims=True)
@@ -526,14 +709,16 @@ def _membranes(x: np.ndarray, faces: np.ndarray, sizes: np.ndarray, area: np.nda
         rows[:, np.arange(5), ends[:, 0]] -= e
         rows[:, np.arange(5), ends[:, 1]] += e
         C = rows.reshape(-1, 5, 8)
-        Cinv = np.swapaxes(C, 1, 2) @ np.linalg.inv(C @ np.swapaxes(C, 1, 2))  # (Q, 8, 5): Cᵀ(CCᵀ)⁻¹, C of full rank
+        # (Q, 8, 5): Cᵀ(CCᵀ)⁻¹, C of full rank
+        Cinv = np.swapaxes(C, 1, 2) @ np.linalg.inv(C @ np.swapaxes(C, 1, 2))
         S[quad] = np.swapaxes(Cinv, 1, 2) @ K8 @ Cinv
         strain[quad] = B0 @ Cinv
     return 0.5 * (S + np.swapaxes(S, 1, 2)), strain
 
 
 def _kinds_of(edges: np.ndarray, mesh: Mesh) -> np.ndarray:
-    """The kind of every edge (N, 2) (sorted vertex pairs) in a mesh's edges, ``"diagonal"`` if it is not one of them."""
+    """The kind of every edge (N, 2) (sorted vertex pairs) in a mesh's edges, ``"diagonal"`` if
+    it is not one of them."""
     known = np.sort(np.asarray(mesh.edges_vertices, np.int64), axis=1)
     width = int(max(known.max(initial=0), edges.max(initial=0))) + 1
     table = known[:, 0] * width + known[:, 1]
@@ -541,7 +726,9 @@ def _kinds_of(edges: np.ndarray, mesh: Mesh) -> np.ndarray:
     wanted = edges[:, 0] * width + edges[:, 1]
     pos = np.clip(np.searchsorted(table[order], wanted), 0, max(len(table) - 1, 0))
     found = table[order][pos] == wanted if len(table) else np.zeros(len(wanted), bool)
-    return np.where(found, np.asarray(mesh.edges_kind)[order][pos] if len(table) else "diagonal", "diagonal").astype("<U8")
+    return np.where(
+        found, np.asarray(mesh.edges_kind)[order][pos] if len(table) else "diagonal", "diagonal"
+    ).astype("<U8")
 
 
 def _dof_index(elements: np.ndarray) -> np.ndarray:
@@ -553,7 +740,13 @@ def _rows_matrix(rows: np.ndarray, elements: np.ndarray, dofs: int) -> sp.csr_ma
     """A sparse matrix with one row per element from its rows (N, m, 3) on its nodes (N, m)."""
     N = len(elements)
     index = _dof_index(elements)
-    return sp.csr_matrix((rows.reshape(N, index.shape[1]).ravel(), (np.repeat(np.arange(N), index.shape[1]), index.ravel())), shape=(N, dofs))
+    return sp.csr_matrix(
+        (
+            rows.reshape(N, index.shape[1]).ravel(),
+            (np.repeat(np.arange(N), index.shape[1]), index.ravel()),
+        ),
+        shape=(N, dofs),
+    )
 
 
 def _assemble(blocks: np.ndarray, elements: np.ndarray, dofs: int) -> sp.csr_matrix:

@@ -51,9 +51,17 @@ class Modes(FrozenArrays):
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> modes = free_modes(tube.model, 4)
-    >>> modes.shapes.shape, bool((np.diff(modes.eigenvalues) >= 0).all()), round(modes.fold_mode_gap, 1)
+    >>> (
+    ...     modes.shapes.shape,
+    ...     bool((np.diff(modes.eigenvalues) >= 0).all()),
+    ...     round(modes.fold_mode_gap, 1),
+    ... )
     ((4, 20, 3), True, 11.1)
     """
 
@@ -69,11 +77,20 @@ class Modes(FrozenArrays):
     @property
     def fold_mode_gap(self) -> float:
         """λ₂ / λ₁: how much stiffer the next mode is than the first (the folding motion)."""
-        return float(self.eigenvalues[1] / self.eigenvalues[0]) if len(self.eigenvalues) > 1 else float("nan")
+        return (
+            float(self.eigenvalues[1] / self.eigenvalues[0])
+            if len(self.eigenvalues) > 1
+            else float("nan")
+        )
 
 
-def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np.ndarray] | None = None,
-               tol: float = 1e-8) -> Modes:
+def free_modes(
+    model: BarHingeModel,
+    count: int = 6,
+    *,
+    motions: Mapping[str, np.ndarray] | None = None,
+    tol: float = 1e-8,
+) -> Modes:
     """The ``count`` lowest elastic modes of the free model (module notes).
 
     Parameters
@@ -97,25 +114,40 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> free_modes(tube.model, 2).eigenvalues.shape
     (2,)
     >>> free_modes(tube.model, 0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: count must be an integer in [1, 52] for this model (60 DOFs), got 0
+    curvefold.kernel._errors.InputError: count must be an integer in [1, 52] for this model (60
+    DOFs), got 0
     """
     n = model.dofs
     if not (model.masses > 0).all():
-        raise InputError(f"the modes need every node to have mass; node {int(np.argmin(model.masses))} has none")
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n - 8:
-        raise InputError(f"count must be an integer in [1, {n - 8}] for this model ({n} DOFs), got {count!r}")
+        raise InputError(
+            f"the modes need every node to have mass; node {int(np.argmin(model.masses))} has none"
+        )
+    if (
+        isinstance(count, bool)
+        or not isinstance(count, (int, np.integer))
+        or not 1 <= count <= n - 8
+    ):
+        raise InputError(
+            f"count must be an integer in [1, {n - 8}] for this model ({n} DOFs), got {count!r}"
+        )
     w = np.repeat(model.masses, 3)
     R = rigid_motions(model.nodes, model.masses)  # M-orthonormal, (3P, 6)
     held = la.qr(R.T, mode="r", pivoting=True)[1][:6]
     rest = np.setdiff1d(np.arange(n), held)
     K = model.stiffness
-    G = Factorized.checked(K[rest][:, rest], model, rest, where="once its rigid motions are held", motions=motions)
+    G = Factorized.checked(
+        K[rest][:, rest], model, rest, where="once its rigid motions are held", motions=motions
+    )
 
     def project(b: np.ndarray) -> np.ndarray:  # P G Pᵀ b
         b = b - w * (R @ (R.T @ b))
@@ -124,8 +156,17 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
         return u - R @ (R.T @ (w * u))
 
     operator = spl.LinearOperator((n, n), matvec=project, dtype=float)
-    values, vectors = eigsh(K, what="the free modes", k=count, M=model.mass, sigma=0.0, OPinv=operator, which="LM",
-                            ncv=min(n - 7, max(2 * count + 8, 24)), tol=tol)
+    values, vectors = eigsh(
+        K,
+        what="the free modes",
+        k=count,
+        M=model.mass,
+        sigma=0.0,
+        OPinv=operator,
+        which="LM",
+        ncv=min(n - 7, max(2 * count + 8, 24)),
+        tol=tol,
+    )
     order = np.argsort(values)
     values, vectors = values[order], vectors[:, order]
     C, S = model.compatibility(), model.bar_stiffness_matrix()
@@ -137,7 +178,8 @@ def free_modes(model: BarHingeModel, count: int = 6, *, motions: Mapping[str, np
 
 
 def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> float:
-    """The absolute cosine of the angle between a mode shape and a motion (P, 3), in the mass metric, rigid parts removed.
+    """The absolute cosine of the angle between a mode shape and a motion (P, 3), in the mass
+    metric, rigid parts removed.
 
     1 when the mode is the motion (up to a rigid motion and scale).
 
@@ -145,16 +187,24 @@ def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> 
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> fold = tube.fold_velocity()
-    >>> round(correlation(tube.model, fold, 2 * fold), 12), round(correlation(tube.model, free_modes(tube.model, 2).shapes[0], fold), 3)
+    >>> (
+    ...     round(correlation(tube.model, fold, 2 * fold), 12),
+    ...     round(correlation(tube.model, free_modes(tube.model, 2).shapes[0], fold), 3),
+    ... )
     (1.0, 0.999)
     """
     return span_correlation(model, np.asarray(shape, float)[None], motion)
 
 
 def span_correlation(model: BarHingeModel, shapes: np.ndarray, motion: np.ndarray) -> float:
-    """The cosine of the angle between a motion (P, 3) and the span of mode shapes (k, P, 3), in the mass metric, rigid parts removed.
+    """The cosine of the angle between a motion (P, 3) and the span of mode shapes (k, P, 3), in the
+    mass metric, rigid parts removed.
 
     1 when the motion is a combination of the shapes (up to a rigid motion); for one
     shape, :func:`correlation`.
@@ -165,11 +215,22 @@ def span_correlation(model: BarHingeModel, shapes: np.ndarray, motion: np.ndarra
 
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> shapes = free_modes(tube.model, 2).shapes
     >>> round(span_correlation(tube.model, shapes, shapes[0] - 3 * shapes[1]), 12)
     1.0
-    >>> round(span_correlation(tube.model, shapes, np.tile([0.0, 0.0, 1.0], (len(tube.model.nodes), 1)) + 1e-9 * shapes[0]), 6)
+    >>> round(
+    ...     span_correlation(
+    ...         tube.model,
+    ...         shapes,
+    ...         np.tile([0.0, 0.0, 1.0], (len(tube.model.nodes), 1)) + 1e-9 * shapes[0],
+    ...     ),
+    ...     6,
+    ... )
     1.0
     """
     w = np.repeat(model.masses, 3)
@@ -177,7 +238,7 @@ def span_correlation(model: BarHingeModel, shapes: np.ndarray, motion: np.ndarra
     A = np.asarray(shapes, float).reshape(len(shapes), -1).T
     b = np.asarray(motion, float).ravel()
     A, b = A - R @ (R.T @ (w[:, None] * A)), b - R @ (R.T @ (w * b))
-    Q, _ = np.linalg.qr(np.sqrt(w)[:, None] * A)  # an orthonormal basis of the span in the mass metric
+    # an orthonormal basis of the span in the mass metric
+    Q, _ = np.linalg.qr(np.sqrt(w)[:, None] * A)
     wb = np.sqrt(w) * b
     return min(1.0, float(np.linalg.norm(Q.T @ wb) / np.linalg.norm(wb)))
-

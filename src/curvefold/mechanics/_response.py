@@ -80,9 +80,18 @@ class StaticResult(FrozenArrays):
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
-    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
-    >>> (result.total_reaction.round(6) + 0.0).tolist(), result.equilibrium_error < 1e-12   # the feet carry the weight (+ 0.0: no -0.0)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
+    >>> result, factor = static_response(
+    ...     tube.model, Loads().forces(tube.model), Supports().fixed(tube)
+    ... )
+    >>> (
+    ...     (result.total_reaction.round(6) + 0.0).tolist(),
+    ...     result.equilibrium_error < 1e-12,
+    ... )  # the feet carry the weight (+ 0.0: no -0.0)
     ([0.0, 0.0, 22.737584], True)
     """
 
@@ -110,8 +119,13 @@ class StaticResult(FrozenArrays):
 
     @property
     def equilibrium_error(self) -> float:
-        """``|Σ reactions + Σ loads|`` over :attr:`force_scale`: rounding (~1e-16) when the reactions carry the load."""
-        return float(np.linalg.norm(self.total_reaction + self.total_load) / self.force_scale) if self.force_scale else 0.0
+        """``|Σ reactions + Σ loads|`` over :attr:`force_scale`: rounding (~1e-16) when the
+        reactions carry the load."""
+        return (
+            float(np.linalg.norm(self.total_reaction + self.total_load) / self.force_scale)
+            if self.force_scale
+            else 0.0
+        )
 
     @property
     def max_displacement(self) -> float:
@@ -121,7 +135,9 @@ class StaticResult(FrozenArrays):
     @property
     def max_stress(self) -> float:
         """The largest surface stress, or of the bending stresses without membranes, Pa."""
-        return float(max(self.surface_stress.max(initial=0.0), self.bending_stress.max(initial=0.0)))
+        return float(
+            max(self.surface_stress.max(initial=0.0), self.bending_stress.max(initial=0.0))
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -140,8 +156,14 @@ class Buckling(FrozenArrays):
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
-    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
+    >>> result, factor = static_response(
+    ...     tube.model, Loads().forces(tube.model), Supports().fixed(tube)
+    ... )
     >>> b = buckling(tube.model, result, factor)
     >>> round(b.factor, -2), round(float(np.linalg.norm(b.shape, axis=1).max()), 12)
     (16600.0, 1.0)
@@ -151,9 +173,15 @@ class Buckling(FrozenArrays):
     shape: np.ndarray
 
 
-def static_response(model: BarHingeModel, load: np.ndarray, fixed: np.ndarray, *,
-                    motions: Mapping[str, np.ndarray] | None = None) -> tuple[StaticResult, Factorized]:
-    """The static response to nodal forces (P, 3) with the DOFs ``fixed`` (P, 3) held, and its factorisation.
+def static_response(
+    model: BarHingeModel,
+    load: np.ndarray,
+    fixed: np.ndarray,
+    *,
+    motions: Mapping[str, np.ndarray] | None = None,
+) -> tuple[StaticResult, Factorized]:
+    """The static response to nodal forces (P, 3) with the DOFs ``fixed`` (P, 3) held, and its
+    factorisation.
 
     Raises
     ------
@@ -165,24 +193,36 @@ def static_response(model: BarHingeModel, load: np.ndarray, fixed: np.ndarray, *
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> forces, feet = Loads().forces(tube.model), Supports().fixed(tube)
     >>> result, factor = static_response(tube.model, forces, feet)
-    >>> result.displacements.shape, result.max_displacement < 1e-5   # 1 mm of aluminium under its own weight
+    >>> (
+    ...     result.displacements.shape,
+    ...     result.max_displacement < 1e-5,
+    ... )  # 1 mm of aluminium under its own weight
     ((20, 3), True)
     >>> static_response(tube.model, forces, np.zeros_like(feet))
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: no support: at least one node must be held (the structure would fly away)
+    curvefold.kernel._errors.InputError: no support: at least one node must be held (the structure
+    would fly away)
     """
     P = len(model.nodes)
     f = np.asarray(load, float).reshape(P, 3)
     fixed = np.asarray(fixed, bool).reshape(P, 3)
     if not fixed.any():
-        raise InputError("no support: at least one node must be held (the structure would fly away)")
+        raise InputError(
+            "no support: at least one node must be held (the structure would fly away)"
+        )
     free = np.flatnonzero(~fixed.ravel())
     K = model.stiffness
-    factor = Factorized.checked(K[free][:, free], model, free, where="under these supports", motions=motions)
+    factor = Factorized.checked(
+        K[free][:, free], model, free, where="under these supports", motions=motions
+    )
     u = np.zeros(model.dofs)
     u[free] = factor.solve(f.ravel()[free])
     reactions = (K @ u - f.ravel()).reshape(P, 3)
@@ -191,8 +231,14 @@ def static_response(model: BarHingeModel, load: np.ndarray, fixed: np.ndarray, *
     return _result(model, f, fixed, u, reactions, scale), factor
 
 
-def _result(model: BarHingeModel, f: np.ndarray, fixed: np.ndarray, u: np.ndarray, reactions: np.ndarray,
-            scale: float) -> StaticResult:
+def _result(
+    model: BarHingeModel,
+    f: np.ndarray,
+    fixed: np.ndarray,
+    u: np.ndarray,
+    reactions: np.ndarray,
+    scale: float,
+) -> StaticResult:
     delta = model.compatibility() @ u
     forces = model.bar_stiffness_matrix() @ delta
     moments = model.hinge_stiffness * (model.hinge_matrix() @ u)
@@ -208,9 +254,17 @@ def _result(model: BarHingeModel, f: np.ndarray, fixed: np.ndarray, u: np.ndarra
         ok = faces >= 0
         np.maximum.at(worst, faces[ok], bending[ok])
     return StaticResult(
-        load=f, fixed=fixed, displacements=readonly(u.reshape(-1, 3)), reactions=reactions, bar_forces=forces,
-        hinge_moments=moments, membrane_stress=stress, von_mises=von_mises, bending_stress=bending,
-        surface_stress=von_mises + worst, force_scale=scale,
+        load=f,
+        fixed=fixed,
+        displacements=readonly(u.reshape(-1, 3)),
+        reactions=reactions,
+        bar_forces=forces,
+        hinge_moments=moments,
+        membrane_stress=stress,
+        von_mises=von_mises,
+        bending_stress=bending,
+        surface_stress=von_mises + worst,
+        force_scale=scale,
     )
 
 
@@ -223,9 +277,15 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
-    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), Supports().fixed(tube))
-    >>> round(buckling(tube.model, result, factor).factor, -2)   # its own weight × 16600 buckles it
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
+    >>> result, factor = static_response(
+    ...     tube.model, Loads().forces(tube.model), Supports().fixed(tube)
+    ... )
+    >>> round(buckling(tube.model, result, factor).factor, -2)  # its own weight × 16600 buckles it
     16600.0
     """
     free = np.flatnonzero(~result.fixed.ravel())
@@ -243,7 +303,11 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
         v[free] = phi
         corners = model.hinges[moving]
         action = dihedral_hessian_action(model.nodes[corners], v.reshape(-1, 3)[corners])
-        q = float(np.einsum("h,hij,hij->", result.hinge_moments[moving], action, v.reshape(-1, 3)[corners]))
+        q = float(
+            np.einsum(
+                "h,hij,hij->", result.hinge_moments[moving], action, v.reshape(-1, 3)[corners]
+            )
+        )
         corrected = mu - q / float(phi @ (K @ phi))
         if abs(corrected - mu) <= RAYLEIGH_RTOL * abs(mu):
             mu = corrected
@@ -257,7 +321,8 @@ def buckling(model: BarHingeModel, result: StaticResult, factor: Factorized) -> 
 
 
 def _largest(KG, factor: Factorized) -> tuple[float | None, np.ndarray]:
-    """The largest μ of −K_G φ = μ K φ and its φ, or None when no μ is positive (ARPACK, regular mode).
+    """The largest μ of −K_G φ = μ K φ and its φ, or None when no μ is positive (ARPACK, regular
+    mode).
 
     The eigenvalue of largest magnitude first (to 1e-6, then the Rayleigh quotient of its
     vector): if positive it is the largest. Otherwise the largest is sought on the pencil
@@ -274,16 +339,21 @@ def _largest(KG, factor: Factorized) -> tuple[float | None, np.ndarray]:
     K, Kinv = factor.matrix, factor.operator()
     options = {"k": 1, "M": K, "Minv": Kinv, "ncv": min(n - 1, 20), "tol": 1e-6}
     mu, vec = eigsh(-KG, what="the buckling factor", which="LM", **options)
-    if mu[0] > 0:  # its Rayleigh quotient, in error by the square of ARPACK's 1e-6 (measured: 3e-8 of it)
+    # its Rayleigh quotient, in error by the square of ARPACK's 1e-6 (measured: 3e-8 of it)
+    if mu[0] > 0:
         phi = vec[:, 0]
         return float(phi @ (-KG @ phi)) / float(phi @ (K @ phi)), phi
     shift = 1e-3 * abs(float(mu[0]))
     try:
-        mu, vec = spl.eigsh(-KG + shift * K, which="LA", maxiter=300, **{**options, "tol": 1e-5,
-                            "v0": np.random.default_rng(0).standard_normal(n)})
+        mu, vec = spl.eigsh(
+            -KG + shift * K,
+            which="LA",
+            maxiter=300,
+            **{**options, "tol": 1e-5, "v0": np.random.default_rng(0).standard_normal(n)},
+        )
     except spl.ArpackNoConvergence:  # stuck in the cluster at the shift: nothing above it
         return None, np.zeros(n)
     phi = vec[:, 0]
-    top = float(phi @ (-KG @ phi)) / float(phi @ (K @ phi))  # its Rayleigh quotient: the error is the residual's square
+    # its Rayleigh quotient: the error is the residual's square
+    top = float(phi @ (-KG @ phi)) / float(phi @ (K @ phi))
     return (top, phi) if top > 1e-3 * shift else (None, phi)  # a millionth of the largest magnitude
-

@@ -40,7 +40,14 @@ from ._linear import Factorized, eigsh
 from ._model import BarHingeModel
 from ._structures import StructureModel
 
-__all__ = ["SoftModes", "soft_modes", "conjecture_counts", "RTOL", "planarity_rows", "distance_rows"]
+__all__ = [
+    "SoftModes",
+    "soft_modes",
+    "conjecture_counts",
+    "RTOL",
+    "planarity_rows",
+    "distance_rows",
+]
 
 #: Rank tolerance relative to the largest singular value (module notes).
 RTOL = 1e-6
@@ -66,7 +73,11 @@ class SoftModes(FrozenArrays):
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
     >>> soft = soft_modes(tube.model)
     >>> soft.count, soft.shapes.shape, soft.gap > 1e3
     (2, (8, 20, 3), True)
@@ -88,7 +99,8 @@ class SoftModes(FrozenArrays):
 
 
 def planarity_rows(nodes: np.ndarray, quads: np.ndarray) -> sp.csr_matrix:
-    """First-order change of ``det[c − a, d − b, b − a] / (|c − a| |d − b|)`` of quadruples (Q, 4), shape (Q, 3P).
+    """First-order change of ``det[c − a, d − b, b − a] / (|c − a| |d − b|)`` of quadruples (Q, 4),
+    shape (Q, 3P).
 
     Zero when the quadruple stays planar (its diagonals' lines keep meeting): the
     condition of :mod:`curvefold.analysis._mechanism`, with dimensionless rows.
@@ -115,11 +127,20 @@ def distance_rows(nodes: np.ndarray, pairs: np.ndarray) -> sp.csr_matrix:
 def _rows(grads: np.ndarray, elements: np.ndarray, dofs: int) -> sp.csr_matrix:
     N, m = elements.shape
     cols = (3 * elements[:, :, None] + np.arange(3)).reshape(N, 3 * m)
-    return sp.csr_matrix((grads.reshape(N, -1).ravel(), (np.repeat(np.arange(N), 3 * m), cols.ravel())), shape=(N, dofs))
+    return sp.csr_matrix(
+        (grads.reshape(N, -1).ravel(), (np.repeat(np.arange(N), 3 * m), cols.ravel())),
+        shape=(N, dofs),
+    )
 
 
-def soft_modes(model: BarHingeModel, *, held_hinges: Sequence[str] = (), planar: np.ndarray | None = None,
-               held_pairs: np.ndarray | None = None, rtol: float = RTOL) -> SoftModes:
+def soft_modes(
+    model: BarHingeModel,
+    *,
+    held_hinges: Sequence[str] = (),
+    planar: np.ndarray | None = None,
+    held_pairs: np.ndarray | None = None,
+    rtol: float = RTOL,
+) -> SoftModes:
     """The inextensional motions of a model (module notes).
 
     Parameters
@@ -140,8 +161,14 @@ def soft_modes(model: BarHingeModel, *, held_hinges: Sequence[str] = (), planar:
     the shear (its hinge is free), and with the diagonal's hinge held nothing moves:
 
     >>> import numpy as np
-    >>> square = BarHingeModel(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]), [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
-    ...                        np.ones(5), [[0, 2, 1, 3]], [1.0], np.ones(4))
+    >>> square = BarHingeModel(
+    ...     np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+    ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+    ...     np.ones(5),
+    ...     [[0, 2, 1, 3]],
+    ...     [1.0],
+    ...     np.ones(4),
+    ... )
     >>> soft_modes(square).count, soft_modes(square, held_hinges=("hinge",)).count
     (1, 0)
     """
@@ -165,7 +192,15 @@ def soft_modes(model: BarHingeModel, *, held_hinges: Sequence[str] = (), planar:
     k = 12
     while True:
         k = min(k, n - 2)
-        values, vectors = eigsh(Q, what="the soft modes", k=k, sigma=-shift, OPinv=factor.operator(), which="LM", tol=1e-12)
+        values, vectors = eigsh(
+            Q,
+            what="the soft modes",
+            k=k,
+            sigma=-shift,
+            OPinv=factor.operator(),
+            which="LM",
+            tol=1e-12,
+        )
         order = np.argsort(values)
         values, vectors = np.maximum(values[order], 0.0), vectors[:, order]
         sigma = np.sqrt(values / top)
@@ -198,7 +233,9 @@ def conjecture_counts(structure: StructureModel, *, rtol: float = RTOL) -> dict[
     --------
     >>> from curvefold.vault import Vault
     >>> from curvefold.mechanics import MATERIALS
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=8).structure.state(), MATERIALS["aluminium"], 1e-3)
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=8).structure.state(), MATERIALS["aluminium"], 1e-3
+    ... )
     >>> {name: soft.count for name, soft in conjecture_counts(tube).items()}
     {'free': 2, 'end planar': 1, 'end diagonals': 0, 'rulings fixed': 1}
     """
@@ -210,6 +247,8 @@ def conjecture_counts(structure: StructureModel, *, rtol: float = RTOL) -> dict[
         ends = None
     if ends is not None:
         counts["end planar"] = soft_modes(model, planar=ends[0::2], rtol=rtol)
-        counts["end diagonals"] = soft_modes(model, held_pairs=np.concatenate([ends[:, [0, 2]], ends[:, [1, 3]]]), rtol=rtol)
+        counts["end diagonals"] = soft_modes(
+            model, held_pairs=np.concatenate([ends[:, [0, 2]], ends[:, [1, 3]]]), rtol=rtol
+        )
     counts["rulings fixed"] = soft_modes(model, held_hinges=("diagonal",), rtol=rtol)
     return counts

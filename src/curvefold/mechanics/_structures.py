@@ -73,7 +73,8 @@ def model_samples(n: int) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class StructureModel(FrozenArrays):
-    """A curvefold structure's bar-and-hinge model at one fold angle. Build it with :meth:`from_state`.
+    """A curvefold structure's bar-and-hinge model at one fold angle. Build it with
+    :meth:`from_state`.
 
     Attributes
     ----------
@@ -91,8 +92,16 @@ class StructureModel(FrozenArrays):
     --------
     >>> import numpy as np
     >>> from curvefold.vault import Vault
-    >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
-    >>> tube.model.nodes.shape, round(tube.crease_stiffness, 6), tube.material.name   # 4 curves × 5 vertices
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
+    >>> (
+    ...     tube.model.nodes.shape,
+    ...     round(tube.crease_stiffness, 6),
+    ...     tube.material.name,
+    ... )  # 4 curves × 5 vertices
     ((20, 3), 6.443347, 'aluminium')
     """
 
@@ -104,8 +113,16 @@ class StructureModel(FrozenArrays):
     material: Material
 
     @classmethod
-    def from_state(cls, state: State, material: Material, thickness: float, *, crease_stiffness: float | None = None,
-                   sheets: Sequence[int] | None = None, samples: str | Sequence[int] = "graded") -> StructureModel:
+    def from_state(
+        cls,
+        state: State,
+        material: Material,
+        thickness: float,
+        *,
+        crease_stiffness: float | None = None,
+        sheets: Sequence[int] | None = None,
+        samples: str | Sequence[int] = "graded",
+    ) -> StructureModel:
         """The model of a structure's state (module notes).
 
         Parameters
@@ -127,17 +144,34 @@ class StructureModel(FrozenArrays):
         --------
         >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
         >>> from curvefold.mechanics import MATERIALS
-        >>> lat = Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1)
-        >>> tube = StructureModel.from_state(Structure.tube(lat).state(), MATERIALS["aluminium"], 1e-3)
-        >>> len(tube.model.nodes), len(StructureModel.from_state(Structure.tube(lat).state(), MATERIALS["aluminium"], 1e-3,
-        ...                                                    sheets=(0,)).model.nodes)
+        >>> lat = Lattice.from_crease(
+        ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)), 0.1, 0.1
+        ... )
+        >>> tube = StructureModel.from_state(
+        ...     Structure.tube(lat).state(), MATERIALS["aluminium"], 1e-3
+        ... )
+        >>> (
+        ...     len(tube.model.nodes),
+        ...     len(
+        ...         StructureModel.from_state(
+        ...             Structure.tube(lat).state(), MATERIALS["aluminium"], 1e-3, sheets=(0,)
+        ...         ).model.nodes
+        ...     ),
+        ... )
         (36, 27)
         """
         t = check_thickness(thickness)
-        k_c = material.crease_stiffness(t) if crease_stiffness is None else CREASE_STIFFNESS.check(crease_stiffness)
+        k_c = (
+            material.crease_stiffness(t)
+            if crease_stiffness is None
+            else CREASE_STIFFNESS.check(crease_stiffness)
+        )
         structure = state.structure
         keep = _kept(samples, state.vertices.shape[1]) if structure.lattice.thinnable else None
-        topology = structure.topology("quads", keep=None if keep is None else [keep] * len(structure.cell_curves))  # a quad per ruling quad or panel
+        # a quad per ruling quad or panel
+        topology = structure.topology(
+            "quads", keep=None if keep is None else [keep] * len(structure.cell_curves)
+        )
         mesh = topology.mesh(state.vertices)
         if sheets is not None:
             mesh, kept = _sheets(mesh, topology, sheets)
@@ -152,7 +186,8 @@ class StructureModel(FrozenArrays):
     # -- where the nodes are ---------------------------------------------------------------------
     @cached_property
     def feet(self) -> np.ndarray:
-        """Nodes of the end sections (first and last samples) on the ground z = 0 (to 1e-9 of the size), ascending."""
+        """Nodes of the end sections (first and last samples) on the ground z = 0 (to 1e-9 of the
+        size), ascending."""
         n = self.state.vertices.shape[1]
         ends = np.isin(self.node_sample, (0, n - 1))
         ground = np.abs(self.model.nodes[:, 2]) <= 1e-9 * max(self.model.size, 1e-300)
@@ -165,7 +200,8 @@ class StructureModel(FrozenArrays):
         return readonly(np.flatnonzero(np.isin(self.node_sample, (0, n - 1))))
 
     def end_sections(self) -> np.ndarray:
-        """The end sections of every tube as node quadruples, corners 1–4, shape (2K, 4): t = 0 then t = 1 of each tube.
+        """The end sections of every tube as node quadruples, corners 1–4, shape (2K, 4): t = 0 then
+        t = 1 of each tube.
 
         Raises
         ------
@@ -176,16 +212,31 @@ class StructureModel(FrozenArrays):
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> tube = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
         >>> tube.end_sections().tolist()
         [[0, 1, 3, 2], [16, 17, 19, 18]]
         """
-        index = {(c, s): p for p, (c, s) in enumerate(zip(self.node_curve.tolist(), self.node_sample.tolist()))}
+        index = {
+            (c, s): p
+            for p, (c, s) in enumerate(zip(self.node_curve.tolist(), self.node_sample.tolist()))
+        }
         n = self.state.vertices.shape[1]
         try:
-            return np.array([[index[(int(c), s)] for c in cell] for cell in self.state.structure.cell_curves for s in (0, n - 1)])
+            return np.array(
+                [
+                    [index[(int(c), s)] for c in cell]
+                    for cell in self.state.structure.cell_curves
+                    for s in (0, n - 1)
+                ]
+            )
         except KeyError:
-            raise InputError("end sections need whole tubes; this model holds single sheets") from None
+            raise InputError(
+                "end sections need whole tubes; this model holds single sheets"
+            ) from None
 
     @cached_property
     def samples(self) -> np.ndarray:
@@ -193,13 +244,18 @@ class StructureModel(FrozenArrays):
         return readonly(distinct(self.node_sample))
 
     def field(self, values: np.ndarray) -> np.ndarray:
-        """Nodal values (P, ...) laid out as the state's curves, shape (M, n, ...); NaN where no node is.
+        """Nodal values (P, ...) laid out as the state's curves, shape (M, n, ...); NaN where no
+        node is.
 
         Examples
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> tube = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
         >>> z = tube.field(tube.model.nodes[:, 2])
         >>> z.shape, bool(np.allclose(z, tube.state.vertices[..., 2]))
         ((4, 5), True)
@@ -223,7 +279,12 @@ class StructureModel(FrozenArrays):
         >>> import numpy as np
         >>> from curvefold.vault import Vault
         >>> from curvefold.mechanics import MATERIALS
-        >>> sm = StructureModel.from_state(Vault.from_design(tubes=1, samples=41).structure.state(), MATERIALS["aluminium"], 1e-3, samples=[0, 10, 20, 30, 40])
+        >>> sm = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, samples=41).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ...     samples=[0, 10, 20, 30, 40],
+        ... )
         >>> on_curves = sm.interpolate(np.ones(len(sm.model.nodes)))
         >>> on_curves.shape[1], bool(np.allclose(on_curves[~np.isnan(on_curves)], 1.0))
         (41, True)
@@ -237,7 +298,8 @@ class StructureModel(FrozenArrays):
         return F[:, lo] * (1 - w) + F[:, hi] * w
 
     def sample_correlation(self, values: np.ndarray) -> float:
-        """How a nodal field (P, 3) varies from one kept sample to the next where it is largest, in [−1, 1].
+        """How a nodal field (P, 3) varies from one kept sample to the next where it is largest, in
+        [−1, 1].
 
         ``Σ v(s_i) · v(s_i+1) / Σ ½ (|v(s_i)|² + |v(s_i+1)|²)`` over the consecutive samples
         of the curve that holds the field's largest value: 1 for a field that is the same at
@@ -250,13 +312,23 @@ class StructureModel(FrozenArrays):
         >>> import numpy as np
         >>> from curvefold.vault import Vault
         >>> from curvefold.mechanics import MATERIALS
-        >>> sm = StructureModel.from_state(Vault.from_design(tubes=1, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> sm = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
         >>> sign = (-1.0) ** sm.node_sample[:, None]
-        >>> round(sm.sample_correlation(np.ones((len(sm.node_sample), 3))), 12), round(sm.sample_correlation(sign * [0, 0, 1]), 12)
+        >>> (
+        ...     round(sm.sample_correlation(np.ones((len(sm.node_sample), 3))), 12),
+        ...     round(sm.sample_correlation(sign * [0, 0, 1]), 12),
+        ... )
         (1.0, -1.0)
         """
         values = np.asarray(values, float)
-        F = self.field(values)[self.node_curve[np.argmax(np.linalg.norm(values.reshape(len(values), -1), axis=1))], self.samples]
+        F = self.field(values)[
+            self.node_curve[np.argmax(np.linalg.norm(values.reshape(len(values), -1), axis=1))],
+            self.samples,
+        ]
         a, b = F[:-1], F[1:]
         scale = 0.5 * float(np.sum(a * a) + np.sum(b * b))
         return float(np.sum(a * b) / scale) if scale > 0 else 1.0
@@ -271,9 +343,13 @@ class StructureModel(FrozenArrays):
         --------
         >>> import numpy as np
         >>> from curvefold.vault import Vault
-        >>> tube = StructureModel.from_state(Vault.from_design(tubes=1, panels=4, samples=21).structure.state(), MATERIALS["aluminium"], 1e-3)
+        >>> tube = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
         >>> velocity = tube.fold_velocity()
-        >>> velocity.shape, float(np.abs(velocity[0]).max())   # node 0, on the anchored foot, stays
+        >>> velocity.shape, float(np.abs(velocity[0]).max())  # node 0, on the anchored foot, stays
         ((20, 3), 0.0)
         """
         lattice = self.state.lattice
@@ -292,9 +368,18 @@ def _kept(samples: str | Sequence[int], n: int) -> np.ndarray:
             raise InputError(f"samples must be 'graded', 'all' or sample indices, got {samples!r}")
         return model_samples(n) if samples == "graded" else np.arange(n)
     keep = np.asarray(samples)
-    if keep.ndim != 1 or len(keep) < 2 or not np.issubdtype(keep.dtype, np.integer) or keep[0] != 0 or keep[-1] != n - 1 \
-            or (np.diff(keep) <= 0).any():
-        raise InputError(f"samples must be ascending sample indices from 0 to {n - 1}, got {np.asarray(samples).tolist()!r}"[:300])
+    if (
+        keep.ndim != 1
+        or len(keep) < 2
+        or not np.issubdtype(keep.dtype, np.integer)
+        or keep[0] != 0
+        or keep[-1] != n - 1
+        or (np.diff(keep) <= 0).any()
+    ):
+        raise InputError(
+            f"samples must be ascending sample indices from 0 to {n - 1}, got "
+            f"{np.asarray(samples).tolist()!r}"[:300]
+        )
     return keep
 
 
@@ -302,8 +387,14 @@ def _sheets(mesh: Mesh, topology, sheets: Sequence[int]) -> tuple[Mesh, np.ndarr
     """The mesh of some sheets of a topology, renumbered, and the topology vertices it keeps."""
     count = len(topology.sheets)
     picks = list(sheets)
-    if not picks or any(isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 0 <= s < count for s in picks):
-        raise InputError(f"sheets must be indices in [0, {count}) of the structure's sheets, got {list(sheets)!r}")
+    if not picks or any(
+        isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 0 <= s < count
+        for s in picks
+    ):
+        raise InputError(
+            f"sheets must be indices in [0, {count}) of the structure's sheets, got "
+            f"{list(sheets)!r}"
+        )
     faces = distinct(np.concatenate([topology.sheets[s].faces for s in picks]))
     edges = distinct(np.concatenate([topology.sheets[s].edges for s in picks]))
     used = distinct(mesh.faces_vertices[faces])

@@ -23,8 +23,15 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import BarHingeModel
 
-__all__ = ["apex", "snow_areas", "span_axis", "span", "projected_forces", "face_vectors",
-           "beyond_shares"]
+__all__ = [
+    "apex",
+    "snow_areas",
+    "span_axis",
+    "span",
+    "projected_forces",
+    "face_vectors",
+    "beyond_shares",
+]
 
 
 def apex(model: BarHingeModel) -> int:
@@ -34,7 +41,7 @@ def apex(model: BarHingeModel) -> int:
     --------
     >>> from curvefold.mechanics import BarHingeModel
     >>> x = np.array([[0.0, 0, 0], [1, 0, 2], [2, 0, 2]])
-    >>> apex(BarHingeModel(x, [[0, 1], [1, 2]], [1.0, 1.0], [], [], np.ones(3)))   # first of two
+    >>> apex(BarHingeModel(x, [[0, 1], [1, 2]], [1.0, 1.0], [], [], np.ones(3)))  # first of two
     1
     """
     return int(np.argmax(model.nodes[:, 2]))
@@ -63,8 +70,15 @@ def snow_areas(model: BarHingeModel) -> np.ndarray:
     --------
     >>> from curvefold.mechanics import BarHingeModel
     >>> x = np.array([[0.0, 0, 0], [2, 0, 0], [0, 1, 0]])
-    >>> flat = BarHingeModel(x, [[0, 1], [1, 2], [2, 0]], np.ones(3), [], [], np.ones(3),
-    ...                      membranes=np.array([[0, 1, 2, -1]]))
+    >>> flat = BarHingeModel(
+    ...     x,
+    ...     [[0, 1], [1, 2], [2, 0]],
+    ...     np.ones(3),
+    ...     [],
+    ...     [],
+    ...     np.ones(3),
+    ...     membranes=np.array([[0, 1, 2, -1]]),
+    ... )
     >>> snow_areas(flat).tolist()
     [1.0]
     """
@@ -137,9 +151,16 @@ def span_axis(
     Examples
     --------
     >>> from curvefold.mechanics import BarHingeModel
-    >>> x = np.array([[0.0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0]])   # a 4 m × 1 m plate
-    >>> flat = BarHingeModel(x, [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]], np.ones(5), [], [],
-    ...                      np.ones(4), membranes=np.array([[0, 1, 2, 3]]))
+    >>> x = np.array([[0.0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0]])  # a 4 m × 1 m plate
+    >>> flat = BarHingeModel(
+    ...     x,
+    ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+    ...     np.ones(5),
+    ...     [],
+    ...     [],
+    ...     np.ones(4),
+    ...     membranes=np.array([[0, 1, 2, 3]]),
+    ... )
     >>> axis, middle = span_axis(flat)
     >>> axis.tolist(), middle
     ([1.0, 0.0], 2.0)
@@ -148,17 +169,25 @@ def span_axis(
     return axis, 0.5 * (lo + hi)
 
 
-def span(model: BarHingeModel,
-         ends: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, float, float]:
+def span(
+    model: BarHingeModel, ends: tuple[np.ndarray, np.ndarray] | None = None
+) -> tuple[np.ndarray, float, float]:
     """The span's horizontal unit direction (2,) (:func:`span_axis`) and where the seen surface
     starts and ends along it, m.
 
     Examples
     --------
     >>> from curvefold.mechanics import BarHingeModel
-    >>> x = np.array([[0.0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0]])   # a 4 m × 1 m plate
-    >>> flat = BarHingeModel(x, [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]], np.ones(5), [], [],
-    ...                      np.ones(4), membranes=np.array([[0, 1, 2, 3]]))
+    >>> x = np.array([[0.0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0]])  # a 4 m × 1 m plate
+    >>> flat = BarHingeModel(
+    ...     x,
+    ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+    ...     np.ones(5),
+    ...     [],
+    ...     [],
+    ...     np.ones(4),
+    ...     membranes=np.array([[0, 1, 2, 3]]),
+    ... )
     >>> span(flat)[1:]
     (0.0, 4.0)
     """
@@ -207,9 +236,16 @@ def projected_forces(
     Examples
     --------
     >>> from curvefold.mechanics import BarHingeModel
-    >>> x = np.array([[0.0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0]])   # a 4 m × 1 m plate
-    >>> flat = BarHingeModel(x, [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]], np.ones(5), [], [],
-    ...                      np.ones(4), membranes=np.array([[0, 1, 2, 3]]))
+    >>> x = np.array([[0.0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0]])  # a 4 m × 1 m plate
+    >>> flat = BarHingeModel(
+    ...     x,
+    ...     [[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]],
+    ...     np.ones(5),
+    ...     [],
+    ...     [],
+    ...     np.ones(4),
+    ...     membranes=np.array([[0, 1, 2, 3]]),
+    ... )
     >>> whole, half = projected_forces(flat, 10.0), projected_forces(flat, 10.0, half="end")
     >>> round(float(whole[:, 2].sum()), 12), round(float(half[:, 2].sum()), 12)
     (-40.0, -20.0)
@@ -277,7 +313,7 @@ def beyond_shares(d: np.ndarray) -> np.ndarray:
     --------
     >>> beyond_shares(np.array([[1.0, 1.0, 1.0], [-1.0, -1.0, -1.0]])).round(12).tolist()
     [[0.333333333333, 0.333333333333, 0.333333333333], [0.0, 0.0, 0.0]]
-    >>> round(float(beyond_shares(np.array([[-1.0, 1.0, 1.0]])).sum()), 12)   # 1 − (1/2)²
+    >>> round(float(beyond_shares(np.array([[-1.0, 1.0, 1.0]])).sum()), 12)  # 1 − (1/2)²
     0.75
     """
     unit = np.broadcast_to(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]), (len(d), 3, 2))
@@ -310,9 +346,16 @@ def face_vectors(model: BarHingeModel) -> tuple[np.ndarray, np.ndarray]:
     --------
     >>> from curvefold.mechanics import BarHingeModel
     >>> x = np.array([[0.0, 0, 0], [0, 1, 0], [2, 0, 0]])
-    >>> flat = BarHingeModel(x, [[0, 1], [1, 2], [2, 0]], np.ones(3), [], [], np.ones(3),
-    ...                      membranes=np.array([[0, 1, 2, -1]]))
-    >>> (face_vectors(flat)[1] + 0.0).tolist()   # listed clockwise from above, turned up
+    >>> flat = BarHingeModel(
+    ...     x,
+    ...     [[0, 1], [1, 2], [2, 0]],
+    ...     np.ones(3),
+    ...     [],
+    ...     [],
+    ...     np.ones(3),
+    ...     membranes=np.array([[0, 1, 2, -1]]),
+    ... )
+    >>> (face_vectors(flat)[1] + 0.0).tolist()  # listed clockwise from above, turned up
     [[0.0, 0.0, 1.0]]
     """
     triangles = model.triangles()[0]

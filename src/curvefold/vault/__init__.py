@@ -7,7 +7,13 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
         "_arch": [
-            "A_MAX", "ArchRoot", "GeneralArch", "HarmonicTorsion", "proportion_change", "solve_general_arch", "solve_panel_arch",
+            "A_MAX",
+            "ArchRoot",
+            "GeneralArch",
+            "HarmonicTorsion",
+            "proportion_change",
+            "solve_general_arch",
+            "solve_panel_arch",
             "solve_symmetric_arch",
         ],
         "_assembly": ["DEFAULT_TUBES_CAP", "MAX_TUBES_SEARCH", "Vault", "VaultDesign", "max_tubes"],

@@ -70,8 +70,9 @@ A_STANDING = Interval(0.0, A_MAX, True, False)
 #: Chebyshev interpolant on this window finds it directly.
 WINDOW = (0.9 * np.pi, 1.5 * np.pi)
 
-#: Integration steps over half the arch: the condition at the root, integrated with 8× the steps, stays below 1e-14
-#: for every a < A_MAX (tested; 64 steps left 7e-13 near A_MAX, which the built curve 1 shows as a failed arch_condition).
+#: Integration steps over half the arch: the condition at the root, integrated with 8× the steps,
+#: stays below 1e-14 for every a < A_MAX (tested; 64 steps left 7e-13 near A_MAX, which the built
+#: curve 1 shows as a failed arch_condition).
 HALF_STEPS = 128
 
 #: Largest ``|T(s₀/2)·T(0)|`` accepted at a returned root: the condition's rounding over the
@@ -80,7 +81,9 @@ HALF_STEPS = 128
 RESIDUAL_TOL = 1e-12
 
 
-def symmetric_arch_condition(kappa0_s0: float | np.ndarray, a: float, *, steps: int = HALF_STEPS) -> np.ndarray:
+def symmetric_arch_condition(
+    kappa0_s0: float | np.ndarray, a: float, *, steps: int = HALF_STEPS
+) -> np.ndarray:
     """``T(s₀/2)·T(0)`` for the curve κ = 1, τ = a sin(2π s / s₀) with s₀ = κ₀ s₀.
 
     Parameters
@@ -99,7 +102,9 @@ def symmetric_arch_condition(kappa0_s0: float | np.ndarray, a: float, *, steps: 
 
     Examples
     --------
-    >>> symmetric_arch_condition([np.pi, 2.0], 0.0).round(6).tolist()   # no torsion: cos(κ₀ s₀ / 2), a half circle stands
+    >>> symmetric_arch_condition([np.pi, 2.0], 0.0).round(
+    ...     6
+    ... ).tolist()  # no torsion: cos(κ₀ s₀ / 2), a half circle stands
     [0.0, 0.540302]
     >>> round(float(symmetric_arch_condition(solve_symmetric_arch(0.3).kappa0_s0, 0.3)), 12)
     0.0
@@ -149,7 +154,7 @@ class ArchRoot:
 
     Examples
     --------
-    >>> root = solve_symmetric_arch(0.0)   # no torsion: the half circle, κ₀ s₀ = π
+    >>> root = solve_symmetric_arch(0.0)  # no torsion: the half circle, κ₀ s₀ = π
     >>> root.a, round(root.kappa0_s0, 12), root.residual < 1e-12
     (0.0, 3.14159265359, True)
     """
@@ -175,12 +180,15 @@ def check_standing(a: float) -> float:
     >>> check_standing(1.5)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.ConvergenceError: no standing arch for a = 1.5: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < 1.2707 (there the two roots near κ0·s0 ≈ 4.4 merge and vanish)
+    curvefold.kernel._errors.ConvergenceError: no standing arch for a = 1.5: Eq. (20), T(s0/2)·T(0)
+    = 0, has a root next to π only for a < 1.2707 (there the two roots near κ0·s0 ≈ 4.4 merge and
+    vanish)
     """
     if a >= A_MAX:
         raise ConvergenceError(
-            f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π only for a < {A_MAX:.4f} "
-            "(there the two roots near κ0·s0 ≈ 4.4 merge and vanish)",
+            f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has a root next to π "
+            f"only for a < {A_MAX:.4f} (there the two roots near κ0·s0 ≈ 4.4 merge and "
+            "vanish)",
             parameter="a",
         )
     return a
@@ -224,25 +232,31 @@ def solve_symmetric_arch(a: float, *, xtol: float = 1e-13, steps: int = HALF_STE
     """
     a = float(a)
     if not np.isfinite(a) or a < 0:
-        raise InputError(f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}", parameter="a")
+        raise InputError(
+            f"a (torsion amplitude) must be a finite number ≥ 0, got {a!r}", parameter="a"
+        )
     check_standing(a)
     f = lambda x: float(symmetric_arch_condition(x, a, steps=steps))  # noqa: E731
     found = _chebyshev_root(a, *WINDOW, xtol, steps)
     if found is not None:
         return _verified(a, *found, WINDOW)
     grid = np.pi * np.linspace(0.5, 2.0, 16)
-    values = symmetric_arch_condition(grid, a, steps=max(steps // 4, 8))  # signs only: coarse steps (error ~1e-7)
+    # signs only: coarse steps (error ~1e-7)
+    values = symmetric_arch_condition(grid, a, steps=max(steps // 4, 8))
     changes = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
     if changes.size == 0:
-        # Near the end of the family the two roots merge: look for a dip below zero between grid points.
+        # Near the end of the family the two roots merge: look for a dip below zero between grid
+        # points.
         from scipy.optimize import minimize_scalar
 
         k = int(np.clip(np.argmin(values), 1, len(grid) - 2))
-        dip = minimize_scalar(f, bounds=(grid[k - 1], grid[k + 1]), method="bounded", options={"xatol": 1e-12})
+        dip = minimize_scalar(
+            f, bounds=(grid[k - 1], grid[k + 1]), method="bounded", options={"xatol": 1e-12}
+        )
         if dip.fun > 0:
             raise ConvergenceError(
-                f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has no root with κ0·s0 in (π/2, 2π); "
-                f"the root next to π exists only for a < {A_MAX:.4f}",
+                f"no standing arch for a = {a:g}: Eq. (20), T(s0/2)·T(0) = 0, has no root with "
+                f"κ0·s0 in (π/2, 2π); the root next to π exists only for a < {A_MAX:.4f}",
                 parameter="a",
             )
         grid, changes = np.array([grid[k - 1], dip.x]), np.array([0])
@@ -264,13 +278,15 @@ def _verified(a: float, root: float, residual: float, bracket: tuple[float, floa
     """The root, if the condition at it is within :data:`RESIDUAL_TOL`; never a false one."""
     if not (np.isfinite(root) and residual <= RESIDUAL_TOL):
         raise ConvergenceError(
-            f"the arch equation for a = {a:g} was not solved: at κ0·s0 = {root:.12g}, |T(s0/2)·T(0)| = {residual:.2e} "
-            f"exceeds {RESIDUAL_TOL:g}"
+            f"the arch equation for a = {a:g} was not solved: at κ0·s0 = {root:.12g}, "
+            f"|T(s0/2)·T(0)| = {residual:.2e} exceeds {RESIDUAL_TOL:g}"
         )
     return ArchRoot(a, root, float(residual), bracket)
 
 
-def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, points: int = 16) -> tuple[float, float] | None:
+def _chebyshev_root(
+    a: float, lo: float, hi: float, xtol: float, steps: int, points: int = 16
+) -> tuple[float, float] | None:
     """The root nearest π in [lo, hi] of the Chebyshev interpolant of Eq. (20), if a sign
     change across ``root ± xtol`` confirms it.
 
@@ -281,7 +297,9 @@ def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, poi
 
     k = np.arange(points)
     theta = np.pi * (k + 0.5) / points
-    values = symmetric_arch_condition(0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(theta), a, steps=steps)
+    values = symmetric_arch_condition(
+        0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(theta), a, steps=steps
+    )
     coefficients = (2.0 / points) * np.cos(np.outer(k, theta)) @ values  # discrete cosine transform
     coefficients[0] /= 2
     # Sign changes between neighbouring nodes (ascending in x), the one nearest π refined by
@@ -302,7 +320,9 @@ def _chebyshev_root(a: float, lo: float, hi: float, xtol: float, steps: int, poi
         if abs(step) < 1e-16:
             break
     root = float(to_x(u))
-    low, at, high = symmetric_arch_condition(np.array([root - xtol, root, root + xtol]), a, steps=steps)
+    low, at, high = symmetric_arch_condition(
+        np.array([root - xtol, root, root + xtol]), a, steps=steps
+    )
     return (root, float(abs(at))) if low * high <= 0 else None
 
 
@@ -313,9 +333,12 @@ class HarmonicTorsion(ScalarFunction):
     Examples
     --------
     >>> tau = HarmonicTorsion(0.3, 2.0)
-    >>> tau(np.array([0.5, 1.0])).round(6).tolist(), tau.derivative(np.array([0.0])).round(6).tolist()
+    >>> (
+    ...     tau(np.array([0.5, 1.0])).round(6).tolist(),
+    ...     tau.derivative(np.array([0.0])).round(6).tolist(),
+    ... )
     ([0.3, 0.0], [0.942478])
-    >>> HarmonicTorsion(0.0, 2.0)(np.array([0.5])).tolist()   # a = 0: no torsion
+    >>> HarmonicTorsion(0.0, 2.0)(np.array([0.5])).tolist()  # a = 0: no torsion
     [0.0]
     """
 
@@ -329,8 +352,11 @@ class HarmonicTorsion(ScalarFunction):
         return self.amplitude * (2 * np.pi / self.period) * np.cos(2 * np.pi * s / self.period)
 
 
-def panel_arch_condition(kappa0_s0: float, a: float, panels: int, *, fold_angle: float = 90.0) -> float:
-    """``(x_N − x_0)·n₀ / |x_N − x_0|`` of the panel arch of κ = 1, τ = a sin(2π s / s₀), s₀ = κ₀ s₀.
+def panel_arch_condition(
+    kappa0_s0: float, a: float, panels: int, *, fold_angle: float = 90.0
+) -> float:
+    """``(x_N − x_0)·n₀ / |x_N − x_0|`` of the panel arch of κ = 1, τ = a sin(2π s / s₀), s₀ = κ₀
+    s₀.
 
     The crease pattern of the smooth arch at the design angle 2α (degrees), sampled with
     ``panels`` panels (:meth:`~curvefold.geometry.PanelPattern.from_pattern`) and
@@ -349,13 +375,17 @@ def panel_arch_condition(kappa0_s0: float, a: float, panels: int, *, fold_angle:
     x = float(kappa0_s0)
     curve = SpaceCurve.from_curvature(1.0, HarmonicTorsion(a, x), x, samples=3)
     pattern = Pattern.from_crease(Crease.from_curve(curve, fold_angle=fold_angle), 1.0, 1.0)
-    points, left, right, _ = PanelPattern.from_pattern(pattern, panels).fold(np.array([half_angle(fold_angle)]))
+    points, left, right, _ = PanelPattern.from_pattern(pattern, panels).fold(
+        np.array([half_angle(fold_angle)])
+    )
     normal = cross(left[0, 0], right[0, 0])
     chord = points[0, -1] - points[0, 0]
     return float(normal @ chord / (np.linalg.norm(normal) * np.linalg.norm(chord)))
 
 
-def solve_panel_arch(a: float, panels: int, *, fold_angle: float = 90.0, xtol: float = 1e-14) -> ArchRoot:
+def solve_panel_arch(
+    a: float, panels: int, *, fold_angle: float = 90.0, xtol: float = 1e-14
+) -> ArchRoot:
     """Solve the discrete Eq. (20) of a panel arch for κ₀ s₀, next to the smooth root.
 
     The smooth root (:func:`solve_symmetric_arch`) starts a search for a sign change of
@@ -417,23 +447,30 @@ def proportion_change(a: float, kappa0_s0: float, *, fold_angle: float = 90.0) -
 
     Examples
     --------
-    >>> round(proportion_change(0.3, solve_symmetric_arch(0.3).kappa0_s0), 6), proportion_change(0.0, np.pi)   # a = 0: no change
+    >>> (
+    ...     round(proportion_change(0.3, solve_symmetric_arch(0.3).kappa0_s0), 6),
+    ...     proportion_change(0.0, np.pi),
+    ... )  # a = 0: no change
     (1.352972, 1.0)
     >>> proportion_change(0.3, 3.0, fold_angle=0.0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: fold_angle 2α = 0.0° is 0 in radians (below the smallest positive float): no fold angle
+    curvefold.kernel._errors.InputError: fold_angle 2α = 0.0° is 0 in radians (below the smallest
+    positive float): no fold angle
     """
     alpha = np.radians(fold_angle) / 2
     if not alpha > 0:
-        raise InputError(f"fold_angle 2α = {fold_angle!r}° is 0 in radians (below the smallest positive float): no fold angle",
-                         parameter="fold_angle")
+        raise InputError(
+            f"fold_angle 2α = {fold_angle!r}° is 0 in radians (below the smallest "
+            "positive float): no fold angle",
+            parameter="fold_angle",
+        )
     exponent = a * kappa0_s0 / np.tan(alpha) / np.pi
     if exponent > _LOG_MAX:
         smallest = 2 * np.degrees(np.arctan(a * kappa0_s0 / (np.pi * _LOG_MAX)))
         raise InputError(
-            f"the proportion change exp(a κ0·s0 cot α / π) overflows for a = {a:g} at fold angle 2α = {fold_angle:g}°: "
-            f"the fold angle must be at least {smallest:.3g}°"
+            f"the proportion change exp(a κ0·s0 cot α / π) overflows for a = {a:g} at fold angle "
+            f"2α = {fold_angle:g}°: the fold angle must be at least {smallest:.3g}°"
         )
     return float(np.exp(exponent))
 
@@ -457,7 +494,9 @@ class GeneralArch:
 
     Examples
     --------
-    >>> arch = solve_general_arch(lambda s, p: np.ones_like(s), lambda s, p: 0 * s, 3.0)   # κ = 1, τ = 0, no parameter
+    >>> arch = solve_general_arch(
+    ...     lambda s, p: np.ones_like(s), lambda s, p: 0 * s, 3.0
+    ... )  # κ = 1, τ = 0, no parameter
     >>> round(arch.length, 9), arch.params, bool(np.abs(arch.residuals).max() < 1e-10)
     (3.141592654, (), True)
     """
@@ -534,11 +573,19 @@ def solve_general_arch(
         T0, T1 = frames[0, :, 0], frames[-1, :, 0]
         return np.concatenate([T1 + T0, [(points[-1] - points[0]) @ T0]])
 
-    sol = least_squares(residuals, np.array((float(length0),) + params0), method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    sol = least_squares(
+        residuals,
+        np.array((float(length0),) + params0),
+        method="lm",
+        xtol=1e-15,
+        ftol=1e-15,
+        gtol=1e-15,
+    )
     r = residuals(sol.x)
     if not np.linalg.norm(r) <= tol:
         raise ConvergenceError(
             f"general arch did not converge: residual norm {np.linalg.norm(r):.3g} > tol {tol:g} "
-            f"(s1 = {sol.x[0]:.6g}, params = {tuple(np.round(sol.x[1:], 6))}); try another starting guess"
+            f"(s1 = {sol.x[0]:.6g}, params = {tuple(np.round(sol.x[1:], 6))}); try another "
+            "starting guess"
         )
     return GeneralArch(float(sol.x[0]), tuple(float(p) for p in sol.x[1:]), r)

@@ -69,18 +69,76 @@ LENGTHS, LENGTHS_WHY = "[1e-3, 1e6]", "numerical range"
 #: The parameters of a vault, in design-file order. ``tubes`` is ``"max"`` or a count and
 #: ``direction`` ``"+"`` or ``"-"`` here; :class:`VaultDesign` holds None and ±1 for them.
 VAULT_SPECS: tuple[Spec, ...] = (
-    Spec("a", "real", 0.3, A_STANDING, help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0)",
-         why="no arch stands beyond it: Eq. (20) has no root next to π there",
-         typical=Interval(0.0, math.floor(10 * A_MAX) / 10, True, True), label="torsion amplitude"),  # a slider of round steps
-    Spec("p_xy", "real", 0.75, "(0, 100]", help="section proportion w_R(0)/w_L(0) at the feet", label="section proportion at the feet"),
-    Spec("width", "real", 0.08, "(0, 10]", help="width scale w_L(0) kappa0, dimensionless", label="tube width at the feet, in radii"),
-    Spec("tubes", "count", "max", "[1, 1000]", help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})',
-         label="tubes"),
-    Spec("fold_angle", "real", 90.0, "(0, 180)", "degrees", help="design fold angle 2 alpha, at which the vault stands on z = 0",
-         label="design fold angle"),
-    Spec("radius", "real", 1.0, LENGTHS, "model units", help="1/kappa0", why=LENGTHS_WHY, label="radius of the arch curve"),
-    Spec("layers", "integer", 1, "[1, 50]", help="parallel diagonals of tubes", label="layers of tubes"),
-    Spec("direction", "choice", "+", choices=("+", "-"), help="stack the tubes in +u+v or -u-v", label="stacking direction"),
+    Spec(
+        "a",
+        "real",
+        0.3,
+        A_STANDING,
+        help="torsion amplitude a in tau = a kappa0 sin(2 pi s/s0)",
+        why="no arch stands beyond it: Eq. (20) has no root next to π there",
+        # a slider of round steps
+        typical=Interval(0.0, math.floor(10 * A_MAX) / 10, True, True),
+        label="torsion amplitude",
+    ),
+    Spec(
+        "p_xy",
+        "real",
+        0.75,
+        "(0, 100]",
+        help="section proportion w_R(0)/w_L(0) at the feet",
+        label="section proportion at the feet",
+    ),
+    Spec(
+        "width",
+        "real",
+        0.08,
+        "(0, 10]",
+        help="width scale w_L(0) kappa0, dimensionless",
+        label="tube width at the feet, in radii",
+    ),
+    Spec(
+        "tubes",
+        "count",
+        "max",
+        "[1, 1000]",
+        help=f'number of tubes, or "max" before regression (at most {DEFAULT_TUBES_CAP})',
+        label="tubes",
+    ),
+    Spec(
+        "fold_angle",
+        "real",
+        90.0,
+        "(0, 180)",
+        "degrees",
+        help="design fold angle 2 alpha, at which the vault stands on z = 0",
+        label="design fold angle",
+    ),
+    Spec(
+        "radius",
+        "real",
+        1.0,
+        LENGTHS,
+        "model units",
+        help="1/kappa0",
+        why=LENGTHS_WHY,
+        label="radius of the arch curve",
+    ),
+    Spec(
+        "layers",
+        "integer",
+        1,
+        "[1, 50]",
+        help="parallel diagonals of tubes",
+        label="layers of tubes",
+    ),
+    Spec(
+        "direction",
+        "choice",
+        "+",
+        choices=("+", "-"),
+        help="stack the tubes in +u+v or -u-v",
+        label="stacking direction",
+    ),
     PANELS,
 )
 _SPEC = {spec.name: spec for spec in VAULT_SPECS}
@@ -100,7 +158,11 @@ def vault_samples(samples: int, *, where: str = "samples") -> int:
     (801, 801)
     """
     if samples < MIN_SAMPLES:
-        raise InputError(f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle sample), got {samples}", parameter="samples")
+        raise InputError(
+            f"{where} must be ≥ {MIN_SAMPLES} for a vault (the apex is the middle "
+            f"sample), got {samples}",
+            parameter="samples",
+        )
     return samples | 1
 
 
@@ -148,12 +210,13 @@ class VaultDesign:
 
     Examples
     --------
-    >>> VaultDesign(a=0.0).a, VaultDesign().tubes   # None: the most tubes before regression
+    >>> VaultDesign(a=0.0).a, VaultDesign().tubes  # None: the most tubes before regression
     (0.0, None)
     >>> VaultDesign(a=2.0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: a must be in [0, 1.2707093728) (no arch stands beyond it: Eq. (20) has no root next to π there), got 2.0
+    curvefold.kernel._errors.InputError: a must be in [0, 1.2707093728) (no arch stands beyond it:
+    Eq. (20) has no root next to π there), got 2.0
     """
 
     a: float = 0.3
@@ -170,18 +233,29 @@ class VaultDesign:
     def __post_init__(self) -> None:
         for name in ("a", "p_xy", "width", "radius", "layers"):
             _SPEC[name].check(getattr(self, name))
-        half_angle(self.fold_angle)  # the range of VAULT_SPECS' fold_angle, with the geometry's message
+        # the range of VAULT_SPECS' fold_angle, with the geometry's message
+        half_angle(self.fold_angle)
         check_samples(self.samples)
         if self.samples % 2 == 0 or self.samples < MIN_SAMPLES:
-            raise InputError(f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle sample), got {self.samples}", parameter="samples")
+            raise InputError(
+                f"samples must be odd and ≥ {MIN_SAMPLES} (the apex is the middle "
+                f"sample), got {self.samples}",
+                parameter="samples",
+            )
         if self.tubes is not None:
             tubes = _SPEC["tubes"].range
             assert tubes is not None  # a count's spec has a range
             check_integer(self.tubes, "tubes", tubes, why="or None for the maximum")
         if self.direction not in (1, -1):
-            raise InputError(f"direction must be +1 or -1, got {self.direction!r}", parameter="direction")
+            raise InputError(
+                f"direction must be +1 or -1, got {self.direction!r}", parameter="direction"
+            )
         if PANELS.check(self.panels) % 2:
-            raise InputError(f"panels must be 0 (smooth) or even for a vault (the apex is a vertex), got {self.panels}", parameter="panels")
+            raise InputError(
+                "panels must be 0 (smooth) or even for a vault (the apex is a "
+                f"vertex), got {self.panels}",
+                parameter="panels",
+            )
 
 
 def standing(lattice: PanelLattice) -> PanelLattice:
@@ -193,7 +267,7 @@ def standing(lattice: PanelLattice) -> PanelLattice:
 
     Examples
     --------
-    >>> vault = Vault.from_design(samples=41, panels=4, tubes=2)   # its lattice is standing(...)
+    >>> vault = Vault.from_design(samples=41, panels=4, tubes=2)  # its lattice is standing(...)
     >>> feet = vault.lattice.crease.curve.points[[0, -1]]
     >>> feet[0].tolist(), bool(abs(feet[1, 2]) < 1e-12), bool(feet[1, 1] > 0)
     ([0.0, 0.0, 0.0], True, True)
@@ -208,9 +282,11 @@ def standing(lattice: PanelLattice) -> PanelLattice:
     return lattice.moved(rotation, -rotation @ points[0])
 
 
-def max_tubes(lattice: StructureLattice, *, direction: int = 1,
-              limit: int = MAX_TUBES_SEARCH) -> int:
-    """Largest n such that the tubes [j, j+1]², j = 0 … n−1 (stacked in ±(u, v)) are free of regression.
+def max_tubes(
+    lattice: StructureLattice, *, direction: int = 1, limit: int = MAX_TUBES_SEARCH
+) -> int:
+    """Largest n such that the tubes [j, j+1]², j = 0 … n−1 (stacked in ±(u, v)) are free of
+    regression.
 
     All four corner creases of every tube must be valid lattice curves (Eq. 18). The valid
     set is convex, and every corner of the stack is a convex combination of corners of its
@@ -223,8 +299,8 @@ def max_tubes(lattice: StructureLattice, *, direction: int = 1,
 
     Examples
     --------
-    >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
-    >>> max_tubes(vault.lattice), max_tubes(vault.lattice, limit=5)   # the search stops at the limit
+    >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
+    >>> max_tubes(vault.lattice), max_tubes(vault.lattice, limit=5)  # the search stops at the limit
     (9, 5)
     """
     domain = lattice.domain
@@ -238,7 +314,8 @@ def max_tubes(lattice: StructureLattice, *, direction: int = 1,
     falling = slope > 0
     if not falling.any():
         return limit
-    first = domain.factor(direction * CORNERS - (direction < 0))[:, falling] / slope[falling]  # f(0) / s
+    # f(0) / s
+    first = domain.factor(direction * CORNERS - (direction < 0))[:, falling] / slope[falling]
     guess = min(int(np.ceil(first.min())), limit)
     if 0 < guess < limit and tube_ok(guess - 1) and not tube_ok(guess):
         return guess
@@ -251,8 +328,15 @@ def max_tubes(lattice: StructureLattice, *, direction: int = 1,
     return hi
 
 
-def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples: int, *,
-                root: ArchRoot | None = None) -> tuple[ArchRoot, Crease]:
+def arch_crease(
+    a: float,
+    panels: int,
+    radius: float,
+    fold_angle: float,
+    samples: int,
+    *,
+    root: ArchRoot | None = None,
+) -> tuple[ArchRoot, Crease]:
     """The arch of a vault and its crease, standing with the span along +y.
 
     What every vault of the same a, panels, radius, fold angle and samples shares, whatever
@@ -262,7 +346,11 @@ def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples
     fewer samples needs no new solve); by default it is solved here.
     """
     if root is None:
-        root = solve_panel_arch(a, panels, fold_angle=fold_angle) if panels else solve_symmetric_arch(a)
+        root = (
+            solve_panel_arch(a, panels, fold_angle=fold_angle)
+            if panels
+            else solve_symmetric_arch(a)
+        )
     elif root.a != a:
         raise InputError(f"the arch root given is for a = {root.a!r}, not a = {a!r}")
     arch = root
@@ -270,13 +358,17 @@ def arch_crease(a: float, panels: int, radius: float, fold_angle: float, samples
     s0 = arch.kappa0_s0 / k0
     # T(0) = +z, N(0) = +y: the arch rises from the ground toward its other foot.
     frame = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns T, N, B
-    curve = SpaceCurve.from_curvature(k0, HarmonicTorsion(a * k0, s0), s0, samples=samples, frame=frame)
+    curve = SpaceCurve.from_curvature(
+        k0, HarmonicTorsion(a * k0, s0), s0, samples=samples, frame=frame
+    )
     # Turn about z so the span (foot to foot) runs along +y: a rigid motion of the curve.
     chord = curve.points[-1] - curve.points[0]
     phi = np.arctan2(chord[0], chord[1])
     c, s = np.cos(phi), np.sin(phi)
     Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-    curve = SpaceCurve(curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau)
+    curve = SpaceCurve(
+        curve.s, readonly(curve.points @ Rz.T), readonly(Rz @ curve.frames), curve.kappa, curve.tau
+    )
     return arch, Crease.from_curve(curve, fold_angle=fold_angle)
 
 
@@ -288,7 +380,7 @@ class Vault(FrozenArrays):
 
     Examples
     --------
-    >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+    >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
     >>> vault.design.tubes, vault.max_tubes, vault.structure.cells.tolist()
     (3, 9, [[0, 0], [1, 1], [2, 2]])
     """
@@ -300,7 +392,13 @@ class Vault(FrozenArrays):
     max_tubes: int
 
     @classmethod
-    def from_design(cls, design: VaultDesign | None = None, *, arch: tuple[ArchRoot, Crease] | None = None, **overrides) -> Vault:
+    def from_design(
+        cls,
+        design: VaultDesign | None = None,
+        *,
+        arch: tuple[ArchRoot, Crease] | None = None,
+        **overrides,
+    ) -> Vault:
         """Solve the arch, place it on the ground and stack the tubes.
 
         ``arch``: the design's :func:`arch_crease`, when the caller has it already (a sweep
@@ -322,18 +420,24 @@ class Vault(FrozenArrays):
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
         >>> round(vault.kappa0_s0, 6), vault.lattice.crease.fold_angle
         (3.165717, 90.0)
         >>> Vault.from_design(samples=41, tubes=1000)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.RegressionError: tubes must be ≤ 9 (the maximum before regression for a = 0.3, p_xy = 0.75, width = 0.08), got 1000
+        curvefold.kernel._errors.RegressionError: tubes must be ≤ 9 (the maximum before regression
+        for a = 0.3, p_xy = 0.75, width = 0.08), got 1000
         """
-        design = replace(design or VaultDesign(), **overrides) if overrides else (design or VaultDesign())
+        design = (
+            replace(design or VaultDesign(), **overrides)
+            if overrides
+            else (design or VaultDesign())
+        )
         if arch is None:
-            arch = arch_crease(design.a, design.panels, design.radius, design.fold_angle,
-                               design.samples)
+            arch = arch_crease(
+                design.a, design.panels, design.radius, design.fold_angle, design.samples
+            )
         root, crease = arch
         k0, a = 1.0 / design.radius, design.a
         w_left = design.width / k0
@@ -344,15 +448,21 @@ class Vault(FrozenArrays):
             if design.panels:
                 lattice = standing(PanelLattice.from_lattice(smooth, design.panels))
         except RegressionError as err:
-            raise RegressionError(f"width = {design.width:g} is past regression for the base tube: {err}", parameter="width") from None
+            raise RegressionError(
+                f"width = {design.width:g} is past regression for the base tube: {err}",
+                parameter="width",
+            ) from None
         n_max = max_tubes(lattice, direction=design.direction)
         tubes = design.tubes if design.tubes is not None else min(n_max, DEFAULT_TUBES_CAP)
         if tubes > n_max:
             raise RegressionError(
-                f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = {design.p_xy:g}, "
-                f"width = {design.width:g}), got {tubes}", parameter="tubes",
+                f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = "
+                f"{design.p_xy:g}, width = {design.width:g}), got {tubes}",
+                parameter="tubes",
             )
-        structure = Structure.diagonal(lattice, tubes, direction=design.direction, layers=design.layers)
+        structure = Structure.diagonal(
+            lattice, tubes, direction=design.direction, layers=design.layers
+        )
         return cls(replace(design, tubes=tubes), root, lattice, structure, n_max)
 
     # -- derived quantities -----------------------------------------------------------------
@@ -386,12 +496,15 @@ class Vault(FrozenArrays):
         return (len(self.lattice.s) - 1) // 2
 
     def measured_proportions(self) -> tuple[float, float]:
-        """(w_R/w_L at t = 0, w_R(½)/w_R(0)) measured between parallel tangent lines of the built creases.
+        """(w_R/w_L at t = 0, w_R(½)/w_R(0)) measured between parallel tangent lines of the built
+        creases.
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
-        >>> [round(p, 6) for p in vault.measured_proportions()]   # p_xy and the proportion change exp(a κ₀ s₀ / π)
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
+        >>> [
+        ...     round(p, 6) for p in vault.measured_proportions()
+        ... ]  # p_xy and the proportion change exp(a κ₀ s₀ / π)
         [0.75, 1.352972]
         """
         X = self.lattice.points(np.array([[0, 0], [1, 0], [0, 1]], float))
@@ -414,7 +527,7 @@ class Vault(FrozenArrays):
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
         >>> [round(angle, 6) for angle in vault.section_slopes()]
         [-19.700413, -20.501275]
         """
@@ -429,12 +542,13 @@ class Vault(FrozenArrays):
         return line_angle(d0[0], d0[1]), line_angle(dm[0], dm[2])
 
     def ground_error(self) -> float:
-        """Largest ``|z|`` of the end sections (t = 0 and t = 1) of every crease at the design angle.
+        """Largest ``|z|`` of the end sections (t = 0 and t = 1) of every crease at the design
+        angle.
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
-        >>> vault.ground_error() < 1e-9   # it stands: both ends on the ground
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
+        >>> vault.ground_error() < 1e-9  # it stands: both ends on the ground
         True
         """
         V = self.vertices
@@ -445,9 +559,14 @@ class Vault(FrozenArrays):
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
         >>> summary = vault.summary()
-        >>> summary["tubes"], round(summary["span"], 6), round(summary["rise"], 6), summary["design"]["a"]
+        >>> (
+        ...     summary["tubes"],
+        ...     round(summary["span"], 6),
+        ...     round(summary["rise"], 6),
+        ...     summary["design"]["a"],
+        ... )
         (3, 2.008123, 1.142157, 0.3)
         """
         V = self.vertices
@@ -487,7 +606,9 @@ class Vault(FrozenArrays):
         }
 
     # -- folding motion -----------------------------------------------------------------------
-    def motion(self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start") -> np.ndarray:
+    def motion(
+        self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start"
+    ) -> np.ndarray:
         """The vault at many fold angles, shape (A, M, n, 3).
 
         Parameters
@@ -500,28 +621,37 @@ class Vault(FrozenArrays):
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
         >>> motion = vault.motion([0, 90])
-        >>> motion.shape, float(np.abs(motion[0][..., 2]).max()) > 1   # flat, the sheets stand up off the ground
+        >>> (
+        ...     motion.shape,
+        ...     float(np.abs(motion[0][..., 2]).max()) > 1,
+        ... )  # flat, the sheets stand up off the ground
         ((2, 10, 41, 3), True)
         """
         return self.lattice.fold_points(self.structure.curves_uv, fold_angles, anchor=anchor)
 
-    def lift_off(self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start") -> np.ndarray:
+    def lift_off(
+        self, fold_angles: np.ndarray, *, anchor: Literal["start", "middle"] = "start"
+    ) -> np.ndarray:
         """How far the end sections leave the ground plane, shape (A, 2): [feet at t = 0, at t = 1].
 
         The largest ``|z|`` over the end points of every crease; zero at the design angle.
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
-        >>> vault.lift_off([60, 90]).round(6).tolist()   # at 60° the far feet lift; at the design angle none
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
+        >>> vault.lift_off([60, 90]).round(
+        ...     6
+        ... ).tolist()  # at 60° the far feet lift; at the design angle none
         [[0.0, 0.680359], [0.0, 0.0]]
         """
         V = self.motion(fold_angles, anchor=anchor)
         return np.abs(V[:, :, [0, -1], 2]).max(axis=1)
 
-    def first_contact(self, *, step: float = 1.0, max_angle: float = 179.0, samples: int = 201) -> float | None:
+    def first_contact(
+        self, *, step: float = 1.0, max_angle: float = 179.0, samples: int = 201
+    ) -> float | None:
         """First fold angle from the design angle on where distant parts of the vault touch
         (:func:`curvefold.geometry.first_contact`): the end of its motion.
 
@@ -533,8 +663,11 @@ class Vault(FrozenArrays):
 
         Examples
         --------
-        >>> vault = Vault.from_design(samples=41, tubes=3)   # coarse, for a quick example
-        >>> vault.first_contact(step=5.0, samples=21), vault.first_contact(step=5.0, max_angle=100.0, samples=21)
+        >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
+        >>> (
+        ...     vault.first_contact(step=5.0, samples=21),
+        ...     vault.first_contact(step=5.0, max_angle=100.0, samples=21),
+        ... )
         (135.0, None)
         """
         from ..geometry._contact import first_contact

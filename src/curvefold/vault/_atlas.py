@@ -40,12 +40,29 @@ from ._cluster import client as cluster_client
 if TYPE_CHECKING:  # pragma: no cover
     from ._assembly import Vault
 
-__all__ = ["Atlas", "AtlasGrid", "Sketch", "sweep", "run_atlas", "thin", "evaluate_design", "FIELDS", "METRICS", "GRID_A"]
+__all__ = [
+    "Atlas",
+    "AtlasGrid",
+    "Sketch",
+    "sweep",
+    "run_atlas",
+    "thin",
+    "evaluate_design",
+    "FIELDS",
+    "METRICS",
+    "GRID_A",
+]
 
 #: ``a`` of the grid's rows, in [0, 2 A_MAX] (:data:`~curvefold.vault.A_MAX`): a grid reaches past
 #: where the arches stop standing to show it, recording those designs as having no standing arch.
-GRID_A = Spec("a", "real", 0.3, Interval(0.0, 2 * A_MAX, True, True), help="torsion amplitude a of a row of the grid",
-              why=f"up to twice {A_MAX:.4f}, where arches stop standing")
+GRID_A = Spec(
+    "a",
+    "real",
+    0.3,
+    Interval(0.0, 2 * A_MAX, True, True),
+    help="torsion amplitude a of a row of the grid",
+    why=f"up to twice {A_MAX:.4f}, where arches stop standing",
+)
 
 #: Metrics taken from :meth:`Vault.summary` (footprint split into x and y), model units and degrees.
 METRICS = (
@@ -88,7 +105,8 @@ IN_FLIGHT = 3
 
 
 def task_sizes(size: int, row: int, threads: int) -> Iterator[int]:
-    """Designs of each task of a sweep of ``size`` designs in rows of ``row``, for ``threads`` worker threads.
+    """Designs of each task of a sweep of ``size`` designs in rows of ``row``, for ``threads``
+    worker threads.
 
     Guided self-scheduling: every task takes a 1/(2 × ``threads``) share of the designs
     left, within [:data:`MIN_CHUNK`, :data:`CHUNK`], rounded to whole rows; a row larger
@@ -96,9 +114,9 @@ def task_sizes(size: int, row: int, threads: int) -> Iterator[int]:
 
     Examples
     --------
-    >>> list(task_sizes(1600, 40, 2))   # 40 × 40 on 2 workers: 12 tasks, 10 rows first, 1 row last
+    >>> list(task_sizes(1600, 40, 2))  # 40 × 40 on 2 workers: 12 tasks, 10 rows first, 1 row last
     [400, 320, 240, 160, 120, 80, 80, 40, 40, 40, 40, 40]
-    >>> sizes = list(task_sizes(40_000, 200, 2))   # 200 × 200: two rows a task, the last row cut
+    >>> sizes = list(task_sizes(40_000, 200, 2))  # 200 × 200: two rows a task, the last row cut
     >>> len(sizes), sizes[:2], sizes[-4:], sum(sizes)
     (107, [400, 400], [50, 40, 40, 70], 40000)
     >>> list(task_sizes(7, 7, 2)), list(task_sizes(0, 5, 2))
@@ -150,14 +168,17 @@ class Sketch(FrozenArrays):
     apex: np.ndarray
 
     @classmethod
-    def from_vault(cls, vault: Vault, *, samples: int = SKETCH_SAMPLES, tubes: int = SKETCH_TUBES) -> Sketch:
-        """Subsample a vault's curves at its design angle (at most ``tubes`` tubes, ~``samples`` points).
+    def from_vault(
+        cls, vault: Vault, *, samples: int = SKETCH_SAMPLES, tubes: int = SKETCH_TUBES
+    ) -> Sketch:
+        """Subsample a vault's curves at its design angle (at most ``tubes`` tubes, ~``samples``
+        points).
 
         Examples
         --------
         >>> from curvefold.vault import Vault
         >>> sketch = Sketch.from_vault(Vault.from_design(samples=41, tubes=3), samples=5)
-        >>> sketch.curves.shape, sketch.cells.shape   # 10 curves of 5 points; 3 tubes
+        >>> sketch.curves.shape, sketch.cells.shape  # 10 curves of 5 points; 3 tubes
         ((10, 5, 3), (3, 4))
         """
         from ..geometry._structure import drawable
@@ -200,16 +221,29 @@ def evaluate_design(
     >>> record, sketch = evaluate_design(0.3, 0.75, samples=41, tubes=3)
     >>> record["valid"], record["tubes"], sketch is not None
     (True, 3, True)
-    >>> record, sketch = evaluate_design(1.5, 0.75, samples=41)   # past the arch family: a record, not an error
+    >>> record, sketch = evaluate_design(
+    ...     1.5, 0.75, samples=41
+    ... )  # past the arch family: a record, not an error
     >>> record["valid"], record["error"], sketch
     (False, 'ConvergenceError', None)
     """
     from ._assembly import Vault, VaultDesign
 
-    record: dict[str, Any] = {"a": _number(a), "p_xy": _number(p_xy), "width": float(width), "fold_angle": float(fold_angle)}
+    record: dict[str, Any] = {
+        "a": _number(a),
+        "p_xy": _number(p_xy),
+        "width": float(width),
+        "fold_angle": float(fold_angle),
+    }
     try:
-        check_standing(GRID_A.check(a))  # past A_MAX the record says that no arch stands, not that a is out of range
-        vault = Vault.from_design(VaultDesign(a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples), arch=arch)
+        # past A_MAX the record says that no arch stands, not that a is out of range
+        check_standing(GRID_A.check(a))
+        vault = Vault.from_design(
+            VaultDesign(
+                a=a, p_xy=p_xy, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples
+            ),
+            arch=arch,
+        )
     except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
         record.update(dict.fromkeys(METRICS))
@@ -228,7 +262,8 @@ def metrics_of(summary: dict) -> dict:
 
 
 def _number(x: Any) -> Any:
-    """A grid value as a plain float when it is a real number (kept as is otherwise, for the record)."""
+    """A grid value as a plain float when it is a real number (kept as is otherwise, for the
+    record)."""
     try:
         return float(x)
     except (TypeError, ValueError):
@@ -282,7 +317,8 @@ class AtlasGrid:
         tubes: int | None = None,
         samples: int = 201,
     ) -> AtlasGrid:
-        """The grid of ``p_xy_values`` (columns) × ``a_values`` (rows); the shared parameters fail once, here.
+        """The grid of ``p_xy_values`` (columns) × ``a_values`` (rows); the shared parameters fail
+        once, here.
 
         Each grid value is checked later, per design: a value out of range is an invalid record.
 
@@ -294,12 +330,20 @@ class AtlasGrid:
         >>> AtlasGrid.of([0.5], [0.3], samples=2)
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: samples must be odd and ≥ 21 (the apex is the middle sample), got 2
+        curvefold.kernel._errors.InputError: samples must be odd and ≥ 21 (the apex is the middle
+        sample), got 2
         """
         from ._assembly import VaultDesign
 
         VaultDesign(width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)
-        return cls(_axis(p_xy_values, "p_xy_values"), _axis(a_values, "a_values"), float(width), float(fold_angle), tubes, int(samples))
+        return cls(
+            _axis(p_xy_values, "p_xy_values"),
+            _axis(a_values, "a_values"),
+            float(width),
+            float(fold_angle),
+            tubes,
+            int(samples),
+        )
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -320,7 +364,11 @@ class AtlasGrid:
         >>> list(grid.points())[:2]
         [(0, 0, 0.0, 0.5), (0, 1, 0.0, 0.75)]
         """
-        return ((i, j, a, p) for i, a in enumerate(self.a_values) for j, p in enumerate(self.p_xy_values))
+        return (
+            (i, j, a, p)
+            for i, a in enumerate(self.a_values)
+            for j, p in enumerate(self.p_xy_values)
+        )
 
     def every(self, step: int) -> AtlasGrid:
         """The grid of every ``step``-th row and column (0, step, 2·step, …).
@@ -341,7 +389,12 @@ class AtlasGrid:
     @property
     def shared(self) -> dict:
         """The keyword arguments every design shares (of :func:`evaluate_design`)."""
-        return {"width": self.width, "fold_angle": self.fold_angle, "tubes": self.tubes, "samples": self.samples}
+        return {
+            "width": self.width,
+            "fold_angle": self.fold_angle,
+            "tubes": self.tubes,
+            "samples": self.samples,
+        }
 
     def to_dict(self) -> dict:
         """The grid's values and parameters, JSON-ready.
@@ -349,15 +402,24 @@ class AtlasGrid:
         Examples
         --------
         >>> AtlasGrid.of([0.75], [0.3], samples=41).to_dict()
-        {'p_xy_values': [0.75], 'a_values': [0.3], 'width': 0.08, 'fold_angle': 90.0, 'tubes': None, 'samples': 41}
+        {'p_xy_values': [0.75], 'a_values': [0.3], 'width': 0.08, 'fold_angle': 90.0, 'tubes': None,
+        'samples': 41}
         """
-        return {"p_xy_values": list(self.p_xy_values), "a_values": list(self.a_values), **self.shared}
+        return {
+            "p_xy_values": list(self.p_xy_values),
+            "a_values": list(self.a_values),
+            **self.shared,
+        }
 
 
 def _axis(values: Sequence[float], name: str) -> tuple[float, ...]:
     """A grid axis as a tuple of floats; each value is checked later, per design."""
     try:
-        arr = np.asarray(values, dtype=float) if not isinstance(values, (str, bytes)) else np.array([])
+        arr = (
+            np.asarray(values, dtype=float)
+            if not isinstance(values, (str, bytes))
+            else np.array([])
+        )
     except (TypeError, ValueError):
         arr = np.array([])
     if arr.ndim != 1 or arr.size == 0:
@@ -410,13 +472,20 @@ class Atlas:
         >>> Atlas.from_results(grid, [])
         Traceback (most recent call last):
         ...
-        curvefold.kernel._errors.InputError: results must hold one (record, sketch) pair per design of the 2 × 1 grid, got 0
+        curvefold.kernel._errors.InputError: results must hold one (record, sketch) pair per design
+        of the 2 × 1 grid, got 0
         """
         pairs = list(results)
         if len(pairs) != grid.size:
-            raise InputError(f"results must hold one (record, sketch) pair per design of the {grid.shape[0]} × {grid.shape[1]} grid, got {len(pairs)}")
+            raise InputError(
+                "results must hold one (record, sketch) pair per design of the "
+                f"{grid.shape[0]} × {grid.shape[1]} grid, got {len(pairs)}"
+            )
         cols = len(grid.p_xy_values)
-        records = tuple({k: r[k] for k in FIELDS} | {"row": n // cols, "col": n % cols} for n, (r, _) in enumerate(pairs))
+        records = tuple(
+            {k: r[k] for k in FIELDS} | {"row": n // cols, "col": n % cols}
+            for n, (r, _) in enumerate(pairs)
+        )
         return cls(grid, records, tuple(s for _, s in pairs))
 
     @property
@@ -447,17 +516,23 @@ class Atlas:
 
         Examples
         --------
-        >>> atlas = run_atlas([0.75], [0.3, 1.5], samples=41, tubes=2, workers=1)   # a = 1.5 has no standing arch
+        >>> atlas = run_atlas(
+        ...     [0.75], [0.3, 1.5], samples=41, tubes=2, workers=1
+        ... )  # a = 1.5 has no standing arch
         >>> atlas.values("kappa0_s0").round(6).tolist()
         [[3.165717], [nan]]
         """
         if key not in FIELDS or key in ("error", "reason"):
-            raise InputError(f"key must be a numeric field of the atlas ({', '.join(k for k in FIELDS if k not in ('error', 'reason'))}), got {key!r}")
+            raise InputError(
+                "key must be a numeric field of the atlas "
+                f"({', '.join(k for k in FIELDS if k not in ('error', 'reason'))}), got {key!r}"
+            )
         values = [np.nan if r[key] is None else float(r[key]) for r in self.records]
         return np.array(values, float).reshape(self.shape)
 
     def every(self, step: int) -> Atlas:
-        """The atlas of every ``step``-th row and column (0, step, 2·step, …), rows and columns renumbered.
+        """The atlas of every ``step``-th row and column (0, step, 2·step, …), rows and columns
+        renumbered.
 
         Examples
         --------
@@ -465,10 +540,14 @@ class Atlas:
         >>> atlas.every(2).shape, atlas.every(2).records[0]["a"]
         ((1, 1), 0.0)
         """
-        return Atlas.from_results(self.grid.every(step), thin(zip(self.records, self.sketches), step))
+        return Atlas.from_results(
+            self.grid.every(step), thin(zip(self.records, self.sketches), step)
+        )
 
 
-def thin(results: Iterable[tuple[dict, Sketch | None]], step: int) -> Iterator[tuple[dict, Sketch | None]]:
+def thin(
+    results: Iterable[tuple[dict, Sketch | None]], step: int
+) -> Iterator[tuple[dict, Sketch | None]]:
     """The (record, sketch) pairs on every ``step``-th row and column, as they come.
 
     Examples
@@ -537,18 +616,29 @@ def sweep(
     >>> sweep([0.75, 0.3])
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got list
+    curvefold.kernel._errors.InputError: grid must be an AtlasGrid (AtlasGrid.of(p_xy_values,
+    a_values, ...)), got list
     """
     if not isinstance(grid, AtlasGrid):
-        raise InputError(f"grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), got {type(grid).__name__}")
+        raise InputError(
+            "grid must be an AtlasGrid (AtlasGrid.of(p_xy_values, a_values, ...)), "
+            f"got {type(grid).__name__}"
+        )
     if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a callable progress(done, total) or None, got {progress!r}")
+        raise InputError(
+            f"progress must be a callable progress(done, total) or None, got {progress!r}"
+        )
     _check_step(sketch_step)
     return _sweep(grid, *cluster_plan(grid.size, workers, scheduler), progress, sketch_step)
 
 
-def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Callable[[int, int], Any] | None,
-           step: int) -> Generator[tuple[dict, Sketch | None], None, None]:
+def _sweep(
+    grid: AtlasGrid,
+    workers: int,
+    scheduler: str | None,
+    progress: Callable[[int, int], Any] | None,
+    step: int,
+) -> Generator[tuple[dict, Sketch | None], None, None]:
     design = grid.shared
     total, done = grid.size, 0
     if progress is not None:
@@ -557,11 +647,14 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
         if client is None:
             arches: dict = {}  # one row's arch, shared by the designs handed out one by one
             chunks: Generator[list, None, None] = (
-                _evaluate_chunk([point], design, step, arches) for point in grid.points())
+                _evaluate_chunk([point], design, step, arches) for point in grid.points()
+            )
         else:
             threads = max(1, sum(client.nthreads().values()))
             sizes = task_sizes(total, grid.shape[1], threads)
-            submit = lambda points: client.submit(_evaluate_packed, points, design, step, pure=False)  # noqa: E731
+            submit = lambda points: client.submit(
+                _evaluate_packed, points, design, step, pure=False
+            )  # noqa: E731
             chunks = _unpacked(in_order(submit, batched(grid.points(), sizes), IN_FLIGHT * threads))
         with closing(chunks):  # closed before the client, when the sweep stops early
             for results in chunks:
@@ -572,8 +665,12 @@ def _sweep(grid: AtlasGrid, workers: int, scheduler: str | None, progress: Calla
                     yield result
 
 
-def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dict, step: int = 1,
-                    arches: dict | None = None) -> list[tuple[dict, Sketch | None]]:
+def _evaluate_chunk(
+    points: Sequence[tuple[int, int, float, float]],
+    design: dict,
+    step: int = 1,
+    arches: dict | None = None,
+) -> list[tuple[dict, Sketch | None]]:
     """(record, sketch) of several grid points, in order (sketches on every ``step``-th row and
     column). ``arches`` keeps the last row's arch across calls."""
     out, arches = [], {} if arches is None else arches
@@ -581,19 +678,25 @@ def _evaluate_chunk(points: Sequence[tuple[int, int, float, float]], design: dic
         if row not in arches:  # the row's arch, once: its designs differ in p_xy alone
             arches.clear()
             arches[row] = _row_arch(a, design)
-        record, sketch = evaluate_design(a, p, **design, sketch=row % step == 0 and col % step == 0, arch=arches[row])
+        record, sketch = evaluate_design(
+            a, p, **design, sketch=row % step == 0 and col % step == 0, arch=arches[row]
+        )
         out.append(({"row": row, "col": col} | record, sketch))
     return out
 
 
-def _evaluate_packed(points: Sequence[tuple[int, int, float, float]], design: dict, step: int) -> bytes:
-    """:func:`_evaluate_chunk` as one pickle, the task a worker runs. Dask would serialize each pair of
-    a list apart: 11 ms of the worker's CPU for 400 designs and 4.7 ms of the client's, against 2.3 and 1.8."""
+def _evaluate_packed(
+    points: Sequence[tuple[int, int, float, float]], design: dict, step: int
+) -> bytes:
+    """:func:`_evaluate_chunk` as one pickle, the task a worker runs. Dask would serialize each
+    pair of a list apart: 11 ms of the worker's CPU for 400 designs and 4.7 ms of the
+    client's, against 2.3 and 1.8."""
     return pickle.dumps(_evaluate_chunk(points, design, step), protocol=pickle.HIGHEST_PROTOCOL)
 
 
-def _unpacked(packed: Generator[bytes, None, None]
-              ) -> Generator[list[tuple[dict, Sketch | None]], None, None]:
+def _unpacked(
+    packed: Generator[bytes, None, None],
+) -> Generator[list[tuple[dict, Sketch | None]], None, None]:
     """The results of :func:`_evaluate_packed` tasks, as they come; closing it closes ``packed``."""
     with closing(packed):
         for blob in packed:
@@ -601,12 +704,19 @@ def _unpacked(packed: Generator[bytes, None, None]
 
 
 def _row_arch(a: float, design: dict) -> tuple | None:
-    """The arch and crease of the designs of one ``a`` (None where there is none: each design records why)."""
+    """The arch and crease of the designs of one ``a`` (None where there is none: each design
+    records why)."""
     from ._assembly import VaultDesign, arch_crease
 
     shape = VaultDesign()  # the grid's vaults take its panels and radius
     try:
-        return arch_crease(check_standing(GRID_A.check(a)), shape.panels, shape.radius, design["fold_angle"], design["samples"])
+        return arch_crease(
+            check_standing(GRID_A.check(a)),
+            shape.panels,
+            shape.radius,
+            design["fold_angle"],
+            design["samples"],
+        )
     except CurvefoldError:
         return None
 
@@ -635,7 +745,8 @@ def run_atlas(
         Torsion amplitudes: the rows. a ≥ :data:`curvefold.vault.A_MAX` has no standing arch
         and is recorded as invalid.
     width, fold_angle, tubes, samples : keyword-only
-        Shared :class:`~curvefold.vault.VaultDesign` parameters (checked once, by :meth:`AtlasGrid.of`).
+        Shared :class:`~curvefold.vault.VaultDesign` parameters (checked once, by
+        :meth:`AtlasGrid.of`).
     workers, scheduler, progress : keyword-only
         Where the designs run and a progress callback, as for :func:`sweep`.
 
@@ -652,5 +763,9 @@ def run_atlas(
     >>> atlas.records[0]["valid"], atlas.records[0]["error"]
     (False, 'ConvergenceError')
     """
-    grid = AtlasGrid.of(p_xy_values, a_values, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)
-    return Atlas.from_results(grid, sweep(grid, workers=workers, scheduler=scheduler, progress=progress))
+    grid = AtlasGrid.of(
+        p_xy_values, a_values, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples
+    )
+    return Atlas.from_results(
+        grid, sweep(grid, workers=workers, scheduler=scheduler, progress=progress)
+    )

@@ -23,7 +23,17 @@ from ..kernel._errors import InputError
 from ..kernel._validate import Spec
 from ..kernel._version import VERSION
 
-__all__ = ["LOCAL_CLUSTER_FROM", "CLUSTER_SETTINGS", "batched", "client", "cluster_plan", "in_order", "local_cluster", "worker_environment", "workers_spec"]
+__all__ = [
+    "LOCAL_CLUSTER_FROM",
+    "CLUSTER_SETTINGS",
+    "batched",
+    "client",
+    "cluster_plan",
+    "in_order",
+    "local_cluster",
+    "worker_environment",
+    "workers_spec",
+]
 
 #: With ``workers=None``, grids of at least this many designs run on a local cluster. Starting
 #: one, loading curvefold in its workers and closing it takes 1.2–2.6 s on 2 CPUs, and 2
@@ -42,18 +52,21 @@ LOCAL_CLUSTER_FROM = 5000
 #:   Two workers took 62,900–65,800 page faults for 1600 designs and 1.53–1.61 CPU-s, against
 #:   1,680 and 1.34–1.45 at 4 MiB (one process alone: 51,000 at 64 KiB, 4,000 with glibc's
 #:   default, 1,650 at 4 MiB); the largest worker of a 200 × 200 atlas stays at 70 MiB.
-CLUSTER_SETTINGS: Mapping[str, Any] = MappingProxyType({
-    "distributed.worker.profile.enabled": False,
-    "distributed.admin.tick.interval": "1s",
-    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 4 * 2**20,
-})
+CLUSTER_SETTINGS: Mapping[str, Any] = MappingProxyType(
+    {
+        "distributed.worker.profile.enabled": False,
+        "distributed.admin.tick.interval": "1s",
+        "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 4 * 2**20,
+    }
+)
 
 
 _NANNY_ENVIRON = "distributed.nanny.pre-spawn-environ."
 
 
 def worker_environment(settings: Mapping[str, Any] = CLUSTER_SETTINGS) -> dict[str, str]:
-    """The environment variables that give workers started with ``dask worker`` the Dask ``settings``.
+    """The environment variables that give workers started with ``dask worker`` the Dask
+    ``settings``.
 
     A ``pre-spawn-environ`` setting is the variable itself (the name Dask derives from a
     ``DASK_…__PRE_SPAWN_ENVIRON__…`` variable is in lower case, which glibc does not read);
@@ -62,10 +75,16 @@ def worker_environment(settings: Mapping[str, Any] = CLUSTER_SETTINGS) -> dict[s
     Examples
     --------
     >>> " ".join(f"{k}={v}" for k, v in worker_environment().items())
-    'DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL=1s MALLOC_TRIM_THRESHOLD_=4194304'
+    'DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL=1s
+    MALLOC_TRIM_THRESHOLD_=4194304'
     """
+
     def name(key: str) -> str:
-        return key.removeprefix(_NANNY_ENVIRON) if key.startswith(_NANNY_ENVIRON) else "DASK_" + key.upper().replace(".", "__").replace("-", "_")
+        return (
+            key.removeprefix(_NANNY_ENVIRON)
+            if key.startswith(_NANNY_ENVIRON)
+            else "DASK_" + key.upper().replace(".", "__").replace("-", "_")
+        )
 
     return {name(key): str(value) for key, value in settings.items()}
 
@@ -82,14 +101,21 @@ def workers_spec() -> Spec:
     --------
     >>> workers_spec().check(1)
     1
-    >>> workers_spec().check(0)   # doctest: +ELLIPSIS
+    >>> workers_spec().check(0)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: workers must be an integer in [1, ...this process may use), got 0
+    curvefold.kernel._errors.InputError: workers must be an integer in [1, ...this process may use),
+    got 0
     """
     cpus = _cpus()
-    return Spec("workers", "integer", None, f"[1, {cpus}]", help="processes of the local cluster (1: this process)",
-                why=f"the {cpus} CPU{'s' * (cpus != 1)} this process may use")
+    return Spec(
+        "workers",
+        "integer",
+        None,
+        f"[1, {cpus}]",
+        help="processes of the local cluster (1: this process)",
+        why=f"the {cpus} CPU{'s' * (cpus != 1)} this process may use",
+    )
 
 
 def cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple[int, str | None]:
@@ -97,22 +123,36 @@ def cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple
 
     Examples
     --------
-    >>> cluster_plan(10, None, None), cluster_plan(1, 2, None)   # a small grid; one design needs one process
+    >>> (
+    ...     cluster_plan(10, None, None),
+    ...     cluster_plan(1, 2, None),
+    ... )  # a small grid; one design needs one process
     ((1, None), (1, None))
-    >>> cluster_plan(10, 0, None)   # doctest: +ELLIPSIS
+    >>> cluster_plan(10, 0, None)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: workers must be an integer in [1, ...this process may use), got 0
+    curvefold.kernel._errors.InputError: workers must be an integer in [1, ...this process may use),
+    got 0
     """
     if scheduler is not None:
         if workers is not None:
-            raise InputError(f"workers sizes a local cluster; the cluster at scheduler {scheduler!r} has its own workers, got workers = {workers!r}")
+            raise InputError(
+                "workers sizes a local cluster; the cluster at scheduler "
+                f"{scheduler!r} has its own workers, got workers = {workers!r}"
+            )
         if not isinstance(scheduler, str) or not scheduler.strip():
-            raise InputError(f"scheduler must be the address of a Dask scheduler such as 'tcp://host:8786', got {scheduler!r}")
+            raise InputError(
+                "scheduler must be the address of a Dask scheduler such as "
+                f"'tcp://host:8786', got {scheduler!r}"
+            )
         _require_dask(f"scheduler {scheduler!r}")
         return 0, scheduler.strip()
     if workers is None:
-        workers = min(2, _cpus()) if size >= LOCAL_CLUSTER_FROM and importlib.util.find_spec("distributed") else 1
+        workers = (
+            min(2, _cpus())
+            if size >= LOCAL_CLUSTER_FROM and importlib.util.find_spec("distributed")
+            else 1
+        )
     workers = min(workers_spec().check(workers), size)
     if workers > 1:
         _require_dask(f"workers = {workers}")
@@ -121,7 +161,10 @@ def cluster_plan(size: int, workers: int | None, scheduler: str | None) -> tuple
 
 def _require_dask(what: str) -> None:
     if importlib.util.find_spec("distributed") is None:
-        raise ModuleNotFoundError(f"{what} runs on Dask, which is not installed; install it with: pip install 'curvefold[dask]'")
+        raise ModuleNotFoundError(
+            f"{what} runs on Dask, which is not installed; install it "
+            "with: pip install 'curvefold[dask]'"
+        )
 
 
 def batched(items: Iterable, sizes: Iterable[int]) -> Iterator[list]:
@@ -141,9 +184,11 @@ def batched(items: Iterable, sizes: Iterable[int]) -> Iterator[list]:
         yield batch
 
 
-def in_order(submit: Callable[[Any], Any], tasks: Iterable,
-             window: int) -> Generator[Any, None, None]:
-    """The results of ``submit(task)`` (a future) for every task, in order, ``window`` futures at a time.
+def in_order(
+    submit: Callable[[Any], Any], tasks: Iterable, window: int
+) -> Generator[Any, None, None]:
+    """The results of ``submit(task)`` (a future) for every task, in order, ``window`` futures at a
+    time.
 
     The oldest future is waited for while the others run; when it is done the next task is
     submitted, so no more than ``window`` results (and the one handed out) are ever held.
@@ -154,21 +199,23 @@ def in_order(submit: Callable[[Any], Any], tasks: Iterable,
     >>> with ThreadPoolExecutor(2) as pool:
     ...     list(in_order(lambda t: pool.submit(pow, t, 2), range(5), window=2))
     [0, 1, 4, 9, 16]
-    >>> list(in_order(None, [], window=2))   # no tasks: nothing submitted
+    >>> list(in_order(None, [], window=2))  # no tasks: nothing submitted
     []
     """
     tasks = iter(tasks)
     pending = deque(submit(t) for t in islice(tasks, window))
     while pending:
         result = pending[0].result()
-        pending.popleft()  # the last reference: a cluster frees the result (and forgets the futures left when closed)
+        # the last reference: a cluster frees the result (and forgets the futures left when closed)
+        pending.popleft()
         pending.extend(submit(t) for t in islice(tasks, 1))
         yield result
 
 
 @contextmanager
 def client(workers: int, scheduler: str | None) -> Iterator[Any]:
-    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this process.
+    """A Dask client of ``scheduler`` or of a local cluster of ``workers`` processes; None for this
+    process.
 
     Dask's own logging is silenced meanwhile (its scheduler runs in this process for a local
     cluster): what goes wrong reaches the caller as an exception, and stderr keeps to one
@@ -176,7 +223,7 @@ def client(workers: int, scheduler: str | None) -> Iterator[Any]:
 
     Examples
     --------
-    >>> with client(1, None) as c:   # one process: no cluster, no Dask
+    >>> with client(1, None) as c:  # one process: no cluster, no Dask
     ...     c is None
     True
     """
@@ -193,7 +240,10 @@ def client(workers: int, scheduler: str | None) -> Iterator[Any]:
             with _scheduler_client(scheduler) as client:
                 yield client
         else:
-            with local_cluster(workers) as cluster, distributed.Client(cluster, set_as_default=False) as client:
+            with (
+                local_cluster(workers) as cluster,
+                distributed.Client(cluster, set_as_default=False) as client,
+            ):
                 yield client
     finally:
         dask_log.setLevel(level)
@@ -215,14 +265,21 @@ def local_cluster(workers: int, settings: Mapping[str, Any] = CLUSTER_SETTINGS) 
     try:
         with (
             dask.config.set(settings),
-            distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                                     silence_logs=logging.CRITICAL) as cluster,
+            distributed.LocalCluster(
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=":0",
+                silence_logs=logging.CRITICAL,
+            ) as cluster,
         ):
             yield cluster
     finally:
         for key in set(os.environ) - set(before):
             del os.environ[key]
-        os.environ.update({key: value for key, value in before.items() if os.environ.get(key) != value})
+        os.environ.update(
+            {key: value for key, value in before.items() if os.environ.get(key) != value}
+        )
 
 
 def _scheduler_client(scheduler: str) -> Any:
@@ -232,15 +289,23 @@ def _scheduler_client(scheduler: str) -> Any:
     try:  # first the address alone: a client made from a malformed one hangs when it is freed
         scheme = distributed.comm.parse_address(distributed.comm.resolve_address(scheduler))[0]
     except ValueError as err:
-        raise InputError(f"scheduler must be a Dask scheduler address such as 'tcp://host:8786', got {scheduler!r} ({err})") from None
+        raise InputError(
+            "scheduler must be a Dask scheduler address such as 'tcp://host:8786', "
+            f"got {scheduler!r} ({err})"
+        ) from None
     except OSError as err:
         raise InputError(f"scheduler {scheduler!r}: cannot resolve the host ({err})") from None
     if scheme == "inproc":
-        raise InputError(f"scheduler must be a network address such as 'tcp://host:8786' (inproc:// names a scheduler inside one process), got {scheduler!r}")
+        raise InputError(
+            "scheduler must be a network address such as 'tcp://host:8786' "
+            f"(inproc:// names a scheduler inside one process), got {scheduler!r}"
+        )
     try:
         client = distributed.Client(scheduler, set_as_default=False)
     except OSError as err:  # refused or timed out
-        raise InputError(f"scheduler {scheduler!r}: cannot connect to a Dask scheduler there ({err})") from None
+        raise InputError(
+            f"scheduler {scheduler!r}: cannot connect to a Dask scheduler there ({err})"
+        ) from None
     try:
         _check_workers(client, scheduler)
     except BaseException:
@@ -265,7 +330,10 @@ def _check_workers(client: Any, scheduler: str) -> None:
     if wrong:
         worker, theirs = next(iter(wrong.items()))
         have = f"curvefold {theirs}" if isinstance(theirs, str) else "no curvefold"
-        raise InputError(f"scheduler {scheduler!r}: every worker needs curvefold {ours}, as here; {len(wrong)} of {len(found)} differ, e.g. {worker} has {have}")
+        raise InputError(
+            f"scheduler {scheduler!r}: every worker needs curvefold {ours}, as "
+            f"here; {len(wrong)} of {len(found)} differ, e.g. {worker} has {have}"
+        )
 
 
 def _curvefold_version() -> str:

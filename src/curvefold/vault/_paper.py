@@ -7,11 +7,19 @@ from ._arch import proportion_change, solve_symmetric_arch
 __all__ = ["PAPER", "paper_comparison"]
 
 #: The values printed in the paper's "Typical Design" section.
-PAPER = {"a": 0.3, "p_xy": 0.75, "fold_angle": 90.0, "kappa0_s0": 3.305, "proportion_change": 1.37, "p_xz": 1.41}
+PAPER = {
+    "a": 0.3,
+    "p_xy": 0.75,
+    "fold_angle": 90.0,
+    "kappa0_s0": 3.305,
+    "proportion_change": 1.37,
+    "p_xz": 1.41,
+}
 
 _NOTE = (
-    "The paper's 3.305 does not solve Eq. (20) (T(s0/2)·T(0) ≈ −0.068 there; two integrators agree on "
-    "3.16571746805); its 1.37 and 1.41 follow from its own 3.305 through exp(a κ0 s0/π)."
+    "The paper's 3.305 does not solve Eq. (20) (T(s0/2)·T(0) ≈ −0.068 there; two integrators "
+    "agree on 3.16571746805); its 1.37 and 1.41 follow from its own 3.305 through exp(a κ0 "
+    "s0/π)."
 )
 
 
@@ -29,7 +37,25 @@ def paper_comparison() -> list[dict]:
     change = proportion_change(a, ours)
     change_paper = proportion_change(a, PAPER["kappa0_s0"])
     return [
-        {"quantity": "kappa0_s0", "paper": PAPER["kappa0_s0"], "computed": ours, "from_paper_kappa0_s0": PAPER["kappa0_s0"], "note": _NOTE},
-        {"quantity": "proportion_change", "paper": PAPER["proportion_change"], "computed": change, "from_paper_kappa0_s0": change_paper, "note": "exp(a κ0 s0 / π)"},
-        {"quantity": "p_xz", "paper": PAPER["p_xz"], "computed": p_xy * change**2, "from_paper_kappa0_s0": p_xy * change_paper**2, "note": "p_xy × proportion change²"},
+        {
+            "quantity": "kappa0_s0",
+            "paper": PAPER["kappa0_s0"],
+            "computed": ours,
+            "from_paper_kappa0_s0": PAPER["kappa0_s0"],
+            "note": _NOTE,
+        },
+        {
+            "quantity": "proportion_change",
+            "paper": PAPER["proportion_change"],
+            "computed": change,
+            "from_paper_kappa0_s0": change_paper,
+            "note": "exp(a κ0 s0 / π)",
+        },
+        {
+            "quantity": "p_xz",
+            "paper": PAPER["p_xz"],
+            "computed": p_xy * change**2,
+            "from_paper_kappa0_s0": p_xy * change_paper**2,
+            "note": "p_xy × proportion change²",
+        },
     ]

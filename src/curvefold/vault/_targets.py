@@ -32,13 +32,35 @@ from ._assembly import VAULT_SPECS, Vault, VaultDesign
 
 __all__ = ["TARGET_SPECS", "TargetFit", "fit_targets", "SCAN_POINTS"]
 
-#: The targets a vault can be designed from; each replaces a parameter of :data:`~curvefold.vault._assembly.VAULT_SPECS`.
+#: The targets a vault can be designed from; each replaces a parameter of
+#: :data:`~curvefold.vault._assembly.VAULT_SPECS`.
 TARGET_SPECS: tuple[Spec, ...] = (
-    Spec("span", "real", None, "(0, inf)", "model units", help="distance between the feet of curve 1; sets the radius",
-         label="span, foot to foot"),
-    Spec("rise", "real", None, "(0, inf)", "model units", help="height of the highest crease; with span it sets a, alone the radius",
-         label="rise"),
-    Spec("p_xz", "real", None, "(0, 100]", help="section proportion w_R/w_L at the apex; sets p_xy", label="section proportion at the apex"),
+    Spec(
+        "span",
+        "real",
+        None,
+        "(0, inf)",
+        "model units",
+        help="distance between the feet of curve 1; sets the radius",
+        label="span, foot to foot",
+    ),
+    Spec(
+        "rise",
+        "real",
+        None,
+        "(0, inf)",
+        "model units",
+        help="height of the highest crease; with span it sets a, alone the radius",
+        label="rise",
+    ),
+    Spec(
+        "p_xz",
+        "real",
+        None,
+        "(0, 100]",
+        help="section proportion w_R/w_L at the apex; sets p_xy",
+        label="section proportion at the apex",
+    ),
 )
 #: Which parameter each target replaces (a user may give one or the other, not both).
 REPLACES = {"span": "radius", "rise": "a", "p_xz": "p_xy"}
@@ -90,7 +112,9 @@ class TargetFit:
         --------
         >>> TargetFit(VaultDesign(), 2.0, 1.0, 1.4, True).require() == VaultDesign()
         True
-        >>> TargetFit(VaultDesign(), 2.0, 1.0, 1.4, False, "rise must be at most 1.14 for this family").require()
+        >>> TargetFit(
+        ...     VaultDesign(), 2.0, 1.0, 1.4, False, "rise must be at most 1.14 for this family"
+        ... ).require()
         Traceback (most recent call last):
         ...
         curvefold.kernel._errors.InputError: rise must be at most 1.14 for this family
@@ -106,8 +130,14 @@ def _measure(design: VaultDesign) -> tuple[float, float, float]:
     return summary["span"], summary["rise"], summary["p_xz"]
 
 
-def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float | None = None, p_xz: float | None = None,
-                rtol: float = 1e-9) -> TargetFit:
+def fit_targets(
+    design: VaultDesign,
+    *,
+    span: float | None = None,
+    rise: float | None = None,
+    p_xz: float | None = None,
+    rtol: float = 1e-9,
+) -> TargetFit:
     """Solve for the radius, a and p_xy that give a vault the targets asked of it.
 
     Parameters
@@ -148,7 +178,11 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
     >>> fit.reached, round(fit.span, 9), round(fit.rise, 9), round(fit.p_xz, 9)
     (True, 4.0, 2.5, 1.2)
     """
-    given = {name: value for name, value in (("span", span), ("rise", rise), ("p_xz", p_xz)) if value is not None}
+    given = {
+        name: value
+        for name, value in (("span", span), ("rise", rise), ("p_xz", p_xz))
+        if value is not None
+    }
     for spec in TARGET_SPECS:
         if spec.name in given:
             given[spec.name] = spec.check(given[spec.name])
@@ -162,22 +196,35 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
         """The design at radius 1 with this a, p_xy following p_xz when it is given."""
         p_xy = design.p_xy
         if "p_xz" in given:
-            change = proportion_change(a, solve_symmetric_arch(a).kappa0_s0, fold_angle=design.fold_angle)
+            change = proportion_change(
+                a, solve_symmetric_arch(a).kappa0_s0, fold_angle=design.fold_angle
+            )
             p_xy = given["p_xz"] / change**2
             _SPEC["p_xy"].check(p_xy, f"p_xy for p_xz = {given['p_xz']:g} at a = {a:g}")
         return replace(design, a=float(a), p_xy=float(p_xy), radius=1.0)
 
     a, note = design.a, ""
     if "span" in given and "rise" in given:
-        a, note = _solve_ratio(shape, given["rise"] / given["span"], design, with_p_xz="p_xz" in given)
+        a, note = _solve_ratio(
+            shape, given["rise"] / given["span"], design, with_p_xz="p_xz" in given
+        )
     unit = shape(a)
     span1, rise1, _ = _measure(unit)
-    radius = given["span"] / span1 if "span" in given else given["rise"] / rise1 if "rise" in given else design.radius
+    radius = (
+        given["span"] / span1
+        if "span" in given
+        else given["rise"] / rise1
+        if "rise" in given
+        else design.radius
+    )
     fitted = replace(unit, radius=_SPEC["radius"].check(radius, "radius for the span and rise"))
     span_, rise_, p_xz_ = _measure(fitted)
     if note:
-        message = (f"{note}; the nearest vault has a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}, radius = {fitted.radius:.6g}: "
-                   f"span {span_:.6g}, rise {rise_:.6g} (asked: span {given['span']:g}, rise {given['rise']:g})")
+        message = (
+            f"{note}; the nearest vault has a = {fitted.a:.6g}, p_xy = {fitted.p_xy:.6g}, "
+            f"radius = {fitted.radius:.6g}: span {span_:.6g}, rise {rise_:.6g} (asked: span "
+            f"{given['span']:g}, rise {given['rise']:g})"
+        )
         return TargetFit(fitted, span_, rise_, p_xz_, False, message)
     got = {"span": span_, "rise": rise_, "p_xz": p_xz_}
     if not all(math.isclose(got[k], v, rel_tol=rtol) for k, v in given.items()):
@@ -186,15 +233,23 @@ def fit_targets(design: VaultDesign, *, span: float | None = None, rise: float |
 
 
 def _fit_tube_count(design: VaultDesign, given: dict, rtol: float) -> TargetFit:
-    """The fit with the most tubes that reaches the targets, counting down from the most the design has as given."""
+    """The fit with the most tubes that reaches the targets, counting down from the most the
+    design has as given."""
     most = Vault.from_design(design).design.tubes
     assert most is not None  # a vault's design has its count
     for tubes in range(most, 0, -1):
         fit = fit_targets(replace(design, tubes=tubes), rtol=rtol, **given)
         if fit.reached:
-            return replace(fit, note=f'tubes = "max": {tubes} tubes, the most that reach these targets (at most {most}, the most before '
-                                     f"regression at a = {design.a:g}, p_xy = {design.p_xy:g})")
-    return replace(fit, message=f'with tubes = "max" no count from {most} down to 1 reaches these targets; {fit.message}')
+            return replace(
+                fit,
+                note=f'tubes = "max": {tubes} tubes, the most that reach these targets (at most {most}, the most before '
+                f"regression at a = {design.a:g}, p_xy = {design.p_xy:g})",
+            )
+    return replace(
+        fit,
+        message=f'with tubes = "max" no count from {most} down to 1 reaches '
+        f"these targets; {fit.message}",
+    )
 
 
 def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -> tuple[float, str]:
@@ -221,29 +276,51 @@ def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -
     values = np.array([value(a) for a in grid])
     runs = _runs(grid, values, value)
     if not runs:
-        raise InputError(f"no vault of the family with width = {design.width:g} and {_tubes(design.tubes)} stands for any a "
-                         f"in [0, {A_MAX:.4f}): every one passes regression; use fewer tubes or a smaller width")
+        raise InputError(
+            f"no vault of the family with width = {design.width:g} and "
+            f"{_tubes(design.tubes)} stands for any a in [0, {A_MAX:.4f}): every one passes "
+            "regression; use fewer tubes or a smaller width"
+        )
     roots = []
     for a_run, v_run in runs:
         for i in np.flatnonzero((v_run[:-1] - ratio) * (v_run[1:] - ratio) <= 0):
-            roots.append(brentq(lambda a: value(a) - ratio, a_run[i], a_run[i + 1], xtol=1e-13, rtol=4 * np.finfo(float).eps))
+            roots.append(
+                brentq(
+                    lambda a: value(a) - ratio,
+                    a_run[i],
+                    a_run[i + 1],
+                    xtol=1e-13,
+                    rtol=4 * np.finfo(float).eps,
+                )
+            )
     if roots:
         return float(min(roots, key=lambda a: abs(a - design.a))), ""
     # Out of reach: the nearest point of every run (ends and extrema included).
     points = np.concatenate([a_run for a_run, _ in runs])
     best = float(points[np.argmin(np.abs(np.concatenate([v_run for _, v_run in runs]) - ratio))])
-    reach = " and ".join(f"from {_rounded(v_run.min(), up=True)} to {_rounded(v_run.max(), up=False)}" for _, v_run in runs)
+    reach = " and ".join(
+        f"from {_rounded(v_run.min(), up=True)} to {_rounded(v_run.max(), up=False)}"
+        for _, v_run in runs
+    )
     stands = " and ".join(f"[{a_run[0]:.3g}, {a_run[-1]:.3g}]" for a_run, _ in runs)
-    return best, (f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and {_tubes(design.tubes)}: vaults of the family "
-                  f"reach rise/span {reach}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a in {stands})")
+    return best, (
+        f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and "
+        f"{_tubes(design.tubes)}: vaults of the family reach rise/span "
+        f"{reach}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a "
+        f"in {stands})"
+    )
 
 
 def _rounded(x: float, *, up: bool) -> str:
-    """x to 6 significant digits, rounded into the range it bounds (up for a lower end), so every value the
-    message states is reached."""
+    """x to 6 significant digits, rounded into the range it bounds (up for a lower end), so every
+    value the message states is reached."""
     step = 10.0 ** (math.floor(math.log10(abs(x))) - 5) if x else 1e-6
     text = f"{(math.ceil(x / step) if up else math.floor(x / step)) * step:.6g}"
-    return text if (float(text) >= x) == up or float(text) == x else f"{float(text) + (step if up else -step):.6g}"
+    return (
+        text
+        if (float(text) >= x) == up or float(text) == x
+        else f"{float(text) + (step if up else -step):.6g}"
+    )
 
 
 def _tubes(n: int) -> str:
@@ -280,7 +357,8 @@ def _runs(grid: np.ndarray, values: np.ndarray, value) -> list[tuple[np.ndarray,
                 points[lo] = last
         a_run = np.array(sorted(points))
         v_run = np.array([points[a] for a in a_run])
-        for i in range(1, len(a_run) - 1):  # a local extremum of the run: refine it between its neighbours
+        # a local extremum of the run: refine it between its neighbours
+        for i in range(1, len(a_run) - 1):
             if (v_run[i] - v_run[i - 1]) * (v_run[i + 1] - v_run[i]) < 0:
                 sign = 1.0 if v_run[i] < v_run[i - 1] else -1.0
 
@@ -288,7 +366,12 @@ def _runs(grid: np.ndarray, values: np.ndarray, value) -> list[tuple[np.ndarray,
                     found = value(a)
                     return sign * found if np.isfinite(found) else math.inf
 
-                found = minimize_scalar(signed, bounds=(a_run[i - 1], a_run[i + 1]), method="bounded", options={"xatol": 1e-10})
+                found = minimize_scalar(
+                    signed,
+                    bounds=(a_run[i - 1], a_run[i + 1]),
+                    method="bounded",
+                    options={"xatol": 1e-10},
+                )
                 if np.isfinite(found.fun):
                     points[float(found.x)] = sign * float(found.fun)
         a_run = np.array(sorted(points))

@@ -14,8 +14,22 @@ __all__ = ["SERVER_SPECS"]
 
 #: The options of ``curvefold designer`` that shape the service (``--workers``, ``--time-limit``).
 SERVER_SPECS = (
-    Spec("workers", "integer", 2, "[1, 16]", help="worker processes for heavy requests (files, full certificates and patterns); "
-         "one more answers the quick ones", label="heavy workers"),
-    Spec("time_limit", "real", 120.0, "(0, 3600]", "seconds", help="time a heavy request may take before it is stopped",
-         label="time limit"),
+    Spec(
+        "workers",
+        "integer",
+        2,
+        "[1, 16]",
+        help="worker processes for heavy requests (files, "
+        "full certificates and patterns); one more answers the quick ones",
+        label="heavy workers",
+    ),
+    Spec(
+        "time_limit",
+        "real",
+        120.0,
+        "(0, 3600]",
+        "seconds",
+        help="time a heavy request may take before it is stopped",
+        label="time limit",
+    ),
 )

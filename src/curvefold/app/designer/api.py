@@ -62,7 +62,8 @@ __all__ = [
     "caches",
 ]
 
-#: Samples along curve 1 of the regression domain's picture (odd, so a vault's apex is a sample; the 3D preview has its own, :data:`curvefold.app.designer.preview.MOTION_SAMPLES`).
+#: Samples along curve 1 of the regression domain's picture (odd, so a vault's apex is a sample; the
+#: 3D preview has its own, :data:`curvefold.app.designer.preview.MOTION_SAMPLES`).
 PREVIEW_SAMPLES = 97
 #: Samples of the coarse certificate and crease pattern that answer first after a change.
 COARSE_SAMPLES = 49
@@ -73,8 +74,15 @@ SOURCE = "query"
 #: Keys a request never sets (the kind is in the path).
 _FIXED = ("kind",)
 #: The fold angle of the state a downloaded file holds (a query parameter of the files only).
-STATE = Spec("state", "real", None, "[0, 180)", "degrees", help="fold angle 2 alpha of the state the files hold; default the design angle",
-             label="fold angle of the files")
+STATE = Spec(
+    "state",
+    "real",
+    None,
+    "[0, 180)",
+    "degrees",
+    help="fold angle 2 alpha of the state the files hold; default the design angle",
+    label="fold angle of the files",
+)
 
 
 # -- parameters -----------------------------------------------------------------------------------
@@ -101,15 +109,32 @@ def _replaces(kind: str) -> dict[str, str]:
 
 def _spec_json(spec: Spec, section: str) -> dict:
     return {
-        "name": spec.name, "label": spec.label, "section": section, "kind": spec.kind, "unit": spec.unit, "help": spec.help,
-        "describe": spec.describe(), "choices": list(spec.choices), "required": spec.required,
+        "name": spec.name,
+        "label": spec.label,
+        "section": section,
+        "kind": spec.kind,
+        "unit": spec.unit,
+        "help": spec.help,
+        "describe": spec.describe(),
+        "choices": list(spec.choices),
+        "required": spec.required,
         "default": None if spec.required else _plain(spec.default),
-        "range": _interval_json(spec.range), "typical": _interval_json(spec.typical),
+        "range": _interval_json(spec.range),
+        "typical": _interval_json(spec.typical),
     }
 
 
 def _interval_json(r) -> dict | None:
-    return None if r is None else {"lo": _finite(r.lo), "hi": _finite(r.hi), "lo_closed": r.lo_closed, "hi_closed": r.hi_closed}
+    return (
+        None
+        if r is None
+        else {
+            "lo": _finite(r.lo),
+            "hi": _finite(r.hi),
+            "lo_closed": r.lo_closed,
+            "hi_closed": r.hi_closed,
+        }
+    )
 
 
 def _finite(x: float) -> float | None:
@@ -154,11 +179,23 @@ def _schema(version: int) -> dict:
         "kinds": {kind.name: [*kind.section_names, *kind.optional] for kind in kinds},
         "optional": {kind.name: list(kind.optional) for kind in kinds},
         "grounded": [kind.name for kind in kinds if kind.grounded],
-        "sections": {section: [_spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED]
-                     for section, specs in SCHEMA.items()},
+        "sections": {
+            section: [
+                _spec_json(spec, section) for spec in specs.values() if spec.name not in _FIXED
+            ]
+            for section, specs in SCHEMA.items()
+        },
         "targets": [target for kind in kinds for target in _kind_targets(kind)],
-        "formats": [{"name": f.name, "title": f.title, "extension": f.extension, "holds": f.holds, "kinds": list(f.kinds)}
-                    for f in FORMATS.values()],
+        "formats": [
+            {
+                "name": f.name,
+                "title": f.title,
+                "extension": f.extension,
+                "holds": f.holds,
+                "kinds": list(f.kinds),
+            }
+            for f in FORMATS.values()
+        ],
         "state": _spec_json(STATE, ""),
         "units": UNITS_SHOWN,
     }
@@ -185,7 +222,9 @@ class Request:
         return _key(self.design)
 
 
-def read_request(kind: str, query: Mapping[str, str] | list[tuple[str, str]], *, extra: tuple[Spec, ...] = ()) -> tuple[Request, dict]:
+def read_request(
+    kind: str, query: Mapping[str, str] | list[tuple[str, str]], *, extra: tuple[Spec, ...] = ()
+) -> tuple[Request, dict]:
     """Read and check the query of a request, without building anything.
 
     Parameters
@@ -212,7 +251,10 @@ def read_request(kind: str, query: Mapping[str, str] | list[tuple[str, str]], *,
     values: dict = {}
     for name, text in items:
         if name not in specs:
-            raise InputError(f"unknown parameter {name!r} for a {kind} (allowed: {', '.join(specs)})" + suggest(name, specs))
+            raise InputError(
+                f"unknown parameter {name!r} for a {kind} (allowed: "
+                f"{', '.join(specs)})" + suggest(name, specs)
+            )
         if name in values:
             raise InputError(f"{name} is given twice", parameter=name)
         if len(text) > MAX_VALUE:
@@ -223,10 +265,14 @@ def read_request(kind: str, query: Mapping[str, str] | list[tuple[str, str]], *,
     extras = {spec.name: values.pop(spec.name) for spec in extra if spec.name in values}
     for target, replaced in replaces.items():
         if target in targets and replaced in values:
-            raise InputError(f"give {target} or {replaced}, not both ({target} sets {replaced})", parameter=target)
+            raise InputError(
+                f"give {target} or {replaced}, not both ({target} sets {replaced})",
+                parameter=target,
+            )
     for group in (values, targets, extras):
         for name, value in group.items():
-            if specs[name].kind != "function":  # expressions are checked with the design, on its samples
+            # expressions are checked with the design, on its samples
+            if specs[name].kind != "function":
                 group[name] = specs[name].check(value, name)
     try:
         design = default_design(kind).overrides(source=SOURCE, **values)
@@ -260,13 +306,15 @@ def _fitted(design_key: str, targets: tuple) -> tuple[str, str]:
 
 
 def request_design(kind: str, query: Mapping[str, str] | list[tuple[str, str]]) -> Design:
-    """The design a request describes, targets solved (:func:`read_request`, then :func:`resolve`)."""
+    """The design a request describes, targets solved (:func:`read_request`, then
+    :func:`resolve`)."""
     request, _ = read_request(kind, query)
     return resolve(request.key, request.targets)[0]
 
 
 def design_query(design: Design) -> list[tuple[str, str]]:
-    """The query parameters of a design: ``request_design(design.kind, design_query(design)) == design``.
+    """The query parameters of a design: ``request_design(design.kind, design_query(design)) ==
+    design``.
 
     Raises
     ------
@@ -275,20 +323,31 @@ def design_query(design: Design) -> list[tuple[str, str]]:
     """
     pairs = []
     for section, values in design.to_dict().items():
-        for name, value in (values.items() if isinstance(values, dict) else [(section, values)]):
+        for name, value in values.items() if isinstance(values, dict) else [(section, values)]:
             if name in _FIXED:
                 continue
             if isinstance(value, dict):
-                raise InputError(f"[{section}] {name} is a CSV column; the designer takes numbers and expressions in s", parameter=name)
+                raise InputError(
+                    f"[{section}] {name} is a CSV column; the designer takes "
+                    "numbers and expressions in s",
+                    parameter=name,
+                )
             if isinstance(value, list):
                 text = json.dumps(value) if name == "cells" else ",".join(map(str, value))
             else:
-                text = str(value).lower() if isinstance(value, bool) else repr(value) if isinstance(value, float) else str(value)
+                text = (
+                    str(value).lower()
+                    if isinstance(value, bool)
+                    else repr(value)
+                    if isinstance(value, float)
+                    else str(value)
+                )
             pairs.append((name, text))
     return pairs
 
 
-# -- cached builds ------------------------------------------------------------------------------------
+# -- cached builds
+# ------------------------------------------------------------------------------------
 
 
 def _key(design: Design) -> str:
@@ -298,7 +357,8 @@ def _key(design: Design) -> str:
 
 @lru_cache(maxsize=32)
 def _design(key: str) -> Design:
-    """The design a key holds (a frozen value, so one is shared: a request reads it about five times)."""
+    """The design a key holds (a frozen value, so one is shared: a request reads it about five
+    times)."""
     return design_from_dict(json.loads(key), source=SOURCE)
 
 
@@ -329,13 +389,22 @@ def _without_source(err: CurvefoldError, parameter: str | None = None) -> Curvef
 
 
 def caches() -> dict[str, object]:
-    """This module's LRU caches by name (their ``cache_info()`` shows that memory stays bounded; see also
-    :func:`curvefold.app.designer.preview.caches`)."""
-    return {"design": _design, "built": _built, "fitted": _fitted, "payload": _payload, "mechanics": _mechanics, "files": _files, "domain": _domain,
-            "pattern": _pattern}
+    """This module's LRU caches by name (their ``cache_info()`` shows that memory stays bounded;
+    see also :func:`curvefold.app.designer.preview.caches`)."""
+    return {
+        "design": _design,
+        "built": _built,
+        "fitted": _fitted,
+        "payload": _payload,
+        "mechanics": _mechanics,
+        "files": _files,
+        "domain": _domain,
+        "pattern": _pattern,
+    }
 
 
-# -- the payload, certificate and figures -----------------------------------------------------------
+# -- the payload, certificate and figures
+# -----------------------------------------------------------
 
 
 @lru_cache(maxsize=4)
@@ -369,22 +438,42 @@ def certificate(design: Design, *, coarse: bool = False) -> dict:
         cert = certify(
             found.crease, structure, found.vault if isinstance(found, BuiltVault) else None
         )
-        checks, frames = [c.to_dict() for c in cert.checks], {"samples": cert.samples, "holds_up_to": cert.holds_up_to,
-                                                                 "fold_angles": list(cert.fold_angles)}
+        checks, frames = (
+            [c.to_dict() for c in cert.checks],
+            {
+                "samples": cert.samples,
+                "holds_up_to": cert.holds_up_to,
+                "fold_angles": list(cert.fold_angles),
+            },
+        )
     else:
         coarse, found = False, json.loads(payload(design))
         checks, frames = found["certificate"], found.get("certificate_frames") or {}
-    return {"samples": frames.get("samples") or design.samples, "coarse": coarse, "fold_angles": frames.get("fold_angles", []),
-            "holds_up_to": frames.get("holds_up_to"), "checks": [c | {"title": TITLES.get(c["name"], c["name"])} for c in checks]}
+    return {
+        "samples": frames.get("samples") or design.samples,
+        "coarse": coarse,
+        "fold_angles": frames.get("fold_angles", []),
+        "holds_up_to": frames.get("holds_up_to"),
+        "checks": [c | {"title": TITLES.get(c["name"], c["name"])} for c in checks],
+    }
 
 
 #: The figures of a design under load the designer shows, in this order (the report shows them all).
-MECHANICS_SHOWN = ("total_weight", "reactions", "max_displacement", "max_stress", "utilisation", "buckling_factor", "fold_mode_gap",
-                   "soft_modes")
+MECHANICS_SHOWN = (
+    "total_weight",
+    "reactions",
+    "max_displacement",
+    "max_stress",
+    "utilisation",
+    "buckling_factor",
+    "fold_mode_gap",
+    "soft_modes",
+)
 
 
 def mechanics(design: Design) -> dict:
-    """The design under load, as ``curvefold load --json`` gives it (its material and loads, or their defaults).
+    """The design under load, as ``curvefold load --json`` gives it (its material and loads, or
+    their defaults).
 
     Returns
     -------
@@ -402,15 +491,24 @@ def _mechanics(key: str) -> bytes:
     if loaded is None:
         raise InputError("the design has no material or loads to analyse")
     numbers = loaded.to_dict()
-    labels = {k: [re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0], MECHANICS_QUANTITIES[k][1], MECHANICS_QUANTITIES[k][0]]
-              for k in MECHANICS_SHOWN}
+    labels = {
+        k: [
+            re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0],
+            MECHANICS_QUANTITIES[k][1],
+            MECHANICS_QUANTITIES[k][0],
+        ]
+        for k in MECHANICS_SHOWN
+    }
     return json.dumps({"numbers": numbers, "labels": labels}, default=float).encode()
 
 
 def domain_svg(design: Design) -> str:
     """The regression domain of a tube, block or vault with its cells (Eq. 18), as SVG text."""
     if not design.design_kind.structure:
-        raise InputError("a single curved fold has no lattice: the regression domain is drawn for tubes, blocks and vaults")
+        raise InputError(
+            "a single curved fold has no lattice: the regression domain is drawn "
+            "for tubes, blocks and vaults"
+        )
     return _domain(_key(design))
 
 
@@ -436,7 +534,8 @@ def _domain(key: str) -> str:
 
 
 def pattern_pages(design: Design) -> list[str]:
-    """The crease-pattern pages as they will be cut (the SVG files a download gives), in page order, at the design's samples."""
+    """The crease-pattern pages as they will be cut (the SVG files a download gives), in page
+    order, at the design's samples."""
     check_kind(["svg"], design.design_kind.formats_kind, "crease pattern")
     return list(_pattern(_key(design)))
 
@@ -444,15 +543,21 @@ def pattern_pages(design: Design) -> list[str]:
 @lru_cache(maxsize=4)
 def _pattern(key: str) -> tuple[str, ...]:
     with tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
-        return tuple(f.read_text(encoding="utf-8") for f in _write(built(_design(key)), ("svg",), Path(tmp)))  # in page order
+        # in page order
+        return tuple(
+            f.read_text(encoding="utf-8") for f in _write(built(_design(key)), ("svg",), Path(tmp))
+        )
 
 
-# -- files --------------------------------------------------------------------------------------------
+# -- files
+# --------------------------------------------------------------------------------------------
 
 
-def _write(built: Built, formats: tuple[str, ...], folder: Path, state: float | None = None) -> list[Path]:
-    """The files of ``formats`` written by the output folder's jobs (without the report's pictures), in
-    the order they are written: a format's pages in page order."""
+def _write(
+    built: Built, formats: tuple[str, ...], folder: Path, state: float | None = None
+) -> list[Path]:
+    """The files of ``formats`` written by the output folder's jobs (without the report's
+    pictures), in the order they are written: a format's pages in page order."""
     from .. import _products as products
 
     missing = missing_dependencies(formats)
@@ -479,7 +584,8 @@ def _zip(files: list[tuple[str, Path]]) -> bytes:
 
 @lru_cache(maxsize=2)
 def _files(key: str, what: str, state: float | None) -> tuple[str, str, bytes]:
-    """(file name, media type, content) of a download: the format's main file, its pages zipped, or the folder zipped."""
+    """(file name, media type, content) of a download: the format's main file, its pages zipped,
+    or the folder zipped."""
     design = _design(key)
     found = built(design)
     with tempfile.TemporaryDirectory(prefix="curvefold-") as tmp:
@@ -489,9 +595,21 @@ def _files(key: str, what: str, state: float | None) -> tuple[str, str, bytes]:
             from .._outputs import write_outputs
 
             out = root / f"curvefold-{design.kind}"
-            write_outputs(found, check_output(out, force=False), show_progress=False, fold_angle=state, workers=1)  # the pool is the parallelism
-            files = sorted(p for p in out.rglob("*") if p.is_file() and not p.name.startswith("."))  # not the folder's marker
-            return f"curvefold-{design.kind}.zip", ZIP, _zip([(str(p.relative_to(root)), p) for p in files])
+            # the pool is the parallelism
+            write_outputs(
+                found,
+                check_output(out, force=False),
+                show_progress=False,
+                fold_angle=state,
+                workers=1,
+            )
+            # not the folder's marker
+            files = sorted(p for p in out.rglob("*") if p.is_file() and not p.name.startswith("."))
+            return (
+                f"curvefold-{design.kind}.zip",
+                ZIP,
+                _zip([(str(p.relative_to(root)), p) for p in files]),
+            )
         files = _write(found, (what,), root, state)
         f = FORMATS[what]
         main = root / f"{design.kind}{f.extension}"
@@ -504,7 +622,8 @@ def _files(key: str, what: str, state: float | None) -> tuple[str, str, bytes]:
 
 
 def check_download(design: Design, what: str) -> None:
-    """Refuse a file the registry does not know, or one not written for the design's kind (before any work)."""
+    """Refuse a file the registry does not know, or one not written for the design's kind (before
+    any work)."""
     if what in ("zip", "toml"):
         return
     if what not in FORMATS:

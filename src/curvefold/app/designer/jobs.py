@@ -33,11 +33,26 @@ __all__ = ["ROUTES", "QUICK_STRIP_SAMPLES", "COARSE", "Plan", "plan", "run"]
 #: counted as 24 tubes, has 801 × 96).
 QUICK_STRIP_SAMPLES = 100_000
 #: The certificate's and the crease pattern's switch to their coarse answer.
-COARSE = Spec("coarse", "flag", False, help="answer at reduced samples first (the page shows it until the full one comes)", label="coarse")
+COARSE = Spec(
+    "coarse",
+    "flag",
+    False,
+    help="answer at reduced samples first (the page shows it until the full one comes)",
+    label="coarse",
+)
 #: Routes that run as jobs, and the route parameters each takes besides the design's.
-ROUTES = {"preview": (), "contact": (), "certificate": (COARSE,), "pattern": (COARSE,), "domain.svg": (), "payload": (), "mechanics": (),
-          "file": (api.STATE,)}
-#: Routes that go to the quick lane when their design is small (the coarse answers only, for the two with COARSE).
+ROUTES = {
+    "preview": (),
+    "contact": (),
+    "certificate": (COARSE,),
+    "pattern": (COARSE,),
+    "domain.svg": (),
+    "payload": (),
+    "mechanics": (),
+    "file": (api.STATE,),
+}
+#: Routes that go to the quick lane when their design is small (the coarse answers only, for the two
+#: with COARSE).
 _QUICK = ("preview", "contact", "domain.svg", "certificate", "pattern")
 
 
@@ -75,11 +90,16 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
     if route == "file":
         what = what or ""  # the route gives it: /api/KIND.FORMAT
         api.check_download(design, what)
-        files = design if what in ("zip", "toml") else design.overrides(source=design.source, formats=[what])
+        files = (
+            design
+            if what in ("zip", "toml")
+            else design.overrides(source=design.source, formats=[what])
+        )
     elif route == "pattern" and not coarse:
         api.check_download(design, "svg")
         files = design.overrides(source=design.source, formats=["svg"])
-    loaded = design.with_mechanics() if route == "mechanics" else design  # as curvefold load analyses it
+    # as curvefold load analyses it
+    loaded = design.with_mechanics() if route == "mechanics" else design
     try:
         estimate = require_budget(files or loaded, files=files is not None)
     except CurvefoldError as err:
@@ -87,10 +107,16 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
     small = estimate.strip_samples <= QUICK_STRIP_SAMPLES and not request.targets
     quick = small and route in _QUICK and (coarse or route not in ("certificate", "pattern"))
     option = what if route == "file" else "coarse" if coarse else None
-    return Plan("quick" if quick else "heavy", (route, request.key, request.targets, option, extras.get("state")), estimate)
+    return Plan(
+        "quick" if quick else "heavy",
+        (route, request.key, request.targets, option, extras.get("state")),
+        estimate,
+    )
 
 
-def run(route: str, key: str, targets: tuple, option: str | None, state: float | None) -> tuple[bytes, str, str | None]:
+def run(
+    route: str, key: str, targets: tuple, option: str | None, state: float | None
+) -> tuple[bytes, str, str | None]:
     """A job, in a worker: the answer's content, media type and file name (None but for files)."""
     design, _ = api.resolve(key, targets)
     if route == "preview":
@@ -101,9 +127,22 @@ def run(route: str, key: str, targets: tuple, option: str | None, state: float |
         return _json(api.certificate(design, coarse=option == "coarse")), "application/json", None
     if route == "pattern":
         if option == "coarse":
-            return _json({"coarse": True, "samples": min(api.COARSE_SAMPLES, design.samples), "pages": [preview.pattern_sketch(design)]}), \
-                "application/json", None
-        return _json({"coarse": False, "samples": design.samples, "pages": api.pattern_pages(design)}), "application/json", None
+            return (
+                _json(
+                    {
+                        "coarse": True,
+                        "samples": min(api.COARSE_SAMPLES, design.samples),
+                        "pages": [preview.pattern_sketch(design)],
+                    }
+                ),
+                "application/json",
+                None,
+            )
+        return (
+            _json({"coarse": False, "samples": design.samples, "pages": api.pattern_pages(design)}),
+            "application/json",
+            None,
+        )
     if route == "domain.svg":
         return api.domain_svg(design).encode(), "image/svg+xml", None
     if route == "payload":

@@ -29,7 +29,17 @@ from .._build import Built, BuiltStructure, BuiltVault
 from .._design import Design
 from .api import COARSE_SAMPLES, _design, _key, built, built_structure, design_query, resolve
 
-__all__ = ["PREVIEW_SEGMENTS", "PREVIEW_CELLS", "MOTION_SAMPLES", "MOTION_STEP", "MAX_FOLD", "preview", "contact", "pattern_sketch", "caches"]
+__all__ = [
+    "PREVIEW_SEGMENTS",
+    "PREVIEW_CELLS",
+    "MOTION_SAMPLES",
+    "MOTION_STEP",
+    "MAX_FOLD",
+    "preview",
+    "contact",
+    "pattern_sketch",
+    "caches",
+]
 
 #: Segments drawn along each crease in the 3D preview, and cells drawn at most.
 PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
@@ -38,7 +48,8 @@ PREVIEW_SEGMENTS, PREVIEW_CELLS = 40, 60
 MOTION_SAMPLES = PREVIEW_SEGMENTS + 1
 #: Fold-angle step between the precomputed states of the 3D preview, degrees.
 MOTION_STEP = 5.0
-#: Largest fold angle of the preview's states, degrees (where the first-contact search of a vault stops).
+#: Largest fold angle of the preview's states, degrees (where the first-contact search of a vault
+#: stops).
 MAX_FOLD = 179.0
 
 
@@ -48,7 +59,8 @@ def _b64(array: np.ndarray, dtype) -> bytes:
 
 
 def _json(answer: dict) -> bytes:
-    """``answer`` as JSON bytes, its bytes values (base64) written as strings and NumPy numbers as floats.
+    """``answer`` as JSON bytes, its bytes values (base64) written as strings and NumPy numbers as
+    floats.
 
     Base64 has nothing JSON escapes, so each is spliced in after encoding rather than scanned
     by the encoder (about 200 MB/s: 3.4 ms for a vault's positions)."""
@@ -79,8 +91,13 @@ def _mesh(curves: np.ndarray, strips: np.ndarray, kinds: tuple[str, ...]) -> dic
     rims = np.stack([strips[:, :1] * k + ends, strips[:, 1:] * k + ends], axis=-1).reshape(-1, 2)
     lines["rim"] = _b64(rims, np.uint32)
     flat = curves.reshape(len(curves), -1, 3)
-    return {"states": len(curves), "vertices": flat.shape[1], "positions": _b64(flat, np.float32),
-            "triangles": _b64(triangles, np.uint32), "lines": lines}
+    return {
+        "states": len(curves),
+        "vertices": flat.shape[1],
+        "positions": _b64(flat, np.float32),
+        "triangles": _b64(triangles, np.uint32),
+        "lines": lines,
+    }
 
 
 def _motion(found: Built) -> dict:
@@ -96,8 +113,14 @@ def _motion(found: Built) -> dict:
         idx = distinct(np.linspace(0, len(crease.s) - 1, PREVIEW_SEGMENTS + 1).round().astype(int))
         curves = np.stack([surface[0, 0], surface[0, 1], surface[1, 1]])[:, idx][None]
         angle = float(np.degrees(2 * crease.alpha(crease.s[:1])[0]))
-        return {"angles": [angle], "design_angle": angle, "end": "the design", "ground": False,
-                "lift_off": None, **_mesh(curves, np.array([[0, 1], [0, 2]]), ("fold", "edge", "edge"))}
+        return {
+            "angles": [angle],
+            "design_angle": angle,
+            "end": "the design",
+            "ground": False,
+            "lift_off": None,
+            **_mesh(curves, np.array([[0, 1], [0, 2]]), ("fold", "edge", "edge")),
+        }
     structure = found.structure
     design_angle = float(structure.lattice.crease.fold_angle)
     grounded = found.design.design_kind.grounded
@@ -106,12 +129,20 @@ def _motion(found: Built) -> dict:
         if grounded
         else (0.5 * (design_angle + 180.0), "halfway to 180°")
     )
-    angles = distinct(np.concatenate([
-        np.linspace(0.0, design_angle, int(np.ceil(design_angle / MOTION_STEP)) + 1),
-        np.linspace(design_angle, end, int(np.ceil((end - design_angle) / MOTION_STEP)) + 1),
-    ]))
+    angles = distinct(
+        np.concatenate(
+            [
+                np.linspace(0.0, design_angle, int(np.ceil(design_angle / MOTION_STEP)) + 1),
+                np.linspace(
+                    design_angle, end, int(np.ceil((end - design_angle) / MOTION_STEP)) + 1
+                ),
+            ]
+        )
+    )
     vertices = structure.lattice.fold_points(structure.curves_uv, angles)
-    curves, cells, kinds = drawable(structure, vertices, segments=PREVIEW_SEGMENTS, max_cells=PREVIEW_CELLS)
+    curves, cells, kinds = drawable(
+        structure, vertices, segments=PREVIEW_SEGMENTS, max_cells=PREVIEW_CELLS
+    )
     lift = np.abs(vertices[:, :, [0, -1], 2]).max(axis=(1, 2)) if grounded else None
     return {
         "angles": angles.tolist(),
@@ -132,8 +163,14 @@ def _dimensions(found: Built, numbers: dict) -> dict | None:
     points = found.crease.curve.points
     vertices = found.vault.vertices.reshape(-1, 3)
     top = vertices[np.argmax(vertices[:, 2])]
-    return {"span": {"from": points[0].tolist(), "to": points[-1].tolist(), "value": numbers["span"]},
-            "rise": {"from": [float(top[0]), float(top[1]), 0.0], "to": top.tolist(), "value": numbers["rise"]}}
+    return {
+        "span": {"from": points[0].tolist(), "to": points[-1].tolist(), "value": numbers["span"]},
+        "rise": {
+            "from": [float(top[0]), float(top[1]), 0.0],
+            "to": top.tolist(),
+            "value": numbers["rise"],
+        },
+    }
 
 
 #: The derived numbers shown beside the 3D view, in order.
@@ -144,22 +181,43 @@ def _numbers(found: Built) -> dict:
     if isinstance(found, BuiltVault):
         summary = found.vault.summary()
         d = found.vault.design
-        return {k: summary[k] for k in NUMBERS} | {"a": d.a, "p_xy": d.p_xy, "radius": d.radius, "width_at_feet": d.width * d.radius}
+        return {k: summary[k] for k in NUMBERS} | {
+            "a": d.a,
+            "p_xy": d.p_xy,
+            "radius": d.radius,
+            "width_at_feet": d.width * d.radius,
+        }
     if isinstance(found, BuiltStructure):
         s = found.structure
         V = s.state().vertices.reshape(-1, 3)
         size = V.max(axis=0) - V.min(axis=0)
-        return {"cells": len(s.cells), "lattice_curves": len(s.curves_uv), "size_x": size[0], "size_y": size[1], "size_z": size[2],
-                "regression_margin": s.regression_margin}
+        return {
+            "cells": len(s.cells),
+            "lattice_curves": len(s.curves_uv),
+            "size_x": size[0],
+            "size_y": size[1],
+            "size_z": size[2],
+            "regression_margin": s.regression_margin,
+        }
     c = found.crease
-    return {"length": c.curve.length, "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
-            "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0]))}
+    return {
+        "length": c.curve.length,
+        "fold_angle_start_deg": float(np.degrees(2 * c.alpha(c.s[:1])[0])),
+        "fold_angle_end_deg": float(np.degrees(2 * c.alpha(c.s[-1:])[0])),
+    }
 
 
 #: Words and units of the numbers that :data:`~curvefold.figures._report.QUANTITIES` does not name.
-_MORE = {"a": ("torsion amplitude a", ""), "p_xy": ("section proportion at the feet p_xy", ""), "radius": ("radius of the arch curve 1/κ0", "model units"),
-         "width_at_feet": ("tube width at the feet w_L(0)", "model units"), "lattice_curves": ("lattice curves", ""),
-         "size_x": ("size along x", "model units"), "size_y": ("size along y", "model units"), "size_z": ("size along z", "model units")}
+_MORE = {
+    "a": ("torsion amplitude a", ""),
+    "p_xy": ("section proportion at the feet p_xy", ""),
+    "radius": ("radius of the arch curve 1/κ0", "model units"),
+    "width_at_feet": ("tube width at the feet w_L(0)", "model units"),
+    "lattice_curves": ("lattice curves", ""),
+    "size_x": ("size along x", "model units"),
+    "size_y": ("size along y", "model units"),
+    "size_z": ("size along z", "model units"),
+}
 
 
 def _labels(numbers: dict) -> dict[str, list[str]]:
@@ -172,13 +230,22 @@ def _labels(numbers: dict) -> dict[str, list[str]]:
 def _preview(key: str, targets: tuple) -> bytes:
     design, note = resolve(key, targets)
     numbers = _numbers(built(design))
-    return _json({
-        "kind": design.kind, "design": design.to_dict(), "query": urlencode(design_query(design)), "note": note,
-        "numbers": numbers, "labels": _labels(numbers),
-        "colours": {kind: COLOURS.get(kind, "#3a3a3a") for kind in ("fold", "seam", "junction", "edge", "rim")},
-        "dimensions": _dimensions(built(design), numbers),
-        "motion": _motion(built(design, samples=MOTION_SAMPLES)),
-    })
+    return _json(
+        {
+            "kind": design.kind,
+            "design": design.to_dict(),
+            "query": urlencode(design_query(design)),
+            "note": note,
+            "numbers": numbers,
+            "labels": _labels(numbers),
+            "colours": {
+                kind: COLOURS.get(kind, "#3a3a3a")
+                for kind in ("fold", "seam", "junction", "edge", "rim")
+            },
+            "dimensions": _dimensions(built(design), numbers),
+            "motion": _motion(built(design, samples=MOTION_SAMPLES)),
+        }
+    )
 
 
 def preview(design: Design, targets: tuple = ()) -> bytes:
@@ -187,13 +254,13 @@ def preview(design: Design, targets: tuple = ()) -> bytes:
     ``design`` (as resolved, targets solved) and its ``query`` (URL-encoded), ``note`` (what
     a fit chose, or ""), ``numbers`` (derived quantities at the design's samples: a vault's
     span, rise, κ0·s0, proportion change, p_xz, tubes, max tubes, a, p_xy, radius and the
-    tube width at the feet), ``labels`` (each number's words and unit), ``colours`` of the crease kinds, ``dimensions`` (a
-    vault's span and rise lines: ``from``, ``to``, ``value``) and ``motion``: the fold
-    angles of the precomputed states (degrees, flat first), the design angle, why the
-    range ends, the lift-off of a vault per state (the largest ``|z|`` of its end sections,
-    model units; zero at the design angle), and the mesh: ``positions`` (states × vertices
-    × 3 float32, base64), ``triangles`` (uint32 triples) and ``lines`` per crease kind
-    (uint32 pairs), at :data:`MOTION_SAMPLES`.
+    tube width at the feet), ``labels`` (each number's words and unit), ``colours`` of the crease
+    kinds, ``dimensions`` (a vault's span and rise lines: ``from``, ``to``, ``value``) and
+    ``motion``: the fold angles of the precomputed states (degrees, flat first), the design angle,
+    why the range ends, the lift-off of a vault per state (the largest ``|z|`` of its end sections,
+    model units; zero at the design angle), and the mesh: ``positions`` (states × vertices × 3
+    float32, base64), ``triangles`` (uint32 triples) and ``lines`` per crease kind (uint32 pairs),
+    at :data:`MOTION_SAMPLES`.
     """
     return _preview(_key(design), tuple(targets))
 
@@ -215,18 +282,22 @@ def _contact(key: str) -> float | None:
     return found.vault.first_contact(max_angle=MAX_FOLD)
 
 
-# -- the coarse crease pattern ------------------------------------------------------------------------
+# -- the coarse crease pattern
+# ------------------------------------------------------------------------
 
 #: Width of the sketch in SVG units (pixels at 1:1), and the gap between sheets.
 _SKETCH_WIDTH, _GAP = 640.0, 12.0
 
 
 def pattern_sketch(design: Design) -> str:
-    """The developed sheets at :data:`~curvefold.app.designer.api.COARSE_SAMPLES`, side by side in one SVG
-    (outlines, seams and folds; no glue tabs, labels or page layout): the crease pattern
-    shown while the pages as they will be cut are laid out."""
+    """The developed sheets at :data:`~curvefold.app.designer.api.COARSE_SAMPLES`, side by side
+    in one SVG (outlines, seams and folds; no glue tabs, labels or page layout): the crease
+    pattern shown while the pages as they will be cut are laid out."""
     if not design.design_kind.structure:
-        raise InputError("a single curved fold has no sheets to lay out: crease patterns are drawn for tubes, blocks and vaults")
+        raise InputError(
+            "a single curved fold has no sheets to lay out: crease patterns are "
+            "drawn for tubes, blocks and vaults"
+        )
     return _sketch(_key(design))
 
 
@@ -237,12 +308,18 @@ def _sketch(key: str) -> str:
     design = _design(key)
     found = built_structure(design, samples=min(COARSE_SAMPLES, design.samples))
     drawn = [(sheet.label, sheet.mesh) for sheet in sheets(found.structure, name=design.kind)]
-    boxes = [(m.vertices_coords[:, :2].min(axis=0), m.vertices_coords[:, :2].max(axis=0)) for _, m in drawn]
+    boxes = [
+        (m.vertices_coords[:, :2].min(axis=0), m.vertices_coords[:, :2].max(axis=0))
+        for _, m in drawn
+    ]
     widest = max(float((hi - lo).max()) for lo, hi in boxes)
     columns = max(1, min(len(drawn), int(np.ceil(np.sqrt(len(drawn) / 2)))))
     cell = (_SKETCH_WIDTH - _GAP * (columns + 1)) / columns
     scale = cell / widest
-    rows_h = [max(float(hi[1] - lo[1]) for lo, hi in boxes[r:r + columns]) * scale for r in range(0, len(drawn), columns)]
+    rows_h = [
+        max(float(hi[1] - lo[1]) for lo, hi in boxes[r : r + columns]) * scale
+        for r in range(0, len(drawn), columns)
+    ]
     parts, y = [], _GAP
     for r, height in enumerate(rows_h):
         for c, ((label, mesh), (lo, _hi)) in enumerate(
@@ -255,12 +332,24 @@ def _sketch(key: str) -> str:
             for kind, width in (("boundary", 1.0), ("seam", 1.2), ("fold", 1.2)):
                 edges = mesh.edges_vertices[mesh.edges_kind == kind]
                 if len(edges):
-                    d = "".join(f"M{xy[a, 0]:.1f},{xy[a, 1]:.1f}L{xy[b, 0]:.1f},{xy[b, 1]:.1f}" for a, b in edges)
-                    parts.append(f'<path d="{d}" stroke="{COLOURS[kind]}" stroke-width="{width}" fill="none"/>')
-            parts.append(f'<text x="{x0:.1f}" y="{y + height + 11:.1f}" font-size="10" fill="#555">{html.escape(label)}</text>')
+                    d = "".join(
+                        f"M{xy[a, 0]:.1f},{xy[a, 1]:.1f}L{xy[b, 0]:.1f},{xy[b, 1]:.1f}"
+                        for a, b in edges
+                    )
+                    parts.append(
+                        f'<path d="{d}" stroke="{COLOURS[kind]}" stroke-width="{width}" '
+                        'fill="none"/>'
+                    )
+            parts.append(
+                f'<text x="{x0:.1f}" y="{y + height + 11:.1f}" font-size="10" '
+                f'fill="#555">{html.escape(label)}</text>'
+            )
         y += height + 16 + _GAP
-    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{_SKETCH_WIDTH:.0f}" height="{y:.0f}" viewBox="0 0 {_SKETCH_WIDTH:.0f} {y:.0f}">'
-            f'<rect width="100%" height="100%" fill="#fff"/>{"".join(parts)}</svg>')
+    return (
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_SKETCH_WIDTH:.0f}" '
+        f'height="{y:.0f}" viewBox="0 0 {_SKETCH_WIDTH:.0f} {y:.0f}"><rect width="100%" '
+        f'height="100%" fill="#fff"/>{"".join(parts)}</svg>'
+    )
 
 
 def caches() -> dict[str, object]:

@@ -28,8 +28,9 @@ What it promises:
   estimates a run (:mod:`curvefold.app._budget`) and refused above the budget, with the
   estimate and what to lower; the heavy jobs running at once hold at most the budget
   between them (a job waits for memory another frees; quick jobs are small, at most
-  :data:`QUICK_WORKERS` at a time), and a worker that grows past its job's estimate by :data:`WORKER_ALLOWANCE` is
-  stopped; one that a job leaves larger than :data:`RECYCLE_ABOVE` is replaced.
+  :data:`QUICK_WORKERS` at a time), and a worker that grows past its job's estimate by
+  :data:`WORKER_ALLOWANCE` is stopped; one that a job leaves larger than :data:`RECYCLE_ABOVE` is
+  replaced.
 - **One request never blocks the others.** Everything that builds runs in worker processes
   (:mod:`curvefold.app._workers`): a quick lane answers previews and the first coarse
   answers; a heavy lane, of lower CPU priority, the rest. A job past its time limit, or
@@ -43,7 +44,6 @@ What it promises:
   ``{"error": one line, "key": the parameter or null}``, an unknown path 404, a bug 500
   with one line asking for a report. The server keeps no design between requests.
 """
-
 
 import ipaddress
 import json
@@ -66,7 +66,18 @@ from .._budget import memory_budget
 from .._workers import JobError, Pool, Reservations, Stopped, resident_bytes
 from . import SERVER_SPECS, api, jobs
 
-__all__ = ["STATIC", "VENDOR", "TIME_LIMIT", "WORKER_ALLOWANCE", "SERVER_SPECS", "missing_bundle", "Designer", "bind", "serving", "serve"]
+__all__ = [
+    "STATIC",
+    "VENDOR",
+    "TIME_LIMIT",
+    "WORKER_ALLOWANCE",
+    "SERVER_SPECS",
+    "missing_bundle",
+    "Designer",
+    "bind",
+    "serving",
+    "serve",
+]
 
 #: The page's own files.
 STATIC = Path(__file__).with_name("static")
@@ -79,7 +90,8 @@ VENDOR_FILES = ("three.module.js", "three.core.js", "addons/controls/OrbitContro
 TIME_LIMIT = SERVER_SPECS[1].default
 #: Seconds a quick request may take.
 QUICK_TIME_LIMIT = 30.0
-#: Workers of the quick lane: one per CPU of a laptop, so that several clients' previews run side by side.
+#: Workers of the quick lane: one per CPU of a laptop, so that several clients' previews run side by
+#: side.
 QUICK_WORKERS = 2
 #: Resident bytes a worker may hold beyond its job's estimate (its own interpreter and caches).
 WORKER_ALLOWANCE = 384 << 20
@@ -98,8 +110,10 @@ def missing_bundle() -> str | None:
     missing = [name for name in VENDOR_FILES if not (VENDOR / name).is_file()]
     if not missing:
         return None
-    return (f"the designer's JavaScript is not built ({missing[0]} is missing from the package): "
-            "run 'bash scripts/build-designer.sh' (it needs npm) in a curvefold checkout")
+    return (
+        f"the designer's JavaScript is not built ({missing[0]} is missing from the package): "
+        "run 'bash scripts/build-designer.sh' (it needs npm) in a curvefold checkout"
+    )
 
 
 def _one_line(message: str) -> str:
@@ -107,7 +121,10 @@ def _one_line(message: str) -> str:
 
 
 def _bug(message: str) -> str:
-    return f"internal error: {_one_line(message)}. This is a bug in curvefold {VERSION}; please report it with the request"
+    return (
+        f"internal error: {_one_line(message)}. This is a bug in curvefold {VERSION}; please "
+        "report it with the request"
+    )
 
 
 class _Answers:
@@ -150,20 +167,29 @@ def allowed_hosts(host: str, port: int) -> tuple[frozenset[str], bool]:
 
 
 class Guard:
-    """ASGI middleware: refuse, with 403, a request for another host or one that another site started."""
+    """ASGI middleware: refuse, with 403, a request for another host or one that another site
+    started."""
 
     def __init__(self, app, hosts: frozenset[str], any_address: bool) -> None:
         self.app, self.hosts, self.any_address = app, hosts, any_address
 
     def refusal(self, scope) -> str | None:
-        headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
+        headers = {
+            k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])
+        }
         host = headers.get("host", "")
         if host not in self.hosts and not (self.any_address and _ip_host(host)):
-            return f"this designer answers requests for {sorted(self.hosts)[0]} only, not for host {host!r}"
+            return (
+                f"this designer answers requests for {sorted(self.hosts)[0]} only, not for "
+                f"host {host!r}"
+            )
         site, origin = headers.get("sec-fetch-site"), headers.get("origin")
         navigation = headers.get("sec-fetch-mode") == "navigate" and scope["path"] == "/"
         if site not in (None, "same-origin", "none") and not navigation:
-            return f"the designer answers its own page only, not a request from another site (Sec-Fetch-Site: {site})"
+            return (
+                "the designer answers its own page only, not a request from another site "
+                f"(Sec-Fetch-Site: {site})"
+            )
         if origin is not None and urlsplit(origin).netloc != host:
             return f"the designer answers its own page only, not a request from {origin}"
         return None
@@ -173,8 +199,16 @@ class Guard:
             refused = self.refusal(scope)
             if refused is not None:
                 body = json.dumps({"error": refused, "key": None}).encode()
-                await send({"type": "http.response.start", "status": 403,
-                            "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
+                await send(
+                    {
+                        "type": "http.response.start",
+                        "status": 403,
+                        "headers": [
+                            (b"content-type", b"application/json"),
+                            (b"content-length", str(len(body)).encode()),
+                        ],
+                    }
+                )
                 await send({"type": "http.response.body", "body": body})
                 return
         await self.app(scope, receive, send)
@@ -182,7 +216,7 @@ class Guard:
 
 def _ip_host(host: str) -> bool:
     """Whether a ``Host`` header names an IP address (``10.0.0.5:8765``, ``[fe80::1]:8765``)."""
-    name = host[1:host.find("]")] if host.startswith("[") else host.rsplit(":", 1)[0]
+    name = host[1 : host.find("]")] if host.startswith("[") else host.rsplit(":", 1)[0]
     try:
         ipaddress.ip_address(name)
     except ValueError:
@@ -191,7 +225,8 @@ def _ip_host(host: str) -> bool:
 
 
 class Designer:
-    """The designer's service on a bound socket: its worker pools, limits, answers and web application.
+    """The designer's service on a bound socket: its worker pools, limits, answers and web
+    application.
 
     Parameters
     ----------
@@ -205,14 +240,36 @@ class Designer:
         Seconds a heavy request may take.
     """
 
-    def __init__(self, sock: socket.socket, host: str, *, workers: int = SERVER_SPECS[0].default, time_limit: float = TIME_LIMIT) -> None:
+    def __init__(
+        self,
+        sock: socket.socket,
+        host: str,
+        *,
+        workers: int = SERVER_SPECS[0].default,
+        time_limit: float = TIME_LIMIT,
+    ) -> None:
         self.sock, self.time_limit = sock, float(time_limit)
         self.scratch = tempfile.mkdtemp(prefix="curvefold-designer-")
         self.budget = memory_budget()
         self.reservations = Reservations(self.budget)
         self.answers = _Answers()
-        self.pools = {"quick": Pool(QUICK_WORKERS, name="quick", scratch=self.scratch, preload=PRELOAD, recycle_above=RECYCLE_ABOVE),
-                      "heavy": Pool(workers, name="heavy", scratch=self.scratch, preload=PRELOAD, niceness=10, recycle_above=RECYCLE_ABOVE)}
+        self.pools = {
+            "quick": Pool(
+                QUICK_WORKERS,
+                name="quick",
+                scratch=self.scratch,
+                preload=PRELOAD,
+                recycle_above=RECYCLE_ABOVE,
+            ),
+            "heavy": Pool(
+                workers,
+                name="heavy",
+                scratch=self.scratch,
+                preload=PRELOAD,
+                niceness=10,
+                recycle_above=RECYCLE_ABOVE,
+            ),
+        }
         self.hosts, self.any_address = allowed_hosts(host, sock.getsockname()[1])
         self.app = Guard(self._fastapi(), self.hosts, self.any_address)
 
@@ -235,10 +292,16 @@ class Designer:
         from starlette.concurrency import run_in_threadpool
 
         def refused(message: str, key=None, status: int = 422):
-            return JSONResponse({"error": _one_line(message), "key": key}, status_code=status, headers={"Cache-Control": "no-store"})
+            return JSONResponse(
+                {"error": _one_line(message), "key": key},
+                status_code=status,
+                headers={"Cache-Control": "no-store"},
+            )
 
         try:
-            plan = await run_in_threadpool(jobs.plan, route, kind, list(request.query_params.multi_items()), what=what)
+            plan = await run_in_threadpool(
+                jobs.plan, route, kind, list(request.query_params.multi_items()), what=what
+            )
         except CurvefoldError as err:
             return refused(str(err).removeprefix(f"{api.SOURCE}: "), err.parameter)
         except Exception as err:  # a bug: one line, to the client and the terminal
@@ -251,10 +314,17 @@ class Designer:
             except JobError as err:
                 if not err.refused:
                     log.error("%s: %s", request.url.path, _bug(str(err)))
-                return refused(str(err).removeprefix(f"{api.SOURCE}: "), err.parameter) if err.refused else refused(_bug(str(err)), status=500)
+                return (
+                    refused(str(err).removeprefix(f"{api.SOURCE}: "), err.parameter)
+                    if err.refused
+                    else refused(_bug(str(err)), status=500)
+                )
             except Stopped as err:
                 if err.reason in ("time", "memory"):
-                    lower = "lower samples, the number of tubes, cells or panels, or use the command line"
+                    lower = (
+                        "lower samples, the number of tubes, cells or panels, or use the "
+                        "command line"
+                    )
                     return refused(f"this request {err}; {lower}", "samples")
                 if err.reason == "died":
                     return refused(_bug(str(err)), status=500)
@@ -276,10 +346,17 @@ class Designer:
         memory = plan.estimate.total
 
         def run():
-            return self.pools[plan.lane].run(jobs.run, *plan.args, timeout=self.time_limit if heavy else QUICK_TIME_LIMIT,
-                                             memory_limit=memory + WORKER_ALLOWANCE, cancelled=gone if heavy else None)
+            return self.pools[plan.lane].run(
+                jobs.run,
+                *plan.args,
+                timeout=self.time_limit if heavy else QUICK_TIME_LIMIT,
+                memory_limit=memory + WORKER_ALLOWANCE,
+                cancelled=gone if heavy else None,
+            )
 
-        if not heavy:  # small (at most QUICK_STRIP_SAMPLES), QUICK_WORKERS at a time: never kept waiting for memory
+        # small (at most QUICK_STRIP_SAMPLES), QUICK_WORKERS at a time: never kept waiting for
+        # memory
+        if not heavy:
             return await run()
         await self.reservations.hold(memory, self.time_limit)
         try:
@@ -291,17 +368,35 @@ class Designer:
         """The workers (process ids, jobs by outcome), the memory held and measured, the limits."""
         server = os.getpid()
         workers = [pid for pool in self.pools.values() for pid in pool.pids()]
-        processes = sorted({*workers, *(_parent(pid) for pid in workers)} - {server, 0})  # the workers and their fork server
+        # the workers and their fork server
+        processes = sorted({*workers, *(_parent(pid) for pid in workers)} - {server, 0})
         return {
             "version": VERSION,
-            "workers": {lane: {"size": pool.size, "busy": pool.busy, "pids": pool.pids(), "jobs": dict(pool.counts)}
-                        for lane, pool in self.pools.items()},
-            "limits": {"time_limit": self.time_limit, "quick_time_limit": QUICK_TIME_LIMIT, "budget": self.budget,
-                       "worker_allowance": WORKER_ALLOWANCE, "recycle_above": RECYCLE_ABOVE, "answer_cache": ANSWER_CACHE,
-                       "hosts": sorted(self.hosts)},
-            "memory": {"reserved": self.reservations.held, "answers": self.answers.size, "processes": 1 + len(processes),
-                       "resident": resident_bytes(server) + sum(resident_bytes(p) for p in processes),
-                       "proportional": _pss(server) + sum(_pss(p) for p in processes)},
+            "workers": {
+                lane: {
+                    "size": pool.size,
+                    "busy": pool.busy,
+                    "pids": pool.pids(),
+                    "jobs": dict(pool.counts),
+                }
+                for lane, pool in self.pools.items()
+            },
+            "limits": {
+                "time_limit": self.time_limit,
+                "quick_time_limit": QUICK_TIME_LIMIT,
+                "budget": self.budget,
+                "worker_allowance": WORKER_ALLOWANCE,
+                "recycle_above": RECYCLE_ABOVE,
+                "answer_cache": ANSWER_CACHE,
+                "hosts": sorted(self.hosts),
+            },
+            "memory": {
+                "reserved": self.reservations.held,
+                "answers": self.answers.size,
+                "processes": 1 + len(processes),
+                "resident": resident_bytes(server) + sum(resident_bytes(p) for p in processes),
+                "proportional": _pss(server) + sum(_pss(p) for p in processes),
+            },
         }
 
     # -- the web application ----------------------------------------------------------------------
@@ -311,7 +406,13 @@ class Designer:
         from fastapi.responses import FileResponse, JSONResponse
         from fastapi.staticfiles import StaticFiles
 
-        app = FastAPI(title="curvefold designer", version=VERSION, docs_url=None, redoc_url=None, openapi_url=None)
+        app = FastAPI(
+            title="curvefold designer",
+            version=VERSION,
+            docs_url=None,
+            redoc_url=None,
+            openapi_url=None,
+        )
 
         @app.get("/")
         def page():
@@ -328,7 +429,11 @@ class Designer:
         @app.get("/api/{name}")
         async def structure(name: str, request: Request):
             kind, _, what = name.partition(".")
-            return await (self.answer("file", kind, request, what) if what else self.answer("payload", kind, request))
+            return await (
+                self.answer("file", kind, request, what)
+                if what
+                else self.answer("payload", kind, request)
+            )
 
         @app.get("/api/{kind}/{route}")
         async def route(kind: str, route: str, request: Request):
@@ -349,7 +454,8 @@ def _parent(pid: int) -> int:
 
 
 def _pss(pid: int) -> int:
-    """Proportional set size of a process in bytes (shared pages split between their users), 0 if unknown."""
+    """Proportional set size of a process in bytes (shared pages split between their users), 0 if
+    unknown."""
     try:
         for line in Path(f"/proc/{pid}/smaps_rollup").read_text().splitlines():
             if line.startswith("Pss:"):
@@ -377,7 +483,9 @@ def bind(host: str, port: int) -> socket.socket:
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         sock.bind(info[4])
     except OSError as err:
-        raise InputError(f"cannot serve on {host}:{port}: {err.strerror or err}; pick another --port or --host") from None
+        raise InputError(
+            f"cannot serve on {host}:{port}: {err.strerror or err}; pick another --port or --host"
+        ) from None
     sock.listen(128)
     return sock
 
@@ -386,12 +494,19 @@ def _server(designer: Designer):
     import uvicorn
 
     class Server(uvicorn.Server):
-        def handle_exit(self, sig, frame) -> None:  # a signal: stop the work at once, then the server
+        # a signal: stop the work at once, then the server
+        def handle_exit(self, sig, frame) -> None:
             designer.close()
             super().handle_exit(sig, frame)
 
-    config = uvicorn.Config(designer.app, log_level="warning", access_log=False, lifespan="off", proxy_headers=False,
-                            timeout_graceful_shutdown=1)
+    config = uvicorn.Config(
+        designer.app,
+        log_level="warning",
+        access_log=False,
+        lifespan="off",
+        proxy_headers=False,
+        timeout_graceful_shutdown=1,
+    )
     return Server(config)
 
 
@@ -404,8 +519,9 @@ def url_of(sock: socket.socket, query: Sequence[tuple[str, str]] = ()) -> str:
 
 @contextmanager
 def serving(host: str = "127.0.0.1", port: int = 0, **options) -> Iterator[str]:
-    """Serve the designer in a background thread; yields its URL and stops it on exit (tests, benchmarks).
-    ``options`` are those of :class:`Designer`; the designer itself is the URL's ``designer`` attribute."""
+    """Serve the designer in a background thread; yields its URL and stops it on exit (tests,
+    benchmarks). ``options`` are those of :class:`Designer`; the designer itself is the URL's
+    ``designer`` attribute."""
     sock = bind(host, port)
     designer = Designer(sock, host, **options)
     server = _server(designer)
@@ -460,4 +576,3 @@ def serve(
         designer.close()
         sock.close()
         designer.join()
-
