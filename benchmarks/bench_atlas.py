@@ -327,10 +327,13 @@ import resource, sys, time
 from curvefold.app.cli import main
 side, out = sys.argv[1], sys.argv[2]
 t0 = time.perf_counter()
-status = main(["atlas", "--p-xy", f"0.5:1.5:{{side}}", "--a", f"0:1.2:{{side}}", "--width", "{width}", "--samples", "{samples}", "--out", out, "--json", "--workers", "{workers}"])
+status = main(["atlas", "--p-xy", f"0.5:1.5:{{side}}", "--a", f"0:1.2:{{side}}",
+               "--width", "{width}", "--samples", "{samples}", "--out", out, "--json",
+               "--workers", "{workers}"])
 assert status == 0, status
 wall = time.perf_counter() - t0
-me, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+me = resource.getrusage(resource.RUSAGE_SELF)
+children = resource.getrusage(resource.RUSAGE_CHILDREN)
 cpu = me.ru_utime + me.ru_stime + children.ru_utime + children.ru_stime
 print("RESULT", wall, cpu, me.ru_maxrss / 1024, children.ru_maxrss / 1024, file=sys.stderr)
 """

@@ -117,7 +117,8 @@ def peak_of(argv: list[str]) -> tuple[float, float]:
 _CHILD = """
 import resource, subprocess, sys
 subprocess.run([sys.executable, "-m", "curvefold", *sys.argv[1:]], capture_output=True)
-print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * (1 if sys.platform == "darwin" else 1024))
+unit = 1 if sys.platform == "darwin" else 1024  # ru_maxrss: bytes on macOS, KiB elsewhere
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * unit)
 """
 
 
@@ -126,7 +127,8 @@ print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * (1 if sys.platfor
 _PART = """
 import json, resource, sys, tempfile
 from pathlib import Path
-peak = lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+unit = 1 if sys.platform == "darwin" else 1024  # ru_maxrss: bytes on macOS, KiB elsewhere
+peak = lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * unit
 import curvefold.app.cli, curvefold.app._build, curvefold.app._outputs
 interpreter = peak()
 from curvefold.app import design_from_dict, _products as products
@@ -138,9 +140,12 @@ built = build(design_from_dict(data))
 structure_payload(built)
 geometry = peak()
 if part != "geometry":
-    formats = [] if part == "pictures" else [name for name in built.design.output.formats if FORMATS[name].family == part]
+    formats = [] if part == "pictures" else [
+        name for name in built.design.output.formats if FORMATS[name].family == part
+    ]
     jobs = dict(products.jobs(built, formats))
-    label = "pictures" if part == "pictures" else next(label for label in jobs if label != "pictures")
+    others = (label for label in jobs if label != "pictures")
+    label = "pictures" if part == "pictures" else next(others)
     with tempfile.TemporaryDirectory() as folder:
         if label != "pictures":
             built.prepare()

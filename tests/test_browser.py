@@ -16,20 +16,23 @@ from curvefold.io import ModelOutput, write_3d
 from curvefold.vault import Vault
 
 _THREE_PAGE = """<!doctype html><html><head><meta charset="utf-8">
-<script type="importmap">{"imports": {"three": "/node_modules/three/build/three.module.js",
-                                      "three/addons/": "/node_modules/three/examples/jsm/"}}</script></head><body>
+<script type="importmap">{"imports": {
+  "three": "/node_modules/three/build/three.module.js",
+  "three/addons/": "/node_modules/three/examples/jsm/"}}</script></head><body>
 <script type="module">
 import * as THREE from "three";
 import { GLTFLoader } from "three/addons/loaders/GLTFLoader.js";
 new GLTFLoader().load("/vault.glb", (gltf) => {
-  const sheets = gltf.scene.children.map((node) => node.children.find((c) => c.isMesh && !c.isLineSegments) ?? node);
+  const sheets = gltf.scene.children.map(
+    (node) => node.children.find((c) => c.isMesh && !c.isLineSegments) ?? node);
   const mixer = new THREE.AnimationMixer(gltf.scene);
   const clip = gltf.animations[0];
   const action = mixer.clipAction(clip);
   action.setLoop(THREE.LoopOnce);
   action.clampWhenFinished = true;
   action.play();
-  const posed = (surface, time) => {  // a sheet's triangle corners as the animation poses them at a time
+  // a sheet's triangle corners as the animation poses them at a time
+  const posed = (surface, time) => {
     mixer.setTime(time);
     const base = surface.geometry.attributes.position.array;
     const out = Float64Array.from(base);
@@ -38,12 +41,15 @@ new GLTFLoader().load("/vault.glb", (gltf) => {
       for (let i = 0; i < out.length; i += 1) out[i] += w * delta[i];
     });
     const corners = [];
-    for (const i of surface.geometry.index.array) corners.push(out[3 * i], out[3 * i + 1], out[3 * i + 2]);
+    for (const i of surface.geometry.index.array) {
+      corners.push(out[3 * i], out[3 * i + 1], out[3 * i + 2]);
+    }
     return corners;
   };
   window.result = {
     nodes: gltf.scene.children.map((n) => n.name),
-    names: Object.entries(sheets[0].morphTargetDictionary).sort((a, b) => a[1] - b[1]).map((e) => e[0]),
+    names: Object.entries(sheets[0].morphTargetDictionary)
+      .sort((a, b) => a[1] - b[1]).map((e) => e[0]),
     normals: sheets.every((m) => m.geometry.attributes.normal !== undefined),
     clips: gltf.animations.map((a) => [a.name, a.duration]),
     start: sheets.map((m) => posed(m, 0)),
@@ -107,9 +113,11 @@ def test_the_report_reads_at_phone_and_desktop_widths(vault_folder, width):
         layout = page.evaluate("""() => ({
             overflow: document.documentElement.scrollWidth - window.innerWidth,
             body: document.body.clientWidth,
-            images: [...document.images].map((i) => [i.getAttribute('src'), i.naturalWidth, i.getBoundingClientRect().width]),
+            images: [...document.images].map(
+                (i) => [i.getAttribute('src'), i.naturalWidth, i.getBoundingClientRect().width]),
             files: [...document.querySelectorAll('h2 + table a')].map((a) => a.textContent),
-            tables: [...document.querySelectorAll('table')].map((t) => t.scrollWidth - t.clientWidth),
+            tables: [...document.querySelectorAll('table')].map(
+                (t) => t.scrollWidth - t.clientWidth),
             viewport: document.querySelector('meta[name=viewport]')?.content,
         })""")
     assert layout["overflow"] <= 0  # nothing wider than the screen

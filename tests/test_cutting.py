@@ -102,7 +102,8 @@ def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operat
     doc = __import__("ezdxf").readfile(write_dxf(tmp_path / "t.dxf", layout))
     for key in (*DEFAULT_LAYERS, "legend"):
         entry = doc.layers.get(layer_name(key))
-        assert "#{:02x}{:02x}{:02x}".format(*entry.rgb) == colours[key] and entry.color == aci(colours[key]), key
+        assert "#{:02x}{:02x}{:02x}".format(*entry.rgb) == colours[key], key
+        assert entry.color == aci(colours[key]), key
     # legend entities take their layer's colour (BYLAYER), so none is in the cut colour
     assert all(
         e.dxf.color == 256 and not e.dxf.hasattr("true_color")

@@ -178,8 +178,9 @@ def test_the_fold_slider_plays_without_a_request_and_the_numbers_follow_it(brows
 
 def test_plain_words_units_and_the_span_and_rise_drawn(browser):
     page = open_page(browser)
-    words = page.evaluate("""() => Object.fromEntries([...document.querySelectorAll('.field')].map((f) =>
-        [f.dataset.key, [f.querySelector('.words').textContent, f.querySelector('.unit').textContent]]))""")
+    words = page.evaluate("""() => Object.fromEntries(
+        [...document.querySelectorAll('.field')].map((f) => [f.dataset.key,
+            [f.querySelector('.words').textContent, f.querySelector('.unit').textContent]]))""")
     assert words["a"] == ["torsion amplitude", ""] and words["p_xy"] == [
         "section proportion at the feet",
         "",
@@ -309,7 +310,8 @@ def projected_inside(page) -> bool:
     return page.evaluate("""() => {
         const v = window.curvefold.view, b = v.main.box, c = v.camera;
         c.updateMatrixWorld();
-        for (const x of [b.lo[0], b.hi[0]]) for (const y of [b.lo[1], b.hi[1]]) for (const z of [b.lo[2], b.hi[2]]) {
+        for (const x of [b.lo[0], b.hi[0]]) for (const y of [b.lo[1], b.hi[1]])
+        for (const z of [b.lo[2], b.hi[2]]) {
             const p = new c.position.constructor(x, y, z).project(c);
             if (Math.abs(p.x) > 1 || Math.abs(p.y) > 1) return false;
         }
@@ -344,8 +346,9 @@ def test_two_designs_side_by_side_or_overlaid_with_their_numbers(browser):
     page.wait_for_function("window.curvefold.kept && window.curvefold.kept.preview")
     page.fill('.field[data-key="p_xy"] input.value', "1.2")
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 1.2")
-    rows = page.evaluate("""() => Object.fromEntries([...document.querySelectorAll('#numbers tr')].map((r) =>
-        [r.cells[0].textContent, [...r.cells].slice(1, 3).map((c) => c.textContent)]))""")
+    rows = page.evaluate("""() => Object.fromEntries(
+        [...document.querySelectorAll('#numbers tr')].map((r) =>
+            [r.cells[0].textContent, [...r.cells].slice(1, 3).map((c) => c.textContent)]))""")
     assert rows["section proportion at the feet p_xy"] == [
         "1.2",
         "0.75",
@@ -427,8 +430,10 @@ def test_a_vault_from_span_and_rise(browser):
 def test_the_layout_fits_phones_to_large_screens(browser, width, height, tmp_path):
     page = open_page(browser, "?kind=vault", width=width, height=height)
     settled(page)
-    box = page.evaluate("""() => { const r = document.getElementById('canvas').getBoundingClientRect();
-        return {overflow: document.documentElement.scrollWidth - innerWidth, top: r.top, bottom: r.bottom, width: r.width, height: r.height}; }""")
+    box = page.evaluate("""() => {
+        const r = document.getElementById('canvas').getBoundingClientRect();
+        return {overflow: document.documentElement.scrollWidth - innerWidth,
+                top: r.top, bottom: r.bottom, width: r.width, height: r.height}; }""")
     assert box["overflow"] <= 0  # at 390 px it overflowed by 327 px
     # the view on screen
     assert (

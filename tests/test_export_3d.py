@@ -838,7 +838,8 @@ import numpy as np
 from curvefold import Crease, Lattice, SpaceCurve, Structure
 from curvefold.io import FoldOutput, ModelOutput, write_3d, write_sheet_fold, write_structure_fold
 from curvefold.geometry._sheets import sheets
-structure = Structure.tube(Lattice.from_crease(Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)), 0.2, 0.15))
+curve = SpaceCurve.from_curvature(1.0, 0.3, 2.0, samples=13)
+structure = Structure.tube(Lattice.from_crease(Crease.from_curve(curve), 0.2, 0.15))
 keep = [np.arange(0, 13, 2)]
 before = set(sys.modules)
 folder = pathlib.Path(tempfile.mkdtemp())

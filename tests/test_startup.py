@@ -125,14 +125,16 @@ def test_the_main_job_imports_neither_scipy_nor_matplotlib(tmp_path):
     """Every file and picture of the paper's vault (at fewer samples), written in this one
     process."""
     code = (
-        "from curvefold.app import default_design\nfrom curvefold.app._build import build\nfrom "
-        "curvefold.app._folder import check_output\nfrom curvefold.app._outputs import "
-        "write_outputs\nfrom dataclasses import replace\ndesign = "
-        "default_design('vault')\ndesign = replace(design, samples=201)\nfiles = "
-        f"write_outputs(build(design), check_output({str(tmp_path / 'v')!r}, force=True), "
-        "show_progress=False, workers=1)['files']\nassert "
-        f"{{'vault.fold', 'vault.glb', 'vault.3dm', 'vault-pattern.dxf', 'folding.gif', 'vault.png'}} "
-        "<= set(files), files"
+        "from curvefold.app import default_design\n"
+        "from curvefold.app._build import build\n"
+        "from curvefold.app._folder import check_output\n"
+        "from curvefold.app._outputs import write_outputs\n"
+        "from dataclasses import replace\n"
+        "design = replace(default_design('vault'), samples=201)\n"
+        f"folder = check_output({str(tmp_path / 'v')!r}, force=True)\n"
+        "files = write_outputs(build(design), folder, show_progress=False, workers=1)['files']\n"
+        "assert {'vault.fold', 'vault.glb', 'vault.3dm', 'vault-pattern.dxf', 'folding.gif',\n"
+        "        'vault.png'} <= set(files), files"
     )
     assert imported(code, NOT_IN_THE_MAIN_JOB) == []
     # the probe sees one (and its numpy.ma)

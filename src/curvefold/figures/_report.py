@@ -201,10 +201,10 @@ def _parameters_table(payload: dict) -> str:
         + "</tr>"
         for r in rows
     )
+    head = "<tr><th>parameter</th><th>symbol</th><th>value</th><th>unit</th></tr>"
     return (
-        "<table "
-        f"class=cards><tr><th>parameter</th><th>symbol</th><th>value</th><th>unit</th></tr>{body}</table><details><summary>as "
-        f"a design file holds it</summary><pre>{raw}</pre></details>"
+        f"<table class=cards>{head}{body}</table>"
+        f"<details><summary>as a design file holds it</summary><pre>{raw}</pre></details>"
     )
 
 
@@ -240,12 +240,11 @@ def _certificate_row(c: dict) -> str:
         e(c["unit"]),
         e(c["where"]),
     ]
+    classes = ("", " class=status", " class=num", " class=num", " class=num", "", "")
     return (
-        f"<tr class='{kind} "
-        f"head'>{_cells(_CERTIFICATE_COLUMNS, cells, ('', ' class=status', ' class=num', ' class=num', ' class=num', '', ''))}</tr><tr "
-        f"class='{kind} about'><td colspan=7 data-label='what it "
-        f"measures'>{e(c['measures'])}<br><small>Error model: "
-        f"{e(c['model'])}</small></td></tr>"
+        f"<tr class='{kind} head'>{_cells(_CERTIFICATE_COLUMNS, cells, classes)}</tr>"
+        f"<tr class='{kind} about'><td colspan=7 data-label='what it measures'>"
+        f"{e(c['measures'])}<br><small>Error model: {e(c['model'])}</small></td></tr>"
     )
 
 
@@ -254,10 +253,7 @@ def _certificate_table(payload: dict) -> str:
     and its error model."""
     e = html.escape
     rows = "".join(_certificate_row(c) for c in payload["certificate"])
-    head = (
-        "<tr><th>check</th><th>status</th><th>measured</th><th>tolerance</th><th>margin</th><th>unit</th><th>worst "
-        "frame and place</th></tr>"
-    )
+    head = "<tr>" + "".join(f"<th>{name}</th>" for name in _CERTIFICATE_COLUMNS) + "</tr>"
     frames = payload.get("certificate_frames") or {}
     angles = frames.get("fold_angles") or []
     motion = ""
@@ -334,7 +330,8 @@ def _mechanism_table(mechanism: dict) -> str:
             _sci(m["clearance"]),
             _sci(m["residual"]),
         ]
-        rows += f"<tr>{_cells(columns, cells, ('', ' class=num', ' class=num', '', ' class=num', ' class=num', ' class=num'))}</tr>"
+        classes = ("", " class=num", " class=num", "", " class=num", " class=num", " class=num")
+        rows += f"<tr>{_cells(columns, cells, classes)}</tr>"
     return (
         "<h2>Mechanism</h2><p>Degrees of freedom of the rigid panels" + scope + ": the "
         "first-order motions are the null space of the Jacobian of every edge length, both "
@@ -537,37 +534,45 @@ def report_html(payload: dict) -> str:
     passed = sum(c["passed"] for c in payload["certificate"])
     title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
-<html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
+<html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
 <title>curvefold — {title}</title>
 <style>
-body{{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;color:#222;line-height:1.4}}
+body{{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;
+color:#222;line-height:1.4}}
 h1{{font-size:1.5em;overflow-wrap:anywhere}}
 table{{border-collapse:collapse;margin:1em 0;display:block;overflow-x:auto;max-width:100%}}
 td,th{{border:1px solid #ccc;padding:.3em .6em;text-align:left;vertical-align:top}}
 .num{{white-space:nowrap;text-align:right;font-variant-numeric:tabular-nums}}td.status,td.unit{{white-space:nowrap}}
 tr.pass td.status{{color:#070}}tr.fail td{{background:#fee}}tr.unresolved td{{background:#fff6dd}}
 table.certificate small{{color:#555}}table.certificate td:nth-child(7){{min-width:14em}}
-table.certificate tr.head td{{border-bottom:none}}table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}
+table.certificate tr.head td{{border-bottom:none}}
+table.certificate tr.about td{{border-top:none;font-size:.9em;padding-bottom:.6em}}
 .pictures{{display:grid;grid-template-columns:repeat(auto-fill,minmax(min(100%,420px),1fr));gap:1em}}
-figure{{margin:0}}figure.wide{{grid-column:1/-1}}img{{width:100%;height:auto;border:1px solid #ddd}}figcaption{{font-size:.85em;color:#555}}
+figure{{margin:0}}figure.wide{{grid-column:1/-1}}
+img{{width:100%;height:auto;border:1px solid #ddd}}figcaption{{font-size:.85em;color:#555}}
 pre{{background:#f6f6f6;padding:1em;overflow-x:auto}}code{{font-size:.9em;color:#555}}
 td{{overflow-wrap:anywhere}}
 @media (max-width:600px){{
  body{{margin:.8em auto;padding:0 .6em}}
  table{{display:table;width:100%}}td.num{{white-space:normal}}
- table.cards,table.cards tbody,table.cards tr,table.cards td{{display:block;width:100%;box-sizing:border-box}}
+ table.cards,table.cards tbody,table.cards tr,table.cards td{{display:block;width:100%;
+  box-sizing:border-box}}
  table.cards{{overflow:visible}}table.cards tr:first-child:has(th){{display:none}}
- table.cards tr{{border:1px solid #ccc;margin:0 0 .6em;padding:.2em 0}}table.cards tr.about{{margin-top:-.6em;border-top:none}}
+ table.cards tr{{border:1px solid #ccc;margin:0 0 .6em;padding:.2em 0}}
+ table.cards tr.about{{margin-top:-.6em;border-top:none}}
  table.cards td{{border:none;padding:.15em .6em;text-align:left;white-space:normal}}
  table.cards td[data-label]::before{{content:attr(data-label) ": ";color:#666;font-size:.85em}}
- table.certificate tr.about td::before{{content:none}}table.certificate td:nth-child(7){{min-width:0}}
- .pictures{{display:block}}figure{{overflow-x:auto;margin:0 0 1em}}figure img{{width:auto;max-width:none}}
+ table.certificate tr.about td::before{{content:none}}
+ table.certificate td:nth-child(7){{min-width:0}}
+ .pictures{{display:block}}figure{{overflow-x:auto;margin:0 0 1em}}
+ figure img{{width:auto;max-width:none}}
 }}
 </style></head><body>
 <h1>curvefold — {title}</h1>
-<p>Geometric certificate: <b>{passed}/{len(payload["certificate"])}</b> checks pass. Lengths are in metres (the model unit, as
-in the 3D files); crease patterns are in millimetres at their print scale. On a phone, slide a picture sideways or tap it for
-its full size.</p>
+<p>Geometric certificate: <b>{passed}/{len(payload["certificate"])}</b> checks pass. Lengths are
+in metres (the model unit, as in the 3D files); crease patterns are in millimetres at their print
+scale. On a phone, slide a picture sideways or tap it for its full size.</p>
 <h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
 {under_load}

@@ -56,7 +56,8 @@ def far_pairs(
     >>> x = np.array(
     ...     [[[0.0, 0, 0], [1, 0, 0]], [[0, 0, 0.01], [1, 0, 0.01]], [[0, 0, 0], [5, 0, 0]]]
     ... )  # 3 curves × 2 samples
-    >>> # curves (0, 0) and (0, 1) are one step apart: touching is theirs; (2, 2) is two steps from both
+    >>> # curves (0, 0) and (0, 1) are one step apart: touching is theirs; (2, 2) is two steps
+    >>> # from both
     >>> arc = np.array([[0.0, 1.0], [0.0, 1.0], [0.0, 5.0]])
     >>> far_pairs(
     ...     x.reshape(-1, 3), np.array([[0, 0], [0, 1], [2, 2]]), arc, radius=0.1, reach=2.0

@@ -487,7 +487,8 @@ class BarHingeModel(FrozenArrays):
         ...     [1.0],
         ...     np.ones(4),
         ... )  # four bars, a diagonal and its hinge
-        >>> square.bar_stiffness_matrix().toarray().diagonal().tolist()  # no membranes: the bars' own EA/L
+        >>> # no membranes: the bars' own EA/L
+        >>> square.bar_stiffness_matrix().toarray().diagonal().tolist()
         [1.0, 1.0, 1.0, 1.0, 1.0]
         """
         B = len(self.bars)

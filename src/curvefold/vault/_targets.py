@@ -242,8 +242,9 @@ def _fit_tube_count(design: VaultDesign, given: dict, rtol: float) -> TargetFit:
         if fit.reached:
             return replace(
                 fit,
-                note=f'tubes = "max": {tubes} tubes, the most that reach these targets (at most {most}, the most before '
-                f"regression at a = {design.a:g}, p_xy = {design.p_xy:g})",
+                note=f'tubes = "max": {tubes} tubes, the most that reach these targets (at most '
+                f"{most}, the most before regression at a = {design.a:g}, "
+                f"p_xy = {design.p_xy:g})",
             )
     return replace(
         fit,
