@@ -63,6 +63,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import cast
 
 from ..geometry._contact import first_contact
 from ..geometry._crease import Crease, check_fold_angles
@@ -312,8 +313,7 @@ def certify(
     if structure is not None and structure.lattice.rigid:
         return _certify_rigid(structure, vault, _certified_angles(structure, fold_angles, degrees))
     if structure is not None:
-        assert isinstance(structure.lattice.crease, Crease)  # not rigid: a smooth lattice's
-        crease = structure.lattice.crease
+        crease = cast(Crease, structure.lattice.crease)  # not rigid: a smooth lattice's
     elif fold_angles is not None:
         raise InputError(
             "fold_angles: a single curved fold is certified in the one state it is built in"

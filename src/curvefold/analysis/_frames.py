@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import cast
 
 import numpy as np
 
@@ -179,8 +180,7 @@ class Shared:
         """Every strip's width at t = 0 and the log-width law ``∓∫₀^s κ_2D cot β ds`` it follows
         (− for a left strip, :func:`~curvefold.analysis._measure.width_integral`), (1, 4, 1)
         and (1, 4, n): of the pattern every frame folds."""
-        lattice = self.structure.lattice
-        assert isinstance(lattice, Lattice), "the width law of a smooth lattice"
+        lattice = cast(Lattice, self.structure.lattice)  # the width law of a smooth lattice
         pattern = lattice.pattern
         law = measure.width_integral(pattern.kappa_2d, pattern.beta, pattern.s)
         left = (STRIP_SIDES == "L")[None, :, None]
@@ -287,8 +287,7 @@ class Frame:
     @property
     def smooth_crease(self) -> Crease:
         """:attr:`crease`, of a smooth frame (what the crease and smooth checks read)."""
-        assert isinstance(self.crease, Crease), "a frame of a smooth crease"
-        return self.crease
+        return cast(Crease, self.crease)  # a frame of a smooth crease
 
     @property
     def common(self) -> Shared:

@@ -41,6 +41,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import cast
 
 import numpy as np
 
@@ -535,8 +536,8 @@ def certified_mechanism(structure: Structure, budget: int = CERTIFY_UNKNOWNS) ->
         )
     if _unknowns(part, 1) > budget:
         n = max(1, budget // 12 - 1)  # 4 lattice polylines of n + 1 vertices, 3 unknowns each
-        assert isinstance(lattice, PanelLattice), "a tube too large for the budget is one of panels"
-        part = Structure.from_cells(lattice.head(n), structure.cells[:1])
+        # a tube too large for the budget is one of panels
+        part = Structure.from_cells(cast(PanelLattice, lattice).head(n), structure.cells[:1])
         scope = f"the first {n} of the {len(lattice.s) - 1} panels of tube 1"
     return CertifiedMechanism(part, scope, analyse(part))
 

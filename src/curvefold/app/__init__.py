@@ -5,6 +5,7 @@ registry of kinds of design a new kind registers with (:func:`register_kind`).
 """
 
 from ..kernel._exports import lazy_exports as _lazy_exports
+from . import _standard_kinds  # noqa: F401  (registers the built-in kinds before any use)
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(

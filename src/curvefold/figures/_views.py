@@ -494,8 +494,8 @@ def plot_crease(
     )
     # An RGB array is a colour to matplotlib, not to its stubs
     surfaces = Patch(
-        facecolor=STRIP_RGB,
-        edgecolor="#999999",  # type: ignore[arg-type]
+        facecolor=STRIP_RGB,  # type: ignore[arg-type]
+        edgecolor="#999999",
         label="developable surfaces",
     )
     ax.legend(
