@@ -282,5 +282,5 @@ def test_the_designer_schema_says_which_kinds_stand_and_whose_targets_are_whose(
 
     schema = api.schema()
     assert schema["grounded"] == ["vault"]
-    targets = {(t["kind"], t["name"]) for t in schema["targets"]}
+    targets = {(t["design_kind"], t["name"]) for t in schema["targets"]}
     assert targets == {("vault", "span"), ("vault", "rise"), ("vault", "p_xz")}

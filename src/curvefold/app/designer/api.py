@@ -152,11 +152,11 @@ def schema() -> dict:
     ``optional`` (kind → its optional sections), ``grounded`` (the kinds that stand on the
     ground: a vault, whose fold stops at its first contact), ``sections`` (section → list of
     specs with name, label, kind, unit, help, choices, default and range; ``""`` is the top
-    level), ``targets`` (the kinds' target specs, a vault's, with their kind and the parameter
-    each replaces), ``formats`` (the registry: name, extension, what the file holds, the kinds
-    it is written for),
-    ``state`` (the spec of the files' fold angle) and ``units`` (how the page names the
-    schema's units, :data:`curvefold.figures._report.UNITS_SHOWN`). Read from the registry of
+    level), ``targets`` (the kinds' target specs, a vault's, each with its ``design_kind`` and
+    the parameter it replaces; its ``kind`` is its value's, as every spec's), ``formats`` (the
+    registry: name, extension, what the file holds, the kinds it is written for), ``state`` (the
+    spec of the files' fold angle) and ``units`` (how the page names the schema's units,
+    :data:`curvefold.figures._report.UNITS_SHOWN`). Read from the registry of
     kinds (:mod:`curvefold.app._kinds`), once for each state of it.
     """
     return _schema(registry_version())
@@ -167,7 +167,7 @@ def _kind_targets(kind: DesignKind) -> list[dict]:
         return []
     replaces = kind.targets.replaces()
     return [
-        _spec_json(spec, kind.name) | {"kind": kind.name, "replaces": replaces[spec.name]}
+        _spec_json(spec, kind.name) | {"design_kind": kind.name, "replaces": replaces[spec.name]}
         for spec in kind.targets.specs()
     ]
 
