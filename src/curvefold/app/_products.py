@@ -381,7 +381,7 @@ def _fold(
     return files
 
 
-def _pattern(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
+def _pattern(built: BuiltStructure | BuiltCrease, names: tuple[str, ...], folder: Path) -> list:
     """The crease patterns, from the one layout of the design
     (:attr:`~curvefold.app._build.Built.layout`)."""
     from ..io._pattern import write_layout
@@ -472,21 +472,6 @@ def _single_fold_fold(
     ]
 
 
-def _single_fold_pattern(built: BuiltCrease, names: tuple[str, ...], folder: Path) -> list:
-    """A single fold's crease pattern, from its one layout
-    (:attr:`~curvefold.app._build.Built.layout`)."""
-    from ..io._pattern import write_layout
-
-    return list(
-        write_layout(
-            folder / f"{built.design.kind}-pattern",
-            built.layout,
-            formats=names,
-            rulings=built.design.output.rulings,
-        )
-    )
-
-
 def _single_fold_model(
     built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
 ) -> list:
@@ -507,13 +492,13 @@ def _single_fold_model(
 
 
 #: Progress label and job of every family of formats a single curved fold writes.
-_SINGLE_FOLD_JOBS = {
+_SINGLE_FOLD_JOBS: dict[str, tuple[str, Callable[..., list]]] = {
     "fold": ("FOLD files", _single_fold_fold),
-    "pattern": ("crease patterns", _single_fold_pattern),
+    "pattern": ("crease patterns", _pattern),
     "model": ("3D models", _single_fold_model),
 }
 #: Progress label and job of every family of formats.
-_FAMILY_JOBS = {
+_FAMILY_JOBS: dict[str, tuple[str, Callable[..., list]]] = {
     "fold": ("FOLD files", _fold),
     "pattern": ("crease patterns", _pattern),
     "guide": ("assembly guide", _guide),
