@@ -5,7 +5,13 @@ registry of kinds of design a new kind registers with (:func:`register_kind`).
 """
 
 from ..kernel._exports import lazy_exports as _lazy_exports
-from . import _standard_kinds  # noqa: F401  (registers the built-in kinds before any use)
+from ..kernel._threads import blas_loads_on_one_thread as _blas_loads_on_one_thread
+
+# The built-in kinds are registered before any use. Their sections load NumPy: the application
+# (the command line, the designer) loads it with one BLAS thread (kernel._threads), as its small
+# problems run fastest that way; a library loaded before keeps its threads.
+with _blas_loads_on_one_thread():
+    from . import _standard_kinds  # noqa: F401
 
 # The public names by module, imported when first asked for (kernel.exports).
 __all__, __getattr__, __dir__ = _lazy_exports(
