@@ -65,8 +65,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 from ..geometry._contact import first_contact
-from ..geometry._crease import Crease, check_fold_angles
+from ..geometry._crease import Crease
 from ..geometry._curve import SpaceCurve
+from ..geometry._fold_angle import check_fold_angles
 from ..geometry._lattice import Lattice, Pattern
 from ..geometry._structure import Structure
 from ..kernel._errors import InputError

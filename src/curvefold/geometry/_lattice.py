@@ -35,8 +35,10 @@ from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError, RegressionError
 from ..kernel._functions import Constant, ScalarFunction, check_finite
 from ..kernel._lie import GAUSS3_WEIGHTS
-from ._crease import Crease, half_angle, ruling_vectors
+from ._crease import Crease
+from ._crease_laws import ruling_vectors
 from ._curve import SpaceCurve, gauss_nodes, integrate_frenet
+from ._fold_angle import half_angle
 from ._topology import Topology
 
 __all__ = [

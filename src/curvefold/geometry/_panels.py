@@ -29,8 +29,8 @@ import numpy as np
 
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
-from ._crease import half_angle
 from ._curve import FramedCurve
+from ._fold_angle import half_angle
 from ._lattice import (
     Lattice,
     RegressionDomain,
