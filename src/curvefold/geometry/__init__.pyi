@@ -12,8 +12,8 @@ from ._fold_arrays import structure_metadata as structure_metadata
 from ._kinds import FoldedCrease as FoldedCrease
 from ._kinds import StructureLattice as StructureLattice
 from ._lattice import Lattice as Lattice
-from ._lattice import Pattern as Pattern
-from ._lattice import RegressionDomain as RegressionDomain
+from ._lattice_pattern import Pattern as Pattern
+from ._lattice_pattern import RegressionDomain as RegressionDomain
 from ._mesh import Mesh as Mesh
 from ._mesh import fold_angles as fold_angles
 from ._panel_pattern import PanelPattern as PanelPattern
