@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._canvas import Canvas, colour_key, legend, viridis, write_png
+from ._canvas import Canvas, colour_key, legend
 from ._motion import raster
 from ._plots import (
     DOMAIN_EDGE,
@@ -30,6 +30,7 @@ from ._plots import (
     singular_values_plot,
     width_plot,
 )
+from ._raster import viridis, write_png
 from ._scene import View, state_scene, vault_scene
 from ._views import (
     crease_legend,
