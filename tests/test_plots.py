@@ -21,6 +21,7 @@ from matplotlib.patches import Polygon  # noqa: E402
 from PIL import ImageSequence  # noqa: E402
 
 from curvefold.figures import _motion as motion  # noqa: E402
+from curvefold.figures import _plot_data as plot_data  # noqa: E402
 from curvefold.figures import _plots as plots  # noqa: E402
 from curvefold.figures import _views as views  # noqa: E402
 from curvefold.io._gif import COLOURS, write_gif  # noqa: E402
@@ -207,7 +208,7 @@ def test_vault_view(vault, tmp_path):
     edges = coll.get_edgecolors()
     red, blue = (
         np.array(Image.new("RGB", (1, 1), c).getpixel((0, 0))) / 255
-        for c in (plots.KIND_COLORS["fold"], plots.KIND_COLORS["seam"])
+        for c in (plot_data.KIND_COLORS["fold"], plot_data.KIND_COLORS["seam"])
     )
     assert np.isclose(edges[:, :3], red, atol=1e-3).all(axis=1).any()
     assert np.isclose(edges[:, :3], blue, atol=1e-3).all(axis=1).any()
@@ -229,11 +230,11 @@ def test_figures_draw_the_polygons_of_their_scenes(vault, block):
     for fig, scene in (
         (
             views.plot_vault(vault, angle=60.0),
-            vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0),
+            vault_scene(vault, colors=plot_data.KIND_COLORS, angle=60.0),
         ),
         (
             views.plot_structure(block, fold_angle=30.0),
-            state_scene(block.state(30.0), colors=plots.KIND_COLORS),
+            state_scene(block.state(30.0), colors=plot_data.KIND_COLORS),
         ),
     ):
         ax = fig.axes[0]
@@ -516,7 +517,7 @@ def test_the_domain_polygon_is_scipys_halfspace_intersection(vault, block):
 
 
 def test_regression_domain_picture_shades_the_valid_set(vault, tmp_path):
-    plot = plots.domain_plot(vault.lattice, vault.structure.cells)
+    plot = plot_data.domain_plot(vault.lattice, vault.structure.cells)
     picture = pictures.regression_domain_picture(vault.lattice, vault.structure.cells)
     assert picture.size == (960, 810) and picture.mode == "RGB"
     rng = np.random.default_rng(7)
@@ -599,7 +600,7 @@ def test_pictures_are_drawn_from_the_figures_content(vault, block, tmp_path):
 
 
 def test_the_width_plot_and_its_picture_agree(vault):
-    plot = plots.width_plot(vault.lattice)
+    plot = plot_data.width_plot(vault.lattice)
     assert_allclose(plot.ratio, vault.lattice.width_right / vault.lattice.width_left)
     assert [text for text, _ in plot.notes] == [
         f"{vault.design.p_xy:.4g} at t = 0",
@@ -625,7 +626,7 @@ def test_singular_values_picture(tmp_path):
         State("flat", np.logspace(0, -16, 30), 1e-10),
         State("design", np.logspace(0, -15, 30), 1e-10),
     ]
-    plot = plots.singular_values_plot(states)
+    plot = plot_data.singular_values_plot(states)
     assert_allclose(plot.values[0][-1], 1.0) and plot.labels[0].startswith(
         "flat: 1 internal DOF (7 null), gap 1.0e+08"
     )

@@ -22,7 +22,7 @@ from ..geometry._lattice import check_anchor
 from ..io._gif import write_gif
 from ..kernel._errors import InputError
 from ._canvas import Canvas, draw_ground, draw_scene
-from ._plots import KIND_COLORS, structure_of
+from ._plot_data import KIND_COLORS, structure_of
 from ._scene import Scene, View, motion_scenes
 
 if TYPE_CHECKING:  # pragma: no cover
