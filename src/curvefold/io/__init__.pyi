@@ -8,6 +8,7 @@ from ._fold import write_sheet_fold as write_sheet_fold
 from ._fold import write_structure_fold as write_structure_fold
 from ._fold_reading import FoldFile as FoldFile
 from ._fold_reading import read_fold as read_fold
+from ._gltf import GlbOptions as GlbOptions
 from ._gltf import write_glb as write_glb
 from ._layout import Layout as Layout
 from ._layout import layout_sheets as layout_sheets
@@ -19,6 +20,9 @@ from ._mesh3d import write_ply as write_ply
 from ._mesh3d import write_stl as write_stl
 from ._models import MODEL_FORMATS as MODEL_FORMATS
 from ._models import write_3d as write_3d
+from ._output import FoldOutput as FoldOutput
+from ._output import ModelOutput as ModelOutput
+from ._output import PatternOutput as PatternOutput
 from ._pattern import PATTERN_FORMATS as PATTERN_FORMATS
 from ._pattern import layout_pattern as layout_pattern
 from ._pattern import write_dxf as write_dxf
@@ -26,6 +30,7 @@ from ._pattern import write_layout as write_layout
 from ._pattern import write_pattern as write_pattern
 from ._pattern import write_pdf as write_pdf
 from ._pattern import write_svg as write_svg
+from ._rhino import RhinoOptions as RhinoOptions
 from ._rhino import write_3dm as write_3dm
 
 __all__ = [
@@ -36,6 +41,7 @@ __all__ = [
     "write_structure_fold",
     "FoldFile",
     "read_fold",
+    "GlbOptions",
     "write_glb",
     "Layout",
     "layout_sheets",
@@ -48,6 +54,9 @@ __all__ = [
     "MODEL_FORMATS",
     "write_3d",
     "CUTTERS",
+    "FoldOutput",
+    "ModelOutput",
+    "PatternOutput",
     "PATTERN_FORMATS",
     "layout_pattern",
     "write_dxf",
@@ -55,5 +64,6 @@ __all__ = [
     "write_pattern",
     "write_pdf",
     "write_svg",
+    "RhinoOptions",
     "write_3dm",
 ]
