@@ -30,6 +30,7 @@ from curvefold.io._formats import FAMILIES, FORMATS
 from curvefold.io._tables import PAGES
 from curvefold.kernel import InputError, InternalError, as_function
 from curvefold.vault import _atlas as atlas
+from curvefold.vault._sweep import run_atlas
 
 BETA_LEFT = "80 + 10*sin(pi*s/3)"
 ALPHA_DESIGN = (
@@ -308,9 +309,9 @@ def test_the_atlas_lets_bugs_propagate(monkeypatch):
 
     monkeypatch.setattr(atlas.Sketch, "from_vault", broken)
     with pytest.raises(InputError, match="a bug while drawing"):
-        atlas.run_atlas([0.75], [0.3], samples=41, workers=1)
+        run_atlas([0.75], [0.3], samples=41, workers=1)
     # a refused design is still a record
-    record = atlas.run_atlas([0.75], [1.5], samples=41, workers=1).records[0]
+    record = run_atlas([0.75], [1.5], samples=41, workers=1).records[0]
     assert record["valid"] is False and record["error"] == "ConvergenceError"
 
 

@@ -27,7 +27,9 @@ from curvefold.io._records import csv_records, json_records
 from curvefold.vault import A_MAX, Vault, VaultDesign
 from curvefold.vault import _atlas as atlas_module
 from curvefold.vault import _cluster as cluster_module
-from curvefold.vault._atlas import FIELDS, METRICS, Atlas, AtlasGrid, run_atlas, sweep
+from curvefold.vault import _sweep as sweep_module
+from curvefold.vault._atlas import FIELDS, METRICS, Atlas, AtlasGrid
+from curvefold.vault._sweep import run_atlas, sweep
 
 pytest.importorskip("matplotlib")
 distributed = pytest.importorskip("distributed")
@@ -342,7 +344,7 @@ def test_bugs_are_not_swallowed(where, cluster, monkeypatch):
         raise RuntimeError("a bug, not an invalid design")
 
     # the cluster's workers run in this process
-    monkeypatch.setattr(atlas_module, "evaluate_design", broken)
+    monkeypatch.setattr(sweep_module, "evaluate_design", broken)
     with pytest.raises(RuntimeError, match="a bug"):
         run_atlas(
             [0.75],
@@ -608,10 +610,10 @@ def _within_rows(sizes, cols):
     [(40, 40, 2), (200, 200, 2), (24, 24, 4), (5000, 1, 2), (1, 1000, 2), (3, 7, 2), (1, 1, 1)],
 )
 def test_tasks_cover_the_grid_shrink_and_never_straddle_two_rows(rows, cols, threads):
-    sizes = list(atlas_module.task_sizes(rows * cols, cols, threads))
+    sizes = list(sweep_module.task_sizes(rows * cols, cols, threads))
     assert sum(sizes) == rows * cols and _within_rows(sizes, cols)
-    assert max(sizes) <= max(atlas_module.CHUNK, min(cols, rows * cols))
-    assert min(sizes[:-1], default=atlas_module.MIN_CHUNK) >= min(atlas_module.MIN_CHUNK, cols)
+    assert max(sizes) <= max(sweep_module.CHUNK, min(cols, rows * cols))
+    assert min(sizes[:-1], default=sweep_module.MIN_CHUNK) >= min(sweep_module.MIN_CHUNK, cols)
     if len(sizes) > 2 * threads:  # guided: the last tasks are the smallest
         assert sizes[-1] <= min(sizes[: 2 * threads])
     # the sweep's cut before: 100 designs a task on rows of 40
@@ -635,7 +637,7 @@ def test_a_serial_sweep_hands_out_each_design_before_the_next_runs(monkeypatch):
         events.append(("built", a, p))
         return evaluate(a, p, **kwargs)
 
-    monkeypatch.setattr(atlas_module, "evaluate_design", logged)
+    monkeypatch.setattr(sweep_module, "evaluate_design", logged)
     grid = AtlasGrid.of([0.75, 1.0], [0.3, 1.5], samples=41)
     for record, _ in sweep(grid, workers=1):
         events.append(("out", record["a"], record["p_xy"]))

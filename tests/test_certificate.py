@@ -15,6 +15,7 @@ import pytest
 
 import curvefold.geometry._crease as crease_module
 import curvefold.geometry._lattice as lattice_module
+import curvefold.geometry._lattice_pattern as pattern_module
 import curvefold.geometry._panel_pattern as panel_pattern_module
 import curvefold.geometry._panels as panels_module
 import curvefold.vault._assembly as assembly
@@ -282,7 +283,7 @@ def _pattern_curvature_off(cls, crease, width_left, width_right):
     )
 
 
-_from_crease = lattice_module.Pattern.from_crease.__func__
+_from_crease = pattern_module.Pattern.from_crease.__func__
 
 
 def _paper_arch(a):
@@ -360,7 +361,7 @@ DAMAGES = {
         {"eq2_planar_curvature", "fold_angles", "isometry"},
     ),
     "pattern curvature from a 20 % wrong alpha": (
-        (lattice_module.Pattern, "from_crease", classmethod(_pattern_curvature_off)),
+        (pattern_module.Pattern, "from_crease", classmethod(_pattern_curvature_off)),
         tube,
         {"eq2_planar_curvature"},
     ),
@@ -375,7 +376,7 @@ DAMAGES = {
         {"developability", "ruling_quad_planarity"},
     ),
     "width law with tau tan alpha at 60 degrees (Eq. 12)": (
-        (lattice_module, "log_width_ratio", _paper_width_law),
+        (pattern_module, "log_width_ratio", _paper_width_law),
         lambda: tube(fold_angle=60.0),
         {"width_law"},
     ),
@@ -475,7 +476,7 @@ def test_paper_arch_fails_the_ground_and_the_arch(monkeypatch):
 
 
 def test_vault_width_law_damage_fails_the_proportion_change(monkeypatch):
-    monkeypatch.setattr(lattice_module, "log_width_ratio", _paper_width_law)
+    monkeypatch.setattr(pattern_module, "log_width_ratio", _paper_width_law)
     assert "proportion_change" in failing(certify_vault(vault(fold_angle=60.0)))
 
 

@@ -6,13 +6,9 @@ from numpy.testing import assert_allclose
 
 from curvefold import Crease, InputError, RegressionError, SpaceCurve
 from curvefold.analysis._measure import derivative, developability_residual
-from curvefold.geometry._crease import (
-    QUADRANTS,
-    check_fold_angle,
-    check_fold_angles,
-    half_angle,
-    ruling_vectors,
-)
+from curvefold.geometry._crease import QUADRANTS
+from curvefold.geometry._crease_laws import ruling_vectors
+from curvefold.geometry._fold_angle import check_fold_angle, check_fold_angles, half_angle
 
 KAPPA = lambda s: 1.0 + 0.3 * np.sin(s)  # noqa: E731
 TAU = lambda s: 0.4 * np.cos(1.5 * s)  # noqa: E731

@@ -1056,6 +1056,20 @@ def test_pdf_text_is_centred_with_the_fonts_own_widths(tmp_path, tube_layout):
     assert right - left <= labels.text_width(note.text, note.size)
 
 
+def test_pdf_text_anchors_its_point_along_the_baseline():
+    """A line set from its start, centre or end: its matrix starts the text at x minus 0, ½
+    or 1 of its width; an anchor not known is refused where the line is made."""
+    width = pdf.text_advance("S12", 5.0)
+    for anchor, shift in (("start", 0.0), ("center", 0.5), ("end", 1.0)):
+        page = pdf.PdfDocument(title="anchors", layers=["labels"]).page(210.0, 297.0)
+        page.text(pdf.PdfText("S12", 100.0, 50.0, 5.0, "#000000", anchor=anchor, layer="labels"))
+        matrix = page.content().split(b" Tf ")[1].split(b" Tm")[0].split()
+        assert float(matrix[4]) == pytest.approx(100.0 - shift * width, abs=1e-4), anchor
+        assert float(matrix[5]) == 50.0
+    with pytest.raises(InputError, match="anchor must be 'start', 'center' or 'end', got 'left'"):
+        pdf.PdfText("S12", 100.0, 50.0, 5.0, "#000000", anchor="left")
+
+
 # --------------------------------------------------------------------------------------
 # atomic writes
 

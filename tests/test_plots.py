@@ -21,6 +21,7 @@ from matplotlib.patches import Polygon  # noqa: E402
 from PIL import ImageSequence  # noqa: E402
 
 from curvefold.figures import _motion as motion  # noqa: E402
+from curvefold.figures import _plot_data as plot_data  # noqa: E402
 from curvefold.figures import _plots as plots  # noqa: E402
 from curvefold.figures import _views as views  # noqa: E402
 from curvefold.io._gif import COLOURS, write_gif  # noqa: E402
@@ -207,7 +208,7 @@ def test_vault_view(vault, tmp_path):
     edges = coll.get_edgecolors()
     red, blue = (
         np.array(Image.new("RGB", (1, 1), c).getpixel((0, 0))) / 255
-        for c in (plots.KIND_COLORS["fold"], plots.KIND_COLORS["seam"])
+        for c in (plot_data.KIND_COLORS["fold"], plot_data.KIND_COLORS["seam"])
     )
     assert np.isclose(edges[:, :3], red, atol=1e-3).all(axis=1).any()
     assert np.isclose(edges[:, :3], blue, atol=1e-3).all(axis=1).any()
@@ -229,11 +230,11 @@ def test_figures_draw_the_polygons_of_their_scenes(vault, block):
     for fig, scene in (
         (
             views.plot_vault(vault, angle=60.0),
-            vault_scene(vault, colors=plots.KIND_COLORS, angle=60.0),
+            vault_scene(vault, colors=plot_data.KIND_COLORS, angle=60.0),
         ),
         (
             views.plot_structure(block, fold_angle=30.0),
-            state_scene(block.state(30.0), colors=plots.KIND_COLORS),
+            state_scene(block.state(30.0), colors=plot_data.KIND_COLORS),
         ),
     ):
         ax = fig.axes[0]
@@ -381,19 +382,19 @@ def test_plots_leave_pyplot_alone():
 
 # -- pictures drawn without matplotlib ------------------------------------------------------------
 
-from curvefold.figures import _canvas as canvas  # noqa: E402
 from curvefold.figures import _pictures as pictures  # noqa: E402
+from curvefold.figures import _raster as raster  # noqa: E402
 
 
 def test_nice_ticks_are_round_and_inside():
     for lo, hi in ((-11.7, 11.7), (0.058, 0.083), (-0.02, 1.02), (0.64, 1.48), (3e-5, 7e-5)):
-        ticks = canvas.nice_ticks(lo, hi, 7)
+        ticks = raster.nice_ticks(lo, hi, 7)
         assert lo <= ticks[0] and ticks[-1] <= hi and 3 <= len(ticks) <= 8
         step = np.diff(ticks)
         assert_allclose(step, step[0])
         mantissa = step[0] / 10 ** np.floor(np.log10(step[0]))
         assert np.isclose(mantissa, [1, 2, 5]).any()
-    assert canvas.tick_label(-5.0, 5.0) == "−5" and canvas.tick_label(0.065, 0.005) == "0.065"
+    assert raster.tick_label(-5.0, 5.0) == "−5" and raster.tick_label(0.065, 0.005) == "0.065"
 
 
 def test_viridis_and_inks_match_matplotlib_and_pillow():
@@ -402,10 +403,10 @@ def test_viridis_and_inks_match_matplotlib_and_pillow():
 
     t = np.linspace(0, 1, 41)
     # 11 stops, linear between
-    assert np.abs(canvas.viridis(t) - matplotlib.colormaps["viridis"](t)[:, :3]).max() < 0.06
+    assert np.abs(raster.viridis(t) - matplotlib.colormaps["viridis"](t)[:, :3]).max() < 0.06
     draw = ImageDraw.Draw(Image.new("RGB", (1, 1)))
     colours = np.array([[0, 0, 0], [1, 0.5, 0.25], [0.2, 0.9, 1]])
-    assert canvas.inks(colours) == [
+    assert raster.inks(colours) == [
         draw.draw.draw_ink(tuple(int(round(255 * v)) for v in c)) for c in colours
     ]
 
@@ -417,7 +418,7 @@ def test_dashes_follow_the_polyline():
     line = np.cumsum(rng.normal(size=(60, 2)), axis=0)
     line[20] = line[19]  # a vertex twice
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(line, axis=0), axis=1))])
-    dashes = canvas._dashed(line, 3.0, 1.5)
+    dashes = raster._dashed(line, 3.0, 1.5)
     assert len(dashes) == len(np.arange(0.0, s[-1], 4.5))
     for a, dash in zip(np.arange(0.0, s[-1], 4.5), dashes):
         b = min(a + 3.0, s[-1])
@@ -431,8 +432,8 @@ def test_dashes_follow_the_polyline():
         )
         assert np.array_equal(dash, expected)
     # damaged: the line run backwards
-    assert not np.array_equal(canvas._dashed(line[::-1], 3.0, 1.5)[0], dashes[0])
-    assert [d.tolist() for d in canvas._dashed(line, 0.0, 0.0)] == [line.tolist()]
+    assert not np.array_equal(raster._dashed(line[::-1], 3.0, 1.5)[0], dashes[0])
+    assert [d.tolist() for d in raster._dashed(line, 0.0, 0.0)] == [line.tolist()]
 
 
 def test_wide_lines_have_pillows_joints_where_they_bend():
@@ -447,7 +448,7 @@ def test_wide_lines_have_pillows_joints_where_they_bend():
         if joints:
             draw.line(points.ravel().tolist(), fill=ink, width=9, joint="curve")
         else:
-            canvas._line(draw, points, ink, 9)
+            raster._line(draw, points, ink, 9)
         return np.asarray(image, int)
 
     bend = np.array([[10.0, 100.0], [60.0, 20.0], [110.0, 100.0]])
@@ -470,13 +471,13 @@ def test_png_bytes_hold_the_pictures_pixels(tmp_path):
     rng = np.random.default_rng(3)
     pixels = rng.integers(0, 256, (37, 53, 3), dtype=np.uint8)
     pixels[10:20] = [236, 230, 218]  # flat runs, as in the pictures
-    path = canvas.write_png(Image.fromarray(pixels), tmp_path / "x.png")
+    path = raster.write_png(Image.fromarray(pixels), tmp_path / "x.png")
     with Image.open(path) as im:
         assert (im.format, im.mode, im.size) == ("PNG", "RGB", (53, 37))
         assert np.array_equal(np.asarray(im), pixels)
     assert np.array_equal(
         np.asarray(
-            Image.open(io.BytesIO(canvas.png_bytes(Image.fromarray(pixels).convert("RGBA"))))
+            Image.open(io.BytesIO(raster.png_bytes(Image.fromarray(pixels).convert("RGBA"))))
         ),
         pixels,
     )
@@ -516,7 +517,7 @@ def test_the_domain_polygon_is_scipys_halfspace_intersection(vault, block):
 
 
 def test_regression_domain_picture_shades_the_valid_set(vault, tmp_path):
-    plot = plots.domain_plot(vault.lattice, vault.structure.cells)
+    plot = plot_data.domain_plot(vault.lattice, vault.structure.cells)
     picture = pictures.regression_domain_picture(vault.lattice, vault.structure.cells)
     assert picture.size == (960, 810) and picture.mode == "RGB"
     rng = np.random.default_rng(7)
@@ -599,7 +600,7 @@ def test_pictures_are_drawn_from_the_figures_content(vault, block, tmp_path):
 
 
 def test_the_width_plot_and_its_picture_agree(vault):
-    plot = plots.width_plot(vault.lattice)
+    plot = plot_data.width_plot(vault.lattice)
     assert_allclose(plot.ratio, vault.lattice.width_right / vault.lattice.width_left)
     assert [text for text, _ in plot.notes] == [
         f"{vault.design.p_xy:.4g} at t = 0",
@@ -625,7 +626,7 @@ def test_singular_values_picture(tmp_path):
         State("flat", np.logspace(0, -16, 30), 1e-10),
         State("design", np.logspace(0, -15, 30), 1e-10),
     ]
-    plot = plots.singular_values_plot(states)
+    plot = plot_data.singular_values_plot(states)
     assert_allclose(plot.values[0][-1], 1.0) and plot.labels[0].startswith(
         "flat: 1 internal DOF (7 null), gap 1.0e+08"
     )

@@ -22,7 +22,7 @@ from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from curvefold import Crease, Lattice, SpaceCurve, Structure, measure
-from curvefold.geometry._lattice import Pattern, log_width_ratio
+from curvefold.geometry._lattice_pattern import Pattern, log_width_ratio
 
 SAMPLES, LENGTH = 401, 2.0
 

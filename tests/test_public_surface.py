@@ -426,7 +426,7 @@ STUB_DAMAGES = {
         ("from ._mesh import Mesh as Mesh\n", "from ._mesh import Mesh as Mesh, Part as Part\n"),
         ('    "Mesh",\n', '    "Mesh",\n    "Part",\n'),
     ],
-    "a name not imported": [("from ._lattice import Pattern as Pattern\n", "")],
+    "a name not imported": [("from ._lattice_pattern import Pattern as Pattern\n", "")],
     "a name from another module": [
         ("from ._structure import State as State\n", "from ._lattice import Lattice as State\n"),
     ],

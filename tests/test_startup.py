@@ -74,6 +74,7 @@ NOT_AT_START = (
     "curvefold.analysis._checks",
     "curvefold.analysis._foldcheck",
     "curvefold.vault._atlas",
+    "curvefold.vault._sweep",
     "importlib.metadata",
     "tomllib",
 )

@@ -66,9 +66,11 @@ from dataclasses import dataclass, replace
 from typing import cast
 
 from ..geometry._contact import first_contact
-from ..geometry._crease import Crease, check_fold_angles
+from ..geometry._crease import Crease
 from ..geometry._curve import SpaceCurve
-from ..geometry._lattice import Lattice, Pattern
+from ..geometry._fold_angle import check_fold_angles
+from ..geometry._lattice import Lattice
+from ..geometry._lattice_pattern import Pattern
 from ..geometry._structure import Structure
 from ..kernel._errors import InputError
 from ..vault._assembly import Vault

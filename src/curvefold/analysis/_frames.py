@@ -18,7 +18,8 @@ import numpy as np
 
 from ..geometry._crease import Crease
 from ..geometry._kinds import FoldedCrease
-from ..geometry._lattice import Lattice, constant_alpha
+from ..geometry._lattice import Lattice
+from ..geometry._lattice_pattern import constant_alpha
 from ..geometry._mesh import edges_along, edges_faces, vector_areas
 from ..geometry._structure import State, Structure
 from ..geometry._topology import CORNER_KINDS, CORNERS, STRIPS, Topology, is_tube_numbering

@@ -276,7 +276,8 @@ def write_atlas(
     from ..figures._atlas import atlas_figure, view_step
     from ..figures._plots import save_figure
     from ..io._records import csv_records, json_records
-    from ..vault._atlas import FIELDS, Atlas, AtlasGrid, sweep, thin
+    from ..vault._atlas import FIELDS, Atlas, AtlasGrid, thin
+    from ..vault._sweep import sweep
     from ._products import can_draw, pictures_left_out
 
     grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples)

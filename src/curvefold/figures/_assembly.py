@@ -32,7 +32,7 @@ from ..io._labels import seam_name
 from ..io._layout import Layout
 from ..io._legend import check_layout
 from ..io._pattern import draw_footer
-from ..io._pdf import PdfDocument, PdfPage, advance_units
+from ..io._pdf import PdfDocument, PdfPage, PdfText, advance_units
 from ..io._planar import bounding_box
 from ..io._tables import COLOURS
 from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, ground_polygon, render_strips
@@ -209,13 +209,15 @@ class _Pages:
         for line in _wrap(words, size, self.width - indent):
             page = self.room(gap * size)
             page.text(
-                line,
-                self.left + indent,
-                self.y + 0.3 * size,
-                size,
-                _INK,
-                anchor="start",
-                layer=_LAYERS[0],
+                PdfText(
+                    line,
+                    self.left + indent,
+                    self.y + 0.3 * size,
+                    size,
+                    _INK,
+                    anchor="start",
+                    layer=_LAYERS[0],
+                )
             )
 
     def footers(self) -> None:

@@ -17,7 +17,8 @@ import numpy as np
 
 from ..geometry._structure import drawable
 from ..geometry._topology import tube_strips
-from ._plots import KIND_COLORS, new_figure
+from ._plot_data import KIND_COLORS
+from ._plots import new_figure
 from ._scene import View, ground_polygon, render_strips
 from ._views import _draw, _fit, _scale_bar
 

@@ -6,7 +6,7 @@ scale: the scenes of :func:`curvefold.figures._scene.motion_scenes` rasterised b
 writes them as the GIF of the output folder with :func:`curvefold.io._gif.write_gif`.
 Pillow comes with matplotlib (``pip install curvefold[plot]``), whose DejaVu Sans sets the
 titles: Pillow is imported when a frame is drawn, matplotlib never (its font file is found
-without running matplotlib: :func:`curvefold.figures._canvas.font_file`).
+without running matplotlib: :func:`curvefold.figures._raster.font_file`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from ..geometry._lattice import check_anchor
 from ..io._gif import write_gif
 from ..kernel._errors import InputError
 from ._canvas import Canvas, draw_ground, draw_scene
-from ._plots import KIND_COLORS, structure_of
+from ._plot_data import KIND_COLORS, structure_of
 from ._scene import Scene, View, motion_scenes
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -1,9 +1,9 @@
 """The report's pictures drawn with Pillow from NumPy, without matplotlib (optional: Pillow).
 
 Each picture draws what its matplotlib figure shows, from the same pure function
-(:func:`curvefold.figures._plots.domain_plot`, :func:`~curvefold.figures._plots.width_plot`,
-:func:`~curvefold.figures._plots.section_plot`,
-:func:`~curvefold.figures._plots.singular_values_plot`, the scenes and titles of
+(:func:`curvefold.figures._plot_data.domain_plot`, :func:`~curvefold.figures._plot_data.width_plot`,
+:func:`~curvefold.figures._plot_data.section_plot`,
+:func:`~curvefold.figures._plot_data.singular_values_plot`, the scenes and titles of
 :mod:`curvefold.figures._views`) on a :class:`curvefold.figures._canvas.Canvas`, at the figures'
 size and 150 dots per inch. :func:`write_picture` writes a picture as PNG, or a matplotlib figure
 (the pictures of a design under load) with :func:`~curvefold.figures._plots.save_figure`.
@@ -18,9 +18,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._canvas import Canvas, colour_key, legend, viridis, write_png
+from ._canvas import Canvas, colour_key, legend
 from ._motion import raster
-from ._plots import (
+from ._plot_data import (
     DOMAIN_EDGE,
     DOMAIN_FILL,
     KIND_COLORS,
@@ -30,6 +30,7 @@ from ._plots import (
     singular_values_plot,
     width_plot,
 )
+from ._raster import viridis, write_png
 from ._scene import View, state_scene, vault_scene
 from ._views import (
     crease_legend,

@@ -10,7 +10,7 @@ two-sidedly by their normal under a fixed light; the crease curves and the end r
 the strips are line segments, each drawn right after the nearest strip that borders it,
 so that whatever lies in front of that strip hides it too. Screen coordinates are in model
 units (the unit of the design's radius), x to the right, y up. The colours of the crease
-kinds are the caller's (:data:`curvefold.figures._plots.KIND_COLORS` for the figures).
+kinds are the caller's (:data:`curvefold.figures._plot_data.KIND_COLORS` for the figures).
 """
 
 from __future__ import annotations

@@ -18,7 +18,8 @@ import numpy as np
 from ..geometry._single_fold import default_widths
 from ..geometry._topology import sample_index, thin_cells
 from ..kernel._errors import InputError
-from ._plots import KIND_COLORS, UNITS, legend_handles, mathtext, new_figure
+from ._plot_data import KIND_COLORS, UNITS
+from ._plots import legend_handles, mathtext, new_figure
 from ._scene import (
     GROUND_COLOR,
     GROUND_EDGE,

@@ -12,8 +12,10 @@ __all__, __getattr__, __dir__ = _lazy_exports(
     __name__,
     {
         "_curve": ["SpaceCurve", "FramedCurve", "integrate_frenet"],
-        "_crease": ["Crease", "half_angle", "check_fold_angle"],
-        "_lattice": ["Lattice", "Pattern", "RegressionDomain"],
+        "_crease": ["Crease"],
+        "_fold_angle": ["half_angle", "check_fold_angle"],
+        "_lattice": ["Lattice"],
+        "_lattice_pattern": ["Pattern", "RegressionDomain"],
         "_kinds": ["StructureLattice", "FoldedCrease"],
         "_panels": ["PanelLattice", "PanelCrease", "PanelCurve"],
         "_panel_pattern": ["PanelPattern"],

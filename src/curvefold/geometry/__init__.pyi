@@ -2,18 +2,18 @@
 
 from ._contact import first_contact as first_contact
 from ._crease import Crease as Crease
-from ._crease import check_fold_angle as check_fold_angle
-from ._crease import half_angle as half_angle
 from ._curve import FramedCurve as FramedCurve
 from ._curve import SpaceCurve as SpaceCurve
 from ._curve import integrate_frenet as integrate_frenet
+from ._fold_angle import check_fold_angle as check_fold_angle
+from ._fold_angle import half_angle as half_angle
 from ._fold_arrays import FoldArrays as FoldArrays
 from ._fold_arrays import structure_metadata as structure_metadata
 from ._kinds import FoldedCrease as FoldedCrease
 from ._kinds import StructureLattice as StructureLattice
 from ._lattice import Lattice as Lattice
-from ._lattice import Pattern as Pattern
-from ._lattice import RegressionDomain as RegressionDomain
+from ._lattice_pattern import Pattern as Pattern
+from ._lattice_pattern import RegressionDomain as RegressionDomain
 from ._mesh import Mesh as Mesh
 from ._mesh import fold_angles as fold_angles
 from ._panel_pattern import PanelPattern as PanelPattern

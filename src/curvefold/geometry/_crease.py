@@ -16,29 +16,38 @@ Conventions (the paper's Eqs. 2, 5–8, with the torsion sign corrected, see DES
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError, RegressionError
 from ..kernel._functions import (
     Constant,
-    Differenced,
     FunctionLike,
     ScalarFunction,
     as_function,
     check_finite,
     difference_step,
 )
+from ._crease_laws import (
+    _check_pattern,
+    _fold_angle_rate,
+    _PatternCurvature,
+    _PatternFoldAngle,
+    _PatternTorsion,
+    _PrescribedRulingAngle,
+    _RulingAngle,
+    _VaryingRulingAngle,
+    ruling_vectors,
+)
 from ._curve import SpaceCurve, check_length, check_samples
+from ._fold_angle import half_angle
 from ._topology import quadrant_kind, quadrant_name
 
-__all__ = ["Crease", "QUADRANTS", "check_fold_angle", "check_fold_angles", "half_angle"]
+__all__ = ["Crease", "QUADRANTS"]
 
 #: The four surfaces a crease and its rulings define, by the signs of the ruling
 #: directions used on the left and right side: (sign_L, sign_R, kind), the kind by
@@ -47,117 +56,6 @@ QUADRANTS = {
     quadrant_name(sl, sr): (sl, sr, quadrant_kind(sl, sr))
     for sl, sr in ((1, 1), (-1, 1), (-1, -1), (1, -1))
 }
-
-
-def half_angle(
-    fold_angle: float | np.ndarray,
-    *,
-    degrees: bool = True,
-    name: str = "fold_angle",
-    allow_flat: bool = False,
-) -> float:
-    """Validate a fold angle 2α and return α in radians.
-
-    Parameters
-    ----------
-    fold_angle : float
-        The full fold angle 2α, in degrees by default.
-    degrees : bool, keyword-only
-        Whether ``fold_angle`` is in degrees (default) or radians.
-    allow_flat : bool, keyword-only
-        Accept 2α = 0 (the flat, two-ply state); the range is then [0°, 180°).
-
-    Examples
-    --------
-    >>> (
-    ...     round(float(half_angle(90.0)), 12),
-    ...     float(half_angle(0.0, allow_flat=True)),
-    ... )  # the flat state: α = 0
-    (0.785398163397, 0.0)
-    >>> half_angle(180.0)
-    Traceback (most recent call last):
-    ...
-    curvefold.kernel._errors.InputError: fold_angle must be in (0°, 180°), got 180.0 (2α = 180°
-    would need infinite curvature κ = κ_2D / cos α)
-    """
-    try:
-        value = float(fold_angle)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {fold_angle!r}") from None
-    full = np.radians(value) if degrees else value
-    unit, top = ("°", 180.0) if degrees else (" rad", np.pi)
-    low = "[0" if allow_flat else "(0"
-    if not np.isfinite(full) or full < 0 or (full == 0 and not allow_flat) or full >= np.pi:
-        extra = (
-            " (2α = 180° would need infinite curvature κ = κ_2D / cos α)"
-            if np.isfinite(full) and full >= np.pi
-            else " (0 in radians: below the smallest positive float)"
-            if full == 0 and value != 0
-            else ""
-        )
-        # -10, not np.int64(-10)
-        shown = fold_angle.item() if isinstance(fold_angle, np.generic) else fold_angle
-        raise InputError(f"{name} must be in {low}{unit}, {top:g}{unit}), got {shown!r}{extra}")
-    return 0.5 * full
-
-
-def check_fold_angle(
-    fold_angle: float, *, degrees: bool = True, name: str = "fold_angle", allow_flat: bool = False
-) -> float:
-    """Validate a fold angle 2α (as :func:`half_angle` does) and return it in degrees.
-
-    Examples
-    --------
-    >>> check_fold_angle(np.pi / 2, degrees=False)
-    90.0
-    >>> check_fold_angle(0.0)
-    Traceback (most recent call last):
-    ...
-    curvefold.kernel._errors.InputError: fold_angle must be in (0°, 180°), got 0.0
-    """
-    half_angle(fold_angle, degrees=degrees, name=name, allow_flat=allow_flat)
-    return float(fold_angle) if degrees else float(np.degrees(fold_angle))
-
-
-def check_fold_angles(
-    fold_angles: ArrayLike, *, degrees: bool = True, name: str = "fold_angles"
-) -> np.ndarray:
-    """Validate a non-empty sequence of fold angles 2α, each in [0°, 180°), and return them in
-    degrees.
-
-    Parameters
-    ----------
-    fold_angles : (A,) array_like
-        Degrees, or radians if ``degrees`` is False.
-    degrees : bool, keyword-only
-    name : str, keyword-only
-        The parameter named in the messages.
-
-    Returns
-    -------
-    (A,) ndarray
-
-    Examples
-    --------
-    >>> check_fold_angles([0, 45, 90]).tolist()
-    [0.0, 45.0, 90.0]
-    >>> check_fold_angles([])
-    Traceback (most recent call last):
-    ...
-    curvefold.kernel._errors.InputError: fold_angles must be a non-empty sequence of fold angles,
-    got shape (0,)
-    """
-    try:
-        arr = np.atleast_1d(np.asarray(fold_angles, float))
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a sequence of numbers, got {fold_angles!r}") from None
-    if arr.ndim != 1 or arr.size == 0:
-        raise InputError(
-            f"{name} must be a non-empty sequence of fold angles, got shape {np.shape(fold_angles)}"
-        )
-    for a in arr:
-        half_angle(a, degrees=degrees, name=name, allow_flat=True)
-    return arr if degrees else np.degrees(arr)
 
 
 @dataclass(frozen=True, eq=False)
@@ -629,185 +527,8 @@ class Crease(FrozenArrays):
         return np.stack(out)
 
 
-def ruling_vectors(
-    frames: np.ndarray, alpha: ArrayLike, beta_left: ArrayLike, beta_right: ArrayLike
-) -> tuple[np.ndarray, np.ndarray]:
-    """Rulings r_L, r_R (Eqs. 5–6) from frames (..., 3, 3) and angles (...,); each (..., 3)."""
-    a = np.asarray(alpha, float)[..., None]
-    bl = np.asarray(beta_left, float)[..., None]
-    br = np.asarray(beta_right, float)[..., None]
-    T, N, B = frames[..., 0], frames[..., 1], frames[..., 2]
-    ca, sa = np.cos(a), np.sin(a)
-    rl = np.cos(bl) * T + np.sin(bl) * (ca * N + sa * B)
-    rr = np.cos(br) * T + np.sin(br) * (-ca * N + sa * B)
-    return rl, rr
-
-
 def _quadrant(name: str) -> tuple[int, int, str]:
     try:
         return QUADRANTS[name]
     except KeyError:
         raise InputError(f"quadrant must be one of {', '.join(QUADRANTS)}, got {name!r}") from None
-
-
-def _fold_angle_rate(
-    kappa_2d: ScalarFunction,
-    beta_left: ScalarFunction,
-    beta_right: ScalarFunction,
-    s: np.ndarray,
-    alpha: np.ndarray,
-) -> np.ndarray:
-    """α' = ½ κ_2D tan α (cot β_L − cot β_R) (the corrected Eq. 3), shape of ``s``."""
-    return (
-        0.5 * kappa_2d(s) * np.tan(alpha) * (1 / np.tan(beta_left(s)) - 1 / np.tan(beta_right(s)))
-    )
-
-
-@dataclass(frozen=True)
-class _RulingAngle(ScalarFunction):
-    """β = atan2(κ sin α, τ) on both sides of a crease of constant α, with its exact derivative."""
-
-    kappa: ScalarFunction
-    tau: ScalarFunction
-    sin_alpha: float
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        return np.arctan2(self.kappa(s) * self.sin_alpha, self.tau(s))
-
-    def derivative(self, s: np.ndarray) -> np.ndarray:
-        k, t, sa = self.kappa(s), self.tau(s), self.sin_alpha
-        return (
-            sa
-            * (self.kappa.derivative(s) * t - k * self.tau.derivative(s))
-            / ((k * sa) ** 2 + t**2)
-        )
-
-
-@dataclass(frozen=True)
-class _VaryingRulingAngle(Differenced):
-    """β = atan2(κ sin α, τ + sign · α') for a varying α (sign +1 left, −1 right); β' by
-    differences."""
-
-    kappa: ScalarFunction
-    tau: ScalarFunction
-    alpha: ScalarFunction
-    sign: float
-    length: float
-    step: float
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        return np.arctan2(
-            self.kappa(s) * np.sin(self.alpha(s)),
-            self.tau(s) + self.sign * self.alpha.derivative(s),
-        )
-
-
-def _check_pattern(probe: np.ndarray, *functions: tuple[str, ScalarFunction, float]) -> None:
-    """Raise :class:`InputError` at the first probe where a (name, f, top) leaves (0, top), or is
-    not finite."""
-    for name, f, top in functions:
-        v = f(probe)
-        check_finite(v, name=name, s=probe)
-        bad = np.flatnonzero(~((v > 0) & (v < top)))
-        if bad.size:
-            i = bad[0]
-            need, shown = (
-                ("> 0 everywhere", f"{v[i]:.6g}")
-                if top == np.inf
-                else (f"in (0°, {np.degrees(top):g}°)", f"{np.degrees(v[i]):.6g}°")
-            )
-            raise InputError(f"{name} must be {need}; at s = {probe[i]:.6g} it is {shown}")
-
-
-@dataclass(frozen=True)
-class _PrescribedRulingAngle(Differenced):
-    """β_R of a crease with α(s) prescribed: cot β_R = cot β_L − 2α' / (κ_2D tan α) (corrected
-    Eq. 3)."""
-
-    kappa_2d: ScalarFunction
-    beta_left: ScalarFunction
-    alpha: ScalarFunction
-    length: float
-    step: float
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        a = self.alpha(s)
-        cot = 1 / np.tan(self.beta_left(s)) - 2 * self.alpha.derivative(s) / (
-            self.kappa_2d(s) * np.tan(a)
-        )
-        return np.arctan2(1.0, cot)
-
-
-@dataclass(frozen=True, eq=False)
-class _PatternFoldAngle(ScalarFunction):
-    """α(s) of a crease folded from its pattern: the ODE's dense output, α' from the ODE itself.
-
-    Attributes
-    ----------
-    solution : scipy.integrate.OdeSolution
-        Dense output of α' = ½ κ_2D tan α (cot β_L − cot β_R) (picklable).
-    kappa_2d, beta_left, beta_right : ScalarFunction
-        The pattern, β in radians.
-    """
-
-    solution: Callable[[np.ndarray], np.ndarray]
-    kappa_2d: ScalarFunction
-    beta_left: ScalarFunction
-    beta_right: ScalarFunction
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        return self.solution(s.ravel())[0].reshape(s.shape)
-
-    def derivative(self, s: np.ndarray) -> np.ndarray:
-        s = np.asarray(s, float)
-        return _fold_angle_rate(self.kappa_2d, self.beta_left, self.beta_right, s, self(s))
-
-
-@dataclass(frozen=True)
-class _PatternCurvature(ScalarFunction):
-    """κ = κ_2D / cos α of a crease folded from its pattern (Eq. 2), with its exact derivative."""
-
-    kappa_2d: ScalarFunction
-    alpha: ScalarFunction
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        return self.kappa_2d(s) / np.cos(self.alpha(s))
-
-    def derivative(self, s: np.ndarray) -> np.ndarray:
-        a, ca = self.alpha(s), np.cos(self.alpha(s))
-        return (
-            self.kappa_2d.derivative(s) / ca
-            + self.kappa_2d(s) * np.sin(a) * self.alpha.derivative(s) / ca**2
-        )
-
-
-@dataclass(frozen=True)
-class _PatternTorsion(ScalarFunction):
-    """τ = ½ κ_2D tan α (cot β_L + cot β_R) of a crease folded from its pattern (Eq. 4
-    corrected)."""
-
-    kappa_2d: ScalarFunction
-    alpha: ScalarFunction
-    beta_left: ScalarFunction
-    beta_right: ScalarFunction
-
-    def value(self, s: np.ndarray) -> np.ndarray:
-        return (
-            0.5
-            * self.kappa_2d(s)
-            * np.tan(self.alpha(s))
-            * (1 / np.tan(self.beta_left(s)) + 1 / np.tan(self.beta_right(s)))
-        )
-
-    def derivative(self, s: np.ndarray) -> np.ndarray:
-        k, a, bl, br = self.kappa_2d(s), self.alpha(s), self.beta_left(s), self.beta_right(s)
-        cot_sum = 1 / np.tan(bl) + 1 / np.tan(br)
-        d_cot_sum = (
-            -self.beta_left.derivative(s) / np.sin(bl) ** 2
-            - self.beta_right.derivative(s) / np.sin(br) ** 2
-        )
-        d_tan = self.alpha.derivative(s) / np.cos(a) ** 2
-        return 0.5 * (
-            (self.kappa_2d.derivative(s) * np.tan(a) + k * d_tan) * cot_sum
-            + k * np.tan(a) * d_cot_sum
-        )

@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike
 
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InternalError
-from ._crease import check_fold_angle, check_fold_angles
+from ._fold_angle import check_fold_angle, check_fold_angles
 from ._mesh import Mesh, edges_faces
 from ._mesh import fold_angles as dihedral_angles
 from ._sheets import PatternSheet, bonds, develop, folding_motion

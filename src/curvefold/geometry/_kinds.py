@@ -24,7 +24,8 @@ import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._curve import FramedCurve
-    from ._lattice import Lattice, RegressionDomain
+    from ._lattice import Lattice
+    from ._lattice_pattern import RegressionDomain
     from ._panels import PanelLattice
     from ._topology import Topology
 

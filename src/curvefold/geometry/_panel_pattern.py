@@ -53,7 +53,8 @@ from ..kernel._errors import InputError
 from ..kernel._lie import cross, dual_to_motion, exp_dual, prefix_dual
 from ..kernel._validate import Spec
 from ._curve import SpaceCurve
-from ._lattice import Pattern, RegressionDomain, _example_lattice  # noqa: F401  (the examples')
+from ._lattice import _example_lattice  # noqa: F401  (the examples')
+from ._lattice_pattern import Pattern, RegressionDomain
 
 __all__ = ["MAX_PANELS", "PANELS", "PanelPattern", "check_panels", "fold_line_angle"]
 

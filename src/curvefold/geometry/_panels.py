@@ -29,17 +29,16 @@ import numpy as np
 
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
-from ._crease import half_angle
 from ._curve import FramedCurve
+from ._fold_angle import half_angle
 from ._lattice import (
     Lattice,
-    RegressionDomain,
     _example_lattice,  # noqa: F401  (the examples' lattice)
     check_anchor,
     check_curves,
-    constant_alpha,
     lattice_points,
 )
+from ._lattice_pattern import RegressionDomain, constant_alpha
 from ._panel_pattern import PanelPattern
 from ._topology import Topology
 

@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike
 from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import InputError, InternalError
 from ..kernel._lie import cross
-from ._crease import check_fold_angle, check_fold_angles
+from ._fold_angle import check_fold_angle, check_fold_angles
 from ._mesh import Mesh, vector_areas
 from ._mesh import fold_angles as dihedral_angles
 from ._structure import State, Structure, check_structure

@@ -23,8 +23,9 @@ from numpy.typing import ArrayLike
 
 from ..kernel._errors import InputError
 from ..kernel._functions import ScalarFunction
-from ._crease import Crease, check_fold_angle
+from ._crease import Crease
 from ._curve import SpaceCurve
+from ._fold_angle import check_fold_angle
 from ._mesh import Mesh
 from ._sheets import PatternSheet
 from ._topology import SheetTopology, Topology, fold_assignment

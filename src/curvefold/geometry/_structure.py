@@ -25,7 +25,7 @@ import numpy as np
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
 from ..kernel._validate import check_integer
-from ._crease import half_angle
+from ._fold_angle import half_angle
 from ._mesh import Mesh
 from ._topology import (
     CORNER_KINDS,

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..geometry._crease import check_fold_angle, check_fold_angles
+from ..geometry._fold_angle import check_fold_angle, check_fold_angles
 from ..geometry._fold_arrays import structure_metadata
 from ..geometry._structure import Structure, check_structure
 from ..kernel._arrays import readonly

@@ -14,7 +14,7 @@ from pathlib import Path
 from ._cutters import LEGEND_LAYER
 from ._layout import Layout, Page
 from ._legend import check_layers, check_layout, check_line_width, layer_look, page_footer
-from ._pdf import PdfDocument, PdfPage
+from ._pdf import PdfDocument, PdfPage, PdfText
 
 __all__ = ["draw_footer", "write_pdf"]
 
@@ -42,12 +42,14 @@ def draw_footer(
             )
     for t in foot.texts:
         canvas.text(
-            t.text,
-            t.position[0],
-            t.position[1] - 0.35 * t.size,
-            t.size,
-            foot.colour,
-            layer=LEGEND_LAYER,
+            PdfText(
+                t.text,
+                t.position[0],
+                t.position[1] - 0.35 * t.size,
+                t.size,
+                foot.colour,
+                layer=LEGEND_LAYER,
+            )
         )
 
 
@@ -66,13 +68,15 @@ def _draw_page(
             for t in page.labels():
                 a = math.radians(t.angle)  # baseline 0.35 em below the centre, as in the SVG
                 canvas.text(
-                    t.text,
-                    t.position[0] + 0.35 * t.size * math.sin(a),
-                    t.position[1] - 0.35 * t.size * math.cos(a),
-                    t.size,
-                    colour,
-                    angle=t.angle,
-                    layer=layer,
+                    PdfText(
+                        t.text,
+                        t.position[0] + 0.35 * t.size * math.sin(a),
+                        t.position[1] - 0.35 * t.size * math.cos(a),
+                        t.size,
+                        colour,
+                        angle=t.angle,
+                        layer=layer,
+                    )
                 )
             continue
         lines = page.on_layer(key)

@@ -32,6 +32,7 @@ import math
 import os
 import zlib
 from collections.abc import Sequence
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
@@ -42,7 +43,7 @@ from ..kernel._text import one_line
 from ._atomic import atomic_write
 from ._tables import CREATOR, rgb8
 
-__all__ = ["PdfDocument", "PdfPage", "text_advance", "advance_units"]
+__all__ = ["PdfDocument", "PdfPage", "PdfText", "text_advance", "advance_units"]
 
 _PT_PER_MM = 72.0 / 25.4
 
@@ -219,6 +220,54 @@ def _drawn(operators: list[str], polylines: Sequence[np.ndarray]) -> str:
     return "".join(operators) % tuple(coordinates)
 
 
+#: Where a line of text's (x, y) is along its baseline, as a fraction of its width.
+_ANCHORS = {"start": 0.0, "center": 0.5, "end": 1.0}
+
+
+@dataclass(frozen=True)
+class PdfText:
+    """One line of Helvetica to draw on a page (:meth:`PdfPage.text`).
+
+    Attributes
+    ----------
+    text : str
+    x, y : float
+        The point (mm) the baseline goes through.
+    size : float
+        Em height in mm.
+    colour : str
+        ``"#rrggbb"``.
+    angle : float
+        Direction of the baseline in degrees, counter-clockwise from +x.
+    anchor : str
+        Where (x, y) is along the baseline: ``"start"``, ``"center"`` or ``"end"``.
+    layer : str or None
+        The layer it is drawn on; None for none.
+
+    Examples
+    --------
+    >>> PdfText("S1", 105.0, 20.0, 4.0, "#000000", anchor="start").anchor
+    'start'
+    >>> PdfText("S1", 105.0, 20.0, 4.0, "#000000", anchor="left")
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.InputError: anchor must be 'start', 'center' or 'end', got 'left'
+    """
+
+    text: str
+    x: float
+    y: float
+    size: float
+    colour: str
+    angle: float = 0.0
+    anchor: str = "center"
+    layer: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.anchor not in _ANCHORS:
+            raise InputError(f"anchor must be 'start', 'center' or 'end', got {self.anchor!r}")
+
+
 class PdfPage:
     """One page being drawn (see :meth:`PdfDocument.page`)."""
 
@@ -300,37 +349,19 @@ class PdfPage:
         )
         self._parts.append("Q\n")
 
-    def text(
-        self,
-        text: str,
-        x: float,
-        y: float,
-        size: float,
-        colour: str,
-        *,
-        angle: float = 0.0,
-        anchor: str = "center",
-        layer: str | None = None,
-    ) -> None:
-        """One line of Helvetica of em height ``size`` mm, its baseline through (x, y) turned by
-        ``angle`` degrees.
-
-        ``anchor`` is where (x, y) is along the baseline: ``"start"``, ``"center"`` or ``"end"``.
-        """
-        if anchor not in ("start", "center", "end"):
-            raise InputError(f"anchor must be 'start', 'center' or 'end', got {anchor!r}")
-        self._on(layer)
-        shift = {"start": 0.0, "center": 0.5, "end": 1.0}[anchor] * text_advance(
-            one_line(text), size
-        )
-        a = math.radians(angle)
+    def text(self, line: PdfText) -> None:
+        """One line of Helvetica of em height ``line.size`` mm, its baseline through
+        (``line.x``, ``line.y``) turned by ``line.angle`` degrees, on ``line.layer``."""
+        self._on(line.layer)
+        shift = _ANCHORS[line.anchor] * text_advance(one_line(line.text), line.size)
+        a = math.radians(line.angle)
         c, s = math.cos(a), math.sin(a)
-        x0, y0 = x - shift * c, y - shift * s
+        x0, y0 = line.x - shift * c, line.y - shift * s
         self._parts.append(
-            f"BT {_colour(colour)} rg /F1 {_num(size)} Tf {_num(c)} {_num(s)} "
+            f"BT {_colour(line.colour)} rg /F1 {_num(line.size)} Tf {_num(c)} {_num(s)} "
             f"{_num(-s)} {_num(c)} {_num(x0)} {_num(y0)} Tm "
         )
-        self._parts.append(_string(text) + b" Tj ET\n")
+        self._parts.append(_string(line.text) + b" Tj ET\n")
 
     def content(self) -> bytes:
         """The page's content stream (uncompressed)."""

@@ -17,9 +17,9 @@ from ._atlas import Atlas as Atlas
 from ._atlas import AtlasGrid as AtlasGrid
 from ._atlas import Sketch as Sketch
 from ._atlas import evaluate_design as evaluate_design
-from ._atlas import run_atlas as run_atlas
-from ._atlas import sweep as sweep
 from ._paper import paper_comparison as paper_comparison
+from ._sweep import run_atlas as run_atlas
+from ._sweep import sweep as sweep
 from ._targets import TargetFit as TargetFit
 from ._targets import fit_targets as fit_targets
 

@@ -35,9 +35,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..geometry._crease import Crease, half_angle
+from ..geometry._crease import Crease
 from ..geometry._curve import SpaceCurve, gauss_nodes, integrate_frenet
-from ..geometry._lattice import Pattern
+from ..geometry._fold_angle import half_angle
+from ..geometry._lattice_pattern import Pattern
 from ..geometry._panel_pattern import PanelPattern, check_panels
 from ..kernel._arrays import readonly
 from ..kernel._errors import ConvergenceError, InputError

@@ -19,8 +19,9 @@ from typing import Literal
 
 import numpy as np
 
-from ..geometry._crease import Crease, half_angle
+from ..geometry._crease import Crease
 from ..geometry._curve import SpaceCurve, check_samples
+from ..geometry._fold_angle import half_angle
 from ..geometry._kinds import StructureLattice
 from ..geometry._lattice import Lattice
 from ..geometry._panel_pattern import PANELS
