@@ -32,23 +32,15 @@ of their names is first used.
 
 import importlib
 
-from . import _loads, _materials
-from ._loads import (
-    HalfSnow,
-    LoadCase,
-    Loads,
-    Parameter,
-    PointLoad,
-    SelfWeight,
-    Snow,
-    Supports,
-    Wind,
-    ZonedWind,
-)
+from . import _loadcase, _materials, _supports
+from ._cases import HalfSnow, PointLoad, SelfWeight, Snow, Wind, ZonedWind
+from ._loadcase import LoadCase, Parameter
+from ._loads import Loads
 from ._materials import Material, material
+from ._supports import Supports
 
 #: Standard gravity, m/s².
-G = _loads.G
+G = _loadcase.G
 #: Named sheet materials (:class:`Material`), each with its source.
 MATERIALS = _materials.MATERIALS
 #: The name of a material of :data:`MATERIALS`, checked.
@@ -60,9 +52,9 @@ THICKNESS = _materials.THICKNESS
 #: The check of a crease stiffness per length (N·m/rad/m).
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
 #: Every load case class by name (:class:`LoadCase`): a new case is one class registered there.
-LOAD_CASES = _loads.LOAD_CASES
+LOAD_CASES = _loadcase.LOAD_CASES
 #: The check of how the supported nodes are held ("pinned" or "roller").
-SUPPORTS = _loads.SUPPORTS
+SUPPORTS = _supports.SUPPORTS
 
 #: The module of every name loaded on first use.
 _LAZY = {

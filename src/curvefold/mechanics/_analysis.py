@@ -18,13 +18,15 @@ import numpy as np
 from ..geometry._structure import State, Structure
 from ..kernel._errors import InputError
 from ..vault._assembly import Vault
-from ._loads import G, LoadCase, Loads, Supports
+from ._loadcase import G, LoadCase
+from ._loads import Loads
 from ._materials import THICKNESS, Material
 from ._materials import material as named
 from ._modes import Modes, correlation, free_modes, span_correlation
 from ._response import Buckling, StaticResult, buckling, static_response
 from ._softmodes import SoftModes, soft_modes
 from ._structures import StructureModel
+from ._supports import Supports
 
 __all__ = ["LoadResult", "analyse_load", "FOLDING"]
 
