@@ -9,6 +9,8 @@ from ._cases import SelfWeight as SelfWeight
 from ._cases import Snow as Snow
 from ._cases import Wind as Wind
 from ._cases import ZonedWind as ZonedWind
+from ._combinations import Combination as Combination
+from ._combinations import combinations as combinations
 from ._loadcase import LOAD_CASES as LOAD_CASES
 from ._loadcase import G as G
 from ._loadcase import LoadCase as LoadCase
@@ -37,6 +39,11 @@ from ._structures import StructureModel as StructureModel
 from ._structures import model_samples as model_samples
 from ._supports import SUPPORTS as SUPPORTS
 from ._supports import Supports as Supports
+from ._verdict import CRITERIA_SPECS as CRITERIA_SPECS
+from ._verdict import Check as Check
+from ._verdict import Criteria as Criteria
+from ._verdict import Verdict as Verdict
+from ._verdict import assess as assess
 
 __all__ = [
     "analyse_load",
@@ -75,4 +82,11 @@ __all__ = [
     "SoftModes",
     "soft_modes",
     "conjecture_counts",
+    "Combination",
+    "combinations",
+    "Criteria",
+    "CRITERIA_SPECS",
+    "Check",
+    "Verdict",
+    "assess",
 ]

@@ -59,6 +59,8 @@ class SelfWeight(LoadCase):
     """
 
     name: ClassVar[str] = "self_weight"
+    symbol: ClassVar[str] = "G"
+    permanent: ClassVar[bool] = True
     title: ClassVar[str] = "the sheet's own weight"
 
     def forces(self, model: Target) -> np.ndarray:
@@ -86,6 +88,8 @@ class Snow(LoadCase):
     load: float = 0.0
 
     name: ClassVar[str] = "snow"
+    symbol: ClassVar[str] = "S"
+    psi0: ClassVar[float] = 0.5  # EN 1990 Table A1.1
     title: ClassVar[str] = "snow, uniform on the roof seen from above"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
@@ -129,6 +133,8 @@ class HalfSnow(LoadCase):
     side: str = "end"
 
     name: ClassVar[str] = "snow_half"
+    symbol: ClassVar[str] = "S_half"
+    psi0: ClassVar[float] = 0.5  # EN 1990 Table A1.1
     title: ClassVar[str] = "snow on half the span (EN 1991-1-3's drifted case, simplified)"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
@@ -181,6 +187,8 @@ class Wind(LoadCase):
     cp: float = 1.0
 
     name: ClassVar[str] = "wind"
+    symbol: ClassVar[str] = "W"
+    psi0: ClassVar[float] = 0.6  # EN 1990 Table A1.1
     title: ClassVar[str] = "wind, a uniform pressure normal to the sheets"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
@@ -269,6 +277,8 @@ class ZonedWind(LoadCase):
     windward: str = "start"
 
     name: ClassVar[str] = "wind_zones"
+    symbol: ClassVar[str] = "W_zones"
+    psi0: ClassVar[float] = 0.6  # EN 1990 Table A1.1
     title: ClassVar[str] = "wind on a vaulted roof in EN 1991-1-4's zones A, B and C"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Wind.parameters[0],
@@ -327,6 +337,8 @@ class PointLoad(LoadCase):
     at: tuple[float, float, float] | None = None
 
     name: ClassVar[str] = "point"
+    symbol: ClassVar[str] = "P"
+    psi0: ClassVar[float] = 0.7  # EN 1990 Table A1.1
     title: ClassVar[str] = "a point load"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(

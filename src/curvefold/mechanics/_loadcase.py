@@ -187,6 +187,14 @@ class LoadCase:
     title : str
         What it is, in a few words.
     parameters : tuple of Parameter
+    symbol : str
+        Its symbol in a load combination (``G``, ``S``, ``W``, ``P``).
+    permanent : bool
+        A permanent action (EN 1990 §1.5.3.3: the self-weight), or a variable one.
+    psi0 : float
+        The combination factor ψ0 of a variable action accompanying a leading one (EN 1990
+        Table A1.1: 0.5 for snow at sites up to 1000 m, 0.6 for wind, 0.7 for imposed loads
+        of categories A to D); 1 for a permanent action.
 
     Examples
     --------
@@ -201,6 +209,9 @@ class LoadCase:
     name: ClassVar[str]
     title: ClassVar[str]
     parameters: ClassVar[tuple[Parameter, ...]] = ()
+    symbol: ClassVar[str] = "Q"
+    permanent: ClassVar[bool] = False
+    psi0: ClassVar[float] = 1.0
 
     def __post_init__(self) -> None:
         for p in self.parameters:
