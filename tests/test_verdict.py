@@ -258,3 +258,15 @@ def test_bad_criteria_in_a_design_file_are_one_line(tmp_path):
     lines = r.stderr.splitlines()
     assert r.returncode == 2 and len(lines) == 1, r.stderr
     assert "[loads] deflection_limit must be in (0, 1000] m" in lines[0], lines[0]
+
+
+def test_the_report_answers_will_it_stand_first(tmp_path):
+    argv = ("--tubes", "3", "--samples", "201", "--thickness", "0.0003", "--snow", "0.5")
+    r = run("load", *argv, "--out", str(tmp_path / "v"), "--formats", "svg")
+    assert r.returncode == 1, r.stderr
+    report = (tmp_path / "v" / "report.html").read_text()
+    section = report[report.index("<h2>Under load: will it stand?</h2>") :]
+    first = section[section.index("<p") : section.index("</p>")]
+    assert "It fails</strong>: stability under ULS 1.35 G + 1.5 S" in first, first
+    # every check's row, then the load and reactions of every combination
+    assert section.index('<td data-label="check">deflection') < section.index("SLS G + S</td>")

@@ -293,7 +293,8 @@ class Verdict:
         return f"{'stands' if self.stands else 'fails'}: {self.governing.text()}"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON: ``verdict`` ("stands" or "fails"), ``governing`` and ``checks`` (each
+        """JSON: ``verdict`` ("stands" or "fails"), ``verdict_text`` (:meth:`headline`),
+        ``governing`` and ``checks`` (each
         :meth:`Check.to_dict`), ``combinations`` (each with its applied load and reactions,
         [x, y, z] N) and ``verdict_notes``.
 
@@ -306,6 +307,7 @@ class Verdict:
         """
         return {
             "verdict": "stands" if self.stands else "fails",
+            "verdict_text": self.headline(),
             "governing": self.governing.to_dict(),
             "checks": [c.to_dict() for c in self.checks],
             "combinations": [
