@@ -270,3 +270,18 @@ def test_the_report_answers_will_it_stand_first(tmp_path):
     assert "It fails</strong>: stability under ULS 1.35 G + 1.5 S" in first, first
     # every check's row, then the load and reactions of every combination
     assert section.index('<td data-label="check">deflection') < section.index("SLS G + S</td>")
+
+
+def test_the_supported_frequencies_are_the_held_structure_s_own(vault):
+    import scipy.linalg as la
+
+    result = analyse_load(vault, PP, 1e-3)
+    model, free = result.structure.model, np.flatnonzero(~result.static.fixed.ravel())
+    K = model.stiffness.toarray()[np.ix_(free, free)]
+    M = model.mass.toarray()[np.ix_(free, free)]
+    dense = la.eigh(K, M, eigvals_only=True)[:3]
+    assert_allclose(result.supported_eigenvalues, dense, rtol=1e-6)
+    # held on its feet it is stiffer than free: its first frequency above the free one
+    d = result.to_dict()
+    assert d["supported_frequencies"][0] > d["frequencies"][0]
+    assert_allclose(d["supported_frequencies"], np.sqrt(dense) / (2 * np.pi), rtol=1e-6)

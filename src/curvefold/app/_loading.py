@@ -479,6 +479,10 @@ class Loaded:
                 + ", ".join(f"{f:.3g}" for f in d["frequencies"])
                 + " Hz)",
             ),
+            (
+                "supported_modes",
+                ", ".join(f"{f:.3g}" for f in d["supported_frequencies"]) + " Hz (on its supports)",
+            ),
         ]
         head = (
             f"  under load         {d['material']} {d['thickness'] * 1e3:g} mm, "
