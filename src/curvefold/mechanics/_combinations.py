@@ -9,9 +9,12 @@ leading variable action Q_1 times γ_Q = 1.5 and every accompanying one times γ
 of its case, :attr:`LoadCase.psi0`: EN 1990 Table A1.1, 0.5 for snow, 0.6 for wind, 0.7
 for imposed point loads). γ_G and γ_Q are EN 1990 Table A1.2(B)'s recommended values; the
 user sets others. The permanent load is taken unfavourable throughout (γ_G,inf = 1.0 is not
-used: the self-weight of a thin sheet stabilises none of these structures). Each variable
-case leads in turn, so there are as many ULS combinations as variable cases (one, the
-permanent load alone, when there is none).
+used: the self-weight of a thin sheet stabilises none of these structures), and so is every
+variable case: one that relieves another (a wind suction lifting a snow load) is not
+dropped from a combination as EN 1990 would (γ_Q = 0 where favourable); check the
+combination without it by leaving it out. Each variable case leads in turn, so there are
+as many ULS combinations as variable cases (one, the permanent load alone, when there is
+none).
 
 The serviceability limit state (SLS) takes every case with factor 1.0: one combination.
 

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..kernel._arrays import readonly
 from ..kernel._errors import InputError
 from ..kernel._validate import Spec
 from ._combinations import GAMMA_G, GAMMA_Q, Combination, combinations
@@ -419,8 +420,8 @@ def assess(result: LoadResult, criteria: Criteria | None = None) -> Verdict:
                         basis=f"f / γ_M = {material.strength * 1e-6:.4g} MPa / {gamma_m:g}",
                     )
                 )
-        totals.append(static.total_load)
-        reactions.append(static.total_reaction)
+        totals.append(readonly(static.total_load))
+        reactions.append(readonly(static.total_reaction))
     order = {"stability": 0, "strength": 1, "deflection": 2}
     checks.sort(key=lambda c: order[c.name])  # stable: combinations in order within a check
     notes = (MESH_NOTE,) + (
