@@ -360,7 +360,7 @@ class Loaded:
 
     def notes(self) -> list[str]:
         """What a reader must know to read the numbers (the supports, a buckling mode the samples
-        do not resolve)."""
+        do not resolve, and the verdict's notes: today's mesh, γ_M or no strength)."""
         r = self.result
         held = (
             "the feet (the end sections on the ground)"
@@ -378,12 +378,7 @@ class Loaded:
                 "do not resolve it, and its factor is lower than the structure's; more samples "
                 "find the structure's"
             )
-        if r.utilisation is None:
-            notes.append(
-                "no strength given: the stresses are not measured against one (utilisation unknown)"
-            )
-        notes += [n for n in self.verdict.notes if not n.startswith("no strength")]
-        return notes
+        return notes + list(self.verdict.notes)  # today's mesh, γ_M or no strength
 
     def to_dict(self) -> dict:
         """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what

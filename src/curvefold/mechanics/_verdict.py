@@ -427,6 +427,9 @@ def assess(result: LoadResult, criteria: Criteria | None = None) -> Verdict:
     notes = (MESH_NOTE,) + (
         (f"γ_M = {gamma_m:g}: {basis_m}",)
         if material.strength is not None
-        else ("no strength given: no strength check (the stresses are not measured)",)
+        else (
+            "no strength given: the stresses are not measured against one (no strength check, "
+            "utilisation unknown)",
+        )
     )
     return Verdict(tuple(checks), combos, tuple(totals), tuple(reactions), notes)
