@@ -32,7 +32,7 @@ from curvefold.mechanics import (
     Supports,
     Wind,
     ZonedWind,
-    _loads,
+    _cases,
     _surface,
     static_response,
 )
@@ -191,7 +191,7 @@ def test_a_normal_pressure_on_an_arch_is_the_pressure_times_its_projected_areas(
     # damaged: the normals turned inward (a wrong sign)
     outward = _surface.face_vectors
     monkeypatch.setattr(
-        _loads, "face_vectors", lambda model: (outward(model)[0], -outward(model)[1])
+        _cases, "face_vectors", lambda model: (outward(model)[0], -outward(model)[1])
     )
     assert resultant_error(Wind(q, cp), quarter, [-w * R * W, 0, -w * R * W]) == pytest.approx(2.0)
 
@@ -233,7 +233,7 @@ def test_wind_in_en_zones_is_each_zone_s_pressure_times_its_projected_areas(monk
     def by_centroid(d):
         return np.where(d.mean(axis=1) >= 0, 1 / 3, 0.0)[:, None] * np.ones(3)
 
-    monkeypatch.setattr(_loads, "beyond_shares", by_centroid)
+    monkeypatch.setattr(_cases, "beyond_shares", by_centroid)
     assert resultant_error(ZonedWind(q, *cp), sheet, expected["start"]) > 1e-3
 
 

@@ -48,6 +48,7 @@ from ..kernel._errors import InputError
 from ..kernel._validate import Spec, describe
 from ..mechanics import (
     CREASE_STIFFNESS,
+    CRITERIA_SPECS,
     LOAD_CASES,
     MATERIAL,
     MATERIAL_SPECS,
@@ -61,7 +62,7 @@ from ..mechanics import (
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
-    from ..mechanics import LoadResult
+    from ..mechanics import Criteria, LoadResult, Verdict
 
 __all__ = [
     "MATERIAL_SECTION",
@@ -85,6 +86,7 @@ DEFAULT_MATERIAL = "polypropylene"
 MAX_CASES = 1000
 _OWN = tuple(s.name for s in MATERIAL_SPECS)  # youngs_modulus, poisson, density, strength
 _NEEDED = _OWN[:3]
+_CRITERIA = {s.name: s for s in CRITERIA_SPECS}
 
 #: ``[material]``: a named material or the user's own values, the thickness and the creases'
 #: stiffness.
@@ -154,6 +156,7 @@ LOADS_SECTION: tuple[Spec, ...] = (
         help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end "
         "sections (t = 0 and t = 1)",
     ),
+    *CRITERIA_SPECS,
 )
 
 
@@ -206,8 +209,9 @@ class MaterialParams:
 @dataclass(frozen=True)
 class LoadParams:
     """``[loads]``: self-weight or not, the keys of :data:`LOADS_KEYS` in the user's units (snow
-    and wind in kPa, a point load in N), the supports, and the ``[[loads.case]]`` entries (SI;
-    None: none listed)."""
+    and wind in kPa, a point load in N), the supports, the ``[[loads.case]]`` entries (SI;
+    None: none listed), and what the verdict asks (:class:`curvefold.mechanics.Criteria`: the
+    partial factors, the required buckling factor, the deflection limit in m)."""
 
     self_weight: bool
     snow: float
@@ -217,7 +221,20 @@ class LoadParams:
     wind_cp: float
     point_load: float
     supports: str
+    gamma_g: float = _CRITERIA["gamma_g"].default
+    gamma_q: float = _CRITERIA["gamma_q"].default
+    gamma_m: float | None = _CRITERIA["gamma_m"].default
+    buckling_safety: float = _CRITERIA["buckling_safety"].default
+    deflection_limit: float | None = _CRITERIA["deflection_limit"].default
     case: tuple[LoadCase, ...] | None = None
+
+    def criteria(self) -> Criteria:
+        """What the verdict asks, from these keys (:class:`curvefold.mechanics.Criteria`)."""
+        from ..mechanics import Criteria
+
+        return Criteria(
+            self.gamma_g, self.gamma_q, self.gamma_m, self.buckling_safety, self.deflection_limit
+        )
 
     def cases(self) -> Loads:
         """The load cases these keys and entries make, SI: the self-weight, each case whose first
@@ -315,12 +332,15 @@ class Loaded:
     loads : LoadParams
     supported : {"feet", "ends"}
         The feet of a vault, or both end sections of a tube or block.
+    verdict : Verdict
+        Whether it stands under the load combinations (:func:`curvefold.mechanics.assess`).
     """
 
     result: LoadResult
     material: MaterialParams
     loads: LoadParams
     supported: str
+    verdict: Verdict
 
     @property
     def size(self) -> float:
@@ -340,7 +360,7 @@ class Loaded:
 
     def notes(self) -> list[str]:
         """What a reader must know to read the numbers (the supports, a buckling mode the samples
-        do not resolve)."""
+        do not resolve, and the verdict's notes: today's mesh, γ_M or no strength)."""
         r = self.result
         held = (
             "the feet (the end sections on the ground)"
@@ -358,39 +378,41 @@ class Loaded:
                 "do not resolve it, and its factor is lower than the structure's; more samples "
                 "find the structure's"
             )
-        if r.utilisation is None:
-            notes.append(
-                "no strength given: the stresses are not measured against one (utilisation unknown)"
-            )
-        return notes
+        return notes + list(self.verdict.notes)  # today's mesh, γ_M or no strength
 
     def to_dict(self) -> dict:
         """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what
         loads and holds it."""
         r = self.result
         mat = r.structure.material
-        return r.to_dict() | {
-            "material": mat.name,
-            "sheet": {
-                "youngs_modulus": mat.youngs_modulus,
-                "poisson": mat.poisson,
-                "density": mat.density,
-                "strength": mat.strength,
-                "source": mat.source,
-            },
-            "loads": {
-                "self_weight": self.loads.self_weight,
-                "snow_kpa": self.loads.snow,
-                "point_load": self.loads.point_load,
-                "cases": [case.to_dict() for case in r.loads.cases],
-                "described": [case.describe() for case in r.loads.cases],
-            },
-            "supported": self.supported,
-            "reactions_by_end": self.reactions_by_end(),
-            "deflection_scale": self.deflection_scale,
-            "mode_amplitude": self.mode_amplitude,
-            "notes": self.notes(),
-        }
+        return (
+            r.to_dict()
+            | self.verdict.to_dict()
+            | {
+                "material": mat.name,
+                "sheet": {
+                    "youngs_modulus": mat.youngs_modulus,
+                    "poisson": mat.poisson,
+                    "density": mat.density,
+                    "strength": mat.strength,
+                    "source": mat.source,
+                    "partial_factor": mat.partial_factor,
+                    "partial_factor_source": mat.partial_factor_source,
+                },
+                "loads": {
+                    "self_weight": self.loads.self_weight,
+                    "snow_kpa": self.loads.snow,
+                    "point_load": self.loads.point_load,
+                    "cases": [case.to_dict() for case in r.loads.cases],
+                    "described": [case.describe() for case in r.loads.cases],
+                },
+                "supported": self.supported,
+                "reactions_by_end": self.reactions_by_end(),
+                "deflection_scale": self.deflection_scale,
+                "mode_amplitude": self.mode_amplitude,
+                "notes": self.notes(),
+            }
+        )
 
     def reactions_by_end(self) -> dict[str, list[float]]:
         """The support reactions summed over each end, t = 0 and t = 1, [x, y, z] N: an arch's
@@ -403,11 +425,25 @@ class Loaded:
         }
 
     def lines(self) -> list[str]:
-        """The result in a few lines for the terminal."""
+        """The result in a few lines for the terminal: what loads it, the load and reactions of
+        each combination, the checks, then the characteristic load's figures (the weight among
+        them). The verdict's own line (:meth:`curvefold.mechanics.Verdict.headline`) comes
+        before them."""
         d = self.to_dict()
         use = d["utilisation"]
         factor = d["buckling_factor"]
+        v = self.verdict
+        combined = [
+            (
+                c.name,
+                f"load {_vector(t, t)} N, reactions {_vector(r, t)} N",
+            )
+            for c, t, r in zip(v.combinations, v.totals, v.reactions, strict=True)
+        ]
+        checks = [(f"{c.name}", _check_words(c)) for c in v.checks]
         rows = [
+            *combined,
+            *checks,
             ("total_weight", f"{d['total_weight']:.6g} N"),
             (
                 "reactions",
@@ -438,12 +474,20 @@ class Loaded:
                 + ", ".join(f"{f:.3g}" for f in d["frequencies"])
                 + " Hz)",
             ),
+            (
+                "supported_modes",
+                ", ".join(f"{f:.3g}" for f in d["supported_frequencies"]) + " Hz (on its supports)",
+            ),
         ]
         head = (
             f"  under load         {d['material']} {d['thickness'] * 1e3:g} mm, "
             f"{self._load_words()}"
         )
-        return [head] + [f"  {k:<18} {v}" for k, v in rows] + [f"  note: {n}" for n in d["notes"]]
+        return (
+            [head]
+            + [f"  {k:<18} {text}" for k, text in rows]
+            + [f"  note: {n}" for n in d["notes"]]
+        )
 
     def _load_words(self) -> str:
         return f"{self.result.loads.describe()}, {self.loads.supports} at the {self.supported}"
@@ -469,6 +513,26 @@ class Loaded:
                 r.modes.shapes[k]
             )
         return out
+
+
+def _vector(values: Sequence[float] | np.ndarray, scale: Sequence[float] | np.ndarray) -> str:
+    """[x, y, z] with the rounding of forces that balance ``scale`` shown as 0."""
+    shown = _rounded(np.asarray(values, float).tolist(), float(np.abs(scale).max(initial=0.0)))
+    return "[" + ", ".join(f"{x:.6g}" for x in shown) + "]"
+
+
+def _check_words(check: Any) -> str:
+    """A check's value, limit, utilisation and combination for the terminal."""
+    mark = "ok" if check.passed else "FAILS"
+    if check.name == "stability":
+        value = "none" if math.isinf(check.value) else f"{check.value:.4g}"
+        what = f"buckling factor {value}, {check.limit:g} required"
+    else:
+        scale, unit = (1e-6, "MPa") if check.unit == "Pa" else (1e3, "mm")
+        what = f"{check.value * scale:.4g} {unit} of {check.limit * scale:.4g} {unit}"
+    return (
+        f"{mark}: utilisation {check.utilisation:.3g} ({what}; {check.combination}; {check.basis})"
+    )
 
 
 def _rounded(values: Sequence[float], scale: float) -> np.ndarray:
@@ -506,7 +570,7 @@ def analyse(
         What the mechanics refuses (no load, a structure still a mechanism under its
         supports), in one line.
     """
-    from ..mechanics import Supports, analyse_load
+    from ..mechanics import Supports, analyse_load, assess
 
     material = material or MaterialParams(**_defaults(MATERIAL_SECTION, material=DEFAULT_MATERIAL))
     loads = loads or LoadParams(**_defaults(LOADS_SECTION))
@@ -518,7 +582,7 @@ def analyse(
         Supports(loads.supports, at=supported),  # type: ignore[arg-type]
         crease_stiffness=material.crease_stiffness,
     )
-    return Loaded(result, material, loads, supported)
+    return Loaded(result, material, loads, supported, assess(result, loads.criteria()))
 
 
 def _defaults(specs: Sequence[Spec], **given: Any) -> dict:

@@ -644,7 +644,8 @@ def cmd_load(args: argparse.Namespace) -> int:
         "title": design.title or default_title(built),
         "design": design.to_dict(),
     }
-    lines = [f"{head['title']}", *loaded.lines()]
+    # the verdict first: stands or fails, the governing check, its utilisation and combination
+    lines = [loaded.verdict.headline(), f"{head['title']}", *loaded.lines()]
     if target is None:
         payload = head | loaded.to_dict()
         failed = False
@@ -664,7 +665,7 @@ def cmd_load(args: argparse.Namespace) -> int:
         ]
         failed = any(c["status"] == "fail" for c in written["certificate"])
     _emit(args, payload, lines)
-    return 1 if failed else 0
+    return 1 if failed or not loaded.verdict.stands else 0
 
 
 def _certificate_lines(payload: dict) -> list[str]:

@@ -456,7 +456,8 @@ def _mechanics_section(m: dict, files: list[str]) -> str:
     )
     notes = "".join(f"<p><small>{e(one_line(n))}.</small></p>" for n in m["notes"])
     return (
-        f"<h2>Under load: will it stand?</h2>{intro}<table>{rows}{ends}</table>{notes}<div "
+        f"<h2>Under load: will it stand?</h2>{_verdict_html(m)}{intro}<table>{rows}{ends}</table>"
+        f"{notes}<div "
         "class=pictures>"
         + picture(
             "deflection.png",
@@ -473,6 +474,53 @@ def _mechanics_section(m: dict, files: list[str]) -> str:
             " class=wide",
         )
         + "</div>"
+    )
+
+
+def _verdict_html(m: dict) -> str:
+    """The answer first: stands or fails, the governing check, then every check and the load and
+    reactions of every combination (:meth:`curvefold.mechanics.Verdict.to_dict`)."""
+    if "checks" not in m:
+        return ""
+    e = html.escape
+    columns = ("check", "combination", "value", "limit", "utilisation", "")
+    units = {"Pa": (1e-6, " MPa"), "m": (1e3, " mm"), "": (1.0, "")}
+
+    def shown(value: float | None, unit: str) -> str:
+        scale, suffix = units.get(unit, (1.0, f" {unit}"))
+        return "none" if value is None else f"{_number(value * scale)}{suffix}"
+
+    checks = "".join(
+        "<tr>"
+        + _cells(
+            columns,
+            [
+                e(c["name"]),
+                e(c["combination"]),
+                shown(c["value"], c["unit"]),
+                f"{shown(c['limit'], c['unit'])} ({e(c['basis'])})",
+                f"{c['utilisation']:.3g}",
+                "ok" if c["passed"] else "<strong>fails</strong>",
+            ],
+            ("", "", " class=num", "", " class=num", ""),
+        )
+        + "</tr>"
+        for c in m["checks"]
+    )
+    size = lambda c: max(abs(v) for v in c["applied_load"])  # noqa: E731
+    combos = "".join(
+        f"<tr><td>{e(c['name'])}</td><td class=num>"
+        f"{e(_number(_balanced(c['applied_load'], size(c))))}</td><td class=num>"
+        f"{e(_number(_balanced(c['reactions'], size(c))))}</td></tr>"
+        for c in m["combinations"]
+    )
+    answer = "It stands" if m["verdict"] == "stands" else "It fails"
+    return (
+        f"<p class=verdict><strong>{answer}</strong>: {e(m['verdict_text'].split(': ', 1)[1])}."
+        "</p><table class=cards><tr>"
+        + "".join(f"<th>{e(c)}</th>" for c in columns)
+        + f"</tr>{checks}</table><table class=cards><tr><th>combination</th><th>applied load "
+        f"[x, y, z], N</th><th>reactions [x, y, z], N</th></tr>{combos}</table>"
     )
 
 

@@ -22,7 +22,9 @@ sheet, a Miura-ori cell or a single bar), :class:`Loads` and :class:`Supports`,
 load cases are classes registered in :data:`LOAD_CASES` (:class:`SelfWeight`,
 :class:`Snow`, :class:`HalfSnow`, :class:`Wind`, :class:`ZonedWind`, :class:`PointLoad`),
 summed by
-:class:`Loads`. The
+:class:`Loads`; will it stand: :func:`assess` checks a result under the load combinations
+of EN 1990 (:class:`Combination`, :func:`combinations`) against :class:`Criteria` and
+gives a :class:`Verdict` of :class:`Check` values. The
 materials are :data:`MATERIALS` with their sources, or :meth:`Material.from_values`.
 
 The materials, loads and supports and their checks load at once (they need no SciPy:
@@ -32,23 +34,17 @@ of their names is first used.
 
 import importlib
 
-from . import _loads, _materials
-from ._loads import (
-    HalfSnow,
-    LoadCase,
-    Loads,
-    Parameter,
-    PointLoad,
-    SelfWeight,
-    Snow,
-    Supports,
-    Wind,
-    ZonedWind,
-)
+from . import _loadcase, _materials, _supports, _verdict
+from ._cases import HalfSnow, PointLoad, SelfWeight, Snow, Wind, ZonedWind
+from ._combinations import Combination, combinations
+from ._loadcase import LoadCase, Parameter
+from ._loads import Loads
 from ._materials import Material, material
+from ._supports import Supports
+from ._verdict import Check, Criteria, Verdict, assess
 
 #: Standard gravity, m/s².
-G = _loads.G
+G = _loadcase.G
 #: Named sheet materials (:class:`Material`), each with its source.
 MATERIALS = _materials.MATERIALS
 #: The name of a material of :data:`MATERIALS`, checked.
@@ -60,9 +56,12 @@ THICKNESS = _materials.THICKNESS
 #: The check of a crease stiffness per length (N·m/rad/m).
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
 #: Every load case class by name (:class:`LoadCase`): a new case is one class registered there.
-LOAD_CASES = _loads.LOAD_CASES
+LOAD_CASES = _loadcase.LOAD_CASES
 #: The check of how the supported nodes are held ("pinned" or "roller").
-SUPPORTS = _loads.SUPPORTS
+SUPPORTS = _supports.SUPPORTS
+#: The checks of :class:`Criteria`'s fields: γ_G, γ_Q, γ_M, the required buckling factor and the
+#: deflection limit.
+CRITERIA_SPECS = _verdict.CRITERIA_SPECS
 
 #: The module of every name loaded on first use.
 _LAZY = {
@@ -121,6 +120,13 @@ __all__ = [
     "SoftModes",
     "soft_modes",
     "conjecture_counts",
+    "Combination",
+    "combinations",
+    "Criteria",
+    "CRITERIA_SPECS",
+    "Check",
+    "Verdict",
+    "assess",
 ]
 
 
@@ -159,6 +165,12 @@ for _name in (
     "Supports",
     "Material",
     "material",
+    "Combination",
+    "combinations",
+    "Criteria",
+    "Check",
+    "Verdict",
+    "assess",
 ):
     _public(globals()[_name])
 

@@ -3,19 +3,19 @@ editors."""
 
 from ._analysis import LoadResult as LoadResult
 from ._analysis import analyse_load as analyse_load
-from ._loads import LOAD_CASES as LOAD_CASES
-from ._loads import SUPPORTS as SUPPORTS
-from ._loads import G as G
-from ._loads import HalfSnow as HalfSnow
-from ._loads import LoadCase as LoadCase
+from ._cases import HalfSnow as HalfSnow
+from ._cases import PointLoad as PointLoad
+from ._cases import SelfWeight as SelfWeight
+from ._cases import Snow as Snow
+from ._cases import Wind as Wind
+from ._cases import ZonedWind as ZonedWind
+from ._combinations import Combination as Combination
+from ._combinations import combinations as combinations
+from ._loadcase import LOAD_CASES as LOAD_CASES
+from ._loadcase import G as G
+from ._loadcase import LoadCase as LoadCase
+from ._loadcase import Parameter as Parameter
 from ._loads import Loads as Loads
-from ._loads import Parameter as Parameter
-from ._loads import PointLoad as PointLoad
-from ._loads import SelfWeight as SelfWeight
-from ._loads import Snow as Snow
-from ._loads import Supports as Supports
-from ._loads import Wind as Wind
-from ._loads import ZonedWind as ZonedWind
 from ._materials import CREASE_STIFFNESS as CREASE_STIFFNESS
 from ._materials import MATERIAL as MATERIAL
 from ._materials import MATERIAL_SPECS as MATERIAL_SPECS
@@ -37,6 +37,13 @@ from ._softmodes import conjecture_counts as conjecture_counts
 from ._softmodes import soft_modes as soft_modes
 from ._structures import StructureModel as StructureModel
 from ._structures import model_samples as model_samples
+from ._supports import SUPPORTS as SUPPORTS
+from ._supports import Supports as Supports
+from ._verdict import CRITERIA_SPECS as CRITERIA_SPECS
+from ._verdict import Check as Check
+from ._verdict import Criteria as Criteria
+from ._verdict import Verdict as Verdict
+from ._verdict import assess as assess
 
 __all__ = [
     "analyse_load",
@@ -75,4 +82,11 @@ __all__ = [
     "SoftModes",
     "soft_modes",
     "conjecture_counts",
+    "Combination",
+    "combinations",
+    "Criteria",
+    "CRITERIA_SPECS",
+    "Check",
+    "Verdict",
+    "assess",
 ]

@@ -11,20 +11,23 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..geometry._structure import State, Structure
+from ..kernel._arrays import readonly
 from ..kernel._errors import InputError
 from ..vault._assembly import Vault
-from ._loads import G, LoadCase, Loads, Supports
+from ._loadcase import G, LoadCase
+from ._loads import Loads
 from ._materials import THICKNESS, Material
 from ._materials import material as named
-from ._modes import Modes, correlation, free_modes, span_correlation
+from ._modes import Modes, correlation, free_modes, span_correlation, supported_modes
 from ._response import Buckling, StaticResult, buckling, static_response
 from ._softmodes import SoftModes, soft_modes
 from ._structures import StructureModel
+from ._supports import Supports
 
 __all__ = ["LoadResult", "analyse_load", "FOLDING"]
 
@@ -58,6 +61,9 @@ class LoadResult:
         (:attr:`buckling_resolved`).
     soft : SoftModes
         The inextensional motions of the free structure.
+    supported_eigenvalues : (k,) ndarray
+        The lowest eigenvalues ω² of the structure on its supports, rad²/s²
+        (:func:`supported_modes`).
 
     Examples
     --------
@@ -83,6 +89,7 @@ class LoadResult:
     buckling: Buckling
     buckling_sample_correlation: float
     soft: SoftModes
+    supported_eigenvalues: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def total_weight(self) -> float:
@@ -112,8 +119,9 @@ class LoadResult:
         up), ``max_displacement`` (m), ``max_stress`` (Pa), ``utilisation`` (None without
         a strength), ``fold_mode_gap``, ``soft_modes``, ``buckling_factor`` (None when the
         load cannot buckle the structure), ``modes`` (the lowest eigenvalues ω², rad²/s²),
-        and more: ``frequencies`` (Hz), ``stretching`` (each mode's share of its energy in
-        the bars), ``fold_mode_correlation``,
+        and more: ``frequencies`` (Hz), ``supported_modes`` (the lowest eigenvalues ω² on the
+        supports, rad²/s²) and ``supported_frequencies`` (Hz), ``stretching`` (each mode's
+        share of its energy in the bars), ``fold_mode_correlation``,
         ``fold_span_correlation``, ``buckling_resolved``, ``applied_load`` (N),
         ``equilibrium_error``, ``material``, ``thickness`` (m), ``crease_stiffness``
         (N·m/rad/m), ``supports``, ``nodes``, ``samples`` (the samples the model keeps).
@@ -143,6 +151,10 @@ class LoadResult:
             "buckling_factor": None if math.isinf(self.buckling.factor) else self.buckling.factor,
             "modes": self.modes.eigenvalues.tolist(),
             "frequencies": self.modes.frequencies.tolist(),
+            "supported_modes": self.supported_eigenvalues.tolist(),
+            "supported_frequencies": (
+                np.sqrt(np.maximum(self.supported_eigenvalues, 0.0)) / (2 * math.pi)
+            ).tolist(),
             "stretching": self.modes.stretching.tolist(),
             "fold_mode_correlation": self.fold_correlation,
             "fold_span_correlation": self.fold_span_correlation,
@@ -241,7 +253,14 @@ def analyse_load(
         buckling=buckled,
         buckling_sample_correlation=sm.sample_correlation(buckled.shape),
         soft=soft_modes(model),
+        supported_eigenvalues=readonly(
+            supported_modes(model, result.fixed, factor, min(3, _free(result) - 2))
+        ),
     )
+
+
+def _free(result: StaticResult) -> int:
+    return int((~result.fixed).sum())
 
 
 def _structure_model(

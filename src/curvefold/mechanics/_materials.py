@@ -22,6 +22,7 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
+    "UNCODED_FACTOR",
     "material",
     "check_thickness",
 ]
@@ -96,6 +97,13 @@ CREASE_STIFFNESS = Spec(
 )
 _SPEC = MappingProxyType({s.name: s for s in MATERIAL_SPECS})
 
+#: The partial factor γ_M of a material no design code covers, and why.
+UNCODED_FACTOR = 1.5
+UNCODED_SOURCE = (
+    "no Eurocode covers this material: 1.5 is this library's cautious choice, not a code value; "
+    "give your own (gamma_m)"
+)
+
 #: Length scale of the default crease stiffness k_c = D / L*, as a multiple of the thickness.
 CREASE_LENGTH_SCALE = 1000.0
 
@@ -125,6 +133,10 @@ class Material:
         tensile strength for board), Pa; None when not known (no utilisation then).
     source : str
         Where the numbers come from.
+    partial_factor : float
+        γ_M: the design strength is ``strength / partial_factor`` (EN 1990 §6.3.3).
+    partial_factor_source : str
+        Where γ_M comes from.
 
     Examples
     --------
@@ -139,6 +151,8 @@ class Material:
     density: float
     strength: float | None
     source: str = "given by the user"
+    partial_factor: float = UNCODED_FACTOR
+    partial_factor_source: str = UNCODED_SOURCE
 
     @classmethod
     def from_values(
@@ -252,6 +266,9 @@ MATERIALS: MappingProxyType[str, Material] = MappingProxyType(
                 "typical folding boxboard in its machine direction (no single source): E 2–7 "
                 "GPa, ν 0.2–0.4, density 600–900 kg/m³, tensile strength 20–50 MPa; the "
                 "cross direction is 2–3 times softer: measure your board",
+                partial_factor=1.3,
+                partial_factor_source="no Eurocode covers board: EN 1995-1-1 Table 2.3's γ_M = "
+                "1.3 for fibreboards, the nearest wood-based panel",
             ),
             Material(
                 "aluminium",
@@ -262,6 +279,9 @@ MATERIALS: MappingProxyType[str, Material] = MappingProxyType(
                 "6061-T6 sheet: E 68.9 GPa, ν 0.33, density 2.70 g/cm³, tensile yield 276 MPa, "
                 "typical values of the Aluminum Association as given in the ASM/MatWeb data "
                 "sheet 'Aluminum 6061-T6; 6061-T651'",
+                partial_factor=1.1,
+                partial_factor_source="EN 1999-1-1 §6.1.3: γ_M1 = 1.10 (resistance of "
+                "cross-sections)",
             ),
         )
     }

@@ -30,7 +30,7 @@ from ..kernel._errors import InputError
 from ._linear import Factorized, eigsh, rigid_motions, unit_displacement
 from ._model import BarHingeModel
 
-__all__ = ["Modes", "free_modes", "correlation", "span_correlation"]
+__all__ = ["Modes", "free_modes", "supported_modes", "correlation", "span_correlation"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -175,6 +175,78 @@ def free_modes(
     total = np.einsum("ik,ik->k", vectors, K @ vectors)
     shapes = np.stack([unit_displacement(v) for v in vectors.T])
     return Modes(values, shapes, np.clip(stretch / total, 0.0, 1.0))
+
+
+def supported_modes(
+    model: BarHingeModel,
+    fixed: np.ndarray,
+    factor: Factorized,
+    count: int = 3,
+    *,
+    tol: float = 1e-8,
+) -> np.ndarray:
+    """The ``count`` lowest eigenvalues ω² (rad²/s²) of the model on its supports.
+
+    ``K_ff φ = ω² M_ff φ`` on the free DOFs (the supported ones held at zero), by
+    shift-invert about 0 with ``factor``, the factorisation of ``K_ff`` that
+    :func:`static_response` returned. A supported structure has no rigid motion: its
+    first mode is the first way it vibrates where it stands.
+
+    Parameters
+    ----------
+    model : BarHingeModel
+    fixed : (P, 3) ndarray of bool
+        The supported DOFs.
+    factor : Factorized
+        ``K_ff`` factorised.
+    count : int
+        How many, at least 1 and fewer than the free DOFs less one.
+    tol : float, keyword-only
+        ARPACK's relative accuracy.
+
+    Examples
+    --------
+    >>> from curvefold.mechanics import MATERIALS, Loads, StructureModel, Supports
+    >>> from curvefold.mechanics import static_response
+    >>> from curvefold.vault import Vault
+    >>> tube = StructureModel.from_state(
+    ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+    ...     MATERIALS["aluminium"],
+    ...     1e-3,
+    ... )
+    >>> feet = Supports().fixed(tube)
+    >>> result, factor = static_response(tube.model, Loads().forces(tube.model), feet)
+    >>> held = supported_modes(tube.model, feet, factor, 2)
+    >>> bool(held[0] > free_modes(tube.model, 1).eigenvalues[0])  # held, it is stiffer
+    True
+    """
+    free = np.flatnonzero(~np.asarray(fixed, bool).ravel())
+    n = len(free)
+    if (
+        isinstance(count, bool)
+        or not isinstance(count, (int, np.integer))
+        or not 1 <= count < n - 1
+    ):
+        raise InputError(
+            f"count must be an integer in [1, {n - 2}] for this model ({n} free DOFs), got "
+            f"{count!r}"
+        )
+    K = model.stiffness[free][:, free]
+    M = model.mass.tocsr()[free][:, free]
+    operator = spl.LinearOperator((n, n), matvec=factor.solve, dtype=float)
+    values = eigsh(
+        K,
+        what="the supported modes",
+        k=count,
+        M=M,
+        sigma=0.0,
+        OPinv=operator,
+        which="LM",
+        ncv=min(n - 1, max(2 * count + 8, 24)),
+        tol=tol,
+        return_eigenvectors=False,
+    )
+    return np.sort(np.asarray(values, float))
 
 
 def correlation(model: BarHingeModel, shape: np.ndarray, motion: np.ndarray) -> float:

@@ -1,7 +1,7 @@
 """What a load falls on: the sheet seen from above, the halves of its span, its outward faces.
 
 Pure functions of a model's nodes and membranes (:meth:`BarHingeModel.triangles`), shared
-by the load cases of :mod:`._loads`:
+by the load cases of :mod:`._cases`:
 
 * :func:`snow_areas`: the projected area of every triangle seen from above (0 where hidden);
 * :func:`span_axis`: the horizontal direction of the span and the middle of it;
