@@ -22,6 +22,7 @@ import pytest
 
 from _cli import run, run_subprocess
 from curvefold.app import cli
+from curvefold.app._kinds import design_kinds
 from curvefold.kernel._errors import CurvefoldError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -304,7 +305,8 @@ def _subcommands() -> dict[str, argparse.ArgumentParser]:
 def _checked(command: str, argv: list[str]) -> None:
     """Parse ``curvefold command argv`` and check every value given as the command checks it."""
     args = cli.build_parser().parse_args([command, *argv])
-    kind = command if command in cli.DEFAULT_OUT else "vault" if command == "load" else None
+    kinds = {kind.name for kind in design_kinds()}
+    kind = command if command in kinds else "vault" if command == "load" else None
     if kind is not None:
         cli._design_flags(kind, args)
         from curvefold.vault._targets import TARGET_SPECS

@@ -8,6 +8,7 @@ is true by default), its help and its check the key's spec; a flag's value is na
 from __future__ import annotations
 
 import argparse
+import difflib
 import re
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -19,6 +20,8 @@ from ..kernel._errors import InputError
 from ..kernel._validate import Spec, from_text
 from ._design import OPTIONAL_SECTIONS, SCHEMA, Design, kind_specs
 from ._kinds import DesignKind, design_kind
+
+PROG = "curvefold"
 
 #: Values along one axis of the atlas grid.
 _GRID_COUNT = Spec("count", "integer", 5, "[1, 200]")
@@ -75,8 +78,72 @@ class _Parser(argparse.ArgumentParser):
         self._add_flags()
         return super().format_help()
 
+    def parse_args(self, args=None, namespace=None):
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            self.error(unrecognized(self, getattr(parsed, "command", None), extras))
+        return parsed
+
     def error(self, message: str) -> None:  # type: ignore[override]
-        raise InputError(f"{self.prog}: {message}")
+        # the program's own name is the error line's prefix already; a command's is kept
+        prefix = "" if " " not in self.prog else f"{self.prog}: "
+        raise InputError(f"{prefix}{message}")
+
+    def commands(self) -> dict[str, _Parser]:
+        """The parser of every command, by name (none for a command's parser)."""
+        return {
+            name: command
+            for action in self._actions
+            if isinstance(action, argparse._SubParsersAction)
+            for name, command in action.choices.items()
+        }
+
+    def flags(self) -> list[str]:
+        """Every flag this parser takes (a command's own flags added first)."""
+        self._add_flags()
+        return [flag for flag in self._option_string_actions if flag.startswith("--")]
+
+
+def unrecognized(parser: _Parser, command: str | None, extras: Sequence[str]) -> str:
+    """The usage error of words no flag takes, each unknown flag with the nearest one suggested:
+    the command's own spelled alike (``--pxy``: ``--p-xy``), else the commands that take it
+    (``--a`` is ``vault``'s), else the command's closest.
+    """
+    commands = parser.commands()
+    own = parser if command is None else commands[command]
+    where = PROG if command is None else f"{PROG} {command}"
+    hints = [
+        hint
+        for word in extras
+        if word.startswith("--")
+        and (hint := _nearest_flag(word.split("=")[0], where, own, commands, command))
+    ]
+    return f"unrecognized arguments: {' '.join(extras)}" + "".join(f"; {h}" for h in hints)
+
+
+def _nearest_flag(
+    flag: str, where: str, own: _Parser, commands: dict[str, _Parser], command: str | None
+) -> str | None:
+    def bare(text: str) -> str:
+        return text.lstrip("-").replace("-", "").replace("_", "").lower()
+
+    mine = own.flags()
+    alike = [f for f in mine if bare(f) == bare(flag)]
+    if alike:
+        return f"did you mean {alike[0]}?"
+    others = [
+        f"{PROG} {name}"
+        for name, other in commands.items()
+        if name != command and flag in other.flags()
+    ]
+    if others:
+        return f"{flag} is a flag of {_listed(others)}, not of {where}"
+    close = difflib.get_close_matches(flag, mine, n=1, cutoff=0.75)
+    return f"did you mean {close[0]}?" if close else None
+
+
+def _listed(names: Sequence[str]) -> str:
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
 
 
 class _Version(argparse.Action):
@@ -178,9 +245,10 @@ def _add_design_flags(p: argparse.ArgumentParser, kind: str) -> None:
     for name, spec in _flag_specs(kind).items():
         group = groups[{"output": "output", None: "design"}.get(section.get(name), "load")]
         if spec.kind == "flag":
+            # a spec's help says what the key does when true, the flag what it sets
             text = (
-                f"{'do not ' if spec.default else ''}{spec.help} (sets {name} = "
-                f"{str(not spec.default).lower()})"
+                f"{spec.help}{' by default; this flag turns it off' if spec.default else ''} "
+                f"(sets {name} = {str(not spec.default).lower()})"
             )
             group.add_argument(
                 _flag(spec),

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ._cli_flags import (
     _GRID_COUNT,
+    PROG,
     _add_design_flags,
     _add_target_flags,
     _flag,
@@ -23,7 +24,6 @@ from ._design import SCHEMA
 from ._kinds import design_kind, design_kinds
 from .designer import SERVER_SPECS
 
-PROG = "curvefold"
 #: The kind of design ``load`` analyses unless its design file says another: the paper's vault.
 LOAD_KIND = "vault"
 _DEBUG_HELP = "on an internal error, print the traceback and the warnings"

@@ -6,9 +6,11 @@ on stdout (no NaN or infinity: a non-finite result is an error). Exit statuses: 
 the traceback only with ``--debug``); 2 a user error (one line on stderr: what is wrong,
 the allowed range, the value given), including a job over the memory budget
 (:mod:`curvefold.app._budget`); 128 + n when stopped by signal n (SIGINT, SIGTERM, SIGHUP),
-after removing what the run had started to write. Warnings are shown only with
-``--debug``; text a user typed is printed with its control characters escaped. The output
-folder is checked before any work and replaced only as :mod:`curvefold.app._folder` says.
+after removing what the run had started to write; 141 (128 + SIGPIPE), with nothing printed,
+when the reader of its output stops early (``curvefold check FILE | head``). Warnings are
+shown only with ``--debug``; text a user typed is printed with its control characters
+escaped. The output folder is checked before any work and replaced only as
+:mod:`curvefold.app._folder` says.
 
 A subcommand per registered kind of design (:mod:`curvefold.app._kinds`), its help the kind's.
 The flags of those and of ``load``, their help and their checks are generated from the design
@@ -21,6 +23,7 @@ made of a file and flags is named by both (``design.toml --samples 10: …``).
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
 import traceback
@@ -52,6 +55,8 @@ with blas_loads_on_one_thread():
     from ._kinds import design_kinds
 
 __all__ = ["build_parser", "main", "run"]
+#: The signal a closed pipe would stop a program with (POSIX numbers it 13).
+_SIGPIPE = int(getattr(signal, "SIGPIPE", 13))
 # the names the documentation's checks parse and check a quoted command line with
 _CHECKS = (_design_flags, _flag_value, _VAULT)
 
@@ -127,6 +132,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         except CurvefoldError as err:
             _error(f"error: {err}")
             return 2
+        except BrokenPipeError:  # the reader stopped early (``| head``): not an error
+            return _reader_gone()
         except OSError as err:
             _error(
                 f"error: {err.filename}: {err.strerror}"
@@ -194,4 +201,22 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
 def run() -> None:
     """The ``curvefold`` console script: :func:`main` on the command line's arguments, its status
     as the exit status."""
-    sys.exit(main())
+    status = main()
+    try:
+        sys.stdout.flush()  # what is still buffered, while a closed reader can be caught
+    except BrokenPipeError:
+        status = _reader_gone()
+    sys.exit(status)
+
+
+def _reader_gone() -> int:
+    """The status of a run whose standard output was closed by its reader: 128 + SIGPIPE, as a
+    shell reports a program stopped by it, with nothing printed; what is still buffered is
+    dropped, so that Python's own flush at exit does not report the pipe either."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):  # a standard output with no file behind it holds nothing
+        pass
+    return 128 + _SIGPIPE
