@@ -285,7 +285,10 @@ def _rebuilt_fold(doc, path: Path):
     keep = record.get("keep")
     kept = None if keep is None else [np.asarray(k, dtype=np.int64) for k in keep]
     output = FoldOutput(
-        anchor=record.get("anchor", "start"), faces=record.get("faces", "triangles"), keep=kept
+        anchor=record.get("anchor", "start"),
+        faces=record.get("faces", "triangles"),
+        keep=kept,
+        ground=record.get("ground") is True,
     )
     model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
     return parse_fold(model_document(model), f"{where} (rebuilt)")

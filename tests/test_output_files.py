@@ -1,0 +1,66 @@
+"""The files a person receives, read as their tools read them: the GLB's timeline, the FOLD
+file's frames on the ground, the legend of a single fold."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from _cli import run
+from _gltf import accessor
+
+from curvefold.io._gltf import LOOP_SECONDS
+
+#: Blender's default timeline: frames 1–250 at 24 frames per second.
+BLENDER_FRAMES, BLENDER_FPS = 250, 24
+
+
+@pytest.fixture(scope="module")
+def vault_folder(tmp_path_factory):
+    root = tmp_path_factory.mktemp("files")
+    result = run("vault", "--samples", "41", "--formats", "fold,glb,svg", "--out", "v", cwd=root)
+    assert result.returncode in (0, 1), result.stderr  # 1: a certificate check failed
+    return root / "v"
+
+
+def test_the_glb_loop_fits_blenders_default_timeline(vault_folder):
+    pygltflib = pytest.importorskip("pygltflib")
+    gltf = pygltflib.GLTF2.load(str(vault_folder / "vault.glb"))
+    blob = gltf.binary_blob()
+    (animation,) = gltf.animations
+    (sampler,) = animation.samplers
+    times = accessor(gltf, blob, sampler.input)
+    assert times[0] == 0 and np.all(np.diff(times) > 0)
+    # the whole loop, and its last frame, within frames 1–250 (frame 1 at t = 0)
+    assert times[-1] <= LOOP_SECONDS + 1e-6
+    assert 1 + times[-1] * BLENDER_FPS <= BLENDER_FRAMES
+    # it ends where it starts (the design state), so the timeline's wrap does not jump
+    weights = accessor(gltf, blob, sampler.output).reshape(len(times), -1)
+    np.testing.assert_array_equal(weights[0], weights[-1])
+    record = json.loads(json.dumps(gltf.asset.extras))["curvefold"]
+    assert record["seconds_per_state"] == pytest.approx(float(np.diff(times)[0]))
+
+
+def test_every_frame_of_a_vault_stands_on_the_ground(vault_folder):
+    doc = json.loads((vault_folder / "vault.fold").read_text(encoding="utf-8"))
+    angles = doc["curvefold:design"]["fold_angles"]
+    assert max(angles) > doc["curvefold:metadata"]["fold_angle_deg"]  # frames past the design
+    lowest = [float(np.min(np.array(f["vertices_coords"])[:, 2])) for f in doc["file_frames"]]
+    np.testing.assert_allclose(lowest, 0.0, atol=1e-9)
+    # both feet on the ground again: the start and end sections level in every frame
+    check = run("check", str(vault_folder / "vault.fold"), "--rebuild")
+    assert check.returncode == 0, check.stdout
+
+
+def test_a_single_folds_legend_names_no_seam(tmp_path):
+    assert run("crease", "--formats", "svg", "--out", "c", cwd=tmp_path).returncode in (0, 1)
+    (pattern,) = (tmp_path / "c").glob("*.svg")
+    assert "glue the edges named alike" not in pattern.read_text(encoding="utf-8")
+
+
+def test_a_vaults_legend_names_its_seams(vault_folder):
+    pages = sorted(vault_folder.glob("vault-pattern*.svg"))
+    assert pages and all(
+        "glue the edges named alike" in page.read_text(encoding="utf-8") for page in pages
+    )
