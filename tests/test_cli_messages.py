@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import math
+import re
 import subprocess
 import sys
 
@@ -96,3 +98,45 @@ def test_a_flag_true_by_default_says_what_it_turns_off(capsys):
         "--no-glue-tabs draw glue tabs along the seams of the crease patterns by default; this "
         "flag turns it off (sets glue_tabs = false)"
     ) in text
+
+
+@pytest.mark.parametrize("command", ["vault", "load"])
+def test_the_output_folder_is_checked_before_the_inverse_design(tmp_path, monkeypatch, command):
+    from curvefold.app import _cli_commands, cli
+
+    def never(*args, **kwargs):
+        raise AssertionError("the targets were fitted before the output folder was checked")
+
+    monkeypatch.setattr(_cli_commands, "_fit_targets", never)
+    monkeypatch.setattr(cli, "_fit_targets", never)
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("kept", encoding="utf-8")
+    result = run(command, "--span", "2", "--rise", "1.4", "--out", "mine", cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr.startswith(
+        "curvefold: error: output folder mine exists and was not written by curvefold"
+    )
+    assert (tmp_path / "mine" / "notes.txt").read_text(encoding="utf-8") == "kept"
+
+
+def test_out_of_reach_says_which_target_to_change_and_by_how_much():
+    result = run("vault", "--span", "3", "--rise", "2.9", "--tubes", "9", "--samples", "41")
+    assert result.returncode == 2 and result.stderr.count("\n") == 1
+    line = result.stderr
+    assert "reach rise/span from 0.52" in line and line.count(" from ") == 1  # one range
+    change = re.search(
+        r"to reach it, lower the rise to ([\d.]+) \(by ([\d.]+)\) for span 3, "
+        r"or raise the span to ([\d.]+) \(by ([\d.]+)\) for rise 2.9",
+        line,
+    )
+    assert change, line
+    rise, by_rise, span, by_span = map(float, change.groups())
+    assert math.isclose(rise + by_rise, 2.9, rel_tol=1e-5)
+    assert math.isclose(span - by_span, 3.0, rel_tol=1e-5)
+    # each change reaches: the family has a vault of that rise (or span)
+    from curvefold.vault._assembly import VaultDesign
+    from curvefold.vault._targets import fit_targets
+
+    base = VaultDesign(tubes=9, samples=41)
+    assert fit_targets(base, span=3.0, rise=rise).reached
+    assert fit_targets(base, span=span, rise=2.9).reached

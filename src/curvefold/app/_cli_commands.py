@@ -18,6 +18,7 @@ from ..vault._assembly import vault_samples
 from ._cli_flags import _design_flags, _fit_targets, _flag_value, _from_text, _grid
 from ._cli_parser import _VAULT, PROG
 from ._design import SCHEMA, Design, design_from_dict, load_design
+from ._folder import OutputTarget
 from .designer import SERVER_SPECS
 
 
@@ -57,23 +58,29 @@ def _emit(args: argparse.Namespace, payload: dict, lines: Sequence[str]) -> None
     print(text if args.json else "\n".join(map(for_terminal, lines)))
 
 
+def _checked_output(design: Design, args: argparse.Namespace, out: Path) -> OutputTarget:
+    """The output folder to write, checked (:func:`curvefold.app._folder.check_output`) with the
+    formats the design asks for, before any work."""
+    from ._folder import check_output
+
+    formats_kind = design.design_kind.formats_kind
+    check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
+    return check_output(
+        out,
+        force=args.force,
+        inputs=([] if args.design is None else [args.design]) + list(design.tables()),
+    )
+
+
 def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     from ._budget import require_budget
     from ._build import build
-    from ._folder import check_output
     from ._outputs import structure_payload, write_outputs
 
-    design = _fit_targets(_load_design(kind, args), args)
+    design = _load_design(kind, args)
     out = args.out or (None if args.json else Path(design.design_kind.default_out))
-    target = None
-    if out is not None:
-        formats_kind = design.design_kind.formats_kind
-        check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
-        target = check_output(
-            out,
-            force=args.force,
-            inputs=([] if args.design is None else [args.design]) + list(design.tables()),
-        )
+    target = None if out is None else _checked_output(design, args, out)
+    design = _fit_targets(design, args)  # the output checked first: a fit takes a while
     require_budget(design, files=out is not None)
     built = build(design)
     if target is None:

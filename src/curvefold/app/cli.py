@@ -34,10 +34,10 @@ from ..kernel._threads import blas_loads_on_one_thread
 
 # NumPy is loaded here; a command runs its BLAS on one thread (_run), so OpenBLAS starts none
 with blas_loads_on_one_thread():
-    from ..io._formats import check_kind
     from ..kernel._errors import CurvefoldError, InputError
     from ._cli_commands import (
         _certificate_lines,
+        _checked_output,
         _emit,
         _error,
         _load_design,
@@ -64,21 +64,11 @@ _CHECKS = (_design_flags, _flag_value, _VAULT)
 def cmd_load(args: argparse.Namespace) -> int:
     from ._budget import require_budget
     from ._build import build
-    from ._folder import check_output
     from ._outputs import default_title, write_outputs
 
     design = _load_design(LOAD_KIND, args, kinds=[k.name for k in design_kinds() if k.loaded])
-    design = _fit_targets(design, args)
-    design = design.with_mechanics()
-    target = None
-    if args.out is not None:
-        formats_kind = design.design_kind.formats_kind
-        check_kind(design.output.formats, formats_kind, f"{design.source}: [output] formats")
-        target = check_output(
-            args.out,
-            force=args.force,
-            inputs=([] if args.design is None else [args.design]) + list(design.tables()),
-        )
+    target = None if args.out is None else _checked_output(design, args, args.out)
+    design = _fit_targets(design, args).with_mechanics()  # the output checked first
     require_budget(design, files=target is not None)
     built = build(design)
     loaded = built.mechanics
