@@ -565,7 +565,8 @@ def folder_problems(text: str, folder: Path) -> list[str]:
     report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
     mesh = report["mesh"]
     size = sum(p.stat().st_size for p in folder.rglob("*") if p.is_file()) / 1e6
-    kept = f"{mesh['mesh_samples_per_crease']} of {mesh['samples_computed']}"
+    fewest, most = mesh["mesh_samples_per_crease"]
+    kept = f"{fewest}–{most} of {mesh['samples_computed']}"
     corner = mesh["mesh_smallest_angle_deg"]
     contact = report["certificate_frames"]["first_contact"]
     judged = {  # kind: (holds, what the folder says)

@@ -3,13 +3,18 @@ file's frames on the ground, the legend of a single fold."""
 
 from __future__ import annotations
 
+import html
 import json
+import re
 
 import numpy as np
 import pytest
+
 from _cli import run
 from _gltf import accessor
-
+from curvefold.app._design import load_design
+from curvefold.figures._report import describe_file
+from curvefold.io._formats import FORMATS
 from curvefold.io._gltf import LOOP_SECONDS
 
 #: Blender's default timeline: frames 1–250 at 24 frames per second.
@@ -64,3 +69,53 @@ def test_a_vaults_legend_names_its_seams(vault_folder):
     assert pages and all(
         "glue the edges named alike" in page.read_text(encoding="utf-8") for page in pages
     )
+
+
+def test_the_folder_holds_the_design_file_that_builds_it_again(vault_folder, tmp_path):
+    report = json.loads((vault_folder / "report.json").read_text(encoding="utf-8"))
+    design = load_design(vault_folder / "design.toml")
+    assert "design.toml" in report["files"]
+    assert design.to_dict()["vault"]["tubes"] == report["tubes"] == 9  # "max", resolved
+    rebuilt = run("vault", str(vault_folder / "design.toml"), "--out", "again", cwd=tmp_path)
+    assert rebuilt.returncode in (0, 1), rebuilt.stderr
+    first, again = (
+        json.loads((folder / "vault.fold").read_text(encoding="utf-8"))
+        for folder in (vault_folder, tmp_path / "again")
+    )
+    assert [f["vertices_coords"] for f in first["file_frames"]] == [
+        f["vertices_coords"] for f in again["file_frames"]
+    ]
+    assert first["vertices_coords"] == again["vertices_coords"]
+    assert (tmp_path / "again" / "design.toml").read_text(encoding="utf-8") == (
+        vault_folder / "design.toml"
+    ).read_text(encoding="utf-8")
+
+
+def test_the_report_shows_the_design_file_and_the_tubes_built(vault_folder):
+    page = (vault_folder / "report.html").read_text(encoding="utf-8")
+    assert "as a design file holds it" not in page
+    text = (vault_folder / "design.toml").read_text(encoding="utf-8")
+    assert html.escape(text) in page and "curvefold vault design.toml" in page
+    tubes = re.search(r"<code>tubes</code></td><td[^>]*>([^<]*)<", page)
+    assert tubes and tubes.group(1) == "9"
+    report = json.loads((vault_folder / "report.json").read_text(encoding="utf-8"))
+    counts = report["mesh"]["mesh_samples_per_crease"]
+    assert isinstance(counts, list) and all(isinstance(n, int) for n in counts)
+    assert counts[0] <= counts[1] <= report["mesh"]["samples_computed"]
+
+
+def test_the_report_describes_the_assembly_guide_as_such():
+    assert describe_file("assembly.pdf") == FORMATS["assembly"].holds
+    assert describe_file("assembly.pdf").startswith("the assembly guide")
+    assert describe_file("vault-pattern.pdf") == FORMATS["pdf"].holds
+    assert describe_file("design.toml").startswith("the design file")
+
+
+def test_a_single_folds_design_file_builds_it_again(tmp_path):
+    assert run("crease", "--formats", "fold", "--out", "c", cwd=tmp_path).returncode in (0, 1)
+    design = load_design(tmp_path / "c" / "design.toml")
+    assert design.kind == "crease"
+    again = run("crease", str(tmp_path / "c" / "design.toml"), "--json")
+    first = json.loads((tmp_path / "c" / "report.json").read_text(encoding="utf-8"))
+    assert again.returncode in (0, 1), again.stderr
+    assert json.loads(again.stdout)["design"] == first["design"]

@@ -131,8 +131,7 @@ def page_footer(
     names = [
         name
         for name in LEGEND
-        if name in drawn
-        and (_has_seam_labels(page) if name == "labels" else page.on_layer(name))
+        if name in drawn and (_has_seam_labels(page) if name == "labels" else page.on_layer(name))
     ]
     page_text = f"page {page_index + 1} of {len(layout.pages)}" if page_text is None else page_text
     W, _ = layout.page_size
