@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 from _cli import run, run_subprocess
-from curvefold.app import cli
+from curvefold.app import _cli_flags, _cli_parser, cli
 from curvefold.app._kinds import design_kinds
 from curvefold.kernel._errors import CurvefoldError
 
@@ -308,16 +308,16 @@ def _checked(command: str, argv: list[str]) -> None:
     kinds = {kind.name for kind in design_kinds()}
     kind = command if command in kinds else "vault" if command == "load" else None
     if kind is not None:
-        cli._design_flags(kind, args)
+        _cli_flags._design_flags(kind, args)
         from curvefold.vault._targets import TARGET_SPECS
 
         for spec in TARGET_SPECS if kind == "vault" else ():
             if getattr(args, spec.name, None) is not None:
-                cli._flag_value(spec, getattr(args, spec.name))
+                _cli_flags._flag_value(spec, getattr(args, spec.name))
     elif command == "arch":
         for name in ("a", "p_xy", "fold_angle"):
             if getattr(args, name) is not None:
-                cli._flag_value(cli._VAULT[name], getattr(args, name))
+                _cli_flags._flag_value(_cli_parser._VAULT[name], getattr(args, name))
 
 
 def command_problems(command: str) -> list[str]:

@@ -53,6 +53,13 @@ def test_every_frame_of_a_vault_stands_on_the_ground(vault_folder):
     assert max(angles) > doc["curvefold:metadata"]["fold_angle_deg"]  # frames past the design
     lowest = [float(np.min(np.array(f["vertices_coords"])[:, 2])) for f in doc["file_frames"]]
     np.testing.assert_allclose(lowest, 0.0, atol=1e-9)
+    # on both feet: the end sections, on the ground in the design frame, level in every frame
+    frames = [np.array(f["vertices_coords"]) for f in doc["file_frames"]]
+    design = frames[angles.index(doc["curvefold:metadata"]["fold_angle_deg"])]
+    feet = np.flatnonzero(np.abs(design[:, 2]) <= 1e-9)
+    far = design[feet, 1] >= design[feet, 1].mean()
+    for x in frames:
+        assert x[feet[~far], 2].mean() == pytest.approx(x[feet[far], 2].mean(), abs=1e-9)
     # both feet on the ground again: the start and end sections level in every frame
     check = run("check", str(vault_folder / "vault.fold"), "--rebuild")
     assert check.returncode == 0, check.stdout

@@ -98,8 +98,8 @@ class _Parser(argparse.ArgumentParser):
             for name, command in action.choices.items()
         }
 
-    def flags(self) -> list[str]:
-        """Every flag this parser takes (a command's own flags added first)."""
+    def long_flags(self) -> list[str]:
+        """Every ``--flag`` this parser takes (a command's own flags added first)."""
         self._add_flags()
         return [flag for flag in self._option_string_actions if flag.startswith("--")]
 
@@ -127,14 +127,14 @@ def _nearest_flag(
     def bare(text: str) -> str:
         return text.lstrip("-").replace("-", "").replace("_", "").lower()
 
-    mine = own.flags()
+    mine = own.long_flags()
     alike = [f for f in mine if bare(f) == bare(flag)]
     if alike:
         return f"did you mean {alike[0]}?"
     others = [
         f"{PROG} {name}"
         for name, other in commands.items()
-        if name != command and flag in other.flags()
+        if name != command and flag in other.long_flags()
     ]
     if others:
         return f"{flag} is a flag of {_listed(others)}, not of {where}"

@@ -49,16 +49,14 @@ with blas_loads_on_one_thread():
         cmd_reproduce,
         cmd_structure,
     )
-    from ._cli_flags import _design_flags, _fit_targets, _flag_value
-    from ._cli_parser import _VAULT, LOAD_KIND, build_parser
+    from ._cli_flags import _fit_targets
+    from ._cli_parser import LOAD_KIND, build_parser
     from ._folder import Interrupted, raise_if_interrupted, signals_interrupt
     from ._kinds import design_kinds
 
 __all__ = ["build_parser", "main", "run"]
 #: The signal a closed pipe would stop a program with (POSIX numbers it 13).
 _SIGPIPE = int(getattr(signal, "SIGPIPE", 13))
-# the names the documentation's checks parse and check a quoted command line with
-_CHECKS = (_design_flags, _flag_value, _VAULT)
 
 
 def cmd_load(args: argparse.Namespace) -> int:
