@@ -126,3 +126,19 @@ def test_a_single_folds_design_file_builds_it_again(tmp_path):
     first = json.loads((tmp_path / "c" / "report.json").read_text(encoding="utf-8"))
     assert again.returncode in (0, 1), again.stderr
     assert json.loads(again.stdout)["design"] == first["design"]
+
+
+def test_frames_with_nothing_to_stand_on_are_left_as_they_are():
+    from curvefold import Crease, Lattice, SpaceCurve, Structure
+    from curvefold.geometry._fold_arrays import fold_arrays
+    from curvefold.geometry._standing import standing_frames
+
+    curve = SpaceCurve.from_curvature(1.0, 0.2, 2.0, samples=9)
+    tube = Structure.tube(Lattice.from_crease(Crease.from_curve(curve), 0.1, 0.1))
+    without_design = fold_arrays(tube, fold_angles=[0, 45])  # the design angle is 90°
+    assert standing_frames(without_design) is without_design.folded
+    # the design frame is there, but a tube touches z = 0 at one vertex only: no two feet
+    floating = fold_arrays(tube, fold_angles=[45, 90])
+    assert np.sum(np.abs(floating.folded[1][1].vertices_coords[:, 2]) <= 1e-9) == 1
+    assert standing_frames(floating) is floating.folded
+    assert standing_frames(floating, tol=-1.0) is floating.folded  # nothing on the ground
