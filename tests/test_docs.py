@@ -21,7 +21,8 @@ from pathlib import Path
 import pytest
 
 from _cli import run, run_subprocess
-from curvefold.app import cli, design_kinds
+from curvefold.app import _cli_flags, _cli_parser, cli
+from curvefold.app._kinds import design_kinds
 from curvefold.kernel._errors import CurvefoldError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -305,18 +306,18 @@ def _checked(command: str, argv: list[str]) -> None:
     """Parse ``curvefold command argv`` and check every value given as the command checks it."""
     args = cli.build_parser().parse_args([command, *argv])
     kinds = {kind.name for kind in design_kinds()}
-    kind = command if command in kinds else cli.LOAD_KIND if command == "load" else None
+    kind = command if command in kinds else _cli_parser.LOAD_KIND if command == "load" else None
     if kind is not None:
-        cli._design_flags(kind, args)
+        _cli_flags._design_flags(kind, args)
         from curvefold.vault._targets import TARGET_SPECS
 
         for spec in TARGET_SPECS if kind == "vault" else ():
             if getattr(args, spec.name, None) is not None:
-                cli._flag_value(spec, getattr(args, spec.name))
+                _cli_flags._flag_value(spec, getattr(args, spec.name))
     elif command == "arch":
         for name in ("a", "p_xy", "fold_angle"):
             if getattr(args, name) is not None:
-                cli._flag_value(cli._VAULT[name], getattr(args, name))
+                _cli_flags._flag_value(_cli_parser._VAULT[name], getattr(args, name))
 
 
 def command_problems(command: str) -> list[str]:
@@ -564,7 +565,8 @@ def folder_problems(text: str, folder: Path) -> list[str]:
     report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
     mesh = report["mesh"]
     size = sum(p.stat().st_size for p in folder.rglob("*") if p.is_file()) / 1e6
-    kept = f"{mesh['mesh_samples_per_crease']} of {mesh['samples_computed']}"
+    fewest, most = mesh["mesh_samples_per_crease"]
+    kept = f"{fewest}–{most} of {mesh['samples_computed']}"
     corner = mesh["mesh_smallest_angle_deg"]
     contact = report["certificate_frames"]["first_contact"]
     judged = {  # kind: (holds, what the folder says)

@@ -25,6 +25,7 @@ from ..kernel._errors import InputError
 from ..kernel._json_text import strict_json
 from ._build import Built, BuiltCrease, BuiltStructure, BuiltVault
 from ._design import Design
+from ._design_file import DESIGN_FILE, built_design, design_toml
 from ._folder import OutputTarget, output_folder, raise_if_interrupted
 from ._products import exported_fold_angles
 
@@ -228,18 +229,27 @@ def write_outputs(
             # jobs start
             done.refill()
             payload = structure_payload(built)
+            made = built_design(built)  # the design file that builds this folder again
+            design_text = design_toml(made)
+            atomic_write(tmp / DESIGN_FILE, design_text)
+            written.append(DESIGN_FILE)
             report = (
-                dict(payload, timings={}, parameters=parameter_rows(built.design))
+                dict(payload, timings={}, parameters=parameter_rows(made))
                 | products.resolution(built)
                 | notes
             )
+            if isinstance(built, BuiltStructure):  # numbers for programs: the fewest, the most
+                counts = built.sampling.vertices_per_crease
+                report["mesh"] = report["mesh"] | {
+                    "mesh_samples_per_crease": [int(min(counts)), int(max(counts))]
+                }
             for label, files, seconds in done:
                 step(label)
                 written += [str(Path(f).relative_to(tmp)) for f in files]
                 report["timings"][label] = round(seconds, 3)
             report["files"] = sorted(written)
             atomic_write(tmp / "report.json", strict_json(report, indent=2))
-            atomic_write(tmp / "report.html", report_html(report))
+            atomic_write(tmp / "report.html", report_html(report | {"design_toml": design_text}))
             written += ["report.json", "report.html"]
     finally:
         stop()

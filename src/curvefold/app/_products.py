@@ -367,7 +367,13 @@ def _fold(
     angles = exported_fold_angles(built) if fold_angle is None else design_motion(built, fold_angle)
     # the structure's file (write_structure_fold) and its sheets
     arrays = fold_arrays(structure, fold_angles=angles, keep=keep)
-    output = FoldOutput(unit=MODEL_UNIT, metadata=meta, keep=keep, design=built.design.to_dict())
+    output = FoldOutput(
+        unit=MODEL_UNIT,
+        metadata=meta,
+        keep=keep,
+        design=built.design.to_dict(),
+        ground=built.design.design_kind.grounded,
+    )
     model = fold_model(structure, arrays, output)
     files = [write_model(folder / f"{built.design.kind}.fold", model, title=meta["title"])]
     (folder / "sheets").mkdir()

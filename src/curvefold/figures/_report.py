@@ -13,6 +13,7 @@ from __future__ import annotations
 import html
 import json
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -87,7 +88,10 @@ QUANTITIES = {
 #: Name and unit of every entry of the mesh resolution (``payload["mesh"]``).
 MESH_QUANTITIES = {
     "samples_computed": ("samples along each crease, computed", ""),
-    "mesh_samples_per_crease": ("samples along each crease, in the files' meshes", ""),
+    "mesh_samples_per_crease": (
+        "samples along each crease, in the files' meshes (fewest, most)",
+        "",
+    ),
     "mesh_tolerance": ("accuracy asked (relative)", ""),
     "mesh_deviation": ("largest distance of the exact creases from the meshes' polylines", _UNIT),
     "mesh_deviation_relative": ("the same, over the structure's size", ""),
@@ -102,6 +106,10 @@ _FILES = (
     (
         r"^sheets/.*\.fold$",
         "one developed sheet, flat with its target fold angles (loads in Origami Simulator)",
+    ),
+    (
+        r"^design\.toml$",
+        "the design file that builds this folder again (curvefold <kind> design.toml)",
     ),
     (r"^report\.json$", "everything on this page, for programs"),
     (r"^report\.html$", "this page"),
@@ -135,8 +143,12 @@ def describe_file(name: str) -> str:
     for pattern, text in _FILES:
         if re.search(pattern, name):
             return text
+    own = [f for f in FORMATS.values() if f.stem is not None]  # a file name of its own first
+    named = next((f.holds for f in own if f.path(Path(name).stem).as_posix() == name), None)
+    if named is not None:
+        return named
     suffix = name[name.rfind(".") :]
-    return next((f.holds for f in FORMATS.values() if f.extension == suffix), "")
+    return next((f.holds for f in FORMATS.values() if f.extension == suffix and f.stem is None), "")
 
 
 def _number(value) -> str:
@@ -202,10 +214,15 @@ def _parameters_table(payload: dict) -> str:
         for r in rows
     )
     head = "<tr><th>parameter</th><th>symbol</th><th>value</th><th>unit</th></tr>"
-    return (
-        f"<table class=cards>{head}{body}</table>"
-        f"<details><summary>as a design file holds it</summary><pre>{raw}</pre></details>"
+    text = payload.get("design_toml")
+    design_file = (
+        ""
+        if text is None
+        else "<details><summary><code>design.toml</code>, the design file in this folder: "
+        f"<code>curvefold {e(str(payload.get('kind', '')))} design.toml</code> builds it "
+        f"again</summary><pre>{e(text)}</pre></details>"
     )
+    return f"<table class=cards>{head}{body}</table>{design_file}"
 
 
 def _sci(x: float | None, prefix: str = "") -> str:

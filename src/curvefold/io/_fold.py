@@ -46,6 +46,7 @@ from numpy.typing import ArrayLike
 
 from ..geometry._fold_arrays import FoldArrays, fold_arrays, structure_metadata
 from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides, vector_areas
+from ..geometry._standing import standing_frames
 from ..geometry._structure import Structure
 from ..geometry._topology import fold_assignment
 from ..kernel._arrays import distinct
@@ -588,6 +589,7 @@ def fold_model(
     and ``keep``), so that their developed sheets serve other files too (``arrays.sheets``)."""
     extra = _check_fold_output(output)
     meta = check_metadata({**structure_metadata(structure, arrays.fold_angle), **extra})
+    folded = standing_frames(arrays) if output.ground else arrays.folded
     keep = output.keep
     record = (
         None
@@ -599,10 +601,11 @@ def fold_model(
             "faces": output.faces,
             "keep": None if keep is None else [np.asarray(k).tolist() for k in keep],
         }
+        | ({"ground": True} if output.ground else {})
     )
     return FoldFile(
         crease_pattern=arrays.crease_pattern,
-        folded=arrays.folded,
+        folded=folded,
         metadata=meta,
         unit=output.unit,
         seam_partners=arrays.seam_partners,

@@ -19,10 +19,11 @@ follow the states, with weight 0 and outside the animation.
 
 One animation drives the ``weights`` of every node: it starts at the base state, unfolds
 to the first state (flat), folds to the last and returns to the base state, each step
-``seconds_per_state`` long. Its first keyframe is the base state, which importers that
-apply the first keyframe (Blender) therefore open. At keyframe times the weights select
-one state exactly, so ``LINEAR`` interpolation blends linearly between neighbouring states
-and ``STEP`` jumps between them.
+``seconds_per_state`` long, or shorter so that the loop lasts at most :data:`LOOP_SECONDS`
+(Blender's default timeline holds it whole). Its first keyframe is the base state, which
+importers that apply the first keyframe (Blender) therefore open. At keyframe times the
+weights select one state exactly, so ``LINEAR`` interpolation blends linearly between
+neighbouring states and ``STEP`` jumps between them.
 
 Units and axes: glTF lengths are metres and +Y is up. Coordinates are multiplied by
 ``scale`` (metres per model unit; by default taken from ``unit``: ``"mm"`` → 0.001,
@@ -60,6 +61,10 @@ from ._mesh3d import Y_UP, check_metadata
 from ._tables import CREATOR, UNITS, rgba
 
 __all__ = ["CREASE_COLOURS", "GlbOptions", "write_glb"]
+
+#: The longest the folding loop lasts, s: within Blender's default timeline (frames 1–250 at
+#: 24 frames per second, 10.4 s), which a longer animation would leave mid-loop.
+LOOP_SECONDS = 10.0
 
 #: RGBA colour of each crease kind drawn as lines (from :data:`curvefold.io._tables.COLOURS`).
 CREASE_COLOURS = MappingProxyType({kind: rgba(kind) for kind in ("fold", "seam", "boundary")})
@@ -223,7 +228,8 @@ class GlbOptions:
     metadata : mapping or None
         Design parameters, recorded in the asset extras.
     seconds_per_state : float
-        Animation time from one state to the next (> 0).
+        Animation time from one state to the next (> 0), at most: a longer loop is played
+        faster, to last :data:`LOOP_SECONDS`.
     interpolation : {"LINEAR", "STEP"}
         Animation sampler interpolation.
     up : {"z", "y"}
@@ -491,7 +497,7 @@ def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -
     and back."""
     K, T = motion.states, motion.targets
     order = _keyframes(K, motion.base_state)
-    times = (np.arange(len(order)) * float(options.seconds_per_state)).astype(np.float32)
+    times = (np.arange(len(order)) * _step_seconds(motion, options)).astype(np.float32)
     target_of = np.full(K, -1)
     target_of[motion.others] = np.arange(K - 1)  # the base state has all weights 0
     weights = np.zeros((len(order), T), np.float32)
@@ -510,6 +516,13 @@ def _animations(pk: _Packer, motion: _Motion, nodes: int, options: GlbOptions) -
     ]
 
 
+def _step_seconds(motion: _Motion, options: GlbOptions) -> float:
+    """Seconds from one keyframe to the next: ``seconds_per_state``, or less where the loop would
+    last longer than :data:`LOOP_SECONDS`."""
+    steps = len(_keyframes(motion.states, motion.base_state)) - 1
+    return min(float(options.seconds_per_state), LOOP_SECONDS / max(steps, 1))
+
+
 def _extras(motion: _Motion, options: GlbOptions, scale: float, meta: dict) -> dict:
     """The asset's ``extras["curvefold"]``: units, axes, states, morph targets, timing and the
     design."""
@@ -521,7 +534,7 @@ def _extras(motion: _Motion, options: GlbOptions, scale: float, meta: dict) -> d
         "states": motion.states,
         "base_state": motion.base_state,
         "morph_targets": motion.names,
-        "seconds_per_state": float(options.seconds_per_state),
+        "seconds_per_state": _step_seconds(motion, options),
         "metadata": meta,
     }
     if motion.angles is not None:

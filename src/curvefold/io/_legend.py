@@ -131,7 +131,7 @@ def page_footer(
     names = [
         name
         for name in LEGEND
-        if name in drawn and (page.labels() if name == "labels" else page.on_layer(name))
+        if name in drawn and (_has_seam_labels(page) if name == "labels" else page.on_layer(name))
     ]
     page_text = f"page {page_index + 1} of {len(layout.pages)}" if page_text is None else page_text
     W, _ = layout.page_size
@@ -178,6 +178,11 @@ def page_footer(
         tuple(texts),
         layer_look(layout, "legend")[1],
     )
+
+
+def _has_seam_labels(page) -> bool:
+    """Whether a page names a seam to glue (a single fold has none, only its sheet's name)."""
+    return any(label.kind == "seam" for label in page.labels())
 
 
 def check_line_width(line_width: float) -> float:

@@ -152,6 +152,10 @@ class FoldOutput:
         The design the structure was built from, as a design file holds it
         (:meth:`curvefold.app.Design.to_dict`); recorded with the frames' fold angles,
         anchor and faces, so that the file can be built again and compared.
+    ground : bool
+        Whether every folded frame stands on the ground ``z = 0`` as the design frame does (a
+        vault): turned about the span's normal until its feet are level, then set down
+        (:func:`curvefold.geometry._standing.standing_frames`).
 
     Examples
     --------
@@ -165,3 +169,4 @@ class FoldOutput:
     faces: Literal["triangles", "quads"] = "triangles"
     keep: Sequence[np.ndarray] | None = None
     design: Mapping[str, object] | None = None
+    ground: bool = False

@@ -206,7 +206,7 @@ def fit_targets(
     a, note = design.a, ""
     if "span" in given and "rise" in given:
         a, note = _solve_ratio(
-            shape, given["rise"] / given["span"], design, with_p_xz="p_xz" in given
+            shape, given["span"], given["rise"], design, with_p_xz="p_xz" in given
         )
     unit = shape(a)
     span1, rise1, _ = _measure(unit)
@@ -253,8 +253,12 @@ def _fit_tube_count(design: VaultDesign, given: dict, rtol: float) -> TargetFit:
     )
 
 
-def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -> tuple[float, str]:
-    """a with rise/span = ratio (the root nearest ``design.a``), or the nearest a and why none is.
+def _solve_ratio(
+    shape, span: float, rise: float, design: VaultDesign, *, with_p_xz: bool
+) -> tuple[float, str]:
+    """a with rise/span = ratio (the root nearest ``design.a``), or the nearest a and why none is:
+    the ratios the family reaches (overlapping ranges merged) and the rise, or the span, that
+    would reach the nearest of them.
 
     The family stands free of regression on runs of a (intervals: regression bounds a for
     a number of tubes). Each run's ends are found by bisection and its extrema refined, and a
@@ -264,6 +268,7 @@ def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -
     from scipy.optimize import brentq
 
     assert design.tubes is not None  # fit_targets fits a count of None otherwise (_fit_tube_count)
+    ratio = rise / span
 
     def value(a: float) -> float:
         """rise/span at a, NaN where the family cannot build the vault (regression, no arch)."""
@@ -299,22 +304,64 @@ def _solve_ratio(shape, ratio: float, design: VaultDesign, *, with_p_xz: bool) -
     # Out of reach: the nearest point of every run (ends and extrema included).
     points = np.concatenate([a_run for a_run, _ in runs])
     best = float(points[np.argmin(np.abs(np.concatenate([v_run for _, v_run in runs]) - ratio))])
-    reach = " and ".join(
-        f"from {_rounded(v_run.min(), up=True)} to {_rounded(v_run.max(), up=False)}"
-        for _, v_run in runs
+    ranges = _merged(
+        [(float(_rounded(v.min(), up=True)), float(_rounded(v.max(), up=False))) for _, v in runs]
     )
+    reach = " and ".join(f"from {lo:.6g} to {hi:.6g}" for lo, hi in ranges)
     stands = " and ".join(f"[{a_run[0]:.3g}, {a_run[-1]:.3g}]" for a_run, _ in runs)
     return best, (
         f"rise/span = {ratio:.6g} is out of reach for width = {design.width:g} and "
         f"{_tubes(design.tubes)}: vaults of the family reach rise/span "
         f"{reach}{' at this p_xz' if with_p_xz else ''} (they stand free of regression for a "
-        f"in {stands})"
+        f"in {stands}){_change(span, rise, ranges)}"
+    )
+
+
+def _merged(ranges: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Ranges with the overlapping ones joined, in increasing order.
+
+    Examples
+    --------
+    >>> _merged([(0.6, 0.7), (0.5, 0.65), (0.8, 0.9)])
+    [(0.5, 0.7), (0.8, 0.9)]
+    """
+    merged: list[tuple[float, float]] = []
+    for lo, hi in sorted(ranges):
+        if merged and lo <= merged[-1][1]:
+            merged[-1] = (merged[-1][0], max(hi, merged[-1][1]))
+        else:
+            merged.append((lo, hi))
+    return merged
+
+
+def _change(span: float, rise: float, ranges: list[tuple[float, float]]) -> str:
+    """What reaches the nearest ratio of ``ranges``: the rise for this span, or the span for this
+    rise, each rounded into reach.
+
+    Examples
+    --------
+    >>> _change(4.0, 3.0, [(0.5, 0.625)])[:60]
+    '; to reach it, lower the rise to 2.5 (by 0.5) for span 4, or'
+    >>> _change(4.0, 3.0, [(0.5, 0.625)])[60:]
+    ' raise the span to 4.8 (by 0.8) for rise 3'
+    """
+    ratio = rise / span
+    nearest = min((end for pair in ranges for end in pair), key=lambda end: abs(end - ratio))
+    up = nearest > ratio  # rise/span must grow
+    new_rise = float(_rounded(nearest * span, up=up))
+    new_span = float(_rounded(rise / nearest, up=not up))
+    return (
+        f"; to reach it, {'raise' if up else 'lower'} the rise to {new_rise:.6g} (by "
+        f"{abs(new_rise - rise):.6g}) for span {span:g}, or {'lower' if up else 'raise'} the span "
+        f"to {new_span:.6g} (by {abs(new_span - span):.6g}) for rise {rise:g}"
     )
 
 
 def _rounded(x: float, *, up: bool) -> str:
     """x to 6 significant digits, rounded into the range it bounds (up for a lower end), so every
     value the message states is reached."""
+    if float(f"{x:.6g}") == x:  # 2.5 stays 2.5, not 2.49999
+        return f"{x:.6g}"
     step = 10.0 ** (math.floor(math.log10(abs(x))) - 5) if x else 1e-6
     text = f"{(math.ceil(x / step) if up else math.floor(x / step)) * step:.6g}"
     return (
