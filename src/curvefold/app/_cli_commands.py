@@ -1,5 +1,5 @@
 """The ``curvefold`` commands: each reads its parsed arguments, does its work and prints its
-result (:func:`_emit`) or raises a :class:`~curvefold.kernel.CurvefoldError` for the user.
+result (``_emit``) or raises a :class:`~curvefold.kernel.CurvefoldError` for the user.
 """
 
 from __future__ import annotations

@@ -184,7 +184,7 @@ class DesignKind:
     targets : Targets or None
         What it may be designed from besides its parameters.
     formats_as : str
-        The kind whose file formats it writes (:attr:`curvefold.io.FileFormat.kinds`); default
+        The kind whose file formats it writes (``curvefold.io.FileFormat.kinds``); default
         its own name.
     """
 

@@ -106,7 +106,7 @@ def jobs(
 ) -> list[tuple[str, Job]]:
     """The jobs that write the requested formats of a built design and its pictures (when
     :data:`PICTURES_NEED` is installed: see :func:`pictures_left_out`): the drawings first
-    (:data:`DRAWN`: they need nothing :func:`prepare` computes), then the files, longest first.
+    (:data:`DRAWN`: they need nothing ``prepare`` computes), then the files, longest first.
 
     ``fold_angle`` is 2α of the folded state the FOLD and 3D files hold (degrees; default
     the design angle); crease patterns, pictures and the GIF do not depend on it.
@@ -523,7 +523,7 @@ DRAWING_MODULES = (
     "PIL.ImageFile",
     "curvefold.figures._motion",
 )
-#: The jobs that draw the structure and need nothing :func:`prepare` computes: they start first.
+#: The jobs that draw the structure and need nothing ``prepare`` computes: they start first.
 DRAWN = ("pictures", "folding GIF")
 #: How much less the drawings' processes get of a shared CPU than the parent (``nice``): on
 #: two CPUs, the two drawings and the parent's preparation of the file jobs run together.

@@ -6,21 +6,23 @@ alone. The crease-pattern writers (SVG, DXF, PDF) therefore put every kind of li
 layer named by its operation and the fold it makes (:func:`layer_name`), and draw it in the
 colour the chosen convention (a :class:`Cutter` of :data:`CUTTERS`) gives that layer:
 
-========================  ========================================
-===================================== layout layer              file layer
-operation
-========================  ========================================
-===================================== ``cut``                   ``cut``
-cut through: each sheet's outline ``mountain``, ``valley``  ``score - mountain``, ``- valley``
-score and fold (perforated)              ``perforate - mountain``, ``- valley``    cut dashes
-(:mod:`curvefold.io._cutting`) ``seam``                  ``score - seam``
-score: the fold line of each glue tab ``rulings``               ``engrave - rulings``
-engrave (optional guide lines) ``labels``                ``engrave - labels``
-engrave: sheet names and seam names ``glue``                  ``reference - glue (not cut)``
-nothing: where the glue goes (footer)                  ``reference - legend (not cut)``
-nothing: scale bar, scale, legend
-========================  ========================================
-=====================================
+========================  ==================================  =============================
+layout layer              file layer                          operation
+========================  ==================================  =============================
+``cut``                   ``cut``                             cut through: each sheet's
+                                                              outline
+``mountain``, ``valley``  ``score - mountain``, ``- valley``  score and fold
+(perforated)              ``perforate - mountain``,           cut dashes
+                          ``- valley``                        (:mod:`~curvefold.io._cutting`)
+``seam``                  ``score - seam``                    score: the fold line of each
+                                                              glue tab
+``rulings``               ``engrave - rulings``               engrave (optional guide lines)
+``labels``                ``engrave - labels``                engrave: sheet names and seam
+                                                              names
+``glue``                  ``reference - glue (not cut)``      nothing: where the glue goes
+(footer)                  ``reference - legend (not cut)``    nothing: scale bar, scale,
+                                                              legend
+========================  ==================================  =============================
 
 Nothing that is not to be cut is drawn in the cut colour: the scale bar, the legend's
 sample lines and its text are in the convention's reference colour, with each sample in

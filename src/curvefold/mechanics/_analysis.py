@@ -63,7 +63,7 @@ class LoadResult:
         The inextensional motions of the free structure.
     supported_eigenvalues : (k,) ndarray
         The lowest eigenvalues ω² of the structure on its supports, rad²/s²
-        (:func:`supported_modes`).
+        (``supported_modes``).
 
     Examples
     --------

@@ -22,7 +22,7 @@
   quarter C), a coefficient each, the user's (read off the figure for the roof's f/d, h/d);
 * ``point`` (:class:`PointLoad`): a vertical force (N, downward) at the apex, the highest
   node, or at the node nearest a given point, refused when that node is farther than
-  :data:`POINT_REACH` of the structure's size from the point.
+  ``POINT_REACH`` of the structure's size from the point.
 
 """
 
@@ -121,7 +121,7 @@ class Snow(LoadCase):
 class HalfSnow(LoadCase):
     """Snow on half the span: :class:`Snow`'s load on the part of the seen surface before
     (``"start"``) or beyond (``"end"``) the middle of the span (module notes; the span:
-    :func:`._surface.span_axis`, from end section t = 0 to t = 1 on a structure's model).
+    ``_surface.span_axis``, from end section t = 0 to t = 1 on a structure's model).
 
     Examples
     --------
@@ -260,7 +260,7 @@ class ZonedWind(LoadCase):
     the windward edge, in a quarter A, a half B and a quarter C, each with its own coefficient.
 
     The pressure c_p q_p of each zone acts normal to the sheets as :class:`Wind`'s; every
-    triangle is cut exactly at the zones' borders (:func:`._surface.beyond_shares`). The
+    triangle is cut exactly at the zones' borders (``_surface.beyond_shares``). The
     coefficients are the user's, read off the standard's figure for the roof's f/d and h/d
     (its values depend on them and on the national annex); they default to 0.
 
@@ -372,7 +372,7 @@ class PointLoad(LoadCase):
         Raises
         ------
         InputError
-            If that node is farther from ``at`` than :data:`POINT_REACH` of the model's size.
+            If that node is farther from ``at`` than ``POINT_REACH`` of the model's size.
 
         Examples
         --------

@@ -179,8 +179,8 @@ def combinations(
     cases : sequence of LoadCase
         The characteristic loads (as :class:`Loads` holds them).
     gamma_g, gamma_q : float, keyword-only
-        γ_G on the permanent cases, γ_Q on the variable ones (:data:`GAMMA_G`,
-        :data:`GAMMA_Q`); an accompanying case is also multiplied by its ψ0.
+        γ_G on the permanent cases, γ_Q on the variable ones (``GAMMA_G``,
+        ``GAMMA_Q``); an accompanying case is also multiplied by its ψ0.
 
     Raises
     ------

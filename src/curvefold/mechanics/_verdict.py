@@ -107,8 +107,8 @@ CRITERIA_SPECS: tuple[Spec, ...] = (GAMMA_G, GAMMA_Q, GAMMA_M, BUCKLING_SAFETY, 
 @dataclass(frozen=True)
 class Criteria:
     """What the verdict asks: the partial factors, the required buckling factor and the deflection
-    limit. Checked on construction (:data:`GAMMA_G`, :data:`GAMMA_Q`, :data:`GAMMA_M`,
-    :data:`BUCKLING_SAFETY`, :data:`DEFLECTION_LIMIT`).
+    limit. Checked on construction (``GAMMA_G``, ``GAMMA_Q``, ``GAMMA_M``,
+    ``BUCKLING_SAFETY``, ``DEFLECTION_LIMIT``).
 
     Attributes
     ----------
