@@ -4,7 +4,8 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 __all__ = ["FileCheck", "FoldCheck"]
 
@@ -64,6 +65,10 @@ class FoldCheck:
     tolerances : dict
     notes : tuple of str
         What the reader read leniently or left, and why (:attr:`FoldFile.notes`).
+    sources : dict of str to str
+        How each tolerance the file promises was derived from it
+        (:func:`~curvefold.analysis._promises.promised_tolerances`); the others are the
+        defaults or were given.
     max_isometry_error : float
         Largest ``|ℓ_folded / ℓ_pattern − 1|`` over all measurable edges and frames (0 when
         that check did not run).
@@ -80,6 +85,7 @@ class FoldCheck:
     checks: tuple[FileCheck, ...]
     tolerances: dict
     notes: tuple[str, ...] = ()
+    sources: Mapping[str, str] = field(default_factory=dict)
 
     def _value(self, name: str) -> float:
         check = next(c for c in self.checks if c.name == name)
@@ -118,4 +124,5 @@ class FoldCheck:
             "not_run": [c.name for c in self.checks if c.status == "not run"],
             "notes": list(self.notes),
             "tolerances": self.tolerances,
+            "tolerance_sources": dict(self.sources),
         }

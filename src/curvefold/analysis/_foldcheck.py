@@ -58,6 +58,7 @@ from ._checks import CHECKS
 from ._fold_checks import NEEDS_CREASE_PATTERN, Frame
 from ._fold_rebuild import rebuild
 from ._fold_results import FileCheck, FoldCheck
+from ._promises import promised_tolerances
 
 __all__ = ["CHECK_SPECS", "FileCheck", "FoldCheck", "check_fold", "NEEDS_CREASE_PATTERN"]
 
@@ -143,6 +144,9 @@ def check_fold(
     **tolerances : float
         Any of :data:`CHECK_SPECS` by name (``isometry_tol``, ``planarity_tol``,
         ``fold_angle_tol``, ``flat_tol``, ``weld_tol``, ``rebuild_tol``); finite and ≥ 0.
+        Those not given are what a curvefold file promises
+        (:func:`~curvefold.analysis._promises.promised_tolerances`: its recorded mesh
+        tolerance and written precision), else the defaults.
 
     Raises
     ------
@@ -156,8 +160,11 @@ def check_fold(
         raise InputError(
             f"check_fold: unknown tolerance {unknown[0]!r} (allowed: {', '.join(specs)})"
         )
-    tol = _DEFAULT | {name: specs[name].check(value) for name, value in tolerances.items()}
     doc = path if isinstance(path, FoldFile) else read_fold(path)
+    promised, sources = promised_tolerances(doc)
+    given = {name: specs[name].check(value) for name, value in tolerances.items()}
+    tol = _DEFAULT | promised | given
+    sources = {name: how for name, how in sources.items() if name not in given}
     cp = doc.crease_pattern
     folded = [
         Frame(_label(doc, i, title), mesh, doc.is_flat_folded(i), doc.unrecorded_edges(i))
@@ -191,7 +198,7 @@ def check_fold(
             FileCheck(name, "not run", reason="the frames do not share one topology")
             for name in _CHECK_NAMES[1:]
         )
-        return FoldCheck(len(folded), unshared, tol, doc.notes)
+        return FoldCheck(len(folded), unshared, tol, doc.notes, sources)
     found = [
         checks.topology(frames, size),
         checks.welds(doc, folded, size, tol["weld_tol"]),
@@ -203,7 +210,7 @@ def check_fold(
     ]
     if reference is not None:
         found.append(rebuild(doc, reference, [f.label for f in frames], size, tol))
-    return FoldCheck(len(folded), tuple(found), tol, doc.notes)
+    return FoldCheck(len(folded), tuple(found), tol, doc.notes, sources)
 
 
 def _label(doc: FoldFile, i: int, title: str) -> str:

@@ -613,7 +613,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
         lines.append(f"  wrote {len(payload['files'])} files to {out}/ (open {out}/report.html)")
         lines += [f"  {note}" for note in payload.get("notes", [])]
     _emit(args, payload, lines)
-    return 1 if any(c["status"] == "fail" for c in payload["certificate"]) else 0
+    return 1 if _certificate_failed(payload) else 0
 
 
 def cmd_load(args: argparse.Namespace) -> int:
@@ -662,7 +662,7 @@ def cmd_load(args: argparse.Namespace) -> int:
         lines += _certificate_lines(written) + [
             f"  wrote {len(written['files'])} files to {args.out}/ (open {args.out}/report.html)"
         ]
-        failed = any(c["status"] == "fail" for c in written["certificate"])
+        failed = _certificate_failed(written)
     _emit(args, payload, lines)
     return 1 if failed else 0
 
@@ -687,7 +687,23 @@ def _certificate_lines(payload: dict) -> list[str]:
         for c in cert
         if not c["passed"]
     ]
+    shipped = payload.get("certificate_file")
+    if shipped is not None:  # the file column: the FOLD file as written, read back
+        ran = [c for c in shipped["checks"] if c["status"] != "not run"]
+        lines.append(
+            f"  shipped file       {sum(c['status'] == 'pass' for c in ran)}/{len(ran)} checks "
+            f"pass on {shipped['file']} as written (the file column; the line above: the model)"
+        )
+        lines += [f"    {c['name']}: fail at {c['where']}" for c in ran if c["status"] == "fail"]
     return lines
+
+
+def _certificate_failed(payload: dict) -> bool:
+    """Whether a check of the certificate failed, in the model's column or the file's."""
+    shipped = payload.get("certificate_file")
+    return any(c["status"] == "fail" for c in payload["certificate"]) or (
+        shipped is not None and not shipped["ok"]
+    )
 
 
 def cmd_arch(args: argparse.Namespace) -> int:
