@@ -77,6 +77,7 @@ def test_the_written_file_passes_every_check(written):
         "fold_angles",
         "isometry",
         "face_planarity",
+        "record",
     ]
     assert all(c.status == "pass" for c in result.checks)
     # the file records the dihedral angles it has, up to its coordinates' rounding (to 1e-12 of the
@@ -331,12 +332,13 @@ def test_plain_fold_without_curvefold_keys_passes_what_can_run(tmp_path, written
         "welds",
         "edge_kinds",
         "face_planarity",
+        "record",
     }
     assert (
         "curvefold:seam_partners" in checks["welds"].reason
         and "edges_curvefold:kind" in checks["face_planarity"].reason
     )
-    assert result.to_dict()["not_run"] == ["welds", "edge_kinds", "face_planarity"]
+    assert result.to_dict()["not_run"] == ["welds", "edge_kinds", "face_planarity", "record"]
 
 
 def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):

@@ -32,6 +32,10 @@ the failing element ids and the frame:
     the dihedral angle across the diagonals that split a polygon face into a fan of
     triangles, across the diagonals of ruling quads (edges of kind ``"diagonal"``) and
     across join (``J``) edges.
+``record``
+    a curvefold file's record (``curvefold:metadata``, ``curvefold:design``, ``frame_unit``)
+    against its geometry: its frames and their fold angles, seam partners and bonds, sheets,
+    radius, mesh deviation and stretch (:mod:`curvefold.analysis._fold_record`).
 ``rebuild``
     with a ``reference`` (the design the file records, built again): every array of every
     frame, as :func:`read_fold` reads them: coordinates (relative to the model's size) and
@@ -57,8 +61,9 @@ from . import _fold_checks as checks
 from ._checks import CHECKS
 from ._fold_checks import NEEDS_CREASE_PATTERN, Frame
 from ._fold_rebuild import rebuild
+from ._fold_record import record
 from ._fold_results import FileCheck, FoldCheck
-from ._promises import promised_tolerances
+from ._promises import promised_tolerances, written_precision
 
 __all__ = ["CHECK_SPECS", "FileCheck", "FoldCheck", "check_fold", "NEEDS_CREASE_PATTERN"]
 
@@ -126,6 +131,7 @@ _CHECK_NAMES = (
     "fold_angles",
     "isometry",
     "face_planarity",
+    "record",
 )
 
 
@@ -207,6 +213,7 @@ def check_fold(
         checks.recorded_angles(folded, tol["fold_angle_tol"]),
         checks.isometry(cp, folded, tol["isometry_tol"]),
         checks.planarity(doc, folded, tol["planarity_tol"]),
+        record(doc, max(written_precision(f.mesh.vertices_coords) for f in frames)),
     ]
     if reference is not None:
         found.append(rebuild(doc, reference, [f.label for f in frames], size, tol))
