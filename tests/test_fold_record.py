@@ -201,3 +201,22 @@ def test_the_catalogue_rates(tmp_path, vault, capsys):
             f"{passed}/{3 * len(BENIGN)} benign copies pass"
         )
     assert caught == 3 * len(HARMFUL) and passed == 3 * len(BENIGN)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ("tube", "--panels", "4"),
+        ("vault", "--tubes", "2", "--layers", "2", "--samples", "201"),
+        ("block", "--samples", "201"),
+    ],
+    ids=["panel tube", "two-layer vault", "block"],
+)
+def test_shipped_files_of_every_kind_keep_their_record(tmp_path, argv):
+    """Rigid panels fold their fold lines by their own angles; a layered vault has a tube per
+    cell: neither is a false record."""
+    out = tmp_path / "out"
+    result = run(*argv, "--formats", "fold", "--out", str(out))
+    assert result.returncode == 0, result.stdout
+    report = json.loads((out / "report.json").read_text())
+    assert report["certificate_file"]["ok"], report["certificate_file"]["checks"]

@@ -13,7 +13,8 @@ measured:
   or a frame replaced by another's coordinates under its own title fail;
 * every ``seam`` edge has its partner (``curvefold:seam_partners``), and a file whose metadata
   names bonds holds them (``curvefold:bonds``);
-* the sheets: two connected pieces per tube (``tubes``), so a stray piece shows;
+* the sheets: two connected pieces per tube (one tube per recorded cell), so a stray piece
+  shows;
 * ``curve_length`` = ``kappa0_s0`` × ``radius``, and the radius is the design's;
 * ``mesh_deviation``: a thinned mesh deviates from the computed samples by about the sagitta
   κℓ²/8 of its chords, measured from the turning of its crease polylines in the frame at the
@@ -156,7 +157,7 @@ def _design_frame(doc: FoldFile, design: dict, meta: dict) -> Mesh | None:
 
 
 def _mesh_claims(doc: FoldFile, design: dict, meta: dict, eps: float) -> list[str]:
-    found = []
+    found: list[str] = []
     frame = _design_frame(doc, design, meta)
     pattern = doc.crease_pattern
     if frame is None or pattern is None:
@@ -199,11 +200,11 @@ def _structure_claims(doc: FoldFile, meta: dict, vault: dict) -> list[str]:
             )
     if meta.get("bonds") not in (None, "none") and not len(doc.bonds):
         found.append(f"the metadata names bonds ({meta['bonds'][:60]}…), the file holds none")
-    tubes = meta.get("tubes")
-    if isinstance(tubes, int) and len(base.faces_vertices):
-        pieces = sheet_count(base)
+    cells = meta.get("cells")  # one tube per cell: "(0, 0); (1, 1)"
+    if isinstance(cells, str) and cells and len(base.faces_vertices):
+        tubes, pieces = len(cells.split(";")), sheet_count(base)
         if pieces != 2 * tubes:
-            found.append(f"{pieces} connected sheets, {tubes} tubes make {2 * tubes}")
+            found.append(f"{pieces} connected sheets, {tubes} tubes (cells) make {2 * tubes}")
     radius = meta.get("radius")
     if isinstance(radius, (int, float)):
         if isinstance(vault.get("radius"), (int, float)) and vault["radius"] != radius:
@@ -235,11 +236,13 @@ def record(doc: FoldFile, eps: float) -> FileCheck:
             reason="the file records no curvefold:metadata (another tool's file)",
         )
     record_ = doc.design if isinstance(doc.design, dict) else {}
-    design = record_.get("design") if isinstance(record_.get("design"), dict) else {}
-    kind = design.get("kind") if isinstance(design, dict) else None
-    section = design.get(kind, {}) if isinstance(kind, str) else {}
-    section = section if isinstance(section, dict) else {}
-    smooth = not section.get("panels")
+    found_design = record_.get("design")
+    design: dict = found_design if isinstance(found_design, dict) else {}
+    kind = design.get("kind")
+    found_section = design.get(kind) if isinstance(kind, str) else None
+    section: dict = found_section if isinstance(found_section, dict) else {}
+    # rigid panels fold their fold lines by their own angles, not 2α
+    smooth = not any(isinstance(v, dict) and v.get("panels") for v in design.values())
     found = []
     if record_ and doc.unit != "unit":
         found.append(
