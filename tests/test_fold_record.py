@@ -142,8 +142,25 @@ def _unknown_key(doc, rng):
     doc["myTool:note"] = "opened and saved"
 
 
+def _rounded(doc, rng):
+    """Every coordinate and angle rounded to 6 decimals, as a spreadsheet might save them."""
+    for frame in [doc, *_frames(doc)]:
+        frame["vertices_coords"] = np.round(frame["vertices_coords"], 6).tolist()
+        if "edges_foldAngle" in frame:
+            frame["edges_foldAngle"] = np.round(frame["edges_foldAngle"], 6).tolist()
+
+
+def _single_precision(doc, rng):
+    """Every coordinate in single precision (float32), as a GPU tool keeps them."""
+    for frame in [doc, *_frames(doc)]:
+        x = np.asarray(frame["vertices_coords"], np.float32)
+        frame["vertices_coords"] = x.astype(float).tolist()
+
+
 #: Benign edits: the geometry and its record unchanged.
 BENIGN = {
+    "rounded to 6 decimals": _rounded,
+    "float32 coordinates": _single_precision,
     "indented": _indented,
     "keys reordered": _keys_reordered,
     "file_creator changed": _creator_changed,

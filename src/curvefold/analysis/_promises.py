@@ -35,7 +35,6 @@ import math
 import numpy as np
 
 from ..geometry._mesh import Mesh, vector_areas
-from ..io._fold import ANGLE_DECIMALS, COORDINATE_RTOL
 from ..io._fold_reading import FoldFile
 
 __all__ = ["promised_tolerances", "written_precision"]
@@ -44,19 +43,37 @@ __all__ = ["promised_tolerances", "written_precision"]
 PROMISE_KEYS = ("mesh_tolerance", "mesh_bend_bound_deg", "design_fold_angle_deg")
 
 
-def written_precision(coords: np.ndarray) -> float:
-    """Half the decimal unit curvefold writes coordinates ``coords`` (V, d) to: the largest
-    rounding error of one written coordinate.
+def written_precision(values: np.ndarray) -> float:
+    """Half the unit of the last place ``values`` are written to: the largest rounding error of
+    one written number, read off the numbers themselves.
+
+    Numbers written to d decimals (curvefold writes coordinates to
+    :data:`~curvefold.io._fold.COORDINATE_RTOL` of the size, angles to
+    :data:`~curvefold.io._fold.ANGLE_DECIMALS` places; an editor may round them further) give
+    ``0.5 × 10^-d``, d the fewest decimals that hold every one; numbers that no decimal place
+    holds but single precision does (float32) give its half unit at the largest, 2⁻²⁴ × max
+    ``|x|``; any other, double precision's, 2⁻⁵³ × max ``|x|``.
 
     Examples
     --------
-    >>> written_precision(np.array([[0.0, 0.0], [2.0, 1.0]]))
-    5e-13
+    >>> written_precision(np.array([[0.125, 0.5], [2.0, 1.0]]))
+    0.0005
+    >>> float(written_precision(np.float32([0.1, 0.7]).astype(float)) / 2.0**-24)  # float32
+    0.699999988079071
     """
-    size = float(np.ptp(coords, axis=0).max()) if len(coords) else 0.0
-    if not size > 0:
+    x = np.asarray(values, float).ravel()
+    x = x[np.isfinite(x)]
+    scale = float(np.abs(x).max()) if x.size else 0.0
+    if not scale > 0:
         return 0.0
-    return 0.5 * 10.0 ** math.floor(math.log10(COORDINATE_RTOL * size))
+    parsed = 4 * np.spacing(np.abs(x))  # a decimal read into a double is off by an ulp or two
+    # a decimal place within 64 ulps of the largest number is no place it was written to
+    places = [d for d in range(17) if 10.0**-d >= 64 * float(np.spacing(scale))]
+    for decimals in places:
+        if (np.abs(np.round(x, decimals) - x) <= parsed).all():
+            return 0.5 * 10.0**-decimals
+    single = (x.astype(np.float32).astype(float) == x).all()
+    return (2.0**-24 if single else 2.0**-53) * scale
 
 
 def _smallest_height(mesh: Mesh) -> float:
@@ -106,6 +123,7 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
         m for _, m in doc.folded
     ]
     eps = max(written_precision(m.vertices_coords) for m in meshes)
+    last_place = max(written_precision(m.edges_foldAngle) for m in meshes)
     size = max(float(np.ptp(m.vertices_coords, axis=0).max()) for m in meshes)
     shortest = float(meshes[0].edge_lengths().min())
     height = _smallest_height(meshes[0])
@@ -119,7 +137,6 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
     tolerance = max(tolerance_asked, reached)
     length_rounding = 4 * math.sqrt(3) * eps / shortest
     angle_rounding = math.degrees(4 * math.sqrt(3) * eps / height)
-    last_place = 0.5 * 10.0**-ANGLE_DECIMALS
     tolerances = {
         "isometry_tol": tolerance * growth + length_rounding,
         "planarity_tol": float(meta["mesh_bend_bound_deg"]) + angle_rounding,
@@ -130,11 +147,11 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
         "isometry_tol": f"{'mesh_stretch' if reached > tolerance_asked else 'mesh_tolerance'} "
         f"{tolerance:.3g} × tan²α/tan²α_d = {growth:.4g} (2α up "
         f"to {math.degrees(2 * most):.4g}°, designed at {math.degrees(2 * design):.4g}°) + "
-        f"4√3 ε / shortest edge = {length_rounding:.2g} (ε = {eps:.2g}, coordinates written to "
-        f"{COORDINATE_RTOL:g} of the size)",
+        f"4√3 ε / shortest edge = {length_rounding:.2g} (ε = {eps:.2g}, half the last written "
+        "place of a coordinate)",
         "planarity_tol": f"mesh_bend_bound_deg {float(meta['mesh_bend_bound_deg']):g}° + "
         f"4√3 ε / smallest triangle height = {angle_rounding:.2g}°",
-        "fold_angle_tol": f"half the last written place of an angle ({last_place:.1g}°) + "
+        "fold_angle_tol": f"half the last written place of an angle ({last_place:.2g}°) + "
         f"4√3 ε / smallest triangle height ({height:.3g}) = {angle_rounding:.2g}°",
         "weld_tol": f"2√3 ε / size = {tolerances['weld_tol']:.2g}",
     }
