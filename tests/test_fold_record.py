@@ -157,9 +157,33 @@ def _single_precision(doc, rng):
         frame["vertices_coords"] = x.astype(float).tolist()
 
 
+def _edge_split(doc, rng):
+    """A ruling split at its midpoint in every frame: its two faces become quads whose fan
+    triangle beside the new vertex has no area."""
+    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == "ruling"]
+    e = int(rng.choice(rulings))
+    a, b = doc["edges_vertices"][e]
+    m = len(doc["vertices_coords"])
+    for frame in [doc, *_frames(doc)]:
+        x = np.asarray(frame["vertices_coords"])
+        frame["vertices_coords"] = x.tolist() + [((x[a] + x[b]) / 2).tolist()]
+        if "edges_foldAngle" in frame:
+            frame["edges_foldAngle"].append(frame["edges_foldAngle"][e])
+    doc["edges_vertices"][e] = [a, m]
+    doc["edges_vertices"].append([m, b])
+    doc["edges_assignment"].append(doc["edges_assignment"][e])
+    doc["edges_curvefold:kind"].append("ruling")
+    for face in doc["faces_vertices"]:
+        for i in range(len(face)):
+            if {face[i], face[(i + 1) % len(face)]} == {a, b}:
+                face.insert(i + 1, m)
+                break
+
+
 #: Benign edits: the geometry and its record unchanged.
 BENIGN = {
     "rounded to 6 decimals": _rounded,
+    "a ruling split at its midpoint": _edge_split,
     "float32 coordinates": _single_precision,
     "indented": _indented,
     "keys reordered": _keys_reordered,
@@ -201,6 +225,9 @@ def test_a_harmful_copy_fails_a_named_check(tmp_path, vault, name):
 def test_a_benign_copy_passes(tmp_path, vault, name):
     result = check_fold(_copy(tmp_path, vault[1], BENIGN[name], SEED))
     assert result.ok, [(c.name, c.where) for c in result.checks if c.status == "fail"]
+    if name == "a ruling split at its midpoint":  # the fan triangle with no area is named
+        planarity = {c.name: c for c in result.checks}["face_planarity"]
+        assert "skipped fan diagonals" in planarity.where
 
 
 @pytest.mark.slow

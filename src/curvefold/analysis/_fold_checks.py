@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -327,28 +327,53 @@ def planarity(doc: FoldFile, frames: list[Frame], tolerance: float) -> FileCheck
             "every face is a triangle, planar by definition; "
             "without edges_curvefold:kind the diagonals that split ruling quads are not known",
         )
-    results = []
+    results, skipped = [], np.zeros(0, np.int64)
     for f in frames:
         triangles = f.mesh.triangulated()
+        fan = np.arange(len(triangles.edges_vertices)) >= len(f.mesh.edges_vertices)
         if kinds_known:
             flat = triangles.edges_kind == "diagonal"
         else:  # the reader calls every F edge a diagonal; only the fan's are, and the joins
-            flat = np.arange(len(triangles.edges_vertices)) >= len(f.mesh.edges_vertices)
+            flat = fan.copy()
         flat |= triangles.edges_assignment == "J"
         diagonal = np.flatnonzero(flat)
+        sides = edges_faces(triangles.faces_vertices, triangles.edges_vertices[diagonal])
         bend = np.abs(
             dihedral_angles(
                 triangles.vertices_coords,
                 triangles.faces_vertices,
                 triangles.edges_vertices[diagonal],
+                faces_of_edges=sides,
             )
         )
+        # a fan triangle with no area (a vertex on a straight side of its polygon, as where an
+        # edge was split) has no normal to bend by: its diagonal is skipped and named
+        flat_triangle = _no_area(triangles)
+        degenerate = fan[diagonal] & (flat_triangle[sides] & (sides >= 0)).any(axis=1)
+        bend[degenerate] = 0.0
+        skipped = np.union1d(skipped, diagonal[degenerate])
         results.append((f.label, _at_edges(bend, diagonal, len(triangles.edges_vertices))))
     what = "fan diagonals (numbered after the file's edges)" if polygons else "diagonal edges"
-    return judge(
+    found = judge(
         "face_planarity",
         "°",
         tolerance,
         results,
         named_ids(what + (" and join edges" if joins else "")),
     )
+    if not skipped.size:
+        return found
+    note = (
+        f"skipped {named_ids('fan diagonals')(skipped)} beside a triangle with no area (a "
+        "vertex on a straight side of its polygon)"
+    )
+    return replace(found, where="; ".join(w for w in (found.where, note) if w))
+
+
+def _no_area(mesh: Mesh) -> np.ndarray:
+    """Which triangles have no area: a height under 1e-9 of the mesh's size, (F,) bool."""
+    corners = mesh.vertices_coords[mesh.faces_vertices]
+    twice_area = np.linalg.norm(vector_areas(mesh.vertices_coords, mesh.faces_vertices), axis=-1)
+    longest = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=-1).max(axis=1)
+    size = float(np.ptp(mesh.vertices_coords, axis=0).max())
+    return ~(twice_area > 1e-9 * size * longest)
