@@ -636,3 +636,18 @@ def test_rebuild_is_estimated_before_it_is_built(tmp_path, written, monkeypatch)
     monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "60M")
     r = run("check", damaged(tmp_path, doc, lambda d: None), "--rebuild")
     assert r.returncode == 2 and "more than the budget of 60 MiB" in r.stderr
+
+
+def test_a_changed_design_under_rebuild_is_a_failed_check_with_the_reason(tmp_path):
+    """It was exit 2 with the internal "keep must list the samples": the record's samples kept
+    are not the changed design's."""
+    out = tmp_path / "tube"
+    assert run("tube", "--samples", "201", "--formats", "fold", "--out", str(out)).returncode == 0
+    doc = json.loads((out / "tube.fold").read_text())
+    doc["curvefold:design"]["design"]["samples"] = 101
+    path = damaged(tmp_path, doc, lambda d: None)
+    result = run("check", path, "--rebuild", "--json")
+    assert result.returncode == 1, result.stderr
+    rebuild = {c["name"]: c for c in json.loads(result.stdout)["checks"]}["rebuild"]
+    assert rebuild["status"] == "fail"
+    assert "the recorded design does not build this file" in rebuild["where"]

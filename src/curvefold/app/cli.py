@@ -762,17 +762,20 @@ def cmd_check(args: argparse.Namespace) -> int:
     frames = len(doc.classes) - 1  # file_frames, which the record's fold angles describe
     recorded = doc.design.get("fold_angles") if isinstance(doc.design, dict) else None
     mismatch = args.rebuild and isinstance(recorded, list) and len(recorded) != frames
-    reference = _rebuilt_fold(doc, args.file) if args.rebuild and not mismatch else None
+    where = (
+        f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
+        f"{frames} frames after the key frame: the record is not the file's (not rebuilt)"
+    )
+    try:
+        reference = _rebuilt_fold(doc, args.file) if args.rebuild and not mismatch else None
+    except _NotTheRecord as exc:  # built, but not into this file's arrays
+        reference, mismatch, where = None, True, str(exc)
     result = check_fold(doc, reference=reference, **tolerances)
     if mismatch:  # not built: it cannot be the file's record
         from dataclasses import replace
 
         from ..analysis._foldcheck import FileCheck
 
-        where = (
-            f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
-            f"{frames} frames after the key frame: the record is not the file's (not rebuilt)"
-        )
         unbuilt = FileCheck("rebuild", "fail", where=where)
         result = replace(result, checks=result.checks + (unbuilt,))
     ran = [c for c in result.checks if c.status != "not run"]
@@ -874,8 +877,18 @@ def _rebuilt_fold(doc, path: Path):
     output = FoldOutput(
         anchor=record.get("anchor", "start"), faces=record.get("faces", "triangles"), keep=kept
     )
-    model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
+    try:
+        model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
+    except InputError as exc:  # the samples the record keeps are not the built design's
+        raise _NotTheRecord(
+            f"{where}: the recorded design does not build this file (not rebuilt): {exc}"
+        ) from exc
     return parse_fold(model_document(model), f"{where} (rebuilt)")
+
+
+class _NotTheRecord(InputError):
+    """The design a FOLD file records builds, but not into the file's arrays: a failed rebuild,
+    not an error of the command."""
 
 
 def cmd_mechanism(args: argparse.Namespace) -> int:
