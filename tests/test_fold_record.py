@@ -264,3 +264,77 @@ def test_shipped_files_of_every_kind_keep_their_record(tmp_path, argv):
     assert result.returncode == 0, result.stdout
     report = json.loads((out / "report.json").read_text())
     assert report["certificate_file"]["ok"], report["certificate_file"]["checks"]
+
+
+def _vertices_renumbered(doc, rng):
+    order = rng.permutation(len(doc["vertices_coords"]))  # new vertex i is old order[i]
+    new = np.argsort(order)  # old vertex v is new new[v]
+    for frame in [doc, *_frames(doc)]:
+        frame["vertices_coords"] = np.asarray(frame["vertices_coords"])[order].tolist()
+    doc["edges_vertices"] = new[np.asarray(doc["edges_vertices"])].tolist()
+    doc["faces_vertices"] = [[int(new[v]) for v in face] for face in doc["faces_vertices"]]
+
+
+def _edges_renumbered(doc, rng):
+    order = rng.permutation(len(doc["edges_vertices"]))
+    new = np.argsort(order)
+    for key in ("edges_vertices", "edges_assignment", "edges_curvefold:kind"):
+        doc[key] = [doc[key][e] for e in order]
+    for frame in [doc, *_frames(doc)]:
+        if "edges_foldAngle" in frame:
+            frame["edges_foldAngle"] = [frame["edges_foldAngle"][e] for e in order]
+    for key in ("curvefold:seam_partners", "curvefold:bonds"):
+        doc[key] = new[np.asarray(doc[key], np.int64).reshape(-1, 2)].tolist()
+
+
+def _face_lists_rotated(doc, rng):
+    doc["faces_vertices"] = [
+        face[k:] + face[:k]
+        for face, k in zip(doc["faces_vertices"], rng.integers(0, 3, len(doc["faces_vertices"])))
+    ]
+
+
+def _rigid_motion(doc, rng):
+    """Every frame turned and moved (the crease pattern in its plane)."""
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    q *= np.sign(np.linalg.det(q))
+    angle = rng.uniform(0, 2 * np.pi)
+    plane = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    for frame in [doc, *_frames(doc)]:
+        x = np.asarray(frame["vertices_coords"])
+        turn = q if x.shape[1] == 3 else plane
+        frame["vertices_coords"] = np.round(x @ turn.T + rng.normal(size=x.shape[1]), 12).tolist()
+
+
+#: Benign under --rebuild too: the geometry's meaning is unchanged.
+BENIGN_REBUILT = {
+    "vertices renumbered": _vertices_renumbered,
+    "edges renumbered": _edges_renumbered,
+    "face lists rotated": _face_lists_rotated,
+    "every frame moved rigidly": _rigid_motion,
+}
+
+
+@pytest.mark.parametrize("name", BENIGN_REBUILT)
+def test_rebuild_compares_what_the_geometry_means(tmp_path, vault, name):
+    """It was an exact comparison of the arrays: each of these failed --rebuild."""
+    path = _copy(tmp_path, vault[1], BENIGN_REBUILT[name], SEED)
+    result = run("check", str(path), "--rebuild", "--json")
+    checks = {c["name"]: c for c in json.loads(result.stdout)["checks"]}
+    assert result.returncode == 0, [(n, c["where"]) for n, c in checks.items() if c["where"]]
+    assert checks["rebuild"]["status"] == "pass"
+
+
+def test_rebuild_fails_a_changed_design_and_a_moved_vertex(tmp_path, vault):
+    def widened(doc, rng):
+        doc["curvefold:design"]["design"]["vault"]["width"] = 0.081
+
+    for edit in (
+        widened,
+        _vertex_moved,
+        lambda d, rng: _rigid_motion(d, rng) or _vertex_moved(d, rng),
+    ):
+        path = _copy(tmp_path, vault[1], edit, SEED)
+        result = run("check", str(path), "--rebuild", "--json")
+        checks = {c["name"]: c for c in json.loads(result.stdout)["checks"]}
+        assert result.returncode == 1 and checks["rebuild"]["status"] == "fail"

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..io._fold_reading import FoldFile
 from ._fold_checks import judge, named_ids
+from ._fold_matching import canonical_pairs, renumbered, rigid_residual
 from ._fold_results import FileCheck
 
 __all__ = ["rebuild"]
@@ -16,8 +17,9 @@ __all__ = ["rebuild"]
 def rebuild(
     doc: FoldFile, reference: FoldFile, labels: list[str], size: float, tol: dict
 ) -> FileCheck:
-    """Every array the rebuilt file holds against the file's (its frames named by ``labels``):
-    what differs is named."""
+    """Every array the rebuilt file holds against the file's (its frames named by ``labels``), up
+    to the numbering of vertices, edges and faces and a rigid motion of each frame
+    (:mod:`curvefold.analysis._fold_matching`): what differs is named."""
     titles = [t for t, _ in doc.folded]
     mine = [
         (label, m)
@@ -45,6 +47,14 @@ def rebuild(
             f"{len(theirs[0][1].vertices_coords)} vertices; the file "
             f"{len(mine)} of {len(mine[0][1].vertices_coords)}",
         )
+    # the file in the rebuilt numbering, where its geometry is the same up to numbering
+    seams, bonds = doc.seam_partners, doc.bonds
+    matched = renumbered(
+        [m for _, m in mine], [seams, bonds], theirs[0][1], tol["rebuild_tol"] * size
+    )
+    if matched is not None:
+        mine = [(label, m) for (label, _), m in zip(mine, matched[0])]
+        seams, bonds = matched[1]
     differ = []
     (label, first), (_, rebuilt) = mine[0], theirs[0]
     # shared by every frame
@@ -82,13 +92,13 @@ def rebuild(
             f"{[list(c) for c in reference.classes]})"
         )
     for what, a, b in (
-        ("curvefold:seam_partners", doc.seam_partners, reference.seam_partners),
-        ("curvefold:bonds", doc.bonds, reference.bonds),
+        ("curvefold:seam_partners", seams, reference.seam_partners),
+        ("curvefold:bonds", bonds, reference.bonds),
     ):
-        if not np.array_equal(a, b):
+        if not np.array_equal(canonical_pairs(a), canonical_pairs(b)):
             differ.append(f"{what}: {len(a)} pairs, the rebuilt {len(b)}, not the same")
     results = [
-        (title, np.abs(m.vertices_coords - r.vertices_coords).max(axis=1) / size)
+        (title, _coordinate_residual(m.vertices_coords, r.vertices_coords, tol, size) / size)
         for (title, m), (_, r) in zip(mine, theirs)
     ]
     coords = judge("rebuild", "relative", tol["rebuild_tol"], results, named_ids("vertices"))
@@ -98,3 +108,13 @@ def rebuild(
         f" (+{len(differ) - 4} more)" if len(differ) > 4 else ""
     )
     return FileCheck("rebuild", "fail", coords.value, coords.tolerance, "relative", where)
+
+
+def _coordinate_residual(mine: np.ndarray, theirs: np.ndarray, tol: dict, size: float):
+    """Per vertex, the largest coordinate difference, as the file stands or after the best rigid
+    motion, whichever is smaller (a frame moved rigidly is the same geometry)."""
+    direct = np.abs(mine - theirs).max(axis=1)
+    if direct.max(initial=0.0) <= tol["rebuild_tol"] * size:
+        return direct
+    aligned = rigid_residual(mine, theirs)
+    return aligned if aligned.max(initial=0.0) < direct.max(initial=0.0) else direct
