@@ -78,6 +78,7 @@ def test_the_written_file_passes_every_check(written):
         "isometry",
         "face_planarity",
         "record",
+        "crease_angles",
     ]
     assert all(c.status == "pass" for c in result.checks)
     # the file records the dihedral angles it has, up to its coordinates' rounding (to 1e-12 of the
@@ -333,12 +334,19 @@ def test_plain_fold_without_curvefold_keys_passes_what_can_run(tmp_path, written
         "edge_kinds",
         "face_planarity",
         "record",
+        "crease_angles",
     }
     assert (
         "curvefold:seam_partners" in checks["welds"].reason
         and "edges_curvefold:kind" in checks["face_planarity"].reason
     )
-    assert result.to_dict()["not_run"] == ["welds", "edge_kinds", "face_planarity", "record"]
+    assert result.to_dict()["not_run"] == [
+        "welds",
+        "edge_kinds",
+        "face_planarity",
+        "record",
+        "crease_angles",
+    ]
 
 
 def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):

@@ -155,3 +155,17 @@ def test_a_file_damaged_as_written_fails_the_certificate(tmp_path, monkeypatch):
     assert "isometry" in failed
     report = json.loads((tmp_path / "tube" / "report.json").read_text())
     assert report["certificate_file"] == shipped
+
+
+def test_the_file_column_measures_the_crease_angles_against_2_alpha(shipped, tmp_path):
+    """The certificate's fold_angles on the file: every fold crease against its frame's 2α."""
+    out, report, _ = shipped
+    model = {c["name"]: c for c in report["certificate"]}["fold_angles"]["value"]
+    file = {c["name"]: c for c in report["certificate_file"]["checks"]}["crease_angles"]
+    assert file["status"] == "pass" and file["value"] > model  # the coarser mesh's
+    doc = json.loads((out / "tube.fold").read_text())
+    doc["curvefold:design"]["fold_angles"][-1] += 2.0  # the last frame claims 92°
+    path = tmp_path / "claimed.fold"
+    path.write_text(json.dumps(doc))
+    crease = {c.name: c for c in check_fold(path).checks}["crease_angles"]
+    assert crease.status == "fail" and "fold angle 90" in crease.where

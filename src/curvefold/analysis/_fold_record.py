@@ -35,7 +35,7 @@ from ..geometry._mesh import fold_angles as dihedral_angles
 from ..io._fold_reading import FoldFile
 from ._fold_results import FileCheck
 
-__all__ = ["record", "chord_sagitta", "sheet_count"]
+__all__ = ["record", "crease_angles", "chord_sagitta", "sheet_count"]
 
 #: A frame title as curvefold writes it.
 _TITLE = re.compile(r"fold angle (-?[0-9.]+)°")
@@ -241,8 +241,7 @@ def record(doc: FoldFile, eps: float) -> FileCheck:
     kind = design.get("kind")
     found_section = design.get(kind) if isinstance(kind, str) else None
     section: dict = found_section if isinstance(found_section, dict) else {}
-    # rigid panels fold their fold lines by their own angles, not 2α
-    smooth = not any(isinstance(v, dict) and v.get("panels") for v in design.values())
+    smooth = _is_smooth(doc)
     found = []
     if record_ and doc.unit != "unit":
         found.append(
@@ -259,3 +258,50 @@ def record(doc: FoldFile, eps: float) -> FileCheck:
         "fail",
         where="; ".join(found[:4]) + (f" (+{len(found) - 4} more)" if len(found) > 4 else ""),
     )
+
+
+def _is_smooth(doc: FoldFile) -> bool:
+    """Whether the design the file records is smooth (rigid panels fold their fold lines by
+    their own angles, not 2α)."""
+    record_ = doc.design if isinstance(doc.design, dict) else {}
+    found = record_.get("design")
+    design: dict = found if isinstance(found, dict) else {}
+    return not any(isinstance(v, dict) and v.get("panels") for v in design.values())
+
+
+def crease_angles(doc: FoldFile, tolerance: float) -> FileCheck:
+    """Every fold crease of every folded frame against the frame's recorded fold angle 2α: the
+    certificate's ``fold_angles``, measured on the file (its dihedral angles, in degrees)."""
+    recorded = doc.design.get("fold_angles") if isinstance(doc.design, dict) else None
+    if not isinstance(recorded, list) or len(recorded) != len(doc.folded):
+        return FileCheck(
+            "crease_angles",
+            "not run",
+            unit="°",
+            reason="the file records no fold angle per frame (curvefold:design)",
+        )
+    if not _is_smooth(doc):
+        return FileCheck(
+            "crease_angles",
+            "not run",
+            unit="°",
+            reason="rigid panels fold their fold lines by their own angles, not 2α",
+        )
+    worst, at, failing = 0.0, "", ""
+    for i, ((title, mesh), angle) in enumerate(zip(doc.folded, recorded)):
+        folds = np.flatnonzero(mesh.edges_kind == "fold")
+        if not folds.size:
+            continue
+        measured = np.abs(
+            dihedral_angles(mesh.vertices_coords, mesh.faces_vertices, mesh.edges_vertices[folds])
+        )
+        off = np.abs(measured - float(angle))
+        off = np.where(np.isfinite(off), off, np.inf)
+        k = int(np.argmax(off))
+        label = f"frame {i + 1} ({title!r}): edges {int(folds[k])}"
+        if off[k] > worst:
+            worst, at = float(off[k]), label
+        if off[k] > tolerance and not failing:
+            failing = f"{label}, {off[k]:.3g}° off {float(angle):g}°"
+    status = "fail" if failing else "pass"
+    return FileCheck("crease_angles", status, worst, tolerance, "°", failing or at)

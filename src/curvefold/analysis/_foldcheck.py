@@ -36,6 +36,9 @@ the failing element ids and the frame:
     a curvefold file's record (``curvefold:metadata``, ``curvefold:design``, ``frame_unit``)
     against its geometry: its frames and their fold angles, seam partners and bonds, sheets,
     radius, mesh deviation and stretch (:mod:`curvefold.analysis._fold_record`).
+``crease_angles``
+    a smooth curvefold design's fold creases, measured in every folded frame, against the
+    frame's recorded fold angle 2α (the certificate's ``fold_angles``, on the file).
 ``rebuild``
     with a ``reference`` (the design the file records, built again): every array of every
     frame, as :func:`read_fold` reads them: coordinates (relative to the model's size) and
@@ -61,7 +64,7 @@ from . import _fold_checks as checks
 from ._checks import CHECKS
 from ._fold_checks import NEEDS_CREASE_PATTERN, Frame
 from ._fold_rebuild import rebuild
-from ._fold_record import record
+from ._fold_record import crease_angles, record
 from ._fold_results import FileCheck, FoldCheck
 from ._promises import promised_tolerances, written_precision
 
@@ -108,6 +111,16 @@ CHECK_SPECS: tuple[Spec, ...] = (
         "rulings by about κh)",
     ),
     Spec(
+        "crease_angle_tol",
+        "real",
+        1.0,
+        "[0, 180]",
+        "degrees",
+        help="largest difference between a fold crease's dihedral angle and its frame's recorded "
+        "fold angle 2α (twice the default bend bound: each triangle beside a crease tilts from "
+        "the sheet by at most the fold across its diagonal)",
+    ),
+    Spec(
         "weld_tol",
         "real",
         1e-9,
@@ -132,6 +145,7 @@ _CHECK_NAMES = (
     "isometry",
     "face_planarity",
     "record",
+    "crease_angles",
 )
 
 
@@ -214,6 +228,7 @@ def check_fold(
         checks.isometry(cp, folded, tol["isometry_tol"]),
         checks.planarity(doc, folded, tol["planarity_tol"]),
         record(doc, max(written_precision(f.mesh.vertices_coords) for f in frames)),
+        crease_angles(doc, tol["crease_angle_tol"]),
     ]
     if reference is not None:
         found.append(rebuild(doc, reference, [f.label for f in frames], size, tol))

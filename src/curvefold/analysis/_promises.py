@@ -21,6 +21,9 @@ says of itself:
 ``fold_angle_tol``
     the rounding of a written angle (half its last place) plus that of a dihedral angle
     measured from rounded coordinates: 4√3 ε over the smallest triangle height, in degrees.
+``crease_angle_tol``
+    twice the recorded bend bound: each triangle beside a crease tilts from the sheet's tangent
+    plane by at most the fold across its diagonal.
 ``weld_tol``
     glued vertices are one point rounded twice: 2√3 ε over the model's size.
 
@@ -145,6 +148,7 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
         "isometry_tol": tolerance * growth + length_rounding,
         "planarity_tol": float(meta["mesh_bend_bound_deg"]) + angle_rounding,
         "fold_angle_tol": last_place + angle_rounding,
+        "crease_angle_tol": 2 * float(meta["mesh_bend_bound_deg"]) + angle_rounding,
         "weld_tol": 2 * math.sqrt(3) * eps / size,
     }
     sources = {
@@ -158,5 +162,8 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
         "fold_angle_tol": f"half the last written place of an angle ({last_place:.2g}°) + "
         f"4√3 ε / smallest triangle height ({height:.3g}) = {angle_rounding:.2g}°",
         "weld_tol": f"2√3 ε / size = {tolerances['weld_tol']:.2g}",
+        "crease_angle_tol": f"2 × mesh_bend_bound_deg {float(meta['mesh_bend_bound_deg']):g}° "
+        "(each triangle beside a crease tilts from the sheet by at most the fold across its "
+        f"diagonal) + {angle_rounding:.2g}°",
     }
     return tolerances, sources
