@@ -38,7 +38,8 @@ the failing element ids and the frame:
     radius, mesh deviation and stretch (:mod:`curvefold.analysis._fold_record`).
 ``crease_angles``
     a smooth curvefold design's fold creases, measured in every folded frame, against the
-    frame's recorded fold angle 2α (the certificate's ``fold_angles``, on the file).
+    frame's recorded fold angle 2α (the certificate's ``fold_angles``, on the file); not
+    listed for rigid panels, whose fold lines fold by their own angles.
 ``rebuild``
     with a ``reference`` (the design the file records, built again): every array of every
     frame, as :func:`read_fold` reads them: coordinates (relative to the model's size) and
@@ -228,8 +229,8 @@ def check_fold(
         checks.isometry(cp, folded, tol["isometry_tol"]),
         checks.planarity(doc, folded, tol["planarity_tol"]),
         record(doc, max(written_precision(f.mesh.vertices_coords) for f in frames)),
-        crease_angles(doc, tol["crease_angle_tol"]),
     ]
+    found += [c for c in (crease_angles(doc, tol["crease_angle_tol"]),) if c is not None]
     if reference is not None:
         found.append(rebuild(doc, reference, [f.label for f in frames], size, tol))
     return FoldCheck(len(folded), tuple(found), tol, doc.notes, sources)
