@@ -35,7 +35,7 @@ from ..geometry._mesh import fold_angles as dihedral_angles
 from ..io._fold_reading import FoldFile
 from ._fold_results import FileCheck
 
-__all__ = ["record", "crease_angles", "chord_sagitta", "sheet_count"]
+__all__ = ["record", "crease_angles", "chord_sagitta", "records_smooth_design", "sheet_count"]
 
 #: A frame title as curvefold writes it.
 _TITLE = re.compile(r"fold angle (-?[0-9.]+)°")
@@ -267,6 +267,13 @@ def _is_smooth(doc: FoldFile) -> bool:
     found = record_.get("design")
     design: dict = found if isinstance(found, dict) else {}
     return not any(isinstance(v, dict) and v.get("panels") for v in design.values())
+
+
+def records_smooth_design(doc: FoldFile) -> bool:
+    """Whether the file records a curvefold design of smooth curved sheets (no rigid panels):
+    its sheets bend between the samples, so its frames are no states of rigid panels."""
+    record_ = doc.design if isinstance(doc.design, dict) else {}
+    return isinstance(record_.get("design"), dict) and _is_smooth(doc)
 
 
 def crease_angles(doc: FoldFile, tolerance: float) -> FileCheck | None:

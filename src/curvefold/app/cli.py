@@ -893,9 +893,16 @@ class _NotTheRecord(InputError):
 
 def cmd_mechanism(args: argparse.Namespace) -> int:
     from ..analysis._fold_mechanism import analyse_fold
+    from ..analysis._fold_record import records_smooth_design
     from ..io._fold_reading import read_fold
 
     doc = read_fold(args.file)
+    if records_smooth_design(doc):  # what the count applies to
+        raise InputError(
+            f"{args.file}: mechanism counts the degrees of freedom of rigid panels, and this file "
+            "records a design of smooth curved sheets (panels = 0), which bend between their "
+            "samples; check it with 'curvefold check', or build it with --panels N"
+        )
     frames = analyse_fold(doc, rtol=args.rtol, name=str(args.file))
     payload = {"file": args.file, "frames": [m.to_dict() for m in frames], "notes": list(doc.notes)}
     lines = [
@@ -910,8 +917,14 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
             if m.consistent
             else f"; INCONSISTENT: the frame breaks its constraints by {m.residual:.2e} (relative)"
         )
+        # no gap between null and stiff singular values: no count to state
+        count = (
+            f"{m.dof} internal DOF (nullity {m.nullity})"
+            if np.isfinite(m.gap)
+            else f"no clear count (nullity {m.nullity} at the rank tolerance)"
+        )
         lines.append(
-            f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, "
+            f"  {m.label:<24} {count}, {gap}, "
             f"residual {m.residual:.1e}{state}" + (f" ({m.note})" if m.note else "")
         )
     _emit(args, payload, lines)
