@@ -312,6 +312,8 @@ BENIGN_REBUILT = {
     "edges renumbered": _edges_renumbered,
     "face lists rotated": _face_lists_rotated,
     "every frame moved rigidly": _rigid_motion,
+    "rounded to 6 decimals": _rounded,
+    "float32 coordinates": _single_precision,
 }
 
 

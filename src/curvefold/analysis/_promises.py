@@ -26,6 +26,8 @@ says of itself:
     plane by at most the fold across its diagonal.
 ``weld_tol``
     glued vertices are one point rounded twice: 2√3 ε over the model's size.
+``rebuild_tol``
+    the default 1e-9 plus 2 ε over the size: a coordinate rounded to ε against the rebuilt one.
 
 A file without that metadata (another tool's) promises nothing: the defaults of
 :data:`~curvefold.analysis._foldcheck.CHECK_SPECS` hold.
@@ -46,6 +48,8 @@ __all__ = ["promised_tolerances", "written_precision"]
 #: not all, since a number computed from written ones (an edge split at its midpoint) may need a
 #: place more, and is as accurate as they are.
 HELD = 0.9
+#: The rebuilt coordinates' own agreement, relative to the size (the default ``rebuild_tol``).
+REBUILD_FLOOR = 1e-9
 #: The metadata a file must record for its promise to be read.
 PROMISE_KEYS = ("mesh_tolerance", "mesh_bend_bound_deg", "design_fold_angle_deg")
 
@@ -150,6 +154,7 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
         "fold_angle_tol": last_place + angle_rounding,
         "crease_angle_tol": 2 * float(meta["mesh_bend_bound_deg"]) + angle_rounding,
         "weld_tol": 2 * math.sqrt(3) * eps / size,
+        "rebuild_tol": REBUILD_FLOOR + 2 * eps / size,
     }
     sources = {
         "isometry_tol": f"{'mesh_stretch' if reached > tolerance_asked else 'mesh_tolerance'} "
@@ -162,6 +167,7 @@ def promised_tolerances(doc: FoldFile) -> tuple[dict[str, float], dict[str, str]
         "fold_angle_tol": f"half the last written place of an angle ({last_place:.2g}°) + "
         f"4√3 ε / smallest triangle height ({height:.3g}) = {angle_rounding:.2g}°",
         "weld_tol": f"2√3 ε / size = {tolerances['weld_tol']:.2g}",
+        "rebuild_tol": f"{REBUILD_FLOOR:g} + 2 ε / size = {tolerances['rebuild_tol']:.2g}",
         "crease_angle_tol": f"2 × mesh_bend_bound_deg {float(meta['mesh_bend_bound_deg']):g}° "
         "(each triangle beside a crease tilts from the sheet by at most the fold across its "
         f"diagonal) + {angle_rounding:.2g}°",
