@@ -77,6 +77,8 @@ def test_the_written_file_passes_every_check(written):
         "fold_angles",
         "isometry",
         "face_planarity",
+        "record",
+        "crease_angles",
     ]
     assert all(c.status == "pass" for c in result.checks)
     # the file records the dihedral angles it has, up to its coordinates' rounding (to 1e-12 of the
@@ -331,12 +333,20 @@ def test_plain_fold_without_curvefold_keys_passes_what_can_run(tmp_path, written
         "welds",
         "edge_kinds",
         "face_planarity",
+        "record",
+        "crease_angles",
     }
     assert (
         "curvefold:seam_partners" in checks["welds"].reason
         and "edges_curvefold:kind" in checks["face_planarity"].reason
     )
-    assert result.to_dict()["not_run"] == ["welds", "edge_kinds", "face_planarity"]
+    assert result.to_dict()["not_run"] == [
+        "welds",
+        "edge_kinds",
+        "face_planarity",
+        "record",
+        "crease_angles",
+    ]
 
 
 def test_plain_quad_file_measures_its_faces_not_its_ruling_bends(tmp_path):
@@ -634,3 +644,18 @@ def test_rebuild_is_estimated_before_it_is_built(tmp_path, written, monkeypatch)
     monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "60M")
     r = run("check", damaged(tmp_path, doc, lambda d: None), "--rebuild")
     assert r.returncode == 2 and "more than the budget of 60 MiB" in r.stderr
+
+
+def test_a_changed_design_under_rebuild_is_a_failed_check_with_the_reason(tmp_path):
+    """It was exit 2 with the internal "keep must list the samples": the record's samples kept
+    are not the changed design's."""
+    out = tmp_path / "tube"
+    assert run("tube", "--samples", "201", "--formats", "fold", "--out", str(out)).returncode == 0
+    doc = json.loads((out / "tube.fold").read_text())
+    doc["curvefold:design"]["design"]["samples"] = 101
+    path = damaged(tmp_path, doc, lambda d: None)
+    result = run("check", path, "--rebuild", "--json")
+    assert result.returncode == 1, result.stderr
+    rebuild = {c["name"]: c for c in json.loads(result.stdout)["checks"]}["rebuild"]
+    assert rebuild["status"] == "fail"
+    assert "the recorded design does not build this file" in rebuild["where"]

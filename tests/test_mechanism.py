@@ -277,3 +277,24 @@ def test_a_smooth_sampled_tube_is_no_mechanism_of_rigid_panels(tmp_path, smooth)
     )
     (m,) = analyse_fold(path)
     assert not m.consistent and m.residual > 1e-4
+
+
+def test_mechanism_says_it_counts_rigid_panels_and_states_no_count_without_a_gap(tmp_path):
+    """It printed "2 internal DOF … gap ∞ … INCONSISTENT" and exited 1 on curvefold's own smooth
+    tube, whose file check passes."""
+    out = tmp_path / "tube"
+    assert run("tube", "--samples", "101", "--formats", "fold", "--out", str(out)).returncode == 0
+    refused = run("mechanism", str(out / "tube.fold"))
+    assert refused.returncode == 2 and "counts the degrees of freedom of rigid panels" in (
+        refused.stderr
+    )
+    doc = json.loads((out / "tube.fold").read_text())
+    del doc["curvefold:design"]  # as another tool keeps it: analysed, and judged
+    path = tmp_path / "plain.fold"
+    path.write_text(json.dumps(doc))
+    result = run("mechanism", str(path))
+    frames = json.loads(run("mechanism", str(path), "--json").stdout)["frames"]
+    lines = result.stdout.splitlines()[1:]
+    assert len(lines) == len(frames) and any(not np.isfinite(f["gap"] or np.inf) for f in frames)
+    for line, frame in zip(lines, frames):
+        assert ("internal DOF" in line) == (frame["gap"] is not None), line

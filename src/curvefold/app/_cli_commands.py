@@ -100,7 +100,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
         lines.append(f"  wrote {len(payload['files'])} files to {out}/ (open {out}/report.html)")
         lines += [f"  {note}" for note in payload.get("notes", [])]
     _emit(args, payload, lines)
-    return 1 if any(c["status"] == "fail" for c in payload["certificate"]) else 0
+    return 1 if _certificate_failed(payload) else 0
 
 
 def _certificate_lines(payload: dict) -> list[str]:
@@ -123,7 +123,23 @@ def _certificate_lines(payload: dict) -> list[str]:
         for c in cert
         if not c["passed"]
     ]
+    shipped = payload.get("certificate_file")
+    if shipped is not None:  # the file column: the FOLD file as written, read back
+        ran = [c for c in shipped["checks"] if c["status"] != "not run"]
+        lines.append(
+            f"  shipped file       {sum(c['status'] == 'pass' for c in ran)}/{len(ran)} checks "
+            f"pass on {shipped['file']} as written (the file column; the line above: the model)"
+        )
+        lines += [f"    {c['name']}: fail at {c['where']}" for c in ran if c["status"] == "fail"]
     return lines
+
+
+def _certificate_failed(payload: dict) -> bool:
+    """Whether a check of the certificate failed, in the model's column or the file's."""
+    shipped = payload.get("certificate_file")
+    return any(c["status"] == "fail" for c in payload["certificate"]) or (
+        shipped is not None and not shipped["ok"]
+    )
 
 
 def cmd_arch(args: argparse.Namespace) -> int:
@@ -182,17 +198,20 @@ def cmd_check(args: argparse.Namespace) -> int:
     frames = len(doc.classes) - 1  # file_frames, which the record's fold angles describe
     recorded = doc.design.get("fold_angles") if isinstance(doc.design, dict) else None
     mismatch = args.rebuild and isinstance(recorded, list) and len(recorded) != frames
-    reference = _rebuilt_fold(doc, args.file) if args.rebuild and not mismatch else None
+    where = (
+        f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
+        f"{frames} frames after the key frame: the record is not the file's (not rebuilt)"
+    )
+    try:
+        reference = _rebuilt_fold(doc, args.file) if args.rebuild and not mismatch else None
+    except _NotTheRecord as exc:  # built, but not into this file's arrays
+        reference, mismatch, where = None, True, str(exc)
     result = check_fold(doc, reference=reference, **tolerances)
     if mismatch:  # not built: it cannot be the file's record
         from dataclasses import replace
 
         from ..analysis._foldcheck import FileCheck
 
-        where = (
-            f"curvefold:design records {len(recorded or [])} fold angles, the file holds "
-            f"{frames} frames after the key frame: the record is not the file's (not rebuilt)"
-        )
         unbuilt = FileCheck("rebuild", "fail", where=where)
         result = replace(result, checks=result.checks + (unbuilt,))
     ran = [c for c in result.checks if c.status != "not run"]
@@ -297,15 +316,32 @@ def _rebuilt_fold(doc, path: Path):
         keep=kept,
         ground=record.get("ground") is True,
     )
-    model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
+    try:
+        model = to_fold(built.structure, output, fold_angles=record["fold_angles"])
+    except InputError as exc:  # the samples the record keeps are not the built design's
+        raise _NotTheRecord(
+            f"{where}: the recorded design does not build this file (not rebuilt): {exc}"
+        ) from exc
     return parse_fold(model_document(model), f"{where} (rebuilt)")
+
+
+class _NotTheRecord(InputError):
+    """The design a FOLD file records builds, but not into the file's arrays: a failed rebuild,
+    not an error of the command."""
 
 
 def cmd_mechanism(args: argparse.Namespace) -> int:
     from ..analysis._fold_mechanism import analyse_fold
+    from ..analysis._fold_record import records_smooth_design
     from ..io._fold_reading import read_fold
 
     doc = read_fold(args.file)
+    if records_smooth_design(doc):  # what the count applies to
+        raise InputError(
+            f"{args.file}: mechanism counts the degrees of freedom of rigid panels, and this file "
+            "records a design of smooth curved sheets (panels = 0), which bend between their "
+            "samples; check it with 'curvefold check', or build it with --panels N"
+        )
     frames = analyse_fold(doc, rtol=args.rtol, name=str(args.file))
     payload = {"file": args.file, "frames": [m.to_dict() for m in frames], "notes": list(doc.notes)}
     lines = [
@@ -320,8 +356,14 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
             if m.consistent
             else f"; INCONSISTENT: the frame breaks its constraints by {m.residual:.2e} (relative)"
         )
+        # no gap between null and stiff singular values: no count to state
+        count = (
+            f"{m.dof} internal DOF (nullity {m.nullity})"
+            if np.isfinite(m.gap)
+            else f"no clear count (nullity {m.nullity} at the rank tolerance)"
+        )
         lines.append(
-            f"  {m.label:<24} {m.dof} internal DOF (nullity {m.nullity}), {gap}, "
+            f"  {m.label:<24} {count}, {gap}, "
             f"residual {m.residual:.1e}{state}" + (f" ({m.note})" if m.note else "")
         )
     _emit(args, payload, lines)

@@ -248,12 +248,27 @@ def write_outputs(
                 written += [str(Path(f).relative_to(tmp)) for f in files]
                 report["timings"][label] = round(seconds, 3)
             report["files"] = sorted(written)
+            report |= _file_certificate(tmp, built.design.kind, written)
             atomic_write(tmp / "report.json", strict_json(report, indent=2))
             atomic_write(tmp / "report.html", report_html(report | {"design_toml": design_text}))
             written += ["report.json", "report.html"]
     finally:
         stop()
-    return payload | {"files": sorted(written)} | notes
+    shipped = {
+        key: report[key] for key in ("certificate_file", "certificate_columns") if key in report
+    }
+    return payload | shipped | {"files": sorted(written)} | notes
+
+
+def _file_certificate(folder: Path, kind: str, written: list[str]) -> dict:
+    """The certificate's file column (:func:`curvefold.analysis._file_column.file_column`) of the
+    FOLD file written into ``folder``, with what each column measures; {} if none was written."""
+    from ..analysis._file_column import COLUMNS, file_column
+
+    name = f"{kind}.fold"
+    if name not in written:
+        return {}
+    return {"certificate_file": file_column(folder / name), "certificate_columns": COLUMNS}
 
 
 def write_atlas(

@@ -36,6 +36,7 @@ from ..kernel._threads import blas_loads_on_one_thread
 with blas_loads_on_one_thread():
     from ..kernel._errors import CurvefoldError, InputError
     from ._cli_commands import (
+        _certificate_failed,
         _certificate_lines,
         _checked_output,
         _emit,
@@ -96,7 +97,7 @@ def cmd_load(args: argparse.Namespace) -> int:
         lines += _certificate_lines(written) + [
             f"  wrote {len(written['files'])} files to {args.out}/ (open {args.out}/report.html)"
         ]
-        failed = any(c["status"] == "fail" for c in written["certificate"])
+        failed = _certificate_failed(written)
     _emit(args, payload, lines)
     return 1 if failed or not loaded.verdict.stands else 0
 

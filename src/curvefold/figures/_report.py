@@ -314,7 +314,52 @@ def _certificate_table(payload: dict) -> str:
             if panels
             else "</p>"
         )
-    return f"{motion}<table class='certificate cards'>{head}{rows}</table>"
+    model = (
+        "<p>The model column: the internal model at the design's samples.</p>"
+        if payload.get("certificate_file")
+        else ""
+    )
+    table = f"{motion}{model}<table class='certificate cards'>{head}{rows}</table>"
+    return table + _certificate_file_table(payload.get("certificate_file"))
+
+
+_FILE_COLUMNS = ("check", "status", "measured", "tolerance", "unit", "worst frame and place")
+
+
+def _certificate_file_table(shipped: dict | None) -> str:
+    """The certificate's file column: the checks of the FOLD file as written, with how each
+    tolerance follows from what the file promises ("" when no FOLD file was written)."""
+    if not shipped:
+        return ""
+    e = html.escape
+    head = "<tr>" + "".join(f"<th>{name}</th>" for name in _FILE_COLUMNS) + "</tr>"
+    rows = "".join(
+        f"<tr class='{c['status'] if c['status'] in ('pass', 'fail') else ''}'>"
+        + _cells(
+            _FILE_COLUMNS,
+            [
+                f"<code>{e(c['name'])}</code>",
+                e(c["status"]) + (f"<br><small>{e(c['reason'])}</small>" if c["reason"] else ""),
+                _sci(c["value"]),
+                _sci(c["tolerance"]),
+                e(c["unit"]),
+                e(c["where"]),
+            ],
+        )
+        + "</tr>"
+        for c in shipped["checks"]
+    )
+    sources = "".join(
+        f"<li><code>{e(name)}</code>: {e(how)}</li>"
+        for name, how in shipped.get("tolerance_sources", {}).items()
+    )
+    return (
+        f"<h3>The file column: {e(shipped['file'])} as written</h3><p>Measured on the FOLD "
+        "file that ships (its frames, read back, at the samples it carries), against the "
+        "tolerances it promises; <code>curvefold check</code> on the file gives the same.</p>"
+        f"<table class='certificate cards'>{head}{rows}</table>"
+        + (f"<ul>{sources}</ul>" if sources else "")
+    )
 
 
 def _mechanism_table(mechanism: dict) -> str:

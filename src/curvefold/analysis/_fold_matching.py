@@ -1,0 +1,102 @@
+"""What the geometry of a FOLD file means, up to its numbering and a rigid motion.
+
+``check --rebuild`` compares a file with the design it records, built again. Two files of the
+same geometry may number their vertices, edges and faces differently, start a face's list at
+another corner, list glued pairs in another order, or stand moved rigidly: none of that changes
+what the geometry is. :func:`renumbered` brings a file's meshes into the rebuilt numbering (the
+vertices matched by position in the first frame, the edges by their ends, the faces by their
+corners in cyclic order), and :func:`rigid_residual` measures coordinates after the best rigid
+motion (Kabsch), so that only a change of the geometry differs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..geometry._mesh import Mesh
+
+__all__ = ["renumbered", "rigid_residual", "canonical_pairs"]
+
+
+def rigid_residual(moved: np.ndarray, fixed: np.ndarray) -> np.ndarray:
+    """Per vertex, the largest coordinate difference of ``moved`` (V, d) from ``fixed`` (V, d)
+    after the proper rigid motion that best lays the one on the other (least squares).
+
+    Examples
+    --------
+    >>> square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    >>> turned = square @ np.array([[0, -1], [1, 0]]) + 5.0
+    >>> bool(rigid_residual(turned, square).max() < 1e-12)
+    True
+    """
+    a, b = np.asarray(moved, float), np.asarray(fixed, float)
+    ca, cb = a.mean(axis=0), b.mean(axis=0)
+    u, _, vt = np.linalg.svd((a - ca).T @ (b - cb))
+    flip = np.ones(a.shape[1])
+    flip[-1] = np.sign(np.linalg.det(u @ vt)) or 1.0
+    rotation = (u * flip) @ vt
+    return np.abs((a - ca) @ rotation + cb - b).max(axis=1)
+
+
+def canonical_pairs(pairs: np.ndarray) -> np.ndarray:
+    """Pairs of ids (P, 2), each sorted and all in order: the same set of pairs, listed once."""
+    pairs = np.sort(np.asarray(pairs, np.int64).reshape(-1, 2), axis=1)
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))] if len(pairs) else pairs
+
+
+def _face_keys(faces: np.ndarray) -> list[tuple[int, ...]]:
+    """Each face's corners in its own cyclic order, from its smallest corner."""
+    keys = []
+    for row in faces.tolist():
+        corners = [c for c in row if c >= 0]
+        start = corners.index(min(corners))
+        keys.append(tuple(corners[start:] + corners[:start]))
+    return keys
+
+
+def renumbered(
+    meshes: list[Mesh], pairs: list[np.ndarray], reference: Mesh, tolerance: float
+) -> tuple[list[Mesh], list[np.ndarray]] | None:
+    """The meshes (and pairs of edge ids) in the numbering of ``reference``, or None.
+
+    The vertices are matched by position in the first mesh (each within ``tolerance`` of one
+    reference vertex, one to one), the edges by their two ends, the faces by their corners in
+    cyclic order (from any corner: a face list started elsewhere is the same face). None when
+    they do not all match: the geometry differs, and the arrays are compared as they are.
+    """
+    from scipy.spatial import cKDTree
+
+    first = meshes[0]
+    if first.vertices_coords.shape != reference.vertices_coords.shape:
+        return None
+    distance, vertex = cKDTree(reference.vertices_coords).query(first.vertices_coords)
+    if not (distance <= tolerance).all() or len(np.unique(vertex)) != len(vertex):
+        return None
+    inverse = np.argsort(vertex)
+    ends = np.sort(vertex[first.edges_vertices], axis=1)
+    theirs = {(int(a), int(b)): e for e, (a, b) in enumerate(np.sort(reference.edges_vertices, 1))}
+    edge = np.array([theirs.get((int(a), int(b)), -1) for a, b in ends], np.int64)
+    if len(edge) != len(theirs) or (edge < 0).any() or len(np.unique(edge)) != len(edge):
+        return None
+    their_faces = {key: f for f, key in enumerate(_face_keys(reference.faces_vertices))}
+    mapped = np.where(first.faces_vertices >= 0, vertex[first.faces_vertices], -1)
+    face = np.array([their_faces.get(key, -1) for key in _face_keys(mapped)], np.int64)
+    if len(face) != len(their_faces) or (face < 0).any():
+        return None
+    edge_order, face_order = np.argsort(edge), np.argsort(face)
+    moved = [
+        replace(
+            mesh,
+            vertices_coords=mesh.vertices_coords[inverse],
+            edges_vertices=reference.edges_vertices,
+            edges_assignment=mesh.edges_assignment[edge_order],
+            edges_foldAngle=mesh.edges_foldAngle[edge_order],
+            edges_kind=mesh.edges_kind[edge_order],
+            faces_vertices=reference.faces_vertices,
+            faces_group=mesh.faces_group[face_order],
+        )
+        for mesh in meshes
+    ]
+    return moved, [edge[p] if len(p) else p for p in pairs]
