@@ -103,12 +103,40 @@ def test_a_slider_changes_the_numbers_and_the_view(browser):
     before, shown = canvas(page), page.inner_text("#numbers")
     # not blank: the vault, the ground and the background make many colours
     assert len(np.unique(before.reshape(-1, 3), axis=0)) > 100 and before.std() > 10
-    press(page, "ArrowRight", 30)  # 30 steps of 1.2/400 (the typical span of a): a = 0.3 → 0.39
+    press(page, "ArrowRight", 90)  # 90 steps of 0.001 (a's slider step): a = 0.3 → 0.39
     page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.39) < 1e-9")
     page.wait_for_timeout(300)
     after = canvas(page)
     assert page.inner_text("#numbers") != shown
     assert numbers(page)["kappa0_s0"] > 3.17 and np.abs(after - before).mean() > 1.0
+    assert page.errors == []
+
+
+def test_sliders_and_fields_share_one_range_and_step(browser):
+    page = open_page(browser)
+
+    def slider(name: str) -> dict:
+        return page.eval_on_selector(
+            f'.field[data-key="{name}"] input[type=range]',
+            "s => ({min: s.min, max: s.max, step: s.step, value: s.value})",
+        )
+
+    def field(name: str) -> str:
+        return page.input_value(f'.field[data-key="{name}"] input.value')
+
+    # a round value typed lies on the slider's grid; the field keeps what was typed
+    page.fill('.field[data-key="a"] input.value', "0.5")
+    assert slider("a") == {"min": "0", "max": "1.2", "step": "0.001", "value": "0.5"}
+    assert field("a") == "0.5"
+    press(page, "ArrowRight", 1)
+    assert field("a") == "0.501"
+    # a load of 0: the slider at 0, within a range that starts at 0
+    for name in ("snow", "point_load"):
+        assert field(name) == "0" and slider(name)["min"] == "0" and slider(name)["value"] == "0"
+    # an optional value left empty: an empty field, the slider at its lowest
+    for name in ("scale", "perforation"):
+        shown = slider(name)
+        assert field(name) == "" and shown["min"] == "0" and shown["value"] == shown["min"]
     assert page.errors == []
 
 
@@ -287,7 +315,7 @@ def test_undo_and_redo_walk_the_browser_history(browser):
     page = open_page(browser)
     # a key step of a slider: one step of the history (a drag makes one too)
     press(page, "ArrowRight", 1)
-    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.303) < 1e-9")
+    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.301) < 1e-9")
     # typing: one step when the value is committed
     page.fill('.field[data-key="p_xy"] input.value', "1.1")
     page.dispatch_event('.field[data-key="p_xy"] input.value', "change")
@@ -295,14 +323,14 @@ def test_undo_and_redo_walk_the_browser_history(browser):
     page.click("#undo")
     page.wait_for_function("window.curvefold.preview.numbers.p_xy === 0.75")
     assert (
-        abs(numbers(page)["a"] - 0.303) < 1e-9
+        abs(numbers(page)["a"] - 0.301) < 1e-9
         and page.input_value('.field[data-key="p_xy"] input.value') == "0.75"
     )
     page.evaluate("history.back()")  # the browser's own Back
     page.wait_for_function("window.curvefold.preview.numbers.a === 0.3")
     page.click("#redo")
-    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.303) < 1e-9")
-    assert "a=0.303" in page.url and page.errors == []
+    page.wait_for_function("Math.abs(window.curvefold.preview.numbers.a - 0.301) < 1e-9")
+    assert "a=0.301" in page.url and page.errors == []
 
 
 def projected_inside(page) -> bool:
