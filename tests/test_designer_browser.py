@@ -245,6 +245,29 @@ def test_an_invalid_value_shows_its_message_and_keeps_the_design(browser):
     )
 
 
+def test_a_time_out_is_said_once_in_the_panel_that_asked(browser):
+    designer = browser.url.designer
+    limit, designer.time_limit = designer.time_limit, 0.01
+    try:  # a design of its own: no answer of it kept from another test
+        page = open_page(browser, "?kind=vault&samples=301&tubes=3&a=0.37")
+        settled(page)
+    finally:
+        designer.time_limit = limit
+    shown = [page.inner_text(f"#{id}") for id in ("certificate-status", "pattern")]
+    # the full certificate and pattern met the limit: the sentence once, in a panel that asked,
+    # the other one says it briefly; never in a heading
+    sentence = (
+        "This design needs more than the designer's time limit of 0.01 s",
+        "The designer was busy with other work for its whole time limit of 0.01 s",
+    )
+    assert sorted(text.startswith(sentence) for text in shown) == [False, True]
+    assert page.inner_text("#info").count("time limit of 0.01 s") == 1
+    assert any(text == "not computed within the designer's time limit either" for text in shown)
+    assert page.text_content("#pattern-status") in ("", "(the sketch only)")
+    # not the user's error: no 422, only the time-outs' own statuses
+    assert all("status of 503" in e or "status of 504" in e for e in page.errors), page.errors
+
+
 def test_every_download_the_page_offers_arrives_at_the_slider_angle(browser, tmp_path):
     page = open_page(browser, "?kind=vault&samples=101&tubes=2")
     settled(page)

@@ -104,6 +104,7 @@ function show(page, body, started) {
   byId("note").hidden = !body.note;
   const timing = {};
   state.contact = undefined;
+  state.stopped = false;
   for (const id of ["certificate-status", "certificate", "pattern", "domain", "mechanics"]) {
     byId(id).classList.add("stale");
   }

@@ -11,6 +11,18 @@ export function showImages(box, svgs) {
   box.classList.remove("stale");
 }
 
+/**
+ * Why a panel has no answer (`found`: an error of the API, or null): the refusal; a time-out's
+ * sentence in the first panel that meets one, a short note in the next (said once per design).
+ */
+function why(state, found, otherwise) {
+  if (!found?.error) return otherwise;
+  if (!found.stopped) return found.error;
+  if (state.stopped) return "not computed within the designer's time limit either";
+  state.stopped = true;
+  return found.error;
+}
+
 function checkItem(c) {
   const className = c.passed ? "" : c.status === "fail" ? "fail" : "unresolved";
   const mark = c.passed ? "✓" : c.status === "fail" ? "✗" : "…";
@@ -23,8 +35,8 @@ function checkItem(c) {
 export function showCertificate(state, found) {
   const status = byId("certificate-status");
   if (!found || found.error) {
-    const why = found?.error ?? "the certificate could not be computed";
-    status.replaceChildren(el("span", { className: "bad" }, why));
+    const text = why(state, found, "the certificate could not be computed");
+    status.replaceChildren(el("span", { className: "bad" }, text));
     byId("certificate").replaceChildren();
   } else {
     const checks = found.checks, passed = checks.filter((c) => c.passed).length;
@@ -46,11 +58,16 @@ export function showCertificate(state, found) {
 
 /** The crease pattern's pages (a coarse sketch first), or why there are none. */
 export function showPattern(state, found) {
-  if (!found || found.error) {
-    byId("pattern-status").textContent = found?.error ? `(${found.error})` : "(not available)";
+  const box = byId("pattern");
+  box.querySelector("p.bad")?.remove();
+  if (!found || found.error) { // why, in the panel (a sketch shown stays): not in its heading
+    byId("pattern-status").textContent = !found?.error ? "(not available)"
+      : box.querySelector("img") ? "(the sketch only)" : "";
+    if (found?.error) box.append(el("p", { className: "bad" }, why(state, found, "")));
+    box.classList.remove("stale");
     return;
   }
-  showImages(byId("pattern"), found.pages);
+  showImages(box, found.pages);
   const n = found.pages.length;
   byId("pattern-status").textContent = found.coarse
     ? `(sketch of the sheets at ${found.samples} samples; the pages follow)`
@@ -65,7 +82,7 @@ export function showMechanics(state, found) {
   state.mechanics = found;
   if (!found || found.error) {
     table.replaceChildren();
-    status.textContent = found?.error ? `(${found.error})`
+    status.textContent = found?.error ? `(${why(state, found, "")})`
       : state.kind === "crease" ? "(for tubes, blocks and vaults)"
         : "(choose a material or a thickness under “material” to see whether it stands)";
     return;
