@@ -308,6 +308,11 @@ def test_a_chosen_material_shows_the_design_under_load(browser):
         "choose a material" in page.inner_text("#mechanics-status")
         and page.inner_text("#mechanics") == ""
     )
+    # a thickness typed, even the default one, asks for the analysis
+    page.fill('.field[data-key="thickness"] input.value', "0.001")
+    page.wait_for_function(
+        "document.querySelector('#mechanics-status').textContent.startsWith('(computing')"
+    )
     page.select_option('.field[data-key="material"] select', "aluminium")
     page.wait_for_function(
         "window.curvefold.mechanics && window.curvefold.mechanics.numbers", timeout=120_000
@@ -319,15 +324,31 @@ def test_a_chosen_material_shows_the_design_under_load(browser):
         page.evaluate("window.curvefold.mechanics.numbers.fold_mode_gap")
         == expected["fold_mode_gap"]
     )
+    # the verdict first, in words
+    verdict = page.inner_text("#mechanics-verdict")
+    assert (
+        verdict
+        == expected["verdict"].capitalize() + expected["verdict_text"][len(expected["verdict"]) :]
+    )
     shown = {
-        key: page.inner_text(f'#mechanics tr[data-key="{key}"] td.num')
-        for key in ("fold_mode_gap", "max_displacement", "reactions")
+        key: (
+            page.inner_text(f'#mechanics tr[data-key="{key}"] td.num'),
+            page.inner_text(f'#mechanics tr[data-key="{key}"] td.unit'),
+        )
+        for key in ("fold_mode_gap", "max_displacement", "max_stress", "utilisation", "reactions")
     }
-    assert float(shown["fold_mode_gap"]) == pytest.approx(expected["fold_mode_gap"], rel=1e-5)
-    assert float(shown["max_displacement"]) == pytest.approx(expected["max_displacement"], rel=1e-3)
-    x, y, z = shown["reactions"].split(", ")
+    # an architect's units, three significant digits
+    gap, mm, stress, use = (shown[k] for k in list(shown)[:4])
+    assert gap[0] == f"{expected['fold_mode_gap']:.3g}" and gap[1] == ""
+    assert mm[1] == "mm" and float(mm[0]) == float(f"{expected['max_displacement'] * 1e3:.3g}")
+    scale = {"kPa": 1e-3, "MPa": 1e-6}[stress[1]]
+    assert float(stress[0]) == float(f"{expected['max_stress'] * scale:.3g}")
+    assert use[1] == "%" and float(use[0]) == float(f"{expected['utilisation'] * 100:.3g}")
+    x, y, z = shown["reactions"][0].split(", ")
     # the feet carry the weight
-    assert (x, y) == ("0", "0") and float(z) == pytest.approx(expected["total_weight"], rel=1e-5)
+    assert (x, y) == ("0", "0") and float(z) == float(f"{expected['total_weight']:.3g}")
+    assert shown["reactions"][1] == "N"
+    assert all("e" not in text for text, _ in shown.values())  # no exponent form
     assert (
         page.inner_text("#mechanics-status").startswith("aluminium 1 mm, pinned at the feet")
         and page.errors == []
