@@ -147,14 +147,31 @@ def test_a_heavy_request_neither_blocks_a_quick_one_nor_outlives_its_client(url)
 def test_a_request_past_the_time_limit_is_stopped_and_says_so():
     with server.serving(time_limit=2.0) as url:
         status_, answer = get_json(url + HEAVY)
-        assert status_ == 422 and answer == {
-            "error": "this request took longer than the time limit of 2 s; lower samples, the "
-            "number of tubes, cells or panels, or use the command line",
+        # not the user's error: a gateway time-out, with what to lower
+        assert status_ == 504 and answer == {
+            "error": "This design needs more than the designer's time limit of 2 s: lower "
+            "samples or the number of tubes, cells or panels, or start the designer with a "
+            "longer --time-limit, or use the command line.",
             "key": "samples",
         }
         assert status(url)["workers"]["heavy"]["jobs"]["time"] == 1
         # a fresh worker took its place
         assert get(url + "api/vault.toml?samples=101&tubes=2")[0] == 200
+
+
+def test_a_request_kept_waiting_past_the_time_limit_is_told_the_designer_was_busy():
+    with server.serving(time_limit=60.0, workers=1) as url:
+        # one heavy worker, busy for longer than the next request's limit
+        client = open_request(url, HEAVY)
+        until(lambda: status(url)["workers"]["heavy"]["busy"] == 1, "the heavy job starting")
+        url.designer.time_limit = 2.0
+        status_, answer = get_json(url + HEAVY.replace("100000", "99999"))
+        client.close()
+    assert status_ == 503 and answer == {
+        "error": "The designer was busy with other work for its whole time limit of 2 s: try "
+        "again in a moment, or lower samples or the number of tubes, cells or panels.",
+        "key": "samples",
+    }
 
 
 def test_a_worker_past_its_memory_limit_is_stopped(monkeypatch):

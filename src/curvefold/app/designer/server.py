@@ -42,7 +42,9 @@ What it promises:
   with 403; opening the page itself from a link is allowed.
 - **One line, never a traceback.** A refused request answers 422 with
   ``{"error": one line, "key": the parameter or null}``, an unknown path 404, a bug 500
-  with one line asking for a report. The server keeps no design between requests.
+  with one line asking for a report. A time-out is not the design's fault: work past the
+  time limit answers 504, a wait that long for a worker or for memory 503, both in the same
+  form with a sentence that says what to lower. The server keeps no design between requests.
 """
 
 import ipaddress
@@ -118,6 +120,22 @@ def missing_bundle() -> str | None:
 
 def _one_line(message: str) -> str:
     return " ".join(str(message).split())
+
+
+def _timed_out(err: Stopped, limit: float) -> tuple[int, str]:
+    """The status and sentence of a request stopped at its time limit of ``limit`` seconds: 504
+    when its work ran past the limit, 503 when it waited that long for a worker or for memory.
+    Neither is the design's fault: the sentence says what to lower or to do instead."""
+    lower = "lower samples or the number of tubes, cells or panels"
+    if str(err).startswith("took longer"):
+        return 504, (
+            f"This design needs more than the designer's time limit of {limit:g} s: {lower}, "
+            "or start the designer with a longer --time-limit, or use the command line."
+        )
+    return 503, (
+        f"The designer was busy with other work for its whole time limit of {limit:g} s: "
+        f"try again in a moment, or {lower}."
+    )
 
 
 def _bug(message: str) -> str:
@@ -320,7 +338,11 @@ class Designer:
                     else refused(_bug(str(err)), status=500)
                 )
             except Stopped as err:
-                if err.reason in ("time", "memory"):
+                if err.reason == "time":
+                    limit = self.time_limit if plan.lane == "heavy" else QUICK_TIME_LIMIT
+                    status, message = _timed_out(err, limit)
+                    return refused(message, "samples", status=status)
+                if err.reason == "memory":
                     lower = (
                         "lower samples, the number of tubes, cells or panels, or use the "
                         "command line"

@@ -24,13 +24,17 @@ export async function preview(kind, query) {
 /**
  * What follows a preview (`path`: certificate, pattern, contact, mechanics, domain.svg, with
  * its own query if any): the answer (JSON, or text when `json` is false), `{error}` when the
- * design is refused, null when there is no answer (aborted, failed).
+ * design is refused, `{error, stopped: true}` when its work met the server's time limit (503,
+ * 504), null when there is no answer (aborted, failed).
  */
 export async function detail(kind, path, query, { signal, json = true } = {}) {
   try {
     const joined = `${path}${path.includes("?") ? "&" : "?"}${query}`;
     const r = await fetch(`/api/${kind}/${joined}`, { signal });
-    if (!r.ok) return r.status === 422 ? { error: (await r.json()).error } : null;
+    if (r.status === 422) return { error: (await r.json()).error };
+    const stopped = r.status === 503 || r.status === 504; // the time limit, not the design
+    if (stopped) return { error: (await r.json()).error, stopped };
+    if (!r.ok) return null;
     return json ? await r.json() : await r.text();
   } catch {
     return null;

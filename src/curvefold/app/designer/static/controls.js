@@ -7,16 +7,34 @@ import { specsOf } from "./state.js";
 const NUMBERS = ["real", "integer", "count"];
 
 /**
- * The slider's span of a spec: its typical span if it names one; else its range when within
- * ten times the default, else a fifth to five times the default; null without a range.
+ * The slider of a spec, `{lo, hi, step}`, or null without a range. Its span: the typical span
+ * if the spec names one; else its range when within ten times the default; else from the
+ * range's lower end (or a fifth of a nonzero default) to five times the default (or 5). Its
+ * step, a power of ten near a 400th of the span (1 for whole numbers), so that round values
+ * such as 0.5 lie on its grid; the span's ends are rounded inwards to the grid.
  */
 export function sliderRange(spec) {
-  const r = spec.range, d = Math.abs(Number(spec.default)) || 1;
-  if (spec.typical) return [spec.typical.lo, spec.typical.hi];
-  if (!r) return null;
-  if (r.lo !== null && r.hi !== null && r.hi - r.lo <= 10 * d) return [r.lo, r.hi];
-  const lo = Math.max(r.lo ?? -Infinity, d / 5), hi = Math.min(r.hi ?? Infinity, 5 * d);
-  return [spec.kind === "real" ? lo : Math.max(1, Math.round(lo)), hi];
+  const r = spec.range, d = Math.abs(Number(spec.default)) || 0;
+  let lo, hi;
+  if (spec.typical) [lo, hi] = [spec.typical.lo, spec.typical.hi];
+  else if (!r) return null;
+  else if (r.lo !== null && r.hi !== null && r.hi - r.lo <= 10 * Math.max(d, 1)) {
+    [lo, hi] = [r.lo, r.hi];
+  } else {
+    lo = Math.max(r.lo ?? -Infinity, d > 0 ? d / 5 : 0);
+    hi = Math.min(r.hi ?? Infinity, 5 * Math.max(d, 1));
+  }
+  if (spec.kind !== "real") {
+    return { lo: Math.ceil(lo), hi: Math.floor(hi), step: 1 };
+  }
+  const power = Math.floor(Math.log10((hi - lo) / 400));
+  const step = Number(`1e${power}`);
+  // the grid's point at or inside an end (a value a hair off the grid counts as on it)
+  const onGrid = (v, round) => {
+    const q = v / step, near = Math.round(q);
+    return Number(`${Math.abs(q - near) < 1e-9 ? near : round(q)}e${power}`);
+  };
+  return { lo: onGrid(lo, Math.ceil), hi: onGrid(hi, Math.floor), step };
 }
 
 function unitOf(state, spec) {
@@ -53,9 +71,10 @@ function field(state, spec, on, extraClass = "") {
       placeholder: spec.default === null ? "(none)" : "" });
     const range = numeric ? sliderRange(spec) : null;
     if (range) {
-      const slider = el("input", { type: "range", min: range[0], max: range[1],
-        step: spec.kind === "real" ? (range[1] - range[0]) / 400 : 1 });
-      slider.value = Number(value) || range[0];
+      const slider = el("input", { type: "range", min: range.lo, max: range.hi,
+        step: range.step });
+      // an optional value left empty: the slider at its lowest
+      slider.value = value === "" || !isFinite(Number(value)) ? range.lo : Number(value);
       slider.addEventListener("input", () => {
         input.value = slider.value;
         on.change(spec, input.value);

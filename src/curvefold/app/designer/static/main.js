@@ -14,7 +14,7 @@ import { fmt } from "./format.js";
 import { createHistory, readURL } from "./history.js";
 import { showAngle, showDownloads, showMarks, showNumbers } from "./numbers.js";
 import { showCertificate, showImages, showMechanics, showPattern } from "./results.js";
-import { createState, designQuery, underLoad } from "./state.js";
+import { createState, designQuery, loadKeys, underLoad } from "./state.js";
 import { View } from "./view.js";
 
 // -- a change: its preview, then what follows it -----------------------------------------------
@@ -40,8 +40,10 @@ function createPage() {
 function changed(page, spec, text) {
   const { state } = page;
   const def = spec.default === null ? "" : String(spec.default);
-  const target = state.schema.targets.some((t) => t.name === spec.name);
-  if (text === def && !target) delete state.values[spec.name];
+  // a target, or a material or load typed (even its default: it asks for the analysis), stays
+  const kept = state.schema.targets.some((t) => t.name === spec.name)
+    || (loadKeys(state).has(spec.name) && text !== "");
+  if (text === def && !kept) delete state.values[spec.name];
   else state.values[spec.name] = text;
   state.input = performance.now();
   page.history.remember();
@@ -104,6 +106,7 @@ function show(page, body, started) {
   byId("note").hidden = !body.note;
   const timing = {};
   state.contact = undefined;
+  state.stopped = false;
   for (const id of ["certificate-status", "certificate", "pattern", "domain", "mechanics"]) {
     byId(id).classList.add("stale");
   }

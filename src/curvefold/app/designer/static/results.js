@@ -1,7 +1,7 @@
 // What the server works out after a preview: the certificate, the crease pattern and the
 // regression domain (SVG), the design under load.
 import { byId, el } from "./dom.js";
-import { fmt } from "./format.js";
+import { architect, fmt } from "./format.js";
 
 /** SVG documents shown as images in `box` (the images shown before are released). */
 export function showImages(box, svgs) {
@@ -9,6 +9,18 @@ export function showImages(box, svgs) {
   const url = (svg) => URL.createObjectURL(new Blob([svg], { type: "image/svg+xml" }));
   box.replaceChildren(...svgs.map((svg) => Object.assign(new Image(), { src: url(svg) })));
   box.classList.remove("stale");
+}
+
+/**
+ * Why a panel has no answer (`found`: an error of the API, or null): the refusal; a time-out's
+ * sentence in the first panel that meets one, a short note in the next (said once per design).
+ */
+function why(state, found, otherwise) {
+  if (!found?.error) return otherwise;
+  if (!found.stopped) return found.error;
+  if (state.stopped) return "not computed within the designer's time limit either";
+  state.stopped = true;
+  return found.error;
 }
 
 function checkItem(c) {
@@ -23,8 +35,8 @@ function checkItem(c) {
 export function showCertificate(state, found) {
   const status = byId("certificate-status");
   if (!found || found.error) {
-    const why = found?.error ?? "the certificate could not be computed";
-    status.replaceChildren(el("span", { className: "bad" }, why));
+    const text = why(state, found, "the certificate could not be computed");
+    status.replaceChildren(el("span", { className: "bad" }, text));
     byId("certificate").replaceChildren();
   } else {
     const checks = found.checks, passed = checks.filter((c) => c.passed).length;
@@ -46,11 +58,16 @@ export function showCertificate(state, found) {
 
 /** The crease pattern's pages (a coarse sketch first), or why there are none. */
 export function showPattern(state, found) {
-  if (!found || found.error) {
-    byId("pattern-status").textContent = found?.error ? `(${found.error})` : "(not available)";
+  const box = byId("pattern");
+  box.querySelector("p.bad")?.remove();
+  if (!found || found.error) { // why, in the panel (a sketch shown stays): not in its heading
+    byId("pattern-status").textContent = !found?.error ? "(not available)"
+      : box.querySelector("img") ? "(the sketch only)" : "";
+    if (found?.error) box.append(el("p", { className: "bad" }, why(state, found, "")));
+    box.classList.remove("stale");
     return;
   }
-  showImages(byId("pattern"), found.pages);
+  showImages(box, found.pages);
   const n = found.pages.length;
   byId("pattern-status").textContent = found.coarse
     ? `(sketch of the sheets at ${found.samples} samples; the pages follow)`
@@ -58,19 +75,26 @@ export function showPattern(state, found) {
   state.pattern = found;
 }
 
-/** The design under load (what curvefold load says of it), or what to choose to see it. */
+/** The design under load (what curvefold load says of it): its verdict first, then its
+ * figures in an architect's units; or what to choose to see it. */
 export function showMechanics(state, found) {
   const table = byId("mechanics"), status = byId("mechanics-status");
+  const verdict = byId("mechanics-verdict");
   table.classList.remove("stale");
   state.mechanics = found;
   if (!found || found.error) {
     table.replaceChildren();
-    status.textContent = found?.error ? `(${found.error})`
+    verdict.replaceChildren();
+    status.textContent = found?.error ? `(${why(state, found, "")})`
       : state.kind === "crease" ? "(for tubes, blocks and vaults)"
-        : "(choose a material or a thickness under “material” to see whether it stands)";
+        : "(choose a material, or set a value under “material” or “loads”, "
+          + "to see whether it stands)";
     return;
   }
   const n = found.numbers, rows = [];
+  const stands = n.verdict === "stands";
+  verdict.replaceChildren(el("span", { className: stands ? "ok" : "bad" },
+    stands ? "Stands" : "Fails"), `: ${n.verdict_text.replace(/^(stands|fails): /, "")}`);
   const load = Math.max(...n.applied_load.map(Math.abs));
   // the rounding of forces that balance the load
   const balanced = (forces) => forces.map((f) => (Math.abs(f) <= 1e-9 * load ? 0 : f));
@@ -80,11 +104,11 @@ export function showMechanics(state, found) {
   for (const [key, [words, unit, explained]] of Object.entries(found.labels)) {
     if (!(key in n)) continue;
     const v = key === "reactions" ? balanced(n[key]) : n[key];
-    const shown = v === null ? (key === "buckling_factor" ? "none" : "unknown")
-      : Array.isArray(v) ? v.map(fmt).join(", ") : fmt(v);
-    rows.push(row(key, explained, words, shown, unit));
+    const [shown, shownUnit] = v === null ? [key === "buckling_factor" ? "none" : "unknown", unit]
+      : architect(v, unit, { percent: key === "utilisation" });
+    rows.push(row(key, explained, words, shown, shownUnit));
   }
-  const lowest = n.frequencies.slice(0, 3).map((f) => String(Number(f.toPrecision(3)))).join(", ");
+  const [lowest] = architect(n.frequencies.slice(0, 3), "Hz");
   rows.push(row("frequencies",
     "the lowest free modes' frequencies (the first is the folding motion)",
     "lowest free frequencies", lowest, "Hz"));

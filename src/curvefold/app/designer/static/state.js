@@ -17,6 +17,7 @@ export function createState() {
     certificate: null, // the certificate shown (coarse, then full)
     pattern: null, // the crease pattern shown
     mechanics: null, // the design under load, when a material is chosen
+    stopped: false, // whether a time-out's sentence is shown for the design shown
     timings: [], // per change shown: milliseconds from the input to each answer
     frames: 0, // frames drawn by the fold slider's play
     view: null, // the 3D view (view.js)
@@ -36,9 +37,17 @@ export function designQuery(values) {
   return q.toString();
 }
 
-/** Whether the design says what it is made of or what loads it (then it is shown under load). */
-export function underLoad(state) {
+/** The names of the kind's parameters of what it is made of and what loads it. */
+export function loadKeys(state) {
   const sections = state.schema.optional[state.kind] ?? [];
-  const keys = new Set(sections.flatMap((s) => state.schema.sections[s].map((spec) => spec.name)));
+  return new Set(sections.flatMap((s) => state.schema.sections[s].map((spec) => spec.name)));
+}
+
+/**
+ * Whether the design says what it is made of or what loads it (then it is shown under load):
+ * a value of these typed, even its default (a thickness of 1 mm typed asks for the analysis).
+ */
+export function underLoad(state) {
+  const keys = loadKeys(state);
   return Object.keys(state.values).some((k) => keys.has(k) && state.values[k] !== "");
 }
