@@ -21,10 +21,11 @@ The hinge stiffness of every kind of edge, with ``D = E t³ / 12(1 − ν²)`` a
 length:
 
 * ``fold``, ``seam``: a crease, ``k = k_c ℓ`` with k_c the crease stiffness per length;
-* ``ruling`` (and any other edge between two faces): the sheet bending about it,
-  ``k = D ℓ / s`` with s the mean width of its two faces across it (a quad's area over ℓ,
-  a triangle's height): exact for the cylindrical bending of a strip about its rulings,
-  whose hinge angle is the curvature times the rulings' spacing;
+* ``ruling``, ``within`` (a line inside a strip cut across its width, :mod:`._across`) and
+  any other edge between two faces: the sheet bending about it, ``k = D ℓ / s`` with s the
+  mean width of its two faces across it (a quad's area over ℓ, a triangle's height): exact
+  for the cylindrical bending of a strip about its rulings, whose hinge angle is the
+  curvature times the rulings' spacing;
 * ``diagonal`` (of a quad, or an edge so named between two triangles): the twist of the
   quad, ``k = 2 D (1 − ν) A / ℓ²`` with A the quad's area: exact for a rectangular plate
   twisted by its corners (w = c x y, uniform M_xy).
@@ -48,6 +49,7 @@ import scipy.sparse as sp
 from ..geometry._mesh import Mesh
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
+from ._across import WITHIN
 from ._elements import (
     bar_rows,
     dihedral_gradient,
@@ -64,7 +66,7 @@ from ._sparse import assemble, rows_matrix
 __all__ = ["BarHingeModel", "HINGE_KINDS", "CREASES"]
 
 #: Edge kinds that carry a hinge, and how its stiffness is found (module notes).
-HINGE_KINDS = ("fold", "seam", "ruling", "diagonal")
+HINGE_KINDS = ("fold", "seam", "ruling", WITHIN, "diagonal")
 #: The hinge kinds that are creases (stiffness per length k_c).
 CREASES = ("fold", "seam")
 

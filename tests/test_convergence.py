@@ -1,0 +1,90 @@
+"""Elements across the strips: a plate's closed form, the cut sheet, and the response as k grows.
+
+A strip one element wide is straight between its creases; cut into k elements across
+(:func:`curvefold.mechanics._across.cut_across`) it bends across its width like a plate.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from _mechanics import strip
+from curvefold.kernel import InputError
+from curvefold.mechanics import MATERIALS, BarHingeModel, StructureModel, static_response
+from curvefold.mechanics._across import cut_across
+from curvefold.vault import Vault
+
+PP = MATERIALS["polypropylene"]
+
+
+def plate_deflection(k: int, *, length: float = 0.4, width: float = 0.1, t: float = 1e-3):
+    """The largest deflection of a flat strip (8 rulings) cut into k across, held on its two long
+    edges, under 1 Pa, over the plate's closed form 5 q b⁴ / 384 D."""
+    sheet = strip(length, width, 8)
+    cut, _, _ = cut_across(sheet, np.arange(len(sheet.vertices_coords)) % 2, k)
+    model = BarHingeModel.from_mesh(cut, PP, t, crease_stiffness=1.0)
+    y = model.nodes[:, 1]
+    fixed = np.zeros((len(y), 3), bool)
+    fixed[(np.abs(y) < 1e-12) | (np.abs(y - width) < 1e-12)] = True
+    forces = np.zeros((len(y), 3))
+    forces[:, 2] = -model.masses / model.masses.sum() * length * width  # 1 Pa, as the masses
+    result, _ = static_response(model, forces, fixed)
+    return result.max_displacement / (5 * width**4 / (384 * PP.bending_stiffness(t)))
+
+
+def test_a_strip_cut_across_bends_as_a_plate_at_second_order():
+    """Cylindrical bending between two held edges: one element across cannot bend at all; k
+    elements (k − 1 hinges of D ℓ k / b, the load lumped at the lines) give 1 + 0.8 / k²
+    of the closed form, an observed order of 2, and Richardson's estimate from k = 4 and 8
+    the closed form itself."""
+    assert plate_deflection(1) == 0.0
+    ratios = np.array([plate_deflection(k) for k in (2, 4, 8, 16)])
+    assert_allclose(ratios - 1, 0.8 / np.array([2, 4, 8, 16]) ** 2, rtol=1e-6)
+    errors = ratios - 1
+    assert_allclose(np.log2(errors[:-1] / errors[1:]), 2.0, atol=1e-5)
+    assert (4 * ratios[2] - ratios[1]) / 3 == pytest.approx(1.0, abs=1e-8)
+
+
+@pytest.fixture(scope="module")
+def tube_state():
+    return Vault.from_design(tubes=1, samples=21).structure.state()
+
+
+def test_cutting_across_keeps_the_sheet_its_weight_and_its_folding(tube_state):
+    one = StructureModel.from_state(tube_state, PP, 1e-3)
+    three = one.with_across(3)
+    assert len(three.model.nodes) == len(one.model.nodes) + 2 * 21 * 4  # two per ruling
+    # the same area to 1e-9: a ruling quad is planar to O(h²), and a quad's area is that of
+    # its two triangles, which its pieces split otherwise
+    assert three.model.masses.sum() == pytest.approx(one.model.masses.sum(), rel=1e-8)
+    assert three.model.membrane_area.sum() == pytest.approx(one.model.membrane_area.sum(), rel=1e-8)
+    # a node inside a strip is on its ruling, where node_ends and node_weight put it
+    a, b = three.node_ends.T
+    w = three.node_weight[:, None]
+    x = three.model.nodes
+    assert_allclose(x, (1 - w) * x[a] + w * x[b], atol=1e-12)
+    inner = three.node_curve < 0
+    assert inner.sum() == 2 * 21 * 4 and set(np.round(three.node_weight[inner], 12)) == {
+        round(1 / 3, 12),
+        round(2 / 3, 12),
+    }
+    # the rigid folding stretches the cut sheet's bars no more than the whole strips'
+    stretch = [
+        np.abs(m.model.compatibility() @ m.fold_velocity().ravel()).max()
+        / np.abs(m.fold_velocity()).max()
+        for m in (one, three)
+    ]
+    assert stretch[1] <= 1.01 * stretch[0]
+    # the feet: every node of the end rulings on the ground, those inside the strips too
+    assert len(three.feet) > len(one.feet)
+    assert np.isin(three.node_sample[three.feet], (0, 20)).all()
+    # the lattice's fields ignore the nodes inside the strips
+    assert_allclose(three.field(x[:, 2]), one.field(one.model.nodes[:, 2]))
+
+
+@pytest.mark.parametrize("across", [0, 65, 1.5, True, "2"])
+def test_across_out_of_range_is_told_with_the_value(tube_state, across):
+    with pytest.raises(InputError, match=r"^across must be an integer in \[1, 64\] .*got"):
+        StructureModel.from_state(tube_state, PP, 1e-3, across=across)
