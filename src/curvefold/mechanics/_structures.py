@@ -245,7 +245,7 @@ class StructureModel(FrozenArrays):
         ...     1e-3,
         ... )
         >>> finer = tube.with_across(3)
-        >>> finer.across, len(finer.model.nodes) - len(tube.model.nodes)  # 2 on each of 4 × 21 rulings
+        >>> finer.across, len(finer.model.nodes) - len(tube.model.nodes)  # 2 on 4 × 21 rulings
         (3, 168)
         """
         return StructureModel.from_state(
