@@ -6,13 +6,23 @@ A strip one element wide is straight between its creases; cut into k elements ac
 
 from __future__ import annotations
 
+import json
+import re
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+from _cli import run
 from _mechanics import strip
 from curvefold.kernel import InputError
-from curvefold.mechanics import MATERIALS, BarHingeModel, StructureModel, static_response
+from curvefold.mechanics import (
+    MATERIALS,
+    BarHingeModel,
+    StructureModel,
+    analyse_load,
+    static_response,
+)
 from curvefold.mechanics._across import cut_across
 from curvefold.vault import Vault
 
@@ -88,3 +98,24 @@ def test_cutting_across_keeps_the_sheet_its_weight_and_its_folding(tube_state):
 def test_across_out_of_range_is_told_with_the_value(tube_state, across):
     with pytest.raises(InputError, match=r"^across must be an integer in \[1, 64\] .*got"):
         StructureModel.from_state(tube_state, PP, 1e-3, across=across)
+
+
+def test_the_load_command_takes_across_from_its_flag_and_design_file(tmp_path):
+    """``--across`` and ``[loads] across`` reach the library unchanged; 0 is one line."""
+    small = ("--tubes", "1", "--samples", "21")
+    library = analyse_load(Vault.from_design(tubes=1, samples=21), across=3)
+    flag = run("load", *small, "--across", "3", "--json")
+    design = tmp_path / "vault.toml"
+    design.write_text('kind = "vault"\nsamples = 21\n\n[vault]\ntubes = 1\n\n[loads]\nacross = 3\n')
+    keyed = run("load", str(design), "--json")
+    for r in (flag, keyed):
+        assert r.returncode == 0, r.stderr
+        d = json.loads(r.stdout)
+        assert d["max_displacement"] == pytest.approx(library.static.max_displacement, rel=1e-9)
+        assert d["buckling_factor"] == pytest.approx(library.buckling.factor, rel=1e-9)
+    one = json.loads(run("load", *small, "--json").stdout)
+    assert one["max_displacement"] < 0.9 * library.static.max_displacement
+    bad = run("load", *small, "--across", "0")
+    assert bad.returncode == 2 and re.search(
+        r"across must be an integer in \[1, 64\] elements .*got 0$", bad.stderr.strip()
+    ), bad.stderr

@@ -47,6 +47,7 @@ import numpy as np
 from ..kernel._errors import InputError
 from ..kernel._validate import Spec, describe
 from ..mechanics import (
+    ACROSS,
     CREASE_STIFFNESS,
     LOAD_CASES,
     MATERIAL,
@@ -154,6 +155,7 @@ LOADS_SECTION: tuple[Spec, ...] = (
         help=f"{SUPPORTS.help}; a vault stands on its feet, a tube or block is held at both end "
         "sections (t = 0 and t = 1)",
     ),
+    ACROSS,
 )
 
 
@@ -206,8 +208,8 @@ class MaterialParams:
 @dataclass(frozen=True)
 class LoadParams:
     """``[loads]``: self-weight or not, the keys of :data:`LOADS_KEYS` in the user's units (snow
-    and wind in kPa, a point load in N), the supports, and the ``[[loads.case]]`` entries (SI;
-    None: none listed)."""
+    and wind in kPa, a point load in N), the supports, the model's elements across each strip,
+    and the ``[[loads.case]]`` entries (SI; None: none listed)."""
 
     self_weight: bool
     snow: float
@@ -217,6 +219,7 @@ class LoadParams:
     wind_cp: float
     point_load: float
     supports: str
+    across: int = 1
     case: tuple[LoadCase, ...] | None = None
 
     def cases(self) -> Loads:
@@ -517,6 +520,7 @@ def analyse(
         loads.cases(),
         Supports(loads.supports, at=supported),  # type: ignore[arg-type]
         crease_stiffness=material.crease_stiffness,
+        across=loads.across,
     )
     return Loaded(result, material, loads, supported)
 

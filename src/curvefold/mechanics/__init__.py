@@ -32,7 +32,7 @@ of their names is first used.
 
 import importlib
 
-from . import _loads, _materials
+from . import _across, _loads, _materials
 from ._loads import (
     HalfSnow,
     LoadCase,
@@ -59,6 +59,8 @@ MATERIAL_SPECS = _materials.MATERIAL_SPECS
 THICKNESS = _materials.THICKNESS
 #: The check of a crease stiffness per length (N·m/rad/m).
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
+#: The check of the elements across each ruling strip or panel of a model.
+ACROSS = _across.ACROSS
 #: Every load case class by name (:class:`LoadCase`): a new case is one class registered there.
 LOAD_CASES = _loads.LOAD_CASES
 #: The check of how the supported nodes are held ("pinned" or "roller").
@@ -93,6 +95,7 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
+    "ACROSS",
     "LOAD_CASES",
     "SUPPORTS",
     "material",

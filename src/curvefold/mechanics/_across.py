@@ -24,17 +24,30 @@ import numpy as np
 
 from ..geometry._mesh import Mesh
 from ..kernel._errors import InputError
+from ..kernel._validate import Interval, Spec
 
-__all__ = ["WITHIN", "ACROSS_RANGE", "cut_across"]
+__all__ = ["WITHIN", "ACROSS", "check_across", "cut_across"]
 
 #: The kind of the edges that cut a strip or panel along its length, inside the sheet.
 WITHIN = "within"
-#: Elements across a strip or panel a model may have.
-ACROSS_RANGE = (1, 64)
+#: Elements across each ruling strip or panel of a structure's model: one parameter, its range
+#: and its meaning (the design files' ``[loads] across``, ``--across``).
+ACROSS = Spec(
+    "across",
+    "integer",
+    1,
+    Interval.parse("[1, 64]"),
+    "elements",
+    help="elements across each ruling strip or panel: k > 1 lets the sheet bend and buckle "
+    "across its width (the deflection and the buckling factor converge as k grows)",
+    why="each element across multiplies the model's size",
+    typical=Interval.parse("[1, 8]"),
+    label="elements across each strip",
+)
 
 
 def check_across(across: object) -> int:
-    """``across`` as an int in :data:`ACROSS_RANGE`, or an :class:`InputError` naming it.
+    """``across`` checked against :data:`ACROSS` (an :class:`InputError` names it and the value).
 
     Examples
     --------
@@ -43,20 +56,10 @@ def check_across(across: object) -> int:
     >>> check_across(0)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.InputError: across must be an integer in [1, 64] (elements across \
-each strip), got 0
+    curvefold.kernel._errors.InputError: across must be an integer in [1, 64] elements (each
+    element across multiplies the model's size), got 0
     """
-    lo, hi = ACROSS_RANGE
-    if (
-        isinstance(across, bool)
-        or not isinstance(across, (int, np.integer))
-        or not (lo <= across <= hi)
-    ):
-        raise InputError(
-            f"across must be an integer in [{lo}, {hi}] (elements across each strip), "
-            f"got {across!r}"
-        )
-    return int(across)
+    return int(ACROSS.check(across))
 
 
 def cut_across(
@@ -72,7 +75,7 @@ def cut_across(
     vertex_curve : (V,) array_like of int
         The lattice curve of every vertex of the mesh.
     across : int
-        k, elements across, in :data:`ACROSS_RANGE`.
+        k, elements across, in :data:`ACROSS`'s range.
 
     Returns
     -------
