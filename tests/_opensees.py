@@ -8,8 +8,10 @@ share an edge of the mesh (a crease, a seam, a fold line) the coincident nodes o
 panels share their translations (equalDOF) and are joined by a zeroLength element whose
 rotation about the edge is a spring of the crease stiffness times the node's share of
 the edge, and whose other two rotations are stiff (the sheet is continuous across the
-crease: it only turns about it). Panels of two tubes bonded along a crease share the
-translations of their nodes only, as in the bar-and-hinge model. Nothing here is taken
+crease: it only turns about it). Across a ruling of a smooth structure (an edge between
+ruling quads) the sheet is continuous: the three rotations are stiff. Panels of two tubes
+bonded along a crease share the translations of their nodes only, as in the bar-and-hinge
+model. Nothing here is taken
 from curvefold.mechanics but the geometry (the state's mesh) and the material.
 """
 
@@ -114,8 +116,10 @@ def opensees_model(sm: StructureModel, refine: int | tuple[int, int]):
     }
     material = 2
     for edge, where in sides.items():
-        if len(where) != 2 or kind_of.get(edge) not in ("fold", "seam"):
+        kind = kind_of.get(edge)
+        if len(where) != 2 or kind == "boundary":
             continue
+        crease = kind in ("fold", "seam")
         a, b = x[edge[0]], x[edge[1]]
         length = float(np.linalg.norm(b - a))
         axis = (b - a) / length
@@ -129,7 +133,9 @@ def opensees_model(sm: StructureModel, refine: int | tuple[int, int]):
             q2 = min(nodes2, key=lambda q: np.linalg.norm(coords[q] - coords[q1]))
             along = (coords[q1] - a) @ axis / length
             share = length / m * (0.5 if min(along, 1 - along) < 0.25 / m else 1.0)
-            ops.uniaxialMaterial("Elastic", material, sm.crease_stiffness * share)
+            # a crease turns about itself; the sheet is continuous across a ruling
+            turn = sm.crease_stiffness * share if crease else RIGID * D
+            ops.uniaxialMaterial("Elastic", material, turn)
             ops.element(
                 "zeroLength",
                 element,
