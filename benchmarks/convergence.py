@@ -32,7 +32,6 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 import _opensees  # noqa: E402
-
 from curvefold.mechanics import MATERIALS, StructureModel, analyse_load  # noqa: E402
 from curvefold.mechanics._convergence import observed_order, richardson  # noqa: E402
 from curvefold.vault import Vault  # noqa: E402
