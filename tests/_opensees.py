@@ -9,7 +9,11 @@ panels share their translations (equalDOF) and are joined by a zeroLength elemen
 rotation about the edge is a spring of the crease stiffness times the node's share of
 the edge, and whose other two rotations are stiff (the sheet is continuous across the
 crease: it only turns about it). Across a ruling of a smooth structure (an edge between
-ruling quads) the sheet is continuous: the three rotations are stiff. Panels of two tubes
+ruling quads) the sheet is continuous: the three rotations are stiff, but for the ruling's
+two ends, on the creases, where four quads meet and a crease turns about the tangents of its
+two segments on either side: tied there, the rotations would lock the folding of a curved
+crease (its segments' tangents differ). So one shell across a ruling quad leaves the
+rulings hinged, and m across ties m − 1 nodes of each ruling. Panels of two tubes
 bonded along a crease share the translations of their nodes only, as in the bar-and-hinge
 model. Nothing here is taken
 from curvefold.mechanics but the geometry (the state's mesh) and the material.
@@ -132,7 +136,10 @@ def opensees_model(sm: StructureModel, refine: int | tuple[int, int]):
         for q1 in nodes1:
             q2 = min(nodes2, key=lambda q: np.linalg.norm(coords[q] - coords[q1]))
             along = (coords[q1] - a) @ axis / length
-            share = length / m * (0.5 if min(along, 1 - along) < 0.25 / m else 1.0)
+            end = min(along, 1 - along) < 0.25 / m
+            if not crease and end:
+                continue  # a ruling's ends, on the creases: see the module notes
+            share = length / m * (0.5 if end else 1.0)
             # a crease turns about itself; the sheet is continuous across a ruling
             turn = sm.crease_stiffness * share if crease else RIGID * D
             ops.uniaxialMaterial("Elastic", material, turn)
