@@ -181,3 +181,21 @@ def test_a_small_vault_converges_as_the_elements_across_double():
     p = orders(rows)
     assert p[:, 0].min() > 2.4 and 0.7 < p[1, 1] < 1.4 and p[1, 3] > 2.5, p
     assert_allclose(rows[1:, 1:3], np.broadcast_to(rows[-1, 1:3], (len(rows) - 1, 2)), rtol=0.03)
+
+
+def test_the_budget_counts_the_elements_across():
+    """The memory estimate of ``curvefold load`` grows with k and stays above the peaks measured
+    on the paper's vault (0.23, 0.62 and 2.4 GB with k = 1, 2, 4)."""
+    from pathlib import Path
+
+    from curvefold.app import parse_design
+    from curvefold.app._budget import estimate
+
+    text = (Path(__file__).parent.parent / "examples" / "paper-vault.toml").read_text()
+    totals = [
+        estimate(parse_design(f"{text}\n[loads]\nacross = {k}\n").with_mechanics(), files=False)
+        for k in (1, 2, 4)
+    ]
+    assert all(e.largest == "mechanics" for e in totals)
+    assert all(e.total > peak for e, peak in zip(totals, (0.23e9, 0.62e9, 2.4e9)))
+    assert totals[2].total - totals[0].total > 10 * (totals[1].total - totals[0].total) / 3
