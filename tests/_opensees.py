@@ -1,14 +1,21 @@
 """An independent finite-element model of a panel structure in OpenSees: shells for the panels,
 springs for the creases.
 
-Every panel (a planar quad of the structure's mesh) is meshed by m × m ShellMITC4
-elements (ElasticMembranePlateSection: E, ν, t, ρ) on its own nodes. Where two panels
+Every panel (a planar quad of the structure's mesh; for a smooth structure a ruling quad) is
+meshed by m × m shells (ASDShellQ4, ElasticMembranePlateSection: E, ν, t, ρ) on its own
+nodes, or by m across (between its curves) × n along (``refine=(m, n)``). Where two panels
 share an edge of the mesh (a crease, a seam, a fold line) the coincident nodes of the two
 panels share their translations (equalDOF) and are joined by a zeroLength element whose
 rotation about the edge is a spring of the crease stiffness times the node's share of
 the edge, and whose other two rotations are stiff (the sheet is continuous across the
-crease: it only turns about it). Panels of two tubes bonded along a crease share the
-translations of their nodes only, as in the bar-and-hinge model. Nothing here is taken
+crease: it only turns about it). Across a ruling of a smooth structure (an edge between
+ruling quads) the sheet is continuous: the three rotations are stiff, but for the ruling's
+two ends, on the creases, where four quads meet and a crease turns about the tangents of its
+two segments on either side: tied there, the rotations would lock the folding of a curved
+crease (its segments' tangents differ). So one shell across a ruling quad leaves the
+rulings hinged, and m across ties m − 1 nodes of each ruling. Panels of two tubes
+bonded along a crease share the translations of their nodes only, as in the bar-and-hinge
+model. Nothing here is taken
 from curvefold.mechanics but the geometry (the state's mesh) and the material.
 """
 
@@ -26,9 +33,9 @@ RIGID = 1e4
 SHELL = "ASDShellQ4"
 
 
-def opensees_model(sm: StructureModel, refine: int):
-    """Build the OpenSees model of a panel structure's state; return the node tags at the model's
-    nodes and the total mass.
+def opensees_model(sm: StructureModel, refine: int | tuple[int, int]):
+    """Build the OpenSees model of a structure's state, each quad meshed by ``refine`` (m, or m
+    across × n along); return the node tags at the model's nodes and the total mass.
 
     Returns
     -------
@@ -43,39 +50,43 @@ def opensees_model(sm: StructureModel, refine: int):
     topology = state.structure.topology("quads")
     mesh = topology.mesh(state.vertices)
     x = mesh.vertices_coords
-    faces = mesh.faces_vertices
+    curve = topology.vertex_curve
+    faces = np.asarray(mesh.faces_vertices)
+    # every quad from a corner whose next one is on its curve: side 0-1 along, 1-2 across
+    along_first = curve[faces[:, 0]] == curve[faces[:, 1]]
+    faces = np.where(along_first[:, None], faces, np.roll(faces, -1, axis=1))
     mat = sm.material
     t = sm.model.thickness
     D = mat.bending_stiffness(t)
-    m = int(refine)
-    k = m + 1
+    mv, mu = (int(refine), int(refine)) if np.ndim(refine) == 0 else map(int, refine)
+    ku, kv = mu + 1, mv + 1
+    per_face = ku * kv
 
     ops.wipe()
     ops.model("basic", "-ndm", 3, "-ndf", 6)
     ops.section("ElasticMembranePlateSection", 1, mat.youngs_modulus, mat.poisson, t, mat.density)
     ops.uniaxialMaterial("Elastic", 1, RIGID * D)
-    s = np.linspace(0.0, 1.0, k)
     coords = {}
     for f, (a, b, c, d) in enumerate(faces):
-        for i, u in enumerate(s):
-            for j, v in enumerate(s):
+        for i, u in enumerate(np.linspace(0.0, 1.0, ku)):
+            for j, v in enumerate(np.linspace(0.0, 1.0, kv)):
                 p = (
                     (1 - u) * (1 - v) * x[a]
                     + u * (1 - v) * x[b]
                     + u * v * x[c]
                     + (1 - u) * v * x[d]
                 )
-                tag = 1 + f * k * k + i * k + j
+                tag = 1 + f * per_face + i * kv + j
                 ops.node(tag, *p.tolist())
                 coords[tag] = p
     element = 1
     weight = {}
     g = 9.80665
     for f in range(len(faces)):
-        for i in range(m):
-            for j in range(m):
+        for i in range(mu):
+            for j in range(mv):
                 n = [
-                    1 + f * k * k + (i + di) * k + (j + dj)
+                    1 + f * per_face + (i + di) * kv + (j + dj)
                     for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1))
                 ]
                 ops.element(SHELL, element, *n, 1)
@@ -109,8 +120,10 @@ def opensees_model(sm: StructureModel, refine: int):
     }
     material = 2
     for edge, where in sides.items():
-        if len(where) != 2 or kind_of.get(edge) not in ("fold", "seam"):
+        kind = kind_of.get(edge)
+        if len(where) != 2 or kind == "boundary":
             continue
+        crease = kind in ("fold", "seam")
         a, b = x[edge[0]], x[edge[1]]
         length = float(np.linalg.norm(b - a))
         axis = (b - a) / length
@@ -118,12 +131,18 @@ def opensees_model(sm: StructureModel, refine: int):
         normal = np.cross(x[faces[f1][1]] - x[faces[f1][0]], x[faces[f1][3]] - x[faces[f1][0]])
         across = np.cross(normal, axis)
         across /= np.linalg.norm(across)
-        nodes1, nodes2 = _side_nodes(f1, c1, k), _side_nodes(f2, c2, k)
+        nodes1, nodes2 = _side_nodes(f1, c1, ku, kv), _side_nodes(f2, c2, ku, kv)
+        m = len(nodes1) - 1
         for q1 in nodes1:
             q2 = min(nodes2, key=lambda q: np.linalg.norm(coords[q] - coords[q1]))
             along = (coords[q1] - a) @ axis / length
-            share = length / m * (0.5 if min(along, 1 - along) < 0.25 / m else 1.0)
-            ops.uniaxialMaterial("Elastic", material, sm.crease_stiffness * share)
+            end = min(along, 1 - along) < 0.25 / m
+            if not crease and end:
+                continue  # a ruling's ends, on the creases: see the module notes
+            share = length / m * (0.5 if end else 1.0)
+            # a crease turns about itself; the sheet is continuous across a ruling
+            turn = sm.crease_stiffness * share if crease else RIGID * D
+            ops.uniaxialMaterial("Elastic", material, turn)
             ops.element(
                 "zeroLength",
                 element,
@@ -147,15 +166,16 @@ def opensees_model(sm: StructureModel, refine: int):
     return masters[nearest], {int(q): w for q, w in weight.items()}
 
 
-def _side_nodes(face: int, corner: int, k: int) -> list[int]:
-    """The tags of a face's grid nodes along its side from corner ``corner`` to the next."""
+def _side_nodes(face: int, corner: int, ku: int, kv: int) -> list[int]:
+    """The tags of a face's grid nodes (ku along × kv across) along its side from corner
+    ``corner`` to the next."""
     ij = {
-        0: [(i, 0) for i in range(k)],
-        1: [(k - 1, j) for j in range(k)],
-        2: [(i, k - 1) for i in range(k - 1, -1, -1)],
-        3: [(0, j) for j in range(k - 1, -1, -1)],
+        0: [(i, 0) for i in range(ku)],
+        1: [(ku - 1, j) for j in range(kv)],
+        2: [(i, kv - 1) for i in range(ku - 1, -1, -1)],
+        3: [(0, j) for j in range(kv - 1, -1, -1)],
     }[corner]
-    return [1 + face * k * k + i * k + j for i, j in ij]
+    return [1 + face * ku * kv + i * kv + j for i, j in ij]
 
 
 def _nearest(points: np.ndarray, targets: np.ndarray) -> np.ndarray:
@@ -164,7 +184,7 @@ def _nearest(points: np.ndarray, targets: np.ndarray) -> np.ndarray:
     return cKDTree(points).query(targets)[1]
 
 
-def static_deflection(sm: StructureModel, refine: int) -> np.ndarray:
+def static_deflection(sm: StructureModel, refine: int | tuple[int, int]) -> np.ndarray:
     """Displacements (P, 3) of the model's nodes under self-weight, the feet pinned, m.
 
     The feet are the end sections on the ground: every shell node on z = 0 is pinned, the
@@ -196,7 +216,7 @@ def static_deflection(sm: StructureModel, refine: int) -> np.ndarray:
 
 
 def free_eigenvalues(
-    sm: StructureModel, refine: int, count: int, ground: np.ndarray, spring: float
+    sm: StructureModel, refine: int | tuple[int, int], count: int, ground: np.ndarray, spring: float
 ) -> np.ndarray:
     """The lowest ``count`` elastic ω² (rad²/s²) of the free structure.
 

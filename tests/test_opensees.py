@@ -36,6 +36,7 @@ from curvefold.mechanics import (
     free_modes,
     static_response,
 )
+from curvefold.mechanics._convergence import observed_order, richardson
 from curvefold.mechanics._linear import rigid_motions
 from curvefold.vault import Vault
 
@@ -111,3 +112,34 @@ def test_the_paper_panel_vault_against_refined_shells():
     v, mu = theirs(vault, 2, lam, ground)
     assert 0.85 < peak(u) / peak(v) < 0.95  # measured 0.90
     assert_allclose(lam, mu, rtol=0.1)  # measured ≤ 8.6 %
+
+
+@pytest.mark.slow
+def test_refined_shells_agree_with_the_model_converged_across_on_a_smooth_tube():
+    """A smooth tube (41 samples, one element along each ruling quad in both models): ours as
+    k = 2, 4, 8 across (Richardson), OpenSees as m = 4, 8, 16 shells across each quad.
+
+    Measured: ours converges at order 3.5 (k = 8 within 0.01 % of its limit), the shells by
+    0.3 % from m = 8 to 16, and the two agree to 0.04 % in deflection (32.71 µm and 32.70);
+    the folding mode's ω² to 0.9 % at m = 8, the next to 0.6 %. The 5 % asked is held on
+    the deflection and both eigenvalues; a stiffer modulus (30 %) falls outside it.
+    """
+    state = Vault.from_design(a=0.3, p_xy=0.75, tubes=1, samples=41).structure.state()
+    one = StructureModel.from_state(state, AL, 2e-3, samples="all")
+    mine = [ours(one.with_across(k)) for k in (2, 4, 8)]
+    p = observed_order(*(peak(u) for u, _, _ in mine))
+    limit, error = richardson(peak(mine[1][0]), peak(mine[2][0]), order=p)
+    assert p > 3 and error / limit < 1e-3, (p, error / limit)
+    shells = [peak(_opensees.static_deflection(one, (m, 1))) for m in (4, 8, 16)]
+    assert 0 < shells[2] / shells[1] - 1 < 0.01  # measured 0.3 %
+    assert shells[2] / limit == pytest.approx(1, abs=0.05)  # measured 0.9996
+    lam, ground = mine[2][1], ours(one)[2]
+    mu = _opensees.free_eigenvalues(one, (8, 1), 2, ground, 1e-6 * one.model.masses.sum() * lam[0])
+    assert_allclose(lam[:2], mu, rtol=0.05)  # measured 1.3 %, 0.7 % at k = 8
+    stiff = StructureModel.from_state(
+        state,
+        Material.from_values(1.3 * AL.youngs_modulus, AL.poisson, AL.density, AL.strength),
+        2e-3,
+        samples="all",
+    )
+    assert peak(ours(stiff.with_across(8))[0]) / shells[2] < 0.95

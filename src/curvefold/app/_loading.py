@@ -47,6 +47,7 @@ import numpy as np
 from ..kernel._errors import InputError
 from ..kernel._validate import Spec, describe
 from ..mechanics import (
+    ACROSS,
     CREASE_STIFFNESS,
     CRITERIA_SPECS,
     LOAD_CASES,
@@ -157,6 +158,7 @@ LOADS_SECTION: tuple[Spec, ...] = (
         "sections (t = 0 and t = 1)",
     ),
     *CRITERIA_SPECS,
+    ACROSS,
 )
 
 
@@ -209,9 +211,10 @@ class MaterialParams:
 @dataclass(frozen=True)
 class LoadParams:
     """``[loads]``: self-weight or not, the keys of :data:`LOADS_KEYS` in the user's units (snow
-    and wind in kPa, a point load in N), the supports, the ``[[loads.case]]`` entries (SI;
-    None: none listed), and what the verdict asks (:class:`curvefold.mechanics.Criteria`: the
-    partial factors, the required buckling factor, the deflection limit in m)."""
+    and wind in kPa, a point load in N), the supports, the model's elements across each strip,
+    the ``[[loads.case]]`` entries (SI; None: none listed), and what the verdict asks
+    (:class:`curvefold.mechanics.Criteria`: the partial factors, the required buckling factor,
+    the deflection limit in m)."""
 
     self_weight: bool
     snow: float
@@ -226,6 +229,7 @@ class LoadParams:
     gamma_m: float | None = _CRITERIA["gamma_m"].default
     buckling_safety: float = _CRITERIA["buckling_safety"].default
     deflection_limit: float | None = _CRITERIA["deflection_limit"].default
+    across: int = 1
     case: tuple[LoadCase, ...] | None = None
 
     def criteria(self) -> Criteria:
@@ -581,6 +585,7 @@ def analyse(
         loads.cases(),
         Supports(loads.supports, at=supported),  # type: ignore[arg-type]
         crease_stiffness=material.crease_stiffness,
+        across=loads.across,
     )
     return Loaded(result, material, loads, supported, assess(result, loads.criteria()))
 

@@ -34,7 +34,7 @@ of their names is first used.
 
 import importlib
 
-from . import _loadcase, _materials, _supports, _verdict
+from . import _across, _loadcase, _materials, _supports, _verdict
 from ._cases import HalfSnow, PointLoad, SelfWeight, Snow, Wind, ZonedWind
 from ._combinations import Combination, combinations
 from ._loadcase import LoadCase, Parameter
@@ -55,6 +55,8 @@ MATERIAL_SPECS = _materials.MATERIAL_SPECS
 THICKNESS = _materials.THICKNESS
 #: The check of a crease stiffness per length (N·m/rad/m).
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
+#: The check of the elements across each ruling strip or panel of a model.
+ACROSS = _across.ACROSS
 #: Every load case class by name (:class:`LoadCase`): a new case is one class registered there.
 LOAD_CASES = _loadcase.LOAD_CASES
 #: The check of how the supported nodes are held ("pinned" or "roller").
@@ -92,6 +94,7 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
+    "ACROSS",
     "LOAD_CASES",
     "SUPPORTS",
     "material",

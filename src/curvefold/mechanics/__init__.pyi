@@ -1,6 +1,7 @@
 """The names of :mod:`curvefold.mechanics`, most loaded on first use, for type checkers and
 editors."""
 
+from ._across import ACROSS as ACROSS
 from ._analysis import LoadResult as LoadResult
 from ._analysis import analyse_load as analyse_load
 from ._cases import HalfSnow as HalfSnow
@@ -54,6 +55,7 @@ __all__ = [
     "MATERIAL_SPECS",
     "THICKNESS",
     "CREASE_STIFFNESS",
+    "ACROSS",
     "LOAD_CASES",
     "LoadCase",
     "Parameter",

@@ -181,6 +181,7 @@ def analyse_load(
     crease_stiffness: float | None = None,
     modes: int = 6,
     samples="graded",
+    across: int = 1,
 ) -> LoadResult:
     """A structure under load, with its modes, buckling factor and soft modes.
 
@@ -206,6 +207,8 @@ def analyse_load(
         How many lowest free modes (≥ 2, for the fold-mode gap).
     samples : {"graded", "all"} or sequence of int, keyword-only
         The samples the model keeps (:meth:`StructureModel.from_state`).
+    across : int, keyword-only
+        Elements across each ruling strip or panel (:meth:`StructureModel.from_state`).
 
     Raises
     ------
@@ -233,7 +236,7 @@ def analyse_load(
         raise InputError(
             f"modes must be an integer ≥ 2 (the fold-mode gap needs two), got {modes!r}"
         )
-    sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness, samples)
+    sm = _structure_model(structure, mat, thickness, fold_angle, crease_stiffness, samples, across)
     loads = Loads() if loads is None else loads if isinstance(loads, Loads) else Loads(tuple(loads))
     supports = Supports() if supports is None else supports
     model = sm.model
@@ -252,7 +255,9 @@ def analyse_load(
         fold_span_correlation=span_correlation(model, free.shapes, folding),
         buckling=buckled,
         buckling_sample_correlation=sm.sample_correlation(buckled.shape),
-        soft=soft_modes(model),
+        # the structure's mechanisms: its curves' nodes (a node inside a strip, on a straight
+        # ruling, moves normal to the sheet without stretching its bars at first order)
+        soft=soft_modes(model if sm.across == 1 else sm.with_across(1).model),
         supported_eigenvalues=readonly(
             supported_modes(model, result.fixed, factor, min(3, _free(result) - 2))
         ),
@@ -270,6 +275,7 @@ def _structure_model(
     fold_angle: float | None,
     crease_stiffness: float | None,
     samples,
+    across: int,
 ) -> StructureModel:
     if isinstance(structure, StructureModel):
         return structure
@@ -285,5 +291,5 @@ def _structure_model(
             f"{type(structure).__name__}"
         )
     return StructureModel.from_state(
-        state, mat, thickness, crease_stiffness=crease_stiffness, samples=samples
+        state, mat, thickness, crease_stiffness=crease_stiffness, samples=samples, across=across
     )

@@ -36,6 +36,8 @@ import numpy as np
 
 __all__ = [
     "bar_rows",
+    "face_bars",
+    "face_membranes",
     "dihedral_angle",
     "dihedral_gradient",
     "dihedral_hessian",
@@ -336,3 +338,55 @@ def plane_stress(youngs_modulus: float, poisson: float) -> np.ndarray:
     return (
         E / (1 - nu * nu) * np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
     )
+
+
+def face_bars(faces: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """The bars of faces (F, k) as vertex pairs, shape (F, 5, 2): sides from corner m to m + 1,
+    then a quad's diagonal 0–2; -1 pads."""
+    F = len(faces)
+    out = np.full((F, 5, 2), -1, np.int64)
+    tri, quad = sizes == 3, sizes == 4
+    out[tri, :3] = np.stack([faces[tri][:, :3], np.roll(faces[tri][:, :3], -1, axis=1)], axis=-1)
+    if quad.any():
+        q = faces[quad][:, :4]
+        out[quad, :4] = np.stack([q, np.roll(q, -1, axis=1)], axis=-1)
+        out[quad, 4] = q[:, [0, 2]]
+    return out
+
+
+def face_membranes(
+    x: np.ndarray,
+    faces: np.ndarray,
+    sizes: np.ndarray,
+    area: np.ndarray,
+    youngs_modulus: float,
+    poisson: float,
+    t: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Every face's stiffness (F, 5, 5) and centre strain (F, 3, 5) on its bars
+    (:func:`face_bars`)."""
+    F = len(faces)
+    S, strain = np.zeros((F, 5, 5)), np.zeros((F, 3, 5))
+    D = plane_stress(youngs_modulus, poisson)
+    tri, quad = sizes == 3, sizes == 4
+    if tri.any():
+        G, _ = triangle_strain(x[faces[tri][:, :3]])
+        strain[tri, :, :3] = G
+        S[tri, :3, :3] = t * area[tri][:, None, None] * (np.swapaxes(G, 1, 2) @ D @ G)
+    if quad.any():
+        corners = x[faces[quad][:, :4]]
+        K8, B0, frame = quad_membrane(corners, youngs_modulus, poisson, t)
+        # (Q, 4, 2)
+        local = np.einsum("qnk,qak->qna", corners - corners.mean(axis=1, keepdims=True), frame)
+        ends = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
+        e = local[:, ends[:, 1]] - local[:, ends[:, 0]]
+        e /= np.linalg.norm(e, axis=-1, keepdims=True)
+        rows = np.zeros((len(corners), 5, 4, 2))
+        rows[:, np.arange(5), ends[:, 0]] -= e
+        rows[:, np.arange(5), ends[:, 1]] += e
+        C = rows.reshape(-1, 5, 8)
+        # (Q, 8, 5): Cᵀ(CCᵀ)⁻¹, C of full rank
+        Cinv = np.swapaxes(C, 1, 2) @ np.linalg.inv(C @ np.swapaxes(C, 1, 2))
+        S[quad] = np.swapaxes(Cinv, 1, 2) @ K8 @ Cinv
+        strain[quad] = B0 @ Cinv
+    return 0.5 * (S + np.swapaxes(S, 1, 2)), strain

@@ -21,10 +21,11 @@ The hinge stiffness of every kind of edge, with ``D = E t³ / 12(1 − ν²)`` a
 length:
 
 * ``fold``, ``seam``: a crease, ``k = k_c ℓ`` with k_c the crease stiffness per length;
-* ``ruling`` (and any other edge between two faces): the sheet bending about it,
-  ``k = D ℓ / s`` with s the mean width of its two faces across it (a quad's area over ℓ,
-  a triangle's height): exact for the cylindrical bending of a strip about its rulings,
-  whose hinge angle is the curvature times the rulings' spacing;
+* ``ruling``, ``within`` (a line inside a strip cut across its width, :mod:`._across`) and
+  any other edge between two faces: the sheet bending about it, ``k = D ℓ / s`` with s the
+  mean width of its two faces across it (a quad's area over ℓ, a triangle's height): exact
+  for the cylindrical bending of a strip about its rulings, whose hinge angle is the
+  curvature times the rulings' spacing;
 * ``diagonal`` (of a quad, or an edge so named between two triangles): the twist of the
   quad, ``k = 2 D (1 − ν) A / ℓ²`` with A the quad's area: exact for a rectangular plate
   twisted by its corners (w = c x y, uniform M_xy).
@@ -48,22 +49,24 @@ import scipy.sparse as sp
 from ..geometry._mesh import Mesh
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError
+from ._across import WITHIN
 from ._elements import (
     bar_rows,
     dihedral_gradient,
     dihedral_hessian,
+    face_bars,
+    face_membranes,
     membrane_geometric,
     plane_stress,
-    quad_membrane,
     triangle_areas,
-    triangle_strain,
 )
 from ._materials import Material, check_thickness
+from ._sparse import assemble, rows_matrix
 
 __all__ = ["BarHingeModel", "HINGE_KINDS", "CREASES"]
 
 #: Edge kinds that carry a hinge, and how its stiffness is found (module notes).
-HINGE_KINDS = ("fold", "seam", "ruling", "diagonal")
+HINGE_KINDS = ("fold", "seam", "ruling", WITHIN, "diagonal")
 #: The hinge kinds that are creases (stiffness per length k_c).
 CREASES = ("fold", "seam")
 
@@ -299,7 +302,9 @@ class BarHingeModel(FrozenArrays):
             )
         face_area = tri_area[: len(faces)].copy()
         face_area[quads] += tri_area[len(faces) :]
-        S, strain = _membranes(x, faces, sizes, face_area, material, t)
+        S, strain = face_membranes(
+            x, faces, sizes, face_area, material.youngs_modulus, material.poisson, t
+        )
 
         # sides of the faces: side m of a face runs from its corner m to m + 1
         m = np.arange(faces.shape[1])
@@ -372,7 +377,7 @@ class BarHingeModel(FrozenArrays):
         d = np.linalg.norm(x[corners4[:, 2]] - x[corners4[:, 0]], axis=1)
         Q = len(quad_faces)
         corners = np.concatenate([ends, corners4[:, [0, 2, 1, 3]]])
-        pairs = _face_bars(faces, sizes)  # (F, 5, 2), -1 padded
+        pairs = face_bars(faces, sizes)  # (F, 5, 2), -1 padded
         valid = pairs[..., 0] >= 0
         bars, inverse = np.unique(np.sort(weld[pairs[valid]], axis=1), axis=0, return_inverse=True)
         membrane_bars = np.full(valid.shape, -1)
@@ -449,7 +454,7 @@ class BarHingeModel(FrozenArrays):
         ... )  # bar 0–1 along x
         ((5, 12), [-1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
         """
-        return _rows_matrix(self._bar_rows, self.bars, self.dofs)
+        return rows_matrix(self._bar_rows, self.bars, self.dofs)
 
     def hinge_matrix(self) -> sp.csr_matrix:
         """J, the hinges' rotations per nodal displacement, shape (H, 3P), rad/m.
@@ -470,7 +475,7 @@ class BarHingeModel(FrozenArrays):
         ... ].tolist()  # only the z displacements turn the flat hinge
         [-1.414214, 1.414214, -1.414214, 1.414214]
         """
-        return _rows_matrix(self._hinge_rows, self.hinges, self.dofs)
+        return rows_matrix(self._hinge_rows, self.hinges, self.dofs)
 
     def bar_stiffness_matrix(self) -> sp.csr_matrix:
         """S, the bars' stiffness on their elongations (membrane blocks and EA/L), shape (B, B),
@@ -648,7 +653,7 @@ class BarHingeModel(FrozenArrays):
             e = d / ell[:, None]
             forces = self.bar_stiffness[plain] * (self.compatibility()[plain] @ u)
             block = (forces / ell)[:, None, None] * (np.eye(3) - e[:, :, None] * e[:, None, :])
-            KG = KG + _assemble(
+            KG = KG + assemble(
                 np.einsum("ab,nij->naibj", np.array([[1.0, -1.0], [-1.0, 1.0]]), block).reshape(
                     -1, 6, 6
                 ),
@@ -658,63 +663,12 @@ class BarHingeModel(FrozenArrays):
         if hinges:
             moments = self.hinge_stiffness * (self.hinge_matrix() @ u)
             moving = np.flatnonzero(moments)
-            KG = KG + _assemble(
+            KG = KG + assemble(
                 moments[moving, None, None] * dihedral_hessian(self.nodes[self.hinges[moving]]),
                 self.hinges[moving],
                 self.dofs,
             )
         return (0.5 * (KG + KG.T)).tocsr()
-
-
-def _face_bars(faces: np.ndarray, sizes: np.ndarray) -> np.ndarray:
-    """The bars of faces (F, k) as vertex pairs, shape (F, 5, 2): sides from corner m to m + 1,
-    then a quad's diagonal 0–2; -1 pads."""
-    F = len(faces)
-    out = np.full((F, 5, 2), -1, np.int64)
-    tri, quad = sizes == 3, sizes == 4
-    out[tri, :3] = np.stack([faces[tri][:, :3], np.roll(faces[tri][:, :3], -1, axis=1)], axis=-1)
-    if quad.any():
-        q = faces[quad][:, :4]
-        out[quad, :4] = np.stack([q, np.roll(q, -1, axis=1)], axis=-1)
-        out[quad, 4] = q[:, [0, 2]]
-    return out
-
-
-def _membranes(
-    x: np.ndarray,
-    faces: np.ndarray,
-    sizes: np.ndarray,
-    area: np.ndarray,
-    material: Material,
-    t: float,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Every face's stiffness (F, 5, 5) and centre strain (F, 3, 5) on its bars
-    (:func:`_face_bars`)."""
-    F = len(faces)
-    S, strain = np.zeros((F, 5, 5)), np.zeros((F, 3, 5))
-    D = plane_stress(material.youngs_modulus, material.poisson)
-    tri, quad = sizes == 3, sizes == 4
-    if tri.any():
-        G, _ = triangle_strain(x[faces[tri][:, :3]])
-        strain[tri, :, :3] = G
-        S[tri, :3, :3] = t * area[tri][:, None, None] * (np.swapaxes(G, 1, 2) @ D @ G)
-    if quad.any():
-        corners = x[faces[quad][:, :4]]
-        K8, B0, frame = quad_membrane(corners, material.youngs_modulus, material.poisson, t)
-        # (Q, 4, 2)
-        local = np.einsum("qnk,qak->qna", corners - corners.mean(axis=1, keepdims=True), frame)
-        ends = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
-        e = local[:, ends[:, 1]] - local[:, ends[:, 0]]
-        e /= np.linalg.norm(e, axis=-1, keepdims=True)
-        rows = np.zeros((len(corners), 5, 4, 2))
-        rows[:, np.arange(5), ends[:, 0]] -= e
-        rows[:, np.arange(5), ends[:, 1]] += e
-        C = rows.reshape(-1, 5, 8)
-        # (Q, 8, 5): Cᵀ(CCᵀ)⁻¹, C of full rank
-        Cinv = np.swapaxes(C, 1, 2) @ np.linalg.inv(C @ np.swapaxes(C, 1, 2))
-        S[quad] = np.swapaxes(Cinv, 1, 2) @ K8 @ Cinv
-        strain[quad] = B0 @ Cinv
-    return 0.5 * (S + np.swapaxes(S, 1, 2)), strain
 
 
 def _kinds_of(edges: np.ndarray, mesh: Mesh) -> np.ndarray:
@@ -730,30 +684,3 @@ def _kinds_of(edges: np.ndarray, mesh: Mesh) -> np.ndarray:
     return np.where(
         found, np.asarray(mesh.edges_kind)[order][pos] if len(table) else "diagonal", "diagonal"
     ).astype("<U8")
-
-
-def _dof_index(elements: np.ndarray) -> np.ndarray:
-    """The DOFs of elements' nodes (N, m), node by node, shape (N, 3m)."""
-    return (3 * elements[:, :, None] + np.arange(3)).reshape(len(elements), 3 * elements.shape[1])
-
-
-def _rows_matrix(rows: np.ndarray, elements: np.ndarray, dofs: int) -> sp.csr_matrix:
-    """A sparse matrix with one row per element from its rows (N, m, 3) on its nodes (N, m)."""
-    N = len(elements)
-    index = _dof_index(elements)
-    return sp.csr_matrix(
-        (
-            rows.reshape(N, index.shape[1]).ravel(),
-            (np.repeat(np.arange(N), index.shape[1]), index.ravel()),
-        ),
-        shape=(N, dofs),
-    )
-
-
-def _assemble(blocks: np.ndarray, elements: np.ndarray, dofs: int) -> sp.csr_matrix:
-    """Σ of element matrices (N, 3m, 3m) on their nodes (N, m), shape (dofs, dofs)."""
-    index = _dof_index(elements)
-    m = index.shape[1]
-    rows = np.repeat(index, m, axis=1).ravel()
-    cols = np.tile(index, (1, m)).ravel()
-    return sp.csr_matrix((blocks.reshape(-1), (rows, cols)), shape=(dofs, dofs))

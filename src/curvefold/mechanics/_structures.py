@@ -20,6 +20,12 @@ modes (measured: the paper's vault built on 801 samples and modelled on 261 of t
 gives the same deflection, eigenvalues and buckling factor as on all 801, to 3e-4, in a
 third of the time). Every tube keeps the same samples, so seams and shared creases still
 share their nodes; a structure of rigid panels keeps every vertex.
+
+**Across.** ``across = k`` cuts every ruling strip or panel into k elements across its width
+(:func:`cut_across`): the nodes inside a strip lie on its rulings, between two nodes of the
+curves. They have no curve (``node_curve`` −1); ``node_ends`` and ``node_weight`` say where
+they are, ``(1 − w) x_a + w x_b``, and every field of the curves' points that the model
+carries onto its nodes (the folding motion) is taken there linearly.
 """
 
 from __future__ import annotations
@@ -36,6 +42,7 @@ from ..geometry._structure import State
 from ..kernel._arrays import FrozenArrays, distinct, readonly
 from ..kernel._errors import InputError
 from ..kernel._validate import check_integer
+from ._across import check_across, cut_across
 from ._materials import CREASE_STIFFNESS, Material, check_thickness
 from ._model import BarHingeModel
 
@@ -83,10 +90,18 @@ class StructureModel(FrozenArrays):
         by its radius 1/κ₀).
     state : State
     node_curve, node_sample : (P,) ndarray of int
-        The lattice curve (row of ``structure.curves_uv``) and sample of every node.
+        The lattice curve (row of ``structure.curves_uv``) and sample of every node; −1 for
+        the curve of a node inside a strip.
     crease_stiffness : float
         k_c used for the creases, N·m/rad/m.
     material : Material
+    across : int
+        Elements across each strip or panel (module notes).
+    node_ends : (P, 2) ndarray of int, optional
+        The two nodes on curves that every node lies between (a node on a curve: itself
+        twice; default every node on a curve).
+    node_weight : (P,) ndarray, optional
+        w of every node, at ``(1 − w) x_a + w x_b`` of its ends (default 0).
 
     Examples
     --------
@@ -111,6 +126,17 @@ class StructureModel(FrozenArrays):
     node_sample: np.ndarray
     crease_stiffness: float
     material: Material
+    across: int = 1
+    node_ends: np.ndarray | None = None
+    node_weight: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        P = len(self.node_curve)
+        if self.node_ends is None:
+            object.__setattr__(self, "node_ends", np.repeat(np.arange(P)[:, None], 2, axis=1))
+        if self.node_weight is None:
+            object.__setattr__(self, "node_weight", np.zeros(P))
+        super().__post_init__()
 
     @classmethod
     def from_state(
@@ -122,6 +148,7 @@ class StructureModel(FrozenArrays):
         crease_stiffness: float | None = None,
         sheets: Sequence[int] | None = None,
         samples: str | Sequence[int] = "graded",
+        across: int = 1,
     ) -> StructureModel:
         """The model of a structure's state (module notes).
 
@@ -139,6 +166,8 @@ class StructureModel(FrozenArrays):
             The samples the model keeps: :func:`model_samples` (``"graded"``), every one,
             or these (ascending, the first and last included). A structure of rigid panels
             keeps every vertex.
+        across : int, keyword-only
+            Elements across each ruling strip or panel, in [1, 64] (module notes).
 
         Examples
         --------
@@ -161,6 +190,7 @@ class StructureModel(FrozenArrays):
         (36, 27)
         """
         t = check_thickness(thickness)
+        k = check_across(across)
         k_c = (
             material.crease_stiffness(t)
             if crease_stiffness is None
@@ -178,10 +208,54 @@ class StructureModel(FrozenArrays):
         else:
             kept = np.arange(len(topology.vertex_curve))
         M = len(structure.curves_uv)
-        key = topology.vertex_sample[kept] * M + topology.vertex_curve[kept]  # sample by sample
+        curve, sample = topology.vertex_curve[kept], topology.vertex_sample[kept]
+        mesh, ends, weight = cut_across(mesh, curve, k)
+        # the points of the curves once, those inside strips each their own: sample by sample
+        inner = np.arange(len(ends)) - len(curve)
+        width = M + max(int(inner.max(initial=-1)) + 1, 0)
+        key = sample[ends[:, 0]] * width + np.where(inner < 0, curve[ends[:, 0]], M + inner)
         points, weld = np.unique(key, return_inverse=True)
         model = BarHingeModel.from_mesh(mesh, material, t, crease_stiffness=k_c, weld=weld)
-        return cls(model, state, points % M, points // M, float(k_c), material)
+        node_ends = np.zeros((len(points), 2), np.int64)
+        node_weight = np.zeros(len(points))
+        node_ends[weld], node_weight[weld] = weld[ends], weight
+        node_curve = np.where(points % width < M, points % width, -1)
+        return cls(
+            model,
+            state,
+            node_curve,
+            points // width,
+            float(k_c),
+            material,
+            k,
+            node_ends,
+            node_weight,
+        )
+
+    def with_across(self, across: int) -> StructureModel:
+        """The model of the same state, material, creases and samples with ``across`` elements
+        across each strip.
+
+        Examples
+        --------
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
+        >>> finer = tube.with_across(3)
+        >>> finer.across, len(finer.model.nodes) - len(tube.model.nodes)  # 2 on 4 × 21 rulings
+        (3, 168)
+        """
+        return StructureModel.from_state(
+            self.state,
+            self.material,
+            self.model.thickness,
+            crease_stiffness=self.crease_stiffness,
+            samples=self.samples.tolist(),
+            across=across,
+        )
 
     # -- where the nodes are ---------------------------------------------------------------------
     @cached_property
@@ -263,7 +337,8 @@ class StructureModel(FrozenArrays):
         values = np.asarray(values, float)
         M, n = self.state.vertices.shape[:2]
         out = np.full((M, n) + values.shape[1:], np.nan)
-        out[self.node_curve, self.node_sample] = values
+        on = self.node_curve >= 0
+        out[self.node_curve[on], self.node_sample[on]] = values[on]
         return out
 
     def interpolate(self, values: np.ndarray) -> np.ndarray:
@@ -325,10 +400,10 @@ class StructureModel(FrozenArrays):
         (1.0, -1.0)
         """
         values = np.asarray(values, float)
-        F = self.field(values)[
-            self.node_curve[np.argmax(np.linalg.norm(values.reshape(len(values), -1), axis=1))],
-            self.samples,
-        ]
+        size = np.where(
+            self.node_curve >= 0, np.linalg.norm(values.reshape(len(values), -1), axis=1), -1
+        )
+        F = self.field(values)[self.node_curve[np.argmax(size)], self.samples]
         a, b = F[:-1], F[1:]
         scale = 0.5 * float(np.sum(a * a) + np.sum(b * b))
         return float(np.sum(a * b) / scale) if scale > 0 else 1.0
@@ -358,7 +433,12 @@ class StructureModel(FrozenArrays):
         lo, hi = max(angle - h, 0.0), angle + h
         X = lattice.fold_points(self.state.structure.curves_uv, np.array([lo, hi]))
         velocity = (X[1] - X[0]) / np.radians(hi - lo)
-        return readonly(velocity[self.node_curve, self.node_sample])
+        a, b = np.asarray(self.node_ends).T
+        w = np.asarray(self.node_weight)[:, None]
+        return readonly(
+            (1 - w) * velocity[self.node_curve[a], self.node_sample[a]]
+            + w * velocity[self.node_curve[b], self.node_sample[b]]
+        )
 
 
 def _kept(samples: str | Sequence[int], n: int) -> np.ndarray:
