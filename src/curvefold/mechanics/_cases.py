@@ -46,6 +46,12 @@ POINT_REACH = 0.05
 _PRESSURE_WHY = "a roof's snow is below 10 kPa; 1000 kPa is a press"
 
 
+def _snow_load(help: str) -> Parameter:
+    """A snow load's parameter: Pa inside, kPa where users write it."""
+    spec = Spec("load", "real", 0.0, Interval.parse("[0, 1e6]"), "Pa", help=help, why=_PRESSURE_WHY)
+    return Parameter(spec, "kPa", 1000.0)
+
+
 @register
 @dataclass(frozen=True)
 class SelfWeight(LoadCase):
@@ -92,19 +98,7 @@ class Snow(LoadCase):
     psi0: ClassVar[float] = 0.5  # EN 1990 Table A1.1
     title: ClassVar[str] = "snow, uniform on the roof seen from above"
     parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(
-            Spec(
-                "load",
-                "real",
-                0.0,
-                Interval.parse("[0, 1e6]"),
-                "Pa",
-                help="a uniform vertical load per projected area on the roof",
-                why=_PRESSURE_WHY,
-            ),
-            "kPa",
-            1000.0,
-        ),
+        _snow_load("a uniform vertical load per projected area on the roof"),
     )
 
     def forces(self, model: Target) -> np.ndarray:
@@ -137,19 +131,9 @@ class HalfSnow(LoadCase):
     psi0: ClassVar[float] = 0.5  # EN 1990 Table A1.1
     title: ClassVar[str] = "snow on half the span (EN 1991-1-3's drifted case, simplified)"
     parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(
-            Spec(
-                "load",
-                "real",
-                0.0,
-                Interval.parse("[0, 1e6]"),
-                "Pa",
-                help="snow on half the span: a vertical load per projected "
-                "area on one half of the roof, none on the other",
-                why=_PRESSURE_WHY,
-            ),
-            "kPa",
-            1000.0,
+        _snow_load(
+            "snow on half the span: a vertical load per projected "
+            "area on one half of the roof, none on the other"
         ),
         Parameter(
             Spec(
