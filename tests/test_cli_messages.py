@@ -43,6 +43,8 @@ _FOLD = {
             "tube, curvefold block and curvefold load, not of curvefold crease",
         ),
         (["--zz"], "unrecognized arguments: --zz"),
+        # flags are taken whole: an abbreviation is not one of them
+        (["vault", "--samp", "201"], "unrecognized arguments: --samp; did you mean --samples?"),
     ],
 )
 def test_an_unknown_flag_is_one_line_with_the_nearest_flag(argv, line):

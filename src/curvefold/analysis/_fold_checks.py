@@ -263,7 +263,10 @@ def recorded_angles(frames: list[Frame], tolerance: float) -> FileCheck:
     results, recorded_any = [], False
     for f in frames:
         sides = edges_faces(f.mesh.faces_vertices, f.mesh.edges_vertices)
-        two = np.setdiff1d(np.flatnonzero((sides >= 0).all(axis=1)), f.unrecorded)
+        # the recorded edges between two faces (a mask: np.setdiff1d would import numpy.ma)
+        between = np.asarray((sides >= 0).all(axis=1))
+        between[np.asarray(f.unrecorded, dtype=np.intp)] = False
+        two = np.flatnonzero(between)
         recorded_any |= two.size > 0 and len(f.unrecorded) < len(f.mesh.edges_vertices)
         measured = dihedral_angles(
             f.mesh.vertices_coords,
@@ -351,7 +354,7 @@ def planarity(doc: FoldFile, frames: list[Frame], tolerance: float) -> FileCheck
         flat_triangle = _no_area(triangles)
         degenerate = fan[diagonal] & (flat_triangle[sides] & (sides >= 0)).any(axis=1)
         bend[degenerate] = 0.0
-        skipped = np.union1d(skipped, diagonal[degenerate])
+        skipped = distinct(np.concatenate([skipped, diagonal[degenerate]]))  # np.union1d: numpy.ma
         results.append((f.label, _at_edges(bend, diagonal, len(triangles.edges_vertices))))
     what = "fan diagonals (numbered after the file's edges)" if polygons else "diagonal edges"
     found = judge(

@@ -49,8 +49,10 @@ def _grid(flag: str, text: str, spec: Spec) -> np.ndarray:
 
 
 class _Parser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line with exit status 2, and which
-    reads ``--a -1e-3`` as a value (any number, not only ``-1`` or ``-.5``).
+    """An argument parser whose usage errors are one line with exit status 2, which reads
+    ``--a -1e-3`` as a value (any number, not only ``-1`` or ``-.5``), and which takes flags
+    whole: an abbreviation would change its meaning when a flag is added (``--a`` of ``tube``
+    would become ``--across``).
 
     A command's ``flags(parser)``, if given, adds its arguments when the command is parsed
     or its help shown: the modules their specs come from are imported only for that command.
@@ -59,7 +61,7 @@ class _Parser(argparse.ArgumentParser):
     def __init__(
         self, *args, flags: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs
     ) -> None:
-        super().__init__(*args, **kwargs)
+        super().__init__(*args, **{"allow_abbrev": False, **kwargs})
         self._negative_number_matcher = re.compile(
             r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
         )
