@@ -53,3 +53,46 @@ def test_derived_quantities_read_as_names_and_units_not_python():
     assert files.index("vault-pattern-p2.svg") < files.index("vault-pattern-p10.svg")
     assert describe_file("vault.obj") in files and "Y up" in describe_file("vault.obj")
     assert describe_file("sheets/tube-1-sheet-A.fold").endswith("(loads in Origami Simulator)")
+
+
+def _check(name: str, status: str) -> dict:
+    """A check of ``check --json`` (as the file column holds it)."""
+    return {
+        "name": name,
+        "status": status,
+        "value": 1e-9,
+        "tolerance": 1e-6,
+        "unit": "",
+        "where": "",
+        "reason": "" if status != "not run" else "nothing to check",
+    }
+
+
+def test_the_summary_counts_the_checks_of_the_model_and_of_the_file_as_written():
+    built = build(default_design("vault").overrides(samples=201))
+    payload = structure_payload(built) | {"files": []}
+    shipped = {
+        "file": "vault.fold",
+        "ok": True,
+        "checks": [
+            _check("isometry", "pass"),
+            _check("fold_angles", "pass"),
+            _check("welds", "not run"),
+        ],
+    }
+
+    def summary(extra: dict) -> str:
+        page = report_html(payload | extra)
+        return re.sub(r"\s+", " ", page.split("<p>Geometric certificate:", 1)[1].split("</p>")[0])
+
+    passed = sum(c["passed"] for c in payload["certificate"])
+    model = f"<b>{passed}/{len(payload['certificate'])}</b> checks pass on the model"
+    assert summary({}).startswith(f" {model}. Lengths")  # no file written: no file column
+    assert f"{model}; on the FOLD file as written, <b>2/2</b>." in summary(
+        {"certificate_file": shipped}
+    )  # what did not run is not counted
+    failed = {
+        **shipped,
+        "checks": [{**shipped["checks"][0], "status": "fail"}, *shipped["checks"][1:]],
+    }
+    assert "on the FOLD file as written, <b>1/2</b>." in summary({"certificate_file": failed})

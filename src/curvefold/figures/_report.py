@@ -642,6 +642,14 @@ def report_html(payload: dict) -> str:
     )
     notes = "".join(f"<p>{e(one_line(note))}</p>" for note in payload.get("notes", []))
     passed = sum(c["passed"] for c in payload["certificate"])
+    shipped = payload.get("certificate_file")
+    ran = [] if shipped is None else [c for c in shipped["checks"] if c["status"] != "not run"]
+    on_file = (
+        ""
+        if shipped is None
+        else f"; on the FOLD file as written, <b>{sum(c['status'] == 'pass' for c in ran)}/"
+        f"{len(ran)}</b>"
+    )
     title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8">
@@ -680,9 +688,10 @@ td{{overflow-wrap:anywhere}}
 }}
 </style></head><body>
 <h1>curvefold — {title}</h1>
-<p>Geometric certificate: <b>{passed}/{len(payload["certificate"])}</b> checks pass. Lengths are
-in metres (the model unit, as in the 3D files); crease patterns are in millimetres at their print
-scale. On a phone, slide a picture sideways or tap it for its full size.</p>
+<p>Geometric certificate: <b>{passed}/{len(payload["certificate"])}</b> checks pass on the
+model{on_file}. Lengths are in metres (the model unit, as in the 3D files); crease patterns are
+in millimetres at their print scale. On a phone, slide a picture sideways or tap it for its full
+size.</p>
 <h2>Pictures</h2>{notes}<div class="pictures">{pictures}</div>
 <h2>Derived quantities</h2><table>{derived}</table>
 {under_load}
