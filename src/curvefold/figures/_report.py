@@ -642,14 +642,9 @@ def report_html(payload: dict) -> str:
     )
     notes = "".join(f"<p>{e(one_line(note))}</p>" for note in payload.get("notes", []))
     passed = sum(c["passed"] for c in payload["certificate"])
-    shipped = payload.get("certificate_file")
-    ran = [] if shipped is None else [c for c in shipped["checks"] if c["status"] != "not run"]
-    on_file = (
-        ""
-        if shipped is None
-        else f"; on the FOLD file as written, <b>{sum(c['status'] == 'pass' for c in ran)}/"
-        f"{len(ran)}</b>"
-    )
+    shipped = payload.get("certificate_file") or {"checks": []}
+    ran = [c["status"] for c in shipped["checks"] if c["status"] != "not run"]
+    on_file = f"; on the FOLD file as written, <b>{ran.count('pass')}/{len(ran)}</b>" * bool(ran)
     title = e(one_line(payload.get("title") or payload.get("kind", "curvefold")))
     return f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8">
