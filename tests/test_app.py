@@ -644,3 +644,26 @@ def test_with_matplotlib_the_pictures_are_drawn_and_nothing_is_left_out(tmp_path
         "width-proportion.png",
         "tube.png",
     } <= set(payload["files"])
+
+
+def test_an_output_folder_is_removed_whole_when_a_file_appears_during_the_walk(
+    tmp_path, monkeypatch
+):
+    import shutil
+
+    from curvefold.app import _folder
+
+    folder, walks = tmp_path / "f", []
+    folder.mkdir()
+    real = shutil.rmtree
+
+    def walk(path, ignore_errors=False):
+        real(path, ignore_errors=ignore_errors)
+        if not walks:  # a stopped job's last file, written as the first walk ended
+            path.mkdir()
+            (path / "late.png").write_bytes(b"x")
+        walks.append(path)
+
+    monkeypatch.setattr(_folder.shutil, "rmtree", walk)
+    _folder._remove(folder)
+    assert not folder.exists() and len(walks) == 2

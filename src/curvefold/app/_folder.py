@@ -221,7 +221,16 @@ def output_folder(target: OutputTarget) -> Iterator[Path]:
             _install(tmp, target)
     finally:
         with _signals_held():  # a second signal must not stop the cleanup
-            shutil.rmtree(tmp, ignore_errors=True)
+            _remove(tmp)
+
+
+def _remove(folder: Path, tries: int = 5) -> None:
+    """Remove ``folder`` whole. A walk can miss what appears while it runs (a stopped job's
+    last file): it walks again until the folder is gone, a few times at most."""
+    for _ in range(tries):
+        shutil.rmtree(folder, ignore_errors=True)
+        if not folder.exists():
+            return
 
 
 def _install(tmp: Path, target: OutputTarget) -> None:
