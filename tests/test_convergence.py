@@ -114,7 +114,7 @@ def test_the_load_command_takes_across_from_its_flag_and_design_file(tmp_path):
         d = json.loads(r.stdout)
         assert d["max_displacement"] == pytest.approx(library.static.max_displacement, rel=1e-9)
         assert d["buckling_factor"] == pytest.approx(library.buckling.factor, rel=1e-9)
-    one = json.loads(run("load", *small, "--json").stdout)
+    one = json.loads(run("load", *small, "--across", "1", "--json").stdout)
     assert one["max_displacement"] < 0.9 * library.static.max_displacement
     bad = run("load", *small, "--across", "0")
     assert bad.returncode == 2 and re.search(
@@ -184,8 +184,9 @@ def test_a_small_vault_converges_as_the_elements_across_double():
 
 
 def test_the_budget_counts_the_elements_across():
-    """The memory estimate of ``curvefold load`` grows with k and stays above the peaks measured
-    on the paper's vault (0.23, 0.62 and 2.4 GB with k = 1, 2, 4)."""
+    """The memory estimate of ``curvefold load`` stays above the peaks measured on the paper's
+    vault (0.22, 0.25, 0.70 and 2.45 GB with k = 1, 2, 4, 8 on their default samples) and
+    within three times them."""
     from pathlib import Path
 
     from curvefold.app import parse_design
@@ -194,8 +195,8 @@ def test_the_budget_counts_the_elements_across():
     text = (Path(__file__).parent.parent / "examples" / "paper-vault.toml").read_text()
     totals = [
         estimate(parse_design(f"{text}\n[loads]\nacross = {k}\n").with_mechanics(), files=False)
-        for k in (1, 2, 4)
+        for k in (1, 2, 4, 8)
     ]
     assert all(e.largest == "mechanics" for e in totals)
-    assert all(e.total > peak for e, peak in zip(totals, (0.23e9, 0.62e9, 2.4e9)))
-    assert totals[2].total - totals[0].total > 10 * (totals[1].total - totals[0].total) / 3
+    for e, peak in zip(totals, (0.22e9, 0.25e9, 0.70e9, 2.45e9), strict=True):
+        assert peak < e.total < 3 * peak, (e.total, peak)

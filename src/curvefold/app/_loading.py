@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
@@ -50,6 +50,7 @@ from ..mechanics import (
     ACROSS,
     CREASE_STIFFNESS,
     CRITERIA_SPECS,
+    ERROR_TOLERANCE,
     LOAD_CASES,
     MATERIAL,
     MATERIAL_SPECS,
@@ -59,6 +60,7 @@ from ..mechanics import (
     LoadCase,
     Loads,
     SelfWeight,
+    error_text,
 )
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -229,7 +231,7 @@ class LoadParams:
     gamma_m: float | None = _CRITERIA["gamma_m"].default
     buckling_safety: float = _CRITERIA["buckling_safety"].default
     deflection_limit: float | None = _CRITERIA["deflection_limit"].default
-    across: int = 1
+    across: int = ACROSS.default
     case: tuple[LoadCase, ...] | None = None
 
     def criteria(self) -> Criteria:
@@ -337,7 +339,12 @@ class Loaded:
     supported : {"feet", "ends"}
         The feet of a vault, or both end sections of a tube or block.
     verdict : Verdict
-        Whether it stands under the load combinations (:func:`curvefold.mechanics.assess`).
+        Whether it stands under the load combinations (:func:`curvefold.mechanics.assess`),
+        each check with its estimated error.
+    errors : dict
+        The estimated relative error of every figure that depends on the mesh, from the
+        model on half the elements across (:func:`curvefold.mechanics.figure_errors`);
+        empty with one element across.
     """
 
     result: LoadResult
@@ -345,6 +352,7 @@ class Loaded:
     loads: LoadParams
     supported: str
     verdict: Verdict
+    errors: Mapping[str, float | list[float]] = field(default_factory=dict)
 
     @property
     def size(self) -> float:
@@ -373,8 +381,8 @@ class Loaded:
         )
         notes = [
             f"held at {held}, {r.supports.kind}; the model keeps {len(r.structure.samples)} "
-            f"of the {r.structure.state.vertices.shape[1]} samples along each crease (every "
-            "one near the end sections)"
+            f"of the {r.structure.state.vertices.shape[1]} samples along each crease (the "
+            "closest near the end sections)"
         ]
         if not r.buckling_resolved:
             notes.append(
@@ -382,7 +390,17 @@ class Loaded:
                 "do not resolve it, and its factor is lower than the structure's; more samples "
                 "find the structure's"
             )
-        return notes + list(self.verdict.notes)  # today's mesh, γ_M or no strength
+        notes += list(self.verdict.notes)  # the mesh, γ_M or no strength
+        worst = max(
+            ((float(np.max(e, initial=0.0)), key) for key, e in self.errors.items()),
+            default=(0.0, ""),
+        )
+        if worst[0] > ERROR_TOLERANCE:
+            notes.append(
+                f"the estimated error of {worst[1]} is {100 * worst[0]:.2g} %, above "
+                f"{100 * ERROR_TOLERANCE:g} %: raise --across (now {self.loads.across})"
+            )
+        return notes
 
     def to_dict(self) -> dict:
         """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what
@@ -412,6 +430,10 @@ class Loaded:
                 },
                 "supported": self.supported,
                 "reactions_by_end": self.reactions_by_end(),
+                "errors": {
+                    key: [_finite(e) for e in value] if isinstance(value, list) else _finite(value)
+                    for key, value in self.errors.items()
+                },
                 "deflection_scale": self.deflection_scale,
                 "mode_amplitude": self.mode_amplitude,
                 "notes": self.notes(),
@@ -437,6 +459,15 @@ class Loaded:
         use = d["utilisation"]
         factor = d["buckling_factor"]
         v = self.verdict
+
+        def pm(key: str, *, frequency: bool = False) -> str:
+            """`` ± x %``: the figure's estimated error (a list's largest; a frequency's is half
+            its eigenvalue's)."""
+            if key not in self.errors:
+                return ""
+            error = float(np.max(self.errors[key], initial=0.0))
+            return error_text(error / 2 if frequency else error)
+
         combined = [
             (
                 c.name,
@@ -457,30 +488,32 @@ class Loaded:
                 )
                 + "] N (x, y, z)",
             ),
-            ("max_displacement", f"{d['max_displacement']:.4g} m"),
+            ("max_displacement", f"{d['max_displacement']:.4g} m{pm('max_displacement')}"),
             (
                 "max_stress",
-                f"{d['max_stress']:.4g} Pa" + ("" if use is None else f" (utilisation {use:.3g})"),
+                f"{d['max_stress']:.4g} Pa{pm('max_stress')}"
+                + ("" if use is None else f" (utilisation {use:.3g})"),
             ),
             (
                 "buckling_factor",
                 "none: the load only stiffens it"
                 if factor is None
-                else f"{factor:.4g}"
+                else f"{factor:.4g}{pm('buckling_factor')}"
                 + ("" if d["buckling_resolved"] else " (not resolved at these samples)"),
             ),
-            ("fold_mode_gap", f"{d['fold_mode_gap']:.4g}"),
+            ("fold_mode_gap", f"{d['fold_mode_gap']:.4g}{pm('fold_mode_gap')}"),
             ("soft_modes", str(d["soft_modes"])),
             (
                 "modes",
                 ", ".join(f"{v:.4g}" for v in d["modes"])
                 + " rad²/s² ("
                 + ", ".join(f"{f:.3g}" for f in d["frequencies"])
-                + " Hz)",
+                + f" Hz){pm('modes')}",
             ),
             (
                 "supported_modes",
-                ", ".join(f"{f:.3g}" for f in d["supported_frequencies"]) + " Hz (on its supports)",
+                ", ".join(f"{f:.3g}" for f in d["supported_frequencies"])
+                + f" Hz (on its supports){pm('supported_modes', frequency=True)}",
             ),
         ]
         head = (
@@ -519,6 +552,10 @@ class Loaded:
         return out
 
 
+def _finite(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
 def _vector(values: Sequence[float] | np.ndarray, scale: Sequence[float] | np.ndarray) -> str:
     """[x, y, z] with the rounding of forces that balance ``scale`` shown as 0."""
     shown = _rounded(np.asarray(values, float).tolist(), float(np.abs(scale).max(initial=0.0)))
@@ -535,7 +572,8 @@ def _check_words(check: Any) -> str:
         scale, unit = (1e-6, "MPa") if check.unit == "Pa" else (1e3, "mm")
         what = f"{check.value * scale:.4g} {unit} of {check.limit * scale:.4g} {unit}"
     return (
-        f"{mark}: utilisation {check.utilisation:.3g} ({what}; {check.combination}; {check.basis})"
+        f"{mark}: utilisation {check.utilisation:.3g}{error_text(check.error)} "
+        f"({what}; {check.combination}; {check.basis})"
     )
 
 
@@ -574,20 +612,37 @@ def analyse(
         What the mechanics refuses (no load, a structure still a mechanism under its
         supports), in one line.
     """
-    from ..mechanics import Supports, analyse_load, assess
+    from ..mechanics import Supports, analyse_load, assess, check_errors, figure_errors
 
     material = material or MaterialParams(**_defaults(MATERIAL_SECTION, material=DEFAULT_MATERIAL))
     loads = loads or LoadParams(**_defaults(LOADS_SECTION))
-    result = analyse_load(
-        structure,
-        _sheet(material),
-        material.thickness,
-        loads.cases(),
-        Supports(loads.supports, at=supported),  # type: ignore[arg-type]
-        crease_stiffness=material.crease_stiffness,
-        across=loads.across,
+    cases, criteria = loads.cases(), loads.criteria()
+
+    def at(across: int) -> tuple[LoadResult, Verdict]:
+        result = analyse_load(
+            structure,
+            _sheet(material),
+            material.thickness,
+            cases,
+            Supports(loads.supports, at=supported),  # type: ignore[arg-type]
+            crease_stiffness=material.crease_stiffness,
+            across=across,
+        )
+        return result, assess(result, criteria)
+
+    fine, coarse = loads.across, loads.across // 2
+    result, verdict = at(fine)
+    if not coarse:
+        return Loaded(result, material, loads, supported, verdict)
+    before, before_verdict = at(coarse)
+    return Loaded(
+        result,
+        material,
+        loads,
+        supported,
+        check_errors(before_verdict, verdict, (coarse, fine)),
+        figure_errors(before, result),
     )
-    return Loaded(result, material, loads, supported, assess(result, loads.criteria()))
 
 
 def _defaults(specs: Sequence[Spec], **given: Any) -> dict:

@@ -173,8 +173,9 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
         return 0
     from ..kernel._threads import one_blas_thread
 
-    # a command's matrices are small: more BLAS threads only wait (kernel.threads)
-    with one_blas_thread():
+    # a command's matrices are small: more BLAS threads only wait (kernel.threads); SciPy's
+    # own BLAS, loaded by the command, reads the environment then
+    with blas_loads_on_one_thread(), one_blas_thread():
         if args.command in {kind.name for kind in design_kinds()}:
             return cmd_structure(args.command, args)
         return {

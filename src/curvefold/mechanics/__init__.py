@@ -34,14 +34,15 @@ of their names is first used.
 
 import importlib
 
-from . import _across, _loadcase, _materials, _supports, _verdict
+from . import _across, _convergence, _loadcase, _materials, _supports, _verdict
 from ._cases import HalfSnow, PointLoad, SelfWeight, Snow, Wind, ZonedWind
 from ._combinations import Combination, combinations
+from ._convergence import check_errors, figure_errors
 from ._loadcase import LoadCase, Parameter
 from ._loads import Loads
 from ._materials import Material, material
 from ._supports import Supports
-from ._verdict import Check, Criteria, Verdict, assess
+from ._verdict import Check, Criteria, Verdict, assess, error_text
 
 #: Standard gravity, m/s².
 G = _loadcase.G
@@ -57,6 +58,8 @@ THICKNESS = _materials.THICKNESS
 CREASE_STIFFNESS = _materials.CREASE_STIFFNESS
 #: The check of the elements across each ruling strip or panel of a model.
 ACROSS = _across.ACROSS
+#: The estimated relative error of a printed figure above which its mesh is called too coarse.
+ERROR_TOLERANCE = _convergence.TOLERANCE
 #: Every load case class by name (:class:`LoadCase`): a new case is one class registered there.
 LOAD_CASES = _loadcase.LOAD_CASES
 #: The check of how the supported nodes are held ("pinned" or "roller").
@@ -130,6 +133,10 @@ __all__ = [
     "Check",
     "Verdict",
     "assess",
+    "error_text",
+    "figure_errors",
+    "check_errors",
+    "ERROR_TOLERANCE",
 ]
 
 
@@ -174,6 +181,9 @@ for _name in (
     "Check",
     "Verdict",
     "assess",
+    "error_text",
+    "figure_errors",
+    "check_errors",
 ):
     _public(globals()[_name])
 

@@ -12,6 +12,9 @@ from ._cases import Wind as Wind
 from ._cases import ZonedWind as ZonedWind
 from ._combinations import Combination as Combination
 from ._combinations import combinations as combinations
+from ._convergence import TOLERANCE as ERROR_TOLERANCE
+from ._convergence import check_errors as check_errors
+from ._convergence import figure_errors as figure_errors
 from ._loadcase import LOAD_CASES as LOAD_CASES
 from ._loadcase import G as G
 from ._loadcase import LoadCase as LoadCase
@@ -45,6 +48,7 @@ from ._verdict import Check as Check
 from ._verdict import Criteria as Criteria
 from ._verdict import Verdict as Verdict
 from ._verdict import assess as assess
+from ._verdict import error_text as error_text
 
 __all__ = [
     "analyse_load",
@@ -91,4 +95,8 @@ __all__ = [
     "Check",
     "Verdict",
     "assess",
+    "error_text",
+    "figure_errors",
+    "check_errors",
+    "ERROR_TOLERANCE",
 ]

@@ -242,8 +242,8 @@ def analyse_load(
     model = sm.model
     folding = sm.fold_velocity()
     motions = {FOLDING: folding.ravel()}
+    free = free_modes(model, modes, motions=motions)  # first: one factorisation held at a time
     result, factor = static_response(model, loads.forces(sm), supports.fixed(sm), motions=motions)
-    free = free_modes(model, modes, motions=motions)
     buckled = buckling(model, result, factor)
     return LoadResult(
         structure=sm,

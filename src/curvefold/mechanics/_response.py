@@ -139,6 +139,41 @@ class StaticResult(FrozenArrays):
             max(self.surface_stress.max(initial=0.0), self.bending_stress.max(initial=0.0))
         )
 
+    def scaled(self, c: float) -> StaticResult:
+        """The response to the load times ``c`` > 0: every field times c (the response is linear
+        in the load; the stresses are norms, positively homogeneous).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from curvefold.vault import Vault
+        >>> tube = StructureModel.from_state(
+        ...     Vault.from_design(tubes=1, panels=4, samples=21).structure.state(),
+        ...     MATERIALS["aluminium"],
+        ...     1e-3,
+        ... )
+        >>> forces, feet = Loads().forces(tube.model), Supports().fixed(tube)
+        >>> once, factor = static_response(tube.model, forces, feet)
+        >>> again, _ = static_response(tube.model, 1.35 * forces, feet, factor=factor)
+        >>> bool(np.allclose(once.scaled(1.35).surface_stress, again.surface_stress, rtol=1e-12))
+        True
+        """
+        if not c > 0:
+            raise InputError(f"a response scales by a factor > 0, got {c!r}")
+        return StaticResult(
+            load=self.load * c,
+            fixed=self.fixed,
+            displacements=self.displacements * c,
+            reactions=self.reactions * c,
+            bar_forces=self.bar_forces * c,
+            hinge_moments=self.hinge_moments * c,
+            membrane_stress=self.membrane_stress * c,
+            von_mises=self.von_mises * c,
+            bending_stress=self.bending_stress * c,
+            surface_stress=self.surface_stress * c,
+            force_scale=self.force_scale * c,
+        )
+
 
 @dataclass(frozen=True, eq=False)
 class Buckling(FrozenArrays):
@@ -179,9 +214,13 @@ def static_response(
     fixed: np.ndarray,
     *,
     motions: Mapping[str, np.ndarray] | None = None,
+    factor: Factorized | None = None,
 ) -> tuple[StaticResult, Factorized]:
     """The static response to nodal forces (P, 3) with the DOFs ``fixed`` (P, 3) held, and its
     factorisation.
+
+    ``factor``, the factorisation an earlier call returned for the same model and supports,
+    is used instead of a new one (another load on the same structure).
 
     Raises
     ------
@@ -220,9 +259,15 @@ def static_response(
         )
     free = np.flatnonzero(~fixed.ravel())
     K = model.stiffness
-    factor = Factorized.checked(
-        K[free][:, free], model, free, where="under these supports", motions=motions
-    )
+    if factor is None:
+        factor = Factorized.checked(
+            K[free][:, free], model, free, where="under these supports", motions=motions
+        )
+    elif factor.shape != (len(free), len(free)):
+        raise InputError(
+            f"the factorisation given is of {factor.shape[0]} DOFs, these supports leave "
+            f"{len(free)} free"
+        )
     u = np.zeros(model.dofs)
     u[free] = factor.solve(f.ravel()[free])
     reactions = (K @ u - f.ravel()).reshape(P, 3)

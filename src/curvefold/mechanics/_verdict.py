@@ -54,6 +54,7 @@ __all__ = [
     "GAMMA_M",
     "SPAN_RATIO",
     "mesh_note",
+    "error_text",
     "CRITERIA_SPECS",
 ]
 
@@ -61,15 +62,24 @@ __all__ = [
 SPAN_RATIO = 250.0
 
 
-def mesh_note(across: int) -> str:
+def mesh_note(across: int, compared: int | None = None) -> str:
     """What every figure of the verdict is computed on: the model with ``across`` elements
-    across each ruling strip or panel (docs: Mechanics, Convergence).
+    across each ruling strip or panel, and the one of ``compared`` its errors were estimated
+    against, if any (docs: Mechanics, Convergence).
 
     Examples
     --------
     >>> mesh_note(1).split(";")[0]
     "the checks are the model's with one element across each ruling strip"
+    >>> mesh_note(4, 2)
+    "every figure is the model's with 4 elements across each ruling strip, ± its error estimated
+    against 2 across (Richardson)"
     """
+    if compared is not None:
+        return (
+            f"every figure is the model's with {across} elements across each ruling strip, ± its "
+            f"error estimated against {compared} across (Richardson)"
+        )
     if across == 1:
         return (
             "the checks are the model's with one element across each ruling strip; a strip "
@@ -80,6 +90,23 @@ def mesh_note(across: int) -> str:
         f"the checks are the model's with {across} elements across each ruling strip; compare "
         f"with --across {2 * across} to see how far they still move"
     )
+
+
+def error_text(error: float | None) -> str:
+    """`` ± x %`` for an estimated relative error, nothing for None.
+
+    Examples
+    --------
+    >>> error_text(0.0123), error_text(None), error_text(2e-6)
+    (' ± 1.2 %', '', ' ± 0.01 %')
+    >>> error_text(float("inf"))
+    ' ± ? (one mesh finds no buckling)'
+    """
+    if error is None:
+        return ""
+    if math.isinf(error):
+        return " ± ? (one mesh finds no buckling)"
+    return f" ± {max(100 * error, 0.01):.2g} %"
 
 
 #: The linear buckling factor each ULS combination must reach.
@@ -180,6 +207,10 @@ class Check:
         Whether the value must reach the limit rather than stay within it.
     basis : str
         Where the limit comes from, in words.
+    error : float or None
+        The value's estimated relative error, from the same check on a coarser mesh
+        (:func:`check_errors`); None when not estimated. The utilisation's is the same to
+        first order.
 
     Examples
     --------
@@ -197,6 +228,7 @@ class Check:
     combination: str
     at_least: bool = False
     basis: str = ""
+    error: float | None = None
 
     @property
     def utilisation(self) -> float:
@@ -234,7 +266,10 @@ class Check:
                 f"{words} {self.value * scale:.3g} {unit} {'≤' if self.passed else '>'} "
                 f"{bound} {self.limit * scale:.3g} {unit}"
             )
-        return f"{self.name} under {self.combination} ({shown}; utilisation {self.utilisation:.3g})"
+        return (
+            f"{self.name} under {self.combination} ({shown}; utilisation "
+            f"{self.utilisation:.3g}{error_text(self.error)})"
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """JSON: name, value (None for an infinite buckling factor), limit, unit, utilisation,
@@ -244,7 +279,7 @@ class Check:
         --------
         >>> Check("stability", float("inf"), 10.0, "", "ULS 1.5 W", at_least=True).to_dict()
         {'name': 'stability', 'value': None, 'limit': 10.0, 'unit': '', 'utilisation': 0.0,
-        'combination': 'ULS 1.5 W', 'passed': True, 'basis': ''}
+        'combination': 'ULS 1.5 W', 'passed': True, 'basis': '', 'error': None}
         """
         return {
             "name": self.name,
@@ -255,6 +290,7 @@ class Check:
             "combination": self.combination,
             "passed": self.passed,
             "basis": self.basis,
+            "error": None if self.error is None or math.isinf(self.error) else self.error,
         }
 
 
@@ -368,8 +404,10 @@ def assess(result: LoadResult, criteria: Criteria | None = None) -> Verdict:
     """The checks of a structure under load (module notes) and the verdict.
 
     Each ULS combination of the result's load cases (:func:`combinations`) is solved
-    afresh (its static response and linear buckling); the SLS combination is the result's
-    own load (every case × 1.0), whose static response it reuses.
+    (its static response and linear buckling) on one factorisation of the stiffness; a
+    combination that is the result's own load times c (self-weight alone: 1.35 G) takes
+    the result's response times c and its buckling factor over c, which the linear model
+    makes exact. The SLS combination is the result's own load (every case × 1.0).
 
     Parameters
     ----------
@@ -398,6 +436,7 @@ def assess(result: LoadResult, criteria: Criteria | None = None) -> Verdict:
     )
     checks: list[Check] = []
     totals, reactions = [], []
+    shared = None  # the stiffness on the free DOFs, factorised once for every combination
     for combo in combos:
         if combo.limit_state == "SLS":
             static = result.static
@@ -412,11 +451,17 @@ def assess(result: LoadResult, criteria: Criteria | None = None) -> Verdict:
                 Check("deflection", static.max_displacement, limit, "m", combo.name, basis=basis)
             )
         else:
-            static, factor = static_response(model, combo.forces(sm), fixed)
+            forces = combo.forces(sm)
+            c = _multiple(forces, result.static.load)
+            if c is not None:
+                static, factor_value = result.static.scaled(c), result.buckling.factor / c
+            else:
+                static, shared = static_response(model, forces, fixed, factor=shared)
+                factor_value = buckling(model, static, shared).factor
             checks.append(
                 Check(
                     "stability",
-                    buckling(model, static, factor).factor,
+                    factor_value,
                     criteria.buckling_safety,
                     "",
                     combo.name,
@@ -450,3 +495,22 @@ def assess(result: LoadResult, criteria: Criteria | None = None) -> Verdict:
         )
     )
     return Verdict(tuple(checks), combos, tuple(totals), tuple(reactions), notes)
+
+
+def _multiple(forces: np.ndarray, load: np.ndarray) -> float | None:
+    """c > 0 with ``forces`` = c ``load`` to rounding (1e-12 of their size), or None.
+
+    Examples
+    --------
+    >>> g = np.array([[0.0, 0.0, -2.0], [0.0, 0.0, -1.0]])
+    >>> _multiple(1.35 * g, g), _multiple(g + [[0.0, 0.0, -1.0], [0.0, 0.0, 0.0]], g)
+    (1.35, None)
+    """
+    f, g = np.asarray(forces, float).ravel(), np.asarray(load, float).ravel()
+    gg = float(g @ g)
+    if gg == 0:
+        return None
+    c = float(f @ g) / gg
+    if not c > 0 or np.linalg.norm(f - c * g) > 1e-12 * np.linalg.norm(f):
+        return None
+    return c
