@@ -387,7 +387,7 @@ class Vault(FrozenArrays):
                 design.a, design.panels, design.radius, design.fold_angle, design.samples
             )
         root, crease = arch
-        w_left = design.width / design.radius
+        w_left = design.width * design.radius  # w_L(0) κ₀ = width
         try:
             smooth = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
             # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)
@@ -395,7 +395,12 @@ class Vault(FrozenArrays):
             reference = lattice
             if design.panels:  # the tubes are the smooth build's (design_tubes)
                 _, smooth_crease = arch_crease(
-                    design.a, 0, design.radius, design.fold_angle, design.samples
+                    design.a,
+                    0,
+                    design.radius,
+                    design.fold_angle,
+                    design.samples,
+                    root=root.smooth,
                 )
                 reference = cast(
                     StructureLattice,

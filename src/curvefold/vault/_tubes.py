@@ -141,9 +141,9 @@ def panel_structure(
     >>> panel_structure(lattice, 10, panels=16)
     Traceback (most recent call last):
     ...
-    curvefold.kernel._errors.RegressionError: tubes must be ≤ 9 with panels = 16 (or use more
-    panels), got 10: cells: a panel side along lattice polyline (u, v) = (10, 10) on panel 9 of
-    16 is 0.0023 of the median of its kind, below min_side = 0.01 (a sliver panel)
+    curvefold.kernel._errors.RegressionError: tubes must be ≤ 9 with panels = 16, got 10: cells: a
+    panel side along lattice polyline (u, v) = (10, 10) on panel 9 of 16 is 0.0023 of the median
+    of its kind, below min_side = 0.01 (a sliver panel)
     """
 
     def stack(count: int) -> Structure:
@@ -157,8 +157,7 @@ def panel_structure(
         fewer = next((n for n in range(tubes - 1, 0, -1) if _builds(stack, n)), 0)
         why = ' (tubes = "max": the smooth design\'s count)' if chosen else ""
         raise RegressionError(
-            f"tubes must be ≤ {fewer} with panels = {panels} (or use more panels), got "
-            f"{tubes}{why}: {err}",
+            f"tubes must be ≤ {fewer} with panels = {panels}, got {tubes}{why}: {err}",
             parameter="tubes",
         ) from None
 
