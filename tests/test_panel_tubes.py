@@ -101,7 +101,7 @@ def test_no_panel_side_is_a_sliver(design, panels):
 
 def test_a_tenth_tube_is_refused_as_a_sliver(smooth):
     """Damaged: one tube past the smooth count. Its panels on 16 panels are valid to the discrete
-    Eq. (17) but have crease sides 0.0023 of the median (4.6e-4 model units): the stack is
+    Eq. (17) but have crease sides 0.0023 of the median (4.5e-4 model units): the stack is
     refused by the panels' check, and the design by its count."""
     panel = Vault.from_design(smooth.design, panels=16)
     ten = np.repeat(np.arange(10), 2).reshape(10, 2)
