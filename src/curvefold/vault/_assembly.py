@@ -189,8 +189,8 @@ class VaultDesign:
     fold_angle : float
         Design fold angle 2α in degrees, at which the vault stands on the ground.
     tubes : int or None
-        Number of tubes along the diagonal; None takes the maximum before regression,
-        at most :data:`DEFAULT_TUBES_CAP`.
+        Number of tubes along the diagonal; None takes the maximum before regression of
+        the smooth build, at most :data:`DEFAULT_TUBES_CAP`, whatever the panels.
     layers : int
         Parallel diagonals (a band of cells (j, j + k), k < layers).
     direction : {1, -1}
@@ -356,15 +356,17 @@ class Vault(FrozenArrays):
         arch's crease pattern sampled with N panels along each crease
         (:class:`~curvefold.geometry.PanelLattice`), κ₀ s₀ solving the discrete
         Eq. (20) (:func:`~curvefold.vault.solve_panel_arch`) and the design state
-        placed by :func:`standing`.
+        placed by :func:`standing`. Its tubes are those of the smooth build of the design
+        (:func:`~curvefold.vault._tubes.design_tubes`), and no panel may be a sliver
+        (:meth:`~curvefold.geometry.PanelLattice.check`).
 
         Raises
         ------
         ConvergenceError
             If the arch family has no standing arch for ``a``.
         RegressionError
-            If the base tube or the requested number of tubes passes regression; the
-            message names the maximum number of tubes.
+            If the base tube or the requested number of tubes passes regression, or a
+            panel build of them has a sliver panel; the message names the most tubes.
 
         Examples
         --------
