@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 from ..io._formats import FAMILIES, FORMATS
 from ..kernel._errors import InputError
-from ..vault._assembly import DEFAULT_TUBES_CAP
+from ..vault._tubes import DEFAULT_TUBES_CAP
 from ._design import Design
 
 __all__ = [

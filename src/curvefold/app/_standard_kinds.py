@@ -15,7 +15,7 @@ from typing import Any
 
 from ..kernel._errors import InputError
 from ..kernel._validate import Spec
-from ..vault._assembly import DEFAULT_TUBES_CAP
+from ..vault._tubes import DEFAULT_TUBES_CAP
 from ._kinds import (
     BLOCK,
     CREASE,

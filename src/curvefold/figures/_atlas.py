@@ -15,8 +15,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..kernel._errors import InputError
-from ..vault._assembly import DEFAULT_TUBES_CAP
 from ..vault._atlas import Atlas
+from ..vault._tubes import DEFAULT_TUBES_CAP
 from ._plots import new_figure
 from ._scene import GROUND_COLOR, View, ground_polygon, render_structure
 

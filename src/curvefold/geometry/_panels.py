@@ -28,7 +28,7 @@ from typing import Literal
 import numpy as np
 
 from ..kernel._arrays import FrozenArrays, readonly
-from ..kernel._errors import InputError
+from ..kernel._errors import InputError, RegressionError
 from ._curve import FramedCurve
 from ._fold_angle import half_angle
 from ._lattice import (
@@ -42,7 +42,70 @@ from ._lattice_pattern import RegressionDomain, constant_alpha
 from ._panel_pattern import PanelPattern
 from ._topology import Topology
 
-__all__ = ["PanelCrease", "PanelCurve", "PanelLattice"]
+__all__ = ["MIN_SIDE", "PanelCrease", "PanelCurve", "PanelLattice", "check_sides"]
+
+#: Shortest panel side a panel structure may have, as a fraction of the median side of its
+#: kind (sides along the creases; left fold lines; right fold lines). Measured with the
+#: smooth design's tubes at 4 … 64 panels: the paper's vault ≥ 0.078 of the median, the
+#: atlas grid (a 0 … 1.2, p_xy 0.5 … 2, width 0.04 … 0.16) ≥ 0.0124 (its smooth margin
+#: 0.011); the sliver a tube past the smooth count made (16 panels, tube 10) 0.0023.
+MIN_SIDE = 0.01
+
+
+def _median(values: np.ndarray) -> float:
+    """Median of an array (np.median without its import of numpy.ma)."""
+    flat = np.ravel(values)
+    k = len(flat) // 2
+    part = np.partition(flat, [k - 1, k] if len(flat) > 1 else [k])
+    return float(part[k] if len(flat) % 2 else 0.5 * (part[k - 1] + part[k]))
+
+
+def check_sides(
+    pattern: PanelPattern, uv: np.ndarray, *, name: str = "cells", min_side: float = MIN_SIDE
+) -> None:
+    """Raise :class:`~curvefold.kernel.RegressionError` if a panel of the polylines uv (..., 2)
+    has a side shorter than ``min_side`` × the median side of its kind (:data:`MIN_SIDE`).
+
+    The kinds are the sides along the creases (edge k of polyline (u, v), ``h_k`` times
+    its speed factor, which regression drives to 0) and the two families of fold lines
+    (``|L_k|``, ``|R_k|``, which the width law shrinks). Each is measured against its own
+    median, so that the panels' aspect, which the panel count sets (crease sides ∝ 1/N, fold
+    lines the widths), is no sliver. The default, 1 %, admits every design whose smooth
+    build clears regression by more than about 1 % (as N grows, the shortest crease side over
+    the median tends to the smooth speed factor of the last tube: 0.077 for the paper's
+    vault) and refuses the slivers of a tube past the smooth count (0.0023 of the median).
+
+    Examples
+    --------
+    >>> lat = _example_lattice()  # a unit circle folded at 90°, 5 samples
+    >>> panels = PanelLattice.from_lattice(lat, 4)
+    >>> check_sides(panels.pattern, np.array([[1, 1], [14, 0]])) is None
+    True
+    >>> check_sides(panels.pattern, np.array([[1, 1], [14.14, 0]]))
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.RegressionError: cells: a panel side along lattice polyline (u, v) =
+    (14.14, 0) on panel 4 of 4 is 0.0003 of the median of its kind, below min_side = 0.01 (a
+    sliver panel)
+    """
+    uv = np.atleast_2d(np.asarray(uv, float)).reshape(-1, 2)
+    n = pattern.panels
+    crease = pattern.domain.factor(uv) * pattern.edge_lengths  # (M, N): edge k of each polyline
+    folds = np.linalg.norm(np.stack([pattern.left, pattern.right]), axis=-1)  # (2, N + 1)
+    ratios = crease / _median(crease), folds / np.array([[_median(f)] for f in folds])
+    for family, ratio in enumerate(ratios):
+        i, k = np.unravel_index(int(np.argmin(ratio)), ratio.shape)
+        if not ratio[i, k] >= min_side:
+            u, v = uv[i]
+            where = (
+                f"along lattice polyline (u, v) = ({u:g}, {v:g}) on panel {k + 1} of {n}"
+                if family == 0
+                else f"on the {('left', 'right')[i]} fold line at vertex {k} (of 0 … {n})"
+            )
+            raise RegressionError(
+                f"{name}: a panel side {where} is {ratio[i, k]:.2g} of the median of its kind, "
+                f"below min_side = {min_side:g} (a sliver panel)"
+            )
 
 
 @dataclass(frozen=True, eq=False)
@@ -239,9 +302,9 @@ class PanelLattice(FrozenArrays):
         points, left, right, _ = self._state
         return lattice_points(points, left, right, uv)
 
-    def check(self, uv: np.ndarray, *, name: str = "cells") -> None:
+    def check(self, uv: np.ndarray, *, name: str = "cells", min_side: float = MIN_SIDE) -> None:
         """Raise :class:`~curvefold.kernel.RegressionError` unless every polyline uv (..., 2) is
-        valid.
+        valid (the discrete Eq. 17) and no panel between them is a sliver (:func:`check_sides`).
 
         Examples
         --------
@@ -257,6 +320,7 @@ class PanelLattice(FrozenArrays):
         this direction the limit is (u, v) = (14.14, 0)
         """
         check_curves(self.domain, self.pattern.length, uv, name=name)
+        check_sides(self.pattern, uv, name=name, min_side=min_side)
 
     def topology(
         self,

@@ -8,11 +8,8 @@ from ._arch import proportion_change as proportion_change
 from ._arch import solve_general_arch as solve_general_arch
 from ._arch import solve_panel_arch as solve_panel_arch
 from ._arch import solve_symmetric_arch as solve_symmetric_arch
-from ._assembly import DEFAULT_TUBES_CAP as DEFAULT_TUBES_CAP
-from ._assembly import MAX_TUBES_SEARCH as MAX_TUBES_SEARCH
 from ._assembly import Vault as Vault
 from ._assembly import VaultDesign as VaultDesign
-from ._assembly import max_tubes as max_tubes
 from ._atlas import Atlas as Atlas
 from ._atlas import AtlasGrid as AtlasGrid
 from ._atlas import Sketch as Sketch
@@ -22,6 +19,9 @@ from ._sweep import run_atlas as run_atlas
 from ._sweep import sweep as sweep
 from ._targets import TargetFit as TargetFit
 from ._targets import fit_targets as fit_targets
+from ._tubes import DEFAULT_TUBES_CAP as DEFAULT_TUBES_CAP
+from ._tubes import MAX_TUBES_SEARCH as MAX_TUBES_SEARCH
+from ._tubes import max_tubes as max_tubes
 
 __all__ = [
     "A_MAX",

@@ -152,6 +152,9 @@ class ArchRoot:
         ``|T(s₀/2)·T(0)|`` at the root, at most :data:`RESIDUAL_TOL`.
     bracket : tuple of float
         The bracket the root was refined in.
+    smooth : ArchRoot or None
+        For a panel arch (:func:`solve_panel_arch`), the smooth root its search started
+        from: the arch of the design's smooth build, which decides its tubes.
 
     Examples
     --------
@@ -164,6 +167,7 @@ class ArchRoot:
     kappa0_s0: float
     residual: float
     bracket: tuple[float, float]
+    smooth: ArchRoot | None = None
 
 
 def check_standing(a: float) -> float:
@@ -418,7 +422,8 @@ def solve_panel_arch(
 
     n = check_panels(panels)
     half_angle(fold_angle)
-    x0 = solve_symmetric_arch(a).kappa0_s0
+    smooth = solve_symmetric_arch(a)
+    x0 = smooth.kappa0_s0
     f = lambda x: panel_arch_condition(x, a, n, fold_angle=fold_angle)  # noqa: E731
     f0 = f(x0)
     for step in x0 * 1e-3 * 4.0 ** np.arange(6):  # up to 1 % of κ₀s₀ … 100 %
@@ -426,7 +431,7 @@ def solve_panel_arch(
             if other > 0 and f(other) * f0 <= 0:
                 lo, hi = sorted((x0, other))
                 root = brentq(f, lo, hi, xtol=xtol * x0, rtol=4 * np.finfo(float).eps, maxiter=200)
-                return ArchRoot(float(a), float(root), abs(f(root)), (lo, hi))
+                return ArchRoot(float(a), float(root), abs(f(root)), (lo, hi), smooth)
     raise ConvergenceError(
         f"no standing arch of {n} panels for a = {a:g} near the smooth one (κ0·s0 = {x0:.6g}): "
         "the discrete Eq. (20) has no root there; use more panels",

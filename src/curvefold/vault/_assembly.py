@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, replace
 from functools import cached_property
-from typing import Literal
+from typing import Literal, cast
 
 import numpy as np
 
@@ -27,7 +27,6 @@ from ..geometry._lattice import Lattice
 from ..geometry._panel_pattern import PANELS
 from ..geometry._panels import PanelLattice
 from ..geometry._structure import Structure
-from ..geometry._topology import CORNERS
 from ..kernel._arrays import FrozenArrays, readonly
 from ..kernel._errors import InputError, RegressionError
 from ..kernel._lie import cross
@@ -41,6 +40,7 @@ from ._arch import (
     solve_panel_arch,
     solve_symmetric_arch,
 )
+from ._tubes import DEFAULT_TUBES_CAP, design_tubes, panel_structure
 
 __all__ = [
     "VaultDesign",
@@ -51,15 +51,8 @@ __all__ = [
     "MIN_SAMPLES",
     "vault_samples",
     "vault_panels",
-    "max_tubes",
-    "MAX_TUBES_SEARCH",
-    "DEFAULT_TUBES_CAP",
 ]
 
-#: Stacks are searched up to this many tubes; a longer valid stack reports this number.
-MAX_TUBES_SEARCH = 10_000
-#: Tubes built when none are asked for and the stack could be longer.
-DEFAULT_TUBES_CAP = 24
 #: Fewest samples along a vault's creases (the apex is the middle sample).
 MIN_SAMPLES = 21
 
@@ -196,8 +189,8 @@ class VaultDesign:
     fold_angle : float
         Design fold angle 2α in degrees, at which the vault stands on the ground.
     tubes : int or None
-        Number of tubes along the diagonal; None takes the maximum before regression,
-        at most :data:`DEFAULT_TUBES_CAP`.
+        Number of tubes along the diagonal; None takes the maximum before regression of
+        the smooth build, at most :data:`DEFAULT_TUBES_CAP`, whatever the panels.
     layers : int
         Parallel diagonals (a band of cells (j, j + k), k < layers).
     direction : {1, -1}
@@ -283,52 +276,6 @@ def standing(lattice: PanelLattice) -> PanelLattice:
     return lattice.moved(rotation, -rotation @ points[0])
 
 
-def max_tubes(
-    lattice: StructureLattice, *, direction: int = 1, limit: int = MAX_TUBES_SEARCH
-) -> int:
-    """Largest n such that the tubes [j, j+1]², j = 0 … n−1 (stacked in ±(u, v)) are free of
-    regression.
-
-    All four corner creases of every tube must be valid lattice curves (Eq. 18). The valid
-    set is convex, and every corner of the stack is a convex combination of corners of its
-    first and last tubes, so a stack is valid exactly when those two tubes are: validity
-    is monotone in n. A corner's speed factor falls linearly with j, ``f(j) = f(0) − j s``,
-    which places the first tube past regression; it is then checked exactly (that tube
-    invalid, the one before valid), and a bisection decides where rounding leaves it in
-    doubt. Returns 0 when even the base tube regresses, and ``limit`` when the stack is
-    valid that far.
-
-    Examples
-    --------
-    >>> vault = Vault.from_design(samples=41, tubes=3)  # coarse, for a quick example
-    >>> max_tubes(vault.lattice), max_tubes(vault.lattice, limit=5)  # the search stops at the limit
-    (9, 5)
-    """
-    domain = lattice.domain
-
-    def tube_ok(j: int) -> bool:
-        return bool(domain.contains(direction * (j + CORNERS) - (direction < 0)).all())
-
-    if not tube_ok(0):
-        return 0
-    slope = direction * (domain.a + domain.b)  # s: the fall of every corner's factor per tube
-    falling = slope > 0
-    if not falling.any():
-        return limit
-    # f(0) / s
-    first = domain.factor(direction * CORNERS - (direction < 0))[:, falling] / slope[falling]
-    guess = min(int(np.ceil(first.min())), limit)
-    if 0 < guess < limit and tube_ok(guess - 1) and not tube_ok(guess):
-        return guess
-    if tube_ok(limit - 1):
-        return limit
-    lo, hi = 0, limit - 1  # tube lo is valid, tube hi is not
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        lo, hi = (mid, hi) if tube_ok(mid) else (lo, mid)
-    return hi
-
-
 def arch_crease(
     a: float,
     panels: int,
@@ -409,15 +356,17 @@ class Vault(FrozenArrays):
         arch's crease pattern sampled with N panels along each crease
         (:class:`~curvefold.geometry.PanelLattice`), κ₀ s₀ solving the discrete
         Eq. (20) (:func:`~curvefold.vault.solve_panel_arch`) and the design state
-        placed by :func:`standing`.
+        placed by :func:`standing`. Its tubes are those of the smooth build of the design
+        (:func:`~curvefold.vault._tubes.design_tubes`), and no panel may be a sliver
+        (:meth:`~curvefold.geometry.PanelLattice.check`).
 
         Raises
         ------
         ConvergenceError
             If the arch family has no standing arch for ``a``.
         RegressionError
-            If the base tube or the requested number of tubes passes regression; the
-            message names the maximum number of tubes.
+            If the base tube or the requested number of tubes passes regression, or a
+            panel build of them has a sliver panel; the message names the most tubes.
 
         Examples
         --------
@@ -440,29 +389,44 @@ class Vault(FrozenArrays):
                 design.a, design.panels, design.radius, design.fold_angle, design.samples
             )
         root, crease = arch
-        k0, a = 1.0 / design.radius, design.a
-        w_left = design.width / k0
+        w_left = design.width * design.radius  # w_L(0) κ₀ = width
         try:
             smooth = Lattice.from_crease(crease, w_left, design.p_xy * w_left)
             # A Lattice is a StructureLattice: its crease's fold angle is constant (not Crease's)
             lattice: StructureLattice = smooth  # type: ignore[assignment]
-            if design.panels:
+            reference = lattice
+            if design.panels:  # the tubes are the smooth build's (design_tubes)
+                _, smooth_crease = arch_crease(
+                    design.a,
+                    0,
+                    design.radius,
+                    design.fold_angle,
+                    design.samples,
+                    root=root.smooth,
+                )
+                reference = cast(
+                    StructureLattice,
+                    Lattice.from_crease(smooth_crease, w_left, design.p_xy * w_left),
+                )
                 lattice = standing(PanelLattice.from_lattice(smooth, design.panels))
         except RegressionError as err:
             raise RegressionError(
                 f"width = {design.width:g} is past regression for the base tube: {err}",
                 parameter="width",
             ) from None
-        n_max = max_tubes(lattice, direction=design.direction)
-        tubes = design.tubes if design.tubes is not None else min(n_max, DEFAULT_TUBES_CAP)
-        if tubes > n_max:
-            raise RegressionError(
-                f"tubes must be ≤ {n_max} (the maximum before regression for a = {a:g}, p_xy = "
-                f"{design.p_xy:g}, width = {design.width:g}), got {tubes}",
-                parameter="tubes",
-            )
-        structure = Structure.diagonal(
-            lattice, tubes, direction=design.direction, layers=design.layers
+        tubes, n_max = design_tubes(
+            reference,
+            design.tubes,
+            direction=design.direction,
+            what=f"a = {design.a:g}, p_xy = {design.p_xy:g}, width = {design.width:g}",
+        )
+        structure = panel_structure(
+            lattice,
+            tubes,
+            direction=design.direction,
+            layers=design.layers,
+            panels=design.panels,
+            chosen=design.tubes is None,
         )
         return cls(replace(design, tubes=tubes), root, lattice, structure, n_max)
 
