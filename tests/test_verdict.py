@@ -228,13 +228,6 @@ def test_a_thin_vault_under_snow_fails_the_stability_check():
     assert r.returncode == 0 and r.stdout.startswith("stands: "), r.stdout
 
 
-@pytest.mark.slow
-def test_the_paper_s_vault_stands_in_its_default_material():
-    r = run("load", str(EXAMPLES / "paper-vault.toml"))
-    assert r.returncode == 0 and r.stderr == "", r.stderr
-    assert r.stdout.startswith("stands: stability under ULS 1.35 G"), r.stdout
-
-
 @pytest.mark.parametrize(
     ("argv", "match"),
     [

@@ -384,6 +384,12 @@ class Loaded:
             f"of the {r.structure.state.vertices.shape[1]} samples along each crease (the "
             "closest near the end sections)"
         ]
+        if self._peak_on_supports():
+            notes.append(
+                "the largest stress is in an element on the supports, where a linear model's "
+                "stress is singular at the supports' corners (it grows as the mesh is refined): "
+                "it is the load the supports' detail must spread, not the sheet's own stress"
+            )
         if not r.buckling_resolved:
             notes.append(
                 "the buckling mode alternates from one sample to the next: the samples "
@@ -391,16 +397,26 @@ class Loaded:
                 "find the structure's"
             )
         notes += list(self.verdict.notes)  # the mesh, γ_M or no strength
-        worst = max(
+        error, figure = max(
             ((float(np.max(e, initial=0.0)), key) for key, e in self.errors.items()),
             default=(0.0, ""),
         )
-        if worst[0] > ERROR_TOLERANCE:
+        if error > ERROR_TOLERANCE:
             notes.append(
-                f"the estimated error of {worst[1]} is {100 * worst[0]:.2g} %, above "
+                f"the estimated error of {figure} is{error_text(error)[2:]}, above "
                 f"{100 * ERROR_TOLERANCE:g} %: raise --across (now {self.loads.across})"
             )
         return notes
+
+    def _peak_on_supports(self) -> bool:
+        """Whether the largest surface stress is in a membrane with a supported corner."""
+        static = self.result.static
+        if not len(static.surface_stress):
+            return False
+        corners = np.asarray(self.result.structure.model.membranes)[
+            int(np.argmax(static.surface_stress))
+        ]
+        return bool(static.fixed[corners[corners >= 0]].any())
 
     def to_dict(self) -> dict:
         """The result's stable keys (:meth:`curvefold.mechanics.LoadResult.to_dict`) and what

@@ -84,7 +84,7 @@ def mesh_note(across: int, compared: int | None = None) -> str:
         return (
             "the checks are the model's with one element across each ruling strip; a strip "
             "cannot bend across its width there (the paper's vault: deflection 24 % low, buckling "
-            "factor 28 times too high against --across 4): raise --across until they stop moving"
+            "factor 29 times too high against --across 4): raise --across until they stop moving"
         )
     return (
         f"the checks are the model's with {across} elements across each ruling strip; compare "
@@ -97,8 +97,8 @@ def error_text(error: float | None) -> str:
 
     Examples
     --------
-    >>> error_text(0.0123), error_text(None), error_text(2e-6)
-    (' ± 1.2 %', '', ' ± 0.01 %')
+    >>> error_text(0.0123), error_text(None), error_text(2e-6), error_text(24.4)
+    (' ± 1.2 %', '', ' ± 0.01 %', ' ± 2440 %')
     >>> error_text(float("inf"))
     ' ± ? (one mesh finds no buckling)'
     """
@@ -106,7 +106,8 @@ def error_text(error: float | None) -> str:
         return ""
     if math.isinf(error):
         return " ± ? (one mesh finds no buckling)"
-    return f" ± {max(100 * error, 0.01):.2g} %"
+    percent = max(100 * error, 0.01)
+    return f" ± {percent:.0f} %" if percent >= 10 else f" ± {percent:.2g} %"
 
 
 #: The linear buckling factor each ULS combination must reach.
