@@ -35,6 +35,7 @@ NAMES = (
     "designer",
     "main_job",
     "mechanics",
+    "verdict",
     "threads",
     "startup",
 )

@@ -20,6 +20,7 @@ import numpy as np
 from ..analysis._checks import TITLES
 from ..kernel._json_text import plain
 from ..kernel._text import one_line
+from ..mechanics import error_text
 
 __all__ = [
     "plain",
@@ -477,18 +478,17 @@ def _mechanics_section(m: dict, files: list[str]) -> str:
         f"{e(held)}, {e(m['supports'])}. The bar-and-hinge model of the structure at its "
         "design angle, linear; SI units, z up.</p>"
     )
-    shown = {
-        **m,
-        "buckling_factor": m["buckling_factor"]
-        if m["buckling_factor"] is not None
-        else "none (the load only stiffens it)",
+    shown = m | {  # each figure with its estimated error
+        key: f"{_number(m[key])}{error_text(error)}"
+        for key, error in m.get("errors", {}).items()
+        if isinstance(m.get(key), float) and error is not None
     }
+    if m["buckling_factor"] is None:
+        shown["buckling_factor"] = "none (the load only stiffens it)"
     if m["utilisation"] is None:
         shown["utilisation"] = "unknown (no strength)"
     if not m["buckling_resolved"]:
-        shown["buckling_factor"] = (
-            f"{_number(m['buckling_factor'])}: not resolved at these samples (see below)"
-        )
+        shown["buckling_factor"] = f"{shown['buckling_factor']}: not resolved (see below)"
     load = max(abs(v) for v in m["applied_load"])
     shown["reactions"] = _balanced(m["reactions"], load)
     rows = _rows(shown, MECHANICS_QUANTITIES)
@@ -540,8 +540,7 @@ def _mechanics_section(m: dict, files: list[str]) -> str:
 
 
 def _verdict_html(m: dict) -> str:
-    """The answer first: stands or fails, the governing check, then every check and the load and
-    reactions of every combination (:meth:`curvefold.mechanics.Verdict.to_dict`)."""
+    """The answer, then every check and the load and reactions of every combination."""
     if "checks" not in m:
         return ""
     e = html.escape
@@ -561,7 +560,7 @@ def _verdict_html(m: dict) -> str:
                 e(c["combination"]),
                 shown(c["value"], c["unit"]),
                 f"{shown(c['limit'], c['unit'])} ({e(c['basis'])})",
-                f"{c['utilisation']:.3g}",
+                f"{c['utilisation']:.3g}{error_text(c.get('error'))}",
                 "ok" if c["passed"] else "<strong>fails</strong>",
             ],
             ("", "", " class=num", "", " class=num", ""),
