@@ -106,7 +106,10 @@ export function showMechanics(state, found) {
     const v = key === "reactions" ? balanced(n[key]) : n[key];
     const [shown, shownUnit] = v === null ? [key === "buckling_factor" ? "none" : "unknown", unit]
       : architect(v, unit, { percent: key === "utilisation" });
-    rows.push(row(key, explained, words, shown, shownUnit));
+    // its error, estimated against half the elements across (curvefold load's ± x %)
+    const error = n.errors?.[key];
+    const plus = typeof error === "number" ? ` ± ${fmt(Math.max(100 * error, 0.01))} %` : "";
+    rows.push(row(key, explained, words, shown + plus, shownUnit));
   }
   const [lowest] = architect(n.frequencies.slice(0, 3), "Hz");
   rows.push(row("frequencies",
