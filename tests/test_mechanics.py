@@ -358,10 +358,13 @@ def test_free_modes_of_a_strip_are_its_bending_modes_without_rigid_motions():
 
 def test_a_material_out_of_range_is_refused_in_one_line():
     for values, match in (
-        ((-1e9, 0.3, 900, 3e7), "^youngs_modulus must be > 0 Pa, got -1000000000.0$"),
+        (
+            (-1e9, 0.3, 900, 3e7),
+            r"^youngs_modulus must be in \[1000, 1e13\] Pa .*got -1000000000\.0$",
+        ),
         ((1e9, 0.5, 900, 3e7), "^poisson must be in \\(-1, 0.5\\)"),
         ((1e9, -1.0, 900, 3e7), "^poisson must be in \\(-1, 0.5\\)"),
-        ((1e9, 0.3, 0.0, 3e7), "^density must be > 0 kg/m³, got 0.0$"),
+        ((1e9, 0.3, 0.0, 3e7), r"^density must be in \[1, 100000\] kg/m³ .*got 0\.0$"),
         ((1e9, 0.3, 900, float("nan")), "^strength must be a finite number"),
     ):
         with pytest.raises(InputError, match=match) as info:

@@ -601,8 +601,11 @@ KINDS = tuple(_VALIDATORS)
 
 
 def _fmt(x: float) -> str:
+    """A bound as typed: ``inf``, an integer, ``1e13`` past ten digits, or the float's repr."""
     if math.isinf(x):
         return "inf" if x > 0 else "-inf"
+    if abs(x) >= 1e10:
+        return f"{x:g}".replace("e+", "e")
     return str(int(x)) if x == int(x) else repr(x)
 
 

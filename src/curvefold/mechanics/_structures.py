@@ -50,7 +50,15 @@ from ._across import check_across, cut_across
 from ._materials import CREASE_STIFFNESS, Material, check_thickness
 from ._model import BarHingeModel
 
-__all__ = ["StructureModel", "FOLD_STEP", "END_SHARE", "MIDDLE_SAMPLES", "model_samples"]
+__all__ = [
+    "StructureModel",
+    "FOLD_STEP",
+    "END_SHARE",
+    "MIDDLE_SAMPLES",
+    "MAX_STIFFNESS_RATIO",
+    "model_samples",
+    "check_conditioning",
+]
 
 #: Step of the central difference of the folding motion, degrees (its error ~1e-9 relative).
 FOLD_STEP = 1e-3
@@ -227,6 +235,7 @@ class StructureModel(FrozenArrays):
         key = sample[ends[:, 0]] * width + np.where(inner < 0, curve[ends[:, 0]], M + inner)
         points, weld = np.unique(key, return_inverse=True)
         model = BarHingeModel.from_mesh(mesh, material, t, crease_stiffness=k_c, weld=weld)
+        check_conditioning(model, material, k_c)
         node_ends = np.zeros((len(points), 2), np.int64)
         node_weight = np.zeros(len(points))
         node_ends[weld], node_weight[weld] = weld[ends], weight
@@ -449,6 +458,60 @@ class StructureModel(FrozenArrays):
         return readonly(
             (1 - w) * velocity[self.node_curve[a], self.node_sample[a]]
             + w * velocity[self.node_curve[b], self.node_sample[b]]
+        )
+
+
+#: The largest ratio of two stiffnesses of one model that its solves resolve (module notes):
+#: the free eigenvalues of a tube lose every digit past 1e12 (measured: thickness 1e-8 m,
+#: ratio 5e13).
+MAX_STIFFNESS_RATIO = 1e11
+
+
+def check_conditioning(model: BarHingeModel, material: Material, crease_stiffness: float) -> None:
+    """Refuse a model whose stiffnesses differ by more than :data:`MAX_STIFFNESS_RATIO`: the
+    sheet's stretching against its bending over an element (E t ℓ² / D = 12 (1 − ν²) ℓ² / t²),
+    and the creases against the sheet's bending (k_c ℓ / D), ℓ the median edge.
+
+    Raises
+    ------
+    InputError
+        Naming the thickness or the crease stiffness, the ratio and the value that fits.
+
+    Examples
+    --------
+    >>> from curvefold.mechanics import MATERIALS
+    >>> from curvefold.vault import Vault
+    >>> state = Vault.from_design(tubes=1, samples=21).structure.state()
+    >>> StructureModel.from_state(state, MATERIALS["aluminium"], 1e-9)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    curvefold.kernel._errors.InputError: thickness 1e-09 m is too thin for elements of 0.1... m:
+    the sheet stretches ... times harder than it bends there, beyond the 1e+11 the solvers
+    resolve; give at least ... m
+    """
+    if not len(model.bars) or model.thickness <= 0:
+        return
+    x = np.asarray(model.nodes)[np.asarray(model.bars)]
+    edge = float(np.quantile(np.linalg.norm(x[:, 1] - x[:, 0], axis=1), 0.5))
+    t, nu = model.thickness, material.poisson
+    D = material.bending_stiffness(t)
+    stretching = 12 * (1 - nu * nu) * edge * edge / (t * t)
+    if stretching > MAX_STIFFNESS_RATIO:
+        least = edge * math.sqrt(12 * (1 - nu * nu) / MAX_STIFFNESS_RATIO)
+        raise InputError(
+            f"thickness {t:g} m is too thin for elements of {edge:.3g} m: the sheet stretches "
+            f"{stretching:.2g} times harder than it bends there, beyond the "
+            f"{MAX_STIFFNESS_RATIO:g} the solvers resolve; give at least {least:.2g} m",
+            parameter="thickness",
+        )
+    creases = crease_stiffness * edge / D
+    if creases > MAX_STIFFNESS_RATIO:
+        raise InputError(
+            f"crease_stiffness {crease_stiffness:g} N·m/rad/m is {creases:.2g} times the sheet's "
+            f"bending stiffness over an element ({D / edge:.3g} N·m/rad/m), beyond the "
+            f"{MAX_STIFFNESS_RATIO:g} the solvers resolve; give at most "
+            f"{MAX_STIFFNESS_RATIO * D / edge:.2g} N·m/rad/m",
+            parameter="crease_stiffness",
         )
 
 
