@@ -662,3 +662,25 @@ def test_the_pictures_job_imports_neither_matplotlib_nor_scipy(tmp_path):
         "'vault.png',",
         "'width-proportion.png']",
     ]
+
+
+@pytest.mark.parametrize(("snow", "unit"), [(0.0, "µm"), (1000.0, "mm")])
+def test_the_deflection_is_shown_in_the_unit_it_reads_in_and_the_modes_have_a_colour_bar(
+    snow, unit
+):
+    """A deflection under a millimetre in µm, past it in mm (not "1.98e+03 µm"), the title and
+    the colour bar alike; the modes' picture carries its colour bar too."""
+    from curvefold.figures._mechanics import plot_deflection, plot_modes
+    from curvefold.mechanics import SelfWeight, Snow, analyse_load
+
+    loads = (SelfWeight(), Snow(snow)) if snow else None  # 1 kPa on 0.2 mm: 93 mm
+    r = analyse_load(Vault.from_design(tubes=1, samples=21), thickness=2e-4, loads=loads)
+    largest = r.static.max_displacement
+    assert (largest < 1e-3) == (unit == "µm")
+    fig = plot_deflection(r, magnification=1.0)
+    title = fig.axes[0].get_title()
+    scale = 1e6 if unit == "µm" else 1e3
+    assert f"(largest {largest * scale:.3g} {unit})" in title, title
+    assert fig.axes[1].get_ylabel() == f"displacement ({unit})"
+    modes = plot_modes(r, amplitude=0.05, count=2)
+    assert len(modes.axes) == 3 and modes.axes[2].get_ylabel() == "displacement (mm)"

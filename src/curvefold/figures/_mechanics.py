@@ -90,6 +90,18 @@ def _colorbar(fig, ax, cmap: str, top: float, label: str) -> None:
     bar.ax.tick_params(labelsize=7)
 
 
+def length_unit(largest: float) -> tuple[float, str]:
+    """The scale and unit a length of the size of ``largest`` (m) reads best in: µm below a
+    millimetre, mm below a metre, else m.
+
+    Examples
+    --------
+    >>> length_unit(9.9e-5), length_unit(1.98e-3), length_unit(2.5)
+    ((1000000.0, 'µm'), (1000.0, 'mm'), (1.0, 'm'))
+    """
+    return (1e6, "µm") if largest < 1e-3 else (1e3, "mm") if largest < 1.0 else (1.0, "m")
+
+
 def plot_deflection(
     result: LoadResult, *, magnification: float, view: View = View(), title: str | None = None
 ) -> Figure:
@@ -118,11 +130,13 @@ def plot_deflection(
     _draw(ax, scene)
     _fit(ax, scene.box, below=0.1)
     _scale_bar(ax, scene.span, "m")  # the mechanics' model is in metres
-    _colorbar(fig, ax, DEFLECTION_MAP, 1e6 * top, "displacement (µm)")
     largest = result.static.max_displacement
+    scale, unit = length_unit(max(top, largest))
+    _colorbar(fig, ax, DEFLECTION_MAP, scale * top, f"displacement ({unit})")
     ax.set_title(
         title
-        or f"Deflected shape, displacement × {magnification:g} (largest {largest * 1e6:.3g} µm)",
+        or f"Deflected shape, displacement × {magnification:g} (largest "
+        f"{largest * scale:.3g} {unit})",
         fontsize=10,
     )
     return fig
@@ -158,4 +172,6 @@ def plot_modes(
         "folding motion",
         fontsize=10,
     )
+    scale, unit = length_unit(amplitude)
+    _colorbar(fig, fig.axes, MODE_MAP, scale * amplitude, f"displacement ({unit})")
     return fig
