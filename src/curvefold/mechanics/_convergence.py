@@ -31,8 +31,9 @@ of the samples kept).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..kernel._errors import InputError
 
@@ -147,33 +148,26 @@ def figure_errors(coarse: LoadResult, fine: LoadResult) -> dict[str, float | lis
             f"the finer result must have more elements across, got {fine.structure.across} "
             f"against {coarse.structure.across}"
         )
+    errors: dict[str, float | list[float]] = {}
+    for key, (read, kind) in _FIGURES.items():
+        a, b = read(coarse), read(fine)
+        if isinstance(b, float):
+            errors[key] = _relative(float(a), b, ORDERS[kind], ratio)
+        else:
+            errors[key] = [_relative(float(x), float(y), ORDERS[kind], ratio) for x, y in zip(a, b)]
+    return errors
 
-    def each(a, b, kind: str) -> list[float]:
-        n = min(len(a), len(b))
-        return [_relative(float(x), float(y), ORDERS[kind], ratio) for x, y in zip(a[:n], b[:n])]
 
-    gap = _relative(
-        coarse.modes.fold_mode_gap, fine.modes.fold_mode_gap, ORDERS["eigenvalue"], ratio
-    )
-    return {
-        "max_displacement": _relative(
-            coarse.static.max_displacement,
-            fine.static.max_displacement,
-            ORDERS["deflection"],
-            ratio,
-        ),
-        "max_stress": _relative(
-            coarse.static.max_stress, fine.static.max_stress, ORDERS["stress"], ratio
-        ),
-        "buckling_factor": _relative(
-            coarse.buckling.factor, fine.buckling.factor, ORDERS["buckling"], ratio
-        ),
-        "fold_mode_gap": gap,
-        "modes": each(coarse.modes.eigenvalues, fine.modes.eigenvalues, "eigenvalue"),
-        "supported_modes": each(
-            coarse.supported_eigenvalues, fine.supported_eigenvalues, "supported eigenvalue"
-        ),
-    }
+#: Every figure of a result that depends on the mesh: how it is read and its kind in
+#: :data:`ORDERS`.
+_FIGURES: dict[str, tuple[Callable[[LoadResult], Any], str]] = {
+    "max_displacement": (lambda r: r.static.max_displacement, "deflection"),
+    "max_stress": (lambda r: r.static.max_stress, "stress"),
+    "buckling_factor": (lambda r: r.buckling.factor, "buckling"),
+    "fold_mode_gap": (lambda r: r.modes.fold_mode_gap, "eigenvalue"),
+    "modes": (lambda r: r.modes.eigenvalues, "eigenvalue"),
+    "supported_modes": (lambda r: r.supported_eigenvalues, "supported eigenvalue"),
+}
 
 
 #: The kind of figure each check's value is (its order in :data:`ORDERS`).
