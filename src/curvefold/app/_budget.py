@@ -28,11 +28,15 @@ import math
 import os
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from ..io._formats import FAMILIES, FORMATS
 from ..kernel._errors import InputError
 from ..vault._assembly import DEFAULT_TUBES_CAP
 from ._design import Design
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..mechanics import AtlasLoad
 
 __all__ = [
     "DEFAULT_BUDGET",
@@ -43,6 +47,7 @@ __all__ = [
     "estimate",
     "require_budget",
     "require_atlas_budget",
+    "atlas_mechanics",
     "require_rebuild_budget",
 ]
 
@@ -254,26 +259,56 @@ def _samples_that_fit(design: Design, files: bool, budget: int) -> int | None:
     return lo
 
 
-def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> float:
-    """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget."""
+def require_atlas_budget(
+    designs: int, *, samples: int, workers: int | None, load: AtlasLoad | None = None
+) -> float:
+    """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget.
+
+    With ``load``, every process also holds the mechanics of one vault of up to
+    :data:`DEFAULT_TUBES_CAP` tubes at the load's samples and elements across
+    (:func:`atlas_mechanics`).
+    """
     budget = memory_budget()
     processes = workers or min(2, os.cpu_count() or 1)
     from ..figures._atlas import MAX_VIEWS
 
     held = min(designs, MAX_VIEWS**2)
+    mechanics = 0.0 if load is None else atlas_mechanics(load.samples, load.across)
     total = (
         BASE
         + ATLAS_FIGURE
         + ATLAS_PER_DESIGN * held
-        + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
+        + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples + mechanics)
     )
     if total > budget:
+        lower = "" if load is None else ", --load-samples or --across"
         raise InputError(
             f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} "
-            f"samples, {processes} processes), more than the budget of {_size(budget)} "
-            f"({ENVIRONMENT}); lower the grid's counts, --samples or --workers"
+            f"samples, {processes} processes"
+            + ("" if load is None else f", mechanics on {load.samples} samples × {load.across}")
+            + f"), more than the budget of {_size(budget)} "
+            f"({ENVIRONMENT}); lower the grid's counts, --samples or --workers{lower}"
         )
     return total
+
+
+def atlas_mechanics(samples: int, across: int) -> float:
+    """Bytes of the mechanics of one vault of an atlas: the vault rebuilt at ``samples`` and its
+    model, as :func:`_mechanics` counts a design under load, for the most tubes a vault of the
+    atlas has (:data:`DEFAULT_TUBES_CAP`).
+
+    Examples
+    --------
+    >>> round(atlas_mechanics(41, 1) / 2**20), round(atlas_mechanics(41, 4) / 2**20)
+    (79, 1010)
+    """
+    from ..mechanics import model_samples
+
+    kept = len(model_samples(samples))
+    strips = 4 * DEFAULT_TUBES_CAP
+    fixed = _cost("mechanics", 0, 0)
+    geometry = _cost("geometry", samples, samples * strips) - _cost("geometry", 0, 0)
+    return geometry + fixed + (_cost("mechanics", kept, kept * strips) - fixed) * across**2.5
 
 
 #: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check

@@ -63,7 +63,7 @@ from ..mechanics import (
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
-    from ..mechanics import Criteria, LoadResult, Verdict
+    from ..mechanics import AtlasLoad, Criteria, LoadResult, Verdict
 
 __all__ = [
     "MATERIAL_SECTION",
@@ -76,6 +76,7 @@ __all__ = [
     "material_alternatives",
     "Loaded",
     "analyse",
+    "atlas_load",
     "magnification",
     "DEFAULT_MATERIAL",
     "MAX_CASES",
@@ -588,6 +589,33 @@ def analyse(
         across=loads.across,
     )
     return Loaded(result, material, loads, supported, assess(result, loads.criteria()))
+
+
+def atlas_load(material: MaterialParams, loads: LoadParams, *, samples: int) -> AtlasLoad:
+    """The mechanics of every design of an atlas (:class:`curvefold.mechanics.AtlasLoad`) under a
+    design's ``[material]`` and ``[loads]``, as :func:`analyse` reads them, on a model of
+    ``samples`` samples along each crease.
+
+    Examples
+    --------
+    >>> material = MaterialParams(**_defaults(MATERIAL_SECTION, material="aluminium"))
+    >>> loads = LoadParams(**_defaults(LOADS_SECTION) | {"snow": 0.5})
+    >>> load = atlas_load(material, loads, samples=40)
+    >>> load.material.name, load.loads.describe(), load.samples
+    ('aluminium', 'self-weight + snow 0.5 kPa', 41)
+    """
+    from ..mechanics import AtlasLoad
+
+    return AtlasLoad(
+        _sheet(material),
+        material.thickness,
+        loads.cases(),
+        loads.supports,
+        loads.criteria(),
+        material.crease_stiffness,
+        loads.across,
+        samples,
+    )
 
 
 def _defaults(specs: Sequence[Spec], **given: Any) -> dict:
