@@ -98,6 +98,12 @@ COSTS: dict[str, tuple[float, float, float]] = {
 #: :data:`DEFAULT_TUBES_CAP` tubes per sample.
 ATLAS_FIGURE, ATLAS_PER_DESIGN = 130 * _MB, 0.5 * _MB
 ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = 80 * _MB, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
+#: Bytes of a vault of the atlas under load (:func:`atlas_mechanics`), over a worker's: measured
+#: on the 24-tube vault a = 0, p_xy = 1.5 (the peak of a process that analysed it over that of
+#: one that built it at 201 samples with SciPy loaded): 118 MiB at 41 samples, 195 MiB at 81 and
+#: 314 MiB at 41 with two elements across (k^1.8), rounded up to 45 MiB and 2 MiB per sample
+#: kept, times k^2.
+ATLAS_LOAD_FIXED, ATLAS_LOAD_PER_SAMPLE = 45 * _MB, 2 * _MB
 
 
 def memory_budget() -> int:
@@ -294,21 +300,19 @@ def require_atlas_budget(
 
 def atlas_mechanics(samples: int, across: int) -> float:
     """Bytes of the mechanics of one vault of an atlas: the vault rebuilt at ``samples`` and its
-    model, as :func:`_mechanics` counts a design under load, for the most tubes a vault of the
-    atlas has (:data:`DEFAULT_TUBES_CAP`).
+    model and solves, for the most tubes a vault of the atlas has (:data:`DEFAULT_TUBES_CAP`),
+    :data:`ATLAS_LOAD_FIXED` and :data:`ATLAS_LOAD_PER_SAMPLE` per sample the model keeps, times
+    ``across`` squared.
 
     Examples
     --------
     >>> round(atlas_mechanics(41, 1) / 2**20), round(atlas_mechanics(41, 4) / 2**20)
-    (79, 1010)
+    (127, 1357)
     """
     from ..mechanics import model_samples
 
     kept = len(model_samples(samples))
-    strips = 4 * DEFAULT_TUBES_CAP
-    fixed = _cost("mechanics", 0, 0)
-    geometry = _cost("geometry", samples, samples * strips) - _cost("geometry", 0, 0)
-    return geometry + fixed + (_cost("mechanics", kept, kept * strips) - fixed) * across**2.5
+    return ATLAS_LOAD_FIXED + ATLAS_LOAD_PER_SAMPLE * kept * across**2
 
 
 #: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check

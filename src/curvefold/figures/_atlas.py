@@ -304,11 +304,13 @@ def _mark_standing(ax: Any, atlas: Atlas, font: float) -> None:
             ax.text(
                 x0 + 0.96,
                 y0 + 0.96 - font * 0.012,
-                f"fails: {r['governing']} {r['utilisation']:.2g}",
+                f"fails: {r['governing']} {r['utilisation']:.3g}",
                 ha="right",
                 va="top",
                 fontsize=font * 0.7,
                 color="#b22222",
+                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 0.6},
+                zorder=5,
             )
     ax.legend(
         handles=[

@@ -11,7 +11,7 @@ design's columns are what ``curvefold load`` prints for the same design at those
 workers (:mod:`curvefold.vault._sweep`), which keeps the vault layer free of the mechanics.
 
 **Accuracy** (docs: the atlas guide; ``benchmarks/bench_atlas.py --load``). At the default
-41 samples and one element across, a design costs 0.03–1.05 CPU-s (1 to 24 tubes), and on
+41 samples and one element across, a design costs 0.03–0.9 CPU-s (1 to 24 tubes), and on
 five designs of the default grid its figures are those of the same model at 161 samples
 within 2.1 % (buckling factor), 1.5 % (deflection) and 0.1 % (mass). That model is stiffer
 than the structure: against four elements across at 81 samples its deflection is 15–34 %
