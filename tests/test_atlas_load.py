@@ -162,6 +162,27 @@ def test_a_designs_columns_are_what_curvefold_load_prints(records, index):
     assert disagreements(record | {"stands": not record["stands"]}, loaded) == ["stands"]
 
 
+def sheet_mass(record: dict) -> float:
+    """ρ t × the developed area of the record's vault at the model's samples: the area of its
+    mesh's triangles (each tube's two sheets), in m² (radius 1 m)."""
+    import numpy as np
+
+    from curvefold.vault import Vault, VaultDesign
+
+    design = VaultDesign(a=record["a"], p_xy=record["p_xy"], tubes=record["tubes"], samples=41)
+    mesh = Vault.from_design(design).structure.state().mesh()
+    x = mesh.vertices_coords[mesh.faces_vertices]
+    area = 0.5 * np.linalg.norm(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]), axis=1).sum()
+    return MATERIALS["polypropylene"].density * 1e-3 * float(area)
+
+
+def test_the_mass_is_the_sheets_density_times_its_developed_area(records):
+    for record in records[:6]:
+        assert record["mass"] == pytest.approx(sheet_mass(record), rel=1e-12)
+    narrower = records[4] | {"p_xy": 0.75}  # damaged: another proportion, the same tubes
+    assert sheet_mass(narrower) != pytest.approx(records[4]["mass"], rel=0.1)
+
+
 def marks(figure) -> dict[str, set[tuple[int, int]]]:
     """(row, col) of the cells outlined as standing and as the lightest, read off the figure."""
     ax = figure.axes[0]

@@ -312,6 +312,11 @@ class AtlasGrid:
         >>> grid = AtlasGrid.of([0.5, 0.75], [0.0, 0.3, 0.6], samples=41, tubes=2)
         >>> grid.a_values, grid.tubes
         ((0.0, 0.3, 0.6), 2)
+        >>> AtlasGrid.of([0.5], [0.3], load="self-weight")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel._errors.InputError: load must measure every design
+        (curvefold.mechanics.AtlasLoad(material, thickness, ...)) or be None, got str
         >>> AtlasGrid.of([0.5], [0.3], samples=2)
         Traceback (most recent call last):
         ...
@@ -321,6 +326,13 @@ class AtlasGrid:
         from ._assembly import VaultDesign
 
         VaultDesign(width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)
+        if load is not None and not all(
+            callable(getattr(load, name, None)) for name in ("measure", "empty", "to_dict", "notes")
+        ):
+            raise InputError(
+                "load must measure every design (curvefold.mechanics.AtlasLoad(material, "
+                f"thickness, ...)) or be None, got {type(load).__name__}"
+            )
         return cls(
             _axis(p_xy_values, "p_xy_values"),
             _axis(a_values, "a_values"),

@@ -114,7 +114,8 @@ def sweep(
     Yields
     ------
     record : dict
-        Keys :data:`~curvefold.vault._atlas.FIELDS`.
+        Keys :attr:`AtlasGrid.fields <curvefold.vault.AtlasGrid.fields>`:
+        :data:`~curvefold.vault._atlas.FIELDS` and the columns of the grid's ``load``.
     sketch : Sketch or None
         None for an invalid design.
 
