@@ -278,10 +278,17 @@ def test_the_memory_estimate_counts_the_mechanics(monkeypatch):
 def test_a_design_the_model_refuses_gets_empty_cells_and_its_reason():
     from curvefold.vault import Vault
 
-    vault = Vault.from_design(samples=41, tubes=1)
+    vault = Vault.from_design(samples=201, tubes=1)
     columns = AtlasLoad(MATERIALS["polypropylene"], 1e-3, Loads(())).measure(vault)  # no load
     assert all(columns[k] is None for k in LOAD_FIELDS if k != "load_error")
     assert columns["load_error"].startswith("InputError: ")
+    # a vault that cannot be built again at the model's samples: here more tubes than it holds
+    from dataclasses import replace
+
+    crowded = replace(vault, design=replace(vault.design, tubes=1000))
+    columns = LOAD.measure(crowded)
+    assert columns["load_error"].startswith("RegressionError: tubes must be ≤ 9")
+    assert all(columns[k] is None for k in LOAD_FIELDS if k != "load_error")
 
 
 def test_the_columns_are_the_same_on_a_local_cluster(atlas):

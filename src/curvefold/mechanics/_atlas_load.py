@@ -121,9 +121,10 @@ class AtlasLoad:
     def measure(self, vault: Vault) -> dict[str, Any]:
         """The columns of :data:`LOAD_FIELDS` of one built vault, as plain Python values.
 
-        The vault is built again at :attr:`samples` with the tubes it has; a design the model
-        refuses (a :class:`~curvefold.kernel.CurvefoldError`: a mechanism on its supports)
-        gets empty cells and the reason in ``load_error``.
+        The vault is built again at :attr:`samples` with the tubes it has; a design that cannot
+        be built so or that the model refuses (a :class:`~curvefold.kernel.CurvefoldError`:
+        past regression at those samples, a mechanism on its supports, no load) gets empty
+        cells and the reason in ``load_error``.
 
         Examples
         --------
@@ -144,12 +145,12 @@ class AtlasLoad:
         from ._supports import Supports
         from ._verdict import assess, span_length
 
-        coarse = (
-            vault
-            if vault.design.samples == self.samples
-            else Vault.from_design(replace(vault.design, samples=self.samples))
-        )
         try:
+            coarse = (
+                vault
+                if vault.design.samples == self.samples
+                else Vault.from_design(replace(vault.design, samples=self.samples))
+            )
             with one_blas_thread():  # a worker of another cluster may run more
                 result = analyse_load(
                     coarse.structure,
