@@ -26,6 +26,15 @@ got from it just after (``_bench.parallel_throughput``: 2 on two free CPUs, 1.3�
 shared host), whose inverse is the best time / serial two workers could reach then.
 Target: two workers of a running cluster in at most 0.6× the serial time.
 
+Mechanics (``python benchmarks/bench_atlas.py --load [--load-side N]``, a few minutes): the
+atlas with ``--load`` (polypropylene 1 mm under its own weight, the default model: 41 samples,
+one element across) on a 20 × 20 grid of the same ranges at 41 samples: the CPU seconds per
+design of the serial sweep (target ≤ 0.5) and the costliest design (24 tubes); a local Dask
+cluster of two workers, its start included, against the serial sweep (target ≤ 0.6×, wall
+time; the records compared exactly). And the accuracy of that model on a few designs of the
+grid: its buckling factor, deflection and mass against the same model at 161 samples, and
+against four elements across at 81 samples (where a strip can bend across its width).
+
 Memory and CPU (``python benchmarks/bench_atlas.py --memory``, several minutes):
 ``curvefold atlas --workers 2`` (records streamed to disk, figure of every k-th row and
 column) for a 24 × 24 and a 200 × 200 grid, each in a fresh process on a local cluster of 2
@@ -77,7 +86,7 @@ def _grid():
 def _process_pool(grid) -> list[dict]:
     """The atlas's sweep before Dask: a process pool, interleaved chunks, all results held,
     sorted at the end."""
-    from curvefold.vault._atlas import _evaluate_chunk
+    from curvefold.vault._sweep import _evaluate_chunk
 
     points = list(grid.points())
     count = min(len(points), WORKERS * 16)
@@ -406,6 +415,121 @@ def memory() -> list[SummaryRow]:
     ]
 
 
+LOAD_SIDE = 20
+LOAD_SAMPLES = 41  # the atlas's geometry, built at the model's samples (no rebuild)
+TARGET_LOAD_CPU = 0.5  # CPU-s per design
+#: (a, p_xy) of the designs whose accuracy is measured: 24, 9, 4, 3 and 2 tubes.
+ACCURACY = ((0.0, 1.0), (0.3, 0.75), (0.6, 1.0), (0.9, 0.5), (1.2, 0.5))
+#: The finer models: (samples, elements across), each against the atlas's (41, 1).
+FINER = ((161, 1), (81, 4))
+
+
+def _load_grid(side: int):
+    from curvefold.mechanics import MATERIALS, AtlasLoad
+    from curvefold.vault import AtlasGrid
+
+    return AtlasGrid.of(
+        np.linspace(0.5, 1.5, side),
+        np.linspace(0.0, 1.2, side),
+        width=WIDTH,
+        samples=LOAD_SAMPLES,
+        load=AtlasLoad(MATERIALS["polypropylene"], 1e-3),
+    )
+
+
+def _accuracy() -> list[tuple]:
+    """Rows (a, p_xy, tubes, then per figure the atlas's value and its ratio to each finer
+    model's) of the designs of :data:`ACCURACY`."""
+    from curvefold.mechanics import MATERIALS, AtlasLoad
+    from curvefold.vault import Vault
+    from curvefold.vault._assembly import VaultDesign
+
+    rows = []
+    for a, p in ACCURACY:
+        vault = Vault.from_design(VaultDesign(a=a, p_xy=p, width=WIDTH, samples=LOAD_SAMPLES))
+        if a == 0.0:  # 24 tubes: four elements across would take some 2 GB
+            finer = FINER[:1]
+        else:
+            finer = FINER
+        coarse = AtlasLoad(MATERIALS["polypropylene"], 1e-3).measure(vault)
+        cells = [f"{a:g}", f"{p:g}", str(vault.design.tubes)]
+        for key in ("buckling_factor", "deflection", "mass"):
+            ratios = []
+            for samples, across in FINER:
+                if (samples, across) not in finer:
+                    ratios.append("—")
+                    continue
+                load = AtlasLoad(MATERIALS["polypropylene"], 1e-3, across=across, samples=samples)
+                fine = load.measure(vault)  # rebuilt at the finer samples
+                ratios.append(f"{coarse[key] / fine[key]:.3f}")
+            cells += [f"{coarse[key]:.4g}", *ratios]
+        rows.append(tuple(cells))
+    return rows
+
+
+def _cpu_with_children() -> float:
+    """CPU seconds of this process and of its children that have ended (a local cluster's
+    processes, once it is closed)."""
+    me, children = (resource.getrusage(w) for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    return me.ru_utime + me.ru_stime + children.ru_utime + children.ru_stime
+
+
+def load(side: int) -> list[SummaryRow]:
+    """CPU-s per design of the atlas with mechanics, a local cluster of two against serial, and
+    the coarse model's accuracy."""
+    from curvefold.mechanics import MATERIALS, AtlasLoad
+    from curvefold.vault import Vault
+    from curvefold.vault._assembly import VaultDesign
+
+    grid = _load_grid(side)
+    c0, t0 = time.process_time(), time.perf_counter()
+    serial = _records(grid, workers=1)
+    cpu, wall = time.process_time() - c0, time.perf_counter() - t0
+    c0, t0 = _cpu_with_children(), time.perf_counter()
+    two = _records(grid, workers=WORKERS)
+    cluster, cluster_cpu = time.perf_counter() - t0, _cpu_with_children() - c0
+    throughput = parallel_throughput(WORKERS)
+    heavy = Vault.from_design(VaultDesign(a=0.0, p_xy=1.5, width=WIDTH, samples=LOAD_SAMPLES))
+    c0 = time.process_time()
+    AtlasLoad(MATERIALS["polypropylene"], 1e-3).measure(heavy)
+    costliest = time.process_time() - c0
+    per = cpu / grid.size
+    stands = sum(r["stands"] is True for r in serial)
+    print(
+        f"atlas under load: {side} × {side} designs, {LOAD_SAMPLES} samples, polypropylene 1 mm, "
+        f"self-weight; {sum(r['valid'] for r in serial)} valid, {stands} stand (load average "
+        f"{os.getloadavg()[0]:.1f}; {WORKERS} busy processes got {throughput:.2f} CPUs' worth)"
+    )
+    print(
+        markdown_table(
+            ["a", "p_xy", "tubes"]
+            + [
+                f"{name}{suffix}"
+                for name in ("buckling factor", "deflection [m]", "mass [kg]")
+                for suffix in ("", " / 161 samples", " / 4 across, 81 samples")
+            ],
+            _accuracy(),
+        )
+    )
+    return [
+        SummaryRow(
+            "atlas --load",
+            f"CPU-s per design, serial, {side} × {side} (the costliest: 24 tubes)",
+            f"{per:.3f} ({costliest:.2f})",
+            f"≤ {TARGET_LOAD_CPU:g}",
+            verdict(per <= TARGET_LOAD_CPU),
+        ),
+        SummaryRow(
+            "atlas --load",
+            f"{side} × {side}, local Dask cluster of 2 (start included) vs serial ({wall:.1f} s)",
+            f"{cluster:.1f} s ({cluster / wall:.2f}×; {1 / throughput:.2f}× at best; "
+            f"{cluster_cpu:.1f} CPU-s against {cpu:.1f}; records identical: {two == serial})",
+            f"≤ {TARGET_TWO:g}×",
+            verdict(cluster <= TARGET_TWO * wall and two == serial),
+        ),
+    ]
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument(
@@ -414,7 +538,18 @@ def main() -> None:
         help="measure the client's peak memory "
         f"for {' and '.join(f'{s} × {s}' for s in MEMORY_SIDES)} grids instead",
     )
-    print("\n" + summary_table(memory() if parser.parse_args().memory else run()))
+    parser.add_argument(
+        "--load",
+        action="store_true",
+        help="measure the atlas with mechanics (CPU-s per design, two workers vs serial, "
+        "accuracy) instead",
+    )
+    parser.add_argument(
+        "--load-side", type=int, default=LOAD_SIDE, help="grid side of --load (default 20)"
+    )
+    args = parser.parse_args()
+    rows = memory() if args.memory else load(args.load_side) if args.load else run()
+    print("\n" + summary_table(rows))
 
 
 if __name__ == "__main__":

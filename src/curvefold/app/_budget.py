@@ -28,11 +28,15 @@ import math
 import os
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from ..io._formats import FAMILIES, FORMATS
 from ..kernel._errors import InputError
 from ..vault._tubes import DEFAULT_TUBES_CAP
 from ._design import Design
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..mechanics import AtlasLoad
 
 __all__ = [
     "DEFAULT_BUDGET",
@@ -43,6 +47,7 @@ __all__ = [
     "estimate",
     "require_budget",
     "require_atlas_budget",
+    "atlas_mechanics",
     "require_rebuild_budget",
 ]
 
@@ -93,6 +98,12 @@ COSTS: dict[str, tuple[float, float, float]] = {
 #: :data:`DEFAULT_TUBES_CAP` tubes per sample.
 ATLAS_FIGURE, ATLAS_PER_DESIGN = 130 * _MB, 0.5 * _MB
 ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = 80 * _MB, COSTS["geometry"][1] * 4 * DEFAULT_TUBES_CAP
+#: Bytes of a vault of the atlas under load (:func:`atlas_mechanics`), over a worker's: measured
+#: on the 24-tube vault a = 0, p_xy = 1.5 (the peak of a process that analysed it over that of
+#: one that built it at 201 samples with SciPy loaded): 118 MiB at 41 samples, 195 MiB at 81 and
+#: 314 MiB at 41 with two elements across (k^1.8), rounded up to 45 MiB and 2 MiB per sample
+#: kept, times k^2.
+ATLAS_LOAD_FIXED, ATLAS_LOAD_PER_SAMPLE = 45 * _MB, 2 * _MB
 
 
 def memory_budget() -> int:
@@ -258,26 +269,54 @@ def _samples_that_fit(design: Design, files: bool, budget: int) -> int | None:
     return lo
 
 
-def require_atlas_budget(designs: int, *, samples: int, workers: int | None) -> float:
-    """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget."""
+def require_atlas_budget(
+    designs: int, *, samples: int, workers: int | None, load: AtlasLoad | None = None
+) -> float:
+    """The estimate of an atlas of ``designs`` designs, or :class:`InputError` over budget.
+
+    With ``load``, every process also holds the mechanics of one vault of up to
+    :data:`DEFAULT_TUBES_CAP` tubes at the load's samples and elements across
+    (:func:`atlas_mechanics`).
+    """
     budget = memory_budget()
     processes = workers or min(2, os.cpu_count() or 1)
     from ..figures._atlas import MAX_VIEWS
 
     held = min(designs, MAX_VIEWS**2)
+    mechanics = 0.0 if load is None else atlas_mechanics(load.samples, load.across)
     total = (
         BASE
         + ATLAS_FIGURE
         + ATLAS_PER_DESIGN * held
-        + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples)
+        + processes * (ATLAS_PER_WORKER + ATLAS_PER_SAMPLE * samples + mechanics)
     )
     if total > budget:
+        lower = "" if load is None else ", --load-samples or --across"
         raise InputError(
             f"this atlas needs about {_size(total)} of memory ({designs} designs, {samples} "
-            f"samples, {processes} processes), more than the budget of {_size(budget)} "
-            f"({ENVIRONMENT}); lower the grid's counts, --samples or --workers"
+            f"samples, {processes} processes"
+            + ("" if load is None else f", mechanics on {load.samples} samples × {load.across}")
+            + f"), more than the budget of {_size(budget)} "
+            f"({ENVIRONMENT}); lower the grid's counts, --samples or --workers{lower}"
         )
     return total
+
+
+def atlas_mechanics(samples: int, across: int) -> float:
+    """Bytes of the mechanics of one vault of an atlas: the vault rebuilt at ``samples`` and its
+    model and solves, for the most tubes a vault of the atlas has (:data:`DEFAULT_TUBES_CAP`),
+    :data:`ATLAS_LOAD_FIXED` and :data:`ATLAS_LOAD_PER_SAMPLE` per sample the model keeps, times
+    ``across`` squared.
+
+    Examples
+    --------
+    >>> round(atlas_mechanics(41, 1) / 2**20), round(atlas_mechanics(41, 4) / 2**20)
+    (127, 1357)
+    """
+    from ..mechanics import model_samples
+
+    kept = len(model_samples(samples))
+    return ATLAS_LOAD_FIXED + ATLAS_LOAD_PER_SAMPLE * kept * across**2
 
 
 #: Bytes per strip sample and frame of a FOLD file built again and read (``curvefold check

@@ -397,29 +397,81 @@ def cmd_atlas(args: argparse.Namespace) -> int:
             f"--workers {args.workers}: workers",
         )
     )
+    load = _atlas_load(args)
     target = check_output(args.out, force=args.force)
-    require_atlas_budget(len(p_xy) * len(a), samples=samples, workers=workers)
+    require_atlas_budget(len(p_xy) * len(a), samples=samples, workers=workers, load=load)
     payload = write_atlas(
         p_xy,
         a,
         out=target,
         width=width,
         samples=samples,
+        load=load,
         workers=workers,
         scheduler=args.scheduler,
         show_progress=not args.json,
     )
     payload["out"] = str(args.out)
-    _emit(
-        args,
-        payload,
-        [
-            f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote "
-            f"{len(payload['files'])} files to {args.out}/",
-            *(f"  {note}" for note in payload.get("notes", [])),
-        ],
-    )
+    lines = [
+        f"atlas: {payload['valid']}/{payload['designs']} designs valid; wrote "
+        f"{len(payload['files'])} files to {args.out}/"
+    ]
+    if load is not None:
+        lines.append(_lightest_line(payload))
+    _emit(args, payload, lines + [f"  {note}" for note in payload.get("notes", [])])
     return 0
+
+
+def _atlas_load(args: argparse.Namespace):
+    """The mechanics of every design of an atlas from ``--load`` and the load flags, or None.
+
+    The flags are ``curvefold load``'s, read into a vault design's ``[material]`` and
+    ``[loads]`` and checked there; a load flag without ``--load`` is refused.
+    """
+    from ..mechanics._atlas_load import LOAD_SAMPLES
+    from ._cli_flags import _load_specs
+    from ._cli_parser import LOAD_KIND
+    from ._loading import atlas_load
+
+    specs = _load_specs(LOAD_KIND)
+    flags, typed = _design_flags(LOAD_KIND, args, specs)
+    if args.load_samples is not None:
+        typed.append(f"--load-samples {args.load_samples}")
+    if not args.load:
+        if typed:
+            raise InputError(
+                f"{typed[0].split()[0]} sets the mechanics columns, which only --load adds: "
+                f"add --load, or leave out {typed[0]}"
+            )
+        return None
+    samples = (
+        LOAD_SAMPLES.default
+        if args.load_samples is None
+        else LOAD_SAMPLES.check(
+            _from_text(LOAD_SAMPLES, args.load_samples, "--load-samples"),
+            f"--load-samples {args.load_samples}: load_samples",
+            shown=args.load_samples,
+        )
+    )
+    source = " ".join([f"{PROG} atlas --load", *typed])
+    design = design_from_dict({"kind": LOAD_KIND}, source=source)
+    design = (design.overrides(source=source, **flags) if flags else design).with_mechanics()
+    assert design.material is not None and design.loads is not None  # with_mechanics fills them
+    return atlas_load(design.material, design.loads, samples=samples)
+
+
+def _lightest_line(payload: dict) -> str:
+    """The summary's line of the mechanics: how many stand and the lightest of them."""
+    light = payload["lightest"]
+    head = f"  under load: {payload['stands']}/{payload['valid']} valid designs stand"
+    if light is None:
+        return head + "; none stands (see atlas.csv: governing, utilisation)"
+    return (
+        f"{head}; the lightest: a = {light['a']:g}, p_xy = {light['p_xy']:g} "
+        f"(row {light['row']}, column {light['col']}), {light['mass']:.4g} kg, {light['tubes']} "
+        f"tube{'s' * (light['tubes'] != 1)}, governed by {light['governing']} (utilisation "
+        f"{light['utilisation']:.3g})"
+    )
 
 
 def _error(text: str) -> None:

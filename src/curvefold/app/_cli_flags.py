@@ -246,37 +246,50 @@ def _add_design_flags(p: argparse.ArgumentParser, kind: str) -> None:
     }
     for name, spec in _flag_specs(kind).items():
         group = groups[{"output": "output", None: "design"}.get(section.get(name), "load")]
-        if spec.kind == "flag":
-            # a spec's help says what the key does when true, the flag what it sets
-            text = (
-                f"{spec.help}{' by default; this flag turns it off' if spec.default else ''} "
-                f"(sets {name} = {str(not spec.default).lower()})"
-            )
-            group.add_argument(
-                _flag(spec),
-                dest=name,
-                action="store_const",
-                const=not spec.default,
-                default=None,
-                help=text,
-            )
-        else:
-            text = (_formats_help(kind) if spec.kind == "formats" else spec.describe()).replace(
-                "%", "%%"
-            )
-            metavar = {
-                "formats": "LIST",
-                "page": "PAGE",
-                "count": "N|max",
-                "choice": "{" + ",".join(spec.choices) + "}",
-            }
-            group.add_argument(
-                _flag(spec), dest=name, metavar=metavar.get(spec.kind, name.upper()), help=text
-            )
+        _add_spec_flag(group, name, spec, kind)
 
 
-def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    """The given design flags as checked values, and the words the user typed for them.
+def _load_specs(kind: str) -> dict[str, Spec]:
+    """The spec of every key of a kind's optional sections (``[material]``, ``[loads]``)."""
+    return {key: spec for name in OPTIONAL_SECTIONS[kind] for key, spec in SCHEMA[name].items()}
+
+
+def _add_spec_flag(group, name: str, spec: Spec, kind: str) -> None:
+    """The flag of one schema key, its help and metavar from the spec."""
+    if spec.kind == "flag":
+        # a spec's help says what the key does when true, the flag what it sets
+        text = (
+            f"{spec.help}{' by default; this flag turns it off' if spec.default else ''} "
+            f"(sets {name} = {str(not spec.default).lower()})"
+        )
+        group.add_argument(
+            _flag(spec),
+            dest=name,
+            action="store_const",
+            const=not spec.default,
+            default=None,
+            help=text,
+        )
+    else:
+        text = (_formats_help(kind) if spec.kind == "formats" else spec.describe()).replace(
+            "%", "%%"
+        )
+        metavar = {
+            "formats": "LIST",
+            "page": "PAGE",
+            "count": "N|max",
+            "choice": "{" + ",".join(spec.choices) + "}",
+        }
+        group.add_argument(
+            _flag(spec), dest=name, metavar=metavar.get(spec.kind, name.upper()), help=text
+        )
+
+
+def _design_flags(
+    kind: str, args: argparse.Namespace, specs: dict[str, Spec] | None = None
+) -> tuple[dict, list[str]]:
+    """The given design flags as checked values, and the words the user typed for them (of
+    ``specs`` only when given).
 
     Raises
     ------
@@ -284,7 +297,7 @@ def _design_flags(kind: str, args: argparse.Namespace) -> tuple[dict, list[str]]
         A flag's value, named as typed: ``--page A9: page must be one of …, got A9``.
     """
     values, typed = {}, []
-    for name, spec in _flag_specs(kind).items():
+    for name, spec in (_flag_specs(kind) if specs is None else specs).items():
         text = getattr(args, name)
         if text is None:
             continue

@@ -15,8 +15,10 @@ from ._cli_flags import (
     _GRID_COUNT,
     PROG,
     _add_design_flags,
+    _add_spec_flag,
     _add_target_flags,
     _flag,
+    _load_specs,
     _Parser,
     _Version,
 )
@@ -106,7 +108,10 @@ def build_parser() -> argparse.ArgumentParser:
         help="a grid of vault designs (the paper's Fig. 10)",
         description="Build vaults over "
         "a grid of p_xy and a; write a figure of their forms with the section slopes and a "
-        "CSV/JSON of their metrics. Invalid designs are recorded with their reason.",
+        "CSV/JSON of their metrics. Invalid designs are recorded with their reason. With "
+        "--load, every vault is analysed under load on a coarse model (--load-samples, "
+        "--across): its buckling factor, governing check and utilisation, deflection, mass "
+        "and whether it stands; the figure marks the vaults that stand and the lightest.",
         flags=_add_atlas_flags,
     )
 
@@ -181,6 +186,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
+    from ..mechanics._atlas_load import LOAD_SAMPLES
     from ..vault._atlas import GRID_A
     from ..vault._cluster import LOCAL_CLUSTER_FROM, workers_spec
 
@@ -214,6 +220,25 @@ def _add_atlas_flags(p: argparse.ArgumentParser) -> None:
         help="run on the existing Dask cluster of "
         "this scheduler, e.g. tcp://10.0.0.5:8786 (its workers need this curvefold version)",
     )
+    g = p.add_argument_group(
+        "under load",
+        "with --load, every vault is analysed as curvefold load analyses it (same flags, same "
+        "defaults: polypropylene 1 mm under its own weight, pinned), on a model of "
+        "--load-samples samples",
+    )
+    g.add_argument(
+        "--load",
+        action="store_true",
+        help="analyse every vault under load: the mechanics columns and the marks of the "
+        "vaults that stand",
+    )
+    g.add_argument(
+        _flag(LOAD_SAMPLES),
+        metavar="N",
+        help=LOAD_SAMPLES.describe().replace("%", "%%"),
+    )
+    for name, spec in _load_specs(LOAD_KIND).items():
+        _add_spec_flag(g, name, spec, LOAD_KIND)
     p.add_argument(
         "--out",
         metavar="DIR",

@@ -65,7 +65,7 @@ from ..mechanics import (
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
-    from ..mechanics import Criteria, LoadResult, Verdict
+    from ..mechanics import AtlasLoad, Criteria, LoadResult, Verdict
 
 __all__ = [
     "MATERIAL_SECTION",
@@ -78,6 +78,7 @@ __all__ = [
     "material_alternatives",
     "Loaded",
     "analyse",
+    "atlas_load",
     "magnification",
     "DEFAULT_MATERIAL",
     "MAX_CASES",
@@ -658,6 +659,33 @@ def analyse(
         supported,
         check_errors(before_verdict, verdict, (coarse, fine)),
         figure_errors(before, result),
+    )
+
+
+def atlas_load(material: MaterialParams, loads: LoadParams, *, samples: int) -> AtlasLoad:
+    """The mechanics of every design of an atlas (:class:`curvefold.mechanics.AtlasLoad`) under a
+    design's ``[material]`` and ``[loads]``, as :func:`analyse` reads them, on a model of
+    ``samples`` samples along each crease.
+
+    Examples
+    --------
+    >>> material = MaterialParams(**_defaults(MATERIAL_SECTION, material="aluminium"))
+    >>> loads = LoadParams(**_defaults(LOADS_SECTION) | {"snow": 0.5})
+    >>> load = atlas_load(material, loads, samples=40)
+    >>> load.material.name, load.loads.describe(), load.samples
+    ('aluminium', 'self-weight + snow 0.5 kPa', 41)
+    """
+    from ..mechanics import AtlasLoad
+
+    return AtlasLoad(
+        _sheet(material),
+        material.thickness,
+        loads.cases(),
+        loads.supports,
+        loads.criteria(),
+        material.crease_stiffness,
+        loads.across,
+        samples,
     )
 
 

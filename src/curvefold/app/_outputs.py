@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator
 from contextlib import closing, contextmanager
 from functools import partial
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,6 +29,9 @@ from ._design import Design
 from ._design_file import DESIGN_FILE, built_design, design_toml
 from ._folder import OutputTarget, output_folder, raise_if_interrupted
 from ._products import exported_fold_angles
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..vault._atlas import Measure
 
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json", "default_title"]
 
@@ -278,6 +282,7 @@ def write_atlas(
     out: OutputTarget,
     width: float,
     samples: int,
+    load: Measure | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
     show_progress: bool,
@@ -288,33 +293,40 @@ def write_atlas(
     ``atlas.csv`` and ``atlas.json`` hold every design's record, written as the designs
     finish (in grid order), so memory stays flat whatever the grid's size; the figure
     (``atlas.png``, ``atlas.svg``) shows every k-th row and column of a grid larger than
-    :data:`~curvefold.figures._atlas.MAX_VIEWS` per axis. ``workers`` and ``scheduler`` are
-    those of :func:`curvefold.vault.sweep`.
+    :data:`~curvefold.figures._atlas.MAX_VIEWS` per axis. ``load`` (such as
+    :class:`curvefold.mechanics.AtlasLoad`) adds its columns to every record and the figure
+    marks the designs that stand. ``workers`` and ``scheduler`` are those of
+    :func:`curvefold.vault.sweep`.
 
     Returns
     -------
     dict
         ``shape`` (rows, columns), ``designs``, ``valid``, ``invalid`` (count per error
         class) and ``files`` (names written); without matplotlib the figure is left out
-        and ``notes`` says so.
+        and ``notes`` says so. With ``load``: ``stands`` (how many designs stand),
+        ``lightest`` (the record of the lightest that stands, or None) and ``load`` (what
+        loads the designs and the model's samples and elements across).
     """
     from ..figures._atlas import atlas_figure, view_step
     from ..figures._plots import save_figure
     from ..io._records import csv_records, json_records
-    from ..vault._atlas import FIELDS, Atlas, AtlasGrid, thin
+    from ..vault._atlas import Atlas, AtlasGrid, thin
     from ..vault._sweep import sweep
     from ._products import can_draw, pictures_left_out
 
-    grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples)
+    grid = AtlasGrid.of(p_xy_values, a_values, width=width, samples=samples, load=load)
+    fields = grid.fields
     step = view_step(grid.shape)
     header = {
         "format": "curvefold-atlas",
         "version": 1,
-        "units": "model units (radius 1), angles in degrees",
+        "units": "model units (radius 1), angles in degrees"
+        + ("" if load is None else "; under load: m (metres: radius 1 m), kg"),
         **grid.to_dict(),
-        "fields": list(FIELDS),
+        "fields": list(fields),
     }
     errors: Counter[str | None] = Counter()
+    standing = _Lightest()
     with output_folder(out) as tmp:
         with (
             _progress_bar(show_progress, "atlas", grid.size) as progress,
@@ -323,8 +335,8 @@ def write_atlas(
                     grid, workers=workers, scheduler=scheduler, progress=progress, sketch_step=step
                 )
             ) as results,
-            csv_records(tmp / "atlas.csv", FIELDS) as csv_row,
-            json_records(tmp / "atlas.json", header, FIELDS) as json_row,
+            csv_records(tmp / "atlas.csv", fields) as csv_row,
+            json_records(tmp / "atlas.json", header, fields) as json_row,
         ):
 
             def written():
@@ -333,6 +345,7 @@ def write_atlas(
                     csv_row(record)
                     json_row(record)
                     errors[record["error"]] += 1
+                    standing.add(record)
                     yield record, sketch
 
             shown = Atlas.from_results(grid.every(step), thin(written(), step))
@@ -352,13 +365,38 @@ def write_atlas(
         )
     valid = errors.pop(None, 0)
     left_out = pictures_left_out(["atlas.png", "atlas.svg"])
-    return {
-        "shape": [rows, cols],
-        "designs": grid.size,
-        "valid": valid,
-        "invalid": dict(errors),
-        "files": ["atlas.csv", "atlas.json", *files],
-    } | ({} if left_out is None else {"notes": [left_out]})
+    notes = ([] if load is None else load.notes()) + ([] if left_out is None else [left_out])
+    return (
+        {
+            "shape": [rows, cols],
+            "designs": grid.size,
+            "valid": valid,
+            "invalid": dict(errors),
+            "files": ["atlas.csv", "atlas.json", *files],
+        }
+        | (
+            {}
+            if load is None
+            else {"stands": standing.count, "lightest": standing.record, "load": load.to_dict()}
+        )
+        | ({"notes": notes} if notes else {})
+    )
+
+
+class _Lightest:
+    """The count of the designs that stand and the record of the lightest (the first of equal
+    mass, in grid order), as the records stream past."""
+
+    def __init__(self) -> None:
+        self.count: int = 0
+        self.record: dict | None = None
+
+    def add(self, record: dict) -> None:
+        if record.get("stands") is not True:
+            return
+        self.count += 1
+        if self.record is None or record["mass"] < self.record["mass"]:
+            self.record = dict(record)
 
 
 @contextmanager

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import textwrap
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -23,7 +23,7 @@ from ._scene import GROUND_COLOR, View, ground_polygon, render_structure
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["atlas_figure", "view_step", "MAX_VIEWS"]
+__all__ = ["atlas_figure", "view_step", "standing_cells", "MAX_VIEWS"]
 
 #: Most views along each axis of the figure (24 × 24 views of about an inch each).
 MAX_VIEWS = 24
@@ -50,6 +50,11 @@ def atlas_figure(
     in grey. All views are one rasterised collection, so even a 20 × 20 atlas makes a
     small SVG quickly.
 
+    An atlas under load (its grid's ``load``) writes every analysed design's mass at the
+    top right, outlines the designs that stand (dashed) and the lightest of those drawn
+    (thick), says the governing check and its utilisation of one that fails, and has a legend
+    below the grid (:func:`standing_cells`).
+
     Parameters
     ----------
     cell_size : float, optional, keyword-only
@@ -75,7 +80,8 @@ def atlas_figure(
     if not isinstance(size, (int, float)) or not np.isfinite(size) or size <= 0:
         raise InputError(f"cell_size must be a finite number > 0, got {cell_size!r}")
     font = float(np.clip(5.0 * size, 4.5, 9.0))
-    margin_l, margin_r, margin_b, margin_t = 0.45 + 0.02 * font, 0.15, 0.12, 0.25 + 0.04 * font * 2
+    margin_l, margin_r, margin_t = 0.45 + 0.02 * font, 0.15, 0.25 + 0.04 * font * 2
+    margin_b = 0.12 + (0.03 * font if atlas.grid.load is not None else 0.0)  # the legend
     fig_w, fig_h = size * cols + margin_l + margin_r, size * rows + margin_b + margin_t
     fig = new_figure(figsize=(fig_w, fig_h), layout=None)
     ax = fig.add_axes(
@@ -179,6 +185,8 @@ def atlas_figure(
             LineCollection(lines, colors=line_colors, linewidths=1.1, capstyle="round", zorder=3),
             autolim=False,
         )
+    if atlas.grid.load is not None:
+        _mark_standing(ax, atlas, font)
     for j in range(1, cols):
         ax.axvline(j, color="#e4e4e4", lw=0.5, zorder=0)
     for i in range(1, rows):
@@ -211,6 +219,7 @@ def atlas_figure(
             f"{atlas.grid.fold_angle:g}°, {tubes} (number at the top left of each view)",
             "slope of the section feature line at the feet (xy plane) in red, at the apex (zx "
             "plane) in blue",
+            *([] if atlas.grid.load is None else [_load_words(atlas)]),
             *([note] if note else []),
         )
     )
@@ -230,6 +239,104 @@ def atlas_figure(
         )
         fig.texts[-1].set_y(1 - 0.08 / (fig_h + extra))
     return fig
+
+
+#: Outline of a design that stands under load, and of the lightest of them.
+STANDS_COLOR, LIGHTEST_COLOR = "#2ca02c", "#0b5d1e"
+
+
+def standing_cells(atlas: Atlas) -> tuple[list[tuple[int, int]], tuple[int, int] | None]:
+    """(row, col) of every design of ``atlas`` that stands under load, and of the lightest of
+    them (the first of equal mass in grid order; None when none stands).
+
+    Examples
+    --------
+    >>> from curvefold.mechanics import AtlasLoad, MATERIALS
+    >>> from curvefold.vault import run_atlas
+    >>> load = AtlasLoad(MATERIALS["polypropylene"], 1e-3, samples=21)
+    >>> atlas = run_atlas([0.75, 1.0], [0.9], samples=41, load=load, workers=1)
+    >>> standing_cells(atlas)
+    ([(0, 0), (0, 1)], (0, 0))
+    """
+    cells = [(r["row"], r["col"]) for r in atlas.records if r.get("stands") is True]
+    if not cells:
+        return cells, None
+    lightest = min((r for r in atlas.records if r.get("stands") is True), key=lambda r: r["mass"])
+    return cells, (lightest["row"], lightest["col"])
+
+
+def _mark_standing(ax: Any, atlas: Atlas, font: float) -> None:
+    """Outline the designs that stand (the lightest thicker), write every analysed design's mass
+    at its top right and, for one that fails, its governing check; and the legend."""
+    from matplotlib.patches import Patch, Rectangle
+
+    rows, cols = atlas.shape
+    cells, lightest = standing_cells(atlas)
+    for i, j in cells:
+        light = (i, j) == lightest
+        ax.add_patch(
+            Rectangle(
+                (j + 0.03, rows - 1 - i + 0.03),
+                0.94,
+                0.94,
+                fill=False,
+                edgecolor=LIGHTEST_COLOR if light else STANDS_COLOR,
+                linewidth=2.6 if light else 1.4,
+                linestyle="-" if light else "--",
+                gid="lightest" if light else "stands",
+                zorder=4,
+            )
+        )
+    for r in atlas.records:
+        if r.get("mass") is None:
+            continue
+        x0, y0 = float(r["col"]), float(rows - 1 - r["row"])
+        ax.text(
+            x0 + 0.96,
+            y0 + 0.96,
+            f"{r['mass']:.3g} kg",
+            ha="right",
+            va="top",
+            fontsize=font * 0.75,
+            color="#333333",
+        )
+        if r["stands"] is False:
+            ax.text(
+                x0 + 0.96,
+                y0 + 0.96 - font * 0.012,
+                f"fails: {r['governing']} {r['utilisation']:.3g}",
+                ha="right",
+                va="top",
+                fontsize=font * 0.7,
+                color="#b22222",
+                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 0.6},
+                zorder=5,
+            )
+    ax.legend(
+        handles=[
+            Patch(fill=False, edgecolor=STANDS_COLOR, linestyle="--", label="stands"),
+            Patch(
+                fill=False, edgecolor=LIGHTEST_COLOR, linewidth=2.6, label="lightest that stands"
+            ),
+        ],
+        loc="upper left",
+        bbox_to_anchor=(0.0, 0.0),
+        ncols=2,
+        fontsize=font,
+        frameon=False,
+    )
+
+
+def _load_words(atlas: Atlas) -> str:
+    """The title's line of the mechanics: the material, the loads and the model."""
+    load = cast(Any, atlas.grid.load).to_dict()
+    across = load["across"]
+    return (
+        f"under load: {load['material']} {load['thickness'] * 1e3:g} mm, {load['loads']}, "
+        f"{load['supports']} feet (radius 1 m; model of {load['samples']} samples, {across} "
+        f"element{'s' * (across != 1)} across); mass at the top right; outlined: stands "
+        "(every check's utilisation ≤ 1)"
+    )
 
 
 def _extend(line: np.ndarray, fraction: float) -> np.ndarray:

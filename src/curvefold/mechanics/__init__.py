@@ -24,7 +24,8 @@ load cases are classes registered in :data:`LOAD_CASES` (:class:`SelfWeight`,
 summed by
 :class:`Loads`; will it stand: :func:`assess` checks a result under the load combinations
 of EN 1990 (:class:`Combination`, :func:`combinations`) against :class:`Criteria` and
-gives a :class:`Verdict` of :class:`Check` values. The
+gives a :class:`Verdict` of :class:`Check` values; :class:`AtlasLoad` does both for every vault
+of a design atlas, on a coarse model. The
 materials are :data:`MATERIALS` with their sources, or :meth:`Material.from_values`.
 
 The materials, loads and supports and their checks load at once (they need no SciPy:
@@ -71,6 +72,7 @@ CRITERIA_SPECS = _verdict.CRITERIA_SPECS
 #: The module of every name loaded on first use.
 _LAZY = {
     "analyse_load": "_analysis",
+    "AtlasLoad": "_atlas_load",
     "LoadResult": "_analysis",
     "BarHingeModel": "_model",
     "StructureModel": "_structures",
@@ -90,6 +92,7 @@ _LAZY = {
 
 __all__ = [
     "analyse_load",
+    "AtlasLoad",
     "LoadResult",
     "Material",
     "MATERIALS",

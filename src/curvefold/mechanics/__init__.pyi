@@ -4,6 +4,7 @@ editors."""
 from ._across import ACROSS as ACROSS
 from ._analysis import LoadResult as LoadResult
 from ._analysis import analyse_load as analyse_load
+from ._atlas_load import AtlasLoad as AtlasLoad
 from ._cases import HalfSnow as HalfSnow
 from ._cases import PointLoad as PointLoad
 from ._cases import SelfWeight as SelfWeight
@@ -52,6 +53,7 @@ from ._verdict import error_text as error_text
 
 __all__ = [
     "analyse_load",
+    "AtlasLoad",
     "LoadResult",
     "Material",
     "MATERIALS",

@@ -9,6 +9,11 @@ invalid with the reason, and the sweep goes on. Any error past that point (measu
 drawing a built vault) is a bug and propagates. Each valid design also keeps a small
 :class:`Sketch` of its geometry so the atlas figure needs no vault rebuilt.
 
+A grid may carry a :class:`Measure` (``AtlasGrid.of(..., load=...)``): an object of a layer
+above, such as :class:`curvefold.mechanics.AtlasLoad`, whose ``measure(vault)`` adds its
+``fields`` to every valid design's record (an invalid design gets them empty). It travels to
+the workers with the grid's shared parameters, so this layer needs no mechanics.
+
 Records are flat dicts with the keys of :data:`FIELDS`; the :class:`AtlasGrid` is
 row-major, rows = a, columns = p_xy, and an :class:`Atlas` holds its records in that
 order. The sweep that runs a grid, here or on a Dask cluster, is
@@ -19,7 +24,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -35,6 +40,7 @@ __all__ = [
     "Atlas",
     "AtlasGrid",
     "Sketch",
+    "Measure",
     "thin",
     "evaluate_design",
     "FIELDS",
@@ -74,6 +80,32 @@ METRICS = (
 #: the metrics are None for an invalid design.
 FIELDS = ("row", "col", "a", "p_xy", "width", "fold_angle", "valid", "error", "reason") + METRICS
 _INTEGER = {"row", "col", "tubes", "max_tubes"}
+#: Fields that hold text, not numbers (of FIELDS and of the mechanics' columns).
+_TEXT = ("error", "reason", "governing", "load_error")
+
+
+class Measure(Protocol):
+    """More columns of every valid design of an atlas, measured on its built vault (picklable:
+    it is sent to the workers)."""
+
+    fields: tuple[str, ...]
+
+    def measure(self, vault: Vault) -> dict:
+        """The values of :attr:`fields` of one built vault."""
+        ...  # pragma: no cover
+
+    def empty(self) -> dict:
+        """The values of :attr:`fields` of a design that is not built (every one None)."""
+        ...  # pragma: no cover
+
+    def to_dict(self) -> dict:
+        """What the atlas's JSON header says of it."""
+        ...  # pragma: no cover
+
+    def notes(self) -> list[str]:
+        """What a reader of its columns must know, a sentence each."""
+        ...  # pragma: no cover
+
 
 #: Samples along t and tubes kept in a sketch (the apex and both feet are always samples);
 #: SKETCH_TUBES matches the vault's default cap, so default stacks are drawn whole.
@@ -148,16 +180,18 @@ def evaluate_design(
     samples: int = 201,
     sketch: bool = True,
     arch: tuple | None = None,
+    load: Measure | None = None,
 ) -> tuple[dict, Sketch | None]:
     """Build one vault and return its flat record and sketch; an invalid design is a record too.
 
     ``sketch=False`` leaves the sketch out (the record is the same); ``arch`` is the
-    design's :func:`~curvefold.vault._assembly.arch_crease` when the caller has it.
+    design's :func:`~curvefold.vault._assembly.arch_crease` when the caller has it; ``load``
+    adds its columns (:class:`Measure`).
 
     Returns
     -------
     record : dict
-        Keys of :data:`FIELDS` except ``row`` and ``col``.
+        Keys of :data:`FIELDS` except ``row`` and ``col``, and ``load.fields``.
     sketch : Sketch or None
         None for an invalid design, or when not asked for.
 
@@ -192,10 +226,12 @@ def evaluate_design(
     except CurvefoldError as err:  # the design is refused: a record, not an error
         record.update(valid=False, error=type(err).__name__, reason=str(err))
         record.update(dict.fromkeys(METRICS))
-        return record, None
+        return record | ({} if load is None else load.empty()), None
     # A built vault that cannot be measured or drawn is a bug: it propagates.
     record.update(valid=True, error=None, reason=None)
     record.update(metrics_of(vault.summary()))
+    if load is not None:
+        record.update(load.measure(vault))
     return record, Sketch.from_vault(vault) if sketch else None
 
 
@@ -236,6 +272,8 @@ class AtlasGrid:
         Tubes per vault (None: each design's maximum before regression).
     samples : int
         Samples along each crease.
+    load : Measure or None
+        More columns of every design (:class:`Measure`), None for none.
 
     Examples
     --------
@@ -250,6 +288,7 @@ class AtlasGrid:
     fold_angle: float
     tubes: int | None
     samples: int
+    load: Measure | None = None
 
     @classmethod
     def of(
@@ -261,6 +300,7 @@ class AtlasGrid:
         fold_angle: float = 90.0,
         tubes: int | None = None,
         samples: int = 201,
+        load: Measure | None = None,
     ) -> AtlasGrid:
         """The grid of ``p_xy_values`` (columns) × ``a_values`` (rows); the shared parameters fail
         once, here.
@@ -272,6 +312,11 @@ class AtlasGrid:
         >>> grid = AtlasGrid.of([0.5, 0.75], [0.0, 0.3, 0.6], samples=41, tubes=2)
         >>> grid.a_values, grid.tubes
         ((0.0, 0.3, 0.6), 2)
+        >>> AtlasGrid.of([0.5], [0.3], load="self-weight")
+        Traceback (most recent call last):
+        ...
+        curvefold.kernel._errors.InputError: load must measure every design
+        (curvefold.mechanics.AtlasLoad(material, thickness, ...)) or be None, got str
         >>> AtlasGrid.of([0.5], [0.3], samples=2)
         Traceback (most recent call last):
         ...
@@ -281,6 +326,13 @@ class AtlasGrid:
         from ._assembly import VaultDesign
 
         VaultDesign(width=width, fold_angle=fold_angle, tubes=tubes, samples=samples)
+        if load is not None and not all(
+            callable(getattr(load, name, None)) for name in ("measure", "empty", "to_dict", "notes")
+        ):
+            raise InputError(
+                "load must measure every design (curvefold.mechanics.AtlasLoad(material, "
+                f"thickness, ...)) or be None, got {type(load).__name__}"
+            )
         return cls(
             _axis(p_xy_values, "p_xy_values"),
             _axis(a_values, "a_values"),
@@ -288,6 +340,7 @@ class AtlasGrid:
             float(fold_angle),
             tubes,
             int(samples),
+            load,
         )
 
     @property
@@ -332,6 +385,11 @@ class AtlasGrid:
         return replace(self, p_xy_values=self.p_xy_values[::step], a_values=self.a_values[::step])
 
     @property
+    def fields(self) -> tuple[str, ...]:
+        """Keys of every record: :data:`FIELDS`, then the load's (:class:`Measure`)."""
+        return FIELDS + (() if self.load is None else tuple(self.load.fields))
+
+    @property
     def shared(self) -> dict:
         """The keyword arguments every design shares (of :func:`evaluate_design`)."""
         return {
@@ -339,6 +397,7 @@ class AtlasGrid:
             "fold_angle": self.fold_angle,
             "tubes": self.tubes,
             "samples": self.samples,
+            "load": self.load,
         }
 
     def to_dict(self) -> dict:
@@ -350,11 +409,12 @@ class AtlasGrid:
         {'p_xy_values': [0.75], 'a_values': [0.3], 'width': 0.08, 'fold_angle': 90.0, 'tubes': None,
         'samples': 41}
         """
+        shared = {k: v for k, v in self.shared.items() if k != "load"}
         return {
             "p_xy_values": list(self.p_xy_values),
             "a_values": list(self.a_values),
-            **self.shared,
-        }
+            **shared,
+        } | ({} if self.load is None else {"load": self.load.to_dict()})
 
 
 def _axis(values: Sequence[float], name: str) -> tuple[float, ...]:
@@ -431,7 +491,7 @@ class Atlas:
             )
         cols = len(grid.p_xy_values)
         records = tuple(
-            {k: r[k] for k in FIELDS} | {"row": n // cols, "col": n % cols}
+            {k: r[k] for k in grid.fields} | {"row": n // cols, "col": n % cols}
             for n, (r, _) in enumerate(pairs)
         )
         return cls(grid, records, tuple(s for _, s in pairs))
@@ -472,10 +532,10 @@ class Atlas:
         >>> atlas.values("kappa0_s0").round(6).tolist()
         [[3.165717], [nan]]
         """
-        if key not in FIELDS or key in ("error", "reason"):
+        numeric = [k for k in self.grid.fields if k not in _TEXT]
+        if key not in numeric:
             raise InputError(
-                "key must be a numeric field of the atlas "
-                f"({', '.join(k for k in FIELDS if k not in ('error', 'reason'))}), got {key!r}"
+                f"key must be a numeric field of the atlas ({', '.join(numeric)}), got {key!r}"
             )
         values = [np.nan if r[key] is None else float(r[key]) for r in self.records]
         return np.array(values, float).reshape(self.shape)

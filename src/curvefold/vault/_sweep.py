@@ -20,11 +20,11 @@ from typing import Any
 
 from ..kernel._errors import CurvefoldError, InputError
 from ._arch import check_standing
-from ._atlas import GRID_A, Atlas, AtlasGrid, Sketch, check_step, evaluate_design
+from ._atlas import GRID_A, Atlas, AtlasGrid, Measure, Sketch, check_step, evaluate_design
 from ._cluster import batched, cluster_plan, in_order
 from ._cluster import client as cluster_client
 
-__all__ = ["sweep", "run_atlas", "task_sizes", "CHUNK", "MIN_CHUNK", "IN_FLIGHT"]
+__all__ = ["sweep", "run_atlas", "task_sizes", "CHUNK", "MIN_CHUNK", "LOAD_CHUNKS", "IN_FLIGHT"]
 
 #: Designs per task sent to a cluster at most. Tasks shrink as the grid runs out (each takes
 #: a 1/(2 × worker threads) share of the designs left, down to :data:`MIN_CHUNK`), so a
@@ -34,18 +34,26 @@ __all__ = ["sweep", "run_atlas", "task_sizes", "CHUNK", "MIN_CHUNK", "IN_FLIGHT"
 CHUNK = 400
 #: Designs per task at least, where a row holds as many (the grid's last task may be smaller).
 MIN_CHUNK = 40
+#: Designs per task at most and at least when every design is analysed under load (an
+#: :class:`~curvefold.mechanics.AtlasLoad`): a design then costs 0.03–0.9 CPU-s, not 0.7 ms, so a
+#: task's milliseconds at the client and scheduler no longer count, and small last tasks keep
+#: both workers busy to the end.
+LOAD_CHUNKS = (40, 2)
 #: Tasks queued or running per worker thread; results wait, in grid order, for at most
 #: this many tasks per thread (the sweep's memory bound).
 IN_FLIGHT = 3
 
 
-def task_sizes(size: int, row: int, threads: int) -> Iterator[int]:
+def task_sizes(
+    size: int, row: int, threads: int, *, most: int = CHUNK, least: int = MIN_CHUNK
+) -> Iterator[int]:
     """Designs of each task of a sweep of ``size`` designs in rows of ``row``, for ``threads``
     worker threads.
 
     Guided self-scheduling: every task takes a 1/(2 × ``threads``) share of the designs
-    left, within [:data:`MIN_CHUNK`, :data:`CHUNK`], rounded to whole rows; a row larger
-    than that is cut into equal parts, so that no task straddles two rows.
+    left, within [``least``, ``most``] (default [:data:`MIN_CHUNK`, :data:`CHUNK`]), rounded
+    to whole rows; a row larger than that is cut into equal parts, so that no task straddles
+    two rows.
 
     Examples
     --------
@@ -56,16 +64,19 @@ def task_sizes(size: int, row: int, threads: int) -> Iterator[int]:
     (107, [400, 400], [50, 40, 40, 70], 40000)
     >>> list(task_sizes(7, 7, 2)), list(task_sizes(0, 5, 2))
     ([7], [])
+    >>> sizes = list(task_sizes(400, 20, 2, most=40, least=2))  # 20 × 20 under load
+    >>> len(sizes), sizes[:3], sizes[-6:]
+    (21, [40, 40, 40], [4, 3, 2, 2, 2, 2])
     """
     done = 0
     while done < size:
-        want = min(CHUNK, max(MIN_CHUNK, math.ceil((size - done) / (2 * threads))))
+        want = min(most, max(least, math.ceil((size - done) / (2 * threads))))
         offset = done % row
         if want >= row and offset == 0:
             n = round(want / row) * row
         else:  # an equal part of the row, or all that is left of it when less would remain
             n = min(math.ceil(row / math.ceil(row / want)), row - offset)
-            n = row - offset if row - offset - n < MIN_CHUNK else n
+            n = row - offset if row - offset - n < least else n
         n = min(n, size - done)
         yield n
         done += n
@@ -103,7 +114,8 @@ def sweep(
     Yields
     ------
     record : dict
-        Keys :data:`~curvefold.vault._atlas.FIELDS`.
+        Keys :attr:`AtlasGrid.fields <curvefold.vault.AtlasGrid.fields>`:
+        :data:`~curvefold.vault._atlas.FIELDS` and the columns of the grid's ``load``.
     sketch : Sketch or None
         None for an invalid design.
 
@@ -160,7 +172,8 @@ def _sweep(
             )
         else:
             threads = max(1, sum(client.nthreads().values()))
-            sizes = task_sizes(total, grid.shape[1], threads)
+            most, least = (CHUNK, MIN_CHUNK) if grid.load is None else LOAD_CHUNKS
+            sizes = task_sizes(total, grid.shape[1], threads, most=most, least=least)
             submit = lambda points: client.submit(
                 _evaluate_packed, points, design, step, pure=False
             )  # noqa: E731
@@ -238,6 +251,7 @@ def run_atlas(
     fold_angle: float = 90.0,
     tubes: int | None = None,
     samples: int = 201,
+    load: Measure | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
     progress: Callable[[int, int], Any] | None = None,
@@ -256,6 +270,9 @@ def run_atlas(
     width, fold_angle, tubes, samples : keyword-only
         Shared :class:`~curvefold.vault.VaultDesign` parameters (checked once, by
         :meth:`~curvefold.vault.AtlasGrid.of`).
+    load : keyword-only
+        More columns of every design, such as the mechanics of
+        :class:`curvefold.mechanics.AtlasLoad` (:class:`~curvefold.vault._atlas.Measure`).
     workers, scheduler, progress : keyword-only
         Where the designs run and a progress callback, as for :func:`sweep`.
 
@@ -273,7 +290,13 @@ def run_atlas(
     (False, 'ConvergenceError')
     """
     grid = AtlasGrid.of(
-        p_xy_values, a_values, width=width, fold_angle=fold_angle, tubes=tubes, samples=samples
+        p_xy_values,
+        a_values,
+        width=width,
+        fold_angle=fold_angle,
+        tubes=tubes,
+        samples=samples,
+        load=load,
     )
     return Atlas.from_results(
         grid, sweep(grid, workers=workers, scheduler=scheduler, progress=progress)
