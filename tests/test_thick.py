@@ -290,3 +290,20 @@ def test_bad_thickness_is_one_line_with_the_value_and_the_limit(lattice):
     smooth = Structure.tube(lattice.source)
     with pytest.raises(InputError, match="^thickness: thick panels need a structure of rigid"):
         ThickPanels.offset(smooth, T)
+
+
+def test_a_wall_two_tubes_share_is_refused_at_the_design_angle(lattice):
+    """Tubes (0, 0) and (0, 1) share a wall: offset outward, one ply's solid enters the other
+    tube, by a fixed fraction of t (measured 0.27 t): one line says so, whatever the thickness."""
+    block = Structure.from_cells(lattice, [(0, 0), (0, 1), (1, 1)])
+    for t in (T, T / 4):
+        thick = ThickPanels.offset(block, t)
+        depth, _ = thick.deepest(90.0)
+        assert abs(depth / t - 0.2735) < 1e-3
+        with pytest.raises(InputError) as err:
+            thick.motion_range()
+        text = str(err.value)
+        assert "\n" not in text and "(0.27 t), got t = " in text
+        assert text.endswith("build the cells along one diagonal")
+    # the linkage is still one of one degree of freedom
+    assert [m.dof for m in thick_mechanism(ThickPanels.offset(block, T), (45, 90))] == [1, 1]

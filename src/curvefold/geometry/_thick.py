@@ -347,10 +347,15 @@ class ThickPanels(FrozenArrays):
         """
         design = float(self.structure.lattice.crease.fold_angle)
         depth, pair = self.deepest(design)
-        if depth > PENETRATION_TOL * self.thickness:
+        if depth > PENETRATION_TOL * self.thickness and pair is not None:
+            topology = self.structure.topology()
             raise InputError(
-                f"thickness: the solids of panels {pair} interpenetrate by {depth:.3g} at the "
-                f"design angle 2α = {design:g}° with t = {self.thickness:g}: use a thinner sheet"
+                f"thickness: at the design angle 2α = {design:g}° the solids of "
+                f"{_panel(topology, pair[0])} and {_panel(topology, pair[1])} interpenetrate by "
+                f"{depth:.3g} ({depth / self.thickness:.2g} t), got t = {self.thickness:g}: offset "
+                "to the outside of their tubes these panels overlap at any thickness (a wall "
+                "two tubes share puts one ply's solid inside the other tube); build the cells "
+                "along one diagonal"
             )
         ends: list[tuple[float, tuple[int, int] | None]] = []
         for stop in (0.0, max_angle):
