@@ -307,3 +307,58 @@ def test_a_wall_two_tubes_share_is_refused_at_the_design_angle(lattice):
         assert text.endswith("build the cells along one diagonal")
     # the linkage is still one of one degree of freedom
     assert [m.dof for m in thick_mechanism(ThickPanels.offset(block, T), (45, 90))] == [1, 1]
+
+
+# -- files to build from ---------------------------------------------------------------------------
+def _edges_twice_each_way(corners: np.ndarray) -> bool:
+    """Whether every edge of triangles (T, 3, 3), by its end points, is in exactly two triangles,
+    once each way (a closed, consistently oriented surface)."""
+    points, index = np.unique(corners.reshape(-1, 3), axis=0, return_inverse=True)
+    tri = index.reshape(-1, 3)
+    directed = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    forward = {tuple(e) for e in directed.tolist()}
+    return len(forward) == len(directed) and all((b, a) in forward for a, b in forward)
+
+
+def _volume(corners: np.ndarray) -> float:
+    """Enclosed volume of closed triangles (T, 3, 3) (divergence theorem)."""
+    a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
+
+
+def test_the_solids_are_a_watertight_stl_of_the_prisms_volume(tube, tmp_path):
+    from curvefold.io import write_cut_list, write_thick_stl
+
+    x, tri = tube.triangles(60.0)
+    # closed form: the bevelled prism's cross-section is quadratic in z, so Simpson's rule
+    # (the prismatoid formula) is exact: V = t/6 (A(0) + 4 A(t/2) + A(t)), one solid at a time
+    outline = tube.local[:, :4, :2]
+
+    def area(xy):
+        return 0.5 * np.abs(
+            (xy[..., 0] * np.roll(xy[..., 1], -1, -1)).sum(-1)
+            - (xy[..., 1] * np.roll(xy[..., 0], -1, -1)).sum(-1)
+        )
+
+    mid = prism(outline, T / 2, tube.bevels)[:, 4:, :2]
+    prismatoid = T / 6 * (area(outline) + 4 * area(mid) + area(tube.local[:, 4:, :2]))
+    per_solid = x[tri].reshape(len(outline), 12, 3, 3)
+    volumes = np.array([_volume(s) for s in per_solid])
+    assert np.abs(volumes / prismatoid - 1).max() < 1e-9
+    assert all(_edges_twice_each_way(s) for s in per_solid)
+    # the file: 32-bit floats keep every solid closed; its volume to float precision
+    path = write_thick_stl(tmp_path / "solids.stl", tube, 60.0, to_unit="mm")
+    data = np.frombuffer(
+        path.read_bytes()[84:], dtype=[("n", "<f4", 3), ("c", "<f4", (3, 3)), ("a", "<u2")]
+    )
+    corners = data["c"].astype(float).reshape(len(outline), 12, 3, 3)
+    assert all(_edges_twice_each_way(s) for s in corners)
+    assert abs(sum(_volume(s) for s in corners) / (prismatoid.sum() * 1e9) - 1) < 1e-5
+    # damaged: a solid missing a triangle is open
+    assert not _edges_twice_each_way(corners[0][1:])
+    # the cut list: every panel once, its bevels and the edges on hinges (the tube's two ends free)
+    rows = __import__("json").loads(write_cut_list(tmp_path / "cut.json", tube).read_text())
+    panels = rows["panels"]
+    assert len({r["panel"] for r in panels}) == len(panels) == 32
+    assert np.allclose([r["bevels"] for r in panels], np.degrees(tube.bevels).round(3))
+    assert sum(not h for r in panels for h in r["hinged"]) == 8

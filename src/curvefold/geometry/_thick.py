@@ -31,7 +31,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..kernel._arrays import FrozenArrays
+from ..kernel._arrays import FrozenArrays, distinct, readonly
 from ..kernel._errors import InputError
 from ..kernel._lie import cross
 from ..kernel._validate import Spec
@@ -269,6 +269,112 @@ class ThickPanels(FrozenArrays):
     def _halfspaces(self) -> np.ndarray:
         k = self.local.shape[1] // 2
         return halfspaces(self.local[:, :k, :2], self.thickness, self.bevels)
+
+    def triangles(self, fold_angle: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The solids as one closed triangle mesh at a fold angle (default the design angle):
+        vertices (F·2k, 3) and triangles (F·(4k − 4), 3), counter-clockwise seen from outside.
+
+        Each solid is closed on its own (every edge in two of its triangles, once each way):
+        a watertight STL (:func:`curvefold.io.write_thick_stl`).
+
+        Examples
+        --------
+        >>> from curvefold.geometry._lattice import _example_lattice
+        >>> from curvefold.geometry import PanelLattice
+        >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+        >>> x, tri = ThickPanels.offset(tube, 0.01).triangles()
+        >>> x.shape, tri.shape
+        ((128, 3), (192, 3))
+        """
+        angle = self.structure.lattice.crease.fold_angle if fold_angle is None else fold_angle
+        vertices = self.solids(np.array([float(angle)]))[0][0]  # (F, 2k, 3)
+        F, m = vertices.shape[:2]
+        k = m // 2
+        i = np.arange(k)
+        j = (i + 1) % k
+        one = np.concatenate(
+            [
+                np.stack([np.zeros(k - 2, int), i[2:], i[1:-1]], 1),  # bottom, facing away
+                np.stack([np.full(k - 2, k), k + i[1:-1], k + i[2:]], 1),  # top
+                np.stack([i, j, k + j], 1),  # sides
+                np.stack([i, k + j, k + i], 1),
+            ]
+        )
+        xy = self.local[:, :k, :2]
+        area = (
+            xy[..., 0] * np.roll(xy[..., 1], -1, 1) - xy[..., 1] * np.roll(xy[..., 0], -1, 1)
+        ).sum(1)
+        per = np.where((area > 0)[:, None, None], one, one[:, ::-1])  # clockwise outlines flip
+        return vertices.reshape(-1, 3), (per + m * np.arange(F)[:, None, None]).reshape(-1, 3)
+
+    @cached_property
+    def hinged(self) -> np.ndarray:
+        """Whether edge e of panel f is on a hinge (shared with another panel), (F, k) bool.
+
+        Examples
+        --------
+        >>> from curvefold.geometry._lattice import _example_lattice
+        >>> from curvefold.geometry import PanelLattice
+        >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+        >>> ThickPanels.offset(tube, 0.01).hinged[0].tolist()  # the tube's start is free
+        [True, True, True, False]
+        """
+        topology = self.structure.topology()
+        faces = topology.faces_vertices
+        key = topology.vertex_curve * len(self.structure.lattice.s) + topology.vertex_sample
+        ends = np.sort(np.stack([key[faces], np.roll(key[faces], -1, axis=1)], -1), -1)
+        _, group = unique_pairs(ends.reshape(-1, 2))
+        return readonly(np.bincount(group)[group].reshape(faces.shape) > 1)
+
+    def labels(self) -> tuple[str, ...]:
+        """Every panel's name: ``"tube 1 · strip 2 · panel 3"`` (strips 1–4 from curve 1 round
+        the tube, panels from the start of the crease).
+
+        Examples
+        --------
+        >>> from curvefold.geometry._lattice import _example_lattice
+        >>> from curvefold.geometry import PanelLattice
+        >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+        >>> ThickPanels.offset(tube, 0.01).labels()[5]
+        'tube 1 · strip 2 · panel 2'
+        """
+        group = self.structure.topology().faces_group
+        per = len(group) // max(1, len(distinct(group)))
+        return tuple(
+            f"tube {g // 4 + 1} · strip {g % 4 + 1} · panel {f % per + 1}"
+            for f, g in enumerate(group.tolist())
+        )
+
+    def cut_list(self) -> tuple[dict, ...]:
+        """What a router or a saw needs of every panel, JSON-ready: its label, outline (corners in
+        its plane, model units), edge lengths, bevel of every edge (degrees; 0 a square cut) and
+        which edges are on a hinge (``hinged``; the others are free) and the hinge axes' ends (in
+        the outline's plane, on the zero-thickness face).
+
+        Examples
+        --------
+        >>> from curvefold.geometry._lattice import _example_lattice
+        >>> from curvefold.geometry import PanelLattice
+        >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+        >>> row = ThickPanels.offset(tube, 0.01).cut_list()[9]
+        >>> row["panel"], row["bevels"]
+        ('tube 1 · strip 3 · panel 2', [0.0, 5.045, 0.0, 5.045])
+        """
+        k = self.local.shape[1] // 2
+        outline = self.local[:, :k, :2]
+        edges = np.linalg.norm(np.roll(outline, -1, axis=1) - outline, axis=-1)
+        return tuple(
+            {
+                "panel": label,
+                "thickness": self.thickness,
+                "outline": outline[f].round(9).tolist(),
+                "edges": edges[f].round(9).tolist(),
+                "bevels": np.degrees(self.bevels[f]).round(3).tolist(),
+                "hinged": self.hinged[f].tolist(),
+                "hinges": self.hinges[f, :, :, :2].round(9).tolist(),
+            }
+            for f, label in enumerate(self.labels())
+        )
 
     # -- contact -----------------------------------------------------------------------------
     def deepest(self, fold_angle: float) -> tuple[float, tuple[int, int] | None]:
