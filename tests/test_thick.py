@@ -362,3 +362,15 @@ def test_the_solids_are_a_watertight_stl_of_the_prisms_volume(tube, tmp_path):
     assert len({r["panel"] for r in panels}) == len(panels) == 32
     assert np.allclose([r["bevels"] for r in panels], np.degrees(tube.bevels).round(3))
     assert sum(not h for r in panels for h in r["hinged"]) == 8
+
+
+def test_bevels_cut_for_a_wider_reach_let_a_tube_fold_exactly_that_far(lattice):
+    structure = Structure.tube(lattice)
+    for hi in (120.0, 150.0):
+        r = ThickPanels.offset(structure, T, reach=(0.0, hi)).motion_range(step=2.0)
+        assert r.low == 0.0 and 0 < r.high - hi < 1e-6
+    # the reach must hold the design angle and lie in [0°, 180°)
+    with pytest.raises(InputError, match=r"^reach must hold the design angle 90° .*got \(0, 60\)"):
+        ThickPanels.offset(structure, T, reach=(0.0, 60.0))
+    with pytest.raises(InputError, match=r"^reach\[1\] must be in \[0, 180\) degrees, got 180"):
+        ThickPanels.offset(structure, T, reach=(0.0, 180.0))

@@ -34,7 +34,7 @@ import numpy as np
 from ..kernel._arrays import FrozenArrays, distinct, readonly
 from ..kernel._errors import InputError
 from ..kernel._lie import cross
-from ..kernel._validate import Spec
+from ..kernel._validate import Spec, check_integer
 from ._contact import _overlapping_boxes
 from ._structure import Structure
 from ._thick_solids import halfspaces, inradius, panel_axes, penetration, prism
@@ -178,7 +178,8 @@ class ThickPanels(FrozenArrays):
             )
         t = THICKNESS.check(thickness)
         design = float(structure.lattice.crease.fold_angle)
-        lo, hi = (0.0, design) if reach is None else (float(reach[0]), float(reach[1]))
+        lo, hi = (0.0, design) if reach is None else _check_reach(reach, design)
+        samples = check_integer(samples, "samples", "[2, 10000]")
         topology = structure.topology()
         faces = topology.faces_vertices
         x = topology.coords(structure.state().vertices)
@@ -497,6 +498,24 @@ class ThickPanels(FrozenArrays):
         normal = np.linalg.svd(flat - flat.mean(axis=0))[2][-1]
         vertices = self.solids(np.zeros(1))[0][0]
         return float(np.ptp(vertices.reshape(-1, 3) @ normal))
+
+
+#: One end of the fold angles thick panels are bevelled for.
+REACH = Spec("reach", "real", None, "[0, 180)", "degrees", help="fold angle 2α the bevels clear")
+
+
+def _check_reach(reach: tuple[float, float], design: float) -> tuple[float, float]:
+    """(lo, hi) in degrees, each in [0°, 180°), around the design angle, or one line saying why
+    not."""
+    if len(reach) != 2:
+        raise InputError(f"reach must be two fold angles (lo, hi) in degrees, got {reach!r}")
+    lo, hi = (REACH.check(r, f"reach[{k}]") for k, r in enumerate(reach))
+    if not lo <= design <= hi:
+        raise InputError(
+            f"reach must hold the design angle {design:g}° (lo ≤ {design:g} ≤ hi), got "
+            f"({lo:g}, {hi:g}): the bevels are cut so that the design state is clear"
+        )
+    return lo, hi
 
 
 def _panel(topology: Topology, face: int) -> str:
