@@ -175,7 +175,7 @@ def test_a_tube_folds_flat_to_a_stack_of_two_plies(tube):
     # outward solids clear every crease and seam; the fold lines' bevels are cut at the design
     # angle, so they close exactly there (bisection tolerance 1e-7°)
     assert r.low == 0.0 and r.low_pair is None
-    assert 0 < r.high - 90.0 < 1e-6 and r.high_pair is not None
+    assert abs(r.high - 90.0) < 1e-6 and r.high_pair is not None
     # the flat state: the two plies, each t thick, on either side of the pattern's plane
     assert abs(tube.stack_height() - 2 * T) < 1e-12
     # square cuts (bevels removed) collide at once
@@ -198,7 +198,7 @@ def test_a_block_stops_short_of_flat_where_the_bevels_of_two_tubes_meet(block, l
     (shared,) = set(edges[0]) & set(edges[1])
     b = np.degrees(block.bevels[p, edges[0][shared]] + block.bevels[q, edges[1][shared]])
     assert abs(r.low - (180.0 - b)) < 1e-6 and 10 < r.low < 15
-    assert 0 < r.high - 90.0 < 1e-6
+    assert abs(r.high - 90.0) < 1e-6
     # thicker panels stop farther from flat
     assert ThickPanels.offset(block.structure, 2 * T).motion_range(step=2.0).low > r.low + 5
 
@@ -368,9 +368,42 @@ def test_bevels_cut_for_a_wider_reach_let_a_tube_fold_exactly_that_far(lattice):
     structure = Structure.tube(lattice)
     for hi in (120.0, 150.0):
         r = ThickPanels.offset(structure, T, reach=(0.0, hi)).motion_range(step=2.0)
-        assert r.low == 0.0 and 0 < r.high - hi < 1e-6
+        assert r.low == 0.0 and abs(r.high - hi) < 1e-6
     # the reach must hold the design angle and lie in [0°, 180°)
     with pytest.raises(InputError, match=r"^reach must hold the design angle 90° .*got \(0, 60\)"):
         ThickPanels.offset(structure, T, reach=(0.0, 60.0))
     with pytest.raises(InputError, match=r"^reach\[1\] must be in \[0, 180\) degrees, got 180"):
         ThickPanels.offset(structure, T, reach=(0.0, 180.0))
+
+
+def test_the_thickness_checks_pass_and_each_fails_on_its_damage(tube, vault):
+    from curvefold.analysis._thick_checks import thickness_checks
+    from curvefold.geometry import ThickRange
+
+    def verdicts(report):
+        return {c["name"]: c["passed"] for c in report["checks"]}
+
+    report = thickness_checks(vault, budget=300)  # one tube of the two within the budget
+    assert (
+        all(verdicts(report).values()) and report["mechanism_scope"] == "the first 1 of the 2 tubes"
+    )
+    assert (
+        report["range"]["high"] == pytest.approx(90.0, abs=1e-6)
+        and 10 < report["range"]["low"] < 40
+    )
+    good = thickness_checks(tube)
+    assert all(verdicts(good).values()) and good["range"]["low"] == 0.0
+    # a hinge off its crease: the hinges are t off, and the linkage is locked or inconsistent
+    moved = verdicts(thickness_checks(_moved_hinge(tube, 9, 1, T)))
+    assert moved == {
+        "hinges on creases": False,
+        "no interpenetration": True,
+        "one degree of freedom": False,
+    }
+    # a range stated 5° past the first contact
+    wide = ThickRange(90.0, 0.0, 95.0, None, None)
+    assert verdicts(thickness_checks(tube, wide)) == {
+        "hinges on creases": True,
+        "no interpenetration": False,
+        "one degree of freedom": True,
+    }

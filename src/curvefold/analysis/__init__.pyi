@@ -18,6 +18,7 @@ from ._mechanism import certified_mechanism as certified_mechanism
 from ._mechanism import follow as follow
 from ._thick_checks import hinge_offsets as hinge_offsets
 from ._thick_checks import thick_mechanism as thick_mechanism
+from ._thick_checks import thickness_checks as thickness_checks
 
 __all__ = [
     "Certificate",
@@ -38,4 +39,5 @@ __all__ = [
     "follow",
     "hinge_offsets",
     "thick_mechanism",
+    "thickness_checks",
 ]

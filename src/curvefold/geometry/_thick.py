@@ -26,6 +26,7 @@ bisection.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -68,8 +69,9 @@ class ThickRange:
     design : float
         The design fold angle 2α, degrees.
     low, high : float
-        The range: first contact toward flat (0.0 if it folds flat) and beyond the design
-        angle (``max_angle`` if none before it), degrees, to ``tol``.
+        The range, degrees: the last states clear of contact toward flat (0.0 if it folds
+        flat) and beyond the design angle (``max_angle`` if no contact before it); the first
+        contact lies within ``tol`` past each.
     low_pair, high_pair : (int, int) or None
         The panels (faces of the structure's topology) that touch there.
 
@@ -219,7 +221,7 @@ class ThickPanels(FrozenArrays):
     def _faces(self) -> np.ndarray:
         return self.structure.topology().faces_vertices
 
-    def corners(self, fold_angles: np.ndarray) -> np.ndarray:
+    def corners(self, fold_angles: Sequence[float] | np.ndarray) -> np.ndarray:
         """The zero-thickness panels' corners at fold angles 2α (A,) in degrees, (A, F, k, 3).
 
         Examples
@@ -234,7 +236,9 @@ class ThickPanels(FrozenArrays):
         motion = s.lattice.fold_points(s.curves_uv, np.atleast_1d(fold_angles))
         return s.topology().coords(motion)[:, self._faces]
 
-    def placements(self, fold_angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def placements(
+        self, fold_angles: Sequence[float] | np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Every panel's frame at fold angles (A,): origins (A, F, 3), axes (A, F, 3, 3).
 
         Examples
@@ -248,7 +252,7 @@ class ThickPanels(FrozenArrays):
         """
         return panel_axes(self.corners(fold_angles), self.side)
 
-    def solids(self, fold_angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def solids(self, fold_angles: Sequence[float] | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Vertices (A, F, 2k, 3) and face normals (A, F, k + 2, 3) of the solids at fold angles
         (A,) in degrees.
 
@@ -479,7 +483,7 @@ class ThickPanels(FrozenArrays):
             while abs(found - clear) > tol:
                 mid = 0.5 * (found + clear)
                 clear, found = (clear, mid) if self.interpenetrate(mid) else (mid, found)
-            ends.append((float(found), self.deepest(found)[1]))
+            ends.append((float(clear), self.deepest(found)[1]))
         (low, low_pair), (high, high_pair) = ends
         return ThickRange(design, low, high, low_pair, high_pair)
 
