@@ -28,6 +28,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..geometry._thick import ThickPanels, ThickRange
+from ..geometry._topology import lattice_corners
 from ..kernel._arrays import distinct
 from ..kernel._lie import cross
 from ._mechanism import CERTIFY_UNKNOWNS, RTOL, Framework, Mechanism, mechanism
@@ -256,9 +257,17 @@ def _first_tubes(thick: ThickPanels, budget: int) -> ThickPanels:
     from ..geometry._structure import Structure
 
     s = thick.structure
-    per_panel = 3 * (thick.hinges.shape[1] + 1)  # at most: its corners and top point
     panels_per_tube = len(thick.side) // len(s.cells)
-    fit = max(1, min(len(s.cells), budget // (per_panel * panels_per_tube)))
+    # a lattice point per hinge end and a top point per panel, 3 unknowns each
+    fit = next(
+        (
+            k
+            for k in range(len(s.cells), 0, -1)
+            if 3 * (len(lattice_corners(s.cells[:k])[0]) * len(s.lattice.s) + k * panels_per_tube)
+            <= budget
+        ),
+        1,
+    )
     if fit == len(s.cells):
         return thick
     n = fit * panels_per_tube  # the first tubes' panels are the first faces
