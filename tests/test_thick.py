@@ -170,6 +170,18 @@ def test_a_miura_vertex_first_touches_where_its_fold_line_reaches_the_bevels(sid
 
 
 # -- structures ----------------------------------------------------------------------------------
+def _bevel_sum(thick: ThickPanels, p: int, q: int) -> float:
+    """b₁ + b₂ in degrees of two panels on the hinge they share."""
+    topology = thick.structure.topology()
+    key = topology.vertex_curve * len(thick.structure.lattice.s) + topology.vertex_sample
+    edges = [
+        {frozenset(key[[f[e], f[(e + 1) % 4]]]): e for e in range(4)}
+        for f in topology.faces_vertices[[p, q]]
+    ]
+    (shared,) = set(edges[0]) & set(edges[1])
+    return float(np.degrees(thick.bevels[p, edges[0][shared]] + thick.bevels[q, edges[1][shared]]))
+
+
 def test_a_tube_folds_flat_to_a_stack_of_two_plies(tube):
     r = tube.motion_range()
     # outward solids clear every crease and seam; the fold lines' bevels are cut at the design
@@ -178,26 +190,36 @@ def test_a_tube_folds_flat_to_a_stack_of_two_plies(tube):
     assert abs(r.high - 90.0) < 1e-6 and r.high_pair is not None
     # the flat state: the two plies, each t thick, on either side of the pattern's plane
     assert abs(tube.stack_height() - 2 * T) < 1e-12
+    # "outside" measured: every solid's normal points away from its tube's section centre
+    structure, topology = tube.structure, tube.structure.topology()
+    state, faces = structure.state(), topology.faces_vertices
+    _, axes = tube.placements([90.0])
+    samples, curves = (
+        topology.vertex_sample[faces],
+        structure.cell_curves[topology.faces_group // 4],
+    )
+    centre = np.stack([state.vertices[c][:, k].mean(axis=(0, 1)) for c, k in zip(curves, samples)])
+    away = np.einsum(
+        "fd,fd->f", axes[0][:, 2], topology.coords(state.vertices)[faces].mean(1) - centre
+    )
+    assert (away > 0).all()
+    # inside, the seams close on the solids as the tube flattens: it stops short of flat where
+    # the touching pair's bevels meet, 180° − b₁ − b₂ (measured 12.12°)
+    inside = ThickPanels.offset(structure, T, side="inside")
+    assert (np.einsum("fd,fd->f", inside.placements([90.0])[1][0][:, 2], axes[0][:, 2]) < 0).all()
+    r = inside.motion_range(step=2.0)
+    assert abs(r.low - (180.0 - _bevel_sum(inside, *r.low_pair))) < 1e-6 and 12 < r.low < 13
     # square cuts (bevels removed) collide at once
     square = replace(tube, local=prism(tube.local[:, :4, :2], T, 0 * tube.bevels))
     assert square.interpenetrate(45.0) and not tube.interpenetrate(45.0)
 
 
-def test_a_block_stops_short_of_flat_where_the_bevels_of_two_tubes_meet(block, lattice):
+def test_a_block_stops_short_of_flat_where_the_bevels_of_two_tubes_meet(block):
     r = block.motion_range()
     # two tubes' walls fold onto each other across their shared crease (their gap is 2α); each
     # bevel is capped at atan(r / 2t) by its panel's inradius r, and the walls meet at
     # 2α = 180° − b₁ − b₂ (closed form, measured 12.12°)
-    p, q = r.low_pair
-    topology = block.structure.topology()
-    key = topology.vertex_curve * len(lattice.s) + topology.vertex_sample
-    edges = [
-        {frozenset(key[[f[e], f[(e + 1) % 4]]]): e for e in range(4)}
-        for f in topology.faces_vertices[[p, q]]
-    ]
-    (shared,) = set(edges[0]) & set(edges[1])
-    b = np.degrees(block.bevels[p, edges[0][shared]] + block.bevels[q, edges[1][shared]])
-    assert abs(r.low - (180.0 - b)) < 1e-6 and 10 < r.low < 15
+    assert abs(r.low - (180.0 - _bevel_sum(block, *r.low_pair))) < 1e-6 and 10 < r.low < 15
     assert abs(r.high - 90.0) < 1e-6
     # thicker panels stop farther from flat
     assert ThickPanels.offset(block.structure, 2 * T).motion_range(step=2.0).low > r.low + 5
@@ -287,6 +309,8 @@ def test_bad_thickness_is_one_line_with_the_value_and_the_limit(lattice):
     assert "to reach the design angle 2α = 90°" in text and text.endswith(
         "got 0.02: use a thinner sheet or fewer panels"
     )
+    with pytest.raises(InputError, match="^side must be 'outside' or 'inside', got 'up'$"):
+        ThickPanels.offset(tube, T, side="up")
     smooth = Structure.tube(lattice.source)
     with pytest.raises(InputError, match="^thickness: thick panels need a structure of rigid"):
         ThickPanels.offset(smooth, T)

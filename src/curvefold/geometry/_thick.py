@@ -105,7 +105,7 @@ class ThickPanels(FrozenArrays):
     thickness : float
         t, model units.
     side : (F,) ndarray
-        ±1: the solid side relative to the face's normal (outward).
+        ±1: the solid side relative to the face's normal (+1: outside the tube).
     bevels : (F, k) ndarray
         Bevel of edge e (corner e to e + 1) of every panel, radians.
     local : (F, 2k, 3) ndarray
@@ -141,9 +141,10 @@ class ThickPanels(FrozenArrays):
         *,
         reach: tuple[float, float] | None = None,
         samples: int = 19,
+        side: str = "outside",
     ) -> ThickPanels:
-        """Thick panels of thickness t offset to the outside of their tubes, bevelled for
-        ``reach``.
+        """Thick panels of thickness t offset to the outside of their tubes (or the inside),
+        bevelled for ``reach``.
 
         Parameters
         ----------
@@ -155,6 +156,9 @@ class ThickPanels(FrozenArrays):
             Fold angles 2α in degrees the bevels are cut for; default flat to the design.
         samples : int, keyword-only
             States across ``reach`` whose smallest gaps set the bevels.
+        side : {"outside", "inside"}, keyword-only
+            Where the solids lie: outside a tube its seams and creases are convex, and it
+            folds flat; inside, its seams close on the solids as it flattens.
 
         Raises
         ------
@@ -185,8 +189,10 @@ class ThickPanels(FrozenArrays):
         topology = structure.topology()
         faces = topology.faces_vertices
         x = topology.coords(structure.state().vertices)
-        side = np.ones(len(faces))
-        origin, axes = panel_axes(x[faces], side)
+        if side not in ("outside", "inside"):
+            raise InputError(f"side must be 'outside' or 'inside', got {side!r}")
+        sides = np.full(len(faces), 1.0 if side == "outside" else -1.0)
+        origin, axes = panel_axes(x[faces], sides)
         xy = np.einsum("fkd,fjd->fkj", x[faces] - origin[:, None], axes)[..., :2]
         r = inradius(xy)
         worst = int(np.argmin(r))
@@ -198,7 +204,7 @@ class ThickPanels(FrozenArrays):
             why=f"the smallest panel's inradius, {_panel(topology, worst)}: use a thinner "
             "sheet or fewer panels",
         ).check(t)
-        need, at_design = _bevels_needed(structure, side, np.linspace(lo, hi, samples), design)
+        need, at_design = _bevels_needed(structure, sides, np.linspace(lo, hi, samples), design)
         allowed = np.arctan(r / (2 * t))[:, None]
         short = at_design - allowed
         if short.max() > 0:
@@ -214,7 +220,7 @@ class ThickPanels(FrozenArrays):
         bevels = np.minimum(need, allowed)
         local = np.concatenate([xy, np.zeros(xy.shape[:-1] + (1,))], -1)
         hinges = np.stack([local, np.roll(local, -1, axis=1)], axis=2)
-        return cls(structure, t, side, bevels, prism(xy, t, bevels), hinges, (lo, hi))
+        return cls(structure, t, sides, bevels, prism(xy, t, bevels), hinges, (lo, hi))
 
     # -- states ------------------------------------------------------------------------------
     @cached_property
