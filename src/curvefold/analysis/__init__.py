@@ -14,6 +14,7 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_checks": ["CHECKS", "CheckSpec"],
         "_foldcheck": ["FoldCheck", "FileCheck", "check_fold"],
         "_fold_mechanism": ["analyse_fold"],
+        "_thick_checks": ["hinge_offsets", "thick_mechanism", "thickness_checks"],
         "_mechanism": [
             "Framework",
             "Mechanism",

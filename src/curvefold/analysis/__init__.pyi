@@ -16,6 +16,9 @@ from ._mechanism import Mechanism as Mechanism
 from ._mechanism import analyse as analyse
 from ._mechanism import certified_mechanism as certified_mechanism
 from ._mechanism import follow as follow
+from ._thick_checks import hinge_offsets as hinge_offsets
+from ._thick_checks import thick_mechanism as thick_mechanism
+from ._thick_checks import thickness_checks as thickness_checks
 
 __all__ = [
     "Certificate",
@@ -34,4 +37,7 @@ __all__ = [
     "analyse",
     "certified_mechanism",
     "follow",
+    "hinge_offsets",
+    "thick_mechanism",
+    "thickness_checks",
 ]

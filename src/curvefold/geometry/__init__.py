@@ -26,6 +26,7 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_fold_arrays": ["FoldArrays", "structure_metadata"],
         "_sampling": ["Sampling", "choose_sampling"],
         "_contact": ["first_contact"],
+        "_thick": ["ThickPanels", "ThickRange"],
         "_single_fold": ["SingleFold"],
     },
 )

@@ -31,6 +31,8 @@ from ._sheets import folding_motion as folding_motion
 from ._single_fold import SingleFold as SingleFold
 from ._structure import State as State
 from ._structure import Structure as Structure
+from ._thick import ThickPanels as ThickPanels
+from ._thick import ThickRange as ThickRange
 from ._topology import SheetTopology as SheetTopology
 from ._topology import Topology as Topology
 
@@ -67,5 +69,7 @@ __all__ = [
     "Sampling",
     "choose_sampling",
     "first_contact",
+    "ThickPanels",
+    "ThickRange",
     "SingleFold",
 ]

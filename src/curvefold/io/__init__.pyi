@@ -32,6 +32,8 @@ from ._pattern import write_pdf as write_pdf
 from ._pattern import write_svg as write_svg
 from ._rhino import RhinoOptions as RhinoOptions
 from ._rhino import write_3dm as write_3dm
+from ._solids import write_cut_list as write_cut_list
+from ._solids import write_thick_stl as write_thick_stl
 
 __all__ = [
     "fold_assignments",
@@ -51,6 +53,8 @@ __all__ = [
     "write_obj",
     "write_ply",
     "write_stl",
+    "write_thick_stl",
+    "write_cut_list",
     "MODEL_FORMATS",
     "write_3d",
     "CUTTERS",
