@@ -818,17 +818,17 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
         for w in words
     )
     colours = CUTTERS["print"].colours
-    assert {
-        f"{LEGEND[k]} {colours[k]}" for k in ("cut", "mountain", "valley", "seam", "glue", "labels")
-    } | {"S1"} <= set(words)
-    # nothing in the legend is drawn in an operation's colour: the scale bar, the samples and the
-    # text are grey
+    # for print the legend names the layers, its samples show their colours
+    assert {LEGEND[k] for k in ("cut", "mountain", "valley", "seam", "glue", "labels")} | {
+        "S1"
+    } <= set(words)
     painted = {
         m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", f"{el.get('style', '')}")
     }
-    assert painted == {colours["legend"]} and colours["legend"] not in {
-        colours[k] for k in DEFAULT_LAYERS
+    assert painted == {
+        colours[k] for k in ("legend", "cut", "mountain", "valley", "seam", "glue", "labels")
     }
+    assert colours["legend"] not in {colours[k] for k in DEFAULT_LAYERS}
 
 
 def _png(path: Path) -> np.ndarray:
@@ -1004,7 +1004,7 @@ def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layou
         and not ink[:, -edge:].any()
     )
     band = img[-int((10 + tube_layout.footer) * mm) : -int(10 * mm), : int(25 * mm)]
-    grey = np.abs(band - 0.5).max(axis=-1) < 0.06  # the footer's reference grey, #808080
+    grey = np.abs(band - 0x59 / 255).max(axis=-1) < 0.06  # the footer's reference grey, #595959
     row = grey[np.argmax(grey.sum(axis=1))]
     runs = np.diff(np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]]))))[::2]
     assert runs.max() / mm == pytest.approx(10.0, abs=0.15)
@@ -1028,7 +1028,7 @@ def test_pdf_scale_bar_is_10_mm_and_every_operation_has_its_layer(tmp_path, tube
             and abs(c["height"] - 1.2 * mm) < 0.1
         ]
         assert len(bars) == 1 and bars[0]["width"] / mm == pytest.approx(10.0, abs=1e-3)
-        assert tuple(bars[0]["non_stroking_color"]) == pytest.approx((128 / 255,) * 3, abs=1e-3)
+        assert tuple(bars[0]["non_stroking_color"]) == pytest.approx((0x59 / 255,) * 3, abs=1e-3)
         words = page.extract_text()
         assert "tube 1 · sheet A" in words and "S0" in words and "10 mm: print at 100 %" in words
         catalog = doc.doc.catalog

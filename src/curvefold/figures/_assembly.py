@@ -356,11 +356,8 @@ def write_assembly(
     plan = assembly_plan(structure, layout)
     doc = PdfDocument(title="assembly guide", layers=_LAYERS)
     pages = _Pages(doc, layout)
-    kind = (
-        layout.sheets()[0].label.split(" · ")[0]
-        if " · " in layout.sheets()[0].label
-        else "structure"
-    )
+    first = layout.sheets()[0].label  # "vault · tube 1 · sheet A", "tube 1 · sheet A"
+    kind = first.split(" · ")[0].split()[0] if " · " in first else "structure"
     pages.text(f"{kind.capitalize()}: assembly guide", _TITLE)
     tubes = len(plan.steps)
     pages.text(
