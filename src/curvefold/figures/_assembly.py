@@ -200,11 +200,11 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
         a, b = sheets[2 * tube].label, sheets[2 * tube + 1].label
         pair = (sheets[2 * tube], sheets[2 * tube + 1])
         if pair[0].folds == pair[1].folds and pair[0].folds:
-            folds = f", {_folds_words(pair[0].folds)} on both, seen from the printed side"
+            said = f", {_folds_words(pair[0].folds)} on both, seen from the printed side"
         else:
             each = "; ".join(f"{s.label}: {_folds_words(s.folds)}" for s in pair if s.folds)
-            folds = f" ({each}, seen from the printed side)" if each else ""
-        lines = [f"Score the creases of {a} and {b} and fold each sheet along its crease{folds}."]
+            said = f" ({each}, seen from the printed side)" if each else ""
+        lines = [f"Score the creases of {a} and {b} and fold each sheet along its crease{said}."]
         for seam in seams:
             if seam.tabs in (a, b):
                 onto = (
