@@ -9,9 +9,10 @@ rounded from its 2048 units per em) are written here, so the layout of a page ne
 what is installed; the PDF writes the same numbers as the font's ``/Widths``.
 
 The font program is a subset (fontTools, which matplotlib depends on) of the glyphs a document
-uses, embedded as ``/FontFile2``: about 8 kB for a crease pattern's labels. Without fontTools
-or the font file (an install without matplotlib), :func:`font_program` answers None and the
-document names DejaVu Sans without embedding it, with the same widths.
+uses, embedded as ``/FontFile2``: 4.9 kB (3.3 kB compressed) for the paper vault's crease
+pattern, 6.2 kB (4.2 kB) for its assembly guide. Without fontTools or the font file (an install
+without matplotlib), :func:`font_program` answers None and the document names DejaVu Sans
+without embedding it, with the same widths.
 
 Examples
 --------
