@@ -213,3 +213,17 @@ def test_a_single_folds_3dm_has_the_crease_pattern_and_plain_names(tmp_path):
     # 3e-8 apart: the STL's 32-bit floats (the mesh's triangles and the flat outline share
     # their vertices, and each triangle keeps its area when folded)
     assert stl.area == pytest.approx(area, rel=1e-6)
+
+
+def test_a_tubes_sheets_are_named_plainly(tmp_path):
+    """A tube's sheet is "tube 1 · sheet A" on its pattern, not "tube · tube 1 · sheet A" (the kind
+    said twice); a vault's keeps its kind ("vault · tube 1 · sheet A")."""
+    from curvefold.geometry._sheets import sheets
+    from curvefold.vault import Vault
+
+    result = run("tube", "--formats", "svg", "--out", "t", cwd=tmp_path)
+    assert result.returncode in (0, 1), result.stderr
+    words = " ".join(p.read_text(encoding="utf-8") for p in (tmp_path / "t").glob("*.svg"))
+    assert ">tube 1 · sheet A<" in words and "tube · tube" not in words
+    structure = Vault.from_design(samples=21, tubes=1).structure
+    assert sheets(structure, name="vault")[0].label == "vault · tube 1 · sheet A"
