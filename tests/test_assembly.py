@@ -235,3 +235,69 @@ def test_the_pictures_colours_and_the_lines_are_those_of_the_one_by_one_definiti
         assert _wrap(text, size, width) == wrapped(text, size, width)
     # ... and a line broken elsewhere
     assert _wrap("a b c", 3.2, 100.0) != wrapped("a b c", 3.2, 1.0)
+
+
+def _swapped(layout):
+    """The layout with every crease drawn as the other fold (mountain ↔ valley)."""
+    other = {"mountain": "valley", "valley": "mountain"}
+    return replace(
+        layout,
+        pages=tuple(
+            replace(
+                page,
+                sheets=tuple(
+                    replace(
+                        sheet,
+                        polylines=tuple(
+                            replace(p, layer=other.get(p.layer, p.layer)) for p in sheet.polylines
+                        ),
+                    )
+                    for sheet in page.sheets
+                ),
+            )
+            for page in layout.pages
+        ),
+    )
+
+
+def test_the_guide_says_which_fold_is_mountain_and_which_valley(guide, vault, tmp_path):
+    """pdftotext reads the key (seen from the printed side, a mountain fold is the red dash-dot
+    line and a valley fold the blue dashed one) and each sheet's fold; pdfplumber reads the
+    pattern's creases as those lines: one red dash-dot crease a sheet (dashes 4, 1.2, 0.7,
+    1.2 mm), no blue dashed one, as every sheet of the vault folds its crease as a mountain
+    seen from its printed side. A pattern drawn with the folds swapped is said the other way."""
+    structure, layout = vault
+    path, pattern = guide
+    text = " ".join(_text(path, 1).split())
+    assert (
+        "Folds, seen from the printed side: a mountain fold (red dash-dot line) rises toward you, "
+        "so fold the sheet away from you along it; a valley fold (blue dashed line) sinks away "
+        "from you, so fold the sheet toward you along it." in text
+    )
+    sheets = [s.label for s in layout.sheets()]
+    for label in sheets:
+        assert re.search(
+            rf"{re.escape(label)}: pattern page \d+; seams [^;]+; a mountain fold", text
+        )
+    whole = " ".join(" ".join(_text(path, n).split()) for n in range(1, len(_pages(path)) + 1))
+    assert whole.count("a mountain fold on both, seen from the printed side") == 3
+    band = (layout.margin + layout.footer) * MM  # the footer's band, above the bottom margin
+    with pdfplumber.open(pattern) as doc:
+        lines = [c for p in doc.pages for c in p.curves + p.lines if c["bottom"] < p.height - band]
+    creases = [c for c in lines if tuple(c.get("stroking_color") or ()) == (1.0, 0.0, 0.0)]
+    blue = rgb8_unit("#1f4fe0")
+    valleys = [c for c in lines if tuple(c.get("stroking_color") or ()) == pytest.approx(blue)]
+    assert len(creases) == len(sheets) and not valleys
+    dash = creases[0]["dash"][0]
+    # in the content's user space, which the page scales to millimetres
+    assert list(dash) == pytest.approx([4.0, 1.2, 0.7, 1.2], abs=1e-9)
+    swapped = assembly_plan(structure, _swapped(layout))
+    assert {s.folds for s in swapped.sheets} == {("valley",)}
+    assert {s.folds for s in assembly_plan(structure, layout).sheets} == {("mountain",)}
+    laser = write_assembly(tmp_path / "laser.pdf", structure, replace(layout, cutter="laser"))
+    assert "a mountain fold (blue dash-dot line)" in " ".join(_text(laser, 1).split())
+
+
+def rgb8_unit(code: str) -> tuple[float, ...]:
+    """``#rrggbb`` as PDF colour components in [0, 1]."""
+    return tuple(c / 255 for c in rgb8(code))

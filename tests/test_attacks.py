@@ -231,7 +231,7 @@ def test_a_page_too_small_for_the_scale_is_refused_before_tabs(tmp_path):
                 "t",
                 cwd=tmp_path,
             ),
-            rf"sheet 'tube · tube 1 · sheet A' needs {size} mm before glue tabs .* lower the "
+            rf"sheet 'tube 1 · sheet A' needs {size} mm before glue tabs .* lower the "
             r"scale or choose a larger page",
         )
     assert listing(tmp_path) == []

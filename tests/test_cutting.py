@@ -19,6 +19,7 @@ from shapely.geometry import LineString, Point, Polygon
 from _sheets import tube_sheets
 from curvefold.io._cutters import CUTTERS, LEGEND_LAYER, Cutter, aci, cutter, layer_name
 from curvefold.io._cutting import MITRE_LIMIT, offset_outline, perforation_dashes, prepare_layout
+from curvefold.io._legend import LEGEND
 from curvefold.io._pattern import DEFAULT_LAYERS, layout_sheets, write_dxf, write_pdf, write_svg
 from curvefold.kernel import InputError
 
@@ -69,24 +70,37 @@ def test_a_convention_never_draws_anything_else_in_its_cut_colour():
     ) as err:
         cutter("glowforge")
     assert err.value.parameter == "cutter"
-    # the laser convention uses exactly the six basic colours and black (colour-mapping drivers
-    # match exactly)
+    # the laser convention's layers use exactly the six basic colours and black (colour-mapping
+    # drivers match exactly); its footer's dark grey matches none of them
     basic = {"#ff0000", "#00ff00", "#0000ff", "#00ffff", "#ffff00", "#ff00ff", "#000000"}
-    assert (
-        set(CUTTERS["laser"].colours.values()) <= basic
-        and len(set(CUTTERS["laser"].colours.values())) == 7
-    )
+    laser = dict(CUTTERS["laser"].colours)
+    legend = laser.pop("legend")
+    assert set(laser.values()) == basic and legend not in basic
     assert [
         aci(CUTTERS["laser"].colours[k])
-        for k in ("cut", "legend", "valley", "seam", "mountain", "rulings", "labels")
-    ] == [1, 2, 3, 4, 5, 6, 7]
+        for k in ("cut", "glue", "valley", "seam", "mountain", "rulings", "labels", "legend")
+    ] == [1, 2, 3, 4, 5, 6, 7, 8]
     assert all(c.source for name, c in CUTTERS.items() if name != "print")
 
 
+def _contrast(code: str) -> float:
+    """WCAG 2 contrast ratio of a colour against white paper (4.5 for readable small text)."""
+    rgb = np.array([int(code[k : k + 2], 16) / 255.0 for k in (1, 3, 5)])
+    linear = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    return 1.05 / (float(linear @ [0.2126, 0.7152, 0.0722]) + 0.05)
+
+
 @pytest.mark.parametrize("name", list(CUTTERS))
-def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operation(
+def test_every_layer_has_its_conventions_colour_and_the_legend_shows_them(
     tmp_path, tube_layout, name
 ):
+    """Each layer in its colour; the footer's text and scale bar in the reference colour, dark
+    enough to read on paper (WCAG contrast at least 4.5, as the laser's former yellow, 1.07, was
+    not) but the service convention's, whose yellow its service reads as "not processed"; each
+    legend sample in the colour of the layer it names (the seam name S1 in the labels'), with the
+    colour's code written beside it for a cutting machine and not for print; the same in the DXF,
+    the samples' entities in their own colours and the text in the layer's."""
+    ezdxf = pytest.importorskip("ezdxf")
     layout = replace(tube_layout, cutter=name)
     colours = CUTTERS[name].colours
     (svg,) = write_svg(tmp_path / "t.svg", layout)
@@ -96,19 +110,48 @@ def test_every_layer_has_its_conventions_colour_and_the_legend_none_of_an_operat
             colours[key]
         ], key
     legend = groups[LEGEND_LAYER]
-    painted = {m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", el.get("style", ""))}
-    assert painted == {colours["legend"]}
-    assert colours["cut"] not in painted
-    doc = __import__("ezdxf").readfile(write_dxf(tmp_path / "t.dxf", layout))
+    ink = colours["legend"]
+    assert re.findall(r"fill:(#[0-9a-f]{6})", legend.get("style")) == [ink]
+    assert (_contrast(ink) >= 4.5) is (name != "service") and _contrast("#ffff00") < 1.1
+    shapes = [el for el in legend if el.tag in (f"{SVG}polygon", f"{SVG}polyline")]
+    bar, samples = shapes[0], shapes[1:]
+    assert re.findall(r"#[0-9a-f]{6}", bar.get("style")) == [ink]
+    texts = [t for t in legend if t.tag == f"{SVG}text"]
+    # the note, then each entry's words after its sample (S1 and its words for the labels)
+    words = [t.text for t in texts[1:] if t.text != "S1"]
+    named = [
+        "cut",
+        "mountain",
+        "valley",
+        "seam",
+        "glue",
+    ]  # what the tube's page draws, in legend order
+    expected = [
+        f"{LEGEND[k]} {colours[k]}" if name != "print" else LEGEND[k] for k in (*named, "labels")
+    ]
+    assert sorted(words) == sorted(expected)
+    drawn = {
+        LEGEND[k]: colours[k] for k in ("cut", "mountain", "valley", "seam", "glue", "rulings")
+    }
+    painted = [re.findall(r"#[0-9a-f]{6}", el.get("style"))[0] for el in samples]
+    assert sorted(painted) == sorted(drawn[LEGEND[k]] for k in named)
+    (seam,) = [t for t in texts if t.text == "S1"]
+    assert seam.get("style") == f"fill:{colours['labels']}"
+    assert all(t.get("style") is None for t in texts if t is not seam)  # the layer's ink
+    doc = ezdxf.readfile(write_dxf(tmp_path / "t.dxf", layout))
     for key in (*DEFAULT_LAYERS, "legend"):
         entry = doc.layers.get(layer_name(key))
         assert "#{:02x}{:02x}{:02x}".format(*entry.rgb) == colours[key], key
         assert entry.color == aci(colours[key]), key
-    # legend entities take their layer's colour (BYLAYER), so none is in the cut colour
-    assert all(
-        e.dxf.color == 256 and not e.dxf.hasattr("true_color")
-        for e in doc.modelspace().query(f'*[layer=="{LEGEND_LAYER}"]')
+    entities = doc.modelspace().query(f'*[layer=="{LEGEND_LAYER}"]')
+    own = sorted(
+        "#{:02x}{:02x}{:02x}".format(*e.rgb)
+        for e in entities
+        if e.dxftype() != "TEXT" and e.dxf.hasattr("true_color")
     )
+    assert own == sorted(drawn[LEGEND[k]] for k in named)
+    plain = [e for e in entities if e.dxftype() == "TEXT" and e.dxf.text != "S1"]
+    assert plain and all(e.dxf.color == 256 and not e.dxf.hasattr("true_color") for e in plain)
 
 
 def test_the_footer_stays_in_its_band_whatever_its_rows():
@@ -137,7 +180,11 @@ def test_the_footer_stays_in_its_band_whatever_its_rows():
             )
 
 
-def test_the_pdf_draws_nothing_off_the_sheets_in_an_operations_colour(tmp_path, tube_layout):
+def test_the_pdf_draws_nothing_but_the_outlines_and_the_cut_sample_in_the_cut_colour(
+    tmp_path, tube_layout
+):
+    """In the laser convention, red is the sheets' outlines and the legend's cut sample (a line
+    in the footer band, clear of every sheet); the footer's text and bar are its dark grey."""
     pdfplumber = pytest.importorskip("pdfplumber")
     layout = replace(tube_layout, cutter="laser")
     mm = 72 / 25.4
@@ -156,9 +203,15 @@ def test_the_pdf_draws_nothing_off_the_sheets_in_an_operations_colour(tmp_path, 
             else o["stroking_color"]
         )
 
-    assert footer and all(tuple(paint(o)) == (1.0, 1.0, 0.0) for o in footer)
-    # the two sheets' outlines, nothing else
-    assert len(cut) == 2 and all(o["top"] < band for o in cut)
+    grey = (0x59 / 255,) * 3
+    chars = [o for o in footer if o["object_type"] == "char"]
+    dark = [o for o in chars if tuple(paint(o)) == pytest.approx(grey, abs=1e-3)]
+    # every character but the seam name that samples the labels, in black
+    assert len(dark) > 100 and "".join(o["text"] for o in chars if o not in dark) == "S1"
+    # the two sheets' outlines, and the cut sample in the footer
+    inside = [o for o in cut if o["top"] < band]
+    (sample,) = [o for o in cut if o["top"] >= band]
+    assert len(inside) == 2 and sample["width"] / mm == pytest.approx(8.0, abs=1e-3)
 
 
 # --------------------------------------------------------------------------------------

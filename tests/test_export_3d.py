@@ -167,6 +167,24 @@ def test_stl_in_millimetres_says_its_unit_in_its_header(tmp_path, tube):
         write_stl(tmp_path / "x.stl", mesh, to_unit="furlong")
 
 
+def test_stl_at_a_print_scale_says_it_and_refuses_a_scale_that_is_not_one(tmp_path, tube):
+    """``scale`` (mm per model unit, a crease pattern's) sizes the STL as a print of that
+    scale in the file's unit, whatever the model unit counts as; the header states it."""
+    trimesh = pytest.importorskip("trimesh")
+    mesh = tube.state(1)
+    true = mesh.vertices_coords[mesh.faces_vertices]
+    for unit, factor in (("mm", 80.0), ("cm", 8.0), ("in", 80.0 / 25.4)):
+        write_stl(tmp_path / f"{unit}.stl", mesh, to_unit=unit, scale=80.0)
+        header = (tmp_path / f"{unit}.stl").read_bytes()[:80].decode("ascii").rstrip()
+        assert header.endswith(f", unit {unit}, 1 model unit = {factor:.6g} {unit}, z up")
+        back = trimesh.load(tmp_path / f"{unit}.stl").triangles
+        assert_allclose(back, factor * true, rtol=1e-6, atol=1e-5)
+    assert not np.allclose(trimesh.load(tmp_path / "mm.stl").triangles, 1000.0 * true)
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(InputError, match=f"scale must be a positive number of mm, got {bad}"):
+            write_stl(tmp_path / "x.stl", mesh, to_unit="mm", scale=bad)
+
+
 def test_ply_read_back_by_trimesh(tmp_path, tube):
     trimesh = pytest.importorskip("trimesh")
     mesh = tube.state(2)

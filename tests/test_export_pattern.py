@@ -8,6 +8,7 @@ for PDF. Geometry is checked with ``shapely``.
 from __future__ import annotations
 
 import doctest
+import io as _io
 import re
 import shutil
 import subprocess
@@ -817,17 +818,17 @@ def test_svg_has_mm_units_inkscape_layers_and_chained_polylines(tmp_path, tube_l
         for w in words
     )
     colours = CUTTERS["print"].colours
-    assert {
-        f"{LEGEND[k]} {colours[k]}" for k in ("cut", "mountain", "valley", "seam", "glue", "labels")
-    } | {"S1"} <= set(words)
-    # nothing in the legend is drawn in an operation's colour: the scale bar, the samples and the
-    # text are grey
+    # for print the legend names the layers, its samples show their colours
+    assert {LEGEND[k] for k in ("cut", "mountain", "valley", "seam", "glue", "labels")} | {
+        "S1"
+    } <= set(words)
     painted = {
         m for el in legend.iter() for m in re.findall(r"#[0-9a-f]{6}", f"{el.get('style', '')}")
     }
-    assert painted == {colours["legend"]} and colours["legend"] not in {
-        colours[k] for k in DEFAULT_LAYERS
+    assert painted == {
+        colours[k] for k in ("legend", "cut", "mountain", "valley", "seam", "glue", "labels")
     }
+    assert colours["legend"] not in {colours[k] for k in DEFAULT_LAYERS}
 
 
 def _png(path: Path) -> np.ndarray:
@@ -1003,7 +1004,7 @@ def test_pdf_prints_a4_at_one_to_one_with_a_10_mm_scale_bar(tmp_path, tube_layou
         and not ink[:, -edge:].any()
     )
     band = img[-int((10 + tube_layout.footer) * mm) : -int(10 * mm), : int(25 * mm)]
-    grey = np.abs(band - 0.5).max(axis=-1) < 0.06  # the footer's reference grey, #808080
+    grey = np.abs(band - 0x59 / 255).max(axis=-1) < 0.06  # the footer's reference grey, #595959
     row = grey[np.argmax(grey.sum(axis=1))]
     runs = np.diff(np.flatnonzero(np.diff(np.concatenate([[0], row.astype(int), [0]]))))[::2]
     assert runs.max() / mm == pytest.approx(10.0, abs=0.15)
@@ -1027,7 +1028,7 @@ def test_pdf_scale_bar_is_10_mm_and_every_operation_has_its_layer(tmp_path, tube
             and abs(c["height"] - 1.2 * mm) < 0.1
         ]
         assert len(bars) == 1 and bars[0]["width"] / mm == pytest.approx(10.0, abs=1e-3)
-        assert tuple(bars[0]["non_stroking_color"]) == pytest.approx((128 / 255,) * 3, abs=1e-3)
+        assert tuple(bars[0]["non_stroking_color"]) == pytest.approx((0x59 / 255,) * 3, abs=1e-3)
         words = page.extract_text()
         assert "tube 1 · sheet A" in words and "S0" in words and "10 mm: print at 100 %" in words
         catalog = doc.doc.catalog
@@ -1068,6 +1069,77 @@ def test_pdf_text_anchors_its_point_along_the_baseline():
         assert float(matrix[5]) == 50.0
     with pytest.raises(InputError, match="anchor must be 'start', 'center' or 'end', got 'left'"):
         pdf.PdfText("S12", 100.0, 50.0, 5.0, "#000000", anchor="left")
+
+
+def _pdffonts(path: Path) -> list[list[str]]:
+    """pdffonts' rows: name, type, encoding, emb, sub, uni, object number."""
+    out = subprocess.run(["pdffonts", str(path)], check=True, capture_output=True, text=True)
+    return [line.split() for line in out.stdout.splitlines()[2:]]
+
+
+@needs("pdffonts")
+@needs("pdftotext")
+def test_pdf_embeds_a_subset_of_dejavu_sans_and_its_text_reads(tmp_path, tube_layout, monkeypatch):
+    """poppler lists the one font as an embedded TrueType subset (``emb yes``, ``sub yes``) of
+    DejaVu Sans in WinAnsi; its text reads back (pdftotext); the program holds the glyphs used
+    and no more (under 12 kB). Without the program, pdffonts reports it: ``emb no``."""
+    path = write_pdf(tmp_path / "tube.pdf", tube_layout)
+    ((name, kind, encoding, emb, sub, *_),) = _pdffonts(path)
+    assert re.fullmatch(r"[A-Z]{6}\+DejaVuSans", name)
+    assert (kind, encoding, emb, sub) == ("TrueType", "WinAnsi", "yes", "yes")
+    words = subprocess.run(
+        ["pdftotext", str(path), "-"], check=True, capture_output=True, text=True
+    ).stdout
+    assert "tube 1 · sheet A" in words and "10 mm: print at 100 %" in words
+    from curvefold.io import _pdf_font
+
+    used = "".join(sorted({c for c in words if c.isprintable()}))
+    program = _pdf_font.font_program(used)
+    assert program is not None and len(program) < 12_000
+    monkeypatch.setattr(pdf, "font_program", lambda characters: None)
+    damaged = write_pdf(tmp_path / "named.pdf", tube_layout)
+    ((name, kind, encoding, emb, sub, *_),) = _pdffonts(damaged)
+    assert (name, emb, sub) == ("DejaVuSans", "no", "no")
+
+
+def _widths_off(path: Path, expected: dict[str, int]) -> set[str]:
+    """The characters whose advance, as pdfminer reads it (from the file's /Widths), over the
+    advance ``expected`` at em height 1 mm is none of the em heights the page sets text at."""
+    import pdfplumber
+
+    with pdfplumber.open(path) as doc:
+        chars = doc.pages[0].chars
+        content = b"".join(s.get_data() for s in doc.pages[0].page_obj.contents)
+    (font,) = {c["fontname"] for c in chars}
+    assert font.endswith("+DejaVuSans")
+    sizes = [float(v) for v in re.findall(rb"/F1 (\S+) Tf", content)]
+    return {
+        c["text"]
+        for c in chars
+        if min(abs(c["adv"] * 1000.0 / expected[c["text"]] - v) for v in sizes) > 1e-9
+    }
+
+
+def test_pdf_widths_are_the_embedded_fonts_own(tmp_path, tube_layout, monkeypatch):
+    """The widths the layout sets text with (:data:`~curvefold.io._pdf_font.WIDTHS`) are the
+    advance widths of DejaVu Sans as fontTools reads them from the font file (its 2048 units per
+    em, rounded to thousandths of the em); the embedded program and the ``/Widths`` that
+    pdfminer reads agree with them glyph for glyph. A table with one width off by one is seen."""
+    ttlib = pytest.importorskip("fontTools.ttLib")
+    pytest.importorskip("pdfplumber")
+    from curvefold.io import _pdf_font
+
+    font = ttlib.TTFont(str(_pdf_font.font_path()))
+    cmap, advances = font.getBestCmap(), font["hmtx"]
+    scale = 1000.0 / font["head"].unitsPerEm
+    expected = {c: round(advances[cmap[ord(c)]][0] * scale) for c in _pdf_font.WIDTHS}
+    assert _pdf_font.WIDTHS == expected and len(expected) == 218
+    embedded = ttlib.TTFont(_io.BytesIO(_pdf_font.font_program("".join(expected))))
+    sub_cmap, sub_advances = embedded.getBestCmap(), embedded["hmtx"]
+    assert {c: round(sub_advances[sub_cmap[ord(c)]][0] * scale) for c in expected} == expected
+    assert _widths_off(write_pdf(tmp_path / "tube.pdf", tube_layout), expected) == set()
+    monkeypatch.setitem(_pdf_font.WIDTHS, "S", expected["S"] + 1)
+    assert _widths_off(write_pdf(tmp_path / "off.pdf", tube_layout), expected) == {"S"}
 
 
 # --------------------------------------------------------------------------------------

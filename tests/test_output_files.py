@@ -142,3 +142,88 @@ def test_frames_with_nothing_to_stand_on_are_left_as_they_are():
     assert np.sum(np.abs(floating.folded[1][1].vertices_coords[:, 2]) <= 1e-9) == 1
     assert standing_frames(floating) is floating.folded
     assert standing_frames(floating, tol=-1.0) is floating.folded  # nothing on the ground
+
+
+def _design_frame(fold_file) -> np.ndarray:
+    """The vertices of a FOLD file's frame at the design angle (model units)."""
+    doc = json.loads(fold_file.read_text(encoding="utf-8"))
+    angles = doc["curvefold:design"]["fold_angles"]
+    design = angles.index(doc["curvefold:metadata"]["fold_angle_deg"])
+    return np.array(doc["file_frames"][design]["vertices_coords"])
+
+
+@pytest.mark.parametrize("scale", [None, 50.0])
+def test_the_stl_has_the_crease_patterns_scale(tmp_path, scale):
+    """trimesh reads the STL at the pattern's scale, given (``--scale 50``, mm per model unit) or
+    fitted to the page (as the SVG's footer states it), not at 1000 mm per model unit: its
+    extent is the FOLD file's design frame times that scale (to the STL's 32-bit floats), and
+    its header says the scale. It is an open surface (trimesh: not watertight)."""
+    trimesh = pytest.importorskip("trimesh")
+    extra = () if scale is None else ("--scale", f"{scale:g}")
+    result = run(
+        "vault", "--samples", "41", "--formats", "fold,stl,svg", *extra, "--out", "v", cwd=tmp_path
+    )
+    assert result.returncode in (0, 1), result.stderr
+    folder = tmp_path / "v"
+    footer = (folder / "vault-pattern-p1.svg").read_text(encoding="utf-8")
+    (stated,) = set(re.findall(r"1 model unit = ([0-9.]+) mm", footer))
+    assert scale is None or float(stated) == scale
+    header = (folder / "vault.stl").read_bytes()[:80].decode("ascii").rstrip()
+    assert header.endswith(f", unit mm, 1 model unit = {stated} mm, z up")
+    mesh = trimesh.load(folder / "vault.stl")
+    model = _design_frame(folder / "vault.fold")
+    np.testing.assert_allclose(
+        np.ptp(mesh.vertices, axis=0), float(stated) * np.ptp(model, axis=0), rtol=1e-6
+    )
+    assert float(stated) < 500.0 and not mesh.is_watertight
+    assert "not a solid" in describe_file("vault.stl")
+
+
+def test_a_single_folds_3dm_has_the_crease_pattern_and_plain_names(tmp_path):
+    """rhino3dm reads a single fold's 3dm as the vault's: the crease-pattern layers, one per
+    operation, hold its pattern at its printed size; its objects make one group, the fold's,
+    and its strips are the left and the right one, nothing named after a tube. The STL's
+    surface (trimesh, mm²) has the area of the pattern's cut outline (the 3dm's, in the
+    document's metres): folding keeps lengths and areas."""
+    rhino3dm = pytest.importorskip("rhino3dm")
+    trimesh = pytest.importorskip("trimesh")
+    result = run("crease", "--formats", "3dm,stl,svg", "--out", "c", cwd=tmp_path)
+    assert result.returncode in (0, 1), result.stderr
+    model = rhino3dm.File3dm.Read(str(tmp_path / "c" / "crease.3dm"))
+    layers = [layer.FullPath for layer in model.Layers]
+    assert {
+        "crease pattern::cut",
+        "crease pattern::score - valley",
+        "crease pattern::pages",
+    } <= set(layers)
+    assert [g.Name for g in model.Groups] == ["single fold"]
+    names = {o.Attributes.Name for o in model.Objects}
+    assert {"single fold", "left strip", "right strip"} <= names
+    assert not any("tube" in n for n in names)
+    assert not any(dict(o.Attributes.GetUserStrings()).get("curvefold:tube") for o in model.Objects)
+    (cut,) = [
+        o.Geometry
+        for o in model.Objects
+        if layers[o.Attributes.LayerIndex] == "crease pattern::cut"
+    ]
+    point = cut.Point  # a degree-1 NURBS curve: its control points are the outline's
+    xy = 1000.0 * np.array([[point(i).X, point(i).Y] for i in range(cut.PointCount)])  # m to mm
+    area = 0.5 * abs(np.dot(xy[:-1, 0], xy[1:, 1]) - np.dot(xy[1:, 0], xy[:-1, 1]))
+    stl = trimesh.load(tmp_path / "c" / "crease.stl")
+    # 3e-8 apart: the STL's 32-bit floats (the mesh's triangles and the flat outline share
+    # their vertices, and each triangle keeps its area when folded)
+    assert stl.area == pytest.approx(area, rel=1e-6)
+
+
+def test_a_tubes_sheets_are_named_plainly(tmp_path):
+    """A tube's sheet is "tube 1 · sheet A" on its pattern, not "tube · tube 1 · sheet A" (the kind
+    said twice); a vault's keeps its kind ("vault · tube 1 · sheet A")."""
+    from curvefold.geometry._sheets import sheets
+    from curvefold.vault import Vault
+
+    result = run("tube", "--formats", "svg", "--out", "t", cwd=tmp_path)
+    assert result.returncode in (0, 1), result.stderr
+    words = " ".join(p.read_text(encoding="utf-8") for p in (tmp_path / "t").glob("*.svg"))
+    assert ">tube 1 · sheet A<" in words and "tube · tube" not in words
+    structure = Vault.from_design(samples=21, tubes=1).structure
+    assert sheets(structure, name="vault")[0].label == "vault · tube 1 · sheet A"

@@ -95,10 +95,10 @@ class Built:
         """Compute, in this process, what the output folder's file jobs writing ``formats``
         share before they fork (the drawings need none of it, and start first): the first
         contact (the FOLD file's motion, and the certificate's) and the crease patterns'
-        layout (the patterns, the assembly guide and the 3dm draw it)."""
+        layout (the patterns, the assembly guide and the 3dm draw it, the STL takes its scale)."""
         exported_fold_angles(self)
         families = {FORMATS[name].family for name in formats if name in FORMATS}
-        if "3dm" in formats or families & {"pattern", "guide"}:
+        if {"3dm", "stl"} & set(formats) or families & {"pattern", "guide"}:
             self.layout  # noqa: B018 (computed once, here)
 
     def _pattern_output(self) -> PatternOutput:

@@ -427,6 +427,7 @@ def _model(
         metadata=_metadata(built),
         keep=built.sampling.keep,
         print_unit=built.design.output.units,
+        print_scale=built.layout.scale if "stl" in names else None,
         pattern=built.layout if "3dm" in names else None,
         morph_targets=morphs,
     )
@@ -483,16 +484,23 @@ def _single_fold_model(
 ) -> list:
     """A single fold's 3D files, flat to the design angle or to ``fold_angle``; the GLB holds the
     folding motion."""
+    from ..io._output import ModelOutput
     from ..io._single_fold import write_single_fold_3d
 
+    output = ModelOutput(
+        unit=MODEL_UNIT,
+        metadata=_metadata(built),
+        print_unit=built.design.output.units,
+        print_scale=built.layout.scale if "stl" in names else None,
+        pattern=built.layout if "3dm" in names else None,
+    )
     return list(
         write_single_fold_3d(
             folder / built.design.kind,
             built.single_fold,
             design_motion(built, fold_angle),
             formats=names,
-            unit=MODEL_UNIT,
-            metadata=_metadata(built),
+            output=output,
         )
     )
 

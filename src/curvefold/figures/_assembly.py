@@ -3,8 +3,11 @@
 Drawn on the pages of the crease pattern it goes with (the same page size, margins and
 10 mm scale bar, :func:`~curvefold.io._legend.page_footer`), it holds
 
+* which fold is a mountain and which a valley, seen from the printed side, and the line
+  each is drawn with (:func:`fold_key`);
 * the sheets to cut, each with its id (the label printed on it), the pattern page it is
-  on and its seams (``S0``, ``S1``… as the pattern's labels name them, tabs marked);
+  on, its seams (``S0``, ``S1``… as the pattern's labels name them, tabs marked) and the
+  folds of its creases;
 * the seams: which sheet carries the glue tabs of each and which sheet it glues to;
 * the steps, tube by tube: score and fold its two sheets along their creases, glue its
   seams, then glue it to the tubes before it along the creases they share (the
@@ -30,7 +33,7 @@ from ..geometry._topology import tube_strips
 from ..io._cutters import LEGEND_LAYER
 from ..io._labels import seam_name
 from ..io._layout import Layout
-from ..io._legend import check_layout
+from ..io._legend import LEGEND, check_layout, layer_look
 from ..io._pattern import draw_footer
 from ..io._pdf import PdfDocument, PdfPage, PdfText, advance_units
 from ..io._planar import bounding_box
@@ -44,6 +47,7 @@ __all__ = [
     "Step",
     "AssemblyPlan",
     "assembly_plan",
+    "fold_key",
     "write_assembly",
 ]
 
@@ -57,12 +61,61 @@ _LAYERS = ("guide - text", "guide - pictures", LEGEND_LAYER)
 
 @dataclass(frozen=True)
 class SheetToCut:
-    """One sheet: its id (printed on it), its pattern page (1-based) and its seams (id, whether
-    it has the tabs)."""
+    """One sheet: its id (printed on it), its pattern page (1-based), its seams (id, whether
+    it has the tabs) and the folds its creases make seen from the printed side (``"mountain"``,
+    ``"valley"``)."""
 
     label: str
     page: int
     seams: tuple[tuple[int, bool], ...]
+    folds: tuple[str, ...] = ()
+
+
+#: Plain names of the colours the cutter conventions draw folds in.
+_COLOUR_WORDS = {
+    "#ff0000": "red",
+    "#0000ff": "blue",
+    "#1f4fe0": "blue",
+    "#00ff00": "green",
+    "#16a016": "green",
+    "#00ffff": "cyan",
+}
+#: How each fold's line looks (the dash patterns of :data:`curvefold.io._cutters.STYLES`).
+_LINE_WORDS = {"mountain": "dash-dot line", "valley": "dashed line"}
+
+
+def fold_key(layout: Layout) -> str:
+    """Which fold is a mountain and which a valley, as the guide says it: seen from the printed
+    side, with the line each is drawn with in the layout's convention.
+
+    Examples
+    --------
+    >>> from curvefold.io import layout_pattern
+    >>> from curvefold.vault import Vault
+    >>> layout = layout_pattern(Vault.from_design(samples=21, tubes=1).structure)
+    >>> print(fold_key(layout))  # doctest: +NORMALIZE_WHITESPACE
+    Folds, seen from the printed side: a mountain fold (red dash-dot line) rises toward you, so
+    fold the sheet away from you along it; a valley fold (blue dashed line) sinks away from
+    you, so fold the sheet toward you along it.
+    """
+    looks = {}
+    for key in ("mountain", "valley"):
+        colour = layer_look(layout, key)[1]
+        line = "line of cut dashes" if layout.perforation is not None else _LINE_WORDS[key]
+        looks[key] = f"{_COLOUR_WORDS.get(colour, colour)} {line}"
+    return (
+        f"Folds, seen from the printed side: a {LEGEND['mountain']} ({looks['mountain']}) rises "
+        "toward you, so fold the sheet away from you along it; a "
+        f"{LEGEND['valley']} ({looks['valley']}) sinks away from you, so fold the sheet toward "
+        "you along it."
+    )
+
+
+def _folds_words(folds: tuple[str, ...]) -> str:
+    """``"a mountain fold"``, ``"mountain and valley folds"``."""
+    if len(folds) == 1:
+        return f"a {folds[0]} fold"
+    return " and ".join(folds) + " folds"
 
 
 @dataclass(frozen=True)
@@ -133,7 +186,8 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
             carriers.setdefault(i, []).append(s.label)
         for i in mine:
             tabbed.setdefault(i, s.label)
-        sheets.append(SheetToCut(s.label, page, tuple((i, i in mine) for i in ids)))
+        folds = tuple(k for k in ("mountain", "valley") if s.on_layer(k))
+        sheets.append(SheetToCut(s.label, page, tuple((i, i in mine) for i in ids), folds))
     seams = []
     for i, owners in sorted(carriers.items()):
         tabs = tabbed.get(i, owners[0])
@@ -144,7 +198,13 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
     steps = []
     for tube in range(tube_count):
         a, b = sheets[2 * tube].label, sheets[2 * tube + 1].label
-        lines = [f"Score the creases of {a} and {b} and fold each sheet along its crease."]
+        pair = (sheets[2 * tube], sheets[2 * tube + 1])
+        if pair[0].folds == pair[1].folds and pair[0].folds:
+            said = f", {_folds_words(pair[0].folds)} on both, seen from the printed side"
+        else:
+            each = "; ".join(f"{s.label}: {_folds_words(s.folds)}" for s in pair if s.folds)
+            said = f" ({each}, seen from the printed side)" if each else ""
+        lines = [f"Score the creases of {a} and {b} and fold each sheet along its crease{said}."]
         for seam in seams:
             if seam.tabs in (a, b):
                 onto = (
@@ -356,11 +416,8 @@ def write_assembly(
     plan = assembly_plan(structure, layout)
     doc = PdfDocument(title="assembly guide", layers=_LAYERS)
     pages = _Pages(doc, layout)
-    kind = (
-        layout.sheets()[0].label.split(" · ")[0]
-        if " · " in layout.sheets()[0].label
-        else "structure"
-    )
+    first = layout.sheets()[0].label  # "vault · tube 1 · sheet A", "tube 1 · sheet A"
+    kind = first.split(" · ")[0].split()[0] if " · " in first else "structure"
     pages.text(f"{kind.capitalize()}: assembly guide", _TITLE)
     tubes = len(plan.steps)
     pages.text(
@@ -371,10 +428,12 @@ def write_assembly(
         "score the creases and the glue-tab folds. Seams are named S0, S1… on both sheets "
         "they join."
     )
+    pages.text(fold_key(layout))
     pages.text("Sheets to cut", _HEAD, gap=2.0)
     for sheet in plan.sheets:
         seams = ", ".join(f"{seam_name(i)}{' (tabs)' * tabs}" for i, tabs in sheet.seams)
-        pages.text(f"{sheet.label}: pattern page {sheet.page}; seams {seams}", indent=3.0)
+        folds = f"; {_folds_words(sheet.folds)}" if sheet.folds else ""
+        pages.text(f"{sheet.label}: pattern page {sheet.page}; seams {seams}{folds}", indent=3.0)
     pages.text("Seams", _HEAD, gap=2.0)
     for seam in plan.seams:
         pages.text(f"{seam_name(seam.id)}: the tabs of {seam.tabs} glue to {seam.onto}", indent=3.0)

@@ -357,7 +357,9 @@ def develop(
     normals = areas / np.linalg.norm(areas, axis=-1, keepdims=True)
     out = []
     for sheet in topology.sheets:
-        label = f"{name} · {sheet.label}" if name else sheet.label
+        # "vault · tube 1 · sheet A"; a tube's sheets name their kind already: "tube 1 · sheet A"
+        plain = not name or sheet.label.startswith(f"{name} ")
+        label = sheet.label if plain else f"{name} · {sheet.label}"
         facing = normals[sheet.faces] @ plane.axes[2]  # ±1: the outside faces +n or −n
         xy = plane.coords(flat_coords[sheet.vertices], flip=bool(facing.mean() < 0))
         area2 = vector_areas(xy, sheet.faces_vertices)[:, 2]

@@ -24,9 +24,12 @@ layout layer              file layer                          operation
                                                               legend
 ========================  ==================================  =============================
 
-Nothing that is not to be cut is drawn in the cut colour: the scale bar, the legend's
-sample lines and its text are in the convention's reference colour, with each sample in
-its layer's dash pattern and the layer's colour written beside it.
+The sheets' lines are drawn in their layers' colours only. The page footer, on a layer of
+its own, draws its scale bar and text in the convention's reference colour (a dark grey for
+the laser, which no basic colour matches, readable on screen and paper), and each legend
+sample in its layer's colour and dash pattern with the colour's code written beside it:
+software that sorts by colour runs a sample with its layer (a short line in the footer band,
+clear of every sheet); leave the legend layer out to skip it.
 
 Names use `` - `` rather than a colon, which DXF forbids in layer names. Colours are
 ``#rrggbb``; the DXF's AutoCAD colour index of each is the nearest of the standard palette
@@ -192,7 +195,7 @@ CUTTERS: Mapping[str, Cutter] = MappingProxyType(
                         COLOURS["ruling"],
                         COLOURS["label"],
                         COLOURS["glue"],
-                        "#808080",
+                        "#595959",
                     )
                 ),
             ),
@@ -210,7 +213,7 @@ CUTTERS: Mapping[str, Cutter] = MappingProxyType(
                         "#ff00ff",
                         "#000000",
                         "#ffff00",
-                        "#ffff00",
+                        "#595959",
                     )
                 ),
                 "LightBurn documentation, 'Colors and Layers': each colour is a layer, each "

@@ -125,9 +125,20 @@ def write_dxf(
     doc.layers.add(PAGES_LAYER, color=8).dxf.plot = 0
     msp = doc.modelspace()
 
-    def text(words: str, position, size: float, angle: float, layer: str) -> None:
+    def inked(layer: str, colour: str | None) -> dict:
+        """An entity's attributes: its layer, and a colour of its own when given."""
+        own = (
+            {}
+            if colour is None
+            else {"color": aci(colour), "true_color": colors.rgb2int(rgb8(colour))}
+        )
+        return {"layer": layer} | own
+
+    def text(
+        words: str, position, size: float, angle: float, layer: str, colour: str | None = None
+    ) -> None:
         entity = msp.add_text(
-            words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs={"layer": layer}
+            words, height=_CAP_HEIGHT * size, rotation=angle, dxfattribs=inked(layer, colour)
         )
         entity.set_placement(
             tuple(float(v) for v in position), align=TextEntityAlignment.MIDDLE_CENTER
@@ -139,6 +150,7 @@ def write_dxf(
         closed: bool = False,
         arcs: bool = False,
         linetype: str | None = None,
+        colour: str | None = None,
     ) -> None:
         rows = np.zeros((len(points), 5))  # x, y, start width, end width, bulge: ezdxf's vertices
         rows[:, :2] = points
@@ -146,8 +158,10 @@ def write_dxf(
             keep, bulge = fit_arcs(points, ARC_TOLERANCE)
             rows = rows[keep]
             rows[:, 4] = bulge
-        attributes = {"layer": layer, "flags": LWPOLYLINE_PLINEGEN} | (
-            {"linetype": linetype} if linetype else {}
+        attributes = (
+            inked(layer, colour)
+            | {"flags": LWPOLYLINE_PLINEGEN}
+            | ({"linetype": linetype} if linetype else {})
         )
         # the vertices at once
         msp.add_lwpolyline((), close=closed, dxfattribs=attributes).lwpoints.set(rows)
@@ -178,19 +192,20 @@ def write_dxf(
         msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path(
             (footer.bar + shift).tolist(), is_closed=True
         )
-        for key, points in footer.samples:
+        for (key, points), ink in zip(footer.samples, footer.inks):
             if looks[key][2].fill:
-                msp.add_hatch(color=256, dxfattribs={"layer": legend}).paths.add_polyline_path(
-                    (points + shift).tolist(), is_closed=True
-                )
+                hatch = msp.add_hatch(color=aci(ink), dxfattribs=inked(legend, ink))
+                hatch.paths.add_polyline_path((points + shift).tolist(), is_closed=True)
             else:
                 line(
                     points + shift,
                     legend,
                     linetype=looks[key][2].linetype if looks[key][2].dashes else "CONTINUOUS",
+                    colour=ink,
                 )
-        for t in footer.texts:
-            text(t.text, np.asarray(t.position) + shift, t.size, 0.0, legend)
+        for t, ink in zip(footer.texts, footer.text_inks):
+            own = None if ink == footer.colour else ink
+            text(t.text, np.asarray(t.position) + shift, t.size, 0.0, legend, own)
     lo, hi = corners.min(axis=0), corners.max(axis=0) + (W, H)
     # ezdxf copies the modelspace's extents into the header only when they do not start at
     # (0, 0, 0), as a single row of pages does: set the header itself.

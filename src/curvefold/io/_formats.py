@@ -247,8 +247,9 @@ _FORMATS: dict[str, FileFormat] = {
         FileFormat(
             "stl",
             ".stl",
-            "3D mesh of the folded state (triangles) in the output units, "
-            "millimetres by default, for slicers",
+            "3D mesh of the folded state (triangles) at the crease pattern's scale, in the "
+            "output units (millimetres by default), for slicers: a surface without thickness, "
+            "open along its edges, not a solid",
             "model",
             _ALL,
             "curvefold.io._model_files:model_stl",
@@ -416,8 +417,8 @@ OUTPUT_SPECS: tuple[Spec, ...] = (
         "choice",
         _OUT.units,
         choices=("mm", "cm", "m", "in"),
-        help="unit of the crease-pattern page lengths and scale, and of the STL (printed "
-        "lengths, so not the model unit)",
+        help="unit of the crease-pattern page lengths and scale, and of the STL (which has "
+        "the pattern's scale, stated in its header)",
         label="units of the printed files",
     ),
     Spec(

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernel._errors import InternalError
+from ._pdf_font import WIDTHS
 from ._planar import (
     box_corners,
     cell_index,
@@ -59,7 +60,14 @@ def text_width(text: str, size: float) -> float:
     """Estimated advance width of ``text`` set in a sans-serif font of em height ``size``.
 
     A per-character estimate (DejaVu Sans / Arial proportions, rounded up) used to keep
-    labels clear of lines; writers set text in a sans-serif font at this em height.
+    labels clear of lines, never narrower than the text set in DejaVu Sans (the font the PDF
+    embeds and the SVG names first, :data:`curvefold.io._pdf_font.WIDTHS`); writers set text
+    in a sans-serif font at this em height.
+
+    Examples
+    --------
+    >>> round(text_width("S12", 10.0), 3), round(text_width("mm", 10.0), 3)
+    (19.07, 19.48)
     """
     em = sum(
         [
@@ -67,7 +75,8 @@ def text_width(text: str, size: float) -> float:
             for c in text
         ]
     )
-    return em * size
+    unknown = WIDTHS["?"]
+    return max(em, 0.001 * sum(WIDTHS.get(c, unknown) for c in text)) * size
 
 
 _NARROW, _WIDE = frozenset(" .,:;·|!'ijlrtf1()-"), frozenset("MWmw@%")

@@ -4,10 +4,11 @@ footer.
 :func:`layer_look` gives a layout layer's file layer name, colour and line style in the
 layout's cutter convention (:mod:`curvefold.io._cutters`); :func:`page_footer` lays out the
 footer of a page inside its footer band: a 10 mm scale bar with the print scale and page
-number, and a legend of the layers drawn on that page. The whole footer is drawn in the
-convention's reference colour, never in the colour of an operation, so cutting software
-that sorts by colour leaves it alone; each legend sample has its layer's dash pattern and
-its text names the layer's colour. The SVG, DXF and PDF writers share these.
+number, and a legend of the layers drawn on that page. Its text and scale bar are drawn in
+the convention's reference colour (dark, never the colour of an operation), and each legend
+sample in its layer's colour and dash pattern, so that the legend shows what it names; for
+a cutting machine the text also gives each layer's colour code (the print convention's
+legend, for people, names the layers only). The SVG, DXF and PDF writers share these.
 """
 
 from __future__ import annotations
@@ -97,18 +98,25 @@ class Footer(FrozenArrays):
     ----------
     samples : tuple of (str, (k, 2) ndarray)
         A sample of every drawn layer but the labels: a line in the layer's dash pattern, or
-        for a filled layer a closed rectangle.
+        for a filled layer a closed rectangle, in the layer's colour (:attr:`inks`).
     bar : (4, 2) ndarray
         The 10 mm scale bar, a rectangle to fill.
     texts : tuple of Label
     colour : str
-        ``#rrggbb`` of everything in the footer.
+        ``#rrggbb`` of the scale bar and the text (the convention's reference colour).
+    inks : tuple of str
+        ``#rrggbb`` of each sample, and of the seam name that samples the labels (its text's
+        colour in :attr:`text_inks`).
+    text_inks : tuple of str
+        ``#rrggbb`` of each text.
     """
 
     samples: tuple[tuple[str, np.ndarray], ...]
     bar: np.ndarray
     texts: tuple[Label, ...]
     colour: str
+    inks: tuple[str, ...] = ()
+    text_inks: tuple[str, ...] = ()
 
 
 def page_footer(
@@ -146,20 +154,22 @@ def page_footer(
     entries, x, row = [], m, 1  # (name, x, row) of every legend entry, wrapped into rows
     for name in names:
         lead = text_width(seam_name(1), size) if name == "labels" else _SAMPLE
-        width = lead + 1.5 + text_width(f"{LEGEND[name]} {layer_look(layout, name)[1]}", size)
+        width = lead + 1.5 + text_width(_entry(layout, name), size)
         if x > m and x + width > W - m:  # next row
             x, row = m, row + 1
         entries.append((name, x, lead, row))
         x += width + 4.0
     # rows closer together rather than into the margin
     step = min(1.8 * size, (top - m - 0.5 * size) / max(row, 1))
-    texts = [text(note, m + 12.0, top)]
-    samples = []
+    ink = layer_look(layout, "legend")[1]
+    texts, text_inks = [text(note, m + 12.0, top)], [ink]
+    samples, inks = [], []
     for name, x, lead, row in entries:
         _, colour, st = layer_look(layout, name)
         y = top - row * step
         if name == "labels":
             texts.append(text(seam_name(1), x, y))
+            text_inks.append(colour)
         elif st.fill:
             samples.append(
                 (
@@ -171,13 +181,25 @@ def page_footer(
             )
         else:
             samples.append((name, np.array([[x, y], [x + _SAMPLE, y]])))
-        texts.append(text(f"{LEGEND[name]} {colour}", x + lead + 1.5, y))
+        if name != "labels":
+            inks.append(colour)
+        texts.append(text(_entry(layout, name), x + lead + 1.5, y))
+        text_inks.append(ink)
     return Footer(
         tuple((name, readonly(points)) for name, points in samples),
         bar,
         tuple(texts),
-        layer_look(layout, "legend")[1],
+        ink,
+        tuple(inks),
+        tuple(text_inks),
     )
+
+
+def _entry(layout: Layout, name: str) -> str:
+    """A legend entry's words: what the layer means, and for a cutting machine its colour code
+    (``cut #ff0000``); the print convention's sample shows the colour, for people."""
+    meaning = LEGEND[name]
+    return meaning if layout.cutter == "print" else f"{meaning} {layer_look(layout, name)[1]}"
 
 
 def _has_seam_labels(page) -> bool:

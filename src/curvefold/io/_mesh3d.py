@@ -381,7 +381,12 @@ def ply_bytes(x: np.ndarray, triangles: np.ndarray, groups: np.ndarray) -> bytes
 
 
 def write_stl(
-    path: str | os.PathLike, mesh: Mesh, *, unit: str = "unit", to_unit: str | None = None
+    path: str | os.PathLike,
+    mesh: Mesh,
+    *,
+    unit: str = "unit",
+    to_unit: str | None = None,
+    scale: float | None = None,
 ) -> Path:
     """Write one state as a binary STL (polygons triangulated, 32-bit floats: :func:`stl_records`).
 
@@ -396,10 +401,20 @@ def write_stl(
     to_unit : str, optional
         Length unit of the file (``"mm"`` for slicers, which read millimetres); default
         ``unit``. The 80-byte header says it: ``curvefold 0.1.0, unit mm, z up``.
+    scale : float, optional
+        A print scale: millimetres in the file per ``unit`` of the mesh (a crease pattern's
+        :attr:`~curvefold.io.Layout.scale`, so that the model prints as large as its pattern);
+        the header says it: ``curvefold 0.1.0, unit mm, 1 model unit = 80 mm, z up``. Default
+        the true size (a model unit counts as one metre).
 
     Returns
     -------
     Path
+
+    Notes
+    -----
+    The file is a surface, each sheet's mid-surface without thickness, open along its
+    boundary: not a closed solid a slicer could fill.
 
     Examples
     --------
@@ -413,7 +428,13 @@ def write_stl(
             raise InputError(
                 f"{name} must be one of {', '.join(UNITS)}, got {value!r}", parameter="units"
             )
-    factor = UNITS[unit].metres / UNITS[to_unit].metres
+    if scale is not None and not (math.isfinite(scale) and scale > 0):
+        raise InputError(f"scale must be a positive number of mm, got {scale!r}", parameter="scale")
+    factor = (
+        UNITS[unit].metres / UNITS[to_unit].metres
+        if scale is None
+        else scale * UNITS["mm"].metres / UNITS[to_unit].metres
+    )
     scaled = (
         mesh
         if factor == 1.0
@@ -421,6 +442,9 @@ def write_stl(
     )
     x, triangles = _triangles(scaled)
     words = "model units (1 model unit = 1 m)" if to_unit == "unit" else to_unit
+    if scale is not None:
+        one = "model unit" if unit == "unit" else unit
+        words += f", 1 {one} = {factor:.6g} {'model units' if to_unit == 'unit' else to_unit}"
     header = (
         one_line(f"{CREATOR}, unit {words}, z up").encode("ascii", "replace")[:80].ljust(80, b" ")
     )

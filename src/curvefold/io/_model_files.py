@@ -55,6 +55,8 @@ class FoldedModel:
         The samples each tube's mesh keeps.
     print_unit : str or None
         Length unit of the STL; None for the model unit.
+    print_scale : float or None
+        Millimetres of the STL per model unit (the crease pattern's scale); None: true size.
     morph_targets : dict of str to (V, 3) ndarray
         Further named morph targets of the GLB, displacements from :attr:`mesh`.
     pattern : Layout or None
@@ -79,6 +81,7 @@ class FoldedModel:
     pattern: Layout | None = None
     topology: Topology | None = None
     quad_topology: Topology | None = None
+    print_scale: float | None = None
 
     @property
     def static_metadata(self) -> dict:
@@ -122,8 +125,10 @@ def model_obj(path: str | os.PathLike, model: FoldedModel) -> Path:
 
 
 def model_stl(path: str | os.PathLike, model: FoldedModel) -> Path:
-    """The STL of a model (triangles), in its print unit."""
-    return mesh3d.write_stl(path, model.mesh, unit=model.unit, to_unit=model.print_unit)
+    """The STL of a model (triangles), in its print unit at its print scale: a surface, open."""
+    return mesh3d.write_stl(
+        path, model.mesh, unit=model.unit, to_unit=model.print_unit, scale=model.print_scale
+    )
 
 
 def model_ply(path: str | os.PathLike, model: FoldedModel) -> Path:

@@ -122,6 +122,7 @@ def write_3d(
         o.pattern,
         triangles,
         quads,
+        o.print_scale,
     )
     # each format's writer
     return tuple(

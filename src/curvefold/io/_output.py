@@ -96,6 +96,10 @@ class ModelOutput:
     print_unit : str or None
         Length unit of the STL, which slicers read as millimetres (``"mm"``); None: the
         model unit. The model unit counts as one metre (:data:`curvefold.io._tables.UNITS`).
+    print_scale : float or None
+        Millimetres of the STL per model unit, the crease pattern's scale
+        (:attr:`~curvefold.io.Layout.scale`), so that a print matches the pattern; None: the
+        true size.
     metadata : mapping or None
         Extra design parameters, merged over the defaults of :func:`~curvefold.io.to_fold`.
     anchor : {"start", "middle"}
@@ -121,6 +125,7 @@ class ModelOutput:
 
     unit: str = "unit"
     print_unit: str | None = None
+    print_scale: float | None = None
     metadata: Mapping[str, object] | None = None
     anchor: Literal["start", "middle"] = "start"
     keep: Sequence[np.ndarray] | None = None

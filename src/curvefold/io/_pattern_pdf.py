@@ -32,22 +32,20 @@ def draw_footer(
     legend layer."""
     foot = page_footer(layout, page_index, names, page_text=page_text)
     canvas.fill([foot.bar], foot.colour, layer=LEGEND_LAYER)
-    for key, points in foot.samples:
+    for (key, points), ink in zip(foot.samples, foot.inks):
         st = layer_look(layout, key)[2]
         if st.fill:
-            canvas.fill([points], foot.colour, layer=LEGEND_LAYER)
+            canvas.fill([points], ink, layer=LEGEND_LAYER)
         else:
-            canvas.stroke(
-                [points], foot.colour, lw * st.width, dashes=st.dashes, layer=LEGEND_LAYER
-            )
-    for t in foot.texts:
+            canvas.stroke([points], ink, lw * st.width, dashes=st.dashes, layer=LEGEND_LAYER)
+    for t, ink in zip(foot.texts, foot.text_inks):
         canvas.text(
             PdfText(
                 t.text,
                 t.position[0],
                 t.position[1] - 0.35 * t.size,
                 t.size,
-                foot.colour,
+                ink,
                 layer=LEGEND_LAYER,
             )
         )

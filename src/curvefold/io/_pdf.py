@@ -2,9 +2,10 @@
 
 What the crease patterns and the assembly guide need and no more: pages of any size,
 polylines stroked with a colour, width and dash pattern, filled polygons, and lines of
-text in Helvetica (one of the PDF standard fonts, which every reader has), each drawn on a
-named layer. Layers are PDF optional content groups, which Acrobat, Illustrator, Inkscape
-and laser software list as layers; a layer may be marked not to print (the page frames).
+text in DejaVu Sans (embedded, a subset of the glyphs used: :mod:`curvefold.io._pdf_font`),
+each drawn on a named layer. Layers are PDF optional content groups, which Acrobat,
+Illustrator, Inkscape and laser software list as layers; a layer may be marked not to print
+(the page frames).
 
 Coordinates are millimetres from the page's lower-left corner, y up; line widths and dash
 lengths are millimetres too (each page's content starts by scaling points to mm). Text is
@@ -31,7 +32,7 @@ from __future__ import annotations
 import math
 import os
 import zlib
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -41,129 +42,21 @@ import numpy as np
 from ..kernel._errors import InputError
 from ..kernel._text import one_line
 from ._atomic import atomic_write
+from ._pdf_font import DESCRIPTOR, FONT_NAME, WIDTHS, encode, font_program, subset_tag
 from ._tables import CREATOR, rgb8
 
 __all__ = ["PdfDocument", "PdfPage", "PdfText", "text_advance", "advance_units"]
 
 _PT_PER_MM = 72.0 / 25.4
 
-# Advance widths of Helvetica (thousandths of the em) for the characters 32–126 (Adobe's
-# metrics of the standard font), and a few of Windows-1252 beyond them.
-_HELVETICA = (
-    278,
-    278,
-    355,
-    556,
-    556,
-    889,
-    667,
-    191,
-    333,
-    333,
-    389,
-    584,
-    278,
-    333,
-    278,
-    278,
-    556,
-    556,
-    556,
-    556,
-    556,
-    556,
-    556,
-    556,
-    556,
-    556,
-    278,
-    278,
-    584,
-    584,
-    584,
-    556,
-    1015,
-    667,
-    667,
-    722,
-    722,
-    667,
-    611,
-    778,
-    722,
-    278,
-    500,
-    667,
-    556,
-    833,
-    722,
-    778,
-    667,
-    778,
-    722,
-    667,
-    611,
-    722,
-    667,
-    944,
-    667,
-    667,
-    611,
-    278,
-    278,
-    278,
-    469,
-    556,
-    333,
-    556,
-    556,
-    500,
-    556,
-    556,
-    278,
-    556,
-    556,
-    222,
-    222,
-    500,
-    222,
-    833,
-    556,
-    556,
-    556,
-    556,
-    333,
-    500,
-    278,
-    556,
-    500,
-    722,
-    500,
-    500,
-    500,
-    334,
-    260,
-    334,
-    584,
-)
-_WIDTHS = {chr(32 + i): w for i, w in enumerate(_HELVETICA)} | {
-    "·": 278,
-    "°": 400,
-    "×": 584,
-    "–": 556,
-    "—": 1000,
-    "•": 350,
-    "±": 584,
-}
-
 
 def text_advance(text: str, size: float) -> float:
-    """Width of ``text`` set in Helvetica of em height ``size`` (the unit of ``size``).
+    """Width of ``text`` set in DejaVu Sans of em height ``size`` (the unit of ``size``).
 
     Examples
     --------
     >>> round(text_advance("S0", 10.0), 3)
-    12.23
+    12.71
     >>> text_advance("", 10.0)
     0.0
     """
@@ -171,15 +64,18 @@ def text_advance(text: str, size: float) -> float:
 
 
 def advance_units(text: str) -> int:
-    """Width of ``text`` set in Helvetica, thousandths of the em: an integer, so the width of
-    a line is the sum of its words' and spaces' (:func:`text_advance` scales it).
+    """Width of ``text`` set in DejaVu Sans, thousandths of the em (the font's advance widths,
+    :data:`curvefold.io._pdf_font.WIDTHS`; a character the pages cannot set is a ``?``): an
+    integer, so the width of a line is the sum of its words' and spaces' (:func:`text_advance`
+    scales it).
 
     Examples
     --------
-    >>> advance_units("S0"), advance_units("S") + advance_units("0")
-    (1223, 1223)
+    >>> advance_units("S0"), advance_units("S") + advance_units("0"), advance_units("κ")
+    (1271, 1271, 531)
     """
-    return sum(_WIDTHS.get(c, 556) for c in text)
+    unknown = WIDTHS["?"]
+    return sum(WIDTHS.get(c, unknown) for c in text)
 
 
 def _num(v: float) -> str:
@@ -199,7 +95,7 @@ def _colour(code: str) -> str:
 
 
 def _string(text: str) -> bytes:
-    raw = one_line(text).encode("cp1252", errors="replace")
+    raw = encode(one_line(text))
     return b"(" + raw.replace(b"\\", b"\\\\").replace(b"(", b"\\(").replace(b")", b"\\)") + b")"
 
 
@@ -226,7 +122,7 @@ _ANCHORS = {"start": 0.0, "center": 0.5, "end": 1.0}
 
 @dataclass(frozen=True)
 class PdfText:
-    """One line of Helvetica to draw on a page (:meth:`PdfPage.text`).
+    """One line of text to draw on a page (:meth:`PdfPage.text`).
 
     Attributes
     ----------
@@ -350,10 +246,12 @@ class PdfPage:
         self._parts.append("Q\n")
 
     def text(self, line: PdfText) -> None:
-        """One line of Helvetica of em height ``line.size`` mm, its baseline through
+        """One line of DejaVu Sans of em height ``line.size`` mm, its baseline through
         (``line.x``, ``line.y``) turned by ``line.angle`` degrees, on ``line.layer``."""
         self._on(line.layer)
-        shift = _ANCHORS[line.anchor] * text_advance(one_line(line.text), line.size)
+        text = one_line(line.text)
+        self._doc.characters.update(encode(text))
+        shift = _ANCHORS[line.anchor] * text_advance(text, line.size)
         a = math.radians(line.angle)
         c, s = math.cos(a), math.sin(a)
         x0, y0 = line.x - shift * c, line.y - shift * s
@@ -389,6 +287,8 @@ class PdfDocument:
         self.layers = list(dict.fromkeys(layers))
         self.hidden_in_print = [name for name in hidden_in_print if name in self.layers]
         self.pages: list[PdfPage] = []
+        #: The Windows-1252 codes of the text set so far (the embedded font's glyphs).
+        self.characters: set[int] = set()
 
     def layer_tag(self, name: str) -> str:
         """The resource name of a layer (``oc1``…)."""
@@ -415,9 +315,7 @@ class PdfDocument:
             return len(objects)
 
         catalog, pages_id = add(b""), add(b"")  # filled in at the end
-        font = add(
-            "<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica /Encoding /WinAnsiEncoding >>"
-        )
+        font = self._font(add)
         groups = [
             add(f"<< /Type /OCG /Name {_string(name).decode('latin-1')} >>") for name in self.layers
         ]
@@ -480,6 +378,40 @@ class PdfDocument:
             xref,
         )
         return bytes(out)
+
+    def _font(self, add: Callable[[bytes | str], int]) -> int:
+        """Add the font's objects (its program, descriptor and dictionary); its number."""
+        codes = sorted(self.characters) or [32]
+        text = bytes(codes).decode("cp1252")
+        program = font_program(text)
+        name = FONT_NAME if program is None else f"{subset_tag(text)}+{FONT_NAME}"
+        metrics = " ".join(
+            f"/{key} [{' '.join(map(str, value))}]"
+            if isinstance(value, tuple)
+            else f"/{key} {value}"
+            for key, value in DESCRIPTOR.items()
+        )
+        embedded = ""
+        if program is not None:
+            data = zlib.compress(program, 9)
+            stream = add(
+                b"<< /Length %d /Length1 %d /Filter /FlateDecode >>\nstream\n"
+                % (len(data), len(program))
+                + data
+                + b"\nendstream"
+            )
+            embedded = f" /FontFile2 {stream} 0 R"
+        descriptor = add(f"<< /Type /FontDescriptor /FontName /{name} {metrics}{embedded} >>")
+        first, last = codes[0], codes[-1]
+        widths = " ".join(
+            str(advance_units(bytes([c]).decode("cp1252", errors="replace")))
+            for c in range(first, last + 1)
+        )
+        return add(
+            f"<< /Type /Font /Subtype /TrueType /BaseFont /{name} /FirstChar {first} "
+            f"/LastChar {last} /Widths [{widths}] /Encoding /WinAnsiEncoding "
+            f"/FontDescriptor {descriptor} 0 R >>"
+        )
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the file atomically; returns its path."""

@@ -28,6 +28,10 @@ edges' measured fold angles). The file has three named views: ``perspective``, `
 (from above) and ``section`` (level, along the horizontal direction in which the model is
 thinnest: across a vault's arch, so it shows the arch).
 
+A model of one sheet (a single fold) has no tube: its objects make one group named after the
+sheet (``"single fold"``), carry no ``curvefold:tube`` or ``curvefold:sheet``, and its strips
+take the names given (``RhinoOptions.strip_names``: ``"left strip"``, ``"right strip"``).
+
 The unit system is the model's (``"unit"``, the model unit, is written as metres, the
 convention of :data:`curvefold.io._tables.UNITS`). The design parameters are stored as
 document user text (``File3dm.Strings``, key → str(value)), prefixed ``curvefold:``.
@@ -36,7 +40,7 @@ document user text (``File3dm.Strings``, key → str(value)), prefixed ``curvefo
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -182,12 +186,15 @@ class RhinoOptions:
         3dm archive version (0 = the newest rhino3dm writes).
     pattern : Layout or None
         The crease pattern to lay beside the model on the ``crease pattern`` layer.
+    strip_names : sequence of str or None
+        The strips' names, by strip (group of faces); None: ``"tube 1 · strip 1"``…
     """
 
     unit: str = "unit"
     metadata: Mapping[str, object] | None = None
     version: int = 0
     pattern: Layout | None = None
+    strip_names: Sequence[str] | None = None
 
 
 def write_3dm(
@@ -264,6 +271,8 @@ def write_3dm(
     model.ApplicationName = CREATOR
     layer_index = {layer: model.Layers.AddLayer(layer, colour) for layer, colour in LAYERS}
     group_index: dict[str, int] = {}
+    single = topology.sheets[0].label if len(topology.sheets) == 1 else None
+    names = options.strip_names
 
     def group(name: str) -> int:
         if name not in group_index:
@@ -285,9 +294,13 @@ def write_3dm(
         attr = rhino3dm.ObjectAttributes()
         attr.LayerIndex = layer_index[layer]
         attr.Name = object_name
-        attr.AddToGroup(group(f"tube {tube + 1}"))
-        attr.SetUserString("curvefold:tube", str(tube + 1))
         attr.SetUserString("curvefold:kind", kind)
+        if single is not None:  # one sheet, no tube: one group
+            attr.AddToGroup(group(single))
+            sheet = None
+        else:
+            attr.AddToGroup(group(f"tube {tube + 1}"))
+            attr.SetUserString("curvefold:tube", str(tube + 1))
         if sheet is not None:
             attr.AddToGroup(group(f"tube {tube + 1} · sheet {sheet}"))
             attr.SetUserString("curvefold:sheet", sheet)
@@ -323,7 +336,7 @@ def write_3dm(
             rhino3dm.NurbsSurface.CreateRuledSurface(a, b),
             attributes(
                 "Strips",
-                f"tube {g // 4 + 1} · strip {g % 4 + 1}",
+                f"tube {g // 4 + 1} · strip {g % 4 + 1}" if names is None else names[g],
                 tube=g // 4,
                 kind="strip",
                 sheet="A" if g % 4 in (0, 3) else "B",

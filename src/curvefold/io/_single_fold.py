@@ -29,13 +29,13 @@ from ._fold_reading import FoldFile
 from ._formats import FORMATS, check_formats
 from ._layout import FOOTER, Layout, layout_sheets, page_size
 from ._mesh3d import check_metadata
-from ._output import PatternOutput, check_output
+from ._output import ModelOutput, PatternOutput, check_output
 from ._tables import mm_per_unit
 
 __all__ = ["single_fold_model", "write_single_fold_3d", "layout_single_fold"]
 
 
-def _glb(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+def _glb(path: Path, fold: SingleFold, motion: np.ndarray, o: ModelOutput, meta: dict) -> Path:
     coords = np.stack([fold.topology().coords(fold.curves(a)) for a in motion])
     return gltf.write_glb(
         path,
@@ -43,29 +43,38 @@ def _glb(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict
         coords=coords,
         angles_deg=motion,
         base_state=int(np.argmin(np.abs(motion - fold.fold_angle))),
-        options=gltf.GlbOptions(unit=unit, metadata=meta),
+        options=gltf.GlbOptions(unit=o.unit, metadata=meta),
     )
 
 
-def _obj(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
-    return mesh3d.write_obj(path, fold.mesh(fold.fold_angle, "quads"), unit=unit, metadata=meta)
+def _obj(path: Path, fold: SingleFold, motion: np.ndarray, o: ModelOutput, meta: dict) -> Path:
+    return mesh3d.write_obj(path, fold.mesh(fold.fold_angle, "quads"), unit=o.unit, metadata=meta)
 
 
-def _stl(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
-    return mesh3d.write_stl(path, fold.mesh(fold.fold_angle))
+def _stl(path: Path, fold: SingleFold, motion: np.ndarray, o: ModelOutput, meta: dict) -> Path:
+    return mesh3d.write_stl(
+        path, fold.mesh(fold.fold_angle), unit=o.unit, to_unit=o.print_unit, scale=o.print_scale
+    )
 
 
-def _ply(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+def _ply(path: Path, fold: SingleFold, motion: np.ndarray, o: ModelOutput, meta: dict) -> Path:
     return mesh3d.write_ply(path, fold.mesh(fold.fold_angle))
 
 
-def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, unit: str, meta: dict) -> Path:
+#: The names of a single fold's two strips in its 3dm, by group (:meth:`SingleFold.topology`).
+STRIP_NAMES = ("left strip", "right strip")
+
+
+def _3dm(path: Path, fold: SingleFold, motion: np.ndarray, o: ModelOutput, meta: dict) -> Path:
     return rhino.write_3dm(
         path,
         fold.mesh(fold.fold_angle, "quads"),
         fold.topology("quads"),
         degree=3,
-        options=rhino.RhinoOptions(unit=unit, metadata=meta),
+        fold_angle=fold.fold_angle,
+        options=rhino.RhinoOptions(
+            unit=o.unit, metadata=meta, pattern=o.pattern, strip_names=STRIP_NAMES
+        ),
     )
 
 
@@ -110,22 +119,22 @@ def write_single_fold_3d(
     fold_angles,
     *,
     formats: Sequence[str],
-    unit: str = "unit",
-    metadata: Mapping | None = None,
+    output: ModelOutput = ModelOutput(),
 ) -> tuple[Path, ...]:
     """The 3D files of a single fold at its design angle; the GLB holds the folding motion at
     ``fold_angles``.
 
     OBJ and 3dm hold one quad per ruling quad, GLB, STL and PLY two triangles, as for the other
-    kinds.
+    kinds. Of ``output``, the model unit and metadata are used by every file, the print unit
+    and scale by the STL, the crease pattern by the 3dm (on its ``crease pattern`` layers).
     """
     formats = check_formats(formats, "model")
     motion = np.asarray(fold_angles, float)
     meta = check_metadata(
-        {"kind": "crease", "fold_angle_deg": fold.fold_angle, **check_metadata(metadata)}
+        {"kind": "crease", "fold_angle_deg": fold.fold_angle, **check_metadata(output.metadata)}
     )
     return tuple(
-        _MODELS[name](FORMATS[name].path(path_stem), fold, motion, unit, meta) for name in formats
+        _MODELS[name](FORMATS[name].path(path_stem), fold, motion, output, meta) for name in formats
     )
 
 

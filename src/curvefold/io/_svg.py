@@ -59,14 +59,16 @@ def _svg_points(points: np.ndarray, height: float) -> str:
     return " ".join(["%.3f,%.3f"] * len(points)) % tuple(flipped.ravel().tolist())
 
 
-def _svg_label(t: Label, height: float) -> str:
+def _svg_label(t: Label, height: float, colour: str | None = None) -> str:
+    """A line of text centred on its position, in its layer's colour or in ``colour``."""
     a = math.radians(t.angle)
     # baseline 0.35 em below the centre, so the capitals sit centred on it
     x = t.position[0] + 0.35 * t.size * math.sin(a)
     y = height - (t.position[1] - 0.35 * t.size * math.cos(a))
     rot = f' transform="rotate({-t.angle:.2f} {x:.3f} {y:.3f})"' if abs(t.angle) > 1e-9 else ""
     text = _escape(one_line(t.text))
-    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}>{text}</text>'
+    fill = "" if colour is None else f' style="fill:{colour}"'
+    return f'<text x="{x:.3f}" y="{y:.3f}" font-size="{t.size:.3f}"{rot}{fill}>{text}</text>'
 
 
 _FONT = "font-family:'DejaVu Sans',Arial,Helvetica,sans-serif;text-anchor:middle"
@@ -139,10 +141,13 @@ def svg_page(
     out += [
         f"<{'polygon' if layer_look(layout, key)[2].fill else 'polyline'} "
         f'points="{_svg_points(points, H)}" '
-        f"style={_quoteattr(_svg_style(layout, key, lw, footer.colour))}/>"
-        for key, points in footer.samples
+        f"style={_quoteattr(_svg_style(layout, key, lw, ink))}/>"
+        for (key, points), ink in zip(footer.samples, footer.inks)
     ]
-    out += [_svg_label(t, H) for t in footer.texts]
+    out += [
+        _svg_label(t, H, None if ink == footer.colour else ink)
+        for t, ink in zip(footer.texts, footer.text_inks)
+    ]
     out.append("</g>")
     out.append("</svg>\n")
     return "\n".join(out)
