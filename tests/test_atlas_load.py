@@ -127,6 +127,8 @@ def load_figures(record: dict) -> dict:
         "41",
         "--snow",
         "0.3",
+        "--across",
+        "1",
         "--json",
     )
     assert result.returncode in (0, 1), result.stderr

@@ -337,7 +337,15 @@ def test_a_chosen_material_shows_the_design_under_load(browser):
         )
         for key in ("fold_mode_gap", "max_displacement", "max_stress", "utilisation", "reactions")
     }
-    # an architect's units, three significant digits
+    # an architect's units, three significant digits, each with its estimated error as the
+    # command prints it
+    from curvefold.mechanics import error_text
+
+    for key, (text, _) in list(shown.items()):
+        if key in expected["errors"]:
+            text, plus = text.split(" ± ")
+            assert f" ± {plus}" == error_text(expected["errors"][key]), (key, plus)
+            shown[key] = (text, shown[key][1])
     gap, mm, stress, use = (shown[k] for k in list(shown)[:4])
     assert gap[0] == f"{expected['fold_mode_gap']:.3g}" and gap[1] == ""
     assert mm[1] == "mm" and float(mm[0]) == float(f"{expected['max_displacement'] * 1e3:.3g}")

@@ -457,7 +457,9 @@ def _atlas_load(args: argparse.Namespace):
     design = design_from_dict({"kind": LOAD_KIND}, source=source)
     design = (design.overrides(source=source, **flags) if flags else design).with_mechanics()
     assert design.material is not None and design.loads is not None  # with_mechanics fills them
-    return atlas_load(design.material, design.loads, samples=samples)
+    # a coarse model screens the grid: one element across unless --across says more
+    given = any(t.startswith("--across") for t in typed)
+    return atlas_load(design.material, design.loads, samples=samples, across=None if given else 1)
 
 
 def _lightest_line(payload: dict) -> str:

@@ -662,10 +662,13 @@ def analyse(
     )
 
 
-def atlas_load(material: MaterialParams, loads: LoadParams, *, samples: int) -> AtlasLoad:
+def atlas_load(
+    material: MaterialParams, loads: LoadParams, *, samples: int, across: int | None = None
+) -> AtlasLoad:
     """The mechanics of every design of an atlas (:class:`curvefold.mechanics.AtlasLoad`) under a
     design's ``[material]`` and ``[loads]``, as :func:`analyse` reads them, on a model of
-    ``samples`` samples along each crease.
+    ``samples`` samples along each crease and ``across`` elements across each strip (default
+    the ``[loads]``'s).
 
     Examples
     --------
@@ -684,7 +687,7 @@ def atlas_load(material: MaterialParams, loads: LoadParams, *, samples: int) -> 
         loads.supports,
         loads.criteria(),
         material.crease_stiffness,
-        loads.across,
+        loads.across if across is None else across,
         samples,
     )
 

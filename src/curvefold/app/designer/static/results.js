@@ -107,8 +107,9 @@ export function showMechanics(state, found) {
     const [shown, shownUnit] = v === null ? [key === "buckling_factor" ? "none" : "unknown", unit]
       : architect(v, unit, { percent: key === "utilisation" });
     // its error, estimated against half the elements across (curvefold load's ± x %)
-    const error = n.errors?.[key];
-    const plus = typeof error === "number" ? ` ± ${fmt(Math.max(100 * error, 0.01))} %` : "";
+    const error = n.errors?.[key], percent = Math.max(100 * error, 0.01);
+    const plus = typeof error !== "number" ? ""
+      : ` ± ${percent >= 10 ? Math.round(percent) : percent.toPrecision(2)} %`;
     rows.push(row(key, explained, words, shown + plus, shownUnit));
   }
   const [lowest] = architect(n.frequencies.slice(0, 3), "Hz");
