@@ -1154,3 +1154,15 @@ def test_the_console_script_keeps_the_promise(tmp_path):
         r"^curvefold: error: --a 1e10: a must be in \[0, 1\.2707093728\) \(no arch stands "
         r"beyond it: Eq\. \(20\) has no root next to π there\), got 1e10$",
     )
+
+
+def test_a_folder_name_of_255_bytes_is_written_and_nothing_is_left_beside_it(tmp_path):
+    """The longest name a filesystem takes (255 bytes, here in two-byte characters) is written:
+    the temporary folder beside it keeps 200 bytes of the name ("File name too long" before)."""
+    name = "é" * 127 + "v"
+    assert len(name.encode()) == 255
+    r = run(
+        "vault", "--samples", "101", "--tubes", "1", "--formats", "svg", "--out", name, cwd=tmp_path
+    )
+    assert r.returncode == 0, r.stderr
+    assert listing(tmp_path) == [name] and (tmp_path / name / "report.html").is_file()

@@ -8,7 +8,8 @@ What the command line promises about the folder it writes:
   that is missing or not writable. An existing folder is replaced only with ``force``, and
   only if curvefold wrote it (it holds the marker file :data:`MARKER`) or it is empty.
 - **Nothing partial.** Files are written into a temporary folder beside the target,
-  ``.<name>.curvefold-<pid>-<random>``, which holds the marker from the start.
+  ``.<name>.curvefold-<pid>-<random>`` (the name cut to 200 bytes, so that a name of 255
+  bytes is written too), which holds the marker from the start.
 - **Never replace what was not checked.** The last step renames the temporary folder onto
   the target with a rename that cannot replace an existing folder (``renameat2`` with
   ``RENAME_NOREPLACE`` on Linux; elsewhere a rename made under a lock on the parent
@@ -210,7 +211,9 @@ def output_folder(target: OutputTarget) -> Iterator[Path]:
         kept beside it, and the message names both.
     """
     path = target.path
-    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.curvefold-{os.getpid()}-", dir=path.parent))
+    tmp = Path(
+        tempfile.mkdtemp(prefix=f".{_stem(path.name)}.curvefold-{os.getpid()}-", dir=path.parent)
+    )
     try:
         marker = {"curvefold": VERSION, "id": secrets.token_hex(16)}
         (tmp / MARKER).write_text(json.dumps(marker) + "\n", encoding="utf-8")
@@ -242,7 +245,9 @@ def _install(tmp: Path, target: OutputTarget) -> None:
         except FileExistsError:
             _conflict(tmp, path, "appeared while curvefold was running")
         return
-    aside = path.with_name(f".{path.name}.curvefold-{os.getpid()}-{secrets.token_hex(4)}.old")
+    aside = path.with_name(
+        f".{_stem(path.name)}.curvefold-{os.getpid()}-{secrets.token_hex(4)}.old"
+    )
     try:
         rename_noreplace(path, aside)
     except FileNotFoundError:  # removed meanwhile: nothing to replace
@@ -262,7 +267,7 @@ def _install(tmp: Path, target: OutputTarget) -> None:
 def _conflict(tmp: Path, path: Path, what: str) -> None:
     """Keep the finished output beside ``path`` under a free name and say so."""
     for n in range(1, 1000):
-        kept = path.with_name(f"{path.name}.new" + (f"-{n}" if n > 1 else ""))
+        kept = path.with_name(f"{_stem(path.name)}.new" + (f"-{n}" if n > 1 else ""))
         try:
             rename_noreplace(tmp, kept)
         except FileExistsError:
@@ -274,6 +279,22 @@ def _conflict(tmp: Path, path: Path, what: str) -> None:
         f"output folder {path} {what}; it was left as it is, and no free name was "
         "found beside it for the new output"
     )
+
+
+#: Bytes of a folder's name kept in the names made beside it (temporary, aside, ``.new``), so
+#: that they stay within the 255 bytes a file name may have.
+STEM_BYTES = 200
+
+
+def _stem(name: str) -> str:
+    """``name``, or its first :data:`STEM_BYTES` bytes (whole characters) when longer.
+
+    Examples
+    --------
+    >>> _stem("vault"), len(_stem("v" * 250)), len(_stem("é" * 150).encode())
+    ('vault', 200, 200)
+    """
+    return name.encode()[:STEM_BYTES].decode(errors="ignore")
 
 
 def _identity(folder: Path) -> str | None:
