@@ -86,6 +86,9 @@ _LAZY = {
     "SoftModes": "_softmodes",
     "soft_modes": "_softmodes",
     "conjecture_counts": "_softmodes",
+    "follow_load": "_path",
+    "LoadPath": "_path",
+    "PathError": "_path",
 }
 
 __all__ = [
@@ -137,6 +140,9 @@ __all__ = [
     "figure_errors",
     "check_errors",
     "ERROR_TOLERANCE",
+    "follow_load",
+    "LoadPath",
+    "PathError",
 ]
 
 
