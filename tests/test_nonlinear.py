@@ -324,7 +324,8 @@ def test_a_strip_of_panels_bends_as_the_elastica_at_second_order():
     coarse, fine = elastica_error(8), elastica_error(16)
     # measured 5.6e-3 and 1.4e-3 m (the tip moves 0.8 m): O(s²)
     assert fine < 2e-3 and 3.5 < coarse / fine < 4.5
-    # a clamp hinge of the interior stiffness is a first-order rule: the order check fails
+    # a clamp hinge of the interior stiffness is a first-order rule (measured 8.4e-2 and
+    # 4.3e-2 m, a ratio of 1.95): the order check fails
     assert elastica_error(8, clamp=1.0) / elastica_error(16, clamp=1.0) < 2.5
 
 
