@@ -40,7 +40,7 @@ import scipy.sparse as sp
 
 from . import _elements
 from ._model import BarHingeModel
-from ._sparse import assemble, rows_matrix
+from ._sparse import dof_index, rows_matrix
 
 __all__ = ["elongations", "rotations", "energy", "internal_forces", "tangent"]
 
@@ -172,28 +172,45 @@ def tangent(model: BarHingeModel, u: np.ndarray) -> sp.csr_matrix:
     1.875
     """
     x = _positions(model, u)
-    P, dofs = len(model.nodes), model.dofs
-    S = model.bar_stiffness_matrix()
-    Ct = rows_matrix(_bar_rows(model, x), model.bars, dofs)
-    N = S @ elongations(model, u)
-    w = N / _lengths(model)
-    a, b = model.bars[:, 0], model.bars[:, 1]
-    scalar = sp.csr_matrix(
-        (np.concatenate([w, w, -w, -w]), (np.r_[a, b, a, b], np.r_[a, b, b, a])), shape=(P, P)
-    )
-    K = Ct.T @ S @ Ct + sp.kron(scalar, sp.identity(3), format="csr")
+    dofs = model.dofs
+    L = _lengths(model)
+    rows = _bar_rows(model, x).reshape(-1, 6)
+    d = elongations(model, u)
+    # bars of their own, and every bar's geometric part, as 6 × 6 blocks; one sparse build
+    N = model.bar_stiffness * d
+    membranes = model.membrane_stiffness.any()
+    if membranes:
+        S = model.bar_stiffness_matrix() - sp.diags(model.bar_stiffness)
+        N = N + S @ d
+    w = (N / L)[:, None, None] * _SPREAD
+    blocks = [model.bar_stiffness[:, None, None] * rows[:, :, None] * rows[:, None, :] + w]
+    elements = [model.bars]
     if len(model.hinges):
         xh = x[model.hinges]
-        J = rows_matrix(_elements.dihedral_gradient(xh), model.hinges, dofs)
+        g = _elements.dihedral_gradient(xh).reshape(-1, 12)
         moments = model.hinge_stiffness * rotations(model, u)
-        K = K + J.T @ sp.diags(model.hinge_stiffness) @ J
+        hinge = model.hinge_stiffness[:, None, None] * g[:, :, None] * g[:, None, :]
         moving = np.flatnonzero(moments)
         if moving.size:
-            K = K + assemble(
-                moments[moving, None, None] * _elements.dihedral_hessian(xh[moving]),
-                model.hinges[moving],
-                dofs,
-            )
-    K = (0.5 * (K + K.T)).tocsr()
+            hinge[moving] += moments[moving, None, None] * _elements.dihedral_hessian(xh[moving])
+        blocks.append(hinge)
+        elements.append(model.hinges)
+    K = _assemble_blocks(blocks, elements, dofs)
+    if membranes:  # the membranes couple their bars: C̃ᵀ S C̃ on the sparse rows
+        Ct = rows_matrix(rows.reshape(-1, 2, 3), model.bars, dofs)
+        K = (K + Ct.T @ S @ Ct).tocsr()
     K.sort_indices()
     return K
+
+
+#: A bar's geometric block per unit N/L: [[I, −I], [−I, I]].
+_SPREAD = np.kron(np.array([[1.0, -1.0], [-1.0, 1.0]]), np.eye(3))
+
+
+def _assemble_blocks(blocks: list[np.ndarray], elements: list[np.ndarray], dofs: int):
+    """Σ of element blocks (N, 3m, 3m) on their nodes (N, m), of several kinds, in one build."""
+    index = [dof_index(e) for e in elements]
+    rows = np.concatenate([np.repeat(i, i.shape[1], axis=1).ravel() for i in index])
+    cols = np.concatenate([np.tile(i, (1, i.shape[1])).ravel() for i in index])
+    vals = np.concatenate([b.ravel() for b in blocks])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(dofs, dofs))
