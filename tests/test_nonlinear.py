@@ -8,7 +8,11 @@ control), where it must fail.
 
 from __future__ import annotations
 
+import importlib.util
+import os
+import shutil
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -350,3 +354,28 @@ def test_at_small_load_the_path_is_the_linear_response_to_second_order(models):
     # a linear response 1 % off differs at first order: its relative error does not grow
     small, large = linear_errors(model, forces, fixed, 1.01 * linear)
     assert not 1.9 < large / small < 2.1
+
+
+# -- MERLIN under Octave (optional) --------------------------------------------------------------
+MERLIN = os.environ.get("CURVEFOLD_MERLIN", "")
+
+
+@pytest.mark.octave
+@pytest.mark.skipif(
+    shutil.which("octave-cli") is None or not Path(MERLIN, "PathAnalysis.m").exists(),
+    reason="needs octave-cli and MERLIN's code (its folder in CURVEFOLD_MERLIN)",
+)
+def test_merlins_miura_folding_under_octave_is_our_path(tmp_path, monkeypatch):
+    benchmarks = Path(__file__).parents[1] / "benchmarks"
+    monkeypatch.syspath_prepend(str(benchmarks))  # its helpers
+    spec = importlib.util.spec_from_file_location("bench_merlin", benchmarks / "bench_merlin.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.merlin_path(Path(MERLIN), "folding", tmp_path / "folding.mat")
+    model, path, _ = bench.curvefold_path(data)
+    # measured 4e-10: strains below 1e-4, where Ogden's law and St Venant–Kirchhoff's agree
+    assert bench.compare(data, model, path).max() < 1e-7
+    # creases 1 % too stiff: the comparison sees it
+    data["kpf"] = 1.01 * data["kpf"]
+    model, path, _ = bench.curvefold_path(data)
+    assert bench.compare(data, model, path).max() > 1e-3
