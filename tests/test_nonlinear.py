@@ -20,6 +20,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from _mechanics import miura_mesh
+from curvefold.kernel import InputError
 from curvefold.mechanics import (
     MATERIALS,
     BarHingeModel,
@@ -379,3 +380,33 @@ def test_merlins_miura_folding_under_octave_is_our_path(tmp_path, monkeypatch):
     data["kpf"] = 1.01 * data["kpf"]
     model, path, _ = bench.curvefold_path(data)
     assert bench.compare(data, model, path).max() > 1e-3
+
+
+# -- arguments ---------------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"steps": 0}, r"^steps must be an integer in \[1, 100000\], got 0$"),
+        ({"max_factor": -1.0}, r"^max_factor must be > 0, got -1\.0$"),
+        ({"method": "arc"}, r"^method must be one of displacement, load, got 'arc'$"),
+        (
+            {"tolerance": 1.0},
+            r"^tolerance must be in \[1e-14, 0\.01\] \(rounding to rough\), got 1\.0$",
+        ),
+        ({"forces": np.zeros((2, 3))}, r"^forces and fixed must have shape \(3, 3\), got \(2, 3\)"),
+        ({"forces": np.zeros((3, 3))}, r"^forces must load a free DOF, got none$"),
+    ],
+)
+def test_a_wrong_argument_is_one_line_naming_it_its_range_and_value(change, message):
+    model = BarHingeModel(
+        np.array([[-A, 0, 0], [A, 0, 0], [0, 0, H]]), [[0, 2], [1, 2]], [EA / L0] * 2, NO_HINGES,
+        [], np.ones(3),
+    )  # fmt: skip
+    fixed = np.ones((3, 3), bool)
+    fixed[2, 2] = False
+    forces = np.zeros((3, 3))
+    forces[2, 2] = -1.0
+    arguments = {"forces": forces} | change
+    forces = arguments.pop("forces")
+    with pytest.raises(InputError, match=message):
+        follow_load(model, forces, fixed, **arguments)
