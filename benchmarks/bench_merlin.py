@@ -19,7 +19,10 @@ differ by (a) the bars' law, Ogden's (α = 5, 1) against St Venant–Kirchhoff, 
 second order in the strain; (b) MERLIN's tolerance (a displacement correction below 1e-6).
 Measured: folding (strains below 1e-4) 4e-10 at most; bending 5e-9 in the median, growing
 with the largest bar strain to 1.5e-5 at 1.8 % and 2.1e-3 at 7.3 % (its last state): the
-laws' difference.
+laws' difference. To tell, :func:`ogden_residual` puts MERLIN's states into curvefold's
+model with Ogden's bars: bending's are in equilibrium to 4.7e-7 of the load (2.2e-3 with
+curvefold's own bars), folding's to 7.7e-5 (MERLIN stops at a correction of 1e-6 m, which
+its bars of EA/L = 5e4 N/m turn into that residual).
 
 Targets (issue 46): curves within 1 %; curvefold at least 10× faster than MERLIN under
 Octave (CPU seconds of the path following alone, each in its own process, one BLAS thread).
@@ -134,6 +137,35 @@ def compare(data: dict, model, path) -> np.ndarray:
     return np.abs(ours - lam) / np.abs(lam).max()
 
 
+def ogden_residual(data: dict, model) -> np.ndarray:
+    """How far MERLIN's states are from equilibrium in curvefold's model with MERLIN's own bar
+    law: ‖λ f − f_int(u)‖ / ‖λ f‖ on the free DOFs at every state, the hinges curvefold's and
+    the bars Ogden's (α = 5, 1; second Piola–Kirchhoff stress
+    C0 (p³ − p⁻¹) / 4 at the stretch p). Rounding and MERLIN's tolerance only, if the two
+    codes' hinges and bars are the same elements."""
+    from dataclasses import replace
+
+    from curvefold.mechanics._nonlinear import elongations, internal_forces
+
+    hinges = replace(model, bar_stiffness=np.zeros(len(model.bars)))
+    L = data["lengths"].ravel()
+    area, c0 = data["area"].ravel(), float(data["C0"].item())
+    free = np.flatnonzero(~np.isin(np.arange(model.dofs), data["fixed"].astype(int).ravel() - 1))
+    F = data["F"].ravel()
+    out = []
+    for u, lam in zip(data["U_his"].T, data["LF_his"].ravel(), strict=True):
+        stretch = np.sqrt(2 * elongations(model, u) / L + 1)
+        force = area * c0 / 4 * (stretch**3 - 1 / stretch)  # A times the PK2 stress
+        x = model.nodes + u.reshape(-1, 3)
+        d = (x[model.bars[:, 1]] - x[model.bars[:, 0]]) * (force / L)[:, None]
+        f = internal_forces(hinges, u).reshape(-1, 3)
+        np.add.at(f, model.bars[:, 1], d)
+        np.add.at(f, model.bars[:, 0], -d)
+        r = (lam * F - f.ravel())[free]
+        out.append(np.linalg.norm(r) / np.linalg.norm(lam * F[free]))
+    return np.array(out)
+
+
 def run(merlin: Path | None = None) -> list[SummaryRow]:
     merlin = merlin or (
         Path(os.environ["CURVEFOLD_MERLIN"]) if "CURVEFOLD_MERLIN" in os.environ else None
@@ -164,6 +196,7 @@ def run(merlin: Path | None = None) -> list[SummaryRow]:
                     f"{len(data['LF_his'].ravel())}, {len(path.factors) - 1}",
                     f"{error.max():.2e} (state {int(np.argmax(error)) + 1})",
                     f"{np.median(error):.1e}",
+                    f"{ogden_residual(data, model).max():.1e}",
                     f"{theirs:.2f}",
                     f"{cpu:.2f}",
                     f"{theirs / cpu:.1f}×",
@@ -183,6 +216,7 @@ def run(merlin: Path | None = None) -> list[SummaryRow]:
                 "states (MERLIN, ours)",
                 "largest difference of λ",
                 "median",
+                "MERLIN's states, Ogden bars: residual",
                 "MERLIN CPU-s",
                 "ours CPU-s",
                 "speed-up",
