@@ -20,9 +20,17 @@ most :data:`GROWTH_LIMIT` times the first), after a slow one it shrinks; a step 
 not converge, or whose corrections take it farther than its predictor went (a jump to
 another branch, not a step along this one), is halved and tried again, down to
 2^-:data:`HALVINGS` of the first, below which :class:`PathError` says where (load factor,
-step) and keeps the points computed. Tangents
-are factorised by Cholesky (:class:`._linear.Factorized`) where they are positive definite
-(the path is stable there) and by a sparse LU past a limit point.
+step) and keeps the points computed. Tangents are factorised by Cholesky
+(:class:`._linear.Factorized`) where they are positive definite (the path is stable there)
+and by a sparse LU past a limit point.
+
+Measured (``tests/test_nonlinear.py``): the von Mises truss's states lie on its exact curve
+to 2.4e-14 N through the limit point (2.9033 N), the inversion and back, in 48 states of one
+iteration each; load control stops at 2.90327 with :class:`PathError`. A strip of 8 and 16
+rigid panels follows the elastica to 5.6e-3 and 1.4e-3 m (second order). MERLIN's
+Miura-ori folding and bending (``benchmarks/bench_merlin.py``): the same load factors to
+4e-10 and, where the bars' laws part at 7 % strain, 2.1e-3, in 0.6 CPU-s against MERLIN's
+5.8 and 9.2 under Octave.
 """
 
 from __future__ import annotations
