@@ -28,9 +28,9 @@ Measured (``tests/test_nonlinear.py``): the von Mises truss's states lie on its 
 to 2.4e-14 N through the limit point (2.9033 N), the inversion and back, in 48 states of one
 iteration each; load control stops at 2.90327 with :class:`PathError`. A strip of 8 and 16
 rigid panels follows the elastica to 5.6e-3 and 1.4e-3 m (second order). MERLIN's
-Miura-ori folding and bending (``benchmarks/bench_merlin.py``): the same load factors to
-4e-10 and, where the bars' laws part at 7 % strain, 2.1e-3, in 0.6 CPU-s against MERLIN's
-5.8 and 9.2 under Octave.
+Miura-ori folding, pop-through and bending (``benchmarks/bench_merlin.py``): the same load
+factors to 4e-10, 1.7e-4 (beside a snap-back) and, where the bars' laws part at 7 %
+strain, 2.1e-3, 10 to 14 times faster than MERLIN under Octave.
 """
 
 from __future__ import annotations
