@@ -36,6 +36,7 @@ NAMES = (
     "main_job",
     "mechanics",
     "verdict",
+    "merlin",
     "threads",
     "startup",
 )

@@ -88,6 +88,9 @@ _LAZY = {
     "SoftModes": "_softmodes",
     "soft_modes": "_softmodes",
     "conjecture_counts": "_softmodes",
+    "follow_load": "_path",
+    "LoadPath": "_path",
+    "PathError": "_path",
 }
 
 __all__ = [
@@ -140,6 +143,9 @@ __all__ = [
     "figure_errors",
     "check_errors",
     "ERROR_TOLERANCE",
+    "follow_load",
+    "LoadPath",
+    "PathError",
 ]
 
 

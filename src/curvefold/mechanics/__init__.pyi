@@ -33,6 +33,9 @@ from ._modes import Modes as Modes
 from ._modes import correlation as correlation
 from ._modes import free_modes as free_modes
 from ._modes import span_correlation as span_correlation
+from ._path import LoadPath as LoadPath
+from ._path import PathError as PathError
+from ._path import follow_load as follow_load
 from ._response import Buckling as Buckling
 from ._response import StaticResult as StaticResult
 from ._response import buckling as buckling
@@ -101,4 +104,7 @@ __all__ = [
     "figure_errors",
     "check_errors",
     "ERROR_TOLERANCE",
+    "follow_load",
+    "LoadPath",
+    "PathError",
 ]
