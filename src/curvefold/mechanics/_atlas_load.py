@@ -86,7 +86,7 @@ class AtlasLoad:
     across : int
         Elements across each ruling strip.
     samples : int
-        Samples along each crease of the model (:data:`LOAD_SAMPLES`, made odd).
+        Samples along each crease of the model (``LOAD_SAMPLES``, made odd).
 
     Examples
     --------
@@ -119,7 +119,7 @@ class AtlasLoad:
         object.__setattr__(self, "samples", LOAD_SAMPLES.check(self.samples) | 1)
 
     def measure(self, vault: Vault) -> dict[str, Any]:
-        """The columns of :data:`LOAD_FIELDS` of one built vault, as plain Python values.
+        """The columns of ``LOAD_FIELDS`` of one built vault, as plain Python values.
 
         The vault is built again at :attr:`samples` with the tubes it has; a design that cannot
         be built so or that the model refuses (a :class:`~curvefold.kernel.CurvefoldError`:

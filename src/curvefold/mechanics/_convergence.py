@@ -20,11 +20,11 @@ from k = 2 and 4 is above its difference to k = 16 (the tests). The orders obser
 (k = 2, 4, 8) are 2.4–3.6 for the deflection, 0.6–1.2 for the free eigenvalues (taken at
 0.8: the lowest at which the estimates bound the difference; the guide's tables find 0.4
 on the paper's vault and the block, whose eigenvalues move by under 2 % from k = 2 to 8)
-and above 3 for the supported ones. The buckling factor and the largest stress are taken at first order:
-both are found where the sheet meets its supports, whose corners make the linear model's
-stress singular, so that they keep moving slowly as the mesh is refined (the paper's
-vault at k = 2, 4, 8: buckling factor 24.27, 23.87, 23.51; largest stress 138.6, 139.3,
-147.3 kPa, the last in an element on the supports). The loads, the reactions and the
+and above 3 for the supported ones. The buckling factor and the largest stress are taken
+at first order: both are found where the sheet meets its supports, whose corners make the
+linear model's stress singular, so that they keep moving slowly as the mesh is refined (the
+paper's vault at k = 2, 4, 8: buckling factor 24.27, 23.87, 23.51; largest stress 138.6,
+139.3, 147.3 kPa, the last in an element on the supports). The loads, the reactions and the
 weight carry no error of the elements across (the weight is ρ g t times the developed area
 of the samples kept).
 """

@@ -222,7 +222,7 @@ def follow_load(
         Generalized displacement control, or load control (stops at a limit point).
     tolerance : float, keyword-only
         Converged when the residual's norm is below ``tolerance`` times the load's,
-        ‖f‖ max(|λ|, first), or a correction below ``tolerance`` times the step's
+        ‖f‖ max(abs(λ), first), or a correction below ``tolerance`` times the step's
         displacement (where stiff bars round the residual above the first).
     max_iterations : int, keyword-only
         Newton iterations per try of a step.
@@ -236,7 +236,7 @@ def follow_load(
     InputError
         For an argument out of its range, or a model free to move under the supports.
     PathError
-        If a step does not converge even at 2^-:data:`HALVINGS` of the first: the message gives
+        If a step does not converge even at 2^-``HALVINGS`` of the first: the message gives
         the load factor and the step, the error's ``path`` the states found.
 
     Examples
