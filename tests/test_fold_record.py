@@ -157,10 +157,10 @@ def _single_precision(doc, rng):
         frame["vertices_coords"] = x.astype(float).tolist()
 
 
-def _edge_split(doc, rng):
-    """A ruling split at its midpoint in every frame: its two faces become quads whose fan
-    triangle beside the new vertex has no area."""
-    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == "ruling"]
+def _edge_split(doc, rng, kind="ruling"):
+    """A ruling (or crease) split at its midpoint in every frame: its two faces become quads
+    whose fan triangle beside the new vertex has no area."""
+    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == kind]
     e = int(rng.choice(rulings))
     a, b = doc["edges_vertices"][e]
     m = len(doc["vertices_coords"])
@@ -172,7 +172,7 @@ def _edge_split(doc, rng):
     doc["edges_vertices"][e] = [a, m]
     doc["edges_vertices"].append([m, b])
     doc["edges_assignment"].append(doc["edges_assignment"][e])
-    doc["edges_curvefold:kind"].append("ruling")
+    doc["edges_curvefold:kind"].append(kind)
     for face in doc["faces_vertices"]:
         for i in range(len(face)):
             if {face[i], face[(i + 1) % len(face)]} == {a, b}:
@@ -184,6 +184,7 @@ def _edge_split(doc, rng):
 BENIGN = {
     "rounded to 6 decimals": _rounded,
     "a ruling split at its midpoint": _edge_split,
+    "a crease split at its midpoint": lambda doc, rng: _edge_split(doc, rng, "fold"),
     "float32 coordinates": _single_precision,
     "indented": _indented,
     "keys reordered": _keys_reordered,
@@ -225,9 +226,31 @@ def test_a_harmful_copy_fails_a_named_check(tmp_path, vault, name):
 def test_a_benign_copy_passes(tmp_path, vault, name):
     result = check_fold(_copy(tmp_path, vault[1], BENIGN[name], SEED))
     assert result.ok, [(c.name, c.where) for c in result.checks if c.status == "fail"]
-    if name == "a ruling split at its midpoint":  # the fan triangle with no area is named
+    if "split" in name:  # the vertex on a straight side is named, the tolerances unchanged
         planarity = {c.name: c for c in result.checks}["face_planarity"]
-        assert "skipped fan diagonals" in planarity.where
+        assert "on a straight side of their polygon" in planarity.where
+        shipped = {c.name: c.tolerance or 0.0 for c in check_fold(vault[0]).checks}
+        # within the written precision of the new vertex (the midpoint has more digits)
+        assert {c.name: c.tolerance or 0.0 for c in result.checks} == pytest.approx(
+            shipped, rel=0.1
+        )
+
+
+def test_a_split_edge_hides_no_damage(tmp_path, vault):
+    """A split edge's fan triangle with no area made the smallest triangle height 0, and every
+    angle tolerance derived from it (face_planarity 1.8e8°): a bent face passed beside it."""
+
+    def split_and_bent(doc, rng):
+        _edge_split(doc, rng, "fold")
+        _vertex_moved(doc, rng)
+        frame = _frames(doc)[-1]
+        x = np.array(frame["vertices_coords"])
+        x[len(x) // 2] += 1e-3 * float(np.ptp(x, axis=0).max())
+        frame["vertices_coords"] = x.tolist()
+
+    result = check_fold(_copy(tmp_path, vault[1], split_and_bent, SEED))
+    failed = {c.name for c in result.checks if c.status == "fail"}
+    assert {"fold_angles", "face_planarity"} <= failed, failed
 
 
 @pytest.mark.slow
