@@ -93,6 +93,22 @@ def _stretch_falsified(doc, rng):
     doc["curvefold:metadata"]["mesh_stretch"] = 1e-7
 
 
+def _tubes_falsified(doc, rng):
+    doc["curvefold:metadata"]["tubes"] += int(rng.integers(1, 3))
+
+
+def _design_angle_falsified(doc, rng):
+    doc["curvefold:metadata"]["design_fold_angle_deg"] = 80.0
+
+
+def _width_falsified(doc, rng):
+    doc["curvefold:metadata"]["width"] *= 1.5
+
+
+def _one_bond_pair_deleted(doc, rng):
+    del doc["curvefold:bonds"][int(rng.integers(len(doc["curvefold:bonds"])))]
+
+
 def _frame_scaled(doc, rng):
     frame = _frames(doc)[int(rng.integers(1, len(_frames(doc))))]
     frame["vertices_coords"] = (np.array(frame["vertices_coords"]) * 1.0005).tolist()
@@ -118,6 +134,10 @@ HARMFUL = {
     "mesh_deviation set to 1e-9": (_deviation_falsified, "record"),
     "radius changed": (_radius_falsified, "record"),
     "mesh_stretch falsified": (_stretch_falsified, "record"),
+    "tubes falsified": (_tubes_falsified, "record"),
+    "design angle falsified": (_design_angle_falsified, "record"),
+    "width falsified": (_width_falsified, "record"),
+    "one bond pair deleted": (_one_bond_pair_deleted, "record"),
     "a frame scaled by 1.0005": (_frame_scaled, "isometry"),
     "a vertex moved by 1e-6 of the size": (_vertex_moved, "fold_angles"),
 }
@@ -329,8 +349,16 @@ def _rigid_motion(doc, rng):
         frame["vertices_coords"] = np.round(x @ turn.T + rng.normal(size=x.shape[1]), 12).tolist()
 
 
+def _renumbered_and_moved(doc, rng):
+    _vertices_renumbered(doc, rng)
+    _edges_renumbered(doc, rng)
+    _rigid_motion(doc, rng)
+
+
 #: Benign under --rebuild too: the geometry's meaning is unchanged.
 BENIGN_REBUILT = {
+    "renumbered and moved": _renumbered_and_moved,
+    "a crease split at its midpoint": lambda doc, rng: _edge_split(doc, rng, "fold"),
     "vertices renumbered": _vertices_renumbered,
     "edges renumbered": _edges_renumbered,
     "face lists rotated": _face_lists_rotated,
@@ -354,8 +382,15 @@ def test_rebuild_fails_a_changed_design_and_a_moved_vertex(tmp_path, vault):
     def widened(doc, rng):
         doc["curvefold:design"]["design"]["vault"]["width"] = 0.081
 
+    def split_off_its_line(doc, rng):
+        _edge_split(doc, rng, "fold")
+        frame = _frames(doc)[-1]
+        frame["vertices_coords"][-1][2] += 1e-4
+
     for edit in (
         widened,
+        split_off_its_line,
+        _tubes_falsified,
         _vertex_moved,
         lambda d, rng: _rigid_motion(d, rng) or _vertex_moved(d, rng),
     ):
@@ -363,3 +398,17 @@ def test_rebuild_fails_a_changed_design_and_a_moved_vertex(tmp_path, vault):
         result = run("check", str(path), "--rebuild", "--json")
         checks = {c["name"]: c for c in json.loads(result.stdout)["checks"]}
         assert result.returncode == 1 and checks["rebuild"]["status"] == "fail"
+
+
+def test_a_panel_frame_replaced_under_its_title_fails_the_record(tmp_path):
+    """Rigid panels fold their crease by the frame's angle, the most of any fold edge (to 1e-9°
+    measured on a 4-panel tube): a frame with another's coordinates passed."""
+    out = tmp_path / "out"
+    assert run("tube", "--panels", "4", "--formats", "fold", "--out", str(out)).returncode == 0
+    doc = json.loads((out / "tube.fold").read_text())
+    assert check_fold(out / "tube.fold").ok
+    doc["file_frames"][3] = dict(doc["file_frames"][2], frame_title="fold angle 45°")
+    path = tmp_path / "replaced.fold"
+    path.write_text(json.dumps(doc))
+    record = {c.name: c for c in check_fold(path).checks}["record"]
+    assert record.status == "fail" and "folds its creases by 30°, the record 45°" in record.where
