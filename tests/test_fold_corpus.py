@@ -217,3 +217,28 @@ def test_a_damaged_folded_form_is_caught(tmp_path, files):
     assert checks(tmp_path / "bent.fold")["face_planarity"].status == "fail"
     (m,) = analyse_fold(tmp_path / "bent.fold")
     assert not m.consistent
+
+
+def test_a_second_crease_pattern_frame_is_no_folded_frame(tmp_path, files):
+    """A crease pattern and another one of fewer vertices (a design's second state, as an editor
+    keeps it): it was checked as a folded frame, "4 vertices fewer"."""
+    data = json.loads(files["miura-cp-frames.fold"].read_bytes()[3:])
+    n = len(data["vertices_coords"]) - 4
+    data["file_frames"].append(
+        {
+            "frame_title": "a smaller pattern",
+            "frame_classes": ["creasePattern"],
+            "vertices_coords": [[x, y] for x, y in [p[:2] for p in data["vertices_coords"][:n]]],
+            "edges_vertices": [e for e in data["edges_vertices"] if max(e) < n],
+            "faces_vertices": [f for f in data["faces_vertices"] if max(f) < n],
+            "edges_assignment": [
+                a for a, e in zip(data["edges_assignment"], data["edges_vertices"]) if max(e) < n
+            ],
+        }
+    )
+    (tmp_path / "two.fold").write_text(json.dumps(data))
+    doc = read_fold(tmp_path / "two.fold")
+    assert len(doc.folded) == 2
+    assert any("another crease pattern (frame_classes creasePattern)" in n for n in doc.notes)
+    assert check_fold(tmp_path / "two.fold").ok
+    assert [m.dof for m in analyse_fold(tmp_path / "two.fold")] == [1, 1]

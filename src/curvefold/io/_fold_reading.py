@@ -572,7 +572,14 @@ def parse_fold(doc, where: str = "FOLD document", *, notes: Sequence[str] = ()) 
     if cp_index is None and "foldedForm" not in classes[0] and flat[0]:
         cp_index = 0
     crease_pattern = None if cp_index is None else meshes[cp_index][0]
-    chosen = [i for i in range(len(meshes)) if i != cp_index]
+    # another crease pattern is no folded frame: it is named, not checked as one
+    others = [i for i, c in enumerate(classes) if "creasePattern" in c and i != cp_index]
+    for i in others:
+        notes.append(
+            f"{labels[i]}: another crease pattern (frame_classes creasePattern): not read as a "
+            "folded frame; the first crease pattern is the one checked"
+        )
+    chosen = [i for i in range(len(meshes)) if i != cp_index and i not in others]
     if crease_pattern is None:
         crease_pattern = _unfolded(resolved, chosen, meshes, labels, notes)
     folded = tuple((titles[i], meshes[i][0]) for i in chosen)
