@@ -258,3 +258,38 @@ def test_advice_for_a_large_foreign_file_speaks_of_its_mesh(tmp_path):
     r = run("mechanism", str(path))
     assert r.returncode == 2 and "a coarser mesh of the same model fits" in r.stderr
     assert "panels" not in r.stderr and "tubes" not in r.stderr
+
+
+def test_a_pattern_saved_with_its_target_angles_is_read_as_a_crease_pattern(tmp_path):
+    """Origami Simulator saves a crease pattern as one frame classed foldedForm, in its plane
+    y = 0, unfolded, with the target fold angles (its five box-pleat files in its assets, 180°
+    at most): every one failed `fold_angles` ("180 > 0.01°"), a state it does not claim to be."""
+    from _fold_corpus import assignment_of, edges_of, grid_faces, miura
+
+    faces = grid_faces(3, 4)
+    edges = edges_of(faces)
+    assignment, angles = assignment_of(miura(3, 4, height=0.6).reshape(-1, 3), faces, edges)
+    flat = miura(3, 4).reshape(-1, 3)
+    doc = {
+        "file_spec": 1.1,
+        "file_creator": "Origami Simulator: http://git.amandaghassaei.com/OrigamiSimulator/",
+        "frame_classes": ["foldedForm"],
+        "frame_attributes": ["3D"],
+        "vertices_coords": [[float(np.float32(v)) for v in (p[0], 0.0, p[1])] for p in flat],
+        "edges_vertices": edges,
+        "edges_assignment": assignment,
+        "edges_foldAngle": [
+            None if a == "B" else round(float(v), 2) for a, v in zip(assignment, angles)
+        ],
+        "faces_vertices": faces,
+    }
+    path = tmp_path / "pattern.fold"
+    path.write_text(json.dumps(doc))
+    fold = read_fold(path)
+    assert fold.crease_pattern is not None and not fold.folded
+    assert any("read as a crease pattern with its target angles" in n for n in fold.notes)
+    assert check_fold(path).ok
+    # its targets are still checked against its assignments
+    doc["edges_foldAngle"][assignment.index("M")] *= -1
+    path.write_text(json.dumps(doc))
+    assert {c.name for c in check_fold(path).checks if c.status == "fail"} == {"assignments"}
