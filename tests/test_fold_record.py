@@ -179,8 +179,10 @@ def _single_precision(doc, rng):
 
 def _edge_split(doc, rng, kind="ruling"):
     """A ruling (or crease) split at its midpoint in every frame: its two faces become quads
-    whose fan triangle beside the new vertex has no area."""
-    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == kind]
+    whose fan triangle beside the new vertex has no area. (A glued edge split without its
+    partner no longer meets it: not a benign edit.)"""
+    glued = set(np.ravel(doc["curvefold:seam_partners"] + doc["curvefold:bonds"]).tolist())
+    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == kind and e not in glued]
     e = int(rng.choice(rulings))
     a, b = doc["edges_vertices"][e]
     m = len(doc["vertices_coords"])
