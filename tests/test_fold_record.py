@@ -202,6 +202,18 @@ def _edge_split(doc, rng, kind="ruling"):
                 break
 
 
+def _turned_over(doc, rng):
+    """The sheet seen from its other side: faces wound the other way, M and V swapped and every
+    fold angle negated, the crease pattern mirrored in its plane."""
+    x = np.asarray(doc["vertices_coords"], float)
+    x[:, 0] *= -1
+    doc["vertices_coords"] = x.tolist()
+    doc["faces_vertices"] = [face[::-1] for face in doc["faces_vertices"]]
+    doc["edges_assignment"] = [{"M": "V", "V": "M"}.get(a, a) for a in doc["edges_assignment"]]
+    for frame in [doc, *_frames(doc)]:
+        frame["edges_foldAngle"] = [-a for a in frame["edges_foldAngle"]]
+
+
 #: Benign edits: the geometry and its record unchanged.
 BENIGN = {
     "rounded to 6 decimals": _rounded,
@@ -212,6 +224,7 @@ BENIGN = {
     "keys reordered": _keys_reordered,
     "file_creator changed": _creator_changed,
     "an unknown key added": _unknown_key,
+    "the sheet turned over": _turned_over,
 }
 
 
@@ -360,6 +373,9 @@ def _renumbered_and_moved(doc, rng):
 #: Benign under --rebuild too: the geometry's meaning is unchanged.
 BENIGN_REBUILT = {
     "renumbered and moved": _renumbered_and_moved,
+    "the sheet turned over and renumbered": lambda doc, rng: (
+        _turned_over(doc, rng) or _vertices_renumbered(doc, rng)
+    ),
     "a crease split at its midpoint": lambda doc, rng: _edge_split(doc, rng, "fold"),
     "vertices renumbered": _vertices_renumbered,
     "edges renumbered": _edges_renumbered,
@@ -393,6 +409,7 @@ def test_rebuild_fails_a_changed_design_and_a_moved_vertex(tmp_path, vault):
         widened,
         split_off_its_line,
         _tubes_falsified,
+        lambda d, rng: _turned_over(d, rng) or _vertex_moved(d, rng),
         _vertex_moved,
         lambda d, rng: _rigid_motion(d, rng) or _vertex_moved(d, rng),
     ):

@@ -17,8 +17,9 @@ from dataclasses import replace
 import numpy as np
 
 from ..geometry._mesh import Mesh
+from ..io._fold_reading import FoldFile
 
-__all__ = ["renumbered", "rigid_residual", "canonical_pairs", "unsplit"]
+__all__ = ["renumbered", "rigid_residual", "canonical_pairs", "turned_over", "unsplit"]
 
 
 def rigid_residual(moved: np.ndarray, fixed: np.ndarray) -> np.ndarray:
@@ -204,3 +205,36 @@ def unsplit(
     ]
     moved = [new_e[edge_of[p]] if len(p) else p for p in pairs]
     return out, moved, np.array(removed, np.int64)
+
+
+def turned_over(doc: FoldFile) -> FoldFile:
+    """The same sheet seen from its other side: every face wound the other way, M and V swapped
+    and every fold angle negated, the crease pattern mirrored (x → −x) in its plane; the folded
+    coordinates unchanged."""
+
+    def turned(mesh: Mesh, pattern: bool) -> Mesh:
+        faces = mesh.faces_vertices
+        rows = [[c for c in row if c >= 0][::-1] for row in faces.tolist()]
+        x = mesh.vertices_coords.copy()
+        if pattern:
+            x[:, 0] *= -1
+        swap = {"M": "V", "V": "M"}
+        return replace(
+            mesh,
+            vertices_coords=x,
+            faces_vertices=np.array(
+                [r + [-1] * (faces.shape[1] - len(r)) for r in rows], np.int64
+            ).reshape(faces.shape),
+            edges_assignment=np.array(
+                [swap.get(a, a) for a in mesh.edges_assignment.tolist()],
+                mesh.edges_assignment.dtype,
+            ),
+            edges_foldAngle=-mesh.edges_foldAngle,
+        )
+
+    cp = doc.crease_pattern
+    return replace(
+        doc,
+        crease_pattern=None if cp is None else turned(cp, True),
+        folded=tuple((title, turned(mesh, False)) for title, mesh in doc.folded),
+    )

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..io._fold_reading import FoldFile
 from ._fold_checks import judge, named_ids
-from ._fold_matching import canonical_pairs, renumbered, rigid_residual, unsplit
+from ._fold_matching import canonical_pairs, renumbered, rigid_residual, turned_over, unsplit
 from ._fold_results import FileCheck
 
 __all__ = ["rebuild"]
@@ -19,9 +19,25 @@ def rebuild(
     doc: FoldFile, reference: FoldFile, labels: list[str], size: float, tol: dict
 ) -> FileCheck:
     """Every array the rebuilt file holds against the file's (its frames named by ``labels``), up
-    to the numbering of vertices, edges and faces, an edge split at a point of its line and a
-    rigid motion of each frame (:mod:`curvefold.analysis._fold_matching`): what differs is
-    named."""
+    to the numbering of vertices, edges and faces, an edge split at a point of its line, a
+    rigid motion of each frame and the sheet turned over
+    (:mod:`curvefold.analysis._fold_matching`): what differs is named."""
+    found = _compared(doc, reference, labels, size, tol)
+    if found.status == "pass" or reference.crease_pattern is None:
+        return found
+    turned = _compared(doc, turned_over(reference), labels, size, tol)
+    if turned.status != "pass":
+        return found
+    note = (
+        "the sheet turned over (its faces wound the other way, M and V and the fold angles "
+        "reversed, the crease pattern mirrored)"
+    )
+    return replace(turned, where="; ".join(w for w in (turned.where, note) if w))
+
+
+def _compared(
+    doc: FoldFile, reference: FoldFile, labels: list[str], size: float, tol: dict
+) -> FileCheck:
     titles = [t for t, _ in doc.folded]
     mine = [
         (label, m)
