@@ -50,7 +50,10 @@ INCONSISTENT = {
     ),
     "rabbit-ear-folded-bird-base-3d.fold": ("fold_angles", "edges 9, 10, 11, 12, 14"),
     "rabbit-ear-bird-base-3d-modified.fold": ("assignments", "edges 8, 9, 10"),
-    "rabbit-ear-kite.fold": ("assignments", "crease pattern): edges 6, 7"),
+    "rabbit-ear-kite.fold": (
+        "assignments",
+        "edges 6, 7; M or V edges record a fold angle of the other",
+    ),
 }
 
 #: Files with a folded frame: their internal DOF (each face a rigid body).

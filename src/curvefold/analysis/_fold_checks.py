@@ -220,7 +220,7 @@ def edge_kinds(doc: FoldFile, frame: Frame) -> FileCheck:
 
 
 def assignments(frames: list[Frame], slack: float, flat: float) -> FileCheck:
-    results, reversed_ = [], False
+    results, reversed_, misrecorded = [], False, False
     for f in frames:
         a = f.mesh.edges_assignment
         recorded = np.where(np.isin(np.arange(len(a)), f.unrecorded), 0.0, f.mesh.edges_foldAngle)
@@ -230,6 +230,7 @@ def assignments(frames: list[Frame], slack: float, flat: float) -> FileCheck:
             [np.fmax(recorded - slack, 0.0), np.fmax(-recorded - slack, 0.0)],
             0.0,
         )
+        misrecorded |= bool((wrong > 0).any())
         if not f.pattern:  # a folded frame: measured too
             measured = _measured(f.mesh)
             unfolded = np.isin(a, ("F", "J"))
@@ -259,9 +260,12 @@ def assignments(frames: list[Frame], slack: float, flat: float) -> FileCheck:
         results.append((f.label, wrong))
     found = judge("assignments", "°", 0.0, results, named_ids("edges"))
     if found.status == "fail" and reversed_:
+        found = replace(found, where=f"{found.where}; {_WOUND}")
+    if found.status == "fail" and misrecorded:
         found = replace(
             found,
-            where=f"{found.where}; {_WOUND}",
+            where=f"{found.where}; M or V edges record a fold angle of the other sign (FOLD: a "
+            "mountain's is negative, a valley's positive)",
         )
     return found
 
