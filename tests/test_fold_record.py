@@ -431,3 +431,20 @@ def test_a_panel_frame_replaced_under_its_title_fails_the_record(tmp_path):
     path.write_text(json.dumps(doc))
     record = {c.name: c for c in check_fold(path).checks}["record"]
     assert record.status == "fail" and "folds its creases by 30°, the record 45°" in record.where
+
+
+def test_a_panel_vault_moved_and_written_with_more_digits_keeps_its_record(tmp_path):
+    """The 16-panel vault is written to 1e-12 of its size (11 decimals); moved rigidly and written
+    to 12, its digits say 5e-13 while it still holds the first rounding: the stretch measured at
+    its 90° frame, 3.2e-10 on a 0.038 edge, failed the recorded 2.1e-14."""
+    out = tmp_path / "out"
+    argv = ("vault", "--panels", "16", "--formats", "fold", "--out", str(out))
+    assert run(*argv).returncode == 0
+    doc = json.loads((out / "vault.fold").read_text())
+    path = _copy(tmp_path, doc, _rigid_motion, SEED + 1)
+    record = {c.name: c for c in check_fold(path).checks}["record"]
+    assert record.status == "pass", record.where
+    # a falsified stretch still fails
+    doc["curvefold:metadata"]["mesh_stretch"] = 1e-7
+    record = {c.name: c for c in check_fold(_copy(tmp_path, doc, _rigid_motion, SEED + 1)).checks}
+    assert record["record"].status == "fail"

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..geometry._mesh import Mesh, edges_faces
 from ..geometry._mesh import fold_angles as dihedral_angles
+from ..io._fold import COORDINATE_RTOL
 from ..io._fold_reading import FoldFile
 from ..kernel._arrays import distinct
 from ._fold_results import FileCheck
@@ -187,7 +188,11 @@ def _mesh_claims(doc: FoldFile, design: dict, meta: dict, eps: float) -> list[st
         flat = pattern.edge_lengths()
         with np.errstate(invalid="ignore", divide="ignore"):
             measured = float(np.nanmax(np.abs(frame.edge_lengths() / flat - 1)))
-        rounding = 4 * math.sqrt(3) * eps / float(flat.min()) + 1e-9 * measured
+        # at least curvefold's own rounding of what it wrote (a copy written again with more
+        # digits, as a moved one, still holds it)
+        size = max(float(np.ptp(m.vertices_coords, axis=0).max()) for m in (pattern, frame))
+        floor = max(eps, 0.5 * COORDINATE_RTOL * size)
+        rounding = 4 * math.sqrt(3) * floor / float(flat.min()) + 1e-9 * measured
         if abs(measured - stretch) > rounding:
             found.append(f"mesh_stretch {stretch:.6g}, measured {measured:.6g} at the design angle")
     return found
