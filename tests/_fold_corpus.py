@@ -22,9 +22,9 @@ way a tool writes it:
 Known degrees of freedom (internal, rigid panels): a Miura-ori of quads has one (Schenk and
 Guest 2013); a rigidly foldable square twist has one (Evans, Lang, Magleby and Howell 2015);
 a single vertex of degree n with rigid sectors is a spherical linkage of n − 3 (5 for the
-waterbomb base's 8 creases); a triangulated disk whose constraints are independent has
-3V − E − 6 = B − 3, B its boundary edges (Euler's formula; the triangles of a simulated
-Miura-ori bend across their facet edges).
+waterbomb base's 8 creases). A simulated Miura-ori's facet (F) edges lie between coplanar
+triangles and are no hinges: it has the Miura-ori's one (were they hinges, a triangulated
+disk whose constraints are independent has 3V − E − 6 = B − 3, B its boundary edges).
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ from curvefold.geometry import fold_angles
 #: The corpus: file name -> internal degrees of freedom of its folded frames.
 KNOWN_DOF = {
     "miura-mathematica.fold": 1,
-    "miura-origami-simulator.fold": None,  # B − 3, from the file (see triangulated_dof)
+    "miura-origami-simulator.fold": 1,  # its facet (F) edges flat: the Miura-ori's one
     "square-twist.fold": 1,
     "waterbomb.fold": 5,
     "miura-cp-frames.fold": 1,

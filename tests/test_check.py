@@ -196,7 +196,10 @@ def test_one_mountain_flipped_to_valley(tmp_path, written):
     result = verdict(damaged(tmp_path, doc, lambda d: d["edges_assignment"].__setitem__(edge, "V")))
     # the crease pattern records it as a mountain, and it folds as one
     assert result["assignments"].status == "fail"
-    assert result["assignments"].where == f"key frame (crease pattern): edges {edge}"
+    assert result["assignments"].where == (
+        f"key frame (crease pattern): edges {edge}; M or V edges record a fold angle of the "
+        "other sign (FOLD: a mountain's is negative, a valley's positive)"
+    )
 
 
 @pytest.mark.parametrize("to", ["V", "F"])

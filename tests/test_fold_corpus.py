@@ -49,7 +49,11 @@ def test_the_corpus_has_its_known_degrees_of_freedom(files, name):
     )
     frames = analyse_fold(files[name])
     assert [m.dof for m in frames] == [known] * len(frames)
-    assert all(m.consistent and m.gap > 1e10 for m in frames), [(m.residual, m.gap) for m in frames]
+    # single precision moves the null singular values off zero by ~1e-7 of the largest
+    single = name == "miura-origami-simulator.fold"
+    assert all(m.consistent and m.gap > (1e6 if single else 1e10) for m in frames), [
+        (m.residual, m.gap) for m in frames
+    ]
     r = run("mechanism", str(files[name]), "--json")
     assert r.returncode == 0 and [f["dof"] for f in json.loads(r.stdout)["frames"]] == [
         known
@@ -64,7 +68,7 @@ def test_origami_simulator_files_read_null_angles_on_boundaries_as_zero(files):
     assert doc.crease_pattern is None and len(doc.folded) == 1 and not doc.is_flat_folded(0)
     assert any("edges_foldAngle is null on 14 B edges, read as 0" in n for n in doc.notes)
     # 14 boundary edges of a triangulated 3 × 4 Miura-ori
-    assert triangulated_dof(json.loads(path.read_text())) == 11
+    assert triangulated_dof(json.loads(path.read_text())) == 11  # were its F edges hinges
     r = run("check", str(path))
     assert "note:" in r.stdout and "read as 0" in r.stdout
 
@@ -197,8 +201,9 @@ def test_coordinates_rounded_as_written_raise_the_tolerance_to_their_precision(t
     assert all(1e-7 < m.residual < 1e-5 and "rank tolerance raised" in m.note for m in frames)
     # whatever the rtol asked
     assert analyse_fold(tmp_path / "rounded.fold", rtol=1e-9)[0].tolerance > 1e-6
-    # exact values are not told from rounded ones
-    assert coordinate_precision(np.array([[0.5, 0.25]])) == 0.005
+    # dyadic fractions of few digits are exact as written, others set the precision
+    assert coordinate_precision(np.array([[0.5, 0.25]])) < 1e-15
+    assert coordinate_precision(np.array([[0.5, 0.25, 0.125001]])) == 5e-7
     assert (
         coordinate_precision(np.array([[float(np.float32(0.1)), 1.0]]))
         == float(np.spacing(np.float32(1.0))) / 2
@@ -212,3 +217,28 @@ def test_a_damaged_folded_form_is_caught(tmp_path, files):
     assert checks(tmp_path / "bent.fold")["face_planarity"].status == "fail"
     (m,) = analyse_fold(tmp_path / "bent.fold")
     assert not m.consistent
+
+
+def test_a_second_crease_pattern_frame_is_no_folded_frame(tmp_path, files):
+    """A crease pattern and another one of fewer vertices (a design's second state, as an editor
+    keeps it): it was checked as a folded frame, "4 vertices fewer"."""
+    data = json.loads(files["miura-cp-frames.fold"].read_bytes()[3:])
+    n = len(data["vertices_coords"]) - 4
+    data["file_frames"].append(
+        {
+            "frame_title": "a smaller pattern",
+            "frame_classes": ["creasePattern"],
+            "vertices_coords": [[x, y] for x, y in [p[:2] for p in data["vertices_coords"][:n]]],
+            "edges_vertices": [e for e in data["edges_vertices"] if max(e) < n],
+            "faces_vertices": [f for f in data["faces_vertices"] if max(f) < n],
+            "edges_assignment": [
+                a for a, e in zip(data["edges_assignment"], data["edges_vertices"]) if max(e) < n
+            ],
+        }
+    )
+    (tmp_path / "two.fold").write_text(json.dumps(data))
+    doc = read_fold(tmp_path / "two.fold")
+    assert len(doc.folded) == 2
+    assert any("another crease pattern (frame_classes creasePattern)" in n for n in doc.notes)
+    assert check_fold(tmp_path / "two.fold").ok
+    assert [m.dof for m in analyse_fold(tmp_path / "two.fold")] == [1, 1]

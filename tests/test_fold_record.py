@@ -93,6 +93,22 @@ def _stretch_falsified(doc, rng):
     doc["curvefold:metadata"]["mesh_stretch"] = 1e-7
 
 
+def _tubes_falsified(doc, rng):
+    doc["curvefold:metadata"]["tubes"] += int(rng.integers(1, 3))
+
+
+def _design_angle_falsified(doc, rng):
+    doc["curvefold:metadata"]["design_fold_angle_deg"] = 80.0
+
+
+def _width_falsified(doc, rng):
+    doc["curvefold:metadata"]["width"] *= 1.5
+
+
+def _one_bond_pair_deleted(doc, rng):
+    del doc["curvefold:bonds"][int(rng.integers(len(doc["curvefold:bonds"])))]
+
+
 def _frame_scaled(doc, rng):
     frame = _frames(doc)[int(rng.integers(1, len(_frames(doc))))]
     frame["vertices_coords"] = (np.array(frame["vertices_coords"]) * 1.0005).tolist()
@@ -118,6 +134,10 @@ HARMFUL = {
     "mesh_deviation set to 1e-9": (_deviation_falsified, "record"),
     "radius changed": (_radius_falsified, "record"),
     "mesh_stretch falsified": (_stretch_falsified, "record"),
+    "tubes falsified": (_tubes_falsified, "record"),
+    "design angle falsified": (_design_angle_falsified, "record"),
+    "width falsified": (_width_falsified, "record"),
+    "one bond pair deleted": (_one_bond_pair_deleted, "record"),
     "a frame scaled by 1.0005": (_frame_scaled, "isometry"),
     "a vertex moved by 1e-6 of the size": (_vertex_moved, "fold_angles"),
 }
@@ -157,10 +177,12 @@ def _single_precision(doc, rng):
         frame["vertices_coords"] = x.astype(float).tolist()
 
 
-def _edge_split(doc, rng):
-    """A ruling split at its midpoint in every frame: its two faces become quads whose fan
-    triangle beside the new vertex has no area."""
-    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == "ruling"]
+def _edge_split(doc, rng, kind="ruling"):
+    """A ruling (or crease) split at its midpoint in every frame: its two faces become quads
+    whose fan triangle beside the new vertex has no area. (A glued edge split without its
+    partner no longer meets it: not a benign edit.)"""
+    glued = set(np.ravel(doc["curvefold:seam_partners"] + doc["curvefold:bonds"]).tolist())
+    rulings = [e for e, k in enumerate(doc["edges_curvefold:kind"]) if k == kind and e not in glued]
     e = int(rng.choice(rulings))
     a, b = doc["edges_vertices"][e]
     m = len(doc["vertices_coords"])
@@ -172,7 +194,7 @@ def _edge_split(doc, rng):
     doc["edges_vertices"][e] = [a, m]
     doc["edges_vertices"].append([m, b])
     doc["edges_assignment"].append(doc["edges_assignment"][e])
-    doc["edges_curvefold:kind"].append("ruling")
+    doc["edges_curvefold:kind"].append(kind)
     for face in doc["faces_vertices"]:
         for i in range(len(face)):
             if {face[i], face[(i + 1) % len(face)]} == {a, b}:
@@ -180,15 +202,29 @@ def _edge_split(doc, rng):
                 break
 
 
+def _turned_over(doc, rng):
+    """The sheet seen from its other side: faces wound the other way, M and V swapped and every
+    fold angle negated, the crease pattern mirrored in its plane."""
+    x = np.asarray(doc["vertices_coords"], float)
+    x[:, 0] *= -1
+    doc["vertices_coords"] = x.tolist()
+    doc["faces_vertices"] = [face[::-1] for face in doc["faces_vertices"]]
+    doc["edges_assignment"] = [{"M": "V", "V": "M"}.get(a, a) for a in doc["edges_assignment"]]
+    for frame in [doc, *_frames(doc)]:
+        frame["edges_foldAngle"] = [-a for a in frame["edges_foldAngle"]]
+
+
 #: Benign edits: the geometry and its record unchanged.
 BENIGN = {
     "rounded to 6 decimals": _rounded,
     "a ruling split at its midpoint": _edge_split,
+    "a crease split at its midpoint": lambda doc, rng: _edge_split(doc, rng, "fold"),
     "float32 coordinates": _single_precision,
     "indented": _indented,
     "keys reordered": _keys_reordered,
     "file_creator changed": _creator_changed,
     "an unknown key added": _unknown_key,
+    "the sheet turned over": _turned_over,
 }
 
 
@@ -225,9 +261,31 @@ def test_a_harmful_copy_fails_a_named_check(tmp_path, vault, name):
 def test_a_benign_copy_passes(tmp_path, vault, name):
     result = check_fold(_copy(tmp_path, vault[1], BENIGN[name], SEED))
     assert result.ok, [(c.name, c.where) for c in result.checks if c.status == "fail"]
-    if name == "a ruling split at its midpoint":  # the fan triangle with no area is named
+    if "split" in name:  # the vertex on a straight side is named, the tolerances unchanged
         planarity = {c.name: c for c in result.checks}["face_planarity"]
-        assert "skipped fan diagonals" in planarity.where
+        assert "on a straight side of their polygon" in planarity.where
+        shipped = {c.name: c.tolerance or 0.0 for c in check_fold(vault[0]).checks}
+        # within the written precision of the new vertex (the midpoint has more digits)
+        assert {c.name: c.tolerance or 0.0 for c in result.checks} == pytest.approx(
+            shipped, rel=0.1
+        )
+
+
+def test_a_split_edge_hides_no_damage(tmp_path, vault):
+    """A split edge's fan triangle with no area made the smallest triangle height 0, and every
+    angle tolerance derived from it (face_planarity 1.8e8°): a bent face passed beside it."""
+
+    def split_and_bent(doc, rng):
+        _edge_split(doc, rng, "fold")
+        _vertex_moved(doc, rng)
+        frame = _frames(doc)[-1]
+        x = np.array(frame["vertices_coords"])
+        x[len(x) // 2] += 1e-3 * float(np.ptp(x, axis=0).max())
+        frame["vertices_coords"] = x.tolist()
+
+    result = check_fold(_copy(tmp_path, vault[1], split_and_bent, SEED))
+    failed = {c.name for c in result.checks if c.status == "fail"}
+    assert {"fold_angles", "face_planarity"} <= failed, failed
 
 
 @pytest.mark.slow
@@ -306,8 +364,19 @@ def _rigid_motion(doc, rng):
         frame["vertices_coords"] = np.round(x @ turn.T + rng.normal(size=x.shape[1]), 12).tolist()
 
 
+def _renumbered_and_moved(doc, rng):
+    _vertices_renumbered(doc, rng)
+    _edges_renumbered(doc, rng)
+    _rigid_motion(doc, rng)
+
+
 #: Benign under --rebuild too: the geometry's meaning is unchanged.
 BENIGN_REBUILT = {
+    "renumbered and moved": _renumbered_and_moved,
+    "the sheet turned over and renumbered": lambda doc, rng: (
+        _turned_over(doc, rng) or _vertices_renumbered(doc, rng)
+    ),
+    "a crease split at its midpoint": lambda doc, rng: _edge_split(doc, rng, "fold"),
     "vertices renumbered": _vertices_renumbered,
     "edges renumbered": _edges_renumbered,
     "face lists rotated": _face_lists_rotated,
@@ -331,8 +400,16 @@ def test_rebuild_fails_a_changed_design_and_a_moved_vertex(tmp_path, vault):
     def widened(doc, rng):
         doc["curvefold:design"]["design"]["vault"]["width"] = 0.081
 
+    def split_off_its_line(doc, rng):
+        _edge_split(doc, rng, "fold")
+        frame = _frames(doc)[-1]
+        frame["vertices_coords"][-1][2] += 1e-4
+
     for edit in (
         widened,
+        split_off_its_line,
+        _tubes_falsified,
+        lambda d, rng: _turned_over(d, rng) or _vertex_moved(d, rng),
         _vertex_moved,
         lambda d, rng: _rigid_motion(d, rng) or _vertex_moved(d, rng),
     ):
@@ -340,3 +417,34 @@ def test_rebuild_fails_a_changed_design_and_a_moved_vertex(tmp_path, vault):
         result = run("check", str(path), "--rebuild", "--json")
         checks = {c["name"]: c for c in json.loads(result.stdout)["checks"]}
         assert result.returncode == 1 and checks["rebuild"]["status"] == "fail"
+
+
+def test_a_panel_frame_replaced_under_its_title_fails_the_record(tmp_path):
+    """Rigid panels fold their crease by the frame's angle, the most of any fold edge (to 1e-9°
+    measured on a 4-panel tube): a frame with another's coordinates passed."""
+    out = tmp_path / "out"
+    assert run("tube", "--panels", "4", "--formats", "fold", "--out", str(out)).returncode == 0
+    doc = json.loads((out / "tube.fold").read_text())
+    assert check_fold(out / "tube.fold").ok
+    doc["file_frames"][3] = dict(doc["file_frames"][2], frame_title="fold angle 45°")
+    path = tmp_path / "replaced.fold"
+    path.write_text(json.dumps(doc))
+    record = {c.name: c for c in check_fold(path).checks}["record"]
+    assert record.status == "fail" and "folds its creases by 30°, the record 45°" in record.where
+
+
+def test_a_panel_vault_moved_and_written_with_more_digits_keeps_its_record(tmp_path):
+    """The 16-panel vault is written to 1e-12 of its size (11 decimals); moved rigidly and written
+    to 12, its digits say 5e-13 while it still holds the first rounding: the stretch measured at
+    its 90° frame, 3.2e-10 on a 0.038 edge, failed the recorded 2.1e-14."""
+    out = tmp_path / "out"
+    argv = ("vault", "--panels", "16", "--formats", "fold", "--out", str(out))
+    assert run(*argv).returncode == 0
+    doc = json.loads((out / "vault.fold").read_text())
+    path = _copy(tmp_path, doc, _rigid_motion, SEED + 1)
+    record = {c.name: c for c in check_fold(path).checks}["record"]
+    assert record.status == "pass", record.where
+    # a falsified stretch still fails
+    doc["curvefold:metadata"]["mesh_stretch"] = 1e-7
+    record = {c.name: c for c in check_fold(_copy(tmp_path, doc, _rigid_motion, SEED + 1)).checks}
+    assert record["record"].status == "fail"

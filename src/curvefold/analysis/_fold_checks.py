@@ -220,7 +220,7 @@ def edge_kinds(doc: FoldFile, frame: Frame) -> FileCheck:
 
 
 def assignments(frames: list[Frame], slack: float, flat: float) -> FileCheck:
-    results = []
+    results, reversed_, misrecorded = [], False, False
     for f in frames:
         a = f.mesh.edges_assignment
         recorded = np.where(np.isin(np.arange(len(a)), f.unrecorded), 0.0, f.mesh.edges_foldAngle)
@@ -230,27 +230,44 @@ def assignments(frames: list[Frame], slack: float, flat: float) -> FileCheck:
             [np.fmax(recorded - slack, 0.0), np.fmax(-recorded - slack, 0.0)],
             0.0,
         )
+        misrecorded |= bool((wrong > 0).any())
         if not f.pattern:  # a folded frame: measured too
             measured = _measured(f.mesh)
             unfolded = np.isin(a, ("F", "J"))
             if f.flat:  # only whether an edge is folded through is measured: |angle| is 0 or 180
                 bent = np.where(unfolded, np.fmax(np.abs(measured) - flat, 0.0), 0.0)
             else:
+                # folded through (±180°, its faces on each other): the sign is not measured
+                through = np.abs(measured) >= 180.0 - slack
                 bent = np.select(
-                    [a == "M", a == "V", unfolded],
+                    [through & ~unfolded, a == "M", a == "V", unfolded],
                     [
+                        0.0,
                         np.fmax(measured - slack, 0.0),
                         np.fmax(-measured - slack, 0.0),
                         np.fmax(np.abs(measured) - flat, 0.0),
                     ],
                     0.0,
                 )
+            if not f.flat:  # every folded M/V edge the other way: the faces wound the other way
+                sign = np.select([a == "M", a == "V"], [-1.0, 1.0], 0.0) * measured
+                folded = (sign != 0) & (np.abs(measured) > slack) & ~through
+                reversed_ |= bool(folded.any() and (sign[folded] < 0).all())
             # NaN stays
             wrong = np.maximum(
                 wrong, np.where(np.isnan(measured) & ~np.isin(a, ("B", "U")), np.nan, bent)
             )
         results.append((f.label, wrong))
-    return judge("assignments", "°", 0.0, results, named_ids("edges"))
+    found = judge("assignments", "°", 0.0, results, named_ids("edges"))
+    if found.status == "fail" and reversed_:
+        found = replace(found, where=f"{found.where}; {_WOUND}")
+    if found.status == "fail" and misrecorded:
+        found = replace(
+            found,
+            where=f"{found.where}; M or V edges record a fold angle of the other sign (FOLD: a "
+            "mountain's is negative, a valley's positive)",
+        )
+    return found
 
 
 def _measured(mesh: Mesh) -> np.ndarray:
@@ -260,7 +277,7 @@ def _measured(mesh: Mesh) -> np.ndarray:
 def recorded_angles(frames: list[Frame], tolerance: float) -> FileCheck:
     if not frames:
         return not_run("fold_angles", "°", "the file holds no folded frame")
-    results, recorded_any = [], False
+    results, recorded_any, reversed_ = [], False, False
     for f in frames:
         sides = edges_faces(f.mesh.faces_vertices, f.mesh.edges_vertices)
         # the recorded edges between two faces (a mask: np.setdiff1d would import numpy.ma)
@@ -279,6 +296,11 @@ def recorded_angles(frames: list[Frame], tolerance: float) -> FileCheck:
             error = np.abs(np.abs(recorded) - np.abs(measured))
         else:
             error = np.abs((recorded - measured + 180.0) % 360.0 - 180.0)
+            # every folded edge recorded as the negative of its measure: the faces wound the
+            # other way
+            folded = np.abs(recorded) > tolerance
+            opposite = np.abs((recorded + measured + 180.0) % 360.0 - 180.0) <= tolerance
+            reversed_ |= bool(folded.any() and (opposite[folded]).all() and error.max() > tolerance)
         results.append((f.label, _at_edges(error, two, len(f.mesh.edges_vertices))))
     if not recorded_any:
         return not_run(
@@ -286,7 +308,17 @@ def recorded_angles(frames: list[Frame], tolerance: float) -> FileCheck:
             "°",
             "the file records no fold angle of an edge with two faces (no edges_foldAngle)",
         )
-    return judge("fold_angles", "°", tolerance, results, named_ids("edges"))
+    found = judge("fold_angles", "°", tolerance, results, named_ids("edges"))
+    if found.status == "fail" and reversed_:
+        found = replace(found, where=f"{found.where}; {_WOUND}")
+    return found
+
+
+#: Why every folded edge of a frame is measured the other way.
+_WOUND = (
+    "every folded edge of a frame is measured the other way: its faces are wound clockwise "
+    "seen from the valley side (FOLD: counterclockwise)"
+)
 
 
 def _at_edges(values: np.ndarray, ids: np.ndarray, edges: int) -> np.ndarray:
@@ -330,9 +362,13 @@ def planarity(doc: FoldFile, frames: list[Frame], tolerance: float) -> FileCheck
             "every face is a triangle, planar by definition; "
             "without edges_curvefold:kind the diagonals that split ruling quads are not known",
         )
-    results, skipped = [], np.zeros(0, np.int64)
+    results, skipped, straight = [], np.zeros(0, np.int64), np.zeros(0, np.int64)
     for f in frames:
-        triangles = f.mesh.triangulated()
+        # a vertex on a straight side of its polygon (as where an edge was split) bends nothing
+        # and its fan triangle has no normal: the polygon is measured without it
+        mesh, on_side = _straightened(f.mesh)
+        straight = distinct(np.concatenate([straight, on_side]))
+        triangles = mesh.triangulated()
         fan = np.arange(len(triangles.edges_vertices)) >= len(f.mesh.edges_vertices)
         if kinds_known:
             flat = triangles.edges_kind == "diagonal"
@@ -364,13 +400,49 @@ def planarity(doc: FoldFile, frames: list[Frame], tolerance: float) -> FileCheck
         results,
         named_ids(what + (" and join edges" if joins else "")),
     )
-    if not skipped.size:
-        return found
-    note = (
-        f"skipped {named_ids('fan diagonals')(skipped)} beside a triangle with no area (a "
-        "vertex on a straight side of its polygon)"
-    )
-    return replace(found, where="; ".join(w for w in (found.where, note) if w))
+    notes = [found.where] if found.where else []
+    if straight.size:
+        notes.append(
+            f"skipped {named_ids('vertices')(straight)} on a straight side of their polygon "
+            "(as where an edge was split)"
+        )
+    if skipped.size:
+        notes.append(
+            f"skipped {named_ids('fan diagonals')(skipped)} beside a triangle with no area (a "
+            "vertex on a straight side of its polygon)"
+        )
+    return replace(found, where="; ".join(notes)) if len(notes) > bool(found.where) else found
+
+
+def _straightened(mesh: Mesh) -> tuple[Mesh, np.ndarray]:
+    """The mesh with every polygon corner of no area removed (a vertex on a straight side: a
+    height under 1e-9 of the mesh's size), polygons kept to three corners; the vertices
+    removed."""
+    faces = mesh.faces_vertices
+    if faces.shape[1] == 3 or not len(faces):
+        return mesh, np.zeros(0, np.int64)
+    x = np.asarray(mesh.vertices_coords, float)
+    size = float(np.ptp(x, axis=0).max()) if len(x) else 0.0
+    rows, removed = [], []
+    for face in faces.tolist():
+        ring = [v for v in face if v >= 0]
+        changed = True
+        while changed and len(ring) > 3:
+            changed = False
+            for k in range(len(ring)):
+                a, v, b = x[ring[k - 1]], x[ring[k]], x[ring[(k + 1) % len(ring)]]
+                u, w = v - a, b - a
+                cross = np.linalg.norm(np.cross(np.r_[u, 0][:3], np.r_[w, 0][:3]))
+                if not cross > 1e-9 * size * max(np.linalg.norm(w), np.linalg.norm(u)):
+                    removed.append(ring.pop(k))
+                    changed = True
+                    break
+        rows.append(ring)
+    if not removed:
+        return mesh, np.zeros(0, np.int64)
+    k = max(map(len, rows))
+    padded = np.array([r + [-1] * (k - len(r)) for r in rows], np.int64)
+    return replace(mesh, faces_vertices=padded), distinct(np.array(removed, np.int64))
 
 
 def _no_area(mesh: Mesh) -> np.ndarray:

@@ -69,8 +69,15 @@ def analyse_fold(path, *, rtol: float = RTOL, name: str | None = None) -> tuple[
                 f"the {'crease pattern' if cp is not None else 'first folded frame'}; the "
                 "mechanism is analysed on frames of one topology"
             )
+    advice = (
+        "use fewer panels, tubes or cells"
+        if "curvefold:design" in doc.keys
+        else "a coarser mesh of the same model fits"
+    )
     joins = np.flatnonzero(ref.edges_assignment == "J")
     spatial = [mesh for i, (_, mesh) in enumerate(doc.folded) if not doc.is_flat_folded(i)]
+    facets = _facet_edges(doc, ref, spatial)
+    joins = distinct(np.concatenate([joins, facets]))
     declared = bool({"curvefold:seam_partners", "curvefold:bonds"} & doc.keys)
     # the layers of a flat fold touch everywhere: they weld nothing the file does not glue
     if cp is not None and (spatial or declared):
@@ -120,7 +127,7 @@ def analyse_fold(path, *, rtol: float = RTOL, name: str | None = None) -> tuple[
         ]
     out = []
     for i, ((title, mesh), (framework, first, note)) in enumerate(zip(doc.folded, references)):
-        _check_size(framework)
+        _check_size(framework, advice)
         _check_lengths(framework, f"{where}frame {title!r}")
         x = mesh.vertices_coords[first]
         precision = (
@@ -132,6 +139,11 @@ def analyse_fold(path, *, rtol: float = RTOL, name: str | None = None) -> tuple[
         )
         residual = float(np.abs(framework.residual(x) / framework.scales).max())
         notes = [note] if note else []
+        if facets.size:
+            notes.append(
+                f"{facets.size} F edges between coplanar faces in every frame read as no hinge: "
+                "their faces are one panel, as across a J edge (a triangulated panel's facets)"
+            )
         if doc.is_flat_folded(i):
             notes.append(
                 "flat-folded: every lift of its layers that keeps the panels planar "
@@ -162,9 +174,13 @@ PRECISION_FACTOR = 100.0
 
 
 def coordinate_precision(coords: np.ndarray) -> float:
-    """The rounding of coordinates as written, in model units: half the step of the fewest
-    decimals that give every one of them back, or of single precision (float32) if they all
-    are, else of double precision.
+    """The rounding of coordinates as written, in model units, read off their digits: half the
+    step of the fewest decimals that give every one of them back, or of single precision
+    (float32) if they all are, else of double precision.
+
+    A dyadic fraction of few digits (an integer, a half, a quarter, … 1/1024: a drawn grid) is
+    exact as written, not rounded: such coordinates say nothing of the precision, and a file
+    of them alone is exact (its rounding is double precision's).
 
     Examples
     --------
@@ -172,18 +188,53 @@ def coordinate_precision(coords: np.ndarray) -> float:
     5e-07
     >>> coordinate_precision(np.array([[1 / 3, 0.0, 0.0]])) < 1e-16
     True
+    >>> coordinate_precision(np.array([[0.5, 0.25, 2.0]])) < 1e-15  # exact, not 0.005
+    True
     """
     x = np.asarray(coords, float).ravel()
     scale = float(np.abs(x).max()) if x.size else 0.0
     if scale == 0:
         return 0.0
     ulp = float(np.spacing(scale))
-    for d in range(0, 16):
+    x = x[x * 1024 != np.round(x * 1024)]  # the dyadic fractions are exact
+    if not x.size:
+        return ulp
+    single = np.array_equal(x.astype(np.float32).astype(float), x)
+    # single precision's values need 8 or more decimals: they are read as single precision
+    for d in range(0, 8 if single else 16):
         if np.all(np.abs(np.round(x, d) - x) <= 4 * np.spacing(np.abs(x))):
             return max(0.5 * 10.0**-d, ulp)
-    if np.array_equal(x.astype(np.float32).astype(float), x):
+    if single:
         return max(float(np.spacing(np.float32(scale))) / 2, ulp)
     return ulp
+
+
+#: Largest dihedral angle, in degrees, across an F edge whose faces are one panel; at least
+#: :data:`PRECISION_FACTOR` times the angle the coordinates' rounding can make.
+FACET_ANGLE = 1e-6
+
+
+def _facet_edges(doc, ref, spatial) -> np.ndarray:
+    """The F edges of a file without curvefold's edge kinds whose two faces are coplanar in
+    every folded frame that is not flat-folded: the facet edges of triangulated panels (as
+    Origami Simulator writes a sheet), not hinges."""
+    from ..geometry._mesh import edges_faces
+    from ..geometry._mesh import fold_angles as dihedral_angles
+
+    if not spatial or "edges_curvefold:kind" in doc.keys:
+        return np.zeros(0, np.int64)
+    edges = np.flatnonzero(ref.edges_assignment == "F")
+    sides = edges_faces(ref.faces_vertices, ref.edges_vertices[edges])
+    edges = edges[(sides >= 0).all(axis=1)]
+    for mesh in spatial:
+        if not edges.size:
+            break
+        x = mesh.vertices_coords
+        shortest = float(mesh.edge_lengths().min()) if len(mesh.edges_vertices) else 1.0
+        rounding = np.degrees(PRECISION_FACTOR * coordinate_precision(x) / max(shortest, 1e-300))
+        angle = dihedral_angles(x, mesh.faces_vertices, mesh.edges_vertices[edges])
+        edges = edges[np.abs(angle) <= max(FACET_ANGLE, rounding)]
+    return edges.astype(np.int64)
 
 
 def _check_lengths(framework: Framework, where: str) -> None:

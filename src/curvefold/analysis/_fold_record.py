@@ -7,15 +7,19 @@ measured:
 
 * ``frame_unit``: a file that records its design is in model units (``"unit"``, radius 1);
 * the frames: as many as the recorded fold angles, titled by them, and each folded by its
-  angle (on a smooth design, the median measured dihedral angle of its ``fold`` edges, within
+  angle (on a smooth design, the median measured dihedral angle of its ``fold`` edges; on rigid
+  panels, the largest, the crease's own, the fold lines between panels folding less; within
   twice the recorded bend bound: each triangle beside a crease tilts from the sheet's tangent
   plane by at most the fold across its diagonal). A frame deleted, frames in reverse order
   or a frame replaced by another's coordinates under its own title fail;
-* every ``seam`` edge has its partner (``curvefold:seam_partners``), and a file whose metadata
-  names bonds holds them (``curvefold:bonds``);
+* every ``seam`` edge has its partner (``curvefold:seam_partners``), a file whose metadata
+  names bonds holds them (``curvefold:bonds``), and two edges that lie on one another in every
+  folded frame are a seam or bond pair;
 * the sheets: two connected pieces per tube (one tube per recorded cell), so a stray piece
   shows;
-* ``curve_length`` = ``kappa0_s0`` × ``radius``, and the radius is the design's;
+* ``curve_length`` = ``kappa0_s0`` × ``radius``, and the radius is the design's; every
+  figure that restates the design (the design angle, the widths, a, p_xy, a tube's length)
+  is the design's, ``tubes`` is the number of cells, and the design angle is a frame's;
 * ``mesh_deviation``: a thinned mesh deviates from the computed samples by about the sagitta
   κℓ²/8 of its chords, measured from the turning of its crease polylines in the frame at the
   design angle; a recorded deviation under half of that is false;
@@ -32,6 +36,7 @@ import numpy as np
 
 from ..geometry._mesh import Mesh, edges_faces
 from ..geometry._mesh import fold_angles as dihedral_angles
+from ..io._fold import COORDINATE_RTOL
 from ..io._fold_reading import FoldFile
 from ..kernel._arrays import distinct
 from ._fold_results import FileCheck
@@ -126,7 +131,7 @@ def _frames(doc: FoldFile, design: dict, meta: dict, smooth: bool) -> list[str]:
         if named is not None and abs(float(named.group(1)) - angle) > 1e-9:
             found.append(f"frame {i + 1} is titled {title!r}, the record says {angle:g}°")
         folds = np.flatnonzero(mesh.edges_kind == "fold")
-        if not smooth or not folds.size:
+        if not folds.size:
             continue
         sides = edges_faces(mesh.faces_vertices, mesh.edges_vertices[folds])
         measured = np.abs(
@@ -137,13 +142,15 @@ def _frames(doc: FoldFile, design: dict, meta: dict, smooth: bool) -> list[str]:
                 faces_of_edges=sides,
             )
         )
-        # the median of the finite ones, sorted (np.median and np.nanmedian import numpy.ma)
+        # the median of the finite ones, sorted (np.median and np.nanmedian import numpy.ma);
+        # rigid panels fold their crease lines by 2α, the most, and their fold lines by less
         finite = np.sort(measured[np.isfinite(measured)])
         n = finite.size
         median = 0.5 * float(finite[(n - 1) // 2] + finite[n // 2]) if n else math.nan
-        if not abs(median - angle) <= slack:
+        folded = median if smooth else float(finite[-1]) if n else math.nan
+        if not abs(folded - angle) <= slack:
             found.append(
-                f"frame {i + 1} ({title!r}) folds its creases by {median:.4g}°, the record "
+                f"frame {i + 1} ({title!r}) folds its creases by {folded:.4g}°, the record "
                 f"{angle:g}° (±{slack:g}°)"
             )
     return found
@@ -181,10 +188,105 @@ def _mesh_claims(doc: FoldFile, design: dict, meta: dict, eps: float) -> list[st
         flat = pattern.edge_lengths()
         with np.errstate(invalid="ignore", divide="ignore"):
             measured = float(np.nanmax(np.abs(frame.edge_lengths() / flat - 1)))
-        rounding = 4 * math.sqrt(3) * eps / float(flat.min()) + 1e-9 * measured
+        # at least curvefold's own rounding of what it wrote (a copy written again with more
+        # digits, as a moved one, still holds it)
+        size = max(float(np.ptp(m.vertices_coords, axis=0).max()) for m in (pattern, frame))
+        floor = max(eps, 0.5 * COORDINATE_RTOL * size)
+        rounding = 4 * math.sqrt(3) * floor / float(flat.min()) + 1e-9 * measured
         if abs(measured - stretch) > rounding:
             found.append(f"mesh_stretch {stretch:.6g}, measured {measured:.6g} at the design angle")
     return found
+
+
+#: Metadata keys that restate a design value (metadata key: the design's key in its sections).
+_RESTATED = {
+    "design_fold_angle_deg": "fold_angle",
+    "curve_length": "length",
+    "width_left": "width_left",
+    "width_right": "width_right",
+    "width": "width",
+    "a": "a",
+    "p_xy": "p_xy",
+}
+
+
+def _design_claims(record_: dict, design: dict, meta: dict) -> list[str]:
+    """The metadata that restates the design against it; the tubes against the cells; the design
+    angle among the frames' angles (the mesh claims are measured in its frame)."""
+    found = []
+    values = {
+        k: v
+        for part in design.values()
+        if isinstance(part, dict)
+        for k, v in part.items()
+        if isinstance(v, (int, float)) and not isinstance(v, bool)
+    }
+    for key, name in _RESTATED.items():
+        claimed = meta.get(key)
+        if isinstance(claimed, (int, float)) and name in values:
+            if not math.isclose(float(claimed), float(values[name]), rel_tol=1e-9, abs_tol=1e-12):
+                found.append(f"{key} {claimed:g}, the design's {name} {values[name]:g}")
+    tubes, cells = meta.get("tubes"), meta.get("cells")
+    layers = int(values.get("layers", 1))  # a layered vault records its tubes per layer
+    if isinstance(tubes, int) and isinstance(cells, str) and cells:
+        if tubes * layers != len(cells.split(";")):
+            found.append(
+                f"tubes {tubes}"
+                + (f" × {layers} layers" if layers > 1 else "")
+                + f", the record's cells {len(cells.split(';'))}"
+            )
+    recorded, target = record_.get("fold_angles"), meta.get("design_fold_angle_deg")
+    if isinstance(recorded, list) and isinstance(target, (int, float)) and target not in recorded:
+        found.append(f"design_fold_angle_deg {target:g} is the angle of no frame")
+    return found
+
+
+def _unglued(doc: FoldFile) -> list[str]:
+    """Crease edges (``fold``, ``seam``) that lie on one another in every folded frame (both
+    ends within 1e-6 of the size) and that no chain of seam or bond pairs glues: a pair deleted
+    from the tables. (The ends of neighbouring tubes may meet along boundary edges and rulings,
+    unglued.)"""
+    from scipy.spatial import cKDTree
+
+    if not doc.folded or "curvefold:seam_partners" not in doc.keys:
+        return []
+    common: set[tuple[int, int]] | None = None
+    for _, mesh in doc.folded:
+        x, ev = mesh.vertices_coords, mesh.edges_vertices
+        tol = 1e-6 * float(np.ptp(x, axis=0).max())
+        middle = (x[ev[:, 0]] + x[ev[:, 1]]) / 2
+        pairs = cKDTree(middle).query_pairs(tol, output_type="ndarray")
+        a, b = ev[pairs[:, 0]], ev[pairs[:, 1]]
+        ends = np.minimum(
+            np.maximum(*[np.linalg.norm(x[a[:, k]] - x[b[:, k]], axis=1) for k in (0, 1)]),
+            np.maximum(*[np.linalg.norm(x[a[:, k]] - x[b[:, 1 - k]], axis=1) for k in (0, 1)]),
+        )
+        found = {(int(p), int(q)) for p, q in pairs[ends <= tol].tolist()}
+        common = found if common is None else common & found
+        if not common:
+            return []
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    # glued, directly or along a chain (three tubes on one curve are bonded two by two)
+    pairs = np.concatenate([doc.seam_partners, doc.bonds]).reshape(-1, 2).astype(np.int64)
+    E = len(doc.folded[0][1].edges_vertices)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(E, E))
+    _, piece = connected_components(graph, directed=False)
+    crease = np.isin(doc.folded[0][1].edges_kind, ("fold", "seam"))  # what seams and bonds glue
+    lonely = sorted(
+        tuple(sorted(p))
+        for p in common or ()
+        if piece[p[0]] != piece[p[1]] and crease[p[0]] and crease[p[1]]
+    )
+    if not lonely:
+        return []
+    shown = ", ".join(f"{p}–{q}" for p, q in lonely[:3])
+    more = f" (+{len(lonely) - 3} more)" if len(lonely) > 3 else ""
+    return [
+        f"edges {shown}{more} lie on one another in every folded frame and no seam or bond "
+        "pair glues them"
+    ]
 
 
 def _structure_claims(doc: FoldFile, meta: dict, vault: dict) -> list[str]:
@@ -202,6 +304,7 @@ def _structure_claims(doc: FoldFile, meta: dict, vault: dict) -> list[str]:
                 f"seam edges {shown}{more} have no partner in curvefold:seam_partners "
                 f"({len(doc.seam_partners)} pairs for {seams.size} seam edges)"
             )
+    found += _unglued(doc)
     if meta.get("bonds") not in (None, "none") and not len(doc.bonds):
         found.append(f"the metadata names bonds ({meta['bonds'][:60]}…), the file holds none")
     cells = meta.get("cells")  # one tube per cell: "(0, 0); (1, 1)"
@@ -254,6 +357,7 @@ def record(doc: FoldFile, eps: float) -> FileCheck:
         )
     found += _frames(doc, record_, meta, smooth)
     found += _structure_claims(doc, meta, section)
+    found += _design_claims(record_, design, meta)
     found += _mesh_claims(doc, record_, meta, eps)
     if not found:
         return FileCheck("record", "pass")

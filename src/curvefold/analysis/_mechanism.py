@@ -388,13 +388,14 @@ def _join_quads(faces: np.ndarray, joins: np.ndarray) -> np.ndarray:
     return np.array(out, np.int64).reshape(-1, 4)
 
 
-def _check_size(framework: Framework) -> None:
+def _check_size(framework: Framework, advice: str = "use fewer panels, tubes or cells") -> None:
+    """Refuse a framework beyond :data:`MAX_UNKNOWNS`, with ``advice`` (a curvefold design's
+    by default; another tool's file gets its own)."""
     if framework.unknowns > MAX_UNKNOWNS:
         raise InputError(
             "the mechanism analysis takes a dense SVD of the constraint Jacobian and is bounded "
             f"to {MAX_UNKNOWNS} unknowns ({MAX_UNKNOWNS // 3} vertices); this structure "
-            f"has {framework.unknowns} ({framework.points} vertices): use fewer panels, "
-            "tubes or cells"
+            f"has {framework.unknowns} ({framework.points} vertices): {advice}"
         )
 
 

@@ -88,7 +88,9 @@ def written_precision(values: np.ndarray) -> float:
 
 
 def _smallest_height(mesh: Mesh) -> float:
-    """The smallest height of a triangle with an area, over the mesh's faces split into fans."""
+    """The smallest height of a triangle with an area (a height over 1e-9 of the mesh's size: a
+    fan triangle beside a vertex on a straight side, as where an edge was split, has none),
+    over the mesh's faces split into fans."""
     triangles = mesh.triangulated()
     corners = triangles.vertices_coords[triangles.faces_vertices]  # (F, 3, d)
     twice_area = np.linalg.norm(
@@ -97,7 +99,8 @@ def _smallest_height(mesh: Mesh) -> float:
     longest = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=-1).max(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         heights = twice_area / longest
-    heights = heights[np.isfinite(heights) & (heights > 0)]
+    size = float(np.ptp(triangles.vertices_coords, axis=0).max()) if len(corners) else 0.0
+    heights = heights[np.isfinite(heights) & (heights > 1e-9 * size)]
     return float(heights.min()) if heights.size else math.inf
 
 

@@ -350,7 +350,14 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
     ]
     lines += [f"  note: {note}" for note in doc.notes]
     for m in frames:
-        gap = f"gap {m.gap:.2e}".replace("inf", "∞")
+        # no singular value at or under the tolerance: every constraint independent, and the
+        # nullity is unknowns − constraints, with no gap to measure
+        independent = m.nullity == max(0, m.unknowns - m.constraints)
+        gap = (
+            "every constraint independent"
+            if independent and not np.isfinite(m.gap)
+            else f"gap {m.gap:.2e}".replace("inf", "∞")
+        )
         state = (
             ""
             if m.consistent
@@ -359,7 +366,7 @@ def cmd_mechanism(args: argparse.Namespace) -> int:
         # no gap between null and stiff singular values: no count to state
         count = (
             f"{m.dof} internal DOF (nullity {m.nullity})"
-            if np.isfinite(m.gap)
+            if np.isfinite(m.gap) or independent
             else f"no clear count (nullity {m.nullity} at the rank tolerance)"
         )
         lines.append(

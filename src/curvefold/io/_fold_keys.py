@@ -14,6 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..geometry._mesh import Mesh, face_sides
+from ..geometry._mesh import fold_angles as dihedral_angles
 
 __all__ = ["SPEC_READ", "READ_KEYS", "ignored_keys", "split_cuts"]
 
@@ -225,3 +226,25 @@ def _split(mesh: Mesh):
         copies += ends(more, np.full(len(more), e)).tolist()
     edges = np.concatenate([edges, np.array(copies, np.int64).reshape(-1, 2)])
     return vertex_of, new_faces, edges, np.arange(len(copies))
+
+
+def unfolded_with_targets(mesh: Mesh, label: str, notes: list[str]) -> bool:
+    """Whether a frame classed as folded lies in a plane unfolded (every dihedral angle 0: no
+    face on another) while it records fold angles: they are a crease pattern's target angles
+    (as Origami Simulator saves a pattern, in its plane y = 0), not this state's. Said in
+    ``notes`` when so."""
+    recorded = np.abs(mesh.edges_foldAngle)
+    x = mesh.vertices_coords - mesh.vertices_coords.mean(axis=0)
+    if not recorded.max(initial=0.0) > 0 or not len(x):
+        return False
+    spread = np.linalg.svd(x, compute_uv=False)
+    if not spread[-1] <= 1e-9 * spread[0]:
+        return False
+    measured = dihedral_angles(mesh.vertices_coords, mesh.faces_vertices, mesh.edges_vertices)
+    if not (np.abs(measured[np.isfinite(measured)]) < 1e-6).all():
+        return False
+    notes.append(
+        f"{label}: classed foldedForm, it lies in a plane unfolded while it records fold angles up "
+        f"to {recorded.max():g}°: read as a crease pattern with its target angles"
+    )
+    return True

@@ -46,7 +46,7 @@ from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides
 from ..kernel._arrays import readonly
 from ..kernel._errors import InputError
 from ..kernel._validate import is_integer
-from ._fold_keys import SPEC_READ, ignored_keys, split_cuts
+from ._fold_keys import SPEC_READ, ignored_keys, split_cuts, unfolded_with_targets
 from ._mesh3d import check_metadata
 from ._reading import read_bytes
 
@@ -569,10 +569,20 @@ def parse_fold(doc, where: str = "FOLD document", *, notes: Sequence[str] = ()) 
         for m, _ in meshes
     ]
     cp_index = next((i for i, c in enumerate(classes) if "creasePattern" in c), None)
-    if cp_index is None and "foldedForm" not in classes[0] and flat[0]:
+    if cp_index is None and (
+        ("foldedForm" not in classes[0] and flat[0])
+        or (len(meshes) == 1 and unfolded_with_targets(meshes[0][0], labels[0], notes))
+    ):
         cp_index = 0
     crease_pattern = None if cp_index is None else meshes[cp_index][0]
-    chosen = [i for i in range(len(meshes)) if i != cp_index]
+    # another crease pattern is no folded frame: it is named, not checked as one
+    others = [i for i, c in enumerate(classes) if "creasePattern" in c and i != cp_index]
+    for i in others:
+        notes.append(
+            f"{labels[i]}: another crease pattern (frame_classes creasePattern): not read as a "
+            "folded frame; the first crease pattern is the one checked"
+        )
+    chosen = [i for i in range(len(meshes)) if i != cp_index and i not in others]
     if crease_pattern is None:
         crease_pattern = _unfolded(resolved, chosen, meshes, labels, notes)
     folded = tuple((titles[i], meshes[i][0]) for i in chosen)
