@@ -241,13 +241,52 @@ def _design_claims(record_: dict, design: dict, meta: dict) -> list[str]:
     return found
 
 
+def _close_pairs(points: np.ndarray, tol: float) -> np.ndarray:
+    """The pairs (i < j) of ``points`` (N, 3) at most ``tol`` apart, shape (K, 2): a sweep along
+    x (the main job loads neither SciPy nor numpy.ma for it).
+
+    Examples
+    --------
+    >>> _close_pairs(np.array([[0.0, 0, 0], [1, 0, 0], [0, 1e-9, 0], [1, 2, 0]]), 1e-6).tolist()
+    [[0, 2]]
+    """
+    order = np.argsort(points[:, 0], kind="stable")
+    x = points[order, 0]
+    ends = np.searchsorted(x, x + tol, side="right")
+    counts = ends - np.arange(len(x)) - 1
+    first = np.repeat(np.arange(len(x)), counts)
+    starts = np.repeat(np.cumsum(counts) - counts, counts)
+    second = first + 1 + np.arange(int(counts.sum())) - starts
+    a, b = order[first], order[second]
+    near = np.linalg.norm(points[a] - points[b], axis=1) <= tol
+    return np.sort(np.stack([a[near], b[near]], axis=1), axis=1).reshape(-1, 2)
+
+
+def _pieces(count: int, pairs: np.ndarray) -> np.ndarray:
+    """The connected piece of each of ``count`` items joined by ``pairs`` (K, 2): the lowest item
+    of its piece (labels spread along the pairs until they stop changing).
+
+    Examples
+    --------
+    >>> _pieces(5, np.array([[3, 4], [1, 3]])).tolist()
+    [0, 1, 2, 1, 1]
+    """
+    label = np.arange(count)
+    while True:
+        lowest = np.minimum(label[pairs[:, 0]], label[pairs[:, 1]])
+        before = label.copy()
+        np.minimum.at(label, pairs[:, 0], lowest)
+        np.minimum.at(label, pairs[:, 1], lowest)
+        label = label[label]  # follow each label to its own
+        if np.array_equal(label, before):
+            return label
+
+
 def _unglued(doc: FoldFile) -> list[str]:
     """Crease edges (``fold``, ``seam``) that lie on one another in every folded frame (both
     ends within 1e-6 of the size) and that no chain of seam or bond pairs glues: a pair deleted
     from the tables. (The ends of neighbouring tubes may meet along boundary edges and rulings,
     unglued.)"""
-    from scipy.spatial import cKDTree
-
     if not doc.folded or "curvefold:seam_partners" not in doc.keys:
         return []
     common: set[tuple[int, int]] | None = None
@@ -255,7 +294,7 @@ def _unglued(doc: FoldFile) -> list[str]:
         x, ev = mesh.vertices_coords, mesh.edges_vertices
         tol = 1e-6 * float(np.ptp(x, axis=0).max())
         middle = (x[ev[:, 0]] + x[ev[:, 1]]) / 2
-        pairs = cKDTree(middle).query_pairs(tol, output_type="ndarray")
+        pairs = _close_pairs(middle, tol)
         a, b = ev[pairs[:, 0]], ev[pairs[:, 1]]
         ends = np.minimum(
             np.maximum(*[np.linalg.norm(x[a[:, k]] - x[b[:, k]], axis=1) for k in (0, 1)]),
@@ -265,15 +304,11 @@ def _unglued(doc: FoldFile) -> list[str]:
         common = found if common is None else common & found
         if not common:
             return []
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     # glued, directly or along a chain (three tubes on one curve are bonded two by two)
     pairs = np.concatenate([doc.seam_partners, doc.bonds]).reshape(-1, 2).astype(np.int64)
-    E = len(doc.folded[0][1].edges_vertices)
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(E, E))
-    _, piece = connected_components(graph, directed=False)
-    crease = np.isin(doc.folded[0][1].edges_kind, ("fold", "seam"))  # what seams and bonds glue
+    piece = _pieces(len(doc.folded[0][1].edges_vertices), pairs)
+    kinds = np.asarray(doc.folded[0][1].edges_kind)
+    crease = (kinds == "fold") | (kinds == "seam")  # what seams and bonds glue
     lonely = sorted(
         tuple(sorted(p))
         for p in common or ()
