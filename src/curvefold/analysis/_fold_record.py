@@ -235,8 +235,16 @@ def _design_claims(record_: dict, design: dict, meta: dict) -> list[str]:
                 + (f" × {layers} layers" if layers > 1 else "")
                 + f", the record's cells {len(cells.split(';'))}"
             )
+    # a motion that passes its design angle holds it as a frame (a motion written to another
+    # angle, as the designer's downloads at its slider's, may stop short of it)
     recorded, target = record_.get("fold_angles"), meta.get("design_fold_angle_deg")
-    if isinstance(recorded, list) and isinstance(target, (int, float)) and target not in recorded:
+    if (
+        isinstance(recorded, list)
+        and isinstance(target, (int, float))
+        and target not in recorded
+        and all(isinstance(a, (int, float)) for a in recorded)
+        and min(recorded, default=target) < target < max(recorded, default=target)
+    ):
         found.append(f"design_fold_angle_deg {target:g} is the angle of no frame")
     return found
 
