@@ -81,6 +81,10 @@ def _unit_falsified(doc, rng):
     doc["frame_unit"] = "m"
 
 
+def _units_falsified(doc, rng):
+    doc["curvefold:design"]["design"]["output"]["units"] = str(rng.choice(["cm", "in", "m"]))
+
+
 def _deviation_falsified(doc, rng):
     doc["curvefold:metadata"]["mesh_deviation"] = 1e-9
 
@@ -131,6 +135,7 @@ HARMFUL = {
     "one seam pair deleted": (_one_seam_pair_deleted, "record"),
     "a stray disconnected triangle": (_stray_triangle, "record"),
     "frame_unit changed to m": (_unit_falsified, "record"),
+    "the design's units changed": (_units_falsified, "record"),
     "mesh_deviation set to 1e-9": (_deviation_falsified, "record"),
     "radius changed": (_radius_falsified, "record"),
     "mesh_stretch falsified": (_stretch_falsified, "record"),

@@ -18,8 +18,9 @@ measured:
 * the sheets: two connected pieces per tube (one tube per recorded cell), so a stray piece
   shows;
 * ``curve_length`` = ``kappa0_s0`` × ``radius``, and the radius is the design's; every
-  figure that restates the design (the design angle, the widths, a, p_xy, a tube's length)
-  is the design's, ``tubes`` is the number of cells, and the design angle is a frame's;
+  figure that restates the design (the design angle, the widths, a, p_xy, a tube's length,
+  the units of the sheet files written beside the FOLD file) is the design's, ``tubes`` is
+  the number of cells, and the design angle is a frame's;
 * ``mesh_deviation``: a thinned mesh deviates from the computed samples by about the sagitta
   κℓ²/8 of its chords, measured from the turning of its crease polylines in the frame at the
   design angle; a recorded deviation under half of that is false;
@@ -226,6 +227,9 @@ def _design_claims(record_: dict, design: dict, meta: dict) -> list[str]:
         if isinstance(claimed, (int, float)) and name in values:
             if not math.isclose(float(claimed), float(values[name]), rel_tol=1e-9, abs_tol=1e-12):
                 found.append(f"{key} {claimed:g}, the design's {name} {values[name]:g}")
+    units, output = meta.get("sheet_units"), design.get("output")
+    if isinstance(units, str) and isinstance(output, dict) and output.get("units") != units:
+        found.append(f"sheet_units {units!r}, the design's [output] units {output.get('units')!r}")
     tubes, cells = meta.get("tubes"), meta.get("cells")
     layers = int(values.get("layers", 1))  # a layered vault records its tubes per layer
     if isinstance(tubes, int) and isinstance(cells, str) and cells:

@@ -84,6 +84,7 @@ def resolution(built: Built) -> dict:
 def _metadata(built: Built) -> dict:
     design = built.design
     meta = {"kind": design.kind, "title": design.title or design.kind, "samples": design.samples}
+    meta["sheet_units"] = design.output.units  # the sheet files' units; the FOLD's are the model's
     if isinstance(built, BuiltStructure):
         meta |= built.sampling.summary()
     if isinstance(built, BuiltVault):
