@@ -41,7 +41,7 @@ from ._structure import Structure
 from ._thick_solids import halfspaces, inradius, panel_axes, penetration, prism
 from ._topology import Topology, unique_pairs
 
-__all__ = ["THICKNESS", "PENETRATION_TOL", "ThickPanels", "ThickRange"]
+__all__ = ["THICKNESS", "PENETRATION_TOL", "ThickPanels", "ThickRange", "thickness_limit"]
 
 #: The ``thickness`` of thick panels, in the structure's model units.
 THICKNESS = Spec(
@@ -508,6 +508,35 @@ class ThickPanels(FrozenArrays):
         normal = np.linalg.svd(flat - flat.mean(axis=0))[2][-1]
         vertices = self.solids(np.zeros(1))[0][0]
         return float(np.ptp(vertices.reshape(-1, 3) @ normal))
+
+
+def thickness_limit(structure: Structure, *, side: str = "outside", samples: int = 19) -> float:
+    """The thickness :meth:`ThickPanels.offset` takes up to, model units: below the smallest
+    panel's inradius r, and below ``r / (2 tan b)`` for the bevel b each edge needs at the
+    design angle. Lengths scale with the structure, so does the limit.
+
+    Examples
+    --------
+    >>> from curvefold.geometry._lattice import _example_lattice
+    >>> from curvefold.geometry import PanelLattice
+    >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+    >>> round(thickness_limit(tube), 4)  # its inradius: a tube's bevels need no setback
+    0.0498
+    """
+    if side not in ("outside", "inside"):
+        raise InputError(f"side must be 'outside' or 'inside', got {side!r}")
+    topology = structure.topology()
+    faces = topology.faces_vertices
+    x = topology.coords(structure.state().vertices)
+    sides = np.full(len(faces), 1.0 if side == "outside" else -1.0)
+    origin, axes = panel_axes(x[faces], sides)
+    xy = np.einsum("fkd,fjd->fkj", x[faces] - origin[:, None], axes)[..., :2]
+    r = inradius(xy)
+    design = float(structure.lattice.crease.fold_angle)
+    _, at_design = _bevels_needed(structure, sides, np.array([design]), design)
+    tangent = np.tan(at_design)
+    setback = np.where(tangent > 0, r[:, None] / (2 * np.where(tangent > 0, tangent, 1)), np.inf)
+    return float(min(r.min(), setback.min()))
 
 
 #: One end of the fold angles thick panels are bevelled for.

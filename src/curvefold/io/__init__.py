@@ -37,7 +37,7 @@ __all__, __getattr__, __dir__ = _lazy_exports(
         "_gltf": ["GlbOptions", "write_glb"],
         "_layout": ["Layout", "layout_sheets", "page_size"],
         "_mesh3d": ["check_metadata", "crease_polylines", "write_obj", "write_ply", "write_stl"],
-        "_solids": ["write_thick_stl", "write_cut_list"],
+        "_solids": ["write_thick_stl", "write_cut_list", "write_cut_list_csv", "write_thick_3dm"],
         "_models": ["MODEL_FORMATS", "write_3d"],
         "_cutters": ["CUTTERS"],
         "_output": ["FoldOutput", "ModelOutput", "PatternOutput"],
