@@ -143,6 +143,8 @@ def test_the_report_states_the_range_stack_and_dof_as_the_library_measures_them(
     volume = (T / 6 * (area(0.0) + 4 * area(T / 2) + area(T))).sum()
     assert t["volume"] == pytest.approx(volume, rel=1e-9)
     assert t["mass"] == pytest.approx(volume * MATERIALS["plywood"].density, rel=1e-9)
+    page = (out / "report.html").read_text("utf-8")
+    assert "<h2>Thick panels</h2>" in page and f"{r.low:.4g}° to 90°" in page
     names = {c["name"]: c["status"] for c in report["certificate"]}
     assert [names[n] for n in ("thick_hinges", "thick_contact", "thick_dof")] == ["pass"] * 3
     assert set(report["files"]) >= {

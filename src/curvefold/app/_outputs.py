@@ -277,7 +277,12 @@ def write_outputs(
             report["files"] = sorted(written)
             report |= _file_certificate(tmp, built.design.kind, written)
             atomic_write(tmp / "report.json", strict_json(report, indent=2))
-            atomic_write(tmp / "report.html", report_html(report | {"design_toml": design_text}))
+            page = report_html(report | {"design_toml": design_text})
+            if solids is not None:
+                from ._thickness import thickness_html
+
+                page = thickness_html(page, report)
+            atomic_write(tmp / "report.html", page)
             written += ["report.json", "report.html"]
     finally:
         stop()

@@ -34,7 +34,13 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._thick import ThickPanels
     from ._design import Design
 
-__all__ = ["thick_panels", "thickness_payload", "thickness_lines", "write_thick_files"]
+__all__ = [
+    "thick_panels",
+    "thickness_payload",
+    "thickness_lines",
+    "thickness_html",
+    "write_thick_files",
+]
 
 
 def thick_panels(structure: Structure, design: Design) -> ThickPanels | None:
@@ -152,6 +158,39 @@ def thickness_lines(payload: dict) -> list[str]:
         f"  flat stack         {t['stack_height'] * 1e3:.4g} mm{stack}; DOF "
         f"{', '.join(map(str, sorted(set(t['dof']))))} ({t['dof_scope']})",
     ]
+
+
+def thickness_html(report_html: str, payload: dict) -> str:
+    """The report's page with a section on its thick panels before its certificate (unchanged
+    without them)."""
+    from html import escape
+
+    t = payload.get("thickness")
+    if t is None:
+        return report_html
+    r, z = t["range"], t["zero_thickness_range"]
+    touch = " and ".join(r["low_contact"] or [])
+    rows = [
+        ("thickness t", f"{t['thickness'] * 1e3:g} mm of {t['material'] or 'the sheet'}"),
+        ("technique", t["technique"]),
+        ("range of 2α with thickness", f"{r['low']:.4g}° to {r['high']:.4g}°"),
+        ("range of 2α without", f"{z['low']:g}° to {z['high']:g}° (its first contact)"),
+        (
+            "short of flat by",
+            "0° (it folds flat)" if r["low"] == 0 else f"{r['low']:.4g}°, where {touch} touch",
+        ),
+        ("flat stack", f"{t['stack_height'] * 1e3:.4g} mm"),
+        ("bevels up to", f"{t['bevels_max_deg']:.3g}°, cut for 2α = 0° to {r['design']:g}°"),
+        ("degrees of freedom", f"{', '.join(map(str, sorted(set(t['dof']))))} ({t['dof_scope']})"),
+        ("mass", "" if t["mass"] is None else f"{t['mass']:.4g} kg"),
+    ]
+    body = "".join(f"<tr><th>{escape(a)}</th><td>{escape(b)}</td></tr>" for a, b in rows)
+    section = (
+        f"<h2>Thick panels</h2><p>{t['panels']} solids: their cut list with bevels is the CSV "
+        f"and JSON <code>*_cut_list</code>, the solids <code>*_solids.stl</code> (1:1) and "
+        f"<code>*_solids.3dm</code>.</p><table>{body}</table>\n"
+    )
+    return report_html.replace("<h2>Certificate</h2>", section + "<h2>Certificate</h2>", 1)
 
 
 def write_thick_files(
