@@ -105,6 +105,19 @@ def test_the_cut_list_gives_every_edge_its_length_bevel_and_hinge(folder, librar
         assert bool(int(row["hinged"])) == panel["hinged"][e]
         ends = np.array([[row["x0_mm"], row["y0_mm"]], [row["x1_mm"], row["y1_mm"]]], float)
         assert np.linalg.norm(ends[1] - ends[0]) == pytest.approx(float(row["length_mm"]), 1e-6)
+    # the PDF: a printable row per panel, the CSV's numbers as printed
+    pdfplumber = pytest.importorskip("pdfplumber")
+    with pdfplumber.open(out / "vault_cut_list.pdf") as doc:
+        assert len(doc.pages) == 3  # 22 rows a page
+        text = "\n".join(page.extract_text() for page in doc.pages)
+    outline = library.local[:, :4, :2] * 1e3
+    lengths = np.linalg.norm(np.roll(outline, -1, axis=1) - outline, axis=-1)
+    bevels = np.degrees(library.bevels)
+    for f, label in enumerate(library.labels()):
+        assert label in text
+        for e in range(4):
+            printed = f"{e + 1}: {lengths[f, e]:.1f}, {bevels[f, e]:.1f}°"
+            assert printed + (" hinged" if library.hinged[f, e] else "") in text, printed
     assert max(float(r["bevel_deg"]) for r in rows) == pytest.approx(
         np.degrees(library.bevels.max()), abs=1e-3
     )
@@ -124,6 +137,7 @@ def test_the_report_states_the_range_stack_and_dof_as_the_library_measures_them(
     assert t["zero_thickness_range"] == {
         "low": 0.0,
         "high": report["certificate_frames"]["first_contact"],
+        "ends_at_contact": True,
     }
     assert t["stack_height"] == pytest.approx(2 * T, abs=1e-12)  # two plies
     assert t["dof"] and set(t["dof"]) == {1} and t["dof_scope"] == "every tube"
@@ -152,6 +166,7 @@ def test_the_report_states_the_range_stack_and_dof_as_the_library_measures_them(
         "vault_solids.3dm",
         "vault_cut_list.csv",
         "vault_cut_list.json",
+        "vault_cut_list.pdf",
     }
 
 

@@ -10,8 +10,8 @@ then holds (``curvefold vault``, ``tube``, ``block``):
 
 * ``<kind>_solids.stl``: the solids at the design angle, 1:1 in the output units, watertight;
 * ``<kind>_solids.3dm``: the solids as closed polysurfaces, in metres (with ``3dm``);
-* ``<kind>_cut_list.csv`` and ``.json``: every panel's outline, edge lengths, bevels and
-  hinges, named as in the assembly guide;
+* ``<kind>_cut_list.csv``, ``.json`` and ``.pdf``: every panel's outline, edge lengths, bevels
+  and hinges, named as in the assembly guide (the PDF a printable row per panel);
 
 and the report, the ``--json`` output (its ``thickness`` key) and the certificate say how far it
 folds with thickness beside the zero-thickness motion, its flat stack, its degrees of freedom
@@ -128,7 +128,12 @@ def thickness_payload(thick: ThickPanels, certificate: Certificate, design: Desi
             "high_contact": None if r["high_pair"] is None else [labels[i] for i in r["high_pair"]],
             "short_of_flat": r["low"],
         },
-        "zero_thickness_range": {"low": 0.0, "high": 180.0 if contact is None else contact},
+        # the first contact is sought up to 179° (curvefold.geometry.first_contact)
+        "zero_thickness_range": {
+            "low": 0.0,
+            "high": 179.0 if contact is None else contact,
+            "ends_at_contact": contact is not None,
+        },
         "stack_height": report["stack_height"],
         "dof": [m["dof"] for m in report["mechanism"]],
         "dof_states": [s for s in report["states"] if s > 0],
@@ -154,7 +159,8 @@ def thickness_lines(payload: dict) -> list[str]:
         f"  thick panels       {t['panels']} of {what}{t['thickness'] * 1e3:g} mm, offset "
         f"outside the tubes, bevels up to {t['bevels_max_deg']:.3g}°",
         f"  range with t       2α = {r['low']:.4g}° to {r['high']:.4g}° (zero thickness: "
-        f"{z['low']:g}° to {z['high']:g}°): {stop}",
+        f"{z['low']:g}° to {z['high']:g}°{'' if z['ends_at_contact'] else ', no contact'}): "
+        f"{stop}",
         f"  flat stack         {t['stack_height'] * 1e3:.4g} mm{stack}; DOF "
         f"{', '.join(map(str, sorted(set(t['dof']))))} ({t['dof_scope']})",
     ]
@@ -174,7 +180,11 @@ def thickness_html(report_html: str, payload: dict) -> str:
         ("thickness t", f"{t['thickness'] * 1e3:g} mm of {t['material'] or 'the sheet'}"),
         ("technique", t["technique"]),
         ("range of 2α with thickness", f"{r['low']:.4g}° to {r['high']:.4g}°"),
-        ("range of 2α without", f"{z['low']:g}° to {z['high']:g}° (its first contact)"),
+        (
+            "range of 2α without",
+            f"{z['low']:g}° to {z['high']:g}° "
+            + ("(its first contact)" if z["ends_at_contact"] else "(no contact)"),
+        ),
         (
             "short of flat by",
             "0° (it folds flat)" if r["low"] == 0 else f"{r['low']:.4g}°, where {touch} touch",
@@ -197,14 +207,21 @@ def write_thick_files(
     thick: ThickPanels, folder: Path, kind: str, formats: tuple[str, ...], units: str
 ) -> list[Path]:
     """The solids (STL 1:1 in ``units``; 3dm in metres when ``formats`` has ``3dm``) and the cut
-    list (CSV in ``units``, JSON in metres) into ``folder``."""
-    from ..io._solids import write_cut_list, write_cut_list_csv, write_thick_3dm, write_thick_stl
+    list (CSV and PDF in ``units``, JSON in metres) into ``folder``."""
+    from ..io._solids import (
+        write_cut_list,
+        write_cut_list_csv,
+        write_cut_list_pdf,
+        write_thick_3dm,
+        write_thick_stl,
+    )
 
     base = folder / kind
     files = [
         write_thick_stl(f"{base}_solids.stl", thick, unit="m", to_unit=units),
         write_cut_list_csv(f"{base}_cut_list.csv", thick, unit="m", to_unit=units),
         write_cut_list(f"{base}_cut_list.json", thick),
+        write_cut_list_pdf(f"{base}_cut_list.pdf", thick, unit="m", to_unit=units),
     ]
     if "3dm" in formats:
         files.append(write_thick_3dm(f"{base}_solids.3dm", thick))

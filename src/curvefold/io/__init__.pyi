@@ -34,6 +34,7 @@ from ._rhino import RhinoOptions as RhinoOptions
 from ._rhino import write_3dm as write_3dm
 from ._solids import write_cut_list as write_cut_list
 from ._solids import write_cut_list_csv as write_cut_list_csv
+from ._solids import write_cut_list_pdf as write_cut_list_pdf
 from ._solids import write_thick_3dm as write_thick_3dm
 from ._solids import write_thick_stl as write_thick_stl
 
@@ -58,6 +59,7 @@ __all__ = [
     "write_thick_stl",
     "write_cut_list",
     "write_cut_list_csv",
+    "write_cut_list_pdf",
     "write_thick_3dm",
     "MODEL_FORMATS",
     "write_3d",

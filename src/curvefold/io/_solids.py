@@ -1,5 +1,6 @@
 """Files of thick panels (:class:`~curvefold.geometry.ThickPanels`): the solids as a watertight
-binary STL and as closed polysurfaces in a Rhino 3dm, and the cut list as JSON and CSV.
+binary STL and as closed polysurfaces in a Rhino 3dm, and the cut list as JSON, CSV and a
+printable PDF (a row per panel: its sketch, edge lengths, bevels and hinges).
 
 The STL holds every solid closed on its own (each edge of its triangles shared by two of them,
 once each way), counter-clockwise seen from outside, so slicers and CAD tools read volumes.
@@ -25,7 +26,13 @@ from ._atomic import atomic_path, atomic_write
 from ._mesh3d import stl_records
 from ._tables import CREATOR, UNITS
 
-__all__ = ["write_thick_stl", "write_cut_list", "write_cut_list_csv", "write_thick_3dm"]
+__all__ = [
+    "write_thick_stl",
+    "write_cut_list",
+    "write_cut_list_csv",
+    "write_cut_list_pdf",
+    "write_thick_3dm",
+]
 
 
 def write_thick_stl(
@@ -207,3 +214,85 @@ def write_thick_3dm(
         if not model.Write(str(tmp), 7):
             raise OSError(f"rhino3dm could not write {path}")
     return Path(path)
+
+
+#: Rows of the cut list's PDF per A4 page, and their height (mm).
+_ROWS, _ROW = 22, 12.0
+
+
+def write_cut_list_pdf(
+    path: str | os.PathLike, thick: ThickPanels, *, unit: str = "unit", to_unit: str = "mm"
+) -> Path:
+    """Write the cut list as A4 pages, a row per panel: its label, a sketch of its outline seen
+    from its top face (edge numbers 1 to k from corner e to e + 1, hinged edges red; a bevel
+    sets the top face back from its edge), and every edge's length (in
+    ``to_unit``), bevel (degrees) and whether it is hinged: the CSV's rows
+    (:func:`write_cut_list_csv`) for the workshop.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from curvefold import Structure
+    >>> from curvefold.geometry import PanelLattice, ThickPanels
+    >>> from curvefold.geometry._lattice import _example_lattice
+    >>> thick = ThickPanels.offset(
+    ...     Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4)), 0.01
+    ... )
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     data = write_cut_list_pdf(pathlib.Path(d) / "cut.pdf", thick).read_bytes()
+    >>> data[:8], data.count(b"/Type /Page ")  # 16 panels: one page
+    (b'%PDF-1.5', 1)
+    """
+    from ._pdf import PdfDocument, PdfText
+    from ._tables import COLOURS
+
+    for name, value in (("unit", unit), ("to_unit", to_unit)):
+        if value not in UNITS:
+            raise InputError(
+                f"{name} must be one of {', '.join(UNITS)}, got {value!r}", parameter="units"
+            )
+    scale = UNITS[unit].metres / UNITS[to_unit].metres
+    k = thick.local.shape[1] // 2
+    outline = thick.local[:, :k, :2] * scale
+    lengths = np.linalg.norm(np.roll(outline, -1, axis=1) - outline, axis=-1)
+    bevels = np.degrees(thick.bevels)
+    doc = PdfDocument(title=f"cut list, thick panels t = {thick.thickness * scale:g} {to_unit}")
+    black, red = "#000000", COLOURS["fold"]
+    labels = thick.labels()
+    for first in range(0, len(labels), _ROWS):
+        page = doc.page(210.0, 297.0)
+        heads = (
+            f"Cut list: {len(labels)} panels {thick.thickness * scale:g} {to_unit} thick, page "
+            f"{first // _ROWS + 1} of {-(-len(labels) // _ROWS)}. Edge: length ({to_unit}), bevel "
+            "(degrees from square),",
+            "outlines seen from the top face, which each bevel sets back from its edge on the "
+            "hinge face; hinged edges red.",
+        )
+        for n, head in enumerate(heads):
+            page.text(PdfText(head, 12.0, 287.0 - 4.5 * n, 3.0, black, anchor="start"))
+        for row, f in enumerate(range(first, min(first + _ROWS, len(labels)))):
+            y = 270.0 - row * _ROW
+            page.text(PdfText(labels[f], 12.0, y, 3.0, black, anchor="start"))
+            # the sketch, fitted into 50 × 9 mm with its aspect kept
+            xy = outline[f] - outline[f].min(axis=0)
+            size = np.maximum(xy.max(axis=0), 1e-12)
+            fit = min(50.0 / size[0], 9.0 / size[1])
+            sketch = xy * fit + [62.0, y - 6.0]
+            ends = np.stack([sketch, np.roll(sketch, -1, axis=0)], axis=1)
+            centre = sketch.mean(axis=0)
+            for e in range(k):
+                colour = red if thick.hinged[f, e] else black
+                page.stroke([ends[e]], colour, 0.3 if thick.hinged[f, e] else 0.15)
+                mid = ends[e].mean(axis=0)
+                out = (mid - centre) / max(float(np.linalg.norm(mid - centre)), 1e-12)
+                at = mid + 1.4 * out - [0.0, 0.6]
+                page.text(PdfText(str(e + 1), float(at[0]), float(at[1]), 1.8, colour))
+            words = [
+                f"{e + 1}: {lengths[f, e]:.1f}, {bevels[f, e]:.1f}°"
+                + (" hinged" if thick.hinged[f, e] else "")
+                for e in range(k)
+            ]
+            for line in range(0, k, 2):
+                text = "   ".join(words[line : line + 2])
+                page.text(PdfText(text, 118.0, y - 3.6 * (line // 2), 2.6, black, anchor="start"))
+    return doc.save(path)
