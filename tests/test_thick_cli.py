@@ -180,7 +180,7 @@ def test_the_summary_says_how_far_the_thick_vault_folds(tmp_path):
     assert "flat stack         4 mm, were it to fold flat; DOF 1 (every tube)" in r.stdout
 
 
-def test_a_thickness_the_panels_or_the_design_angle_cannot_take_is_one_line():
+def test_a_thickness_the_panels_or_the_design_angle_cannot_take_is_one_line(tmp_path):
     # more than the smallest panel's inradius
     refused(
         run("vault", "--panels", "16", "--thickness", "0.05", "--material", "plywood", "--json"),
@@ -194,6 +194,14 @@ def test_a_thickness_the_panels_or_the_design_angle_cannot_take_is_one_line():
         run("vault", "--panels", "16", "--thickness", "0.01", "--material", "plywood", "--json"),
         r"thickness must be below 0\.00856 model units to reach the design angle 2α = 90° .* got "
         r"0\.01: use a thinner sheet or fewer panels, or a vault of radius > 1\.17 \(--radius",
+    )
+    # a design file says the same, naming its section
+    (tmp_path / "design.toml").write_text(
+        'kind = "vault"\n[vault]\npanels = 16\n[material]\nmaterial = "plywood"\nthickness = 0.01\n'
+    )
+    refused(
+        run("vault", "design.toml", "--json", cwd=tmp_path),
+        r"^curvefold: error: design\.toml: \[material\] thickness must be below 0\.00856 ",
     )
 
 
