@@ -16,8 +16,9 @@ import rhino3dm
 
 import curvefold.analysis._thick_checks as thick_checks
 from _cli import run
-from curvefold import Crease, Lattice, SpaceCurve, Structure
+from curvefold import Crease, InputError, Lattice, SpaceCurve, Structure
 from curvefold.analysis import certify
+from curvefold.app._thickness import TAPER
 from curvefold.geometry import PanelLattice, ThickPanels, ThickRange
 from curvefold.geometry._thick import thickness_limit
 from curvefold.mechanics import MATERIALS
@@ -186,36 +187,63 @@ def test_a_thickness_the_panels_or_the_design_angle_cannot_take_is_one_line(tmp_
         run("vault", "--panels", "16", "--thickness", "0.05", "--material", "plywood", "--json"),
         r"^curvefold: error: curvefold vault .*: \[material\] thickness must be in \(0, 0\.0108\) "
         r"model units \(the smallest panel's inradius, .*\), got 0\.05, or a vault of radius > "
-        r"5\.84 \(--radius",
+        r"4\.63 \(--radius",
     )
-    # the issue's 1 cm plywood on the paper's vault of radius 1 m: the walls would need 45°
-    # bevels at the design angle, more than the panels allow
+    # two tubes' walls need 45° bevels at the design angle: more than even tapered panels take
     refused(
-        run("vault", "--panels", "16", "--thickness", "0.01", "--material", "plywood", "--json"),
-        r"thickness must be below 0\.00856 model units to reach the design angle 2α = 90° .* got "
-        r"0\.01: use a thinner sheet or fewer panels, or a vault of radius > 1\.17 \(--radius",
+        run(*TWO_TUBES, "--thickness", "0.025", "--json"),
+        r"thickness must be below 0\.0222 model units to reach the design angle 2α = 90° \(.* "
+        r"needs a bevel of 45°, which would set its top face back by more than 0\.75 of its "
+        r"inradius .*\), got 0\.025: use a thinner sheet or fewer panels, or a vault of radius > "
+        r"1\.13 \(--radius",
     )
     # a design file says the same, naming its section
     (tmp_path / "design.toml").write_text(
-        'kind = "vault"\n[vault]\npanels = 16\n[material]\nmaterial = "plywood"\nthickness = 0.01\n'
+        'kind = "vault"\n[vault]\npanels = 16\n[material]\nmaterial = "plywood"\nthickness = 0.02\n'
     )
     refused(
         run("vault", "design.toml", "--json", cwd=tmp_path),
-        r"^curvefold: error: design\.toml: \[material\] thickness must be below 0\.00856 ",
+        r"^curvefold: error: design\.toml: \[material\] thickness must be in \(0, 0\.0108\) ",
     )
+
+
+TWO_TUBES = ("vault", "--panels", "8", "--tubes", "2", "--material", "plywood")
 
 
 def test_the_radius_the_refusal_asks_for_is_the_one_that_builds():
     structure = Vault.from_design(VaultDesign(panels=8, tubes=2)).structure
-    limit = thickness_limit(structure)
-    t = 0.01
+    limit = thickness_limit(structure, setback=TAPER)
+    t = 0.03
     need = t / limit  # radius 1: lengths, and the limit, scale with it
-    flags = ("--panels", "8", "--tubes", "2", "--material", "plywood", "--thickness", str(t))
-    r = run("vault", *flags, "--radius", f"{need * 0.999:.6g}", "--json")
+    flags = (*TWO_TUBES, "--thickness", str(t))
+    r = run(*flags, "--radius", f"{need * 0.999:.6g}", "--json")
     refused(r, rf"radius > {need:.3g} ")
-    r = run("vault", *flags, "--radius", f"{need * 1.001:.6g}", "--json")
+    r = run(*flags, "--radius", f"{need * 1.001:.6g}", "--json")
     assert r.returncode == 0, r.stderr
-    assert json.loads(r.stdout)["thickness"]["range"]["high"] == pytest.approx(90, abs=1e-6)
+    thickness = json.loads(r.stdout)["thickness"]
+    assert thickness["range"]["high"] == pytest.approx(90, abs=1e-6)
+    assert thickness["technique"].startswith("tapered panels") and thickness["setback"] == TAPER
+
+
+def test_the_issues_command_builds_tapered_panels_where_offset_ones_cannot_reach():
+    """1 cm plywood on the paper's vault (radius 1 m): offset panels' bevels cannot reach the
+    design angle, tapered ones (top faces set back up to 3/4 of the inradius) can."""
+    structure = Vault.from_design(VaultDesign(panels=16)).structure
+    with pytest.raises(InputError, match=r"^thickness must be below 0\.00856 model units"):
+        ThickPanels.offset(structure, 0.01)
+    r = run("vault", "--panels", "16", "--thickness", "0.01", "--material", "plywood", "--json")
+    assert r.returncode == 0, r.stderr
+    payload = json.loads(r.stdout)
+    t = payload["thickness"]
+    assert t["technique"] == (
+        "tapered panels (top faces set back up to 0.75 of the inradius), solids outside the tubes"
+    )
+    tapered = ThickPanels.offset(structure, 0.01, setback=TAPER)
+    expected = tapered.motion_range()
+    assert (t["range"]["low"], t["range"]["high"]) == (expected.low, expected.high)
+    assert 65 < expected.low < 75 and set(t["dof"]) == {1}
+    names = {c["name"]: c["status"] for c in payload["certificate"]}
+    assert [names[n] for n in ("thick_hinges", "thick_contact", "thick_dof")] == ["pass"] * 3
 
 
 # -- the certificate's thickness checks, each failing on its damage -------------------------------

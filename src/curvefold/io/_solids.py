@@ -99,7 +99,7 @@ def write_cut_list(path: str | os.PathLike, thick: ThickPanels) -> Path:
     """
     body = {
         "creator": CREATOR,
-        "technique": "offset panels: hinges on the zero-thickness creases, solids outside",
+        "technique": f"{thick.technique}: hinges on the zero-thickness creases",
         "thickness": thick.thickness,
         "bevels_for_fold_angles": list(thick.reach),
         "panels": list(thick.cut_list()),
