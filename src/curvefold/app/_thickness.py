@@ -13,7 +13,8 @@ Its output folder then holds (``curvefold vault``, ``tube``, ``block``):
 * ``<kind>_solids.stl``: the solids at the design angle, 1:1 in the output units, watertight;
 * ``<kind>_solids.3dm``: the solids as closed polysurfaces, in metres (with ``3dm``);
 * ``<kind>_cut_list.csv``, ``.json`` and ``.pdf``: every panel's outline, edge lengths, bevels
-  and hinges, named as in the assembly guide (the PDF a printable row per panel);
+  and hinges, named by its tube (numbered as in the assembly guide), strip and place along
+  the crease (the PDF a printable row per panel);
 
 and the report, the ``--json`` output (its ``thickness`` key) and the certificate say how far it
 folds with thickness beside the zero-thickness motion, its flat stack, its degrees of freedom
