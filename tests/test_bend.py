@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from curvefold import InputError
-from curvefold.geometry._bend import Bend, bend_for, crease_setbacks, din6935_k
+from curvefold.geometry._bend import Bend, bend_for, crease_insets, din6935_k
 
 
 def bent_strip(bend: Bend, fold: float, legs: tuple[float, float], n: int) -> dict:
@@ -46,7 +46,7 @@ def bent_strip(bend: Bend, fold: float, legs: tuple[float, float], n: int) -> di
 @pytest.mark.parametrize(
     ("fold", "radius", "k"), [(90.0, 1.0, 0.325), (30.0, 2.0, 0.4), (150.0, 0.5, 0.5)]
 )
-def test_allowance_setback_and_deduction_match_a_bent_strip(fold, radius, k):
+def test_allowance_inset_and_deduction_match_a_bent_strip(fold, radius, k):
     """The polyline's length converges as 1/n² (Richardson from n and 2n): the measured flat
     length agrees with the closed forms to 1e-12 of the legs."""
     bend = Bend(1.0, radius, k)
@@ -55,20 +55,20 @@ def test_allowance_setback_and_deduction_match_a_bent_strip(fold, radius, k):
     flat = fine["flat"] + (fine["flat"] - coarse["flat"]) / 3
     arc = fine["arc"] + (fine["arc"] - coarse["arc"]) / 3
     assert arc == pytest.approx(float(bend.allowance(fold)), abs=1e-10)
-    # the flat pattern of the design's legs, each side moved in by the setback
-    assert flat == pytest.approx(sum(legs) - 2 * float(bend.setback(fold)), abs=1e-10)
+    # the flat pattern of the design's legs, each side moved in by the inset
+    assert flat == pytest.approx(sum(legs) - 2 * float(bend.inset(fold)), abs=1e-10)
     # the workshop's dimensions: the outer mold lines, less the deduction
     assert flat == pytest.approx(sum(fine["mold"]) - float(bend.deduction(fold)), abs=1e-10)
     # damaged: the K-factor forgotten (the inner radius taken as neutral) misses by K t θ
     wrong = Bend(1.0, radius, 0.0)
-    miss = abs(sum(legs) - 2 * float(wrong.setback(fold)) - flat)
+    miss = abs(sum(legs) - 2 * float(wrong.inset(fold)) - flat)
     assert miss > 1e-3
 
 
 def test_small_folds_set_back_by_the_cube_of_the_angle():
     bend = Bend(0.001, 0.002, 0.5)
     theta = np.radians(np.array([0.1, 0.2]))
-    d = bend.setback(np.degrees(theta))
+    d = bend.inset(np.degrees(theta))
     assert d == pytest.approx(bend.neutral_radius * theta**3 / 24, rel=2e-6)
 
 
@@ -82,10 +82,10 @@ def test_din6935_runs_from_the_inside_to_the_mid_surface():
     )
 
 
-def test_crease_setbacks_follow_the_fold_angle_2_alpha():
+def test_crease_insets_follow_the_fold_angle_2_alpha():
     bend = bend_for("aluminium", 0.001)
     alpha = np.radians(np.linspace(0, 60, 7))
-    ba, d = crease_setbacks(alpha, bend)
+    ba, d = crease_insets(alpha, bend)
     assert ba == pytest.approx(2 * alpha * bend.neutral_radius, abs=1e-15)
     assert d[0] == 0 and np.all(np.diff(d) > 0)
 

@@ -11,7 +11,7 @@ neutral surface; the real sheet replaces the corner by an arc of radius ρ = R +
 * bend deduction ``BD = 2 (R + t) tan(θ/2) − BA``: what the flat length is shorter than the two
   outside mold-line lengths (to the virtual sharp of the outer surface), the workshop's
   dimension;
-* setback ``δ = ρ (tan(θ/2) − θ/2)``: how far each side of the crease moves in on the flat
+* inset ``δ = ρ (tan(θ/2) − θ/2)``: how far each side of the crease moves in on the flat
   pattern, when the design's faces are the neutral surface with a sharp fold: the legs reach
   ρ tan(θ/2) past the tangent points, the arc only ρ θ/2. For small θ, δ ≈ ρ θ³/24.
 
@@ -37,7 +37,7 @@ from numpy.typing import ArrayLike
 from ..kernel._errors import InputError
 from ..kernel._validate import Spec
 
-__all__ = ["Bend", "K_SOURCES", "din6935_k", "bend_for", "crease_setbacks"]
+__all__ = ["Bend", "K_SOURCES", "din6935_k", "bend_for", "crease_insets"]
 
 #: Where each material's K-factor comes from (curvefold.mechanics.MATERIALS' names).
 K_SOURCES = MappingProxyType(
@@ -111,7 +111,7 @@ class Bend:
         theta = self._theta(fold_angle)
         return 2 * (self.radius + self.thickness) * np.tan(theta / 2) - self.allowance(fold_angle)
 
-    def setback(self, fold_angle: ArrayLike) -> np.ndarray:
+    def inset(self, fold_angle: ArrayLike) -> np.ndarray:
         """δ = ρ (tan(θ/2) − θ/2): how far each side of a crease moves in on the flat pattern of
         a design drawn on the neutral surface, at fold angles θ in degrees."""
         theta = self._theta(fold_angle)
@@ -143,16 +143,16 @@ def bend_for(material: str, thickness: float, radius: float | None = None) -> Be
     return Bend(thickness, r, k, K_SOURCES[material])
 
 
-def crease_setbacks(alpha: np.ndarray, bend: Bend) -> tuple[np.ndarray, np.ndarray]:
-    """Bend allowance and setback along a crease whose fold angle is 2α(s) (α in radians, a
+def crease_insets(alpha: np.ndarray, bend: Bend) -> tuple[np.ndarray, np.ndarray]:
+    """Bend allowance and inset along a crease whose fold angle is 2α(s) (α in radians, a
     crease's :meth:`~curvefold.geometry.Crease.alpha` at its samples): (BA(s), δ(s)), model
     units, each measured across the crease.
 
     Examples
     --------
-    >>> ba, d = crease_setbacks(np.radians([0.0, 45.0]), Bend(0.001, 0.001, 0.5))
+    >>> ba, d = crease_insets(np.radians([0.0, 45.0]), Bend(0.001, 0.001, 0.5))
     >>> ba.round(9).tolist(), d.round(9).tolist()
     ([0.0, 0.002356194], [0.0, 0.000321903])
     """
     fold = np.degrees(2 * np.asarray(alpha, float))
-    return bend.allowance(fold), bend.setback(fold)
+    return bend.allowance(fold), bend.inset(fold)
