@@ -305,3 +305,23 @@ def test_hinges_left_unjoined_fail_the_dof(tube, monkeypatch):
         "thick_contact": "pass",
         "thick_dof": "fail",
     }
+
+
+def test_a_tube_of_thick_panels_folds_flat_and_a_block_sharing_walls_is_refused():
+    r = run("tube", "--panels", "8", "--thickness", "0.002", "--json")
+    assert r.returncode == 0, r.stderr
+    t = json.loads(r.stdout)["thickness"]
+    assert t["range"]["low"] == 0.0 and t["range"]["short_of_flat"] == 0.0
+    assert t["stack_height"] == pytest.approx(0.004, abs=1e-12)  # two plies of 2 mm
+    assert t["material"] == "polypropylene"  # the default material, its thickness given
+    assert t["technique"] == "offset panels, solids outside the tubes" and set(t["dof"]) == {1}
+    # the default block's tubes share walls: offset outward, a ply enters the other tube
+    refused(
+        run("block", "--panels", "8", "--thickness", "0.002", "--json"),
+        r"^curvefold: error: thickness: at the design angle 2α = 90° the solids of panel \d+ of "
+        r"tube \d and panel \d+ of tube \d interpenetrate by .* build the cells along one "
+        r"diagonal$",
+    )
+    # smooth sheets keep zero thickness: no thick panels, whatever the material says
+    r = run("tube", "--thickness", "0.002", "--samples", "101", "--json")
+    assert r.returncode in (0, 1) and "thickness" not in json.loads(r.stdout), r.stderr
