@@ -494,6 +494,7 @@ def test_every_check_is_shown_failing():
         "arch_condition",
         "proportion_change",
         "panel_ground_plane",
+        *("thick_hinges", "thick_contact", "thick_dof"),  # tests/test_thick_cli.py
     }
     assert shown == {spec.name for spec in CHECKS}
 

@@ -360,7 +360,7 @@ def test_tubes_and_blocks_are_held_at_both_end_sections(example, samples, soft):
         (
             ["--material", "steel"],
             r"--material steel: material must be one of \"polypropylene\", "
-            r"\"paperboard\", \"aluminium\", got steel$",
+            r"\"paperboard\", \"aluminium\", \"plywood\", got steel$",
         ),
         (["--snow", "-1"], r"--snow -1: snow must be in \[0, 1000\] kPa"),
         (["--no-self-weight"], r"no load: give self-weight, snow or a point load$"),

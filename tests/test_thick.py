@@ -433,3 +433,36 @@ def test_the_thickness_checks_pass_and_each_fails_on_its_damage(tube, vault):
         "no interpenetration": False,
         "one degree of freedom": True,
     }
+
+
+def test_tapered_panels_reach_further_and_stop_where_their_deeper_bevels_meet(block):
+    """Top faces set back by up to 3/4 of the inradius: the bevels are capped at atan(0.75 r / t),
+    the block's walls meet where they do (2α = 180° − b₁ − b₂, closed form), nearer flat."""
+    from curvefold.geometry._thick_solids import inradius
+
+    tapered = ThickPanels.offset(block.structure, T, setback=0.75)
+    r = tapered.motion_range()
+    assert abs(r.low - (180.0 - _bevel_sum(tapered, *r.low_pair))) < 1e-6
+    assert r.low < block.motion_range().low - 3 and abs(r.high - 90.0) < 1e-6
+    cap = np.arctan(0.75 * inradius(tapered.local[:, :4, :2]) / T)[:, None]
+    assert np.all(tapered.bevels <= cap + 1e-15) and np.isclose(tapered.bevels, cap).any()
+    assert tapered.technique.startswith("tapered panels") and block.technique.startswith("offset")
+    # the hinges stay on their creases and the linkage keeps one degree of freedom
+    assert hinge_offsets(tapered, [0, 45, 90]).max() < 2e-15
+    assert [m.dof for m in thick_mechanism(tapered, [20, 90])] == [1, 1]
+    with pytest.raises(InputError, match=r"^setback must be in \(0, 1\) .*got 1\.0$"):
+        ThickPanels.offset(block.structure, T, setback=1.0)
+
+
+def test_a_top_face_that_loses_an_edge_is_refused(tube):
+    """Damaged: a panel's two long edges set back by 1.2 of its inradius each cross."""
+    from curvefold.geometry._thick import _check_tops
+    from curvefold.geometry._thick_solids import inradius
+
+    topology = tube.structure.topology()
+    _check_tops(tube.local, topology, 0.5)  # as built: every top face whole
+    solids = tube.local.copy()
+    xy = tube.local[3, :4, :2]
+    solids[3] = prism(xy, T, np.full(4, np.arctan(1.2 * float(inradius(xy)) / T)))
+    with pytest.raises(InputError, match=r"^setback must be smaller: .* loses an edge"):
+        _check_tops(solids, topology, 0.5)

@@ -72,6 +72,7 @@ from ..geometry._fold_angle import check_fold_angles
 from ..geometry._lattice import Lattice
 from ..geometry._lattice_pattern import Pattern
 from ..geometry._structure import Structure
+from ..geometry._thick import ThickPanels
 from ..kernel._errors import InputError
 from ..vault._assembly import Vault
 from ._checks import CHECKS, CheckSpec, Residual
@@ -175,6 +176,9 @@ class Certificate:
         The first fold angle from the design angle on (degrees, on a 1° grid) where parts of
         the structure far apart touch (:func:`curvefold.geometry.first_contact`), or
         None if none do up to 179°: the motion ends there, and so does :attr:`holds_up_to`.
+    thickness : dict or None
+        For thick panels (:func:`certify`'s ``thick``): their range of motion, stack and
+        checks (:func:`curvefold.analysis.thickness_checks`), JSON-ready.
     """
 
     checks: tuple[Check, ...]
@@ -183,6 +187,7 @@ class Certificate:
     samples: int = 0
     mechanism: CertifiedMechanism | None = None
     first_contact: float | None = None
+    thickness: dict | None = None
 
     @property
     def passed(self) -> bool:
@@ -284,6 +289,7 @@ def certify(
     *,
     fold_angles: Sequence[float] | None = None,
     degrees: bool = True,
+    thick: ThickPanels | None = None,
 ) -> Certificate:
     """Measure every check that applies, in every frame, against its tolerance.
 
@@ -302,6 +308,10 @@ def certify(
     fold_angles : sequence of float, optional, keyword-only
         Further frames to certify, 2α in [0°, 180°) (e.g. the exported motion).
     degrees : bool, keyword-only
+    thick : ThickPanels, optional, keyword-only
+        The structure's panels made thick: adds the checks of scope ``"thick"`` (hinge axes
+        on their creases, no interpenetration within the measured range, one degree of
+        freedom; :func:`curvefold.analysis.thickness_checks`).
 
     Returns
     -------
@@ -313,7 +323,10 @@ def certify(
         A fold angle outside [0°, 180°), or fold angles for a single curved fold.
     """
     if structure is not None and structure.lattice.rigid:
-        return _certify_rigid(structure, vault, _certified_angles(structure, fold_angles, degrees))
+        cert = _certify_rigid(structure, vault, _certified_angles(structure, fold_angles, degrees))
+        return cert if thick is None else _with_thickness(cert, thick)
+    if thick is not None:
+        raise InputError("thick: thick panels are certified with their structure of rigid panels")
     if structure is not None:
         crease = cast(Crease, structure.lattice.crease)  # not rigid: a smooth lattice's
     elif fold_angles is not None:
@@ -414,6 +427,33 @@ def _certify_rigid(structure: Structure, vault: Vault | None, angles: list[float
     return replace(
         cert, checks=crease_checks + cert.checks, mechanism=certified_mechanism(structure)
     )
+
+
+def _with_thickness(cert: Certificate, thick: ThickPanels) -> Certificate:
+    """The certificate with the checks of thick panels (scope ``"thick"``), measured on their
+    solids by :func:`~curvefold.analysis.thickness_checks` and judged exactly: the value
+    against its limit (a count against 1)."""
+    from ._thick_checks import thickness_checks
+
+    report = thickness_checks(thick)
+    measured = {c["name"]: c for c in report["checks"]}
+    r = report["range"]
+    where = f"{len(report['states'])} states, 2α = {r['low']:.4g}° to {r['high']:.4g}°"
+    checks = []
+    for spec, name in zip(
+        (s for s in CHECKS if s.scope == "thick"),
+        ("hinges on creases", "no interpenetration", "one degree of freedom"),
+    ):
+        c = measured[name]
+        if name == "one degree of freedom":
+            value, tolerance = float(max(abs(d - 1) for d in c["value"])), 0.0
+        else:
+            value, tolerance = max(float(c["value"]), 0.0), float(c["limit"])
+        status = "pass" if c["passed"] else "fail"
+        checks.append(
+            Check(spec.name, value, tolerance, status, spec.unit, spec.measures, spec.model, where)
+        )
+    return replace(cert, checks=cert.checks + tuple(checks), thickness=report)
 
 
 def _with_range(

@@ -33,13 +33,14 @@ class CheckSpec:
         Stable identifier (a JSON key).
     title : str
         What a pass says, in plain words (the report's and the designer's name for it).
-    scope : {"crease", "frame", "vault", "panels", "panel_vault", "mechanism", "motion"}
+    scope : {"crease", "frame", "vault", "panels", "panel_vault", "mechanism", "motion", "thick"}
         ``"crease"``: curve 1 of a single fold and of every frame of a smooth structure
         (the smooth crease a panel structure samples); ``"frame"``: every frame of a smooth
         structure; ``"vault"``: a smooth vault at its design angle; ``"panels"``: every
         frame of a structure of rigid panels; ``"panel_vault"``: a panel vault at its
         design angle; ``"mechanism"``: a panel structure's mechanism, once; ``"motion"``: every
-        structure, as built and in every frame from its design angle on.
+        structure, as built and in every frame from its design angle on; ``"thick"``: the
+        thick panels of a rigid structure, once (their own measurement).
     measures : str
         What is measured, from which built geometry, against what.
     unit : str
@@ -76,6 +77,11 @@ class CheckSpec:
             f"|r(2h) − r(h)|/{2**self.order - 1} × safety {(2**self.order - 1) / 2:g}); cap "
             f"{self.cap:g} {self.unit}"
         )
+
+
+def _not_a_frame(frame: Frame) -> None:
+    """The thick panels' checks measure the solids (:func:`certify`'s ``thick``), not a frame."""
+    return None
 
 
 #: The registry: every check of the certificate, in report order.
@@ -321,6 +327,43 @@ CHECKS: tuple[CheckSpec, ...] = (
         measures.contact,
         rounding="0: any contact fails (the curves resampled to 201 points along t, each "
         "pair's distance measured)",
+    ),
+    # thick panels (curvefold.analysis._thick_checks): measured on the solids, not on a frame
+    CheckSpec(
+        "thick_hinges",
+        "every thick panel's hinge axis lies on its crease",
+        "thick",
+        "largest distance of a hinge axis end, placed by its panel's frame, from the crease "
+        "line of the zero-thickness state, at the range's ends, its middle and the design angle",
+        "model units",
+        0,
+        math.inf,
+        _not_a_frame,
+        rounding="1e-12 × the structure's size (measured at most 1.3e-15 of a size about 1)",
+    ),
+    CheckSpec(
+        "thick_contact",
+        "no two thick panels interpenetrate within the stated range",
+        "thick",
+        "largest penetration depth of two solids (separating axes) at nine states across the "
+        "stated range of motion with thickness",
+        "model units",
+        0,
+        math.inf,
+        _not_a_frame,
+        rounding="1e-9 t: neighbours on a hinge touch at depth 0 to rounding",
+    ),
+    CheckSpec(
+        "thick_dof",
+        "the thick panels' linkage moves with one degree of freedom",
+        "thick",
+        "|DOF − 1| of the solids joined by their hinge axes (each solid a rigid body of its "
+        "hinge ends and a top point), at the states across the range but flat",
+        "DOF",
+        0,
+        math.inf,
+        _not_a_frame,
+        rounding="0: a count, below the rank tolerance 1e-9 σ_max",
     ),
 )
 

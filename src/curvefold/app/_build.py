@@ -25,6 +25,7 @@ from ._design import Design
 from ._kinds import BlockParams, CreaseParams, CurveParams, TubeParams, VaultParams
 
 if TYPE_CHECKING:  # pragma: no cover
+    from ..geometry._thick import ThickPanels
     from ..io._output import PatternOutput
     from ._loading import Loaded
 
@@ -167,6 +168,14 @@ class BuiltStructure(Built):
         from ..io._pattern import layout_pattern
 
         return layout_pattern(self.structure, self._pattern_output(), keep=self.sampling.keep)
+
+    @cached_property
+    def thick(self) -> ThickPanels | None:
+        """Its panels made thick, for a structure of rigid panels with a ``[material]``
+        (:func:`curvefold.app._thickness.thick_panels`); None otherwise."""
+        from ._thickness import thick_panels
+
+        return thick_panels(self.structure, self.design)
 
     def prepare(self) -> None:
         """The mechanics of a design under load (the 3D models and the pictures show it) and a rigid

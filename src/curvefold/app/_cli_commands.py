@@ -76,6 +76,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     from ._budget import require_budget
     from ._build import build
     from ._outputs import structure_payload, write_outputs
+    from ._thickness import thickness_lines
 
     design = _load_design(kind, args)
     out = args.out or (None if args.json else Path(design.design_kind.default_out))
@@ -84,9 +85,10 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
     require_budget(design, files=out is not None)
     built = build(design)
     if target is None:
-        payload = structure_payload(built)
+        payload = structure_payload(built, thick=True)
     else:
-        payload = write_outputs(built, target, show_progress=not args.json) | {"out": str(out)}
+        written = write_outputs(built, target, show_progress=not args.json, thick=True)
+        payload = written | {"out": str(out)}
     lines = [payload["title"]]
     for key in ("kappa0_s0", "proportion_change", "p_xz", "tubes", "max_tubes", "span", "rise"):
         if key in payload:
@@ -95,7 +97,7 @@ def cmd_structure(kind: str, args: argparse.Namespace) -> int:
                 if isinstance(payload[key], float)
                 else f"  {key:<18} {payload[key]}"
             )
-    lines += _certificate_lines(payload)
+    lines += thickness_lines(payload) + _certificate_lines(payload)
     if out is not None:
         lines.append(f"  wrote {len(payload['files'])} files to {out}/ (open {out}/report.html)")
         lines += [f"  {note}" for note in payload.get("notes", [])]

@@ -237,7 +237,8 @@ def _add_design_flags(p: argparse.ArgumentParser, kind: str) -> None:
             "under load",
             "what the structure is made of and "
             "what loads it: with any of these its output folder holds its mechanics (curvefold "
-            "load always analyses it)",
+            "load always analyses it); with --panels N, vault, tube and block build the panels "
+            "as solids of the thickness (thick panels: their solids, cut list and range)",
         )
     section = {
         spec.name: name

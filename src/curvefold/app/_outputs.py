@@ -36,8 +36,11 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["structure_payload", "write_outputs", "write_atlas", "strict_json", "default_title"]
 
 
-def structure_payload(built: Built) -> dict:
-    """Design, derived quantities and certificate of a built design, JSON-ready."""
+def structure_payload(built: Built, *, thick: bool = False) -> dict:
+    """Design, derived quantities and certificate of a built design, JSON-ready; with ``thick``,
+    a structure of thick panels (:attr:`BuiltStructure.thick
+    <curvefold.app._build.BuiltStructure.thick>`) is certified with them and gains the
+    ``thickness`` key (:func:`curvefold.app._thickness.thickness_payload`)."""
     design = built.design
     payload: dict = {
         "kind": design.kind,
@@ -77,9 +80,18 @@ def structure_payload(built: Built) -> dict:
         )
     elif isinstance(built, BuiltStructure):
         vault = built.vault if isinstance(built, BuiltVault) else None
+        solids = built.thick if thick else None
         certificate = certify(
-            built.crease, built.structure, vault, fold_angles=list(exported_fold_angles(built))
+            built.crease,
+            built.structure,
+            vault,
+            fold_angles=list(exported_fold_angles(built)),
+            thick=solids,
         )
+        if solids is not None:
+            from ._thickness import thickness_payload
+
+            payload["thickness"] = thickness_payload(solids, certificate, built.design)
     else:
         raise TypeError(f"no certificate for a {type(built).__name__}")
     payload["certificate"] = [c.to_dict() for c in certificate.checks]
@@ -178,6 +190,7 @@ def write_outputs(
     show_progress: bool = True,
     fold_angle: float | None = None,
     workers: int | None = None,
+    thick: bool = False,
 ) -> dict:
     """Write every file of a built design into the folder ``out`` (see the module doc).
 
@@ -196,6 +209,9 @@ def write_outputs(
         2α of the folded state the FOLD and 3D files hold (degrees); default the design angle.
     workers : int, optional, keyword-only
         Processes for the files (:func:`curvefold.app._products.run_jobs`; 1: this process).
+    thick : bool, keyword-only
+        Thick panels, for a structure that has them (:mod:`curvefold.app._thickness`): their
+        solids and cut list, certificate checks and ``thickness`` key.
 
     Returns
     -------
@@ -219,6 +235,7 @@ def write_outputs(
         raise InputError("formats: " + "; ".join(missing))
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
+    solids = built.thick if thick and isinstance(built, BuiltStructure) else None  # refusals first
     built.prepare()  # what every job shares, before any forks
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []
@@ -232,7 +249,13 @@ def write_outputs(
             # what the file jobs share, computed here while the drawings are drawn; then the file
             # jobs start
             done.refill()
-            payload = structure_payload(built)
+            payload = structure_payload(built, thick=solids is not None)
+            if solids is not None:
+                from ._thickness import write_thick_files
+
+                o = built.design.output
+                files = write_thick_files(solids, tmp, built.design.kind, o.formats, o.units)
+                written += [f.name for f in files]
             made = built_design(built)  # the design file that builds this folder again
             design_text = design_toml(made)
             atomic_write(tmp / DESIGN_FILE, design_text)
@@ -254,7 +277,12 @@ def write_outputs(
             report["files"] = sorted(written)
             report |= _file_certificate(tmp, built.design.kind, written)
             atomic_write(tmp / "report.json", strict_json(report, indent=2))
-            atomic_write(tmp / "report.html", report_html(report | {"design_toml": design_text}))
+            page = report_html(report | {"design_toml": design_text})
+            if solids is not None:
+                from ._thickness import thickness_html
+
+                page = thickness_html(page, report)
+            atomic_write(tmp / "report.html", page)
             written += ["report.json", "report.html"]
     finally:
         stop()

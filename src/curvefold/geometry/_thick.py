@@ -16,7 +16,10 @@ edges on a hinge are bevelled (:mod:`curvefold.geometry._thick_solids`):
   smallest gap over those states sets them;
 * a bevel sets the top face back by ``t tan b``, which may not pass half the panel's inradius
   r: ``b ≤ atan(r / 2t)``. Where a gap closes further (tubes of a block, whose walls fold
-  onto each other as the block flattens), the fold stops short of flat.
+  onto each other as the block flattens), the fold stops short of flat. *Tapered panels*
+  (Lang et al. 2018, §3) trade the panels' bulk for their range: with ``setback = s`` the
+  top face may be set back by s r (s < 1), ``b ≤ atan(s r / t)``, every top face kept a
+  convex polygon with all its edges (checked).
 
 How far the thick structure folds is then measured, not assumed: :meth:`ThickPanels.motion_range`
 refolds it from the design angle toward flat and beyond, testing every pair of solids whose
@@ -41,7 +44,7 @@ from ._structure import Structure
 from ._thick_solids import halfspaces, inradius, panel_axes, penetration, prism
 from ._topology import Topology, unique_pairs
 
-__all__ = ["THICKNESS", "PENETRATION_TOL", "ThickPanels", "ThickRange"]
+__all__ = ["THICKNESS", "PENETRATION_TOL", "ThickPanels", "ThickRange", "thickness_limit"]
 
 #: The ``thickness`` of thick panels, in the structure's model units.
 THICKNESS = Spec(
@@ -114,6 +117,9 @@ class ThickPanels(FrozenArrays):
         Ends of the hinge axis on every edge, in the panel's frame: its crease.
     reach : (float, float)
         The fold angles 2α (degrees) the bevels are cut for.
+    setback : float
+        The largest setback of a top face, as a fraction of its panel's inradius: 0.5 for
+        offset panels, more for tapered ones.
 
     Examples
     --------
@@ -132,6 +138,27 @@ class ThickPanels(FrozenArrays):
     local: np.ndarray
     hinges: np.ndarray
     reach: tuple[float, float]
+    setback: float = 0.5
+
+    @property
+    def technique(self) -> str:
+        """The technique in words: offset panels, or tapered ones (:attr:`setback` > 0.5).
+
+        Examples
+        --------
+        >>> from curvefold.geometry._lattice import _example_lattice
+        >>> from curvefold.geometry import PanelLattice
+        >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+        >>> ThickPanels.offset(tube, 0.01, setback=0.75).technique
+        'tapered panels (top faces set back up to 0.75 of the inradius), solids outside the tubes'
+        """
+        where = "outside" if self.side[0] > 0 else "inside"
+        kind = (
+            "offset panels"
+            if self.setback <= 0.5
+            else f"tapered panels (top faces set back up to {self.setback:g} of the inradius)"
+        )
+        return f"{kind}, solids {where} the tubes"
 
     @classmethod
     def offset(
@@ -142,6 +169,7 @@ class ThickPanels(FrozenArrays):
         reach: tuple[float, float] | None = None,
         samples: int = 19,
         side: str = "outside",
+        setback: float = 0.5,
     ) -> ThickPanels:
         """Thick panels of thickness t offset to the outside of their tubes (or the inside),
         bevelled for ``reach``.
@@ -159,6 +187,9 @@ class ThickPanels(FrozenArrays):
         side : {"outside", "inside"}, keyword-only
             Where the solids lie: outside a tube its seams and creases are convex, and it
             folds flat; inside, its seams close on the solids as it flattens.
+        setback : float, keyword-only
+            The largest setback of a top face by its bevels, as a fraction of the panel's
+            inradius r, in (0, 1): 0.5 offset panels, more tapered ones (module notes).
 
         Raises
         ------
@@ -183,6 +214,7 @@ class ThickPanels(FrozenArrays):
                 "this one is of smooth sheets"
             )
         t = THICKNESS.check(thickness)
+        s = SETBACK.check(setback)
         design = float(structure.lattice.crease.fold_angle)
         lo, hi = (0.0, design) if reach is None else _check_reach(reach, design)
         samples = check_integer(samples, "samples", "[2, 10000]")
@@ -205,22 +237,24 @@ class ThickPanels(FrozenArrays):
             "sheet or fewer panels",
         ).check(t)
         need, at_design = _bevels_needed(structure, sides, np.linspace(lo, hi, samples), design)
-        allowed = np.arctan(r / (2 * t))[:, None]
+        allowed = np.arctan(s * r / t)[:, None]
         short = at_design - allowed
         if short.max() > 0:
             f, e = np.unravel_index(int(np.argmax(short)), short.shape)
-            limit = float(r[f] / (2 * np.tan(at_design[f, e])))
+            limit = float(s * r[f] / np.tan(at_design[f, e]))
             raise InputError(
                 f"thickness must be below {limit:.3g} model units to reach the design angle "
                 f"2α = {design:g}° ({_panel(topology, int(f))} needs a bevel of "
                 f"{np.degrees(at_design[f, e]):.3g}°, which would set its top face back by more "
-                f"than half its inradius {float(r[f]):.3g}), got {t:g}: use a thinner sheet or "
+                f"than {s:g} of its inradius {float(r[f]):.3g}), got {t:g}: use a thinner sheet or "
                 "fewer panels"
             )
         bevels = np.minimum(need, allowed)
         local = np.concatenate([xy, np.zeros(xy.shape[:-1] + (1,))], -1)
         hinges = np.stack([local, np.roll(local, -1, axis=1)], axis=2)
-        return cls(structure, t, sides, bevels, prism(xy, t, bevels), hinges, (lo, hi))
+        solids = prism(xy, t, bevels)
+        _check_tops(solids, topology, s)
+        return cls(structure, t, sides, bevels, solids, hinges, (lo, hi), s)
 
     # -- states ------------------------------------------------------------------------------
     @cached_property
@@ -508,6 +542,61 @@ class ThickPanels(FrozenArrays):
         normal = np.linalg.svd(flat - flat.mean(axis=0))[2][-1]
         vertices = self.solids(np.zeros(1))[0][0]
         return float(np.ptp(vertices.reshape(-1, 3) @ normal))
+
+
+def thickness_limit(structure: Structure, *, side: str = "outside", setback: float = 0.5) -> float:
+    """The thickness :meth:`ThickPanels.offset` takes up to, model units: below the smallest
+    panel's inradius r, and below ``s r / tan b`` for the bevel b each edge needs at the
+    design angle (s the ``setback``). Lengths scale with the structure, so does the limit.
+
+    Examples
+    --------
+    >>> from curvefold.geometry._lattice import _example_lattice
+    >>> from curvefold.geometry import PanelLattice
+    >>> tube = Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4))
+    >>> round(thickness_limit(tube), 4)  # its inradius: a tube's bevels need no setback
+    0.0498
+    """
+    if side not in ("outside", "inside"):
+        raise InputError(f"side must be 'outside' or 'inside', got {side!r}")
+    topology = structure.topology()
+    faces = topology.faces_vertices
+    x = topology.coords(structure.state().vertices)
+    sides = np.full(len(faces), 1.0 if side == "outside" else -1.0)
+    origin, axes = panel_axes(x[faces], sides)
+    xy = np.einsum("fkd,fjd->fkj", x[faces] - origin[:, None], axes)[..., :2]
+    r = inradius(xy)
+    design = float(structure.lattice.crease.fold_angle)
+    _, at_design = _bevels_needed(structure, sides, np.array([design]), design)
+    tangent = np.tan(at_design)
+    s = SETBACK.check(setback)
+    limit = np.where(tangent > 0, s * r[:, None] / np.where(tangent > 0, tangent, 1), np.inf)
+    return float(min(r.min(), limit.min()))
+
+
+#: The largest setback of a top face, as a fraction of its panel's inradius.
+SETBACK = Spec(
+    "setback",
+    "real",
+    0.5,
+    "(0, 1)",
+    why="a top face set back by its inradius shrinks to a point",
+    help="largest setback of a top face by its bevels, as a fraction of the panel's inradius",
+)
+
+
+def _check_tops(solids: np.ndarray, topology: Topology, setback: float) -> None:
+    """Every top face a polygon of all its edges, each running as its bottom edge does, or one
+    line naming the panel."""
+    k = solids.shape[1] // 2
+    bottom, top = solids[:, :k, :2], solids[:, k:, :2]
+    along = ((np.roll(bottom, -1, 1) - bottom) * (np.roll(top, -1, 1) - top)).sum(-1)
+    bad = np.flatnonzero((along <= 0).any(axis=1))
+    if len(bad):
+        raise InputError(
+            f"setback must be smaller: at {setback:g} of the inradius the top face of "
+            f"{_panel(topology, int(bad[0]))} loses an edge (its bevels meet), got {setback:g}"
+        )
 
 
 #: One end of the fold angles thick panels are bevelled for.

@@ -33,6 +33,9 @@ from ._pattern import write_svg as write_svg
 from ._rhino import RhinoOptions as RhinoOptions
 from ._rhino import write_3dm as write_3dm
 from ._solids import write_cut_list as write_cut_list
+from ._solids import write_cut_list_csv as write_cut_list_csv
+from ._solids import write_cut_list_pdf as write_cut_list_pdf
+from ._solids import write_thick_3dm as write_thick_3dm
 from ._solids import write_thick_stl as write_thick_stl
 
 __all__ = [
@@ -55,6 +58,9 @@ __all__ = [
     "write_stl",
     "write_thick_stl",
     "write_cut_list",
+    "write_cut_list_csv",
+    "write_cut_list_pdf",
+    "write_thick_3dm",
     "MODEL_FORMATS",
     "write_3d",
     "CUTTERS",

@@ -286,6 +286,19 @@ MATERIALS: MappingProxyType[str, Material] = MappingProxyType(
                 partial_factor_source="EN 1999-1-1 §6.1.3: γ_M1 = 1.10 (resistance of "
                 "cross-sections)",
             ),
+            Material(
+                "plywood",
+                4.0e9,
+                0.3,
+                680.0,
+                30e6,
+                "birch plywood to EN 636 of bending classes F40/30 E60/40 (along/across the face "
+                "grain; EN 12369-2:2011 gives f_m,k 40/30 MPa, mean E 6.0/4.0 GPa): the across "
+                "values taken for an isotropic sheet; density 680 kg/m³ typical of birch (EN "
+                "12369-2 covers 350–750); ν 0.3 typical (no single source)",
+                partial_factor=1.2,
+                partial_factor_source="EN 1995-1-1 Table 2.3: γ_M = 1.2 for plywood",
+            ),
         )
     }
 )
@@ -302,7 +315,7 @@ def material(name: str) -> Material:
     Traceback (most recent call last):
     ...
     curvefold.kernel._errors.InputError: material must be one of "polypropylene", "paperboard",
-    "aluminium", got string 'steel'
+    "aluminium", "plywood", got string 'steel'
     """
     return MATERIALS[MATERIAL.check(name)]
 
