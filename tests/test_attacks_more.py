@@ -57,3 +57,49 @@ def test_a_long_face_beside_triangles_within_the_bound_is_read(tmp_path):
     faces = read_fold(tmp_path / "f.fold").crease_pattern.faces_vertices
     assert faces.shape == (999, 1000)
     assert (faces[1:, 3:] == -1).all() and (faces[0] == range(1000)).all()
+
+
+def _crease(tmp_path, kappa_2d: str):
+    (tmp_path / "d.toml").write_text(
+        'kind = "crease"\nsamples = 301\n[crease]\n'
+        f'kappa_2d = "{kappa_2d}"\nbeta_left = "80 + 10*sin(pi*s/3)"\n'
+        'beta_right = "100 - 5*sin(pi*s/3)"\nfold_angle = 60.0\nlength = 3.0\n'
+    )
+    start = time.perf_counter()
+    r = run("crease", "d.toml", "--json", cwd=tmp_path)
+    return r, time.perf_counter() - start
+
+
+def test_a_crease_pattern_whose_steps_the_samples_do_not_set_is_refused_before_its_work(
+    tmp_path,
+):
+    # κ_2D changing by its size every 1.7 mm: 3 115 dense-output steps (20 s) where the samples
+    # are 301; the estimate 1.5 L·r = 1.38e4 (its difference derivative overshoots) is refused
+    r, took = _crease(tmp_path, "0.5 + 0.25*sin(1000*s)")
+    refused(
+        r,
+        r"^curvefold: error: folding the crease from its pattern needs about "
+        r"1\.\d+e\+04 integration steps \(.*\), more than the 4000 curvefold takes; make "
+        r"kappa_2d and beta_left/beta_right vary more slowly along the crease$",
+    )
+    assert took < 5
+    assert list(tmp_path.iterdir()) == [tmp_path / "d.toml"]
+
+
+def test_steps_the_estimate_cannot_see_are_stopped_at_the_limit(tmp_path, monkeypatch):
+    # ω = 10⁸: 10⁸ steps, one interpolant each, unbounded before; an estimate blind to it
+    # (as to an oscillation between its probes) and the limit lowered to keep the test short
+    monkeypatch.setattr("curvefold.geometry._pattern_steps.pattern_steps", lambda *a: 0.0)
+    monkeypatch.setattr("curvefold.geometry._pattern_steps.MAX_PATTERN_STEPS", 300)
+    tracemalloc.start()
+    try:
+        r, took = _crease(tmp_path, "0.5 + 0.25*sin(1e8*s)")
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    refused(
+        r,
+        r"folding the crease from its pattern took more than 300 integration steps by "
+        r"s = [\d.e-]+ \(κ_2D or β changes faster than its probes showed\)",
+    )
+    assert took < 30 and peak < 50e6
