@@ -7,6 +7,7 @@ import json
 import time
 import tracemalloc
 
+import numpy as np
 import pytest
 
 from _cli import run
@@ -127,3 +128,59 @@ def test_the_files_sampling_holds_memory_linear_in_the_samples():
     # and 41 MB at 10 001 and 30 001
     small, large = _sampling_peak(10_001), _sampling_peak(30_001)
     assert large < 3.5 * small, (small, large)
+
+
+@pytest.mark.parametrize("check", ["width_law", "tube_closure"])
+def test_a_strip_of_no_width_is_refused_in_one_line_not_divided_by(check):
+    # a κ whose strip width came out exactly 0 ended the certificate in a ZeroDivisionError
+    from curvefold.analysis import _check_measures as measures
+    from curvefold.analysis._frames import Frame, Shared
+    from curvefold.app import design_from_dict
+    from curvefold.app._build import build
+    from curvefold.kernel import InputError
+
+    structure = build(design_from_dict({"kind": "tube", "samples": 41})).structure
+    frame = Frame.at(Shared(structure), 60.0)
+    assert getattr(measures, check)(frame).floor > 0  # undamaged: a finite floor
+    widths = frame.strip_widths.copy()
+    widths[0, 2, 10] = 0.0
+    frame.__dict__["strip_widths"] = widths  # the cached measurement, damaged
+    with pytest.raises(InputError, match=r"^the width of tube 1, strip 3→4 is 0 at t = 0\.25: "):
+        getattr(measures, check)(frame)
+
+
+def test_an_arpack_failure_is_one_line_with_its_physical_reason():
+    import scipy.sparse as sp
+
+    from curvefold.kernel._errors import ConvergenceError
+    from curvefold.mechanics._linear import eigsh
+
+    # entries past the floats (stiffnesses too far apart): ARPACK error -9999, exit 1 before
+    A = sp.diags(np.r_[np.ones(19), np.inf]).tocsc()
+    with pytest.raises(ConvergenceError) as error:
+        eigsh(A, what="the free modes", k=2, which="LM")
+    assert str(error.value) == (
+        "the eigenvalue solver failed for the free modes: the model's stiffness holds numbers "
+        "that are not finite (material, thickness or crease values near the ends of their "
+        "ranges); bring them closer to a real sheet's (ARPACK error -9999)"
+    )
+
+
+def test_a_thickness_whose_square_is_zero_is_refused_by_the_conditioning(tmp_path):
+    # t² = 0 below 1e-162 m: a ZeroDivisionError (exit 1) before
+    r = run("load", "--samples", "41", "--tubes", "1", "--across", "1", "--thickness", "1e-300")
+    refused(
+        r,
+        r"^curvefold: error: thickness 1e-300 m is too thin for elements of 0\.0801 m: the "
+        r"sheet stretches over 9\.9e\+300 times harder than it bends there, beyond the 1e\+11 the "
+        r"solvers resolve; give at least 8e-07 m$",
+    )
+
+
+def test_the_designer_never_answers_a_number_that_is_not_finite():
+    from curvefold.app.designer import jobs
+    from curvefold.kernel._errors import InternalError
+
+    assert jobs._json({"x": np.float64(0.5)}) == b'{"x": 0.5}'
+    with pytest.raises(InternalError, match=r"not finite: result\.numbers\.x = nan$"):
+        jobs._json({"numbers": {"x": float("nan")}})  # a literal NaN before (HTTP 200)
