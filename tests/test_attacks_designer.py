@@ -42,9 +42,9 @@ def test_time_spent_waiting_for_memory_counts_towards_the_time_limit():
         start = time.perf_counter()
         status_, answer = get_json(url + HEAVY)
         took = time.perf_counter() - start
-    # 4.5 s before: the wait, then the whole limit for the work
+    # before: the wait, then the whole limit for the work
     assert status_ == 504 and "time limit of 3 s" in answer["error"]
-    assert 2.9 < took < 3.8, took
+    assert 2.9 < took < 4.2, took  # 4.5 s and more before
 
 
 def test_a_job_killed_for_its_time_leaves_nothing_behind():
