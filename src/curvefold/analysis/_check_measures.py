@@ -14,6 +14,7 @@ import numpy as np
 
 from ..geometry._contact import closest_far, contact_scales
 from ..geometry._topology import CORNERS, STRIPS
+from ..kernel._errors import InputError
 from . import _measure as measure
 from ._frames import STRIP_SIDES, Frame
 from ._mechanism import CertifiedMechanism, certified_mechanism
@@ -51,6 +52,27 @@ def _curve(uv: np.ndarray) -> Callable[[tuple[int, ...]], str]:
 
 def _strip(i: tuple[int, ...]) -> str:
     return f"tube {i[0] + 1}, strip {i[1] + 1}→{i[1] % 4 + 2}"
+
+
+def _smallest_width(frame: Frame) -> float:
+    """The smallest strip width, which the residuals relative to a width divide by.
+
+    Raises
+    ------
+    InputError
+        A strip of no width (its creases' tangent lines meet): nothing is relative to it.
+    """
+    widths = frame.strip_widths
+    at = tuple(int(i) for i in np.unravel_index(int(np.argmin(widths)), widths.shape))
+    least = float(widths[at])
+    if least == 0:  # (a NaN is measured and fails its check as not a number)
+        t = frame.crease.curve.s[at[2]] / frame.crease.curve.length
+        raise InputError(
+            f"the width of {_strip(at[:2])} is {least:g} at t = {t:.4g}: its two creases meet "
+            "there, so the design has no strip to certify; change kappa, tau or the widths so "
+            "that every strip keeps a width > 0"
+        )
+    return least
 
 
 def developability(frame: Frame) -> Residual:
@@ -176,11 +198,12 @@ _BACK = np.array([float((CORNERS[(c - 1) % 4] - CORNERS[c]).sum()) for c in rang
 
 
 def width_law(frame: Frame) -> Residual:
+    least = _smallest_width(frame)
     start, law = frame.common.width_law
     values = np.abs(np.log(frame.strip_widths / start) - law)
     return Residual(
         values,
-        2 * frame.ulp / float(frame.strip_widths.min()),
+        2 * frame.ulp / least,
         _strip,
         frame.crease.curve.s / frame.crease.curve.length,
     )
@@ -196,6 +219,7 @@ def regression(frame: Frame) -> Residual:
 
 
 def tube_closure(frame: Frame) -> Residual:
+    least = _smallest_width(frame)  # before the residuals divided by the widths
     X, h = frame.tubes, frame.step
     following = frame.next_corners
     # toward the previous crease, oriented as r in Eqs. 5–6
@@ -213,7 +237,7 @@ def tube_closure(frame: Frame) -> Residual:
     values = measure.norm3(rebuilt - following[..., 2:-2]) / frame.strip_widths[:, :, 2:-2]
     crease = frame.smooth_crease
     kappa_min = float(crease.curve.kappa(crease.s).min())
-    floor = 12 * frame.ulp / (h**2 * kappa_min * float(frame.strip_widths.min()))
+    floor = 12 * frame.ulp / (h**2 * kappa_min * least)
     return Residual(
         values,
         floor,
@@ -262,7 +286,7 @@ def proportion_change(frame: Frame) -> Residual:
         "w_R(s0/2)/w_R(0) against exp(a κ0 s0 cot α / π)",
         "p_xz = w_R/w_L at s0/2 against p_xy × change²",
     )
-    return Residual(values, _accumulated(frame) / float(widths.min()), lambda i: labels[i[0]])
+    return Residual(values, _accumulated(frame) / _smallest_width(frame), lambda i: labels[i[0]])
 
 
 def panel_isometry(frame: Frame) -> Residual:

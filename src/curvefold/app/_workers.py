@@ -12,8 +12,10 @@ than ``recycle_above`` bytes is replaced too, so idle workers stay small.
 Workers start from a fork server with the ``preload`` modules imported (a clean process
 with no threads inherited, started in milliseconds), ignore SIGINT (the terminal sends it
 to the whole process group: their parent decides), die with their parent (Linux:
-``PR_SET_PDEATHSIG``) and write temporary files under ``scratch``, a folder the owner
-removes. A job's exception comes back as a :class:`JobError`: ``refused`` for a
+``PR_SET_PDEATHSIG``) and write temporary files in a folder of their own under ``scratch``
+(``worker-<pid>``), removed as soon as the worker is killed (a job stopped for its time, its
+memory or its vanished client leaves nothing behind); ``scratch`` itself the owner removes.
+A job's exception comes back as a :class:`JobError`: ``refused`` for a
 :class:`~curvefold.kernel.CurvefoldError` (what the user asked), not for a bug.
 
 Jobs waiting for memory share one :class:`Reservations`: a job runs when its estimate fits
@@ -26,6 +28,7 @@ import asyncio
 import ctypes
 import multiprocessing
 import os
+import shutil
 import signal
 import sys
 import tempfile
@@ -210,7 +213,12 @@ class Pool:
         )
         process.start()
         theirs.close()
+        os.makedirs(self._folder(process.pid), exist_ok=True)
         return _Worker(process, mine)
+
+    def _folder(self, pid: int | None) -> str:
+        """The temporary folder of the worker of process ``pid``."""
+        return os.path.join(self.scratch, f"worker-{pid}")
 
     async def run(
         self,
@@ -330,6 +338,9 @@ class Pool:
             return
         loop = asyncio.get_running_loop()
         await loop.run_in_executor(self._threads, worker.reap)
+        # what the killed job had written
+        folder = self._folder(worker.process.pid)
+        await loop.run_in_executor(self._threads, shutil.rmtree, folder, True)
         if self._closing:
             return
         fresh = await loop.run_in_executor(self._threads, self._start)
@@ -386,10 +397,11 @@ def _serve(conn, scratch: str, niceness: int) -> None:
             signal.signal(getattr(signal, name), signal.SIG_DFL)
     if niceness:
         os.nice(niceness)
-    tempfile.tempdir = scratch
-    os.environ["TMPDIR"] = scratch
+    own = os.path.join(scratch, f"worker-{os.getpid()}")  # removed when the worker is killed
+    tempfile.tempdir = own
+    os.environ["TMPDIR"] = own
     warnings.simplefilter("ignore")  # a job's warnings are not the server's output
-    Path(scratch).mkdir(parents=True, exist_ok=True)
+    Path(own).mkdir(parents=True, exist_ok=True)
     while True:
         try:
             fn, args = conn.recv()

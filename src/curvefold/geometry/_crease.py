@@ -45,6 +45,7 @@ from ._crease_laws import (
 )
 from ._curve import SpaceCurve, check_length, check_samples
 from ._fold_angle import half_angle
+from ._pattern_steps import StepGuard, require_pattern_steps
 from ._topology import quadrant_kind, quadrant_name
 
 __all__ = ["Crease", "QUADRANTS"]
@@ -221,6 +222,9 @@ class Crease(FrozenArrays):
             probe, ("kappa_2d", k2, np.inf), ("beta_left", bl, np.pi), ("beta_right", br, np.pi)
         )
 
+        require_pattern_steps(L, k2, bl, br)  # the dense output grows with the steps
+
+        @StepGuard
         def rhs(s: float, y: np.ndarray) -> np.ndarray:
             return _fold_angle_rate(k2, bl, br, np.atleast_1d(s), y)
 

@@ -46,6 +46,7 @@ from ..geometry._mesh import EDGE_KINDS, Mesh, face_sides
 from ..kernel._arrays import readonly
 from ..kernel._errors import InputError
 from ..kernel._validate import is_integer
+from ._fold_faces import padded_faces
 from ._fold_keys import SPEC_READ, ignored_keys, split_cuts, unfolded_with_targets
 from ._mesh3d import check_metadata
 from ._reading import read_bytes
@@ -180,10 +181,7 @@ def _int_rows(value, n_cols: int | None, key: str, where: str) -> np.ndarray:
     try:
         if n_cols is not None:
             return np.array(value, dtype=np.int64).reshape(len(value), n_cols)
-        # rows of any length, -1 padded
-        out = np.full((len(value), max([3] + [len(row) for row in value])), -1, np.int64)
-        for i, row in enumerate(value):
-            out[i, : len(row)] = row
+        out = padded_faces(value, key, where)  # rows of any length, -1 padded
     except OverflowError:
         raise _fail(where, f"{key} holds an integer too large for an index") from None
     return out

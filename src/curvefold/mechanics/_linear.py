@@ -57,7 +57,8 @@ def eigsh(A, *, what: str, **options) -> tuple[np.ndarray, np.ndarray]:
     Raises
     ------
     ConvergenceError
-        If ARPACK does not converge.
+        If ARPACK does not converge, or fails (its internal errors, as for a matrix with
+        entries that are not finite: stiffnesses too far apart to compute with).
     """
     options.setdefault("v0", np.random.default_rng(0).standard_normal(A.shape[0]))
     try:
@@ -66,6 +67,19 @@ def eigsh(A, *, what: str, **options) -> tuple[np.ndarray, np.ndarray]:
         raise ConvergenceError(
             f"the eigenvalue solver did not converge for {what} ({error}); a "
             "report of the design helps"
+        ) from None
+    except spl.ArpackError as error:
+        data = getattr(A, "data", None)
+        finite = data is None or bool(np.isfinite(data).all())
+        reason = (
+            "the model's stiffnesses are too far apart for it"
+            if finite
+            else "the model's stiffness holds numbers that are not finite"
+        )
+        raise ConvergenceError(
+            f"the eigenvalue solver failed for {what}: {reason} (material, thickness or "
+            "crease values near the ends of their ranges); bring them closer to a real "
+            f"sheet's ({' '.join(str(error).split()[:3]).rstrip(':')})"
         ) from None
 
 

@@ -495,12 +495,14 @@ def check_conditioning(model: BarHingeModel, material: Material, crease_stiffnes
     edge = float(np.quantile(np.linalg.norm(x[:, 1] - x[:, 0], axis=1), 0.5))
     t, nu = model.thickness, material.poisson
     D = material.bending_stiffness(t)
-    stretching = 12 * (1 - nu * nu) * edge * edge / (t * t)
+    # (ℓ / t)² rather than ℓ² / t²: t² of a thickness below 1e-162 m is 0
+    stretching = 12 * (1 - nu * nu) * min(edge / t, 1e150) ** 2
     if stretching > MAX_STIFFNESS_RATIO:
         least = edge * math.sqrt(12 * (1 - nu * nu) / MAX_STIFFNESS_RATIO)
         raise InputError(
             f"thickness {t:g} m is too thin for elements of {edge:.3g} m: the sheet stretches "
-            f"{stretching:.2g} times harder than it bends there, beyond the "
+            f"{'over ' * (edge / t > 1e150)}{stretching:.2g} times harder than it bends there, "
+            "beyond the "
             f"{MAX_STIFFNESS_RATIO:g} the solvers resolve; give at least {least:.2g} m",
             parameter="thickness",
         )

@@ -35,6 +35,7 @@ from ...analysis._checks import TITLES
 from ...figures._report import MECHANICS_QUANTITIES, UNITS_SHOWN
 from ...io._formats import FORMATS, check_kind, default_formats, missing_dependencies
 from ...kernel._errors import CurvefoldError, InputError
+from ...kernel._json_text import strict_json
 from ...kernel._validate import MAX_TEXT, Spec, from_text, suggest
 from .._build import Built, BuiltStructure, BuiltVault, build
 from .._design import SCHEMA, Design, default_design, design_from_dict, kind_specs
@@ -411,7 +412,7 @@ def caches() -> dict[str, object]:
 def _payload(key: str) -> bytes:
     from .._outputs import structure_payload
 
-    return json.dumps(structure_payload(built(_design(key))), default=float).encode()
+    return strict_json(structure_payload(built(_design(key)))).encode()
 
 
 def payload(design: Design) -> bytes:
@@ -499,7 +500,7 @@ def _mechanics(key: str) -> bytes:
         ]
         for k in MECHANICS_SHOWN
     }
-    return json.dumps({"numbers": numbers, "labels": labels}, default=float).encode()
+    return strict_json({"numbers": numbers, "labels": labels}).encode()
 
 
 def domain_svg(design: Design) -> str:

@@ -19,10 +19,10 @@ budget with the estimate and what to lower) and chooses its lane:
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 
 from ...kernel._errors import CurvefoldError, InputError
+from ...kernel._json_text import strict_json
 from ...kernel._validate import Spec
 from .._budget import Estimate, require_budget
 from . import api, preview
@@ -154,4 +154,6 @@ def run(
 
 
 def _json(value) -> bytes:
-    return json.dumps(value, default=float).encode()
+    """Strict JSON: a number that is not finite is a bug (500), never a ``NaN`` the page cannot
+    parse."""
+    return strict_json(value).encode()

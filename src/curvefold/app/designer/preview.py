@@ -72,7 +72,10 @@ def _json(answer: dict) -> bytes:
             return f"{token}{len(blobs) - 1}"
         return float(value)
 
-    parts = re.split(f'"{token}(\\d+)"'.encode(), json.dumps(answer, default=placeholder).encode())
+    parts = re.split(
+        f'"{token}(\\d+)"'.encode(),
+        json.dumps(answer, default=placeholder, allow_nan=False).encode(),
+    )
     parts[1::2] = [b'"' + blobs[int(i)] + b'"' for i in parts[1::2]]
     return b"".join(parts)
 

@@ -47,6 +47,7 @@ What it promises:
   form with a sentence that says what to lower. The server keeps no design between requests.
 """
 
+import asyncio
 import ipaddress
 import json
 import logging
@@ -316,6 +317,7 @@ class Designer:
                 headers={"Cache-Control": "no-store"},
             )
 
+        started = asyncio.get_running_loop().time()  # the time limit counts every wait
         try:
             plan = await run_in_threadpool(
                 jobs.plan, route, kind, list(request.query_params.multi_items()), what=what
@@ -328,7 +330,7 @@ class Designer:
         found = self.answers.get(plan.args)
         if found is None:
             try:
-                found = await self._run(plan, request)
+                found = await self._run(plan, request, started)
             except JobError as err:
                 if not err.refused:
                     log.error("%s: %s", request.url.path, _bug(str(err)))
@@ -358,8 +360,12 @@ class Designer:
             headers["Content-Disposition"] = f'attachment; filename="{filename}"'
         return Response(content, media_type=media, headers=headers)
 
-    async def _run(self, plan: jobs.Plan, request):
+    async def _run(self, plan: jobs.Plan, request, started: float):
+        """The job of ``plan``, within the time limit from ``started`` (the request's arrival):
+        waiting for memory and for a worker count towards it."""
         heavy = plan.lane == "heavy"
+        loop = asyncio.get_running_loop()
+        deadline = started + (self.time_limit if heavy else QUICK_TIME_LIMIT)
 
         async def gone() -> None:  # returns when the client has closed the connection
             while (await request.receive())["type"] != "http.disconnect":
@@ -371,7 +377,7 @@ class Designer:
             return self.pools[plan.lane].run(
                 jobs.run,
                 *plan.args,
-                timeout=self.time_limit if heavy else QUICK_TIME_LIMIT,
+                timeout=max(0.0, deadline - loop.time()),
                 memory_limit=memory + WORKER_ALLOWANCE,
                 cancelled=gone if heavy else None,
             )
@@ -380,7 +386,7 @@ class Designer:
         # memory
         if not heavy:
             return await run()
-        await self.reservations.hold(memory, self.time_limit)
+        await self.reservations.hold(memory, max(0.0, deadline - loop.time()))
         try:
             return await run()
         finally:
