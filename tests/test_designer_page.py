@@ -131,6 +131,7 @@ def test_the_crease_pattern_opens_large_and_escape_closes_it(browser):
     assert box["width"] >= 3 * shown["width"] and large.get_attribute("alt").startswith(
         "crease pattern, page 1"
     )
+    assert violations(page) == []  # the dialog too: named by its heading, its image by its text
     page.keyboard.press("Escape")
     assert not dialog.evaluate("d => d.open")
     # the focus back on the thumbnail that opened it; the close button closes it too
