@@ -222,6 +222,14 @@ def test_plain_words_units_and_the_span_and_rise_drawn(browser):
         "dimensionless" not in text and "model units" not in text and "span, foot to foot" in text
     )
     n = numbers(page)
+    # the design table: plain names with the paper's symbol as a hint, lengths to four digits
+    table = page.evaluate("""() => Object.fromEntries([...document.querySelectorAll('#numbers tr')]
+        .map((r) => [r.cells[0].textContent, [r.cells[1].textContent, r.cells[2].textContent]]))""")
+    assert table["span, foot to foot"] == [f"{n['span']:.4g}", "m"] and table[
+        "rise above the ground"
+    ] == [f"{n['rise']:.4g}", "m"]
+    assert table["arch constant (κ0·s0, Eq. 20)"] == [f"{n['kappa0_s0']:.4g}", ""]
+    assert not any(name.startswith(("κ", "w_R", "λ")) for name in table)
     labels = page.evaluate(
         "[...window.curvefold.view.dimensions.children].filter((c) => c.isSprite).length"
     )
@@ -311,7 +319,8 @@ def test_a_chosen_material_shows_the_design_under_load(browser):
     # a thickness typed, even the default one, asks for the analysis
     page.fill('.field[data-key="thickness"] input.value', "0.001")
     page.wait_for_function(
-        "document.querySelector('#mechanics-status').textContent.startsWith('(computing')"
+        "[...document.querySelectorAll('.busy')].some((b) => b.dataset.work.startsWith("
+        "'Computing the design under load'))"
     )
     page.select_option('.field[data-key="material"] select', "aluminium")
     page.wait_for_function(
@@ -347,6 +356,8 @@ def test_a_chosen_material_shows_the_design_under_load(browser):
             assert f" ± {plus}" == error_text(expected["errors"][key]), (key, plus)
             shown[key] = (text, shown[key][1])
     gap, mm, stress, use = (shown[k] for k in list(shown)[:4])
+    # a plain name first, the symbol as a hint
+    assert page.inner_text('#mechanics tr[data-key="fold_mode_gap"] td') == "fold-mode gap (λ₂/λ₁)"
     assert gap[0] == f"{expected['fold_mode_gap']:.3g}" and gap[1] == ""
     assert mm[1] == "mm" and float(mm[0]) == float(f"{expected['max_displacement'] * 1e3:.3g}")
     scale = {"kPa": 1e-3, "MPa": 1e-6}[stress[1]]
@@ -429,7 +440,7 @@ def test_two_designs_side_by_side_or_overlaid_with_their_numbers(browser):
     rows = page.evaluate("""() => Object.fromEntries(
         [...document.querySelectorAll('#numbers tr')].map((r) =>
             [r.cells[0].textContent, [...r.cells].slice(1, 3).map((c) => c.textContent)]))""")
-    assert rows["section proportion at the feet p_xy"] == [
+    assert rows["section proportion at the feet (p_xy)"] == [
         "1.2",
         "0.75",
     ] and "kept" in page.inner_text("#numbers")

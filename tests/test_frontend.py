@@ -254,3 +254,18 @@ def test_eslint_refuses_what_it_is_there_for(code, rule):
     name = f"{STATIC.relative_to(ROOT).as_posix()}/probe.js"
     done = _eslint("--stdin", "--stdin-filename", name, stdin=code)
     assert done.returncode == 1 and rule in done.stdout, done.stdout + done.stderr
+
+
+# -- the page's numbers, in Node ---------------------------------------------------------------
+
+
+def test_the_pages_numbers_in_node():
+    """format.js and controls.js run in Node (tests/node/designer_numbers.mjs): "Under load" in
+    mm, kPa or MPa and %, the design table to four digits, sliders whose grid holds 0.5 and 0."""
+    need(shutil.which("node") is not None, "Node.js is not installed (apt-get install nodejs)")
+    done = subprocess.run(
+        ["node", str(ROOT / "tests" / "node" / "designer_numbers.mjs")],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr

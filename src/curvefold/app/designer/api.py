@@ -472,6 +472,10 @@ MECHANICS_SHOWN = (
 )
 
 
+#: The figures under load whose report words lead with notation: a plain name, the symbol after.
+_MECHANICS_PLAIN = {"fold_mode_gap": "fold-mode gap (λ₂/λ₁)"}
+
+
 def mechanics(design: Design) -> dict:
     """The design under load, as ``curvefold load --json`` gives it (its material and loads, or
     their defaults).
@@ -494,7 +498,8 @@ def _mechanics(key: str) -> bytes:
     numbers = loaded.to_dict()
     labels = {
         k: [
-            re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0],
+            _MECHANICS_PLAIN.get(k)
+            or re.split(r": | \(", MECHANICS_QUANTITIES[k][0], maxsplit=1)[0],
             MECHANICS_QUANTITIES[k][1],
             MECHANICS_QUANTITIES[k][0],
         ]

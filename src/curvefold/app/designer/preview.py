@@ -210,22 +210,30 @@ def _numbers(found: Built) -> dict:
     }
 
 
-#: Words and units of the numbers that :data:`~curvefold.figures._report.QUANTITIES` does not name.
-_MORE = {
-    "a": ("torsion amplitude a", ""),
-    "p_xy": ("section proportion at the feet p_xy", ""),
-    "radius": ("radius of the arch curve 1/κ0", "model units"),
-    "width_at_feet": ("tube width at the feet w_L(0)", "model units"),
+#: Words and units of the numbers as the page shows them, where they differ from the report's
+#: (:data:`~curvefold.figures._report.QUANTITIES`): a plain name first, the paper's symbol as a
+#: hint after it.
+_PLAIN = {
+    "a": ("torsion amplitude (a)", ""),
+    "p_xy": ("section proportion at the feet (p_xy)", ""),
+    "radius": ("radius of the arch curve (1/κ0)", "model units"),
+    "width_at_feet": ("tube width at the feet (w_L(0))", "model units"),
     "lattice_curves": ("lattice curves", ""),
     "size_x": ("size along x", "model units"),
     "size_y": ("size along y", "model units"),
     "size_z": ("size along z", "model units"),
+    "kappa0_s0": ("arch constant (κ0·s0, Eq. 20)", ""),
+    "proportion_change": ("tube widening, feet to apex, predicted (w_R(s0/2)/w_R(0))", ""),
+    "p_xz": ("section proportion at the apex (p_xz)", ""),
+    "regression_margin": ("margin from regression (speed factor, Eq. 17; > 0 is free)", ""),
+    "fold_angle_start_deg": ("fold angle at the start (2α)", "°"),
+    "fold_angle_end_deg": ("fold angle at the end (2α)", "°"),
 }
 
 
 def _labels(numbers: dict) -> dict[str, list[str]]:
     """Every number's words and unit as the page shows them."""
-    words = {**QUANTITIES, **_MORE}
+    words = {**QUANTITIES, **_PLAIN}
     return {key: [words[key][0], UNITS_SHOWN.get(words[key][1], words[key][1])] for key in numbers}
 
 

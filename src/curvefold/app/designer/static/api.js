@@ -8,14 +8,24 @@ export async function schema() {
   return (await fetch("/api/schema")).json();
 }
 
+/** The sentence of a refusal or time-out: the server's `detail` as it is, else its `error`. */
+const sentence = (body) => String(body.detail ?? body.error);
+
+/** Whether a status is a time-out: the server's time limit, not the design (503, 504). */
+const timedOut = (status) => status === 503 || status === 504;
+
 /**
  * The preview of a design (its numbers and folding motion): `{ok, body}`, where a refused
- * design's body is `{error, key}` (the parameter at fault, or null).
+ * design's body is `{error, key}` (the parameter at fault, or null), and one that met the
+ * server's time limit `{error, key, stopped: true}`.
  */
 export async function preview(kind, query) {
   try {
     const response = await fetch(`/api/${kind}/preview?${query}`);
-    return { ok: response.ok, body: await response.json() };
+    const body = await response.json();
+    if (response.ok) return { ok: true, body };
+    const stopped = timedOut(response.status);
+    return { ok: false, body: { error: sentence(body), key: body.key ?? null, stopped } };
   } catch (err) {
     return { ok: false, body: { error: NO_SERVER(err), key: null } };
   }
@@ -31,9 +41,8 @@ export async function detail(kind, path, query, { signal, json = true } = {}) {
   try {
     const joined = `${path}${path.includes("?") ? "&" : "?"}${query}`;
     const r = await fetch(`/api/${kind}/${joined}`, { signal });
-    if (r.status === 422) return { error: (await r.json()).error };
-    const stopped = r.status === 503 || r.status === 504; // the time limit, not the design
-    if (stopped) return { error: (await r.json()).error, stopped };
+    if (r.status === 422) return { error: sentence(await r.json()) };
+    if (timedOut(r.status)) return { error: sentence(await r.json()), stopped: true };
     if (!r.ok) return null;
     return json ? await r.json() : await r.text();
   } catch {

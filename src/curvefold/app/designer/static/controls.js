@@ -51,9 +51,10 @@ function shownValue(state, spec) {
 // One parameter's field; `on.change(spec, text)` on every edit, `on.commit()` when one ends.
 function field(state, spec, on, extraClass = "") {
   const box = el("div", { className: `field ${extraClass}`, dataset: { key: spec.name } });
-  const label = el("label", { className: "name", title: spec.describe },
+  const id = `field-${spec.name}`, words = spec.label || spec.name;
+  const label = el("label", { className: "name", title: spec.describe, htmlFor: id },
     el("span", {},
-      el("span", { className: "words" }, spec.label || spec.name), " ",
+      el("span", { className: "words" }, words), " ",
       el("span", { className: "symbol" }, spec.name)),
     el("span", { className: "unit" }, unitOf(state, spec)));
   const row = el("div", { className: "row" });
@@ -73,6 +74,7 @@ function field(state, spec, on, extraClass = "") {
     if (range) {
       const slider = el("input", { type: "range", min: range.lo, max: range.hi,
         step: range.step });
+      slider.setAttribute("aria-label", `${words}, slider`);
       // an optional value left empty: the slider at its lowest
       slider.value = value === "" || !isFinite(Number(value)) ? range.lo : Number(value);
       slider.addEventListener("input", () => {
@@ -87,6 +89,8 @@ function field(state, spec, on, extraClass = "") {
     }
   }
   input.name = spec.name;
+  input.id = id;
+  input.setAttribute("aria-describedby", `${id}-error`);
   const live = spec.kind === "flag" || spec.kind === "choice";
   input.addEventListener(live ? "change" : "input",
     () => on.change(spec, spec.kind === "flag" ? String(input.checked) : input.value));
@@ -101,9 +105,10 @@ function field(state, spec, on, extraClass = "") {
       on.commit();
       showCounts(state);
     });
+    max.setAttribute("aria-label", `${words}: as many as regression allows (max)`);
     row.append(el("label", {}, max, " max"));
   }
-  box.append(label, row, el("div", { className: "error" }));
+  box.append(label, row, el("div", { className: "error", id: `${id}-error` }));
   return box;
 }
 

@@ -8,6 +8,17 @@ export function fmt(v) {
   return a >= 1e-3 && a < 1e6 ? String(Number(v.toPrecision(6))) : v.toExponential(3);
 }
 
+/**
+ * A number of the design table: integers whole, else four significant digits (span 2.008 m
+ * beside rise 1.353 m), in exponent form below 0.001 or from a million.
+ */
+export function sig4(v) {
+  if (typeof v !== "number") return String(v);
+  if (Number.isInteger(v)) return String(v);
+  const a = Math.abs(v);
+  return a >= 1e-3 && a < 1e6 ? String(Number(v.toPrecision(4))) : v.toExponential(3);
+}
+
 /** A unit of the schema as shown beside a value (the schema's words for it, if any). */
 export const unitShown = (schema, unit) => schema.units[unit] ?? unit;
 

@@ -9,6 +9,7 @@
 // (state.js) is passed to each explicitly.
 import * as api from "./api.js";
 import { buildControls, showCounts } from "./controls.js";
+import { busy } from "./busy.js";
 import { byId } from "./dom.js";
 import { fmt } from "./format.js";
 import { createHistory, readURL } from "./history.js";
@@ -70,15 +71,20 @@ async function request(page) {
   else refuse(body);
 }
 
+/** A refused design: its message at the field at fault, or over the view; a time-out (503,
+ * 504: not the design's fault) there as a notice, in the server's own words. */
 function refuse(body) {
   clearErrors();
   const box = body.key && document.querySelector(`.field[data-key="${body.key}"]`);
-  if (box) {
+  if (box && !body.stopped) {
     box.classList.add("invalid");
     box.querySelector(".error").textContent = body.error;
   } else {
-    byId("message").textContent = body.error;
-    byId("message").hidden = false;
+    const message = byId("message");
+    message.textContent = body.error;
+    message.classList.toggle("notice", !!body.stopped);
+    message.setAttribute("role", body.stopped ? "status" : "alert");
+    message.hidden = false;
   }
 }
 
@@ -162,14 +168,21 @@ async function follow(page, body, started, timing) {
   if (!current()) return;
   const loaded = underLoad(state);
   if (!loaded) showMechanics(state, null);
-  else byId("mechanics-status").textContent = "(computing: the bar-and-hinge model of the design)";
+  else byId("mechanics-status").textContent = "";
+  // the heavy work, said as under way in its panel until its answer comes (or a newer change)
+  const working = (id, name, promise) => promise.finally(busy(byId(id).closest("section"), name));
   await Promise.all([
-    loaded && when(get("mechanics"), shown(showMechanics, "mechanics")),
-    sheets && when(get("domain.svg", false), (found) => {
-      if (typeof found === "string") showImages(byId("domain"), [found]);
-    }),
-    when(get("certificate"), shown(showCertificate, "full_certificate")),
-    sheets && when(get("pattern"), shown(showPattern, "full_pattern")),
+    loaded && working("mechanics", "Computing the design under load (bar-and-hinge model)",
+      when(get("mechanics"), shown(showMechanics, "mechanics"))),
+    sheets && working("domain", "Drawing the regression domain",
+      when(get("domain.svg", false), (found) => {
+        if (typeof found !== "string") return;
+        showImages(byId("domain"), [found], () => "the regression domain of the design");
+      })),
+    working("certificate", "Checking the full certificate",
+      when(get("certificate"), shown(showCertificate, "full_certificate"))),
+    sheets && working("pattern", "Drawing the crease pattern pages",
+      when(get("pattern"), shown(showPattern, "full_pattern"))),
   ]);
   if (current()) timing.settled = performance.now() - started;
 }
@@ -286,6 +299,7 @@ async function start() {
   byId("undo").addEventListener("click", () => window.history.back());
   byId("redo").addEventListener("click", () => window.history.forward());
   byId("fit").addEventListener("click", () => view.fit());
+  byId("pattern-close").addEventListener("click", () => byId("pattern-dialog").close());
   byId("keep").addEventListener("click", async () => {
     await keep(page, `kind=${state.preview.kind}&${state.preview.query}`);
     page.history.push();

@@ -2,7 +2,7 @@
 // and marks, and the downloads at the slider's angle.
 import { fileURL } from "./api.js";
 import { byId, el } from "./dom.js";
-import { fmt } from "./format.js";
+import { sig4 } from "./format.js";
 
 /** The feet's lift-off at the slider's angle, in metres to a tenth of a millimetre. */
 const liftOff = (state, view) => view.sample(state.preview.motion.lift_off).toFixed(4);
@@ -21,8 +21,8 @@ export function showNumbers(state, view) {
   }
   for (const [key, v] of Object.entries(p.numbers)) {
     const [words, u] = p.labels[key] ?? [key, ""];
-    const other = k ? num(k.numbers[key] === undefined ? "—" : fmt(k.numbers[key])) : null;
-    rows.push(row([el("td", {}, words), num(fmt(v)), other, unit(u)].filter(Boolean)));
+    const other = k ? num(k.numbers[key] === undefined ? "—" : sig4(k.numbers[key])) : null;
+    rows.push(row([el("td", {}, words), num(sig4(v)), other, unit(u)].filter(Boolean)));
   }
   const blank = () => (k ? el("td") : null);
   const motion = (cells) => row(cells.filter(Boolean), { className: "motion" });

@@ -3,12 +3,39 @@
 import { byId, el } from "./dom.js";
 import { architect, fmt } from "./format.js";
 
-/** SVG documents shown as images in `box` (the images shown before are released). */
-export function showImages(box, svgs) {
+/**
+ * SVG documents shown as images in `box` (the images shown before are released), each with
+ * the text `alt(k)` for those who do not see it; `wrap(img, k)` may put each in an element.
+ */
+export function showImages(box, svgs, alt, wrap = (img) => img) {
   box.querySelectorAll("img").forEach((img) => URL.revokeObjectURL(img.src));
   const url = (svg) => URL.createObjectURL(new Blob([svg], { type: "image/svg+xml" }));
-  box.replaceChildren(...svgs.map((svg) => Object.assign(new Image(), { src: url(svg) })));
+  box.replaceChildren(...svgs.map((svg, k) =>
+    wrap(Object.assign(new Image(), { src: url(svg), alt: alt(k) }), k)));
   box.classList.remove("stale");
+}
+
+/** A page of the crease pattern opened large in its dialog (Escape or the button closes it). */
+function openPage(img, title) {
+  const dialog = byId("pattern-dialog");
+  byId("pattern-dialog-title").textContent = title;
+  byId("pattern-large").replaceChildren(Object.assign(new Image(), { src: img.src, alt: img.alt }));
+  dialog.showModal();
+}
+
+/** The crease pattern's pages as buttons that open each one large. */
+function showPages(box, found) {
+  const n = found.pages.length;
+  const what = found.coarse ? "sketch of the sheets" : "page";
+  const title = (k) => (found.coarse ? "Crease pattern: sketch of the sheets"
+    : `Crease pattern: page ${k + 1} of ${n}`);
+  showImages(box, found.pages, (k) => (found.coarse ? `crease pattern, ${what}`
+    : `crease pattern, ${what} ${k + 1} of ${n}`), (img, k) => {
+    const button = el("button", { type: "button", className: "page" }, img);
+    button.setAttribute("aria-label", `open ${img.alt} large`);
+    button.addEventListener("click", () => openPage(img, title(k)));
+    return button;
+  });
 }
 
 /**
@@ -67,7 +94,7 @@ export function showPattern(state, found) {
     box.classList.remove("stale");
     return;
   }
-  showImages(box, found.pages);
+  showPages(box, found);
   const n = found.pages.length;
   byId("pattern-status").textContent = found.coarse
     ? `(sketch of the sheets at ${found.samples} samples; the pages follow)`
@@ -85,10 +112,13 @@ export function showMechanics(state, found) {
   if (!found || found.error) {
     table.replaceChildren();
     verdict.replaceChildren();
+    // the thickness field shows its default: say so, rather than ask for a thickness
+    const thickness = document.querySelector('.field[data-key="thickness"] input.value')?.value;
+    const shown = thickness ? `; ${fmt(Number(thickness) * 1e3)} mm is the thickness it will take`
+      : "";
     status.textContent = found?.error ? `(${why(state, found, "")})`
       : state.kind === "crease" ? "(for tubes, blocks and vaults)"
-        : "(choose a material, or set a value under “material” or “loads”, "
-          + "to see whether it stands)";
+        : `(choose a material, or type a thickness or a load, to see whether it stands${shown})`;
     return;
   }
   const n = found.numbers, rows = [];

@@ -2,7 +2,7 @@
 // drawn as dimensions, and the kept design beside it or over it.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
-import { fmt } from "./format.js";
+import { sig4 } from "./format.js";
 
 const bytes = (b64) => Uint8Array.from(atob(b64), (c) => c.charCodeAt(0)).buffer;
 
@@ -30,6 +30,7 @@ class Drawn {
     });
     this.surface = new THREE.Mesh(surface, this.material);
     this.surface.frustumCulled = false;
+    this.surface.castShadow = opacity >= 1; // the kept design, see-through, casts none
     this.lines = new THREE.Group();
     this.group.add(this.surface, this.lines);
     scene.add(this.group);
@@ -112,21 +113,27 @@ export class View {
       canvas, antialias: true, preserveDrawingBuffer: true,
     });
     this.renderer.setPixelRatio(window.devicePixelRatio);
+    this.renderer.shadowMap.enabled = true; // the design's shadow on its ground
+    this.renderer.shadowMap.type = THREE.PCFSoftShadowMap;
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0xf6f5f2);
     this.camera = new THREE.PerspectiveCamera(35, 1, 0.001, 1000);
     this.camera.up.set(0, 0, 1); // the model's z is up
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener("change", () => this.render());
+    // lit as a modelling viewport: sky and ground light, and a sun high on the left that
+    // shades each face by its normal (flat shading) and casts the shadow
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x8d8470, 2.0));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
-    sun.position.set(-2, -3, 5);
-    this.scene.add(sun);
+    this.sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    this.sun.castShadow = true;
+    this.sun.shadow.mapSize.set(2048, 2048);
+    this.scene.add(this.sun, this.sun.target);
     this.main = new Drawn(this.scene, 0xdcdcd9, 1);
     this.kept = new Drawn(this.scene, 0x7aa6e0, 0.45);
     this.kept.group.visible = false;
     const ground = new THREE.MeshStandardMaterial({ color: 0xece6da, roughness: 1 });
     this.ground = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), ground);
+    this.ground.receiveShadow = true;
     this.scene.add(this.ground);
     this.dimensions = new THREE.Group();
     this.scene.add(this.dimensions);
@@ -183,9 +190,9 @@ export class View {
     const lines = new THREE.LineSegments(geometry, material);
     lines.renderOrder = 9;
     this.dimensions.add(lines);
-    const span = textSprite(`span ${fmt(d.span.value)} m`, 0.055 * size);
+    const span = textSprite(`span ${sig4(d.span.value)} m`, 0.055 * size);
     span.position.set((s0[0] + s1[0]) / 2 + 0.06 * size, (s0[1] + s1[1]) / 2, lift + 0.04 * size);
-    const rise = textSprite(`rise ${fmt(d.rise.value)} m`, 0.055 * size);
+    const rise = textSprite(`rise ${sig4(d.rise.value)} m`, 0.055 * size);
     rise.position.set(r1[0] + 0.06 * size, r1[1], (r0[2] + r1[2]) / 2);
     this.dimensions.add(span, rise);
   }
@@ -237,8 +244,22 @@ export class View {
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(centre);
     this.controls.update();
+    this.light(centre, radius);
     this.fittedSize = this.main.box.size;
     this.render();
+  }
+
+  light(centre, radius) { // the sun's direction kept, its shadow's box around the design
+    const sun = this.sun, box = sun.shadow.camera;
+    sun.target.position.copy(centre);
+    sun.position.copy(centre).add(new THREE.Vector3(-2, -3, 5).setLength(3 * radius));
+    box.left = box.bottom = -1.5 * radius;
+    box.right = box.top = 1.5 * radius;
+    box.near = 0.5 * radius;
+    box.far = 6 * radius;
+    box.updateProjectionMatrix();
+    sun.shadow.bias = -1e-4;
+    sun.shadow.normalBias = 0.004 * radius;
   }
 
   sample(values) { // a per-state number at the current angle
