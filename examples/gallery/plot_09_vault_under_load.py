@@ -29,7 +29,7 @@ print(
 )
 print(
     f"largest deflection {summary['max_displacement'] * 1e6:.1f} µm, largest stress "
-    f"{summary['max_stress'] / 1e3:.1f} kPa (utilisation {summary['utilisation']:.2%})"
+    f"{summary['max_stress'] / 1e3:.1f} kPa ({summary['utilisation']:.2%} of the strength)"
 )
 print(
     f"buckling factor {summary['buckling_factor']:.0f}; fold-mode gap "

@@ -509,7 +509,7 @@ class Loaded:
             (
                 "max_stress",
                 f"{d['max_stress']:.4g} Pa{pm('max_stress')}"
-                + ("" if use is None else f" (utilisation {use:.3g})"),
+                + ("" if use is None else f" ({use:.3g} of the strength)"),
             ),
             (
                 "buckling_factor",
