@@ -1,0 +1,169 @@
+"""The thick panels' STEP file (curvefold.io._step), read back by OpenCascade's own STEP reader
+(STEPControl_Reader, STEPCAFControl_Reader for the names): a valid closed solid per panel,
+named as in the cut list, of the panel's volume and in the stated units; a damaged solid fails
+the check.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+OCP = pytest.importorskip("OCP", reason="the STEP writer needs OCP: pip install 'curvefold[step]'")
+
+from OCP.Bnd import Bnd_Box  # noqa: E402
+from OCP.BRepBndLib import BRepBndLib  # noqa: E402
+from OCP.BRepGProp import BRepGProp  # noqa: E402
+from OCP.GProp import GProp_GProps  # noqa: E402
+from OCP.IFSelect import IFSelect_RetDone  # noqa: E402
+from OCP.STEPControl import STEPControl_Reader  # noqa: E402
+from OCP.TopAbs import TopAbs_FACE, TopAbs_SOLID  # noqa: E402
+from OCP.TopExp import TopExp_Explorer  # noqa: E402
+
+from curvefold import InputError, Structure  # noqa: E402
+from curvefold.geometry import PanelLattice, ThickPanels  # noqa: E402
+from curvefold.geometry._lattice import _example_lattice  # noqa: E402
+from curvefold.io._step import _faces, _solid, check_solid, write_thick_step  # noqa: E402
+
+T = 0.01  # a 1 cm sheet on the example tube, model units (metres)
+
+
+@pytest.fixture(scope="module")
+def thick():
+    return ThickPanels.offset(Structure.tube(PanelLattice.from_lattice(_example_lattice(), 4)), T)
+
+
+def _volumes(thick, fold_angle=None):
+    """Every solid's volume by the divergence theorem on its closed triangles (F,)."""
+    x, tri = thick.triangles(fold_angle)
+    a, b, c = (x[tri[:, i]] for i in range(3))
+    signed = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    return signed.reshape(len(thick.side), -1).sum(axis=1)
+
+
+def _solids(path):
+    """The solids of a STEP file, as OpenCascade's reader reads them (in millimetres, its
+    default ``xstep.cascade.unit``)."""
+    reader = STEPControl_Reader()
+    assert reader.ReadFile(str(path)) == IFSelect_RetDone
+    reader.TransferRoots()
+    found = TopExp_Explorer(reader.OneShape(), TopAbs_SOLID)
+    out = []
+    while found.More():
+        out.append(found.Current())
+        found.Next()
+    return out
+
+
+def _volume(shape):
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    return props.Mass()
+
+
+def _names(path):
+    """The names of a STEP file's products, as OpenCascade's reader decodes them."""
+    from OCP.StepBasic import StepBasic_Product
+
+    reader = STEPControl_Reader()
+    assert reader.ReadFile(str(path)) == IFSelect_RetDone
+    model, kind = reader.StepModel(), StepBasic_Product.get_type_descriptor_s()
+    entities = (model.Value(i) for i in range(1, model.NbEntities() + 1))
+    return [e.Name().ToCString() for e in entities if e.IsKind(kind)]
+
+
+def test_every_panel_is_a_valid_closed_solid_of_its_volume_read_back(thick, tmp_path):
+    path = write_thick_step(tmp_path / "s.step", thick, unit="m", to_unit="mm")
+    solids = _solids(path)
+    assert len(solids) == len(thick.side) == 16
+    assert [check_solid(s) for s in solids] == [None] * 16
+    # the file is in millimetres and the reader's default unit too: volumes in mm³
+    read = np.array([_volume(s) for s in solids]) * 1e-9
+    expected = _volumes(thick)
+    assert np.abs(read / expected - 1).max() < 1e-9  # measured 1.5e-14
+    # every panel a prism: k + 2 planar faces
+    k = thick.local.shape[1] // 2
+    for s in solids:
+        faces, found = 0, TopExp_Explorer(s, TopAbs_FACE)
+        while found.More():
+            faces, _ = faces + 1, found.Next()
+        assert faces == k + 2
+
+
+def test_the_bounding_box_is_the_stls(thick, tmp_path):
+    path = write_thick_step(tmp_path / "s.step", thick, unit="m", to_unit="mm")
+    box = Bnd_Box()
+    for s in _solids(path):
+        BRepBndLib.AddOptimal_s(s, box, False, False)
+    lo, hi = np.array(box.CornerMin().Coord()), np.array(box.CornerMax().Coord())
+    x, _ = thick.triangles()  # the STL's vertices (curvefold.io.write_thick_stl), in mm
+    size = np.ptp(x, axis=0).max() * 1e3
+    assert np.abs(lo - x.min(axis=0) * 1e3).max() < 1e-9 * size
+    assert np.abs(hi - x.max(axis=0) * 1e3).max() < 1e-9 * size
+
+
+def test_the_solids_are_named_by_the_cut_lists_panel_ids_in_ascii(thick, tmp_path):
+    path = write_thick_step(tmp_path / "s.step", thick, unit="m", to_unit="mm")
+    assert _names(path) == list(thick.labels())
+    assert [row["panel"] for row in thick.cut_list()] == list(thick.labels())
+    path.read_text(encoding="ascii")  # ISO 10303-21: the middle dots as \X2\00B7\X0\
+    assert "PRODUCT('tube 1 \\X2\\00B7\\X0\\ strip 1 \\X2\\00B7\\X0\\ panel 1'" in path.read_text()
+
+
+@pytest.mark.parametrize(
+    ("to_unit", "stated", "mm"),
+    [
+        ("mm", "SI_UNIT(.MILLI.,.METRE.)", 1e3),
+        ("m", "SI_UNIT($,.METRE.)", 1e3),
+        ("in", "'INCH'", 1e3),
+    ],
+)
+def test_the_file_states_its_unit_and_a_reader_scales_by_it(thick, tmp_path, to_unit, stated, mm):
+    """Whatever the file's unit, the reader (in mm) finds the same solids: the unit is stated."""
+    path = write_thick_step(tmp_path / f"s-{to_unit}.step", thick, unit="m", to_unit=to_unit)
+    assert stated in path.read_text()
+    read = np.array([_volume(s) for s in _solids(path)]) / mm**3
+    assert np.abs(read / _volumes(thick) - 1).max() < 1e-9
+
+
+def test_the_solids_follow_the_fold_angle(thick, tmp_path):
+    flat = write_thick_step(tmp_path / "flat.step", thick, 0.0, unit="m", to_unit="mm")
+    solids = _solids(flat)
+    assert [check_solid(s) for s in solids] == [None] * 16
+    read = np.array([_volume(s) for s in solids]) * 1e-9
+    assert np.abs(read / _volumes(thick, 0.0) - 1).max() < 1e-9
+    box = Bnd_Box()
+    for s in solids:
+        BRepBndLib.AddOptimal_s(s, box, False, False)
+    x, _ = thick.triangles(0.0)
+    assert np.allclose(box.CornerMax().Coord(), x.max(axis=0) * 1e3, rtol=0, atol=1e-9)
+
+
+def test_a_solid_without_a_face_is_not_closed_and_fails_the_check(thick):
+    k = thick.local.shape[1] // 2
+    vertices = thick.triangles()[0][: 2 * k] * 1e3
+    faces = _faces(k, True)
+    assert check_solid(_solid(vertices, faces)) is None
+    why = check_solid(_solid(vertices, faces[:-1]))  # a side face removed
+    assert why is not None and ("not closed" in why or "not valid" in why), why
+    # a face turned inside out: the sewing turns it back, the solid stays closed and valid
+    turned = [*faces[:-1], faces[-1][::-1]]
+    assert check_solid(_solid(vertices, turned)) is None
+    # a corner moved off its face's plane: that face is no plane, the solid not closed
+    bent = vertices.copy()
+    bent[k] += [0.0, 0.0, 0.5]
+    assert check_solid(_solid(bent, faces)) is not None
+
+
+def test_the_writer_refuses_a_solid_that_fails_naming_its_panel(thick, tmp_path, monkeypatch):
+    import curvefold.io._step as step
+
+    monkeypatch.setattr(step, "_faces", lambda k, ccw: _faces(k, ccw)[:-1])
+    with pytest.raises(RuntimeError, match=r"the solid of tube 1 · strip 1 · panel 1 is "):
+        write_thick_step(tmp_path / "s.step", thick)
+    assert not (tmp_path / "s.step").exists()
+
+
+def test_a_unit_a_step_file_cannot_state_is_refused_with_the_allowed_ones(thick, tmp_path):
+    with pytest.raises(InputError, match=r"to_unit must be one of mm, cm, m, in, .*got 'pt'"):
+        write_thick_step(tmp_path / "s.step", thick, unit="m", to_unit="pt")
