@@ -6,6 +6,10 @@ the check.
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -167,3 +171,65 @@ def test_the_writer_refuses_a_solid_that_fails_naming_its_panel(thick, tmp_path,
 def test_a_unit_a_step_file_cannot_state_is_refused_with_the_allowed_ones(thick, tmp_path):
     with pytest.raises(InputError, match=r"to_unit must be one of mm, cm, m, in, .*got 'pt'"):
         write_thick_step(tmp_path / "s.step", thick, unit="m", to_unit="pt")
+
+
+# -- the output folder: written for thick panels only, left out with a note without OCP
+# --------------------------------------------------------------------------------------------
+
+TUBE = ("tube", "--panels", "8", "--thickness", "0.002", "--formats", "stl,step", "--json")
+
+
+def test_a_thick_tubes_folder_holds_its_step_solids_as_its_stl_in_mm(tmp_path):
+    from _cli import run
+    from curvefold.app._build import build
+    from curvefold.app._design import default_design
+
+    r = run(*TUBE, "--out", "t", cwd=tmp_path)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    assert "notes" not in json.loads(r.stdout)
+    folder = tmp_path / "t"
+    assert {"tube_solids.step", "tube_solids.stl"} <= {p.name for p in folder.iterdir()}
+    thick = build(default_design("tube").overrides(panels=8)).structure
+    thick = ThickPanels.offset(thick, 0.002)
+    solids = _solids(folder / "tube_solids.step")
+    assert len(solids) == len(thick.side) and [check_solid(s) for s in solids] == [None] * len(
+        solids
+    )
+    read = np.array([_volume(s) for s in solids]) * 1e-9  # mm³, the output's default units
+    assert np.abs(read / _volumes(thick) - 1).max() < 1e-9
+    # the STL's bounding box (float32, mm)
+    data = (folder / "tube_solids.stl").read_bytes()
+    records = np.frombuffer(
+        data[84:], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    )
+    stl = records["v"].reshape(-1, 3).astype(float)
+    box = Bnd_Box()
+    for s in solids:
+        BRepBndLib.AddOptimal_s(s, box, False, False)
+    size = np.ptp(stl, axis=0).max()
+    assert np.abs(np.array(box.CornerMin().Coord()) - stl.min(axis=0)).max() < 1e-6 * size
+    assert np.abs(np.array(box.CornerMax().Coord()) - stl.max(axis=0)).max() < 1e-6 * size
+    assert _names(folder / "tube_solids.step") == list(thick.labels())
+    # a structure without thick panels writes no STEP, and says nothing of it
+    r = run("tube", "--panels", "8", "--formats", "step", "--json", "--out", "z", cwd=tmp_path)
+    assert r.returncode in (0, 1) and "notes" not in json.loads(r.stdout), r.stderr
+    assert not list((tmp_path / "z").glob("*.step"))
+
+
+_WITHOUT_OCP = "import sys; sys.modules['OCP'] = None; from curvefold.app.cli import run; run()"
+
+
+def test_without_ocp_the_step_file_is_left_out_with_one_line_naming_the_extra(tmp_path):
+    r = subprocess.run(
+        [sys.executable, "-c", _WITHOUT_OCP, *TUBE, "--out", "t"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=600,
+    )
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    note = "step left out (it needs OCP: pip install 'curvefold[step]')"
+    assert json.loads(r.stdout)["notes"] == [note]
+    names = {p.name for p in (tmp_path / "t").iterdir()}
+    assert "tube_solids.stl" in names and not [n for n in names if n.endswith(".step")]
+    assert json.loads((tmp_path / "t" / "report.json").read_text())["notes"] == [note]

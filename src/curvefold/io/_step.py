@@ -17,6 +17,7 @@ relative and their bounding box to 1e-9 of its size (tests/test_step.py).
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -39,6 +40,8 @@ STEP_UNITS = {"mm": "MM", "cm": "CM", "m": "M", "in": "INCH", "ft": "FT", "um": 
 #: Sewing tolerance, in the file's units: the faces of a solid share their corners exactly (one
 #: array of vertices), so sewing merges only coincident points.
 _SEWING = 1e-9
+#: A character outside ASCII (the labels' are in the Basic Multilingual Plane: ``\\X2\\``).
+_OTHER = re.compile(r"[^\x00-\x7f]")
 
 
 def _ocp() -> Any:
@@ -96,7 +99,7 @@ def _ascii(text: str) -> str:
     >>> print(_ascii("tube 1 · strip 1"))
     tube 1 \\X2\\00B7\\X0\\ strip 1
     """
-    return "".join(c if ord(c) < 128 else f"\\X2\\{ord(c):04X}\\X0\\" for c in text)
+    return _OTHER.sub(lambda c: f"\\X2\\{ord(c[0]):04X}\\X0\\", text)
 
 
 @contextmanager
