@@ -233,3 +233,15 @@ def test_without_ocp_the_step_file_is_left_out_with_one_line_naming_the_extra(tm
     names = {p.name for p in (tmp_path / "t").iterdir()}
     assert "tube_solids.stl" in names and not [n for n in names if n.endswith(".step")]
     assert json.loads((tmp_path / "t" / "report.json").read_text())["notes"] == [note]
+
+
+def test_a_single_crease_refuses_the_step_format_in_one_line(tmp_path):
+    from _cli import run
+
+    r = run("crease", "--samples", "41", "--formats", "step", "--out", "c", cwd=tmp_path)
+    assert r.returncode == 2 and len(r.stderr.splitlines()) == 1, r.stderr
+    assert r.stderr.strip().endswith(
+        '"step" is not written for a crease design: the STEP file of thick panels is written '
+        "for vault, tube and block designs"
+    ), r.stderr
+    assert not (tmp_path / "c").exists()

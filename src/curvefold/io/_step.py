@@ -197,7 +197,7 @@ def write_thick_step(
     """
     to_unit = unit if to_unit is None else to_unit
     for name, value in (("unit", unit), ("to_unit", to_unit)):
-        if value not in STEP_UNITS or unit not in UNITS:
+        if value not in STEP_UNITS:
             raise InputError(
                 f"{name} must be one of {', '.join(STEP_UNITS)} (the units a STEP file states), "
                 f"got {value!r}",
@@ -221,9 +221,8 @@ def write_thick_step(
     F, m = thick.local.shape[:2]
     k = m // 2
     xy = thick.local[:, :k, :2]
-    area = (xy[..., 0] * np.roll(xy[..., 1], -1, 1) - xy[..., 1] * np.roll(xy[..., 0], -1, 1)).sum(
-        1
-    )
+    ahead = np.roll(xy, -1, axis=1)
+    area = (xy[..., 0] * ahead[..., 1] - xy[..., 1] * ahead[..., 0]).sum(1)  # twice, signed
     doc = TDocStd_Document(TCollection_ExtendedString("XmlXCAF"))
     shapes = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
     # the document's length unit is the file's: the writer converts nothing
