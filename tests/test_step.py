@@ -245,3 +245,14 @@ def test_a_single_crease_refuses_the_step_format_in_one_line(tmp_path):
         "for vault, tube and block designs"
     ), r.stderr
     assert not (tmp_path / "c").exists()
+
+
+def test_the_memory_budget_counts_the_step_job_for_thick_panels_only():
+    from curvefold.app import _budget as budget
+    from curvefold.app._design import default_design
+
+    panels = default_design("tube").overrides(panels=8)
+    thick = panels.overrides(material={"material": "plywood", "thickness": 0.002})
+    smooth = default_design("tube").overrides(material={"material": "plywood"})
+    assert "solids" in budget._parts(thick, True)
+    assert "solids" not in budget._parts(panels, True) + budget._parts(smooth, True)
