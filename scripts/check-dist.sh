@@ -77,7 +77,7 @@ clone_install() {
     rm -rf "${work:?}/clone" "${work:?}/clone-venv" "${work:?}/no-npm"
 }
 
-checks=(dev clone core export rhino designer dask) # the longest first
+checks=(dev clone core export rhino step designer dask) # the longest first
 started=0 ended=0
 for job in "${checks[@]}"; do
     if [ "$job" = clone ]; then clone_install & else smoke "$job" & fi

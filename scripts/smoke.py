@@ -1,13 +1,14 @@
 """Smoke test of an installed curvefold, run by scripts/check-dist.sh in a fresh virtual
 environment.
 
-    python smoke.py EXTRA      EXTRA: core, export, rhino, designer, dask or dev
+    python smoke.py EXTRA      EXTRA: core, export, rhino, step, designer, dask or dev
 
 Each run checks what its extra promises, from the installed package (run it outside the
 source tree, so that ``import curvefold`` finds the wheel's copy): ``core`` builds a tube
 and its FOLD file and checks them without matplotlib or any other extra installed, and
 writes an output folder, its pictures left out with one line saying so; ``export`` writes
 the 3D models and crease patterns; ``rhino`` writes a 3DM file and reads it back;
+``step`` writes the STEP solids of a thick tube and reads them back with OpenCascade;
 ``designer`` serves the page with its bundled three.js and answers the JSON API; ``dask``
 runs a sweep on a local cluster of two workers; ``dev`` runs all of these. Prints one line
 per check and exits non-zero on the first failure.
@@ -149,6 +150,32 @@ def rhino() -> None:
         )
 
 
+def step() -> None:
+    from OCP.STEPControl import STEPControl_Reader
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+
+    with tempfile.TemporaryDirectory() as tmp:
+        run(
+            "tube",
+            "--panels",
+            "4",
+            "--thickness",
+            "0.002",
+            "--formats",
+            "step",
+            "--out",
+            tmp + "/t",
+        )
+        reader = STEPControl_Reader()
+        reader.ReadFile(f"{tmp}/t/tube_solids.step")
+        reader.TransferRoots()
+        found, solids = TopExp_Explorer(reader.OneShape(), TopAbs_SOLID), 0
+        while found.More():
+            solids, _ = solids + 1, found.Next()
+        check(solids == 16, f"step writes a solid per panel that OpenCascade reads back: {solids}")
+
+
 def designer() -> None:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -215,9 +242,10 @@ CHECKS = {
     "core": [core_alone],
     "export": [core, export],
     "rhino": [core, rhino],
+    "step": [core, step],
     "designer": [core, designer],
     "dask": [core, dask],
-    "dev": [core, export, rhino, designer, dask],
+    "dev": [core, export, rhino, step, designer, dask],
 }
 
 if __name__ == "__main__":

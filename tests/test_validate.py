@@ -299,7 +299,7 @@ def test_registry_families_and_kinds():
     assert formats_of("pattern") == pattern.PATTERN_FORMATS == ("svg", "dxf", "pdf")
     assert set(formats_of("model")) == {"glb", "obj", "stl", "ply", "3dm"}
     assert default_formats("tube") == tuple(FORMATS) and default_formats("crease") == tuple(
-        name for name in FORMATS if name not in ("gif", "assembly")
+        name for name in FORMATS if name not in ("gif", "assembly", "step")
     )
     assert SCHEMA["output"]["formats"].choices == tuple(FORMATS)
     with pytest.raises(

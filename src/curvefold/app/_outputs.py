@@ -21,7 +21,7 @@ import numpy as np
 from ..analysis._certificate import certify, certify_single_fold
 from ..figures._report import UNITS_SHOWN, report_html
 from ..io._atomic import atomic_write
-from ..io._formats import missing_dependencies
+from ..io._formats import formats_left_out, missing_dependencies
 from ..kernel._errors import InputError
 from ..kernel._json_text import strict_json
 from ._build import Built, BuiltCrease, BuiltStructure, BuiltVault
@@ -236,6 +236,8 @@ def write_outputs(
     left_out = products.pictures_left_out(products.picture_files(built))
     notes = {} if left_out is None else {"notes": [left_out]}
     solids = built.thick if thick and isinstance(built, BuiltStructure) else None  # refusals first
+    if solids is not None and formats_left_out(formats):  # the STEP file, without OCP
+        notes = {"notes": [*notes.get("notes", []), *formats_left_out(formats)]}
     built.prepare()  # what every job shares, before any forks
     step, stop = _progress(show_progress, len(jobs))
     written: list[str] = []

@@ -452,6 +452,18 @@ def _motion(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list
     return [_writer(names)(FORMATS[names[0]].path(folder / "folding"), frames, bounce=True)]
 
 
+def _solids(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
+    """The STEP file of the structure's thick panels at the design angle, in the output units:
+    nothing for a structure without them, or without the package the format needs (a note says
+    so: :func:`curvefold.io._formats.formats_left_out`)."""
+    f = FORMATS[names[0]]
+    thick = built.thick
+    if thick is None or importlib.util.find_spec(f.dependency or "") is None:
+        return []
+    path = f.path(folder / f"{built.design.kind}_solids")
+    return [f.load_writer()(path, thick, unit="m", to_unit=built.design.output.units)]
+
+
 def _single_fold_fold(
     built: BuiltCrease, names: tuple[str, ...], folder: Path, fold_angle: float | None = None
 ) -> list:
@@ -519,6 +531,7 @@ _FAMILY_JOBS: dict[str, tuple[str, Callable[..., list]]] = {
     "guide": ("assembly guide", _guide),
     "model": ("3D models", _model),
     "motion": ("folding GIF", _motion),
+    "solids": ("thick solids", _solids),
 }
 #: Families whose files hold a folded state (the others are flat or show the whole motion).
 _FOLDED = ("fold", "model")
@@ -546,7 +559,7 @@ OWN_JOBS = ("FOLD files", "assembly guide")
 #: paper's vault, longest first (crease patterns 0.41–0.45 CPU-s, 3D models 0.29–0.34, FOLD
 #: 0.17–0.21, the guide 0.09–0.12, beside 0.43–0.48 for each drawing), so that the processes
 #: finish about together.
-_ORDER = DRAWN + ("crease patterns", "3D models", "FOLD files", "assembly guide")
+_ORDER = DRAWN + ("crease patterns", "3D models", "FOLD files", "assembly guide", "thick solids")
 
 
 def _figures(built: Built) -> dict[str, Callable]:

@@ -44,6 +44,7 @@ __all__, __getattr__, __dir__ = _lazy_exports(
             "write_cut_list_pdf",
             "write_thick_3dm",
         ],
+        "_step": ["write_thick_step"],
         "_models": ["MODEL_FORMATS", "write_3d"],
         "_cutters": ["CUTTERS"],
         "_output": ["FoldOutput", "ModelOutput", "PatternOutput"],

@@ -37,6 +37,7 @@ from ._solids import write_cut_list_csv as write_cut_list_csv
 from ._solids import write_cut_list_pdf as write_cut_list_pdf
 from ._solids import write_thick_3dm as write_thick_3dm
 from ._solids import write_thick_stl as write_thick_stl
+from ._step import write_thick_step as write_thick_step
 
 __all__ = [
     "fold_assignments",
@@ -61,6 +62,7 @@ __all__ = [
     "write_cut_list_csv",
     "write_cut_list_pdf",
     "write_thick_3dm",
+    "write_thick_step",
     "MODEL_FORMATS",
     "write_3d",
     "CUTTERS",

@@ -53,6 +53,7 @@ __all__ = [
     "check_kind",
     "check_scale",
     "missing_dependencies",
+    "formats_left_out",
     "register_writer",
     "MIN_DRAWN_MM",
 ]
@@ -90,6 +91,9 @@ class FileFormat:
     stem : str or None
         A file name of its own (``"assembly"``: ``assembly.pdf``), instead of the stem its family is
         given.
+    optional : bool
+        Written only for the designs it applies to and only where ``dependency`` is installed:
+        without it the file is left out with a note (:func:`formats_left_out`), never refused.
     """
 
     name: str
@@ -102,6 +106,7 @@ class FileFormat:
     dependency: str | None = None
     extra: str | None = None
     stem: str | None = None
+    optional: bool = False
 
     def path(self, stem: str | os.PathLike) -> Path:
         """The file of this format for a path stem: ``<stem><extension>``, or its own name beside
@@ -265,6 +270,19 @@ _FORMATS: dict[str, FileFormat] = {
             "application/octet-stream",
         ),
         FileFormat(
+            "step",
+            ".step",
+            "STEP (AP214) of thick panels (--thickness on rigid panels): a closed B-rep solid per "
+            "panel named as in the cut list, in the output units (millimetres by default)",
+            "solids",
+            _S,
+            "curvefold.io._step:write_thick_step",
+            "model/step",
+            "OCP",
+            "step",
+            optional=True,
+        ),
+        FileFormat(
             "gif",
             ".gif",
             "animation of the folding motion, flat to the design angle",
@@ -328,6 +346,7 @@ FAMILIES: Mapping[str, str] = MappingProxyType(
         "fold": "the FOLD file is",
         "model": "the 3D models are",
         "motion": "the GIF of the folding motion is",
+        "solids": "the STEP file of thick panels is",
     }
 )
 
@@ -403,8 +422,23 @@ def missing_dependencies(formats: Iterable[str]) -> list[str]:
     out = []
     for name in formats:
         f = FORMATS[name]
+        if f.optional:
+            continue  # left out, with a note (formats_left_out)
         if f.dependency is not None and importlib.util.find_spec(f.dependency) is None:
             out.append(f"{name} needs {f.dependency}: pip install 'curvefold[{f.extra}]'")
+    return out
+
+
+def formats_left_out(formats: Iterable[str]) -> list[str]:
+    """For each requested optional format (:attr:`FileFormat.optional`) whose package is not
+    installed, one line saying it is left out and how to get it."""
+    out = []
+    for name in formats:
+        f = FORMATS[name]
+        if f.optional and f.dependency and importlib.util.find_spec(f.dependency) is None:
+            out.append(
+                f"{name} left out (it needs {f.dependency}: pip install 'curvefold[{f.extra}]')"
+            )
     return out
 
 
