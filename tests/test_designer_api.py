@@ -90,6 +90,11 @@ def test_every_kind_answers_and_files_come_from_the_registry(url):
     assert status == 422 and answer["error"].startswith(
         'download: "gif" is not written for a crease design'
     )
+    # the STEP of thick panels: a smooth tube writes none, and says so
+    status, answer = get_json(f"{url}api/tube.step?samples=51")
+    assert status == 422 and answer["error"].startswith(
+        "format 'step': this design writes no STEP (AP214) of thick panels (--thickness on rigid"
+    ), answer
     status, schema = get_json(f"{url}api/schema")
     assert [f["name"] for f in schema["formats"]] == list(api.FORMATS)
     assert {s["name"] for s in schema["sections"]["vault"]} == {

@@ -33,7 +33,13 @@ import numpy as np
 
 from ...analysis._checks import TITLES
 from ...figures._report import MECHANICS_QUANTITIES, UNITS_SHOWN
-from ...io._formats import FORMATS, check_kind, default_formats, missing_dependencies
+from ...io._formats import (
+    FORMATS,
+    check_kind,
+    default_formats,
+    formats_left_out,
+    missing_dependencies,
+)
 from ...kernel._errors import CurvefoldError, InputError
 from ...kernel._json_text import strict_json
 from ...kernel._validate import MAX_TEXT, Spec, from_text, suggest
@@ -622,6 +628,11 @@ def _files(key: str, what: str, state: float | None) -> tuple[str, str, bytes]:
         if main in files:
             return main.name, f.media_type, main.read_bytes()
         same = [p for p in files if p.suffix == f.extension]
+        if not same:  # an optional format of another build (the STEP of thick panels)
+            raise InputError(
+                f"format {what!r}: this design writes no {f.holds.split(':')[0]}"
+                + "".join(f"; {n}" for n in formats_left_out((what,)))
+            )
         if len(same) == 1:
             return same[0].name, f.media_type, same[0].read_bytes()
         return f"{design.kind}-{what}.zip", ZIP, _zip([(p.name, p) for p in same])
