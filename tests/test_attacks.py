@@ -1119,7 +1119,9 @@ def test_a_non_finite_result_is_never_written(tmp_path, monkeypatch):
 
     payload = outputs.structure_payload
     monkeypatch.setattr(
-        outputs, "structure_payload", lambda built: payload(built) | {"span": float("nan")}
+        outputs,
+        "structure_payload",
+        lambda built, **k: payload(built, **k) | {"span": float("nan")},
     )
     r = run("crease", "--samples", "41", "--out", "c", cwd=tmp_path)  # report.json held NaN
     assert (

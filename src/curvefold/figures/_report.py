@@ -420,11 +420,7 @@ MECHANICS_QUANTITIES = {
         "largest stress at the sheet's faces (membrane von Mises plus bending, an upper bound)",
         "Pa",
     ),
-    "utilisation": (
-        "stress over strength: the largest stress under the characteristic load over the "
-        "material's strength (the verdict's utilisation is its governing check's)",
-        "",
-    ),
+    "utilisation": ("stress over strength: the largest stress over the material's strength", ""),
     "buckling_factor": ("linear buckling factor: the load times this buckles the structure", ""),
     "fold_mode_gap": (
         "fold-mode gap λ₂/λ₁: how much stiffer the next free mode is than the folding",

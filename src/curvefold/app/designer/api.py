@@ -202,6 +202,7 @@ def _schema(version: int) -> dict:
                 "kinds": list(f.kinds),
             }
             for f in FORMATS.values()
+            if not f.optional  # written for some builds only: it comes in the folder's zip
         ],
         "state": _spec_json(STATE, ""),
         "units": UNITS_SHOWN,
