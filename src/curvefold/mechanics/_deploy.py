@@ -41,7 +41,7 @@ second order; the path distance falls as the sheet stiffens.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -50,10 +50,9 @@ from ..kernel._arrays import FrozenArrays
 from ..kernel._errors import ConvergenceError, InputError
 from ..kernel._validate import Spec, check_integer
 from . import _elements
+from ._deploy_solve import Energy, first_state, next_state
 from ._materials import Material
 from ._model import CREASES, BarHingeModel
-from ._nonlinear import _assemble_blocks, internal_forces, tangent
-from ._path import _factor
 from ._structures import StructureModel
 
 __all__ = [
@@ -71,10 +70,6 @@ __all__ = [
 GRAVITY = 9.80665
 #: A step that does not converge is halved at most this many times.
 HALVINGS = 6
-#: Newton's method makes a new tangent where an iteration leaves more than this share of the
-#: residual.
-RATE = 0.25
-
 DEPLOY_SUPPORTS = Spec(
     "supports",
     "choice",
@@ -136,17 +131,8 @@ class Deployment(FrozenArrays):
     Examples
     --------
     >>> import numpy as np
-    >>> d = Deployment(
-    ...     np.array([10.0, 20.0]),
-    ...     np.array([1.0, -3.0]),
-    ...     np.array([2e6, 1e6]),
-    ...     np.array([1e-3, 2e-3]),
-    ...     2.0,
-    ...     np.zeros((2, 1, 3)),
-    ...     np.zeros((2, 1, 3)),
-    ...     np.array([3, 2]),
-    ...     np.array([0.0, 0.1]),
-    ... )
+    >>> rows = np.array([[10.0, 20], [1, -3], [2e6, 1e6], [1e-3, 2e-3]])  # 2α, Q, σ, distance
+    >>> d = Deployment(*rows, 2.0, *np.zeros((2, 2, 1, 3)), np.array([3, 2]), np.zeros(2))
     >>> d.relative_distance.tolist()
     [0.0005, 0.001]
     """
@@ -173,17 +159,8 @@ class Deployment(FrozenArrays):
         Examples
         --------
         >>> import numpy as np
-        >>> d = Deployment(
-        ...     np.array([10.0, 20.0]),
-        ...     np.array([1.0, -3.0]),
-        ...     np.array([2e6, 1e6]),
-        ...     np.array([1e-3, 2e-3]),
-        ...     2.0,
-        ...     np.zeros((2, 1, 3)),
-        ...     np.zeros((2, 1, 3)),
-        ...     np.array([3, 2]),
-        ...     np.array([0.0, 0.1]),
-        ... )
+        >>> rows = np.array([[10.0, 20], [1, -3], [2e6, 1e6], [1e-3, 2e-3]])  # 2α, Q, σ, distance
+        >>> d = Deployment(*rows, 2.0, *np.zeros((2, 2, 1, 3)), np.array([3, 2]), np.zeros(2))
         >>> s = d.summary()
         >>> s["peak_actuation_Nm"], s["peak_actuation_at_deg"], s["max_stress_MPa"]
         (-3.0, 20.0, 2.0)
@@ -223,99 +200,6 @@ class DeployError(ConvergenceError):
     def __init__(self, message: str, deployment: Deployment) -> None:
         super().__init__(message)
         self.deployment = deployment
-
-
-def _wrap(turn: np.ndarray) -> np.ndarray:
-    return np.pi - np.mod(np.pi - turn, 2 * np.pi)
-
-
-class _Energy:
-    """The model's energy with hinges at given rest angles: forces, tangent and stresses."""
-
-    def __init__(self, model: BarHingeModel, rest: np.ndarray) -> None:
-        self.model = model
-        self.rest = np.asarray(rest, float)
-        empty = np.zeros(0)
-        self.bars = replace(
-            model,
-            hinges=np.zeros((0, 4), np.int64),
-            hinge_stiffness=empty,
-            hinge_kind=np.zeros(0, str),
-            hinge_length=empty,
-            hinge_faces=np.zeros((0, 2), np.int64),
-        )
-        self.solver: Any = None  # the factor of the last tangent on the free DOFs
-        d = model.nodes[model.bars[:, 1]] - model.nodes[model.bars[:, 0]]
-        self.lengths = np.sqrt((d * d).sum(axis=1))
-
-    def moments(self, x: np.ndarray) -> np.ndarray:
-        m = self.model
-        return m.hinge_stiffness * _wrap(_elements.dihedral_angle(x[m.hinges]) - self.rest)
-
-    def forces(self, u: np.ndarray) -> np.ndarray:
-        m = self.model
-        f = internal_forces(self.bars, u)
-        if len(m.hinges):
-            x = m.nodes + u.reshape(-1, 3)
-            g = _elements.dihedral_gradient(x[m.hinges]).reshape(-1, 12)
-            np.add.at(f, _dofs(m.hinges), g * self.moments(x)[:, None])
-        return f
-
-    def tangent(self, u: np.ndarray):
-        m = self.model
-        K = tangent(self.bars, u)
-        if not len(m.hinges):
-            return K
-        xh = (m.nodes + u.reshape(-1, 3))[m.hinges]
-        g = _elements.dihedral_gradient(xh).reshape(-1, 12)
-        M = self.moments(m.nodes + u.reshape(-1, 3))
-        blocks = m.hinge_stiffness[:, None, None] * g[:, :, None] * g[:, None, :]
-        blocks = blocks + M[:, None, None] * _elements.dihedral_hessian(xh)
-        return (K + _assemble_blocks([blocks], [m.hinges], m.dofs)).tocsr()
-
-    def energy(self, u: np.ndarray) -> float:
-        m = self.model
-        x = m.nodes + u.reshape(-1, 3)
-        D = x[m.bars[:, 1]] - x[m.bars[:, 0]]
-        L = self.lengths
-        d = ((D * D).sum(axis=1) - L * L) / (2 * L)
-        turn = _wrap(_elements.dihedral_angle(x[m.hinges]) - self.rest) if len(m.hinges) else d[:0]
-        return float(
-            0.5 * d @ (m.bar_stiffness_matrix() @ d) + 0.5 * turn @ (m.hinge_stiffness * turn)
-        )
-
-    def max_stress(self, u: np.ndarray) -> tuple[float, int]:
-        """The largest surface stress (Pa) and the node nearest it (module notes of _response)."""
-        m = self.model
-        x = m.nodes + u.reshape(-1, 3)
-        D = x[m.bars[:, 1]] - x[m.bars[:, 0]]
-        L = self.lengths
-        d = ((D * D).sum(axis=1) - L * L) / (2 * L)
-        mb = m.membrane_bars
-        s = np.einsum("tij,tj->ti", m.membrane_strain, np.where(mb >= 0, d[mb], 0.0))
-        sx, sy, txy = (s @ m.elasticity.T).T
-        vm = np.sqrt(np.maximum(sx * sx - sx * sy + sy * sy + 3 * txy * txy, 0.0))
-        t = m.thickness
-        bend = np.zeros(len(m.hinges))
-        if len(m.hinges) and t > 0:
-            bend = 6 * np.abs(self.moments(x)) / (np.asarray(m.hinge_length) * t * t)
-        worst = np.zeros(len(m.membranes))
-        for side in (0, 1):
-            faces = np.asarray(m.hinge_faces)[:, side] if len(m.hinges) else np.zeros(0, int)
-            ok = faces >= 0
-            np.maximum.at(worst, faces[ok], bend[ok])
-        surface = vm + worst
-        if surface.size and surface.max() >= bend.max(initial=0.0):
-            i = int(np.argmax(surface))
-            return float(surface[i]), int(m.membranes[i, 0])
-        if bend.size:
-            i = int(np.argmax(bend))
-            return float(bend[i]), int(m.hinges[i, 0])
-        return 0.0, 0
-
-
-def _dofs(elements: np.ndarray) -> np.ndarray:
-    return (3 * elements[:, :, None] + np.arange(3)).reshape(len(elements), -1)
 
 
 def follow_motion(
@@ -413,7 +297,7 @@ def follow_motion(
     if rest.shape != (len(model.hinges),):
         raise InputError(f"rest must have one angle per hinge ({len(model.hinges)})")
     max_iterations = check_integer(max_iterations, "max_iterations", "[1, 1000]")
-    energy = _Energy(model, rest)
+    energy = Energy(model, rest)
     free = np.flatnonzero(~held)
     X = model.nodes.reshape(-1)
     kin = frames.reshape(n, -1) - X  # kinematic displacements from the reference
@@ -446,9 +330,11 @@ def follow_motion(
         found, parts = None, 4 if i == 0 else 1
         while found is None:
             if i == 0:
-                found = _first(energy, kin[0], free, f, parts, tolerance, max_iterations, limit)
+                found = first_state(
+                    energy, kin[0], free, f, parts, tolerance, max_iterations, limit
+                )
             else:
-                found = _reach(energy, kin, i, departure, free, f, parts, tolerance,
+                found = next_state(energy, kin, i, departure, free, f, parts, tolerance,
                                max_iterations, limit)  # fmt: skip
             if found is None:
                 parts *= 2
@@ -473,128 +359,6 @@ def follow_motion(
         if progress is not None:
             progress(i + 1, n)
     return deployment()
-
-
-def _first(
-    energy: _Energy,
-    kin: np.ndarray,
-    free: np.ndarray,
-    f: np.ndarray,
-    parts: int,
-    tolerance: float,
-    max_iterations: int,
-    limit: float,
-) -> tuple[np.ndarray, int] | None:
-    """The first state: the kinematic state, in equilibrium with no load and its own hinge
-    angles at rest, then the load and the rest angles brought to theirs in ``parts`` steps."""
-    rest = energy.rest
-    x = energy.model.nodes + kin.reshape(-1, 3)
-    own = _elements.dihedral_angle(x[energy.model.hinges]) if len(rest) else rest
-    gap = _wrap(rest - own)
-    u, total = kin.copy(), 0
-    try:
-        for p in range(1, parts + 1):
-            energy.rest = own + gap * (p / parts)
-            done = _newton(energy, u, free, f * (p / parts), tolerance, max_iterations, limit)
-            if done is None:
-                return None
-            u, its = done
-            total += its
-    finally:
-        energy.rest = rest
-    return u, total
-
-
-def _reach(
-    energy: _Energy,
-    kin: np.ndarray,
-    i: int,
-    departure: np.ndarray,
-    free: np.ndarray,
-    f: np.ndarray,
-    parts: int,
-    tolerance: float,
-    max_iterations: int,
-    limit: float,
-) -> tuple[np.ndarray, int] | None:
-    """The state at angle i from the previous one, in ``parts`` sub-steps (the prescribed
-    DOFs moved linearly between the two kinematic states), or None."""
-    start = kin[i - 1]
-    total = 0
-    u, prior = start + departure, start
-    for p in range(1, parts + 1):
-        target = start + (kin[i] - start) * (p / parts)
-        u, prior = u + (target - prior), target
-        done = _newton(energy, u, free, f, tolerance, max_iterations, limit)
-        if done is None:
-            return None
-        u, its = done
-        total += its
-    return u, total
-
-
-def _newton(
-    energy: _Energy,
-    u: np.ndarray,
-    free: np.ndarray,
-    f: np.ndarray,
-    tolerance: float,
-    max_iterations: int,
-    limit: float,
-) -> tuple[np.ndarray, int] | None:
-    """Newton's method on the free DOFs, every correction cut to ``limit`` (m) at most.
-
-    The tangent's factor is kept from step to step (``energy.solver``) and made again only
-    where the residual falls by less than :data:`RATE` in an iteration: along a motion at
-    small steps most states need no new tangent (measured: the paper's vault, 1° steps).
-    """
-    u = u.copy()
-    last = np.inf
-    for k in range(max_iterations + 1):
-        g = energy.forces(u)
-        r = f[free] - g[free]
-        norm = float(np.linalg.norm(r))
-        scale = float(np.abs(f).sum() + np.abs(g).sum())
-        if not np.isfinite(norm):
-            energy.solver = None
-            return None
-        if norm <= tolerance * max(scale, 1e-300):
-            return u, k
-        if k == max_iterations:
-            energy.solver = None
-            return None
-        if energy.solver is None or norm > RATE * last:
-            energy.solver, _ = _factor(energy.tangent(u)[free][:, free])
-            if energy.solver is None:
-                return None
-        last = norm
-        d = energy.solver.solve(r)
-        big = float(np.abs(d).max(initial=0.0))
-        if big <= 2e-9 * limit:  # 1e-10 of the span: stiff bars round the residual above
-            u[free] += d
-            return u, k + 1
-        u = _search(energy, u, free, f, d * min(1.0, limit / big))
-    return None
-
-
-def _search(
-    energy: _Energy, u: np.ndarray, free: np.ndarray, f: np.ndarray, d: np.ndarray
-) -> np.ndarray:
-    """u moved along the Newton correction d by the first of 1, ½, ¼, … that lowers the total
-    potential Π = U − f·u (or d itself where Π cannot tell, at rounding): a full Newton step
-    from a strained warm start can overshoot into the stiff membranes."""
-    before = energy.energy(u) - float(f @ u)
-    step = 1.0
-    for _ in range(8):
-        trial = u.copy()
-        trial[free] += step * d
-        after = energy.energy(trial) - float(f @ trial)
-        if after <= before + 1e-12 * abs(before):
-            return trial
-        step *= 0.5
-    trial = u.copy()
-    trial[free] += d
-    return trial
 
 
 def deploy(
