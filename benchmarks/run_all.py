@@ -37,6 +37,7 @@ NAMES = (
     "mechanics",
     "verdict",
     "merlin",
+    "deploy",
     "threads",
     "startup",
 )
