@@ -140,3 +140,11 @@ def test_cli_writes_csv_and_picture(tmp_path):
     assert summary["max_stress_MPa"] == pytest.approx(
         max(float(r["max_stress_MPa"]) for r in rows), rel=1e-6
     )
+
+
+def test_cli_refuses_a_deployment_over_the_memory_budget_before_work(monkeypatch):
+    monkeypatch.setenv("CURVEFOLD_MEMORY_BUDGET", "64M")
+    result = run("deploy", "--tubes", "1", "--samples", "21")
+    assert result.returncode == 2
+    assert "this deployment needs about" in result.stderr and "64 MiB" in result.stderr
+    assert result.stderr.count("\n") == 1

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +32,8 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
     loaded = design.with_mechanics()
     step = own.get("step", STEP.default)
     angle = float(getattr(getattr(design, design.kind, None), "fold_angle", 90.0) or 90.0)
-    require_deploy_budget(design, int(angle / step) + 2)
+    states = max(1, math.ceil(angle / step - 1e-9))
+    require_deploy_budget(design, states)
     built = build(design)
     structure = getattr(built, "structure", None)
     if structure is None:
@@ -40,7 +42,7 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
     assert params is not None  # with_mechanics gave it its defaults
     material = _sheet(params) if params.material is None else MATERIALS[params.material]
     failure = None
-    with _progress_bar(not args.json, "deploy", 1) as progress:
+    with _progress_bar(not args.json, "deploy", states) as progress:
         try:
             result = deploy(
                 structure,
