@@ -106,6 +106,8 @@ def test_a_state_not_reached_says_where_and_keeps_the_states():
 def test_arguments_refused_in_one_line():
     with pytest.raises(InputError, match=r"step must be in \[0.05, 10\] degrees .* got 20"):
         deploy(small_vault(), MATERIALS["aluminium"], 1e-3, step=20.0)
+    with pytest.raises(InputError, match="start must be below the design angle 90°, got 95"):
+        deploy(small_vault(), MATERIALS["aluminium"], 1e-3, start=95.0)
     with pytest.raises(InputError, match="supports must be one of"):
         deploy(small_vault(), MATERIALS["aluminium"], 1e-3, supports="pinned")
     model, frames, speed, rest, weight = hinge_lift(np.array([10.0]), rest=0.0)
@@ -120,6 +122,7 @@ def test_arguments_refused_in_one_line():
         (["--step", "x"], "--step"),
         (["--supports", "pinned"], '--supports pinned: supports must be one of "feet", "foot"'),
         (["--rest-angle", "180"], "--rest-angle 180: rest_angle must be in (0, 180) degrees"),
+        (["--start", "0"], "--start 0: start must be in (0, 180) degrees"),
     ],
 )
 def test_cli_errors_are_one_line_exit_2(flags, words):

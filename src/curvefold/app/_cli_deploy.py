@@ -2,10 +2,10 @@
 its own weight (:func:`curvefold.mechanics.deploy`).
 
 It takes the design input of ``curvefold load`` (a design file, the design flags, the
-material and thickness) and the deployment's own flags (``--step``, ``--supports``,
-``--rest-angle``). It prints the peaks (or ``--json``), and with ``--out`` writes, atomically
-(:mod:`curvefold.app._folder`), ``deploy.csv`` (a row per fold angle) and ``deploy.png``
-(the actuation and the distance from the rigid-folding path).
+material and thickness) and the deployment's own flags (``--step``, ``--start``,
+``--supports``, ``--rest-angle``). It prints the peaks (or ``--json``), and with ``--out``
+writes, atomically (:mod:`curvefold.app._folder`), ``deploy.csv`` (a row per fold angle) and
+``deploy.png`` (the actuation and the distance from the rigid-folding path).
 """
 
 from __future__ import annotations
@@ -32,9 +32,14 @@ _SKIPPED = ("loads", "output")
 
 
 def _deploy_specs():
-    from ..mechanics._deploy import DEPLOY_SUPPORTS, REST_ANGLE, STEP
+    from ..mechanics._deploy import DEPLOY_SUPPORTS, REST_ANGLE, START, STEP
 
-    return {"step": STEP, "deploy_supports": DEPLOY_SUPPORTS, "rest_angle": REST_ANGLE}
+    return {
+        "step": STEP,
+        "start": START,
+        "deploy_supports": DEPLOY_SUPPORTS,
+        "rest_angle": REST_ANGLE,
+    }
 
 
 def _skipped(kind: str) -> set[str]:
@@ -47,7 +52,7 @@ def add_deploy_parser(sub, kind: str, add_output) -> None:
         "deploy",
         help="fold a vault, tube or block from flat to its design angle under its own weight",
         description="Follow the folding motion of a vault (the paper's by default), or a "
-        "tube or block from its design file, from one step past flat to its design angle, "
+        "tube or block from its design file, from 2α = 10° (--start) to its design angle, "
         "under its own weight, with the material's crease stiffness and the creases resting "
         "at the angle they were creased at: the actuation (the moment along the fold angle, "
         "N·m/rad), the largest stress and the distance from the rigid-folding path at every "

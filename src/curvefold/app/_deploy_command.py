@@ -17,7 +17,7 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
     """Run ``curvefold deploy`` (module notes); 0 when the design angle is reached."""
     from ..figures._plots import new_figure, save_figure
     from ..mechanics import MATERIALS
-    from ..mechanics._deploy import STEP, DeployError, deploy
+    from ..mechanics._deploy import START, STEP, DeployError, deploy
     from ._budget import require_deploy_budget
     from ._build import build
     from ._cli_commands import _checked_output, _emit, _load_design
@@ -32,7 +32,8 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
     loaded = design.with_mechanics()
     step = own.get("step", STEP.default)
     angle = float(getattr(getattr(design, design.kind, None), "fold_angle", 90.0) or 90.0)
-    states = max(1, math.ceil(angle / step - 1e-9))
+    start = own.get("start", START.default)
+    states = max(1, math.ceil((angle - start) / step - 1e-9) + 1)
     require_deploy_budget(design, states)
     built = build(design)
     structure = getattr(built, "structure", None)
