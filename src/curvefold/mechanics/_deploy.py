@@ -16,9 +16,10 @@ vertical plane, and the far end section comes down to the ground at the design a
 along its kinematic path (each foot in a jig that folds with it), ``foot`` those of the
 first end section alone (the far end free). Both feet cannot stay on the ground while the
 structure folds (the second end section tilts and lifts off it, :meth:`Vault.lift_off`), and
-near flat a sheet held at a few points is a mechanism under its own weight (measured: the
-lowest stiffness of the paper's single tube held at three foot points at 2α = 5° is
-0.5 N/m against 22 N of weight), so neither a pinned nor a roller point support is offered.
+near flat a sheet held at a few points is a mechanism under its own weight (measured: one
+tube of the paper's vault in 4 panels, aluminium 1 mm, held at three foot points at
+2α = 5°: a lowest stiffness of 0.5 N/m against 22 N of weight), so neither a pinned nor a
+roller point support is offered.
 The actuation is the generalized force along the motion, Q = Σ R · dx/d(2α) over the held
 DOFs, N·m per radian of 2α: the moment that drives the fold angle; by virtual work
 ``∫ Q d(2α) = ΔU + ΔV`` (elastic and gravity energy). Q < 0 where the creases, resting at
