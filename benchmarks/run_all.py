@@ -39,6 +39,7 @@ NAMES = (
     "verdict",
     "merlin",
     "virtual_thickness",
+    "deploy",
     "threads",
     "startup",
 )

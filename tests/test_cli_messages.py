@@ -35,12 +35,12 @@ _FOLD = {
         (
             ["tube", "--a", "0.5"],
             "unrecognized arguments: --a; --a is a flag of curvefold vault, curvefold load, "
-            "curvefold arch and curvefold atlas, not of curvefold tube",
+            "curvefold deploy, curvefold arch and curvefold atlas, not of curvefold tube",
         ),
         (
             ["crease", "--panels", "4"],
             "unrecognized arguments: --panels; --panels is a flag of curvefold vault, curvefold "
-            "tube, curvefold block and curvefold load, not of curvefold crease",
+            "tube, curvefold block, curvefold load and curvefold deploy, not of curvefold crease",
         ),
         (["--zz"], "unrecognized arguments: --zz"),
         # flags are taken whole: an abbreviation is not one of them

@@ -49,6 +49,7 @@ __all__ = [
     "require_atlas_budget",
     "atlas_mechanics",
     "require_rebuild_budget",
+    "require_deploy_budget",
 ]
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
@@ -362,3 +363,30 @@ def _size(n: float) -> str:
         if n >= 1 << 30
         else f"{n / _MB:.0f} MiB"
     )
+
+
+#: Bytes a deployment keeps per state and per model node: its displacements and kinematic
+#: positions (two (P, 3) float arrays), the rest of its state dropped after each step.
+DEPLOY_PER_STATE = 48.0
+
+
+def require_deploy_budget(design: Design, states: int) -> float:
+    """The estimate of deploying ``design`` through ``states`` fold angles: the design under
+    load (its geometry and one model, the solve of every step in place of the load's), plus
+    every state kept (:data:`DEPLOY_PER_STATE` per node, one node per kept strip sample),
+    or :class:`InputError` over budget."""
+    from ..mechanics import model_samples
+
+    budget = memory_budget()
+    loaded = design.with_mechanics()
+    found = estimate(loaded, files=False)
+    panels = design.design_kind.panels(design)
+    kept = panels + 1 if panels else len(model_samples(design.samples))
+    total = found.total + DEPLOY_PER_STATE * states * kept * _strips(design)
+    if total > budget:
+        raise InputError(
+            f"{design.source}: this deployment needs about {_size(total)} of memory "
+            f"({design.samples} samples × {_strips(design)} strips, {states} states), more "
+            f"than the budget of {_size(budget)} ({ENVIRONMENT}); lower samples or raise --step"
+        )
+    return total

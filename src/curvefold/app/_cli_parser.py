@@ -88,6 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_design_flags(p, LOAD_KIND)
     _add_target_flags(p, design_kind(LOAD_KIND))
     _add_output(p, "load")
+    from ._cli_deploy import add_deploy_parser
+
+    add_deploy_parser(sub, LOAD_KIND, _add_output)
 
     p = sub.add_parser(
         "arch",

@@ -102,6 +102,12 @@ def cmd_load(args: argparse.Namespace) -> int:
     return 1 if failed or not loaded.verdict.stands else 0
 
 
+def cmd_deploy(args: argparse.Namespace) -> int:
+    from ._deploy_command import cmd_deploy as deploy
+
+    return deploy(args, LOAD_KIND)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (see the module doc).
 
@@ -180,6 +186,7 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None) -> int:
             return cmd_structure(args.command, args)
         return {
             "load": cmd_load,
+            "deploy": cmd_deploy,
             "arch": cmd_arch,
             "reproduce": cmd_reproduce,
             "check": cmd_check,

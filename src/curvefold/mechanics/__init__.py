@@ -91,6 +91,9 @@ _LAZY = {
     "follow_load": "_path",
     "LoadPath": "_path",
     "PathError": "_path",
+    "deploy": "_deploy",
+    "Deployment": "_deploy",
+    "DeployError": "_deploy",
 }
 
 __all__ = [
@@ -146,6 +149,9 @@ __all__ = [
     "follow_load",
     "LoadPath",
     "PathError",
+    "deploy",
+    "Deployment",
+    "DeployError",
 ]
 
 

@@ -16,6 +16,9 @@ from ._combinations import combinations as combinations
 from ._convergence import TOLERANCE as ERROR_TOLERANCE
 from ._convergence import check_errors as check_errors
 from ._convergence import figure_errors as figure_errors
+from ._deploy import DeployError as DeployError
+from ._deploy import Deployment as Deployment
+from ._deploy import deploy as deploy
 from ._loadcase import LOAD_CASES as LOAD_CASES
 from ._loadcase import G as G
 from ._loadcase import LoadCase as LoadCase
@@ -107,4 +110,7 @@ __all__ = [
     "follow_load",
     "LoadPath",
     "PathError",
+    "deploy",
+    "Deployment",
+    "DeployError",
 ]
