@@ -35,7 +35,7 @@ of their names is first used.
 
 import importlib
 
-from . import _across, _convergence, _loadcase, _materials, _supports, _verdict
+from . import _across, _collapse, _convergence, _loadcase, _materials, _supports, _verdict
 from ._cases import HalfSnow, PointLoad, SelfWeight, Snow, Wind, ZonedWind
 from ._combinations import Combination, combinations
 from ._convergence import check_errors, figure_errors
@@ -44,6 +44,9 @@ from ._loads import Loads
 from ._materials import Material, material
 from ._supports import Supports
 from ._verdict import Check, Criteria, Verdict, assess, error_text
+
+#: The check of --nonlinear's imperfection, a fraction of the span (:func:`collapse`).
+IMPERFECTION = _collapse.IMPERFECTION
 
 #: Standard gravity, m/s².
 G = _loadcase.G
@@ -91,6 +94,8 @@ _LAZY = {
     "follow_load": "_path",
     "LoadPath": "_path",
     "PathError": "_path",
+    "Collapse": "_collapse",
+    "collapse": "_collapse",
 }
 
 __all__ = [
@@ -146,6 +151,9 @@ __all__ = [
     "follow_load",
     "LoadPath",
     "PathError",
+    "Collapse",
+    "collapse",
+    "IMPERFECTION",
 ]
 
 

@@ -35,6 +35,7 @@ strain, 2.1e-3, 10 to 14 times faster than MERLIN under Octave.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,6 +64,7 @@ AIM = 4
 MAX_FACTOR = Spec("max_factor", "real", range="(0, inf)", help="the largest load factor")
 FIRST = Spec("first", "real", range="(0, inf)", help="the first step's load factor")
 TOLERANCE = Spec("tolerance", "real", range="[1e-14, 1e-2]", why="rounding to rough")
+GROWTH = Spec("growth", "real", range="[1, 1e6]", help="the largest step over the first")
 MAX_DISPLACEMENT = Spec("max_displacement", "real", range="(0, inf)", unit="m")
 
 
@@ -197,6 +199,8 @@ def follow_load(
     method: str = "displacement",
     tolerance: float = 1e-10,
     max_iterations: int = 20,
+    stop: Callable[[LoadPath], bool] | None = None,
+    growth: float = GROWTH_LIMIT,
 ) -> LoadPath:
     """Follow the equilibrium of a model under the loads λ · ``forces`` from λ = 0 (module notes).
 
@@ -226,6 +230,11 @@ def follow_load(
         displacement (where stiff bars round the residual above the first).
     max_iterations : int, keyword-only
         Newton iterations per try of a step.
+    stop : callable, keyword-only
+        Called with the path after every state (a progress bar's hook); the path ends
+        there when it returns true.
+    growth : float, keyword-only
+        The largest step, as a multiple of the first (≥ 1).
 
     Returns
     -------
@@ -275,6 +284,7 @@ def follow_load(
     max_factor = MAX_FACTOR.check(max_factor)
     first = max_factor / steps if first is None else FIRST.check(first)
     tolerance = TOLERANCE.check(tolerance)
+    growth = GROWTH.check(growth)
     if max_displacement is not None:
         max_displacement = MAX_DISPLACEMENT.check(max_displacement)
     if method not in METHODS:
@@ -362,11 +372,13 @@ def follow_load(
         iterations.append(its)
         step_size = min(
             step_size * (1.5 if its <= AIM else 0.7 if its > 2 * AIM else 1.0),
-            GROWTH_LIMIT * first,
+            growth * first,
         )
         if lam >= max_factor or (
             max_displacement is not None and abs(u[control]) >= max_displacement
         ):
+            break
+        if stop is not None and stop(path()):
             break
     stable[-1] = _factor(tangent(model, u)[free][:, free])[1]
     return path()
