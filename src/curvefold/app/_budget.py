@@ -90,6 +90,12 @@ COSTS: dict[str, tuple[float, float, float]] = {
     # estimate of its geometry alone
     "mechanics": (40 * _MB, 8000.0, 0.0),
 }
+#: What ``--nonlinear`` adds to the part of the mechanics that grows with the model, as a share
+#: of it: the path's tangents, assembled whole (its hinges' 12 × 12 blocks), their factors (an LU
+#: past a loss of stability holds more than the Cholesky factor), the states kept
+#: (:data:`curvefold.mechanics._collapse.STEPS` at most). Measured on the paper's vault (see
+#: ``benchmarks/bench_collapse.py``): the peak of ``load --nonlinear`` over ``load``'s.
+COLLAPSE_SHARE = 3.0
 #: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
 #: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
 #: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter with what
@@ -206,7 +212,9 @@ def _mechanics(design: Design) -> float:
     kept = panels + 1 if panels else len(model_samples(design.samples, across))
     fixed = _cost("mechanics", 0, 0)
     scale = 1.0 if across == 1 else 0.4 * across**2
-    return fixed + (_cost("mechanics", kept, kept * _strips(design)) - fixed) * scale
+    grows = (_cost("mechanics", kept, kept * _strips(design)) - fixed) * scale
+    nonlinear = design.loads is not None and design.loads.nonlinear
+    return fixed + grows * (1 + COLLAPSE_SHARE if nonlinear else 1)
 
 
 def estimate(design: Design, *, files: bool) -> Estimate:

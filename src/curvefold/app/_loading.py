@@ -57,6 +57,7 @@ from ..mechanics import (
     MATERIAL,
     MATERIAL_SPECS,
     MATERIALS,
+    NONLINEAR,
     SUPPORTS,
     THICKNESS,
     LoadCase,
@@ -64,6 +65,7 @@ from ..mechanics import (
     SelfWeight,
     error_text,
 )
+from ._loaded_text import _check_words, _finite, _rounded, _vector
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
@@ -167,15 +169,7 @@ LOADS_SECTION: tuple[Spec, ...] = (
     ),
     *CRITERIA_SPECS,
     ACROSS,
-    Spec(
-        "nonlinear",
-        "flag",
-        False,
-        help="follow the ULS combination of smallest buckling factor from zero to collapse "
-        "(large displacements, an imperfection in the shape of the first buckling mode): "
-        "the collapse factor beside the linear one, the verdict on the smaller",
-        label="collapse analysis",
-    ),
+    NONLINEAR,
     IMPERFECTION,
 )
 
@@ -596,38 +590,6 @@ class Loaded:
                 r.modes.shapes[k]
             )
         return out
-
-
-def _finite(value: float) -> float | None:
-    return value if math.isfinite(value) else None
-
-
-def _vector(values: Sequence[float] | np.ndarray, scale: Sequence[float] | np.ndarray) -> str:
-    """[x, y, z] with the rounding of forces that balance ``scale`` shown as 0."""
-    shown = _rounded(np.asarray(values, float).tolist(), float(np.abs(scale).max(initial=0.0)))
-    return "[" + ", ".join(f"{x:.6g}" for x in shown) + "]"
-
-
-def _check_words(check: Any) -> str:
-    """A check's value, limit, utilisation and combination for the terminal."""
-    mark = "ok" if check.passed else "FAILS"
-    if check.name == "stability":
-        value = "none" if math.isinf(check.value) else f"{check.value:.4g}"
-        what = f"buckling factor {value}, {check.limit:g} required"
-    else:
-        scale, unit = (1e-6, "MPa") if check.unit == "Pa" else (1e3, "mm")
-        what = f"{check.value * scale:.4g} {unit} of {check.limit * scale:.4g} {unit}"
-    return (
-        f"{mark}: utilisation {check.utilisation:.3g}{error_text(check.error)} "
-        f"({what}; {check.combination}; {check.basis})"
-    )
-
-
-def _rounded(values: Sequence[float], scale: float) -> np.ndarray:
-    """Values with what is below 1e-9 of ``scale`` (the rounding of forces that balance a load of
-    that size) shown as 0."""
-    v = np.asarray(values, float)
-    return np.where(np.abs(v) <= 1e-9 * abs(scale), 0.0, v) + 0.0
 
 
 def _sheet(params: MaterialParams):

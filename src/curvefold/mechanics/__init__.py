@@ -47,6 +47,8 @@ from ._verdict import Check, Criteria, Verdict, assess, error_text
 
 #: The check of --nonlinear's imperfection, a fraction of the span (:func:`collapse`).
 IMPERFECTION = _collapse.IMPERFECTION
+#: The check of --nonlinear, whether the verdict follows its combination to collapse.
+NONLINEAR = _collapse.NONLINEAR
 
 #: Standard gravity, m/s².
 G = _loadcase.G
@@ -154,6 +156,7 @@ __all__ = [
     "Collapse",
     "collapse",
     "IMPERFECTION",
+    "NONLINEAR",
 ]
 
 

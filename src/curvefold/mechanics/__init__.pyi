@@ -12,6 +12,7 @@ from ._cases import Snow as Snow
 from ._cases import Wind as Wind
 from ._cases import ZonedWind as ZonedWind
 from ._collapse import IMPERFECTION as IMPERFECTION
+from ._collapse import NONLINEAR as NONLINEAR
 from ._collapse import Collapse as Collapse
 from ._collapse import collapse as collapse
 from ._combinations import Combination as Combination
@@ -113,4 +114,5 @@ __all__ = [
     "Collapse",
     "collapse",
     "IMPERFECTION",
+    "NONLINEAR",
 ]

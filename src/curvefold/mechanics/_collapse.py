@@ -59,6 +59,7 @@ __all__ = [
     "follow_collapse",
     "judged",
     "IMPERFECTION",
+    "NONLINEAR",
     "MAX_RATIO",
     "STEPS",
 ]
@@ -74,6 +75,16 @@ IMPERFECTION = Spec(
     "Table 5.1, curve a)",
     why="a tenth of the span is a different structure, not an imperfect one",
     label="imperfection",
+)
+#: Whether a design's verdict follows its governing combination to collapse (``--nonlinear``).
+NONLINEAR = Spec(
+    "nonlinear",
+    "flag",
+    False,
+    help="follow the ULS combination of smallest buckling factor from zero to collapse "
+    "(large displacements, an imperfection in the shape of the first buckling mode): "
+    "the collapse factor beside the linear one, the verdict on the smaller",
+    label="collapse analysis",
 )
 #: The path stops once the load factor reaches this multiple of the linear buckling factor.
 MAX_RATIO = 3.0
@@ -114,6 +125,15 @@ class Collapse:
         Where the tangent's eigenvalue nearest zero crosses it between the last stable state
         and the first unstable one, λ interpolated linearly between them; None when the path
         stayed stable.
+
+    Examples
+    --------
+    Koiter's strut (:func:`_strut`: λ_cr = 100 N), tilted by a thousandth of its length,
+    collapses at its exact 98.504 N (its steps resolve 98.489):
+
+    >>> c = _strut(1e-3)
+    >>> round(c.factor, 3), round(c.knock_down, 4), c.limit_reached
+    (98.489, 0.9849, True)
     """
 
     path: LoadPath
@@ -162,7 +182,13 @@ class Collapse:
     def csv(self) -> str:
         """The load–displacement curve as CSV: a header row naming the columns and their units
         (the load factor on the combination, the control DOF's displacement in mm, signed
-        along its axis, and whether the state is stable), then one row per state."""
+        along its axis, and whether the state is stable), then one row per state.
+
+        Examples
+        --------
+        >>> _strut(1e-3).csv().splitlines()[:2]
+        ['state,load_factor,control_displacement_mm_node_1_x,stable', '0,0,0,1']
+        """
         node, axis = divmod(self.path.control, 3)
         rows = [
             f"state,load_factor,control_displacement_mm_node_{node}_{'xyz'[axis]},stable",
@@ -184,7 +210,14 @@ class Collapse:
         """JSON: ``factor``, ``linear_factor``, ``knock_down``, ``imperfection`` (m),
         ``imperfection_ratio`` (of the span), ``span`` (m), ``combination``, ``steps``,
         ``limit_reached``, ``reason``, ``control`` (node and axis) and
-        ``control_displacement`` at collapse (m)."""
+        ``control_displacement`` at collapse (m).
+
+        Examples
+        --------
+        >>> d = _strut(1e-3).to_dict()
+        >>> d["imperfection"], d["control"], d["limit_reached"]
+        (0.001, {'node': 1, 'axis': 'x'}, True)
+        """
         node, axis = divmod(self.path.control, 3)
         return {
             "factor": self.factor,
@@ -202,7 +235,13 @@ class Collapse:
         }
 
     def text(self) -> str:
-        """The result in one phrase for the terminal."""
+        """The result in one phrase for the terminal.
+
+        Examples
+        --------
+        >>> _strut(1e-3).text()[:60]
+        '98.49 on the load, 0.985 × the linear factor 100 (imperfecti'
+        """
         ratio = self.imperfection / self.span if self.span else 0.0
         shown = f"span / {1 / ratio:.0f}" if ratio else "none"
         return (
@@ -348,12 +387,13 @@ def follow_collapse(
     except PathError as error:
         path, reason = error.path, str(error)
     unstable = np.flatnonzero(~np.asarray(path.stable, bool))
-    lost = bool(unstable.size) and unstable[0] > 0
+    lost = bool(unstable.size and unstable[0] > 0)
     critical = None
     if lost:
         j = int(unstable[0])
         lam = path.factors
-        before, after = (_nearest_eigenvalue(imperfect, path, fixed, k) for k in (j - 1, j))
+        before = _nearest_eigenvalue(imperfect, path, fixed, j - 1)
+        after = _nearest_eigenvalue(imperfect, path, fixed, j, shift=abs(before))
         t = before / (before - after) if before > 0 > after else 1.0
         critical = float(lam[j - 1] + t * (lam[j] - lam[j - 1]))
         kind = "a limit point" if path.limit is not None else "a bifurcation"
@@ -376,16 +416,34 @@ def follow_collapse(
     )
 
 
-def _nearest_eigenvalue(model: BarHingeModel, path: LoadPath, fixed: np.ndarray, k: int) -> float:
-    """The eigenvalue nearest zero of the tangent on the free DOFs at state k, N/m."""
+def _nearest_eigenvalue(
+    model: BarHingeModel, path: LoadPath, fixed: np.ndarray, k: int, shift: float = 0.0
+) -> float:
+    """The eigenvalue of the tangent on the free DOFs at state k nearest ``-shift`` (≤ 0), N/m:
+    shift-inverted on a Cholesky factor of K + shift I, the shift doubled until it is positive
+    definite (from the state's own smallest eigenvalue's size when 0 is not)."""
+    import scipy.sparse as sp
     import scipy.sparse.linalg as spl
 
+    from ._linear import Factorized
     from ._nonlinear import tangent
 
     free = np.flatnonzero(~np.asarray(fixed, bool).reshape(-1))
-    K = tangent(model, path.displacements[k].reshape(-1))[free][:, free].tocsc()
+    K = tangent(model, path.displacements[k].reshape(-1))[free][:, free]
+    eye = sp.identity(len(free), format="csr")
+    shift = max(shift, 0.0)
+    for _ in range(60):
+        try:
+            factor = Factorized(K + shift * eye)
+            break
+        except InputError:
+            shift = 2 * shift if shift > 0 else 1e-9 * abs(K.diagonal()).max()
+    else:  # pragma: no cover - a shift of 2^60 its diagonal's 1e-9 is definite
+        raise InputError("the tangent has no definite shift")
+    op = spl.LinearOperator(K.shape, matvec=factor.solve, dtype=float)
     start = np.random.default_rng(0).standard_normal(len(free))  # deterministic
-    return float(spl.eigsh(K, k=1, sigma=0.0, which="LM", v0=start)[0][0])
+    mu = spl.eigsh(K, k=1, sigma=-shift, which="LM", OPinv=op, v0=start)[0][0]
+    return float(mu)
 
 
 def _reason(path: LoadPath, linear: float, span: float, steps: int) -> str:
@@ -423,3 +481,20 @@ def judged(verdict: Verdict, collapsed: Collapse) -> Verdict:
             )
         checks.append(check)
     return replace(verdict, checks=tuple(checks))
+
+
+def _strut(imperfection: float) -> Collapse:
+    """Koiter's strut, the examples' model: a rigid bar 1 m long pinned at its foot, its head held
+    sideways by a spring of 100 N/m that stays horizontal (a bar 10 km long), pressed down; it
+    buckles at λ_cr = 100 N and its load falls past it (``tests/test_collapse.py``)."""
+    from ._model import BarHingeModel
+
+    nodes = np.array([[0.0, 0, 0], [0, 0, 1], [1e4, 0, 1]])
+    model = BarHingeModel(nodes, [[0, 1], [1, 2]], [1e9, 100.0], np.zeros((0, 4), int), [], [1] * 3)
+    fixed = np.ones((3, 3), bool)
+    fixed[1, [0, 2]] = False
+    forces, mode = np.zeros((3, 3)), np.zeros((3, 3))
+    forces[1, 2], mode[1, 0] = -1.0, 1.0
+    return follow_collapse(
+        model, forces, fixed, linear_factor=100.0, mode=mode, span=1.0, imperfection=imperfection
+    )
