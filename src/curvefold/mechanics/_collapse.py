@@ -490,7 +490,14 @@ def _strut(imperfection: float) -> Collapse:
     from ._model import BarHingeModel
 
     nodes = np.array([[0.0, 0, 0], [0, 0, 1], [1e4, 0, 1]])
-    model = BarHingeModel(nodes, [[0, 1], [1, 2]], [1e9, 100.0], np.zeros((0, 4), int), [], [1] * 3)
+    model = BarHingeModel(
+        nodes,
+        np.array([[0, 1], [1, 2]]),
+        np.array([1e9, 100.0]),
+        np.zeros((0, 4), int),
+        np.zeros(0),
+        np.ones(3),
+    )
     fixed = np.ones((3, 3), bool)
     fixed[1, [0, 2]] = False
     forces, mode = np.zeros((3, 3)), np.zeros((3, 3))
