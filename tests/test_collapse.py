@@ -181,3 +181,19 @@ def test_the_analytic_hinge_hessian_is_the_complex_step_of_the_gradient():
     damaged = _elements.dihedral_hessian(x)
     damaged[:, :3, 3:6] *= 1 + 1e-9
     assert (np.abs(damaged - exact).max(axis=(1, 2)) / scale).max() > 1e-10
+
+
+def test_the_budget_counts_the_path_before_any_work():
+    from dataclasses import replace
+
+    from curvefold.app._budget import COLLAPSE_SHARE, estimate
+    from curvefold.app._design import default_design
+
+    design = default_design("vault").with_mechanics()
+    linear = estimate(design, files=False).total
+    nonlinear = replace(design, loads=replace(design.loads, nonlinear=True))
+    grows = estimate(nonlinear, files=False).total - linear
+    assert grows > 0
+    # the share is of the part of the mechanics that grows with the model
+    bare = replace(design, loads=None, material=None)
+    assert grows < COLLAPSE_SHARE * (linear - estimate(bare, files=False).total)

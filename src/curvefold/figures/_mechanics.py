@@ -208,10 +208,11 @@ def plot_collapse(collapse: Collapse) -> Figure:
     ax.annotate(
         f"collapse {collapse.factor:.4g} ({collapse.knock_down:.3g} × linear)",
         (w[k], path.factors[k]),
-        xytext=(6, -12),
+        xytext=(-8, 12),
         textcoords="offset points",
         fontsize=8,
         color="C3",
+        ha="right",
     )
     ax.set_xlabel(f"displacement of node {node} along {'xyz'[axis]} (mm, magnitude)", fontsize=9)
     ax.set_ylabel(f"load factor on {collapse.combination}", fontsize=9)
@@ -222,9 +223,12 @@ def plot_collapse(collapse: Collapse) -> Figure:
     ax.legend(fontsize=8, loc="lower right")
     ratio = collapse.imperfection / collapse.span if collapse.span else 0.0
     shown = f"span / {1 / ratio:.0f}" if ratio else "none"
+    import textwrap
+
+    reason = "\n".join(textwrap.wrap(collapse.reason, 90))
     ax.set_title(
         f"Load path to collapse, imperfection {1e3 * collapse.imperfection:.3g} mm ({shown})\n"
-        f"{collapse.reason}",
+        f"{reason}",
         fontsize=9,
     )
     return fig
