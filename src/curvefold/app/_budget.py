@@ -95,6 +95,13 @@ COSTS: dict[str, tuple[float, float, float]] = {
     # estimate of its geometry alone
     "mechanics": (40 * _MB, 8000.0, 0.0),
 }
+#: What ``--nonlinear`` adds to the part of the mechanics that grows with the model, as a share
+#: of it: the path's tangents, assembled whole (its hinges' 12 × 12 blocks and where each entry
+#: lands), their factors, the states kept (:data:`curvefold.mechanics._collapse.STEPS` at most).
+#: Measured on the paper's vault (801 samples, 4 across): the path peaked at 2.03 and 2.07 GB,
+#: 1.31-1.35 GB above ``load``'s 0.72 GB, twice the 0.60 GiB this estimate grows by. Its
+#: estimate, 2.1 GiB, is above the default budget: ``CURVEFOLD_MEMORY_BUDGET=3G`` runs it.
+COLLAPSE_SHARE = 2.0
 #: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
 #: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
 #: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter with what
@@ -213,7 +220,9 @@ def _mechanics(design: Design) -> float:
     kept = panels + 1 if panels else len(model_samples(design.samples, across))
     fixed = _cost("mechanics", 0, 0)
     scale = 1.0 if across == 1 else 0.4 * across**2
-    return fixed + (_cost("mechanics", kept, kept * _strips(design)) - fixed) * scale
+    grows = (_cost("mechanics", kept, kept * _strips(design)) - fixed) * scale
+    nonlinear = design.loads is not None and design.loads.nonlinear
+    return fixed + grows * (1 + COLLAPSE_SHARE if nonlinear else 1)
 
 
 def estimate(design: Design, *, files: bool) -> Estimate:

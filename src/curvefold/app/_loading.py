@@ -38,7 +38,8 @@ of it. The mechanics and SciPy are imported only then.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, cast
 
@@ -51,10 +52,12 @@ from ..mechanics import (
     CREASE_STIFFNESS,
     CRITERIA_SPECS,
     ERROR_TOLERANCE,
+    IMPERFECTION,
     LOAD_CASES,
     MATERIAL,
     MATERIAL_SPECS,
     MATERIALS,
+    NONLINEAR,
     SUPPORTS,
     THICKNESS,
     LoadCase,
@@ -62,10 +65,11 @@ from ..mechanics import (
     SelfWeight,
     error_text,
 )
+from ._loaded_text import _check_words, _finite, _rounded, _vector
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..geometry._structure import Structure
-    from ..mechanics import AtlasLoad, Criteria, LoadResult, Verdict
+    from ..mechanics import AtlasLoad, Collapse, Criteria, LoadResult, Verdict
 
 __all__ = [
     "MATERIAL_SECTION",
@@ -82,10 +86,13 @@ __all__ = [
     "magnification",
     "DEFAULT_MATERIAL",
     "MAX_CASES",
+    "PROGRESS",
 ]
 
 #: The material of a design that names none and gives no values of its own.
 DEFAULT_MATERIAL = "polypropylene"
+#: What :func:`analyse` calls with the collapse path after every state (a progress bar), if set.
+PROGRESS: ContextVar[Callable[[Any], None] | None] = ContextVar("PROGRESS", default=None)
 #: Most ``[[loads.case]]`` entries a design may list.
 MAX_CASES = 1000
 _OWN = tuple(s.name for s in MATERIAL_SPECS)  # youngs_modulus, poisson, density, strength
@@ -162,6 +169,8 @@ LOADS_SECTION: tuple[Spec, ...] = (
     ),
     *CRITERIA_SPECS,
     ACROSS,
+    NONLINEAR,
+    IMPERFECTION,
 )
 
 
@@ -233,6 +242,8 @@ class LoadParams:
     buckling_safety: float = _CRITERIA["buckling_safety"].default
     deflection_limit: float | None = _CRITERIA["deflection_limit"].default
     across: int = ACROSS.default
+    nonlinear: bool = False
+    imperfection: float = IMPERFECTION.default
     case: tuple[LoadCase, ...] | None = None
 
     def criteria(self) -> Criteria:
@@ -346,6 +357,10 @@ class Loaded:
         The estimated relative error of every figure that depends on the mesh, from the
         model on half the elements across (:func:`curvefold.mechanics.figure_errors`);
         empty with one element across.
+    collapse : Collapse or None
+        The governing combination followed to collapse (``nonlinear``,
+        :func:`curvefold.mechanics.collapse`); the verdict's stability check then takes the
+        smaller of its collapse and linear factors.
     """
 
     result: LoadResult
@@ -354,6 +369,7 @@ class Loaded:
     supported: str
     verdict: Verdict
     errors: Mapping[str, float | list[float]] = field(default_factory=dict)
+    collapse: Collapse | None = None
 
     @property
     def size(self) -> float:
@@ -455,6 +471,7 @@ class Loaded:
                 "mode_amplitude": self.mode_amplitude,
                 "notes": self.notes(),
             }
+            | ({} if self.collapse is None else {"collapse": self.collapse.to_dict()})
         )
 
     def reactions_by_end(self) -> dict[str, list[float]]:
@@ -518,6 +535,7 @@ class Loaded:
                 else f"{factor:.4g}{pm('buckling_factor')}"
                 + ("" if d["buckling_resolved"] else " (not resolved at these samples)"),
             ),
+            *([] if self.collapse is None else [("collapse_factor", self.collapse.text())]),
             ("fold_mode_gap", f"{d['fold_mode_gap']:.4g}{pm('fold_mode_gap')}"),
             ("soft_modes", str(d["soft_modes"])),
             (
@@ -562,43 +580,16 @@ class Loaded:
             f"deflection × {self.deflection_scale:g}": self.deflection_scale
             * at(r.static.displacements)
         }
+        c = self.collapse
+        if c is not None:  # the imperfect shape at collapse, moved from the shape as built
+            moved = c.shape + c.path.displacements[c.at_collapse]
+            scale = magnification(float(np.linalg.norm(moved, axis=1).max()), self.size)
+            out[f"collapse at {c.factor:.4g} × {c.combination} × {scale:g}"] = scale * at(moved)
         for k in range(min(modes, len(r.modes.eigenvalues))):
             out[f"mode {k + 1} ({r.modes.frequencies[k]:.3g} Hz)"] = self.mode_amplitude * at(
                 r.modes.shapes[k]
             )
         return out
-
-
-def _finite(value: float) -> float | None:
-    return value if math.isfinite(value) else None
-
-
-def _vector(values: Sequence[float] | np.ndarray, scale: Sequence[float] | np.ndarray) -> str:
-    """[x, y, z] with the rounding of forces that balance ``scale`` shown as 0."""
-    shown = _rounded(np.asarray(values, float).tolist(), float(np.abs(scale).max(initial=0.0)))
-    return "[" + ", ".join(f"{x:.6g}" for x in shown) + "]"
-
-
-def _check_words(check: Any) -> str:
-    """A check's value, limit, utilisation and combination for the terminal."""
-    mark = "ok" if check.passed else "FAILS"
-    if check.name == "stability":
-        value = "none" if math.isinf(check.value) else f"{check.value:.4g}"
-        what = f"buckling factor {value}, {check.limit:g} required"
-    else:
-        scale, unit = (1e-6, "MPa") if check.unit == "Pa" else (1e3, "mm")
-        what = f"{check.value * scale:.4g} {unit} of {check.limit * scale:.4g} {unit}"
-    return (
-        f"{mark}: utilisation {check.utilisation:.3g}{error_text(check.error)} "
-        f"({what}; {check.combination}; {check.basis})"
-    )
-
-
-def _rounded(values: Sequence[float], scale: float) -> np.ndarray:
-    """Values with what is below 1e-9 of ``scale`` (the rounding of forces that balance a load of
-    that size) shown as 0."""
-    v = np.asarray(values, float)
-    return np.where(np.abs(v) <= 1e-9 * abs(scale), 0.0, v) + 0.0
 
 
 def _sheet(params: MaterialParams):
@@ -649,17 +640,18 @@ def analyse(
 
     fine, coarse = loads.across, loads.across // 2
     result, verdict = at(fine)
-    if not coarse:
-        return Loaded(result, material, loads, supported, verdict)
-    before, before_verdict = at(coarse)
-    return Loaded(
-        result,
-        material,
-        loads,
-        supported,
-        check_errors(before_verdict, verdict, (coarse, fine)),
-        figure_errors(before, result),
-    )
+    errors: dict = {}
+    if coarse:
+        before, before_verdict = at(coarse)
+        verdict = check_errors(before_verdict, verdict, (coarse, fine))
+        errors = figure_errors(before, result)
+    if not loads.nonlinear:
+        return Loaded(result, material, loads, supported, verdict, errors)
+    from ..mechanics import collapse
+    from ..mechanics._collapse import judged
+
+    path = collapse(result, verdict, imperfection=loads.imperfection, stop=PROGRESS.get())
+    return Loaded(result, material, loads, supported, judged(verdict, path), errors, path)
 
 
 def atlas_load(

@@ -262,6 +262,10 @@ def write_outputs(
             design_text = design_toml(made)
             atomic_write(tmp / DESIGN_FILE, design_text)
             written.append(DESIGN_FILE)
+            collapsed = built.mechanics and built.mechanics.collapse
+            if collapsed:  # --nonlinear: the load path to collapse as data
+                atomic_write(tmp / "collapse.csv", collapsed.csv())
+                written.append("collapse.csv")
             report = (
                 dict(payload, timings={}, parameters=parameter_rows(made))
                 | products.resolution(built)

@@ -607,6 +607,8 @@ def _figures(built: Built) -> dict[str, Callable]:
             ),
             "modes": partial(mechanics.plot_modes, loaded.result, amplitude=loaded.mode_amplitude),
         }
+        if loaded.collapse is not None:  # --nonlinear: the load path to collapse
+            figures["collapse"] = partial(mechanics.plot_collapse, loaded.collapse)
     return figures
 
 

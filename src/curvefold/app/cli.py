@@ -70,7 +70,10 @@ def cmd_load(args: argparse.Namespace) -> int:
     design = _fit_targets(design, args).with_mechanics()  # the output checked first
     require_budget(design, files=target is not None)
     built = build(design)
-    loaded = built.mechanics
+    from ._collapse_bar import collapse_progress
+
+    with collapse_progress(not args.json):  # a bar while --nonlinear follows the path
+        loaded = built.mechanics
     if loaded is None:  # with_mechanics gave it material and loads
         raise InputError(f"{design.source}: a {design.kind} design is not analysed under load")
     head = {

@@ -25,9 +25,9 @@ from ._views import _draw, _fit, _scale_bar
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-    from ..mechanics import LoadResult
+    from ..mechanics import Collapse, LoadResult
 
-__all__ = ["plot_deflection", "plot_modes", "field_scene"]
+__all__ = ["plot_deflection", "plot_modes", "plot_collapse", "field_scene"]
 
 #: The colour maps of the displacement and of the modes' amplitude.
 DEFLECTION_MAP, MODE_MAP = "viridis", "plasma"
@@ -174,4 +174,61 @@ def plot_modes(
     )
     scale, unit = length_unit(amplitude)
     _colorbar(fig, fig.axes, MODE_MAP, scale * amplitude, f"displacement ({unit})")
+    return fig
+
+
+def plot_collapse(collapse: Collapse) -> Figure:
+    """The load–displacement curve of a collapse path: the load factor on its combination against
+    the control displacement (mm, drawn growing to the right), stable states filled, the
+    collapse factor and the linear buckling factor marked."""
+    path = collapse.path
+    w = 1e3 * path.control_displacement
+    w = w * (-1.0 if w[np.argmax(np.abs(w))] < 0 else 1.0)
+    node, axis = divmod(path.control, 3)
+    fig = new_figure(figsize=(6.4, 4.4))
+    ax = fig.add_subplot()
+    ax.plot(w, path.factors, "-", color="0.35", lw=1.2, zorder=1)
+    stable = np.asarray(path.stable, bool)
+    ax.plot(w[stable], path.factors[stable], "o", ms=3.5, color="C0", label="stable state")
+    ax.plot(
+        w[~stable], path.factors[~stable], "o", ms=3.5, mfc="white", color="C3", label="unstable"
+    )
+    ax.axhline(collapse.linear_factor, color="C2", ls="--", lw=1.0)
+    ax.annotate(
+        f"linear buckling factor {collapse.linear_factor:.4g}",
+        (0.02, collapse.linear_factor),
+        xycoords=("axes fraction", "data"),
+        xytext=(0, 3),
+        textcoords="offset points",
+        fontsize=8,
+        color="C2",
+    )
+    k = collapse.at_collapse
+    ax.plot([w[k]], [path.factors[k]], "*", ms=11, color="C3", zorder=3)
+    ax.annotate(
+        f"collapse {collapse.factor:.4g} ({collapse.knock_down:.3g} × linear)",
+        (w[k], path.factors[k]),
+        xytext=(-8, 12),
+        textcoords="offset points",
+        fontsize=8,
+        color="C3",
+        ha="right",
+    )
+    ax.set_xlabel(f"displacement of node {node} along {'xyz'[axis]} (mm, magnitude)", fontsize=9)
+    ax.set_ylabel(f"load factor on {collapse.combination}", fontsize=9)
+    ax.set_ylim(0, 1.12 * max(collapse.linear_factor, float(path.factors.max())))
+    ax.set_xlim(left=0)
+    ax.tick_params(labelsize=8)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    ratio = collapse.imperfection / collapse.span if collapse.span else 0.0
+    shown = f"span / {1 / ratio:.0f}" if ratio else "none"
+    import textwrap
+
+    reason = "\n".join(textwrap.wrap(collapse.reason, 90))
+    ax.set_title(
+        f"Load path to collapse, imperfection {1e3 * collapse.imperfection:.3g} mm ({shown})\n"
+        f"{reason}",
+        fontsize=9,
+    )
     return fig

@@ -35,7 +35,7 @@ of their names is first used.
 
 import importlib
 
-from . import _across, _convergence, _loadcase, _materials, _supports, _verdict
+from . import _across, _collapse, _convergence, _loadcase, _materials, _supports, _verdict
 from ._cases import HalfSnow, PointLoad, SelfWeight, Snow, Wind, ZonedWind
 from ._combinations import Combination, combinations
 from ._convergence import check_errors, figure_errors
@@ -44,6 +44,11 @@ from ._loads import Loads
 from ._materials import Material, material
 from ._supports import Supports
 from ._verdict import Check, Criteria, Verdict, assess, error_text
+
+#: The check of --nonlinear's imperfection, a fraction of the span (:func:`collapse`).
+IMPERFECTION = _collapse.IMPERFECTION
+#: The check of --nonlinear, whether the verdict follows its combination to collapse.
+NONLINEAR = _collapse.NONLINEAR
 
 #: Standard gravity, m/s².
 G = _loadcase.G
@@ -94,6 +99,8 @@ _LAZY = {
     "deploy": "_deploy",
     "Deployment": "_deploy",
     "DeployError": "_deploy",
+    "Collapse": "_collapse",
+    "collapse": "_collapse",
 }
 
 __all__ = [
@@ -152,6 +159,10 @@ __all__ = [
     "deploy",
     "Deployment",
     "DeployError",
+    "Collapse",
+    "collapse",
+    "IMPERFECTION",
+    "NONLINEAR",
 ]
 
 

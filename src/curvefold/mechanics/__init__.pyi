@@ -11,6 +11,10 @@ from ._cases import SelfWeight as SelfWeight
 from ._cases import Snow as Snow
 from ._cases import Wind as Wind
 from ._cases import ZonedWind as ZonedWind
+from ._collapse import IMPERFECTION as IMPERFECTION
+from ._collapse import NONLINEAR as NONLINEAR
+from ._collapse import Collapse as Collapse
+from ._collapse import collapse as collapse
 from ._combinations import Combination as Combination
 from ._combinations import combinations as combinations
 from ._convergence import TOLERANCE as ERROR_TOLERANCE
@@ -113,4 +117,8 @@ __all__ = [
     "deploy",
     "Deployment",
     "DeployError",
+    "Collapse",
+    "collapse",
+    "IMPERFECTION",
+    "NONLINEAR",
 ]

@@ -25,9 +25,10 @@ are ``C̃ᵀ S δ̃`` and their tangent ``C̃ᵀ S C̃ + Σ_b (S δ̃)_b ∂²δ
 **Hinges.** θ is the exact dihedral angle (:func:`._elements.dihedral_angle`) and
 θ − θ(X) is taken in (−π, π] (a hinge turns by less than a half turn from its rest
 angle). Its gradient is :func:`._elements.dihedral_gradient` (Liu and Paulino's formulas in
-the module's notation), its Hessian :func:`._elements.dihedral_hessian` (a complex step of
-the analytic gradient: exact to rounding); a hinge's moment is M = k Δθ, its forces M ∇θ
-and its tangent ``k ∇θ ∇θᵀ + M ∇²θ``.
+the module's notation), its Hessian :func:`._elements.dihedral_hessian` (analytic, vectorised
+over the hinges; equal to a complex step of the gradient to rounding); a hinge's moment is
+M = k Δθ, its forces M ∇θ and its tangent ``k ∇θ ∇θᵀ + M ∇²θ``. The tangent's sparse pattern
+is found once per model and each assembly sums the blocks into it.
 
 At u = 0 every stress and moment vanishes and C̃ = C, J̃ = J: the tangent is the linear
 model's stiffness Cᵀ S C + Jᵀ diag(k) J (equal to 2e-16 relative, measured in the tests).
@@ -195,7 +196,7 @@ def tangent(model: BarHingeModel, u: np.ndarray) -> sp.csr_matrix:
             hinge[moving] += moments[moving, None, None] * _elements.dihedral_hessian(xh[moving])
         blocks.append(hinge)
         elements.append(model.hinges)
-    K = _assemble_blocks(blocks, elements, dofs)
+    K = _assemble_blocks(blocks, elements, dofs, model)
     if membranes:  # the membranes couple their bars: C̃ᵀ S C̃ on the sparse rows
         Ct = rows_matrix(rows.reshape(-1, 2, 3), model.bars, dofs)
         K = (K + Ct.T @ S @ Ct).tocsr()
@@ -207,10 +208,34 @@ def tangent(model: BarHingeModel, u: np.ndarray) -> sp.csr_matrix:
 _SPREAD = np.kron(np.array([[1.0, -1.0], [-1.0, 1.0]]), np.eye(3))
 
 
-def _assemble_blocks(blocks: list[np.ndarray], elements: list[np.ndarray], dofs: int):
-    """Σ of element blocks (N, 3m, 3m) on their nodes (N, m), of several kinds, in one build."""
+def _assemble_blocks(
+    blocks: list[np.ndarray], elements: list[np.ndarray], dofs: int, model: BarHingeModel
+):
+    """Σ of element blocks (N, 3m, 3m) on their nodes (N, m), of several kinds, in one build: the
+    sum of each block entry into its place of the matrix's pattern, found once per model."""
+    pattern = model.__dict__.get("_tangent_pattern")  # cached like a cached_property
+    if pattern is None or pattern[0] != [len(e) for e in elements]:
+        pattern = model.__dict__["_tangent_pattern"] = ([len(e) for e in elements],) + _pattern(
+            elements, dofs
+        )
+    _, place, indptr, indices = pattern
+    vals = np.concatenate([b.ravel() for b in blocks])
+    data = np.bincount(place, weights=vals, minlength=len(indices))
+    return sp.csr_matrix((data, indices, indptr), shape=(dofs, dofs))
+
+
+def _pattern(elements: list[np.ndarray], dofs: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where every entry of the element blocks lands in the CSR data of their sum (its place),
+    and the sum's indptr and (sorted) column indices."""
     index = [dof_index(e) for e in elements]
     rows = np.concatenate([np.repeat(i, i.shape[1], axis=1).ravel() for i in index])
     cols = np.concatenate([np.tile(i, (1, i.shape[1])).ravel() for i in index])
-    vals = np.concatenate([b.ravel() for b in blocks])
-    return sp.csr_matrix((vals, (rows, cols)), shape=(dofs, dofs))
+    flat = rows.astype(np.int64) * dofs + cols
+    order = np.argsort(flat, kind="stable")
+    ordered = flat[order]
+    new = np.concatenate([[True], ordered[1:] != ordered[:-1]])
+    place = np.empty(len(flat), np.int64)
+    place[order] = np.cumsum(new) - 1
+    first = ordered[new]
+    indptr = np.searchsorted(first // dofs, np.arange(dofs + 1))
+    return place, indptr, (first % dofs).astype(np.int32)

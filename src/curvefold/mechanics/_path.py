@@ -35,6 +35,7 @@ strain, 2.1e-3, 10 to 14 times faster than MERLIN under Octave.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,6 +64,7 @@ AIM = 4
 MAX_FACTOR = Spec("max_factor", "real", range="(0, inf)", help="the largest load factor")
 FIRST = Spec("first", "real", range="(0, inf)", help="the first step's load factor")
 TOLERANCE = Spec("tolerance", "real", range="[1e-14, 1e-2]", why="rounding to rough")
+GROWTH = Spec("growth", "real", range="[1, 1e6]", help="the largest step over the first")
 MAX_DISPLACEMENT = Spec("max_displacement", "real", range="(0, inf)", unit="m")
 
 
@@ -197,6 +199,9 @@ def follow_load(
     method: str = "displacement",
     tolerance: float = 1e-10,
     max_iterations: int = 20,
+    stop: Callable[[LoadPath], bool] | None = None,
+    growth: float = GROWTH_LIMIT,
+    modified: bool = False,
 ) -> LoadPath:
     """Follow the equilibrium of a model under the loads λ · ``forces`` from λ = 0 (module notes).
 
@@ -226,6 +231,16 @@ def follow_load(
         displacement (where stiff bars round the residual above the first).
     max_iterations : int, keyword-only
         Newton iterations per try of a step.
+    stop : callable, keyword-only
+        Called with the path after every state (a progress bar's hook); the path ends
+        there when it returns true.
+    growth : float, keyword-only
+        The largest step, as a multiple of the first (≥ 1).
+    modified : bool, keyword-only
+        Modified Newton: a step's corrections solve with the factor of its predictor's
+        tangent, factorised again only where the residual falls by less than half in an
+        iteration (each iteration then costs a residual and two solves, not an assembly
+        and a factorisation); the states are the same equilibria, to the tolerance.
 
     Returns
     -------
@@ -275,6 +290,7 @@ def follow_load(
     max_factor = MAX_FACTOR.check(max_factor)
     first = max_factor / steps if first is None else FIRST.check(first)
     tolerance = TOLERANCE.check(tolerance)
+    growth = GROWTH.check(growth)
     if max_displacement is not None:
         max_displacement = MAX_DISPLACEMENT.check(max_displacement)
     if method not in METHODS:
@@ -344,6 +360,7 @@ def follow_load(
                 scale,
                 max(first, abs(lam) + abs(dlam)),
                 max_iterations,
+                (solver, up) if modified else None,
             )
             if trial is not None:
                 break
@@ -354,19 +371,22 @@ def follow_load(
                     f"iterations, even on a step of 2^-{HALVINGS} of the first"
                     + (" (load control cannot pass a limit point)" if method == "load" else "")
                 )
-        u, lam, its = trial
+        u, lam, its, fresh = trial
         prev = up
         states.append(u.copy())
         factors.append(lam)
         stable.append(True)
         iterations.append(its)
+        effort = fresh + 1 if modified else its  # modified: the factorisations count
         step_size = min(
-            step_size * (1.5 if its <= AIM else 0.7 if its > 2 * AIM else 1.0),
-            GROWTH_LIMIT * first,
+            step_size * (1.5 if effort <= AIM else 0.7 if effort > 2 * AIM else 1.0),
+            growth * first,
         )
         if lam >= max_factor or (
             max_displacement is not None and abs(u[control]) >= max_displacement
         ):
+            break
+        if stop is not None and stop(path()):
             break
     stable[-1] = _factor(tangent(model, u)[free][:, free])[1]
     return path()
@@ -385,25 +405,36 @@ def _step(
     scale: float,
     level: float,
     max_iterations: int,
-) -> tuple[np.ndarray, float, int] | None:
-    """One step from (u0, λ0) along a predictor; the converged (u, λ, iterations), or None."""
+    held: tuple | None = None,
+) -> tuple[np.ndarray, float, int, int] | None:
+    """One step from (u0, λ0) along a predictor; the converged (u, λ, iterations, tangents
+    factorised), or None. ``held``: the predictor's solver and its solve of F, for modified
+    Newton."""
     u = u0.copy()
     u[free] += predictor
     lam = lam0 + dlam
+    before, fresh = np.inf, 0
     for k in range(1, max_iterations + 1):
         r = lam * F - internal_forces(model, u)[free]
         if not np.isfinite(r).all():
             return None
-        if np.linalg.norm(r) <= tolerance * scale * max(level, abs(lam)):
-            return u, lam, k - 1
-        solver, _ = _factor(tangent(model, u)[free][:, free])
-        if solver is None:
-            return None
+        size = float(np.linalg.norm(r))
+        if size <= tolerance * scale * max(level, abs(lam)):
+            return u, lam, k - 1, fresh
+        if held is None or size > 0.5 * before:
+            fresh += 1
+            solver, _ = _factor(tangent(model, u)[free][:, free])
+            if solver is None:
+                return None
+            held = None if held is None else (solver, solver.solve(F))
+        else:
+            solver = held[0]
+        before = size
         ur = solver.solve(r)
         if method == "load":
             d, dl = ur, 0.0
         else:
-            uf = solver.solve(F)
+            uf = solver.solve(F) if held is None else held[1]
             dl = -(predictor @ ur) / (predictor @ uf)
             d = ur + dl * uf
         u[free] += d
@@ -412,5 +443,5 @@ def _step(
         if np.linalg.norm(u[free] - u0[free] - predictor) > np.linalg.norm(predictor):
             return None  # corrected farther than the step went: a jump off the path
         if np.linalg.norm(d) <= tolerance * step:
-            return u, lam, k  # the correction is at rounding: stiff bars cannot do better
+            return u, lam, k, fresh  # the correction is at rounding: stiff bars cannot do better
     return None
