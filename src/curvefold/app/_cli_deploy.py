@@ -32,7 +32,7 @@ _SKIPPED = ("loads", "output")
 
 
 def _deploy_specs():
-    from ..mechanics._deploy import DEPLOY_SUPPORTS, REST_ANGLE, START, STEP
+    from ..mechanics._deploy_specs import DEPLOY_SUPPORTS, REST_ANGLE, START, STEP
 
     return {
         "step": STEP,

@@ -57,6 +57,7 @@ from ..kernel._errors import ConvergenceError, InputError
 from ..kernel._validate import Spec, check_integer
 from . import _elements
 from ._deploy_solve import Energy, first_state, next_state
+from ._deploy_specs import DEPLOY_SUPPORTS, REST_ANGLE, START, STEP
 from ._materials import Material
 from ._model import CREASES, BarHingeModel
 from ._structures import StructureModel
@@ -76,45 +77,6 @@ __all__ = [
 GRAVITY = 9.80665
 #: A step that does not converge is halved at most this many times.
 HALVINGS = 6
-DEPLOY_SUPPORTS = Spec(
-    "supports",
-    "choice",
-    "feet",
-    choices=("feet", "foot"),
-    help="how the structure is held while it folds: feet (both end sections carried along "
-    "the folding motion) or foot (the first end section alone, the far end free)",
-    label="supports while deploying",
-)
-STEP = Spec(
-    "step",
-    "real",
-    1.0,
-    "[0.05, 10]",
-    "degrees",
-    help="step of the fold angle 2α along the deployment",
-    why="finer steps resolve nothing more; coarser ones lose the warm start",
-    label="deployment step",
-)
-REST_ANGLE = Spec(
-    "rest_angle",
-    "real",
-    None,
-    "(0, 180)",
-    "degrees",
-    help="fold angle 2α at which the creases are at rest (default the design angle)",
-    why="a crease creased flat or through would have no angle to rest at",
-    label="creases' rest angle",
-)
-START = Spec(
-    "start",
-    "real",
-    10.0,
-    "(0, 180)",
-    "degrees",
-    help="fold angle 2α of the first state of the deployment",
-    why="the flat state is degenerate (module notes)",
-    label="deployment start",
-)
 TOLERANCE = Spec("tolerance", "real", 1e-9, "[1e-14, 1e-3]", why="rounding to rough")
 
 

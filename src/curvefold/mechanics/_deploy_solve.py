@@ -66,7 +66,7 @@ class Energy:
         M = self.moments(m.nodes + u.reshape(-1, 3))
         blocks = m.hinge_stiffness[:, None, None] * g[:, :, None] * g[:, None, :]
         blocks = blocks + M[:, None, None] * _elements.dihedral_hessian(xh)
-        return (K + _assemble_blocks([blocks], [m.hinges], m.dofs)).tocsr()
+        return (K + _assemble_blocks([blocks], [m.hinges], m.dofs, m)).tocsr()
 
     def energy(self, u: np.ndarray) -> float:
         m = self.model
