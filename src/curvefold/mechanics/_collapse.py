@@ -32,7 +32,7 @@ equilibrium path, often below λ_cr (the knock-down). :func:`collapse` measures 
   largest reached, a lower bound of the collapse load.
 
 Measured (``tests/test_collapse.py``): Koiter's strut (a rigid bar pinned at its foot, its
-head held sideways by a spring; :func:`_strut`), tilted by 1e-2, 1e-3 and 1e-4 of its length,
+head held sideways by a spring; ``_strut``), tilted by 1e-2, 1e-3 and 1e-4 of its length,
 collapses 1.6e-4, 4.5e-5 and 3.9e-5 below its exact load, and its knock-down shrinks by 4.59
 and 4.67 per decade of the tilt (Koiter's law for an unstable symmetric bifurcation:
 10^(2/3) = 4.64); perfect, its path finds the bifurcation at the linear factor to 1e-3.
@@ -131,9 +131,10 @@ class Collapse:
 
     Examples
     --------
-    Koiter's strut (:func:`_strut`: λ_cr = 100 N), tilted by a thousandth of its length,
+    Koiter's strut (``_strut``: λ_cr = 100 N), tilted by a thousandth of its length,
     collapses at its exact 98.504 N (its steps resolve 98.499):
 
+    >>> from curvefold.mechanics._collapse import _strut
     >>> c = _strut(1e-3)
     >>> round(c.factor, 3), round(c.knock_down, 4), c.limit_reached
     (98.499, 0.985, True)
@@ -189,6 +190,7 @@ class Collapse:
 
         Examples
         --------
+        >>> from curvefold.mechanics._collapse import _strut
         >>> _strut(1e-3).csv().splitlines()[:2]
         ['state,load_factor,control_displacement_mm_node_1_x,stable', '0,0,0,1']
         """
@@ -217,6 +219,7 @@ class Collapse:
 
         Examples
         --------
+        >>> from curvefold.mechanics._collapse import _strut
         >>> d = _strut(1e-3).to_dict()
         >>> d["imperfection"], d["control"], d["limit_reached"]
         (0.001, {'node': 1, 'axis': 'x'}, True)
@@ -242,6 +245,7 @@ class Collapse:
 
         Examples
         --------
+        >>> from curvefold.mechanics._collapse import _strut
         >>> _strut(1e-3).text()[:60]
         '98.5 on the load, 0.985 × the linear factor 100 (imperfectio'
         """
