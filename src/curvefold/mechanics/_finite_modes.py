@@ -14,11 +14,11 @@ that stretches at first order and as ε⁴ exactly for every soft mode, a motion
 straight line leaves a curved path at second order.
 
 **Relaxed**, U_s minimised over every displacement whose projection on φ is ε and on the
-held directions (by default the six rigid motions at the reference) is zero: Newton's method
-(a trust region on the exact Hessian, dense, in the complement of the held directions). A
+held directions (by default the rigid motions and the other soft modes) is zero, over the
+stiff directions: Newton's method with Levenberg's damping on the exact Hessian, dense. A
 soft mode that is rigid at second order (its second-order stretching not compensated by any
 correction) still grows as ε⁴; one that starts a finite motion (the rigid folding) relaxes to
-rounding (U_s at 1e-20 of its value along the line, measured in the tests); a stiff
+rounding (U_s at 1e-15 of its value along the line, measured in the tests); a stiff
 direction grows as ε².
 
 The exponent is the slope of log U_s against log ε, fitted by least squares over the
@@ -32,6 +32,7 @@ import numpy as np
 from ..kernel._errors import InputError
 from ._model import BarHingeModel
 from ._nonlinear import _bar_rows, _lengths, elongations
+from ._softmodes import soft_modes
 from ._sparse import assemble, rows_matrix
 
 __all__ = ["mode_energy_exponent", "stretching_energy", "rigid_motions"]
@@ -95,20 +96,21 @@ def mode_energy_exponent(
     ----------
     model : BarHingeModel
     mode : (P, 3) or (3P,) array_like
-        The direction; its part in the held directions is removed, and it is scaled to a
-        largest nodal displacement of 1.
+        The direction, free of rigid motions; scaled to a largest nodal displacement of 1.
     amplitudes : (n,) array_like
         ε, the largest nodal displacement, m, at least two, positive.
     held : (k, P, 3) or (k, 3P) array_like, optional, keyword-only
-        Directions whose projections stay zero (supports: unit vectors on their DOFs);
-        by default the six rigid motions (:func:`rigid_motions`).
+        Directions whose projections stay zero, taken orthogonal to the mode (supports: unit
+        vectors on their DOFs); by default the null space of the bars
+        (:func:`._softmodes.soft_modes`: the rigid motions and the other soft modes), so that
+        the relaxation runs over the stiff directions only.
 
     Returns
     -------
     exponents : (2,) ndarray
         The slopes of log U_s against log ε (least squares): along the mode, relaxed; the
         relaxed one NaN where U_s relaxes to :data:`FINITE` of its value along the mode or
-        less (a finite motion).
+        less at every amplitude (a finite motion).
     energies : (2, n) ndarray
         U_s along the mode and relaxed at each amplitude, J.
 
@@ -142,19 +144,25 @@ def mode_energy_exponent(
     m = np.asarray(mode, float).ravel()
     if m.size != dofs:
         raise InputError(f"mode must have {dofs} entries (3 per node), got {m.size}")
-    H = rigid_motions(model.nodes) if held is None else np.asarray(held, float).reshape(-1, dofs)
-    q, _ = np.linalg.qr(H.T)
-    m = m - q @ (q.T @ m)
     size = float(np.abs(m).max())
-    if size <= 1e-12 * np.linalg.norm(np.asarray(mode, float)):
-        raise InputError("mode lies in the held directions: nothing to follow")
+    if not np.isfinite(size) or size == 0:
+        raise InputError("mode must be finite and not zero")
     m = m / size
+    if held is None:
+        null = soft_modes(model).shapes
+        H = null.reshape(len(null), dofs)
+    else:
+        H = np.asarray(held, float).reshape(-1, dofs)
+    unit = m / np.linalg.norm(m)
+    H = H - np.outer(H @ unit, unit)  # the mode keeps its own amplitude
+    U, s, _ = np.linalg.svd(H.T, full_matrices=False)
+    q = U[:, s > 1e-9 * max(float(s.max(initial=0.0)), 1e-300)]
     full, _ = np.linalg.qr(np.column_stack([q, m]), mode="complete")
     N = full[:, q.shape[1] + 1 :]  # the relaxed directions
     along = np.array([stretching_energy(model, e * m) for e in eps])
     relaxed = np.array([_relax(model, e * m, N, a) for e, a in zip(eps, along)])
     exponents = [_slope(eps, along), _slope(eps, relaxed)]
-    if np.any(relaxed <= FINITE * along):
+    if np.all(relaxed <= FINITE * along):
         exponents[1] = np.nan  # a finite motion: rounding, no power law
     return np.array(exponents), np.array([along, relaxed])
 
