@@ -119,6 +119,24 @@ def test_a_stiff_direction_stretches_as_the_square(tube):
     assert np.abs(exponents - 2).max() < 1e-3 and (energies[1] / energies[0]).min() > 1e-3
 
 
+def test_every_soft_mode_of_a_single_fold_is_a_finite_motion():
+    """The single fold at 8 panels: its 2N + 1 = 17 soft modes (the rulings' drift) all relax to
+    rounding (≤ 9e-15 of the line's, asserted 1e-12) at ε = 0.1 to 10 mm. At 30 mm four of them
+    stop at 1e-7 to 1e-3: past its reach the held projections no longer meet the motions."""
+    curve = SpaceCurve.from_curvature(
+        lambda s: 1 + 0.3 * np.sin(s), lambda s: 0.2 + 0.3 * np.cos(s), 3.0, samples=161
+    )
+    lattice = Lattice.from_crease(Crease.from_curve(curve, fold_angle=90), 0.1, 0.08)
+    sm = StructureModel.from_state(
+        Structure.tube(PanelLattice.from_lattice(lattice, 8)).state(), PP, 1e-3, sheets=(0,)
+    )
+    folding, others = _split(sm)
+    assert len(others) == 16
+    for mode in (folding, *others):
+        exponents, energies = mode_energy_exponent(sm.model, mode, np.geomspace(1e-4, 1e-2, 3))
+        assert abs(exponents[0] - 4) < 1e-6 and np.isnan(exponents[1]), exponents
+
+
 def test_user_errors():
     bar = taut_bar()
     with pytest.raises(InputError, match="amplitudes"):
