@@ -40,7 +40,7 @@ __all__ = ["mode_energy_exponent", "stretching_energy", "rigid_motions"]
 #: Relaxed over along below which the mode is a finite motion (reached: 1e-14, the stop).
 FINITE = 1e-12
 
-#: Newton steps at most per amplitude (the tests' converge in 2 to 7).
+#: Newton steps at most per amplitude (the tests' cases take 2 to 7).
 MAX_ITERATIONS = 50
 
 _BAR_BLOCK = np.kron(np.array([[1.0, -1.0], [-1.0, 1.0]]), np.eye(3))
