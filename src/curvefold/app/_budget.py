@@ -97,7 +97,7 @@ COSTS: dict[str, tuple[float, float, float]] = {
 }
 #: What ``--nonlinear`` adds to the part of the mechanics that grows with the model, as a share
 #: of it: the path's tangents, assembled whole (its hinges' 12 × 12 blocks and where each entry
-#: lands), their factors, the states kept (:data:`curvefold.mechanics._collapse.STEPS` at most).
+#: lands), their factors, the states kept (``curvefold.mechanics._collapse.STEPS`` at most).
 #: Measured on the paper's vault (801 samples, 4 across): the path peaked at 2.03 and 2.07 GB,
 #: 1.31-1.35 GB above ``load``'s 0.72 GB, twice the 0.60 GiB this estimate grows by. Its
 #: estimate, 2.1 GiB, is above the default budget: ``CURVEFOLD_MEMORY_BUDGET=3G`` runs it.

@@ -1,5 +1,5 @@
 """The progress bar of a collapse path (``--nonlinear``): the states found and the load factor
-reached, on stderr when it is a terminal (:func:`curvefold.app._outputs._bar`)."""
+reached, on stderr when it is a terminal (``curvefold.app._outputs._bar``)."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ __all__ = ["collapse_progress"]
 @contextmanager
 def collapse_progress(show: bool) -> Iterator[None]:
     """While the block runs, a collapse path (:func:`curvefold.app._loading.analyse`) draws a bar
-    of its states (of at most :data:`curvefold.mechanics._collapse.STEPS`) if ``show`` and
+    of its states (of at most ``curvefold.mechanics._collapse.STEPS``) if ``show`` and
     stderr is a terminal."""
     from ..mechanics._collapse import STEPS
 

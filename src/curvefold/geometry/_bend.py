@@ -145,7 +145,7 @@ def bend_for(material: str, thickness: float, radius: float | None = None) -> Be
 
 def crease_insets(alpha: np.ndarray, bend: Bend) -> tuple[np.ndarray, np.ndarray]:
     """Bend allowance and inset along a crease whose fold angle is 2α(s) (α in radians, a
-    crease's :meth:`~curvefold.geometry.Crease.alpha` at its samples): (BA(s), δ(s)), model
+    crease's ``alpha`` at its samples): (BA(s), δ(s)), model
     units, each measured across the crease.
 
     Examples

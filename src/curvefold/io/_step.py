@@ -120,7 +120,7 @@ def _quiet() -> Iterator[None]:
 
 def check_solid(shape: Any) -> str | None:
     """Why a shape is not one valid closed solid of positive volume (None if it is): OpenCascade's
-    checks (:class:`BRepCheck_Analyzer`), its shells closed (every edge in two faces) and its
+    checks (``BRepCheck_Analyzer``), its shells closed (every edge in two faces) and its
     volume.
 
     Examples

@@ -377,7 +377,7 @@ def deploy(
     samples, across : keyword-only
         As :meth:`StructureModel.from_state`.
     tolerance, max_iterations : keyword-only
-        As :func:`follow_motion`.
+        As ``follow_motion``.
     progress : callable, optional, keyword-only
         ``progress(done, total)`` after every angle.
 
