@@ -505,3 +505,22 @@ def test_the_design_under_load_is_what_curvefold_load_prints(url):
         status, answer = get_json(url + path)
         assert status == 422 and message in answer["error"] and "\n" not in answer["error"], answer
         assert answer["key"] == key, answer
+
+
+def test_the_collapse_controls_come_from_the_schema():
+    """The load panel's checkbox and imperfection field are the ``[loads]`` keys of ``load
+    --nonlinear``, the checkbox in the designer's words; the command line's label is kept."""
+    from curvefold.mechanics import NONLINEAR
+
+    loads = {s["name"]: s for s in api.schema()["sections"]["loads"]}
+    assert loads["nonlinear"]["kind"] == "flag" and loads["nonlinear"]["default"] is False
+    assert loads["nonlinear"]["label"] == "follow to collapse (large displacements)"
+    assert NONLINEAR.label == "collapse analysis"
+    assert loads["imperfection"]["range"] == {
+        "lo": 0.0,
+        "hi": 0.1,
+        "lo_closed": True,
+        "hi_closed": True,
+    }
+    request, _ = api.read_request("vault", {"nonlinear": "true", "imperfection": "0.005"})
+    assert request.design.loads.nonlinear and request.design.loads.imperfection == 0.005

@@ -114,10 +114,14 @@ def _replaces(kind: str) -> dict[str, str]:
     return {} if targets is None else dict(targets.replaces())
 
 
+#: The designer's words for a control where the command line's label is too terse.
+_LABELS = {"nonlinear": "follow to collapse (large displacements)"}
+
+
 def _spec_json(spec: Spec, section: str) -> dict:
     return {
         "name": spec.name,
-        "label": spec.label,
+        "label": _LABELS.get(spec.name, spec.label),
         "section": section,
         "kind": spec.kind,
         "unit": spec.unit,

@@ -172,7 +172,9 @@ async function follow(page, body, started, timing) {
   // the heavy work, said as under way in its panel until its answer comes (or a newer change)
   const working = (id, name, promise) => promise.finally(busy(byId(id).closest("section"), name));
   await Promise.all([
-    loaded && working("mechanics", "Computing the design under load (bar-and-hinge model)",
+    loaded && working("mechanics", state.values.nonlinear === "true"
+      ? "Following the design to collapse (large displacements: slow)"
+      : "Computing the design under load (bar-and-hinge model)",
       when(get("mechanics"), shown(showMechanics, "mechanics"))),
     sheets && working("domain", "Drawing the regression domain",
       when(get("domain.svg", false), (found) => {

@@ -146,6 +146,14 @@ export function showMechanics(state, found) {
   rows.push(row("frequencies",
     "the lowest free modes' frequencies (the first is the folding motion)",
     "lowest free frequencies", lowest, "Hz"));
+  const c = n.collapse; // followed to collapse (large displacements), if asked
+  if (c) {
+    const imperfect = c.imperfection_ratio ? `span / ${Math.round(1 / c.imperfection_ratio)}`
+      : "none";
+    rows.push(row("collapse_factor", `the governing combination (${c.combination}) followed `
+      + `to collapse; imperfection ${imperfect}`, "collapse factor",
+    `${fmt(c.factor)} (${fmt(c.knock_down)} × the linear ${fmt(c.linear_factor)})`, ""));
+  }
   table.replaceChildren(...rows);
   const resolved = n.buckling_resolved ? ""
     : "; the buckling mode is not resolved at these samples";
