@@ -96,9 +96,10 @@ def rotations(model: BarHingeModel, u: np.ndarray) -> np.ndarray:
     1.0
     """
     x = _positions(model, u)
-    turn = _elements.dihedral_angle(x[model.hinges]) - _elements.dihedral_angle(
-        model.nodes[model.hinges]
-    )
+    rest = model.__dict__.get("_rest_angles")  # cached like a cached_property
+    if rest is None:
+        rest = model.__dict__["_rest_angles"] = _elements.dihedral_angle(model.nodes[model.hinges])
+    turn = _elements.dihedral_angle(x[model.hinges]) - rest
     return np.pi - np.mod(np.pi - turn, 2 * np.pi)
 
 
