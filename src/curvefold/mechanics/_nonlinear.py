@@ -28,7 +28,9 @@ angle). Its gradient is :func:`._elements.dihedral_gradient` (Liu and Paulino's 
 the module's notation), its Hessian :func:`._elements.dihedral_hessian` (analytic, vectorised
 over the hinges; equal to a complex step of the gradient to rounding); a hinge's moment is
 M = k Δθ, its forces M ∇θ and its tangent ``k ∇θ ∇θᵀ + M ∇²θ``. The tangent's sparse pattern
-is found once per model and each assembly sums the blocks into it.
+is found once per model and each assembly sums the blocks into it, the hinges' a chunk of
+:data:`CHUNK` at a time (the Hessian of 71,712 hinges at once took 0.80 CPU-s, in chunks
+0.18: its temporaries stay in cache and need no fresh pages).
 
 At u = 0 every stress and moment vanishes and C̃ = C, J̃ = J: the tangent is the linear
 model's stiffness Cᵀ S C + Jᵀ diag(k) J (equal to 2e-16 relative, measured in the tests).
