@@ -197,3 +197,19 @@ def test_the_budget_counts_the_path_before_any_work():
     # the share is of the part of the mechanics that grows with the model
     bare = replace(design, loads=None, material=None)
     assert grows < COLLAPSE_SHARE * (linear - estimate(bare, files=False).total)
+
+
+def test_the_paper_vaults_collapse_is_estimated_within_the_default_budget():
+    from dataclasses import replace
+    from pathlib import Path
+
+    from curvefold.app._budget import DEFAULT_BUDGET, estimate
+    from curvefold.app._design import load_design
+
+    path = Path(__file__).parents[1] / "examples" / "paper-vault.toml"
+    design = load_design(path).with_mechanics()
+    design = replace(design, loads=replace(design.loads, nonlinear=True))
+    total = estimate(design, files=False).total
+    # measured: `curvefold load examples/paper-vault.toml --nonlinear` peaked at 1.72 GiB
+    assert 1.72 * 2**30 <= total <= 1.2 * 1.72 * 2**30
+    assert total < DEFAULT_BUDGET

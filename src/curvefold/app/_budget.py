@@ -96,12 +96,12 @@ COSTS: dict[str, tuple[float, float, float]] = {
     "mechanics": (40 * _MB, 8000.0, 0.0),
 }
 #: What ``--nonlinear`` adds to the part of the mechanics that grows with the model, as a share
-#: of it: the path's tangents, assembled whole (its hinges' 12 × 12 blocks and where each entry
-#: lands), their factors, the states kept (``curvefold.mechanics._collapse.STEPS`` at most).
-#: Measured on the paper's vault (801 samples, 4 across): the path peaked at 2.03 and 2.07 GB,
-#: 1.31-1.35 GB above ``load``'s 0.72 GB, twice the 0.60 GiB this estimate grows by. Its
-#: estimate, 2.1 GiB, is above the default budget: ``CURVEFOLD_MEMORY_BUDGET=3G`` runs it.
-COLLAPSE_SHARE = 2.0
+#: of it: the path's tangents (the hinges' blocks made a chunk at a time), their factors, the
+#: states kept (``curvefold.mechanics._collapse.STEPS`` at most). Measured on the paper's
+#: vault (801 samples, 4 across): the command peaked at 1.72 GiB (2.07 GB before the chunks),
+#: 0.82 GiB above the 0.90 GiB estimate of ``load``, 1.37 times the 0.60 GiB this share
+#: multiplies; 1.5 makes the estimate 1.80 GiB, under the default budget.
+COLLAPSE_SHARE = 1.5
 #: Bytes of the atlas: its figure, each drawn design's record and sketch (0.46 MB measured on
 #: 10 × 10 to 30 × 30 grids; records are streamed to disk, so only the designs the figure
 #: shows, at most MAX_VIEWS² of them, are held), and per worker process an interpreter with what

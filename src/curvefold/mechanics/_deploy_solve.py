@@ -7,10 +7,11 @@ from dataclasses import replace
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from . import _elements
 from ._model import BarHingeModel
-from ._nonlinear import _assemble_blocks, internal_forces, tangent
+from ._nonlinear import _add_hinges, _pattern_of, internal_forces, tangent
 from ._path import _factor
 
 __all__ = ["RATE", "Energy", "wrap", "first_state", "next_state"]
@@ -61,12 +62,11 @@ class Energy:
         K = tangent(self.bars, u)
         if not len(m.hinges):
             return K
-        xh = (m.nodes + u.reshape(-1, 3))[m.hinges]
-        g = _elements.dihedral_gradient(xh).reshape(-1, 12)
-        M = self.moments(m.nodes + u.reshape(-1, 3))
-        blocks = m.hinge_stiffness[:, None, None] * g[:, :, None] * g[:, None, :]
-        blocks = blocks + M[:, None, None] * _elements.dihedral_hessian(xh)
-        return (K + _assemble_blocks([blocks], [m.hinges], m.dofs, m)).tocsr()
+        x = m.nodes + u.reshape(-1, 3)
+        place, indptr, indices = _pattern_of([m.hinges], m.dofs, m)
+        data = np.zeros(len(indices))
+        _add_hinges(data, place, m, x[m.hinges], self.moments(x))
+        return (K + sp.csr_matrix((data, indices, indptr), shape=K.shape)).tocsr()
 
     def energy(self, u: np.ndarray) -> float:
         m = self.model
