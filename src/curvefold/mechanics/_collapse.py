@@ -443,9 +443,11 @@ def _nearest_eigenvalue(
     for _ in range(60):
         try:
             factor = Factorized(K + shift * eye)
-            break
+            if factor.definite:
+                break
         except InputError:
-            shift = 2 * shift if shift > 0 else 1e-9 * abs(K.diagonal()).max()
+            pass
+        shift = 2 * shift if shift > 0 else 1e-9 * abs(K.diagonal()).max()
     else:  # pragma: no cover - a shift of 2^60 its diagonal's 1e-9 is definite
         raise InputError("the tangent has no definite shift")
     op = spl.LinearOperator(K.shape, matvec=factor.solve, dtype=float)

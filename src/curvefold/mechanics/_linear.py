@@ -300,7 +300,30 @@ class Factorized:
             )
         except RuntimeError:  # "Factor is exactly singular"
             return None
+        # diagonal pivots only: U's diagonal is D of A = L D Lᵀ, its signs A's inertia
+        self._definite = bool((self._lu.U.diagonal() > 0).all())
         return np.abs(self._lu.U.diagonal())
+
+    @property
+    def definite(self) -> bool:
+        """Whether the matrix is positive definite: its banded Cholesky factor exists, or every
+        pivot of its symmetric factor L D Lᵀ (SuperLU with diagonal pivots) is positive
+        (Sylvester's law of inertia).
+
+        Examples
+        --------
+        A random sparse matrix: no ordering makes its band narrower than MAX_BAND (SuperLU);
+        diagonally dominant, then with one negative diagonal entry:
+
+        >>> R = sp.random(2000, 2000, density=0.003, random_state=np.random.default_rng(0))
+        >>> A = (R + R.T + 20 * sp.identity(2000)).tolil()
+        >>> Factorized(A.tocsr()).definite
+        True
+        >>> A[5, 5] = -1.0
+        >>> Factorized(A.tocsr()).definite
+        False
+        """
+        return self._order is not None or self._definite
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         """x with A x = b, for b (N,) or (N, k)."""

@@ -177,7 +177,9 @@ def _factor(K) -> tuple[Factorized | spl.SuperLU | None, bool]:
     """A solver of K (Cholesky if positive definite, else LU) and whether K is positive
     definite."""
     try:
-        return Factorized(K), True
+        factor = Factorized(K)
+        if factor.definite:
+            return factor, True
     except InputError:
         pass
     try:
