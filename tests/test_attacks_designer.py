@@ -16,7 +16,8 @@ from test_designer_service import HEAVY, open_request, until
 pytest.importorskip("fastapi")
 from curvefold.app.designer import server  # noqa: E402
 
-#: A zip of the output folder: its temporary folder appears at once, the job takes about 6 s.
+#: A zip of the output folder: its temporary folder appears at once, the job takes 2.5 s (a quiet
+#: machine) to 6 s (a loaded one).
 ZIP = "api/tube.zip?samples=8001"
 
 
@@ -48,7 +49,7 @@ def test_time_spent_waiting_for_memory_counts_towards_the_time_limit():
 
 
 def test_a_job_killed_for_its_time_leaves_nothing_behind():
-    with server.serving(time_limit=3.0) as url:
+    with server.serving(time_limit=1.5) as url:  # under the job's time on any machine
         status_, answer = get_json(url + ZIP)
         assert status_ == 504, answer
         # the job's output folder was in the scratch folder until the server stopped

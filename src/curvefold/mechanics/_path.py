@@ -176,10 +176,9 @@ class PathError(ConvergenceError):
 def _factor(K) -> tuple[Factorized | spl.SuperLU | None, bool]:
     """A solver of K (Cholesky if positive definite, else LU) and whether K is positive
     definite."""
-    try:
+    try:  # an indefinite K too wide for a band keeps its symmetric factor (pivots' signs)
         factor = Factorized(K)
-        if factor.definite:
-            return factor, True
+        return factor, factor.definite
     except InputError:
         pass
     try:
