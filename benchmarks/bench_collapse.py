@@ -12,42 +12,20 @@ Target: the path ≤ 120 CPU-s (issue 46).
 
 from __future__ import annotations
 
-import json
 import os
-import resource
-import subprocess
-import sys
-from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-os.environ.setdefault("CURVEFOLD_MEMORY_BUDGET", "3G")  # the path's estimate is 2.1 GiB
+os.environ.setdefault("CURVEFOLD_MEMORY_BUDGET", "3G")  # headroom over its 1.80 GiB estimate
 
 from _bench import SummaryRow, markdown_table, verdict  # noqa: E402
+from bench_verdict import ours  # noqa: E402  (the same child run, with --nonlinear)
 
-ROOT = Path(__file__).resolve().parents[1]
 CPU_TARGET = 120.0
 
 
-def child(*flags: str) -> tuple[float, float, dict]:
-    """CPU-s and peak bytes of ``curvefold load`` on the paper's vault in a child, and its JSON."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run(
-        [sys.executable, "-m", "curvefold", "load", str(ROOT / "examples" / "paper-vault.toml")]
-        + [*flags, "--json"],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if out.returncode not in (0, 1):
-        raise RuntimeError(out.stderr)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return cpu, after.ru_maxrss * 1024.0, json.loads(out.stdout)
-
-
 def run() -> list[SummaryRow]:
-    linear_cpu, linear_peak, _ = child()
-    cpu, peak, d = child("--nonlinear")
+    linear_cpu, linear_peak, _ = ours()
+    cpu, peak, d = ours("--nonlinear")
     c = d["collapse"]
     path_cpu = cpu - linear_cpu
     print(

@@ -37,12 +37,13 @@ CPU_TARGET, MEMORY_TARGET, ERROR_TARGET, AGREEMENT = 10.0, 1.0e9, 0.05, 0.05
 SHELLS_ACROSS = 4
 
 
-def ours() -> tuple[float, float, dict]:
-    """CPU-s and peak bytes of ``curvefold load`` on the paper's vault in a child, and its JSON."""
+def ours(*flags: str) -> tuple[float, float, dict]:
+    """CPU-s and peak bytes of ``curvefold load`` (with ``flags``) on the paper's vault in a
+    child, and its JSON."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     out = subprocess.run(
         [sys.executable, "-m", "curvefold", "load", str(ROOT / "examples" / "paper-vault.toml")]
-        + ["--json"],
+        + [*flags, "--json"],
         capture_output=True,
         text=True,
         check=False,
