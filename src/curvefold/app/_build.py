@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -166,8 +166,12 @@ class BuiltStructure(Built):
         (:func:`~curvefold.io.layout_pattern`), on the files' samples. The crease-pattern
         files, the 3dm and the assembly guide are drawn from it."""
         from ..io._pattern import layout_pattern
+        from ..io._thick_sheet import sheet_bend
 
-        return layout_pattern(self.structure, self._pattern_output(), keep=self.sampling.keep)
+        m, smooth = self.design.material, not self.design.design_kind.panels(self.design)
+        bend = sheet_bend(m.material, m.thickness) if m is not None and smooth else None
+        output = replace(self._pattern_output(), bend=bend)  # a thick sheet's, when smooth
+        return layout_pattern(self.structure, output, keep=self.sampling.keep)
 
     @cached_property
     def thick(self) -> ThickPanels | None:

@@ -217,6 +217,9 @@ class Layout:
         (dash, gap) in mm when the creases are drawn as cut dashes (:mod:`curvefold.io._cutting`).
     kerf : float
         The kerf (mm) the cut outlines were moved out for, by half of it; 0 for none.
+    sheet_note : str
+        What the drawing accounts for of a thick sheet (:mod:`curvefold.io._thick_sheet`),
+        a row of the legend; empty for a sheet of zero thickness.
     """
 
     pages: tuple[Page, ...]
@@ -228,6 +231,7 @@ class Layout:
     cutter: str = "print"
     perforation: tuple[float, float] | None = None
     kerf: float = 0.0
+    sheet_note: str = ""
 
     def sheets(self) -> tuple[PlacedSheet, ...]:
         """All placed sheets, page by page."""

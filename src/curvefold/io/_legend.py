@@ -159,6 +159,8 @@ def page_footer(
             x, row = m, row + 1
         entries.append((name, x, lead, row))
         x += width + 4.0
+    row += bool(layout.sheet_note)  # a thick sheet's statement: a row of its own
+    note_row = row
     # rows closer together rather than into the margin
     step = min(1.8 * size, (top - m - 0.5 * size) / max(row, 1))
     ink = layer_look(layout, "legend")[1]
@@ -184,6 +186,9 @@ def page_footer(
         if name != "labels":
             inks.append(colour)
         texts.append(text(_entry(layout, name), x + lead + 1.5, y))
+        text_inks.append(ink)
+    if layout.sheet_note:
+        texts.append(text(layout.sheet_note, m, top - note_row * step))
         text_inks.append(ink)
     return Footer(
         tuple((name, readonly(points)) for name, points in samples),

@@ -23,6 +23,7 @@ from ._cutters import DEFAULT_CUTTER
 
 if TYPE_CHECKING:
     from ._layout import Layout
+    from ._thick_sheet import SheetBend
 
 __all__ = ["FoldOutput", "ModelOutput", "PatternOutput", "check_output"]
 
@@ -54,6 +55,9 @@ class PatternOutput:
         Width in mm a cutter removes: the cut outlines move out by half of it.
     name : str
         Label prefix of the sheets.
+    bend : SheetBend or None
+        The sheet's thickness and bend: creases inset, seams lapped, tabs and perforation
+        sized to it (:mod:`curvefold.io._thick_sheet`); None: a sheet of zero thickness.
 
     Examples
     --------
@@ -72,6 +76,7 @@ class PatternOutput:
     perforation: tuple[float, float] | None = None
     kerf: float = 0.0
     name: str = ""
+    bend: SheetBend | None = None
 
 
 def check_output(output: PatternOutput) -> PatternOutput:

@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
 
@@ -47,12 +47,23 @@ from ._cutting import prepare_layout
 from ._dxf import page_grid, write_dxf
 from ._formats import FORMATS, check_formats, formats_of
 from ._labels import Label, seam_name
-from ._layout import FOOTER, LAYERS, Layout, Page, PlacedSheet, Polyline, layout_sheets, page_size
+from ._layout import (
+    FOOTER,
+    LAYERS,
+    Layout,
+    LayoutRules,
+    Page,
+    PlacedSheet,
+    Polyline,
+    layout_sheets,
+    page_size,
+)
 from ._legend import DEFAULT_LAYERS, LEGEND, Footer, check_layout, page_footer
 from ._output import PatternOutput, check_output
 from ._pattern_pdf import draw_footer, write_pdf
 from ._svg import svg_page, write_svg
 from ._tables import mm_per_unit
+from ._thick_sheet import thick_layout
 
 #: Crease-pattern formats :func:`write_pattern` writes.
 PATTERN_FORMATS = formats_of("pattern")
@@ -155,23 +166,39 @@ def layout_pattern(
     check_output(output)
     _cutter(output.cutter)
     parts = sheets(structure, fold_angle=fold_angle, degrees=degrees, name=output.name, keep=keep)
+    if output.bend is not None:  # a thick sheet: its own module draws it
+        return thick_layout(parts, output, _fit)
     fitted = _fit(parts, output)
     return prepare_layout(
         replace(fitted, cutter=output.cutter), perforation=output.perforation, kerf=output.kerf
     )
 
 
-def _fit(parts: Sequence[PatternSheet], output: PatternOutput) -> Layout:
-    """The layout of ``parts`` at the output's scale, or at the largest plain scale that fits."""
+def _fit(
+    parts: Sequence[PatternSheet],
+    output: PatternOutput,
+    rules: Callable[[float], LayoutRules] = lambda scale: LayoutRules(),
+) -> Layout:
+    """The layout of ``parts`` at the output's scale, or at the largest plain scale that fits;
+    ``rules`` gives the layout's rules at a scale."""
     page, units, glue_tabs = output.page, output.units, output.glue_tabs
     if output.scale is not None:
-        return layout_sheets(parts, page=page, units=units, scale=output.scale, glue_tabs=glue_tabs)
+        return layout_sheets(
+            parts,
+            page=page,
+            units=units,
+            scale=output.scale,
+            glue_tabs=glue_tabs,
+            rules=rules(output.scale),
+        )
     guess = _fit_scale(parts, page, units, 10.0, FOOTER, 6.0 if glue_tabs else 0.0)
     # The layout turns each sheet to its minimum-area rectangle, which can be longer than the
     # principal-axes box; step down the series of plain scales until it fits.
     for attempt in range(4):
         try:
-            return layout_sheets(parts, page=page, units=units, scale=guess, glue_tabs=glue_tabs)
+            return layout_sheets(
+                parts, page=page, units=units, scale=guess, glue_tabs=glue_tabs, rules=rules(guess)
+            )
         except InputError:
             if attempt == 3:
                 raise

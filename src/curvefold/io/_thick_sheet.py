@@ -1,0 +1,279 @@
+"""Crease patterns for thick sheets: each crease inset by its bend, the seams' plies offset, glue
+tabs and perforation sized to the sheet.
+
+A smooth design (``panels = 0``) drawn for a sheet of thickness t folds to the design only if
+its pattern gives up what the bends take (:mod:`curvefold.geometry._bend`). With the design's
+faces the neutral surface of the sheet, sharply folded at a crease of fold angle θ(s) = 2α(s),
+the real sheet bends round a neutral radius ρ = R + K t; its flat length from a point on one
+face to a point on the other is shorter than the design's by twice the inset
+``δ(s) = ρ (tan(θ/2) − θ/2)``. :func:`thick_sheet` moves every vertex of a developed sheet
+that is not on a crease toward its nearest crease, perpendicular to it, by the inset there
+(interpolated along the crease between its samples, each sample's θ the mean of its fold
+edges' ``edges_foldAngle``); the crease is then the bend's centre line. A 1 mm aluminium
+sheet (R = t, K = 0.325) at the paper's 2α = 90° gives up δ = 0.52 mm per side.
+
+Seams: the two sheets of a tube are glued along seams 2 and 4 with tabs on one ply only, the
+sheet of lower index (sheet A of each tube, :func:`~curvefold.io.layout_sheets`'s choice).
+That ply laps over its partner: its seam line, where its tabs fold, moves out by t
+(:data:`SEAM_OFFSET` × t), so that its tabs wrap the partner's edge and lie on its outer face;
+the partner is drawn to the design's seam. For plies meeting at a right angle the lapping
+ply's mid-surface then meets the partner's at the design's seam curve; at a dihedral φ the
+lap needs t / sin φ, so the remaining gap is t (1 / sin φ − 1), stated in the legend as the
+rule's.
+
+Tabs and perforation (the project's rule, sized as cutter practice sizes them: a joint's glue
+width and a perforation's ties grow with the sheet): glue tabs :data:`TAB_PER_T` × t wide,
+at least the pattern's 6 mm; perforated creases cut :data:`CUT_PER_T` × t and tied
+:data:`TIE_PER_T` × t, the asked dash and gap as floors. Lengths on the page are t × the
+print scale.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..geometry._bend import K_SOURCES, Bend, bend_for
+from ..geometry._mesh import edges_faces
+from ..geometry._sheets import PatternSheet
+from ..kernel._errors import InputError
+from ._cutting import prepare_layout
+from ._layout import Layout, LayoutRules
+from ._tables import mm_per_unit
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ._output import PatternOutput
+
+__all__ = [
+    "CUT_PER_T",
+    "SEAM_OFFSET",
+    "TAB_FLOOR",
+    "TAB_PER_T",
+    "TIE_PER_T",
+    "SheetBend",
+    "sheet_bend",
+    "thick_sheet",
+    "thick_sheets",
+    "thick_layout",
+    "crease_insets_of",
+]
+
+#: Glue tab width per sheet thickness; never below :data:`TAB_FLOOR` mm on the page.
+TAB_PER_T = 8.0
+#: The narrowest glue tab, page mm (the pattern's default tab).
+TAB_FLOOR = 6.0
+#: A perforated crease's cut and tie lengths per sheet thickness.
+CUT_PER_T, TIE_PER_T = 3.0, 1.0
+#: How far the lapping ply's seam line moves out, per sheet thickness.
+SEAM_OFFSET = 1.0
+
+
+@dataclass(frozen=True)
+class SheetBend:
+    """A sheet's bend (thickness, radius, K-factor and its source) and its material's name, as the
+    crease patterns draw it."""
+
+    bend: Bend
+    material: str
+
+    def tab_width(self, mm_per_unit: float) -> float:
+        """Glue tab width on the page (mm) at ``mm_per_unit`` page mm per model unit."""
+        return max(TAB_PER_T * self.bend.thickness * mm_per_unit, TAB_FLOOR)
+
+    def perforation(
+        self, asked: tuple[float, float] | None, mm_per_unit: float
+    ) -> tuple[float, float] | None:
+        """(cut, tie) of perforated creases on the page (mm): the asked ones as floors; None
+        when none is asked."""
+        if asked is None:
+            return None
+        t = self.bend.thickness * mm_per_unit
+        return max(asked[0], CUT_PER_T * t), max(asked[1], TIE_PER_T * t)
+
+    def note(self, mm_per_unit: float) -> str:
+        """The legend's statement of what the drawing accounts for."""
+        b = self.bend
+        t_mm = b.thickness * 1e3  # model units are metres
+        k_source = "DIN 6935" if self.material == "aluminium" else "assumed"
+        return (
+            f"sheet {t_mm:.3g} mm {self.material}: creases inset by the bend (R "
+            f"{b.radius * 1e3:.3g} mm, K {b.k:.3g} {k_source}) · sheet A laps its seams, out "
+            f"{SEAM_OFFSET * t_mm:.3g} mm · tabs {self.tab_width(mm_per_unit):.3g} mm"
+        )
+
+
+def sheet_bend(material: str | None, thickness: float) -> SheetBend:
+    """The bend a design's sheet makes: a named material's (:func:`bend_for`: R = t, K of DIN
+    6935 for aluminium, 0.5 assumed for the others), or for the user's own material K = 0.5
+    assumed.
+
+    Examples
+    --------
+    >>> sb = sheet_bend("aluminium", 0.001)
+    >>> sb.bend.k, sb.tab_width(1000.0), sb.perforation((2.0, 0.5), 1000.0)
+    (0.325, 8.0, (3.0, 1.0))
+    >>> sheet_bend(None, 0.002).bend.source
+    'no named material: K = 0.5 (the mid-surface) assumed'
+    """
+    if material is not None and material in K_SOURCES:
+        return SheetBend(bend_for(material, thickness), material)
+    source = "no named material: K = 0.5 (the mid-surface) assumed"
+    return SheetBend(Bend(thickness, thickness, 0.5, source), material or "sheet")
+
+
+def crease_insets_of(sheet: PatternSheet, bend: Bend) -> tuple[np.ndarray, np.ndarray]:
+    """The crease vertices of a sheet and the inset at each, (n,) int and (n,) model units: the
+    inset at the mean fold angle of the vertex's fold edges."""
+    mesh = sheet.mesh
+    fold = np.flatnonzero(mesh.edges_kind == "fold")
+    ends = mesh.edges_vertices[fold]
+    V = len(mesh.vertices_coords)
+    angle = np.abs(np.asarray(mesh.edges_foldAngle, float)[fold])
+    total = np.bincount(ends.ravel(), np.repeat(angle, 2), minlength=V)
+    count = np.bincount(ends.ravel(), minlength=V)
+    verts = np.flatnonzero(count)
+    return verts, bend.inset(total[verts] / count[verts])
+
+
+def thick_sheet(
+    sheet: PatternSheet, bend: Bend, lapping: frozenset[int] = frozenset()
+) -> PatternSheet:
+    """A developed sheet drawn for a thick sheet (module notes): every vertex off the creases
+    moved toward its nearest crease segment, along that segment's normal, by the inset
+    interpolated at its foot; then the seams whose ids are in ``lapping`` moved out by
+    :data:`SEAM_OFFSET` × t along their outline normals.
+
+    Raises
+    ------
+    InputError
+        When an inset reaches a vertex's distance from its crease (the sheet is too thick for
+        the strip): the thickness, the strip width there and the inset.
+
+    Examples
+    --------
+    >>> from curvefold import SpaceCurve, Crease, Lattice, Structure
+    >>> from curvefold.geometry._sheets import sheets
+    >>> lat = Lattice.from_crease(
+    ...     Crease.from_curve(SpaceCurve.from_curvature(1.0, 0.0, 1.0, samples=5), fold_angle=90),
+    ...     0.1,
+    ...     0.1,
+    ... )
+    >>> a = sheets(Structure.tube(lat))[0]
+    >>> moved = (
+    ...     thick_sheet(a, Bend(0.001, 0.001, 0.5)).mesh.vertices_coords - a.mesh.vertices_coords
+    ... )
+    >>> # mm: 1.5 mm (tan(θ/2) − θ/2) at the sampled mesh's θ = 90.5° (2α = 90°: 0.3219 mm)
+    >>> round(float(np.linalg.norm(moved[:, :2], axis=1).max()) * 1e3, 4)
+    0.3278
+    """
+    mesh = sheet.mesh
+    xy = mesh.vertices_coords[:, :2]
+    verts, inset = crease_insets_of(sheet, bend)
+    out = xy.copy()
+    if verts.size:
+        delta = np.zeros(len(xy))
+        delta[verts] = inset
+        fold = mesh.edges_vertices[mesh.edges_kind == "fold"]
+        a, b = xy[fold[:, 0]], xy[fold[:, 1]]  # (F, 2)
+        off = _others(len(xy), verts)
+        p = xy[off][:, None]  # (P, 1, 2)
+        d = b - a
+        u = np.clip(np.sum((p - a) * d, axis=2) / np.sum(d * d, axis=1), 0.0, 1.0)  # (P, F)
+        foot = a + u[..., None] * d
+        dist = np.linalg.norm(p - foot, axis=2)
+        near = np.argmin(dist, axis=1)
+        rows = np.arange(len(off))
+        un = u[rows, near]
+        e = fold[near]
+        at = (1 - un) * delta[e[:, 0]] + un * delta[e[:, 1]]
+        normal = (
+            np.stack([-d[near, 1], d[near, 0]], axis=1) / np.linalg.norm(d[near], axis=1)[:, None]
+        )
+        side = np.sign(np.sum((xy[off] - foot[rows, near]) * normal, axis=1))
+        width = dist[rows, near]
+        if np.any(at >= width):
+            k = int(np.argmax(at - width))
+            raise InputError(
+                f"thickness must leave the strips a width: {bend.thickness:g} insets a crease of "
+                f"{sheet.label!r} by {at[k]:.3g}, at or past its width {width[k]:.3g} there; "
+                "choose a thinner sheet or a wider strip",
+                parameter="thickness",
+            )
+        out[off] -= (at * side)[:, None] * normal
+    if lapping:
+        out += _seam_offsets(sheet, out, lapping, SEAM_OFFSET * bend.thickness)
+    coords = np.column_stack([out, mesh.vertices_coords[:, 2]])
+    return replace(sheet, mesh=replace(mesh, vertices_coords=coords))
+
+
+def _others(n: int, verts: np.ndarray) -> np.ndarray:
+    """The indices in range(n) not in ``verts`` (without numpy.ma)."""
+    mask = np.ones(n, bool)
+    mask[verts] = False
+    return np.flatnonzero(mask)
+
+
+def _seam_offsets(
+    sheet: PatternSheet, xy: np.ndarray, seams: frozenset[int], distance: float
+) -> np.ndarray:
+    """Per vertex, the move (V, 2) that carries the sheet's seam edges of ids ``seams`` out by
+    ``distance``: each edge parallel to itself, neighbouring edges meeting at their mitre."""
+    mesh = sheet.mesh.triangulated()  # (its own edges first)
+    move = np.zeros_like(xy)
+    pick = np.flatnonzero(np.isin(sheet.edges_seam, sorted(seams)))
+    if not pick.size:
+        return move
+    ef = edges_faces(mesh.faces_vertices, mesh.edges_vertices)
+    ev = mesh.edges_vertices[pick]
+    # directed as their triangle runs them (counter-clockwise): the sheet on their left
+    ev = np.where((ef[pick, 0] >= 0)[:, None], ev, ev[:, ::-1])
+    d = xy[ev[:, 1]] - xy[ev[:, 0]]
+    n = np.stack([d[:, 1], -d[:, 0]], axis=1) / np.linalg.norm(d, axis=1)[:, None]
+    acc = np.zeros_like(xy)
+    np.add.at(acc, ev[:, 0], n)
+    np.add.at(acc, ev[:, 1], n)
+    count = np.bincount(ev.ravel(), minlength=len(xy))
+    hit = np.flatnonzero(count)
+    # one edge: its normal; two: the mitre (n1 + n2) / (1 + n1·n2) = 2 acc / |acc|²
+    square = np.maximum(np.sum(acc[hit] ** 2, axis=1), 0.25)
+    move[hit] = distance * count[hit, None] * acc[hit] / square[:, None]
+    return move
+
+
+def thick_sheets(parts: tuple[PatternSheet, ...], bend: Bend) -> tuple[PatternSheet, ...]:
+    """Every sheet drawn for the thick sheet (:func:`thick_sheet`), each seam's lapping ply the
+    sheet of lower index that carries it (the ply the layout gives its tabs)."""
+    first: dict[int, int] = {}
+    for i, part in enumerate(parts):
+        for sid in part.edges_seam[part.edges_seam >= 0].tolist():
+            first.setdefault(sid, i)
+    return tuple(
+        thick_sheet(part, bend, frozenset(s for s, i0 in first.items() if i0 == i))
+        for i, part in enumerate(parts)
+    )
+
+
+def thick_layout(
+    parts: tuple[PatternSheet, ...],
+    output: PatternOutput,
+    fit: Callable[[tuple[PatternSheet, ...], PatternOutput, Callable], Layout],
+) -> Layout:
+    """The layout of a thick sheet's ``parts`` (``output.bend`` given): the sheets inset and
+    lapped (:func:`thick_sheets`), laid out by ``fit`` with tabs sized to the sheet, perforated
+    as sized to it, the legend's row saying so."""
+    sb = output.bend
+    assert sb is not None
+    f = mm_per_unit(output.units)
+
+    def rules(scale: float) -> LayoutRules:
+        return LayoutRules(tab_width=sb.tab_width(scale * f) / f)
+
+    fitted = fit(thick_sheets(parts, sb.bend), output, rules)
+    mm = fitted.scale  # page mm per model unit
+    laid = replace(fitted, cutter=output.cutter, sheet_note=sb.note(mm))
+    return prepare_layout(
+        laid, perforation=sb.perforation(output.perforation, mm), kerf=output.kerf
+    )
