@@ -166,7 +166,7 @@ class BuiltStructure(Built):
         (:func:`~curvefold.io.layout_pattern`), on the files' samples. The crease-pattern
         files, the 3dm and the assembly guide are drawn from it."""
         from ..io._pattern import layout_pattern
-        from ..io._thick_sheet import sheet_bend
+        from ..io._sheet_bend import sheet_bend
 
         m, smooth = self.design.material, not self.design.design_kind.panels(self.design)
         bend = sheet_bend(m.material, m.thickness) if m is not None and smooth else None

@@ -23,7 +23,7 @@ from ._cutters import DEFAULT_CUTTER
 
 if TYPE_CHECKING:
     from ._layout import Layout
-    from ._thick_sheet import SheetBend
+    from ._sheet_bend import SheetBend
 
 __all__ = ["FoldOutput", "ModelOutput", "PatternOutput", "check_output"]
 

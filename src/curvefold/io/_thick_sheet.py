@@ -15,113 +15,39 @@ sheet (R = t, K = 0.325) at the paper's 2α = 90° gives up δ = 0.52 mm per sid
 Seams: the two sheets of a tube are glued along seams 2 and 4 with tabs on one ply only, the
 sheet of lower index (sheet A of each tube, :func:`~curvefold.io.layout_sheets`'s choice).
 That ply laps over its partner: its seam line, where its tabs fold, moves out by t
-(:data:`SEAM_OFFSET` × t), so that its tabs wrap the partner's edge and lie on its outer face;
-the partner is drawn to the design's seam. For plies meeting at a right angle the lapping
-ply's mid-surface then meets the partner's at the design's seam curve; at a dihedral φ the
-lap needs t / sin φ, so the remaining gap is t (1 / sin φ − 1), stated in the legend as the
-rule's.
+(:data:`~curvefold.io._sheet_bend.SEAM_OFFSET` × t), so that its tabs wrap the partner's edge
+and lie on its outer face; the partner is drawn to the design's seam. Where the plies meet at a
+right angle the lapping ply's mid-surface then meets the partner's at the design's seam curve;
+at a dihedral φ the lap would need t / sin φ, so the rule leaves t (1 / sin φ − 1) there.
 
-Tabs and perforation (the project's rule, sized as cutter practice sizes them: a joint's glue
-width and a perforation's ties grow with the sheet): glue tabs :data:`TAB_PER_T` × t wide,
-at least the pattern's 6 mm; perforated creases cut :data:`CUT_PER_T` × t and tied
-:data:`TIE_PER_T` × t, the asked dash and gap as floors. Lengths on the page are t × the
-print scale.
+Glue tabs and perforation are sized to the sheet by :class:`~curvefold.io._sheet_bend.SheetBend`.
+Every length on the page is the model's × the print scale: at 1 model unit = 1000 mm the
+drawing is the sheet's own.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from dataclasses import replace
 
 import numpy as np
 
-from ..geometry._bend import K_SOURCES, Bend, bend_for
+from ..geometry._bend import Bend
 from ..geometry._mesh import edges_faces
 from ..geometry._sheets import PatternSheet
 from ..kernel._errors import InputError
 from ._cutting import prepare_layout
 from ._layout import Layout, LayoutRules
+from ._output import PatternOutput
+from ._sheet_bend import SEAM_OFFSET
 from ._tables import mm_per_unit
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ._output import PatternOutput
-
 __all__ = [
-    "CUT_PER_T",
-    "SEAM_OFFSET",
-    "TAB_FLOOR",
-    "TAB_PER_T",
-    "TIE_PER_T",
-    "SheetBend",
-    "sheet_bend",
     "thick_sheet",
     "thick_sheets",
     "thick_layout",
     "crease_insets_of",
 ]
-
-#: Glue tab width per sheet thickness; never below :data:`TAB_FLOOR` mm on the page.
-TAB_PER_T = 8.0
-#: The narrowest glue tab, page mm (the pattern's default tab).
-TAB_FLOOR = 6.0
-#: A perforated crease's cut and tie lengths per sheet thickness.
-CUT_PER_T, TIE_PER_T = 3.0, 1.0
-#: How far the lapping ply's seam line moves out, per sheet thickness.
-SEAM_OFFSET = 1.0
-
-
-@dataclass(frozen=True)
-class SheetBend:
-    """A sheet's bend (thickness, radius, K-factor and its source) and its material's name, as the
-    crease patterns draw it."""
-
-    bend: Bend
-    material: str
-
-    def tab_width(self, mm_per_unit: float) -> float:
-        """Glue tab width on the page (mm) at ``mm_per_unit`` page mm per model unit."""
-        return max(TAB_PER_T * self.bend.thickness * mm_per_unit, TAB_FLOOR)
-
-    def perforation(
-        self, asked: tuple[float, float] | None, mm_per_unit: float
-    ) -> tuple[float, float] | None:
-        """(cut, tie) of perforated creases on the page (mm): the asked ones as floors; None
-        when none is asked."""
-        if asked is None:
-            return None
-        t = self.bend.thickness * mm_per_unit
-        return max(asked[0], CUT_PER_T * t), max(asked[1], TIE_PER_T * t)
-
-    def note(self, mm_per_unit: float) -> str:
-        """The legend's statement of what the drawing accounts for."""
-        b = self.bend
-        t_mm = b.thickness * 1e3  # model units are metres
-        k_source = "DIN 6935" if self.material == "aluminium" else "assumed"
-        return (
-            f"sheet {t_mm:.3g} mm {self.material}: creases inset by the bend (R "
-            f"{b.radius * 1e3:.3g} mm, K {b.k:.3g} {k_source}) · sheet A laps its seams, out "
-            f"{SEAM_OFFSET * t_mm:.3g} mm · tabs {self.tab_width(mm_per_unit):.3g} mm"
-        )
-
-
-def sheet_bend(material: str | None, thickness: float) -> SheetBend:
-    """The bend a design's sheet makes: a named material's (:func:`bend_for`: R = t, K of DIN
-    6935 for aluminium, 0.5 assumed for the others), or for the user's own material K = 0.5
-    assumed.
-
-    Examples
-    --------
-    >>> sb = sheet_bend("aluminium", 0.001)
-    >>> sb.bend.k, sb.tab_width(1000.0), sb.perforation((2.0, 0.5), 1000.0)
-    (0.325, 8.0, (3.0, 1.0))
-    >>> sheet_bend(None, 0.002).bend.source
-    'no named material: K = 0.5 (the mid-surface) assumed'
-    """
-    if material is not None and material in K_SOURCES:
-        return SheetBend(bend_for(material, thickness), material)
-    source = "no named material: K = 0.5 (the mid-surface) assumed"
-    return SheetBend(Bend(thickness, thickness, 0.5, source), material or "sheet")
 
 
 def crease_insets_of(sheet: PatternSheet, bend: Bend) -> tuple[np.ndarray, np.ndarray]:
