@@ -10,7 +10,7 @@ face to a point on the other is shorter than the design's by twice the inset
 that is not on a crease toward its nearest crease, perpendicular to it, by the inset there
 (interpolated along the crease between its samples, each sample's θ the mean of its fold
 edges' ``edges_foldAngle``); the crease is then the bend's centre line. A 1 mm aluminium
-sheet (R = t, K = 0.325) at the paper's 2α = 90° gives up δ = 0.52 mm per side.
+sheet (R = t, K = 0.325) at the paper's 2α = 90° gives up δ = 0.284 mm per side.
 
 Seams: the two sheets of a tube are glued along seams 2 and 4 with tabs on one ply only, the
 sheet of lower index (sheet A of each tube, :func:`~curvefold.io.layout_sheets`'s choice).
@@ -68,9 +68,10 @@ def thick_sheet(
     sheet: PatternSheet, bend: Bend, lapping: frozenset[int] = frozenset()
 ) -> PatternSheet:
     """A developed sheet drawn for a thick sheet (module notes): every vertex off the creases
-    moved toward its nearest crease segment, along that segment's normal, by the inset
-    interpolated at its foot; then the seams whose ids are in ``lapping`` moved out by
-    :data:`SEAM_OFFSET` × t along their outline normals.
+    moved toward its nearest crease segment (a crease's end segments run on past its ends),
+    along that segment's normal, by the inset interpolated at its foot (held past the ends);
+    then the seams whose ids are in ``lapping`` moved out by
+    :data:`~curvefold.io._sheet_bend.SEAM_OFFSET` × t, each edge parallel to itself (mitred).
 
     Raises
     ------
@@ -107,13 +108,17 @@ def thick_sheet(
         off = _others(len(xy), verts)
         p = xy[off][:, None]  # (P, 1, 2)
         d = b - a
-        u = np.clip(np.sum((p - a) * d, axis=2) / np.sum(d * d, axis=1), 0.0, 1.0)  # (P, F)
+        # a crease's end segments run on along their tangents (past its ends, rulings fan out)
+        end = np.bincount(fold.ravel(), minlength=len(xy)) == 1
+        lo, hi = np.where(end[fold[:, 0]], -np.inf, 0.0), np.where(end[fold[:, 1]], np.inf, 1.0)
+        u = np.clip(np.sum((p - a) * d, axis=2) / np.sum(d * d, axis=1), lo, hi)  # (P, F)
         foot = a + u[..., None] * d
         dist = np.linalg.norm(p - foot, axis=2)
         near = np.argmin(dist, axis=1)
         rows = np.arange(len(off))
         un = u[rows, near]
         e = fold[near]
+        un = np.clip(un, 0.0, 1.0)
         at = (1 - un) * delta[e[:, 0]] + un * delta[e[:, 1]]
         normal = (
             np.stack([-d[near, 1], d[near, 0]], axis=1) / np.linalg.norm(d[near], axis=1)[:, None]
