@@ -252,14 +252,18 @@ def test_the_legend_states_the_sheet_and_zero_thickness_draws_as_before():
 
 
 def test_a_smooth_design_with_a_material_writes_the_thick_sheets_pattern(tmp_path):
-    """``curvefold tube --material aluminium --thickness 0.001``: its pattern's pages say so."""
+    """``curvefold tube --material aluminium --thickness 0.001``: its pattern's pages (SVG, DXF)
+    say so; without a material they do not; a tube of rigid panels keeps its own files."""
     out = tmp_path / "out"
-    args = ["tube", "--material", "aluminium", "--thickness", "0.001", "--formats", "svg"]
+    args = ["tube", "--material", "aluminium", "--thickness", "0.001", "--formats", "svg,dxf"]
     assert main([*args, "--out", str(out)]) == 0
-    pages = sorted(out.glob("tube-pattern*.svg"))
+    pages = sorted(out.glob("tube-pattern*.svg")) + [out / "tube-pattern.dxf"]
     assert pages and all(
         "creases inset by the bend (R 1 mm, K 0.325" in p.read_text() for p in pages
     )
     plain = tmp_path / "plain"
     assert main(["tube", "--formats", "svg", "--out", str(plain)]) == 0
     assert not any("inset by the bend" in p.read_text() for p in plain.glob("*.svg"))
+    panels = tmp_path / "panels"
+    assert main([*args, "--panels", "4", "--out", str(panels)]) == 0
+    assert not any("inset by the bend" in p.read_text() for p in panels.glob("*.svg"))
