@@ -19,8 +19,8 @@ Its output folder then holds (``curvefold vault``, ``tube``, ``block``):
 
 and the report, the ``--json`` output (its ``thickness`` key) and the certificate say how far it
 folds with thickness beside the zero-thickness motion, its flat stack, its degrees of freedom
-and the thickness checks. A smooth structure (``panels = 0``) keeps its sheets of zero
-thickness: the material's thickness is then the mechanics' alone.
+and the thickness checks. A smooth structure (``panels = 0``) has no solids: the material's
+thickness is then the mechanics' and the crease patterns' (:mod:`curvefold.io._thick_sheet`).
 """
 
 from __future__ import annotations
