@@ -235,6 +235,10 @@ def test_glue_tabs_and_perforation_are_sized_to_the_sheet():
         assert max(widths) == pytest.approx(width, rel=1e-3)
     assert sb.tab_width(100.0) == 6.0  # the floor: 8 t at 1:10 is 3.2 mm
     assert sb.perforation(None, 1000.0) is None
+    with pytest.raises(InputError, match=r"perforation must be a \(dash, gap\) pair .* got 'x'"):
+        _tube_layout(sb, "x")
+    with pytest.raises(InputError, match="bend must be a SheetBend .* got Bend"):
+        _tube_layout(sb.bend)
 
 
 def test_the_legend_states_the_sheet_and_zero_thickness_draws_as_before():

@@ -36,10 +36,10 @@ from ..geometry._bend import Bend
 from ..geometry._mesh import edges_faces
 from ..geometry._sheets import PatternSheet
 from ..kernel._errors import InputError
-from ._cutting import prepare_layout
+from ._cutting import check_perforation, prepare_layout
 from ._layout import Layout, LayoutRules
 from ._output import PatternOutput
-from ._sheet_bend import SEAM_OFFSET
+from ._sheet_bend import SEAM_OFFSET, SheetBend
 from ._tables import mm_per_unit
 
 __all__ = [
@@ -116,9 +116,8 @@ def thick_sheet(
         dist = np.linalg.norm(p - foot, axis=2)
         near = np.argmin(dist, axis=1)
         rows = np.arange(len(off))
-        un = u[rows, near]
+        un = np.clip(u[rows, near], 0.0, 1.0)  # the inset held past the crease's ends
         e = fold[near]
-        un = np.clip(un, 0.0, 1.0)
         at = (1 - un) * delta[e[:, 0]] + un * delta[e[:, 1]]
         normal = (
             np.stack([-d[near, 1], d[near, 0]], axis=1) / np.linalg.norm(d[near], axis=1)[:, None]
@@ -196,7 +195,13 @@ def thick_layout(
     lapped (:func:`thick_sheets`), laid out by ``fit`` with tabs sized to the sheet, perforated
     as sized to it, the legend's row saying so."""
     sb = output.bend
-    assert sb is not None
+    if not isinstance(sb, SheetBend):
+        raise InputError(
+            f"bend must be a SheetBend (curvefold.io._sheet_bend.sheet_bend), got "
+            f"{type(sb).__name__}",
+            parameter="bend",
+        )
+    asked = check_perforation(output.perforation)
     f = mm_per_unit(output.units)
 
     def rules(scale: float) -> LayoutRules:
@@ -205,6 +210,4 @@ def thick_layout(
     fitted = fit(thick_sheets(parts, sb.bend), output, rules)
     mm = fitted.scale  # page mm per model unit
     laid = replace(fitted, cutter=output.cutter, sheet_note=sb.note(mm))
-    return prepare_layout(
-        laid, perforation=sb.perforation(output.perforation, mm), kerf=output.kerf
-    )
+    return prepare_layout(laid, perforation=sb.perforation(asked, mm), kerf=output.kerf)
