@@ -271,3 +271,21 @@ def test_a_smooth_design_with_a_material_writes_the_thick_sheets_pattern(tmp_pat
     panels = tmp_path / "panels"
     assert main([*args, "--panels", "4", "--out", str(panels)]) == 0
     assert not any("inset by the bend" in p.read_text() for p in panels.glob("*.svg"))
+
+
+@pytest.mark.parametrize("fold", [80.0, 120.0])
+def test_a_tubes_seams_meet_at_2_alpha_where_the_lap_rule_is_exact_at_90(fold):
+    """The lap of t is exact where the plies meet at 90°: a tube's seams meet at φ = 2α (their
+    dihedral on the design state's mesh, to the sampling's 0.02°), so at 2α = 80° the rule
+    leaves t (1 / sin 80° − 1) = 1.5 % of t."""
+    from curvefold.geometry._mesh import fold_angles
+
+    curve = SpaceCurve.from_curvature(2.0, 0.5, 1.0, samples=41)
+    s = Structure.tube(Lattice.from_crease(Crease.from_curve(curve, fold_angle=fold), 0.1, 0.1))
+    top = s.topology("triangles")
+    bent = fold_angles(top.coords(s.state(fold).vertices), top.faces_vertices, top.edges_vertices)
+    phi = 180.0 - np.abs(bent[top.edges_kind == "seam"])
+    np.testing.assert_allclose(phi, fold, atol=0.02)
+    assert np.abs(phi - (180.0 - fold)).min() > 1.0  # not the crease's own angle (damaged)
+    if fold == 80.0:
+        assert 1 / np.sin(np.radians(phi.mean())) - 1 == pytest.approx(0.0154, abs=1e-4)

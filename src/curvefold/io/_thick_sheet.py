@@ -19,7 +19,7 @@ That ply laps over its partner: its seam line, where its tabs fold, moves out by
 and lie on its outer face; the partner is drawn to the design's seam. Where the plies meet at a
 right angle the lapping ply's mid-surface then meets the partner's at the design's seam curve;
 at a dihedral φ the lap would need t / sin φ, so the rule leaves t (1 / sin φ − 1) there. A
-tube's seams meet at φ = 2α (measured: 89.9995° on the paper's vault at 2α = 90°, where the
+tube's seams meet at φ = 2α (measured: 90.0005° on the paper's vault at 2α = 90°, where the
 rule is exact; 80.02° at 2α = 80°, where it leaves 1.5 % of t).
 
 Glue tabs and perforation are sized to the sheet by :class:`~curvefold.io._sheet_bend.SheetBend`.
