@@ -408,8 +408,9 @@ def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
     (:attr:`~curvefold.app._build.Built.layout`)."""
     from .. import figures  # noqa: F401  (registers the guide's writer, which figures draws)
 
-    f = FORMATS[names[0]]
-    return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
+    f, units = FORMATS[names[0]], built.design.output.units
+    path = f.path(folder / built.design.kind)
+    return [f.load_writer()(path, built.structure, built.layout, thick=built.thick, units=units)]
 
 
 def _model(
