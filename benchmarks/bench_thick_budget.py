@@ -53,7 +53,7 @@ print(json.dumps([work, t1 - t0, t2 - t1, motion.low, peak() - before - work]))
 """
 
 
-def main() -> list[SummaryRow]:
+def run() -> list[SummaryRow]:
     from curvefold.app import design_from_dict
     from curvefold.app._budget import thick_work
 
@@ -106,4 +106,4 @@ def main() -> list[SummaryRow]:
 
 
 if __name__ == "__main__":
-    main()
+    run()
