@@ -107,6 +107,8 @@ def test_the_guide_prints_the_steps_and_the_cut_list_in_one_order(vault, tmp_pat
     guide = "\n".join(texts[: -len(a4)])
     assert "Panels to cut and hinge" in guide and "Order: tube by tube" in guide
     assert "Cut list:" not in guide
+    # panels are hinged, not glued: no seams, tabs or scoring of sheets
+    assert not re.search(r"tabs|[Gg]lue|[Ss]core", guide)
     # without thick panels the guide has no cut list
     plain = write_assembly(tmp_path / "plain.pdf", thick.structure, layout)
     with pdfplumber.open(plain) as pdf:

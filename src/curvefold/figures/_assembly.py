@@ -464,10 +464,10 @@ def _panels_text(pages: _Pages, thick: ThickPanels, units: str) -> None:
     where = "inside" if thick.side[0] > 0 else "outside"
     pages.text("Panels to cut and hinge", _HEAD, gap=2.0)
     for words in (
-        f"{len(thick.side)} thick panels, {t:g} {units} thick: {thick.technique}. The sheets "
-        "above show where each tube's panels lie when it is flat; the panels are cut one by "
-        "one from the cut list on the last pages of this guide (the same as the cut list PDF, "
-        "CSV and JSON), a row per panel, numbered in the order the steps assemble them.",
+        f"{len(thick.side)} thick panels, {t:g} {units} thick: {thick.technique}. They are cut "
+        "one by one from the cut list on the last pages of this guide (the same as the cut "
+        "list PDF, CSV and JSON), a row per panel, numbered in the order the steps assemble "
+        "them.",
         "Each panel is named by its id, tube · sheet · strip · panel: its tube, the sheet of "
         "the crease pattern that holds it, its strip (1 to 4 round the tube, strip c from "
         "crease c) and its place along the crease from its start. Mark it on the panel.",
@@ -518,25 +518,39 @@ def write_assembly(
     kind = first.split(" · ")[0].split()[0] if " · " in first else "structure"
     pages.text(f"{kind.capitalize()}: assembly guide", _TITLE)
     tubes = len(plan.steps)
-    pages.text(
-        f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets "
-        f"on {len(layout.pages)} crease-pattern page{'s' * (len(layout.pages) != 1)} at 1 "
-        f"model unit = {layout.scale:.4g} mm. Print the pattern at 100 % and check its 10 mm "
-        "scale bar (the one below is the same), or send it to the cutter: cut the outlines, "
-        "score the creases and the glue-tab folds. Seams are named S0, S1… on both sheets "
-        "they join."
+    pattern = (
+        f"{len(layout.pages)} crease-pattern page{'s' * (len(layout.pages) != 1)} at 1 "
+        f"model unit = {layout.scale:.4g} mm"
     )
+    if thick is None:
+        pages.text(
+            f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets "
+            f"on {pattern}. Print the pattern at 100 % and check its 10 mm "
+            "scale bar (the one below is the same), or send it to the cutter: cut the outlines, "
+            "score the creases and the glue-tab folds. Seams are named S0, S1… on both sheets "
+            "they join."
+        )
+    else:
+        pages.text(
+            f"{tubes} tube{'s' * (tubes != 1)}, {len(thick.side)} thick panels. The "
+            f"{len(plan.sheets)} sheets on {pattern} are the map of the panels: each holds "
+            "the panels of two strips of a tube as they lie flat. The panels are cut from the "
+            "cut list, not from the pattern."
+        )
     pages.text(fold_key(layout))
-    pages.text("Sheets to cut", _HEAD, gap=2.0)
+    heading = "Sheets to cut" if thick is None else "Sheets of the crease pattern"
+    pages.text(heading, _HEAD, gap=2.0)
     for sheet in plan.sheets:
         seams = ", ".join(f"{seam_name(i)}{' (tabs)' * tabs}" for i, tabs in sheet.seams)
+        seams = f"; seams {seams}" if thick is None else ""
         folds = f"; {_folds_words(sheet.folds)}" if sheet.folds else ""
-        pages.text(f"{sheet.label}: pattern page {sheet.page}; seams {seams}{folds}", indent=3.0)
-    pages.text("Seams", _HEAD, gap=2.0)
-    for seam in plan.seams:
-        pages.text(f"{seam_name(seam.id)}: the tabs of {seam.tabs} glue to {seam.onto}", indent=3.0)
+        pages.text(f"{sheet.label}: pattern page {sheet.page}{seams}{folds}", indent=3.0)
     if thick is not None:
         _panels_text(pages, thick, units)
+    else:
+        pages.text("Seams", _HEAD, gap=2.0)
+    for seam in plan.seams if thick is None else ():
+        pages.text(f"{seam_name(seam.id)}: the tabs of {seam.tabs} glue to {seam.onto}", indent=3.0)
     scenes, ground, box = _pictures(structure, len(plan.steps), view)
     aspect = (box[1, 1] - box[0, 1]) / max(box[1, 0] - box[0, 0], 1e-12)
     picture = min(pages.width * aspect, 0.32 * (pages.top - pages.bottom))
