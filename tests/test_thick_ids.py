@@ -113,3 +113,23 @@ def test_the_guide_prints_the_steps_and_the_cut_list_in_one_order(vault, tmp_pat
     plain = write_assembly(tmp_path / "plain.pdf", thick.structure, layout)
     with pdfplumber.open(plain) as pdf:
         assert not any((p.extract_text() or "").startswith("Cut list:") for p in pdf.pages)
+
+
+def test_the_commands_guide_has_the_panels_only_where_the_command_writes_them(tmp_path):
+    """`curvefold vault|tube|block` (thick files written) gets the panels' guide; `curvefold load`
+    of the same design (its thickness the mechanics' alone) keeps the sheets' guide."""
+    from curvefold.app import _products as products
+    from curvefold.app import design_from_dict
+    from curvefold.app._build import build
+
+    data = {"kind": "vault", "vault": {"panels": 4, "tubes": 2}, "material": {"thickness": 0.002}}
+    built = build(design_from_dict(data))
+    for thick, cut_list in ((True, True), (False, False)):
+        jobs = dict(products.jobs(built, ("assembly",), thick=thick))
+        folder = tmp_path / str(thick)
+        folder.mkdir()
+        (path,) = jobs["assembly guide"](folder)
+        with pdfplumber.open(path) as pdf:
+            texts = [page.extract_text() or "" for page in pdf.pages]
+        assert any(t.startswith("Cut list: 32 panels 2 mm thick") for t in texts) is cut_list
+        assert ("Panels to cut and hinge" in texts[0]) is cut_list
