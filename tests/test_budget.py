@@ -52,6 +52,15 @@ def peak_bytes(argv, cwd) -> float:
             },
         ),
         (["tube", "--panels", "20000", "--json"], {"kind": "tube", "curve": {"panels": 20000}}),
+        (  # thick panels: their solids, range, checks, cut list and mechanics
+            ["vault", "--panels", "8", "--tubes", "2", "--thickness", "0.002"]
+            + ["--material", "plywood", "--out", "v"],
+            {
+                "kind": "vault",
+                "vault": {"panels": 8, "tubes": 2},
+                "material": {"material": "plywood", "thickness": 0.002},
+            },
+        ),
     ],
 )
 def test_the_estimate_is_never_below_the_peak(tmp_path, monkeypatch, argv, data):
