@@ -40,6 +40,7 @@ NAMES = (
     "collapse",
     "merlin",
     "virtual_thickness",
+    "thick_budget",
     "deploy",
     "threads",
     "startup",

@@ -4,6 +4,7 @@
 small ones keep the estimate honest on every run.
 """
 
+import re
 import subprocess
 import sys
 
@@ -51,6 +52,15 @@ def peak_bytes(argv, cwd) -> float:
             },
         ),
         (["tube", "--panels", "20000", "--json"], {"kind": "tube", "curve": {"panels": 20000}}),
+        (  # thick panels: their solids, range, checks, cut list and mechanics
+            ["vault", "--panels", "8", "--tubes", "2", "--thickness", "0.002"]
+            + ["--material", "plywood", "--out", "v"],
+            {
+                "kind": "vault",
+                "vault": {"panels": 8, "tubes": 2},
+                "material": {"material": "plywood", "thickness": 0.002},
+            },
+        ),
     ],
 )
 def test_the_estimate_is_never_below_the_peak(tmp_path, monkeypatch, argv, data):
@@ -117,3 +127,67 @@ def test_panels_count_in_the_estimate():
         design_from_dict({"kind": "vault", "samples": 201, "vault": {"tubes": 9}}), files=False
     )
     assert estimate(many, files=False).strip_samples == smooth.strip_samples + 100_001 * 36
+
+
+#: The thick panels' work measured by ``benchmarks/bench_thick_budget.py`` on the paper's vault
+#: (9 tubes), one process per design: (panels, t) → (MiB above the built design, CPU seconds of
+#: the solids, range, checks and cut list, CPU seconds of the STEP file).
+THICK_MEASURED = {(16, 0.01): (15.9, 2.2, 3.5), (48, 0.002): (27.1, 7.1, 8.6)}
+
+
+def _thick_design(panels: int, t: float, **vault):
+    return design_from_dict(
+        {
+            "kind": "vault",
+            "vault": {"panels": panels, **vault},
+            "material": {"material": "plywood", "thickness": t},
+        },
+        source="v.toml",
+    )
+
+
+def _thick_ratios(panels: int, t: float) -> list[float]:
+    w = budget.thick_work(_thick_design(panels, t))
+    memory, seconds, step = THICK_MEASURED[(panels, t)]
+    return [w.memory / 2**20 / memory, w.seconds / seconds, w.step_seconds / step]
+
+
+@pytest.mark.parametrize(("panels", "t"), list(THICK_MEASURED))
+def test_the_thick_panels_work_is_estimated_before_work_within_30_percent(panels, t, monkeypatch):
+    ratios = _thick_ratios(panels, t)
+    assert all(0.7 <= r <= 1.3 for r in ratios), ratios
+    # the vault's tubes = "max" resolved (9 tubes), not counted as the cap of 24: the time
+    # would be 2.7 times the measured
+    monkeypatch.setattr(budget, "_built_strips", budget._strips)
+    assert max(_thick_ratios(panels, t)) > 1.3
+    # no thick work without a material or without panels
+    assert budget.thick_work(design_from_dict({"kind": "vault"})).seconds == 0.0
+    smooth = design_from_dict({"kind": "vault", "material": {"material": "plywood"}})
+    assert budget.thick_work(smooth).memory == 0.0
+
+
+def test_a_thickness_run_over_the_budget_is_refused_in_one_line(monkeypatch, tmp_path):
+    from _cli import run
+
+    design = _thick_design(16, 0.01)
+    found = estimate(design, files=True).total
+    w = budget.thick_work(design)
+    # the estimate holds the thick work (its largest file job, the 3D models, comes after it)
+    monkeypatch.setattr(budget, "thick_work", lambda d: budget.ThickWork(0.0, 0.0, 0.0, 0))
+    assert found - estimate(design, files=True).total == w.memory > 0
+    monkeypatch.undo()
+    monkeypatch.setenv(budget.ENVIRONMENT, str(int(found)))
+    assert budget.require_budget(design, files=True).total == found
+    monkeypatch.setenv(budget.ENVIRONMENT, str(int(found) - (1 << 20)))
+    argv = ("vault", "--panels", "16", "--thickness", "0.01", "--material", "plywood")
+    r = run(*argv, "--out", str(tmp_path / "v"))
+    lines = r.stderr.splitlines()
+    assert r.returncode == 2 and len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
+    assert re.search(
+        r"^curvefold: error: curvefold vault --panels 16 --material plywood --thickness 0.01: "
+        r"this job needs about 829 MiB of memory \(801 samples \+ 17 panel vertices × 96 "
+        r"strips, thick panels 15 MiB and 2\.6 CPU-s\), more than the budget of 828 MiB "
+        r"\(CURVEFOLD_MEMORY_BUDGET\); lower samples \(at most \d+ fit\), panels, ",
+        lines[0],
+    ), lines[0]
+    assert not (tmp_path / "v").exists()

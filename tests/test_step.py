@@ -109,9 +109,10 @@ def test_the_bounding_box_is_the_stls(thick, tmp_path):
 def test_the_solids_are_named_by_the_cut_lists_panel_ids_in_ascii(thick, tmp_path):
     path = write_thick_step(tmp_path / "s.step", thick, unit="m", to_unit="mm")
     assert _names(path) == list(thick.labels())
-    assert [row["panel"] for row in thick.cut_list()] == list(thick.labels())
+    assert [row["panel"] for row in thick.cut_list()] == [thick.labels()[f] for f in thick.order]
     path.read_text(encoding="ascii")  # ISO 10303-21: the middle dots as \X2\00B7\X0\
-    assert "PRODUCT('tube 1 \\X2\\00B7\\X0\\ strip 1 \\X2\\00B7\\X0\\ panel 1'" in path.read_text()
+    dot = " \\X2\\00B7\\X0\\ "
+    assert f"PRODUCT('tube 1{dot}sheet A{dot}strip 1{dot}panel 1'" in path.read_text()
 
 
 @pytest.mark.parametrize(
@@ -163,7 +164,9 @@ def test_the_writer_refuses_a_solid_that_fails_naming_its_panel(thick, tmp_path,
     import curvefold.io._step as step
 
     monkeypatch.setattr(step, "_faces", lambda k, ccw: _faces(k, ccw)[:-1])
-    with pytest.raises(RuntimeError, match=r"the solid of tube 1 · strip 1 · panel 1 is "):
+    with pytest.raises(
+        RuntimeError, match=r"the solid of tube 1 · sheet A · strip 1 · panel 1 is "
+    ):
         write_thick_step(tmp_path / "s.step", thick)
     assert not (tmp_path / "s.step").exists()
 

@@ -384,7 +384,9 @@ def test_the_solids_are_a_watertight_stl_of_the_prisms_volume(tube, tmp_path):
     rows = __import__("json").loads(write_cut_list(tmp_path / "cut.json", tube).read_text())
     panels = rows["panels"]
     assert len({r["panel"] for r in panels}) == len(panels) == 32
-    assert np.allclose([r["bevels"] for r in panels], np.degrees(tube.bevels).round(3))
+    # its rows in the order of assembly (tests/test_thick_ids.py)
+    assert [r["panel"] for r in panels] == [tube.labels()[f] for f in tube.order]
+    assert np.allclose([r["bevels"] for r in panels], np.degrees(tube.bevels[tube.order]).round(3))
     assert sum(not h for r in panels for h in r["hinged"]) == 8
 
 

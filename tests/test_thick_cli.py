@@ -114,8 +114,11 @@ def test_the_cut_list_gives_every_edge_its_length_bevel_and_hinge(folder, librar
     outline = library.local[:, :4, :2] * 1e3
     lengths = np.linalg.norm(np.roll(outline, -1, axis=1) - outline, axis=-1)
     bevels = np.degrees(library.bevels)
+    row = {f: n + 1 for n, f in enumerate(library.order.tolist())}  # the order of assembly
     for f, label in enumerate(library.labels()):
-        assert label in text
+        parts = label.split(" · ")  # printed on two lines, numbered
+        first, second = (re.escape(" · ".join(p)) for p in (parts[:2], parts[2:]))
+        assert re.search(rf"^{row[f]}\. {first}(?= |$).*\n{second}(?= |$)", text, re.M), label
         for e in range(4):
             printed = f"{e + 1}: {lengths[f, e]:.1f}, {bevels[f, e]:.1f}°"
             assert printed + (" hinged" if library.hinged[f, e] else "") in text, printed

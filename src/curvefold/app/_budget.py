@@ -19,7 +19,10 @@ peak is the interpreter, plus the geometry (the structure, its state and the cer
 largest of the file jobs. A design under load (:attr:`Design.mechanics
 <curvefold.app.Design.mechanics>`) adds its bar-and-hinge model, its solves and its result, held
 while the files are written, counted per strip sample the model keeps
-(:func:`curvefold.mechanics.model_samples`; every panel vertex).
+(:func:`curvefold.mechanics.model_samples`; every panel vertex). A structure of thick panels
+(rigid panels with a material) adds their work, held in the main process: the contact search of
+their range of motion, and the dense DOF count of their linkage (:func:`thick_work`, which
+also estimates its time).
 """
 
 from __future__ import annotations
@@ -50,6 +53,8 @@ __all__ = [
     "atlas_mechanics",
     "require_rebuild_budget",
     "require_deploy_budget",
+    "ThickWork",
+    "thick_work",
 ]
 
 #: Memory a run may use, in bytes, unless :data:`ENVIRONMENT` says otherwise.
@@ -86,8 +91,9 @@ COSTS: dict[str, tuple[float, float, float]] = {
     "pictures": (40 * _MB, 300.0, 0.0),
     # the STEP file of thick panels, written only for them (_parts): OpenCascade loaded and the
     # 16 solids of a tube written peak 282 MiB above the built design, the 576 of the paper's
-    # vault at 16 panels 392 MiB; they grow with the panels, not the samples
-    "solids": (400 * _MB, 0.0, 0.0),
+    # vault at 16 panels 322-392 MiB, its 1728 at 48 panels 566 MiB; they grow with the solids,
+    # not the samples (STEP_PER_SOLID)
+    "solids": (280 * _MB, 0.0, 0.0),
     # measured: the peak of `curvefold load --json` over the geometry's estimate, 86 MiB for the
     # paper's vault (801 samples, 261 kept × 36 strips), 105 MiB at 3201 samples, 180 MiB at 12801,
     # 70 MiB with 256 panels, rounded up; measured again with the estimates above: the vault's load
@@ -116,6 +122,111 @@ ATLAS_PER_WORKER, ATLAS_PER_SAMPLE = 80 * _MB, COSTS["geometry"][1] * 4 * DEFAUL
 #: 314 MiB at 41 with two elements across (k^1.8), rounded up to 45 MiB and 2 MiB per sample
 #: kept, times k^2.
 ATLAS_LOAD_FIXED, ATLAS_LOAD_PER_SAMPLE = 45 * _MB, 2 * _MB
+
+
+#: Bytes of the STEP file per solid, over :data:`COSTS`' fixed part (see there).
+STEP_PER_SOLID = 0.2 * _MB
+#: The thick panels' work (:func:`thick_work`), fitted on the paper's vault (9 tubes) with
+#: ``benchmarks/bench_thick_budget.py``, one process per design, CPU seconds: 16 panels at
+#: t = 0.01 (576 solids, stops at 70.9°; measured 16 MiB, 2.2 s, STEP 3.5 s) and 48 at
+#: t = 0.002 (1728 solids, stops at 67.3°; 27 MiB, 7.1-8.3 s, STEP 8.6 s). Memory: a fixed
+#: part and a part per solid (the contact search's pairs a chunk at a time, the DOF count's
+#: Jacobian of about 8 bars a panel: 1540 × 1164 at 48 panels, 14 MB).
+THICK_FIXED, THICK_PER_SOLID = 10 * _MB, 10e3
+#: Seconds: per solid and state of the contact search (the solids' pairs found by their boxes,
+#: the faces' axes, the edges' only where those leave a pair deeper than the tolerance:
+#: 2.1-3.1e-5 measured), per solid of the rest (the solids, the stack, the cut list's files),
+#: per bar × unknown² of each SVD of the DOF count (1.6-2.0e-10), per solid of the STEP file
+#: (OpenCascade: 5.0-6.1e-3).
+THICK_PER_SOLID_STATE, THICK_PER_SOLID_FILE = 2.6e-5, 3e-4
+THICK_PER_SVD, THICK_STEP_PER_SOLID = 1.8e-10, 5.5e-3
+#: States the contact search tests: the range's two ends scanned 1° at a time from the design
+#: angle (25 states, for a fold that stops within 25° of it as the measured vaults do: 72 and
+#: 75 states in all with the bisections; one that folds flat from 90° scans up to 90, and takes
+#: up to twice as long), bisected to 1e-7° (24 each), and the checks' 10 states.
+THICK_STATES = 25 + 2 * 24 + 2 + 10
+
+
+@dataclass(frozen=True)
+class ThickWork:
+    """The estimate of the thick panels' work before it starts.
+
+    Attributes
+    ----------
+    memory : float
+        Bytes above the built design, at the peak (the DOF count).
+    seconds : float
+        CPU seconds of the solids, their range, checks and cut list.
+    step_seconds : float
+        CPU seconds of the STEP file (written when the ``step`` format is asked for).
+    unknowns : int
+        Unknowns of the DOF count's linkage (its first tubes within
+        :data:`~curvefold.analysis.CERTIFY_UNKNOWNS`).
+    """
+
+    memory: float
+    seconds: float
+    step_seconds: float
+    unknowns: int
+
+
+def _built_strips(design: Design) -> int:
+    """The strips of the structure a design builds: a vault's ``tubes = "max"`` resolved on a
+    coarse build (41 samples, 20 ms; the cap if that fails: the build will say why), as the
+    thick work grows with the solids it has (9 tubes for the paper's vault, not 24)."""
+    from ._design import VaultParams
+
+    if design.design_kind.name != "vault" or design.params(VaultParams).tubes != "max":
+        return _strips(design)
+    from dataclasses import replace
+
+    from ..vault import Vault
+    from ._build import vault_design
+
+    try:
+        coarse = Vault.from_design(replace(vault_design(design), samples=41, panels=0))
+    except InputError:
+        return _strips(design)
+    return 4 * len(coarse.structure.cells)
+
+
+def thick_work(design: Design) -> ThickWork:
+    """The thick panels' work of a design of rigid panels with a material, from the design
+    alone (zeros for any other design).
+
+    Its solids are N × strips (N panels per crease); the DOF count takes the first k tubes of
+    at most 1000 unknowns (at least one), 3 per point: 4k (N + 1) hinge corners (every
+    strip's crease points, an upper bound of the lattice's) and 4kN top points, with 8 bars
+    per panel (its corners and top point welded to its neighbours': 1016 and 1540 bars
+    measured for 128 and 192 panels); it is solved at :data:`RANGE_STATES` + 1 states.
+
+    Examples
+    --------
+    >>> from curvefold.app import design_from_dict
+    >>> w = thick_work(design_from_dict({"kind": "vault", "vault": {"panels": 48}, "material": {}}))
+    >>> w.unknowns, round(w.memory / 2**20), round(w.seconds, 1), round(w.step_seconds, 1)
+    (1164, 26, 8.1, 9.5)
+    """
+    from ..analysis._mechanism import CERTIFY_UNKNOWNS
+    from ..analysis._thick_checks import RANGE_STATES
+
+    panels = design.design_kind.panels(design)
+    if design.material is None or not panels:
+        return ThickWork(0.0, 0.0, 0.0, 0)
+    strips = _built_strips(design)
+    tubes = max(1, strips // 4)
+    per_tube = 3 * (4 * (panels + 1) + 4 * panels)
+    k = max(1, min(tubes, CERTIFY_UNKNOWNS // per_tube))
+    unknowns, bars = k * per_tube, 8 * 4 * k * panels
+    solids = panels * strips
+    svd = bars * float(unknowns) ** 2 * (RANGE_STATES + 1)
+    return ThickWork(
+        THICK_FIXED + THICK_PER_SOLID * solids,
+        (THICK_PER_SOLID_STATE * THICK_STATES + THICK_PER_SOLID_FILE) * solids
+        + THICK_PER_SVD * svd,
+        THICK_STEP_PER_SOLID * solids,
+        unknowns,
+    )
 
 
 def memory_budget() -> int:
@@ -228,17 +339,19 @@ def _mechanics(design: Design) -> float:
 def estimate(design: Design, *, files: bool) -> Estimate:
     """The peak memory of building ``design`` (and, with ``files``, writing its formats
     and pictures), from the design alone: the interpreter, the geometry, the mechanics of
-    a design under load and the costliest file job (they run one after the other)."""
+    a design under load, its thick panels' work (:func:`thick_work`) and the costliest file
+    job (they run one after the other)."""
     samples = _samples(design)
     n = samples * _strips(design)
     jobs = {part: _cost(part, samples, n) for part in _parts(design, files)}
+    if "solids" in jobs:  # the STEP file grows with the solids
+        jobs["solids"] += STEP_PER_SOLID * design.design_kind.panels(design) * _built_strips(design)
     mechanics = _mechanics(design)
     largest = max(
         jobs, key=lambda part: jobs[part], default="mechanics" if mechanics else "geometry"
     )
-    return Estimate(
-        BASE + _cost("geometry", samples, n) + mechanics + jobs.get(largest, 0.0), n, largest
-    )
+    held = BASE + _cost("geometry", samples, n) + mechanics + thick_work(design).memory
+    return Estimate(held + jobs.get(largest, 0.0), n, largest)
 
 
 def require_budget(design: Design, *, files: bool) -> Estimate:
@@ -261,9 +374,18 @@ def require_budget(design: Design, *, files: bool) -> Estimate:
         lower.append(f"the formats written ({_FAMILY_NAMES[found.largest]} cost most)")
     raise InputError(
         f"{design.source}: this job needs about {_size(found.total)} of memory "
-        f"({_points(design)} × {strips} strips), more than the budget of {_size(budget)} "
+        f"({_points(design)} × {strips} strips{_thick_words(design)}), more than the budget of "
+        f"{_size(budget)} "
         f"({ENVIRONMENT}); lower " + ", ".join(lower)
     )
+
+
+def _thick_words(design: Design) -> str:
+    """``", thick panels 16 MiB and 2.6 CPU-s"``: the thick work's part (:func:`thick_work`)."""
+    work = thick_work(design)
+    if not work.memory:
+        return ""
+    return f", thick panels {_size(work.memory)} and {work.seconds:.2g} CPU-s"
 
 
 def _points(design: Design) -> str:

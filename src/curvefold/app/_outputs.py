@@ -229,7 +229,7 @@ def write_outputs(
     from . import _products as products
 
     formats = built.design.output.formats
-    jobs = products.jobs(built, formats, fold_angle=fold_angle)
+    jobs = products.jobs(built, formats, fold_angle=fold_angle, thick=thick)
     missing = missing_dependencies(formats)
     if missing:
         raise InputError("formats: " + "; ".join(missing))

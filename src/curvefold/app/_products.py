@@ -103,14 +103,15 @@ def _metadata(built: Built) -> dict:
 
 
 def jobs(
-    built: Built, formats: Collection[str], *, fold_angle: float | None = None
+    built: Built, formats: Collection[str], *, fold_angle: float | None = None, thick: bool = False
 ) -> list[tuple[str, Job]]:
     """The jobs that write the requested formats of a built design and its pictures (when
     :data:`PICTURES_NEED` is installed: see :func:`pictures_left_out`): the drawings first
     (:data:`DRAWN`: they need nothing ``prepare`` computes), then the files, longest first.
 
     ``fold_angle`` is 2α of the folded state the FOLD and 3D files hold (degrees; default
-    the design angle); crease patterns, pictures and the GIF do not depend on it.
+    the design angle); crease patterns, pictures and the GIF do not depend on it. With
+    ``thick``, the assembly guide assembles the structure's thick panels (when it has them).
 
     Raises
     ------
@@ -127,6 +128,7 @@ def jobs(
         label, write = family_jobs[family]
         names = tuple(name for name in formats_of(family) if name in formats)
         angle = {"fold_angle": fold_angle} if family in _FOLDED else {}
+        angle |= {"thick": True} if thick and family == "guide" else {}
         out.append((label, partial(write, built, names, **angle)))
     if can_draw():
         out.append(("pictures", partial(_pictures, built)))
@@ -403,13 +405,18 @@ def _pattern(built: BuiltStructure | BuiltCrease, names: tuple[str, ...], folder
     )
 
 
-def _guide(built: BuiltStructure, names: tuple[str, ...], folder: Path) -> list:
+def _guide(
+    built: BuiltStructure, names: tuple[str, ...], folder: Path, *, thick: bool = False
+) -> list:
     """The assembly guide, on the pages of the design's crease pattern
-    (:attr:`~curvefold.app._build.Built.layout`)."""
+    (:attr:`~curvefold.app._build.Built.layout`); with ``thick``, of its thick panels (if any)
+    and their cut list."""
     from .. import figures  # noqa: F401  (registers the guide's writer, which figures draws)
 
-    f = FORMATS[names[0]]
-    return [f.load_writer()(f.path(folder / built.design.kind), built.structure, built.layout)]
+    f, units = FORMATS[names[0]], built.design.output.units
+    path = f.path(folder / built.design.kind)
+    solids = built.thick if thick else None
+    return [f.load_writer()(path, built.structure, built.layout, thick=solids, units=units)]
 
 
 def _model(

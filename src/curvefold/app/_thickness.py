@@ -14,8 +14,10 @@ Its output folder then holds (``curvefold vault``, ``tube``, ``block``):
 * ``<kind>_solids.3dm``: the solids as closed polysurfaces, in metres (with ``3dm``);
 * ``<kind>_solids.step``: the solids as closed B-rep solids (with ``step`` and OpenCascade);
 * ``<kind>_cut_list.csv``, ``.json`` and ``.pdf``: every panel's outline, edge lengths, bevels
-  and hinges, named by its tube (numbered as in the assembly guide), strip and place along
-  the crease (the PDF a printable row per panel);
+  and hinges, named by its tube (numbered as in the assembly guide), sheet, strip and place
+  along the crease, in the order of assembly (the PDF a printable row per panel);
+* ``assembly.pdf`` (the ``guide`` formats): the steps assemble the panels, named by those ids
+  in that order, and the cut list follows on its last pages;
 
 and the report, the ``--json`` output (its ``thickness`` key) and the certificate say how far it
 folds with thickness beside the zero-thickness motion, its flat stack, its degrees of freedom
@@ -213,8 +215,9 @@ def thickness_html(report_html: str, payload: dict) -> str:
     ]
     body = "".join(f"<tr><th>{escape(a)}</th><td>{escape(b)}</td></tr>" for a, b in rows)
     section = (
-        f"<h2>Thick panels</h2><p>{t['panels']} solids: their cut list with bevels is the CSV "
-        f"and JSON <code>*_cut_list</code>, the solids <code>*_solids.stl</code> (1:1), "
+        f"<h2>Thick panels</h2><p>{t['panels']} solids: their cut list with bevels is the CSV, "
+        f"JSON and PDF <code>*_cut_list</code> (in the order of assembly, as in the assembly "
+        f"guide), the solids <code>*_solids.stl</code> (1:1), "
         f"<code>*_solids.3dm</code> and <code>*_solids.step</code>.</p><table>{body}</table>\n"
     )
     return report_html.replace("<h2>Certificate</h2>", section + "<h2>Certificate</h2>", 1)

@@ -13,7 +13,11 @@ Drawn on the pages of the crease pattern it goes with (the same page size, margi
   seams, then glue it to the tubes before it along the creases they share (the
   structure's bonds), each step with a picture of the structure built so far at its design
   angle, the new tube picked out, drawn by curvefold's own renderer
-  (:func:`~curvefold.figures._scene.render_strips`), every picture at one scale.
+  (:func:`~curvefold.figures._scene.render_strips`), every picture at one scale;
+* for a structure of thick panels (:class:`~curvefold.geometry.ThickPanels`), the panels
+  instead of the sheets in its steps: each tube's panels by their ids, in the order they are
+  assembled (:mod:`curvefold.geometry._thick_ids`), where their hinges go, and the cut list
+  on its last pages, its rows in that order (:func:`~curvefold.io._solids.cut_list_pages`).
 
 :func:`assembly_plan` gathers what the guide says from the layout and the structure;
 :func:`write_assembly` draws it (:mod:`curvefold.io._pdf`).
@@ -24,11 +28,13 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..geometry._sheets import bonds
 from ..geometry._structure import Structure, check_structure, drawable
+from ..geometry._thick_ids import SHEET_STRIPS
 from ..geometry._topology import tube_strips
 from ..io._cutters import LEGEND_LAYER
 from ..io._labels import seam_name
@@ -39,6 +45,9 @@ from ..io._pdf import PdfDocument, PdfPage, PdfText, advance_units
 from ..io._planar import bounding_box
 from ..io._tables import COLOURS
 from ._scene import GROUND_COLOR, GROUND_EDGE, STRIP_RGB, View, ground_polygon, render_strips
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..geometry._thick import ThickPanels
 
 __all__ = [
     "HIGHLIGHT_RGB",
@@ -130,12 +139,14 @@ class Seam:
 
 @dataclass(frozen=True)
 class Step:
-    """Step ``number``: add tube ``tube`` (0-based); what to do, one sentence a line."""
+    """Step ``number``: add tube ``tube`` (0-based); what to do, one sentence a line; of thick
+    panels, the ids of the panels it adds in the order it adds them."""
 
     number: int
     tube: int
     title: str
     lines: tuple[str, ...]
+    panels: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -145,6 +156,11 @@ class AssemblyPlan:
     sheets: tuple[SheetToCut, ...]
     seams: tuple[Seam, ...]
     steps: tuple[Step, ...]
+
+    @property
+    def panels(self) -> tuple[str, ...]:
+        """The ids of the thick panels in the order the steps assemble them (none for sheets)."""
+        return tuple(p for step in self.steps for p in step.panels)
 
 
 def _crease_words(tube: int, crease: int) -> str:
@@ -157,12 +173,45 @@ def _crease_words(tube: int, crease: int) -> str:
     return f"tube {tube + 1}'s crease {crease} ({where})"
 
 
-def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
+def _thick_lines(thick: ThickPanels, tube: int) -> tuple[list[str], tuple[str, ...]]:
+    """What step ``tube`` (0-based) says of thick panels: its sheets' strips, panel by panel
+    along the crease with their cut-list rows, the hinges that join them; and their ids."""
+    group = thick.structure.topology().faces_group
+    row = np.empty(len(group), dtype=np.int64)
+    row[thick.order] = np.arange(1, len(group) + 1)
+    labels = thick.labels()
+    lines, ids = [], []
+    for sheet, strips in SHEET_STRIPS:
+        said = []
+        for n, strip in enumerate(strips):
+            faces = thick.order[group[thick.order] == 4 * tube + strip]
+            ids += [labels[f] for f in faces.tolist()]
+            first, last = labels[int(faces[0])], labels[int(faces[-1])].rsplit(" ", 1)[1]
+            rows = f"cut-list rows {row[faces[0]]}–{row[faces[-1]]}"
+            said.append(f"the {len(faces)} panels of strip {strip + 1} ({rows}: {first} to {last})")
+            if n:
+                said[-1] += f", each hinged also to strip {strips[0] + 1} along crease {strip + 1}"
+        lines.append(
+            f"Sheet {sheet}: lay {said[0]} in a row along the crease, each hinged to the one "
+            f"before on their shared edge; then {said[1]}."
+        )
+    lines.append(
+        "Close the tube: hinge strip 1 (sheet A) to strip 2 (sheet B) along crease 2, and strip 3 "
+        "(sheet B) to strip 4 (sheet A) along crease 4."
+    )
+    return lines, tuple(ids)
+
+
+def assembly_plan(
+    structure: Structure, layout: Layout, *, thick: ThickPanels | None = None
+) -> AssemblyPlan:
     """The sheets, seams and steps of a structure laid out as ``layout``
     (:func:`~curvefold.io.layout_pattern`).
 
     Seams and tabs are read from the layout (its seam labels and glue areas), tubes and the
-    creases they share from the structure (:func:`~curvefold.geometry.bonds`).
+    creases they share from the structure (:func:`~curvefold.geometry.bonds`). With ``thick``
+    (the structure's thick panels), the steps assemble its panels instead of folding and
+    gluing sheets: each step's ``panels`` are its tube's ids in the cut list's order.
     """
     check_structure(structure)
     check_layout(layout)
@@ -197,6 +246,20 @@ def assembly_plan(structure: Structure, layout: Layout) -> AssemblyPlan:
         by_tube.setdefault(max(k for k, _ in bond.creases), []).append(bond)
     steps = []
     for tube in range(tube_count):
+        if thick is not None:
+            lines, panels = _thick_lines(thick, tube)
+            for bond in by_tube.get(tube, []):
+                others = [c for c in bond.creases if c[0] != tube]
+                here = [c for c in bond.creases if c[0] == tube]
+                if others and here:
+                    lines.append(
+                        f"Hinge {_crease_words(*here[0])} to "
+                        f"{', '.join(_crease_words(*c) for c in others)}: one hinge axis, on "
+                        "the crease, for the panels of both."
+                    )
+            title = f"Step {tube + 1}: tube {tube + 1}"
+            steps.append(Step(tube + 1, tube, title, tuple(lines), panels))
+            continue
         a, b = sheets[2 * tube].label, sheets[2 * tube + 1].label
         pair = (sheets[2 * tube], sheets[2 * tube + 1])
         if pair[0].folds == pair[1].folds and pair[0].folds:
@@ -393,8 +456,40 @@ def _hex_codes(colours: np.ndarray) -> list[str]:
     return [codes[k] for k in which.ravel().tolist()]
 
 
+def _panels_text(pages: _Pages, thick: ThickPanels, units: str) -> None:
+    """The guide's section on thick panels: what they are, their ids, the order, the hinges."""
+    from ..io._tables import UNITS
+
+    t = thick.thickness / UNITS[units].metres  # the model's lengths are metres
+    where = "inside" if thick.side[0] > 0 else "outside"
+    pages.text("Panels to cut and hinge", _HEAD, gap=2.0)
+    for words in (
+        f"{len(thick.side)} thick panels, {t:g} {units} thick: {thick.technique}. They are cut "
+        "one by one from the cut list on the last pages of this guide (the same as the cut "
+        "list PDF, CSV and JSON), a row per panel, numbered in the order the steps assemble "
+        "them.",
+        "Each panel is named by its id, tube · sheet · strip · panel: its tube, the sheet of "
+        "the crease pattern that holds it, its strip (1 to 4 round the tube, strip c from "
+        "crease c) and its place along the crease from its start. Mark it on the panel.",
+        "Order: tube by tube; in each, sheet A (strip 4, then strip 1) then sheet B (strip 2, "
+        "then strip 3), each strip panel by panel from the start of the crease.",
+        "Hinges: every edge the cut list marks hinged (red) gets a hinge whose axis is that "
+        f"edge of the panel's full face (the one its bevels do not set back), toward the {where} "
+        "of its tube: the "
+        "axis lies on the crease of the folded structure, so the panels fold exactly as the "
+        "pattern does; the bevelled edges turn away from it.",
+    ):
+        pages.text(words, indent=3.0)
+
+
 def write_assembly(
-    path: str | os.PathLike, structure: Structure, layout: Layout, *, view: View | None = None
+    path: str | os.PathLike,
+    structure: Structure,
+    layout: Layout,
+    *,
+    view: View | None = None,
+    thick: ThickPanels | None = None,
+    units: str = "mm",
 ) -> Path:
     """Write the assembly guide of a structure laid out as ``layout`` (see the module notes).
 
@@ -408,34 +503,53 @@ def write_assembly(
     view : View, optional, keyword-only
         The direction the pictures look from; default the figures' view from the side where
         each new tube comes in front of those before it.
+    thick : ThickPanels, optional, keyword-only
+        The structure's thick panels: the steps assemble them, and the cut list (in ``units``,
+        the model's lengths being metres) follows on A4 pages.
 
     Returns
     -------
     Path
     """
-    plan = assembly_plan(structure, layout)
+    plan = assembly_plan(structure, layout, thick=thick)
     doc = PdfDocument(title="assembly guide", layers=_LAYERS)
     pages = _Pages(doc, layout)
     first = layout.sheets()[0].label  # "vault · tube 1 · sheet A", "tube 1 · sheet A"
     kind = first.split(" · ")[0].split()[0] if " · " in first else "structure"
     pages.text(f"{kind.capitalize()}: assembly guide", _TITLE)
     tubes = len(plan.steps)
-    pages.text(
-        f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets "
-        f"on {len(layout.pages)} crease-pattern page{'s' * (len(layout.pages) != 1)} at 1 "
-        f"model unit = {layout.scale:.4g} mm. Print the pattern at 100 % and check its 10 mm "
-        "scale bar (the one below is the same), or send it to the cutter: cut the outlines, "
-        "score the creases and the glue-tab folds. Seams are named S0, S1… on both sheets "
-        "they join."
+    pattern = (
+        f"{len(layout.pages)} crease-pattern page{'s' * (len(layout.pages) != 1)} at 1 "
+        f"model unit = {layout.scale:.4g} mm"
     )
+    if thick is None:
+        pages.text(
+            f"{tubes} tube{'s' * (tubes != 1)} of two sheets each, {len(plan.sheets)} sheets "
+            f"on {pattern}. Print the pattern at 100 % and check its 10 mm "
+            "scale bar (the one below is the same), or send it to the cutter: cut the outlines, "
+            "score the creases and the glue-tab folds. Seams are named S0, S1… on both sheets "
+            "they join."
+        )
+    else:
+        pages.text(
+            f"{tubes} tube{'s' * (tubes != 1)}, {len(thick.side)} thick panels. The "
+            f"{len(plan.sheets)} sheets on {pattern} are the map of the panels: each holds "
+            "the panels of two strips of a tube as they lie flat. The panels are cut from the "
+            "cut list, not from the pattern."
+        )
     pages.text(fold_key(layout))
-    pages.text("Sheets to cut", _HEAD, gap=2.0)
+    heading = "Sheets to cut" if thick is None else "Sheets of the crease pattern"
+    pages.text(heading, _HEAD, gap=2.0)
     for sheet in plan.sheets:
         seams = ", ".join(f"{seam_name(i)}{' (tabs)' * tabs}" for i, tabs in sheet.seams)
+        seams = f"; seams {seams}" if thick is None else ""
         folds = f"; {_folds_words(sheet.folds)}" if sheet.folds else ""
-        pages.text(f"{sheet.label}: pattern page {sheet.page}; seams {seams}{folds}", indent=3.0)
-    pages.text("Seams", _HEAD, gap=2.0)
-    for seam in plan.seams:
+        pages.text(f"{sheet.label}: pattern page {sheet.page}{seams}{folds}", indent=3.0)
+    if thick is not None:
+        _panels_text(pages, thick, units)
+    else:
+        pages.text("Seams", _HEAD, gap=2.0)
+    for seam in plan.seams if thick is None else ():
         pages.text(f"{seam_name(seam.id)}: the tabs of {seam.tabs} glue to {seam.onto}", indent=3.0)
     scenes, ground, box = _pictures(structure, len(plan.steps), view)
     aspect = (box[1, 1] - box[0, 1]) / max(box[1, 0] - box[0, 0], 1e-12)
@@ -451,4 +565,9 @@ def write_assembly(
         page = pages.room(picture + 4.0)
         _draw_scene(page, scene, ground, box, (pages.left, pages.y + 2.0, pages.width, picture))
     pages.footers()
+    if thick is not None:
+        from ..io._solids import cut_list_pages
+        from ..io._tables import UNITS
+
+        cut_list_pages(doc, thick, 1.0 / UNITS[units].metres, units)
     return doc.save(path)

@@ -15,7 +15,7 @@ import io
 import json
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -26,12 +26,16 @@ from ._atomic import atomic_path, atomic_write
 from ._mesh3d import stl_records
 from ._tables import CREATOR, UNITS
 
+if TYPE_CHECKING:  # pragma: no cover
+    from ._pdf import PdfDocument
+
 __all__ = [
     "write_thick_stl",
     "write_cut_list",
     "write_cut_list_csv",
     "write_cut_list_pdf",
     "write_thick_3dm",
+    "cut_list_pages",
 ]
 
 
@@ -95,7 +99,7 @@ def write_cut_list(path: str | os.PathLike, thick: ThickPanels) -> Path:
     >>> with tempfile.TemporaryDirectory() as d:
     ...     rows = json.loads(write_cut_list(pathlib.Path(d) / "cut.json", thick).read_text())
     >>> len(rows["panels"]), rows["panels"][0]["panel"]
-    (16, 'tube 1 · strip 1 · panel 1')
+    (16, 'tube 1 · sheet A · strip 4 · panel 1')
     """
     body = {
         "creator": CREATOR,
@@ -110,7 +114,8 @@ def write_cut_list(path: str | os.PathLike, thick: ThickPanels) -> Path:
 def write_cut_list_csv(
     path: str | os.PathLike, thick: ThickPanels, *, unit: str = "unit", to_unit: str = "mm"
 ) -> Path:
-    """Write the cut list as CSV, a row per panel edge: the panel's label, the edge (1 to k,
+    """Write the cut list as CSV, a row per panel edge, the panels in the order of assembly
+    (:attr:`~curvefold.geometry.ThickPanels.order`): the panel's id, the edge (1 to k,
     from corner e to e + 1 of its outline), its ends in the panel's plane and its length (in
     ``to_unit``), its bevel (degrees; 0 a square cut) and whether it is on a hinge.
 
@@ -146,10 +151,11 @@ def write_cut_list_csv(
         ["panel", "edge", f"x0_{u}", f"y0_{u}", f"x1_{u}", f"y1_{u}", f"length_{u}"]
         + ["bevel_deg", "hinged", f"thickness_{u}"]
     )
-    for f, label in enumerate(thick.labels()):
+    labels = thick.labels()
+    for f in thick.order.tolist():  # the order of assembly
         for e in range(k):
             out.writerow(
-                [label, e + 1]
+                [labels[f], e + 1]
                 + [f"{v:.6f}" for v in (*outline[f, e], *ends[f, e], lengths[f, e])]
                 + [f"{bevels[f, e]:.3f}", int(thick.hinged[f, e]), f"{thick.thickness * scale:g}"]
             )
@@ -223,11 +229,8 @@ _ROWS, _ROW = 22, 12.0
 def write_cut_list_pdf(
     path: str | os.PathLike, thick: ThickPanels, *, unit: str = "unit", to_unit: str = "mm"
 ) -> Path:
-    """Write the cut list as A4 pages, a row per panel: its label, a sketch of its outline seen
-    from its top face (edge numbers 1 to k from corner e to e + 1, hinged edges red; a bevel
-    sets the top face back from its edge), and every edge's length (in
-    ``to_unit``), bevel (degrees) and whether it is hinged: the CSV's rows
-    (:func:`write_cut_list_csv`) for the workshop.
+    """Write the cut list as A4 pages, a row per panel in the order of assembly, numbered
+    (:func:`cut_list_pages`): the CSV's rows (:func:`write_cut_list_csv`) for the workshop.
 
     Examples
     --------
@@ -243,8 +246,7 @@ def write_cut_list_pdf(
     >>> data[:8], data.count(b"/Type /Page ")  # 16 panels: one page
     (b'%PDF-1.5', 1)
     """
-    from ._pdf import PdfDocument, PdfText
-    from ._tables import COLOURS
+    from ._pdf import PdfDocument
 
     for name, value in (("unit", unit), ("to_unit", to_unit)):
         if value not in UNITS:
@@ -252,27 +254,46 @@ def write_cut_list_pdf(
                 f"{name} must be one of {', '.join(UNITS)}, got {value!r}", parameter="units"
             )
     scale = UNITS[unit].metres / UNITS[to_unit].metres
+    doc = PdfDocument(title=f"cut list, thick panels t = {thick.thickness * scale:g} {to_unit}")
+    cut_list_pages(doc, thick, scale, to_unit)
+    return doc.save(path)
+
+
+def cut_list_pages(doc: PdfDocument, thick: ThickPanels, scale: float, to_unit: str) -> int:
+    """Draw the cut list on A4 pages of ``doc``; return how many.
+
+    A row per panel in the order of assembly (:attr:`~curvefold.geometry.ThickPanels.order`),
+    numbered from 1: its id on two lines (tube and sheet; strip and place along the crease), a
+    sketch of its outline seen from its top face (edge numbers 1 to k from corner e to e + 1,
+    hinged edges red; a bevel sets the top face back from its edge), and every edge's length
+    (model lengths times ``scale``, in ``to_unit``), bevel (degrees) and whether it is hinged.
+    """
+    from ._pdf import PdfText
+    from ._tables import COLOURS
+
     k = thick.local.shape[1] // 2
     outline = thick.local[:, :k, :2] * scale
     lengths = np.linalg.norm(np.roll(outline, -1, axis=1) - outline, axis=-1)
     bevels = np.degrees(thick.bevels)
-    doc = PdfDocument(title=f"cut list, thick panels t = {thick.thickness * scale:g} {to_unit}")
     black, red = "#000000", COLOURS["fold"]
-    labels = thick.labels()
-    for first in range(0, len(labels), _ROWS):
+    labels, order = thick.labels(), thick.order.tolist()
+    pages = -(-len(order) // _ROWS)
+    for first in range(0, len(order), _ROWS):
         page = doc.page(210.0, 297.0)
         heads = (
-            f"Cut list: {len(labels)} panels {thick.thickness * scale:g} {to_unit} thick, page "
-            f"{first // _ROWS + 1} of {-(-len(labels) // _ROWS)}. Edge: length ({to_unit}), bevel "
-            "(degrees from square),",
-            "outlines seen from the top face, which each bevel sets back from its edge on the "
-            "hinge face; hinged edges red.",
+            f"Cut list: {len(order)} panels {thick.thickness * scale:g} {to_unit} thick, in the "
+            f"order of assembly, page {first // _ROWS + 1} of {pages}.",
+            f"Edge: length ({to_unit}), bevel (degrees from square); hinged edges red. Outlines "
+            "seen from the top face,",
+            "which each bevel sets back from its edge on the hinge face.",
         )
         for n, head in enumerate(heads):
-            page.text(PdfText(head, 12.0, 287.0 - 4.5 * n, 3.0, black, anchor="start"))
-        for row, f in enumerate(range(first, min(first + _ROWS, len(labels)))):
-            y = 270.0 - row * _ROW
-            page.text(PdfText(labels[f], 12.0, y, 3.0, black, anchor="start"))
+            page.text(PdfText(head, 12.0, 287.0 - 4.2 * n, 3.0, black, anchor="start"))
+        for row, n in enumerate(range(first, min(first + _ROWS, len(order)))):
+            f, y = order[n], 270.0 - row * _ROW
+            tube, sheet, strip, place = labels[f].split(" · ")
+            for line, name in enumerate((f"{n + 1}. {tube} · {sheet}", f"{strip} · {place}")):
+                page.text(PdfText(name, 12.0, y - 3.6 * line, 2.8, black, anchor="start"))
             # the sketch, fitted into 50 × 9 mm with its aspect kept
             xy = outline[f] - outline[f].min(axis=0)
             size = np.maximum(xy.max(axis=0), 1e-12)
@@ -295,4 +316,4 @@ def write_cut_list_pdf(
             for line in range(0, k, 2):
                 text = "   ".join(words[line : line + 2])
                 page.text(PdfText(text, 118.0, y - 3.6 * (line // 2), 2.6, black, anchor="start"))
-    return doc.save(path)
+    return pages

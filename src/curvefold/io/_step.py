@@ -5,8 +5,8 @@ Every solid is built by OpenCascade (the ``OCP`` bindings, ``pip install 'curvef
 imported only here and only when a file is written) from its planar faces: each face a closed
 polygon made a plane face, the faces sewn into a shell, the shell made a solid and oriented
 so that its volume is positive (its normals point out), the solid checked valid and closed
-(:func:`check_solid`). Each is a product of the file named by its panel's label (the cut
-list's and the assembly guide's ``tube 1 · strip 2 · panel 3``), in the output units, which
+(:func:`check_solid`). Each is a product of the file named by its panel's id (the cut list's
+and the assembly guide's ``tube 1 · sheet B · strip 2 · panel 3``), in the output units, which
 the file states (its ``SI_UNIT`` or ``CONVERSION_BASED_UNIT``).
 
 On the tube of 16 panels of the examples, t = 1 cm, the solids read back (STEPControl_Reader)
