@@ -27,8 +27,9 @@ export function showCollapse(found) {
   box.replaceChildren(linePlot({
     id: "collapse-curve",
     title: "Load–displacement curve to collapse",
-    description: `${y.length} states: the load factor rises to ${fmt(Number(c.factor.toPrecision(4)))} `
-      + `at collapse, against the linear buckling factor ${sig3(c.linear_factor)} (dashed); `
+    description: `${y.length} states: the load factor rises to `
+      + `${fmt(Number(c.factor.toPrecision(4)))} at collapse, against the linear buckling `
+      + `factor ${sig3(c.linear_factor)} (dashed); `
       + `the control displacement (${where}) reaches ${sig3(x.at(-1))} mm.`,
     xLabel: `control displacement, ${where} (mm)`,
     yLabel: "load factor λ",

@@ -58,7 +58,8 @@ export function linePlot({ id, title, description, xLabel, yLabel, series }) {
     viewBox: `0 0 ${W} ${H}`, role: "img", class: "plot", id,
     "aria-labelledby": `${id}-title`, "aria-describedby": `${id}-desc`,
   });
-  root.append(svg("title", { id: `${id}-title` }, title), svg("desc", { id: `${id}-desc` }, description));
+  root.append(svg("title", { id: `${id}-title` }, title),
+    svg("desc", { id: `${id}-desc` }, description));
   const frame = svg("g", { class: "axes" });
   frame.append(svg("rect", { x: left, y: top, width: W - left - right, height: H - top - bottom }));
   for (const t of ticks(x0, x1)) {
