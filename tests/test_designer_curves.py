@@ -45,7 +45,7 @@ def test_the_collapse_curve_comes_with_the_design_under_load(url):
     # are the path's own (the numbers of curvefold load --nonlinear --json)
     assert len(lam) == len(w) == len(c["stable"]) == n["steps"] + 1 and lam[0] == w[0] == 0
     assert c["factor"] == n["factor"] and c["linear_factor"] == n["linear_factor"]
-    assert c["control"] == n["control"] and 1e3 * n["control_displacement"] in w
+    assert c["control"] == n["control"] and w[c["at_collapse"]] == 1e3 * n["control_displacement"]
     assert max(lam[: c["stable"].index(False)]) <= c["factor"] <= max(lam)
     printed = json.loads(
         run("load", *_flags(SMALL), "--nonlinear", "--json").stdout  # the command: same numbers
@@ -146,6 +146,8 @@ def test_the_page_draws_both_curves_and_the_deploy_button_is_reached_by_keys(bro
         {"dashed": False, "points": len(curve["load_factor"])},
         {"dashed": True, "points": 2},
     ]
+    # the collapse marked on the path: a dot (and its legend's)
+    assert page.locator("#collapse-curve circle.marker").count() == 2
     linear = float(f"{curve['linear_factor']:.3g}")  # three digits, as the page writes it
     assert f"linear buckling factor {linear:g} (dashed)" in shown["desc"]
     # the deploy button, by keys: Tab to it, Enter deploys

@@ -41,7 +41,7 @@ def collapse_curve(collapse) -> dict:
     """The load–displacement curve of a :class:`curvefold.mechanics.Collapse`: ``load_factor``
     (λ on the combination), ``control_displacement_mm`` (the control DOF's displacement,
     signed along its axis), ``stable`` (one per state), the ``control`` DOF, the
-    ``linear_factor`` and the collapse ``factor``.
+    ``linear_factor``, the collapse ``factor`` and ``at_collapse``, the state at collapse.
 
     Examples
     --------
@@ -59,6 +59,7 @@ def collapse_curve(collapse) -> dict:
         "control": {"node": int(node), "axis": "xyz"[axis]},
         "linear_factor": float(collapse.linear_factor),
         "factor": float(collapse.factor),
+        "at_collapse": int(collapse.at_collapse),
     }
 
 

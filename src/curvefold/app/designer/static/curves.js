@@ -18,7 +18,7 @@ export function showCollapse(found) {
     return;
   }
   const x = c.control_displacement_mm, y = c.load_factor;
-  if (!finite(x, y) || !finite([c.linear_factor, c.factor])) {
+  if (!finite(x, y) || !finite([c.linear_factor, c.factor]) || !(c.at_collapse in x)) {
     box.replaceChildren(el("p", { className: "bad" }, DAMAGED));
     return;
   }
@@ -36,6 +36,7 @@ export function showCollapse(found) {
     series: [
       { x, y, label: "path" },
       { x: ends, y: [c.linear_factor, c.linear_factor], label: "linear λcr", dashed: true },
+      { x: [x[c.at_collapse]], y: [c.factor], label: "collapse", marker: true },
     ],
   }));
 }

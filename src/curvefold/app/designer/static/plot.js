@@ -19,7 +19,7 @@ export function finite(...arrays) {
 }
 
 /** Round ticks covering [lo, hi]: about `n` of them, at 1, 2 or 5 × 10^k. */
-export function ticks(lo, hi, n = 4) {
+export function ticks(lo, hi, n = 5) {
   const raw = (hi - lo) / n;
   const power = 10 ** Math.floor(Math.log10(raw));
   const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw);
@@ -44,9 +44,10 @@ function range(vs) {
 }
 
 /**
- * A line plot as an SVG element: `series` is a list of `{x, y, label, dashed}` (finite numbers,
- * checked by the caller), the axes named `xLabel` and `yLabel` (their units in brackets), the
- * plot named `title` and described by `description` (its numbers in words).
+ * A line plot as an SVG element: `series` is a list of `{x, y, label, dashed, marker}` (finite
+ * numbers, checked by the caller; a marker series is drawn as dots), the axes named `xLabel`
+ * and `yLabel` (their units in brackets), the plot named `title` and described by
+ * `description` (its numbers in words).
  */
 export function linePlot({ id, title, description, xLabel, yLabel, series }) {
   const W = 320, H = 200, left = 52, right = 10, top = 22, bottom = 34;
@@ -77,13 +78,21 @@ export function linePlot({ id, title, description, xLabel, yLabel, series }) {
     xLabel));
   frame.append(svg("text", { x: 4, y: 12 }, yLabel));
   root.append(frame);
-  series.forEach((s, k) => {
-    const points = s.x.map((x, i) => `${px(x).toFixed(1)},${py(s.y[i]).toFixed(1)}`).join(" ");
-    root.append(svg("polyline", { class: s.dashed ? "line dashed" : "line", points }));
-    const lx = W - right - 4, ly = top + 12 + 12 * k; // the legend, top right
-    root.append(svg("line", { class: s.dashed ? "line dashed" : "line", x1: lx - 40, x2: lx - 26,
-      y1: ly - 3, y2: ly - 3 }));
-    root.append(svg("text", { x: lx - 44, y: ly, "text-anchor": "end" }, s.label));
-  });
+  let lx = W - right; // the legend, right-aligned in the top margin
+  for (const s of [...series].reverse()) {
+    const kind = s.marker ? "marker" : s.dashed ? "line dashed" : "line";
+    if (s.marker) {
+      s.x.forEach((x, i) => root.append(svg("circle", { class: kind, cx: px(x), cy: py(s.y[i]),
+        r: 3.5 })));
+      root.append(svg("circle", { class: kind, cx: lx - 7, cy: 9, r: 3 }));
+    } else {
+      const points = s.x.map((x, i) => `${px(x).toFixed(1)},${py(s.y[i]).toFixed(1)}`).join(" ");
+      root.append(svg("polyline", { class: kind, points }));
+      root.append(svg("line", { class: kind, x1: lx - 14, x2: lx, y1: 9, y2: 9 }));
+    }
+    const text = svg("text", { x: lx - 17, y: 12, "text-anchor": "end" }, s.label);
+    root.append(text);
+    lx -= 24 + 5.2 * s.label.length;
+  }
   return root;
 }
