@@ -78,20 +78,21 @@ export function linePlot({ id, title, description, xLabel, yLabel, series }) {
     xLabel));
   frame.append(svg("text", { x: 4, y: 12 }, yLabel));
   root.append(frame);
-  let lx = W - right; // the legend, right-aligned in the top margin
-  for (const s of [...series].reverse()) {
-    const kind = s.marker ? "marker" : s.dashed ? "line dashed" : "line";
+  const kind = (s) => (s.marker ? "marker" : s.dashed ? "line dashed" : "line");
+  for (const s of series) { // in order: the last on top
     if (s.marker) {
-      s.x.forEach((x, i) => root.append(svg("circle", { class: kind, cx: px(x), cy: py(s.y[i]),
-        r: 3.5 })));
-      root.append(svg("circle", { class: kind, cx: lx - 7, cy: 9, r: 3 }));
+      s.x.forEach((x, i) => root.append(svg("circle", { class: kind(s), cx: px(x),
+        cy: py(s.y[i]), r: 3.5 })));
     } else {
       const points = s.x.map((x, i) => `${px(x).toFixed(1)},${py(s.y[i]).toFixed(1)}`).join(" ");
-      root.append(svg("polyline", { class: kind, points }));
-      root.append(svg("line", { class: kind, x1: lx - 14, x2: lx, y1: 9, y2: 9 }));
+      root.append(svg("polyline", { class: kind(s), points }));
     }
-    const text = svg("text", { x: lx - 17, y: 12, "text-anchor": "end" }, s.label);
-    root.append(text);
+  }
+  let lx = W - right; // the legend, right-aligned in the top margin
+  for (const s of [...series].reverse()) {
+    root.append(s.marker ? svg("circle", { class: kind(s), cx: lx - 7, cy: 9, r: 3 })
+      : svg("line", { class: kind(s), x1: lx - 14, x2: lx, y1: 9, y2: 9 }));
+    root.append(svg("text", { x: lx - 17, y: 12, "text-anchor": "end" }, s.label));
     lx -= 24 + 5.2 * s.label.length;
   }
   return root;
