@@ -226,3 +226,19 @@ def test_a_damaged_answer_is_not_drawn(browser):
     )
     assert page.inner_text("#deploy-status") == sentence
     assert all("status of 504" in e for e in page.errors), page.errors
+
+
+def test_the_plots_arithmetic_in_node():
+    """plot.js runs in Node (tests/node/designer_plot.mjs): an answer is drawn only when every
+    value is a finite number (a null, NaN, infinity, text or a short array refused), and its
+    ticks are round."""
+    import shutil
+    import subprocess
+    from pathlib import Path
+
+    from _designer import need
+
+    need(shutil.which("node") is not None, "Node.js is not installed (apt-get install nodejs)")
+    script = Path(__file__).parent / "node" / "designer_plot.mjs"
+    done = subprocess.run(["node", str(script)], capture_output=True, text=True)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
