@@ -2,9 +2,10 @@
 
 ``curvefold designer`` serves it (:mod:`.server`, FastAPI on uvicorn); :mod:`.api` reads
 its requests and answers them without the web framework, :mod:`.preview` gives the page's
-first view of a design, :mod:`.jobs` runs that work in worker processes; ``static/`` holds
-the page and its ES modules, with three.js vendored in ``static/vendor/`` at the version
-``frontend/package-lock.json`` pins. Needs the ``designer`` extra:
+first view of a design, :mod:`.curves` its collapse path and deployment, :mod:`.jobs` runs
+that work in worker processes; ``static/`` holds the page and its ES modules, with three.js
+vendored in ``static/vendor/`` at the version ``frontend/package-lock.json`` pins. Needs the
+``designer`` extra:
 ``pip install 'curvefold[designer]'``.
 """
 

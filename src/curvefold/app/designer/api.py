@@ -46,6 +46,7 @@ from ...kernel._validate import MAX_TEXT, Spec, from_text, suggest
 from .._build import Built, BuiltStructure, BuiltVault, build
 from .._design import SCHEMA, Design, default_design, design_from_dict, kind_specs
 from .._kinds import DesignKind, design_kind, design_kinds, registry_version
+from .curves import collapse_curve
 
 __all__ = [
     "Request",
@@ -496,7 +497,8 @@ def mechanics(design: Design) -> dict:
     dict
         ``numbers``: :meth:`curvefold.app._loading.Loaded.to_dict`; ``labels``: each figure
         of :data:`MECHANICS_SHOWN` as ``[words, unit, explanation]``, the report's words
-        (:data:`curvefold.figures._report.MECHANICS_QUANTITIES`) up to their explanation.
+        (:data:`curvefold.figures._report.MECHANICS_QUANTITIES`) up to their explanation;
+        ``collapse_curve`` when followed to collapse (:func:`.curves.collapse_curve`).
     """
     return json.loads(_mechanics(_key(design.with_mechanics())))
 
@@ -516,7 +518,10 @@ def _mechanics(key: str) -> bytes:
         ]
         for k in MECHANICS_SHOWN
     }
-    return strict_json({"numbers": numbers, "labels": labels}).encode()
+    found = {"numbers": numbers, "labels": labels}
+    if loaded.collapse is not None:  # the page draws it
+        found["collapse_curve"] = collapse_curve(loaded.collapse)
+    return strict_json(found).encode()
 
 
 def domain_svg(design: Design) -> str:

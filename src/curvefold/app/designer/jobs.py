@@ -13,8 +13,8 @@ budget with the estimate and what to lower) and chooses its lane:
     without targets to solve: sub-second work that answers every change first;
 ``heavy``
     the rest (full certificates and crease patterns, files, the JSON payload, the design
-    under load, target fits, larger designs), on workers of lower CPU priority, cancelled
-    when the client goes away.
+    under load and its deployment, target fits, larger designs), on workers of lower CPU
+    priority, cancelled when the client goes away.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from ...kernel._errors import CurvefoldError, InputError
 from ...kernel._json_text import strict_json
 from ...kernel._validate import Spec
-from .._budget import Estimate, require_budget
-from . import api, preview
+from .._budget import Estimate, require_budget, require_deploy_budget
+from . import api, curves, preview
 
 __all__ = ["ROUTES", "QUICK_STRIP_SAMPLES", "COARSE", "Plan", "plan", "run"]
 
@@ -49,6 +49,7 @@ ROUTES = {
     "domain.svg": (),
     "payload": (),
     "mechanics": (),
+    "deploy": (),
     "file": (api.STATE,),
 }
 #: Routes that go to the quick lane when their design is small (the coarse answers only, for the two
@@ -99,9 +100,14 @@ def plan(route: str, kind: str, query, *, what: str | None = None) -> Plan:
         api.check_download(design, "svg")
         files = design.overrides(source=design.source, formats=["svg"])
     # as curvefold load analyses it
-    loaded = design.with_mechanics() if route == "mechanics" else design
+    loaded = design.with_mechanics() if route in ("mechanics", "deploy") else design
+    if route == "deploy":  # refused above the designer's size before the budget
+        curves.check_deployment(loaded)
     try:
         estimate = require_budget(files or loaded, files=files is not None)
+        if route == "deploy":
+            total = require_deploy_budget(design, curves.states(design))
+            estimate = Estimate(total, estimate.strip_samples, "mechanics")
     except CurvefoldError as err:
         raise InputError(str(err).removeprefix(f"{api.SOURCE}: "), parameter="samples") from None
     small = estimate.strip_samples <= QUICK_STRIP_SAMPLES and not request.targets
@@ -149,6 +155,8 @@ def run(
         return api.payload(design), "application/json", None
     if route == "mechanics":
         return _json(api.mechanics(design)), "application/json", None
+    if route == "deploy":
+        return _json(curves.deployment(design)), "application/json", None
     name, media, content = api.download(design, option or "", state=state)
     return content, media, name
 

@@ -17,6 +17,8 @@ holds design parameters as :mod:`curvefold.app.designer.api` reads them):
 ``/api/vault/contact``            where the fold slider stops: the first contact
 ``/api/KIND/certificate``         the certificate's checks (``coarse=true``: at reduced samples)
 ``/api/KIND/mechanics``           the design under load: what ``curvefold load --json`` prints
+``/api/KIND/deploy``              its deployment at 10° steps (:mod:`.curves`): the actuation
+                                  curve, the largest stress, the distance from the rigid path
 ``/api/KIND/domain.svg``          the regression domain with the cells
 ``/api/KIND/pattern``             the crease-pattern pages as they will be cut (SVG;
                                   ``coarse=true``: a sketch of the sheets)

@@ -12,9 +12,10 @@ import { buildControls, showCounts } from "./controls.js";
 import { busy } from "./busy.js";
 import { byId } from "./dom.js";
 import { fmt } from "./format.js";
+import { resetDeploy, showDeployment } from "./curves.js";
 import { createHistory, readURL } from "./history.js";
 import { showAngle, showDownloads, showMarks, showNumbers } from "./numbers.js";
-import { showCertificate, showImages, showMechanics, showPattern } from "./results.js";
+import { showCertificate, showImages, showMechanics, showPattern, why } from "./results.js";
 import { createState, designQuery, loadKeys, underLoad } from "./state.js";
 import { View } from "./view.js";
 
@@ -113,6 +114,7 @@ function show(page, body, started) {
   const timing = {};
   state.contact = undefined;
   state.stopped = false;
+  resetDeploy(state);
   for (const id of ["certificate-status", "certificate", "pattern", "domain", "mechanics"]) {
     byId(id).classList.add("stale");
   }
@@ -187,6 +189,18 @@ async function follow(page, body, started, timing) {
       when(get("pattern"), shown(showPattern, "full_pattern"))),
   ]);
   if (current()) timing.settled = performance.now() - started;
+}
+
+/** Deploy the design shown (a heavy job on the button): its actuation curve and peaks. */
+async function deploy(page) {
+  const { state } = page, body = state.preview;
+  if (!body) return;
+  resetDeploy(state);
+  const controller = state.deployRequest = new AbortController();
+  const done = busy(byId("deployment"), "Deploying the design from 10° under its own weight");
+  const found = await api.detail(body.kind, "deploy", body.query, { signal: controller.signal });
+  done();
+  if (!controller.signal.aborted && state.preview === body) showDeployment(state, found, why);
 }
 
 // -- the fold slider: plays in the browser, no request ------------------------------------------
@@ -298,6 +312,7 @@ async function start() {
     view.setAngle(view.motion.design_angle);
     showDownloads(state, view);
   });
+  byId("deploy").addEventListener("click", () => deploy(page));
   byId("undo").addEventListener("click", () => window.history.back());
   byId("redo").addEventListener("click", () => window.history.forward());
   byId("fit").addEventListener("click", () => view.fit());

@@ -1,5 +1,6 @@
 // What the server works out after a preview: the certificate, the crease pattern and the
 // regression domain (SVG), the design under load.
+import { showCollapse } from "./curves.js";
 import { byId, el } from "./dom.js";
 import { architect, fmt } from "./format.js";
 
@@ -42,7 +43,7 @@ function showPages(box, found) {
  * Why a panel has no answer (`found`: an error of the API, or null): the refusal; a time-out's
  * sentence in the first panel that meets one, a short note in the next (said once per design).
  */
-function why(state, found, otherwise) {
+export function why(state, found, otherwise) {
   if (!found?.error) return otherwise;
   if (!found.stopped) return found.error;
   if (state.stopped) return "not computed within the designer's time limit either";
@@ -109,6 +110,7 @@ export function showMechanics(state, found) {
   const verdict = byId("mechanics-verdict");
   table.classList.remove("stale");
   state.mechanics = found;
+  showCollapse(found?.error ? null : found);
   if (!found || found.error) {
     table.replaceChildren();
     verdict.replaceChildren();

@@ -17,6 +17,8 @@ export function createState() {
     certificate: null, // the certificate shown (coarse, then full)
     pattern: null, // the crease pattern shown
     mechanics: null, // the design under load, when a material is chosen
+    deployment: null, // the design's deployment, when asked for (the deploy button)
+    deployRequest: null, // its request under way (an AbortController)
     stopped: false, // whether a time-out's sentence is shown for the design shown
     timings: [], // per change shown: milliseconds from the input to each answer
     frames: 0, // frames drawn by the fold slider's play
