@@ -149,12 +149,14 @@ export function showMechanics(state, found) {
     "the lowest free modes' frequencies (the first is the folding motion)",
     "lowest free frequencies", lowest, "Hz"));
   const c = n.collapse; // followed to collapse (large displacements), if asked
+  const sig = (v) => fmt(Number(v.toPrecision(4)));
   if (c) {
     const imperfect = c.imperfection_ratio ? `span / ${Math.round(1 / c.imperfection_ratio)}`
       : "none";
     rows.push(row("collapse_factor", `the governing combination (${c.combination}) followed `
       + `to collapse; imperfection ${imperfect}`, "collapse factor",
-    `${fmt(c.factor)} (${fmt(c.knock_down)} × the linear ${fmt(c.linear_factor)})`, ""));
+    `${sig(c.factor)} (${sig(c.knock_down)} × the linear ${sig(c.linear_factor)} `
+      + `of ${c.combination})`, ""));
   }
   table.replaceChildren(...rows);
   const resolved = n.buckling_resolved ? ""
