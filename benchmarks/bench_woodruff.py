@@ -61,7 +61,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-HERE = Path(__file__).resolve().parent
 #: A locked crease's stiffness per length, in D over the inner side's width.
 LOCK = 1e4
 
@@ -151,7 +150,7 @@ def sector_mesh(s: Sector, segments: int, across: int = 1):
     )
 
 
-def _end_loads(s: Sector, rho: np.ndarray) -> np.ndarray:
+def _end_loads(rho: np.ndarray) -> np.ndarray:
     """Each sample of an end line's share of a unit load: half the intervals beside it."""
     d = np.diff(rho)
     share = np.zeros(len(rho))
@@ -186,7 +185,7 @@ def bar_hinge(s: Sector, segments: int, across: int = 1, *, locked: bool = False
     fixed = np.zeros((len(model.nodes), 3), bool)
     fixed[index[:, 0]] = True
     forces = np.zeros((len(model.nodes), 3))
-    forces[index[:, -1], 2] = _end_loads(s, rho)
+    forces[index[:, -1], 2] = _end_loads(rho)
     return model, fixed.ravel(), forces.ravel(), 3 * int(index[across, -1]) + 2
 
 
@@ -271,7 +270,7 @@ def shells(s: Sector, along: int, across: int, *, corotational: bool = False, lo
         ops.fix(int(q), 1, 1, 1, 0, 0, 0)
     end = np.concatenate([tags[0][:, -1], tags[1][1:, -1]])
     rho = s.radii(across)
-    return end, _end_loads(s, rho), int(inner_crease[-1])
+    return end, _end_loads(rho), int(inner_crease[-1])
 
 
 def shell_stiffness(s: Sector, along: int, across: int, *, locked: bool = False) -> float:
