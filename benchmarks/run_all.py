@@ -2,7 +2,7 @@
 
 Usage: ``python benchmarks/run_all.py [--results DIR | --no-save] [name ...]`` with names from
 integrator folding arch atlas budget designer main_job mechanics verdict collapse merlin
-woodruff virtual_thickness deploy threads startup (default: all).
+woodruff virtual_thickness thick_budget deploy threads startup (default: all).
 
 Each run is recorded in ``benchmarks/results/`` (or ``--results DIR``) as two files named by
 its start time: ``<stamp>.txt``, everything the benchmarks printed, and ``<stamp>.json``, the
