@@ -1,8 +1,9 @@
 """Run every benchmark, print one markdown summary table and record the run.
 
 Usage: ``python benchmarks/run_all.py [--results DIR | --no-save] [name ...]`` with names from
-integrator folding arch atlas budget designer main_job mechanics verdict collapse merlin
-woodruff virtual_thickness thick_budget deploy threads startup (default: all).
+integrator folding arch atlas budget designer main_job mechanics verdict collapse
+collapse_opensees merlin woodruff virtual_thickness thick_budget deploy threads startup
+(default: all).
 
 Each run is recorded in ``benchmarks/results/`` (or ``--results DIR``) as two files named by
 its start time: ``<stamp>.txt``, everything the benchmarks printed, and ``<stamp>.json``, the
@@ -38,6 +39,7 @@ NAMES = (
     "mechanics",
     "verdict",
     "collapse",
+    "collapse_opensees",
     "merlin",
     "woodruff",
     "virtual_thickness",
