@@ -165,7 +165,6 @@ def next_state(
     start = kin[i - 1]
     total = 0
     u, prior = start + departure, start
-    energy.solver = None  # the last state's tangent rarely takes a fresh one's first quarter
     for p in range(1, parts + 1):
         target = start + (kin[i] - start) * (p / parts)
         if trend is not None:
