@@ -29,7 +29,7 @@ a larger angle, fold the structure themselves and the supports hold it back.
 others found by Newton's method on the exact tangent (:func:`._nonlinear.tangent`), from
 the kinematic state plus the previous state's departure from its own and that departure's
 last change, extrapolated (a warm start of second order: at 1° steps on the paper's vault it
-halved the tangents made, 255 to 133, and the CPU time, 126 to 75 s). A step
+halved the tangents made, 255 to 133, and the CPU time, 126 to 74 s). A step
 that does not converge is split in halves, down to 2^-:data:`HALVINGS` of the step; past
 that :class:`DeployError` says at which angle and why, and keeps the states found.
 
