@@ -22,8 +22,8 @@ another branch, not a step along this one), is halved and tried again, down to
 2^-:data:`HALVINGS` of the first, below which :class:`PathError` says where (load factor,
 step) and keeps the points computed. A try also ends after more than :data:`STALLS` iterations
 in a row that did not halve the residual (each followed by a fresh tangent): on the paper's
-vault, where Newton's method stalls at λ = 30.75, this cut the command from 297 to 142 CPU-s,
-the same states bit for bit. Tangents are factorised by Cholesky
+vault, where Newton's method stalls at λ = 30.75, the command took 141 CPU-s, not 269 (side
+by side), the same states bit for bit. Tangents are factorised by Cholesky
 (:class:`._linear.Factorized`) where they are positive definite (the path is stable there)
 and by a sparse LU past a limit point.
 
