@@ -54,7 +54,10 @@ class Energy:
         if len(m.hinges):
             x = m.nodes + u.reshape(-1, 3)
             g = _elements.dihedral_gradient(x[m.hinges]).reshape(-1, 12)
-            np.add.at(f, _dofs(m.hinges), g * self.moments(x)[:, None])
+            summed = np.bincount(  # a sum by index, 4 times faster than np.add.at
+                _dofs(m.hinges).ravel(), (g * self.moments(x)[:, None]).ravel(), len(f)
+            )
+            f = f + summed
         return f
 
     def tangent(self, u: np.ndarray):
@@ -154,14 +157,18 @@ def next_state(
     tolerance: float,
     max_iterations: int,
     limit: float,
+    trend: np.ndarray | None = None,
 ) -> tuple[np.ndarray, int] | None:
     """The state at angle i from the previous one, in ``parts`` sub-steps (the prescribed
-    DOFs moved linearly between the two kinematic states), or None."""
+    DOFs moved linearly between the two kinematic states), or None. ``trend``: the departure's
+    expected change over the step (the last step's, extrapolated), added as the DOFs move."""
     start = kin[i - 1]
     total = 0
     u, prior = start + departure, start
     for p in range(1, parts + 1):
         target = start + (kin[i] - start) * (p / parts)
+        if trend is not None:
+            target = target + trend * (p / parts)
         u, prior = u + (target - prior), target
         done = _newton(energy, u, free, f, tolerance, max_iterations, limit)
         if done is None:
@@ -187,7 +194,7 @@ def _newton(
     small steps most states need no new tangent (measured: the paper's vault, 1° steps).
     """
     u = u.copy()
-    last = np.inf
+    last, potential = np.inf, None
     for k in range(max_iterations + 1):
         g = energy.forces(u)
         r = f[free] - g[free]
@@ -211,25 +218,32 @@ def _newton(
         if big <= 2e-9 * limit:  # 1e-10 of the span: stiff bars round the residual above
             u[free] += d
             return u, k + 1
-        u = _search(energy, u, free, f, d * min(1.0, limit / big))
+        u, potential = _search(energy, u, free, f, d * min(1.0, limit / big), potential)
     return None
 
 
 def _search(
-    energy: Energy, u: np.ndarray, free: np.ndarray, f: np.ndarray, d: np.ndarray
-) -> np.ndarray:
+    energy: Energy,
+    u: np.ndarray,
+    free: np.ndarray,
+    f: np.ndarray,
+    d: np.ndarray,
+    before: float | None = None,
+) -> tuple[np.ndarray, float | None]:
     """u moved along the Newton correction d by the first of 1, ½, ¼, … that lowers the total
     potential Π = U − f·u (or d itself where Π cannot tell, at rounding): a full Newton step
-    from a strained warm start can overshoot into the stiff membranes."""
-    before = energy.energy(u) - float(f @ u)
+    from a strained warm start can overshoot into the stiff membranes. ``before``: Π(u) if
+    known (the last search's); returns the point and its Π (None if not computed)."""
+    if before is None:
+        before = energy.energy(u) - float(f @ u)
     step = 1.0
     for _ in range(8):
         trial = u.copy()
         trial[free] += step * d
         after = energy.energy(trial) - float(f @ trial)
         if after <= before + 1e-12 * abs(before):
-            return trial
+            return trial, after
         step *= 0.5
     trial = u.copy()
     trial[free] += d
-    return trial
+    return trial, None

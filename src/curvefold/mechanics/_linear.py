@@ -300,9 +300,11 @@ class Factorized:
             )
         except RuntimeError:  # "Factor is exactly singular"
             return None
-        # diagonal pivots only: U's diagonal is D of A = L D Lᵀ, its signs A's inertia
-        self._definite = bool((self._lu.U.diagonal() > 0).all())
-        return np.abs(self._lu.U.diagonal())
+        # diagonal pivots only: U's diagonal is D of A = L D Lᵀ, its signs A's inertia; U is
+        # copied out of SuperLU at each access (a second of the vault's collapse): once
+        pivots = self._lu.U.diagonal()
+        self._definite = bool((pivots > 0).all())
+        return np.abs(pivots)
 
     @property
     def definite(self) -> bool:
