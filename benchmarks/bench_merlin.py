@@ -181,7 +181,7 @@ def ogden_residual(data: dict, model) -> np.ndarray:
     return np.array(out)
 
 
-def run(merlin: Path | None = None) -> list[SummaryRow]:
+def run(merlin: Path | None = None, picture: Path | None = None) -> list[SummaryRow]:
     merlin = merlin or (
         Path(os.environ["CURVEFOLD_MERLIN"]) if "CURVEFOLD_MERLIN" in os.environ else None
     )
@@ -197,12 +197,18 @@ def run(merlin: Path | None = None) -> list[SummaryRow]:
         )
         print(f"merlin: skipped, {why}")
         return [SummaryRow("merlin", "comparison", "skipped", why, "skipped")]
-    rows, summary = [], []
+    rows, summary, curves = [], [], {}
     with tempfile.TemporaryDirectory() as tmp:
         for case in CASES:
             data = merlin_path(merlin, case, Path(tmp) / f"{case}.mat")
             model, path, cpu = curvefold_path(data)
             error = compare(data, model)
+            control = int(data["control"].item()) - 1
+            curves[case] = (
+                (data["U_his"][control], data["LF_his"].ravel()),
+                (path.displacements.reshape(len(path.factors), -1)[:, control], path.factors),
+                float(np.nanmax(error)),
+            )
             theirs = float(data["cpu"].item())
             rows.append(
                 [
@@ -228,6 +234,8 @@ def run(merlin: Path | None = None) -> list[SummaryRow]:
                 SummaryRow("merlin", f"Miura {case}: speed-up", f"{theirs / cpu:.1f}×",
                            f"≥ {SPEEDUP:.0f}×", verdict(theirs / cpu >= SPEEDUP)),
             ]  # fmt: skip
+    if picture is not None:
+        draw(curves, picture)
     print(
         markdown_table(
             [
@@ -247,13 +255,35 @@ def run(merlin: Path | None = None) -> list[SummaryRow]:
     return summary
 
 
+def draw(curves: dict, picture: Path) -> None:
+    """The overlaid curves: MERLIN's states as dots on curvefold's path, one panel a case."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(curves), figsize=(4 * len(curves), 3.6))
+    for ax, (case, (theirs, ours, error)) in zip(np.atleast_1d(axes), curves.items(), strict=True):
+        ax.plot(np.abs(ours[0]), ours[1], "-", lw=1.5, label="curvefold (follow_load)")
+        ax.plot(np.abs(theirs[0]), theirs[1], "o", ms=3, mfc="none",
+                label="MERLIN under Octave")  # fmt: skip
+        ax.set_title(f"Miura {case}: largest difference {error:.1e}", fontsize=9)
+        ax.set_xlabel("|control displacement| (MERLIN's length unit)")
+        ax.set_ylabel("load factor λ")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(picture, dpi=110)
+    plt.close(fig)
+
+
 def main() -> None:
     from _bench import summary_table
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--merlin", type=Path, help="the folder of MERLIN's code")
+    parser.add_argument("--picture", type=Path, help="write the overlaid curves (PNG) here")
     args = parser.parse_args()
-    print(summary_table(run(args.merlin)))
+    print(summary_table(run(args.merlin, args.picture)))
 
 
 if __name__ == "__main__":
