@@ -16,14 +16,12 @@ __all__ = ["cmd_deploy"]
 def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
     """Run ``curvefold deploy`` (module notes); 0 when the design angle is reached."""
     from ..figures._plots import new_figure, save_figure
-    from ..mechanics import MATERIALS
-    from ..mechanics._deploy import START, STEP, DeployError, deploy
+    from ..mechanics._deploy import START, STEP
     from ._budget import require_deploy_budget
     from ._build import build
     from ._cli_commands import _checked_output, _emit, _load_design
     from ._folder import output_folder
     from ._kinds import design_kinds
-    from ._loading import _sheet
     from ._outputs import _progress_bar, default_title
 
     own = deploy_flags(args)  # its flags checked first, then the design's
@@ -41,20 +39,8 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
         raise InputError(f"{design.source}: a {design.kind} design has no end sections to hold")
     params = loaded.material
     assert params is not None  # with_mechanics gave it its defaults
-    material = _sheet(params) if params.material is None else MATERIALS[params.material]
-    failure = None
     with _progress_bar(not args.json, "deploy", states) as progress:
-        try:
-            result = deploy(
-                structure,
-                material,
-                params.thickness,
-                crease_stiffness=params.crease_stiffness,
-                progress=progress,
-                **own,
-            )
-        except DeployError as err:
-            result, failure = err.deployment, str(err)
+        result, failure, material = deploy_design(structure, params, progress=progress, **own)
     summary = result.summary()
     head = {"kind": design.kind, "title": design.title or default_title(built)}
     payload: dict[str, Any] = head | {"design": design.to_dict(), "deployment": summary}
@@ -73,6 +59,28 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
         lines.append(f"  wrote deploy.csv and deploy.png to {args.out}/")
     _emit(args, payload, lines)
     return 1 if failure else 0
+
+
+def deploy_design(structure: Any, params: Any, **options: Any) -> tuple[Any, str | None, Any]:
+    """The deployment of a built structure in its design's material (``MaterialParams``), the
+    reason it stopped short of the design angle (None if it did not: a path that stops keeps
+    its states) and the material."""
+    from ..mechanics import MATERIALS
+    from ..mechanics._deploy import DeployError, deploy
+    from ._loading import _sheet
+
+    material = _sheet(params) if params.material is None else MATERIALS[params.material]
+    try:
+        found = deploy(
+            structure,
+            material,
+            params.thickness,
+            crease_stiffness=params.crease_stiffness,
+            **options,
+        )
+    except DeployError as err:
+        return err.deployment, str(err), material
+    return found, None, material
 
 
 def _lines(s: dict, material: str, thickness: float) -> list[str]:

@@ -125,31 +125,18 @@ def deployment(design: Design) -> dict:
 
 @lru_cache(maxsize=2)
 def _deployment(key: str) -> dict:
-    from ...mechanics import MATERIALS
-    from ...mechanics._deploy import DeployError, deploy
     from .._build import build
+    from .._deploy_command import deploy_design
     from .._design import design_from_dict
-    from .._loading import _sheet
 
     design = design_from_dict(json.loads(key), source="query")
     check_deployment(design)
     params = design.material
     assert params is not None  # with_mechanics gave it its defaults
-    material = _sheet(params) if params.material is None else MATERIALS[params.material]
     structure = getattr(build(design), "structure", None)
     if structure is None:
         raise InputError(f"a {design.kind} design has no end sections to hold")
-    failure = None
-    try:
-        found = deploy(
-            structure,
-            material,
-            params.thickness,
-            crease_stiffness=params.crease_stiffness,
-            step=STEP,
-        )
-    except DeployError as err:
-        found, failure = err.deployment, str(err)
+    found, failure, material = deploy_design(structure, params, step=STEP)
     return {
         "angles_deg": _floats(found.angles),
         "actuation_Nm_per_rad": _floats(found.actuation),
