@@ -213,3 +213,39 @@ def test_the_paper_vaults_collapse_is_estimated_within_the_default_budget():
     # measured: `curvefold load examples/paper-vault.toml --nonlinear` peaked at 1.72 GiB
     assert 1.72 * 2**30 <= total <= 1.2 * 1.72 * 2**30
     assert total < DEFAULT_BUDGET
+
+
+def light_vault_path():
+    """The designer's light vault (41 samples, 2 tubes, aluminium 1 mm) followed to collapse."""
+    from curvefold.app import default_design
+    from curvefold.app._build import build
+    from curvefold.app._design import design_from_dict
+
+    d = default_design("vault").to_dict()
+    d["samples"], d["vault"]["tubes"] = 41, 2
+    d |= {"material": {"material": "aluminium"}, "loads": {"nonlinear": True}}
+    loaded = build(design_from_dict(d, source="test").with_mechanics()).mechanics
+    return loaded.collapse
+
+
+def test_a_stalled_try_is_halved_not_pushed_onto_another_branch(monkeypatch):
+    # The light vault's primary path stays stable to 898.6 and loses definiteness at 901.6 (1.009
+    # x its linear 893.4). Pushing a stalled Newton's method on (no stall rule) once
+    # converged from 388.0 to an unstable equilibrium at 486.6, 16 % of the displacement off
+    # the path, and called it a collapse at 0.435 of the linear factor.
+    found = light_vault_path()
+    path = found.path
+    assert found.factor == pytest.approx(901.583, rel=1e-5)
+    assert path.stable[path.factors <= found.factor].all()
+    monkeypatch.setattr(path_module, "STALLS", 10**9)
+    pushed = light_vault_path().path
+
+    def off(k: int) -> float:  # the pushed state k against the primary path at its load factor
+        lam, u = pushed.factors[k], pushed.displacements[k].ravel()
+        i = int(np.searchsorted(path.factors, lam)) - 1
+        t = (lam - path.factors[i]) / (path.factors[i + 1] - path.factors[i])
+        near = (1 - t) * path.displacements[i].ravel() + t * path.displacements[i + 1].ravel()
+        return float(np.abs(u - near).max() / np.abs(u).max())
+
+    jumped = int(np.flatnonzero(~pushed.stable)[0])
+    assert off(jumped - 1) < 2e-3 < 0.1 < off(jumped)
