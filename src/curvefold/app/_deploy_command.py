@@ -20,6 +20,7 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
     from ._budget import require_deploy_budget
     from ._build import build
     from ._cli_commands import _checked_output, _emit, _load_design
+    from ._deployment import deploy_design
     from ._folder import output_folder
     from ._kinds import design_kinds
     from ._outputs import _progress_bar, default_title
@@ -59,28 +60,6 @@ def cmd_deploy(args: argparse.Namespace, kind: str) -> int:
         lines.append(f"  wrote deploy.csv and deploy.png to {args.out}/")
     _emit(args, payload, lines)
     return 1 if failure else 0
-
-
-def deploy_design(structure: Any, params: Any, **options: Any) -> tuple[Any, str | None, Any]:
-    """The deployment of a built structure in its design's material (``MaterialParams``), the
-    reason it stopped short of the design angle (None if it did not: a path that stops keeps
-    its states) and the material."""
-    from ..mechanics import MATERIALS
-    from ..mechanics._deploy import DeployError, deploy
-    from ._loading import _sheet
-
-    material = _sheet(params) if params.material is None else MATERIALS[params.material]
-    try:
-        found = deploy(
-            structure,
-            material,
-            params.thickness,
-            crease_stiffness=params.crease_stiffness,
-            **options,
-        )
-    except DeployError as err:
-        return err.deployment, str(err), material
-    return found, None, material
 
 
 def _lines(s: dict, material: str, thickness: float) -> list[str]:

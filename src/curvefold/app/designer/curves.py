@@ -126,7 +126,7 @@ def deployment(design: Design) -> dict:
 @lru_cache(maxsize=2)
 def _deployment(key: str) -> dict:
     from .._build import build
-    from .._deploy_command import deploy_design
+    from .._deployment import deploy_design
     from .._design import design_from_dict
 
     design = design_from_dict(json.loads(key), source="query")
