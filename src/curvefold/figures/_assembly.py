@@ -163,6 +163,15 @@ class AssemblyPlan:
         return tuple(p for step in self.steps for p in step.panels)
 
 
+def _joined(bonds, tube: int):
+    """(this tube's crease, the earlier tubes' creases) in words, per bond joining them."""
+    for bond in bonds:
+        others = [c for c in bond.creases if c[0] != tube]
+        here = [c for c in bond.creases if c[0] == tube]
+        if others and here:
+            yield _crease_words(*here[0]), ", ".join(_crease_words(*c) for c in others)
+
+
 def _crease_words(tube: int, crease: int) -> str:
     where = {
         1: "the crease of its sheet A",
@@ -248,15 +257,11 @@ def assembly_plan(
     for tube in range(tube_count):
         if thick is not None:
             lines, panels = _thick_lines(thick, tube)
-            for bond in by_tube.get(tube, []):
-                others = [c for c in bond.creases if c[0] != tube]
-                here = [c for c in bond.creases if c[0] == tube]
-                if others and here:
-                    lines.append(
-                        f"Hinge {_crease_words(*here[0])} to "
-                        f"{', '.join(_crease_words(*c) for c in others)}: one hinge axis, on "
-                        "the crease, for the panels of both."
-                    )
+            for here, others in _joined(by_tube.get(tube, []), tube):
+                lines.append(
+                    f"Hinge {here} to {others}: one hinge axis, on the crease, for the panels "
+                    "of both."
+                )
             title = f"Step {tube + 1}: tube {tube + 1}"
             steps.append(Step(tube + 1, tube, title, tuple(lines), panels))
             continue
@@ -281,14 +286,8 @@ def assembly_plan(
                 )
         if len(lines) > 2:
             lines.append("Let the first seam set before closing the tube with the second.")
-        for bond in by_tube.get(tube, []):
-            others = [c for c in bond.creases if c[0] != tube]
-            here = [c for c in bond.creases if c[0] == tube]
-            if others and here:
-                lines.append(
-                    f"Glue {_crease_words(*here[0])} along "
-                    f"{', '.join(_crease_words(*c) for c in others)}."
-                )
+        for here, others in _joined(by_tube.get(tube, []), tube):
+            lines.append(f"Glue {here} along {others}.")
         steps.append(Step(tube + 1, tube, f"Step {tube + 1}: tube {tube + 1}", tuple(lines)))
     return AssemblyPlan(tuple(sheets), tuple(seams), tuple(steps))
 
